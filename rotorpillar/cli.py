@@ -1,0 +1,116 @@
+"""The `rotorpillar` command: parse, call the library, write results.
+
+Every command takes a scene (a TOML path or an embedded scene's name,
+default ``paper``), ``--set section.key=value`` overrides, ``--out DIR``
+(default ``out/<scene>/``) and ``--json``.  It writes ``DIR/<command>.json``
+atomically, with the resolved scene, the versions and the timings, and
+prints a readable summary, or with ``--json`` that same JSON and nothing else
+on stdout.  Bad input: one line on stderr, exit code 2, nothing written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import time
+from pathlib import Path
+
+from . import __version__
+from .errors import InputError
+from .provenance import Timings, machine, to_json, versions, write_json
+from .scene import Scene, embedded_scenes, load_scene
+
+# name -> (module, function, help).  A command function takes
+# (scene, args, timings, context) and returns (result: dict, summary: str).
+COMMANDS = {
+    "analyze": ("rotorpillar.commands", "analyze_command",
+                "closed forms, reduced system modes, averaging, paper comparison"),
+    "run": ("rotorpillar.commands", "run_command",
+            "the main job: every analysis of the scene, then the report"),
+}
+
+# Extra arguments of a command: name -> callable(parser)
+EXTRA_ARGUMENTS = {}
+
+
+def _common(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", nargs="?", default="paper",
+                   help=f"scene file (.toml) or embedded scene: {', '.join(embedded_scenes())} "
+                        "(default: paper)")
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a scene key, e.g. --set shaft.stiffness=5e6 (repeatable)")
+    p.add_argument("--out", type=Path, default=None, metavar="DIR",
+                   help="output directory (default: out/<scene>/)")
+    p.add_argument("--json", action="store_true",
+                   help="print the result JSON on stdout and nothing else there")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="rotorpillar",
+        description="Dynamics of a heavy eccentric rotor on a tall flexible pillar.")
+    parser.add_argument("--version", action="version", version=f"rotorpillar {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for name, (_, _, help_) in COMMANDS.items():
+        p = sub.add_parser(name, help=help_, description=help_)
+        _common(p)
+        if name in EXTRA_ARGUMENTS:
+            EXTRA_ARGUMENTS[name](p)
+    return parser
+
+
+def _is_root_rank() -> bool:
+    """Write and print on MPI rank 0 only (mpi4py is imported only by fem3d)."""
+    mpi = sys.modules.get("mpi4py.MPI")
+    return mpi is None or mpi.COMM_WORLD.rank == 0
+
+
+def out_dir(scene: Scene, args) -> Path:
+    return args.out if args.out is not None else Path("out") / scene.name
+
+
+def execute(name: str, scene: Scene, args, context: dict | None = None) -> dict:
+    """Run one command on a scene, write ``<out>/<name>.json``, return the result."""
+    module, func, _ = COMMANDS[name]
+    fn = getattr(importlib.import_module(module), func)
+    timings = Timings()
+    context = {} if context is None else context
+    start = time.perf_counter()
+    result, text = fn(scene, args, timings, context)
+    timings["total"] = time.perf_counter() - start
+    doc = {"command": name, "scene_source": str(args.scene), "overrides": list(args.overrides),
+           "scene": scene.to_dict(), **result,
+           "versions": versions(), "machine": machine(), "timings": dict(timings)}
+    if _is_root_rank():
+        path = write_json(out_dir(scene, args) / f"{name}.json", doc)
+        doc["_path"] = str(path)
+        doc["_summary"] = text
+    return doc
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        scene = load_scene(args.scene, args.overrides)
+        doc = execute(args.command, scene, args)
+    except InputError as exc:
+        print(f"rotorpillar {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"rotorpillar {args.command}: interrupted; finished outputs are complete, "
+              "none is half-written", file=sys.stderr)
+        return 130
+    if _is_root_rank():
+        path, text = doc.pop("_path"), doc.pop("_summary")
+        if args.json:
+            print(to_json(doc))
+        else:
+            print(text)
+            print(f"\nwrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,5 @@
+"""Errors a user can fix: the CLI prints them as one line and exits with 2."""
+
+
+class InputError(ValueError):
+    """Bad input: the message is one line naming the field and the allowed range."""

@@ -1,0 +1,319 @@
+"""The scene: one structure and what to run on it, read from TOML.
+
+A scene file has one table per section below; every quantity is a float in
+SI units (m, kg, s, N, Pa, rad), stated once in the field's docstring.  Each
+field carries its allowed range, so validation, the one-line error message and
+the documentation all come from the same place.
+
+>>> s = load_scene("paper")
+>>> s.pillar.height, s.shaft.stiffness
+(20.0, 400000.0)
+>>> override(s, ["shaft.stiffness=5e6"]).shaft.stiffness
+5000000.0
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from dataclasses import dataclass, field, fields
+from importlib import resources
+from pathlib import Path
+from typing import Any, Optional
+
+from .errors import InputError
+
+
+class SceneError(InputError):
+    """Bad scene input; the message is one line naming the key and the range."""
+
+
+def param(doc: str, default: Any = dataclasses.MISSING, *, gt=None, ge=None,
+          lt=None, le=None, choices=None, optional=False):
+    """A scene field: its docstring (with unit) and its allowed range."""
+    meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices,
+                optional=optional)
+    return field(default=default, metadata=meta)
+
+
+def _range_text(meta) -> str:
+    if meta["choices"] is not None:
+        return "one of " + ", ".join(repr(c) for c in meta["choices"])
+    lo = (f"> {meta['gt']:g}" if meta["gt"] is not None else
+          f">= {meta['ge']:g}" if meta["ge"] is not None else None)
+    hi = (f"< {meta['lt']:g}" if meta["lt"] is not None else
+          f"<= {meta['le']:g}" if meta["le"] is not None else None)
+    parts = [p for p in (lo, hi) if p]
+    return " and ".join(parts) if parts else "any finite value"
+
+
+# --------------------------------------------------------------------------
+# Sections.  Defaults exist only where a scene may reasonably leave a key out
+# (numerical settings); physical data must be stated.
+
+
+@dataclass(frozen=True)
+class Pillar:
+    """The steel tube: a cantilever clamped at its base."""
+    height: float = param("Height H (m)", gt=0)
+    outer_diameter: float = param("Outer diameter D0 (m)", gt=0)
+    inner_diameter: float = param("Inner diameter D1 (m), < outer_diameter", ge=0)
+    youngs_modulus: float = param("Young's modulus E (Pa)", gt=0)
+    poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
+    density: float = param("Density rho (kg/m**3)", gt=0)
+    damping: float = param("Damping b1 at the tip (N*s/m)", ge=0)
+
+
+@dataclass(frozen=True)
+class Gondola:
+    """The stator housing on top of the pillar, moving with its tip."""
+    mass: float = param("Mass m* (kg)", gt=0)
+
+
+@dataclass(frozen=True)
+class Rotor:
+    """The rotor on its elastic shaft."""
+    mass: float = param("Mass m_C (kg)", gt=0)
+    inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", gt=0)
+    eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0)
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """Shaft and bearings, the same in X and Y (c2 = c3, b2 = b3)."""
+    stiffness: float = param("Stiffness c2 = c3 (N/m)", gt=0)
+    damping: float = param("Damping b2 = b3 (N*s/m)", ge=0)
+
+
+REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
+
+
+@dataclass(frozen=True)
+class Reduction:
+    """The pillar reduced to one mass and one spring at its tip (Eq. 2).
+
+    Stated values are used as given; absent ones are computed, by
+    ``source``: "closed_form" (the continuous first Euler-Bernoulli mode),
+    "fem3d" (the first bending mode of the 3D model) or "auto" (= stated
+    where given, else closed_form).
+    """
+    tip_mass: Optional[float] = param("Reduced tip mass m_r (kg)", None, gt=0, optional=True)
+    tip_stiffness: Optional[float] = param("Tip stiffness c1 (N/m)", None, gt=0, optional=True)
+    source: str = param("Where absent values come from", "auto", choices=REDUCTION_SOURCES)
+
+
+@dataclass(frozen=True)
+class Drive:
+    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (Eq. 22)."""
+    torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0)
+    slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0)
+
+
+@dataclass(frozen=True)
+class Load:
+    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (Eq. 22)."""
+    coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0)
+
+
+CELL_TYPES = ("hexahedron", "tetrahedron")
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """Gmsh discretisation of the tube wall."""
+    elements_around: int = param("Elements around the circumference (-)", 32, ge=4)
+    elements_along: int = param("Elements along the height (-)", 40, ge=1)
+    elements_through: int = param("Elements through the wall (-)", 1, ge=1)
+    degree: int = param("Lagrange degree of the displacement (-)", 2, choices=(1, 2))
+    cell_type: str = param("Cell type", "hexahedron", choices=CELL_TYPES)
+
+
+SECTIONS = {
+    "pillar": Pillar,
+    "gondola": Gondola,
+    "rotor": Rotor,
+    "shaft": Shaft,
+    "reduction": Reduction,
+    "drive": Drive,
+    "load": Load,
+    "mesh": Mesh,
+}
+OPTIONAL_SECTIONS = ("reduction", "mesh")
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One structure and what to run on it."""
+    name: str
+    pillar: Pillar
+    gondola: Gondola
+    rotor: Rotor
+    shaft: Shaft
+    drive: Drive
+    load: Load
+    reduction: Reduction = Reduction()
+    mesh: Mesh = Mesh()
+    description: str = ""
+
+    def to_dict(self) -> dict:
+        """The resolved scene, as it would be written back to TOML."""
+        return dataclasses.asdict(self)
+
+
+# --------------------------------------------------------------------------
+# Reading, checking, overriding.
+
+
+def _check_value(key: str, value: Any, f: dataclasses.Field) -> Any:
+    meta = f.metadata
+    want = f.type if isinstance(f.type, str) else f.type.__name__
+    if value is None:
+        if meta.get("optional"):
+            return None
+        raise SceneError(f"{key}: a value is required ({meta['doc']}; {_range_text(meta)})")
+    if "float" in want:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise SceneError(f"{key} = {value!r}: must be a number ({meta['doc']}; {_range_text(meta)})")
+        value = float(value)
+        if not math.isfinite(value):
+            raise SceneError(f"{key} = {value!r}: must be finite ({meta['doc']}; {_range_text(meta)})")
+    elif "int" in want:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise SceneError(f"{key} = {value!r}: must be an integer ({meta['doc']}; {_range_text(meta)})")
+    elif "bool" in want:
+        if not isinstance(value, bool):
+            raise SceneError(f"{key} = {value!r}: must be true or false ({meta['doc']})")
+        return value
+    elif "str" in want:
+        if not isinstance(value, str):
+            raise SceneError(f"{key} = {value!r}: must be a string ({meta['doc']}; {_range_text(meta)})")
+    if meta["choices"] is not None:
+        if value not in meta["choices"]:
+            raise SceneError(f"{key} = {value!r}: must be {_range_text(meta)} ({meta['doc']})")
+        return value
+    ok = ((meta["gt"] is None or value > meta["gt"]) and
+          (meta["ge"] is None or value >= meta["ge"]) and
+          (meta["lt"] is None or value < meta["lt"]) and
+          (meta["le"] is None or value <= meta["le"]))
+    if not ok:
+        raise SceneError(f"{key} = {value!r} is out of range: must be {_range_text(meta)} ({meta['doc']})")
+    return value
+
+
+def _build_section(name: str, cls, table: Any):
+    if not isinstance(table, dict):
+        raise SceneError(f"[{name}] must be a table of keys, got {type(table).__name__}")
+    known = {f.name: f for f in fields(cls)}
+    for key in table:
+        if key not in known:
+            raise SceneError(f"{name}.{key}: unknown key; [{name}] takes "
+                             + ", ".join(known))
+    values = {}
+    for key, f in known.items():
+        if key in table:
+            values[key] = _check_value(f"{name}.{key}", table[key], f)
+        elif f.default is dataclasses.MISSING:
+            raise SceneError(f"{name}.{key}: missing ({f.metadata['doc']}; "
+                             f"{_range_text(f.metadata)})")
+    return cls(**values)
+
+
+def _cross_checks(scene: Scene) -> None:
+    p = scene.pillar
+    if p.inner_diameter >= p.outer_diameter:
+        raise SceneError(
+            f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
+            f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)")
+
+
+def scene_from_dict(data: dict, name: str = "scene") -> Scene:
+    """Validate a parsed TOML document and build the scene."""
+    data = dict(data)
+    description = data.pop("description", "")
+    name = data.pop("name", name)
+    if not isinstance(name, str) or not isinstance(description, str):
+        raise SceneError("name and description must be strings")
+    for key in data:
+        if key not in SECTIONS:
+            raise SceneError(f"[{key}]: unknown section; a scene has "
+                             + ", ".join(f"[{s}]" for s in SECTIONS))
+    sections = {}
+    for sec, cls in SECTIONS.items():
+        if sec not in data:
+            if sec in OPTIONAL_SECTIONS:
+                continue
+            raise SceneError(f"[{sec}]: missing section")
+        sections[sec] = _build_section(sec, cls, data[sec])
+    scene = Scene(name=name, description=description, **sections)
+    _cross_checks(scene)
+    return scene
+
+
+def embedded_scenes() -> list[str]:
+    """Names of the scenes shipped inside the package."""
+    return sorted(p.name[:-5] for p in resources.files("rotorpillar.scenes").iterdir()
+                  if p.name.endswith(".toml"))
+
+
+def read_scene_toml(spec: str | Path) -> tuple[dict, str]:
+    """The raw TOML of a scene given by file path or embedded name."""
+    path = Path(spec)
+    if path.suffix == ".toml" or path.exists() or "/" in str(spec):
+        if not path.is_file():
+            raise SceneError(f"scene file {str(spec)!r} not found (give a .toml path "
+                             f"or one of: {', '.join(embedded_scenes())})")
+        text, name = path.read_text(encoding="utf-8"), path.stem
+    else:
+        if str(spec) not in embedded_scenes():
+            raise SceneError(f"scene {str(spec)!r}: no such file or embedded scene "
+                             f"(embedded: {', '.join(embedded_scenes())})")
+        text = resources.files("rotorpillar.scenes").joinpath(f"{spec}.toml").read_text("utf-8")
+        name = str(spec)
+    try:
+        return tomllib.loads(text), name
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"scene {str(spec)!r} is not valid TOML: {exc}") from None
+
+
+def parse_assignment(text: str) -> tuple[list[str], Any]:
+    """``section.key=value`` -> (["section", "key"], value), value read as TOML."""
+    if "=" not in text:
+        raise SceneError(f"--set {text!r}: expected KEY=VALUE, e.g. shaft.stiffness=5e6")
+    key, raw = text.split("=", 1)
+    path = key.strip().split(".")
+    if len(path) != 2 or not all(path):
+        raise SceneError(f"--set {text!r}: KEY must be section.key, e.g. shaft.stiffness")
+    raw = raw.strip()
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw  # a bare word: a string such as cell_type=tetrahedron
+    return path, value
+
+
+def apply_overrides(data: dict, assignments: list[str]) -> dict:
+    """Apply ``--set`` assignments to a raw scene document (a copy)."""
+    data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
+    for text in assignments:
+        (sec, key), value = parse_assignment(text)
+        data.setdefault(sec, {})
+        if not isinstance(data[sec], dict):
+            raise SceneError(f"--set {text!r}: [{sec}] is not a table")
+        data[sec][key] = value
+    return data
+
+
+def load_scene(spec: str | Path = "paper", overrides: list[str] | None = None) -> Scene:
+    """Read, override and validate a scene (file path or embedded name)."""
+    data, name = read_scene_toml(spec)
+    return scene_from_dict(apply_overrides(data, overrides or []), name=name)
+
+
+def override(scene: Scene, assignments: list[str]) -> Scene:
+    """A validated copy of ``scene`` with ``--set`` style assignments applied."""
+    data = scene.to_dict()
+    name = data.pop("name")
+    data = {k: {kk: vv for kk, vv in v.items()} if isinstance(v, dict) else v
+            for k, v in data.items()}
+    return scene_from_dict(apply_overrides(data, assignments), name=name)

@@ -1,0 +1,1 @@
+"""Embedded scenes: TOML files shipped with the package (see rotorpillar.scene)."""
