@@ -1,0 +1,245 @@
+"""`rotorpillar analyze`: the paper's closed-form model of a scene.
+
+Pillar closed forms (Eq. 1-2, with a Timoshenko check), the tip reduction
+actually used (stated, closed form or fem3d), the reduced system's modes and
+quasi-normal coefficients (Eq. 5-7), the averaging curves, stationary speeds,
+stability and jumps (Eq. 19-24), and the paper's printed numbers beside ours.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .reduced import averaging as av
+from .reduced.pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bernoulli,
+                             omega_timoshenko, rayleigh_reduction, section_of,
+                             tip_mass_continuous, tip_mass_lumped)
+from .reduced.system import linear_modes, reduced_system
+from .scene import Scene, SceneError
+
+LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
+CURVE_POINTS = 201
+CURVE_SPAN = 0.5          # z from 1 - span to 1 + span
+
+
+def pillar_closed_forms(scene: Scene) -> dict:
+    """Eq. (1), Timoshenko's correction and the Eq. (2) reductions of the bare tube."""
+    p = scene.pillar
+    sec = section_of(p)
+    I, A, m_rho = sec.second_moment, sec.area, sec.mass_per_length
+    mass = m_rho * p.height
+    w1 = omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height)
+    kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
+    w_timo = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, A, I, p.height)
+    lumped = [{"n": n, "tip_mass": tip_mass_lumped(mass, n),
+               "tip_stiffness": tip_mass_lumped(mass, n) * w1**2} for n in LUMPINGS]
+    m_inf = tip_mass_continuous(mass)
+    rayleigh = []
+    for shape in ("uniform_load", "tip_load"):
+        r = rayleigh_reduction(mass, p.youngs_modulus, I, p.height, shape)
+        rayleigh.append({"shape": shape, "tip_mass": r.tip_mass, "tip_stiffness": r.tip_stiffness,
+                         "omega": r.omega, "omega_error": r.omega / w1 - 1})
+    return {
+        "area": A,
+        "second_moment": I,
+        "mass_per_length": m_rho,
+        "mass": mass,
+        "wall_thickness": sec.wall_thickness,
+        "diameter_to_thickness": p.outer_diameter / sec.wall_thickness,
+        "slenderness": p.height / sec.radius_of_gyration,
+        "omega_col1": w1,
+        "frequency_col1_hz": w1 / (2 * math.pi),
+        "cantilever_root": cantilever_root(1),
+        "omega_euler_bernoulli": [omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height, k)
+                                  for k in (1, 2, 3)],
+        "shear_coefficient": kappa,
+        "omega_col1_timoshenko": w_timo,
+        "timoshenko_correction": w_timo / w1 - 1,
+        "tip_mass_lumped": lumped,
+        "tip_mass_limit": m_inf,
+        "tip_stiffness_limit": m_inf * w1**2,
+        "rayleigh": rayleigh,
+    }
+
+
+def resolve_reduction(scene: Scene, closed: dict, fem3d_reduction=None) -> dict:
+    """The tip mass and stiffness the reduced model uses, and where each came from.
+
+    ``fem3d_reduction`` is a callable scene -> (m_reduced, tip_stiffness), used
+    when the scene's source is "fem3d".
+    """
+    red = scene.reduction
+    computed = {"tip_mass": closed["tip_mass_limit"], "tip_stiffness": closed["tip_stiffness_limit"]}
+    source = "closed_form"
+    if red.source == "fem3d":
+        if fem3d_reduction is None:
+            raise SceneError('reduction.source = "fem3d" needs the 3D model (rotorpillar.fem3d), '
+                             "which is not available here")
+        m, c = fem3d_reduction(scene)
+        computed, source = {"tip_mass": m, "tip_stiffness": c}, "fem3d"
+    out = {"source": red.source}
+    for key in ("tip_mass", "tip_stiffness"):
+        stated = getattr(red, key)
+        if stated is not None and red.source in ("auto", "stated"):
+            out[key], out[f"{key}_source"] = stated, "stated"
+        elif red.source == "stated":
+            raise SceneError(f'reduction.{key}: required when reduction.source = "stated"')
+        else:
+            out[key], out[f"{key}_source"] = computed[key], source
+        out[f"{key}_computed"] = computed[key]
+    out["computed_source"] = source
+    return out
+
+
+def _curves(r, others, ch: av.Characteristic) -> dict:
+    z = np.linspace(1 - CURVE_SPAN, 1 + CURVE_SPAN, CURVE_POINTS)
+    W = z * r.omega
+    dL = av.resistance_increment(W, r)
+    return {"z": z, "omega": W, "a": av.amplitude(W, r), "a_linear": av.amplitude_linear(W, r),
+            "dL": dL, "L": ch.load(W) + dL,
+            "L_all": av.total_resistance(W, ch.load_coefficient, others), "Md": ch.drive(W)}
+
+
+def _statement(r, jumps, ch, s_crit, e_factor, e) -> str:
+    if jumps:
+        parts = []
+        for j in jumps:
+            name = "run-up A->B" if j.direction == "up" else "run-down D->C"
+            parts.append(f"{name}: {j.omega_from:.2f} -> {j.omega_to:.2f} rad/s at M0 = "
+                         f"{j.torque_at_zero:.1f} N*m")
+        return f"Resonance {r.index} ({r.omega:.2f} rad/s) jumps: " + "; ".join(parts) + "."
+    dL_slope = -min(0.0, float(np.min(av.resistance_increment_slope(
+        r.omega * (1 + r.nu * np.linspace(0, 3, 301)), r))))
+    text = (f"No jumps at resonance {r.index} ({r.omega:.2f} rad/s) with this drive: dL_{r.index} "
+            f"falls at most {dL_slope:.3g} N*m*s while Mc' + slope is "
+            f"{2 * ch.load_coefficient * r.omega + ch.slope:.3g} N*m*s there.")
+    if s_crit > 0:
+        text += f" A motor characteristic flatter than slope {s_crit:.3g} N*m*s would cause them"
+    else:
+        text += " No falling motor characteristic can cause them (critical slope "\
+                f"{s_crit:.3g} N*m*s < 0)"
+    if math.isfinite(e_factor):
+        text += f"; with this motor, an eccentricity above {e * e_factor:.3g} m ({e_factor:.3g} x e) would."
+    else:
+        text += "."
+    return text
+
+
+def averaging_results(modes, ch: av.Characteristic, eccentricity: float,
+                      c2e: float) -> tuple[list[dict], dict]:
+    """Per-resonance averaging results and the drive's stationary regimes."""
+    res = modes.resonances
+    drive = av.analyse_drive(ch, res)
+    top = drive.grid_top
+    out = []
+    for r in res:
+        a_max = float(av.amplitude(r.omega, r))
+        dL_max = float(av.resistance_increment(r.omega, r))
+        Mc = float(ch.load(r.omega))
+        s_crit = av.critical_slope(ch.load_coefficient, r, top)
+        e_factor = av.critical_eccentricity_factor(ch, r, top)
+        jumps = [j for j in drive.jumps if j.resonance == r.index]
+        out.append({
+            "index": r.index, "direction": r.direction, "omega": r.omega,
+            "forcing": r.forcing, "coupling": r.coupling, "two_n": r.two_n, "nu": r.nu,
+            "modal_mass": r.modal_mass, "shape": list(r.shape),
+            "a_max": a_max,
+            "rotor_relative_amplitude_max": a_max * abs(r.shape[1] - r.shape[0]) if r.direction == "X" else a_max,
+            "a_max_as_printed": float(av.amplitude_as_printed(r.omega, r)),
+            "dL_max": dL_max,
+            "Mc_at_omega": Mc,
+            "dL_max_over_Mc": dL_max / Mc if Mc > 0 else None,
+            "dL_max_over_Mc_as_printed": (c2e / 2 * a_max / Mc) if Mc > 0 else None,
+            "stationary": [vars(s) for s in drive.stationary
+                           if abs(s.omega - r.omega) < 5 * r.nu * r.omega + 1e-12],
+            "jumps": [vars(j) for j in jumps],
+            "critical_slope": s_crit,
+            "critical_eccentricity": eccentricity * e_factor,
+            "statement": _statement(r, jumps, ch, s_crit, e_factor, eccentricity),
+            "curves": _curves(r, res, ch),
+        })
+    drive_out = {
+        "torque_at_zero": ch.torque_at_zero, "slope": ch.slope,
+        "load_coefficient": ch.load_coefficient, "free_speed": ch.free_speed(),
+        "stationary": [vars(s) for s in drive.stationary],
+        "jumps": [vars(j) for j in drive.jumps],
+        "runup_speed": drive.runup_speed, "rundown_speed": drive.rundown_speed,
+        "captured_at": drive.captured_at,
+    }
+    return out, drive_out
+
+
+def analyze(scene: Scene, fem3d_reduction=None) -> dict:
+    """Everything the closed forms say about a scene (JSON-ready)."""
+    closed = pillar_closed_forms(scene)
+    red = resolve_reduction(scene, closed, fem3d_reduction)
+    sys_ = reduced_system(scene, red["tip_mass"], red["tip_stiffness"])
+    modes = linear_modes(sys_)
+    ch = av.Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
+    c2e = scene.shaft.stiffness * scene.rotor.eccentricity
+    resonances, drive = averaging_results(modes, ch, scene.rotor.eccentricity, c2e)
+    x = modes.resonances[:2]
+    system = {
+        "tip_mass_total": sys_.tip_mass, "c0": sys_.c0, "b0": sys_.b0,
+        "omega": [x[0].omega, x[1].omega],
+        "omega3": modes.resonances[2].omega,
+        "frequency_hz": [w / (2 * math.pi) for w in modes.omega],
+        "modal_vectors": [list(r.shape) for r in x],
+        "modal_masses": [r.modal_mass for r in modes.resonances],
+        "forcing": [r.forcing for r in modes.resonances],
+        "coupling": [r.coupling for r in modes.resonances],
+        "two_n": [r.two_n for r in modes.resonances],
+        "nu": [r.nu for r in modes.resonances],
+        "f4": c2e,
+    }
+    from .paper import compare_with_paper
+    result = {"pillar": closed, "reduction": red, "system": system,
+              "resonances": resonances, "drive": drive}
+    result["paper_comparison"] = compare_with_paper(scene, result)
+    return result
+
+
+def summary(result: dict) -> str:
+    """A readable report of an analyze result."""
+    p, s, red = result["pillar"], result["system"], result["reduction"]
+    lines = [
+        "Pillar (bare tube, closed forms)",
+        f"  I = {p['second_moment']:.5g} m^4, A = {p['area']:.5g} m^2, "
+        f"m_rho = {p['mass_per_length']:.5g} kg/m, mass = {p['mass']:.5g} kg, D/t = "
+        f"{p['diameter_to_thickness']:.0f}",
+        f"  omega_col1 = {p['omega_col1']:.4f} rad/s ({p['frequency_col1_hz']:.4f} Hz) Euler-Bernoulli, "
+        f"{p['omega_col1_timoshenko']:.4f} Timoshenko ({100 * p['timoshenko_correction']:+.2f} %)",
+        "  tip mass by Eq. 2: " + ", ".join(f"n={d['n']}: {d['tip_mass']:.4g}" for d in p["tip_mass_lumped"][:4])
+        + f", limit {p['tip_mass_limit']:.4g} kg (c1 = {p['tip_stiffness_limit']:.4g} N/m)",
+        "  Rayleigh: " + ", ".join(f"{d['shape']}: m = {d['tip_mass']:.4g} kg, c = {d['tip_stiffness']:.4g} N/m"
+                                   for d in p["rayleigh"]),
+        f"Reduction used: m_r = {red['tip_mass']:.5g} kg ({red['tip_mass_source']}), "
+        f"c1 = {red['tip_stiffness']:.5g} N/m ({red['tip_stiffness_source']})",
+        f"System: omega = {s['omega'][0]:.4f}, {s['omega'][1]:.4f} rad/s (X), omega3 = {s['omega3']:.4f} rad/s (Y)",
+        f"  {'i':>2} {'dir':>3} {'omega':>9} {'I_i [kg]':>11} {'f_i':>10} {'2n_i':>8} {'nu_i':>7} "
+        f"{'a_max [m]':>10} {'dLmax':>9} {'dL/Mc':>8}",
+    ]
+    for r in result["resonances"]:
+        lines.append(f"  {r['index']:>2} {r['direction']:>3} {r['omega']:>9.4f} {r['modal_mass']:>11.5g} "
+                     f"{r['forcing']:>10.4g} {r['two_n']:>8.4g} {r['nu']:>7.4f} {r['a_max']:>10.4g} "
+                     f"{r['dL_max']:>9.4g} {r['dL_max_over_Mc']:>8.3g}")
+    d = result["drive"]
+    lines.append(f"Drive M0 = {d['torque_at_zero']:g} N*m, slope {d['slope']:g}: stationary speeds "
+                 + (", ".join(f"{x['omega']:.3f} ({'stable' if x['stable'] else 'unstable'})"
+                              for x in d["stationary"]) or "none"))
+    for r in result["resonances"]:
+        lines.append("  " + r["statement"])
+    lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")
+    lines.append(f"  {'quantity':<34} {'paper':>11} {'computed':>11} {'diff':>8}")
+    for row in result["paper_comparison"]:
+        flag = "*" if row["flag"] else " "
+        lines.append(f"{flag} {row['quantity']:<34} {row['paper']:>11.5g} {row['computed']:>11.5g} "
+                     f"{100 * row['rel_diff']:>+7.1f}%")
+    notes = [r for r in result["paper_comparison"] if r["flag"] and r["note"]]
+    if notes:
+        lines.append("Likely causes of the flagged differences:")
+        for row in notes:
+            lines.append(f"  {row['quantity']}: {row['note']}")
+    return "\n".join(lines)

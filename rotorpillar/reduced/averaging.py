@@ -1,0 +1,248 @@
+"""Averaging (Bogoliubov-Mitropolski) near the resonances: Eq. (17)-(24).
+
+Near resonance i the quasi-normal coordinate x_i = a cos(q4 + xi) with
+slowly varying amplitude a, phase xi and speed Omega; the stationary averaged
+equations (17)-(18) give, with z = Omega/omega_i and nu_i = n_i/omega_i:
+
+- amplitude, Eq. (19):     a_i(z)  = |f_i| / (2 omega_i**2 sqrt((1 - z)**2 + nu_i**2))
+- extra torque, Eq. (20):  dL_i(z) = f_i g_i nu_i / (4 omega_i**2 ((1 - z)**2 + nu_i**2))
+- total resistance (21):   L(Omega) = Mc(Omega) + sum_i dL_i
+- stationary speeds where Md = L, stable where d(Md - L)/dOmega < 0 (Eq. 23).
+
+Two departures from the printed paper, both forced by its own Eq. (17):
+Eq. (19) as printed divides by omega_i, not omega_i**2 (its a_i would be a
+velocity; (17) gives a = f/(2 omega (Omega - omega ...)) with f an
+acceleration); and Eq. (21) prints (1 - z**2) where Eq. (20) has (1 - z)**2.
+The torque coupling g_i replaces the paper's f4 = c2 e (see
+rotorpillar.reduced.system).  The printed forms stay available for
+comparison.
+
+Quasi-static run-up and run-down: with Md = M0 - s Omega and M0 slowly
+varied, stationary speeds solve F(Omega) = M0 with F = L + s Omega.  A
+run-up follows the lowest root; where F has a local maximum (A) the branch
+ends and the speed jumps to B, the next root above; a run-down follows the
+highest root down to a local minimum (D) and jumps to C (paper Figs. 3-4).
+
+>>> from rotorpillar.reduced.system import linear_modes, paper_example
+>>> r = linear_modes(paper_example(5e6, 25e3)).resonances[0]
+>>> round(float(amplitude(r.omega, r)) / (abs(r.forcing) / (2 * r.omega**2 * r.nu)), 12)
+1.0
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .system import Resonance
+
+
+# --------------------------------------------------------------------------
+# Per-resonance closed forms
+
+
+def amplitude(Omega, r: Resonance):
+    """a_i at speed Omega, Eq. (19) with its omega_i**2 restored (m)."""
+    z = np.asarray(Omega, dtype=float) / r.omega
+    return abs(r.forcing) / (2 * r.omega**2 * np.sqrt((1 - z) ** 2 + r.nu**2))
+
+
+def amplitude_as_printed(Omega, r: Resonance):
+    """Eq. (19) exactly as printed: f_i / (2 omega_i sqrt(...)) (m/s, not m)."""
+    return amplitude(Omega, r) * r.omega
+
+
+def amplitude_linear(Omega, r: Resonance):
+    """Exact steady amplitude of x'' + 2n x' + omega**2 x = f cos(Omega t) (m).
+
+    The averaging result (19) is its first-order expansion about Omega = omega.
+    """
+    W = np.asarray(Omega, dtype=float)
+    return abs(r.forcing) / np.sqrt((r.omega**2 - W**2) ** 2 + (r.two_n * W) ** 2)
+
+
+def resistance_increment(Omega, r: Resonance):
+    """dL_i, the averaged torque drawn by resonance i, Eq. (20) (N*m)."""
+    z = np.asarray(Omega, dtype=float) / r.omega
+    return r.forcing * r.coupling * r.nu / (4 * r.omega**2 * ((1 - z) ** 2 + r.nu**2))
+
+
+def resistance_increment_slope(Omega, r: Resonance):
+    """d(dL_i)/dOmega (N*m*s)."""
+    z = np.asarray(Omega, dtype=float) / r.omega
+    C = r.forcing * r.coupling * r.nu / (4 * r.omega**2)
+    D = (1 - z) ** 2 + r.nu**2
+    return 2 * C * (1 - z) / (r.omega * D**2)
+
+
+def resistance_increment_as_printed(Omega, r: Resonance, f4: float):
+    """Eq. (20) with the paper's f4 = c2 e in place of g_i (N*m)."""
+    return resistance_increment(Omega, r) * f4 / r.coupling
+
+
+def resistance_increment_linear(Omega, r: Resonance):
+    """Exact averaged torque of the linear mode at constant Omega (N*m).
+
+    Power balance: dL * Omega = I (2n) <x'**2> = I n a**2 Omega**2.
+    """
+    W = np.asarray(Omega, dtype=float)
+    return r.modal_mass * r.n * amplitude_linear(W, r) ** 2 * W
+
+
+# --------------------------------------------------------------------------
+# Drive and load
+
+
+@dataclass(frozen=True)
+class Characteristic:
+    """Motor and machine torques, Eq. (22): Md = M0 - s Omega, Mc = k Omega**2."""
+    torque_at_zero: float
+    """M0 (N*m)"""
+    slope: float
+    """s (N*m*s)"""
+    load_coefficient: float
+    """k (N*m*s**2)"""
+
+    def drive(self, Omega):
+        return self.torque_at_zero - self.slope * np.asarray(Omega, dtype=float)
+
+    def load(self, Omega):
+        return self.load_coefficient * np.asarray(Omega, dtype=float) ** 2
+
+    def free_speed(self) -> float:
+        """Speed where Md = Mc with no resonance: an upper bound of every
+        stationary speed, since dL_i >= 0 (rad/s)."""
+        k, s, M0 = self.load_coefficient, self.slope, self.torque_at_zero
+        if k > 0:
+            return (-s + math.sqrt(s * s + 4 * k * M0)) / (2 * k)
+        if s > 0:
+            return M0 / s
+        return math.inf
+
+
+def total_resistance(Omega, load_coefficient: float, resonances) -> np.ndarray:
+    """L(Omega) = Mc(Omega) + sum_i dL_i(Omega), Eq. (21) (N*m)."""
+    W = np.asarray(Omega, dtype=float)
+    return load_coefficient * W**2 + sum(resistance_increment(W, r) for r in resonances)
+
+
+def speed_grid(resonances, top: float, n: int = 4000) -> np.ndarray:
+    """Speeds from 0 to ``top``, dense across each resonance peak."""
+    parts = [np.linspace(0.0, top, n)]
+    for r in resonances:
+        parts.append(r.omega * (1 + r.nu * np.linspace(-25, 25, 2001)))
+    g = np.unique(np.concatenate(parts))
+    return g[(g > 0) & (g <= top)]
+
+
+def _roots(fun, grid) -> list[float]:
+    vals = fun(grid)
+    out = []
+    for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+        out.append(brentq(fun, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1]))
+    out += [float(w) for w, v in zip(grid, vals) if v == 0.0]
+    return sorted(out)
+
+
+# --------------------------------------------------------------------------
+# Stationary regimes, stability, jumps
+
+
+@dataclass(frozen=True)
+class Stationary:
+    omega: float
+    """stationary speed Omega (rad/s)"""
+    stable: bool
+    """d(Md - L)/dOmega < 0 there (Eq. 23)"""
+    margin: float
+    """d(Md - L)/dOmega (N*m*s): negative when stable"""
+
+
+@dataclass(frozen=True)
+class Jump:
+    direction: str
+    """"up" (A -> B, quasi-static run-up) or "down" (D -> C, run-down)"""
+    omega_from: float
+    omega_to: float
+    torque_at_zero: float
+    """M0 at which the jump happens (N*m)"""
+    resonance: int
+    """index of the nearest resonance"""
+
+
+@dataclass(frozen=True)
+class DriveAnalysis:
+    stationary: list[Stationary]
+    jumps: list[Jump]
+    runup_speed: float | None
+    """where a quasi-static run-up to this M0 settles: the lowest root (rad/s)"""
+    rundown_speed: float | None
+    """where a quasi-static run-down to this M0 settles: the highest root (rad/s)"""
+    captured_at: int | None = None
+    """the resonance (index) below which the run-up settles while a faster
+    stable regime exists: Sommerfeld capture"""
+    grid_top: float = field(default=0.0)
+
+
+def analyse_drive(ch: Characteristic, resonances, top: float | None = None) -> DriveAnalysis:
+    """Stationary speeds for this drive, their stability, and the jumps of a
+    quasi-static run-up and run-down of M0 with the drive's slope."""
+    omegas = [r.omega for r in resonances]
+    free = ch.free_speed()
+    if top is None:
+        top = max(3 * max(omegas), 1.05 * free if math.isfinite(free) else 10 * max(omegas))
+    grid = speed_grid(resonances, top)
+    k, s = ch.load_coefficient, ch.slope
+
+    F = lambda W: total_resistance(W, k, resonances) + s * W          # M0 on the branch
+    dF = lambda W: 2 * k * W + s + sum(resistance_increment_slope(W, r) for r in resonances)
+    nearest = lambda W: min(resonances, key=lambda r: abs(r.omega - W)).index
+
+    roots = _roots(lambda W: F(W) - ch.torque_at_zero, grid)
+    stationary = [Stationary(w, bool(dF(w) > 0), float(-dF(w))) for w in roots]
+
+    folds = _roots(dF, grid)
+    jumps = []
+    for w in folds:
+        level = float(F(w))
+        curv = float(dF(w * (1 + 1e-6)) - dF(w * (1 - 1e-6)))
+        g = lambda W, level=level: F(W) - level
+        if curv < 0:   # local maximum of F: end of the lower branch, A -> B
+            above = [x for x in _roots(g, grid[grid > w * (1 + 1e-9)]) if x > w * (1 + 1e-7)]
+            if above:
+                jumps.append(Jump("up", w, above[0], level, nearest(w)))
+        else:          # local minimum: end of the upper branch, D -> C
+            below = [x for x in _roots(g, grid[grid < w * (1 - 1e-9)]) if x < w * (1 - 1e-7)]
+            if below:
+                jumps.append(Jump("down", w, below[-1], level, nearest(w)))
+
+    runup = roots[0] if roots else None
+    rundown = roots[-1] if roots else None
+    captured = None
+    if roots and rundown - runup > 1e-9 * rundown:
+        above = [r for r in resonances if r.omega > runup]
+        captured = min(above, key=lambda r: r.omega).index if above else None
+    return DriveAnalysis(stationary, jumps, runup, rundown, captured, top)
+
+
+def critical_slope(load_coefficient: float, r: Resonance, top: float) -> float:
+    """The largest drive slope s for which resonance i, alone, has a fold:
+    max over Omega of -(2 k Omega + d(dL_i)/dOmega) (N*m*s).  Negative when
+    no falling motor characteristic can cause a jump there."""
+    grid = speed_grid([r], top)
+    return float(np.max(-(2 * load_coefficient * grid + resistance_increment_slope(grid, r))))
+
+
+def critical_eccentricity_factor(ch: Characteristic, r: Resonance, top: float) -> float:
+    """The factor on the eccentricity beyond which resonance i, alone, has a
+    fold with this drive's slope (dL grows as e**2)."""
+    grid = speed_grid([r], top)
+    slope = resistance_increment_slope(grid, r)
+    falling = slope < 0
+    if not np.any(falling):
+        return math.inf
+    need = (2 * ch.load_coefficient * grid[falling] + ch.slope) / (-slope[falling])
+    return float(math.sqrt(np.min(need)))

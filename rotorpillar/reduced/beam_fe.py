@@ -1,0 +1,133 @@
+"""1D finite-element models of the pillar as a cantilever beam.
+
+Two theories, each with n equal elements along the height:
+
+- Euler-Bernoulli: Hermite cubic elements, consistent mass; frequency error
+  falls as h**4.
+- Timoshenko: linear elements for deflection w and section rotation psi,
+  shear integrated at one point (selective reduced integration, free of shear
+  locking), consistent mass with rotary inertia; frequency error falls as h**2.
+
+An optional rigid body at the top (mass, and rotary inertia about the tip)
+models the gondola and rotor riding on the pillar.  Units SI.
+
+>>> m = beam_modes(BeamProperties(2.1e11, 0.3, 0.53, 8.1e3, 0.12441, 0.060972, 20.0), 20, "euler")
+>>> round(m.omega[0], 2)
+31.33
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import eigh
+
+THEORIES = ("euler", "timoshenko")
+
+
+@dataclass(frozen=True)
+class BeamProperties:
+    """A uniform beam."""
+    youngs_modulus: float
+    """E (Pa)"""
+    poisson_ratio: float
+    """nu (-)"""
+    shear_coefficient: float
+    """kappa (-)"""
+    density: float
+    """rho (kg/m**3)"""
+    area: float
+    """A (m**2)"""
+    second_moment: float
+    """I (m**4)"""
+    length: float
+    """H (m)"""
+
+    @property
+    def shear_modulus(self) -> float:
+        return self.youngs_modulus / (2 * (1 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class BeamModes:
+    """Modes of the cantilever, ascending."""
+    omega: np.ndarray
+    """natural angular frequencies (rad/s)"""
+    x: np.ndarray
+    """node heights (m)"""
+    deflection: np.ndarray
+    """(n_nodes, n_modes) lateral deflection, mass-normalised (kg**-0.5)"""
+    rotation: np.ndarray
+    """(n_nodes, n_modes) section rotation (rad per sqrt(kg))"""
+    dofs: int
+
+
+def _euler_element(p: BeamProperties, L: float):
+    EI, mA = p.youngs_modulus * p.second_moment, p.density * p.area
+    k = EI / L**3 * np.array([
+        [12, 6 * L, -12, 6 * L],
+        [6 * L, 4 * L**2, -6 * L, 2 * L**2],
+        [-12, -6 * L, 12, -6 * L],
+        [6 * L, 2 * L**2, -6 * L, 4 * L**2]])
+    m = mA * L / 420 * np.array([
+        [156, 22 * L, 54, -13 * L],
+        [22 * L, 4 * L**2, 13 * L, -3 * L**2],
+        [54, 13 * L, 156, -22 * L],
+        [-13 * L, -3 * L**2, -22 * L, 4 * L**2]])
+    return k, m
+
+
+def _timoshenko_element(p: BeamProperties, L: float):
+    EI = p.youngs_modulus * p.second_moment
+    kGA = p.shear_coefficient * p.shear_modulus * p.area
+    # dof order (w1, psi1, w2, psi2)
+    bend = np.zeros((4, 4))
+    bend[np.ix_([1, 3], [1, 3])] = EI / L * np.array([[1, -1], [-1, 1]])
+    b = np.array([-1 / L, -0.5, 1 / L, -0.5])      # shear strain at the midpoint
+    k = bend + kGA * L * np.outer(b, b)
+    lin = L / 6 * np.array([[2, 1], [1, 2]])
+    m = np.zeros((4, 4))
+    m[np.ix_([0, 2], [0, 2])] = p.density * p.area * lin
+    m[np.ix_([1, 3], [1, 3])] = p.density * p.second_moment * lin
+    return k, m
+
+
+def assemble(p: BeamProperties, n_elements: int, theory: str,
+             tip_mass: float = 0.0, tip_inertia: float = 0.0):
+    """Global K and M of the clamped-free beam (base dofs removed)."""
+    if theory not in THEORIES:
+        raise ValueError(f"theory must be one of {THEORIES}")
+    if n_elements < 1:
+        raise ValueError("n_elements must be >= 1")
+    L = p.length / n_elements
+    ke, me = (_euler_element if theory == "euler" else _timoshenko_element)(p, L)
+    n = 2 * (n_elements + 1)
+    K = np.zeros((n, n))
+    M = np.zeros((n, n))
+    for e in range(n_elements):
+        s = slice(2 * e, 2 * e + 4)
+        K[s, s] += ke
+        M[s, s] += me
+    M[-2, -2] += tip_mass
+    M[-1, -1] += tip_inertia
+    return K[2:, 2:], M[2:, 2:]
+
+
+def beam_modes(p: BeamProperties, n_elements: int, theory: str = "euler",
+               n_modes: int = 4, tip_mass: float = 0.0, tip_inertia: float = 0.0) -> BeamModes:
+    """The lowest ``n_modes`` bending modes of the cantilever."""
+    K, M = assemble(p, n_elements, theory, tip_mass, tip_inertia)
+    k = min(n_modes, K.shape[0])
+    # K's condition number grows as n**4: solving M v = mu K v for the largest
+    # mu = 1/omega**2 (the inverse iteration's view) keeps the lowest modes
+    # accurate on fine meshes, where K v = lam M v loses them to round-off.
+    n = K.shape[0]
+    mu, vec = eigh(M, K, subset_by_index=[n - k, n - 1])
+    lam, vec = 1.0 / mu[::-1], vec[:, ::-1]
+    full = np.zeros((K.shape[0] + 2, k))
+    full[2:] = vec
+    x = np.linspace(0.0, p.length, n_elements + 1)
+    # sign convention: positive tip deflection
+    full *= np.sign(full[-2])
+    return BeamModes(np.sqrt(lam), x, full[0::2], full[1::2], K.shape[0])

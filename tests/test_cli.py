@@ -1,0 +1,76 @@
+"""The CLI round trip: JSON on stdout equals the file, numbers equal an
+independent eigen-solve of Eq. 4's pencil, bad input exits 2 with one line
+and writes nothing."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from scipy.linalg import eigh
+
+
+def cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
+                          capture_output=True, text=True, cwd=cwd)
+
+
+def test_analyze_json_round_trip(tmp_path):
+    p = cli("analyze", "paper-stiff", "--json", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)                       # stdout is the JSON and nothing else
+    assert doc == json.loads((tmp_path / "analyze.json").read_text())
+    assert doc["scene"]["shaft"]["stiffness"] == 5e6
+    assert {"versions", "timings", "machine", "paper_comparison"} <= doc.keys()
+    # independent check of omega_1,2 from the scene data (Eq. 4's pencil)
+    s = doc["scene"]
+    mA = s["reduction"]["tip_mass"] + s["gondola"]["mass"]
+    c1, c2 = s["reduction"]["tip_stiffness"], s["shaft"]["stiffness"]
+    lam = eigh([[c1 + c2, -c2], [-c2, c2]], np.diag([mA, s["rotor"]["mass"]]), eigvals_only=True)
+    assert doc["system"]["omega"] == pytest.approx(np.sqrt(lam), rel=1e-10)
+    assert doc["reduction"]["tip_mass_source"] == "stated"
+    for row in doc["paper_comparison"]:
+        assert row["flag"] == (abs(row["rel_diff"]) > 0.02)
+        assert row["rel_diff"] == pytest.approx((row["computed"] - row["paper"]) / row["paper"])
+
+
+def test_set_overrides_and_closed_form_reduction(tmp_path):
+    p = cli("analyze", "paper", "--json", "--out", tmp_path, "--set", "reduction.source=closed_form")
+    doc = json.loads(p.stdout)
+    red, pil = doc["reduction"], doc["pillar"]
+    assert red["tip_mass_source"] == "closed_form"
+    assert red["tip_mass"] == pytest.approx(pil["mass"] / 4)
+    assert red["tip_stiffness"] == pytest.approx(pil["mass"] / 4 * pil["omega_col1"] ** 2)
+
+
+def test_summary_prints_the_comparison_table(tmp_path):
+    p = cli("analyze", "--out", tmp_path)
+    assert p.returncode == 0
+    assert "Paper's printed numbers against ours" in p.stdout
+    assert "omega_col1" in p.stdout and (tmp_path / "analyze.json").exists()
+
+
+@pytest.mark.parametrize("args, key", [
+    (["analyze", "paper", "--set", "pillar.inner_diameter=2.1"], "pillar.inner_diameter"),
+    (["analyze", "paper", "--set", "rotor.mass=-5"], "rotor.mass"),
+    (["analyze", "missing.toml"], "missing.toml"),
+    (["analyze", "paper", "--set", "shaft.stiffness=abc"], "shaft.stiffness"),
+])
+def test_bad_input_exits_2_with_one_line_and_writes_nothing(tmp_path, args, key):
+    out = tmp_path / "out"
+    p = cli(*args, "--out", out)
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and key in lines[0]
+    assert p.stdout == ""
+    assert not out.exists()
+
+
+def test_run_writes_every_stage(tmp_path):
+    p = cli("run", "paper", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "run.json").read_text())
+    for name, stage in doc["stages"].items():
+        assert (tmp_path / f"{name}.json").exists()
+    assert (tmp_path / "analyze.json").exists()
