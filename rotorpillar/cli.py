@@ -24,9 +24,9 @@ from .scene import Scene, embedded_scenes, load_scene
 # name -> (module, function, help).  A command function takes
 # (scene, args, timings, context) and returns (result: dict, summary: str).
 COMMANDS = {
-    "analyze": ("rotorpillar.commands", "analyze_command",
+    "analyze": ("rotorpillar.commands.analyze", "analyze_command",
                 "closed forms, reduced system modes, averaging, paper comparison"),
-    "run": ("rotorpillar.commands", "run_command",
+    "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
 }
 
