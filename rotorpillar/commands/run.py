@@ -21,6 +21,6 @@ def run_command(scene, args, timings, context):
         lines.append(f"{name:>12}: {doc['timings']['total']:8.2f} s  -> {doc.get('_path')}")
     report = context.get("report", {}).get("report")
     if report:
-        lines.append(f"{'report':>12}: {report}")
+        lines.append(f"{'page':>12}: {report}")
     return ({"stages": stages, "report": report},
             f"rotorpillar run {scene.name}\n" + "\n".join(lines))

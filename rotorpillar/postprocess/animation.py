@@ -184,7 +184,8 @@ class _Panel:
                       transform=ax_o.transAxes)
             ax_o.set_axis_off()
         Om = sim.get("Omega")
-        ax_t.plot(self.t, Om, color=COLOURS["drive"], lw=1.0)
+        if Om is not None:
+            ax_t.plot(self.t, Om, color=COLOURS["drive"], lw=1.0)
         ax_t.set_xlabel("t (s)")
         ax_t.set_ylabel("Omega (rad/s)", color=COLOURS["drive"])
         ax_d = ax_t.twinx()
@@ -264,16 +265,16 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     u_max = 1e3 * float(np.max(np.abs(motion.coefficients) @ peak)) or 1.0
 
     mesh = modeset.surface.copy(deep=True)
-    mesh.point_data["elastic |u| (mm)"] = np.zeros(mesh.n_points)
+    mesh.point_data["elastic deflection (mm)"] = np.zeros(mesh.n_points)
     rotor = pv.Sphere(radius=0.45 * radius, center=tuple(top_centre + 0.6 * radius * ea))
     rotor_base = np.asarray(rotor.points, dtype=float)
     p = pv.Plotter(off_screen=True, window_size=list(view_size))
     p.set_background("white")
     p.add_mesh(modeset.surface, color="white", opacity=0.0,
                silhouette=dict(color="#a0a0a0", line_width=1.0))
-    p.add_mesh(mesh, scalars="elastic |u| (mm)", cmap="viridis", clim=(0.0, u_max),
+    p.add_mesh(mesh, scalars="elastic deflection (mm)", cmap="viridis", clim=(0.0, u_max),
                smooth_shading=True,
-               scalar_bar_args=dict(title="elastic |u| (mm)", vertical=False, width=0.6, height=0.05,
+               scalar_bar_args=dict(title="elastic deflection (mm)", vertical=False, width=0.6, height=0.05,
                                     position_x=0.2, position_y=0.02, color="black",
                                     title_font_size=10, label_font_size=9, fmt="%.3g"))
     p.add_mesh(rotor, color="#D55E00")
@@ -290,7 +291,7 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
         notes.append("ground motion true scale")
     if not modeset.source.endswith(".vtu"):
         notes.append("shape: Euler-Bernoulli cantilever (no 3D modes)")
-    p.add_text("\n".join(notes), position=(8, 40), font_size=8, color="#333333")
+    p.add_text("\n".join(notes), position=(8, 62), font_size=8, color="#333333")
     # fixed camera across the bending plane, framing the whole excursion
     lateral = factor * float(np.max(np.abs(q) @ peak)) + max(abs(g_lo), abs(g_hi)) + 2 * radius
     centre = np.array(modeset.surface.center) + ex * 0.5 * (g_lo + g_hi)
@@ -301,11 +302,9 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     p.camera.position = tuple(centre + 4 * H * d)
     p.camera.up = tuple(ea)
     p.camera.view_angle = 30.0
-    p.reset_camera(bounds=(centre[0] - lateral, centre[0] + lateral, centre[1] - lateral,
-                           centre[1] + lateral, centre[2] - 0.55 * H, centre[2] + 0.55 * H)
-                   if ax.axial == 2 else None)
-    if ax.axial != 2:
-        p.reset_camera()
+    half = np.full(3, lateral)
+    half[ax.axial] = 0.55 * H
+    p.reset_camera(bounds=tuple(float(v) for pair in zip(centre - half, centre + half) for v in pair))
 
     panel = _Panel(sim, motion, panel_size, title)
     use_gif = gif or not have_ffmpeg()
@@ -326,7 +325,7 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
             for j, t in enumerate(tf):
                 U = elastic_field(q[j], motion.shapes)
                 mesh.points = base + factor * U + g[j] * ex
-                mesh.point_data["elastic |u| (mm)"] = 1e3 * np.linalg.norm(U, axis=1)
+                mesh.point_data["elastic deflection (mm)"] = 1e3 * np.linalg.norm(U, axis=1)
                 rel = np.zeros(3)
                 if orbit is not None:
                     rel = (np.interp(t, motion.t, orbit[0]) * ex

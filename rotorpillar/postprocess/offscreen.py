@@ -3,10 +3,12 @@
 VTK 9.7 from PyPI carries an X, an EGL and an OSMesa render window.  With no
 X server its default (X) window prints "bad X server connection" and then
 falls back to EGL; asking for an off-screen window up front skips the failed
-attempt.  Measured on this machine (Debian 12, Mesa llvmpipe, 800x600, an
-11k-point tube): EGL 50 ms and OSMesa 63 ms per rendered frame, the same
-pixels.  We prefer EGL when libEGL is present and OSMesa otherwise
-(``libosmesa6`` is in tools/setup.sh's DEBS, so it always is); a
+attempt.  Both off-screen windows work here (Debian 12, Mesa llvmpipe) and
+give the same pixels; measured side by side by ``bench/bench_render.py``
+(2 shared cores): a 480x720 mode picture 0.29 s with OSMesa against 0.41 s
+with EGL (creating the window dominates), an 880x560 animation frame about
+0.1 s with either.  We take OSMesa, whose library ``libosmesa6`` is in
+tools/setup.sh's DEBS, and EGL only where OSMesa is missing; a
 ``VTK_DEFAULT_OPENGL_WINDOW`` already set by the user wins.
 """
 
@@ -18,26 +20,24 @@ import os
 _WINDOWS = {"egl": "vtkEGLRenderWindow", "osmesa": "vtkOSOpenGLRenderWindow"}
 
 
-def choose_window(display: str | None, have_egl: bool) -> str | None:
+def choose_window(have_osmesa: bool, have_egl: bool) -> str | None:
     """The VTK render window class to request, or None to keep VTK's default.
 
-    >>> choose_window(":0", True) is None
-    True
-    >>> choose_window(None, True), choose_window(None, False)
-    ('vtkEGLRenderWindow', 'vtkOSOpenGLRenderWindow')
+    >>> choose_window(True, True), choose_window(False, True), choose_window(False, False)
+    ('vtkOSOpenGLRenderWindow', 'vtkEGLRenderWindow', None)
     """
-    if display:
-        return None
-    return _WINDOWS["egl"] if have_egl else _WINDOWS["osmesa"]
+    if have_osmesa:
+        return _WINDOWS["osmesa"]
+    if have_egl:
+        return _WINDOWS["egl"]
+    return None
 
 
 def configure() -> None:
     """Set the environment for off-screen rendering before VTK is imported."""
     os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
     if "VTK_DEFAULT_OPENGL_WINDOW" not in os.environ:
-        # Even with a DISPLAY we render off screen; only an unset DISPLAY
-        # makes the X window fail noisily.
-        window = choose_window(os.environ.get("DISPLAY"),
+        window = choose_window(ctypes.util.find_library("OSMesa") is not None,
                                ctypes.util.find_library("EGL") is not None)
         if window:
             os.environ["VTK_DEFAULT_OPENGL_WINDOW"] = window
