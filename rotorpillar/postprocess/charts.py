@@ -194,6 +194,18 @@ def amplitude_chart(analyze: dict, path: str | Path, size=(1000, 360)) -> Path:
     return save(fig, path)
 
 
+def _plain_axis(ax, y) -> None:
+    """No offset notation, and a visible band around a (nearly) constant signal
+    instead of its round-off noise blown up to the full height."""
+    ax.ticklabel_format(axis="y", useOffset=False, style="plain")
+    y = np.asarray(y, dtype=float)
+    y = y[np.isfinite(y)]
+    if y.size and np.ptp(y) <= 1e-6 * max(np.abs(y).max(), 1e-300):
+        c = float(np.mean(y))
+        pad = 0.1 * abs(c) if c != 0 else 1.0
+        ax.set_ylim(c - pad, c + pad)
+
+
 def earthquake_chart(arrays: dict, path: str | Path, size=(900, 800), title: str = "") -> Path:
     """Ground motion, elastic tip deflection, the radius of the rotor's orbit
     about the pillar top, and the speed."""
@@ -213,10 +225,13 @@ def earthquake_chart(arrays: dict, path: str | Path, size=(900, 800), title: str
         # the orbit radius: the rotor's whirl about the pillar top, free of
         # the once-per-revolution oscillation that would fill the panel
         rel_x = rx - (tip if tip is not None else 0.0)
-        axes[2].plot(t, 1e3 * np.hypot(rel_x, ry), color=COLOURS["unstable"], lw=0.8)
+        radius = 1e3 * np.hypot(rel_x, ry)
+        axes[2].plot(t, radius, color=COLOURS["unstable"], lw=0.8)
+        _plain_axis(axes[2], radius)
     axes[2].set_ylabel("orbit radius (mm)")
     if Om is not None:
         axes[3].plot(t, Om, color=COLOURS["drive"])
+        _plain_axis(axes[3], Om)
     axes[3].set_ylabel("Omega (rad/s)")
     axes[3].set_xlabel("t (s)")
     moving = np.flatnonzero(np.abs(ground) > 1e-12 * max(1.0, np.abs(ground).max()))

@@ -16,6 +16,11 @@ Contracts (field names are the writers'; we read, never write, them):
   ``modal_coordinates`` (n_t x k: pillar-tip displacement of each of the
   first k bending modes of ``modes_top.vtu``).
 - ``convergence.json`` (`rotorpillar converge`), ``integrators.json``.
+- Any PNG in ``out/<scene>/`` (or a direct subfolder) is embedded in the
+  report, in the section its file name suggests
+  (:data:`rotorpillar.postprocess.report.FIGURE_GROUPS`).  Its caption
+  comes from a ``figures`` list in any JSON there, entries
+  ``{"file": "name.png", "caption": "..."}``, else from the file name.
 
 A missing file is not an error: every reader returns None and the report
 says which command would produce it.

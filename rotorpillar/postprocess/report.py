@@ -196,7 +196,7 @@ def _render_animations(build: Build, sets: dict) -> None:
 
 
 def external_figures(out: Path) -> list[tuple[Path, str]]:
-    """PNGs other commands wrote in ``out`` (and its subfolders, not ours),
+    """PNGs other commands wrote in ``out`` (and its direct subfolders, not ours),
     with the caption a JSON beside them gives in a ``figures`` list
     ({"file" or "path", "caption"}), else one made from the file name."""
     captions = {}
@@ -219,9 +219,11 @@ def external_figures(out: Path) -> list[tuple[Path, str]]:
                 elif isinstance(v, str):
                     captions[Path(v).name] = str(k).replace("_", " ")
     found = []
-    for p in sorted(out.rglob("*.png")):
+    # the folder itself and its direct subfolders only: --out may point
+    # anywhere, and a deep search could sweep up unrelated pictures
+    for p in sorted([*out.glob("*.png"), *out.glob("*/*.png")]):
         rel = p.relative_to(out)
-        if rel.parts[0] in OWN_DIRS or p.name.startswith("."):
+        if rel.parts[0] in OWN_DIRS or any(part.startswith(".") for part in rel.parts):
             continue
         found.append((p, captions.get(p.name) or p.stem.replace("_", " ")))
     return found
