@@ -209,3 +209,15 @@ def test_run_ends_with_the_report_path(tmp_path):
     assert (tmp_path / "report.html").is_file()
     run = json.loads((tmp_path / "run.json").read_text())
     assert list(run["stages"])[-1] == "report"
+
+
+def test_an_input_of_another_shape_costs_one_section(tmp_path):
+    run_cli("analyze", "paper", "--out", tmp_path)
+    doc = json.loads((tmp_path / "analyze.json").read_text())
+    del doc["drive"]                       # as if written by another version
+    (tmp_path / "analyze.json").write_text(json.dumps(doc))
+    run_cli("report", "paper", "--out", tmp_path)
+    text = (tmp_path / "report.html").read_text()
+    assert "could not be written from its inputs (KeyError: &#x27;drive&#x27;)" in text
+    assert "Modal validation" in text and "Versions, machine and timings" in text
+    assert "section_averaging" in json.loads((tmp_path / "report.json").read_text())["failures"]

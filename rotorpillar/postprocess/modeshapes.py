@@ -153,7 +153,9 @@ def render_contact_sheet(modeset: ModeSet, path: str | Path, count: int = SHEET_
             f = m.get("frequency_hz")
             kind = str(m.get("kind", "?"))
             n = m.get("n_circumferential")
-            label = f"{i + 1}: {kind}" + (f" n={n}" if n is not None and not kind.startswith("bending") else "")
+            label = f"{i + 1}: {kind}"
+            if n is not None and not kind.startswith("bending"):
+                label += f" n={n}"
             label += f"\n{f:.3f} Hz" if f is not None else ""
             _add_mode(p, modeset, i, label, font=9, bar=False)
         if title:

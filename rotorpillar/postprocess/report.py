@@ -104,7 +104,8 @@ def _render_charts(build: Build) -> None:
     from . import charts
     fig = build.out / FIGURES_DIR
     if build.analyze is not None:
-        p = _attempt(build, "drive_chart", lambda: charts.drive_chart(build.analyze, fig / "drive_resistance.png"))
+        p = _attempt(build, "drive_chart",
+                     lambda: charts.drive_chart(build.analyze, fig / "drive_resistance.png"))
         if p:
             build.products["drive_chart"] = Product(p, (
                 "Motor torque Md and total resistance L = Mc + sum dL_i against the speed "
@@ -113,7 +114,8 @@ def _render_charts(build: Build) -> None:
                 "D->C (run-down) are drawn on the motor lines through them. Below: near each "
                 "resonance, against z = Omega/omega_i, with L - Mc on the right axis; dots are the "
                 "curves stored in analyze.json."))
-        p = _attempt(build, "amplitude_chart", lambda: charts.amplitude_chart(build.analyze, fig / "resonance_amplitudes.png"))
+        p = _attempt(build, "amplitude_chart",
+                     lambda: charts.amplitude_chart(build.analyze, fig / "resonance_amplitudes.png"))
         if p:
             build.products["amplitude_chart"] = Product(p, (
                 "Amplitude a_i of each quasi-normal coordinate near its resonance: the averaging "
@@ -154,7 +156,8 @@ def _render_modes(build: Build, sets: dict) -> None:
             continue
         _say(f"mode shapes of {captions[name]}")
         r = _attempt(build, f"modes_{name}",
-                     lambda ms=ms, name=name: render_modes(ms, build.out / MODES_DIR, name, build.options.modes))
+                     lambda ms=ms, name=name: render_modes(ms, build.out / MODES_DIR, name,
+                                                           build.options.modes))
         if r:
             from .inputs import mode_label
             build.products[f"modes_{name}"] = [
@@ -257,6 +260,11 @@ def figure_group(name: str) -> str:
 # Sections
 
 
+def _product_image(build: Build, key: str) -> str:
+    p = build.products[key]
+    return h.image(p.path, p.caption)
+
+
 def _figures(build: Build, group: str) -> list[str]:
     return [h.image(p.path, p.caption) for p in build.products.get("external", [])
             if p.group == group]
@@ -310,7 +318,8 @@ def section_summary(build: Build) -> str:
         items.append(f"Pillar reduced to its tip: m_r = {r['tip_mass']:.4g} kg ({r['tip_mass_source']}), "
                      f"c1 = {r['tip_stiffness']:.4g} N/m ({r['tip_stiffness_source']}).")
         s = a["system"]
-        items.append(f"Rotor-pillar system: omega_1 = {s['omega'][0]:.3f}, omega_2 = {s['omega'][1]:.3f} rad/s "
+        items.append(f"Rotor-pillar system: omega_1 = {s['omega'][0]:.3f}, "
+                     f"omega_2 = {s['omega'][1]:.3f} rad/s "
                      f"(X), omega_3 = {s['omega3']:.3f} rad/s (Y).")
         rows = a.get("paper_comparison", [])
         items.append(f"{sum(1 for x in rows if x['flag'])} of the {len(rows)} numbers the paper prints "
@@ -496,7 +505,7 @@ def section_averaging(build: Build) -> str:
                             f"Mc = {d['load_coefficient']:g} Omega^2 (Eq. 22)."))
     parts += _failure(build, "drive_chart")
     if "drive_chart" in build.products:
-        parts.append(h.image(build.products["drive_chart"].path, build.products["drive_chart"].caption))
+        parts.append(_product_image(build, "drive_chart"))
     parts.append(h.tag("ul", [h.tag("li", r["statement"]) for r in a["resonances"]], class_="findings"))
     parts.append(h.tag("h3", "Stationary speeds and jumps"))
     rows = [[h.num(s["omega"]), "stable" if s["stable"] else "unstable", h.num(s["margin"])]
@@ -504,7 +513,8 @@ def section_averaging(build: Build) -> str:
     parts.append(h.table(["Omega (rad/s)", "stability (Eq. 23)", "d(Md - L)/dOmega (N*m*s)"], rows)
                  if rows else h.tag("p", "No stationary speed."))
     if d["jumps"]:
-        rows = [[f"{'A->B' if j['direction'] == 'up' else 'D->C'} ({'run-up' if j['direction'] == 'up' else 'run-down'})",
+        name = {"up": "A->B (run-up)", "down": "D->C (run-down)"}
+        rows = [[name.get(j["direction"], j["direction"]),
                  h.num(j["omega_from"]), h.num(j["omega_to"]), h.num(j["torque_at_zero"]),
                  h.num(j.get("resonance"))] for j in d["jumps"]]
         parts.append(h.table(["jump", "from (rad/s)", "to (rad/s)", "at M0 (N*m)", "resonance"], rows))
@@ -513,8 +523,8 @@ def section_averaging(build: Build) -> str:
                                 "without the Sommerfeld effect with this drive."))
     parts.append(h.tag("p", f"Run-up ends at {h.num(d.get('runup_speed'))} rad/s, run-down at "
                             f"{h.num(d.get('rundown_speed'))} rad/s"
-                            + (f"; captured at resonance {d['captured_at']}." if d.get("captured_at") is not None
-                               else ".")))
+                            + (f"; captured at resonance {d['captured_at']}."
+                               if d.get("captured_at") is not None else ".")))
     parts.append(h.tag("h3", "The resonances"))
     rows = [[r["index"], r["direction"], h.num(r["omega"]), h.num(r["modal_mass"]), h.num(r["forcing"]),
              h.num(r["two_n"]), h.num(r["nu"]), h.num(r["a_max"]), h.num(r["dL_max"]),
@@ -525,7 +535,7 @@ def section_averaging(build: Build) -> str:
                           "critical e (m)"], rows))
     parts += _failure(build, "amplitude_chart")
     if "amplitude_chart" in build.products:
-        parts.append(h.image(build.products["amplitude_chart"].path, build.products["amplitude_chart"].caption))
+        parts.append(_product_image(build, "amplitude_chart"))
     return h.section("averaging", "Passage through resonance (averaging, Eq. 19-24)", parts)
 
 
@@ -572,7 +582,8 @@ def section_runs(build: Build) -> str:
         if key:
             parts.append(key)
         parts.append(h.details(f"simulate_{case}.json: results, energy balance, integrator",
-                               _run_table(sim.meta)) if sim.meta else h.tag("p", "no JSON summary", class_="meta"))
+                               _run_table(sim.meta)) if sim.meta
+                     else h.tag("p", "no JSON summary", class_="meta"))
         for p in build.products.get("external", []):
             if p.group == "runs" and case in p.path.name.lower():
                 parts.append(h.image(p.path, p.caption))
@@ -599,7 +610,7 @@ def section_earthquake(build: Build) -> str:
                                 "5 <= t <= 12 s)."))
     parts += _failure(build, "earthquake_chart")
     if "earthquake_chart" in build.products:
-        parts.append(h.image(build.products["earthquake_chart"].path, build.products["earthquake_chart"].caption))
+        parts.append(_product_image(build, "earthquake_chart"))
     parts += _figures(build, "earthquake")
     parts += _failure(build, "animation_earthquake")
     v = build.products.get("animation_earthquake")
@@ -702,6 +713,37 @@ def section_provenance(build: Build, timings: dict) -> str:
     return h.section("provenance", "Versions, machine and timings", parts)
 
 
+#: The page, in order: (anchor, title, builder).
+SECTIONS = [
+    ("summary", "Summary", section_summary),
+    ("scene", "The scene", section_scene),
+    ("modal", "Modal validation", section_modal),
+    ("paper", "The paper's numbers against ours", section_paper),
+    ("averaging", "Passage through resonance", section_averaging),
+    ("runs", "The runs", section_runs),
+    ("earthquake", "The earthquake", section_earthquake),
+    ("convergence", "Convergence and the model chosen", section_convergence),
+    ("other", "Other figures", section_other),
+    ("provenance", "Versions, machine and timings", section_provenance),
+]
+
+
+def _guarded_section(build: Build, ident: str, title: str, fn, timings: dict) -> str | None:
+    """A section, or, if its input does not have the shape it expects (an
+    older or newer writer), a notice saying so: one section lost, not the page."""
+    try:
+        return fn(build, timings) if fn is section_provenance else fn(build)
+    except Exception as exc:
+        key = f"section_{ident}"
+        build.failures[key] = f"{type(exc).__name__}: {exc}"
+        _say(f"section {title!r} failed: {build.failures[key]}")
+        traceback.print_exc(file=sys.stderr)
+        return h.section(ident, title, [h.tag(
+            "p", f"This section could not be written from its inputs ({build.failures[key]}); "
+                 "they may come from another version of rotorpillar: re-run the command that "
+                 "wrote them.", class_="failed")])
+
+
 # --------------------------------------------------------------------------
 # The build
 
@@ -741,20 +783,12 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
     build.products["external"] = [Product(p, c, group=figure_group(p.name))
                                   for p, c in external_figures(build.out)]
     with timings("html"):
-        sections = [section_summary(build), section_scene(build), section_modal(build),
-                    section_paper(build), section_averaging(build), section_runs(build),
-                    section_earthquake(build), section_convergence(build)]
-        other = section_other(build)
-        if other:
-            sections.append(other)
-        sections.append(section_provenance(build, dict(timings)))
-        nav = [("summary", "Summary"), ("scene", "The scene"), ("modal", "Modal validation"),
-               ("paper", "The paper's numbers against ours"), ("averaging", "Passage through resonance"),
-               ("runs", "The runs"), ("earthquake", "The earthquake"),
-               ("convergence", "Convergence and the model chosen")]
-        if other:
-            nav.append(("other", "Other figures"))
-        nav.append(("provenance", "Versions, machine and timings"))
+        nav, sections = [], []
+        for ident, title, fn in SECTIONS:
+            html_ = _guarded_section(build, ident, title, fn, dict(timings))
+            if html_:
+                nav.append((ident, title))
+                sections.append(html_)
         title = f"rotorpillar report: {scene.name}"
         header = [h.tag("h1", title),
                   h.tag("p", scene.description or "", class_="meta"),
@@ -787,8 +821,10 @@ def summary_text(result: dict) -> str:
              "  inputs found: " + (", ".join(have) or "none"),
              "  not computed: " + (", ".join(lacking) or "nothing")]
     for k, v in result["animations"].items():
-        lines.append(f"  animation {k}: {v['frames']} frames, x{v['factor']:g}, {v['seconds']:.1f} s -> {v['path']}")
+        lines.append(f"  animation {k}: {v['frames']} frames, x{v['factor']:g}, "
+                     f"{v['seconds']:.1f} s -> {v['path']}")
     for k, v in result["failures"].items():
         lines.append(f"  FAILED {k}: {v}")
-    lines.append("  render seconds: " + ", ".join(f"{k} {v:.1f}" for k, v in result["render_seconds"].items()))
+    lines.append("  render seconds: " + ", ".join(f"{k} {v:.1f}"
+                                                  for k, v in result["render_seconds"].items()))
     return "\n".join(lines)
