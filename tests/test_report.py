@@ -181,6 +181,7 @@ def test_hostile_text_is_escaped(tmp_path):
     assert "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &lt;b&gt;x&lt;/b&gt;" in text
 
 
+@pytest.mark.filterwarnings("ignore:The VTK reader")      # the broken file, on purpose
 def test_a_broken_input_costs_one_figure_not_the_report(tmp_path):
     run_cli("analyze", "paper", "--out", tmp_path)
     fixtures.write_modal_fixture(tmp_path, around=12, along=6)

@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -43,7 +43,7 @@ VIEW_SIZE = (400, 560)       # 3D view, width x height (px)
 PANEL_SIZE = (480, 560)      # chart panel; 880 x 560 together, multiples of 16
 
 
-@dataclass
+@dataclass(frozen=True)
 class PillarMotion:
     """What moves the tube: coefficients times shapes, plus the ground."""
     t: np.ndarray
@@ -124,17 +124,27 @@ def exaggeration(motion: PillarMotion, height: float) -> float:
     return nice_factor(BEAM_TARGET * height / amplitude) if amplitude > 0 else 1.0
 
 
-@dataclass
+@dataclass(frozen=True)
 class AnimationResult:
+    """What an animation shows and what it cost."""
     path: Path
+    """the MP4 (or GIF) written"""
     frames: int
+    """frames in it (-)"""
     fps: int
+    """frames per second of playback (1/s)"""
     factor: float
+    """exaggeration of the elastic deflection and of the orbit (-)"""
     poster: Path | None
+    """PNG of the frame of largest deflection"""
     source: str
+    """what deforms the tube (modal coordinates, or tip_x times a shape)"""
     writer: str
+    """the encoder used"""
     seconds: float
-    notes: list = field(default_factory=list)
+    """wall-clock time to render and encode (s)"""
+    notes: tuple = ()
+    """the notes shown on screen"""
 
 
 def _orbit(sim: Simulation):
@@ -373,7 +383,7 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
         poster_path = Path(poster)
     return AnimationResult(path, len(tf), fps, factor, poster_path, motion.source,
                            "GIF (Pillow)" if use_gif else "MP4 (H.264, imageio-ffmpeg)",
-                           time.perf_counter() - start, notes)
+                           time.perf_counter() - start, tuple(notes))
 
 
 def _pad(img: np.ndarray, h: int) -> np.ndarray:
