@@ -689,6 +689,8 @@ def section_provenance(build: Build, timings: dict) -> str:
                         f"rendering through {build.render_window or 'no 3D render'}.", class_="meta")]
     rows = []
     for js in sorted(build.out.glob("*.json")):
+        if js.name in ("report.json", "run.json"):     # written after this page: stale here
+            continue
         try:
             doc = json.loads(js.read_text(encoding="utf-8"))
         except (OSError, ValueError):
