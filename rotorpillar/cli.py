@@ -26,12 +26,20 @@ from .scene import Scene, embedded_scenes, load_scene
 COMMANDS = {
     "analyze": ("rotorpillar.commands.analyze", "analyze_command",
                 "closed forms, reduced system modes, averaging, paper comparison"),
+    "report": ("rotorpillar.commands.report", "report_command",
+               "the HTML validation report, its charts, mode-shape pictures and animations"),
     "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
 }
 
+
+def _report_arguments(parser) -> None:
+    from .commands.report import add_arguments
+    add_arguments(parser)
+
+
 # Extra arguments of a command: name -> callable(parser)
-EXTRA_ARGUMENTS = {}
+EXTRA_ARGUMENTS = {"report": _report_arguments, "run": _report_arguments}
 
 
 def _common(p: argparse.ArgumentParser) -> None:
@@ -109,6 +117,9 @@ def main(argv: list[str] | None = None) -> int:
         else:
             print(text)
             print(f"\nwrote {path}")
+            report = doc.get("report")
+            if isinstance(report, str):     # the last line: the page to open
+                print(f"report: {Path(report).resolve()}")
     return 0
 
 

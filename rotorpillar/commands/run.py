@@ -5,6 +5,7 @@ from . import progress
 # The stages of `rotorpillar run`, in order: (command name, what it does).
 RUN_STAGES = [
     ("analyze", "closed forms and averaging"),
+    ("report", "charts, mode shapes, animations, report.html"),   # keep last
 ]
 
 
@@ -18,4 +19,8 @@ def run_command(scene, args, timings, context):
             doc = execute(name, scene, args, context)
         stages[name] = {"json": doc.get("_path"), "seconds": doc["timings"]["total"]}
         lines.append(f"{name:>12}: {doc['timings']['total']:8.2f} s  -> {doc.get('_path')}")
-    return {"stages": stages}, f"rotorpillar run {scene.name}\n" + "\n".join(lines)
+    report = context.get("report", {}).get("report")
+    if report:
+        lines.append(f"{'page':>12}: {report}")
+    return ({"stages": stages, "report": report},
+            f"rotorpillar run {scene.name}\n" + "\n".join(lines))
