@@ -142,6 +142,8 @@ def modal_command(scene, args, timings, context):
     from ..cli import out_dir
     from ..fem3d import modal_analysis
     from ..fem3d.output import write_modes_vtu
+    from ..mesh import tube_params
+    tube_params(scene.pillar, scene.mesh)          # bad input: refused before any work
     say = progress if _rank0() else (lambda message: None)
     say(f"modal: bare tube, {scene.modal.n_modes} modes")
     bare = modal_analysis(scene, top=False)
