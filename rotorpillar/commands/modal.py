@@ -16,6 +16,21 @@ from . import progress
 SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
 
 
+def quiet_jit_logging() -> None:
+    """Keep the compiler's INFO lines (setuptools, on the first JIT of a form) off stderr.
+
+    ffcx installs a root handler at import; setuptools raises the root level
+    to INFO while it builds.  A WARNING threshold on the handler keeps the
+    console to our own progress lines.
+    """
+    import logging
+    root = logging.getLogger()
+    if not root.handlers:
+        logging.basicConfig()
+    for h in root.handlers:
+        h.setLevel(max(h.level, logging.WARNING))
+
+
 def _rank0() -> bool:
     from mpi4py import MPI
     return MPI.COMM_WORLD.rank == 0
@@ -144,6 +159,7 @@ def modal_command(scene, args, timings, context):
     from ..fem3d.output import write_modes_vtu
     from ..mesh import tube_params
     tube_params(scene.pillar, scene.mesh)          # bad input: refused before any work
+    quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
     say(f"modal: bare tube, {scene.modal.n_modes} modes")
     bare = modal_analysis(scene, top=False)

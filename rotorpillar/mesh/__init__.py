@@ -362,9 +362,12 @@ def tube_mesh_data(p: TubeMeshParams, *, isolated: bool = True) -> MeshData:
     if not isolated:
         return _mesh_in_process(p)
     try:
-        proc = subprocess.run(worker_command(),
-                              input=json.dumps(asdict(p)).encode(), capture_output=True,
-                              timeout=MESH_TIMEOUT)
+        # The parameters go on the command line, not through stdin: writing to
+        # the pipe of a child that has already died raises SIGPIPE, which
+        # PETSc's signal handler (installed once petsc4py is imported) turns
+        # into an abort of the caller.
+        proc = subprocess.run(worker_command() + [json.dumps(asdict(p))], capture_output=True,
+                              stdin=subprocess.DEVNULL, timeout=MESH_TIMEOUT)
     except subprocess.TimeoutExpired:
         raise ComputationError(f"Gmsh did not finish meshing the tube within {MESH_TIMEOUT:g} s") from None
     if proc.returncode != 0:
@@ -382,8 +385,8 @@ def worker_command() -> list[str]:
 
 
 def _worker() -> int:
-    """Child-process entry: params as JSON on stdin, MeshData as npz bytes on stdout."""
-    params = TubeMeshParams(**json.loads(sys.stdin.buffer.read()))
+    """Child-process entry: params as JSON in argv[1], MeshData as npz bytes on stdout."""
+    params = TubeMeshParams(**json.loads(sys.argv[1]))
     try:
         data = _mesh_in_process(params)
     except (ComputationError, InputError) as exc:
