@@ -120,6 +120,8 @@ def summary(doc: dict, bare, loaded) -> str:
     lines = [f"3D pillar: {mesh['cells']} {mesh['cell_type']} cells, degree {mesh['degree']}, "
              f"{mesh['dofs']} dofs ({mesh['elements_around']} around x {mesh['elements_along']} "
              f"along x {mesh['elements_through']} through, grading {mesh['grading']:g})"]
+    lines.append("(n: waves around the circumference; m: sign changes along the height; "
+                 "x is the rotor's plane, z the tube axis)")
     lines += _table("Bare tube (clamped base, free top)", bare)
     lines += _table(f"With {top['carries'].replace('_', ' ')} on top ({top['mass']:g} kg, "
                     f"{top['model']} top)", loaded)
