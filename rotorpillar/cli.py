@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from . import __version__
-from .errors import InputError
+from .errors import ComputationError, InputError
 from .provenance import Timings, machine, to_json, versions, write_json
 from .scene import Scene, embedded_scenes, load_scene
 
@@ -26,6 +26,8 @@ from .scene import Scene, embedded_scenes, load_scene
 COMMANDS = {
     "analyze": ("rotorpillar.commands.analyze", "analyze_command",
                 "closed forms, reduced system modes, averaging, paper comparison"),
+    "modal": ("rotorpillar.commands.modal", "modal_command",
+              "3D tube (Gmsh, dolfinx, SLEPc): modes bare and with the top mass, tip reduction"),
     "report": ("rotorpillar.commands.report", "report_command",
                "the HTML validation report, its charts, mode-shape pictures and animations"),
     "run": ("rotorpillar.commands.run", "run_command",
@@ -106,6 +108,9 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"rotorpillar {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except ComputationError as exc:
+        print(f"rotorpillar {args.command}: failed: {exc}; nothing was written", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print(f"rotorpillar {args.command}: interrupted; finished outputs are complete, "
               "none is half-written", file=sys.stderr)
