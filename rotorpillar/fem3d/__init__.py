@@ -1,0 +1,1 @@
+"""Finite-element models of the pillar in dolfinx (the 3D solid and the shell)."""

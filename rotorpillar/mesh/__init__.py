@@ -1,0 +1,1 @@
+"""Gmsh geometry builders: each ``(model, params) -> tags`` adds named physical groups."""
