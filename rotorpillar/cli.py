@@ -26,12 +26,16 @@ from .scene import Scene, embedded_scenes, load_scene
 COMMANDS = {
     "analyze": ("rotorpillar.commands.analyze", "analyze_command",
                 "closed forms, reduced system modes, averaging, paper comparison"),
+    "converge": ("rotorpillar.commands.converge", "converge_command",
+                 "mesh convergence, speed against accuracy, and the cheapest model a scene needs"),
     "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
 }
 
 # Extra arguments of a command: name -> callable(parser)
-EXTRA_ARGUMENTS = {}
+EXTRA_ARGUMENTS = {
+    "converge": lambda p: importlib.import_module("rotorpillar.commands.converge").add_arguments(p),
+}
 
 
 def _common(p: argparse.ArgumentParser) -> None:

@@ -1,0 +1,80 @@
+"""`rotorpillar converge` end to end on a small ladder (no 3D model): the files
+it writes, a real Ctrl-C in the middle and the resume, bad input.
+
+Sources: the outputs are checked for structure (the numbers are checked in
+test_converge.py and test_shell.py against closed forms and finer runs);
+the charts must be real PNG images of the expected size (STYLE: data, not
+pixels).  The resume is checked by counting cached and computed runs.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+SMALL = ["--set", "converge.solid=false", "--set", "converge.shell_max_around=12",
+         "--set", "converge.shell_tri_max_around=8"]
+
+
+def cli(*args, **kw):
+    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
+                          capture_output=True, text=True, **kw)
+
+
+def _png_size(path):
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+@pytest.mark.slow
+def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
+    out = tmp_path / "out"
+    cache = out / "cache"
+    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", "converge", "paper", *SMALL,
+                             "--out", str(out), "--no-progress"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # wait for the beams and the first shell run to be cached, then Ctrl-C
+    deadline = time.time() + 120
+    while time.time() < deadline and proc.poll() is None:
+        if cache.exists() and len(list(cache.glob("*.json"))) >= 17:
+            break
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "interrupted" in err
+    done = list(cache.glob("*.json"))
+    assert not list(cache.glob(".*"))                       # no half-written file
+    for f in done:
+        json.loads(f.read_text())
+    assert not (out / "convergence.json").exists()
+
+    p = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json")
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    assert doc["study"]["cached"] == len(done)
+    assert doc["study"]["computed"] == doc["study"]["runs"] - len(done)
+    study = json.loads((out / "convergence.json").read_text())
+    assert {"runs", "reference", "extrapolations", "pareto", "selection", "failures",
+            "charts", "versions", "machine"} <= study.keys()
+    for name in ("convergence_dofs.png", "convergence_time.png"):
+        w, h = _png_size(out / name)
+        assert w > 1000 and h > 500
+    assert any("no shell modes" in f for f in study["failures"])
+
+    again = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json")
+    assert json.loads(again.stdout)["study"]["computed"] == 0
+
+
+def test_bad_tolerance_exits_2_and_writes_nothing(tmp_path):
+    p = cli("converge", "paper", "--tolerance", "2", "--out", tmp_path)
+    assert p.returncode == 2
+    assert len(p.stderr.strip().splitlines()) == 1 and "tolerance" in p.stderr
+    assert list(tmp_path.iterdir()) == []
+    p = cli("converge", "paper", "--set", "converge.margin=0.5", "--out", tmp_path)
+    assert p.returncode == 2 and "converge.margin" in p.stderr
