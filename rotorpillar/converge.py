@@ -55,8 +55,10 @@ from typing import Callable, Optional
 import numpy as np
 from scipy.optimize import brentq
 
-from .errors import InputError
 from .provenance import write_json
+from .reduced.beam_fe import BeamProperties, beam_modes
+from .reduced.cylinder import ring_frequency
+from .reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, section_of
 
 QUANTITIES = ("bending", "ovalling")
 """What each run reports: the first bending and the first ovalling frequency."""
@@ -267,10 +269,6 @@ def _modal_summary(omega, kind, n_circ) -> dict:
 
 def compute_in_process(case: Case, pillar) -> dict:
     """The closed forms and the 1D beam models (numpy only)."""
-    from .reduced.beam_fe import BeamProperties, beam_modes
-    from .reduced.cylinder import ring_frequency
-    from .reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, section_of
-
     sec = section_of(pillar)
     fam = FAMILIES[case.family]
     if fam.model == "closed_form":
@@ -330,6 +328,13 @@ def compute_fe(case: Case, scene) -> dict:
     return out
 
 
+class ModelUnavailable(RuntimeError):
+    """The model cannot run here (e.g. the 3D model is not installed)."""
+
+
+UNAVAILABLE_EXIT = 3
+"""Exit code of a worker whose model cannot be imported."""
+
 COMPILE_STAGES = ("forms", "jit", "compile")
 """Timing stages that are the one-off FFCx compilation (cached on disk after
 the first run of a form): left out of the wall time the charts compare."""
@@ -345,6 +350,12 @@ def worker(case_file: str, out_file: str) -> None:
     # the imports' own memory: the baseline the run adds to
     import dolfinx  # noqa: F401
     baseline = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    if FAMILIES[case.family].model == "solid":
+        try:
+            from .fem3d import modal_analysis  # noqa: F401
+        except ImportError as exc:
+            print(f"3D model unavailable: {exc}", file=sys.stderr)
+            sys.exit(UNAVAILABLE_EXIT)
     t0 = time.perf_counter()
     out = compute_fe(case, scene)
     total = time.perf_counter() - t0
@@ -370,6 +381,8 @@ def _run_in_subprocess(case: Case, scene) -> dict:
         proc = subprocess.run([sys.executable, "-m", "rotorpillar.converge", str(case_file),
                                str(out_file)], capture_output=True, text=True, env=env)
         elapsed = time.perf_counter() - t0
+        if proc.returncode == UNAVAILABLE_EXIT:
+            raise ModelUnavailable((proc.stderr or "").strip().splitlines()[-1])
         if proc.returncode != 0 or not out_file.exists():
             tail = (proc.stderr or "").strip().splitlines()[-3:]
             raise RuntimeError(f"{case.label}: worker failed ({proc.returncode}): "
@@ -419,12 +432,25 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
     weights = [estimated_seconds(cases[i]) for i in todo]
     bar = tqdm(total=sum(weights), disable=not progress or not todo, unit="s~", file=sys.stderr,
                bar_format="{l_bar}{bar}| {n:.0f}/{total:.0f} est. s [{elapsed}<{remaining}] {postfix}")
+    unavailable = {}
     try:
         for i, w in zip(todo, weights):
             case, key = cases[i], keys[i]
+            model = FAMILIES[case.family].model
             bar.set_postfix_str(case.label)
+            if model in unavailable:
+                records[i] = {**_record(case, key, {}), "status": "unavailable",
+                              "error": unavailable[model], "cached": False}
+                bar.update(w)
+                continue
             try:
                 result = runner(case, scene)
+            except ModelUnavailable as exc:
+                unavailable[model] = str(exc)
+                if log:
+                    log(f"converge: skipping the {model} runs: {exc}")
+                records[i] = {**_record(case, key, {}), "status": "unavailable",
+                              "error": str(exc), "cached": False}
             except (RuntimeError, ValueError, ArithmeticError) as exc:
                 records[i] = {**_record(case, key, {}), "status": "failed", "error": str(exc),
                               "cached": False}
@@ -701,6 +727,12 @@ def failures(records: list[dict], extrapolations: dict, reference: dict, toleran
     for r in records:
         if r.get("status") == "failed":
             out.append(f"{r['label']}: run failed: {r['error']}")
+    gone = sorted({r["model"] for r in records if r.get("status") == "unavailable"})
+    for model in gone:
+        err = next(r["error"] for r in records if r.get("status") == "unavailable"
+                   and r["model"] == model)
+        out.append(f"the {model} model did not run here ({err}): the reference falls back "
+                   "to the best family that ran")
     for name, qs in extrapolations.items():
         for q, ex in qs.items():
             if ex["order"] is not None and ex["order_theory"] and \

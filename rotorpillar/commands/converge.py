@@ -55,7 +55,8 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
         **analysis,
         "study": {"runs": len(records), "cached": sum(bool(r.get("cached")) for r in records),
                   "computed": sum(not r.get("cached") for r in records),
-                  "failed": sum(r.get("status") != "ok" for r in records),
+                  "failed": sum(r.get("status") == "failed" for r in records),
+                  "unavailable": sum(r.get("status") == "unavailable" for r in records),
                   "compute_seconds": sum(r.get("process_time", r.get("wall_time", 0.0)) or 0.0
                                          for r in records if not r.get("cached"))},
     }

@@ -44,15 +44,22 @@ def _error(run: dict, q: str, needed) -> float | None:
     return max(abs(e) for e in errs) if errs else 0.0
 
 
-def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> None:
+def _missing_row(study: dict) -> float:
+    """Height of the "no such mode" strip, above every error of every panel."""
     import numpy as np
+    needed = study["selection"]["needed"]
+    ys = [_error(r, q, needed) for r in study["runs"] if r.get("status") == "ok"
+          for q in ("bending", "ovalling", "band")]
+    top = max([y for y in ys if y is not None] + [study["selection"]["tolerance"] * 10])
+    return 3 * 10 ** np.ceil(np.log10(top))
+
+
+def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> None:
     runs = [r for r in study["runs"] if r.get("status") == "ok"]
     sel = study["selection"]
     needed = sel["needed"]
     tol = sel["tolerance"]
-    ys = [max(_error(r, q, needed), FLOOR) for r in runs if _error(r, q, needed) is not None]
-    top = 10 ** np.ceil(np.log10(max(ys + [tol * 10])))
-    missing_y = top * 3
+    missing_y = _missing_row(study)
     no_mode = []
     for fam, style in STYLE.items():
         rows = sorted((r for r in runs if r["family"] == fam), key=lambda r: r[cost])
