@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from . import __version__
-from .errors import InputError
+from .errors import ComputationError, InputError
 from .provenance import Timings, machine, to_json, versions, write_json
 from .scene import Scene, embedded_scenes, load_scene
 
@@ -28,6 +28,8 @@ COMMANDS = {
                 "closed forms, reduced system modes, averaging, paper comparison"),
     "converge": ("rotorpillar.commands.converge", "converge_command",
                  "mesh convergence, speed against accuracy, and the cheapest model a scene needs"),
+    "modal": ("rotorpillar.commands.modal", "modal_command",
+              "3D tube (Gmsh, dolfinx, SLEPc): modes bare and with the top mass, tip reduction"),
     "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
 }
@@ -102,6 +104,9 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"rotorpillar {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except ComputationError as exc:
+        print(f"rotorpillar {args.command}: failed: {exc}; nothing was written", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print(f"rotorpillar {args.command}: interrupted; finished outputs are complete, "
               "none is half-written", file=sys.stderr)

@@ -5,6 +5,7 @@ from . import progress
 # The stages of `rotorpillar run`, in order: (command name, what it does).
 RUN_STAGES = [
     ("analyze", "closed forms and averaging"),
+    ("modal", "3D modes of the tube, bare and with its top mass"),
 ]
 
 
