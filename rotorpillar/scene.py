@@ -174,11 +174,11 @@ class Converge:
     shell_tri_max_around: int = param("Finest shell P2-triangle mesh: elements around (-)", 48,
                                       ge=8)
     solid: bool = param("Include the 3D solid model in the ladder", True)
-    solid_p1_max_around: int = param("Finest 3D P1 mesh: elements around (-)", 64, ge=8)
-    solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 32,
-                                     ge=8)
+    solid_p1_max_around: int = param("Finest 3D P1 mesh: elements around (-)", 256, ge=32)
+    solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 224,
+                                     ge=32)
     solid_tet_p2_max_around: int = param("Finest 3D P2 tetrahedral mesh: elements around (-)",
-                                         24, ge=8)
+                                         160, ge=32)
 
 
 SECTIONS = {

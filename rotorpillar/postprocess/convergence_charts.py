@@ -29,35 +29,57 @@ STYLE = {
     "solid_hex_p2_around": dict(color="#9467bd", marker="s", ls="--", mfc="none"),
 }
 COST_LABEL = {"dofs": "degrees of freedom", "wall_time": "wall time per run (s)"}
-PANELS = (("bending", "first bending frequency"), ("ovalling", "first ovalling frequency"),
-          ("band", "band: worst needed frequency"))
+PANELS = (("bending", "first bending frequency: |error|"),
+          ("ovalling", "first ovalling frequency: |error|"),
+          ("band", "the band's frequencies: error bound (model + mesh + reference)"))
 FLOOR = 1e-9
 
 
-def _error(run: dict, q: str, needed) -> float | None:
+def _error(run: dict, q: str, needed, ref_unc=None) -> float | None:
+    """|measured error| of quantity q, or for the band what the choice uses: the
+    largest error bound plus the reference's uncertainty over the needed ones."""
     if q != "band":
         e = run.get(f"{q}_error")
         return None if e is None else abs(e)
-    errs = [run.get(f"{k}_error") for k in needed]
+    errs = [run.get(f"{k}_error_bound") for k in needed]
     if any(e is None for e in errs):
         return None
-    return max(abs(e) for e in errs) if errs else 0.0
+    ref_unc = ref_unc or {}
+    return max((e + ref_unc.get(k, 0.0) for k, e in zip(needed, errs)), default=0.0)
 
 
 def _missing_row(study: dict) -> float:
     """Height of the "no such mode" strip, above every error of every panel."""
     import numpy as np
     needed = study["selection"]["needed"]
-    ys = [_error(r, q, needed) for r in study["runs"] if r.get("status") == "ok"
+    unc = study["selection"]["reference_uncertainty"]
+    ys = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
           for q in ("bending", "ovalling", "band")]
     top = max([y for y in ys if y is not None] + [study["selection"]["tolerance"] * 10])
     return 3 * 10 ** np.ceil(np.log10(top))
+
+
+def _bottom_row(study: dict) -> float:
+    """Bottom of the error axis: a decade under the smallest error or uncertainty."""
+    import numpy as np
+    needed = study["selection"]["needed"]
+    unc = study["selection"]["reference_uncertainty"]
+    ys = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
+          for q in ("bending", "ovalling", "band")]
+    ys = [y for y in ys if y is not None and y > 0] + list(unc.values())
+    lo = min([y for y in ys if y > 0] or [1e-6])
+    return max(FLOOR, 10 ** (np.floor(np.log10(lo)) - 1))
 
 
 def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> None:
     runs = [r for r in study["runs"] if r.get("status") == "ok"]
     sel = study["selection"]
     needed = sel["needed"]
+    unc = sel["reference_uncertainty"]
+
+    def err_of(run, q, needed):
+        return _error(run, q, needed, unc)
+
     tol = sel["tolerance"]
     missing_y = _missing_row(study)
     no_mode = []
@@ -65,7 +87,7 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
         rows = sorted((r for r in runs if r["family"] == fam), key=lambda r: r[cost])
         if not rows:
             continue
-        pts = [(r[cost], _error(r, q, needed)) for r in rows]
+        pts = [(r[cost], err_of(r, q, needed)) for r in rows]
         have = [(c, max(e, FLOOR)) for c, e in pts if e is not None]
         miss = [c for c, e in pts if e is None]
         kw = dict(style)
@@ -79,7 +101,7 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
                     label=None if have else families[fam])
     # Pareto front
     front = set(study["pareto"][cost][q])
-    fr = sorted(((r[cost], max(_error(r, q, needed), FLOOR)) for r in runs
+    fr = sorted(((r[cost], max(err_of(r, q, needed), FLOOR)) for r in runs
                  if r["label"] in front), key=lambda t: t[0])
     if fr:
         xs, es = zip(*fr)
@@ -88,15 +110,15 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
         ax.plot(xs, es, ls="none", marker="o", ms=13, mfc="none", mec="0.3", zorder=0)
     ax.axhline(tol, color="red", ls=":", lw=1.2, label=f"tolerance {tol:g}")
     ref = study["reference"]
-    unc = ([ref[k]["error_estimate"] / abs(ref[k]["value"]) for k in needed if k in ref]
-           if q == "band" else
-           [ref[q]["error_estimate"] / abs(ref[q]["value"])] if q in ref else [])
-    if unc:
-        ax.axhspan(FLOOR, max(max(unc), FLOOR), color="0.85", zorder=-1,
+    shade = ([ref[k]["error_estimate"] / abs(ref[k]["value"]) for k in needed if k in ref]
+             if q == "band" else
+             [ref[q]["error_estimate"] / abs(ref[q]["value"])] if q in ref else [])
+    if shade:
+        ax.axhspan(_bottom_row(study), max(max(shade), FLOOR), color="0.85", zorder=-1,
                    label="reference uncertainty")
     chosen = sel.get("chosen")
     if chosen is not None:
-        e = _error(chosen, q, needed)
+        e = err_of(chosen, q, needed)
         if e is not None:
             ax.plot([chosen[cost]], [max(e, FLOOR)], marker="*", ms=20, color="gold", mec="k",
                     ls="none", zorder=5, label="chosen")
@@ -108,22 +130,22 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
                 + "\n  ".join(no_mode), transform=ax.transAxes, fontsize=8, va="bottom",
                 bbox=dict(fc="white", ec="0.7"))
     for fam in ("solid_hex_p1", "solid_tet_p1"):
-        rows = [r for r in runs if r["family"] == fam and _error(r, q, needed) is not None]
+        rows = [r for r in runs if r["family"] == fam and err_of(r, q, needed) is not None]
         if rows:
             r = max(rows, key=lambda r: r[cost])
-            ax.annotate("P1 locking", (r[cost], _error(r, q, needed)), fontsize=8,
+            ax.annotate("P1 locking", (r[cost], err_of(r, q, needed)), fontsize=8,
                         xytext=(5, 5), textcoords="offset points", color=STYLE[fam]["color"])
     for fam in ("shell_quad_around", "solid_hex_p2_around"):
         rows = [r for r in runs if r["family"] == fam]
         if rows:
             r = min(rows, key=lambda r: r["level"])
-            e = _error(r, q, needed)
+            e = err_of(r, q, needed)
             ax.annotate(f"{r['params']['elements_around']} around", (r[cost], missing_y if e is None
                         else max(e, FLOOR)), fontsize=8, xytext=(4, -10),
                         textcoords="offset points", color=STYLE[fam]["color"])
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_ylim(FLOOR * 0.5, missing_y * 4)
+    ax.set_ylim(_bottom_row(study), missing_y * 4)
     ax.set_xlabel(COST_LABEL[cost])
     ax.set_title(title, fontsize=10)
     ax.grid(True, which="major", alpha=0.3)
