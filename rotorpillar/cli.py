@@ -37,6 +37,7 @@ COMMANDS = {
 # Extra arguments of a command: name -> callable(parser)
 EXTRA_ARGUMENTS = {
     "converge": lambda p: importlib.import_module("rotorpillar.commands.converge").add_arguments(p),
+    "modal": lambda p: importlib.import_module("rotorpillar.commands.converge").add_modal_arguments(p),
 }
 
 

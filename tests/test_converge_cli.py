@@ -78,3 +78,35 @@ def test_bad_tolerance_exits_2_and_writes_nothing(tmp_path):
     assert list(tmp_path.iterdir()) == []
     p = cli("converge", "paper", "--set", "converge.margin=0.5", "--out", tmp_path)
     assert p.returncode == 2 and "converge.margin" in p.stderr
+
+
+SMALL_3D = ["--set", "converge.shell_max_around=16", "--set", "converge.shell_tri_max_around=8",
+            "--set", "converge.solid_p1_max_around=32", "--set", "converge.solid_p2_max_around=96",
+            "--set", "converge.solid_tet_p2_max_around=32"]
+
+
+@pytest.mark.slow
+def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
+    p = cli("modal", "paper", *SMALL_3D, "--tolerance", "3e-2", "--out", tmp_path, "--json")
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    sel = doc["model_selection"]
+    chosen = sel["chosen"]
+    assert chosen["model"] == "solid" and "Model chosen for tolerance 0.03" in sel["text"]
+    # modal ran on the chosen mesh
+    for key in ("elements_around", "elements_along", "elements_through", "cell_type", "degree"):
+        assert doc["mesh"][key] == chosen["params"][key]
+    # and it is the cheapest 3D run whose band error meets the tolerance
+    study = json.loads((tmp_path / "convergence.json").read_text())
+    unc = study["selection"]["reference_uncertainty"]
+    needed = study["selection"]["needed"]
+    for r in study["runs"]:
+        if r["model"] != "solid" or r["family"].endswith("_around") or r["status"] != "ok":
+            continue
+        bounds = [r[f"{q}_error_bound"] for q in needed]
+        if None not in bounds and max(b + unc[q] for b, q in zip(bounds, needed)) <= 3e-2:
+            assert r["wall_time"] >= chosen["wall_time"]
+    # a tolerance no 3D run meets: one line, exit 2
+    bad = cli("modal", "paper", *SMALL_3D, "--tolerance", "1e-9", "--out", tmp_path / "x",
+              "--cache", tmp_path / "cache")
+    assert bad.returncode == 2 and "no 3D model" in bad.stderr

@@ -26,6 +26,16 @@ def add_arguments(p) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+def add_modal_arguments(p) -> None:
+    """`rotorpillar modal --tolerance TOL`: run the model the study picks for TOL."""
+    p.add_argument("--tolerance", type=float, default=None, metavar="TOL",
+                   help="pick the cheapest 3D mesh that meets this relative frequency "
+                        "tolerance over the scene's band, from the convergence study "
+                        "(run, or loaded from its cache: see `rotorpillar converge`)")
+    p.add_argument("--cache", type=Path, default=None, metavar="DIR",
+                   help="the study's run cache (default: <out>/cache)")
+
+
 def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
           show_progress: bool = True, charts: bool = True, timings=None) -> dict:
     """Run (or load) the study and analyse it; write convergence.json and the charts."""
@@ -104,6 +114,62 @@ def summary(doc: dict) -> str:
     if "charts" in doc:
         lines += ["", "charts: " + ", ".join(doc["charts"].values()), f"study: {doc['json']}"]
     return "\n".join(lines)
+
+
+def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
+                    timings=None):
+    """The scene with the [mesh] the study picks for ``tolerance``, and why.
+
+    `modal` computes the 3D model, so the choice is among the 3D families;
+    the cheapest model of all (a shell, a beam) is reported beside it.
+    Serially the study runs what its cache lacks; under MPI it must be
+    cached already (`rotorpillar converge` first), since its runs are
+    subprocesses.
+    """
+    import dataclasses
+    from mpi4py import MPI
+    from .. import converge as cv
+
+    if MPI.COMM_WORLD.size > 1:
+        def runner(case, sc):
+            raise InputError(f"modal --tolerance under MPI needs the convergence study cached "
+                             f"({case.label} is not): run `rotorpillar converge {scene.name}` "
+                             "serially first")
+        cases = cv.study_cases(scene)
+        cache = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
+        records = cv.run_study(cases, scene, cache, runner=runner, progress=False)
+        analysis = cv.analyse(records, scene, tolerance)
+        doc = {"runs": records, **analysis, "json": None}
+    else:
+        doc = study(scene, out_dir=out_dir, cache_dir=cache_dir, tolerance=tolerance,
+                    timings=timings)
+    solid = [k for k, f in cv.FAMILIES.items() if f.model == "solid" and not f.sweep]
+    sel = cv.select_model(doc["runs"], doc["reference"], doc["band"], tolerance, families=solid)
+    if sel["chosen"] is None:
+        raise InputError(f"--tolerance = {tolerance:g}: no 3D model of the study meets it "
+                         "(raise converge.solid_p2_max_around, or loosen the tolerance)")
+    chosen = sel["chosen"]
+    p = chosen["params"]
+    mesh = dataclasses.replace(scene.mesh, elements_around=p["elements_around"],
+                               elements_along=p["elements_along"],
+                               elements_through=p["elements_through"], degree=p["degree"],
+                               cell_type=p["cell_type"], grading=p["grading"])
+    overall = doc["selection"]["chosen"]
+    lines = [f"Model chosen for tolerance {tolerance:g}: {chosen['label']} "
+             f"({chosen['dofs']:,} DOFs, {chosen['wall_time']:.1f} s for the bare tube in the study).",
+             "Why: " + sel["reason"],
+             "The same mesh carries the top mass (the study's errors are the bare tube's)."]
+    if overall is not None and overall["label"] != chosen["label"]:
+        lines.append(f"Cheapest of all models at this tolerance: {overall['label']} "
+                     f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "
+                     "has it.")
+    if doc.get("json"):
+        lines.append(f"Study: {doc['json']}")
+    selection = {"tolerance": tolerance, "chosen": chosen, "reason": sel["reason"],
+                 "rule": sel["rule"], "band": sel["band"], "needed": sel["needed"],
+                 "rejected_cheaper": sel["rejected_cheaper"], "overall_cheapest": overall,
+                 "convergence_json": doc.get("json"), "text": "\n".join(lines)}
+    return dataclasses.replace(scene, mesh=mesh), selection
 
 
 def converge_command(scene, args, timings, context):
