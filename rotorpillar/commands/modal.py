@@ -16,6 +16,21 @@ from . import progress
 SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
 
 
+def quiet_jit_logging() -> None:
+    """Keep the compiler's INFO lines (setuptools, on the first JIT of a form) off stderr.
+
+    ffcx installs a root handler at import; setuptools raises the root level
+    to INFO while it builds.  A WARNING threshold on the handler keeps the
+    console to our own progress lines.
+    """
+    import logging
+    root = logging.getLogger()
+    if not root.handlers:
+        logging.basicConfig()
+    for h in root.handlers:
+        h.setLevel(max(h.level, logging.WARNING))
+
+
 def _rank0() -> bool:
     from mpi4py import MPI
     return MPI.COMM_WORLD.rank == 0
@@ -105,6 +120,8 @@ def summary(doc: dict, bare, loaded) -> str:
     lines = [f"3D pillar: {mesh['cells']} {mesh['cell_type']} cells, degree {mesh['degree']}, "
              f"{mesh['dofs']} dofs ({mesh['elements_around']} around x {mesh['elements_along']} "
              f"along x {mesh['elements_through']} through, grading {mesh['grading']:g})"]
+    lines.append("(n: waves around the circumference; m: sign changes along the height; "
+                 "x is the rotor's plane, z the tube axis)")
     lines += _table("Bare tube (clamped base, free top)", bare)
     lines += _table(f"With {top['carries'].replace('_', ' ')} on top ({top['mass']:g} kg, "
                     f"{top['model']} top)", loaded)
@@ -142,6 +159,9 @@ def modal_command(scene, args, timings, context):
     from ..cli import out_dir
     from ..fem3d import modal_analysis
     from ..fem3d.output import write_modes_vtu
+    from ..mesh import tube_params
+    tube_params(scene.pillar, scene.mesh)          # bad input: refused before any work
+    quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
     selection = None
     if getattr(args, "tolerance", None) is not None:

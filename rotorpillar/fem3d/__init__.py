@@ -21,7 +21,13 @@ from __future__ import annotations
 from .analysis import AXES, ModalResult  # noqa: F401  (numpy-only modules)
 from .reduction import TipReduction, tip_reduction  # noqa: F401
 
-_CACHE: dict = {}
+from collections import OrderedDict
+
+#: The last few results, so that `run` (analyze with reduction.source = fem3d,
+#: then modal) solves each configuration once; small, because a result holds
+#: its mode shapes and a convergence study makes many.
+_CACHE: OrderedDict = OrderedDict()
+CACHE_SIZE = 4
 
 
 def _top_settings(scene, top: bool):
@@ -61,6 +67,7 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
     top_model, top_mass = _top_settings(scene, top)
     key = (scene.pillar, mesh, top_model, top_mass, n_modes, scene.modal.tolerance, comm.size)
     if use_cache and comm is MPI.COMM_WORLD and key in _CACHE:
+        _CACHE.move_to_end(key)
         return _CACHE[key]
     model = assemble_pillar(scene, top=top, mesh=mesh, comm=comm, isolated=isolated)
     try:
@@ -70,6 +77,8 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
         model.M.destroy()
     if use_cache and comm is MPI.COMM_WORLD:
         _CACHE[key] = result
+        while len(_CACHE) > CACHE_SIZE:
+            _CACHE.popitem(last=False)
     return result
 
 

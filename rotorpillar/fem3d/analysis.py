@@ -150,9 +150,10 @@ def _vtu_map(model: PillarModel, coords: np.ndarray):
 
 
 def _align_and_normalise(omega, shapes, rings):
-    """Per mode: description, and T with normalised modes = raw modes @ T (rank 0)."""
+    """Per mode: description, T with normalised modes = raw modes @ T, pairs (rank 0)."""
     n = len(omega)
     T = np.eye(n)
+    pairs = []
     desc = [identify.describe_mode(None, shapes[i], rings) for i in range(n)]
     i = 0
     while i < n - 1:
@@ -161,6 +162,7 @@ def _align_and_normalise(omega, shapes, rings):
         if close and nc is not None and nc >= 1 and nc == desc[i + 1].n_circumferential:
             R = identify.pair_coefficients(rings, shapes[i], shapes[i + 1], nc)
             T[np.ix_([i, i + 1], [i, i + 1])] = R
+            pairs.append(i)
             i += 2
         else:
             i += 1
@@ -183,7 +185,7 @@ def _align_and_normalise(omega, shapes, rings):
     T = T * scale[None, :]
     desc = [replace(d, tip=(d.tip[0] * scale[k], d.tip[1] * scale[k]),
                     max_abs=d.max_abs * abs(scale[k])) for k, d in enumerate(desc)]
-    return desc, T, norm
+    return desc, T, norm, pairs
 
 
 def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
@@ -209,13 +211,15 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
     n_nodes = model.tube_dofs // 3
     raw = [model.gather_vector(model.tube_displacement(x)) for x in sol.vectors]
     raw_q = [model.gather_vector(x) for x in sol.vectors] if model.extra_dofs else None
-    desc = T = norm = None
+    desc = T = norm = pairs = None
     if comm.rank == 0:
         shapes = np.stack([r.reshape(n_nodes, 3) for r in raw])
         rings = identify.rings_of(coords, model.params.height)
-        desc, T, norm = _align_and_normalise(omega, shapes, rings)
+        desc, T, norm, pairs = _align_and_normalise(omega, shapes, rings)
         desc, T, norm = desc[:n_modes], T[:, :n_modes], norm[:n_modes]
+        pairs = [i for i in pairs if i + 1 < n_modes]
     T = comm.bcast(T, root=0)
+    pairs = comm.bcast(pairs, root=0)
     omega = omega[:n_modes]
     # The normalised modes as distributed vectors: generalised mass and stiffness.
     local = np.stack([x.getArray() for x in sol.vectors], axis=1) @ T
@@ -232,6 +236,13 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
     phi.destroy()
     for x in sol.vectors:
         x.destroy()
+    # The Rayleigh quotient of each final vector: its Ritz value for a simple
+    # mode; a degenerate pair (equal by symmetry, split ~1e-8 by round-off)
+    # gets the mean of its two.
+    lam = np.maximum(kk / mm, 0.0)
+    for i in pairs:
+        lam[i] = lam[i + 1] = (lam[i] + lam[i + 1]) / 2
+    omega = np.sqrt(lam)
     desc = comm.bcast(desc, root=0)
     norm = comm.bcast(norm, root=0)
     points = vtu_cells = shapes_out = beam_line = rigid = None

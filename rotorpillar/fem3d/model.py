@@ -159,9 +159,13 @@ def _rigid_links(coords: np.ndarray, height: float) -> np.ndarray:
 
 
 def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_mass: float = 0.0,
-                   comm=None, isolated: bool = True, mesh_data: MeshData | None = None
-                   ) -> PillarModel:
-    """Mesh (Gmsh), assemble K and M (dolfinx) and add the top; see the module docstring."""
+                   comm=None, isolated: bool = True, mesh_data: MeshData | None = None,
+                   clamped: bool = True) -> PillarModel:
+    """Mesh (Gmsh), assemble K and M (dolfinx) and add the top; see the module docstring.
+
+    ``clamped`` False leaves the base free too (a free-free tube, for tests
+    against ring theory): K is then singular and a solve needs sigma < 0.
+    """
     import ufl
     from mpi4py import MPI
     from petsc4py import PETSc
@@ -195,15 +199,19 @@ def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_ma
     a = stiffness_form(u, v, pillar.youngs_modulus, pillar.poisson_ratio, dx)
     m = mass_form(u, v, pillar.density, dx)
     if top_model == "ring_mass" and top_mass > 0:
-        area = np.pi * (params.outer_radius**2 - params.inner_radius**2)
         ds = ufl.Measure("ds", domain=mesh, subdomain_data=tags,
                          metadata={"quadrature_degree": 2 * degree})
+        # The discrete face's area, so that exactly top_mass is added.
+        one = fem.Constant(mesh, PETSc.ScalarType(1.0))
+        area = comm.allreduce(fem.assemble_scalar(fem.form(one * ds(TOP))))
         m = m + mass_form(u, v, top_mass / area, ds(TOP))
     base = fem.locate_dofs_topological(V, 2, tags.find(BASE))
-    bc = fem.dirichletbc(np.zeros(3, dtype=PETSc.ScalarType), base, V)
-    K = fem.petsc.assemble_matrix(fem.form(a), bcs=[bc], diagonal=1.0)
+    if not clamped:
+        base = base[:0]
+    bcs = [fem.dirichletbc(np.zeros(3, dtype=PETSc.ScalarType), base, V)] if clamped else []
+    K = fem.petsc.assemble_matrix(fem.form(a), bcs=bcs, diagonal=1.0)
     K.assemble()
-    M = fem.petsc.assemble_matrix(fem.form(m), bcs=[bc], diagonal=0.0)
+    M = fem.petsc.assemble_matrix(fem.form(m), bcs=bcs, diagonal=0.0)
     M.assemble()
     n_local = V.dofmap.index_map.size_local
     top_nodes = fem.locate_dofs_topological(V, 2, tags.find(TOP))

@@ -2,8 +2,8 @@
 
 The tube's first-order cells at its vertices, one point array per mode,
 ``mode_000``, ``mode_001``, ... (3-vector displacement, the normalised shape
-of modal.json's list in the same order), and ``frequency_hz`` and ``omega``
-as field data.  Written atomically on rank 0 only.
+of modal.json's list in the same order; the frequencies are in modal.json).
+Written atomically on rank 0 only.
 """
 
 from __future__ import annotations
@@ -31,9 +31,7 @@ def write_modes_vtu(path: str | Path, result) -> Path:
                   for i in range(len(result.omega))}
     mesh = meshio.Mesh(np.asarray(result.points, dtype=np.float64),
                        [(VTK_CELL[result.cell_type], np.asarray(result.vtu_cells, dtype=np.int64))],
-                       point_data=point_data,
-                       field_data={"omega": np.asarray(result.omega, dtype=np.float64),
-                                   "frequency_hz": np.asarray(result.frequency_hz, dtype=np.float64)})
+                       point_data=point_data)
     with atomic_path(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
     return Path(path)

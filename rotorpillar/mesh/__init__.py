@@ -25,7 +25,7 @@ is a :class:`~rotorpillar.errors.ComputationError` naming Gmsh.
 >>> TubeMeshParams(20.0, 1.0, 0.98, 0, 4, 1, 1, "hexahedron")
 Traceback (most recent call last):
 ...
-rotorpillar.errors.InputError: mesh.elements_around = 0 is out of range: must be an integer >= 3
+rotorpillar.errors.InputError: mesh.elements_around = 0 is out of range: must be an integer >= 4
 """
 
 from __future__ import annotations
@@ -83,7 +83,7 @@ class TubeMeshParams:
     (at the clamped base), a geometric progression; 1 = uniform (-)"""
 
     def __post_init__(self):
-        for key, lo in (("elements_around", 3), ("elements_along", 1), ("elements_through", 1)):
+        for key, lo in (("elements_around", 4), ("elements_along", 1), ("elements_through", 1)):
             v = getattr(self, key)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
                 raise InputError(f"mesh.{key} = {v!r} is out of range: must be an integer >= {lo}")
@@ -362,9 +362,12 @@ def tube_mesh_data(p: TubeMeshParams, *, isolated: bool = True) -> MeshData:
     if not isolated:
         return _mesh_in_process(p)
     try:
-        proc = subprocess.run([sys.executable, "-m", "rotorpillar.mesh"],
-                              input=json.dumps(asdict(p)).encode(), capture_output=True,
-                              timeout=MESH_TIMEOUT)
+        # The parameters go on the command line, not through stdin: writing to
+        # the pipe of a child that has already died raises SIGPIPE, which
+        # PETSc's signal handler (installed once petsc4py is imported) turns
+        # into an abort of the caller.
+        proc = subprocess.run(worker_command() + [json.dumps(asdict(p))], capture_output=True,
+                              stdin=subprocess.DEVNULL, timeout=MESH_TIMEOUT)
     except subprocess.TimeoutExpired:
         raise ComputationError(f"Gmsh did not finish meshing the tube within {MESH_TIMEOUT:g} s") from None
     if proc.returncode != 0:
@@ -376,9 +379,14 @@ def tube_mesh_data(p: TubeMeshParams, *, isolated: bool = True) -> MeshData:
     return MeshData.from_bytes(proc.stdout)
 
 
+def worker_command() -> list[str]:
+    """The command line of the isolated meshing process."""
+    return [sys.executable, "-m", "rotorpillar.mesh"]
+
+
 def _worker() -> int:
-    """Child-process entry: params as JSON on stdin, MeshData as npz bytes on stdout."""
-    params = TubeMeshParams(**json.loads(sys.stdin.buffer.read()))
+    """Child-process entry: params as JSON in argv[1], MeshData as npz bytes on stdout."""
+    params = TubeMeshParams(**json.loads(sys.argv[1]))
     try:
         data = _mesh_in_process(params)
     except (ComputationError, InputError) as exc:
