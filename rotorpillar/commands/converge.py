@@ -143,7 +143,7 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
     else:
         doc = study(scene, out_dir=out_dir, cache_dir=cache_dir, tolerance=tolerance,
                     timings=timings)
-    solid = [k for k, f in cv.FAMILIES.items() if f.model == "solid" and not f.sweep]
+    solid = [k for k, f in cv.FAMILIES.items() if f.model == "solid"]
     sel = cv.select_model(doc["runs"], doc["reference"], doc["band"], tolerance, families=solid)
     if sel["chosen"] is None:
         raise InputError(f"--tolerance = {tolerance:g}: no 3D model of the study meets it "
