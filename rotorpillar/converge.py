@@ -234,9 +234,10 @@ def estimated_seconds(case: Case) -> float:
     if model in ("closed_form", "beam"):
         return 0.001 + 2e-9 * n ** 2
     if model == "shell":
-        return 2.0 + 1.5e-4 * n
-    per = 1.6e-4 if case.settings["cell_type"] == "tetrahedron" else 1.3e-4
-    return 3.0 + per * n
+        return 1.3 + 1.0e-4 * n
+    if case.settings["degree"] == 1:
+        return 1.5 + 7e-5 * n
+    return 1.5 + (8e-5 if case.settings["cell_type"] == "tetrahedron" else 1.3e-4) * n
 
 
 # --------------------------------------------------------------------------
