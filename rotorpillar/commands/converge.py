@@ -172,8 +172,16 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
     return dataclasses.replace(scene, mesh=mesh), selection
 
 
+def _under_mpi() -> bool:
+    import os
+    return any(int(os.environ.get(k, "1")) > 1 for k in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"))
+
+
 def converge_command(scene, args, timings, context):
     from ..cli import out_dir
+    if _under_mpi():
+        raise InputError("rotorpillar converge runs serially (each run is its own "
+                         "subprocess): start it without mpirun")
     doc = study(scene, out_dir=out_dir(scene, args), cache_dir=args.cache,
                 tolerance=args.tolerance, show_progress=not args.no_progress, timings=timings)
     context["converge"] = doc
