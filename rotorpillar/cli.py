@@ -26,6 +26,8 @@ from .scene import Scene, embedded_scenes, load_scene
 COMMANDS = {
     "analyze": ("rotorpillar.commands.analyze", "analyze_command",
                 "closed forms, reduced system modes, averaging, paper comparison"),
+    "converge": ("rotorpillar.commands.converge", "converge_command",
+                 "mesh convergence, speed against accuracy, and the cheapest model a scene needs"),
     "modal": ("rotorpillar.commands.modal", "modal_command",
               "3D tube (Gmsh, dolfinx, SLEPc): modes bare and with the top mass, tip reduction"),
     "report": ("rotorpillar.commands.report", "report_command",
@@ -41,7 +43,12 @@ def _report_arguments(parser) -> None:
 
 
 # Extra arguments of a command: name -> callable(parser)
-EXTRA_ARGUMENTS = {"report": _report_arguments, "run": _report_arguments}
+EXTRA_ARGUMENTS = {
+    "converge": lambda p: importlib.import_module("rotorpillar.commands.converge").add_arguments(p),
+    "modal": lambda p: importlib.import_module("rotorpillar.commands.converge").add_modal_arguments(p),
+    "report": _report_arguments,
+    "run": _report_arguments,
+}
 
 
 def _common(p: argparse.ArgumentParser) -> None:

@@ -154,6 +154,33 @@ class Modal:
     tolerance: float = param("Relative residual of the eigenpairs (-)", 1e-10, gt=0, lt=1e-3)
 
 
+@dataclass(frozen=True)
+class Converge:
+    """The convergence study and the choice of a model (`rotorpillar converge`).
+
+    The band a model must resolve is ``margin`` times the highest excitation
+    frequency: the drive's free speed (the rotor's top speed) or the ground
+    motion's ``earthquake_frequency``, whichever is higher.  The ladder
+    limits cap the finest mesh of each family (elements around; the study's
+    wall time grows as about their cube for the 3D P2 models).
+    """
+    tolerance: float = param("Relative frequency error the chosen model must meet (-)", 1e-3,
+                             gt=0, lt=1)
+    margin: float = param("Band margin over the highest excitation frequency (-)", 1.5, ge=1)
+    earthquake_frequency: float = param(
+        "Highest angular frequency of the ground motion (rad/s); the paper's pulse "
+        "q5 = (g/pi)(cos(pi t) - 1) has pi", math.pi, ge=0)
+    shell_max_around: int = param("Finest shell Q2 mesh: elements around (-)", 64, ge=8)
+    shell_tri_max_around: int = param("Finest shell P2-triangle mesh: elements around (-)", 48,
+                                      ge=8)
+    solid: bool = param("Include the 3D solid model in the ladder", True)
+    solid_p1_max_around: int = param("Finest 3D P1 mesh: elements around (-)", 256, ge=32)
+    solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 224,
+                                     ge=32)
+    solid_tet_p2_max_around: int = param("Finest 3D P2 tetrahedral mesh: elements around (-)",
+                                         160, ge=32)
+
+
 SECTIONS = {
     "pillar": Pillar,
     "gondola": Gondola,
@@ -163,9 +190,10 @@ SECTIONS = {
     "drive": Drive,
     "load": Load,
     "mesh": Mesh,
+    "converge": Converge,
     "modal": Modal,
 }
-OPTIONAL_SECTIONS = ("reduction", "mesh", "modal")
+OPTIONAL_SECTIONS = ("reduction", "mesh", "converge", "modal")
 
 
 @dataclass(frozen=True)
@@ -180,6 +208,7 @@ class Scene:
     load: Load
     reduction: Reduction = Reduction()
     mesh: Mesh = Mesh()
+    converge: Converge = Converge()
     modal: Modal = Modal()
     description: str = ""
 

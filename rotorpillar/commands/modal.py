@@ -163,6 +163,13 @@ def modal_command(scene, args, timings, context):
     tube_params(scene.pillar, scene.mesh)          # bad input: refused before any work
     quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
+    selection = None
+    if getattr(args, "tolerance", None) is not None:
+        from .converge import model_for_modal
+        with timings("model_selection"):
+            scene, selection = model_for_modal(scene, args.tolerance, out_dir(scene, args),
+                                               cache_dir=args.cache)
+        say(selection["text"].splitlines()[0])
     say(f"modal: bare tube, {scene.modal.n_modes} modes")
     bare = modal_analysis(scene, top=False)
     say(f"modal: tube with its top mass ({scene.modal.top_model} top)")
@@ -179,5 +186,9 @@ def modal_command(scene, args, timings, context):
             files["modes_bare"] = str(write_modes_vtu(d / SHAPE_FILES["bare"], bare))
             files["modes_top"] = str(write_modes_vtu(d / SHAPE_FILES["top"], loaded))
     doc["files"] = files
+    text = summary(doc, bare, loaded)
+    if selection is not None:
+        doc["model_selection"] = selection
+        text = selection["text"] + "\n\n" + text
     context["modal"] = doc
-    return doc, summary(doc, bare, loaded)
+    return doc, text

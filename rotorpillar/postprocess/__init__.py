@@ -14,5 +14,6 @@ beyond evaluating the closed forms those results already carry.
 - :mod:`.charts`      drive/resistance curves (Figs. 3-4), a(z), earthquake response
 - :mod:`.html`        the report page: escaped text, embedded images, no external resource
 - :mod:`.report`      `rotorpillar report`: every figure that its inputs allow, then the page
+- :mod:`.convergence_charts` error against DOFs and against wall time (`rotorpillar converge`)
 - :mod:`.fixtures`    small synthetic inputs for the tests and the docs
 """

@@ -1,0 +1,59 @@
+"""What the models the convergence study chooses for `paper` cost against each other.
+
+Side by side, in one run, best of three after one warm-up call (forms are
+compiled once per machine): the Timoshenko beam with 16 elements (the choice
+when a scene's band holds the bending mode only), the shell Q2 16 x 20 (the
+choice at 2e-3 and 3e-3) and, when the 3D model is available, the 3D P2
+hexahedra 128 x 20 x 1 (the choice at 1e-3).  Each value is a time ratio.
+"""
+
+import inspect
+import time
+
+from rotorpillar.fem3d.shell import ShellDiscretisation, shell_modal_analysis, shell_section_of
+from rotorpillar.reduced.beam_fe import BeamProperties, beam_modes
+from rotorpillar.reduced.pillar import cowper_shear_coefficient, section_of
+from rotorpillar.scene import Mesh, load_scene
+
+N_MODES = 12   # as the study computes
+
+
+def _best(fn, repeat=3):
+    fn()
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def run():
+    scene = load_scene("paper")
+    p = scene.pillar
+    sec = section_of(p)
+    kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
+    props = BeamProperties(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area,
+                           sec.second_moment, p.height)
+    shell_sec, R, H = shell_section_of(p)
+    t_beam = _best(lambda: beam_modes(props, 16, "timoshenko", 1))
+    t_shell = _best(lambda: shell_modal_analysis(shell_sec, R, H, ShellDiscretisation(16, 20),
+                                                 n_modes=N_MODES))
+    out = [{"name": "shell_q2_16x20_vs_timoshenko_16",
+            "compares": "shell Q2 16x20 modal time (the choice at 2e-3) / Timoshenko 16 el. "
+                        "(bending only)",
+            "value": t_shell / t_beam, "unit": "x", "shell_s": t_shell, "beam_s": t_beam}]
+    try:
+        from rotorpillar.fem3d import modal_analysis
+    except ImportError:
+        return out
+    mesh = Mesh(elements_around=128, elements_along=20, elements_through=1, degree=2,
+                cell_type="hexahedron", grading=scene.mesh.grading)
+    extra = ({"use_cache": False} if "use_cache" in inspect.signature(modal_analysis).parameters
+             else {})
+    t_solid = _best(lambda: modal_analysis(scene, top=False, n_modes=N_MODES, mesh=mesh, **extra))
+    out.append({"name": "solid_p2_hex_128x20_vs_shell_q2_16x20",
+                "compares": "3D P2 hex 128x20x1 modal time (the choice at 1e-3) / shell Q2 16x20 "
+                            "(the choice at 2e-3)",
+                "value": t_solid / t_shell, "unit": "x", "solid_s": t_solid, "shell_s": t_shell})
+    return out

@@ -1,0 +1,348 @@
+r"""A linear Naghdi (Reissner-Mindlin) shell model of the tube's mid-surface.
+
+The wall, D/t = 100, is the textbook case of a shell: its mid-surface (a
+cylinder of radius R = (D0 + D1)/4) carries a displacement ``u`` (three
+Cartesian components) and the rotation ``beta`` of its director (two
+components in the tangent frame ``e1 = e_theta``, ``e2 = e_z``; the normal is
+``n = e_r``).  On the smooth cylinder the frame is known in closed form, so no
+drilling rotation exists and none needs stabilising.  From the 3D kinematics
+U(xi, zeta) = u + zeta beta, X = xi + zeta n, to first order in zeta:
+
+- membrane strain  eps   = sym(P^T grad(u) P)
+- bending strain   kappa = sym(P^T (grad(beta) - grad(u) grad(n)) P)
+- shear strain     gamma = P^T beta + P^T grad(u)^T n
+
+with P = [e1 e2] (3x2) and grad the tangential gradient on the manifold.
+The ``grad(u) grad(n)`` term makes kappa vanish under every rigid motion of
+the curved surface (a flat-facet formula would see a spurious twist).
+Plane-stress resultants N = t C eps, M = t**3/12 C kappa, Q = k_s mu t gamma
+(k_s = 5/6); kinetic energy rho t |u'|**2 + rho t**3/12 |beta'|**2.
+
+Discretisation: quadratic Lagrange for u and beta on quadratic cells
+(9-node quadrilaterals or 6-node triangles); membrane and shear energies are
+integrated with a degree-2 rule (2x2 Gauss on quadrilaterals), which frees
+the thin wall from shear and membrane locking (selective reduced
+integration).  The clamp at the base fixes u and beta.
+
+Checked (tests/test_shell.py) against the exact modes of a simply supported
+cylinder in Sanders' shell theory (Leissa, Vibration of Shells, NASA SP-288,
+1973, ch. 2) and against the Timoshenko beam limit for bending.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..mesh.shell import BASE, TOP, MidSurface, mid_surface_radius
+
+SHEAR_CORRECTION = 5.0 / 6.0
+"""k_s of Reissner-Mindlin theory (-)"""
+REDUCED_DEGREE = 2
+"""quadrature degree of the membrane and shear energies (-)"""
+FULL_DEGREE = 4
+"""quadrature degree of the bending and kinetic energies (-)"""
+END_CONDITIONS = ("clamped-free", "simply-supported")
+
+
+@dataclass(frozen=True)
+class ShellSection:
+    """A homogeneous isotropic wall."""
+    youngs_modulus: float
+    """E (Pa)"""
+    poisson_ratio: float
+    """nu (-)"""
+    density: float
+    """rho (kg/m**3)"""
+    thickness: float
+    """t (m)"""
+
+
+@dataclass(frozen=True)
+class ShellDiscretisation:
+    """Mesh of the mid-surface for the shell model."""
+    elements_around: int = 32
+    """cells around the circumference (-)"""
+    elements_along: int = 40
+    """cells along the height (-)"""
+    cell_type: str = "quadrilateral"
+    """"quadrilateral" or "triangle" (-)"""
+    degree: int = 2
+    """Lagrange degree of u and beta (-)"""
+
+
+@dataclass(frozen=True)
+class ShellModalResult:
+    """Modes of the shell model, ascending (the fields of fem3d's ModalResult)."""
+    omega: np.ndarray
+    """natural angular frequencies (rad/s)"""
+    kind: list
+    """per mode: "bending_x", "bending_y", "ovalling", "torsion", "axial" or "breathing" """
+    n_circumferential: list
+    """per mode: dominant circumferential wave number n (-)"""
+    dofs: int
+    """number of unknowns (-)"""
+    cells: int
+    """number of cells (-)"""
+    cell_type: str
+    degree: int
+    timings: dict = field(default_factory=dict)
+    """wall seconds per stage: mesh, forms (JIT compile), assemble, solve, classify"""
+
+    @property
+    def frequency_hz(self) -> np.ndarray:
+        return self.omega / (2 * np.pi)
+
+
+def shell_section_of(pillar) -> tuple[ShellSection, float, float]:
+    """(section, mid-surface radius R (m), height H (m)) of a scene's ``[pillar]``."""
+    t = (pillar.outer_diameter - pillar.inner_diameter) / 2
+    R = mid_surface_radius(pillar.outer_diameter, pillar.inner_diameter)
+    return (ShellSection(pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, t),
+            R, pillar.height)
+
+
+# --------------------------------------------------------------------------
+# The physics as UFL expressions
+
+
+def cylinder_frame(x):
+    """Orthonormal frame (e_theta, e_z, e_r) of the cylinder at spatial point x."""
+    import ufl
+    r = ufl.sqrt(x[0] ** 2 + x[1] ** 2)
+    e1 = ufl.as_vector([-x[1] / r, x[0] / r, 0.0])
+    e2 = ufl.as_vector([0.0, 0.0, 1.0])
+    n = ufl.as_vector([x[0] / r, x[1] / r, 0.0])
+    return e1, e2, n
+
+
+def tangent_projector(e1, e2):
+    """P = [e1 e2], 3x2: takes tangent-plane components to Cartesian ones."""
+    import ufl
+    return ufl.as_matrix([[e1[i], e2[i]] for i in range(3)])
+
+
+def membrane_strain(u, P):
+    import ufl
+    return ufl.sym(P.T * ufl.grad(u) * P)
+
+
+def bending_strain(u, beta, P, n):
+    import ufl
+    return ufl.sym(P.T * (ufl.grad(beta) - ufl.grad(u) * ufl.grad(n)) * P)
+
+
+def shear_strain(u, beta, P, n):
+    import ufl
+    return P.T * beta + P.T * (ufl.grad(u).T * n)
+
+
+def plane_stress(e, E: float, nu: float):
+    """C : e for an isotropic plane-stress material."""
+    import ufl
+    lmbda = E * nu / (1 - nu**2)
+    mu = E / (2 * (1 + nu))
+    return lmbda * ufl.tr(e) * ufl.Identity(2) + 2 * mu * e
+
+
+def shell_stiffness_form(u, beta, v, gamma_, sec: ShellSection, P, n, dx_reduced, dx_full):
+    """Bilinear strain-energy form a((u, beta), (v, gamma_))."""
+    import ufl
+    E, nu, t = sec.youngs_modulus, sec.poisson_ratio, sec.thickness
+    mu = E / (2 * (1 + nu))
+    membrane = t * ufl.inner(plane_stress(membrane_strain(u, P), E, nu), membrane_strain(v, P))
+    bending = t**3 / 12 * ufl.inner(plane_stress(bending_strain(u, beta, P, n), E, nu),
+                                    bending_strain(v, gamma_, P, n))
+    shear = SHEAR_CORRECTION * mu * t * ufl.dot(shear_strain(u, beta, P, n),
+                                                 shear_strain(v, gamma_, P, n))
+    return (membrane + shear) * dx_reduced + bending * dx_full
+
+
+def shell_mass_form(u, beta, v, gamma_, sec: ShellSection, dx_full):
+    """Bilinear kinetic-energy form: translation and rotary inertia of the wall."""
+    import ufl
+    rho, t = sec.density, sec.thickness
+    return (rho * t * ufl.dot(u, v) + rho * t**3 / 12 * ufl.dot(beta, gamma_)) * dx_full
+
+
+# --------------------------------------------------------------------------
+# Mode shapes: what kind of mode is it?
+
+
+def classify_mode(points: np.ndarray, displacement: np.ndarray, n_max: int = 8) -> tuple[str, int]:
+    """Kind and circumferential wave number of a tube's mode shape.
+
+    ``points`` (k, 3) and ``displacement`` (k, 3) sampled over the tube
+    (axis z).  The in-plane motion u_r + i u_theta and the axial motion u_z
+    are split into circumferential harmonics n = 0..n_max; the strongest
+    decides: n = 1 bending (x or y by the larger mean displacement), n >= 2
+    ovalling, n = 0 torsion (u_theta), axial (u_z) or breathing (u_r).
+
+    >>> th = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    >>> pts = np.c_[np.cos(th), np.sin(th), np.zeros(64)]
+    >>> classify_mode(pts, np.c_[np.cos(2 * th) * np.cos(th), np.cos(2 * th) * np.sin(th), 0 * th])
+    ('ovalling', 2)
+    >>> classify_mode(pts, np.c_[0 * th, np.ones(64), 0 * th])
+    ('bending_y', 1)
+    """
+    theta = np.arctan2(points[:, 1], points[:, 0])
+    c, s = np.cos(theta), np.sin(theta)
+    ur = displacement[:, 0] * c + displacement[:, 1] * s
+    ut = -displacement[:, 0] * s + displacement[:, 1] * c
+    uz = displacement[:, 2]
+    power = []
+    for k in range(n_max + 1):
+        phase = np.exp(-1j * k * theta)
+        power.append((abs(np.sum(ur * phase)) ** 2 + abs(np.sum(ut * phase)) ** 2,
+                      abs(np.sum(uz * phase)) ** 2))
+    power = np.array(power)
+    n = int(np.argmax(power.sum(axis=1)))
+    if n == 1:
+        mx, my = abs(np.sum(displacement[:, 0])), abs(np.sum(displacement[:, 1]))
+        return ("bending_x" if mx >= my else "bending_y"), 1
+    if n >= 2:
+        return "ovalling", n
+    parts = {"torsion": np.sum(ut**2), "axial": np.sum(uz**2), "breathing": np.sum(ur**2)}
+    return max(parts, key=parts.get), 0
+
+
+# --------------------------------------------------------------------------
+# The modal analysis
+
+
+def _eigensolve(A, M, n_modes: int, comm, shift: float):
+    """Lowest eigenpairs of A x = lambda M x by shift-invert (MUMPS Cholesky)."""
+    from slepc4py import SLEPc
+    eps = SLEPc.EPS().create(comm)
+    eps.setOperators(A, M)
+    eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
+    eps.setDimensions(n_modes)
+    eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
+    eps.setTarget(shift)
+    st = eps.getST()
+    st.setType(SLEPc.ST.Type.SINVERT)
+    st.setShift(shift)
+    ksp = st.getKSP()
+    ksp.setType("preonly")
+    pc = ksp.getPC()
+    pc.setType("cholesky")
+    pc.setFactorSolverType("mumps")
+    eps.setTolerances(1e-10, 200)
+    eps.setFromOptions()
+    eps.solve()
+    vr = A.createVecRight()
+    pairs = []
+    for i in range(eps.getConverged()):
+        lam = eps.getEigenpair(i, vr).real
+        pairs.append((lam, vr.copy()))
+    eps.destroy()
+    pairs.sort(key=lambda p: p[0])
+    return pairs
+
+
+def shell_modal_analysis(section: ShellSection, radius: float, height: float,
+                         disc: ShellDiscretisation = ShellDiscretisation(), *,
+                         n_modes: int = 12, ends: str = "clamped-free",
+                         comm=None) -> ShellModalResult:
+    """The lowest ``n_modes`` modes of the tube as a shell.
+
+    ``ends``: "clamped-free" (the pillar) or "simply-supported" (shear
+    diaphragms at both ends: u_x = u_y = 0, the closed-form check).
+    """
+    if ends not in END_CONDITIONS:
+        raise ValueError(f"ends must be one of {END_CONDITIONS}")
+    from .dolfinx_import import import_dolfinx
+    import_dolfinx()
+    from mpi4py import MPI
+    import ufl
+    from dolfinx import fem
+    import dolfinx.fem.petsc  # noqa: F401  (registers fem.petsc)
+
+    comm = MPI.COMM_WORLD if comm is None else comm
+    timings = {}
+    t0 = time.perf_counter()
+    msh, _, facets = _mesh(radius, height, disc, comm)
+    timings["mesh"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    cell = msh.ufl_cell()
+    Ue = ufl.VectorElement("Lagrange", cell, disc.degree, dim=3)
+    Be = ufl.VectorElement("Lagrange", cell, disc.degree, dim=2)
+    V = fem.FunctionSpace(msh, ufl.MixedElement([Ue, Be]))
+    e1, e2, n = cylinder_frame(ufl.SpatialCoordinate(msh))
+    P = tangent_projector(e1, e2)
+    (u, b), (v, c) = ufl.TrialFunctions(V), ufl.TestFunctions(V)
+    beta, gamma_ = b[0] * e1 + b[1] * e2, c[0] * e1 + c[1] * e2
+    dx_red = ufl.dx(metadata={"quadrature_degree": REDUCED_DEGREE})
+    dx_full = ufl.dx(metadata={"quadrature_degree": FULL_DEGREE})
+    a = fem.form(shell_stiffness_form(u, beta, v, gamma_, section, P, n, dx_red, dx_full))
+    m = fem.form(shell_mass_form(u, beta, v, gamma_, section, dx_full))
+    bcs = _boundary_conditions(V, facets, ends)
+    timings["forms"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    A = fem.petsc.assemble_matrix(a, bcs=bcs)
+    A.assemble()
+    # zero diagonal on constrained rows: their eigenvalues go to infinity
+    M = fem.petsc.assemble_matrix(m, bcs=bcs, diagonal=0.0)
+    M.assemble()
+    timings["assemble"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    # a slightly negative shift keeps K - sigma M regular when rigid motions
+    # are free (the axial translation of the simply supported cylinder)
+    pairs = _eigensolve(A, M, n_modes, comm, shift=-1.0)
+    timings["solve"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    Vu, u_dofs = V.sub(0).collapse()
+    points = Vu.tabulate_dof_coordinates()
+    omega, kinds, ns = [], [], []
+    for lam, vec in pairs[:n_modes]:
+        disp = vec.array[u_dofs].reshape(-1, 3)
+        kind, k = classify_mode(_gather(points, comm), _gather(disp, comm))
+        omega.append(np.sqrt(max(lam, 0.0)))
+        kinds.append(kind)
+        ns.append(k)
+    timings["classify"] = time.perf_counter() - t0
+    dofs = V.dofmap.index_map.size_global * V.dofmap.index_map_bs
+    cells = msh.topology.index_map(2).size_global
+    A.destroy()
+    M.destroy()
+    return ShellModalResult(np.array(omega), kinds, ns, int(dofs), int(cells),
+                            disc.cell_type, disc.degree, timings)
+
+
+def _mesh(radius, height, disc: ShellDiscretisation, comm):
+    from ..mesh.shell import mid_surface_mesh
+    return mid_surface_mesh(MidSurface(radius, height, disc.elements_around,
+                                       disc.elements_along, disc.cell_type), comm)
+
+
+def _boundary_conditions(V, facets, ends: str):
+    from dolfinx import fem
+    if ends == "clamped-free":
+        base = facets.find(BASE)
+        bcs = []
+        for i in (0, 1):
+            Vi, _ = V.sub(i).collapse()
+            dofs = fem.locate_dofs_topological((V.sub(i), Vi), 1, base)
+            bcs.append(fem.dirichletbc(fem.Function(Vi), dofs, V.sub(i)))
+        return bcs
+    # shear diaphragms: no radial or circumferential displacement at the ends,
+    # i.e. u_x = u_y = 0; axial motion and rotations free
+    bcs = []
+    for tag in (BASE, TOP):
+        for k in (0, 1):
+            Vk, _ = V.sub(0).sub(k).collapse()
+            dofs = fem.locate_dofs_topological((V.sub(0).sub(k), Vk), 1, facets.find(tag))
+            bcs.append(fem.dirichletbc(fem.Function(Vk), dofs, V.sub(0).sub(k)))
+    return bcs
+
+
+def _gather(a: np.ndarray, comm) -> np.ndarray:
+    if comm.size == 1:
+        return a
+    return np.concatenate(comm.allgather(a))

@@ -1,0 +1,187 @@
+"""Charts of the convergence study: error against DOFs and against wall time.
+
+One figure per cost (DOFs, wall time), three panels: the first bending
+frequency, the first ovalling frequency, and the band (the largest error
+over the frequencies the scene needs, what the choice of a model uses).
+One line per model family; the Pareto front drawn as a staircase with its
+points ringed; the tolerance and the reference's own uncertainty drawn
+across; the chosen model starred.  Failures stay on the chart: a run
+without the mode (a beam has no ovalling mode; a coarse mesh may miss it)
+is marked on a "no mode" strip at the top, and the locking of P1 elements
+shows as its own line far above the rest.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+STYLE = {
+    "closed_form": dict(color="black", marker="*", ms=11),
+    "beam_euler": dict(color="#1f77b4", marker="o"),
+    "beam_timoshenko": dict(color="#17becf", marker="s"),
+    "shell_quad": dict(color="#2ca02c", marker="D"),
+    "shell_tri": dict(color="#98df8a", marker="^"),
+    "shell_quad_around": dict(color="#2ca02c", marker="D", ls="--", mfc="none"),
+    "solid_hex_p1": dict(color="#d62728", marker="s"),
+    "solid_tet_p1": dict(color="#ff9896", marker="^"),
+    "solid_hex_p2": dict(color="#9467bd", marker="s"),
+    "solid_tet_p2": dict(color="#c5b0d5", marker="^"),
+    "solid_hex_p2_around": dict(color="#9467bd", marker="s", ls="--", mfc="none"),
+}
+COST_LABEL = {"dofs": "degrees of freedom", "wall_time": "wall time per run (s)"}
+PANELS = (("bending", "first bending frequency: |error|"),
+          ("ovalling", "first ovalling frequency: |error|"),
+          ("band", "the band's frequencies: error bound (model + mesh + reference)"))
+FLOOR = 1e-9
+
+
+def _error(run: dict, q: str, needed, ref_unc=None) -> float | None:
+    """|measured error| of quantity q, or for the band what the choice uses: the
+    largest error bound plus the reference's uncertainty over the needed ones."""
+    if q != "band":
+        e = run.get(f"{q}_error")
+        return None if e is None else abs(e)
+    errs = [run.get(f"{k}_error_bound") for k in needed]
+    if any(e is None for e in errs):
+        return None
+    ref_unc = ref_unc or {}
+    return max((e + ref_unc.get(k, 0.0) for k, e in zip(needed, errs)), default=0.0)
+
+
+def _missing_row(study: dict) -> float:
+    """Height of the "no such mode" strip, above every error of every panel."""
+    import numpy as np
+    needed = study["selection"]["needed"]
+    unc = study["selection"]["reference_uncertainty"]
+    ys = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
+          for q in ("bending", "ovalling", "band")]
+    top = max([y for y in ys if y is not None] + [study["selection"]["tolerance"] * 10])
+    return 3 * 10 ** np.ceil(np.log10(top))
+
+
+def _bottom_row(study: dict) -> float:
+    """Bottom of the error axis: a decade under the smallest error or uncertainty."""
+    import numpy as np
+    needed = study["selection"]["needed"]
+    unc = study["selection"]["reference_uncertainty"]
+    ys = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
+          for q in ("bending", "ovalling", "band")]
+    ys = [y for y in ys if y is not None and y > 0] + list(unc.values())
+    lo = min([y for y in ys if y > 0] or [1e-6])
+    return max(FLOOR, 10 ** (np.floor(np.log10(lo)) - 1))
+
+
+def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> None:
+    runs = [r for r in study["runs"] if r.get("status") == "ok"]
+    sel = study["selection"]
+    needed = sel["needed"]
+    unc = sel["reference_uncertainty"]
+
+    def err_of(run, q, needed):
+        return _error(run, q, needed, unc)
+
+    tol = sel["tolerance"]
+    missing_y = _missing_row(study)
+    no_mode = []
+    for fam, style in STYLE.items():
+        rows = sorted((r for r in runs if r["family"] == fam), key=lambda r: r[cost])
+        if not rows:
+            continue
+        pts = [(r[cost], err_of(r, q, needed)) for r in rows]
+        have = [(c, max(e, FLOOR)) for c, e in pts if e is not None]
+        miss = [c for c, e in pts if e is None]
+        kw = dict(style)
+        ls = kw.pop("ls", "-")
+        if have:
+            ax.plot(*zip(*have), ls=ls, lw=1.3, label=families[fam], **kw)
+        if miss:
+            if len(miss) == len(pts):
+                no_mode.append(families[fam])
+            ax.plot(miss, [missing_y] * len(miss), ls="none", marker="x", color=kw["color"],
+                    label=None if have else families[fam])
+    # Pareto front
+    front = set(study["pareto"][cost][q])
+    fr = sorted(((r[cost], max(err_of(r, q, needed), FLOOR)) for r in runs
+                 if r["label"] in front), key=lambda t: t[0])
+    if fr:
+        xs, es = zip(*fr)
+        ax.step(xs, es, where="post", color="0.3", lw=2.5, alpha=0.35, zorder=0,
+                label="Pareto front")
+        ax.plot(xs, es, ls="none", marker="o", ms=13, mfc="none", mec="0.3", zorder=0)
+    ax.axhline(tol, color="red", ls=":", lw=1.2, label=f"tolerance {tol:g}")
+    ref = study["reference"]
+    shade = ([ref[k]["error_estimate"] / abs(ref[k]["value"]) for k in needed if k in ref]
+             if q == "band" else
+             [ref[q]["error_estimate"] / abs(ref[q]["value"])] if q in ref else [])
+    if shade:
+        ax.axhspan(_bottom_row(study), max(max(shade), FLOOR), color="0.85", zorder=-1,
+                   label="reference uncertainty")
+    chosen = sel.get("chosen")
+    if chosen is not None:
+        e = err_of(chosen, q, needed)
+        if e is not None:
+            ax.plot([chosen[cost]], [max(e, FLOOR)], marker="*", ms=20, color="gold", mec="k",
+                    ls="none", zorder=5, label="chosen")
+    ax.axhline(missing_y, color="0.6", lw=0.6)
+    ax.text(0.01, missing_y, " no such mode", transform=ax.get_yaxis_transform(), va="bottom",
+            fontsize=8, color="0.4")
+    if no_mode:
+        ax.text(0.02, 0.02, "no " + (q if q != "band" else "needed") + " mode:\n  "
+                + "\n  ".join(no_mode), transform=ax.transAxes, fontsize=8, va="bottom",
+                bbox=dict(fc="white", ec="0.7"))
+    for fam in ("solid_hex_p1", "solid_tet_p1"):
+        rows = [r for r in runs if r["family"] == fam and err_of(r, q, needed) is not None]
+        if rows:
+            r = max(rows, key=lambda r: r[cost])
+            ax.annotate("P1 locking", (r[cost], err_of(r, q, needed)), fontsize=8,
+                        xytext=(5, 5), textcoords="offset points", color=STYLE[fam]["color"])
+    for fam in ("shell_quad_around", "solid_hex_p2_around"):
+        rows = [r for r in runs if r["family"] == fam]
+        if rows:
+            r = min(rows, key=lambda r: r["level"])
+            e = err_of(r, q, needed)
+            ax.annotate(f"{r['params']['elements_around']} around", (r[cost], missing_y if e is None
+                        else max(e, FLOOR)), fontsize=8, xytext=(4, -10),
+                        textcoords="offset points", color=STYLE[fam]["color"])
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(_bottom_row(study), missing_y * 4)
+    ax.set_xlabel(COST_LABEL[cost])
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="major", alpha=0.3)
+
+
+def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
+    """Write one chart (PNG) of |relative error| against ``cost`` ("dofs" or "wall_time")."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..provenance import atomic_path
+    families = {k: v["label"] for k, v in study["families"].items()}
+    fig, axes = plt.subplots(1, 3, figsize=(18, 6.2), sharey=True)
+    for ax, (q, title) in zip(axes, PANELS):
+        _panel(ax, study, cost, q, title, families)
+    axes[0].set_ylabel("|relative error| against the reference")
+    handles, labels = {}, []
+    for ax in axes:
+        for h, l in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(l, h)
+    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center",
+               ncol=min(7, len(handles)), fontsize=8, frameon=False)
+    band = study["selection"]["band"]
+    fig.suptitle(f"{study['scene_name']}: error against {COST_LABEL[cost]} "
+                 f"(band to {band['omega_max']:.0f} rad/s)", fontsize=12)
+    fig.tight_layout(rect=(0, 0.08, 1, 0.96))
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+    return path
+
+
+def convergence_charts(study: dict, out_dir: str | Path) -> dict[str, Path]:
+    """Both charts: ``convergence_dofs.png`` and ``convergence_time.png``."""
+    out_dir = Path(out_dir)
+    return {"dofs": convergence_chart(study, "dofs", out_dir / "convergence_dofs.png"),
+            "wall_time": convergence_chart(study, "wall_time", out_dir / "convergence_time.png")}

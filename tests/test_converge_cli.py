@@ -1,0 +1,112 @@
+"""`rotorpillar converge` end to end on a small ladder (no 3D model): the files
+it writes, a real Ctrl-C in the middle and the resume, bad input.
+
+Sources: the outputs are checked for structure (the numbers are checked in
+test_converge.py and test_shell.py against closed forms and finer runs);
+the charts must be real PNG images of the expected size (STYLE: data, not
+pixels).  The resume is checked by counting cached and computed runs.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+SMALL = ["--set", "converge.solid=false", "--set", "converge.shell_max_around=12",
+         "--set", "converge.shell_tri_max_around=8"]
+
+
+def cli(*args, **kw):
+    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
+                          capture_output=True, text=True, **kw)
+
+
+def _png_size(path):
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+@pytest.mark.slow
+def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
+    out = tmp_path / "out"
+    cache = out / "cache"
+    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", "converge", "paper", *SMALL,
+                             "--out", str(out), "--no-progress"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # wait for the beams and the first shell run to be cached, then Ctrl-C
+    deadline = time.time() + 120
+    while time.time() < deadline and proc.poll() is None:
+        if cache.exists() and len(list(cache.glob("*.json"))) >= 17:
+            break
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "interrupted" in err
+    done = list(cache.glob("*.json"))
+    assert not list(cache.glob(".*"))                       # no half-written file
+    for f in done:
+        json.loads(f.read_text())
+    assert not (out / "convergence.json").exists()
+
+    p = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json")
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    assert doc["study"]["cached"] == len(done)
+    assert doc["study"]["computed"] == doc["study"]["runs"] - len(done)
+    study = json.loads((out / "convergence.json").read_text())
+    assert {"runs", "reference", "extrapolations", "pareto", "selection", "failures",
+            "charts", "versions", "machine"} <= study.keys()
+    for name in ("convergence_dofs.png", "convergence_time.png"):
+        w, h = _png_size(out / name)
+        assert w > 1000 and h > 500
+    assert any("no shell modes" in f for f in study["failures"])
+
+    again = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json")
+    assert json.loads(again.stdout)["study"]["computed"] == 0
+
+
+def test_bad_tolerance_exits_2_and_writes_nothing(tmp_path):
+    p = cli("converge", "paper", "--tolerance", "2", "--out", tmp_path)
+    assert p.returncode == 2
+    assert len(p.stderr.strip().splitlines()) == 1 and "tolerance" in p.stderr
+    assert list(tmp_path.iterdir()) == []
+    p = cli("converge", "paper", "--set", "converge.margin=0.5", "--out", tmp_path)
+    assert p.returncode == 2 and "converge.margin" in p.stderr
+
+
+SMALL_3D = ["--set", "converge.shell_max_around=16", "--set", "converge.shell_tri_max_around=8",
+            "--set", "converge.solid_p1_max_around=32", "--set", "converge.solid_p2_max_around=96",
+            "--set", "converge.solid_tet_p2_max_around=32"]
+
+
+@pytest.mark.slow
+def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
+    p = cli("modal", "paper", *SMALL_3D, "--tolerance", "3e-2", "--out", tmp_path, "--json")
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    sel = doc["model_selection"]
+    chosen = sel["chosen"]
+    assert chosen["model"] == "solid" and "Model chosen for tolerance 0.03" in sel["text"]
+    # modal ran on the chosen mesh
+    for key in ("elements_around", "elements_along", "elements_through", "cell_type", "degree"):
+        assert doc["mesh"][key] == chosen["params"][key]
+    # and it is the cheapest 3D run whose band error meets the tolerance
+    study = json.loads((tmp_path / "convergence.json").read_text())
+    unc = study["selection"]["reference_uncertainty"]
+    needed = study["selection"]["needed"]
+    for r in study["runs"]:
+        if r["model"] != "solid" or r["status"] != "ok":
+            continue
+        bounds = [r[f"{q}_error_bound"] for q in needed]
+        if None not in bounds and max(b + unc[q] for b, q in zip(bounds, needed)) <= 3e-2:
+            assert r["wall_time"] >= chosen["wall_time"]
+    # a tolerance no 3D run meets: one line, exit 2
+    bad = cli("modal", "paper", *SMALL_3D, "--tolerance", "1e-9", "--out", tmp_path / "x",
+              "--cache", tmp_path / "cache")
+    assert bad.returncode == 2 and "no 3D model" in bad.stderr
