@@ -28,10 +28,17 @@ COMMANDS = {
                 "closed forms, reduced system modes, averaging, paper comparison"),
     "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
+    "simulate": ("rotorpillar.commands.simulate", "simulate_command",
+                 "transients of the reduced models: run-up, run-down, sweep, earthquake"),
+    "integrators": ("rotorpillar.commands.integrators", "integrators_command",
+                    "time integrators: error against cost, where each fails"),
 }
 
 # Extra arguments of a command: name -> callable(parser)
-EXTRA_ARGUMENTS = {}
+EXTRA_ARGUMENTS = {
+    "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
+    "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
+}
 
 
 def _common(p: argparse.ArgumentParser) -> None:

@@ -1,10 +1,15 @@
 """`rotorpillar run`: the main job, every stage on one scene, then the report."""
 
+import argparse
+
 from . import progress
 
-# The stages of `rotorpillar run`, in order: (command name, what it does).
+# The stages of `rotorpillar run`, in order: (command name, what it does[,
+# extra arguments of that command]).
 RUN_STAGES = [
     ("analyze", "closed forms and averaging"),
+    ("simulate", "run-up from rest", {"case": "runup"}),
+    ("simulate", "earthquake", {"case": "earthquake"}),
 ]
 
 
@@ -12,10 +17,12 @@ def run_command(scene, args, timings, context):
     """Every stage of RUN_STAGES, each writing its own JSON."""
     from ..cli import execute
     stages, lines = {}, []
-    for i, (name, what) in enumerate(RUN_STAGES, start=1):
+    for i, (name, what, *extra) in enumerate(RUN_STAGES, start=1):
         progress(f"run {i}/{len(RUN_STAGES)}: {name} ({what})")
-        with timings(name):
-            doc = execute(name, scene, args, context)
-        stages[name] = {"json": doc.get("_path"), "seconds": doc["timings"]["total"]}
-        lines.append(f"{name:>12}: {doc['timings']['total']:8.2f} s  -> {doc.get('_path')}")
+        stage_args = argparse.Namespace(**{**vars(args), **(extra[0] if extra else {})})
+        key = "_".join([name, *map(str, (extra[0] if extra else {}).values())])
+        with timings(key):
+            doc = execute(name, scene, stage_args, context)
+        stages[key] = {"json": doc.get("_path"), "seconds": doc["timings"]["total"]}
+        lines.append(f"{key:>20}: {doc['timings']['total']:8.2f} s  -> {doc.get('_path')}")
     return {"stages": stages}, f"rotorpillar run {scene.name}\n" + "\n".join(lines)

@@ -1,0 +1,18 @@
+"""What the user takes away: renders, animations, charts and the HTML report.
+
+The only package that imports pyvista or matplotlib, and only inside the
+functions that need them, so ``import rotorpillar`` stays light.  Everything
+here reads the results other commands wrote to ``out/<scene>/`` (contracts in
+:mod:`rotorpillar.postprocess.inputs`) and never recomputes the physics
+beyond evaluating the closed forms those results already carry.
+
+- :mod:`.offscreen`   pyvista without a display (EGL or OSMesa)
+- :mod:`.style`       one matplotlib style, atomic PNG writes
+- :mod:`.inputs`      reading analyze/modal/simulate/convergence results, mode-shape VTUs
+- :mod:`.modeshapes`  one PNG per mode and a contact sheet
+- :mod:`.animation`   run-up and earthquake animations (MP4, GIF fallback)
+- :mod:`.charts`      drive/resistance curves (Figs. 3-4), a(z), earthquake response
+- :mod:`.html`        the report page: escaped text, embedded images, no external resource
+- :mod:`.report`      `rotorpillar report`: every figure that its inputs allow, then the page
+- :mod:`.fixtures`    small synthetic inputs for the tests and the docs
+"""
