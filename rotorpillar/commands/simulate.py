@@ -44,15 +44,17 @@ def add_arguments(p) -> None:
 def simulate_command(scene, args, timings, context):
     from ..cli import _is_root_rank, out_dir
     from ..errors import InputError
-    from ..reduced.cases import run_case, series
+    from ..reduced.cases import run_case, scene_motion, series
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
+    motion = scene_motion(scene) if case == "earthquake" else None    # bad input: refused before any output
     progress(f"simulate {scene.name}: {case}, {which} model")
     with timings(case):
-        res = run_case(scene, case, which, getattr(args, "integrator", None), modes, progress=progress)
+        res = run_case(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
+                       motion=motion)
     data = series(res.run)
     out = out_dir(scene, args)
     result = {"case": case, "model": which, **res.summary,

@@ -390,12 +390,17 @@ def forcing_top(scene, case: str, motion: GroundMotion | None) -> float:
 
 
 def run_case(scene, case: str, which: str | None = None, integrator: str | None = None,
-             modes: int | None = None, truncation: bool = True, progress=None) -> CaseResult:
-    """Run one case of the scene; for the modal model also with k + 1 modes."""
+             modes: int | None = None, truncation: bool = True, progress=None,
+             motion: GroundMotion | None = None) -> CaseResult:
+    """Run one case of the scene; for the modal model also with k + 1 modes.
+    ``motion`` (earthquake) defaults to the scene's [excitation]."""
     if case not in CASES:
         raise InputError(f"case {case!r}: must be one of {', '.join(CASES)}")
     which = which or scene.simulate.model
-    motion = scene_motion(scene) if case == "earthquake" else no_motion()
+    if case != "earthquake":
+        motion = no_motion()
+    elif motion is None:
+        motion = scene_motion(scene)
     top = scene.modal.band_factor * forcing_top(scene, case, motion)
     model, info = build_model(scene, which, top, modes)
     result = _run_on(scene, case, model, motion, integrator)

@@ -16,8 +16,9 @@ Three experiments on a scene (`rotorpillar integrators`):
    adaptive explicit ones survive by shrinking their step (cost grows with
    omega_max), the implicit ones do not care.
 3. **Energy drift** of the undamped, unforced system (no damping, no motor,
-   no load, the rotor spinning freely through its coupling): |E(T) - E(0)|
-   over E(0) after ``drift_duration`` seconds at a moderate setting.
+   no load, the rotor spinning freely through its coupling): (E(T) - E(0))
+   over E(0) after 200 s at a loose setting (rtol 1e-4; 20 steps per period
+   of the fastest motion), where the schemes' characters show.
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ from .transient import FIXED_STEP, SCIPY_METHODS, Settings, simulate
 ADAPTIVE = ("dp5",) + SCIPY_METHODS
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
 RTOLS_IMPLICIT = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
-STEP_REFINEMENTS = (1, 2, 4, 8, 16, 32, 64)      # steps per output interval
+STEP_REFINEMENTS = (1, 2, 4, 8, 16, 32, 64, 128)     # steps per output interval
 FAIL = 0.1
 
 
@@ -47,7 +48,7 @@ def _error(run, ref) -> float:
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
 
 
-def accuracy_study(model, drive, duration: float, samples: int = 1001, quick: bool = False,
+def accuracy_study(model, drive, duration: float, samples: int = 401, quick: bool = False,
                    progress=None) -> dict:
     """Experiment 1: error against cost on a run-up."""
     ref = simulate(model, drive, no_motion(), duration, settings=Settings("dp5", rtol=1e-12, samples=samples))
@@ -121,7 +122,7 @@ def _per_method(rows) -> dict:
     return out
 
 
-def stability_study(scene, drive, duration: float = 2.0, max_modes: int = 8, time_step: float = 1e-3,
+def stability_study(scene, drive, duration: float = 2.0, max_modes: int = 8, time_step: float = 2.5e-3,
                     rtol: float = 1e-6, progress=None) -> dict:
     """Experiment 2: modal model with more and more pillar modes."""
     rows = []
@@ -152,8 +153,8 @@ def stability_study(scene, drive, duration: float = 2.0, max_modes: int = 8, tim
                     "with steps ~ 1/omega_max"}
 
 
-def drift_study(model, duration: float = 100.0, speed: float = 50.0, rtol: float = 1e-6,
-                steps_per_period: float = 40.0, progress=None) -> dict:
+def drift_study(model, duration: float = 200.0, speed: float = 50.0, rtol: float = 1e-4,
+                steps_per_period: float = 20.0, progress=None) -> dict:
     """Experiment 3: energy drift without damping, motor or load."""
     m0 = replace(model, damping=np.zeros_like(model.damping), shaft_damping=0.0)
     drive = DriveSchedule.constant(0.0, 0.0, 0.0)
@@ -183,5 +184,5 @@ def run_study(scene, duration: float = 10.0, quick: bool = False, progress=None)
     model, _ = build_model(scene, "paper")
     acc = accuracy_study(model, drive, duration, quick=quick, progress=progress)
     stab = stability_study(scene, drive, max_modes=5 if quick else 8, progress=progress)
-    drift = drift_study(model, duration=40.0 if quick else 100.0, progress=progress)
+    drift = drift_study(model, duration=50.0 if quick else 200.0, progress=progress)
     return {"accuracy": acc, "stability": stab, "energy_drift": drift}

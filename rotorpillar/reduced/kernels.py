@@ -321,8 +321,8 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
     """Integrate y' = f from t0 to t1 (adaptive Dormand-Prince 5(4)).
 
     breaks: sorted times where the forcing may jump (the step lands on each);
-    atol: per-component absolute tolerances of (q, v); the work states are
-    not error-controlled.  Writes y at t_out into out_y (theta unwrapped) and,
+    atol: per-component absolute tolerances of (q, v, work); give the work
+    states a huge atol so they never bind.  Writes y at t_out into out_y (theta unwrapped) and,
     per output interval, the largest |q_i| at the steps and outputs inside it
     into out_peak.  Returns (status, nfev, n_accepted, n_rejected, h_min_used).
     """
@@ -377,7 +377,7 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
         deriv(_inside(t, lo, hi), y, P, K[0], F)
         nfev += 1
         if h <= 0.0:
-            h = _initial_step(t, y, K[0], P, lo, hi, rtol, atol, m, F)
+            h = _initial_step(t, y, K[0], P, lo, hi, rtol, atol, N, F)
             nfev += 1
         while t < hi:
             if nacc + nrej >= max_steps:
@@ -411,8 +411,10 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
                     for j in range(7):
                         acc += _E[j] * K[j, i]
                     err[i] = h * acc
-                    scale[i] = atol[i] + rtol * max(abs(y[i]), abs(ynew[i])) if i < m else 1.0
-                en = _rms_norm(err, scale, m)
+                    scale[i] = atol[i] + rtol * max(abs(y[i]), abs(ynew[i]))
+                # RMS over every component, as scipy does on the same state
+                # (the work states carry atol = 1e300: they count, but never bind)
+                en = _rms_norm(err, scale, N)
                 if not math.isfinite(en):
                     en = 1e300
                 if en < 1.0:
@@ -538,6 +540,8 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
         for i in range(n):
             an[i] = a[i]
         converged = False
+        r0 = 0.0
+        r_prev = 0.0
         for it in range(max_iter + 1):
             for i in range(n):
                 qn[i] = q[i] + h * v[i] + h * h * ((0.5 - beta) * a[i] + beta * an[i])
@@ -553,11 +557,19 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
                 R[i] = (1.0 - alpha_m) * an[i] + alpha_m * a[i] - acc
                 rn += R[i] * R[i]
                 ref += acc * acc + an[i] * an[i]
-            # converged when the residual is round-off small against the
-            # accelerations themselves (a linear problem needs one update)
-            if it > 0 and math.sqrt(rn) <= newton_tol * (math.sqrt(ref) + 1e-300):
+            rn = math.sqrt(rn)
+            if it == 0:
+                r0 = rn
+            # converged when the residual is small against the accelerations,
+            # or down to round-off of the first residual (stiff modes: the
+            # terms of the residual are far larger than the accelerations),
+            # or no longer falling once far below the first (stagnation at
+            # round-off).  A linear problem needs one update.
+            if it > 0 and (rn <= newton_tol * (math.sqrt(ref) + 1e-300) or rn <= 1e-13 * r0
+                           or (it > 1 and rn >= 0.5 * r_prev and rn <= 1e-8 * r0)):
                 converged = True
                 break
+            r_prev = rn
             if it == max_iter:
                 break
             jacobians(tf, qm, vm, P, Jq, Jv)
