@@ -194,8 +194,9 @@ MODAL_SOURCES = ("beam", "fem3d")
 
 
 @dataclass(frozen=True)
-class Modal:
-    """The modal model: the pillar's modes with the gondola on top, the rotor on its shaft."""
+class ModalModel:
+    """The transients' modal model (`simulate --model modal`): the pillar's
+    modes with the gondola on top, the rotor on its shaft."""
     modes: int = param("Pillar modes kept, 0 = those below band_factor x the highest forcing "
                        "frequency (-)", 0, ge=0, le=50)
     band_factor: float = param("Band: keep modes below this factor times the highest forcing "
@@ -219,9 +220,9 @@ SECTIONS = {
     "simulate": Simulate,
     "excitation": Excitation,
     "sweep": Sweep,
-    "modal": Modal,
+    "modal_model": ModalModel,
 }
-OPTIONAL_SECTIONS = ("reduction", "mesh", "simulate", "excitation", "sweep", "modal")
+OPTIONAL_SECTIONS = ("reduction", "mesh", "simulate", "excitation", "sweep", "modal_model")
 
 
 @dataclass(frozen=True)
@@ -239,7 +240,7 @@ class Scene:
     simulate: Simulate = Simulate()
     excitation: Excitation = Excitation()
     sweep: Sweep = Sweep()
-    modal: Modal = Modal()
+    modal_model: ModalModel = ModalModel()
     description: str = ""
 
     def to_dict(self) -> dict:

@@ -37,7 +37,7 @@ def add_arguments(p) -> None:
                             "generalized_alpha", "central_difference"),
                    help="time integrator (default: the scene's simulate.integrator)")
     p.add_argument("--modes", type=int, default=None, metavar="K",
-                   help="modal model: keep K pillar modes (default: the scene's modal.modes, "
+                   help="modal model: keep K pillar modes (default: the scene's modal_model.modes, "
                         "0 = from the frequency band)")
 
 

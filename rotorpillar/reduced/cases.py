@@ -55,14 +55,14 @@ def paper_system(scene):
 
 
 def scene_pillar_modes(scene, count: int) -> PillarModes:
-    """The first ``count`` pillar modes from the scene's [modal] source."""
-    m = scene.modal
+    """The first ``count`` pillar modes from the scene's [modal_model] source."""
+    m = scene.modal_model
     if m.source == "beam":
         return beam_pillar_modes(scene, count, m.theory, m.elements, m.gondola_inertia)
     import importlib.util
     if importlib.util.find_spec("rotorpillar.fem3d") is None:
-        raise InputError('modal.source = "fem3d" needs rotorpillar.fem3d (the 3D model), which is '
-                         'not available here; use modal.source = "beam"')
+        raise InputError('modal_model.source = "fem3d" needs rotorpillar.fem3d (the 3D model), which is '
+                         'not available here; use modal_model.source = "beam"')
     from .fem3d_modes import fem3d_pillar_modes                # pragma: no cover - needs dolfinx
     return fem3d_pillar_modes(scene, count)
 
@@ -76,14 +76,14 @@ def build_model(scene, which: str, band_top: float | None = None, modes: int | N
     if which != "modal":
         raise InputError(f"model {which!r}: must be paper or modal")
     candidates = scene_pillar_modes(scene, MAX_CANDIDATE_MODES)
-    k = modes or scene.modal.modes or modes_in_band(candidates.omega, band_top or 0.0)
+    k = modes or scene.modal_model.modes or modes_in_band(candidates.omega, band_top or 0.0)
     k = min(k, candidates.count)
     pm = candidates.truncate(k)
     r, sh = scene.rotor, scene.shaft
     model = modal_model(pm, r.mass, r.inertia, r.eccentricity, sh.stiffness, sh.damping,
                         scene.pillar.damping)
     info = {"modes": k, "band_top": band_top, "candidate_omega": list(map(float, candidates.omega)),
-            "mode_choice": ("stated (modal.modes)" if (modes or scene.modal.modes) else
+            "mode_choice": ("stated (modal_model.modes)" if (modes or scene.modal_model.modes) else
                             f"the pillar modes below {band_top:.4g} rad/s = band_factor x the highest "
                             "forcing frequency")}
     return model, info
@@ -401,7 +401,7 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
         motion = no_motion()
     elif motion is None:
         motion = scene_motion(scene)
-    top = scene.modal.band_factor * forcing_top(scene, case, motion)
+    top = scene.modal_model.band_factor * forcing_top(scene, case, motion)
     model, info = build_model(scene, which, top, modes)
     result = _run_on(scene, case, model, motion, integrator)
     result.extra["model_info"] = info

@@ -129,8 +129,15 @@ def deriv(t, y, P, out, F):
     W = y[n + nx + 1]
     ct = math.cos(th)
     st = math.sin(th)
-    ug, vg, ag = ground(t, gpar, gtab)
-    M0, s = drive_at(t, sched)
+    # the common cases without a call: no ground motion, a constant drive
+    if gpar[0] == 0.0:
+        ug, vg, ag = 0.0, 0.0, 0.0
+    else:
+        ug, vg, ag = ground(t, gpar, gtab)
+    if sched.shape[1] == 1:
+        M0, s = sched[1, 0], sched[2, 0]
+    else:
+        M0, s = drive_at(t, sched)
     dz = 0.0
     for i in range(nx):
         dz += d[i] * y[i]

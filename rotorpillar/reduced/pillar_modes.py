@@ -123,7 +123,7 @@ def beam_pillar_modes(scene, n_modes: int, theory: str = "timoshenko", elements:
     through the shaft.
     """
     if theory not in THEORIES:
-        raise InputError(f"modal.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
+        raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
     bp = beam_properties(scene, theory)
     K, M = assemble(bp, elements, theory, scene.gondola.mass, gondola_inertia)
     n = K.shape[0]

@@ -310,6 +310,8 @@ class Batch:
     """(runs, n_t) rotor speed (rad/s)"""
     tip_peak: np.ndarray
     """(runs, n_t) largest |tip X| per output interval (m)"""
+    tip: np.ndarray
+    """(runs, n_t) tip X at the outputs (m)"""
     final_state: np.ndarray
     """(runs, 2n + 4) state at t_end (theta unwrapped)"""
     status: np.ndarray
@@ -356,7 +358,8 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
                 200_000_000, motion.time_step if motion.kind == "record" else np.inf,
                 ts, *others, out_y, out_peak, stats)
     wall = time.perf_counter() - start
-    return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], out_y[:, -1, :],
+    return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], out_y[:, :, :model.nx] @ model.tip,
+                 out_y[:, -1, :],
                  stats[:, 0].astype(int), stats[:, 1].astype(int), wall)
 
 
