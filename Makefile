@@ -6,6 +6,8 @@ SCENE ?= paper
 
 .PHONY: run test test-fast bench setup clean
 
+# The last line `rotorpillar run` prints is the report's path:
+# "report: /abs/path/out/<scene>/report.html".
 run: setup
 	$(VENV)/bin/rotorpillar run $(SCENE)
 

@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from . import __version__
-from .errors import InputError
+from .errors import ComputationError, InputError
 from .provenance import Timings, machine, to_json, versions, write_json
 from .scene import Scene, embedded_scenes, load_scene
 
@@ -26,6 +26,10 @@ from .scene import Scene, embedded_scenes, load_scene
 COMMANDS = {
     "analyze": ("rotorpillar.commands.analyze", "analyze_command",
                 "closed forms, reduced system modes, averaging, paper comparison"),
+    "modal": ("rotorpillar.commands.modal", "modal_command",
+              "3D tube (Gmsh, dolfinx, SLEPc): modes bare and with the top mass, tip reduction"),
+    "report": ("rotorpillar.commands.report", "report_command",
+               "the HTML validation report, its charts, mode-shape pictures and animations"),
     "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
     "simulate": ("rotorpillar.commands.simulate", "simulate_command",
@@ -34,8 +38,16 @@ COMMANDS = {
                     "time integrators: error against cost, where each fails"),
 }
 
+
+def _report_arguments(parser) -> None:
+    from .commands.report import add_arguments
+    add_arguments(parser)
+
+
 # Extra arguments of a command: name -> callable(parser)
 EXTRA_ARGUMENTS = {
+    "report": _report_arguments,
+    "run": _report_arguments,
     "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
     "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
 }
@@ -105,6 +117,9 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"rotorpillar {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except ComputationError as exc:
+        print(f"rotorpillar {args.command}: failed: {exc}; nothing was written", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print(f"rotorpillar {args.command}: interrupted; finished outputs are complete, "
               "none is half-written", file=sys.stderr)
@@ -116,6 +131,9 @@ def main(argv: list[str] | None = None) -> int:
         else:
             print(text)
             print(f"\nwrote {path}")
+            report = doc.get("report")
+            if isinstance(report, str):     # the last line: the page to open
+                print(f"report: {Path(report).resolve()}")
     return 0
 
 

@@ -3,3 +3,7 @@
 
 class InputError(ValueError):
     """Bad input: the message is one line naming the field and the allowed range."""
+
+
+class ComputationError(RuntimeError):
+    """A numerical tool failed (Gmsh, PETSc, SLEPc): one line saying which and how."""

@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-DEBS=(python3-dolfinx-real python3-gmsh python3-meshio python3-slepc4py-real
+DEBS=(python3-dolfinx-real python3-gmsh python3-meshio python3-slepc4py-real libopenblas0-serial
       python3-venv python3-scipy libosmesa6 libgl1 libxrender1 libxcursor1
       libxft2 libxinerama1 libglu1-mesa chromium)
 SYSPY=/usr/bin/python3

@@ -10,6 +10,8 @@ RUN_STAGES = [
     ("analyze", "closed forms and averaging"),
     ("simulate", "run-up from rest", {"case": "runup"}),
     ("simulate", "earthquake", {"case": "earthquake"}),
+    ("modal", "3D modes of the tube, bare and with its top mass"),
+    ("report", "charts, mode shapes, animations, report.html"),   # keep last
 ]
 
 
@@ -25,4 +27,8 @@ def run_command(scene, args, timings, context):
             doc = execute(name, scene, stage_args, context)
         stages[key] = {"json": doc.get("_path"), "seconds": doc["timings"]["total"]}
         lines.append(f"{key:>20}: {doc['timings']['total']:8.2f} s  -> {doc.get('_path')}")
-    return {"stages": stages}, f"rotorpillar run {scene.name}\n" + "\n".join(lines)
+    report = context.get("report", {}).get("report")
+    if report:
+        lines.append(f"{'page':>20}: {report}")
+    return ({"stages": stages, "report": report},
+            f"rotorpillar run {scene.name}\n" + "\n".join(lines))

@@ -1,0 +1,64 @@
+"""Cost of the report's renders: EGL against OSMesa, and each kind of picture.
+
+Each backend runs in its own process (VTK picks its render window when the
+first one is created), rendering the same synthetic tube modes and a short
+animation; the numbers are side by side in one `make bench` run.  Values are
+wall-clock per item on this machine, not asserted anywhere.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+WORKER = r"""
+import json, sys, time
+from pathlib import Path
+from rotorpillar.postprocess import fixtures
+from rotorpillar.postprocess.inputs import load_modes, read_json, read_simulation
+from rotorpillar.postprocess.modeshapes import render_mode, render_contact_sheet
+from rotorpillar.postprocess.animation import animate
+from rotorpillar.postprocess.offscreen import render_window_class
+out = Path(sys.argv[1])
+doc = fixtures.write_modal_fixture(out, around=32, along=40)
+fixtures.write_simulation_fixture(out, "runup", n=20000)
+ms = load_modes(out / "modes_top.vtu", doc["modes_with_top"], doc["axes"])
+render_mode(ms, 0, out / "warm.png")
+t0 = time.perf_counter()
+for i in range(len(ms.arrays)):
+    render_mode(ms, i, out / f"m{i}.png")
+t_mode = (time.perf_counter() - t0) / len(ms.arrays)
+t0 = time.perf_counter()
+render_contact_sheet(ms, out / "sheet.png")
+t_sheet = time.perf_counter() - t0
+frames = 60
+r = animate(read_simulation(out, "runup"), ms, out / "a.mp4", max_frames=frames, progress=False)
+print(json.dumps({"window": render_window_class(), "mode": t_mode, "sheet": t_sheet,
+                  "frame": r.seconds / frames, "points": int(ms.surface.n_points)}))
+"""
+
+
+def _measure(window: str) -> dict:
+    env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW=window)
+    env.pop("DISPLAY", None)
+    with tempfile.TemporaryDirectory() as tmp:
+        p = subprocess.run([sys.executable, "-c", WORKER, tmp], env=env, capture_output=True,
+                           text=True, check=True)
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def run():
+    egl = _measure("vtkEGLRenderWindow")
+    osm = _measure("vtkOSOpenGLRenderWindow")
+    out = []
+    for key, what, unit in (("mode", "one mode-shape PNG (480x720)", "s"),
+                            ("sheet", "the contact sheet (6 views)", "s"),
+                            ("frame", "one animation frame (880x560, 3D view + chart panel, H.264)", "s")):
+        out.append({"name": f"render_{key}_egl", "compares": f"{what}, EGL ({egl['window']})",
+                    "value": egl[key], "unit": unit, "surface_points": egl["points"]})
+        out.append({"name": f"render_{key}_osmesa", "compares": f"{what}, OSMesa ({osm['window']})",
+                    "value": osm[key], "unit": unit, "surface_points": osm["points"]})
+        out.append({"name": f"render_{key}_osmesa_over_egl", "compares": f"{what}: OSMesa time / EGL time",
+                    "value": osm[key] / egl[key], "unit": "x"})
+    return out

@@ -1,0 +1,39 @@
+"""`rotorpillar report`: render what the other commands computed, then report.html."""
+
+from __future__ import annotations
+
+import shlex
+
+from . import progress
+
+
+def scene_cli(args) -> str:
+    """The scene as the user gave it, with its overrides and --out: what a
+    "not computed: run `rotorpillar X ...`" hint must repeat."""
+    parts = [str(args.scene)] + [f"--set {shlex.quote(o)}" for o in args.overrides]
+    if getattr(args, "out", None) is not None:
+        parts.append(f"--out {shlex.quote(str(args.out))}")
+    return " ".join(parts)
+
+
+def add_arguments(parser) -> None:
+    parser.add_argument("--max-frames", type=int, default=180, metavar="N",
+                        help="frames per animation (default 180)")
+    parser.add_argument("--no-animations", action="store_true",
+                        help="skip the run-up and earthquake animations")
+
+
+def report_command(scene, args, timings, context):
+    from ..cli import _is_root_rank, out_dir
+    from ..errors import InputError
+    from ..postprocess.report import ReportOptions, build_report, summary_text
+    frames = getattr(args, "max_frames", 180)
+    if frames < 2:
+        raise InputError(f"--max-frames = {frames}: must be >= 2")
+    if not _is_root_rank():
+        return {"report": None}, ""
+    options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
+    progress(f"report: rendering into {out_dir(scene, args)}")
+    result = build_report(scene, out_dir(scene, args), scene_cli(args), options, timings)
+    context["report"] = result
+    return result, summary_text(result)

@@ -1,0 +1,94 @@
+"""3D continuum model of the pillar: linear elasticity (dolfinx), SLEPc modes.
+
+The public API (dolfinx, PETSc and SLEPc are imported inside the functions):
+
+- :func:`modal_analysis` (scene, top=...) -> :class:`ModalResult`: the k lowest
+  modes of the bare tube or of the tube with its masses on top, each named
+  from its shape (bending_x/y, ovalling with n, torsion, axial, breathing,
+  other; see :mod:`rotorpillar.fem3d.identify`).
+- :func:`reduction_from_scene` (scene) -> (m_reduced, tip_stiffness): the
+  paper's Eq. 2 done on the 3D model's first bending mode.
+- :func:`assemble_pillar` (scene, top=...) -> :class:`PillarModel`: the
+  assembled K and M in PETSc with the node coordinates and top-face nodes,
+  for time integration of the 3D model.
+
+Axes (``AXES``): the tube axis is z, base at z = 0; x is the paper's X (the
+rotor's plane); y is horizontal, normal to it.
+"""
+
+from __future__ import annotations
+
+from .analysis import AXES, ModalResult  # noqa: F401  (numpy-only modules)
+from .reduction import TipReduction, tip_reduction  # noqa: F401
+
+from collections import OrderedDict
+
+#: The last few results, so that `run` (analyze with reduction.source = fem3d,
+#: then modal) solves each configuration once; small, because a result holds
+#: its mode shapes and a convergence study makes many.
+_CACHE: OrderedDict = OrderedDict()
+CACHE_SIZE = 4
+
+
+def _top_settings(scene, top: bool):
+    if not top:
+        return None, 0.0
+    m = scene.gondola.mass + (scene.rotor.mass if scene.modal.top_mass == "gondola_and_rotor" else 0.0)
+    return scene.modal.top_model, m
+
+
+def assemble_pillar(scene, *, top: bool, mesh=None, comm=None, isolated: bool = True):
+    """The assembled 3D model of the scene's pillar (see :class:`model.PillarModel`).
+
+    ``mesh`` (a scene ``Mesh`` section) replaces ``scene.mesh``; ``top`` adds
+    the masses on top as ``scene.modal`` says (rigid plate or ring mass).
+    """
+    from .model import assemble_model
+    top_model, top_mass = _top_settings(scene, top)
+    return assemble_model(scene.pillar, scene.mesh if mesh is None else mesh,
+                          top_model=top_model, top_mass=top_mass, comm=comm, isolated=isolated)
+
+
+def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, comm=None,
+                   isolated: bool = True, use_cache: bool = True) -> ModalResult:
+    """The ``n_modes`` lowest modes (default ``scene.modal.n_modes``) of the pillar.
+
+    ``top`` False: the bare tube, clamped at the base, free at the top (what
+    Eq. 1 describes).  True: with the gondola (and, by ``scene.modal.top_mass``,
+    the rotor) on top.  ``mesh`` (a scene ``Mesh`` section) replaces
+    ``scene.mesh``.  Results are cached per (pillar, mesh, top, modal
+    settings, n_modes, communicator size) within a process.
+    """
+    from mpi4py import MPI
+    from .analysis import run_modal
+    comm = MPI.COMM_WORLD if comm is None else comm
+    mesh = scene.mesh if mesh is None else mesh
+    n_modes = scene.modal.n_modes if n_modes is None else n_modes
+    top_model, top_mass = _top_settings(scene, top)
+    key = (scene.pillar, mesh, top_model, top_mass, n_modes, scene.modal.tolerance, comm.size)
+    if use_cache and comm is MPI.COMM_WORLD and key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    model = assemble_pillar(scene, top=top, mesh=mesh, comm=comm, isolated=isolated)
+    try:
+        result = run_modal(model, n_modes, tol=scene.modal.tolerance, mesh_section=mesh)
+    finally:
+        model.K.destroy()
+        model.M.destroy()
+    if use_cache and comm is MPI.COMM_WORLD:
+        _CACHE[key] = result
+        while len(_CACHE) > CACHE_SIZE:
+            _CACHE.popitem(last=False)
+    return result
+
+
+def reduction_from_scene(scene) -> tuple[float, float]:
+    """(m_reduced in kg, tip_stiffness in N/m) from the bare tube's first bending mode.
+
+    Kinetic-energy equivalence (the paper's Eq. 2) on the 3D mode normalised
+    to unit tip displacement: m_r = phi^T M phi, c1 = m_r omega**2.  This is
+    the callable ``rotorpillar.analyze.analyze(scene, fem3d_reduction=...)``
+    takes when ``reduction.source = "fem3d"``.
+    """
+    red = tip_reduction(modal_analysis(scene, top=False), scene.pillar)
+    return red.m_reduced, red.tip_stiffness

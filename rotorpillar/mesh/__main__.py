@@ -1,0 +1,7 @@
+"""``python -m rotorpillar.mesh``: the isolated Gmsh worker (see tube_mesh_data)."""
+
+import sys
+
+from . import _worker
+
+sys.exit(_worker())

@@ -1,0 +1,394 @@
+"""Animations of a transient: the pillar deformed by its modal coordinates,
+the rotor's orbit at the top, time and speed on screen.
+
+The pillar's elastic displacement is the superposition of its 3D mode
+shapes, u(x, t) = sum_k q_k(t) phi_k(x), with phi_k the first bending modes
+of ``modes_top.vtu`` (unit tip: q_k is the tip displacement of mode k, m).
+A run of the paper's model has no modal coordinates: then the tube is
+deformed by its tip displacement (tip_x - ground_x) times the first bending
+mode, and without a VTU by the Euler-Bernoulli cantilever shape on a
+generated tube (said on screen).  The ground motion moves the whole tube at
+true scale; the elastic deflection and the rotor's motion relative to the
+tip are exaggerated by one factor, shown on screen.
+
+A frame is the 3D view (pyvista, off screen) beside a matplotlib panel: the
+rotor's orbit relative to the pillar top (mm, the trail since the previous
+frame over the whole path in grey) and Omega(t) and the tip deflection with
+a cursor.  Frames sample the run uniformly in time: a stroboscope, so the
+pillar's vibration at the rotor speed aliases; the orbit trail is drawn from
+every stored sample and does not.
+
+MP4 (H.264 through imageio-ffmpeg) by default, GIF (Pillow) when ffmpeg is
+not available.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..provenance import atomic_path
+from .inputs import ModeSet, Simulation, bending_columns
+from .modeshapes import BEAM_TARGET, nice_factor
+from .offscreen import pyvista
+
+MAX_FRAMES = 180
+FPS = 20
+VIEW_SIZE = (400, 560)       # 3D view, width x height (px)
+PANEL_SIZE = (480, 560)      # chart panel; 880 x 560 together, multiples of 16
+
+
+@dataclass(frozen=True)
+class PillarMotion:
+    """What moves the tube: coefficients times shapes, plus the ground."""
+    t: np.ndarray
+    """times (s), n_t"""
+    coefficients: np.ndarray
+    """n_t x k: q_k(t), the tip displacement of each shape (m)"""
+    shapes: list
+    """k arrays n_points x 3, unit tip"""
+    ground_x: np.ndarray
+    """n_t ground displacement along the paper's X (m)"""
+    source: str
+    """how the coefficients were obtained, for the screen and the report"""
+
+
+def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
+    """Match a simulation's modal coordinates to the mode shapes of ``modeset``.
+
+    ``modal_coordinates`` column k goes with the k-th bending mode in the
+    paper's X (or with the modes the simulation names in ``modal_modes``);
+    without them, the elastic tip displacement tip_x - ground_x drives the
+    first such mode.
+    """
+    t = sim.get("t")
+    n = len(t)
+    ground = sim.get("ground_x")
+    ground = np.zeros(n) if ground is None else ground
+    q = sim.arrays.get("modal_coordinates")
+    if q is not None:
+        q = np.asarray(q, dtype=float).reshape(n, -1)
+        cols = bending_columns(modeset.modes, q.shape[1], sim.meta.get("modal_modes"))
+        if len(cols) == q.shape[1]:
+            return PillarMotion(t, q, [modeset.shape(i) for i in cols], ground,
+                                f"modal coordinates x {q.shape[1]} bending mode(s) of the 3D model")
+    tip = sim.get("tip_x")
+    if tip is None:
+        raise ValueError(f"simulate_{sim.case}.npz has neither modal_coordinates nor tip_x")
+    cols = bending_columns(modeset.modes, 1)
+    i = cols[0] if cols else 0
+    what = ("tip_x x first bending mode of the 3D model" if modeset.source.endswith(".vtu")
+            else "tip_x x Euler-Bernoulli cantilever shape (no 3D mode shapes)")
+    return PillarMotion(t, (tip - ground)[:, None], [modeset.shape(i)], ground, what)
+
+
+def frame_times(t: np.ndarray, max_frames: int = MAX_FRAMES) -> np.ndarray:
+    """Uniform frame times over the run, at most ``max_frames`` and at most
+    one per stored sample.
+
+    >>> frame_times(np.linspace(0, 10, 1001), 5)
+    array([ 0. ,  2.5,  5. ,  7.5, 10. ])
+    >>> len(frame_times(np.linspace(0, 1, 3), 100))
+    3
+    """
+    n = int(max(2, min(max_frames, len(t))))
+    return np.linspace(float(t[0]), float(t[-1]), n)
+
+
+def interpolate(t: np.ndarray, values: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """Linear interpolation of each column of ``values`` (n_t or n_t x k) at ``at``."""
+    values = np.asarray(values, dtype=float)
+    if values.ndim == 1:
+        return np.interp(at, t, values)
+    return np.column_stack([np.interp(at, t, values[:, j]) for j in range(values.shape[1])])
+
+
+def elastic_field(coefficients: np.ndarray, shapes: list) -> np.ndarray:
+    """sum_k q_k phi_k at one instant (n_points x 3)."""
+    out = np.zeros_like(shapes[0])
+    for c, s in zip(coefficients, shapes):
+        out += c * s
+    return out
+
+
+def exaggeration(motion: PillarMotion, height: float) -> float:
+    """The factor bringing the largest elastic displacement of the run to a
+    tenth of the height (as the mode-shape pictures), rounded to 1-2-5."""
+    peak = np.array([np.abs(s).max() for s in motion.shapes])
+    amplitude = float(np.max(np.abs(motion.coefficients) @ peak))
+    return nice_factor(BEAM_TARGET * height / amplitude) if amplitude > 0 else 1.0
+
+
+@dataclass(frozen=True)
+class AnimationResult:
+    """What an animation shows and what it cost."""
+    path: Path
+    """the MP4 (or GIF) written"""
+    frames: int
+    """frames in it (-)"""
+    fps: int
+    """frames per second of playback (1/s)"""
+    factor: float
+    """exaggeration of the elastic deflection and of the orbit (-)"""
+    poster: Path | None
+    """PNG of the frame of largest deflection"""
+    source: str
+    """what deforms the tube (modal coordinates, or tip_x times a shape)"""
+    writer: str
+    """the encoder used"""
+    seconds: float
+    """wall-clock time to render and encode (s)"""
+    notes: tuple = ()
+    """the notes shown on screen"""
+
+
+def _orbit(sim: Simulation):
+    """Rotor centre relative to the pillar top (m), or None."""
+    rx, ry, tip = sim.get("rotor_x"), sim.get("rotor_y"), sim.get("tip_x")
+    if rx is None or ry is None:
+        return None
+    return (rx - (tip if tip is not None else 0.0)), ry
+
+
+def _decimate(idx_lo: int, idx_hi: int, most: int) -> slice:
+    step = max(1, (idx_hi - idx_lo) // most)
+    return slice(idx_lo, idx_hi + 1, step)
+
+
+class _Panel:
+    """The matplotlib half of a frame, redrawn by blitting the moving artists."""
+
+    def __init__(self, sim: Simulation, motion: PillarMotion, size, title: str):
+        from .style import COLOURS, pyplot
+        plt = pyplot()
+        self.t = motion.t
+        self.orbit = _orbit(sim)
+        w, h = size
+        fig = plt.figure(figsize=(w / 100, h / 100), dpi=100, layout="constrained")
+        gs = fig.add_gridspec(2, 1, height_ratios=[1.35, 1])
+        ax_o, ax_t = fig.add_subplot(gs[0]), fig.add_subplot(gs[1])
+        fig.suptitle(title, fontsize=10)
+        self.moving = []
+        if self.orbit is not None:
+            ox, oy = (1e3 * a for a in self.orbit)
+            full = _decimate(0, len(ox) - 1, 4000)
+            ax_o.plot(ox[full], oy[full], color="#cccccc", lw=0.6)
+            r = 1.1 * max(np.abs(ox).max(), np.abs(oy).max(), 1e-9)
+            ax_o.set_xlim(-r, r)
+            ax_o.set_ylim(-r, r)
+            ax_o.set_aspect("equal")
+            ax_o.set_xlabel("rotor X - pillar top X (mm)")
+            ax_o.set_ylabel("rotor Y (mm)")
+            ax_o.set_title("rotor orbit relative to the pillar top", fontsize=9)
+            self.trail, = ax_o.plot([], [], color=COLOURS["drive"], lw=1.0, animated=True)
+            self.dot, = ax_o.plot([], [], "o", color=COLOURS["unstable"], ms=5, animated=True)
+            self.ox, self.oy = ox, oy
+            self.moving += [(ax_o, self.trail), (ax_o, self.dot)]
+        else:
+            ax_o.text(0.5, 0.5, "no rotor_x / rotor_y in this run", ha="center", va="center",
+                      transform=ax_o.transAxes)
+            ax_o.set_axis_off()
+        Om = sim.get("Omega")
+        if Om is not None:
+            ax_t.plot(self.t, Om, color=COLOURS["drive"], lw=1.0)
+        ax_t.set_xlabel("t (s)")
+        ax_t.set_ylabel("Omega (rad/s)", color=COLOURS["drive"])
+        ax_d = ax_t.twinx()
+        tipdef = 1e3 * (motion.coefficients.sum(axis=1))
+        part = _decimate(0, len(self.t) - 1, 6000)
+        ax_d.plot(self.t[part], tipdef[part], color=COLOURS["numeric"], lw=0.5, alpha=0.8)
+        ax_d.set_ylabel("elastic tip deflection (mm)", color=COLOURS["numeric"])
+        ax_d.grid(False)
+        self.cursor = ax_t.axvline(self.t[0], color="black", lw=1.0, animated=True)
+        self.moving.append((ax_t, self.cursor))
+        self.fig = fig
+        fig.canvas.draw()
+        self.background = fig.canvas.copy_from_bbox(fig.bbox)
+
+    def frame(self, tf: float, t_prev: float) -> np.ndarray:
+        canvas = self.fig.canvas
+        canvas.restore_region(self.background)
+        if self.orbit is not None:
+            lo = int(np.searchsorted(self.t, t_prev))
+            hi = max(lo, int(np.searchsorted(self.t, tf, side="right")) - 1)
+            s = _decimate(lo, hi, 800)
+            self.trail.set_data(self.ox[s], self.oy[s])
+            self.dot.set_data([np.interp(tf, self.t, self.ox)], [np.interp(tf, self.t, self.oy)])
+        self.cursor.set_xdata([tf, tf])
+        for ax, artist in self.moving:
+            ax.draw_artist(artist)
+        canvas.blit(self.fig.bbox)
+        return np.asarray(canvas.buffer_rgba())[:, :, :3].copy()
+
+    def close(self):
+        from .style import pyplot
+        pyplot().close(self.fig)
+
+
+def have_ffmpeg() -> bool:
+    """Is imageio-ffmpeg's ffmpeg binary available?"""
+    try:
+        import imageio_ffmpeg
+        return bool(imageio_ffmpeg.get_ffmpeg_exe())
+    except (ImportError, RuntimeError):
+        return False
+
+
+def _writer(path: Path, fps: int):
+    """An imageio writer for MP4 (H.264, yuv420p: what browsers play)."""
+    import imageio.v2 as iio
+    return iio.get_writer(str(path), format="FFMPEG", fps=fps, codec="libx264", quality=6,
+                          pixelformat="yuv420p", macro_block_size=16, ffmpeg_log_level="error")
+
+
+def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = "",
+            max_frames: int = MAX_FRAMES, fps: int = FPS, view_size=VIEW_SIZE,
+            panel_size=PANEL_SIZE, poster: str | Path | None = None,
+            progress: bool = True, gif: bool = False) -> AnimationResult:
+    """Write the animation of one run to ``path`` (.mp4; .gif if ``gif`` or
+    if ffmpeg is missing) and, if asked, a poster PNG at the frame of
+    largest deflection."""
+    start = time.perf_counter()
+    pv = pyvista()
+    path = Path(path)
+    motion = pillar_motion(sim, modeset)
+    ax = modeset.axes
+    ex, ea = np.eye(3)[ax.x], np.eye(3)[ax.axial]
+    H = modeset.height
+    factor = exaggeration(motion, H)
+    tf = frame_times(motion.t, max_frames)
+    q = interpolate(motion.t, motion.coefficients, tf)
+    g = interpolate(motion.t, motion.ground_x, tf)
+    Om = interpolate(motion.t, sim.get("Omega"), tf) if sim.get("Omega") is not None else None
+    orbit = _orbit(sim)
+    base = np.asarray(modeset.surface.points, dtype=float)
+    top = base[np.argmax(base[:, ax.axial])]
+    top_centre = np.array(modeset.surface.center) + ea * (top[ax.axial] - modeset.surface.center[ax.axial])
+    radius = 0.5 * max(np.ptp(base[:, ax.x]), np.ptp(base[:, ax.y]))
+    # colour: the true elastic displacement (mm), one scale for the whole run
+    peak = np.array([np.abs(s).max() for s in motion.shapes])
+    u_max = 1e3 * float(np.max(np.abs(motion.coefficients) @ peak)) or 1.0
+
+    mesh = modeset.surface.copy(deep=True)
+    mesh.point_data["elastic deflection (mm)"] = np.zeros(mesh.n_points)
+    rotor = pv.Sphere(radius=0.45 * radius, center=tuple(top_centre + 0.6 * radius * ea))
+    rotor_base = np.asarray(rotor.points, dtype=float)
+    p = pv.Plotter(off_screen=True, window_size=list(view_size))
+    p.set_background("white")
+    p.add_mesh(modeset.surface, color="white", opacity=0.0,
+               silhouette=dict(color="#a0a0a0", line_width=1.0))
+    p.add_mesh(mesh, scalars="elastic deflection (mm)", cmap="viridis", clim=(0.0, u_max),
+               smooth_shading=True,
+               scalar_bar_args=dict(title="elastic deflection (mm)", vertical=False, width=0.6, height=0.05,
+                                    position_x=0.2, position_y=0.02, color="black",
+                                    title_font_size=10, label_font_size=9, fmt="%.3g"))
+    p.add_mesh(rotor, color="#D55E00")
+    g_lo, g_hi = float(min(g.min(), 0.0)), float(max(g.max(), 0.0))
+    ground = pv.Plane(center=tuple(np.array(modeset.surface.center) * (1 - ea)
+                                   + ea * base[:, ax.axial].min()),
+                      direction=tuple(ea), i_size=6 * radius + (g_hi - g_lo),
+                      j_size=6 * radius + (g_hi - g_lo))
+    ground_base = np.asarray(ground.points, dtype=float)
+    p.add_mesh(ground, color="#d9c9a8", opacity=0.6)
+    readout = p.add_text("", position=(8, view_size[1] - 44), font_size=10, color="black")
+    notes = [f"elastic deflection and orbit x{factor:g}"]
+    if np.any(g != 0):
+        notes.append("ground motion true scale")
+    if not modeset.source.endswith(".vtu"):
+        notes.append("shape: Euler-Bernoulli cantilever (no 3D modes)")
+    p.add_text("\n".join(notes), position=(8, 62), font_size=8, color="#333333")
+    # fixed camera across the bending plane, framing the whole excursion
+    lateral = factor * float(np.max(np.abs(q) @ peak)) + max(abs(g_lo), abs(g_hi)) + 2 * radius
+    centre = np.array(modeset.surface.center) + ex * 0.5 * (g_lo + g_hi)
+    across = -np.eye(3)[ax.y]
+    d = math.cos(math.radians(8)) * (math.cos(math.radians(20)) * across
+                                     + math.sin(math.radians(20)) * ex) + math.sin(math.radians(8)) * ea
+    p.camera.focal_point = tuple(centre)
+    p.camera.position = tuple(centre + 4 * H * d)
+    p.camera.up = tuple(ea)
+    p.camera.view_angle = 30.0
+    half = np.full(3, lateral)
+    half[ax.axial] = 0.55 * H
+    p.reset_camera(bounds=tuple(float(v) for pair in zip(centre - half, centre + half) for v in pair))
+
+    panel = _Panel(sim, motion, panel_size, title)
+    use_gif = gif or not have_ffmpeg()
+    if use_gif:
+        path = path.with_suffix(".gif")
+    writer = None
+    frames_gif = []
+    best, best_frame = -1.0, None
+    bar = None
+    if progress:
+        from tqdm import tqdm
+        bar = tqdm(total=len(tf), desc=f"animation {sim.case}", unit="frame", file=sys.stderr,
+                   leave=False, mininterval=0.5)
+    try:
+        with atomic_path(path) as tmp:
+            if not use_gif:
+                writer = _writer(tmp, fps)
+            for j, t in enumerate(tf):
+                U = elastic_field(q[j], motion.shapes)
+                mesh.points = base + factor * U + g[j] * ex
+                mesh.point_data["elastic deflection (mm)"] = 1e3 * np.linalg.norm(U, axis=1)
+                rel = np.zeros(3)
+                if orbit is not None:
+                    rel = (np.interp(t, motion.t, orbit[0]) * ex
+                           + np.interp(t, motion.t, orbit[1]) * ea)
+                tip = factor * q[j] @ np.array([s[np.argmax(base[:, ax.axial])] @ ex
+                                                for s in motion.shapes])
+                rotor.points = rotor_base + (tip + g[j]) * ex + factor * rel
+                ground.points = ground_base + g[j] * ex
+                text = f"t = {t:7.2f} s"
+                if Om is not None:
+                    text += f"\nOmega = {Om[j]:7.2f} rad/s"
+                readout.SetInput(text)
+                p.render()
+                view = p.screenshot(return_img=True)
+                chart = panel.frame(t, tf[j - 1] if j else t - (tf[1] - tf[0]))
+                h = max(view.shape[0], chart.shape[0])
+                frame = np.hstack([_pad(view, h), _pad(chart, h)])
+                amp = float(np.abs(q[j]).sum())
+                if amp > best:
+                    best, best_frame = amp, frame
+                if use_gif:
+                    frames_gif.append(frame[::2, ::2])
+                else:
+                    writer.append_data(frame)
+                if bar:
+                    bar.update()
+            if use_gif:
+                import imageio.v2 as iio
+                iio.mimsave(str(tmp), frames_gif, format="GIF", duration=1.0 / fps, loop=0)
+            else:
+                writer.close()
+                writer = None
+    finally:
+        if writer is not None:
+            writer.close()
+        if bar:
+            bar.close()
+        panel.close()
+        p.close()
+    poster_path = None
+    if poster is not None and best_frame is not None:
+        import imageio.v2 as iio
+        with atomic_path(poster) as tmp:
+            iio.imwrite(str(tmp), best_frame, format="PNG")
+        poster_path = Path(poster)
+    return AnimationResult(path, len(tf), fps, factor, poster_path, motion.source,
+                           "GIF (Pillow)" if use_gif else "MP4 (H.264, imageio-ffmpeg)",
+                           time.perf_counter() - start, tuple(notes))
+
+
+def _pad(img: np.ndarray, h: int) -> np.ndarray:
+    if img.shape[0] == h:
+        return img
+    out = np.full((h, img.shape[1], 3), 255, dtype=np.uint8)
+    out[:img.shape[0]] = img
+    return out

@@ -1,0 +1,209 @@
+"""Building blocks of the report page: every text escaped, every image
+embedded, nothing fetched from anywhere.
+
+The page stands alone: images are embedded as ``data:`` URIs, so
+report.html can be mailed as one file; videos are embedded too when they are
+small (:data:`EMBED_VIDEO_BYTES`) and always linked to the file beside the
+page.  Links point only at files that exist beside it (the tests check).
+
+>>> table(["a", "b<"], [[1, "x&y"]])
+'<table><thead><tr><th>a</th><th>b&lt;</th></tr></thead><tbody><tr><td>1</td><td>x&amp;y</td></tr></tbody></table>'
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import math
+import os
+from pathlib import Path
+
+#: Videos up to this size are embedded in the page as well as linked.
+EMBED_VIDEO_BYTES = 12 * 2**20
+
+_MIME = {".png": "image/png", ".gif": "image/gif", ".jpg": "image/jpeg", ".jpeg": "image/jpeg",
+         ".svg": "image/svg+xml", ".mp4": "video/mp4", ".webm": "video/webm"}
+
+
+class Raw(str):
+    """HTML that is already safe: not escaped again."""
+
+
+def esc(value) -> str:
+    """Escaped text of any value (Raw passes through).
+
+    >>> esc('<b> & "q"'), esc(Raw("<b>"))
+    ('&lt;b&gt; &amp; &quot;q&quot;', '<b>')
+    """
+    if isinstance(value, Raw):
+        return str(value)
+    return html.escape(str(value), quote=True)
+
+
+def num(x, digits: int = 5) -> str:
+    """A number for a table: ``digits`` significant digits, '-' for none.
+
+    >>> num(31.3333333), num(None), num(1.23e-7), num(True), num(float("nan"))
+    ('31.333', '-', '1.23e-07', 'yes', '-')
+    """
+    if x is None:
+        return "-"
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, int):
+        return str(x)
+    if isinstance(x, float):
+        if not math.isfinite(x):
+            return "-"
+        return f"{x:.{digits}g}"
+    return str(x)
+
+
+def pct(x, digits: int = 2) -> str:
+    """A relative difference in percent, signed.
+
+    >>> pct(-0.01634), pct(None)
+    ('-1.63 %', '-')
+    """
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "-"
+    return f"{100 * x:+.{digits}f} %"
+
+
+def tag(name: str, content="", **attrs) -> str:
+    """``<name attrs>content</name>``; attribute names ending in _ lose it (class_)."""
+    parts = [name]
+    for k, v in attrs.items():
+        if v is None or v is False:
+            continue
+        k = k.rstrip("_").replace("_", "-")
+        parts.append(k if v is True else f'{k}="{esc(v)}"')
+    inner = "".join(esc(c) for c in content) if isinstance(content, (list, tuple)) else esc(content)
+    return Raw(f"<{' '.join(parts)}>{inner}</{name}>")
+
+
+def table(header, rows, classes=None, row_classes=None) -> str:
+    """A table of escaped cells (Raw cells pass through)."""
+    head = "".join(f"<th>{esc(h)}</th>" for h in header)
+    body = []
+    for i, row in enumerate(rows):
+        cls = row_classes[i] if row_classes else None
+        attr = f' class="{esc(cls)}"' if cls else ""
+        body.append(f"<tr{attr}>" + "".join(f"<td>{esc(c)}</td>" for c in row) + "</tr>")
+    cls = f' class="{esc(classes)}"' if classes else ""
+    return Raw(f"<table{cls}><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>")
+
+
+def data_uri(path: str | Path) -> str:
+    path = Path(path)
+    mime = _MIME.get(path.suffix.lower(), "application/octet-stream")
+    return f"data:{mime};base64," + base64.b64encode(path.read_bytes()).decode("ascii")
+
+
+def relative(path: str | Path, base: str | Path) -> str:
+    """``path`` relative to directory ``base``, with forward slashes."""
+    return Path(os.path.relpath(Path(path).resolve(), Path(base).resolve())).as_posix()
+
+
+def image(path: str | Path, caption: str, alt: str | None = None, width: int | None = None) -> str:
+    """A figure with the image embedded and an escaped caption."""
+    img = tag("img", "", src=data_uri(path), alt=alt or caption, loading=None,
+              style=f"max-width:{width}px" if width else None)
+    img = Raw(img.replace("></img>", ">"))
+    return tag("figure", [img, tag("figcaption", caption)])
+
+
+def video(path: str | Path, base: str | Path, caption: str, poster: str | Path | None = None,
+          embed_limit: int = EMBED_VIDEO_BYTES) -> str:
+    """A video: embedded when small enough, and linked to the file beside the page."""
+    path = Path(path)
+    rel = relative(path, base)
+    src = data_uri(path) if path.stat().st_size <= embed_limit else rel
+    if path.suffix.lower() == ".gif":
+        media = Raw(tag("img", "", src=src, alt=caption).replace("></img>", ">"))
+    else:
+        media = tag("video", "Your browser cannot play this video; open the file linked below.",
+                    src=src, controls=True, muted=True, loop=True, preload="metadata",
+                    playsinline=True, poster=data_uri(poster) if poster else None)
+    link = tag("a", f"{path.name} ({path.stat().st_size / 2**20:.1f} MB)", href=rel)
+    return tag("figure", [media, tag("figcaption", [caption, Raw(" &mdash; file: "), link])],
+               class_="video")
+
+
+def missing(text: str) -> str:
+    """The "not computed: run `rotorpillar X`" notice, the command in <code>."""
+    if "`" in text:
+        before, cmd, after = (text.split("`", 2) + ["", ""])[:3]
+        return tag("p", [before, tag("code", cmd), after], class_="missing")
+    return tag("p", text, class_="missing")
+
+
+def details(summary: str, content) -> str:
+    return tag("details", [tag("summary", summary), Raw(content)])
+
+
+def section(ident: str, title: str, parts) -> str:
+    return tag("section", [tag("h2", title)] + [Raw(p) for p in parts], id=ident)
+
+
+def flatten(obj, prefix: str = "", limit: int = 200) -> list[tuple[str, object]]:
+    """(dotted key, scalar) pairs of a nested JSON value, long lists elided.
+
+    >>> flatten({"a": {"b": 1, "c": [1, 2]}, "d": "x"})
+    [('a.b', 1), ('a.c', '[1, 2]'), ('d', 'x')]
+    """
+    out: list[tuple[str, object]] = []
+
+    def walk(o, key):
+        if len(out) >= limit:
+            return
+        if isinstance(o, dict):
+            for k, v in o.items():
+                walk(v, f"{key}.{k}" if key else str(k))
+        elif isinstance(o, list):
+            if len(o) <= 8 and all(not isinstance(v, (dict, list)) for v in o):
+                out.append((key, "[" + ", ".join(num(v) for v in o) + "]"))
+            elif all(isinstance(v, dict) for v in o) and len(o) <= 12:
+                for i, v in enumerate(o):
+                    walk(v, f"{key}[{i}]")
+            else:
+                out.append((key, f"({len(o)} values)"))
+        else:
+            out.append((key, o))
+
+    walk(obj, prefix)
+    return out
+
+
+STYLE = """
+body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif;
+ max-width:1100px;margin:0 auto;padding:0 1.2em 3em;color:#1a1a1a;line-height:1.45}
+h1{font-size:1.6em;margin:1em 0 .2em}h2{border-bottom:2px solid #0072B2;padding-bottom:.15em;
+ margin-top:2em}h3{margin-top:1.4em}
+table{border-collapse:collapse;margin:.6em 0;font-size:.88em}
+th,td{border:1px solid #d0d0d0;padding:.25em .5em;text-align:left;vertical-align:top}
+th{background:#f0f4f8}td.n{text-align:right;font-variant-numeric:tabular-nums}
+tr.flag td{background:#fff1ea}tr.ok td:first-child{border-left:3px solid #009E73}
+tr.flag td:first-child{border-left:3px solid #D55E00}
+figure{margin:1em 0}figure img,figure video{max-width:100%;height:auto;border:1px solid #e0e0e0}
+figcaption{font-size:.88em;color:#444;margin-top:.3em}
+p.missing{background:#fff8e1;border-left:4px solid #E69F00;padding:.4em .7em}
+p.failed{background:#fdecea;border-left:4px solid #D55E00;padding:.4em .7em}
+p.warn{background:#fdecea;padding:.4em .7em}
+code{background:#f3f3f3;padding:0 .25em;border-radius:3px}
+nav ol{columns:2}.meta{color:#555;font-size:.9em}
+ul.findings li{margin:.25em 0}
+details{margin:.5em 0}summary{cursor:pointer;font-weight:600}
+.gallery{display:flex;flex-wrap:wrap;gap:.6em}.gallery figure{margin:0;width:240px}
+"""
+
+
+def page(title: str, header_parts, nav: list[tuple[str, str]], sections) -> str:
+    """The whole document."""
+    nav_html = tag("nav", [tag("h2", "Contents"),
+                           tag("ol", [tag("li", [tag("a", t, href=f"#{i}")]) for i, t in nav])])
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+            f"<title>{esc(title)}</title><style>{STYLE}</style></head><body>"
+            + "".join(str(h) for h in header_parts) + nav_html + "".join(str(s) for s in sections)
+            + "</body></html>\n")

@@ -1,0 +1,284 @@
+"""The results the report renders, as other commands write them to ``out/<scene>/``.
+
+Contracts (field names are the writers'; we read, never write, them):
+
+- ``analyze.json`` (`rotorpillar analyze`): ``pillar``, ``reduction``,
+  ``system``, ``resonances[i]`` with ``curves`` {z, omega, a, a_linear, dL,
+  L, L_all, Md}, ``drive``, ``paper_comparison`` rows.
+- ``modal.json`` (`rotorpillar modal`): ``modes`` and ``modes_with_top``
+  lists ({omega, frequency_hz, kind, n_circumferential, normalisation,
+  modal_mass}), ``reduction``, ``mesh``, ``axes``; mode shapes in
+  ``modes_bare.vtu`` and ``modes_top.vtu`` as point arrays ``mode_000``,
+  ``mode_001``, ... (3-vectors), in the order of the JSON lists.
+- ``simulate_<case>.json`` and ``.npz`` (`rotorpillar simulate`), cases
+  runup, rundown, sweep, earthquake: arrays ``t``, ``Omega``, ``tip_x``,
+  ``rotor_x``, ``rotor_y``, ``ground_x`` and, for the modal model,
+  ``modal_coordinates`` (n_t x k: pillar-tip displacement of each of the
+  first k bending modes of ``modes_top.vtu``).
+- ``convergence.json`` (`rotorpillar converge`), ``integrators.json``.
+- Any PNG in ``out/<scene>/`` (or a direct subfolder) is embedded in the
+  report, in the section its file name suggests
+  (:data:`rotorpillar.postprocess.report.FIGURE_GROUPS`).  Its caption
+  comes from a ``figures`` list in any JSON there, entries
+  ``{"file": "name.png", "caption": "..."}``, else from the file name.
+
+A missing file is not an error: every reader returns None and the report
+says which command would produce it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+#: Input name -> (file in out/<scene>/, the command that writes it).
+INPUTS = {
+    "analyze": ("analyze.json", "analyze"),
+    "modal": ("modal.json", "modal"),
+    "modes_bare": ("modes_bare.vtu", "modal"),
+    "modes_top": ("modes_top.vtu", "modal"),
+    "convergence": ("convergence.json", "converge"),
+    "integrators": ("integrators.json", "integrators"),
+}
+SIMULATE_COMMAND = "simulate"
+#: The cases `rotorpillar simulate` runs, in the order the report shows them.
+CASES = ("runup", "rundown", "sweep", "earthquake")
+
+
+def not_computed(command: str, scene_arg: str) -> str:
+    """The sentence every section shows when its input is missing.
+
+    >>> not_computed("modal", "paper")
+    'not computed: run `rotorpillar modal paper`'
+    """
+    return f"not computed: run `rotorpillar {command} {scene_arg}`".replace("  ", " ").rstrip()
+
+
+def read_json(path: str | Path) -> dict | None:
+    """The parsed JSON at ``path``, or None if there is no such file."""
+    path = Path(path)
+    if not path.is_file():
+        return None
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+def read_npz(path: str | Path) -> dict[str, np.ndarray] | None:
+    """The arrays of an NPZ file, or None if there is none."""
+    path = Path(path)
+    if not path.is_file():
+        return None
+    with np.load(path, allow_pickle=False) as data:
+        return {k: np.asarray(data[k]) for k in data.files}
+
+
+# --------------------------------------------------------------------------
+# Axes of the 3D model
+
+
+@dataclass(frozen=True)
+class TubeAxes:
+    """Which axis of the 3D model is what (indices 0, 1, 2 = x, y, z)."""
+    axial: int
+    """along the tube, base to top"""
+    x: int
+    """the paper's X: the direction the pillar bends in"""
+
+    @property
+    def y(self) -> int:
+        """the remaining lateral axis"""
+        return 3 - self.axial - self.x
+
+
+def _axis_index(value) -> int | None:
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int) and 0 <= value <= 2:
+        return value
+    if isinstance(value, str):
+        s = value.strip().lower().lstrip("+-")
+        if s in ("x", "y", "z"):
+            return "xyz".index(s)
+        if s in ("0", "1", "2"):
+            return int(s)
+    if isinstance(value, (list, tuple)) and len(value) == 3:
+        try:
+            v = np.abs(np.asarray(value, dtype=float))
+        except (TypeError, ValueError):
+            return None
+        return int(np.argmax(v))
+    return None
+
+
+def tube_axes(meta, bounds=None) -> TubeAxes:
+    """Read ``modal.json``'s ``axes`` (strings "x"/"y"/"z", indices or unit
+    vectors, under keys naming the tube axis and the paper's X), falling back
+    to the longest extent of ``bounds`` (xmin, xmax, ymin, ymax, zmin, zmax)
+    for the tube and the first other axis for X.
+
+    >>> tube_axes({"tube": "z", "paper_x": "x"})
+    TubeAxes(axial=2, x=0)
+    >>> tube_axes({"axial": [0, 1, 0], "X": 2})
+    TubeAxes(axial=1, x=2)
+    >>> tube_axes(None, (-1, 1, -1, 1, 0, 20))
+    TubeAxes(axial=2, x=0)
+    """
+    axial = x = None
+    if isinstance(meta, dict):
+        for key, value in meta.items():
+            k = key.lower()
+            if axial is None and any(w in k for w in ("tube", "axial", "along", "height", "vertical")):
+                axial = _axis_index(value)
+            elif x is None and (k in ("x", "paper_x", "paperx", "paper x", "bending", "bending_x")
+                                or (k.startswith("paper") and k.endswith("x"))):
+                x = _axis_index(value)
+    if axial is None:
+        if bounds is not None:
+            ext = [bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]]
+            axial = int(np.argmax(ext))
+        else:
+            axial = 2
+    if x is None or x == axial:
+        x = 0 if axial != 0 else 1
+    return TubeAxes(axial, x)
+
+
+# --------------------------------------------------------------------------
+# Mode shapes
+
+
+@dataclass
+class ModeSet:
+    """Mode shapes on the tube's outer surface (a pyvista PolyData)."""
+    surface: object
+    """pyvista.PolyData with point arrays ``arrays[i]`` (3-vectors)"""
+    modes: list[dict]
+    """metadata of each mode, from modal.json (kind, frequency_hz, ...)"""
+    arrays: list[str]
+    axes: TubeAxes
+    source: str
+    """where the shapes came from (a VTU path, or the closed-form fallback)"""
+    notes: list[str] = field(default_factory=list)
+
+    def shape(self, i: int) -> np.ndarray:
+        """Point displacements of mode i (n_points x 3)."""
+        return np.asarray(self.surface.point_data[self.arrays[i]], dtype=float)
+
+    @property
+    def height(self) -> float:
+        b = self.surface.bounds
+        return float(b[2 * self.axes.axial + 1] - b[2 * self.axes.axial])
+
+
+def mode_label(mode: dict, i: int) -> str:
+    """A one-line label: number, kind, circumferential order, frequency.
+
+    >>> mode_label({"kind": "ovalling", "n_circumferential": 2, "frequency_hz": 7.25}, 3)
+    'mode 4: ovalling (n = 2), 7.250 Hz'
+    """
+    kind = str(mode.get("kind", "?"))
+    n = mode.get("n_circumferential")
+    f = mode.get("frequency_hz")
+    if f is None and mode.get("omega") is not None:
+        f = mode["omega"] / (2 * math.pi)
+    text = f"mode {i + 1}: {kind}"
+    if n is not None and not kind.startswith("bending"):
+        text += f" (n = {n})"
+    if f is not None:
+        text += f", {f:.3f} Hz"
+    return text
+
+
+def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | None:
+    """The mode shapes of a ``modes_*.vtu`` on its outer surface, with their metadata.
+
+    Point arrays ``mode_000``, ``mode_001``, ... in the order of ``modes``;
+    arrays beyond the list get a placeholder label, list entries without an
+    array are dropped.
+    """
+    from .offscreen import pyvista
+    vtu = Path(vtu)
+    if not vtu.is_file():
+        return None
+    pv = pyvista()
+    grid = pv.read(vtu)
+    names = sorted(n for n in grid.point_data.keys() if n.startswith("mode_"))
+    if grid.n_points == 0 or not names:
+        raise ValueError(f"{vtu.name}: no tube with point arrays mode_000, mode_001, ... "
+                         f"({grid.n_points} points, arrays {list(grid.point_data.keys())})")
+    surface = grid.extract_surface(algorithm=None)
+    meta = [modes[i] if i < len(modes) else {"kind": "?"} for i in range(len(names))]
+    return ModeSet(surface, meta, names, tube_axes(axes_meta, surface.bounds), str(vtu))
+
+
+def cantilever_tube(height: float, outer_diameter: float, inner_diameter: float,
+                    around: int = 48, along: int = 60) -> ModeSet:
+    """The fallback when no 3D mode shapes exist: a tube surface generated by
+    pyvista (axis z, X = x) carrying the first Euler-Bernoulli cantilever mode
+    (:func:`rotorpillar.reduced.pillar.cantilever_mode`), unit tip."""
+    from ..reduced.pillar import cantilever_mode
+    from .offscreen import pyvista
+    pv = pyvista()
+    r_in = max(inner_diameter / 2, 1e-3 * outer_diameter)
+    grid = pv.CylinderStructured(radius=[r_in, outer_diameter / 2], height=height,
+                                 center=(0, 0, height / 2), direction=(0, 0, 1),
+                                 theta_resolution=around, z_resolution=along + 1)
+    surface = grid.extract_surface(algorithm=None)
+    xi = np.clip(surface.points[:, 2] / height, 0.0, 1.0)
+    u = np.zeros((surface.n_points, 3))
+    u[:, 0] = cantilever_mode(xi) / cantilever_mode(1.0)
+    surface.point_data["mode_000"] = u
+    meta = [{"kind": "bending_x", "normalisation": "unit_tip",
+             "note": "Euler-Bernoulli cantilever, Eq. 1"}]
+    return ModeSet(surface, meta, ["mode_000"], TubeAxes(2, 0),
+                   "Euler-Bernoulli cantilever shape on a generated tube (no modes_top.vtu)")
+
+
+def bending_columns(modes: list[dict], k: int, explicit=None) -> list[int]:
+    """Indices into ``modes`` of the k modes a simulation's ``modal_coordinates``
+    columns refer to: ``explicit`` if the simulation names them, else the
+    first k modes of kind "bending_x" (the paper's X), else the first k
+    bending modes of any direction.
+
+    >>> ms = [{"kind": "bending_x"}, {"kind": "bending_y"}, {"kind": "ovalling"}, {"kind": "bending_x"}]
+    >>> bending_columns(ms, 2), bending_columns(ms, 1, explicit=[3])
+    ([0, 3], [3])
+    """
+    if explicit is not None:
+        idx = [int(i) for i in explicit][:k]
+        if len(idx) == k and all(0 <= i < len(modes) for i in idx):
+            return idx
+    x = [i for i, m in enumerate(modes) if str(m.get("kind", "")) == "bending_x"]
+    if len(x) >= k:
+        return x[:k]
+    anyb = [i for i, m in enumerate(modes) if str(m.get("kind", "")).startswith("bending")]
+    return anyb[:k]
+
+
+# --------------------------------------------------------------------------
+# Simulations
+
+
+@dataclass
+class Simulation:
+    """One case of `rotorpillar simulate`: its JSON summary and its arrays."""
+    case: str
+    meta: dict
+    arrays: dict
+
+    def get(self, name: str) -> np.ndarray | None:
+        a = self.arrays.get(name)
+        return None if a is None else np.asarray(a, dtype=float)
+
+
+def read_simulation(out: str | Path, case: str) -> Simulation | None:
+    """``simulate_<case>.json`` and ``.npz`` (either may be missing)."""
+    out = Path(out)
+    meta = read_json(out / f"simulate_{case}.json")
+    arrays = read_npz(out / f"simulate_{case}.npz")
+    if meta is None and arrays is None:
+        return None
+    return Simulation(case, meta or {}, arrays or {})

@@ -1,0 +1,229 @@
+"""Renders, animations and charts of rotorpillar.postprocess, on synthetic inputs.
+
+Sources and tolerances:
+- Mode shapes: analytic tube modes (rotorpillar.postprocess.fixtures): the
+  Euler-Bernoulli cantilever shape (rotorpillar.reduced.pillar.cantilever_mode,
+  normalised to a unit tip), an n = 2 ovalling, a torsion.  Deformation and
+  superposition are exact arithmetic (1e-12).  Pictures are checked as files
+  (PNG header size, decoded size, pixel spread > 8 grey levels: a blank
+  render has ~0) and by one geometric property that a wrong camera or a
+  missing deformation would break: in a bending mode's picture the tube's top
+  sits sideways of its base by more than half the tube's drawn width, in the
+  torsion mode's by less than a quarter.
+- Animations: the frame count read back from the MP4 by ffmpeg equals the
+  requested bound; frame size 880 x 560 (the 3D view beside the panel).
+- Drive chart: L(Omega) rebuilt from analyze.json's resonance parameters by
+  the averaging closed forms against the curves analyze stored (1e-9
+  relative, the same formulas); the stable/unstable switch points against the
+  fold points analyse_drive finds by root finding (within 2 grid steps).
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from imagecheck import assert_real_png, pixels, png_size
+from rotorpillar.analyze import analyze
+from rotorpillar.postprocess import charts, fixtures
+from rotorpillar.postprocess.animation import (animate, elastic_field, frame_times, pillar_motion)
+from rotorpillar.postprocess.inputs import (Simulation, bending_columns, cantilever_tube, load_modes,
+                                            read_json, read_simulation, tube_axes)
+from rotorpillar.postprocess.modeshapes import (BEAM_TARGET, MODE_SIZE, SHEET_TILE, deformed,
+                                                mode_scale, render_contact_sheet, render_mode)
+from rotorpillar.reduced.pillar import cantilever_mode
+from rotorpillar.provenance import to_json
+from rotorpillar.scene import load_scene, override
+
+
+@pytest.fixture(scope="module")
+def modal_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("modal")
+    fixtures.write_modal_fixture(out, around=24, along=16)
+    return out
+
+
+@pytest.fixture(scope="module")
+def modes_top(modal_dir):
+    doc = read_json(modal_dir / "modal.json")
+    return load_modes(modal_dir / "modes_top.vtu", doc["modes_with_top"], doc["axes"])
+
+
+def _coloured_columns(px, rows):
+    """Mean column of the strongly coloured (not white, not grey) pixels in ``rows``."""
+    sub = px[rows]
+    sat = sub.max(axis=2) - sub.min(axis=2)
+    ys, xs = np.nonzero(sat > 40)
+    return xs.mean(), np.ptp(xs)
+
+
+def _tube_lean(path):
+    px = pixels(path)
+    px = px[:, : int(0.8 * px.shape[1])]      # the colour bar sits at the right
+    sat = px.max(axis=2) - px.min(axis=2)
+    rows = np.flatnonzero((sat > 40).sum(axis=1) > 3)
+    # skip the label and the colour bar: the tube is the tallest coloured run
+    top = slice(rows.min() + 2, rows.min() + 2 + max(4, len(rows) // 12))
+    bottom = slice(rows.max() - max(4, len(rows) // 12), rows.max() - 2)
+    x_top, _ = _coloured_columns(px, top)
+    x_bot, width = _coloured_columns(px, bottom)
+    return abs(x_top - x_bot), width
+
+
+def test_fixture_modes_read_back_with_their_metadata(modes_top, modal_dir):
+    doc = read_json(modal_dir / "modal.json")
+    assert len(modes_top.arrays) == len(doc["modes_with_top"]) == 6
+    assert modes_top.axes == tube_axes({"tube": "z", "paper_x": "x"})
+    assert modes_top.height == pytest.approx(20.0)
+    # unit tip: the top of a bending_x mode moves 1 m in X (the surface's
+    # top points, up to the section's rotation, which moves them axially only)
+    i = bending_columns(modes_top.modes, 1)[0]
+    pts = np.asarray(modes_top.surface.points)
+    top = pts[:, 2] > 20.0 - 1e-9
+    assert modes_top.shape(i)[top, 0] == pytest.approx(1.0, abs=1e-9)
+
+
+def test_deformation_and_scale(modes_top):
+    i = 0
+    u = modes_top.shape(i)
+    f = mode_scale(modes_top, i)
+    mesh = deformed(modes_top, u, f)
+    assert np.asarray(mesh.points) - np.asarray(modes_top.surface.points) == pytest.approx(f * u, abs=1e-12)
+    # rounded to 1-2-5: within a factor sqrt(2.5) of the target
+    shown = f * np.linalg.norm(u, axis=1).max()
+    assert BEAM_TARGET * 20.0 / 1.6 <= shown <= BEAM_TARGET * 20.0 * 1.6
+
+
+def test_mode_pictures_are_real_and_show_the_mode(modes_top, tmp_path):
+    kinds = [m["kind"] for m in modes_top.modes]
+    bend, tors = kinds.index("bending_x"), kinds.index("torsion")
+    p_bend = render_mode(modes_top, bend, tmp_path / "bend.png")
+    p_tors = render_mode(modes_top, tors, tmp_path / "tors.png")
+    for p in (p_bend, p_tors):
+        assert_real_png(p, MODE_SIZE)
+    lean, width = _tube_lean(p_bend)
+    assert lean > 0.5 * width
+    lean, width = _tube_lean(p_tors)
+    assert lean < 0.25 * width
+
+
+def test_contact_sheet_size(modes_top, tmp_path):
+    p = render_contact_sheet(modes_top, tmp_path / "sheet.png", count=6, columns=4)
+    # six modes on four columns at most: two rows of three, no empty tile
+    assert_real_png(p, (3 * SHEET_TILE[0], 2 * SHEET_TILE[1]))
+
+
+def test_fallback_tube_carries_the_cantilever_shape():
+    ms = cantilever_tube(20.0, 2.0, 1.96)
+    pts = np.asarray(ms.surface.points)
+    xi = pts[:, 2] / 20.0
+    ref = cantilever_mode(xi) / cantilever_mode(1.0)
+    assert ms.shape(0)[:, 0] == pytest.approx(ref, abs=1e-12)
+    assert ms.shape(0)[np.argmax(xi), 0] == pytest.approx(1.0)
+    assert np.abs(ms.shape(0)[xi < 1e-9]).max() == pytest.approx(0.0, abs=1e-12)
+
+
+def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
+    n = 50
+    q = np.column_stack([np.linspace(-0.01, 0.02, n), np.linspace(0.003, -0.001, n)])
+    sim = Simulation("runup", {}, {"t": np.linspace(0, 1, n), "modal_coordinates": q,
+                                  "tip_x": q.sum(axis=1), "Omega": np.linspace(0, 10, n)})
+    motion = pillar_motion(sim, modes_top)
+    assert motion.coefficients.shape == (n, 2) and "modal coordinates" in motion.source
+    pts = np.asarray(modes_top.surface.points)
+    top = np.flatnonzero(pts[:, 2] > 20.0 - 1e-9)
+    for j in (0, n // 2, n - 1):
+        U = elastic_field(motion.coefficients[j], motion.shapes)
+        assert U[top, 0] == pytest.approx(q[j].sum(), abs=1e-12)
+    # the paper's model: no modal coordinates, tip_x - ground_x drives mode 1
+    sim2 = Simulation("earthquake", {}, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0],
+                                        "ground_x": np.ones(n)})
+    m2 = pillar_motion(sim2, modes_top)
+    assert m2.coefficients[:, 0] == pytest.approx(q[:, 0], abs=1e-12)
+
+
+def test_frame_times_are_bounded():
+    t = np.linspace(0, 80, 100001)
+    f = frame_times(t, 150)
+    assert len(f) == 150 and f[0] == 0 and f[-1] == 80
+    assert len(frame_times(t[:10], 150)) == 10
+
+
+def test_animation_mp4_frame_count_and_poster(modes_top, tmp_path):
+    import imageio_ffmpeg
+    fixtures.write_simulation_fixture(tmp_path, "runup", n=1500)
+    sim = read_simulation(tmp_path, "runup")
+    r = animate(sim, modes_top, tmp_path / "runup.mp4", title="test", max_frames=12,
+                poster=tmp_path / "poster.png", progress=False)
+    assert r.path.suffix == ".mp4" and r.frames == 12
+    frames, _ = imageio_ffmpeg.count_frames_and_secs(str(r.path))
+    assert frames == 12
+    assert_real_png(r.poster, (880, 560))
+
+
+def test_animation_gif_fallback_and_cantilever_fallback(tmp_path):
+    from PIL import Image
+    fixtures.write_simulation_fixture(tmp_path, "earthquake", modal=False, n=800)
+    sim = read_simulation(tmp_path, "earthquake")
+    ms = cantilever_tube(20.0, 2.0, 1.96)
+    r = animate(sim, ms, tmp_path / "quake.mp4", max_frames=6, gif=True, progress=False)
+    assert r.path.suffix == ".gif"
+    assert "Euler-Bernoulli" in r.source
+    with Image.open(r.path) as im:
+        assert im.n_frames == 6
+        assert im.size == (440, 280)
+
+
+# --------------------------------------------------------------------------
+# Charts
+
+
+@pytest.fixture(scope="module")
+def analyses():
+    paper = load_scene("paper")
+    # through JSON, as the report reads them
+    return {"paper": json.loads(to_json(analyze(paper))),
+            "fold": json.loads(to_json(analyze(override(paper, ["rotor.eccentricity=0.04"]))))}
+
+
+
+@pytest.mark.parametrize("case", ["paper", "fold"])
+def test_drive_curves_match_analyze(analyses, case):
+    a = analyses[case]
+    data = charts.drive_curve_data(a)
+    for r in a["resonances"]:
+        c = r["curves"]
+        L = np.interp(c["omega"], data["omega"], data["L"])
+        exact = charts.av.total_resistance(np.asarray(c["omega"]), a["drive"]["load_coefficient"],
+                                           charts.resonances_of(a))
+        assert exact == pytest.approx(c["L_all"], rel=1e-9)
+        assert L == pytest.approx(c["L_all"], rel=2e-3)     # the chart's grid, interpolated
+
+
+def test_stability_switches_at_the_fold_points(analyses):
+    a = analyses["fold"]
+    data = charts.drive_curve_data(a)
+    W, stable = data["omega"], data["stable"]
+    switches = W[np.flatnonzero(np.diff(stable.astype(int))) + 1]
+    folds = [j["from"][0] for j in data["jumps"]]
+    assert len(folds) >= 2
+    step = np.max(np.diff(W))
+    for w in folds:
+        assert np.min(np.abs(switches - w)) < 2 * step
+    # and the stationary speeds' stability agrees with the mask
+    for s in data["stationary"]:
+        assert stable[np.argmin(np.abs(W - s["omega"]))] == s["stable"]
+
+
+def test_paper_scene_has_no_unstable_branch(analyses):
+    data = charts.drive_curve_data(analyses["paper"])
+    assert data["jumps"] == [] and data["stable"].all()
+
+
+def test_chart_files(analyses, tmp_path):
+    a = analyses["fold"]
+    assert_real_png(charts.drive_chart(a, tmp_path / "d.png"), (1000, 760))
+    assert_real_png(charts.amplitude_chart(a, tmp_path / "a.png"), (1000, 360))
+    arrays = fixtures.simulation_arrays("earthquake", n=2000)
+    assert_real_png(charts.earthquake_chart(arrays, tmp_path / "e.png"), (900, 800))
+    assert png_size(tmp_path / "d.png") == (1000, 760)
