@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from . import __version__
-from .errors import ComputationError, InputError
+from .errors import ComputationError, InputError, StageError
 from .provenance import Timings, machine, to_json, versions, write_json
 from .scene import Scene, embedded_scenes, load_scene
 
@@ -117,6 +117,9 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"rotorpillar {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except StageError as exc:
+        print(f"rotorpillar {args.command}: failed: {exc}", file=sys.stderr)
+        return 1
     except ComputationError as exc:
         print(f"rotorpillar {args.command}: failed: {exc}; nothing was written", file=sys.stderr)
         return 1

@@ -7,3 +7,7 @@ class InputError(ValueError):
 
 class ComputationError(RuntimeError):
     """A numerical tool failed (Gmsh, PETSc, SLEPc): one line saying which and how."""
+
+
+class StageError(ComputationError):
+    """A stage of `rotorpillar run` failed; the stages before it kept their outputs."""

@@ -121,6 +121,8 @@ def dolfinx_mesh(data: MeshData | None, comm):
     The same steps as ``dolfinx.io.gmshio.model_to_mesh``, from arrays, so
     that Gmsh itself may run in another process.
     """
+    from .dolfinx_import import import_dolfinx
+    import_dolfinx()
     from dolfinx import cpp
     from dolfinx.io import gmshio
     from dolfinx.mesh import create_mesh, meshtags_from_entities
@@ -166,6 +168,8 @@ def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_ma
     ``clamped`` False leaves the base free too (a free-free tube, for tests
     against ring theory): K is then singular and a solve needs sigma < 0.
     """
+    from .dolfinx_import import import_dolfinx
+    import_dolfinx()
     import ufl
     from mpi4py import MPI
     from petsc4py import PETSc
