@@ -164,7 +164,9 @@ def summary(scene, r: dict) -> str:
                  f"|rotor Y| {ma['rotor_y']:.4g} m")
     eb = r["energy_balance"]
     lines.append(f"  energy balance: relative error {eb['relative_error']:.2e}")
-    if r.get("truncation"):
+    if r.get("truncation") and r["truncation"].get("modes_check") is None:
+        lines.append("  " + r["truncation"]["statement"])
+    elif r.get("truncation"):
         t = r["truncation"]
         lines.append(f"  modes: {t['modes']} (effective mass {100 * t['effective_mass_fraction']:.1f} %); "
                      f"with {t['modes_check']}: tip max changes {100 * (t['tip_x_max_rel_diff'] or 0):+.3f} %, "

@@ -60,11 +60,18 @@ def scene_pillar_modes(scene, count: int) -> PillarModes:
     if m.source == "beam":
         return beam_pillar_modes(scene, count, m.theory, m.elements, m.gondola_inertia)
     import importlib.util
-    if importlib.util.find_spec("rotorpillar.fem3d") is None:
-        raise InputError('modal_model.source = "fem3d" needs rotorpillar.fem3d (the 3D model), which is '
-                         'not available here; use modal_model.source = "beam"')
-    from .fem3d_modes import fem3d_pillar_modes                # pragma: no cover - needs dolfinx
+    if importlib.util.find_spec("dolfinx") is None:
+        raise InputError('modal_model.source = "fem3d" needs the 3D model (dolfinx), which is not '
+                         'installed here; use modal_model.source = "beam"')
+    from .fem3d_modes import fem3d_pillar_modes
     return fem3d_pillar_modes(scene, count)
+
+
+def _fem3d_bending_count(scene) -> int:
+    """How many X bending modes the scene's 3D analysis will find (at most 12)."""
+    from ..fem3d import modal_analysis
+    n = sum(1 for k in modal_analysis(scene, top=True).kind if k == "bending_x")
+    return max(1, min(n, MAX_CANDIDATE_MODES))
 
 
 def build_model(scene, which: str, band_top: float | None = None, modes: int | None = None):
@@ -75,7 +82,8 @@ def build_model(scene, which: str, band_top: float | None = None, modes: int | N
         return paper_model(s), {"reduction": red}
     if which != "modal":
         raise InputError(f"model {which!r}: must be paper or modal")
-    candidates = scene_pillar_modes(scene, MAX_CANDIDATE_MODES)
+    candidates = scene_pillar_modes(scene, MAX_CANDIDATE_MODES if scene.modal_model.source == "beam"
+                                    else _fem3d_bending_count(scene))
     k = modes or scene.modal_model.modes or modes_in_band(candidates.omega, band_top or 0.0)
     k = min(k, candidates.count)
     pm = candidates.truncate(k)
@@ -410,8 +418,14 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
         if progress:
             progress(f"truncation check: the same case with {k + 1} modes")
         model2, _ = build_model(scene, "modal", modes=k + 1)
-        r2 = _run_on(scene, case, model2, motion, integrator)
-        result.summary["truncation"] = truncation_estimate(result, r2)
+        if model2.pillar_modes.count == k:
+            result.summary["truncation"] = {
+                "modes": k, "modes_check": None,
+                "statement": f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
+                             f"offers only {k} X bending modes (for fem3d: raise modal.n_modes)"}
+        else:
+            r2 = _run_on(scene, case, model2, motion, integrator)
+            result.summary["truncation"] = truncation_estimate(result, r2)
     return result
 
 
