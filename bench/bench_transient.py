@@ -255,7 +255,6 @@ def bench_rom_vs_3d(scene) -> list[dict]:
     import importlib.util
     if importlib.util.find_spec("dolfinx") is None:
         return []
-    import dataclasses
     from rotorpillar.scene import override
     scene = override(scene, ["modal_model.source=fem3d"])
     motion = load_record("elcentro", start=1.0)

@@ -30,7 +30,7 @@ from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model, paper_model
-from rotorpillar.reduced.system import ReducedSystem, paper_example
+from rotorpillar.reduced.system import paper_example
 from rotorpillar.reduced.transient import Settings, simulate
 
 IDLE = DriveSchedule.constant(0.0, 0.0, 0.0)
