@@ -51,10 +51,14 @@ def summary(scene, r: dict) -> str:
         lines.append(f"  {m:<20} {fmt(e['wall_seconds_at_0.001'], '10.4f')} "
                      f"{fmt(e['wall_seconds_at_1e-06'], '10.4f')} {fmt(e['nfev_at_1e-06'], '10.0f')}  {e['fails']}")
     lines.append("  stiffness (modal model, pillar modes added): first failure per method")
+    growth = r["stability"].get("cost_growth", {})
     for m, f in r["stability"]["first_failure"].items():
+        g = growth.get(m)
+        cost = (f"; force evaluations x{g['factor']:.1f} from {g['modes'][0]} to {g['modes'][1]} modes"
+                if g else "")
         lines.append(f"    {m:<20} " + ("never" if f is None else
                                          f"{f['modes']} modes, omega_max {f['omega_max']:.0f} rad/s, "
-                                         f"h*omega_max = {f['h_times_omega_max']:.2f}"))
+                                         f"h*omega_max = {f['h_times_omega_max']:.2f}") + cost)
     lines.append("  energy drift (undamped, unforced): " + ", ".join(
         f"{row['method']} {row['drift']:.1e}" if row["drift"] is not None else f"{row['method']} failed"
         for row in r["energy_drift"]["rows"]))
