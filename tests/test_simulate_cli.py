@@ -147,3 +147,13 @@ def test_integrators_command(tmp_path):
     for m in ("newmark", "Radau", "BDF", "dp5"):
         assert ff[m] is None
     assert (tmp_path / "integrators.png").exists()
+
+
+def test_decimation_keeps_the_peaks():
+    from rotorpillar.reduced.cases import decimate, run_case
+    r = run_case(load_scene("paper"), "runup", "paper").run
+    d = decimate(r, 1000)
+    assert len(d.t) <= 1000 and d.t[-1] == r.t[-1] and d.t[0] == r.t[0]
+    assert np.max(d.peak, axis=0) == pytest.approx(np.max(r.peak, axis=0), rel=0, abs=0)
+    i = np.searchsorted(r.t, d.t)
+    assert np.array_equal(d.q, r.q[i])

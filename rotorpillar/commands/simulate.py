@@ -55,7 +55,7 @@ def simulate_command(scene, args, timings, context):
     with timings(case):
         res = run_case(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
                        motion=motion)
-    data = series(res.run)
+    data = series(res.run, scene.simulate.samples)
     out = out_dir(scene, args)
     result = {"case": case, "model": which, **res.summary,
               "model_description": res.model.describe(), "model_info": res.extra.get("model_info"),

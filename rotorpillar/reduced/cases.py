@@ -203,8 +203,26 @@ def ground_displacement(model: RotorStructure, motion: GroundMotion, t) -> np.nd
     return motion.inertial_displacement(t)
 
 
-def series(run: Transient) -> dict:
+def decimate(run: Transient, max_samples: int) -> Transient:
+    """Every k-th output so that at most ``max_samples`` remain (the last kept);
+    the interval peaks are merged, so no peak is lost."""
+    n = len(run.t)
+    if n <= max_samples:
+        return run
+    k = int(math.ceil((n - 1) / (max_samples - 1)))
+    idx = np.arange(0, n, k)
+    if idx[-1] != n - 1:
+        idx = np.r_[idx, n - 1]
+    starts = np.r_[0, idx[:-1] + 1]
+    peak = np.maximum.reduceat(run.peak, starts, axis=0)
+    peak[0] = run.peak[0]
+    return replace(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
+
+
+def series(run: Transient, max_samples: int | None = None) -> dict:
     """The arrays written to the NPZ/CSV (contract with the animations)."""
+    if max_samples:
+        run = decimate(run, max_samples)
     m = run.model
     motion = run.motion or no_motion()
     ground = ground_displacement(m, motion, run.t)
