@@ -34,6 +34,10 @@ COMMANDS = {
                "the HTML validation report, its charts, mode-shape pictures and animations"),
     "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
+    "simulate": ("rotorpillar.commands.simulate", "simulate_command",
+                 "transients of the reduced models: run-up, run-down, sweep, earthquake"),
+    "integrators": ("rotorpillar.commands.integrators", "integrators_command",
+                    "time integrators: error against cost, where each fails"),
 }
 
 
@@ -48,6 +52,8 @@ EXTRA_ARGUMENTS = {
     "modal": lambda p: importlib.import_module("rotorpillar.commands.converge").add_modal_arguments(p),
     "report": _report_arguments,
     "run": _report_arguments,
+    "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
+    "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
 }
 
 

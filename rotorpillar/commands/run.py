@@ -30,6 +30,8 @@ def _report_flags(args) -> list[str]:
 # arguments from run's own).  The report stays last.
 RUN_STAGES = [
     ("analyze", "closed forms and averaging", None),
+    ("simulate --case runup", "run-up from rest, reduced model", None),
+    ("simulate --case earthquake", "earthquake, reduced model", None),
     ("modal", "3D modes of the tube, bare and with its top mass", None),
     ("report", "charts, mode shapes, animations, report.html", _report_flags),
 ]
@@ -59,15 +61,17 @@ def run_command(scene, args, timings, context):
             raise StageError(f"stage {command!r} failed (exit {p.returncode}); "
                                    "the stages before it finished and wrote their files")
         name = command.split()[0]
-        path = out_dir(scene, args) / f"{name}.json"
+        # simulate keeps a copy per case: simulate_<case>.json
+        stem = f"{name}_{command.split()[-1]}" if name == "simulate" else name
+        path = out_dir(scene, args) / f"{stem}.json"
         doc = json.loads(path.read_text(encoding="utf-8"))
-        stages[command] = {"json": str(path), "seconds": timings[command],
+        stages[stem] = {"json": str(path), "seconds": timings[command], "command": command,
                            "stage_seconds": doc.get("timings", {}).get("total")}
-        lines.append(f"{command:>12}: {timings[command]:8.2f} s  -> {path}")
+        lines.append(f"{command:>26}: {timings[command]:8.2f} s  -> {path}")
         if name == "report":
             context["report"] = doc
     report = context.get("report", {}).get("report")
     if report:
-        lines.append(f"{'page':>12}: {report}")
+        lines.append(f"{'page':>26}: {report}")
     return ({"stages": stages, "report": report},
             f"rotorpillar run {scene.name}\n" + "\n".join(lines))

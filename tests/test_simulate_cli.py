@@ -1,0 +1,159 @@
+"""`rotorpillar simulate` and `integrators` through the CLI: the output contract.
+
+Checks the files and fields other commands rely on (branch post reads
+``simulate_<case>.json``/``.npz``: t, Omega, tip_x, rotor_x, rotor_y,
+ground_x, modal_coordinates), that the JSON copy equals simulate.json, that
+series are decimated to at most simulate.samples rows, and the numbers
+against independent references where one exists: the run-up's final speed
+is the root of Md = Mc shifted by the resonances' small tail torque (the
+exact linear balance, 1e-6), the modal model's modal coordinates sum to the
+tip (1e-12), the paper model's ground is q5 as written, and a run-down with
+the motor off follows the quasi-static J W' = -k W**2 - dL(W) with the exact
+averaged torque dL of the linear structure (1e-3).
+"""
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from rotorpillar.reduced.cases import build_model, stationary_exact
+from rotorpillar.reduced.excitation import STANDARD_GRAVITY
+from rotorpillar.scene import load_scene
+
+
+def cli(*args):
+    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
+                          capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def runup(tmp_path_factory):
+    out = tmp_path_factory.mktemp("runup")
+    p = cli("simulate", "paper", "--case", "runup", "--json", "--out", out)
+    assert p.returncode == 0, p.stderr
+    return out, json.loads(p.stdout)
+
+
+def test_runup_outputs_and_fields(runup):
+    out, doc = runup
+    assert doc == json.loads((out / "simulate.json").read_text())
+    copy = json.loads((out / "simulate_runup.json").read_text())
+    for key in ("omega_final", "max_abs", "jumps", "captured_at", "energy_balance", "integrator", "case"):
+        assert copy[key] == doc[key]
+    assert doc["jumps"] == [] and doc["captured_at"] is None
+    assert doc["energy_balance"]["relative_error"] < 1e-6
+    assert {"tip_x", "rotor_x", "rotor_y"} <= doc["max_abs"].keys()
+    data = np.load(out / "simulate_runup.npz")
+    for key in ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x"):
+        assert data[key].shape == data["t"].shape
+    assert len(data["t"]) <= load_scene("paper").simulate.samples
+    assert str(data["tip_x_frame"]) == "absolute"
+    header = (out / "simulate_runup.csv").read_text().splitlines()[1]
+    assert header.startswith("t,Omega,tip_x,rotor_x,rotor_y,ground_x")
+    assert (out / "simulate_runup.png").stat().st_size > 10_000
+    assert doc["figures"][0]["file"] == "simulate_runup.png"
+
+
+def test_runup_settles_on_the_exact_stationary_speed(runup):
+    _, doc = runup
+    scene = load_scene("paper")
+    model, _ = build_model(scene, "paper")
+    st = stationary_exact(model, scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
+    assert doc["omega_final"] == pytest.approx(max(s["omega"] for s in st), rel=1e-6)
+    # Md = Mc alone (no resonance) differs by the tail torque only: < 0.1 %
+    free = (-12 + math.sqrt(144 + 4 * 0.5 * 5100)) / (2 * 0.5)
+    assert doc["omega_final"] == pytest.approx(free, rel=1e-3)
+
+
+def test_modal_earthquake_contract(tmp_path):
+    p = cli("simulate", "paper", "--case", "earthquake", "--model", "modal", "--json", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    data = np.load(tmp_path / "simulate_earthquake.npz")
+    k = doc["truncation"]["modes"]
+    assert data["modal_coordinates"].shape == (len(data["t"]), k)
+    assert np.allclose(data["modal_coordinates"].sum(axis=1), data["tip_x"], rtol=1e-12, atol=1e-15)
+    assert str(data["tip_x_frame"]) == "relative_to_ground"
+    assert np.allclose(data["tip_x_absolute"], data["tip_x"] + data["ground_x"])
+    assert data["mode_shapes"].shape[1] == k
+    assert doc["excitation"]["peak_acceleration_g"] == pytest.approx(math.pi, rel=1e-9)
+    assert doc["excitation"]["realistic"] is False
+    assert doc["truncation"]["modes_check"] == k + 1
+    assert abs(doc["truncation"]["tip_x_max_rel_diff"]) < 0.05
+
+
+def test_paper_earthquake_ground_is_q5_as_written(tmp_path):
+    p = cli("simulate", "paper", "--case", "earthquake", "--json", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    data = np.load(tmp_path / "simulate_earthquake.npz")
+    t, g = data["t"], data["ground_x"]
+    inside = (t >= 5) & (t < 12)
+    assert np.allclose(g[inside], -STANDARD_GRAVITY / math.pi * (1 - np.cos(math.pi * t[inside])))
+    assert np.all(g[~inside] == 0)
+
+
+def test_rundown_with_the_motor_off(tmp_path):
+    p = cli("simulate", "paper", "--case", "rundown", "--json", "--out", tmp_path,
+            "--set", "simulate.duration=20")
+    doc = json.loads(p.stdout)
+    # quasi-static reference: J W' = -k W^2 - dL(W), dL the exact averaged
+    # torque of the linear structure at constant speed (frequency domain)
+    W0, k, J = doc["initial_speed"], 0.5, 100.0
+    model, _ = build_model(load_scene("paper"), "paper")
+    Wg = np.linspace(0.5, 1.1 * W0, 4000)
+    Tg = model.steady_torque(Wg)
+    sol = solve_ivp(lambda t, W: [(-k * W[0] ** 2 + np.interp(W[0], Wg, Tg)) / J], (0, 20), [W0],
+                    rtol=1e-10, atol=1e-12)
+    assert doc["omega_final"] == pytest.approx(sol.y[0][-1], rel=1e-3)
+    # the resonances cost the run-down about 1 % against Mc alone, W0 / (1 + W0 k t / J)
+    assert doc["omega_final"] < W0 / (1 + W0 * k * 20 / J)
+
+
+@pytest.mark.slow
+def test_run_includes_runup_and_earthquake(tmp_path):
+    p = cli("run", "paper", "--json", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    assert {"analyze", "simulate_runup", "simulate_earthquake"} <= doc["stages"].keys()
+    for case in ("runup", "earthquake"):
+        assert (tmp_path / f"simulate_{case}.json").exists()
+        assert (tmp_path / f"simulate_{case}.npz").exists()
+
+
+def test_bad_modes_and_integrator(tmp_path):
+    p = cli("simulate", "paper", "--modes", "0", "--out", tmp_path)
+    assert p.returncode == 2 and "--modes" in p.stderr
+    p = cli("simulate", "paper", "--integrator", "euler", "--out", tmp_path)
+    assert p.returncode == 2
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.slow
+def test_integrators_command(tmp_path):
+    p = cli("integrators", "paper", "--quick", "--duration", "4", "--json", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    ff = doc["stability"]["first_failure"]
+    # central difference blows up once h omega_max > 2 (h = 2.5 ms: omega_max > 800 rad/s)
+    cd = ff["central_difference"]
+    assert cd is not None and cd["h_times_omega_max"] > 2
+    rows = [r for r in doc["stability"]["rows"] if r["method"] == "central_difference" and r["ok"]]
+    assert all(r["omega_max"] * 2.5e-3 < 2 for r in rows)
+    for m in ("newmark", "Radau", "BDF", "dp5"):
+        assert ff[m] is None
+    assert (tmp_path / "integrators.png").exists()
+
+
+def test_decimation_keeps_the_peaks():
+    from rotorpillar.reduced.cases import decimate, run_case
+    r = run_case(load_scene("paper"), "runup", "paper").run
+    d = decimate(r, 1000)
+    assert len(d.t) <= 1000 and d.t[-1] == r.t[-1] and d.t[0] == r.t[0]
+    assert np.max(d.peak, axis=0) == pytest.approx(np.max(r.peak, axis=0), rel=0, abs=0)
+    i = np.searchsorted(r.t, d.t)
+    assert np.array_equal(d.q, r.q[i])
