@@ -131,8 +131,9 @@ def _charts(out, scene, case, res, data) -> list[dict]:
         tc.runup_chart(path, data["t"], data["Omega"], data["peak"][:, -1], resonances, title, extra,
                        label=f"M0 = {scene.drive.torque_at_zero:g} N*m (the scene's motor)"
                        if case == "runup" else "this run")
-        caption = {"runup": "Run-up from rest: rotor speed (dashed: motors 5 % below and above the "
-                            "torque the analysis says is needed to pass) and tip envelope.",
+        caption = {"runup": "Run-up from rest: rotor speed and tip envelope" + (
+                            " (dashed: motors 5 % below and above the torque the analysis says is "
+                            "needed to pass)." if extra else "."),
                    "rundown": "Run-down from the operating speed: rotor speed and tip envelope.",
                    "sweep": "Quasi-static sweep of M0 up and down: rotor speed and tip envelope."}[case]
     figs.append({"file": path.name, "caption": caption})

@@ -574,8 +574,8 @@ def section_runs(build: Build) -> str:
         sim = build.simulations.get(case)
         parts.append(h.tag("h3", {"runup": "Run-up", "rundown": "Run-down", "sweep": "Sweep"}[case]))
         if sim is None:
-            parts.append(h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} {build.scene_cli}` "
-                                   f"(no simulate_{case}.json)"))
+            parts.append(h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case {case} "
+                                   f"{build.scene_cli}` (no simulate_{case}.json)"))
             continue
         parts += _scene_differs(build, sim.meta)
         key = _key_results(sim.meta)
@@ -600,14 +600,17 @@ def section_earthquake(build: Build) -> str:
     sim = build.simulations.get("earthquake")
     if sim is None:
         return h.section("earthquake", "The earthquake",
-                         [h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} {build.scene_cli}` "
-                                    "(no simulate_earthquake.json)")] + _figures(build, "earthquake"))
+                         [h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case earthquake "
+                                    f"{build.scene_cli}` (no simulate_earthquake.json)")]
+                         + _figures(build, "earthquake"))
     parts = _scene_differs(build, sim.meta)
     g = sim.get("ground_x")
+    excitation = (sim.meta or {}).get("excitation") or {}
+    if isinstance(excitation.get("statement"), str):
+        parts.append(h.tag("p", excitation["statement"],
+                           class_="warn" if excitation.get("realistic") is False else None))
     if g is not None and len(g):
-        parts.append(h.tag("p", f"Largest ground displacement: {abs(g).max():.3g} m (the paper's "
-                                "Section 3 prescribes q5 = -g/pi + (g/pi) cos(pi t) for "
-                                "5 <= t <= 12 s)."))
+        parts.append(h.tag("p", f"Largest ground displacement: {abs(g).max():.3g} m."))
     parts += _failure(build, "earthquake_chart")
     if "earthquake_chart" in build.products:
         parts.append(_product_image(build, "earthquake_chart"))
