@@ -46,12 +46,18 @@ def _report_arguments(parser) -> None:
     add_arguments(parser)
 
 
+def _run_arguments(parser) -> None:
+    from .commands.run import add_arguments
+    _report_arguments(parser)
+    add_arguments(parser)
+
+
 # Extra arguments of a command: name -> callable(parser)
 EXTRA_ARGUMENTS = {
     "converge": lambda p: importlib.import_module("rotorpillar.commands.converge").add_arguments(p),
     "modal": lambda p: importlib.import_module("rotorpillar.commands.converge").add_modal_arguments(p),
     "report": _report_arguments,
-    "run": _report_arguments,
+    "run": _run_arguments,
     "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
     "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
 }

@@ -68,9 +68,15 @@ def test_bad_input_exits_2_with_one_line_and_writes_nothing(tmp_path, args, key)
 
 
 def test_run_writes_every_stage(tmp_path):
-    p = cli("run", "paper", "--out", tmp_path)
+    p = cli("run", "paper", "--out", tmp_path, "--skip", "converge")
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "run.json").read_text())
     for name, stage in doc["stages"].items():
         assert (tmp_path / f"{name}.json").exists()
     assert (tmp_path / "analyze.json").exists()
+
+
+def test_run_refuses_an_unknown_stage_to_skip(tmp_path):
+    p = cli("run", "paper", "--out", tmp_path, "--skip", "lunch")
+    assert p.returncode == 2 and "--skip lunch" in p.stderr and "converge" in p.stderr
+    assert not tmp_path.exists() or not list(tmp_path.iterdir())

@@ -202,7 +202,8 @@ def test_inputs_from_another_scene_are_flagged(tmp_path):
 
 
 def test_run_ends_with_the_report_path(tmp_path):
-    p = subprocess.run([sys.executable, "-m", "rotorpillar", "run", "paper", "--out", str(tmp_path)],
+    p = subprocess.run([sys.executable, "-m", "rotorpillar", "run", "paper", "--out", str(tmp_path),
+                        "--skip", "converge"],
                        capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     last = p.stdout.strip().splitlines()[-1]
@@ -222,3 +223,27 @@ def test_an_input_of_another_shape_costs_one_section(tmp_path):
     assert "could not be written from its inputs (KeyError: &#x27;drive&#x27;)" in text
     assert "Modal validation" in text and "Versions, machine and timings" in text
     assert "section_averaging" in json.loads((tmp_path / "report.json").read_text())["failures"]
+
+
+def test_convergence_section_reads_the_selection(tmp_path):
+    """The section shows convergence.json's chosen model, why, and the references,
+    as `rotorpillar converge` writes them (selection.chosen, reference.<mode>)."""
+    run_cli("analyze", "paper", "--out", tmp_path)
+    conv = {"scene_name": "paper", "tolerance": 1e-3,
+            "selection": {"tolerance": 1e-3, "needed": ["bending"],
+                          "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
+                          "rule": "cheapest run meeting the tolerance",
+                          "chosen": {"label": "shell Q2 quadrilaterals, 16x20", "dofs": 6560,
+                                     "wall_time": 0.45, "bending_error_bound": 3e-4},
+                          "rejected_cheaper": [{"label": "Eq. 1 + ring (closed forms)", "dofs": 1,
+                                                "wall_time": 1e-4, "why": "bending bound 1.7e-02"}]},
+            "reference": {"bending": {"value": 30.818, "error_estimate": 4e-3, "order": 1.8,
+                                      "order_theory": 4, "runs": ["a", "b", "c"],
+                                      "check": {"within_estimate": True}}},
+            "failures": ["beams have no ovalling mode"]}
+    (tmp_path / "convergence.json").write_text(json.dumps(conv))
+    run_cli("report", "paper", "--out", tmp_path, "--no-animations")
+    text = (tmp_path / "report.html").read_text()
+    assert "shell Q2 quadrilaterals, 16x20 (6560 DOFs" in text
+    assert "bending 0.0003" in text and "bending bound 1.7e-02" in text
+    assert "30.818" in text and "beams have no ovalling mode" in text

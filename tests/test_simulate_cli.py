@@ -116,7 +116,7 @@ def test_rundown_with_the_motor_off(tmp_path):
 
 @pytest.mark.slow
 def test_run_includes_runup_and_earthquake(tmp_path):
-    p = cli("run", "paper", "--json", "--out", tmp_path)
+    p = cli("run", "paper", "--json", "--out", tmp_path, "--skip", "converge")
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     assert {"analyze", "simulate_runup", "simulate_earthquake"} <= doc["stages"].keys()

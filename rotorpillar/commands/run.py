@@ -33,6 +33,9 @@ RUN_STAGES = [
     ("simulate --case runup", "run-up from rest, reduced model", None),
     ("simulate --case earthquake", "earthquake, reduced model", None),
     ("modal", "3D modes of the tube, bare and with its top mass", None),
+    # minutes the first time, then read from its cache: the report's
+    # "which model does this scene need" section comes from it
+    ("converge", "mesh convergence, speed against accuracy, the model chosen (cached)", None),
     ("report", "charts, mode shapes, animations, report.html", _report_flags),
 ]
 
@@ -47,13 +50,26 @@ def stage_argv(command: str, args, extra=None) -> list[str]:
     return argv + (extra(args) if extra else [])
 
 
+def add_arguments(parser) -> None:
+    """run's own flags, beside the report's (which it passes on)."""
+    names = sorted({c.split()[0] for c, _, _ in RUN_STAGES} - {"report"})
+    parser.add_argument("--skip", action="append", default=[], metavar="STAGE",
+                        help=f"leave out a stage ({', '.join(names)}); repeatable")
+
+
 def run_command(scene, args, timings, context):
     """Every stage of RUN_STAGES, each writing its own JSON."""
     from ..cli import out_dir
+    from ..errors import InputError
     args._scene = scene
+    skip = set(getattr(args, "skip", []))
+    known = {c.split()[0] for c, _, _ in RUN_STAGES} - {"report"}
+    if skip - known:
+        raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
+    todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
     stages, lines = {}, []
-    for i, (command, what, extra) in enumerate(RUN_STAGES, start=1):
-        progress(f"run {i}/{len(RUN_STAGES)}: {command} ({what})")
+    for i, (command, what, extra) in enumerate(todo, start=1):
+        progress(f"run {i}/{len(todo)}: {command} ({what})")
         with timings(command):
             # the stage's summary goes to stderr: stdout may carry run's --json
             p = subprocess.run(stage_argv(command, args, extra), stdout=sys.stderr)

@@ -627,26 +627,61 @@ def section_earthquake(build: Build) -> str:
     return h.section("earthquake", "The earthquake", parts)
 
 
-_CHOSEN_KEYS = ("chosen", "chosen_model", "model_chosen", "choice", "selected", "recommended")
-_WHY_KEYS = ("why", "reason", "rationale", "because", "justification")
-
-
 def _chosen(doc: dict | None):
-    """(what, why) of the model choice in convergence.json, or None."""
-    if not isinstance(doc, dict):
+    """(what, why) of the model choice in convergence.json's ``selection``, or None."""
+    sel = doc.get("selection") if isinstance(doc, dict) else None
+    if not isinstance(sel, dict) or not isinstance(sel.get("chosen"), dict):
         return None
-    for k in _CHOSEN_KEYS:
-        if k in doc:
-            v = doc[k]
-            why = next((str(doc[w]) for w in _WHY_KEYS if w in doc), "")
-            if isinstance(v, dict):
-                why = next((str(v[w]) for w in _WHY_KEYS if w in v), why)
-                name = next((str(v[n]) for n in ("name", "model", "label", "id") if n in v), None)
-                what = name or ", ".join(f"{kk} = {h.num(vv)}" for kk, vv in v.items()
-                                         if kk not in _WHY_KEYS and not isinstance(vv, (dict, list)))
-                return what, why
-            return str(v), why
-    return None
+    c, band = sel["chosen"], sel.get("band") or {}
+    needed = sel.get("needed") or []
+    bounds = ", ".join(f"{q} {h.num(c.get(f'{q}_error_bound'), 2)}" for q in needed)
+    why = (f"the cheapest run whose error bound meets the tolerance {h.num(sel.get('tolerance'))} on "
+           f"every frequency the scene excites: the band up to {h.num(band.get('omega_max'), 4)} rad/s "
+           f"({h.num(band.get('margin'))} x the {band.get('driver', 'highest excitation')}) holds "
+           f"{', '.join(needed) or 'no mode'}; its bounds: {bounds}")
+    return f"{c.get('label')} ({c.get('dofs')} DOFs, {h.num(c.get('wall_time'), 3)} s)", why
+
+
+def _convergence_parts(c: dict) -> list:
+    parts = []
+    chosen = _chosen(c)
+    if chosen:
+        parts.append(h.tag("p", [h.tag("strong", "Chosen: "), chosen[0]]))
+        parts.append(h.tag("p", [h.tag("strong", "Why: "), chosen[1] + "."]))
+        rule = (c.get("selection") or {}).get("rule")
+        if rule:
+            parts.append(h.tag("p", f"Rule: {rule}.", class_="meta"))
+        rejected = (c.get("selection") or {}).get("rejected_cheaper") or []
+        if rejected:
+            parts.append(h.tag("h3", "Cheaper models that do not meet it"))
+            parts.append(h.table(["model", "DOFs", "wall time (s)", "why not"],
+                                 [[r.get("label"), r.get("dofs"), h.num(r.get("wall_time"), 3),
+                                   r.get("why", "")] for r in rejected]))
+    else:
+        parts.append(h.tag("p", "convergence.json names no chosen model (no run meets the "
+                                "tolerance).", class_="meta"))
+    ref = c.get("reference") or {}
+    if ref:
+        parts.append(h.tag("h3", "Reference frequencies (Richardson extrapolation)"))
+        rows = []
+        for q, r in ref.items():
+            if not isinstance(r, dict):
+                continue
+            chk = r.get("check") or {}
+            rows.append([q, h.num(r.get("value"), 7), h.num(r.get("error_estimate"), 2),
+                         h.num(r.get("order"), 3), h.num(r.get("order_theory"), 2),
+                         ", ".join(r.get("runs") or []),
+                         ("yes" if chk.get("within_estimate") else "no") if chk else "-"])
+        parts.append(h.table(["mode", "reference (rad/s)", "+- estimate", "observed order",
+                              "theory", "from", "three coarser runs predict the finest"], rows))
+    failures = c.get("failures") or []
+    if failures:
+        parts.append(h.tag("h3", "Where each method fails"))
+        parts.append(h.tag("ul", [h.tag("li", f) for f in failures]))
+    slim = {k: v for k, v in c.items() if k not in ("runs", "families", "selection", "reference",
+                                                     "failures", "extrapolations")}
+    parts.append(h.details("convergence.json (less its runs)", _run_table(slim)))
+    return parts
 
 
 def section_convergence(build: Build) -> str:
@@ -662,14 +697,7 @@ def section_convergence(build: Build) -> str:
                                     f"{r['tip_stiffness_source']}."))
     else:
         parts += _scene_differs(build, c)
-        chosen = _chosen(c)
-        if chosen:
-            parts.append(h.tag("p", [h.tag("strong", "Chosen: "), chosen[0]]))
-            if chosen[1]:
-                parts.append(h.tag("p", [h.tag("strong", "Why: "), chosen[1]]))
-        else:
-            parts.append(h.tag("p", "convergence.json names no chosen model.", class_="meta"))
-        parts.append(h.details("convergence.json", _run_table(c)))
+        parts += _convergence_parts(c)
     parts += _figures(build, "convergence")
     parts.append(h.tag("h3", "Integrators"))
     if build.integrators is None:
