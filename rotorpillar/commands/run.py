@@ -33,6 +33,7 @@ RUN_STAGES = [
     ("simulate --case runup", "run-up from rest, reduced model", None),
     ("simulate --case earthquake", "earthquake, reduced model", None),
     ("modal", "3D modes of the tube, bare and with its top mass", None),
+    ("integrators", "time integrators: error against cost, where each fails", None),
     # minutes the first time, then read from its cache: the report's
     # "which model does this scene need" section comes from it
     ("converge", "mesh convergence, speed against accuracy, the model chosen (cached)", None),
