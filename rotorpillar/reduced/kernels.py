@@ -206,6 +206,16 @@ def jacobians(t, q, v, P, Jq, Jv):
 
 
 @njit(cache=True)
+def _store_sample(k, q, v, W, out_q, out_v, out_w):
+    """Row k of the fixed-step schemes' output: coordinates, velocities, work."""
+    for i in range(q.shape[0]):
+        out_q[k, i] = q[i]
+        out_v[k, i] = v[i]
+    for i in range(W.shape[0]):
+        out_w[k, i] = W[i]
+
+
+@njit(cache=True)
 def _record_peak(q, P, peak_row):
     """peak_row[i] = max(peak_row[i], |q_i|); the last entry tracks |tip.z|."""
     base = P[4]
@@ -608,11 +618,7 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
         if kout < nout:
             _record_peak(q, P, out_peak[kout])
         if (step + 1) % stride == 0 and kout < nout:
-            for i in range(n):
-                out_q[kout, i] = q[i]
-                out_v[kout, i] = v[i]
-            for i in range(N_WORK):
-                out_w[kout, i] = W[i]
+            _store_sample(kout, q, v, W, out_q, out_v, out_w)
             kout += 1
     return OK, nfev, nit
 
@@ -669,11 +675,7 @@ def cd_solve(P, q0, v0, t0, h, nsteps, stride, out_q, out_v, out_w, out_peak):
         if kout < nout:
             _record_peak(q, P, out_peak[kout])
         if (step + 1) % stride == 0 and kout < nout:
-            for i in range(n):
-                out_q[kout, i] = q[i]
-                out_v[kout, i] = v[i]
-            for i in range(N_WORK):
-                out_w[kout, i] = W[i]
+            _store_sample(kout, q, v, W, out_q, out_v, out_w)
             kout += 1
     return OK, nfev, 0
 
