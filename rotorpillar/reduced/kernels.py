@@ -206,6 +206,16 @@ def jacobians(t, q, v, P, Jq, Jv):
 
 
 @njit(cache=True)
+def _start_output(q, v, P, out_q, out_v, out_w, out_peak):
+    """Clear the fixed-step schemes' peaks, store the initial state as row 0
+    (no work done yet); returns the number of output rows."""
+    out_peak[:, :] = 0.0
+    _store_sample(0, q, v, np.zeros(out_w.shape[1]), out_q, out_v, out_w)
+    _record_peak(q, P, out_peak[0])
+    return out_q.shape[0]
+
+
+@njit(cache=True)
 def _store_sample(k, q, v, W, out_q, out_v, out_w):
     """Row k of the fixed-step schemes' output: coordinates, velocities, work."""
     for i in range(q.shape[0]):
@@ -539,16 +549,7 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
     Jq = np.empty((n, n))
     Jv = np.empty((n, n))
     Jr = np.empty((n, n))
-    nout = out_q.shape[0]
-    for k in range(nout):
-        for i in range(n + 1):
-            out_peak[k, i] = 0.0
-    for i in range(n):
-        out_q[0, i] = q[i]
-        out_v[0, i] = v[i]
-    _record_peak(q, P, out_peak[0])
-    for i in range(N_WORK):
-        out_w[0, i] = 0.0
+    nout = _start_output(q, v, P, out_q, out_v, out_w, out_peak)
     kout = 1
     t = t0
     for step in range(nsteps):
@@ -645,16 +646,7 @@ def cd_solve(P, q0, v0, t0, h, nsteps, stride, out_q, out_v, out_w, out_peak):
     nfev = 1
     W = np.zeros(N_WORK)
     pw_old = dw[2 * n:].copy()
-    nout = out_q.shape[0]
-    for k in range(nout):
-        for i in range(n + 1):
-            out_peak[k, i] = 0.0
-    for i in range(n):
-        out_q[0, i] = q[i]
-        out_v[0, i] = v[i]
-    _record_peak(q, P, out_peak[0])
-    for i in range(N_WORK):
-        out_w[0, i] = 0.0
+    nout = _start_output(q, v, P, out_q, out_v, out_w, out_peak)
     kout = 1
     for step in range(nsteps):
         t = t0 + (step + 1) * h
