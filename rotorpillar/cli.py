@@ -19,6 +19,7 @@ from pathlib import Path
 from . import __version__
 from .errors import ComputationError, InputError, StageError
 from .provenance import Timings, machine, to_json, versions, write_json
+from .commands import is_root_rank, out_dir
 from .scene import Scene, embedded_scenes, load_scene
 
 # name -> (module, function, help).  A command function takes
@@ -89,16 +90,6 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _is_root_rank() -> bool:
-    """Write and print on MPI rank 0 only (mpi4py is imported only by fem3d)."""
-    mpi = sys.modules.get("mpi4py.MPI")
-    return mpi is None or mpi.COMM_WORLD.rank == 0
-
-
-def out_dir(scene: Scene, args) -> Path:
-    return args.out if args.out is not None else Path("out") / scene.name
-
-
 def execute(name: str, scene: Scene, args, context: dict | None = None) -> dict:
     """Run one command on a scene, write ``<out>/<name>.json``, return the result."""
     module, func, _ = COMMANDS[name]
@@ -111,7 +102,7 @@ def execute(name: str, scene: Scene, args, context: dict | None = None) -> dict:
     doc = {"command": name, "scene_source": str(args.scene), "overrides": list(args.overrides),
            "scene": scene.to_dict(), **result,
            "versions": versions(), "machine": machine(), "timings": dict(timings)}
-    if _is_root_rank():
+    if is_root_rank():
         path = write_json(out_dir(scene, args) / f"{name}.json", doc)
         doc["_path"] = str(path)
         doc["_summary"] = text
@@ -137,7 +128,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"rotorpillar {args.command}: interrupted; finished outputs are complete, "
               "none is half-written", file=sys.stderr)
         return 130
-    if _is_root_rank():
+    if is_root_rank():
         path, text = doc.pop("_path"), doc.pop("_summary")
         if args.json:
             print(to_json(doc))

@@ -24,6 +24,24 @@ from typing import Any, Optional
 
 from .errors import InputError
 
+# ---------------------------------------------------------------------------
+# The project's word lists: every module, the CLI and the report take them
+# from here, so a new case, model, integrator or cell type is added once.
+
+#: Transient cases of `rotorpillar simulate`.
+CASES = ("runup", "rundown", "sweep", "earthquake")
+#: Transient models: the paper's Eq. 4 as published, the pillar by its modes.
+MODELS = ("paper", "modal")
+#: The compiled adaptive integrator, scipy's solve_ivp methods, and the
+#: compiled fixed-step schemes.
+ADAPTIVE_INTEGRATORS = ("dp5",)
+SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+FIXED_STEP_INTEGRATORS = ("newmark", "hht", "generalized_alpha", "central_difference")
+INTEGRATORS = ADAPTIVE_INTEGRATORS + SCIPY_METHODS + FIXED_STEP_INTEGRATORS
+#: Cells of the 3D solid mesh, and of the shell's mid-surface mesh.
+CELL_TYPES = ("hexahedron", "tetrahedron")
+SHELL_CELL_TYPES = ("quadrilateral", "triangle")
+
 
 class SceneError(InputError):
     """Bad scene input; the message is one line naming the key and the range."""
@@ -116,9 +134,6 @@ class Load:
     coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0)
 
 
-CELL_TYPES = ("hexahedron", "tetrahedron")
-
-
 @dataclass(frozen=True)
 class Mesh:
     """Gmsh discretisation of the tube wall (rotorpillar.mesh, rotorpillar.fem3d).
@@ -181,21 +196,17 @@ class Converge:
                                          160, ge=32)
 
 
-SIMULATE_CASES = ("runup", "rundown", "sweep", "earthquake")
-SIMULATE_MODELS = ("paper", "modal")
-SIMULATE_INTEGRATORS = ("dp5", "RK45", "DOP853", "Radau", "BDF", "LSODA",
-                        "newmark", "hht", "generalized_alpha", "central_difference")
 
 
 @dataclass(frozen=True)
 class Simulate:
     """Transient runs of the reduced models (`rotorpillar simulate`)."""
-    case: str = param("Case run when --case is not given", "runup", choices=SIMULATE_CASES)
+    case: str = param("Case run when --case is not given", "runup", choices=CASES)
     model: str = param("Model: the paper's Eq. 4 as published, or the pillar by its modes",
-                       "paper", choices=SIMULATE_MODELS)
+                       "paper", choices=MODELS)
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",
-                            choices=SIMULATE_INTEGRATORS)
+                            choices=INTEGRATORS)
     rtol: float = param("Relative tolerance of the adaptive integrators (-)", 1e-7, gt=0, lt=1)
     time_step: float = param("Step of the fixed-step integrators, 0 = automatic (s)", 0.0, ge=0)
     samples: int = param("Largest number of output samples per run (-)", 20000, ge=10, le=10**6)

@@ -8,6 +8,18 @@ lives in the library modules they call.
 """
 
 import sys
+from pathlib import Path
+
+
+def out_dir(scene, args) -> Path:
+    """Where a command writes: ``--out DIR``, or ``out/<scene name>/``."""
+    return args.out if args.out is not None else Path("out") / scene.name
+
+
+def is_root_rank() -> bool:
+    """Write and print on MPI rank 0 only (mpi4py is imported only by fem3d)."""
+    mpi = sys.modules.get("mpi4py.MPI")
+    return mpi is None or mpi.COMM_WORLD.rank == 0
 
 
 def progress(message: str) -> None:

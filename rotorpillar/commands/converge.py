@@ -178,7 +178,7 @@ def _under_mpi() -> bool:
 
 
 def converge_command(scene, args, timings, context):
-    from ..cli import out_dir
+    from . import out_dir
     if _under_mpi():
         raise InputError("rotorpillar converge runs serially (each run is its own "
                          "subprocess): start it without mpirun")

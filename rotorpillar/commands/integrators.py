@@ -17,7 +17,7 @@ def add_arguments(p) -> None:
 
 
 def integrators_command(scene, args, timings, context):
-    from ..cli import _is_root_rank, out_dir
+    from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..reduced.integrator_study import run_study
     duration = getattr(args, "duration", 10.0)
@@ -26,7 +26,7 @@ def integrators_command(scene, args, timings, context):
     with timings("study"):
         result = run_study(scene, duration, quick=getattr(args, "quick", False), progress=progress)
     figures = []
-    if _is_root_rank():
+    if is_root_rank():
         from ..postprocess.transient_charts import integrators_chart
         path = out_dir(scene, args) / "integrators.png"
         with timings("chart"):

@@ -155,8 +155,8 @@ def summary(doc: dict, bare, loaded) -> str:
 
 
 def modal_command(scene, args, timings, context):
-    from ..analyze import pillar_closed_forms
-    from ..cli import out_dir
+    from ..reduced.reduction import pillar_closed_forms
+    from . import out_dir
     from ..fem3d import modal_analysis
     from ..fem3d.output import write_modes_vtu
     from ..mesh import tube_params

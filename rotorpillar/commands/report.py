@@ -24,13 +24,13 @@ def add_arguments(parser) -> None:
 
 
 def report_command(scene, args, timings, context):
-    from ..cli import _is_root_rank, out_dir
+    from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..postprocess.report import ReportOptions, build_report, summary_text
     frames = getattr(args, "max_frames", 180)
     if frames < 2:
         raise InputError(f"--max-frames = {frames}: must be >= 2")
-    if not _is_root_rank():
+    if not is_root_rank():
         return {"report": None}, ""
     options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
     progress(f"report: rendering into {out_dir(scene, args)}")

@@ -43,7 +43,7 @@ RUN_STAGES = [
 
 def stage_argv(command: str, args, extra=None) -> list[str]:
     """The command line of one stage, with run's scene, overrides and --out."""
-    from ..cli import out_dir
+    from . import out_dir
     argv = [sys.executable, "-m", "rotorpillar", *command.split(), str(args.scene),
             "--out", str(out_dir(args._scene, args))]
     for o in args.overrides:
@@ -60,7 +60,7 @@ def add_arguments(parser) -> None:
 
 def run_command(scene, args, timings, context):
     """Every stage of RUN_STAGES, each writing its own JSON."""
-    from ..cli import out_dir
+    from . import out_dir
     from ..errors import InputError
     args._scene = scene
     skip = set(getattr(args, "skip", []))

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import progress
+from ..scene import CASES, MODELS
 from ..provenance import atomic_path, machine, versions, write_json, write_text
 
 NPZ_SCALARS = ("tip_x_frame", "model", "case")
@@ -27,9 +28,9 @@ CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_
 
 
 def add_arguments(p) -> None:
-    p.add_argument("--case", choices=("runup", "rundown", "sweep", "earthquake"), default=None,
+    p.add_argument("--case", choices=CASES, default=None,
                    help="which transient (default: the scene's simulate.case)")
-    p.add_argument("--model", choices=("paper", "modal"), default=None,
+    p.add_argument("--model", choices=MODELS, default=None,
                    help="the paper's Eq. 4 as published, or the pillar by its modes "
                         "(default: the scene's simulate.model)")
     p.add_argument("--integrator", default=None,
@@ -42,7 +43,7 @@ def add_arguments(p) -> None:
 
 
 def simulate_command(scene, args, timings, context):
-    from ..cli import _is_root_rank, out_dir
+    from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..reduced.cases import run_case, scene_motion, series
     case = getattr(args, "case", None) or scene.simulate.case
@@ -66,7 +67,7 @@ def simulate_command(scene, args, timings, context):
         if key in res.extra:
             result[key] = res.extra[key]
     files, figures = {}, []
-    if _is_root_rank():
+    if is_root_rank():
         with timings("write"):
             files["npz"] = str(_write_npz(out / f"simulate_{case}.npz", data, res))
             files["csv"] = str(_write_csv(out / f"simulate_{case}.csv", data, res))
@@ -75,7 +76,7 @@ def simulate_command(scene, args, timings, context):
     result["files"] = files
     result["figures"] = figures
     context[f"simulate_{case}"] = result
-    if _is_root_rank():
+    if is_root_rank():
         copy_doc = {"command": "simulate", "scene_source": str(args.scene),
                     "overrides": list(args.overrides), "scene": scene.to_dict(), **result,
                     "versions": versions(), "machine": machine(), "timings": dict(timings)}

@@ -40,6 +40,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ..errors import ComputationError, InputError
+from ..scene import CELL_TYPES
 
 #: Physical group tags (dimension 3 for the volume, 2 for the surfaces).
 TUBE = 1
@@ -49,7 +50,6 @@ WALL = 3
 #: Their names in the Gmsh model.
 GROUP_NAMES = {(3, TUBE): "tube", (2, BASE): "base", (2, TOP): "top", (2, WALL): "wall"}
 
-CELL_TYPES = ("hexahedron", "tetrahedron")
 #: Gmsh element type -> (cell name, geometry order)
 GMSH_CELLS = {5: ("hexahedron", 1), 12: ("hexahedron", 2), 4: ("tetrahedron", 1),
               11: ("tetrahedron", 2), 3: ("quadrilateral", 1), 10: ("quadrilateral", 2),

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..scene import SHELL_CELL_TYPES
+
 SURFACE = 1
 """Cell tag of the mid-surface."""
 BASE = 1
@@ -21,7 +23,6 @@ BASE = 1
 TOP = 2
 """Facet tag of the top circle, z = H."""
 
-SHELL_CELL_TYPES = ("quadrilateral", "triangle")
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..scene import CASES  # the cases, in the order the report shows them
+
 #: Input name -> (file in out/<scene>/, the command that writes it).
 INPUTS = {
     "analyze": ("analyze.json", "analyze"),
@@ -45,8 +47,6 @@ INPUTS = {
     "integrators": ("integrators.json", "integrators"),
 }
 SIMULATE_COMMAND = "simulate"
-#: The cases `rotorpillar simulate` runs, in the order the report shows them.
-CASES = ("runup", "rundown", "sweep", "earthquake")
 
 
 def not_computed(command: str, scene_arg: str) -> str:

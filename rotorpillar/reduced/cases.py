@@ -28,15 +28,16 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..errors import InputError
+from ..scene import CASES
 from . import averaging as av
 from .drive import DriveSchedule
 from .excitation import GroundMotion, load_record, no_motion, paper_pulse, response_spectrum
 from .pillar_modes import PillarModes, beam_pillar_modes, modes_in_band
 from .rotor_models import RotorStructure, modal_model, paper_model
+from .reduction import pillar_closed_forms, resolve_reduction
 from .system import reduced_system
 from .transient import Settings, Transient, simulate, simulate_batch
 
-CASES = ("runup", "rundown", "sweep", "earthquake")
 JUMP_FACTOR = 5.0
 CAPTURE_WIDTH = 3.0          # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03     # relative
@@ -49,7 +50,6 @@ MAX_CANDIDATE_MODES = 12
 
 def paper_system(scene):
     """The paper's ReducedSystem with the scene's tip reduction (stated or Eq. 2)."""
-    from ..analyze import pillar_closed_forms, resolve_reduction
     red = resolve_reduction(scene, pillar_closed_forms(scene))
     return reduced_system(scene, red["tip_mass"], red["tip_stiffness"]), red
 

@@ -31,14 +31,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 from .rotor_models import RotorStructure
 
-SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
-FIXED_STEP = ("newmark", "hht", "generalized_alpha", "central_difference")
-INTEGRATORS = ("dp5",) + SCIPY_METHODS + FIXED_STEP
+FIXED_STEP = FIXED_STEP_INTEGRATORS
 IMPLICIT = ("Radau", "BDF", "LSODA", "newmark", "hht", "generalized_alpha")
 STATUS = {K.OK: "ok", K.MAX_STEPS: "too many steps", K.STEP_TOO_SMALL: "step size underflow",
           K.NOT_FINITE: "solution diverged (not finite)", K.NEWTON_FAILED: "Newton iterations failed"}
