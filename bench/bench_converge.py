@@ -10,7 +10,7 @@ hexahedra 128 x 20 x 1 (the choice at 1e-3).  Each value is a time ratio.
 import inspect
 import time
 
-from rotorpillar.fem3d.shell import ShellDiscretisation, shell_modal_analysis, shell_section_of
+from rotorpillar.fem3d.naghdi import ShellDiscretisation, shell_modal_analysis, shell_section_of
 from rotorpillar.reduced.beam_fe import BeamProperties, beam_modes
 from rotorpillar.reduced.pillar import cowper_shear_coefficient, section_of
 from rotorpillar.scene import Mesh, load_scene

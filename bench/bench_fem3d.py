@@ -32,7 +32,7 @@ def _case(scene, mesh, label):
     from petsc4py import PETSc
 
     from rotorpillar.fem3d import assemble_pillar
-    from rotorpillar.fem3d.modal import factorisation_time, solve_gep_shift_invert
+    from rotorpillar.fem3d.eigensolver import factorisation_time, solve_gep_shift_invert
     model = assemble_pillar(scene, top=False, mesh=mesh)
     n = scene.modal.n_modes + 1              # what rotorpillar modal computes
     solve_gep_shift_invert(model.K, model.M, n)          # warm-up

@@ -45,7 +45,7 @@ import numpy as np
 import pytest
 
 from rotorpillar.fem3d import assemble_pillar, modal_analysis, tip_reduction
-from rotorpillar.fem3d.analysis import run_modal
+from rotorpillar.fem3d.modal import run_modal
 from rotorpillar.fem3d.model import assemble_model
 from rotorpillar.reduced.pillar import (cowper_shear_coefficient, omega_euler_bernoulli,
                                         omega_timoshenko, section_of)

@@ -105,7 +105,7 @@ def test_a_gmsh_crash_is_an_error_not_a_dead_process(tmp_path, monkeypatch):
     fake = tmp_path / "crashing-python"
     fake.write_text("#!/bin/sh\nkill -SEGV $$\n")
     fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
-    monkeypatch.setattr("rotorpillar.mesh.sys.executable", str(fake))
+    monkeypatch.setattr("rotorpillar.mesh.isolated.sys.executable", str(fake))
     with pytest.raises(ComputationError) as err:
         tube_mesh_data(params(), isolated=True)
     msg = str(err.value)

@@ -54,7 +54,7 @@ def test_sanders_n2_of_a_very_long_tube_is_the_ring():
 
 
 def _shell(na, nz, ends="clamped-free", n_modes=12):
-    from rotorpillar.fem3d.shell import ShellDiscretisation, ShellSection, shell_modal_analysis
+    from rotorpillar.fem3d.naghdi import ShellDiscretisation, ShellSection, shell_modal_analysis
     return shell_modal_analysis(ShellSection(E, NU, RHO, T), R, H, ShellDiscretisation(na, nz),
                                 n_modes=n_modes, ends=ends)
 
@@ -88,8 +88,9 @@ def test_cantilever_bending_is_timoshenkos_beam():
 def test_rigid_rotation_has_no_bending_strain():
     import ufl
     from dolfinx import fem
-    from rotorpillar.fem3d import shell as sh
-    from rotorpillar.mesh.shell import MidSurface, mid_surface_mesh
+    from rotorpillar.fem3d import naghdi as sh
+    from rotorpillar.fem3d.naghdi import mid_surface_mesh
+    from rotorpillar.mesh.midsurface import MidSurface
 
     facet = math.pi * H / (2 * R)
     ours = []

@@ -18,7 +18,7 @@ rotor's plane); y is horizontal, normal to it.
 
 from __future__ import annotations
 
-from .analysis import AXES, ModalResult  # noqa: F401  (numpy-only modules)
+from .modal import AXES, ModalResult  # noqa: F401  (numpy-only modules)
 from .reduction import TipReduction, tip_reduction  # noqa: F401
 
 from collections import OrderedDict
@@ -60,7 +60,7 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
     settings, n_modes, communicator size) within a process.
     """
     from mpi4py import MPI
-    from .analysis import run_modal
+    from .modal import run_modal
     comm = MPI.COMM_WORLD if comm is None else comm
     mesh = scene.mesh if mesh is None else mesh
     n_modes = scene.modal.n_modes if n_modes is None else n_modes

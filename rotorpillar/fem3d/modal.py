@@ -1,114 +1,276 @@
-"""The one SLEPc wrapper: K x = lambda M x by shift-invert with MUMPS.
+"""Modal analysis of the tube: assemble, solve, name, normalise, reduce.
 
-Krylov-Schur on (K - sigma M)^-1 M, one symmetric (LDL^T) factorisation of
-K - sigma M by MUMPS (half the memory and time of LU; indefinite is fine),
-the n eigenvalues nearest sigma, returned sorted ascending.  PETSc
-options under the prefix ``modal_`` override the settings, e.g.
-``-modal_eps_ncv 40`` or ``-modal_eps_view``.  Any failure is a
-:class:`~rotorpillar.errors.ComputationError` saying what failed.
+The pipeline of :func:`modal_analysis`: Gmsh mesh -> K, M (dolfinx) ->
+shift-invert SLEPc -> the shapes gathered on rank 0 -> each mode named from
+its shape (:mod:`.identify`), degenerate pairs aligned with x/y (or cos/sin)
+-> normalised (bending: unit mean displacement of the top section in its
+direction, so that a modal coordinate is the tip displacement in metres;
+every other mode: max |u| = 1) -> generalised mass and stiffness.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+import time
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..errors import ComputationError
+from . import identify
+from .eigensolver import solve_gep_shift_invert
+from .model import PillarModel, assemble_model
 
-OPTIONS_PREFIX = "modal_"
+#: Two eigenvalues closer than this (relative) form a degenerate pair.
+PAIR_TOLERANCE = 1e-5
+
+#: The axes of the 3D model (written to modal.json as ``axes``).
+AXES = {
+    "tube_axis": "z (base z = 0, top z = H)",
+    "x": "the paper's X: horizontal, in the rotor's plane (bending_x)",
+    "y": "horizontal, normal to the rotor's plane, along the rotor's spin axis (the paper's Z; bending_y)",
+    "z": "the paper's Y (vertical, along the pillar)",
+    "origin": "centre of the base section",
+}
 
 
 @dataclass(frozen=True)
-class EigenSolution:
-    """Eigenpairs of the pencil (K, M), ascending, M-orthonormal vectors."""
-    eigenvalues: np.ndarray
-    """lambda = omega**2 (rad**2/s**2)"""
-    vectors: list
-    """PETSc Vecs, one per eigenvalue"""
-    iterations: int
-    """Krylov-Schur restarts"""
-    errors: np.ndarray
-    """SLEPc's error estimates of the eigenpairs (relative, -)"""
+class ModalResult:
+    """Modes of the tube, ascending, named from their shapes.
 
-
-def solve_gep_shift_invert(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
-                           max_it: int = 500, ncv: int | None = None) -> EigenSolution:
-    """The ``n_modes`` eigenpairs of K x = lambda M x nearest ``sigma`` (rad**2/s**2).
-
-    K must be nonsingular after the shift (a clamped structure with sigma = 0,
-    or any structure with sigma < 0).  Rows with K_ii = 1, M_ii = 0 (the
-    Dirichlet rows) have lambda = infinity and are never returned.
+    Arrays of shapes and geometry are on MPI rank 0 only (None elsewhere).
     """
-    from petsc4py import PETSc
-    from slepc4py import SLEPc
-    if n_modes < 1:
-        raise ValueError("n_modes must be >= 1")
-    eps = SLEPc.EPS().create(K.getComm())
-    try:
-        eps.setOptionsPrefix(OPTIONS_PREFIX)
-        eps.setOperators(K, M)
-        eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
-        eps.setType(SLEPc.EPS.Type.KRYLOVSCHUR)
-        eps.setDimensions(n_modes, ncv if ncv is not None else PETSc.DECIDE)
-        eps.setTarget(sigma)
-        eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
-        eps.setTolerances(tol, max_it)
-        # No purification: the massless rows (clamped dofs, rigid-top placeholders and
-        # rotations) are either decoupled or statically tied to the massive ones, so the
-        # Krylov vectors already satisfy them; purifying costs one more solve per mode.
-        eps.setPurify(False)
-        st = eps.getST()
-        st.setType(SLEPc.ST.Type.SINVERT)
-        st.setShift(sigma)
-        ksp = st.getKSP()
-        ksp.setType(PETSc.KSP.Type.PREONLY)
-        pc = ksp.getPC()
-        pc.setType(PETSc.PC.Type.CHOLESKY)
-        pc.setFactorSolverType("mumps")
-        eps.setFromOptions()
-        eps.solve()
-        nconv = eps.getConverged()
-        if nconv < n_modes:
-            raise ComputationError(
-                f"SLEPc converged {nconv} of {n_modes} eigenpairs in {eps.getIterationNumber()} "
-                f"restarts (reason {eps.getConvergedReason()}, tolerance {tol:g})")
-        lam, vecs, res = [], [], []
-        for i in range(nconv):
-            x = K.createVecRight()
-            lam.append(eps.getEigenpair(i, x).real)
-            res.append(eps.getErrorEstimate(i))
-            vecs.append(x)
-        iterations = eps.getIterationNumber()
-    except PETSc.Error as exc:
-        raise ComputationError(f"PETSc/SLEPc failed in the modal solve (error code {exc.ierr}; "
-                               "a MUMPS factorisation failure is typical of an unclamped or "
-                               "disconnected model)") from None
-    finally:
-        eps.destroy()
-    order = np.argsort(lam)[:n_modes]
-    return EigenSolution(np.asarray(lam)[order], [vecs[i] for i in order], iterations,
-                         np.asarray(res)[order])
+    omega: np.ndarray
+    """angular frequencies (rad/s)"""
+    kind: tuple
+    """per mode: bending_x, bending_y, ovalling, torsion, axial, breathing or other"""
+    n_circumferential: tuple
+    """per mode: waves around the circumference (1 bending, 0 torsion/axial/breathing), or None"""
+    n_axial: tuple
+    """per mode: sign changes of its profile along the height (0 = first of its family), or None"""
+    share: np.ndarray
+    """per mode: share of its dominant circumferential harmonic (-)"""
+    normalisation: tuple
+    """per mode: "unit_tip" (bending) or "unit_max\""""
+    modal_mass: np.ndarray
+    """phi^T M phi for the normalised shape (kg)"""
+    modal_stiffness: np.ndarray
+    """phi^T K phi for the normalised shape (N/m)"""
+    tip: np.ndarray
+    """(n, 2) mean (u_x, u_y) of the top section, normalised shape (m per unit modal coordinate)"""
+    top: bool
+    """the masses on top (True) or the bare tube (False)"""
+    top_model: str | None
+    """None, "rigid" or "ring_mass\""""
+    top_mass: float
+    """mass on top (kg)"""
+    dofs: int
+    """global number of unknowns (tube dofs + 6 for a rigid top)"""
+    cells: int
+    cell_type: str
+    degree: int
+    mesh: object
+    """the scene's [mesh] section used"""
+    timings: dict
+    """seconds: mesh, assembly, solve, postprocess"""
+    solver: dict = field(default_factory=dict)
+    """SLEPc: iterations, tolerance, max residual"""
+    points: np.ndarray | None = None
+    """vertex coordinates of the first-order cells (m), rank 0"""
+    vtu_cells: np.ndarray | None = None
+    """first-order cell connectivity into ``points``, rank 0"""
+    shapes: np.ndarray | None = None
+    """(modes, points, 3) normalised displacement at ``points``, rank 0"""
+    beam_line: dict | None = None
+    """per bending_x mode index: (z levels, mean u_x per level), rank 0"""
+    rigid_top: np.ndarray | None = None
+    """(modes, 6) the rigid plate's q = (U, Theta) per normalised mode, rank 0"""
+
+    @property
+    def frequency_hz(self) -> np.ndarray:
+        return self.omega / (2 * math.pi)
+
+    def index(self, kind: str, n_axial: int | None = None, n_circumferential: int | None = None,
+              nth: int = 0) -> int | None:
+        """Index of the ``nth`` mode of a kind (and wave numbers), or None."""
+        hits = [i for i, k in enumerate(self.kind) if k == kind
+                and (n_axial is None or self.n_axial[i] == n_axial)
+                and (n_circumferential is None or self.n_circumferential[i] == n_circumferential)]
+        return hits[nth] if len(hits) > nth else None
+
+    def first(self, kind: str, **kw) -> float | None:
+        """Angular frequency of the first mode of a kind (rad/s), or None."""
+        i = self.index(kind, **kw)
+        return None if i is None else float(self.omega[i])
+
+    def modes_table(self) -> list[dict]:
+        """One JSON-ready dict per mode."""
+        out = []
+        for i in range(len(self.omega)):
+            row = {"index": i, "omega": float(self.omega[i]),
+                   "frequency_hz": float(self.frequency_hz[i]), "kind": self.kind[i],
+                   "n_circumferential": self.n_circumferential[i], "n_axial": self.n_axial[i],
+                   "harmonic_share": float(self.share[i]),
+                   "normalisation": self.normalisation[i],
+                   "modal_mass": float(self.modal_mass[i]),
+                   "modal_stiffness": float(self.modal_stiffness[i]),
+                   "tip_displacement": [float(t) for t in self.tip[i]]}
+            if self.kind[i] in ("bending_x", "bending_y"):
+                # Unit tip: the modal mass is the mass referred to the tip displacement.
+                row["tip_modal_mass"] = float(self.modal_mass[i])
+                row["tip_stiffness"] = float(self.modal_stiffness[i])
+                if self.top:
+                    row["pillar_modal_mass"] = float(self.modal_mass[i] - self.top_mass)
+            if self.rigid_top is not None:
+                row["top_plate_motion"] = [float(q) for q in self.rigid_top[i]]
+            out.append(row)
+        return out
 
 
-def factorisation_time(K, M, sigma: float = 0.0) -> float:
-    """Seconds of one MUMPS factorisation of K - sigma M, as the modal solve does it."""
-    import time
+def _scene_top_mass(scene) -> float:
+    m = scene.gondola.mass
+    if scene.modal.top_mass == "gondola_and_rotor":
+        m += scene.rotor.mass
+    return m
 
-    from petsc4py import PETSc
-    A = K.copy()
-    if sigma != 0.0:
-        A.axpy(-sigma, M)
-    ksp = PETSc.KSP().create(K.getComm())
-    try:
-        ksp.setOperators(A)
-        ksp.setType(PETSc.KSP.Type.PREONLY)
-        pc = ksp.getPC()
-        pc.setType(PETSc.PC.Type.CHOLESKY)
-        pc.setFactorSolverType("mumps")
-        t0 = time.perf_counter()
-        ksp.setUp()
-        return time.perf_counter() - t0
-    finally:
-        ksp.destroy()
-        A.destroy()
+
+def _vtu_map(model: PillarModel, coords: np.ndarray):
+    """Vertices of the Gmsh cells and, for each, its node in the global dof order."""
+    from scipy.spatial import cKDTree
+    data = model.mesh_data
+    corner = data.corner_cells()
+    used, inverse = np.unique(corner, return_inverse=True)
+    pts = data.points[used]
+    dist, node = cKDTree(coords).query(pts)
+    scale = max(model.params.height, model.params.outer_radius)
+    if np.max(dist) > 1e-8 * scale:
+        raise ComputationError("mode shapes: a mesh vertex has no dof at its place "
+                               f"(distance {np.max(dist):.3g} m)")
+    return pts, inverse.reshape(corner.shape), node
+
+
+def _align_and_normalise(omega, shapes, rings):
+    """Per mode: description, T with normalised modes = raw modes @ T, pairs (rank 0)."""
+    n = len(omega)
+    T = np.eye(n)
+    pairs = []
+    desc = [identify.describe_mode(None, shapes[i], rings) for i in range(n)]
+    i = 0
+    while i < n - 1:
+        close = abs(omega[i + 1] - omega[i]) <= PAIR_TOLERANCE * max(omega[i], 1e-30)
+        nc = desc[i].n_circumferential
+        if close and nc is not None and nc >= 1 and nc == desc[i + 1].n_circumferential:
+            R = identify.pair_coefficients(rings, shapes[i], shapes[i + 1], nc)
+            T[np.ix_([i, i + 1], [i, i + 1])] = R
+            pairs.append(i)
+            i += 2
+        else:
+            i += 1
+    aligned = np.einsum("mij,mk->kij", shapes, T)
+    desc = [identify.describe_mode(None, aligned[k], rings) for k in range(n)]
+    scale, norm = np.ones(n), []
+    for k, d in enumerate(desc):
+        if d.kind in ("bending_x", "bending_y"):
+            t = d.tip[0] if d.kind == "bending_x" else d.tip[1]
+            if abs(t) > 1e-12 * d.max_abs:
+                scale[k], label = 1 / t, "unit_tip"
+            else:
+                scale[k], label = 1 / d.max_abs, "unit_max"
+        else:
+            u = aligned[k]
+            flat = u.reshape(-1)
+            j = int(np.argmax(np.abs(flat)))
+            scale[k], label = np.sign(flat[j]) / d.max_abs, "unit_max"
+        norm.append(label)
+    T = T * scale[None, :]
+    desc = [replace(d, tip=(d.tip[0] * scale[k], d.tip[1] * scale[k]),
+                    max_abs=d.max_abs * abs(scale[k])) for k, d in enumerate(desc)]
+    return desc, T, norm, pairs
+
+
+def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
+              mesh_section=None) -> ModalResult:
+    """Solve, gather, name, align and normalise the modes of an assembled model.
+
+    One eigenpair more than asked is computed, so that a degenerate pair cut
+    by ``n_modes`` is still aligned (the last mode returned is then the
+    x or cos member of its pair, not an arbitrary combination).
+    """
+    comm = model.comm
+    timings = dict(model.timings)
+    t0 = time.perf_counter()
+    sol = solve_gep_shift_invert(model.K, model.M, n_modes + 1, sigma=sigma, tol=tol)
+    timings["solve"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    lam = np.asarray(sol.eigenvalues)
+    if np.any(lam < -1e-6 * np.max(np.abs(lam))):
+        raise ComputationError(f"negative eigenvalue {lam.min():.4g}: the model is not stable")
+    omega = np.sqrt(np.maximum(lam, 0.0))
+    coords = model.gather_coordinates()
+    n_nodes = model.tube_dofs // 3
+    raw = [model.gather_vector(model.tube_displacement(x)) for x in sol.vectors]
+    raw_q = [model.gather_vector(x) for x in sol.vectors] if model.extra_dofs else None
+    desc = T = norm = pairs = None
+    if comm.rank == 0:
+        shapes = np.stack([r.reshape(n_nodes, 3) for r in raw])
+        rings = identify.rings_of(coords, model.params.height)
+        desc, T, norm, pairs = _align_and_normalise(omega, shapes, rings)
+        desc, T, norm = desc[:n_modes], T[:, :n_modes], norm[:n_modes]
+        pairs = [i for i in pairs if i + 1 < n_modes]
+    T = comm.bcast(T, root=0)
+    pairs = comm.bcast(pairs, root=0)
+    omega = omega[:n_modes]
+    # The normalised modes as distributed vectors: generalised mass and stiffness.
+    local = np.stack([x.getArray() for x in sol.vectors], axis=1) @ T
+    mm, kk = np.empty(n_modes), np.empty(n_modes)
+    y = model.K.createVecLeft()
+    phi = model.K.createVecRight()
+    for k in range(n_modes):
+        phi.setArray(local[:, k])
+        model.M.mult(phi, y)
+        mm[k] = phi.dot(y)
+        model.K.mult(phi, y)
+        kk[k] = phi.dot(y)
+    y.destroy()
+    phi.destroy()
+    for x in sol.vectors:
+        x.destroy()
+    # The Rayleigh quotient of each final vector: its Ritz value for a simple
+    # mode; a degenerate pair (equal by symmetry, split ~1e-8 by round-off)
+    # gets the mean of its two.
+    lam = np.maximum(kk / mm, 0.0)
+    for i in pairs:
+        lam[i] = lam[i + 1] = (lam[i] + lam[i + 1]) / 2
+    omega = np.sqrt(lam)
+    desc = comm.bcast(desc, root=0)
+    norm = comm.bcast(norm, root=0)
+    points = vtu_cells = shapes_out = beam_line = rigid = None
+    if comm.rank == 0:
+        shapes_n = (np.stack(raw, axis=1) @ T).T.reshape(n_modes, n_nodes, 3)
+        points, vtu_cells, node = _vtu_map(model, coords)
+        shapes_out = shapes_n[:, node, :]
+        beam_line = {}
+        for k, d in enumerate(desc):
+            if d.kind == "bending_x":
+                beam_line[k] = (rings.levels.copy(), identify.level_mean(rings, shapes_n[k][:, 0]))
+        if model.extra_dofs:
+            rigid = (np.stack([q[model.tube_dofs:] for q in raw_q], axis=1) @ T).T.copy()
+    timings["postprocess"] = time.perf_counter() - t0
+    ms = mesh_section
+    cell_type = model.params.cell_type if ms is None else ms.cell_type
+    return ModalResult(
+        omega=omega, kind=tuple(d.kind for d in desc),
+        n_circumferential=tuple(d.n_circumferential for d in desc),
+        n_axial=tuple(d.n_axial for d in desc), share=np.array([d.share for d in desc]),
+        normalisation=tuple(norm), modal_mass=mm, modal_stiffness=kk,
+        tip=np.array([d.tip for d in desc]), top=model.top_model is not None,
+        top_model=model.top_model, top_mass=model.top_mass, dofs=model.size,
+        cells=model.mesh.topology.index_map(3).size_global, cell_type=cell_type,
+        degree=model.V.ufl_element().degree(), mesh=ms, timings=timings,
+        solver={"iterations": sol.iterations, "tolerance": tol, "shift": sigma,
+                "max_error_estimate": float(np.max(sol.errors)), "computed": len(sol.eigenvalues),
+                "type": "krylovschur, sinvert, mumps ldlt",
+                "ranks": comm.size},
+        points=points, vtu_cells=vtu_cells, shapes=shapes_out, beam_line=beam_line,
+        rigid_top=rigid)

@@ -2,6 +2,6 @@
 
 import sys
 
-from . import _worker
+from .isolated import _worker
 
 sys.exit(_worker())

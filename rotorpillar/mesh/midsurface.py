@@ -73,27 +73,3 @@ def gmsh_mid_surface(model, params: MidSurface) -> dict[str, int]:
     model.addPhysicalGroup(1, [circle], BASE, name="base")
     model.addPhysicalGroup(1, [top], TOP, name="top")
     return {"surface": surface, "base": circle, "top": top}
-
-
-def mid_surface_mesh(params: MidSurface, comm=None):
-    """The dolfinx mesh of the mid-surface: (mesh, cell_tags, facet_tags)."""
-    import gmsh
-    from mpi4py import MPI
-    from ..fem3d.dolfinx_import import import_dolfinx
-    import_dolfinx()
-    from dolfinx.io import gmshio
-
-    comm = MPI.COMM_WORLD if comm is None else comm
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        if comm.rank == 0:
-            gmsh.model.add("tube_mid_surface")
-            gmsh_mid_surface(gmsh.model, params)
-            gmsh.model.mesh.generate(2)
-            # complete 9-node quadrilaterals: dolfinx reads these, not 8-node ones
-            gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
-            gmsh.model.mesh.setOrder(params.order)
-        return gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
-    finally:
-        gmsh.finalize()

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..mesh.shell import BASE, TOP, MidSurface, mid_surface_radius
+from ..mesh.midsurface import BASE, TOP, MidSurface, gmsh_mid_surface, mid_surface_radius
 
 SHEAR_CORRECTION = 5.0 / 6.0
 """k_s of Reissner-Mindlin theory (-)"""
@@ -316,7 +316,6 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
 
 
 def _mesh(radius, height, disc: ShellDiscretisation, comm):
-    from ..mesh.shell import mid_surface_mesh
     return mid_surface_mesh(MidSurface(radius, height, disc.elements_around,
                                        disc.elements_along, disc.cell_type), comm)
 
@@ -346,3 +345,27 @@ def _gather(a: np.ndarray, comm) -> np.ndarray:
     if comm.size == 1:
         return a
     return np.concatenate(comm.allgather(a))
+
+
+def mid_surface_mesh(params: MidSurface, comm=None):
+    """The dolfinx mesh of the mid-surface: (mesh, cell_tags, facet_tags)."""
+    import gmsh
+    from mpi4py import MPI
+    from .dolfinx_import import import_dolfinx
+    import_dolfinx()
+    from dolfinx.io import gmshio
+
+    comm = MPI.COMM_WORLD if comm is None else comm
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        if comm.rank == 0:
+            gmsh.model.add("tube_mid_surface")
+            gmsh_mid_surface(gmsh.model, params)
+            gmsh.model.mesh.generate(2)
+            # complete 9-node quadrilaterals: dolfinx reads these, not 8-node ones
+            gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
+            gmsh.model.mesh.setOrder(params.order)
+        return gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
+    finally:
+        gmsh.finalize()

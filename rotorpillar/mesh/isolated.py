@@ -1,0 +1,84 @@
+"""Gmsh in a child process: a crash inside Gmsh cannot take the caller down.
+
+``python -m rotorpillar.mesh`` is the worker: the parameters arrive as JSON
+on the command line, the arrays leave as npz bytes on stdout.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from dataclasses import asdict
+
+from ..errors import ComputationError, InputError
+from .arrays import MeshData, extract_mesh_data
+from .tube import TubeMeshParams, build_tube
+
+#: Seconds a meshing child process may take before it is stopped.
+MESH_TIMEOUT = 600.0
+
+
+def _mesh_in_process(p: TubeMeshParams) -> MeshData:
+    import gmsh
+    gmsh.initialize(["-noenv"], readConfigFiles=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.option.setNumber("General.NumThreads", 1)
+        gmsh.model.add("tube")
+        build_tube(gmsh.model, p)
+        data = extract_mesh_data(gmsh.model)
+    except InputError:
+        raise
+    except Exception as exc:  # Gmsh raises plain Exceptions carrying its log line
+        raise ComputationError(f"Gmsh failed to mesh the tube: {exc}") from None
+    finally:
+        gmsh.finalize()
+    expected = p.cells
+    if len(data.cells) != expected:
+        raise ComputationError(f"Gmsh made {len(data.cells)} cells, expected {expected}")
+    return data
+
+
+def tube_mesh_data(p: TubeMeshParams, *, isolated: bool = True) -> MeshData:
+    """Mesh the tube with Gmsh and return its arrays.
+
+    With ``isolated`` (the default) Gmsh runs in a child process (``python -m
+    rotorpillar.mesh``), so that a crash inside Gmsh cannot take the caller,
+    possibly an MPI rank holding PETSc objects, down with it.
+    """
+    if not isolated:
+        return _mesh_in_process(p)
+    try:
+        # The parameters go on the command line, not through stdin: writing to
+        # the pipe of a child that has already died raises SIGPIPE, which
+        # PETSc's signal handler (installed once petsc4py is imported) turns
+        # into an abort of the caller.
+        proc = subprocess.run(worker_command() + [json.dumps(asdict(p))], capture_output=True,
+                              stdin=subprocess.DEVNULL, timeout=MESH_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        raise ComputationError(f"Gmsh did not finish meshing the tube within {MESH_TIMEOUT:g} s") from None
+    if proc.returncode != 0:
+        err = proc.stderr.decode(errors="replace").strip().splitlines()
+        last = err[-1] if err else f"exit code {proc.returncode}"
+        if proc.returncode < 0:
+            last = f"killed by signal {-proc.returncode} ({last})"
+        raise ComputationError(f"Gmsh failed to mesh the tube: {last}")
+    return MeshData.from_bytes(proc.stdout)
+
+
+def worker_command() -> list[str]:
+    """The command line of the isolated meshing process."""
+    return [sys.executable, "-m", "rotorpillar.mesh"]
+
+
+def _worker() -> int:
+    """Child-process entry: params as JSON in argv[1], MeshData as npz bytes on stdout."""
+    params = TubeMeshParams(**json.loads(sys.argv[1]))
+    try:
+        data = _mesh_in_process(params)
+    except (ComputationError, InputError) as exc:
+        print(str(exc).removeprefix("Gmsh failed to mesh the tube: "), file=sys.stderr)
+        return 1
+    sys.stdout.buffer.write(data.to_bytes())
+    return 0

@@ -1,0 +1,184 @@
+"""The tube as a Gmsh model: its parameters, the structured builder, the group tags.
+
+Axes: z along the tube (base at z = 0), x the paper's X, y the other
+horizontal direction.  Units: m.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..scene import CELL_TYPES
+
+#: Physical group tags (dimension 3 for the volume, 2 for the surfaces).
+TUBE = 1
+BASE = 1
+TOP = 2
+WALL = 3
+#: Their names in the Gmsh model.
+GROUP_NAMES = {(3, TUBE): "tube", (2, BASE): "base", (2, TOP): "top", (2, WALL): "wall"}
+
+#: Gmsh element type -> (cell name, geometry order)
+GMSH_CELLS = {5: ("hexahedron", 1), 12: ("hexahedron", 2), 4: ("tetrahedron", 1),
+              11: ("tetrahedron", 2), 3: ("quadrilateral", 1), 10: ("quadrilateral", 2),
+              2: ("triangle", 1), 9: ("triangle", 2)}
+
+
+@dataclass(frozen=True)
+class TubeMeshParams:
+    """What Gmsh needs to build the tube: its geometry and its discretisation."""
+    height: float
+    """H (m)"""
+    outer_radius: float
+    """r_o = D0/2 (m)"""
+    inner_radius: float
+    """r_i = D1/2 (m), 0 < r_i < r_o"""
+    elements_around: int
+    """cells around the circumference (-)"""
+    elements_along: int
+    """cells along the height (-)"""
+    elements_through: int
+    """cells through the wall (-)"""
+    order: int
+    """geometry order, 1 (straight edges) or 2 (nodes on the circles)"""
+    cell_type: str
+    """"hexahedron" or "tetrahedron\""""
+    grading: float = 1.0
+    """ratio of the longest cell along the height (at the top) to the shortest
+    (at the clamped base), a geometric progression; 1 = uniform (-)"""
+
+    def __post_init__(self):
+        for key, lo in (("elements_around", 4), ("elements_along", 1), ("elements_through", 1)):
+            v = getattr(self, key)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
+                raise InputError(f"mesh.{key} = {v!r} is out of range: must be an integer >= {lo}")
+        for key, name in (("height", "pillar.height"), ("outer_radius", "pillar.outer_diameter")):
+            v = getattr(self, key)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise InputError(f"{name}: {key} = {v!r} is out of range: must be > 0 (m)")
+        ri = self.inner_radius
+        if not (isinstance(ri, (int, float)) and math.isfinite(ri) and 0 < ri < self.outer_radius):
+            raise InputError(f"pillar.inner_diameter = {2 * ri!r} is out of range: the 3D model needs "
+                             f"a tube, 0 < inner_diameter < outer_diameter = {2 * self.outer_radius:g} (m)")
+        g = self.grading
+        if not (isinstance(g, (int, float)) and math.isfinite(g) and g >= 1):
+            raise InputError(f"mesh.grading = {g!r} is out of range: must be >= 1")
+        if self.order not in (1, 2):
+            raise InputError(f"mesh.degree = {self.order!r}: must be one of 1, 2")
+        if self.cell_type not in CELL_TYPES:
+            raise InputError(f"mesh.cell_type = {self.cell_type!r}: must be one of "
+                             + ", ".join(repr(c) for c in CELL_TYPES))
+
+    @property
+    def sectors(self) -> int:
+        """Transfinite sectors of the annulus: 4 (quarter symmetry) or one per cell."""
+        return 4 if self.elements_around % 4 == 0 else self.elements_around
+
+    @property
+    def cells(self) -> int:
+        """Number of 3D cells."""
+        n = self.elements_around * self.elements_along * self.elements_through
+        return n if self.cell_type == "hexahedron" else 6 * n
+
+
+def layer_heights(p: TubeMeshParams) -> np.ndarray:
+    """Cumulative heights of the layers along the tube, over H (last = 1).
+
+    A geometric progression from the base, where the clamp's boundary layer
+    (length ~ sqrt(R t)) needs short cells, to the top.
+
+    >>> layer_heights(TubeMeshParams(1.0, 1.0, 0.9, 4, 2, 1, 1, "hexahedron", 3.0)).round(4)
+    array([0.25, 1.  ])
+    """
+    n = p.elements_along
+    q = p.grading ** (1 / (n - 1)) if n > 1 else 1.0
+    sizes = q ** np.arange(n)
+    return np.cumsum(sizes) / sizes.sum()
+
+
+def tube_params(pillar, mesh) -> TubeMeshParams:
+    """The mesh parameters of a scene's ``[pillar]`` and ``[mesh]`` sections."""
+    return TubeMeshParams(
+        height=pillar.height, outer_radius=pillar.outer_diameter / 2,
+        inner_radius=pillar.inner_diameter / 2, elements_around=mesh.elements_around,
+        elements_along=mesh.elements_along, elements_through=mesh.elements_through,
+        order=mesh.degree, cell_type=mesh.cell_type, grading=getattr(mesh, "grading", 1.0))
+
+
+@dataclass(frozen=True)
+class TubeTags:
+    """Gmsh entity tags of the built tube, per physical group."""
+    volumes: tuple
+    base: tuple
+    top: tuple
+    wall: tuple
+
+
+def build_tube(model, p: TubeMeshParams) -> TubeTags:
+    """Add the tube to a Gmsh ``model`` (built-in kernel), mesh it, name its groups.
+
+    The groups are "tube" (volume TUBE), "base" (z = 0, BASE), "top" (z = H,
+    TOP) and "wall" (inner and outer lateral surfaces, WALL).
+    """
+    import gmsh
+    geo = model.geo
+    s, layers = p.sectors, p.elements_through
+    per_sector = p.elements_around // s
+    hexa = p.cell_type == "hexahedron"
+    centre = geo.addPoint(0, 0, 0)
+    angles = [2 * math.pi * k / s for k in range(s)]
+    # One geometric circle per layer interface, so that second-order nodes
+    # inside the wall lie on their circles too (Gmsh puts the mid-edge node
+    # of a mesh edge that is not on a curve at the chord's midpoint).
+    radii = [p.inner_radius + (p.outer_radius - p.inner_radius) * j / layers for j in range(layers + 1)]
+    pts = [[geo.addPoint(r * math.cos(a), r * math.sin(a), 0) for a in angles] for r in radii]
+    arcs = [[geo.addCircleArc(pts[j][k], centre, pts[j][(k + 1) % s]) for k in range(s)]
+            for j in range(layers + 1)]
+    radial = [[geo.addLine(pts[j][k], pts[j + 1][k]) for k in range(s)] for j in range(layers)]
+    surfaces, inner, outer = [], [], []
+    for j in range(layers):
+        for k in range(s):
+            loop = geo.addCurveLoop([radial[j][k], arcs[j + 1][k], -radial[j][(k + 1) % s],
+                                     -arcs[j][k]])
+            surfaces.append(geo.addPlaneSurface([loop]))
+            inner.append(j == 0)
+            outer.append(j == layers - 1)
+    for c in (c for ring in arcs for c in ring):
+        geo.mesh.setTransfiniteCurve(c, per_sector + 1)
+    for c in (c for layer in radial for c in layer):
+        geo.mesh.setTransfiniteCurve(c, 2)
+    for sf in surfaces:
+        geo.mesh.setTransfiniteSurface(sf, "Alternate")
+        if hexa:
+            geo.mesh.setRecombine(2, sf)
+    # Extruded triangles without recombination become 3 tetrahedra per prism.
+    out = geo.extrude([(2, sf) for sf in surfaces], 0, 0, p.height,
+                      numElements=[1] * p.elements_along, heights=list(layer_heights(p)),
+                      recombine=hexa)
+    geo.synchronize()
+    # Per extruded surface: [top, volume, side(radial k), side(outer arc), side(radial k+1),
+    # side(inner arc)], in the order of the curve loop.
+    tops, vols, walls = [], [], []
+    for i in range(len(surfaces)):
+        chunk = out[6 * i: 6 * i + 6]
+        tops.append(chunk[0][1])
+        vols.append(chunk[1][1])
+        if outer[i]:
+            walls.append(chunk[3][1])
+        if inner[i]:
+            walls.append(chunk[5][1])
+    tags = TubeTags(tuple(vols), tuple(surfaces), tuple(tops), tuple(walls))
+    for (dim, tag), name in GROUP_NAMES.items():
+        ents = {TUBE: tags.volumes}[tag] if dim == 3 else {BASE: tags.base, TOP: tags.top,
+                                                           WALL: tags.wall}[tag]
+        model.addPhysicalGroup(dim, list(ents), tag, name=name)
+    gmsh.option.setNumber("Mesh.ElementOrder", p.order)
+    gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
+    model.mesh.generate(3)
+    if p.order == 2:
+        model.mesh.setOrder(2)
+    return tags
