@@ -23,7 +23,7 @@ from .commands import is_root_rank, out_dir
 from .scene import Scene, embedded_scenes, load_scene
 
 # name -> (module, function, help).  A command function takes
-# (scene, args, timings, context) and returns (result: dict, summary: str).
+# (scene, args, timings) and returns (result: dict, summary: str).
 COMMANDS = {
     "analyze": ("rotorpillar.commands.analyze", "analyze_command",
                 "closed forms, reduced system modes, averaging, paper comparison"),
@@ -90,14 +90,13 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def execute(name: str, scene: Scene, args, context: dict | None = None) -> dict:
+def execute(name: str, scene: Scene, args) -> dict:
     """Run one command on a scene, write ``<out>/<name>.json``, return the result."""
     module, func, _ = COMMANDS[name]
     fn = getattr(importlib.import_module(module), func)
     timings = Timings()
-    context = {} if context is None else context
     start = time.perf_counter()
-    result, text = fn(scene, args, timings, context)
+    result, text = fn(scene, args, timings)
     timings["total"] = time.perf_counter() - start
     doc = {"command": name, "scene_source": str(args.scene), "overrides": list(args.overrides),
            "scene": scene.to_dict(), **result,

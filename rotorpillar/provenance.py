@@ -8,12 +8,15 @@ half-written file where a result is expected.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import json
 import math
 import os
 import platform
 import tempfile
 import time
+import types
+import typing
 from importlib import metadata
 from pathlib import Path
 
@@ -69,6 +72,8 @@ class Timings(dict):
 
 
 def _jsonable(obj):
+    if isinstance(obj, JsonRecord):
+        return _jsonable(obj.to_json())
     if isinstance(obj, dict):
         return {str(k): _jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -127,3 +132,64 @@ def write_text(path: str | Path, text: str) -> Path:
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return Path(path)
+
+
+def _record_json(value):
+    if isinstance(value, JsonRecord):
+        return value.to_json()
+    if isinstance(value, dict):
+        return {k: _record_json(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_record_json(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def _record_from(hint, value):
+    if value is None:
+        return None
+    if isinstance(hint, type) and issubclass(hint, JsonRecord):
+        return hint.from_json(value)
+    origin, args = typing.get_origin(hint), typing.get_args(hint)
+    if origin in (typing.Union, types.UnionType):
+        inner = [a for a in args if a is not type(None)]
+        return _record_from(inner[0], value) if len(inner) == 1 else value
+    if origin is tuple and isinstance(value, (list, tuple)):
+        if len(args) == 2 and args[1] is Ellipsis:
+            return tuple(_record_from(args[0], v) for v in value)
+        return tuple(value)
+    return value
+
+
+class JsonRecord:
+    """Mixin of the frozen result dataclasses that cross a layer.
+
+    ``to_json()`` gives the JSON-ready dict the command writes (fields in
+    declaration order, nested records as dicts, tuples and arrays as lists);
+    ``from_json(doc)`` builds the record back from such a dict, typed by the
+    fields' annotations, so ``from_json(d).to_json() == d``.  Keys of ``doc``
+    that are not fields (the scene, versions and timings a command writes
+    beside a result) are left out.
+    """
+
+    def to_json(self) -> dict:
+        return {f.name: _record_json(getattr(self, f.name)) for f in dataclasses.fields(self)}
+
+    @classmethod
+    def from_json(cls, doc: dict):
+        hints = typing.get_type_hints(cls)
+        kwargs = {}
+        for f in dataclasses.fields(cls):
+            if f.name in doc:
+                kwargs[f.name] = _record_from(hints.get(f.name), doc[f.name])
+            elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+                raise ValueError(f"{cls.__name__}: the field {f.name!r} is missing")
+        return cls(**kwargs)
+
+    @classmethod
+    def read(cls, path: str | Path):
+        """The record in the JSON file at ``path`` (a command's output)."""
+        return cls.from_json(json.loads(Path(path).read_text(encoding="utf-8")))

@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 from imagecheck import assert_real_png, pixels, png_size
-from rotorpillar.analyze import analyze
+from rotorpillar.analysis import analyze
 from rotorpillar.postprocess import charts, fixtures
 from rotorpillar.postprocess.animation import (animate, elastic_field, frame_times, pillar_motion)
 from rotorpillar.postprocess.inputs import (Simulation, bending_columns, cantilever_tube, load_modes,

@@ -1,9 +1,9 @@
 """The commands behind the CLI, one module each.
 
-A command is a function ``(scene, args, timings, context) -> (result, summary)``:
+A command is a function ``(scene, args, timings) -> (result, summary)``:
 ``result`` a JSON-ready dict written to ``<out>/<command>.json``, ``summary``
-the readable text printed instead of the JSON.  ``context`` carries results
-between the stages of ``rotorpillar run``.  Commands stay thin: the physics
+the readable text printed instead of the JSON.  The stages of ``rotorpillar
+run`` hand results over through the files they write.  Commands stay thin: the physics
 lives in the library modules they call.
 """
 

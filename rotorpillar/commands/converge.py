@@ -177,14 +177,13 @@ def _under_mpi() -> bool:
     return any(int(os.environ.get(k, "1")) > 1 for k in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"))
 
 
-def converge_command(scene, args, timings, context):
+def converge_command(scene, args, timings):
     from . import out_dir
     if _under_mpi():
         raise InputError("rotorpillar converge runs serially (each run is its own "
                          "subprocess): start it without mpirun")
     doc = study(scene, out_dir=out_dir(scene, args), cache_dir=args.cache,
                 tolerance=args.tolerance, show_progress=not args.no_progress, timings=timings)
-    context["converge"] = doc
     result = {"convergence_json": doc["json"], "charts": doc.get("charts", {}),
               "tolerance": doc["tolerance"], "reference": doc["reference"],
               "selection": doc["selection"], "failures": doc["failures"], "study": doc["study"]}

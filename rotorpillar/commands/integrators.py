@@ -16,7 +16,7 @@ def add_arguments(p) -> None:
                    help="fewer tolerances, steps and modes (for a first look)")
 
 
-def integrators_command(scene, args, timings, context):
+def integrators_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..reduced.integrator_study import run_study

@@ -154,7 +154,7 @@ def summary(doc: dict, bare, loaded) -> str:
     return "\n".join(lines)
 
 
-def modal_command(scene, args, timings, context):
+def modal_command(scene, args, timings):
     from ..reduced.reduction import pillar_closed_forms
     from . import out_dir
     from ..fem3d import modal_analysis
@@ -190,5 +190,4 @@ def modal_command(scene, args, timings, context):
     if selection is not None:
         doc["model_selection"] = selection
         text = selection["text"] + "\n\n" + text
-    context["modal"] = doc
     return doc, text

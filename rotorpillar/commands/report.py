@@ -23,7 +23,7 @@ def add_arguments(parser) -> None:
                         help="skip the run-up and earthquake animations")
 
 
-def report_command(scene, args, timings, context):
+def report_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..postprocess.report import ReportOptions, build_report, summary_text
@@ -35,5 +35,4 @@ def report_command(scene, args, timings, context):
     options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
     progress(f"report: rendering into {out_dir(scene, args)}")
     result = build_report(scene, out_dir(scene, args), scene_cli(args), options, timings)
-    context["report"] = result
     return result, summary_text(result)

@@ -58,7 +58,7 @@ def add_arguments(parser) -> None:
                         help=f"leave out a stage ({', '.join(names)}); repeatable")
 
 
-def run_command(scene, args, timings, context):
+def run_command(scene, args, timings):
     """Every stage of RUN_STAGES, each writing its own JSON."""
     from . import out_dir
     from ..errors import InputError
@@ -68,7 +68,7 @@ def run_command(scene, args, timings, context):
     if skip - known:
         raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
     todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
-    stages, lines = {}, []
+    stages, lines, report = {}, [], None
     for i, (command, what, extra) in enumerate(todo, start=1):
         progress(f"run {i}/{len(todo)}: {command} ({what})")
         with timings(command):
@@ -86,8 +86,7 @@ def run_command(scene, args, timings, context):
                            "stage_seconds": doc.get("timings", {}).get("total")}
         lines.append(f"{command:>26}: {timings[command]:8.2f} s  -> {path}")
         if name == "report":
-            context["report"] = doc
-    report = context.get("report", {}).get("report")
+            report = doc.get("report")
     if report:
         lines.append(f"{'page':>26}: {report}")
     return ({"stages": stages, "report": report},

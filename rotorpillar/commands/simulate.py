@@ -42,7 +42,7 @@ def add_arguments(p) -> None:
                         "0 = from the frequency band)")
 
 
-def simulate_command(scene, args, timings, context):
+def simulate_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..reduced.cases import run_case, scene_motion, series
@@ -75,7 +75,6 @@ def simulate_command(scene, args, timings, context):
             figures = _charts(out, scene, case, res, data)
     result["files"] = files
     result["figures"] = figures
-    context[f"simulate_{case}"] = result
     if is_root_rank():
         copy_doc = {"command": "simulate", "scene_source": str(args.scene),
                     "overrides": list(args.overrides), "scene": scene.to_dict(), **result,

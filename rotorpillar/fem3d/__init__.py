@@ -87,7 +87,7 @@ def reduction_from_scene(scene) -> tuple[float, float]:
 
     Kinetic-energy equivalence (the paper's Eq. 2) on the 3D mode normalised
     to unit tip displacement: m_r = phi^T M phi, c1 = m_r omega**2.  This is
-    the callable ``rotorpillar.analyze.analyze(scene, fem3d_reduction=...)``
+    the callable ``rotorpillar.analysis.analyze(scene, fem3d_reduction=...)``
     takes when ``reduction.source = "fem3d"``.
     """
     red = tip_reduction(modal_analysis(scene, top=False), scene.pillar)

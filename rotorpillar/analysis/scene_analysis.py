@@ -1,4 +1,4 @@
-"""`rotorpillar analyze`: the paper's closed-form model of a scene.
+"""What the paper's closed-form model says about a scene: :func:`analyze`.
 
 Pillar closed forms (Eq. 1-2, with a Timoshenko check), the tip reduction
 actually used (stated, closed form or fem3d), the reduced system's modes and
@@ -8,14 +8,17 @@ stability and jumps (Eq. 19-24), and the paper's printed numbers beside ours.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
-from .reduced import averaging as av
-from .reduced.reduction import pillar_closed_forms, resolve_reduction  # noqa: F401  (re-exported)
-from .reduced.system import linear_modes, reduced_system
-from .scene import Scene
+from ..reduced import averaging as av
+from ..reduced.reduction import pillar_closed_forms, resolve_reduction
+from ..reduced.system import linear_modes, reduced_system
+from ..scene import Scene
+from .paper import compare_with_paper
+from .results import AnalysisResult
 
 CURVE_POINTS = 201
 CURVE_SPAN = 0.5          # z from 1 - span to 1 + span
@@ -99,8 +102,13 @@ def averaging_results(modes, ch: av.Characteristic, eccentricity: float,
     return out, drive_out
 
 
-def analyze(scene: Scene, fem3d_reduction=None) -> dict:
-    """Everything the closed forms say about a scene (JSON-ready)."""
+def analyze(scene: Scene, fem3d_reduction=None) -> AnalysisResult:
+    """Everything the closed forms say about a scene.
+
+    ``fem3d_reduction``, a callable scene -> (m_reduced, tip_stiffness), is
+    the 3D model's Eq. 2 (``rotorpillar.fem3d.reduction_from_scene``), needed
+    when ``reduction.source = "fem3d"``; this layer never builds it.
+    """
     closed = pillar_closed_forms(scene)
     red = resolve_reduction(scene, closed, fem3d_reduction)
     sys_ = reduced_system(scene, red["tip_mass"], red["tip_stiffness"])
@@ -122,52 +130,6 @@ def analyze(scene: Scene, fem3d_reduction=None) -> dict:
         "nu": [r.nu for r in modes.resonances],
         "f4": c2e,
     }
-    from .paper import compare_with_paper
-    result = {"pillar": closed, "reduction": red, "system": system,
-              "resonances": resonances, "drive": drive}
-    result["paper_comparison"] = compare_with_paper(scene, result)
-    return result
-
-
-def summary(result: dict) -> str:
-    """A readable report of an analyze result."""
-    p, s, red = result["pillar"], result["system"], result["reduction"]
-    lines = [
-        "Pillar (bare tube, closed forms)",
-        f"  I = {p['second_moment']:.5g} m^4, A = {p['area']:.5g} m^2, "
-        f"m_rho = {p['mass_per_length']:.5g} kg/m, mass = {p['mass']:.5g} kg, D/t = "
-        f"{p['diameter_to_thickness']:.0f}",
-        f"  omega_col1 = {p['omega_col1']:.4f} rad/s ({p['frequency_col1_hz']:.4f} Hz) Euler-Bernoulli, "
-        f"{p['omega_col1_timoshenko']:.4f} Timoshenko ({100 * p['timoshenko_correction']:+.2f} %)",
-        "  tip mass by Eq. 2: " + ", ".join(f"n={d['n']}: {d['tip_mass']:.4g}" for d in p["tip_mass_lumped"][:4])
-        + f", limit {p['tip_mass_limit']:.4g} kg (c1 = {p['tip_stiffness_limit']:.4g} N/m)",
-        "  Rayleigh: " + ", ".join(f"{d['shape']}: m = {d['tip_mass']:.4g} kg, c = {d['tip_stiffness']:.4g} N/m"
-                                   for d in p["rayleigh"]),
-        f"Reduction used: m_r = {red['tip_mass']:.5g} kg ({red['tip_mass_source']}), "
-        f"c1 = {red['tip_stiffness']:.5g} N/m ({red['tip_stiffness_source']})",
-        f"System: omega = {s['omega'][0]:.4f}, {s['omega'][1]:.4f} rad/s (X), omega3 = {s['omega3']:.4f} rad/s (Y)",
-        f"  {'i':>2} {'dir':>3} {'omega':>9} {'I_i [kg]':>11} {'f_i':>10} {'2n_i':>8} {'nu_i':>7} "
-        f"{'a_max [m]':>10} {'dLmax':>9} {'dL/Mc':>8}",
-    ]
-    for r in result["resonances"]:
-        lines.append(f"  {r['index']:>2} {r['direction']:>3} {r['omega']:>9.4f} {r['modal_mass']:>11.5g} "
-                     f"{r['forcing']:>10.4g} {r['two_n']:>8.4g} {r['nu']:>7.4f} {r['a_max']:>10.4g} "
-                     f"{r['dL_max']:>9.4g} {r['dL_max_over_Mc']:>8.3g}")
-    d = result["drive"]
-    lines.append(f"Drive M0 = {d['torque_at_zero']:g} N*m, slope {d['slope']:g}: stationary speeds "
-                 + (", ".join(f"{x['omega']:.3f} ({'stable' if x['stable'] else 'unstable'})"
-                              for x in d["stationary"]) or "none"))
-    for r in result["resonances"]:
-        lines.append("  " + r["statement"])
-    lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")
-    lines.append(f"  {'quantity':<34} {'paper':>11} {'computed':>11} {'diff':>8}")
-    for row in result["paper_comparison"]:
-        flag = "*" if row["flag"] else " "
-        lines.append(f"{flag} {row['quantity']:<34} {row['paper']:>11.5g} {row['computed']:>11.5g} "
-                     f"{100 * row['rel_diff']:>+7.1f}%")
-    notes = [r for r in result["paper_comparison"] if r["flag"] and r["note"]]
-    if notes:
-        lines.append("Likely causes of the flagged differences:")
-        for row in notes:
-            lines.append(f"  {row['quantity']}: {row['note']}")
-    return "\n".join(lines)
+    result = AnalysisResult.from_json({"pillar": closed, "reduction": red, "system": system,
+                                       "resonances": resonances, "drive": drive})
+    return dataclasses.replace(result, paper_comparison=compare_with_paper(scene, result))

@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import math
 
-from .reduced.pillar import tip_mass_lumped
-from .reduced.system import ReducedSystem, omega_pair
+from ..reduced.pillar import tip_mass_lumped
+from ..reduced.system import ReducedSystem, omega_pair
+from .results import AnalysisResult, PaperRow
 
 #: Differences above 2 % are flagged: the paper prints two or three digits.
 TOLERANCE = 0.02
@@ -66,16 +67,16 @@ def _implied_tip(omega1: float, omega2: float, mC: float, c2: float):
 
 def _notes(scene, result) -> dict:
     """Likely causes, computed from the paper's own numbers where possible."""
-    p, sysd, res = result["pillar"], result["system"], result["resonances"]
+    p, sysd, res = result.pillar, result.system, result.resonances
     E = scene.pillar.youngs_modulus
-    mass = p["mass"]
+    mass = p.mass
     notes = {}
     notes["omega_col1"] = (
         f"E is not given in the paper; we assume E = {E:.3g} Pa. The printed value needs "
-        f"E = {E * (31.45 / p['omega_col1'])**2:.4g} Pa with the stated geometry and density.")
+        f"E = {E * (31.45 / p.omega_col1)**2:.4g} Pa with the stated geometry and density.")
     best = min(range(1, 51), key=lambda n: abs(tip_mass_lumped(mass, n) - 9.7e3))
     notes["m_r"] = (
-        f"Eq. 2 on the continuous first mode gives m_col/4 = {p['tip_mass_limit']:.4g} kg; "
+        f"Eq. 2 on the continuous first mode gives m_col/4 = {p.tip_mass_limit:.4g} kg; "
         f"lumped into n masses (top node a full segment) it falls from m_col = {mass:.4g} kg "
         f"(n = 1) to that limit; n = {best} gives {tip_mass_lumped(mass, best):.4g} kg, the "
         "nearest to the printed value. The paper's lumping is not stated.")
@@ -84,9 +85,9 @@ def _notes(scene, result) -> dict:
         "difference is inherited from m_r (and from E).")
     notes["m_rho"] = "The paper's 'distributed beam mass m_i = 1e3' is read as kg per metre."
 
-    mA, mC, c2 = sysd["tip_mass_total"], scene.rotor.mass, scene.shaft.stiffness
+    mA, mC, c2 = sysd.tip_mass_total, scene.rotor.mass, scene.shaft.stiffness
     alt = ReducedSystem(mA, mC, scene.rotor.inertia, scene.rotor.eccentricity,
-                        result["reduction"]["tip_stiffness"], 5e6, scene.pillar.damping, 25e3)
+                        result.reduction.tip_stiffness, 5e6, scene.pillar.damping, 25e3)
     alt_pair = omega_pair(alt)
     implied = _implied_tip(26.0, 59.1, mC, c2)
     txt = (f"Table 1 is headed 'c2 = 0.4e6' yet calls it the stiff shaft; with the scene's "
@@ -102,9 +103,9 @@ def _notes(scene, result) -> dict:
     tab = PAPER_TABLE1
     for i in (0, 1):
         r = res[i]
-        u1, u2 = r["shape"]
+        u1, u2 = r.shape
         b2 = scene.shaft.damping
-        b1_implied = (tab["two_n"][i] * r["modal_mass"] - b2 * u2**2) / u1**2 - b2
+        b1_implied = (tab["two_n"][i] * r.modal_mass - b2 * u2**2) / u1**2 - b2
         notes[f"two_n{i + 1}"] = (
             f"2n_i depends on b1, which the paper gives as a range (10e3 ... 50e3); ours uses "
             f"b1 = {scene.pillar.damping:.3g}. With this scene's modes, the printed value needs "
@@ -126,7 +127,7 @@ def _notes(scene, result) -> dict:
             f"{f / (2 * w**2 * nu):.3g} m; neither is the printed a_max.")
         notes[f"ratio{i + 1}"] = (
             f"Ours uses the modal torque coupling g_i; with the paper's f4 = c2 e it is "
-            f"{r['dL_max_over_Mc_as_printed']:.3g}. The printed ratio (f4/2) a_max/Mc with the "
+            f"{r.dL_max_over_Mc_as_printed:.3g}. The printed ratio (f4/2) a_max/Mc with the "
             f"printed a_max, Mc and c2 e = {5e6 * scene.rotor.eccentricity:.3g} (stiff shaft) "
             f"is {5e6 * scene.rotor.eccentricity / 2 * (0.010, 0.027)[i] / (454.0, 1930.0)[i]:.3g}.")
         Mc_printed = (454.0, 1930.0)[i]
@@ -142,21 +143,21 @@ def _notes(scene, result) -> dict:
     return notes
 
 
-def compare_with_paper(scene, result) -> list[dict]:
+def compare_with_paper(scene, result: AnalysisResult) -> tuple[PaperRow, ...]:
     """Rows {quantity, paper, computed, rel_diff, flag, note, where} for the scene."""
-    p, s, res, red = result["pillar"], result["system"], result["resonances"], result["reduction"]
+    p, s, res, red = result.pillar, result.system, result.resonances, result.reduction
     computed = {
-        "I": p["second_moment"], "m_rho": p["mass_per_length"], "omega_col1": p["omega_col1"],
-        "m_r": red["tip_mass_computed"], "c1": red["tip_stiffness_computed"],
-        "omega3": s["omega3"], "omega1": s["omega"][0], "omega2": s["omega"][1],
-        "f1": abs(res[0]["forcing"]), "f2": abs(res[1]["forcing"]),
-        "two_n1": res[0]["two_n"], "two_n2": res[1]["two_n"],
-        "nu1": res[0]["nu"], "nu2": res[1]["nu"],
-        "I1": res[0]["modal_mass"], "I2": res[1]["modal_mass"],
-        "a1max": res[0]["a_max"], "a2max": res[1]["a_max"],
-        "ratio1": res[0]["dL_max_over_Mc"], "ratio2": res[1]["dL_max_over_Mc"],
-        "Mc1": res[0]["Mc_at_omega"], "Mc2": res[1]["Mc_at_omega"],
-        "fe_omega1": s["omega"][0], "fe_omega2": s["omega"][1],
+        "I": p.second_moment, "m_rho": p.mass_per_length, "omega_col1": p.omega_col1,
+        "m_r": red.tip_mass_computed, "c1": red.tip_stiffness_computed,
+        "omega3": s.omega3, "omega1": s.omega[0], "omega2": s.omega[1],
+        "f1": abs(res[0].forcing), "f2": abs(res[1].forcing),
+        "two_n1": res[0].two_n, "two_n2": res[1].two_n,
+        "nu1": res[0].nu, "nu2": res[1].nu,
+        "I1": res[0].modal_mass, "I2": res[1].modal_mass,
+        "a1max": res[0].a_max, "a2max": res[1].a_max,
+        "ratio1": res[0].dL_max_over_Mc, "ratio2": res[1].dL_max_over_Mc,
+        "Mc1": res[0].Mc_at_omega, "Mc2": res[1].Mc_at_omega,
+        "fe_omega1": s.omega[0], "fe_omega2": s.omega[1],
     }
     notes = _notes(scene, result)
     rows = []
@@ -164,7 +165,7 @@ def compare_with_paper(scene, result) -> list[dict]:
         c = computed[key]
         rel = (c - printed) / printed
         flag = abs(rel) > TOLERANCE
-        rows.append({"key": key, "quantity": quantity, "paper": printed, "computed": c,
-                     "rel_diff": rel, "flag": flag, "where": where,
-                     "note": notes.get(key, "") if flag else ""})
-    return rows
+        rows.append(PaperRow(key=key, quantity=quantity, paper=printed, computed=c,
+                             rel_diff=rel, flag=flag, where=where,
+                             note=notes.get(key, "") if flag else ""))
+    return tuple(rows)

@@ -1,0 +1,20 @@
+"""The scene as the paper's closed-form model sees it: `rotorpillar analyze`.
+
+Above ``reduced/`` (whose formulas it calls) and beside ``fem3d/`` (whose tip
+reduction it receives as a callable when a scene asks for it):
+
+- :mod:`.scene_analysis`  :func:`analyze` (scene) -> :class:`AnalysisResult`
+- :mod:`.results`         the typed result, with ``to_json``/``from_json``
+- :mod:`.paper`           every number the paper prints, beside ours
+- :mod:`.summary`         the readable text
+"""
+
+from .paper import compare_with_paper
+from .results import (AnalysisResult, DriveRegimes, PaperRow, PillarClosedForms,
+                      ResonanceAnalysis, SystemModes, TipReductionUsed)
+from .scene_analysis import analyze
+from .summary import summary
+
+__all__ = ["AnalysisResult", "DriveRegimes", "PaperRow", "PillarClosedForms",
+           "ResonanceAnalysis", "SystemModes", "TipReductionUsed", "analyze",
+           "compare_with_paper", "summary"]

@@ -1,0 +1,190 @@
+"""The typed result of `rotorpillar analyze`: what the closed forms say about a scene.
+
+Frozen records whose fields are the keys of ``analyze.json``, in the order
+written there; :meth:`~rotorpillar.provenance.JsonRecord.to_json` gives that
+JSON, :meth:`~rotorpillar.provenance.JsonRecord.from_json` reads it back (the
+report reads ``analyze.json`` through :meth:`AnalysisResult.read`).  SI
+units: rad/s, kg, N/m, N*m, m.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+from ..provenance import JsonRecord
+
+
+@dataclass(frozen=True)
+class Lumping(JsonRecord):
+    """Eq. 2 with the tube lumped into ``n`` equal masses."""
+    n: int
+    tip_mass: float
+    """m_r (kg)"""
+    tip_stiffness: float
+    """c1 = m_r omega_col1**2 (N/m)"""
+
+
+@dataclass(frozen=True)
+class RayleighEstimate(JsonRecord):
+    """Rayleigh's quotient on a static deflection shape."""
+    shape: str
+    """"uniform_load" or "tip_load\""""
+    tip_mass: float
+    tip_stiffness: float
+    omega: float
+    omega_error: float
+    """omega / omega_col1 - 1"""
+
+
+@dataclass(frozen=True)
+class PillarClosedForms(JsonRecord):
+    """The bare tube: its section, Eq. 1, Timoshenko's correction, Eq. 2's reductions."""
+    area: float
+    second_moment: float
+    mass_per_length: float
+    mass: float
+    wall_thickness: float
+    diameter_to_thickness: float
+    slenderness: float
+    omega_col1: float
+    frequency_col1_hz: float
+    cantilever_root: float
+    omega_euler_bernoulli: tuple[float, ...]
+    shear_coefficient: float
+    omega_col1_timoshenko: float
+    timoshenko_correction: float
+    tip_mass_lumped: tuple[Lumping, ...]
+    tip_mass_limit: float
+    tip_stiffness_limit: float
+    rayleigh: tuple[RayleighEstimate, ...]
+
+
+@dataclass(frozen=True)
+class TipReductionUsed(JsonRecord):
+    """The tip mass and stiffness the reduced model uses, and where each came from."""
+    source: str
+    tip_mass: float
+    tip_mass_source: str
+    tip_mass_computed: float
+    tip_stiffness: float
+    tip_stiffness_source: str
+    tip_stiffness_computed: float
+    computed_source: str
+
+
+@dataclass(frozen=True)
+class SystemModes(JsonRecord):
+    """The reduced rotor-pillar system: its modes and quasi-normal coefficients."""
+    tip_mass_total: float
+    c0: float
+    b0: float
+    omega: tuple[float, ...]
+    """omega_1, omega_2: the X modes (rad/s)"""
+    omega3: float
+    """the Y mode (rad/s)"""
+    frequency_hz: tuple[float, ...]
+    modal_vectors: tuple[tuple[float, ...], ...]
+    modal_masses: tuple[float, ...]
+    forcing: tuple[float, ...]
+    coupling: tuple[float, ...]
+    two_n: tuple[float, ...]
+    nu: tuple[float, ...]
+    f4: float
+    """c2 e, the paper's torque coupling (N)"""
+
+
+@dataclass(frozen=True)
+class StationarySpeed(JsonRecord):
+    omega: float
+    stable: bool
+    margin: float
+    """d(Md - L)/dOmega (N*m*s): negative when stable"""
+
+
+@dataclass(frozen=True)
+class Jump(JsonRecord):
+    direction: str
+    """"up" (A -> B, quasi-static run-up) or "down" (D -> C, run-down)"""
+    omega_from: float
+    omega_to: float
+    torque_at_zero: float
+    resonance: int
+
+
+@dataclass(frozen=True)
+class ResonanceCurves(JsonRecord):
+    """The averaging curves around one resonance, on z = Omega / omega_i."""
+    z: tuple[float, ...]
+    omega: tuple[float, ...]
+    a: tuple[float, ...]
+    a_linear: tuple[float, ...]
+    dL: tuple[float, ...]
+    L: tuple[float, ...]
+    L_all: tuple[float, ...]
+    Md: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class ResonanceAnalysis(JsonRecord):
+    """One resonance by the averaging theory: amplitude, extra torque, jumps."""
+    index: int
+    direction: str
+    omega: float
+    forcing: float
+    coupling: float
+    two_n: float
+    nu: float
+    modal_mass: float
+    shape: tuple[float, ...]
+    a_max: float
+    rotor_relative_amplitude_max: float
+    a_max_as_printed: float
+    dL_max: float
+    Mc_at_omega: float
+    dL_max_over_Mc: Optional[float]
+    dL_max_over_Mc_as_printed: Optional[float]
+    stationary: tuple[StationarySpeed, ...]
+    jumps: tuple[Jump, ...]
+    critical_slope: float
+    critical_eccentricity: float
+    statement: str
+    curves: ResonanceCurves
+
+
+@dataclass(frozen=True)
+class DriveRegimes(JsonRecord):
+    """The motor on the whole machine: stationary speeds, jumps, capture."""
+    torque_at_zero: float
+    slope: float
+    load_coefficient: float
+    free_speed: float
+    stationary: tuple[StationarySpeed, ...]
+    jumps: tuple[Jump, ...]
+    runup_speed: Optional[float]
+    rundown_speed: Optional[float]
+    captured_at: Optional[float]
+
+
+@dataclass(frozen=True)
+class PaperRow(JsonRecord):
+    """One number the paper prints, beside ours."""
+    key: str
+    quantity: str
+    paper: float
+    computed: float
+    rel_diff: float
+    flag: bool
+    where: str
+    note: str
+
+
+@dataclass(frozen=True)
+class AnalysisResult(JsonRecord):
+    """Everything `rotorpillar analyze` computes for a scene (``analyze.json``)."""
+    pillar: PillarClosedForms
+    reduction: TipReductionUsed
+    system: SystemModes
+    resonances: tuple[ResonanceAnalysis, ...]
+    drive: DriveRegimes
+    paper_comparison: tuple[PaperRow, ...] = ()
