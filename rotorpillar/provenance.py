@@ -186,7 +186,7 @@ class JsonRecord:
             if f.name in doc:
                 kwargs[f.name] = _record_from(hints.get(f.name), doc[f.name])
             elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
-                raise ValueError(f"{cls.__name__}: the field {f.name!r} is missing")
+                raise KeyError(f.name)   # as a dict would: the report names the key
         return cls(**kwargs)
 
     @classmethod

@@ -3,17 +3,11 @@ independent eigen-solve of Eq. 4's pencil, bad input exits 2 with one line
 and writes nothing."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from conftest import cli
 from scipy.linalg import eigh
-
-
-def cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
-                          capture_output=True, text=True, cwd=cwd)
 
 
 def test_analyze_json_round_trip(tmp_path):
@@ -67,13 +61,11 @@ def test_bad_input_exits_2_with_one_line_and_writes_nothing(tmp_path, args, key)
     assert not out.exists()
 
 
-def test_run_writes_every_stage(tmp_path):
-    p = cli("run", "paper", "--out", tmp_path, "--skip", "converge")
-    assert p.returncode == 0, p.stderr
-    doc = json.loads((tmp_path / "run.json").read_text())
+def test_run_writes_every_stage(run_paper):
+    doc = json.loads((run_paper.out / "run.json").read_text())
     for name, stage in doc["stages"].items():
-        assert (tmp_path / f"{name}.json").exists()
-    assert (tmp_path / "analyze.json").exists()
+        assert (run_paper.out / f"{name}.json").exists()
+    assert (run_paper.out / "analyze.json").exists()
 
 
 def test_run_refuses_an_unknown_stage_to_skip(tmp_path):
