@@ -170,13 +170,16 @@ class JsonRecord:
     ``to_json()`` gives the JSON-ready dict the command writes (fields in
     declaration order, nested records as dicts, tuples and arrays as lists);
     ``from_json(doc)`` builds the record back from such a dict, typed by the
-    fields' annotations, so ``from_json(d).to_json() == d``.  Keys of ``doc``
+    fields' annotations, so ``from_json(d).to_json() == d``.  A field with
+    ``metadata={"omit_if_none": True}`` is left out of the JSON while None
+    (an optional detail most records lack).  Keys of ``doc``
     that are not fields (the scene, versions and timings a command writes
     beside a result) are left out.
     """
 
     def to_json(self) -> dict:
-        return {f.name: _record_json(getattr(self, f.name)) for f in dataclasses.fields(self)}
+        return {f.name: _record_json(getattr(self, f.name)) for f in dataclasses.fields(self)
+                if not (f.metadata.get("omit_if_none") and getattr(self, f.name) is None)}
 
     @classmethod
     def from_json(cls, doc: dict):

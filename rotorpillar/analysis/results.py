@@ -9,7 +9,7 @@ units: rad/s, kg, N/m, N*m, m.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Optional
 
 from ..provenance import JsonRecord
@@ -177,6 +177,8 @@ class PaperRow(JsonRecord):
     flag: bool
     where: str
     note: str
+    details: Optional[dict] = field(default=None, metadata={"omit_if_none": True})
+    """what a finding (not a printed number) states, e.g. eq4_base_forcing"""
 
 
 @dataclass(frozen=True)
