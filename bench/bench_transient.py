@@ -31,7 +31,9 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorpillar.reduced.cases import build_model, operating_speed, run_case
+from rotorpillar.reduced.cases import run_case
+from rotorpillar.reduced.models import build_model
+from rotorpillar.reduced.stationary import operating_speed
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import load_record, no_motion
 from rotorpillar.reduced.pillar_modes import beam_pillar_modes
@@ -260,8 +262,10 @@ def bench_rom_vs_3d(scene) -> list[dict]:
     motion = load_record("elcentro", start=1.0)
     h, t_end = 2e-3, 11.0
     d, L = scene.drive, scene.load
+    from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
     model, _ = build_model(scene, "modal", scene.modal_model.band_factor * max(
-        DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()))
+        DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()),
+        pillar_modes=candidate_pillar_modes(scene))
     Omega = operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
     theta0 = math.pi / 2                                   # no eccentric force at t = 0: a consistent start
     t3, tip3, wall3, dofs = newmark_3d(scene, motion, Omega, theta0, h, t_end)

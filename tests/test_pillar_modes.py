@@ -67,7 +67,7 @@ def test_first_frequency_with_the_gondola():
 
 
 def test_simpson_on_quadratic_element_levels_is_exact_for_quadratics():
-    from rotorpillar.reduced.fem3d_modes import integrate_levels
+    from rotorpillar.fem3d.pillar_modes import integrate_levels
     ends = np.array([0.0, 0.3, 1.0, 2.5, 4.0])                  # graded elements
     z = np.sort(np.r_[ends, 0.5 * (ends[:-1] + ends[1:])])
     f = 3 * z**2 - z + 2
@@ -81,9 +81,9 @@ def test_modes_of_the_3d_model_agree_with_the_timoshenko_beam():
     structure in two theories.  The plate's rotary inertia and the wall's
     flexibility separate them by ~1-2 % in the second mode: 3 %."""
     pytest.importorskip("dolfinx")
-    from rotorpillar.reduced.cases import scene_pillar_modes
+    from rotorpillar.fem3d.pillar_modes import fem3d_pillar_modes
     scene = override(load_scene("paper"), ["modal_model.source=fem3d"])
-    pm = scene_pillar_modes(scene, 2)
+    pm = fem3d_pillar_modes(scene, 2)
     beam = beam_pillar_modes(scene, 2, "timoshenko", 40)
     assert pm.omega == pytest.approx(beam.omega, rel=0.03)
     assert pm.modal_mass == pytest.approx(beam.modal_mass, rel=0.03)

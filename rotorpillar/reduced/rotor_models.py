@@ -10,7 +10,7 @@ acting on the shaft deflection d.z - e cos(theta) (X) and y - e sin(theta)
 
 and forces C z' (structure), b2 y' (rotor Y), the base forcing
 kb u_g + cb v_g + mb a_g on z, and the motor and machine torques on theta
-(rotorpillar.reduced.kernels writes the equations out).
+(rotorpillar.reduced.rhs writes the equations out).
 
 **paper** (``paper_model``): the paper's Eq. 4 as published, z = (q1, q2):
 M = diag(m_A, m_C), Ks = diag(c1, 0), d = (-1, 1), so Ks + c2 d d^T is
@@ -131,7 +131,7 @@ class RotorStructure:
     # ------------------------------------------------------------ kernels
     def pack(self, drive: DriveSchedule, motion: GroundMotion, prescribed_speed: bool = False,
              **overrides) -> tuple:
-        """The tuple P of rotorpillar.reduced.kernels."""
+        """The tuple P of rotorpillar.reduced.rhs."""
         gpar, gtab = motion.pack()
         c = lambda a: np.ascontiguousarray(a, dtype=float)
         scal = np.array([overrides.get("shaft_stiffness", self.shaft_stiffness),
