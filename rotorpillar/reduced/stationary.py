@@ -48,7 +48,7 @@ def operating_speed(model: RotorStructure, M0: float, slope: float, load: float)
 
 
 def averaging_prediction(model: RotorStructure, M0: float, slope: float, load: float) -> dict:
-    """What Eq. 19-23 predict for this drive on this model's quasi-normal modes."""
+    """What the paper's equations 19-23 predict for this drive on this model's quasi-normal modes."""
     res = model.quasi_normal()
     d = av.analyse_drive(av.Characteristic(M0, slope, load), res)
     return {"stationary": [vars(s) for s in d.stationary], "jumps": [vars(j) for j in d.jumps],
@@ -77,7 +77,7 @@ def exact_folds(model: RotorStructure, slope: float, load: float, top: float) ->
 def passing_torque(model: RotorStructure, drive: DriveSchedule, duration: float, rtol: float,
                    span: float = 0.2, points: int = 41) -> dict:
     """The motor torque M0 needed to run up through the first resonance that
-    can capture the rotor: predicted (the A fold of Eq. 19-23, and of the
+    can capture the rotor: predicted (the A fold of equations 19-23, and of the
     exact linear torque) and simulated (run-ups from rest for M0 around the
     prediction, refined once: the smallest M0 that passes within ``duration``)."""
     s, k = drive.slope[-1], drive.load_coefficient

@@ -93,7 +93,7 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
 
 
 def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
-    """Numeric stationary amplitudes of the sweep against Eq. 19 and the exact
+    """Numeric stationary amplitudes of the sweep against the paper's equation 19 and the exact
     linear steady state, near each resonance the sweep crosses."""
     out = []
     W = cols["omega"]
@@ -172,7 +172,7 @@ def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSch
     elif predicted:
         reason = "the analysis predicts jumps the sweep did not find (see predicted_jumps)"
     else:
-        worst = max((av.resistance_increment(r.omega, r) / (k * r.omega**2) for r in res if k > 0),
+        worst = max((av.peak_resistance_ratio(r, k) for r in res if k > 0),
                     default=0.0)
         reason = (f"No jumps: the speed rose and fell smoothly with M0 (largest step {max(r_up, r_down):.2f}x "
                   f"what the motor and load alone allow; a jump needs > {JUMP_FACTOR:g}x), as the "
