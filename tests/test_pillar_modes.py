@@ -89,3 +89,18 @@ def test_modes_of_the_3d_model_agree_with_the_timoshenko_beam():
     assert pm.modal_mass == pytest.approx(beam.modal_mass, rel=0.03)
     assert pm.participation == pytest.approx(beam.participation, rel=0.03)
     assert pm.shapes[-1] == pytest.approx([1.0, 1.0])
+    # the candidates the simulate command passes to the reduced package
+    from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
+    from rotorpillar.reduced.models import build_model
+    model, info = build_model(scene, "modal", modes=2, pillar_modes=candidate_pillar_modes(scene))
+    assert list(model.pillar_modes.omega) == list(pm.omega) and info["modes"] == 2
+
+
+def test_modal_model_on_3d_modes_needs_them_passed_in():
+    """The reduced package never runs the 3D model: asked for fem3d modes
+    without them, it names the key."""
+    from rotorpillar.errors import InputError
+    from rotorpillar.reduced.models import build_model
+    scene = override(load_scene("paper"), ["modal_model.source=fem3d"])
+    with pytest.raises(InputError, match="modal_model.source"):
+        build_model(scene, "modal", modes=2)
