@@ -31,11 +31,14 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorpillar.reduced.cases import build_model, operating_speed, run_case
+from rotorpillar.reduced.cases import run_case
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import load_record, no_motion
+from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.pillar_modes import beam_pillar_modes
+from rotorpillar.reduced.rhs import eq4_rhs
 from rotorpillar.reduced.rotor_models import beam_model, modal_model
+from rotorpillar.reduced.stationary import operating_speed
 from rotorpillar.reduced.transient import Settings, simulate, simulate_batch, tolerances
 from rotorpillar.scene import load_scene
 
@@ -46,20 +49,9 @@ SAMPLES = 201
 
 
 def plain_rhs(p):
-    """Eq. 4 as one writes it by hand: numpy, one call per evaluation."""
-    mA, mC, J, e, c1, c2, b1, b2, M0, s, k = p
-    c0, b0 = c1 + c2, b1 + b2
-
-    def f(t, y):
-        q1, q2, q3, q4, v1, v2, v3, v4 = y
-        return np.array([
-            v1, v2, v3, v4,
-            (-c0 * q1 - b0 * v1 + c2 * q2 - c2 * e * np.cos(q4)) / mA,
-            (c2 * q1 - c2 * q2 - b2 * v2 + c2 * e * np.cos(q4)) / mC,
-            (-c2 * q3 - b2 * v3 + c2 * e * np.sin(q4)) / mC,
-            (M0 - s * v4 - k * v4 * abs(v4) - c2 * e * (q2 - q1) * np.sin(q4) + c2 * e * q3 * np.cos(q4)) / J,
-        ])
-    return f
+    """The paper's equation 4 as one writes it by hand (rotorpillar.reduced.rhs.eq4_rhs):
+    numpy, one call per evaluation."""
+    return lambda t, y: eq4_rhs(y, *p)
 
 
 def _params(model, M0, s, k):
@@ -260,8 +252,10 @@ def bench_rom_vs_3d(scene) -> list[dict]:
     motion = load_record("elcentro", start=1.0)
     h, t_end = 2e-3, 11.0
     d, L = scene.drive, scene.load
+    from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
     model, _ = build_model(scene, "modal", scene.modal_model.band_factor * max(
-        DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()))
+        DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()),
+        pillar_modes=candidate_pillar_modes(scene))
     Omega = operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
     theta0 = math.pi / 2                                   # no eccentric force at t = 0: a consistent start
     t3, tip3, wall3, dofs = newmark_3d(scene, motion, Omega, theta0, h, t_end)

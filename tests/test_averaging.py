@@ -1,4 +1,4 @@
-"""Averaging results (Eq. 19-20, 23) against integrated equations.
+"""Averaging results (the paper's equations 19-20, 23, 24) against integrated equations.
 
 References:
 - the quasi-normal equation x'' + 2n x' + omega^2 x = f cos(Omega t),
@@ -163,6 +163,30 @@ def test_stability_alternates_and_quasistatic_branches():
     assert [s.stable for s in out.stationary] == [True, False, True]
     assert out.runup_speed < up.omega_from < out.rundown_speed
     assert out.captured_at is not None
+
+
+def test_branch_is_stable_against_a_numerical_derivative():
+    """Equation 23 by finite differences of Md - L on the strong case's
+    stationary speeds: stable exactly where d(Md - L)/dOmega < 0."""
+    res = strong_case()
+    s, k = 12.0, 0.5
+    G = lambda W: float(-s * W - av.total_resistance(W, k, res))     # Md - L without M0
+    up = [j for j in av.analyse_drive(av.Characteristic(500.0, s, k), res).jumps if j.direction == "up"][0]
+    out = av.analyse_drive(av.Characteristic(up.torque_at_zero * 0.999, s, k), res)
+    assert len(out.stationary) == 3
+    for st in out.stationary:
+        h = 1e-6 * st.omega
+        dG = (G(st.omega + h) - G(st.omega - h)) / (2 * h)
+        assert bool(av.branch_is_stable(st.omega, s, k, res)) == (dG < 0) == st.stable
+        assert av.stability_margin(st.omega, s, k, res) == pytest.approx(dG, rel=1e-5)
+    grid = np.array([st.omega for st in out.stationary])
+    assert list(av.branch_is_stable(grid, s, k, res)) == [st.stable for st in out.stationary]
+
+
+def test_peak_resistance_ratio_is_eq20_over_the_load_at_resonance():
+    r = linear_modes(paper_example(5e6, 25e3)).resonances[0]
+    assert av.peak_resistance_ratio(r, 0.5) == pytest.approx(
+        float(av.resistance_increment(r.omega, r)) / (0.5 * r.omega**2), rel=1e-15)
 
 
 def test_critical_eccentricity_is_where_folds_appear():

@@ -67,7 +67,7 @@ def test_first_frequency_with_the_gondola():
 
 
 def test_simpson_on_quadratic_element_levels_is_exact_for_quadratics():
-    from rotorpillar.reduced.fem3d_modes import integrate_levels
+    from rotorpillar.fem3d.pillar_modes import integrate_levels
     ends = np.array([0.0, 0.3, 1.0, 2.5, 4.0])                  # graded elements
     z = np.sort(np.r_[ends, 0.5 * (ends[:-1] + ends[1:])])
     f = 3 * z**2 - z + 2
@@ -81,11 +81,26 @@ def test_modes_of_the_3d_model_agree_with_the_timoshenko_beam():
     structure in two theories.  The plate's rotary inertia and the wall's
     flexibility separate them by ~1-2 % in the second mode: 3 %."""
     pytest.importorskip("dolfinx")
-    from rotorpillar.reduced.cases import scene_pillar_modes
+    from rotorpillar.fem3d.pillar_modes import fem3d_pillar_modes
     scene = override(load_scene("paper"), ["modal_model.source=fem3d"])
-    pm = scene_pillar_modes(scene, 2)
+    pm = fem3d_pillar_modes(scene, 2)
     beam = beam_pillar_modes(scene, 2, "timoshenko", 40)
     assert pm.omega == pytest.approx(beam.omega, rel=0.03)
     assert pm.modal_mass == pytest.approx(beam.modal_mass, rel=0.03)
     assert pm.participation == pytest.approx(beam.participation, rel=0.03)
     assert pm.shapes[-1] == pytest.approx([1.0, 1.0])
+    # the candidates the simulate command passes to the reduced package
+    from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
+    from rotorpillar.reduced.models import build_model
+    model, info = build_model(scene, "modal", modes=2, pillar_modes=candidate_pillar_modes(scene))
+    assert list(model.pillar_modes.omega) == list(pm.omega) and info["modes"] == 2
+
+
+def test_modal_model_on_3d_modes_needs_them_passed_in():
+    """The reduced package never runs the 3D model: asked for fem3d modes
+    without them, it names the key."""
+    from rotorpillar.errors import InputError
+    from rotorpillar.reduced.models import build_model
+    scene = override(load_scene("paper"), ["modal_model.source=fem3d"])
+    with pytest.raises(InputError, match="modal_model.source"):
+        build_model(scene, "modal", modes=2)

@@ -21,7 +21,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rotorpillar.reduced.cases import build_model, stationary_exact
+from rotorpillar.reduced.models import build_model
+from rotorpillar.reduced.stationary import stationary_exact
 from rotorpillar.reduced.excitation import STANDARD_GRAVITY
 from rotorpillar.scene import load_scene
 
@@ -150,7 +151,8 @@ def test_integrators_command(tmp_path):
 
 
 def test_decimation_keeps_the_peaks():
-    from rotorpillar.reduced.cases import decimate, run_case
+    from rotorpillar.reduced.cases import run_case
+    from rotorpillar.reduced.summaries import decimate
     r = run_case(load_scene("paper"), "runup", "paper").run
     d = decimate(r, 1000)
     assert len(d.t) <= 1000 and d.t[-1] == r.t[-1] and d.t[0] == r.t[0]

@@ -33,7 +33,9 @@ import numpy as np
 import pytest
 
 from rotorpillar.reduced import averaging as av
-from rotorpillar.reduced.cases import build_model, passing_torque, run_case
+from rotorpillar.reduced.cases import run_case
+from rotorpillar.reduced.models import build_model
+from rotorpillar.reduced.stationary import passing_torque
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.rotor_models import paper_model
@@ -61,7 +63,7 @@ def test_energy_is_conserved_without_damping_motor_and_load():
 @pytest.mark.parametrize("scene", ["paper", "paper-stiff"])
 def test_work_closes_the_energy_balance_of_a_run_up(scene):
     r = run_case(load_scene(scene), "runup", "paper")
-    assert r.summary["energy_balance"]["relative_error"] < 1e-6
+    assert r.summary.energy_balance["relative_error"] < 1e-6
 
 
 def steady_run(model, W):
@@ -158,7 +160,7 @@ def test_passing_torque_matches_the_fold(sommerfeld):
 @pytest.mark.slow
 def test_sommerfeld_sweep_finds_the_predicted_jumps(sommerfeld):
     r = run_case(sommerfeld, "sweep", "paper")
-    s = r.summary
+    s = r.summary.to_json()
     assert {j["direction"] for j in s["jumps"]} == {"up", "down"}
     pred = {j["direction"]: j for j in s["predicted_jumps"] if j["resonance"] == 1}
     num = {j["direction"]: j for j in s["jumps"]}
@@ -172,7 +174,7 @@ def test_sommerfeld_sweep_finds_the_predicted_jumps(sommerfeld):
 
 def test_paper_sweep_rules_out_the_jumps():
     r = run_case(load_scene("paper"), "sweep", "paper")
-    s = r.summary
+    s = r.summary.to_json()
     assert s["jumps"] == [] and s["predicted_jumps"] == []
     assert max(s["largest_speed_step_ratio"].values()) < 2.0
     assert "No jumps" in s["no_jump_reason"]

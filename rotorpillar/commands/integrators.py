@@ -20,11 +20,13 @@ def integrators_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..reduced.integrator_study import run_study
+    from .simulate import pillar_modes_for
     duration = getattr(args, "duration", 10.0)
     if not (math.isfinite(duration) and 0 < duration <= 1000):
         raise InputError(f"--duration {duration!r}: must be > 0 and <= 1000 (s)")
     with timings("study"):
-        result = run_study(scene, duration, quick=getattr(args, "quick", False), progress=progress)
+        result = run_study(scene, duration, quick=getattr(args, "quick", False), progress=progress,
+                           pillar_modes=pillar_modes_for(scene, "modal"))
     figures = []
     if is_root_rank():
         from ..postprocess.transient_charts import integrators_chart

@@ -45,7 +45,9 @@ def add_arguments(p) -> None:
 def simulate_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
-    from ..reduced.cases import run_case, scene_motion, series
+    from ..reduced.cases import run_case
+    from ..reduced.models import scene_motion
+    from ..reduced.summaries import series
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
@@ -55,10 +57,10 @@ def simulate_command(scene, args, timings):
     progress(f"simulate {scene.name}: {case}, {which} model")
     with timings(case):
         res = run_case(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                       motion=motion)
+                       motion=motion, pillar_modes=pillar_modes_for(scene, which))
     data = series(res.run, scene.simulate.samples)
     out = out_dir(scene, args)
-    result = {"case": case, "model": which, **res.summary,
+    result = {"case": case, "model": which, **res.summary.to_json(),
               "model_description": res.model.describe(), "model_info": res.extra.get("model_info"),
               "resonances": [vars(r) for r in res.model.quasi_normal()],
               "damped_frequencies": res.model.damped_frequencies(),
@@ -81,6 +83,16 @@ def simulate_command(scene, args, timings):
                     "versions": versions(), "machine": machine(), "timings": dict(timings)}
         write_json(out / f"simulate_{case}.json", copy_doc)
     return result, summary(scene, result)
+
+
+def pillar_modes_for(scene, which: str):
+    """The 3D model's candidate pillar modes when the modal model takes its
+    modes from it (``modal_model.source = "fem3d"``), else None (the reduced
+    package computes the beam's itself)."""
+    if which != "modal" or scene.modal_model.source != "fem3d":
+        return None
+    from ..fem3d.pillar_modes import candidate_pillar_modes
+    return candidate_pillar_modes(scene)
 
 
 def _write_npz(path, data, res):
@@ -122,7 +134,7 @@ def _charts(out, scene, case, res, data) -> list[dict]:
                    f"({m.frame.replace('_', ' ')}), rotor speed.")
     else:
         extra = []
-        pt = res.summary.get("passing_torque") or {}
+        pt = res.summary.passing_torque or {}
         if pt.get("bracket_series"):
             bs = pt["bracket_series"]
             for row, W, pk, f in zip(pt["bracket_runs"], bs["Omega"], bs["tip_peak"], (0.95, 1.05)):

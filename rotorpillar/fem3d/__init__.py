@@ -7,13 +7,23 @@ The public API (dolfinx, PETSc and SLEPc are imported inside the functions):
   from its shape (bending_x/y, ovalling with n, torsion, axial, breathing,
   other; see :mod:`rotorpillar.fem3d.identify`).
 - :func:`reduction_from_scene` (scene) -> (m_reduced, tip_stiffness): the
-  paper's Eq. 2 done on the 3D model's first bending mode.
+  paper's equation 2 done on the 3D model's first bending mode.
 - :func:`assemble_pillar` (scene, top=...) -> :class:`PillarModel`: the
   assembled K and M in PETSc with the node coordinates and top-face nodes,
   for time integration of the 3D model.
 
+- :mod:`rotorpillar.fem3d.pillar_modes`: the 3D X bending modes as the
+  reduced package's PillarModes (``candidate_pillar_modes`` for the modal
+  model when ``modal_model.source = "fem3d"``).
+
 Axes (``AXES``): the tube axis is z, base at z = 0; x is the paper's X (the
 rotor's plane); y is horizontal, normal to it.
+
+Where the paper's equations live on the 3D side (the first line of each
+function's docstring carries the tag; the reduced side's index is in
+rotorpillar.reduced):
+
+Eq. 2    rotorpillar.fem3d.reduction.beam_line_tip_mass
 """
 
 from __future__ import annotations

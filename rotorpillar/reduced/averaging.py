@@ -1,18 +1,19 @@
-"""Averaging (Bogoliubov-Mitropolski) near the resonances: Eq. (17)-(24).
+"""Averaging (Bogoliubov-Mitropolski) near the resonances: the paper's equations 17-24.
 
 Near resonance i the quasi-normal coordinate x_i = a cos(q4 + xi) with
 slowly varying amplitude a, phase xi and speed Omega; the stationary averaged
 equations (17)-(18) give, with z = Omega/omega_i and nu_i = n_i/omega_i:
 
-- amplitude, Eq. (19):     a_i(z)  = |f_i| / (2 omega_i**2 sqrt((1 - z)**2 + nu_i**2))
-- extra torque, Eq. (20):  dL_i(z) = f_i g_i nu_i / (4 omega_i**2 ((1 - z)**2 + nu_i**2))
+- amplitude (19):          a_i(z)  = |f_i| / (2 omega_i**2 sqrt((1 - z)**2 + nu_i**2))
+- extra torque (20):       dL_i(z) = f_i g_i nu_i / (4 omega_i**2 ((1 - z)**2 + nu_i**2))
 - total resistance (21):   L(Omega) = Mc(Omega) + sum_i dL_i
-- stationary speeds where Md = L, stable where d(Md - L)/dOmega < 0 (Eq. 23).
+- stationary speeds where Md = L, stable where d(Md - L)/dOmega < 0 (23);
+- the largest extra torque over the load at the resonance (24).
 
-Two departures from the printed paper, both forced by its own Eq. (17):
-Eq. (19) as printed divides by omega_i, not omega_i**2 (its a_i would be a
+Two departures from the printed paper, both forced by its own equation 17:
+equation 19 as printed divides by omega_i, not omega_i**2 (its a_i would be a
 velocity; (17) gives a = f/(2 omega (Omega - omega ...)) with f an
-acceleration); and Eq. (21) prints (1 - z**2) where Eq. (20) has (1 - z)**2.
+acceleration); and equation 21 prints (1 - z**2) where equation 20 has (1 - z)**2.
 The torque coupling g_i replaces the paper's f4 = c2 e (see
 rotorpillar.reduced.system).  The printed forms stay available for
 comparison.
@@ -45,27 +46,27 @@ from .system import Resonance
 
 
 def amplitude(Omega, r: Resonance):
-    """a_i at speed Omega, Eq. (19) with its omega_i**2 restored (m)."""
+    """Eq. 19: a_i at speed Omega, with its omega_i**2 restored (m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
     return abs(r.forcing) / (2 * r.omega**2 * np.sqrt((1 - z) ** 2 + r.nu**2))
 
 
 def amplitude_as_printed(Omega, r: Resonance):
-    """Eq. (19) exactly as printed: f_i / (2 omega_i sqrt(...)) (m/s, not m)."""
+    """The paper's equation 19 exactly as printed: f_i / (2 omega_i sqrt(...)) (m/s, not m)."""
     return amplitude(Omega, r) * r.omega
 
 
 def amplitude_linear(Omega, r: Resonance):
     """Exact steady amplitude of x'' + 2n x' + omega**2 x = f cos(Omega t) (m).
 
-    The averaging result (19) is its first-order expansion about Omega = omega.
+    The averaging result (equation 19) is its first-order expansion about Omega = omega.
     """
     W = np.asarray(Omega, dtype=float)
     return abs(r.forcing) / np.sqrt((r.omega**2 - W**2) ** 2 + (r.two_n * W) ** 2)
 
 
 def resistance_increment(Omega, r: Resonance):
-    """dL_i, the averaged torque drawn by resonance i, Eq. (20) (N*m)."""
+    """Eq. 20: dL_i, the averaged torque drawn by resonance i (N*m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
     return r.forcing * r.coupling * r.nu / (4 * r.omega**2 * ((1 - z) ** 2 + r.nu**2))
 
@@ -79,7 +80,7 @@ def resistance_increment_slope(Omega, r: Resonance):
 
 
 def resistance_increment_as_printed(Omega, r: Resonance, f4: float):
-    """Eq. (20) with the paper's f4 = c2 e in place of g_i (N*m)."""
+    """The paper's equation 20 with its f4 = c2 e in place of g_i (N*m)."""
     return resistance_increment(Omega, r) * f4 / r.coupling
 
 
@@ -98,7 +99,7 @@ def resistance_increment_linear(Omega, r: Resonance):
 
 @dataclass(frozen=True)
 class Characteristic:
-    """Motor and machine torques, Eq. (22): Md = M0 - s Omega, Mc = k Omega**2."""
+    """Eq. 22: motor and machine torques, Md = M0 - s Omega, Mc = k Omega**2."""
     torque_at_zero: float
     """M0 (N*m)"""
     slope: float
@@ -124,9 +125,35 @@ class Characteristic:
 
 
 def total_resistance(Omega, load_coefficient: float, resonances) -> np.ndarray:
-    """L(Omega) = Mc(Omega) + sum_i dL_i(Omega), Eq. (21) (N*m)."""
+    """Eq. 21: L(Omega) = Mc(Omega) + sum_i dL_i(Omega) (N*m)."""
     W = np.asarray(Omega, dtype=float)
     return load_coefficient * W**2 + sum(resistance_increment(W, r) for r in resonances)
+
+
+def peak_resistance_ratio(r: Resonance, load_coefficient: float) -> float:
+    """Eq. 24: dL_i at its peak (Omega = omega_i) over the load Mc(omega_i) = k omega_i**2 (-).
+
+    Small (the paper's stiff shaft: 0.11) means the resonance cannot hold
+    the rotor: no jump.
+    """
+    return resistance_increment(r.omega, r) / (load_coefficient * r.omega**2)
+
+
+def stability_margin(Omega, slope: float, load_coefficient: float, resonances):
+    """d(Md - L)/dOmega = -(s + 2 k Omega + sum_i d(dL_i)/dOmega) (N*m*s): negative where stable."""
+    W = np.asarray(Omega, dtype=float)
+    return -(2 * load_coefficient * W + slope + sum(resistance_increment_slope(W, r) for r in resonances))
+
+
+def branch_is_stable(Omega, slope: float, load_coefficient: float, resonances):
+    """Eq. 23: is the stationary regime at Omega stable, d[Md - L]/dOmega < 0?
+
+    Omega: speed (rad/s), a number or an array; slope: the motor's s in
+    Md = M0 - s Omega (N*m*s); load_coefficient: k in Mc = k Omega**2
+    (N*m*s**2); resonances: the Resonance records whose dL_i make up L.
+    Returns a bool (numpy bool, or a bool array for an array Omega).
+    """
+    return stability_margin(Omega, slope, load_coefficient, resonances) < 0
 
 
 def speed_grid(resonances, top: float, n: int = 4000) -> np.ndarray:
@@ -156,7 +183,7 @@ class Stationary:
     omega: float
     """stationary speed Omega (rad/s)"""
     stable: bool
-    """d(Md - L)/dOmega < 0 there (Eq. 23)"""
+    """d(Md - L)/dOmega < 0 there (the paper's equation 23)"""
     margin: float
     """d(Md - L)/dOmega (N*m*s): negative when stable"""
 
@@ -198,11 +225,12 @@ def analyse_drive(ch: Characteristic, resonances, top: float | None = None) -> D
     k, s = ch.load_coefficient, ch.slope
 
     F = lambda W: total_resistance(W, k, resonances) + s * W          # M0 on the branch
-    dF = lambda W: 2 * k * W + s + sum(resistance_increment_slope(W, r) for r in resonances)
+    dF = lambda W: -stability_margin(W, s, k, resonances)
     nearest = lambda W: min(resonances, key=lambda r: abs(r.omega - W)).index
 
     roots = _roots(lambda W: F(W) - ch.torque_at_zero, grid)
-    stationary = [Stationary(w, bool(dF(w) > 0), float(-dF(w))) for w in roots]
+    stationary = [Stationary(w, bool(branch_is_stable(w, s, k, resonances)),
+                             float(stability_margin(w, s, k, resonances))) for w in roots]
 
     folds = _roots(dF, grid)
     jumps = []

@@ -29,7 +29,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .cases import build_model
+from .models import build_model
 from .drive import DriveSchedule
 from .excitation import no_motion
 from .transient import FIXED_STEP, SCIPY_METHODS, Settings, simulate
@@ -123,11 +123,12 @@ def _per_method(rows) -> dict:
 
 
 def stability_study(scene, drive, duration: float = 2.0, max_modes: int = 8, time_step: float = 2.5e-3,
-                    rtol: float = 1e-6, progress=None) -> dict:
-    """Experiment 2: modal model with more and more pillar modes."""
+                    rtol: float = 1e-6, progress=None, pillar_modes=None) -> dict:
+    """Experiment 2: modal model with more and more pillar modes (of
+    ``pillar_modes`` when given, see ``models.build_model``)."""
     rows = []
     for k in range(1, max_modes + 1):
-        model, _ = build_model(scene, "modal", modes=k)
+        model, _ = build_model(scene, "modal", modes=k, pillar_modes=pillar_modes)
         w_max = model.stiffest_frequency()
         if progress:
             progress(f"integrators: {k} pillar modes (omega_max {w_max:.0f} rad/s)")
@@ -184,12 +185,15 @@ def drift_study(model, duration: float = 200.0, speed: float = 50.0, rtol: float
             "rows": rows}
 
 
-def run_study(scene, duration: float = 10.0, quick: bool = False, progress=None) -> dict:
-    """All three experiments on a scene's paper model (1, 3) and modal model (2)."""
+def run_study(scene, duration: float = 10.0, quick: bool = False, progress=None,
+              pillar_modes=None) -> dict:
+    """All three experiments on a scene's paper model (1, 3) and modal model (2);
+    ``pillar_modes``: the modal model's candidate modes (needed for the 3D source)."""
     d, L = scene.drive, scene.load
     drive = DriveSchedule.ramp(d.torque_at_zero, d.slope, L.coefficient, scene.simulate.runup_ramp)
     model, _ = build_model(scene, "paper")
     acc = accuracy_study(model, drive, duration, quick=quick, progress=progress)
-    stab = stability_study(scene, drive, max_modes=5 if quick else 8, progress=progress)
+    stab = stability_study(scene, drive, max_modes=5 if quick else 8, progress=progress,
+                           pillar_modes=pillar_modes)
     drift = drift_study(model, duration=50.0 if quick else 200.0, progress=progress)
     return {"accuracy": acc, "stability": stab, "energy_drift": drift}

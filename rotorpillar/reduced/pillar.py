@@ -1,10 +1,10 @@
 """Closed forms of the pillar as a cantilever beam, and its reduction to the tip.
 
 The tube is a uniform cantilever of height H, clamped at the base (x = 0) and
-free at the top (x = H).  Euler-Bernoulli theory gives the paper's Eq. (1);
+free at the top (x = H).  Euler-Bernoulli theory gives the paper's equation 1;
 Timoshenko theory adds shear and rotary inertia, which matter a little for a
 thin tube (shear coefficient of Cowper, 1966).  The reduction to one tip mass
-and one spring is the paper's Eq. (2): equal kinetic energy in the first mode.
+and one spring is the paper's equation 2: equal kinetic energy in the first mode.
 
 All quantities SI: m, kg, Pa, rad/s.
 
@@ -26,7 +26,7 @@ from scipy.linalg import expm
 from scipy.optimize import brentq
 
 #: Euler-Bernoulli cantilever: the first mode's modal mass over its tip value
-#: squared, per unit beam mass, is exactly 1/4 (Eq. 2 in the limit n -> inf).
+#: squared, per unit beam mass, is exactly 1/4 (the paper's equation 2 in the limit n -> inf).
 CONTINUOUS_TIP_MASS_RATIO = 0.25
 
 
@@ -93,7 +93,7 @@ def cantilever_root(k: int) -> float:
 
 
 def omega_euler_bernoulli(E: float, I: float, mass_per_length: float, H: float, k: int = 1) -> float:
-    """Natural angular frequency of the k-th cantilever mode (rad/s), Eq. (1)::
+    """Eq. 1: natural angular frequency of the k-th cantilever mode (rad/s)::
 
         omega_k = (beta_k H)**2 * sqrt(E I / (m_rho H**4))
     """
@@ -115,11 +115,11 @@ def cantilever_mode(xi, k: int = 1):
 
 
 # --------------------------------------------------------------------------
-# Reduction to the tip, Eq. (2)
+# Reduction to the tip, the paper's equation 2
 
 
 def tip_mass_lumped(mass: float, n: int) -> float:
-    """Eq. (2) with the pillar lumped into n equal masses m_col/n at x_i = i H/n.
+    """Eq. 2: the pillar lumped into n equal masses m_col/n at x_i = i H/n.
 
     m_r = sum_i m_i u_i1**2 / u_11**2 with u the first cantilever mode.  The top
     node carries a whole segment, as the paper's m_i = m_col/n reads, so m_r
@@ -133,7 +133,7 @@ def tip_mass_lumped(mass: float, n: int) -> float:
 
 
 def tip_mass_continuous(mass: float) -> float:
-    """Eq. (2) on the continuous first mode: exactly m_col/4 (kg)."""
+    """The paper's equation 2 on the continuous first mode: exactly m_col/4 (kg)."""
     return CONTINUOUS_TIP_MASS_RATIO * mass
 
 

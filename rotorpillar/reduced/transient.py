@@ -8,7 +8,7 @@ statistics.
 
 Integrators (``INTEGRATORS``):
 
-- ``dp5``: Dormand-Prince 5(4), compiled (rotorpillar.reduced.kernels), with
+- ``dp5``: Dormand-Prince 5(4), compiled (rotorpillar.reduced.dp5), with
   scipy RK45's step control, theta wrapped into [0, 2 pi) so that the
   relative tolerance keeps the unbalance's phase;
 - scipy's ``RK45``, ``DOP853``, ``Radau``, ``BDF``, ``LSODA`` on the compiled

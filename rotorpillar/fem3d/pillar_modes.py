@@ -22,8 +22,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from .pillar import section_of
-from .pillar_modes import PillarModes
+from ..reduced.models import MAX_CANDIDATE_MODES
+from ..reduced.pillar import section_of
+from ..reduced.pillar_modes import PillarModes
 
 
 def integrate_levels(z: np.ndarray, f: np.ndarray) -> float:
@@ -71,5 +72,18 @@ def fem3d_pillar_modes(scene, count: int) -> PillarModes:
     if scene.modal.top_mass != "gondola":
         raise InputError('modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
                          'the modal model hangs it on its shaft: use modal.top_mass = "gondola"')
-    from ..fem3d import modal_analysis            # dolfinx: imported only on this request
+    from . import modal_analysis            # dolfinx: imported only on this request
     return pillar_modes_from_fem3d(modal_analysis(scene, top=True), scene.pillar, count)
+
+
+def candidate_pillar_modes(scene) -> PillarModes:
+    """Every X bending mode the scene's 3D analysis finds (at most
+    MAX_CANDIDATE_MODES): the candidates ``rotorpillar.reduced.models.build_model``
+    takes as ``pillar_modes`` when ``modal_model.source = "fem3d"``."""
+    import importlib.util
+    if importlib.util.find_spec("dolfinx") is None:
+        raise InputError('modal_model.source = "fem3d" needs the 3D model (dolfinx), which is not '
+                         'installed here; use modal_model.source = "beam"')
+    from . import modal_analysis
+    n = sum(1 for k in modal_analysis(scene, top=True).kind if k == "bending_x")
+    return fem3d_pillar_modes(scene, max(1, min(n, MAX_CANDIDATE_MODES)))

@@ -1,0 +1,75 @@
+"""The models of a scene: the paper's equation 4 with the scene's tip
+reduction, or the modal model on pillar modes, and the scene's ground motion.
+
+The modal model picks its modes from candidates: the 1D beam's (computed
+here) or, when ``modal_model.source = "fem3d"``, the 3D model's, which the
+caller computes (rotorpillar.fem3d.pillar_modes.candidate_pillar_modes) and
+passes in: this package never runs the 3D model.
+"""
+
+from __future__ import annotations
+
+from ..errors import InputError
+from .excitation import GroundMotion, load_record, paper_pulse
+from .pillar_modes import PillarModes, beam_pillar_modes, modes_in_band
+from .reduction import pillar_closed_forms, resolve_reduction
+from .rotor_models import modal_model, paper_model
+from .system import reduced_system
+
+#: the most pillar modes a modal model picks from
+MAX_CANDIDATE_MODES = 12
+
+
+def paper_system(scene):
+    """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's equation 2)."""
+    red = resolve_reduction(scene, pillar_closed_forms(scene))
+    return reduced_system(scene, red["tip_mass"], red["tip_stiffness"]), red
+
+
+def beam_candidates(scene, count: int = MAX_CANDIDATE_MODES) -> PillarModes:
+    """The first ``count`` pillar modes of the scene's 1D beam ([modal_model])."""
+    m = scene.modal_model
+    return beam_pillar_modes(scene, count, m.theory, m.elements, m.gondola_inertia)
+
+
+def candidate_modes(scene, pillar_modes: PillarModes | None = None) -> PillarModes:
+    """The modes a modal model picks from: ``pillar_modes`` when given, else
+    the beam's; the 3D source must be given (InputError otherwise)."""
+    if pillar_modes is not None:
+        return pillar_modes
+    if scene.modal_model.source == "beam":
+        return beam_candidates(scene)
+    raise InputError(f'modal_model.source = "{scene.modal_model.source}": the modal model needs the '
+                     "3D pillar modes passed in (pillar_modes=, from "
+                     "rotorpillar.fem3d.pillar_modes.candidate_pillar_modes)")
+
+
+def build_model(scene, which: str, band_top: float | None = None, modes: int | None = None,
+                pillar_modes: PillarModes | None = None):
+    """(model, info) for "paper" or "modal"; the modal model keeps ``modes``
+    modes, or those below ``band_top`` (rad/s), of ``candidate_modes``."""
+    if which == "paper":
+        s, red = paper_system(scene)
+        return paper_model(s), {"reduction": red}
+    if which != "modal":
+        raise InputError(f"model {which!r}: must be paper or modal")
+    candidates = candidate_modes(scene, pillar_modes)
+    k = modes or scene.modal_model.modes or modes_in_band(candidates.omega, band_top or 0.0)
+    k = min(k, candidates.count)
+    pm = candidates.truncate(k)
+    r, sh = scene.rotor, scene.shaft
+    model = modal_model(pm, r.mass, r.inertia, r.eccentricity, sh.stiffness, sh.damping,
+                        scene.pillar.damping)
+    info = {"modes": k, "band_top": band_top, "candidate_omega": list(map(float, candidates.omega)),
+            "mode_choice": ("stated (modal_model.modes)" if (modes or scene.modal_model.modes) else
+                            f"the pillar modes below {band_top:.4g} rad/s = band_factor x the highest "
+                            "forcing frequency")}
+    return model, info
+
+
+def scene_motion(scene) -> GroundMotion:
+    """The scene's [excitation] as a GroundMotion."""
+    x = scene.excitation
+    if x.kind == "paper":
+        return paper_pulse(x.amplitude, x.frequency, x.start, x.duration)
+    return load_record(x.record, x.record_units, x.record_scale, x.start)

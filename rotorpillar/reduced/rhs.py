@@ -1,0 +1,262 @@
+"""The rotor-structure model's right-hand side: compiled (numba) for the
+integrators, and the paper's equation 4 as published in plain numpy.
+
+One generic model covers the paper's equation 4 and the modal model
+(rotorpillar.reduced.rotor_models): nx structural X coordinates z (pillar
+and rotor centre), the rotor centre's Y coordinate y, and the rotor angle
+theta.  With M the mass matrix (its inverse Minv given; a zero row for theta
+prescribes a constant speed), the forces are
+
+    F_z     = -Ks z - C z' - c2 d (d.z - e cos theta) + kb u_g + cb v_g + mb a_g
+    F_y     = -c2 (y - e sin theta) - b2y y'
+    F_theta = Md(t, W) - Mc(W) - c2 e (d.z) sin theta + c2 e y cos theta
+
+with W = theta', Md = M0(t) - s(t) W (a piecewise-linear schedule),
+Mc = k W |W|, d the shaft-deflection vector (rotor X minus tip X) and
+(u_g, v_g, a_g) the ground displacement, velocity and acceleration.
+
+The arrays travel as one tuple P = (Minv, Ks, C, d, base, scal, sched, gpar,
+gtab), built by ``rotor_models.pack``:
+
+- base  (4, nx): rows kb, cb, mb, and the tip vector (tip X = tip.z, for the peaks)
+- scal  (4,):    c2, e, b2y, k
+- sched (3, m):  knot times, M0, s
+- gpar  (6,):    kind (0 none, 1 harmonic pulse, 2 table), A, omega, t0, t1, dt
+- gtab  (3, ng): tabulated u_g, v_g, a_g on t0 + i dt (kind 2)
+
+Four work integrals ride along with the state (not error-controlled):
+drive minus load (Md - Mc) W, work done by the shaft torque on the
+structure, dissipation, and base-force work; they close the energy balance.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+N_WORK = 4
+#: status codes of the integrators
+OK, MAX_STEPS, STEP_TOO_SMALL, NOT_FINITE, NEWTON_FAILED = 0, 1, 2, 3, 4
+
+
+def eq4_rhs(y, m_A, m_C, J, e, c1, c2, b1, b2, M0, s, k, q5=0.0, q5_rate=0.0, q6=0.0, q6_rate=0.0):
+    """Eq. 4 as published: y' for y = (q1, q2, q3, q4, q1', q2', q3', q4').
+
+    q1 pillar tip X, q2 and q3 rotor mass centre X and Y, q4 rotor angle (m,
+    rad); m_A = m_r + m* and m_C (kg), J (kg*m**2), e (m), c1, c2 (N/m),
+    b1, b2 (N*s/m); the drive Md = M0 - s q4' and the load Mc = k q4' |q4'|
+    (N*m, the paper's equation 22); q5, q6 the ground's X and Y displacement
+    (m) and their rates (m/s).  With c0 = c1 + c2 and b0 = b1 + b2::
+
+        m_A q1'' + c0 q1 + b0 q1' - c2 q2 = -c2 e cos q4 + c0 q5 + b0 q5'
+        m_C q2'' - c2 q1 + c2 q2 + b2 q2' =  c2 e cos q4 + c2 q5 + b2 q5'
+        m_C q3''         + c2 q3 + b2 q3' =  c2 e sin q4 + c2 q6 + b2 q6'
+        J q4'' = Md - Mc - c2 e (q2 - q1) sin q4 + c2 e q3 cos q4
+
+    Plain numpy, one call per evaluation: the reference the compiled
+    ``deriv`` is checked against, and the hand-written right-hand side of
+    the benchmarks.
+    """
+    q1, q2, q3, q4, v1, v2, v3, v4 = y
+    c0, b0 = c1 + c2, b1 + b2
+    return np.array([
+        v1, v2, v3, v4,
+        (-c0 * q1 - b0 * v1 + c2 * q2 - c2 * e * np.cos(q4) + c0 * q5 + b0 * q5_rate) / m_A,
+        (c2 * q1 - c2 * q2 - b2 * v2 + c2 * e * np.cos(q4) + c2 * q5 + b2 * q5_rate) / m_C,
+        (-c2 * q3 - b2 * v3 + c2 * e * np.sin(q4) + c2 * q6 + b2 * q6_rate) / m_C,
+        (M0 - s * v4 - k * v4 * abs(v4) - c2 * e * (q2 - q1) * np.sin(q4) + c2 * e * q3 * np.cos(q4)) / J,
+    ])
+
+
+@njit(cache=True)
+def ground(t, gpar, gtab):
+    """Ground displacement, velocity, acceleration at t (m, m/s, m/s**2)."""
+    kind = int(gpar[0])
+    if kind == 1:
+        A, w, t0, t1 = gpar[1], gpar[2], gpar[3], gpar[4]
+        if t >= t0 and t < t1:
+            c = math.cos(w * t)
+            s = math.sin(w * t)
+            return A * (c - 1.0), -A * w * s, -A * w * w * c
+        return 0.0, 0.0, 0.0
+    if kind == 2:
+        t0, dt = gpar[3], gpar[5]
+        n = gtab.shape[1]
+        x = (t - t0) / dt
+        if x < 0.0 or x > n - 1:
+            return 0.0, 0.0, 0.0
+        i = int(x)
+        if i >= n - 1:
+            i = n - 2
+        f = x - i
+        return ((1.0 - f) * gtab[0, i] + f * gtab[0, i + 1],
+                (1.0 - f) * gtab[1, i] + f * gtab[1, i + 1],
+                (1.0 - f) * gtab[2, i] + f * gtab[2, i + 1])
+    return 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def drive_at(t, sched):
+    """Motor M0 (N*m) and slope s (N*m*s) at t: piecewise linear, held outside."""
+    ts = sched[0]
+    m = ts.shape[0]
+    if m == 1 or t <= ts[0]:
+        return sched[1, 0], sched[2, 0]
+    if t >= ts[m - 1]:
+        return sched[1, m - 1], sched[2, m - 1]
+    lo, hi = 0, m - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if ts[mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    span = ts[hi] - ts[lo]
+    if span <= 0.0:
+        return sched[1, hi], sched[2, hi]
+    f = (t - ts[lo]) / span
+    return ((1.0 - f) * sched[1, lo] + f * sched[1, hi],
+            (1.0 - f) * sched[2, lo] + f * sched[2, hi])
+
+
+@njit(cache=True)
+def deriv(t, y, P, out, F):
+    """The first-order right-hand side, in one flat body (no nested calls
+    that pass arrays: each costs more than the physics here).
+
+    y = (q, v, ...) with n = len(q); writes out[:n] = v, out[n:2n] = Minv F,
+    out[2n:2n+4] = the powers (drive - load, shaft on structure, dissipation,
+    base); F (n) is scratch and holds the forces on return.
+    """
+    Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
+    nx = Ks.shape[0]
+    n = nx + 2
+    c2, e, b2y, kload = scal[0], scal[1], scal[2], scal[3]
+    th = y[nx + 1]
+    W = y[n + nx + 1]
+    ct = math.cos(th)
+    st = math.sin(th)
+    # the common cases without a call: no ground motion, a constant drive
+    if gpar[0] == 0.0:
+        ug, vg, ag = 0.0, 0.0, 0.0
+    else:
+        ug, vg, ag = ground(t, gpar, gtab)
+    if sched.shape[1] == 1:
+        M0, s = sched[1, 0], sched[2, 0]
+    else:
+        M0, s = drive_at(t, sched)
+    dz = 0.0
+    for i in range(nx):
+        dz += d[i] * y[i]
+    sx = dz - e * ct
+    p_diss = 0.0
+    p_base = 0.0
+    for i in range(nx):
+        fb = base[0, i] * ug + base[1, i] * vg + base[2, i] * ag
+        acc = -c2 * d[i] * sx + fb
+        for j in range(nx):
+            acc -= Ks[i, j] * y[j] + C[i, j] * y[n + j]
+            p_diss += y[n + i] * C[i, j] * y[n + j]
+        F[i] = acc
+        p_base += fb * y[n + i]
+    yy = y[nx]
+    vy = y[n + nx]
+    F[nx] = -c2 * (yy - e * st) - b2y * vy
+    p_diss += b2y * vy * vy
+    drive = M0 - s * W - kload * W * abs(W)
+    shaft = -c2 * e * dz * st + c2 * e * yy * ct
+    F[nx + 1] = drive + shaft
+    for i in range(n):
+        acc = 0.0
+        for j in range(n):
+            acc += Minv[i, j] * F[j]
+        out[n + i] = acc
+        out[i] = y[n + i]
+    out[2 * n] = drive * W
+    out[2 * n + 1] = -shaft * W
+    out[2 * n + 2] = p_diss
+    out[2 * n + 3] = p_base
+
+
+@njit(cache=True)
+def jacobians(t, q, v, P, Jq, Jv):
+    """dF/dq and dF/dv of the forces of ``deriv`` into Jq, Jv."""
+    Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
+    nx = Ks.shape[0]
+    n = nx + 2
+    c2, e, b2y, kload = scal[0], scal[1], scal[2], scal[3]
+    th = q[nx + 1]
+    W = v[nx + 1]
+    ct = math.cos(th)
+    st = math.sin(th)
+    dz = 0.0
+    for i in range(nx):
+        dz += d[i] * q[i]
+    for i in range(n):
+        for j in range(n):
+            Jq[i, j] = 0.0
+            Jv[i, j] = 0.0
+    for i in range(nx):
+        for j in range(nx):
+            Jq[i, j] = -Ks[i, j] - c2 * d[i] * d[j]
+            Jv[i, j] = -C[i, j]
+        Jq[i, nx + 1] = -c2 * d[i] * e * st
+        Jq[nx + 1, i] = -c2 * e * d[i] * st
+    y = q[nx]
+    Jq[nx, nx] = -c2
+    Jq[nx, nx + 1] = c2 * e * ct
+    Jv[nx, nx] = -b2y
+    M0, s = drive_at(t, sched)
+    Jq[nx + 1, nx] = c2 * e * ct
+    Jq[nx + 1, nx + 1] = -c2 * e * dz * ct - c2 * e * y * st
+    Jv[nx + 1, nx + 1] = -s - 2.0 * kload * abs(W)
+
+
+
+@njit(cache=True)
+def record_peak(q, P, peak_row):
+    """peak_row[i] = max(peak_row[i], |q_i|); the last entry tracks |tip.z|."""
+    base = P[4]
+    nx = base.shape[1]
+    n = q.shape[0]
+    tipz = 0.0
+    for i in range(nx):
+        tipz += base[3, i] * q[i]
+    for i in range(n):
+        if abs(q[i]) > peak_row[i]:
+            peak_row[i] = abs(q[i])
+    if abs(tipz) > peak_row[n]:
+        peak_row[n] = abs(tipz)
+
+
+
+@njit(cache=True)
+def rhs_first_order(t, y, P):
+    """y' for y = (q, v, work): the first-order form scipy integrates."""
+    out = np.empty_like(y)
+    F = np.empty(P[0].shape[0])
+    deriv(t, y, P, out, F)
+    return out
+
+
+@njit(cache=True)
+def jac_first_order(t, y, P):
+    """d(y')/dy of ``rhs_first_order`` (the work rows are left zero)."""
+    Minv = P[0]
+    n = Minv.shape[0]
+    m = y.shape[0]
+    J = np.zeros((m, m))
+    Jq = np.empty((n, n))
+    Jv = np.empty((n, n))
+    jacobians(t, y[:n], y[n:2 * n], P, Jq, Jv)
+    Aq = Minv @ Jq
+    Av = Minv @ Jv
+    for i in range(n):
+        J[i, n + i] = 1.0
+        for j in range(n):
+            J[n + i, j] = Aq[i, j]
+            J[n + i, n + j] = Av[i, j]
+    return J
+

@@ -1,0 +1,213 @@
+"""Reading a transient run: what it reached, where it settled, and its series.
+
+- ``max_abs`` per coordinate (from every step, not the decimated output);
+- ``capture``: a run settles at a resonance when its final speed lies inside
+  that resonance's peak (|Omega - omega_i| <= max(3 n_i, 0.03 omega_i)) while
+  the motor alone, without any resonance, would settle more than 2 % away
+  (Md = Mc);
+- ``passages``: when the speed first crosses each resonance;
+- ``series``: the arrays written to the NPZ/CSV;
+- ``CaseSummary``: what ``simulate_<case>.json`` carries about a case.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+
+from .excitation import GroundMotion, no_motion
+from .rotor_models import RotorStructure
+from .transient import Transient
+
+CAPTURE_WIDTH = 3.0          # in n_i = nu_i omega_i
+CAPTURE_MIN_WIDTH = 0.03     # relative
+
+
+def capture(model: RotorStructure, omega_final: float, drive_free_speed: float) -> float | None:
+    """omega_i of the resonance the run settled at, or None."""
+    if not math.isfinite(drive_free_speed) or abs(drive_free_speed - omega_final) <= 0.02 * drive_free_speed:
+        return None
+    best = None
+    for r in model.quasi_normal():
+        width = max(CAPTURE_WIDTH * r.n, CAPTURE_MIN_WIDTH * r.omega)
+        if abs(omega_final - r.omega) <= width and (best is None or
+                                                     abs(omega_final - r.omega) < abs(omega_final - best)):
+            best = r.omega
+    return best
+
+
+def passages(run: Transient) -> list[dict]:
+    """When the speed first crosses each resonance, and the largest tip
+    amplitude within +-10 % of it."""
+    out = []
+    W = run.Omega
+    tip_peak = run.peak[:, -1]
+    for r in run.model.quasi_normal():
+        idx = np.nonzero((W[:-1] - r.omega) * (W[1:] - r.omega) <= 0)[0]
+        near = np.abs(W - r.omega) <= 0.1 * r.omega
+        entry = {"index": r.index, "direction": r.direction, "omega": r.omega,
+                 "crossed": bool(idx.size), "time": float(run.t[idx[0]]) if idx.size else None,
+                 "peak_tip_near": float(tip_peak[near].max()) if near.any() else None,
+                 "peak_rotor_y_near": float(run.peak[near, run.model.nx].max()) if near.any() else None}
+        out.append(entry)
+    return out
+
+
+def max_abs(run: Transient) -> dict:
+    """Largest |value| over the run, from the integrator's per-step peaks (m)."""
+    m = run.model
+    pk = np.nanmax(run.peak, axis=0)
+    out = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
+    for i, name in enumerate(m.coordinates):
+        out[name] = float(pk[i])
+    shaft = run.q[:, :m.nx] @ m.shaft - m.eccentricity * np.cos(run.q[:, -1])
+    out["shaft_deflection_x_sampled"] = float(np.nanmax(np.abs(shaft)))
+    return out
+
+
+def ground_displacement(model: RotorStructure, motion: GroundMotion, t) -> np.ndarray:
+    """The ground displacement each model applies: q5 as written (paper), the
+    double integral of the applied acceleration (modal)."""
+    if model.frame == "absolute":
+        return motion.evaluate(t)[0]
+    return motion.inertial_displacement(t)
+
+
+def decimate(run: Transient, max_samples: int) -> Transient:
+    """Every k-th output so that at most ``max_samples`` remain (the last kept);
+    the interval peaks are merged, so no peak is lost."""
+    n = len(run.t)
+    if n <= max_samples:
+        return run
+    k = int(math.ceil((n - 1) / (max_samples - 1)))
+    idx = np.arange(0, n, k)
+    if idx[-1] != n - 1:
+        idx = np.r_[idx, n - 1]
+    starts = np.r_[0, idx[:-1] + 1]
+    peak = np.maximum.reduceat(run.peak, starts, axis=0)
+    peak[0] = run.peak[0]
+    return replace(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
+
+
+def series(run: Transient, max_samples: int | None = None) -> dict:
+    """The arrays written to the NPZ/CSV (contract with the animations)."""
+    if max_samples:
+        run = decimate(run, max_samples)
+    m = run.model
+    motion = run.motion or no_motion()
+    ground = ground_displacement(m, motion, run.t)
+    tip = run.tip()
+    out = {"t": run.t, "Omega": run.Omega, "theta": run.q[:, -1], "tip_x": tip,
+           "rotor_x": run.q[:, m.rotor_x], "rotor_y": run.q[:, m.nx], "ground_x": ground,
+           "ground_acceleration": motion.evaluate(run.t)[2],
+           "q": run.q, "v": run.v, "peak": run.peak, "work": run.work}
+    if run.drive is not None:
+        out["M0"] = run.drive.at(run.t)[0]
+        out["drive_torque"] = run.drive.torque(run.t, run.Omega)
+    T, P = m.energy(run.q, run.v)
+    out["energy"] = T + P
+    if m.frame == "relative_to_ground":
+        out["tip_x_absolute"] = tip + ground
+        out["rotor_x_absolute"] = out["rotor_x"] + ground
+        out["modal_coordinates"] = run.q[:, :m.pillar_modes.count]
+        if m.pillar_modes.shapes is not None:
+            out["mode_heights"] = m.pillar_modes.heights
+            out["mode_shapes"] = m.pillar_modes.shapes
+            out["mode_omega"] = np.asarray(m.pillar_modes.omega)
+    return out
+
+
+# --------------------------------------------------------------------------
+# The summary of a case
+
+
+@dataclass(frozen=True)
+class SweepFindings:
+    """What a quasi-static sweep adds to its summary (rotorpillar.reduced.sweep)."""
+    predicted_jumps: list
+    """the averaging theory's jumps inside the swept torque range"""
+    jump_comparison: list
+    """each predicted jump beside the nearest numeric one"""
+    largest_speed_step_ratio: dict
+    """{"up", "down"}: the largest speed step over what motor and load alone allow (-)"""
+    amplitudes: list
+    """numeric stationary amplitudes against the paper's equation 19 and the exact linear ones"""
+    rate_check: list
+    """per resonance in range: speed rate over n_i**2 (quasi-static when < 0.1)"""
+    no_jump_reason: str | None
+    """why no jump was found, or None"""
+    rate_convergence: dict | None
+    """the jumps at rates r, r/2, r/4 and their limit, or None without jumps"""
+
+
+@dataclass(frozen=True)
+class CaseSummary:
+    """A case condensed for ``simulate_<case>.json``; values are JSON-ready
+    (numpy arrays allowed: the writer converts them).  Optional sections are
+    None when the case has none, and then absent from ``to_json()``."""
+    ok: bool
+    duration: float
+    """length of the run (s)"""
+    omega_final: float
+    """rotor speed at the end (rad/s)"""
+    omega_final_mean: float
+    """mean speed over the last 5 % of the run (rad/s)"""
+    max_abs: dict
+    """largest |value| per coordinate (m)"""
+    captured_at: float | None
+    """omega_i of the resonance the run settled at (rad/s), or None"""
+    passages: list
+    energy_balance: dict
+    integrator: dict
+    """the integrator's statistics"""
+    prediction: dict
+    """what the averaging theory predicts for the drive"""
+    jumps: list
+    """the sweep's numeric jumps (empty for the other cases)"""
+    passing_torque: dict | None = None
+    """run-up: the torque needed to pass the first capturing resonance"""
+    sweep: SweepFindings | None = None
+    excitation: dict | None = None
+    """earthquake: the ground motion's sizes"""
+    response_spectrum_check: dict | None = None
+    """earthquake on a record: the tip against the response-spectrum estimate"""
+    truncation: dict | None = None
+    """modal model: the same case with one mode more"""
+
+    def to_json(self) -> dict:
+        """The summary as ``simulate_<case>.json`` writes it (key order included)."""
+        out = {}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name == "sweep":
+                if v is not None:
+                    out.update({g.name: getattr(v, g.name) for g in fields(v)})
+            elif f.name not in _OPTIONAL or v is not None:
+                out[f.name] = v
+        return out
+
+    @classmethod
+    def from_json(cls, d: dict) -> "CaseSummary":
+        kw = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
+        if "predicted_jumps" in d:
+            kw["sweep"] = SweepFindings(**{g.name: d.get(g.name) for g in fields(SweepFindings)})
+        return cls(**kw)
+
+
+_OPTIONAL = ("passing_torque", "excitation", "response_spectrum_check", "truncation")
+
+
+def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sections) -> CaseSummary:
+    """The summary of ``run``; ``sections`` override or add fields (jumps,
+    captured_at, passing_torque, sweep, ...)."""
+    tail = run.t >= run.t[-1] - max(0.05 * (run.t[-1] - run.t[0]), 1e-9)
+    om_mean = float(np.mean(run.Omega[tail]))
+    base = dict(ok=run.ok, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
+                omega_final_mean=om_mean, max_abs=max_abs(run),
+                captured_at=capture(run.model, om_mean, drive_free_speed), passages=passages(run),
+                energy_balance=run.energy_balance(), integrator=dict(run.stats), prediction=prediction,
+                jumps=[])
+    base.update(sections)
+    return CaseSummary(**base)

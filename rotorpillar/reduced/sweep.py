@@ -1,0 +1,245 @@
+"""The quasi-static sweep: stationary speeds and amplitudes per M0 bin, jumps.
+
+A sweep ramps M0 up and down slowly; per bin of M0 the mean speed and the
+largest amplitudes stand for the stationary regime.  Jumps: between
+consecutive M0 bins the speed moves more than ``JUMP_FACTOR`` times what the
+motor and load alone would allow, dM0 / (s + 2 k Omega); consecutive
+flagged bins make one jump.  They are compared with the folds of the
+averaging theory (rotorpillar.reduced.averaging), and their delay by the
+finite sweep rate is extrapolated to a zero rate (``rate_convergence``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from . import averaging as av
+from .drive import DriveSchedule
+from .excitation import no_motion
+from .rotor_models import RotorStructure
+from .transient import Settings, Transient, simulate
+
+JUMP_FACTOR = 5.0
+
+
+def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float], bins: int,
+               direction: str) -> dict:
+    """Stationary speed and amplitudes per M0 bin over one ramp of a sweep."""
+    m = run.model
+    t0, t1 = phase
+    sel = (run.t >= t0) & (run.t <= t1)
+    M0 = drive.at(run.t[sel])[0]
+    lo, hi = float(min(M0.min(), M0.max())), float(max(M0.min(), M0.max()))
+    edges = np.linspace(lo, hi, bins + 1)
+    idx = np.clip(np.digitize(M0, edges) - 1, 0, bins - 1)
+    W = run.Omega[sel]
+    tt = run.t[sel]
+    tip, ry, rx = run.peak[sel, -1], run.peak[sel, m.nx], run.peak[sel, m.rotor_x]
+    cols = {k: np.full(bins, np.nan) for k in ("M0", "omega", "tip_x", "rotor_y", "rotor_x",
+                                                "M0_inertia_corrected")}
+    for b in range(bins):
+        s = idx == b
+        if not s.any():
+            continue
+        cols["M0"][b] = 0.5 * (edges[b] + edges[b + 1])
+        cols["omega"][b] = W[s].mean()
+        # the rotor's inertia: M0 - J dOmega/dt is what the stationary balance sees
+        acc = np.polyfit(tt[s], W[s], 1)[0] if s.sum() > 2 else 0.0
+        cols["M0_inertia_corrected"][b] = cols["M0"][b] - m.rotor_inertia * acc
+        cols["tip_x"][b], cols["rotor_y"][b], cols["rotor_x"][b] = tip[s].max(), ry[s].max(), rx[s].max()
+    keep = np.isfinite(cols["M0"])
+    cols = {k: v[keep] for k, v in cols.items()}
+    if direction == "down":
+        cols = {k: v[::-1] for k, v in cols.items()}
+    cols["direction"] = direction
+    return cols
+
+
+def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], float]:
+    """Jumps along one ramp's bins; also the largest speed step over what the
+    motor and load alone allow (1 on a smooth curve).  Marks the bins inside
+    a jump in cols["in_jump"] (not stationary: left out of the amplitude
+    comparison)."""
+    M0, W = cols["M0"], cols["omega"]
+    sign = 1.0 if cols["direction"] == "up" else -1.0
+    dM = np.abs(np.diff(M0))
+    dW = sign * np.diff(W)
+    expected = dM / (slope + 2 * load * np.abs(W[:-1]))
+    ratio = dW / np.maximum(expected, 1e-300)
+    flagged = ratio > JUMP_FACTOR
+    in_jump = np.zeros(len(W), dtype=bool)
+    in_jump[:-1] |= flagged
+    in_jump[1:] |= flagged
+    cols["in_jump"] = in_jump
+    jumps = []
+    i = 0
+    while i < len(flagged):
+        if not flagged[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < len(flagged) and flagged[j + 1]:
+            j += 1
+        w_from, w_to = float(W[i]), float(W[j + 1])
+        if abs(w_to - w_from) > 0.01 * abs(w_from):
+            jumps.append({"direction": cols["direction"], "omega_from": w_from, "omega_to": w_to,
+                          "torque_at_zero": float(0.5 * (M0[i] + M0[i + 1])),
+                          "bins": int(j - i + 1)})
+        i = j + 1
+    return jumps, float(np.max(ratio)) if len(ratio) else 0.0
+
+
+def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
+    """Numeric stationary amplitudes of the sweep against the paper's equation 19 and the exact
+    linear steady state, near each resonance the sweep crosses."""
+    out = []
+    W = cols["omega"]
+    res = model.quasi_normal()
+    for r in res:
+        key = "tip_x" if r.direction == "X" else "rotor_y"
+        # where resonance i dominates: within 2 n_i, and nearer to omega_i than
+        # to any other resonance of the same direction; stationary bins only
+        gap = min((abs(q.omega - r.omega) for q in res if q.direction == r.direction and q is not r),
+                  default=math.inf)
+        near = (np.abs(W - r.omega) <= min(2 * r.n, 0.5 * gap)) & ~cols.get("in_jump", np.zeros(len(W), bool))
+        if near.sum() < 2:
+            continue
+        num = cols[key][near]
+        eq19 = av.amplitude(W[near], r)
+        exact = model.steady_amplitudes(W[near])[key]
+        k = int(np.argmax(num))
+        out.append({"index": r.index, "direction": r.direction, "omega": r.omega, "coordinate": key,
+                    "sweep": cols["direction"], "bins": int(near.sum()),
+                    "numeric_peak": float(num[k]), "omega_at_numeric_peak": float(W[near][k]),
+                    "eq19_at_that_speed": float(eq19[k]), "exact_at_that_speed": float(exact[k]),
+                    "eq19_a_max": float(av.amplitude(r.omega, r)),
+                    "rel_error_eq19": float(np.max(np.abs(eq19 / num - 1))),
+                    "rel_error_exact": float(np.max(np.abs(exact / num - 1))),
+                    "rel_error_eq19_median": float(np.median(np.abs(eq19 / num - 1))),
+                    "rel_error_exact_median": float(np.median(np.abs(exact / num - 1))),
+                    "rel_error_eq19_at_peak": float(eq19[k] / num[k] - 1),
+                    "rel_error_exact_at_peak": float(exact[k] / num[k] - 1)})
+    return out
+
+
+def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
+    """Each predicted jump beside the nearest numeric one of the same direction."""
+    rows = []
+    for p in predicted:
+        cands = [j for j in numeric if j["direction"] == p["direction"]]
+        if not cands:
+            rows.append({"predicted": p, "numeric": None})
+            continue
+        j = min(cands, key=lambda j: abs(j["omega_from"] - p["omega_from"]))
+        rows.append({"predicted": p, "numeric": j,
+                     "rel_error_omega_from": j["omega_from"] / p["omega_from"] - 1,
+                     "rel_error_omega_to": j["omega_to"] / p["omega_to"] - 1,
+                     "rel_error_torque": j["torque_at_zero"] / p["torque_at_zero"] - 1})
+    return rows
+
+
+def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSchedule) -> dict:
+    """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves."""
+    w = scene.sweep
+    t = drive.times
+    up = sweep_bins(run, drive, (t[1], t[2]), w.bins, "up")
+    down = sweep_bins(run, drive, (t[3], t[4]), w.bins, "down")
+    s, k = scene.drive.slope, scene.load.coefficient
+    j_up, r_up = detect_jumps(up, s, k)
+    j_down, r_down = detect_jumps(down, s, k)
+    res = model.quasi_normal()
+    # the analysis' folds: for this drive slope and load, M0 free
+    pred = av.analyse_drive(av.Characteristic(w.torque_high, s, k), res)
+    predicted = [vars(j) for j in pred.jumps if w.torque_low <= j.torque_at_zero <= w.torque_high]
+    numeric = j_up + j_down
+    captured = None
+    if j_up:
+        below = [r.omega for r in res if r.omega <= j_up[0]["omega_from"] * (1 + 0.03)]
+        captured = max(below) if below else None
+    rate_check = []
+    for r in res:
+        if not (w.torque_low <= float(r.omega * (s + k * r.omega)) <= w.torque_high):
+            continue
+        acc = w.rate / (s + 2 * k * r.omega)
+        rate_check.append({"index": r.index, "omega": r.omega, "n": r.n,
+                           "speed_rate": acc, "ratio": acc / r.n**2,
+                           "quasi_static": bool(acc / r.n**2 < 0.1)})
+    if numeric:
+        reason = None
+    elif predicted:
+        reason = "the analysis predicts jumps the sweep did not find (see predicted_jumps)"
+    else:
+        worst = max((av.peak_resistance_ratio(r, k) for r in res if k > 0),
+                    default=0.0)
+        reason = (f"No jumps: the speed rose and fell smoothly with M0 (largest step {max(r_up, r_down):.2f}x "
+                  f"what the motor and load alone allow; a jump needs > {JUMP_FACTOR:g}x), as the "
+                  f"analysis predicts: no fold of Md = L in [{w.torque_low:g}, {w.torque_high:g}] N*m; "
+                  f"the resonances draw at most {100 * worst:.2g} % of Mc at their own speed.")
+    W_curve = av.speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
+    curves = {"omega": W_curve,
+              "F_averaging": av.total_resistance(W_curve, k, res) + s * W_curve,
+              "F_exact": k * W_curve**2 + s * W_curve - model.steady_torque(W_curve),
+              "exact": model.steady_amplitudes(W_curve),
+              "eq19": {f"{r.direction}{r.index}": av.amplitude(W_curve, r) for r in res}}
+    return {"up": up, "down": down, "numeric_jumps": numeric, "predicted_jumps": predicted,
+            "jump_comparison": match_jumps(numeric, predicted),
+            "largest_speed_step_ratio": {"up": r_up, "down": r_down},
+            "amplitudes": compare_amplitudes(model, up) + compare_amplitudes(model, down),
+            "rate_check": rate_check, "captured_at": captured, "no_jump_reason": reason,
+            "curves": curves}
+
+
+def rate_convergence(scene, model: RotorStructure, st: Settings, jumps: list[dict],
+                     predicted: list[dict], factors=(1.0, 0.5, 0.25)) -> dict:
+    """The sweep's jumps at rates r, r/2, r/4, and their limit at zero rate.
+
+    A slow passage past a fold is delayed by a power of the rate (about 2/3
+    for a saddle-node); with three rates halving, the exponent p follows from
+    the differences d1, d2 and the limit is M(r/4) - d2 / (2**p - 1).
+    """
+    w = scene.sweep
+    s, k = scene.drive.slope, scene.load.coefficient
+    rows = []
+    found = {1.0: jumps}
+    for f in factors:
+        if f == 1.0:
+            continue
+        drive = DriveSchedule.sweep(s, k, w.torque_low, w.torque_high, w.rate * f, w.settle)
+        run = simulate(model, drive, no_motion(), drive.times[-1],
+                       settings=replace(st, samples=max(st.samples, int(40 * w.bins / f))),
+                       speed_scale=drive.free_speed(drive.times[2]))
+        t = drive.times
+        bins = int(w.bins / f)
+        j_up = detect_jumps(sweep_bins(run, drive, (t[1], t[2]), bins, "up"), s, k)[0]
+        j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k)[0]
+        found[f] = j_up + j_dn
+    for idx, j in enumerate(jumps):
+        same = [j]
+        for f in factors[1:]:
+            c = [x for x in found[f] if x["direction"] == j["direction"]]
+            same.append(min(c, key=lambda x: abs(x["omega_from"] - j["omega_from"])) if c else None)
+        row = {"direction": j["direction"], "rates": [w.rate * f for f in factors],
+               "torque_at_zero": [None if x is None else x["torque_at_zero"] for x in same],
+               "omega_from": [None if x is None else x["omega_from"] for x in same],
+               "omega_to": [None if x is None else x["omega_to"] for x in same]}
+        for key in ("torque_at_zero", "omega_from", "omega_to"):
+            v = row[key]
+            lim, p = None, None
+            if None not in v and len(v) == 3:
+                d1, d2 = v[0] - v[1], v[1] - v[2]
+                if d1 * d2 > 0 and abs(d2) < abs(d1):
+                    p = math.log2(d1 / d2)
+                    lim = v[2] - d2 / (2**p - 1)
+            row[f"{key}_limit"] = lim
+            row[f"{key}_exponent"] = p
+        pred = [q for q in predicted if q["direction"] == j["direction"]]
+        if pred and row["torque_at_zero_limit"] is not None:
+            q = min(pred, key=lambda q: abs(q["omega_from"] - j["omega_from"]))
+            row["predicted_torque_at_zero"] = q["torque_at_zero"]
+            row["rel_error_limit_vs_predicted"] = row["torque_at_zero_limit"] / q["torque_at_zero"] - 1
+        rows.append(row)
+    return {"rows": rows, "note": "jump torques at decreasing sweep rates, extrapolated to a "
+                                  "quasi-static sweep (rate -> 0) with a fitted power of the rate"}

@@ -1,0 +1,67 @@
+"""CaseSummary (rotorpillar.reduced.summaries): the typed summary of a case
+round-trips exactly through ``to_json``/``from_json`` and through the JSON
+text the simulate command writes, with the keys in the order of
+``simulate_<case>.json``.  Exact equality: no tolerance."""
+
+import json
+
+import pytest
+
+from rotorpillar.provenance import to_json
+from rotorpillar.reduced.drive import DriveSchedule
+from rotorpillar.reduced.excitation import no_motion
+from rotorpillar.reduced.models import build_model
+from rotorpillar.reduced.stationary import averaging_prediction
+from rotorpillar.reduced.summaries import CaseSummary, SweepFindings, run_summary
+from rotorpillar.reduced.transient import Settings, simulate
+from rotorpillar.scene import load_scene
+
+BASE_KEYS = ["ok", "duration", "omega_final", "omega_final_mean", "max_abs", "captured_at", "passages",
+             "energy_balance", "integrator", "prediction", "jumps"]
+SWEEP_KEYS = ["predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
+              "rate_check", "no_jump_reason", "rate_convergence"]
+
+
+@pytest.fixture(scope="module")
+def summary():
+    scene = load_scene("paper")
+    model, _ = build_model(scene, "paper")
+    d, L = scene.drive, scene.load
+    drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
+    run = simulate(model, drive, no_motion(), 2.0, settings=Settings("dp5", rtol=1e-6, samples=201))
+    pred = averaging_prediction(model, d.torque_at_zero, d.slope, L.coefficient)
+    return run_summary(run, drive.free_speed(), pred)
+
+
+def _roundtrip(s: CaseSummary):
+    d = s.to_json()
+    assert CaseSummary.from_json(d) == s
+    text = to_json(d)
+    again = CaseSummary.from_json(json.loads(text))
+    assert to_json(again.to_json()) == text
+    return d
+
+
+def test_plain_case_keys_and_roundtrip(summary):
+    d = _roundtrip(summary)
+    assert list(d) == BASE_KEYS
+    assert d["jumps"] == [] and summary.sweep is None
+
+
+def test_optional_sections_in_the_order_simulate_writes_them(summary):
+    from dataclasses import replace
+    sweep = SweepFindings([{"direction": "up"}], [], {"up": 1.0, "down": 1.2}, [], [], None, None)
+    s = replace(summary, sweep=sweep, jumps=[{"direction": "up", "omega_from": 1.0}], captured_at=26.0,
+                truncation={"modes": 2, "modes_check": None, "statement": "x"})
+    d = _roundtrip(s)
+    assert list(d) == BASE_KEYS + SWEEP_KEYS + ["truncation"]
+    assert d["no_jump_reason"] is None and d["rate_convergence"] is None     # present, null
+    s = replace(summary, passing_torque={"predicted": None, "statement": "none"})
+    assert list(_roundtrip(s)) == BASE_KEYS + ["passing_torque"]
+    s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check={"ratio": 0.9})
+    assert list(_roundtrip(s)) == BASE_KEYS + ["excitation", "response_spectrum_check"]
+
+
+def test_summary_is_frozen(summary):
+    with pytest.raises(AttributeError):
+        summary.omega_final = 0.0
