@@ -11,7 +11,7 @@ import pytest
 
 from rotorpillar import analyze, load_scene
 from rotorpillar.reduced.base_forcing import published_static_gain
-from rotorpillar.reduced.cases import build_model
+from rotorpillar.reduced.models import build_model
 
 
 @pytest.mark.parametrize("scene_name", ["paper", "paper-stiff"])
