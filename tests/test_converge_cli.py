@@ -66,6 +66,8 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
         w, h = _png_size(out / name)
         assert w > 1000 and h > 500
     assert any("no shell modes" in f for f in study["failures"])
+    from rotorpillar.converge import ConvergenceStudy
+    assert ConvergenceStudy.read(out / "convergence.json").to_json() == study
 
     again = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json")
     assert json.loads(again.stdout)["study"]["computed"] == 0
