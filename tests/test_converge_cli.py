@@ -100,6 +100,7 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
         assert doc["mesh"][key] == chosen["params"][key]
     # and it is the cheapest 3D run whose band error meets the tolerance
     study = json.loads((tmp_path / "convergence.json").read_text())
+    assert (tmp_path / "convergence_dofs.png").exists() and "charts" in study
     unc = study["selection"]["reference_uncertainty"]
     needed = study["selection"]["needed"]
     for r in study["runs"]:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from .ladder import FAMILIES, N_MODES, ORDER_NOTES, Family
 
+
 def _why(name: str, fam: Family, q: str, rows: list[dict], extrapolations: dict,
          reference: dict) -> str:
     """The likely cause of a family's error floor on quantity q, from its data."""

@@ -15,6 +15,7 @@ from typing import Optional
 from ..reduced.averaging import Characteristic
 from .ladder import FAMILIES, QUANTITIES
 
+
 def attach_errors(records: list[dict], reference: dict, extrapolations: dict) -> None:
     """Each run's errors per quantity against the reference (in place).
 
