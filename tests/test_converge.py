@@ -224,3 +224,25 @@ def test_shell_reference_agrees_with_a_finer_run(tmp_path):
         chk = ref[q]["check"]
         assert chk["within_estimate"], (q, chk)
         assert abs(chk["finer_value"] - chk["value"]) <= chk["error_estimate"]
+
+
+def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
+    """convergence.json as written is exactly ConvergenceStudy.to_json() of what reads it."""
+    import importlib
+    study_module = importlib.import_module("rotorpillar.converge.study")
+    scene = override(load_scene("paper"), ["converge.solid=false"])
+    cheap = [c for c in cv.ladder(scene) if cv.FAMILIES[c.family].model in ("closed_form", "beam")
+             or (c.family == "shell_quad" and c.level <= 16)]
+    monkeypatch.setattr(study_module, "study_cases", lambda sc: cheap)
+    st = cv.study(scene, out_dir=tmp_path, tolerance=1e-2, show_progress=False)
+    path = tmp_path / "convergence.json"
+    assert st.json_file == str(path) and st.chosen is not None
+    doc = json.loads(path.read_text())
+    again = cv.ConvergenceStudy.from_json(doc)
+    assert again.to_json() == doc and list(again.to_json()) == list(doc)
+    assert cv.ConvergenceStudy.read(path) == again
+    assert again.runs == tuple(doc["runs"]) and again.failures == tuple(doc["failures"])
+    assert set(again.reference) == {"bending", "ovalling"} and again.charts is None
+    assert "json" not in doc and again.json_file is None
+    with pytest.raises(ValueError):
+        cv.ConvergenceStudy.from_json({**doc, "surprise": 1})

@@ -66,6 +66,8 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
         w, h = _png_size(out / name)
         assert w > 1000 and h > 500
     assert any("no shell modes" in f for f in study["failures"])
+    from rotorpillar.converge import ConvergenceStudy
+    assert ConvergenceStudy.read(out / "convergence.json").to_json() == study
 
     again = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json")
     assert json.loads(again.stdout)["study"]["computed"] == 0
@@ -98,6 +100,7 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
         assert doc["mesh"][key] == chosen["params"][key]
     # and it is the cheapest 3D run whose band error meets the tolerance
     study = json.loads((tmp_path / "convergence.json").read_text())
+    assert (tmp_path / "convergence_dofs.png").exists() and "charts" in study
     unc = study["selection"]["reference_uncertainty"]
     needed = study["selection"]["needed"]
     for r in study["runs"]:

@@ -46,10 +46,12 @@ def modal_command(scene, args, timings):
     say = progress if _rank0() else (lambda message: None)
     selection = None
     if getattr(args, "tolerance", None) is not None:
-        from .converge import model_for_modal
+        from ..converge import model_for_modal
+        from ..postprocess.convergence_charts import convergence_charts
         with timings("model_selection"):
             scene, selection = model_for_modal(scene, args.tolerance, out_dir(scene, args),
-                                               cache_dir=args.cache)
+                                               cache_dir=args.cache, charts=convergence_charts,
+                                               log=progress)
         say(selection["text"].splitlines()[0])
     say(f"modal: bare tube, {scene.modal.n_modes} modes")
     bare = modal_analysis(scene, top=False)

@@ -1,0 +1,84 @@
+"""What each run of the ladder computes: its first bending and first ovalling frequency.
+
+The closed forms and the 1D beams are numpy only and run in the study's
+process (:func:`compute_in_process`); the shell and the 3D solid import
+dolfinx and run in a fresh subprocess (:func:`compute_fe`, called by
+:func:`rotorpillar.converge.runner.worker`).
+"""
+
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+
+from ..reduced.beam_fe import BeamProperties, beam_modes
+from ..reduced.cylinder import ring_frequency
+from ..reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, section_of
+from .ladder import FAMILIES, N_MODES, QUANTITIES, Case, solid_mesh
+
+
+def _first(omega, kind, want: str) -> tuple[Optional[float], Optional[int]]:
+    for i, (w, k) in enumerate(zip(omega, kind)):
+        if (want == "bending" and k.startswith("bending")) or (want == "ovalling" and k == "ovalling"):
+            return float(w), i
+    return None, None
+
+
+def _modal_summary(omega, kind, n_circ) -> dict:
+    """The run's quantities from a list of modes."""
+    out = {"modes": [{"omega": float(w), "kind": k, "n": None if n is None else int(n)}
+                     for w, k, n in zip(omega, kind, n_circ)]}
+    for q in QUANTITIES:
+        w, i = _first(omega, kind, q)
+        out[q] = w
+        if q == "ovalling":
+            out["ovalling_n"] = None if i is None or n_circ[i] is None else int(n_circ[i])
+    return out
+
+
+def compute_in_process(case: Case, pillar) -> dict:
+    """The closed forms and the 1D beam models (numpy only)."""
+    sec = section_of(pillar)
+    fam = FAMILIES[case.family]
+    if fam.model == "closed_form":
+        t = (pillar.outer_diameter - pillar.inner_diameter) / 2
+        R = (pillar.outer_diameter + pillar.inner_diameter) / 4
+        return {"bending": omega_euler_bernoulli(pillar.youngs_modulus, sec.second_moment,
+                                                 sec.mass_per_length, pillar.height),
+                "ovalling": ring_frequency(2, pillar.youngs_modulus, pillar.poisson_ratio,
+                                           pillar.density, R, t),
+                "ovalling_n": 2, "dofs": 1, "modes": []}
+    s = case.settings
+    kappa = cowper_shear_coefficient(pillar.outer_diameter, pillar.inner_diameter,
+                                     pillar.poisson_ratio)
+    props = BeamProperties(pillar.youngs_modulus, pillar.poisson_ratio, kappa, pillar.density,
+                           sec.area, sec.second_moment, pillar.height)
+    m = beam_modes(props, s["elements"], s["theory"], n_modes=1)
+    return {"bending": float(m.omega[0]), "ovalling": None, "ovalling_n": None,
+            "dofs": int(m.dofs), "modes": [{"omega": float(m.omega[0]), "kind": "bending_x", "n": 1}]}
+
+
+def compute_fe(case: Case, scene, fresh: bool = False) -> dict:
+    """A shell or solid run, in this process (the subprocess worker calls this).
+
+    ``fresh``: bypass the 3D model's in-process result cache (a second, timed call).
+    """
+    fam = FAMILIES[case.family]
+    pillar = scene.pillar
+    s = case.settings
+    if fam.model == "shell":
+        from ..fem3d.naghdi import ShellDiscretisation, shell_modal_analysis, shell_section_of
+        sec, R, H = shell_section_of(pillar)
+        disc = ShellDiscretisation(s["elements_around"], s["elements_along"], s["cell_type"],
+                                   s["degree"])
+        r = shell_modal_analysis(sec, R, H, disc, n_modes=N_MODES)
+    else:
+        import inspect
+        from .. import fem3d
+        extra = ({"use_cache": False} if fresh and "use_cache" in
+                 inspect.signature(fem3d.modal_analysis).parameters else {})
+        r = fem3d.modal_analysis(scene, top=False, n_modes=N_MODES, mesh=solid_mesh(case), **extra)
+    out = _modal_summary(np.asarray(r.omega), list(r.kind), list(r.n_circumferential))
+    out.update(dofs=int(r.dofs), cells=int(r.cells), timings=dict(r.timings))
+    return out

@@ -1,0 +1,263 @@
+"""Running the ladder: the run cache, the subprocess worker, time and memory.
+
+Each run is cached on disk under a hash of everything it depends on (model,
+mesh, degree, cell type, geometry, material and the source of the model's
+code), written atomically: an interrupted study resumes where it stopped and
+computes nothing twice.  The finite-element runs each run in a fresh
+subprocess (``python -m rotorpillar.converge CASE.json RESULT.json``, i.e.
+:func:`worker`), whose peak resident memory (ru_maxrss) is the run's; the
+pure-Python models run in-process and report tracemalloc's peak.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+from pathlib import Path
+from typing import Callable, Optional
+
+from ..provenance import write_json
+from .compute import compute_fe, compute_in_process
+from .ladder import FAMILIES, N_MODES, Case, estimated_seconds
+
+WORKER_MODULE = "rotorpillar.converge"
+"""What the subprocess runs with ``python -m`` (the package's ``__main__``)."""
+
+SHELL_MODEL, SHELL_MESH = "fem3d.naghdi", "mesh.midsurface"
+"""The shell model's modules (the solid model is every other module of fem3d and mesh)."""
+
+SOLID_CONSUMERS = ("summary", "pillar_modes", "transient", "output")
+"""fem3d modules that use the 3D modes but do not compute them."""
+
+CACHE_VERSION = 2
+"""Bump to invalidate every cached run (the layout of a cached result changed)."""
+
+
+def _source_files(model: str) -> list[Path]:
+    """The source files a model's results depend on (their hash is in the cache key)."""
+    root = Path(__file__).parent.parent
+    if model == "closed_form":
+        return [root / "reduced" / "pillar.py", root / "reduced" / "cylinder.py"]
+    if model == "beam":
+        return [root / "reduced" / "beam_fe.py", root / "reduced" / "pillar.py"]
+    shell = [root / (m.replace(".", "/") + ".py") for m in (SHELL_MODEL, SHELL_MESH)]
+    if model == "shell":
+        return shell
+    # the solid model: every module of fem3d and mesh but the shell's and those
+    # that only use the modes (a change there leaves the cached frequencies valid)
+    files = sorted((root / "fem3d").glob("*.py")) + sorted((root / "mesh").glob("*.py"))
+    after = {root / "fem3d" / f"{m}.py" for m in SOLID_CONSUMERS}
+    return [f for f in files if f not in shell and f not in after]
+
+
+def _source_hash(model: str) -> str:
+    h = hashlib.sha256()
+    for f in _source_files(model):
+        if f.exists():
+            h.update(f.name.encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def case_key(case: Case, pillar) -> str:
+    """Hash of everything a run's result depends on."""
+    fam = FAMILIES[case.family]
+    doc = {"cache_version": CACHE_VERSION, "model": fam.model, "params": case.settings,
+           "n_modes": N_MODES if fam.model in ("shell", "solid") else None,
+           "pillar": {k: getattr(pillar, k) for k in
+                      ("height", "outer_diameter", "inner_diameter", "youngs_modulus",
+                       "poisson_ratio", "density")},
+           "source": _source_hash(fam.model)}
+    text = json.dumps(doc, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def _run_in_process(case: Case, pillar) -> dict:
+    # time without tracemalloc (it slows Python code), then measure memory
+    t0 = time.perf_counter()
+    out = compute_in_process(case, pillar)
+    wall = time.perf_counter() - t0
+    tracemalloc.start()
+    try:
+        compute_in_process(case, pillar)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    out.update(wall_time=wall, peak_memory=peak, memory_method="tracemalloc (Python heap peak)",
+               timings={"total": wall})
+    return out
+
+
+class ModelUnavailable(RuntimeError):
+    """The model cannot run here (e.g. the 3D model is not installed)."""
+
+
+UNAVAILABLE_EXIT = 3
+"""Exit code of a worker whose model cannot be imported."""
+
+
+def _jit_files() -> int:
+    """How many files FFCx's disk cache holds (it grows when a form is compiled)."""
+    from ..fem3d.dolfinx_import import import_dolfinx
+    import_dolfinx()
+    from dolfinx.jit import get_parameters
+    root = Path(get_parameters()["cache_dir"])
+    return sum(1 for _ in root.rglob("*")) if root.exists() else 0
+
+
+def worker(case_file: str, out_file: str) -> None:
+    """Subprocess entry: run one FE case, write its result JSON to ``out_file``."""
+    from ..scene import scene_from_dict
+    doc = json.loads(Path(case_file).read_text())
+    case = Case(doc["family"], doc["level"], tuple((k, v) for k, v in doc["params"]))
+    scene_doc = dict(doc["scene"])
+    scene = scene_from_dict(scene_doc, name=scene_doc.pop("name"))
+    # import what the models import lazily, so that every run is timed in the
+    # same state (imports excluded); their memory is the baseline a run adds to
+    import importlib
+    for name in ("gmsh", "ufl", "basix", "dolfinx", "dolfinx.fem.petsc", "dolfinx.io.gmshio",
+                 "petsc4py.PETSc", "slepc4py.SLEPc", "mpi4py.MPI"):
+        importlib.import_module(name)
+    baseline = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    if FAMILIES[case.family].model == "solid":
+        try:
+            from ..fem3d import modal_analysis  # noqa: F401
+        except ImportError as exc:
+            print(f"3D model unavailable: {exc}", file=sys.stderr)
+            sys.exit(UNAVAILABLE_EXIT)
+        importlib.import_module("rotorpillar.mesh")
+    else:
+        importlib.import_module(f"rotorpillar.{SHELL_MESH}")
+    importlib.import_module(f"rotorpillar.{SHELL_MODEL}")
+    jit_before = _jit_files()
+    t0 = time.perf_counter()
+    out = compute_fe(case, scene)
+    total = time.perf_counter() - t0
+    compiled = _jit_files() > jit_before
+    if compiled:
+        # FFCx compiled forms in this run (once per machine and form): time it
+        # again warm, as every later run of the family will be
+        first = total
+        t0 = time.perf_counter()
+        out = compute_fe(case, scene, fresh=True)
+        total = time.perf_counter() - t0
+        out["first_run_with_compilation"] = first
+    # the model's whole time: mesh, forms, assembly, solve and naming the modes
+    out.update(wall_time=total, peak_memory=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
+               baseline_memory=baseline,
+               memory_method="ru_maxrss of a fresh subprocess (includes ~baseline_memory of imports)")
+    write_json(out_file, out)
+
+
+def _run_in_subprocess(case: Case, scene) -> dict:
+    with tempfile.TemporaryDirectory(prefix="rotorpillar-converge-") as tmp:
+        case_file, out_file = Path(tmp) / "case.json", Path(tmp) / "result.json"
+        case_file.write_text(json.dumps({"family": case.family, "level": case.level,
+                                         "params": list(case.params),
+                                         "scene": scene.to_dict()}))
+        env = dict(os.environ)
+        # serial and single-threaded: the runs are timed against each other
+        env.setdefault("OMP_NUM_THREADS", "1")
+        env.setdefault("OPENBLAS_NUM_THREADS", "1")
+        t0 = time.perf_counter()
+        proc = subprocess.run([sys.executable, "-m", WORKER_MODULE, str(case_file),
+                               str(out_file)], capture_output=True, text=True, env=env)
+        elapsed = time.perf_counter() - t0
+        if proc.returncode == UNAVAILABLE_EXIT:
+            raise ModelUnavailable((proc.stderr or "").strip().splitlines()[-1])
+        if proc.returncode != 0 or not out_file.exists():
+            tail = (proc.stderr or "").strip().splitlines()[-3:]
+            raise RuntimeError(f"{case.label}: worker failed ({proc.returncode}): "
+                               + " | ".join(tail))
+        out = json.loads(out_file.read_text())
+    out["process_time"] = elapsed
+    return out
+
+
+def run_case(case: Case, scene) -> dict:
+    """Compute one case (in-process or in a subprocess, by model)."""
+    if FAMILIES[case.family].model in ("closed_form", "beam"):
+        return _run_in_process(case, scene.pillar)
+    return _run_in_subprocess(case, scene)
+
+
+def _record(case: Case, key: str, result: dict) -> dict:
+    fam = FAMILIES[case.family]
+    return {"key": key, "family": case.family, "model": fam.model, "label": case.label,
+            "level": case.level, "params": case.settings, "status": "ok", **result}
+
+
+def run_study(cases: list[Case], scene, cache_dir: Path, *,
+              runner: Callable[[Case, object], dict] = run_case,
+              progress: bool = True, log: Callable[[str], None] | None = None) -> list[dict]:
+    """Every case, each loaded from ``cache_dir`` or computed and cached.
+
+    A run is written to ``cache_dir/<key>.json`` atomically as soon as it
+    finishes, so an interruption (KeyboardInterrupt included) loses at most
+    the run under way and leaves no partial file.  A run that fails is
+    recorded as failed and not cached (it is tried again next time).
+    """
+    from tqdm import tqdm
+
+    cache_dir = Path(cache_dir)
+    keys = [case_key(c, scene.pillar) for c in cases]
+    records: list[Optional[dict]] = [None] * len(cases)
+    todo = []
+    for i, (c, key) in enumerate(zip(cases, keys)):
+        cached = _load_cached(cache_dir / f"{key}.json", key)
+        if cached is not None:
+            # names follow the code, not the cache (they are not part of the key)
+            records[i] = {**cached, "label": c.label, "family": c.family,
+                          "model": FAMILIES[c.family].model, "cached": True}
+        else:
+            todo.append(i)
+    if log:
+        log(f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute")
+    weights = [estimated_seconds(cases[i]) for i in todo]
+    bar = tqdm(total=sum(weights), disable=not progress or not todo, unit="s~", file=sys.stderr,
+               bar_format="{l_bar}{bar}| {n:.0f}/{total:.0f} est. s [{elapsed}<{remaining}] {postfix}")
+    unavailable = {}
+    try:
+        for i, w in zip(todo, weights):
+            case, key = cases[i], keys[i]
+            model = FAMILIES[case.family].model
+            bar.set_postfix_str(case.label)
+            if model in unavailable:
+                records[i] = {**_record(case, key, {}), "status": "unavailable",
+                              "error": unavailable[model], "cached": False}
+                bar.update(w)
+                continue
+            try:
+                result = runner(case, scene)
+            except ModelUnavailable as exc:
+                unavailable[model] = str(exc)
+                if log:
+                    log(f"converge: skipping the {model} runs: {exc}")
+                records[i] = {**_record(case, key, {}), "status": "unavailable",
+                              "error": str(exc), "cached": False}
+            except (RuntimeError, ValueError, ArithmeticError) as exc:
+                records[i] = {**_record(case, key, {}), "status": "failed", "error": str(exc),
+                              "cached": False}
+            else:
+                rec = _record(case, key, result)
+                write_json(cache_dir / f"{key}.json", rec)
+                records[i] = {**rec, "cached": False}
+            bar.update(w)
+    finally:
+        bar.close()
+    return records
+
+
+def _load_cached(path: Path, key: str) -> Optional[dict]:
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return doc if doc.get("key") == key and doc.get("status") == "ok" else None

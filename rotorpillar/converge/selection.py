@@ -1,0 +1,185 @@
+"""Each run's errors, the Pareto fronts, and the choice of a model for a scene.
+
+Each run's error against the reference splits into the model's own error
+(its family's limit against the reference) and the discretisation's; the
+choice is the cheapest run (wall time) whose error bound meets a tolerance
+over the frequency band the scene needs (its highest excitation frequency
+times a margin).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+from ..reduced.averaging import Characteristic
+from .ladder import FAMILIES, QUANTITIES
+
+
+def attach_errors(records: list[dict], reference: dict, extrapolations: dict) -> None:
+    """Each run's errors per quantity against the reference (in place).
+
+    ``{q}_error``: measured, (f - f_ref)/f_ref.  Split through the family's
+    own Richardson limit L: ``{q}_model_error`` = (L - f_ref)/f_ref (what
+    no refinement removes) and ``{q}_discretisation_error`` = (f - L)/f_ref.
+    ``{q}_error_bound`` = |model| + |discretisation|: no credit for the two
+    cancelling on one mesh by luck.  A side sweep splits through its parent
+    family's limit (same model).  Without a limit (a closed form, a family
+    with fewer than three runs) the bound is |measured|.
+    """
+    for r in records:
+        fam = FAMILIES[r["family"]]
+        for q in QUANTITIES:
+            v, ref = r.get(q), reference.get(q)
+            keys = ("error", "model_error", "discretisation_error", "error_bound")
+            if v is None or ref is None or r.get("status") != "ok":
+                r.update({f"{q}_{k}": None for k in keys})
+                continue
+            f_ref = ref["value"]
+            err = (v - f_ref) / f_ref
+            limit = extrapolations.get(fam.parent or r["family"], {}).get(q, {}).get("value")
+            if limit is None:
+                model, disc = err, 0.0
+            else:
+                model, disc = (limit - f_ref) / f_ref, (v - limit) / f_ref
+            r.update({f"{q}_error": err, f"{q}_model_error": model,
+                      f"{q}_discretisation_error": disc, f"{q}_error_bound": abs(model) + abs(disc)})
+
+
+def pareto_front(cost, error) -> list[int]:
+    """Indices of the points no other point beats in both cost and |error|, by cost."""
+    pts = [(c, abs(e), i) for i, (c, e) in enumerate(zip(cost, error))
+           if c is not None and e is not None and math.isfinite(e)]
+    pts.sort(key=lambda t: (t[0], t[1]))
+    front, best = [], math.inf
+    for c, e, i in pts:
+        if e < best:
+            front.append(i)
+            best = e
+    return front
+
+
+def excitation_band(scene) -> dict:
+    """The frequencies the scene excites, and the band a model must resolve.
+
+    The rotor runs at most at the drive's free speed (Md = Mc, no resonance
+    drag: every stationary speed lies below it); the ground motion reaches
+    ``converge.earthquake_frequency``.  The band is the larger times
+    ``converge.margin``.
+    """
+    ch = Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
+    free = ch.free_speed()
+    cv = scene.converge
+    top = max(free, cv.earthquake_frequency)
+    return {"free_speed": free, "earthquake_frequency": cv.earthquake_frequency,
+            "margin": cv.margin, "omega_max": cv.margin * top,
+            "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake"}
+
+
+def reference_uncertainty(reference: dict) -> dict:
+    """Per quantity, the reference's own relative error estimate."""
+    return {q: r["error_estimate"] / abs(r["value"]) for q, r in reference.items()}
+
+
+def needed_quantities(reference: dict, band: dict) -> list[str]:
+    """The quantities whose reference frequency lies inside the band."""
+    return [q for q in QUANTITIES if q in reference and reference[q]["value"] <= band["omega_max"]]
+
+
+def band_error(record: dict, needed: list[str], ref_unc: dict) -> Optional[float]:
+    """What the choice compares with the tolerance: the largest, over the needed
+    quantities, of the error bound plus the reference's uncertainty (None: a
+    needed mode is missing)."""
+    errs = [record.get(f"{q}_error_bound") for q in needed]
+    if any(e is None for e in errs):
+        return None
+    return max((e + ref_unc.get(q, 0.0) for q, e in zip(needed, errs)), default=0.0)
+
+
+def select_model(records: list[dict], reference: dict, band: dict, tolerance: float,
+                 families: Optional[list[str]] = None) -> dict:
+    """The cheapest run (wall time) whose needed frequencies all meet ``tolerance``.
+
+    Needed: the quantities whose reference lies inside the band.  A run meets
+    the tolerance if, for each, its error bound (model + discretisation, see
+    attach_errors) plus the reference's own uncertainty is within it; the
+    cheapest such run is on the Pareto front of that band error against wall
+    time.  ``families`` restricts the candidates (e.g. to the models a command
+    can run).
+    """
+    needed = needed_quantities(reference, band)
+    ref_unc = reference_uncertainty(reference)
+    ok_runs = [r for r in records if r.get("status") == "ok"
+               and (families is None or r["family"] in families)]
+    meets, rejected = [], []
+    for r in ok_runs:
+        missing = [q for q in needed if r.get(q) is None]
+        if missing:
+            rejected.append((r, math.inf, "no " + " and no ".join(missing) + " mode"))
+            continue
+        worst = band_error(r, needed, ref_unc)
+        if worst <= tolerance:
+            meets.append(r)
+        else:
+            q = max(needed, key=lambda q: r[f"{q}_error_bound"] + ref_unc[q])
+            why = (f"{q} error bound {r[f'{q}_error_bound'] + ref_unc[q]:.1e} > {tolerance:g}: "
+                   f"model {r[f'{q}_model_error']:+.1e}, discretisation "
+                   f"{r[f'{q}_discretisation_error']:+.1e}, reference {ref_unc[q]:.0e}")
+            rejected.append((r, worst, why))
+    out = {"tolerance": tolerance, "band": band, "needed": needed,
+           "reference_uncertainty": {q: ref_unc[q] for q in needed},
+           "families": families, "candidates": len(meets),
+           "rule": "cheapest wall time among runs whose error bound (|model error| + "
+                   "|discretisation error| + reference uncertainty) meets the tolerance on "
+                   "every frequency inside the band"}
+    if not meets:
+        out.update(chosen=None, rejected_cheaper=[], reason=(
+            f"no model in the study meets {tolerance:g} on {', '.join(needed) or 'nothing'} "
+            "(error bounds: " + "; ".join(
+                f"{FAMILIES[f].label} best {min(w for r, w, _ in rejected if r['family'] == f):.1e}"
+                for f in dict.fromkeys(r["family"] for r, _, _ in rejected)) +
+            "); refine the ladder ([converge] limits) or loosen the tolerance"))
+        return out
+    best = min(meets, key=lambda r: (r["wall_time"], r["dofs"]))
+    # per family, its most accurate run among those cheaper than the choice
+    by_family = {}
+    for r, worst, why in sorted(rejected, key=lambda t: t[1]):
+        if r["wall_time"] < best["wall_time"]:
+            by_family.setdefault(r["family"], (r, why))
+    out.update(
+        chosen=_brief(best, needed),
+        rejected_cheaper=[{**_brief(r, needed), "why": why} for r, why in by_family.values()],
+        reason=_reason(best, needed, band, tolerance, reference, by_family))
+    return out
+
+
+def _brief(r: dict, needed) -> dict:
+    return {"label": r["label"], "family": r["family"], "model": r["model"], "params": r["params"],
+            "dofs": r["dofs"], "wall_time": r["wall_time"], "peak_memory": r.get("peak_memory"),
+            **{q: r.get(q) for q in QUANTITIES},
+            **{f"{q}_{k}": r.get(f"{q}_{k}") for q in QUANTITIES
+               for k in ("error", "model_error", "discretisation_error", "error_bound")}}
+
+
+def _reason(best, needed, band, tol, reference, rejected) -> str:
+    parts = [f"{best['label']} ({best['dofs']:,} DOFs, {best['wall_time']:.2f} s) is the cheapest "
+             f"run whose "]
+    parts.append(" and ".join(f"first {q} ({best[q]:.3f} rad/s, error {best[q + '_error']:+.1e}, "
+                              f"bound {best[q + '_error_bound']:.1e})" for q in needed))
+    parts.append(f" meet {tol:g} against the reference. The band to resolve reaches "
+                 f"{band['omega_max']:.1f} rad/s ({band['margin']:g} x the {band['driver']}, "
+                 f"{max(band['free_speed'], band['earthquake_frequency']):.1f} rad/s)")
+    inside = [f"first {q} {reference[q]['value']:.2f}" for q in needed]
+    outside = [f"first {q} {reference[q]['value']:.2f}" for q in QUANTITIES
+               if q in reference and q not in needed]
+    if inside:
+        parts.append(", which contains the " + " and the ".join(inside) + " rad/s")
+    if outside:
+        parts.append("; " + ", ".join(outside) + " rad/s lie(s) above it")
+    parts.append(".")
+    if rejected:
+        parts.append(" Cheaper runs fail: " + "; ".join(
+            (f"{FAMILIES[f].label} ({why})" if r["label"] == FAMILIES[f].label else
+             f"{FAMILIES[f].label} (best {r['label'].split(', ')[-1]}: {why})")
+            for f, (r, why) in rejected.items()) + ".")
+    return "".join(parts)

@@ -1,0 +1,161 @@
+"""The convergence study of a scene: run (or load) the ladder, analyse it, write it.
+
+From the runs: reference values by Richardson extrapolation of the finest
+runs of the most complete family, each run's error against them, the Pareto
+fronts of error against DOFs and against wall time, the failures in words,
+and the cheapest model that meets a tolerance over the scene's band.
+:func:`study` writes it all to ``convergence.json`` as a
+:class:`ConvergenceStudy`; :func:`model_for_modal` picks the 3D mesh
+`rotorpillar modal --tolerance` runs.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from pathlib import Path
+from typing import Callable, Optional
+
+from ..errors import InputError
+from ..provenance import Timings, machine, versions, write_json
+from .failures import drop_aliases, failures
+from .ladder import FAMILIES, QUANTITIES, study_cases
+from .result import ConvergenceStudy
+from .richardson import family_extrapolations, reference_values
+from .runner import run_study
+from .selection import (attach_errors, band_error, excitation_band, pareto_front,
+                        reference_uncertainty, select_model)
+
+Charts = Callable[[dict, Path], dict]
+"""Draws the study's charts into a directory: (study document, out_dir) -> name: path."""
+
+
+def analyse(records: list[dict], scene, tolerance: float) -> dict:
+    """Reference values, errors, fronts, failures and the chosen model."""
+    drop_aliases(records)
+    extrap = family_extrapolations(records)
+    reference = reference_values(records, extrap)
+    attach_errors(records, reference, extrap)
+    band = excitation_band(scene)
+    selection = select_model(records, reference, band, tolerance)
+    needed, ref_unc = selection["needed"], reference_uncertainty(reference)
+    ok = [r for r in records if r.get("status") == "ok"]
+    candidates = ok
+    fronts = {}
+    for cost in ("dofs", "wall_time"):
+        fronts[cost] = {}
+        for q in QUANTITIES:
+            errs = [r.get(f"{q}_error") for r in ok]
+            fronts[cost][q] = [ok[i]["label"] for i in pareto_front([r[cost] for r in ok], errs)]
+        errs = [band_error(r, needed, ref_unc) for r in candidates]
+        fronts[cost]["band"] = [candidates[i]["label"]
+                                for i in pareto_front([r[cost] for r in candidates], errs)]
+    return {"reference": reference, "extrapolations": extrap, "band": band,
+            "selection": selection, "pareto": fronts,
+            "failures": failures(records, extrap, reference, tolerance)}
+
+
+def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
+          show_progress: bool = True, charts: Optional[Charts] = None, timings=None,
+          log: Callable[[str], None] | None = None) -> ConvergenceStudy:
+    """Run (or load) the study and analyse it; write convergence.json (and the charts).
+
+    ``charts`` draws the charts (the caller passes
+    ``rotorpillar.postprocess.convergence_charts.convergence_charts``: plotting
+    lives above this package); ``log`` takes the stage lines.
+    """
+    timings = Timings() if timings is None else timings
+    tol = scene.converge.tolerance if tolerance is None else tolerance
+    if not 0 < tol < 1:
+        raise InputError(f"--tolerance = {tol!r} is out of range: must be > 0 and < 1")
+    cache_dir = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
+    start = time.perf_counter()
+    with timings("study"):
+        records = run_study(study_cases(scene), scene, cache_dir, progress=show_progress, log=log)
+    with timings("analysis"):
+        analysis = analyse(records, scene, tol)
+    doc = {
+        "scene_name": scene.name,
+        "scene": scene.to_dict(),
+        "tolerance": tol,
+        "cache_dir": str(cache_dir),
+        "families": {k: {"label": f.label, "model": f.model, "order_theory": f.order,
+                         "quantities": list(f.quantities), "sweep": f.sweep}
+                     for k, f in FAMILIES.items()},
+        "runs": records,
+        **analysis,
+        "study": {"runs": len(records), "cached": sum(bool(r.get("cached")) for r in records),
+                  "computed": sum(not r.get("cached") for r in records),
+                  "failed": sum(r.get("status") == "failed" for r in records),
+                  "unavailable": sum(r.get("status") == "unavailable" for r in records),
+                  "compute_seconds": sum(r.get("process_time", r.get("wall_time", 0.0)) or 0.0
+                                         for r in records if not r.get("cached"))},
+    }
+    if charts is not None:
+        with timings("charts"):
+            doc["charts"] = {k: str(v) for k, v in charts(doc, out_dir).items()}
+    doc["study"]["wall_time"] = time.perf_counter() - start
+    doc.update(versions=versions(), machine=machine(), timings=dict(timings))
+    path = write_json(Path(out_dir) / "convergence.json", doc)
+    return dataclasses.replace(ConvergenceStudy.from_json(doc), json_file=str(path))
+
+
+def _cached_study(scene, tolerance: float, cache_dir: Path):
+    """Under MPI: the runs from the cache only (a missing run is an input error)."""
+    def runner(case, sc):
+        raise InputError(f"modal --tolerance under MPI needs the convergence study cached "
+                         f"({case.label} is not): run `rotorpillar converge {scene.name}` "
+                         "serially first")
+    records = run_study(study_cases(scene), scene, cache_dir, runner=runner, progress=False)
+    return records, analyse(records, scene, tolerance)
+
+
+def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
+                    timings=None, charts: Optional[Charts] = None,
+                    log: Callable[[str], None] | None = None):
+    """The scene with the [mesh] the study picks for ``tolerance``, and why.
+
+    `modal` computes the 3D model, so the choice is among the 3D families;
+    the cheapest model of all (a shell, a beam) is reported beside it.
+    Serially the study runs what its cache lacks (and writes
+    convergence.json, with ``charts`` if given); under MPI it must be cached
+    already (`rotorpillar converge` first), since its runs are subprocesses.
+    """
+    from mpi4py import MPI
+
+    if MPI.COMM_WORLD.size > 1:
+        cache = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
+        runs, analysis = _cached_study(scene, tolerance, cache)
+        reference, band, overall, json_file = (analysis["reference"], analysis["band"],
+                                               analysis["selection"]["chosen"], None)
+    else:
+        st = study(scene, out_dir=out_dir, cache_dir=cache_dir, tolerance=tolerance,
+                   timings=timings, charts=charts, log=log)
+        runs, reference, band, overall, json_file = (st.runs, st.reference, st.band, st.chosen,
+                                                     st.json_file)
+    solid = [k for k, f in FAMILIES.items() if f.model == "solid"]
+    sel = select_model(runs, reference, band, tolerance, families=solid)
+    if sel["chosen"] is None:
+        raise InputError(f"--tolerance = {tolerance:g}: no 3D model of the study meets it "
+                         "(raise converge.solid_p2_max_around, or loosen the tolerance)")
+    chosen = sel["chosen"]
+    p = chosen["params"]
+    mesh = dataclasses.replace(scene.mesh, elements_around=p["elements_around"],
+                               elements_along=p["elements_along"],
+                               elements_through=p["elements_through"], degree=p["degree"],
+                               cell_type=p["cell_type"], grading=p["grading"])
+    lines = [f"Model chosen for tolerance {tolerance:g}: {chosen['label']} "
+             f"({chosen['dofs']:,} DOFs, {chosen['wall_time']:.1f} s for the bare tube in the study).",
+             "Why: " + sel["reason"],
+             "The same mesh carries the top mass (the study's errors are the bare tube's)."]
+    if overall is not None and overall["label"] != chosen["label"]:
+        lines.append(f"Cheapest of all models at this tolerance: {overall['label']} "
+                     f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "
+                     "has it.")
+    if json_file:
+        lines.append(f"Study: {json_file}")
+    selection = {"tolerance": tolerance, "chosen": chosen, "reason": sel["reason"],
+                 "rule": sel["rule"], "band": sel["band"], "needed": sel["needed"],
+                 "rejected_cheaper": sel["rejected_cheaper"], "overall_cheapest": overall,
+                 "convergence_json": json_file, "text": "\n".join(lines)}
+    return dataclasses.replace(scene, mesh=mesh), selection
