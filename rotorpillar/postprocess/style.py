@@ -27,8 +27,8 @@ COLOURS = {
     "accent": "#56B4E9",
     "rising": "#D55E00",     # a run or sweep going up in speed or torque
     "falling": "#0072B2",    # ... going down
-    "reference": "#999999",  # marker lines: resonances, tolerances' context
-    "tolerance": "#D55E00",
+    "reference": "#999999",  # marker lines: resonances, thresholds
+    "tolerance": "#CC0000",   # red: the line a result must get under
 }
 CYCLE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
 
