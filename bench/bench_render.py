@@ -11,11 +11,16 @@ import os
 import subprocess
 import sys
 import tempfile
+from pathlib import Path
+
+#: tests/fixtures.py writes the synthetic inputs.
+TESTS = Path(__file__).resolve().parent.parent / "tests"
 
 WORKER = r"""
 import json, sys, time
 from pathlib import Path
-from rotorpillar.postprocess import fixtures
+sys.path.insert(0, sys.argv[2])   # tests/, for the synthetic inputs
+import fixtures
 from rotorpillar.postprocess.inputs import load_modes, read_json, read_simulation
 from rotorpillar.postprocess.modeshapes import render_mode, render_contact_sheet
 from rotorpillar.postprocess.animation import animate
@@ -43,7 +48,7 @@ def _measure(window: str) -> dict:
     env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW=window)
     env.pop("DISPLAY", None)
     with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run([sys.executable, "-c", WORKER, tmp], env=env, capture_output=True,
+        p = subprocess.run([sys.executable, "-c", WORKER, tmp, str(TESTS)], env=env, capture_output=True,
                            text=True, check=True)
     return json.loads(p.stdout.strip().splitlines()[-1])
 

@@ -1,7 +1,7 @@
 """Renders, animations and charts of rotorpillar.postprocess, on synthetic inputs.
 
 Sources and tolerances:
-- Mode shapes: analytic tube modes (rotorpillar.postprocess.fixtures): the
+- Mode shapes: analytic tube modes (tests/fixtures.py): the
   Euler-Bernoulli cantilever shape (rotorpillar.reduced.pillar.cantilever_mode,
   normalised to a unit tip), an n = 2 ovalling, a torsion.  Deformation and
   superposition are exact arithmetic (1e-12).  Pictures are checked as files
@@ -23,12 +23,13 @@ import json
 import numpy as np
 import pytest
 
+import fixtures
 from imagecheck import assert_real_png, pixels, png_size
 from rotorpillar.analysis import analyze
-from rotorpillar.postprocess import charts, fixtures
+from rotorpillar.postprocess import charts, transient_charts
 from rotorpillar.postprocess.animation import (animate, elastic_field, frame_times, pillar_motion)
 from rotorpillar.postprocess.inputs import (Simulation, bending_columns, cantilever_tube, load_modes,
-                                            read_json, read_simulation, tube_axes)
+                                            namespace, read_json, read_simulation, tube_axes)
 from rotorpillar.postprocess.modeshapes import (BEAM_TARGET, MODE_SIZE, SHEET_TILE, deformed,
                                                 mode_scale, render_contact_sheet, render_mode)
 from rotorpillar.reduced.pillar import cantilever_mode
@@ -182,8 +183,8 @@ def test_animation_gif_fallback_and_cantilever_fallback(tmp_path):
 def analyses():
     paper = load_scene("paper")
     # through JSON, as the report reads them
-    return {"paper": json.loads(to_json(analyze(paper))),
-            "fold": json.loads(to_json(analyze(override(paper, ["rotor.eccentricity=0.04"]))))}
+    return {"paper": namespace(json.loads(to_json(analyze(paper)))),
+            "fold": namespace(json.loads(to_json(analyze(override(paper, ["rotor.eccentricity=0.04"])))))}
 
 
 
@@ -191,13 +192,13 @@ def analyses():
 def test_drive_curves_match_analyze(analyses, case):
     a = analyses[case]
     data = charts.drive_curve_data(a)
-    for r in a["resonances"]:
-        c = r["curves"]
-        L = np.interp(c["omega"], data["omega"], data["L"])
-        exact = charts.av.total_resistance(np.asarray(c["omega"]), a["drive"]["load_coefficient"],
+    for r in a.resonances:
+        c = r.curves
+        L = np.interp(c.omega, data["omega"], data["L"])
+        exact = charts.av.total_resistance(np.asarray(c.omega), a.drive.load_coefficient,
                                            charts.resonances_of(a))
-        assert exact == pytest.approx(c["L_all"], rel=1e-9)
-        assert L == pytest.approx(c["L_all"], rel=2e-3)     # the chart's grid, interpolated
+        assert exact == pytest.approx(c.L_all, rel=1e-9)
+        assert L == pytest.approx(c.L_all, rel=2e-3)     # the chart's grid, interpolated
 
 
 def test_stability_switches_at_the_fold_points(analyses):
@@ -212,7 +213,7 @@ def test_stability_switches_at_the_fold_points(analyses):
         assert np.min(np.abs(switches - w)) < 2 * step
     # and the stationary speeds' stability agrees with the mask
     for s in data["stationary"]:
-        assert stable[np.argmin(np.abs(W - s["omega"]))] == s["stable"]
+        assert stable[np.argmin(np.abs(W - s.omega))] == s.stable
 
 
 def test_paper_scene_has_no_unstable_branch(analyses):
@@ -225,5 +226,7 @@ def test_chart_files(analyses, tmp_path):
     assert_real_png(charts.drive_chart(a, tmp_path / "d.png"), (1000, 760))
     assert_real_png(charts.amplitude_chart(a, tmp_path / "a.png"), (1000, 360))
     arrays = fixtures.simulation_arrays("earthquake", n=2000)
-    assert_real_png(charts.earthquake_chart(arrays, tmp_path / "e.png"), (900, 800))
+    e = transient_charts.earthquake_chart(tmp_path / "e.png", arrays["t"], arrays["ground_acceleration"],
+                                          arrays["tip_x"], arrays["rotor_x"], arrays["Omega"])
+    assert_real_png(e, (900, 800))
     assert png_size(tmp_path / "d.png") == (1000, 760)

@@ -3,7 +3,7 @@ and a page a real browser opens with every image loaded.
 
 Sources and checks:
 - Inputs: a real `rotorpillar analyze paper`; synthetic 3D modes and runs
-  (rotorpillar.postprocess.fixtures, labelled as such in the page).
+  (tests/fixtures.py, labelled as such in the page).
 - Browser: Debian's Chromium, headless (``--headless --no-sandbox
   --disable-gpu``), on a copy of report.html with a script appended that
   waits for the load event and writes a verdict into the DOM, read back with
@@ -27,9 +27,9 @@ from pathlib import Path
 
 import pytest
 
+import fixtures
 from imagecheck import PNG_SIGNATURE
 from rotorpillar import cli
-from rotorpillar.postprocess import fixtures
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
@@ -71,9 +71,10 @@ def full(tmp_path_factory):
     for case in ("runup", "earthquake"):
         fixtures.write_simulation_fixture(out, case, n=1500)
     # a chart another module wrote, captioned in its JSON
-    from rotorpillar.postprocess import charts
-    charts.earthquake_chart(fixtures.simulation_arrays("runup", n=500), out / "runup_omega.png",
-                            title="external")
+    from rotorpillar.postprocess import transient_charts
+    a = fixtures.simulation_arrays("runup", n=500)
+    transient_charts.earthquake_chart(out / "runup_omega.png", a["t"], a["ground_acceleration"],
+                                      a["tip_x"], a["rotor_x"], a["Omega"], title="external")
     doc = json.loads((out / "simulate_runup.json").read_text())
     doc["figures"] = [{"file": "runup_omega.png", "caption": "Omega(t) of the run-up <external>"}]
     (out / "simulate_runup.json").write_text(json.dumps(doc))

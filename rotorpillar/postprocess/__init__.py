@@ -7,13 +7,15 @@ here reads the results other commands wrote to ``out/<scene>/`` (contracts in
 beyond evaluating the closed forms those results already carry.
 
 - :mod:`.offscreen`   pyvista without a display (EGL or OSMesa)
-- :mod:`.style`       one matplotlib style, atomic PNG writes
-- :mod:`.inputs`      reading analyze/modal/simulate/convergence results, mode-shape VTUs
+- :mod:`.style`       the one chart style: figure creation, colours, atomic PNG writes
+- :mod:`.inputs`      reading analyze/modal/simulate/convergence results (one reader each), mode-shape VTUs
 - :mod:`.modeshapes`  one PNG per mode and a contact sheet
 - :mod:`.animation`   run-up and earthquake animations (MP4, GIF fallback)
-- :mod:`.charts`      drive/resistance curves (Figs. 3-4), a(z), earthquake response
+- :mod:`.charts`      drive/resistance curves (Figs. 3-4), a(z)
+- :mod:`.transient_charts` run-up, earthquake, sweep and integrator charts
 - :mod:`.html`        the report page: escaped text, embedded images, no external resource
 - :mod:`.report`      `rotorpillar report`: every figure that its inputs allow, then the page
 - :mod:`.convergence_charts` error against DOFs and against wall time (`rotorpillar converge`)
-- :mod:`.fixtures`    small synthetic inputs for the tests and the docs
+
+The synthetic inputs the tests use live in ``tests/fixtures.py``.
 """

@@ -1,4 +1,4 @@
-"""Charts drawn from `rotorpillar analyze` and the earthquake run.
+"""Charts drawn from `rotorpillar analyze`.
 
 - :func:`drive_chart`: the motor torque Md and the total resistance L over
   the speed, with the stable and unstable branches of the stationary regimes
@@ -7,15 +7,15 @@
   on the resonance parameters analyze.json carries (omega_i, f_i, g_i, nu_i),
   over the whole speed range, not only the +-50 % of the stored curves (a
   jump may land far beyond them); the tests check it against those curves.
-  A regime on L is stable where d(Md - L)/dOmega < 0 (Eq. 23), i.e. where
-  L' + slope > 0.
-- :func:`amplitude_chart`: a_i(z) by averaging (Eq. 19, omega_i**2
-  restored) against the exact linear steady state, per resonance.
-- :func:`earthquake_chart`: ground motion, elastic tip deflection, rotor
-  motion relative to the tip and speed during the earthquake run.
+  A regime on L is stable where the paper's equation 23 says so
+  (:func:`rotorpillar.reduced.averaging.branch_is_stable`).
+- :func:`amplitude_chart`: a_i(z) by averaging (the paper's equation 19,
+  omega_i**2 restored) against the exact linear steady state, per resonance.
 
-The transient and convergence charts are drawn by ``transient_charts`` and
-``convergence_charts``.
+The analysis is read with attribute access (``analysis.drive.slope``), as
+:func:`rotorpillar.postprocess.inputs.read_analysis` gives it.  The
+earthquake, transient and convergence charts are drawn by
+``transient_charts`` and ``convergence_charts``.
 """
 
 from __future__ import annotations
@@ -29,46 +29,46 @@ import numpy as np
 from ..reduced import averaging as av
 from .style import COLOURS, blank, figure, save
 
-
-def resonances_of(analyze: dict) -> list:
+def resonances_of(analysis) -> list:
     """The resonances of analyze.json as objects the averaging closed forms take."""
-    return [SimpleNamespace(index=r["index"], direction=r["direction"], omega=r["omega"],
-                            forcing=r["forcing"], coupling=r["coupling"], nu=r["nu"])
-            for r in analyze["resonances"]]
+    return [SimpleNamespace(index=r.index, direction=r.direction, omega=r.omega,
+                            forcing=r.forcing, coupling=r.coupling, nu=r.nu)
+            for r in analysis.resonances]
 
 
-def drive_curve_data(analyze: dict, points: int = 6000) -> dict:
+def drive_curve_data(analysis, points: int = 6000) -> dict:
     """Everything the Md/L chart draws, as arrays (no plotting).
 
     Keys: omega (grid, rad/s), L (total resistance), Mc, Md (the scene's
-    motor), stable (bool mask of L' + slope > 0), jumps (list of dicts with
-    the from/to points), stationary (list), top (grid end).
+    motor), stable (bool mask: the paper's equation 23 on L), jumps (list
+    of dicts with the from/to points), stationary (list of records with
+    omega and stable), top (grid end).
     """
-    d = analyze["drive"]
-    res = resonances_of(analyze)
-    k, s, M0 = d["load_coefficient"], d["slope"], d["torque_at_zero"]
+    d = analysis.drive
+    res = resonances_of(analysis)
+    k, s, M0 = d.load_coefficient, d.slope, d.torque_at_zero
     ends = [1.6 * r.omega for r in res]
-    free = d.get("free_speed")
+    free = d.free_speed
     if free is not None and math.isfinite(free):
         ends.append(1.08 * free)
-    ends += [1.1 * j["omega_to"] for j in d["jumps"]] + [1.1 * j["omega_from"] for j in d["jumps"]]
+    ends += [1.1 * j.omega_to for j in d.jumps] + [1.1 * j.omega_from for j in d.jumps]
     top = max(ends)
     grid = np.unique(np.concatenate([np.linspace(0.0, top, points)]
                                     + [r.omega * (1 + r.nu * np.linspace(-8, 8, 801)) for r in res]))
     grid = grid[(grid >= 0) & (grid <= top)]
     L = av.total_resistance(grid, k, res)
-    slope_L = 2 * k * grid + sum(av.resistance_increment_slope(grid, r) for r in res)
     jumps = []
-    for n, j in enumerate(d["jumps"], start=1):
-        up = j["direction"] == "up"
-        level = j["torque_at_zero"]
-        jumps.append({"direction": j["direction"], "resonance": j.get("resonance"),
+    for n, j in enumerate(d.jumps, start=1):
+        up = j.direction == "up"
+        level = j.torque_at_zero
+        jumps.append({"direction": j.direction, "resonance": j.resonance,
                       "label_from": ("A" if up else "D"), "label_to": ("B" if up else "C"),
                       "number": n, "level": level,
-                      "from": (j["omega_from"], level - s * j["omega_from"]),
-                      "to": (j["omega_to"], level - s * j["omega_to"])})
+                      "from": (j.omega_from, level - s * j.omega_from),
+                      "to": (j.omega_to, level - s * j.omega_to)})
     return {"omega": grid, "L": L, "Mc": k * grid**2, "Md": M0 - s * grid,
-            "stable": slope_L + s > 0, "jumps": jumps, "stationary": d["stationary"],
+            "stable": np.asarray(av.branch_is_stable(grid, s, k, res), dtype=bool),
+            "jumps": jumps, "stationary": d.stationary,
             "slope": s, "torque_at_zero": M0, "top": top}
 
 
@@ -102,10 +102,10 @@ def _jump_arrows(ax, jumps, s, xlim, z_scale=1.0):
                         fontsize=8)
 
 
-def drive_chart(analyze: dict, path: str | Path, size=(1000, 760)) -> Path:
+def drive_chart(analysis, path: str | Path, size=(1000, 760)) -> Path:
     """Md and L over the speed (top) and near each resonance (bottom)."""
-    data = drive_curve_data(analyze)
-    res = analyze["resonances"]
+    data = drive_curve_data(analysis)
+    res = analysis.resonances
     fig = blank(*size)
     gs = fig.add_gridspec(2, len(res), height_ratios=[1.15, 1])
     top = fig.add_subplot(gs[0, :])
@@ -116,16 +116,16 @@ def drive_chart(analyze: dict, path: str | Path, size=(1000, 760)) -> Path:
     top.plot(W, data["Md"], color=COLOURS["drive"],
              label=f"Md = {data['torque_at_zero']:g} - {s:g} Omega (scene's motor)")
     for st in data["stationary"]:
-        y = data["torque_at_zero"] - s * st["omega"]
-        top.plot([st["omega"]], [y], "o", ms=7, mec="black",
-                 mfc=COLOURS["stable"] if st["stable"] else "white")
-        top.annotate(f"{st['omega']:.2f} rad/s ({'stable' if st['stable'] else 'unstable'})",
-                     (st["omega"], y), textcoords="offset points", xytext=(-10, 10), ha="right",
+        y = data["torque_at_zero"] - s * st.omega
+        top.plot([st.omega], [y], "o", ms=7, mec="black",
+                 mfc=COLOURS["stable"] if st.stable else "white")
+        top.annotate(f"{st.omega:.2f} rad/s ({'stable' if st.stable else 'unstable'})",
+                     (st.omega, y), textcoords="offset points", xytext=(-10, 10), ha="right",
                      fontsize=8)
     _jump_arrows(top, data["jumps"], s, (0, data["top"]))
     for r in res:
-        top.axvline(r["omega"], color="#999999", lw=0.6, ls="--")
-        top.annotate(f"omega_{r['index']}", (r["omega"], 0), textcoords="offset points",
+        top.axvline(r.omega, color=COLOURS["reference"], lw=0.6, ls="--")
+        top.annotate(f"omega_{r.index}", (r.omega, 0), textcoords="offset points",
                      xytext=(2, 2), fontsize=7, color="#666666", rotation=90)
     y_hi = max(float(np.max(data["L"])), data["torque_at_zero"]) * 1.05
     top.set_xlim(0, data["top"])
@@ -139,17 +139,17 @@ def drive_chart(analyze: dict, path: str | Path, size=(1000, 760)) -> Path:
     top.legend(loc="upper left")
     # zooms: near each resonance, in z = Omega / omega_i as the paper draws them
     for ax, r in zip(zooms, res):
-        w = r["omega"]
+        w = r.omega
         lo, hi = 0.5 * w, 1.5 * w
-        mine = [j for j in data["jumps"] if j["resonance"] == r["index"]]
+        mine = [j for j in data["jumps"] if j["resonance"] == r.index]
         for j in mine:
             lo = min(lo, 0.95 * j["from"][0], 0.95 * j["to"][0])
             hi = max(hi, 1.05 * j["from"][0], 1.05 * j["to"][0])
         m = (W >= lo) & (W <= hi)
         ax.plot(W[m] / w, data["Mc"][m], color=COLOURS["load"], ls=":")
         _branches(ax, W[m] / w, data["L"][m], data["stable"][m], label=False)
-        c = r["curves"]
-        ax.plot(c["z"][::8], c["L_all"][::8], ".", color="black", ms=2.5,
+        c = r.curves
+        ax.plot(c.z[::8], c.L_all[::8], ".", color="black", ms=2.5,
                 label="analyze.json curve" if r is res[0] else None)
         _jump_arrows(ax, mine, s, (lo, hi), z_scale=w)
         ys = [data["L"][m]] + [np.array([j["from"][1], j["to"][1]]) for j in mine]
@@ -157,10 +157,10 @@ def drive_chart(analyze: dict, path: str | Path, size=(1000, 760)) -> Path:
         pad = 0.08 * (y1 - y0 or 1.0)
         ax.set_ylim(y0 - pad, y1 + pad)
         ax.set_xlim(lo / w, hi / w)
-        ax.set_xlabel(f"z = Omega / omega_{r['index']}")
+        ax.set_xlabel(f"z = Omega / omega_{r.index}")
         ax.set_ylabel("torque (N*m)")
         note = f"{len(mine)} jump(s)" if mine else "no jump"
-        ax.set_title(f"res. {r['index']} ({r['direction']}, {w:.2f} rad/s): {note}", fontsize=9)
+        ax.set_title(f"res. {r.index} ({r.direction}, {w:.2f} rad/s): {note}", fontsize=9)
         # the resonance's own torque, visible even where it is ~1 % of Mc
         extra = ax.twinx()
         extra.plot(W[m] / w, data["L"][m] - data["Mc"][m], color=COLOURS["accent"], lw=1.0,
@@ -175,68 +175,20 @@ def drive_chart(analyze: dict, path: str | Path, size=(1000, 760)) -> Path:
     return save(fig, path)
 
 
-def amplitude_chart(analyze: dict, path: str | Path, size=(1000, 360)) -> Path:
-    """a_i(z): averaging (Eq. 19) against the exact linear steady state."""
-    res = analyze["resonances"]
+def amplitude_chart(analysis, path: str | Path, size=(1000, 360)) -> Path:
+    """a_i(z): averaging (the paper's equation 19) against the exact linear steady state."""
+    res = analysis.resonances
     fig, axes = figure(*size, ncols=len(res), squeeze=False)
     for ax, r in zip(axes[0], res):
-        c = r["curves"]
-        z = np.asarray(c["z"])
-        ax.plot(z, 1e3 * np.asarray(c["a"]), color=COLOURS["analytic"], label="averaging, Eq. 19")
-        ax.plot(z, 1e3 * np.asarray(c["a_linear"]), color=COLOURS["numeric"], ls="--",
+        c = r.curves
+        z = np.asarray(c.z)
+        ax.plot(z, 1e3 * np.asarray(c.a), color=COLOURS["analytic"], label="averaging, Eq. 19")
+        ax.plot(z, 1e3 * np.asarray(c.a_linear), color=COLOURS["numeric"], ls="--",
                 label="linear steady state")
-        ax.set_xlabel(f"z = Omega / omega_{r['index']}")
-        ax.set_ylabel(f"a_{r['index']} (mm)")
-        ax.set_title(f"resonance {r['index']} ({r['direction']}), omega = {r['omega']:.2f} rad/s, "
-                     f"nu = {r['nu']:.3f}", fontsize=9)
+        ax.set_xlabel(f"z = Omega / omega_{r.index}")
+        ax.set_ylabel(f"a_{r.index} (mm)")
+        ax.set_title(f"resonance {r.index} ({r.direction}), omega = {r.omega:.2f} rad/s, "
+                     f"nu = {r.nu:.3f}", fontsize=9)
         if r is res[0]:
             ax.legend(fontsize=7)
-    return save(fig, path)
-
-
-def _plain_axis(ax, y) -> None:
-    """No offset notation, and a visible band around a (nearly) constant signal
-    instead of its round-off noise blown up to the full height."""
-    ax.ticklabel_format(axis="y", useOffset=False, style="plain")
-    y = np.asarray(y, dtype=float)
-    y = y[np.isfinite(y)]
-    if y.size and np.ptp(y) <= 1e-6 * max(np.abs(y).max(), 1e-300):
-        c = float(np.mean(y))
-        pad = 0.1 * abs(c) if c != 0 else 1.0
-        ax.set_ylim(c - pad, c + pad)
-
-
-def earthquake_chart(arrays: dict, path: str | Path, size=(900, 800), title: str = "") -> Path:
-    """Ground motion, elastic tip deflection, the radius of the rotor's orbit
-    about the pillar top, and the speed."""
-    t = np.asarray(arrays["t"], dtype=float)
-    n = len(t)
-    get = lambda k: None if arrays.get(k) is None else np.asarray(arrays[k], dtype=float)
-    ground = get("ground_x")
-    ground = np.zeros(n) if ground is None else ground
-    tip, rx, ry, Om = get("tip_x"), get("rotor_x"), get("rotor_y"), get("Omega")
-    fig, axes = figure(*size, nrows=4, sharex=True)
-    axes[0].plot(t, ground, color=COLOURS["ground"])
-    axes[0].set_ylabel("ground X (m)")
-    if tip is not None:
-        axes[1].plot(t, 1e3 * (tip - ground), color=COLOURS["drive"], lw=0.8)
-    axes[1].set_ylabel("tip - ground (mm)")
-    if rx is not None and ry is not None:
-        # the orbit radius: the rotor's whirl about the pillar top, free of
-        # the once-per-revolution oscillation that would fill the panel
-        rel_x = rx - (tip if tip is not None else 0.0)
-        radius = 1e3 * np.hypot(rel_x, ry)
-        axes[2].plot(t, radius, color=COLOURS["unstable"], lw=0.8)
-        _plain_axis(axes[2], radius)
-    axes[2].set_ylabel("orbit radius (mm)")
-    if Om is not None:
-        axes[3].plot(t, Om, color=COLOURS["drive"])
-        _plain_axis(axes[3], Om)
-    axes[3].set_ylabel("Omega (rad/s)")
-    axes[3].set_xlabel("t (s)")
-    moving = np.flatnonzero(np.abs(ground) > 1e-12 * max(1.0, np.abs(ground).max()))
-    if moving.size:
-        for ax in axes:
-            ax.axvspan(t[moving[0]], t[moving[-1]], color=COLOURS["ground"], alpha=0.08, lw=0)
-    axes[0].set_title(title or "Earthquake response")
     return save(fig, path)

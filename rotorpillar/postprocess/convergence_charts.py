@@ -8,25 +8,41 @@ points ringed; the tolerance and the reference's own uncertainty drawn
 across; the chosen model starred.  Failures stay on the chart: a run
 without the mode (a beam has no ovalling mode; a coarse mesh may miss it)
 is marked on a "no mode" strip at the top, and the locking of P1 elements
-shows as its own line far above the rest.
+shows as its own line far above the rest.  Figure, colours and the atomic
+PNG write come from :mod:`.style`.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
+from .style import COLOURS, figure, save
+
+#: Colours of the model families (one hue per kind of model, a lighter one
+#: for its variant); markers and line styles tell the variants apart.
+FAMILY_COLOURS = {
+    "closed_form": "#000000",
+    "beam_euler": "#0072B2",
+    "beam_timoshenko": "#56B4E9",
+    "shell": "#009E73",
+    "shell_light": "#7FCEB9",
+    "solid_p1": "#D55E00",
+    "solid_p1_light": "#EAAE80",
+    "solid_p2": "#CC79A7",
+    "solid_p2_light": "#E5BCD3",
+}
 STYLE = {
-    "closed_form": dict(color="black", marker="*", ms=11),
-    "beam_euler": dict(color="#1f77b4", marker="o"),
-    "beam_timoshenko": dict(color="#17becf", marker="s"),
-    "shell_quad": dict(color="#2ca02c", marker="D"),
-    "shell_tri": dict(color="#98df8a", marker="^"),
-    "shell_quad_around": dict(color="#2ca02c", marker="D", ls="--", mfc="none"),
-    "solid_hex_p1": dict(color="#d62728", marker="s"),
-    "solid_tet_p1": dict(color="#ff9896", marker="^"),
-    "solid_hex_p2": dict(color="#9467bd", marker="s"),
-    "solid_tet_p2": dict(color="#c5b0d5", marker="^"),
-    "solid_hex_p2_around": dict(color="#9467bd", marker="s", ls="--", mfc="none"),
+    "closed_form": dict(color=FAMILY_COLOURS["closed_form"], marker="*", ms=11),
+    "beam_euler": dict(color=FAMILY_COLOURS["beam_euler"], marker="o"),
+    "beam_timoshenko": dict(color=FAMILY_COLOURS["beam_timoshenko"], marker="s"),
+    "shell_quad": dict(color=FAMILY_COLOURS["shell"], marker="D"),
+    "shell_tri": dict(color=FAMILY_COLOURS["shell_light"], marker="^"),
+    "shell_quad_around": dict(color=FAMILY_COLOURS["shell"], marker="D", ls="--", mfc="none"),
+    "solid_hex_p1": dict(color=FAMILY_COLOURS["solid_p1"], marker="s"),
+    "solid_tet_p1": dict(color=FAMILY_COLOURS["solid_p1_light"], marker="^"),
+    "solid_hex_p2": dict(color=FAMILY_COLOURS["solid_p2"], marker="s"),
+    "solid_tet_p2": dict(color=FAMILY_COLOURS["solid_p2_light"], marker="^"),
+    "solid_hex_p2_around": dict(color=FAMILY_COLOURS["solid_p2"], marker="s", ls="--", mfc="none"),
 }
 COST_LABEL = {"dofs": "degrees of freedom", "wall_time": "wall time per run (s)"}
 PANELS = (("bending", "first bending frequency: |error|"),
@@ -108,7 +124,7 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
         ax.step(xs, es, where="post", color="0.3", lw=2.5, alpha=0.35, zorder=0,
                 label="Pareto front")
         ax.plot(xs, es, ls="none", marker="o", ms=13, mfc="none", mec="0.3", zorder=0)
-    ax.axhline(tol, color="red", ls=":", lw=1.2, label=f"tolerance {tol:g}")
+    ax.axhline(tol, color=COLOURS["tolerance"], ls=":", lw=1.2, label=f"tolerance {tol:g}")
     ref = study["reference"]
     shade = ([ref[k]["error_estimate"] / abs(ref[k]["value"]) for k in needed if k in ref]
              if q == "band" else
@@ -120,7 +136,7 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
     if chosen is not None:
         e = err_of(chosen, q, needed)
         if e is not None:
-            ax.plot([chosen[cost]], [max(e, FLOOR)], marker="*", ms=20, color="gold", mec="k",
+            ax.plot([chosen[cost]], [max(e, FLOOR)], marker="*", ms=20, color=COLOURS["numeric"], mec="k",
                     ls="none", zorder=5, label="chosen")
     ax.axhline(missing_y, color="0.6", lw=0.6)
     ax.text(0.01, missing_y, " no such mode", transform=ax.get_yaxis_transform(), va="bottom",
@@ -153,13 +169,8 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
 
 def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
     """Write one chart (PNG) of |relative error| against ``cost`` ("dofs" or "wall_time")."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from ..provenance import atomic_path
     families = {k: v["label"] for k, v in study["families"].items()}
-    fig, axes = plt.subplots(1, 3, figsize=(18, 6.2), sharey=True)
+    fig, axes = figure(1980, 682, ncols=3, sharey=True)
     for ax, (q, title) in zip(axes, PANELS):
         _panel(ax, study, cost, q, title, families)
     axes[0].set_ylabel("|relative error| against the reference")
@@ -167,17 +178,13 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
     for ax in axes:
         for h, l in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(l, h)
-    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center",
+    # "outside": the constrained layout keeps a strip below the panels for it
+    fig.legend(list(handles.values()), list(handles.keys()), loc="outside lower center",
                ncol=min(7, len(handles)), fontsize=8, frameon=False)
     band = study["selection"]["band"]
     fig.suptitle(f"{study['scene_name']}: error against {COST_LABEL[cost]} "
                  f"(band to {band['omega_max']:.0f} rad/s)", fontsize=12)
-    fig.tight_layout(rect=(0, 0.08, 1, 0.96))
-    path = Path(path)
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=110, format="png")
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 def convergence_charts(study: dict, out_dir: str | Path) -> dict[str, Path]:

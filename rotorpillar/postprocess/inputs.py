@@ -18,20 +18,28 @@ Contracts (field names are the writers'; we read, never write, them):
 - ``convergence.json`` (`rotorpillar converge`), ``integrators.json``.
 - Any PNG in ``out/<scene>/`` (or a direct subfolder) is embedded in the
   report, in the section its file name suggests
-  (:data:`rotorpillar.postprocess.report.FIGURE_GROUPS`).  Its caption
+  (:data:`rotorpillar.postprocess.report.figures.FIGURE_GROUPS`).  Its caption
   comes from a ``figures`` list in any JSON there, entries
   ``{"file": "name.png", "caption": "..."}``, else from the file name.
 
 A missing file is not an error: every reader returns None and the report
 says which command would produce it.
+
+Each result file is read by ONE function (:func:`read_analysis`,
+:func:`read_modal`, :func:`read_convergence`, :func:`read_case`); the
+report reads the records with attribute access named as the JSON keys
+(``analysis.pillar.omega_col1``), so a typed result with the same names
+(``AnalysisResult.from_json``) replaces the SimpleNamespace there in one line.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -64,6 +72,121 @@ def read_json(path: str | Path) -> dict | None:
     if not path.is_file():
         return None
     return json.loads(path.read_text(encoding="utf-8"))
+
+
+def namespace(doc):
+    """JSON-shaped data with every object as a SimpleNamespace (lists kept).
+
+    >>> namespace({"pillar": {"omega_col1": 31.3}, "modes": [{"kind": "x"}]}).modes[0].kind
+    'x'
+    """
+    if isinstance(doc, dict):
+        return SimpleNamespace(**{k: namespace(v) for k, v in doc.items()})
+    if isinstance(doc, list):
+        return [namespace(v) for v in doc]
+    return doc
+
+
+def plain(obj):
+    """Back to JSON-shaped dicts and lists, from SimpleNamespaces, dataclasses
+    (their ``to_dict()`` if they have one) or dicts: for the tables that show
+    a whole record.
+
+    >>> plain(namespace({"a": {"b": [1, {"c": 2}]}}))
+    {'a': {'b': [1, {'c': 2}]}}
+    """
+    if hasattr(obj, "to_dict") and not isinstance(obj, type):
+        return plain(obj.to_dict())
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        return {f.name: plain(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+    if isinstance(obj, SimpleNamespace):
+        obj = vars(obj)
+    if isinstance(obj, dict):
+        return {k: plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [plain(v) for v in obj]
+    return obj
+
+
+def entries(mapping) -> list[tuple[str, object]]:
+    """(key, value) pairs of a mapping read from JSON (a dict or a SimpleNamespace).
+
+    >>> entries(namespace({"bending": 1, "ovalling": 2}))
+    [('bending', 1), ('ovalling', 2)]
+    """
+    if mapping is None:
+        return []
+    return list((vars(mapping) if isinstance(mapping, SimpleNamespace) else mapping).items())
+
+
+class Loaded:
+    """A command's result as the report reads it: the typed record, and the
+    document it came from (the scene, versions and timings written beside).
+
+    Attributes are the record's; a section the record keeps as plain JSON
+    (a dict, or a list of dicts) reads with attribute access too.
+    ``to_dict()`` gives the whole document (for :func:`plain`).
+    """
+
+    def __init__(self, record, doc: dict):
+        self._record, self._doc = record, doc
+
+    def __getattr__(self, name):
+        return _view(getattr(self._record, name))
+
+    def to_dict(self) -> dict:
+        return self._doc
+
+
+def _view(value):
+    if isinstance(value, dict):
+        return namespace(value)
+    if isinstance(value, (list, tuple)) and any(isinstance(v, dict) for v in value):
+        return [_view(v) for v in value]
+    return value
+
+
+def read_record(path: str | Path, record_type):
+    """The JSON at ``path`` read through its typed record, or None if there is none.
+
+    A document of another shape (another version wrote it, or it was cut
+    short) is read as plain attributes instead: every section that finds
+    its fields still renders, and the others fail one by one, each naming
+    the key it missed.
+    """
+    doc = read_json(path)
+    if doc is None:
+        return None
+    try:
+        return Loaded(record_type.from_json(doc), doc)
+    except (KeyError, TypeError, ValueError, AttributeError):
+        return namespace(doc)
+
+
+def read_analysis(path: str | Path):
+    """``analyze.json`` (an :class:`~rotorpillar.analysis.AnalysisResult`), or None."""
+    from ..analysis.results import AnalysisResult
+    return read_record(path, AnalysisResult)
+
+
+def read_modal(path: str | Path):
+    """``modal.json`` (a :class:`~rotorpillar.fem3d.summary.ModalSummary`), or None."""
+    from ..fem3d.summary import ModalSummary
+    return read_record(path, ModalSummary)
+
+
+def read_convergence(path: str | Path):
+    """``convergence.json`` (a :class:`~rotorpillar.converge.ConvergenceStudy`), or None."""
+    from ..converge.result import ConvergenceStudy
+    return read_record(path, ConvergenceStudy)
+
+
+def read_case(path: str | Path) -> dict | None:
+    """``simulate_<case>.json``: one transient run's summary, or None.
+
+    A plain dict: its fields differ by model and the report shows most of
+    them as a generic table."""
+    return read_json(path)
 
 
 def read_npz(path: str | Path) -> dict[str, np.ndarray] | None:
@@ -277,7 +400,7 @@ class Simulation:
 def read_simulation(out: str | Path, case: str) -> Simulation | None:
     """``simulate_<case>.json`` and ``.npz`` (either may be missing)."""
     out = Path(out)
-    meta = read_json(out / f"simulate_{case}.json")
+    meta = read_case(out / f"simulate_{case}.json")
     arrays = read_npz(out / f"simulate_{case}.npz")
     if meta is None and arrays is None:
         return None

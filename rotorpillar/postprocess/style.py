@@ -1,7 +1,9 @@
-"""One chart style for every matplotlib figure of the project, and atomic PNGs.
+"""The one chart style of the project: figure creation, colours, atomic PNGs.
 
-Other chart modules (``transient_charts``, ``convergence_charts``) may use
-:func:`figure` and :func:`save` so the report's figures look alike.
+Every matplotlib figure (``charts``, ``transient_charts``,
+``convergence_charts``, the animation's chart panel) is made by
+:func:`figure` or :func:`blank` and written by :func:`save`, so all the
+figures look alike and a PNG is never seen half written.
 """
 
 from __future__ import annotations
@@ -23,6 +25,10 @@ COLOURS = {
     "numeric": "#E69F00",
     "ground": "#CC79A7",
     "accent": "#56B4E9",
+    "rising": "#D55E00",     # a run or sweep going up in speed or torque
+    "falling": "#0072B2",    # ... going down
+    "reference": "#999999",  # marker lines: resonances, thresholds
+    "tolerance": "#CC0000",   # red: the line a result must get under
 }
 CYCLE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
 

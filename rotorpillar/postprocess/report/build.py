@@ -1,0 +1,158 @@
+"""`rotorpillar report`: every figure its inputs allow, then one HTML page.
+
+Reads what the other commands left in ``out/<scene>/`` (see
+:mod:`rotorpillar.postprocess.inputs`), renders what it can (charts, mode
+shapes, animations: :mod:`.render`), embeds the PNGs the other chart modules
+wrote there (:mod:`.figures`), and writes ``report.html``: the scene, the
+modal validation (the paper's equation 1 against the 3D model, the
+reduction, Table 1 and every number the paper prints, flagged), the
+averaging analysis, the runs, the earthquake, the model choice, and the
+versions and timings, one module per group of sections.  A section whose
+input is missing says which command produces it; a figure that fails to
+render says why, and the rest of the report is still written.  Returns what
+`rotorpillar report` writes as report.json.
+"""
+
+from __future__ import annotations
+
+import sys
+import traceback
+from pathlib import Path
+from types import SimpleNamespace
+
+from ...provenance import write_text
+from .. import html as h
+from ..inputs import (CASES, INPUTS, read_analysis, read_convergence, read_json, read_modal,
+                      read_simulation)
+from .convergence import section_convergence
+from .earthquake import section_earthquake
+from .figures import external_figures, figure_group
+from .modal import section_modal, section_paper, section_scene
+from .provenance import section_other, section_provenance
+from .render import mode_sets, render_animations, render_charts, render_modes
+from .runs import section_averaging, section_runs
+from .state import Build, Product, ReportOptions, attempt, say
+from .summary import section_summary
+
+__all__ = ["ReportOptions", "build_report", "summary_text"]
+
+#: The page, in order: (anchor, title, builder).
+SECTIONS = [
+    ("summary", "Summary", section_summary),
+    ("scene", "The scene", section_scene),
+    ("modal", "Modal validation", section_modal),
+    ("paper", "The paper's numbers against ours", section_paper),
+    ("averaging", "Passage through resonance", section_averaging),
+    ("runs", "The runs", section_runs),
+    ("earthquake", "The earthquake", section_earthquake),
+    ("convergence", "Convergence and the model chosen", section_convergence),
+    ("other", "Other figures", section_other),
+    ("provenance", "Versions, machine and timings", section_provenance),
+]
+
+
+def _why(exc: Exception) -> str:
+    """What went wrong, in the input's words: a field missing from a record
+    read from JSON is the JSON's missing key."""
+    if (isinstance(exc, AttributeError) and isinstance(getattr(exc, "obj", None), SimpleNamespace)
+            and exc.name):
+        return f"KeyError: {exc.name!r}"
+    return f"{type(exc).__name__}: {exc}"
+
+
+def _guarded_section(build: Build, ident: str, title: str, fn) -> str | None:
+    """A section, or, if its input does not have the shape it expects (an
+    older or newer writer), a notice saying so: one section lost, not the page."""
+    try:
+        return fn(build)
+    except Exception as exc:
+        key = f"section_{ident}"
+        build.failures[key] = _why(exc)
+        say(f"section {title!r} failed: {build.failures[key]}")
+        traceback.print_exc(file=sys.stderr)
+        return h.section(ident, title, [h.tag(
+            "p", f"This section could not be written from its inputs ({build.failures[key]}); "
+                 "they may come from another version of rotorpillar: re-run the command that "
+                 "wrote them.", class_="failed")])
+
+
+def load_inputs(build: Build) -> None:
+    out = build.out
+    build.analysis = read_analysis(out / INPUTS["analyze"][0])
+    build.modal = read_modal(out / INPUTS["modal"][0])
+    build.convergence = read_convergence(out / INPUTS["convergence"][0])
+    build.integrators = read_json(out / INPUTS["integrators"][0])
+    for case in CASES:
+        sim = read_simulation(out, case)
+        if sim is not None:
+            build.simulations[case] = sim
+
+
+def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None,
+                 timings=None) -> dict:
+    """Render every figure the inputs in ``out`` allow and write ``out/report.html``."""
+    from ...provenance import Timings
+    timings = Timings() if timings is None else timings
+    build = Build(scene, Path(out), scene_cli, options or ReportOptions())
+    with timings("read_inputs"):
+        load_inputs(build)
+    with timings("charts"):
+        render_charts(build)
+    sets = {}
+    with timings("mode_shapes"):
+        sets = mode_sets(build)
+        render_modes(build, sets)
+    if build.options.animations:
+        with timings("animations"):
+            render_animations(build, sets)
+    if any(s is not None for s in sets.values()) or any(k.startswith("animation_") for k in build.products):
+        from ..offscreen import render_window_class
+        build.render_window = attempt(build, "render_window", render_window_class) or ""
+    build.products["external"] = [Product(p, c, group=figure_group(p.name))
+                                  for p, c in external_figures(build.out)]
+    with timings("html"):
+        nav, sections = [], []
+        for ident, title, fn in SECTIONS:
+            html_ = _guarded_section(build, ident, title, fn)
+            if html_:
+                nav.append((ident, title))
+                sections.append(html_)
+        title = f"rotorpillar report: {scene.name}"
+        header = [h.tag("h1", title),
+                  h.tag("p", scene.description or "", class_="meta"),
+                  h.tag("p", "Validation report of the rotor on its pillar: the 3D modes against the "
+                             "paper's closed forms, the paper's printed numbers against ours, the "
+                             "passage through resonance, the transients, and how far to trust each "
+                             "number.", class_="meta")]
+        document = h.page(title, header, nav, sections)
+        path = write_text(build.out / "report.html", document)
+    figures = [str(p.path) for k, p in build.products.items()
+               if isinstance(p, Product) and p.kind == "figure"]
+    figures += [str(x.path) for k, v in build.products.items() if isinstance(v, list)
+                for x in v if isinstance(x, Product)]
+    animations = {k[len("animation_"):-len("_info")]: {kk: (str(vv) if isinstance(vv, Path) else vv)
+                                                       for kk, vv in v.items()}
+                  for k, v in build.products.items() if k.startswith("animation_") and k.endswith("_info")}
+    present = {name: (build.out / f).is_file() for name, (f, _) in INPUTS.items()}
+    present.update({f"simulate_{c}": c in build.simulations for c in CASES})
+    return {"report": str(path), "inputs": present, "figures": sorted(figures),
+            "animations": animations, "failures": build.failures,
+            "render_seconds": build.render_seconds, "render_window": build.render_window,
+            "bytes": path.stat().st_size}
+
+
+def summary_text(result: dict) -> str:
+    have = [k for k, v in result["inputs"].items() if v]
+    lacking = [k for k, v in result["inputs"].items() if not v]
+    lines = [f"report: {len(result['figures'])} figures, {len(result['animations'])} animation(s), "
+             f"{result['bytes'] / 2**20:.1f} MB",
+             "  inputs found: " + (", ".join(have) or "none"),
+             "  not computed: " + (", ".join(lacking) or "nothing")]
+    for k, v in result["animations"].items():
+        lines.append(f"  animation {k}: {v['frames']} frames, x{v['factor']:g}, "
+                     f"{v['seconds']:.1f} s -> {v['path']}")
+    for k, v in result["failures"].items():
+        lines.append(f"  FAILED {k}: {v}")
+    lines.append("  render seconds: " + ", ".join(f"{k} {v:.1f}"
+                                                  for k, v in result["render_seconds"].items()))
+    return "\n".join(lines)

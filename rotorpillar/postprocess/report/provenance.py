@@ -1,0 +1,53 @@
+"""The figures no section claimed, and the versions, machine and timings."""
+
+from __future__ import annotations
+
+import json
+from datetime import datetime, timezone
+
+from ... import __version__
+from ...provenance import machine, versions
+from .. import html as h
+from .parts import figures_of
+from .state import Build
+
+
+def section_other(build: Build) -> str | None:
+    figs = figures_of(build, "other")
+    return h.section("other", "Other figures", figs) if figs else None
+
+
+def _timing_rows(build: Build) -> list:
+    """Per result JSON in the out folder, its total and stage times; then this report's."""
+    rows = []
+    for js in sorted(build.out.glob("*.json")):
+        if js.name in ("report.json", "run.json"):     # written after this page: stale here
+            continue
+        try:
+            doc = json.loads(js.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue
+        t = doc.get("timings", {}) if isinstance(doc, dict) else {}
+        if not isinstance(t, dict):
+            continue
+        stages = ", ".join(f"{k} {v:.2f}" for k, v in t.items()
+                           if k != "total" and isinstance(v, (int, float)))
+        link = h.tag("a", js.name, href=h.relative(js, build.out))
+        rows.append([link, h.num(t.get("total"), 4), stages,
+                     datetime.fromtimestamp(js.stat().st_mtime).strftime("%Y-%m-%d %H:%M:%S")])
+    own = ", ".join(f"{k} {v:.2f}" for k, v in build.render_seconds.items())
+    rows.append(["this report", h.num(sum(build.render_seconds.values()), 4), own, "now"])
+    return rows
+
+
+def section_provenance(build: Build) -> str:
+    parts = [h.tag("p", f"rotorpillar {__version__}; report written "
+                        f"{datetime.now(timezone.utc).strftime('%Y-%m-%d %H:%M UTC')}; off-screen "
+                        f"rendering through {build.render_window or 'no 3D render'}.", class_="meta")]
+    parts.append(h.tag("h3", "Timings (s)"))
+    parts.append(h.table(["result", "total", "stages", "written"], _timing_rows(build)))
+    parts.append(h.tag("h3", "Versions"))
+    parts.append(h.table(["package", "version"], [[k, val] for k, val in versions().items()]))
+    parts.append(h.tag("h3", "Machine"))
+    parts.append(h.table(["", ""], [[k, h.num(val)] for k, val in machine().items()]))
+    return h.section("provenance", "Versions, machine and timings", parts)

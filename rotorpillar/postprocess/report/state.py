@@ -1,0 +1,85 @@
+"""What the report page is assembled from: the options, the inputs read, the
+files made, and the record of what failed.
+
+The bottom of the report package: every section module reads a
+:class:`Build`, none of them imports the others' builders.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..inputs import not_computed
+
+FIGURES_DIR = "figures"
+MODES_DIR = "modes"
+ANIMATIONS_DIR = "animations"
+#: The report's own folders: the PNGs there are not another command's figures.
+OWN_DIRS = (FIGURES_DIR, MODES_DIR, ANIMATIONS_DIR)
+
+
+@dataclass(frozen=True)
+class ReportOptions:
+    """What `rotorpillar report` renders."""
+    animations: bool = True
+    """render the run-up and earthquake animations"""
+    max_frames: int = 180
+    """frames per animation (-)"""
+    modes: int = 8
+    """mode shapes rendered per set, and on the contact sheet (-)"""
+
+
+@dataclass
+class Product:
+    """A file the report made or found, with its caption."""
+    path: Path
+    caption: str
+    kind: str = "figure"       # figure | video
+    group: str = ""
+    poster: Path | None = None
+
+
+@dataclass
+class Build:
+    """Everything the page is assembled from."""
+    scene: object
+    out: Path
+    scene_cli: str
+    options: ReportOptions
+    analysis: object = None
+    """analyze.json as read by ``inputs.read_analysis``, or None"""
+    modal: object = None
+    """modal.json as read by ``inputs.read_modal``, or None"""
+    convergence: object = None
+    """convergence.json as read by ``inputs.read_convergence``, or None"""
+    integrators: dict | None = None
+    simulations: dict = field(default_factory=dict)
+    products: dict = field(default_factory=dict)     # key -> Product or list of Products
+    failures: dict = field(default_factory=dict)     # key -> message
+    render_seconds: dict = field(default_factory=dict)
+    render_window: str = ""
+
+    def hint(self, command: str) -> str:
+        return not_computed(command, self.scene_cli)
+
+
+def say(message: str) -> None:
+    print(f"[rotorpillar] report: {message}", file=sys.stderr, flush=True)
+
+
+def attempt(build: Build, key: str, fn):
+    """Run one rendering step; on failure record why and carry on."""
+    start = time.perf_counter()
+    try:
+        return fn()
+    except Exception as exc:  # a broken figure must not cost the whole report
+        build.failures[key] = f"{type(exc).__name__}: {exc}"
+        say(f"{key} failed: {build.failures[key]}")
+        traceback.print_exc(file=sys.stderr)
+        return None
+    finally:
+        build.render_seconds[key] = build.render_seconds.get(key, 0.0) + time.perf_counter() - start
