@@ -15,14 +15,12 @@ import sys
 import time
 
 import pytest
+from conftest import cli
 
 SMALL = ["--set", "converge.solid=false", "--set", "converge.shell_max_around=12",
          "--set", "converge.shell_tri_max_around=8"]
 
 
-def cli(*args, **kw):
-    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
-                          capture_output=True, text=True, **kw)
 
 
 def _png_size(path):

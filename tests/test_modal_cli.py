@@ -23,19 +23,16 @@ import math
 import os
 import shutil
 import stat
-import subprocess
 import sys
 
 import numpy as np
 import pytest
+from conftest import cli
 
 SMALL = ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4",
          "--set", "modal.n_modes=8"]
 
 
-def cli(*args, env=None, prefix=()):
-    return subprocess.run([*prefix, sys.executable, "-m", "rotorpillar", *map(str, args)],
-                          capture_output=True, text=True, env=env)
 
 
 @pytest.fixture(scope="module")
@@ -150,7 +147,7 @@ def test_gmsh_crash_exits_1_and_writes_nothing(tmp_path, monkeypatch, capsys):
     fake = tmp_path / "crashing-python"
     fake.write_text("#!/bin/sh\nkill -SEGV $$\n")
     fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
-    monkeypatch.setattr("rotorpillar.mesh.sys.executable", str(fake))
+    monkeypatch.setattr("rotorpillar.mesh.isolated.sys.executable", str(fake))
     out = tmp_path / "out"
     code = cli_module.main(["modal", "paper", "--set", "mesh.elements_around=12",
                             "--set", "mesh.elements_along=3", "--out", str(out)])

@@ -21,7 +21,6 @@ import json
 import re
 import shutil
 import subprocess
-import sys
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -202,15 +201,12 @@ def test_inputs_from_another_scene_are_flagged(tmp_path):
     assert "computed for a different scene (rotor.eccentricity differ)" in text
 
 
-def test_run_ends_with_the_report_path(tmp_path):
-    p = subprocess.run([sys.executable, "-m", "rotorpillar", "run", "paper", "--out", str(tmp_path),
-                        "--skip", "converge"],
-                       capture_output=True, text=True)
-    assert p.returncode == 0, p.stderr
-    last = p.stdout.strip().splitlines()[-1]
-    assert last == f"report: {(tmp_path / 'report.html').resolve()}"
-    assert (tmp_path / "report.html").is_file()
-    run = json.loads((tmp_path / "run.json").read_text())
+def test_run_ends_with_the_report_path(run_paper):
+    out = run_paper.out
+    last = run_paper.process.stdout.strip().splitlines()[-1]
+    assert last == f"report: {(out / 'report.html').resolve()}"
+    assert (out / "report.html").is_file()
+    run = json.loads((out / "run.json").read_text())
     assert list(run["stages"])[-1] == "report"
 
 

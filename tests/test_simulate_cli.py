@@ -14,11 +14,10 @@ averaged torque dL of the linear structure (1e-3).
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from conftest import cli
 from scipy.integrate import solve_ivp
 
 from rotorpillar.reduced.models import build_model
@@ -27,9 +26,6 @@ from rotorpillar.reduced.excitation import STANDARD_GRAVITY
 from rotorpillar.scene import load_scene
 
 
-def cli(*args):
-    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
-                          capture_output=True, text=True)
 
 
 @pytest.fixture(scope="module")
@@ -115,15 +111,12 @@ def test_rundown_with_the_motor_off(tmp_path):
     assert doc["omega_final"] < W0 / (1 + W0 * k * 20 / J)
 
 
-@pytest.mark.slow
-def test_run_includes_runup_and_earthquake(tmp_path):
-    p = cli("run", "paper", "--json", "--out", tmp_path, "--skip", "converge")
-    assert p.returncode == 0, p.stderr
-    doc = json.loads(p.stdout)
+def test_run_includes_runup_and_earthquake(run_paper):
+    doc = json.loads((run_paper.out / "run.json").read_text())
     assert {"analyze", "simulate_runup", "simulate_earthquake"} <= doc["stages"].keys()
     for case in ("runup", "earthquake"):
-        assert (tmp_path / f"simulate_{case}.json").exists()
-        assert (tmp_path / f"simulate_{case}.npz").exists()
+        assert (run_paper.out / f"simulate_{case}.json").exists()
+        assert (run_paper.out / f"simulate_{case}.npz").exists()
 
 
 def test_bad_modes_and_integrator(tmp_path):
@@ -159,3 +152,31 @@ def test_decimation_keeps_the_peaks():
     assert np.max(d.peak, axis=0) == pytest.approx(np.max(r.peak, axis=0), rel=0, abs=0)
     i = np.searchsorted(r.t, d.t)
     assert np.array_equal(d.q, r.q[i])
+
+
+@pytest.mark.parametrize("sets, key", [
+    (["excitation.kind=record", "excitation.record=BAD"], "excitation.record"),
+    (["simulate.duration=-5"], "simulate.duration"),
+    (["simulate.earthquake_duration=-1"], "simulate.earthquake_duration"),
+    (["excitation.duration=nan"], "excitation.duration"),
+])
+def test_cli_refuses_bad_earthquake_input(tmp_path, sets, key):
+    args = ["simulate", "paper", "--case", "earthquake", "--out", tmp_path]
+    for s in sets:
+        args += ["--set", s]
+    p = cli(*args)
+    assert p.returncode == 2, p.stderr
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and key in lines[0]
+    assert not list(tmp_path.iterdir())
+
+
+def test_cli_refuses_an_empty_accelerogram_file(tmp_path):
+    f = tmp_path / "empty.txt"
+    f.write_text("")
+    out = tmp_path / "out"
+    p = cli("simulate", "paper", "--case", "earthquake", "--out", out,
+            "--set", "excitation.kind=record", "--set", f"excitation.record='{f}'")
+    assert p.returncode == 2
+    assert "empty" in p.stderr and len(p.stderr.strip().splitlines()) == 1
+    assert not out.exists()

@@ -20,8 +20,6 @@ References and tolerances:
 """
 
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -123,36 +121,3 @@ def test_bad_arrays_and_missing_file():
         load_record("/nonexistent/acc.txt")
     with pytest.raises(InputError, match="duration"):
         paper_pulse(duration=-1.0)
-
-
-def cli(*args):
-    return subprocess.run([sys.executable, "-m", "rotorpillar", *map(str, args)],
-                          capture_output=True, text=True)
-
-
-@pytest.mark.parametrize("sets, key", [
-    (["excitation.kind=record", "excitation.record=BAD"], "excitation.record"),
-    (["simulate.duration=-5"], "simulate.duration"),
-    (["simulate.earthquake_duration=-1"], "simulate.earthquake_duration"),
-    (["excitation.duration=nan"], "excitation.duration"),
-])
-def test_cli_refuses_bad_earthquake_input(tmp_path, sets, key):
-    args = ["simulate", "paper", "--case", "earthquake", "--out", tmp_path]
-    for s in sets:
-        args += ["--set", s]
-    p = cli(*args)
-    assert p.returncode == 2, p.stderr
-    lines = p.stderr.strip().splitlines()
-    assert len(lines) == 1 and key in lines[0]
-    assert not list(tmp_path.iterdir())
-
-
-def test_cli_refuses_an_empty_accelerogram_file(tmp_path):
-    f = tmp_path / "empty.txt"
-    f.write_text("")
-    out = tmp_path / "out"
-    p = cli("simulate", "paper", "--case", "earthquake", "--out", out,
-            "--set", "excitation.kind=record", "--set", f"excitation.record='{f}'")
-    assert p.returncode == 2
-    assert "empty" in p.stderr and len(p.stderr.strip().splitlines()) == 1
-    assert not out.exists()
