@@ -30,7 +30,7 @@ from .errors import InputError
 
 #: Transient cases of `rotorpillar simulate`.
 CASES = ("runup", "rundown", "sweep", "earthquake")
-#: Transient models: the paper's Eq. 4 as published, the pillar by its modes.
+#: Transient models: the paper's equation 4 as published, the pillar by its modes.
 MODELS = ("paper", "modal")
 #: The compiled adaptive integrator, scipy's solve_ivp methods, and the
 #: compiled fixed-step schemes.
@@ -109,7 +109,7 @@ REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
 
 @dataclass(frozen=True)
 class Reduction:
-    """The pillar reduced to one mass and one spring at its tip (Eq. 2).
+    """The pillar reduced to one mass and one spring at its tip (the paper's equation 2).
 
     Stated values are used as given; absent ones are computed, by
     ``source``: "closed_form" (the continuous first Euler-Bernoulli mode),
@@ -123,14 +123,14 @@ class Reduction:
 
 @dataclass(frozen=True)
 class Drive:
-    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (Eq. 22)."""
+    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's equation 22)."""
     torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0)
     slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0)
 
 
 @dataclass(frozen=True)
 class Load:
-    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (Eq. 22)."""
+    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's equation 22)."""
     coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0)
 
 
@@ -202,7 +202,7 @@ class Converge:
 class Simulate:
     """Transient runs of the reduced models (`rotorpillar simulate`)."""
     case: str = param("Case run when --case is not given", "runup", choices=CASES)
-    model: str = param("Model: the paper's Eq. 4 as published, or the pillar by its modes",
+    model: str = param("Model: the paper's equation 4 as published, or the pillar by its modes",
                        "paper", choices=MODELS)
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",

@@ -1,9 +1,9 @@
 """What the paper's closed-form model says about a scene: :func:`analyze`.
 
-Pillar closed forms (Eq. 1-2, with a Timoshenko check), the tip reduction
+Pillar closed forms (equations 1-2, with a Timoshenko check), the tip reduction
 actually used (stated, closed form or fem3d), the reduced system's modes and
-quasi-normal coefficients (Eq. 5-7), the averaging curves, stationary speeds,
-stability and jumps (Eq. 19-24), and the paper's printed numbers beside ours.
+quasi-normal coefficients (equations 5-7), the averaging curves, stationary speeds,
+stability and jumps (equations 19-24), and the paper's printed numbers beside ours.
 """
 
 from __future__ import annotations
@@ -106,7 +106,7 @@ def analyze(scene: Scene, fem3d_reduction=None) -> AnalysisResult:
     """Everything the closed forms say about a scene.
 
     ``fem3d_reduction``, a callable scene -> (m_reduced, tip_stiffness), is
-    the 3D model's Eq. 2 (``rotorpillar.fem3d.reduction_from_scene``), needed
+    the 3D model's equation 2 (``rotorpillar.fem3d.reduction_from_scene``), needed
     when ``reduction.source = "fem3d"``; this layer never builds it.
     """
     closed = pillar_closed_forms(scene)

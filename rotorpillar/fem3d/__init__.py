@@ -23,6 +23,7 @@ Where the paper's equations live on the 3D side (the first line of each
 function's docstring carries the tag; the reduced side's index is in
 rotorpillar.reduced):
 
+Eq. 2    rotorpillar.fem3d.reduction.tip_reduction
 Eq. 2    rotorpillar.fem3d.reduction.beam_line_tip_mass
 """
 
@@ -64,7 +65,7 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
     """The ``n_modes`` lowest modes (default ``scene.modal.n_modes``) of the pillar.
 
     ``top`` False: the bare tube, clamped at the base, free at the top (what
-    Eq. 1 describes).  True: with the gondola (and, by ``scene.modal.top_mass``,
+    equation 1 describes).  True: with the gondola (and, by ``scene.modal.top_mass``,
     the rotor) on top.  ``mesh`` (a scene ``Mesh`` section) replaces
     ``scene.mesh``.  Results are cached per (pillar, mesh, top, modal
     settings, n_modes, communicator size) within a process.
@@ -95,7 +96,7 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
 def reduction_from_scene(scene) -> tuple[float, float]:
     """(m_reduced in kg, tip_stiffness in N/m) from the bare tube's first bending mode.
 
-    Kinetic-energy equivalence (the paper's Eq. 2) on the 3D mode normalised
+    Kinetic-energy equivalence (the paper's equation 2) on the 3D mode normalised
     to unit tip displacement: m_r = phi^T M phi, c1 = m_r omega**2.  This is
     the callable ``rotorpillar.analysis.analyze(scene, fem3d_reduction=...)``
     takes when ``reduction.source = "fem3d"``.

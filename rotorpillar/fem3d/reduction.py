@@ -1,4 +1,4 @@
-"""The paper's Eq. 2 done on the 3D model's first bending mode.
+"""The paper's equation 2 done on the 3D model's first bending mode.
 
 Equal kinetic energy of the pillar in its first mode and of one mass at its
 tip moving like the tip:  m_r = (integral of rho u.u dV) / u_tip**2, the
@@ -70,7 +70,7 @@ class TipReduction:
 
 
 def tip_reduction(result, pillar) -> TipReduction:
-    """Tip mass and stiffness from a bare-tube ModalResult's first bending_x mode."""
+    """Eq. 2 on the 3D model: tip mass and stiffness from a bare tube's first bending_x mode."""
     from ..reduced.pillar import section_of
     i = result.index("bending_x", n_axial=0)
     if i is None:
