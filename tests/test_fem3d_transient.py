@@ -121,11 +121,12 @@ def test_result_json_round_trip(static_run):
 
 
 def rom_start(rom, scene, theta0: float, W0: float):
-    """The ROM's (q0, v0) matching the 3D start: structure at rest, shaft unstretched."""
-    e = scene.rotor.eccentricity
+    """The ROM's (q0, v0) matching the 3D start: structure at rest, rotor in its whirl."""
+    from rotorpillar.fem3d.rotor_top import Rotor, rotor_start
+    x, y, vx, vy = rotor_start(Rotor.from_scene(scene), theta0, W0)
     q0, v0 = np.zeros(rom.n), np.zeros(rom.n)
-    q0[rom.rotor_x], q0[rom.nx], q0[-1] = e * math.cos(theta0), e * math.sin(theta0), theta0
-    v0[rom.rotor_x], v0[rom.nx], v0[-1] = -e * W0 * math.sin(theta0), e * W0 * math.cos(theta0), W0
+    q0[rom.rotor_x], q0[rom.nx], q0[-1] = x, y, theta0
+    v0[rom.rotor_x], v0[rom.nx], v0[-1] = vx, vy, W0
     return q0, v0
 
 

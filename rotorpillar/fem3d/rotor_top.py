@@ -63,17 +63,19 @@ def newmark_rotor_stiffness(rotor: Rotor, h: float) -> float:
     return rotor.shaft_stiffness + 2 * rotor.shaft_damping / h + 4 * rotor.mass / h**2
 
 
-def rest_state(rotor: Rotor, theta0: float, speed0: float) -> tuple[float, float, float, float]:
-    """(x_r, y_r, x_r', y_r') with the shaft unstretched and its centre at rest.
+def rotor_start(rotor: Rotor, theta0: float, speed0: float) -> tuple[float, float, float, float]:
+    """(x_r, y_r, x_r', y_r'): the rotor's steady whirl at ``speed0`` on a motionless plate.
 
-    The rotor spins at ``speed0`` with angle ``theta0``; its mass centre
-    circles the plate's reference point at radius e.  With the tube at rest
-    this start carries no shaft force, so the tube's initial acceleration is
-    the ground's alone (a consistent Newmark start without a mass solve).
+    X = c2 e / (c2 - m W**2 + i W b2), x_r = Re(X e^{i theta0}),
+    y_r = Re(-i X e^{i theta0}) (the modal model's steady state with the
+    structure held).  At rest (speed0 = 0) the shaft is unstretched and no
+    force acts; spinning, this start leaves out only the tube's share of
+    the whirl, a transient of the tube's size, not of the rotor's.
     """
-    e = rotor.eccentricity
-    c, s = math.cos(theta0), math.sin(theta0)
-    return e * c, e * s, -e * speed0 * s, e * speed0 * c
+    c2, m, b = rotor.shaft_stiffness, rotor.mass, rotor.shaft_damping
+    X = c2 * rotor.eccentricity / complex(c2 - m * speed0**2, speed0 * b)
+    z = X * complex(math.cos(theta0), math.sin(theta0))
+    return z.real, z.imag, -speed0 * z.imag, speed0 * z.real
 
 
 def plate_and_rotor(rotor: Rotor, kr: float, ux_hat: float, uz_hat: float, rho_x: float,
