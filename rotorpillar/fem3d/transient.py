@@ -1,0 +1,449 @@
+"""Full-order continuum transient: the 3D tube with the rotor at its top, one factorisation.
+
+The tube (the scene's ``[mesh]``, clamped at the base) carries the gondola
+on its rigid top plate (``assemble_pillar(scene, top=True)``, modal.top_model
+= "rigid"); the rotor hangs on its shaft at the plate's reference point
+(rotorpillar.fem3d.rotor_top) and spins under the motor and machine torques.
+Everything is relative to the ground, forced by the ground's inertia
+-M r a_g(t) in X on the tube, the plate and the rotor (the physically
+consistent base forcing; the modal model's), so the tip's displacement
+relative to the ground comes out directly; absolute = relative + the ground
+displacement whose second derivative is the applied acceleration.
+
+Damping, chosen to be the modal model's exactly: the pillar's b1 as a
+dashpot on the plate's X (the paper's b1 is a tip damper; the modal model
+puts b1 on the tip, which the 3D modes normalise to the plate's U_x), b2 on
+the rotor centre's velocity in X and Y.  No Rayleigh term: the modal model
+built on this tube's modes is then this model truncated, and nothing else.
+Modes that do not move the plate in X (ovalling, torsion) stay undamped; the
+X load barely excites them.
+
+Integration: Newmark's average acceleration (trapezoidal, unconditionally
+stable, no numerical damping) on the whole coupled system.  The tube is
+linear, so Newmark's effective stiffness K + 4/h**2 M + 2/h C, with the
+rotor centre condensed onto the plate, is factorised once (MUMPS) and reused
+for every step; the unbalance enters through two fixed solutions of that
+operator, so the nonlinear spin equation closes each step as one scalar
+Newton solve (rotor_top.solve_spin), fully implicit: the step only needs
+to resolve the rotor's speed and the modes that matter, not the shaft.
+
+Start: the tube at rest, the rotor in its steady whirl at the initial speed
+on a held plate (rotor_top.rotor_start; at rest: the shaft unstretched).
+The tube's initial acceleration is taken as -r a_g(0), leaving out the
+whirl's shaft force on the plate (c2 e at most): a consistent one needs a
+solve with M, and the error it leaves is O(h**2) in the displacement.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from ..errors import InputError
+from ..reduced.drive import DriveSchedule
+from ..reduced.excitation import GroundMotion, no_motion
+from .rotor_top import (Affine, Rotor, coupling_torque, drive_torque, newmark_rotor_stiffness,
+                        plate_and_rotor, rotor_start, solve_spin)
+
+CASES_3D = ("earthquake", "runup")
+#: automatic step: this many steps per period of the fastest forcing
+STEPS_PER_PERIOD = 40
+WORK_COLUMNS = ("drive_minus_load", "shaft_on_structure", "dissipated", "base")
+
+
+@dataclass(frozen=True, eq=False)
+class Fem3dTransient:
+    """A 3D full-order run on its output grid, with its summary (SI)."""
+    case: str
+    t: np.ndarray
+    """(n,) output times (s)"""
+    Omega: np.ndarray
+    """rotor speed (rad/s)"""
+    theta: np.ndarray
+    """rotor angle (rad)"""
+    tip_x: np.ndarray
+    """plate X relative to the ground = the top section's mean X (m)"""
+    tip_x_absolute: np.ndarray
+    """tip_x + ground_x (m)"""
+    ground_x: np.ndarray
+    """ground displacement, the double integral of the applied acceleration (m)"""
+    ground_acceleration: np.ndarray
+    """(m/s**2)"""
+    rotor_x: np.ndarray
+    """rotor mass centre X relative to the ground (m)"""
+    rotor_y: np.ndarray
+    """rotor mass centre along the tube axis (the paper's Y) (m)"""
+    plate_z: np.ndarray
+    """the plate's axial displacement (m)"""
+    shaft_x: np.ndarray
+    """shaft deflection in X, x_r - U_x - e cos(theta) (m)"""
+    shaft_y: np.ndarray
+    """shaft deflection in Y, y_r - U_z - e sin(theta) (m)"""
+    drive_torque: np.ndarray
+    """Md - Mc (N*m)"""
+    energy: np.ndarray
+    """kinetic + potential energy (J); without J Omega**2 / 2 at a prescribed speed"""
+    work: np.ndarray
+    """(n, 4) work since the start: drive - load, shaft on structure, dissipated, base (J)"""
+    max_abs: dict
+    """largest |value| over every step (m)"""
+    omega_final: float
+    omega_final_mean: float
+    """mean speed over the last 5 % of the run (rad/s)"""
+    energy_balance: dict
+    integrator: dict
+    dofs: int
+    """unknowns: the tube's (with inert constrained rows), the plate's 6, the rotor's 3"""
+    wall_seconds: float
+    """assembly, factorisation and integration (s)"""
+    model: dict
+    """mesh, damping law, start, forcing: what was run"""
+    ok: bool
+
+    def summary(self) -> dict:
+        """The JSON fields the reduced models' runs report, plus dofs and wall time."""
+        return {"ok": self.ok, "duration": float(self.t[-1] - self.t[0]), "omega_final": self.omega_final,
+                "omega_final_mean": self.omega_final_mean, "max_abs": self.max_abs,
+                "energy_balance": self.energy_balance, "integrator": self.integrator,
+                "dofs": self.dofs, "wall_seconds": self.wall_seconds, "model": self.model}
+
+    def series(self) -> dict:
+        """The arrays, by name (for NPZ/CSV)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)
+                if isinstance(getattr(self, f.name), np.ndarray)}
+
+    def to_json(self) -> dict:
+        """JSON-ready; ``from_json`` rebuilds it exactly."""
+        return {f.name: (v.tolist() if isinstance(v, np.ndarray) else v)
+                for f in fields(self) for v in (getattr(self, f.name),)}
+
+    @classmethod
+    def from_json(cls, data: dict) -> "Fem3dTransient":
+        arrays = {f.name for f in fields(cls) if f.type == "np.ndarray"}
+        return cls(**{k: (np.asarray(v, dtype=float) if k in arrays else v) for k, v in data.items()})
+
+
+# --------------------------------------------------------------------------
+# The case's defaults
+
+
+def case_setup(scene, case: str, motion: GroundMotion | None, drive: DriveSchedule | None,
+               duration: float | None, initial_speed: float | None):
+    """(motion, drive, duration, initial speed, notes) of a case, as the reduced models run it."""
+    if case not in CASES_3D:
+        raise InputError(f"case {case!r}: the 3D full-order model runs {', '.join(CASES_3D)}")
+    d, L, sim = scene.drive, scene.load, scene.simulate
+    notes = {}
+    if case == "earthquake":
+        if motion is None:
+            from ..reduced.cases import scene_motion
+            motion = scene_motion(scene)
+        drive = drive or DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
+        duration = duration or sim.earthquake_duration or motion.end + 5.0
+        if initial_speed is None:
+            initial_speed = beam_operating_speed(scene, drive, motion)
+            notes["initial_speed_source"] = ("the operating speed of the modal model on the 1D beam's "
+                                      "modes (the fastest stable stationary speed)")
+    else:
+        motion = motion or no_motion()
+        drive = drive or DriveSchedule.ramp(d.torque_at_zero, d.slope, L.coefficient, sim.runup_ramp)
+        duration = duration or sim.duration
+        initial_speed = initial_speed or 0.0
+    if not (math.isfinite(duration) and duration > 0):
+        raise InputError(f"duration = {duration!r}: must be finite and > 0 (s)")
+    return motion, drive, float(duration), float(initial_speed), notes
+
+
+def beam_operating_speed(scene, drive: DriveSchedule, motion: GroundMotion) -> float:
+    """The operating speed from the modal model on the 1D beam's modes (cheap, no dolfinx):
+    far from the resonances it differs from the 3D one by the beams' frequency error only."""
+    from ..reduced.cases import build_model, operating_speed
+    from ..scene import override
+    beam = override(scene, ["modal_model.source=beam"])
+    top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
+    model, _ = build_model(beam, "modal", top)
+    return operating_speed(model, drive.torque_at_zero[-1], drive.slope[-1], drive.load_coefficient)
+
+
+def auto_time_step(scene, drive: DriveSchedule, motion: GroundMotion, speed: float) -> float:
+    """STEPS_PER_PERIOD steps per period of the fastest of the rotor (its free
+    speed or its start), the shaft's Y mode and the ground motion's band; no
+    coarser than the record's sampling (s)."""
+    fast = max(drive.free_speed() if math.isfinite(drive.free_speed()) else 0.0, abs(speed),
+               math.sqrt(scene.shaft.stiffness / scene.rotor.mass), motion.band(), 1e-3)
+    h = 2 * math.pi / fast / STEPS_PER_PERIOD
+    return min(h, motion.time_step) if motion.kind == "record" else h
+
+
+# --------------------------------------------------------------------------
+# The run
+
+
+def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
+                   drive: DriveSchedule | None = None, duration: float | None = None,
+                   time_step: float | None = None, mesh=None, samples: int = 2001,
+                   initial_speed: float | None = None, initial_angle: float = 0.0,
+                   prescribed_speed: bool = False, comm=None, progress=None) -> Fem3dTransient:
+    """Run ``case`` ("earthquake" or "runup") on the 3D tube with the rotor at its top.
+
+    Defaults follow the reduced models' cases: the scene's excitation, a
+    constant drive and the operating speed for the earthquake; the ramped
+    drive from rest for the run-up; durations from ``[simulate]``.
+    ``time_step`` None takes ``simulate.time_step`` if set, else automatic
+    (auto_time_step).  ``mesh`` (a scene Mesh section) replaces
+    ``scene.mesh``.  ``prescribed_speed`` holds Omega at ``initial_speed``
+    (theta = initial_angle + Omega t; the energy balance is then the
+    structure's).  ``samples``: output points (the peaks use every step).
+    """
+    from . import assemble_pillar
+    if scene.modal.top_model != "rigid":
+        raise InputError('the 3D transient hangs the rotor on the rigid top plate: modal.top_model '
+                         'must be "rigid"')
+    if scene.modal.top_mass != "gondola":
+        raise InputError('modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
+                         'the 3D transient hangs it on its shaft: use modal.top_mass = "gondola"')
+    motion, drive, duration, W0, notes = case_setup(scene, case, motion, drive, duration, initial_speed)
+    h = time_step or scene.simulate.time_step or auto_time_step(scene, drive, motion, W0)
+    steps = max(1, int(round(duration / h)))
+    h = duration / steps
+    stride = max(1, int(math.ceil(steps / max(1, samples - 1))))
+    start = time.perf_counter()
+    model = assemble_pillar(scene, top=True, mesh=mesh, comm=comm)
+    rotor = Rotor.from_scene(scene)
+    try:
+        out, stats = _integrate(model, rotor, scene.pillar.damping, drive, motion, h, steps, stride,
+                                initial_angle, W0, prescribed_speed, progress)
+    finally:
+        model.K.destroy()
+        model.M.destroy()
+    wall = time.perf_counter() - start
+    stats.update(method="newmark", scheme="average acceleration (beta 1/4, gamma 1/2), one MUMPS "
+                 "factorisation, the spin equation by scalar Newton inside each step",
+                 time_step=h, assembly_seconds=sum(model.timings.values()))
+    mesh_section = scene.mesh if mesh is None else mesh
+    info = {"mesh": dict(vars(mesh_section)), "top": "rigid plate with the gondola",
+            "damping_law": "pillar: b1 as a dashpot on the plate's X; b2 on the rotor centre's "
+                           "velocity relative to the ground in X and Y; no Rayleigh term",
+            "frame": "relative_to_ground", "forcing": "-M r a_g in X on tube, plate and rotor",
+            "start": "tube at rest, rotor in its steady whirl on a held plate",
+            "initial_speed": W0, "initial_angle": initial_angle,
+            "prescribed_speed": bool(prescribed_speed), **notes}
+    return _result(case, out, stats, model.size + 3, wall, info, motion, drive, prescribed_speed)
+
+
+def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed) -> Fem3dTransient:
+    t = out["t"]
+    ground = motion.inertial_displacement(t)
+    W = out["Omega"]
+    tail = t >= t[-1] - max(0.05 * (t[-1] - t[0]), 1e-9)
+    E, work = out["energy"], out["work"]
+    inflow = work[:, 1] if prescribed else work[:, 0]
+    resid = (E - E[0]) - (inflow - work[:, 2] + work[:, 3])
+    scale = max(np.max(np.abs(E - E[0])), np.max(np.abs(inflow)), np.max(np.abs(work[:, 2])),
+                np.max(np.abs(work[:, 3])), 1e-300)
+    balance = {"energy_change": float(E[-1] - E[0]), "work_drive_minus_load": float(work[-1, 0]),
+               "work_shaft_on_structure": float(work[-1, 1]), "dissipated": float(work[-1, 2]),
+               "work_base": float(work[-1, 3]), "max_abs_residual": float(np.max(np.abs(resid))),
+               "scale": float(scale), "relative_error": float(np.max(np.abs(resid)) / scale)}
+    return Fem3dTransient(
+        case=case, t=t, Omega=W, theta=out["theta"], tip_x=out["tip_x"],
+        tip_x_absolute=out["tip_x"] + ground, ground_x=ground,
+        ground_acceleration=motion.evaluate(t)[2], rotor_x=out["rotor_x"], rotor_y=out["rotor_y"],
+        plate_z=out["plate_z"], shaft_x=out["shaft_x"], shaft_y=out["shaft_y"],
+        drive_torque=np.asarray(drive.torque(t, W), dtype=float), energy=E, work=work,
+        max_abs=out["max_abs"], omega_final=float(W[-1]), omega_final_mean=float(np.mean(W[tail])),
+        energy_balance=balance, integrator=stats, dofs=int(dofs), wall_seconds=float(wall),
+        model=info, ok=stats["status"] == "ok")
+
+
+class _Plate:
+    """Reads and adds the plate's U_x and U_z rows of a PETSc Vec on any rank count."""
+
+    def __init__(self, vec, rows, comm):
+        lo, hi = vec.getOwnershipRange()
+        self.local = [(i, r - lo) for i, r in enumerate(rows) if lo <= r < hi]
+        self.n, self.comm = len(rows), comm
+
+    def get(self, vec) -> np.ndarray:
+        out = np.zeros(self.n)
+        if self.local:
+            arr = vec.getArray(readonly=True)
+            for i, r in self.local:
+                out[i] = arr[r]
+        if self.comm.size > 1:
+            out = self.comm.allreduce(out)
+        return out
+
+    def add(self, vec, values) -> None:
+        if self.local:
+            arr = vec.getArray()
+            for i, r in self.local:
+                arr[r] += values[i]
+
+
+def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: GroundMotion, h: float,
+               steps: int, stride: int, theta0: float, W0: float, prescribed: bool, progress):
+    """Newmark (average acceleration) over ``steps`` steps; see the module text."""
+    from petsc4py import PETSc
+    K, M = model.K, model.M
+    N = model.tube_dofs
+    rows = (N, N + 2)                                      # the plate's U_x, U_z
+    c2, b2, mC, J, e = (rotor.shaft_stiffness, rotor.shaft_damping, rotor.mass, rotor.inertia,
+                        rotor.eccentricity)
+    kr = newmark_rotor_stiffness(rotor, h)
+    t0 = time.perf_counter()
+    Keff = K.copy()
+    Keff.axpy(4 / h**2, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
+    lo, hi = Keff.getOwnershipRange()
+    if lo <= N < hi:
+        # the rotor centre condensed onto the plate: c2 - c2**2 / k_r on U_x and U_z
+        Keff.setValue(N, N, 2 / h * b1 + c2 - c2**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
+        Keff.setValue(N + 2, N + 2, c2 - c2**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
+    Keff.assemble()
+    ksp = PETSc.KSP().create(model.comm)
+    ksp.setOperators(Keff)
+    ksp.setType("preonly")
+    ksp.getPC().setType("lu")
+    ksp.getPC().setFactorSolverType("mumps")
+    ksp.setUp()
+    vecs = [K.createVecRight() for _ in range(9)]
+    u, v, a, w, R, u1, gN, gZ, tmp = vecs
+    plate = _Plate(u, rows, model.comm)
+    for x in vecs:
+        x.set(0.0)
+    for g, i in ((gN, 0), (gZ, 1)):                        # the plate under a unit load on U_x, U_z
+        unit = [0.0, 0.0]
+        unit[i] = 1.0
+        plate.add(R, unit)
+        ksp.solve(R, g)
+        R.set(0.0)
+    (gNN, gNZ), (gZN, gZZ) = plate.get(gN), plate.get(gZ)
+    gcoef = (gNN, gZN, gNZ, gZZ)
+    gamma = -c2 * e * (1 - c2 / kr)
+    setup = time.perf_counter() - t0
+    r = model.influence(0)
+    Mr = M.createVecLeft()
+    M.mult(r, Mr)
+    mask = M.getDiagonal()                                 # rows with mass: not clamped, not placeholders
+    mask.getArray()[:] = mask.getArray(readonly=True) != 0.0
+    vecs += [r, Mr, mask]
+
+    tg = h * np.arange(steps + 1)
+    ag = np.asarray(motion.evaluate(tg)[2], dtype=float)
+    ug = np.asarray(motion.inertial_displacement(tg), dtype=float)
+    M0s, slopes = (np.asarray(x, dtype=float) for x in drive.at(tg))
+    kload = drive.load_coefficient
+    # start (see the module text)
+    a.pointwiseMult(r, mask)
+    a.scale(-ag[0])
+    x, y, vx, vy = rotor_start(rotor, theta0, W0)
+    Ux = Uz = vUx = 0.0
+    th, W = theta0, W0
+    ax = (-c2 * (x - e * math.cos(th)) - b2 * vx - mC * ag[0]) / mC
+    ay = (-c2 * (y - e * math.sin(th)) - b2 * vy) / mC
+    tau = drive_torque(M0s[0], slopes[0], kload, W0)
+    Tc = coupling_torque(rotor, x - Ux, y - Uz, th)
+    alpha = 0.0 if prescribed else (tau + Tc) / J
+    work = np.zeros(4)
+    n_out = steps // stride + (1 if steps % stride else 0) + 1
+    keys = ("t", "Omega", "theta", "tip_x", "rotor_x", "rotor_y", "plate_z", "shaft_x", "shaft_y", "energy")
+    out = {k: np.zeros(n_out) for k in keys}
+    out["work"] = np.zeros((n_out, 4))
+    peaks = dict.fromkeys(("tip_x", "tip_x_absolute", "rotor_x", "rotor_y", "shaft_deflection_x",
+                           "shaft_deflection_y", "plate_z"), 0.0)
+
+    def energy():
+        K.mult(u, tmp)
+        E = 0.5 * u.dot(tmp)
+        M.mult(v, tmp)
+        E += 0.5 * v.dot(tmp) + 0.5 * mC * (vx * vx + vy * vy)
+        E += 0.5 * c2 * ((x - Ux - e * math.cos(th)) ** 2 + (y - Uz - e * math.sin(th)) ** 2)
+        return E + (0.0 if prescribed else 0.5 * J * W * W)
+
+    def record(j, t):
+        for k, val in (("t", t), ("Omega", W), ("theta", th), ("tip_x", Ux), ("rotor_x", x),
+                       ("rotor_y", y), ("plate_z", Uz), ("shaft_x", x - Ux - e * math.cos(th)),
+                       ("shaft_y", y - Uz - e * math.sin(th)), ("energy", energy())):
+            out[k][j] = val
+        out["work"][j] = work
+
+    record(0, 0.0)
+    j, newton, newton_max, status = 1, 0, 0, "ok"
+    t_int = time.perf_counter()
+    for n in range(1, steps + 1):
+        t = n * h
+        # R = M (4/h^2 u + 4/h v + a) - M r a_g + the plate's dashpot and condensed rotor history
+        w.set(0.0)
+        w.axpy(4 / h**2, u)
+        w.axpy(4 / h, v)
+        w.axpy(1.0, a)
+        M.mult(w, R)
+        R.axpy(-ag[n], Mr)
+        rho_x = mC * (4 / h**2 * x + 4 / h * vx + ax) + b2 * (2 / h * x + vx) - mC * ag[n]
+        rho_y = mC * (4 / h**2 * y + 4 / h * vy + ay) + b2 * (2 / h * y + vy)
+        plate.add(R, (b1 * (2 / h * Ux + vUx) + c2 * rho_x / kr, c2 * rho_y / kr))
+        ksp.solve(R, u1)
+        ux_hat, uz_hat = plate.get(u1)
+        UxA, UzA, xA, yA = plate_and_rotor(rotor, kr, ux_hat, uz_hat, rho_x, rho_y, gamma, gcoef)
+        sx = Affine(xA.a0 - UxA.a0, xA.ac - UxA.ac, xA.as_ - UxA.as_)
+        sy = Affine(yA.a0 - UzA.a0, yA.ac - UzA.ac, yA.as_ - UzA.as_)
+        if prescribed:
+            th1, W1, alpha1, it = theta0 + W0 * t, W0, 0.0, 0
+        else:
+            try:
+                th1, W1, alpha1, it = solve_spin(rotor, h, th, W, alpha, sx, sy, M0s[n], slopes[n], kload)
+            except ArithmeticError:
+                status = f"Newton on the spin equation failed at t = {t:g} s"
+                break
+        newton += it
+        newton_max = max(newton_max, it)
+        c, s = math.cos(th1), math.sin(th1)
+        u1.axpy(gamma * c, gN)
+        u1.axpy(gamma * s, gZ)
+        Ux1, Uz1, x1, y1 = UxA.at(c, s), UzA.at(c, s), xA.at(c, s), yA.at(c, s)
+        if not all(map(math.isfinite, (Ux1, x1, y1, th1))):
+            status = f"solution diverged (not finite) at t = {t:g} s"
+            break
+        w.waxpy(-1.0, u, u1)                               # w = u1 - u
+        dbase = -0.5 * (ag[n - 1] + ag[n]) * (Mr.dot(w) + mC * (x1 - x))
+        a.scale(-1.0)
+        a.axpy(4 / h**2, w)
+        a.axpy(-4 / h, v)
+        v.scale(-1.0)
+        v.axpy(2 / h, w)
+        u1.copy(u)
+        vUx1 = 2 / h * (Ux1 - Ux) - vUx
+        vx1, vy1 = 2 / h * (x1 - x) - vx, 2 / h * (y1 - y) - vy
+        ax, ay = 4 / h**2 * (x1 - x) - 4 / h * vx - ax, 4 / h**2 * (y1 - y) - 4 / h * vy - ay
+        tau1 = drive_torque(M0s[n], slopes[n], kload, W1)
+        Tc1 = coupling_torque(rotor, x1 - Ux1, y1 - Uz1, th1)
+        # work increments as Newmark's own energy identity has them (exact for the linear part)
+        work[0] += 0.5 * (tau + tau1) * (th1 - th)
+        work[1] -= 0.5 * (Tc + Tc1) * (th1 - th)
+        work[2] += (b1 * (Ux1 - Ux) * 0.5 * (vUx + vUx1) + b2 * (x1 - x) * 0.5 * (vx + vx1)
+                    + b2 * (y1 - y) * 0.5 * (vy + vy1))
+        work[3] += dbase
+        Ux, Uz, vUx, x, y, vx, vy = Ux1, Uz1, vUx1, x1, y1, vx1, vy1
+        th, W, alpha, tau, Tc = th1, W1, alpha1, tau1, Tc1
+        for k, val in (("tip_x", Ux), ("tip_x_absolute", Ux + ug[n]), ("rotor_x", x), ("rotor_y", y),
+                       ("plate_z", Uz), ("shaft_deflection_x", x - Ux - e * c),
+                       ("shaft_deflection_y", y - Uz - e * s)):
+            peaks[k] = max(peaks[k], abs(val))
+        if n % stride == 0 or n == steps:
+            record(j, t)
+            j += 1
+        if progress and n % max(1, steps // 10) == 0:
+            progress(f"3D transient: step {n} of {steps} (t = {t:.3g} s)")
+    t_int = time.perf_counter() - t_int
+    for obj in vecs + [ksp, Keff]:
+        obj.destroy()
+    out = {k: val[:j] for k, val in out.items()}
+    out["max_abs"] = {k: float(val) for k, val in peaks.items()}
+    stats = {"status": status, "steps": int(n if status == "ok" else n - 1), "factorisations": 1,
+             "solves": int(n + 2), "newton_iterations": int(newton), "newton_max": int(newton_max),
+             "factorisation_seconds": setup, "integration_seconds": t_int,
+             "seconds_per_step": t_int / max(n, 1), "output_stride": stride}
+    return out, stats
