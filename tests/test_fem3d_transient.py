@@ -132,7 +132,7 @@ def rom_start(rom, scene, theta0: float, W0: float):
 
 def compare_with_rom(case, motion, drive, duration, W0, theta0, prescribed, h=2e-3, dt_out=0.01):
     from rotorpillar.fem3d.transient import simulate_fem3d
-    from rotorpillar.reduced.cases import build_model
+    from rotorpillar.reduced.models import build_model
     from rotorpillar.reduced.transient import Settings, simulate
     scene = load_scene("paper", COARSE + ["modal_model.source=fem3d"])
     samples = int(round(duration / dt_out)) + 1

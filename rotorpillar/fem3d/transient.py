@@ -139,7 +139,7 @@ def case_setup(scene, case: str, motion: GroundMotion | None, drive: DriveSchedu
     notes = {}
     if case == "earthquake":
         if motion is None:
-            from ..reduced.cases import scene_motion
+            from ..reduced.models import scene_motion
             motion = scene_motion(scene)
         drive = drive or DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
         duration = duration or sim.earthquake_duration or motion.end + 5.0
@@ -160,7 +160,8 @@ def case_setup(scene, case: str, motion: GroundMotion | None, drive: DriveSchedu
 def beam_operating_speed(scene, drive: DriveSchedule, motion: GroundMotion) -> float:
     """The operating speed from the modal model on the 1D beam's modes (cheap, no dolfinx):
     far from the resonances it differs from the 3D one by the beams' frequency error only."""
-    from ..reduced.cases import build_model, operating_speed
+    from ..reduced.models import build_model
+    from ..reduced.stationary import operating_speed
     from ..scene import override
     beam = override(scene, ["modal_model.source=beam"])
     top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
