@@ -139,7 +139,8 @@ def compare_with_rom(case, motion, drive, duration, W0, theta0, prescribed, h=2e
     r = simulate_fem3d(scene, case, motion=motion, drive=drive, duration=duration, time_step=h,
                        samples=samples, initial_speed=W0, initial_angle=theta0,
                        prescribed_speed=prescribed)
-    rom, _ = build_model(scene, "modal", modes=3)
+    from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
+    rom, _ = build_model(scene, "modal", modes=3, pillar_modes=candidate_pillar_modes(scene))
     q0, v0 = rom_start(rom, scene, theta0, W0)
     R = simulate(rom, drive, motion, duration, q0, v0, settings=Settings("newmark", time_step=h,
                  samples=samples), prescribed_speed=prescribed, speed_scale=max(W0, 1.0))
