@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 import time
 from pathlib import Path
@@ -74,6 +75,8 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="output directory (default: out/<scene>/)")
     p.add_argument("--json", action="store_true",
                    help="print the result JSON on stdout and nothing else there")
+    p.add_argument("--debug", action="store_true",
+                   help="show the Python traceback of a failure instead of one line")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -108,25 +111,74 @@ def execute(name: str, scene: Scene, args) -> dict:
     return doc
 
 
+#: Exit codes (README, "Exit codes"): the class of a failure, for scripts.
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 70, 130
+
+
+def check_output_dir(path: Path) -> None:
+    """Refuse, before any work, an output directory that cannot take files.
+
+    Nothing is created here: refused input leaves no trace.
+    """
+    if path.exists() and not path.is_dir():
+        raise InputError(f"--out {str(path)!r}: exists and is not a directory")
+    probe = path
+    while not probe.exists():
+        if probe.parent == probe:
+            break
+        probe = probe.parent
+    if probe.is_dir() and not os.access(probe, os.W_OK | os.X_OK):
+        raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not writable")
+    if not probe.is_dir():
+        raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not a directory")
+
+
 def main(argv: list[str] | None = None) -> int:
+    """The one error boundary: every expected failure is one line and an exit code.
+
+    2: bad input (nothing written); 1: a solver, a tool or the machine failed
+    (file system, memory; finished outputs stay complete); 70: a bug (one line;
+    ``--debug`` shows the traceback); 130: interrupted.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
+    say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)
     try:
         scene = load_scene(args.scene, args.overrides)
+        check_output_dir(out_dir(scene, args))
         doc = execute(args.command, scene, args)
     except InputError as exc:
-        print(f"rotorpillar {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        say("error", exc)
+        return EXIT_INPUT
     except StageError as exc:
-        print(f"rotorpillar {args.command}: failed: {exc}", file=sys.stderr)
-        return 1
+        say("failed", exc)
+        return EXIT_FAILED
     except ComputationError as exc:
-        print(f"rotorpillar {args.command}: failed: {exc}; nothing was written", file=sys.stderr)
-        return 1
+        if args.debug:
+            raise
+        say("failed", f"{exc}; nothing was written")
+        return EXIT_FAILED
     except KeyboardInterrupt:
-        print(f"rotorpillar {args.command}: interrupted; finished outputs are complete, "
-              "none is half-written", file=sys.stderr)
-        return 130
+        say("interrupted", "finished outputs are complete, none is half-written")
+        return EXIT_INTERRUPTED
+    except OSError as exc:
+        if args.debug:
+            raise
+        where = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
+        say("failed", f"the file system refused{where}: {exc.strerror or exc}; files written "
+                      "before are intact, none is half-written")
+        return EXIT_FAILED
+    except MemoryError:
+        if args.debug:
+            raise
+        say("failed", "out of memory; use a coarser mesh or a shorter run (README, Limits)")
+        return EXIT_FAILED
+    except Exception as exc:  # a bug: one line, the traceback on request
+        if args.debug:
+            raise
+        say("internal error", f"{type(exc).__name__}: {exc} (run again with --debug for the "
+                              "traceback, and please report it)")
+        return EXIT_INTERNAL
     if is_root_rank():
         path, text = doc.pop("_path"), doc.pop("_summary")
         if args.json:

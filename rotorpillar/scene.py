@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field, fields
 from importlib import resources
@@ -386,6 +387,10 @@ def _cross_checks(scene: Scene) -> None:
                          f"sweep.torque_low = {w.torque_low:g} (N*m)")
 
 
+#: A scene's name becomes a directory: no separators, no "..", nothing hidden.
+SCENE_NAME = re.compile(r"(?!.*\.\.)[^./\\\x00-\x1f][^/\\\x00-\x1f]{0,99}")
+
+
 def scene_from_dict(data: dict, name: str = "scene") -> Scene:
     """Validate a parsed TOML document and build the scene."""
     data = dict(data)
@@ -393,6 +398,9 @@ def scene_from_dict(data: dict, name: str = "scene") -> Scene:
     name = data.pop("name", name)
     if not isinstance(name, str) or not isinstance(description, str):
         raise SceneError("name and description must be strings")
+    if not SCENE_NAME.fullmatch(name):
+        raise SceneError(f"name = {name!r}: must be 1-100 characters without '/', '\\\\', '..' or "
+                         "control characters, not starting with '.' (it names out/<name>/)")
     for key in data:
         if key not in SECTIONS:
             raise SceneError(f"[{key}]: unknown section; a scene has "
@@ -415,6 +423,31 @@ def embedded_scenes() -> list[str]:
                   if p.name.endswith(".toml"))
 
 
+def read_text_file(path: Path, what: str) -> str:
+    """A text input read as UTF-8, or one line saying why it cannot be.
+
+    >>> import tempfile, os
+    >>> f = tempfile.NamedTemporaryFile(suffix=".toml", delete=False); _ = f.write(b"\\xff\\xfe"); f.close()
+    >>> read_text_file(Path(f.name), "scene file")
+    Traceback (most recent call last):
+    ...
+    rotorpillar.scene.SceneError: scene file ... is not UTF-8 text (byte 0xff at offset 0); save it as UTF-8
+    >>> os.unlink(f.name)
+    """
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise SceneError(f"{what} {str(path)!r} cannot be read: {exc.strerror or exc}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SceneError(f"{what} {str(path)!r} is not UTF-8 text (byte 0x{data[exc.start]:02x} at "
+                         f"offset {exc.start}); save it as UTF-8") from None
+    if "\x00" in text:
+        raise SceneError(f"{what} {str(path)!r} is binary, not text")
+    return text
+
+
 def read_scene_toml(spec: str | Path) -> tuple[dict, str]:
     """The raw TOML of a scene given by file path or embedded name."""
     path = Path(spec)
@@ -422,7 +455,7 @@ def read_scene_toml(spec: str | Path) -> tuple[dict, str]:
         if not path.is_file():
             raise SceneError(f"scene file {str(spec)!r} not found (give a .toml path "
                              f"or one of: {', '.join(embedded_scenes())})")
-        text, name = path.read_text(encoding="utf-8"), path.stem
+        text, name = read_text_file(path, "scene file"), path.stem
     else:
         if str(spec) not in embedded_scenes():
             raise SceneError(f"scene {str(spec)!r}: no such file or embedded scene "

@@ -43,6 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..scene import read_text_file
 
 STANDARD_GRAVITY = 9.80665          # m/s**2
 UNITS = {"g": STANDARD_GRAVITY, "m/s2": 1.0, "cm/s2": 0.01}
@@ -238,10 +239,7 @@ def record_from_arrays(t, acceleration, units: str = "m/s2", scale: float = 1.0,
 def read_two_columns(path: Path) -> tuple[np.ndarray, np.ndarray]:
     """Times and accelerations of a two-column text file (whitespace or comma
     separated; lines starting with # are comments)."""
-    try:
-        text = path.read_text(encoding="utf-8", errors="replace")
-    except OSError as exc:
-        raise InputError(f"accelerogram {str(path)!r}: cannot be read ({exc.strerror})") from None
+    text = read_text_file(path, "accelerogram")
     rows = [ln.split("#", 1)[0].replace(",", " ").replace(";", " ").strip() for ln in text.splitlines()]
     rows = [r for r in rows if r]
     if not rows:

@@ -1,0 +1,69 @@
+"""Hostile input, as a careless or hostile user gives it: one line, the right exit code,
+nothing written (issue: hardening).  Each case runs the cheapest command it applies to.
+
+Exit codes (README, "Exit codes"): 2 bad input; 1 a solver, tool or the machine
+failed; 70 a bug (one line; --debug shows the traceback).
+"""
+
+import pytest
+from conftest import cli
+
+LATIN1 = "[pillar]\nheight = 20.0 # Höhe\n".encode("latin-1")
+
+
+def one_line(p):
+    lines = [l for l in p.stderr.strip().splitlines() if not l.startswith("[rotorpillar]")]
+    assert len(lines) == 1, p.stderr
+    return lines[0]
+
+
+@pytest.mark.parametrize("content, words", [
+    (b"\x00\x01\x02binary\xff", "not UTF-8"),
+    (LATIN1, "not UTF-8"),
+    (b"[pillar\nheight = ", "not valid TOML"),
+], ids=["binary", "latin-1", "broken-toml"])
+@pytest.mark.parametrize("command", ["analyze", "simulate", "modal", "report"])
+def test_a_scene_file_that_is_not_text_is_refused(tmp_path, content, words, command):
+    scene = tmp_path / "scene.toml"
+    scene.write_bytes(content)
+    out = tmp_path / "out"
+    p = cli(command, scene, "--out", out)
+    assert p.returncode == 2
+    assert words in one_line(p) and "scene.toml" in one_line(p)
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("target", ["file", "/dev/null"])
+@pytest.mark.parametrize("command", ["analyze", "simulate", "report", "integrators"])
+def test_an_output_path_that_is_not_a_directory_is_refused(tmp_path, target, command):
+    out = tmp_path / "taken"
+    if target == "file":
+        out.write_text("keep me")
+    else:
+        out = "/dev/null"
+    p = cli(command, "paper", "--out", out)
+    assert p.returncode == 2 and "--out" in one_line(p)
+    if target == "file":
+        assert out.read_text() == "keep me"
+
+
+@pytest.mark.parametrize("name", ["../escape", "a/b", ".hidden"])
+def test_a_scene_name_cannot_leave_the_output_tree(tmp_path, name):
+    from importlib import resources
+    paper = resources.files("rotorpillar.scenes").joinpath("paper.toml").read_text("utf-8")
+    scene = tmp_path / "scene.toml"
+    scene.write_text(f'name = "{name}"\n' + "\n".join(
+        l for l in paper.splitlines() if not l.startswith("name")))
+    p = cli("analyze", scene, cwd=tmp_path)
+    assert p.returncode == 2 and "name" in one_line(p)
+    assert not (tmp_path / "out").exists() and not (tmp_path.parent / "escape").exists()
+
+
+def test_an_accelerogram_that_is_not_utf8_is_refused(tmp_path):
+    rec = tmp_path / "acc.txt"
+    rec.write_bytes(b"0 0\n0.01 \xff\n")
+    out = tmp_path / "out"
+    p = cli("simulate", "paper", "--case", "earthquake", "--out", out,
+            "--set", "excitation.kind=record", "--set", f"excitation.record='{rec}'")
+    assert p.returncode == 2 and "not UTF-8" in one_line(p)
+    assert not out.exists()
