@@ -67,3 +67,15 @@ def test_an_accelerogram_that_is_not_utf8_is_refused(tmp_path):
             "--set", "excitation.kind=record", "--set", f"excitation.record='{rec}'")
     assert p.returncode == 2 and "not UTF-8" in one_line(p)
     assert not out.exists()
+
+
+@pytest.mark.parametrize("key", ["mesh.elements_along=100000", "mesh.elements_through=1000",
+                                 "mesh.elements_around=100000"])
+@pytest.mark.parametrize("command", ["modal", "run"])
+def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, key, command):
+    out = tmp_path / "out"
+    p = cli(command, "paper", "--set", key, "--out", out)
+    assert p.returncode == 2
+    line = one_line(p)
+    assert "DOFs" in line and "GiB" in line      # the estimate and the limit, in one line
+    assert not out.exists()

@@ -62,6 +62,8 @@ def run_command(scene, args, timings):
     """Every stage of RUN_STAGES, each writing its own JSON."""
     from . import out_dir
     from ..errors import InputError
+    from ..mesh import tube_params
+    tube_params(scene.pillar, scene.mesh)      # a mesh this machine cannot hold: refused now, not late
     args._scene = scene
     skip = set(getattr(args, "skip", []))
     known = {c.split()[0] for c, _, _ in RUN_STAGES} - {"report"}

@@ -7,6 +7,7 @@ horizontal direction.  Units: m.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,6 +27,23 @@ GROUP_NAMES = {(3, TUBE): "tube", (2, BASE): "base", (2, TOP): "top", (2, WALL):
 GMSH_CELLS = {5: ("hexahedron", 1), 12: ("hexahedron", 2), 4: ("tetrahedron", 1),
               11: ("tetrahedron", 2), 3: ("quadrilateral", 1), 10: ("quadrilateral", 2),
               2: ("triangle", 1), 9: ("triangle", 2)}
+
+
+#: Peak memory per displacement DOF of a modal solve (mesh, assembly, the
+#: MUMPS factors of K - sigma M, the Krylov basis): ~0.15 GB measured for the
+#: default mesh's 24 k DOFs with the interpreter, 10 kB/DOF bounds the
+#: convergence study's finest meshes (docs/converge.md) from above.
+BYTES_PER_DOF = 10e3
+#: Share of the machine's memory a model may plan to use.
+MEMORY_SHARE = 0.8
+
+
+def memory_budget() -> float:
+    """Bytes a model may use on this machine: MEMORY_SHARE of its physical memory."""
+    try:
+        return MEMORY_SHARE * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        return 8 * 2**30
 
 
 @dataclass(frozen=True)
@@ -72,6 +90,31 @@ class TubeMeshParams:
         if self.cell_type not in CELL_TYPES:
             raise InputError(f"mesh.cell_type = {self.cell_type!r}: must be one of "
                              + ", ".join(repr(c) for c in CELL_TYPES))
+        need, have = self.estimated_bytes, memory_budget()
+        if need > have:
+            raise InputError(
+                f"mesh: {self.elements_around} around x {self.elements_along} along x "
+                f"{self.elements_through} through would make about {self.estimated_dofs:.3g} "
+                f"DOFs and need about {need / 2**30:.3g} GiB; this machine allows "
+                f"{have / 2**30:.3g} GiB (README, Limits): use fewer elements")
+
+    @property
+    def estimated_dofs(self) -> int:
+        """Displacement DOFs of the 3D model on this mesh, before meshing (-).
+
+        The structured tube has (k na)(k nt + 1)(k nl + 1) nodes of degree k
+        (tetrahedra add face-diagonal nodes: about as many again as a
+        hexahedral P2 mesh has, so the same count is a fair estimate).
+        """
+        k = self.order
+        nodes = (k * self.elements_around) * (k * self.elements_through + 1) \
+            * (k * self.elements_along + 1)
+        return 3 * nodes
+
+    @property
+    def estimated_bytes(self) -> float:
+        """Peak memory of meshing, assembling and factorising this mesh (bytes)."""
+        return BYTES_PER_DOF * self.estimated_dofs
 
     @property
     def sectors(self) -> int:
