@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import signal
 import sys
 import time
 from pathlib import Path
@@ -112,7 +113,8 @@ def execute(name: str, scene: Scene, args) -> dict:
 
 
 #: Exit codes (README, "Exit codes"): the class of a failure, for scripts.
-EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 70, 130
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINATED = \
+    0, 1, 2, 70, 130, 143
 
 
 def check_output_dir(path: Path) -> None:
@@ -133,6 +135,14 @@ def check_output_dir(path: Path) -> None:
         raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not a directory")
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM: stop as on Ctrl-C (a running stage's process is killed with us)."""
+
+
+def _terminate(signum, frame):
+    raise Terminated()
+
+
 def main(argv: list[str] | None = None) -> int:
     """The one error boundary: every expected failure is one line and an exit code.
 
@@ -142,6 +152,7 @@ def main(argv: list[str] | None = None) -> int:
     """
     parser = build_parser()
     args = parser.parse_args(argv)
+    signal.signal(signal.SIGTERM, _terminate)
     say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)
     try:
         scene = load_scene(args.scene, args.overrides)
@@ -158,9 +169,9 @@ def main(argv: list[str] | None = None) -> int:
             raise
         say("failed", f"{exc}; nothing was written")
         return EXIT_FAILED
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
         say("interrupted", "finished outputs are complete, none is half-written")
-        return EXIT_INTERRUPTED
+        return EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED
     except OSError as exc:
         if args.debug:
             raise

@@ -101,12 +101,40 @@ _UMASK = os.umask(0)
 os.umask(_UMASK)
 
 
+def _process_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def remove_stale_parts(path: Path) -> None:
+    """Delete the temporary files a killed writer of ``path`` left behind.
+
+    Their names carry the writer's process id (``.<name>.<pid>.<random>.part``):
+    a part whose writer no longer runs can never be completed.
+    """
+    for part in path.parent.glob(f".{path.name}.*.part*"):
+        pid = part.name[len(path.name) + 2:].split(".", 1)[0]
+        if pid.isdigit() and not _process_alive(int(pid)):
+            with contextlib.suppress(OSError):
+                part.unlink()
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | Path):
-    """Yield a temporary path beside ``path``; rename it over ``path`` on success."""
+    """Yield a temporary path beside ``path``; rename it over ``path`` on success.
+
+    A disk-full or any other failure before the rename leaves the previous
+    ``path`` as it was and removes the temporary file.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part" + path.suffix,
+    remove_stale_parts(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".part" + path.suffix,
                                dir=path.parent)
     os.close(fd)
     try:

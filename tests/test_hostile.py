@@ -79,3 +79,36 @@ def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, ke
     line = one_line(p)
     assert "DOFs" in line and "GiB" in line      # the estimate and the limit, in one line
     assert not out.exists()
+
+
+def test_sigterm_stops_run_and_its_stage(tmp_path):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    out = tmp_path / "out"
+    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", "run", "paper", "--out", str(out),
+                             "--skip", "converge", "--skip", "integrators"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 120
+    while not (out / "analyze.json").exists() and time.time() < deadline:
+        time.sleep(0.2)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 143, err
+    time.sleep(0.5)
+    # no stage of this run is left running
+    ps = subprocess.run(["ps", "-eo", "args"], capture_output=True, text=True).stdout
+    assert str(out) not in ps
+    import json
+    for f in out.glob("*.json"):
+        json.loads(f.read_text())                 # every file on disk is whole
+
+
+def test_a_killed_writers_part_file_is_removed_by_the_next_write(tmp_path):
+    from rotorpillar.provenance import write_json
+    stale = tmp_path / ".result.json.999999999.abc.part.json"   # no such process
+    stale.write_text("{")
+    write_json(tmp_path / "result.json", {"a": 1})
+    assert not stale.exists() and (tmp_path / "result.json").exists()
