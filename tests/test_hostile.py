@@ -112,3 +112,11 @@ def test_a_killed_writers_part_file_is_removed_by_the_next_write(tmp_path):
     stale.write_text("{")
     write_json(tmp_path / "result.json", {"a": 1})
     assert not stale.exists() and (tmp_path / "result.json").exists()
+
+
+@pytest.mark.parametrize("frames", ["1", "-5", "100000"])
+def test_run_refuses_bad_max_frames_before_any_stage(tmp_path, frames):
+    out = tmp_path / "out"
+    p = cli("run", "paper", "--max-frames", frames, "--out", out)
+    assert p.returncode == 2 and "--max-frames" in one_line(p)
+    assert not out.exists()

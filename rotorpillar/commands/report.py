@@ -23,13 +23,24 @@ def add_arguments(parser) -> None:
                         help="skip the run-up and earthquake animations")
 
 
+#: Frames an animation may have: 2 make a motion, 3600 are two minutes at 30 fps.
+MAX_FRAMES_RANGE = (2, 3600)
+
+
+def checked_frames(args) -> int:
+    """``--max-frames``, refused (one line) outside MAX_FRAMES_RANGE; `run` checks it first."""
+    from ..errors import InputError
+    frames = getattr(args, "max_frames", 180)
+    lo, hi = MAX_FRAMES_RANGE
+    if not lo <= frames <= hi:
+        raise InputError(f"--max-frames = {frames}: must be {lo} ... {hi}")
+    return frames
+
+
 def report_command(scene, args, timings):
     from . import is_root_rank, out_dir
-    from ..errors import InputError
     from ..postprocess.report import ReportOptions, build_report, summary_text
-    frames = getattr(args, "max_frames", 180)
-    if frames < 2:
-        raise InputError(f"--max-frames = {frames}: must be >= 2")
+    frames = checked_frames(args)
     if not is_root_rank():
         return {"report": None}, ""
     options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)

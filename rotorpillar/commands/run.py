@@ -63,7 +63,9 @@ def run_command(scene, args, timings):
     from . import out_dir
     from ..errors import InputError
     from ..mesh import tube_params
+    from .report import checked_frames
     tube_params(scene.pillar, scene.mesh)      # a mesh this machine cannot hold: refused now, not late
+    checked_frames(args)
     args._scene = scene
     skip = set(getattr(args, "skip", []))
     known = {c.split()[0] for c, _, _ in RUN_STAGES} - {"report"}
