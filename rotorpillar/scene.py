@@ -74,35 +74,41 @@ def _range_text(meta) -> str:
 
 @dataclass(frozen=True)
 class Pillar:
-    """The steel tube: a cantilever clamped at its base."""
-    height: float = param("Height H (m)", gt=0)
-    outer_diameter: float = param("Outer diameter D0 (m)", gt=0)
+    """The steel tube: a cantilever clamped at its base.
+
+    The ranges of this section and of [gondola], [rotor], [shaft], [drive]
+    and [load] span the machines the tool is for (a fan on a 0.1 m post to a
+    100,000 t machine on a 1 km tower, rubber to diamond): far past any real
+    design, yet short of where the formulas overflow (1e300).
+    """
+    height: float = param("Height H (m)", gt=0, le=1000)
+    outer_diameter: float = param("Outer diameter D0 (m)", gt=0, le=100)
     inner_diameter: float = param("Inner diameter D1 (m), < outer_diameter", ge=0)
-    youngs_modulus: float = param("Young's modulus E (Pa)", gt=0)
+    youngs_modulus: float = param("Young's modulus E (Pa)", ge=1e6, le=1e13)
     poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
-    density: float = param("Density rho (kg/m**3)", gt=0)
-    damping: float = param("Damping b1 at the tip (N*s/m)", ge=0)
+    density: float = param("Density rho (kg/m**3)", ge=1, le=1e5)
+    damping: float = param("Damping b1 at the tip (N*s/m)", ge=0, le=1e12)
 
 
 @dataclass(frozen=True)
 class Gondola:
     """The stator housing on top of the pillar, moving with its tip."""
-    mass: float = param("Mass m* (kg)", gt=0)
+    mass: float = param("Mass m* (kg)", gt=0, le=1e8)
 
 
 @dataclass(frozen=True)
 class Rotor:
     """The rotor on its elastic shaft."""
-    mass: float = param("Mass m_C (kg)", gt=0)
-    inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", gt=0)
-    eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0)
+    mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
+    inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
+    eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
 
 
 @dataclass(frozen=True)
 class Shaft:
     """Shaft and bearings, the same in X and Y (c2 = c3, b2 = b3)."""
-    stiffness: float = param("Stiffness c2 = c3 (N/m)", gt=0)
-    damping: float = param("Damping b2 = b3 (N*s/m)", ge=0)
+    stiffness: float = param("Stiffness c2 = c3 (N/m)", ge=1, le=1e14)
+    damping: float = param("Damping b2 = b3 (N*s/m)", ge=0, le=1e12)
 
 
 REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
@@ -117,22 +123,24 @@ class Reduction:
     "fem3d" (the first bending mode of the 3D model) or "auto" (= stated
     where given, else closed_form).
     """
-    tip_mass: Optional[float] = param("Reduced tip mass m_r (kg)", None, gt=0, optional=True)
-    tip_stiffness: Optional[float] = param("Tip stiffness c1 (N/m)", None, gt=0, optional=True)
+    tip_mass: Optional[float] = param("Reduced tip mass m_r (kg)", None, gt=0, le=1e8,
+                                       optional=True)
+    tip_stiffness: Optional[float] = param("Tip stiffness c1 (N/m)", None, ge=1, le=1e14,
+                                            optional=True)
     source: str = param("Where absent values come from", "auto", choices=REDUCTION_SOURCES)
 
 
 @dataclass(frozen=True)
 class Drive:
     """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's equation 22)."""
-    torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0)
-    slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0)
+    torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0, le=1e9)
+    slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0, le=1e9)
 
 
 @dataclass(frozen=True)
 class Load:
     """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's equation 22)."""
-    coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0)
+    coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0, le=1e9)
 
 
 @dataclass(frozen=True)
@@ -381,6 +389,9 @@ def _cross_checks(scene: Scene) -> None:
         raise SceneError(
             f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
             f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)")
+    if scene.drive.slope == 0 and scene.load.coefficient == 0:
+        raise SceneError("drive.slope = 0 and load.coefficient = 0: nothing limits the speed "
+                         "(Md = Mc never holds); give drive.slope > 0 or load.coefficient > 0")
     w = scene.sweep
     if w.torque_high <= w.torque_low:
         raise SceneError(f"sweep.torque_high = {w.torque_high:g} is out of range: must be > "

@@ -120,3 +120,41 @@ def test_run_refuses_bad_max_frames_before_any_stage(tmp_path, frames):
     p = cli("run", "paper", "--max-frames", frames, "--out", out)
     assert p.returncode == 2 and "--max-frames" in one_line(p)
     assert not out.exists()
+
+
+def test_zero_shaft_damping_is_the_undamped_limit_without_nan_or_warnings(tmp_path):
+    """b2 = 0 leaves the Y mode undamped: unbounded amplitude (null in JSON), no torque, no NaN."""
+    import json
+    import subprocess
+    import sys
+    p = subprocess.run([sys.executable, "-W", "error", "-m", "rotorpillar", "analyze", "paper",
+                        "--set", "shaft.damping=0", "--out", str(tmp_path)],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "analyze.json").read_text())
+    y = [r for r in doc["resonances"] if r["direction"] == "Y"][0]
+    assert y["nu"] == 0 and y["a_max"] is None and y["dL_max"] == 0
+    assert "undamped" in y["statement"]
+    assert all(v is not None for v in y["curves"]["dL"])
+
+
+@pytest.mark.parametrize("sets, key", [
+    (["shaft.stiffness=1e300"], "shaft.stiffness"),
+    (["rotor.mass=1e300"], "rotor.mass"),
+    (["gondola.mass=1e300"], "gondola.mass"),
+    (["rotor.inertia=1e-300"], "rotor.inertia"),
+    (["pillar.youngs_modulus=1e30"], "pillar.youngs_modulus"),
+    (["pillar.density=1e30"], "pillar.density"),
+    (["drive.slope=0", "load.coefficient=0"], "drive.slope"),
+])
+@pytest.mark.parametrize("command", ["analyze", "simulate"])
+def test_values_that_break_the_formulas_are_refused(tmp_path, sets, key, command):
+    out = tmp_path / "out"
+    p = cli(command, "paper", *[a for s in sets for a in ("--set", s)], "--out", out)
+    assert p.returncode == 2 and key in one_line(p)
+    assert not out.exists()
+
+
+def test_a_micrometre_tube_is_refused_before_gmsh(tmp_path):
+    p = cli("modal", "paper", "--set", "pillar.height=1e-6", "--out", tmp_path / "out")
+    assert p.returncode == 2 and "height" in one_line(p)

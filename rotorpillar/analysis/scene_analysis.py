@@ -34,6 +34,10 @@ def _curves(r, others, ch: av.Characteristic) -> dict:
 
 
 def _statement(r, jumps, ch, s_crit, e_factor, e) -> str:
+    if r.nu == 0:
+        return (f"Resonance {r.index} ({r.omega:.2f} rad/s) is undamped (nu = 0): its steady "
+                "amplitude at Omega = omega is unbounded and, off it, it draws no average "
+                "torque; the averaging theory predicts no steady regime there.")
     if jumps:
         parts = []
         for j in jumps:

@@ -34,6 +34,8 @@ GMSH_CELLS = {5: ("hexahedron", 1), 12: ("hexahedron", 2), 4: ("tetrahedron", 1)
 #: default mesh's 24 k DOFs with the interpreter, 10 kB/DOF bounds the
 #: convergence study's finest meshes (docs/converge.md) from above.
 BYTES_PER_DOF = 10e3
+#: Smallest tube Gmsh meshes reliably (m): its geometric tolerance is ~1e-8 of the model.
+MIN_SIZE = 1e-3
 #: Share of the machine's memory a model may plan to use.
 MEMORY_SHARE = 0.8
 
@@ -82,6 +84,10 @@ class TubeMeshParams:
         if not (isinstance(ri, (int, float)) and math.isfinite(ri) and 0 < ri < self.outer_radius):
             raise InputError(f"pillar.inner_diameter = {2 * ri!r} is out of range: the 3D model needs "
                              f"a tube, 0 < inner_diameter < outer_diameter = {2 * self.outer_radius:g} (m)")
+        if self.height < MIN_SIZE or self.outer_radius - self.inner_radius < MIN_SIZE / 100:
+            raise InputError(f"pillar: the 3D mesh needs height >= {MIN_SIZE:g} m and a wall "
+                             f">= {MIN_SIZE / 100:g} m thick (height {self.height:g} m, wall "
+                             f"{self.outer_radius - self.inner_radius:g} m): Gmsh's tolerances")
         g = self.grading
         if not (isinstance(g, (int, float)) and math.isfinite(g) and g >= 1):
             raise InputError(f"mesh.grading = {g!r} is out of range: must be >= 1")

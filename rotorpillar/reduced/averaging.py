@@ -48,7 +48,8 @@ from .system import Resonance
 def amplitude(Omega, r: Resonance):
     """Eq. 19: a_i at speed Omega, with its omega_i**2 restored (m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
-    return abs(r.forcing) / (2 * r.omega**2 * np.sqrt((1 - z) ** 2 + r.nu**2))
+    with np.errstate(divide="ignore"):      # undamped (nu = 0): unbounded at z = 1, as it is
+        return abs(r.forcing) / (2 * r.omega**2 * np.sqrt((1 - z) ** 2 + r.nu**2))
 
 
 def amplitude_as_printed(Omega, r: Resonance):
@@ -62,18 +63,23 @@ def amplitude_linear(Omega, r: Resonance):
     The averaging result (equation 19) is its first-order expansion about Omega = omega.
     """
     W = np.asarray(Omega, dtype=float)
-    return abs(r.forcing) / np.sqrt((r.omega**2 - W**2) ** 2 + (r.two_n * W) ** 2)
+    with np.errstate(divide="ignore"):      # undamped: unbounded at Omega = omega
+        return abs(r.forcing) / np.sqrt((r.omega**2 - W**2) ** 2 + (r.two_n * W) ** 2)
 
 
 def resistance_increment(Omega, r: Resonance):
     """Eq. 20: dL_i, the averaged torque drawn by resonance i (N*m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
+    if r.nu == 0:       # undamped: a steady regime draws no average torque
+        return np.zeros_like(z) if z.ndim else 0.0
     return r.forcing * r.coupling * r.nu / (4 * r.omega**2 * ((1 - z) ** 2 + r.nu**2))
 
 
 def resistance_increment_slope(Omega, r: Resonance):
     """d(dL_i)/dOmega (N*m*s)."""
     z = np.asarray(Omega, dtype=float) / r.omega
+    if r.nu == 0:
+        return np.zeros_like(z) if z.ndim else 0.0
     C = r.forcing * r.coupling * r.nu / (4 * r.omega**2)
     D = (1 - z) ** 2 + r.nu**2
     return 2 * C * (1 - z) / (r.omega * D**2)
