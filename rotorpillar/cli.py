@@ -101,6 +101,7 @@ def execute(name: str, scene: Scene, args) -> dict:
     timings = Timings()
     start = time.perf_counter()
     result, text = fn(scene, args, timings)
+    status = result.pop("exit_status", EXIT_OK)   # a command's own verdict (report --strict)
     timings["total"] = time.perf_counter() - start
     doc = {"command": name, "scene_source": str(args.scene), "overrides": list(args.overrides),
            "scene": scene.to_dict(), **result,
@@ -109,6 +110,7 @@ def execute(name: str, scene: Scene, args) -> dict:
         path = write_json(out_dir(scene, args) / f"{name}.json", doc)
         doc["_path"] = str(path)
         doc["_summary"] = text
+    doc["exit_status"] = status
     return doc
 
 
@@ -190,6 +192,7 @@ def main(argv: list[str] | None = None) -> int:
         say("internal error", f"{type(exc).__name__}: {exc} (run again with --debug for the "
                               "traceback, and please report it)")
         return EXIT_INTERNAL
+    status = doc.pop("exit_status", EXIT_OK)
     if is_root_rank():
         path, text = doc.pop("_path"), doc.pop("_summary")
         if args.json:
@@ -200,7 +203,7 @@ def main(argv: list[str] | None = None) -> int:
             report = doc.get("report")
             if isinstance(report, str):     # the last line: the page to open
                 print(f"report: {Path(report).resolve()}")
-    return 0
+    return status
 
 
 if __name__ == "__main__":

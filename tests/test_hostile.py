@@ -158,3 +158,38 @@ def test_values_that_break_the_formulas_are_refused(tmp_path, sets, key, command
 def test_a_micrometre_tube_is_refused_before_gmsh(tmp_path):
     p = cli("modal", "paper", "--set", "pillar.height=1e-6", "--out", tmp_path / "out")
     assert p.returncode == 2 and "height" in one_line(p)
+
+
+@pytest.fixture(scope="module")
+def computed(tmp_path_factory):
+    """analyze and a short run-up, written as the commands write them."""
+    out = tmp_path_factory.mktemp("computed")
+    for args in (["analyze"], ["simulate", "--case", "runup", "--set", "simulate.duration=5"]):
+        p = cli(args[0], "paper", *args[1:], "--out", out)
+        assert p.returncode == 0, p.stderr
+    return out
+
+
+@pytest.mark.parametrize("name, damage, command", [
+    ("analyze.json", lambda t: t[:100], "analyze"),
+    ("analyze.json", lambda t: "", "analyze"),
+    ("simulate_runup.json", lambda t: "\x00\x01binary", "simulate"),
+    ("simulate_runup.npz", None, "simulate"),
+    ("modal.json", lambda t: "[1, 2]", "modal"),
+], ids=["truncated", "empty", "binary-json", "binary-npz", "wrong-shape"])
+def test_the_report_survives_a_damaged_input(tmp_path, computed, name, damage, command):
+    import html
+    import shutil
+    out = tmp_path / "out"
+    shutil.copytree(computed, out)
+    f = out / name
+    if damage is None:
+        f.write_bytes(b"\x00\x01\x02 not an npz")
+    else:
+        f.write_text(damage(f.read_text() if f.exists() else ""))
+    p = cli("report", "paper", "--out", out, "--no-animations")
+    assert p.returncode == 0, p.stderr
+    page = html.unescape((out / "report.html").read_text())
+    assert "is damaged" in page and f"rotorpillar {command} paper" in page
+    p = cli("report", "paper", "--out", out, "--no-animations", "--strict")
+    assert p.returncode == 1 and (out / "report.html").is_file()

@@ -21,6 +21,9 @@ def add_arguments(parser) -> None:
                         help="frames per animation (default 180)")
     parser.add_argument("--no-animations", action="store_true",
                         help="skip the run-up and earthquake animations")
+    parser.add_argument("--strict", action="store_true",
+                        help="exit 1 when an input is damaged or a section failed (the page is "
+                             "written all the same)")
 
 
 #: Frames an animation may have: 2 make a motion, 3600 are two minutes at 30 fps.
@@ -46,4 +49,6 @@ def report_command(scene, args, timings):
     options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
     progress(f"report: rendering into {out_dir(scene, args)}")
     result = build_report(scene, out_dir(scene, args), scene_cli(args), options, timings)
+    if getattr(args, "strict", False) and (result["failures"] or result["damaged"]):
+        result["exit_status"] = 1
     return result, summary_text(result)

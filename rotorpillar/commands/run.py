@@ -23,6 +23,8 @@ def _report_flags(args) -> list[str]:
         flags += ["--max-frames", str(args.max_frames)]
     if getattr(args, "no_animations", False):
         flags.append("--no-animations")
+    if getattr(args, "strict", False):
+        flags.append("--strict")
     return flags
 
 

@@ -157,6 +157,8 @@ def read_record(path: str | Path, record_type):
     doc = read_json(path)
     if doc is None:
         return None
+    if not isinstance(doc, dict):
+        raise ValueError(f"{Path(path).name} holds a JSON {type(doc).__name__}, not an object")
     try:
         return Loaded(record_type.from_json(doc), doc)
     except (KeyError, TypeError, ValueError, AttributeError):

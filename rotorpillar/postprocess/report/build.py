@@ -17,13 +17,14 @@ from __future__ import annotations
 
 import sys
 import traceback
+import zipfile
 from pathlib import Path
 from types import SimpleNamespace
 
 from ...provenance import write_text
 from .. import html as h
-from ..inputs import (CASES, INPUTS, read_analysis, read_convergence, read_json, read_modal,
-                      read_simulation)
+from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_convergence, read_json,
+                      read_modal, read_simulation)
 from .convergence import section_convergence
 from .earthquake import section_earthquake
 from .figures import external_figures, figure_group
@@ -76,14 +77,33 @@ def _guarded_section(build: Build, ident: str, title: str, fn) -> str | None:
                  "wrote them.", class_="failed")])
 
 
+#: What a damaged input file raises when read (truncated, empty, binary, wrong shape).
+DAMAGE = (ValueError, OSError, EOFError, KeyError, TypeError, AttributeError, zipfile.BadZipFile)
+
+
+def _read(build: Build, command: str, what: str, read):
+    """One input read; a damaged file costs its sections only, which say so."""
+    try:
+        return read()
+    except DAMAGE as exc:
+        build.damaged[command] = f"{what} is damaged ({type(exc).__name__}: {str(exc)[:120]})"
+        build.failures[f"input {what}"] = build.damaged[command]
+        say(f"{what} is damaged ({type(exc).__name__}); its sections say how to rebuild it")
+        return None
+
+
 def load_inputs(build: Build) -> None:
     out = build.out
-    build.analysis = read_analysis(out / INPUTS["analyze"][0])
-    build.modal = read_modal(out / INPUTS["modal"][0])
-    build.convergence = read_convergence(out / INPUTS["convergence"][0])
-    build.integrators = read_json(out / INPUTS["integrators"][0])
+    build.analysis = _read(build, "analyze", "analyze.json",
+                           lambda: read_analysis(out / INPUTS["analyze"][0]))
+    build.modal = _read(build, "modal", "modal.json", lambda: read_modal(out / INPUTS["modal"][0]))
+    build.convergence = _read(build, "converge", "convergence.json",
+                              lambda: read_convergence(out / INPUTS["convergence"][0]))
+    build.integrators = _read(build, "integrators", "integrators.json",
+                              lambda: read_json(out / INPUTS["integrators"][0]))
     for case in CASES:
-        sim = read_simulation(out, case)
+        sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz",
+                    lambda: read_simulation(out, case))
         if sim is not None:
             build.simulations[case] = sim
 
@@ -136,7 +156,7 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
     present = {name: (build.out / f).is_file() for name, (f, _) in INPUTS.items()}
     present.update({f"simulate_{c}": c in build.simulations for c in CASES})
     return {"report": str(path), "inputs": present, "figures": sorted(figures),
-            "animations": animations, "failures": build.failures,
+            "animations": animations, "failures": build.failures, "damaged": build.damaged,
             "render_seconds": build.render_seconds, "render_window": build.render_window,
             "bytes": path.stat().st_size}
 

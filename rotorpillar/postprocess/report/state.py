@@ -60,10 +60,15 @@ class Build:
     simulations: dict = field(default_factory=dict)
     products: dict = field(default_factory=dict)     # key -> Product or list of Products
     failures: dict = field(default_factory=dict)     # key -> message
+    damaged: dict = field(default_factory=dict)      # command -> what is wrong with its file
     render_seconds: dict = field(default_factory=dict)
     render_window: str = ""
 
     def hint(self, command: str) -> str:
+        """What the reader must run: the input is missing, or damaged and to be rebuilt."""
+        if command in self.damaged:
+            return (f"{self.damaged[command]}: rebuild it with `rotorpillar {command} "
+                    f"{self.scene_cli}`")
         return not_computed(command, self.scene_cli)
 
 
