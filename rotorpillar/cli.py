@@ -119,6 +119,19 @@ EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINAT
     0, 1, 2, 70, 130, 143
 
 
+#: Commands that share their work between MPI ranks; the others run on one process.
+MPI_COMMANDS = ("modal",)
+
+
+def mpi_world_size() -> int:
+    """Ranks of the MPI job this process belongs to (1 outside mpirun), from the launcher's env."""
+    for key in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MPI_LOCALNRANKS"):
+        value = os.environ.get(key, "")
+        if value.isdigit():
+            return int(value)
+    return 1
+
+
 def check_output_dir(path: Path) -> None:
     """Refuse, before any work, an output directory that cannot take files.
 
@@ -157,6 +170,9 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGTERM, _terminate)
     say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)
     try:
+        if mpi_world_size() > 1 and args.command not in MPI_COMMANDS:
+            raise InputError(f"{args.command} runs on one process (only {', '.join(MPI_COMMANDS)} "
+                             "shares its work between MPI ranks): start it without mpirun")
         scene = load_scene(args.scene, args.overrides)
         check_output_dir(out_dir(scene, args))
         doc = execute(args.command, scene, args)

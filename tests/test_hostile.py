@@ -193,3 +193,14 @@ def test_the_report_survives_a_damaged_input(tmp_path, computed, name, damage, c
     assert "is damaged" in page and f"rotorpillar {command} paper" in page
     p = cli("report", "paper", "--out", out, "--no-animations", "--strict")
     assert p.returncode == 1 and (out / "report.html").is_file()
+
+
+@pytest.mark.parametrize("command", ["analyze", "simulate", "report", "run", "integrators"])
+def test_only_modal_runs_under_mpirun(tmp_path, command):
+    """Under mpirun every rank would do the whole job and write: refused, one line per rank.
+    (The launcher's environment is what mpirun sets for each rank.)"""
+    import os
+    out = tmp_path / "out"
+    p = cli(command, "paper", "--out", out, env=dict(os.environ, OMPI_COMM_WORLD_SIZE="2"))
+    assert p.returncode == 2 and "without mpirun" in one_line(p)
+    assert not out.exists()
