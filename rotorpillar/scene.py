@@ -30,8 +30,10 @@ from .errors import InputError
 
 #: Transient cases of `rotorpillar simulate`.
 CASES = ("runup", "rundown", "sweep", "earthquake")
-#: Transient models: the paper's equation 4 as published, the pillar by its modes.
-MODELS = ("paper", "modal")
+#: Transient models: the paper's equation 4 as published, the pillar by its modes
+#: (the reduced-order model), and at full order the 3D tube and the 1D beam.
+MODELS = ("paper", "modal", "fem3d", "beam")
+FULL_ORDER_MODELS = ("fem3d", "beam")
 #: The compiled adaptive integrator, scipy's solve_ivp methods, and the
 #: compiled fixed-step schemes.
 ADAPTIVE_INTEGRATORS = ("dp5",)
@@ -196,14 +198,12 @@ class Converge:
                                          160, ge=32)
 
 
-
-
 @dataclass(frozen=True)
 class Simulate:
     """Transient runs of the reduced models (`rotorpillar simulate`)."""
     case: str = param("Case run when --case is not given", "runup", choices=CASES)
-    model: str = param("Model: the paper's equation 4 as published, or the pillar by its modes",
-                       "paper", choices=MODELS)
+    model: str = param("Model: equation 4 as published, the pillar's modes (the ROM), the 3D tube "
+                       "or the 1D beam at full order", "paper", choices=MODELS)
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",
                             choices=INTEGRATORS)
@@ -271,6 +271,23 @@ class ModalModel:
                                    "the paper neglects it", 0.0, ge=0)
 
 
+@dataclass(frozen=True)
+class FullOrder:
+    """Full-order transients (`simulate --model fem3d|beam`, `compare`); 0 = the scene's own.
+    Measured (docs/transients.md): 3D El Centro, 15 s, 8 x 10 elements: ~25 s on 2 cores, tip
+    within 0.7 % of the ROM (8 x 6 ... 32 x 8: 2-5 %; the height matters, not the circumference)."""
+    elements_around: int = param("3D: elements around, 0 = [mesh]'s (-)", 8, ge=0)
+    elements_along: int = param("3D: elements along the height, 0 = [mesh]'s (-)", 0, ge=0)
+    runup_duration: float = param("3D: run-up length, 0 = simulate.duration (s)", 15.0, ge=0, le=1e5)
+    earthquake_duration: float = param("3D: earthquake length, 0 = the case's own (s)", 15.0,
+                                       ge=0, le=1e5)
+    time_step: float = param("Step of the 3D and beam runs, 0 = 40 per period of the fastest "
+                             "forcing (s)", 0.0, ge=0)
+    beam_elements: int = param("Beam: elements, 0 = modal_model.elements (-)", 10, ge=0, le=2000)
+    beam_integrator: str = param("Beam: integrator without --integrator (its shear modes are "
+                                 "stiff: implicit)", "newmark", choices=FIXED_STEP_INTEGRATORS)
+
+
 SECTIONS = {
     "pillar": Pillar,
     "gondola": Gondola,
@@ -286,9 +303,10 @@ SECTIONS = {
     "excitation": Excitation,
     "sweep": Sweep,
     "modal_model": ModalModel,
+    "full_order": FullOrder,
 }
 OPTIONAL_SECTIONS = ("reduction", "mesh", "converge", "modal", "simulate", "excitation", "sweep",
-                     "modal_model")
+                     "modal_model", "full_order")
 
 
 @dataclass(frozen=True)
@@ -309,6 +327,7 @@ class Scene:
     excitation: Excitation = Excitation()
     sweep: Sweep = Sweep()
     modal_model: ModalModel = ModalModel()
+    full_order: FullOrder = FullOrder()
     description: str = ""
 
     def to_dict(self) -> dict:
@@ -380,6 +399,9 @@ def _cross_checks(scene: Scene) -> None:
         raise SceneError(
             f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
             f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)")
+    if 0 < scene.full_order.elements_around < 4:
+        raise SceneError(f"full_order.elements_around = {scene.full_order.elements_around} is out of "
+                         "range: must be 0 (the scene's [mesh]) or >= 4 (-)")
     w = scene.sweep
     if w.torque_high <= w.torque_low:
         raise SceneError(f"sweep.torque_high = {w.torque_high:g} is out of range: must be > "
