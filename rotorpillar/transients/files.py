@@ -17,8 +17,8 @@ import numpy as np
 from ..provenance import atomic_path, machine, versions, write_json, write_text
 from .run import ModelRun
 
-CSV_COLUMNS = ("t", "Omega", "tip_x", "tip_x_relative", "tip_x_absolute", "rotor_x", "rotor_y",
-               "ground_x", "ground_acceleration", "shaft_deflection_x")
+CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_acceleration",
+               "tip_x_relative", "tip_x_absolute", "shaft_deflection_x")     # the old ones first
 NPZ_SCALARS = ("tip_x_frame", "model", "case")
 
 

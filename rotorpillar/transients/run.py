@@ -113,7 +113,8 @@ def run_model(scene, case: str, model: str, integrator: str | None = None, modes
 # paper, modal, beam
 
 
-def _pillar_modes(scene, which: str):
+def pillar_modes_for(scene, which: str):
+    """The 3D candidate pillar modes when the modal model takes its modes from fem3d, else None."""
     if which != "modal" or scene.modal_model.source != "fem3d":
         return None
     from ..fem3d.pillar_modes import candidate_pillar_modes
@@ -124,7 +125,7 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion) -> Mod
     from ..reduced.cases import run_case, with_truncation
     from ..reduced.excitation import no_motion
     from ..reduced.summaries import ground_displacement, series
-    pillar_modes = _pillar_modes(scene, which)
+    pillar_modes = pillar_modes_for(scene, which)
     start = time.perf_counter()
     res = run_case(scene, case, which, integrator, modes, truncation=False, motion=motion,
                    pillar_modes=pillar_modes)
