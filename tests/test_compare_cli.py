@@ -69,6 +69,7 @@ def test_paper_model_base_forcing_warning(tmp_path, scene, extra, warned):
     assert doc["ok"] is True                             # ok is about the numerics only
 
 
+@pytest.mark.slow                      # ~30 s: the 3D run (the modal-against-3D check)
 @has_dolfinx
 def test_compare_earthquake_modal_fem3d(tmp_path):
     p = cli("compare", "paper", "--case", "earthquake", *RECORD, *COARSE_3D, "--json", "--out", tmp_path)
