@@ -38,7 +38,10 @@ COMMANDS = {
     "run": ("rotorpillar.commands.run", "run_command",
             "the main job: every analysis of the scene, then the report"),
     "simulate": ("rotorpillar.commands.simulate", "simulate_command",
-                 "transients of the reduced models: run-up, run-down, sweep, earthquake"),
+                 "transients: run-up, run-down, sweep, earthquake on the paper, modal, 3D or beam model"),
+    "compare": ("rotorpillar.commands.compare", "compare_command",
+                "several transient models on one case: tip histories, errors and cost against the "
+                "most complete"),
     "integrators": ("rotorpillar.commands.integrators", "integrators_command",
                     "time integrators: error against cost, where each fails"),
 }
@@ -63,6 +66,7 @@ EXTRA_ARGUMENTS = {
     "run": _run_arguments,
     "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
     "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
+    "compare": lambda p: importlib.import_module("rotorpillar.commands.compare").add_arguments(p),
 }
 
 

@@ -20,7 +20,7 @@ def integrators_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..reduced.integrator_study import run_study
-    from .simulate import pillar_modes_for
+    from ..transients.run import pillar_modes_for
     duration = getattr(args, "duration", 10.0)
     if not (math.isfinite(duration) and 0 < duration <= 1000):
         raise InputError(f"--duration {duration!r}: must be > 0 and <= 1000 (s)")

@@ -1,37 +1,40 @@
-"""`rotorpillar simulate`: a transient case of the reduced models.
+"""`rotorpillar simulate`: a transient case on one model.
 
 ``rotorpillar simulate [SCENE] --case runup|rundown|sweep|earthquake
-[--model paper|modal] [--integrator NAME] [--modes K]`` (defaults from the
-scene's [simulate]).  Writes into ``out/<scene>/``:
+[--model paper|modal|fem3d|beam] [--integrator NAME] [--modes K]`` (defaults
+from the scene's [simulate]; fem3d runs earthquake and runup on the mesh and
+over the duration of [full_order]).  rotorpillar.transients runs the model
+and writes into ``out/<scene>/``:
 
-- ``simulate_<case>.npz`` and ``.csv``: the time series (at most
-  ``simulate.samples`` rows): t, Omega, theta, tip_x, rotor_x, rotor_y,
-  ground_x, ground_acceleration, M0, and for the modal model
-  modal_coordinates (n_t x k, the tip displacement of each pillar mode, m),
-  tip_x_absolute, rotor_x_absolute, mode_heights, mode_shapes;
-  ``tip_x_frame`` says whether tip_x is absolute (paper) or relative to the
-  ground (modal);
-- ``simulate.json`` (the case just run) and its copy ``simulate_<case>.json``;
-- ``simulate_<case>.png`` (and ``simulate_sweep_az.png`` for the sweep).
+- ``simulate_<case>_<model>.{json,npz,csv,png}``: the model's run; the NPZ/CSV
+  series (at most ``simulate.samples`` rows): t, Omega, theta, tip_x (as
+  before: absolute for paper, relative to the ground otherwise),
+  tip_x_relative, tip_x_absolute, rotor_x, rotor_y, ground_x,
+  ground_acceleration, shaft_deflection_x (rotor X - tip X - e cos theta), and
+  for the modal model modal_coordinates, mode_heights, mode_shapes;
+- ``simulate_<case>.{json,npz,csv,png}``: copies of the last run, and ``simulate.json``;
+- ``simulate_sweep_az.png`` (and ``simulate_sweep_az_<model>.png``) for the sweep.
+
+Every JSON has model, case, ok, warnings (also on stderr: the paper model's
+earthquake when equation 4's published base forcing amplifies the ground by
+more than 10 %), max_abs (tip_x_relative, tip_x_absolute, ...), omega_final,
+captured_at, energy_balance, integrator, dofs, wall_seconds, and for fem3d
+and beam full_order (mesh or elements, duration, time_step, note).
 """
 
 from __future__ import annotations
 
-import numpy as np
-
 from . import progress
 from ..scene import CASES, MODELS
-from ..provenance import atomic_path, machine, versions, write_json, write_text
-
-NPZ_SCALARS = ("tip_x_frame", "model", "case")
-CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_acceleration")
 
 
 def add_arguments(p) -> None:
     p.add_argument("--case", choices=CASES, default=None,
                    help="which transient (default: the scene's simulate.case)")
     p.add_argument("--model", choices=MODELS, default=None,
-                   help="the paper's Eq. 4 as published, or the pillar by its modes "
+                   help="paper: equation 4 as published; modal: the pillar by its modes (the ROM); "
+                        "fem3d: the 3D tube at full order (earthquake, runup; mesh and duration from "
+                        "[full_order]); beam: the 1D Timoshenko beam at full order "
                         "(default: the scene's simulate.model)")
     p.add_argument("--integrator", default=None,
                    choices=("dp5", "RK45", "DOP853", "Radau", "BDF", "LSODA", "newmark", "hht",
@@ -45,123 +48,27 @@ def add_arguments(p) -> None:
 def simulate_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
-    from ..reduced.cases import run_case
     from ..reduced.models import scene_motion
-    from ..reduced.summaries import series
+    from ..transients.files import write_model_files
+    from ..transients.run import fem3d_plan, run_model
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
     motion = scene_motion(scene) if case == "earthquake" else None    # bad input: refused before any output
+    if which == "fem3d":
+        fem3d_plan(scene, case, motion)                                # the 3D cases only
     progress(f"simulate {scene.name}: {case}, {which} model")
     with timings(case):
-        res = run_case(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                       motion=motion, pillar_modes=pillar_modes_for(scene, which))
-    data = series(res.run, scene.simulate.samples)
-    out = out_dir(scene, args)
-    result = {"case": case, "model": which, **res.summary.to_json(),
-              "model_description": res.model.describe(), "model_info": res.extra.get("model_info"),
-              "resonances": [vars(r) for r in res.model.quasi_normal()],
-              "damped_frequencies": res.model.damped_frequencies(),
-              "tip_x_frame": res.model.frame}
-    for key in ("initial_speed", "excitation_in_model"):
-        if key in res.extra:
-            result[key] = res.extra[key]
-    files, figures = {}, []
+        run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
+                        motion=motion)
+    result = dict(run.result)
     if is_root_rank():
         with timings("write"):
-            files["npz"] = str(_write_npz(out / f"simulate_{case}.npz", data, res))
-            files["csv"] = str(_write_csv(out / f"simulate_{case}.csv", data, res))
-        with timings("charts"):
-            figures = _charts(out, scene, case, res, data)
-    result["files"] = files
-    result["figures"] = figures
-    if is_root_rank():
-        copy_doc = {"command": "simulate", "scene_source": str(args.scene),
-                    "overrides": list(args.overrides), "scene": scene.to_dict(), **result,
-                    "versions": versions(), "machine": machine(), "timings": dict(timings)}
-        write_json(out / f"simulate_{case}.json", copy_doc)
+            provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
+            result = write_model_files(out_dir(scene, args), scene, run, provenance, dict(timings))
     return result, summary(scene, result)
-
-
-def pillar_modes_for(scene, which: str):
-    """The 3D model's candidate pillar modes when the modal model takes its
-    modes from it (``modal_model.source = "fem3d"``), else None (the reduced
-    package computes the beam's itself)."""
-    if which != "modal" or scene.modal_model.source != "fem3d":
-        return None
-    from ..fem3d.pillar_modes import candidate_pillar_modes
-    return candidate_pillar_modes(scene)
-
-
-def _write_npz(path, data, res):
-    arrays = {k: np.asarray(v) for k, v in data.items()}
-    arrays["tip_x_frame"] = np.array(res.model.frame)
-    arrays["model"] = np.array(res.model.name)
-    arrays["case"] = np.array(res.case)
-    arrays["coordinates"] = np.array(res.model.names)
-    with atomic_path(path) as tmp:
-        np.savez_compressed(tmp, **arrays)
-    return path
-
-
-def _write_csv(path, data, res):
-    cols = list(CSV_COLUMNS)
-    block = [np.asarray(data[c]) for c in cols]
-    if "modal_coordinates" in data:
-        mc = np.asarray(data["modal_coordinates"])
-        cols += [f"eta{j + 1}" for j in range(mc.shape[1])]
-        block += [mc[:, j] for j in range(mc.shape[1])]
-    header = (f"# rotorpillar simulate {res.case}, {res.model.name} model; SI units (s, rad/s, m, "
-              f"m/s2); tip_x and rotor_x {res.model.frame.replace('_', ' ')}\n" + ",".join(cols))
-    text = header + "\n" + "\n".join(",".join(f"{x:.10g}" for x in row) for row in np.column_stack(block))
-    return write_text(path, text + "\n")
-
-
-def _charts(out, scene, case, res, data) -> list[dict]:
-    from ..postprocess import transient_charts as tc
-    m = res.model
-    resonances = [(f"omega_{r.index} ({r.direction})", r.omega) for r in m.quasi_normal()
-                  if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)]
-    title = f"{scene.name}: {case}, {m.name} model"
-    figs = []
-    path = out / f"simulate_{case}.png"
-    if case == "earthquake":
-        tc.earthquake_chart(path, data["t"], data["ground_acceleration"], data["tip_x"], data["rotor_x"],
-                            data["Omega"], title, frame=m.frame.replace("_", " "))
-        caption = (f"Earthquake on the {m.name} model: ground acceleration, tip and rotor X "
-                   f"({m.frame.replace('_', ' ')}), rotor speed.")
-    else:
-        extra = []
-        pt = res.summary.passing_torque or {}
-        if pt.get("bracket_series"):
-            bs = pt["bracket_series"]
-            for row, W, pk, f in zip(pt["bracket_runs"], bs["Omega"], bs["tip_peak"], (0.95, 1.05)):
-                extra.append((f"M0 = {row['torque_at_zero']:.0f} N*m ({f:g} x the predicted "
-                               f"{pt['predicted']:.0f})", bs["t"], W, pk))
-        tc.runup_chart(path, data["t"], data["Omega"], data["peak"][:, -1], resonances, title, extra,
-                       label=f"M0 = {scene.drive.torque_at_zero:g} N*m (the scene's motor)"
-                       if case == "runup" else "this run")
-        caption = {"runup": "Run-up from rest: rotor speed and tip envelope" + (
-                            " (dashed: motors 5 % below and above the torque the analysis says is "
-                            "needed to pass)." if extra else "."),
-                   "rundown": "Run-down from the operating speed: rotor speed and tip envelope.",
-                   "sweep": "Quasi-static sweep of M0 up and down: rotor speed and tip envelope."}[case]
-    figs.append({"file": path.name, "caption": caption})
-    if case == "sweep":
-        ex = res.extra
-        labels = [(f"{r.direction}{r.index}", r.omega, r.direction) for r in m.quasi_normal()]
-        # the resonance with the largest numeric amplitude first
-        labels.sort(key=lambda L: -max((a["numeric_peak"] for a in ex["amplitudes"]
-                                        if f"{a['direction']}{a['index']}" == L[0]), default=0.0))
-        p2 = out / "simulate_sweep_az.png"
-        tc.sweep_chart(p2, ex["up"], ex["down"], ex["curves"], labels, ex["numeric_jumps"],
-                       ex["predicted_jumps"], f"{scene.name}: quasi-static sweep against Eq. 19-23")
-        figs.append({"file": p2.name, "caption": "Quasi-static sweep against the averaging theory: "
-                                                 "stationary curve M0(Omega) with the jumps (left), "
-                                                 "amplitude against z = Omega/omega_i (right)."})
-    return figs
 
 
 def summary(scene, r: dict) -> str:
@@ -169,11 +76,17 @@ def summary(scene, r: dict) -> str:
              f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"]
     it = r["integrator"]
     lines.append(f"  integrator {it['method']}: {it['status']}, {it.get('steps')} steps, "
-                 f"{it['nfev']} force evaluations, {it['wall_seconds']:.3f} s")
+                 + (f"{it['nfev']} force evaluations, " if "nfev" in it else "")
+                 + f"{it.get('wall_seconds') or 0.0:.3f} s; {r['dofs']} dofs, {r['wall_seconds']:.3f} s in all")
+    if r.get("full_order"):
+        lines.append(f"  full order: {r['full_order']['note']}")
+    for w in r.get("warnings") or []:
+        lines.append(f"  WARNING: {w}")
     lines.append(f"  final speed {r['omega_final']:.4f} rad/s; captured at "
                  + (f"{r['captured_at']:.3f} rad/s" if r["captured_at"] else "no resonance"))
     ma = r["max_abs"]
-    lines.append(f"  max |tip X| {ma['tip_x']:.4g} m, |rotor X| {ma['rotor_x']:.4g} m, "
+    lines.append(f"  max |tip X| {ma['tip_x_relative']:.4g} m relative to the ground, "
+                 f"{ma['tip_x_absolute']:.4g} m absolute; |rotor X| {ma['rotor_x']:.4g} m, "
                  f"|rotor Y| {ma['rotor_y']:.4g} m")
     eb = r["energy_balance"]
     lines.append(f"  energy balance: relative error {eb['relative_error']:.2e}")
@@ -209,5 +122,5 @@ def summary(scene, r: dict) -> str:
         ex = r["excitation"]
         if ex.get("statement"):
             lines.append("  " + ex["statement"])
-        lines.append(f"  ground motion applied: {r.get('excitation_in_model', '')}")
+        lines.append(f"  ground motion applied: {r.get('excitation_in_model') or ''}")
     return "\n".join(lines)

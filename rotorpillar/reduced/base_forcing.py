@@ -47,3 +47,19 @@ def base_forcing_finding(tip_stiffness: float, shaft_stiffness: float, pillar_da
         "amplifies": gain > AMPLIFICATION_LIMIT,
         "limit": AMPLIFICATION_LIMIT,
     }
+
+
+def published_forcing_warning(tip_stiffness: float, shaft_stiffness: float) -> str | None:
+    """One line when the published forcing amplifies the ground by more than
+    AMPLIFICATION_LIMIT over the consistent one, else None.
+
+    >>> published_forcing_warning(9.6e6, 0.4e6) is None
+    True
+    """
+    gain = published_static_gain(tip_stiffness, shaft_stiffness)
+    if gain <= AMPLIFICATION_LIMIT:
+        return None
+    return (f"equation 4's published base forcing (c0 q5 on q1, c2 q5 on q2) amplifies the ground "
+            f"{gain:.3g}x statically ((c1 + 2 c2)/c1 with c1 = {tip_stiffness:.4g}, c2 = "
+            f"{shaft_stiffness:.4g} N/m), over {AMPLIFICATION_LIMIT:g}x: this response is inflated; "
+            f"the modal model (-M r a_g) is the consistent one")

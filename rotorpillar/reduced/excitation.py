@@ -290,9 +290,16 @@ def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 
 
 
 def response_spectrum(motion: GroundMotion, periods, damping: float = 0.05) -> dict:
-    """Pseudo-acceleration and displacement response spectra of a record (eqsig)."""
+    """Pseudo-acceleration and displacement response spectra of a record (eqsig); a
+    pulse is sampled at 1/200 of its period over its window first."""
     import eqsig
-    sig = eqsig.AccSignal(motion.acceleration.copy(), motion.time_step)
+    if motion.kind == "record":
+        acc, dt = motion.acceleration.copy(), motion.time_step
+    else:
+        dt = 2 * math.pi / max(motion.frequency, 1e-9) / 200
+        t = motion.start + dt * np.arange(int(math.ceil((motion.end - motion.start) / dt)) + 1)
+        acc = np.asarray(motion.evaluate(t)[2], dtype=float)
+    sig = eqsig.AccSignal(acc, dt)
     sig.generate_response_spectrum(response_times=np.asarray(periods, dtype=float), xi=damping)
     return {"periods": np.asarray(periods, dtype=float), "damping": damping,
             "s_a": np.asarray(sig.s_a), "s_d": np.asarray(sig.s_d)}

@@ -13,7 +13,7 @@ from ..errors import InputError
 from .excitation import GroundMotion, load_record, paper_pulse
 from .pillar_modes import PillarModes, beam_pillar_modes, modes_in_band
 from .reduction import pillar_closed_forms, resolve_reduction
-from .rotor_models import modal_model, paper_model
+from .rotor_models import beam_model, modal_model, paper_model
 from .system import reduced_system
 
 #: the most pillar modes a modal model picks from
@@ -46,13 +46,22 @@ def candidate_modes(scene, pillar_modes: PillarModes | None = None) -> PillarMod
 
 def build_model(scene, which: str, band_top: float | None = None, modes: int | None = None,
                 pillar_modes: PillarModes | None = None):
-    """(model, info) for "paper" or "modal"; the modal model keeps ``modes``
-    modes, or those below ``band_top`` (rad/s), of ``candidate_modes``."""
+    """(model, info) for "paper", "modal" or "beam"; the modal model keeps ``modes``
+    modes, or those below ``band_top`` (rad/s), of ``candidate_modes``; the
+    beam is the full-order 1D beam ([full_order] beam_elements, [modal_model]
+    theory and gondola inertia).  "fem3d" is not built here (rotorpillar.fem3d)."""
     if which == "paper":
         s, red = paper_system(scene)
         return paper_model(s), {"reduction": red}
+    if which == "beam":
+        mm = scene.modal_model
+        n = scene.full_order.beam_elements or mm.elements
+        model = beam_model(scene, n, mm.theory, mm.gondola_inertia)
+        return model, {"elements": n, "theory": mm.theory, "dofs": model.n,
+                       "element_source": "full_order.beam_elements" if scene.full_order.beam_elements
+                       else "modal_model.elements"}
     if which != "modal":
-        raise InputError(f"model {which!r}: must be paper or modal")
+        raise InputError(f"model {which!r}: build_model makes paper, modal or beam")
     candidates = candidate_modes(scene, pillar_modes)
     k = modes or scene.modal_model.modes or modes_in_band(candidates.omega, band_top or 0.0)
     k = min(k, candidates.count)

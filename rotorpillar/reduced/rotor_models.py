@@ -354,4 +354,4 @@ def beam_model(scene, elements: int = 10, theory: str = "timoshenko",
         rotor_inertia=scene.rotor.inertia, base_displacement=np.zeros(nx),
         base_velocity=np.zeros(nx), base_acceleration=-(Mx @ r), frame="relative_to_ground",
         notes={"equations": f"full-order 1D {theory} beam, {elements} elements, rotor on its shaft",
-               "dofs": nx})
+               "dofs": nx + 2, "full_order": True})

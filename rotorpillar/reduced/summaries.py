@@ -60,8 +60,9 @@ def max_abs(run: Transient) -> dict:
     m = run.model
     pk = np.nanmax(run.peak, axis=0)
     out = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
-    for i, name in enumerate(m.coordinates):
-        out[name] = float(pk[i])
+    if not m.notes.get("full_order"):            # a full-order model's nodes: not worth a key each
+        for i, name in enumerate(m.coordinates):
+            out[name] = float(pk[i])
     shaft = run.q[:, :m.nx] @ m.shaft - m.eccentricity * np.cos(run.q[:, -1])
     out["shaft_deflection_x_sampled"] = float(np.nanmax(np.abs(shaft)))
     return out
@@ -111,6 +112,7 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
     if m.frame == "relative_to_ground":
         out["tip_x_absolute"] = tip + ground
         out["rotor_x_absolute"] = out["rotor_x"] + ground
+    if m.pillar_modes is not None:
         out["modal_coordinates"] = run.q[:, :m.pillar_modes.count]
         if m.pillar_modes.shapes is not None:
             out["mode_heights"] = m.pillar_modes.heights

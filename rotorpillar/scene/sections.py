@@ -1,47 +1,14 @@
-"""The scene: one structure and what to run on it, read from TOML.
-
-A scene file has one table per section below; every quantity is a float in
-SI units (m, kg, s, N, Pa, rad), stated once in the field's docstring.  Each
-field carries its allowed range, so validation, the one-line error message and
-the documentation all come from the same place.
-
->>> s = load_scene("paper")
->>> s.pillar.height, s.shaft.stiffness
-(20.0, 400000.0)
->>> override(s, ["shaft.stiffness=5e6"]).shaft.stiffness
-5000000.0
-"""
+"""The scene's sections: frozen dataclasses, SI units and the allowed range in each field."""
 
 from __future__ import annotations
 
 import dataclasses
 import math
-import re
-import tomllib
 from dataclasses import dataclass, field, fields
-from importlib import resources
-from pathlib import Path
 from typing import Any, Optional
 
-from .errors import InputError
-
-# ---------------------------------------------------------------------------
-# The project's word lists: every module, the CLI and the report take them
-# from here, so a new case, model, integrator or cell type is added once.
-
-#: Transient cases of `rotorpillar simulate`.
-CASES = ("runup", "rundown", "sweep", "earthquake")
-#: Transient models: the paper's equation 4 as published, the pillar by its modes.
-MODELS = ("paper", "modal")
-#: The compiled adaptive integrator, scipy's solve_ivp methods, and the
-#: compiled fixed-step schemes.
-ADAPTIVE_INTEGRATORS = ("dp5",)
-SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
-FIXED_STEP_INTEGRATORS = ("newmark", "hht", "generalized_alpha", "central_difference")
-INTEGRATORS = ADAPTIVE_INTEGRATORS + SCIPY_METHODS + FIXED_STEP_INTEGRATORS
-#: Cells of the 3D solid mesh, and of the shell's mid-surface mesh.
-CELL_TYPES = ("hexahedron", "tetrahedron")
-SHELL_CELL_TYPES = ("quadrilateral", "triangle")
+from ..errors import InputError
+from .words import CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS, INTEGRATORS, MODELS
 
 
 class SceneError(InputError):
@@ -205,14 +172,12 @@ class Converge:
                                          160, ge=32)
 
 
-
-
 @dataclass(frozen=True)
 class Simulate:
     """Transient runs of the reduced models (`rotorpillar simulate`)."""
     case: str = param("Case run when --case is not given", "runup", choices=CASES)
-    model: str = param("Model: the paper's equation 4 as published, or the pillar by its modes",
-                       "paper", choices=MODELS)
+    model: str = param("Model: equation 4 as published, the pillar's modes (the ROM), the 3D tube "
+                       "or the 1D beam at full order", "paper", choices=MODELS)
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",
                             choices=INTEGRATORS)
@@ -280,6 +245,23 @@ class ModalModel:
                                    "the paper neglects it", 0.0, ge=0)
 
 
+@dataclass(frozen=True)
+class FullOrder:
+    """Full-order transients (`simulate --model fem3d|beam`, `compare`); 0 = the scene's own.
+    Measured (docs/transients.md): 3D El Centro, 15 s, 8 x 10 elements: ~25 s on 2 cores, tip
+    within 0.7 % of the ROM (8 x 6 ... 32 x 8: 2-5 %; the height matters, not the circumference)."""
+    elements_around: int = param("3D: elements around, 0 = [mesh]'s (-)", 8, ge=0)
+    elements_along: int = param("3D: elements along the height, 0 = [mesh]'s (-)", 0, ge=0)
+    runup_duration: float = param("3D: run-up length, 0 = simulate.duration (s)", 15.0, ge=0, le=1e5)
+    earthquake_duration: float = param("3D: earthquake length, 0 = the case's own (s)", 15.0,
+                                       ge=0, le=1e5)
+    time_step: float = param("Step of the 3D and beam runs, 0 = 40 per period of the fastest "
+                             "forcing (s)", 0.0, ge=0)
+    beam_elements: int = param("Beam: elements, 0 = modal_model.elements (-)", 10, ge=0, le=2000)
+    beam_integrator: str = param("Beam: integrator without --integrator (its shear modes are "
+                                 "stiff: implicit)", "newmark", choices=FIXED_STEP_INTEGRATORS)
+
+
 SECTIONS = {
     "pillar": Pillar,
     "gondola": Gondola,
@@ -295,9 +277,10 @@ SECTIONS = {
     "excitation": Excitation,
     "sweep": Sweep,
     "modal_model": ModalModel,
+    "full_order": FullOrder,
 }
 OPTIONAL_SECTIONS = ("reduction", "mesh", "converge", "modal", "simulate", "excitation", "sweep",
-                     "modal_model")
+                     "modal_model", "full_order")
 
 
 @dataclass(frozen=True)
@@ -318,205 +301,9 @@ class Scene:
     excitation: Excitation = Excitation()
     sweep: Sweep = Sweep()
     modal_model: ModalModel = ModalModel()
+    full_order: FullOrder = FullOrder()
     description: str = ""
 
     def to_dict(self) -> dict:
         """The resolved scene, as it would be written back to TOML."""
         return dataclasses.asdict(self)
-
-
-# --------------------------------------------------------------------------
-# Reading, checking, overriding.
-
-
-def _check_value(key: str, value: Any, f: dataclasses.Field) -> Any:
-    meta = f.metadata
-    want = f.type if isinstance(f.type, str) else f.type.__name__
-    if value is None:
-        if meta.get("optional"):
-            return None
-        raise SceneError(f"{key}: a value is required ({meta['doc']}; {_range_text(meta)})")
-    if "float" in want:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise SceneError(f"{key} = {value!r}: must be a number ({meta['doc']}; {_range_text(meta)})")
-        value = float(value)
-        if not math.isfinite(value):
-            raise SceneError(f"{key} = {value!r}: must be finite ({meta['doc']}; {_range_text(meta)})")
-    elif "int" in want:
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise SceneError(f"{key} = {value!r}: must be an integer ({meta['doc']}; {_range_text(meta)})")
-    elif "bool" in want:
-        if not isinstance(value, bool):
-            raise SceneError(f"{key} = {value!r}: must be true or false ({meta['doc']})")
-        return value
-    elif "str" in want:
-        if not isinstance(value, str):
-            raise SceneError(f"{key} = {value!r}: must be a string ({meta['doc']}; {_range_text(meta)})")
-    if meta["choices"] is not None:
-        if value not in meta["choices"]:
-            raise SceneError(f"{key} = {value!r}: must be {_range_text(meta)} ({meta['doc']})")
-        return value
-    ok = ((meta["gt"] is None or value > meta["gt"]) and
-          (meta["ge"] is None or value >= meta["ge"]) and
-          (meta["lt"] is None or value < meta["lt"]) and
-          (meta["le"] is None or value <= meta["le"]))
-    if not ok:
-        raise SceneError(f"{key} = {value!r} is out of range: must be {_range_text(meta)} ({meta['doc']})")
-    return value
-
-
-def _build_section(name: str, cls, table: Any):
-    if not isinstance(table, dict):
-        raise SceneError(f"[{name}] must be a table of keys, got {type(table).__name__}")
-    known = {f.name: f for f in fields(cls)}
-    for key in table:
-        if key not in known:
-            raise SceneError(f"{name}.{key}: unknown key; [{name}] takes "
-                             + ", ".join(known))
-    values = {}
-    for key, f in known.items():
-        if key in table:
-            values[key] = _check_value(f"{name}.{key}", table[key], f)
-        elif f.default is dataclasses.MISSING:
-            raise SceneError(f"{name}.{key}: missing ({f.metadata['doc']}; "
-                             f"{_range_text(f.metadata)})")
-    return cls(**values)
-
-
-def _cross_checks(scene: Scene) -> None:
-    p = scene.pillar
-    if p.inner_diameter >= p.outer_diameter:
-        raise SceneError(
-            f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
-            f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)")
-    if scene.drive.slope == 0 and scene.load.coefficient == 0:
-        raise SceneError("drive.slope = 0 and load.coefficient = 0: nothing limits the speed "
-                         "(Md = Mc never holds); give drive.slope > 0 or load.coefficient > 0")
-    w = scene.sweep
-    if w.torque_high <= w.torque_low:
-        raise SceneError(f"sweep.torque_high = {w.torque_high:g} is out of range: must be > "
-                         f"sweep.torque_low = {w.torque_low:g} (N*m)")
-
-
-#: A scene's name becomes a directory: no separators, no "..", nothing hidden.
-SCENE_NAME = re.compile(r"(?!.*\.\.)[^./\\\x00-\x1f][^/\\\x00-\x1f]{0,99}")
-
-
-def scene_from_dict(data: dict, name: str = "scene") -> Scene:
-    """Validate a parsed TOML document and build the scene."""
-    data = dict(data)
-    description = data.pop("description", "")
-    name = data.pop("name", name)
-    if not isinstance(name, str) or not isinstance(description, str):
-        raise SceneError("name and description must be strings")
-    if not SCENE_NAME.fullmatch(name):
-        raise SceneError(f"name = {name!r}: must be 1-100 characters without '/', '\\\\', '..' or "
-                         "control characters, not starting with '.' (it names out/<name>/)")
-    for key in data:
-        if key not in SECTIONS:
-            raise SceneError(f"[{key}]: unknown section; a scene has "
-                             + ", ".join(f"[{s}]" for s in SECTIONS))
-    sections = {}
-    for sec, cls in SECTIONS.items():
-        if sec not in data:
-            if sec in OPTIONAL_SECTIONS:
-                continue
-            raise SceneError(f"[{sec}]: missing section")
-        sections[sec] = _build_section(sec, cls, data[sec])
-    scene = Scene(name=name, description=description, **sections)
-    _cross_checks(scene)
-    return scene
-
-
-def embedded_scenes() -> list[str]:
-    """Names of the scenes shipped inside the package."""
-    return sorted(p.name[:-5] for p in resources.files("rotorpillar.scenes").iterdir()
-                  if p.name.endswith(".toml"))
-
-
-def read_text_file(path: Path, what: str) -> str:
-    """A text input read as UTF-8, or one line saying why it cannot be.
-
-    >>> import tempfile, os
-    >>> f = tempfile.NamedTemporaryFile(suffix=".toml", delete=False); _ = f.write(b"\\xff\\xfe"); f.close()
-    >>> read_text_file(Path(f.name), "scene file")
-    Traceback (most recent call last):
-    ...
-    rotorpillar.scene.SceneError: scene file ... is not UTF-8 text (byte 0xff at offset 0); save it as UTF-8
-    >>> os.unlink(f.name)
-    """
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise SceneError(f"{what} {str(path)!r} cannot be read: {exc.strerror or exc}") from None
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise SceneError(f"{what} {str(path)!r} is not UTF-8 text (byte 0x{data[exc.start]:02x} at "
-                         f"offset {exc.start}); save it as UTF-8") from None
-    if "\x00" in text:
-        raise SceneError(f"{what} {str(path)!r} is binary, not text")
-    return text
-
-
-def read_scene_toml(spec: str | Path) -> tuple[dict, str]:
-    """The raw TOML of a scene given by file path or embedded name."""
-    path = Path(spec)
-    if path.suffix == ".toml" or path.exists() or "/" in str(spec):
-        if not path.is_file():
-            raise SceneError(f"scene file {str(spec)!r} not found (give a .toml path "
-                             f"or one of: {', '.join(embedded_scenes())})")
-        text, name = read_text_file(path, "scene file"), path.stem
-    else:
-        if str(spec) not in embedded_scenes():
-            raise SceneError(f"scene {str(spec)!r}: no such file or embedded scene "
-                             f"(embedded: {', '.join(embedded_scenes())})")
-        text = resources.files("rotorpillar.scenes").joinpath(f"{spec}.toml").read_text("utf-8")
-        name = str(spec)
-    try:
-        return tomllib.loads(text), name
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"scene {str(spec)!r} is not valid TOML: {exc}") from None
-
-
-def parse_assignment(text: str) -> tuple[list[str], Any]:
-    """``section.key=value`` -> (["section", "key"], value), value read as TOML."""
-    if "=" not in text:
-        raise SceneError(f"--set {text!r}: expected KEY=VALUE, e.g. shaft.stiffness=5e6")
-    key, raw = text.split("=", 1)
-    path = key.strip().split(".")
-    if len(path) != 2 or not all(path):
-        raise SceneError(f"--set {text!r}: KEY must be section.key, e.g. shaft.stiffness")
-    raw = raw.strip()
-    try:
-        value = tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
-        value = raw  # a bare word: a string such as cell_type=tetrahedron
-    return path, value
-
-
-def apply_overrides(data: dict, assignments: list[str]) -> dict:
-    """Apply ``--set`` assignments to a raw scene document (a copy)."""
-    data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
-    for text in assignments:
-        (sec, key), value = parse_assignment(text)
-        data.setdefault(sec, {})
-        if not isinstance(data[sec], dict):
-            raise SceneError(f"--set {text!r}: [{sec}] is not a table")
-        data[sec][key] = value
-    return data
-
-
-def load_scene(spec: str | Path = "paper", overrides: list[str] | None = None) -> Scene:
-    """Read, override and validate a scene (file path or embedded name)."""
-    data, name = read_scene_toml(spec)
-    return scene_from_dict(apply_overrides(data, overrides or []), name=name)
-
-
-def override(scene: Scene, assignments: list[str]) -> Scene:
-    """A validated copy of ``scene`` with ``--set`` style assignments applied."""
-    data = scene.to_dict()
-    name = data.pop("name")
-    data = {k: {kk: vv for kk, vv in v.items()} if isinstance(v, dict) else v
-            for k, v in data.items()}
-    return scene_from_dict(apply_overrides(data, assignments), name=name)

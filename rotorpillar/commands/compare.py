@@ -1,0 +1,56 @@
+"""`rotorpillar compare`: several transient models on one case, against the most complete.
+
+``rotorpillar compare [SCENE] --case earthquake|runup [--models m1,m2,...]``
+(default models: modal,fem3d for the earthquake, modal,beam for the run-up).
+rotorpillar.transients.compare runs each model as `simulate` does (writing
+``simulate_<case>_<model>.{json,npz,csv,png}``) over one common duration,
+and writes ``compare_<case>.json`` and ``compare_<case>.png``.
+"""
+
+from __future__ import annotations
+
+from . import progress
+from ..scene import MODELS
+
+
+def add_arguments(p) -> None:
+    p.add_argument("--case", choices=("earthquake", "runup"), default="earthquake",
+                   help="the case compared (default: earthquake)")
+    p.add_argument("--models", default=None, metavar="M1,M2",
+                   help=f"comma-separated, among {', '.join(MODELS)}; default: modal,fem3d for the "
+                        "earthquake, modal,beam for the run-up.  The reference is the most complete "
+                        "model given: fem3d > beam > modal > paper")
+
+
+def compare_command(scene, args, timings):
+    from . import is_root_rank, out_dir
+    from ..transients.compare import compare_models, parse_models
+    case = args.case
+    models = parse_models(args.models, case)
+    provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
+    with timings("compare"):
+        res = compare_models(scene, case, models, out_dir(scene, args), provenance, progress=progress,
+                             write=is_root_rank())
+    return res.to_json(), summary(scene, res)
+
+
+def summary(scene, r) -> str:
+    lines = [f"rotorpillar compare {scene.name}: case {r.case}, reference {r.reference} "
+             f"(over {r.window['start']:g}..{r.window['end']:g} s: {r.window['why']})"]
+    for m in r.models_run:
+        p = r.per_model[m]
+        e = r.errors.get(m)
+        err = ("reference" if e is None else
+               f"tip history error {100 * e['tip_history_error']:.2f} %, peak "
+               f"{100 * (e['peak_tip_difference'] or 0):+.2f} %")
+        lines.append(f"  {m:6s} peak tip {p['peak_tip_relative']:.4g} m (relative), "
+                     f"{p['dofs']} dofs, {p['wall_seconds']:.3g} s ({r.cost_ratio[m]:.3g} x); {err}")
+        for w in p["warnings"]:
+            lines.append(f"         WARNING: {w}")
+    if r.spectrum:
+        s = r.spectrum
+        comp = f"{s['computed_peak_tip']:.4g} m" if s["computed_peak_tip"] is not None else "not run"
+        lines.append(f"  response spectrum: spectral peak tip {s['spectral_peak_tip']:.4g} m (SRSS), "
+                     f"computed (modal) {comp}")
+    lines.append(f"  chart: {r.chart}")
+    return "\n".join(lines)

@@ -1,0 +1,38 @@
+"""The scene: one structure and what to run on it, read from TOML.
+
+Rooms: :mod:`.words` (the project's word lists), :mod:`.sections` (the
+sections as frozen dataclasses), :mod:`.validation` (checks, building),
+:mod:`.files` (TOML files, embedded scenes, ``--set``); every public name is
+re-exported here.
+
+A scene file has one table per section below; every quantity is a float in
+SI units (m, kg, s, N, Pa, rad), stated once in the field's docstring.  Each
+field carries its allowed range, so validation, the one-line error message and
+the documentation all come from the same place.
+
+>>> s = load_scene("paper")
+>>> s.pillar.height, s.shaft.stiffness
+(20.0, 400000.0)
+>>> override(s, ["shaft.stiffness=5e6"]).shaft.stiffness
+5000000.0
+"""
+
+from .files import (apply_overrides, embedded_scenes, load_scene, override, parse_assignment,
+                    read_scene_toml, read_text_file)
+from .sections import (Converge, Drive, EXCITATION_KINDS, Excitation, FullOrder, Gondola, Load,
+                       MODAL_SOURCES, Mesh, Modal, ModalModel, OPTIONAL_SECTIONS, Pillar,
+                       RECORD_UNITS, REDUCTION_SOURCES, Reduction, Rotor, SECTIONS, Scene,
+                       SceneError, Shaft, Simulate, Sweep, TOP_MASSES, TOP_MODELS, param)
+from .validation import (SCENE_NAME, scene_from_dict)
+from .words import (ADAPTIVE_INTEGRATORS, CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS,
+                    FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, SHELL_CELL_TYPES)
+
+__all__ = ['ADAPTIVE_INTEGRATORS', 'CASES', 'CELL_TYPES', 'Converge', 'Drive',
+           'EXCITATION_KINDS', 'Excitation', 'FIXED_STEP_INTEGRATORS', 'FULL_ORDER_MODELS',
+           'FullOrder', 'Gondola', 'INTEGRATORS', 'Load', 'MODAL_SOURCES', 'MODELS', 'Mesh',
+           'Modal', 'ModalModel', 'OPTIONAL_SECTIONS', 'Pillar', 'RECORD_UNITS',
+           'REDUCTION_SOURCES', 'Reduction', 'Rotor', 'SCENE_NAME', 'SCIPY_METHODS',
+           'SECTIONS', 'SHELL_CELL_TYPES', 'Scene', 'SceneError', 'Shaft', 'Simulate', 'Sweep',
+           'TOP_MASSES', 'TOP_MODELS', 'apply_overrides', 'embedded_scenes', 'load_scene',
+           'override', 'param', 'parse_assignment', 'read_scene_toml', 'read_text_file',
+           'scene_from_dict']

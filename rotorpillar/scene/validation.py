@@ -1,0 +1,114 @@
+"""A parsed scene document checked field by field and as a whole, then built."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+from dataclasses import fields
+from typing import Any
+
+from .sections import OPTIONAL_SECTIONS, SECTIONS, Scene, SceneError, _range_text
+
+
+
+def _check_value(key: str, value: Any, f: dataclasses.Field) -> Any:
+    meta = f.metadata
+    want = f.type if isinstance(f.type, str) else f.type.__name__
+    if value is None:
+        if meta.get("optional"):
+            return None
+        raise SceneError(f"{key}: a value is required ({meta['doc']}; {_range_text(meta)})")
+    if "float" in want:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise SceneError(f"{key} = {value!r}: must be a number ({meta['doc']}; {_range_text(meta)})")
+        value = float(value)
+        if not math.isfinite(value):
+            raise SceneError(f"{key} = {value!r}: must be finite ({meta['doc']}; {_range_text(meta)})")
+    elif "int" in want:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise SceneError(f"{key} = {value!r}: must be an integer ({meta['doc']}; {_range_text(meta)})")
+    elif "bool" in want:
+        if not isinstance(value, bool):
+            raise SceneError(f"{key} = {value!r}: must be true or false ({meta['doc']})")
+        return value
+    elif "str" in want:
+        if not isinstance(value, str):
+            raise SceneError(f"{key} = {value!r}: must be a string ({meta['doc']}; {_range_text(meta)})")
+    if meta["choices"] is not None:
+        if value not in meta["choices"]:
+            raise SceneError(f"{key} = {value!r}: must be {_range_text(meta)} ({meta['doc']})")
+        return value
+    ok = ((meta["gt"] is None or value > meta["gt"]) and
+          (meta["ge"] is None or value >= meta["ge"]) and
+          (meta["lt"] is None or value < meta["lt"]) and
+          (meta["le"] is None or value <= meta["le"]))
+    if not ok:
+        raise SceneError(f"{key} = {value!r} is out of range: must be {_range_text(meta)} ({meta['doc']})")
+    return value
+
+
+def _build_section(name: str, cls, table: Any):
+    if not isinstance(table, dict):
+        raise SceneError(f"[{name}] must be a table of keys, got {type(table).__name__}")
+    known = {f.name: f for f in fields(cls)}
+    for key in table:
+        if key not in known:
+            raise SceneError(f"{name}.{key}: unknown key; [{name}] takes "
+                             + ", ".join(known))
+    values = {}
+    for key, f in known.items():
+        if key in table:
+            values[key] = _check_value(f"{name}.{key}", table[key], f)
+        elif f.default is dataclasses.MISSING:
+            raise SceneError(f"{name}.{key}: missing ({f.metadata['doc']}; "
+                             f"{_range_text(f.metadata)})")
+    return cls(**values)
+
+
+def _cross_checks(scene: Scene) -> None:
+    p = scene.pillar
+    if p.inner_diameter >= p.outer_diameter:
+        raise SceneError(
+            f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
+            f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)")
+    if scene.drive.slope == 0 and scene.load.coefficient == 0:
+        raise SceneError("drive.slope = 0 and load.coefficient = 0: nothing limits the speed "
+                         "(Md = Mc never holds); give drive.slope > 0 or load.coefficient > 0")
+    if 0 < scene.full_order.elements_around < 4:
+        raise SceneError(f"full_order.elements_around = {scene.full_order.elements_around} is out of "
+                         "range: must be 0 (the scene's [mesh]) or >= 4 (-)")
+    w = scene.sweep
+    if w.torque_high <= w.torque_low:
+        raise SceneError(f"sweep.torque_high = {w.torque_high:g} is out of range: must be > "
+                         f"sweep.torque_low = {w.torque_low:g} (N*m)")
+
+
+#: A scene's name becomes a directory: no separators, no "..", nothing hidden.
+SCENE_NAME = re.compile(r"(?!.*\.\.)[^./\\\x00-\x1f][^/\\\x00-\x1f]{0,99}")
+
+
+def scene_from_dict(data: dict, name: str = "scene") -> Scene:
+    """Validate a parsed TOML document and build the scene."""
+    data = dict(data)
+    description = data.pop("description", "")
+    name = data.pop("name", name)
+    if not isinstance(name, str) or not isinstance(description, str):
+        raise SceneError("name and description must be strings")
+    if not SCENE_NAME.fullmatch(name):
+        raise SceneError(f"name = {name!r}: must be 1-100 characters without '/', '\\\\', '..' or "
+                         "control characters, not starting with '.' (it names out/<name>/)")
+    for key in data:
+        if key not in SECTIONS:
+            raise SceneError(f"[{key}]: unknown section; a scene has "
+                             + ", ".join(f"[{s}]" for s in SECTIONS))
+    sections = {}
+    for sec, cls in SECTIONS.items():
+        if sec not in data:
+            if sec in OPTIONAL_SECTIONS:
+                continue
+            raise SceneError(f"[{sec}]: missing section")
+        sections[sec] = _build_section(sec, cls, data[sec])
+    scene = Scene(name=name, description=description, **sections)
+    _cross_checks(scene)
+    return scene

@@ -1,0 +1,23 @@
+"""The project's word lists, in one place: cases, models, integrators, cell types.
+
+Every module, the CLI and the report take them from here (re-exported by
+:mod:`rotorpillar.scene`), so a new case, model, integrator or cell type is
+added once.
+"""
+
+
+#: Transient cases of `rotorpillar simulate`.
+CASES = ("runup", "rundown", "sweep", "earthquake")
+#: Transient models: the paper's equation 4 as published, the pillar by its modes
+#: (the reduced-order model), and at full order the 3D tube and the 1D beam.
+MODELS = ("paper", "modal", "fem3d", "beam")
+FULL_ORDER_MODELS = ("fem3d", "beam")
+#: The compiled adaptive integrator, scipy's solve_ivp methods, and the
+#: compiled fixed-step schemes.
+ADAPTIVE_INTEGRATORS = ("dp5",)
+SCIPY_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+FIXED_STEP_INTEGRATORS = ("newmark", "hht", "generalized_alpha", "central_difference")
+INTEGRATORS = ADAPTIVE_INTEGRATORS + SCIPY_METHODS + FIXED_STEP_INTEGRATORS
+#: Cells of the 3D solid mesh, and of the shell's mid-surface mesh.
+CELL_TYPES = ("hexahedron", "tetrahedron")
+SHELL_CELL_TYPES = ("quadrilateral", "triangle")

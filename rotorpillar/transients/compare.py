@@ -1,0 +1,153 @@
+"""Several models on one transient case, against the most complete one (`rotorpillar compare`).
+
+``compare_models(scene, case, models, out)`` runs each model through the
+same path as `simulate` (``run.run_model``, ``files.write_model_files``:
+``simulate_<case>_<model>.*``), over one common duration (the shortest of
+the models' own: the 3D full order's is [full_order]'s), and writes
+``compare_<case>.json`` (``records.CompareResult``) and the chart
+``compare_<case>.png``.  Errors are of the tip's X relative to the ground,
+against the reference (fem3d > beam > modal > paper) on its output times.
+For the earthquake, ``spectrum``: the record's pseudo-acceleration spectrum
+(eqsig, 5 %), the modal model's mode periods and its spectral estimate of
+the peak tip (SRSS of Gamma_j S_d(T_j), rotorpillar.reduced.cases.spectral_estimate)
+beside the modal model's computed peak.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..provenance import write_json
+from ..scene import MODELS
+from .records import CompareResult, reference_of
+from .run import ModelRun, fem3d_plan, own_duration, run_model
+
+COMPARE_CASES = ("earthquake", "runup")
+DEFAULT_MODELS = {"earthquake": ("modal", "fem3d"), "runup": ("modal", "beam")}
+#: spectrum periods (s): log-spaced over the band of a tall pillar's modes
+SPECTRUM_PERIODS = (0.02, 10.0, 200)
+
+
+def parse_models(text: str | None, case: str) -> tuple[str, ...]:
+    """``--models m1,m2``: known, not repeated, not empty (InputError otherwise)."""
+    if case not in COMPARE_CASES:
+        raise InputError(f"--case {case!r}: compare runs {', '.join(COMPARE_CASES)}")
+    if text is None:
+        return DEFAULT_MODELS[case]
+    names = [m.strip() for m in text.split(",")]
+    if not text.strip() or any(not m for m in names):
+        raise InputError(f"--models {text!r}: give a comma-separated list of {', '.join(MODELS)}")
+    for m in names:
+        if m not in MODELS:
+            raise InputError(f"--models: unknown model {m!r}; must be among {', '.join(MODELS)}")
+    if len(set(names)) != len(names):
+        raise InputError(f"--models {text!r}: a model is named twice")
+    return tuple(names)
+
+
+def common_duration(scene, case: str, models, motion) -> tuple[float, str]:
+    """The one duration every model runs (s), and why."""
+    own = own_duration(scene, case, motion)
+    if "fem3d" not in models:
+        return own, "the case's own duration"
+    d = fem3d_plan(scene, case, motion)["duration"]
+    return d, (f"the 3D full order's duration ([full_order]); every model runs {d:g} s"
+               if d < own else "the case's own duration")
+
+
+def compare_models(scene, case: str, models, out: Path, provenance: dict, progress=None,
+                   write: bool = True) -> CompareResult:
+    """Run ``models`` on ``case`` and compare them (see the module text)."""
+    from ..reduced.models import scene_motion
+    models = tuple(models)
+    if case not in COMPARE_CASES:
+        raise InputError(f"--case {case!r}: compare runs {', '.join(COMPARE_CASES)}")
+    motion = scene_motion(scene) if case == "earthquake" else None
+    duration, why = common_duration(scene, case, models, motion)      # bad input: before any output
+    runs: dict[str, ModelRun] = {}
+    results: dict[str, dict] = {}
+    for i, m in enumerate(models):
+        if progress:
+            progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
+        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration)
+        if write:
+            from .files import write_model_files
+            results[m] = write_model_files(out, scene, run, provenance, last_run=False)
+        else:
+            results[m] = run.result
+        runs[m] = run
+        if progress:
+            progress(f"compare {case}: {m} done in {run.result['wall_seconds']:.3g} s "
+                     f"({run.result['dofs']} dofs)")
+    ref = reference_of(models)
+    per_model = {m: _per_model(case, m, results[m]) for m in models}
+    t_ref, x_ref = runs[ref].data["t"], runs[ref].data["tip_x_relative"]
+    scale = max(float(np.max(np.abs(x_ref))), 1e-300)
+    errors = {}
+    for m in models:
+        if m == ref:
+            continue
+        x = np.interp(t_ref, runs[m].data["t"], runs[m].data["tip_x_relative"])
+        pm, pr = per_model[m], per_model[ref]
+        errors[m] = {"tip_history_error": float(np.max(np.abs(x - x_ref)) / scale),
+                     "peak_tip_difference": pm["peak_tip_relative"] / pr["peak_tip_relative"] - 1
+                     if pr["peak_tip_relative"] else None,
+                     "omega_final_difference": pm["omega_final"] / pr["omega_final"] - 1
+                     if pr["omega_final"] else None}
+    walls = {m: per_model[m]["wall_seconds"] for m in models}
+    cost = {m: walls[m] / walls[ref] if walls[ref] > 0 else None for m in models}
+    chart = f"compare_{case}.png"
+    spectrum = _spectrum(scene, motion, runs) if case == "earthquake" else None
+    result = CompareResult(
+        case=case, models_run=models, reference=ref,
+        excitation=motion.sizes() if motion is not None else None, per_model=per_model,
+        errors=errors, cost_ratio=cost, chart=chart,
+        window={"start": float(t_ref[0]), "end": float(t_ref[-1]), "duration": duration, "why": why},
+        spectrum=spectrum)
+    if write:
+        from ..postprocess.compare_charts import compare_chart
+        hist = {m: (runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models}
+        compare_chart(Path(out) / chart, hist, ref,
+                      {m: e["tip_history_error"] for m, e in errors.items()}, walls,
+                      f"{scene.name}: {case}, tip relative to the ground, reference {ref}")
+        write_json(Path(out) / f"compare_{case}.json", {**provenance, **result.to_json()})
+    return result
+
+
+def _per_model(case: str, m: str, r: dict) -> dict:
+    ma = r["max_abs"]
+    return {"peak_tip_relative": ma["tip_x_relative"], "peak_tip_absolute": ma["tip_x_absolute"],
+            "peak_shaft_deflection": ma["shaft_deflection_x"], "omega_final": r["omega_final"],
+            "wall_seconds": r["wall_seconds"], "dofs": r["dofs"], "ok": r["ok"],
+            "warnings": list(r.get("warnings") or []),
+            "json": f"simulate_{case}_{m}.json", "npz": f"simulate_{case}_{m}.npz"}
+
+
+def _spectrum(scene, motion, runs: dict) -> dict:
+    """The record's spectrum, the pillar's modal periods, the ROM's spectral peak tip."""
+    from ..reduced.cases import forcing_top, spectral_estimate
+    from ..reduced.excitation import response_spectrum
+    from ..reduced.models import build_model
+    if "modal" in runs:
+        model = runs["modal"].case_result.model
+        computed = runs["modal"].result["max_abs"]["tip_x_relative"]
+    else:
+        from ..scene import override
+        beam = override(scene, ["modal_model.source=beam"])
+        model, _ = build_model(beam, "modal", scene.modal_model.band_factor
+                               * forcing_top(scene, "earthquake", motion))
+        computed = None
+    lo, hi, n = SPECTRUM_PERIODS
+    periods = np.geomspace(lo, hi, n)
+    rs = response_spectrum(motion, periods, damping=0.05)
+    est = spectral_estimate(model, motion)
+    return {"period": periods.tolist(), "psa": np.asarray(rs["s_a"]).tolist(), "damping": 0.05,
+            "mode_periods": [row["period"] for row in est["modes"]],
+            "spectral_peak_tip": est["srss_tip_estimate"], "computed_peak_tip": computed,
+            "modes": est["modes"],
+            "note": "psa at 5 % damping (eqsig); the spectral estimate takes each mode's own damping "
+                    "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
+                    "as a separate mass: an estimate, not a bound"}
