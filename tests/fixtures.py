@@ -268,12 +268,16 @@ def write_comparison_fixture(out: str | Path, case: str, models=("modal", "fem3d
     doc = {"case": case, "models_run": list(models), "reference": reference, "excitation": excitation,
            "per_model": per, "errors": errors,
            "cost_ratio": {m: wall[m] / wall[reference] for m in models},
-           "chart": f"compare_{case}.png", "note": "synthetic fixture, not a comparison"}
+           "chart": f"compare_{case}.png", "note": "synthetic fixture, not a comparison",
+           "window": {"start": 0.0, "end": float(r["t"][-1]), "duration": float(r["t"][-1]),
+                      "why": "the case's own duration"}}
     if case == "earthquake" and spectrum:
         T = np.logspace(-1.5, 1.0, 80)
         doc["spectrum"] = {"period": T.tolist(),
                            "psa": (9.80665 * 0.3 * (1 + 1.5 * np.exp(-np.log(T / 0.4) ** 2))).tolist(),
                            "damping": 0.05, "mode_periods": [2 * math.pi / 15.36, 2 * math.pi / 96.0],
-                           "spectral_peak_tip": 0.0042, "computed_peak_tip": per.get("modal", per[reference])["peak_tip_relative"]}
+                           "spectral_peak_tip": 0.0042,
+                           "computed_peak_tip": per.get("modal", per[reference])["peak_tip_relative"],
+                           "note": "synthetic spectrum: an estimate, not a bound"}
     write_json(out / f"compare_{case}.json", doc)
     return doc

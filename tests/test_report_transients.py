@@ -161,6 +161,8 @@ def test_the_full_order_runs_and_their_warnings_are_stated(page):
     eq = section(page["text"], "earthquake")
     assert "synthetic fem3d: coarsened for the fixture" in eq
     assert "fem3d: synthetic warning &lt;one line&gt;" in eq
+    w = page["compare"]["earthquake"]["window"]
+    assert f"Every model ran over t = {w['start']:g} .. {w['end']:g} s ({w['why']})." in plain_text(eq)
     runs = section(page["text"], "runs")
     assert "<h4>Run-up: the reduced model against a full-order model</h4>" in runs
     assert "synthetic beam: coarsened for the fixture" in runs
@@ -175,6 +177,7 @@ def test_the_spectrum_shows_the_modes_and_the_rom_estimate(page):
     # 4 significant digits
     assert float(m.group(1)) == pytest.approx(spec["spectral_peak_tip"], rel=FOUR_DIGITS)
     assert float(m.group(2)) == pytest.approx(spec["computed_peak_tip"], rel=FOUR_DIGITS)
+    assert "synthetic spectrum: an estimate, not a bound" in part
     periods = [t for h_, rows in tables(part) if h_[:2] == ["mode", "period T_j (s)"] for t in rows]
     assert [float(r[1]) for r in periods] == pytest.approx(spec["mode_periods"], rel=FOUR_DIGITS)
 

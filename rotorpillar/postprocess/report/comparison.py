@@ -129,6 +129,11 @@ def comparison_block(build: Build, case: str) -> list[str]:
     ex = excitation_text(doc.get("excitation"))
     if ex:
         parts.append(h.tag("p", ex))
+    w = doc.get("window")
+    if isinstance(w, dict) and w.get("end") is not None:
+        parts.append(h.tag("p", f"Every model ran over t = {h.num(w.get('start'), 4)} .. "
+                                f"{h.num(w['end'], 4)} s" + (f" ({w['why']})" if w.get("why") else "")
+                                + ".", class_="meta"))
     theirs = _claim_figures(build, case, models)
     parts += failure(build, f"comparison_{case}")
     if f"comparison_{case}" in build.products:
@@ -173,7 +178,9 @@ def spectrum_block(build: Build) -> list[str]:
             f"{h.num(est, 4)} m, beside the peak it computes: {h.num(num, 4)} m")
     if isinstance(est, (int, float)) and isinstance(num, (int, float)) and est > 0:
         text += f" (computed / estimate = {h.num(num / est, 3)})"
-    parts.append(h.tag("p", text + ": a check of the order of the peak, not a bound."))
+    parts.append(h.tag("p", text + "."))
+    if isinstance(spec.get("note"), str):
+        parts.append(h.tag("p", spec["note"], class_="meta"))
     periods = spec.get("mode_periods") or []
     if periods:
         parts.append(h.table(["mode", "period T_j (s)", "frequency (Hz)"],
