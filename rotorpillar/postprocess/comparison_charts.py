@@ -63,8 +63,9 @@ def spectrum_chart(path, period, psa, mode_periods=(), damping: float | None = N
     top = float(np.max(S[ok])) if ok.any() else 1.0
     for j, Tj in enumerate(mode_periods, start=1):
         ax.axvline(Tj, color=COLOURS["unstable"], lw=0.9, ls="--")
-        ax.text(Tj, top * (0.97 - 0.07 * ((j - 1) % 3)), f" mode {j}\n T = {Tj:.3g} s",
-                fontsize=8, va="top", color=COLOURS["unstable"])
+        ax.text(Tj, top * (1.0 - 0.12 * ((j - 1) % 3)), f"mode {j}\nT = {Tj:.3g} s",
+                fontsize=8, va="top", ha="left", color=COLOURS["unstable"],
+                bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="none", alpha=0.85))
     ax.set_xscale("log")
     ax.set_xlabel("period T [s]")
     ax.set_ylabel("pseudo-acceleration [g]")

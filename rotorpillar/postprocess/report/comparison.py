@@ -153,10 +153,10 @@ def comparison_block(build: Build, case: str) -> list[str]:
     warns = [h.tag("li", f"{m}: {w}") for m in models for w in (per.get(m) or {}).get("warnings") or []]
     if warns:
         parts.append(h.tag("ul", warns, class_="warn"))
-    own = [p for p in theirs if p.path.name != f"compare_{case}.png"]
+    own = [(m, p) for m in models for p in theirs if p.path.name == f"simulate_{case}_{m}.png"]
     if own:
         parts.append(h.details(f"each model's own chart ({len(own)})",
-                               "".join(h.image(p.path, p.caption) for p in own)))
+                               "".join(h.image(p.path, f"{m}: {p.caption}") for m, p in own)))
     return parts
 
 

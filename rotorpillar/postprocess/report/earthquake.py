@@ -87,6 +87,17 @@ def _warnings(meta: dict, name: str) -> list[str]:
             h.tag("ul", [h.tag("li", str(x)) for x in w], class_="warn")]
 
 
+def _simulate_charts(build: Build, model: str | None):
+    """simulate's own PNG of the paper's case (simulate_earthquake_<model>.png,
+    else simulate_earthquake.png), taken out of the earthquake group with its
+    copy: one picture of one run."""
+    names = ["simulate_earthquake.png"] + ([f"simulate_earthquake_{model}.png"] if model else [])
+    found = {p.path.name: p for p in build.products.get("external", []) if p.path.name in names}
+    for p in found.values():
+        p.group = "used"
+    return found.get(names[-1]) or found.get(names[0])
+
+
 def paper_case(build: Build) -> list[str]:
     """The paper's pulse on equation 4 as published (``simulate --case earthquake``)."""
     sim = build.quake_case
@@ -107,8 +118,14 @@ def paper_case(build: Build) -> list[str]:
         parts += _flaw(build)
     parts += _warnings(meta, name)
     parts += failure(build, "earthquake_chart")
+    theirs = _simulate_charts(build, meta.get("model"))
     if "earthquake_chart" in build.products:
         parts.append(product_image(build, "earthquake_chart"))
+        if theirs:      # simulate's own chart: the same run, in its own frame
+            parts.append(h.details("simulate's own chart of this run",
+                                   h.image(theirs.path, theirs.caption)))
+    elif theirs:
+        parts.append(h.image(theirs.path, theirs.caption))
     parts += figures_of(build, "earthquake")
     parts += failure(build, "animation_earthquake")
     parts += video(build, "animation_earthquake")
