@@ -3,8 +3,10 @@
 - :func:`cli` runs ``python -m rotorpillar ARGS...`` in a child process, as a
   user would, and returns the CompletedProcess (text stdout and stderr).
 - ``run_paper`` (session fixture): one ``rotorpillar run paper --skip
-  converge`` into a temporary directory, shared by every test that checks
-  what the main job writes, instead of one run each.
+  converge --skip compare`` into a temporary directory, shared by every test
+  that checks what the main job writes, instead of one run each (the
+  comparisons run the 3D full order: tests/test_run_compare.py runs that
+  stage alone).
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.Comple
 
 
 class RunOutput:
-    """The finished ``run paper --skip converge``: its directory and process."""
+    """The finished ``run paper --skip converge --skip compare``: its directory and process."""
 
     def __init__(self, out: Path, process: subprocess.CompletedProcess):
         self.out, self.process = out, process
@@ -36,6 +38,6 @@ class RunOutput:
 @pytest.fixture(scope="session")
 def run_paper(tmp_path_factory) -> RunOutput:
     out = tmp_path_factory.mktemp("run_paper")
-    p = cli("run", "paper", "--out", out, "--skip", "converge")
+    p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare")
     assert p.returncode == 0, p.stderr
     return RunOutput(out, p)

@@ -149,20 +149,135 @@ def simulation_arrays(case: str, omega1: float = 15.36, duration: float | None =
             "modal_coordinates": modal}
 
 
-def write_simulation_fixture(out: str | Path, case: str, modal: bool = True, **kw) -> dict:
-    """``simulate_<case>.json`` and ``.npz`` in ``out``; returns the JSON."""
+def write_simulation_fixture(out: str | Path, case: str, modal: bool = True, per_model: bool = False,
+                             warnings: list | None = None, **kw) -> dict:
+    """``simulate_<case>.json`` and ``.npz`` in ``out`` (with ``per_model``,
+    the model's own ``simulate_<case>_<model>.*``); returns the JSON.  The
+    earthquake carries the excitation block of the paper's pulse (its sizes
+    from the pulse's law) and, when given, ``warnings``."""
     out = Path(out)
     arrays = simulation_arrays(case, **kw)
     if not modal:
         arrays.pop("modal_coordinates")
-    with atomic_path(out / f"simulate_{case}.npz") as tmp:
-        with open(tmp, "wb") as fh:
-            np.savez(fh, **arrays)
-    doc = {"case": case, "model": "modal" if modal else "paper",
+    model = "modal" if modal else "paper"
+    stem = f"simulate_{case}" + (f"_{model}" if per_model else "")
+    _save_npz(out / f"{stem}.npz", arrays)
+    doc = {"case": case, "model": model,
            "omega_final": float(arrays["Omega"][-1]),
            "max_abs": {k: float(np.max(np.abs(arrays[k]))) for k in ("tip_x", "rotor_x", "rotor_y")},
            "jumps": [], "captured_at": None, "energy_balance_error": 1.2e-5,
            "integrator": {"method": "synthetic", "steps": int(len(arrays["t"]))},
+           "tip_x_frame": "absolute",    # simulation_arrays: tip_x = ground + relative
            "note": "synthetic fixture, not a simulation"}
-    write_json(out / f"simulate_{case}.json", doc)
+    if case == "earthquake":
+        A, w, start = _G / np.pi, np.pi, 5.0
+        doc["excitation"] = {"kind": "pulse", "amplitude": A, "frequency": w, "start": start,
+                             "end": 12.0, "displacement_step_at_start": A * (math.cos(w * start) - 1),
+                             "peak_acceleration_g": A * w * w / 9.80665, "realistic": False,
+                             "statement": "The paper's pulse as written (synthetic fixture)."}
+    if warnings is not None:
+        doc["warnings"] = list(warnings)
+    write_json(out / f"{stem}.json", doc)
+    return doc
+
+
+def _save_npz(path: Path, arrays: dict) -> None:
+    with atomic_path(path) as tmp:
+        with open(tmp, "wb") as fh:
+            np.savez(fh, **arrays)
+
+
+def model_arrays(case: str, model: str, n: int = 1200, omega1: float = 15.36) -> dict[str, np.ndarray]:
+    """Arrays shaped like ``simulate_<case>_<model>.npz`` (the columns of the
+    compare contract): the model's tip relative to the ground is the modal
+    one's, scaled and slightly shifted in phase per model, on its own time grid
+    (the full-order models store more samples)."""
+    scale, lag, samples = {"modal": (1.0, 0.0, n), "fem3d": (1.02, 0.002, n + 301),
+                           "beam": (0.99, 0.003, n + 157), "paper": (1.4, 0.05, n)}[model]
+    t = np.linspace(0.0, 20.0 if case == "earthquake" else 40.0, samples)
+    if case == "earthquake":
+        # a decaying burst standing in for a record: decimetres of ground, ~0.3 g
+        ground = 0.12 * np.sin(2.0 * t) * np.exp(-0.2 * t) * (t >= 2.0)
+        rel = 0.004 * scale * np.sin(omega1 * (t - lag)) * np.exp(-0.1 * np.clip(t - 2, 0, None)) * (t >= 2)
+        Omega = np.full_like(t, 2.2 * omega1)
+    else:
+        ground = np.zeros_like(t)
+        Omega = 3.0 * omega1 * (1 - np.exp(-t / 14.0))
+        z = Omega / omega1
+        rel = 0.002 * scale / np.sqrt((1 - z) ** 2 + 0.05 ** 2) * np.cos(np.cumsum(Omega) * (t[1] - t[0]) - lag)
+    phase = np.cumsum(Omega) * (t[1] - t[0])
+    shaft = 0.002 * scale * np.cos(phase)
+    rotor_x = rel + ground + shaft + 0.002 * np.cos(phase)
+    return {"t": t, "Omega": Omega, "tip_x_relative": rel, "tip_x_absolute": rel + ground,
+            "tip_x": rel if model != "paper" else rel + ground, "ground_x": ground,
+            "ground_acceleration": np.gradient(np.gradient(ground, t), t),
+            "rotor_x": rotor_x, "rotor_y": 0.002 * np.sin(phase), "shaft_deflection_x": shaft}
+
+
+def write_comparison_fixture(out: str | Path, case: str, models=("modal", "fem3d"),
+                             reference: str | None = None, spectrum: bool = True,
+                             warnings: dict | None = None, n: int = 1200) -> dict:
+    """``compare_<case>.json`` and each model's ``simulate_<case>_<model>.{json,npz}``
+    in ``out``, as the compare contract (tests/../COMPARE_SPEC) shapes them;
+    the errors and peaks are computed here from the arrays written.  Returns
+    the compare document."""
+    out = Path(out)
+    order = ("fem3d", "beam", "modal", "paper")
+    reference = reference or min(models, key=order.index)
+    arrays = {m: model_arrays(case, m, n) for m in models}
+    dofs = {"modal": 6, "fem3d": 41_322, "beam": 486, "paper": 3}
+    wall = {"modal": 0.8, "fem3d": 41.5, "beam": 3.2, "paper": 0.4}
+    warnings = warnings or {}
+    per, errors = {}, {}
+    excitation = ({"kind": "record", "name": "synthetic burst", "source": "tests/fixtures.py",
+                   "start": 2.0, "peak_acceleration_g": 0.31, "peak_velocity": 0.33,
+                   "peak_displacement": 0.12, "realistic": True}
+                  if case == "earthquake" else {"kind": "none"})
+    for m in models:
+        a = arrays[m]
+        _save_npz(out / f"simulate_{case}_{m}.npz", a)
+        meta = {"model": m, "case": case, "ok": True, "warnings": list(warnings.get(m, [])),
+                "max_abs": {k: float(np.max(np.abs(a[k])))
+                            for k in ("tip_x_relative", "tip_x_absolute", "tip_x", "rotor_x", "rotor_y")},
+                "omega_final": float(a["Omega"][-1]), "captured_at": None,
+                "energy_balance": {"relative_error": 2e-5}, "integrator": {"method": "synthetic"},
+                "dofs": dofs[m], "wall_seconds": wall[m], "excitation": excitation,
+                "tip_x_frame": "absolute" if m == "paper" else "relative_to_ground",
+                "note": "synthetic fixture, not a simulation"}
+        if m in ("fem3d", "beam"):
+            meta["full_order"] = {"mesh" if m == "fem3d" else "elements":
+                                  "12 x 24 x 1 quadratic hexahedra" if m == "fem3d" else 40,
+                                  "duration": float(a["t"][-1]), "time_step": 2e-3,
+                                  "note": f"synthetic {m}: coarsened for the fixture"}
+        write_json(out / f"simulate_{case}_{m}.json", meta)
+        per[m] = {"peak_tip_relative": meta["max_abs"]["tip_x_relative"],
+                  "peak_tip_absolute": meta["max_abs"]["tip_x_absolute"],
+                  "peak_shaft_deflection": float(np.max(np.abs(a["shaft_deflection_x"]))),
+                  "omega_final": meta["omega_final"], "wall_seconds": wall[m], "dofs": dofs[m],
+                  "ok": True, "warnings": meta["warnings"],
+                  "json": f"simulate_{case}_{m}.json", "npz": f"simulate_{case}_{m}.npz"}
+    r = arrays[reference]
+    for m in models:
+        if m == reference:
+            continue
+        y = np.interp(r["t"], arrays[m]["t"], arrays[m]["tip_x_relative"])
+        errors[m] = {"tip_history_error": float(np.max(np.abs(y - r["tip_x_relative"]))
+                                                / np.max(np.abs(r["tip_x_relative"]))),
+                     "peak_tip_difference": per[m]["peak_tip_relative"] / per[reference]["peak_tip_relative"] - 1,
+                     "omega_final_difference": per[m]["omega_final"] / per[reference]["omega_final"] - 1}
+    doc = {"case": case, "models_run": list(models), "reference": reference, "excitation": excitation,
+           "per_model": per, "errors": errors,
+           "cost_ratio": {m: wall[m] / wall[reference] for m in models},
+           "chart": f"compare_{case}.png", "note": "synthetic fixture, not a comparison",
+           "window": {"start": 0.0, "end": float(r["t"][-1]), "duration": float(r["t"][-1]),
+                      "why": "the case's own duration"}}
+    if case == "earthquake" and spectrum:
+        T = np.logspace(-1.5, 1.0, 80)
+        doc["spectrum"] = {"period": T.tolist(),
+                           "psa": (9.80665 * 0.3 * (1 + 1.5 * np.exp(-np.log(T / 0.4) ** 2))).tolist(),
+                           "damping": 0.05, "mode_periods": [2 * math.pi / 15.36, 2 * math.pi / 96.0],
+                           "spectral_peak_tip": 0.0042,
+                           "computed_peak_tip": per.get("modal", per[reference])["peak_tip_relative"],
+                           "note": "synthetic spectrum: an estimate, not a bound"}
+    write_json(out / f"compare_{case}.json", doc)
     return doc

@@ -66,9 +66,13 @@ def test_run_writes_every_stage(run_paper):
     for name, stage in doc["stages"].items():
         assert (run_paper.out / f"{name}.json").exists()
     assert (run_paper.out / "analyze.json").exists()
+    # run_paper skips converge and compare; every other stage ran
+    assert not any(k.startswith(("compare", "converge")) for k in doc["stages"])
+    assert {"simulate_runup", "simulate_earthquake", "modal", "report"} <= set(doc["stages"])
 
 
 def test_run_refuses_an_unknown_stage_to_skip(tmp_path):
     p = cli("run", "paper", "--out", tmp_path, "--skip", "lunch")
     assert p.returncode == 2 and "--skip lunch" in p.stderr and "converge" in p.stderr
+    assert "compare" in p.stderr
     assert not tmp_path.exists() or not list(tmp_path.iterdir())

@@ -28,9 +28,12 @@ def compare_command(scene, args, timings):
     case = args.case
     models = parse_models(args.models, case)
     provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
+    from ..postprocess.comparison_charts import comparison_chart
+    from ..postprocess.transient_charts import model_run_charts
     with timings("compare"):
         res = compare_models(scene, case, models, out_dir(scene, args), provenance, progress=progress,
-                             write=is_root_rank())
+                             write=is_root_rank(), run_charts=model_run_charts,
+                             compare_chart=comparison_chart)
     return res.to_json(), summary(scene, res)
 
 

@@ -49,6 +49,7 @@ def simulate_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..errors import InputError
     from ..reduced.models import scene_motion
+    from ..postprocess.transient_charts import model_run_charts
     from ..transients.files import write_model_files
     from ..transients.run import fem3d_plan, run_model
     case = getattr(args, "case", None) or scene.simulate.case
@@ -67,7 +68,8 @@ def simulate_command(scene, args, timings):
     if is_root_rank():
         with timings("write"):
             provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
-            result = write_model_files(out_dir(scene, args), scene, run, provenance, dict(timings))
+            result = write_model_files(out_dir(scene, args), scene, run, provenance, dict(timings),
+                                       charts=model_run_charts)
     return result, summary(scene, result)
 
 

@@ -8,11 +8,13 @@ beyond evaluating the closed forms those results already carry.
 
 - :mod:`.offscreen`   pyvista without a display (EGL or OSMesa)
 - :mod:`.style`       the one chart style: figure creation, colours, atomic PNG writes
-- :mod:`.inputs`      reading analyze/modal/simulate/convergence results (one reader each), mode-shape VTUs
+- :mod:`.inputs`      reading analyze/modal/simulate/compare/convergence results (one reader each), mode-shape VTUs
 - :mod:`.modeshapes`  one PNG per mode and a contact sheet
 - :mod:`.animation`   run-up and earthquake animations (MP4, GIF fallback)
 - :mod:`.charts`      drive/resistance curves (Figs. 3-4), a(z)
 - :mod:`.transient_charts` run-up, earthquake, sweep and integrator charts
+- :mod:`.comparisons` compare_<case>.json and its runs; the comparisons `run` makes
+- :mod:`.comparison_charts` models of one case overlaid with their differences; a record's response spectrum
 - :mod:`.html`        the report page: escaped text, embedded images, no external resource
 - :mod:`.report`      `rotorpillar report`: every figure that its inputs allow, then the page
 - :mod:`.convergence_charts` error against DOFs and against wall time (`rotorpillar converge`)

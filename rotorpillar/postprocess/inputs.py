@@ -15,6 +15,17 @@ Contracts (field names are the writers'; we read, never write, them):
   ``rotor_x``, ``rotor_y``, ``ground_x`` and, for the modal model,
   ``modal_coordinates`` (n_t x k: pillar-tip displacement of each of the
   first k bending modes of ``modes_top.vtu``).
+  Per model also ``simulate_<case>_<model>.json`` / ``.npz`` (``model``,
+  ``warnings``, ``dofs``, ``wall_seconds``, ``full_order`` for fem3d/beam;
+  arrays ``tip_x_relative``, ``tip_x_absolute``, ``shaft_deflection_x``).
+- ``compare_<case>.json`` (`rotorpillar compare`): ``models_run``,
+  ``reference``, ``excitation``, ``per_model.<model>`` {peak_tip_relative,
+  peak_tip_absolute, peak_shaft_deflection, omega_final, wall_seconds, dofs,
+  ok, warnings, json, npz}, ``errors.<model>`` {tip_history_error,
+  peak_tip_difference, omega_final_difference}, ``cost_ratio.<model>``,
+  ``chart``, and for the earthquake ``spectrum`` {period, psa (m/s**2),
+  mode_periods, spectral_peak_tip, computed_peak_tip}: read by
+  :func:`rotorpillar.postprocess.comparisons.read_comparison`.
 - ``convergence.json`` (`rotorpillar converge`), ``integrators.json``.
 - Any PNG in ``out/<scene>/`` (or a direct subfolder) is embedded in the
   report, in the section its file name suggests
@@ -55,8 +66,6 @@ INPUTS = {
     "integrators": ("integrators.json", "integrators"),
 }
 SIMULATE_COMMAND = "simulate"
-
-
 def not_computed(command: str, scene_arg: str) -> str:
     """The sentence every section shows when its input is missing.
 
@@ -399,11 +408,13 @@ class Simulation:
         return None if a is None else np.asarray(a, dtype=float)
 
 
-def read_simulation(out: str | Path, case: str) -> Simulation | None:
-    """``simulate_<case>.json`` and ``.npz`` (either may be missing)."""
+def read_simulation(out: str | Path, case: str, model: str | None = None) -> Simulation | None:
+    """``simulate_<case>.json`` and ``.npz`` (either may be missing); with
+    ``model``, that model's own ``simulate_<case>_<model>.*``."""
     out = Path(out)
-    meta = read_case(out / f"simulate_{case}.json")
-    arrays = read_npz(out / f"simulate_{case}.npz")
+    stem = f"simulate_{case}" + (f"_{model}" if model else "")
+    meta = read_case(out / f"{stem}.json")
+    arrays = read_npz(out / f"{stem}.npz")
     if meta is None and arrays is None:
         return None
     return Simulation(case, meta or {}, arrays or {})

@@ -202,3 +202,49 @@ def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: st
     ax[2].grid(alpha=0.3, axis="x")
     fig.suptitle(title)
     return save(fig, path)
+
+
+def model_run_charts(out: Path, scene, run, stem: str) -> list[dict]:
+    """A transient run's charts (a ``rotorpillar.transients.run.ModelRun``): the
+    earthquake's histories, the run-up's or run-down's speed and tip envelope,
+    the sweep's curves; returns [{file, caption}]."""
+    data, case, name = run.data, run.case, run.model
+    frame = run.result["tip_x_frame"].replace("_", " ")
+    title = f"{scene.name}: {case}, {name} model"
+    path = out / f"{stem}.png"
+    if case == "earthquake":
+        earthquake_chart(path, data["t"], data["ground_acceleration"], data["tip_x"], data["rotor_x"],
+                            data["Omega"], title, frame=frame)
+        return [{"file": path.name, "caption": f"Earthquake on the {name} model: ground acceleration, "
+                                                f"tip and rotor X ({frame}), rotor speed."}]
+    resonances = [(f"omega_{r.index} ({r.direction})", r.omega) for r in run.resonances
+                  if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)]
+    extra = []
+    pt = run.result.get("passing_torque") or {}
+    if pt.get("bracket_series"):
+        bs = pt["bracket_series"]
+        for row, W, pk, f in zip(pt["bracket_runs"], bs["Omega"], bs["tip_peak"], (0.95, 1.05)):
+            extra.append((f"M0 = {row['torque_at_zero']:.0f} N*m ({f:g} x the predicted "
+                          f"{pt['predicted']:.0f})", bs["t"], W, pk))
+    tip_peak = data["peak"][:, -1] if data["peak"].ndim == 2 else np.abs(data["tip_x"])
+    runup_chart(path, data["t"], data["Omega"], tip_peak, resonances, title, extra,
+                   label=f"M0 = {scene.drive.torque_at_zero:g} N*m (the scene's motor)"
+                   if case == "runup" else "this run")
+    caption = {"runup": "Run-up from rest: rotor speed and tip envelope" + (
+                        " (dashed: motors 5 % below and above the torque the analysis says is "
+                        "needed to pass)." if extra else "."),
+               "rundown": "Run-down from the operating speed: rotor speed and tip envelope.",
+               "sweep": "Quasi-static sweep of M0 up and down: rotor speed and tip envelope."}[case]
+    figs = [{"file": path.name, "caption": caption}]
+    if case == "sweep" and run.case_result is not None:
+        ex = run.case_result.extra
+        labels = [(f"{r.direction}{r.index}", r.omega, r.direction) for r in run.resonances]
+        labels.sort(key=lambda L: -max((a["numeric_peak"] for a in ex["amplitudes"]
+                                        if f"{a['direction']}{a['index']}" == L[0]), default=0.0))
+        p2 = out / f"{stem}_az.png".replace(f"_{name}_az", f"_az_{name}")
+        sweep_chart(p2, ex["up"], ex["down"], ex["curves"], labels, ex["numeric_jumps"],
+                       ex["predicted_jumps"], f"{scene.name}: quasi-static sweep against Eq. 19-23")
+        figs.append({"file": p2.name, "caption": "Quasi-static sweep against the averaging theory: "
+                                                 "stationary curve M0(Omega) with the jumps (left), "
+                                                 "amplitude against z = Omega/omega_i (right)."})
+    return figs

@@ -59,8 +59,14 @@ def common_duration(scene, case: str, models, motion) -> tuple[float, str]:
 
 
 def compare_models(scene, case: str, models, out: Path, provenance: dict, progress=None,
-                   write: bool = True) -> CompareResult:
-    """Run ``models`` on ``case`` and compare them (see the module text)."""
+                   write: bool = True, run_charts=None, compare_chart=None) -> CompareResult:
+    """Run ``models`` on ``case`` and compare them (see the module text).
+
+    ``run_charts`` draws each model's figures (see ``files.write_model_files``);
+    ``compare_chart(path, series, reference, title, errors=..., walls=...)``
+    the overlay (``rotorpillar.postprocess.comparison_charts.comparison_chart``);
+    both are handed in by the command, since drawing lives above this layer.
+    """
     from ..reduced.models import scene_motion
     models = tuple(models)
     if case not in COMPARE_CASES:
@@ -75,7 +81,8 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
         run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration)
         if write:
             from .files import write_model_files
-            results[m] = write_model_files(out, scene, run, provenance, last_run=False)
+            results[m] = write_model_files(out, scene, run, provenance, last_run=False,
+                                           charts=run_charts)
         else:
             results[m] = run.result
         runs[m] = run
@@ -108,11 +115,12 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
         window={"start": float(t_ref[0]), "end": float(t_ref[-1]), "duration": duration, "why": why},
         spectrum=spectrum)
     if write:
-        from ..postprocess.compare_charts import compare_chart
-        hist = {m: (runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models}
-        compare_chart(Path(out) / chart, hist, ref,
-                      {m: e["tip_history_error"] for m, e in errors.items()}, walls,
-                      f"{scene.name}: {case}, tip relative to the ground, reference {ref}")
+        if compare_chart is not None:
+            series = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
+            compare_chart(Path(out) / chart, series, ref,
+                          f"{scene.name}: {case}, tip relative to the ground, reference {ref}",
+                          errors={m: e["tip_history_error"] for m, e in errors.items()},
+                          walls=walls)
         write_json(Path(out) / f"compare_{case}.json", {**provenance, **result.to_json()})
     return result
 

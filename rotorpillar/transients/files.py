@@ -27,14 +27,19 @@ def model_stem(case: str, model: str) -> str:
 
 
 def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings: dict | None = None,
-                      last_run: bool = True) -> dict:
+                      last_run: bool = True, charts=None) -> dict:
     """Write the model's files (and with ``last_run`` the ``simulate_<case>.*`` copies);
     returns the result dict with ``files`` and ``figures`` (those of the generic names
-    when ``last_run``, else the model's) and ``model_files``."""
+    when ``last_run``, else the model's) and ``model_files``.
+
+    ``charts(out, scene, run, stem) -> [{file, caption}]`` draws the run's
+    figures (``rotorpillar.postprocess.transient_charts.model_run_charts``;
+    handed in, since drawing lives above this layer); None draws none.
+    """
     out = Path(out)
     stem = model_stem(run.case, run.model)
     files = {"npz": _write_npz(out / f"{stem}.npz", run), "csv": _write_csv(out / f"{stem}.csv", run)}
-    figures = charts(out, scene, run, stem)
+    figures = charts(out, scene, run, stem) if charts is not None else []
     model_files = {k: Path(v).name for k, v in files.items()}
     model_files["json"] = f"{stem}.json"
     model_files["figures"] = [f["file"] for f in figures]
@@ -94,49 +99,3 @@ def _write_csv(path: Path, run: ModelRun) -> Path:
               "absolute; shaft_deflection_x = rotor X - tip X - e cos(theta)\n" + ",".join(cols))
     text = header + "\n" + "\n".join(",".join(f"{x:.10g}" for x in row) for row in np.column_stack(block))
     return write_text(path, text + "\n")
-
-
-def charts(out: Path, scene, run: ModelRun, stem: str) -> list[dict]:
-    """The model's charts: the earthquake's histories, the run-up's or run-down's
-    speed and tip envelope, the sweep's curves."""
-    from ..postprocess import transient_charts as tc
-    data, case, name = run.data, run.case, run.model
-    frame = run.result["tip_x_frame"].replace("_", " ")
-    title = f"{scene.name}: {case}, {name} model"
-    path = out / f"{stem}.png"
-    if case == "earthquake":
-        tc.earthquake_chart(path, data["t"], data["ground_acceleration"], data["tip_x"], data["rotor_x"],
-                            data["Omega"], title, frame=frame)
-        return [{"file": path.name, "caption": f"Earthquake on the {name} model: ground acceleration, "
-                                                f"tip and rotor X ({frame}), rotor speed."}]
-    resonances = [(f"omega_{r.index} ({r.direction})", r.omega) for r in run.resonances
-                  if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)]
-    extra = []
-    pt = run.result.get("passing_torque") or {}
-    if pt.get("bracket_series"):
-        bs = pt["bracket_series"]
-        for row, W, pk, f in zip(pt["bracket_runs"], bs["Omega"], bs["tip_peak"], (0.95, 1.05)):
-            extra.append((f"M0 = {row['torque_at_zero']:.0f} N*m ({f:g} x the predicted "
-                          f"{pt['predicted']:.0f})", bs["t"], W, pk))
-    tip_peak = data["peak"][:, -1] if data["peak"].ndim == 2 else np.abs(data["tip_x"])
-    tc.runup_chart(path, data["t"], data["Omega"], tip_peak, resonances, title, extra,
-                   label=f"M0 = {scene.drive.torque_at_zero:g} N*m (the scene's motor)"
-                   if case == "runup" else "this run")
-    caption = {"runup": "Run-up from rest: rotor speed and tip envelope" + (
-                        " (dashed: motors 5 % below and above the torque the analysis says is "
-                        "needed to pass)." if extra else "."),
-               "rundown": "Run-down from the operating speed: rotor speed and tip envelope.",
-               "sweep": "Quasi-static sweep of M0 up and down: rotor speed and tip envelope."}[case]
-    figs = [{"file": path.name, "caption": caption}]
-    if case == "sweep" and run.case_result is not None:
-        ex = run.case_result.extra
-        labels = [(f"{r.direction}{r.index}", r.omega, r.direction) for r in run.resonances]
-        labels.sort(key=lambda L: -max((a["numeric_peak"] for a in ex["amplitudes"]
-                                        if f"{a['direction']}{a['index']}" == L[0]), default=0.0))
-        p2 = out / f"{stem}_az.png".replace(f"_{name}_az", f"_az_{name}")
-        tc.sweep_chart(p2, ex["up"], ex["down"], ex["curves"], labels, ex["numeric_jumps"],
-                       ex["predicted_jumps"], f"{scene.name}: quasi-static sweep against Eq. 19-23")
-        figs.append({"file": p2.name, "caption": "Quasi-static sweep against the averaging theory: "
-                                                 "stationary curve M0(Omega) with the jumps (left), "
-                                                 "amplitude against z = Omega/omega_i (right)."})
-    return figs

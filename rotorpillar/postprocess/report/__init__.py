@@ -8,7 +8,8 @@
 - :mod:`.summary`     the findings
 - :mod:`.modal`       the scene, the modal validation, the paper's numbers
 - :mod:`.runs`        the passage through resonance and the transient runs
-- :mod:`.earthquake`  the earthquake run
+- :mod:`.comparison`  the models of one case side by side (compare_<case>.json), the record's spectrum
+- :mod:`.earthquake`  a real record on the ROM and the 3D full order first, then the paper's case
 - :mod:`.convergence` the convergence study's choice and the integrators
 - :mod:`.provenance`  other figures; versions, machine and timings
 """

@@ -6,7 +6,9 @@ shapes, animations: :mod:`.render`), embeds the PNGs the other chart modules
 wrote there (:mod:`.figures`), and writes ``report.html``: the scene, the
 modal validation (the paper's equation 1 against the 3D model, the
 reduction, Table 1 and every number the paper prints, flagged), the
-averaging analysis, the runs, the earthquake, the model choice, and the
+averaging analysis, the runs (the run-up's ROM against a full-order model),
+the earthquake (a real record on the ROM and the 3D full order, then the
+paper's case), the model choice, and the
 versions and timings, one module per group of sections.  A section whose
 input is missing says which command produces it; a figure that fails to
 render says why, and the rest of the report is still written.  Returns what
@@ -23,6 +25,7 @@ from types import SimpleNamespace
 
 from ...provenance import write_text
 from .. import html as h
+from ..comparisons import COMPARISONS, read_comparison
 from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_convergence, read_json,
                       read_modal, read_simulation)
 from .convergence import section_convergence
@@ -30,7 +33,7 @@ from .earthquake import section_earthquake
 from .figures import external_figures, figure_group
 from .modal import section_modal, section_paper, section_scene
 from .provenance import section_other, section_provenance
-from .render import mode_sets, render_animations, render_charts, render_modes
+from .render import mode_sets, render_animations, render_charts, render_comparisons, render_modes
 from .runs import section_averaging, section_runs
 from .state import Build, Product, ReportOptions, attempt, say
 from .summary import section_summary
@@ -106,6 +109,14 @@ def load_inputs(build: Build) -> None:
                     lambda: read_simulation(out, case))
         if sim is not None:
             build.simulations[case] = sim
+    # the paper's case: the paper model's own file, else the last earthquake run
+    build.quake_case = _read(build, SIMULATE_COMMAND, "simulate_earthquake_paper.json/.npz",
+                             lambda: read_simulation(out, "earthquake", "paper")) \
+        or build.simulations.get("earthquake")
+    for case in COMPARISONS:
+        c = _read(build, "compare", f"compare_{case}.json", lambda: read_comparison(out, case))
+        if c is not None:
+            build.comparisons[case] = c
 
 
 def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None,
@@ -118,6 +129,7 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
         load_inputs(build)
     with timings("charts"):
         render_charts(build)
+        render_comparisons(build)
     sets = {}
     with timings("mode_shapes"):
         sets = mode_sets(build)
@@ -155,6 +167,8 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
                   for k, v in build.products.items() if k.startswith("animation_") and k.endswith("_info")}
     present = {name: (build.out / f).is_file() for name, (f, _) in INPUTS.items()}
     present.update({f"simulate_{c}": c in build.simulations for c in CASES})
+    present["simulate_earthquake_paper"] = (build.out / "simulate_earthquake_paper.json").is_file()
+    present.update({f"compare_{c}": c in build.comparisons for c in COMPARISONS})
     return {"report": str(path), "inputs": present, "figures": sorted(figures),
             "animations": animations, "failures": build.failures, "damaged": build.damaged,
             "render_seconds": build.render_seconds, "render_window": build.render_window,

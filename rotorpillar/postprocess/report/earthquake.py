@@ -1,37 +1,152 @@
-"""The earthquake run: its excitation, the chart, the animation, its numbers."""
+"""The earthquake: first a real record on the physically consistent models
+(the ROM and the 3D full order overlaid, their error and cost, the record's
+response spectrum), then the paper's case (its pulse on equation 4 as
+published), its excitation's size and the base-forcing flaw stated."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from .. import html as h
-from ..inputs import SIMULATE_COMMAND
+from ..comparisons import compare_models, relative_to_ground
+from ..inputs import INPUTS, SIMULATE_COMMAND, plain
+from .comparison import comparison_block, spectrum_block
 from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
 from .state import Build
 
+#: Standard gravity, to state accelerations in g (m/s**2).
+STANDARD_GRAVITY = 9.80665
+#: The paper comparison's row on equation 4's base forcing (analysis/paper.py).
+BASE_FORCING_KEY = "eq4_base_forcing"
 
-def section_earthquake(build: Build) -> str:
-    sim = build.simulations.get("earthquake")
-    if sim is None:
-        return h.section("earthquake", "The earthquake",
-                         [h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case earthquake "
-                                    f"{build.scene_cli}` (no simulate_earthquake.json)")]
-                         + figures_of(build, "earthquake"))
-    parts = scene_differs(build, sim.meta)
-    g = sim.get("ground_x")
-    excitation = (sim.meta or {}).get("excitation") or {}
-    if isinstance(excitation.get("statement"), str):
-        parts.append(h.tag("p", excitation["statement"],
-                           class_="warn" if excitation.get("realistic") is False else None))
+
+def base_forcing_row(analysis):
+    """The ``eq4_base_forcing`` row of analyze.json's paper comparison, or None."""
+    for r in getattr(analysis, "paper_comparison", None) or []:
+        if getattr(r, "key", None) == BASE_FORCING_KEY:
+            return r
+    return None
+
+
+def _size(sim) -> str:
+    """How large the run's ground motion is: from its excitation block, else its arrays."""
+    ex = (sim.meta or {}).get("excitation") or {}
+    g, a = sim.get("ground_x"), sim.get("ground_acceleration")
+    said = []
+    if ex.get("displacement_step_at_start") is not None:
+        said.append(f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m at "
+                    f"t = {h.num(ex.get('start'), 4)} s")
+    if ex.get("peak_acceleration_g") is not None:
+        said.append(f"its acceleration reaches {ex['peak_acceleration_g']:.3g} g")
+    elif a is not None and len(a):
+        said.append(f"its acceleration reaches {np.abs(a).max() / STANDARD_GRAVITY:.3g} g")
     if g is not None and len(g):
-        parts.append(h.tag("p", f"Largest ground displacement: {abs(g).max():.3g} m."))
+        said.append(f"largest ground displacement {np.abs(g).max():.3g} m")
+    return ("Size of the excitation: " + ", ".join(said) + ".") if said else ""
+
+
+def _tip(sim) -> str:
+    """The largest tip displacement relative to the ground, beside the absolute one."""
+    frame = (sim.meta or {}).get("tip_x_frame")
+    rel = relative_to_ground(sim.arrays, "tip_x", frame)
+    if rel is None or not len(rel):
+        return ""
+    text = f" Largest tip displacement relative to the ground: {h.num(float(np.abs(rel).max()), 4)} m"
+    absolute = sim.arrays.get("tip_x_absolute")
+    if absolute is None and not str(frame or "").startswith("relative"):
+        absolute = sim.arrays.get("tip_x")
+    if absolute is not None and len(absolute):
+        text += f" (absolute, the ground's motion included: {h.num(float(np.abs(absolute).max()), 4)} m)"
+    return text + "."
+
+
+def _flaw(build: Build) -> list[str]:
+    """Equation 4's published base forcing against the consistent one (analyze.json)."""
+    if build.analysis is None:
+        return [h.missing("the base-forcing finding is "
+                          + build.hint(INPUTS["analyze"][1]) + " (no analyze.json)")]
+    r = base_forcing_row(build.analysis)
+    if r is None:
+        return [h.tag("p", f"analyze.json has no {BASE_FORCING_KEY} finding (an older "
+                           "rotorpillar wrote it): re-run analyze.", class_="meta")]
+    parts = [h.tag("p", [h.tag("strong", "The base-forcing flaw: "), r.note], class_="warn")]
+    details = plain(getattr(r, "details", None))
+    if isinstance(details, dict) and details:
+        parts.append(h.details(f"{BASE_FORCING_KEY} (analyze.json)",
+                               h.table(["field", "value"], [[k, h.num(v)] for k, v in h.flatten(details)])))
+    return parts
+
+
+def _warnings(meta: dict, name: str) -> list[str]:
+    w = meta.get("warnings")
+    if not isinstance(w, list):
+        return []
+    if not w:
+        return [h.tag("p", f"{name}: simulate raised no warning.", class_="meta")]
+    return [h.tag("p", f"{name}: simulate warned:", class_="warn"),
+            h.tag("ul", [h.tag("li", str(x)) for x in w], class_="warn")]
+
+
+def _simulate_charts(build: Build, model: str | None):
+    """simulate's own PNG of the paper's case (simulate_earthquake_<model>.png,
+    else simulate_earthquake.png), taken out of the earthquake group with its
+    copy: one picture of one run."""
+    names = ["simulate_earthquake.png"] + ([f"simulate_earthquake_{model}.png"] if model else [])
+    found = {p.path.name: p for p in build.products.get("external", []) if p.path.name in names}
+    for p in found.values():
+        p.group = "used"
+    return found.get(names[-1]) or found.get(names[0])
+
+
+def paper_case(build: Build) -> list[str]:
+    """The paper's pulse on equation 4 as published (``simulate --case earthquake``)."""
+    sim = build.quake_case
+    if sim is None:
+        return [h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case earthquake "
+                          f"--model paper {build.scene_cli}` (no simulate_earthquake.json)")] + _flaw(build)
+    meta = sim.meta or {}
+    model = meta.get("model", "model not stated")
+    name = f"simulate_earthquake_{model}.json" if meta.get("model") else "simulate_earthquake.json"
+    ex = meta.get("excitation") or {}
+    what = ("The paper's pulse on Eq. 4 as published" if model == "paper" and ex.get("kind") == "pulse"
+            else f"The scene's earthquake run ({model} model, {ex.get('kind', 'excitation not stated')})")
+    parts = scene_differs(build, meta)
+    parts.append(h.tag("p", what + ". " + _size(sim) + _tip(sim)))
+    if isinstance(ex.get("statement"), str):
+        parts.append(h.tag("p", ex["statement"], class_="warn" if ex.get("realistic") is False else None))
+    if model == "paper":
+        parts += _flaw(build)
+    parts += _warnings(meta, name)
     parts += failure(build, "earthquake_chart")
+    theirs = _simulate_charts(build, meta.get("model"))
     if "earthquake_chart" in build.products:
         parts.append(product_image(build, "earthquake_chart"))
+        if theirs:      # simulate's own chart: the same run, in its own frame
+            parts.append(h.details("simulate's own chart of this run",
+                                   h.image(theirs.path, theirs.caption)))
+    elif theirs:
+        parts.append(h.image(theirs.path, theirs.caption))
     parts += figures_of(build, "earthquake")
     parts += failure(build, "animation_earthquake")
     parts += video(build, "animation_earthquake")
-    if sim.meta:
-        key = key_results(sim.meta)
+    if meta:
+        key = key_results(meta)
         if key:
             parts.append(key)
-        parts.append(h.details("simulate_earthquake.json", run_table(sim.meta)))
+        parts.append(h.details(name, run_table(meta)))
+    return parts
+
+
+def section_earthquake(build: Build) -> str:
+    c = build.comparisons.get("earthquake")
+    models = c.models if c is not None else compare_models("earthquake")
+    parts = [h.tag("h3", "A recorded earthquake on the physically consistent models"),
+             h.tag("p", f"The models {' and '.join(models)} force the structure by the "
+                        "ground's inertia (-M r a_g) and report the tip relative to the ground; "
+                        "the most complete one run is the reference.", class_="meta")]
+    parts += comparison_block(build, "earthquake")
+    parts.append(h.tag("h3", "Response spectrum of the record"))
+    parts += spectrum_block(build)
+    parts.append(h.tag("h3", "The paper's case"))
+    parts += paper_case(build)
     return h.section("earthquake", "The earthquake", parts)

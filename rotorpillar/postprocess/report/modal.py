@@ -137,6 +137,12 @@ def section_modal(build: Build) -> str:
     return h.section("modal", "Modal validation", parts)
 
 
+def is_finding(row) -> bool:
+    """A paper-comparison row that states a finding (it carries ``details``,
+    e.g. eq4_base_forcing) rather than a number the paper prints."""
+    return bool(getattr(row, "details", None))
+
+
 def section_paper(build: Build) -> str:
     a = build.analysis
     if a is None:
@@ -147,12 +153,20 @@ def section_paper(build: Build) -> str:
         rows.append(["*" if r.flag else "", r.quantity, h.num(r.paper), h.num(r.computed),
                      h.pct(r.rel_diff, 1), r.where, getattr(r, "note", "")])
         cls.append("flag" if r.flag else "ok")
-    n = sum(1 for r in a.paper_comparison if r.flag)
+    found = [r for r in a.paper_comparison if is_finding(r)]
+    printed = [r for r in a.paper_comparison if not is_finding(r)]
+    n = sum(1 for r in printed if r.flag)
     parts = scene_differs(build, a) + [
         h.tag("p", f"Every number the paper prints that we compute, ours from first principles "
-                   f"(never tuned to match). * = differs by more than 2 % ({n} of {len(rows)}); "
-                   "the last column gives the likely cause. Table 1's rows are those marked "
-                   "'Table 1'."),
+                   f"(never tuned to match). * = differs by more than 2 % ({n} of {len(printed)} "
+                   "printed numbers); the last column gives the likely cause. Table 1's rows are "
+                   "those marked 'Table 1'."
+                   + (f" The last {len(found)} row(s) are findings on the paper's formulation "
+                      "(the paper's column: as published; ours: the consistent one)." if found else "")),
         h.table(["", "quantity", "paper", "ours", "difference", "printed in", "likely cause"],
                 rows, row_classes=cls)]
+    if found:
+        parts.append(h.tag("h3", "Findings on the paper's formulation"))
+        parts.append(h.tag("ul", [h.tag("li", [h.tag("strong", f"{r.key} ({r.where}): "), r.note])
+                                  for r in found], class_="findings"))
     return h.section("paper", "The paper's numbers against ours (Table 1 and the rest)", parts)

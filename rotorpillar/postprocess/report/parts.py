@@ -41,17 +41,19 @@ def _note(doc: dict | None) -> list[str]:
     return []
 
 
-def scene_differs(build: Build, result) -> list[str]:
+def scene_differs(build: Build, result, ignore=()) -> list[str]:
     """A warning when an input was computed for another version of the scene
     (and the input's own note, if it has one).  ``result``: a result as read
-    (a record or a dict), or None."""
+    (a record or a dict), or None; ``ignore``: dotted keys its command set
+    on purpose (the comparisons' record)."""
     doc = plain(result)
     if not doc or "scene" not in doc:
         return _note(doc)
     now = json.loads(to_json(build.scene.to_dict()))
     then = doc["scene"]
     diffs = [f"{k}.{kk}" for k, v in now.items() if isinstance(v, dict)
-             for kk in v if not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk]]
+             for kk in v if (not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk])
+             and f"{k}.{kk}" not in ignore]
     if not diffs:
         return _note(doc)
     return _note(doc) + [h.tag("p", "Warning: this input was computed for a different scene ("

@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
+from ..comparisons import relative_to_ground
 from ..inputs import INPUTS, ModeSet, entries, plain
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, say
 
@@ -34,19 +35,62 @@ def render_charts(build: Build) -> None:
                 "Amplitude a_i of each quasi-normal coordinate near its resonance: the averaging "
                 "result (Eq. 19 with omega_i**2 restored) against the exact steady state of the "
                 "linear mode at constant speed."))
-    quake = build.simulations.get("earthquake")
+    quake = build.quake_case
     if quake is not None and quake.arrays.get("t") is not None:
+        # relative to the ground: under the paper's pulse the absolute tip is
+        # the ground's 6 m step and hides the pillar's response
         frame = str(quake.meta.get("tip_x_frame") or "")
+        tip = relative_to_ground(quake.arrays, "tip_x", frame)
+        rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
+        model = quake.meta.get("model", "model not stated")
         p = attempt(build, "earthquake_chart", lambda: transient_charts.earthquake_chart(
             fig / "earthquake_response.png", quake.get("t"), quake.get("ground_acceleration"),
-            quake.get("tip_x"), quake.get("rotor_x"), quake.get("Omega"),
-            title=f"Earthquake response ({quake.meta.get('model', 'model not stated')})",
-            frame=frame.replace("_", " ")))
+            tip, rotor, quake.get("Omega"), title=f"Earthquake response ({model} model)",
+            frame="relative to the ground"))
         if p:
             build.products["earthquake_chart"] = Product(p, (
-                "Earthquake: ground acceleration (the shaded interval is when the ground moves), "
-                "the X displacement of the pillar's tip and of the rotor"
-                + (f" ({frame.replace('_', ' ')})" if frame else "") + ", and the rotor speed."))
+                f"Earthquake on the {model} model: ground acceleration (the shaded interval is "
+                "when the ground moves), the X displacement of the pillar's tip and of the rotor "
+                "relative to the ground, and the rotor speed."))
+
+
+def render_comparisons(build: Build) -> None:
+    """Each comparison's tip histories overlaid with their differences, and
+    the record's response spectrum."""
+    from .. import comparison_charts as cc
+    fig = build.out / FIGURES_DIR
+    for case, c in build.comparisons.items():
+        series = [(m, *s) for m in c.models for s in [c.tip_relative(m)] if s is not None]
+        if not series:
+            continue
+        ref = c.reference or series[0][0]
+        p = attempt(build, f"comparison_{case}", lambda c=c, case=case, series=series, ref=ref:
+                    cc.comparison_chart(fig / f"comparison_{case}.png", series, ref,
+                                        title=f"{case}: {', '.join(m for m, _, _ in series)}"))
+        if p:
+            lacking = [m for m in c.models if m not in {s[0] for s in series}]
+            build.products[f"comparison_{case}"] = Product(p, (
+                f"The {case} on each model: the pillar tip's X relative to the ground, overlaid "
+                f"(the reference, {ref}, solid); below, each model minus {ref}."
+                + (f" No arrays for {', '.join(lacking)}." if lacking else "")))
+    c = build.comparisons.get("earthquake")
+    spec = c.doc.get("spectrum") if c is not None else None
+    if isinstance(spec, dict) and spec.get("period") is not None and spec.get("psa") is not None:
+        damping = spec.get("damping", spec.get("damping_ratio", 0.05))
+        p = attempt(build, "response_spectrum", lambda: cc.spectrum_chart(
+            fig / "response_spectrum.png", spec["period"], spec["psa"],
+            spec.get("mode_periods") or (), damping,
+            title=f"Response spectrum of the record ({_record_name(c.doc)})"))
+        if p:
+            build.products["response_spectrum"] = Product(p, (
+                f"Pseudo-acceleration response spectrum of the record ({_record_name(c.doc)}, "
+                f"{100 * float(damping):g} % damping, eqsig), the pillar's modal periods marked "
+                "(dashed)."))
+
+
+def _record_name(doc: dict) -> str:
+    ex = doc.get("excitation") or {}
+    return str(ex.get("name") or ex.get("record") or ex.get("kind") or "the scene's excitation")
 
 
 def mode_sets(build: Build) -> dict[str, ModeSet | None]:

@@ -1,10 +1,13 @@
 """The passage through resonance (drive curves, stationary speeds, jumps,
-the resonances) and the transient runs (run-up, run-down, sweep)."""
+the resonances) and the transient runs (run-up, with the reduced model
+against a full-order model; run-down, sweep)."""
 
 from __future__ import annotations
 
 from .. import html as h
+from ..comparisons import COMPARISONS
 from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
+from .comparison import comparison_block
 from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
 from .state import Build
 
@@ -70,6 +73,10 @@ def section_runs(build: Build) -> str:
             continue
         sim = build.simulations.get(case)
         parts.append(h.tag("h3", RUN_TITLES[case]))
+        if case in COMPARISONS:
+            parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the reduced model against a full-order model"))
+            parts += comparison_block(build, case)
+            parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the scene's own run (simulate_{case}.json)"))
         if sim is None:
             parts.append(h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case {case} "
                                    f"{build.scene_cli}` (no simulate_{case}.json)"))

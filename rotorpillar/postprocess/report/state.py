@@ -58,6 +58,11 @@ class Build:
     """convergence.json as read by ``inputs.read_convergence``, or None"""
     integrators: dict | None = None
     simulations: dict = field(default_factory=dict)
+    """case -> ``inputs.Simulation`` of simulate_<case>.* (the last run of the case)"""
+    quake_case: object = None
+    """the paper's earthquake case (simulate_earthquake_paper.*, else simulate_earthquake.*), or None"""
+    comparisons: dict = field(default_factory=dict)
+    """case -> ``comparisons.Comparison`` of compare_<case>.json and its models' runs"""
     products: dict = field(default_factory=dict)     # key -> Product or list of Products
     failures: dict = field(default_factory=dict)     # key -> message
     damaged: dict = field(default_factory=dict)      # command -> what is wrong with its file

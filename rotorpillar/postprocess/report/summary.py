@@ -4,9 +4,11 @@ that is missing named with the command that makes it."""
 from __future__ import annotations
 
 from .. import html as h
+from ..comparisons import COMPARISONS, compare_command
 from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
+from .comparison import speed_accuracy
 from .convergence import chosen
-from .modal import bending
+from .modal import bending, is_finding
 from .state import Build
 
 
@@ -29,9 +31,12 @@ def _analysis_findings(build: Build) -> list[str]:
     items.append(f"Rotor-pillar system: omega_1 = {s.omega[0]:.3f}, "
                  f"omega_2 = {s.omega[1]:.3f} rad/s "
                  f"(X), omega_3 = {s.omega3:.3f} rad/s (Y).")
-    rows = a.paper_comparison
+    rows = [x for x in a.paper_comparison if not is_finding(x)]
     items.append(f"{sum(1 for x in rows if x.flag)} of the {len(rows)} numbers the paper prints "
                  "differ from ours by more than 2 %; each has its likely cause below.")
+    for x in a.paper_comparison:
+        if is_finding(x):
+            items.append(f"Finding {x.key} ({x.where}): {x.note}")
     d = a.drive
     st = ", ".join(f"{x.omega:.2f} rad/s ({'stable' if x.stable else 'unstable'})"
                    for x in d.stationary) or "none"
@@ -65,6 +70,15 @@ def section_summary(build: Build) -> str:
                             if sim.meta.get("captured_at") is not None else "") + ".")
     if not build.simulations:
         items.append("Transients: " + build.hint(SIMULATE_COMMAND) + ".")
+    for case in COMPARISONS:
+        c = build.comparisons.get(case)
+        if c is None:
+            items.append(f"The reduced model against the full order on the {case}: not computed: "
+                         f"run `rotorpillar {compare_command(case)} {build.scene_cli}`.")
+        else:
+            said = speed_accuracy(c.doc, c.models)
+            items.append(f"The {case}, models compared ({', '.join(c.models)}): "
+                         + (" ".join(said) if said else "no error against a reference recorded."))
     what = chosen(build.convergence) if build.convergence else None
     if what:
         items.append(f"Model chosen: {what[0]}" + (f" - {what[1]}" if what[1] else "") + ".")

@@ -1,0 +1,134 @@
+"""The models of one case compared: ``compare_<case>.json`` (`rotorpillar
+compare`) and the per-model runs it names, as the report reads them; the
+comparisons `rotorpillar run` makes (:data:`COMPARISONS`); a run's X
+displacements relative to the ground.  Contracts in :mod:`.inputs`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .inputs import read_case, read_json, read_npz
+
+COMPARE_COMMAND = "compare"
+
+#: The comparisons `rotorpillar run` makes and the report shows: case -> the
+#: arguments of `rotorpillar compare --case <case>` (``commands/run.py`` builds its stages
+#: from these, the report's hints repeat them).  compare runs the scene's
+#: excitation, so the earthquake sets the record: El Centro on the
+#: physically consistent models (the modal ROM and the 3D full order); the
+#: run-up puts the ROM beside the beam full order, which needs no dolfinx.
+COMPARISONS = {
+    "earthquake": ("--models", "modal,fem3d",
+                   "--set", "excitation.kind=record", "--set", "excitation.record=elcentro"),
+    "runup": ("--models", "modal,beam"),
+}
+
+
+def compare_command(case: str) -> str:
+    """The compare command line (without the scene) for one of :data:`COMPARISONS`.
+
+    >>> compare_command("runup")
+    'compare --case runup --models modal,beam'
+    """
+    return " ".join((COMPARE_COMMAND, "--case", case, *COMPARISONS[case]))
+
+
+def compare_models(case: str) -> list[str]:
+    """The models a comparison runs.
+
+    >>> compare_models("earthquake")
+    ['modal', 'fem3d']
+    """
+    a = COMPARISONS[case]
+    return a[a.index("--models") + 1].split(",")
+
+
+def compare_overrides(case: str) -> tuple[str, ...]:
+    """The scene keys a comparison sets itself (its inputs differ from the
+    scene there on purpose).
+
+    >>> compare_overrides("earthquake")
+    ('excitation.kind', 'excitation.record')
+    """
+    a = COMPARISONS[case]
+    return tuple(a[i + 1].split("=", 1)[0] for i, x in enumerate(a) if x == "--set")
+
+
+def relative_to_ground(arrays: dict, name: str = "tip_x", frame: str | None = None):
+    """The X displacement ``name`` (tip_x or rotor_x) relative to the ground:
+    the ``<name>_relative`` column where the run wrote one, else the column
+    itself when ``frame`` says it is already relative, else the column minus
+    ``ground_x``; None if the arrays hold neither.
+
+    >>> a = {"tip_x": np.array([6.0, 7.0]), "ground_x": np.array([6.0, 6.5])}
+    >>> relative_to_ground(a).tolist(), relative_to_ground(a, frame="relative_to_ground").tolist()
+    ([0.0, 0.5], [6.0, 7.0])
+    """
+    if arrays.get(f"{name}_relative") is not None:
+        return np.asarray(arrays[f"{name}_relative"], dtype=float)
+    x = arrays.get(name)
+    if x is None:
+        return None
+    x = np.asarray(x, dtype=float)
+    if str(frame or "").startswith("relative"):
+        return x
+    g = arrays.get("ground_x")
+    return x if g is None else x - np.asarray(g, dtype=float)
+
+
+@dataclass
+class Comparison:
+    """``compare_<case>.json`` and the runs it names: each model's JSON and arrays."""
+    case: str
+    doc: dict
+    metas: dict = field(default_factory=dict)
+    """model -> its simulate_<case>_<model>.json (missing: absent)"""
+    arrays: dict = field(default_factory=dict)
+    """model -> its simulate_<case>_<model>.npz arrays (missing: absent)"""
+
+    @property
+    def models(self) -> list[str]:
+        """The models run, in the order given to compare."""
+        return [str(m) for m in (self.doc.get("models_run") or list(self.doc.get("per_model") or {}))]
+
+    @property
+    def reference(self) -> str | None:
+        return self.doc.get("reference")
+
+    def tip_relative(self, model: str):
+        """(t, tip X relative to the ground) of one model, or None."""
+        a = self.arrays.get(model)
+        if not a or a.get("t") is None:
+            return None
+        y = relative_to_ground(a, "tip_x", (self.metas.get(model) or {}).get("tip_x_frame"))
+        return None if y is None else (np.asarray(a["t"], dtype=float), y)
+
+
+def _beside(out: Path, name) -> Path | None:
+    """A file a JSON names (absolute, or a name in ``out``)."""
+    if not name:
+        return None
+    p = Path(str(name))
+    return p if p.is_absolute() and p.is_file() else out / p.name
+
+
+def read_comparison(out: str | Path, case: str) -> Comparison | None:
+    """``compare_<case>.json`` with the per-model JSON and NPZ it names, or None."""
+    out = Path(out)
+    doc = read_json(out / f"compare_{case}.json")
+    if doc is None:
+        return None
+    c = Comparison(case, doc)
+    per = doc.get("per_model") or {}
+    for m in c.models:
+        row = per.get(m) or {}
+        meta = read_case(_beside(out, row.get("json") or f"simulate_{case}_{m}.json"))
+        arrays = read_npz(_beside(out, row.get("npz") or f"simulate_{case}_{m}.npz"))
+        if meta is not None:
+            c.metas[m] = meta
+        if arrays is not None:
+            c.arrays[m] = arrays
+    return c

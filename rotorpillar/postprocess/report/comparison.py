@@ -1,0 +1,189 @@
+"""The models of one case side by side (``compare_<case>.json``): the
+overlay, the table of error and cost, each model's notes and warnings; and
+the record's response spectrum beside the ROM's peak.  Pieces the
+earthquake and the runs sections both use."""
+
+from __future__ import annotations
+
+import math
+
+from .. import html as h
+from ..comparisons import compare_command, compare_overrides
+from .parts import failure, product_image, scene_differs
+from .state import Build
+
+#: The headers of the speed-accuracy table (the reference's name goes in the errors).
+COST_HEADERS = ("model", "DOFs", "wall time (s)", "peak tip relative to the ground (m)",
+                "peak shaft deflection (m)", "final speed (rad/s)", "tip history error against {ref}",
+                "peak difference against {ref}", "cost ratio (wall time / {ref}'s)")
+
+
+def share(x) -> str:
+    """A non-negative fraction in percent, 3 significant digits.
+
+    >>> share(0.002134), share(None)
+    ('0.213 %', '-')
+    """
+    if not isinstance(x, (int, float)) or isinstance(x, bool) or not math.isfinite(x):
+        return "-"
+    return f"{100 * x:.3g} %"
+
+
+def missing_comparison(build: Build, case: str) -> list[str]:
+    """The notice naming the command that makes ``compare_<case>.json``."""
+    return [h.missing(f"not computed: run `rotorpillar {compare_command(case)} {build.scene_cli}` "
+                      f"(no compare_{case}.json)")]
+
+
+def excitation_text(ex) -> str | None:
+    """One sentence on the ground motion a run used (its excitation block)."""
+    if not isinstance(ex, dict):
+        return None
+    if isinstance(ex.get("statement"), str):
+        return ex["statement"]
+    if ex.get("kind") != "record":
+        return None
+    what = [f"peak acceleration {h.num(ex.get('peak_acceleration_g'), 3)} g"]
+    if ex.get("peak_velocity") is not None:
+        what.append(f"peak velocity {h.num(ex['peak_velocity'], 3)} m/s")
+    if ex.get("peak_displacement") is not None:
+        what.append(f"peak displacement {h.num(ex['peak_displacement'], 3)} m")
+    start = f", from t = {h.num(ex['start'], 4)} s" if ex.get("start") is not None else ""
+    return (f"Ground motion: the record {ex.get('name', '?')}"
+            + (f" ({ex['source']})" if ex.get("source") else "") + ": " + ", ".join(what) + start + ".")
+
+
+def cost_table(doc: dict, models: list[str]) -> str:
+    """Per model: DOFs, wall time, peaks, the errors against the reference and the cost ratio."""
+    ref = doc.get("reference")
+    per, errors, ratio = doc.get("per_model") or {}, doc.get("errors") or {}, doc.get("cost_ratio") or {}
+    rows, classes = [], []
+    for m in models:
+        p, e = per.get(m) or {}, errors.get(m) or {}
+        is_ref = m == ref
+        r = 1.0 if is_ref and m not in ratio else ratio.get(m)
+        rows.append([m + (" (reference)" if is_ref else ""), h.num(p.get("dofs")),
+                     h.num(p.get("wall_seconds"), 4), h.num(p.get("peak_tip_relative")),
+                     h.num(p.get("peak_shaft_deflection")), h.num(p.get("omega_final")),
+                     "reference" if is_ref else share(e.get("tip_history_error")),
+                     "reference" if is_ref else h.pct(e.get("peak_tip_difference")),
+                     h.num(r, 4)])
+        classes.append("flag" if p.get("ok") is False else "ok")
+    return h.table([c.format(ref=ref) for c in COST_HEADERS], rows, row_classes=classes)
+
+
+def speed_accuracy(doc: dict, models: list[str]) -> list[str]:
+    """The sentence per model: its error against the reference at what share of the cost."""
+    ref = doc.get("reference")
+    errors, ratio = doc.get("errors") or {}, doc.get("cost_ratio") or {}
+    out = []
+    for m in models:
+        e, r = (errors.get(m) or {}).get("tip_history_error"), ratio.get(m)
+        if m == ref or e is None:
+            continue
+        text = f"{m} follows {ref}'s tip history within {share(e)} of its largest value"
+        if isinstance(r, (int, float)) and r > 0:
+            text += (f", at {h.num(r, 3)} of its wall time ({h.num(1 / r, 3)} times faster)"
+                     if r < 1 else f", at {h.num(r, 3)} times its wall time")
+        out.append(text + ".")
+    return out
+
+
+#: Units of the fields of a full-order run's ``full_order`` block.
+FULL_ORDER_UNITS = {"duration": "s", "time_step": "s"}
+
+
+def _full_order(meta: dict) -> str | None:
+    """What a full-order run was (mesh or elements, duration, step) and its note."""
+    fo = meta.get("full_order")
+    if not isinstance(fo, dict):
+        return None
+    what = []
+    for k, v in fo.items():
+        if k == "note" or v is None:
+            continue
+        if isinstance(v, dict):
+            v = ", ".join(f"{a} {h.num(b)}" for a, b in v.items())
+        what.append(f"{k.replace('_', ' ')} {h.num(v)}"
+                    + (f" {FULL_ORDER_UNITS[k]}" if k in FULL_ORDER_UNITS else ""))
+    return "; ".join(what) + (f". {fo['note']}" if fo.get("note") else "")
+
+
+def _claim_figures(build: Build, case: str, models: list[str]) -> list:
+    """The other commands' PNGs of this comparison (compare_<case>.png and the
+    models' own simulate_<case>_<model>.png), taken out of their groups."""
+    names = {f"compare_{case}.png"} | {f"simulate_{case}_{m}.png" for m in models}
+    found = [p for p in build.products.get("external", []) if p.path.name in names]
+    for p in found:
+        p.group = "used"
+    return found
+
+
+def comparison_block(build: Build, case: str) -> list[str]:
+    """The comparison of the models on ``case``, or the command that makes it."""
+    c = build.comparisons.get(case)
+    if c is None:
+        return missing_comparison(build, case)
+    doc, models = c.doc, c.models
+    parts = scene_differs(build, doc, ignore=compare_overrides(case))
+    ex = excitation_text(doc.get("excitation"))
+    if ex:
+        parts.append(h.tag("p", ex))
+    w = doc.get("window")
+    if isinstance(w, dict) and w.get("end") is not None:
+        parts.append(h.tag("p", f"Every model ran over t = {h.num(w.get('start'), 4)} .. "
+                                f"{h.num(w['end'], 4)} s" + (f" ({w['why']})" if w.get("why") else "")
+                                + ".", class_="meta"))
+    theirs = _claim_figures(build, case, models)
+    parts += failure(build, f"comparison_{case}")
+    if f"comparison_{case}" in build.products:
+        parts.append(product_image(build, f"comparison_{case}"))
+    else:   # no arrays to draw from: compare's own chart, if it left one
+        parts += [h.image(p.path, p.caption) for p in theirs if p.path.name == f"compare_{case}.png"]
+    parts.append(cost_table(doc, models))
+    said = speed_accuracy(doc, models)
+    if said:
+        parts.append(h.tag("p", " ".join(said)))
+    notes = [(m, _full_order(c.metas.get(m) or {})) for m in models]
+    notes = [h.tag("li", f"{m}: {n}") for m, n in notes if n]
+    if notes:
+        parts.append(h.tag("p", "Full-order models, as run here:", class_="meta"))
+        parts.append(h.tag("ul", notes, class_="meta"))
+    per = doc.get("per_model") or {}
+    warns = [h.tag("li", f"{m}: {w}") for m in models for w in (per.get(m) or {}).get("warnings") or []]
+    if warns:
+        parts.append(h.tag("ul", warns, class_="warn"))
+    own = [(m, p) for m in models for p in theirs if p.path.name == f"simulate_{case}_{m}.png"]
+    if own:
+        parts.append(h.details(f"each model's own chart ({len(own)})",
+                               "".join(h.image(p.path, f"{m}: {p.caption}") for m, p in own)))
+    return parts
+
+
+def spectrum_block(build: Build) -> list[str]:
+    """The record's response spectrum with the modes marked, and the ROM's
+    spectral estimate of the peak tip beside the computed one."""
+    c = build.comparisons.get("earthquake")
+    if c is None:
+        return missing_comparison(build, "earthquake")
+    spec = c.doc.get("spectrum")
+    if not isinstance(spec, dict):
+        return [h.tag("p", "compare_earthquake.json holds no response spectrum (the excitation "
+                           "is not a record, or the modal model was not run).", class_="meta")]
+    parts = failure(build, "response_spectrum")
+    if "response_spectrum" in build.products:
+        parts.append(product_image(build, "response_spectrum"))
+    est, num = spec.get("spectral_peak_tip"), spec.get("computed_peak_tip")
+    text = (f"The ROM's spectral estimate of the peak tip (SRSS of Gamma_j S_d(T_j) over its modes): "
+            f"{h.num(est, 4)} m, beside the peak it computes: {h.num(num, 4)} m")
+    if isinstance(est, (int, float)) and isinstance(num, (int, float)) and est > 0:
+        text += f" (computed / estimate = {h.num(num / est, 3)})"
+    parts.append(h.tag("p", text + "."))
+    if isinstance(spec.get("note"), str):
+        parts.append(h.tag("p", spec["note"], class_="meta"))
+    periods = spec.get("mode_periods") or []
+    if periods:
+        parts.append(h.table(["mode", "period T_j (s)", "frequency (Hz)"],
+                             [[j, h.num(T, 4), h.num(1 / T, 4) if T else "-"]
+                              for j, T in enumerate(periods, start=1)]))
+    return parts

@@ -1,0 +1,287 @@
+"""The report's transients (issue 9): the earthquake section shows a real
+record on the physically consistent models first (the ROM and the 3D full
+order overlaid, their error and cost, the record's response spectrum), then
+the paper's case with its excitation's size and equation 4's base-forcing
+flaw; the run-up overlays the ROM and a full-order model; the findings list
+eq4_base_forcing.
+
+Inputs: a real `rotorpillar analyze paper` (its eq4_base_forcing row) and
+synthetic comparisons and runs shaped by the compare contract
+(tests/fixtures.py).  The report reads and never recomputes: every number
+it shows is checked against the JSON the fixtures wrote, within the
+rounding of its printed digits (stated at each check).  Charts: PNG header
+size and non-blank pixels (tests/imagecheck.py).
+"""
+
+import html
+import json
+import re
+from html.parser import HTMLParser
+
+import numpy as np
+import pytest
+
+import fixtures
+from imagecheck import assert_real_png
+from rotorpillar import cli
+from rotorpillar.postprocess.comparisons import COMPARISONS, compare_command
+
+# 5 significant digits (html.num's default) round a value by at most 5e-6 of
+# it... up to half a unit in the 5th digit: 5e-5 relative at worst.
+FIVE_DIGITS = 5e-5
+# percentages and ratios shown with 3 significant digits: 5e-3 relative.
+THREE_DIGITS = 5e-3
+# 4 significant digits: 5e-4 relative.
+FOUR_DIGITS = 5e-4
+
+
+def run_cli(*args):
+    assert cli.main([str(a) for a in args]) == 0
+
+
+class _Tables(HTMLParser):
+    """Every table of a piece of HTML: (header cells, body rows of cell text)."""
+
+    def __init__(self):
+        super().__init__()
+        self.tables, self._cell, self._row = [], None, None
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "table":
+            self.tables.append(([], []))
+        elif tag == "tr":
+            self._row = []
+        elif tag in ("td", "th"):
+            self._cell = []
+
+    def handle_endtag(self, tag):
+        if tag in ("td", "th") and self._cell is not None:
+            self._row.append("".join(self._cell).strip())
+            self._cell = None
+        elif tag == "tr" and self._row is not None:
+            head, body = self.tables[-1]
+            (head.extend(self._row) if not head else body.append(self._row))
+            self._row = None
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell.append(data)
+
+
+def section(text: str, ident: str) -> str:
+    m = re.search(rf'<section id="{ident}">(.*?)</section>', text, re.S)
+    assert m, f"no section {ident}"
+    return m.group(1)
+
+
+def plain_text(fragment: str) -> str:
+    """The text of a piece of HTML, tags dropped, entities decoded."""
+    return html.unescape(re.sub(r"<[^>]+>", "", fragment))
+
+
+def tables(fragment: str) -> list:
+    p = _Tables()
+    p.feed(fragment)
+    return p.tables
+
+
+def cost_table(fragment: str) -> dict:
+    """The speed-accuracy table of a comparison, as {model: {header: cell}}."""
+    found = [(h_, rows) for h_, rows in tables(fragment) if h_[:2] == ["model", "DOFs"]]
+    assert len(found) == 1, f"{len(found)} cost tables"
+    head, rows = found[0]
+    return {r[0].replace(" (reference)", ""): dict(zip(head, r)) for r in rows}
+
+
+def number(cell: str) -> float:
+    return float(cell.replace("%", "").strip())
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory):
+    """A report on the analysis, both comparisons and the paper's case."""
+    out = tmp_path_factory.mktemp("transients")
+    run_cli("analyze", "paper", "--out", out)
+    docs = {"earthquake": fixtures.write_comparison_fixture(
+                out, "earthquake", ("modal", "fem3d"),
+                warnings={"fem3d": ["synthetic warning <one line>"]}),
+            "runup": fixtures.write_comparison_fixture(out, "runup", ("modal", "beam"))}
+    paper = fixtures.write_simulation_fixture(
+        out, "earthquake", modal=False, per_model=True,
+        warnings=["the published base forcing amplifies the ground 1.6 times"])
+    fixtures.write_simulation_fixture(out, "runup")
+    run_cli("report", "paper", "--out", out, "--no-animations")
+    return {"out": out, "text": (out / "report.html").read_text(encoding="utf-8"),
+            "compare": docs, "paper": paper,
+            "analyze": json.loads((out / "analyze.json").read_text()),
+            "report": json.loads((out / "report.json").read_text())}
+
+
+def test_the_record_comes_first_then_the_paper_case(page):
+    eq = section(page["text"], "earthquake")
+    heads = ["A recorded earthquake on the physically consistent models",
+             "Response spectrum of the record", "The paper&#x27;s case"]
+    at = [eq.find(f"<h3>{x}</h3>") for x in heads]
+    assert all(i >= 0 for i in at) and at == sorted(at), at
+    # the overlay is the first picture of the section
+    first_img = eq.find("<img")
+    assert 0 < first_img < at[1] and "overlaid" in eq[first_img:at[1]]
+    assert page["report"]["failures"] == {}
+    assert page["report"]["inputs"]["compare_earthquake"] and page["report"]["inputs"]["compare_runup"]
+
+
+@pytest.mark.parametrize("case, where", [("earthquake", "earthquake"), ("runup", "runs")])
+def test_the_cost_table_shows_the_comparison_as_written(page, case, where):
+    doc = page["compare"][case]
+    rows = cost_table(section(page["text"], where))
+    ref = doc["reference"]
+    assert list(rows) == doc["models_run"]
+    for m in doc["models_run"]:
+        r, p = rows[m], doc["per_model"][m]
+        assert int(r["DOFs"]) == p["dofs"]
+        assert number(r["wall time (s)"]) == pytest.approx(p["wall_seconds"], rel=FOUR_DIGITS)
+        assert number(r["peak tip relative to the ground (m)"]) == pytest.approx(
+            p["peak_tip_relative"], rel=FIVE_DIGITS)
+        assert number(r["peak shaft deflection (m)"]) == pytest.approx(
+            p["peak_shaft_deflection"], rel=FIVE_DIGITS)
+        assert number(r[f"cost ratio (wall time / {ref}'s)"]) == pytest.approx(
+            doc["cost_ratio"][m], rel=FOUR_DIGITS)
+        err = r[f"tip history error against {ref}"]
+        if m == ref:
+            assert err == "reference"
+        else:       # shown in percent
+            assert number(err) / 100 == pytest.approx(doc["errors"][m]["tip_history_error"],
+                                                      rel=THREE_DIGITS)
+            # html.pct: 2 decimals of a percent, i.e. +-5e-5 absolute
+            assert number(r[f"peak difference against {ref}"]) / 100 == pytest.approx(
+                doc["errors"][m]["peak_tip_difference"], abs=5e-5)
+
+
+def test_the_full_order_runs_and_their_warnings_are_stated(page):
+    eq = section(page["text"], "earthquake")
+    assert "synthetic fem3d: coarsened for the fixture" in eq
+    assert "fem3d: synthetic warning &lt;one line&gt;" in eq
+    w = page["compare"]["earthquake"]["window"]
+    assert f"Every model ran over t = {w['start']:g} .. {w['end']:g} s ({w['why']})." in plain_text(eq)
+    runs = section(page["text"], "runs")
+    assert "<h4>Run-up: the reduced model against a full-order model</h4>" in runs
+    assert "synthetic beam: coarsened for the fixture" in runs
+
+
+def test_the_spectrum_shows_the_modes_and_the_rom_estimate(page):
+    eq = section(page["text"], "earthquake")
+    spec = page["compare"]["earthquake"]["spectrum"]
+    part = eq[eq.find("<h3>Response spectrum of the record</h3>"):eq.find("<h3>The paper&#x27;s case")]
+    m = re.search(r"over its modes\): ([\d.e+-]+) m, beside the peak it computes: ([\d.e+-]+) m", part)
+    assert m, part[:2000]
+    # 4 significant digits
+    assert float(m.group(1)) == pytest.approx(spec["spectral_peak_tip"], rel=FOUR_DIGITS)
+    assert float(m.group(2)) == pytest.approx(spec["computed_peak_tip"], rel=FOUR_DIGITS)
+    assert "synthetic spectrum: an estimate, not a bound" in part
+    periods = [t for h_, rows in tables(part) if h_[:2] == ["mode", "period T_j (s)"] for t in rows]
+    assert [float(r[1]) for r in periods] == pytest.approx(spec["mode_periods"], rel=FOUR_DIGITS)
+
+
+def test_the_paper_case_states_its_size_the_flaw_and_the_warnings(page):
+    eq = section(page["text"], "earthquake")
+    part = plain_text(eq[eq.find("<h3>The paper&#x27;s case"):])
+    ex = page["paper"]["excitation"]
+    assert "The paper's pulse on Eq. 4 as published." in part
+    assert f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m" in part
+    assert f"its acceleration reaches {ex['peak_acceleration_g']:.3g} g" in part
+    row = next(r for r in page["analyze"]["paper_comparison"] if r["key"] == "eq4_base_forcing")
+    assert "The base-forcing flaw: " + row["note"] in part
+    assert "the published base forcing amplifies the ground 1.6 times" in part
+    # the tip relative to the ground: the fixture's tip_x is absolute (ground + relative)
+    a = np.load(page["out"] / "simulate_earthquake_paper.npz")
+    rel = np.abs(a["tip_x"] - a["ground_x"]).max()
+    m = re.search(r"Largest tip displacement relative to the ground: ([\d.e+-]+) m", part)
+    assert float(m.group(1)) == pytest.approx(rel, rel=FOUR_DIGITS)
+    assert rel < 0.01 * np.abs(a["tip_x"]).max()       # the ground dominates the absolute tip
+    assert "relative to the ground, and the rotor speed" in part
+
+
+def test_the_findings_list_eq4_base_forcing(page):
+    row = next(r for r in page["analyze"]["paper_comparison"] if r["key"] == "eq4_base_forcing")
+    summary = plain_text(section(page["text"], "summary"))
+    assert f"Finding eq4_base_forcing ({row['where']}): {row['note']}" in summary
+    paper = plain_text(section(page["text"], "paper"))
+    assert "Findings on the paper's formulation" in paper and "eq4_base_forcing (Eq. 4): " in paper
+    printed = [r for r in page["analyze"]["paper_comparison"] if not r.get("details")]
+    assert f"({sum(r['flag'] for r in printed)} of {len(printed)} printed numbers)" in paper
+    # the speed-accuracy point in the summary
+    assert "modal follows fem3d&#x27;s tip history within" in section(page["text"], "summary")
+
+
+@pytest.mark.parametrize("name, size", [("comparison_earthquake.png", (1000, 700)),
+                                        ("comparison_runup.png", (1000, 700)),
+                                        ("response_spectrum.png", (900, 540)),
+                                        ("earthquake_response.png", (900, 800))])
+def test_the_charts_are_real_pngs(page, name, size):
+    path = page["out"] / "figures" / name
+    assert str(path) in page["report"]["figures"]
+    assert_real_png(path, size)
+
+
+def test_missing_comparisons_name_the_commands(tmp_path):
+    run_cli("analyze", "paper", "--out", tmp_path)
+    run_cli("report", "paper", "--out", tmp_path, "--no-animations")
+    text = (tmp_path / "report.html").read_text(encoding="utf-8")
+    for case, where in (("earthquake", "earthquake"), ("runup", "runs")):
+        cmd = f"rotorpillar {compare_command(case)} paper --out {tmp_path}"
+        assert f"not computed: run <code>{cmd}</code> (no compare_{case}.json)" in section(text, where)
+    assert "--set excitation.kind=record" in compare_command("earthquake")
+    eq = section(text, "earthquake")
+    assert f"<code>rotorpillar simulate --case earthquake --model paper paper --out {tmp_path}" in eq
+    assert "The base-forcing flaw: " in plain_text(eq)       # from analyze.json alone
+    assert json.loads((tmp_path / "report.json").read_text())["failures"] == {}
+
+
+def test_a_comparison_without_arrays_keeps_its_table(tmp_path):
+    doc = fixtures.write_comparison_fixture(tmp_path, "earthquake", ("modal", "fem3d"))
+    for m in doc["models_run"]:
+        (tmp_path / f"simulate_earthquake_{m}.npz").unlink()
+    run_cli("report", "paper", "--out", tmp_path, "--no-animations")
+    text = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert set(cost_table(section(text, "earthquake"))) == {"modal", "fem3d"}
+    assert not (tmp_path / "figures" / "comparison_earthquake.png").exists()
+    assert json.loads((tmp_path / "report.json").read_text())["failures"] == {}
+
+
+def test_the_record_set_by_the_comparison_is_not_another_scene(tmp_path):
+    """compare_earthquake.json's scene has the record the comparison sets
+    itself: no warning; any other difference: the warning."""
+    run_cli("analyze", "paper", "--out", tmp_path)
+    scene = json.loads((tmp_path / "analyze.json").read_text())["scene"]
+    doc = fixtures.write_comparison_fixture(tmp_path, "earthquake", ("modal", "fem3d"))
+    scene["excitation"].update(kind="record", record="elcentro")
+    (tmp_path / "compare_earthquake.json").write_text(json.dumps({**doc, "scene": scene}))
+    run_cli("report", "paper", "--out", tmp_path, "--no-animations")
+    assert "computed for a different scene" not in section(
+        (tmp_path / "report.html").read_text(), "earthquake")
+    scene["rotor"]["eccentricity"] *= 2
+    (tmp_path / "compare_earthquake.json").write_text(json.dumps({**doc, "scene": scene}))
+    run_cli("report", "paper", "--out", tmp_path, "--no-animations")
+    assert "computed for a different scene (rotor.eccentricity differ)" in section(
+        (tmp_path / "report.html").read_text(), "earthquake")
+
+
+def test_run_compares_on_the_record_the_user_can_override(tmp_path):
+    """run's compare stages: the record set before the user's --set (theirs win)."""
+    from types import SimpleNamespace
+    from rotorpillar.commands.run import RUN_STAGES, stage_argv
+    from rotorpillar.scene import load_scene
+    stages = {st[0]: st for st in RUN_STAGES}
+    names = [st[0] for st in RUN_STAGES]
+    for case in COMPARISONS:
+        assert f"compare --case {case}" in stages
+    # the comparisons first: the scene's own runs stay the last runs of their cases
+    assert names.index("compare --case earthquake") < names.index("simulate --case earthquake")
+    assert names.index("compare --case runup") < names.index("simulate --case runup")
+    args = SimpleNamespace(scene="paper", out=tmp_path, overrides=["excitation.record=my.AT2"],
+                           _scene=load_scene("paper"))
+    command, _, extra, own = stages["compare --case earthquake"]
+    argv = stage_argv(command, args, extra, own)
+    sets = [argv[i + 1] for i, a in enumerate(argv) if a == "--set"]
+    assert sets == ["excitation.kind=record", "excitation.record=elcentro", "excitation.record=my.AT2"]
+    assert argv[argv.index("--models") + 1] == "modal,fem3d"

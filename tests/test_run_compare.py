@@ -1,0 +1,33 @@
+"""`rotorpillar run`'s compare stages, alone (the shared ``run_paper`` skips
+them): El Centro on the ROM and the 3D full order, the run-up on the ROM
+and the beam, then the report showing both, with no "not computed" left for
+them.  Shortened runs (10 s) keep it cheap: this checks the stages' wiring
+and the hand-over through the files, not the physics (test_fem3d_transient
+and the compare command's own tests do that)."""
+
+import json
+
+import pytest
+from conftest import cli
+
+from rotorpillar.cli import COMMANDS
+from rotorpillar.postprocess.comparisons import COMPARISONS, compare_models
+
+
+@pytest.mark.slow
+@pytest.mark.skipif("compare" not in COMMANDS, reason="the compare command is not on this branch")
+def test_run_compare_stages_feed_the_report(tmp_path):
+    skip = [a for s in ("analyze", "simulate", "modal", "integrators", "converge") for a in ("--skip", s)]
+    p = cli("run", "paper", "--out", tmp_path, *skip, "--no-animations",
+            "--set", "simulate.duration=10", "--set", "simulate.earthquake_duration=10")
+    assert p.returncode == 0, p.stderr[-3000:]
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert list(run["stages"]) == [f"compare_{c}" for c in COMPARISONS] + ["report"]
+    quake = json.loads((tmp_path / "compare_earthquake.json").read_text())
+    assert quake["models_run"] == compare_models("earthquake")
+    assert quake["excitation"]["kind"] == "record"
+    assert json.loads((tmp_path / "compare_runup.json").read_text())["models_run"] == compare_models("runup")
+    text = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert "<code>rotorpillar compare" not in text
+    assert (tmp_path / "figures" / "comparison_earthquake.png").is_file()
+    assert (tmp_path / "figures" / "comparison_runup.png").is_file()
