@@ -315,6 +315,26 @@ def mode_label(mode: dict, i: int) -> str:
     return text
 
 
+#: Recursive subdivisions of each quadratic face on the drawn surface: 2
+#: evaluates the quadratic shapes at quarter points between the nodes.
+SUBDIVISION = 2
+
+
+def tube_surface(grid):
+    """The outer surface of a VTU's cells as triangles, the mode arrays on it.
+
+    Quadratic cells (the 3D model's default) are drawn on their curved
+    geometry: each face is subdivided ``SUBDIVISION`` times through its
+    shape functions, so a mode's curvature between the nodes and the circles
+    between them show (a bending mode with one node along the height is not
+    kinked at the cell faces).  Linear cells give their faces.
+    """
+    linear = {3, 5, 8, 9, 10, 12, 13, 14}      # VTK's linear cell types
+    if set(np.unique(np.asarray(grid.celltypes)).tolist()) <= linear:
+        return grid.extract_surface(algorithm=None)
+    return grid.extract_surface(nonlinear_subdivision=SUBDIVISION, algorithm="dataset_surface")
+
+
 def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | None:
     """The mode shapes of a ``modes_*.vtu`` on its outer surface, with their metadata.
 
@@ -332,7 +352,7 @@ def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | 
     if grid.n_points == 0 or not names:
         raise ValueError(f"{vtu.name}: no tube with point arrays mode_000, mode_001, ... "
                          f"({grid.n_points} points, arrays {list(grid.point_data.keys())})")
-    surface = grid.extract_surface(algorithm=None)
+    surface = tube_surface(grid)
     meta = [modes[i] if i < len(modes) else {"kind": "?"} for i in range(len(names))]
     return ModeSet(surface, meta, names, tube_axes(axes_meta, surface.bounds), str(vtu))
 
