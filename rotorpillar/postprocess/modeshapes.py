@@ -139,22 +139,26 @@ def has_sections(mode: dict) -> bool:
 
 def section_levels(modeset: ModeSet, u: np.ndarray, count: int = SECTIONS) -> list[float]:
     """Heights (axial coordinate, m) of the cross-sections to draw, top first:
-    where the section deforms most, then the two of 95, 75, 50, 25 % of the
-    height that deform most, at least an eighth of the height from the others."""
+    where the section deforms most, then those of 95, 75, 50, 25 % of the
+    height that deform most, each at least an eighth of the height from the
+    others; a section deforming less than a tenth of the most is left out."""
     ax = modeset.axes
-    pts = np.asarray(modeset.surface.points)
-    z = pts[:, ax.axial]
+    z = np.asarray(modeset.surface.points)[:, ax.axial].astype(float)
     z0, H = float(z.min()), float(np.ptp(z))
     lateral = np.linalg.norm(u[:, [ax.x, ax.y]], axis=1)
-    bins = np.clip(((z - z0) / H * 40).astype(int), 0, 39)
-    amp = np.zeros(40)
-    np.maximum.at(amp, bins, lateral)
-    peak = z0 + (int(np.argmax(amp)) + 0.5) * H / 40
-    chosen = [float(np.clip(peak, z0 + 0.02 * H, z0 + 0.98 * H))]
-    others = sorted((z0 + f * H for f in (0.95, 0.75, 0.5, 0.25)),
-                    key=lambda h: -amp[min(int((h - z0) / H * 40), 39)])
-    for h in others:
-        if len(chosen) < count and all(abs(h - c) > H / 8 for c in chosen):
+    levels, where = np.unique(np.round((z - z0) / H, 6), return_inverse=True)
+    amp = np.zeros(len(levels))
+    np.maximum.at(amp, where.ravel(), lateral)
+    levels = z0 + levels * H
+
+    def amplitude(h):
+        return float(np.interp(h, levels, amp))
+
+    peak = float(np.clip(levels[int(np.argmax(amp))], z0 + 0.02 * H, z0 + 0.98 * H))
+    chosen = [peak]
+    for h in sorted((z0 + f * H for f in (0.95, 0.75, 0.5, 0.25)), key=lambda h: -amplitude(h)):
+        if (len(chosen) < count and amplitude(h) >= 0.1 * amp.max()
+                and all(abs(h - c) > H / 8 for c in chosen)):
             chosen.append(float(h))
     return sorted(chosen, reverse=True)
 
