@@ -281,3 +281,62 @@ def write_comparison_fixture(out: str | Path, case: str, models=("modal", "fem3d
                            "note": "synthetic spectrum: an estimate, not a bound"}
     write_json(out / f"compare_{case}.json", doc)
     return doc
+
+
+#: VTK cell type -> (the VTK class whose parametric coordinates order its
+#: nodes, the cell name of rotorpillar.mesh.arrays.cylindrical_nodes)
+_VTK_CELLS = {12: ("vtkHexahedron", "hexahedron"), 29: ("vtkTriQuadraticHexahedron", "hexahedron"),
+              10: ("vtkTetra", "tetrahedron"), 24: ("vtkQuadraticTetra", "tetrahedron")}
+
+
+def check_tube_vtu(path, height: float, outer_radius: float, inner_radius: float,
+                   around: int, through: int) -> dict:
+    """Check a modes_*.vtu's cells against VTK's own node order and the tube.
+
+    - every node lies on the tube's geometry: radius one of the levels through
+      the wall (1e-9 m), height in [0, H];
+    - VTK node order: each cell's node k sits where the cell's vertices put
+      VTK's parametric point k (the map that placed the nodes,
+      ``cylindrical_nodes``, evaluated at vtkTriQuadraticHexahedron's /
+      vtkQuadraticTetra's ``GetParametricCoords``; 1e-9 m): a node listed in
+      Gmsh's order instead would miss by a cell's size;
+    - the cells' volumes (VTK's cell-size filter, which integrates the linear
+      subdivision of a quadratic cell through its nodes) sum to the prism on
+      the polygon of the nodes around, H N sin(2 pi / N) / 2 (r_o**2 - r_i**2)
+      with N = around * order nodes per circle (1e-9: exact arithmetic for that
+      prism; the true annulus is larger by O((2 pi / N)**2 / 6) ~ 1e-3, which a
+      cell tessellated through its vertices only, or a permuted one, misses).
+    Returns {"vtk_type", "points", "order"}.
+    """
+    import vtk
+    from rotorpillar.mesh.arrays import cylindrical_nodes
+    from rotorpillar.postprocess.offscreen import pyvista
+    pv = pyvista()
+    grid = pv.read(str(path))
+    types = np.unique(np.asarray(grid.celltypes))
+    assert len(types) == 1, types
+    vtk_type = int(types[0])
+    cls, cell_name = _VTK_CELLS[vtk_type]
+    cell = getattr(vtk, cls)()
+    nn = cell.GetNumberOfPoints()
+    par = np.array([cell.GetParametricCoords()[i] for i in range(3 * nn)]).reshape(nn, 3)
+    reference = 2 * par - 1 if cell_name == "hexahedron" else par     # Gmsh's reference cells
+    cells = np.asarray(grid.cells_dict[vtk_type])
+    pts = np.asarray(grid.points)
+    expected = cylindrical_nodes(pts, cells, reference, cell_name)
+    assert np.abs(pts[cells] - expected).max() < 1e-9
+    order = 2 if nn in (27, 10) else 1
+    levels = inner_radius + (outer_radius - inner_radius) * np.arange(through * order + 1) / (through * order)
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    assert np.abs(r[:, None] - levels[None, :]).min(axis=1).max() < 1e-9
+    assert pts[:, 2].min() > -1e-12 and pts[:, 2].max() < height + 1e-9
+    n = around * order
+    prism = height * n * math.sin(2 * math.pi / n) / 2 * (outer_radius**2 - inner_radius**2)
+    volume = float(np.sum(grid.compute_cell_sizes(length=False, area=False)["Volume"]))
+    assert volume == pytest_approx(prism, 1e-9)
+    return {"vtk_type": vtk_type, "points": len(pts), "order": order}
+
+
+def pytest_approx(value, rel):
+    import pytest
+    return pytest.approx(value, rel=rel)

@@ -30,3 +30,21 @@ def assert_real_png(path, size=None, min_std=8.0):
     px = pixels(path)
     assert px.shape[:2] == (h, w)
     assert px.std() > min_std, f"{path} is blank (pixel std {px.std():.2f})"
+
+
+def labels_overlap(fig) -> list[tuple[str, str]]:
+    """Pairs of texts (annotations and texts of one axes; tick labels excluded)
+    of ``fig`` whose boxes, as the renderer draws them, intersect (an
+    annotation's text box: ``Text.get_window_extent``, its leader line aside)."""
+    from rotorpillar.postprocess.style import text_box
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    pairs = []
+    for ax in fig.axes:
+        texts = [t for t in ax.texts if t.get_visible() and t.get_text()]
+        boxes = [text_box(t, renderer) for t in texts]
+        for i in range(len(texts)):
+            for j in range(i + 1, len(texts)):
+                if boxes[i].overlaps(boxes[j]):
+                    pairs.append((texts[i].get_text(), texts[j].get_text()))
+    return pairs

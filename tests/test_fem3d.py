@@ -186,16 +186,26 @@ def test_rigid_top_moves_rigidly_and_matches_the_tip_model():
     assert q[0] == pytest.approx(1.0, rel=1e-9)
 
 
-def test_tetrahedra_and_linear_elements_run_and_bound_from_above():
+def test_tetrahedra_and_linear_elements_run_and_bound_from_above(tmp_path):
     """Conforming elements bound the frequency from above; tetrahedra and
-    linear hexahedra lock in a thin wall (stiffer), quadratic hexahedra least."""
+    linear hexahedra lock in a thin wall (stiffer), quadratic hexahedra least.
+    Each writes its VTU on its own cells (quadratic: every P2 node), in VTK's
+    node order (tests/fixtures.check_tube_vtu)."""
+    import fixtures
+    from rotorpillar.fem3d.output import write_modes_vtu
     s = load_scene("paper")
     tim = timoshenko(s.pillar)
     w = {}
+    vtk_types = {("hexahedron", 2): 29, ("tetrahedron", 2): 24, ("hexahedron", 1): 12}
     for ct, deg, T in (("hexahedron", 2, 1), ("tetrahedron", 2, 1), ("hexahedron", 1, 2)):
         m = Mesh(elements_around=16, elements_along=10, elements_through=T, degree=deg, cell_type=ct)
         r = modal_analysis(s, top=False, n_modes=2, mesh=m)
         assert r.kind[0].startswith("bending") and r.cell_type == ct and r.degree == deg
         w[(ct, deg)] = r.omega[0]
+        got = fixtures.check_tube_vtu(write_modes_vtu(tmp_path / f"{ct}{deg}.vtu", r),
+                                      s.pillar.height, s.pillar.outer_diameter / 2,
+                                      s.pillar.inner_diameter / 2, around=16, through=T)
+        assert got["vtk_type"] == vtk_types[(ct, deg)]
+        assert got["points"] == r.dofs // 3        # every node of the space, once
     assert w[("hexahedron", 2)] < w[("tetrahedron", 2)] < w[("hexahedron", 1)]
     assert w[("hexahedron", 2)] == pytest.approx(tim, rel=3e-3)

@@ -5,10 +5,13 @@
   modal_stiffness; reduction; mesh; axes; timings of mesh, assembly,
   solve), ascending frequencies, and frequency_hz = omega / 2 pi exactly.
 - modes_bare.vtu / modes_top.vtu hold one 3-vector point array per mode, in
-  modal.json's order; a "unit_tip" bending mode has mean top-vertex
-  displacement 1 in its direction (1e-3: the vertices are a subset of the
-  quadratic nodes the normalisation averages over), a "unit_max" mode
-  max |u| <= 1.
+  modal.json's order; a "unit_tip" bending mode has mean top-node
+  displacement 1 in its direction (1e-3: the normalisation's own average
+  over the top section may weight the nodes otherwise), a "unit_max" mode
+  max |u| <= 1.  The cells are the quadratic ones (VTK 29, triquadratic
+  hexahedra), one point per node of the P2 space (dofs / 3), in VTK's node
+  order, on the tube (tests/fixtures.check_tube_vtu says how and to what
+  tolerance).
 - MPI: `mpirun -n 2` gives the serial frequencies to 1e-8 (eigenpairs to
   1e-10, MUMPS round-off differs between the two factorisations) and the
   same kinds and tip reduction (1e-7).
@@ -87,6 +90,17 @@ def test_mode_shape_files(small_run):
                 assert u[top, axis].mean() == pytest.approx(1.0, rel=1e-3)
             else:
                 assert np.linalg.norm(u, axis=1).max() <= 1 + 1e-12
+
+
+def test_mode_shapes_are_on_the_quadratic_cells(small_run):
+    import fixtures
+    out, doc, _ = small_run
+    p = doc["scene"]["pillar"]
+    for name in ("modes_bare.vtu", "modes_top.vtu"):
+        got = fixtures.check_tube_vtu(out / name, p["height"], p["outer_diameter"] / 2,
+                                      p["inner_diameter"] / 2, around=16, through=1)
+        assert got["vtk_type"] == 29 and got["order"] == 2
+        assert got["points"] == doc["mesh"]["dofs"] // 3
 
 
 def mpirun_prefix():

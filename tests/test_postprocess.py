@@ -10,8 +10,23 @@ Sources and tolerances:
   missing deformation would break: in a bending mode's picture the tube's top
   sits sideways of its base by more than half the tube's drawn width, in the
   torsion mode's by less than a quarter.
+  The tube fills its picture: its coloured rows span most of the height
+  below the label.  An ovalling mode's picture holds its cross-sections (the
+  right-hand view has coloured pixels; a bending mode's picture has one view).
+- The quadratic VTU (a Gmsh tube's hexahedron27 cells, written as modal
+  does): its drawn surface subdivides each face through the cells' shape
+  functions, so a field quadratic along the height, u_x = z**2, comes back
+  exact at points between the nodes (1e-6 relative: VTK's surface filter
+  stores its points in float32), where a linear tessellation through the
+  nodes would miss by (dz/2)**2 ~ 3 m**2 here.
 - Animations: the frame count read back from the MP4 by ffmpeg equals the
   requested bound; frame size 880 x 560 (the 3D view beside the panel).
+- Drive chart, main panel: its torque axis is the motor's range, HEADROOM
+  times Md at rest (a falling characteristic is largest there), not the
+  resonances far above it (sommerfeld: 18,000 N*m against a 600 N*m motor);
+  each resonance whose own peak (analyze.json's dL_max, the averaging's
+  maximum) exceeds it is marked at the top edge; no two labels' boxes as the
+  renderer draws them (Text.get_window_extent) intersect, on three scenes.
 - Drive chart: L(Omega) rebuilt from analyze.json's resonance parameters by
   the averaging closed forms against the curves analyze stored (1e-9
   relative, the same formulas); the stable/unstable switch points against the
@@ -24,14 +39,15 @@ import numpy as np
 import pytest
 
 import fixtures
-from imagecheck import assert_real_png, pixels, png_size
+from imagecheck import assert_real_png, labels_overlap, pixels, png_size
 from rotorpillar.analysis import analyze
 from rotorpillar.postprocess import charts, transient_charts
 from rotorpillar.postprocess.animation import (animate, elastic_field, frame_times, pillar_motion)
 from rotorpillar.postprocess.inputs import (Simulation, bending_columns, cantilever_tube, load_modes,
                                             namespace, read_json, read_simulation, tube_axes)
-from rotorpillar.postprocess.modeshapes import (BEAM_TARGET, MODE_SIZE, SHEET_TILE, deformed,
-                                                mode_scale, render_contact_sheet, render_mode)
+from rotorpillar.postprocess.modeshapes import (BEAM_TARGET, MODE_SIZE, SHEET_TILE, SPLIT, deformed,
+                                                has_sections, mode_scale, render_contact_sheet,
+                                                render_mode, section_levels)
 from rotorpillar.reduced.pillar import cantilever_mode
 from rotorpillar.provenance import to_json
 from rotorpillar.scene import load_scene, override
@@ -106,6 +122,48 @@ def test_mode_pictures_are_real_and_show_the_mode(modes_top, tmp_path):
     assert lean > 0.5 * width
     lean, width = _tube_lean(p_tors)
     assert lean < 0.25 * width
+    # the tube fills its picture's height (the label takes the top ~6 %)
+    px = pixels(p_bend)[:, : int(0.8 * MODE_SIZE[0])]
+    rows = np.flatnonzero(((px.max(axis=2) - px.min(axis=2)) > 40).sum(axis=1) > 3)
+    assert np.ptp(rows) > 0.85 * MODE_SIZE[1]
+
+
+def test_ovalling_mode_is_drawn_with_its_cross_sections(modes_top, tmp_path):
+    kinds = [m["kind"] for m in modes_top.modes]
+    oval, bend = kinds.index("ovalling"), kinds.index("bending_x")
+    assert has_sections(modes_top.modes[oval]) and not has_sections(modes_top.modes[bend])
+    levels = section_levels(modes_top, modes_top.shape(oval))
+    assert levels == sorted(levels, reverse=True) and 0 < min(levels) and max(levels) < 20.0
+    assert np.min(-np.diff(levels)) > 20.0 / 8
+    split = int(MODE_SIZE[0] * SPLIT[0] / sum(SPLIT))
+
+    p_oval = render_mode(modes_top, oval, tmp_path / "oval.png")
+    assert_real_png(p_oval, MODE_SIZE)
+    # the right-hand view: one run of coloured rows per deformed ring
+    px = pixels(p_oval)[: int(0.9 * MODE_SIZE[1]), split + 5:]    # the colour bar sits below
+    rows = np.flatnonzero(((px.max(axis=2) - px.min(axis=2)) > 40).sum(axis=1) > 0)
+    runs = 1 + int(np.sum(np.diff(rows) > 5))
+    assert runs == len(levels) == 3
+
+
+def test_quadratic_cells_are_drawn_through_their_shape_functions(tmp_path):
+    import meshio
+    from rotorpillar.fem3d.output import vtk_cells
+    from rotorpillar.mesh import tube_mesh_data
+    from rotorpillar.mesh.tube import TubeMeshParams
+    H = 20.0
+    d = tube_mesh_data(TubeMeshParams(H, 1.0, 0.9, 8, 3, 1, 2, "hexahedron"), isolated=False)
+    pts = d.points
+    u = np.zeros_like(pts)
+    u[:, 0] = pts[:, 2] ** 2
+    meshio.write(tmp_path / "q.vtu", meshio.Mesh(pts, [("hexahedron27", vtk_cells(d.cells, d.gmsh_cell))],
+                                                 point_data={"mode_000": u}))
+    ms = load_modes(tmp_path / "q.vtu", [{"kind": "bending_x"}], {"tube": "z", "paper_x": "x"})
+    s = np.asarray(ms.surface.points)
+    # VTK's surface filter gives float32 points: z**2 to 2 x 6e-8 relative
+    assert ms.shape(0)[:, 0] == pytest.approx(s[:, 2].astype(float) ** 2, rel=1e-6, abs=1e-6 * H**2)
+    # and there are points between the nodes (seven levels of nodes, more drawn)
+    assert len(np.unique(np.round(s[:, 2], 9))) > 2 * 3 + 1
 
 
 def test_contact_sheet_size(modes_top, tmp_path):
@@ -219,6 +277,43 @@ def test_stability_switches_at_the_fold_points(analyses):
 def test_paper_scene_has_no_unstable_branch(analyses):
     data = charts.drive_curve_data(analyses["paper"])
     assert data["jumps"] == [] and data["stable"].all()
+
+
+@pytest.fixture(scope="module")
+def sommerfeld():
+    return namespace(json.loads(to_json(analyze(load_scene("sommerfeld")))))
+
+
+def test_drive_chart_spans_the_motor_and_marks_what_lies_beyond(sommerfeld, tmp_path):
+    a = sommerfeld
+    data = charts.drive_curve_data(a)
+    fig = charts.drive_figure(a)
+    top = fig.axes[0]
+    M0 = a.drive.torque_at_zero
+    assert a.drive.slope > 0           # a falling characteristic: Md is largest at rest
+    assert top.get_ylim() == pytest.approx((0.0, charts.HEADROOM * M0))
+    y_max = top.get_ylim()[1]
+    far = {r.index for r in a.resonances if r.dL_max > y_max}
+    assert far and max(r.dL_max for r in a.resonances) > 20 * y_max   # the scene's point
+    assert {b["resonance"] for b in data["beyond"]} == far
+    texts = [t.get_text() for t in top.texts]
+    for b in data["beyond"]:
+        assert b["peak"] > y_max
+        assert any(t.startswith(f"omega_{b['resonance']}: L peaks at") for t in texts)
+    # the capture: every stationary speed of the motor is inside the panel
+    for st in a.drive.stationary:
+        assert 0 < M0 - a.drive.slope * st.omega < y_max and st.omega < top.get_xlim()[1]
+        assert any(t.startswith(f"{st.omega:.2f} rad/s") for t in texts)
+    assert labels_overlap(fig) == []
+    from rotorpillar.postprocess.style import save
+    assert_real_png(save(fig, tmp_path / "d.png"), (1000, 760))
+
+
+@pytest.mark.parametrize("case", ["paper", "fold"])
+def test_drive_chart_labels_do_not_overlap(analyses, case):
+    fig = charts.drive_figure(analyses[case])
+    assert labels_overlap(fig) == []
+    assert not charts.drive_curve_data(analyses[case])["beyond"] or case == "fold"
 
 
 def test_chart_files(analyses, tmp_path):

@@ -76,9 +76,11 @@ class ModalResult:
     solver: dict = field(default_factory=dict)
     """SLEPc: iterations, tolerance, max residual"""
     points: np.ndarray | None = None
-    """vertex coordinates of the first-order cells (m), rank 0"""
+    """coordinates of the VTU's nodes (m), rank 0: every node of the cells on a
+    quadratic mesh (the P2 nodes, on the circles), the vertices on a linear one"""
     vtu_cells: np.ndarray | None = None
-    """first-order cell connectivity into ``points``, rank 0"""
+    """cell connectivity into ``points`` in VTK's node order (27 or 10 nodes
+    per quadratic cell, 8 or 4 per linear one), rank 0"""
     shapes: np.ndarray | None = None
     """(modes, points, 3) normalised displacement at ``points``, rank 0"""
     beam_line: dict | None = None
@@ -135,18 +137,27 @@ def _scene_top_mass(scene) -> float:
 
 
 def _vtu_map(model: PillarModel, coords: np.ndarray):
-    """Vertices of the Gmsh cells and, for each, its node in the global dof order."""
+    """The VTU's nodes and cells (VTK order) and, for each node, its node in the global dof order.
+
+    On a quadratic mesh with the degree-2 space (the default) every node of
+    every cell is a node of the space: the cells are written whole, so the
+    shapes carry every P2 value and the picture the true geometry.  Otherwise
+    (degree 1, or a space of another degree than the geometry) the cells'
+    vertices only.
+    """
     from scipy.spatial import cKDTree
+    from .output import vtk_cells
     data = model.mesh_data
-    corner = data.corner_cells()
-    used, inverse = np.unique(corner, return_inverse=True)
+    whole = data.order == model.V.ufl_element().degree()
+    cells = vtk_cells(data.cells, data.gmsh_cell) if whole else data.corner_cells()
+    used, inverse = np.unique(cells, return_inverse=True)
     pts = data.points[used]
     dist, node = cKDTree(coords).query(pts)
     scale = max(model.params.height, model.params.outer_radius)
     if np.max(dist) > 1e-8 * scale:
-        raise ComputationError("mode shapes: a mesh vertex has no dof at its place "
+        raise ComputationError("mode shapes: a mesh node has no dof at its place "
                                f"(distance {np.max(dist):.3g} m)")
-    return pts, inverse.reshape(corner.shape), node
+    return pts, inverse.reshape(cells.shape), node
 
 
 def _align_and_normalise(omega, shapes, rings):

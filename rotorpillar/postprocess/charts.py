@@ -8,7 +8,11 @@
   over the whole speed range, not only the +-50 % of the stored curves (a
   jump may land far beyond them); the tests check it against those curves.
   A regime on L is stable where the paper's equation 23 says so
-  (:func:`rotorpillar.reduced.averaging.branch_is_stable`).
+  (:func:`rotorpillar.reduced.averaging.branch_is_stable`).  The main panel
+  shows what the motor reaches: its torque axis spans the drive's range
+  (Md over the speeds drawn), the resonance peaks of L above it are marked at
+  the top edge with their value, and the jumps beyond it are left to the
+  zooms; no two labels overlap (:func:`rotorpillar.postprocess.style.place_labels`).
 - :func:`amplitude_chart`: a_i(z) by averaging (the paper's equation 19,
   omega_i**2 restored) against the exact linear steady state, per resonance.
 
@@ -27,7 +31,10 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..reduced import averaging as av
-from .style import COLOURS, blank, figure, save
+from .style import COLOURS, blank, figure, place_labels, save
+
+#: Headroom of the main panel's torque axis over the motor's largest torque.
+HEADROOM = 1.15
 
 def resonances_of(analysis) -> list:
     """The resonances of analyze.json as objects the averaging closed forms take."""
@@ -41,15 +48,20 @@ def drive_curve_data(analysis, points: int = 6000) -> dict:
 
     Keys: omega (grid, rad/s), L (total resistance), Mc, Md (the scene's
     motor), stable (bool mask: the paper's equation 23 on L), jumps (list
-    of dicts with the from/to points), stationary (list of records with
-    omega and stable), top (grid end).
+    of dicts with the from/to points and ``shown``: within the main panel),
+    stationary (list of records with omega and stable), top (grid end);
+    the main panel's range: x_max (past the free speed and every resonance),
+    y_max (the drive's range: HEADROOM times the largest Md over [0, x_max]),
+    and beyond (per resonance whose own peak of L, Mc + its dL alone, exceeds
+    y_max: resonance, omega, peak, in the units above).
     """
     d = analysis.drive
     res = resonances_of(analysis)
     k, s, M0 = d.load_coefficient, d.slope, d.torque_at_zero
     ends = [1.6 * r.omega for r in res]
     free = d.free_speed
-    if free is not None and math.isfinite(free):
+    finite_free = free is not None and math.isfinite(free)
+    if finite_free:
         ends.append(1.08 * free)
     ends += [1.1 * j.omega_to for j in d.jumps] + [1.1 * j.omega_from for j in d.jumps]
     top = max(ends)
@@ -57,19 +69,37 @@ def drive_curve_data(analysis, points: int = 6000) -> dict:
                                     + [r.omega * (1 + r.nu * np.linspace(-8, 8, 801)) for r in res]))
     grid = grid[(grid >= 0) & (grid <= top)]
     L = av.total_resistance(grid, k, res)
+    # The main panel: the speeds the motor runs at and the resonances; the
+    # torques it can give there.
+    x_max = max([1.1 * r.omega for r in res] + ([1.15 * free] if finite_free else []))
+    y_max = HEADROOM * max(M0, M0 - s * x_max)
+    if not y_max > 0:
+        y_max = HEADROOM * float(np.max(L[grid <= x_max]))
     jumps = []
     for n, j in enumerate(d.jumps, start=1):
         up = j.direction == "up"
         level = j.torque_at_zero
+        ends = ((j.omega_from, level - s * j.omega_from), (j.omega_to, level - s * j.omega_to))
+        shown = all(0 <= y <= y_max for _, y in ends)
+        if shown:
+            x_max = max(x_max, 1.05 * max(j.omega_from, j.omega_to))
         jumps.append({"direction": j.direction, "resonance": j.resonance,
                       "label_from": ("A" if up else "D"), "label_to": ("B" if up else "C"),
-                      "number": n, "level": level,
-                      "from": (j.omega_from, level - s * j.omega_from),
-                      "to": (j.omega_to, level - s * j.omega_to)})
+                      "number": n, "level": level, "from": ends[0], "to": ends[1],
+                      "shown": shown})
+    x_max = min(x_max, top)
+    beyond = []
+    for r in res:
+        # the resonance's own peak: Mc with its dL alone (neighbours' peaks may fall in its window)
+        near = grid[(grid >= r.omega * (1 - 8 * r.nu)) & (grid <= r.omega * (1 + 8 * r.nu))]
+        peak = float(np.max(av.total_resistance(np.append(near, r.omega), k, [r])))
+        if peak > y_max and r.omega <= x_max:
+            beyond.append({"resonance": r.index, "omega": r.omega, "peak": peak})
     return {"omega": grid, "L": L, "Mc": k * grid**2, "Md": M0 - s * grid,
             "stable": np.asarray(av.branch_is_stable(grid, s, k, res), dtype=bool),
             "jumps": jumps, "stationary": d.stationary,
-            "slope": s, "torque_at_zero": M0, "top": top}
+            "slope": s, "torque_at_zero": M0, "top": top,
+            "x_max": x_max, "y_max": y_max, "beyond": beyond}
 
 
 def _branches(ax, x, y, stable, label=True):
@@ -88,7 +118,10 @@ def _branches(ax, x, y, stable, label=True):
         seen.add(name)
 
 
-def _jump_arrows(ax, jumps, s, xlim, z_scale=1.0):
+def _jump_arrows(ax, jumps, s, xlim, z_scale=1.0) -> list[dict]:
+    """Draw each jump's drive line, arrow and end points; return their labels
+    (for :func:`place_labels`)."""
+    labels = []
     for j in jumps:
         (x0, y0), (x1, y1) = j["from"], j["to"]
         xs = np.linspace(*xlim, 50)
@@ -98,12 +131,13 @@ def _jump_arrows(ax, jumps, s, xlim, z_scale=1.0):
         n = j["number"]
         for (x, y), name in (((x0, y0), j["label_from"]), ((x1, y1), j["label_to"])):
             ax.plot([x / z_scale], [y], "o", color="black", ms=3.5)
-            ax.annotate(f"{name}{n}", (x / z_scale, y), textcoords="offset points", xytext=(4, 4),
-                        fontsize=8)
+            labels.append({"xy": (x / z_scale, y), "text": f"{name}{n}", "fontsize": 8})
+    return labels
 
 
-def drive_chart(analysis, path: str | Path, size=(1000, 760)) -> Path:
-    """Md and L over the speed (top) and near each resonance (bottom)."""
+def drive_figure(analysis, size=(1000, 760)):
+    """The Md/L figure (matplotlib): the main panel over the drive's range
+    (top), each resonance in full (bottom).  :func:`drive_chart` saves it."""
     data = drive_curve_data(analysis)
     res = analysis.resonances
     fig = blank(*size)
@@ -111,33 +145,49 @@ def drive_chart(analysis, path: str | Path, size=(1000, 760)) -> Path:
     top = fig.add_subplot(gs[0, :])
     zooms = [fig.add_subplot(gs[1, i]) for i in range(len(res))]
     W, s = data["omega"], data["slope"]
+    x_max, y_max = data["x_max"], data["y_max"]
     top.plot(W, data["Mc"], color=COLOURS["load"], ls=":", label="Mc = k Omega^2 (load alone)")
     _branches(top, W, data["L"], data["stable"])
     top.plot(W, data["Md"], color=COLOURS["drive"],
              label=f"Md = {data['torque_at_zero']:g} - {s:g} Omega (scene's motor)")
+    labels = []
     for st in data["stationary"]:
         y = data["torque_at_zero"] - s * st.omega
         top.plot([st.omega], [y], "o", ms=7, mec="black",
-                 mfc=COLOURS["stable"] if st.stable else "white")
-        top.annotate(f"{st.omega:.2f} rad/s ({'stable' if st.stable else 'unstable'})",
-                     (st.omega, y), textcoords="offset points", xytext=(-10, 10), ha="right",
-                     fontsize=8)
-    _jump_arrows(top, data["jumps"], s, (0, data["top"]))
+                 mfc=COLOURS["stable"] if st.stable else "white", zorder=5)
+        labels.append({"xy": (st.omega, y), "offset": (6, 6), "fontsize": 8,
+                       "text": f"{st.omega:.2f} rad/s ({'stable' if st.stable else 'unstable'})"})
+    shown = [j for j in data["jumps"] if j["shown"]]
+    labels += _jump_arrows(top, shown, s, (0, x_max))
+    peaks = {b["resonance"]: b for b in data["beyond"]}
     for r in res:
         top.axvline(r.omega, color=COLOURS["reference"], lw=0.6, ls="--")
-        top.annotate(f"omega_{r.index}", (r.omega, 0), textcoords="offset points",
-                     xytext=(2, 2), fontsize=7, color="#666666", rotation=90)
-    y_hi = max(float(np.max(data["L"])), data["torque_at_zero"]) * 1.05
-    top.set_xlim(0, data["top"])
-    top.set_ylim(0, y_hi)
+        b = peaks.get(r.index)
+        if b is None:
+            labels.append({"xy": (r.omega, 0.0), "offset": (2, 3), "fontsize": 7, "rotation": 90,
+                           "va": "bottom", "color": "#666666", "text": f"omega_{r.index}"})
+            continue
+        # beyond the panel: an arrow at the top edge with the peak's value
+        top.annotate("", xy=(r.omega, y_max), xytext=(r.omega, 0.9 * y_max),
+                     arrowprops=dict(arrowstyle="->", color=COLOURS["unstable"], lw=1.4),
+                     annotation_clip=False)
+        labels.append({"xy": (r.omega, 0.9 * y_max), "offset": (4, -4), "fontsize": 7,
+                       "va": "top", "color": COLOURS["unstable"],
+                       "text": f"omega_{r.index}: L peaks at {b['peak']:,.0f} N*m"})
+    top.set_xlim(0, x_max)
+    top.set_ylim(0, y_max)
     top.set_xlabel("Omega (rad/s)")
     top.set_ylabel("torque (N*m)")
+    far = [j for j in data["jumps"] if not j["shown"]]
     verdict = (f"{len(data['jumps'])} jump(s): " + ", ".join(
         f"{j['label_from']}{j['number']}->{j['label_to']}{j['number']}" for j in data["jumps"])
         if data["jumps"] else "no jumps: with this drive every stationary regime is stable")
-    top.set_title(f"Motor torque and resistance (paper Figs. 3-4) - {verdict}")
-    top.legend(loc="upper left")
+    top.set_title(f"Motor torque and resistance (paper Figs. 3-4) - {verdict}"
+                  + (f"\ntorque axis: the motor's range; {len(far)} jump(s) above it, "
+                     "in the panels below" if far else ""))
+    legend = top.legend(loc="lower right" if data["beyond"] else "upper left", fontsize=7)
     # zooms: near each resonance, in z = Omega / omega_i as the paper draws them
+    zoom_labels = []
     for ax, r in zip(zooms, res):
         w = r.omega
         lo, hi = 0.5 * w, 1.5 * w
@@ -151,11 +201,11 @@ def drive_chart(analysis, path: str | Path, size=(1000, 760)) -> Path:
         c = r.curves
         ax.plot(c.z[::8], c.L_all[::8], ".", color="black", ms=2.5,
                 label="analyze.json curve" if r is res[0] else None)
-        _jump_arrows(ax, mine, s, (lo, hi), z_scale=w)
+        zoom_labels.append(_jump_arrows(ax, mine, s, (lo, hi), z_scale=w))
         ys = [data["L"][m]] + [np.array([j["from"][1], j["to"][1]]) for j in mine]
         y0, y1 = float(min(map(np.min, ys))), float(max(map(np.max, ys)))
         pad = 0.08 * (y1 - y0 or 1.0)
-        ax.set_ylim(y0 - pad, y1 + pad)
+        ax.set_ylim(y0 - pad, y1 + 2 * pad)
         ax.set_xlim(lo / w, hi / w)
         ax.set_xlabel(f"z = Omega / omega_{r.index}")
         ax.set_ylabel("torque (N*m)")
@@ -172,7 +222,18 @@ def drive_chart(analysis, path: str | Path, size=(1000, 760)) -> Path:
             extra.legend(loc="lower right", fontsize=7)
         if r is res[0]:
             ax.legend(loc="upper left", fontsize=7)
-    return save(fig, path)
+    # Labels last, on the final layout, frozen so that saving does not move the axes.
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
+    place_labels(top, labels, obstacles=[legend])
+    for ax, lab in zip(zooms, zoom_labels):
+        place_labels(ax, lab, obstacles=[a for a in (ax.get_legend(),) if a is not None])
+    return fig
+
+
+def drive_chart(analysis, path: str | Path, size=(1000, 760)) -> Path:
+    """Md and L over the speed (top) and near each resonance (bottom): the PNG."""
+    return save(drive_figure(analysis, size), path)
 
 
 def amplitude_chart(analysis, path: str | Path, size=(1000, 360)) -> Path:

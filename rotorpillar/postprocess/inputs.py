@@ -296,6 +296,15 @@ class ModeSet:
     source: str
     """where the shapes came from (a VTU path, or the closed-form fallback)"""
     notes: list[str] = field(default_factory=list)
+    grid: object = None
+    """the VTU's cells (pyvista.UnstructuredGrid) the surface was drawn from, or None"""
+
+    def coarser(self, subdivision: int) -> "ModeSet":
+        """The same modes on a surface subdivided ``subdivision`` times (quadratic
+        cells; an animation's hundreds of frames need fewer points than a picture)."""
+        if self.grid is None:
+            return self
+        return dataclasses.replace(self, surface=tube_surface(self.grid, subdivision))
 
     def shape(self, i: int) -> np.ndarray:
         """Point displacements of mode i (n_points x 3)."""
@@ -326,6 +335,28 @@ def mode_label(mode: dict, i: int) -> str:
     return text
 
 
+#: Recursive subdivisions of each quadratic face on the drawn surface: 1
+#: triangulates it through its nodes, 2 adds the quadratic shapes at quarter
+#: points between them (needed on the graded default mesh, whose long top
+#: cells show the second bending mode's curvature as a kink at 1).
+SUBDIVISION = 2
+
+
+def tube_surface(grid, subdivision: int = SUBDIVISION):
+    """The outer surface of a VTU's cells as triangles, the mode arrays on it.
+
+    Quadratic cells (the 3D model's default) are drawn on their curved
+    geometry: each face is subdivided ``subdivision`` times through its
+    shape functions, so a mode's curvature between the nodes and the circles
+    between them show (a bending mode is not kinked at the cell faces).
+    Linear cells give their faces.
+    """
+    linear = {3, 5, 8, 9, 10, 12, 13, 14}      # VTK's linear cell types
+    if set(np.unique(np.asarray(grid.celltypes)).tolist()) <= linear:
+        return grid.extract_surface(algorithm=None)
+    return grid.extract_surface(nonlinear_subdivision=subdivision, algorithm="dataset_surface")
+
+
 def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | None:
     """The mode shapes of a ``modes_*.vtu`` on its outer surface, with their metadata.
 
@@ -343,9 +374,9 @@ def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | 
     if grid.n_points == 0 or not names:
         raise ValueError(f"{vtu.name}: no tube with point arrays mode_000, mode_001, ... "
                          f"({grid.n_points} points, arrays {list(grid.point_data.keys())})")
-    surface = grid.extract_surface(algorithm=None)
+    surface = tube_surface(grid)
     meta = [modes[i] if i < len(modes) else {"kind": "?"} for i in range(len(names))]
-    return ModeSet(surface, meta, names, tube_axes(axes_meta, surface.bounds), str(vtu))
+    return ModeSet(surface, meta, names, tube_axes(axes_meta, surface.bounds), str(vtu), grid=grid)
 
 
 def cantilever_tube(height: float, outer_diameter: float, inner_diameter: float,

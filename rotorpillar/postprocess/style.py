@@ -79,3 +79,74 @@ def blank(width_px: int = 900, height_px: int = 540):
     """An empty figure of the given pixel size (lay out its axes yourself)."""
     plt = pyplot()
     return plt.figure(figsize=(width_px / DPI, height_px / DPI), dpi=DPI)
+
+
+def text_box(text, renderer):
+    """The drawn box of a Text or an Annotation's text alone (without its arrow)."""
+    from matplotlib.text import Annotation, Text
+    if isinstance(text, Annotation):
+        text.update_positions(renderer)
+    return Text.get_window_extent(text, renderer)
+
+
+def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0) -> list:
+    """Annotate ``ax`` with labels that overlap neither each other nor ``obstacles``.
+
+    ``labels``: dicts with ``xy`` (data coordinates of the point labelled),
+    ``text``, optional ``offset`` (points, default (4, 4)) and any
+    ``Axes.annotate`` keyword (fontsize, ha, colour...).  Each label, taken
+    in order of its point's height, tries its offset (and its mirror image
+    left-right), then the same moved down and up by one, two, ... label
+    heights, and keeps the first place whose box (as the renderer draws it,
+    :func:`text_box`) meets no box placed before, no labelled point, no
+    obstacle (artists with a window extent, e.g. the legend) and stays inside
+    the axes; a label moved
+    off its point gets a thin leader line to it.  Call on the final layout.
+    Returns the annotations.
+    """
+    fig = ax.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    taken = [o.get_window_extent(renderer) for o in obstacles]
+    # the labelled points themselves (their markers): no label covers one
+    from matplotlib.transforms import Bbox
+    for spec in labels:
+        x, y = ax.transData.transform(spec["xy"])
+        taken.append(Bbox.from_extents(x - 3, y - 3, x + 3, y + 3))
+    to_pt = 72.0 / fig.dpi
+    flip = {"left": "right", "right": "left", "center": "center"}
+    order = sorted(range(len(labels)), key=lambda k: ax.transData.transform(labels[k]["xy"])[1])
+    out = [None] * len(labels)
+    for k in order:
+        spec = dict(labels[k])
+        xy, text = spec.pop("xy"), spec.pop("text")
+        dx, dy = spec.pop("offset", (4, 4))
+        ha = spec.pop("ha", "left")
+        spec.setdefault("fontsize", 8)
+        t = ax.annotate(text, xy, xytext=(dx, dy), textcoords="offset points", ha=ha,
+                        arrowprops=dict(arrowstyle="-", lw=0.5, color="#888888",
+                                        shrinkA=0, shrinkB=2), annotation_clip=False, **spec)
+        step = (text_box(t, renderer).height + pad_px) * to_pt
+        chosen = None
+        for n in range(0, 41):
+            shift = 0 if n == 0 else (-1) ** n * ((n + 1) // 2) * step
+            for side in (1, -1):
+                t.xyann = (side * dx, dy + shift)
+                t.set_ha(ha if side == 1 else flip[ha])
+                box = text_box(t, renderer)
+                inside = (box.y0 >= frame.y0 and box.y1 <= frame.y1
+                          and box.x0 >= frame.x0 and box.x1 <= frame.x1)
+                if inside and not any(box.padded(pad_px / 2).overlaps(b) for b in taken):
+                    chosen = shift
+                    break
+            if chosen is not None:
+                break
+        if chosen is None:        # nowhere free: keep the first place
+            t.xyann = (dx, dy)
+            t.set_ha(ha)
+            box = text_box(t, renderer)
+        t.arrow_patch.set_visible(bool(chosen))
+        taken.append(box)
+        out[k] = t
+    return out
