@@ -204,3 +204,24 @@ def test_only_modal_runs_under_mpirun(tmp_path, command):
     p = cli(command, "paper", "--out", out, env=dict(os.environ, OMPI_COMM_WORLD_SIZE="2"))
     assert p.returncode == 2 and "without mpirun" in one_line(p)
     assert not out.exists()
+
+
+def test_a_run_past_its_stability_limit_is_a_failure_not_a_success(tmp_path):
+    """Central difference with h = 1 s on modes of ~30 rad/s: h omega = 29 > 2 (its limit)."""
+    import json
+    p = cli("simulate", "paper", "--case", "runup", "--out", tmp_path,
+            "--set", "simulate.integrator=central_difference", "--set", "simulate.time_step=1")
+    assert p.returncode == 4, p.stderr
+    doc = json.loads((tmp_path / "simulate.json").read_text())
+    assert doc["ok"] is False
+    assert any("stability limit" in c for c in doc["failed_checks"])
+    assert any("energy balance" in c for c in doc["failed_checks"])
+
+
+@pytest.mark.parametrize("case", ["runup", "rundown", "earthquake"])
+def test_a_good_run_passes_its_checks(tmp_path, case):
+    import json
+    p = cli("simulate", "paper", "--case", case, "--out", tmp_path, "--set", "simulate.duration=10")
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "simulate.json").read_text())
+    assert doc["ok"] is True and "failed_checks" not in doc

@@ -11,6 +11,13 @@ import sys
 from pathlib import Path
 
 
+#: Exit code of a command whose computation ran to its end but failed its own
+#: checks (an integrator past its stability limit, an energy balance that does
+#: not close, ...): the results are written, marked ``ok: false`` with the
+#: reasons.  The CLI's other codes: cli.EXIT_*.
+EXIT_CHECKS = 4
+
+
 def out_dir(scene, args) -> Path:
     """Where a command writes: ``--out DIR``, or ``out/<scene name>/``."""
     return args.out if args.out is not None else Path("out") / scene.name

@@ -23,7 +23,7 @@ def add_arguments(p) -> None:
 
 
 def compare_command(scene, args, timings):
-    from . import is_root_rank, out_dir
+    from . import EXIT_CHECKS, is_root_rank, out_dir
     from ..transients.compare import compare_models, parse_models
     case = args.case
     models = parse_models(args.models, case)
@@ -34,7 +34,10 @@ def compare_command(scene, args, timings):
         res = compare_models(scene, case, models, out_dir(scene, args), provenance, progress=progress,
                              write=is_root_rank(), run_charts=model_run_charts,
                              compare_chart=comparison_chart)
-    return res.to_json(), summary(scene, res)
+    doc = res.to_json()
+    if any(p.get("ok") is False for p in res.per_model.values()):
+        doc["exit_status"] = EXIT_CHECKS
+    return doc, summary(scene, res)
 
 
 def summary(scene, r) -> str:

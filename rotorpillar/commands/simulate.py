@@ -24,7 +24,7 @@ and beam full_order (mesh or elements, duration, time_step, note).
 
 from __future__ import annotations
 
-from . import progress
+from . import EXIT_CHECKS, progress
 from ..scene import CASES, MODELS
 
 
@@ -70,6 +70,10 @@ def simulate_command(scene, args, timings):
             provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
             result = write_model_files(out_dir(scene, args), scene, run, provenance, dict(timings),
                                        charts=model_run_charts)
+    if result.get("ok") is False:           # written, and marked: the exit code says so too
+        result["exit_status"] = EXIT_CHECKS
+        for line in result.get("failed_checks") or []:
+            progress(f"simulate: check failed: {line}")
     return result, summary(scene, result)
 
 

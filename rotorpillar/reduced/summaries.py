@@ -177,6 +177,8 @@ class CaseSummary:
     """earthquake on a record: the tip against the response-spectrum estimate"""
     truncation: dict | None = None
     """modal model: the same case with one mode more"""
+    failed_checks: list | None = None
+    """why ``ok`` is false: the run's own checks that failed (absent when none did)"""
 
     def to_json(self) -> dict:
         """The summary as ``simulate_<case>.json`` writes it (key order included)."""
@@ -198,7 +200,52 @@ class CaseSummary:
         return cls(**kw)
 
 
-_OPTIONAL = ("passing_torque", "excitation", "response_spectrum_check", "truncation")
+_OPTIONAL = ("passing_torque", "excitation", "response_spectrum_check", "truncation",
+             "failed_checks")
+
+#: A run whose energy balance misses by more than this share of the energy
+#: exchanged is no solution of its equations (dp5 at rtol 1e-7 closes to ~1e-6,
+#: Newmark at 40 steps per period to ~1e-3; an unstable scheme to ~1).
+ENERGY_CHECK = 0.05
+#: The speed may pass the drive's free speed only by what the structure gives
+#: back (a few per mille in the embedded scenes); more is an integration error.
+SPEED_CHECK = 0.02
+
+
+def run_checks(run: Transient, drive_free_speed: float) -> list[str]:
+    """The run's own checks, one line each for every one that fails (empty: all hold).
+
+    The integrator finished, took steps, kept every value finite, stayed
+    within its stability limit, closed the energy balance, and the rotor did
+    not outrun its drive.
+    """
+    failed = []
+    status = run.stats.get("status", "ok")
+    if status != "ok":
+        failed.append(f"the integrator stopped: {status}")
+    if run.stats.get("steps", 1) == 0:
+        failed.append("the integrator took no step (tolerance or step below what it can resolve)")
+    if not (np.all(np.isfinite(run.q)) and np.all(np.isfinite(run.v))):
+        failed.append("the solution holds non-finite values")
+    h = run.stats.get("time_step")
+    if run.stats.get("method") == "central_difference" and h:
+        w_max = run.model.stiffest_frequency()
+        if h * w_max > 2.0:
+            failed.append(f"central difference past its stability limit: h omega_max = "
+                          f"{h * w_max:.3g} > 2 (h = {h:g} s)")
+    e = run.energy_balance().get("relative_error", 0.0)
+    if not np.isfinite(e) or e > ENERGY_CHECK:
+        failed.append(f"the energy balance misses by {100 * e:.3g} % of the energy exchanged "
+                      f"(limit {100 * ENERGY_CHECK:g} %)")
+    w = float(np.max(np.abs(run.Omega))) if len(run.Omega) else 0.0
+    # the fastest the drive can hold at any of its knots, or the start, if faster
+    top = max([drive_free_speed, abs(float(run.Omega[0]))]
+              + [run.drive.free_speed(t) for t in run.drive.times])
+    if np.isfinite(top) and top > 0 and not run.prescribed_speed and w > (1 + SPEED_CHECK) * top:
+        failed.append(f"the rotor reached {w:.4g} rad/s, above the drive's free speed "
+                      f"{top:.4g} rad/s")
+    return failed
+
 
 
 def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sections) -> CaseSummary:
@@ -206,10 +253,13 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
     captured_at, passing_torque, sweep, ...)."""
     tail = run.t >= run.t[-1] - max(0.05 * (run.t[-1] - run.t[0]), 1e-9)
     om_mean = float(np.mean(run.Omega[tail]))
-    base = dict(ok=run.ok, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
+    failed = run_checks(run, drive_free_speed)
+    base = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
                 omega_final_mean=om_mean, max_abs=max_abs(run),
                 captured_at=capture(run.model, om_mean, drive_free_speed), passages=passages(run),
                 energy_balance=run.energy_balance(), integrator=dict(run.stats), prediction=prediction,
                 jumps=[])
     base.update(sections)
+    if failed:
+        base["failed_checks"] = failed
     return CaseSummary(**base)

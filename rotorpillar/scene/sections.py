@@ -181,7 +181,8 @@ class Simulate:
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",
                             choices=INTEGRATORS)
-    rtol: float = param("Relative tolerance of the adaptive integrators (-)", 1e-7, gt=0, lt=1)
+    rtol: float = param("Relative tolerance of the adaptive integrators (-); below 1e-13 the "
+                        "step size underflows in double precision", 1e-7, ge=1e-13, lt=1)
     time_step: float = param("Step of the fixed-step integrators, 0 = automatic (s)", 0.0, ge=0)
     samples: int = param("Largest number of output samples per run (-)", 20000, ge=10, le=10**6)
     runup_ramp: float = param("Run-up: time over which M0 rises from 0, 0 = full torque at once (s)",

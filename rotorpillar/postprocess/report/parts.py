@@ -63,8 +63,12 @@ def scene_differs(build: Build, result, ignore=()) -> list[str]:
 
 
 def key_results(meta: dict) -> str | None:
-    """The few numbers of a run a reader looks for first, where the JSON has them."""
+    """The few numbers of a run a reader looks for first, where the JSON has them;
+    a run that failed its own checks says so first."""
     rows = []
+    if meta.get("ok") is False:
+        rows.append(["FAILED: not a solution", "; ".join(meta.get("failed_checks") or
+                                                        ["the run reports ok: false"])])
     for key, label in (("model", "model"), ("omega_final", "final speed (rad/s)"),
                        ("captured_at", "captured at resonance")):
         if key in meta:
