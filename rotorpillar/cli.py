@@ -39,6 +39,8 @@ COMMANDS = {
                  "transients of the reduced models: run-up, run-down, sweep, earthquake"),
     "integrators": ("rotorpillar.commands.integrators", "integrators_command",
                     "time integrators: error against cost, where each fails"),
+    "study": ("rotorpillar.commands.study", "study_command",
+              "design study on Dask: capture maps of run-ups, earthquake IDA curves"),
 }
 
 
@@ -61,6 +63,7 @@ EXTRA_ARGUMENTS = {
     "run": _run_arguments,
     "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
     "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
+    "study": lambda p: importlib.import_module("rotorpillar.commands.study").add_arguments(p),
 }
 
 

@@ -30,6 +30,8 @@ from .errors import InputError
 
 #: Transient cases of `rotorpillar simulate`.
 CASES = ("runup", "rundown", "sweep", "earthquake")
+#: The cases of `rotorpillar study` (the sweep is a study of its own).
+STUDY_CASES = ("runup", "rundown", "earthquake")
 #: Transient models: the paper's equation 4 as published, the pillar by its modes.
 MODELS = ("paper", "modal")
 #: The compiled adaptive integrator, scipy's solve_ivp methods, and the
