@@ -71,13 +71,14 @@ class Executor:
                 self.client.wait_for_workers(1, timeout=self.timeout)
             return self
         n = self.workers or default_workers()
+        # no dashboard; the scheduler's bare HTTP endpoint on a free loopback port
+        quiet = dict(threads_per_worker=1, dashboard_address=None, silence_logs=logging.ERROR,
+                     scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
         if self.processes:
-            self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                        host="127.0.0.1", dashboard_address=None,
-                                        silence_logs=logging.ERROR, memory_limit=0)
+            self.cluster = LocalCluster(n_workers=n, processes=True, host="127.0.0.1",
+                                        memory_limit=0, **quiet)
         else:
-            self.cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
-                                        dashboard_address=None, silence_logs=logging.ERROR)
+            self.cluster = LocalCluster(n_workers=1, processes=False, **quiet)
         self.client = Client(self.cluster)
         return self
 
