@@ -137,9 +137,18 @@ def _run_group(scene, case: str, which: str, runs: list[dict]) -> list[dict]:
                     "final_speed": float(b.Omega[i, -1]), "final_speed_mean": mean,
                     "captured_at": captured,
                     "passed": None if case == "earthquake" else captured is None,
-                    "peak_tip": tip, "peak_shaft_deflection": float(np.max(b.shaft_deflection[i, since])),
+                    "peak_tip": tip,
+                    "peak_shaft_deflection": float(np.max(b.shaft_deflection[i, since])),
                     "free_speed": float(frees[i]), "nfev": int(b.nfev[i]), **extra})
     return out
+
+
+def warm_kernels() -> None:
+    """Load the compiled batch loop in this process (numba's disk cache): one
+    tiny run, so that a worker's first batch is timed like the others."""
+    from ..scene import load_scene
+    model, _ = build_model(load_scene("sommerfeld"), "paper")
+    simulate_batch(model, DriveSchedule.constant(600.0, 2.0, 0.5), 0.1)
 
 
 def run_batch(spec: dict) -> dict:
