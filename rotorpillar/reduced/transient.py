@@ -316,6 +316,8 @@ class Batch:
     status: np.ndarray
     nfev: np.ndarray
     wall_seconds: float
+    shaft_deflection: np.ndarray | None = None
+    """(runs, n_t) |shaft deflection| = |(d.z - e cos theta, y - e sin theta)| at the outputs (m)"""
 
     @property
     def ok(self) -> np.ndarray:
@@ -357,9 +359,13 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
                 200_000_000, motion.time_step if motion.kind == "record" else np.inf,
                 ts, *others, out_y, out_peak, stats)
     wall = time.perf_counter() - start
+    e = np.where(np.isfinite(others[2]), others[2], model.eccentricity)[:, None]
+    th = out_y[:, :, n - 1]
+    shaft = np.hypot(out_y[:, :, :model.nx] @ model.shaft - e * np.cos(th),
+                     out_y[:, :, model.nx] - e * np.sin(th))
     return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], out_y[:, :, :model.nx] @ model.tip,
                  out_y[:, -1, :],
-                 stats[:, 0].astype(int), stats[:, 1].astype(int), wall)
+                 stats[:, 0].astype(int), stats[:, 1].astype(int), wall, shaft)
 
 
 def _with_eccentricity(model: RotorStructure, e: float) -> RotorStructure:

@@ -25,7 +25,7 @@ from .sections import (Converge, Drive, EXCITATION_KINDS, Excitation, FullOrder,
                        SceneError, Shaft, Simulate, Sweep, TOP_MASSES, TOP_MODELS, param)
 from .validation import (SCENE_NAME, scene_from_dict)
 from .words import (ADAPTIVE_INTEGRATORS, CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS,
-                    FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, SHELL_CELL_TYPES)
+                    FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, STUDY_CASES, SHELL_CELL_TYPES)
 
 __all__ = ['ADAPTIVE_INTEGRATORS', 'CASES', 'CELL_TYPES', 'Converge', 'Drive',
            'EXCITATION_KINDS', 'Excitation', 'FIXED_STEP_INTEGRATORS', 'FULL_ORDER_MODELS',

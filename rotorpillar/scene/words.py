@@ -8,6 +8,8 @@ added once.
 
 #: Transient cases of `rotorpillar simulate`.
 CASES = ("runup", "rundown", "sweep", "earthquake")
+#: The cases of `rotorpillar study` (the sweep is a study of its own).
+STUDY_CASES = ("runup", "rundown", "earthquake")
 #: Transient models: the paper's equation 4 as published, the pillar by its modes
 #: (the reduced-order model), and at full order the 3D tube and the 1D beam.
 MODELS = ("paper", "modal", "fem3d", "beam")

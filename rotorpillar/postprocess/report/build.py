@@ -36,6 +36,7 @@ from .provenance import section_other, section_provenance
 from .render import mode_sets, render_animations, render_charts, render_comparisons, render_modes
 from .runs import section_averaging, section_runs
 from .state import Build, Product, ReportOptions, attempt, say
+from .study import section_study
 from .summary import section_summary
 
 __all__ = ["ReportOptions", "build_report", "summary_text"]
@@ -49,6 +50,7 @@ SECTIONS = [
     ("averaging", "Passage through resonance", section_averaging),
     ("runs", "The runs", section_runs),
     ("earthquake", "The earthquake", section_earthquake),
+    ("study", "Design study", section_study),
     ("convergence", "Convergence and the model chosen", section_convergence),
     ("other", "Other figures", section_other),
     ("provenance", "Versions, machine and timings", section_provenance),

@@ -1,0 +1,205 @@
+"""The axes of a design study: ``--vary KEY=START:STOP:N`` and ``--vary KEY=v1,v2,...``.
+
+An axis is a scene key (``section.key``) and its values; the study runs the
+product of its axes.  Every value is checked as ``--set KEY=VALUE`` would
+check it (the key's type and range, the scene's cross-checks), and every
+point of the product builds a valid scene, before anything runs: bad input
+is one line naming the key and its range (InputError, exit 2).
+
+>>> from rotorpillar.scene import load_scene
+>>> a = parse_vary("drive.torque_at_zero=560:700:3", load_scene("sommerfeld"))
+>>> a.key, a.values
+('drive.torque_at_zero', (560.0, 630.0, 700.0))
+>>> parse_vary("excitation.record=elcentro", load_scene("paper")).values
+('elcentro',)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InputError
+from ..provenance import JsonRecord
+from ..scene import CASES, SECTIONS, Scene, SceneError, override
+
+#: keys a study sets itself (by --case and --model) or does not use: the
+#: batch loop integrates with the compiled dp5 at the scene's rtol
+NOT_VARIED = {
+    "simulate.case": "give --case",
+    "simulate.model": "give --model",
+    "simulate.integrator": "a study integrates with the compiled batch loop (dp5)",
+    "simulate.time_step": "a study integrates with the compiled batch loop (dp5)",
+    "simulate.samples": "a study keeps its own output grid",
+    "reduction.source": "a study runs the reduced models only (the 3D reduction is not run)",
+    "modal_model.source": "a study runs the reduced models only (the 3D modes are not run)",
+}
+#: the most runs one study may hold
+MAX_RUNS = 100_000
+
+
+@dataclass(frozen=True)
+class Axis(JsonRecord):
+    """One axis of a study: a scene key and its values."""
+    key: str
+    """section.key of the scene"""
+    values: tuple
+    """the values run, in order (numbers, or strings such as record files)"""
+    spec: str
+    """the --vary text it came from"""
+
+
+def _value_text(v) -> str:
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return repr(v)
+
+
+def assignment(key: str, value) -> str:
+    """``--set`` text for one value (strings quoted for TOML)."""
+    return f"{key}={_value_text(value)}"
+
+
+def _field(key: str):
+    parts = key.split(".")
+    if len(parts) != 2 or parts[0] not in SECTIONS:
+        raise InputError(f"--vary {key}: unknown key; KEY is section.key with section one of "
+                         + ", ".join(SECTIONS))
+    fields = {f.name: f for f in dataclasses.fields(SECTIONS[parts[0]])}
+    if parts[1] not in fields:
+        raise InputError(f"--vary {key}: unknown key; [{parts[0]}] takes " + ", ".join(fields))
+    if key in NOT_VARIED:
+        raise InputError(f"--vary {key}: not a study axis ({NOT_VARIED[key]})")
+    return fields[parts[1]]
+
+
+def _number(text: str, what: str, key: str) -> float:
+    try:
+        x = float(text)
+    except ValueError:
+        raise InputError(f"--vary {key}: {what} {text!r} is not a number") from None
+    if not math.isfinite(x):
+        raise InputError(f"--vary {key}: {what} {text!r} must be finite")
+    return x
+
+
+def _range(key: str, body: str, is_int: bool) -> tuple:
+    parts = body.split(":")
+    if len(parts) != 3 or not all(p.strip() for p in parts):
+        raise InputError(f"--vary {key}={body}: expected START:STOP:N")
+    a, b = _number(parts[0], "START", key), _number(parts[1], "STOP", key)
+    try:
+        n = int(parts[2])
+    except ValueError:
+        raise InputError(f"--vary {key}={body}: N = {parts[2]!r} must be an integer >= 1") from None
+    if n < 1:
+        raise InputError(f"--vary {key}={body}: N = {n} must be >= 1")
+    if n > 1 and a == b:
+        raise InputError(f"--vary {key}={body}: empty range (START = STOP with N = {n})")
+    vals = [a] if n == 1 else [a + (b - a) * i / (n - 1) for i in range(n)]
+    if is_int:
+        if any(abs(v - round(v)) > 1e-9 * max(1.0, abs(v)) for v in vals):
+            raise InputError(f"--vary {key}={body}: {key} takes integers; "
+                             f"START:STOP:N gives {', '.join(f'{v:g}' for v in vals)}")
+        vals = [int(round(v)) for v in vals]
+        if len(set(vals)) < len(vals):
+            raise InputError(f"--vary {key}={body}: repeated values")
+    return tuple(vals)
+
+
+def _list(key: str, body: str) -> tuple:
+    items = [t.strip() for t in body.split(",")]
+    if not body.strip() or not all(items):
+        raise InputError(f"--vary {key}={body}: empty value in the list v1,v2,...")
+    vals = []
+    for t in items:
+        try:
+            vals.append(tomllib.loads(f"v = {t}")["v"])
+        except tomllib.TOMLDecodeError:
+            vals.append(t)      # a bare word or a path
+    if len(set(map(repr, vals))) < len(vals):
+        raise InputError(f"--vary {key}={body}: repeated values")
+    return tuple(vals)
+
+
+def parse_vary(text: str, scene: Scene) -> Axis:
+    """One ``--vary`` argument, checked against the scene's key and its range."""
+    if "=" not in text:
+        raise InputError(f"--vary {text!r}: expected KEY=START:STOP:N or KEY=v1,v2,...")
+    key, body = (s.strip() for s in text.split("=", 1))
+    f = _field(key)
+    want = f.type if isinstance(f.type, str) else f.type.__name__
+    if not body:
+        raise InputError(f"--vary {key}=: empty range; expected START:STOP:N or v1,v2,...")
+    if ":" in body and "str" not in want:
+        vals = _range(key, body, "int" in want)
+    else:
+        vals = _list(key, body)
+    if key == "excitation.record":
+        vals = tuple(str(Path(v).resolve()) if Path(str(v)).is_file() else v for v in vals)
+    for v in vals:
+        try:
+            override(scene, [assignment(key, v)])
+        except SceneError as exc:
+            raise InputError(f"--vary {key}: {exc}") from None
+    return Axis(key, vals, text)
+
+
+def parse_axes(texts: list[str], scene: Scene) -> tuple[Axis, ...]:
+    """Every ``--vary``; at least one, each key once."""
+    if not texts:
+        raise InputError("study: give at least one --vary KEY=START:STOP:N or KEY=v1,v2,...")
+    axes = tuple(parse_vary(t, scene) for t in texts)
+    keys = [a.key for a in axes]
+    for k in keys:
+        if keys.count(k) > 1:
+            raise InputError(f"--vary {k}: given twice (one axis per key)")
+    n = math.prod(len(a.values) for a in axes)
+    if n > MAX_RUNS:
+        raise InputError(f"--vary: {n} runs in the product; at most {MAX_RUNS}")
+    return axes
+
+
+def implied_settings(axes: tuple[Axis, ...], case: str, scene: Scene) -> dict:
+    """Keys the study sets because of its axes: varying a record or its scale
+    makes the earthquake a record (``excitation.kind = "record"``)."""
+    if case not in CASES:
+        raise InputError(f"--case {case!r}: must be one of {', '.join(CASES)}")
+    keys = {a.key for a in axes}
+    out = {}
+    if case == "earthquake" and keys & {"excitation.record", "excitation.record_scale",
+                                        "excitation.record_units"} \
+            and "excitation.kind" not in keys and scene.excitation.kind != "record":
+        out["excitation.kind"] = "record"
+    return out
+
+
+def points(axes: tuple[Axis, ...]) -> list[dict]:
+    """The product of the axes: one {key: value} per run, the last axis fastest."""
+    return [dict(zip((a.key for a in axes), combo))
+            for combo in itertools.product(*(a.values for a in axes))]
+
+
+def run_scene(scene: Scene, params: dict, implied: dict | None = None) -> Scene:
+    """The scene of one run (validated, cross-checks included)."""
+    sets = [assignment(k, v) for k, v in (implied or {}).items()]
+    sets += [assignment(k, v) for k, v in params.items()]
+    return override(scene, sets) if sets else scene
+
+
+def check_points(scene: Scene, axes: tuple[Axis, ...], implied: dict) -> list[dict]:
+    """Every point of the product, each checked to build a valid scene."""
+    pts = points(axes)
+    for p in pts:
+        try:
+            run_scene(scene, p, implied)
+        except SceneError as exc:
+            raise InputError(f"--vary: the point {', '.join(f'{k}={v}' for k, v in p.items())} "
+                             f"is not a valid scene: {exc}") from None
+    return pts

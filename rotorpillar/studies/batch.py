@@ -1,0 +1,172 @@
+"""One batch of a study's runs, as a worker computes it.
+
+Runs that share a compiled model, drive schedule, ground motion and initial
+state go to ONE call of the compiled batch loop
+(``rotorpillar.reduced.transient.simulate_batch``), which takes per run only
+what its signature takes: the motor's M0 (as a scale on the schedule), its
+slope s, the load k, the eccentricity e and the shaft stiffness c2 (none of
+them enters the model's matrices: the shaft acts through c2 and e in the
+right-hand side).  So for a run-up these five keys vary inside a batch loop
+(``PER_RUN``) and every other key makes its own group (its own model).  A
+run-down and an earthquake start from the steady state at the operating
+speed, which depends on all of them: there every run is its own group.
+
+``run_batch(spec)`` is what the executor sends to a worker; it returns plain
+dicts (one per run) that the study assembles into ``StudyRun`` records.
+Each run condenses as ``simulate`` condenses a case
+(rotorpillar.reduced.summaries): the final speed and its mean over the last
+5 %, the resonance it settled at (``capture``), the peak tip displacement
+relative to the ground (from every step where the model's frame is the
+ground's; sampled otherwise) and the peak shaft deflection
+|(d.z - e cos theta, y - e sin theta)| (sampled on the output grid).  A
+run-up starts from rest, where the shaft is deflected by e (the mass centre
+on the axis); that start decays as exp(-b2 t / (2 m_C)), so a run-up's peak
+shaft deflection is taken from ``settle_time`` on, when it is below 1 % of e.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from ..reduced.cases import forcing_top
+from ..reduced.drive import DriveSchedule
+from ..reduced.excitation import no_motion
+from ..reduced.models import build_model, scene_motion
+from ..reduced.stationary import operating_speed
+from ..reduced.summaries import capture, ground_displacement
+from ..reduced.transient import simulate_batch
+from ..scene import scene_from_dict
+from .axes import run_scene
+
+#: scene key -> simulate_batch keyword, per case: what the batch loop takes per run
+PER_RUN = {
+    "runup": {"drive.torque_at_zero": "torque_scale", "drive.slope": "slope",
+              "load.coefficient": "load", "rotor.eccentricity": "eccentricity",
+              "shaft.stiffness": "shaft_stiffness"},
+    "rundown": {},
+    "earthquake": {},
+}
+#: output spacing of the sampled quantities (s): run-ups and run-downs, earthquakes
+SAMPLE_SPACING = {"runup": 0.02, "rundown": 0.02, "earthquake": 0.005}
+MIN_SAMPLES, MAX_SAMPLES = 2001, 40001
+
+
+def group_key(params: dict, case: str) -> tuple:
+    """What runs must share to go to one batch loop: the values of the other keys."""
+    per = PER_RUN[case]
+    return tuple((k, v) for k, v in params.items() if k not in per)
+
+
+def samples_for(case: str, t_end: float) -> int:
+    return int(min(MAX_SAMPLES, max(MIN_SAMPLES, t_end / SAMPLE_SPACING[case] + 1)))
+
+
+def settle_time(scene, t_end: float) -> float:
+    """When the start's shaft deflection e has decayed to 1 %: ln(100) 2 m_C / b2,
+    at most half the run (s)."""
+    b2, m = scene.shaft.damping, scene.rotor.mass
+    return min(0.5 * t_end, np.log(100.0) * 2 * m / b2) if b2 > 0 else 0.5 * t_end
+
+
+def _tail_mean(t, W) -> float:
+    """Mean speed over the last 5 % of the run (as simulate's summary)."""
+    tail = t >= t[-1] - max(0.05 * (t[-1] - t[0]), 1e-9)
+    return float(np.mean(W[tail]))
+
+
+def _run_group(scene, case: str, which: str, runs: list[dict]) -> list[dict]:
+    sim, d, L, r, sh = scene.simulate, scene.drive, scene.load, scene.rotor, scene.shaft
+    per = {"M0": [], "s": [], "k": [], "e": [], "c2": []}
+    for p in runs:
+        per["M0"].append(float(p["params"].get("drive.torque_at_zero", d.torque_at_zero)))
+        per["s"].append(float(p["params"].get("drive.slope", d.slope)))
+        per["k"].append(float(p["params"].get("load.coefficient", L.coefficient)))
+        per["e"].append(float(p["params"].get("rotor.eccentricity", r.eccentricity)))
+        per["c2"].append(float(p["params"].get("shaft.stiffness", sh.stiffness)))
+    M0 = np.array(per["M0"])
+    M_ref = float(M0.max()) if M0.max() > 0 else 1.0
+    # the model (its modal band: the group's fastest motor) with the largest e
+    # (the batch loop's tolerances take the largest e as simulate would)
+    top_scene = replace(scene, drive=replace(d, torque_at_zero=M_ref))
+    motion = scene_motion(scene) if case == "earthquake" else no_motion()
+    top = scene.modal_model.band_factor * forcing_top(top_scene, case, motion)
+    model, info = build_model(top_scene, which, top)
+    kw = dict(torque_scale=M0 / M_ref, slope=per["s"], load=per["k"], eccentricity=per["e"],
+              shaft_stiffness=per["c2"], rtol=sim.rtol)
+    extra = {}
+    if case == "runup":
+        drive = DriveSchedule.ramp(M_ref, d.slope, L.coefficient, sim.runup_ramp)
+        t_end = sim.duration
+        b = simulate_batch(model, drive, t_end, samples=samples_for(case, t_end), **kw)
+        frees = [DriveSchedule.ramp(m, s, k, sim.runup_ramp).free_speed()
+                 for m, s, k in zip(M0, per["s"], per["k"])]
+        extra = {"shaft_from": float(settle_time(scene, t_end))}
+    else:
+        assert len(runs) == 1, "a run-down or an earthquake run is its own group"
+        Wop = operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
+        q0, v0 = model.steady_initial_state(Wop)
+        if case == "rundown":
+            after = (0.0, 0.0) if sim.rundown_motor == "off" else (sim.rundown_torque_at_zero, d.slope)
+            drive = DriveSchedule.switched(d.torque_at_zero, d.slope, L.coefficient, 0.0, *after)
+            t_end = sim.duration
+            frees = [drive.free_speed() if sim.rundown_motor == "weaker" else 0.0]
+        else:
+            drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
+            t_end = sim.earthquake_duration or motion.end + 5.0
+            frees = [drive.free_speed()]
+            extra = {"pga": float(motion.sizes()["peak_acceleration"])}
+        b = simulate_batch(model, drive, t_end, q0=q0, v0=v0, motion=motion, speed_scale=Wop,
+                           samples=samples_for(case, t_end), torque_scale=[1.0], rtol=sim.rtol)
+        extra["initial_speed"] = float(Wop)
+    since = b.t >= extra.pop("shaft_from", 0.0)
+    out = []
+    for i, p in enumerate(runs):
+        mr = replace(model, eccentricity=per["e"][i], shaft_stiffness=per["c2"][i])
+        mean = _tail_mean(b.t, b.Omega[i])
+        captured = capture(mr, mean, frees[i])
+        if case == "earthquake" and model.frame == "absolute":
+            tip = float(np.max(np.abs(b.tip[i] - ground_displacement(model, motion, b.t))))
+        else:
+            tip = float(np.max(b.tip_peak[i]))
+        out.append({"index": p["index"], "params": p["params"], "ok": bool(b.ok[i]),
+                    "final_speed": float(b.Omega[i, -1]), "final_speed_mean": mean,
+                    "captured_at": captured,
+                    "passed": None if case == "earthquake" else captured is None,
+                    "peak_tip": tip,
+                    "peak_shaft_deflection": float(np.max(b.shaft_deflection[i, since])),
+                    "free_speed": float(frees[i]), "nfev": int(b.nfev[i]), **extra})
+    return out
+
+
+def warm_kernels() -> None:
+    """Load the compiled batch loop in this process (numba's disk cache): one
+    tiny run, so that a worker's first batch is timed like the others."""
+    from ..scene import load_scene
+    model, _ = build_model(load_scene("sommerfeld"), "paper")
+    simulate_batch(model, DriveSchedule.constant(600.0, 2.0, 0.5), 0.1)
+
+
+def run_batch(spec: dict) -> dict:
+    """Compute one batch: ``spec`` = {scene, case, model, implied, runs: [{index, params}]}."""
+    start = time.perf_counter()
+    doc = dict(spec["scene"])
+    base = scene_from_dict(doc, name=doc.pop("name"))
+    groups: dict[tuple, list] = {}
+    for p in spec["runs"]:
+        key = group_key(p["params"], spec["case"])
+        if not PER_RUN[spec["case"]]:
+            key = key + (("_index", p["index"]),)
+        groups.setdefault(key, []).append(p)
+    results = []
+    for key, runs in groups.items():
+        group_params = {k: v for k, v in key if k != "_index"}
+        scene = run_scene(base, group_params, spec.get("implied"))
+        results += _run_group(scene, spec["case"], spec["model"], runs)
+    return {"runs": sorted(results, key=lambda r: r["index"]), "groups": len(groups),
+            "wall_seconds": time.perf_counter() - start,
+            "worker": f"{socket.gethostname()}:{os.getpid()}"}

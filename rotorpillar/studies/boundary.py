@@ -1,0 +1,124 @@
+"""The capture boundary of a run-up study: predicted, and as the study found it.
+
+Predicted: the motor torque M0 a run-up needs to pass the first resonance
+that can capture it, by the averaging theory (the A fold of the paper's
+equations 19-23) and by the exact linear torque balance
+(``rotorpillar.reduced.stationary.predicted_passing_torque``), as a function
+of the study's other axis (e.g. the eccentricity), on a grid finer than the
+study's.  Found: per value of the other axis, the largest M0 that was
+captured and the smallest that passed.
+
+The boundary applies when one axis is ``drive.torque_at_zero`` (and at most
+one other, numeric, axis); with one axis of another key, the threshold of
+that key is where the predicted torque crosses the scene's M0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..reduced.cases import forcing_top
+from ..reduced.models import build_model
+from ..reduced.stationary import predicted_passing_torque
+from .axes import Axis, run_scene
+
+TORQUE = "drive.torque_at_zero"
+#: points of the predicted curve along the other axis
+CURVE_POINTS = 61
+
+
+def _numeric(axis: Axis) -> bool:
+    return all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in axis.values)
+
+
+def _fold(scene, which: str, M_top: float) -> tuple[float | None, float | None]:
+    top_scene = replace(scene, drive=replace(scene.drive, torque_at_zero=M_top))
+    top = scene.modal_model.band_factor * forcing_top(top_scene, "runup", None)
+    model, _ = build_model(top_scene, which, top)
+    d, L = scene.drive, scene.load
+    j, exact = predicted_passing_torque(model, M_top, d.slope, L.coefficient)
+    return (None if j is None else float(j.torque_at_zero),
+            None if exact is None else float(exact["torque_at_zero"]))
+
+
+def _grid(axis: Axis) -> list:
+    lo, hi = min(axis.values), max(axis.values)
+    if len(axis.values) == 1 or lo == hi:
+        return [lo]
+    return list(np.linspace(lo, hi, CURVE_POINTS))
+
+
+def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
+                       implied: dict) -> dict | None:
+    """The predicted passing torque along the other axis (run-ups), or None."""
+    if case != "runup":
+        return None
+    keys = [a.key for a in axes]
+    if TORQUE in keys and len(axes) <= 2:
+        torque = next(a for a in axes if a.key == TORQUE)
+        M_top = float(max(torque.values))
+        other = next((a for a in axes if a.key != TORQUE), None)
+        if other is not None and not _numeric(other):
+            return None
+        xs = _grid(other) if other is not None else [None]
+        avg, lin = [], []
+        for x in xs:
+            sc = run_scene(scene, {other.key: x} if other is not None else {}, implied)
+            a, e = _fold(sc, which, M_top)
+            avg.append(a)
+            lin.append(e)
+        return {"kind": "torque", "torque_key": TORQUE, "other_key": other.key if other else None,
+                "other_values": xs if other is not None else [], "averaging": avg,
+                "exact_linear": lin,
+                "statement": "M0 needed to pass the first capturing resonance on run-up: the A fold "
+                             "of equations 19-23 (averaging) and of the exact linear torque balance"}
+    if len(axes) == 1 and _numeric(axes[0]):
+        ax = axes[0]
+        xs = _grid(ax)
+        M0 = scene.drive.torque_at_zero
+        avg, lin = [], []
+        for x in xs:
+            a, e = _fold(run_scene(scene, {ax.key: x}, implied), which, M0)
+            avg.append(a)
+            lin.append(e)
+        return {"kind": "threshold", "torque_key": TORQUE, "other_key": ax.key, "other_values": xs,
+                "averaging": avg, "exact_linear": lin, "scene_torque": M0,
+                "threshold_averaging": crossing(xs, avg, M0),
+                "threshold_exact_linear": crossing(xs, lin, M0),
+                "statement": f"where the torque needed to pass equals the scene's M0 = {M0:g} N*m"}
+    return None
+
+
+def crossing(xs, ys, level) -> float | None:
+    """The first x where ys crosses ``level`` (linear interpolation), or None."""
+    pts = [(x, y) for x, y in zip(xs, ys) if y is not None]
+    for (x0, y0), (x1, y1) in zip(pts, pts[1:]):
+        if (y0 - level) * (y1 - level) <= 0 and y0 != y1:
+            return float(x0 + (level - y0) * (x1 - x0) / (y1 - y0))
+    return None
+
+
+def found_boundary(axes: tuple[Axis, ...], runs) -> list[dict] | None:
+    """Per value of the other axis: the largest M0 captured and the smallest
+    that passed (the study's boundary lies between them)."""
+    keys = [a.key for a in axes]
+    if TORQUE not in keys or len(axes) > 2:
+        return None
+    other = next((a.key for a in axes if a.key != TORQUE), None)
+    rows: dict = {}
+    for r in runs:
+        x = r.params.get(other) if other else None
+        rows.setdefault(repr(x), (x, []))[1].append((r.params[TORQUE], r.passed))
+    out = []
+    for x, cells in rows.values():
+        cells.sort()
+        passed = [m for m, p in cells if p]
+        captured = [m for m, p in cells if p is False]
+        lo = max((m for m in captured if not passed or m < min(passed)), default=None)
+        hi = min(passed) if passed else None
+        out.append({"other": x, "captured_max": lo, "passed_min": hi,
+                    "monotonic": not passed or all(m >= hi for m in passed) and
+                    not any(m > hi for m in captured)})
+    return out

@@ -1,0 +1,218 @@
+"""A design study: the product of the axes, run as batches on Dask, cached, resumable.
+
+``design_study(scene, case, model, vary, ...)`` checks the axes (bad input:
+InputError before anything is written), plans the batches (runs sorted so
+that runs sharing a compiled model sit together, then cut into batches of at
+most ``BATCH_RUNS``), loads the batches already on disk, computes the rest on
+the executor (``rotorpillar.executor.Executor``: a LocalCluster by default,
+or a scheduler's address) with a progress bar over the runs, writes each
+finished batch at once (one small JSON under ``<cache>/<key>.json``,
+atomically: Ctrl-C leaves the finished batches, a rerun computes only the
+missing ones), then writes study.csv, asks ``charts`` for the figures and
+returns the ``StudyResult`` (which the command writes as study.json).
+
+A batch's key hashes the resolved scene, the case, the model, its runs'
+parameters and the source of the code that computes them, so a changed scene
+or code never reuses a stale batch.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import sys
+import time
+from pathlib import Path
+from typing import Callable, Optional
+
+from ..errors import InputError
+from ..executor import Executor
+from ..provenance import write_json, write_text
+from ..scene import MODELS, STUDY_CASES
+from .axes import check_points, implied_settings, parse_axes, run_scene
+from .batch import PER_RUN, group_key, run_batch
+from .boundary import found_boundary, predicted_boundary
+from .result import StudyResult, StudyRun
+
+#: the most runs in one batch: small enough to spread a study over the
+#: workers and to lose little to a Ctrl-C, large enough that the batch loop's
+#: speed is not lost to the per-batch overhead (~10 ms against ~60 ms a run)
+BATCH_RUNS = 8
+CACHE_VERSION = 1
+CSV_RESULTS = ("final_speed", "final_speed_mean", "captured_at", "passed", "peak_tip",
+               "peak_shaft_deflection", "free_speed", "pga", "ok", "nfev")
+
+Charts = Callable[[StudyResult, Path], list]
+"""Draws a study's charts: (result, out_dir) -> [{file, caption}]."""
+
+
+def _source_hash() -> str:
+    root = Path(__file__).parent.parent
+    h = hashlib.sha256()
+    for f in sorted((root / "reduced").glob("*.py")) + sorted((root / "studies").glob("*.py")):
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def plan(points: list[dict], case: str, batch_runs: int = BATCH_RUNS) -> list[list[dict]]:
+    """The batches: runs sorted by what they must share, cut into near-equal chunks."""
+    runs = [{"index": i, "params": p} for i, p in enumerate(points)]
+    runs.sort(key=lambda r: (repr(group_key(r["params"], case)), r["index"]))
+    if not runs:
+        return []
+    nb = math.ceil(len(runs) / batch_runs)
+    cuts = [round(i * len(runs) / nb) for i in range(nb + 1)]
+    return [runs[a:b] for a, b in zip(cuts, cuts[1:])]
+
+
+def batch_key(spec: dict, source: str) -> str:
+    doc = {"version": CACHE_VERSION, "source": source, **spec}
+    return hashlib.sha256(json.dumps(doc, sort_keys=True, default=str).encode()).hexdigest()[:24]
+
+
+def _load(path: Path, key: str) -> Optional[dict]:
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return doc if doc.get("key") == key else None
+
+
+def _check_inputs(scene, case: str, model: str, vary: list[str]):
+    if case not in STUDY_CASES:
+        raise InputError(f"--case {case!r}: a study runs one of {', '.join(STUDY_CASES)}")
+    if model not in MODELS:
+        raise InputError(f"--model {model!r}: must be one of {', '.join(MODELS)}")
+    for key, val in (("reduction.source", scene.reduction.source),
+                     ("modal_model.source", scene.modal_model.source)):
+        if val == "fem3d":
+            raise InputError(f'{key} = "fem3d": a study runs the reduced models only; '
+                             "use the beam or closed-form source")
+    axes = parse_axes(vary, scene)
+    implied = implied_settings(axes, case, scene)
+    points = check_points(scene, axes, implied)
+    if case == "earthquake":
+        from ..reduced.models import scene_motion
+        seen = set()
+        for p in points:        # every record readable before anything runs
+            sc = run_scene(scene, {k: v for k, v in p.items() if k.startswith("excitation.")},
+                           implied)
+            key = repr(sc.excitation)
+            if key not in seen:
+                seen.add(key)
+                scene_motion(sc)
+    return axes, implied, points
+
+
+def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path,
+                 workers: int | None = None, scheduler: str | None = None,
+                 cache_dir: Path | None = None, show_progress: bool = True,
+                 charts: Optional[Charts] = None, log: Callable[[str], None] | None = None,
+                 executor: Executor | None = None) -> StudyResult:
+    """Run (or load) every batch of the study and condense it (see the module text)."""
+    from tqdm import tqdm
+    start = time.perf_counter()
+    axes, implied, points = _check_inputs(scene, case, model, vary)
+    out_dir = Path(out_dir)
+    cache_dir = out_dir / "study" if cache_dir is None else Path(cache_dir)
+    batches = plan(points, case)
+    source = _source_hash()
+    scene_doc = scene.to_dict()
+    specs, keys = [], []
+    for b in batches:
+        spec = {"scene": scene_doc, "case": case, "model": model, "implied": implied, "runs": b}
+        specs.append(spec)
+        keys.append(batch_key(spec, source))
+    done: dict[int, dict] = {}
+    for i, k in enumerate(keys):
+        doc = _load(cache_dir / f"{k}.json", k)
+        if doc is not None:
+            done[i] = doc
+    todo = [i for i in range(len(batches)) if i not in done]
+    n_cached = sum(len(batches[i]) for i in done)
+    if log:
+        log(f"study {scene.name}: {case}, {len(points)} runs in {len(batches)} batches "
+            f"({len(done)} on disk, {len(todo)} to compute)")
+    info = {"kind": "none (every batch on disk)", "scheduler": None, "workers": 0, "threads": 0}
+    t_cluster = t_compute = compute = 0.0
+    if todo:
+        t0 = time.perf_counter()
+        ex = executor or Executor(workers, scheduler)
+        own = executor is None
+        if own:
+            ex.__enter__()
+        try:
+            info = ex.describe()
+            t_cluster = time.perf_counter() - t0
+            if log:
+                log(f"study: {info['kind']} at {info['scheduler']}, {info['workers']} workers")
+            bar = tqdm(total=len(points), initial=n_cached, disable=not show_progress,
+                       unit="run", file=sys.stderr, desc="study")
+            t1 = time.perf_counter()
+            try:
+                for j, res in ex.map(run_batch, [specs[i] for i in todo]):
+                    i = todo[j]
+                    doc = {"key": keys[i], **res}
+                    write_json(cache_dir / f"{keys[i]}.json", doc)
+                    done[i] = {**doc, "computed": True}
+                    compute += res["wall_seconds"]
+                    bar.update(len(res["runs"]))
+            finally:
+                bar.close()
+            t_compute = time.perf_counter() - t1
+        finally:
+            if own:
+                ex.__exit__(None, None, None)
+    runs = []
+    for i, k in enumerate(keys):
+        for r in done[i]["runs"]:
+            runs.append(StudyRun.from_json({**r, "batch": k}))
+    runs.sort(key=lambda r: r.index)
+    boundary = predicted_boundary(scene, case, model, axes, implied)
+    found = found_boundary(axes, runs) if case == "runup" else None
+    if boundary is not None or found:
+        boundary = {**(boundary or {}), "found": found}
+    n_computed = len(points) - n_cached
+    result = StudyResult(
+        scene_name=scene.name, case=case, model=model, axes=axes, implied=implied,
+        runs=tuple(runs), boundary=boundary, executor=info,
+        batches={"total": len(batches), "cached": len(done) - len(todo), "computed": len(todo),
+                 "runs_per_batch_max": BATCH_RUNS,
+                 "groups": sum(done[i].get("groups", 0) for i in done),
+                 "cache_dir": str(cache_dir)},
+        performance={"runs": len(points), "runs_computed": n_computed,
+                     "cluster_start_seconds": t_cluster, "compute_wall_seconds": t_compute,
+                     "batch_seconds": compute,
+                     "runs_per_second": n_computed / t_compute if t_compute > 0 else None,
+                     "wall_seconds": 0.0})
+    csv = write_text(out_dir / "study.csv", study_csv(result))
+    figures = charts(result, out_dir) if charts is not None else []
+    perf = {**result.performance, "wall_seconds": time.perf_counter() - start}
+    from dataclasses import replace
+    return replace(result, figures=tuple(figures), performance=perf,
+                   files={"csv": str(csv), "cache_dir": str(cache_dir)})
+
+
+def study_csv(result: StudyResult) -> str:
+    """One row a run: index, the axes' values, then the results (SI units)."""
+    keys = [a.key for a in result.axes]
+    cols = ["index", *keys, *CSV_RESULTS]
+
+    def cell(v):
+        if v is None:
+            return ""
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, float):
+            return f"{v:.10g}"
+        s = str(v)
+        return '"' + s.replace('"', '""') + '"' if ("," in s or '"' in s) else s
+
+    lines = [f"# rotorpillar study {result.scene_name}: {result.case}, {result.model} model; "
+             "SI units (rad/s, m, m/s2)", ",".join(cols)]
+    for r in result.runs:
+        row = [r.index, *(r.params.get(k) for k in keys), *(getattr(r, c) for c in CSV_RESULTS)]
+        lines.append(",".join(cell(v) for v in row))
+    return "\n".join(lines) + "\n"
