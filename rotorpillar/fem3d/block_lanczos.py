@@ -33,11 +33,10 @@ DROP = 1e-10
 
 def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10, block: int = 8,
                   max_columns: int = 400, seed: int = 20240607):
-    """The ``n_modes`` eigenpairs nearest ``sigma`` as an ``EigenSolution``, or None
-    when the basis would pass ``max_columns`` before they converge."""
+    """The ``n_modes`` eigenpairs nearest ``sigma``: (eigenvalues ascending, their
+    PETSc Vecs, steps, relative residuals, columns solved), or None when the
+    basis would pass ``max_columns`` before they converge."""
     from petsc4py import PETSc
-
-    from .eigensolver import EigenSolution
     comm = K.getComm().tompi4py()
     block = max(int(block), 2)           # degenerate pairs need two vectors per step
     A = K.copy()
@@ -96,8 +95,7 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
             vecs.append(x)
         lam = sigma + 1.0 / theta
         order = np.argsort(lam)
-        return EigenSolution(lam[order], [vecs[i] for i in order], steps, err[order], "block",
-                             op.solves)
+        return lam[order], [vecs[i] for i in order], steps, err[order], op.solves
     except PETSc.Error as exc:
         raise ComputationError(f"PETSc failed in the modal solve (error code {exc.ierr}; "
                                "a MUMPS factorisation failure is typical of an unclamped or "

@@ -82,7 +82,8 @@ def solve_gep_shift_invert(K, M, n_modes: int, *, sigma: float = 0.0, tol: float
         sol = block_lanczos(K, M, n_modes, sigma=sigma, tol=tol, block=block,
                             max_columns=BLOCK_MAX_COLUMNS)
         if sol is not None:
-            return sol
+            lam, vecs, steps, err, solves = sol
+            return EigenSolution(lam, vecs, steps, err, "block", solves)
     return _krylov_schur(K, M, n_modes, sigma=sigma, tol=tol, max_it=max_it, ncv=ncv)
 
 
