@@ -8,10 +8,13 @@ read once per block instead of once per column), orthogonalised against the
 whole basis twice (classical Gram-Schmidt, twice is enough), then made
 M-orthonormal by the eigen-decomposition of its Gram matrix (columns that
 are already in the basis are dropped: the space is exhausted there).  After
-each step, Rayleigh-Ritz on the basis: T = V^T M A V = V^T M W, whose
-eigenpairs (theta, s) give x = V s and the exact residual A x - theta x =
-W s - theta V s, measured in the M-norm (M W is kept beside W, so no extra
-products).  No restart: the basis is a few times the wanted count.
+each step, Rayleigh-Ritz on the basis: T = V^T M A V, whose column blocks
+are the orthogonalisation's coefficients (no extra products), and whose
+eigenpairs (theta, s) give x = V s with the residual A x - theta x = F s_j:
+F is the part of the last block's image outside the basis (its M-Gram
+matrix comes with the orthogonalisation), s_j the Ritz vector's entries on
+the last block (every earlier block's image lies inside the basis).  No
+restart: the basis is a few times the wanted count.
 
 The start is A R for a random R (seeded per MPI rank): inside the range of
 A, so the massless rows (Dirichlet rows, the rigid top's statically tied
@@ -39,6 +42,8 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
     from petsc4py import PETSc
     comm = K.getComm().tompi4py()
     block = max(int(block), 2)           # degenerate pairs need two vectors per step
+    if max_columns < n_modes + block:
+        return None
     A = K.copy()
     if sigma != 0.0:
         A.axpy(-sigma, M)

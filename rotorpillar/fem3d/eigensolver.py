@@ -16,7 +16,7 @@ eigenvalues nearest sigma are returned sorted ascending.  Two methods:
   ``-modal_eps_ncv 40`` or ``-modal_eps_view`` (setting any ``modal_``
   option chooses it; ``-modal_method block|krylovschur`` chooses
   explicitly).  The block method falls back to it if its basis would grow
-  past ``BLOCK_MAX_COLUMNS``.
+  past ``BLOCK_MAX_COLUMNS`` (or ``BLOCK_MAX_BYTES``).
 
 Both stop on the same test: the residual of the shift-inverted problem,
 ||(K - sigma M)^-1 M x - theta x||_M / |theta| <= tol (SLEPc's relative
@@ -38,8 +38,10 @@ METHODS = ("block", "krylovschur")
 BLOCK_SIZE = 8
 #: Above this many modes, Krylov-Schur (its restarts bound the memory).
 BLOCK_MAX_MODES = 64
-#: The block basis never grows past this many columns (else Krylov-Schur).
+#: The block basis never grows past this many columns (else Krylov-Schur)...
 BLOCK_MAX_COLUMNS = 400
+#: ... nor past this many bytes per rank for V and M V (no restart: its memory grows).
+BLOCK_MAX_BYTES = 2**30
 
 
 @dataclass(frozen=True)
@@ -79,8 +81,8 @@ def solve_gep_shift_invert(K, M, n_modes: int, *, sigma: float = 0.0, tol: float
         raise ValueError(f"method must be one of {METHODS}")
     if method == "block":
         from .block_lanczos import block_lanczos
-        sol = block_lanczos(K, M, n_modes, sigma=sigma, tol=tol, block=block,
-                            max_columns=BLOCK_MAX_COLUMNS)
+        columns = min(BLOCK_MAX_COLUMNS, BLOCK_MAX_BYTES // (16 * max(K.getLocalSize()[0], 1)))
+        sol = block_lanczos(K, M, n_modes, sigma=sigma, tol=tol, block=block, max_columns=columns)
         if sol is not None:
             lam, vecs, steps, err, solves = sol
             return EigenSolution(lam, vecs, steps, err, "block", solves)
