@@ -35,7 +35,7 @@ from ..errors import ComputationError, InputError
 OPTIONS_PREFIX = "modal_"
 METHODS = ("block", "krylovschur")
 #: Right-hand sides per block solve; chosen by measurement (docs/fem3d.md).
-BLOCK_SIZE = 8
+BLOCK_SIZE = 6
 #: Above this many modes, Krylov-Schur (its restarts bound the memory).
 BLOCK_MAX_MODES = 64
 #: The block basis never grows past this many columns (else Krylov-Schur)...
