@@ -44,8 +44,9 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
     block = max(int(block), 2)           # degenerate pairs need two vectors per step
     if max_columns < n_modes + block:
         return None
-    A = K.copy()
+    A = K                                # the factorisation leaves K untouched: no copy at sigma 0
     if sigma != 0.0:
+        A = K.copy()
         A.axpy(-sigma, M)
     ksp = PETSc.KSP().create(K.getComm())
     try:
@@ -107,7 +108,8 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
                                "disconnected model)") from None
     finally:
         ksp.destroy()
-        A.destroy()
+        if A is not K:
+            A.destroy()
 
 
 class _Operator:
