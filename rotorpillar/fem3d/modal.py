@@ -1,7 +1,7 @@
 """Modal analysis of the tube: assemble, solve, name, normalise, reduce.
 
 The pipeline of :func:`modal_analysis`: Gmsh mesh -> K, M (dolfinx) ->
-shift-invert SLEPc -> the shapes gathered on rank 0 -> each mode named from
+shift-invert (block Lanczos or SLEPc) -> the shapes gathered on rank 0 -> each mode named from
 its shape (:mod:`.identify`), degenerate pairs aligned with x/y (or cos/sin)
 -> normalised (bending: unit mean displacement of the top section in its
 direction, so that a modal coordinate is the tip displacement in metres;
@@ -281,7 +281,7 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
         degree=model.V.ufl_element().degree(), mesh=ms, timings=timings,
         solver={"iterations": sol.iterations, "tolerance": tol, "shift": sigma,
                 "max_error_estimate": float(np.max(sol.errors)), "computed": len(sol.eigenvalues),
-                "type": "krylovschur, sinvert, mumps ldlt",
+                "type": f"{sol.method}, sinvert, mumps ldlt", "solves": sol.solves,
                 "ranks": comm.size},
         points=points, vtu_cells=vtu_cells, shapes=shapes_out, beam_line=beam_line,
         rigid_top=rigid)

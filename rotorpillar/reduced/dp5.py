@@ -5,7 +5,9 @@ safety factors and initial step), with scipy's 4th-order dense output on a
 uniform output grid, interval peaks, breakpoints where the forcing is
 discontinuous, and optional wrapping of theta into [0, 2 pi) so the relative
 tolerance does not loosen as theta grows.  ``dp5_batch``: many runs
-differing in M0, slope, load, e or c2, in one compiled loop.
+differing in M0, slope, load, e or c2, in one compiled loop.  Both release
+the GIL (``nogil``): rotorpillar.reduced.transient.simulate_batch runs
+slices of a batch on several threads at once.
 """
 
 from __future__ import annotations
@@ -90,7 +92,7 @@ def _initial_step(t, y, f0, P, lo, hi, rtol, atol, m, F):
     return min(100 * h0, h1)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
               out_y, out_peak, h_max):
     """Integrate y' = f from t0 to t1 (adaptive Dormand-Prince 5(4)).
@@ -254,7 +256,7 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
 # Many runs in one compiled loop
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def dp5_batch(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps, h_max,
               torque_scale, slope, load, eccentricity, shaft_stiffness,
               out_y, out_peak, stats):

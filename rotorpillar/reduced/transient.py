@@ -26,7 +26,9 @@ speed: the speed scale).
 from __future__ import annotations
 
 import math
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -327,10 +329,18 @@ class Batch:
 def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
                    torque_scale=None, slope=None, load=None, eccentricity=None, shaft_stiffness=None,
                    motion: GroundMotion | None = None, q0=None, v0=None, rtol: float = 1e-7,
-                   samples: int = 201, speed_scale: float | None = None) -> Batch:
+                   samples: int = 201, speed_scale: float | None = None,
+                   threads: int | None = None) -> Batch:
     """Run-ups (or any drive schedule) for many parameter values in one compiled
     loop: no Python between runs.  Each keyword is an array over the runs
-    (torque_scale multiplies the schedule's M0; the others replace s, k, e, c2)."""
+    (torque_scale multiplies the schedule's M0; the others replace s, k, e, c2).
+
+    ``threads``: how many threads share the runs (None: every core this
+    process may use, ``batch_threads()``; 1: the plain serial loop).  The
+    compiled loop releases the GIL, so slices of the runs go to a thread
+    pool; each run is computed exactly as in the serial loop, so the result
+    does not depend on ``threads`` (bit for bit).  Inside a process that is
+    itself one of several workers on the machine, pass ``threads=1``."""
     from .excitation import no_motion
     motion = motion or no_motion()
     arrays = {"torque_scale": torque_scale, "slope": slope, "load": load,
@@ -354,10 +364,12 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     out_peak = np.zeros((runs, len(t_out), n + 1))
     stats = np.zeros((runs, 5))
     P = model.pack(drive, motion)
+    args = (P, y0, 0.0, float(t_end), _breaks(drive, motion), rtol, atol, t_out, True,
+            200_000_000, motion.time_step if motion.kind == "record" else np.inf)
+    per_run = [ts] + others
     start = time.perf_counter()
-    K.dp5_batch(P, y0, 0.0, float(t_end), _breaks(drive, motion), rtol, atol, t_out, True,
-                200_000_000, motion.time_step if motion.kind == "record" else np.inf,
-                ts, *others, out_y, out_peak, stats)
+    _run_slices(lambda a, b: K.dp5_batch(*args, *(x[a:b] for x in per_run), out_y[a:b], out_peak[a:b],
+                                         stats[a:b]), runs, batch_threads() if threads is None else threads)
     wall = time.perf_counter() - start
     e = np.where(np.isfinite(others[2]), others[2], model.eccentricity)[:, None]
     th = out_y[:, :, n - 1]
@@ -366,6 +378,33 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], out_y[:, :, :model.nx] @ model.tip,
                  out_y[:, -1, :],
                  stats[:, 0].astype(int), stats[:, 1].astype(int), wall, shaft)
+
+
+def batch_threads() -> int:
+    """The cores this process may run on (its CPU affinity), at least 1."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:                                  # not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _run_slices(run_slice, runs: int, threads: int) -> None:
+    """Call ``run_slice(a, b)`` over slices covering range(runs), on ``threads`` threads.
+
+    Runs differ in cost (a slow run-up takes longer), so the slices are
+    small (about four per thread) and each thread takes the next free one.
+    """
+    if threads < 1:
+        raise ValueError(f"threads = {threads!r} must be >= 1")
+    threads = min(threads, runs)
+    if threads <= 1:
+        run_slice(0, runs)
+        return
+    size = max(1, -(-runs // (4 * threads)))
+    edges = list(range(0, runs, size)) + [runs]
+    with ThreadPoolExecutor(max_workers=threads) as pool:
+        for f in [pool.submit(run_slice, a, b) for a, b in zip(edges[:-1], edges[1:])]:
+            f.result()
 
 
 def _with_eccentricity(model: RotorStructure, e: float) -> RotorStructure:
