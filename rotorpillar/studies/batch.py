@@ -102,7 +102,8 @@ def _run_group(scene, case: str, which: str, runs: list[dict]) -> list[dict]:
     if case == "runup":
         drive = DriveSchedule.ramp(M_ref, d.slope, L.coefficient, sim.runup_ramp)
         t_end = sim.duration
-        b = simulate_batch(model, drive, t_end, samples=samples_for(case, t_end), **kw)
+        # one thread: the study's parallelism is its Dask workers, one per core
+        b = simulate_batch(model, drive, t_end, samples=samples_for(case, t_end), threads=1, **kw)
         frees = [DriveSchedule.ramp(m, s, k, sim.runup_ramp).free_speed()
                  for m, s, k in zip(M0, per["s"], per["k"])]
         extra = {"shaft_from": float(settle_time(scene, t_end))}
@@ -121,7 +122,8 @@ def _run_group(scene, case: str, which: str, runs: list[dict]) -> list[dict]:
             frees = [drive.free_speed()]
             extra = {"pga": float(motion.sizes()["peak_acceleration"])}
         b = simulate_batch(model, drive, t_end, q0=q0, v0=v0, motion=motion, speed_scale=Wop,
-                           samples=samples_for(case, t_end), torque_scale=[1.0], rtol=sim.rtol)
+                           samples=samples_for(case, t_end), torque_scale=[1.0], rtol=sim.rtol,
+                           threads=1)
         extra["initial_speed"] = float(Wop)
     since = b.t >= extra.pop("shaft_from", 0.0)
     out = []
