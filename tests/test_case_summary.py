@@ -16,8 +16,8 @@ from rotorpillar.reduced.summaries import CaseSummary, SweepFindings, run_summar
 from rotorpillar.reduced.transient import Settings, simulate
 from rotorpillar.scene import load_scene
 
-BASE_KEYS = ["ok", "duration", "omega_final", "omega_final_mean", "max_abs", "captured_at", "passages",
-             "energy_balance", "integrator", "prediction", "jumps"]
+BASE_KEYS = ["ok", "duration", "omega_final", "omega_final_mean", "max_abs", "captured_at",
+             "speed_state", "passages", "energy_balance", "integrator", "prediction", "jumps"]
 SWEEP_KEYS = ["predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
               "rate_check", "no_jump_reason", "rate_convergence"]
 

@@ -225,3 +225,19 @@ def test_a_good_run_passes_its_checks(tmp_path, case):
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "simulate.json").read_text())
     assert doc["ok"] is True and "failed_checks" not in doc
+
+
+def test_captured_at_is_the_settled_speed_and_an_escaping_run_is_not_captured(tmp_path):
+    """sommerfeld: at M0 = 600 N*m the rotor settles below omega_1 (captured); at 630 N*m it
+    is still rising at 80 s (escaping), not captured (issue: clear semantics)."""
+    import json
+    p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    d = json.loads((tmp_path / "simulate.json").read_text())
+    assert d["speed_state"] == "captured" and "passing_torque" not in d
+    assert d["captured_at"] == pytest.approx(d["omega_final_mean"])
+    assert d["captured_at"] < d["captured_resonance"]           # held below the resonance
+    p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path,
+            "--set", "drive.torque_at_zero=630")
+    d = json.loads((tmp_path / "simulate.json").read_text())
+    assert d["speed_state"] == "escaping" and d["captured_at"] is None

@@ -25,7 +25,7 @@ and beam full_order (mesh or elements, duration, time_step, note).
 from __future__ import annotations
 
 from . import EXIT_CHECKS, progress
-from ..scene import CASES, MODELS
+from ..scene import CASES, INTEGRATORS, MODELS
 
 
 def add_arguments(p) -> None:
@@ -36,13 +36,15 @@ def add_arguments(p) -> None:
                         "fem3d: the 3D tube at full order (earthquake, runup; mesh and duration from "
                         "[full_order]); beam: the 1D Timoshenko beam at full order "
                         "(default: the scene's simulate.model)")
-    p.add_argument("--integrator", default=None,
-                   choices=("dp5", "RK45", "DOP853", "Radau", "BDF", "LSODA", "newmark", "hht",
-                            "generalized_alpha", "central_difference"),
+    p.add_argument("--integrator", default=None, choices=INTEGRATORS,
                    help="time integrator (default: the scene's simulate.integrator)")
     p.add_argument("--modes", type=int, default=None, metavar="K",
                    help="modal model: keep K pillar modes (default: the scene's modal_model.modes, "
                         "0 = from the frequency band)")
+    p.add_argument("--no-threshold", dest="overrides", action="append_const",
+                   const="simulate.threshold=false",
+                   help="run-up: skip the batch that finds the torque needed to pass the resonance "
+                        "(the scene's simulate.threshold = false)")
 
 
 def simulate_command(scene, args, timings):

@@ -153,7 +153,8 @@ def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
         drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
         run = simulate(model, drive, motion, sim.duration, settings=st)
         free = drive.free_speed()
-        sections["passing_torque"] = passing_torque(model, drive, sim.duration, st.rtol)
+        if sim.threshold:
+            sections["passing_torque"] = passing_torque(model, drive, sim.duration, st.rtol)
     elif case == "rundown":
         Wop = operating_speed(model, M0, s, k)
         q0, v0 = model.steady_initial_state(Wop)
@@ -195,6 +196,7 @@ def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
                                                          extra["predicted_jumps"])
         sections["jumps"] = extra["numeric_jumps"]
         sections["captured_at"] = extra["captured_at"]
+        sections["captured_resonance"] = extra["captured_at"]
         sections["sweep"] = SweepFindings(**{key: extra.get(key) for key in (
             "predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
             "rate_check", "no_jump_reason", "rate_convergence")})

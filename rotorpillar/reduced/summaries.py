@@ -38,6 +38,35 @@ def capture(model: RotorStructure, omega_final: float, drive_free_speed: float) 
     return best
 
 
+#: A run whose speed still rose by more than this share over its last 5 % is
+#: escaping its resonance, not captured (the sommerfeld scene at M0 = 630 N*m
+#: rises 2 % over its last 4 s, a captured run less than 1e-4).
+ESCAPE_RISE = 0.005
+TAIL = 0.05
+
+
+def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> dict:
+    """Where a run's speed ended: captured below a resonance, escaping it, or at speed.
+
+    ``captured_at``: the speed the rotor settled at below the resonance (the
+    mean over the last 5 % of the run, rad/s), or None; ``captured_resonance``:
+    that resonance's omega_i (rad/s), or None; ``speed_state``: "captured",
+    "escaping" (near a resonance but still accelerating at the end: the run
+    is too short to tell, and the rotor is not stuck), "accelerating" (still
+    rising, no resonance near) or "at_speed".
+    """
+    t, Omega = np.asarray(t, dtype=float), np.asarray(Omega, dtype=float)
+    tail = t >= t[-1] - max(TAIL * (t[-1] - t[0]), 1e-9)
+    mean = float(np.mean(Omega[tail]))
+    rise = float(Omega[-1] - Omega[tail][0])
+    rising = rise > ESCAPE_RISE * max(abs(mean), 1e-9)
+    resonance = capture(model, mean, drive_free_speed)
+    if resonance is not None and not rising:
+        return {"captured_at": mean, "captured_resonance": resonance, "speed_state": "captured"}
+    state = ("escaping" if resonance is not None else "accelerating") if rising else "at_speed"
+    return {"captured_at": None, "captured_resonance": None, "speed_state": state}
+
+
 def passages(run: Transient) -> list[dict]:
     """When the speed first crosses each resonance, and the largest tip
     amplitude within +-10 % of it."""
@@ -159,7 +188,8 @@ class CaseSummary:
     max_abs: dict
     """largest |value| per coordinate (m)"""
     captured_at: float | None
-    """omega_i of the resonance the run settled at (rad/s), or None"""
+    """the speed the rotor settled at below a resonance (rad/s), or None (the
+    sweep: omega_i of the resonance it ended at)"""
     passages: list
     energy_balance: dict
     integrator: dict
@@ -177,6 +207,10 @@ class CaseSummary:
     """earthquake on a record: the tip against the response-spectrum estimate"""
     truncation: dict | None = None
     """modal model: the same case with one mode more"""
+    captured_resonance: float | None = None
+    """omega_i of the resonance that holds the rotor (rad/s), or None"""
+    speed_state: str | None = None
+    """"captured", "escaping", "accelerating" or "at_speed" (see capture_state)"""
     failed_checks: list | None = None
     """why ``ok`` is false: the run's own checks that failed (absent when none did)"""
 
@@ -185,7 +219,12 @@ class CaseSummary:
         out = {}
         for f in fields(self):
             v = getattr(self, f.name)
-            if f.name == "sweep":
+            if f.name in BESIDE_CAPTURE:
+                continue
+            if f.name == "captured_at":
+                out[f.name] = v
+                out.update({k: getattr(self, k) for k in BESIDE_CAPTURE if getattr(self, k) is not None})
+            elif f.name == "sweep":
                 if v is not None:
                     out.update({g.name: getattr(v, g.name) for g in fields(v)})
             elif f.name not in _OPTIONAL or v is not None:
@@ -200,8 +239,10 @@ class CaseSummary:
         return cls(**kw)
 
 
+#: Written right after captured_at, where they are read together (when not None).
+BESIDE_CAPTURE = ("captured_resonance", "speed_state")
 _OPTIONAL = ("passing_torque", "excitation", "response_spectrum_check", "truncation",
-             "failed_checks")
+             "captured_resonance", "speed_state", "failed_checks")
 
 #: A run whose energy balance misses by more than this share of the energy
 #: exchanged is no solution of its equations (dp5 at rtol 1e-7 closes to ~1e-6,
@@ -257,9 +298,11 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
     tail = run.t >= run.t[-1] - max(0.05 * (run.t[-1] - run.t[0]), 1e-9)
     om_mean = float(np.mean(run.Omega[tail]))
     failed = run_checks(run, drive_free_speed)
+    state = capture_state(run.model, run.t, run.Omega, drive_free_speed)
     base = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
                 omega_final_mean=om_mean, max_abs=max_abs(run),
-                captured_at=capture(run.model, om_mean, drive_free_speed), passages=passages(run),
+                captured_at=state["captured_at"], captured_resonance=state["captured_resonance"],
+                speed_state=state["speed_state"], passages=passages(run),
                 energy_balance=run.energy_balance(), integrator=dict(run.stats), prediction=prediction,
                 jumps=[])
     base.update(sections)

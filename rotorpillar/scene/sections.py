@@ -192,6 +192,8 @@ class Simulate:
     rundown_torque_at_zero: float = param("Run-down: M0 of the weaker motor (N*m)", 0.0, ge=0)
     earthquake_duration: float = param("Length of the earthquake run, 0 = until 5 s after the "
                                        "ground motion ends (s)", 0.0, ge=0, le=1e5)
+    threshold: bool = param("Run-up: also find, by a batch of run-ups, the torque needed to pass "
+                            "the resonance that holds the rotor (--no-threshold: false)", True)
 
 
 EXCITATION_KINDS = ("paper", "record")

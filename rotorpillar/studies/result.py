@@ -22,9 +22,9 @@ class StudyRun(JsonRecord):
     final_speed_mean: float
     """mean speed over the last 5 % of the run (rad/s)"""
     captured_at: float | None
-    """omega_i of the resonance the run settled at (rad/s), or None"""
+    """the speed the rotor settled at below a resonance (rad/s), or None"""
     passed: bool | None
-    """run-up and run-down: settled at no resonance; earthquake: None"""
+    """run-up and run-down: neither captured nor escaping a resonance at the end; earthquake: None"""
     peak_tip: float
     """largest |tip X| relative to the ground (m)"""
     peak_shaft_deflection: float
@@ -35,6 +35,8 @@ class StudyRun(JsonRecord):
     """right-hand side evaluations of the run"""
     batch: str = ""
     """the batch (cache file) that computed it"""
+    speed_state: str = ""
+    """"captured", "escaping", "accelerating" or "at_speed" (reduced.summaries.capture_state)"""
     pga: float | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake: peak ground acceleration (m/s**2)"""
     initial_speed: float | None = field(default=None, metadata={"omit_if_none": True})

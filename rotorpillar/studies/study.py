@@ -40,7 +40,7 @@ from .result import StudyResult, StudyRun
 #: speed is not lost to the per-batch overhead (~10 ms against ~60 ms a run)
 BATCH_RUNS = 8
 CACHE_VERSION = 1
-CSV_RESULTS = ("final_speed", "final_speed_mean", "captured_at", "passed", "peak_tip",
+CSV_RESULTS = ("final_speed", "final_speed_mean", "captured_at", "speed_state", "passed", "peak_tip",
                "peak_shaft_deflection", "free_speed", "pga", "ok", "nfev")
 
 Charts = Callable[[StudyResult, Path], list]

@@ -196,7 +196,7 @@ def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
     from ..fem3d.transient import simulate_fem3d
     from ..reduced.models import build_model
     from ..reduced.cases import forcing_top
-    from ..reduced.summaries import capture
+    from ..reduced.summaries import capture_state
     plan = fem3d_plan(scene, case, motion, duration)
     mesh = plan.pop("_mesh")
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"
@@ -209,8 +209,8 @@ def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
     beam = override(scene, ["modal_model.source=beam"])
     ref, _ = build_model(beam, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion))
     drive_free = _free_speed(scene)
-    settled = abs(r.Omega[-1] - r.Omega[max(0, int(0.95 * len(r.Omega)) - 1)]) <= 0.01 * max(abs(r.Omega[-1]), 1e-9)
-    captured = capture(ref, r.omega_final_mean, drive_free) if settled else None
+    state = capture_state(ref, r.t, r.Omega, drive_free)
+    captured, settled = state["captured_at"], state["speed_state"] != "escaping"
     ma = dict(r.max_abs)
     ma["tip_x_relative"] = ma["tip_x"]
     integ = dict(r.integrator)
@@ -223,7 +223,8 @@ def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
             "shaft_deflection_y": r.shaft_y, "plate_z": r.plate_z, "drive_torque": r.drive_torque,
             "energy": r.energy, "work": r.work, "peak": np.abs(r.tip_x)[:, None]}
     result = {"case": case, "model": "fem3d", **r.summary(), "max_abs": ma, "integrator": integ,
-              "captured_at": captured, "warnings": [],
+              "captured_at": captured, "captured_resonance": state["captured_resonance"],
+              "speed_state": state["speed_state"], "warnings": [],
               "captured_at_source": "the modal model on the 1D beam's modes: its resonances"
                                     + ("" if settled else "; the run ended before the speed settled, "
                                                           "so no capture is claimed"),

@@ -70,7 +70,9 @@ def key_results(meta: dict) -> str | None:
         rows.append(["FAILED: not a solution", "; ".join(meta.get("failed_checks") or
                                                         ["the run reports ok: false"])])
     for key, label in (("model", "model"), ("omega_final", "final speed (rad/s)"),
-                       ("captured_at", "captured at resonance")):
+                       ("captured_at", "captured at (rad/s)"),
+                       ("captured_resonance", "held by the resonance at (rad/s)"),
+                       ("speed_state", "speed at the end")):
         if key in meta:
             rows.append([label, h.num(meta[key])])
     if isinstance(meta.get("jumps"), list):

@@ -66,8 +66,11 @@ def section_summary(build: Build) -> str:
         if sim is not None and sim.meta:
             wf = sim.meta.get("omega_final")
             items.append(f"Run {case}: final speed {h.num(wf, 4)} rad/s"
-                         + (f", captured at resonance {sim.meta['captured_at']}"
-                            if sim.meta.get("captured_at") is not None else "") + ".")
+                         + (f", captured at {h.num(sim.meta['captured_at'], 4)} rad/s below the "
+                            f"resonance at {h.num(sim.meta.get('captured_resonance'), 4)} rad/s"
+                            if sim.meta.get("captured_at") is not None else "")
+                         + (", still escaping a resonance at the end of the run"
+                            if sim.meta.get("speed_state") == "escaping" else "") + ".")
     if not build.simulations:
         items.append("Transients: " + build.hint(SIMULATE_COMMAND) + ".")
     for case in COMPARISONS:
