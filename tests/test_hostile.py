@@ -241,3 +241,19 @@ def test_captured_at_is_the_settled_speed_and_an_escaping_run_is_not_captured(tm
             "--set", "drive.torque_at_zero=630")
     d = json.loads((tmp_path / "simulate.json").read_text())
     assert d["speed_state"] == "escaping" and d["captured_at"] is None
+
+
+@pytest.mark.parametrize("args, words", [
+    (["simulate", "--set", "simulate.integrator=newmark", "--set", "simulate.time_step=1e-9"],
+     "simulate.max_steps"),
+    (["simulate", "--case", "sweep", "--set", "sweep.rate=1e-6"], "simulate.max_steps"),
+    (["simulate", "--case", "sweep", "--set", "sweep.settle=1e12"], "simulate.max_steps"),
+    (["simulate", "--case", "sweep", "--set", "sweep.bins=100000"], "sweep.bins"),
+    (["simulate", "--set", "simulate.rtol=1e-300"], "simulate.rtol"),
+    (["integrators", "--duration", "1000"], "--duration"),
+], ids=["tiny-step", "slow-sweep", "long-settle", "many-bins", "rtol-underflow", "long-study"])
+def test_work_that_cannot_finish_is_refused_with_its_estimate(tmp_path, args, words):
+    out = tmp_path / "out"
+    p = cli(args[0], "paper", *args[1:], "--out", out, timeout=120)
+    assert p.returncode == 2 and words in one_line(p)
+    assert not out.exists()

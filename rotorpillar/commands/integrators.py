@@ -9,6 +9,10 @@ import math
 from . import progress
 
 
+#: Longest run-up the integrator study takes (s): about 5 minutes of work on 2 cores.
+MAX_DURATION = 60.0
+
+
 def add_arguments(p) -> None:
     p.add_argument("--duration", type=float, default=10.0, metavar="SECONDS",
                    help="length of the run-up the accuracy study integrates (default 10 s)")
@@ -22,8 +26,10 @@ def integrators_command(scene, args, timings):
     from ..reduced.integrator_study import run_study
     from ..transients.run import pillar_modes_for
     duration = getattr(args, "duration", 10.0)
-    if not (math.isfinite(duration) and 0 < duration <= 1000):
-        raise InputError(f"--duration {duration!r}: must be > 0 and <= 1000 (s)")
+    # every integrator at every step size: ~2-6 s of computing per simulated second
+    if not (math.isfinite(duration) and 0 < duration <= MAX_DURATION):
+        raise InputError(f"--duration {duration!r}: must be > 0 and <= {MAX_DURATION:g} (s): the "
+                         f"study costs about 2-6 s per simulated second on 2 cores")
     with timings("study"):
         result = run_study(scene, duration, quick=getattr(args, "quick", False), progress=progress,
                            pillar_modes=pillar_modes_for(scene, "modal"))

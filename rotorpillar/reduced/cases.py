@@ -50,7 +50,7 @@ def settings_of(scene, integrator: str | None = None) -> Settings:
     """The scene's [simulate] integration settings, ``integrator`` replacing its method."""
     s = scene.simulate
     return Settings(method=integrator or s.integrator, rtol=s.rtol, time_step=s.time_step,
-                    samples=s.samples)
+                    samples=s.samples, max_steps=s.max_steps)
 
 
 def forcing_time_step(scene, fastest: float, motion: GroundMotion) -> float:

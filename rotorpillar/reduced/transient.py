@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import InputError
 from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
 from .drive import DriveSchedule
@@ -66,6 +67,8 @@ class Settings:
     rho_inf: float = 0.8
     """generalized-alpha's spectral radius at infinite frequency (-)"""
     max_steps: int = 200_000_000
+    """budget of steps: a run estimated above it is refused before it starts, and
+    the adaptive integrator stops there (-)"""
     newton_tol: float = 1e-10
 
 
@@ -175,6 +178,7 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
     if speed_scale is None:
         speed_scale = max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0)) \
             if math.isfinite(drive.free_speed()) else max(abs(v0[-1]), 1.0)
+    check_budget(model, motion, t_end - t_start, settings, speed_scale)
     P = model.pack(drive, motion, prescribed_speed)
     start = time.perf_counter()
     if settings.method == "dp5":
@@ -188,6 +192,38 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
     stats["method"] = settings.method
     stats["implicit"] = settings.method in IMPLICIT
     return Transient(model, t, q, v, w, peak, stats, prescribed_speed, drive, motion)
+
+
+#: Adaptive steps per rotor revolution at least (dp5 at rtol 1e-7 takes 10-60):
+#: the estimate is a lower bound, so no run that would fit its budget is refused.
+STEPS_PER_REVOLUTION = 10.0
+
+
+def estimated_steps(model: RotorStructure, motion: GroundMotion, duration: float,
+                    settings: Settings, speed_scale: float) -> float:
+    """Integration steps a run will take, from its settings, before it starts (-).
+
+    Fixed step: duration / h.  Adaptive: at least STEPS_PER_REVOLUTION per
+    revolution at the speed scale, and one per sample of a record.
+    """
+    if settings.method in FIXED_STEP:
+        h = settings.time_step or auto_time_step(model, speed_scale, settings, motion)
+        return duration / h
+    n = STEPS_PER_REVOLUTION * max(speed_scale, 0.0) / (2 * math.pi) * duration
+    if motion.kind == "record":
+        n = max(n, duration / motion.time_step)
+    return n
+
+
+def check_budget(model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings,
+                 speed_scale: float) -> None:
+    """Refuse (one line, InputError) a run estimated above ``settings.max_steps``."""
+    n = estimated_steps(model, motion, duration, settings, speed_scale)
+    if not math.isfinite(n) or n > settings.max_steps:
+        raise InputError(
+            f"this run of {duration:.4g} s would take about {n:.3g} {settings.method} steps, more "
+            f"than simulate.max_steps = {settings.max_steps:.3g}: shorten it, coarsen the step, "
+            "or raise simulate.max_steps")
 
 
 def _output_grid(t0, t1, samples):

@@ -192,6 +192,8 @@ class Simulate:
     rundown_torque_at_zero: float = param("Run-down: M0 of the weaker motor (N*m)", 0.0, ge=0)
     earthquake_duration: float = param("Length of the earthquake run, 0 = until 5 s after the "
                                        "ground motion ends (s)", 0.0, ge=0, le=1e5)
+    max_steps: int = param("Budget of integration steps per run: a run estimated above it is "
+                           "refused before it starts (-)", 20_000_000, ge=1000, le=10**10)
     threshold: bool = param("Run-up: also find, by a batch of run-ups, the torque needed to pass "
                             "the resonance that holds the rotor (--no-threshold: false)", True)
 
@@ -227,7 +229,8 @@ class Sweep:
     rate: float = param("|dM0/dt| on the ramps (N*m/s)", 5.0, gt=0)
     settle: float = param("Time held at torque_low first and at torque_high between the ramps (s)",
                           20.0, ge=0)
-    bins: int = param("M0 bins of the stationary curve, each way (-)", 400, ge=10, le=100000)
+    bins: int = param("M0 bins of the stationary curve, each way (-); 40 output samples each",
+                      400, ge=10, le=20000)
 
 
 MODAL_SOURCES = ("beam", "fem3d")
