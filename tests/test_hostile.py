@@ -279,3 +279,15 @@ def test_a_record_timed_in_milliseconds_is_flagged_not_realistic(tmp_path):
     assert doc["excitation"]["realistic"] is False and "time step" in doc["excitation"]["statement"]
     assert any("not a realistic earthquake" in w for w in doc["warnings"])
     assert "not a realistic earthquake" in p.stderr
+
+
+def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
+    """No 3D model and an 8-around shell: no family converges, so there is no reference and
+    no run has an error estimate; the study says so instead of choosing the closed forms."""
+    import json
+    p = cli("converge", "paper", "--set", "converge.solid=false", "--set",
+            "converge.shell_max_around=8", "--set", "converge.shell_tri_max_around=8",
+            "--no-progress", "--out", tmp_path, timeout=600)
+    assert p.returncode == 0, p.stderr
+    sel = json.loads((tmp_path / "convergence.json").read_text())["selection"]
+    assert sel["chosen"] is None and "no converged reference" in sel["reason"]

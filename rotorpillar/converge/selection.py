@@ -111,6 +111,21 @@ def select_model(records: list[dict], reference: dict, band: dict, tolerance: fl
     ref_unc = reference_uncertainty(reference)
     ok_runs = [r for r in records if r.get("status") == "ok"
                and (families is None or r["family"] in families)]
+    # a frequency some run puts inside the band but no reference covers has no error
+    # estimate: no model can be shown to meet the tolerance on it
+    unreferenced = [q for q in QUANTITIES if q not in reference
+                    and any(r.get(q) is not None and r[q] <= band["omega_max"]
+                            for r in records if r.get("status") == "ok")]
+    if unreferenced or not reference:
+        what = ", ".join(unreferenced) or "any frequency"
+        return {"tolerance": tolerance, "band": band, "needed": needed + unreferenced,
+                "reference_uncertainty": {q: ref_unc[q] for q in needed},
+                "families": families, "candidates": 0, "chosen": None, "rejected_cheaper": [],
+                "rule": "no choice without an error estimate that meets the tolerance",
+                "reason": (f"no model chosen: the study has no converged reference for {what} "
+                           f"inside the band (up to {band['omega_max']:.4g} rad/s), so no run has "
+                           "an error estimate to meet the tolerance with; extend the ladder "
+                           "([converge] limits, converge.solid = true)")}
     meets, rejected = [], []
     for r in ok_runs:
         missing = [q for q in needed if r.get(q) is None]
