@@ -291,3 +291,18 @@ def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
     assert p.returncode == 0, p.stderr
     sel = json.loads((tmp_path / "convergence.json").read_text())["selection"]
     assert sel["chosen"] is None and "no converged reference" in sel["reason"]
+
+
+@pytest.mark.parametrize("content", ["null", "[1, 2]"])
+def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path, content):
+    """A run cache that parses to another shape (or not at all) is treated as absent."""
+    import json
+    args = ["converge", "paper", "--set", "converge.solid=false", "--set",
+            "converge.shell_max_around=8", "--set", "converge.shell_tri_max_around=8",
+            "--no-progress", "--workers", "1", "--out", tmp_path]
+    assert cli(*args, timeout=600).returncode == 0
+    files = sorted((tmp_path / "cache").glob("*.json"))
+    files[0].write_text(content)
+    p = cli(*args, timeout=600)
+    assert p.returncode == 0, p.stderr
+    assert json.loads(files[0].read_text())["status"] == "ok"     # recomputed and rewritten

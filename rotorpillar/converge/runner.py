@@ -305,4 +305,6 @@ def _load_cached(path: Path, key: str) -> Optional[dict]:
         doc = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
-    return doc if doc.get("key") == key and doc.get("status") == "ok" else None
+    # a file of another shape (null, a list, cut short) is no cached run: recompute it
+    return doc if isinstance(doc, dict) and doc.get("key") == key and doc.get("status") == "ok" \
+        else None

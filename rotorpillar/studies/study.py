@@ -77,7 +77,8 @@ def _load(path: Path, key: str) -> Optional[dict]:
         doc = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
-    return doc if doc.get("key") == key else None
+    # a file of another shape (null, a list, cut short) is no finished batch: recompute it
+    return doc if isinstance(doc, dict) and doc.get("key") == key else None
 
 
 def _check_inputs(scene, case: str, model: str, vary: list[str]):
