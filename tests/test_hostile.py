@@ -306,3 +306,34 @@ def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path, content):
     p = cli(*args, timeout=600)
     assert p.returncode == 0, p.stderr
     assert json.loads(files[0].read_text())["status"] == "ok"     # recomputed and rewritten
+
+
+@pytest.mark.parametrize("sig", ["SIGTERM", "SIGKILL"])
+def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
+    """Killed mid-study (SIGTERM: stops its runs; SIGKILL: no chance to clean up): every
+    JSON on disk parses, and the rerun computes only what is missing."""
+    import json
+    import signal
+    import subprocess
+    import sys
+    import time
+    args = ["converge", "paper", "--set", "converge.solid=false", "--set",
+            "converge.shell_max_around=8", "--set", "converge.shell_tri_max_around=8",
+            "--no-progress", "--workers", "1", "--out", str(tmp_path)]
+    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    cache, deadline = tmp_path / "cache", time.time() + 120
+    while time.time() < deadline and proc.poll() is None:
+        if cache.exists() and len(list(cache.glob("*.json"))) >= 5:
+            break
+        time.sleep(0.05)
+    proc.send_signal(getattr(signal, sig))
+    proc.communicate(timeout=60)
+    for f in tmp_path.rglob("*.json"):
+        json.loads(f.read_text())                          # whole, or not there
+    done = len(list(cache.glob("*.json")))
+    p = cli(*args, "--json", timeout=600)
+    assert p.returncode == 0, p.stderr
+    study = json.loads(p.stdout)["study"]
+    assert study["cached"] >= done - 1 and study["computed"] == study["runs"] - study["cached"]
+    assert not list(cache.glob(".*.part*"))                 # a killed writer's part is gone
