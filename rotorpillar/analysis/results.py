@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 from ..provenance import JsonRecord
+from ..reduced.averaging import Jump, Stationary as StationarySpeed  # noqa: F401  (records of analyze.json too)
 
 
 @dataclass(frozen=True)
@@ -92,24 +93,6 @@ class SystemModes(JsonRecord):
     nu: tuple[float, ...]
     f4: float
     """c2 e, the paper's torque coupling (N)"""
-
-
-@dataclass(frozen=True)
-class StationarySpeed(JsonRecord):
-    omega: float
-    stable: bool
-    margin: float
-    """d(Md - L)/dOmega (N*m*s): negative when stable"""
-
-
-@dataclass(frozen=True)
-class Jump(JsonRecord):
-    direction: str
-    """"up" (A -> B, quasi-static run-up) or "down" (D -> C, run-down)"""
-    omega_from: float
-    omega_to: float
-    torque_at_zero: float
-    resonance: int
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,24 @@ from ..errors import ComputationError
 DROP = 1e-10
 
 
+def shifted_cholesky(K, M, sigma: float = 0.0):
+    """A MUMPS Cholesky solver of K - sigma M, not yet factorised: (ksp, the shifted
+    matrix or None when it is K itself).  ``ksp.setUp()`` factorises; the caller
+    destroys both."""
+    from petsc4py import PETSc
+    A = None
+    if sigma != 0.0:                     # the factorisation leaves K untouched: no copy at sigma 0
+        A = K.copy()
+        A.axpy(-sigma, M)
+    ksp = PETSc.KSP().create(K.getComm())
+    ksp.setOperators(K if A is None else A)
+    ksp.setType(PETSc.KSP.Type.PREONLY)
+    pc = ksp.getPC()
+    pc.setType(PETSc.PC.Type.CHOLESKY)
+    pc.setFactorSolverType("mumps")
+    return ksp, A
+
+
 def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10, block: int = 8,
                   max_columns: int = 400, seed: int = 20240607):
     """The ``n_modes`` eigenpairs nearest ``sigma``: (eigenvalues ascending, their
@@ -44,19 +62,10 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
     block = max(int(block), 2)           # degenerate pairs need two vectors per step
     if max_columns < n_modes + block:
         return None
-    A = K                                # the factorisation leaves K untouched: no copy at sigma 0
-    if sigma != 0.0:
-        A = K.copy()
-        A.axpy(-sigma, M)
-    ksp = PETSc.KSP().create(K.getComm())
+    ksp, A = shifted_cholesky(K, M, sigma)
     try:
-        ksp.setOperators(A)
-        ksp.setType(PETSc.KSP.Type.PREONLY)
-        pc = ksp.getPC()
-        pc.setType(PETSc.PC.Type.CHOLESKY)
-        pc.setFactorSolverType("mumps")
         ksp.setUp()
-        op = _Operator(K, M, pc.getFactorMatrix(), comm)
+        op = _Operator(K, M, ksp.getPC().getFactorMatrix(), comm)
         rng = np.random.default_rng([seed, comm.rank])
         W = op.solve(op.mass(rng.standard_normal((op.n_local, block))))
         basis = _Basis(op.n_local, max_columns + block, 6 * n_modes + 2 * block)
@@ -108,7 +117,7 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
                                "disconnected model)") from None
     finally:
         ksp.destroy()
-        if A is not K:
+        if A is not None:
             A.destroy()
 
 

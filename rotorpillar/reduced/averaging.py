@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from ..provenance import JsonRecord
 from .system import Resonance
 
 
@@ -185,7 +186,7 @@ def _roots(fun, grid) -> list[float]:
 
 
 @dataclass(frozen=True)
-class Stationary:
+class Stationary(JsonRecord):
     omega: float
     """stationary speed Omega (rad/s)"""
     stable: bool
@@ -195,7 +196,7 @@ class Stationary:
 
 
 @dataclass(frozen=True)
-class Jump:
+class Jump(JsonRecord):
     direction: str
     """"up" (A -> B, quasi-static run-up) or "down" (D -> C, run-down)"""
     omega_from: float
