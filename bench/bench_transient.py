@@ -188,74 +188,15 @@ def bench_rom_vs_full(scene) -> list[dict]:
 
 
 def newmark_3d(scene, motion, Omega: float, theta0: float, h: float, t_end: float):
-    """The earthquake on the 3D model (rotorpillar.fem3d: tube, rigid top plate
-    with the gondola), the rotor on its shaft at the plate, turning at a
-    prescribed speed: linear, so one factorisation of Newmark's effective
-    stiffness serves every step.  Relative to the ground, -M r a_g; the
-    pillar's b1 as a dashpot on the plate's X, b2 on the rotor; the rotor
-    centre eliminated from each solve (it couples to the plate's X only).
-    Returns (t, plate X, wall seconds, dofs)."""
-    from petsc4py import PETSc
-    from rotorpillar.fem3d import assemble_pillar
-    t0 = time.perf_counter()
-    model = assemble_pillar(scene, top=True)
-    K, M = model.K, model.M
-    N = model.tube_dofs                                    # the plate's U_x
-    mC, b2, c2, e = scene.rotor.mass, scene.shaft.damping, scene.shaft.stiffness, scene.rotor.eccentricity
-    b1 = scene.pillar.damping
-    kr = c2 + 2 / h * b2 + 4 / h**2 * mC
-    Keff = K.copy()
-    Keff.axpy(4 / h**2, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
-    Keff.setValue(N, N, 2 / h * b1 + c2 - c2**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
-    Keff.assemble()
-    ksp = PETSc.KSP().create(model.comm)
-    ksp.setOperators(Keff)
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
-    ksp.setUp()
-    Mr = M.createVecLeft()
-    M.mult(model.influence(0), Mr)
-    u, v, a = (K.createVecRight() for _ in range(3))
-    for x in (u, v, a):
-        x.set(0.0)
-    w, R, u1 = K.createVecRight(), K.createVecRight(), K.createVecRight()
-    x = vx = ax = 0.0
+    """The earthquake on the 3D model with the rotor turning at a prescribed speed, by
+    the library's full-order transient (rotorpillar.fem3d.transient: Newmark, one
+    MUMPS factorisation).  Returns (t, tip X relative to the ground, wall s, dofs)."""
+    from rotorpillar.fem3d.transient import simulate_fem3d
     steps = int(round(t_end / h))
-    tip = np.zeros(steps + 1)
-    for n in range(1, steps + 1):
-        t = n * h
-        ag = float(motion.evaluate(t)[2])
-        ecc = c2 * e * math.cos(theta0 + Omega * t)
-        # R = f + M (4/h^2 u + 4/h v + a) + C (2/h u + v)
-        w.set(0.0)
-        w.axpy(4 / h**2, u)
-        w.axpy(4 / h, v)
-        w.axpy(1.0, a)
-        M.mult(w, R)
-        R.axpy(-ag, Mr)
-        r_r = ecc - mC * ag + mC * (4 / h**2 * x + 4 / h * vx + ax) + b2 * (2 / h * x + vx)
-        uN, vN = u.getValue(N), v.getValue(N)
-        R.setValue(N, -ecc + b1 * (2 / h * uN + vN) + c2 * r_r / kr, addv=PETSc.InsertMode.ADD_VALUES)
-        R.assemble()
-        ksp.solve(R, u1)
-        x1 = (r_r + c2 * u1.getValue(N)) / kr
-        # v1 = 2/h (u1 - u) - v ; a1 = 4/h^2 (u1 - u) - 4/h v - a
-        w.waxpy(-1.0, u, u1)                               # w = u1 - u
-        a.scale(-1.0)
-        a.axpy(4 / h**2, w)
-        a.axpy(-4 / h, v)
-        v.scale(-1.0)
-        v.axpy(2 / h, w)
-        u1.copy(u)
-        vx1 = 2 / h * (x1 - x) - vx
-        ax = 4 / h**2 * (x1 - x) - 4 / h * vx - ax
-        x, vx = x1, vx1
-        tip[n] = u.getValue(N)
-    wall = time.perf_counter() - t0
-    for obj in (ksp, Keff, K, M):
-        obj.destroy()
-    return np.arange(steps + 1) * h, tip, wall, model.size
+    r = simulate_fem3d(scene, "earthquake", motion=motion, duration=t_end, time_step=h,
+                       samples=steps + 1, initial_speed=Omega, initial_angle=theta0,
+                       prescribed_speed=True)
+    return r.t, r.tip_x, r.wall_seconds, r.dofs
 
 
 def bench_rom_vs_3d(scene) -> list[dict]:
