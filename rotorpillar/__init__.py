@@ -37,6 +37,13 @@ _EXPORTS = {
     "AnalysisResult": "rotorpillar.analysis",
     "ModalSummary": "rotorpillar.fem3d.summary",
     "modal_analysis": "rotorpillar.fem3d",
+    "run_case": "rotorpillar.reduced.cases",
+    "CaseSummary": "rotorpillar.reduced.summaries",
+    "ConvergenceStudy": "rotorpillar.converge.result",
+    "CompareResult": "rotorpillar.transients.records",
+    "compare_models": "rotorpillar.transients.compare",
+    "StudyResult": "rotorpillar.studies.result",
+    "design_study": "rotorpillar.studies.study",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]
