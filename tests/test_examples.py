@@ -19,3 +19,10 @@ def test_example_runs(script, tmp_path):
                        cwd=tmp_path, timeout=600)
     assert p.returncode == 0, p.stderr[-2000:]
     assert p.stdout.strip(), "an example shows its result"
+
+
+def test_every_public_name_resolves():
+    """``rotorpillar.__all__`` is what notebooks import: each name must load."""
+    import rotorpillar
+    for name in rotorpillar.__all__:
+        assert getattr(rotorpillar, name) is not None, name
