@@ -208,6 +208,9 @@ def test_run_ends_with_the_report_path(run_paper):
     assert (out / "report.html").is_file()
     run = json.loads((out / "run.json").read_text())
     assert list(run["stages"])[-1] == "report"
+    # every section written from the real commands' outputs, read through their records
+    report = json.loads((out / "report.json").read_text())
+    assert report["failures"] == {} and report["damaged"] == {}
 
 
 def test_an_input_of_another_shape_costs_one_section(tmp_path):

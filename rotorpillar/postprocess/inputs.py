@@ -132,8 +132,9 @@ class Loaded:
     """A command's result as the report reads it: the typed record, and the
     document it came from (the scene, versions and timings written beside).
 
-    Attributes are the record's; a section the record keeps as plain JSON
-    (a dict, or a list of dicts) reads with attribute access too.
+    Attributes are the record's, then the document's (the versions and
+    timings the command wrote beside); a section kept as plain JSON (a dict,
+    or a list of dicts) reads with attribute access too.
     ``to_dict()`` gives the whole document (for :func:`plain`).
     """
 
@@ -141,7 +142,12 @@ class Loaded:
         self._record, self._doc = record, doc
 
     def __getattr__(self, name):
-        return _view(getattr(self._record, name))
+        try:
+            return _view(getattr(self._record, name))
+        except AttributeError:
+            if name.startswith("_") or name not in self._doc:
+                raise
+            return _view(self._doc[name])       # what the command wrote beside: timings, scene...
 
     def to_dict(self) -> dict:
         return self._doc
