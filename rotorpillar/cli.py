@@ -175,6 +175,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     signal.signal(signal.SIGTERM, _terminate)
+    if args.debug:
+        os.environ["ROTORPILLAR_DEBUG"] = "1"      # run's stages and the report see it too
     say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)
     try:
         if mpi_world_size() > 1 and args.command not in MPI_COMMANDS:

@@ -338,3 +338,20 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     study = json.loads(p.stdout)["study"]
     assert study["cached"] >= done - 1 and study["computed"] == study["runs"] - study["cached"]
     assert not list(cache.glob(".*.part*"))                 # a killed writer's part is gone
+
+
+def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, computed):
+    """No VTK parser errors on the terminal, no traceback: one failure naming the file and
+    the command that rebuilds it."""
+    import json
+    import shutil
+    import fixtures
+    out = tmp_path / "out"
+    shutil.copytree(computed, out)
+    fixtures.write_modal_fixture(out, around=24, along=16)
+    (out / "modes_bare.vtu").write_text("garbage")
+    p = cli("report", "paper", "--out", out, "--no-animations")
+    assert p.returncode == 0, p.stderr
+    assert "Traceback" not in p.stderr and "vtkXML" not in p.stderr
+    failures = json.loads((out / "report.json").read_text())["failures"]
+    assert any("modes_bare.vtu is damaged" in v and "rotorpillar modal" in v for v in failures.values())

@@ -374,6 +374,10 @@ def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | 
     vtu = Path(vtu)
     if not vtu.is_file():
         return None
+    with open(vtu, "rb") as fh:             # refuse a damaged file ourselves: VTK would print
+        head = fh.read(256).lstrip()         # its parser's errors and return an empty grid
+    if not (head.startswith(b"<?xml") or head.startswith(b"<VTKFile")):
+        raise ValueError(f"{vtu.name} is damaged (not a VTU file): rebuild it with `rotorpillar modal`")
     pv = pyvista()
     grid = pv.read(vtu)
     names = sorted(n for n in grid.point_data.keys() if n.startswith("mode_"))

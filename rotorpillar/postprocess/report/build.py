@@ -35,7 +35,7 @@ from .modal import section_modal, section_paper, section_scene
 from .provenance import section_other, section_provenance
 from .render import mode_sets, render_animations, render_charts, render_comparisons, render_modes
 from .runs import section_averaging, section_runs
-from .state import Build, Product, ReportOptions, attempt, say
+from .state import Build, Product, ReportOptions, attempt, debugging, say
 from .study import section_study
 from .summary import section_summary
 
@@ -75,7 +75,8 @@ def _guarded_section(build: Build, ident: str, title: str, fn) -> str | None:
         key = f"section_{ident}"
         build.failures[key] = _why(exc)
         say(f"section {title!r} failed: {build.failures[key]}")
-        traceback.print_exc(file=sys.stderr)
+        if debugging():
+            traceback.print_exc(file=sys.stderr)
         return h.section(ident, title, [h.tag(
             "p", f"This section could not be written from its inputs ({build.failures[key]}); "
                  "they may come from another version of rotorpillar: re-run the command that "

@@ -7,6 +7,7 @@ The bottom of the report package: every section module reads a
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 import traceback
@@ -77,6 +78,11 @@ class Build:
         return not_computed(command, self.scene_cli)
 
 
+def debugging() -> bool:
+    """``--debug`` was given (the CLI passes it on to every stage by ROTORPILLAR_DEBUG)."""
+    return bool(os.environ.get("ROTORPILLAR_DEBUG"))
+
+
 def say(message: str) -> None:
     print(f"[rotorpillar] report: {message}", file=sys.stderr, flush=True)
 
@@ -89,7 +95,8 @@ def attempt(build: Build, key: str, fn):
     except Exception as exc:  # a broken figure must not cost the whole report
         build.failures[key] = f"{type(exc).__name__}: {exc}"
         say(f"{key} failed: {build.failures[key]}")
-        traceback.print_exc(file=sys.stderr)
+        if debugging():
+            traceback.print_exc(file=sys.stderr)
         return None
     finally:
         build.render_seconds[key] = build.render_seconds.get(key, 0.0) + time.perf_counter() - start
