@@ -34,6 +34,13 @@ from ..errors import ComputationError
 DROP = 1e-10
 
 
+def modal_solve_failure(tool: str, exc) -> ComputationError:
+    """The one-line error of a failed modal solve, with the usual cause."""
+    return ComputationError(f"{tool} failed in the modal solve (error code {exc.ierr}; a MUMPS "
+                            "factorisation failure is typical of an unclamped or disconnected "
+                            "model)")
+
+
 def shifted_cholesky(K, M, sigma: float = 0.0):
     """A MUMPS Cholesky solver of K - sigma M, not yet factorised: (ksp, the shifted
     matrix or None when it is K itself).  ``ksp.setUp()`` factorises; the caller
@@ -112,9 +119,7 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
         order = np.argsort(lam)
         return lam[order], [vecs[i] for i in order], steps, err[order], op.solves
     except PETSc.Error as exc:
-        raise ComputationError(f"PETSc failed in the modal solve (error code {exc.ierr}; "
-                               "a MUMPS factorisation failure is typical of an unclamped or "
-                               "disconnected model)") from None
+        raise modal_solve_failure("PETSc", exc) from None
     finally:
         ksp.destroy()
         if A is not None:

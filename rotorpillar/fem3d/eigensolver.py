@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ComputationError, InputError
+from .block_lanczos import modal_solve_failure, shifted_cholesky
 
 OPTIONS_PREFIX = "modal_"
 METHODS = ("block", "krylovschur")
@@ -146,9 +147,7 @@ def _krylov_schur(K, M, n_modes, *, sigma, tol, max_it, ncv) -> EigenSolution:
             vecs.append(x)
         iterations = eps.getIterationNumber()
     except PETSc.Error as exc:
-        raise ComputationError(f"PETSc/SLEPc failed in the modal solve (error code {exc.ierr}; "
-                               "a MUMPS factorisation failure is typical of an unclamped or "
-                               "disconnected model)") from None
+        raise modal_solve_failure("PETSc/SLEPc", exc) from None
     finally:
         eps.destroy()
     order = np.argsort(lam)[:n_modes]
@@ -162,7 +161,6 @@ def factorisation_time(K, M, sigma: float = 0.0) -> float:
     """Seconds of one MUMPS factorisation of K - sigma M, as the modal solve does it."""
     import time
 
-    from .block_lanczos import shifted_cholesky
     ksp, A = shifted_cholesky(K, M, sigma)
     try:
         t0 = time.perf_counter()

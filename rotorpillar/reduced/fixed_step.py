@@ -49,6 +49,23 @@ def _eval(t, q, v, P, yw, dw, F):
 
 
 @njit(cache=True)
+def _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, P, kout, nout, out_q, out_v, out_w,
+                 out_peak):
+    """A fixed-step scheme's step, closed: the work by the trapezoid rule, the
+    peak of the output interval, the sample at every stride-th step.  Returns
+    the next output index."""
+    for i in range(N_WORK):
+        W[i] += 0.5 * h * (pw_old[i] + dw[2 * n + i])
+        pw_old[i] = dw[2 * n + i]
+    if kout < nout:
+        record_peak(q, P, out_peak[kout])
+    if (step + 1) % stride == 0 and kout < nout:
+        _store_sample(kout, q, v, W, out_q, out_v, out_w)
+        kout += 1
+    return kout
+
+
+@njit(cache=True)
 def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gamma,
                    newton_tol, max_iter, out_q, out_v, out_w, out_peak):
     """Fixed-step generalized-alpha with Newton iterations on the analytic Jacobian.
@@ -145,14 +162,8 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
                 return NOT_FINITE, nfev, nit
         _eval(t, q, v, P, yw, dw, F)
         nfev += 1
-        for i in range(N_WORK):
-            W[i] += 0.5 * h * (pw_old[i] + dw[2 * n + i])
-            pw_old[i] = dw[2 * n + i]
-        if kout < nout:
-            record_peak(q, P, out_peak[kout])
-        if (step + 1) % stride == 0 and kout < nout:
-            _store_sample(kout, q, v, W, out_q, out_v, out_w)
-            kout += 1
+        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, P, kout, nout,
+                            out_q, out_v, out_w, out_peak)
     return OK, nfev, nit
 
 
@@ -193,13 +204,7 @@ def cd_solve(P, q0, v0, t0, h, nsteps, stride, out_q, out_v, out_w, out_peak):
             v[i] += 0.5 * h * a[i]
             if not math.isfinite(q[i]) or abs(q[i]) > 1e100:
                 return NOT_FINITE, nfev, 0
-        for i in range(N_WORK):
-            W[i] += 0.5 * h * (pw_old[i] + dw[2 * n + i])
-            pw_old[i] = dw[2 * n + i]
-        if kout < nout:
-            record_peak(q, P, out_peak[kout])
-        if (step + 1) % stride == 0 and kout < nout:
-            _store_sample(kout, q, v, W, out_q, out_v, out_w)
-            kout += 1
+        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, P, kout, nout,
+                            out_q, out_v, out_w, out_peak)
     return OK, nfev, 0
 
