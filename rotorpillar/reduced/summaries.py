@@ -19,7 +19,7 @@ import numpy as np
 
 from .excitation import GroundMotion, no_motion
 from .rotor_models import RotorStructure
-from .transient import Transient
+from .transient import Transient, project
 
 CAPTURE_WIDTH = 3.0          # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03     # relative
@@ -92,7 +92,7 @@ def max_abs(run: Transient) -> dict:
     if not m.notes.get("full_order"):            # a full-order model's nodes: not worth a key each
         for i, name in enumerate(m.coordinates):
             out[name] = float(pk[i])
-    shaft = run.q[:, :m.nx] @ m.shaft - m.eccentricity * np.cos(run.q[:, -1])
+    shaft = project(run.q[:, :m.nx], m.shaft) - m.eccentricity * np.cos(run.q[:, -1])
     out["shaft_deflection_x_sampled"] = float(np.nanmax(np.abs(shaft)))
     return out
 

@@ -362,6 +362,17 @@ class Batch:
         return self.status == K.OK
 
 
+def project(q: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """q @ w summed term by term in a fixed order.  A BLAS product may order
+    its sums by its thread count, which differs between a worker process and
+    the main one (CI saw 1-ulp differences): a study must not depend on where
+    its batches ran."""
+    out = np.zeros(q.shape[:-1])
+    for j, wj in enumerate(np.asarray(w, dtype=float)):
+        out += q[..., j] * wj
+    return out
+
+
 def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
                    torque_scale=None, slope=None, load=None, eccentricity=None, shaft_stiffness=None,
                    motion: GroundMotion | None = None, q0=None, v0=None, rtol: float = 1e-7,
@@ -409,9 +420,9 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     wall = time.perf_counter() - start
     e = np.where(np.isfinite(others[2]), others[2], model.eccentricity)[:, None]
     th = out_y[:, :, n - 1]
-    shaft = np.hypot(out_y[:, :, :model.nx] @ model.shaft - e * np.cos(th),
+    shaft = np.hypot(project(out_y[:, :, :model.nx], model.shaft) - e * np.cos(th),
                      out_y[:, :, model.nx] - e * np.sin(th))
-    return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], out_y[:, :, :model.nx] @ model.tip,
+    return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], project(out_y[:, :, :model.nx], model.tip),
                  out_y[:, -1, :],
                  stats[:, 0].astype(int), stats[:, 1].astype(int), wall, shaft)
 
