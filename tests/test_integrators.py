@@ -149,5 +149,27 @@ def test_threaded_batch_is_bitwise_the_serial_batch():
         par = simulate_batch(model, drive, 4.0, threads=threads, **kw)
         for name in ("t", "Omega", "tip", "tip_peak", "final_state", "status", "nfev"):
             assert np.array_equal(getattr(par, name), getattr(serial, name)), (threads, name)
+        assert np.array_equal(par.shaft_deflection, serial.shaft_deflection)
     with pytest.raises(ValueError, match="threads"):
         simulate_batch(model, drive, 4.0, threads=0, **kw)
+
+
+def test_shaft_deflection_is_the_formula_and_does_not_depend_on_alignment():
+    """The batch's shaft deflection is |(d.z - e cos theta, y - e sin theta)|
+    (numpy's vector formula, to a few ulp: its SIMD cos/sin and libm's differ
+    there, hence rtol 1e-14) and has the same bits wherever the states sit in
+    memory (numpy's own cos does not: a study run in another process
+    differed by an ulp)."""
+    from rotorpillar.reduced.transient import shaft_deflection
+    rng = np.random.default_rng(3)
+    n, k = 4, 1001
+    q = rng.standard_normal((k, n)) * [1e-3, 1e-3, 1e-3, 40.0]
+    shaft, e = np.array([-1.0, 1.0]), 2e-3
+    size, x = shaft_deflection(q, shaft, e)
+    ref_x = q[:, :2] @ shaft - e * np.cos(q[:, 3])
+    assert np.allclose(x, ref_x, rtol=1e-14, atol=1e-18)
+    assert np.allclose(size, np.hypot(ref_x, q[:, 2] - e * np.sin(q[:, 3])), rtol=1e-14, atol=1e-18)
+    buf = np.empty(k * n + 1)
+    shifted = buf[1:].reshape(k, n)                       # 8 bytes off the allocation's alignment
+    shifted[:] = q
+    assert np.array_equal(shaft_deflection(shifted, shaft, e)[0], size)

@@ -233,6 +233,27 @@ def record_peak(q, P, peak_row):
 
 
 @njit(cache=True)
+def shaft_deflection(q, shaft, e, out, out_x):
+    """The shaft's deflection (d.z - e cos theta, y - e sin theta) (m) for states
+    q (k, n): z = q[:nx], y = q[nx], theta = q[nx + 1]; its size into out (k,),
+    its x component into out_x (k,).
+
+    Compiled and scalar (libm per value) on purpose: numpy's vector cos/sin
+    take a SIMD path on the aligned part of an array and libm on the rest, so
+    the last ulp depends on where the allocator put the array, and a study's
+    numbers would depend on the process its batch ran in (CI saw it).
+    """
+    nx = shaft.shape[0]
+    for k in range(q.shape[0]):
+        th = q[k, nx + 1]
+        dz = 0.0
+        for i in range(nx):
+            dz += shaft[i] * q[k, i]
+        out_x[k] = dz - e[k] * math.cos(th)
+        out[k] = math.hypot(out_x[k], q[k, nx] - e[k] * math.sin(th))
+
+
+@njit(cache=True)
 def rhs_first_order(t, y, P):
     """y' for y = (q, v, work): the first-order form scipy integrates."""
     out = np.empty_like(y)

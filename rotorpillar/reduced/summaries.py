@@ -19,7 +19,7 @@ import numpy as np
 
 from .excitation import GroundMotion, no_motion
 from .rotor_models import RotorStructure
-from .transient import Transient, project
+from .transient import Transient, shaft_deflection
 
 CAPTURE_WIDTH = 3.0          # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03     # relative
@@ -92,8 +92,8 @@ def max_abs(run: Transient) -> dict:
     if not m.notes.get("full_order"):            # a full-order model's nodes: not worth a key each
         for i, name in enumerate(m.coordinates):
             out[name] = float(pk[i])
-    shaft = project(run.q[:, :m.nx], m.shaft) - m.eccentricity * np.cos(run.q[:, -1])
-    out["shaft_deflection_x_sampled"] = float(np.nanmax(np.abs(shaft)))
+    shaft_x = shaft_deflection(run.q, m.shaft, m.eccentricity)[1]
+    out["shaft_deflection_x_sampled"] = float(np.nanmax(np.abs(shaft_x)))
     return out
 
 

@@ -362,6 +362,16 @@ class Batch:
         return self.status == K.OK
 
 
+def shaft_deflection(q: np.ndarray, shaft: np.ndarray, e) -> tuple[np.ndarray, np.ndarray]:
+    """|shaft deflection| and its x component (m) at states q (k, n), e (m) per
+    state or one for all: the same bits in any process (rhs.shaft_deflection)."""
+    q = np.ascontiguousarray(q, dtype=float)
+    e = np.broadcast_to(np.asarray(e, dtype=float), (q.shape[0],)).copy()
+    size, x = np.empty(q.shape[0]), np.empty(q.shape[0])
+    K.shaft_deflection(q, np.ascontiguousarray(shaft, dtype=float), e, size, x)
+    return size, x
+
+
 def project(q: np.ndarray, w: np.ndarray) -> np.ndarray:
     """q @ w summed term by term in a fixed order.  A BLAS product may order
     its sums by its thread count, which differs between a worker process and
@@ -418,10 +428,9 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     _run_slices(lambda a, b: K.dp5_batch(*args, *(x[a:b] for x in per_run), out_y[a:b], out_peak[a:b],
                                          stats[a:b]), runs, batch_threads() if threads is None else threads)
     wall = time.perf_counter() - start
-    e = np.where(np.isfinite(others[2]), others[2], model.eccentricity)[:, None]
-    th = out_y[:, :, n - 1]
-    shaft = np.hypot(project(out_y[:, :, :model.nx], model.shaft) - e * np.cos(th),
-                     out_y[:, :, model.nx] - e * np.sin(th))
+    e = np.where(np.isfinite(others[2]), others[2], model.eccentricity)
+    shaft = shaft_deflection(out_y[:, :, :n].reshape(-1, n), model.shaft,
+                             np.repeat(e, len(t_out)))[0].reshape(runs, len(t_out))
     return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], project(out_y[:, :, :model.nx], model.tip),
                  out_y[:, -1, :],
                  stats[:, 0].astype(int), stats[:, 1].astype(int), wall, shaft)
