@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import MAX_STEPS, NOT_FINITE, OK, STEP_TOO_SMALL, deriv, record_peak
+from .rhs import MAX_STEPS, NOT_FINITE, OK, STEP_TOO_SMALL, deriv_flat, flatten, record_peak
 
 TWO_PI = 2.0 * math.pi
 
@@ -67,7 +67,7 @@ def _rms_norm(x, scale, m):
 
 
 @njit(cache=True)
-def _initial_step(t, y, f0, P, lo, hi, rtol, atol, m, F):
+def _initial_step(t, y, f0, par, lo, hi, rtol, atol, m):
     """Hairer's starting step, as scipy's select_initial_step (order 4)."""
     n2 = y.shape[0]
     scale = np.empty(n2)
@@ -82,7 +82,7 @@ def _initial_step(t, y, f0, P, lo, hi, rtol, atol, m, F):
     h0 = min(h0, hi - t)
     y1 = y + h0 * f0
     f1 = np.empty(n2)
-    deriv(_inside(t + h0, lo, hi), y1, P, f1, F)
+    deriv_flat(_inside(t + h0, lo, hi), y1, par, f1, 0)
     diff = f1 - f0
     d2 = _rms_norm(diff, scale, m) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
@@ -103,12 +103,12 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
     per output interval, the largest |q_i| at the steps and outputs inside it
     into out_peak.  Returns (status, nfev, n_accepted, n_rejected, h_min_used).
     """
+    par = flatten(P)                    # the model as one vector (rhs.deriv_flat)
     n = P[0].shape[0]
     nth = n - 1                         # theta's index
     m = 2 * n                           # error-controlled components
     N = y0.shape[0]
-    F = np.empty(n)
-    K = np.zeros((7, N))
+    K = np.zeros(7 * N)                 # stage j at K[j N:(j + 1) N]: no row views in the loop
     y = y0.copy()
     ynew = np.empty(N)
     ytmp = np.empty(N)
@@ -125,7 +125,7 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
     if kout < nout and t_out[kout] == t0:
         for i in range(N):
             out_y[kout, i] = y[i]
-        record_peak(y[:n], P, out_peak[kout])
+        record_peak(y, n, par, out_peak, kout)
         kout += 1
     # segments between breakpoints
     nb = breaks.shape[0]
@@ -151,10 +151,10 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
         hi = seg[s + 1]
         if hi <= lo:
             continue
-        deriv(_inside(t, lo, hi), y, P, K[0], F)
+        deriv_flat(_inside(t, lo, hi), y, par, K, 0)
         nfev += 1
         if h <= 0.0:
-            h = _initial_step(t, y, K[0], P, lo, hi, rtol, atol, N, F)
+            h = _initial_step(t, y, K[:N], par, lo, hi, rtol, atol, N)
             nfev += 1
         while t < hi:
             if nacc + nrej >= max_steps:
@@ -173,20 +173,20 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
                     for i in range(N):
                         acc = y[i]
                         for j in range(st):
-                            acc += h * _A[st, j] * K[j, i]
+                            acc += h * _A[st, j] * K[j * N + i]
                         ytmp[i] = acc
-                    deriv(_inside(t + _C[st] * h, lo, hi), ytmp, P, K[st], F)
+                    deriv_flat(_inside(t + _C[st] * h, lo, hi), ytmp, par, K, st * N)
                 for i in range(N):
                     acc = y[i]
                     for j in range(6):
-                        acc += h * _B[j] * K[j, i]
+                        acc += h * _B[j] * K[j * N + i]
                     ynew[i] = acc
-                deriv(_inside(t + h, lo, hi), ynew, P, K[6], F)
+                deriv_flat(_inside(t + h, lo, hi), ynew, par, K, 6 * N)
                 nfev += 6
                 for i in range(N):
                     acc = 0.0
                     for j in range(7):
-                        acc += _E[j] * K[j, i]
+                        acc += _E[j] * K[j * N + i]
                     err[i] = h * acc
                     scale[i] = atol[i] + rtol * max(abs(y[i]), abs(ynew[i]))
                 # RMS over every component, as scipy does on the same state
@@ -220,17 +220,17 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
                 for i in range(N):
                     acc = 0.0
                     for j in range(7):
-                        kj = K[j, i]
+                        kj = K[j * N + i]
                         acc += kj * (_P[j, 0] * px0 + _P[j, 1] * px1 + _P[j, 2] * px2 + _P[j, 3] * px3)
                     out_y[kout, i] = y[i] + hs * acc
-                record_peak(out_y[kout, :n], P, out_peak[kout])
+                record_peak(out_y[kout], n, par, out_peak, kout)
                 out_y[kout, nth] += turns
                 kout += 1
             if kout < nout:
-                record_peak(ynew[:n], P, out_peak[kout])
+                record_peak(ynew, n, par, out_peak, kout)
             for i in range(N):
                 y[i] = ynew[i]
-                K[0, i] = K[6, i]
+                K[i] = K[6 * N + i]
             bad = False
             for i in range(m):
                 if not math.isfinite(y[i]):

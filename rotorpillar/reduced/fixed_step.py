@@ -15,16 +15,16 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import N_WORK, NEWTON_FAILED, NOT_FINITE, OK, deriv, jacobians, record_peak
+from .rhs import N_WORK, NEWTON_FAILED, NOT_FINITE, OK, deriv_flat, flatten, jacobians, record_peak
 
 
 @njit(cache=True)
-def _start_output(q, v, P, out_q, out_v, out_w, out_peak):
+def _start_output(q, v, par, out_q, out_v, out_w, out_peak):
     """Clear the fixed-step schemes' peaks, store the initial state as row 0
     (no work done yet); returns the number of output rows."""
     out_peak[:, :] = 0.0
     _store_sample(0, q, v, np.zeros(out_w.shape[1]), out_q, out_v, out_w)
-    record_peak(q, P, out_peak[0])
+    record_peak(q, q.shape[0], par, out_peak, 0)
     return out_q.shape[0]
 
 
@@ -39,17 +39,17 @@ def _store_sample(k, q, v, W, out_q, out_v, out_w):
 
 
 @njit(cache=True)
-def _eval(t, q, v, P, yw, dw, F):
-    """Accelerations and powers at (t, q, v) through ``deriv``: dw[n:2n], dw[2n:]."""
+def _eval(t, q, v, par, yw, dw):
+    """Accelerations and powers at (t, q, v) through ``deriv_flat``: dw[n:2n], dw[2n:]."""
     n = q.shape[0]
     for i in range(n):
         yw[i] = q[i]
         yw[n + i] = v[i]
-    deriv(t, yw, P, dw, F)
+    deriv_flat(t, yw, par, dw, 0)
 
 
 @njit(cache=True)
-def _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, P, kout, nout, out_q, out_v, out_w,
+def _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout, out_q, out_v, out_w,
                  out_peak):
     """A fixed-step scheme's step, closed: the work by the trapezoid rule, the
     peak of the output interval, the sample at every stride-th step.  Returns
@@ -58,7 +58,7 @@ def _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, P, kout, nout, out_q, 
         W[i] += 0.5 * h * (pw_old[i] + dw[2 * n + i])
         pw_old[i] = dw[2 * n + i]
     if kout < nout:
-        record_peak(q, P, out_peak[kout])
+        record_peak(q, n, par, out_peak, kout)
     if (step + 1) % stride == 0 and kout < nout:
         _store_sample(kout, q, v, W, out_q, out_v, out_w)
         kout += 1
@@ -78,12 +78,12 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
     """
     n = q0.shape[0]
     Minv = P[0]
-    F = np.empty(n)
+    par = flatten(P)
     yw = np.zeros(2 * n + N_WORK)
     dw = np.zeros(2 * n + N_WORK)
     q = q0.copy()
     v = v0.copy()
-    _eval(t0, q, v, P, yw, dw, F)
+    _eval(t0, q, v, par, yw, dw)
     a = dw[n:2 * n].copy()
     nfev = 1
     nit = 0
@@ -98,7 +98,7 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
     Jq = np.empty((n, n))
     Jv = np.empty((n, n))
     Jr = np.empty((n, n))
-    nout = _start_output(q, v, P, out_q, out_v, out_w, out_peak)
+    nout = _start_output(q, v, par, out_q, out_v, out_w, out_peak)
     kout = 1
     t = t0
     for step in range(nsteps):
@@ -115,7 +115,7 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
                 vn[i] = v[i] + h * ((1.0 - gamma) * a[i] + gamma * an[i])
                 qm[i] = (1.0 - alpha_f) * qn[i] + alpha_f * q[i]
                 vm[i] = (1.0 - alpha_f) * vn[i] + alpha_f * v[i]
-            _eval(tf, qm, vm, P, yw, dw, F)
+            _eval(tf, qm, vm, par, yw, dw)
             nfev += 1
             rn = 0.0
             ref = 0.0
@@ -160,9 +160,9 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
             a[i] = an[i]
             if not math.isfinite(q[i]):
                 return NOT_FINITE, nfev, nit
-        _eval(t, q, v, P, yw, dw, F)
+        _eval(t, q, v, par, yw, dw)
         nfev += 1
-        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, P, kout, nout,
+        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout,
                             out_q, out_v, out_w, out_peak)
     return OK, nfev, nit
 
@@ -178,18 +178,18 @@ def cd_solve(P, q0, v0, t0, h, nsteps, stride, out_q, out_v, out_w, out_peak):
     (undamped).  Returns (status, nfev, 0).
     """
     n = q0.shape[0]
-    F = np.empty(n)
+    par = flatten(P)
     yw = np.zeros(2 * n + N_WORK)
     dw = np.zeros(2 * n + N_WORK)
     q = q0.copy()
     v = v0.copy()
     vp = np.empty(n)
-    _eval(t0, q, v, P, yw, dw, F)
+    _eval(t0, q, v, par, yw, dw)
     a = dw[n:2 * n].copy()
     nfev = 1
     W = np.zeros(N_WORK)
     pw_old = dw[2 * n:].copy()
-    nout = _start_output(q, v, P, out_q, out_v, out_w, out_peak)
+    nout = _start_output(q, v, par, out_q, out_v, out_w, out_peak)
     kout = 1
     for step in range(nsteps):
         t = t0 + (step + 1) * h
@@ -197,14 +197,14 @@ def cd_solve(P, q0, v0, t0, h, nsteps, stride, out_q, out_v, out_w, out_peak):
             vp[i] = v[i] + h * a[i]
             v[i] += 0.5 * h * a[i]
             q[i] += h * v[i]
-        _eval(t, q, vp, P, yw, dw, F)
+        _eval(t, q, vp, par, yw, dw)
         nfev += 1
         for i in range(n):
             a[i] = dw[n + i]
             v[i] += 0.5 * h * a[i]
             if not math.isfinite(q[i]) or abs(q[i]) > 1e100:
                 return NOT_FINITE, nfev, 0
-        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, P, kout, nout,
+        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout,
                             out_q, out_v, out_w, out_peak)
     return OK, nfev, 0
 

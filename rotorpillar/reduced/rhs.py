@@ -24,6 +24,10 @@ gtab), built by ``rotor_models.pack``:
 - gpar  (6,):    kind (0 none, 1 harmonic pulse, 2 table), A, omega, t0, t1, dt
 - gtab  (3, ng): tabulated u_g, v_g, a_g on t0 + i dt (kind 2)
 
+The integrators' loops see P flattened once per run into one vector
+(``flatten``, offsets by ``layout``) and call ``deriv_flat``; ``deriv`` is
+the same right-hand side on P for callers outside the loops.
+
 Four work integrals ride along with the state (not error-controlled):
 drive minus load (Md - Mc) W, work done by the shaft torque on the
 structure, dissipation, and base-force work; they close the energy balance.
@@ -71,113 +75,187 @@ def eq4_rhs(y, m_A, m_C, J, e, c1, c2, b1, b2, M0, s, k, q5=0.0, q5_rate=0.0, q6
 
 
 @njit(cache=True)
-def ground(t, gpar, gtab):
-    """Ground displacement, velocity, acceleration at t (m, m/s, m/s**2)."""
-    kind = int(gpar[0])
+def ground_flat(t, a, o_gpar, o_gtab, ng):
+    """Ground displacement, velocity, acceleration at t (m, m/s, m/s**2), from
+    gpar at a[o_gpar:] and the table gtab (3, ng) at a[o_gtab:] (``layout``)."""
+    kind = int(a[o_gpar])
     if kind == 1:
-        A, w, t0, t1 = gpar[1], gpar[2], gpar[3], gpar[4]
+        A, w, t0, t1 = a[o_gpar + 1], a[o_gpar + 2], a[o_gpar + 3], a[o_gpar + 4]
         if t >= t0 and t < t1:
             c = math.cos(w * t)
             s = math.sin(w * t)
             return A * (c - 1.0), -A * w * s, -A * w * w * c
         return 0.0, 0.0, 0.0
     if kind == 2:
-        t0, dt = gpar[3], gpar[5]
-        n = gtab.shape[1]
+        t0, dt = a[o_gpar + 3], a[o_gpar + 5]
         x = (t - t0) / dt
-        if x < 0.0 or x > n - 1:
+        if x < 0.0 or x > ng - 1:
             return 0.0, 0.0, 0.0
         i = int(x)
-        if i >= n - 1:
-            i = n - 2
+        if i >= ng - 1:
+            i = ng - 2
         f = x - i
-        return ((1.0 - f) * gtab[0, i] + f * gtab[0, i + 1],
-                (1.0 - f) * gtab[1, i] + f * gtab[1, i + 1],
-                (1.0 - f) * gtab[2, i] + f * gtab[2, i + 1])
+        u, v, w = o_gtab + i, o_gtab + ng + i, o_gtab + 2 * ng + i
+        return ((1.0 - f) * a[u] + f * a[u + 1], (1.0 - f) * a[v] + f * a[v + 1],
+                (1.0 - f) * a[w] + f * a[w + 1])
     return 0.0, 0.0, 0.0
 
 
 @njit(cache=True)
-def drive_at(t, sched):
-    """Motor M0 (N*m) and slope s (N*m*s) at t: piecewise linear, held outside."""
-    ts = sched[0]
-    m = ts.shape[0]
-    if m == 1 or t <= ts[0]:
-        return sched[1, 0], sched[2, 0]
-    if t >= ts[m - 1]:
-        return sched[1, m - 1], sched[2, m - 1]
+def drive_flat(t, a, o, m):
+    """Motor M0 (N*m) and slope s (N*m*s) at t: piecewise linear, held outside;
+    the schedule (3, m) of knot times, M0, s at a[o:] (``layout``)."""
+    if m == 1 or t <= a[o]:
+        return a[o + m], a[o + 2 * m]
+    if t >= a[o + m - 1]:
+        return a[o + 2 * m - 1], a[o + 3 * m - 1]
     lo, hi = 0, m - 1
     while hi - lo > 1:
         mid = (lo + hi) // 2
-        if ts[mid] <= t:
+        if a[o + mid] <= t:
             lo = mid
         else:
             hi = mid
-    span = ts[hi] - ts[lo]
+    span = a[o + hi] - a[o + lo]
     if span <= 0.0:
-        return sched[1, hi], sched[2, hi]
-    f = (t - ts[lo]) / span
-    return ((1.0 - f) * sched[1, lo] + f * sched[1, hi],
-            (1.0 - f) * sched[2, lo] + f * sched[2, hi])
+        return a[o + m + hi], a[o + 2 * m + hi]
+    f = (t - a[o + lo]) / span
+    return ((1.0 - f) * a[o + m + lo] + f * a[o + m + hi],
+            (1.0 - f) * a[o + 2 * m + lo] + f * a[o + 2 * m + hi])
+
+
+@njit(cache=True)
+def drive_at(t, sched):
+    """``drive_flat`` of a schedule (3, m)."""
+    return drive_flat(t, sched.ravel(), 0, sched.shape[1])
+
+
+# The hot kernels see the model as one flat vector ``par`` (``flatten``): a
+# compiled function that takes an array increments and decrements its
+# reference count on every call, an atomic operation on memory the threads
+# of a batch share; with the nine arrays of P (and views of the stage array)
+# that was 70 % of a run-up batch's time (perf).  One vector: one count.
+HEADER = 3
+"""par[0:3] = nx, m (drive knots), ng (ground table length)"""
+
+
+@njit(cache=True, inline="always")
+def layout(nx, m, ng):
+    """Offsets in par of Minv (n, n), Ks, C (nx, nx), d (nx), base (4, nx), scal (4),
+    sched (3, m), gpar (6), gtab (3, ng) and the force scratch F (n); then the size."""
+    n = nx + 2
+    o_minv = HEADER
+    o_ks = o_minv + n * n
+    o_c = o_ks + nx * nx
+    o_d = o_c + nx * nx
+    o_base = o_d + nx
+    o_scal = o_base + 4 * nx
+    o_sched = o_scal + 4
+    o_gpar = o_sched + 3 * m
+    o_gtab = o_gpar + 6
+    o_f = o_gtab + 3 * ng
+    return o_minv, o_ks, o_c, o_d, o_base, o_scal, o_sched, o_gpar, o_gtab, o_f, o_f + n
+
+
+@njit(cache=True)
+def _put(par, k, a):
+    for i in range(a.shape[0]):
+        for j in range(a.shape[1]):
+            par[k] = a[i, j]
+            k += 1
+
+
+@njit(cache=True)
+def flatten(P):
+    """The tuple P as one vector (``layout``), with room for the forces."""
+    Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
+    if gpar.shape[0] != 6:
+        raise ValueError("gpar must have 6 entries")
+    nx, m, ng = Ks.shape[0], sched.shape[1], gtab.shape[1]
+    o = layout(nx, m, ng)
+    par = np.zeros(o[10])
+    par[0], par[1], par[2] = nx, m, ng
+    _put(par, o[0], Minv)
+    _put(par, o[1], Ks)
+    _put(par, o[2], C)
+    _put(par, o[3], d.reshape((1, nx)))
+    _put(par, o[4], base)
+    _put(par, o[5], scal.reshape((1, 4)))
+    _put(par, o[6], sched)
+    _put(par, o[7], gpar.reshape((1, gpar.shape[0])))
+    _put(par, o[8], gtab)
+    return par
 
 
 @njit(cache=True)
 def deriv(t, y, P, out, F):
-    """The first-order right-hand side, in one flat body (no nested calls
-    that pass arrays: each costs more than the physics here).
+    """The first-order right-hand side y' into out (``deriv_flat`` on ``flatten(P)``:
+    for callers outside the hot loops).
 
     y = (q, v, ...) with n = len(q); writes out[:n] = v, out[n:2n] = Minv F,
     out[2n:2n+4] = the powers (drive - load, shaft on structure, dissipation,
-    base); F (n) is scratch and holds the forces on return.
+    base); F (n) holds the forces on return.
     """
-    Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
-    nx = Ks.shape[0]
+    par = flatten(P)
+    deriv_flat(t, y, par, out, 0)
+    o_f = layout(int(par[0]), int(par[1]), int(par[2]))[9]
+    for i in range(F.shape[0]):
+        F[i] = par[o_f + i]
+
+
+@njit(cache=True)
+def deriv_flat(t, y, par, out, o):
+    """``deriv`` on the flat model ``par``, into out[o:o + 2n + 4]; the forces
+    are left in par's scratch.  One flat body: no nested calls that pass
+    arrays in the common case (no ground motion, a constant drive)."""
+    nx, m, ng = int(par[0]), int(par[1]), int(par[2])
     n = nx + 2
-    c2, e, b2y, kload = scal[0], scal[1], scal[2], scal[3]
+    o_minv, o_ks, o_c, o_d, o_base, o_scal, o_sched, o_gpar, o_gtab, o_f, _ = layout(nx, m, ng)
+    c2, e, b2y, kload = par[o_scal], par[o_scal + 1], par[o_scal + 2], par[o_scal + 3]
     th = y[nx + 1]
     W = y[n + nx + 1]
     ct = math.cos(th)
     st = math.sin(th)
-    # the common cases without a call: no ground motion, a constant drive
-    if gpar[0] == 0.0:
+    if par[o_gpar] == 0.0:
         ug, vg, ag = 0.0, 0.0, 0.0
     else:
-        ug, vg, ag = ground(t, gpar, gtab)
-    if sched.shape[1] == 1:
-        M0, s = sched[1, 0], sched[2, 0]
+        ug, vg, ag = ground_flat(t, par, o_gpar, o_gtab, ng)
+    if m == 1:
+        M0, s = par[o_sched + 1], par[o_sched + 2]
     else:
-        M0, s = drive_at(t, sched)
+        M0, s = drive_flat(t, par, o_sched, m)
     dz = 0.0
     for i in range(nx):
-        dz += d[i] * y[i]
+        dz += par[o_d + i] * y[i]
     sx = dz - e * ct
     p_diss = 0.0
     p_base = 0.0
     for i in range(nx):
-        fb = base[0, i] * ug + base[1, i] * vg + base[2, i] * ag
-        acc = -c2 * d[i] * sx + fb
+        fb = par[o_base + i] * ug + par[o_base + nx + i] * vg + par[o_base + 2 * nx + i] * ag
+        acc = -c2 * par[o_d + i] * sx + fb
         for j in range(nx):
-            acc -= Ks[i, j] * y[j] + C[i, j] * y[n + j]
-            p_diss += y[n + i] * C[i, j] * y[n + j]
-        F[i] = acc
+            cij = par[o_c + i * nx + j]
+            acc -= par[o_ks + i * nx + j] * y[j] + cij * y[n + j]
+            p_diss += y[n + i] * cij * y[n + j]
+        par[o_f + i] = acc
         p_base += fb * y[n + i]
     yy = y[nx]
     vy = y[n + nx]
-    F[nx] = -c2 * (yy - e * st) - b2y * vy
+    par[o_f + nx] = -c2 * (yy - e * st) - b2y * vy
     p_diss += b2y * vy * vy
     drive = M0 - s * W - kload * W * abs(W)
     shaft = -c2 * e * dz * st + c2 * e * yy * ct
-    F[nx + 1] = drive + shaft
+    par[o_f + nx + 1] = drive + shaft
     for i in range(n):
         acc = 0.0
         for j in range(n):
-            acc += Minv[i, j] * F[j]
-        out[n + i] = acc
-        out[i] = y[n + i]
-    out[2 * n] = drive * W
-    out[2 * n + 1] = -shaft * W
-    out[2 * n + 2] = p_diss
-    out[2 * n + 3] = p_base
+            acc += par[o_minv + i * n + j] * par[o_f + j]
+        out[o + n + i] = acc
+        out[o + i] = y[n + i]
+    out[o + 2 * n] = drive * W
+    out[o + 2 * n + 1] = -shaft * W
+    out[o + 2 * n + 2] = p_diss
+    out[o + 2 * n + 3] = p_base
 
 
 @njit(cache=True)
@@ -216,19 +294,19 @@ def jacobians(t, q, v, P, Jq, Jv):
 
 
 @njit(cache=True)
-def record_peak(q, P, peak_row):
-    """peak_row[i] = max(peak_row[i], |q_i|); the last entry tracks |tip.z|."""
-    base = P[4]
-    nx = base.shape[1]
-    n = q.shape[0]
+def record_peak(q, n, par, peak, k):
+    """peak[k, i] = max(peak[k, i], |q_i|) for i < n; peak[k, n] tracks |tip.z|
+    (tip = row 3 of base in par)."""
+    nx = n - 2
+    o_tip = layout(nx, int(par[1]), int(par[2]))[4] + 3 * nx
     tipz = 0.0
     for i in range(nx):
-        tipz += base[3, i] * q[i]
+        tipz += par[o_tip + i] * q[i]
     for i in range(n):
-        if abs(q[i]) > peak_row[i]:
-            peak_row[i] = abs(q[i])
-    if abs(tipz) > peak_row[n]:
-        peak_row[n] = abs(tipz)
+        if abs(q[i]) > peak[k, i]:
+            peak[k, i] = abs(q[i])
+    if abs(tipz) > peak[k, n]:
+        peak[k, n] = abs(tipz)
 
 
 
