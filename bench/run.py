@@ -22,6 +22,11 @@ from rotorpillar.provenance import machine, versions, write_json  # noqa: E402
 def main(argv=None) -> int:
     only = set(argv if argv is not None else sys.argv[1:])
     mods = sorted(p.stem for p in HERE.glob("bench_*.py"))
+    if only - set(mods):
+        # an unknown name would otherwise run nothing and overwrite results.json with nothing
+        print(f"usage: bench/run.py [MODULE ...] with MODULE one of {', '.join(mods)} "
+              f"(got {', '.join(sorted(only - set(mods)))})", file=sys.stderr)
+        return 2
     host = machine()
     entries, timings = [], {}
     for name in mods:
