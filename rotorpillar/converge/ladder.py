@@ -46,6 +46,9 @@ EULER_LEVELS = (1, 2, 4, 8, 16, 32)
 TIMOSHENKO_LEVELS = (2, 4, 8, 16, 32, 64, 128, 256, 512)
 N_MODES = 12
 """Modes computed per finite-element run: enough to reach the first n = 2 pair."""
+N_MODES_FIRST = 6
+"""Modes asked first (rotorpillar.converge.compute.compute_fe): past the first
+n = 2 pair on every mesh of 24 or more elements around; N_MODES where not."""
 
 
 @dataclass(frozen=True)
