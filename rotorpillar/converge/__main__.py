@@ -1,14 +1,18 @@
-"""``python -m rotorpillar.converge CASE.json RESULT.json``: the study's subprocess worker."""
+"""``python -m rotorpillar.converge --serve``: the study's serving process
+(rotorpillar.converge.service); ``python -m rotorpillar.converge CASE.json
+RESULT.json``: one run in a fresh process."""
 
 import sys
 
-from .runner import worker
-
 
 def main(argv: list[str]) -> int:
+    if argv == ["--serve"]:
+        from .service import serve
+        return serve()
     if len(argv) != 2:
-        print("usage: python -m rotorpillar.converge CASE.json RESULT.json", file=sys.stderr)
+        print("usage: python -m rotorpillar.converge --serve | CASE.json RESULT.json", file=sys.stderr)
         return 2
+    from .runner import worker
     worker(argv[0], argv[1])
     return 0
 

@@ -3,9 +3,10 @@
 Each run is cached on disk under a hash of everything it depends on (model,
 mesh, degree, cell type, geometry, material and the source of the model's
 code), written atomically: an interrupted study resumes where it stopped and
-computes nothing twice.  The finite-element runs each run in a fresh
-subprocess (``python -m rotorpillar.converge CASE.json RESULT.json``, i.e.
-:func:`worker`), whose peak resident memory (ru_maxrss) is the run's; the
+computes nothing twice.  The finite-element runs run in a separate process
+that serves run after run (rotorpillar.converge.service: ``python -m
+rotorpillar.converge --serve``, :func:`run_one` per run), whose resident
+high-water mark, reset before each run, is the run's peak memory; the
 pure-Python models run in-process and report tracemalloc's peak.
 """
 
@@ -13,9 +14,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import resource
-import subprocess
 import sys
 import tempfile
 import time
@@ -27,8 +26,6 @@ from ..provenance import write_json
 from .compute import compute_fe, compute_in_process
 from .ladder import FAMILIES, N_MODES, Case, estimated_seconds
 
-WORKER_MODULE = "rotorpillar.converge"
-"""What the subprocess runs with ``python -m`` (the package's ``__main__``)."""
 
 SHELL_MODEL, SHELL_MESH = "fem3d.naghdi", "mesh.midsurface"
 """The shell model's modules (the solid model is every other module of fem3d and mesh)."""
@@ -112,33 +109,47 @@ def _jit_files() -> int:
     return sum(1 for _ in root.rglob("*")) if root.exists() else 0
 
 
-def worker(case_file: str, out_file: str) -> None:
-    """Subprocess entry: run one FE case, write its result JSON to ``out_file``."""
-    from ..scene import scene_from_dict
-    doc = json.loads(Path(case_file).read_text())
-    case = Case(doc["family"], doc["level"], tuple((k, v) for k, v in doc["params"]))
-    scene_doc = dict(doc["scene"])
-    scene = scene_from_dict(scene_doc, name=scene_doc.pop("name"))
-    # import what the models import lazily, so that every run is timed in the
-    # same state (imports excluded); their memory is the baseline a run adds to
+def import_models() -> int:
+    """Import what the models import lazily, so that every run is timed in the
+    same state (imports excluded); returns their resident memory (bytes), the
+    baseline a run adds to."""
     import importlib
     for name in ("gmsh", "ufl", "basix", "dolfinx", "dolfinx.fem.petsc", "dolfinx.io.gmshio",
                  "petsc4py.PETSc", "slepc4py.SLEPc", "mpi4py.MPI"):
         importlib.import_module(name)
-    baseline = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+
+
+def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool) -> None:
+    """Run one FE case in this process, write its result JSON to ``out_file``.
+
+    ``per_run_peak``: the process serves run after run (rotorpillar.converge.service):
+    its memory high-water mark was reset for this run, and nothing is reused
+    from a run before.  Else the process is fresh: its ru_maxrss is the run's.
+    """
+    from ..scene import scene_from_dict
+    from .service import peak_memory, reset_peak_memory, resident_memory
+    doc = json.loads(Path(case_file).read_text())
+    case = Case(doc["family"], doc["level"], tuple((k, v) for k, v in doc["params"]))
+    scene_doc = dict(doc["scene"])
+    scene = scene_from_dict(scene_doc, name=scene_doc.pop("name"))
+    import importlib
     if FAMILIES[case.family].model == "solid":
         try:
             from ..fem3d import modal_analysis  # noqa: F401
         except ImportError as exc:
-            print(f"3D model unavailable: {exc}", file=sys.stderr)
-            sys.exit(UNAVAILABLE_EXIT)
+            raise ModelUnavailable(f"3D model unavailable: {exc}") from None
         importlib.import_module("rotorpillar.mesh")
     else:
         importlib.import_module(f"rotorpillar.{SHELL_MESH}")
     importlib.import_module(f"rotorpillar.{SHELL_MODEL}")
+    start = 0
+    if per_run_peak:
+        start = resident_memory() or 0
+        reset_peak_memory()
     jit_before = _jit_files()
     t0 = time.perf_counter()
-    out = compute_fe(case, scene)
+    out = compute_fe(case, scene, fresh=per_run_peak)
     total = time.perf_counter() - t0
     compiled = _jit_files() > jit_before
     if compiled:
@@ -150,42 +161,51 @@ def worker(case_file: str, out_file: str) -> None:
         total = time.perf_counter() - t0
         out["first_run_with_compilation"] = first
     # the model's whole time: mesh, forms, assembly, solve and naming the modes
-    out.update(wall_time=total, peak_memory=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
-               baseline_memory=baseline,
-               memory_method="ru_maxrss of a fresh subprocess (includes ~baseline_memory of imports)")
+    if per_run_peak:
+        peak, method = baseline + max((peak_memory() or start) - start, 0), (
+            "baseline_memory (the imports) + the run's growth of the serving process's resident "
+            "set (VmHWM reset before the run, over the resident set at its start)")
+    else:
+        peak, method = (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
+                        "ru_maxrss of a fresh subprocess (includes ~baseline_memory of imports)")
+    out.update(wall_time=total, peak_memory=peak, baseline_memory=baseline, memory_method=method)
     write_json(out_file, out)
 
 
-def _run_in_subprocess(case: Case, scene) -> dict:
+def worker(case_file: str, out_file: str) -> None:
+    """One-shot subprocess entry (``python -m rotorpillar.converge CASE RESULT``)."""
+    baseline = import_models()
+    try:
+        run_one(case_file, out_file, baseline, per_run_peak=False)
+    except ModelUnavailable as exc:
+        print(exc, file=sys.stderr)
+        sys.exit(UNAVAILABLE_EXIT)
+
+
+def _run_in_service(case: Case, scene) -> dict:
+    from .service import service
     with tempfile.TemporaryDirectory(prefix="rotorpillar-converge-") as tmp:
         case_file, out_file = Path(tmp) / "case.json", Path(tmp) / "result.json"
         case_file.write_text(json.dumps({"family": case.family, "level": case.level,
                                          "params": list(case.params),
                                          "scene": scene.to_dict()}))
-        env = dict(os.environ)
-        # serial and single-threaded: the runs are timed against each other
-        env.setdefault("OMP_NUM_THREADS", "1")
-        env.setdefault("OPENBLAS_NUM_THREADS", "1")
         t0 = time.perf_counter()
-        proc = subprocess.run([sys.executable, "-m", WORKER_MODULE, str(case_file),
-                               str(out_file)], capture_output=True, text=True, env=env)
+        reply = service().run(case_file, out_file)
         elapsed = time.perf_counter() - t0
-        if proc.returncode == UNAVAILABLE_EXIT:
-            raise ModelUnavailable((proc.stderr or "").strip().splitlines()[-1])
-        if proc.returncode != 0 or not out_file.exists():
-            tail = (proc.stderr or "").strip().splitlines()[-3:]
-            raise RuntimeError(f"{case.label}: worker failed ({proc.returncode}): "
-                               + " | ".join(tail))
+        if reply["status"] == "unavailable":
+            raise ModelUnavailable(reply["error"])
+        if reply["status"] != "ok" or not out_file.exists():
+            raise RuntimeError(f"{case.label}: worker failed: {reply.get('error')}")
         out = json.loads(out_file.read_text())
     out["process_time"] = elapsed
     return out
 
 
 def run_case(case: Case, scene) -> dict:
-    """Compute one case (in-process or in a subprocess, by model)."""
+    """Compute one case (in-process or in the serving process, by model)."""
     if FAMILIES[case.family].model in ("closed_form", "beam"):
         return _run_in_process(case, scene.pillar)
-    return _run_in_subprocess(case, scene)
+    return _run_in_service(case, scene)
 
 
 def _record(case: Case, key: str, result: dict) -> dict:
@@ -207,7 +227,7 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
 
     ``workers`` > 1 (or an ``executor``, rotorpillar.executor.Executor): the
     runs go to a Dask LocalCluster of that many single-threaded workers, the
-    longest (by estimate) first; each worker starts the run's subprocess, so
+    longest (by estimate) first; each worker hands the run to its serving process, so
     that many finite-element runs run at once.  The results are the same;
     a run's wall time is its own process's (measured inside it).
     """
@@ -273,6 +293,8 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
                     finish(i, result)
     finally:
         bar.close()
+        from .service import close_services
+        close_services()
     return records
 
 

@@ -1,0 +1,187 @@
+"""The finite-element runs' process: started once, reused for run after run.
+
+A fresh interpreter per run cost 1.4 s of imports and start-up (MPI,
+PETSc, dolfinx) against a median run of about 2 s: a third of the cold
+study on this machine.  Each process of the study (the study's own, or each
+Dask worker's) now starts one ``python -m rotorpillar.converge --serve``
+and hands it runs one by one over a pipe; a run is still alone in its
+process, with nothing cached in memory from the run before.
+
+Peak memory per run, as a fresh process would have had it: the imports'
+resident memory (``baseline_memory``) plus the run's own growth, the
+kernel's high-water mark of the resident set (VmHWM, reset before the run
+through ``/proc/self/clear_refs``, Linux 4.0+) over the resident set at its
+start (after ``gc`` and glibc's ``malloc_trim`` of the run before).  What a
+process keeps from its runs (compiled forms' libraries, a big run's heap)
+stays out of the next run's figure; once it passes ``RETAINED_LIMIT`` the
+process ends after its reply and the next run gets a fresh one.  Where the
+reset is not possible the process serves one run only, as before.
+
+Protocol: one JSON line per run each way,
+``{"case": CASE.json, "out": RESULT.json}`` in, ``{"status": "ok" |
+"unavailable" | "error", "error": ...}`` out.  End of input ends the process.
+"""
+
+from __future__ import annotations
+
+import atexit
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+from pathlib import Path
+
+MODULE = "rotorpillar.converge"
+"""What ``python -m`` runs (its ``__main__``: ``--serve``, or one CASE RESULT pair)."""
+RETAINED_LIMIT = 256 * 2**20
+"""Resident memory a serving process may keep beyond its imports before it is replaced (bytes)."""
+
+
+def _status_kib(field: str) -> int | None:
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith(field + ":"):
+                    return int(line.split()[1])
+    except OSError:
+        return None
+    return None
+
+
+def reset_peak_memory() -> bool:
+    """Reset this process's resident-set high-water mark; False where Linux does not allow it."""
+    try:
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")
+        return _status_kib("VmHWM") is not None
+    except OSError:
+        return False
+
+
+def peak_memory() -> int | None:
+    """This process's resident-set high-water mark since the last reset (bytes)."""
+    kib = _status_kib("VmHWM")
+    return None if kib is None else 1024 * kib
+
+
+def resident_memory() -> int | None:
+    """This process's resident set now (bytes), after returning what it can to the
+    system (``gc``, glibc's ``malloc_trim``)."""
+    import ctypes
+    import gc
+    gc.collect()
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):
+        pass
+    kib = _status_kib("VmRSS")
+    return None if kib is None else 1024 * kib
+
+
+def serve(stdin=sys.stdin, stdout=sys.stdout) -> int:
+    """The process's loop: run each case it is sent (rotorpillar.converge.runner.run_one)."""
+    from .runner import ModelUnavailable, import_models, run_one
+    baseline = import_models()
+    imported = resident_memory() or 0
+    reusable = reset_peak_memory()
+    for line in stdin:
+        if not line.strip():
+            continue
+        job = json.loads(line)
+        try:
+            run_one(job["case"], job["out"], baseline, per_run_peak=reusable)
+            reply = {"status": "ok"}
+        except ModelUnavailable as exc:
+            reply = {"status": "unavailable", "error": str(exc)}
+        except Exception as exc:  # the parent records the run as failed and goes on
+            reply = {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
+        last = not reusable or (resident_memory() or 0) - imported > RETAINED_LIMIT
+        stdout.write(json.dumps({**reply, "last": last}) + "\n")
+        stdout.flush()
+        if last:
+            return 0
+    return 0
+
+
+class Service:
+    """The parent's handle on one serving process (started on first use, restarted
+    after it ends or dies)."""
+
+    def __init__(self):
+        self.proc = None
+        self.log = None
+
+    def run(self, case_file: Path, out_file: Path) -> dict:
+        """Send one run; its reply (a dead process: ``{"status": "error"}`` with
+        the end of its stderr)."""
+        if self.proc is None or self.proc.poll() is not None:
+            self._start()
+        try:
+            self.proc.stdin.write(json.dumps({"case": str(case_file), "out": str(out_file)}) + "\n")
+            self.proc.stdin.flush()
+            line = self.proc.stdout.readline()
+        except (BrokenPipeError, OSError):
+            line = ""
+        if not line:
+            self.proc.wait()
+            code = self.proc.returncode
+            self.proc = None
+            return {"status": "error", "exit": code, "error": f"worker ended ({code}): " + self._tail()}
+        reply = json.loads(line)
+        if reply.get("last"):                   # it ends after this run: the next gets a new one
+            self.proc.wait()
+            self.proc = None
+        return reply
+
+    def _start(self) -> None:
+        env = dict(os.environ)
+        # single-threaded: the runs are timed against each other
+        env.setdefault("OMP_NUM_THREADS", "1")
+        env.setdefault("OPENBLAS_NUM_THREADS", "1")
+        if self.log is None:
+            self.log = tempfile.TemporaryFile(mode="w+", prefix="rotorpillar-converge-")
+        self.log.seek(0)
+        self.log.truncate()
+        self.proc = subprocess.Popen([sys.executable, "-m", MODULE, "--serve"], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, stderr=self.log, text=True, env=env)
+
+    def _tail(self) -> str:
+        self.log.flush()
+        self.log.seek(0)
+        return " | ".join(self.log.read().strip().splitlines()[-3:])
+
+    def close(self) -> None:
+        if self.proc is not None:
+            try:
+                self.proc.stdin.close()
+                self.proc.wait(timeout=30)
+            except (OSError, subprocess.TimeoutExpired):
+                self.proc.kill()
+            self.proc = None
+        if self.log is not None:
+            self.log.close()
+            self.log = None
+
+
+_SERVICES: dict[tuple, Service] = {}
+
+
+def service() -> Service:
+    """This thread's serving process (one per process and thread: a forked copy,
+    or a second Dask thread, gets its own)."""
+    key = (os.getpid(), threading.get_ident())
+    if key not in _SERVICES:
+        _SERVICES[key] = Service()
+    return _SERVICES[key]
+
+
+def close_services() -> None:
+    """End this process's serving processes (a Dask worker's end when it exits:
+    their input closes)."""
+    for key in [k for k in _SERVICES if k[0] == os.getpid()]:
+        _SERVICES.pop(key).close()
+
+
+atexit.register(close_services)
