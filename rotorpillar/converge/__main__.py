@@ -7,7 +7,7 @@ import sys
 
 def main(argv: list[str]) -> int:
     if argv == ["--serve"]:
-        from .service import serve
+        from .runner import serve
         return serve()
     if len(argv) != 2:
         print("usage: python -m rotorpillar.converge --serve | CASE.json RESULT.json", file=sys.stderr)

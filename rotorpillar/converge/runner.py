@@ -172,6 +172,31 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
     write_json(out_file, out)
 
 
+def serve(stdin=sys.stdin, stdout=sys.stdout) -> int:
+    """The serving process's loop (rotorpillar.converge.service): each run it is sent, by ``run_one``."""
+    from .service import RETAINED_LIMIT, reset_peak_memory, resident_memory
+    baseline = import_models()
+    imported = resident_memory() or 0
+    reusable = reset_peak_memory()
+    for line in stdin:
+        if not line.strip():
+            continue
+        job = json.loads(line)
+        try:
+            run_one(job["case"], job["out"], baseline, per_run_peak=reusable)
+            reply = {"status": "ok"}
+        except ModelUnavailable as exc:
+            reply = {"status": "unavailable", "error": str(exc)}
+        except Exception as exc:  # the parent records the run as failed and goes on
+            reply = {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
+        last = not reusable or (resident_memory() or 0) - imported > RETAINED_LIMIT
+        stdout.write(json.dumps({**reply, "last": last}) + "\n")
+        stdout.flush()
+        if last:
+            return 0
+    return 0
+
+
 def worker(case_file: str, out_file: str) -> None:
     """One-shot subprocess entry (``python -m rotorpillar.converge CASE RESULT``)."""
     baseline = import_models()

@@ -17,9 +17,10 @@ stays out of the next run's figure; once it passes ``RETAINED_LIMIT`` the
 process ends after its reply and the next run gets a fresh one.  Where the
 reset is not possible the process serves one run only, as before.
 
-Protocol: one JSON line per run each way,
-``{"case": CASE.json, "out": RESULT.json}`` in, ``{"status": "ok" |
-"unavailable" | "error", "error": ...}`` out.  End of input ends the process.
+Protocol (the serving side is rotorpillar.converge.runner.serve): one JSON
+line per run each way, ``{"case": CASE.json, "out": RESULT.json}`` in,
+``{"status": "ok" | "unavailable" | "error", "error": ..., "last": bool}``
+out ("last": the process ends after this run).  End of input ends it too.
 """
 
 from __future__ import annotations
@@ -78,31 +79,6 @@ def resident_memory() -> int | None:
         pass
     kib = _status_kib("VmRSS")
     return None if kib is None else 1024 * kib
-
-
-def serve(stdin=sys.stdin, stdout=sys.stdout) -> int:
-    """The process's loop: run each case it is sent (rotorpillar.converge.runner.run_one)."""
-    from .runner import ModelUnavailable, import_models, run_one
-    baseline = import_models()
-    imported = resident_memory() or 0
-    reusable = reset_peak_memory()
-    for line in stdin:
-        if not line.strip():
-            continue
-        job = json.loads(line)
-        try:
-            run_one(job["case"], job["out"], baseline, per_run_peak=reusable)
-            reply = {"status": "ok"}
-        except ModelUnavailable as exc:
-            reply = {"status": "unavailable", "error": str(exc)}
-        except Exception as exc:  # the parent records the run as failed and goes on
-            reply = {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
-        last = not reusable or (resident_memory() or 0) - imported > RETAINED_LIMIT
-        stdout.write(json.dumps({**reply, "last": last}) + "\n")
-        stdout.flush()
-        if last:
-            return 0
-    return 0
 
 
 class Service:
