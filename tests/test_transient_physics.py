@@ -178,3 +178,22 @@ def test_paper_sweep_rules_out_the_jumps():
     assert s["jumps"] == [] and s["predicted_jumps"] == []
     assert max(s["largest_speed_step_ratio"].values()) < 2.0
     assert "No jumps" in s["no_jump_reason"]
+
+
+def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
+    """Predicted jumps at two resonances, the sweep's range reaching only the
+    first: the second stays unmatched (it used to be measured against the
+    first resonance's jump, a -70 % 'error'); each numeric jump pairs with
+    one prediction at most."""
+    from rotorpillar.reduced.sweep import match_jumps
+    up = lambda w0, w1, m: {"direction": "up", "omega_from": w0, "omega_to": w1, "torque_at_zero": m}
+    predicted = [up(25.0, 31.0, 600.0), up(150.0, 170.0, 2000.0)]
+    rows = match_jumps([up(25.5, 30.0, 610.0)], predicted)
+    assert rows[0]["numeric"] is not None
+    assert rows[0]["rel_error_omega_from"] == pytest.approx(25.5 / 25.0 - 1)
+    assert rows[1]["numeric"] is None
+    # two numeric jumps near two predictions: each with its own
+    rows = match_jumps([up(151.0, 168.0, 1990.0), up(24.0, 32.0, 590.0)], predicted)
+    assert [r["numeric"]["omega_from"] for r in rows] == [24.0, 151.0]
+    # a down jump is never paired with an up prediction
+    assert match_jumps([{**up(25.5, 20.0, 610.0), "direction": "down"}], predicted[:1])[0]["numeric"] is None

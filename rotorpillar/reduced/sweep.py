@@ -126,14 +126,18 @@ def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
 
 
 def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
-    """Each predicted jump beside the nearest numeric one of the same direction."""
+    """Each predicted jump beside the numeric one of the same direction it is
+    nearest to and that is nearest to it (in the speed it leaves), or beside
+    none: a jump the sweep did not make (a resonance out of its range) is not
+    measured against another resonance's jump."""
+    def nearest(x, cands):
+        return min(cands, key=lambda c: abs(c["omega_from"] - x["omega_from"]), default=None)
     rows = []
     for p in predicted:
-        cands = [j for j in numeric if j["direction"] == p["direction"]]
-        if not cands:
+        j = nearest(p, [j for j in numeric if j["direction"] == p["direction"]])
+        if j is None or nearest(j, [q for q in predicted if q["direction"] == p["direction"]]) is not p:
             rows.append({"predicted": p, "numeric": None})
             continue
-        j = min(cands, key=lambda j: abs(j["omega_from"] - p["omega_from"]))
         rows.append({"predicted": p, "numeric": j,
                      "rel_error_omega_from": j["omega_from"] / p["omega_from"] - 1,
                      "rel_error_omega_to": j["omega_to"] / p["omega_to"] - 1,
