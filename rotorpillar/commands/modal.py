@@ -14,6 +14,11 @@ from . import progress
 SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
 
 
+def band_edge(scene) -> float:
+    from ..reduced.band import excitation_band
+    return excitation_band(scene)["omega_max"]
+
+
 def quiet_jit_logging() -> None:
     """Keep the compiler's INFO lines (setuptools, on the first JIT of a form) off stderr.
 
@@ -53,7 +58,8 @@ def modal_command(scene, args, timings):
                                                cache_dir=args.cache, charts=convergence_charts,
                                                log=progress)
         say(selection["text"].splitlines()[0])
-    say(f"modal: bare tube, {scene.modal.n_modes} modes")
+    say("modal: bare tube, " + (f"{scene.modal.n_modes} modes" if scene.modal.n_modes else
+                                f"the modes past the band ({band_edge(scene):.1f} rad/s)"))
     bare = modal_analysis(scene, top=False)
     say(f"modal: tube with its top mass ({scene.modal.top_model} top)")
     loaded = modal_analysis(scene, top=True)

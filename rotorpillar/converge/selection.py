@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import Optional
 
-from ..reduced.averaging import Characteristic
+from ..reduced.band import excitation_band  # noqa: F401  (the study's band, re-exported)
 from .ladder import FAMILIES, QUANTITIES
 
 
@@ -57,23 +57,6 @@ def pareto_front(cost, error) -> list[int]:
             front.append(i)
             best = e
     return front
-
-
-def excitation_band(scene) -> dict:
-    """The frequencies the scene excites, and the band a model must resolve.
-
-    The rotor runs at most at the drive's free speed (Md = Mc, no resonance
-    drag: every stationary speed lies below it); the ground motion reaches
-    ``converge.earthquake_frequency``.  The band is the larger times
-    ``converge.margin``.
-    """
-    ch = Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
-    free = ch.free_speed()
-    cv = scene.converge
-    top = max(free, cv.earthquake_frequency)
-    return {"free_speed": free, "earthquake_frequency": cv.earthquake_frequency,
-            "margin": cv.margin, "omega_max": cv.margin * top,
-            "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake"}
 
 
 def reference_uncertainty(reference: dict) -> dict:

@@ -75,6 +75,8 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
     comm = MPI.COMM_WORLD if comm is None else comm
     mesh = scene.mesh if mesh is None else mesh
     n_modes = scene.modal.n_modes if n_modes is None else n_modes
+    if n_modes == 0:
+        return _band_modes(scene, top=top, mesh=mesh, comm=comm, isolated=isolated, use_cache=use_cache)
     top_model, top_mass = _top_settings(scene, top)
     key = (scene.pillar, mesh, top_model, top_mass, n_modes, scene.modal.tolerance, comm.size)
     if use_cache and comm is MPI.COMM_WORLD and key in _CACHE:
@@ -91,6 +93,24 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
         while len(_CACHE) > CACHE_SIZE:
             _CACHE.popitem(last=False)
     return result
+
+
+BAND_MODES = 8
+"""Modes first computed for ``modal.n_modes = 0`` (doubled while the band is not passed)."""
+
+
+def _band_modes(scene, **kw) -> ModalResult:
+    """Enough modes to pass the scene's band: the 3D modes a scene needs (its
+    excitation up to the band's edge, and the mode beyond it), in blocks of
+    BAND_MODES; not the 16 or more a fixed count asks on every scene."""
+    from ..reduced.band import excitation_band
+    edge = excitation_band(scene)["omega_max"]
+    n = BAND_MODES
+    while True:
+        result = modal_analysis(scene, n_modes=n, **kw)
+        if len(result.omega) < n or result.omega[-1] > edge or n >= 500:
+            return result
+        n *= 2
 
 
 def reduction_from_scene(scene) -> tuple[float, float]:

@@ -135,7 +135,9 @@ TOP_MASSES = ("gondola", "gondola_and_rotor")
 @dataclass(frozen=True)
 class Modal:
     """The 3D modal analysis (rotorpillar modal)."""
-    n_modes: int = param("Modes computed per configuration (-)", 16, ge=1, le=500)
+    n_modes: int = param("Modes computed per configuration; 0 = enough to pass the scene's band "
+                         "(converge.margin x the highest excitation frequency): 8, doubled until "
+                         "the last lies above it (-)", 0, ge=0, le=500)
     top_model: str = param("How the masses sit on the tube's top: a rigid top plate, or "
                            "mass spread on the top face without stiffening", "rigid",
                            choices=TOP_MODELS)

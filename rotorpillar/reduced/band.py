@@ -1,0 +1,22 @@
+"""The band of frequencies a scene excites, which its models must resolve."""
+
+from __future__ import annotations
+
+from .averaging import Characteristic
+
+
+def excitation_band(scene) -> dict:
+    """The frequencies the scene excites, and the band a model must resolve.
+
+    The rotor runs at most at the drive's free speed (Md = Mc, no resonance
+    drag: every stationary speed lies below it); the ground motion reaches
+    ``converge.earthquake_frequency``.  The band is the larger times
+    ``converge.margin``.
+    """
+    ch = Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
+    free = ch.free_speed()
+    cv = scene.converge
+    top = max(free, cv.earthquake_frequency)
+    return {"free_speed": free, "earthquake_frequency": cv.earthquake_frequency,
+            "margin": cv.margin, "omega_max": cv.margin * top,
+            "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake"}
