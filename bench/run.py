@@ -1,5 +1,8 @@
 """`make bench`: run every benchmark in bench/ and write bench/results.json.
 
+``bench/run.py MODULE ...`` runs those modules only and replaces their
+entries in an existing results.json, keeping the others'.
+
 Each benchmark module defines ``run() -> list[dict]``, entries with at least
 ``name``, ``compares`` (what against what), ``value`` and ``unit``.  Ratios
 are measured side by side in this one run; the machine is recorded once and
@@ -43,6 +46,17 @@ def main(argv=None) -> int:
                   file=sys.stderr, flush=True)
         timings[name] = time.perf_counter() - t0
     out = HERE / "results.json"
+    if only and out.is_file():
+        # a subset run replaces its modules' entries and keeps the others'
+        # (each entry carries its module and machine)
+        import json
+        try:
+            old = json.loads(out.read_text())
+            kept = [e for e in old.get("benchmarks", []) if e.get("module") not in only]
+            entries = kept + entries
+            timings = {**{k: v for k, v in old.get("timings", {}).items() if k not in only}, **timings}
+        except (ValueError, AttributeError, TypeError):
+            pass
     write_json(out, {"benchmarks": entries, "machine": host, "versions": versions(),
                      "timings": timings})
     print(f"wrote {out}")
