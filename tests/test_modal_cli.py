@@ -13,7 +13,8 @@
   order, on the tube (tests/fixtures.check_tube_vtu says how and to what
   tolerance).
 - MPI: `mpirun -n 2` gives the serial frequencies to 1e-8 (eigenpairs to
-  1e-10, MUMPS round-off differs between the two factorisations) and the
+  a residual of 1e-8, frequencies within ~5e-10 of the exact ones; MUMPS
+  round-off differs between the two factorisations) and the
   same kinds and tip reduction (1e-7).
 - Failures: bad mesh input exits 2, a SLEPc failure (forced by PETSc
   options) or a Gmsh crash exits 1, each with one line naming what failed,
