@@ -98,6 +98,10 @@ def test_cache_key_follows_the_parameters():
     assert k != cv.case_key(_beam_cases()[4], scene.pillar)
     # the rotor and drive do not enter the bare tube's runs
     assert k == cv.case_key(c, override(scene, ["rotor.mass=2000"]).pillar)
+    # the 3D eigen-solve's tolerance enters the 3D runs only
+    solid = next(x for x in cv.ladder(scene) if x.family == "solid_hex_p2")
+    assert cv.case_key(solid, scene.pillar, 1e-8) != cv.case_key(solid, scene.pillar, 1e-10)
+    assert cv.case_key(c, scene.pillar, 1e-8) == cv.case_key(c, scene.pillar, 1e-10)
 
 
 def test_an_interrupted_study_resumes_without_recomputing(tmp_path):

@@ -63,11 +63,13 @@ def _source_hash(model: str) -> str:
     return h.hexdigest()[:16]
 
 
-def case_key(case: Case, pillar) -> str:
-    """Hash of everything a run's result depends on."""
+def case_key(case: Case, pillar, tolerance: float | None = None) -> str:
+    """Hash of everything a run's result depends on (``tolerance``: the 3D
+    eigen-solve's, ``modal.tolerance``; the other models have their own)."""
     fam = FAMILIES[case.family]
     doc = {"cache_version": CACHE_VERSION, "model": fam.model, "params": case.settings,
            "n_modes": N_MODES if fam.model in ("shell", "solid") else None,
+           "tolerance": tolerance if fam.model == "solid" else None,
            "pillar": {k: getattr(pillar, k) for k in
                       ("height", "outer_diameter", "inner_diameter", "youngs_modulus",
                        "poisson_ratio", "density")},
@@ -259,7 +261,7 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
     from tqdm import tqdm
 
     cache_dir = Path(cache_dir)
-    keys = [case_key(c, scene.pillar) for c in cases]
+    keys = [case_key(c, scene.pillar, scene.modal.tolerance) for c in cases]
     records: list[Optional[dict]] = [None] * len(cases)
     todo = []
     for i, (c, key) in enumerate(zip(cases, keys)):
