@@ -78,7 +78,7 @@ def _paper_model_and_params():
 def test_compiled_rhs_of_the_paper_model_is_equation_4(with_ground):
     from rotorpillar.reduced.drive import DriveSchedule
     from rotorpillar.reduced.excitation import no_motion, paper_pulse
-    from rotorpillar.reduced.rhs import N_WORK, eq4_rhs, rhs_first_order
+    from rotorpillar.reduced.rhs import N_WORK, eq4_rhs, flatten, rhs_first_order
     model, p = _paper_model_and_params()
     M0, slope, k = 1500.0, 12.0, 0.5
     motion = paper_pulse() if with_ground else no_motion()
@@ -91,6 +91,6 @@ def test_compiled_rhs_of_the_paper_model_is_equation_4(with_ground):
         y = np.r_[q, v, np.zeros(N_WORK)]
         u5, v5, _ = (float(x) for x in motion.evaluate(t))
         want = eq4_rhs(y[:8], *p, M0, slope, k, q5=u5, q5_rate=v5)
-        got = rhs_first_order(t, y, P)[:8]
+        got = rhs_first_order(t, y, flatten(P))[:8]
         # to round-off of the largest acceleration (a component may cancel to near zero)
         assert got == pytest.approx(want, rel=1e-12, abs=1e-12 * np.max(np.abs(want[4:])))

@@ -25,7 +25,7 @@ Eq. 24   rotorpillar.reduced.averaging.peak_resistance_ratio
 
 The averaged equations 8-18 have no function of their own: their
 stationary solution is equations 19 and 20.  The compiled right-hand side
-of the transients (rotorpillar.reduced.rhs, deriv) is equation 4 in a
+of the transients (rotorpillar.reduced.rhs, deriv_flat) is equation 4 in a
 generic form that also carries the modal model; tests/test_equation_index.py
 checks it against equation 4 as published.
 """

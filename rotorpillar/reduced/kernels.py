@@ -1,8 +1,8 @@
 """The compiled kernels of the transients, in one namespace (rotorpillar.reduced.transient uses it).
 
 - rotorpillar.reduced.rhs: the rotor-structure model's right-hand side
-  ``deriv``, its Jacobians, the ground motion and drive schedule, the status
-  codes;
+  ``deriv_flat`` on the model flattened by ``flatten``, its Jacobians, the
+  ground motion and drive schedule, the status codes;
 - rotorpillar.reduced.dp5: the adaptive Dormand-Prince 5(4) ``dp5_solve``
   and ``dp5_batch``;
 - rotorpillar.reduced.fixed_step: ``genalpha_solve`` (Newmark, HHT,
@@ -12,4 +12,5 @@
 from .dp5 import dp5_batch, dp5_solve  # noqa: F401
 from .fixed_step import cd_solve, genalpha_solve  # noqa: F401
 from .rhs import (MAX_STEPS, N_WORK, NEWTON_FAILED, NOT_FINITE, OK, STEP_TOO_SMALL,  # noqa: F401
-                  deriv, jac_first_order, jacobians, rhs_first_order, shaft_deflection)
+                  deriv_flat, flatten, jac_first_order, jacobians, rhs_first_order,
+                  shaft_deflection)

@@ -25,8 +25,7 @@ gtab), built by ``rotor_models.pack``:
 - gtab  (3, ng): tabulated u_g, v_g, a_g on t0 + i dt (kind 2)
 
 The integrators' loops see P flattened once per run into one vector
-(``flatten``, offsets by ``layout``) and call ``deriv_flat``; ``deriv`` is
-the same right-hand side on P for callers outside the loops.
+(``flatten``, offsets by ``layout``) and call ``deriv_flat``.
 
 Four work integrals ride along with the state (not error-controlled):
 drive minus load (Md - Mc) W, work done by the shaft torque on the
@@ -60,7 +59,7 @@ def eq4_rhs(y, m_A, m_C, J, e, c1, c2, b1, b2, M0, s, k, q5=0.0, q5_rate=0.0, q6
         J q4'' = Md - Mc - c2 e (q2 - q1) sin q4 + c2 e q3 cos q4
 
     Plain numpy, one call per evaluation: the reference the compiled
-    ``deriv`` is checked against, and the hand-written right-hand side of
+    ``deriv_flat`` is checked against, and the hand-written right-hand side of
     the benchmarks.
     """
     q1, q2, q3, q4, v1, v2, v3, v4 = y
@@ -188,26 +187,16 @@ def flatten(P):
 
 
 @njit(cache=True)
-def deriv(t, y, P, out, F):
-    """The first-order right-hand side y' into out (``deriv_flat`` on ``flatten(P)``:
-    for callers outside the hot loops).
-
-    y = (q, v, ...) with n = len(q); writes out[:n] = v, out[n:2n] = Minv F,
-    out[2n:2n+4] = the powers (drive - load, shaft on structure, dissipation,
-    base); F (n) holds the forces on return.
-    """
-    par = flatten(P)
-    deriv_flat(t, y, par, out, 0)
-    o_f = layout(int(par[0]), int(par[1]), int(par[2]))[9]
-    for i in range(F.shape[0]):
-        F[i] = par[o_f + i]
-
-
-@njit(cache=True)
 def deriv_flat(t, y, par, out, o):
-    """``deriv`` on the flat model ``par``, into out[o:o + 2n + 4]; the forces
-    are left in par's scratch.  One flat body: no nested calls that pass
-    arrays in the common case (no ground motion, a constant drive)."""
+    """The first-order right-hand side y' of the flat model ``par`` into
+    out[o:o + 2n + 4].
+
+    y = (q, v, ...) with n = len(q); writes out[o:o + n] = v, the next n
+    Minv F, then the powers (drive - load, shaft on structure, dissipation,
+    base); the forces F are left in par's scratch.  One flat body: no nested
+    calls that pass arrays in the common case (no ground motion, a constant
+    drive).
+    """
     nx, m, ng = int(par[0]), int(par[1]), int(par[2])
     n = nx + 2
     o_minv, o_ks, o_c, o_d, o_base, o_scal, o_sched, o_gpar, o_gtab, o_f, _ = layout(nx, m, ng)
@@ -260,7 +249,7 @@ def deriv_flat(t, y, par, out, o):
 
 @njit(cache=True)
 def jacobians(t, q, v, P, Jq, Jv):
-    """dF/dq and dF/dv of the forces of ``deriv`` into Jq, Jv."""
+    """dF/dq and dF/dv of the forces of ``deriv_flat`` into Jq, Jv."""
     Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
     nx = Ks.shape[0]
     n = nx + 2
@@ -332,11 +321,11 @@ def shaft_deflection(q, shaft, e, out, out_x):
 
 
 @njit(cache=True)
-def rhs_first_order(t, y, P):
-    """y' for y = (q, v, work): the first-order form scipy integrates."""
+def rhs_first_order(t, y, par):
+    """y' for y = (q, v, work): the first-order form scipy integrates, on the
+    flat model ``par`` (``flatten(P)``, once per run)."""
     out = np.empty_like(y)
-    F = np.empty(P[0].shape[0])
-    deriv(t, y, P, out, F)
+    deriv_flat(t, y, par, out, 0)
     return out
 
 

@@ -252,7 +252,8 @@ def _run_scipy(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
     y = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
     t_out = _output_grid(t0, t1, settings.samples)
     atol = tolerances(model, motion, speed_scale, settings.rtol)
-    fun = lambda t, yy: K.rhs_first_order(t, yy, P)
+    par = K.flatten(P)
+    fun = lambda t, yy: K.rhs_first_order(t, yy, par)
     kw = {}
     if settings.method in ("Radau", "BDF", "LSODA"):
         kw["jac"] = lambda t, yy: K.jac_first_order(t, yy, P)
@@ -373,10 +374,10 @@ def shaft_deflection(q: np.ndarray, shaft: np.ndarray, e) -> tuple[np.ndarray, n
 
 
 def project(q: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """q @ w summed term by term in a fixed order.  A BLAS product may order
-    its sums by its thread count, which differs between a worker process and
-    the main one (CI saw 1-ulp differences): a study must not depend on where
-    its batches ran."""
+    """q @ w summed term by term in a fixed order, whatever BLAS would do with
+    its threads there: a study's numbers must not depend on the process its
+    batch ran in.  (CI's 1-ulp difference came from numpy's cos, see
+    ``shaft_deflection``; BLAS was the first suspect, not proven.)"""
     out = np.zeros(q.shape[:-1])
     for j, wj in enumerate(np.asarray(w, dtype=float)):
         out += q[..., j] * wj
