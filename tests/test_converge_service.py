@@ -84,3 +84,26 @@ def test_a_process_that_dies_in_a_run_is_reported_with_its_stderr(tmp_path, monk
         assert s.proc is None
     finally:
         s.close()
+
+
+def test_what_a_run_prints_stays_out_of_the_replies(tmp_path):
+    """A library printing to stdout (Python or C) must not break the protocol:
+    the serving process answers on its original stdout and sends fd 1 to stderr."""
+    import textwrap
+    script = tmp_path / "noisy.py"
+    script.write_text(textwrap.dedent("""
+        import os, sys
+        from rotorpillar.converge import runner
+        def noisy(case_file, out_file, baseline, *, per_run_peak):
+            print("python noise")
+            os.write(1, b"C noise\\n")
+            open(out_file, "w").write("{}")
+        runner.run_one = noisy
+        runner.import_models = lambda: 0
+        sys.exit(runner.serve())
+    """))
+    p = subprocess.run([sys.executable, str(script)], input='{"case": "c", "out": "%s"}\n'
+                       % (tmp_path / "o.json"), capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0
+    reply = json.loads(p.stdout)                  # the reply alone on stdout
+    assert reply["status"] == "ok" and "python noise" in p.stderr and "C noise" in p.stderr

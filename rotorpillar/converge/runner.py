@@ -174,9 +174,18 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
     write_json(out_file, out)
 
 
-def serve(stdin=sys.stdin, stdout=sys.stdout) -> int:
-    """The serving process's loop (rotorpillar.converge.service): each run it is sent, by ``run_one``."""
+def serve(stdin=sys.stdin, replies=None) -> int:
+    """The serving process's loop (rotorpillar.converge.service): each run it is sent, by ``run_one``.
+
+    The replies go to the process's original stdout; file descriptor 1 then
+    points at stderr, so that whatever a library prints (Python or C) lands
+    in the log, never in the middle of the protocol."""
+    import os
     from .service import RETAINED_LIMIT, reset_peak_memory, resident_memory
+    if replies is None:
+        sys.stdout.flush()
+        replies = os.fdopen(os.dup(1), "w")
+        os.dup2(2, 1)
     baseline = import_models()
     imported = resident_memory() or 0
     reusable = reset_peak_memory()
@@ -192,8 +201,8 @@ def serve(stdin=sys.stdin, stdout=sys.stdout) -> int:
         except Exception as exc:  # the parent records the run as failed and goes on
             reply = {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
         last = not reusable or (resident_memory() or 0) - imported > RETAINED_LIMIT
-        stdout.write(json.dumps({**reply, "last": last}) + "\n")
-        stdout.flush()
+        replies.write(json.dumps({**reply, "last": last}) + "\n")
+        replies.flush()
         if last:
             return 0
     return 0
