@@ -250,3 +250,21 @@ def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
     assert "json" not in doc and again.json_file is None
     with pytest.raises(ValueError):
         cv.ConvergenceStudy.from_json({**doc, "surprise": 1})
+
+
+def test_runs_asking_few_modes_first_give_what_the_full_count_gives():
+    """compute_fe asks N_MODES_FIRST modes and N_MODES when the first ovalling
+    mode is not among them: the quantities are those of an N_MODES solve (the
+    lowest modes are the same eigenpairs; 1e-8 relative, the solver's
+    tolerance).  A fine shell finds its ovalling pair among the first 6; a
+    coarse P1 tube, whose locked ovalling mode lies high, widens to 12."""
+    from rotorpillar.converge.compute import _compute_fe, compute_fe
+    from rotorpillar.converge.ladder import N_MODES, N_MODES_FIRST
+    scene = load_scene("paper")
+    cases = {(c.family, c.level): c for c in cv.ladder(scene)}
+    for key, asked in ((("shell_quad", 24), N_MODES_FIRST), (("solid_tet_p1", 32), N_MODES)):
+        got = compute_fe(cases[key], scene, fresh=True)
+        full = _compute_fe(cases[key], scene, N_MODES, True)
+        assert got["modes_asked"] == asked
+        for q in ("bending", "ovalling"):
+            assert got[q] == pytest.approx(full[q], rel=1e-8)

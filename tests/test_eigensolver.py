@@ -103,3 +103,21 @@ def test_mass_matrix_read_in_place_equals_petsc4pys_copy():
     assert (C != B).nnz == 0 and C.nnz == B.nnz
     model.K.destroy()
     model.M.destroy()
+
+
+def test_band_modes_are_the_lowest_of_a_fixed_count_and_pass_the_band():
+    """modal.n_modes = 0: the modes are the lowest ones of a fixed-count solve
+    (the same eigenpairs: frequencies to the solver's tolerance, 1e-8 relative
+    on a 1e-8 residual), every mode below the band's edge is there, and the
+    last one lies beyond it."""
+    from rotorpillar.fem3d import BAND_MODES, modal_analysis
+    from rotorpillar.reduced.band import excitation_band
+    scene = override(load_scene("paper"), ["mesh.elements_around=16", "mesh.elements_along=6"])
+    assert scene.modal.n_modes == 0
+    edge = excitation_band(scene)["omega_max"]
+    band = modal_analysis(scene, top=False, use_cache=False)
+    fixed = modal_analysis(scene, top=False, n_modes=2 * BAND_MODES + 8, use_cache=False)
+    k = len(band.omega)
+    assert k >= BAND_MODES and band.omega[-1] > edge
+    assert np.allclose(band.omega, fixed.omega[:k], rtol=1e-8)
+    assert np.sum(np.asarray(fixed.omega) < edge) <= k
