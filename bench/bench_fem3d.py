@@ -4,7 +4,7 @@ For the default mesh of the paper's tube (and one with twice the cells
 along the height, to show the trend), side by side in one run:
 
 - the shift-invert solve of the modes `rotorpillar modal` asks for (the
-  scene's band: 8 + 1 on the paper's scene; 16 + 1 until this session), over
+  scene's band: 8 + 1 on the paper's scene; it was a fixed 16 + 1), over
   one MUMPS factorisation of K - sigma M of the same matrices (the solve
   contains one such factorisation), by each method of
   rotorpillar.fem3d.eigensolver: the block Lanczos it uses (a block of
