@@ -63,9 +63,14 @@ def simulate_command(scene, args, timings):
     if which == "fem3d":
         fem3d_plan(scene, case, motion)                                # the 3D cases only
     progress(f"simulate {scene.name}: {case}, {which} model")
+    chain = None
+    if which in ("modal", "fem3d"):
+        from ..chain import resolve
+        with timings("pillar_modes"):
+            chain = resolve(scene, out_dir(scene, args), motion=motion, progress=progress)
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                        motion=motion)
+                        motion=motion, chain=chain)
     result = dict(run.result)
     if is_root_rank():
         with timings("write"):
