@@ -159,6 +159,7 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
         lines.append(f"Study: {json_file}")
     selection = {"tolerance": tolerance, "chosen": chosen, "reason": sel["reason"],
                  "rule": sel["rule"], "band": sel["band"], "needed": sel["needed"],
+                 "reference_uncertainty": sel["reference_uncertainty"],
                  "rejected_cheaper": sel["rejected_cheaper"], "overall_cheapest": overall,
                  "convergence_json": json_file, "text": "\n".join(lines)}
     return dataclasses.replace(scene, mesh=mesh), selection
