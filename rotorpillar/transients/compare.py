@@ -78,7 +78,8 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     for i, m in enumerate(models):
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
-        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration)
+        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration,
+                        field_dir=out if write else None)
         if write:
             from .files import write_model_files
             results[m] = write_model_files(out, scene, run, provenance, last_run=False,

@@ -94,16 +94,19 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None) -> 
 
 
 def run_model(scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
-              progress=None, motion=None, duration: float | None = None) -> ModelRun:
+              progress=None, motion=None, duration: float | None = None,
+              field_dir=None) -> ModelRun:
     """Run ``model`` (one of scene.MODELS) on ``case``; ``duration`` shortens the run
-    (compare: one window for every model).  Bad input raises InputError before any work."""
+    (compare: one window for every model); ``field_dir``: where the 3D model writes
+    its stress field's XDMF time series (None: not written).  Bad input raises
+    InputError before any work."""
     if model not in MODELS:
         raise InputError(f"model {model!r}: must be one of {', '.join(MODELS)}")
     if case == "earthquake" and motion is None:
         from ..reduced.models import scene_motion
         motion = scene_motion(scene)
     if model == "fem3d":
-        return _run_fem3d(scene, case, motion, duration, progress)
+        return _run_fem3d(scene, case, motion, duration, progress, field_dir)
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion)
@@ -171,7 +174,9 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion) -> Mod
                      f"elements, {info['element_source']}), the case's full duration; implicit fixed "
                      "step at 40 steps per period of the fastest forcing (full_order.time_step, 0 = "
                      "that): the beam's stiff shear modes are not resolved, nor need to be")}
-    return ModelRun(case, which, result, data, m.quasi_normal(), res)
+    run = ModelRun(case, which, result, data, m.quasi_normal(), res)
+    from .forces import with_reduced_forces
+    return with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progress)
 
 
 def _warnings(case: str, model, res) -> list[str]:
@@ -196,7 +201,7 @@ def _warnings(case: str, model, res) -> list[str]:
 # fem3d
 
 
-def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
+def _run_fem3d(scene, case, motion, duration, progress, field_dir=None) -> ModelRun:
     from ..fem3d.transient import simulate_fem3d
     from ..reduced.models import build_model
     from ..reduced.cases import forcing_top
@@ -206,9 +211,15 @@ def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"
     if progress:
         progress(f"3D full order: {case} on {steps_hint}")
-    r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
-                       time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
-                       progress=progress)
+    from .forces import stress_observer, with_fem3d_forces
+    observer = stress_observer(scene, plan["duration"], field_dir, f"simulate_{case}_fem3d")
+    try:
+        r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
+                           time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
+                           progress=progress, observer=observer)
+        recovered = observer.finish()
+    finally:
+        observer.close()
     plan["time_step"] = r.integrator["time_step"]
     beam = override(scene, ["modal_model.source=beam"])
     ref, _ = build_model(beam, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion))
@@ -241,7 +252,8 @@ def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
     if case == "earthquake":
         result["excitation"] = motion.sizes()
         result["excitation_in_model"] = r.model.get("forcing")
-    return ModelRun(case, "fem3d", result, data, ref.quasi_normal(), None)
+    return with_fem3d_forces(scene, ModelRun(case, "fem3d", result, data, ref.quasi_normal(), None),
+                             recovered, observer.heights)
 
 
 def _free_speed(scene) -> float:
