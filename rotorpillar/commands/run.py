@@ -44,6 +44,7 @@ RUN_STAGES = [
     ("simulate --case runup", "run-up from rest, reduced model", None, ()),
     ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ()),
     ("modal", "3D modes of the tube, bare and with its top mass", None, ()),
+    ("harmonic", "unbalance response (Bode) and separation margins (API 684)", None, ()),
     ("integrators", "time integrators: error against cost, where each fails", None, ()),
     # minutes the first time, then read from its cache: the report's
     # "which model does this scene need" section comes from it
