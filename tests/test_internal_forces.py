@@ -14,7 +14,8 @@ References and tolerances:
   respond quasi-statically (omega / omega_13 < 0.05 over the band), so
   within 0.1 % of the peak.
 - the mode counts on the paper's pillar: the tip needs fewer modes than the
-  base moment, the base moment fewer than (or as many as) the base shear.
+  base moment, and the base shear, which carries the mass of the modes left
+  out, more than the 12 available.
 - a cubic Hermite interpolant through samples and slopes finds the peak of
   a sine to O(h**4): at 8 samples per period, placed to straddle the crests,
   within 0.2 % (measured 0.13 %) where the samples alone miss 7.6 %; at 4,
@@ -120,7 +121,9 @@ def test_moments_and_shears_need_more_modes_than_the_tip(scene):
                                        sec.mass_per_length, scene.gondola.mass)
     trunc = f.force_truncation(pm, 186.0, f.tip_dashpot(12, scene.pillar.damping), bp.length,
                                sec.mass_per_length, scene.gondola.mass, statics)
-    assert trunc.modes_needed_tip < trunc.modes_needed_base_moment <= trunc.modes_needed_base_shear
+    assert trunc.modes_needed_tip < trunc.modes_needed_base_moment
+    # the base shear carries the missing modes' mass: more than 12 modes for 1 %
+    assert trunc.modes_needed_base_shear is None and trunc.rows[-1].base_shear > 1e-2
     assert trunc.modes_for_forces == trunc.modes_needed_base_moment
     for a, b in zip(trunc.rows, trunc.rows[1:]):      # errors fall as modes are added (to round-off)
         assert b.base_moment <= a.base_moment * 1.5 + 1e-6

@@ -17,8 +17,8 @@ M(z, t) = sum_j eta_j(t) M_j(z) with M_j the section resultants of mode j
 per unit modal coordinate (``PillarModes.moment_shapes``).  Moments and
 shears converge more slowly with the number of modes than the tip does (a
 section force weights the higher modes' curvature), so ``force_truncation``
-counts the modes the base moment needs for 1 % over the band, against a
-reference of every mode available plus the static share of the rest (exact
+counts the modes the base moment needs for 1 % at every frequency of the
+band, against a reference of every mode available plus the static share of the rest (exact
 by equilibrium: a tip force P gives M(0) = P H, a base acceleration a the
 inertia load of the whole pillar and its top mass).
 
@@ -141,11 +141,11 @@ class TruncationRow(JsonRecord):
     modes: int
     """k (-)"""
     tip: float
-    """tip displacement's largest error over the band, over its peak (-)"""
+    """tip displacement's largest relative error over the band (-)"""
     base_moment: float
-    """base moment's largest error over the band, over its peak (-)"""
+    """base moment's largest relative error over the band (-)"""
     base_shear: float
-    """base shear's largest error over the band, over its peak (-)"""
+    """base shear's largest relative error over the band (-)"""
 
 
 @dataclass(frozen=True)
@@ -154,7 +154,7 @@ class ForceTruncation(JsonRecord):
     band_top: float
     """highest frequency checked: the forcing band of the run (rad/s)"""
     tolerance: float
-    """largest error allowed on the base moment, over its peak in the band (-)"""
+    """largest relative error allowed on the base moment in the band (-)"""
     modes_available: int
     """modes of the source, every one of which the reference uses (-)"""
     rows: tuple[TruncationRow, ...]
@@ -196,7 +196,12 @@ def force_truncation(pm: PillarModes, band_top: float, damping, height: float,
     dashpot b1 on every pair).  The reference is every mode of ``pm`` plus
     the static share of the modes beyond them (``static_resultants``,
     ``tip_statics`` from ``cantilever_tip_statics``): exact for the section
-    forces by equilibrium, whatever the mode source.
+    forces by equilibrium, whatever the mode source.  The error at each
+    frequency is taken over the reference's magnitude there, but not less
+    than its static value: measured over the peak alone it let 3 modes pass
+    a base shear that El Centro shows 3-7 % off (the record's energy lies
+    between the resonances, where the missing modes' share is relatively
+    large); this measure predicts that.
     """
     if not pm.has_resultants:
         raise ValueError("the pillar modes carry no section resultants")
@@ -216,18 +221,21 @@ def force_truncation(pm: PillarModes, band_top: float, damping, height: float,
                  V_static - np.sum(f * V0 / kk))
         eta = _pillar_response(pm, n, omega, damping, f)
         ref = (eta.sum(axis=1) + resid[0], eta @ M0 + resid[1], eta @ V0 + resid[2])
-        scale = [max(float(np.max(np.abs(r))), 1e-300) for r in ref]
+        # at each frequency against the response there, never less than the static one:
+        # a transient (an accelerogram) weighs every frequency, not only the peaks
+        scale = [np.maximum(np.maximum(np.abs(r), abs(r[0])), 1e-300) for r in ref]
         for k in range(1, n + 1):
             e = _pillar_response(pm, k, omega, damping, f)
             got = (e.sum(axis=1), e @ M0[:k], e @ V0[:k])
             for q in range(3):
                 errors[k - 1, q] = max(errors[k - 1, q],
-                                       float(np.max(np.abs(got[q] - ref[q]))) / scale[q])
+                                       float(np.max(np.abs(got[q] - ref[q]) / scale[q])))
     rows = tuple(TruncationRow(k + 1, *map(float, errors[k])) for k in range(n))
     need = [next((k + 1 for k in range(n) if errors[k, q] <= tolerance), None) for q in range(3)]
     statement = (f"the first k of {n} modes ({pm.source}) against all {n} plus the static share of "
                  f"the rest, the pillar forced at its tip and at its base from 0 to "
-                 f"{band_top:.4g} rad/s; errors over each quantity's peak in that band")
+                 f"{band_top:.4g} rad/s; at each frequency, the error over the response there "
+                 "(never less than the static response)")
     return ForceTruncation(float(band_top), float(tolerance), n, rows, need[0], need[1], need[2],
                            statement)
 

@@ -218,9 +218,11 @@ def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, prog
     heights = np.asarray(pm.section_heights, dtype=float)
     i0 = int(np.argmin(np.abs(heights)))
     axial = _vertical_axial(scene, run.data, heights)
-    method = (f"modal superposition of {k} modes' section resultants ({pm.source}); the base moment "
-              f"needs {trunc.modes_needed_base_moment or trunc.modes_available} for "
-              f"{100 * trunc.tolerance:g} % over the band, the tip {trunc.modes_needed_tip}")
+    method = (f"modal superposition of {k} modes' section resultants ({pm.source}); for "
+              f"{100 * trunc.tolerance:g} % over the band the base moment needs "
+              f"{trunc.modes_needed_base_moment or f'more than {trunc.modes_available}'}, the tip "
+              f"{trunc.modes_needed_tip}; the base shear's error with {k}: "
+              f"{100 * trunc.rows[k - 1].base_shear:.2g} %")
     note = ("" if k == k_run else
             f"the case's run kept {k_run} modes (its band); the section forces come from the same "
             f"case run again with {k}")

@@ -194,12 +194,15 @@ def _truncation(runs) -> list[str]:
     if f is None:
         return []
     t = f.truncation
+    need = lambda k: str(k) if k is not None else f"more than the {t.modes_available} available"
     rows = [[r.modes, h.pct(r.tip, 3).lstrip("+"), h.pct(r.base_moment, 3).lstrip("+"),
              h.pct(r.base_shear, 3).lstrip("+")] for r in t.rows]
     return [h.tag("h3", "How many modes the forces need"),
-            h.tag("p", f"{t.statement}. The tip needs {t.modes_needed_tip}, the base moment "
-                       f"{t.modes_needed_base_moment}, the base shear {t.modes_needed_base_shear} "
-                       f"modes for {100 * t.tolerance:g} %: the forces use {f.modes}. {f.note}"),
+            h.tag("p", f"{t.statement}. For {100 * t.tolerance:g} % the tip needs {need(t.modes_needed_tip)}, "
+                       f"the base moment {need(t.modes_needed_base_moment)}, the base shear "
+                       f"{need(t.modes_needed_base_shear)} modes: the forces use {f.modes}, with which "
+                       f"the base shear's error is {h.pct(t.rows[f.modes - 1].base_shear, 1).lstrip('+')}"
+                       f" (the modes left out carry mass the shear feels). {f.note}"),
             h.details("errors per number of modes", h.table(
                 ["modes", "tip", "base moment", "base shear"], rows))]
 
