@@ -39,7 +39,8 @@ CHECKED_MODELS = ("modal", "beam", "fem3d")
 MODEL_NAMES = {"modal": "ROM", "beam": "1D beam, full order", "fem3d": "3D, full order",
                "paper": "the paper's Eq. 4"}
 MODE_SOURCES = {"modal": "the ROM's coupled system", "fem3d": "the loaded tube's 3D modes"}
-_RUN_FILE = re.compile(rf"simulate_({'|'.join(CASES)})_({'|'.join(MODELS)})\.json")
+#: a model's run of a case: simulate's, or compare's (compare_<case>_<model> where compare names its own)
+_RUN_FILE = re.compile(rf"(simulate|compare)_({'|'.join(CASES)})_({'|'.join(MODELS)})\.json")
 
 
 def case_label(doc: dict) -> str:
@@ -54,19 +55,24 @@ def case_label(doc: dict) -> str:
 
 
 def model_runs(out: Path) -> list[dict]:
-    """The runs' JSON documents of ``out`` (one per case and model), model-ordered."""
-    docs = []
-    for path in sorted(Path(out).glob("simulate_*_*.json")):
-        m = _RUN_FILE.fullmatch(path.name)
-        if not m:
+    """The runs' JSON documents of ``out``, one per (case as named by ``case_label``,
+    model): the newest file where simulate and compare both ran it."""
+    found: dict[tuple, tuple] = {}
+    for path in sorted(Path(out).glob("*_*_*.json")):
+        if not _RUN_FILE.fullmatch(path.name):
             continue
         try:
             doc = json.loads(path.read_text(encoding="utf-8"))
+            when = path.stat().st_mtime
         except (OSError, ValueError):
             continue
+        if not isinstance(doc, dict) or "model" not in doc:
+            continue
         doc["_file"] = path.name
-        docs.append(doc)
-    return docs
+        key = (case_label(doc), doc["model"])
+        if key not in found or when > found[key][0]:
+            found[key] = (when, doc)
+    return [doc for _, doc in sorted(found.values(), key=lambda x: x[1]["_file"])]
 
 
 def _run_checks(scene, doc: dict) -> list[Check]:
