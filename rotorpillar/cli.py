@@ -46,6 +46,9 @@ COMMANDS = {
                     "time integrators: error against cost, where each fails"),
     "study": ("rotorpillar.commands.study", "study_command",
               "design study on Dask: capture maps of run-ups, earthquake IDA curves"),
+    "harmonic": ("rotorpillar.commands.harmonic", "harmonic_command",
+                 "unbalance response against speed (Bode: ROM, 3D, Eq. 19) and separation "
+                 "margins (API 684)"),
 }
 
 
@@ -70,6 +73,7 @@ EXTRA_ARGUMENTS = {
     "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
     "compare": lambda p: importlib.import_module("rotorpillar.commands.compare").add_arguments(p),
     "study": lambda p: importlib.import_module("rotorpillar.commands.study").add_arguments(p),
+    "harmonic": lambda p: importlib.import_module("rotorpillar.commands.harmonic").add_arguments(p),
 }
 
 

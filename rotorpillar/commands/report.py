@@ -48,7 +48,19 @@ def report_command(scene, args, timings):
         return {"report": None}, ""
     options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
     progress(f"report: rendering into {out_dir(scene, args)}")
+    from ..verdict.summary import write_summary
+    failed = None
+    with timings("summary"):
+        try:
+            written = write_summary(scene, out_dir(scene, args))
+            written = None if written is None else str(written)
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:   # a damaged input: said, not fatal
+            written, failed = None, f"{type(exc).__name__}: {exc}"
+            progress(f"report: summary.json not written: {failed}")
     result = build_report(scene, out_dir(scene, args), scene_cli(args), options, timings)
+    result["summary"] = written
+    if failed:
+        result["failures"]["summary.json"] = failed
     if getattr(args, "strict", False) and (result["failures"] or result["damaged"]):
         result["exit_status"] = 1
     return result, summary_text(result)

@@ -59,6 +59,8 @@ RUN_STAGES = [
     ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None,
      ("--model", "paper"), 3),
     ("integrators", "time integrators: error against cost, where each fails", None, (), 3),
+    # the ROM's and the 3D model's unbalance response, the margins to the loaded tube's modes
+    ("harmonic", "unbalance response (Bode) and separation margins (API 684)", None, (), 3),
     ("report", "charts, mode shapes, animations, report.html", _report_flags, (), 4),
 ]
 

@@ -70,7 +70,7 @@ def simulate_command(scene, args, timings):
             chain = resolve(scene, out_dir(scene, args), motion=motion, progress=progress)
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                        motion=motion, chain=chain)
+                        motion=motion, chain=chain, field_dir=out_dir(scene, args))
     result = dict(run.result)
     if is_root_rank():
         with timings("write"):
@@ -101,6 +101,11 @@ def summary(scene, r: dict) -> str:
     lines.append(f"  max |tip X| {ma['tip_x_relative']:.4g} m relative to the ground, "
                  f"{ma['tip_x_absolute']:.4g} m absolute; |rotor X| {ma['rotor_x']:.4g} m, "
                  f"|rotor Y| {ma['rotor_y']:.4g} m")
+    if ma.get("base_moment") is not None:
+        lines.append(f"  base: |M| {ma['base_moment']:.4g} N m, |V| {ma['base_shear']:.4g} N, stress "
+                     f"{ma['base_stress'] / 1e6:.4g} MPa (|M| c/I + N/A)"
+                     + (f"; von Mises {ma['von_mises'] / 1e6:.4g} MPa" if ma.get("von_mises") else "")
+                     + f"; shaft {ma['shaft_deflection']:.4g} m, bearing force {ma['bearing_force']:.4g} N")
     eb = r["energy_balance"]
     lines.append(f"  energy balance: relative error {eb['relative_error']:.2e}")
     if r.get("truncation") and r["truncation"].get("modes_check") is None:

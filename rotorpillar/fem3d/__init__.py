@@ -84,7 +84,8 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
         return _CACHE[key]
     model = assemble_pillar(scene, top=top, mesh=mesh, comm=comm, isolated=isolated)
     try:
-        result = run_modal(model, n_modes, tol=scene.modal.tolerance, mesh_section=mesh)
+        result = run_modal(model, n_modes, tol=scene.modal.tolerance, mesh_section=mesh,
+                           material=(scene.pillar.youngs_modulus, scene.pillar.poisson_ratio) if top else None)
     finally:
         model.K.destroy()
         model.M.destroy()

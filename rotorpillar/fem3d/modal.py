@@ -87,6 +87,11 @@ class ModalResult:
     """per bending_x mode index: (z levels, mean u_x per level), rank 0"""
     rigid_top: np.ndarray | None = None
     """(modes, 6) the rigid plate's q = (U, Theta) per normalised mode, rank 0"""
+    section_heights: np.ndarray | None = None
+    """(n_z,) heights of the element-layer cuts, base first (m); with ``material`` only"""
+    section_resultants: np.ndarray | None = None
+    """(modes, n_z, 3) per normalised mode: shear V (N), bending moment M (N*m) and
+    axial force N (N, compression positive) at each cut (rotorpillar.fem3d.sections)"""
 
     @property
     def frequency_hz(self) -> np.ndarray:
@@ -200,8 +205,11 @@ def _align_and_normalise(omega, shapes, rings):
 
 
 def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
-              mesh_section=None) -> ModalResult:
+              mesh_section=None, material: tuple[float, float] | None = None) -> ModalResult:
     """Solve, gather, name, align and normalise the modes of an assembled model.
+
+    ``material`` (E in Pa, nu) adds each mode's section resultants at the
+    element-layer cuts (rotorpillar.fem3d.sections), on every rank.
 
     One eigenpair more than asked is computed, so that a degenerate pair cut
     by ``n_modes`` is still aligned (the last mode returned is then the
@@ -247,6 +255,7 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
     phi.destroy()
     for x in sol.vectors:
         x.destroy()
+    cuts = None if material is None else mode_resultants(model, local, *material)
     # The Rayleigh quotient of each final vector: its Ritz value for a simple
     # mode; a degenerate pair (equal by symmetry, split ~1e-8 by round-off)
     # gets the mean of its two.
@@ -284,4 +293,18 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
                 "type": f"{sol.method}, sinvert, mumps ldlt", "solves": sol.solves,
                 "ranks": comm.size},
         points=points, vtu_cells=vtu_cells, shapes=shapes_out, beam_line=beam_line,
-        rigid_top=rigid)
+        rigid_top=rigid, section_heights=None if cuts is None else cuts[0],
+        section_resultants=None if cuts is None else cuts[1])
+
+
+def mode_resultants(model: PillarModel, local: np.ndarray, youngs_modulus: float,
+                    poisson_ratio: float) -> tuple[np.ndarray, np.ndarray]:
+    """(heights, (modes, n_z, 3) resultants) of the distributed mode vectors ``local``
+    (this rank's rows of the unknowns, one column per mode); collective."""
+    from .sections import section_functionals
+    sf = section_functionals(model, youngs_modulus, poisson_ratio)
+    part = sf.rows.T @ local
+    full = model.comm.allreduce(part) if model.comm.size > 1 else part
+    out = full.reshape(len(sf.heights), 3, -1).transpose(2, 0, 1).copy()
+    out[:, :, 2] *= -1.0
+    return sf.heights, out

@@ -15,6 +15,11 @@ the element's own interpolation) or the trapezoidal rule otherwise.  This is
 beam kinematics on the 3D shape: exact for the section-mean motion, blind to
 the wall's local deformation, which a uniform base translation does not
 excite in bending modes.
+
+Each mode's section resultants (shear and moment at the element-layer
+cuts, base included: ``ModalResult.section_resultants``, from the nodal
+forces of the elements beside each cut, rotorpillar.fem3d.sections) become
+the PillarModes' ``moment_shapes`` and ``shear_shapes``.
 """
 
 from __future__ import annotations
@@ -60,11 +65,17 @@ def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:
         heights = z if heights is None else heights
         shapes.append(phi)
     total = m_rho * pillar.height + result.top_mass
+    cuts = getattr(result, "section_resultants", None)
+    resultants = {} if cuts is None else {
+        "section_heights": np.asarray(result.section_heights, float),
+        "moment_shapes": np.asarray(cuts)[idx, :, 1].T.copy(),
+        "shear_shapes": np.asarray(cuts)[idx, :, 0].T.copy()}
     return PillarModes(np.asarray(result.omega)[idx], np.asarray(result.modal_mass)[idx], np.array(L),
                        float(total), f"fem3d:{result.cell_type}:{result.cells}cells:deg{result.degree}",
                        None, heights, np.column_stack(shapes),
                        {"top_model": result.top_model, "top_mass": result.top_mass, "dofs": result.dofs,
-                        "participation_by": "Simpson along the section-mean deflection"})
+                        "participation_by": "Simpson along the section-mean deflection"},
+                       **resultants)
 
 
 def fem3d_pillar_modes(scene, count: int) -> PillarModes:

@@ -187,7 +187,8 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
                    drive: DriveSchedule | None = None, duration: float | None = None,
                    time_step: float | None = None, mesh=None, samples: int = 2001,
                    initial_speed: float | None = None, initial_angle: float = 0.0,
-                   prescribed_speed: bool = False, comm=None, progress=None) -> Fem3dTransient:
+                   prescribed_speed: bool = False, comm=None, progress=None,
+                   observer=None) -> Fem3dTransient:
     """Run ``case`` ("earthquake" or "runup") on the 3D tube with the rotor at its top.
 
     Defaults follow the reduced models' cases: the scene's excitation, a
@@ -198,6 +199,9 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
     ``scene.mesh``.  ``prescribed_speed`` holds Omega at ``initial_speed``
     (theta = initial_angle + Omega t; the energy balance is then the
     structure's).  ``samples``: output points (the peaks use every step).
+    ``observer`` (e.g. rotorpillar.fem3d.stress.StressRecovery) is handed the
+    assembled model (``attach(model)``) and the unknowns at every output time
+    (``record(t, x)``).
     """
     from . import assemble_pillar
     if scene.modal.top_model != "rigid":
@@ -215,8 +219,10 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
     model = assemble_pillar(scene, top=True, mesh=mesh, comm=comm)
     rotor = Rotor.from_scene(scene)
     try:
+        if observer is not None:
+            observer.attach(model)
         out, stats = _integrate(model, rotor, scene.pillar.damping, drive, motion, h, steps, stride,
-                                initial_angle, W0, prescribed_speed, progress)
+                                initial_angle, W0, prescribed_speed, progress, observer)
     finally:
         model.K.destroy()
         model.M.destroy()
@@ -286,7 +292,8 @@ class _Plate:
 
 
 def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: GroundMotion, h: float,
-               steps: int, stride: int, theta0: float, W0: float, prescribed: bool, progress):
+               steps: int, stride: int, theta0: float, W0: float, prescribed: bool, progress,
+               observer=None):
     """Newmark (average acceleration) over ``steps`` steps; see the module text."""
     from petsc4py import PETSc
     K, M = model.K, model.M
@@ -370,6 +377,8 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
                        ("shaft_y", y - Uz - e * math.sin(th)), ("energy", energy())):
             out[k][j] = val
         out["work"][j] = work
+        if observer is not None:
+            observer.record(t, u)
 
     record(0, 0.0)
     j, newton, newton_max, status = 1, 0, 0, "ok"

@@ -131,3 +131,43 @@ def beam_modes(p: BeamProperties, n_elements: int, theory: str = "euler",
     # sign convention: positive tip deflection
     full *= np.sign(full[-2])
     return BeamModes(np.sqrt(lam), x, full[0::2], full[1::2], K.shape[0])
+
+
+def section_forces(p: BeamProperties, n_elements: int, theory: str, u: np.ndarray):
+    """Shear V(z) and bending moment M(z) at the nodes from the element end forces K_e u_e.
+
+    ``u`` holds (w, psi) per node from the base up, base included: shape
+    (2 (n_elements + 1),) or (2 (n_elements + 1), k) for k displacement
+    fields.  Returns (V, M), each (n_elements + 1,) or (n_elements + 1, k):
+    the force in X (N) and the y-moment about the section's centre (N*m)
+    that the part above a section exerts on the part below; a tip load P
+    along +X gives V = P and M = P (H - z).  An element's end forces f = K_e
+    u_e are what its nodes exert on it, so the element above a node gives
+    (V, M) = -(f_w, f_psi) at its lower node and the element below +(f_w,
+    f_psi) at its upper node; the two differ by the node's share of the
+    inertia, and an inner node takes their mean.  Static loads at the tip
+    are carried exactly (each element is in equilibrium under its end forces).
+
+    >>> bp = BeamProperties(2.1e11, 0.3, 0.53, 8.1e3, 0.12441, 0.060972, 20.0)
+    >>> K, _ = assemble(bp, 4, "timoshenko")
+    >>> f = np.zeros(K.shape[0]); f[-2] = 1e3
+    >>> V, M = section_forces(bp, 4, "timoshenko", np.r_[0.0, 0.0, np.linalg.solve(K, f)])
+    >>> np.round(V, 6).tolist(), np.round(M, 6).tolist()
+    ([1000.0, 1000.0, 1000.0, 1000.0, 1000.0], [20000.0, 15000.0, 10000.0, 5000.0, 0.0])
+    """
+    if theory not in THEORIES:
+        raise ValueError(f"theory must be one of {THEORIES}")
+    u = np.asarray(u, dtype=float)
+    if u.shape[0] != 2 * (n_elements + 1):
+        raise ValueError(f"u must have 2 (n_elements + 1) = {2 * (n_elements + 1)} rows")
+    L = p.length / n_elements
+    ke, _ = (_euler_element if theory == "euler" else _timoshenko_element)(p, L)
+    ue = np.stack([u[2 * e: 2 * e + 4] for e in range(n_elements)])     # (n_el, 4, ...)
+    f = np.einsum("ij,ej...->ei...", ke, ue)
+    below = np.zeros((n_elements + 1, 2) + u.shape[1:])                  # from the element below
+    above = np.zeros_like(below)                                          # from the element above
+    below[1:] = f[:, 2:4]
+    above[:-1] = -f[:, 0:2]
+    mean = 0.5 * (below + above)
+    mean[0], mean[-1] = above[0], below[-1]
+    return mean[:, 0], mean[:, 1]

@@ -35,7 +35,7 @@ import numpy as np
 from scipy.linalg import eigh
 
 from ..errors import InputError
-from .beam_fe import THEORIES, BeamProperties, assemble
+from .beam_fe import THEORIES, BeamProperties, assemble, section_forces
 from .pillar import cowper_shear_coefficient, section_of
 
 
@@ -59,12 +59,27 @@ class PillarModes:
     shapes: np.ndarray | None = None
     """(n_nodes, k) lateral deflection along the height, 1 at the tip (m/m)"""
     notes: dict = field(default_factory=dict)
+    section_heights: np.ndarray | None = None
+    """(n_z,) heights of the sections whose resultants each mode carries, base
+    (0) first (m)"""
+    moment_shapes: np.ndarray | None = None
+    """(n_z, k) bending moment M_j(z) at ``section_heights`` per unit modal
+    coordinate: the y-moment the part above exerts on the part below, about
+    the section's centre, positive for a tip pushed along +X (N*m per m)"""
+    shear_shapes: np.ndarray | None = None
+    """(n_z, k) shear force V_j(z) in X that the part above exerts on the part
+    below, per unit modal coordinate (N per m)"""
 
     def __post_init__(self):
         k = len(self.omega)
         for name in ("modal_mass", "participation"):
             if len(getattr(self, name)) != k:
                 raise ValueError(f"{name} must have {k} entries")
+        for name in ("moment_shapes", "shear_shapes"):
+            a = getattr(self, name)
+            if a is not None and (self.section_heights is None
+                                  or np.shape(a) != (len(self.section_heights), k)):
+                raise ValueError(f"{name} must be (len(section_heights), {k})")
         if k == 0 or np.any(~np.isfinite(self.omega)) or np.any(np.asarray(self.omega) <= 0):
             raise ValueError("omega must be finite and > 0")
         if np.any(np.diff(self.omega) < 0):
@@ -92,7 +107,13 @@ class PillarModes:
         cut = lambda a: None if a is None else np.asarray(a)[..., :k]
         return PillarModes(np.asarray(self.omega)[:k], np.asarray(self.modal_mass)[:k],
                            np.asarray(self.participation)[:k], self.total_mass, self.source,
-                           cut(self.damping_ratio), self.heights, cut(self.shapes), dict(self.notes))
+                           cut(self.damping_ratio), self.heights, cut(self.shapes), dict(self.notes),
+                           self.section_heights, cut(self.moment_shapes), cut(self.shear_shapes))
+
+    @property
+    def has_resultants(self) -> bool:
+        """Whether the modes carry their section resultants (moment and shear)."""
+        return self.moment_shapes is not None and self.shear_shapes is not None
 
     def scaled(self, factor: float) -> "PillarModes":
         """The same modes with every frequency times ``factor`` (the shapes and
@@ -165,23 +186,28 @@ def beam_pillar_modes(scene, n_modes: int, theory: str = "timoshenko", elements:
     heights = np.linspace(0.0, scene.pillar.height, elements + 1)
     shapes = np.zeros((elements + 1, k))
     shapes[1:] = phi[0::2]
+    full = np.zeros((n + 2, k))
+    full[2:] = phi
+    shear, moment = section_forces(bp, elements, theory, full)
     return PillarModes(omega, mj, Lj, float(r @ M @ r), f"beam:{theory}:{elements}",
                        None, heights, shapes,
-                       {"gondola_mass": scene.gondola.mass, "gondola_inertia": gondola_inertia})
+                       {"gondola_mass": scene.gondola.mass, "gondola_inertia": gondola_inertia},
+                       heights, moment, shear)
 
 
 def pillar_modes_from_arrays(omega, modal_mass, participation, total_mass, source: str = "fem3d",
-                             damping_ratio=None, heights=None, shapes=None) -> PillarModes:
+                             damping_ratio=None, heights=None, shapes=None, section_heights=None,
+                             moment_shapes=None, shear_shapes=None) -> PillarModes:
     """Modes from another solver (e.g. rotorpillar.fem3d's modal.json), tip-scaled.
 
     Arrays as documented on PillarModes; bad data raise InputError.
     """
+    arr = lambda a: None if a is None else np.asarray(a, float)
     try:
         return PillarModes(np.asarray(omega, float), np.asarray(modal_mass, float),
                            np.asarray(participation, float), float(total_mass), source,
-                           None if damping_ratio is None else np.asarray(damping_ratio, float),
-                           None if heights is None else np.asarray(heights, float),
-                           None if shapes is None else np.asarray(shapes, float))
+                           arr(damping_ratio), arr(heights), arr(shapes), {}, arr(section_heights),
+                           arr(moment_shapes), arr(shear_shapes))
     except ValueError as exc:
         raise InputError(f"pillar modes from {source}: {exc}") from None
 

@@ -19,8 +19,8 @@ the documentation all come from the same place.
 
 from .files import (apply_overrides, embedded_scenes, load_scene, override, parse_assignment,
                     read_scene_toml, read_text_file)
-from .sections import (Converge, Drive, EXCITATION_KINDS, Excitation, FullOrder, Gondola, Load,
-                       MODAL_SOURCES, Mesh, Modal, ModalModel, OPTIONAL_SECTIONS, Pillar,
+from .sections import (Converge, Drive, EXCITATION_KINDS, Excitation, FABRICATION_CLASSES,
+                       FullOrder, Gondola, Load, MODAL_SOURCES, Material, Mesh, Modal, ModalModel, OPTIONAL_SECTIONS, Pillar,
                        RECORD_UNITS, REDUCTION_SOURCES, Reduction, Rotor, SECTIONS, Scene,
                        SceneError, Shaft, Simulate, Sweep, TOP_MASSES, TOP_MODELS, param)
 from .validation import (SCENE_NAME, scene_from_dict)
@@ -28,8 +28,8 @@ from .words import (ADAPTIVE_INTEGRATORS, CASES, CELL_TYPES, FIXED_STEP_INTEGRAT
                     FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, STUDY_CASES, SHELL_CELL_TYPES)
 
 __all__ = ['ADAPTIVE_INTEGRATORS', 'CASES', 'CELL_TYPES', 'Converge', 'Drive',
-           'EXCITATION_KINDS', 'Excitation', 'FIXED_STEP_INTEGRATORS', 'FULL_ORDER_MODELS',
-           'FullOrder', 'Gondola', 'INTEGRATORS', 'Load', 'MODAL_SOURCES', 'MODELS', 'Mesh',
+           'EXCITATION_KINDS', 'Excitation', 'FABRICATION_CLASSES', 'FIXED_STEP_INTEGRATORS', 'FULL_ORDER_MODELS',
+           'FullOrder', 'Gondola', 'INTEGRATORS', 'Load', 'MODAL_SOURCES', 'MODELS', 'Material', 'Mesh',
            'Modal', 'ModalModel', 'OPTIONAL_SECTIONS', 'Pillar', 'RECORD_UNITS',
            'REDUCTION_SOURCES', 'Reduction', 'Rotor', 'SCENE_NAME', 'SCIPY_METHODS',
            'SECTIONS', 'SHELL_CELL_TYPES', 'Scene', 'SceneError', 'Shaft', 'Simulate', 'Sweep',

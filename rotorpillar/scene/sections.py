@@ -69,6 +69,10 @@ class Rotor:
     mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
     inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
     eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
+    clearance: Optional[float] = param(
+        "Shaft deflection allowed before the rotor touches its stator: the air gap or seal "
+        "clearance (m); unset = the clearance check is not assessed", None, gt=0, le=1,
+        optional=True)
 
 
 @dataclass(frozen=True)
@@ -76,6 +80,27 @@ class Shaft:
     """Shaft and bearings, the same in X and Y (c2 = c3, b2 = b3)."""
     stiffness: float = param("Stiffness c2 = c3 (N/m)", ge=1, le=1e14)
     damping: float = param("Damping b2 = b3 (N*s/m)", ge=0, le=1e12)
+    force_limit: Optional[float] = param(
+        "Force the shaft and its bearings may carry (N), against the peak of the shaft's force "
+        "on the rotor; unset = the force check is not assessed", None, gt=0, le=1e12,
+        optional=True)
+
+
+FABRICATION_CLASSES = ("A", "B", "C")
+
+
+@dataclass(frozen=True)
+class Material:
+    """The tube's steel as the checks need it (its stiffness and density are in [pillar])."""
+    yield_strength: float = param("Characteristic yield strength f_yk (Pa); S355 by default, "
+                                  "the usual grade of welded steel towers (EN 10025-2)", 355e6,
+                                  gt=0, le=1e10)
+    fabrication_class: str = param(
+        "Fabrication tolerance quality class of the thin-walled tube for shell buckling "
+        "(EN 1993-1-6 Table 8.1: A excellent, B high, C normal; Q = 40, 25, 16 in D.1.2.2). "
+        "Default C: the lowest class, whose tolerances any fabricator must meet, so an "
+        "unstated class never overstates the buckling resistance", "C",
+        choices=FABRICATION_CLASSES)
 
 
 REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
@@ -293,9 +318,10 @@ SECTIONS = {
     "sweep": Sweep,
     "modal_model": ModalModel,
     "full_order": FullOrder,
+    "material": Material,
 }
 OPTIONAL_SECTIONS = ("reduction", "mesh", "converge", "modal", "simulate", "excitation", "sweep",
-                     "modal_model", "full_order")
+                     "modal_model", "full_order", "material")
 
 
 @dataclass(frozen=True)
@@ -317,6 +343,7 @@ class Scene:
     sweep: Sweep = Sweep()
     modal_model: ModalModel = ModalModel()
     full_order: FullOrder = FullOrder()
+    material: Material = Material()
     description: str = ""
 
     def to_dict(self) -> dict:

@@ -93,7 +93,7 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
         run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration,
-                        chain=chain)
+                        chain=chain, field_dir=out if write else None)
         if write:
             from .files import write_model_files
             results[m] = write_model_files(out, scene, run, provenance, last_run=False,

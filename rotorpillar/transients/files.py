@@ -18,7 +18,8 @@ from ..provenance import atomic_path, machine, versions, write_json, write_text
 from .run import ModelRun
 
 CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_acceleration",
-               "tip_x_relative", "tip_x_absolute", "shaft_deflection_x")     # the old ones first
+               "tip_x_relative", "tip_x_absolute", "shaft_deflection_x",     # the old ones first
+               "base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
 NPZ_SCALARS = ("tip_x_frame", "model", "case")
 
 

@@ -103,11 +103,14 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None) -> 
 
 def run_model(scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
               progress=None, motion=None, duration: float | None = None,
-              chain: ChainModes | None = None) -> ModelRun:
+              chain: ChainModes | None = None, field_dir=None,
+              field_stem: str | None = None) -> ModelRun:
     """Run ``model`` (one of scene.MODELS) on ``case``; ``duration`` shortens the run
     (compare: one window for every model); ``chain`` the chain's pillar model and
-    modes (rotorpillar.chain.resolve; None: the scene's own, no study).  Bad input
-    raises InputError before any work."""
+    modes (rotorpillar.chain.resolve; None: the scene's own, no study); ``field_dir``:
+    where the 3D model writes its stress field's XDMF time series (None: not written),
+    named ``field_stem`` (default ``simulate_<case>_fem3d``).  Bad input raises
+    InputError before any work."""
     if model not in MODELS:
         raise InputError(f"model {model!r}: must be one of {', '.join(MODELS)}")
     if case == "earthquake" and motion is None:
@@ -117,7 +120,8 @@ def run_model(scene, case: str, model: str, integrator: str | None = None, modes
         from ..chain import resolve
         chain = resolve(scene, None, motion=motion, progress=progress)
     if model == "fem3d":
-        return _run_fem3d(scene, case, motion, duration, progress, chain)
+        return _run_fem3d(scene, case, motion, duration, progress, chain, field_dir,
+                          field_stem or f"simulate_{case}_fem3d")
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
@@ -225,7 +229,9 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain)
                      f"elements, {info['element_source']}), the case's full duration; implicit fixed "
                      "step at 40 steps per period of the fastest forcing (full_order.time_step, 0 = "
                      "that): the beam's stiff shear modes are not resolved, nor need to be")}
-    return ModelRun(case, which, result, data, m.quasi_normal(), res)
+    run = ModelRun(case, which, result, data, m.quasi_normal(), res)
+    from .forces import with_reduced_forces
+    return with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progress)
 
 
 def _warnings(case: str, model, res) -> list[str]:
@@ -271,7 +277,8 @@ def solid_pillar_model(mesh, dofs: int, source: str, note: str) -> PillarModel:
                        False, None, {}, note, None)
 
 
-def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes) -> ModelRun:
+def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
+               field_stem: str = "") -> ModelRun:
     from ..fem3d.transient import simulate_fem3d
     from ..reduced.cases import forcing_top
     from ..reduced.models import build_model
@@ -289,9 +296,15 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes) -> Mo
     compile_seconds = fem3d_warm_up(scene, mesh)
     if progress:
         progress(f"3D full order: {case} on {steps_hint}")
-    r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
-                       time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
-                       initial_speed=initial, progress=progress)
+    from .forces import stress_observer, with_fem3d_forces
+    observer = stress_observer(scene, plan["duration"], field_dir, field_stem)
+    try:
+        r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
+                           time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
+                           initial_speed=initial, progress=progress, observer=observer)
+        recovered = observer.finish()
+    finally:
+        observer.close()
     plan["time_step"] = r.integrator["time_step"]
     drive_free = _free_speed(scene)
     state = capture_state(ref, r.t, r.Omega, drive_free)
@@ -327,7 +340,8 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes) -> Mo
     if case == "earthquake":
         result["excitation"] = motion.sizes()
         result["excitation_in_model"] = r.model.get("forcing")
-    return ModelRun(case, "fem3d", result, data, ref.quasi_normal(), None)
+    return with_fem3d_forces(scene, ModelRun(case, "fem3d", result, data, ref.quasi_normal(), None),
+                             recovered, observer.heights)
 
 
 def _free_speed(scene) -> float:

@@ -30,6 +30,7 @@ from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_conve
                       read_modal, read_simulation)
 from .convergence import section_convergence
 from .earthquake import section_earthquake
+from .engineering import section_forces, section_unbalance
 from .figures import external_figures, figure_group
 from .modal import section_modal, section_paper, section_scene
 from .provenance import section_other, section_provenance
@@ -48,8 +49,10 @@ SECTIONS = [
     ("modal", "Modal validation", section_modal),
     ("paper", "The paper's numbers against ours", section_paper),
     ("averaging", "Passage through resonance", section_averaging),
+    ("unbalance", "Unbalance response (Bode) and separation margins", section_unbalance),
     ("runs", "The runs", section_runs),
     ("earthquake", "The earthquake", section_earthquake),
+    ("forces", "Internal forces and stresses", section_forces),
     ("study", "Design study", section_study),
     ("convergence", "Convergence and the model chosen", section_convergence),
     ("other", "Other figures", section_other),

@@ -8,6 +8,7 @@ from ..comparisons import COMPARISONS, compare_command
 from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
 from .comparison import speed_accuracy
 from .convergence import chosen
+from .engineering import verdict_block
 from .modal import bending, is_finding
 from .state import Build
 
@@ -91,5 +92,5 @@ def section_summary(build: Build) -> str:
     what = chosen(build.convergence) if build.convergence else None
     if what:
         items.append(f"Model chosen: {what[0]}" + (f" - {what[1]}" if what[1] else "") + ".")
-    return h.section("summary", "Summary", [h.tag("ul", [_item(it) for it in items],
-                                                  class_="findings")])
+    return h.section("summary", "Summary", verdict_block(build) + [h.tag("ul", [_item(it) for it in items],
+                                                                          class_="findings")])

@@ -1,0 +1,136 @@
+"""Section resultants of the 3D tube: shear, bending moment and axial force at element-layer cuts.
+
+The structured tube's cells lie in layers along the height; the faces
+between two layers are cross-sections at known heights z_k (the base z = 0
+and the top z = H included).  At each cut the resultant the part above
+exerts on the part below is read from the nodal forces of the elements on
+either side (the consistent, variationally exact way, the 3D counterpart
+of the beam's element end forces K_e u_e):
+
+    R_q(u) = 1/2 a_below(u, w_q) - 1/2 a_above(u, w_q)
+
+with a(u, w) = int sigma(u) : eps(w) dx over the layer below or above the
+cut, and w_q the finite-element field equal on the cut's nodes to a unit
+rigid motion of the section and zero at every other node: a translation
+along x (shear V), along z (axial force, N = -R, compression positive) or
+the rotation about y through the section's centre, w = (0, 0, -x) (bending
+moment M; e_y x (x, y, 0) = (0, 0, -x)).  a(u, w) is the work of the
+element's nodal forces on the section's rigid motion, so R is the section's
+resultant exactly where the nodes carry no inertia: in statics the two
+sides agree and a tip load P gives V = P, M = P (H - z) to round-off at
+every cut; in dynamics they differ by the cut nodes' share of the inertia,
+which the mean splits evenly (the base and the top, with one side only,
+take that side).  Signs as rotorpillar.reduced.internal_forces.
+
+Each R_q is linear in the displacement, so it is assembled once as a vector
+L_q (one vector form per cut and component) and applied to any state with
+a dot product: R_q = L_q . u (all cuts at once: one small dense product per
+rank and one reduction).  With the rigid top the unknowns are x and u
+= T x: the functionals are carried over once, T^T L_q.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+#: the components of a cut's resultant, in this order
+COMPONENTS = ("shear", "moment", "axial")
+
+
+def cut_heights(params) -> np.ndarray:
+    """The element-layer interfaces of the structured tube, base and top included (m)."""
+    from ..mesh.tube import layer_heights
+    return np.r_[0.0, layer_heights(params) * params.height]
+
+
+@dataclass
+class SectionFunctionals:
+    """The linear functionals of the section resultants of one assembled model."""
+    heights: np.ndarray
+    """(n_z,) cut heights, base first (m)"""
+    rows: np.ndarray
+    """(n_local, 3 n_z) this rank's rows of the functionals over the model's unknowns:
+    per cut, the force along x, the y-moment, the force along z"""
+    comm: object
+
+    def resultants(self, x) -> np.ndarray:
+        """(n_z, 3) shear V (N), moment M (N*m) and axial force N (N, compression
+        positive) at each cut for the model's unknowns ``x`` (a PETSc Vec; collective)."""
+        local = self.rows.T @ x.getArray(readonly=True)
+        out = (self.comm.allreduce(local) if self.comm.size > 1 else local).reshape(-1, 3)
+        out[:, 2] *= -1.0
+        return out
+
+    def destroy(self) -> None:
+        self.rows = np.zeros((0, 0))
+
+
+def section_functionals(model, youngs_modulus: float, poisson_ratio: float) -> SectionFunctionals:
+    """The functionals L_q of every cut of an assembled PillarModel (collective).
+
+    One compiled vector form, its two coefficients (the layer weight chi,
+    piecewise constant, and the cut's rigid field w) set per cut and component.
+    """
+    from .dolfinx_import import import_dolfinx
+    import_dolfinx()
+    import ufl
+    from petsc4py import PETSc
+    from dolfinx import fem
+    from dolfinx.mesh import compute_midpoints
+    import dolfinx.fem.petsc  # noqa: F401
+    from .forms import epsilon, sigma
+    mesh, V = model.mesh, model.V
+    heights = cut_heights(model.params)
+    H = model.params.height
+    tol = 1e-6 * H
+    tdim = mesh.topology.dim
+    n_cells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
+    mid = compute_midpoints(mesh, tdim, np.arange(n_cells, dtype=np.int32))[:, 2]
+    layer = np.clip(np.searchsorted(heights, mid) - 1, 0, len(heights) - 2)
+    Q = fem.FunctionSpace(mesh, ("DG", 0))
+    chi = fem.Function(Q)
+    w = fem.Function(V)
+    v = ufl.TestFunction(V)
+    dx = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": 2 * model.V.ufl_element().degree()})
+    form = fem.form(chi * ufl.inner(sigma(w, youngs_modulus, poisson_ratio), epsilon(v)) * dx)
+    coords = V.tabulate_dof_coordinates()
+    n_nodes = coords.shape[0]                                   # owned and ghost nodes
+    columns = []
+    for k, zk in enumerate(heights):
+        weights = np.zeros(n_cells)
+        if k > 0:
+            weights[layer == k - 1] = 1.0 if k == len(heights) - 1 else 0.5
+        if k < len(heights) - 1:
+            weights[layer == k] = -1.0 if k == 0 else -0.5
+        dofmap_cells = Q.dofmap.list.array
+        chi.x.array[dofmap_cells] = weights
+        on_cut = np.abs(coords[:, 2] - zk) <= tol
+        for q in range(3):
+            field = np.zeros((n_nodes, 3))
+            if q == 0:
+                field[on_cut, 0] = 1.0
+            elif q == 1:
+                field[on_cut, 2] = -coords[on_cut, 0]
+            else:
+                field[on_cut, 2] = 1.0
+            w.x.array[:] = field.ravel()
+            vec = fem.petsc.assemble_vector(form)
+            vec.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+            columns.append(_to_unknowns(model, vec))
+    return SectionFunctionals(heights, np.column_stack(columns), model.comm)
+
+
+def _to_unknowns(model, vec) -> np.ndarray:
+    """L over the tube's dofs -> this rank's rows over the model's unknowns (T^T L with the rigid top)."""
+    if model.T is None:
+        n = model.K.getLocalSize()[1]
+        out = vec.getArray(readonly=True)[:n].copy()
+    else:
+        tx = model.T.createVecRight()
+        model.T.multTranspose(vec, tx)
+        out = tx.getArray(readonly=True).copy()
+        tx.destroy()
+    vec.destroy()
+    return out

@@ -1,0 +1,261 @@
+"""A run's internal forces, stresses and shaft demand: the fields added to each transient.
+
+``with_forces(scene, run, ...)`` takes a ``ModelRun`` (rotorpillar.transients.run)
+and returns it with
+
+- in its JSON: ``max_abs.base_moment`` (N m), ``max_abs.base_shear`` (N),
+  ``max_abs.base_stress`` (Pa: |M| c / I + N / A at the base, compression),
+  ``max_abs.shaft_deflection`` (m, radial) and ``max_abs.bearing_force``
+  (N), for the 3D model ``max_abs.von_mises`` (Pa); and the block
+  ``internal_forces`` (``force_records.InternalForcesSummary``: envelopes
+  along the height, base reactions, the shaft's demand, the ROM's modes and
+  truncation check, the 3D von Mises peaks and its XDMF file);
+- in its series (NPZ, CSV): ``base_moment``, ``base_shear``, ``base_axial``,
+  ``base_stress``, ``bearing_force``; in the NPZ also ``section_heights``,
+  ``section_moment`` and ``section_shear`` (time x height).
+
+Per model:
+- modal (the ROM): modal superposition of the modes' section resultants,
+  with at least as many modes as the base moment needs for 1 % over the
+  run's band (``reduced.internal_forces.force_truncation``); when that is
+  more than the run kept, the forces come from a second run of the case
+  with that many modes (the tip's answers stay the first run's);
+- beam: the element end forces of every degree of freedom (exact for the
+  full-order beam);
+- fem3d: the section resultants and the von Mises field the run's observer
+  (rotorpillar.fem3d.stress.StressRecovery) recovered at its output times;
+- paper: Eq. 4's tip mass on a spring has no sections: the shaft's demand
+  only, the section forces null.
+
+N(z) is static (self-weight, gondola, rotor under g) plus, in the reduced
+models, the rotor's vertical shaft force -c2 d_y (their pillar is rigid
+axially); the 3D model carries its own dynamic axial force.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..reduced.internal_forces import (STANDARD_GRAVITY, axial_force, cantilever_tip_statics,
+                                       extreme_fibre_stress, force_truncation, hermite_peak,
+                                       modal_damping, superpose)
+from ..reduced.pillar import section_of
+from .force_records import BaseReactions, InternalForcesSummary, ShaftDemand
+
+#: the series each run gains (CSV and NPZ)
+FORCE_SERIES = ("base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
+
+
+def top_mass(scene) -> float:
+    """What the tube's top carries under gravity: gondola and rotor (kg)."""
+    return scene.gondola.mass + scene.rotor.mass
+
+
+# --------------------------------------------------------------------------
+# The shaft
+
+
+def shaft_demand(scene, t, dx, dy, vx, vy, sampled: bool) -> tuple[ShaftDemand, np.ndarray]:
+    """Peaks of the radial shaft deflection and of the shaft's force, and the force's history (N)."""
+    c2, b2 = scene.shaft.stiffness, scene.shaft.damping
+    radial = np.hypot(dx, dy)
+    force = np.hypot(c2 * dx + b2 * vx, c2 * dy + b2 * vy)
+    i, j = int(np.argmax(radial)), int(np.argmax(force))
+    return ShaftDemand(float(radial[i]), float(t[i]), float(c2 * radial[i]), float(force[j]),
+                       float(t[j]), sampled), force
+
+
+# --------------------------------------------------------------------------
+# Assembling the fields
+
+
+def _summarise(scene, model: str, method: str, t, heights, moment, shear, axial, moment_rate,
+               shaft: ShaftDemand, **extra) -> tuple[InternalForcesSummary, dict]:
+    """The JSON block and the series of section forces (n_t, n_z) at heights (m)."""
+    sec = section_of(scene.pillar)
+    i0 = int(np.argmin(np.abs(heights)))
+    M0, V0, N0 = moment[:, i0], shear[:, i0], axial[:, i0]
+    stress = extreme_fibre_stress(M0, N0, sec)
+    if moment_rate is not None:
+        m_peak, m_time = hermite_peak(t, M0, moment_rate)
+    else:
+        k = int(np.argmax(np.abs(M0)))
+        m_peak, m_time = float(abs(M0[k])), float(t[k])
+    s_peak_m = float(extreme_fibre_stress(m_peak, np.interp(m_time, t, N0), sec))
+    k = int(np.argmax(stress))
+    s_peak, s_time = (s_peak_m, m_time) if s_peak_m >= stress[k] else (float(stress[k]), float(t[k]))
+    n_at = float(np.interp(s_time, t, N0))
+    v = int(np.argmax(np.abs(V0)))
+    base = BaseReactions(float(m_peak), float(m_time), float(abs(V0[v])), float(t[v]), float(N0.min()),
+                         float(N0.max()), float(s_peak), float(s_time), n_at / sec.area / s_peak)
+    static = axial_force(heights, sec.mass_per_length, scene.pillar.height, top_mass(scene))
+    summary = InternalForcesSummary(
+        model=model, method=method, heights=tuple(map(float, heights)),
+        moment_envelope=tuple(map(float, np.max(np.abs(moment), axis=0))),
+        shear_envelope=tuple(map(float, np.max(np.abs(shear), axis=0))),
+        axial_static=tuple(map(float, static)), base=base, shaft=shaft, **extra)
+    series = {"base_moment": M0, "base_shear": V0, "base_axial": N0, "base_stress": stress,
+              "section_heights": np.asarray(heights, float), "section_moment": moment,
+              "section_shear": shear}
+    return summary, series
+
+
+def _attach(run, summary: InternalForcesSummary | None, series: dict, force, extra_max: dict):
+    """The run with its new JSON fields and series."""
+    result, data = dict(run.result), dict(run.data)
+    ma = dict(result.get("max_abs") or {})
+    base = summary.base if summary is not None else None
+    ma.update(base_moment=None if base is None else base.moment,
+              base_shear=None if base is None else base.shear,
+              base_stress=None if base is None else base.stress, **extra_max)
+    result["max_abs"] = ma
+    result["internal_forces"] = None if summary is None else summary.to_json()
+    t = np.asarray(data["t"], dtype=float)
+    for key, values in series.items():
+        data[key] = values
+    data["bearing_force"] = np.asarray(force, dtype=float)[:len(t)]
+    return replace(run, result=result, data=data)
+
+
+def _shaft_of_series(scene, data: dict, v_rotor=None) -> tuple[ShaftDemand, np.ndarray]:
+    t = np.asarray(data["t"], dtype=float)
+    e = scene.rotor.eccentricity
+    dx = np.asarray(data["shaft_deflection_x"], dtype=float)
+    dy = (np.asarray(data["shaft_deflection_y"], dtype=float) if "shaft_deflection_y" in data
+          else np.asarray(data["rotor_y"], dtype=float) - e * np.sin(np.asarray(data["theta"], dtype=float)))
+    if v_rotor is None:
+        vx = np.gradient(np.asarray(data["rotor_x"], dtype=float), t)
+        vy = np.gradient(np.asarray(data["rotor_y"], dtype=float), t)
+    else:
+        vx, vy = v_rotor
+    return shaft_demand(scene, t, dx, dy, vx, vy, sampled=v_rotor is None)
+
+
+# --------------------------------------------------------------------------
+# The reduced models
+
+
+def with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progress=None):
+    """paper, modal, beam: see the module text (``res`` the CaseResult of the run)."""
+    m = res.model
+    v = np.asarray(run.data["v"], dtype=float)
+    shaft, force = _shaft_of_series(scene, run.data, (v[:, m.rotor_x], v[:, m.nx]))
+    extra_max = {"shaft_deflection": shaft.deflection, "bearing_force": shaft.bearing_force}
+    if run.model == "beam":
+        summary, series = _beam_forces(scene, run, res, shaft)
+    elif run.model == "modal":
+        summary, series = _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, progress)
+    else:
+        summary, series = None, {}
+    return _attach(run, summary, series, force, extra_max)
+
+
+def _vertical_axial(scene, data, heights) -> np.ndarray:
+    """N(z, t) of the reduced models: static, less the shaft's vertical pull c2 d_y (N)."""
+    sec = section_of(scene.pillar)
+    e, c2 = scene.rotor.eccentricity, scene.shaft.stiffness
+    dy = np.asarray(data["rotor_y"], dtype=float) - e * np.sin(np.asarray(data["theta"], dtype=float))
+    static = axial_force(heights, sec.mass_per_length, scene.pillar.height, top_mass(scene))
+    return static[None, :] - c2 * dy[:, None]
+
+
+def _beam_forces(scene, run, res, shaft):
+    from ..reduced.beam_fe import section_forces
+    from ..reduced.pillar_modes import beam_properties
+    info = res.extra["model_info"]
+    n, theory = info["elements"], info["theory"]
+    bp = beam_properties(scene, theory)
+    nb = 2 * n
+    q, v = np.asarray(run.data["q"], dtype=float), np.asarray(run.data["v"], dtype=float)
+    pad = lambda a: np.vstack([np.zeros((2, a.shape[0])), a[:, :nb].T])
+    shear, moment = (x.T for x in section_forces(bp, n, theory, pad(q)))
+    _, rate = section_forces(bp, n, theory, pad(v))
+    heights = np.linspace(0.0, bp.length, n + 1)
+    axial = _vertical_axial(scene, run.data, heights)
+    return _summarise(scene, "beam", f"element end forces K_e u_e of the full-order {theory} beam "
+                      f"({n} elements), mean of the two elements at an inner node", run.data["t"],
+                      heights, moment, shear, axial, rate[0], shaft)
+
+
+def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, progress):
+    from ..reduced.cases import forcing_top, run_case
+    from ..reduced.models import candidate_modes
+    from ..reduced.pillar_modes import beam_properties
+    from ..scene import override
+    candidates = candidate_modes(scene, pillar_modes)
+    if not candidates.has_resultants:
+        return None, {}
+    sec = section_of(scene.pillar)
+    bp = beam_properties(scene, scene.modal_model.theory)
+    statics = cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
+                                     bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,
+                                     sec.mass_per_length, scene.gondola.mass)
+    band = scene.modal_model.band_factor * forcing_top(scene, run.case, motion)
+    trunc = force_truncation(candidates, band, modal_damping(candidates, scene.pillar.damping),
+                             scene.pillar.height, sec.mass_per_length, scene.gondola.mass, statics)
+    k_run = res.model.pillar_modes.count
+    k = min(max(k_run, trunc.modes_for_forces), candidates.count)
+    data = run.data
+    if k > k_run:
+        if progress:
+            progress(f"section forces: the base moment needs {k} modes (the run kept {k_run}); "
+                     "the case again with them")
+        quiet = override(scene, ["simulate.threshold=false"])
+        from ..reduced.summaries import series
+        again = run_case(quiet, run.case, "modal", integrator, k, truncation=False, motion=motion,
+                         pillar_modes=pillar_modes)
+        data = series(again.run, scene.simulate.samples)
+        pm = again.model.pillar_modes
+    else:
+        pm = res.model.pillar_modes
+    q, v = np.asarray(data["q"], dtype=float), np.asarray(data["v"], dtype=float)
+    t = np.asarray(run.data["t"], dtype=float)
+    on = lambda a: np.column_stack([np.interp(t, data["t"], a[:, j]) for j in range(a.shape[1])])
+    eta, rate = on(q[:, :k]), on(v[:, :k])
+    moment, shear = superpose(eta, pm.moment_shapes), superpose(eta, pm.shear_shapes)
+    heights = np.asarray(pm.section_heights, dtype=float)
+    i0 = int(np.argmin(np.abs(heights)))
+    axial = _vertical_axial(scene, run.data, heights)
+    method = (f"modal superposition of {k} modes' section resultants ({pm.source}); for "
+              f"{100 * trunc.tolerance:g} % over the band the base moment needs "
+              f"{trunc.modes_needed_base_moment or f'more than {trunc.modes_available}'}, the tip "
+              f"{trunc.modes_needed_tip}; the base shear's error with {k}: "
+              f"{100 * trunc.rows[k - 1].base_shear:.2g} %")
+    note = ("" if k == k_run else
+            f"the case's run kept {k_run} modes (its band); the section forces come from the same "
+            f"case run again with {k}")
+    return _summarise(scene, "modal", method, t, heights, moment, shear, axial,
+                      rate @ np.asarray(pm.moment_shapes)[i0], shaft, modes=k, modes_in_run=k_run,
+                      truncation=trunc, note=note)
+
+
+# --------------------------------------------------------------------------
+# The 3D model
+
+
+def stress_observer(scene, duration: float, field_dir, stem: str):
+    """The observer a 3D run hands its states to (rotorpillar.fem3d.stress)."""
+    from pathlib import Path
+    from ..fem3d.stress import StressRecovery
+    path = None if field_dir is None else Path(field_dir) / f"{stem}.xdmf"
+    return StressRecovery(scene.pillar, top_mass(scene), float(duration), path)
+
+
+def with_fem3d_forces(scene, run, recovered, heights):
+    """fem3d: ``recovered`` = StressRecovery.finish()'s (t, resultants, von Mises, xdmf path),
+    ``heights`` its cuts' (m)."""
+    from pathlib import Path
+    t, res, vm, path = recovered
+    shaft, force = _shaft_of_series(scene, run.data)
+    heights = np.asarray(heights, dtype=float)
+    summary, series = _summarise(
+        scene, "fem3d", "nodal forces of the elements beside each element-layer cut, on the rigid "
+        "sections' motions (rotorpillar.fem3d.sections; mean of the two sides), at every output time; "
+        f"g = {STANDARD_GRAVITY} for the static axial force", t, heights, res[:, :, 1], res[:, :, 0],
+        res[:, :, 2], None, shaft, von_mises=vm, stress_field=None if path is None else Path(path).name)
+    extra_max = {"shaft_deflection": shaft.deflection, "bearing_force": shaft.bearing_force,
+                 "von_mises": vm.peak.value}
+    return _attach(run, summary, series, force, extra_max)
+

@@ -1,0 +1,91 @@
+"""The verdict (summary.json), `rotorpillar harmonic` and the report's engineering sections.
+
+What is checked, and against what:
+- `harmonic --no-fem3d`: the running speed is the ROM's operating speed
+  (reduced.stationary: the same function, another path: through the CLI
+  and the JSON); every row's margins are API 684's formulas of its AF;
+- the summary's checks against the run's own peaks and the scene's
+  capacities: utilisation = demand / capacity exactly; a clearance below
+  the El Centro shaft deflection (27 mm) fails, a force limit above its
+  force (11 kN) passes; with no capacity stated: "not assessed", never
+  passed; the verdict "fail" when one check fails;
+- `report` writes summary.json (the typed record reads it back) and opens
+  the Summary with the checks table, each row naming model and case.
+"""
+
+import json
+
+import pytest
+from conftest import cli
+
+from rotorpillar.reduced.margins import amplification_factor, required_margin
+from rotorpillar.reduced.models import build_model
+from rotorpillar.reduced.stationary import operating_speed
+from rotorpillar.scene import load_scene, override
+from rotorpillar.transients.files import write_model_files
+from rotorpillar.transients.run import run_model
+from rotorpillar.verdict.records import EngineeringSummary, HarmonicResult
+from rotorpillar.verdict.summary import engineering_summary
+
+QUAKE = ["excitation.kind=record", "simulate.earthquake_duration=12"]
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory):
+    """The ROM's El Centro (12 s) and the harmonic stage (ROM only) in one directory."""
+    d = tmp_path_factory.mktemp("verdict")
+    scene = override(load_scene("paper"), QUAKE)
+    write_model_files(d, scene, run_model(scene, "earthquake", "modal"), {}, last_run=False)
+    p = cli("harmonic", "paper", "--no-fem3d", "--out", d)
+    assert p.returncode == 0, p.stderr
+    return d
+
+
+def test_harmonic_rom_only(out):
+    from rotorpillar.chain import resolve
+    r = HarmonicResult.read(out / "harmonic.json")
+    scene = load_scene("paper")
+    # the harmonic stage's ROM is the chain's, as every stage's: the same modes here
+    chain = resolve(scene, out)
+    assert r.pillar_model == chain.pillar_model
+    model, _ = build_model(scene, "modal", r.band_top, pillar_modes=chain.modes)
+    d, L = scene.drive, scene.load
+    assert r.running_speeds[-1] == pytest.approx(operating_speed(model, d.torque_at_zero, d.slope,
+                                                                 L.coefficient), rel=1e-9)
+    assert r.fem3d is None and len(r.rom.speeds) > 100
+    assert {m.model for m in r.modes} == {"modal"}          # no modal.json beside: the ROM's modes only
+    assert any("modal.json" in n for n in r.notes)
+    for row in r.separation:
+        af = amplification_factor(row.mode.damping_ratio)
+        assert row.required == pytest.approx(required_margin(af, row.position == "below"))
+        assert row.status == ("pass" if row.actual >= row.required else "fail")
+
+
+def test_checks_against_capacities(out):
+    s = engineering_summary(override(load_scene("paper"), ["rotor.clearance=0.01",
+                                                          "shaft.force_limit=2e4"]), out)
+    by = {c.name: c for c in s.checks}
+    stress = by["base stress vs yield"]
+    doc = json.loads((out / "simulate_earthquake_modal.json").read_text())
+    assert stress.demand == doc["max_abs"]["base_stress"]
+    assert stress.utilisation == pytest.approx(stress.demand / 355e6, rel=1e-12)
+    assert (stress.model, stress.case) == ("modal", "earthquake (elcentro)")
+    assert by["shaft deflection vs clearance"].status == "fail"       # 27 mm against 10 mm
+    assert by["shaft force vs force limit"].status == "pass"          # 11 kN against 20 kN
+    assert by["base stress vs shell buckling"].capacity == pytest.approx(s.buckling.design_stress)
+    assert s.verdict == "fail"
+    plain = engineering_summary(load_scene("paper"), out)
+    assert {c.name: c.status for c in plain.checks}["shaft deflection vs clearance"] == "not assessed"
+    assert any("rotor.clearance" in x for x in plain.not_assessed)
+
+
+def test_report_writes_summary_and_opens_with_the_verdict(out):
+    p = cli("report", "paper", "--out", out, "--no-animations")
+    assert p.returncode == 0, p.stderr
+    s = EngineeringSummary.read(out / "summary.json")
+    assert s.scene == "paper" and s.checks
+    html = (out / "report.html").read_text()
+    summary = html[html.index('<section id="summary">'):]
+    assert summary.index("Verdict:") < summary.index("</section>")
+    assert "base stress vs shell buckling" in summary and "earthquake (elcentro)" in summary
+    assert '<section id="forces">' in html and '<section id="unbalance">' in html
