@@ -23,7 +23,7 @@ from .sections import (Converge, Drive, EXCITATION_KINDS, Excitation, FullOrder,
                        MODAL_SOURCES, Mesh, Modal, ModalModel, OPTIONAL_SECTIONS, Pillar,
                        RECORD_UNITS, REDUCTION_SOURCES, Reduction, Rotor, SECTIONS, Scene,
                        SceneError, Shaft, Simulate, Sweep, TOP_MASSES, TOP_MODELS, param)
-from .validation import (SCENE_NAME, scene_from_dict)
+from .validation import (SCENE_NAME, check_combinations, check_field, scene_from_dict)
 from .words import (ADAPTIVE_INTEGRATORS, CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS,
                     FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, STUDY_CASES, SHELL_CELL_TYPES)
 
@@ -32,7 +32,8 @@ __all__ = ['ADAPTIVE_INTEGRATORS', 'CASES', 'CELL_TYPES', 'Converge', 'Drive',
            'FullOrder', 'Gondola', 'INTEGRATORS', 'Load', 'MODAL_SOURCES', 'MODELS', 'Mesh',
            'Modal', 'ModalModel', 'OPTIONAL_SECTIONS', 'Pillar', 'RECORD_UNITS',
            'REDUCTION_SOURCES', 'Reduction', 'Rotor', 'SCENE_NAME', 'SCIPY_METHODS',
-           'SECTIONS', 'SHELL_CELL_TYPES', 'Scene', 'SceneError', 'Shaft', 'Simulate', 'Sweep',
+           'SECTIONS', 'SHELL_CELL_TYPES', 'Scene', 'SceneError', 'check_combinations',
+           'check_field', 'Shaft', 'Simulate', 'Sweep',
            'TOP_MASSES', 'TOP_MODELS', 'apply_overrides', 'embedded_scenes', 'load_scene',
            'override', 'param', 'parse_assignment', 'read_scene_toml', 'read_text_file',
            'scene_from_dict']

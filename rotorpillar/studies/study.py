@@ -96,14 +96,13 @@ def _check_inputs(scene, case: str, model: str, vary: list[str]):
     points = check_points(scene, axes, implied)
     if case == "earthquake":
         from ..reduced.models import scene_motion
-        seen = set()
-        for p in points:        # every record readable before anything runs
-            sc = run_scene(scene, {k: v for k, v in p.items() if k.startswith("excitation.")},
-                           implied)
-            key = repr(sc.excitation)
-            if key not in seen:
-                seen.add(key)
-                scene_motion(sc)
+        from ..reduced.excitation import BUILTIN_RECORDS
+        motions = {tuple((k, v) for k, v in p.items() if k.startswith("excitation."))
+                   for p in points}
+        # every record readable before anything runs, each once; the user's files before
+        # the built-in records (whose library takes seconds to import): a bad file, at once
+        for m in sorted(motions, key=lambda m: (any(v in BUILTIN_RECORDS for _, v in m), repr(m))):
+            scene_motion(run_scene(scene, dict(m), implied))
     return axes, implied, points
 
 
