@@ -87,11 +87,10 @@ def converge_command(scene, args, timings):
         raise InputError("rotorpillar converge runs its runs as subprocesses (--workers at once): "
                          "start it without mpirun")
     from ..converge import study
-    from ..executor import default_workers
+    from ..executor import check_workers, default_workers
     from ..postprocess.convergence_charts import convergence_charts
+    check_workers(args.workers)
     workers = default_workers() if args.workers is None else args.workers
-    if workers < 1:
-        raise InputError(f"--workers {workers}: must be >= 1")
     st = study(scene, out_dir=out_dir(scene, args), cache_dir=args.cache,
                tolerance=args.tolerance, show_progress=not args.no_progress,
                charts=convergence_charts, timings=timings, log=progress, workers=workers)

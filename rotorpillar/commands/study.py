@@ -36,9 +36,9 @@ def add_arguments(p) -> None:
 def study_command(scene, args, timings):
     from . import out_dir
     from ..executor import Executor
+    Executor(args.workers, args.scheduler)          # bad --workers / --scheduler: refused now
     from ..postprocess.study_charts import study_charts
     from ..studies import design_study
-    Executor(args.workers, args.scheduler)          # bad --workers / --scheduler: refused now
     which = args.model or scene.simulate.model
     with timings("study"):
         res = design_study(scene, args.case, which, args.vary, out_dir=out_dir(scene, args),
