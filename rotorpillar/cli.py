@@ -87,8 +87,27 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="show the Python traceback of a failure instead of one line")
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """argparse with its errors on one line (exit 2): the command, the flag and what it
+    allows, instead of the usage block; ``--help`` still shows the usage."""
+
+    def error(self, message: str):
+        message = " ".join(message.split())
+        # "argument --case: invalid choice: 'sweep' (choose from 'earthquake', 'runup')"
+        if message.startswith("argument ") and "invalid choice:" in message:
+            flag, rest = message[len("argument "):].split(": invalid choice: ", 1)
+            value, _, allowed = rest.partition(" (choose from ")
+            message = f"{flag.split('/')[-1]} {value}: must be one of {allowed.rstrip(')')}"
+        elif message.startswith("argument "):
+            flag, _, why = message[len("argument "):].partition(": ")
+            message = f"{flag.split('/')[-1]}: {why}"
+        elif message.endswith("required: COMMAND"):
+            message = "give a COMMAND, one of " + ", ".join(COMMANDS)
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {message}\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="rotorpillar",
         description="Dynamics of a heavy eccentric rotor on a tall flexible pillar.")
     parser.add_argument("--version", action="version", version=f"rotorpillar {__version__}")
