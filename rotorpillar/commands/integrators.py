@@ -20,16 +20,22 @@ def add_arguments(p) -> None:
                    help="fewer tolerances, steps and modes (for a first look)")
 
 
-def integrators_command(scene, args, timings):
-    from . import is_root_rank, out_dir
+def preflight(scene, args) -> None:
+    """What `integrators` refuses before any work (`run` calls it for its stage too)."""
     from ..errors import InputError
-    from ..reduced.integrator_study import run_study
-    from ..transients.run import pillar_modes_for
     duration = getattr(args, "duration", 10.0)
     # every integrator at every step size: ~2-6 s of computing per simulated second
     if not (math.isfinite(duration) and 0 < duration <= MAX_DURATION):
         raise InputError(f"--duration {duration!r}: must be > 0 and <= {MAX_DURATION:g} (s): the "
                          f"study costs about 2-6 s per simulated second on 2 cores")
+
+
+def integrators_command(scene, args, timings):
+    from . import is_root_rank, out_dir
+    from ..reduced.integrator_study import run_study
+    from ..transients.run import pillar_modes_for
+    preflight(scene, args)
+    duration = getattr(args, "duration", 10.0)
     with timings("study"):
         result = run_study(scene, duration, quick=getattr(args, "quick", False), progress=progress,
                            pillar_modes=pillar_modes_for(scene, "modal"))

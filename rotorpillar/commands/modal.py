@@ -63,9 +63,9 @@ def preflight(scene, args=None) -> None:
                          + (" with its rigid top" if rigid else "")
                          + f"; the solver returns at most {dofs - 1} modes (it asks one more "
                            "than n_modes): ask fewer or refine the mesh")
-    tol = getattr(args, "tolerance", None)
-    if tol is not None and not 0 < tol < 1:
-        raise InputError(f"--tolerance = {tol!r} is out of range: must be > 0 and < 1")
+    if getattr(args, "tolerance", None) is not None:
+        from ..converge.study import check_tolerance
+        check_tolerance(args.tolerance)
 
 
 def modal_command(scene, args, timings):

@@ -47,21 +47,57 @@ def add_arguments(p) -> None:
                         "(the scene's simulate.threshold = false)")
 
 
-def simulate_command(scene, args, timings):
-    from . import is_root_rank, out_dir
+def check_run(scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
+              motion=None, duration: float | None = None) -> None:
+    """Refuse (InputError) a run of one model that its own code would refuse, before any
+    work: the 3D model's plan, or a reduced model's step budget (the case's own code run
+    up to its first integration, rotorpillar.reduced.transient.estimate_only: the
+    models built, nothing integrated).  A modal model whose modes would come from the
+    3D model is estimated on the 1D beam's modes (the estimate's inputs from the modes,
+    the operating speed and the fastest mode in the band, agree within the beam's
+    error; the run checks again on its own modes)."""
+    from ..reduced.transient import Estimated, estimate_only
+    from ..scene import override
+    from ..transients.run import fem3d_plan, run_model
+    if which == "fem3d":
+        fem3d_plan(scene, case, motion, duration)
+        return
+    if which == "modal" and scene.modal_model.source != "beam":
+        scene = override(scene, ["modal_model.source=beam"])
+    with estimate_only():
+        try:
+            run_model(scene, case, which, integrator, modes, motion=motion, duration=duration)
+        except Estimated:
+            pass
+
+
+def preflight(scene, args, budget: bool = True) -> None:
+    """What `simulate` refuses before any work (`run` calls it for its stages too): its
+    flags, the record, and the run's plan or step budget (``check_run``; ``budget=False``
+    leaves the budget to the run itself, which checks it before integrating)."""
     from ..errors import InputError
     from ..reduced.models import scene_motion
-    from ..postprocess.transient_charts import model_run_charts
-    from ..transients.files import write_model_files
-    from ..transients.run import fem3d_plan, run_model
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
-    motion = scene_motion(scene) if case == "earthquake" else None    # bad input: refused before any output
-    if which == "fem3d":
-        fem3d_plan(scene, case, motion)                                # the 3D cases only
+    motion = scene_motion(scene) if case == "earthquake" else None
+    if budget or which == "fem3d":
+        check_run(scene, case, which, getattr(args, "integrator", None), modes, motion)
+
+
+def simulate_command(scene, args, timings):
+    from . import is_root_rank, out_dir
+    from ..reduced.models import scene_motion
+    preflight(scene, args, budget=False)                               # bad input: before any output
+    from ..postprocess.transient_charts import model_run_charts
+    from ..transients.files import write_model_files
+    from ..transients.run import run_model
+    case = getattr(args, "case", None) or scene.simulate.case
+    which = getattr(args, "model", None) or scene.simulate.model
+    modes = getattr(args, "modes", None)
+    motion = scene_motion(scene) if case == "earthquake" else None
     progress(f"simulate {scene.name}: {case}, {which} model")
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,

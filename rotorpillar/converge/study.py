@@ -55,6 +55,12 @@ def analyse(records: list[dict], scene, tolerance: float) -> dict:
             "failures": failures(records, extrap, reference, tolerance)}
 
 
+def check_tolerance(tolerance: float) -> None:
+    """Refuse (InputError) a relative frequency tolerance outside (0, 1)."""
+    if not 0 < tolerance < 1:
+        raise InputError(f"--tolerance = {tolerance!r} is out of range: must be > 0 and < 1")
+
+
 def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
           show_progress: bool = True, charts: Optional[Charts] = None, timings=None,
           log: Callable[[str], None] | None = None, workers: int = 1) -> ConvergenceStudy:
@@ -67,8 +73,7 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
     """
     timings = Timings() if timings is None else timings
     tol = scene.converge.tolerance if tolerance is None else tolerance
-    if not 0 < tol < 1:
-        raise InputError(f"--tolerance = {tol!r} is out of range: must be > 0 and < 1")
+    check_tolerance(tol)
     cache_dir = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
     start = time.perf_counter()
     with timings("study"):
