@@ -25,14 +25,15 @@ from .sections import (Converge, Drive, EXCITATION_KINDS, Excitation, FullOrder,
                        SceneError, Shaft, Simulate, Sweep, TOP_MASSES, TOP_MODELS, param)
 from .validation import (SCENE_NAME, check_combinations, check_field, scene_from_dict)
 from .words import (ADAPTIVE_INTEGRATORS, CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS,
-                    FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, STUDY_CASES, SHELL_CELL_TYPES)
+                    FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, STUDY_CASES, STUDY_MODELS,
+                    SHELL_CELL_TYPES)
 
 __all__ = ['ADAPTIVE_INTEGRATORS', 'CASES', 'CELL_TYPES', 'Converge', 'Drive',
            'EXCITATION_KINDS', 'Excitation', 'FIXED_STEP_INTEGRATORS', 'FULL_ORDER_MODELS',
            'FullOrder', 'Gondola', 'INTEGRATORS', 'Load', 'MODAL_SOURCES', 'MODELS', 'Mesh',
            'Modal', 'ModalModel', 'OPTIONAL_SECTIONS', 'Pillar', 'RECORD_UNITS',
            'REDUCTION_SOURCES', 'Reduction', 'Rotor', 'SCENE_NAME', 'SCIPY_METHODS',
-           'SECTIONS', 'SHELL_CELL_TYPES', 'Scene', 'SceneError', 'check_combinations',
+           'SECTIONS', 'SHELL_CELL_TYPES', 'STUDY_MODELS', 'Scene', 'SceneError', 'check_combinations',
            'check_field', 'Shaft', 'Simulate', 'Sweep',
            'TOP_MASSES', 'TOP_MODELS', 'apply_overrides', 'embedded_scenes', 'load_scene',
            'override', 'param', 'parse_assignment', 'read_scene_toml', 'read_text_file',

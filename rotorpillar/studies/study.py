@@ -29,7 +29,7 @@ from typing import Callable, Optional
 from ..errors import InputError
 from ..executor import Executor
 from ..provenance import write_json, write_text
-from ..scene import MODELS, STUDY_CASES
+from ..scene import STUDY_CASES, STUDY_MODELS
 from .axes import check_points, implied_settings, parse_axes, run_scene
 from .batch import PER_RUN, group_key, run_batch
 from .boundary import found_boundary, predicted_boundary
@@ -84,8 +84,8 @@ def _load(path: Path, key: str) -> Optional[dict]:
 def _check_inputs(scene, case: str, model: str, vary: list[str]):
     if case not in STUDY_CASES:
         raise InputError(f"--case {case!r}: a study runs one of {', '.join(STUDY_CASES)}")
-    if model not in MODELS:
-        raise InputError(f"--model {model!r}: must be one of {', '.join(MODELS)}")
+    if model not in STUDY_MODELS:
+        raise InputError(f"--model {model!r}: a study runs one of {', '.join(STUDY_MODELS)}")
     for key, val in (("reduction.source", scene.reduction.source),
                      ("modal_model.source", scene.modal_model.source)):
         if val == "fem3d":
