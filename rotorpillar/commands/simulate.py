@@ -60,7 +60,8 @@ def check_run(scene, case: str, which: str, integrator: str | None = None, modes
     from ..scene import override
     from ..transients.run import fem3d_plan, run_model
     if which == "fem3d":
-        fem3d_plan(scene, case, motion, duration)
+        from ..mesh import tube_params
+        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration)["_mesh"])   # its memory
         return
     if which == "modal" and scene.modal_model.source != "beam":
         scene = override(scene, ["modal_model.source=beam"])
