@@ -110,34 +110,41 @@ def probe_scheduler(scheduler: str, timeout: float = HANDSHAKE_SECONDS) -> None:
     except OSError as exc:
         raise InputError(f"{where}: cannot connect ({exc.strerror or exc})") from None
     with sock:
-        data = b""
         try:
-            while len(data) < 8 or len(data) < 8 + struct.unpack("<Q", data[:8])[0]:
-                if len(data) >= 8 and struct.unpack("<Q", data[:8])[0] > GREETING_MAX_BYTES:
-                    break
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    raise socket.timeout
-                sock.settimeout(left)
-                chunk = sock.recv(4096)
-                if not chunk:
-                    break
-                data += chunk
-        except (socket.timeout, TimeoutError):
-            if not data:
-                raise InputError(f"{where}: a server that accepts the connection but says "
-                                 f"nothing within {timeout:g} s: not a Dask scheduler") from None
+            data, closed = _greeting(sock, deadline)
         except OSError as exc:
             raise InputError(f"{where}: the connection failed ({exc.strerror or exc})") from None
     if not data:
-        raise InputError(f"{where}: a server that closed the connection without a word: "
-                         "not a Dask scheduler")
+        raise InputError(f"{where}: a server that " + (
+            "closed the connection without a word" if closed else
+            f"accepts the connection but says nothing within {timeout:g} s")
+            + ": not a Dask scheduler")
     size = struct.unpack("<Q", data[:8])[0] if len(data) >= 8 else None
     greeting = data[8:8 + size] if size is not None else b""
     if size is None or size > GREETING_MAX_BYTES or len(greeting) < size \
             or b"compression" not in greeting or b"python" not in greeting:
         raise InputError(f"{where}: a server that is not a Dask scheduler (it sent "
                          f"{_shown(data)!r})")
+
+
+def _greeting(sock: socket.socket, deadline: float) -> tuple[bytes, bool]:
+    """(what the peer sent, whether it closed): read until its first message (8-byte
+    length, then that many bytes) is whole, it grows past a greeting, the peer closes,
+    or the deadline passes."""
+    data = b""
+    while True:
+        need = 8 if len(data) < 8 else 8 + struct.unpack("<Q", data[:8])[0]
+        left = deadline - time.monotonic()
+        if len(data) >= need or need > 8 + GREETING_MAX_BYTES or left <= 0:
+            return data, False
+        sock.settimeout(left)
+        try:
+            chunk = sock.recv(4096)
+        except (socket.timeout, TimeoutError):
+            return data, False
+        if not chunk:
+            return data, True
+        data += chunk
 
 
 def describe_workers(info: dict) -> tuple[int, int]:
