@@ -72,10 +72,11 @@ def check_run(scene, case: str, which: str, integrator: str | None = None, modes
             pass
 
 
-def preflight(scene, args, budget: bool = True) -> None:
+def preflight(scene, args, budget: bool = True):
     """What `simulate` refuses before any work (`run` calls it for its stages too): its
     flags, the record, and the run's plan or step budget (``check_run``; ``budget=False``
-    leaves the budget to the run itself, which checks it before integrating)."""
+    leaves the budget to the run itself, which checks it before integrating).  Returns
+    the ground motion of an earthquake (read once), else None."""
     from ..errors import InputError
     from ..reduced.models import scene_motion
     case = getattr(args, "case", None) or scene.simulate.case
@@ -86,19 +87,18 @@ def preflight(scene, args, budget: bool = True) -> None:
     motion = scene_motion(scene) if case == "earthquake" else None
     if budget or which == "fem3d":
         check_run(scene, case, which, getattr(args, "integrator", None), modes, motion)
+    return motion
 
 
 def simulate_command(scene, args, timings):
     from . import is_root_rank, out_dir
-    from ..reduced.models import scene_motion
-    preflight(scene, args, budget=False)                               # bad input: before any output
+    motion = preflight(scene, args, budget=False)                      # bad input: before any output
     from ..postprocess.transient_charts import model_run_charts
     from ..transients.files import write_model_files
     from ..transients.run import run_model
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
-    motion = scene_motion(scene) if case == "earthquake" else None
     progress(f"simulate {scene.name}: {case}, {which} model")
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
