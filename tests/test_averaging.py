@@ -162,7 +162,7 @@ def test_stability_alternates_and_quasistatic_branches():
     out = av.analyse_drive(av.Characteristic(M0, 12.0, 0.5), res)
     assert [s.stable for s in out.stationary] == [True, False, True]
     assert out.runup_speed < up.omega_from < out.rundown_speed
-    assert out.captured_at is not None
+    assert out.captured_index is not None
 
 
 def test_branch_is_stable_against_a_numerical_derivative():

@@ -17,13 +17,19 @@ def test_analyze_json_round_trip(tmp_path):
     assert doc == json.loads((tmp_path / "analyze.json").read_text())
     assert doc["scene"]["shaft"]["stiffness"] == 5e6
     assert {"versions", "timings", "machine", "paper_comparison"} <= doc.keys()
-    # independent check of omega_1,2 from the scene data (Eq. 4's pencil)
+    # independent check of the paper model's omega_1,2 from the scene data (Eq. 4's pencil)
     s = doc["scene"]
     mA = s["reduction"]["tip_mass"] + s["gondola"]["mass"]
     c1, c2 = s["reduction"]["tip_stiffness"], s["shaft"]["stiffness"]
     lam = eigh([[c1 + c2, -c2], [-c2, c2]], np.diag([mA, s["rotor"]["mass"]]), eigvals_only=True)
-    assert doc["system"]["omega"] == pytest.approx(np.sqrt(lam), rel=1e-10)
-    assert doc["reduction"]["tip_mass_source"] == "stated"
+    assert doc["paper_model"]["system"]["omega"] == pytest.approx(np.sqrt(lam), rel=1e-10)
+    assert doc["paper_model"]["reduction"]["tip_mass_source"] == "stated"
+    # the headline model is the ROM on the chain's pillar model, which it names
+    assert doc["pillar_model"]["source"] == "scene" and doc["pillar_model"]["kind"] in ("solid", "beam")
+    x = [r for r in doc["resonances"] if r["direction"] == "X"]
+    assert len(x) == doc["system"]["modes"] + 1                    # k pillar modes + the rotor
+    assert [r["omega"] for r in x] == doc["system"]["omega"]
+    assert all(r["uncertainty"]["omega"]["value"] == r["omega"] for r in doc["resonances"])
     for row in doc["paper_comparison"]:
         assert row["flag"] == (abs(row["rel_diff"]) > 0.02)
         assert row["rel_diff"] == pytest.approx((row["computed"] - row["paper"]) / row["paper"])
@@ -32,7 +38,7 @@ def test_analyze_json_round_trip(tmp_path):
 def test_set_overrides_and_closed_form_reduction(tmp_path):
     p = cli("analyze", "paper", "--json", "--out", tmp_path, "--set", "reduction.source=closed_form")
     doc = json.loads(p.stdout)
-    red, pil = doc["reduction"], doc["pillar"]
+    red, pil = doc["paper_model"]["reduction"], doc["pillar"]
     assert red["tip_mass_source"] == "closed_form"
     assert red["tip_mass"] == pytest.approx(pil["mass"] / 4)
     assert red["tip_stiffness"] == pytest.approx(pil["mass"] / 4 * pil["omega_col1"] ** 2)

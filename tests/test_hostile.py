@@ -228,8 +228,10 @@ def test_a_good_run_passes_its_checks(tmp_path, case):
 
 
 def test_captured_at_is_the_settled_speed_and_an_escaping_run_is_not_captured(tmp_path):
-    """sommerfeld: at M0 = 600 N*m the rotor settles below omega_1 (captured); at 630 N*m it
-    is still rising at 80 s (escaping), not captured (issue: clear semantics)."""
+    """sommerfeld: at M0 = 600 N*m the rotor settles below omega_1 (captured); a run that
+    ends while the rotor is still rising through omega_1 (escaping) is not captured (issue:
+    clear semantics).  The second run stops half a second after a passing motor's speed
+    crosses omega_1, which the first of the two runs measures."""
     import json
     p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
@@ -237,10 +239,17 @@ def test_captured_at_is_the_settled_speed_and_an_escaping_run_is_not_captured(tm
     assert d["speed_state"] == "captured" and "passing_torque" not in d
     assert d["captured_at"] == pytest.approx(d["omega_final_mean"])
     assert d["captured_at"] < d["captured_resonance"]           # held below the resonance
-    p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path,
-            "--set", "drive.torque_at_zero=630")
+    assert d["captured_index"] == 1
+    strong = ("--set", "drive.torque_at_zero=800")
+    p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path, *strong)
+    d = json.loads((tmp_path / "simulate.json").read_text())
+    assert d["speed_state"] == "at_speed"
+    crossing = d["passages"][0]["time"]
+    p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path, *strong,
+            "--set", f"simulate.duration={crossing + 0.5}")
     d = json.loads((tmp_path / "simulate.json").read_text())
     assert d["speed_state"] == "escaping" and d["captured_at"] is None
+    assert d.get("captured_resonance") is None and d.get("captured_index") is None
 
 
 @pytest.mark.parametrize("args, words", [

@@ -176,7 +176,7 @@ def test_gmsh_crash_exits_1_and_writes_nothing(tmp_path, monkeypatch, capsys):
 def test_analyze_takes_the_3d_reduction(tmp_path, small_run):
     p = cli("analyze", "paper", *SMALL, "--set", "reduction.source=fem3d", "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
-    red = json.loads(p.stdout)["reduction"]
+    red = json.loads(p.stdout)["paper_model"]["reduction"]
     assert red["tip_mass_source"] == red["tip_stiffness_source"] == "fem3d"
     modal = small_run[1]["reduction"]
     assert red["tip_mass"] == pytest.approx(modal["m_reduced"], rel=1e-8)

@@ -313,7 +313,11 @@ def test_drive_chart_spans_the_motor_and_marks_what_lies_beyond(sommerfeld, tmp_
 def test_drive_chart_labels_do_not_overlap(analyses, case):
     fig = charts.drive_figure(analyses[case])
     assert labels_overlap(fig) == []
-    assert not charts.drive_curve_data(analyses[case])["beyond"] or case == "fold"
+    # a resonance left off the chart lies beyond the drive's reach (the ROM's third X
+    # resonance, 157 rad/s, against the paper's free speed of 90 rad/s)
+    free = analyses[case].drive.free_speed
+    assert all(b["omega"] > free for b in charts.drive_curve_data(analyses[case])["beyond"]) \
+        or case == "fold"
 
 
 def test_chart_files(analyses, tmp_path):

@@ -49,7 +49,11 @@ def test_runup_outputs_and_fields(runup):
     for key in ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x"):
         assert data[key].shape == data["t"].shape
     assert len(data["t"]) <= load_scene("paper").simulate.samples
-    assert str(data["tip_x_frame"]) == "absolute"
+    # the scene's run is on the headline model, the ROM, which names its pillar model
+    assert doc["model"] == "modal" and doc["pillar_model"]["kind"] in ("solid", "beam")
+    assert str(data["tip_x_frame"]) == "relative_to_ground"
+    bars = doc["uncertainty"]["peak_tip_relative"]
+    assert bars["value"] == doc["max_abs"]["tip_x_relative"] and bars["error"] >= 0
     header = (out / "simulate_runup.csv").read_text().splitlines()[1]
     assert header.startswith("t,Omega,tip_x,rotor_x,rotor_y,ground_x")
     assert (out / "simulate_runup.png").stat().st_size > 10_000
@@ -85,7 +89,8 @@ def test_modal_earthquake_contract(tmp_path):
 
 
 def test_paper_earthquake_ground_is_q5_as_written(tmp_path):
-    p = cli("simulate", "paper", "--case", "earthquake", "--json", "--out", tmp_path)
+    p = cli("simulate", "paper", "--case", "earthquake", "--model", "paper", "--json", "--out",
+            tmp_path)
     assert p.returncode == 0, p.stderr
     data = np.load(tmp_path / "simulate_earthquake.npz")
     t, g = data["t"], data["ground_x"]

@@ -12,6 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Optional
 
+from ..chain.modes import TipReductionOf
+from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
 from ..reduced.averaging import Jump, Stationary as StationarySpeed  # noqa: F401  (records of analyze.json too)
 
@@ -133,6 +135,28 @@ class ResonanceAnalysis(JsonRecord):
     critical_eccentricity: float
     statement: str
     curves: ResonanceCurves
+    uncertainty: Optional["ResonanceBars"] = field(default=None, metadata={"omit_if_none": True})
+    """error bars of omega, a_max and dL_max (the headline model's; absent on the paper's)"""
+
+
+@dataclass(frozen=True)
+class ResonanceBars(JsonRecord):
+    """A resonance's headline numbers with their error bars (rotorpillar.analysis.rom)."""
+    omega: Uncertain
+    """rad/s"""
+    a_max: Uncertain
+    """m"""
+    dL_max: Uncertain
+    """N*m"""
+
+
+@dataclass(frozen=True)
+class DriveBars(JsonRecord):
+    """The drive's stationary speeds with their error bars."""
+    runup_speed: Optional[Uncertain]
+    """rad/s"""
+    rundown_speed: Optional[Uncertain]
+    """rad/s"""
 
 
 @dataclass(frozen=True)
@@ -145,8 +169,17 @@ class DriveRegimes(JsonRecord):
     stationary: tuple[StationarySpeed, ...]
     jumps: tuple[Jump, ...]
     runup_speed: Optional[float]
+    """where a quasi-static run-up to this M0 settles (rad/s)"""
     rundown_speed: Optional[float]
+    """where a quasi-static run-down to this M0 settles (rad/s)"""
+    captured_index: Optional[int]
+    """the resonance (its index) below which the run-up settles while a faster stable
+    regime exists: Sommerfeld capture; None when the run-up passes"""
+    captured_resonance: Optional[float]
+    """that resonance's omega_i (rad/s)"""
     captured_at: Optional[float]
+    """the speed the rotor settles at when captured (rad/s)"""
+    uncertainty: Optional[DriveBars] = field(default=None, metadata={"omit_if_none": True})
 
 
 @dataclass(frozen=True)
@@ -165,11 +198,71 @@ class PaperRow(JsonRecord):
 
 
 @dataclass(frozen=True)
-class AnalysisResult(JsonRecord):
-    """Everything `rotorpillar analyze` computes for a scene (``analyze.json``)."""
-    pillar: PillarClosedForms
+class DampedMode(JsonRecord):
+    """A damped natural frequency of the linear structure."""
+    direction: str
+    """"X" (horizontal, in the rotor's plane) or "Y" (vertical)"""
+    omega: float
+    """undamped natural frequency |lambda| (rad/s)"""
+    damped_omega: float
+    """rad/s"""
+    damping_ratio: float
+    """-"""
+
+
+@dataclass(frozen=True)
+class RomSystem(JsonRecord):
+    """The headline model: the chain's pillar modes with the rotor on its shaft."""
+    modes: int
+    """pillar modes kept, those below band_top (-)"""
+    band_top: float
+    """modal_model.band_factor x the highest forcing frequency (rad/s)"""
+    mode_source: str
+    """the modes' model, e.g. fem3d:3D P2 hexahedra, 128x20x1"""
+    candidate_omega: tuple[float, ...]
+    """the pillar modes (gondola on top) it picked from (rad/s)"""
+    omega: tuple[float, ...]
+    """the coupled X resonances, ascending (rad/s)"""
+    omega_vertical: float
+    """the rotor on its shaft, vertical, sqrt(c2/m_C) (rad/s)"""
+    frequency_hz: tuple[float, ...]
+    """the resonances in the order of ``resonances`` (Hz)"""
+    damped: tuple[DampedMode, ...]
+    f4: float
+    """c2 e, the paper's torque coupling (N)"""
+    tip_reduction: TipReductionOf
+    """Eq. 2 on the chain model's bare first bending mode"""
+    truncation_modes: Optional[int]
+    """pillar modes of the truncation check (None: the source offers no more)"""
+    frequency_error: Optional[float]
+    """relative error bound of the pillar frequencies from the study (None: unverified) (-)"""
+    error_note: str
+    """how the error bars were made"""
+
+
+@dataclass(frozen=True)
+class PaperModel(JsonRecord):
+    """The paper's Eq. 4 with its stated tip reduction, analysed as the paper does."""
     reduction: TipReductionUsed
     system: SystemModes
     resonances: tuple[ResonanceAnalysis, ...]
     drive: DriveRegimes
+    note: str
+
+
+@dataclass(frozen=True)
+class AnalysisResult(JsonRecord):
+    """Everything `rotorpillar analyze` computes for a scene (``analyze.json``).
+
+    ``system``, ``resonances`` and ``drive`` are the headline model's (the
+    validated ROM on the chain's ``pillar_model``); ``paper_model`` is Eq. 4 with
+    the paper's stated reduction, in its own block, and ``paper_comparison``
+    sets the paper's printed numbers beside it.
+    """
+    pillar: PillarClosedForms
+    pillar_model: PillarModel
+    system: RomSystem
+    resonances: tuple[ResonanceAnalysis, ...]
+    drive: DriveRegimes
+    paper_model: PaperModel
     paper_comparison: tuple[PaperRow, ...] = ()

@@ -7,7 +7,7 @@ from .results import AnalysisResult
 
 def summary(result: AnalysisResult) -> str:
     """A readable report of an analyze result."""
-    p, s, red = result.pillar, result.system, result.reduction
+    p, s = result.pillar, result.system
     lines = [
         "Pillar (bare tube, closed forms)",
         f"  I = {p.second_moment:.5g} m^4, A = {p.area:.5g} m^2, "
@@ -19,20 +19,33 @@ def summary(result: AnalysisResult) -> str:
         + f", limit {p.tip_mass_limit:.4g} kg (c1 = {p.tip_stiffness_limit:.4g} N/m)",
         "  Rayleigh: " + ", ".join(f"{d.shape}: m = {d.tip_mass:.4g} kg, c = {d.tip_stiffness:.4g} N/m"
                                    for d in p.rayleigh),
-        f"Reduction used: m_r = {red.tip_mass:.5g} kg ({red.tip_mass_source}), "
-        f"c1 = {red.tip_stiffness:.5g} N/m ({red.tip_stiffness_source})",
-        f"System: omega = {s.omega[0]:.4f}, {s.omega[1]:.4f} rad/s (X), omega3 = {s.omega3:.4f} rad/s (Y)",
-        f"  {'i':>2} {'dir':>3} {'omega':>9} {'I_i [kg]':>11} {'f_i':>10} {'2n_i':>8} {'nu_i':>7} "
-        f"{'a_max [m]':>10} {'dLmax':>9} {'dL/Mc':>8}",
+        f"Pillar model (the chain): {result.pillar_model.describe()}",
+        f"  {result.pillar_model.note}",
+        f"  Eq. 2 on its first bending mode: m_r = {s.tip_reduction.m_reduced:.5g} kg, "
+        f"c1 = {s.tip_reduction.tip_stiffness:.5g} N/m, omega = {s.tip_reduction.omega_bending:.4f} rad/s",
+        f"Headline model (ROM): {s.modes} pillar mode(s) of {s.mode_source} below "
+        f"{s.band_top:.4g} rad/s, the rotor on its shaft",
+        f"  {'i':>2} {'dir':>3} {'omega [rad/s]':>19} {'I_i [kg]':>11} {'f_i':>10} {'2n_i':>8} "
+        f"{'nu_i':>7} {'a_max [m]':>10} {'dL/Mc':>8}   paper's Eq. 4",
     ]
-    for r in result.resonances:
-        lines.append(f"  {r.index:>2} {r.direction:>3} {r.omega:>9.4f} {r.modal_mass:>11.5g} "
+    paper = {(r.direction, n): r for n, r in _numbered(result.paper_model.resonances)}
+    for n, r in _numbered(result.resonances):
+        bar = r.uncertainty.omega.text(".4f") if r.uncertainty else f"{r.omega:.4f}"
+        p_r = paper.get((r.direction, n))
+        beside = f"{p_r.omega:.4f}" if p_r else "-"
+        lines.append(f"  {r.index:>2} {r.direction:>3} {bar:>19} {r.modal_mass:>11.5g} "
                      f"{r.forcing:>10.4g} {r.two_n:>8.4g} {r.nu:>7.4f} {r.a_max:>10.4g} "
-                     f"{r.dL_max:>9.4g} {r.dL_max_over_Mc:>8.3g}")
+                     f"{_ratio(r.dL_max_over_Mc):>8}   {beside}")
+    lines.append(f"  error bars: {s.error_note}")
+    red = result.paper_model.reduction
+    lines.append(f"Paper's model (Eq. 4): m_r = {red.tip_mass:.5g} kg ({red.tip_mass_source}), "
+                 f"c1 = {red.tip_stiffness:.5g} N/m ({red.tip_stiffness_source})")
     d = result.drive
     lines.append(f"Drive M0 = {d.torque_at_zero:g} N*m, slope {d.slope:g}: stationary speeds "
                  + (", ".join(f"{x.omega:.3f} ({'stable' if x.stable else 'unstable'})"
-                              for x in d.stationary) or "none"))
+                              for x in d.stationary) or "none")
+                 + (f"; captured below resonance {d.captured_index} ({d.captured_resonance:.3f} "
+                    f"rad/s) at {d.captured_at:.3f} rad/s" if d.captured_index is not None else ""))
     for r in result.resonances:
         lines.append("  " + r.statement)
     lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")
@@ -47,3 +60,15 @@ def summary(result: AnalysisResult) -> str:
         for row in notes:
             lines.append(f"  {row.quantity}: {row.note}")
     return "\n".join(lines)
+
+
+def _numbered(resonances):
+    """(n, r): the n-th resonance of its direction, to set the two models side by side."""
+    seen: dict = {}
+    for r in resonances:
+        seen[r.direction] = seen.get(r.direction, 0) + 1
+        yield seen[r.direction], r
+
+
+def _ratio(x) -> str:
+    return "-" if x is None else f"{x:.3g}"

@@ -1,12 +1,16 @@
-"""`rotorpillar analyze`: the paper's closed-form model of the scene."""
+"""`rotorpillar analyze`: the headline model (the validated ROM) and the paper's, side by side."""
 
 from ..analysis import analyze, summary
+from . import out_dir, progress
 
 
 def analyze_command(scene, args, timings):
+    from ..chain import resolve
+    with timings("pillar_modes"):
+        chain = resolve(scene, out_dir(scene, args), progress=progress)
     fem3d = None
-    if scene.reduction.source == "fem3d":
+    if scene.reduction.source == "fem3d" and chain.pillar_model.kind != "solid":
         from ..fem3d import reduction_from_scene as fem3d
     with timings("analyze"):
-        result = analyze(scene, fem3d_reduction=fem3d)
+        result = analyze(scene, chain, fem3d_reduction=fem3d)
     return result.to_json(), summary(result)

@@ -2,9 +2,10 @@
 
 ``rotorpillar compare [SCENE] --case earthquake|runup [--models m1,m2,...]``
 (default models: modal,fem3d for the earthquake, modal,beam for the run-up).
-rotorpillar.transients.compare runs each model as `simulate` does (writing
-``simulate_<case>_<model>.{json,npz,csv,png}``) over one common duration,
-and writes ``compare_<case>.json`` and ``compare_<case>.png``.
+rotorpillar.transients.compare runs each model as `simulate` does, on the
+chain's pillar model (writing ``compare_<case>_<model>.{json,npz,csv,png}``)
+over one common duration, and writes ``compare_<case>.json`` and
+``compare_<case>.png``.
 """
 
 from __future__ import annotations
@@ -46,10 +47,17 @@ def compare_command(scene, args, timings):
     provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
     from ..postprocess.comparison_charts import comparison_chart
     from ..postprocess.transient_charts import model_run_charts
+    chain = None
+    if any(m in ("modal", "fem3d") for m in models):
+        from ..chain import resolve
+        from ..reduced.models import scene_motion
+        with timings("pillar_modes"):
+            chain = resolve(scene, out_dir(scene, args), progress=progress,
+                            motion=scene_motion(scene) if case == "earthquake" else None)
     with timings("compare"):
         res = compare_models(scene, case, models, out_dir(scene, args), provenance, progress=progress,
                              write=is_root_rank(), run_charts=model_run_charts,
-                             compare_chart=comparison_chart)
+                             compare_chart=comparison_chart, chain=chain)
     doc = res.to_json()
     if any(p.get("ok") is False for p in res.per_model.values()):
         doc["exit_status"] = EXIT_CHECKS
@@ -63,8 +71,12 @@ def summary(scene, r) -> str:
         p = r.per_model[m]
         e = r.errors.get(m)
         err = ("reference" if e is None else
-               f"tip history error {100 * e['tip_history_error']:.2f} %, peak "
-               f"{100 * (e['peak_tip_difference'] or 0):+.2f} %")
+               f"tip {e['lead']} error {100 * e['tip_' + e['lead'] + '_error']:.2f} % (leads: "
+               f"{'rotors in phase' if e['lead'] == 'history' else 'the rotor angles drift'}), "
+               f"history {100 * e['tip_history_error']:.2f} %, envelope "
+               f"{100 * e['tip_envelope_error']:.2f} %, peak {100 * (e['peak_tip_difference'] or 0):+.2f} %"
+               + ("" if e.get("angle_drift") is None else
+                  f", rotor angle drift {e['angle_drift']:.3g} rad"))
         lines.append(f"  {m:6s} peak tip {p['peak_tip_relative']:.4g} m (relative), "
                      f"{p['dofs']} dofs, {p['wall_seconds']:.3g} s ({r.cost_ratio[m]:.3g} x); {err}")
         for w in p["warnings"]:

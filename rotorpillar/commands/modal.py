@@ -1,9 +1,15 @@
 """`rotorpillar modal`: the 3D tube's modes, bare and with its masses on top.
 
-Writes modal.json (through the CLI), ``modes_bare.vtu`` and
-``modes_top.vtu`` (ParaView, pyvista, meshio) beside it, and prints a table.
-Runs under MPI (``mpirun -n 2 rotorpillar modal``): every rank computes,
-rank 0 writes and prints.
+On the chain's mesh (rotorpillar.chain): the one the convergence study chose
+for the scene's band when a study is on disk (the cheapest 3D mesh within its
+tolerance when the choice is a beam or a shell), else the scene's [mesh];
+``--tolerance`` asks the study for it now.  It also computes (and caches) the
+ROM's pillar modes on that mesh, so the stages after it read them.
+
+Writes modal.json (through the CLI; ``pillar_model`` names the mesh, where it
+came from and its error), ``modes_bare.vtu`` and ``modes_top.vtu`` (ParaView,
+pyvista, meshio) beside it, and prints a table.  Runs under MPI (``mpirun -n
+2 rotorpillar modal``): every rank computes, rank 0 writes and prints.
 """
 
 from __future__ import annotations
@@ -78,6 +84,10 @@ def modal_command(scene, args, timings):
     from ..fem3d.summary import modal_summary, summary
     quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
+    from dataclasses import replace
+    from mpi4py import MPI
+    from ..chain import chain_modes, choose, rom_band_top
+    from ..chain.choice import Choice, from_scene, model_of_run
     selection = None
     if getattr(args, "tolerance", None) is not None:
         from ..converge import model_for_modal
@@ -87,7 +97,21 @@ def modal_command(scene, args, timings):
                                                cache_dir=args.cache, charts=convergence_charts,
                                                log=say, show_progress=sys.stderr.isatty())
         say(selection["text"].splitlines()[0])
-        preflight(scene)                           # the chosen mesh: its memory and modes
+        if selection["chosen"] is None:     # no 3D run has an error estimate: the scene's [mesh]
+            choice = from_scene(scene, args.cache or out_dir(scene, args) / "cache",
+                                selection["reason"])
+        else:
+            pm = model_of_run(selection["chosen"], selection.get("reference_uncertainty") or {},
+                              args.tolerance, selection["reason"], selection.get("convergence_json"))
+            choice = Choice(*(2 * [pm if selection["met"] else replace(pm, verified=False)]))
+    else:
+        choice = choose(scene, out_dir(scene, args))
+        scene = replace(scene, mesh=choice.solid_mesh)
+    preflight(scene)                               # the mesh run: its memory and modes
+    say(f"modal: {choice.solid.describe()}")
+    with timings("rom_modes"):
+        # the ROM's modes on this mesh, computed once here and cached for the stages after
+        chain_modes(scene, choice, rom_band_top(scene), comm=MPI.COMM_WORLD, progress=say)
     say("modal: bare tube, " + (f"{scene.modal.n_modes} modes" if scene.modal.n_modes else
                                 f"the modes past the band ({band_edge(scene):.1f} rad/s)"))
     bare = modal_analysis(scene, top=False)
@@ -105,7 +129,9 @@ def modal_command(scene, args, timings):
             files["modes_bare"] = str(write_modes_vtu(d / SHAPE_FILES["bare"], bare))
             files["modes_top"] = str(write_modes_vtu(d / SHAPE_FILES["top"], loaded))
     doc["files"] = files
+    doc["pillar_model"] = choice.solid.to_json()
     text = summary(doc, bare, loaded)
+    text = f"Pillar model: {choice.solid.describe()}\n  {choice.solid.note}\n\n" + text
     if selection is not None:
         doc["model_selection"] = selection
         text = selection["text"] + "\n\n" + text

@@ -5,13 +5,22 @@ would run it.  Stages hand their results over through the files they write;
 a fresh process per stage returns the 3D model's memory, keeps MPI, PETSc,
 Gmsh and VTK state apart, and a crash in one stage leaves the finished
 stages' files in place.
+
+The order is the chain of models (rotorpillar.chain): the convergence study
+chooses the pillar model for the scene's band; `modal` computes the 3D tube
+on that mesh (and caches the ROM's pillar modes); `analyze` sets the ROM
+beside the paper's model; then the comparisons, the scene's own runs and
+the integrator study, which depend only on what came before and not on each
+other, run side by side on the machine's cores; the report comes last.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
+import time
 
 from ..errors import StageError
 from ..postprocess.comparisons import COMPARISONS
@@ -30,25 +39,27 @@ def _report_flags(args) -> list[str]:
 
 
 # The stages of `rotorpillar run`, in order: (command, what it does, extra
-# arguments from run's own, the stage's own arguments).  A stage's own
-# arguments go before the user's --set, so the user's win.  The comparisons
-# come before the scene's own runs: simulate_<case>.* (the last run of a
-# case) stay the scene's run as before.  The report stays last.
+# arguments from run's own, the stage's own arguments, its wave).  A stage's
+# own arguments go before the user's --set, so the user's win.  Stages of one
+# wave depend only on the waves before and run side by side; each wave waits
+# for the one before.  The comparisons write compare_<case>_<model>.*, apart
+# from the scene's own runs (simulate_<case>_<model>.*).
 RUN_STAGES = [
-    ("analyze", "closed forms and averaging", None, ()),
-    # El Centro on the modal ROM and the 3D full order (its [full_order] mesh)
+    # minutes the first time, then read from its cache: it chooses the pillar model
+    ("converge", "mesh convergence, speed against accuracy: the pillar model the band needs",
+     None, (), 0),
+    ("modal", "3D modes of the tube on the chosen mesh, bare and with its top mass", None, (), 1),
+    ("analyze", "the headline model (the ROM) and the paper's, averaging", None, (), 2),
+    # El Centro on the ROM and the 3D full order
     ("compare --case earthquake", "a recorded earthquake: the ROM against the 3D full order",
-     None, COMPARISONS["earthquake"]),
-    ("compare --case runup", "run-up: the ROM against the beam full order", None,
-     COMPARISONS["runup"]),
-    ("simulate --case runup", "run-up from rest, reduced model", None, ()),
-    ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ()),
-    ("modal", "3D modes of the tube, bare and with its top mass", None, ()),
-    ("integrators", "time integrators: error against cost, where each fails", None, ()),
-    # minutes the first time, then read from its cache: the report's
-    # "which model does this scene need" section comes from it
-    ("converge", "mesh convergence, speed against accuracy, the model chosen (cached)", None, ()),
-    ("report", "charts, mode shapes, animations, report.html", _report_flags, ()),
+     None, COMPARISONS["earthquake"], 3),
+    ("compare --case runup", "run-up: the ROM against the full order", None,
+     COMPARISONS["runup"], 3),
+    ("simulate --case runup", "run-up from rest on the headline model", None, (), 3),
+    ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None,
+     ("--model", "paper"), 3),
+    ("integrators", "time integrators: error against cost, where each fails", None, (), 3),
+    ("report", "charts, mode shapes, animations, report.html", _report_flags, (), 4),
 ]
 
 
@@ -76,6 +87,49 @@ def stage_stem(command: str) -> str:
     return words[0]
 
 
+#: At most this many stages at once (each is single-threaded or nearly: more
+#: than the cores would only share them).
+MAX_SIDE_BY_SIDE = 2
+
+
+def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
+    """Run the stage processes of one wave, ``slots`` at a time; each one's wall time (s).
+
+    A stage that fails stops the wave once the stages already running have
+    finished (their files stay whole); Ctrl-C or SIGTERM kills every stage
+    still running.
+    """
+    pending, running, seconds, failed = list(jobs), {}, {}, []
+    try:
+        while pending or running:
+            while pending and len(running) < slots and not failed:
+                command, argv = pending.pop(0)
+                # the stage's summary goes to stderr: stdout may carry run's --json
+                running[command] = (subprocess.Popen(argv, stdout=sys.stderr), time.perf_counter())
+            if not running:
+                break
+            time.sleep(0.05)
+            for command, (proc, start) in list(running.items()):
+                code = proc.poll()
+                if code is None:
+                    continue
+                seconds[command] = time.perf_counter() - start
+                del running[command]
+                if code != 0:
+                    failed.append((command, code))
+    except BaseException:
+        for proc, _ in running.values():
+            proc.kill()
+        for proc, _ in running.values():
+            proc.wait()
+        raise
+    if failed:
+        command, code = failed[0]
+        raise StageError(f"stage {command!r} failed (exit {code}); the stages before it finished "
+                         "and wrote their files")
+    return seconds
+
+
 def preflight(scene, stages, args) -> None:
     """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
     module), on the scene and arguments that stage will see: its command line parsed by
@@ -87,7 +141,7 @@ def preflight(scene, stages, args) -> None:
     from .parser import COMMANDS, build_parser
     parser = build_parser()
     checks = []
-    for command, _, extra, own in stages:
+    for command, _, extra, own, *_ in stages:
         stage_args = parser.parse_args(stage_argv(command, args, extra, own)[3:])
         try:
             checks.append((command, load_scene(stage_args.scene, stage_args.overrides), stage_args))
@@ -124,22 +178,27 @@ def run_command(scene, args, timings):
     todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
     preflight(scene, todo, args)               # every stage's bad input: refused now, not late
     stages, lines, report = {}, [], None
-    for i, (command, what, extra, own) in enumerate(todo, start=1):
-        progress(f"run {i}/{len(todo)}: {command} ({what})")
-        with timings(command):
-            # the stage's summary goes to stderr: stdout may carry run's --json
-            p = subprocess.run(stage_argv(command, args, extra, own), stdout=sys.stderr)
-        if p.returncode != 0:
-            raise StageError(f"stage {command!r} failed (exit {p.returncode}); "
-                                   "the stages before it finished and wrote their files")
-        stem = stage_stem(command)
-        path = out_dir(scene, args) / f"{stem}.json"
-        doc = json.loads(path.read_text(encoding="utf-8"))
-        stages[stem] = {"json": str(path), "seconds": timings[command], "command": command,
-                        "arguments": list(own), "stage_seconds": doc.get("timings", {}).get("total")}
-        lines.append(f"{command:>26}: {timings[command]:8.2f} s  -> {path}")
-        if command.split()[0] == "report":
-            report = doc.get("report")
+    waves = sorted({st[4] for st in todo})
+    slots = max(1, min(os.cpu_count() or 1, MAX_SIDE_BY_SIDE))
+    n = 0
+    for wave in waves:
+        group = [st for st in todo if st[4] == wave]
+        for command, what, *_ in group:
+            n += 1
+            progress(f"run {n}/{len(todo)}: {command} ({what})"
+                     + (" [side by side]" if len(group) > 1 else ""))
+        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in group], slots)
+        for command, what, extra, own, _ in group:
+            timings[command] = seconds[command]
+            stem = stage_stem(command)
+            path = out_dir(scene, args) / f"{stem}.json"
+            doc = json.loads(path.read_text(encoding="utf-8"))
+            stages[stem] = {"json": str(path), "seconds": timings[command], "command": command,
+                            "arguments": list(own), "wave": wave,
+                            "stage_seconds": doc.get("timings", {}).get("total")}
+            lines.append(f"{command:>26}: {timings[command]:8.2f} s  -> {path}")
+            if command.split()[0] == "report":
+                report = doc.get("report")
     if report:
         lines.append(f"{'page':>26}: {report}")
     return ({"stages": stages, "report": report},

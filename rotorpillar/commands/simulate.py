@@ -50,24 +50,27 @@ def add_arguments(p) -> None:
 def check_run(scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
               motion=None, duration: float | None = None) -> None:
     """Refuse (InputError) a run of one model that its own code would refuse, before any
-    work: the 3D model's plan, or a reduced model's step budget (the case's own code run
-    up to its first integration, rotorpillar.reduced.transient.estimate_only: the
-    models built, nothing integrated).  A modal model whose modes would come from the
+    work: the 3D model's plan and mesh memory, or a reduced model's step budget (the
+    case's own code, reduced.cases.run_case, run up to its first integration:
+    rotorpillar.reduced.transient.estimate_only; the models built, nothing integrated).  A modal model whose modes would come from the
     3D model is estimated on the 1D beam's modes (the estimate's inputs from the modes,
     the operating speed and the fastest mode in the band, agree within the beam's
     error; the run checks again on its own modes)."""
+    from ..reduced.cases import run_case
     from ..reduced.transient import Estimated, estimate_only
     from ..scene import override
-    from ..transients.run import fem3d_plan, run_model
+    from ..transients.run import fem3d_plan, with_duration
     if which == "fem3d":
         from ..mesh import tube_params
         tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration)["_mesh"])   # its memory
         return
     if which == "modal" and scene.modal_model.source != "beam":
         scene = override(scene, ["modal_model.source=beam"])
+    if duration is not None:
+        scene = with_duration(scene, case, duration)          # as run_model shortens a run
     with estimate_only():
         try:
-            run_model(scene, case, which, integrator, modes, motion=motion, duration=duration)
+            run_case(scene, case, which, integrator, modes, truncation=False, motion=motion)
         except Estimated:
             pass
 
@@ -100,9 +103,14 @@ def simulate_command(scene, args, timings):
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
     progress(f"simulate {scene.name}: {case}, {which} model")
+    chain = None
+    if which in ("modal", "fem3d"):
+        from ..chain import resolve
+        with timings("pillar_modes"):
+            chain = resolve(scene, out_dir(scene, args), motion=motion, progress=progress)
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                        motion=motion)
+                        motion=motion, chain=chain)
     result = dict(run.result)
     if is_root_rank():
         with timings("write"):

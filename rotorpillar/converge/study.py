@@ -176,6 +176,7 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
     selection = {"tolerance": tolerance, "met": unmet is None, "chosen": chosen,
                  "reason": sel["reason"] if unmet is None else unmet,
                  "rule": sel["rule"], "band": sel["band"], "needed": sel["needed"],
+                 "reference_uncertainty": sel["reference_uncertainty"],
                  "rejected_cheaper": sel["rejected_cheaper"], "overall_cheapest": overall,
                  "convergence_json": json_file, "text": "\n".join(lines)}
     return dataclasses.replace(scene, mesh=mesh), selection

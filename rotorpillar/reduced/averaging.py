@@ -215,7 +215,7 @@ class DriveAnalysis:
     """where a quasi-static run-up to this M0 settles: the lowest root (rad/s)"""
     rundown_speed: float | None
     """where a quasi-static run-down to this M0 settles: the highest root (rad/s)"""
-    captured_at: int | None = None
+    captured_index: int | None = None
     """the resonance (index) below which the run-up settles while a faster
     stable regime exists: Sommerfeld capture"""
     grid_top: float = field(default=0.0)

@@ -195,8 +195,8 @@ def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
             extra["rate_convergence"] = rate_convergence(scene, model, st, extra["numeric_jumps"],
                                                          extra["predicted_jumps"])
         sections["jumps"] = extra["numeric_jumps"]
-        sections["captured_at"] = extra["captured_at"]
-        sections["captured_resonance"] = extra["captured_at"]
+        for key in ("captured_at", "captured_resonance", "captured_index"):
+            sections[key] = extra[key]
         sections["sweep"] = SweepFindings(**{key: extra.get(key) for key in (
             "predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
             "rate_check", "no_jump_reason", "rate_convergence")})

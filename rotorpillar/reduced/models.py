@@ -1,10 +1,11 @@
 """The models of a scene: the paper's equation 4 with the scene's tip
 reduction, or the modal model on pillar modes, and the scene's ground motion.
 
-The modal model picks its modes from candidates: the 1D beam's (computed
-here) or, when ``modal_model.source = "fem3d"``, the 3D model's, which the
-caller computes (rotorpillar.fem3d.pillar_modes.candidate_pillar_modes) and
-passes in: this package never runs the 3D model.
+The modal model picks its modes from candidates: those the caller passes in
+(the chain's, rotorpillar.chain: the model the convergence study chose, its 3D
+modes computed by rotorpillar.fem3d — this package never runs the 3D model),
+or, when none are passed and ``modal_model.source = "beam"``, the 1D beam's,
+computed here.
 """
 
 from __future__ import annotations
@@ -40,8 +41,8 @@ def candidate_modes(scene, pillar_modes: PillarModes | None = None) -> PillarMod
     if scene.modal_model.source == "beam":
         return beam_candidates(scene)
     raise InputError(f'modal_model.source = "{scene.modal_model.source}": the modal model needs the '
-                     "3D pillar modes passed in (pillar_modes=, from "
-                     "rotorpillar.fem3d.pillar_modes.candidate_pillar_modes)")
+                     "chain's pillar modes passed in (pillar_modes=, from "
+                     "rotorpillar.chain.resolve(scene, out_dir).modes)")
 
 
 def build_model(scene, which: str, band_top: float | None = None, modes: int | None = None,

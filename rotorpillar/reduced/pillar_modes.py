@@ -27,6 +27,7 @@ imports dolfinx.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -92,6 +93,28 @@ class PillarModes:
         return PillarModes(np.asarray(self.omega)[:k], np.asarray(self.modal_mass)[:k],
                            np.asarray(self.participation)[:k], self.total_mass, self.source,
                            cut(self.damping_ratio), self.heights, cut(self.shapes), dict(self.notes))
+
+    def scaled(self, factor: float) -> "PillarModes":
+        """The same modes with every frequency times ``factor`` (the shapes and
+        modal masses kept, so the modal stiffnesses scale by factor**2): how a
+        frequency error of the mode source propagates into what the ROM gives."""
+        return dataclasses.replace(self, omega=np.asarray(self.omega) * factor,
+                                   notes={**self.notes, "frequency_scale": float(factor)})
+
+    def to_json(self) -> dict:
+        """Every field, arrays as lists: :meth:`from_json` rebuilds it exactly."""
+        out = {}
+        for f in dataclasses.fields(self):
+            v = getattr(self, f.name)
+            out[f.name] = v.tolist() if isinstance(v, np.ndarray) else v
+        return out
+
+    @classmethod
+    def from_json(cls, doc: dict) -> "PillarModes":
+        arrays = {f.name for f in dataclasses.fields(cls) if "ndarray" in str(f.type)}
+        known = {f.name for f in dataclasses.fields(cls)}
+        return cls(**{k: (None if v is None else np.asarray(v, dtype=float)) if k in arrays else v
+                      for k, v in doc.items() if k in known})
 
     def describe(self) -> dict:
         return {"source": self.source, "count": self.count, "omega": list(map(float, self.omega)),
@@ -166,3 +189,28 @@ def pillar_modes_from_arrays(omega, modal_mass, participation, total_mass, sourc
 def modes_in_band(omega, band_top: float, minimum: int = 1) -> int:
     """How many modes lie below ``band_top`` (at least ``minimum``)."""
     return max(minimum, int(np.sum(np.asarray(omega) <= band_top)))
+
+
+def beam_tip_reduction(scene, theory: str = "timoshenko", elements: int = 40) -> tuple[float, float, float]:
+    """Eq. 2 on the bare beam's first mode: (m_r in kg, c1 = m_r omega**2 in N/m, omega in rad/s).
+
+    The first mode of the bare cantilever (no gondola) scaled to a unit tip
+    deflection; m_r = phi^T M phi is its kinetic energy referred to the tip,
+    which for the continuous Euler-Bernoulli beam is m_col / 4.
+
+    >>> from rotorpillar.scene import load_scene
+    >>> m_r, c1, w = beam_tip_reduction(load_scene("paper"), "euler", 40)
+    >>> from rotorpillar.reduced.pillar import section_of
+    >>> p = load_scene("paper").pillar
+    >>> round(m_r / (section_of(p).mass_per_length * p.height / 4), 6)
+    1.0
+    """
+    if theory not in THEORIES:
+        raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
+    K, M = assemble(beam_properties(scene, theory), elements, theory, 0.0, 0.0)
+    n = K.shape[0]
+    mu, vec = eigh(M, K, subset_by_index=[n - 1, n - 1])
+    omega = 1.0 / math.sqrt(mu[0])
+    phi = vec[:, 0] / vec[-2, 0]
+    m_r = float(phi @ M @ phi)
+    return m_r, m_r * omega**2, omega

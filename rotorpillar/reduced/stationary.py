@@ -53,8 +53,10 @@ def averaging_prediction(model: RotorStructure, M0: float, slope: float, load: f
     d = av.analyse_drive(av.Characteristic(M0, slope, load), res)
     return {"stationary": [vars(s) for s in d.stationary], "jumps": [vars(j) for j in d.jumps],
             "runup_speed": d.runup_speed, "rundown_speed": d.rundown_speed,
-            "captured_at": None if d.captured_at is None else
-            next(r.omega for r in res if r.index == d.captured_at),
+            "captured_index": d.captured_index,
+            "captured_resonance": None if d.captured_index is None else
+            next(r.omega for r in res if r.index == d.captured_index),
+            "captured_at": None if d.captured_index is None else d.runup_speed,
             "resonances": [{"index": r.index, "direction": r.direction, "omega": r.omega, "nu": r.nu,
                             "a_max": float(av.amplitude(r.omega, r)),
                             "dL_max": float(av.resistance_increment(r.omega, r))} for r in res]}

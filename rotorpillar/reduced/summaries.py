@@ -25,16 +25,16 @@ CAPTURE_WIDTH = 3.0          # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03     # relative
 
 
-def capture(model: RotorStructure, omega_final: float, drive_free_speed: float) -> float | None:
-    """omega_i of the resonance the run settled at, or None."""
+def capture(model: RotorStructure, omega_final: float, drive_free_speed: float):
+    """The resonance (a ``Resonance`` record) the run settled at, or None."""
     if not math.isfinite(drive_free_speed) or abs(drive_free_speed - omega_final) <= 0.02 * drive_free_speed:
         return None
     best = None
     for r in model.quasi_normal():
         width = max(CAPTURE_WIDTH * r.n, CAPTURE_MIN_WIDTH * r.omega)
         if abs(omega_final - r.omega) <= width and (best is None or
-                                                     abs(omega_final - r.omega) < abs(omega_final - best)):
-            best = r.omega
+                                                     abs(omega_final - r.omega) < abs(omega_final - best.omega)):
+            best = r
     return best
 
 
@@ -50,7 +50,8 @@ def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> d
 
     ``captured_at``: the speed the rotor settled at below the resonance (the
     mean over the last 5 % of the run, rad/s), or None; ``captured_resonance``:
-    that resonance's omega_i (rad/s), or None; ``speed_state``: "captured",
+    that resonance's omega_i (rad/s), or None; ``captured_index``: its index
+    among the model's resonances, or None; ``speed_state``: "captured",
     "escaping" (near a resonance but still accelerating at the end: the run
     is too short to tell, and the rotor is not stuck), "accelerating" (still
     rising, no resonance near) or "at_speed".
@@ -62,9 +63,11 @@ def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> d
     rising = rise > ESCAPE_RISE * max(abs(mean), 1e-9)
     resonance = capture(model, mean, drive_free_speed)
     if resonance is not None and not rising:
-        return {"captured_at": mean, "captured_resonance": resonance, "speed_state": "captured"}
+        return {"captured_at": mean, "captured_resonance": resonance.omega,
+                "captured_index": resonance.index, "speed_state": "captured"}
     state = ("escaping" if resonance is not None else "accelerating") if rising else "at_speed"
-    return {"captured_at": None, "captured_resonance": None, "speed_state": state}
+    return {"captured_at": None, "captured_resonance": None, "captured_index": None,
+            "speed_state": state}
 
 
 def passages(run: Transient) -> list[dict]:
@@ -188,8 +191,7 @@ class CaseSummary:
     max_abs: dict
     """largest |value| per coordinate (m)"""
     captured_at: float | None
-    """the speed the rotor settled at below a resonance (rad/s), or None (the
-    sweep: omega_i of the resonance it ended at)"""
+    """the speed the rotor settled at below a resonance (rad/s), or None"""
     passages: list
     energy_balance: dict
     integrator: dict
@@ -209,6 +211,8 @@ class CaseSummary:
     """modal model: the same case with one mode more"""
     captured_resonance: float | None = None
     """omega_i of the resonance that holds the rotor (rad/s), or None"""
+    captured_index: int | None = None
+    """that resonance's index among the model's resonances (-), or None"""
     speed_state: str | None = None
     """"captured", "escaping", "accelerating" or "at_speed" (see capture_state)"""
     failed_checks: list | None = None
@@ -240,9 +244,9 @@ class CaseSummary:
 
 
 #: Written right after captured_at, where they are read together (when not None).
-BESIDE_CAPTURE = ("captured_resonance", "speed_state")
+BESIDE_CAPTURE = ("captured_resonance", "captured_index", "speed_state")
 _OPTIONAL = ("passing_torque", "excitation", "response_spectrum_check", "truncation",
-             "captured_resonance", "speed_state", "failed_checks")
+             "captured_resonance", "captured_index", "speed_state", "failed_checks")
 
 #: A run whose energy balance misses by more than this share of the energy
 #: exchanged is no solution of its equations (dp5 at rtol 1e-7 closes to ~1e-6,
@@ -302,6 +306,7 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
     base = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
                 omega_final_mean=om_mean, max_abs=max_abs(run),
                 captured_at=state["captured_at"], captured_resonance=state["captured_resonance"],
+                captured_index=state["captured_index"],
                 speed_state=state["speed_state"], passages=passages(run),
                 energy_balance=run.energy_balance(), integrator=dict(run.stats), prediction=prediction,
                 jumps=[])

@@ -159,10 +159,10 @@ def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSch
     pred = av.analyse_drive(av.Characteristic(w.torque_high, s, k), res)
     predicted = [vars(j) for j in pred.jumps if w.torque_low <= j.torque_at_zero <= w.torque_high]
     numeric = j_up + j_down
-    captured = None
+    held = None
     if j_up:
-        below = [r.omega for r in res if r.omega <= j_up[0]["omega_from"] * (1 + 0.03)]
-        captured = max(below) if below else None
+        below = [r for r in res if r.omega <= j_up[0]["omega_from"] * (1 + 0.03)]
+        held = max(below, key=lambda r: r.omega) if below else None
     rate_check = []
     for r in res:
         if not (w.torque_low <= float(r.omega * (s + k * r.omega)) <= w.torque_high):
@@ -192,7 +192,12 @@ def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSch
             "jump_comparison": match_jumps(numeric, predicted),
             "largest_speed_step_ratio": {"up": r_up, "down": r_down},
             "amplitudes": compare_amplitudes(model, up) + compare_amplitudes(model, down),
-            "rate_check": rate_check, "captured_at": captured, "no_jump_reason": reason,
+            "rate_check": rate_check, "no_jump_reason": reason,
+            # the up-sweep held below a resonance until its fold: the speed it was held at,
+            # that resonance's omega_i and index
+            "captured_at": j_up[0]["omega_from"] if held is not None else None,
+            "captured_resonance": None if held is None else held.omega,
+            "captured_index": None if held is None else held.index,
             "curves": curves}
 
 

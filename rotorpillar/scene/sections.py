@@ -180,8 +180,9 @@ class Converge:
 class Simulate:
     """Transient runs of the reduced models (`rotorpillar simulate`)."""
     case: str = param("Case run when --case is not given", "runup", choices=CASES)
-    model: str = param("Model: equation 4 as published, the pillar's modes (the ROM), the 3D tube "
-                       "or the 1D beam at full order", "paper", choices=MODELS)
+    model: str = param("Model: the pillar's modes from the chain (modal: the validated ROM, the "
+                       "headline model), equation 4 as published (paper), the 3D tube or the 1D "
+                       "beam at full order", "modal", choices=MODELS)
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",
                             choices=INTEGRATORS)
@@ -237,7 +238,7 @@ class Sweep:
                       400, ge=10, le=20000)
 
 
-MODAL_SOURCES = ("beam", "fem3d")
+MODAL_SOURCES = ("auto", "beam", "fem3d")
 
 
 @dataclass(frozen=True)
@@ -248,7 +249,11 @@ class ModalModel:
                        "frequency (-)", 0, ge=0, le=50)
     band_factor: float = param("Band: keep modes below this factor times the highest forcing "
                                "frequency (-)", 2.0, ge=1)
-    source: str = param("Where the pillar modes come from", "beam", choices=MODAL_SOURCES)
+    source: str = param("Where the pillar modes come from: auto = the model the convergence "
+                        "study chose for the scene's band (its SLEPc modes for a 3D mesh; the "
+                        "scene's [mesh] when no study is on disk), beam = the 1D beam below, "
+                        "fem3d = the 3D modes of the scene's [mesh]", "auto",
+                        choices=MODAL_SOURCES)
     theory: str = param("Beam theory of the 1D source", "timoshenko", choices=("euler", "timoshenko"))
     elements: int = param("Elements of the 1D beam (-)", 40, ge=2, le=2000)
     gondola_inertia: float = param("Rotary inertia of the gondola about the pillar tip (kg*m**2); "

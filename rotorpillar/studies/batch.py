@@ -37,6 +37,7 @@ from ..reduced.cases import forcing_top
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.models import build_model, scene_motion
+from .modes import modes_of
 from ..reduced.stationary import operating_speed
 from ..reduced.summaries import capture_state, ground_displacement
 from ..reduced.transient import simulate_batch
@@ -79,7 +80,7 @@ def _tail_mean(t, W) -> float:
     return float(np.mean(W[tail]))
 
 
-def _run_group(scene, case: str, which: str, runs: list[dict]) -> list[dict]:
+def _run_group(scene, case: str, which: str, runs: list[dict], pillar_modes=None) -> list[dict]:
     sim, d, L, r, sh = scene.simulate, scene.drive, scene.load, scene.rotor, scene.shaft
     per = {"M0": [], "s": [], "k": [], "e": [], "c2": []}
     for p in runs:
@@ -95,7 +96,7 @@ def _run_group(scene, case: str, which: str, runs: list[dict]) -> list[dict]:
     top_scene = replace(scene, drive=replace(d, torque_at_zero=M_ref))
     motion = scene_motion(scene) if case == "earthquake" else no_motion()
     top = scene.modal_model.band_factor * forcing_top(top_scene, case, motion)
-    model, info = build_model(top_scene, which, top)
+    model, info = build_model(top_scene, which, top, pillar_modes=pillar_modes)
     kw = dict(torque_scale=M0 / M_ref, slope=per["s"], load=per["k"], eccentricity=per["e"],
               shaft_stiffness=per["c2"], rtol=sim.rtol)
     extra = {}
@@ -155,7 +156,8 @@ def warm_kernels() -> None:
 
 
 def run_batch(spec: dict) -> dict:
-    """Compute one batch: ``spec`` = {scene, case, model, implied, runs: [{index, params}]}."""
+    """Compute one batch: ``spec`` = {scene, case, model, implied, runs: [{index, params}],
+    pillar_modes: {mode_key: PillarModes JSON} for the ROM (rotorpillar.studies.modes)}."""
     start = time.perf_counter()
     doc = dict(spec["scene"])
     base = scene_from_dict(doc, name=doc.pop("name"))
@@ -169,7 +171,8 @@ def run_batch(spec: dict) -> dict:
     for key, runs in groups.items():
         group_params = {k: v for k, v in key if k != "_index"}
         scene = run_scene(base, group_params, spec.get("implied"))
-        results += _run_group(scene, spec["case"], spec["model"], runs)
+        results += _run_group(scene, spec["case"], spec["model"], runs,
+                              modes_of(spec, base, scene))
     return {"runs": sorted(results, key=lambda r: r["index"]), "groups": len(groups),
             "wall_seconds": time.perf_counter() - start,
             "worker": f"{socket.gethostname()}:{os.getpid()}"}

@@ -33,10 +33,11 @@ def _numeric(axis: Axis) -> bool:
     return all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in axis.values)
 
 
-def _fold(scene, which: str, M_top: float) -> tuple[float | None, float | None]:
+def _fold(scene, which: str, M_top: float, modes_of=None) -> tuple[float | None, float | None]:
     top_scene = replace(scene, drive=replace(scene.drive, torque_at_zero=M_top))
     top = scene.modal_model.band_factor * forcing_top(top_scene, "runup", None)
-    model, _ = build_model(top_scene, which, top)
+    model, _ = build_model(top_scene, which, top,
+                           pillar_modes=modes_of(scene) if modes_of is not None else None)
     d, L = scene.drive, scene.load
     j, exact = predicted_passing_torque(model, M_top, d.slope, L.coefficient)
     return (None if j is None else float(j.torque_at_zero),
@@ -44,6 +45,9 @@ def _fold(scene, which: str, M_top: float) -> tuple[float | None, float | None]:
 
 
 def _grid(axis: Axis) -> list:
+    from .modes import affects_modes
+    if affects_modes(axis.key):
+        return sorted(axis.values)      # each value a pillar of its own: its own modes, no finer grid
     lo, hi = min(axis.values), max(axis.values)
     if len(axis.values) == 1 or lo == hi:
         return [lo]
@@ -51,8 +55,9 @@ def _grid(axis: Axis) -> list:
 
 
 def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
-                       implied: dict) -> dict | None:
-    """The predicted passing torque along the other axis (run-ups), or None."""
+                       implied: dict, modes_of=None) -> dict | None:
+    """The predicted passing torque along the other axis (run-ups), or None;
+    ``modes_of(scene)``: the ROM's pillar modes for a point's scene."""
     if case != "runup":
         return None
     keys = [a.key for a in axes]
@@ -66,7 +71,7 @@ def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
         avg, lin = [], []
         for x in xs:
             sc = run_scene(scene, {other.key: x} if other is not None else {}, implied)
-            a, e = _fold(sc, which, M_top)
+            a, e = _fold(sc, which, M_top, modes_of)
             avg.append(a)
             lin.append(e)
         return {"kind": "torque", "torque_key": TORQUE, "other_key": other.key if other else None,
@@ -80,7 +85,7 @@ def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
         M0 = scene.drive.torque_at_zero
         avg, lin = [], []
         for x in xs:
-            a, e = _fold(run_scene(scene, {ax.key: x}, implied), which, M0)
+            a, e = _fold(run_scene(scene, {ax.key: x}, implied), which, M0, modes_of)
             avg.append(a)
             lin.append(e)
         return {"kind": "threshold", "torque_key": TORQUE, "other_key": ax.key, "other_values": xs,

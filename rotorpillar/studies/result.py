@@ -72,6 +72,8 @@ class StudyResult(JsonRecord):
     """the charts: {file, caption}"""
     files: dict = field(default_factory=dict)
     """study.csv and the cache folder"""
+    pillar_model: dict | None = field(default=None, metadata={"omit_if_none": True})
+    """the modal model's pillar (rotorpillar.chain.PillarModel as JSON); None for the paper model"""
 
     def values(self, name: str):
         """One result over the runs, in run order (e.g. ``values("final_speed")``)."""

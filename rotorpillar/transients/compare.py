@@ -1,12 +1,16 @@
 """Several models on one transient case, against the most complete one (`rotorpillar compare`).
 
 ``compare_models(scene, case, models, out)`` runs each model through the
-same path as `simulate` (``run.run_model``, ``files.write_model_files``:
-``simulate_<case>_<model>.*``), over one common duration (the shortest of
-the models' own: the 3D full order's is [full_order]'s), and writes
-``compare_<case>.json`` (``records.CompareResult``) and the chart
+same path as `simulate` (``run.run_model`` on the chain's pillar model,
+``files.write_model_files``: ``compare_<case>_<model>.*``, apart from the
+scene's own ``simulate_<case>_<model>.*``), over one common duration (the
+shortest of the models' own: the 3D full order's is [full_order]'s), and
+writes ``compare_<case>.json`` (``records.CompareResult``) and the chart
 ``compare_<case>.png``.  Errors are of the tip's X relative to the ground,
-against the reference (fem3d > beam > modal > paper) on its output times.
+against the reference (fem3d > beam > modal > paper) on its output times:
+the history error, and apart the envelope error, the peak and the rotor
+angle's drift (rotorpillar.transients.measures), with the one that fits the
+case leading.  Costs are warm (compilation apart, ``compile_seconds``).
 For the earthquake, ``spectrum``: the record's pseudo-acceleration spectrum
 (eqsig, 5 %), the modal model's mode periods and its spectral estimate of
 the peak tip (SRSS of Gamma_j S_d(T_j), rotorpillar.reduced.cases.spectral_estimate)
@@ -22,6 +26,7 @@ import numpy as np
 from ..errors import InputError
 from ..provenance import write_json
 from ..scene import MODELS
+from .measures import compare_series, envelope_window
 from .records import CompareResult, reference_of
 from .run import ModelRun, fem3d_plan, own_duration, run_model
 
@@ -59,30 +64,40 @@ def common_duration(scene, case: str, models, motion) -> tuple[float, str]:
 
 
 def compare_models(scene, case: str, models, out: Path, provenance: dict, progress=None,
-                   write: bool = True, run_charts=None, compare_chart=None) -> CompareResult:
+                   write: bool = True, run_charts=None, compare_chart=None,
+                   chain=None) -> CompareResult:
     """Run ``models`` on ``case`` and compare them (see the module text).
 
     ``run_charts`` draws each model's figures (see ``files.write_model_files``);
     ``compare_chart(path, series, reference, title, errors=..., walls=...)``
     the overlay (``rotorpillar.postprocess.comparison_charts.comparison_chart``);
     both are handed in by the command, since drawing lives above this layer.
+    ``chain``: the chain's pillar model and modes (rotorpillar.chain.resolve).
     """
     from ..reduced.models import scene_motion
+    from ..scene import override
     models = tuple(models)
+    # each model runs the case only: the passing-torque batch belongs to the scene's own
+    # run on the headline model (simulate), not to a comparison of models
+    scene = override(scene, ["simulate.threshold=false"])
     if case not in COMPARE_CASES:
         raise InputError(f"--case {case!r}: compare runs {', '.join(COMPARE_CASES)}")
     motion = scene_motion(scene) if case == "earthquake" else None
     duration, why = common_duration(scene, case, models, motion)      # bad input: before any output
+    if chain is None and any(m in ("modal", "fem3d") for m in models):
+        from ..chain import resolve
+        chain = resolve(scene, out, motion=motion, progress=progress)
     runs: dict[str, ModelRun] = {}
     results: dict[str, dict] = {}
     for i, m in enumerate(models):
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
-        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration)
+        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration,
+                        chain=chain)
         if write:
             from .files import write_model_files
             results[m] = write_model_files(out, scene, run, provenance, last_run=False,
-                                           charts=run_charts)
+                                           charts=run_charts, stem=compare_stem(case, m))
         else:
             results[m] = run.result
         runs[m] = run
@@ -91,19 +106,27 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
                      f"({run.result['dofs']} dofs)")
     ref = reference_of(models)
     per_model = {m: _per_model(case, m, results[m]) for m in models}
-    t_ref, x_ref = runs[ref].data["t"], runs[ref].data["tip_x_relative"]
-    scale = max(float(np.max(np.abs(x_ref))), 1e-300)
+    rd = runs[ref].data
+    t_ref, x_ref = rd["t"], rd["tip_x_relative"]
+    window = envelope_window(r.omega for r in runs[ref].resonances)
     errors = {}
     for m in models:
         if m == ref:
             continue
-        x = np.interp(t_ref, runs[m].data["t"], runs[m].data["tip_x_relative"])
+        d = runs[m].data
         pm, pr = per_model[m], per_model[ref]
-        errors[m] = {"tip_history_error": float(np.max(np.abs(x - x_ref)) / scale),
+        series = compare_series(d["t"], d["tip_x_relative"], t_ref, x_ref, window=window,
+                                theta=d.get("theta"), theta_ref=rd.get("theta"))
+        errors[m] = {"tip_history_error": series.history_error,
                      "peak_tip_difference": pm["peak_tip_relative"] / pr["peak_tip_relative"] - 1
                      if pr["peak_tip_relative"] else None,
                      "omega_final_difference": pm["omega_final"] / pr["omega_final"] - 1
-                     if pr["omega_final"] else None}
+                     if pr["omega_final"] else None,
+                     "tip_envelope_error": series.envelope_error,
+                     "envelope_window": series.window,
+                     "angle_drift": series.angle_drift,
+                     "angle_drift_final": series.angle_drift_final,
+                     "lead": series.lead, "lead_why": series.why}
     walls = {m: per_model[m]["wall_seconds"] for m in models}
     cost = {m: walls[m] / walls[ref] if walls[ref] > 0 else None for m in models}
     chart = f"compare_{case}.png"
@@ -125,13 +148,21 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     return result
 
 
+def compare_stem(case: str, model: str) -> str:
+    """The stem of a comparison's per-model files: apart from the scene's own
+    ``simulate_<case>_<model>.*`` (a comparison runs a window, or another excitation)."""
+    return f"compare_{case}_{model}"
+
+
 def _per_model(case: str, m: str, r: dict) -> dict:
     ma = r["max_abs"]
+    stem = compare_stem(case, m)
     return {"peak_tip_relative": ma["tip_x_relative"], "peak_tip_absolute": ma["tip_x_absolute"],
             "peak_shaft_deflection": ma["shaft_deflection_x"], "omega_final": r["omega_final"],
-            "wall_seconds": r["wall_seconds"], "dofs": r["dofs"], "ok": r["ok"],
-            "warnings": list(r.get("warnings") or []),
-            "json": f"simulate_{case}_{m}.json", "npz": f"simulate_{case}_{m}.npz"}
+            "wall_seconds": r["wall_seconds"], "compile_seconds": r.get("compile_seconds"),
+            "dofs": r["dofs"], "ok": r["ok"], "warnings": list(r.get("warnings") or []),
+            "pillar_model": r.get("pillar_model"),
+            "json": f"{stem}.json", "npz": f"{stem}.npz"}
 
 
 def _spectrum(scene, motion, runs: dict) -> dict:

@@ -27,17 +27,18 @@ def model_stem(case: str, model: str) -> str:
 
 
 def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings: dict | None = None,
-                      last_run: bool = True, charts=None) -> dict:
+                      last_run: bool = True, charts=None, stem: str | None = None) -> dict:
     """Write the model's files (and with ``last_run`` the ``simulate_<case>.*`` copies);
     returns the result dict with ``files`` and ``figures`` (those of the generic names
     when ``last_run``, else the model's) and ``model_files``.
 
     ``charts(out, scene, run, stem) -> [{file, caption}]`` draws the run's
     figures (``rotorpillar.postprocess.transient_charts.model_run_charts``;
-    handed in, since drawing lives above this layer); None draws none.
+    handed in, since drawing lives above this layer); None draws none.  ``stem``
+    replaces ``simulate_<case>_<model>`` (compare: ``compare_<case>_<model>``).
     """
     out = Path(out)
-    stem = model_stem(run.case, run.model)
+    stem = stem or model_stem(run.case, run.model)
     files = {"npz": _write_npz(out / f"{stem}.npz", run), "csv": _write_csv(out / f"{stem}.csv", run)}
     figures = charts(out, scene, run, stem) if charts is not None else []
     model_files = {k: Path(v).name for k, v in files.items()}

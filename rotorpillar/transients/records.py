@@ -28,9 +28,14 @@ class CompareResult(JsonRecord):
     errors: dict
     """model (not the reference) -> tip_history_error = max_t |tip_m - tip_ref| / max_t |tip_ref|
     (tips relative to the ground, on the reference's times), peak_tip_difference =
-    peak_m / peak_ref - 1, omega_final_difference = omega_final_m / omega_final_ref - 1"""
+    peak_m / peak_ref - 1, omega_final_difference = omega_final_m / omega_final_ref - 1,
+    tip_envelope_error (the running peak over envelope_window s compared the same way),
+    angle_drift and angle_drift_final (theta_m - theta_ref, rad), lead ("history" or
+    "envelope": the measure that fits the case) and lead_why
+    (rotorpillar.transients.measures)"""
     cost_ratio: dict
-    """model -> wall_seconds_m / wall_seconds_ref"""
+    """model -> wall_seconds_m / wall_seconds_ref, both warm (compilation apart:
+    per_model's compile_seconds)"""
     chart: str
     """compare_<case>.png: tip histories relative to the ground overlaid, difference below"""
     window: dict = field(default_factory=dict)

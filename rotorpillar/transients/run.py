@@ -11,12 +11,19 @@ beside the existing columns).
 
 - paper, modal, beam: rotorpillar.reduced.cases.run_case (the beam is the
   full-order 1D beam, integrated by [full_order] beam_integrator at the
-  forcing's step);
+  forcing's step); the modal model (the ROM) takes its pillar modes from the
+  chain (rotorpillar.chain: the model the convergence study chose, or the
+  scene's own), which the caller resolves once and hands in;
 - fem3d: rotorpillar.fem3d.transient.simulate_fem3d on the mesh and over the
   duration [full_order] states (``fem3d_plan``); its ``captured_at`` and
-  resonances come from the modal model on the 1D beam's modes (the 3D run
-  has no quasi-normal data of its own; the capture width, 3 % at least, is
-  far wider than the beam's frequency error).
+  resonances come from the chain's ROM (the 3D run has no quasi-normal data
+  of its own; the capture width, 3 % at least, is far wider than the ROM's
+  frequency error).
+
+Every result names the pillar model it ran on (``pillar_model``, a
+rotorpillar.chain.PillarModel) and its costs measured warm: what a run
+compiles (numba's kernels, FFCx's forms) is compiled by a short warm-up
+before the timed run, and its time recorded apart as ``compile_seconds``.
 """
 
 from __future__ import annotations
@@ -27,6 +34,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..chain import ChainModes, PillarModel
 from ..errors import InputError
 from ..scene import MODELS, override
 
@@ -94,44 +102,87 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None) -> 
 
 
 def run_model(scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
-              progress=None, motion=None, duration: float | None = None) -> ModelRun:
+              progress=None, motion=None, duration: float | None = None,
+              chain: ChainModes | None = None) -> ModelRun:
     """Run ``model`` (one of scene.MODELS) on ``case``; ``duration`` shortens the run
-    (compare: one window for every model).  Bad input raises InputError before any work."""
+    (compare: one window for every model); ``chain`` the chain's pillar model and
+    modes (rotorpillar.chain.resolve; None: the scene's own, no study).  Bad input
+    raises InputError before any work."""
     if model not in MODELS:
         raise InputError(f"model {model!r}: must be one of {', '.join(MODELS)}")
     if case == "earthquake" and motion is None:
         from ..reduced.models import scene_motion
         motion = scene_motion(scene)
+    if chain is None and model in ("modal", "fem3d"):
+        from ..chain import resolve
+        chain = resolve(scene, None, motion=motion, progress=progress)
     if model == "fem3d":
-        return _run_fem3d(scene, case, motion, duration, progress)
+        return _run_fem3d(scene, case, motion, duration, progress, chain)
     if duration is not None:
         scene = with_duration(scene, case, duration)
-    return _run_reduced(scene, case, model, integrator, modes, progress, motion)
+    return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
+
+
+def reduced_pillar_model(scene, which: str, chain: ChainModes | None, info: dict) -> PillarModel:
+    """The pillar model a reduced model ran on: the chain's (modal), the scene's beam at
+    full order (beam), or the paper's stated tip reduction (paper: not the validated chain)."""
+    if which == "modal":
+        return chain.pillar_model
+    if which == "beam":
+        n, theory = info["elements"], info["theory"]
+        return PillarModel("beam", f"beam {theory}, {n} el. (full order)",
+                           {"theory": theory, "elements": n}, 2 * n, "scene", False, None, {},
+                           f"the full-order 1D {theory} beam of {info['element_source']}", None)
+    red = info["reduction"]
+    return PillarModel("reduction", "Eq. 4: one tip mass and spring", {
+        "tip_mass": red["tip_mass"], "tip_stiffness": red["tip_stiffness"]}, 1, "scene", False,
+        None, {}, f"the paper's model: m_r ({red['tip_mass_source']}) and c1 "
+        f"({red['tip_stiffness_source']}) at the tip; not the validated chain", None)
 
 
 # --------------------------------------------------------------------------
 # paper, modal, beam
 
 
-def pillar_modes_for(scene, which: str):
-    """The 3D candidate pillar modes when the modal model takes its modes from fem3d, else None."""
-    if which != "modal" or scene.modal_model.source != "fem3d":
-        return None
-    from ..fem3d.pillar_modes import candidate_pillar_modes
-    return candidate_pillar_modes(scene)
+def pillar_modes_for(which: str, chain: ChainModes | None):
+    """The chain's candidate pillar modes for the modal model, else None."""
+    return chain.modes if which == "modal" and chain is not None else None
 
 
-def _run_reduced(scene, case, which, integrator, modes, progress, motion) -> ModelRun:
+def warm_up(scene, case: str, which: str, integrator, modes, motion, pillar_modes) -> float:
+    """Compile what the run will (numba's kernels, per integrator and case) on a run of a
+    few milliseconds of the same case; its wall time (s), kept apart from the run's."""
+    from ..reduced.cases import run_case
+    short = override(scene, ["simulate.threshold=false",
+                             f"simulate.{'earthquake_duration' if case == 'earthquake' else 'duration'}"
+                             f"={(motion.start + 1e-2) if case == 'earthquake' else 1e-2!r}"])
+    if case == "sweep":
+        return 0.0                      # a sweep's schedule has no short form; its kernels are dp5's
+    start = time.perf_counter()
+    try:
+        run_case(short, case, which, integrator, modes, truncation=False, motion=motion,
+                 pillar_modes=pillar_modes)
+    except InputError:
+        pass                            # the real run refuses it the same way, with its own message
+    return time.perf_counter() - start
+
+
+def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain) -> ModelRun:
     from ..reduced.cases import run_case, with_truncation
     from ..reduced.excitation import no_motion
     from ..reduced.summaries import ground_displacement, series
-    pillar_modes = pillar_modes_for(scene, which)
+    pillar_modes = pillar_modes_for(which, chain)
+    compile_seconds = warm_up(scene, case, which, integrator, modes, motion, pillar_modes)
     start = time.perf_counter()
     res = run_case(scene, case, which, integrator, modes, truncation=False, motion=motion,
                    pillar_modes=pillar_modes)
     wall = time.perf_counter() - start
+    bars = None
     if which == "modal":
         res = with_truncation(scene, res, res.run.motion, integrator, pillar_modes, progress)
+        if case != "sweep":
+            from .uncertainty import uncertainty
+            bars = uncertainty(scene, case, integrator, motion, chain, res, progress)
     m, run = res.model, res.run
     data = series(run, scene.simulate.samples)
     summary = res.summary.to_json()
@@ -153,7 +204,10 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion) -> Mod
     ma["shaft_deflection_x"] = ma["shaft_deflection_x_sampled"]
     summary["max_abs"] = ma
     result = {"case": case, "model": which, **summary, "warnings": _warnings(case, m, res),
-              "dofs": int(m.n), "wall_seconds": wall,
+              "pillar_model": reduced_pillar_model(scene, which, chain,
+                                                   res.extra.get("model_info") or {}).to_json(),
+              "uncertainty": None if bars is None else {k: v.to_json() for k, v in bars.items()},
+              "dofs": int(m.n), "wall_seconds": wall, "compile_seconds": compile_seconds,
               "model_description": m.describe(), "model_info": res.extra.get("model_info"),
               "resonances": [vars(r) for r in m.quasi_normal()],
               "damped_frequencies": m.damped_frequencies(), "tip_x_frame": m.frame,
@@ -196,22 +250,49 @@ def _warnings(case: str, model, res) -> list[str]:
 # fem3d
 
 
-def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
+def fem3d_warm_up(scene, mesh) -> float:
+    """Compile the 3D forms of ``mesh``'s cell type and degree (FFCx; once per machine, then
+    read from its disk cache) on a mesh of a few cells, before the timed run (s)."""
+    from dataclasses import replace as dc_replace
+    from ..fem3d import assemble_pillar
+    tiny = dc_replace(mesh, elements_around=8, elements_along=1, elements_through=1)
+    start = time.perf_counter()
+    model = assemble_pillar(scene, top=True, mesh=tiny)
+    model.K.destroy()
+    model.M.destroy()
+    return time.perf_counter() - start
+
+
+def solid_pillar_model(mesh, dofs: int, source: str, note: str) -> PillarModel:
+    """The 3D full order's mesh as a PillarModel (its error: see the comparison's reference)."""
+    from ..chain.choice import solid_run_of
+    run = solid_run_of(mesh)
+    return PillarModel("solid", run["label"] + " (full order)", run["params"], int(dofs), source,
+                       False, None, {}, note, None)
+
+
+def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes) -> ModelRun:
     from ..fem3d.transient import simulate_fem3d
-    from ..reduced.models import build_model
     from ..reduced.cases import forcing_top
+    from ..reduced.models import build_model
+    from ..reduced.stationary import operating_speed
     from ..reduced.summaries import capture_state
     plan = fem3d_plan(scene, case, motion, duration)
     mesh = plan.pop("_mesh")
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"
+    ref, _ = build_model(scene, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion),
+                         pillar_modes=chain.modes)
+    initial = None
+    if case == "earthquake":
+        d, L = scene.drive, scene.load
+        initial = operating_speed(ref, d.torque_at_zero, d.slope, L.coefficient)
+    compile_seconds = fem3d_warm_up(scene, mesh)
     if progress:
         progress(f"3D full order: {case} on {steps_hint}")
     r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
                        time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
-                       progress=progress)
+                       initial_speed=initial, progress=progress)
     plan["time_step"] = r.integrator["time_step"]
-    beam = override(scene, ["modal_model.source=beam"])
-    ref, _ = build_model(beam, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion))
     drive_free = _free_speed(scene)
     state = capture_state(ref, r.t, r.Omega, drive_free)
     captured, settled = state["captured_at"], state["speed_state"] != "escaping"
@@ -226,18 +307,23 @@ def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
             "rotor_x_absolute": r.rotor_x + ground, "shaft_deflection_x": r.shaft_x,
             "shaft_deflection_y": r.shaft_y, "plate_z": r.plate_z, "drive_torque": r.drive_torque,
             "energy": r.energy, "work": r.work, "peak": np.abs(r.tip_x)[:, None]}
-    result = {"case": case, "model": "fem3d", **r.summary(), "max_abs": ma, "integrator": integ,
+    summary = {k: v for k, v in r.summary().items() if k != "model"}
+    if case == "earthquake":
+        r.model["initial_speed_source"] = ("the operating speed of the chain's ROM (the fastest "
+                                           "stable stationary speed)")
+    result = {"case": case, "model": "fem3d", **summary, "max_abs": ma, "integrator": integ,
               "captured_at": captured, "captured_resonance": state["captured_resonance"],
+              "captured_index": state["captured_index"],
               "speed_state": state["speed_state"], "warnings": [],
-              "captured_at_source": "the modal model on the 1D beam's modes: its resonances"
+              "captured_at_source": "the chain's ROM: its resonances"
                                     + ("" if settled else "; the run ended before the speed settled, "
                                                           "so no capture is claimed"),
+              "pillar_model": solid_pillar_model(mesh, r.dofs, "scene", plan["note"]).to_json(),
+              "compile_seconds": compile_seconds,
               "model_description": r.model, "model_info": {"dofs": r.dofs, "mesh": plan["mesh"]},
               "resonances": [vars(x) for x in ref.quasi_normal()],
               "damped_frequencies": ref.damped_frequencies(), "tip_x_frame": "relative_to_ground",
               "full_order": plan, "initial_speed": r.model.get("initial_speed")}
-    result.pop("model", None)
-    result["model"] = "fem3d"
     if case == "earthquake":
         result["excitation"] = motion.sizes()
         result["excitation_in_model"] = r.model.get("forcing")

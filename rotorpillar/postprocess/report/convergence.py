@@ -78,10 +78,8 @@ def section_convergence(build: Build) -> str:
         parts.append(h.missing(build.hint(INPUTS["convergence"][1])))
         a = build.analysis
         if a is not None:
-            r = a.reduction
-            parts.append(h.tag("p", "Until the study runs, the reduced model is the paper's (Eq. 4) "
-                                    f"with m_r from {r.tip_mass_source} and c1 from "
-                                    f"{r.tip_stiffness_source}."))
+            parts.append(h.tag("p", "Until the study runs, the headline model's pillar is "
+                                    f"{a.pillar_model.describe()}: {a.pillar_model.note}."))
     else:
         parts += scene_differs(build, c)
         parts += _convergence_parts(c)

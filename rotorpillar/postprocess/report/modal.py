@@ -65,13 +65,15 @@ def _closed_forms_against_3d(a, modes: list) -> list[str]:
 def _reduction(build: Build) -> list[str]:
     """The tip mass and stiffness: stated, closed form, 3D, and the ones used."""
     a, m = build.analysis, build.modal
-    p, r = a.pillar, a.reduction
+    p, r = a.pillar, a.paper_model.reduction
     red3 = m.reduction if m is not None else None
+    chain = a.system.tip_reduction
     stated = build.scene.reduction
     cols = [("stated in the scene", stated.tip_mass, stated.tip_stiffness),
             ("Eq. 2, continuous first mode", p.tip_mass_limit, p.tip_stiffness_limit),
             ("3D model", red3.m_reduced if red3 else None, red3.tip_stiffness if red3 else None),
-            (f"used (m_r: {r.tip_mass_source}, c1: {r.tip_stiffness_source})",
+            (f"the chain: {chain.source}", chain.m_reduced, chain.tip_stiffness),
+            (f"the paper's model uses (m_r: {r.tip_mass_source}, c1: {r.tip_stiffness_source})",
              r.tip_mass, r.tip_stiffness)]
     rows = []
     for name, mr, c1 in cols:

@@ -31,8 +31,9 @@ def _stationary_and_jumps(d) -> list[str]:
                                 "without the Sommerfeld effect with this drive."))
     parts.append(h.tag("p", f"Run-up ends at {h.num(d.runup_speed)} rad/s, run-down at "
                             f"{h.num(d.rundown_speed)} rad/s"
-                            + (f"; captured at resonance {d.captured_at}."
-                               if d.captured_at is not None else ".")))
+                            + (f"; captured below resonance {d.captured_index} "
+                               f"({h.num(d.captured_resonance)} rad/s) at {h.num(d.captured_at)} rad/s."
+                               if d.captured_index is not None else ".")))
     return parts
 
 

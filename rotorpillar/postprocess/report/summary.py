@@ -24,13 +24,19 @@ def _analysis_findings(build: Build) -> list[str]:
     else:
         text += "; the 3D model: " + build.hint(INPUTS["modal"][1]) + "."
     items = [text]
-    r = a.reduction
-    items.append(f"Pillar reduced to its tip: m_r = {r.tip_mass:.4g} kg ({r.tip_mass_source}), "
-                 f"c1 = {r.tip_stiffness:.4g} N/m ({r.tip_stiffness_source}).")
-    s = a.system
-    items.append(f"Rotor-pillar system: omega_1 = {s.omega[0]:.3f}, "
-                 f"omega_2 = {s.omega[1]:.3f} rad/s "
-                 f"(X), omega_3 = {s.omega3:.3f} rad/s (Y).")
+    s, pm = a.system, a.pillar_model
+    items.append(f"Pillar model (the chain): {pm.describe()}.")
+    bars = [res.uncertainty.omega.text(".3f") if res.uncertainty else f"{res.omega:.3f} rad/s"
+            for res in a.resonances]
+    items.append("Headline model, the ROM (" + f"{s.modes} pillar mode(s) of {s.mode_source} with "
+                 "the rotor on its shaft): resonances " + ", ".join(
+                     f"{b} ({res.direction})" for b, res in zip(bars, a.resonances))
+                 + f"; error bars: {s.error_note}.")
+    ps, r = a.paper_model.system, a.paper_model.reduction
+    items.append(f"The paper's model (Eq. 4 with m_r = {r.tip_mass:.4g} kg from {r.tip_mass_source}, "
+                 f"c1 = {r.tip_stiffness:.4g} N/m from {r.tip_stiffness_source}): omega_1 = "
+                 f"{ps.omega[0]:.3f}, omega_2 = {ps.omega[1]:.3f} rad/s (X), omega_3 = "
+                 f"{ps.omega3:.3f} rad/s (Y); shown beside the headline model, never instead of it.")
     rows = [x for x in a.paper_comparison if not is_finding(x)]
     items.append(f"{sum(1 for x in rows if x.flag)} of the {len(rows)} numbers the paper prints "
                  "differ from ours by more than 2 %; each has its likely cause below.")

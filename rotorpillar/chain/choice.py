@@ -1,0 +1,285 @@
+"""Which pillar model the chain uses: the convergence study's choice, or the scene's own mesh.
+
+With ``modal_model.source = "auto"`` (the default) the model the study chose
+for the scene's band (``out/<scene>/convergence.json``, when it was run for
+this pillar, mesh ladder and band) feeds everything downstream:
+
+- a 3D solid: the ROM's pillar modes are the SLEPc modes of that mesh, and
+  `modal` runs it;
+- a shell: the shell carries no top mass here, so the chain takes the
+  cheapest 3D mesh of the study that meets the same tolerance (and says so);
+- a beam (a band with no shell mode in it): the ROM's modes are that beam's,
+  and `modal` runs the cheapest 3D mesh within the tolerance;
+- the closed form (Eq. 1 within the tolerance: a slender tube): the ROM takes
+  the Euler-Bernoulli beam, the closed form's own model, finely discretised.
+
+Without a study on disk the stages use the scene's own ``[mesh]`` (source
+"scene"): verified when the study's run cache holds that mesh and enough of
+the ladder for a reference, else ``verified: false``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from dataclasses import dataclass, fields
+from pathlib import Path
+from typing import Optional
+
+from ..scene import Mesh, Scene
+from .record import PillarModel
+
+#: Scene keys a convergence study's choice depends on: the tube, the ladder's
+#: shape (from [mesh]), the tolerance and limits, and the band (drive, load).
+STUDY_INPUTS = {
+    "pillar": ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio",
+               "density"),
+    "mesh": None, "converge": None, "drive": None, "load": None,
+}
+
+#: The closed form's own model, for the ROM's modes when the study chose Eq. 1.
+CLOSED_FORM_BEAM = {"theory": "euler", "elements": 64}
+
+
+@dataclass(frozen=True)
+class Choice:
+    """The chain's pillar models: the ROM's mode source and the 3D mesh `modal` runs."""
+    rom: PillarModel
+    """where the ROM's pillar modes come from"""
+    solid: PillarModel
+    """the 3D mesh of `modal` (the same as ``rom`` when the ROM takes 3D modes)"""
+
+    @property
+    def solid_mesh(self) -> Mesh:
+        return solid_mesh_section(self.solid.mesh)
+
+
+def solid_mesh_section(mesh: dict) -> Mesh:
+    """The scene [mesh] section of a 3D model's discretisation."""
+    names = {f.name for f in fields(Mesh)}
+    return Mesh(**{k: v for k, v in mesh.items() if k in names})
+
+
+def _mismatch(scene: Scene, study_scene: dict) -> Optional[str]:
+    """The first scene key the study was run with a different value of, or None."""
+    mine = scene.to_dict()
+    for section, keys in STUDY_INPUTS.items():
+        a, b = mine.get(section) or {}, study_scene.get(section) or {}
+        for k in keys or sorted(set(a) | set(b)):
+            if a.get(k) != b.get(k):
+                return f"{section}.{k}"
+    return None
+
+
+def study_on_disk(scene: Scene, out_dir: Path):
+    """(ConvergenceStudy or None, why): the study in ``out_dir`` when it was run for this scene."""
+    from ..converge.result import ConvergenceStudy
+    path = Path(out_dir) / "convergence.json"
+    if not path.is_file():
+        return None, f"no convergence study in {out_dir} (rotorpillar converge {scene.name})"
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+        study = ConvergenceStudy.from_json({k: v for k, v in doc.items()
+                                            if k not in ("command", "scene_source", "overrides")})
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        return None, f"{path} is unreadable ({type(exc).__name__}); run rotorpillar converge again"
+    study = dataclasses.replace(study, json_file=str(path))
+    key = _mismatch(scene, study.scene or {})
+    if key is not None:
+        return None, (f"{path} was run for another {key.split('.')[0]} ({key} differs): not used; "
+                      f"run rotorpillar converge for this scene")
+    return study, f"the convergence study {path}"
+
+
+def _errors(run: dict, ref_unc: dict) -> dict:
+    """Per frequency: the run's error bound plus the reference's uncertainty (-)."""
+    out = {}
+    for q, u in ref_unc.items():
+        b = run.get(f"{q}_error_bound")
+        if b is not None:
+            out[q] = float(b) + float(u)
+    return out
+
+
+def model_of_run(run: dict, reference_uncertainty: dict, tolerance: float, note: str,
+                 study: Optional[str] = None) -> PillarModel:
+    """A run the study chose (its brief: label, family, params, dofs, error bounds) as the
+    chain's PillarModel."""
+    return _model(run, "converge", True, tolerance, _errors(run, reference_uncertainty), note,
+                  study)
+
+
+def _model(run: dict, source: str, verified: bool, tolerance, errors: dict, note: str,
+           study: Optional[str]) -> PillarModel:
+    from ..converge.ladder import FAMILIES
+    kind = FAMILIES[run["family"]].model
+    return PillarModel(kind, run["label"], dict(run["params"]), int(run["dofs"]), source, verified,
+                       tolerance, errors, note, study)
+
+
+def _solid_within(study, tolerance: float):
+    """The cheapest 3D run of the study that meets the tolerance, or None."""
+    from ..converge.ladder import FAMILIES
+    from ..converge.selection import select_model
+    solid = [k for k, f in FAMILIES.items() if f.model == "solid" and not f.sweep]
+    sel = select_model(list(study.runs), study.reference, study.band, tolerance, families=solid)
+    return sel.get("chosen")
+
+
+def scene_solid_run(scene: Scene) -> dict:
+    """The scene's own [mesh] as a run of the ladder (label, family, params, dofs)."""
+    return solid_run_of(scene.mesh)
+
+
+def solid_run_of(m: Mesh) -> dict:
+    """A 3D mesh as a run of the ladder (label, family, params, dofs)."""
+    from ..converge.ladder import FAMILIES, Case, estimated_dofs
+    family = f"solid_{'hex' if m.cell_type == 'hexahedron' else 'tet'}_p{m.degree}"
+    params = {"elements_around": m.elements_around, "elements_along": m.elements_along,
+              "elements_through": m.elements_through, "cell_type": m.cell_type,
+              "degree": m.degree, "grading": m.grading}
+    case = Case(family, m.elements_around, tuple(sorted(params.items())))
+    return {"label": case.label, "family": family, "model": FAMILIES[family].model,
+            "params": params, "dofs": estimated_dofs(case)}
+
+
+def _same_mesh(run: dict, params: dict) -> bool:
+    p = run.get("params") or {}
+    return all(p.get(k) == v for k, v in params.items())
+
+
+def _scene_errors(runs, reference: dict, params: dict) -> dict:
+    from ..converge.selection import reference_uncertainty
+    ref_unc = reference_uncertainty(reference) if reference else {}
+    for r in runs:
+        if r.get("status") == "ok" and r.get("model") == "solid" and _same_mesh(r, params):
+            return _errors(r, ref_unc)
+    return {}
+
+
+def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict, str]:
+    """The scene mesh's errors from the study's run cache alone (nothing computed)."""
+    from ..converge.ladder import study_cases
+    from ..converge.runner import run_study
+    from ..converge.study import analyse
+    if not Path(cache_dir).is_dir():
+        return {}, "no study's run cache"
+
+    def not_cached(case, sc):
+        raise RuntimeError("not in the cache")
+
+    records = run_study(study_cases(scene), scene, Path(cache_dir), runner=not_cached,
+                        progress=False)
+    if not any(r.get("cached") for r in records):
+        return {}, "no study's run cache"
+    analysis = analyse(records, scene, scene.converge.tolerance)
+    errs = _scene_errors(records, analysis["reference"], scene_solid_run(scene)["params"])
+    return errs, f"the study's run cache {cache_dir}"
+
+
+def _dolfinx_here() -> bool:
+    import importlib.util
+    return importlib.util.find_spec("dolfinx") is not None
+
+
+def _beam_model(scene: Scene, source: str, note: str, theory: str, elements: int,
+                errors: Optional[dict] = None, tolerance=None, study=None, label=None) -> PillarModel:
+    kind = "beam"
+    return PillarModel(kind, label or f"beam {theory}, {elements} el.",
+                       {"theory": theory, "elements": elements}, 2 * elements, source,
+                       bool(errors), tolerance, errors or {}, note, study)
+
+
+def from_scene(scene: Scene, cache_dir: Path, why: str) -> Choice:
+    """No usable study: the scene's own [mesh], verified from the run cache where it can be."""
+    if not _dolfinx_here():
+        mm = scene.modal_model
+        rom = _beam_model(scene, "scene", f"{why}; the 3D model (dolfinx) is not installed here, so "
+                          f"the ROM takes the {mm.theory} beam of [modal_model] (unverified)",
+                          mm.theory, mm.elements)
+        return Choice(rom, rom)
+    run = scene_solid_run(scene)
+    errors, where = _from_cache(scene, cache_dir)
+    note = (f"{why}; the stages use the scene's own [mesh], {run['label']}: "
+            + (f"its error from {where}" if errors else
+               "unverified (no convergence study measured this mesh)"))
+    pm = PillarModel("solid", run["label"], run["params"], int(run["dofs"]), "scene", bool(errors),
+                     scene.converge.tolerance if errors else None, errors, note, None)
+    return Choice(pm, pm)
+
+
+def from_study(scene: Scene, study) -> Choice:
+    """The study's choice for the scene's band, made usable by the chain (see the module text)."""
+    from ..converge.selection import reference_uncertainty
+    sel, path, tol = study.selection, study.json_file, study.tolerance
+    ref_unc = {q: reference_uncertainty(study.reference)[q] for q in study.reference}
+    chosen = sel.get("chosen")
+    if chosen is None:
+        run = scene_solid_run(scene)
+        errors = _scene_errors(study.runs, study.reference, run["params"])
+        pm = PillarModel("solid", run["label"], run["params"], int(run["dofs"]), "scene",
+                         bool(errors), tol, errors,
+                         f"the convergence study found no model that meets {tol:g} on the band "
+                         f"({sel.get('reason', '')}); the stages use the scene's own [mesh]", path)
+        return Choice(pm, pm)
+    kind = chosen["model"]
+    why = (f"the model the convergence study chose for the scene's band (up to "
+           f"{study.band['omega_max']:.1f} rad/s) at tolerance {tol:g}: {sel.get('reason', '')}")
+    if kind == "solid":
+        pm = _model(chosen, "converge", True, tol, _errors(chosen, ref_unc), why, path)
+        return Choice(pm, pm)
+    solid_run = _solid_within(study, tol)
+    if solid_run is None:
+        run = scene_solid_run(scene)
+        solid = PillarModel("solid", run["label"], run["params"], int(run["dofs"]), "scene",
+                            False, None, {}, "no 3D mesh of the study meets the tolerance: the "
+                            "scene's own [mesh]", path)
+    else:
+        solid = _model(solid_run, "converge", True, tol, _errors(solid_run, ref_unc),
+                       f"the cheapest 3D mesh of the study within {tol:g} (the study's choice, "
+                       f"{chosen['label']}, is not a 3D model)", path)
+    if kind == "beam":
+        p = chosen["params"]
+        rom = _beam_model(scene, "converge", why, p["theory"], p["elements"],
+                          _errors(chosen, ref_unc), tol, path, chosen["label"])
+        return Choice(rom, solid)
+    if kind == "closed_form":
+        rom = PillarModel("closed_form", chosen["label"], dict(CLOSED_FORM_BEAM),
+                          2 * CLOSED_FORM_BEAM["elements"], "converge", True, tol,
+                          _errors(chosen, ref_unc),
+                          why + "; its modes for the ROM come from the Euler-Bernoulli beam (the "
+                          f"closed form's own model) with {CLOSED_FORM_BEAM['elements']} elements",
+                          path)
+        return Choice(rom, solid)
+    # a shell: no top mass in the shell model here, so the 3D mesh within the tolerance serves
+    note = (why + f"; the shell model carries no top mass here, so the chain uses {solid.label}, "
+            "the cheapest 3D mesh within the same tolerance")
+    rom = PillarModel(solid.kind, solid.label, solid.mesh, solid.dofs, solid.source, solid.verified,
+                      solid.tolerance, solid.errors, note, path)
+    return Choice(rom, rom)
+
+
+def choose(scene: Scene, out_dir: Optional[Path], cache_dir: Optional[Path] = None) -> Choice:
+    """The chain's pillar models for a scene whose results go to ``out_dir``.
+
+    ``modal_model.source`` "beam" or "fem3d" state the mode source outright
+    (the 3D modes then on the scene's [mesh]); "auto" takes the study's choice
+    (``out_dir`` None: no study, the scene's own model).
+    """
+    if out_dir is None:
+        out_dir = cache_dir = Path("/nonexistent/rotorpillar")
+    out_dir = Path(out_dir)
+    cache_dir = out_dir / "cache" if cache_dir is None else Path(cache_dir)
+    src = scene.modal_model.source
+    if src == "beam":
+        mm = scene.modal_model
+        rom = _beam_model(scene, "scene", f'modal_model.source = "beam": the {mm.theory} beam of '
+                          "[modal_model], as the scene states", mm.theory, mm.elements)
+        solid = from_scene(scene, cache_dir, "modal_model.source = \"beam\"").solid
+        return Choice(rom, solid)
+    if src == "fem3d":
+        return from_scene(scene, cache_dir, 'modal_model.source = "fem3d" (the scene\'s [mesh])')
+    study, why = study_on_disk(scene, out_dir)
+    if study is None:
+        return from_scene(scene, cache_dir, why)
+    return from_study(scene, study)

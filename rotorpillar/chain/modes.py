@@ -1,0 +1,189 @@
+"""The ROM's pillar modes from the chain's pillar model, computed once and cached on disk.
+
+For a 3D choice: the SLEPc modes of that mesh with the gondola on the rigid
+top (every X bending mode among them, enough to pass the ROM's band and one
+more, for its truncation check), and the paper's Eq. 2 on the bare tube's
+first bending mode of the same mesh.  For a beam: the beam's modes and its
+Eq. 2.  A 3D result is cached as one JSON file under the user's cache
+(``$ROTORPILLAR_CACHE``, else ``~/.cache/rotorpillar``), keyed by a hash of the
+tube, the gondola, the top model, the mesh, the eigen-solver's tolerance and
+the source of the code that computes it: every stage, test or study that needs
+the same modes on this machine solves them once.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+
+from ..provenance import JsonRecord, write_json
+from ..reduced.pillar_modes import PillarModes
+from ..scene import Scene
+from .choice import Choice, solid_mesh_section
+from .record import PillarModel
+
+CACHE_VERSION = 1
+#: the most X bending modes the ROM picks from
+MAX_CANDIDATES = 12
+#: modes first asked of the loaded tube (doubled until enough X bending modes are found)
+FIRST_SOLVE = 32
+
+
+@dataclass(frozen=True)
+class TipReductionOf(JsonRecord):
+    """Eq. 2 on the chain model's bare first bending mode."""
+    m_reduced: float
+    """m_r: the first mode's mass referred to the tip, unit tip deflection (kg)"""
+    tip_stiffness: float
+    """c1 = m_r omega**2 (N/m)"""
+    omega_bending: float
+    """the bare tube's first bending frequency on this model (rad/s)"""
+    source: str
+    """the model it was computed on"""
+
+
+@dataclass(frozen=True, eq=False)
+class ChainModes:
+    """The chain's pillar model and the ROM's candidate modes from it."""
+    pillar_model: PillarModel
+    modes: PillarModes
+    """the X bending modes of the pillar with the gondola on top, ascending, tip-scaled"""
+    reduction: TipReductionOf
+    cache_file: Optional[str] = None
+    """where a 3D result was cached (None for a beam)"""
+    seconds: float = 0.0
+    """time spent computing (0 when read from the cache) (s)"""
+
+    def count_below(self, band_top: float) -> int:
+        """How many candidate modes lie at or below ``band_top`` (rad/s), at least one."""
+        return max(1, int(np.sum(np.asarray(self.modes.omega) <= band_top)))
+
+
+def cache_root() -> Path:
+    """The user's cache of 3D results (``$ROTORPILLAR_CACHE``, else ~/.cache/rotorpillar)."""
+    env = os.environ.get("ROTORPILLAR_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "rotorpillar"
+
+
+def _code_hash() -> str:
+    """The source of everything a cached 3D result depends on."""
+    root = Path(__file__).resolve().parent.parent
+    files = sorted((root / "fem3d").glob("*.py")) + sorted((root / "mesh").glob("*.py"))
+    files += [root / "reduced" / "pillar_modes.py", Path(__file__).resolve()]
+    h = hashlib.sha256()
+    for f in files:
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def modes_key(scene: Scene, mesh: dict) -> str:
+    """Hash of what the loaded tube's 3D modes depend on."""
+    p, md = scene.pillar, scene.modal
+    doc = {"version": CACHE_VERSION, "code": _code_hash(), "mesh": mesh,
+           "pillar": {k: getattr(p, k) for k in ("height", "outer_diameter", "inner_diameter",
+                                                  "youngs_modulus", "poisson_ratio", "density")},
+           "gondola": scene.gondola.mass, "top_model": md.top_model, "top_mass": md.top_mass,
+           "tolerance": md.tolerance}
+    return hashlib.sha256(json.dumps(doc, sort_keys=True).encode()).hexdigest()[:24]
+
+
+def _read(path: Path, key: str) -> Optional[dict]:
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return doc if isinstance(doc, dict) and doc.get("key") == key else None
+
+
+def _enough(omega, band_top: float) -> bool:
+    """The modes pass the band and hold one more for the truncation check."""
+    omega = np.asarray(omega, dtype=float)
+    return len(omega) >= MAX_CANDIDATES or len(omega) > int(np.sum(omega <= band_top))
+
+
+def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[PillarModes, TipReductionOf]:
+    """The loaded tube's X bending modes and the bare tube's Eq. 2 on the chain's mesh."""
+    from ..fem3d import modal_analysis, tip_reduction
+    from ..fem3d.pillar_modes import pillar_modes_from_fem3d
+    mesh = solid_mesh_section(pm.mesh)
+    n = FIRST_SOLVE
+    while True:
+        loaded = modal_analysis(scene, top=True, n_modes=n, mesh=mesh, comm=comm)
+        bx = [w for w, k in zip(loaded.omega, loaded.kind) if k == "bending_x"]
+        if _enough(bx, band_top) or len(loaded.omega) < n or n >= 256:
+            break
+        n *= 2
+    bare = modal_analysis(scene, top=False, n_modes=8, mesh=mesh, comm=comm)
+    modes = red = None
+    if comm is None or comm.rank == 0:
+        modes = pillar_modes_from_fem3d(loaded, scene.pillar, min(len(bx), MAX_CANDIDATES))
+        modes = replace(modes, source=f"fem3d:{pm.label}")
+        t = tip_reduction(bare, scene.pillar)
+        red = TipReductionOf(t.m_reduced, t.tip_stiffness, t.omega_bending,
+                             f"Eq. 2 on the bare tube's first bending mode, {pm.label}")
+    if comm is not None and comm.size > 1:
+        modes, red = comm.bcast((modes, red), root=0)
+    return modes, red
+
+
+def _beam(scene: Scene, pm: PillarModel) -> tuple[PillarModes, TipReductionOf]:
+    from ..reduced.pillar_modes import beam_pillar_modes, beam_tip_reduction
+    theory, elements = pm.mesh["theory"], int(pm.mesh["elements"])
+    modes = beam_pillar_modes(scene, MAX_CANDIDATES, theory, elements,
+                              scene.modal_model.gondola_inertia)
+    m_r, c1, w = beam_tip_reduction(scene, theory, elements)
+    return modes, TipReductionOf(m_r, c1, w, f"Eq. 2 on the bare beam's first mode, {pm.label}")
+
+
+def chain_modes(scene: Scene, choice: Choice, band_top: float, *, comm=None,
+                root: Optional[Path] = None, progress=None) -> ChainModes:
+    """The ROM's candidate modes from ``choice.rom``, enough to pass ``band_top`` (rad/s) and
+    one more; a 3D result is read from, or written to, the cache (see the module text)."""
+    pm = choice.rom
+    if pm.kind != "solid":
+        start = time.perf_counter()
+        modes, red = _beam(scene, pm)
+        return ChainModes(pm, modes, red, None, time.perf_counter() - start)
+    key = modes_key(scene, pm.mesh)
+    path = (cache_root() if root is None else Path(root)) / "modes" / f"{key}.json"
+    doc = _read(path, key)
+    if doc is not None and _enough(doc["modes"]["omega"], band_top):
+        return ChainModes(pm, PillarModes.from_json(doc["modes"]),
+                          TipReductionOf.from_json(doc["reduction"]), str(path), 0.0)
+    if progress:
+        progress(f"chain: the 3D modes of {pm.label} for the ROM (cached after this)")
+    start = time.perf_counter()
+    modes, red = _solid(scene, pm, band_top, comm)
+    seconds = time.perf_counter() - start
+    if comm is None or comm.rank == 0:
+        try:
+            write_json(path, {"key": key, "label": pm.label, "mesh": pm.mesh,
+                              "modes": modes.to_json(), "reduction": red.to_json(),
+                              "seconds": seconds})
+        except OSError:
+            pass        # a read-only cache costs the next stage a solve, nothing else
+    return ChainModes(pm, modes, red, str(path), seconds)
+
+
+def rom_band_top(scene: Scene, motion=None) -> float:
+    """The band the ROM keeps modes below (rad/s): modal_model.band_factor x the highest
+    forcing frequency of the scene's cases (the drive's free speed, the sweep's top, the
+    ground motion's band)."""
+    from ..reduced.cases import forcing_top
+    top = max(forcing_top(scene, "sweep", None), forcing_top(scene, "earthquake", motion)
+              if motion is not None else 0.0)
+    if not math.isfinite(top):
+        top = 0.0
+    return scene.modal_model.band_factor * top

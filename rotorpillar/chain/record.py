@@ -1,0 +1,88 @@
+"""The records of the chain: which pillar model a result used, and how well it is known.
+
+``PillarModel`` is the ``pillar_model`` block every JSON downstream of the
+convergence study carries; ``Uncertain`` is a headline number with its error
+bar, ``{value, error, sources}`` in the JSON.  Numpy-free records (the report
+reads them).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Optional
+
+from ..provenance import JsonRecord
+
+PILLAR_KINDS = ("solid", "shell", "beam", "closed_form")
+CHOICE_SOURCES = ("converge", "scene")
+
+
+@dataclass(frozen=True)
+class PillarModel(JsonRecord):
+    """The pillar model a stage used, where the choice came from and its error."""
+    kind: str
+    """"solid" (the 3D tube, SLEPc modes), "beam" (1D finite elements), "shell" or
+    "closed_form\""""
+    label: str
+    """the ladder's name of the model, e.g. "3D P2 hexahedra, 128x20x1\""""
+    mesh: dict
+    """its discretisation: elements_around/along/through, degree, cell_type, grading
+    (solid, shell) or theory and elements (beam)"""
+    dofs: int
+    """unknowns of the bare tube's model (-)"""
+    source: str
+    """"converge": the model the convergence study chose for the scene's band; "scene":
+    the scene's own [mesh] (no study on disk, or the study's choice cannot be used)"""
+    verified: bool
+    """its frequency error is known from a convergence study (a reference and this run)"""
+    tolerance: Optional[float]
+    """the relative frequency tolerance the study chose it for (-), None without a study"""
+    errors: dict
+    """per frequency the study measured (bending, ovalling, ...): the error bound, model +
+    discretisation + the reference's uncertainty (relative, -); empty when unverified"""
+    note: str
+    """why this model, in words (and what it means when it is not the study's choice)"""
+    study: Optional[str] = None
+    """the convergence.json the choice was read from"""
+
+    @property
+    def bending_error(self) -> Optional[float]:
+        """Relative error bound of the first bending frequency, or None (-)."""
+        e = self.errors.get("bending")
+        return None if e is None or not math.isfinite(e) else float(e)
+
+    def describe(self) -> str:
+        """One line: the model, its DOFs, where it came from, its error."""
+        err = ("error bound " + ", ".join(f"{q} {e:.1e}" for q, e in self.errors.items())
+               if self.errors else "unverified: no convergence study measured its error")
+        return f"{self.label} ({self.dofs:,} DOFs; {self.source}; {err})"
+
+
+@dataclass(frozen=True)
+class Uncertain(JsonRecord):
+    """A headline number with its error bar: the sum of the sources' magnitudes.
+
+    Sources (same unit as the value): ``discretisation`` (the value's change when
+    the pillar model's frequencies move by the study's error bound),
+    ``truncation`` (the ROM against itself with one more mode), ``integration``
+    (the run against one at a hundredth of its tolerance).  A source that was
+    not assessed is absent, and ``unassessed`` names it.
+    """
+    value: float
+    error: float
+    sources: dict = field(default_factory=dict)
+    unassessed: tuple[str, ...] = ()
+    unit: str = ""
+
+    @classmethod
+    def of(cls, value: float, unit: str = "", **sources) -> "Uncertain":
+        """The value with the magnitudes of the sources given (None: not assessed)."""
+        known = {k: abs(float(v)) for k, v in sources.items() if v is not None and math.isfinite(v)}
+        missing = tuple(k for k, v in sources.items() if v is None or not math.isfinite(v))
+        return cls(float(value), float(sum(known.values())), known, missing, unit)
+
+    def text(self, fmt: str = ".4g") -> str:
+        """"15.36 +- 0.02 rad/s\""""
+        unit = f" {self.unit}" if self.unit else ""
+        return f"{self.value:{fmt}} ± {self.error:.2g}{unit}"

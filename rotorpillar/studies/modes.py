@@ -1,0 +1,84 @@
+"""The ROM's pillar modes for a design study: the chain's, solved once in the study's process.
+
+A study on the modal model (the ROM) runs on the chain's pillar modes
+(rotorpillar.chain), as `simulate` does.  The workers never solve them: the
+study resolves them here, once per distinct pillar (a study that varies the
+tube, the gondola or the mesh needs one set per value; every other axis
+shares one), and ships them in each batch's spec as plain arrays, so a batch's
+cache key holds the modes it ran on.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Optional
+
+from ..reduced.pillar_modes import PillarModes
+from ..scene import Scene
+
+#: Scene keys that change the pillar's modes (every other key leaves them alone).
+MODE_KEYS = ("pillar.height", "pillar.outer_diameter", "pillar.inner_diameter",
+             "pillar.youngs_modulus", "pillar.poisson_ratio", "pillar.density", "gondola.mass",
+             "modal.top_model", "modal.top_mass", "modal.tolerance", "modal_model.source",
+             "modal_model.theory", "modal_model.elements", "modal_model.gondola_inertia")
+
+
+def affects_modes(key: str) -> bool:
+    return key in MODE_KEYS or key.startswith("mesh.")
+
+
+def mode_params(base: Scene, scene: Scene) -> dict:
+    """The keys that change the pillar's modes where ``scene`` differs from ``base``."""
+    out = {}
+    for key in MODE_KEYS:
+        section, name = key.split(".")
+        value = getattr(getattr(scene, section), name)
+        if getattr(getattr(base, section), name) != value:
+            out[key] = value
+    for name, value in vars(scene.mesh).items():
+        if getattr(base.mesh, name) != value:
+            out[f"mesh.{name}"] = value
+    return out
+
+
+def mode_key(base: Scene, scene: Scene) -> str:
+    """``mode_params`` as a stable string: the key of a pillar's modes in a study."""
+    return json.dumps(sorted(mode_params(base, scene).items()))
+
+
+class StudyModes:
+    """The pillar modes of a study's scenes, each pillar resolved once (rotorpillar.chain)."""
+
+    def __init__(self, base: Scene, out_dir: Optional[Path], log=None):
+        self.base, self.out_dir, self.log = base, out_dir, log
+        self.table: dict[str, dict] = {}
+        self.pillar_model: dict = {}
+
+    def key(self, scene: Scene) -> str:
+        return mode_key(self.base, scene)
+
+    def __call__(self, scene: Scene) -> PillarModes:
+        """The ROM's candidate modes for ``scene`` (solved once per distinct pillar)."""
+        from ..chain import resolve
+        key = self.key(scene)
+        if key not in self.table:
+            varied = key != "[]"
+            # the base pillar may use the study on disk; a varied pillar has none of its own
+            chain = resolve(scene, None if varied else self.out_dir, progress=self.log)
+            self.table[key] = chain.modes.to_json()
+            if not varied or not self.pillar_model:
+                pm = chain.pillar_model.to_json()
+                if varied:
+                    pm["note"] = ("the pillar varies across the study: each value's own model "
+                                  "(the scene's [mesh]); " + pm["note"])
+                self.pillar_model = pm
+        return PillarModes.from_json(self.table[key])
+
+
+def modes_of(spec: dict, base: Scene, scene: Scene) -> Optional[PillarModes]:
+    """A batch's pillar modes for a group's ``scene`` (None: not the ROM)."""
+    table = spec.get("pillar_modes")
+    if not table:
+        return None
+    return PillarModes.from_json(table[mode_key(base, scene)])
