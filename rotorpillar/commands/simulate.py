@@ -75,11 +75,11 @@ def check_run(scene, case: str, which: str, integrator: str | None = None, modes
             pass
 
 
-def preflight(scene, args, budget: bool = True):
+def preflight(scene, args):
     """What `simulate` refuses before any work (`run` calls it for its stages too): its
-    flags, the record, and the run's plan or step budget (``check_run``; ``budget=False``
-    leaves the budget to the run itself, which checks it before integrating).  Returns
-    the ground motion of an earthquake (read once), else None."""
+    flags, the record, and the run's plan or step budget (``check_run``: before the
+    chain's pillar modes, which may take a 3D solve).  Returns the ground motion of an
+    earthquake (read once), else None."""
     from ..errors import InputError
     from ..reduced.models import scene_motion
     case = getattr(args, "case", None) or scene.simulate.case
@@ -88,14 +88,13 @@ def preflight(scene, args, budget: bool = True):
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
     motion = scene_motion(scene) if case == "earthquake" else None
-    if budget or which == "fem3d":
-        check_run(scene, case, which, getattr(args, "integrator", None), modes, motion)
+    check_run(scene, case, which, getattr(args, "integrator", None), modes, motion)
     return motion
 
 
 def simulate_command(scene, args, timings):
     from . import is_root_rank, out_dir
-    motion = preflight(scene, args, budget=False)                      # bad input: before any output
+    motion = preflight(scene, args)                                    # bad input: before any work
     from ..postprocess.transient_charts import model_run_charts
     from ..transients.files import write_model_files
     from ..transients.run import run_model

@@ -35,8 +35,10 @@ def add_arguments(p) -> None:
 
 def study_command(scene, args, timings):
     from . import out_dir
-    from ..executor import Executor
+    from ..executor import Executor, probe_scheduler
     Executor(args.workers, args.scheduler)          # bad --workers / --scheduler: refused now
+    if args.scheduler:
+        probe_scheduler(args.scheduler)             # before the study's modes and batches
     from ..postprocess.study_charts import study_charts
     from ..studies import design_study
     which = args.model or scene.simulate.model
