@@ -25,20 +25,20 @@ has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx
                                  reason="needs dolfinx")
 
 
-def check_model_files(out, case, model):
-    doc = json.loads((out / f"simulate_{case}_{model}.json").read_text())
+def check_model_files(out, case, model, stem="simulate"):
+    doc = json.loads((out / f"{stem}_{case}_{model}.json").read_text())
     for key in SPEC_FIELDS:
         assert key in doc, key
     assert doc["model"] == model and doc["case"] == case
     assert {"tip_x_relative", "tip_x_absolute", "shaft_deflection_x"} <= doc["max_abs"].keys()
     assert isinstance(doc["dofs"], int) and doc["wall_seconds"] > 0
-    data = np.load(out / f"simulate_{case}_{model}.npz")
+    data = np.load(out / f"{stem}_{case}_{model}.npz")
     for c in COLUMNS:
         assert data[c].shape == data["t"].shape, c
     assert np.allclose(data["tip_x_absolute"] - data["tip_x_relative"], data["ground_x"], atol=1e-12)
-    header = (out / f"simulate_{case}_{model}.csv").read_text().splitlines()[1].split(",")
+    header = (out / f"{stem}_{case}_{model}.csv").read_text().splitlines()[1].split(",")
     assert set(COLUMNS) <= set(header)
-    assert (out / f"simulate_{case}_{model}.png").stat().st_size > 10_000
+    assert (out / f"{stem}_{case}_{model}.png").stat().st_size > 10_000
     return doc
 
 
@@ -79,17 +79,25 @@ def test_compare_earthquake_modal_fem3d(tmp_path):
     for m in ("modal", "fem3d"):
         pm = doc["per_model"][m]
         assert {"peak_tip_relative", "peak_tip_absolute", "peak_shaft_deflection", "omega_final",
-                "wall_seconds", "dofs", "ok", "warnings", "json", "npz"} <= pm.keys()
-        check_model_files(tmp_path, "earthquake", m)
+                "wall_seconds", "compile_seconds", "dofs", "ok", "warnings", "json", "npz",
+                "pillar_model"} <= pm.keys()
+        # the comparison's own files, apart from the scene's simulate_<case>_<model>.*
+        assert pm["json"] == f"compare_earthquake_{m}.json"
+        check_model_files(tmp_path, "earthquake", m, stem="compare")
+    assert not (tmp_path / "simulate_earthquake_modal.json").exists()
     assert set(doc["errors"]) == {"modal"}
-    assert doc["errors"]["modal"]["tip_history_error"] < 2e-2
+    e = doc["errors"]["modal"]
+    assert e["tip_history_error"] < 2e-2
+    # e = 2 mm: the ground drives the tip, the rotors stay in phase and the history leads
+    assert e["lead"] == "history" and e["angle_drift"] < 0.1
+    assert e["tip_envelope_error"] <= e["tip_history_error"] + 1e-12
     assert abs(doc["errors"]["modal"]["omega_final_difference"]) < 1e-5
     assert doc["cost_ratio"]["fem3d"] == 1.0 and doc["chart"] == "compare_earthquake.png"
     assert (tmp_path / "compare_earthquake.png").stat().st_size > 10_000
     sp = doc["spectrum"]
     assert len(sp["period"]) == len(sp["psa"]) and sp["mode_periods"]
     assert sp["spectral_peak_tip"] > 0 and sp["computed_peak_tip"] > 0
-    f3 = json.loads((tmp_path / "simulate_earthquake_fem3d.json").read_text())
+    f3 = json.loads((tmp_path / "compare_earthquake_fem3d.json").read_text())
     assert f3["full_order"]["duration"] == 6 and "coarsened" in f3["full_order"]["note"]
     assert f3["energy_balance"]["relative_error"] < 1e-4
 
