@@ -10,7 +10,6 @@ on stdout.  Bad input: one line on stderr, exit code 2, nothing written.
 
 from __future__ import annotations
 
-import argparse
 import importlib
 import os
 import signal
@@ -18,92 +17,11 @@ import sys
 import time
 from pathlib import Path
 
-from . import __version__
 from .errors import ComputationError, InputError, StageError
 from .provenance import Timings, machine, to_json, versions, write_json
 from .commands import is_root_rank, out_dir
-from .scene import Scene, embedded_scenes, load_scene
-
-# name -> (module, function, help).  A command function takes
-# (scene, args, timings) and returns (result: dict, summary: str).
-COMMANDS = {
-    "analyze": ("rotorpillar.commands.analyze", "analyze_command",
-                "closed forms, reduced system modes, averaging, paper comparison"),
-    "converge": ("rotorpillar.commands.converge", "converge_command",
-                 "mesh convergence, speed against accuracy, and the cheapest model a scene needs"),
-    "modal": ("rotorpillar.commands.modal", "modal_command",
-              "3D tube (Gmsh, dolfinx, SLEPc): modes bare and with the top mass, tip reduction"),
-    "report": ("rotorpillar.commands.report", "report_command",
-               "the HTML validation report, its charts, mode-shape pictures and animations"),
-    "run": ("rotorpillar.commands.run", "run_command",
-            "the main job: every analysis of the scene, then the report"),
-    "simulate": ("rotorpillar.commands.simulate", "simulate_command",
-                 "transients: run-up, run-down, sweep, earthquake on the paper, modal, 3D or beam model"),
-    "compare": ("rotorpillar.commands.compare", "compare_command",
-                "several transient models on one case: tip histories, errors and cost against the "
-                "most complete"),
-    "integrators": ("rotorpillar.commands.integrators", "integrators_command",
-                    "time integrators: error against cost, where each fails"),
-    "study": ("rotorpillar.commands.study", "study_command",
-              "design study on Dask: capture maps of run-ups, earthquake IDA curves"),
-    "harmonic": ("rotorpillar.commands.harmonic", "harmonic_command",
-                 "unbalance response against speed (Bode: ROM, 3D, Eq. 19) and separation "
-                 "margins (API 684)"),
-}
-
-
-def _report_arguments(parser) -> None:
-    from .commands.report import add_arguments
-    add_arguments(parser)
-
-
-def _run_arguments(parser) -> None:
-    from .commands.run import add_arguments
-    _report_arguments(parser)
-    add_arguments(parser)
-
-
-# Extra arguments of a command: name -> callable(parser)
-EXTRA_ARGUMENTS = {
-    "converge": lambda p: importlib.import_module("rotorpillar.commands.converge").add_arguments(p),
-    "modal": lambda p: importlib.import_module("rotorpillar.commands.converge").add_modal_arguments(p),
-    "report": _report_arguments,
-    "run": _run_arguments,
-    "simulate": lambda p: importlib.import_module("rotorpillar.commands.simulate").add_arguments(p),
-    "integrators": lambda p: importlib.import_module("rotorpillar.commands.integrators").add_arguments(p),
-    "compare": lambda p: importlib.import_module("rotorpillar.commands.compare").add_arguments(p),
-    "study": lambda p: importlib.import_module("rotorpillar.commands.study").add_arguments(p),
-    "harmonic": lambda p: importlib.import_module("rotorpillar.commands.harmonic").add_arguments(p),
-}
-
-
-def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("scene", nargs="?", default="paper",
-                   help=f"scene file (.toml) or embedded scene: {', '.join(embedded_scenes())} "
-                        "(default: paper)")
-    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
-                   help="override a scene key, e.g. --set shaft.stiffness=5e6 (repeatable)")
-    p.add_argument("--out", type=Path, default=None, metavar="DIR",
-                   help="output directory (default: out/<scene>/)")
-    p.add_argument("--json", action="store_true",
-                   help="print the result JSON on stdout and nothing else there")
-    p.add_argument("--debug", action="store_true",
-                   help="show the Python traceback of a failure instead of one line")
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="rotorpillar",
-        description="Dynamics of a heavy eccentric rotor on a tall flexible pillar.")
-    parser.add_argument("--version", action="version", version=f"rotorpillar {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for name, (_, _, help_) in COMMANDS.items():
-        p = sub.add_parser(name, help=help_, description=help_)
-        _common(p)
-        if name in EXTRA_ARGUMENTS:
-            EXTRA_ARGUMENTS[name](p)
-    return parser
-
+from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
+from .scene import Scene, load_scene
 
 def execute(name: str, scene: Scene, args) -> dict:
     """Run one command on a scene, write ``<out>/<name>.json``, return the result."""

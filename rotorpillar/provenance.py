@@ -60,6 +60,120 @@ def machine() -> dict:
             "memory_bytes": mem, "hostname": platform.node()}
 
 
+#: Share of the process's memory limit a model may plan to use: the rest is
+#: the interpreter, the libraries and what the estimate misses.
+MEMORY_SHARE = 0.8
+#: cgroup files that hold "no limit": v2 writes "max", v1 a page-rounded 2**63.
+_NO_LIMIT = 2**62
+
+
+@dataclasses.dataclass(frozen=True)
+class MemoryLimit:
+    """The smallest limit on this process's memory, and where it comes from."""
+    bytes: float
+    """the limit (bytes)"""
+    source: str
+    """which limit: physical memory, RLIMIT_AS (ulimit -v), or the cgroup's
+    memory.max (v2) or memory.limit_in_bytes (v1) file"""
+
+    @property
+    def budget(self) -> float:
+        """What a model may plan to use: MEMORY_SHARE of the limit (bytes)."""
+        return MEMORY_SHARE * self.bytes
+
+    def text(self) -> str:
+        """The budget in words, naming the limit it comes from."""
+        return (f"{self.budget / 2**30:.3g} GiB ({100 * MEMORY_SHARE:.0f} % of the "
+                f"{self.bytes / 2**30:.3g} GiB of {self.source})")
+
+
+def _cgroup_limit(proc: Path) -> tuple[float, str] | None:
+    """The smallest memory limit of this process's cgroup and its ancestors (v2
+    ``memory.max``, v1 ``memory.limit_in_bytes``), found through ``proc``'s
+    ``cgroup`` and ``mountinfo`` files; None when there is none."""
+    try:
+        groups = (proc / "cgroup").read_text().splitlines()
+        mounts = (proc / "mountinfo").read_text().splitlines()
+    except OSError:
+        return None
+    found = []
+    for line in groups:
+        parts = line.split(":", 2)
+        if len(parts) != 3:
+            continue
+        _, controllers, path = parts
+        v2 = controllers == ""
+        if not v2 and "memory" not in controllers.split(","):
+            continue
+        name = "memory.max" if v2 else "memory.limit_in_bytes"
+        for m in mounts:
+            fields_, _, tail = m.partition(" - ")
+            f, t = fields_.split(), tail.split()
+            if len(f) < 5 or not t or t[0] != ("cgroup2" if v2 else "cgroup"):
+                continue
+            if not v2 and "memory" not in (t[2].split(",") if len(t) > 2 else ()):
+                continue
+            root, point = f[3], f[4]
+            rel = path if root == "/" else (path[len(root):] if path.startswith(root) else None)
+            if rel is None:
+                continue
+            here = Path(point + "/" + rel.strip("/")) if rel.strip("/") else Path(point)
+            while True:                 # the process's group and every ancestor up to the mount
+                try:
+                    text = (here / name).read_text().strip()
+                except OSError:
+                    text = ""
+                if text.isdigit() and int(text) < _NO_LIMIT:
+                    found.append((float(text), f"cgroup {name} ({here / name})"))
+                if here == Path(point) or here.parent == here:
+                    break
+                here = here.parent
+    return min(found) if found else None
+
+
+def memory_limit(proc: str | Path = "/proc/self") -> MemoryLimit:
+    """The smallest of the machine's physical memory, this process's address-space
+    limit (RLIMIT_AS: ``ulimit -v``) and its cgroup's memory limit (v2 or v1).
+
+    ``proc``: where to read ``cgroup`` and ``mountinfo`` (a test passes a fake one).
+    """
+    limits = []
+    try:
+        limits.append((float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")),
+                       "physical memory"))
+    except (ValueError, OSError, AttributeError):
+        limits.append((8.0 * 2**30, "physical memory (unknown: 8 GiB assumed)"))
+    try:
+        import resource
+        soft = resource.getrlimit(resource.RLIMIT_AS)[0]
+        if soft != resource.RLIM_INFINITY and soft > 0:
+            limits.append((float(soft), "RLIMIT_AS (ulimit -v)"))
+    except (ImportError, ValueError, OSError):
+        pass
+    cgroup = _cgroup_limit(Path(proc))
+    if cgroup is not None:
+        limits.append(cgroup)
+    return MemoryLimit(*min(limits))
+
+
+def check_memory(need: float, what: str, advice: str, proc: str | Path = "/proc/self") -> None:
+    """Refuse (InputError, one line) work estimated at ``need`` bytes above the budget of
+    ``memory_limit()``, naming the limit that applies."""
+    limit = memory_limit(proc)
+    if not need <= limit.budget:
+        from .errors import InputError
+        raise InputError(f"{what} would need about {need / 2**30:.3g} GiB; this process may use "
+                         f"{limit.text()} (README, Limits): {advice}")
+
+
+def usable_cores() -> int:
+    """CPU cores this process may run on (its affinity mask; os.cpu_count() elsewhere)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
 class Timings(dict):
     """Wall-clock seconds per named stage: ``with t("solve"): ...``."""
 

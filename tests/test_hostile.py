@@ -364,3 +364,369 @@ def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, computed):
     assert "Traceback" not in p.stderr and "vtkXML" not in p.stderr
     failures = json.loads((out / "report.json").read_text())["failures"]
     assert any("modes_bare.vtu is damaged" in v and "rotorpillar modal" in v for v in failures.values())
+
+
+# --------------------------------------------------------------------------
+# Issue 19 (hardening, second pass): refuse before work whatever the size, memory
+# limits of the process, Dask addresses and workers, one line with the right word.
+# No test asserts a time (TEAM.md): a subprocess timeout only turns a hang into a failure.
+
+import json
+import socket
+import subprocess
+import sys
+import threading
+import time
+
+
+def _nothing_written(out):
+    assert not out.exists() or not any(out.iterdir())
+
+
+@pytest.mark.parametrize("vary", [
+    ["drive.torque_at_zero=560:700:1000000"],
+    ["drive.torque_at_zero=560:700:1000", "rotor.eccentricity=0.01:0.02:1000"],
+    ["drive.torque_at_zero=560:700:1000000000000"],
+], ids=["one-axis", "product", "1e12"])
+def test_a_study_too_large_is_refused_from_its_counts(tmp_path, vary):
+    """The 100,000-run limit from the axes' counts, before any value is built or checked
+    (it hung: each of the 1e6 values was checked first)."""
+    out = tmp_path / "out"
+    p = cli("study", "sommerfeld", *[a for v in vary for a in ("--vary", v)], "--out", out,
+            timeout=60)
+    assert p.returncode == 2 and "at most 100,000" in one_line(p)
+    _nothing_written(out)
+
+
+def test_a_bad_point_of_a_large_study_is_named():
+    """Every point is checked (the scene's checks across keys), the bad one named."""
+    from rotorpillar.errors import InputError
+    from rotorpillar.scene import load_scene
+    from rotorpillar.studies.axes import check_points, parse_axes
+    scene = load_scene("paper", ["pillar.inner_diameter=1.0"])
+    # each value passes alone (against the other key's 1.0 and 2.0); 1.95 inside 1.91 does not
+    axes = parse_axes(["pillar.inner_diameter=0.5:1.95:1000", "pillar.outer_diameter=2.0:1.91:100"],
+                      scene)
+    with pytest.raises(InputError, match=r"the point pillar.inner_diameter=1\.9.*, "
+                                         r"pillar.outer_diameter=1\.9.* is not a valid scene: "
+                                         r"pillar.inner_diameter"):
+        check_points(scene, axes, {})
+
+
+NANO_RECORD = "0 0\n1e-9 0.1\n0.01 0.2\n10 0\n"
+
+
+@pytest.mark.parametrize("args", [
+    ["simulate", "--case", "earthquake"],
+    ["simulate", "--case", "earthquake", "--model", "fem3d"],
+    ["compare", "--case", "earthquake"],
+    ["study", "--case", "earthquake", "--model", "modal", "--vary", "excitation.record_scale=0.5,1"],
+    ["run"],
+], ids=["simulate", "simulate-fem3d", "compare", "study", "run"])
+def test_a_record_with_a_nanosecond_step_is_refused_before_any_allocation(tmp_path, args):
+    """Resampled to its smallest step it would hold 1e10 samples (out of memory before):
+    refused by every command that reads records, naming the file and its step."""
+    rec = tmp_path / "nano.txt"
+    rec.write_text(NANO_RECORD)
+    out = tmp_path / "out"
+    p = cli(args[0], "paper", *args[1:], "--set", "excitation.kind=record",
+            "--set", f"excitation.record='{rec}'", "--out", out, timeout=120)
+    assert p.returncode == 2, p.stderr
+    line = one_line(p)
+    assert "nano.txt" in line and "1e-09 s" in line and "simulate.max_steps" in line
+    _nothing_written(out)
+
+
+def test_a_record_is_refused_by_the_memory_it_would_need():
+    """Above the process's memory (not simulate.max_steps) a record names the limit."""
+    import numpy as np
+    from rotorpillar.errors import InputError
+    from rotorpillar.reduced.excitation import check_record_size
+    t = np.array([0.0, 1e-9, 1000.0])            # 1e12 samples: 200 TB at 200 B each
+    with pytest.raises(InputError, match="GiB.*this process may use"):
+        check_record_size(t, "accelerogram 'x.txt'")
+
+
+@pytest.mark.parametrize("sets, stage, words", [
+    (["simulate.integrator=newmark", "simulate.time_step=1e-9"], "", "simulate.max_steps"),
+    (["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=2"], "modal",
+     "modal.n_modes"),
+    (["converge.solid_p2_max_around=256", "mesh.elements_along=640"], "", "GiB"),
+], ids=["tiny-step", "too-many-modes", "huge-ladder"])
+def test_run_refuses_what_a_later_stage_would_before_its_first(tmp_path, sets, stage, words):
+    """run checks every stage's scene with that stage's own pre-flight checks before the
+    first stage: nothing written (before, analyze.json was, and a later stage exited 1)."""
+    out = tmp_path / "out"
+    p = cli("run", "paper", *[a for s in sets for a in ("--set", s)], "--out", out, timeout=300)
+    assert p.returncode == 2, p.stderr
+    line = one_line(p)
+    assert "stage '" + stage in line and words in line
+    assert not out.exists()
+
+
+def test_every_stage_of_run_has_the_preflight_its_command_calls():
+    """run calls each stage's own checks: every command module it runs has one."""
+    import importlib
+    from rotorpillar.commands.parser import COMMANDS
+    from rotorpillar.commands.run import RUN_STAGES
+    for command, *_ in RUN_STAGES:
+        name = command.split()[0]
+        if name == "analyze":                     # nothing beyond the scene itself
+            continue
+        assert callable(getattr(importlib.import_module(COMMANDS[name][0]), "preflight", None)), name
+
+
+@pytest.mark.parametrize("sets", [
+    ["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=2"],
+    ["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=1",
+     "modal.top_model=ring_mass"],
+], ids=["rigid-top", "ring-mass"])
+def test_more_modes_than_the_mesh_has_are_refused_before_the_solve(tmp_path, sets):
+    out = tmp_path / "out"
+    p = cli("modal", "paper", *[a for s in sets for a in ("--set", s)], "--out", out)
+    assert p.returncode == 2
+    line = one_line(p)
+    assert "modal.n_modes = 500" in line and "unknowns" in line
+    assert not out.exists()
+
+
+@pytest.mark.slow
+def test_a_tolerance_the_ladder_cannot_reach_is_a_result_not_bad_input(tmp_path):
+    """The ladder's errors come from its runs: the study runs, modal runs the most accurate
+    3D mesh and says the tolerance was not met (ok: false, exit 4), in a few stderr lines."""
+    p = cli("modal", "paper", "--tolerance", "1e-3", "--out", tmp_path,
+            "--set", "converge.solid_p2_max_around=32", "--set", "converge.solid_p1_max_around=32",
+            "--set", "converge.solid_tet_p2_max_around=32", "--set", "converge.shell_max_around=16",
+            "--set", "converge.shell_tri_max_around=8", timeout=900)
+    assert p.returncode == 4, p.stderr
+    doc = json.loads((tmp_path / "modal.json").read_text())
+    assert doc["ok"] is False and doc["model_selection"]["met"] is False
+    assert "not met" in doc["failed_checks"][0]
+    assert len(p.stderr.strip().splitlines()) <= 8, p.stderr
+
+
+# -------------------------------------------------------------- memory limits
+
+
+def _fake_proc(tmp_path, cgroup_lines, mounts, files):
+    proc = tmp_path / "proc"
+    proc.mkdir()
+    (proc / "cgroup").write_text("\n".join(cgroup_lines) + "\n")
+    (proc / "mountinfo").write_text("\n".join(mounts) + "\n")
+    for rel, text in files.items():
+        f = tmp_path / rel
+        f.parent.mkdir(parents=True, exist_ok=True)
+        f.write_text(text)
+    return proc
+
+
+def test_the_memory_limit_is_a_cgroup_v2_memory_max(tmp_path):
+    """The process's group says max (no limit); its parent says 1 GiB: the parent's applies."""
+    from rotorpillar.provenance import memory_limit
+    root = tmp_path / "cg2"
+    proc = _fake_proc(tmp_path, ["0::/batch/job7"],
+                      [f"41 23 0:38 / {root} rw,relatime - cgroup2 cgroup2 rw"],
+                      {"cg2/batch/job7/memory.max": "max\n", "cg2/batch/memory.max": f"{2**30}\n"})
+    lim = memory_limit(proc)
+    assert lim.bytes == 2**30 and "memory.max" in lim.source and "batch" in lim.source
+
+
+def test_the_memory_limit_is_a_cgroup_v1_limit_in_bytes(tmp_path):
+    """v1: the memory controller's hierarchy, its group's memory.limit_in_bytes; the
+    page-rounded 2**63 of 'unlimited' is no limit."""
+    from rotorpillar.provenance import memory_limit
+    root = tmp_path / "cg1"
+    proc = _fake_proc(tmp_path, ["9:name=systemd:/", "4:memory:/docker/abc", "0::/"],
+                      [f"35 31 0:32 / {root} rw,relatime - cgroup cgroup rw,memory"],
+                      {"cg1/docker/abc/memory.limit_in_bytes": f"{3 * 2**30}\n",
+                       "cg1/docker/memory.limit_in_bytes": "9223372036854771712\n"})
+    lim = memory_limit(proc)
+    assert lim.bytes == 3 * 2**30 and "memory.limit_in_bytes" in lim.source
+
+
+def test_without_a_cgroup_limit_the_machine_or_ulimit_applies(tmp_path):
+    from rotorpillar.provenance import memory_limit
+    proc = _fake_proc(tmp_path, ["0::/"], ["41 23 0:38 / /nonexistent rw - cgroup2 cgroup2 rw"], {})
+    assert memory_limit(proc).source in ("physical memory", "RLIMIT_AS (ulimit -v)")
+
+
+@pytest.mark.parametrize("args", [
+    ["modal", "--set", "mesh.elements_along=50"],
+    ["converge", "--no-progress"],
+], ids=["modal", "converge"])
+def test_ulimit_v_is_the_limit_a_mesh_is_refused_against(tmp_path, args):
+    """Under `ulimit -v` 3 GB (budget 2.4 GB) a 116 k-DOF modal mesh (2.8 GB for its two
+    solves) and the convergence study's finest run (286 k DOFs, 3.4 GB) are refused,
+    naming RLIMIT_AS; on this machine's memory alone both are accepted."""
+    out = tmp_path / "out"
+    cmd = " ".join([sys.executable, "-m", "rotorpillar", args[0], "paper", *args[1:],
+                    "--out", str(out)])
+    p = subprocess.run(["bash", "-c", f"ulimit -v 3000000 && exec {cmd}"], capture_output=True,
+                       text=True, timeout=120)
+    assert p.returncode == 2, p.stderr
+    line = one_line(p)
+    assert "RLIMIT_AS" in line and "GiB" in line and "DOFs" in line
+    _nothing_written(out)
+
+
+# -------------------------------------------------------------- Dask addresses
+
+
+def _listener(chatty: bool):
+    """A loopback server that accepts and stays silent, or that sends an SSH banner."""
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    srv.listen(8)
+    held = []
+
+    def serve():
+        while True:
+            try:
+                conn, _ = srv.accept()
+            except OSError:
+                return
+            held.append(conn)
+            if chatty:
+                conn.sendall(b"SSH-2.0-OpenSSH_9.2p1 Debian-2\r\n")
+    threading.Thread(target=serve, daemon=True).start()
+    return srv, held
+
+
+def _closed_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(params=["silent", "chatty", "closed"])
+def bad_address(request):
+    if request.param == "closed":
+        yield f"tcp://127.0.0.1:{_closed_port()}", "nothing listening"
+        return
+    srv, held = _listener(request.param == "chatty")
+    words = "says nothing within" if request.param == "silent" else "not a Dask scheduler"
+    yield f"tcp://127.0.0.1:{srv.getsockname()[1]}", words
+    srv.close()
+    for c in held:
+        c.close()
+
+
+def test_the_probe_names_what_is_at_a_bad_address(bad_address):
+    from rotorpillar.errors import InputError
+    from rotorpillar.executor import probe_scheduler
+    address, words = bad_address
+    with pytest.raises(InputError, match=words):
+        probe_scheduler(address, timeout=1.0)
+
+
+def test_study_refuses_a_bad_scheduler_in_one_line(tmp_path, bad_address):
+    """Exit 2 naming what was found (never 'out of memory'), within the bounded handshake
+    (before: past a minute on a silent port, 31 s on a closed one)."""
+    address, words = bad_address
+    out = tmp_path / "out"
+    p = cli("study", "sommerfeld", "--vary", "drive.torque_at_zero=600,700", "--scheduler",
+            address, "--out", out, "--no-progress", timeout=60)
+    assert p.returncode == 2, p.stderr
+    line = one_line(p)
+    assert words in line and address in line and "memory" not in line
+
+
+def test_the_probe_accepts_a_dask_scheduler():
+    from distributed import LocalCluster
+    from rotorpillar.executor import probe_scheduler
+    with LocalCluster(n_workers=0, processes=True, host="127.0.0.1", dashboard_address=None,
+                      scheduler_kwargs={"dashboard_address": "127.0.0.1:0"}) as cluster:
+        probe_scheduler(cluster.scheduler_address)
+
+
+@pytest.mark.parametrize("command", ["study", "converge"])
+def test_more_local_workers_than_cores_are_refused(tmp_path, command):
+    from rotorpillar.provenance import usable_cores
+    out = tmp_path / "out"
+    extra = ["--vary", "drive.torque_at_zero=600,700"] if command == "study" else []
+    p = cli(command, "sommerfeld" if command == "study" else "paper", *extra, "--workers", "1000",
+            "--out", out)
+    assert p.returncode == 2
+    line = one_line(p)
+    assert "--workers 1000" in line and f"{usable_cores()} cores" in line
+    _nothing_written(out)
+
+
+# -------------------------------------------------------------- one line, the right word
+
+
+@pytest.mark.parametrize("args, allowed", [
+    (["compare", "--case", "sweep"], "'earthquake', 'runup'"),
+    (["simulate", "--case", "quake"], "'runup', 'rundown', 'sweep', 'earthquake'"),
+    (["simulate", "--model", "fe"], "'paper', 'modal', 'fem3d', 'beam'"),
+    (["simulate", "--integrator", "euler"], "'dp5'"),
+    (["study", "--case", "sweep"], "'runup'"),
+    (["study", "--model", "fem3d"], "'paper', 'modal', 'beam'"),
+    (["integrators", "--duration", "ten"], "invalid float value"),
+    (["run", "--skip", "everything"], "analyze"),
+    (["frobnicate"], "analyze"),
+], ids=lambda a: "-".join(a) if isinstance(a, list) else None)
+def test_every_choice_error_is_one_line_naming_the_allowed_values(tmp_path, args, allowed):
+    p = cli(*args, "--out", tmp_path / "out")
+    assert p.returncode == 2
+    assert len(p.stderr.strip().splitlines()) == 1, p.stderr
+    assert allowed in p.stderr and "usage:" not in p.stderr
+
+
+REPORT_INPUTS = {"analyze.json": "analyze", "modal.json": "modal", "convergence.json": "converge",
+                 "integrators.json": "integrators", "simulate_runup.json": "simulate",
+                 "compare_runup.json": "compare", "study.json": "study"}
+DAMAGES = {"null": "null", "empty-object": "{}", "list": "[1, 2]", "truncated": '{"a": [1, ',
+           "wrong-types": None}
+
+
+def _damaged(computed, tmp_path, name, damage):
+    import shutil
+    out = tmp_path / "out"
+    shutil.copytree(computed, out)
+    f = out / name
+    text = DAMAGES[damage]
+    if text is None:      # every key a real file of it has (or a few), each of the wrong kind
+        keys = list(json.loads(f.read_text())) if f.exists() else ["modes", "runs", "accuracy",
+                                                                   "case", "model", "axes"]
+        text = json.dumps({k: 12345 for k in keys if k not in ("scene", "versions", "machine",
+                                                               "timings", "command")})
+    f.write_text(text)
+    return out
+
+
+@pytest.mark.parametrize("damage", list(DAMAGES))
+@pytest.mark.parametrize("name", list(REPORT_INPUTS))
+def test_the_report_reads_every_damaged_input_as_damaged(tmp_path, computed, name, damage):
+    """Each input the report reads, damaged five ways, through the report's reader: a
+    failed input naming the file and the command that rebuilds it, never 'not computed'
+    (null) nor a bare KeyError without the file ({})."""
+    from rotorpillar.postprocess.report.build import load_inputs
+    from rotorpillar.postprocess.report.state import Build, ReportOptions
+    from rotorpillar.scene import load_scene
+    out = _damaged(computed, tmp_path, name, damage)
+    build = Build(load_scene("paper"), out, "paper", ReportOptions(animations=False))
+    load_inputs(build)
+    named = [v for k, v in build.failures.items() if name in k]
+    assert named and "is damaged" in named[0], build.failures
+    assert f"`rotorpillar {REPORT_INPUTS[name]} paper`" in named[0]
+    assert REPORT_INPUTS[name] in build.damaged
+
+
+@pytest.mark.parametrize("name, damage, words", [
+    ("analyze.json", "null", "holds a JSON null"),
+    ("modal.json", "empty-object", "modal.json has no key '"),
+])
+def test_the_report_page_says_which_input_is_damaged(tmp_path, computed, name, damage, words):
+    """The issue's two examples through the command: exit 0, the page and report.json
+    name the file, the key and the command; the input is present, not 'not computed'."""
+    import html
+    out = _damaged(computed, tmp_path, name, damage)
+    p = cli("report", "paper", "--out", out, "--no-animations")
+    assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
+    doc = json.loads((out / "report.json").read_text())
+    failure = doc["failures"][f"input {name}"]
+    assert words in failure and f"rotorpillar {REPORT_INPUTS[name]} paper" in failure
+    assert doc["inputs"][name.rsplit(".", 1)[0]] is True
+    page = html.unescape((out / "report.html").read_text())
+    assert words in page

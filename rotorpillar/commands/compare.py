@@ -23,9 +23,24 @@ def add_arguments(p) -> None:
                         "model given: fem3d > beam > modal > paper")
 
 
+def preflight(scene, args) -> None:
+    """What `compare` refuses before any work (`run` calls it for its stages too): the
+    models, the record, the common duration and each model's run (commands.simulate.check_run:
+    the 3D plan and mesh, the reduced runs' step budgets)."""
+    from ..reduced.models import scene_motion
+    from ..transients.compare import common_duration, parse_models
+    from .simulate import check_run
+    models = parse_models(args.models, args.case)
+    motion = scene_motion(scene) if args.case == "earthquake" else None
+    duration, _ = common_duration(scene, args.case, models, motion)
+    for m in models:
+        check_run(scene, args.case, m, motion=motion, duration=duration)
+
+
 def compare_command(scene, args, timings):
     from . import EXIT_CHECKS, is_root_rank, out_dir
     from ..transients.compare import compare_models, parse_models
+    preflight(scene, args)
     case = args.case
     models = parse_models(args.models, case)
     provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}

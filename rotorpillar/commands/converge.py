@@ -81,17 +81,31 @@ def _under_mpi() -> bool:
     return any(int(os.environ.get(k, "1")) > 1 for k in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"))
 
 
-def converge_command(scene, args, timings):
+def preflight(scene, args) -> None:
+    """What `converge` refuses before any work (`run` calls it for its stage too): MPI,
+    --workers, --tolerance, and runs (not in the cache) this process's memory cannot hold."""
     from . import out_dir
+    from ..executor import check_workers, default_workers
     if _under_mpi():
         raise InputError("rotorpillar converge runs its runs as subprocesses (--workers at once): "
                          "start it without mpirun")
+    check_workers(args.workers)
+    from ..converge.ladder import study_cases
+    from ..converge.runner import check_memory, todo_cases
+    from ..converge.study import check_tolerance
+    check_tolerance(scene.converge.tolerance if args.tolerance is None else args.tolerance)
+    cache = out_dir(scene, args) / "cache" if args.cache is None else args.cache
+    check_memory(todo_cases(study_cases(scene), scene, cache),
+                 default_workers() if args.workers is None else args.workers)
+
+
+def converge_command(scene, args, timings):
+    from . import out_dir
+    preflight(scene, args)
     from ..converge import study
     from ..executor import default_workers
     from ..postprocess.convergence_charts import convergence_charts
     workers = default_workers() if args.workers is None else args.workers
-    if workers < 1:
-        raise InputError(f"--workers {workers}: must be >= 1")
     st = study(scene, out_dir=out_dir(scene, args), cache_dir=args.cache,
                tolerance=args.tolerance, show_progress=not args.no_progress,
                charts=convergence_charts, timings=timings, log=progress, workers=workers)

@@ -18,9 +18,27 @@ def add_arguments(p) -> None:
                    help="the ROM only: skip the 3D model's harmonic response")
 
 
+def preflight(scene, args) -> None:
+    """What `harmonic` refuses before any work (`run` calls it for its stage too): a 3D mesh
+    this machine cannot hold, and a drive with no stable running speed."""
+    from ..reduced.models import build_model
+    from ..reduced.stationary import operating_speed
+    from ..scene import override
+    if not getattr(args, "no_fem3d", False):
+        import importlib.util
+        if importlib.util.find_spec("dolfinx") is not None:
+            from .simulate import check_run
+            check_run(scene, "runup", "fem3d")
+    # the running speed on the beam's modes: within the beam's error of the chain's ROM
+    model, _ = build_model(override(scene, ["modal_model.source=beam"]), "modal", modes=1)
+    d, L = scene.drive, scene.load
+    operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
+
+
 def harmonic_command(scene, args, timings):
     from . import out_dir
     from ..verdict.harmonic import harmonic_analysis, summary_text
+    preflight(scene, args)
     progress(f"harmonic {scene.name}: unbalance response and separation margins")
     with timings("harmonic"):
         result = harmonic_analysis(scene, out_dir(scene, args), progress,

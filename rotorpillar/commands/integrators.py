@@ -20,17 +20,23 @@ def add_arguments(p) -> None:
                    help="fewer tolerances, steps and modes (for a first look)")
 
 
-def integrators_command(scene, args, timings):
-    from . import is_root_rank, out_dir
+def preflight(scene, args) -> None:
+    """What `integrators` refuses before any work (`run` calls it for its stage too)."""
     from ..errors import InputError
-    from ..chain import resolve
-    from ..reduced.integrator_study import run_study
-    from ..reduced.models import beam_candidates
     duration = getattr(args, "duration", 10.0)
     # every integrator at every step size: ~2-6 s of computing per simulated second
     if not (math.isfinite(duration) and 0 < duration <= MAX_DURATION):
         raise InputError(f"--duration {duration!r}: must be > 0 and <= {MAX_DURATION:g} (s): the "
                          f"study costs about 2-6 s per simulated second on 2 cores")
+
+
+def integrators_command(scene, args, timings):
+    from . import is_root_rank, out_dir
+    from ..chain import resolve
+    from ..reduced.integrator_study import run_study
+    from ..reduced.models import beam_candidates
+    preflight(scene, args)
+    duration = getattr(args, "duration", 10.0)
     with timings("pillar_modes"):
         chain = resolve(scene, out_dir(scene, args), progress=progress)
     with timings("study"):

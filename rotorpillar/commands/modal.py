@@ -45,20 +45,49 @@ def _rank0() -> bool:
     return MPI.COMM_WORLD.rank == 0
 
 
+#: Modal solves in one `modal` process (bare, then with the top): its peak memory
+#: is this many times one solve's (mesh.tube.BYTES_PER_DOF).
+SOLVES = 2
+
+
+def preflight(scene, args=None) -> None:
+    """What `modal` refuses before any work (`run` calls it for its stage too): a mesh
+    this process cannot hold, more modes than the mesh has, a tolerance out of range."""
+    from ..errors import InputError
+    from ..mesh import tube_params
+    from ..provenance import check_memory
+    p = tube_params(scene.pillar, scene.mesh)
+    check_memory(SOLVES * p.estimated_bytes,
+                 f"modal: the mesh {p.elements_around} around x {p.elements_along} along x "
+                 f"{p.elements_through} through ({p.estimated_dofs:,} DOFs, two solves)",
+                 "use fewer elements")
+    n, rigid = scene.modal.n_modes, scene.modal.top_model == "rigid"
+    dofs = min(p.solver_dofs(False), p.solver_dofs(rigid))
+    if n and n + 1 > dofs:
+        raise InputError(f"modal.n_modes = {n}: the mesh {p.elements_around} x {p.elements_along} x "
+                         f"{p.elements_through} has {dofs} unknowns"
+                         + (" with its rigid top" if rigid else "")
+                         + f"; the solver returns at most {dofs - 1} modes (it asks one more "
+                           "than n_modes): ask fewer or refine the mesh")
+    if getattr(args, "tolerance", None) is not None:
+        from ..converge.study import check_tolerance
+        check_tolerance(args.tolerance)
+
+
 def modal_command(scene, args, timings):
+    import sys
+    from . import EXIT_CHECKS, out_dir
+    preflight(scene, args)                         # bad input: refused before any import or work
     from ..reduced.reduction import pillar_closed_forms
-    from . import out_dir
     from ..fem3d import modal_analysis
     from ..fem3d.output import write_modes_vtu
     from ..fem3d.summary import modal_summary, summary
-    from ..mesh import tube_params
-    tube_params(scene.pillar, scene.mesh)          # bad input: refused before any work
     quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
     from dataclasses import replace
     from mpi4py import MPI
     from ..chain import chain_modes, choose, rom_band_top
-    from ..chain.choice import Choice, model_of_run
+    from ..chain.choice import Choice, from_scene, model_of_run
     selection = None
     if getattr(args, "tolerance", None) is not None:
         from ..converge import model_for_modal
@@ -66,14 +95,19 @@ def modal_command(scene, args, timings):
         with timings("model_selection"):
             scene, selection = model_for_modal(scene, args.tolerance, out_dir(scene, args),
                                                cache_dir=args.cache, charts=convergence_charts,
-                                               log=progress)
+                                               log=say, show_progress=sys.stderr.isatty())
         say(selection["text"].splitlines()[0])
-        pm = model_of_run(selection["chosen"], selection.get("reference_uncertainty") or {},
-                          args.tolerance, selection["reason"], selection.get("convergence_json"))
-        choice = Choice(pm, pm)
+        if selection["chosen"] is None:     # no 3D run has an error estimate: the scene's [mesh]
+            choice = from_scene(scene, args.cache or out_dir(scene, args) / "cache",
+                                selection["reason"])
+        else:
+            pm = model_of_run(selection["chosen"], selection.get("reference_uncertainty") or {},
+                              args.tolerance, selection["reason"], selection.get("convergence_json"))
+            choice = Choice(*(2 * [pm if selection["met"] else replace(pm, verified=False)]))
     else:
         choice = choose(scene, out_dir(scene, args))
         scene = replace(scene, mesh=choice.solid_mesh)
+    preflight(scene)                               # the mesh run: its memory and modes
     say(f"modal: {choice.solid.describe()}")
     with timings("rom_modes"):
         # the ROM's modes on this mesh, computed once here and cached for the stages after
@@ -101,4 +135,7 @@ def modal_command(scene, args, timings):
     if selection is not None:
         doc["model_selection"] = selection
         text = selection["text"] + "\n\n" + text
+        if not selection["met"]:          # written, and marked: the exit code says so too
+            doc.update(ok=False, failed_checks=[selection["reason"]], exit_status=EXIT_CHECKS)
+            say(f"modal: check failed: {selection['reason']}")
     return doc, text

@@ -40,6 +40,11 @@ def checked_frames(args) -> int:
     return frames
 
 
+def preflight(scene, args) -> None:
+    """What `report` refuses before any work (`run` calls it for its stage too)."""
+    checked_frames(args)
+
+
 def report_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..postprocess.report import ReportOptions, build_report, summary_text

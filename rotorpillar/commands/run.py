@@ -132,6 +132,35 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
     return seconds
 
 
+def preflight(scene, stages, args) -> None:
+    """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
+    module), on the scene and arguments that stage will see: its command line parsed by
+    the CLI's parser, its own --set before the user's.  Called before the first stage,
+    so a stage that would refuse its input refuses `run`, with nothing written."""
+    import importlib
+    from ..errors import InputError
+    from ..scene import load_scene
+    from .parser import COMMANDS, build_parser
+    parser = build_parser()
+    checks = []
+    for command, _, extra, own, *_ in stages:
+        stage_args = parser.parse_args(stage_argv(command, args, extra, own)[3:])
+        try:
+            checks.append((command, load_scene(stage_args.scene, stage_args.overrides), stage_args))
+        except InputError as exc:
+            raise InputError(f"stage {command!r}: {exc}") from None
+    # every stage is checked; those that read a record (seconds: a library's imports) last,
+    # so that what a cheaper stage also refuses is refused at once
+    for command, stage_scene, stage_args in sorted(
+            checks, key=lambda c: c[1].excitation.kind == "record"):
+        check = getattr(importlib.import_module(COMMANDS[stage_args.command][0]), "preflight", None)
+        try:
+            if check is not None:
+                check(stage_scene, stage_args)
+        except InputError as exc:
+            raise InputError(f"stage {command!r}: {exc}") from None
+
+
 def add_arguments(parser) -> None:
     """run's own flags, beside the report's (which it passes on)."""
     names = sorted({st[0].split()[0] for st in RUN_STAGES} - {"report"})
@@ -143,16 +172,13 @@ def run_command(scene, args, timings):
     """Every stage of RUN_STAGES, each writing its own JSON."""
     from . import out_dir
     from ..errors import InputError
-    from ..mesh import tube_params
-    from .report import checked_frames
-    tube_params(scene.pillar, scene.mesh)      # a mesh this machine cannot hold: refused now, not late
-    checked_frames(args)
     args._scene = scene
     skip = set(getattr(args, "skip", []))
     known = {st[0].split()[0] for st in RUN_STAGES} - {"report"}
     if skip - known:
         raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
     todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
+    preflight(scene, todo, args)               # every stage's bad input: refused now, not late
     stages, lines, report = {}, [], None
     waves = sorted({st[4] for st in todo})
     slots = max(1, min(os.cpu_count() or 1, MAX_SIDE_BY_SIDE))

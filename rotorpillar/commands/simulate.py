@@ -47,21 +47,60 @@ def add_arguments(p) -> None:
                         "(the scene's simulate.threshold = false)")
 
 
-def simulate_command(scene, args, timings):
-    from . import is_root_rank, out_dir
+def check_run(scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
+              motion=None, duration: float | None = None) -> None:
+    """Refuse (InputError) a run of one model that its own code would refuse, before any
+    work: the 3D model's plan and mesh memory, or a reduced model's step budget (the
+    case's own code, reduced.cases.run_case, run up to its first integration:
+    rotorpillar.reduced.transient.estimate_only; the models built, nothing integrated).  A modal model whose modes would come from the
+    3D model is estimated on the 1D beam's modes (the estimate's inputs from the modes,
+    the operating speed and the fastest mode in the band, agree within the beam's
+    error; the run checks again on its own modes)."""
+    from ..reduced.cases import run_case
+    from ..reduced.transient import Estimated, estimate_only
+    from ..scene import override
+    from ..transients.run import fem3d_plan, with_duration
+    if which == "fem3d":
+        from ..mesh import tube_params
+        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration)["_mesh"])   # its memory
+        return
+    if which == "modal" and scene.modal_model.source != "beam":
+        scene = override(scene, ["modal_model.source=beam"])
+    if duration is not None:
+        scene = with_duration(scene, case, duration)          # as run_model shortens a run
+    with estimate_only():
+        try:
+            run_case(scene, case, which, integrator, modes, truncation=False, motion=motion)
+        except Estimated:
+            pass
+
+
+def preflight(scene, args):
+    """What `simulate` refuses before any work (`run` calls it for its stages too): its
+    flags, the record, and the run's plan or step budget (``check_run``: before the
+    chain's pillar modes, which may take a 3D solve).  Returns the ground motion of an
+    earthquake (read once), else None."""
     from ..errors import InputError
     from ..reduced.models import scene_motion
-    from ..postprocess.transient_charts import model_run_charts
-    from ..transients.files import write_model_files
-    from ..transients.run import fem3d_plan, run_model
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
-    motion = scene_motion(scene) if case == "earthquake" else None    # bad input: refused before any output
-    if which == "fem3d":
-        fem3d_plan(scene, case, motion)                                # the 3D cases only
+    motion = scene_motion(scene) if case == "earthquake" else None
+    check_run(scene, case, which, getattr(args, "integrator", None), modes, motion)
+    return motion
+
+
+def simulate_command(scene, args, timings):
+    from . import is_root_rank, out_dir
+    motion = preflight(scene, args)                                    # bad input: before any work
+    from ..postprocess.transient_charts import model_run_charts
+    from ..transients.files import write_model_files
+    from ..transients.run import run_model
+    case = getattr(args, "case", None) or scene.simulate.case
+    which = getattr(args, "model", None) or scene.simulate.model
+    modes = getattr(args, "modes", None)
     progress(f"simulate {scene.name}: {case}, {which} model")
     chain = None
     if which in ("modal", "fem3d"):

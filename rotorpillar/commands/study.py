@@ -14,7 +14,7 @@ The study itself is :func:`rotorpillar.studies.design_study`.
 from __future__ import annotations
 
 from . import progress
-from ..scene import MODELS, STUDY_CASES
+from ..scene import STUDY_CASES, STUDY_MODELS
 
 
 def add_arguments(p) -> None:
@@ -23,9 +23,9 @@ def add_arguments(p) -> None:
     p.add_argument("--vary", action="append", default=[], metavar="KEY=START:STOP:N|KEY=v1,v2,...",
                    help="an axis: N values from START to STOP, or a list (repeatable; the study "
                         "runs their product), e.g. --vary drive.torque_at_zero=560:700:15")
-    p.add_argument("--model", choices=MODELS, default=None,
-                   help="the paper's Eq. 4 as published, or the pillar by its modes "
-                        "(default: the scene's simulate.model)")
+    p.add_argument("--model", choices=STUDY_MODELS, default=None,
+                   help="the paper's Eq. 4 as published, the pillar by its modes, or the 1D beam "
+                        "at full order (default: the scene's simulate.model)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="run on this Dask scheduler (tcp://HOST:PORT) instead of a local cluster")
     p.add_argument("--workers", type=int, default=None, metavar="N",
@@ -35,10 +35,12 @@ def add_arguments(p) -> None:
 
 def study_command(scene, args, timings):
     from . import out_dir
-    from ..executor import Executor
+    from ..executor import Executor, probe_scheduler
+    Executor(args.workers, args.scheduler)          # bad --workers / --scheduler: refused now
+    if args.scheduler:
+        probe_scheduler(args.scheduler)             # before the study's modes and batches
     from ..postprocess.study_charts import study_charts
     from ..studies import design_study
-    Executor(args.workers, args.scheduler)          # bad --workers / --scheduler: refused now
     which = args.model or scene.simulate.model
     with timings("study"):
         res = design_study(scene, args.case, which, args.vary, out_dir=out_dir(scene, args),

@@ -24,7 +24,7 @@ from typing import Callable, Optional
 
 from ..provenance import write_json
 from .compute import compute_fe, compute_in_process
-from .ladder import FAMILIES, N_MODES, Case, estimated_seconds
+from .ladder import FAMILIES, N_MODES, Case, estimated_dofs, estimated_seconds
 
 
 SHELL_MODEL, SHELL_MESH = "fem3d.naghdi", "mesh.midsurface"
@@ -250,6 +250,45 @@ def _record(case: Case, key: str, result: dict) -> dict:
             "level": case.level, "params": case.settings, "status": "ok", **result}
 
 
+#: The [converge] key that bounds each finite-element family's finest run.
+LIMIT_KEYS = {"shell_quad": "shell_max_around", "shell_tri": "shell_tri_max_around",
+              "solid_hex_p1": "solid_p1_max_around", "solid_tet_p1": "solid_p1_max_around",
+              "solid_hex_p2": "solid_p2_max_around", "solid_hex_p2_around": "solid_p2_max_around",
+              "solid_tet_p2": "solid_tet_p2_max_around"}
+
+
+def check_memory(cases: list[Case], workers: int) -> None:
+    """Refuse (InputError, before any run) finite-element runs this process's memory limit
+    cannot hold: the largest alone, or the ``workers`` largest at once (the longest run
+    first on every worker: the largest start together).  Per run: mesh.tube.BYTES_PER_DOF
+    per DOF (one modal solve), shells counted as the solids."""
+    from ..mesh.tube import BYTES_PER_DOF
+    from ..provenance import check_memory as check, memory_limit
+    fe = sorted(((estimated_dofs(c), c) for c in cases
+                 if FAMILIES[c.family].model in ("shell", "solid")), key=lambda t: -t[0])
+    if not fe:
+        return
+    dofs, big = fe[0]
+    check(BYTES_PER_DOF * dofs, f"converge: its largest run, {big.label} ({dofs:,} DOFs),",
+          f"lower converge.{LIMIT_KEYS.get(big.family, 'solid_p2_max_around')} or set "
+          "converge.solid = false")
+    at_once = fe[:max(1, workers)]
+    need = BYTES_PER_DOF * sum(d for d, _ in at_once)
+    budget, fit, total = memory_limit().budget, 0, 0.0
+    for d, _ in at_once:
+        total += BYTES_PER_DOF * d
+        fit += total <= budget
+    check(need, f"converge: {len(at_once)} runs at once on {workers} workers (the largest first: "
+          + ", ".join(c.label for _, c in at_once) + ")", f"use --workers {max(fit, 1)}")
+
+
+def todo_cases(cases: list[Case], scene, cache_dir: Path) -> list[Case]:
+    """The cases the run cache under ``cache_dir`` does not hold."""
+    return [c for c in cases
+            if _load_cached(Path(cache_dir) / f"{case_key(c, scene.pillar, scene.modal.tolerance)}.json",
+                            case_key(c, scene.pillar, scene.modal.tolerance)) is None]
+
+
 def run_study(cases: list[Case], scene, cache_dir: Path, *,
               runner: Callable[[Case, object], dict] = run_case,
               progress: bool = True, log: Callable[[str], None] | None = None,
@@ -281,6 +320,7 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
                           "model": FAMILIES[c.family].model, "cached": True}
         else:
             todo.append(i)
+    check_memory([cases[i] for i in todo], workers)
     if log:
         log(f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute"
             + (f" on {workers} workers" if (workers > 1 or executor) and todo else ""))

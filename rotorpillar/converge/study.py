@@ -23,8 +23,8 @@ from .ladder import FAMILIES, QUANTITIES, study_cases
 from .result import ConvergenceStudy
 from .richardson import family_extrapolations, reference_values
 from .runner import run_study
-from .selection import (attach_errors, band_error, excitation_band, pareto_front,
-                        reference_uncertainty, select_model)
+from .selection import (_brief, attach_errors, band_error, excitation_band,
+                        needed_quantities, pareto_front, reference_uncertainty, select_model)
 
 Charts = Callable[[dict, Path], dict]
 """Draws the study's charts into a directory: (study document, out_dir) -> name: path."""
@@ -55,6 +55,12 @@ def analyse(records: list[dict], scene, tolerance: float) -> dict:
             "failures": failures(records, extrap, reference, tolerance)}
 
 
+def check_tolerance(tolerance: float) -> None:
+    """Refuse (InputError) a relative frequency tolerance outside (0, 1)."""
+    if not 0 < tolerance < 1:
+        raise InputError(f"--tolerance = {tolerance!r} is out of range: must be > 0 and < 1")
+
+
 def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
           show_progress: bool = True, charts: Optional[Charts] = None, timings=None,
           log: Callable[[str], None] | None = None, workers: int = 1) -> ConvergenceStudy:
@@ -67,8 +73,7 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
     """
     timings = Timings() if timings is None else timings
     tol = scene.converge.tolerance if tolerance is None else tolerance
-    if not 0 < tol < 1:
-        raise InputError(f"--tolerance = {tol!r} is out of range: must be > 0 and < 1")
+    check_tolerance(tol)
     cache_dir = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
     start = time.perf_counter()
     with timings("study"):
@@ -115,7 +120,7 @@ def _cached_study(scene, tolerance: float, cache_dir: Path):
 
 def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
                     timings=None, charts: Optional[Charts] = None,
-                    log: Callable[[str], None] | None = None):
+                    log: Callable[[str], None] | None = None, show_progress: bool = False):
     """The scene with the [mesh] the study picks for ``tolerance``, and why.
 
     `modal` computes the 3D model, so the choice is among the 3D families;
@@ -123,6 +128,12 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
     Serially the study runs what its cache lacks (and writes
     convergence.json, with ``charts`` if given); under MPI it must be cached
     already (`rotorpillar converge` first), since its runs are subprocesses.
+
+    Whether a ladder reaches a tolerance is known only once its runs are
+    done (their errors come from Richardson on the runs), so an unmet
+    tolerance is a result, not bad input: the most accurate 3D run is taken
+    (or, with no error estimate at all, the scene's [mesh]) and the
+    selection says ``met: false`` and why; `modal` then exits 4.
     """
     from mpi4py import MPI
 
@@ -133,33 +144,55 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
                                                analysis["selection"]["chosen"], None)
     else:
         st = study(scene, out_dir=out_dir, cache_dir=cache_dir, tolerance=tolerance,
-                   timings=timings, charts=charts, log=log)
+                   timings=timings, charts=charts, log=log, show_progress=show_progress)
         runs, reference, band, overall, json_file = (st.runs, st.reference, st.band, st.chosen,
                                                      st.json_file)
     solid = [k for k, f in FAMILIES.items() if f.model == "solid"]
     sel = select_model(runs, reference, band, tolerance, families=solid)
-    if sel["chosen"] is None:
-        raise InputError(f"--tolerance = {tolerance:g}: no 3D model of the study meets it "
-                         "(raise converge.solid_p2_max_around, or loosen the tolerance)")
-    chosen = sel["chosen"]
-    p = chosen["params"]
-    mesh = dataclasses.replace(scene.mesh, elements_around=p["elements_around"],
-                               elements_along=p["elements_along"],
-                               elements_through=p["elements_through"], degree=p["degree"],
-                               cell_type=p["cell_type"], grading=p["grading"])
-    lines = [f"Model chosen for tolerance {tolerance:g}: {chosen['label']} "
-             f"({chosen['dofs']:,} DOFs, {chosen['wall_time']:.1f} s for the bare tube in the study).",
-             "Why: " + sel["reason"],
-             "The same mesh carries the top mass (the study's errors are the bare tube's)."]
-    if overall is not None and overall["label"] != chosen["label"]:
+    chosen, unmet = sel["chosen"], None
+    if chosen is None:
+        chosen, unmet = _closest(runs, reference, band, solid, tolerance, sel["reason"])
+    if chosen is not None:
+        p = chosen["params"]
+        mesh = dataclasses.replace(scene.mesh, elements_around=p["elements_around"],
+                                   elements_along=p["elements_along"],
+                                   elements_through=p["elements_through"], degree=p["degree"],
+                                   cell_type=p["cell_type"], grading=p["grading"])
+        lines = [f"Model {'chosen' if unmet is None else 'run'} for tolerance {tolerance:g}: "
+                 f"{chosen['label']} ({chosen['dofs']:,} DOFs, {chosen['wall_time']:.1f} s for "
+                 "the bare tube in the study).",
+                 "Why: " + (sel["reason"] if unmet is None else unmet),
+                 "The same mesh carries the top mass (the study's errors are the bare tube's)."]
+    else:
+        mesh = scene.mesh
+        lines = [f"No 3D model of the study has an error estimate for tolerance {tolerance:g}: "
+                 f"the scene's own [mesh] is run, unverified.", "Why: " + unmet]
+    if overall is not None and chosen is not None and overall["label"] != chosen["label"]:
         lines.append(f"Cheapest of all models at this tolerance: {overall['label']} "
                      f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "
                      "has it.")
     if json_file:
         lines.append(f"Study: {json_file}")
-    selection = {"tolerance": tolerance, "chosen": chosen, "reason": sel["reason"],
+    selection = {"tolerance": tolerance, "met": unmet is None, "chosen": chosen,
+                 "reason": sel["reason"] if unmet is None else unmet,
                  "rule": sel["rule"], "band": sel["band"], "needed": sel["needed"],
                  "reference_uncertainty": sel["reference_uncertainty"],
                  "rejected_cheaper": sel["rejected_cheaper"], "overall_cheapest": overall,
                  "convergence_json": json_file, "text": "\n".join(lines)}
     return dataclasses.replace(scene, mesh=mesh), selection
+
+
+def _closest(runs, reference, band, families, tolerance: float, why_none: str):
+    """Where no 3D run meets the tolerance: the 3D run with the smallest error bound
+    over the band (None when no run has one), and the sentence that says so."""
+    needed, unc = needed_quantities(reference, band), reference_uncertainty(reference)
+    rated = [(band_error(r, needed, unc), r) for r in runs
+             if r.get("status") == "ok" and r["family"] in families and reference]
+    rated = [(e, r) for e, r in rated if e is not None]
+    if not rated:
+        return None, (f"tolerance {tolerance:g} not met: {why_none}")
+    err, best = min(rated, key=lambda t: (t[0], t[1]["wall_time"]))
+    return _brief(best, needed), (
+        f"tolerance {tolerance:g} not met: no 3D model of the study reaches it; the most "
+        f"accurate, {best['label']}, has an error bound of {err:.1e} over the band "
+        "(raise converge.solid_p2_max_around, or loosen the tolerance)")

@@ -7,12 +7,12 @@ horizontal direction.  Units: m.
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import InputError
+from ..provenance import check_memory, memory_limit
 from ..scene import CELL_TYPES
 
 #: Physical group tags (dimension 3 for the volume, 2 for the surfaces).
@@ -29,23 +29,21 @@ GMSH_CELLS = {5: ("hexahedron", 1), 12: ("hexahedron", 2), 4: ("tetrahedron", 1)
               2: ("triangle", 1), 9: ("triangle", 2)}
 
 
-#: Peak memory per displacement DOF of a modal solve (mesh, assembly, the
-#: MUMPS factors of K - sigma M, the Krylov basis): ~0.15 GB measured for the
-#: default mesh's 24 k DOFs with the interpreter, 10 kB/DOF bounds the
-#: convergence study's finest meshes (docs/converge.md) from above.
-BYTES_PER_DOF = 10e3
+#: Peak memory per displacement DOF of one modal solve in one process (mesh,
+#: assembly, the MUMPS factors of K - sigma M, the Krylov basis, the
+#: interpreter): 11.5 kB/DOF measured on the convergence study's finest run
+#: (3.3 GB at 286 k DOFs, docs/converge.md); `modal` solves twice in one
+#: process (bare, then with the top) and peaks at twice this (24 kB/DOF
+#: measured at 24 k, 70 k and 231 k DOFs): its check counts two solves.
+BYTES_PER_DOF = 12e3
 #: Smallest tube Gmsh meshes reliably (m): its geometric tolerance is ~1e-8 of the model.
 MIN_SIZE = 1e-3
-#: Share of the machine's memory a model may plan to use.
-MEMORY_SHARE = 0.8
 
 
 def memory_budget() -> float:
-    """Bytes a model may use on this machine: MEMORY_SHARE of its physical memory."""
-    try:
-        return MEMORY_SHARE * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):
-        return 8 * 2**30
+    """Bytes a model may use in this process: provenance.MEMORY_SHARE of the smallest
+    of the machine's memory, ``ulimit -v`` and the cgroup's limit (provenance.memory_limit)."""
+    return memory_limit().budget
 
 
 @dataclass(frozen=True)
@@ -96,13 +94,10 @@ class TubeMeshParams:
         if self.cell_type not in CELL_TYPES:
             raise InputError(f"mesh.cell_type = {self.cell_type!r}: must be one of "
                              + ", ".join(repr(c) for c in CELL_TYPES))
-        need, have = self.estimated_bytes, memory_budget()
-        if need > have:
-            raise InputError(
-                f"mesh: {self.elements_around} around x {self.elements_along} along x "
-                f"{self.elements_through} through would make about {self.estimated_dofs:.3g} "
-                f"DOFs and need about {need / 2**30:.3g} GiB; this machine allows "
-                f"{have / 2**30:.3g} GiB (README, Limits): use fewer elements")
+        check_memory(self.estimated_bytes,
+                     f"mesh: {self.elements_around} around x {self.elements_along} along x "
+                     f"{self.elements_through} through: about {self.estimated_dofs:.3g} DOFs",
+                     "use fewer elements")
 
     @property
     def estimated_dofs(self) -> int:
@@ -116,6 +111,19 @@ class TubeMeshParams:
         nodes = (k * self.elements_around) * (k * self.elements_through + 1) \
             * (k * self.elements_along + 1)
         return 3 * nodes
+
+    def solver_dofs(self, rigid_top: bool) -> int:
+        """Unknowns of the modal problem on this mesh (-): the displacement DOFs above
+        the clamped base; with a rigid top plate, those below the top face and the
+        plate's 6.  The eigen-solver returns at most this many modes.
+
+        >>> TubeMeshParams(20.0, 1.0, 0.98, 8, 2, 1, 2, "hexahedron").solver_dofs(True)
+        438
+        """
+        k = self.order
+        layer = (k * self.elements_around) * (k * self.elements_through + 1)
+        free_layers = k * self.elements_along - (1 if rigid_top else 0)
+        return 3 * layer * free_layers + (6 if rigid_top else 0)
 
     @property
     def estimated_bytes(self) -> float:

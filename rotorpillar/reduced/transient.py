@@ -25,6 +25,8 @@ speed: the speed scale).
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import math
 import os
 import time
@@ -179,6 +181,8 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
         speed_scale = max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0)) \
             if math.isfinite(drive.free_speed()) else max(abs(v0[-1]), 1.0)
     check_budget(model, motion, t_end - t_start, settings, speed_scale)
+    if _ESTIMATE_ONLY.get():
+        raise Estimated()
     P = model.pack(drive, motion, prescribed_speed)
     start = time.perf_counter()
     if settings.method == "dp5":
@@ -224,6 +228,25 @@ def check_budget(model: RotorStructure, motion: GroundMotion, duration: float, s
             f"this run of {duration:.4g} s would take about {n:.3g} {settings.method} steps, more "
             f"than simulate.max_steps = {settings.max_steps:.3g}: shorten it, coarsen the step, "
             "or raise simulate.max_steps")
+
+
+class Estimated(Exception):
+    """simulate() inside ``estimate_only()``: the run passed its budget check and stopped."""
+
+
+_ESTIMATE_ONLY = contextvars.ContextVar("estimate_only", default=False)
+
+
+@contextlib.contextmanager
+def estimate_only():
+    """Inside, ``simulate`` checks its step budget and raises ``Estimated`` instead of
+    integrating: a caller learns whether a case would be refused by running the case's
+    own code up to its first integration (the models built, nothing integrated)."""
+    token = _ESTIMATE_ONLY.set(True)
+    try:
+        yield
+    finally:
+        _ESTIMATE_ONLY.reset(token)
 
 
 def _output_grid(t0, t1, samples):

@@ -23,16 +23,18 @@ from .sections import (Converge, Drive, EXCITATION_KINDS, Excitation, FABRICATIO
                        FullOrder, Gondola, Load, MODAL_SOURCES, Material, Mesh, Modal, ModalModel, OPTIONAL_SECTIONS, Pillar,
                        RECORD_UNITS, REDUCTION_SOURCES, Reduction, Rotor, SECTIONS, Scene,
                        SceneError, Shaft, Simulate, Sweep, TOP_MASSES, TOP_MODELS, param)
-from .validation import (SCENE_NAME, scene_from_dict)
+from .validation import (SCENE_NAME, check_combinations, check_field, scene_from_dict)
 from .words import (ADAPTIVE_INTEGRATORS, CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS,
-                    FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, STUDY_CASES, SHELL_CELL_TYPES)
+                    FULL_ORDER_MODELS, INTEGRATORS, MODELS, SCIPY_METHODS, STUDY_CASES, STUDY_MODELS,
+                    SHELL_CELL_TYPES)
 
 __all__ = ['ADAPTIVE_INTEGRATORS', 'CASES', 'CELL_TYPES', 'Converge', 'Drive',
            'EXCITATION_KINDS', 'Excitation', 'FABRICATION_CLASSES', 'FIXED_STEP_INTEGRATORS', 'FULL_ORDER_MODELS',
            'FullOrder', 'Gondola', 'INTEGRATORS', 'Load', 'MODAL_SOURCES', 'MODELS', 'Material', 'Mesh',
            'Modal', 'ModalModel', 'OPTIONAL_SECTIONS', 'Pillar', 'RECORD_UNITS',
            'REDUCTION_SOURCES', 'Reduction', 'Rotor', 'SCENE_NAME', 'SCIPY_METHODS',
-           'SECTIONS', 'SHELL_CELL_TYPES', 'Scene', 'SceneError', 'Shaft', 'Simulate', 'Sweep',
+           'SECTIONS', 'SHELL_CELL_TYPES', 'STUDY_MODELS', 'Scene', 'SceneError', 'check_combinations',
+           'check_field', 'Shaft', 'Simulate', 'Sweep',
            'TOP_MASSES', 'TOP_MODELS', 'apply_overrides', 'embedded_scenes', 'load_scene',
            'override', 'param', 'parse_assignment', 'read_scene_toml', 'read_text_file',
            'scene_from_dict']

@@ -84,6 +84,21 @@ def _cross_checks(scene: Scene) -> None:
                          f"sweep.torque_low = {w.torque_low:g} (N*m)")
 
 
+def check_field(key: str, value: Any) -> Any:
+    """One ``section.key`` value checked against its field's type and range, as a
+    scene file's would be (SceneError naming the key), and returned converted."""
+    section, _, name = key.partition(".")
+    known = {f.name: f for f in fields(SECTIONS[section])} if section in SECTIONS else {}
+    if name not in known:
+        raise SceneError(f"{key}: unknown key")
+    return _check_value(key, value, known[name])
+
+
+def check_combinations(scene: Scene) -> None:
+    """The checks across keys of a scene whose fields each passed ``check_field`` (SceneError)."""
+    _cross_checks(scene)
+
+
 #: A scene's name becomes a directory: no separators, no "..", nothing hidden.
 SCENE_NAME = re.compile(r"(?!.*\.\.)[^./\\\x00-\x1f][^/\\\x00-\x1f]{0,99}")
 

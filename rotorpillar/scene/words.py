@@ -14,6 +14,8 @@ STUDY_CASES = ("runup", "rundown", "earthquake")
 #: (the reduced-order model), and at full order the 3D tube and the 1D beam.
 MODELS = ("paper", "modal", "fem3d", "beam")
 FULL_ORDER_MODELS = ("fem3d", "beam")
+#: The models of `rotorpillar study` (its batches run the compiled ODE models; not the 3D).
+STUDY_MODELS = ("paper", "modal", "beam")
 #: The compiled adaptive integrator, scipy's solve_ivp methods, and the
 #: compiled fixed-step schemes.
 ADAPTIVE_INTEGRATORS = ("dp5",)

@@ -1,10 +1,15 @@
 """The axes of a design study: ``--vary KEY=START:STOP:N`` and ``--vary KEY=v1,v2,...``.
 
 An axis is a scene key (``section.key``) and its values; the study runs the
-product of its axes.  Every value is checked as ``--set KEY=VALUE`` would
-check it (the key's type and range, the scene's cross-checks), and every
-point of the product builds a valid scene, before anything runs: bad input
-is one line naming the key and its range (InputError, exit 2).
+product of its axes.  The product's size is checked first, from the counts
+alone (``START:STOP:N`` gives N, a list its items), before any value is
+built; then every value is checked as ``--set KEY=VALUE`` would check it
+(the key's type and range, the scene's cross-checks), and every point of the
+product builds a valid scene, before anything runs: bad input is one line
+naming the key and its range (InputError, exit 2).  A point is checked by
+its own values and the scene's checks across keys only (the base scene's
+other keys passed when it was loaded), a few microseconds each, so that
+``MAX_RUNS`` points take well under a second.
 
 >>> from rotorpillar.scene import load_scene
 >>> a = parse_vary("drive.torque_at_zero=560:700:3", load_scene("sommerfeld"))
@@ -25,7 +30,8 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..provenance import JsonRecord
-from ..scene import CASES, SECTIONS, Scene, SceneError, override
+from ..scene import (CASES, SECTIONS, Scene, SceneError, check_combinations, check_field,
+                     override)
 
 #: keys a study sets itself (by --case and --model) or does not use: the
 #: batch loop integrates with the compiled dp5 at the scene's rtol
@@ -128,42 +134,109 @@ def _list(key: str, body: str) -> tuple:
     return tuple(vals)
 
 
-def parse_vary(text: str, scene: Scene) -> Axis:
-    """One ``--vary`` argument, checked against the scene's key and its range."""
+def _split(text: str) -> tuple[str, str]:
     if "=" not in text:
         raise InputError(f"--vary {text!r}: expected KEY=START:STOP:N or KEY=v1,v2,...")
     key, body = (s.strip() for s in text.split("=", 1))
     f = _field(key)
-    want = f.type if isinstance(f.type, str) else f.type.__name__
     if not body:
         raise InputError(f"--vary {key}=: empty range; expected START:STOP:N or v1,v2,...")
-    if ":" in body and "str" not in want:
+    return key, body
+
+
+def _is_range(f, body: str) -> bool:
+    want = f.type if isinstance(f.type, str) else f.type.__name__
+    return ":" in body and "str" not in want
+
+
+def axis_size(text: str) -> int:
+    """How many values one ``--vary`` gives, from its text alone (nothing built).
+
+    >>> axis_size("drive.torque_at_zero=560:700:1000000"), axis_size("rotor.mass=1,2,3")
+    (1000000, 3)
+    """
+    key, body = _split(text)
+    if not _is_range(_field(key), body):
+        return len(body.split(","))
+    parts = body.split(":")
+    if len(parts) != 3 or not all(p.strip() for p in parts):
+        raise InputError(f"--vary {key}={body}: expected START:STOP:N")
+    try:
+        n = int(parts[2])
+    except ValueError:
+        raise InputError(f"--vary {key}={body}: N = {parts[2]!r} must be an integer >= 1") from None
+    if n < 1:
+        raise InputError(f"--vary {key}={body}: N = {n} must be >= 1")
+    return n
+
+
+def _checked(scene: Scene, key: str, value):
+    """``value`` for ``key`` checked as ``--set`` checks it: the field's type and range,
+    then the scene's checks across keys with this value in place."""
+    try:
+        v = check_field(key, value)
+        check_combinations(_with(scene, {key: v}))
+    except SceneError as exc:
+        raise InputError(f"--vary {key}: {exc}") from None
+    return v
+
+
+def _copy(obj, changes: dict):
+    """A copy of a frozen dataclass with ``changes`` set (no ``__init__`` run)."""
+    out = object.__new__(type(obj))
+    out.__dict__.update(obj.__dict__)
+    out.__dict__.update(changes)
+    return out
+
+
+def _with(scene: Scene, params: dict) -> Scene:
+    """The scene with checked values in place (no field re-checked: see the module text).
+
+    A copy with the attributes set, not ``dataclasses.replace``: the sections have no
+    ``__post_init__`` (their checks are ``check_field`` and ``check_combinations``), and
+    such a copy costs a microsecond where replace costs ten (MAX_RUNS points, each checked).
+    """
+    by_section: dict[str, dict] = {}
+    for key, v in params.items():
+        sec, name = key.split(".", 1)
+        by_section.setdefault(sec, {})[name] = v
+    return _copy(scene, {sec: (SECTIONS[sec](**vals) if getattr(scene, sec) is None
+                               else _copy(getattr(scene, sec), vals))
+                         for sec, vals in by_section.items()})
+
+
+def parse_vary(text: str, scene: Scene) -> Axis:
+    """One ``--vary`` argument, checked against the scene's key and its range."""
+    key, body = _split(text)
+    f = _field(key)
+    if _is_range(f, body):
+        want = f.type if isinstance(f.type, str) else f.type.__name__
         vals = _range(key, body, "int" in want)
     else:
         vals = _list(key, body)
     if key == "excitation.record":
         vals = tuple(str(Path(v).resolve()) if Path(str(v)).is_file() else v for v in vals)
     for v in vals:
-        try:
-            override(scene, [assignment(key, v)])
-        except SceneError as exc:
-            raise InputError(f"--vary {key}: {exc}") from None
+        _checked(scene, key, v)
     return Axis(key, vals, text)
 
 
 def parse_axes(texts: list[str], scene: Scene) -> tuple[Axis, ...]:
-    """Every ``--vary``; at least one, each key once."""
+    """Every ``--vary``; at least one, each key once, at most MAX_RUNS points (checked
+    from the counts before any value is built)."""
     if not texts:
         raise InputError("study: give at least one --vary KEY=START:STOP:N or KEY=v1,v2,...")
-    axes = tuple(parse_vary(t, scene) for t in texts)
-    keys = [a.key for a in axes]
+    keys = [_split(t)[0] for t in texts]
     for k in keys:
         if keys.count(k) > 1:
             raise InputError(f"--vary {k}: given twice (one axis per key)")
-    n = math.prod(len(a.values) for a in axes)
+    sizes = [axis_size(t) for t in texts]
+    n = math.prod(sizes)
     if n > MAX_RUNS:
-        raise InputError(f"--vary: {n} runs in the product; at most {MAX_RUNS}")
-    return axes
+        raise InputError(f"--vary: {n:,} runs in the product ("
+                         + " x ".join(f"{k} {m:,}" for k, m in zip(keys, sizes))
+                         + f"); a study holds at most {MAX_RUNS:,}")
+    return tuple(parse_vary(t, scene) for t in texts)
 
 
 def implied_settings(axes: tuple[Axis, ...], case: str, scene: Scene) -> dict:
@@ -194,12 +267,15 @@ def run_scene(scene: Scene, params: dict, implied: dict | None = None) -> Scene:
 
 
 def check_points(scene: Scene, axes: tuple[Axis, ...], implied: dict) -> list[dict]:
-    """Every point of the product, each checked to build a valid scene."""
-    pts = points(axes)
-    for p in pts:
+    """Every point of the product, each checked to build a valid scene (as
+    ``run_scene`` builds it; the values were checked one by one in ``parse_vary``)."""
+    base = _with(scene, {k: check_field(k, v) for k, v in implied.items()}) if implied else scene
+    keys = [a.key for a in axes]
+    converted = [[check_field(a.key, v) for v in a.values] for a in axes]
+    for combo, raw in zip(itertools.product(*converted), itertools.product(*(a.values for a in axes))):
         try:
-            run_scene(scene, p, implied)
+            check_combinations(_with(base, dict(zip(keys, combo))))
         except SceneError as exc:
-            raise InputError(f"--vary: the point {', '.join(f'{k}={v}' for k, v in p.items())} "
+            raise InputError(f"--vary: the point {', '.join(f'{k}={v}' for k, v in zip(keys, raw))} "
                              f"is not a valid scene: {exc}") from None
-    return pts
+    return points(axes)

@@ -29,7 +29,7 @@ from typing import Callable, Optional
 from ..errors import InputError
 from ..executor import Executor
 from ..provenance import write_json, write_text
-from ..scene import MODELS, STUDY_CASES
+from ..scene import STUDY_CASES, STUDY_MODELS
 from .axes import check_points, implied_settings, parse_axes, run_scene
 from .batch import PER_RUN, group_key, run_batch
 from .boundary import found_boundary, predicted_boundary
@@ -85,8 +85,8 @@ def _load(path: Path, key: str) -> Optional[dict]:
 def _check_inputs(scene, case: str, model: str, vary: list[str]):
     if case not in STUDY_CASES:
         raise InputError(f"--case {case!r}: a study runs one of {', '.join(STUDY_CASES)}")
-    if model not in MODELS:
-        raise InputError(f"--model {model!r}: must be one of {', '.join(MODELS)}")
+    if model not in STUDY_MODELS:
+        raise InputError(f"--model {model!r}: a study runs one of {', '.join(STUDY_MODELS)}")
     if scene.reduction.source == "fem3d" and model == "paper":
         raise InputError('reduction.source = "fem3d": a study runs the reduced models only; '
                          "use the stated or closed-form reduction for the paper model")
@@ -95,14 +95,13 @@ def _check_inputs(scene, case: str, model: str, vary: list[str]):
     points = check_points(scene, axes, implied)
     if case == "earthquake":
         from ..reduced.models import scene_motion
-        seen = set()
-        for p in points:        # every record readable before anything runs
-            sc = run_scene(scene, {k: v for k, v in p.items() if k.startswith("excitation.")},
-                           implied)
-            key = repr(sc.excitation)
-            if key not in seen:
-                seen.add(key)
-                scene_motion(sc)
+        from ..reduced.excitation import BUILTIN_RECORDS
+        motions = {tuple((k, v) for k, v in p.items() if k.startswith("excitation."))
+                   for p in points}
+        # every record readable before anything runs, each once; the user's files before
+        # the built-in records (whose library takes seconds to import): a bad file, at once
+        for m in sorted(motions, key=lambda m: (any(v in BUILTIN_RECORDS for _, v in m), repr(m))):
+            scene_motion(run_scene(scene, dict(m), implied))
     return axes, implied, points
 
 

@@ -27,7 +27,7 @@ from ...provenance import write_text
 from .. import html as h
 from ..comparisons import COMPARISONS, read_comparison
 from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_convergence, read_json,
-                      read_modal, read_simulation)
+                      read_modal, read_record, read_simulation, require)
 from .convergence import section_convergence
 from .earthquake import section_earthquake
 from .engineering import section_forces, section_unbalance
@@ -95,8 +95,10 @@ def _read(build: Build, command: str, what: str, read):
     try:
         return read()
     except DAMAGE as exc:
-        build.damaged[command] = f"{what} is damaged ({type(exc).__name__}: {str(exc)[:120]})"
-        build.failures[f"input {what}"] = build.damaged[command]
+        why = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)
+        build.damaged[command] = f"{what} is damaged ({type(exc).__name__}: {why[:120]})"
+        build.failures[f"input {what}"] = (f"{build.damaged[command]}: rebuild it with "
+                                           f"`rotorpillar {command} {build.scene_cli}`")
         say(f"{what} is damaged ({type(exc).__name__}); its sections say how to rebuild it")
         return None
 
@@ -108,8 +110,8 @@ def load_inputs(build: Build) -> None:
     build.modal = _read(build, "modal", "modal.json", lambda: read_modal(out / INPUTS["modal"][0]))
     build.convergence = _read(build, "converge", "convergence.json",
                               lambda: read_convergence(out / INPUTS["convergence"][0]))
-    build.integrators = _read(build, "integrators", "integrators.json",
-                              lambda: read_json(out / INPUTS["integrators"][0]))
+    build.integrators = _read(build, "integrators", "integrators.json", lambda: _keys(
+        read_json(out / INPUTS["integrators"][0]), {"accuracy": dict}, "integrators.json"))
     for case in CASES:
         sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz",
                     lambda: read_simulation(out, case))
@@ -121,8 +123,20 @@ def load_inputs(build: Build) -> None:
         or build.simulations.get("earthquake")
     for case in COMPARISONS:
         c = _read(build, "compare", f"compare_{case}.json", lambda: read_comparison(out, case))
-        if c is not None:
+        if c is not None and _read(build, "compare", f"compare_{case}.json", lambda: _keys(
+                c.doc, {"models_run": list, "per_model": dict}, f"compare_{case}.json")) is not None:
             build.comparisons[case] = c
+    # study.json is read by its section; a damaged one is named here as a failed input
+    _read(build, "study", "study.json", lambda: _study(out / "study.json"))
+
+
+def _keys(doc, keys, name):
+    return None if doc is None else require(doc, keys, name)
+
+
+def _study(path: Path):
+    from ...studies.result import StudyResult
+    return read_record(path, StudyResult) if path.is_file() else None
 
 
 def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None,
