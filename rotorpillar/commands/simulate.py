@@ -65,7 +65,7 @@ def simulate_command(scene, args, timings):
     progress(f"simulate {scene.name}: {case}, {which} model")
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                        motion=motion)
+                        motion=motion, study_dir=out_dir(scene, args))
     result = dict(run.result)
     if is_root_rank():
         with timings("write"):

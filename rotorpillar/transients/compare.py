@@ -48,12 +48,12 @@ def parse_models(text: str | None, case: str) -> tuple[str, ...]:
     return tuple(names)
 
 
-def common_duration(scene, case: str, models, motion) -> tuple[float, str]:
+def common_duration(scene, case: str, models, motion, study_dir=None) -> tuple[float, str]:
     """The one duration every model runs (s), and why."""
     own = own_duration(scene, case, motion)
     if "fem3d" not in models:
         return own, "the case's own duration"
-    d = fem3d_plan(scene, case, motion)["duration"]
+    d = fem3d_plan(scene, case, motion, study_dir=study_dir)["duration"]
     return d, (f"the 3D full order's duration ([full_order]); every model runs {d:g} s"
                if d < own else "the case's own duration")
 
@@ -72,13 +72,26 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     if case not in COMPARE_CASES:
         raise InputError(f"--case {case!r}: compare runs {', '.join(COMPARE_CASES)}")
     motion = scene_motion(scene) if case == "earthquake" else None
-    duration, why = common_duration(scene, case, models, motion)      # bad input: before any output
+    window = None
+    if case == "runup" and "fem3d" in models:
+        # the 3D run-up through the resonances only; every model from the same state
+        from ..scene import override
+        from .run import pillar_modes_for
+        from .window import runup_window, window_overrides
+        if progress:
+            progress("compare runup: the window through the resonances (the ROM's run-up from rest)")
+        window = runup_window(scene, pillar_modes_for(scene, "modal"))
+        scene = override(scene, window_overrides(window))
+    duration, why = common_duration(scene, case, models, motion, out)  # bad input: before any output
+    if window is not None:
+        why = f"the run-up's window {window.reason}; {why}"
     runs: dict[str, ModelRun] = {}
     results: dict[str, dict] = {}
     for i, m in enumerate(models):
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
-        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration)
+        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration,
+                        study_dir=out)
         if write:
             from .files import write_model_files
             results[m] = write_model_files(out, scene, run, provenance, last_run=False,
@@ -112,8 +125,11 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
         case=case, models_run=models, reference=ref,
         excitation=motion.sizes() if motion is not None else None, per_model=per_model,
         errors=errors, cost_ratio=cost, chart=chart,
-        window={"start": float(t_ref[0]), "end": float(t_ref[-1]), "duration": duration, "why": why},
-        spectrum=spectrum)
+        window={"start": float(t_ref[0]), "end": float(t_ref[-1]), "duration": duration, "why": why,
+                **({"runup": window.to_json()} if window is not None else {})},
+        spectrum=spectrum,
+        full_order_reference=(runs["fem3d"].result["full_order"].get("reference")
+                              if "fem3d" in runs else None))
     if write:
         if compare_chart is not None:
             series = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]

@@ -63,24 +63,27 @@ def with_duration(scene, case: str, duration: float):
     return override(scene, [f"simulate.{key}={float(duration)!r}"])
 
 
-def fem3d_plan(scene, case: str, motion=None, duration: float | None = None) -> dict:
-    """The 3D run's mesh, duration and step from [full_order], and what was coarsened or
-    shortened, and why (the ``full_order`` block of the JSON)."""
+def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
+               study_dir=None) -> dict:
+    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
+    (the ``full_order`` block of the JSON).  The mesh: the convergence study's
+    reference for the modes the case's load excites when ``study_dir`` holds
+    convergence.json, else [full_order]'s (rotorpillar.transients.references);
+    ``reference`` says which, its own error and the participation of the modes."""
     from ..fem3d.transient import CASES_3D
+    from .references import choose_reference
     if case not in CASES_3D:
         raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs "
                          f"{', '.join(CASES_3D)}")
     fo, m = scene.full_order, scene.mesh
-    mesh = replace(m, elements_around=fo.elements_around or m.elements_around,
-                   elements_along=fo.elements_along or m.elements_along)
+    mesh, reference = choose_reference(scene, case, study_dir, motion)
     own = own_duration(scene, case, motion)
     stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
     length = min(own, stated or own, duration or own)
-    notes = []
-    if (mesh.elements_around, mesh.elements_along) != (m.elements_around, m.elements_along):
-        notes.append(f"mesh coarsened from the scene's {m.elements_around} x {m.elements_along} to "
-                     f"{mesh.elements_around} x {mesh.elements_along} elements (around x along; "
-                     "full_order.elements_around/along)")
+    notes = [f"mesh {mesh.elements_around} x {mesh.elements_along} elements (around x along): "
+             + ("the convergence study's reference for the modes the load excites"
+                if reference.source == "converge" else "[full_order]'s, no study on disk")
+             + (f", full_order.{' and '.join(reference.overrides)} set" if reference.overrides else "")]
     if length < own:
         notes.append(f"run shortened from the case's {own:g} s to {length:g} s "
                      f"(full_order.{'earthquake' if case == 'earthquake' else 'runup'}_duration)")
@@ -89,21 +92,23 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None) -> 
            "docs/transients.md give the measured cost and the agreement with the ROM)")
     return {"mesh": dict(vars(mesh)), "duration": float(length), "case_duration": float(own),
             "time_step": fo.time_step or None,
-            "note": ("; ".join(notes) + f": {why}") if notes else "the scene's mesh and duration, unchanged",
-            "_mesh": mesh}
+            "note": "; ".join(notes) + (f": {why}" if length < own else ""),
+            "reference": reference.to_json(), "_mesh": mesh}
 
 
 def run_model(scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
-              progress=None, motion=None, duration: float | None = None) -> ModelRun:
+              progress=None, motion=None, duration: float | None = None,
+              study_dir=None) -> ModelRun:
     """Run ``model`` (one of scene.MODELS) on ``case``; ``duration`` shortens the run
-    (compare: one window for every model).  Bad input raises InputError before any work."""
+    (compare: one window for every model); ``study_dir``: where the convergence
+    study lies (fem3d's mesh, ``fem3d_plan``).  Bad input raises InputError before any work."""
     if model not in MODELS:
         raise InputError(f"model {model!r}: must be one of {', '.join(MODELS)}")
     if case == "earthquake" and motion is None:
         from ..reduced.models import scene_motion
         motion = scene_motion(scene)
     if model == "fem3d":
-        return _run_fem3d(scene, case, motion, duration, progress)
+        return _run_fem3d(scene, case, motion, duration, progress, study_dir)
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion)
@@ -196,19 +201,20 @@ def _warnings(case: str, model, res) -> list[str]:
 # fem3d
 
 
-def _run_fem3d(scene, case, motion, duration, progress) -> ModelRun:
+def _run_fem3d(scene, case, motion, duration, progress, study_dir=None) -> ModelRun:
     from ..fem3d.transient import simulate_fem3d
     from ..reduced.models import build_model
     from ..reduced.cases import forcing_top
     from ..reduced.summaries import capture_state
-    plan = fem3d_plan(scene, case, motion, duration)
+    plan = fem3d_plan(scene, case, motion, duration, study_dir)
     mesh = plan.pop("_mesh")
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"
     if progress:
         progress(f"3D full order: {case} on {steps_hint}")
+    start = scene.simulate.runup_initial_speed if case == "runup" else 0.0
     r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
                        time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
-                       progress=progress)
+                       initial_speed=start or None, progress=progress)
     plan["time_step"] = r.integrator["time_step"]
     beam = override(scene, ["modal_model.source=beam"])
     ref, _ = build_model(beam, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion))
