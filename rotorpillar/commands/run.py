@@ -39,8 +39,8 @@ RUN_STAGES = [
     # El Centro on the modal ROM and the 3D full order (its [full_order] mesh)
     ("compare --case earthquake", "a recorded earthquake: the ROM against the 3D full order",
      None, COMPARISONS["earthquake"]),
-    ("compare --case runup", "run-up: the ROM against the beam full order", None,
-     COMPARISONS["runup"]),
+    ("compare --case runup", "run-up through the resonances: the ROM against the 3D full order",
+     None, COMPARISONS["runup"]),
     ("simulate --case runup", "run-up from rest, reduced model", None, ()),
     ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ()),
     ("modal", "3D modes of the tube, bare and with its top mass", None, ()),

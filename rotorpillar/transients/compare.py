@@ -59,13 +59,18 @@ def common_duration(scene, case: str, models, motion, study_dir=None) -> tuple[f
 
 
 def compare_models(scene, case: str, models, out: Path, provenance: dict, progress=None,
-                   write: bool = True, run_charts=None, compare_chart=None) -> CompareResult:
+                   write: bool = True, run_charts=None, compare_chart=None, pareto: bool = False,
+                   pareto_chart=None, workers: int = 1) -> CompareResult:
     """Run ``models`` on ``case`` and compare them (see the module text).
 
     ``run_charts`` draws each model's figures (see ``files.write_model_files``);
     ``compare_chart(path, series, reference, title, errors=..., walls=...)``
     the overlay (``rotorpillar.postprocess.comparison_charts.comparison_chart``);
-    both are handed in by the command, since drawing lives above this layer.
+    ``pareto_chart(doc, path, title)`` the speed against accuracy
+    (``rotorpillar.postprocess.pareto_charts.pareto_chart``); all handed in by
+    the command, since drawing lives above this layer.  ``pareto``: the
+    earthquake against the 3D full order also runs the speed-against-accuracy
+    study (rotorpillar.transients.pareto, its 3D runs on ``workers`` processes).
     """
     from ..reduced.models import scene_motion
     models = tuple(models)
@@ -85,6 +90,10 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     duration, why = common_duration(scene, case, models, motion, out)  # bad input: before any output
     if window is not None:
         why = f"the run-up's window {window.reason}; {why}"
+    pending = None
+    if pareto and case == "earthquake" and "fem3d" in models:
+        # started first: its 3D runs take the other core while this process runs the models
+        pending = _start_pareto(scene, motion, out, workers, progress)
     runs: dict[str, ModelRun] = {}
     results: dict[str, dict] = {}
     for i, m in enumerate(models):
@@ -121,6 +130,7 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     cost = {m: walls[m] / walls[ref] if walls[ref] > 0 else None for m in models}
     chart = f"compare_{case}.png"
     spectrum = _spectrum(scene, motion, runs) if case == "earthquake" else None
+    study = None if pending is None else _finish_pareto(scene, pending, out, write, pareto_chart)
     result = CompareResult(
         case=case, models_run=models, reference=ref,
         excitation=motion.sizes() if motion is not None else None, per_model=per_model,
@@ -129,7 +139,8 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
                 **({"runup": window.to_json()} if window is not None else {})},
         spectrum=spectrum,
         full_order_reference=(runs["fem3d"].result["full_order"].get("reference")
-                              if "fem3d" in runs else None))
+                              if "fem3d" in runs else None),
+        pareto=study)
     if write:
         if compare_chart is not None:
             series = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
@@ -139,6 +150,33 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
                           walls=walls)
         write_json(Path(out) / f"compare_{case}.json", {**provenance, **result.to_json()})
     return result
+
+
+def _start_pareto(scene, motion, out: Path, workers: int, progress):
+    """The speed-against-accuracy study planned and its 3D runs started on ``workers`` - 1
+    processes (this one runs compare's own models meanwhile; none: after them, here)."""
+    from ..reduced.cases import forcing_top
+    from ..reduced.models import build_model
+    from .pareto import ParetoRunning, plan_pareto
+    from .run import pillar_modes_for
+    mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out)["_mesh"]
+    top = scene.modal_model.band_factor * forcing_top(scene, "earthquake", motion)
+    _, info = build_model(scene, "modal", top, pillar_modes=pillar_modes_for(scene, "modal"))
+    plan = plan_pareto(scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh)
+    return ParetoRunning(plan, max(0, workers - 1), progress)
+
+
+def _finish_pareto(scene, pending, out: Path, write: bool, chart) -> dict:
+    """The study's JSON, its chart drawn."""
+    from dataclasses import replace
+    study, _ = pending.finish()
+    if write and chart is not None:
+        name = "compare_earthquake_pareto.png"
+        chart(study.to_json(), Path(out) / name,
+              f"{scene.name}: El Centro, speed against accuracy (errors against "
+              f"{study.reference['label']})")
+        study = replace(study, chart=name)
+    return study.to_json()
 
 
 def _per_model(case: str, m: str, r: dict) -> dict:

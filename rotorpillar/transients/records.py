@@ -41,6 +41,9 @@ class CompareResult(JsonRecord):
     """fem3d run: its mesh, where it comes from (the convergence study, or the scene), its own
     error on the frequencies the load excites, and the participation of the loaded modes
     (rotorpillar.transients.references.FullOrderReference)"""
+    pareto: dict | None = field(default=None, metadata={"omit_if_none": True})
+    """earthquake against the 3D full order: speed against accuracy of every model of the
+    ladder on El Centro (rotorpillar.transients.pareto.ParetoStudy)"""
 
 
 def reference_of(models) -> str:

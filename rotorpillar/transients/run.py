@@ -80,10 +80,18 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
     own = own_duration(scene, case, motion)
     stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
     length = min(own, stated or own, duration or own)
-    notes = [f"mesh {mesh.elements_around} x {mesh.elements_along} elements (around x along): "
-             + ("the convergence study's reference for the modes the load excites"
-                if reference.source == "converge" else "[full_order]'s, no study on disk")
-             + (f", full_order.{' and '.join(reference.overrides)} set" if reference.overrides else "")]
+    source = ("the convergence study's reference for the modes the load excites"
+              if reference.source == "converge" else "[full_order]'s, no study on disk")
+    if reference.overrides:
+        source += f", full_order.{' and full_order.'.join(reference.overrides)} set"
+    notes = []
+    if (mesh.elements_around, mesh.elements_along) != (m.elements_around, m.elements_along):
+        coarser = mesh.elements_around * mesh.elements_along < m.elements_around * m.elements_along
+        notes.append(f"mesh {'coarsened' if coarser else 'changed'} from the scene's "
+                     f"{m.elements_around} x {m.elements_along} to {mesh.elements_around} x "
+                     f"{mesh.elements_along} elements (around x along; {source})")
+    else:
+        notes.append(f"the scene's mesh ({source})")
     if length < own:
         notes.append(f"run shortened from the case's {own:g} s to {length:g} s "
                      f"(full_order.{'earthquake' if case == 'earthquake' else 'runup'}_duration)")
