@@ -36,18 +36,19 @@ def _report_flags(args) -> list[str]:
 # case) stay the scene's run as before.  The report stays last.
 RUN_STAGES = [
     ("analyze", "closed forms and averaging", None, ()),
-    # El Centro on the modal ROM and the 3D full order (its [full_order] mesh)
+    # minutes the first time, then read from its cache: the report's "which model
+    # does this scene need" section, and the comparisons' 3D reference mesh
+    # (chosen for the modes the load excites), come from it
+    ("converge", "mesh convergence, speed against accuracy, the model chosen (cached)", None, ()),
+    ("modal", "3D modes of the tube, bare and with its top mass", None, ()),
+    # El Centro on the modal ROM and the 3D full order (the study's reference mesh)
     ("compare --case earthquake", "a recorded earthquake: the ROM against the 3D full order",
      None, COMPARISONS["earthquake"]),
     ("compare --case runup", "run-up through the resonances: the ROM against the 3D full order",
      None, COMPARISONS["runup"]),
     ("simulate --case runup", "run-up from rest, reduced model", None, ()),
     ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ()),
-    ("modal", "3D modes of the tube, bare and with its top mass", None, ()),
     ("integrators", "time integrators: error against cost, where each fails", None, ()),
-    # minutes the first time, then read from its cache: the report's
-    # "which model does this scene need" section comes from it
-    ("converge", "mesh convergence, speed against accuracy, the model chosen (cached)", None, ()),
     ("report", "charts, mode shapes, animations, report.html", _report_flags, ()),
 ]
 

@@ -265,9 +265,9 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
                   f"{what} meet{'s' if len(quantities) == 1 else ''} {required:.2g} with the "
                   f"reference's uncertainty (band error {e:.1e})")
     else:
-        reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study "
-                  f"within {max_dofs:,} DOFs: {what}, band error {e:.1e}, within the tolerance "
-                  f"{tolerance:g}")
+        within = f" within {max_dofs:,} DOFs" if max_dofs is not None else ""
+        reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study"
+                  f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}")
     if floor is not None and floor.get("band_error") is not None:
         reason += (f"; the ROM's mode source ({floor['label']}) has {floor['band_error']:.1e}, "
                    + ("and the reference is at least as accurate" if ok else

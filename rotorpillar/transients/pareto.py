@@ -286,6 +286,13 @@ def plan_pareto(scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None,
                       Path(cache_dir), time.perf_counter() - started, float(duration))
 
 
+def _mpi_rank_size() -> tuple[int, int]:
+    """(rank, size) when running under MPI (mpi4py imported), else (0, 1)."""
+    import sys
+    mpi = sys.modules.get("mpi4py.MPI")
+    return (0, 1) if mpi is None else (mpi.COMM_WORLD.rank, mpi.COMM_WORLD.size)
+
+
 class ParetoRunning:
     """The plan's missing 3D runs under way on worker processes (a thread waits for them),
     so that the caller's own work (compare's models) runs meanwhile on the other core."""
@@ -303,6 +310,8 @@ class ParetoRunning:
                      f"{len(plan.specs) - len(self.todo)} cached, {len(self.todo)} to compute"
                      + (f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es))"
                         if self.solid and workers > 0 else ""))
+        if _mpi_rank_size()[1] > 1:
+            workers = 0          # under mpirun every rank runs the 3D runs together, here
         if self.solid and workers > 0:
             self.workers = min(workers, len(self.solid))
             self.thread = threading.Thread(target=self._pool, daemon=True)
@@ -312,7 +321,8 @@ class ParetoRunning:
         plan = self.plan
         fam, label, params = plan.specs[i]
         doc = {"key": plan.keys[i], "family": fam, "label": label, "params": params, **out}
-        write_json(plan.cache_dir / f"pareto-{plan.keys[i]}.json", doc)
+        if _mpi_rank_size()[0] == 0:
+            write_json(plan.cache_dir / f"pareto-{plan.keys[i]}.json", doc)
         plan.results[i] = {**doc, "cached": False}
         if self.progress:
             self.progress(f"speed against accuracy: {label} in {out['wall_seconds']:.3g} s")
