@@ -94,6 +94,10 @@ def test_select_reference_coarsest_meeting_the_bound():
     c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4},
                          max_dofs=12_000)
     assert c.params["elements_along"] == 40 and not c.meets and "only to the reference's own" in c.reason
+    # what the case's steps afford caps that refinement
+    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4},
+                         max_dofs=12_000, floor_max_dofs=7_000)
+    assert c.params["elements_along"] == 20 and not c.meets and "within 7,000 DOFs" in c.reason
     # without the DOFs cap the fine solid run would do
     c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2.5e-4})
     assert c.params["elements_around"] == 224
@@ -121,6 +125,9 @@ def test_choose_reference_from_the_study_on_disk(tmp_path):
     mesh, ref = choose_reference(scene, "runup", tmp_path)
     assert ref.floor["label"].startswith("beam Timoshenko") and ref.floor["band_error"] < 4e-4
     assert mesh.elements_along == 40 and ref.meets is False
+    # a long run-up (5,000 steps) affords 8,000 DOFs (REFERENCE_DOF_STEPS): 8 x 20, said so
+    mesh, ref = choose_reference(scene, "runup", tmp_path, steps=5_000)
+    assert mesh.elements_along == 20 and ref.meets is False and "afford" in ref.reason
     # explicit [full_order] keys override the choice; the study's error goes with the mesh
     mesh, ref = choose_reference(override(scene, ["full_order.elements_along=20"]), "earthquake", tmp_path)
     assert mesh.elements_along == 20 and ref.overrides == ("elements_along",) and ref.verified

@@ -217,6 +217,8 @@ class ReferenceChoice(JsonRecord):
     candidates: int
     """the study's 3D runs considered (at most ``max_dofs``)"""
     max_dofs: int | None
+    floor_max_dofs: int | None
+    """the finest the refinement for the floor may go (the case's DOF-step budget)"""
     rule: str
     reason: str
 
@@ -228,15 +230,18 @@ def run_band_error(record: dict, quantities, reference: dict) -> Optional[float]
 
 
 def select_reference(records: list[dict], reference: dict, quantities, tolerance: float, *,
-                     floor: dict | None = None, max_dofs: int | None = None) -> Optional[ReferenceChoice]:
+                     floor: dict | None = None, max_dofs: int | None = None,
+                     floor_max_dofs: int | None = None) -> Optional[ReferenceChoice]:
     """The coarsest 3D run (fewest DOFs) whose band error on ``quantities`` meets
-    the tolerance, and ``floor["band_error"]`` (the ROM's mode source) when that
-    is smaller: the reference must be at least as accurate as what it checks.
+    the tolerance; where ``floor["band_error"]`` (the ROM's mode source) is
+    smaller, the coarsest that meets that too: the reference must be at least
+    as accurate as what it checks.
 
-    Candidates: the study's solid runs with at most ``max_dofs`` DOFs (what a
-    transient can afford).  When none meets the bound, the most accurate
-    candidate that meets the tolerance is taken with ``meets`` False; when
-    none meets even the tolerance, None.
+    Candidates: the study's solid runs with at most ``max_dofs`` DOFs; the
+    refinement for the floor goes no further than ``floor_max_dofs`` (what the
+    case's steps afford).  When no candidate within it meets the floor, the
+    most accurate one is taken with ``meets`` False; when none meets even the
+    tolerance, None.
     """
     quantities = tuple(q for q in quantities if q in reference)
     unc = reference_uncertainty(reference)
@@ -245,18 +250,19 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
              and band_error(r, list(quantities), unc) is not None]
     if not quantities or not cands:
         return None
-    required = tolerance
-    if floor is not None and floor.get("band_error") is not None:
-        required = min(tolerance, floor["band_error"])
     err = {id(r): band_error(r, list(quantities), unc) for r in cands}
-    meets = sorted((r for r in cands if err[id(r)] <= required), key=lambda r: (r["dofs"], r["wall_time"]))
-    within_tol = [r for r in cands if err[id(r)] <= tolerance]
-    if meets:
-        best, ok = meets[0], True
-    elif within_tol:
-        best, ok = min(within_tol, key=lambda r: (err[id(r)], r["dofs"])), False
-    else:
+    by_cost = lambda r: (r["dofs"], r["wall_time"])      # noqa: E731
+    within_tol = sorted((r for r in cands if err[id(r)] <= tolerance), key=by_cost)
+    if not within_tol:
         return None
+    best, ok, required = within_tol[0], True, tolerance
+    limit = None
+    if floor is not None and floor.get("band_error") is not None and floor["band_error"] < err[id(best)]:
+        required = floor["band_error"]
+        limit = max(floor_max_dofs if floor_max_dofs is not None else math.inf, best["dofs"])
+        pool = [r for r in within_tol if r["dofs"] <= limit]
+        reach = [r for r in pool if err[id(r)] <= required]
+        best, ok = (reach[0], True) if reach else (min(pool, key=lambda r: (err[id(r)], r["dofs"])), False)
     e = err[id(best)]
     what = " and ".join(f"first {q} {best[q]:.4f} rad/s (bound {best[q + '_error_bound']:.1e})"
                         for q in quantities)
@@ -265,17 +271,18 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
                   f"{what} meet{'s' if len(quantities) == 1 else ''} {required:.2g} with the "
                   f"reference's uncertainty (band error {e:.1e})")
     else:
-        within = f" within {max_dofs:,} DOFs" if max_dofs is not None else ""
+        within = f" within {limit:,.0f} DOFs" if limit is not None and math.isfinite(limit) else ""
         reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study"
-                  f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}")
+                  f"{within} (what the case's steps afford): {what}, band error {e:.1e}, within the "
+                  f"tolerance {tolerance:g}")
     if floor is not None and floor.get("band_error") is not None:
         reason += (f"; the ROM's mode source ({floor['label']}) has {floor['band_error']:.1e}, "
                    + ("and the reference is at least as accurate" if ok else
-                      "which no 3D run within the transient's DOFs reaches: the comparison "
-                      "checks the ROM only to the reference's own error"))
+                      "which no 3D run the case affords reaches: the comparison checks the ROM "
+                      "only to the reference's own error"))
     rule = ("fewest DOFs among the study's 3D runs (at most max_dofs) whose error bound plus the "
             "reference's uncertainty on the frequencies of the modes the load excites meets the "
-            "tolerance, or the ROM mode source's own bound where smaller")
+            "tolerance, and the ROM mode source's own bound where smaller (within floor_max_dofs)")
     return ReferenceChoice(
         label=best["label"], family=best["family"], params=dict(best["params"]), dofs=int(best["dofs"]),
         quantities=quantities, band_error=float(e),
@@ -283,4 +290,5 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
                                          ("error", "model_error", "discretisation_error", "error_bound")}}
                 for q in quantities},
         required=float(required), tolerance=float(tolerance), floor=floor, meets=ok,
-        candidates=len(cands), max_dofs=max_dofs, rule=rule, reason=reason)
+        candidates=len(cands), max_dofs=max_dofs, floor_max_dofs=floor_max_dofs, rule=rule,
+        reason=reason)

@@ -50,6 +50,11 @@ FLOOR_CASES = ("runup",)
 """Cases whose reference must also be as accurate as the ROM's mode source (issue 15.4
 asks it of the run-up, whose old beam reference was coarser than the ROM's modes;
 the earthquake's 15 s window costs ~20 times the run-up's, so it keeps the tolerance)."""
+REFERENCE_DOF_STEPS = 40e6
+"""What refining the reference for the ROM source's floor may cost: DOFs x Newmark steps.
+The 3D full order costs ~0.85 us per DOF and step on a quiet 2-core machine (8 x 10,
+3,033 DOFs: 2.6 ms a step), so ~35 s; the tolerance's own choice is never held to it
+(the paper's El Centro on 8 x 15: 38e6)."""
 FALLBACK_AROUND = 8
 """Elements around without a study and without full_order.elements_around (-)."""
 QUANTITY_OF = {("bending_x", 0): "bending", ("ovalling", 0): "ovalling"}
@@ -312,8 +317,21 @@ def _mesh_of(scene, params: dict):
                                                          "grading") if k in params})
 
 
-def choose_reference(scene, case: str, study_dir: Path | None = None, motion=None) -> tuple[object, FullOrderReference]:
-    """(the scene [mesh] section the 3D run uses, the record of why) for ``case``."""
+def estimated_steps(scene, case: str, motion, duration: float) -> int:
+    """The 3D run's Newmark steps over ``duration`` (its step as simulate_fem3d sets it)."""
+    from ..fem3d.transient import auto_time_step, case_setup
+    start = scene.simulate.runup_initial_speed if case == "runup" else None
+    motion, drive, duration, speed, _ = case_setup(scene, case, motion, None, duration, start or None)
+    h = scene.full_order.time_step or scene.simulate.time_step or auto_time_step(scene, drive, motion,
+                                                                                 speed)
+    return max(1, int(round(duration / h)))
+
+
+def choose_reference(scene, case: str, study_dir: Path | None = None, motion=None,
+                     steps: int | None = None) -> tuple[object, FullOrderReference]:
+    """(the scene [mesh] section the 3D run uses, the record of why) for ``case``;
+    ``steps``: the run's Newmark steps, which bound how far the run-up's reference
+    is refined for the ROM source (REFERENCE_DOF_STEPS)."""
     from ..converge.ladder import FAMILIES
     from ..converge.selection import run_band_error, select_reference
     fo = scene.full_order
@@ -341,7 +359,8 @@ def choose_reference(scene, case: str, study_dir: Path | None = None, motion=Non
         if rec is not None:
             floor = {"label": rec["label"], "band_error": run_band_error(rec, quantities, study.reference)}
     choice = select_reference(runs, study.reference, quantities, study.tolerance, floor=floor,
-                              max_dofs=max(along) if along else None)
+                              max_dofs=max(along) if along else None,
+                              floor_max_dofs=None if steps is None else int(REFERENCE_DOF_STEPS / steps))
     if choice is None:
         mesh = replace(scene.mesh, elements_around=fo.elements_around or FALLBACK_AROUND,
                        elements_along=fo.elements_along or scene.mesh.elements_along)

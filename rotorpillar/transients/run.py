@@ -71,15 +71,16 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
     convergence.json, else [full_order]'s (rotorpillar.transients.references);
     ``reference`` says which, its own error and the participation of the modes."""
     from ..fem3d.transient import CASES_3D
-    from .references import choose_reference
+    from .references import choose_reference, estimated_steps
     if case not in CASES_3D:
         raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs "
                          f"{', '.join(CASES_3D)}")
     fo, m = scene.full_order, scene.mesh
-    mesh, reference = choose_reference(scene, case, study_dir, motion)
     own = own_duration(scene, case, motion)
     stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
     length = min(own, stated or own, duration or own)
+    steps = estimated_steps(scene, case, motion, length) if study_dir is not None else None
+    mesh, reference = choose_reference(scene, case, study_dir, motion, steps)
     source = ("the convergence study's reference for the modes the load excites"
               if reference.source == "converge" else "[full_order]'s, no study on disk")
     if reference.overrides:
