@@ -227,3 +227,19 @@ def test_compare_runup_on_the_3d_full_order(tmp_path):
     # on this mesh (its bending error 1.5e-3 shifts the passages' phase); tolerance 2 %
     assert doc["errors"]["modal"]["tip_history_error"] < 2e-2
     assert abs(doc["errors"]["modal"]["peak_tip_difference"]) < 2e-2
+
+
+def test_the_ladder_has_the_bending_only_family():
+    """Its rungs refine along only, at 8 around; its runs report bending alone, even a
+    cached run it shares with the around-only sweep (8 x 10: the same mesh)."""
+    from rotorpillar.converge.ladder import ALONG_FAMILY_AROUND, ALONG_LEVELS, ladder, resolved_only
+    scene = load_scene("paper")
+    rungs = [c for c in ladder(scene) if c.family == "solid_hex_p2_along"]
+    assert [c.level for c in rungs] == list(ALONG_LEVELS)
+    assert {c.settings["elements_around"] for c in rungs} == {ALONG_FAMILY_AROUND}
+    shared = [c for c in ladder(scene) if c.family == "solid_hex_p2_around"
+              and c.settings == next(r for r in rungs if r.level == scene.mesh.elements_along).settings]
+    assert len(shared) == 1                     # one cached run, two families
+    run = {"bending": 30.86, "ovalling": 696.0}
+    assert resolved_only("solid_hex_p2_along", run) == {"bending": 30.86, "ovalling": None}
+    assert resolved_only("solid_hex_p2_around", run) is run
