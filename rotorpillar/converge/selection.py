@@ -271,10 +271,14 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
                   f"{what} meet{'s' if len(quantities) == 1 else ''} {required:.2g} with the "
                   f"reference's uncertainty (band error {e:.1e})")
     else:
-        within = f" within {limit:,.0f} DOFs" if limit is not None and math.isfinite(limit) else ""
+        cap = min(limit if limit is not None else math.inf, max_dofs if max_dofs is not None else math.inf)
+        within = ""
+        if math.isfinite(cap):
+            within = (f" within {cap:,.0f} DOFs ("
+                      + ("what the case's steps afford" if limit is not None and limit <= cap
+                         else "the finest the transient's candidates go") + ")")
         reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study"
-                  f"{within} (what the case's steps afford): {what}, band error {e:.1e}, within the "
-                  f"tolerance {tolerance:g}")
+                  f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}")
     if floor is not None and floor.get("band_error") is not None:
         reason += (f"; the ROM's mode source ({floor['label']}) has {floor['band_error']:.1e}, "
                    + ("and the reference is at least as accurate" if ok else
