@@ -61,8 +61,6 @@ PARETO_ALONG = (5, 10, 15, 20)
 """Elements along of the 3D runs (the bending-only family of the ladder); the
 finest is the reference, so its cost bounds the study's."""
 CACHE_VERSION = 1
-FAMILIES = {"rom": "ROM (pillar modes)", "beam": "beam Timoshenko, full order",
-            "fem3d": "3D P2 hexahedra, full order"}
 
 
 @dataclass(frozen=True)
