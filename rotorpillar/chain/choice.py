@@ -117,11 +117,18 @@ def _model(run: dict, source: str, verified: bool, tolerance, errors: dict, note
                        tolerance, errors, note, study)
 
 
+def solid_families() -> list[str]:
+    """The 3D families whose meshes resolve every frequency the study measures (not the
+    bending-only family: `modal` shows the shell modes too)."""
+    from ..converge.ladder import FAMILIES, QUANTITIES
+    return [k for k, f in FAMILIES.items()
+            if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
+
+
 def _solid_within(study, tolerance: float):
     """The cheapest 3D run of the study that meets the tolerance, or None."""
-    from ..converge.ladder import FAMILIES
     from ..converge.selection import select_model
-    solid = [k for k, f in FAMILIES.items() if f.model == "solid" and not f.sweep]
+    solid = solid_families()
     sel = select_model(list(study.runs), study.reference, study.band, tolerance, families=solid)
     return sel.get("chosen")
 

@@ -21,6 +21,13 @@ def add_arguments(p) -> None:
                    help=f"comma-separated, among {', '.join(MODELS)}; default: modal,fem3d for the "
                         "earthquake, modal,beam for the run-up.  The reference is the most complete "
                         "model given: fem3d > beam > modal > paper")
+    p.add_argument("--pareto", action="store_true",
+                   help="earthquake against fem3d: also the speed-against-accuracy study (the ROM by "
+                        "its modes, beams and 3D meshes on El Centro, errors against the finest 3D "
+                        "run; each run cached under cache/): compare_earthquake.json's pareto")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="processes for the speed-against-accuracy study's 3D runs (default: one "
+                        "per core)")
 
 
 def preflight(scene, args) -> None:
@@ -44,8 +51,14 @@ def compare_command(scene, args, timings):
     case = args.case
     models = parse_models(args.models, case)
     provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
+    from ..errors import InputError
+    from ..executor import default_workers
     from ..postprocess.comparison_charts import comparison_chart
+    from ..postprocess.pareto_charts import pareto_chart
     from ..postprocess.transient_charts import model_run_charts
+    workers = getattr(args, "workers", None)
+    if workers is not None and workers < 1:
+        raise InputError(f"--workers {workers}: must be >= 1")
     chain = None
     if any(m in ("modal", "fem3d") for m in models):
         from ..chain import resolve
@@ -56,7 +69,9 @@ def compare_command(scene, args, timings):
     with timings("compare"):
         res = compare_models(scene, case, models, out_dir(scene, args), provenance, progress=progress,
                              write=is_root_rank(), run_charts=model_run_charts,
-                             compare_chart=comparison_chart, chain=chain)
+                             compare_chart=comparison_chart, pareto=getattr(args, "pareto", False),
+                             pareto_chart=pareto_chart, workers=workers or default_workers(),
+                             chain=chain)
     doc = res.to_json()
     if any(p.get("ok") is False for p in res.per_model.values()):
         doc["exit_status"] = EXIT_CHECKS
@@ -85,5 +100,17 @@ def summary(scene, r) -> str:
         comp = f"{s['computed_peak_tip']:.4g} m" if s["computed_peak_tip"] is not None else "not run"
         lines.append(f"  response spectrum: spectral peak tip {s['spectral_peak_tip']:.4g} m (SRSS), "
                      f"computed (modal) {comp}")
+    if r.pareto:
+        pa = r.pareto
+        lines.append(f"  speed against accuracy ({pa['cost']['runs']} runs, {pa['cost']['computed']} "
+                     f"computed in {pa['cost']['wall_seconds']:.3g} s): errors against "
+                     f"{pa['reference']['label']} (own peak error {_pct(pa['reference']['peak_error'])}, "
+                     f"{pa['reference']['method']}); {pa['chosen']['why']}")
+    if r.full_order_reference:
+        lines.append(f"  3D reference: {r.full_order_reference['statement']}")
     lines.append(f"  chart: {r.chart}")
     return "\n".join(lines)
+
+
+def _pct(x) -> str:
+    return "-" if x is None else f"{100 * abs(x):.2g} %"

@@ -109,7 +109,8 @@ def simulate_command(scene, args, timings):
             chain = resolve(scene, out_dir(scene, args), motion=motion, progress=progress)
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                        motion=motion, chain=chain, field_dir=out_dir(scene, args))
+                        motion=motion, chain=chain, field_dir=out_dir(scene, args),
+                        study_dir=out_dir(scene, args))
     result = dict(run.result)
     if is_root_rank():
         with timings("write"):

@@ -24,7 +24,7 @@ from typing import Callable, Optional
 
 from ..provenance import write_json
 from .compute import compute_fe, compute_in_process
-from .ladder import FAMILIES, N_MODES, Case, estimated_dofs, estimated_seconds
+from .ladder import FAMILIES, N_MODES, Case, estimated_dofs, estimated_seconds, resolved_only
 
 
 SHELL_MODEL, SHELL_MESH = "fem3d.naghdi", "mesh.midsurface"
@@ -316,8 +316,8 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
         cached = _load_cached(cache_dir / f"{key}.json", key)
         if cached is not None:
             # names follow the code, not the cache (they are not part of the key)
-            records[i] = {**cached, "label": c.label, "family": c.family,
-                          "model": FAMILIES[c.family].model, "cached": True}
+            records[i] = {**resolved_only(c.family, cached), "label": c.label,
+                          "family": c.family, "model": FAMILIES[c.family].model, "cached": True}
         else:
             todo.append(i)
     check_memory([cases[i] for i in todo], workers)
@@ -348,7 +348,7 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
         else:
             rec = _record(case, key, result)
             write_json(cache_dir / f"{key}.json", rec)
-            records[i] = {**rec, "cached": False}
+            records[i] = {**resolved_only(case.family, rec), "cached": False}
         bar.set_postfix_str(case.label)
         bar.update(weights[i])
 

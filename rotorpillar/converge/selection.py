@@ -4,14 +4,17 @@ Each run's error against the reference splits into the model's own error
 (its family's limit against the reference) and the discretisation's; the
 choice is the cheapest run (wall time) whose error bound meets a tolerance
 over the frequency band the scene needs (its highest excitation frequency
-times a margin).
+times a margin).  ``select_reference`` picks the transients' full-order
+reference: the coarsest 3D run for the frequencies the load excites.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Optional
 
+from ..provenance import JsonRecord
 from ..reduced.band import excitation_band  # noqa: F401  (the study's band, re-exported)
 from .ladder import FAMILIES, QUANTITIES
 
@@ -181,3 +184,115 @@ def _reason(best, needed, band, tol, reference, rejected) -> str:
              f"{FAMILIES[f].label} (best {r['label'].split(', ')[-1]}: {why})")
             for f, (r, why) in rejected.items()) + ".")
     return "".join(parts)
+
+
+# --------------------------------------------------------------------------
+# The transients' full-order reference: the coarsest 3D mesh for what the load excites
+
+
+@dataclass(frozen=True)
+class ReferenceChoice(JsonRecord):
+    """The 3D mesh a transient's full-order reference runs on, chosen from the study
+    for the frequencies the load excites (relative errors, -)."""
+    label: str
+    """the study's run: family and mesh"""
+    family: str
+    params: dict
+    """the run's discretisation (elements_around, elements_along, ... as in the study)"""
+    dofs: int
+    """the bare tube's DOFs in the study"""
+    quantities: tuple[str, ...]
+    """the study's frequencies the choice had to meet (those of the modes the load excites)"""
+    band_error: float
+    """the largest, over ``quantities``, of the error bound plus the reference's uncertainty"""
+    errors: dict
+    """per quantity: value (rad/s), error, model_error, discretisation_error, error_bound"""
+    required: float
+    """the bound the choice had to meet: the tolerance, or the ROM source's own if smaller"""
+    tolerance: float
+    floor: dict | None
+    """the ROM's mode source the reference must be at least as fine as: label, band_error"""
+    meets: bool
+    """band_error <= required (False: no candidate met it; the most accurate was taken)"""
+    candidates: int
+    """the study's 3D runs considered (at most ``max_dofs``)"""
+    max_dofs: int | None
+    floor_max_dofs: int | None
+    """the finest the refinement for the floor may go (the case's DOF-step budget)"""
+    rule: str
+    reason: str
+
+
+def run_band_error(record: dict, quantities, reference: dict) -> Optional[float]:
+    """A run's band error on ``quantities``: its largest error bound plus the
+    reference's uncertainty (None: a quantity is missing)."""
+    return band_error(record, list(quantities), reference_uncertainty(reference))
+
+
+def select_reference(records: list[dict], reference: dict, quantities, tolerance: float, *,
+                     floor: dict | None = None, max_dofs: int | None = None,
+                     floor_max_dofs: int | None = None) -> Optional[ReferenceChoice]:
+    """The coarsest 3D run (fewest DOFs) whose band error on ``quantities`` meets
+    the tolerance; where ``floor["band_error"]`` (the ROM's mode source) is
+    smaller, the coarsest that meets that too: the reference must be at least
+    as accurate as what it checks.
+
+    Candidates: the study's solid runs with at most ``max_dofs`` DOFs; the
+    refinement for the floor goes no further than ``floor_max_dofs`` (what the
+    case's steps afford).  When no candidate within it meets the floor, the
+    most accurate one is taken with ``meets`` False; when none meets even the
+    tolerance, None.
+    """
+    quantities = tuple(q for q in quantities if q in reference)
+    unc = reference_uncertainty(reference)
+    cands = [r for r in records if r.get("status") == "ok" and FAMILIES[r["family"]].model == "solid"
+             and (max_dofs is None or r["dofs"] <= max_dofs)
+             and band_error(r, list(quantities), unc) is not None]
+    if not quantities or not cands:
+        return None
+    err = {id(r): band_error(r, list(quantities), unc) for r in cands}
+    by_cost = lambda r: (r["dofs"], r["wall_time"])      # noqa: E731
+    within_tol = sorted((r for r in cands if err[id(r)] <= tolerance), key=by_cost)
+    if not within_tol:
+        return None
+    best, ok, required = within_tol[0], True, tolerance
+    limit = None
+    if floor is not None and floor.get("band_error") is not None and floor["band_error"] < err[id(best)]:
+        required = floor["band_error"]
+        limit = max(floor_max_dofs if floor_max_dofs is not None else math.inf, best["dofs"])
+        pool = [r for r in within_tol if r["dofs"] <= limit]
+        reach = [r for r in pool if err[id(r)] <= required]
+        best, ok = (reach[0], True) if reach else (min(pool, key=lambda r: (err[id(r)], r["dofs"])), False)
+    e = err[id(best)]
+    what = " and ".join(f"first {q} {best[q]:.4f} rad/s (bound {best[q + '_error_bound']:.1e})"
+                        for q in quantities)
+    if ok:
+        reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the coarsest 3D run of the study whose "
+                  f"{what} meet{'s' if len(quantities) == 1 else ''} {required:.2g} with the "
+                  f"reference's uncertainty (band error {e:.1e})")
+    else:
+        cap = min(limit if limit is not None else math.inf, max_dofs if max_dofs is not None else math.inf)
+        within = ""
+        if math.isfinite(cap):
+            within = (f" within {cap:,.0f} DOFs ("
+                      + ("what the case's steps afford" if limit is not None and limit <= cap
+                         else "the finest the transient's candidates go") + ")")
+        reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study"
+                  f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}")
+    if floor is not None and floor.get("band_error") is not None:
+        reason += (f"; the ROM's mode source ({floor['label']}) has {floor['band_error']:.1e}, "
+                   + ("and the reference is at least as accurate" if ok else
+                      "which no 3D run the case affords reaches: the comparison checks the ROM "
+                      "only to the reference's own error"))
+    rule = ("fewest DOFs among the study's 3D runs (at most max_dofs) whose error bound plus the "
+            "reference's uncertainty on the frequencies of the modes the load excites meets the "
+            "tolerance, and the ROM mode source's own bound where smaller (within floor_max_dofs)")
+    return ReferenceChoice(
+        label=best["label"], family=best["family"], params=dict(best["params"]), dofs=int(best["dofs"]),
+        quantities=quantities, band_error=float(e),
+        errors={q: {"value": best[q], **{k: best.get(f"{q}_{k}") for k in
+                                         ("error", "model_error", "discretisation_error", "error_bound")}}
+                for q in quantities},
+        required=float(required), tolerance=float(tolerance), floor=floor, meets=ok,
+        candidates=len(cands), max_dofs=max_dofs, floor_max_dofs=floor_max_dofs, rule=rule,
+        reason=reason)

@@ -147,7 +147,10 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
                    timings=timings, charts=charts, log=log, show_progress=show_progress)
         runs, reference, band, overall, json_file = (st.runs, st.reference, st.band, st.chosen,
                                                      st.json_file)
-    solid = [k for k, f in FAMILIES.items() if f.model == "solid"]
+    # the 3D families that resolve every frequency the study measures: modal shows the
+    # shell modes too (not the bending-only family)
+    solid = [k for k, f in FAMILIES.items()
+             if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
     sel = select_model(runs, reference, band, tolerance, families=solid)
     chosen, unmet = sel["chosen"], None
     if chosen is None:

@@ -92,6 +92,11 @@ class ModalResult:
     section_resultants: np.ndarray | None = None
     """(modes, n_z, 3) per normalised mode: shear V (N), bending moment M (N*m) and
     axial force N (N, compression positive) at each cut (rotorpillar.fem3d.sections)"""
+    participation: np.ndarray | None = None
+    """(modes, 3) L_j = phi_j^T M r_d for the rigid translations r_d along x, y, z of
+    everything the model carries (tube and top), normalised shape (kg): a ground
+    acceleration a_g along d forces mode j with -L_j a_g; L_j**2 / m_j is its
+    effective mass"""
 
     @property
     def frequency_hz(self) -> np.ndarray:
@@ -130,6 +135,10 @@ class ModalResult:
                     row["pillar_modal_mass"] = float(self.modal_mass[i] - self.top_mass)
             if self.rigid_top is not None:
                 row["top_plate_motion"] = [float(q) for q in self.rigid_top[i]]
+            if self.participation is not None:
+                L = self.participation[i]
+                row["participation"] = [float(x) for x in L]
+                row["effective_mass"] = [float(x * x / self.modal_mass[i]) for x in L]
             out.append(row)
         return out
 
@@ -245,14 +254,22 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
     mm, kk = np.empty(n_modes), np.empty(n_modes)
     y = model.K.createVecLeft()
     phi = model.K.createVecRight()
+    Mr = []
+    for d in range(3):
+        r = model.influence(d)
+        Mr.append(model.M.createVecLeft())
+        model.M.mult(r, Mr[-1])
+        r.destroy()
+    part = np.empty((n_modes, 3))
     for k in range(n_modes):
         phi.setArray(local[:, k])
         model.M.mult(phi, y)
         mm[k] = phi.dot(y)
         model.K.mult(phi, y)
         kk[k] = phi.dot(y)
-    y.destroy()
-    phi.destroy()
+        part[k] = [phi.dot(v) for v in Mr]
+    for v in Mr + [y, phi]:
+        v.destroy()
     for x in sol.vectors:
         x.destroy()
     cuts = None if material is None else mode_resultants(model, local, *material)
@@ -293,7 +310,7 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
                 "type": f"{sol.method}, sinvert, mumps ldlt", "solves": sol.solves,
                 "ranks": comm.size},
         points=points, vtu_cells=vtu_cells, shapes=shapes_out, beam_line=beam_line,
-        rigid_top=rigid, section_heights=None if cuts is None else cuts[0],
+        rigid_top=rigid, participation=part, section_heights=None if cuts is None else cuts[0],
         section_resultants=None if cuts is None else cuts[1])
 
 

@@ -43,6 +43,7 @@ STYLE = {
     "solid_hex_p2": dict(color=FAMILY_COLOURS["solid_p2"], marker="s"),
     "solid_tet_p2": dict(color=FAMILY_COLOURS["solid_p2_light"], marker="^"),
     "solid_hex_p2_around": dict(color=FAMILY_COLOURS["solid_p2"], marker="s", ls="--", mfc="none"),
+    "solid_hex_p2_along": dict(color=FAMILY_COLOURS["solid_p2"], marker="v", ls="-.", mfc="none"),
 }
 COST_LABEL = {"dofs": "degrees of freedom", "wall_time": "wall time per run (s)"}
 PANELS = (("bending", "first bending frequency: |error|"),

@@ -151,7 +151,13 @@ def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
     sections = {}
     if case == "runup":
         drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
-        run = simulate(model, drive, motion, sim.duration, settings=st)
+        if sim.runup_initial_speed > 0:
+            q0, v0 = model.held_whirl_state(sim.runup_initial_speed)
+            run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st,
+                           speed_scale=sim.runup_initial_speed)
+            extra["initial_speed"] = sim.runup_initial_speed
+        else:
+            run = simulate(model, drive, motion, sim.duration, settings=st)
         free = drive.free_speed()
         if sim.threshold:
             sections["passing_torque"] = passing_torque(model, drive, sim.duration, st.rtol)

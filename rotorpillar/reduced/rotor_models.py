@@ -244,6 +244,19 @@ class RotorStructure:
         v0[-1] = Omega
         return q0, v0
 
+    def held_whirl_state(self, Omega: float, theta0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """(q0, v0): the structure at rest, the rotor in its steady whirl at speed
+        Omega on it as if it were held (the 3D full order's start, rotorpillar.fem3d.
+        rotor_top.rotor_start): X = c2 e / (c2 - m_C Omega**2 + i Omega b2),
+        x_r + i y_r = X exp(i theta0)."""
+        c2, m, b = self.shaft_stiffness, self.rotor_mass, self.shaft_damping
+        X = c2 * self.eccentricity / complex(c2 - m * Omega**2, Omega * b)
+        z = X * complex(math.cos(theta0), math.sin(theta0))
+        q0, v0 = np.zeros(self.n), np.zeros(self.n)
+        q0[self.rotor_x], q0[self.nx], q0[-1] = z.real, z.imag, theta0
+        v0[self.rotor_x], v0[self.nx], v0[-1] = -Omega * z.imag, Omega * z.real, Omega
+        return q0, v0
+
     def stiffest_frequency(self) -> float:
         """The highest undamped natural frequency of the structure and shaft (rad/s)."""
         return float(max(self.undamped_modes_x()[0].max(), math.sqrt(self.shaft_stiffness / self.rotor_mass)))

@@ -217,6 +217,9 @@ class Simulate:
     samples: int = param("Largest number of output samples per run (-)", 20000, ge=10, le=10**6)
     runup_ramp: float = param("Run-up: time over which M0 rises from 0, 0 = full torque at once (s)",
                               0.0, ge=0)
+    runup_initial_speed: float = param("Run-up: start at this speed, the rotor in its steady whirl "
+                                       "on the pillar held at rest, 0 = from rest (rad/s); compare's "
+                                       "run-up window sets it", 0.0, ge=0, le=1e5)
     rundown_motor: str = param("Run-down: the motor switched off, or a weaker motor", "off",
                                choices=("off", "weaker"))
     rundown_torque_at_zero: float = param("Run-down: M0 of the weaker motor (N*m)", 0.0, ge=0)
@@ -287,11 +290,16 @@ class ModalModel:
 
 @dataclass(frozen=True)
 class FullOrder:
-    """Full-order transients (`simulate --model fem3d|beam`, `compare`); 0 = the scene's own.
-    Measured (docs/transients.md): 3D El Centro, 15 s, 8 x 10 elements: ~25 s on 2 cores, tip
-    within 0.7 % of the ROM (8 x 6 ... 32 x 8: 2-5 %; the height matters, not the circumference)."""
-    elements_around: int = param("3D: elements around, 0 = [mesh]'s (-)", 8, ge=0)
-    elements_along: int = param("3D: elements along the height, 0 = [mesh]'s (-)", 0, ge=0)
+    """Full-order transients (`simulate --model fem3d|beam`, `compare`); 0 = chosen.
+    The 3D mesh is the convergence study's choice for the modes the case's load excites
+    (rotorpillar.transients.references) when out/<scene>/convergence.json is there; a
+    non-zero elements_around/along overrides it.  Measured (docs/transients.md): 3D El
+    Centro, 15 s, 8 x 10 elements: ~25 s on 2 cores, tip within 0.7 % of the ROM (8 x 6
+    ... 32 x 8: 2-5 %; the height matters, not the circumference)."""
+    elements_around: int = param("3D: elements around, 0 = the study's choice for the load, "
+                                 "else 8 (-)", 0, ge=0)
+    elements_along: int = param("3D: elements along the height, 0 = the study's choice for the "
+                                "load, else [mesh]'s (-)", 0, ge=0)
     runup_duration: float = param("3D: run-up length, 0 = simulate.duration (s)", 15.0, ge=0, le=1e5)
     earthquake_duration: float = param("3D: earthquake length, 0 = the case's own (s)", 15.0,
                                        ge=0, le=1e5)

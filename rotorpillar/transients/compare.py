@@ -53,25 +53,29 @@ def parse_models(text: str | None, case: str) -> tuple[str, ...]:
     return tuple(names)
 
 
-def common_duration(scene, case: str, models, motion) -> tuple[float, str]:
+def common_duration(scene, case: str, models, motion, study_dir=None) -> tuple[float, str]:
     """The one duration every model runs (s), and why."""
     own = own_duration(scene, case, motion)
     if "fem3d" not in models:
         return own, "the case's own duration"
-    d = fem3d_plan(scene, case, motion)["duration"]
+    d = fem3d_plan(scene, case, motion, study_dir=study_dir)["duration"]
     return d, (f"the 3D full order's duration ([full_order]); every model runs {d:g} s"
                if d < own else "the case's own duration")
 
 
 def compare_models(scene, case: str, models, out: Path, provenance: dict, progress=None,
-                   write: bool = True, run_charts=None, compare_chart=None,
-                   chain=None) -> CompareResult:
+                   write: bool = True, run_charts=None, compare_chart=None, pareto: bool = False,
+                   pareto_chart=None, workers: int = 1, chain=None) -> CompareResult:
     """Run ``models`` on ``case`` and compare them (see the module text).
 
     ``run_charts`` draws each model's figures (see ``files.write_model_files``);
     ``compare_chart(path, series, reference, title, errors=..., walls=...)``
     the overlay (``rotorpillar.postprocess.comparison_charts.comparison_chart``);
-    both are handed in by the command, since drawing lives above this layer.
+    ``pareto_chart(doc, path, title)`` the speed against accuracy
+    (``rotorpillar.postprocess.pareto_charts.pareto_chart``); all handed in by
+    the command, since drawing lives above this layer.  ``pareto``: the
+    earthquake against the 3D full order also runs the speed-against-accuracy
+    study (rotorpillar.transients.pareto, its 3D runs on ``workers`` processes).
     ``chain``: the chain's pillar model and modes (rotorpillar.chain.resolve).
     """
     from ..reduced.models import scene_motion
@@ -83,17 +87,32 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     if case not in COMPARE_CASES:
         raise InputError(f"--case {case!r}: compare runs {', '.join(COMPARE_CASES)}")
     motion = scene_motion(scene) if case == "earthquake" else None
-    duration, why = common_duration(scene, case, models, motion)      # bad input: before any output
     if chain is None and any(m in ("modal", "fem3d") for m in models):
         from ..chain import resolve
         chain = resolve(scene, out, motion=motion, progress=progress)
+    window = None
+    if case == "runup" and "fem3d" in models:
+        # the 3D run-up through the resonances only; every model from the same state
+        from .window import runup_window, window_overrides
+        if progress:
+            progress("compare runup: the window through the resonances (the ROM's run-up from rest)")
+        window = runup_window(scene, chain.modes)
+        scene = override(scene, window_overrides(window))
+    duration, why = common_duration(scene, case, models, motion, out)  # bad input: before any output
+    if window is not None:
+        why = f"the run-up's window {window.reason}; {why}"
+    pending = None
+    if pareto and case == "earthquake" and "fem3d" in models:
+        # started first: its 3D runs take the other core while this process runs the models
+        pending = _start_pareto(scene, motion, out, workers, progress, chain)
     runs: dict[str, ModelRun] = {}
     results: dict[str, dict] = {}
     for i, m in enumerate(models):
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
         run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration,
-                        chain=chain, field_dir=out if write else None)
+                        chain=chain, field_dir=out if write else None, study_dir=out,
+                        field_stem=f"{compare_stem(case, m)}")
         if write:
             from .files import write_model_files
             results[m] = write_model_files(out, scene, run, provenance, last_run=False,
@@ -108,14 +127,14 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     per_model = {m: _per_model(case, m, results[m]) for m in models}
     rd = runs[ref].data
     t_ref, x_ref = rd["t"], rd["tip_x_relative"]
-    window = envelope_window(r.omega for r in runs[ref].resonances)
+    span = envelope_window(r.omega for r in runs[ref].resonances)
     errors = {}
     for m in models:
         if m == ref:
             continue
         d = runs[m].data
         pm, pr = per_model[m], per_model[ref]
-        series = compare_series(d["t"], d["tip_x_relative"], t_ref, x_ref, window=window,
+        series = compare_series(d["t"], d["tip_x_relative"], t_ref, x_ref, window=span,
                                 theta=d.get("theta"), theta_ref=rd.get("theta"))
         errors[m] = {"tip_history_error": series.history_error,
                      "peak_tip_difference": pm["peak_tip_relative"] / pr["peak_tip_relative"] - 1
@@ -131,12 +150,17 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     cost = {m: walls[m] / walls[ref] if walls[ref] > 0 else None for m in models}
     chart = f"compare_{case}.png"
     spectrum = _spectrum(scene, motion, runs) if case == "earthquake" else None
+    study = None if pending is None else _finish_pareto(scene, pending, out, write, pareto_chart)
     result = CompareResult(
         case=case, models_run=models, reference=ref,
         excitation=motion.sizes() if motion is not None else None, per_model=per_model,
         errors=errors, cost_ratio=cost, chart=chart,
-        window={"start": float(t_ref[0]), "end": float(t_ref[-1]), "duration": duration, "why": why},
-        spectrum=spectrum)
+        window={"start": float(t_ref[0]), "end": float(t_ref[-1]), "duration": duration, "why": why,
+                **({"runup": window.to_json()} if window is not None else {})},
+        spectrum=spectrum,
+        full_order_reference=(runs["fem3d"].result["full_order"].get("reference")
+                              if "fem3d" in runs else None),
+        pareto=study)
     if write:
         if compare_chart is not None:
             series = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
@@ -152,6 +176,33 @@ def compare_stem(case: str, model: str) -> str:
     """The stem of a comparison's per-model files: apart from the scene's own
     ``simulate_<case>_<model>.*`` (a comparison runs a window, or another excitation)."""
     return f"compare_{case}_{model}"
+
+
+def _start_pareto(scene, motion, out: Path, workers: int, progress, chain):
+    """The speed-against-accuracy study planned and its 3D runs started on ``workers`` - 1
+    processes (this one runs compare's own models meanwhile; none: after them, here)."""
+    from ..reduced.cases import forcing_top
+    from ..reduced.models import build_model
+    from .pareto import ParetoRunning, plan_pareto
+    mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out)["_mesh"]
+    top = scene.modal_model.band_factor * forcing_top(scene, "earthquake", motion)
+    _, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
+    plan = plan_pareto(scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh,
+                       pillar_modes=chain.modes)
+    return ParetoRunning(plan, max(0, workers - 1), progress)
+
+
+def _finish_pareto(scene, pending, out: Path, write: bool, chart) -> dict:
+    """The study's JSON, its chart drawn."""
+    from dataclasses import replace
+    study, _ = pending.finish()
+    if write and chart is not None:
+        name = "compare_earthquake_pareto.png"
+        chart(study.to_json(), Path(out) / name,
+              f"{scene.name}: El Centro, speed against accuracy (errors against "
+              f"{study.reference['label']})")
+        study = replace(study, chart=name)
+    return study.to_json()
 
 
 def _per_model(case: str, m: str, r: dict) -> dict:

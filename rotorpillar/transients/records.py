@@ -42,6 +42,13 @@ class CompareResult(JsonRecord):
     """start, end (s) of the comparison and why"""
     spectrum: dict | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake: period, psa (eqsig, 5 %), mode_periods, spectral_peak_tip, computed_peak_tip"""
+    full_order_reference: dict | None = field(default=None, metadata={"omit_if_none": True})
+    """fem3d run: its mesh, where it comes from (the convergence study, or the scene), its own
+    error on the frequencies the load excites, and the participation of the loaded modes
+    (rotorpillar.transients.references.FullOrderReference)"""
+    pareto: dict | None = field(default=None, metadata={"omit_if_none": True})
+    """earthquake against the 3D full order: speed against accuracy of every model of the
+    ladder on El Centro (rotorpillar.transients.pareto.ParetoStudy)"""
 
 
 def reference_of(models) -> str:

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import sys
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -71,24 +71,36 @@ def with_duration(scene, case: str, duration: float):
     return override(scene, [f"simulate.{key}={float(duration)!r}"])
 
 
-def fem3d_plan(scene, case: str, motion=None, duration: float | None = None) -> dict:
-    """The 3D run's mesh, duration and step from [full_order], and what was coarsened or
-    shortened, and why (the ``full_order`` block of the JSON)."""
+def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
+               study_dir=None) -> dict:
+    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
+    (the ``full_order`` block of the JSON).  The mesh: the convergence study's
+    reference for the modes the case's load excites when ``study_dir`` holds
+    convergence.json, else [full_order]'s (rotorpillar.transients.references);
+    ``reference`` says which, its own error and the participation of the modes."""
     from ..fem3d.transient import CASES_3D
+    from .references import choose_reference, estimated_steps
     if case not in CASES_3D:
         raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs "
                          f"{', '.join(CASES_3D)}")
     fo, m = scene.full_order, scene.mesh
-    mesh = replace(m, elements_around=fo.elements_around or m.elements_around,
-                   elements_along=fo.elements_along or m.elements_along)
     own = own_duration(scene, case, motion)
     stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
     length = min(own, stated or own, duration or own)
+    steps = estimated_steps(scene, case, motion, length) if study_dir is not None else None
+    mesh, reference = choose_reference(scene, case, study_dir, motion, steps)
+    source = ("the convergence study's reference for the modes the load excites"
+              if reference.source == "converge" else "[full_order]'s, no study on disk")
+    if reference.overrides:
+        source += f", full_order.{' and full_order.'.join(reference.overrides)} set"
     notes = []
     if (mesh.elements_around, mesh.elements_along) != (m.elements_around, m.elements_along):
-        notes.append(f"mesh coarsened from the scene's {m.elements_around} x {m.elements_along} to "
-                     f"{mesh.elements_around} x {mesh.elements_along} elements (around x along; "
-                     "full_order.elements_around/along)")
+        coarser = mesh.elements_around * mesh.elements_along < m.elements_around * m.elements_along
+        notes.append(f"mesh {'coarsened' if coarser else 'changed'} from the scene's "
+                     f"{m.elements_around} x {m.elements_along} to {mesh.elements_around} x "
+                     f"{mesh.elements_along} elements (around x along; {source})")
+    else:
+        notes.append(f"the scene's mesh ({source})")
     if length < own:
         notes.append(f"run shortened from the case's {own:g} s to {length:g} s "
                      f"(full_order.{'earthquake' if case == 'earthquake' else 'runup'}_duration)")
@@ -97,19 +109,20 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None) -> 
            "docs/transients.md give the measured cost and the agreement with the ROM)")
     return {"mesh": dict(vars(mesh)), "duration": float(length), "case_duration": float(own),
             "time_step": fo.time_step or None,
-            "note": ("; ".join(notes) + f": {why}") if notes else "the scene's mesh and duration, unchanged",
-            "_mesh": mesh}
+            "note": "; ".join(notes) + (f": {why}" if length < own else ""),
+            "reference": reference.to_json(), "_mesh": mesh}
 
 
 def run_model(scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
               progress=None, motion=None, duration: float | None = None,
               chain: ChainModes | None = None, field_dir=None,
-              field_stem: str | None = None) -> ModelRun:
+              field_stem: str | None = None, study_dir=None) -> ModelRun:
     """Run ``model`` (one of scene.MODELS) on ``case``; ``duration`` shortens the run
     (compare: one window for every model); ``chain`` the chain's pillar model and
     modes (rotorpillar.chain.resolve; None: the scene's own, no study); ``field_dir``:
     where the 3D model writes its stress field's XDMF time series (None: not written),
-    named ``field_stem`` (default ``simulate_<case>_fem3d``).  Bad input raises
+    named ``field_stem`` (default ``simulate_<case>_fem3d``); ``study_dir``: where the
+    convergence study lies (fem3d's reference mesh, ``fem3d_plan``).  Bad input raises
     InputError before any work."""
     if model not in MODELS:
         raise InputError(f"model {model!r}: must be one of {', '.join(MODELS)}")
@@ -121,7 +134,7 @@ def run_model(scene, case: str, model: str, integrator: str | None = None, modes
         chain = resolve(scene, None, motion=motion, progress=progress)
     if model == "fem3d":
         return _run_fem3d(scene, case, motion, duration, progress, chain, field_dir,
-                          field_stem or f"simulate_{case}_fem3d")
+                          field_stem or f"simulate_{case}_fem3d", study_dir)
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
@@ -269,22 +282,28 @@ def fem3d_warm_up(scene, mesh) -> float:
     return time.perf_counter() - start
 
 
-def solid_pillar_model(mesh, dofs: int, source: str, note: str) -> PillarModel:
-    """The 3D full order's mesh as a PillarModel (its error: see the comparison's reference)."""
+def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarModel:
+    """The 3D full order's mesh as a PillarModel, its source and error the reference's
+    (rotorpillar.transients.references.FullOrderReference)."""
     from ..chain.choice import solid_run_of
     run = solid_run_of(mesh)
-    return PillarModel("solid", run["label"] + " (full order)", run["params"], int(dofs), source,
-                       False, None, {}, note, None)
+    errors = {q: float(e["error_bound"]) for q, e in (reference.get("errors") or {}).items()
+              if isinstance(e, dict) and e.get("error_bound") is not None}
+    return PillarModel("solid", run["label"] + " (full order)", run["params"], int(dofs),
+                       reference.get("source", "scene"), bool(reference.get("verified")),
+                       reference.get("tolerance"), errors,
+                       note + ("; " + reference["statement"] if reference.get("statement") else ""),
+                       reference.get("study"))
 
 
 def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
-               field_stem: str = "") -> ModelRun:
+               field_stem: str = "", study_dir=None) -> ModelRun:
     from ..fem3d.transient import simulate_fem3d
     from ..reduced.cases import forcing_top
     from ..reduced.models import build_model
     from ..reduced.stationary import operating_speed
     from ..reduced.summaries import capture_state
-    plan = fem3d_plan(scene, case, motion, duration)
+    plan = fem3d_plan(scene, case, motion, duration, study_dir)
     mesh = plan.pop("_mesh")
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"
     ref, _ = build_model(scene, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion),
@@ -296,6 +315,8 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field
     compile_seconds = fem3d_warm_up(scene, mesh)
     if progress:
         progress(f"3D full order: {case} on {steps_hint}")
+    if case == "runup":
+        initial = scene.simulate.runup_initial_speed or None
     from .forces import stress_observer, with_fem3d_forces
     observer = stress_observer(scene, plan["duration"], field_dir, field_stem)
     try:
@@ -331,7 +352,8 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field
               "captured_at_source": "the chain's ROM: its resonances"
                                     + ("" if settled else "; the run ended before the speed settled, "
                                                           "so no capture is claimed"),
-              "pillar_model": solid_pillar_model(mesh, r.dofs, "scene", plan["note"]).to_json(),
+              "pillar_model": solid_pillar_model(mesh, r.dofs, plan.get("reference") or {},
+                                                 plan["note"]).to_json(),
               "compile_seconds": compile_seconds,
               "model_description": r.model, "model_info": {"dofs": r.dofs, "mesh": plan["mesh"]},
               "resonances": [vars(x) for x in ref.quasi_normal()],

@@ -10,6 +10,7 @@ import math
 from .. import html as h
 from ..comparisons import compare_command, compare_overrides
 from .parts import failure, product_image, scene_differs
+from .references import reference_block
 from .state import Build
 
 #: The headers of the speed-accuracy table (the reference's name goes in the errors).
@@ -100,7 +101,7 @@ def _full_order(meta: dict) -> str | None:
         return None
     what = []
     for k, v in fo.items():
-        if k == "note" or v is None:
+        if k in ("note", "reference") or v is None:     # the reference: references.reference_block
             continue
         if isinstance(v, dict):
             v = ", ".join(f"{a} {h.num(b)}" for a, b in v.items())
@@ -141,6 +142,7 @@ def comparison_block(build: Build, case: str) -> list[str]:
     else:   # no arrays to draw from: compare's own chart, if it left one
         parts += [h.image(p.path, p.caption) for p in theirs if p.path.name == f"compare_{case}.png"]
     parts.append(cost_table(doc, models))
+    parts += reference_block(doc)
     said = speed_accuracy(doc, models)
     if said:
         parts.append(h.tag("p", " ".join(said)))

@@ -12,6 +12,7 @@ from ..comparisons import compare_models, relative_to_ground
 from ..inputs import INPUTS, SIMULATE_COMMAND, plain
 from .comparison import comparison_block, spectrum_block
 from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
+from .references import pareto_block
 from .state import Build
 
 #: Standard gravity, to state accelerations in g (m/s**2).
@@ -145,6 +146,8 @@ def section_earthquake(build: Build) -> str:
                         "ground's inertia (-M r a_g) and report the tip relative to the ground; "
                         "the most complete one run is the reference.", class_="meta")]
     parts += comparison_block(build, "earthquake")
+    parts.append(h.tag("h3", "Speed against accuracy: every model of the ladder on El Centro"))
+    parts += pareto_block(build)
     parts.append(h.tag("h3", "Response spectrum of the record"))
     parts += spectrum_block(build)
     parts.append(h.tag("h3", "The paper's case"))

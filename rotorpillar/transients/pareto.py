@@ -1,0 +1,474 @@
+"""Speed against accuracy for the transients: El Centro on every model of the ladder.
+
+The convergence study charts each pillar model's frequency error against
+its cost; this does the same for a transient, where the error is what a
+user reads: the peak tip displacement relative to the ground and the tip's
+history.  One case, El Centro's first ``PARETO_DURATION - PARETO_RECORD_START``
+seconds (its strong pulses and the tip's peak, 2.6 s into the record),
+run on
+
+- the ROM with 1 .. k + ``ROM_EXTRA_MODES`` pillar modes (k: the modes the
+  comparison's ROM keeps), from the scene's mode source;
+- the 1D Timoshenko beam at full order with ``BEAM_ELEMENTS`` elements;
+- the 3D tube at full order on the bending-only meshes of the convergence
+  ladder (``ALONG_FAMILY_AROUND`` around, ``PARETO_ALONG`` along) and the
+  mesh the comparison's reference runs on;
+
+every model from the same state: the pillar at rest, the rotor in its
+steady whirl at the ROM's operating speed.  The errors are against the
+finest 3D run, whose own error is estimated by Richardson over the three
+finest 3D runs where they converge monotonically at a plausible order, else
+by its difference to the next coarser (``ParetoStudy.reference``).
+
+Costs are warm: each process first runs a tiny case of each kind (numba's
+kernels, FFCx's forms), outside the timed region, ``compile_seconds``; the
+timed region is what the model costs a user: building it (the ROM and the
+beam: their modes; 3D: mesh, assembly, factorisation) and integrating.
+Each run is cached as one JSON under ``out/<scene>/cache/``
+(``pareto-<key>.json``), the key a hash of the scene, the window, the
+model, the record's samples and the source of the code, written
+atomically: an interrupted study resumes and computes nothing twice.  The
+3D runs go to ``workers`` processes (rotorpillar.executor), started before
+the caller's own work (``plan_pareto``, ``ParetoRunning``, ``finish``) so that
+compare's own models and the study share the machine's cores.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import time
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from ..provenance import JsonRecord, write_json
+
+PARETO_RECORD_START = 0.5
+"""The record starts this long after the runs (s): the start's own transient is
+the same for every model and small beside the record's (the rotor's whirl alone)."""
+PARETO_DURATION = 5.0
+"""Length of every run (s): 4.5 s of the record, its largest pulses and the tip's peak."""
+PARETO_SAMPLES = 2001
+"""Points of the common output grid the histories are compared on (2.5 ms apart:
+more than 25 per period of the fastest forcing of the embedded scenes)."""
+BEAM_ELEMENTS = (2, 4, 8, 16, 32)
+"""The beam's implicit step costs ~n**3: 64 elements took 21 s (32: 2.4 s) for 0.05 % less error."""
+ROM_EXTRA_MODES = 2
+PARETO_ALONG = (5, 10, 15, 20)
+"""Elements along of the 3D runs (the bending-only family of the ladder); the
+finest is the reference, so its cost bounds the study's."""
+CACHE_VERSION = 1
+
+
+@dataclass(frozen=True)
+class ParetoRun(JsonRecord):
+    """One model's run of the Pareto case (SI)."""
+    family: str
+    """rom, beam or fem3d"""
+    label: str
+    params: dict
+    """modes (rom), elements (beam), the mesh (fem3d)"""
+    dofs: int
+    wall_seconds: float
+    """warm: building the model and integrating (s)"""
+    peak_tip: float
+    """largest |tip X relative to the ground| over every step (m)"""
+    peak_tip_error: float | None
+    """peak_tip / the reference's - 1 (-); the reference: its own estimated error"""
+    history_error: float | None
+    """max_t |tip - tip_ref| / max_t |tip_ref| on the common grid (-); the reference:
+    its own estimated error"""
+    ok: bool
+    cached: bool
+    key: str
+
+
+@dataclass(frozen=True)
+class ParetoStudy(JsonRecord):
+    """Speed against accuracy on El Centro (``pareto`` in compare_earthquake.json)."""
+    case: dict
+    """record, record_start, duration, initial_speed, samples, start"""
+    runs: tuple[ParetoRun, ...]
+    reference: dict
+    """label, peak_tip, peak_error, history_error, method (richardson | next_coarser),
+    order, note"""
+    fronts: dict
+    """error measure (peak_tip, history) -> labels on the Pareto front of |error| against
+    wall time, cheapest first"""
+    chosen: dict
+    """rom, fem3d: the labels of the comparison's models, and why"""
+    compile_seconds: dict
+    """family -> seconds of the warm-up run in this process (numba, FFCx), outside every timing"""
+    cost: dict
+    """runs, computed, cached, workers; wall_seconds: what the caller waited for the study
+    (planning, its own runs, waiting for the workers); pool_seconds: the workers' elapsed
+    time, beside the caller's own work; compute_seconds: the computed runs' times, summed"""
+    chart: str | None = None
+    note: str = ""
+
+
+# --------------------------------------------------------------------------
+# The case and its runs
+
+
+def pareto_scene(scene, duration: float = PARETO_DURATION):
+    """The scene of the Pareto case: the scene's record from PARETO_RECORD_START, ``duration`` long."""
+    from ..scene import override
+    return override(scene, ["excitation.kind=record", f"excitation.start={PARETO_RECORD_START!r}",
+                            f"simulate.earthquake_duration={duration!r}"])
+
+
+def run_specs(rom_modes: int, candidates: int, chosen_mesh, along=PARETO_ALONG,
+              beams=BEAM_ELEMENTS) -> list[tuple[str, str, dict]]:
+    """(family, label, params) of every run, cheapest family first."""
+    from ..converge.ladder import ALONG_FAMILY_AROUND
+    specs = [("rom", f"ROM, {k} mode{'s' if k > 1 else ''}", {"modes": k})
+             for k in range(1, min(candidates, rom_modes + ROM_EXTRA_MODES) + 1)]
+    specs += [("beam", f"beam, {n} el.", {"elements": n}) for n in beams]
+    meshes = [(ALONG_FAMILY_AROUND, n) for n in along]
+    if chosen_mesh is not None and (chosen_mesh.elements_around, chosen_mesh.elements_along) not in meshes:
+        meshes.append((chosen_mesh.elements_around, chosen_mesh.elements_along))
+    base = {} if chosen_mesh is None else {k: v for k, v in vars(chosen_mesh).items()
+                                           if k not in ("elements_around", "elements_along")}
+    specs += [("fem3d", f"3D, {a}x{n}", {"elements_around": a, "elements_along": n, **base})
+              for a, n in sorted(meshes, key=lambda m: m[0] * m[1])]
+    return specs
+
+
+def _source_hash(family: str) -> str:
+    root = Path(__file__).parent.parent
+    files = sorted((root / "reduced").glob("*.py"))
+    if family == "fem3d":
+        files += sorted((root / "fem3d").glob("*.py")) + sorted((root / "mesh").glob("*.py"))
+    h = hashlib.sha256()
+    for f in files:
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def run_key(family: str, params: dict, scene, motion, modes_digest: str) -> str:
+    """Hash of everything a run depends on."""
+    doc = {"version": CACHE_VERSION, "family": family, "params": params,
+           "scene": {k: v for k, v in scene.to_dict().items() if k not in ("name", "description")},
+           "record": hashlib.sha256(np.asarray(motion.acceleration, float).tobytes()).hexdigest()[:16],
+           "samples": PARETO_SAMPLES, "modes": modes_digest if family == "rom" else None,
+           "source": _source_hash(family)}
+    return hashlib.sha256(json.dumps(doc, sort_keys=True, default=str).encode()).hexdigest()[:24]
+
+
+def _grid(duration: float) -> np.ndarray:
+    return np.linspace(0.0, duration, PARETO_SAMPLES)
+
+
+def _reduced_run(scene, family: str, params: dict, motion, speed: float, pillar_modes,
+                 duration: float) -> dict:
+    from ..reduced.cases import full_order_settings, settings_of
+    from ..reduced.drive import DriveSchedule
+    from ..reduced.models import build_model
+    from ..reduced.transient import simulate
+    from ..scene import override
+    d, L = scene.drive, scene.load
+    drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
+    t0 = time.perf_counter()
+    if family == "rom":
+        model, _ = build_model(scene, "modal", modes=params["modes"], pillar_modes=pillar_modes)
+        st = settings_of(scene)
+    else:
+        beam = override(scene, [f"full_order.beam_elements={params['elements']}"])
+        model, _ = build_model(beam, "beam")
+        st = full_order_settings(beam, "earthquake", motion)
+    q0, v0 = model.held_whirl_state(speed)
+    run = simulate(model, drive, motion, duration, q0, v0, settings=st, speed_scale=speed)
+    wall = time.perf_counter() - t0
+    grid = _grid(duration)
+    return {"dofs": int(model.n), "wall_seconds": wall, "ok": run.ok,
+            "peak_tip": float(np.nanmax(run.peak[:, -1])),
+            "tip": np.interp(grid, run.t, run.tip()).tolist()}
+
+
+_WARM: dict = {}
+"""family -> seconds of this process's warm-up run (once per process)."""
+
+
+def warm_up(family: str, scene, motion, speed: float, pillar_modes=None) -> float:
+    """Run a tiny case of ``family`` once per process (numba kernels, FFCx forms); its seconds."""
+    if family in _WARM:
+        return 0.0
+    t0 = time.perf_counter()
+    if family == "fem3d":
+        from ..fem3d.transient import simulate_fem3d
+        tiny = replace(scene.mesh, elements_around=4, elements_along=1)
+        simulate_fem3d(scene, "earthquake", motion=motion, duration=1e-3, time_step=5e-4,
+                       mesh=tiny, samples=3, initial_speed=speed)
+    else:
+        _reduced_run(scene, family, {"modes": 1, "elements": 2}, motion, speed, pillar_modes, 1e-2)
+    _WARM[family] = time.perf_counter() - t0
+    return _WARM[family]
+
+
+def compute_3d(job) -> dict:
+    """One 3D run (a worker's job: picklable arguments); its result and warm-up seconds."""
+    from ..fem3d.transient import simulate_fem3d
+    scene, params, motion, speed, duration = job
+    warm = warm_up("fem3d", scene, motion, speed)
+    mesh = replace(scene.mesh, **params)
+    r = simulate_fem3d(scene, "earthquake", motion=motion, duration=duration, mesh=mesh,
+                       samples=PARETO_SAMPLES, initial_speed=speed)
+    grid = _grid(duration)
+    return {"dofs": int(r.dofs), "wall_seconds": float(r.wall_seconds), "ok": bool(r.ok),
+            "peak_tip": float(r.max_abs["tip_x"]), "tip": np.interp(grid, r.t, r.tip_x).tolist(),
+            "compile_seconds": warm}
+
+
+def _load(path: Path, key: str) -> dict | None:
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return doc if isinstance(doc, dict) and doc.get("key") == key and doc.get("ok") is not None else None
+
+
+# --------------------------------------------------------------------------
+# The study
+
+
+@dataclass(frozen=True, eq=False)
+class ParetoPlan:
+    """The Pareto case ready to run: its scene, record, start, runs, keys and the cached ones."""
+    scene: object
+    motion: object
+    pillar_modes: object
+    speed: float
+    """the ROM's operating speed: every model starts there (rad/s)"""
+    specs: list
+    keys: list
+    results: dict
+    """index -> run document (the cached ones first)"""
+    rom_modes: int
+    chosen_mesh: object
+    cache_dir: Path
+    plan_seconds: float
+    duration: float = PARETO_DURATION
+
+
+def plan_pareto(scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None,
+                duration: float = PARETO_DURATION, along=PARETO_ALONG,
+                beams=BEAM_ELEMENTS, pillar_modes=None) -> ParetoPlan:
+    """The runs of the Pareto case, those on disk loaded (cheap: no run); ``duration``,
+    ``along`` and ``beams`` replace the module's choices (tests: a short, coarse case);
+    ``pillar_modes``: the ROM's candidate modes (the chain's; None: resolved for the
+    scene without a study)."""
+    from ..reduced.models import build_model, candidate_modes, scene_motion
+    from ..reduced.stationary import operating_speed
+    started = time.perf_counter()
+    sc = pareto_scene(scene, duration)
+    motion = scene_motion(sc)
+    pm = pillar_modes
+    if pm is None:
+        from ..chain import resolve
+        pm = resolve(sc, None, motion=motion).modes
+    cands = candidate_modes(sc, pm)
+    digest = hashlib.sha256(np.concatenate([np.asarray(cands.omega), np.asarray(cands.modal_mass),
+                                            np.asarray(cands.participation)]).tobytes()).hexdigest()[:16]
+    rom, _ = build_model(sc, "modal", modes=rom_modes, pillar_modes=pm)
+    d, L = sc.drive, sc.load
+    speed = operating_speed(rom, d.torque_at_zero, d.slope, L.coefficient)
+    specs = run_specs(rom_modes, cands.count, chosen_mesh, along, beams)
+    keys = [run_key(f, p, sc, motion, digest) for f, _, p in specs]
+    results = {}
+    for i, key in enumerate(keys):
+        doc = _load(Path(cache_dir) / f"pareto-{key}.json", key)
+        if doc is not None:
+            results[i] = {**doc, "cached": True}
+    return ParetoPlan(sc, motion, pm, speed, specs, keys, results, rom_modes, chosen_mesh,
+                      Path(cache_dir), time.perf_counter() - started, float(duration))
+
+
+def _mpi_rank_size() -> tuple[int, int]:
+    """(rank, size) when running under MPI (mpi4py imported), else (0, 1)."""
+    import sys
+    mpi = sys.modules.get("mpi4py.MPI")
+    return (0, 1) if mpi is None else (mpi.COMM_WORLD.rank, mpi.COMM_WORLD.size)
+
+
+class ParetoRunning:
+    """The plan's missing 3D runs under way on worker processes (a thread waits for them),
+    so that the caller's own work (compare's models) runs meanwhile on the other core."""
+
+    def __init__(self, plan: ParetoPlan, workers: int, progress=None):
+        import threading
+        self.plan, self.progress = plan, progress
+        self.compile: dict[str, float] = {}
+        self.todo = [i for i in range(len(plan.specs)) if i not in plan.results]
+        self.solid = [i for i in self.todo if plan.specs[i][0] == "fem3d"]
+        self.workers, self.error = 0, None
+        self.thread, self.pool_seconds = None, 0.0
+        if progress:
+            progress(f"speed against accuracy: {len(plan.specs)} runs, "
+                     f"{len(plan.specs) - len(self.todo)} cached, {len(self.todo)} to compute"
+                     + (f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es))"
+                        if self.solid and workers > 0 else ""))
+        if _mpi_rank_size()[1] > 1:
+            workers = 0          # under mpirun every rank runs the 3D runs together, here
+        if self.solid and workers > 0:
+            self.workers = min(workers, len(self.solid))
+            self.thread = threading.Thread(target=self._pool, daemon=True)
+            self.thread.start()
+
+    def keep(self, i: int, out: dict) -> None:
+        plan = self.plan
+        fam, label, params = plan.specs[i]
+        doc = {"key": plan.keys[i], "family": fam, "label": label, "params": params, **out}
+        if _mpi_rank_size()[0] == 0:
+            write_json(plan.cache_dir / f"pareto-{plan.keys[i]}.json", doc)
+        plan.results[i] = {**doc, "cached": False}
+        if self.progress:
+            self.progress(f"speed against accuracy: {label} in {out['wall_seconds']:.3g} s")
+
+    def _job(self, i: int):
+        p = self.plan
+        return (p.scene, p.specs[i][2], p.motion, p.speed, p.duration)
+
+    def _pool(self) -> None:
+        import logging
+        from ..executor import Executor
+        logging.getLogger("distributed").setLevel(logging.ERROR)   # dolfinx leaves INFO on
+        order = sorted(self.solid, key=lambda i: -self.plan.specs[i][2]["elements_around"]
+                       * self.plan.specs[i][2]["elements_along"])
+        t0 = time.perf_counter()
+        try:
+            with Executor(self.workers) as ex:
+                for j, out in ex.map(compute_3d, [self._job(i) for i in order]):
+                    self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
+                    self.keep(order[j], out)
+        except BaseException as exc:      # re-raised in finish(), in the caller's thread
+            self.error = exc
+        self.pool_seconds = time.perf_counter() - t0
+
+    def finish(self) -> tuple[ParetoStudy, dict]:
+        """The reduced runs here, then the 3D runs (here too without workers); the study."""
+        plan = self.plan
+        t0 = time.perf_counter()
+        for i in (i for i in self.todo if plan.specs[i][0] != "fem3d"):
+            fam, _, params = plan.specs[i]
+            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up(fam, plan.scene, plan.motion,
+                                                                     plan.speed, plan.pillar_modes)
+            self.keep(i, _reduced_run(plan.scene, fam, params, plan.motion, plan.speed,
+                                      plan.pillar_modes, plan.duration))
+        if self.thread is not None:
+            self.thread.join()
+            if self.error is not None:
+                raise self.error
+        else:
+            for i in self.solid:
+                out = compute_3d(self._job(i))
+                self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
+                self.keep(i, out)
+        docs = [plan.results[i] for i in range(len(plan.specs))]
+        k, mesh = plan.rom_modes, plan.chosen_mesh
+        study, series = analyse(docs, chosen={
+            "rom": f"ROM, {k} mode{'s' if k > 1 else ''}",
+            "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}"})
+        case = {"record": plan.scene.excitation.record, "record_start": PARETO_RECORD_START,
+                "duration": plan.duration, "initial_speed": plan.speed, "samples": PARETO_SAMPLES,
+                "start": "every model from the pillar at rest, the rotor in its steady whirl at the "
+                         "ROM's operating speed"}
+        cost = {"runs": len(plan.specs), "computed": len(self.todo),
+                "cached": len(plan.specs) - len(self.todo), "workers": self.workers,
+                "wall_seconds": plan.plan_seconds + time.perf_counter() - t0,
+                "pool_seconds": self.pool_seconds,
+                "compute_seconds": float(sum(plan.results[i]["wall_seconds"] for i in self.todo))}
+        return replace(study, case=case, compile_seconds=dict(self.compile), cost=cost), series
+
+
+def transient_pareto(scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None, workers: int = 0,
+                     progress=None, **choices) -> tuple[ParetoStudy, dict]:
+    """Run (or load) every run of the Pareto case; (the study, the histories by label).
+    ``workers`` > 0: the 3D runs on that many worker processes, else in this one;
+    ``choices``: plan_pareto's duration, along, beams."""
+    plan = plan_pareto(scene, cache_dir=cache_dir, rom_modes=rom_modes, chosen_mesh=chosen_mesh,
+                       **choices)
+    return ParetoRunning(plan, workers, progress).finish()
+
+
+def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
+    """The finest 3D run's own error: Richardson over the three finest where monotone at a
+    plausible order, else the difference to the next coarser."""
+    from ..converge.richardson import richardson
+    ref = fine[-1]
+    out = {"label": ref["label"], "peak_tip": ref["peak_tip"]}
+    if len(fine) < 2:
+        return {**out, "peak_error": None, "history_error": None, "method": "none", "order": None,
+                "note": "a single 3D run: its own error is not estimated"}
+    prev = fine[-2]
+    diff = np.max(np.abs(grid_tips[ref["label"]] - grid_tips[prev["label"]])) / \
+        max(np.max(np.abs(grid_tips[ref["label"]])), 1e-300)
+    if len(fine) >= 3:
+        last = fine[-3:]
+        h = [1.0 / r["params"]["elements_along"] for r in last]
+        rich = richardson(h, [r["peak_tip"] for r in last], 4.0)
+        p = rich["order"]
+        if rich["monotone"] and p is not None and 0.5 <= p <= 8:
+            factor = 1.0 / ((h[1] / h[2]) ** p - 1)
+            return {**out, "peak_error": rich["error_estimate"] / abs(rich["value"]),
+                    "history_error": 1.25 * factor * float(diff), "method": "richardson", "order": p,
+                    "limit": rich["value"],
+                    "note": f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
+                            f"{p:.2f}): Roache's 1.25 |limit - finest| for the peak; the history's "
+                            "difference to the next coarser times 1.25 / (r**p - 1)"}
+    return {**out, "peak_error": abs(ref["peak_tip"] / prev["peak_tip"] - 1), "history_error": float(diff),
+            "method": "next_coarser", "order": None,
+            "note": f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
+                    "converge monotonically at a plausible order, so no extrapolation"}
+
+
+def analyse(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
+    """Errors against the finest 3D run, its own error, the fronts (the study, the histories)."""
+    from ..converge.selection import pareto_front
+    tips = {d["label"]: np.asarray(d["tip"], float) for d in docs}
+    fine = sorted((d for d in docs if d["family"] == "fem3d" and d["ok"]),
+                  key=lambda d: (d["params"]["elements_along"], d["params"]["elements_around"]))
+    if not fine:
+        raise ValueError("no 3D run finished: no reference")
+    ref_err = _reference_error(fine, tips)
+    ref = fine[-1]
+    x_ref = tips[ref["label"]]
+    scale = max(float(np.max(np.abs(x_ref))), 1e-300)
+    runs = []
+    for d in docs:
+        if d is ref:
+            pe, he = ref_err["peak_error"], ref_err["history_error"]
+        elif d["ok"]:
+            pe = d["peak_tip"] / ref["peak_tip"] - 1 if ref["peak_tip"] else None
+            he = float(np.max(np.abs(tips[d["label"]] - x_ref)) / scale)
+        else:
+            pe = he = None
+        runs.append(ParetoRun(family=d["family"], label=d["label"], params=d["params"], dofs=d["dofs"],
+                              wall_seconds=d["wall_seconds"], peak_tip=d["peak_tip"], peak_tip_error=pe,
+                              history_error=he, ok=d["ok"], cached=d.get("cached", False), key=d["key"]))
+    wall = [r.wall_seconds for r in runs]
+    fronts = {"peak_tip": [runs[i].label for i in pareto_front(wall, [r.peak_tip_error for r in runs])],
+              "history": [runs[i].label for i in pareto_front(wall, [r.history_error for r in runs])]}
+    by = {r.label: r for r in runs}
+    why = []
+    for role in ("rom", "fem3d"):
+        r = by.get(chosen.get(role))
+        if r is not None:
+            on = [m for m, f in fronts.items() if r.label in f]
+            why.append(f"{r.label} ({'the ROM compare runs' if role == 'rom' else 'the 3D reference compare runs'}): "
+                       f"peak {_pct(r.peak_tip_error)}, history {_pct(r.history_error)} in "
+                       f"{r.wall_seconds:.3g} s, " + (f"on the front of {' and '.join(on)}" if on
+                                                       else "on no front"))
+    study = ParetoStudy(case={}, runs=tuple(runs), reference=ref_err, fronts=fronts,
+                        chosen={**chosen, "why": "; ".join(why)}, compile_seconds={}, cost={},
+                        note="errors of the tip relative to the ground against the finest 3D run; "
+                             "wall times warm, measured on a shared machine (noisy)")
+    return study, tips
+
+
+def _pct(x) -> str:
+    return "-" if x is None or not math.isfinite(x) else f"{100 * abs(x):.2g} %"

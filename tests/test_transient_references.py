@@ -1,0 +1,246 @@
+"""The full order's reference mesh for a transient (rotorpillar.transients.references,
+rotorpillar.converge.selection.select_reference) and the run-up's window
+(rotorpillar.transients.window).
+
+- participation: the bookkeeping on synthetic modes (a share is its definition:
+  L**2 / m over the carried mass, phi_plate**2 / (m omega**2) over the closed-form
+  compliance), and on the 3D tube (slow) against two independent facts: the
+  symmetric modes take no part (round-off, < 1e-12), and the first bending mode's
+  effective mass L**2 / m is the 1D Timoshenko beam's (1 % : the 8 x 10 mesh's
+  bending error is 1.5e-3, the beam's shear model 1e-4; their mode shapes agree
+  to the same order, and the fraction is quadratic in the shape);
+- the choice: the coarsest run that meets the bound, the ROM source's floor, a
+  study of another tube ignored, the [full_order] overrides;
+- the window: from 0.7 x the lowest resonance, every model from the same state
+  (the held whirl: a steady solution on a rigid pillar, checked by integrating it).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from conftest import cli
+
+from rotorpillar.converge.selection import select_reference
+from rotorpillar.scene import load_scene, override
+from rotorpillar.transients.references import (PARTICIPATION_FLOOR, choose_reference,
+                                               participation_table, read_study)
+from rotorpillar.transients.window import START_FRACTION, runup_window, window_overrides
+
+has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None,
+                                 reason="needs dolfinx")
+TOTAL, COMPLIANCE = 22_000.0, (1e-7, 1e-9)
+
+
+def _row(i, kind, omega, m, L=(0.0, 0.0, 0.0), plate=(0.0, 0.0, 0.0), n=None, m_ax=0):
+    return {"index": i, "kind": kind, "omega": omega, "modal_mass": m, "participation": list(L),
+            "top_plate_motion": list(plate) + [0.0] * 3, "n_circumferential": n, "n_axial": m_ax}
+
+
+ROWS = [_row(0, "bending_x", 25.0, 7000.0, (10_000.0, 0, 0), (1.0, 0, 0), n=1),
+        _row(1, "bending_y", 25.0, 7000.0, (1e-13, 10_000.0, 0), (0, 1.0, 0), n=1),
+        _row(2, "ovalling", 108.0, 4800.0, (1e-12, 1e-13, 0), (1e-17, 0, 1e-18), n=2),
+        _row(3, "bending_x", 157.0, 14_000.0, (-8000.0, 0, 0), (1.0, 0, 0), n=1, m_ax=1),
+        _row(4, "axial", 120.0, 9000.0, (0, 0, 9000.0), (0, 0, 1.0), n=0)]
+
+
+def test_participation_earthquake_keeps_bending_x_only():
+    t = participation_table(ROWS, "earthquake", 134.6, TOTAL, COMPLIANCE, source="test", mesh={})
+    assert t.participating == (0,) and t.left_out == (1, 2, 4)
+    assert t.quantities == ("bending",) and t.uncovered == ()
+    assert math.isclose(t.modes[0].shares["base_x"], 10_000.0**2 / 7000.0 / TOTAL, rel_tol=1e-12)
+    assert math.isclose(t.modes[0].shares["plate_x"], 1.0 / (7000.0 * 25.0**2) / COMPLIANCE[0],
+                        rel_tol=1e-12)
+    assert not t.modes[3].in_band and t.modes[3].participates     # out of the band: not needed
+    assert all(max(t.modes[i].shares.values()) < PARTICIPATION_FLOOR for i in t.left_out)
+    assert "take no part" in t.statement and "ovalling n = 2" in t.statement
+
+
+def test_participation_runup_sees_the_axial_mode_and_says_the_study_misses_it():
+    t = participation_table(ROWS, "runup", 134.6, TOTAL, COMPLIANCE, source="test", mesh={})
+    assert t.participating == (0, 4)                 # the shaft's force along the axis
+    assert t.quantities == ("bending",) and len(t.uncovered) == 1 and "axial" in t.uncovered[0]
+    assert "bounds no frequency of axial" in t.statement
+
+
+def _run(family, around, along, dofs, bound, model_err=0.0, wall=1.0):
+    return {"family": family, "label": f"{family} {around}x{along}", "status": "ok", "dofs": dofs,
+            "wall_time": wall, "model": "solid", "bending": 30.8 * (1 + bound),
+            "bending_error": bound, "bending_model_error": model_err,
+            "bending_discretisation_error": bound - model_err, "bending_error_bound": bound,
+            "params": {"elements_around": around, "elements_along": along, "elements_through": 1,
+                       "degree": 2, "cell_type": "hexahedron", "grading": 30.0}}
+
+
+RUNS = [_run("solid_hex_p2_along", 8, n, 300 * n, b, -1.7e-4)
+        for n, b in ((5, 1.4e-2), (10, 1.7e-3), (15, 7.2e-4), (20, 4.7e-4), (40, 2.5e-4))]
+RUNS += [_run("solid_hex_p2", 128, 20, 94_464, 3.1e-4), _run("solid_hex_p2", 224, 35, 286_272, 1e-4)]
+REFERENCE = {"bending": {"value": 30.818, "error_estimate": 30.818 * 1.4e-4}}
+
+
+def test_select_reference_coarsest_meeting_the_bound():
+    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, max_dofs=12_000)
+    assert c.params["elements_along"] == 15 and c.meets
+    assert math.isclose(c.band_error, 7.2e-4 + 1.4e-4, rel_tol=1e-9)
+    # a ROM whose modes are better than that: the reference must be at least as good
+    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 7e-4},
+                         max_dofs=12_000)
+    assert c.params["elements_along"] == 20 and c.meets and c.required == 7e-4
+    # out of reach within the transient's DOFs: the most accurate, and said so
+    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4},
+                         max_dofs=12_000)
+    assert c.params["elements_along"] == 40 and not c.meets and "only to the reference's own" in c.reason
+    # what the case's steps afford caps that refinement
+    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4},
+                         max_dofs=12_000, floor_max_dofs=7_000)
+    assert c.params["elements_along"] == 20 and not c.meets and "within 7,000 DOFs" in c.reason
+    # without the DOFs cap the fine solid run would do
+    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2.5e-4})
+    assert c.params["elements_around"] == 224
+    assert select_reference(RUNS, REFERENCE, ("bending",), 1e-4) is None
+
+
+def _study_on_disk(tmp_path, scene, runs=RUNS):
+    doc = {"scene_name": scene.name, "scene": scene.to_dict(), "tolerance": 1e-3,
+           "cache_dir": str(tmp_path / "cache"), "families": {}, "runs": runs, "reference": REFERENCE,
+           "extrapolations": {"beam_timoshenko": {"bending": {"value": 30.8208}}},
+           "band": {}, "selection": {"chosen": None}, "pareto": {}, "failures": [], "study": {}}
+    (tmp_path / "convergence.json").write_text(json.dumps(doc))
+    (tmp_path / "modal.json").write_text(json.dumps({"scene": scene.to_dict(), "modes_with_top": ROWS}))
+
+
+def test_choose_reference_from_the_study_on_disk(tmp_path):
+    # the ROM's modes from the 40-element beam (stated): its error is the run-up's floor
+    scene = load_scene("paper", ["modal_model.source=beam"])
+    _study_on_disk(tmp_path, scene)
+    mesh, ref = choose_reference(scene, "earthquake", tmp_path)
+    assert (mesh.elements_around, mesh.elements_along) == (8, 15) and ref.source == "converge"
+    assert ref.verified and ref.participation.source == "modal.json" and ref.quantities == ("bending",)
+    assert "at most 8.6e-04" in ref.statement and "take no part" in ref.statement
+    # the run-up: at least as fine as the ROM's modes (the 40-element Timoshenko beam, its
+    # error computed against this study: ~1.6e-4 + the reference's 1.4e-4)
+    mesh, ref = choose_reference(scene, "runup", tmp_path)
+    assert ref.floor["label"].startswith("beam Timoshenko") and ref.floor["band_error"] < 4e-4
+    assert mesh.elements_along == 40 and ref.meets is False
+    # a long run-up (5,000 steps) affords 8,000 DOFs (REFERENCE_DOF_STEPS): 8 x 20, said so
+    mesh, ref = choose_reference(scene, "runup", tmp_path, steps=5_000)
+    assert mesh.elements_along == 20 and ref.meets is False and "afford" in ref.reason
+    # explicit [full_order] keys override the choice; the study's error goes with the mesh
+    mesh, ref = choose_reference(override(scene, ["full_order.elements_along=20"]), "earthquake", tmp_path)
+    assert mesh.elements_along == 20 and ref.overrides == ("elements_along",) and ref.verified
+    mesh, ref = choose_reference(override(scene, ["full_order.elements_along=12"]), "earthquake", tmp_path)
+    assert mesh.elements_along == 12 and not ref.verified and ref.band_error is None
+
+
+def test_a_study_of_another_tube_is_not_used(tmp_path):
+    scene = load_scene("paper")
+    _study_on_disk(tmp_path, override(scene, ["pillar.height=25"]))
+    assert read_study(scene, tmp_path) is None
+    mesh, ref = choose_reference(scene, "earthquake", tmp_path)
+    assert ref.source == "scene" and not ref.verified and "no convergence study" in ref.reason
+    assert (mesh.elements_around, mesh.elements_along) == (8, scene.mesh.elements_along)
+    # the pillar's damping does not change the study's runs: still this tube's study
+    _study_on_disk(tmp_path, override(scene, ["pillar.damping=10e3"]))
+    assert read_study(scene, tmp_path) is not None
+
+
+@pytest.mark.parametrize("name", ["paper", "sommerfeld"])
+def test_runup_window(name):
+    scene = load_scene(name)
+    w = runup_window(scene)
+    assert math.isclose(w.initial_speed, START_FRACTION * min(w.resonances), rel_tol=1e-12)
+    assert 0 < w.start < w.end <= scene.simulate.duration and w.duration < scene.simulate.duration
+    if name == "sommerfeld":          # captured at its first resonance (the scene's point)
+        assert w.captured_resonance is not None and abs(w.captured_resonance - 22.76) < 0.1
+        assert w.end > w.peak_time
+    else:                             # passes 14.9, 15.8 and 27.1 rad/s within its first second
+        assert w.captured_resonance is None and len(w.passed) == 3 and w.end < 1.0
+    keys = dict(k.split("=") for k in window_overrides(w))
+    assert float(keys["simulate.runup_initial_speed"]) == w.initial_speed
+
+
+def test_held_whirl_is_steady_on_a_rigid_pillar():
+    """The rotor's whirl on a held structure (the window's start) is the steady
+    solution when the pillar does not move: integrated at a prescribed speed under a
+    gondola of 1e8 kg (its inertia m W**2 = 1.6e11 N/m against the shaft's 4e5 holds the
+    tip to ~3e-6 of the whirl), the rotor stays on its circle."""
+    from rotorpillar.reduced.drive import DriveSchedule
+    from rotorpillar.reduced.excitation import no_motion
+    from rotorpillar.reduced.models import build_model
+    from rotorpillar.reduced.transient import Settings, simulate
+    scene = override(load_scene("paper"), ["gondola.mass=1e8", "modal_model.source=beam"])
+    model, _ = build_model(scene, "modal", modes=1)
+    W = 40.0
+    q0, v0 = model.held_whirl_state(W)
+    assert np.all(q0[:model.nx - 1] == 0) and np.all(v0[:model.nx - 1] == 0)
+    X = abs(complex(q0[model.rotor_x], q0[model.nx]))
+    c2, m, b, e = scene.shaft.stiffness, scene.rotor.mass, scene.shaft.damping, scene.rotor.eccentricity
+    assert math.isclose(X, c2 * e / abs(complex(c2 - m * W**2, W * b)), rel_tol=1e-12)
+    run = simulate(model, DriveSchedule.constant(0, 0, 0), no_motion(), 2.0, q0, v0,
+                   settings=Settings(rtol=1e-9), prescribed_speed=True, speed_scale=W)
+    r = np.hypot(run.q[:, model.rotor_x], run.q[:, model.nx])
+    # the start's own transient is the held tip's ~3e-6 X; the integrator's 1e-9: 1e-4 is loose
+    assert np.max(np.abs(r / X - 1)) < 1e-4
+
+
+@pytest.mark.slow                     # one 3D modal solve of the loaded tube, 8 x 10
+@has_dolfinx
+def test_participation_of_the_3d_modes():
+    from rotorpillar.fem3d import modal_analysis
+    from rotorpillar.reduced.pillar import section_of
+    from rotorpillar.reduced.pillar_modes import beam_pillar_modes
+    scene = load_scene("paper")
+    r = modal_analysis(scene, top=True, mesh=replace(scene.mesh, elements_around=8, elements_along=10))
+    total = section_of(scene.pillar).mass_per_length * scene.pillar.height + r.top_mass
+    eff = r.participation ** 2 / r.modal_mass[:, None] / total
+    for i, kind in enumerate(r.kind):
+        if kind != "bending_x":
+            assert eff[i, 0] < 1e-12, (kind, eff[i])
+    i1, j1 = r.kind.index("bending_x"), r.kind.index("bending_y")
+    # the same mode turned by 90 degrees: the same share along its own axis
+    assert math.isclose(eff[j1, 1], eff[i1, 0], rel_tol=1e-6)
+    # the effective mass in kg (the beam's r^T M r leaves out its clamped node's mass)
+    beam = beam_pillar_modes(scene, 1, "timoshenko", 40)
+    assert math.isclose(r.participation[i1, 0] ** 2 / r.modal_mass[i1],
+                        beam.participation[0] ** 2 / beam.modal_mass[0], rel_tol=1e-2)
+
+
+@pytest.mark.slow                     # the 3D run-up over the window (0.7 s, 8 x 10): ~30 s
+@has_dolfinx
+def test_compare_runup_on_the_3d_full_order(tmp_path):
+    p = cli("compare", "paper", "--case", "runup", "--models", "modal,fem3d", "--set",
+            "simulate.threshold=false", "--json", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "compare_runup.json").read_text())
+    w = doc["window"]["runup"]
+    assert doc["reference"] == "fem3d" and doc["window"]["duration"] == pytest.approx(w["duration"])
+    runs = {m: json.loads((tmp_path / f"compare_runup_{m}.json").read_text()) for m in ("modal", "fem3d")}
+    for m, r in runs.items():
+        assert r["initial_speed"] == pytest.approx(w["initial_speed"], rel=1e-12), m
+    ref = doc["full_order_reference"]
+    assert ref["source"] == "scene" and ref["verified"] is False     # no study in tmp_path
+    assert runs["fem3d"]["full_order"]["mesh"]["elements_around"] == 8
+    # ROM against the 3D tube through three resonances: 0.6 % history, 0.4 % peak measured
+    # on this mesh (its bending error 1.5e-3 shifts the passages' phase); tolerance 2 %
+    assert doc["errors"]["modal"]["tip_history_error"] < 2e-2
+    assert abs(doc["errors"]["modal"]["peak_tip_difference"]) < 2e-2
+
+
+def test_the_ladder_has_the_bending_only_family():
+    """Its rungs refine along only, at 8 around; its runs report bending alone, even a
+    cached run it shares with the around-only sweep (8 x 10: the same mesh)."""
+    from rotorpillar.converge.ladder import ALONG_FAMILY_AROUND, ALONG_LEVELS, ladder, resolved_only
+    scene = load_scene("paper")
+    rungs = [c for c in ladder(scene) if c.family == "solid_hex_p2_along"]
+    assert [c.level for c in rungs] == list(ALONG_LEVELS)
+    assert {c.settings["elements_around"] for c in rungs} == {ALONG_FAMILY_AROUND}
+    shared = [c for c in ladder(scene) if c.family == "solid_hex_p2_around"
+              and c.settings == next(r for r in rungs if r.level == scene.mesh.elements_along).settings]
+    assert len(shared) == 1                     # one cached run, two families
+    run = {"bending": 30.86, "ovalling": 696.0}
+    assert resolved_only("solid_hex_p2_along", run) == {"bending": 30.86, "ovalling": None}
+    assert resolved_only("solid_hex_p2_around", run) is run
