@@ -322,22 +322,32 @@ class ModeSet:
         return float(b[2 * self.axes.axial + 1] - b[2 * self.axes.axial])
 
 
-def mode_label(mode: dict, i: int) -> str:
-    """A one-line label: number, kind, circumferential order, frequency.
+def mode_label(mode: dict, i: int, lines: bool = False) -> str:
+    """The mode in words: number, family and order along the height, its
+    direction or waves around (:func:`rotorpillar.postprocess.directions.mode_name`),
+    frequency; with ``lines``, short and on three lines (for a picture).
 
-    >>> mode_label({"kind": "ovalling", "n_circumferential": 2, "frequency_hz": 7.25}, 3)
-    'mode 4: ovalling (n = 2), 7.250 Hz'
+    >>> mode_label({"kind": "ovalling", "n_circumferential": 2, "n_axial": 0, "frequency_hz": 7.25}, 3)
+    'mode 4: 1st ovalling, n = 2 waves around, no node along the height, 7.250 Hz'
+    >>> print(mode_label({"kind": "bending_x", "n_axial": 1, "frequency_hz": 28.4}, 6, lines=True))
+    mode 7: 2nd bending
+    horizontal (X)
+    28.400 Hz
     """
+    from .directions import mode_name
     kind = str(mode.get("kind", "?"))
-    n = mode.get("n_circumferential")
     f = mode.get("frequency_hz")
     if f is None and mode.get("omega") is not None:
         f = mode["omega"] / (2 * math.pi)
-    text = f"mode {i + 1}: {kind}"
-    if n is not None and not kind.startswith("bending"):
-        text += f" (n = {n})"
+    n_axial, n = mode.get("n_axial"), mode.get("n_circumferential")
+    if lines:
+        name = mode_name(kind, n_axial, n, short_form=True)
+        first, _, second = name.partition(", ")
+        text = f"mode {i + 1}: {first}" + (f"\n{second}" if second else "")
+    else:
+        text = f"mode {i + 1}: {mode_name(kind, n_axial, n)}"
     if f is not None:
-        text += f", {f:.3f} Hz"
+        text += ("\n" if lines else ", ") + f"{f:.3f} Hz"
     return text
 
 
