@@ -207,7 +207,7 @@ def ida_chart(path, result) -> Path:
         label = ", ".join(f"{Path(str(r.params[k])).name if k == 'excitation.record' else r.params[k]}"
                           for k in others) or "record"
         lines.setdefault(label, []).append(r)
-    fig, (a1, a2) = figure(1200, 560, ncols=2, sharey=True)
+    fig, (a1, a2) = figure(1060, 560, ncols=2, sharey=True)
     for (label, runs), c in zip(lines.items(), CYCLE * 10):
         runs.sort(key=lambda r: r.pga or 0.0)
         g = np.array([(r.pga or 0.0) / STANDARD_GRAVITY for r in runs])

@@ -193,7 +193,7 @@ def sweep_chart(path, up: dict, down: dict, curves: dict, resonances, jumps_nume
     F_averaging, F_exact, exact {tip_x, rotor_y}, eq19 {label: a};
     resonances: [(label, omega, direction)].
     """
-    fig, (a1, a2) = figure(1320, 605, ncols=2)
+    fig, (a1, a2) = figure(1060, 605, ncols=2)
     W = np.asarray(curves["omega"])
     lo = min(np.nanmin(up["omega"]), np.nanmin(down["omega"])) * 0.95
     hi = max(np.nanmax(up["omega"]), np.nanmax(down["omega"])) * 1.02
