@@ -347,7 +347,7 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
                smooth_shading=True,
                scalar_bar_args=dict(title="", vertical=False, width=0.5, height=0.05,
                                     position_x=0.45, position_y=0.03, color="black",
-                                    label_font_size=10, fmt="%.3g", n_labels=3))
+                                    label_font_size=16, fmt="%.3g", n_labels=3))
     # the colour bar's title beside it, never over its ticks
     p.add_text("deflection (mm):", position=(8, 14), font_size=9, color="black")
     p.add_mesh(rotor, color="#D55E00")

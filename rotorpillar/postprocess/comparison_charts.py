@@ -54,7 +54,7 @@ def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 
         a2.axhline(0.0, color=COLOURS["reference"], lw=0.7)
         a2.set_xlabel("t [s]")
         if col == 0:
-            a1.set_ylabel("tip X relative to the ground [mm]")
+            a1.set_ylabel("tip, horizontal X,\nrelative to the ground [mm]")
             a2.set_ylabel(f"difference from {reference} [mm]")
         else:
             a1.set_title(f"zoomed on the passage: {zoom[0]:.3g} .. {zoom[1]:.3g} s", fontsize=9)

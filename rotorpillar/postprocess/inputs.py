@@ -4,7 +4,11 @@ Contracts (field names are the writers'; we read, never write, them):
 
 - ``analyze.json`` (`rotorpillar analyze`): ``pillar``, ``reduction``,
   ``system``, ``resonances[i]`` with ``curves`` {z, omega, a, a_linear, dL,
-  L, L_all, Md}, ``drive``, ``paper_comparison`` rows.
+  L, L_all, Md}, ``drive``, ``paper_comparison`` rows; where present,
+  ``paper_model`` (``system``, ``resonances``, ``drive`` of the paper's Eq. 4
+  beside the headline model's) and ``pillar_model`` {kind, mesh, dofs,
+  source, verified} (:mod:`rotorpillar.postprocess.report.models`); any
+  number of resonances, each with its ``direction`` (X or Y).
 - ``modal.json`` (`rotorpillar modal`): ``modes`` and ``modes_with_top``
   lists ({omega, frequency_hz, kind, n_circumferential, normalisation,
   modal_mass}), ``reduction``, ``mesh``, ``axes``; mode shapes in

@@ -187,7 +187,8 @@ def _bar_args(font: int, horizontal: bool = False) -> dict:
     where = (dict(vertical=False, height=0.05, width=0.45, position_x=0.52, position_y=0.02)
              if horizontal else
              dict(vertical=True, height=0.4, width=0.06, position_x=0.88, position_y=0.05))
-    return dict(title="", label_font_size=font, color="black", fmt="%.1f",
+    # a scalar bar's labels come out at ~1 px per point (add_text's ~2): twice the size
+    return dict(title="", label_font_size=2 * font, color="black", fmt="%.1f",
                 n_labels=2 if horizontal else 3, **where)
 
 

@@ -109,8 +109,13 @@ def _texts(fig) -> list:
                 ax.xaxis.label, ax.yaxis.label]
         for axis in (ax.xaxis, ax.yaxis):
             lo, hi = sorted(axis.get_view_interval())
+            log = axis.get_scale() == "log" and lo > 0
+            slack = 1e-9 * (abs(hi - lo) if not log else 0.0)
             for tick in axis.get_major_ticks() + axis.get_minor_ticks():
-                if lo - 1e-9 * abs(hi - lo) <= tick.get_loc() <= hi + 1e-9 * abs(hi - lo):
+                x = tick.get_loc()
+                inside = (lo * (1 - 1e-9) <= x <= hi * (1 + 1e-9)) if log else \
+                    (lo - slack <= x <= hi + slack)
+                if inside:
                     out += [tick.label1, tick.label2]
         out += list(ax.texts)
         if ax.get_legend() is not None:

@@ -103,7 +103,7 @@ def runup_chart(path, t, Omega, tip_peak, resonances, title: str = "", extra_run
     a1.legend(loc="lower right", fontsize=8)
     a1.set_title("the whole run" + ("\n" if window else ""), fontsize=9)
     a2.plot(t, 1e3 * envelope(tip_peak, t, env_window), lw=1.2, color=COLOURS["drive"])
-    a2.set_ylabel(f"|tip X| envelope over {env_window:.2g} s [mm]")
+    a2.set_ylabel(f"|tip, horizontal X| envelope\nover {env_window:.2g} s [mm]")
     a2.set_xlabel("t [s]")
     zoom_labels = []
     if window:
@@ -127,7 +127,7 @@ def runup_chart(path, t, Omega, tip_peak, resonances, title: str = "", extra_run
             for sgn in ((1, -1) if tip is not None else (1,)):
                 z2.axhline(sgn * 1e3 * a, color=c, lw=0.9, ls="--",
                            label=f"+-a_max, {name} (averaging)" if sgn == 1 else None)
-        z2.set_ylabel("tip X [mm]")
+        z2.set_ylabel("tip, horizontal X [mm]")
         z2.set_xlabel("t [s]")
         z2.legend(loc="upper right", fontsize=8)
     fig.suptitle(title, fontsize=10)
@@ -163,13 +163,13 @@ def earthquake_chart(path, t, ground_acceleration, tip_x, rotor_x, Omega, title:
     fig, ax = figure(*size, nrows=4, sharex=True)
     if ground is not None:
         ax[0].plot(t, ground / STANDARD_GRAVITY, lw=0.8, color=COLOURS["ground"])
-    ax[0].set_ylabel("ground a_g [g]")
+    ax[0].set_ylabel("ground acceleration,\nhorizontal X [g]")
     if tip is not None:
         ax[1].plot(t, tip, lw=0.8, color=COLOURS["drive"])
-    ax[1].set_ylabel(f"tip X [m]\n{frame}" if frame else "tip X [m]")
+    ax[1].set_ylabel(f"tip, horizontal X [m]\n{frame}" if frame else "tip, horizontal X [m]")
     if rotor is not None:
         ax[2].plot(t, rotor, lw=0.8, color=COLOURS["unstable"])
-    ax[2].set_ylabel("rotor X [m]")
+    ax[2].set_ylabel("rotor, horizontal X [m]")
     if Om is not None:
         ax[3].plot(t, Om, lw=0.8, color=COLOURS["drive"])
         _plain_axis(ax[3], Om)
@@ -246,7 +246,7 @@ MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "*")
 def method_styles(methods) -> dict:
     """A distinct (colour, marker) per method, in sorted order; dp5 and RK45
     (the same Dormand-Prince pair, compiled and scipy's) are drawn so that
-    both show where they coincide: dp5 a large open marker.
+    both show where they coincide: dp5 a large open circle around RK45's marker.
 
     >>> st = method_styles(["dp5", "RK45", "BDF"]); len({(v["color"], v["marker"]) for v in st.values()})
     3
@@ -256,7 +256,7 @@ def method_styles(methods) -> dict:
     for k, m in enumerate(sorted(methods)):
         out[m] = dict(color=palette[k % len(palette)], marker=MARKERS[k % len(MARKERS)], ms=4)
     if "dp5" in out:
-        out["dp5"].update(ms=8, mfc="none", mew=1.4)
+        out["dp5"].update(marker="o", ms=9, mfc="none", mew=1.4)
     return out
 
 

@@ -44,9 +44,12 @@ def render_charts(build: Build) -> None:
         tip = relative_to_ground(quake.arrays, "tip_x", frame)
         rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
         model = quake.meta.get("model", "model not stated")
+        ex = quake.meta.get("excitation") or {}
+        what = (": the paper's pulse as written, not a realistic earthquake"
+                if ex.get("realistic") is False else "")
         p = attempt(build, "earthquake_chart", lambda: transient_charts.earthquake_chart(
             fig / "earthquake_response.png", quake.get("t"), quake.get("ground_acceleration"),
-            tip, rotor, quake.get("Omega"), title=f"Earthquake response ({model} model)",
+            tip, rotor, quake.get("Omega"), title=f"Earthquake response ({model} model){what}",
             frame="relative to the ground"))
         if p:
             build.products["earthquake_chart"] = Product(p, (

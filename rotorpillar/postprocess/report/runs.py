@@ -43,6 +43,16 @@ def _stationary_and_jumps(d) -> list[str]:
     return parts
 
 
+def _resonance_rows(resonances) -> str:
+    rows = [[r.index, direction(r.direction), h.num(r.omega), h.num(r.modal_mass), h.num(r.forcing),
+             h.num(r.two_n), h.num(r.nu), h.num(r.a_max), h.num(r.dL_max),
+             h.num(r.dL_max_over_Mc), h.num(r.critical_slope), h.num(r.critical_eccentricity)]
+            for r in resonances]
+    return h.table(["i", "direction", "omega_i (rad/s)", "I_i (kg)", "f_i (m/s^2)",
+                    "2n_i (1/s)", "nu_i", "a_max (m)", "dL_max (N*m)", "dL_max/Mc",
+                    "critical slope (N*m*s)", "critical e (m)"], rows)
+
+
 def section_averaging(build: Build) -> str:
     a = build.analysis
     if a is None:
@@ -60,13 +70,12 @@ def section_averaging(build: Build) -> str:
     parts.append(h.tag("ul", [h.tag("li", r.statement) for r in a.resonances], class_="findings"))
     parts += _stationary_and_jumps(d)
     parts.append(h.tag("h3", "The resonances"))
-    rows = [[r.index, direction(r.direction), h.num(r.omega), h.num(r.modal_mass), h.num(r.forcing),
-             h.num(r.two_n), h.num(r.nu), h.num(r.a_max), h.num(r.dL_max),
-             h.num(r.dL_max_over_Mc), h.num(r.critical_slope), h.num(r.critical_eccentricity)]
-            for r in a.resonances]
-    parts.append(h.table(["i", "direction", "omega_i (rad/s)", "I_i (kg)", "f_i (m/s^2)",
-                          "2n_i (1/s)", "nu_i", "a_max (m)", "dL_max (N*m)", "dL_max/Mc",
-                          "critical slope (N*m*s)", "critical e (m)"], rows))
+    for v in views:
+        table = _resonance_rows(v.resonances)
+        parts.append(h.tag("p", f"On {v.title}:", class_="meta") if v.headline
+                     else h.details(f"the same on {v.title}", table))
+        if v.headline:
+            parts.append(table)
     parts += failure(build, "amplitude_chart")
     if "amplitude_chart" in build.products:
         parts.append(product_image(build, "amplitude_chart"))
