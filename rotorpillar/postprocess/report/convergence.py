@@ -80,7 +80,8 @@ def cancellation(study) -> str | None:
         if m is None or d is None or m * d >= 0:
             continue
         return (f"A model can sit under the tolerance line and still be rejected: {r['label']} "
-                f"measures a {q} error of {e[need.index(q)]:+.1e}, below {tol:g}, only because its "
+                f"measures {'an' if q[0] in 'aeiou' else 'a'} {q} error of "
+                f"{e[need.index(q)]:+.1e}, below {tol:g}, only because its "
                 f"model error ({m:+.1e}, the shell theory's) and its mesh error ({d:+.1e}) have "
                 f"opposite signs and cancel; a finer mesh would remove the one and leave the "
                 f"other, so the choice counts |model| + |mesh| + the reference's uncertainty "
@@ -144,8 +145,9 @@ def integrators_conclusion(doc: dict) -> str:
                     f"explicit adaptive method is the right tool: {m} reaches a 1e-6 error in the "
                     f"fewest force evaluations ({n:.0f}); dp5, the default, is the same "
                     f"Dormand-Prince pair as scipy's RK45, compiled, so their points coincide.")
+    # central difference is explicit: its cost stays flat only until it blows up (below)
     flat = sorted(k for k, g in growth.items() if isinstance(g, dict) and g.get("factor") == 1
-                  and k in fixed)
+                  and k in fixed and "central" not in k)
     steep = sorted(((k, g["factor"]) for k, g in growth.items() if isinstance(g, dict)
                     and isinstance(g.get("factor"), (int, float)) and k in adaptive),
                    key=lambda x: -x[1])

@@ -29,6 +29,8 @@ def _stages_of(doc: dict) -> tuple[float | None, str]:
                   if isinstance(r, dict) and isinstance(r.get("wall_seconds"), (int, float))}
     if total is None and stages:
         total = sum(stages.values())
+    if total is None and isinstance(doc.get("wall_seconds"), (int, float)):
+        total, stages = doc["wall_seconds"], {"the run (wall time)": doc["wall_seconds"]}
     return total, ", ".join(f"{k} {v:.2f}" for k, v in stages.items())
 
 

@@ -76,9 +76,9 @@ def render_comparisons(build: Build) -> None:
         if p:
             lacking = [m for m in c.models if m not in {s[0] for s in series}]
             build.products[f"comparison_{case}"] = Product(p, (
-                f"The {CASE_TITLES.get(case, case).lower()} on each model: the pillar tip's X "
-                f"({direction('X')}) relative to the ground, overlaid (the reference, {ref}, "
-                f"solid); below, each model minus {ref}."
+                f"The {CASE_TITLES.get(case, case).lower()} on each model: the pillar tip's "
+                f"displacement {direction('X')}, relative to the ground, overlaid (the reference, "
+                f"{ref}, solid); below, each model minus {ref}."
                 + (f" Right: zoomed on the passage through the resonances, {zoom[0]:.3g} .. "
                    f"{zoom[1]:.3g} s of the {c.doc.get('window', {}).get('end', '')} s run."
                    if zoom else "")

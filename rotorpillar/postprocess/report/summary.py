@@ -128,12 +128,13 @@ def section_summary(build: Build) -> str:
     items += _runs(build)
     for case in COMPARISONS:
         c = build.comparisons.get(case)
+        name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
         if c is None:
-            items.append(f"The reduced model against the full order on the {case}: not computed: "
+            items.append(f"The reduced model against the full order on the {name}: not computed: "
                          f"run `rotorpillar {compare_command(case)} {build.scene_cli}`.")
         else:
             said = speed_accuracy(c.doc, c.models)
-            items.append(f"The {case}, models compared ({', '.join(c.models)}): "
+            items.append(f"The {name}, models compared ({', '.join(c.models)}): "
                          + (" ".join(said) if said else "no error against a reference recorded."))
     what = chosen(build.convergence) if build.convergence else None
     if what:
