@@ -330,7 +330,7 @@ def test_chart_files(analyses, tmp_path):
     a = analyses["fold"]
     # three resonances: the overview and one row of three resonance panels
     assert_real_png(charts.drive_chart(a, tmp_path / "d.png"), (1060, 820))
-    assert_real_png(charts.amplitude_chart(a, tmp_path / "a.png"), (1060, 370))
+    assert_real_png(charts.amplitude_chart(a, tmp_path / "a.png"), (1060, 400))
     arrays = fixtures.simulation_arrays("earthquake", n=2000)
     e = transient_charts.earthquake_chart(tmp_path / "e.png", arrays["t"], arrays["ground_acceleration"],
                                           arrays["tip_x"], arrays["rotor_x"], arrays["Omega"])

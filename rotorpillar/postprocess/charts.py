@@ -304,7 +304,7 @@ def amplitude_chart(analysis, path: str | Path, width: int = 1060) -> Path:
     steady state, one panel per resonance, at most three to a row."""
     res = list(analysis.resonances)
     rows, cols = _grid_of(len(res))
-    fig, axes = figure(width, 40 + 330 * rows, nrows=rows, ncols=cols, squeeze=False)
+    fig, axes = figure(width, 70 + 330 * rows, nrows=rows, ncols=cols, squeeze=False)
     for ax, r in zip(axes.flat, res):
         c = r.curves
         z = np.asarray(c.z)
@@ -315,8 +315,9 @@ def amplitude_chart(analysis, path: str | Path, width: int = 1060) -> Path:
         ax.set_ylabel(f"a_{r.index} (mm)")
         ax.set_title(f"resonance {r.index}: {r.omega:.2f} rad/s, {short(r.direction)}\n"
                      f"nu = {r.nu:.3f}, a_max = {1e3 * r.a_max:.3g} mm", fontsize=9)
-        if r is res[0]:
-            ax.legend(fontsize=8, loc="upper left")
     for ax in list(axes.flat)[len(res):]:
         ax.set_visible(False)
+    # outside the panels: it covers no curve
+    fig.legend(*axes.flat[0].get_legend_handles_labels(), loc="outside lower center", ncol=2,
+               fontsize=8, frameon=False)
     return save(fig, path)
