@@ -335,7 +335,7 @@ def render_mode(modeset: ModeSet, i: int, path: str | Path, size=MODE_SIZE) -> P
 
 
 def _sheet_label(m: dict, i: int) -> str:
-    """A tile's label: number and family, direction or waves around, frequency.
+    r"""A tile's label: number and family, direction or waves around, frequency.
 
     >>> _sheet_label({"kind": "bending_y", "n_axial": 0, "frequency_hz": 4.0769}, 1)
     '2: 1st bending\nalong the shaft (Z)\n4.077 Hz'
