@@ -74,6 +74,12 @@ def section(text: str, ident: str) -> str:
     return m.group(1)
 
 
+def h3(fragment: str, title: str) -> int:
+    """Where the subsection ``title`` starts (its <h3>, with or without an id), or -1."""
+    m = re.search(rf"<h3[^>]*>{re.escape(title)}", fragment)
+    return m.start() if m else -1
+
+
 def plain_text(fragment: str) -> str:
     """The text of a piece of HTML, tags dropped, entities decoded."""
     return html.unescape(re.sub(r"<[^>]+>", "", fragment))
@@ -121,7 +127,7 @@ def test_the_record_comes_first_then_the_paper_case(page):
     eq = section(page["text"], "earthquake")
     heads = ["A recorded earthquake on the physically consistent models",
              "Response spectrum of the record", "The paper&#x27;s case"]
-    at = [eq.find(f"<h3>{x}</h3>") for x in heads]
+    at = [h3(eq, x) for x in heads]
     assert all(i >= 0 for i in at) and at == sorted(at), at
     # the overlay is the first picture of the section
     first_img = eq.find("<img")
@@ -171,26 +177,35 @@ def test_the_full_order_runs_and_their_warnings_are_stated(page):
 def test_the_spectrum_shows_the_modes_and_the_rom_estimate(page):
     eq = section(page["text"], "earthquake")
     spec = page["compare"]["earthquake"]["spectrum"]
-    part = eq[eq.find("<h3>Response spectrum of the record</h3>"):eq.find("<h3>The paper&#x27;s case")]
-    m = re.search(r"over its modes\): ([\d.e+-]+) m, beside the peak it computes: ([\d.e+-]+) m", part)
+    part = eq[h3(eq, "Response spectrum of the record"):h3(eq, "The paper&#x27;s case")]
+    m = re.search(r"Spectral estimate of the peak tip: ([\d.e+-]+) m, .*?the time history's peak "
+                  r"on the same model: ([\d.e+-]+) m", plain_text(part), re.S)
     assert m, part[:2000]
     # 4 significant digits
     assert float(m.group(1)) == pytest.approx(spec["spectral_peak_tip"], rel=FOUR_DIGITS)
     assert float(m.group(2)) == pytest.approx(spec["computed_peak_tip"], rel=FOUR_DIGITS)
+    # what the ratio means, and where the record acts
+    assert "SRSS is an estimate, not a bound" in plain_text(part)
+    assert "horizontal, in the rotor's plane (the paper's X)" in plain_text(part)
     assert "synthetic spectrum: an estimate, not a bound" in part
-    periods = [t for h_, rows in tables(part) if h_[:2] == ["mode", "period T_j (s)"] for t in rows]
+    periods = [t for h_, rows in tables(part) if h_[:2] == ["pillar mode", "period T_j (s)"]
+               for t in rows]
     assert [float(r[1]) for r in periods] == pytest.approx(spec["mode_periods"], rel=FOUR_DIGITS)
 
 
 def test_the_paper_case_states_its_size_the_flaw_and_the_warnings(page):
     eq = section(page["text"], "earthquake")
-    part = plain_text(eq[eq.find("<h3>The paper&#x27;s case"):])
+    part = plain_text(eq[h3(eq, "The paper&#x27;s case"):])
     ex = page["paper"]["excitation"]
     assert "The paper's pulse on Eq. 4 as published." in part
     assert f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m" in part
     assert f"its acceleration reaches {ex['peak_acceleration_g']:.3g} g" in part
     row = next(r for r in page["analyze"]["paper_comparison"] if r["key"] == "eq4_base_forcing")
-    assert "The base-forcing flaw: " + row["note"] in part
+    # the flaw in one sentence with its number and a link; the finding is stated once, elsewhere
+    assert (f"The base-forcing flaw: Eq. 4 as published forces the rotor's shaft from the ground "
+            f"as well as the pillar: under a slow ground displacement it moves the tip "
+            f"{row['paper']:.3g} times as far as the ground") in part
+    assert row["note"] not in part and 'href="#paper-findings"' in eq
     assert "the published base forcing amplifies the ground 1.6 times" in part
     # the tip relative to the ground: the fixture's tip_x is absolute (ground + relative)
     a = np.load(page["out"] / "simulate_earthquake_paper.npz")
@@ -204,17 +219,20 @@ def test_the_paper_case_states_its_size_the_flaw_and_the_warnings(page):
 def test_the_findings_list_eq4_base_forcing(page):
     row = next(r for r in page["analyze"]["paper_comparison"] if r["key"] == "eq4_base_forcing")
     summary = plain_text(section(page["text"], "summary"))
-    assert f"Finding eq4_base_forcing ({row['where']}): {row['note']}" in summary
+    # the Summary names the finding in words and links it: no internal id, no formula
+    assert "eq4_base_forcing" not in summary and row["note"] not in summary
+    assert "forces the rotor's shaft from the ground" in summary
     paper = plain_text(section(page["text"], "paper"))
-    assert "Findings on the paper's formulation" in paper and "eq4_base_forcing (Eq. 4): " in paper
+    assert "Findings on the paper's formulation" in paper and f"{row['quantity']} (Eq. 4): " in paper
+    assert page["text"].count(html.escape(row["note"])) == 1          # stated once in the page
     printed = [r for r in page["analyze"]["paper_comparison"] if not r.get("details")]
     assert f"({sum(r['flag'] for r in printed)} of {len(printed)} printed numbers)" in paper
     # the speed-accuracy point in the summary
     assert "modal follows fem3d&#x27;s tip history within" in section(page["text"], "summary")
 
 
-@pytest.mark.parametrize("name, size", [("comparison_earthquake.png", (1000, 700)),
-                                        ("comparison_runup.png", (1000, 700)),
+@pytest.mark.parametrize("name, size", [("comparison_earthquake.png", (1060, 700)),
+                                        ("comparison_runup.png", (1060, 700)),
                                         ("response_spectrum.png", (900, 540)),
                                         ("earthquake_response.png", (900, 800))])
 def test_the_charts_are_real_pngs(page, name, size):

@@ -8,15 +8,19 @@ A run of the paper's model has no modal coordinates: then the tube is
 deformed by its tip displacement (tip_x - ground_x) times the first bending
 mode, and without a VTU by the Euler-Bernoulli cantilever shape on a
 generated tube (said on screen).  The ground motion moves the whole tube at
-true scale; the elastic deflection and the rotor's motion relative to the
-tip are exaggerated by one factor, shown on screen.
+true scale; the elastic deflection is exaggerated by one factor and the
+rotor's motion about the pillar top (drawn on its shaft) by its own, so the
+rotor stays within a few tube radii of the top; both are shown on screen.
+A run-up's frames can be time-warped: most of them in the passage through
+resonance, said on every frame.  A warning can be burnt into every frame
+(the paper's pulse is not an earthquake).
 
 A frame is the 3D view (pyvista, off screen) beside a matplotlib panel: the
 rotor's orbit relative to the pillar top (mm, the trail since the previous
 frame over the whole path in grey) and Omega(t) and the tip deflection with
-a cursor.  Frames sample the run uniformly in time: a stroboscope, so the
-pillar's vibration at the rotor speed aliases; the orbit trail is drawn from
-every stored sample and does not.
+a cursor.  Frames sample the run in time (uniformly, or time-warped): a
+stroboscope, so the pillar's vibration at the rotor speed aliases; the orbit
+trail is drawn from every stored sample and does not.
 
 MP4 (H.264 through imageio-ffmpeg) by default, GIF (Pillow) when ffmpeg is
 not available.
@@ -89,17 +93,34 @@ def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
     return PillarMotion(t, (tip - ground)[:, None], [modeset.shape(i)], ground, what)
 
 
-def frame_times(t: np.ndarray, max_frames: int = MAX_FRAMES) -> np.ndarray:
-    """Uniform frame times over the run, at most ``max_frames`` and at most
-    one per stored sample.
+def frame_times(t: np.ndarray, max_frames: int = MAX_FRAMES, focus=None,
+                share: float = 0.7) -> np.ndarray:
+    """Frame times over the run, at most ``max_frames`` and at most one per
+    stored sample: uniform, or with ``focus`` = (t0, t1) time-warped, a
+    ``share`` of the frames spread over that window (the passage through
+    resonance) and the rest over the time outside it.
 
     >>> frame_times(np.linspace(0, 10, 1001), 5)
     array([ 0. ,  2.5,  5. ,  7.5, 10. ])
     >>> len(frame_times(np.linspace(0, 1, 3), 100))
     3
+    >>> f = frame_times(np.linspace(0, 80, 20001), 100, focus=(0.2, 1.2))
+    >>> len(f), int(np.sum((f >= 0.2) & (f <= 1.2)))
+    (100, 70)
     """
     n = int(max(2, min(max_frames, len(t))))
-    return np.linspace(float(t[0]), float(t[-1]), n)
+    t0, t1 = float(t[0]), float(t[-1])
+    if focus is None or not (t0 <= focus[0] < focus[1] <= t1) or n < 10:
+        return np.linspace(t0, t1, n)
+    a, b = float(focus[0]), float(focus[1])
+    inside = int(round(share * n))
+    rest = n - inside
+    before = int(round(rest * (a - t0) / ((a - t0) + (t1 - b)))) if (a - t0) + (t1 - b) > 0 else 0
+    after = rest - before
+    parts = [np.linspace(t0, a, before, endpoint=False) if before else np.zeros(0),
+             np.linspace(a, b, inside),
+             np.linspace(b, t1, after + 1)[1:] if after else np.zeros(0)]
+    return np.concatenate(parts)
 
 
 def interpolate(t: np.ndarray, values: np.ndarray, at: np.ndarray) -> np.ndarray:
@@ -136,7 +157,7 @@ class AnimationResult:
     fps: int
     """frames per second of playback (1/s)"""
     factor: float
-    """exaggeration of the elastic deflection and of the orbit (-)"""
+    """exaggeration of the pillar's elastic deflection (-)"""
     poster: Path | None
     """PNG of the frame of largest deflection"""
     source: str
@@ -147,6 +168,12 @@ class AnimationResult:
     """wall-clock time to render and encode (s)"""
     notes: tuple = ()
     """the notes shown on screen"""
+    orbit_factor: float = 1.0
+    """exaggeration of the rotor's motion about the pillar top (-)"""
+    focus: tuple | None = None
+    """the window the frames were time-warped into (s), or None (uniform)"""
+    frames_in_focus: int = 0
+    """frames inside that window (-)"""
 
 
 def _orbit(sim: Simulation):
@@ -165,10 +192,15 @@ def _decimate(idx_lo: int, idx_hi: int, most: int) -> slice:
 class _Panel:
     """The matplotlib half of a frame, redrawn by blitting the moving artists."""
 
-    def __init__(self, sim: Simulation, motion: PillarMotion, size, title: str):
+    def __init__(self, sim: Simulation, motion: PillarMotion, size, title: str, tf=None,
+                 focus=None):
         from .style import COLOURS, pyplot
         plt = pyplot()
         self.t = motion.t
+        # the time axis as the frames run: warped where the frames are dense
+        n = len(tf) if tf is not None else 2
+        self.u = (lambda x: np.interp(x, tf, np.linspace(0.0, 1.0, n))) if focus is not None \
+            else (lambda x: x)
         self.orbit = _orbit(sim)
         w, h = size
         fig = plt.figure(figsize=(w / 100, h / 100), dpi=100, layout="constrained")
@@ -184,8 +216,8 @@ class _Panel:
             ax_o.set_xlim(-r, r)
             ax_o.set_ylim(-r, r)
             ax_o.set_aspect("equal")
-            ax_o.set_xlabel("rotor X - pillar top X (mm)")
-            ax_o.set_ylabel("rotor Y (mm)")
+            ax_o.set_xlabel("horizontal X, rotor minus pillar top (mm)")
+            ax_o.set_ylabel("vertical Y (mm)")
             ax_o.set_title("rotor orbit relative to the pillar top", fontsize=9)
             self.trail, = ax_o.plot([], [], color=COLOURS["drive"], lw=1.0, animated=True)
             self.dot, = ax_o.plot([], [], "o", color=COLOURS["unstable"], ms=5, animated=True)
@@ -196,18 +228,33 @@ class _Panel:
                       transform=ax_o.transAxes)
             ax_o.set_axis_off()
         Om = sim.get("Omega")
+        u = self.u(self.t)
         if Om is not None:
-            ax_t.plot(self.t, Om, color=COLOURS["drive"], lw=1.0)
+            ax_t.plot(u, Om, color=COLOURS["drive"], lw=1.0)
+            ax_t.ticklabel_format(axis="y", useOffset=False, style="plain")
         ax_t.set_xlabel("t (s)")
+        if focus is not None:
+            ax_t.axvspan(self.u(focus[0]), self.u(focus[1]), color="#E69F00", alpha=0.12, lw=0)
+            ticks = []
+            for x in np.round([self.t[0], focus[0], 0.5 * (focus[0] + focus[1]), focus[1],
+                               self.t[-1]], 2):
+                if all(abs(self.u(x) - self.u(y)) > 0.08 for y in ticks):
+                    ticks.append(float(x))
+            ax_t.set_xticks(self.u(np.array(ticks)), [f"{x:g}" for x in ticks])
+            ax_t.set_xlabel("t (s), time-warped: the shaded passage stretched")
         ax_t.set_ylabel("Omega (rad/s)", color=COLOURS["drive"])
         ax_d = ax_t.twinx()
         tipdef = 1e3 * (motion.coefficients.sum(axis=1))
         part = _decimate(0, len(self.t) - 1, 6000)
-        ax_d.plot(self.t[part], tipdef[part], color=COLOURS["numeric"], lw=0.5, alpha=0.8)
+        ax_d.plot(u[part], tipdef[part], color=COLOURS["numeric"], lw=0.5, alpha=0.8)
         ax_d.set_ylabel("elastic tip deflection (mm)", color=COLOURS["numeric"])
         ax_d.grid(False)
-        self.cursor = ax_t.axvline(self.t[0], color="black", lw=1.0, animated=True)
+        self.cursor = ax_t.axvline(u[0], color="black", lw=1.0, animated=True)
         self.moving.append((ax_t, self.cursor))
+        for a in fig.axes:      # 9.5 pt at 100 dpi: 13 px, legible in the video
+            a.tick_params(labelsize=9.5)
+            a.xaxis.label.set_fontsize(10)
+            a.yaxis.label.set_fontsize(10)
         self.fig = fig
         fig.canvas.draw()
         self.background = fig.canvas.copy_from_bbox(fig.bbox)
@@ -221,7 +268,7 @@ class _Panel:
             s = _decimate(lo, hi, 800)
             self.trail.set_data(self.ox[s], self.oy[s])
             self.dot.set_data([np.interp(tf, self.t, self.ox)], [np.interp(tf, self.t, self.oy)])
-        self.cursor.set_xdata([tf, tf])
+        self.cursor.set_xdata([self.u(tf)] * 2)
         for ax, artist in self.moving:
             ax.draw_artist(artist)
         canvas.blit(self.fig.bbox)
@@ -251,10 +298,13 @@ def _writer(path: Path, fps: int):
 def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = "",
             max_frames: int = MAX_FRAMES, fps: int = FPS, view_size=VIEW_SIZE,
             panel_size=PANEL_SIZE, poster: str | Path | None = None,
-            progress: bool = True, gif: bool = False) -> AnimationResult:
+            progress: bool = True, gif: bool = False, focus=None,
+            banner: str = "") -> AnimationResult:
     """Write the animation of one run to ``path`` (.mp4; .gif if ``gif`` or
     if ffmpeg is missing) and, if asked, a poster PNG at the frame of
-    largest deflection."""
+    largest deflection.  ``focus`` = (t0, t1): the frames time-warped into
+    that window (:func:`frame_times`), said on every frame; ``banner``: a
+    warning burnt into every frame (red, at the top of the 3D view)."""
     start = time.perf_counter()
     pv = pyvista()
     path = Path(path)
@@ -265,7 +315,8 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     ex, ea = np.eye(3)[ax.x], np.eye(3)[ax.axial]
     H = modeset.height
     factor = exaggeration(motion, H)
-    tf = frame_times(motion.t, max_frames)
+    tf = frame_times(motion.t, max_frames, focus)
+    warped = focus is not None and len(tf) >= 10 and not np.allclose(np.diff(tf), tf[1] - tf[0])
     q = interpolate(motion.t, motion.coefficients, tf)
     g = interpolate(motion.t, motion.ground_x, tf)
     Om = interpolate(motion.t, sim.get("Omega"), tf) if sim.get("Omega") is not None else None
@@ -280,18 +331,27 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
 
     mesh = modeset.surface.copy(deep=True)
     mesh.point_data["elastic deflection (mm)"] = np.zeros(mesh.n_points)
-    rotor = pv.Sphere(radius=0.45 * radius, center=tuple(top_centre + 0.6 * radius * ea))
+    hub = top_centre + 1.3 * radius * ea          # the rotor's centre at rest, on its shaft
+    rotor = pv.Sphere(radius=0.4 * radius, center=tuple(hub))
     rotor_base = np.asarray(rotor.points, dtype=float)
+    # the rotor's orbit about the pillar top: its own factor, to about 1.5 tube radii
+    reach = (max(float(np.abs(orbit[0]).max()), float(np.abs(orbit[1]).max()))
+             if orbit is not None else 0.0)
+    orbit_factor = min(factor, nice_factor(1.5 * radius / reach)) if reach > 0 else factor
+    shaft = pv.Line(tuple(top_centre), tuple(hub)).tube(radius=0.08 * radius)
     p = pv.Plotter(off_screen=True, window_size=list(view_size))
     p.set_background("white")
     p.add_mesh(modeset.surface, color="white", opacity=0.0,
                silhouette=dict(color="#a0a0a0", line_width=1.0))
     p.add_mesh(mesh, scalars="elastic deflection (mm)", cmap="viridis", clim=(0.0, u_max),
                smooth_shading=True,
-               scalar_bar_args=dict(title="elastic deflection (mm)", vertical=False, width=0.6, height=0.05,
-                                    position_x=0.2, position_y=0.02, color="black",
-                                    title_font_size=10, label_font_size=9, fmt="%.3g"))
+               scalar_bar_args=dict(title="", vertical=False, width=0.5, height=0.05,
+                                    position_x=0.45, position_y=0.03, color="black",
+                                    label_font_size=16, fmt="%.3g", n_labels=3))
+    # the colour bar's title beside it, never over its ticks
+    p.add_text("deflection (mm):", position=(8, 14), font_size=9, color="black")
     p.add_mesh(rotor, color="#D55E00")
+    p.add_mesh(shaft, color="#333333")
     g_lo, g_hi = float(min(g.min(), 0.0)), float(max(g.max(), 0.0))
     ground = pv.Plane(center=tuple(np.array(modeset.surface.center) * (1 - ea)
                                    + ea * base[:, ax.axial].min()),
@@ -299,15 +359,25 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
                       j_size=6 * radius + (g_hi - g_lo))
     ground_base = np.asarray(ground.points, dtype=float)
     p.add_mesh(ground, color="#d9c9a8", opacity=0.6)
-    readout = p.add_text("", position=(8, view_size[1] - 44), font_size=10, color="black")
-    notes = [f"elastic deflection and orbit x{factor:g}"]
+    readout = p.add_text("", position=(8, view_size[1] - 44 - 16 * banner.count("\n")
+                                       - (22 if banner else 0)), font_size=10, color="black")
+    if banner:
+        p.add_text(banner, position=(8, view_size[1] - 8 - 16 * (banner.count("\n") + 1)),
+                   font_size=10, color="#C00000")
+    notes = [f"pillar deflection x{factor:g}",
+             f"rotor about the pillar top x{orbit_factor:g}"]
     if np.any(g != 0):
         notes.append("ground motion true scale")
+    if warped:
+        inside = int(np.sum((tf >= focus[0]) & (tf <= focus[1])))
+        notes.append(f"time-warped: {inside} of {len(tf)} frames")
+        notes.append(f"  in {focus[0]:.2g} .. {focus[1]:.2g} s (slow motion)")
     if not modeset.source.endswith(".vtu"):
         notes.append("shape: Euler-Bernoulli cantilever (no 3D modes)")
-    p.add_text("\n".join(notes), position=(8, 62), font_size=8, color="#333333")
+    p.add_text("\n".join(notes), position=(8, 44), font_size=9, color="#333333")
     # fixed camera across the bending plane, framing the whole excursion
-    lateral = factor * float(np.max(np.abs(q) @ peak)) + max(abs(g_lo), abs(g_hi)) + 2 * radius
+    lateral = (factor * float(np.max(np.abs(q) @ peak)) + max(abs(g_lo), abs(g_hi))
+               + 2 * radius + orbit_factor * reach)
     centre = np.array(modeset.surface.center) + ex * 0.5 * (g_lo + g_hi)
     across = -np.eye(3)[ax.y]
     d = math.cos(math.radians(8)) * (math.cos(math.radians(20)) * across
@@ -320,7 +390,7 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     half[ax.axial] = 0.55 * H
     p.reset_camera(bounds=tuple(float(v) for pair in zip(centre - half, centre + half) for v in pair))
 
-    panel = _Panel(sim, motion, panel_size, title)
+    panel = _Panel(sim, motion, panel_size, title, tf, focus if warped else None)
     use_gif = gif or not have_ffmpeg()
     if use_gif:
         path = path.with_suffix(".gif")
@@ -346,11 +416,17 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
                            + np.interp(t, motion.t, orbit[1]) * ea)
                 tip = factor * q[j] @ np.array([s[np.argmax(base[:, ax.axial])] @ ex
                                                 for s in motion.shapes])
-                rotor.points = rotor_base + (tip + g[j]) * ex + factor * rel
+                rotor.points = rotor_base + (tip + g[j]) * ex + orbit_factor * rel
+                top_now = top_centre + (tip + g[j]) * ex
+                shaft.copy_from(pv.Line(tuple(top_now), tuple(hub + (tip + g[j]) * ex
+                                                              + orbit_factor * rel))
+                                .tube(radius=0.08 * radius))
                 ground.points = ground_base + g[j] * ex
-                text = f"t = {t:7.2f} s"
+                text = f"t = {t:7.3f} s" if warped else f"t = {t:7.2f} s"
                 if Om is not None:
                     text += f"\nOmega = {Om[j]:7.2f} rad/s"
+                if warped and focus[0] <= t <= focus[1]:
+                    text += "  (slow motion)"
                 readout.SetInput(text)
                 p.render()
                 view = p.screenshot(return_img=True)
@@ -387,7 +463,9 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
         poster_path = Path(poster)
     return AnimationResult(path, len(tf), fps, factor, poster_path, motion.source,
                            "GIF (Pillow)" if use_gif else "MP4 (H.264, imageio-ffmpeg)",
-                           time.perf_counter() - start, tuple(notes))
+                           time.perf_counter() - start, tuple(notes), orbit_factor,
+                           tuple(focus) if warped else None,
+                           int(np.sum((tf >= focus[0]) & (tf <= focus[1]))) if warped else 0)
 
 
 def _pad(img: np.ndarray, h: int) -> np.ndarray:

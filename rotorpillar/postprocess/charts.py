@@ -12,7 +12,11 @@
   shows what the motor reaches: its torque axis spans the drive's range
   (Md over the speeds drawn), the resonance peaks of L above it are marked at
   the top edge with their value, and the jumps beyond it are left to the
-  zooms; no two labels overlap (:func:`rotorpillar.postprocess.style.place_labels`).
+  panels below: near each resonance, L with its jumps and the resonance's
+  own extra torque dL_i on its own axis, and the scene's motor's margin
+  Md - L (what is left to accelerate), so that drive and resonance read
+  together; the legend sits outside the panels; no two labels overlap
+  and none covers a curve (:func:`rotorpillar.postprocess.style.place_labels`).
 - :func:`amplitude_chart`: a_i(z) by averaging (the paper's equation 19,
   omega_i**2 restored) against the exact linear steady state, per resonance.
 
@@ -31,6 +35,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..reduced import averaging as av
+from .directions import short
 from .style import COLOURS, blank, figure, place_labels, save
 
 #: Headroom of the main panel's torque axis over the motor's largest torque.
@@ -135,21 +140,28 @@ def _jump_arrows(ax, jumps, s, xlim, z_scale=1.0) -> list[dict]:
     return labels
 
 
-def drive_figure(analysis, size=(1000, 760)):
-    """The Md/L figure (matplotlib): the main panel over the drive's range
-    (top), each resonance in full (bottom).  :func:`drive_chart` saves it."""
-    data = drive_curve_data(analysis)
-    res = analysis.resonances
-    fig = blank(*size)
-    gs = fig.add_gridspec(2, len(res), height_ratios=[1.15, 1])
-    top = fig.add_subplot(gs[0, :])
-    zooms = [fig.add_subplot(gs[1, i]) for i in range(len(res))]
-    W, s = data["omega"], data["slope"]
-    x_max, y_max = data["x_max"], data["y_max"]
-    top.plot(W, data["Mc"], color=COLOURS["load"], ls=":", label="Mc = k Omega^2 (load alone)")
+def _grid_of(n: int, most: int = 3) -> tuple[int, int]:
+    """(rows, columns) of ``n`` panels, at most ``most`` to a row, the rows as even as they
+    can be (four panels: two rows of two, wider than three and one).
+
+    >>> [_grid_of(n) for n in (1, 3, 4, 5, 7)]
+    [(1, 1), (1, 3), (2, 2), (2, 3), (3, 3)]
+    """
+    if not n:
+        return 0, 1
+    rows = math.ceil(n / most)
+    return rows, math.ceil(n / rows)
+
+
+def _overview(top, data, res, W) -> list:
+    """The top panel: Md, L and Mc over the drive's range, the stationary
+    speeds, the jumps shown there, each resonance marked; returns its labels
+    and the curves they must stay off."""
+    s, x_max, y_max = data["slope"], data["x_max"], data["y_max"]
+    top.plot(W, data["Mc"], color=COLOURS["load"], ls=":", label="Mc = k Omega^2 (the load alone)")
     _branches(top, W, data["L"], data["stable"])
-    top.plot(W, data["Md"], color=COLOURS["drive"],
-             label=f"Md = {data['torque_at_zero']:g} - {s:g} Omega (scene's motor)")
+    md, = top.plot(W, data["Md"], color=COLOURS["drive"],
+                   label=f"Md = {data['torque_at_zero']:g} - {s:g} Omega (the scene's motor)")
     labels = []
     for st in data["stationary"]:
         y = data["torque_at_zero"] - s * st.omega
@@ -157,90 +169,150 @@ def drive_figure(analysis, size=(1000, 760)):
                  mfc=COLOURS["stable"] if st.stable else "white", zorder=5)
         labels.append({"xy": (st.omega, y), "offset": (6, 6), "fontsize": 8,
                        "text": f"{st.omega:.2f} rad/s ({'stable' if st.stable else 'unstable'})"})
-    shown = [j for j in data["jumps"] if j["shown"]]
-    labels += _jump_arrows(top, shown, s, (0, x_max))
+    labels += _jump_arrows(top, [j for j in data["jumps"] if j["shown"]], s, (0, x_max))
     peaks = {b["resonance"]: b for b in data["beyond"]}
     for r in res:
         top.axvline(r.omega, color=COLOURS["reference"], lw=0.6, ls="--")
         b = peaks.get(r.index)
         if b is None:
-            labels.append({"xy": (r.omega, 0.0), "offset": (2, 3), "fontsize": 7, "rotation": 90,
-                           "va": "bottom", "color": "#666666", "text": f"omega_{r.index}"})
+            labels.append({"xy": (r.omega, 0.04 * y_max), "offset": (3, 2), "fontsize": 8,
+                           "color": "#555555", "text": f"omega_{r.index}"})
             continue
         # beyond the panel: an arrow at the top edge with the peak's value
         top.annotate("", xy=(r.omega, y_max), xytext=(r.omega, 0.9 * y_max),
                      arrowprops=dict(arrowstyle="->", color=COLOURS["unstable"], lw=1.4),
                      annotation_clip=False)
-        labels.append({"xy": (r.omega, 0.9 * y_max), "offset": (4, -4), "fontsize": 7,
+        labels.append({"xy": (r.omega, 0.9 * y_max), "offset": (4, -4), "fontsize": 8,
                        "va": "top", "color": COLOURS["unstable"],
                        "text": f"omega_{r.index}: L peaks at {b['peak']:,.0f} N*m"})
     top.set_xlim(0, x_max)
     top.set_ylim(0, y_max)
-    top.set_xlabel("Omega (rad/s)")
+    top.set_xlabel("rotor speed Omega (rad/s)")
     top.set_ylabel("torque (N*m)")
+    return labels, [ln for ln in top.lines if len(ln.get_xdata()) > 2] + [md]
+
+
+def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
+    """Near resonance ``r``, against z = Omega / omega_r: L with its jumps and,
+    on the right axis, this resonance's own extra torque dL_r (the
+    neighbours' dashed); below (``mx``), the scene's motor's margin Md - L,
+    the torque left to accelerate, at the resonance beside dL_r.  Returns the
+    jumps' labels (to place on ``ax``)."""
+    s, w = data["slope"], r.omega
+    lo, hi = 0.5 * w, 1.5 * w
+    mine = [j for j in data["jumps"] if j["resonance"] == r.index]
+    for j in mine:
+        lo = min(lo, 0.95 * j["from"][0], 0.95 * j["to"][0])
+        hi = max(hi, 1.05 * j["from"][0], 1.05 * j["to"][0])
+    m = (W >= lo) & (W <= hi)
+    z = W[m] / w
+    ax.plot(z, data["Mc"][m], color=COLOURS["load"], ls=":")
+    _branches(ax, z, data["L"][m], data["stable"][m], label=False)
+    c = r.curves
+    ax.plot(np.asarray(c.z)[::8], np.asarray(c.L_all)[::8], ".", color="black", ms=2.5,
+            label="analyze.json" if first else None)
+    jump_labels = _jump_arrows(ax, mine, s, (lo, hi), z_scale=w)
+    ys = [data["L"][m]] + [np.array([j["from"][1], j["to"][1]]) for j in mine]
+    y0, y1 = float(min(map(np.min, ys))), float(max(map(np.max, ys)))
+    pad = 0.08 * (y1 - y0 or 1.0)
+    ax.set_ylim(y0 - pad, y1 + 2 * pad)
+    ax.set_xlim(lo / w, hi / w)
+    ax.set_ylabel("L (N*m)")
+    ax.tick_params(labelbottom=False)
+    note = (f"{len(mine)} jump(s)" if mine else "no jump") + (
+        "; above the motor's free speed" if data["free_speed"] is not None
+        and w > data["free_speed"] else "")
+    ax.set_title(f"resonance {r.index}: {w:.2f} rad/s, {short(r.direction)}\n{note}", fontsize=9)
+    own = av.total_resistance(W[m], 0.0, [r])
+    extra = ax.twinx()
+    extra.plot(z, own, color=COLOURS["accent"], lw=1.2, label="its own dL (right)")
+    rest = [o for o in others if o.index != r.index]
+    if rest:
+        theirs = av.total_resistance(W[m], 0.0, rest)
+        if np.max(np.abs(theirs)) > 0.02 * max(np.max(np.abs(own)), 1e-300):
+            extra.plot(z, theirs, color=COLOURS["reference"], lw=0.9, ls="--",
+                       label="other resonances' dL (right)")
+    extra.set_ylabel("dL (N*m)", color=COLOURS["accent"])
+    extra.grid(False)
+    extra.spines["right"].set_visible(True)
+    # the margin of the scene's motor: what is left to accelerate the rotor
+    margin = data["Md"][m] - data["L"][m]
+    mx.plot(z, margin, color=COLOURS["drive"], lw=1.3)
+    lo_m, hi_m = float(margin.min()), float(margin.max())
+    if lo_m < 0.25 * max(hi_m, 1e-300):          # near or below zero: show where it crosses
+        mx.axhline(0.0, color=COLOURS["unstable"], lw=0.8)
+    at = float(np.interp(1.0, z, margin))
+    hump = float(av.total_resistance(np.array([w]), 0.0, [r])[0])
+    mx.plot([1.0], [at], "o", color=COLOURS["drive"], ms=4)
+    mx.set_xlim(lo / w, hi / w)
+    mx.set_xlabel(f"z = Omega / omega_{r.index}")
+    mx.set_ylabel("Md - L (N*m)")
+    share = f" ({100 * hump / at:.2g} %)" if at > 0 else ""
+    # a legend without a handle: matplotlib puts it where it covers the least of the curve
+    from matplotlib.lines import Line2D
+    mx.legend([Line2D([], [], ls="none")],
+              [f"at z = 1:\nMd - L = {at:,.0f} N*m\ndL_{r.index} = {hump:.3g} N*m{share}"],
+              loc="best", fontsize=8, handlelength=0, handletextpad=0, framealpha=0.85)
+    return jump_labels
+
+
+def drive_figure(analysis, width: int = 1060):
+    """The Md/L figure (matplotlib): the overview over the drive's range
+    (top), then near each resonance, as the paper's Figs. 3-4 draw them,
+    L with its jumps and the resonance's own extra torque dL_i (its own axis:
+    a hump of a few N*m is invisible beside Md), and below it the scene's
+    motor's margin Md - L.  :func:`drive_chart` saves it."""
+    data = drive_curve_data(analysis)
+    data["free_speed"] = getattr(analysis.drive, "free_speed", None)
+    res = list(analysis.resonances)
+    rows, cols = _grid_of(len(res))
+    fig = blank(width, 420 + 400 * rows)
+    gs = fig.add_gridspec(1 + 2 * rows, cols, height_ratios=[1.5] + [1.0, 0.75] * rows)
+    top = fig.add_subplot(gs[0, :])
+    W = data["omega"]
+    labels, curves = _overview(top, data, res, W)
     far = [j for j in data["jumps"] if not j["shown"]]
     verdict = (f"{len(data['jumps'])} jump(s): " + ", ".join(
         f"{j['label_from']}{j['number']}->{j['label_to']}{j['number']}" for j in data["jumps"])
         if data["jumps"] else "no jumps: with this drive every stationary regime is stable")
-    top.set_title(f"Motor torque and resistance (paper Figs. 3-4) - {verdict}"
-                  + (f"\ntorque axis: the motor's range; {len(far)} jump(s) above it, "
-                     "in the panels below" if far else ""))
-    legend = top.legend(loc="lower right" if data["beyond"] else "upper left", fontsize=7)
-    # zooms: near each resonance, in z = Omega / omega_i as the paper draws them
-    zoom_labels = []
-    for ax, r in zip(zooms, res):
-        w = r.omega
-        lo, hi = 0.5 * w, 1.5 * w
-        mine = [j for j in data["jumps"] if j["resonance"] == r.index]
-        for j in mine:
-            lo = min(lo, 0.95 * j["from"][0], 0.95 * j["to"][0])
-            hi = max(hi, 1.05 * j["from"][0], 1.05 * j["to"][0])
-        m = (W >= lo) & (W <= hi)
-        ax.plot(W[m] / w, data["Mc"][m], color=COLOURS["load"], ls=":")
-        _branches(ax, W[m] / w, data["L"][m], data["stable"][m], label=False)
-        c = r.curves
-        ax.plot(c.z[::8], c.L_all[::8], ".", color="black", ms=2.5,
-                label="analyze.json curve" if r is res[0] else None)
-        zoom_labels.append(_jump_arrows(ax, mine, s, (lo, hi), z_scale=w))
-        ys = [data["L"][m]] + [np.array([j["from"][1], j["to"][1]]) for j in mine]
-        y0, y1 = float(min(map(np.min, ys))), float(max(map(np.max, ys)))
-        pad = 0.08 * (y1 - y0 or 1.0)
-        ax.set_ylim(y0 - pad, y1 + 2 * pad)
-        ax.set_xlim(lo / w, hi / w)
-        ax.set_xlabel(f"z = Omega / omega_{r.index}")
-        ax.set_ylabel("torque (N*m)")
-        note = f"{len(mine)} jump(s)" if mine else "no jump"
-        ax.set_title(f"res. {r.index} ({r.direction}, {w:.2f} rad/s): {note}", fontsize=9)
-        # the resonance's own torque, visible even where it is ~1 % of Mc
-        extra = ax.twinx()
-        extra.plot(W[m] / w, data["L"][m] - data["Mc"][m], color=COLOURS["accent"], lw=1.0,
-                   label="L - Mc (right axis)")
-        extra.set_ylabel("L - Mc (N*m)", color=COLOURS["accent"])
-        extra.grid(False)
-        extra.spines["right"].set_visible(True)
-        if r is res[0]:
-            extra.legend(loc="lower right", fontsize=7)
-        if r is res[0]:
-            ax.legend(loc="upper left", fontsize=7)
+    fig.suptitle(f"Motor torque and resistance (paper Figs. 3-4): {verdict}"
+                 + (f"\ntorque axis: the motor's range; {len(far)} jump(s) above it, "
+                    "in the panels below" if far else ""), fontsize=10)
+    blocks = []
+    for n, r in enumerate(res):
+        row, col = divmod(n, cols)
+        ax = fig.add_subplot(gs[1 + 2 * row, col])
+        mx = fig.add_subplot(gs[2 + 2 * row, col], sharex=ax)
+        blocks.append((ax, _resonance_block(ax, mx, data, r, resonances_of(analysis), W,
+                                            first=n == 0)))
+    handles, names = {}, []
+    for a in fig.axes:
+        for h, lab in zip(*a.get_legend_handles_labels()):
+            handles.setdefault(lab, h)
+    # the legend outside every panel: it covers no curve
+    fig.legend(list(handles.values()), list(handles.keys()), loc="outside lower center",
+               ncol=min(4, len(handles)), fontsize=8, frameon=False)
     # Labels last, on the final layout, frozen so that saving does not move the axes.
     fig.canvas.draw()
     fig.set_layout_engine("none")
-    place_labels(top, labels, obstacles=[legend])
-    for ax, lab in zip(zooms, zoom_labels):
-        place_labels(ax, lab, obstacles=[a for a in (ax.get_legend(),) if a is not None])
+    place_labels(top, labels, lines=curves)
+    for ax, jump_labels in blocks:
+        place_labels(ax, jump_labels, lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2])
     return fig
 
 
-def drive_chart(analysis, path: str | Path, size=(1000, 760)) -> Path:
-    """Md and L over the speed (top) and near each resonance (bottom): the PNG."""
-    return save(drive_figure(analysis, size), path)
+def drive_chart(analysis, path: str | Path, width: int = 1060) -> Path:
+    """Md and L over the speed (top) and near each resonance (below): the PNG."""
+    return save(drive_figure(analysis, width), path)
 
 
-def amplitude_chart(analysis, path: str | Path, size=(1000, 360)) -> Path:
-    """a_i(z): averaging (the paper's equation 19) against the exact linear steady state."""
-    res = analysis.resonances
-    fig, axes = figure(*size, ncols=len(res), squeeze=False)
-    for ax, r in zip(axes[0], res):
+def amplitude_chart(analysis, path: str | Path, width: int = 1060) -> Path:
+    """a_i(z): averaging (the paper's equation 19) against the exact linear
+    steady state, one panel per resonance, at most three to a row."""
+    res = list(analysis.resonances)
+    rows, cols = _grid_of(len(res))
+    fig, axes = figure(width, 70 + 330 * rows, nrows=rows, ncols=cols, squeeze=False)
+    for ax, r in zip(axes.flat, res):
         c = r.curves
         z = np.asarray(c.z)
         ax.plot(z, 1e3 * np.asarray(c.a), color=COLOURS["analytic"], label="averaging, Eq. 19")
@@ -248,8 +320,11 @@ def amplitude_chart(analysis, path: str | Path, size=(1000, 360)) -> Path:
                 label="linear steady state")
         ax.set_xlabel(f"z = Omega / omega_{r.index}")
         ax.set_ylabel(f"a_{r.index} (mm)")
-        ax.set_title(f"resonance {r.index} ({r.direction}), omega = {r.omega:.2f} rad/s, "
-                     f"nu = {r.nu:.3f}", fontsize=9)
-        if r is res[0]:
-            ax.legend(fontsize=7)
+        ax.set_title(f"resonance {r.index}: {r.omega:.2f} rad/s, {short(r.direction)}\n"
+                     f"nu = {r.nu:.3f}, a_max = {1e3 * r.a_max:.3g} mm", fontsize=9)
+    for ax in list(axes.flat)[len(res):]:
+        ax.set_visible(False)
+    # outside the panels: it covers no curve
+    fig.legend(*axes.flat[0].get_legend_handles_labels(), loc="outside lower center", ncol=2,
+               fontsize=8, frameon=False)
     return save(fig, path)

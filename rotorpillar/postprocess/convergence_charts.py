@@ -1,8 +1,9 @@
 """Charts of the convergence study: error against DOFs and against wall time.
 
-One figure per cost (DOFs, wall time), three panels: the first bending
-frequency, the first ovalling frequency, and the band (the largest error
-over the frequencies the scene needs, what the choice of a model uses).
+One figure per cost (DOFs, wall time), three panels and the legend in a
+2 x 2 grid at the report's width: the first bending frequency, the first
+ovalling frequency, and the band (the largest error over the frequencies
+the scene needs, what the choice of a model uses).
 One line per model family; the Pareto front drawn as a staircase with its
 points ringed; the tolerance and the reference's own uncertainty drawn
 across; the chosen model starred.  Failures stay on the chart: a run
@@ -140,26 +141,29 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
             ax.plot([chosen[cost]], [max(e, FLOOR)], marker="*", ms=20, color=COLOURS["numeric"], mec="k",
                     ls="none", zorder=5, label="chosen")
     ax.axhline(missing_y, color="0.6", lw=0.6)
-    ax.text(0.01, missing_y, " no such mode", transform=ax.get_yaxis_transform(), va="bottom",
-            fontsize=8, color="0.4")
+    # at the right: the runs without the mode are marked on this line at the left
+    ax.text(0.99, missing_y, "no such mode ", transform=ax.get_yaxis_transform(), va="bottom",
+            ha="right", fontsize=8, color="0.4")
     if no_mode:
         ax.text(0.02, 0.02, "no " + (q if q != "band" else "needed") + " mode:\n  "
                 + "\n  ".join(no_mode), transform=ax.transAxes, fontsize=8, va="bottom",
                 bbox=dict(fc="white", ec="0.7"))
+    labels = []
     for fam in ("solid_hex_p1", "solid_tet_p1"):
         rows = [r for r in runs if r["family"] == fam and err_of(r, q, needed) is not None]
         if rows:
             r = max(rows, key=lambda r: r[cost])
-            ax.annotate("P1 locking", (r[cost], err_of(r, q, needed)), fontsize=8,
-                        xytext=(5, 5), textcoords="offset points", color=STYLE[fam]["color"])
+            labels.append({"xy": (r[cost], err_of(r, q, needed)), "text": "P1 locking",
+                           "fontsize": 8, "offset": (5, 5), "color": STYLE[fam]["color"]})
     for fam in ("shell_quad_around", "solid_hex_p2_around"):
         rows = [r for r in runs if r["family"] == fam]
         if rows:
             r = min(rows, key=lambda r: r["level"])
             e = err_of(r, q, needed)
-            ax.annotate(f"{r['params']['elements_around']} around", (r[cost], missing_y if e is None
-                        else max(e, FLOOR)), fontsize=8, xytext=(4, -10),
-                        textcoords="offset points", color=STYLE[fam]["color"])
+            labels.append({"xy": (r[cost], missing_y if e is None else max(e, FLOOR)),
+                           "text": f"{r['params']['elements_around']} around", "fontsize": 8,
+                           "offset": (4, -12), "color": STYLE[fam]["color"]})
+    ax._pending_labels = labels
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_ylim(_bottom_row(study), missing_y * 4)
@@ -169,22 +173,31 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
 
 
 def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
-    """Write one chart (PNG) of |relative error| against ``cost`` ("dofs" or "wall_time")."""
+    """Write one chart (PNG) of |relative error| against ``cost`` ("dofs" or
+    "wall_time"): the three panels and the legend in a 2 x 2 grid, at the
+    width the report shows it (its text legible there)."""
+    from .style import place_labels
     families = {k: v["label"] for k, v in study["families"].items()}
-    fig, axes = figure(1980, 682, ncols=3, sharey=True)
+    fig, grid = figure(1060, 960, nrows=2, ncols=2)
+    axes = [grid[0, 0], grid[0, 1], grid[1, 0]]
     for ax, (q, title) in zip(axes, PANELS):
         _panel(ax, study, cost, q, title, families)
-    axes[0].set_ylabel("|relative error| against the reference")
-    handles, labels = {}, []
+        ax.set_ylabel("|relative error| against the reference")
+    handles = {}
     for ax in axes:
-        for h, l in zip(*ax.get_legend_handles_labels()):
-            handles.setdefault(l, h)
-    # "outside": the constrained layout keeps a strip below the panels for it
-    fig.legend(list(handles.values()), list(handles.keys()), loc="outside lower center",
-               ncol=min(7, len(handles)), fontsize=8, frameon=False)
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(lab, h)
+    spare = grid[1, 1]
+    spare.set_axis_off()
+    spare.legend(list(handles.values()), list(handles.keys()), loc="center", fontsize=8,
+                 frameon=False, ncol=1)
     band = study["selection"]["band"]
     fig.suptitle(f"{study['scene_name']}: error against {COST_LABEL[cost]} "
-                 f"(band to {band['omega_max']:.0f} rad/s)", fontsize=12)
+                 f"(band to {band['omega_max']:.0f} rad/s)", fontsize=11)
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
+    for ax in axes:
+        place_labels(ax, getattr(ax, "_pending_labels", []), lines=list(ax.lines))
     return save(fig, path)
 
 

@@ -83,15 +83,23 @@ def tag(name: str, content="", **attrs) -> str:
 
 
 def table(header, rows, classes=None, row_classes=None) -> str:
-    """A table of escaped cells (Raw cells pass through)."""
+    """A table of escaped cells (Raw cells pass through); a header of empty
+    cells is left out (a key/value table needs none).
+
+    >>> table(["", ""], [["k", 1]])
+    '<table class="kv"><tbody><tr><td>k</td><td>1</td></tr></tbody></table>'
+    """
     head = "".join(f"<th>{esc(h)}</th>" for h in header)
+    if not any(str(h).strip() for h in header):
+        head, classes = "", classes or "kv"
     body = []
     for i, row in enumerate(rows):
         cls = row_classes[i] if row_classes else None
         attr = f' class="{esc(cls)}"' if cls else ""
         body.append(f"<tr{attr}>" + "".join(f"<td>{esc(c)}</td>" for c in row) + "</tr>")
     cls = f' class="{esc(classes)}"' if classes else ""
-    return Raw(f"<table{cls}><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>")
+    thead = f"<thead><tr>{head}</tr></thead>" if head else ""
+    return Raw(f"<table{cls}>{thead}<tbody>{''.join(body)}</tbody></table>")
 
 
 def data_uri(path: str | Path) -> str:
@@ -139,7 +147,29 @@ def missing(text: str) -> str:
 
 
 def details(summary: str, content) -> str:
+    """A collapsed block: ``summary`` shown, ``content`` on a click."""
     return tag("details", [tag("summary", summary), Raw(content)])
+
+
+def link(text: str, anchor: str) -> str:
+    """A link to a place in the page (``anchor``: an id, without #)."""
+    return tag("a", text, href=f"#{anchor}")
+
+
+def slug(text: str) -> str:
+    """An id made from a title.
+
+    >>> slug("Eq. 1 against the 3D model (bare tube)")
+    'eq-1-against-the-3d-model-bare-tube'
+    """
+    import re
+    return re.sub(r"[^a-z0-9]+", "-", str(text).lower()).strip("-")[:60] or "part"
+
+
+def subsection(section_id: str, title: str) -> str:
+    """A subsection heading with its id (``<section>-<slug of the title>``):
+    the contents list links it (:func:`page` lists every <h3>)."""
+    return tag("h3", title, id=f"{section_id}-{slug(title)}")
 
 
 def section(ident: str, title: str, parts) -> str:
@@ -191,17 +221,58 @@ p.missing{background:#fff8e1;border-left:4px solid #E69F00;padding:.4em .7em}
 p.failed{background:#fdecea;border-left:4px solid #D55E00;padding:.4em .7em}
 p.warn{background:#fdecea;padding:.4em .7em}
 code{background:#f3f3f3;padding:0 .25em;border-radius:3px}
-nav ol{columns:2}.meta{color:#555;font-size:.9em}
+nav>ol{columns:2;column-gap:2em}nav ol ol{font-size:.88em;margin:.1em 0 .3em;padding-left:1.2em}
+nav li{break-inside:avoid}.meta{color:#555;font-size:.9em}
+table.kv td:first-child{color:#333;background:#f7f9fb}
 ul.findings li{margin:.25em 0}
 details{margin:.5em 0}summary{cursor:pointer;font-weight:600}
-.gallery{display:flex;flex-wrap:wrap;gap:.6em}.gallery figure{margin:0;width:240px}
+.gallery{display:flex;flex-wrap:wrap;gap:.6em}.gallery figure{margin:0;width:340px}
 """
 
 
+_H3 = None
+
+
+def subsections(section_html: str, section_id: str) -> tuple[str, list[tuple[str, str]]]:
+    """The section with an id on every <h3> that has none, and its
+    subsections' (id, title) in order: what the contents list shows.
+
+    >>> subsections('<h3>A b</h3><h3 id="x">C</h3><h3>A b</h3>', "s")
+    ('<h3 id="s-a-b">A b</h3><h3 id="x">C</h3><h3 id="s-a-b-2">A b</h3>', [('s-a-b', 'A b'), ('x', 'C'), ('s-a-b-2', 'A b')])
+    """
+    import re
+    global _H3
+    _H3 = _H3 or re.compile(r"<h3(\s+id=\"([^\"]*)\")?>(.*?)</h3>", re.S)
+    found, seen = [], set()
+
+    def one(m):
+        title = html.unescape(re.sub(r"<[^>]+>", "", m.group(3)))
+        ident = m.group(2)
+        if not ident:
+            base = f"{section_id}-{slug(title)}"
+            ident, n = base, 2
+            while ident in seen:
+                ident, n = f"{base}-{n}", n + 1
+        seen.add(ident)
+        found.append((ident, title))
+        return f'<h3 id="{esc(ident)}">{m.group(3)}</h3>'
+
+    return _H3.sub(one, str(section_html)), found
+
+
 def page(title: str, header_parts, nav: list[tuple[str, str]], sections) -> str:
-    """The whole document."""
-    nav_html = tag("nav", [tag("h2", "Contents"),
-                           tag("ol", [tag("li", [tag("a", t, href=f"#{i}")]) for i, t in nav])])
+    """The whole document: the contents list the sections (``nav``: their id
+    and title, in the order of ``sections``) and each one's subsections (its <h3>)."""
+    items, done = [], []
+    for (ident, name), s in zip(nav, sections):
+        s, subs = subsections(s, ident)
+        done.append(s)
+        inner = [tag("a", name, href=f"#{ident}")]
+        if subs:
+            inner.append(tag("ol", [tag("li", [tag("a", t, href=f"#{i}")]) for i, t in subs]))
+        items.append(tag("li", inner))
+    sections = done
+    nav_html = tag("nav", [tag("h2", "Contents"), tag("ol", items)])
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
             f"<title>{esc(title)}</title><style>{STYLE}</style></head><body>"

@@ -4,7 +4,11 @@ Contracts (field names are the writers'; we read, never write, them):
 
 - ``analyze.json`` (`rotorpillar analyze`): ``pillar``, ``reduction``,
   ``system``, ``resonances[i]`` with ``curves`` {z, omega, a, a_linear, dL,
-  L, L_all, Md}, ``drive``, ``paper_comparison`` rows.
+  L, L_all, Md}, ``drive``, ``paper_comparison`` rows; where present,
+  ``paper_model`` (``system``, ``resonances``, ``drive`` of the paper's Eq. 4
+  beside the headline model's) and ``pillar_model`` {kind, mesh, dofs,
+  source, verified} (:mod:`rotorpillar.postprocess.report.models`); any
+  number of resonances, each with its ``direction`` (X or Y).
 - ``modal.json`` (`rotorpillar modal`): ``modes`` and ``modes_with_top``
   lists ({omega, frequency_hz, kind, n_circumferential, normalisation,
   modal_mass}), ``reduction``, ``mesh``, ``axes``; mode shapes in
@@ -336,22 +340,32 @@ class ModeSet:
         return float(b[2 * self.axes.axial + 1] - b[2 * self.axes.axial])
 
 
-def mode_label(mode: dict, i: int) -> str:
-    """A one-line label: number, kind, circumferential order, frequency.
+def mode_label(mode: dict, i: int, lines: bool = False) -> str:
+    """The mode in words: number, family and order along the height, its
+    direction or waves around (:func:`rotorpillar.postprocess.directions.mode_name`),
+    frequency; with ``lines``, short and on three lines (for a picture).
 
-    >>> mode_label({"kind": "ovalling", "n_circumferential": 2, "frequency_hz": 7.25}, 3)
-    'mode 4: ovalling (n = 2), 7.250 Hz'
+    >>> mode_label({"kind": "ovalling", "n_circumferential": 2, "n_axial": 0, "frequency_hz": 7.25}, 3)
+    'mode 4: 1st ovalling, n = 2 waves around, no node along the height, 7.250 Hz'
+    >>> print(mode_label({"kind": "bending_x", "n_axial": 1, "frequency_hz": 28.4}, 6, lines=True))
+    mode 7: 2nd bending
+    horizontal (X)
+    28.400 Hz
     """
+    from .directions import mode_name
     kind = str(mode.get("kind", "?"))
-    n = mode.get("n_circumferential")
     f = mode.get("frequency_hz")
     if f is None and mode.get("omega") is not None:
         f = mode["omega"] / (2 * math.pi)
-    text = f"mode {i + 1}: {kind}"
-    if n is not None and not kind.startswith("bending"):
-        text += f" (n = {n})"
+    n_axial, n = mode.get("n_axial"), mode.get("n_circumferential")
+    if lines:
+        name = mode_name(kind, n_axial, n, short_form=True)
+        first, _, second = name.partition(", ")
+        text = f"mode {i + 1}: {first}" + (f"\n{second}" if second else "")
+    else:
+        text = f"mode {i + 1}: {mode_name(kind, n_axial, n)}"
     if f is not None:
-        text += f", {f:.3f} Hz"
+        text += ("\n" if lines else ", ") + f"{f:.3f} Hz"
     return text
 
 

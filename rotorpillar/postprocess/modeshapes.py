@@ -21,8 +21,10 @@ from pathlib import Path
 import numpy as np
 
 from ..provenance import atomic_path
+from .directions import MODEL_AXIS
 from .inputs import ModeSet, mode_label
 from .offscreen import pyvista
+from .style import tag_png
 
 #: Largest displacement on screen: a fraction of the height for the modes
 #: that move the whole axis (bending, axial), of the radius for those that
@@ -31,6 +33,15 @@ BEAM_TARGET = 0.10
 SHELL_TARGET = 0.30
 BEAM_KINDS = ("bending", "axial", "sway")
 SCALAR = "u / u_max"
+#: The colour bar's title, drawn above it (VTK's own title overprints the top tick).
+BAR_TITLE = "u / u_max"
+#: Pixels of a font's em per point of VTK's font size, measured here (a capital
+#: is 14, 15, 17 px tall at 9, 10, 11 points: em ~ 2.1 px per point); 2 is
+#: what the pictures' legibility records (style.tag_png) count.
+PX_PER_POINT = 2.0
+#: Font sizes (points): a picture of one mode (18 px), a tile of the contact
+#: sheet (14 px; the sheet is shown at 1060/1200 of its size: 12 px).
+MODE_FONT, SHEET_FONT = 9, 7
 
 MODE_SIZE = (480, 720)        # width, height of one mode's PNG (px)
 SHEET_TILE = (300, 450)       # one tile of the contact sheet (px)
@@ -173,11 +184,31 @@ def deformed(modeset: ModeSet, u: np.ndarray, factor: float):
 
 
 def _bar_args(font: int, horizontal: bool = False) -> dict:
-    where = (dict(vertical=False, height=0.05, width=0.6, position_x=0.3, position_y=0.02)
+    where = (dict(vertical=False, height=0.05, width=0.45, position_x=0.52, position_y=0.02)
              if horizontal else
              dict(vertical=True, height=0.4, width=0.06, position_x=0.88, position_y=0.05))
-    return dict(title=SCALAR, title_font_size=font + 4, label_font_size=font + 2, color="black",
-                fmt="%.1f", n_labels=2 if horizontal else 3, **where)
+    # a scalar bar's labels come out at ~1 px per point (add_text's ~2): twice the size
+    return dict(title="", label_font_size=2 * font, color="black", fmt="%.1f",
+                n_labels=2 if horizontal else 3, **where)
+
+
+def _bar_title(plotter, font: int, horizontal: bool = False) -> None:
+    """The colour bar's title, clear of its ticks: above a vertical bar,
+    left of a horizontal one."""
+    if horizontal:
+        plotter.add_text(BAR_TITLE, position=(0.03, 0.025), viewport=True, font_size=font,
+                         color="black")
+    else:
+        plotter.add_text(BAR_TITLE, position=(0.70, 0.49), viewport=True, font_size=font,
+                         color="black")
+
+
+def _triad(plotter, modeset: ModeSet, font: int) -> None:
+    """The axes, named as the paper names them: X horizontal in the rotor's
+    plane, Z along the shaft, Y up (bending in X and in Z look alike without it)."""
+    names = {i: MODEL_AXIS["xyz"[i]] for i in range(3)}
+    plotter.add_axes(xlabel=names[0], ylabel=names[1], zlabel=names[2], line_width=3,
+                     viewport=(0.0, 0.0, 0.3, 0.2), label_size=(0.5, 0.25))
 
 
 def _label(plotter, text: str, font: int, view_height: float) -> None:
@@ -189,7 +220,7 @@ def _label(plotter, text: str, font: int, view_height: float) -> None:
 
 
 def _add_mode(plotter, modeset: ModeSet, i: int, label: str, font: int, bar: bool,
-              aspect: float, free, view_height: float) -> None:
+              aspect: float, free, view_height: float, triad: bool = True) -> None:
     """The deformed tube over the undeformed one's outline, in the current view."""
     u = modeset.shape(i)
     factor = mode_scale(modeset, i)
@@ -204,6 +235,10 @@ def _add_mode(plotter, modeset: ModeSet, i: int, label: str, font: int, bar: boo
                      color="#808080", line_width=1.2)
     plotter.add_mesh(mesh, scalars=SCALAR, cmap="viridis", clim=(0.0, 1.0),
                      smooth_shading=True, show_scalar_bar=bar, scalar_bar_args=_bar_args(font))
+    if bar:
+        _bar_title(plotter, font)
+    if triad:
+        _triad(plotter, modeset, font)
     _label(plotter, f"{label}\ndeformation x{factor:g}", font, view_height)
     beam = is_beam_mode(modeset.modes[i].get("kind", ""))
     d = view_direction(modeset, u, elevation_deg=12.0 if beam else 20.0)
@@ -248,12 +283,15 @@ def _add_sections(plotter, modeset: ModeSet, i: int, font: int, aspect: float, f
         plotter.add_mesh(ring, scalars=SCALAR, cmap="viridis", clim=(0.0, 1.0), line_width=4,
                          render_lines_as_tubes=True, lighting=False,
                          show_scalar_bar=bar and k == 0, scalar_bar_args=_bar_args(font, True))
+        if bar and k == 0:
+            _bar_title(plotter, font, True)
         anchors.append(shift + 1.45 * R * ey - 1.3 * R * ex)
         texts.append(f"z = {z - lo:.1f} m")
         every += [flat, moved, anchors[-1][None, :]]
     if not anchors:
         return
-    plotter.add_point_labels(np.array(anchors), texts, font_size=font + 4, text_color="black",
+    # a point label's font is ~1 px per point, not add_text's ~2: twice the size
+    plotter.add_point_labels(np.array(anchors), texts, font_size=2 * font, text_color="black",
                              shape=None, show_points=False, always_visible=True)
     _label(plotter, "sections, from above", font, view_height)
     frame(plotter.camera, np.concatenate(every), ea, ey, aspect, free)
@@ -277,33 +315,32 @@ def render_mode(modeset: ModeSet, i: int, path: str | Path, size=MODE_SIZE) -> P
     try:
         p.set_background("white")
         w = size[0] * SPLIT[0] / sum(SPLIT) if split else size[0]
-        label = mode_label(modeset.modes[i], i)
-        if split:
-            label = label.replace(": ", ":\n", 1).replace(", ", "\n")
+        label = mode_label(modeset.modes[i], i, lines=True)
         lines = label.count("\n") + 2
+        font = MODE_FONT
         p.subplot(0, 0)
-        _add_mode(p, modeset, i, label, font=9, bar=not split, aspect=w / size[1],
-                  free=_free(9, size[1], lines, not split), view_height=size[1])
+        _add_mode(p, modeset, i, label, font=font, bar=not split, aspect=w / size[1],
+                  free=_free(font, size[1], lines, not split), view_height=size[1])
         if split:
             p.subplot(0, 1)
-            _add_sections(p, modeset, i, 9, (size[0] - w) / size[1],
-                          free=(0.03, 0.03, 0.1, _free(9, size[1], 2, False)[3]), bar=True,
+            _add_sections(p, modeset, i, font, (size[0] - w) / size[1],
+                          free=(0.03, 0.03, 0.1, _free(font, size[1], 2, False)[3]), bar=True,
                           view_height=size[1])
         with atomic_path(path) as tmp:
             p.screenshot(str(tmp))
+        tag_png(path, PX_PER_POINT * font, size[0])
     finally:
         p.close()
     return Path(path)
 
 
 def _sheet_label(m: dict, i: int) -> str:
-    f = m.get("frequency_hz")
-    kind = str(m.get("kind", "?"))
-    n = m.get("n_circumferential")
-    label = f"{i + 1}: {kind}"
-    if n is not None and not kind.startswith("bending"):
-        label += f" n={n}"
-    return label + (f"\n{f:.3f} Hz" if f is not None else "")
+    r"""A tile's label: number and family, direction or waves around, frequency.
+
+    >>> _sheet_label({"kind": "bending_y", "n_axial": 0, "frequency_hz": 4.0769}, 1)
+    '2: 1st bending\nalong the shaft (Z)\n4.077 Hz'
+    """
+    return mode_label(m, i, lines=True).removeprefix("mode ")
 
 
 def render_contact_sheet(modeset: ModeSet, path: str | Path, count: int = SHEET_MODES,
@@ -330,17 +367,18 @@ def render_contact_sheet(modeset: ModeSet, path: str | Path, count: int = SHEET_
             r, c = i // columns, 2 * (i % columns)
             p.subplot(r, c)
             label = _sheet_label(modeset.modes[i], i)
-            free = _free(7, tile[1], label.count("\n") + 2, False)
-            _add_mode(p, modeset, i, label, font=7, bar=False,
+            free = _free(SHEET_FONT, tile[1], label.count("\n") + 2, False)
+            _add_mode(p, modeset, i, label, font=SHEET_FONT, bar=False,
                       aspect=(w_side if split[i] else tile[0]) / tile[1], free=free,
-                      view_height=tile[1])
+                      view_height=tile[1], triad=not split[i])
             if split[i]:
                 p.subplot(r, c + 1)
-                _add_sections(p, modeset, i, 7, (tile[0] - w_side) / tile[1],
-                              free=(0.03, 0.03, 0.03, _free(7, tile[1], 2, False)[3]), bar=False,
-                              view_height=tile[1])
+                _add_sections(p, modeset, i, SHEET_FONT, (tile[0] - w_side) / tile[1],
+                              free=(0.03, 0.03, 0.03, _free(SHEET_FONT, tile[1], 2, False)[3]),
+                              bar=False, view_height=tile[1])
         with atomic_path(path) as tmp:
             p.screenshot(str(tmp))
+        tag_png(path, PX_PER_POINT * SHEET_FONT, tile[0] * columns)
     finally:
         p.close()
     return Path(path)

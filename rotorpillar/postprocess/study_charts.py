@@ -1,9 +1,11 @@
 """Charts of a design study (``rotorpillar study``), from its ``StudyResult``.
 
-- ``capture_map``: run-ups over two axes, one cell per run, passed or
-  captured, with the boundary the study carries drawn over it: the torque
+- ``capture_map``: run-ups over two axes, one cell per run: captured, passed
+  what it reached (its free speed below the next resonance), or passed every
+  resonance; with the boundary the study carries drawn over it: the torque
   needed to pass by the averaging theory (the A fold of the paper's
-  equations 19-23) and by the exact linear torque balance, along the other axis;
+  equations 19-23) and by the exact linear torque balance, along the other
+  axis, in pieces, each labelled with the resonance its fold belongs to;
 - ``final_speed_chart``: one axis, the final speed of each run against it,
   captured runs marked, the predicted threshold drawn;
 - ``ida_chart``: earthquakes, the incremental dynamic analysis curves: peak
@@ -48,10 +50,46 @@ def _label(key: str) -> str:
     return units.get(key, key)
 
 
+#: A run-up's outcome on the capture map: (code, colour, legend).
+OUTCOMES = ((0, COLOURS["unstable"], "captured at a resonance"),
+            (1, COLOURS["accent"], "passed what it reached: free speed below the next resonance"),
+            (2, COLOURS["stable"], "passed every resonance"))
+
+
+def outcome(run, resonances) -> int:
+    """0 captured, 1 passed but settled below a resonance it never reached
+    (the drive's free speed lies below it), 2 above every resonance.
+
+    >>> from types import SimpleNamespace as S
+    >>> [outcome(S(passed=p, final_speed=w), [{"omega": 20.0}, {"omega": 60.0}])
+    ...  for p, w in ((False, 19.0), (True, 30.0), (True, 70.0))]
+    [0, 1, 2]
+    """
+    if not run.passed:
+        return 0
+    top = max((float(r["omega"]) for r in resonances or []), default=0.0)
+    return 2 if run.final_speed > top else 1
+
+
+def _segments(xs, ys, which) -> list[tuple[int | None, np.ndarray, np.ndarray]]:
+    """The boundary split where the resonance it belongs to changes: no line
+    joins the fold of one resonance to the next's."""
+    out, start = [], 0
+    for k in range(1, len(xs) + 1):
+        if k == len(xs) or which[k] != which[start]:
+            out.append((which[start], np.asarray(xs[start:k], float), np.asarray(ys[start:k], float)))
+            start = k
+    return out
+
+
 def capture_map(path, result) -> Path:
-    """Passed / captured per cell over two axes, the predicted boundaries over it."""
+    """Each run's outcome per cell over two axes (captured; passed what it
+    reached, its free speed below the next resonance; passed every
+    resonance), the predicted passing torque over it in pieces, each
+    labelled with the resonance it belongs to."""
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
+    from .style import place_labels
     axes = list(result.axes)
     keys = [a.key for a in axes]
     # the torque on the vertical axis, the other axis horizontal
@@ -62,36 +100,71 @@ def capture_map(path, result) -> Path:
         xkey, ykey = keys
     xs = list(next(a for a in axes if a.key == xkey).values)
     ys = list(next(a for a in axes if a.key == ykey).values)
+    b = result.boundary or {}
+    res = b.get("resonances") or []
     grid = np.full((len(ys), len(xs)), np.nan)
     for r in result.runs:
         i, j = ys.index(r.params[ykey]), xs.index(r.params[xkey])
-        grid[i, j] = 1.0 if r.passed else 0.0
-    fig, ax = figure(1000, 700)
-    cmap = ListedColormap([COLOURS["unstable"], COLOURS["stable"]])
-    ax.pcolormesh(_edges(xs), _edges(ys), np.ma.masked_invalid(grid), cmap=cmap, vmin=0, vmax=1,
-                  alpha=0.55, edgecolors="white", linewidth=0.6)
+        grid[i, j] = outcome(r, res) if res else (2.0 if r.passed else 0.0)
+    fig, ax = figure(1060, 720)
+    cmap = ListedColormap([c for _, c, _ in OUTCOMES])
+    ax.pcolormesh(_edges(xs), _edges(ys), np.ma.masked_invalid(grid), cmap=cmap, vmin=-0.5,
+                  vmax=2.5, alpha=0.55, edgecolors="white", linewidth=0.6)
+    seen = {int(v) for v in grid[np.isfinite(grid)]}
+    handles = [Patch(color=c, alpha=0.55, label=lab) for k, c, lab in OUTCOMES if k in seen]
     bad = [r for r in result.runs if not r.ok]
     if bad:
-        ax.plot([r.params[xkey] for r in bad], [r.params[ykey] for r in bad], "kx",
-                label="integrator failed")
-    handles = [Patch(color=COLOURS["stable"], alpha=0.55, label="passed (runs up to its speed)"),
-               Patch(color=COLOURS["unstable"], alpha=0.55, label="captured at a resonance")]
-    b = result.boundary or {}
+        h, = ax.plot([r.params[xkey] for r in bad], [r.params[ykey] for r in bad], "kx",
+                     label="integrator failed")
+        handles.append(h)
+    y_lo, y_hi = _edges(ys)[0], _edges(ys)[-1]
+    labels = []
     if b.get("kind") == "torque" and b.get("other_key") == xkey:
-        bx = np.asarray(b["other_values"], dtype=float)
-        for name, style, lab in (("averaging", "-", "averaging theory (Eq. 19-23): A fold"),
-                                 ("exact_linear", "--", "exact linear torque balance: A fold")):
-            by = np.array([np.nan if v is None else v for v in b[name]], dtype=float)
-            h, = ax.plot(bx, by, style, color=COLOURS["analytic"], lw=1.8, label=lab)
-            handles.append(h)
+        bx = list(np.asarray(b["other_values"], dtype=float))
+        which = list(b.get("resonance") or [None] * len(bx))
+        omega = {r["index"]: r["omega"] for r in res}
+        for name, style, lab in (("averaging", "-", "needed to pass: averaging (Eq. 19-23), A fold"),
+                                 ("exact_linear", "--", "needed to pass: exact linear balance")):
+            by = [np.nan if v is None else v for v in b[name]]
+            first = True
+            for idx, sx, sy in _segments(bx, by, which):
+                h, = ax.plot(sx, sy, style, color=COLOURS["analytic"], lw=1.8,
+                             label=lab if first else None)
+                if first:
+                    handles.append(h)
+                first = False
+                if name != "averaging" or idx is None:
+                    continue
+                inside = np.flatnonzero((sy >= y_lo) & (sy <= y_hi))
+                what = f"resonance {idx}" + (f" ({omega[idx]:.1f} rad/s)" if idx in omega else "")
+                if inside.size:
+                    k = inside[len(inside) // 2]
+                    labels.append({"xy": (float(sx[k]), float(sy[k])), "offset": (6, 6),
+                                   "fontsize": 8, "text": what,
+                                   "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none",
+                                                alpha=0.85)})
+                elif np.isfinite(sy).any():
+                    # the whole piece lies off the map: say where, at the edge it lies beyond
+                    up = np.nanmin(sy) > y_hi
+                    xm = float(np.clip(np.nanmean(sx), _edges(xs)[0], _edges(xs)[-1]))
+                    labels.append({"xy": (xm, y_hi if up else y_lo), "offset": (4, -14 if up else 6),
+                                   "fontsize": 8, "text": f"{xkey.split('.')[-1]} {sx.min():.3g} .. "
+                                   f"{sx.max():.3g}: {what} needs M0 = {np.nanmin(sy):,.0f} N*m, "
+                                   f"{'above' if up else 'below'} the map",
+                                   "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none",
+                                                alpha=0.85)})
     ax.set_xlim(_edges(xs)[0], _edges(xs)[-1])
-    ax.set_ylim(_edges(ys)[0], _edges(ys)[-1])
+    ax.set_ylim(y_lo, y_hi)
     ax.set_xlabel(_label(xkey))
     ax.set_ylabel(_label(ykey))
     ax.grid(False)
-    ax.legend(handles=handles, loc="upper left", fontsize=8, framealpha=0.9)
+    legend = fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=8,
+                        frameon=False)
     ax.set_title(f"{result.scene_name}: run-ups from rest, {len(result.runs)} runs "
-                 f"({result.model} model); the line: torque needed to pass")
+                 f"({result.model} model); the lines: torque needed to pass", fontsize=10)
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
+    place_labels(ax, labels, obstacles=[legend], lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2])
     return save(fig, path)
 
 
@@ -134,7 +207,7 @@ def ida_chart(path, result) -> Path:
         label = ", ".join(f"{Path(str(r.params[k])).name if k == 'excitation.record' else r.params[k]}"
                           for k in others) or "record"
         lines.setdefault(label, []).append(r)
-    fig, (a1, a2) = figure(1200, 560, ncols=2, sharey=True)
+    fig, (a1, a2) = figure(1060, 560, ncols=2, sharey=True)
     for (label, runs), c in zip(lines.items(), CYCLE * 10):
         runs.sort(key=lambda r: r.pga or 0.0)
         g = np.array([(r.pga or 0.0) / STANDARD_GRAVITY for r in runs])
@@ -161,10 +234,12 @@ def study_charts(result, out_dir) -> list[dict]:
                      "acceleration, one line per record."})
     elif len(keys) == 2 and all(_numeric(a.values) for a in result.axes):
         capture_map(out / CAPTURE_MAP, result)
-        figs.append({"file": CAPTURE_MAP, "caption": "Capture map of run-ups from rest: passed "
-                     "(green) or captured at a resonance (red) per run; the lines are the torque "
-                     "needed to pass by the averaging theory (Eq. 19-23, solid) and by the exact "
-                     "linear torque balance (dashed)." if result.case == "runup" else
+        figs.append({"file": CAPTURE_MAP, "caption": "Capture map of run-ups from rest, per run: "
+                     "captured at a resonance (red), passed the resonances it reached but settled "
+                     "at a free speed below the next one (blue), or passed every resonance "
+                     "(green); the lines are the torque needed to pass by the averaging theory "
+                     "(Eq. 19-23, solid) and by the exact linear torque balance (dashed), in "
+                     "pieces, each labelled with the resonance it belongs to." if result.case == "runup" else
                      "Run-downs: settled at no resonance (green) or caught at one (red)."})
     elif len(keys) == 1 and _numeric(result.axes[0].values):
         final_speed_chart(out / FINAL, result)

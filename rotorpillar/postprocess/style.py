@@ -4,16 +4,35 @@ Every matplotlib figure (``charts``, ``transient_charts``,
 ``convergence_charts``, the animation's chart panel) is made by
 :func:`figure` or :func:`blank` and written by :func:`save`, so all the
 figures look alike and a PNG is never seen half written.
+
+Legibility is checked where the chart is drawn: :func:`save` measures every
+text of the figure (titles, axis and tick labels, legends, annotations) as
+the renderer draws it and writes into the PNG itself (a ``tEXt`` chunk,
+:data:`LAYOUT_KEY`) the smallest font in pixels and the problems it found:
+a text running off the figure, two texts overlapping, a label
+:func:`place_labels` found no free place for, a font below
+:data:`MIN_FONT_PX` at the width the report shows the figure
+(:data:`PAGE_WIDTH_PX`).  The 3D renders tag theirs with :func:`tag_png`.
+The report's reader test reads the chunk back (:func:`png_layout`).
 """
 
 from __future__ import annotations
 
+import json
+import struct
+import zlib
 from pathlib import Path
 
 from ..provenance import atomic_path
 
 #: Pixels per inch of saved charts: a 7.5 x 4.5 in figure is 900 x 540 px.
 DPI = 120
+#: The smallest text a reader is asked to read, at the width the page shows it (px).
+MIN_FONT_PX = 9.0
+#: The widest the report shows a figure: its text column (px); wider PNGs are scaled down.
+PAGE_WIDTH_PX = 1060
+#: The PNG text chunk holding a picture's legibility record (JSON).
+LAYOUT_KEY = "rotorpillar:layout"
 
 #: Colours by role, colour-blind safe (Okabe-Ito).
 COLOURS = {
@@ -66,13 +85,116 @@ def figure(width_px: int = 900, height_px: int = 540, **subplots_kw):
 
 
 def save(fig, path: str | Path) -> Path:
-    """Write ``fig`` as a PNG of exactly its pixel size, atomically, and close it."""
+    """Write ``fig`` as a PNG of exactly its pixel size, atomically, and close it;
+    its legibility record (:func:`layout`) goes into the PNG."""
     plt = pyplot()
     path = Path(path)
+    record = layout(fig)
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=DPI)
+        fig.savefig(tmp, format="png", dpi=DPI,
+                    metadata={LAYOUT_KEY: json.dumps(record, separators=(",", ":"))})
     plt.close(fig)
     return path
+
+
+def _texts(fig) -> list:
+    """Every visible, non-empty text the figure draws: suptitle and figure
+    texts, titles, axis labels, the tick labels inside the view, annotations,
+    legends (figure and axes)."""
+    out = list(fig.texts)
+    for leg in fig.legends:
+        out += list(leg.get_texts()) + [leg.get_title()]
+    for ax in fig.axes:
+        out += [ax.title, getattr(ax, "_left_title", None), getattr(ax, "_right_title", None),
+                ax.xaxis.label, ax.yaxis.label]
+        for axis in (ax.xaxis, ax.yaxis):
+            lo, hi = sorted(axis.get_view_interval())
+            log = axis.get_scale() == "log" and lo > 0
+            slack = 1e-9 * (abs(hi - lo) if not log else 0.0)
+            for tick in axis.get_major_ticks() + axis.get_minor_ticks():
+                x = tick.get_loc()
+                inside = (lo * (1 - 1e-9) <= x <= hi * (1 + 1e-9)) if log else \
+                    (lo - slack <= x <= hi + slack)
+                if inside:
+                    out += [tick.label1, tick.label2]
+        out += list(ax.texts)
+        if ax.get_legend() is not None:
+            out += list(ax.get_legend().get_texts()) + [ax.get_legend().get_title()]
+    return [t for t in out if t is not None and t.get_visible() and t.get_text().strip()
+            and (t.axes is None or t.axes.get_visible())]
+
+
+def layout(fig, display_width: float | None = None) -> dict:
+    """The figure's legibility as the renderer draws it: ``font_px`` (its
+    smallest text, px), ``width_px``, ``display_font_px`` (the smallest
+    text at the width the page shows it: ``display_width``, default
+    min(width, PAGE_WIDTH_PX)) and ``problems`` (texts off the figure,
+    overlapping texts, labels :func:`place_labels` could not place, fonts
+    below MIN_FONT_PX where shown)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    frame = fig.bbox
+    texts = _texts(fig)
+    boxes = [text_box(t, renderer) for t in texts]
+    problems = []
+    for t, b in zip(texts, boxes):
+        if b.x0 < frame.x0 - 1 or b.y0 < frame.y0 - 1 or b.x1 > frame.x1 + 1 or b.y1 > frame.y1 + 1:
+            problems.append(f"off the figure: {t.get_text()[:60]!r}")
+    for i in range(len(texts)):
+        for j in range(i + 1, len(texts)):
+            if boxes[i].width and boxes[j].width and boxes[i].overlaps(boxes[j]) \
+                    and _area(boxes[i], boxes[j]) > 2.0:
+                problems.append(f"overlap: {texts[i].get_text()[:40]!r} / {texts[j].get_text()[:40]!r}")
+    problems += [f"no free place for the label {x!r}" for x in getattr(fig, "_unplaced_labels", [])]
+    sizes = [t.get_fontsize() * fig.dpi / 72.0 for t in texts]
+    font_px = float(min(sizes)) if sizes else None
+    width = float(frame.width)
+    shown = min(width, display_width or PAGE_WIDTH_PX)
+    display_font = None if font_px is None else font_px * shown / width
+    if display_font is not None and display_font < MIN_FONT_PX - 1e-6:
+        problems.append(f"smallest text {display_font:.1f} px where the page shows the figure "
+                        f"({shown:.0f} px wide), below {MIN_FONT_PX:g} px")
+    return {"font_px": font_px, "width_px": width, "display_font_px": display_font,
+            "problems": problems}
+
+
+def _area(a, b) -> float:
+    """Area (px**2) of the intersection of two boxes."""
+    w = min(a.x1, b.x1) - max(a.x0, b.x0)
+    h = min(a.y1, b.y1) - max(a.y0, b.y0)
+    return max(w, 0.0) * max(h, 0.0)
+
+
+def tag_png(path: str | Path, font_px: float, width_px: float, problems=()) -> Path:
+    """Write the legibility record of a picture drawn elsewhere (a 3D render:
+    its smallest font, as the renderer sizes it, in px) into its PNG, in place."""
+    path = Path(path)
+    raw = path.read_bytes()
+    shown = min(width_px, PAGE_WIDTH_PX)
+    record = {"font_px": float(font_px), "width_px": float(width_px),
+              "display_font_px": float(font_px) * shown / width_px, "problems": list(problems)}
+    body = LAYOUT_KEY.encode("latin-1") + b"\0" + json.dumps(record).encode("latin-1")
+    chunk = struct.pack(">I", len(body)) + b"tEXt" + body + struct.pack(
+        ">I", zlib.crc32(b"tEXt" + body) & 0xFFFFFFFF)
+    end = raw.rfind(b"IEND") - 4                  # the IEND chunk's length field
+    with atomic_path(path) as tmp:
+        Path(tmp).write_bytes(raw[:end] + chunk + raw[end:])
+    return path
+
+
+def png_layout(data: bytes) -> dict | None:
+    """The legibility record in a PNG's bytes (:data:`LAYOUT_KEY`), or None."""
+    pos = 8
+    while pos + 8 <= len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        if kind == b"tEXt":
+            key, _, value = data[pos + 8:pos + 8 + n].partition(b"\0")
+            if key.decode("latin-1") == LAYOUT_KEY:
+                return json.loads(value.decode("latin-1"))
+        if kind == b"IEND":
+            break
+        pos += 12 + n
+    return None
 
 
 def blank(width_px: int = 900, height_px: int = 540):
@@ -89,7 +211,23 @@ def text_box(text, renderer):
     return Text.get_window_extent(text, renderer)
 
 
-def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0) -> list:
+def _line_points(line, renderer, step_px: float = 2.0):
+    """The display points of a drawn line, at most ``step_px`` apart (its
+    segments filled in), as an (n, 2) array: what a label must not cover."""
+    import numpy as np
+    xy = line.get_transform().transform(np.column_stack(line.get_data()).astype(float))
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    if len(xy) < 2:
+        return xy
+    seg = np.hypot(*np.diff(xy, axis=0).T)
+    pieces = [xy[:1]]
+    for (a, b), n in zip(zip(xy[:-1], xy[1:]), np.ceil(seg / step_px).astype(int)):
+        s = np.linspace(0.0, 1.0, max(n, 1) + 1)[1:, None]
+        pieces.append(a + s * (b - a))
+    return np.concatenate(pieces)
+
+
+def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> list:
     """Annotate ``ax`` with labels that overlap neither each other nor ``obstacles``.
 
     ``labels``: dicts with ``xy`` (data coordinates of the point labelled),
@@ -99,16 +237,21 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0) -> list:
     left-right), then the same moved down and up by one, two, ... label
     heights, and keeps the first place whose box (as the renderer draws it,
     :func:`text_box`) meets no box placed before, no labelled point, no
-    obstacle (artists with a window extent, e.g. the legend) and stays inside
-    the axes; a label moved
-    off its point gets a thin leader line to it.  Call on the final layout.
-    Returns the annotations.
+    obstacle (artists with a window extent, e.g. the legend), no point of
+    the curves in ``lines`` (Line2D: a label stays off the curve) and stays
+    inside the axes; a label moved off its point gets a thin leader line to
+    it.  A label with no free place keeps its first place and is recorded on
+    the figure (``fig._unplaced_labels``): :func:`save` reports it.  Call on
+    the final layout.  Returns the annotations.
     """
+    import numpy as np
     fig = ax.figure
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
     taken = [o.get_window_extent(renderer) for o in obstacles]
+    curve = [_line_points(ln, renderer) for ln in lines]
+    curve = np.concatenate(curve) if curve else np.zeros((0, 2))
     # the labelled points themselves (their markers): no label covers one
     from matplotlib.transforms import Bbox
     for spec in labels:
@@ -118,6 +261,12 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0) -> list:
     flip = {"left": "right", "right": "left", "center": "center"}
     order = sorted(range(len(labels)), key=lambda k: ax.transData.transform(labels[k]["xy"])[1])
     out = [None] * len(labels)
+
+    def on_curve(box) -> bool:
+        b = box.padded(pad_px / 2)
+        return bool(len(curve)) and bool(np.any((curve[:, 0] >= b.x0) & (curve[:, 0] <= b.x1)
+                                                & (curve[:, 1] >= b.y0) & (curve[:, 1] <= b.y1)))
+
     for k in order:
         spec = dict(labels[k])
         xy, text = spec.pop("xy"), spec.pop("text")
@@ -129,7 +278,7 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0) -> list:
                                         shrinkA=0, shrinkB=2), annotation_clip=False, **spec)
         step = (text_box(t, renderer).height + pad_px) * to_pt
         chosen = None
-        for n in range(0, 41):
+        for n in range(0, 61):
             shift = 0 if n == 0 else (-1) ** n * ((n + 1) // 2) * step
             for side in (1, -1):
                 t.xyann = (side * dx, dy + shift)
@@ -137,15 +286,17 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0) -> list:
                 box = text_box(t, renderer)
                 inside = (box.y0 >= frame.y0 and box.y1 <= frame.y1
                           and box.x0 >= frame.x0 and box.x1 <= frame.x1)
-                if inside and not any(box.padded(pad_px / 2).overlaps(b) for b in taken):
+                if inside and not any(box.padded(pad_px / 2).overlaps(b) for b in taken) \
+                        and not on_curve(box):
                     chosen = shift
                     break
             if chosen is not None:
                 break
-        if chosen is None:        # nowhere free: keep the first place
+        if chosen is None:        # nowhere free: keep the first place, and say so
             t.xyann = (dx, dy)
             t.set_ha(ha)
             box = text_box(t, renderer)
+            fig._unplaced_labels = getattr(fig, "_unplaced_labels", []) + [str(text)]
         t.arrow_patch.set_visible(bool(chosen))
         taken.append(box)
         out[k] = t

@@ -5,7 +5,10 @@ that can capture it, by the averaging theory (the A fold of the paper's
 equations 19-23) and by the exact linear torque balance
 (``rotorpillar.reduced.stationary.predicted_passing_torque``), as a function
 of the study's other axis (e.g. the eccentricity), on a grid finer than the
-study's.  Found: per value of the other axis, the largest M0 that was
+study's; with, per point, the resonance that fold belongs to (``resonance``)
+and the model's resonances (``resonances``: the charts label each piece of
+the curve, and tell a run that stopped below a resonance it never reached
+from one that passed them all).  Found: per value of the other axis, the largest M0 that was
 captured and the smallest that passed.
 
 The boundary applies when one axis is ``drive.torque_at_zero`` (and at most
@@ -33,15 +36,20 @@ def _numeric(axis: Axis) -> bool:
     return all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in axis.values)
 
 
-def _fold(scene, which: str, M_top: float, modes_of=None) -> tuple[float | None, float | None]:
+def _fold(scene, which: str, M_top: float, modes_of=None) -> tuple:
+    """(averaging's and exact linear passing torque, the index of the resonance
+    that fold belongs to, the model's resonances [{index, direction, omega}])."""
     top_scene = replace(scene, drive=replace(scene.drive, torque_at_zero=M_top))
     top = scene.modal_model.band_factor * forcing_top(top_scene, "runup", None)
     model, _ = build_model(top_scene, which, top,
                            pillar_modes=modes_of(scene) if modes_of is not None else None)
     d, L = scene.drive, scene.load
     j, exact = predicted_passing_torque(model, M_top, d.slope, L.coefficient)
+    res = [{"index": int(r.index), "direction": str(r.direction), "omega": float(r.omega)}
+           for r in model.quasi_normal()]
     return (None if j is None else float(j.torque_at_zero),
-            None if exact is None else float(exact["torque_at_zero"]))
+            None if exact is None else float(exact["torque_at_zero"]),
+            None if j is None else int(j.resonance), res)
 
 
 def _grid(axis: Axis) -> list:
@@ -68,15 +76,16 @@ def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
         if other is not None and not _numeric(other):
             return None
         xs = _grid(other) if other is not None else [None]
-        avg, lin = [], []
+        avg, lin, which_res, res = [], [], [], []
         for x in xs:
             sc = run_scene(scene, {other.key: x} if other is not None else {}, implied)
-            a, e = _fold(sc, which, M_top, modes_of)
+            a, e, i, res = _fold(sc, which, M_top, modes_of)
             avg.append(a)
             lin.append(e)
+            which_res.append(i)
         return {"kind": "torque", "torque_key": TORQUE, "other_key": other.key if other else None,
                 "other_values": xs if other is not None else [], "averaging": avg,
-                "exact_linear": lin,
+                "exact_linear": lin, "resonance": which_res, "resonances": res,
                 "statement": "M0 needed to pass the first capturing resonance on run-up: the A fold "
                              "of equations 19-23 (averaging) and of the exact linear torque balance"}
     if len(axes) == 1 and _numeric(axes[0]):
@@ -85,7 +94,7 @@ def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
         M0 = scene.drive.torque_at_zero
         avg, lin = [], []
         for x in xs:
-            a, e = _fold(run_scene(scene, {ax.key: x}, implied), which, M0, modes_of)
+            a, e, _, _ = _fold(run_scene(scene, {ax.key: x}, implied), which, M0, modes_of)
             avg.append(a)
             lin.append(e)
         return {"kind": "threshold", "torque_key": TORQUE, "other_key": ax.key, "other_values": xs,

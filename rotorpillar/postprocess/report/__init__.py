@@ -1,17 +1,33 @@
 """`rotorpillar report`: every figure its inputs allow, then one HTML page.
 
-- :mod:`.build`       the options, the build, what report.json holds, the summary text
+- :mod:`.build`       the options, the build, the section list (``SECTIONS``), report.json
 - :mod:`.state`       what the page is assembled from (Build, Product, the options)
 - :mod:`.render`      the report's own charts, mode shapes and animations
-- :mod:`.figures`     the other commands' PNGs and the section each belongs to
-- :mod:`.parts`       pieces every section uses
-- :mod:`.summary`     the findings
+- :mod:`.figures`     the other commands' PNGs (each picture once), the section each belongs to
+- :mod:`.parts`       pieces every section uses (a run's key numbers, each value once)
+- :mod:`.models`      the headline model and the paper's, side by side
+- :mod:`.summary`     the findings, in words
 - :mod:`.modal`       the scene, the modal validation, the paper's numbers
 - :mod:`.runs`        the passage through resonance and the transient runs
+- :mod:`.passage`     the run-ups' passage through each resonance against the averaging
 - :mod:`.comparison`  the models of one case side by side (compare_<case>.json), the record's spectrum
 - :mod:`.earthquake`  a real record on the ROM and the 3D full order first, then the paper's case
-- :mod:`.convergence` the convergence study's choice and the integrators
+- :mod:`.convergence` the convergence study's choice; the integrators
 - :mod:`.provenance`  other figures; versions, machine and timings
+
+Adding a section: write ``section_<name>(build) -> str | None`` in a module
+of its own here, returning ``html.section(anchor, title, parts)`` (None
+leaves the section out), and add ``(anchor, title, section_<name>)`` to
+``build.SECTIONS`` where it belongs in the page.  The contents list picks
+up the section and each of its ``<h3>`` subsections by itself.  Charts: draw
+with ``postprocess.style`` (``figure``/``blank``, ``place_labels`` for every
+label that could collide, ``save``), at most ``style.PAGE_WIDTH_PX`` wide
+with text >= 9 px there; render them in the section's own ``render_*``
+step through ``state.attempt`` (a failed chart costs its picture, not the
+page) and register them as ``Product`` with a caption; show them with
+``parts.product_image``.  Directions in words: ``postprocess.directions``.
+Every image needs a caption; each picture appears once.
+tests/test_report_reader.py checks all of that in a browser.
 """
 
 from .build import ReportOptions, build_report, summary_text

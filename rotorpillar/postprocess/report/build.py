@@ -28,7 +28,7 @@ from .. import html as h
 from ..comparisons import COMPARISONS, read_comparison
 from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_convergence, read_json,
                       read_modal, read_record, read_simulation, require)
-from .convergence import section_convergence
+from .convergence import section_convergence, section_integrators
 from .earthquake import section_earthquake
 from .engineering import section_forces, section_unbalance
 from .figures import external_figures, figure_group
@@ -42,7 +42,10 @@ from .summary import section_summary
 
 __all__ = ["ReportOptions", "build_report", "summary_text"]
 
-#: The page, in order: (anchor, title, builder).
+#: The page, in order: (anchor, title, builder).  A builder takes the Build
+#: and returns the section's HTML (``html.section(anchor, title, parts)``) or
+#: None to leave it out; its <h3> subsections go into the contents by
+#: themselves (``html.page``).  A new section is one entry here.
 SECTIONS = [
     ("summary", "Summary", section_summary),
     ("scene", "The scene", section_scene),
@@ -55,6 +58,7 @@ SECTIONS = [
     ("forces", "Internal forces and stresses", section_forces),
     ("study", "Design study", section_study),
     ("convergence", "Convergence and the model chosen", section_convergence),
+    ("integrators", "Time integrators", section_integrators),
     ("other", "Other figures", section_other),
     ("provenance", "Versions, machine and timings", section_provenance),
 ]

@@ -110,10 +110,15 @@ def _full_order(meta: dict) -> str | None:
     return "; ".join(what) + (f". {fo['note']}" if fo.get("note") else "")
 
 
+def _stem(case: str, model: str) -> str:
+    """A comparison's per-model files (rotorpillar.transients.compare.compare_stem)."""
+    return f"compare_{case}_{model}"
+
+
 def _claim_figures(build: Build, case: str, models: list[str]) -> list:
     """The other commands' PNGs of this comparison (compare_<case>.png and the
-    models' own simulate_<case>_<model>.png), taken out of their groups."""
-    names = {f"compare_{case}.png"} | {f"simulate_{case}_{m}.png" for m in models}
+    models' own compare_<case>_<model>.png), taken out of their groups."""
+    names = {f"compare_{case}.png"} | {f"{_stem(case, m)}.png" for m in models}
     found = [p for p in build.products.get("external", []) if p.path.name in names]
     for p in found:
         p.group = "used"
@@ -155,16 +160,54 @@ def comparison_block(build: Build, case: str) -> list[str]:
     warns = [h.tag("li", f"{m}: {w}") for m in models for w in (per.get(m) or {}).get("warnings") or []]
     if warns:
         parts.append(h.tag("ul", warns, class_="warn"))
-    own = [(m, p) for m in models for p in theirs if p.path.name == f"simulate_{case}_{m}.png"]
+    own = [(m, p) for m in models for p in theirs if p.path.name == f"{_stem(case, m)}.png"]
     if own:
         parts.append(h.details(f"each model's own chart ({len(own)})",
                                "".join(h.image(p.path, f"{m}: {p.caption}") for m, p in own)))
     return parts
 
 
+def system_modes(c) -> tuple[str | None, list[dict]]:
+    """The coupled rotor-pillar modes of the reduced model a comparison ran
+    (its JSON's ``resonances`` with their ``damped_frequencies``): (model,
+    [{index, direction, omega, period, damping_ratio}]), the ROM first."""
+    if c is None:
+        return None, []
+    order = sorted(c.models, key=lambda m: (m != "modal", m == c.reference))
+    for m in order:
+        meta = c.metas.get(m) or {}
+        res = meta.get("resonances")
+        if not isinstance(res, list) or not res:
+            continue
+        damped = [d for d in meta.get("damped_frequencies") or [] if isinstance(d, dict)]
+        out = []
+        for r in res:
+            w = r.get("omega")
+            if not isinstance(w, (int, float)) or w <= 0:
+                continue
+            near = min((d for d in damped if d.get("direction") == r.get("direction")),
+                       key=lambda d: abs(float(d.get("omega") or 0) - w), default={})
+            out.append({"index": r.get("index"), "direction": r.get("direction"), "omega": float(w),
+                        "period": 2 * math.pi / w, "damping_ratio": near.get("damping_ratio")})
+        return m, out
+    return None, []
+
+
+#: Why the record is applied where it is (the plane model's own direction).
+RECORD_DIRECTION = (
+    "The record is applied as a ground motion {where}: the direction of the paper's own "
+    "earthquake (its q5), and the one horizontal direction of the paper's plane model, in "
+    "which the rotor's unbalance and the pillar's bending couple. The modes it excites are "
+    "the coupled modes in that direction; the vertical mode (the rotor bouncing on its shaft) "
+    "takes no part in a horizontal motion, nor do the tube's ovalling modes (zero participation "
+    "by symmetry).")
+
+
 def spectrum_block(build: Build) -> list[str]:
-    """The record's response spectrum with the modes marked, and the ROM's
-    spectral estimate of the peak tip beside the computed one."""
+    """The record's response spectrum with the system's modes marked, and the
+    ROM's spectral estimate of the peak tip beside the computed one."""
+    from ..comparison_charts import STANDARD_GRAVITY, spectral_value
+    from ..directions import direction
     c = build.comparisons.get("earthquake")
     if c is None:
         return missing_comparison(build, "earthquake")
@@ -172,20 +215,52 @@ def spectrum_block(build: Build) -> list[str]:
     if not isinstance(spec, dict):
         return [h.tag("p", "compare_earthquake.json holds no response spectrum (the excitation "
                            "is not a record, or the modal model was not run).", class_="meta")]
-    parts = failure(build, "response_spectrum")
+    parts = [h.tag("p", RECORD_DIRECTION.format(where=direction("X")))]
+    parts += failure(build, "response_spectrum")
     if "response_spectrum" in build.products:
         parts.append(product_image(build, "response_spectrum"))
+    model, modes = system_modes(c)
+    damping = spec.get("damping", spec.get("damping_ratio", 0.05))
+    if modes:
+        rows = []
+        for m in modes:
+            horizontal = str(m["direction"]).upper() == "X"
+            S = spectral_value(spec.get("period") or [], spec.get("psa") or [], m["period"])
+            rows.append([m["index"], direction(m["direction"]), h.num(m["omega"], 4),
+                         h.num(m["period"], 3), share(m["damping_ratio"]),
+                         h.num(S / STANDARD_GRAVITY, 3) if horizontal and math.isfinite(S) else "-",
+                         h.num(1e3 * S / m["omega"] ** 2, 3) if horizontal and math.isfinite(S) else
+                         ("not excited by a horizontal record" if not horizontal else "-")])
+        parts.append(h.tag("p", f"The coupled rotor-pillar modes of the reduced model the "
+                                f"comparison ran ({model}), read off the curve above "
+                                f"({100 * float(damping):g} % damping; each mode's own damping "
+                                "ratio is beside it):", class_="meta"))
+        parts.append(h.table(["mode", "direction", "omega (rad/s)", "period T (s)",
+                              "damping ratio", "PSA at T (g)", "S_d = PSA / omega^2 (mm)"], rows))
     est, num = spec.get("spectral_peak_tip"), spec.get("computed_peak_tip")
-    text = (f"The ROM's spectral estimate of the peak tip (SRSS of Gamma_j S_d(T_j) over its modes): "
-            f"{h.num(est, 4)} m, beside the peak it computes: {h.num(num, 4)} m")
+    text = (f"Spectral estimate of the peak tip: {h.num(est, 4)} m, the square root of the sum "
+            f"of the squares (SRSS) of each pillar mode's peak Gamma_j S_d(T_j, zeta_j) at its "
+            f"own damping; the time history's peak on the same model: {h.num(num, 4)} m")
     if isinstance(est, (int, float)) and isinstance(num, (int, float)) and est > 0:
         text += f" (computed / estimate = {h.num(num / est, 3)})"
-    parts.append(h.tag("p", text + "."))
+    text += (". SRSS is an estimate, not a bound: it combines the modes' peaks as if they were "
+             "independent random maxima, so the true peak may fall on either side of it; a "
+             "ratio below 1 says the modes' peaks did not meet in time, above 1 that they added.")
+    parts.append(h.tag("p", text))
     if isinstance(spec.get("note"), str):
         parts.append(h.tag("p", spec["note"], class_="meta"))
+    terms = spec.get("modes")
     periods = spec.get("mode_periods") or []
-    if periods:
-        parts.append(h.table(["mode", "period T_j (s)", "frequency (Hz)"],
-                             [[j, h.num(T, 4), h.num(1 / T, 4) if T else "-"]
-                              for j, T in enumerate(periods, start=1)]))
+    if isinstance(terms, list) and terms and all(isinstance(t, dict) for t in terms):
+        rows = [[t.get("mode"), h.num(t.get("period"), 4),
+                 h.num(1 / t["period"], 4) if t.get("period") else "-", share(t.get("damping_ratio")),
+                 h.num(t.get("participation_factor"), 4), h.num(t.get("s_d"), 4),
+                 h.num(t.get("contribution"), 4)] for t in terms]
+        parts.append(h.details("the estimate's terms: the pillar's modes (rotor apart)", h.table(
+            ["pillar mode", "period T_j (s)", "frequency (Hz)", "damping ratio",
+             "participation Gamma_j", "S_d (m)", "Gamma_j S_d (m)"], rows)))
+    elif periods:
+        parts.append(h.details("the estimate's terms: the pillar's modes (rotor apart)", h.table(
+            ["pillar mode", "period T_j (s)", "frequency (Hz)"],
+            [[j, h.num(T, 4), h.num(1 / T, 4) if T else "-"] for j, T in enumerate(periods, start=1)])))
     return parts

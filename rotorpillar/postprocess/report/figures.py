@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import json
 from pathlib import Path
 
@@ -31,15 +32,49 @@ def external_figures(out: Path) -> list[tuple[Path, str]]:
                     captions[name] = str(v.get("caption", ""))
                 elif isinstance(v, str):
                     captions[Path(v).name] = str(k).replace("_", " ")
-    found = []
+    found, seen = [], {}
     # the folder itself and its direct subfolders only: --out may point
     # anywhere, and a deep search could sweep up unrelated pictures
-    for p in sorted([*out.glob("*.png"), *out.glob("*/*.png")]):
+    paths = sorted([*out.glob("*.png"), *out.glob("*/*.png")],
+                   key=lambda p: (-len(p.stem), str(p)))   # a model's own name before its copy
+    for p in paths:
         rel = p.relative_to(out)
         if rel.parts[0] in OWN_DIRS or any(part.startswith(".") for part in rel.parts):
             continue
-        found.append((p, captions.get(p.name) or p.stem.replace("_", " ")))
-    return found
+        try:
+            digest = hashlib.sha256(p.read_bytes()).hexdigest()
+        except OSError:
+            continue
+        if digest in seen:          # the same picture under two names (simulate's copy)
+            continue
+        seen[digest] = p
+        # ours first: integrators.json's caption says wall time where the axis is evaluations
+        found.append((p, CAPTIONS.get(p.name) or captions.get(p.name)
+                      or p.stem.replace("_", " ")))
+    return sorted(found, key=lambda x: str(x[0]))
+
+
+#: Captions of the charts other commands write without one.
+CAPTIONS = {
+    "convergence_dofs.png": (
+        "Convergence of the pillar models: |relative error| of the first bending frequency, "
+        "of the first ovalling frequency, and the error bound on the band's frequencies (what "
+        "the choice uses) against the degrees of freedom. Lines: one model family each; circles "
+        "(and the grey staircase): the Pareto front, no run both cheaper and more accurate; "
+        "star: the model chosen; red dotted line: the tolerance; grey band: the reference's own "
+        "uncertainty (errors inside it cannot be told apart); x on the top strip: a run without "
+        "that mode."),
+    "convergence_time.png": (
+        "The same against the wall time per run (on this machine, shared: a noisy measure): "
+        "circles: the Pareto front; star: the choice; red dotted line: the tolerance; grey band: "
+        "the reference's uncertainty."),
+    "integrators.png": (
+        "Time integrators. Top: error of the tip history against the number of force "
+        "evaluations on a run-up (dashed lines: fixed-step methods; dotted: 10 % error). "
+        "Middle: force evaluations as stiffer pillar modes are added (x: the method failed). "
+        "Bottom: energy drift of the undamped, unforced system. One colour and marker per "
+        "method throughout."),
+}
 
 
 #: Where a PNG from another module goes, by words in its name (first match).

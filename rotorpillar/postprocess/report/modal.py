@@ -7,6 +7,7 @@ import dataclasses
 import math
 
 from .. import html as h
+from ..directions import axes_legend, direction, mode_name, ordinal
 from ..inputs import INPUTS, entries, plain
 from .parts import failure, figures_of, scene_differs
 from .state import Build
@@ -18,8 +19,37 @@ def bending(modes: list, kind: str) -> list:
 
 
 def _mode_rows(modes: list) -> list:
-    return [[i + 1, m.kind, h.num(m.n_circumferential), h.num(m.frequency_hz), h.num(m.omega),
-             h.num(getattr(m, "modal_mass", None)), m.normalisation] for i, m in enumerate(modes)]
+    return [[i + 1, mode_name(m.kind, getattr(m, "n_axial", None), m.n_circumferential),
+             h.num(m.n_circumferential), h.num(getattr(m, "n_axial", None)),
+             h.num(m.frequency_hz), h.num(m.omega), h.num(getattr(m, "modal_mass", None)),
+             m.normalisation] for i, m in enumerate(modes)]
+
+
+MODE_HEADERS = ["#", "mode", "waves around", "nodes along the height", "f (Hz)",
+                "omega (rad/s)", "modal mass (kg)", "normalisation"]
+
+
+def top_words(modal) -> tuple[str, str]:
+    """(what the tube's top carries, why), from modal.json's ``top`` block.
+
+    >>> from types import SimpleNamespace as S
+    >>> top_words(S(top=S(carries="gondola", mass=2300.0, model="rigid")))[0]
+    'the gondola (2300 kg) on a rigid top plate'
+    """
+    top = getattr(modal, "top", None)
+    if top is None:
+        return "its top mass", ""
+    carries = str(getattr(top, "carries", "") or "its top mass").replace("_", " ")
+    mass = getattr(top, "mass", None)
+    how = {"rigid": "on a rigid top plate",
+           "ring_mass": "spread on the top face"}.get(str(getattr(top, "model", "")), "")
+    what = f"the {carries}" + (f" ({mass:.4g} kg)" if isinstance(mass, (int, float)) else "") \
+        + (f" {how}" if how else "")
+    why = ("The rotor is not on it: it hangs on its elastic shaft, which the reduced model adds "
+           "to these modes (stiffness c2), so the coupled rotor-pillar resonances are the reduced "
+           "model's, not these." if "rotor" not in carries else
+           "The rotor sits on the top rigidly here: its shaft's elasticity is left out.")
+    return what, why
 
 
 def section_scene(build: Build) -> str:
@@ -34,32 +64,62 @@ def section_scene(build: Build) -> str:
             rows.append([f"{sec}.{f.name}", h.num(values.get(f.name)), f.metadata.get("doc", "")])
     parts = [h.tag("p", [h.tag("strong", build.scene.name), ": ", build.scene.description or ""]),
              h.tag("p", ["Invoked as ", h.tag("code", f"rotorpillar report {build.scene_cli}"),
-                         ". SI units throughout."], class_="meta"),
-             h.table(["key", "value", "meaning (unit)"], rows)]
+                         ". SI units throughout. ", axes_legend()], class_="meta"),
+             h.details(f"every key of the scene ({len(rows)})",
+                       h.table(["key", "value", "meaning (unit)"], rows))]
     return h.section("scene", "The scene", parts)
 
 
-def _closed_forms_against_3d(a, modes: list) -> list[str]:
+def timoshenko_orders(scene, count: int) -> list:
+    """The first ``count`` Timoshenko frequencies of the bare tube (rad/s;
+    None where the closed form does not resolve one): the closed form of
+    ``reduced.pillar`` on the scene's tube, shear and rotary inertia included."""
+    from ...reduced.pillar import cowper_shear_coefficient, omega_timoshenko, section_of
+    p = scene.pillar
+    sec = section_of(p)
+    kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
+    out = []
+    for k in range(1, count + 1):
+        try:
+            out.append(omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density,
+                                        sec.area, sec.second_moment, p.height, k))
+        except (ValueError, RuntimeError):
+            out.append(None)
+    return out
+
+
+def _closed_forms_against_3d(build: Build, a, modes: list) -> list[str]:
     """The table of the bare tube's frequencies: Euler-Bernoulli, Timoshenko, 3D."""
     p = a.pillar
     bx, by = bending(modes, "bending_x"), bending(modes, "bending_y")
+    timo = timoshenko_orders(build.scene, len(p.omega_euler_bernoulli))
     rows = []
     for k, w_eb in enumerate(p.omega_euler_bernoulli, start=1):
         w3 = bx[k - 1].omega if k - 1 < len(bx) else None
-        timo = p.omega_col1_timoshenko if k == 1 else None
-        rows.append([f"bending {k}, paper X", h.num(w_eb), h.num(timo), h.num(w3),
-                     h.pct(w3 / w_eb - 1) if w3 else "-",
-                     h.pct(w3 / timo - 1) if (w3 and timo) else "-"])
+        t = timo[k - 1]
+        rows.append([f"{ordinal(k)} bending, {direction('X')}", h.num(w_eb), h.num(t), h.num(w3),
+                     h.pct(w3 / w_eb - 1) if w3 else "-", h.pct(t / w_eb - 1) if t else "-",
+                     h.pct(w3 / t - 1) if (w3 and t) else "-"])
     if by and bx:
-        rows.append(["bending 1, other direction", "-", "-", h.num(by[0].omega),
-                     "-", h.pct(by[0].omega / bx[0].omega - 1) + " vs X"])
+        rows.append([f"1st bending, {direction('Z')}", "-", "-", h.num(by[0].omega), "-", "-",
+                     h.pct(by[0].omega / bx[0].omega - 1) + " vs X"])
     shells = [x for x in modes if not str(x.kind).startswith(("bending", "axial"))]
     if shells:
-        s = shells[0]
-        rows.append([f"first {s.kind} mode (n = {s.n_circumferential})",
-                     "none in beam theory", "-", h.num(s.omega), "-", "-"])
-    return [h.table(["mode", "Eq. 1, Euler-Bernoulli (rad/s)", "Timoshenko (rad/s)",
-                     "3D model (rad/s)", "3D vs Eq. 1", "3D vs Timoshenko"], rows)]
+        s0 = shells[0]
+        rows.append([mode_name(s0.kind, getattr(s0, "n_axial", None),
+                               getattr(s0, "n_circumferential", None)),
+                     "none in beam theory", "-", h.num(s0.omega), "-", "-", "-"])
+    parts = [h.table(["mode", "Eq. 1, Euler-Bernoulli (rad/s)", "Timoshenko (rad/s)",
+                      "3D model (rad/s)", "3D vs Eq. 1", "Timoshenko vs Eq. 1", "3D vs Timoshenko"],
+                     rows)]
+    if len(bx) >= 2 and len(timo) >= 2 and timo[1]:
+        w3, t, eb = bx[1].omega, timo[1], p.omega_euler_bernoulli[1]
+        parts.append(h.tag("p", f"The 2nd bending mode's {h.pct(w3 / eb - 1)} against Eq. 1 is "
+                                f"shear deformation and rotary inertia, which Eq. 1 leaves out: "
+                                f"Timoshenko's beam, which has them, is {h.pct(t / eb - 1)} from "
+                                f"Eq. 1, and the 3D model lies within {h.pct(w3 / t - 1)} of it.",
+                       class_="meta"))
+    return parts
 
 
 def _reduction(build: Build) -> list[str]:
@@ -89,12 +149,14 @@ def _modes_3d(build: Build) -> list[str]:
     """The 3D modes of both configurations, with their pictures."""
     m = build.modal
     parts = []
-    for key, title, name in (("modes", "Modes of the bare tube (3D)", "bare"),
-                             ("modes_with_top", "Modes with the gondola and rotor on top (3D)", "top")):
+    carries, why = top_words(m)
+    for key, title, name in (("modes", "Modes of the bare tube (3D), clamped base, free top", "bare"),
+                             ("modes_with_top", f"Modes of the tube carrying {carries} (3D)", "top")):
         parts.append(h.tag("h3", title))
+        if name == "top" and why:
+            parts.append(h.tag("p", why, class_="meta"))
         modes = getattr(m, key, None) or []
-        parts.append(h.table(["#", "kind", "n", "f (Hz)", "omega (rad/s)", "modal mass (kg)",
-                              "normalisation"], _mode_rows(modes)) if modes
+        parts.append(h.table(MODE_HEADERS, _mode_rows(modes)) if modes
                      else h.tag("p", f"modal.json has no {key}.", class_="meta"))
         parts += failure(build, f"modes_{name}") + failure(build, f"load_modes_{name}")
         sheet = build.products.get(f"sheet_{name}")
@@ -109,6 +171,9 @@ def _modes_3d(build: Build) -> list[str]:
                                    f"(no {INPUTS[f'modes_{name}'][0]})"))
     extra = [(k, v) for k, v in h.flatten({"mesh": plain(m.mesh), "axes": dict(entries(m.axes)),
                                             "timings": plain(m.timings)}) if v is not None]
+    parts.append(h.tag("p", axes_legend() + " Every picture carries a triad with the paper's "
+                            "symbols: X horizontal in the rotor's plane, Z along the shaft, Y up.",
+                       class_="meta"))
     if extra:
         parts.append(h.details("3D model: mesh, axes, timings",
                                h.table(["field", "value"], [[k, h.num(v)] for k, v in extra])))
@@ -125,7 +190,7 @@ def section_modal(build: Build) -> str:
     if a is None:
         parts.append(h.missing(build.hint(INPUTS["analyze"][1])))
     else:
-        parts += _closed_forms_against_3d(a, m.modes if m is not None else [])
+        parts += _closed_forms_against_3d(build, a, m.modes if m is not None else [])
         if m is None:
             parts.append(h.tag("p", "3D column empty: the 3D model has not run.", class_="meta"))
     parts.append(h.tag("h3", "The pillar reduced to its tip (Eq. 2)"))
@@ -145,30 +210,52 @@ def is_finding(row) -> bool:
     return bool(getattr(row, "details", None))
 
 
+#: How analysis/paper.py appends the case a row is computed on to where it is printed.
+OURS = "; ours: "
+
+
+def _fe_note(build: Build, r) -> str:
+    """The 3D tube with its top beside the paper's FE model (its first X bending)."""
+    if not str(r.key).startswith("fe_omega") or build.modal is None:
+        return ""
+    bx = bending(getattr(build.modal, "modes_with_top", None) or [], "bending_x")
+    if not bx or r.key != "fe_omega1":
+        return ""
+    carries, _ = top_words(build.modal)
+    return (f" Our 3D tube carrying {carries}, without the rotor: {bx[0].omega:.2f} rad/s "
+            f"({bx[0].omega / r.paper - 1:+.1%} against the printed value).")
+
+
 def section_paper(build: Build) -> str:
     a = build.analysis
     if a is None:
         return h.section("paper", "The paper's numbers against ours",
                          [h.missing(build.hint(INPUTS["analyze"][1]))])
-    rows, cls = [], []
-    for r in a.paper_comparison:
-        rows.append(["*" if r.flag else "", r.quantity, h.num(r.paper), h.num(r.computed),
-                     h.pct(r.rel_diff, 1), r.where, getattr(r, "note", "")])
-        cls.append("flag" if r.flag else "ok")
     found = [r for r in a.paper_comparison if is_finding(r)]
     printed = [r for r in a.paper_comparison if not is_finding(r)]
+    rows, cls = [], []
+    for r in a.paper_comparison:
+        where, _, ours = str(r.where).partition(OURS)
+        note = getattr(r, "note", "") or ""
+        if is_finding(r):
+            note = h.Raw(h.esc("a finding on the paper's formulation: ")
+                         + h.link("see below", "paper-findings"))
+        else:
+            note = note + _fe_note(build, r)
+        rows.append(["*" if r.flag else "", r.quantity, h.num(r.paper), h.num(r.computed),
+                     h.pct(r.rel_diff, 1), where, ours or "this scene", note])
+        cls.append("flag" if r.flag else "ok")
     n = sum(1 for r in printed if r.flag)
     parts = scene_differs(build, a) + [
         h.tag("p", f"Every number the paper prints that we compute, ours from first principles "
-                   f"(never tuned to match). * = differs by more than 2 % ({n} of {len(printed)} "
-                   "printed numbers); the last column gives the likely cause. Table 1's rows are "
-                   "those marked 'Table 1'."
-                   + (f" The last {len(found)} row(s) are findings on the paper's formulation "
-                      "(the paper's column: as published; ours: the consistent one)." if found else "")),
-        h.table(["", "quantity", "paper", "ours", "difference", "printed in", "likely cause"],
-                rows, row_classes=cls)]
+                   f"(never tuned to match), each computed on the case the paper's text gives it: "
+                   f"Table 1 and Eq. 24 with the stiff shaft, the Sec. 3 finite-element model's "
+                   f"with the rotor on that shaft. * = differs by more than 2 % ({n} of "
+                   f"{len(printed)} printed numbers); the last column gives the likely cause."),
+        h.table(["", "quantity", "paper", "ours", "difference", "printed in", "ours computed on",
+                 "likely cause"], rows, row_classes=cls)]
     if found:
-        parts.append(h.tag("h3", "Findings on the paper's formulation"))
-        parts.append(h.tag("ul", [h.tag("li", [h.tag("strong", f"{r.key} ({r.where}): "), r.note])
-                                  for r in found], class_="findings"))
+        parts.append(h.tag("h3", "Findings on the paper's formulation", id="paper-findings"))
+        parts.append(h.tag("ul", [h.tag("li", [h.tag("strong", f"{r.quantity} ({r.where}): "),
+                                               r.note]) for r in found], class_="findings"))
     return h.section("paper", "The paper's numbers against ours (Table 1 and the rest)", parts)

@@ -62,9 +62,40 @@ def scene_differs(build: Build, result, ignore=()) -> list[str]:
                   class_="warn")]
 
 
+#: A run's peaks (max_abs keys) in words, in the order shown; the first name
+#: of a group of equal values is the one shown.
+PEAK_WORDS = {
+    "tip_x_relative": "tip, horizontal (X), relative to the ground",
+    "tip_x_absolute": "tip, horizontal (X), absolute",
+    "tip_x": "tip, horizontal (X), in the model's frame",
+    "rotor_x": "rotor centre, horizontal (X)",
+    "rotor_y": "rotor centre, vertical (Y)",
+    "shaft_deflection_x": "shaft deflection (rotor minus tip), horizontal (X)",
+}
+
+
+def _peaks(mx: dict) -> list[list]:
+    """Rows of a run's largest displacements, each value once: names with
+    the same value are one row (the words of the first, the others beside)."""
+    items = [(k, float(v)) for k, v in mx.items()
+             if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    order = {k: i for i, k in enumerate(PEAK_WORDS)}
+    items.sort(key=lambda kv: order.get(kv[0], len(order)))
+    groups: list[list] = []
+    for k, v in items:
+        for g in groups:
+            if abs(g[1] - v) <= 1e-12 * max(abs(v), 1e-300):
+                g[2].append(k)
+                break
+        else:
+            groups.append([k, v, []])
+    return [[f"largest |{PEAK_WORDS.get(k, k)}| (m)" + (f" = {', '.join(same)}" if same else ""),
+             h.num(v)] for k, v, same in groups]
+
+
 def key_results(meta: dict) -> str | None:
-    """The few numbers of a run a reader looks for first, where the JSON has them;
-    a run that failed its own checks says so first."""
+    """The few numbers of a run a reader looks for first, where the JSON has
+    them, each value once; a run that failed its own checks says so first."""
     rows = []
     if meta.get("ok") is False:
         rows.append(["FAILED: not a solution", "; ".join(meta.get("failed_checks") or
@@ -73,16 +104,16 @@ def key_results(meta: dict) -> str | None:
                        ("captured_at", "captured at (rad/s)"),
                        ("captured_resonance", "held by the resonance at (rad/s)"),
                        ("speed_state", "speed at the end")):
-        if key in meta:
+        if meta.get(key) is not None:
             rows.append([label, h.num(meta[key])])
     if isinstance(meta.get("jumps"), list):
         rows.append(["jumps", str(len(meta["jumps"]))])
-    for k, v in h.flatten(meta):
-        if "energy" in k.lower() and isinstance(v, (int, float)):
-            rows.append([k, h.num(v)])
+    eb = meta.get("energy_balance")
+    if isinstance(eb, dict) and isinstance(eb.get("relative_error"), (int, float)):
+        rows.append(["energy balance: relative error (-)", h.num(eb["relative_error"], 3)])
     mx = meta.get("max_abs")
     if isinstance(mx, dict):
-        rows += [[f"max |{k}| (m)", h.num(v)] for k, v in mx.items() if isinstance(v, (int, float))]
+        rows += _peaks(mx)
     return h.table(["", ""], rows) if rows else None
 
 

@@ -7,11 +7,12 @@ import dataclasses
 from pathlib import Path
 
 from ..comparisons import relative_to_ground
+from ..directions import direction
 from ..inputs import INPUTS, ModeSet, entries, plain
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, say
 
-#: The runs that get an animation.
-ANIMATED = ("runup", "earthquake")
+#: The animations the report makes (:func:`animated_runs`).
+ANIMATED = ("runup", "earthquake", "earthquake_paper", "earthquake_scene")
 
 
 def render_charts(build: Build) -> None:
@@ -43,9 +44,12 @@ def render_charts(build: Build) -> None:
         tip = relative_to_ground(quake.arrays, "tip_x", frame)
         rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
         model = quake.meta.get("model", "model not stated")
+        ex = quake.meta.get("excitation") or {}
+        what = (": the paper's pulse as written, not a realistic earthquake"
+                if ex.get("realistic") is False else "")
         p = attempt(build, "earthquake_chart", lambda: transient_charts.earthquake_chart(
             fig / "earthquake_response.png", quake.get("t"), quake.get("ground_acceleration"),
-            tip, rotor, quake.get("Omega"), title=f"Earthquake response ({model} model)",
+            tip, rotor, quake.get("Omega"), title=f"Earthquake response ({model} model){what}",
             frame="relative to the ground"))
         if p:
             build.products["earthquake_chart"] = Product(p, (
@@ -64,28 +68,56 @@ def render_comparisons(build: Build) -> None:
         if not series:
             continue
         ref = c.reference or series[0][0]
-        p = attempt(build, f"comparison_{case}", lambda c=c, case=case, series=series, ref=ref:
-                    cc.comparison_chart(fig / f"comparison_{case}.png", series, ref,
-                                        title=f"{case}: {', '.join(m for m, _, _ in series)}"))
+        zoom = passage_of(c, ref) if case != "earthquake" else None
+        p = attempt(build, f"comparison_{case}", lambda c=c, case=case, series=series, ref=ref,
+                    zoom=zoom: cc.comparison_chart(
+                        fig / f"comparison_{case}.png", series, ref, zoom=zoom,
+                        title=f"{CASE_TITLES.get(case, case)}: {', '.join(m for m, _, _ in series)}"))
         if p:
             lacking = [m for m in c.models if m not in {s[0] for s in series}]
             build.products[f"comparison_{case}"] = Product(p, (
-                f"The {case} on each model: the pillar tip's X relative to the ground, overlaid "
-                f"(the reference, {ref}, solid); below, each model minus {ref}."
+                f"The {CASE_TITLES.get(case, case).lower()} on each model: the pillar tip's "
+                f"displacement {direction('X')}, relative to the ground, overlaid (the reference, "
+                f"{ref}, solid); below, each model minus {ref}."
+                + (f" Right: zoomed on the passage through the resonances, {zoom[0]:.3g} .. "
+                   f"{zoom[1]:.3g} s of the {c.doc.get('window', {}).get('end', '')} s run."
+                   if zoom else "")
                 + (f" No arrays for {', '.join(lacking)}." if lacking else "")))
     c = build.comparisons.get("earthquake")
     spec = c.doc.get("spectrum") if c is not None else None
     if isinstance(spec, dict) and spec.get("period") is not None and spec.get("psa") is not None:
+        from .comparison import system_modes
         damping = spec.get("damping", spec.get("damping_ratio", 0.05))
+        model, modes = system_modes(c)
+        # the modes the horizontal record excites: the coupled system's, in X
+        marks = [(f"mode {m['index']}", m["period"]) for m in modes
+                 if str(m["direction"]).upper() == "X"] or list(spec.get("mode_periods") or ())
+        what = (f"the coupled rotor-pillar modes of the {model} model in the record's direction "
+                "(horizontal, in the rotor's plane)" if modes else "the pillar's modal periods")
         p = attempt(build, "response_spectrum", lambda: cc.spectrum_chart(
-            fig / "response_spectrum.png", spec["period"], spec["psa"],
-            spec.get("mode_periods") or (), damping,
+            fig / "response_spectrum.png", spec["period"], spec["psa"], marks, damping,
             title=f"Response spectrum of the record ({_record_name(c.doc)})"))
         if p:
             build.products["response_spectrum"] = Product(p, (
                 f"Pseudo-acceleration response spectrum of the record ({_record_name(c.doc)}, "
-                f"{100 * float(damping):g} % damping, eqsig), the pillar's modal periods marked "
-                "(dashed)."))
+                f"{100 * float(damping):g} % damping, eqsig); marked on the curve, with the value "
+                f"read off it: {what}."))
+
+
+#: How the report names a case.
+CASE_TITLES = {"runup": "Run-up", "rundown": "Run-down", "sweep": "Sweep", "earthquake": "Earthquake"}
+
+
+def passage_of(c, model: str):
+    """The window around the passage through the resonances of ``model``'s
+    run in comparison ``c`` (its speed and its JSON's resonances), or None."""
+    from ..transient_charts import crossings, passage_window
+    a, meta = c.arrays.get(model) or {}, c.metas.get(model) or {}
+    if a.get("t") is None or a.get("Omega") is None:
+        return None
+    res = [(f"omega_{r.get('index')}", float(r["omega"])) for r in meta.get("resonances") or []
+           if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))]
+    return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
 
 
 def _record_name(doc: dict) -> str:
@@ -113,8 +145,9 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
 def render_modes(build: Build, sets: dict) -> None:
     from ..inputs import mode_label
     from ..modeshapes import render_modes as render
+    from .modal import top_words
     captions = {"bare": "the bare tube (clamped base, free top)",
-                "top": "the tube with the gondola and rotor at its top"}
+                "top": f"the tube carrying {top_words(build.modal)[0]}"}
     for name, ms in sets.items():
         if ms is None:
             continue
@@ -128,34 +161,86 @@ def render_modes(build: Build, sets: dict) -> None:
             build.products[f"sheet_{name}"] = Product(r["sheet"], (
                 f"The first {len(r['modes'])} modes of {captions[name]} (3D model, {Path(ms.source).name}): "
                 "deformed shape coloured by |u| / max |u| over the undeformed outline; the scale "
-                "factor is on each view."), group=name)
+                "factor is on each view; the triad names the axes as the paper does (X horizontal, "
+                "in the rotor's plane; Z horizontal, along the shaft; Y vertical); an ovalling "
+                "mode's cross-sections beside it, seen from above."), group=name)
+
+
+def animated_runs(build: Build) -> list[tuple[str, object, str, dict]]:
+    """The runs the report animates: (name, Simulation, title, options).
+
+    - ``runup``: the scene's run-up, time-warped into its passage through the
+      resonances;
+    - ``earthquake``: the record (El Centro) on the reduced model of the
+      earthquake comparison, the model the page's answers come from;
+    - ``earthquake_paper``: the paper's pulse on its Eq. 4, the warning that
+      it is no earthquake burnt into every frame.
+    """
+    from ..inputs import Simulation
+    from ..transient_charts import crossings, passage_window
+    out = []
+    sim = build.simulations.get("runup")
+    if sim is not None and sim.arrays.get("t") is not None:
+        res = [(f"omega_{r.get('index')}", float(r["omega"])) for r in sim.meta.get("resonances") or []
+               if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))]
+        focus = (passage_window(sim.get("t"), crossings(sim.get("t"), sim.get("Omega"), res))
+                 if sim.get("Omega") is not None else None)
+        out.append(("runup", sim, "Run-up", {"focus": focus}))
+    c = build.comparisons.get("earthquake")
+    if c is not None:
+        model = next((m for m in sorted(c.models, key=lambda m: m != "modal")
+                      if (c.arrays.get(m) or {}).get("t") is not None and m != c.reference), None)
+        if model is not None:
+            out.append(("earthquake", Simulation("earthquake", c.metas.get(model) or {},
+                                                 c.arrays[model]),
+                        f"{_record_name(c.doc)} on the {model} model", {}))
+    quake = build.quake_case
+    if quake is not None and quake.arrays.get("t") is not None:
+        ex = quake.meta.get("excitation") or {}
+        pulse = ex.get("realistic") is False or ex.get("kind") == "pulse"
+        banner = ""
+        if pulse:
+            step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0.0)
+            banner = ("NOT AN EARTHQUAKE: the paper's pulse\n"
+                      f"as written: the ground steps {step:.3g} m,\n"
+                      f"{ex.get('peak_acceleration_g', 0):.3g} g (see the report)")
+        name = ("earthquake_paper" if pulse or quake.meta.get("model") == "paper" else
+                "earthquake_scene" if any(n == "earthquake" for n, *_ in out) else "earthquake")
+        build.products["quake_case_animation"] = f"animation_{name}"
+        what = "The paper's pulse" if pulse else "The scene's earthquake"
+        out.append((name, quake, f"{what} on the {quake.meta.get('model', '?')} model",
+                    {"banner": banner}))
+    return out
 
 
 def render_animations(build: Build, sets: dict) -> None:
     from ..animation import animate
     from ..inputs import cantilever_tube
     top = sets.get("top")
-    for case in ANIMATED:
-        sim = build.simulations.get(case)
-        if sim is None or sim.arrays.get("t") is None:
-            continue
+    for name, sim, title, opts in animated_runs(build):
         if top is None and "fallback_tube" not in build.products:
             p = build.scene.pillar
             build.products["fallback_tube"] = cantilever_tube(p.height, p.outer_diameter,
                                                               p.inner_diameter)
         ms = top if top is not None else build.products["fallback_tube"]
-        say(f"animation of the {case} ({build.options.max_frames} frames at most)")
-        title = {"runup": "Run-up", "earthquake": "Earthquake"}.get(case, case)
-        r = attempt(build, f"animation_{case}", lambda sim=sim, ms=ms, title=title, case=case: animate(
-            sim, ms, build.out / ANIMATIONS_DIR / f"{case}.mp4", title=f"{title}: {build.scene.name}",
+        say(f"animation of the {name} ({build.options.max_frames} frames at most)")
+        r = attempt(build, f"animation_{name}", lambda sim=sim, ms=ms, title=title, name=name,
+                    opts=opts: animate(
+            sim, ms, build.out / ANIMATIONS_DIR / f"{name}.mp4",
+            title=f"{title} (scene {build.scene.name})",
             max_frames=build.options.max_frames,
-            poster=build.out / ANIMATIONS_DIR / f"{case}_poster.png"))
+            poster=build.out / ANIMATIONS_DIR / f"{name}_poster.png", **opts))
         if r:
-            build.products[f"animation_{case}"] = Product(r.path, (
-                f"{title}: the pillar deformed by {r.source}; elastic deflection and the rotor's "
-                f"orbit exaggerated x{r.factor:g}"
-                + ("; ground motion at true scale" if case == "earthquake" else "")
-                + f". {r.frames} frames at {r.fps} frames/s sampling the run uniformly "
-                "(stroboscopic: the pillar's vibration at the rotor speed aliases; the orbit "
-                f"trail uses every stored sample). {r.writer}."), kind="video", poster=r.poster)
-            build.products[f"animation_{case}_info"] = dataclasses.asdict(r)
+            timing = (f"time-warped: {r.frames_in_focus} of its {r.frames} frames in the passage "
+                      f"through the resonances, {r.focus[0]:.3g} .. {r.focus[1]:.3g} s (slow motion "
+                      "there, said on the frame), the rest over the remaining run" if r.focus else
+                      "sampling the run uniformly")
+            build.products[f"animation_{name}"] = Product(r.path, (
+                f"{title}: the pillar deformed by {r.source}; the pillar's elastic deflection "
+                f"exaggerated x{r.factor:g}, the rotor's motion about the pillar top (drawn on its "
+                f"shaft) x{r.orbit_factor:g}"
+                + ("; ground motion at true scale" if name.startswith("earthquake") else "")
+                + f". {r.frames} frames at {r.fps} frames/s, {timing} (stroboscopic: the pillar's "
+                "vibration at the rotor speed aliases; the orbit trail uses every stored sample). "
+                f"{r.writer}."), kind="video", poster=r.poster)
+            build.products[f"animation_{name}_info"] = dataclasses.asdict(r)

@@ -7,8 +7,11 @@ from __future__ import annotations
 from .. import html as h
 from ..comparisons import COMPARISONS
 from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
+from ..directions import direction
 from .comparison import comparison_block
+from .models import model_views, resonance_table
 from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
+from .passage import passage_block
 from .state import Build
 
 #: Section titles of the runs other than the earthquake.
@@ -29,12 +32,28 @@ def _stationary_and_jumps(d) -> list[str]:
     else:
         parts.append(h.tag("p", "No jumps: a quasi-static run-up and run-down pass every resonance "
                                 "without the Sommerfeld effect with this drive."))
-    parts.append(h.tag("p", f"Run-up ends at {h.num(d.runup_speed)} rad/s, run-down at "
-                            f"{h.num(d.rundown_speed)} rad/s"
-                            + (f"; captured below resonance {d.captured_index} "
-                               f"({h.num(d.captured_resonance)} rad/s) at {h.num(d.captured_at)} rad/s."
-                               if d.captured_index is not None else ".")))
+    # quasi-static: M0 raised (or lowered) slowly, as in the paper's Figs. 3-4; not the
+    # scene's run-down, whose motor may be switched off
+    said = f"A quasi-static run-up (M0 raised slowly) settles at {h.num(d.runup_speed)} rad/s"
+    if d.rundown_speed is not None and d.rundown_speed != d.runup_speed:
+        said += (f"; a quasi-static run-down (M0 lowered slowly from above) at "
+                 f"{h.num(d.rundown_speed)} rad/s")
+    captured = getattr(d, "captured_index", None)
+    parts.append(h.tag("p", said + (f"; captured below resonance {captured} "
+                                    f"({h.num(d.captured_resonance)} rad/s) at "
+                                    f"{h.num(d.captured_at)} rad/s."
+                                    if captured is not None else ".")))
     return parts
+
+
+def _resonance_rows(resonances) -> str:
+    rows = [[r.index, direction(r.direction), h.num(r.omega), h.num(r.modal_mass), h.num(r.forcing),
+             h.num(r.two_n), h.num(r.nu), h.num(r.a_max), h.num(r.dL_max),
+             h.num(r.dL_max_over_Mc), h.num(r.critical_slope), h.num(r.critical_eccentricity)]
+            for r in resonances]
+    return h.table(["i", "direction", "omega_i (rad/s)", "I_i (kg)", "f_i (m/s^2)",
+                    "2n_i (1/s)", "nu_i", "a_max (m)", "dL_max (N*m)", "dL_max/Mc",
+                    "critical slope (N*m*s)", "critical e (m)"], rows)
 
 
 def section_averaging(build: Build) -> str:
@@ -43,57 +62,80 @@ def section_averaging(build: Build) -> str:
         return h.section("averaging", "Passage through resonance (averaging)",
                          [h.missing(build.hint(INPUTS["analyze"][1]))])
     parts = scene_differs(build, a)
+    views = model_views(a)
     d = a.drive
-    parts.append(h.tag("p", f"Motor Md = {d.torque_at_zero:g} - {d.slope:g} Omega, load "
-                            f"Mc = {d.load_coefficient:g} Omega^2 (Eq. 22)."))
+    parts.append(h.tag("p", f"On {views[0].title}. Motor Md = {d.torque_at_zero:g} - {d.slope:g} "
+                            f"Omega, load Mc = {d.load_coefficient:g} Omega^2 (Eq. 22)."))
+    parts.append(resonance_table(views))
     parts += failure(build, "drive_chart")
     if "drive_chart" in build.products:
         parts.append(product_image(build, "drive_chart"))
     parts.append(h.tag("ul", [h.tag("li", r.statement) for r in a.resonances], class_="findings"))
     parts += _stationary_and_jumps(d)
     parts.append(h.tag("h3", "The resonances"))
-    rows = [[r.index, r.direction, h.num(r.omega), h.num(r.modal_mass), h.num(r.forcing),
-             h.num(r.two_n), h.num(r.nu), h.num(r.a_max), h.num(r.dL_max),
-             h.num(r.dL_max_over_Mc), h.num(r.critical_slope), h.num(r.critical_eccentricity)]
-            for r in a.resonances]
-    parts.append(h.table(["i", "dir", "omega_i (rad/s)", "I_i (kg)", "f_i (m/s^2)", "2n_i (1/s)", "nu_i",
-                          "a_max (m)", "dL_max (N*m)", "dL_max/Mc", "critical slope (N*m*s)",
-                          "critical e (m)"], rows))
+    for v in views:
+        table = _resonance_rows(v.resonances)
+        parts.append(h.tag("p", f"On {v.title}:", class_="meta") if v.headline
+                     else h.details(f"the same on {v.title}", table))
+        if v.headline:
+            parts.append(table)
     parts += failure(build, "amplitude_chart")
     if "amplitude_chart" in build.products:
         parts.append(product_image(build, "amplitude_chart"))
     return h.section("averaging", "Passage through resonance (averaging, Eq. 19-24)", parts)
 
 
+def _own_charts(build: Build, case: str) -> list[str]:
+    """simulate's charts of the scene's run, each picture once (the generic
+    simulate_<case>.png is a copy of the model's: figures.external_figures
+    dropped the copy)."""
+    out = []
+    for p in build.products.get("external", []):
+        if p.group == "runs" and case in p.path.name.lower():
+            out.append(h.image(p.path, p.caption))
+            p.group = "used"
+    return out
+
+
 def section_runs(build: Build) -> str:
     parts = []
     if not any(c in build.simulations for c in CASES if c != "earthquake"):
         parts.append(h.missing(build.hint(SIMULATE_COMMAND)))
+    not_run = []
     for case in CASES:
         if case == "earthquake":
             continue
         sim = build.simulations.get(case)
+        if sim is None and case not in COMPARISONS:      # not what the main job runs
+            not_run.append(case)
+            continue
         parts.append(h.tag("h3", RUN_TITLES[case]))
         if case in COMPARISONS:
             parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the reduced model against a full-order model"))
             parts += comparison_block(build, case)
-            parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the scene's own run (simulate_{case}.json)"))
+        if case == "runup":
+            block = passage_block(build)
+            if block:
+                parts.append(h.tag("h4", "The passage through the resonances"))
+                parts += block
         if sim is None:
-            parts.append(h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case {case} "
-                                   f"{build.scene_cli}` (no simulate_{case}.json)"))
             continue
+        parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the scene's own run ({sim.meta.get('model', '?')} "
+                                 f"model, simulate_{case}.json)"))
         parts += scene_differs(build, sim.meta)
         key = key_results(sim.meta)
         if key:
             parts.append(key)
-        parts.append(h.details(f"simulate_{case}.json: results, energy balance, integrator",
-                               run_table(sim.meta)) if sim.meta
-                     else h.tag("p", "no JSON summary", class_="meta"))
-        for p in build.products.get("external", []):
-            if p.group == "runs" and case in p.path.name.lower():
-                parts.append(h.image(p.path, p.caption))
-                p.group = "used"
+        parts += _own_charts(build, case)
         parts += failure(build, f"animation_{case}")
         parts += video(build, f"animation_{case}")
+        parts.append(h.details(f"simulate_{case}.json: every field", run_table(sim.meta))
+                     if sim.meta else h.tag("p", "no JSON summary", class_="meta"))
+    if not_run and build.simulations:
+        said = ["Not run by this job: "]
+        for k, case in enumerate(not_run):
+            said += (["; "] if k else []) + [RUN_TITLES[case].lower(), " (", h.tag(
+                "code", f"rotorpillar {SIMULATE_COMMAND} --case {case} {build.scene_cli}"), ")"]
+        parts.append(h.tag("p", said + ["."], class_="meta"))
     parts += figures_of(build, "runs")
     return h.section("runs", "The runs", parts)

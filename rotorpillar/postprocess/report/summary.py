@@ -1,5 +1,6 @@
-"""The page's first section: the findings in a few sentences, each input
-that is missing named with the command that makes it."""
+"""The page's first section: the findings in a few plain sentences (no
+internal ids, no formulas: each points to the section that holds the
+detail), each input that is missing named with the command that makes it."""
 
 from __future__ import annotations
 
@@ -10,10 +11,14 @@ from .comparison import speed_accuracy
 from .convergence import chosen
 from .engineering import verdict_block
 from .modal import bending, is_finding
+from .models import model_views, resonance_words
 from .state import Build
 
+#: Where the detail of each finding is (section or subsection ids).
+FINDINGS_ANCHOR = "paper-findings"
 
-def _analysis_findings(build: Build) -> list[str]:
+
+def _pillar(build: Build) -> str:
     a, m = build.analysis, build.modal
     p = a.pillar
     text = (f"First bending mode of the bare tube: Eq. 1 gives {p.omega_col1:.3f} rad/s "
@@ -24,38 +29,59 @@ def _analysis_findings(build: Build) -> list[str]:
         text += f"; the 3D model {w:.3f} rad/s ({w / p.omega_col1 - 1:+.2%} against Eq. 1)."
     else:
         text += "; the 3D model: " + build.hint(INPUTS["modal"][1]) + "."
-    items = [text]
-    s, pm = a.system, a.pillar_model
-    items.append(f"Pillar model (the chain): {pm.describe()}.")
-    bars = [res.uncertainty.omega.text(".3f") if res.uncertainty else f"{res.omega:.3f} rad/s"
-            for res in a.resonances]
-    items.append("Headline model, the ROM (" + f"{s.modes} pillar mode(s) of {s.mode_source} with "
-                 "the rotor on its shaft): resonances " + ", ".join(
-                     f"{b} ({res.direction})" for b, res in zip(bars, a.resonances))
-                 + f"; error bars: {s.error_note}.")
-    ps, r = a.paper_model.system, a.paper_model.reduction
-    items.append(f"The paper's model (Eq. 4 with m_r = {r.tip_mass:.4g} kg from {r.tip_mass_source}, "
-                 f"c1 = {r.tip_stiffness:.4g} N/m from {r.tip_stiffness_source}): omega_1 = "
-                 f"{ps.omega[0]:.3f}, omega_2 = {ps.omega[1]:.3f} rad/s (X), omega_3 = "
-                 f"{ps.omega3:.3f} rad/s (Y); shown beside the headline model, never instead of it.")
-    rows = [x for x in a.paper_comparison if not is_finding(x)]
-    items.append(f"{sum(1 for x in rows if x.flag)} of the {len(rows)} numbers the paper prints "
-                 "differ from ours by more than 2 %; each has its likely cause below.")
-    for x in a.paper_comparison:
-        if is_finding(x):
-            items.append(f"Finding {x.key} ({x.where}): {x.note}")
+    return text
+
+
+def _drive(a, eccentricity: float) -> list:
     d = a.drive
     st = ", ".join(f"{x.omega:.2f} rad/s ({'stable' if x.stable else 'unstable'})"
                    for x in d.stationary) or "none"
-    items.append(f"Stationary speed(s) with the scene's motor: {st}. "
-                 + (f"{len(d.jumps)} jump(s) in a quasi-static run-up/run-down."
-                    if d.jumps else "No jumps (no Sommerfeld effect) with this drive."))
-    items += [res.statement for res in a.resonances]
+    items = [f"Stationary speed(s) with the scene's motor: {st}. "
+             + (f"{len(d.jumps)} jump(s) in a quasi-static run-up or run-down."
+                if d.jumps else "No jumps (no Sommerfeld effect) with this drive.")]
+    items += [r.statement for r in a.resonances if r.jumps]
+    calm = [r for r in a.resonances if not r.jumps and r.critical_eccentricity > 0]
+    if calm:
+        e = min(calm, key=lambda r: r.critical_eccentricity)
+        items.append(f"No jumps at {'any' if len(calm) == len(a.resonances) else 'the other'} "
+                     f"resonance with this drive; the first to show them would be resonance "
+                     f"{e.index} ({e.omega:.2f} rad/s), above an eccentricity of "
+                     f"{e.critical_eccentricity:.3g} m (the scene's: {eccentricity:.3g} m).")
     return items
 
 
-def _item(text: str) -> str:
+def _analysis_findings(build: Build) -> list:
+    a = build.analysis
+    items = [_pillar(build)]
+    views = model_views(a)
+    for v in views:
+        items.append(f"Rotor-pillar resonances, {v.title}: {resonance_words(v.resonances)}.")
+    pm = getattr(a, "pillar_model", None)
+    if pm is not None:
+        items.append(f"The headline model's pillar: {pm.describe()}; its error bars: "
+                     f"{a.system.error_note}.")
+    paper = getattr(a, "paper_model", None)
+    r = paper.reduction if paper is not None else a.reduction
+    items.append(f"Pillar reduced to its tip in the paper's model: m_r = {r.tip_mass:.4g} kg "
+                 f"({r.tip_mass_source}), c1 = {r.tip_stiffness:.4g} N/m ({r.tip_stiffness_source}).")
+    rows = [x for x in a.paper_comparison if not is_finding(x)]
+    items.append(h.Raw(h.esc(f"{sum(1 for x in rows if x.flag)} of the {len(rows)} numbers the "
+                             "paper prints differ from ours by more than 2 %, each compared with "
+                             "the case it belongs to; ") + h.link("the table", "paper")
+                       + h.esc(" gives each one's likely cause.")))
+    if any(is_finding(x) for x in a.paper_comparison):
+        items.append(h.Raw(h.esc("The paper's Eq. 4 forces the rotor's shaft from the ground as "
+                                 "well as the pillar; our reduced models use the consistent "
+                                 "forcing (") + h.link("the finding", FINDINGS_ANCHOR)
+                           + h.esc(").")))
+    items += _drive(a, build.scene.rotor.eccentricity)
+    return items
+
+
+def _item(text) -> str:
     """A list item, its "not computed: run `...`" command set as code."""
+    if isinstance(text, h.Raw):
+        return h.tag("li", [text])
     if "not computed: run `" in text:
         pre, rest = text.split("not computed: run `", 1)
         cmd, post = rest.split("`", 1)
@@ -63,34 +89,61 @@ def _item(text: str) -> str:
     return h.tag("li", text)
 
 
+def _runs(build: Build) -> list:
+    items = []
+    for case in CASES:
+        sim = build.simulations.get(case)
+        if sim is None or not sim.meta:
+            continue
+        meta = sim.meta
+        model = meta.get("model", "?")
+        if case == "earthquake":
+            ex = meta.get("excitation") or {}
+            if ex.get("realistic") is False:
+                step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0)
+                items.append(h.Raw(h.esc(f"The paper's own earthquake ({model} model) is a "
+                                         f"{step:.3g} m ground step at "
+                                         f"{ex.get('peak_acceleration_g', float('nan')):.3g} g, "
+                                         "not an earthquake: ")
+                                   + h.link("see the earthquake section", "earthquake")
+                                   + h.esc(" for a recorded one.")))
+            continue
+        peak = (meta.get("max_abs") or {}).get("tip_x_relative")
+        name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
+        text = f"The scene's {name} ({model} model): "
+        if meta.get("captured_at") is not None:
+            text += (f"captured at {h.num(meta['captured_at'], 4)} rad/s below the resonance at "
+                     f"{h.num(meta.get('captured_resonance'), 4)} rad/s")
+        else:
+            text += f"ends at {h.num(meta.get('omega_final'), 4)} rad/s"
+        if meta.get("speed_state") == "escaping":
+            text += ", still escaping a resonance at the end of the run"
+        if isinstance(peak, (int, float)):
+            text += f"; largest tip displacement {1e3 * peak:.3g} mm"
+        items.append(text + ".")
+    if not build.simulations:
+        items.append("Transients: " + build.hint(SIMULATE_COMMAND) + ".")
+    return items
+
+
 def section_summary(build: Build) -> str:
     if build.analysis:
         items = _analysis_findings(build)
     else:
         items = ["Closed forms and averaging: " + build.hint(INPUTS["analyze"][1]) + "."]
-    for case in CASES:
-        sim = build.simulations.get(case)
-        if sim is not None and sim.meta:
-            wf = sim.meta.get("omega_final")
-            items.append(f"Run {case}: final speed {h.num(wf, 4)} rad/s"
-                         + (f", captured at {h.num(sim.meta['captured_at'], 4)} rad/s below the "
-                            f"resonance at {h.num(sim.meta.get('captured_resonance'), 4)} rad/s"
-                            if sim.meta.get("captured_at") is not None else "")
-                         + (", still escaping a resonance at the end of the run"
-                            if sim.meta.get("speed_state") == "escaping" else "") + ".")
-    if not build.simulations:
-        items.append("Transients: " + build.hint(SIMULATE_COMMAND) + ".")
+    items += _runs(build)
     for case in COMPARISONS:
         c = build.comparisons.get(case)
+        name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
         if c is None:
-            items.append(f"The reduced model against the full order on the {case}: not computed: "
+            items.append(f"The reduced model against the full order on the {name}: not computed: "
                          f"run `rotorpillar {compare_command(case)} {build.scene_cli}`.")
         else:
             said = speed_accuracy(c.doc, c.models)
-            items.append(f"The {case}, models compared ({', '.join(c.models)}): "
+            items.append(f"The {name}, models compared ({', '.join(c.models)}): "
                          + (" ".join(said) if said else "no error against a reference recorded."))
     what = chosen(build.convergence) if build.convergence else None
     if what:
-        items.append(f"Model chosen: {what[0]}" + (f" - {what[1]}" if what[1] else "") + ".")
+        items.append(f"Model chosen for the scene's band: {what[0]}.")
     return h.section("summary", "Summary", verdict_block(build) + [h.tag("ul", [_item(it) for it in items],
                                                                           class_="findings")])

@@ -1,0 +1,119 @@
+"""The models whose answers the page shows: the headline model first, the
+paper's model (its Eq. 4 with its stated reduction) beside it in its own
+column where analyze.json holds both.
+
+analyze.json's ``system``, ``resonances`` and ``drive`` are the headline
+model's; a ``paper_model`` block of the same shape, where present, is the
+paper's; ``pillar_model`` ({kind, mesh, dofs, source, verified}) names
+what the headline model's pillar modes came from.  Nothing here assumes a
+number of resonances: they are grouped by direction as the records hold them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .. import html as h
+from ..directions import direction
+from ..inputs import plain
+
+
+@dataclass(frozen=True)
+class ModelView:
+    """One model's resonance answers as analyze.json holds them."""
+    title: str
+    """how the page names it"""
+    resonances: list
+    drive: object
+    system: object
+    headline: bool
+
+
+def pillar_model_text(doc) -> str:
+    """A record's ``pillar_model`` in words ("" without one).
+
+    >>> pillar_model_text({"pillar_model": {"kind": "solid", "mesh": "128x20x1", "dofs": 94464,
+    ...                    "source": "converge", "verified": True}})
+    'pillar modes: solid 128x20x1 (94464 DOFs), chosen by the convergence study'
+    >>> pillar_model_text({"pillar_model": {"kind": "beam", "source": "scene", "verified": False}})
+    "pillar modes: beam, the scene's own, unverified"
+    """
+    pm = (plain(doc) or {}).get("pillar_model") if doc is not None else None
+    if not isinstance(pm, dict) or not pm:
+        return ""
+    what = pm.get("label") or " ".join(str(pm[k]) for k in ("kind", "mesh") if pm.get(k))
+    if pm.get("dofs"):
+        what += f" ({pm['dofs']} DOFs)"
+    src = {"converge": "chosen by the convergence study", "scene": "the scene's own"}.get(
+        str(pm.get("source")), str(pm.get("source") or ""))
+    text = f"pillar modes: {what}" + (f", {src}" if src else "")
+    if pm.get("verified") is False:
+        text += ", unverified"
+    return text
+
+
+def headline_title(analysis) -> str:
+    """The headline model's name: the reduced model with its pillar modes'
+    source where analyze.json says it, else (no ``paper_model`` block) the
+    paper's model itself."""
+    if getattr(analysis, "paper_model", None) is None:
+        return "the paper's model (Eq. 4 with the scene's reduction)"
+    said = pillar_model_text(analysis)
+    return "the reduced model (ROM)" + (f": {said}" if said else "")
+
+
+def model_views(analysis) -> list[ModelView]:
+    """The headline model, then the paper's (where analyze.json has it)."""
+    views = [ModelView(headline_title(analysis), list(analysis.resonances), analysis.drive,
+                       analysis.system, True)]
+    pm = getattr(analysis, "paper_model", None)
+    if pm is not None and getattr(pm, "resonances", None) is not None:
+        views.append(ModelView("the paper's model (Eq. 4, its stated reduction)",
+                               list(pm.resonances), getattr(pm, "drive", None),
+                               getattr(pm, "system", None), False))
+    return views
+
+
+def by_direction(resonances) -> dict[str, list]:
+    """Resonances grouped by direction, X first, each group in order of frequency."""
+    out: dict[str, list] = {}
+    for r in sorted(resonances, key=lambda r: (str(r.direction) != "X", r.omega)):
+        out.setdefault(str(r.direction), []).append(r)
+    return out
+
+
+def resonance_table(views: list[ModelView]) -> str:
+    """The resonance frequencies, one row per direction and order, one column per model."""
+    groups = [by_direction(v.resonances) for v in views]
+    dirs = list(dict.fromkeys(d for g in groups for d in g))
+    rows = []
+    for d in dirs:
+        n = max(len(g.get(d, [])) for g in groups)
+        for k in range(n):
+            cells = []
+            for g in groups:
+                rs = g.get(d, [])
+                cells.append(f"{h.num(rs[k].omega, 4)} (#{rs[k].index})" if k < len(rs) else "-")
+            rows.append([direction(d), k + 1, *cells])
+    return h.table(["direction", "order", *[f"omega (rad/s), {v.title}" for v in views]], rows)
+
+
+def resonance_words(resonances) -> str:
+    """The resonances in one sentence, by direction.
+
+    >>> from types import SimpleNamespace as S
+    >>> resonance_words([S(direction="X", omega=14.89, index=1), S(direction="Y", omega=15.81, index=2)])
+    "horizontal, in the rotor's plane (the paper's X): 14.89 rad/s; vertical (the paper's Y): 15.81 rad/s"
+    """
+    return "; ".join(f"{direction(d)}: " + ", ".join(_omega_text(r) for r in rs) + " rad/s"
+                     for d, rs in by_direction(resonances).items())
+
+
+def _omega_text(r) -> str:
+    """A resonance's frequency, with its error bar where the record carries one
+    (the headline model's: rotorpillar.chain.Uncertain)."""
+    bars = getattr(r, "uncertainty", None)
+    if bars is None:
+        return f"{r.omega:.2f}"
+    u = bars.omega
+    return f"{u.value:.2f} ± {u.error:.2g}"
