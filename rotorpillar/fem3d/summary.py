@@ -11,7 +11,7 @@ JSON dicts (their keys are documented in docs/fem3d.md).  No dolfinx here.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ..provenance import JsonRecord
 from .modal import AXES
@@ -31,6 +31,9 @@ class ModalSummary(JsonRecord):
     shell_modes_below_second_bending: dict
     mesh: dict
     configurations: dict
+    pillar_model: dict | None = field(default=None, metadata={"omit_if_none": True})
+    """the chain's 3D mesh the modes were computed on, where it came from and its error
+    (rotorpillar.chain.PillarModel as JSON; `modal` adds it)"""
 
 
 def _config_dict(result) -> dict:

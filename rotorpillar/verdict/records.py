@@ -79,6 +79,8 @@ class Headline(JsonRecord):
     """the file (and field) it was read from"""
     text: str
     """the sentence the report prints"""
+    error: float | None = field(default=None, metadata={"omit_if_none": True})
+    """its error bar, in ``unit`` (rotorpillar.chain.Uncertain's error), where one was made"""
 
 
 @dataclass(frozen=True)

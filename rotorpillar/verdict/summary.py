@@ -147,6 +147,10 @@ def _governing(rows: list[Check]) -> list[Check]:
     return list(out.values())
 
 
+#: max_abs keys and the error bars a ROM run carries for them (transients.uncertainty)
+_BARRED = {"tip_x_relative": "peak_tip_relative"}
+
+
 def _headlines(scene, docs: list[dict], h: HarmonicResult | None, modal) -> list[Headline]:
     out = []
     if modal is not None:
@@ -154,12 +158,18 @@ def _headlines(scene, docs: list[dict], h: HarmonicResult | None, modal) -> list
         if rows:
             w = rows[0]["omega"]
             mesh = modal.mesh
+            # its discretisation error: the study's bound on this mesh's bending frequency
+            pm = getattr(modal, "pillar_model", None) or {}
+            rel = (pm.get("errors") or {}).get("bending") if isinstance(pm, dict) else None
+            err = None if rel is None else rel * w / (2 * math.pi)
+            bar = (f" ± {err:.2g} Hz (the convergence study's bound on this mesh)" if err is not None
+                   else " (unverified: no convergence study measured this mesh)")
             out.append(Headline("loaded_first_frequency", "first bending frequency, gondola on top",
                                 w / (2 * math.pi), "Hz", "fem3d", "modal",
                                 "modal.json: modes_with_top", f"The loaded tube's first bending mode: "
-                                f"{w / (2 * math.pi):.3f} Hz ({w:.2f} rad/s), 3D model "
+                                f"{w / (2 * math.pi):.3f} Hz{bar} ({w:.2f} rad/s), 3D model "
                                 f"({mesh['elements_around']} x {mesh['elements_along']} elements), "
-                                "modal analysis."))
+                                "modal analysis.", err))
     if h is not None and h.separation:
         row = min(h.separation, key=lambda r: r.actual)
         af = "undamped" if row.amplification_factor is None else f"AF {row.amplification_factor:.3g}"
@@ -184,9 +194,13 @@ def _headlines(scene, docs: list[dict], h: HarmonicResult | None, modal) -> list
             v = ma.get(key)
             if v is None:
                 continue
+            u = (doc.get("uncertainty") or {}).get(_BARRED.get(key, "")) or {}
+            err = u.get("error") if isinstance(u, dict) else None
+            bar = "" if err is None else f" ± {err * scale:.2g}"
             out.append(Headline(f"earthquake_{key}_{model}", f"{case}: {label}", float(v), unit, model,
                                 case, f"{doc['_file']}: max_abs.{key}",
-                                f"{case.capitalize()}, {label}: {fmt.format(v * scale)} ({name})."))
+                                f"{case.capitalize()}, {label}: {fmt.format(v * scale)}{bar} ({name}).",
+                                err))
     runup = _runup(docs)
     if runup is not None:
         model = runup["model"]

@@ -14,9 +14,11 @@ from .references import reference_block
 from .state import Build
 
 #: The headers of the speed-accuracy table (the reference's name goes in the errors).
-COST_HEADERS = ("model", "DOFs", "wall time (s)", "peak tip relative to the ground (m)",
-                "peak shaft deflection (m)", "final speed (rad/s)", "tip history error against {ref}",
-                "peak difference against {ref}", "cost ratio (wall time / {ref}'s)")
+COST_HEADERS = ("model", "DOFs", "wall time, warm (s)", "compilation, apart (s)",
+                "peak tip relative to the ground (m)", "peak shaft deflection (m)",
+                "final speed (rad/s)", "tip history error against {ref}",
+                "tip envelope error against {ref}", "peak difference against {ref}",
+                "rotor angle drift (rad)", "cost ratio (warm wall time / {ref}'s)")
 
 
 def share(x) -> str:
@@ -63,26 +65,47 @@ def cost_table(doc: dict, models: list[str]) -> str:
         p, e = per.get(m) or {}, errors.get(m) or {}
         is_ref = m == ref
         r = 1.0 if is_ref and m not in ratio else ratio.get(m)
+        lead = e.get("lead")
+        mark = lambda name, text: f"{text} (leads)" if lead == name else text
         rows.append([m + (" (reference)" if is_ref else ""), h.num(p.get("dofs")),
-                     h.num(p.get("wall_seconds"), 4), h.num(p.get("peak_tip_relative")),
+                     h.num(p.get("wall_seconds"), 4), h.num(p.get("compile_seconds"), 3),
+                     h.num(p.get("peak_tip_relative")),
                      h.num(p.get("peak_shaft_deflection")), h.num(p.get("omega_final")),
-                     "reference" if is_ref else share(e.get("tip_history_error")),
+                     "reference" if is_ref else mark("history", share(e.get("tip_history_error"))),
+                     "reference" if is_ref else mark("envelope", share(e.get("tip_envelope_error"))),
                      "reference" if is_ref else h.pct(e.get("peak_tip_difference")),
+                     "reference" if is_ref else h.num(e.get("angle_drift"), 3),
                      h.num(r, 4)])
         classes.append("flag" if p.get("ok") is False else "ok")
     return h.table([c.format(ref=ref) for c in COST_HEADERS], rows, row_classes=classes)
 
 
 def speed_accuracy(doc: dict, models: list[str]) -> list[str]:
-    """The sentence per model: its error against the reference at what share of the cost."""
+    """The sentence per model: its error against the reference, led by the measure that
+    fits the case (compare's ``lead``: the history while the rotors stay in phase, else
+    the envelope, with the peak and the rotor angle's drift beside), at what share of the
+    (warm) cost."""
     ref = doc.get("reference")
     errors, ratio = doc.get("errors") or {}, doc.get("cost_ratio") or {}
     out = []
     for m in models:
-        e, r = (errors.get(m) or {}).get("tip_history_error"), ratio.get(m)
+        em = errors.get(m) or {}
+        e, r = em.get("tip_history_error"), ratio.get(m)
         if m == ref or e is None:
             continue
-        text = f"{m} follows {ref}'s tip history within {share(e)} of its largest value"
+        env, peak, drift = (em.get("tip_envelope_error"), em.get("peak_tip_difference"),
+                            em.get("angle_drift"))
+        if em.get("lead") == "envelope" and env is not None:
+            text = (f"{m} follows {ref}'s tip envelope within {share(env)} of its largest value "
+                    f"(peak {h.pct(peak) if peak is not None else '-'}); its history differs by "
+                    f"{share(e)} because the rotor angles drift apart by up to {h.num(drift, 3)} rad, "
+                    "a phase error of the whirl, not of the amplitudes")
+        else:
+            text = f"{m} follows {ref}'s tip history within {share(e)} of its largest value"
+            if peak is not None:
+                text += f" (peak {h.pct(peak)}"
+                text += (f"; the rotors stay within {h.num(drift, 2)} rad of each other)"
+                         if drift is not None else ")")
         if isinstance(r, (int, float)) and r > 0:
             text += (f", at {h.num(r, 3)} of its wall time ({h.num(1 / r, 3)} times faster)"
                      if r < 1 else f", at {h.num(r, 3)} times its wall time")

@@ -89,6 +89,20 @@ def _item(text) -> str:
     return h.tag("li", text)
 
 
+def _bar(bars: dict, key: str, value, scale: float, unit: str) -> str:
+    """A run's number with its error bar where the run carries one (the headline model's:
+    ``uncertainty``), ``scale`` converting SI to ``unit``; what was not assessed is said."""
+    u = bars.get(key) if isinstance(bars, dict) else None
+    if not isinstance(value, (int, float)):
+        return "-"
+    if not isinstance(u, dict) or not isinstance(u.get("error"), (int, float)):
+        return f"{h.num(scale * value, 4)} {unit}"
+    text = f"{h.num(scale * value, 4)} ± {scale * u['error']:.2g} {unit}"
+    if u.get("unassessed"):
+        text += f" ({', '.join(u['unassessed'])} not assessed)"
+    return text
+
+
 def _runs(build: Build) -> list:
     items = []
     for case in CASES:
@@ -111,15 +125,16 @@ def _runs(build: Build) -> list:
         peak = (meta.get("max_abs") or {}).get("tip_x_relative")
         name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
         text = f"The scene's {name} ({model} model): "
+        bars = meta.get("uncertainty") if isinstance(meta.get("uncertainty"), dict) else {}
         if meta.get("captured_at") is not None:
-            text += (f"captured at {h.num(meta['captured_at'], 4)} rad/s below the resonance at "
-                     f"{h.num(meta.get('captured_resonance'), 4)} rad/s")
+            text += (f"captured at {_bar(bars, 'captured_at', meta['captured_at'], 1.0, 'rad/s')} "
+                     f"below the resonance at {h.num(meta.get('captured_resonance'), 4)} rad/s")
         else:
-            text += f"ends at {h.num(meta.get('omega_final'), 4)} rad/s"
+            text += f"ends at {_bar(bars, 'omega_final', meta.get('omega_final'), 1.0, 'rad/s')}"
         if meta.get("speed_state") == "escaping":
             text += ", still escaping a resonance at the end of the run"
         if isinstance(peak, (int, float)):
-            text += f"; largest tip displacement {1e3 * peak:.3g} mm"
+            text += f"; largest tip displacement {_bar(bars, 'peak_tip_relative', peak, 1e3, 'mm')}"
         items.append(text + ".")
     if not build.simulations:
         items.append("Transients: " + build.hint(SIMULATE_COMMAND) + ".")
