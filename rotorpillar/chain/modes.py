@@ -61,6 +61,9 @@ class ChainModes:
     """where a 3D result was cached (None for a beam)"""
     seconds: float = 0.0
     """time spent computing (0 when read from the cache) (s)"""
+    loaded_modes: int = 0
+    """how many modes of the loaded tube the 3D solve asked for (0: not a 3D source), so
+    that `modal` reuses that very solve"""
 
     def count_below(self, band_top: float) -> int:
         """How many candidate modes lie at or below ``band_top`` (rad/s), at least one."""
@@ -113,7 +116,7 @@ def _enough(omega, band_top: float) -> bool:
     return len(omega) >= MAX_CANDIDATES or len(omega) > int(np.sum(omega <= band_top))
 
 
-def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[PillarModes, TipReductionOf]:
+def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[PillarModes, TipReductionOf, int]:
     """The loaded tube's X bending modes and the bare tube's Eq. 2 on the chain's mesh."""
     from ..fem3d import modal_analysis, tip_reduction
     from ..fem3d.pillar_modes import pillar_modes_from_fem3d
@@ -135,7 +138,7 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
                              f"Eq. 2 on the bare tube's first bending mode, {pm.label}")
     if comm is not None and comm.size > 1:
         modes, red = comm.bcast((modes, red), root=0)
-    return modes, red
+    return modes, red, n
 
 
 def _beam(scene: Scene, pm: PillarModel) -> tuple[PillarModes, TipReductionOf]:
@@ -161,20 +164,21 @@ def chain_modes(scene: Scene, choice: Choice, band_top: float, *, comm=None,
     doc = _read(path, key)
     if doc is not None and _enough(doc["modes"]["omega"], band_top):
         return ChainModes(pm, PillarModes.from_json(doc["modes"]),
-                          TipReductionOf.from_json(doc["reduction"]), str(path), 0.0)
+                          TipReductionOf.from_json(doc["reduction"]), str(path), 0.0,
+                          int(doc.get("loaded_modes", FIRST_SOLVE)))
     if progress:
         progress(f"chain: the 3D modes of {pm.label} for the ROM (cached after this)")
     start = time.perf_counter()
-    modes, red = _solid(scene, pm, band_top, comm)
+    modes, red, asked = _solid(scene, pm, band_top, comm)
     seconds = time.perf_counter() - start
     if comm is None or comm.rank == 0:
         try:
             write_json(path, {"key": key, "label": pm.label, "mesh": pm.mesh,
                               "modes": modes.to_json(), "reduction": red.to_json(),
-                              "seconds": seconds})
+                              "seconds": seconds, "loaded_modes": asked})
         except OSError:
             pass        # a read-only cache costs the next stage a solve, nothing else
-    return ChainModes(pm, modes, red, str(path), seconds)
+    return ChainModes(pm, modes, red, str(path), seconds, asked)
 
 
 def rom_band_top(scene: Scene, motion=None) -> float:

@@ -98,6 +98,21 @@ class ModalResult:
     acceleration a_g along d forces mode j with -L_j a_g; L_j**2 / m_j is its
     effective mass"""
 
+    def lowest(self, n: int) -> "ModalResult":
+        """The lowest ``n`` modes of this result (every per-mode field cut to them)."""
+        if n >= len(self.omega):
+            return self
+        cut = lambda a: None if a is None else a[:n]
+        return replace(self, omega=self.omega[:n], kind=self.kind[:n],
+                       n_circumferential=self.n_circumferential[:n], n_axial=self.n_axial[:n],
+                       share=self.share[:n], normalisation=self.normalisation[:n],
+                       modal_mass=self.modal_mass[:n], modal_stiffness=self.modal_stiffness[:n],
+                       tip=self.tip[:n], shapes=cut(self.shapes), rigid_top=cut(self.rigid_top),
+                       participation=cut(self.participation),
+                       section_resultants=cut(self.section_resultants),
+                       beam_line=None if self.beam_line is None else
+                       {i: v for i, v in self.beam_line.items() if i < n})
+
     @property
     def frequency_hz(self) -> np.ndarray:
         return self.omega / (2 * math.pi)
