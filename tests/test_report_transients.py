@@ -302,5 +302,6 @@ def test_run_compares_on_the_record_the_user_can_override(tmp_path):
     command, _, extra, own, _ = stages["compare --case earthquake"]
     argv = stage_argv(command, args, extra, own)
     sets = [argv[i + 1] for i, a in enumerate(argv) if a == "--set"]
-    assert sets == ["excitation.kind=record", "excitation.record=elcentro", "excitation.record=my.AT2"]
+    assert sets == ["excitation.kind=record", "excitation.record=elcentro", "excitation.start=1",
+                    "full_order.earthquake_duration=9", "excitation.record=my.AT2"]
     assert argv[argv.index("--models") + 1] == "modal,fem3d"
