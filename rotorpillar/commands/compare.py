@@ -9,7 +9,6 @@ and writes ``compare_<case>.json`` and ``compare_<case>.png``.
 
 from __future__ import annotations
 
-from . import progress
 from ..scene import MODELS
 
 
@@ -23,10 +22,16 @@ def add_arguments(p) -> None:
 
 
 def compare_command(scene, args, timings):
-    from . import EXIT_CHECKS, is_root_rank, out_dir
+    from . import EXIT_CHECKS, is_root_rank, launched_ranks, mpi_progress, out_dir
+    from ..errors import InputError
     from ..transients.compare import compare_models, parse_models
     case = args.case
     models = parse_models(args.models, case)
+    if launched_ranks() > 1 and "fem3d" not in models:
+        raise InputError(f"compare --models {','.join(models)} runs on one process (under mpirun only "
+                         "the 3D full order, fem3d, shares its work): start it without mpirun")
+    check_full_order_budgets(scene, case, models)          # before any model runs or writes
+    progress = mpi_progress()
     provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
     from ..postprocess.comparison_charts import comparison_chart
     from ..postprocess.transient_charts import model_run_charts
@@ -38,6 +43,24 @@ def compare_command(scene, args, timings):
     if any(p.get("ok") is False for p in res.per_model.values()):
         doc["exit_status"] = EXIT_CHECKS
     return doc, summary(scene, res)
+
+
+def check_full_order_budgets(scene, case: str, models) -> None:
+    """Refuse (InputError naming the keys) a full order above ``simulate.max_steps`` over
+    the comparison's common duration, before the first model runs: the 3D one
+    (fem3d.transient_plan) and the beam (reduced.cases.check_full_order_budget)."""
+    from .simulate import check_fem3d_budget
+    from ..reduced.cases import check_full_order_budget
+    from ..reduced.models import scene_motion
+    from ..transients.compare import common_duration
+    from ..transients.run import with_duration
+    motion = scene_motion(scene) if case == "earthquake" else None
+    duration, _ = common_duration(scene, case, models, motion)
+    if "fem3d" in models:
+        check_fem3d_budget(scene, case, motion, duration)
+    if "beam" in models:
+        from ..reduced.excitation import no_motion
+        check_full_order_budget(with_duration(scene, case, duration), case, motion or no_motion())
 
 
 def summary(scene, r) -> str:

@@ -24,7 +24,7 @@ and beam full_order (mesh or elements, duration, time_step, note).
 
 from __future__ import annotations
 
-from . import EXIT_CHECKS, progress
+from . import EXIT_CHECKS
 from ..scene import CASES, INTEGRATORS, MODELS
 
 
@@ -48,20 +48,28 @@ def add_arguments(p) -> None:
 
 
 def simulate_command(scene, args, timings):
-    from . import is_root_rank, out_dir
+    from . import is_root_rank, launched_ranks, mpi_progress, out_dir
     from ..errors import InputError
     from ..reduced.models import scene_motion
     from ..postprocess.transient_charts import model_run_charts
     from ..transients.files import write_model_files
-    from ..transients.run import fem3d_plan, run_model
+    from ..transients.run import run_model
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
+    if launched_ranks() > 1 and which != "fem3d":
+        raise InputError(f"simulate --model {which} runs on one process (under mpirun only the 3D "
+                         "full order, --model fem3d, shares its work): start it without mpirun")
     motion = scene_motion(scene) if case == "earthquake" else None    # bad input: refused before any output
     if which == "fem3d":
-        fem3d_plan(scene, case, motion)                                # the 3D cases only
+        check_fem3d_budget(scene, case, motion)                        # the 3D cases only, before meshing
+    elif which == "beam":
+        from ..reduced.cases import check_full_order_budget
+        from ..reduced.excitation import no_motion
+        check_full_order_budget(scene, case, motion or no_motion(), getattr(args, "integrator", None))
+    progress = mpi_progress()
     progress(f"simulate {scene.name}: {case}, {which} model")
     with timings(case):
         run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
@@ -77,6 +85,17 @@ def simulate_command(scene, args, timings):
         for line in result.get("failed_checks") or []:
             progress(f"simulate: check failed: {line}")
     return result, summary(scene, result)
+
+
+def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) -> None:
+    """Refuse, before any meshing, a 3D run above ``simulate.max_steps`` (InputError
+    naming the keys; fem3d.transient_plan), on the plan's mesh, duration and step."""
+    from ..fem3d.transient_plan import case_setup, check_budget, estimate, step_rule
+    from ..transients.run import fem3d_plan
+    plan = fem3d_plan(scene, case, motion, duration)
+    motion, drive, length, speed, _ = case_setup(scene, case, motion, None, plan["duration"], None)
+    check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, speed,
+                                                                 plan["time_step"]), plan["_mesh"]))
 
 
 def summary(scene, r: dict) -> str:
