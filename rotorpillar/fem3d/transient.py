@@ -61,6 +61,7 @@ from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion
 from .rotor_top import (Affine, Rotor, Step, coupling_torque, drive_torque, plate_and_rotor,
                         rotor_start, rotor_step_stiffness, solve_spin)
+from .step_operator import Plate, add_shaft_acceleration, step_operator
 from .transient_plan import (CASES_3D, accuracy, beam_operating_speed, case_setup,  # noqa: F401
                              check_budget, estimate, scheme_parameters, step_rule, top_speed)
 
@@ -251,60 +252,6 @@ def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed, faile
         model=info, ok=not failed, failed_checks=failed)
 
 
-class _Plate:
-    """Reads and adds the plate's U_x and U_z rows of a PETSc Vec on any rank count."""
-
-    def __init__(self, vec, rows, comm):
-        lo, hi = vec.getOwnershipRange()
-        self.local = [(i, r - lo) for i, r in enumerate(rows) if lo <= r < hi]
-        self.n, self.comm = len(rows), comm
-
-    def get(self, vec) -> np.ndarray:
-        out = np.zeros(self.n)
-        if self.local:
-            arr = vec.getArray(readonly=True)
-            for i, r in self.local:
-                out[i] = arr[r]
-        if self.comm.size > 1:
-            out = self.comm.allreduce(out)
-        return out
-
-    def add(self, vec, values) -> None:
-        if self.local:
-            arr = vec.getArray()
-            for i, r in self.local:
-                arr[r] += values[i]
-
-
-def _add_shaft_acceleration(M, mask, plate: _Plate, a, force) -> None:
-    """a += M^-1 (the shaft's force on the plate at the start): the tube's consistent
-    initial acceleration.  Without it the first steps carry the whirl's force on the
-    plate as an acceleration error, which the trapezoidal velocity update keeps as a
-    velocity error of O(h): first order instead of second.  One factorisation of M
-    (the massless rows, clamped or placeholders, made the identity)."""
-    if not any(force):
-        return
-    from petsc4py import PETSc
-    Mm = M.copy()
-    Mm.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
-    ones = mask.duplicate()
-    ones.set(1.0)
-    ones.axpy(-1.0, mask)
-    Mm.setDiagonal(ones, addv=PETSc.InsertMode.ADD_VALUES)
-    ksp = PETSc.KSP().create(M.getComm())
-    ksp.setOperators(Mm)
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
-    f, da = M.createVecLeft(), M.createVecLeft()
-    f.set(0.0)
-    plate.add(f, force)
-    ksp.solve(f, da)
-    a.axpy(1.0, da)
-    for obj in (ksp, Mm, ones, f, da):
-        obj.destroy()
-
-
 def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: GroundMotion, step: Step,
                steps: int, stride: int, theta0: float, W0: float, prescribed: bool, progress):
     """The generalized-alpha ``step`` over ``steps`` steps; see the module text.
@@ -313,7 +260,6 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
     Step.history + the new-time couplings; the tube's is
     Keff u1 = M (cm u~ - am a - r a_g) - af K u + the plate's rows.
     """
-    from petsc4py import PETSc
     K, M = model.K, model.M
     N = model.tube_dofs
     rows = (N, N + 2)                                      # the plate's U_x, U_z
@@ -323,28 +269,12 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
     cm, cc = step.mass_coefficient, step.damping_coefficient
     kr = rotor_step_stiffness(rotor, step)
     t0 = time.perf_counter()
-    Keff = K.copy()
-    Keff.scale(wf)
-    Keff.axpy(cm, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
-    lo, hi = Keff.getOwnershipRange()
-    if lo <= N < hi:
-        # the rotor centre condensed onto the plate: w c2 - (w c2)**2 / k_r on U_x and U_z
-        Keff.setValue(N, N, cc * b1 + wf * c2 - (wf * c2)**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
-    if lo <= N + 2 < hi:
-        Keff.setValue(N + 2, N + 2, wf * c2 - (wf * c2)**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
-    Keff.assemble()
-    Keff.setOption(PETSc.Mat.Option.SPD, True)           # K, M symmetric; the plate's terms > 0
-    ksp = PETSc.KSP().create(model.comm)
-    ksp.setOperators(Keff)
-    ksp.setType("preonly")
-    ksp.getPC().setType("cholesky")
-    ksp.getPC().setFactorSolverType("mumps")
-    ksp.setUp()
-    # the plate rows' share of Keff beyond wf K + cm M (Keff u = wf K u + cm M u + D u)
-    d_x, d_z = cc * b1 + wf * c2 - (wf * c2)**2 / kr, wf * c2 - (wf * c2)**2 / kr
+    # the plate's rows: its dashpot, and the rotor centre condensed onto it (w c2 - (w c2)**2 / k_r)
+    ksp, Keff, (d_x, d_z) = step_operator(K, M, N, cc * b1 + wf * c2 - (wf * c2)**2 / kr,
+                                          wf * c2 - (wf * c2)**2 / kr, wf, cm, model.comm)
     vecs = [K.createVecRight() for _ in range(14)]
     u, v, a, w, R, u1, gN, gZ, tmp, pred, Ku, Mu, Mv, Ma = vecs
-    plate = _Plate(u, rows, model.comm)
+    plate = Plate(u, rows, model.comm)
     for x in vecs:
         x.set(0.0)
     for g, i in ((gN, 0), (gZ, 1)):                        # the plate under a unit load on U_x, U_z
@@ -376,7 +306,7 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
     a.pointwiseMult(r, mask)
     a.scale(-ag[0])
     t_start = time.perf_counter()
-    _add_shaft_acceleration(M, mask, plate, a, (c2 * (x - e * math.cos(th)), c2 * (y - e * math.sin(th))))
+    add_shaft_acceleration(M, mask, plate, a, (c2 * (x - e * math.cos(th)), c2 * (y - e * math.sin(th))))
     setup += time.perf_counter() - t_start
     aUx = float(plate.get(a)[0])
     ax = (-c2 * (x - e * math.cos(th)) - b2 * vx - mC * ag[0]) / mC
