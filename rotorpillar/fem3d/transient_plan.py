@@ -101,10 +101,12 @@ def step_rule(scene, drive: DriveSchedule, motion: GroundMotion, speed: float,
 # --------------------------------------------------------------------------
 # Cost, before any work
 
-#: Measured seconds per step, a + b * dofs**1.5 (docs/transients.md): Python's
-#: share of a step and MUMPS's forward-backward solve, whose factors grow
-#: about as dofs**1.5 on the tube's meshes.  An estimate, stated as one.
-SECONDS_PER_STEP = (1.0e-3, 1.5e-9)
+#: Seconds per step, a + b * dofs**1.5: Python's share of a step, and MUMPS's
+#: forward-backward solve and one matrix product, which grow about as
+#: dofs**1.5 on the tube's meshes.  Fitted to the CPU time measured on the
+#: 2-core machine: 1.3 ms a step on 3,033 dofs (8 x 10), 8 ms on 11,817
+#: (16 x 20).  An estimate, stated as one (the machine's load multiplies it).
+SECONDS_PER_STEP = (3.0e-4, 6.0e-9)
 
 
 @dataclass(frozen=True)
