@@ -93,6 +93,10 @@ def step_rule(scene, drive: DriveSchedule, motion: GroundMotion, speed: float,
         if value:
             stated, by = float(value), key
             break
+    if by == "time_step":                                  # the caller's: name the key it came from
+        by = next((k for v, k in ((fo.time_step, "full_order.time_step"),
+                                  (scene.simulate.time_step, "simulate.time_step")) if v == stated),
+                  "the caller's time_step")
     return full_order_step(fo.integrator, scheme_parameters(fo.integrator, fo.rho_inf), forcing,
                            scene.modal_model.band_factor,
                            motion.time_step if motion.kind == "record" else None, stated, by)
