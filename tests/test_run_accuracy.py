@@ -23,14 +23,15 @@ from rotorpillar.reduced.accuracy import check_step, steps_per_period_needed
 
 def run_json(tmp_path, *args):
     p = cli("simulate", "paper", *args, "--out", tmp_path)
-    doc = json.loads((tmp_path / "simulate.json").read_text()) if (tmp_path / "simulate.json").exists() else None
+    f = tmp_path / "simulate.json"
+    doc = json.loads(f.read_text()) if f.exists() else None
     return p, doc
 
 
 @pytest.mark.parametrize("integrator, step, spp", [("newmark", 0.5, 0.14), ("central_difference", 0.05, 1.4)])
 def test_a_step_that_cannot_resolve_the_rotation_is_not_a_success(tmp_path, integrator, step, spp):
-    p, doc = run_json(tmp_path, "--case", "runup", "--no-threshold", "--set", f"simulate.integrator={integrator}",
-                      "--set", f"simulate.time_step={step}")
+    p, doc = run_json(tmp_path, "--case", "runup", "--no-threshold",
+                      "--set", f"simulate.integrator={integrator}", "--set", f"simulate.time_step={step}")
     assert p.returncode == 4, p.stderr
     assert doc["ok"] is False
     line = next(c for c in doc["failed_checks"] if c.startswith("step_accuracy:"))

@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 from ..provenance import JsonRecord
-from ..reduced.accuracy import (AccuracyCheck, StepRule, check_step, forcing_frequencies, full_order_parameters,
-                                full_order_step)
+from ..reduced.accuracy import (AccuracyCheck, StepRule, check_step, forcing_frequencies,
+                                full_order_parameters, full_order_step)
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion, no_motion
 
@@ -136,7 +136,8 @@ def estimate(scene, duration: float, rule: StepRule, mesh=None) -> RunEstimate:
     dofs = tube_params(scene.pillar, mesh).estimated_dofs + 9
     steps = duration / rule.time_step if rule.time_step > 0 else math.inf
     a, b = SECONDS_PER_STEP
-    return RunEstimate(float(steps), rule.time_step, float(duration), int(dofs), float(steps * (a + b * dofs**1.5)))
+    return RunEstimate(float(steps), rule.time_step, float(duration), int(dofs),
+                       float(steps * (a + b * dofs**1.5)))
 
 
 def check_budget(scene, case: str, est: RunEstimate) -> None:

@@ -182,14 +182,21 @@ def largest_step(method: str, omega: float, limit: float, **params) -> float:
     return 2 * math.pi / omega / steps_per_period_needed(method, limit, **params)
 
 
-def infinity_radius(method: str, **params) -> float:
+def infinity_radius(method: str, **params) -> float | None:
     """rho_inf: the spectral radius far above the step's reach (-); 1 for the
-    schemes that damp nothing."""
+    schemes that damp nothing; None for the explicit ones (unstable there)."""
+    if method == "central_difference" or method in EXPLICIT_RK:
+        return None
     return scheme_error(method, 1e8, **params).spectral_radius
 
 
 # --------------------------------------------------------------------------
 # What a run must resolve
+
+
+#: The forcing frequencies' names in words.
+FORCING_WORDS = {"unbalance_rotation": "the unbalance's rotation",
+                 "ground_motion_band": "the ground motion's band", "rotor_speed": "the rotor's speed"}
 
 
 def forcing_frequencies(eccentricity: float, top_speed: float, motion) -> dict[str, float]:
@@ -232,9 +239,10 @@ def full_order_parameters(method: str, rho_inf: float) -> dict:
 #: The full order is the reference the reduced models are judged by: its step
 #: keeps the scheme's error (period error, and amplitude lost per period) at
 #: the fastest forcing within 2e-3, what 40 steps per period of Newmark's
-#: average acceleration gave before ((2 pi / 40)**2 / 12 = 2.1e-3), a fifth
-#: of the 1 % the comparisons report to.  The band's modes above the forcing
-#: (up to band_factor times it) are resolved to band_factor**2 times that.
+#: average acceleration gave before ((2 pi / 40)**2 / 12 = 2.1e-3); on El
+#: Centro with a stiff shaft it leaves the 3D peak tip within 0.1 % of a run
+#: at a tenth of the step (docs/transients.md).  The band's modes above the
+#: forcing (up to band_factor times it) keep band_factor**2 times that.
 FULL_ORDER_ERROR = 2e-3
 
 
@@ -243,8 +251,9 @@ class StepRule(JsonRecord):
     """How a full-order run's step was chosen and what it resolves (the JSON's ``integrator``)."""
     scheme: str
     """newmark, hht or generalized_alpha"""
-    spectral_radius_infinity: float
-    """rho_inf: the factor the modes far above the band shrink by per step (-)"""
+    spectral_radius_infinity: float | None
+    """rho_inf: the factor the modes far above the band shrink by per step (-);
+    None for central difference (explicit: unstable there)"""
     time_step: float
     """the step taken (s)"""
     rule: str
@@ -280,7 +289,7 @@ def full_order_step(method: str, params: dict, forcing: dict[str, float], band_f
     ovalling and axial modes) are damped by the scheme (rho_inf < 1), not resolved.
     """
     top = max(forcing.values(), default=0.0)
-    names = {"unbalance_rotation": "the unbalance's rotation", "ground_motion_band": "the ground motion's band"}
+    names = FORCING_WORDS
     if stated > 0:
         h, source = float(stated), stated_by
         rule = f"stated: {stated_by} = {stated:g} s"
@@ -362,7 +371,7 @@ def check_step(method: str, params: dict, step: float, frequencies: dict[str, fl
         spp = 2 * math.pi / (fastest * step) if fastest > 0 and step > 0 else math.inf
     err = scheme_error(method, 2 * math.pi / spp, **params) if known and math.isfinite(spp) else None
     failed = []
-    words = {"unbalance_rotation": "the unbalance's rotation", "ground_motion_band": "the ground motion's band"}
+    words = FORCING_WORDS
     where = f"{words.get(which, which)} ({fastest:.4g} rad/s)" if which else ""
     kind = "mean step" if adaptive else "step"
     if which and spp < needed:

@@ -20,6 +20,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..scene import CASES
+from .accuracy import (FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters,
+                       full_order_step)
 from .drive import DriveSchedule
 from .excitation import GroundMotion, no_motion, response_spectrum
 from .models import build_model, scene_motion
@@ -28,7 +30,6 @@ from .rotor_models import RotorStructure
 from .stationary import averaging_prediction, operating_speed, passing_torque
 from .summaries import CaseSummary, SweepFindings, run_summary
 from .sweep import rate_convergence, sweep_analysis
-from .accuracy import StepRule, forcing_frequencies, full_order_parameters, full_order_step
 from .transient import Settings, Transient, simulate
 
 
@@ -74,11 +75,14 @@ def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
 
 
 def full_order_settings(scene, case: str, motion: GroundMotion, integrator: str | None = None,
-                        model: RotorStructure | None = None) -> tuple[Settings, StepRule]:
+                        model: RotorStructure | None = None) -> tuple[Settings, StepRule | None]:
     """The beam's settings: [full_order] beam_integrator (or ``integrator``), rho_inf
-    and the step of ``full_order_step_rule``; and that rule."""
+    and the step of ``full_order_step_rule``; and that rule (None for an adaptive
+    ``integrator``: it chooses its own steps)."""
     fo = scene.full_order
     st = settings_of(scene, integrator or fo.beam_integrator)
+    if st.method not in FULL_ORDER_SCHEMES:
+        return st, None
     st = replace(st, rho_inf=fo.rho_inf, hht_alpha=max(-1 / 3, (fo.rho_inf - 1) / (fo.rho_inf + 1)))
     rule = full_order_step_rule(scene, case, motion, st.method, model)
     return replace(st, time_step=rule.time_step), rule
@@ -107,6 +111,8 @@ def check_full_order_budget(scene, case: str, motion: GroundMotion, integrator: 
     before the beam is built: steps = the case's duration over the rule's step."""
     fo = scene.full_order
     method = integrator or fo.beam_integrator
+    if method not in FULL_ORDER_SCHEMES:                   # adaptive: simulate's own estimate
+        return
     duration = case_duration(scene, case, motion)
     h = full_order_step_rule(scene, case, motion, method).time_step
     steps = duration / h
