@@ -264,7 +264,9 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     method = st.get("method", "dp5")
     motion = run.motion or no_motion()
     W = np.abs(np.asarray(run.Omega, dtype=float))
-    top = float(np.nanmax(W)) if len(W) else 0.0
+    finite = W[np.isfinite(W)]
+    top = float(finite.max()) if len(finite) else 0.0
+    W = np.where(np.isfinite(W), W, top)
     freq = forcing_frequencies(m.eccentricity, top, motion)
     t = np.asarray(run.t, dtype=float)
     duration = float(t[-1] - t[0])
@@ -286,7 +288,8 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
                       window=window, rtol=st.get("rtol"))
 
 
-def run_checks(run: Transient, drive_free_speed: float, accuracy: AccuracyCheck | None = None) -> list[str]:
+def run_checks(run: Transient, drive_free_speed: float,
+               accuracy: AccuracyCheck | None = None) -> list[str]:
     """The run's own checks, one named line each ("name: why") for every one that
     fails (empty: all hold).
 
@@ -312,8 +315,8 @@ def run_checks(run: Transient, drive_free_speed: float, accuracy: AccuracyCheck 
     failed += (accuracy or accuracy_check(run)).failed
     e = run.energy_balance().get("relative_error", 0.0)
     if not np.isfinite(e) or e > ENERGY_CHECK:
-        failed.append(f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy exchanged "
-                      f"(limit {100 * ENERGY_CHECK:g} %)")
+        failed.append(f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
+                      f"exchanged (limit {100 * ENERGY_CHECK:g} %)")
     w = float(np.max(np.abs(run.Omega))) if len(run.Omega) else 0.0
     # the fastest the drive can hold at any of its knots, or the start, if faster
     top = max([drive_free_speed, abs(float(run.Omega[0]))]
