@@ -133,8 +133,9 @@ def scheme_error(method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float
     """
     Omega = float(Omega)
     spp = 2 * math.pi / Omega if Omega > 0 else math.inf
-    if Omega <= 0:
+    if not Omega > 0:
         return SchemeError(spp, 0.0, 0.0, 1.0, True)
+    Omega = min(Omega, 1e8)                                # beyond: as far above the reach as 1e8
     if method in GENALPHA or method == "central_difference":
         A = (central_difference_amplification(Omega) if method == "central_difference"
              else genalpha_amplification(Omega, alpha_m, alpha_f, beta, gamma))
