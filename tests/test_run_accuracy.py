@@ -63,6 +63,11 @@ def test_the_default_steps_pass_by_far(tmp_path, args):
     acc = doc["integrator"]["accuracy"]
     assert doc["ok"] is True and "failed_checks" not in doc
     assert acc["steps_per_period"] >= 2 * acc["steps_per_period_needed"]
+    if "beam" in args:                      # the full order's step: the band's, by its rule
+        rule = doc["integrator"]["step_rule"]
+        assert rule["scheme"] == "generalized_alpha" and rule["source"] == "rule"
+        assert rule["at_forcing_top"]["period_error"] == pytest.approx(2e-3, rel=1e-3)
+        assert doc["integrator"]["time_step"] == pytest.approx(rule["time_step"], rel=1e-3)
 
 
 def test_an_adaptive_run_is_judged_by_the_periods_it_went_through():
