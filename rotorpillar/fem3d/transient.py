@@ -180,6 +180,9 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
     rule = step_rule(scene, drive, motion, W0, time_step)
     est = estimate(scene, duration, rule, mesh)
     check_budget(scene, case, est)                        # before any meshing
+    if progress:
+        progress(f"3D transient: {est.steps:.0f} steps of {rule.time_step:.3g} s ({_scheme_name(scene)}), "
+                 f"about {est.seconds:.0f} s on ~{est.dofs:,} dofs (estimate)")
     steps = max(1, int(round(duration / rule.time_step)))
     h = duration / steps
     fo = scene.full_order
@@ -210,6 +213,11 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
             "prescribed_speed": bool(prescribed_speed), **notes}
     return _result(case, out, stats, model.size + 3, wall, info, motion, drive, prescribed_speed,
                    check.failed)
+
+
+def _scheme_name(scene) -> str:
+    fo = scene.full_order
+    return fo.integrator + ("" if fo.integrator == "newmark" else f", rho_inf {fo.rho_inf:g}")
 
 
 def _scheme_words(method: str, step: Step, rule) -> str:
