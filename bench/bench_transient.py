@@ -20,6 +20,12 @@
    with the rotor at a prescribed speed (linear: one factorisation), against
    the ROM built on the 3D model's own modes, integrated by dp5 and by
    Newmark at the 3D run's step (the latter isolates the truncation error).
+4. The 3D full order's step (issue 15.8): El Centro's 15 s on the scene's
+   [full_order] mesh with the default shaft and with a stiff one (c2 = 1e10
+   N/m, e = 0, b2 = 0: the rotor's bounce at 2,500 rad/s), side by side, and
+   the stiff shaft on the 16 x 20 mesh: steps, wall time, peak tip; beside
+   them the steps the old rule (40 per period of the fastest of the rotor,
+   sqrt(c2 / m_C) and the band) would take.
 """
 
 from __future__ import annotations
@@ -192,6 +198,8 @@ def newmark_3d(scene, motion, Omega: float, theta0: float, h: float, t_end: floa
     the library's full-order transient (rotorpillar.fem3d.transient: Newmark, one
     MUMPS factorisation).  Returns (t, tip X relative to the ground, wall s, dofs)."""
     from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.scene import override
+    scene = override(scene, ["full_order.integrator=newmark"])     # the ROM's Newmark beside it
     steps = int(round(t_end / h))
     r = simulate_fem3d(scene, "earthquake", motion=motion, duration=t_end, time_step=h,
                        samples=steps + 1, initial_speed=Omega, initial_angle=theta0,
@@ -214,10 +222,14 @@ def bench_rom_vs_3d(scene) -> list[dict]:
         DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()),
         pillar_modes=candidate_pillar_modes(scene))
     Omega = operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
-    theta0 = math.pi / 2                                   # no eccentric force at t = 0: a consistent start
+    theta0 = math.pi / 2
     t3, tip3, wall3, dofs = newmark_3d(scene, motion, Omega, theta0, h, t_end)
+    # the 3D run's start: the structure at rest, the rotor in its steady whirl on the held plate
+    from rotorpillar.fem3d.rotor_top import Rotor, rotor_start
+    x, y, vx, vy = rotor_start(Rotor.from_scene(scene), theta0, Omega)
     q0, v0 = np.zeros(model.n), np.zeros(model.n)
-    q0[-1], v0[-1] = theta0, Omega
+    q0[model.rotor_x], q0[model.nx], q0[-1] = x, y, theta0
+    v0[model.rotor_x], v0[model.nx], v0[-1] = vx, vy, Omega
     idle = DriveSchedule.constant(0.0, 0.0, 0.0)
     out = []
     for label, st in (("dp5", Settings("dp5", rtol=1e-7, samples=len(t3))),
@@ -238,9 +250,49 @@ def bench_rom_vs_3d(scene) -> list[dict]:
     return out
 
 
+STIFF = ["shaft.stiffness=1e10", "rotor.eccentricity=0", "shaft.damping=0"]
+
+
+def bench_full_order_step() -> list[dict]:
+    """The 3D full order's steps and wall time, default and stiff shaft, in one run."""
+    import importlib.util
+    import os
+    if importlib.util.find_spec("dolfinx") is None:
+        return []
+    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.transient_plan import case_setup, top_speed
+    from rotorpillar.transients.run import fem3d_plan
+    out = []
+    cases = (("default shaft", [], []), ("stiff shaft", STIFF, []),
+             ("stiff shaft, 16 x 20 mesh", STIFF, ["full_order.elements_around=16",
+                                                   "full_order.elements_along=20"]))
+    for label, shaft, mesh in cases:
+        scene = load_scene("paper", ["excitation.kind=record"] + shaft + mesh)
+        plan = fem3d_plan(scene, "earthquake")
+        load = os.getloadavg()[0]
+        r = simulate_fem3d(scene, "earthquake", duration=plan["duration"], mesh=plan["_mesh"], samples=20000)
+        motion, drive, _, W0, _ = case_setup(scene, "earthquake", None, None, plan["duration"], None)
+        fast = max(top_speed(drive, W0), math.sqrt(scene.shaft.stiffness / scene.rotor.mass), motion.band())
+        old_steps = plan["duration"] / min(2 * math.pi / fast / 40, motion.time_step)
+        it = r.integrator
+        m = plan["mesh"]
+        out.append({"name": f"full_order_3d_elcentro_{label.replace(', ', '_').replace(' ', '_')}_seconds",
+                    "compares": f"3D full order, El Centro {plan['duration']:g} s, {label} "
+                    f"({m['elements_around']} x {m['elements_along']} elements, {r.dofs} dofs): wall time "
+                    "of meshing, assembly, factorisation and integration",
+                    "value": r.wall_seconds, "unit": "s", "steps": it["steps"], "time_step": it["time_step"],
+                    "integration_seconds": it["integration_seconds"], "seconds_per_step": it["seconds_per_step"],
+                    "scheme": it["method"], "rule": it["step_rule"]["rule"],
+                    "peak_tip": r.max_abs["tip_x"], "ok": r.ok, "old_rule_steps": old_steps,
+                    "old_rule_seconds_extrapolated": old_steps * it["seconds_per_step"],
+                    "estimated_seconds": it["estimate"]["seconds"], "load_average": load})
+    return out
+
+
 def run() -> list[dict]:
     scene = load_scene("paper")
-    return bench_sweep(scene) + bench_cases(scene) + bench_rom_vs_full(scene) + bench_rom_vs_3d(scene)
+    return (bench_sweep(scene) + bench_cases(scene) + bench_rom_vs_full(scene) + bench_rom_vs_3d(scene)
+            + bench_full_order_step())
 
 
 if __name__ == "__main__":

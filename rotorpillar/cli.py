@@ -49,7 +49,8 @@ EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINAT
 
 
 #: Commands that share their work between MPI ranks; the others run on one process.
-MPI_COMMANDS = ("modal",)
+#: simulate and compare share the 3D full order's (and refuse mpirun without it).
+MPI_COMMANDS = ("modal", "simulate", "compare")
 
 
 def mpi_world_size() -> int:

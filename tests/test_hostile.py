@@ -730,3 +730,45 @@ def test_the_report_page_says_which_input_is_damaged(tmp_path, computed, name, d
     assert doc["inputs"][name.rsplit(".", 1)[0]] is True
     page = html.unescape((out / "report.html").read_text())
     assert words in page
+
+# --- issue 19.1 (developer integ): the full orders refuse before work, whatever the size.
+# The 3D and the beam full order estimate their steps from the scene alone (no mesh, no
+# assembly) and refuse above simulate.max_steps, naming the keys that change it.  The
+# timeout guards against the old behaviour (minutes of work, or "out of memory").
+
+FULL_ORDER_KEYS = ("full_order.time_step", "simulate.max_steps")
+
+
+@pytest.mark.parametrize("args, words", [
+    (["simulate", "--model", "fem3d", "--case", "runup", "--set", "full_order.runup_duration=1e5",
+      "--set", "simulate.duration=1e5"], FULL_ORDER_KEYS + ("full_order.runup_duration", "simulate.duration")),
+    (["simulate", "--model", "fem3d", "--case", "earthquake", "--set", "full_order.time_step=1e-12"],
+     FULL_ORDER_KEYS + ("full_order.earthquake_duration",)),
+    (["compare", "--case", "earthquake", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
+    (["compare", "--case", "runup", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
+    (["simulate", "--model", "beam", "--case", "runup", "--set", "full_order.time_step=1e-12"],
+     FULL_ORDER_KEYS + ("simulate.duration",)),
+    (["simulate", "--model", "beam", "--case", "earthquake", "--set", "simulate.earthquake_duration=1e5",
+      "--set", "full_order.time_step=1e-6"], FULL_ORDER_KEYS + ("simulate.earthquake_duration",)),
+], ids=["fem3d-long-runup", "fem3d-tiny-step", "compare-earthquake-tiny-step", "compare-runup-tiny-step",
+        "beam-tiny-step", "beam-long-earthquake"])
+def test_a_full_order_too_long_is_refused_before_any_meshing(tmp_path, args, words):
+    out = tmp_path / "out"
+    p = cli(args[0], "paper", *args[1:], "--out", out, timeout=120)
+    line = one_line(p)
+    assert p.returncode == 2, p.stderr
+    assert all(w in line for w in words), line
+    assert "steps" in line and ("3D" in line or "beam" in line)
+    assert not out.exists()
+
+
+def test_simulate_under_mpirun_shares_only_the_3d_full_order(tmp_path):
+    """simulate and compare run under mpirun for the 3D full order; the reduced models,
+    which would only repeat their work on every rank, are refused with one line."""
+    import os
+    out = tmp_path / "out"
+    env = dict(os.environ, OMPI_COMM_WORLD_SIZE="2")
+    for args in (["simulate", "--model", "modal"], ["compare", "--case", "runup"]):
+        p = cli(args[0], "paper", *args[1:], "--out", out, env=env)
+        assert p.returncode == 2 and "without mpirun" in one_line(p)
+    assert not out.exists()

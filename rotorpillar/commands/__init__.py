@@ -7,6 +7,7 @@ run`` hand results over through the files they write.  Commands stay thin: the p
 lives in the library modules they call.
 """
 
+import os
 import sys
 from pathlib import Path
 
@@ -32,3 +33,22 @@ def is_root_rank() -> bool:
 def progress(message: str) -> None:
     """A stage line on stderr (stdout may carry --json)."""
     print(f"[rotorpillar] {message}", file=sys.stderr, flush=True)
+
+
+def launched_ranks() -> int:
+    """Ranks of the MPI job this process was started in (1 outside mpirun), from the
+    launcher's environment: known before mpi4py is imported."""
+    for key in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MPI_LOCALNRANKS"):
+        value = os.environ.get(key, "")
+        if value.isdigit():
+            return int(value)
+    return 1
+
+
+def mpi_progress():
+    """``progress`` on rank 0 and silence elsewhere, for a command that runs under
+    mpirun (imports mpi4py only when launched on several ranks)."""
+    if launched_ranks() <= 1:
+        return progress
+    from mpi4py import MPI
+    return progress if MPI.COMM_WORLD.rank == 0 else (lambda message: None)

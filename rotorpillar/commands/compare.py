@@ -10,7 +10,6 @@ over one common duration, and writes ``compare_<case>.json`` and
 
 from __future__ import annotations
 
-from . import progress
 from ..scene import MODELS
 
 
@@ -32,24 +31,31 @@ def add_arguments(p) -> None:
 
 def preflight(scene, args) -> None:
     """What `compare` refuses before any work (`run` calls it for its stages too): the
-    models, the record, the common duration and each model's run (commands.simulate.check_run:
-    the 3D plan and mesh, the reduced runs' step budgets)."""
+    models, MPI, the record, the common duration and each model's run
+    (commands.simulate.check_run: the 3D plan, mesh and step budget, the reduced runs'
+    step budgets)."""
+    from . import launched_ranks
+    from ..errors import InputError
     from ..reduced.models import scene_motion
     from ..transients.compare import common_duration, parse_models
     from .simulate import check_run
     models = parse_models(args.models, args.case)
     motion = scene_motion(scene) if args.case == "earthquake" else None
     duration, _ = common_duration(scene, args.case, models, motion)
-    for m in models:
+    if launched_ranks() > 1 and "fem3d" not in models:
+        raise InputError(f"compare --models {','.join(models)} runs on one process (under mpirun only "
+                         "the 3D full order, fem3d, shares its work): start it without mpirun")
+    for m in models:                    # the full orders' budgets over the common duration
         check_run(scene, args.case, m, motion=motion, duration=duration)
 
 
 def compare_command(scene, args, timings):
-    from . import EXIT_CHECKS, is_root_rank, out_dir
+    from . import EXIT_CHECKS, is_root_rank, mpi_progress, out_dir
     from ..transients.compare import compare_models, parse_models
     preflight(scene, args)
     case = args.case
     models = parse_models(args.models, case)
+    progress = mpi_progress()
     provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
     from ..errors import InputError
     from ..executor import default_workers

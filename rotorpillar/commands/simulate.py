@@ -24,7 +24,7 @@ and beam full_order (mesh or elements, duration, time_step, note).
 
 from __future__ import annotations
 
-from . import EXIT_CHECKS, progress
+from . import EXIT_CHECKS
 from ..scene import CASES, INTEGRATORS, MODELS
 
 
@@ -50,24 +50,31 @@ def add_arguments(p) -> None:
 def check_run(scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
               motion=None, duration: float | None = None) -> None:
     """Refuse (InputError) a run of one model that its own code would refuse, before any
-    work: the 3D model's plan and mesh memory, or a reduced model's step budget (the
-    case's own code, reduced.cases.run_case, run up to its first integration:
-    rotorpillar.reduced.transient.estimate_only; the models built, nothing integrated).  A modal model whose modes would come from the
-    3D model is estimated on the 1D beam's modes (the estimate's inputs from the modes,
-    the operating speed and the fastest mode in the band, agree within the beam's
-    error; the run checks again on its own modes)."""
-    from ..reduced.cases import run_case
+    work: the 3D model's mesh memory and step budget (fem3d.transient_plan, before
+    meshing), the beam full order's step budget (reduced.cases.check_full_order_budget),
+    or a reduced model's step budget (the case's own code, reduced.cases.run_case, run up
+    to its first integration: rotorpillar.reduced.transient.estimate_only; the models
+    built, nothing integrated).  A modal model whose modes would come from the 3D model
+    is estimated on the 1D beam's modes (the estimate's inputs from the modes, the
+    operating speed and the fastest mode in the band, agree within the beam's error; the
+    run checks again on its own modes)."""
+    from ..reduced.cases import check_full_order_budget, run_case
+    from ..reduced.excitation import no_motion
     from ..reduced.transient import Estimated, estimate_only
     from ..scene import override
     from ..transients.run import fem3d_plan, with_duration
     if which == "fem3d":
         from ..mesh import tube_params
         tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration)["_mesh"])   # its memory
+        check_fem3d_budget(scene, case, motion, duration)
+        return
+    if duration is not None:
+        scene = with_duration(scene, case, duration)          # as run_model shortens a run
+    if which == "beam":
+        check_full_order_budget(scene, case, motion or no_motion(), integrator)
         return
     if which == "modal" and scene.modal_model.source != "beam":
         scene = override(scene, ["modal_model.source=beam"])
-    if duration is not None:
-        scene = with_duration(scene, case, duration)          # as run_model shortens a run
     with estimate_only():
         try:
             run_case(scene, case, which, integrator, modes, truncation=False, motion=motion)
@@ -77,9 +84,10 @@ def check_run(scene, case: str, which: str, integrator: str | None = None, modes
 
 def preflight(scene, args):
     """What `simulate` refuses before any work (`run` calls it for its stages too): its
-    flags, the record, and the run's plan or step budget (``check_run``: before the
+    flags, MPI, the record, and the run's plan or step budget (``check_run``: before the
     chain's pillar modes, which may take a 3D solve).  Returns the ground motion of an
     earthquake (read once), else None."""
+    from . import launched_ranks
     from ..errors import InputError
     from ..reduced.models import scene_motion
     case = getattr(args, "case", None) or scene.simulate.case
@@ -87,13 +95,16 @@ def preflight(scene, args):
     modes = getattr(args, "modes", None)
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
+    if launched_ranks() > 1 and which != "fem3d":
+        raise InputError(f"simulate --model {which} runs on one process (under mpirun only the 3D "
+                         "full order, --model fem3d, shares its work): start it without mpirun")
     motion = scene_motion(scene) if case == "earthquake" else None
     check_run(scene, case, which, getattr(args, "integrator", None), modes, motion)
     return motion
 
 
 def simulate_command(scene, args, timings):
-    from . import is_root_rank, out_dir
+    from . import is_root_rank, mpi_progress, out_dir
     motion = preflight(scene, args)                                    # bad input: before any work
     from ..postprocess.transient_charts import model_run_charts
     from ..transients.files import write_model_files
@@ -101,6 +112,7 @@ def simulate_command(scene, args, timings):
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
+    progress = mpi_progress()
     progress(f"simulate {scene.name}: {case}, {which} model")
     chain = None
     if which in ("modal", "fem3d"):
@@ -122,6 +134,19 @@ def simulate_command(scene, args, timings):
         for line in result.get("failed_checks") or []:
             progress(f"simulate: check failed: {line}")
     return result, summary(scene, result)
+
+
+def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) -> None:
+    """Refuse, before any meshing, a 3D run above ``simulate.max_steps`` (InputError
+    naming the keys; fem3d.transient_plan), on the plan's mesh, duration and step."""
+    from ..fem3d.transient_plan import case_setup, check_budget, estimate, step_rule
+    from ..transients.run import fem3d_plan
+    plan = fem3d_plan(scene, case, motion, duration)
+    # the start speed 0: the step follows the drive's free speed, which the operating
+    # speed never passes, so the rule's step is the run's without solving for it
+    motion, drive, length, _, _ = case_setup(scene, case, motion, None, plan["duration"], 0.0)
+    check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, 0.0,
+                                                                 plan["time_step"]), plan["_mesh"]))
 
 
 def summary(scene, r: dict) -> str:

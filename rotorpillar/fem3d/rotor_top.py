@@ -8,13 +8,20 @@ and the ground anchor of its q3 replaced by the plate's axial U_z (the
 paper's Y is the tube's axis z).  b2 acts on the rotor centre's velocity
 relative to the ground, as the modal model has it.
 
-Within one implicit Newmark step (average acceleration) the rotor centre
-condenses onto the plate (it couples to U_x and U_z only), and the tube's
-response to the unbalance force is c2 e (cos theta, sin theta) times two
-fixed vectors of the factorised operator.  So every plate and rotor
-quantity at the new time is affine in (cos theta, sin theta), and the step
-closes with one scalar equation, the spin equation, solved here by Newton:
-the whole coupled system is integrated implicitly with one factorisation.
+The step is the generalized-alpha method (Chung & Hulbert 1993; ``Step``):
+Newmark's updates with the equilibrium taken between the old and the new
+time, inertia weighted by alpha_m and every other force by alpha_f (the
+forces, not the states, are weighted: the unbalance then enters the new
+time through cos and sin of the new theta only).  Newmark's average
+acceleration is alpha_m = alpha_f = 0, beta = 1/4, gamma = 1/2; HHT-alpha
+(Hilber, Hughes & Taylor 1977) alpha_m = 0.  Within one implicit step the
+rotor centre condenses onto the plate (it couples to U_x and U_z only),
+and the tube's response to the unbalance force is c2 e (cos theta,
+sin theta) times two fixed vectors of the factorised operator.  So every
+plate and rotor quantity at the new time is affine in (cos theta,
+sin theta), and the step closes with one scalar equation, the spin
+equation, solved here by Newton: the whole coupled system is integrated
+implicitly with one factorisation.
 """
 
 from __future__ import annotations
@@ -58,9 +65,70 @@ class Affine:
         return self.as_ * c - self.ac * s
 
 
+@dataclass(frozen=True)
+class Step:
+    """One generalized-alpha step of length h (Chung & Hulbert 1993), SI.
+
+    (1 - alpha_m) M a1 + alpha_m M a0 + (1 - alpha_f) f(1) + alpha_f f(0) = 0 for
+    every force f but inertia, with Newmark's x1 = x~ + beta h**2 a1,
+    v1 = v~ + gamma h a1 (``predict``: x~, v~).  Second order when
+    gamma = 1/2 - alpha_m + alpha_f; parameters by
+    rotorpillar.reduced.transient.genalpha_parameters.
+    """
+    h: float
+    """the step (s)"""
+    alpha_m: float = 0.0
+    alpha_f: float = 0.0
+    beta: float = 0.25
+    gamma: float = 0.5
+
+    @property
+    def mass_coefficient(self) -> float:
+        """(1 - alpha_m) / (beta h**2): inertia's share of the step's stiffness (1/s**2)."""
+        return (1 - self.alpha_m) / (self.beta * self.h**2)
+
+    @property
+    def damping_coefficient(self) -> float:
+        """(1 - alpha_f) gamma / (beta h): a dashpot's share of the step's stiffness (1/s)."""
+        return (1 - self.alpha_f) * self.gamma / (self.beta * self.h)
+
+    @property
+    def new_weight(self) -> float:
+        """1 - alpha_f: the weight of the new time's forces (-)."""
+        return 1 - self.alpha_f
+
+    def predict(self, x: float, v: float, a: float) -> tuple[float, float]:
+        """(x~, v~): the new displacement and velocity without the new acceleration."""
+        h = self.h
+        return x + h * v + h * h * (0.5 - self.beta) * a, v + h * (1 - self.gamma) * a
+
+    def update(self, x1: float, xt: float, vt: float) -> tuple[float, float]:
+        """(v1, a1) from the new displacement and the prediction."""
+        a1 = (x1 - xt) / (self.beta * self.h**2)
+        return vt + self.gamma * self.h * a1, a1
+
+    def history(self, mass: float, damping: float, x: float, v: float, a: float,
+                old_force: float) -> float:
+        """The known part of a scalar dof's step equation (N): the new x times
+        ``stiffness`` = history + the new-time coupling forces.  ``old_force``:
+        the old time's elastic and external forces acting on it (N)."""
+        xt, vt = self.predict(x, v, a)
+        return (mass * (self.mass_coefficient * xt - self.alpha_m * a)
+                + damping * (self.damping_coefficient * xt - self.new_weight * vt - self.alpha_f * v)
+                + self.alpha_f * old_force)
+
+
 def newmark_rotor_stiffness(rotor: Rotor, h: float) -> float:
-    """k_r = c2 + 2 b2 / h + 4 m / h**2: the rotor centre's effective stiffness in a step (N/m)."""
-    return rotor.shaft_stiffness + 2 * rotor.shaft_damping / h + 4 * rotor.mass / h**2
+    """k_r = c2 + 2 b2 / h + 4 m / h**2: the rotor centre's effective stiffness in a
+    Newmark step (N/m)."""
+    return rotor_step_stiffness(rotor, Step(h))
+
+
+def rotor_step_stiffness(rotor: Rotor, step: Step) -> float:
+    """The rotor centre's effective stiffness in a step (N/m):
+    (1 - af) c2 + (1 - af) gamma / (beta h) b2 + (1 - am) / (beta h**2) m."""
+    return (step.new_weight * rotor.shaft_stiffness + step.damping_coefficient * rotor.shaft_damping
+            + step.mass_coefficient * rotor.mass)
 
 
 def rotor_start(rotor: Rotor, theta0: float, speed0: float) -> tuple[float, float, float, float]:
@@ -79,21 +147,23 @@ def rotor_start(rotor: Rotor, theta0: float, speed0: float) -> tuple[float, floa
 
 
 def plate_and_rotor(rotor: Rotor, kr: float, ux_hat: float, uz_hat: float, rho_x: float,
-                    rho_y: float, gamma: float, g: tuple[float, float, float, float]):
+                    rho_y: float, gamma: float, g: tuple[float, float, float, float],
+                    weight: float = 1.0):
     """(U_x, U_z, x_r, y_r) at the new time as Affine functions of the new theta.
 
     ``ux_hat``, ``uz_hat``: the plate's motion solved without the unbalance;
     ``g`` = (U_x under a unit load on U_x, U_x under a unit load on U_z,
     U_z under a unit load on U_x, U_z under a unit load on U_z) of the
-    factorised operator; ``gamma`` = -c2 e (1 - c2 / k_r), the condensed
+    factorised operator; ``gamma`` = -w c2 e (1 - w c2 / k_r), the condensed
     unbalance load on the plate per unit cos/sin (N); ``rho_x``, ``rho_y``
-    the rotor centre's Newmark history terms (N).
+    the rotor centre's history terms (N) (``Step.history``); ``weight`` w =
+    1 - alpha_f, the new time's share of the shaft force.
     """
-    c2e = rotor.shaft_stiffness * rotor.eccentricity
+    c2e = weight * rotor.shaft_stiffness * rotor.eccentricity
     gNN, gZN, gNZ, gZZ = g
     Ux = Affine(ux_hat, gamma * gNN, gamma * gZN)
     Uz = Affine(uz_hat, gamma * gNZ, gamma * gZZ)
-    c2 = rotor.shaft_stiffness
+    c2 = weight * rotor.shaft_stiffness
     xr = Affine((rho_x + c2 * Ux.a0) / kr, (c2e + c2 * Ux.ac) / kr, c2 * Ux.as_ / kr)
     yr = Affine((rho_y + c2 * Uz.a0) / kr, c2 * Uz.ac / kr, (c2e + c2 * Uz.as_) / kr)
     return Ux, Uz, xr, yr
@@ -116,32 +186,36 @@ def drive_torque(M0: float, slope: float, load: float, W: float) -> float:
 
 def solve_spin(rotor: Rotor, h: float, theta_n: float, W_n: float, alpha_n: float,
                sx: Affine, sy: Affine, M0: float, slope: float, load: float,
-               tol: float = 1e-12, max_iter: int = 30) -> tuple[float, float, float, int]:
-    """The new (theta, Omega, Omega', Newton iterations) of a Newmark step.
+               tol: float = 1e-12, max_iter: int = 30, step: Step | None = None,
+               old_torque: float = 0.0) -> tuple[float, float, float, int]:
+    """The new (theta, Omega, Omega', Newton iterations) of a step (Newmark's by default).
 
-    J alpha = Md(Omega) - Mc(Omega) + T_shaft(theta) with Newmark's
-    alpha = 4/h**2 (theta - theta_n - h W_n) - alpha_n and
-    Omega = 2/h (theta - theta_n) - W_n; sx, sy the rotor centre relative to
-    the plate as functions of the new theta.
+    (1 - am) J alpha + am J alpha_n = (1 - af) (Md - Mc + T_shaft)(new)
+    + af ``old_torque`` with Newmark's alpha = (theta - theta~) / (beta h**2),
+    Omega = Omega~ + gamma h alpha (``step``, h ignored when given); sx, sy the
+    rotor centre relative to the plate as functions of the new theta.
     """
+    step = step or Step(h)
     J = rotor.inertia
     c2e = rotor.shaft_stiffness * rotor.eccentricity
-    th = theta_n + h * W_n + 0.5 * h * h * alpha_n
+    am, wf, b, g, hh = step.alpha_m, step.new_weight, step.beta, step.gamma, step.h
+    th_t, W_t = step.predict(theta_n, W_n, alpha_n)
+    th = theta_n + hh * W_n + 0.5 * hh * hh * alpha_n
     for it in range(1, max_iter + 1):
         c, s = math.cos(th), math.sin(th)
-        W = 2 / h * (th - theta_n) - W_n
-        alpha = 4 / h**2 * (th - theta_n - h * W_n) - alpha_n
+        alpha = (th - th_t) / (b * hh * hh)
+        W = W_t + g * hh * alpha
         x, y = sx.at(c, s), sy.at(c, s)
         Tc = c2e * (y * c - x * s)
         dTc = c2e * (sy.slope(c, s) * c - y * s - sx.slope(c, s) * s - x * c)
-        R = J * alpha - drive_torque(M0, slope, load, W) - Tc
-        dR = 4 * J / h**2 + (slope + 2 * load * abs(W)) * 2 / h - dTc
+        R = J * ((1 - am) * alpha + am * alpha_n) - wf * (drive_torque(M0, slope, load, W) + Tc) \
+            - step.alpha_f * old_torque
+        dR = (1 - am) * J / (b * hh * hh) + wf * ((slope + 2 * load * abs(W)) * g / (b * hh) - dTc)
         dth = -R / dR
         th += dth
         if abs(dth) <= tol * max(1.0, abs(th)):
             break
     else:
         raise ArithmeticError(f"the spin equation did not converge in {max_iter} Newton iterations")
-    W = 2 / h * (th - theta_n) - W_n
-    alpha = 4 / h**2 * (th - theta_n - h * W_n) - alpha_n
-    return th, W, alpha, it
+    alpha = (th - th_t) / (b * hh * hh)
+    return th, W_t + g * hh * alpha, alpha, it

@@ -18,40 +18,56 @@ built on this tube's modes is then this model truncated, and nothing else.
 Modes that do not move the plate in X (ovalling, torsion) stay undamped; the
 X load barely excites them.
 
-Integration: Newmark's average acceleration (trapezoidal, unconditionally
-stable, no numerical damping) on the whole coupled system.  The tube is
-linear, so Newmark's effective stiffness K + 4/h**2 M + 2/h C, with the
-rotor centre condensed onto the plate, is factorised once (MUMPS) and reused
-for every step; the unbalance enters through two fixed solutions of that
-operator, so the nonlinear spin equation closes each step as one scalar
-Newton solve (rotor_top.solve_spin), fully implicit: the step only needs
-to resolve the rotor's speed and the modes that matter, not the shaft.
+Integration: the generalized-alpha method (Chung & Hulbert 1993;
+``full_order.integrator``, default, with ``full_order.rho_inf``; or HHT-alpha,
+Hilber, Hughes & Taylor 1977, or Newmark's average acceleration) on the whole
+coupled system: unconditionally stable and second order, so the step
+follows the band (transient_plan.step_rule: the fastest forcing resolved
+within 2e-3, no coarser than a record's sampling), and the modes far above
+it (a stiff shaft, the tube's axial and ovalling modes) shrink by rho_inf
+each step instead of being resolved.  The tube is linear, so the step's
+effective stiffness (1 - af) K + (1 - am)/(beta h**2) M + the plate's
+dashpot, with the rotor centre condensed onto the plate, is factorised once
+(MUMPS) and reused for every step; the unbalance enters through two fixed
+solutions of that operator, so the nonlinear spin equation closes each step
+as one scalar Newton solve (rotor_top.solve_spin), fully implicit.  Every
+force but inertia is weighted between the old and the new time by alpha_f
+(the forces, so the new time's unbalance is affine in cos and sin of the
+new theta, which keeps the scalar structure).
 
 Start: the tube at rest, the rotor in its steady whirl at the initial speed
 on a held plate (rotor_top.rotor_start; at rest: the shaft unstretched).
-The tube's initial acceleration is taken as -r a_g(0), leaving out the
-whirl's shaft force on the plate (c2 e at most): a consistent one needs a
-solve with M, and the error it leaves is O(h**2) in the displacement.
+The tube's initial acceleration is the consistent one, -r a_g(0) plus M^-1
+of the whirl's shaft force on the plate (one solve with M): an inconsistent
+start would cost the scheme its second order.
+
+Before any meshing the run's steps and wall time are estimated and refused
+above ``simulate.max_steps`` (transient_plan.check_budget); after it, the
+step taken is checked against what the run had to resolve, and a run that
+fails it, stops, or misses its energy balance is ``ok: false`` with its
+``failed_checks``.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from ..errors import InputError
 from ..reduced.drive import DriveSchedule
-from ..reduced.excitation import GroundMotion, no_motion
-from .rotor_top import (Affine, Rotor, coupling_torque, drive_torque, newmark_rotor_stiffness,
-                        plate_and_rotor, rotor_start, solve_spin)
+from ..reduced.excitation import GroundMotion
+from .rotor_top import (Affine, Rotor, Step, coupling_torque, drive_torque, plate_and_rotor,
+                        rotor_start, rotor_step_stiffness, solve_spin)
+from .step_operator import Plate, add_shaft_acceleration, step_operator
+from .transient_plan import (CASES_3D, accuracy, beam_operating_speed, case_setup,  # noqa: F401
+                             check_budget, estimate, scheme_parameters, step_rule, top_speed)
 
-CASES_3D = ("earthquake", "runup")
-#: automatic step: this many steps per period of the fastest forcing
-STEPS_PER_PERIOD = 40
 WORK_COLUMNS = ("drive_minus_load", "shaft_on_structure", "dissipated", "base")
+#: the share of the energy exchanged the balance may miss (as reduced.summaries.ENERGY_CHECK)
+ENERGY_CHECK = 0.05
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,13 +118,18 @@ class Fem3dTransient:
     model: dict
     """mesh, damping law, start, forcing: what was run"""
     ok: bool
+    failed_checks: list = field(default_factory=list)
+    """why ``ok`` is false, one named line each (empty when every check holds)"""
 
     def summary(self) -> dict:
         """The JSON fields the reduced models' runs report, plus dofs and wall time."""
-        return {"ok": self.ok, "duration": float(self.t[-1] - self.t[0]), "omega_final": self.omega_final,
-                "omega_final_mean": self.omega_final_mean, "max_abs": self.max_abs,
-                "energy_balance": self.energy_balance, "integrator": self.integrator,
-                "dofs": self.dofs, "wall_seconds": self.wall_seconds, "model": self.model}
+        out = {"ok": self.ok, "duration": float(self.t[-1] - self.t[0]), "omega_final": self.omega_final,
+               "omega_final_mean": self.omega_final_mean, "max_abs": self.max_abs,
+               "energy_balance": self.energy_balance, "integrator": self.integrator,
+               "dofs": self.dofs, "wall_seconds": self.wall_seconds, "model": self.model}
+        if self.failed_checks:
+            out["failed_checks"] = list(self.failed_checks)
+        return out
 
     def series(self) -> dict:
         """The arrays, by name (for NPZ/CSV)."""
@@ -127,59 +148,6 @@ class Fem3dTransient:
 
 
 # --------------------------------------------------------------------------
-# The case's defaults
-
-
-def case_setup(scene, case: str, motion: GroundMotion | None, drive: DriveSchedule | None,
-               duration: float | None, initial_speed: float | None):
-    """(motion, drive, duration, initial speed, notes) of a case, as the reduced models run it."""
-    if case not in CASES_3D:
-        raise InputError(f"case {case!r}: the 3D full-order model runs {', '.join(CASES_3D)}")
-    d, L, sim = scene.drive, scene.load, scene.simulate
-    notes = {}
-    if case == "earthquake":
-        if motion is None:
-            from ..reduced.models import scene_motion
-            motion = scene_motion(scene)
-        drive = drive or DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
-        duration = duration or sim.earthquake_duration or motion.end + 5.0
-        if initial_speed is None:
-            initial_speed = beam_operating_speed(scene, drive, motion)
-            notes["initial_speed_source"] = ("the operating speed of the modal model on the 1D beam's "
-                                      "modes (the fastest stable stationary speed)")
-    else:
-        motion = motion or no_motion()
-        drive = drive or DriveSchedule.ramp(d.torque_at_zero, d.slope, L.coefficient, sim.runup_ramp)
-        duration = duration or sim.duration
-        initial_speed = initial_speed or 0.0
-    if not (math.isfinite(duration) and duration > 0):
-        raise InputError(f"duration = {duration!r}: must be finite and > 0 (s)")
-    return motion, drive, float(duration), float(initial_speed), notes
-
-
-def beam_operating_speed(scene, drive: DriveSchedule, motion: GroundMotion) -> float:
-    """The operating speed from the modal model on the 1D beam's modes (cheap, no dolfinx):
-    far from the resonances it differs from the 3D one by the beams' frequency error only."""
-    from ..reduced.models import build_model
-    from ..reduced.stationary import operating_speed
-    from ..scene import override
-    beam = override(scene, ["modal_model.source=beam"])
-    top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
-    model, _ = build_model(beam, "modal", top)
-    return operating_speed(model, drive.torque_at_zero[-1], drive.slope[-1], drive.load_coefficient)
-
-
-def auto_time_step(scene, drive: DriveSchedule, motion: GroundMotion, speed: float) -> float:
-    """STEPS_PER_PERIOD steps per period of the fastest of the rotor (its free
-    speed or its start), the shaft's Y mode and the ground motion's band; no
-    coarser than the record's sampling (s)."""
-    fast = max(drive.free_speed() if math.isfinite(drive.free_speed()) else 0.0, abs(speed),
-               math.sqrt(scene.shaft.stiffness / scene.rotor.mass), motion.band(), 1e-3)
-    h = 2 * math.pi / fast / STEPS_PER_PERIOD
-    return min(h, motion.time_step) if motion.kind == "record" else h
-
-
-# --------------------------------------------------------------------------
 # The run
 
 
@@ -194,14 +162,8 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
     Defaults follow the reduced models' cases: the scene's excitation, a
     constant drive and the operating speed for the earthquake; the ramped
     drive from rest for the run-up; durations from ``[simulate]``.
-    ``time_step`` None takes ``simulate.time_step`` if set, else automatic
-    (auto_time_step).  ``mesh`` (a scene Mesh section) replaces
-    ``scene.mesh``.  ``prescribed_speed`` holds Omega at ``initial_speed``
-    (theta = initial_angle + Omega t; the energy balance is then the
-    structure's).  ``samples``: output points (the peaks use every step).
-    ``observer`` (e.g. rotorpillar.fem3d.stress.StressRecovery) is handed the
-    assembled model (``attach(model)``) and the unknowns at every output time
-    (``record(t, x)``).
+        out, stats = _integrate(model, rotor, scene.pillar.damping, drive, motion, step, steps, stride,
+                                initial_angle, W0, prescribed_speed, progress)
     """
     from . import assemble_pillar
     if scene.modal.top_model != "rigid":
@@ -211,9 +173,16 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
         raise InputError('modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
                          'the 3D transient hangs it on its shaft: use modal.top_mass = "gondola"')
     motion, drive, duration, W0, notes = case_setup(scene, case, motion, drive, duration, initial_speed)
-    h = time_step or scene.simulate.time_step or auto_time_step(scene, drive, motion, W0)
-    steps = max(1, int(round(duration / h)))
+    rule = step_rule(scene, drive, motion, W0, time_step)
+    est = estimate(scene, duration, rule, mesh)
+    check_budget(scene, case, est)                        # before any meshing
+    if progress:
+        progress(f"3D transient: {est.steps:.0f} steps of {rule.time_step:.3g} s ({_scheme_name(scene)}), "
+                 f"about {est.seconds:.0f} s on ~{est.dofs:,} dofs (estimate)")
+    steps = max(1, int(round(duration / rule.time_step)))
     h = duration / steps
+    fo = scene.full_order
+    step = Step(h, **scheme_parameters(fo.integrator, fo.rho_inf))
     stride = max(1, int(math.ceil(steps / max(1, samples - 1))))
     start = time.perf_counter()
     model = assemble_pillar(scene, top=True, mesh=mesh, comm=comm)
@@ -221,15 +190,17 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
     try:
         if observer is not None:
             observer.attach(model)
-        out, stats = _integrate(model, rotor, scene.pillar.damping, drive, motion, h, steps, stride,
+        out, stats = _integrate(model, rotor, scene.pillar.damping, drive, motion, step, steps, stride,
                                 initial_angle, W0, prescribed_speed, progress, observer)
     finally:
         model.K.destroy()
         model.M.destroy()
     wall = time.perf_counter() - start
-    stats.update(method="newmark", scheme="average acceleration (beta 1/4, gamma 1/2), one MUMPS "
-                 "factorisation, the spin equation by scalar Newton inside each step",
-                 time_step=h, assembly_seconds=sum(model.timings.values()))
+    reached = W0 if prescribed_speed else float(np.max(np.abs(out["Omega"])))
+    check = accuracy(scene, h, duration, max(reached, abs(W0)), motion)
+    stats.update(method=fo.integrator, scheme=_scheme_words(fo.integrator, step, rule),
+                 time_step=h, step_rule=rule.to_json(), accuracy=check.to_json(),
+                 estimate=est.to_json(), assembly_seconds=sum(model.timings.values()))
     mesh_section = scene.mesh if mesh is None else mesh
     info = {"mesh": dict(vars(mesh_section)), "top": "rigid plate with the gondola",
             "damping_law": "pillar: b1 as a dashpot on the plate's X; b2 on the rotor centre's "
@@ -238,10 +209,24 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
             "start": "tube at rest, rotor in its steady whirl on a held plate",
             "initial_speed": W0, "initial_angle": initial_angle,
             "prescribed_speed": bool(prescribed_speed), **notes}
-    return _result(case, out, stats, model.size + 3, wall, info, motion, drive, prescribed_speed)
+    return _result(case, out, stats, model.size + 3, wall, info, motion, drive, prescribed_speed,
+                   check.failed)
 
 
-def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed) -> Fem3dTransient:
+def _scheme_name(scene) -> str:
+    fo = scene.full_order
+    return fo.integrator + ("" if fo.integrator == "newmark" else f", rho_inf {fo.rho_inf:g}")
+
+
+def _scheme_words(method: str, step: Step, rule) -> str:
+    name = {"newmark": "Newmark's average acceleration", "hht": "HHT-alpha",
+            "generalized_alpha": "generalized-alpha (Chung & Hulbert 1993)"}[method]
+    return (f"{name}: alpha_m {step.alpha_m:.4g}, alpha_f {step.alpha_f:.4g}, beta {step.beta:.4g}, "
+            f"gamma {step.gamma:.4g}, spectral radius at infinity {rule.spectral_radius_infinity:.3g}; "
+            "one MUMPS factorisation, the spin equation by scalar Newton inside each step")
+
+
+def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed, failed) -> Fem3dTransient:
     t = out["t"]
     ground = motion.inertial_displacement(t)
     W = out["Omega"]
@@ -255,6 +240,13 @@ def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed) -> Fe
                "work_shaft_on_structure": float(work[-1, 1]), "dissipated": float(work[-1, 2]),
                "work_base": float(work[-1, 3]), "max_abs_residual": float(np.max(np.abs(resid))),
                "scale": float(scale), "relative_error": float(np.max(np.abs(resid)) / scale)}
+    failed = list(failed)
+    if stats["status"] != "ok":
+        failed.insert(0, f"integrator_stopped: {stats['status']}")
+    e = balance["relative_error"]
+    if not np.isfinite(e) or e > ENERGY_CHECK:
+        failed.append(f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
+                      f"exchanged (limit {100 * ENERGY_CHECK:g} %)")
     return Fem3dTransient(
         case=case, t=t, Omega=W, theta=out["theta"], tip_x=out["tip_x"],
         tip_x_absolute=out["tip_x"] + ground, ground_x=ground,
@@ -263,63 +255,33 @@ def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed) -> Fe
         drive_torque=np.asarray(drive.torque(t, W), dtype=float), energy=E, work=work,
         max_abs=out["max_abs"], omega_final=float(W[-1]), omega_final_mean=float(np.mean(W[tail])),
         energy_balance=balance, integrator=stats, dofs=int(dofs), wall_seconds=float(wall),
-        model=info, ok=stats["status"] == "ok")
+        model=info, ok=not failed, failed_checks=failed)
 
 
-class _Plate:
-    """Reads and adds the plate's U_x and U_z rows of a PETSc Vec on any rank count."""
-
-    def __init__(self, vec, rows, comm):
-        lo, hi = vec.getOwnershipRange()
-        self.local = [(i, r - lo) for i, r in enumerate(rows) if lo <= r < hi]
-        self.n, self.comm = len(rows), comm
-
-    def get(self, vec) -> np.ndarray:
-        out = np.zeros(self.n)
-        if self.local:
-            arr = vec.getArray(readonly=True)
-            for i, r in self.local:
-                out[i] = arr[r]
-        if self.comm.size > 1:
-            out = self.comm.allreduce(out)
-        return out
-
-    def add(self, vec, values) -> None:
-        if self.local:
-            arr = vec.getArray()
-            for i, r in self.local:
-                arr[r] += values[i]
-
-
-def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: GroundMotion, h: float,
+def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: GroundMotion, step: Step,
                steps: int, stride: int, theta0: float, W0: float, prescribed: bool, progress,
                observer=None):
-    """Newmark (average acceleration) over ``steps`` steps; see the module text."""
-    from petsc4py import PETSc
+    """The generalized-alpha ``step`` over ``steps`` steps; see the module text.
+
+    Each scalar dof's equation (rotor centre x, y; the plate's dashpot) is
+    Step.history + the new-time couplings; the tube's is
+    Keff u1 = M (cm u~ - am a - r a_g) - af K u + the plate's rows.
+    """
     K, M = model.K, model.M
     N = model.tube_dofs
     rows = (N, N + 2)                                      # the plate's U_x, U_z
     c2, b2, mC, J, e = (rotor.shaft_stiffness, rotor.shaft_damping, rotor.mass, rotor.inertia,
                         rotor.eccentricity)
-    kr = newmark_rotor_stiffness(rotor, h)
+    h, am, af, wf = step.h, step.alpha_m, step.alpha_f, step.new_weight
+    cm, cc = step.mass_coefficient, step.damping_coefficient
+    kr = rotor_step_stiffness(rotor, step)
     t0 = time.perf_counter()
-    Keff = K.copy()
-    Keff.axpy(4 / h**2, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
-    lo, hi = Keff.getOwnershipRange()
-    if lo <= N < hi:
-        # the rotor centre condensed onto the plate: c2 - c2**2 / k_r on U_x and U_z
-        Keff.setValue(N, N, 2 / h * b1 + c2 - c2**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
-        Keff.setValue(N + 2, N + 2, c2 - c2**2 / kr, addv=PETSc.InsertMode.ADD_VALUES)
-    Keff.assemble()
-    ksp = PETSc.KSP().create(model.comm)
-    ksp.setOperators(Keff)
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
-    ksp.setUp()
-    vecs = [K.createVecRight() for _ in range(9)]
-    u, v, a, w, R, u1, gN, gZ, tmp = vecs
-    plate = _Plate(u, rows, model.comm)
+    # the plate's rows: its dashpot, and the rotor centre condensed onto it (w c2 - (w c2)**2 / k_r)
+    ksp, Keff, (d_x, d_z) = step_operator(K, M, N, cc * b1 + wf * c2 - (wf * c2)**2 / kr,
+                                          wf * c2 - (wf * c2)**2 / kr, wf, cm, model.comm)
+    vecs = [K.createVecRight() for _ in range(14)]
+    u, v, a, w, R, u1, gN, gZ, tmp, pred, Ku, Mu, Mv, Ma = vecs
+    plate = Plate(u, rows, model.comm)
     for x in vecs:
         x.set(0.0)
     for g, i in ((gN, 0), (gZ, 1)):                        # the plate under a unit load on U_x, U_z
@@ -330,7 +292,7 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
         R.set(0.0)
     (gNN, gNZ), (gZN, gZZ) = plate.get(gN), plate.get(gZ)
     gcoef = (gNN, gZN, gNZ, gZZ)
-    gamma = -c2 * e * (1 - c2 / kr)
+    gamma = -wf * c2 * e * (1 - wf * c2 / kr)
     setup = time.perf_counter() - t0
     r = model.influence(0)
     Mr = M.createVecLeft()
@@ -345,11 +307,15 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
     M0s, slopes = (np.asarray(x, dtype=float) for x in drive.at(tg))
     kload = drive.load_coefficient
     # start (see the module text)
-    a.pointwiseMult(r, mask)
-    a.scale(-ag[0])
     x, y, vx, vy = rotor_start(rotor, theta0, W0)
     Ux = Uz = vUx = 0.0
     th, W = theta0, W0
+    a.pointwiseMult(r, mask)
+    a.scale(-ag[0])
+    t_start = time.perf_counter()
+    add_shaft_acceleration(M, mask, plate, a, (c2 * (x - e * math.cos(th)), c2 * (y - e * math.sin(th))))
+    setup += time.perf_counter() - t_start
+    aUx = float(plate.get(a)[0])
     ax = (-c2 * (x - e * math.cos(th)) - b2 * vx - mC * ag[0]) / mC
     ay = (-c2 * (y - e * math.sin(th)) - b2 * vy) / mC
     tau = drive_torque(M0s[0], slopes[0], kload, W0)
@@ -363,11 +329,10 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
     peaks = dict.fromkeys(("tip_x", "tip_x_absolute", "rotor_x", "rotor_y", "shaft_deflection_x",
                            "shaft_deflection_y", "plate_z"), 0.0)
 
+    M.mult(a, Ma)
+
     def energy():
-        K.mult(u, tmp)
-        E = 0.5 * u.dot(tmp)
-        M.mult(v, tmp)
-        E += 0.5 * v.dot(tmp) + 0.5 * mC * (vx * vx + vy * vy)
+        E = 0.5 * u.dot(Ku) + 0.5 * v.dot(Mv) + 0.5 * mC * (vx * vx + vy * vy)
         E += 0.5 * c2 * ((x - Ux - e * math.cos(th)) ** 2 + (y - Uz - e * math.sin(th)) ** 2)
         return E + (0.0 if prescribed else 0.5 * J * W * W)
 
@@ -382,29 +347,42 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
 
     record(0, 0.0)
     j, newton, newton_max, status = 1, 0, 0, "ok"
+    bu, bv, ba = h, h * h * (0.5 - step.beta), h * (1 - step.gamma)
     t_int = time.perf_counter()
     for n in range(1, steps + 1):
         t = n * h
-        # R = M (4/h^2 u + 4/h v + a) - M r a_g + the plate's dashpot and condensed rotor history
-        w.set(0.0)
-        w.axpy(4 / h**2, u)
-        w.axpy(4 / h, v)
-        w.axpy(1.0, a)
-        M.mult(w, R)
-        R.axpy(-ag[n], Mr)
-        rho_x = mC * (4 / h**2 * x + 4 / h * vx + ax) + b2 * (2 / h * x + vx) - mC * ag[n]
-        rho_y = mC * (4 / h**2 * y + 4 / h * vy + ay) + b2 * (2 / h * y + vy)
-        plate.add(R, (b1 * (2 / h * Ux + vUx) + c2 * rho_x / kr, c2 * rho_y / kr))
+        agw = wf * ag[n] + af * ag[n - 1]
+        sx0, sy0 = x - Ux - e * math.cos(th), y - Uz - e * math.sin(th)
+        # R = M (cm u~ - am a - r a_g) - af K u + the plate's dashpot and condensed rotor,
+        # from the products M u, M v, M a, K u the last step left (no product here)
+        u.copy(pred)
+        pred.axpy(bu, v)
+        pred.axpy(bv, a)                                   # pred = u~
+        Mu.copy(w)
+        w.axpy(bu, Mv)
+        w.axpy(bv, Ma)                                     # w = M u~
+        w.copy(R)
+        R.scale(cm)
+        if am:
+            R.axpy(-am, Ma)
+        R.axpy(-agw, Mr)
+        if af:
+            R.axpy(-af, Ku)
+        rho_x = step.history(mC, b2, x, vx, ax, -c2 * sx0) - mC * agw
+        rho_y = step.history(mC, b2, y, vy, ay, -c2 * sy0)
+        dash = step.history(0.0, b1, Ux, vUx, aUx, 0.0)
+        plate.add(R, (dash + af * c2 * sx0 + wf * c2 * rho_x / kr, af * c2 * sy0 + wf * c2 * rho_y / kr))
         ksp.solve(R, u1)
         ux_hat, uz_hat = plate.get(u1)
-        UxA, UzA, xA, yA = plate_and_rotor(rotor, kr, ux_hat, uz_hat, rho_x, rho_y, gamma, gcoef)
+        UxA, UzA, xA, yA = plate_and_rotor(rotor, kr, ux_hat, uz_hat, rho_x, rho_y, gamma, gcoef, wf)
         sx = Affine(xA.a0 - UxA.a0, xA.ac - UxA.ac, xA.as_ - UxA.as_)
         sy = Affine(yA.a0 - UzA.a0, yA.ac - UzA.ac, yA.as_ - UzA.as_)
         if prescribed:
             th1, W1, alpha1, it = theta0 + W0 * t, W0, 0.0, 0
         else:
             try:
-                th1, W1, alpha1, it = solve_spin(rotor, h, th, W, alpha, sx, sy, M0s[n], slopes[n], kload)
+                th1, W1, alpha1, it = solve_spin(rotor, h, th, W, alpha, sx, sy, M0s[n], slopes[n], kload,
+                                                 step=step, old_torque=tau + Tc)
             except ArithmeticError:
                 status = f"Newton on the spin equation failed at t = {t:g} s"
                 break
@@ -417,26 +395,38 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
         if not all(map(math.isfinite, (Ux1, x1, y1, th1))):
             status = f"solution diverged (not finite) at t = {t:g} s"
             break
-        w.waxpy(-1.0, u, u1)                               # w = u1 - u
-        dbase = -0.5 * (ag[n - 1] + ag[n]) * (Mr.dot(w) + mC * (x1 - x))
-        a.scale(-1.0)
-        a.axpy(4 / h**2, w)
-        a.axpy(-4 / h, v)
-        v.scale(-1.0)
-        v.axpy(2 / h, w)
+        # the new products: K u1 by one product; M u1 from the step's own equation
+        # (Keff u1 = R + the unbalance: cm M u1 = that - wf K u1 - D u1, precise
+        # because cm is large), M a1 and M v1 by Newmark's updates, as a1 and v1
+        K.mult(u1, Ku)
+        rMu0 = r.dot(Mu)
+        R.copy(tmp)
+        plate.add(tmp, (gamma * c - d_x * Ux1, gamma * s - d_z * Uz1))
+        tmp.axpy(-wf, Ku)
+        tmp.scale(1.0 / cm)
+        tmp.copy(Mu)                                       # M u1
+        v.axpy(ba, a)                                      # v~
+        a.waxpy(-1.0, pred, u1)
+        a.scale(1.0 / (step.beta * h * h))                 # a1 = (u1 - u~) / (beta h**2)
+        v.axpy(step.gamma * h, a)
+        Mv.axpy(ba, Ma)
+        Ma.waxpy(-1.0, w, Mu)
+        Ma.scale(1.0 / (step.beta * h * h))
+        Mv.axpy(step.gamma * h, Ma)
+        dbase = -0.5 * (ag[n - 1] + ag[n]) * (r.dot(Mu) - rMu0 + mC * (x1 - x))
         u1.copy(u)
-        vUx1 = 2 / h * (Ux1 - Ux) - vUx
-        vx1, vy1 = 2 / h * (x1 - x) - vx, 2 / h * (y1 - y) - vy
-        ax, ay = 4 / h**2 * (x1 - x) - 4 / h * vx - ax, 4 / h**2 * (y1 - y) - 4 / h * vy - ay
+        vUx1, aUx1 = step.update(Ux1, *step.predict(Ux, vUx, aUx))
+        vx1, ax1 = step.update(x1, *step.predict(x, vx, ax))
+        vy1, ay1 = step.update(y1, *step.predict(y, vy, ay))
         tau1 = drive_torque(M0s[n], slopes[n], kload, W1)
         Tc1 = coupling_torque(rotor, x1 - Ux1, y1 - Uz1, th1)
-        # work increments as Newmark's own energy identity has them (exact for the linear part)
+        # work increments by the trapezoidal rule (Newmark's energy identity for its linear part)
         work[0] += 0.5 * (tau + tau1) * (th1 - th)
         work[1] -= 0.5 * (Tc + Tc1) * (th1 - th)
         work[2] += (b1 * (Ux1 - Ux) * 0.5 * (vUx + vUx1) + b2 * (x1 - x) * 0.5 * (vx + vx1)
                     + b2 * (y1 - y) * 0.5 * (vy + vy1))
         work[3] += dbase
-        Ux, Uz, vUx, x, y, vx, vy = Ux1, Uz1, vUx1, x1, y1, vx1, vy1
+        Ux, Uz, vUx, aUx, x, y, vx, vy, ax, ay = Ux1, Uz1, vUx1, aUx1, x1, y1, vx1, vy1, ax1, ay1
         th, W, alpha, tau, Tc = th1, W1, alpha1, tau1, Tc1
         for k, val in (("tip_x", Ux), ("tip_x_absolute", Ux + ug[n]), ("rotor_x", x), ("rotor_y", y),
                        ("plate_z", Uz), ("shaft_deflection_x", x - Ux - e * c),

@@ -20,6 +20,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..scene import CASES
+from .accuracy import (FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters,
+                       full_order_step)
 from .drive import DriveSchedule
 from .excitation import GroundMotion, no_motion, response_spectrum
 from .models import build_model, scene_motion
@@ -42,10 +44,6 @@ class CaseResult:
     """model_info, initial_speed, excitation_in_model, and the sweep's bins and curves"""
 
 
-#: full-order runs' automatic step: this many steps per period of the fastest forcing
-FULL_ORDER_STEPS_PER_PERIOD = 40
-
-
 def settings_of(scene, integrator: str | None = None) -> Settings:
     """The scene's [simulate] integration settings, ``integrator`` replacing its method."""
     s = scene.simulate
@@ -53,23 +51,82 @@ def settings_of(scene, integrator: str | None = None) -> Settings:
                     samples=s.samples, max_steps=s.max_steps)
 
 
-def forcing_time_step(scene, fastest: float, motion: GroundMotion) -> float:
-    """A full-order run's automatic step (s): FULL_ORDER_STEPS_PER_PERIOD steps per
-    period of the fastest of ``fastest`` (the rotor, the ground motion's band) and
-    the shaft's Y mode, no coarser than a record's sampling.  The structure's own
-    stiff modes (a beam's shear modes, the tube's) are left to the implicit scheme."""
-    fast = max(fastest, math.sqrt(scene.shaft.stiffness / scene.rotor.mass), motion.band(), 1e-3)
-    h = 2 * math.pi / fast / FULL_ORDER_STEPS_PER_PERIOD
-    return min(h, motion.time_step) if motion.kind == "record" else h
+def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
+                         model: RotorStructure | None = None) -> StepRule:
+    """The beam's step and why (rotorpillar.reduced.accuracy.full_order_step): the
+    longest that resolves the fastest forcing (the unbalance's rotation at the
+    rotor's top speed, the ground motion's band) within 2e-3, no coarser than a
+    record's sampling, or ``full_order.time_step``; not the stiffest part's (the
+    shaft, the beam's shear modes): the implicit schemes damp those (rho_inf).
+    Central difference (explicit) stays below 0.9 of its stability limit on ``model``."""
+    fo = scene.full_order
+    forcing = forcing_frequencies(scene.rotor.eccentricity, forcing_top(scene, case, None), motion)
+    if not forcing:                                   # nothing forces the structure: the spin's pace
+        forcing = {"rotor_speed": forcing_top(scene, case, None)}
+    rule = full_order_step(method, full_order_parameters(method, fo.rho_inf), forcing,
+                           scene.modal_model.band_factor,
+                           motion.time_step if motion.kind == "record" else None, fo.time_step)
+    if method == "central_difference" and model is not None and not fo.time_step:
+        limit = 0.9 * 2.0 / model.stiffest_frequency()
+        if limit < rule.time_step:
+            rule = replace(rule, time_step=limit, rule=rule.rule + "; below 0.9 of central difference's "
+                           f"stability limit 2 / omega_max ({model.stiffest_frequency():.4g} rad/s)")
+    return rule
 
 
-def full_order_settings(scene, case: str, motion: GroundMotion, integrator: str | None = None) -> Settings:
-    """The beam's settings: [full_order] beam_integrator (or ``integrator``) and
-    time_step, else forcing_time_step."""
+def full_order_settings(scene, case: str, motion: GroundMotion, integrator: str | None = None,
+                        model: RotorStructure | None = None) -> tuple[Settings, StepRule | None]:
+    """The beam's settings: [full_order] beam_integrator (or ``integrator``), rho_inf
+    and the step of ``full_order_step_rule``; and that rule (None for an adaptive
+    ``integrator``: it chooses its own steps)."""
     fo = scene.full_order
     st = settings_of(scene, integrator or fo.beam_integrator)
-    return replace(st, time_step=fo.time_step or forcing_time_step(scene, forcing_top(scene, case, motion),
-                                                                   motion))
+    if st.method not in FULL_ORDER_SCHEMES:
+        return st, None
+    st = replace(st, rho_inf=fo.rho_inf, hht_alpha=max(-1 / 3, (fo.rho_inf - 1) / (fo.rho_inf + 1)))
+    rule = full_order_step_rule(scene, case, motion, st.method, model)
+    return replace(st, time_step=rule.time_step), rule
+
+
+def case_duration(scene, case: str, motion: GroundMotion) -> float:
+    """The length of a case's run as ``_run_on`` runs it (s)."""
+    sim = scene.simulate
+    if case == "earthquake":
+        return sim.earthquake_duration or motion.end + 5.0
+    if case == "sweep":
+        d, L, w = scene.drive, scene.load, scene.sweep
+        return DriveSchedule.sweep(d.slope, L.coefficient, w.torque_low, w.torque_high, w.rate,
+                                   w.settle).times[-1]
+    return sim.duration
+
+
+#: The beam's seconds per step and dof**2 (Newton on its dense n x n Jacobian),
+#: measured: 16 us a step of CPU on 23 dofs, one Newton iteration a step; an
+#: estimate, stated as one.
+BEAM_SECONDS_PER_STEP_DOF2 = 3e-8
+
+
+def check_full_order_budget(scene, case: str, motion: GroundMotion, integrator: str | None = None) -> None:
+    """Refuse (InputError naming the keys) a beam run estimated above ``simulate.max_steps``,
+    before the beam is built: steps = the case's duration over the rule's step."""
+    fo = scene.full_order
+    method = integrator or fo.beam_integrator
+    if method not in FULL_ORDER_SCHEMES:                   # adaptive: simulate's own estimate
+        return
+    duration = case_duration(scene, case, motion)
+    h = full_order_step_rule(scene, case, motion, method).time_step
+    steps = duration / h
+    if math.isfinite(steps) and steps <= scene.simulate.max_steps:
+        return
+    n = 2 * (fo.beam_elements or scene.modal_model.elements) + 3
+    seconds = steps * BEAM_SECONDS_PER_STEP_DOF2 * n * n
+    length = "simulate.earthquake_duration" if case == "earthquake" else \
+        "sweep.rate" if case == "sweep" else "simulate.duration"
+    raise InputError(
+        f"the beam's {case} of {duration:.4g} s at a step of {h:.3g} s would take about {steps:.3g} "
+        f"steps (~{seconds:.3g} s on {n} dofs), more than simulate.max_steps = "
+        f"{scene.simulate.max_steps:.3g}: raise full_order.time_step (0 = the band's step), shorten "
+        f"{length}, or raise simulate.max_steps")
 
 
 def forcing_top(scene, case: str, motion: GroundMotion | None) -> float:
@@ -98,10 +155,16 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
         motion = no_motion()
     elif motion is None:
         motion = scene_motion(scene)
+    if which == "beam":                                    # before the beam is built
+        check_full_order_budget(scene, case, motion, integrator)
     top = scene.modal_model.band_factor * forcing_top(scene, case, motion)
     model, info = build_model(scene, which, top, modes, pillar_modes)
-    settings = full_order_settings(scene, case, motion, integrator) if which == "beam" else None
+    settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" \
+        else (None, None)
     result = _run_on(scene, case, model, motion, integrator, {"model_info": info}, settings)
+    if rule is not None:
+        result.run.stats["step_rule"] = rule.to_json()
+        result.summary.integrator["step_rule"] = rule.to_json()
     if which == "modal" and truncation:
         result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
     return result

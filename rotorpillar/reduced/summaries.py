@@ -17,6 +17,7 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
+from .accuracy import AccuracyCheck, check_step, forcing_frequencies
 from .excitation import GroundMotion, no_motion
 from .rotor_models import RotorStructure
 from .transient import Transient, shaft_deflection
@@ -257,31 +258,69 @@ ENERGY_CHECK = 0.05
 SPEED_CHECK = 0.02
 
 
-def run_checks(run: Transient, drive_free_speed: float) -> list[str]:
-    """The run's own checks, one line each for every one that fails (empty: all hold).
+def accuracy_check(run: Transient) -> AccuracyCheck:
+    """The run's step against what it had to resolve (rotorpillar.reduced.accuracy):
+    the unbalance's rotation at the fastest speed the run reached and the ground
+    motion's band, and the run's and the ground motion's durations.  Fixed-step
+    schemes: their step; adaptive ones: the steps they took against the periods
+    they went through at each moment's fastest frequency, and their rtol."""
+    st, m = run.stats, run.model
+    method = st.get("method", "dp5")
+    motion = run.motion or no_motion()
+    W = np.abs(np.asarray(run.Omega, dtype=float))
+    finite = W[np.isfinite(W)]
+    top = float(finite.max()) if len(finite) else 0.0
+    W = np.where(np.isfinite(W), W, top)
+    freq = forcing_frequencies(m.eccentricity, top, motion)
+    t = np.asarray(run.t, dtype=float)
+    duration = float(t[-1] - t[0])
+    window = None
+    if motion.kind != "none":
+        window = (motion.start - t[0], motion.end - t[0])
+    h = st.get("time_step")
+    if h:
+        return check_step(method, dict(st.get("scheme") or {}), float(h), freq, duration, window=window)
+    # adaptive: the periods gone through at each moment's fastest frequency
+    fast = W if m.eccentricity > 0 else np.zeros_like(t)
+    if "ground_motion_band" in freq:
+        on = (t >= motion.start) & (t < motion.end)
+        fast = np.where(on, np.maximum(fast, freq["ground_motion_band"]), fast)
+    periods = float(np.sum(0.5 * (fast[1:] + fast[:-1]) * np.diff(t)) / (2 * math.pi))
+    steps = st.get("steps")
+    mean = duration / steps if steps else 0.0
+    return check_step(method, {}, mean, freq, duration, adaptive=True, periods=periods, steps=steps,
+                      window=window, rtol=st.get("rtol"))
+
+
+def run_checks(run: Transient, drive_free_speed: float,
+               accuracy: AccuracyCheck | None = None) -> list[str]:
+    """The run's own checks, one named line each ("name: why") for every one that
+    fails (empty: all hold).
 
     The integrator finished, took steps, kept every value finite, stayed
-    within its stability limit, closed the energy balance, and the rotor did
-    not outrun its drive.
+    within its stability limit, took a step fit for what it had to resolve
+    (``accuracy_check``), closed the energy balance, and the rotor did not
+    outrun its drive.
     """
     failed = []
     status = run.stats.get("status", "ok")
     if status != "ok":
-        failed.append(f"the integrator stopped: {status}")
+        failed.append(f"integrator_stopped: {status}")
     if run.stats.get("steps", 1) == 0:
-        failed.append("the integrator took no step (tolerance or step below what it can resolve)")
+        failed.append("no_steps: the integrator took no step (tolerance or step below what it can resolve)")
     if not (np.all(np.isfinite(run.q)) and np.all(np.isfinite(run.v))):
-        failed.append("the solution holds non-finite values")
+        failed.append("not_finite: the solution holds non-finite values")
     h = run.stats.get("time_step")
     if run.stats.get("method") == "central_difference" and h:
         w_max = run.model.stiffest_frequency()
         if h * w_max > 2.0:
-            failed.append(f"central difference past its stability limit: h omega_max = "
+            failed.append(f"stability: central difference past its stability limit: h omega_max = "
                           f"{h * w_max:.3g} > 2 (h = {h:g} s)")
+    failed += (accuracy or accuracy_check(run)).failed
     e = run.energy_balance().get("relative_error", 0.0)
     if not np.isfinite(e) or e > ENERGY_CHECK:
-        failed.append(f"the energy balance misses by {100 * e:.3g} % of the energy exchanged "
-                      f"(limit {100 * ENERGY_CHECK:g} %)")
+        failed.append(f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
+                      f"exchanged (limit {100 * ENERGY_CHECK:g} %)")
     w = float(np.max(np.abs(run.Omega))) if len(run.Omega) else 0.0
     # the fastest the drive can hold at any of its knots, or the start, if faster
     top = max([drive_free_speed, abs(float(run.Omega[0]))]
@@ -290,7 +329,7 @@ def run_checks(run: Transient, drive_free_speed: float) -> list[str]:
     still = run.motion is None or run.motion.kind == "none"
     if still and np.isfinite(top) and top > 0 and not run.prescribed_speed \
             and w > (1 + SPEED_CHECK) * top:
-        failed.append(f"the rotor reached {w:.4g} rad/s, above the drive's free speed "
+        failed.append(f"speed: the rotor reached {w:.4g} rad/s, above the drive's free speed "
                       f"{top:.4g} rad/s")
     return failed
 
@@ -301,14 +340,16 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
     captured_at, passing_torque, sweep, ...)."""
     tail = run.t >= run.t[-1] - max(0.05 * (run.t[-1] - run.t[0]), 1e-9)
     om_mean = float(np.mean(run.Omega[tail]))
-    failed = run_checks(run, drive_free_speed)
+    acc = accuracy_check(run)
+    failed = run_checks(run, drive_free_speed, acc)
     state = capture_state(run.model, run.t, run.Omega, drive_free_speed)
     base = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
                 omega_final_mean=om_mean, max_abs=max_abs(run),
                 captured_at=state["captured_at"], captured_resonance=state["captured_resonance"],
                 captured_index=state["captured_index"],
                 speed_state=state["speed_state"], passages=passages(run),
-                energy_balance=run.energy_balance(), integrator=dict(run.stats), prediction=prediction,
+                energy_balance=run.energy_balance(),
+                integrator={**run.stats, "accuracy": acc.to_json()}, prediction=prediction,
                 jumps=[])
     base.update(sections)
     if failed:

@@ -281,29 +281,31 @@ def _run_scipy(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
     if settings.method in ("Radau", "BDF", "LSODA"):
         kw["jac"] = lambda t, yy: K.jac_first_order(t, yy, P)
     edges = [t0] + [b for b in _breaks(drive, motion) if t0 < b < t1] + [t1]
-    ys, nfev, njev, status = [], 0, 0, "ok"
+    ys, nfev, njev, steps, status = [], 0, 0, 0, "ok"
     for a, b in zip(edges[:-1], edges[1:]):
         sel = (t_out >= a) & ((t_out < b) if b < t1 else (t_out <= b))
         # one-sided forcing at the segment's edges, as the compiled kernel
         eps = 1e-12 * (abs(a) + abs(b) + 1.0)
         f = (lambda t, yy, a=a, b=b, eps=eps: fun(min(max(t, a + eps), b - eps), yy))
         te = t_out[sel]
-        add_end = not (len(te) and te[-1] == b)
-        sol = solve_ivp(f, (a, b), y, method=settings.method,
-                        t_eval=np.r_[te, b] if add_end else te, rtol=settings.rtol, atol=atol, **kw)
+        # dense output instead of t_eval: the same interpolants at the outputs, and
+        # the steps taken (sol.t), which the accuracy check counts
+        sol = solve_ivp(f, (a, b), y, method=settings.method, dense_output=True,
+                        rtol=settings.rtol, atol=atol, **kw)
         nfev += sol.nfev
         njev += getattr(sol, "njev", 0)
         if sol.status != 0 or not sol.success:
             status = f"scipy: {sol.message}"
             break
-        ys.append(sol.y[:, :len(te)].T)
+        steps += len(sol.t) - 1
+        ys.append(sol.sol(te).T if len(te) else np.zeros((0, len(y))))
         y = sol.y[:, -1]
     Y = np.vstack(ys) if ys else np.zeros((0, len(y)))
     if len(Y) < len(t_out):
         Y = np.vstack([Y, np.full((len(t_out) - len(Y), Y.shape[1] if len(Y) else 2 * n + K.N_WORK), np.nan)])
     peak = np.column_stack([np.abs(Y[:, :n]), np.abs(Y[:, :model.nx] @ model.tip)])
     stats = {"status": status, "nfev": int(nfev), "njev": int(njev), "rtol": settings.rtol,
-             "steps": None}
+             "steps": int(steps)}
     return (t_out, Y[:, :n], Y[:, n:2 * n], Y[:, 2 * n:], peak, stats)
 
 
@@ -324,14 +326,16 @@ def _run_fixed(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
     if m == "central_difference":
         status, nfev, nit = K.cd_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
                                        out_q, out_v, out_w, out_peak)
+        scheme = {}
     else:
         am, af, beta, gamma = genalpha_parameters(m, settings)
+        scheme = {"alpha_m": am, "alpha_f": af, "beta": beta, "gamma": gamma}
         status, nfev, nit = K.genalpha_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
                                              am, af, beta, gamma, settings.newton_tol, 30,
                                              out_q, out_v, out_w, out_peak)
     t = t0 + h * stride * np.arange(nout)
     stats = {"status": STATUS[status], "nfev": int(nfev), "steps": int(nsteps), "time_step": h,
-             "newton_iterations": int(nit)}
+             "newton_iterations": int(nit), "scheme": scheme}
     if status != K.OK:
         out_q[:] = np.nan if status == K.NOT_FINITE else out_q
     return t, out_q, out_v, out_w, out_peak, stats

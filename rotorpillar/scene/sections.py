@@ -303,11 +303,17 @@ class FullOrder:
     runup_duration: float = param("3D: run-up length, 0 = simulate.duration (s)", 15.0, ge=0, le=1e5)
     earthquake_duration: float = param("3D: earthquake length, 0 = the case's own (s)", 15.0,
                                        ge=0, le=1e5)
-    time_step: float = param("Step of the 3D and beam runs, 0 = 40 per period of the fastest "
-                             "forcing (s)", 0.0, ge=0)
+    time_step: float = param("Step of the 3D and beam runs, 0 = the longest that resolves the "
+                             "fastest forcing within 2e-3 (period error; docs/transients.md) (s)",
+                             0.0, ge=0)
     beam_elements: int = param("Beam: elements, 0 = modal_model.elements (-)", 10, ge=0, le=2000)
     beam_integrator: str = param("Beam: integrator without --integrator (its shear modes are "
-                                 "stiff: implicit)", "newmark", choices=FIXED_STEP_INTEGRATORS)
+                                 "stiff: implicit)", "generalized_alpha", choices=FIXED_STEP_INTEGRATORS)
+    integrator: str = param("3D: time integrator (implicit, one factorisation)", "generalized_alpha",
+                            choices=("newmark", "hht", "generalized_alpha"))
+    rho_inf: float = param("Spectral radius at infinite frequency of the full orders' hht and "
+                           "generalized_alpha: what the modes far above the band keep per step "
+                           "(hht: >= 0.5) (-)", 0.8, ge=0, le=1)
 
 
 SECTIONS = {

@@ -1,0 +1,88 @@
+"""The 3D full order's step operator and its plate rows (rotorpillar.fem3d.transient).
+
+- ``step_operator``: Keff = wf K + cm M + the plate's rows (its dashpot and the
+  rotor centre condensed onto it), factorised once (MUMPS Cholesky: K and M are
+  symmetric, the plate's terms positive);
+- ``Plate``: reads and adds the plate's U_x and U_z rows on any rank count;
+- ``add_shaft_acceleration``: the consistent initial acceleration.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def step_operator(K, M, N: int, plate_x: float, plate_z: float, wf: float, cm: float, comm):
+    """(ksp, Keff, (plate_x, plate_z)): Keff = wf K + cm M + plate_x on row N (the plate's
+    U_x) + plate_z on row N + 2 (its U_z), factorised."""
+    from petsc4py import PETSc
+    Keff = K.copy()
+    Keff.scale(wf)
+    Keff.axpy(cm, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
+    lo, hi = Keff.getOwnershipRange()
+    for row, value in ((N, plate_x), (N + 2, plate_z)):
+        if lo <= row < hi:
+            Keff.setValue(row, row, value, addv=PETSc.InsertMode.ADD_VALUES)
+    Keff.assemble()
+    Keff.setOption(PETSc.Mat.Option.SPD, True)
+    ksp = PETSc.KSP().create(comm)
+    ksp.setOperators(Keff)
+    ksp.setType("preonly")
+    ksp.getPC().setType("cholesky")
+    ksp.getPC().setFactorSolverType("mumps")
+    ksp.setUp()
+    return ksp, Keff, (plate_x, plate_z)
+
+
+class Plate:
+    """Reads and adds the plate's U_x and U_z rows of a PETSc Vec on any rank count."""
+
+    def __init__(self, vec, rows, comm):
+        lo, hi = vec.getOwnershipRange()
+        self.local = [(i, r - lo) for i, r in enumerate(rows) if lo <= r < hi]
+        self.n, self.comm = len(rows), comm
+
+    def get(self, vec) -> np.ndarray:
+        out = np.zeros(self.n)
+        if self.local:
+            arr = vec.getArray(readonly=True)
+            for i, r in self.local:
+                out[i] = arr[r]
+        if self.comm.size > 1:
+            out = self.comm.allreduce(out)
+        return out
+
+    def add(self, vec, values) -> None:
+        if self.local:
+            arr = vec.getArray()
+            for i, r in self.local:
+                arr[r] += values[i]
+
+
+def add_shaft_acceleration(M, mask, plate: Plate, a, force) -> None:
+    """a += M^-1 (the shaft's force on the plate at the start): the tube's consistent
+    initial acceleration.  Without it the first steps carry the whirl's force on the
+    plate as an acceleration error, which the trapezoidal velocity update keeps as a
+    velocity error of O(h): first order instead of second.  One factorisation of M
+    (the massless rows, clamped or placeholders, made the identity)."""
+    if not any(force):
+        return
+    from petsc4py import PETSc
+    Mm = M.copy()
+    Mm.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
+    ones = mask.duplicate()
+    ones.set(1.0)
+    ones.axpy(-1.0, mask)
+    Mm.setDiagonal(ones, addv=PETSc.InsertMode.ADD_VALUES)
+    ksp = PETSc.KSP().create(M.getComm())
+    ksp.setOperators(Mm)
+    ksp.setType("preonly")
+    ksp.getPC().setType("lu")
+    ksp.getPC().setFactorSolverType("mumps")
+    f, da = M.createVecLeft(), M.createVecLeft()
+    f.set(0.0)
+    plate.add(f, force)
+    ksp.solve(f, da)
+    a.axpy(1.0, da)
+    for obj in (ksp, Mm, ones, f, da):
+        obj.destroy()

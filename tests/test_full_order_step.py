@@ -1,0 +1,145 @@
+"""The 3D full order's step follows the band (issue 15.8), its checks (19.4), and mpirun (15.9).
+
+References and tolerances:
+
+- stiff shaft (c2 = 1e10 N/m, e = 0, b2 = 0: the rotor's bounce on its shaft at
+  2,500 rad/s, far above El Centro's band of 62 rad/s): the run at the band's
+  step (generalized-alpha, rho_inf 0.8, 2.44 ms) against Newmark at a sixth of
+  it (the average acceleration's error falls as h**2: 36 x smaller, and its
+  step resolves the shaft's mode at 10 steps a period), peak tip within 0.5 %
+  (the issue's target; measured 0.08 % on the scene's 8 x 10 mesh over 15 s);
+  the step does not depend on c2 (the same as with the scene's soft shaft);
+- second order: the tip, the rotor and its speed at h, h/2, h/4 against h/16
+  (a smooth pulse; the rotor free on its shaft), fitted log-log slope of the
+  error in [1.8, 2.2] (second order: 2; measured 1.95-2.02; the coarsest step
+  sits at 56 steps per period of the unbalance's rotation);
+- a step that swallows the record: ok false, exit 4, the named checks;
+- mpirun -n 2 against the serial run: the same numbers to 1e-7 (MUMPS on two
+  ranks orders its sums differently; the run's own error is 1e-3).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+
+import numpy as np
+import pytest
+from conftest import cli
+
+from rotorpillar.scene import load_scene
+
+pytestmark = [pytest.mark.slow, pytest.mark.skipif(
+    __import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")]
+
+COARSE = ["mesh.elements_around=8", "mesh.elements_along=6", "mesh.degree=2"]
+STIFF = ["excitation.kind=record", "shaft.stiffness=1e10", "rotor.eccentricity=0", "shaft.damping=0"]
+
+
+def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
+    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.reduced.excitation import load_record
+    motion = load_record("elcentro", start=0.5)
+    stiff = load_scene("paper", COARSE + STIFF)
+    soft = load_scene("paper", COARSE + STIFF[:1] + STIFF[2:])
+    r = simulate_fem3d(stiff, "earthquake", motion=motion, duration=5.0, samples=501)
+    assert r.ok, r.failed_checks
+    h = r.integrator["time_step"]
+    rule = r.integrator["step_rule"]
+    assert rule["scheme"] == "generalized_alpha"
+    assert rule["spectral_radius_infinity"] == pytest.approx(0.8, abs=1e-3)
+    assert rule["forcing"] == {"ground_motion_band": pytest.approx(motion.band())}
+    assert rule["band_edge"] == pytest.approx(2.0 * motion.band())
+    assert math.sqrt(1e10 / 1600.0) * h > 5                     # the shaft's mode is not resolved
+    from rotorpillar.fem3d.transient_plan import case_setup, step_rule
+    mo, drive, _, W0, _ = case_setup(soft, "earthquake", motion, None, 5.0, None)
+    assert step_rule(soft, drive, mo, W0).time_step == pytest.approx(rule["time_step"], rel=1e-12)
+    fine = load_scene("paper", COARSE + STIFF + ["full_order.integrator=newmark"])
+    f = simulate_fem3d(fine, "earthquake", motion=motion, duration=5.0, time_step=h / 6, samples=501)
+    assert r.max_abs["tip_x"] == pytest.approx(f.max_abs["tip_x"], rel=5e-3)
+    assert r.integrator["factorisations"] == 1
+
+
+@pytest.mark.parametrize("eccentricity, start, T, keys", [
+    (0.0, 0.5, 1.0, ("tip_x", "rotor_x")),
+    (0.002, 0.0, 0.5, ("rotor_x", "Omega")),
+], ids=["ground-only", "whirl-and-spin"])
+def test_the_3d_generalized_alpha_is_second_order(eccentricity, start, T, keys):
+    """ground-only: the pulse starts where its acceleration is zero (a_g continuous), so
+    the tube is not struck; whirl-and-spin: the rotor whirls from t = 0 and its spin is
+    free, so the Newton-closed coupling is in every step (the tip there carries the
+    tube's high modes, struck by the whirl's force at t = 0 and not yet resolved at these
+    steps: the rotor and its speed are the measures)."""
+    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.reduced.excitation import paper_pulse
+    scene = load_scene("paper", COARSE + ["mesh.elements_along=4", f"rotor.eccentricity={eccentricity}"])
+    motion = paper_pulse(0.05, math.pi, start, 10.0)
+    runs = {n: simulate_fem3d(scene, "earthquake", motion=motion, duration=T, time_step=T / n,
+                              samples=401, initial_speed=89.0) for n in (400, 800, 1600, 6400)}
+    assert runs[400].integrator["method"] == "generalized_alpha"
+    hs = [T / n for n in (400, 800, 1600)]
+    for key in keys:
+        errs = [np.max(np.abs(getattr(runs[n], key) - getattr(runs[6400], key))) for n in (400, 800, 1600)]
+        s = float(np.polyfit(np.log(hs), np.log(errs), 1)[0])
+        assert 1.8 <= s <= 2.2, (key, errs, s)
+
+
+def test_a_step_that_swallows_the_record_is_not_a_success(tmp_path):
+    p = cli("simulate", "paper", "--model", "fem3d", "--case", "earthquake", "--out", tmp_path,
+            "--set", "excitation.kind=record", "--set", "full_order.time_step=20",
+            "--set", "full_order.elements_along=4")
+    assert p.returncode == 4, p.stderr
+    doc = json.loads((tmp_path / "simulate.json").read_text())
+    assert doc["ok"] is False
+    names = {c.split(":")[0] for c in doc["failed_checks"]}
+    assert {"step_accuracy", "step_swallows_run", "step_swallows_ground_motion"} <= names
+    assert doc["integrator"]["step_rule"]["source"] == "full_order.time_step"
+
+
+def mpirun_prefix():
+    exe = shutil.which("mpirun")
+    if exe is None:
+        pytest.skip("mpirun not installed")
+    env = dict(os.environ)
+    if os.geteuid() == 0:      # Open MPI refuses root unless told
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    return [exe, "-n", "2"], env
+
+
+SHORT = ["--set", "excitation.kind=record", "--set", "excitation.start=0",
+         "--set", "full_order.earthquake_duration=1.5", "--set", "full_order.elements_around=8",
+         "--set", "full_order.elements_along=4", "--json"]
+
+
+def numbers(doc: dict) -> dict:
+    """The JSON's numbers that the physics sets (not the timings)."""
+    return {"tip": doc["max_abs"]["tip_x"], "tip_abs": doc["max_abs"]["tip_x_absolute"],
+            "rotor_x": doc["max_abs"]["rotor_x"], "omega_final": doc["omega_final"],
+            "energy_change": doc["energy_balance"]["energy_change"], "steps": doc["integrator"]["steps"]}
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("command", ["simulate", "compare"])
+def test_two_ranks_give_the_serial_numbers(tmp_path, command):
+    prefix, env = mpirun_prefix()
+    args = ["--model", "fem3d", "--case", "earthquake"] if command == "simulate" else ["--case", "earthquake"]
+    p1 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "one", env=env)
+    p2 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "two", env=env, prefix=prefix)
+    assert p1.returncode == 0, p1.stderr
+    assert p2.returncode == 0, p2.stderr
+    a, b = json.loads(p1.stdout), json.loads(p2.stdout)       # rank 0 alone prints: one document
+    if command == "simulate":
+        na, nb = numbers(a), numbers(b)
+    else:
+        na = {m: a["per_model"][m]["peak_tip_relative"] for m in a["models_run"]}
+        nb = {m: b["per_model"][m]["peak_tip_relative"] for m in b["models_run"]}
+        na["error"] = a["errors"]["modal"]["tip_history_error"]
+        nb["error"] = b["errors"]["modal"]["tip_history_error"]
+        run = json.loads((tmp_path / "two" / "simulate_earthquake_fem3d.json").read_text())
+        assert run["ok"] is True
+    assert set(na) == set(nb)
+    for k in na:
+        assert nb[k] == pytest.approx(na[k], rel=1e-7, abs=1e-12), k
+    assert p2.stderr.count("[rotorpillar] simulate paper") <= 1       # rank 0 alone reports
