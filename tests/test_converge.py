@@ -21,7 +21,6 @@ Sources and tolerances:
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -82,7 +82,6 @@ def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, ke
 
 
 def test_sigterm_stops_run_and_its_stage(tmp_path):
-    import os
     import signal
     import subprocess
     import sys

@@ -27,7 +27,6 @@ import math
 import os
 import shutil
 import stat
-import sys
 
 import numpy as np
 import pytest

@@ -174,7 +174,7 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
     for ax, (q, title) in zip(axes, PANELS):
         _panel(ax, study, cost, q, title, families)
     axes[0].set_ylabel("|relative error| against the reference")
-    handles, labels = {}, []
+    handles = {}
     for ax in axes:
         for h, l in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(l, h)

@@ -54,7 +54,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..scene import CASES  # the cases, in the order the report shows them
+from ..scene import CASES as CASES  # re-exported: the cases, in the order the report shows them
 
 #: Input name -> (file in out/<scene>/, the command that writes it).
 INPUTS = {

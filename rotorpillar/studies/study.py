@@ -31,7 +31,7 @@ from ..executor import Executor
 from ..provenance import write_json, write_text
 from ..scene import MODELS, STUDY_CASES
 from .axes import check_points, implied_settings, parse_axes, run_scene
-from .batch import PER_RUN, group_key, run_batch
+from .batch import group_key, run_batch
 from .boundary import found_boundary, predicted_boundary
 from .result import StudyResult, StudyRun
 
