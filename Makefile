@@ -4,19 +4,29 @@ VENV := .venv
 PY   := $(VENV)/bin/python
 SCENE ?= paper
 
-.PHONY: run test test-fast bench setup clean
+.PHONY: run test test-fast check check-strict bench setup clean
 
 # The last line `rotorpillar run` prints is the report's path:
 # "report: /abs/path/out/<scene>/report.html".
 run: setup
 	$(VENV)/bin/rotorpillar run $(SCENE)
 
+# The whole suite, with the 15 slowest tests listed at the end.
 test: setup
-	$(PY) -m pytest
+	$(PY) -m pytest --durations=15
 
-# The tests without the 3D finite-element and long-study ones.
+# The tests not marked slow (no 3D model at size, no whole `run`, no study,
+# no set-up): within 2 minutes on a 2-core machine.
 test-fast: setup
-	$(PY) -m pytest -m "not slow"
+	$(PY) -m pytest -m "not slow" --durations=10
+
+# The house rules, ruff's lint and mypy (tools/check.sh); STRICT=1, or
+# `make check-strict`, adds what the lead switches on after the merges.
+check: setup
+	@STRICT=$(STRICT) tools/check.sh
+
+check-strict: setup
+	@STRICT=1 tools/check.sh
 
 bench: setup
 	$(PY) bench/run.py
