@@ -36,7 +36,7 @@ def check_model_files(out, case, model):
     for c in COLUMNS:
         assert data[c].shape == data["t"].shape, c
     assert np.allclose(data["tip_x_absolute"] - data["tip_x_relative"], data["ground_x"], atol=1e-12)
-    header = (out / f"simulate_{case}_{model}.csv").read_text().splitlines()[1].split(",")
+    header = (out / f"simulate_{case}_{model}.csv").read_text().splitlines()[0].split(",")
     assert set(COLUMNS) <= set(header)
     assert (out / f"simulate_{case}_{model}.png").stat().st_size > 10_000
     return doc

@@ -50,7 +50,7 @@ def test_runup_outputs_and_fields(runup):
         assert data[key].shape == data["t"].shape
     assert len(data["t"]) <= load_scene("paper").simulate.samples
     assert str(data["tip_x_frame"]) == "absolute"
-    header = (out / "simulate_runup.csv").read_text().splitlines()[1]
+    header = (out / "simulate_runup.csv").read_text().splitlines()[0]
     assert header.startswith("t,Omega,tip_x,rotor_x,rotor_y,ground_x")
     assert (out / "simulate_runup.png").stat().st_size > 10_000
     assert doc["figures"][0]["file"] == "simulate_runup.png"

@@ -97,8 +97,8 @@ def test_study_round_trips_and_writes_one_csv_row_per_run(small_study):
     doc = small_study.to_json()
     assert StudyResult.from_json(doc).to_json() == doc
     lines = Path(small_study.files["csv"]).read_text().splitlines()
-    assert lines[1].startswith("index,drive.torque_at_zero,rotor.eccentricity,final_speed")
-    assert len(lines) == 2 + 9
+    assert lines[0].startswith("index,drive.torque_at_zero,rotor.eccentricity,final_speed")
+    assert len(lines) == 1 + 9
 
 
 def test_runs_sharing_a_model_go_to_one_batch_loop():

@@ -92,7 +92,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     on_disk = json.loads((out / "study.json").read_text())
     rec = StudyResult.read(out / "study.json")
     assert rec.to_json() == {k: on_disk[k] for k in rec.to_json()}
-    assert len((out / "study.csv").read_text().splitlines()) == 2 + 48
+    assert len((out / "study.csv").read_text().splitlines()) == 1 + 48
     w, h = _png_size(out / "study_capture_map.png")
     assert w >= 1000 and h >= 700
     assert doc["boundary"]["kind"] == "torque" and len(doc["boundary"]["found"]) == 6

@@ -197,7 +197,12 @@ def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path
 
 
 def study_csv(result: StudyResult) -> str:
-    """One row a run: index, the axes' values, then the results (SI units)."""
+    """One row a run: index, the axes' values, then the results (SI units: rad/s, m, m/s2).
+
+    Plain: the header is the first line (no comment line, which csv.DictReader,
+    spreadsheets and pandas would take for the header); the study's
+    provenance is in study.json beside it.
+    """
     keys = [a.key for a in result.axes]
     cols = ["index", *keys, *CSV_RESULTS]
 
@@ -211,8 +216,7 @@ def study_csv(result: StudyResult) -> str:
         s = str(v)
         return '"' + s.replace('"', '""') + '"' if ("," in s or '"' in s) else s
 
-    lines = [f"# rotorpillar study {result.scene_name}: {result.case}, {result.model} model; "
-             "SI units (rad/s, m, m/s2)", ",".join(cols)]
+    lines = [",".join(cols)]
     for r in result.runs:
         row = [r.index, *(r.params.get(k) for k in keys), *(getattr(r, c) for c in CSV_RESULTS)]
         lines.append(",".join(cell(v) for v in row))
