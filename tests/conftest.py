@@ -1,4 +1,4 @@
-"""What several test modules share: the CLI as a user runs it, and one `run`.
+"""What several test modules share: the CLI as a user runs it, one `run`, the tiers, VTK hygiene.
 
 - :func:`cli` runs ``python -m rotorpillar ARGS...`` in a child process, as a
   user would, and returns the CompletedProcess (text stdout and stderr).
@@ -7,12 +7,24 @@
   that checks what the main job writes, instead of one run each (the
   comparisons run the 3D full order: tests/test_run_compare.py runs that
   stage alone).
+- The tiers (README, "Tests"): ``make test-fast`` runs ``-m "not slow"``.
+  Mark ``@pytest.mark.slow`` a test that runs a 3D or shell model at size, a
+  whole ``run``, a study (a convergence ladder, a design study), the set-up,
+  or anything else that takes seconds; a test that asks for a fixture of
+  :data:`SLOW_FIXTURES` (``run_paper``: the whole main job) is marked here.
+- VTK hygiene, after pyvista's own suite (its ``check_gc``): a test marked
+  ``@pytest.mark.renders`` (it renders with pyvista in this process) fails
+  when VTK objects it created outlive it: a render window, a plotter, a mesh
+  held by a cycle or a module global.  Every other test fails when it leaves a
+  pyvista plotter open (cheap: no garbage-collector scan).
 """
 
 from __future__ import annotations
 
+import gc
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -20,6 +32,9 @@ import pytest
 TESTS = Path(__file__).resolve().parent
 if str(TESTS) not in sys.path:          # tests import their helpers (imagecheck, fixtures)
     sys.path.insert(0, str(TESTS))
+
+#: Fixtures that make a test slow by themselves: each runs the whole main job.
+SLOW_FIXTURES = frozenset({"run_paper"})
 
 
 def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.CompletedProcess:
@@ -41,3 +56,56 @@ def run_paper(tmp_path_factory) -> RunOutput:
     p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare")
     assert p.returncode == 0, p.stderr
     return RunOutput(out, p)
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    for item in items:
+        if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
+
+
+# -- VTK hygiene ----------------------------------------------------------------------
+
+def vtk_objects() -> dict[int, str]:
+    """id -> class name of every VTK object the garbage collector can see.
+
+    An instance of ``vtkObjectBase``, whatever its Python class is called
+    (VTK 9.4+ wraps ``vtkPolyData`` as ``vtkmodules.util.data_model.PolyData``).
+    """
+    core = sys.modules.get("vtkmodules.vtkCommonCore")
+    if core is None:                     # VTK never imported: no VTK object exists
+        return {}
+    base = core.vtkObjectBase
+    return {id(o): type(o).__name__ for o in gc.get_objects() if isinstance(o, base)}
+
+
+def open_plotters() -> int:
+    """pyvista's plotters not closed yet (0 when pyvista was never imported)."""
+    plotter = sys.modules.get("pyvista.plotting.plotter")
+    return len(getattr(plotter, "_ALL_PLOTTERS", ()))
+
+
+def _close_plotters() -> None:
+    pv = sys.modules.get("pyvista")
+    if pv is not None:
+        pv.close_all()
+
+
+@pytest.fixture(autouse=True)
+def vtk_leak_check(request) -> Iterator[None]:
+    """Fail the test that leaks VTK objects (``renders``) or leaves a plotter open (any)."""
+    full = request.node.get_closest_marker("renders") is not None
+    if full:
+        gc.collect()
+        before = set(vtk_objects())
+    plotters = open_plotters()
+    yield
+    left_open = open_plotters() - plotters
+    _close_plotters()                    # one test's leak must not fail the next ones
+    assert left_open <= 0, f"{left_open} pyvista plotter(s) left open: close them (Plotter.close)"
+    if full:
+        gc.collect()
+        leaked = {i: name for i, name in vtk_objects().items() if i not in before}
+        names = sorted(set(leaked.values()))
+        assert not leaked, (f"{len(leaked)} VTK objects outlive the test (not garbage-collected): "
+                            f"{', '.join(names[:12])}{' ...' if len(names) > 12 else ''}")
