@@ -81,6 +81,7 @@ def test_each_run_of_a_study_is_the_single_run(small_study):
     assert kinds == {True, False}               # the grid holds both outcomes
 
 
+@pytest.mark.slow                       # a Dask LocalCluster's start and the study again
 def test_local_cluster_and_in_process_scheduler_agree(small_study, tmp_path):
     """The same batches on two worker processes: the same code on the same
     inputs, so the same numbers (bitwise: the integrator is deterministic)."""
@@ -136,6 +137,7 @@ def test_the_study_boundary_brackets_the_simulated_passing_torque(tmp_path):
     assert (Path(tmp_path) / "study_final.png").is_file()
 
 
+@pytest.mark.slow                       # a Dask LocalCluster's start
 def test_converge_runs_on_the_executor_give_the_serial_records(tmp_path):
     """The convergence study's runs through a LocalCluster: the same
     frequencies and DOFs as serially, each run cached once."""

@@ -56,6 +56,7 @@ def _png_size(path):
 AXES = ["--vary", "drive.torque_at_zero=560:700:8", "--vary", "rotor.eccentricity=0.010:0.020:6"]
 
 
+@pytest.mark.slow                       # a 48-run study, interrupted and resumed
 def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path):
     out = tmp_path / "out"
     batches = out / "study"
@@ -115,6 +116,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert not [p for p in build.products["external"] if p.path.name.startswith("study_")]
 
 
+@pytest.mark.slow                       # a design study on a Dask cluster
 def test_earthquake_study_draws_the_ida_curves(tmp_path):
     p = cli("study", "paper", "--case", "earthquake", "--model", "modal",
             "--vary", "excitation.record_scale=0.5:1.5:3", "--vary", "excitation.record=elcentro",
