@@ -11,14 +11,19 @@ SCENE ?= paper
 run: setup
 	$(VENV)/bin/rotorpillar run $(SCENE)
 
+# Both tiers run on JOBS processes (pytest-xdist); the main job's fixture
+# runs once for all of them (tests/conftest.py, once_per_session).
+JOBS ?= 2
+XDIST := -n $(JOBS)
+
 # The whole suite, with the 15 slowest tests listed at the end.
 test: setup
-	$(PY) -m pytest --durations=15
+	$(PY) -m pytest $(XDIST) --durations=15
 
-# The tests not marked slow (no 3D model at size, no whole `run`, no study,
+# The tests not marked slow (no 3D or shell model, no whole `run`, no study,
 # no set-up): within 2 minutes on a 2-core machine.
 test-fast: setup
-	$(PY) -m pytest -m "not slow" --durations=10
+	$(PY) -m pytest $(XDIST) -m "not slow" --durations=10
 
 # The house rules, ruff's lint and mypy (tools/check.sh); STRICT=1, or
 # `make check-strict`, adds what the lead switches on after the merges.

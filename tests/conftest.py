@@ -6,8 +6,10 @@
   converge --skip compare`` into a temporary directory, shared by every test
   that checks what the main job writes, instead of one run each (the
   comparisons run the 3D full order: tests/test_run_compare.py runs that
-  stage alone).
-- The tiers (README, "Tests"): ``make test-fast`` runs ``-m "not slow"``.
+  stage alone); under pytest-xdist, shared by the workers too
+  (:func:`once_per_session`).
+- The tiers (README): ``make test-fast`` runs ``-m "not slow"``; both it and
+  ``make test`` run on two processes (pytest-xdist).
   Mark ``@pytest.mark.slow`` a test that runs a 3D or shell model at size, a
   whole ``run``, a study (a convergence ladder, a design study), the set-up,
   or anything else that takes seconds; a test that asks for a fixture of
@@ -21,10 +23,13 @@
 
 from __future__ import annotations
 
+import fcntl
 import gc
+import json
+import os
 import subprocess
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -50,12 +55,36 @@ class RunOutput:
         self.out, self.process = out, process
 
 
+def once_per_session(name: str, tmp_path_factory,
+                     compute: Callable[[Path], dict]) -> tuple[Path, dict]:
+    """``compute(directory) -> record`` once for the whole test session, workers included.
+
+    Under pytest-xdist each worker has its own session fixtures: the first to
+    get here computes into a directory beside the workers' own (their common
+    base) while it holds a lock, and writes the record (JSON); the others wait
+    for the lock and read it.  Without xdist it is an ordinary session fixture.
+    """
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent                       # shared by the workers of this run
+    out, record = base / name, base / f"{name}.json"
+    with open(base / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not record.exists():
+            out.mkdir(exist_ok=True)
+            record.write_text(json.dumps(compute(out)))
+    return out, json.loads(record.read_text())
+
+
 @pytest.fixture(scope="session")
 def run_paper(tmp_path_factory) -> RunOutput:
-    out = tmp_path_factory.mktemp("run_paper")
-    p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare")
-    assert p.returncode == 0, p.stderr
-    return RunOutput(out, p)
+    def run(out: Path) -> dict:
+        p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare")
+        return {"args": p.args, "returncode": p.returncode, "stdout": p.stdout, "stderr": p.stderr}
+
+    out, done = once_per_session("run_paper", tmp_path_factory, run)
+    assert done["returncode"] == 0, done["stderr"]
+    return RunOutput(out, subprocess.CompletedProcess(**done))
 
 
 def pytest_collection_modifyitems(config, items) -> None:
@@ -95,8 +124,7 @@ def _close_plotters() -> None:
 def vtk_leak_check(request) -> Iterator[None]:
     """Fail the test that leaks VTK objects (``renders``) or leaves a plotter open (any)."""
     full = request.node.get_closest_marker("renders") is not None
-    if full:
-        gc.collect()
+    if full:                             # no collection first: the scan is what costs
         before = set(vtk_objects())
     plotters = open_plotters()
     yield

@@ -42,6 +42,7 @@ def check_model_files(out, case, model):
     return doc
 
 
+@pytest.mark.slow                       # the full-order beam over 8 s of record
 def test_beam_earthquake_files(tmp_path):
     p = cli("simulate", "paper", "--case", "earthquake", "--model", "beam", *RECORD, "--set",
             "simulate.earthquake_duration=8", "--json", "--out", tmp_path)

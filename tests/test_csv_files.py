@@ -18,13 +18,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import cli
 
 from rotorpillar.executor import Executor
 from rotorpillar.scene import load_scene
 from rotorpillar.studies import design_study
 from rotorpillar.studies.study import CSV_RESULTS
-from rotorpillar.transients.files import CSV_COLUMNS
+from rotorpillar.transients.files import CSV_COLUMNS, write_model_files
+from rotorpillar.transients.run import run_model
 
 def _read(path: Path) -> tuple[list[str], list[dict[str, str]]]:
     with open(path, newline="") as fh:
@@ -50,20 +50,14 @@ def check_run_csv(path: Path) -> None:
 
 
 def test_a_runs_csv_is_plain(tmp_path):
-    p = cli("simulate", "paper", "--case", "runup", "--out", tmp_path,
-            "--set", "simulate.duration=2", "--no-threshold")
-    assert p.returncode == 0, p.stderr
-    for path in (tmp_path / "simulate_runup.csv", tmp_path / "simulate_runup_paper.csv"):
+    """The run's CSV and its copy, as `simulate` writes them (without the chart); the modal
+    model's carries its modal coordinates eta1..."""
+    scene = load_scene("paper", ["simulate.duration=2"])
+    run = run_model(scene, "runup", "modal")
+    write_model_files(tmp_path, scene, run, provenance={})
+    for path in (tmp_path / "simulate_runup.csv", tmp_path / "simulate_runup_modal.csv"):
         check_run_csv(path)
-
-
-def test_a_modal_runs_csv_carries_its_modal_coordinates(tmp_path):
-    p = cli("simulate", "paper", "--case", "runup", "--model", "modal", "--out", tmp_path,
-            "--set", "simulate.duration=2", "--no-threshold")
-    assert p.returncode == 0, p.stderr
-    fields, _ = _read(tmp_path / "simulate_runup_modal.csv")
-    assert "eta1" in fields
-    check_run_csv(tmp_path / "simulate_runup_modal.csv")
+        assert "eta1" in _read(path)[0]
 
 
 def test_a_studys_csv_is_plain(tmp_path):

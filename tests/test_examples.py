@@ -177,7 +177,12 @@ CHECKS = {
 }
 
 
-@pytest.mark.parametrize("name", sorted(CHECKS))
+#: The examples that solve a 3D model: the slow tier.
+SLOW = {"modes_and_tip_reduction"}
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW else n
+                                  for n in sorted(CHECKS)])
 def test_example_prints_what_the_references_give(name, tmp_path):
     CHECKS[name](run_example(name, tmp_path))
 

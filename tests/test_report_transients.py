@@ -26,9 +26,6 @@ from imagecheck import assert_real_png
 from rotorpillar import cli
 from rotorpillar.postprocess.comparisons import COMPARISONS, compare_command
 
-# in-process pyvista renders: the VTK leak check of tests/conftest.py runs after each test
-pytestmark = pytest.mark.renders
-
 # 5 significant digits (html.num's default) round a value by at most 5e-6 of
 # it... up to half a unit in the 5th digit: 5e-5 relative at worst.
 FIVE_DIGITS = 5e-5
