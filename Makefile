@@ -11,10 +11,11 @@ SCENE ?= paper
 run: setup
 	$(VENV)/bin/rotorpillar run $(SCENE)
 
-# Both tiers run on JOBS processes (pytest-xdist); the main job's fixture
-# runs once for all of them (tests/conftest.py, once_per_session).
+# Both tiers run on JOBS processes (pytest-xdist; worksteal: a process that
+# runs dry takes queued tests from the other); the main job's fixture runs
+# once for all of them (tests/conftest.py, once_per_session).
 JOBS ?= 2
-XDIST := -n $(JOBS)
+XDIST := -n $(JOBS) --dist worksteal
 
 # The whole suite, with the 15 slowest tests listed at the end.
 test: setup
