@@ -3,7 +3,7 @@
 ``make run`` (``rotorpillar run paper``) compiles, on first use:
 
 - numba: the reduced model's kernels (``@njit(cache=True)`` in
-  ``rotorpillar/reduced/{dp5,fixed_step,rhs}.py``), 29 signatures of 22
+  ``rotorpillar/reduced/{dp5,fixed_step,rhs}.py``), 29 signatures of 21
   functions, for the argument types the comparisons, the two ``simulate``
   stages and the integrator study pass;
 - FFCx: the forms of the 3D solid (P1 and P2, hexahedra and tetrahedra) and
@@ -131,9 +131,14 @@ def warm_kernels(out: Path) -> tuple[int, int, list[Path]]:
     for path, d in _dispatchers():
         compiled += len(d.stats.cache_misses)                  # signatures, not calls
         loaded += len(set(d.stats.cache_hits) - set(d.stats.cache_misses))
-        # numba's index files: <module>.<function>-<line>.py311.nbi
-        index.update(Path(d.stats.cache_path).glob(f"{path.stem}.{d.__name__}-*.nbi"))
+        # numba's index files, one a function: <module>.<function>-<line>.py311.nbi
+        index.update(Path(d.stats.cache_path).glob(f"{path.stem}.*.nbi"))
     return compiled, loaded, sorted(index)
+
+
+def cached_signatures(index: list[Path]) -> int:
+    """Signatures on disk: one ``<index stem>.<n>.nbc`` file each."""
+    return sum(len(list(p.parent.glob(f"{p.stem}.*.nbc"))) for p in index)
 
 
 @contextlib.contextmanager
@@ -202,8 +207,8 @@ def main(argv: list[str] | None = None) -> int:
     t1 = time.perf_counter()
     families, libraries = warm_forms()
     t2 = time.perf_counter()
-    print(f"setup: numba: {compiled + loaded} signatures of the main job's kernels, {compiled} "
-          f"compiled, {loaded} from the cache ({t1 - t0:.0f} s)")
+    print(f"setup: numba: {cached_signatures(index)} signatures of {len(index)} kernels in the "
+          f"cache; {compiled} compiled now, {loaded} loaded ({t1 - t0:.0f} s)")
     print(f"setup: FFCx: {len(libraries)} elements and forms of {', '.join(families)} "
           f"({t2 - t1:.0f} s)")
     files = [str(p) for p in [*index, *libraries]]
