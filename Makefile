@@ -4,19 +4,35 @@ VENV := .venv
 PY   := $(VENV)/bin/python
 SCENE ?= paper
 
-.PHONY: run test test-fast bench setup clean
+.PHONY: run test test-fast check check-strict bench setup clean
 
 # The last line `rotorpillar run` prints is the report's path:
 # "report: /abs/path/out/<scene>/report.html".
 run: setup
 	$(VENV)/bin/rotorpillar run $(SCENE)
 
-test: setup
-	$(PY) -m pytest
+# Both tiers run on JOBS processes (pytest-xdist; worksteal: a process that
+# runs dry takes queued tests from the other); the main job's fixture runs
+# once for all of them (tests/conftest.py, once_per_session).
+JOBS ?= 2
+XDIST := -n $(JOBS) --dist worksteal
 
-# The tests without the 3D finite-element and long-study ones.
+# The whole suite, with the 15 slowest tests listed at the end.
+test: setup
+	$(PY) -m pytest $(XDIST) --durations=15
+
+# The tests not marked slow (no 3D or shell model, no whole `run`, no study,
+# no set-up): within 2 minutes on a 2-core machine.
 test-fast: setup
-	$(PY) -m pytest -m "not slow"
+	$(PY) -m pytest $(XDIST) -m "not slow" --durations=10
+
+# The house rules, ruff's lint and mypy (tools/check.sh); STRICT=1, or
+# `make check-strict`, adds what the lead switches on after the merges.
+check: setup
+	@STRICT=$(STRICT) tools/check.sh
+
+check-strict: setup
+	@STRICT=1 tools/check.sh
 
 bench: setup
 	$(PY) bench/run.py

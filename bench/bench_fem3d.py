@@ -48,7 +48,7 @@ def _solve_entries(model, n, label, mesh_desc, tol):
     seconds = lambda: sum(e.getPerfInfo()["time"] for e in events)
     out = []
     for method in ("block", "krylovschur"):
-        ts, tf, sols = [], [], []
+        ts, tf = [], []
         c0, t0s = count(), seconds()
         for _ in range(REPEAT):
             tf.append(factorisation_time(model.K, model.M))

@@ -112,8 +112,8 @@ def bench_sweep(scene) -> list[dict]:
         {"name": "sweep_batch_runs_per_second", "compares": f"compiled batch on every core ({threads} "
          f"threads): {RUNS} run-ups of {DURATION:g} s (tau 1.7..17), rtol {rtol:g}", "value": batch_rate,
          "unit": "runs/s", "wall_seconds": b.wall_seconds, "error": batch_err, "threads": threads},
-        {"name": "sweep_batch_serial_runs_per_second", "compares": f"the same compiled batch on one "
-         f"thread", "value": serial_rate, "unit": "runs/s", "wall_seconds": serial.wall_seconds,
+        {"name": "sweep_batch_serial_runs_per_second", "compares": "the same compiled batch on one "
+         "thread", "value": serial_rate, "unit": "runs/s", "wall_seconds": serial.wall_seconds,
          "threads": 1},
         {"name": "sweep_batch_thread_speedup", "compares": f"batch on {threads} threads over the batch "
          "on one (same runs, bit for bit)", "value": batch_rate / serial_rate, "unit": "x",

@@ -11,6 +11,7 @@ on stdout.  Bad input: one line on stderr, exit code 2, nothing written.
 from __future__ import annotations
 
 import importlib
+import logging
 import os
 import signal
 import sys
@@ -80,6 +81,22 @@ def check_output_dir(path: Path) -> None:
         raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not a directory")
 
 
+def quiet_third_party_logs(debug: bool = False) -> None:
+    """Other libraries' log records reach stderr at WARNING and above (INFO with ``--debug``).
+
+    ffcx calls ``logging.basicConfig()`` when imported (a root handler that
+    passes everything) and setuptools, building a form's C extension, lowers
+    the root logger to INFO: the compiler's command lines would reach the
+    console.  A root handler installed first, with its own threshold, takes
+    both (``basicConfig`` does nothing once the root has a handler).
+    """
+    root = logging.getLogger()
+    if not root.handlers:
+        logging.basicConfig()
+    for handler in root.handlers:
+        handler.setLevel(logging.INFO if debug else logging.WARNING)
+
+
 class Terminated(KeyboardInterrupt):
     """SIGTERM: stop as on Ctrl-C (a running stage's process is killed with us)."""
 
@@ -97,6 +114,7 @@ def main(argv: list[str] | None = None) -> int:
     """
     parser = build_parser()
     args = parser.parse_args(argv)
+    quiet_third_party_logs(args.debug)
     signal.signal(signal.SIGTERM, _terminate)
     if args.debug:
         os.environ["ROTORPILLAR_DEBUG"] = "1"      # run's stages and the report see it too

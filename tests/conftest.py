@@ -1,4 +1,4 @@
-"""What several test modules share: the CLI as a user runs it, and one `run`.
+"""What several test modules share: the CLI as a user runs it, one `run`, the tiers, VTK hygiene.
 
 - :func:`cli` runs ``python -m rotorpillar ARGS...`` in a child process, as a
   user would, and returns the CompletedProcess (text stdout and stderr).
@@ -6,13 +6,30 @@
   converge --skip compare`` into a temporary directory, shared by every test
   that checks what the main job writes, instead of one run each (the
   comparisons run the 3D full order: tests/test_run_compare.py runs that
-  stage alone).
+  stage alone); under pytest-xdist, shared by the workers too
+  (:func:`once_per_session`).
+- The tiers (README): ``make test-fast`` runs ``-m "not slow"``; both it and
+  ``make test`` run on two processes (pytest-xdist).
+  Mark ``@pytest.mark.slow`` a test that runs a 3D or shell model at size, a
+  whole ``run``, a study (a convergence ladder, a design study), the set-up,
+  or anything else that takes seconds; a test that asks for a fixture of
+  :data:`SLOW_FIXTURES` (``run_paper``: the whole main job) is marked here.
+- VTK hygiene, after pyvista's own suite (its ``check_gc``): a test marked
+  ``@pytest.mark.renders`` (it renders with pyvista in this process) fails
+  when VTK objects it created outlive it: a render window, a plotter, a mesh
+  held by a cycle or a module global.  Every other test fails when it leaves a
+  pyvista plotter open (cheap: no garbage-collector scan).
 """
 
 from __future__ import annotations
 
+import fcntl
+import gc
+import json
+import os
 import subprocess
 import sys
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -20,6 +37,9 @@ import pytest
 TESTS = Path(__file__).resolve().parent
 if str(TESTS) not in sys.path:          # tests import their helpers (imagecheck, fixtures)
     sys.path.insert(0, str(TESTS))
+
+#: Fixtures that make a test slow by themselves: each runs the whole main job.
+SLOW_FIXTURES = frozenset({"run_paper"})
 
 
 def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.CompletedProcess:
@@ -35,9 +55,85 @@ class RunOutput:
         self.out, self.process = out, process
 
 
+def once_per_session(name: str, tmp_path_factory,
+                     compute: Callable[[Path], dict]) -> tuple[Path, dict]:
+    """``compute(directory) -> record`` once for the whole test session, workers included.
+
+    Under pytest-xdist each worker has its own session fixtures: the first to
+    get here computes into a directory beside the workers' own (their common
+    base) while it holds a lock, and writes the record (JSON); the others wait
+    for the lock and read it.  Without xdist it is an ordinary session fixture.
+    """
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent                       # shared by the workers of this run
+    out, record = base / name, base / f"{name}.json"
+    with open(base / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not record.exists():
+            out.mkdir(exist_ok=True)
+            record.write_text(json.dumps(compute(out)))
+    return out, json.loads(record.read_text())
+
+
 @pytest.fixture(scope="session")
 def run_paper(tmp_path_factory) -> RunOutput:
-    out = tmp_path_factory.mktemp("run_paper")
-    p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare")
-    assert p.returncode == 0, p.stderr
-    return RunOutput(out, p)
+    def run(out: Path) -> dict:
+        p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare")
+        return {"args": p.args, "returncode": p.returncode, "stdout": p.stdout, "stderr": p.stderr}
+
+    out, done = once_per_session("run_paper", tmp_path_factory, run)
+    assert done["returncode"] == 0, done["stderr"]
+    return RunOutput(out, subprocess.CompletedProcess(**done))
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    for item in items:
+        if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
+
+
+# -- VTK hygiene ----------------------------------------------------------------------
+
+def vtk_objects() -> dict[int, str]:
+    """id -> class name of every VTK object the garbage collector can see.
+
+    An instance of ``vtkObjectBase``, whatever its Python class is called
+    (VTK 9.4+ wraps ``vtkPolyData`` as ``vtkmodules.util.data_model.PolyData``).
+    """
+    core = sys.modules.get("vtkmodules.vtkCommonCore")
+    if core is None:                     # VTK never imported: no VTK object exists
+        return {}
+    base = core.vtkObjectBase
+    return {id(o): type(o).__name__ for o in gc.get_objects() if isinstance(o, base)}
+
+
+def open_plotters() -> int:
+    """pyvista's plotters not closed yet (0 when pyvista was never imported)."""
+    plotter = sys.modules.get("pyvista.plotting.plotter")
+    return len(getattr(plotter, "_ALL_PLOTTERS", ()))
+
+
+def _close_plotters() -> None:
+    pv = sys.modules.get("pyvista")
+    if pv is not None:
+        pv.close_all()
+
+
+@pytest.fixture(autouse=True)
+def vtk_leak_check(request) -> Iterator[None]:
+    """Fail the test that leaks VTK objects (``renders``) or leaves a plotter open (any)."""
+    full = request.node.get_closest_marker("renders") is not None
+    if full:                             # no collection first: the scan is what costs
+        before = set(vtk_objects())
+    plotters = open_plotters()
+    yield
+    left_open = open_plotters() - plotters
+    _close_plotters()                    # one test's leak must not fail the next ones
+    assert left_open <= 0, f"{left_open} pyvista plotter(s) left open: close them (Plotter.close)"
+    if full:
+        gc.collect()
+        leaked = {i: name for i, name in vtk_objects().items() if i not in before}
+        names = sorted(set(leaked.values()))
+        assert not leaked, (f"{len(leaked)} VTK objects outlive the test (not garbage-collected): "
+                            f"{', '.join(names[:12])}{' ...' if len(names) > 12 else ''}")

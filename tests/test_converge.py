@@ -21,7 +21,6 @@ Sources and tolerances:
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -219,6 +218,7 @@ def test_excitation_band_of_the_paper_scene():
     assert quake["driver"] == "earthquake" and quake["omega_max"] == pytest.approx(150.0)
 
 
+@pytest.mark.slow                       # a shell ladder up to 32 around
 def test_shell_reference_agrees_with_a_finer_run(tmp_path):
     scene = override(load_scene("paper"), ["converge.solid=false", "converge.shell_max_around=32"])
     cases = [c for c in cv.ladder(scene) if c.family == "shell_quad" and c.level >= 12]
@@ -252,6 +252,7 @@ def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
         cv.ConvergenceStudy.from_json({**doc, "surprise": 1})
 
 
+@pytest.mark.slow                       # shell and 3D eigensolves, twice each
 def test_runs_asking_few_modes_first_give_what_the_full_count_gives():
     """compute_fe asks N_MODES_FIRST modes and N_MODES when the first ovalling
     mode is not among them: the quantities are those of an N_MODES solve (the

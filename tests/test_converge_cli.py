@@ -8,7 +8,6 @@ pixels).  The resume is checked by counting cached and computed runs.
 """
 
 import json
-import os
 import signal
 import subprocess
 import sys

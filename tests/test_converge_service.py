@@ -28,6 +28,7 @@ def _case_file(tmp_path, case, scene, name):
     return f
 
 
+@pytest.mark.slow                       # shell and 3D runs, served and fresh
 def test_served_runs_equal_fresh_runs_and_failures_are_reported(tmp_path):
     # Linux 4.0+: the per-run high-water mark; without it the process serves one run
     reused = reset_peak_memory()

@@ -10,6 +10,8 @@ regression shows as a failed test, not a dead test run.
 import subprocess
 import sys
 
+import pytest
+
 CHILD = r"""
 from rotorpillar.scene import load_scene
 from rotorpillar.fem3d import modal_analysis
@@ -25,6 +27,7 @@ print("rendered", img.shape, float(img.std()) > 0)
 """
 
 
+@pytest.mark.slow                       # a 3D model and a render, in a child process
 def test_modal_then_scalar_bar_render_in_one_process():
     p = subprocess.run([sys.executable, "-c", CHILD], capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-2000:]

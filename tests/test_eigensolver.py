@@ -23,6 +23,9 @@ from rotorpillar.fem3d.eigensolver import solve_gep_shift_invert
 from rotorpillar.fem3d.model import assemble_model
 from rotorpillar.scene import Mesh, load_scene, override
 
+# every test here solves a 3D model: the slow tier (tests/conftest.py)
+pytestmark = pytest.mark.slow
+
 MESH = Mesh(elements_around=16, elements_along=6)
 
 

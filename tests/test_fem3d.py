@@ -51,6 +51,9 @@ from rotorpillar.reduced.pillar import (cowper_shear_coefficient, omega_euler_be
                                         omega_timoshenko, section_of)
 from rotorpillar.scene import Mesh, load_scene, override
 
+# every test here solves a 3D model: the slow tier (tests/conftest.py)
+pytestmark = pytest.mark.slow
+
 THICK = ["pillar.outer_diameter=0.5", "pillar.inner_diameter=0.3"]
 
 

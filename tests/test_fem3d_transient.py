@@ -94,6 +94,7 @@ def static_run():
     return scene, a0, r
 
 
+@pytest.mark.slow                       # the 3D full-order transient
 @pytestmark_3d
 def test_static_limit(static_run):
     scene, a0, r = static_run
@@ -109,6 +110,7 @@ def test_static_limit(static_run):
     assert np.allclose(r.tip_x_absolute, r.tip_x + r.ground_x)
 
 
+@pytest.mark.slow                       # the 3D full-order transient
 @pytestmark_3d
 def test_result_json_round_trip(static_run):
     from rotorpillar.fem3d.transient import Fem3dTransient

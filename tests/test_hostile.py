@@ -82,7 +82,6 @@ def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, ke
 
 
 def test_sigterm_stops_run_and_its_stage(tmp_path):
-    import os
     import signal
     import subprocess
     import sys
@@ -290,6 +289,7 @@ def test_a_record_timed_in_milliseconds_is_flagged_not_realistic(tmp_path):
     assert "not a realistic earthquake" in p.stderr
 
 
+@pytest.mark.slow                       # a convergence study (shell ladder in subprocesses)
 def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
     """No 3D model and an 8-around shell: no family converges, so there is no reference and
     no run has an error estimate; the study says so instead of choosing the closed forms."""
@@ -302,6 +302,7 @@ def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
     assert sel["chosen"] is None and "no converged reference" in sel["reason"]
 
 
+@pytest.mark.slow                       # two convergence studies per case
 @pytest.mark.parametrize("content", ["null", "[1, 2]"])
 def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path, content):
     """A run cache that parses to another shape (or not at all) is treated as absent."""
@@ -317,6 +318,7 @@ def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path, content):
     assert json.loads(files[0].read_text())["status"] == "ok"     # recomputed and rewritten
 
 
+@pytest.mark.slow                       # two convergence studies per case
 @pytest.mark.parametrize("sig", ["SIGTERM", "SIGKILL"])
 def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     """Killed mid-study (SIGTERM: stops its runs; SIGKILL: no chance to clean up): every

@@ -27,7 +27,6 @@ import math
 import os
 import shutil
 import stat
-import sys
 
 import numpy as np
 import pytest
@@ -47,6 +46,7 @@ def small_run(tmp_path_factory):
     return out, json.loads((out / "modal.json").read_text()), p.stdout
 
 
+@pytest.mark.slow                       # the 3D modal command
 def test_modal_json_contract(small_run):
     out, doc, stdout = small_run
     assert {"modes", "modes_with_top", "reduction", "mesh", "axes", "timings", "top"} <= doc.keys()
@@ -75,6 +75,7 @@ def test_modal_json_contract(small_run):
     assert first_top["pillar_modal_mass"] == pytest.approx(first_top["modal_mass"] - 2300.0)
 
 
+@pytest.mark.slow                       # the 3D modal command
 def test_mode_shape_files(small_run):
     meshio = pytest.importorskip("meshio")
     out, doc, _ = small_run
@@ -93,6 +94,7 @@ def test_mode_shape_files(small_run):
                 assert np.linalg.norm(u, axis=1).max() <= 1 + 1e-12
 
 
+@pytest.mark.slow                       # the 3D modal command
 def test_mode_shapes_are_on_the_quadratic_cells(small_run):
     import fixtures
     out, doc, _ = small_run
@@ -114,6 +116,7 @@ def mpirun_prefix():
     return [exe, "-n", "2"], env
 
 
+@pytest.mark.slow
 @pytest.mark.mpi
 def test_mpi_two_ranks_equal_serial(tmp_path, small_run):
     prefix, env = mpirun_prefix()
@@ -147,6 +150,7 @@ def test_bad_mesh_input_exits_2_and_writes_nothing(tmp_path, sets, key):
     assert not out.exists()
 
 
+@pytest.mark.slow                       # the 3D modal command
 def test_slepc_failure_exits_1_and_writes_nothing(tmp_path):
     out = tmp_path / "out"
     env = dict(os.environ, PETSC_OPTIONS="-modal_eps_max_it 1 -modal_eps_ncv 12")
@@ -173,6 +177,7 @@ def test_gmsh_crash_exits_1_and_writes_nothing(tmp_path, monkeypatch, capsys):
     assert not out.exists()
 
 
+@pytest.mark.slow                       # the 3D modal command
 def test_analyze_takes_the_3d_reduction(tmp_path, small_run):
     p = cli("analyze", "paper", *SMALL, "--set", "reduction.source=fem3d", "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr

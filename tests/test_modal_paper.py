@@ -25,6 +25,9 @@ from rotorpillar.fem3d import modal_analysis
 from rotorpillar.reduced.pillar import cowper_shear_coefficient, omega_timoshenko, section_of
 from rotorpillar.scene import Mesh, load_scene
 
+# every test here solves the 3D model at the scene's mesh: the slow tier (tests/conftest.py)
+pytestmark = pytest.mark.slow
+
 
 def ring_n2(p):
     t = (p.outer_diameter - p.inner_diameter) / 2

@@ -53,6 +53,9 @@ from rotorpillar.reduced.pillar import cantilever_mode
 from rotorpillar.provenance import to_json
 from rotorpillar.scene import load_scene, override
 
+# in-process pyvista renders: the VTK leak check of tests/conftest.py runs after each test
+pytestmark = pytest.mark.renders
+
 
 @pytest.fixture(scope="module")
 def modal_dir(tmp_path_factory):

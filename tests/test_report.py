@@ -30,6 +30,9 @@ import fixtures
 from imagecheck import PNG_SIGNATURE
 from rotorpillar import cli
 
+# in-process pyvista renders: the VTK leak check of tests/conftest.py runs after each test
+pytestmark = pytest.mark.renders
+
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
 

@@ -66,6 +66,7 @@ def _first(res, kind, n=None):
     raise AssertionError(f"no {kind} mode (n={n}) in {list(zip(res.omega, res.kind))}")
 
 
+@pytest.mark.slow                       # shell models solved
 def test_simply_supported_shell_matches_sanders():
     res = _shell(32, 40, ends="simply-supported", n_modes=12)
     # the axial rigid translation comes first (free axial motion), at ~0
@@ -75,6 +76,7 @@ def test_simply_supported_shell_matches_sanders():
             sanders_frequency(1, n, E, NU, RHO, R, T, H), rel=1e-3)
 
 
+@pytest.mark.slow                       # shell models solved
 def test_cantilever_bending_is_timoshenkos_beam():
     res = _shell(16, 20, n_modes=4)
     sec = tube_section(2.0, 1.96, RHO)
@@ -115,6 +117,7 @@ def test_rigid_rotation_has_no_bending_strain():
     assert ours[1] < ours[0] and ours[1] < 1e-6 * facet
 
 
+@pytest.mark.slow                       # shell models solved
 def test_q2_shell_converges_at_fourth_order():
     runs = [_shell(na, int(1.25 * na)) for na in (8, 12, 16, 24)]
     h = [1 / 12, 1 / 16, 1 / 24]

@@ -54,7 +54,7 @@ def test_runup_outputs_and_fields(runup):
     assert str(data["tip_x_frame"]) == "relative_to_ground"
     bars = doc["uncertainty"]["peak_tip_relative"]
     assert bars["value"] == doc["max_abs"]["tip_x_relative"] and bars["error"] >= 0
-    header = (out / "simulate_runup.csv").read_text().splitlines()[1]
+    header = (out / "simulate_runup.csv").read_text().splitlines()[0]
     assert header.startswith("t,Omega,tip_x,rotor_x,rotor_y,ground_x")
     assert (out / "simulate_runup.png").stat().st_size > 10_000
     assert doc["figures"][0]["file"] == "simulate_runup.png"

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# One idempotent set-up for `make run`, `make test` and `make bench` on a
-# fresh Debian 12 machine: Debian packages (FEniCSx lives only there), then a
-# venv on top of the system interpreter, then this package.  A second run with
-# nothing changed installs nothing: apt is asked only for missing packages,
-# pip only when pyproject.toml or the constraints changed (a stamp records
-# their hash).
+# One idempotent set-up for `make run`, `make test`, `make check` and `make
+# bench` on a fresh Debian 12 machine: Debian packages (FEniCSx lives only
+# there), then a venv on top of the system interpreter, then this package with
+# its test and dev tools (pytest, ruff, mypy), then the one-off compilation of
+# the main job (numba's kernels, FFCx's forms: tools/warm_caches.py).  A second
+# run with nothing changed installs and compiles nothing: apt is asked only
+# for missing packages, pip only when pyproject.toml or the constraints
+# changed, the warm-up only when its key changed (a stamp records each).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -43,6 +45,10 @@ want=$(cat pyproject.toml "$VENV/constraints.txt" | sha256sum | cut -d' ' -f1)
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   echo "setup: installing rotorpillar and its Python dependencies into $VENV"
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check \
-      -c "$VENV/constraints.txt" -e ".[test]"
+      -c "$VENV/constraints.txt" -e ".[test,dev]"
   echo "$want" > "$stamp"
 fi
+
+# numba's kernels and FFCx's forms, compiled once here rather than in the
+# first `make run` (about 50 s there); nothing when the caches are current.
+"$VENV/bin/python" tools/warm_caches.py

@@ -65,7 +65,7 @@ def summary(st) -> str:
     lines += ["", f"Band: up to {b['omega_max']:.1f} rad/s = {b['margin']:g} x "
                   f"max(drive free speed {b['free_speed']:.1f}, earthquake "
                   f"{b['earthquake_frequency']:.2f}) rad/s; needs: {', '.join(sel['needed'])}",
-              f"Pareto front (band error vs wall time): "
+              "Pareto front (band error vs wall time): "
               + ", ".join(st.pareto["wall_time"]["band"])]
     lines += ["", f"Chosen at tolerance {sel['tolerance']:g}: "
               + (sel["chosen"]["label"] if sel["chosen"] else "none"), "  " + sel["reason"]]

@@ -83,7 +83,7 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
             steps += 1
             m0 = basis.m
             basis.append(Vn, MVn)
-            V, MV = basis.V, basis.MV
+            V = basis.V
             W = op.solve(MVn)                                    # A V_j
             # the new block's images against the whole basis: C = V^T M A V_j, a
             # column block of T = V^T M A V (symmetric in the M inner product)

@@ -19,7 +19,7 @@ import numpy as np
 from ..errors import ComputationError
 from . import identify
 from .eigensolver import solve_gep_shift_invert
-from .model import PillarModel, assemble_model
+from .model import PillarModel
 
 #: Two eigenvalues closer than this (relative) form a degenerate pair.
 PAIR_TOLERANCE = 1e-5

@@ -58,7 +58,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..scene import CASES  # the cases, in the order the report shows them
+from ..scene import CASES as CASES  # re-exported: the cases, in the order the report shows them
 from .shapes import json_type, require, shape_error  # noqa: F401  (require: build.py uses it)
 
 #: Input name -> (file in out/<scene>/, the command that writes it).

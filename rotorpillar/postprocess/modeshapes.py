@@ -250,7 +250,6 @@ def _add_mode(plotter, modeset: ModeSet, i: int, label: str, font: int, bar: boo
 def _add_sections(plotter, modeset: ModeSet, i: int, font: int, aspect: float, free,
                   bar: bool, view_height: float) -> None:
     """Mode i's cross-sections seen along the axis (top down), stacked top first."""
-    pv = pyvista()
     ax = modeset.axes
     ex, ey, ea = np.eye(3)[ax.x], np.eye(3)[ax.y], np.eye(3)[ax.axial]
     u = modeset.shape(i)

@@ -31,7 +31,7 @@ from ..executor import Executor
 from ..provenance import write_json, write_text
 from ..scene import STUDY_CASES, STUDY_MODELS
 from .axes import check_points, implied_settings, parse_axes, run_scene
-from .batch import PER_RUN, group_key, run_batch
+from .batch import group_key, run_batch
 from .boundary import found_boundary, predicted_boundary
 from .modes import StudyModes
 from .result import StudyResult, StudyRun
@@ -202,7 +202,12 @@ def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path
 
 
 def study_csv(result: StudyResult) -> str:
-    """One row a run: index, the axes' values, then the results (SI units)."""
+    """One row a run: index, the axes' values, then the results (SI units: rad/s, m, m/s2).
+
+    Plain: the header is the first line (no comment line, which csv.DictReader,
+    spreadsheets and pandas would take for the header); the study's
+    provenance is in study.json beside it.
+    """
     keys = [a.key for a in result.axes]
     cols = ["index", *keys, *CSV_RESULTS]
 
@@ -216,8 +221,7 @@ def study_csv(result: StudyResult) -> str:
         s = str(v)
         return '"' + s.replace('"', '""') + '"' if ("," in s or '"' in s) else s
 
-    lines = [f"# rotorpillar study {result.scene_name}: {result.case}, {result.model} model; "
-             "SI units (rad/s, m, m/s2)", ",".join(cols)]
+    lines = [",".join(cols)]
     for r in result.runs:
         row = [r.index, *(r.params.get(k) for k in keys), *(getattr(r, c) for c in CSV_RESULTS)]
         lines.append(",".join(cell(v) for v in row))

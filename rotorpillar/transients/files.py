@@ -2,9 +2,12 @@
 last run of `simulate`, the same as ``simulate_<case>.*`` (existing scripts read those).
 
 NPZ: every series of ``ModelRun.data`` plus the scalars ``tip_x_frame``,
-``model``, ``case`` and the coordinate names; CSV: ``CSV_COLUMNS`` (those a
-model has), then the modal coordinates eta1.. of the modal model.  Charts by
-rotorpillar.postprocess.transient_charts.
+``model``, ``case`` and the coordinate names; CSV: plain (the header is the
+first line), ``CSV_COLUMNS`` (those a model has), then the modal coordinates
+eta1.. of the modal model, in SI units (s, rad/s, m, m/s2): ``tip_x`` and
+``rotor_x`` in the frame the JSON's ``tip_x_frame`` names, ``tip_x_relative``
+relative to the ground, ``tip_x_absolute`` absolute, ``shaft_deflection_x`` =
+rotor X - tip X - e cos(theta).  Charts by rotorpillar.postprocess.transient_charts.
 """
 
 from __future__ import annotations
@@ -95,9 +98,9 @@ def _write_csv(path: Path, run: ModelRun) -> Path:
         mc = np.asarray(data["modal_coordinates"])
         cols += [f"eta{j + 1}" for j in range(mc.shape[1])]
         block += [mc[:, j] for j in range(mc.shape[1])]
-    frame = run.result["tip_x_frame"].replace("_", " ")
-    header = (f"# rotorpillar simulate {run.case}, {run.model} model; SI units (s, rad/s, m, m/s2); "
-              f"tip_x and rotor_x {frame}; tip_x_relative relative to the ground, tip_x_absolute "
-              "absolute; shaft_deflection_x = rotor X - tip X - e cos(theta)\n" + ",".join(cols))
-    text = header + "\n" + "\n".join(",".join(f"{x:.10g}" for x in row) for row in np.column_stack(block))
+    # No comment line before the header: csv.DictReader, spreadsheets and pandas would
+    # take it for the header.  The columns' meaning is in the module docstring; the
+    # run's provenance and tip_x_frame in its JSON.
+    rows = (",".join(f"{x:.10g}" for x in row) for row in np.column_stack(block))
+    text = ",".join(cols) + "\n" + "\n".join(rows)
     return write_text(path, text + "\n")
