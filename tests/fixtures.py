@@ -67,7 +67,7 @@ def write_modal_fixture(out: str | Path, height=20.0, outer_diameter=2.0, inner_
                         around: int = 32, along: int = 24, top_mass: float = 12e3) -> dict:
     """Write ``modal.json``, ``modes_bare.vtu`` and ``modes_top.vtu`` into ``out``.
 
-    Frequencies: Euler-Bernoulli for bending (the paper's equation 1), the top mass lowering
+    Frequencies: Euler-Bernoulli for bending (the paper's Eq. 1), the top mass lowering
     the first by the Rayleigh estimate sqrt(m_eff / (m_eff + top_mass)) and the second by
     its square root, made-up values for the shell modes (raised by the top plate).
     Returns the modal.json document.

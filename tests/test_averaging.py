@@ -1,4 +1,4 @@
-"""Averaging results (the paper's equations 19-20, 23, 24) against integrated equations.
+"""Averaging results (the paper's Eq. 19-20, 23, 24) against integrated equations.
 
 References:
 - the quasi-normal equation x'' + 2n x' + omega^2 x = f cos(Omega t),
@@ -166,7 +166,7 @@ def test_stability_alternates_and_quasistatic_branches():
 
 
 def test_branch_is_stable_against_a_numerical_derivative():
-    """Equation 23 by finite differences of Md - L on the strong case's
+    """Eq. 23 by finite differences of Md - L on the strong case's
     stationary speeds: stable exactly where d(Md - L)/dOmega < 0."""
     res = strong_case()
     s, k = 12.0, 0.5

@@ -66,7 +66,7 @@ def test_paper_model_base_forcing_warning(tmp_path, scene, extra, warned):
     assert p.returncode == 0, p.stderr
     doc = check_model_files(tmp_path, "earthquake", "paper")
     assert bool(doc["warnings"]) is warned
-    assert ("warning: equation 4's published base forcing" in p.stderr) is warned
+    assert ("warning: Eq. 4's published base forcing" in p.stderr) is warned
     assert doc["ok"] is True                             # ok is about the numerics only
 
 

@@ -1,10 +1,10 @@
-"""The equation indexes and the paper's equation 4.
+"""The equation indexes and the paper's Eq. 4.
 
 1. The indexes in the docstrings of rotorpillar.reduced and rotorpillar.fem3d
    (lines ``Eq. N   module.function``) name functions that exist and whose
    docstring's first line carries the tag ``Eq. N``: exact, by text.
 2. The compiled right-hand side of the paper model (rotorpillar.reduced.rhs,
-   ``rhs_first_order``) against ``eq4_rhs``, the paper's equation 4 as
+   ``rhs_first_order``) against ``eq4_rhs``, the paper's Eq. 4 as
    published in plain numpy, at random states with and without the ground
    pulse: the same arithmetic in another order, so to 1e-12 of the largest
    acceleration.

@@ -1,7 +1,7 @@
 """The report's transients (issue 9): the earthquake section shows a real
 record on the physically consistent models first (the ROM and the 3D full
 order overlaid, their error and cost, the record's response spectrum), then
-the paper's case with its excitation's size and equation 4's base-forcing
+the paper's case with its excitation's size and Eq. 4's base-forcing
 flaw; the run-up overlays the ROM and a full-order model; the findings list
 eq4_base_forcing.
 

@@ -141,7 +141,7 @@ def stiff_case(pillar_modes=None) -> StiffCase:
 
 
 def _implied_tip(omega1: float, omega2: float, mC: float, c2: float):
-    """(m_A, c1) that make equation 5 give the pair (omega1, omega2) for this rotor and shaft.
+    """(m_A, c1) that make Eq. 5 give the pair (omega1, omega2) for this rotor and shaft.
 
     From omega1**2 omega2**2 = (c0 c2 - c2**2)/(m_A m_C) and
     omega1**2 + omega2**2 = (c0 m_C + c2 m_A)/(m_A m_C).
@@ -283,7 +283,7 @@ def compare_with_paper(scene, result: AnalysisResult, pillar_modes=None) -> tupl
 
 
 def base_forcing_row(scene, result: AnalysisResult) -> PaperRow:
-    """The finding ``eq4_base_forcing``: equation 4's published base forcing against the consistent one.
+    """The finding ``eq4_base_forcing``: Eq. 4's published base forcing against the consistent one.
 
     Compared as the static tip gain q1/q5 under a slow ground displacement:
     (c1 + 2 c2)/c1 as published, 1 (the machine moves with the ground) when

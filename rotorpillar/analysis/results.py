@@ -20,7 +20,7 @@ from ..reduced.averaging import Jump, Stationary as StationarySpeed  # noqa: F40
 
 @dataclass(frozen=True)
 class Lumping(JsonRecord):
-    """The paper's equation 2 with the tube lumped into ``n`` equal masses."""
+    """The paper's Eq. 2 with the tube lumped into ``n`` equal masses."""
     n: int
     tip_mass: float
     """m_r (kg)"""
@@ -42,7 +42,7 @@ class RayleighEstimate(JsonRecord):
 
 @dataclass(frozen=True)
 class PillarClosedForms(JsonRecord):
-    """The bare tube: its section, equation 1, Timoshenko's correction, equation 2's reductions."""
+    """The bare tube: its section, Eq. 1, Timoshenko's correction, Eq. 2's reductions."""
     area: float
     second_moment: float
     mass_per_length: float

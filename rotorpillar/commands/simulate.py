@@ -16,7 +16,7 @@ and writes into ``out/<scene>/``:
 - ``simulate_sweep_az.png`` (and ``simulate_sweep_az_<model>.png``) for the sweep.
 
 Every JSON has model, case, ok, warnings (also on stderr: the paper model's
-earthquake when equation 4's published base forcing amplifies the ground by
+earthquake when Eq. 4's published base forcing amplifies the ground by
 more than 10 %), max_abs (tip_x_relative, tip_x_absolute, ...), omega_final,
 captured_at, energy_balance, integrator, dofs, wall_seconds, and for fem3d
 and beam full_order (mesh or elements, duration, time_step, note).
@@ -32,7 +32,7 @@ def add_arguments(p) -> None:
     p.add_argument("--case", choices=CASES, default=None,
                    help="which transient (default: the scene's simulate.case)")
     p.add_argument("--model", choices=MODELS, default=None,
-                   help="paper: equation 4 as published; modal: the pillar by its modes (the ROM); "
+                   help="paper: Eq. 4 as published; modal: the pillar by its modes (the ROM); "
                         "fem3d: the 3D tube at full order (earthquake, runup; mesh and duration from "
                         "[full_order]); beam: the 1D Timoshenko beam at full order "
                         "(default: the scene's simulate.model)")

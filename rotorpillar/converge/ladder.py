@@ -1,6 +1,6 @@
 """The ladder: the pillar models of the study, and the rungs each is refined on.
 
-- the closed forms: the paper's equation 1 for bending, the inextensional
+- the closed forms: the paper's Eq. 1 for bending, the inextensional
   ring for ovalling;
 - 1D beam FE, Euler-Bernoulli (Hermite cubics) and Timoshenko (linear,
   reduced shear), n elements: bending only, a beam has no shell modes;

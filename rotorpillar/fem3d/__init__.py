@@ -7,7 +7,7 @@ The public API (dolfinx, PETSc and SLEPc are imported inside the functions):
   from its shape (bending_x/y, ovalling with n, torsion, axial, breathing,
   other; see :mod:`rotorpillar.fem3d.identify`).
 - :func:`reduction_from_scene` (scene) -> (m_reduced, tip_stiffness): the
-  paper's equation 2 done on the 3D model's first bending mode.
+  paper's Eq. 2 done on the 3D model's first bending mode.
 - :func:`assemble_pillar` (scene, top=...) -> :class:`PillarModel`: the
   assembled K and M in PETSc with the node coordinates and top-face nodes,
   for time integration of the 3D model.
@@ -65,7 +65,7 @@ def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, c
     """The ``n_modes`` lowest modes (default ``scene.modal.n_modes``) of the pillar.
 
     ``top`` False: the bare tube, clamped at the base, free at the top (what
-    equation 1 describes).  True: with the gondola (and, by ``scene.modal.top_mass``,
+    Eq. 1 describes).  True: with the gondola (and, by ``scene.modal.top_mass``,
     the rotor) on top.  ``mesh`` (a scene ``Mesh`` section) replaces
     ``scene.mesh``.  Results are cached per (pillar, mesh, top, modal
     settings, n_modes, communicator size) within a process.
@@ -117,7 +117,7 @@ def _band_modes(scene, **kw) -> ModalResult:
 def reduction_from_scene(scene) -> tuple[float, float]:
     """(m_reduced in kg, tip_stiffness in N/m) from the bare tube's first bending mode.
 
-    Kinetic-energy equivalence (the paper's equation 2) on the 3D mode normalised
+    Kinetic-energy equivalence (the paper's Eq. 2) on the 3D mode normalised
     to unit tip displacement: m_r = phi^T M phi, c1 = m_r omega**2.  This is
     the callable ``rotorpillar.analysis.analyze(scene, fem3d_reduction=...)``
     takes when ``reduction.source = "fem3d"``.

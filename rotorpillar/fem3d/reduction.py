@@ -1,4 +1,4 @@
-"""The paper's equation 2 done on the 3D model's first bending mode.
+"""The paper's Eq. 2 done on the 3D model's first bending mode.
 
 Equal kinetic energy of the pillar in its first mode and of one mass at its
 tip moving like the tip:  m_r = (integral of rho u.u dV) / u_tip**2, the

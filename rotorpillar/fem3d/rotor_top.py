@@ -3,7 +3,7 @@
 Numpy only.  The rotor's mass centre (x_r, y_r) hangs on the shaft springs
 c2 from the plate's reference point (U_x, U_z), each stretched by the
 eccentricity: the shaft deflections are x_r - U_x - e cos(theta) and
-y_r - U_z - e sin(theta), as in the paper's equation 4 with its tip q1 = U_x
+y_r - U_z - e sin(theta), as in the paper's Eq. 4 with its tip q1 = U_x
 and the ground anchor of its q3 replaced by the plate's axial U_z (the
 paper's Y is the tube's axis z).  b2 acts on the rotor centre's velocity
 relative to the ground, as the modal model has it.
@@ -173,7 +173,7 @@ def coupling_torque(rotor: Rotor, sx: float, sy: float, theta: float) -> float:
     """Torque of the shaft on the rotor, -c2 e sx sin(theta) + c2 e sy cos(theta) (N*m).
 
     sx = x_r - U_x, sy = y_r - U_z: the rotor centre relative to the plate
-    (the last line of the paper's equation 4).
+    (the last line of the paper's Eq. 4).
     """
     c2e = rotor.shaft_stiffness * rotor.eccentricity
     return c2e * (sy * math.cos(theta) - sx * math.sin(theta))

@@ -118,7 +118,7 @@ def _table(title: str, result) -> list[str]:
 
 
 def summary(doc: dict, bare, loaded) -> str:
-    """The readable text of `rotorpillar modal`: both mode tables, equation 1 and the tip reduction beside them."""
+    """The readable text of `rotorpillar modal`: both mode tables, Eq. 1 and the tip reduction beside them."""
     red, cmp_, top = doc["reduction"], doc["comparison"], doc["top"]
     cf = red["closed_form"]
     mesh = doc["mesh"]

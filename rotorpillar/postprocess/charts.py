@@ -7,7 +7,7 @@
   on the resonance parameters analyze.json carries (omega_i, f_i, g_i, nu_i),
   over the whole speed range, not only the +-50 % of the stored curves (a
   jump may land far beyond them); the tests check it against those curves.
-  A regime on L is stable where the paper's equation 23 says so
+  A regime on L is stable where the paper's Eq. 23 says so
   (:func:`rotorpillar.reduced.averaging.branch_is_stable`).  The main panel
   shows what the motor reaches: its torque axis spans the drive's range
   (Md over the speeds drawn), the resonance peaks of L above it are marked at
@@ -17,7 +17,7 @@
   Md - L (what is left to accelerate), so that drive and resonance read
   together; the legend sits outside the panels; no two labels overlap
   and none covers a curve (:func:`rotorpillar.postprocess.style.place_labels`).
-- :func:`amplitude_chart`: a_i(z) by averaging (the paper's equation 19,
+- :func:`amplitude_chart`: a_i(z) by averaging (the paper's Eq. 19,
   omega_i**2 restored) against the exact linear steady state, per resonance.
 
 The analysis is read with attribute access (``analysis.drive.slope``), as
@@ -52,7 +52,7 @@ def drive_curve_data(analysis, points: int = 6000) -> dict:
     """Everything the Md/L chart draws, as arrays (no plotting).
 
     Keys: omega (grid, rad/s), L (total resistance), Mc, Md (the scene's
-    motor), stable (bool mask: the paper's equation 23 on L), jumps (list
+    motor), stable (bool mask: the paper's Eq. 23 on L), jumps (list
     of dicts with the from/to points and ``shown``: within the main panel),
     stationary (list of records with omega and stable), top (grid end);
     the main panel's range: x_max (past the free speed and every resonance),
@@ -307,7 +307,7 @@ def drive_chart(analysis, path: str | Path, width: int = 1060) -> Path:
 
 
 def amplitude_chart(analysis, path: str | Path, width: int = 1060) -> Path:
-    """a_i(z): averaging (the paper's equation 19) against the exact linear
+    """a_i(z): averaging (the paper's Eq. 19) against the exact linear
     steady state, one panel per resonance, at most three to a row."""
     res = list(analysis.resonances)
     rows, cols = _grid_of(len(res))

@@ -4,7 +4,7 @@
   what it reached (its free speed below the next resonance), or passed every
   resonance; with the boundary the study carries drawn over it: the torque
   needed to pass by the averaging theory (the A fold of the paper's
-  equations 19-23) and by the exact linear torque balance, along the other
+  Eq. 19-23) and by the exact linear torque balance, along the other
   axis, in pieces, each labelled with the resonance its fold belongs to;
 - ``final_speed_chart``: one axis, the final speed of each run against it,
   captured runs marked, the predicted threshold drawn;

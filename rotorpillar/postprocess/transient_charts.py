@@ -11,7 +11,7 @@
 - ``sweep_chart``: the quasi-static sweep against the averaging theory: the
   stationary curve M0(Omega) (numeric up and down, the paper's equations
   19-23 and the exact linear balance) with the jumps, and the amplitude
-  against z = Omega/omega_i (numeric, the paper's equation 19, exact), with
+  against z = Omega/omega_i (numeric, the paper's Eq. 19, exact), with
   the relative error;
 - ``integrators_chart``: error against cost per integrator, stability as
   modes are added, energy drift.

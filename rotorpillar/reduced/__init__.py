@@ -9,9 +9,9 @@ Where the paper's equations live (the first line of each function's
 docstring carries the tag, so ``grep -rn "Eq. 19" rotorpillar`` lands there):
 
 Eq. 1    rotorpillar.reduced.pillar.omega_euler_bernoulli
-Eq. 2    rotorpillar.reduced.pillar.tip_mass_lumped
+Eq. 2    rotorpillar.reduced.pillar.tip_mass_continuous
 Eq. 3    rotorpillar.reduced.rotor_models.RotorStructure.energy
-Eq. 4    rotorpillar.reduced.rhs.eq4_rhs
+Eq. 4    rotorpillar.reduced.rhs.deriv_flat
 Eq. 5    rotorpillar.reduced.system.omega_pair
 Eq. 5    rotorpillar.reduced.system.omega_y
 Eq. 6    rotorpillar.reduced.system.modal_vector
@@ -23,11 +23,15 @@ Eq. 22   rotorpillar.reduced.averaging.Characteristic
 Eq. 23   rotorpillar.reduced.averaging.branch_is_stable
 Eq. 24   rotorpillar.reduced.averaging.peak_resistance_ratio
 
-The averaged equations 8-18 have no function of their own: their
-stationary solution is equations 19 and 20.  The compiled right-hand side
-of the transients (rotorpillar.reduced.rhs, deriv_flat) is equation 4 in a
-generic form that also carries the modal model; tests/test_equation_index.py
-checks it against equation 4 as published.
+The averaged Eq. 8-18 have no function of their own: their
+stationary solution is Eq. 19 and 20.  Eq. 4's entry is the compiled
+right-hand side the transients integrate (deriv_flat: Eq. 4 in a generic
+form that also carries the modal model); ``rhs.eq4_rhs`` is Eq. 4 as
+published in plain numpy, the reference tests/test_equation_index.py checks
+it against.  Eq. 2's entry is the reduction the models use (the continuous
+first mode; the chain applies the same energy balance to its 3D or beam
+mode); ``pillar.tip_mass_lumped`` is Eq. 2 with n lumped masses, for the
+paper's table.
 """
 
 __all__ = ["averaging", "beam_fe", "cases", "cylinder", "drive", "dp5", "excitation", "fixed_step",

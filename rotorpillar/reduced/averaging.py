@@ -1,4 +1,4 @@
-"""Averaging (Bogoliubov-Mitropolski) near the resonances: the paper's equations 17-24.
+"""Averaging (Bogoliubov-Mitropolski) near the resonances: the paper's Eq. 17-24.
 
 Near resonance i the quasi-normal coordinate x_i = a cos(q4 + xi) with
 slowly varying amplitude a, phase xi and speed Omega; the stationary averaged
@@ -10,10 +10,10 @@ equations (17)-(18) give, with z = Omega/omega_i and nu_i = n_i/omega_i:
 - stationary speeds where Md = L, stable where d(Md - L)/dOmega < 0 (23);
 - the largest extra torque over the load at the resonance (24).
 
-Two departures from the printed paper, both forced by its own equation 17:
-equation 19 as printed divides by omega_i, not omega_i**2 (its a_i would be a
+Two departures from the printed paper, both forced by its own Eq. 17:
+Eq. 19 as printed divides by omega_i, not omega_i**2 (its a_i would be a
 velocity; (17) gives a = f/(2 omega (Omega - omega ...)) with f an
-acceleration); and equation 21 prints (1 - z**2) where equation 20 has (1 - z)**2.
+acceleration); and Eq. 21 prints (1 - z**2) where Eq. 20 has (1 - z)**2.
 The torque coupling g_i replaces the paper's f4 = c2 e (see
 rotorpillar.reduced.system).  The printed forms stay available for
 comparison.
@@ -54,14 +54,14 @@ def amplitude(Omega, r: Resonance):
 
 
 def amplitude_as_printed(Omega, r: Resonance):
-    """The paper's equation 19 exactly as printed: f_i / (2 omega_i sqrt(...)) (m/s, not m)."""
+    """The paper's Eq. 19 exactly as printed: f_i / (2 omega_i sqrt(...)) (m/s, not m)."""
     return amplitude(Omega, r) * r.omega
 
 
 def amplitude_linear(Omega, r: Resonance):
     """Exact steady amplitude of x'' + 2n x' + omega**2 x = f cos(Omega t) (m).
 
-    The averaging result (equation 19) is its first-order expansion about Omega = omega.
+    The averaging result (Eq. 19) is its first-order expansion about Omega = omega.
     """
     W = np.asarray(Omega, dtype=float)
     with np.errstate(divide="ignore"):      # undamped: unbounded at Omega = omega
@@ -87,7 +87,7 @@ def resistance_increment_slope(Omega, r: Resonance):
 
 
 def resistance_increment_as_printed(Omega, r: Resonance, f4: float):
-    """The paper's equation 20 with its f4 = c2 e in place of g_i (N*m)."""
+    """The paper's Eq. 20 with its f4 = c2 e in place of g_i (N*m)."""
     return resistance_increment(Omega, r) * f4 / r.coupling
 
 
@@ -190,7 +190,7 @@ class Stationary(JsonRecord):
     omega: float
     """stationary speed Omega (rad/s)"""
     stable: bool
-    """d(Md - L)/dOmega < 0 there (the paper's equation 23)"""
+    """d(Md - L)/dOmega < 0 there (the paper's Eq. 23)"""
     margin: float
     """d(Md - L)/dOmega (N*m*s): negative when stable"""
 

@@ -1,6 +1,6 @@
 """How the ground's motion enters the rotor-pillar equations: as published, and as it must.
 
-The paper's equation 4 forces the tip q1 by c0 q5 + b0 q5' and the rotor centre
+The paper's Eq. 4 forces the tip q1 by c0 q5 + b0 q5' and the rotor centre
 q2 by c2 q5 + b2 q5' (q5 the ground's X displacement, coordinates absolute):
 as if the shaft, not only the pillar, were anchored to the ground.  The
 consistent forcing of the same energies (the pillar spring c1 and damper b1
@@ -21,7 +21,7 @@ AMPLIFICATION_LIMIT = 1.10
 
 
 def published_static_gain(tip_stiffness: float, shaft_stiffness: float) -> float:
-    """Static tip gain q1/q5 of equation 4's published base forcing: (c1 + 2 c2)/c1 (-).
+    """Static tip gain q1/q5 of Eq. 4's published base forcing: (c1 + 2 c2)/c1 (-).
 
     >>> published_static_gain(9.6e6, 0.4e6)
     1.0833333333333333
@@ -33,7 +33,7 @@ def published_static_gain(tip_stiffness: float, shaft_stiffness: float) -> float
 
 def base_forcing_finding(tip_stiffness: float, shaft_stiffness: float, pillar_damping: float,
                          shaft_damping: float) -> dict:
-    """The published and the consistent base forcing of equation 4 for a scene, and the gain."""
+    """The published and the consistent base forcing of Eq. 4 for a scene, and the gain."""
     c1, c2, b1, b2 = tip_stiffness, shaft_stiffness, pillar_damping, shaft_damping
     gain = published_static_gain(c1, c2)
     return {
@@ -59,7 +59,7 @@ def published_forcing_warning(tip_stiffness: float, shaft_stiffness: float) -> s
     gain = published_static_gain(tip_stiffness, shaft_stiffness)
     if gain <= AMPLIFICATION_LIMIT:
         return None
-    return (f"equation 4's published base forcing (c0 q5 on q1, c2 q5 on q2) amplifies the ground "
+    return (f"Eq. 4's published base forcing (c0 q5 on q1, c2 q5 on q2) amplifies the ground "
             f"{gain:.3g}x statically ((c1 + 2 c2)/c1 with c1 = {tip_stiffness:.4g}, c2 = "
             f"{shaft_stiffness:.4g} N/m), over {AMPLIFICATION_LIMIT:g}x: this response is inflated; "
             f"the modal model (-M r a_g) is the consistent one")

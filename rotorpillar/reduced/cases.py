@@ -1,7 +1,7 @@
 """The transient cases of a scene: run-up, run-down, quasi-static sweep, earthquake.
 
 Each case builds the model the scene asks for (rotorpillar.reduced.models:
-the paper's equation 4 with the scene's tip reduction, or the modal model
+the paper's Eq. 4 with the scene's tip reduction, or the modal model
 with k pillar modes), the drive schedule and the ground motion, integrates,
 and condenses the run into a ``CaseSummary`` (rotorpillar.reduced.summaries)
 beside the averaging theory's predictions (rotorpillar.reduced.stationary);

@@ -8,7 +8,7 @@ Two references for the shell and 3D models of the tube:
   w = C sin(lam x) cos(n th), lam = m pi / L, are exact; the energy then
   reduces to a 3x3 eigenproblem per (m, n) whose lowest root is the
   flexural frequency (Leissa, Vibration of Shells, NASA SP-288, 1973,
-  sec. 2.3-2.4; Sanders' strains from Leissa's equations 1.39-1.40).
+  sec. 2.3-2.4; Sanders' strains from Leissa's Eq. 1.39-1.40).
 - The inextensional ring (plane strain): the limit of a very long tube's
   n >= 2 ovalling modes (Soedel, Vibrations of Shells and Plates, 3rd ed.,
   2004, sec. 5.3)::

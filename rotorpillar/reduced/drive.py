@@ -1,10 +1,10 @@
 """Motor and machine torques of a transient run, shared by every model.
 
-The motor characteristic of the paper's equation 22, Md = M0 - s Omega, with M0
+The motor characteristic of the paper's Eq. 22, Md = M0 - s Omega, with M0
 and s allowed to vary in time along a piecewise-linear schedule (a soft
 start, a motor switched off, a weaker motor, a quasi-static sweep of M0),
 and the machine's resistance Mc = k Omega |Omega| (= k Omega**2 for the
-forward spin of equation 22; the sign keeps it a resistance if the rotor ever
+forward spin of Eq. 22; the sign keeps it a resistance if the rotor ever
 turns backwards).
 
 >>> d = DriveSchedule.constant(5100.0, 12.0, 0.5)

@@ -3,7 +3,7 @@
 Both models take the same ``GroundMotion``; each uses it its own way
 (rotorpillar.reduced.rotor_models):
 
-- the paper's equation 4, as published, puts c0 q5 + b0 q5' on q1 and
+- the paper's Eq. 4, as published, puts c0 q5 + b0 q5' on q1 and
   c2 q5 + b2 q5' on q2: it needs the ground displacement and velocity;
 - the modal model, written relative to the ground, is forced by the
   inertia of the ground's acceleration, -M r a_g: it needs the acceleration.

@@ -1,4 +1,4 @@
-"""The models of a scene: the paper's equation 4 with the scene's tip
+"""The models of a scene: the paper's Eq. 4 with the scene's tip
 reduction, or the modal model on pillar modes, and the scene's ground motion.
 
 The modal model picks its modes from candidates: those the caller passes in
@@ -22,7 +22,7 @@ MAX_CANDIDATE_MODES = 12
 
 
 def paper_system(scene):
-    """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's equation 2)."""
+    """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's Eq. 2)."""
     red = resolve_reduction(scene, pillar_closed_forms(scene))
     return reduced_system(scene, red["tip_mass"], red["tip_stiffness"]), red
 

@@ -1,10 +1,10 @@
 """Closed forms of the pillar as a cantilever beam, and its reduction to the tip.
 
 The tube is a uniform cantilever of height H, clamped at the base (x = 0) and
-free at the top (x = H).  Euler-Bernoulli theory gives the paper's equation 1;
+free at the top (x = H).  Euler-Bernoulli theory gives the paper's Eq. 1;
 Timoshenko theory adds shear and rotary inertia, which matter a little for a
 thin tube (shear coefficient of Cowper, 1966).  The reduction to one tip mass
-and one spring is the paper's equation 2: equal kinetic energy in the first mode.
+and one spring is the paper's Eq. 2: equal kinetic energy in the first mode.
 
 All quantities SI: m, kg, Pa, rad/s.
 
@@ -26,7 +26,7 @@ from scipy.linalg import expm
 from scipy.optimize import brentq
 
 #: Euler-Bernoulli cantilever: the first mode's modal mass over its tip value
-#: squared, per unit beam mass, is exactly 1/4 (the paper's equation 2 in the limit n -> inf).
+#: squared, per unit beam mass, is exactly 1/4 (the paper's Eq. 2 in the limit n -> inf).
 CONTINUOUS_TIP_MASS_RATIO = 0.25
 
 
@@ -115,7 +115,7 @@ def cantilever_mode(xi, k: int = 1):
 
 
 # --------------------------------------------------------------------------
-# Reduction to the tip, the paper's equation 2
+# Reduction to the tip, the paper's Eq. 2
 
 
 def tip_mass_lumped(mass: float, n: int) -> float:
@@ -133,7 +133,7 @@ def tip_mass_lumped(mass: float, n: int) -> float:
 
 
 def tip_mass_continuous(mass: float) -> float:
-    """The paper's equation 2 on the continuous first mode: exactly m_col/4 (kg)."""
+    """The paper's Eq. 2 on the continuous first mode: exactly m_col/4 (kg)."""
     return CONTINUOUS_TIP_MASS_RATIO * mass
 
 

@@ -1,8 +1,8 @@
 """The pillar's closed forms and the tip reduction the reduced model uses.
 
-The paper's equation 1 with Timoshenko's correction, its equation 2 reductions (lumped, continuous
+The paper's Eq. 1 with Timoshenko's correction, its Eq. 2 reductions (lumped, continuous
 limit, Rayleigh) of the bare tube, and which tip mass and stiffness a scene's
-reduced model takes (stated, equation 2, or the 3D model's, handed in by the
+reduced model takes (stated, Eq. 2, or the 3D model's, handed in by the
 caller: this package never builds the 3D model itself).
 """
 
@@ -19,7 +19,7 @@ LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
 
 def pillar_closed_forms(scene: Scene) -> dict:
-    """The paper's equations 1 (with Timoshenko's correction) and 2 (the reductions) on the bare tube."""
+    """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare tube."""
     p = scene.pillar
     sec = section_of(p)
     I, A, m_rho = sec.second_moment, sec.area, sec.mass_per_length

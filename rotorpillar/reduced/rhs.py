@@ -1,7 +1,7 @@
 """The rotor-structure model's right-hand side: compiled (numba) for the
-integrators, and the paper's equation 4 as published in plain numpy.
+integrators, and the paper's Eq. 4 as published in plain numpy.
 
-One generic model covers the paper's equation 4 and the modal model
+One generic model covers the paper's Eq. 4 and the modal model
 (rotorpillar.reduced.rotor_models): nx structural X coordinates z (pillar
 and rotor centre), the rotor centre's Y coordinate y, and the rotor angle
 theta.  With M the mass matrix (its inverse Minv given; a zero row for theta
@@ -45,12 +45,12 @@ OK, MAX_STEPS, STEP_TOO_SMALL, NOT_FINITE, NEWTON_FAILED = 0, 1, 2, 3, 4
 
 
 def eq4_rhs(y, m_A, m_C, J, e, c1, c2, b1, b2, M0, s, k, q5=0.0, q5_rate=0.0, q6=0.0, q6_rate=0.0):
-    """Eq. 4 as published: y' for y = (q1, q2, q3, q4, q1', q2', q3', q4').
+    """Eq. 4 as published, the reference for deriv_flat: y' for y = (q1..q4, q1'..q4').
 
     q1 pillar tip X, q2 and q3 rotor mass centre X and Y, q4 rotor angle (m,
     rad); m_A = m_r + m* and m_C (kg), J (kg*m**2), e (m), c1, c2 (N/m),
     b1, b2 (N*s/m); the drive Md = M0 - s q4' and the load Mc = k q4' |q4'|
-    (N*m, the paper's equation 22); q5, q6 the ground's X and Y displacement
+    (N*m, the paper's Eq. 22); q5, q6 the ground's X and Y displacement
     (m) and their rates (m/s).  With c0 = c1 + c2 and b0 = b1 + b2::
 
         m_A q1'' + c0 q1 + b0 q1' - c2 q2 = -c2 e cos q4 + c0 q5 + b0 q5'
@@ -188,8 +188,9 @@ def flatten(P):
 
 @njit(cache=True)
 def deriv_flat(t, y, par, out, o):
-    """The first-order right-hand side y' of the flat model ``par`` into
-    out[o:o + 2n + 4].
+    """Eq. 4 in generic form: the first-order right-hand side y' of the flat model ``par``.
+
+    Written into out[o:o + 2n + 4].
 
     y = (q, v, ...) with n = len(q); writes out[o:o + n] = v, the next n
     Minv F, then the powers (drive - load, shaft on structure, dissipation,

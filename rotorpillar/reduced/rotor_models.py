@@ -12,10 +12,10 @@ and forces C z' (structure), b2 y' (rotor Y), the base forcing
 kb u_g + cb v_g + mb a_g on z, and the motor and machine torques on theta
 (rotorpillar.reduced.rhs writes the equations out).
 
-**paper** (``paper_model``): the paper's equation 4 as published, z = (q1, q2):
+**paper** (``paper_model``): the paper's Eq. 4 as published, z = (q1, q2):
 M = diag(m_A, m_C), Ks = diag(c1, 0), d = (-1, 1), so Ks + c2 d d^T is
-equation 4's [[c0, -c2], [-c2, c2]]; damping diag(b0, b2) with b0 = b1 + b2
-(equation 4 prints b0 on q1 and an absolute b2 on q2; its own dissipation function
+Eq. 4's [[c0, -c2], [-c2, c2]]; damping diag(b0, b2) with b0 = b1 + b2
+(Eq. 4 prints b0 on q1 and an absolute b2 on q2; its own dissipation function
 Phi = 1/2 (b1 q1'**2 + b2 q2'**2 + b3 q3'**2) would give b1 on q1); base
 forcing c0 q5 + b0 q5' on q1 and c2 q5 + b2 q5' on q2, as printed.  The
 coordinates are absolute.
@@ -30,7 +30,7 @@ modes carry them; b2 acts on the rotor centre's velocity relative to the
 ground in X and Y, as the paper's Phi has it.  The base excitation is
 physical: relative coordinates forced by the ground's inertia, -L_j a_g on
 mode j and -m_C a_g on the rotor.  With one mode of mass m_A and stiffness
-c1 this is equation 4 except for the b2 that equation 4 adds on q1 and the base terms.
+c1 this is Eq. 4 except for the b2 that Eq. 4 adds on q1 and the base terms.
 
 Quasi-normal data of either model (``quasi_normal``) are the Resonance
 records of rotorpillar.reduced.system, so the averaging of
@@ -166,7 +166,7 @@ class RotorStructure:
         return np.sqrt(np.maximum(lam, 0.0)), U / scale
 
     def quasi_normal(self) -> list[Resonance]:
-        """Resonance records (the paper's equation 7 generalised): X modes with u.tip = 1, then Y."""
+        """Resonance records (the paper's Eq. 7 generalised): X modes with u.tip = 1, then Y."""
         c2, e = self.shaft_stiffness, self.eccentricity
         om, U = self.undamped_modes_x()
         out = []
@@ -211,7 +211,7 @@ class RotorStructure:
     def steady_torque(self, Omega) -> np.ndarray:
         """Averaged shaft torque on the rotor at constant Omega (N*m); negative:
         the structure resists.  -steady_torque is the exact counterpart of
-        the paper's equation 20 summed over dL_i."""
+        the paper's Eq. 20 summed over dL_i."""
         W = np.atleast_1d(np.asarray(Omega, dtype=float)).ravel()
         c2e = self.shaft_stiffness * self.eccentricity
         # steady_state at every speed at once (one stacked solve)
@@ -280,7 +280,7 @@ class RotorStructure:
 
 
 def paper_model(s: ReducedSystem) -> RotorStructure:
-    """The paper's equation 4 as published (absolute coordinates q1, q2, q3, q4)."""
+    """The paper's Eq. 4 as published (absolute coordinates q1, q2, q3, q4)."""
     c0, c2, b0, b2 = s.c0, s.shaft_stiffness, s.b0, s.shaft_damping
     return RotorStructure(
         name="paper", coordinates=("q1_tip_x", "q2_rotor_x"),

@@ -2,7 +2,7 @@
 
 The exact linear torque balance M0 - s W - k W**2 + <shaft torque>(W) = 0
 (``stationary_exact``, ``exact_folds``) beside the averaging theory of the
-paper's equations 19-23 (``averaging_prediction``), and the motor torque
+paper's Eq. 19-23 (``averaging_prediction``), and the motor torque
 needed to run up through the first resonance that can capture the rotor,
 predicted and simulated (``passing_torque``).
 """
@@ -48,7 +48,7 @@ def operating_speed(model: RotorStructure, M0: float, slope: float, load: float)
 
 
 def averaging_prediction(model: RotorStructure, M0: float, slope: float, load: float) -> dict:
-    """What the paper's equations 19-23 predict for this drive on this model's quasi-normal modes."""
+    """What the paper's Eq. 19-23 predict for this drive on this model's quasi-normal modes."""
     res = model.quasi_normal()
     d = av.analyse_drive(av.Characteristic(M0, slope, load), res)
     return {"stationary": [vars(s) for s in d.stationary], "jumps": [vars(j) for j in d.jumps],
@@ -78,7 +78,7 @@ def exact_folds(model: RotorStructure, slope: float, load: float, top: float) ->
 
 def predicted_passing_torque(model: RotorStructure, torque_at_zero: float, slope: float,
                              load: float) -> tuple:
-    """(jump, exact): the first run-up fold of equations 19-23 (the lowest A
+    """(jump, exact): the first run-up fold of Eq. 19-23 (the lowest A
     fold; None when there is none) and the exact linear torque's A fold next to
     it (``exact_folds`` entry, or None).  ``torque_at_zero`` sets only the top
     of the speed grid (the motor's free speed)."""
@@ -96,7 +96,7 @@ def predicted_passing_torque(model: RotorStructure, torque_at_zero: float, slope
 def passing_torque(model: RotorStructure, drive: DriveSchedule, duration: float, rtol: float,
                    span: float = 0.2, points: int = 41) -> dict:
     """The motor torque M0 needed to run up through the first resonance that
-    can capture the rotor: predicted (the A fold of equations 19-23, and of the
+    can capture the rotor: predicted (the A fold of Eq. 19-23, and of the
     exact linear torque) and simulated (run-ups from rest for M0 around the
     prediction, refined once: the smallest M0 that passes within ``duration``)."""
     s, k = drive.slope[-1], drive.load_coefficient

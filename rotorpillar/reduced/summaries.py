@@ -168,7 +168,7 @@ class SweepFindings:
     largest_speed_step_ratio: dict
     """{"up", "down"}: the largest speed step over what motor and load alone allow (-)"""
     amplitudes: list
-    """numeric stationary amplitudes against the paper's equation 19 and the exact linear ones"""
+    """numeric stationary amplitudes against the paper's Eq. 19 and the exact linear ones"""
     rate_check: list
     """per resonance in range: speed rate over n_i**2 (quasi-static when < 0.1)"""
     no_jump_reason: str | None

@@ -93,7 +93,7 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
 
 
 def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
-    """Numeric stationary amplitudes of the sweep against the paper's equation 19 and the exact
+    """Numeric stationary amplitudes of the sweep against the paper's Eq. 19 and the exact
     linear steady state, near each resonance the sweep crosses."""
     out = []
     W = cols["omega"]

@@ -1,17 +1,17 @@
-"""The paper's reduced rotor-pillar system: parameters, linear modes (its equations 5-7).
+"""The paper's reduced rotor-pillar system: parameters, linear modes (its Eq. 5-7).
 
-Coordinates (the paper's equation 4): q1 pillar tip (X), q2 and q3 rotor mass centre
+Coordinates (the paper's Eq. 4): q1 pillar tip (X), q2 and q3 rotor mass centre
 (X and Y), q4 rotor angle.  In X the tip mass m_A = m_r + m* and the rotor
 m_C form a two-mass chain (c1 to the ground, c2 between them); in Y the rotor
 alone rides on the shaft (c2).  Units SI.
 
-Modal vectors are scaled with u_1i = 1 (equation 6), so a modal amplitude is the
+Modal vectors are scaled with u_1i = 1 (Eq. 6), so a modal amplitude is the
 pillar-tip amplitude of that mode.  With this scaling, for resonance i:
 
 - modal mass            I_i  = m_A u_1i**2 + m_C u_2i**2
-- forcing (equation 7)  f_i  = c2 e (u_2i - u_1i) / I_i           (m/s**2)
+- forcing (Eq. 7)  f_i  = c2 e (u_2i - u_1i) / I_i           (m/s**2)
 - torque coupling       g_i  = c2 e (u_2i - u_1i)                 (N)
-- damping (equation 7)  2n_i = (b0 u_1i**2 + b2 u_2i**2) / I_i     (1/s)
+- damping (Eq. 7)  2n_i = (b0 u_1i**2 + b2 u_2i**2) / I_i     (1/s)
 - nu_i = n_i / omega_i.
 
 The third resonance is the rotor alone in Y: I_3 = m_C, f_3 = c2 e / m_C,
@@ -38,7 +38,7 @@ import numpy as np
 
 @dataclass(frozen=True)
 class ReducedSystem:
-    """Parameters of the paper's equation 4."""
+    """Parameters of the paper's Eq. 4."""
     tip_mass: float
     """m_A = m_r + m*: reduced pillar mass and gondola at the tip (kg)"""
     rotor_mass: float
@@ -69,12 +69,12 @@ class ReducedSystem:
         return np.diag([self.tip_mass, self.rotor_mass])
 
     def stiffness_matrix(self) -> np.ndarray:
-        """X-direction stiffness matrix of (q1, q2), as the paper's equation 4 has it."""
+        """X-direction stiffness matrix of (q1, q2), as the paper's Eq. 4 has it."""
         c0, c2 = self.c0, self.shaft_stiffness
         return np.array([[c0, -c2], [-c2, c2]])
 
     def damping_matrix(self) -> np.ndarray:
-        """X-direction damping matrix of (q1, q2) as the paper's equation 4 prints it:
+        """X-direction damping matrix of (q1, q2) as the paper's Eq. 4 prints it:
         b0 on q1, absolute b2 on q2 and no coupling term."""
         return np.diag([self.b0, self.shaft_damping])
 
@@ -122,14 +122,14 @@ def omega_y(s: ReducedSystem) -> float:
 
 @dataclass(frozen=True)
 class Resonance:
-    """Quasi-normal data of one resonance (the paper's equation 7)."""
+    """Quasi-normal data of one resonance (the paper's Eq. 7)."""
     index: int
     direction: str
     """"X" (pillar and rotor) or "Y" (rotor on its shaft)"""
     omega: float
     """omega_i (rad/s)"""
     shape: tuple[float, float]
-    """(u_1i, u_2i): tip and rotor amplitude, u_1i = 1 (equation 6); (0, 1) in Y"""
+    """(u_1i, u_2i): tip and rotor amplitude, u_1i = 1 (Eq. 6); (0, 1) in Y"""
     modal_mass: float
     """I_i (kg)"""
     forcing: float

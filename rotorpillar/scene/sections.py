@@ -108,7 +108,7 @@ REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
 
 @dataclass(frozen=True)
 class Reduction:
-    """The pillar reduced to one mass and one spring at its tip (the paper's equation 2).
+    """The pillar reduced to one mass and one spring at its tip (the paper's Eq. 2).
 
     Stated values are used as given; absent ones are computed, by
     ``source``: "closed_form" (the continuous first Euler-Bernoulli mode),
@@ -124,14 +124,14 @@ class Reduction:
 
 @dataclass(frozen=True)
 class Drive:
-    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's equation 22)."""
+    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's Eq. 22)."""
     torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0, le=1e9)
     slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0, le=1e9)
 
 
 @dataclass(frozen=True)
 class Load:
-    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's equation 22)."""
+    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's Eq. 22)."""
     coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0, le=1e9)
 
 
@@ -206,7 +206,7 @@ class Simulate:
     """Transient runs of the reduced models (`rotorpillar simulate`)."""
     case: str = param("Case run when --case is not given", "runup", choices=CASES)
     model: str = param("Model: the pillar's modes from the chain (modal: the validated ROM, the "
-                       "headline model), equation 4 as published (paper), the 3D tube or the 1D "
+                       "headline model), Eq. 4 as published (paper), the 3D tube or the 1D "
                        "beam at full order", "modal", choices=MODELS)
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",

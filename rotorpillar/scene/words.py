@@ -10,7 +10,7 @@ added once.
 CASES = ("runup", "rundown", "sweep", "earthquake")
 #: The cases of `rotorpillar study` (the sweep is a study of its own).
 STUDY_CASES = ("runup", "rundown", "earthquake")
-#: Transient models: the paper's equation 4 as published, the pillar by its modes
+#: Transient models: the paper's Eq. 4 as published, the pillar by its modes
 #: (the reduced-order model), and at full order the 3D tube and the 1D beam.
 MODELS = ("paper", "modal", "fem3d", "beam")
 FULL_ORDER_MODELS = ("fem3d", "beam")

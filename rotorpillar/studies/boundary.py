@@ -2,7 +2,7 @@
 
 Predicted: the motor torque M0 a run-up needs to pass the first resonance
 that can capture it, by the averaging theory (the A fold of the paper's
-equations 19-23) and by the exact linear torque balance
+Eq. 19-23) and by the exact linear torque balance
 (``rotorpillar.reduced.stationary.predicted_passing_torque``), as a function
 of the study's other axis (e.g. the eccentricity), on a grid finer than the
 study's; with, per point, the resonance that fold belongs to (``resonance``)
@@ -87,7 +87,7 @@ def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
                 "other_values": xs if other is not None else [], "averaging": avg,
                 "exact_linear": lin, "resonance": which_res, "resonances": res,
                 "statement": "M0 needed to pass the first capturing resonance on run-up: the A fold "
-                             "of equations 19-23 (averaging) and of the exact linear torque balance"}
+                             "of Eq. 19-23 (averaging) and of the exact linear torque balance"}
     if len(axes) == 1 and _numeric(axes[0]):
         ax = axes[0]
         xs = _grid(ax)

@@ -4,7 +4,7 @@ Reads what the other commands left in ``out/<scene>/`` (see
 :mod:`rotorpillar.postprocess.inputs`), renders what it can (charts, mode
 shapes, animations: :mod:`.render`), embeds the PNGs the other chart modules
 wrote there (:mod:`.figures`), and writes ``report.html``: the scene, the
-modal validation (the paper's equation 1 against the 3D model, the
+modal validation (the paper's Eq. 1 against the 3D model, the
 reduction, Table 1 and every number the paper prints, flagged), the
 averaging analysis, the runs (the run-up's ROM against a full-order model),
 the earthquake (a real record on the ROM and the 3D full order, then the

@@ -1,6 +1,6 @@
 """The earthquake: first a real record on the physically consistent models
 (the ROM and the 3D full order overlaid, their error and cost, the record's
-response spectrum), then the paper's case (its pulse on equation 4 as
+response spectrum), then the paper's case (its pulse on Eq. 4 as
 published), its excitation's size and the base-forcing flaw stated."""
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from .state import Build
 
 #: Standard gravity, to state accelerations in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
-#: The paper comparison's row on equation 4's base forcing (analysis/paper.py).
+#: The paper comparison's row on Eq. 4's base forcing (analysis/paper.py).
 BASE_FORCING_KEY = "eq4_base_forcing"
 
 
@@ -63,7 +63,7 @@ def _tip(sim) -> str:
 
 
 def _flaw(build: Build) -> list[str]:
-    """Equation 4's published base forcing, in one sentence with a link to
+    """Eq. 4's published base forcing, in one sentence with a link to
     the finding (stated once, in the paper's section)."""
     if build.analysis is None:
         return [h.missing("the base-forcing finding is "
@@ -103,7 +103,7 @@ def _simulate_charts(build: Build, model: str | None):
 
 
 def paper_case(build: Build) -> list[str]:
-    """The paper's pulse on equation 4 as published (``simulate --case earthquake``)."""
+    """The paper's pulse on Eq. 4 as published (``simulate --case earthquake``)."""
     sim = build.quake_case
     if sim is None:
         return [h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case earthquake "
