@@ -21,7 +21,7 @@ WINDOW = 0.3
 
 
 def _step_seconds(scene, around, along):
-    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.full_order import simulate_fem3d
     mesh = replace(scene.mesh, elements_around=around, elements_along=along)
     runs = []
     for _ in range(REPEAT):

@@ -2,7 +2,7 @@
 
 1. A design sweep: run-ups of the paper's model for 1000 values of tau
    (M0 = 300 tau, 1.7 <= tau <= 17), 20 s each.  The compiled batch (one
-   numba loop over the runs, rotorpillar.reduced.transient.simulate_batch,
+   numba loop over the runs, rotorpillar.reduced.integration.simulate_batch,
    on every core: threads share the runs, and on one thread)
    against a plain Python loop of scipy.integrate.solve_ivp (RK45, the
    right-hand side written in numpy as one would by hand), at the same rtol
@@ -38,7 +38,7 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorpillar.reduced.cases import run_case
+from rotorpillar.transients.cases import run_case
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import load_record, no_motion
 from rotorpillar.reduced.models import build_model
@@ -46,7 +46,7 @@ from rotorpillar.reduced.pillar_modes import beam_pillar_modes
 from rotorpillar.reduced.rhs import eq4_rhs
 from rotorpillar.reduced.rotor_models import beam_model, modal_model
 from rotorpillar.reduced.stationary import operating_speed
-from rotorpillar.reduced.transient import Settings, batch_threads, simulate, simulate_batch, tolerances
+from rotorpillar.reduced.integration import Settings, batch_threads, simulate, simulate_batch, tolerances
 from rotorpillar.scene import load_scene
 
 RUNS = 1000
@@ -195,9 +195,9 @@ def bench_rom_vs_full(scene) -> list[dict]:
 
 def newmark_3d(scene, motion, Omega: float, theta0: float, h: float, t_end: float):
     """The earthquake on the 3D model with the rotor turning at a prescribed speed, by
-    the library's full-order transient (rotorpillar.fem3d.transient: Newmark, one
+    the library's full-order transient (rotorpillar.fem3d.full_order: Newmark, one
     MUMPS factorisation).  Returns (t, tip X relative to the ground, wall s, dofs)."""
-    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.scene import override
     scene = override(scene, ["full_order.integrator=newmark"])     # the ROM's Newmark beside it
     steps = int(round(t_end / h))
@@ -259,9 +259,9 @@ def bench_full_order_step() -> list[dict]:
     import os
     if importlib.util.find_spec("dolfinx") is None:
         return []
-    from rotorpillar.fem3d.transient import simulate_fem3d
-    from rotorpillar.fem3d.transient_plan import case_setup, top_speed
-    from rotorpillar.transients.run import fem3d_plan
+    from rotorpillar.fem3d.full_order import simulate_fem3d
+    from rotorpillar.fem3d.full_order_plan import case_setup, top_speed
+    from rotorpillar.transients.model_run import fem3d_plan
     out = []
     cases = (("default shaft", [], []), ("stiff shaft", STIFF, []),
              ("stiff shaft, 16 x 20 mesh", STIFF, ["full_order.elements_around=16",

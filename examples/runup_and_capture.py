@@ -8,7 +8,7 @@ CaseSummary (the fields of simulate_runup.json).
 """
 
 from rotorpillar import load_scene, override
-from rotorpillar.reduced.cases import run_case
+from rotorpillar.transients.cases import run_case
 
 scene = load_scene("sommerfeld", ["simulate.threshold=false"])    # one run each, no batch
 first = run_case(scene, "runup", "paper", truncation=False)

@@ -1,4 +1,4 @@
-"""CaseSummary (rotorpillar.reduced.summaries): the typed summary of a case
+"""CaseSummary (rotorpillar.transients.case_summary): the typed summary of a case
 round-trips exactly through ``to_json``/``from_json`` and through the JSON
 text the simulate command writes, with the keys in the order of
 ``simulate_<case>.json``.  Exact equality: no tolerance."""
@@ -12,8 +12,8 @@ from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import averaging_prediction
-from rotorpillar.reduced.summaries import CaseSummary, SweepFindings, run_summary
-from rotorpillar.reduced.transient import Settings, simulate
+from rotorpillar.transients.case_summary import CaseSummary, SweepFindings, run_summary
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.scene import load_scene
 
 BASE_KEYS = ["ok", "duration", "omega_final", "omega_final_mean", "max_abs", "captured_at",

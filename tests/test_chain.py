@@ -31,7 +31,7 @@ import pytest
 from rotorpillar.analysis import AnalysisResult, analyze
 from rotorpillar.analysis.rom import rom_of
 from rotorpillar.chain import ChainModes, PillarModel, TipReductionOf, Uncertain, choose
-from rotorpillar.chain.choice import Choice, from_study, study_on_disk
+from rotorpillar.chain.choice import study_on_disk
 from rotorpillar.chain.modes import chain_modes
 from rotorpillar.reduced.pillar_modes import PillarModes, beam_pillar_modes
 from rotorpillar.reduced.system import omega_pair, paper_example

@@ -24,7 +24,7 @@ from rotorpillar.scene import load_scene
 from rotorpillar.studies import design_study
 from rotorpillar.studies.study import CSV_RESULTS
 from rotorpillar.transients.files import CSV_COLUMNS, write_model_files
-from rotorpillar.transients.run import run_model
+from rotorpillar.transients.model_run import run_model
 
 def _read(path: Path) -> tuple[list[str], list[dict[str, str]]]:
     with open(path, newline="") as fh:

@@ -145,7 +145,7 @@ def test_harmonic_response_against_the_rom_on_the_same_modes():
 
 def test_transient_observer_resultants_and_xdmf(tmp_path):
     from rotorpillar.fem3d.stress import StressRecovery
-    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.full_order import simulate_fem3d
     s = override(load_scene("paper"), ["mesh.elements_around=8", "mesh.elements_along=10"])
     top = s.gondola.mass + s.rotor.mass
     obs = StressRecovery(s.pillar, top, 0.2, tmp_path / "run.xdmf", frames=3)
@@ -166,7 +166,7 @@ def test_fem3d_run_forces_against_the_rom(tmp_path):
     """El Centro's first 4 s of strong motion (5 ... 9 s) on the [full_order] 3D mesh and on
     the ROM: the base moment's peak within 2 % (the full 15 s run: 0.2 %), the 3D run's XDMF
     beside its JSON."""
-    from rotorpillar.transients.run import run_model
+    from rotorpillar.transients.model_run import run_model
     s = override(load_scene("paper"), ["excitation.kind=record"])
     fem = run_model(s, "earthquake", "fem3d", duration=9.0, field_dir=tmp_path)
     rom = run_model(s, "earthquake", "modal", duration=9.0)

@@ -1,4 +1,4 @@
-"""The 3D full-order transient (rotorpillar.fem3d.transient), on a coarse tube.
+"""The 3D full-order transient (rotorpillar.fem3d.full_order), on a coarse tube.
 
 References and tolerances:
 
@@ -8,7 +8,7 @@ References and tolerances:
   solved here directly with the tube's own K (an independent path: no
   Newmark, no condensation).  Tolerance 2e-3: the residual oscillation of
   the ramp, damped by b1 and b2.
-- the modal ROM on the same tube's 3D modes (reduced.cases.build_model with
+- the modal ROM on the same tube's 3D modes (transients.cases.build_model with
   modal_model.source = fem3d), same Newmark step, same start: truncation and
   the ROM's participation factors are the only differences.  On this coarse
   mesh (16 x 6 cells) the ROM's participation uses the exact annulus's mass
@@ -84,7 +84,7 @@ def static_tip(scene, a0: float) -> float:
 
 @pytest.fixture(scope="module")
 def static_run():
-    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.full_order import simulate_fem3d
     scene = load_scene("paper", COARSE)
     a0 = 0.5
     motion = ramp_motion(a0, 2.0, 9.0)
@@ -113,7 +113,7 @@ def test_static_limit(static_run):
 @pytest.mark.slow                       # the 3D full-order transient
 @pytestmark_3d
 def test_result_json_round_trip(static_run):
-    from rotorpillar.fem3d.transient import Fem3dTransient
+    from rotorpillar.fem3d.full_order import Fem3dTransient
     r = static_run[2]
     back = Fem3dTransient.from_json(json.loads(json.dumps(r.to_json())))
     assert json.dumps(back.to_json()) == json.dumps(r.to_json())
@@ -133,9 +133,9 @@ def rom_start(rom, scene, theta0: float, W0: float):
 
 
 def compare_with_rom(case, motion, drive, duration, W0, theta0, prescribed, h=2e-3, dt_out=0.01):
-    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.reduced.models import build_model
-    from rotorpillar.reduced.transient import Settings, simulate
+    from rotorpillar.reduced.integration import Settings, simulate
     scene = load_scene("paper", COARSE + ["modal_model.source=fem3d"])
     samples = int(round(duration / dt_out)) + 1
     r = simulate_fem3d(scene, case, motion=motion, drive=drive, duration=duration, time_step=h,

@@ -39,7 +39,7 @@ STIFF = ["excitation.kind=record", "shaft.stiffness=1e10", "rotor.eccentricity=0
 
 
 def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
-    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.reduced.excitation import load_record
     motion = load_record("elcentro", start=0.5)
     stiff = load_scene("paper", COARSE + STIFF)
@@ -53,7 +53,7 @@ def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
     assert rule["forcing"] == {"ground_motion_band": pytest.approx(motion.band())}
     assert rule["band_edge"] == pytest.approx(2.0 * motion.band())
     assert math.sqrt(1e10 / 1600.0) * h > 5                     # the shaft's mode is not resolved
-    from rotorpillar.fem3d.transient_plan import case_setup, step_rule
+    from rotorpillar.fem3d.full_order_plan import case_setup, step_rule
     mo, drive, _, W0, _ = case_setup(soft, "earthquake", motion, None, 5.0, None)
     assert step_rule(soft, drive, mo, W0).time_step == pytest.approx(rule["time_step"], rel=1e-12)
     fine = load_scene("paper", COARSE + STIFF + ["full_order.integrator=newmark"])
@@ -72,7 +72,7 @@ def test_the_3d_generalized_alpha_is_second_order(eccentricity, start, T, keys):
     free, so the Newton-closed coupling is in every step (the tip there carries the
     tube's high modes, struck by the whirl's force at t = 0 and not yet resolved at these
     steps: the rotor and its speed are the measures)."""
-    from rotorpillar.fem3d.transient import simulate_fem3d
+    from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.reduced.excitation import paper_pulse
     scene = load_scene("paper", COARSE + ["mesh.elements_along=4", f"rotor.eccentricity={eccentricity}"])
     motion = paper_pulse(0.05, math.pi, start, 10.0)

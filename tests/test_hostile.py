@@ -85,7 +85,6 @@ def test_sigterm_stops_run_and_its_stage(tmp_path):
     import signal
     import subprocess
     import sys
-    import time
     out = tmp_path / "out"
     proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", "run", "paper", "--out", str(out),
                              "--skip", "converge", "--skip", "integrators"],
@@ -327,7 +326,6 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     import signal
     import subprocess
     import sys
-    import time
     args = ["converge", "paper", "--set", "converge.solid=false", "--set",
             "converge.shell_max_around=8", "--set", "converge.shell_tri_max_around=8",
             "--no-progress", "--workers", "1", "--out", str(tmp_path)]
@@ -378,7 +376,6 @@ import socket
 import subprocess
 import sys
 import threading
-import time
 
 
 def _nothing_written(out):

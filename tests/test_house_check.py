@@ -188,15 +188,15 @@ def builds() -> list:
 
 
 def test_new_dict_results_and_untyped_scenes_are_counted_against_the_baseline(tmp_path):
-    pkg = _package(tmp_path, **{"fem3d/summary.py": NEW_DICTS})
-    assert hc.ratchet_counts(hc.load_modules(pkg)["rotorpillar.fem3d.summary"]) == {
+    pkg = _package(tmp_path, **{"fem3d/modal_summary.py": NEW_DICTS})
+    assert hc.ratchet_counts(hc.load_modules(pkg)["rotorpillar.fem3d.modal_summary"]) == {
         "dict_results": 3, "untyped_scene": 1}
     fails = _failing(pkg)
-    assert len(fails) == 2 and all("rotorpillar/fem3d/summary.py 0->" in f for f in fails)
+    assert len(fails) == 2 and all("rotorpillar/fem3d/modal_summary.py 0->" in f for f in fails)
     # the same counts on record pass; one fewer than recorded asks for a lower baseline
-    at = {"rotorpillar/fem3d/summary.py": {"dict_results": 3, "untyped_scene": 1}}
+    at = {"rotorpillar/fem3d/modal_summary.py": {"dict_results": 3, "untyped_scene": 1}}
     assert _failing(pkg, at) == []
-    above = {"rotorpillar/fem3d/summary.py": {"dict_results": 4, "untyped_scene": 1}}
+    above = {"rotorpillar/fem3d/modal_summary.py": {"dict_results": 4, "untyped_scene": 1}}
     assert _failing(pkg, above) == []
     texts = [v.text for v in hc.run(pkg, tmp_path / "baseline.json")]
     assert any("lower the baseline" in t for t in texts)

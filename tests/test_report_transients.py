@@ -24,7 +24,7 @@ import pytest
 import fixtures
 from imagecheck import assert_real_png
 from rotorpillar import cli
-from rotorpillar.postprocess.comparisons import COMPARISONS, compare_command
+from rotorpillar.transients.run_comparisons import COMPARISONS, comparison_command
 
 # 5 significant digits (html.num's default) round a value by at most 5e-6 of
 # it... up to half a unit in the 5th digit: 5e-5 relative at worst.
@@ -246,9 +246,9 @@ def test_missing_comparisons_name_the_commands(tmp_path):
     run_cli("report", "paper", "--out", tmp_path, "--no-animations")
     text = (tmp_path / "report.html").read_text(encoding="utf-8")
     for case, where in (("earthquake", "earthquake"), ("runup", "runs")):
-        cmd = f"rotorpillar {compare_command(case)} paper --out {tmp_path}"
+        cmd = f"rotorpillar {comparison_command(case)} paper --out {tmp_path}"
         assert f"not computed: run <code>{cmd}</code> (no compare_{case}.json)" in section(text, where)
-    assert "--set excitation.kind=record" in compare_command("earthquake")
+    assert "--set excitation.kind=record" in comparison_command("earthquake")
     eq = section(text, "earthquake")
     assert f"<code>rotorpillar simulate --case earthquake --model paper paper --out {tmp_path}" in eq
     assert "The base-forcing flaw: " in plain_text(eq)       # from analyze.json alone

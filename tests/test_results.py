@@ -35,7 +35,7 @@ def test_a_missing_field_names_itself():
 def test_modal_summary_round_trips(tmp_path):
     pytest.importorskip("dolfinx")
     from rotorpillar.fem3d import modal_analysis
-    from rotorpillar.fem3d.summary import ModalSummary, modal_summary
+    from rotorpillar.fem3d.modal_summary import ModalSummary, modal_summary
     from rotorpillar.reduced.reduction import pillar_closed_forms
     scene = load_scene("paper", ["mesh.elements_around=8", "mesh.elements_along=4",
                                  "modal.n_modes=4"])

@@ -1,5 +1,5 @@
 """No success for a meaningless run (issue 19.4): each integrator's step against what the run
-had to resolve (rotorpillar.reduced.accuracy, reduced.summaries.accuracy_check).
+had to resolve (rotorpillar.reduced.accuracy, transients.case_summary.accuracy_check).
 
 The threshold is the schemes' own error, not these examples: a run fails when its
 scheme's period error or amplitude loss per period at the fastest frequency it had to

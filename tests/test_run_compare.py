@@ -11,7 +11,7 @@ import pytest
 from conftest import cli
 
 from rotorpillar.cli import COMMANDS
-from rotorpillar.postprocess.comparisons import COMPARISONS, compare_models
+from rotorpillar.transients.run_comparisons import COMPARISONS, comparison_models
 
 
 @pytest.mark.slow
@@ -25,9 +25,9 @@ def test_run_compare_stages_feed_the_report(tmp_path):
     run = json.loads((tmp_path / "run.json").read_text())
     assert list(run["stages"]) == [f"compare_{c}" for c in COMPARISONS] + ["report"]
     quake = json.loads((tmp_path / "compare_earthquake.json").read_text())
-    assert quake["models_run"] == compare_models("earthquake")
+    assert quake["models_run"] == comparison_models("earthquake")
     assert quake["excitation"]["kind"] == "record"
-    assert json.loads((tmp_path / "compare_runup.json").read_text())["models_run"] == compare_models("runup")
+    assert json.loads((tmp_path / "compare_runup.json").read_text())["models_run"] == comparison_models("runup")
     text = (tmp_path / "report.html").read_text(encoding="utf-8")
     assert "<code>rotorpillar compare" not in text
     assert (tmp_path / "figures" / "comparison_earthquake.png").is_file()

@@ -149,8 +149,8 @@ def test_integrators_command(tmp_path):
 
 
 def test_decimation_keeps_the_peaks():
-    from rotorpillar.reduced.cases import run_case
-    from rotorpillar.reduced.summaries import decimate
+    from rotorpillar.transients.cases import run_case
+    from rotorpillar.transients.case_summary import decimate
     r = run_case(load_scene("paper"), "runup", "paper").run
     d = decimate(r, 1000)
     assert len(d.t) <= 1000 and d.t[-1] == r.t[-1] and d.t[0] == r.t[0]

@@ -155,7 +155,7 @@ def test_the_kernels_do_what_the_accuracy_module_says(method, rho):
     its period (phase of the last cycles) and its amplitude decay are the predicted ones."""
     from test_integrators import IDLE, oscillator, start
     from rotorpillar.reduced.excitation import no_motion
-    from rotorpillar.reduced.transient import Settings, simulate
+    from rotorpillar.reduced.integration import Settings, simulate
     w, spp, periods = 30.0, 12, 50
     h = 2 * math.pi / w / spp
     n = spp * periods
@@ -174,8 +174,8 @@ def test_the_kernels_do_what_the_accuracy_module_says(method, rho):
 
 
 def test_the_full_orders_step_ignores_the_stiff_shaft():
-    from rotorpillar.fem3d.transient_plan import case_setup, step_rule
-    from rotorpillar.reduced.cases import full_order_step_rule
+    from rotorpillar.fem3d.full_order_plan import case_setup, step_rule
+    from rotorpillar.transients.cases import full_order_step_rule
     from rotorpillar.reduced.models import scene_motion
     from rotorpillar.scene import load_scene
     rec = ["excitation.kind=record"]

@@ -18,8 +18,8 @@ from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import passing_torque
-from rotorpillar.reduced.summaries import capture_state
-from rotorpillar.reduced.transient import Settings, simulate
+from rotorpillar.transients.case_summary import capture_state
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.scene import load_scene, override
 from rotorpillar.studies import StudyResult, design_study, plan
 from rotorpillar.studies.batch import settle_time

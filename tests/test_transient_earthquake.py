@@ -31,7 +31,7 @@ from rotorpillar.reduced.excitation import (STANDARD_GRAVITY, GroundMotion, load
                                             read_two_columns, record_from_arrays)
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model
-from rotorpillar.reduced.transient import Settings, simulate
+from rotorpillar.reduced.integration import Settings, simulate
 
 
 def test_linear_pillar_under_a_base_pulse_against_duhamel():

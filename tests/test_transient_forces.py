@@ -25,7 +25,7 @@ from rotorpillar.reduced.internal_forces import STANDARD_GRAVITY, extreme_fibre_
 from rotorpillar.reduced.pillar import section_of
 from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.files import write_model_files
-from rotorpillar.transients.run import run_model
+from rotorpillar.transients.model_run import run_model
 
 SCENE = ["excitation.kind=record", "simulate.earthquake_duration=12", "modal_model.elements=10",
          "modal_model.source=beam",          # the ROM on the beam's own modes: the beam is its full order

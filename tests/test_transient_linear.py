@@ -31,7 +31,7 @@ from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model, paper_model
 from rotorpillar.reduced.system import paper_example
-from rotorpillar.reduced.transient import Settings, simulate
+from rotorpillar.reduced.integration import Settings, simulate
 
 IDLE = DriveSchedule.constant(0.0, 0.0, 0.0)
 TIGHT = Settings("dp5", rtol=1e-10, samples=2001)

@@ -34,7 +34,7 @@ from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import GroundMotion
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.pillar_modes import beam_properties
-from rotorpillar.reduced.transient import Settings, simulate
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.scene import load_scene
 
 
@@ -65,7 +65,7 @@ def test_beam_static_limit_against_the_cantilever_closed_form():
 
 @pytest.mark.parametrize("case", ["earthquake", "runup"])
 def test_beam_case_energy_and_against_the_rom(case):
-    from rotorpillar.reduced.cases import run_case
+    from rotorpillar.transients.cases import run_case
     # the ROM on the beam's own modes: the full-order beam is then its unreduced model
     scene = load_scene("paper", ["excitation.kind=record", "simulate.earthquake_duration=12",
                                  "simulate.duration=12", "modal_model.source=beam"])

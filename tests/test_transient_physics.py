@@ -33,14 +33,14 @@ import numpy as np
 import pytest
 
 from rotorpillar.reduced import averaging as av
-from rotorpillar.reduced.cases import run_case
+from rotorpillar.transients.cases import run_case
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import passing_torque
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.rotor_models import paper_model
 from rotorpillar.reduced.system import paper_example
-from rotorpillar.reduced.transient import Settings, simulate
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.scene import load_scene
 
 
@@ -190,7 +190,7 @@ def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
     first: the second stays unmatched (it used to be measured against the
     first resonance's jump, a -70 % 'error'); each numeric jump pairs with
     one prediction at most."""
-    from rotorpillar.reduced.sweep import match_jumps
+    from rotorpillar.transients.sweep import match_jumps
     up = lambda w0, w1, m: {"direction": "up", "omega_from": w0, "omega_to": w1, "torque_at_zero": m}
     predicted = [up(25.0, 31.0, 600.0), up(150.0, 170.0, 2000.0)]
     rows = match_jumps([up(25.5, 30.0, 610.0)], predicted)

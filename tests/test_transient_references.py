@@ -171,7 +171,7 @@ def test_held_whirl_is_steady_on_a_rigid_pillar():
     from rotorpillar.reduced.drive import DriveSchedule
     from rotorpillar.reduced.excitation import no_motion
     from rotorpillar.reduced.models import build_model
-    from rotorpillar.reduced.transient import Settings, simulate
+    from rotorpillar.reduced.integration import Settings, simulate
     scene = override(load_scene("paper"), ["gondola.mass=1e8", "modal_model.source=beam"])
     model, _ = build_model(scene, "modal", modes=1)
     W = 40.0

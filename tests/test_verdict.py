@@ -23,7 +23,7 @@ from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import operating_speed
 from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.files import write_model_files
-from rotorpillar.transients.run import run_model
+from rotorpillar.transients.model_run import run_model
 from rotorpillar.verdict.records import EngineeringSummary, HarmonicResult
 from rotorpillar.verdict.summary import engineering_summary
 

@@ -13,7 +13,7 @@ from .paper import compare_with_paper
 from .results import (AnalysisResult, DriveRegimes, PaperRow, PillarClosedForms,
                       ResonanceAnalysis, SystemModes, TipReductionUsed)
 from .scene_analysis import analyze
-from .summary import summary
+from .text import summary
 
 __all__ = ["AnalysisResult", "DriveRegimes", "PaperRow", "PillarClosedForms",
            "ResonanceAnalysis", "SystemModes", "TipReductionUsed", "analyze",

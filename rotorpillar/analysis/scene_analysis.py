@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..chain import ChainModes, Uncertain
+from ..chain import ChainModes
 from ..chain.choice import choose
 from ..chain.modes import chain_modes, rom_band_top
 from ..reduced import averaging as av

@@ -185,7 +185,7 @@ def rom_band_top(scene: Scene, motion=None) -> float:
     """The band the ROM keeps modes below (rad/s): modal_model.band_factor x the highest
     forcing frequency of the scene's cases (the drive's free speed, the sweep's top, the
     ground motion's band)."""
-    from ..reduced.cases import forcing_top
+    from ..reduced.band import forcing_top
     top = max(forcing_top(scene, "sweep", None), forcing_top(scene, "earthquake", motion)
               if motion is not None else 0.0)
     if not math.isfinite(top):

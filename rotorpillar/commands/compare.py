@@ -59,7 +59,7 @@ def compare_command(scene, args, timings):
     provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
     from ..errors import InputError
     from ..executor import default_workers
-    from ..postprocess.comparison_charts import comparison_chart
+    from ..postprocess.compare_charts import comparison_chart
     from ..postprocess.pareto_charts import pareto_chart
     from ..postprocess.transient_charts import model_run_charts
     workers = getattr(args, "workers", None)

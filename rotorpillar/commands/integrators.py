@@ -1,5 +1,5 @@
 """`rotorpillar integrators`: error against cost of every time integrator, and
-where each fails (rotorpillar.reduced.integrator_study).  Writes
+where each fails (rotorpillar.transients.integrator_study).  Writes
 ``integrators.json`` (the tables) and ``integrators.png``."""
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ def preflight(scene, args) -> None:
 def integrators_command(scene, args, timings):
     from . import is_root_rank, out_dir
     from ..chain import resolve
-    from ..reduced.integrator_study import run_study
+    from ..transients.integrator_study import run_study
     from ..reduced.models import beam_candidates
     preflight(scene, args)
     duration = getattr(args, "duration", 10.0)

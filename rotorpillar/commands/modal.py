@@ -90,7 +90,7 @@ def modal_command(scene, args, timings):
     from ..reduced.reduction import pillar_closed_forms
     from ..fem3d import modal_analysis
     from ..fem3d.output import write_modes_vtu
-    from ..fem3d.summary import modal_summary, summary
+    from ..fem3d.modal_summary import modal_summary, summary
     quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
     from dataclasses import replace

@@ -23,7 +23,7 @@ import sys
 import time
 
 from ..errors import StageError
-from ..postprocess.comparisons import COMPARISONS
+from ..transients.run_comparisons import COMPARISONS
 from . import progress
 
 

@@ -50,19 +50,19 @@ def add_arguments(p) -> None:
 def check_run(scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
               motion=None, duration: float | None = None) -> None:
     """Refuse (InputError) a run of one model that its own code would refuse, before any
-    work: the 3D model's mesh memory and step budget (fem3d.transient_plan, before
-    meshing), the beam full order's step budget (reduced.cases.check_full_order_budget),
-    or a reduced model's step budget (the case's own code, reduced.cases.run_case, run up
-    to its first integration: rotorpillar.reduced.transient.estimate_only; the models
+    work: the 3D model's mesh memory and step budget (fem3d.full_order_plan, before
+    meshing), the beam full order's step budget (transients.cases.check_full_order_budget),
+    or a reduced model's step budget (the case's own code, transients.cases.run_case, run up
+    to its first integration: rotorpillar.reduced.integration.estimate_only; the models
     built, nothing integrated).  A modal model whose modes would come from the 3D model
     is estimated on the 1D beam's modes (the estimate's inputs from the modes, the
     operating speed and the fastest mode in the band, agree within the beam's error; the
     run checks again on its own modes)."""
-    from ..reduced.cases import check_full_order_budget, run_case
+    from ..transients.cases import check_full_order_budget, run_case
     from ..reduced.excitation import no_motion
-    from ..reduced.transient import Estimated, estimate_only
+    from ..reduced.integration import Estimated, estimate_only
     from ..scene import override
-    from ..transients.run import fem3d_plan, with_duration
+    from ..transients.model_run import fem3d_plan, with_duration
     if which == "fem3d":
         from ..mesh import tube_params
         tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration)["_mesh"])   # its memory
@@ -108,7 +108,7 @@ def simulate_command(scene, args, timings):
     motion = preflight(scene, args)                                    # bad input: before any work
     from ..postprocess.transient_charts import model_run_charts
     from ..transients.files import write_model_files
-    from ..transients.run import run_model
+    from ..transients.model_run import run_model
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
@@ -138,9 +138,9 @@ def simulate_command(scene, args, timings):
 
 def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) -> None:
     """Refuse, before any meshing, a 3D run above ``simulate.max_steps`` (InputError
-    naming the keys; fem3d.transient_plan), on the plan's mesh, duration and step."""
-    from ..fem3d.transient_plan import case_setup, check_budget, estimate, step_rule
-    from ..transients.run import fem3d_plan
+    naming the keys; fem3d.full_order_plan), on the plan's mesh, duration and step."""
+    from ..fem3d.full_order_plan import case_setup, check_budget, estimate, step_rule
+    from ..transients.model_run import fem3d_plan
     plan = fem3d_plan(scene, case, motion, duration)
     # the start speed 0: the step follows the drive's free speed, which the operating
     # speed never passes, so the rule's step is the run's without solving for it

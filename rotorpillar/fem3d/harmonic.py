@@ -2,7 +2,7 @@
 
 At a constant speed Omega, theta = Omega t, every displacement is
 Re(U e^{i theta}).  The rotor centre, on its shaft c2 at the rigid top
-plate and damped by b2 against the ground (as in rotorpillar.fem3d.transient),
+plate and damped by b2 against the ground (as in rotorpillar.fem3d.full_order),
 has the dynamic stiffness k_r = c2 - m_C Omega**2 + i Omega b2; condensed
 onto the plate it leaves the shaft's pull h (U_p + E) on the plate's row,
 h = c2 (c2 - k_r) / k_r, with E = e along X (the unbalance e cos theta) and

@@ -1,4 +1,4 @@
-"""The 3D full order's step operator and its plate rows (rotorpillar.fem3d.transient).
+"""The 3D full order's step operator and its plate rows (rotorpillar.fem3d.full_order).
 
 - ``step_operator``: Keff = wf K + cm M + the plate's rows (its dashpot and the
   rotor centre condensed onto it), factorised once (MUMPS Cholesky: K and M are

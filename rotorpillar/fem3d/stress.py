@@ -1,6 +1,6 @@
 """Stresses of the 3D tube during a transient: section resultants, von Mises, an XDMF time series.
 
-``StressRecovery`` watches a 3D full-order run (rotorpillar.fem3d.transient):
+``StressRecovery`` watches a 3D full-order run (rotorpillar.fem3d.full_order):
 the run hands it the assembled model once (``attach``) and the state at
 each output time (``record(t, x)``: the PETSc Vec of the unknowns).  It keeps
 

@@ -29,7 +29,7 @@ Contracts (field names are the writers'; we read, never write, them):
   peak_tip_difference, omega_final_difference}, ``cost_ratio.<model>``,
   ``chart``, and for the earthquake ``spectrum`` {period, psa (m/s**2),
   mode_periods, spectral_peak_tip, computed_peak_tip}: read by
-  :func:`rotorpillar.postprocess.comparisons.read_comparison`.
+  :func:`rotorpillar.postprocess.compare_reader.read_comparison`.
 - ``convergence.json`` (`rotorpillar converge`), ``integrators.json``.
 - Any PNG in ``out/<scene>/`` (or a direct subfolder) is embedded in the
   report, in the section its file name suggests
@@ -204,8 +204,8 @@ def read_analysis(path: str | Path):
 
 
 def read_modal(path: str | Path):
-    """``modal.json`` (a :class:`~rotorpillar.fem3d.summary.ModalSummary`), or None."""
-    from ..fem3d.summary import ModalSummary
+    """``modal.json`` (a :class:`~rotorpillar.fem3d.modal_summary.ModalSummary`), or None."""
+    from ..fem3d.modal_summary import ModalSummary
     return read_record(path, ModalSummary)
 
 

@@ -2,7 +2,7 @@
 (``null``, a list, values of the wrong kind) is named as damaged, with the key,
 instead of failing a section later without its file's name.
 
->>> from rotorpillar.fem3d.summary import ModalSummary
+>>> from rotorpillar.fem3d.modal_summary import ModalSummary
 >>> shape_error(ModalSummary, {"modes": 5})
 'modes is a JSON number, not a list'
 >>> require({"case": "runup"}, {"case": str, "model": str}, "simulate_runup.json")

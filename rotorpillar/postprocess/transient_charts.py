@@ -311,7 +311,7 @@ def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: st
 
 
 def model_run_charts(out: Path, scene, run, stem: str) -> list[dict]:
-    """A transient run's charts (a ``rotorpillar.transients.run.ModelRun``): the
+    """A transient run's charts (a ``rotorpillar.transients.model_run.ModelRun``): the
     earthquake's histories, the run-up's or run-down's speed and tip envelope,
     the sweep's curves; returns [{file, caption}]."""
     data, case, name = run.data, run.case, run.model

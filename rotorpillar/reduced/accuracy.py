@@ -129,7 +129,7 @@ def scheme_error(method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float
     """The error of ``method`` at Omega = omega h on an undamped oscillator.
 
     The generalized-alpha family takes its four parameters
-    (rotorpillar.reduced.transient.genalpha_parameters).
+    (rotorpillar.reduced.integration.genalpha_parameters).
     """
     Omega = float(Omega)
     spp = 2 * math.pi / Omega if Omega > 0 else math.inf
@@ -220,11 +220,11 @@ FULL_ORDER_SCHEMES = GENALPHA + ("central_difference",)
 
 def full_order_parameters(method: str, rho_inf: float) -> dict:
     """The generalized-alpha parameters of a full order's ``method`` at ``rho_inf``
-    (rotorpillar.reduced.transient.genalpha_parameters: Chung & Hulbert 1993; HHT-alpha
+    (rotorpillar.reduced.integration.genalpha_parameters: Chung & Hulbert 1993; HHT-alpha
     with alpha = (rho_inf - 1) / (rho_inf + 1), Hilber, Hughes & Taylor 1977); empty
     for central difference.  InputError for HHT below its reach (rho_inf < 0.5)."""
     from ..errors import InputError
-    from .transient import Settings, genalpha_parameters
+    from .integration import Settings, genalpha_parameters
     if method not in FULL_ORDER_SCHEMES:
         raise InputError(f"full order integrator {method!r}: must be one of {', '.join(FULL_ORDER_SCHEMES)}")
     if method == "central_difference":

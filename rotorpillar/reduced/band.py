@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from .averaging import Characteristic
+from .drive import DriveSchedule
+from .excitation import GroundMotion
 
 
 def excitation_band(scene) -> dict:
@@ -20,3 +22,15 @@ def excitation_band(scene) -> dict:
     return {"free_speed": free, "earthquake_frequency": cv.earthquake_frequency,
             "margin": cv.margin, "omega_max": cv.margin * top,
             "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake"}
+
+
+def forcing_top(scene, case: str, motion: GroundMotion | None) -> float:
+    """The highest forcing frequency of a case (rad/s): the fastest rotor speed
+    it reaches, and the ground motion's band."""
+    d, L = scene.drive, scene.load
+    fast = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()
+    if case == "sweep":
+        fast = max(fast, DriveSchedule.constant(scene.sweep.torque_high, d.slope, L.coefficient).free_speed())
+    if case == "earthquake" and motion is not None:
+        fast = max(fast, motion.band())
+    return fast

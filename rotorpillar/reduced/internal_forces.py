@@ -34,7 +34,6 @@ the reduced models carries to the base unchanged.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np

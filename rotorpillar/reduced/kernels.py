@@ -1,4 +1,4 @@
-"""The compiled kernels of the transients, in one namespace (rotorpillar.reduced.transient uses it).
+"""The compiled kernels of the transients, in one namespace (rotorpillar.reduced.integration uses it).
 
 - rotorpillar.reduced.rhs: the rotor-structure model's right-hand side
   ``deriv_flat`` on the model flattened by ``flatten``, its Jacobians, the

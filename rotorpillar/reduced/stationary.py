@@ -16,7 +16,7 @@ from ..errors import InputError
 from . import averaging as av
 from .drive import DriveSchedule
 from .rotor_models import RotorStructure
-from .transient import simulate_batch
+from .integration import simulate_batch
 
 
 def stationary_exact(model: RotorStructure, M0: float, slope: float, load: float,

@@ -2,7 +2,7 @@
 
 Runs that share a compiled model, drive schedule, ground motion and initial
 state go to ONE call of the compiled batch loop
-(``rotorpillar.reduced.transient.simulate_batch``), which takes per run only
+(``rotorpillar.reduced.integration.simulate_batch``), which takes per run only
 what its signature takes: the motor's M0 (as a scale on the schedule), its
 slope s, the load k, the eccentricity e and the shaft stiffness c2 (none of
 them enters the model's matrices: the shaft acts through c2 and e in the
@@ -14,7 +14,7 @@ speed, which depends on all of them: there every run is its own group.
 ``run_batch(spec)`` is what the executor sends to a worker; it returns plain
 dicts (one per run) that the study assembles into ``StudyRun`` records.
 Each run condenses as ``simulate`` condenses a case
-(rotorpillar.reduced.summaries): the final speed and its mean over the last
+(rotorpillar.transients.case_summary): the final speed and its mean over the last
 5 %, the resonance it settled at (``capture``), the peak tip displacement
 relative to the ground (from every step where the model's frame is the
 ground's; sampled otherwise) and the peak shaft deflection
@@ -33,14 +33,14 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..reduced.cases import forcing_top
+from ..reduced.band import forcing_top
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.models import build_model, scene_motion
 from .modes import modes_of
 from ..reduced.stationary import operating_speed
-from ..reduced.summaries import capture_state, ground_displacement
-from ..reduced.transient import simulate_batch
+from ..transients.case_summary import capture_state, ground_displacement
+from ..reduced.integration import simulate_batch
 from ..scene import scene_from_dict
 from .axes import run_scene
 

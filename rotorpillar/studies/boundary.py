@@ -22,7 +22,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..reduced.cases import forcing_top
+from ..reduced.band import forcing_top
 from ..reduced.models import build_model
 from ..reduced.stationary import predicted_passing_torque
 from .axes import Axis, run_scene

@@ -36,7 +36,7 @@ class StudyRun(JsonRecord):
     batch: str = ""
     """the batch (cache file) that computed it"""
     speed_state: str = ""
-    """"captured", "escaping", "accelerating" or "at_speed" (reduced.summaries.capture_state)"""
+    """"captured", "escaping", "accelerating" or "at_speed" (transients.case_summary.capture_state)"""
     pga: float | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake: peak ground acceleration (m/s**2)"""
     initial_speed: float | None = field(default=None, metadata={"omit_if_none": True})

@@ -13,7 +13,7 @@ angle's drift (rotorpillar.transients.measures), with the one that fits the
 case leading.  Costs are warm (compilation apart, ``compile_seconds``).
 For the earthquake, ``spectrum``: the record's pseudo-acceleration spectrum
 (eqsig, 5 %), the modal model's mode periods and its spectral estimate of
-the peak tip (SRSS of Gamma_j S_d(T_j), rotorpillar.reduced.cases.spectral_estimate)
+the peak tip (SRSS of Gamma_j S_d(T_j), rotorpillar.transients.cases.spectral_estimate)
 beside the modal model's computed peak.
 """
 
@@ -28,7 +28,7 @@ from ..provenance import write_json
 from ..scene import MODELS
 from .measures import compare_series, envelope_window
 from .records import CompareResult, reference_of
-from .run import ModelRun, fem3d_plan, own_duration, run_model
+from .model_run import ModelRun, fem3d_plan, own_duration, run_model
 
 COMPARE_CASES = ("earthquake", "runup")
 DEFAULT_MODELS = {"earthquake": ("modal", "fem3d"), "runup": ("modal", "beam")}
@@ -70,7 +70,7 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
 
     ``run_charts`` draws each model's figures (see ``files.write_model_files``);
     ``compare_chart(path, series, reference, title, errors=..., walls=...)``
-    the overlay (``rotorpillar.postprocess.comparison_charts.comparison_chart``);
+    the overlay (``rotorpillar.postprocess.compare_charts.comparison_chart``);
     ``pareto_chart(doc, path, title)`` the speed against accuracy
     (``rotorpillar.postprocess.pareto_charts.pareto_chart``); all handed in by
     the command, since drawing lives above this layer.  ``pareto``: the
@@ -181,7 +181,7 @@ def compare_stem(case: str, model: str) -> str:
 def _start_pareto(scene, motion, out: Path, workers: int, progress, chain):
     """The speed-against-accuracy study planned and its 3D runs started on ``workers`` - 1
     processes (this one runs compare's own models meanwhile; none: after them, here)."""
-    from ..reduced.cases import forcing_top
+    from ..reduced.band import forcing_top
     from ..reduced.models import build_model
     from .pareto import ParetoRunning, plan_pareto
     mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out)["_mesh"]
@@ -218,7 +218,8 @@ def _per_model(case: str, m: str, r: dict) -> dict:
 
 def _spectrum(scene, motion, runs: dict) -> dict:
     """The record's spectrum, the pillar's modal periods, the ROM's spectral peak tip."""
-    from ..reduced.cases import forcing_top, spectral_estimate
+    from ..reduced.band import forcing_top
+    from .cases import spectral_estimate
     from ..reduced.excitation import response_spectrum
     from ..reduced.models import build_model
     if "modal" in runs:

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ..provenance import atomic_path, machine, versions, write_json, write_text
-from .run import ModelRun
+from .model_run import ModelRun
 
 CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_acceleration",
                "tip_x_relative", "tip_x_absolute", "shaft_deflection_x",     # the old ones first

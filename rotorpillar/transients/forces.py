@@ -1,6 +1,6 @@
 """A run's internal forces, stresses and shaft demand: the fields added to each transient.
 
-``with_forces(scene, run, ...)`` takes a ``ModelRun`` (rotorpillar.transients.run)
+``with_forces(scene, run, ...)`` takes a ``ModelRun`` (rotorpillar.transients.model_run)
 and returns it with
 
 - in its JSON: ``max_abs.base_moment`` (N m), ``max_abs.base_shear`` (N),
@@ -180,7 +180,8 @@ def _beam_forces(scene, run, res, shaft):
 
 
 def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, progress):
-    from ..reduced.cases import forcing_top, run_case
+    from ..reduced.band import forcing_top
+    from .cases import run_case
     from ..reduced.models import candidate_modes
     from ..reduced.pillar_modes import beam_properties
     from ..scene import override
@@ -203,7 +204,7 @@ def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, prog
             progress(f"section forces: the base moment needs {k} modes (the run kept {k_run}); "
                      "the case again with them")
         quiet = override(scene, ["simulate.threshold=false"])
-        from ..reduced.summaries import series
+        from .case_summary import series
         again = run_case(quiet, run.case, "modal", integrator, k, truncation=False, motion=motion,
                          pillar_modes=pillar_modes)
         data = series(again.run, scene.simulate.samples)

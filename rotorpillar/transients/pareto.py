@@ -166,10 +166,10 @@ def _grid(duration: float) -> np.ndarray:
 
 def _reduced_run(scene, family: str, params: dict, motion, speed: float, pillar_modes,
                  duration: float) -> dict:
-    from ..reduced.cases import full_order_settings, settings_of
+    from .cases import full_order_settings, settings_of
     from ..reduced.drive import DriveSchedule
     from ..reduced.models import build_model
-    from ..reduced.transient import simulate
+    from ..reduced.integration import simulate
     from ..scene import override
     d, L = scene.drive, scene.load
     drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
@@ -200,7 +200,7 @@ def warm_up(family: str, scene, motion, speed: float, pillar_modes=None) -> floa
         return 0.0
     t0 = time.perf_counter()
     if family == "fem3d":
-        from ..fem3d.transient import simulate_fem3d
+        from ..fem3d.full_order import simulate_fem3d
         tiny = replace(scene.mesh, elements_around=4, elements_along=1)
         simulate_fem3d(scene, "earthquake", motion=motion, duration=1e-3, time_step=5e-4,
                        mesh=tiny, samples=3, initial_speed=speed)
@@ -212,7 +212,7 @@ def warm_up(family: str, scene, motion, speed: float, pillar_modes=None) -> floa
 
 def compute_3d(job) -> dict:
     """One 3D run (a worker's job: picklable arguments); its result and warm-up seconds."""
-    from ..fem3d.transient import simulate_fem3d
+    from ..fem3d.full_order import simulate_fem3d
     scene, params, motion, speed, duration = job
     warm = warm_up("fem3d", scene, motion, speed)
     mesh = replace(scene.mesh, **params)

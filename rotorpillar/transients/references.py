@@ -53,7 +53,7 @@ the earthquake's 15 s window costs ~20 times the run-up's, so it keeps the toler
 REFERENCE_DOF_STEPS = 40e6
 """What refining the reference for the ROM source's floor may cost: DOFs x steps.
 The 3D full order costs ~0.45 us per DOF and step on a quiet 2-core machine (8 x 10,
-3,033 DOFs: 1.3 ms a step, fem3d.transient_plan.SECONDS_PER_STEP), so ~20 s; the tolerance's own choice is never held to it
+3,033 DOFs: 1.3 ms a step, fem3d.full_order_plan.SECONDS_PER_STEP), so ~20 s; the tolerance's own choice is never held to it
 (the paper's El Centro on 8 x 15: 38e6)."""
 FALLBACK_AROUND = 8
 """Elements around without a study and without full_order.elements_around (-)."""
@@ -319,8 +319,8 @@ def _mesh_of(scene, params: dict):
 
 def estimated_steps(scene, case: str, motion, duration: float) -> int:
     """The 3D run's steps over ``duration`` (its step as simulate_fem3d sets it:
-    fem3d.transient_plan.step_rule)."""
-    from ..fem3d.transient_plan import case_setup, step_rule
+    fem3d.full_order_plan.step_rule)."""
+    from ..fem3d.full_order_plan import case_setup, step_rule
     start = scene.simulate.runup_initial_speed if case == "runup" else None
     motion, drive, duration, speed, _ = case_setup(scene, case, motion, None, duration, start or None)
     return max(1, int(round(duration / step_rule(scene, drive, motion, speed).time_step)))

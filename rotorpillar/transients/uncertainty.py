@@ -47,7 +47,7 @@ def _finer(scene: Scene, integrator: Optional[str]) -> Scene:
 def uncertainty(scene: Scene, case: str, integrator, motion, chain: ChainModes, base,
                 progress=None) -> dict[str, Uncertain]:
     """``{name: Uncertain}`` for the headline numbers of ``base`` (a modal CaseResult)."""
-    from ..reduced.cases import run_case
+    from .cases import run_case
     quiet = override(scene, ["simulate.threshold=false"])
     k = base.model.pillar_modes.count
     values = headline_numbers(base)

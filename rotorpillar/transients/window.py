@@ -59,9 +59,9 @@ def runup_window(scene, pillar_modes=None) -> RunupWindow:
     """The window of the scene's run-up (see the module text): one run-up of the
     modal ROM from rest, without the passing-torque batch and the truncation check;
     ``pillar_modes``: the ROM's (the chain's; None: resolved for the scene, no study)."""
-    from ..reduced.cases import run_case
+    from .cases import run_case
     from ..reduced.drive import DriveSchedule
-    from ..reduced.summaries import capture_state
+    from .case_summary import capture_state
     from ..scene import override
     sim = scene.simulate
     if pillar_modes is None:

@@ -105,8 +105,8 @@ def harmonic_analysis(scene, out: Path, progress=None, with_fem3d: bool = True,
     """The Bode curves and the separation margins of the scene (see the module text);
     ``chain``: the chain's pillar model and modes (rotorpillar.chain.resolve; None: resolved
     here for ``out``)."""
-    from ..fem3d.summary import ModalSummary
-    from ..reduced.cases import forcing_top
+    from ..fem3d.modal_summary import ModalSummary
+    from ..reduced.band import forcing_top
     from ..reduced.models import build_model
     say = progress or (lambda m: None)
     if chain is None:
@@ -164,7 +164,7 @@ def _fem3d_curve(scene, model, top: float, say):
     from ..fem3d import assemble_pillar
     from ..fem3d.harmonic import harmonic_response, harmonic_speeds
     from ..fem3d.rotor_top import Rotor
-    from ..transients.run import fem3d_plan
+    from ..transients.model_run import fem3d_plan
     mesh = fem3d_plan(scene, "runup")["_mesh"]
     res = [r.omega for r in model.quasi_normal() if r.direction == "X"]
     speeds = harmonic_speeds(res, top)

@@ -229,7 +229,7 @@ def _runup(docs: list[dict]) -> dict | None:
 
 def engineering_summary(scene, out: Path) -> EngineeringSummary:
     """The verdict of the files in ``out`` (see the module text)."""
-    from ..fem3d.summary import ModalSummary
+    from ..fem3d.modal_summary import ModalSummary
     out = Path(out)
     docs = model_runs(out)
     inputs = [d["_file"] for d in docs]

@@ -25,7 +25,8 @@ from types import SimpleNamespace
 
 from ...provenance import write_text
 from .. import html as h
-from ..comparisons import COMPARISONS, read_comparison
+from ...transients.run_comparisons import COMPARISONS
+from ..compare_reader import read_comparison
 from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_convergence, read_json,
                       read_modal, read_record, read_simulation, require)
 from .convergence import section_convergence, section_integrators

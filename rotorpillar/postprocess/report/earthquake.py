@@ -8,10 +8,11 @@ from __future__ import annotations
 import numpy as np
 
 from .. import html as h
-from ..comparisons import compare_models, relative_to_ground
+from ...transients.run_comparisons import comparison_models
+from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..inputs import INPUTS, SIMULATE_COMMAND
-from .comparison import comparison_block, spectrum_block
+from .compare_section import comparison_block, spectrum_block
 from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
 from .references import pareto_block
 from .state import Build
@@ -141,7 +142,7 @@ def paper_case(build: Build) -> list[str]:
 
 def section_earthquake(build: Build) -> str:
     c = build.comparisons.get("earthquake")
-    models = c.models if c is not None else compare_models("earthquake")
+    models = c.models if c is not None else comparison_models("earthquake")
     parts = [h.tag("h3", "A recorded earthquake on the physically consistent models"),
              h.tag("p", f"The models {' and '.join(models)} force the structure by the "
                         "ground's inertia (-M r a_g), the ground moving "

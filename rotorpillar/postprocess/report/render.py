@@ -6,7 +6,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
-from ..comparisons import relative_to_ground
+from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..inputs import INPUTS, ModeSet, entries, plain
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, say
@@ -61,7 +61,7 @@ def render_charts(build: Build) -> None:
 def render_comparisons(build: Build) -> None:
     """Each comparison's tip histories overlaid with their differences, and
     the record's response spectrum."""
-    from .. import comparison_charts as cc
+    from .. import compare_charts as cc
     fig = build.out / FIGURES_DIR
     for case, c in build.comparisons.items():
         series = [(m, *s) for m in c.models for s in [c.tip_relative(m)] if s is not None]
@@ -86,7 +86,7 @@ def render_comparisons(build: Build) -> None:
     c = build.comparisons.get("earthquake")
     spec = c.doc.get("spectrum") if c is not None else None
     if isinstance(spec, dict) and spec.get("period") is not None and spec.get("psa") is not None:
-        from .comparison import system_modes
+        from .compare_section import system_modes
         damping = spec.get("damping", spec.get("damping_ratio", 0.05))
         model, modes = system_modes(c)
         # the modes the horizontal record excites: the coupled system's, in X

@@ -5,10 +5,10 @@ against a full-order model; run-down, sweep)."""
 from __future__ import annotations
 
 from .. import html as h
-from ..comparisons import COMPARISONS
+from ...transients.run_comparisons import COMPARISONS
 from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
 from ..directions import direction
-from .comparison import comparison_block
+from .compare_section import comparison_block
 from .models import model_views, resonance_table
 from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
 from .passage import passage_block

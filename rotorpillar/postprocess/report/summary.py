@@ -5,9 +5,9 @@ detail), each input that is missing named with the command that makes it."""
 from __future__ import annotations
 
 from .. import html as h
-from ..comparisons import COMPARISONS, compare_command
+from ...transients.run_comparisons import COMPARISONS, comparison_command
 from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
-from .comparison import speed_accuracy
+from .compare_section import speed_accuracy
 from .convergence import chosen
 from .engineering import verdict_block
 from .modal import bending, is_finding
@@ -152,7 +152,7 @@ def section_summary(build: Build) -> str:
         name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
         if c is None:
             items.append(f"The reduced model against the full order on the {name}: not computed: "
-                         f"run `rotorpillar {compare_command(case)} {build.scene_cli}`.")
+                         f"run `rotorpillar {comparison_command(case)} {build.scene_cli}`.")
         else:
             said = speed_accuracy(c.doc, c.models)
             items.append(f"The {name}, models compared ({', '.join(c.models)}): "

@@ -17,10 +17,10 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from .accuracy import AccuracyCheck, check_step, forcing_frequencies
-from .excitation import GroundMotion, no_motion
-from .rotor_models import RotorStructure
-from .transient import Transient, shaft_deflection
+from ..reduced.accuracy import AccuracyCheck, check_step, forcing_frequencies
+from ..reduced.excitation import GroundMotion, no_motion
+from ..reduced.rotor_models import RotorStructure
+from ..reduced.integration import Transient, shaft_deflection
 
 CAPTURE_WIDTH = 3.0          # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03     # relative
@@ -160,7 +160,7 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
 
 @dataclass(frozen=True)
 class SweepFindings:
-    """What a quasi-static sweep adds to its summary (rotorpillar.reduced.sweep)."""
+    """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep)."""
     predicted_jumps: list
     """the averaging theory's jumps inside the swept torque range"""
     jump_comparison: list

@@ -16,11 +16,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from . import averaging as av
-from .drive import DriveSchedule
-from .excitation import no_motion
-from .rotor_models import RotorStructure
-from .transient import Settings, Transient, simulate
+from ..reduced import averaging as av
+from ..reduced.drive import DriveSchedule
+from ..reduced.excitation import no_motion
+from ..reduced.rotor_models import RotorStructure
+from ..reduced.integration import Settings, Transient, simulate
 
 JUMP_FACTOR = 5.0
 

@@ -62,11 +62,11 @@ from ..reduced.excitation import GroundMotion
 from .rotor_top import (Affine, Rotor, Step, coupling_torque, drive_torque, plate_and_rotor,
                         rotor_start, rotor_step_stiffness, solve_spin)
 from .step_operator import Plate, add_shaft_acceleration, step_operator
-from .transient_plan import (CASES_3D, accuracy, beam_operating_speed, case_setup,  # noqa: F401
+from .full_order_plan import (CASES_3D, accuracy, beam_operating_speed, case_setup,  # noqa: F401
                              check_budget, estimate, scheme_parameters, step_rule, top_speed)
 
 WORK_COLUMNS = ("drive_minus_load", "shaft_on_structure", "dissipated", "base")
-#: the share of the energy exchanged the balance may miss (as reduced.summaries.ENERGY_CHECK)
+#: the share of the energy exchanged the balance may miss (as transients.case_summary.ENERGY_CHECK)
 ENERGY_CHECK = 0.05
 
 

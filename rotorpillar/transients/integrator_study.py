@@ -29,10 +29,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from .models import build_model
-from .drive import DriveSchedule
-from .excitation import no_motion
-from .transient import FIXED_STEP, SCIPY_METHODS, Settings, simulate
+from ..reduced.models import build_model
+from ..reduced.drive import DriveSchedule
+from ..reduced.excitation import no_motion
+from ..reduced.integration import FIXED_STEP, SCIPY_METHODS, Settings, simulate
 
 ADAPTIVE = ("dp5",) + SCIPY_METHODS
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
@@ -196,7 +196,7 @@ def run_study(scene, duration: float = 10.0, quick: bool = False, progress=None,
     if pillar_modes is None:
         model, _ = build_model(scene, "paper")
     else:
-        from .pillar_modes import modes_in_band
+        from ..reduced.pillar_modes import modes_in_band
         band = scene.modal_model.band_factor * drive.free_speed()
         model, _ = build_model(scene, "modal", modes=modes_in_band(pillar_modes.omega, band),
                                pillar_modes=pillar_modes)

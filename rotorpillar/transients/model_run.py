@@ -9,12 +9,12 @@ full-order models ``full_order``) and the series of the NPZ/CSV (``t``,
 ``ground_acceleration``, ``rotor_x``, ``rotor_y``, ``shaft_deflection_x``
 beside the existing columns).
 
-- paper, modal, beam: rotorpillar.reduced.cases.run_case (the beam is the
+- paper, modal, beam: rotorpillar.transients.cases.run_case (the beam is the
   full-order 1D beam, integrated by [full_order] beam_integrator at the
   forcing's step); the modal model (the ROM) takes its pillar modes from the
   chain (rotorpillar.chain: the model the convergence study chose, or the
   scene's own), which the caller resolves once and hands in;
-- fem3d: rotorpillar.fem3d.transient.simulate_fem3d on the mesh and over the
+- fem3d: rotorpillar.fem3d.full_order.simulate_fem3d on the mesh and over the
   duration [full_order] states (``fem3d_plan``); its ``captured_at`` and
   resonances come from the chain's ROM (the 3D run has no quasi-normal data
   of its own; the capture width, 3 % at least, is far wider than the ROM's
@@ -78,7 +78,7 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
     reference for the modes the case's load excites when ``study_dir`` holds
     convergence.json, else [full_order]'s (rotorpillar.transients.references);
     ``reference`` says which, its own error and the participation of the modes."""
-    from ..fem3d.transient import CASES_3D
+    from ..fem3d.full_order import CASES_3D
     from .references import choose_reference, estimated_steps
     if case not in CASES_3D:
         raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs "
@@ -169,7 +169,7 @@ def pillar_modes_for(which: str, chain: ChainModes | None):
 def warm_up(scene, case: str, which: str, integrator, modes, motion, pillar_modes) -> float:
     """Compile what the run will (numba's kernels, per integrator and case) on a run of a
     few milliseconds of the same case; its wall time (s), kept apart from the run's."""
-    from ..reduced.cases import run_case
+    from .cases import run_case
     short = override(scene, ["simulate.threshold=false",
                              f"simulate.{'earthquake_duration' if case == 'earthquake' else 'duration'}"
                              f"={(motion.start + 1e-2) if case == 'earthquake' else 1e-2!r}"])
@@ -185,9 +185,9 @@ def warm_up(scene, case: str, which: str, integrator, modes, motion, pillar_mode
 
 
 def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain) -> ModelRun:
-    from ..reduced.cases import run_case, with_truncation
+    from .cases import run_case, with_truncation
     from ..reduced.excitation import no_motion
-    from ..reduced.summaries import ground_displacement, series
+    from .case_summary import ground_displacement, series
     pillar_modes = pillar_modes_for(which, chain)
     compile_seconds = warm_up(scene, case, which, integrator, modes, motion, pillar_modes)
     start = time.perf_counter()
@@ -299,11 +299,11 @@ def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarMod
 
 def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
                field_stem: str = "", study_dir=None) -> ModelRun:
-    from ..fem3d.transient import simulate_fem3d
-    from ..reduced.cases import forcing_top
+    from ..fem3d.full_order import simulate_fem3d
+    from ..reduced.band import forcing_top
     from ..reduced.models import build_model
     from ..reduced.stationary import operating_speed
-    from ..reduced.summaries import capture_state
+    from .case_summary import capture_state
     plan = fem3d_plan(scene, case, motion, duration, study_dir)
     mesh = plan.pop("_mesh")
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 
 from .. import html as h
-from ..comparisons import compare_command, compare_overrides
+from ...transients.run_comparisons import comparison_command, comparison_overrides
 from .parts import failure, product_image, scene_differs
 from .references import reference_block
 from .state import Build
@@ -34,7 +34,7 @@ def share(x) -> str:
 
 def missing_comparison(build: Build, case: str) -> list[str]:
     """The notice naming the command that makes ``compare_<case>.json``."""
-    return [h.missing(f"not computed: run `rotorpillar {compare_command(case)} {build.scene_cli}` "
+    return [h.missing(f"not computed: run `rotorpillar {comparison_command(case)} {build.scene_cli}` "
                       f"(no compare_{case}.json)")]
 
 
@@ -154,7 +154,7 @@ def comparison_block(build: Build, case: str) -> list[str]:
     if c is None:
         return missing_comparison(build, case)
     doc, models = c.doc, c.models
-    parts = scene_differs(build, doc, ignore=compare_overrides(case))
+    parts = scene_differs(build, doc, ignore=comparison_overrides(case))
     ex = excitation_text(doc.get("excitation"))
     if ex:
         parts.append(h.tag("p", ex))
@@ -229,7 +229,7 @@ RECORD_DIRECTION = (
 def spectrum_block(build: Build) -> list[str]:
     """The record's response spectrum with the system's modes marked, and the
     ROM's spectral estimate of the peak tip beside the computed one."""
-    from ..comparison_charts import STANDARD_GRAVITY, spectral_value
+    from ..compare_charts import STANDARD_GRAVITY, spectral_value
     from ..directions import direction
     c = build.comparisons.get("earthquake")
     if c is None:

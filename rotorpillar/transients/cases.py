@@ -3,7 +3,7 @@
 Each case builds the model the scene asks for (rotorpillar.reduced.models:
 the paper's Eq. 4 with the scene's tip reduction, or the modal model
 with k pillar modes), the drive schedule and the ground motion, integrates,
-and condenses the run into a ``CaseSummary`` (rotorpillar.reduced.summaries)
+and condenses the run into a ``CaseSummary`` (rotorpillar.transients.case_summary)
 beside the averaging theory's predictions (rotorpillar.reduced.stationary);
 the modal model adds its truncation estimate: the same case with k + 1 modes.
 
@@ -20,17 +20,18 @@ import numpy as np
 
 from ..errors import InputError
 from ..scene import CASES
-from .accuracy import (FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters,
+from ..reduced.accuracy import (FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters,
                        full_order_step)
-from .drive import DriveSchedule
-from .excitation import GroundMotion, no_motion, response_spectrum
-from .models import build_model, scene_motion
-from .pillar_modes import PillarModes
-from .rotor_models import RotorStructure
-from .stationary import averaging_prediction, operating_speed, passing_torque
-from .summaries import CaseSummary, SweepFindings, run_summary
+from ..reduced.band import forcing_top
+from ..reduced.drive import DriveSchedule
+from ..reduced.excitation import GroundMotion, no_motion, response_spectrum
+from ..reduced.models import build_model, scene_motion
+from ..reduced.pillar_modes import PillarModes
+from ..reduced.rotor_models import RotorStructure
+from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
+from .case_summary import CaseSummary, SweepFindings, run_summary
 from .sweep import rate_convergence, sweep_analysis
-from .transient import Settings, Transient, simulate
+from ..reduced.integration import Settings, Transient, simulate
 
 
 @dataclass(frozen=True)
@@ -127,18 +128,6 @@ def check_full_order_budget(scene, case: str, motion: GroundMotion, integrator: 
         f"steps (~{seconds:.3g} s on {n} dofs), more than simulate.max_steps = "
         f"{scene.simulate.max_steps:.3g}: raise full_order.time_step (0 = the band's step), shorten "
         f"{length}, or raise simulate.max_steps")
-
-
-def forcing_top(scene, case: str, motion: GroundMotion | None) -> float:
-    """The highest forcing frequency of a case (rad/s): the fastest rotor speed
-    it reaches, and the ground motion's band."""
-    d, L = scene.drive, scene.load
-    fast = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()
-    if case == "sweep":
-        fast = max(fast, DriveSchedule.constant(scene.sweep.torque_high, d.slope, L.coefficient).free_speed())
-    if case == "earthquake" and motion is not None:
-        fast = max(fast, motion.band())
-    return fast
 
 
 def run_case(scene, case: str, which: str | None = None, integrator: str | None = None,
