@@ -5,6 +5,13 @@ Exit codes (README, "Exit codes"): 2 bad input; 1 a solver, tool or the machine
 failed; 70 a bug (one line; --debug shows the traceback).
 """
 
+import json
+import socket
+import subprocess
+import sys
+import threading
+import time
+
 import pytest
 from conftest import cli
 
@@ -370,13 +377,6 @@ def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, computed):
 # Issue 19 (hardening, second pass): refuse before work whatever the size, memory
 # limits of the process, Dask addresses and workers, one line with the right word.
 # No test asserts a time (TEAM.md): a subprocess timeout only turns a hang into a failure.
-
-import json
-import socket
-import subprocess
-import sys
-import threading
-
 
 def _nothing_written(out):
     assert not out.exists() or not any(out.iterdir())

@@ -51,7 +51,9 @@ def test_a_loose_tolerance_is_not_a_success(tmp_path):
     ["--case", "runup", "--no-threshold"],
     ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=newmark"],
     ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=central_difference"],
-    ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=Radau"],
+    # scipy's Radau on the 80 s run-up: about a minute on a quiet machine, the slow tier's
+    pytest.param(["--case", "runup", "--no-threshold", "--set", "simulate.integrator=Radau"],
+                 marks=pytest.mark.slow),
     ["--case", "earthquake", "--model", "modal", "--set", "excitation.kind=record"],
     ["--case", "earthquake", "--model", "beam", "--set", "excitation.kind=record",
      "--set", "simulate.earthquake_duration=12"],

@@ -270,7 +270,14 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     W = np.abs(np.asarray(run.Omega, dtype=float))
     finite = W[np.isfinite(W)]
     top = float(finite.max()) if len(finite) else 0.0
-    W = np.where(np.isfinite(W), W, top)
+    if motion.kind == "none" and not run.prescribed_speed:
+        # a diverged run's speed says nothing of what it had to resolve: with the ground
+        # still the rotor cannot outrun its drive (run_checks flags it when it does)
+        reach = max([abs(float(run.Omega[0])), run.drive.free_speed()]
+                    + [run.drive.free_speed(ti) for ti in run.drive.times])
+        if math.isfinite(reach) and reach > 0:
+            top = min(top, reach)
+    W = np.where(np.isfinite(W), np.minimum(W, top), top)
     freq = forcing_frequencies(m.eccentricity, top, motion)
     t = np.asarray(run.t, dtype=float)
     duration = float(t[-1] - t[0])
