@@ -285,7 +285,7 @@ def drive_figure(analysis, width: int = 1060):
         mx = fig.add_subplot(gs[2 + 2 * row, col], sharex=ax)
         blocks.append((ax, _resonance_block(ax, mx, data, r, resonances_of(analysis), W,
                                             first=n == 0)))
-    handles, names = {}, []
+    handles = {}
     for a in fig.axes:
         for h, lab in zip(*a.get_legend_handles_labels()):
             handles.setdefault(lab, h)

@@ -31,17 +31,17 @@ from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_conve
                       read_modal, read_record, read_simulation, require)
 from .convergence import section_convergence, section_integrators
 from .earthquake import section_earthquake
-from .engineering import section_forces, section_unbalance
+from .engineering import section_internal_forces, section_unbalance
 from .figures import external_figures, figure_group
 from .modal import section_modal, section_paper, section_scene
 from .provenance import section_other, section_provenance
-from .render import mode_sets, render_animations, render_charts, render_comparisons, render_modes
+from .render import mode_sets, render_animations, render_charts, render_comparisons, render_mode_shapes
 from .runs import section_averaging, section_runs
 from .state import Build, Product, ReportOptions, attempt, debugging, say
 from .study import section_study
 from .summary import section_summary
 
-__all__ = ["ReportOptions", "build_report", "summary_text"]
+__all__ = ["ReportOptions", "build_report", "report_text"]
 
 #: The page, in order: (anchor, title, builder).  A builder takes the Build
 #: and returns the section's HTML (``html.section(anchor, title, parts)``) or
@@ -56,7 +56,7 @@ SECTIONS = [
     ("unbalance", "Unbalance response (Bode) and separation margins", section_unbalance),
     ("runs", "The runs", section_runs),
     ("earthquake", "The earthquake", section_earthquake),
-    ("forces", "Internal forces and stresses", section_forces),
+    ("forces", "Internal forces and stresses", section_internal_forces),
     ("study", "Design study", section_study),
     ("convergence", "Convergence and the model chosen", section_convergence),
     ("integrators", "Time integrators", section_integrators),
@@ -158,7 +158,7 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
     sets = {}
     with timings("mode_shapes"):
         sets = mode_sets(build)
-        render_modes(build, sets)
+        render_mode_shapes(build, sets)
     if build.options.animations:
         with timings("animations"):
             render_animations(build, sets)
@@ -200,7 +200,7 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
             "bytes": path.stat().st_size}
 
 
-def summary_text(result: dict) -> str:
+def report_text(result: dict) -> str:
     have = [k for k, v in result["inputs"].items() if v]
     lacking = [k for k, v in result["inputs"].items() if not v]
     lines = [f"report: {len(result['figures'])} figures, {len(result['animations'])} animation(s), "

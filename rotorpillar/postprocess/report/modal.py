@@ -169,7 +169,7 @@ def _modes_3d(build: Build) -> list[str]:
         elif not (build.out / INPUTS[f"modes_{name}"][0]).is_file():
             parts.append(h.missing(f"mode shapes not computed: run `rotorpillar modal {build.scene_cli}` "
                                    f"(no {INPUTS[f'modes_{name}'][0]})"))
-    extra = [(k, v) for k, v in h.flatten({"mesh": plain(m.mesh), "axes": dict(entries(m.axes)),
+    extra = [(k, v) for k, v in h.flat_items({"mesh": plain(m.mesh), "axes": dict(entries(m.axes)),
                                             "timings": plain(m.timings)}) if v is not None]
     parts.append(h.tag("p", axes_legend() + " Every picture carries a triad with the paper's "
                             "symbols: X horizontal in the rotor's plane, Z along the shaft, Y up.",

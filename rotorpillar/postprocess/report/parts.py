@@ -29,7 +29,7 @@ def failure(build: Build, key: str) -> list[str]:
     return []
 
 
-def video(build: Build, key: str) -> list[str]:
+def animation_video(build: Build, key: str) -> list[str]:
     v = build.products.get(key)
     return [h.video(v.path, build.out, v.caption, v.poster)] if v else []
 
@@ -120,7 +120,7 @@ def key_results(meta: dict) -> str | None:
 def run_table(result) -> str:
     """Every field of a result (a record or a dict) but its provenance, as a table."""
     meta = plain(result)
-    keep = [(k, v) for k, v in h.flatten({k: v for k, v in meta.items()
+    keep = [(k, v) for k, v in h.flat_items({k: v for k, v in meta.items()
                                           if k not in ("scene", "versions", "machine", "figures",
                                                        "command", "scene_source", "overrides")})]
     return h.table(["field", "value"], [[k, h.num(v)] for k, v in keep])

@@ -142,7 +142,7 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
     return sets
 
 
-def render_modes(build: Build, sets: dict) -> None:
+def render_mode_shapes(build: Build, sets: dict) -> None:
     from ..inputs import mode_label
     from ..modeshapes import render_modes as render
     from .modal import top_words

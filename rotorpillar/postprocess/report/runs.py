@@ -10,7 +10,8 @@ from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
 from ..directions import direction
 from .compare_section import comparison_block
 from .models import model_views, resonance_table
-from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
+from .parts import (animation_video, failure, figures_of, key_results, product_image, run_table,
+                    scene_differs)
 from .passage import passage_block
 from .state import Build
 
@@ -128,7 +129,7 @@ def section_runs(build: Build) -> str:
             parts.append(key)
         parts += _own_charts(build, case)
         parts += failure(build, f"animation_{case}")
-        parts += video(build, f"animation_{case}")
+        parts += animation_video(build, f"animation_{case}")
         parts.append(h.details(f"simulate_{case}.json: every field", run_table(sim.meta))
                      if sim.meta else h.tag("p", "no JSON summary", class_="meta"))
     if not_run and build.simulations:
