@@ -127,6 +127,7 @@ def video(path: str | Path, base: str | Path, caption: str, poster: str | Path |
     path = Path(path)
     rel = relative(path, base)
     src = data_uri(path) if path.stat().st_size <= embed_limit else rel
+    media: str
     if path.suffix.lower() == ".gif":
         media = Raw(tag("img", "", src=src, alt=caption).replace("></img>", ">"))
     else:

@@ -250,8 +250,8 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
     renderer = fig.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
     taken = [o.get_window_extent(renderer) for o in obstacles]
-    curve = [_line_points(ln, renderer) for ln in lines]
-    curve = np.concatenate(curve) if curve else np.zeros((0, 2))
+    pieces = [_line_points(ln, renderer) for ln in lines]
+    curve = np.concatenate(pieces) if pieces else np.zeros((0, 2))
     # the labelled points themselves (their markers): no label covers one
     from matplotlib.transforms import Bbox
     for spec in labels:

@@ -11,7 +11,7 @@ from .. import html as h
 from ...transients.run_comparisons import comparison_models
 from ..compare_reader import relative_to_ground
 from ..directions import direction
-from ..inputs import INPUTS, SIMULATE_COMMAND
+from ..readers import INPUTS, SIMULATE_COMMAND
 from .compare_section import comparison_block, spectrum_block
 from .parts import (animation_video, failure, figures_of, key_results, product_image, run_table,
                     scene_differs)
