@@ -21,7 +21,8 @@ import json, sys, time
 from pathlib import Path
 sys.path.insert(0, sys.argv[2])   # tests/, for the synthetic inputs
 import fixtures
-from rotorpillar.postprocess.inputs import load_modes, read_json, read_simulation
+from rotorpillar.postprocess.geometry import load_modes
+from rotorpillar.postprocess.readers import read_json, read_simulation
 from rotorpillar.postprocess.modeshapes import render_mode, render_contact_sheet
 from rotorpillar.postprocess.animation import animate
 from rotorpillar.postprocess.offscreen import render_window_class

@@ -109,10 +109,17 @@ def write_modal_fixture(out: str | Path, height=20.0, outer_diameter=2.0, inner_
         with atomic_path(out / vtu) as tmp:
             g.save(str(tmp))
         doc[key] = [m for _, m, _ in entries]
+    # every key of a ModalSummary (the report reads modal.json through it)
+    doc["top"] = {"model": "ring_mass", "mass": top_mass, "carries": "top_mass",
+                  "omega_bending": doc["modes_with_top"][0]["omega"]}
     doc["reduction"] = {"m_reduced": 0.25 * m_col, "tip_stiffness": 0.25 * m_col * w[0] ** 2,
                         "omega_bending": w[0]}
+    doc["comparison"] = {}
+    doc["shell_modes_below_second_bending"] = {}
     doc["mesh"] = {"cells": int(grid.n_cells), "dofs": int(3 * grid.n_points),
-                   "cell_type": "hexahedron", "degree": 1}
+                   "cell_type": "hexahedron", "degree": 1, "elements_around": around,
+                   "elements_along": along, "elements_through": 1, "grading": 1.0}
+    doc["configurations"] = {}
     doc["timings"] = {"mesh": 0.1, "solve": 0.2}
     doc["note"] = "synthetic fixture: analytic shapes, not a finite-element result"
     write_json(out / "modal.json", doc)

@@ -42,10 +42,11 @@ import pytest
 import fixtures
 from imagecheck import assert_real_png, labels_overlap, pixels, png_size
 from rotorpillar.analysis import analyze
+from rotorpillar.analysis.results import AnalysisResult
 from rotorpillar.postprocess import charts, transient_charts
 from rotorpillar.postprocess.animation import (animate, elastic_field, frame_times, pillar_motion)
-from rotorpillar.postprocess.inputs import (Simulation, bending_columns, cantilever_tube, load_modes,
-                                            namespace, read_json, read_simulation, tube_axes)
+from rotorpillar.postprocess.geometry import bending_columns, cantilever_tube, load_modes, tube_axes
+from rotorpillar.postprocess.readers import Simulation, read_json, read_simulation
 from rotorpillar.postprocess.modeshapes import (BEAM_TARGET, MODE_SIZE, SHEET_TILE, SPLIT, deformed,
                                                 has_sections, mode_scale, render_contact_sheet,
                                                 render_mode, section_levels)
@@ -255,8 +256,9 @@ def test_animation_gif_fallback_and_cantilever_fallback(tmp_path):
 def analyses():
     paper = load_scene("paper")
     # through JSON, as the report reads them
-    return {"paper": namespace(json.loads(to_json(analyze(paper)))),
-            "fold": namespace(json.loads(to_json(analyze(override(paper, ["rotor.eccentricity=0.04"])))))}
+    return {"paper": AnalysisResult.from_json(json.loads(to_json(analyze(paper)))),
+            "fold": AnalysisResult.from_json(json.loads(to_json(
+                analyze(override(paper, ["rotor.eccentricity=0.04"])))))}
 
 
 
@@ -295,7 +297,7 @@ def test_paper_scene_has_no_unstable_branch(analyses):
 
 @pytest.fixture(scope="module")
 def sommerfeld():
-    return namespace(json.loads(to_json(analyze(load_scene("sommerfeld")))))
+    return AnalysisResult.from_json(json.loads(to_json(analyze(load_scene("sommerfeld")))))
 
 
 def test_drive_chart_spans_the_motor_and_marks_what_lies_beyond(sommerfeld, tmp_path):

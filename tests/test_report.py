@@ -217,23 +217,50 @@ def test_run_ends_with_the_report_path(run_paper):
     assert report["failures"] == {} and report["damaged"] == {}
 
 
-def test_an_input_of_another_shape_costs_one_section(tmp_path):
+def _analyze_without(tmp_path, *path):
+    """analyze.json as `analyze` writes it, less the key at ``path`` (as if another
+    version wrote it)."""
     run_cli("analyze", "paper", "--out", tmp_path)
     doc = json.loads((tmp_path / "analyze.json").read_text())
-    del doc["drive"]                       # as if written by another version
+    inner = doc
+    for key in path[:-1]:
+        inner = inner[key]
+    del inner[path[-1]]
     (tmp_path / "analyze.json").write_text(json.dumps(doc))
-    run_cli("report", "paper", "--out", tmp_path)
-    text = (tmp_path / "report.html").read_text()
-    assert "could not be written from its inputs (KeyError: &#x27;drive&#x27;)" in text
+    run_cli("report", "paper", "--out", tmp_path, "--no-animations")
+    return (tmp_path / "report.html").read_text(), json.loads((tmp_path / "report.json").read_text())
+
+
+def test_an_input_of_another_shape_is_named_damaged(tmp_path):
+    """A result its record cannot be read from is damaged, by name, with the command
+    that rebuilds it; the page is still written, the other inputs' sections whole."""
+    text, report = _analyze_without(tmp_path, "drive")
+    assert "analyze.json is damaged (KeyError: analyze.json has no key &#x27;drive&#x27;)" in text
+    assert "rebuild it with <code>rotorpillar analyze paper" in text
     assert "Modal validation" in text and "Versions, machine and timings" in text
-    assert "section_averaging" in json.loads((tmp_path / "report.json").read_text())["failures"]
+    assert "drive" in report["damaged"]["analyze"] and report["failures"]["input analyze.json"]
+
+
+def test_a_key_missing_deep_in_a_record_is_not_read_around(tmp_path):
+    """A key missing inside a nested block (the drive's free speed) was read around
+    before (the document as plain attributes, every section but the one touching it
+    rendered from a record that is not one): now the whole file is damaged, by name,
+    and no section shows a number from it."""
+    text, report = _analyze_without(tmp_path, "drive", "free_speed")
+    assert "free_speed" in report["damaged"]["analyze"]
+    assert "is damaged" in text and "rebuild it with <code>rotorpillar analyze paper" in text
+    assert "Motor Md =" not in text and "Stationary speeds and jumps" not in text
+    assert not [k for k in report["failures"] if k.startswith("section_")]
 
 
 def test_convergence_section_reads_the_selection(tmp_path):
     """The section shows convergence.json's chosen model, why, and the references,
     as `rotorpillar converge` writes them (selection.chosen, reference.<mode>)."""
     run_cli("analyze", "paper", "--out", tmp_path)
-    conv = {"scene_name": "paper", "tolerance": 1e-3,
+    scene = json.loads((tmp_path / "analyze.json").read_text())["scene"]
+    conv = {"scene_name": "paper", "scene": scene, "tolerance": 1e-3, "cache_dir": "cache",
+            "families": {}, "runs": [], "extrapolations": {}, "pareto": {}, "study": {},
+            "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
             "selection": {"tolerance": 1e-3, "needed": ["bending"],
                           "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
                           "rule": "cheapest run meeting the tolerance",

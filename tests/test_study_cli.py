@@ -103,13 +103,16 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert again["batches"]["computed"] == 0 and again["executor"]["workers"] == 0
 
     # the report's study section: the map embedded once, the boundary table
-    from rotorpillar.postprocess.report.figures import external_figures, figure_group
+    from rotorpillar.postprocess.readers import read_study
+    from rotorpillar.postprocess.report.figures import external_figures
     from rotorpillar.postprocess.report.state import Build, Product, ReportOptions
     from rotorpillar.postprocess.report.study import section_study
     from rotorpillar.scene import load_scene
     build = Build(load_scene("sommerfeld"), out, "sommerfeld", ReportOptions())
-    build.products["external"] = [Product(p, c, group=figure_group(p.name))
-                                  for p, c in external_figures(out)]
+    read = read_study(out / "study.json")
+    build.study, build.docs["study"] = read.record, read.doc
+    build.products["external"] = [Product(p, c, group=w.group, case=w.case)
+                                  for p, c, w in external_figures(out)]
     html = section_study(build)
     assert "Design study" in html and "found against predicted" in html
     assert html.count("<img") == 1

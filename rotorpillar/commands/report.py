@@ -47,7 +47,7 @@ def preflight(scene, args) -> None:
 
 def report_command(scene, args, timings):
     from . import is_root_rank, out_dir
-    from ..postprocess.report import ReportOptions, build_report, summary_text
+    from ..postprocess.report import ReportOptions, build_report, report_text
     frames = checked_frames(args)
     if not is_root_rank():
         return {"report": None}, ""
@@ -68,4 +68,4 @@ def report_command(scene, args, timings):
         result["failures"]["summary.json"] = failed
     if getattr(args, "strict", False) and (result["failures"] or result["damaged"]):
         result["exit_status"] = 1
-    return result, summary_text(result)
+    return result, report_text(result)

@@ -31,13 +31,15 @@ from __future__ import annotations
 import math
 import sys
 import time
+from typing import Any
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..provenance import atomic_path
-from .inputs import ModeSet, Simulation, bending_columns
+from .geometry import ModeSet, bending_columns
+from .readers import Simulation
 from .modeshapes import BEAM_TARGET, nice_factor
 from .offscreen import pyvista
 
@@ -73,6 +75,8 @@ def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
     first such mode.
     """
     t = sim.get("t")
+    if t is None:
+        raise ValueError(f"simulate_{sim.case}.npz has no t")
     n = len(t)
     ground = sim.get("ground_x")
     ground = np.zeros(n) if ground is None else ground
@@ -235,7 +239,7 @@ class _Panel:
         ax_t.set_xlabel("t (s)")
         if focus is not None:
             ax_t.axvspan(self.u(focus[0]), self.u(focus[1]), color="#E69F00", alpha=0.12, lw=0)
-            ticks = []
+            ticks: list[float] = []
             for x in np.round([self.t[0], focus[0], 0.5 * (focus[0] + focus[1]), focus[1],
                                self.t[-1]], 2):
                 if all(abs(self.u(x) - self.u(y)) > 0.08 for y in ticks):
@@ -319,7 +323,8 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     warped = focus is not None and len(tf) >= 10 and not np.allclose(np.diff(tf), tf[1] - tf[0])
     q = interpolate(motion.t, motion.coefficients, tf)
     g = interpolate(motion.t, motion.ground_x, tf)
-    Om = interpolate(motion.t, sim.get("Omega"), tf) if sim.get("Omega") is not None else None
+    omega = sim.get("Omega")
+    Om = interpolate(motion.t, omega, tf) if omega is not None else None
     orbit = _orbit(sim)
     base = np.asarray(modeset.surface.points, dtype=float)
     top = base[np.argmax(base[:, ax.axial])]
@@ -394,8 +399,8 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     use_gif = gif or not have_ffmpeg()
     if use_gif:
         path = path.with_suffix(".gif")
-    writer = None
-    frames_gif = []
+    writer: Any = None
+    frames_gif: list[Any] = []
     best, best_frame = -1.0, None
     bar = None
     if progress:

@@ -21,7 +21,7 @@
   omega_i**2 restored) against the exact linear steady state, per resonance.
 
 The analysis is read with attribute access (``analysis.drive.slope``), as
-:func:`rotorpillar.postprocess.inputs.read_analysis` gives it.  The
+:func:`rotorpillar.postprocess.readers.read_analysis` gives it.  The
 earthquake, transient and convergence charts are drawn by
 ``transient_charts`` and ``convergence_charts``.
 """
@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from types import SimpleNamespace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -38,17 +38,19 @@ from ..reduced import averaging as av
 from .directions import short
 from .style import COLOURS, blank, figure, place_labels, save
 
+if TYPE_CHECKING:
+    from ..analysis.results import AnalysisResult, ResonanceAnalysis
+
 #: Headroom of the main panel's torque axis over the motor's largest torque.
 HEADROOM = 1.15
 
-def resonances_of(analysis) -> list:
-    """The resonances of analyze.json as objects the averaging closed forms take."""
-    return [SimpleNamespace(index=r.index, direction=r.direction, omega=r.omega,
-                            forcing=r.forcing, coupling=r.coupling, nu=r.nu)
-            for r in analysis.resonances]
+def resonances_of(analysis: AnalysisResult) -> list[ResonanceAnalysis]:
+    """The resonances of analyze.json (the averaging closed forms take their index,
+    direction, omega, forcing, coupling and nu)."""
+    return list(analysis.resonances)
 
 
-def drive_curve_data(analysis, points: int = 6000) -> dict:
+def drive_curve_data(analysis: AnalysisResult, points: int = 6000) -> dict[str, Any]:
     """Everything the Md/L chart draws, as arrays (no plotting).
 
     Keys: omega (grid, rad/s), L (total resistance), Mc, Md (the scene's
@@ -63,7 +65,7 @@ def drive_curve_data(analysis, points: int = 6000) -> dict:
     d = analysis.drive
     res = resonances_of(analysis)
     k, s, M0 = d.load_coefficient, d.slope, d.torque_at_zero
-    ends = [1.6 * r.omega for r in res]
+    ends: list[float] = [1.6 * r.omega for r in res]
     free = d.free_speed
     finite_free = free is not None and math.isfinite(free)
     if finite_free:
@@ -84,13 +86,13 @@ def drive_curve_data(analysis, points: int = 6000) -> dict:
     for n, j in enumerate(d.jumps, start=1):
         up = j.direction == "up"
         level = j.torque_at_zero
-        ends = ((j.omega_from, level - s * j.omega_from), (j.omega_to, level - s * j.omega_to))
-        shown = all(0 <= y <= y_max for _, y in ends)
+        pair = ((j.omega_from, level - s * j.omega_from), (j.omega_to, level - s * j.omega_to))
+        shown = all(0 <= y <= y_max for _, y in pair)
         if shown:
             x_max = max(x_max, 1.05 * max(j.omega_from, j.omega_to))
         jumps.append({"direction": j.direction, "resonance": j.resonance,
                       "label_from": ("A" if up else "D"), "label_to": ("B" if up else "C"),
-                      "number": n, "level": level, "from": ends[0], "to": ends[1],
+                      "number": n, "level": level, "from": pair[0], "to": pair[1],
                       "shown": shown})
     x_max = min(x_max, top)
     beyond = []
@@ -123,7 +125,8 @@ def _branches(ax, x, y, stable, label=True):
         seen.add(name)
 
 
-def _jump_arrows(ax, jumps, s, xlim, z_scale=1.0) -> list[dict]:
+def _jump_arrows(ax: Any, jumps: list[dict[str, Any]], s: float, xlim: tuple[float, float],
+                 z_scale: float = 1.0) -> list[dict[str, Any]]:
     """Draw each jump's drive line, arrow and end points; return their labels
     (for :func:`place_labels`)."""
     labels = []
@@ -153,7 +156,8 @@ def _grid_of(n: int, most: int = 3) -> tuple[int, int]:
     return rows, math.ceil(n / rows)
 
 
-def _overview(top, data, res, W) -> list:
+def _overview(top: Any, data: dict[str, Any], res: list[ResonanceAnalysis],
+              W: Any) -> tuple[list[dict[str, Any]], list[Any]]:
     """The top panel: Md, L and Mc over the drive's range, the stationary
     speeds, the jumps shown there, each resonance marked; returns its labels
     and the curves they must stay off."""
@@ -256,7 +260,7 @@ def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
     return jump_labels
 
 
-def drive_figure(analysis, width: int = 1060):
+def drive_figure(analysis: AnalysisResult, width: int = 1060) -> Any:
     """The Md/L figure (matplotlib): the overview over the drive's range
     (top), then near each resonance, as the paper's Figs. 3-4 draw them,
     L with its jumps and the resonance's own extra torque dL_i (its own axis:
@@ -285,7 +289,7 @@ def drive_figure(analysis, width: int = 1060):
         mx = fig.add_subplot(gs[2 + 2 * row, col], sharex=ax)
         blocks.append((ax, _resonance_block(ax, mx, data, r, resonances_of(analysis), W,
                                             first=n == 0)))
-    handles, names = {}, []
+    handles: dict[str, Any] = {}
     for a in fig.axes:
         for h, lab in zip(*a.get_legend_handles_labels()):
             handles.setdefault(lab, h)
@@ -301,12 +305,12 @@ def drive_figure(analysis, width: int = 1060):
     return fig
 
 
-def drive_chart(analysis, path: str | Path, width: int = 1060) -> Path:
+def drive_chart(analysis: AnalysisResult, path: str | Path, width: int = 1060) -> Path:
     """Md and L over the speed (top) and near each resonance (below): the PNG."""
     return save(drive_figure(analysis, width), path)
 
 
-def amplitude_chart(analysis, path: str | Path, width: int = 1060) -> Path:
+def amplitude_chart(analysis: AnalysisResult, path: str | Path, width: int = 1060) -> Path:
     """a_i(z): averaging (the paper's Eq. 19) against the exact linear
     steady state, one panel per resonance, at most three to a row."""
     res = list(analysis.resonances)

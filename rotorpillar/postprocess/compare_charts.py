@@ -32,6 +32,7 @@ def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 
     ``zoom`` (t0, t1), a second column shows that window (the passage
     through resonance of a run-up)."""
     cols = 2 if zoom else 1
+    t0, t1 = zoom if zoom else (0.0, 0.0)
     fig, axes = figure(*size, nrows=2, ncols=cols, sharex="col", height_ratios=(3, 2),
                        squeeze=False)
     ref = next(((t, y) for m, t, y in series if m == reference), None)
@@ -39,7 +40,7 @@ def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 
         a1, a2 = axes[:, col]
         for (model, t, y), c in zip(series, CYCLE):
             t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
-            sel = slice(None) if col == 0 else (t >= zoom[0]) & (t <= zoom[1])
+            sel = slice(None) if col == 0 else (t >= t0) & (t <= t1)
             is_ref = model == reference
             label = f"{model} (reference)" if is_ref else model
             if errors and model in errors:
@@ -57,7 +58,7 @@ def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 
             a1.set_ylabel("tip, horizontal X,\nrelative to the ground [mm]")
             a2.set_ylabel(f"difference from {reference} [mm]")
         else:
-            a1.set_title(f"zoomed on the passage: {zoom[0]:.3g} .. {zoom[1]:.3g} s", fontsize=9)
+            a1.set_title(f"zoomed on the passage: {t0:.3g} .. {t1:.3g} s", fontsize=9)
     a1, a2 = axes[:, 0]
     a1.legend(loc="upper right", fontsize=8)
     if zoom:

@@ -1,17 +1,21 @@
 """The models of one case compared: ``compare_<case>.json`` (`rotorpillar
-compare`) and the per-model runs it names, as the report reads them; a run's X
-displacements relative to the ground.  Contracts in :mod:`.inputs`."""
+compare`, a :class:`~rotorpillar.transients.records.CompareResult`) and the
+per-model runs it names, as the report reads them; a run's X displacements
+relative to the ground.  Contracts in :mod:`.readers`."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-from .inputs import read_case, read_json, read_npz
+from ..transients.records import CompareResult
+from .readers import read_case, read_npz, read_record
 
-def relative_to_ground(arrays: dict, name: str = "tip_x", frame: str | None = None):
+def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x",
+                       frame: str | None = None) -> np.ndarray | None:
     """The X displacement ``name`` (tip_x or rotor_x) relative to the ground:
     the ``<name>_relative`` column where the run wrote one, else the column
     itself when ``frame`` says it is already relative, else the column minus
@@ -37,22 +41,24 @@ def relative_to_ground(arrays: dict, name: str = "tip_x", frame: str | None = No
 class Comparison:
     """``compare_<case>.json`` and the runs it names: each model's JSON and arrays."""
     case: str
-    doc: dict
-    metas: dict = field(default_factory=dict)
+    record: CompareResult
+    doc: dict[str, Any]
+    """the whole JSON document (the record's fields, and the scene and notes beside them)"""
+    metas: dict[str, dict[str, Any]] = field(default_factory=dict)
     """model -> its simulate_<case>_<model>.json (missing: absent)"""
-    arrays: dict = field(default_factory=dict)
+    arrays: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
     """model -> its simulate_<case>_<model>.npz arrays (missing: absent)"""
 
     @property
     def models(self) -> list[str]:
         """The models run, in the order given to compare."""
-        return [str(m) for m in (self.doc.get("models_run") or list(self.doc.get("per_model") or {}))]
+        return [str(m) for m in (self.record.models_run or list(self.record.per_model))]
 
     @property
     def reference(self) -> str | None:
-        return self.doc.get("reference")
+        return self.record.reference
 
-    def tip_relative(self, model: str):
+    def tip_relative(self, model: str) -> tuple[np.ndarray, np.ndarray] | None:
         """(t, tip X relative to the ground) of one model, or None."""
         a = self.arrays.get(model)
         if not a or a.get("t") is None:
@@ -61,7 +67,7 @@ class Comparison:
         return None if y is None else (np.asarray(a["t"], dtype=float), y)
 
 
-def _beside(out: Path, name) -> Path | None:
+def _beside(out: Path, name: Any) -> Path | None:
     """A file a JSON names (absolute, or a name in ``out``)."""
     if not name:
         return None
@@ -72,11 +78,11 @@ def _beside(out: Path, name) -> Path | None:
 def read_comparison(out: str | Path, case: str) -> Comparison | None:
     """``compare_<case>.json`` with the per-model JSON and NPZ it names, or None."""
     out = Path(out)
-    doc = read_json(out / f"compare_{case}.json")
-    if doc is None:
+    got = read_record(out / f"compare_{case}.json", CompareResult)
+    if got is None:
         return None
-    c = Comparison(case, doc)
-    per = doc.get("per_model") or {}
+    c = Comparison(case, got.record, got.doc)
+    per = got.record.per_model
     for m in c.models:
         row = per.get(m) or {}
         meta = read_case(_beside(out, row.get("json") or f"simulate_{case}_{m}.json"))

@@ -16,6 +16,7 @@ PNG write come from :mod:`.style`.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from .style import COLOURS, figure, save
 
@@ -32,7 +33,7 @@ FAMILY_COLOURS = {
     "solid_p2": "#CC79A7",
     "solid_p2_light": "#E5BCD3",
 }
-STYLE = {
+STYLE: dict[str, dict[str, Any]] = {
     "closed_form": dict(color=FAMILY_COLOURS["closed_form"], marker="*", ms=11),
     "beam_euler": dict(color=FAMILY_COLOURS["beam_euler"], marker="o"),
     "beam_timoshenko": dict(color=FAMILY_COLOURS["beam_timoshenko"], marker="s"),
@@ -82,14 +83,15 @@ def _bottom_row(study: dict) -> float:
     import numpy as np
     needed = study["selection"]["needed"]
     unc = study["selection"]["reference_uncertainty"]
-    ys = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
-          for q in ("bending", "ovalling", "band")]
-    ys = [y for y in ys if y is not None and y > 0] + list(unc.values())
+    found = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
+             for q in ("bending", "ovalling", "band")]
+    ys = [y for y in found if y is not None and y > 0] + list(unc.values())
     lo = min([y for y in ys if y > 0] or [1e-6])
     return max(FLOOR, 10 ** (np.floor(np.log10(lo)) - 1))
 
 
-def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> None:
+def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str,
+           families: dict[str, str]) -> None:
     runs = [r for r in study["runs"] if r.get("status") == "ok"]
     sel = study["selection"]
     needed = sel["needed"]
@@ -108,7 +110,7 @@ def _panel(ax, study: dict, cost: str, q: str, title: str, families: dict) -> No
         pts = [(r[cost], err_of(r, q, needed)) for r in rows]
         have = [(c, max(e, FLOOR)) for c, e in pts if e is not None]
         miss = [c for c, e in pts if e is None]
-        kw = dict(style)
+        kw: dict[str, Any] = dict(style)
         ls = kw.pop("ls", "-")
         if have:
             ax.plot(*zip(*have), ls=ls, lw=1.3, label=families[fam], **kw)
@@ -183,7 +185,7 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
     for ax, (q, title) in zip(axes, PANELS):
         _panel(ax, study, cost, q, title, families)
         ax.set_ylabel("|relative error| against the reference")
-    handles = {}
+    handles: dict[str, Any] = {}
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(lab, h)

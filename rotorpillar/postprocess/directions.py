@@ -15,6 +15,9 @@ paper's Y.  Every page, table and chart of the report names a direction by
 
 from __future__ import annotations
 
+import math
+from typing import Any
+
 #: The paper's symbol -> the direction in words.
 WORDS = {
     "X": "horizontal, in the rotor's plane",
@@ -84,3 +87,31 @@ def axes_legend() -> str:
     """One sentence naming the 3D model's axes in words."""
     return ("3D model axes: x = " + direction("X") + ", y = " + direction("Z") + ", z = "
             + direction("Y") + ".")
+
+
+def mode_label(mode: dict[str, Any], i: int, lines: bool = False) -> str:
+    """The mode in words: number, family and order along the height, its
+    direction or waves around (:func:`mode_name`),
+    frequency; with ``lines``, short and on three lines (for a picture).
+
+    >>> mode_label({"kind": "ovalling", "n_circumferential": 2, "n_axial": 0, "frequency_hz": 7.25}, 3)
+    'mode 4: 1st ovalling, n = 2 waves around, no node along the height, 7.250 Hz'
+    >>> print(mode_label({"kind": "bending_x", "n_axial": 1, "frequency_hz": 28.4}, 6, lines=True))
+    mode 7: 2nd bending
+    horizontal (X)
+    28.400 Hz
+    """
+    kind = str(mode.get("kind", "?"))
+    f = mode.get("frequency_hz")
+    if f is None and mode.get("omega") is not None:
+        f = mode["omega"] / (2 * math.pi)
+    n_axial, n = mode.get("n_axial"), mode.get("n_circumferential")
+    if lines:
+        name = mode_name(kind, n_axial, n, short_form=True)
+        first, _, second = name.partition(", ")
+        text = f"mode {i + 1}: {first}" + (f"\n{second}" if second else "")
+    else:
+        text = f"mode {i + 1}: {mode_name(kind, n_axial, n)}"
+    if f is not None:
+        text += ("\n" if lines else ", ") + f"{f:.3f} Hz"
+    return text

@@ -12,6 +12,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -73,7 +74,8 @@ def campbell_chart(path, modes, running_speeds, top: float, title: str = "",
     for w in running_speeds:
         ax.axvline(w, color="#555555", lw=1.0, ls="-.")
         ax.text(w, 0.02 * top, f" running {w:.1f}", rotation=90, va="bottom", fontsize=8)
-    labels, done = {}, {}
+    labels: dict[Any, dict[str, Any]] = {}
+    done: dict[Any, bool] = {}
     for m in modes:
         colour = CYCLE[0] if m.model == "modal" else CYCLE[1]
         af = amplification_factor(m.damping_ratio)

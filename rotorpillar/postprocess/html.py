@@ -127,6 +127,7 @@ def video(path: str | Path, base: str | Path, caption: str, poster: str | Path |
     path = Path(path)
     rel = relative(path, base)
     src = data_uri(path) if path.stat().st_size <= embed_limit else rel
+    media: str
     if path.suffix.lower() == ".gif":
         media = Raw(tag("img", "", src=src, alt=caption).replace("></img>", ">"))
     else:
@@ -176,10 +177,10 @@ def section(ident: str, title: str, parts) -> str:
     return tag("section", [tag("h2", title)] + [Raw(p) for p in parts], id=ident)
 
 
-def flatten(obj, prefix: str = "", limit: int = 200) -> list[tuple[str, object]]:
+def flat_items(obj, prefix: str = "", limit: int = 200) -> list[tuple[str, object]]:
     """(dotted key, scalar) pairs of a nested JSON value, long lists elided.
 
-    >>> flatten({"a": {"b": 1, "c": [1, 2]}, "d": "x"})
+    >>> flat_items({"a": {"b": 1, "c": [1, 2]}, "d": "x"})
     [('a.b', 1), ('a.c', '[1, 2]'), ('d', 'x')]
     """
     out: list[tuple[str, object]] = []

@@ -22,7 +22,8 @@ import numpy as np
 
 from ..provenance import atomic_path
 from .directions import MODEL_AXIS
-from .inputs import ModeSet, mode_label
+from .directions import mode_label
+from .geometry import ModeSet
 from .offscreen import pyvista
 from .style import tag_png
 

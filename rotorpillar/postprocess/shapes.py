@@ -16,30 +16,31 @@ from __future__ import annotations
 import dataclasses
 import types
 import typing
+from typing import Any
 
 
-def json_type(doc) -> str:
+def json_type(doc: Any) -> str:
     return {type(None): "null", list: "list", dict: "object", str: "string", bool: "boolean"}.get(
         type(doc), "number")
 
 
-def require(doc: dict, kinds: dict, name: str) -> dict:
-    """``doc`` if it holds every key of ``kinds`` with a value of that Python type (``dict``
-    for a JSON object, ``list``, ``str``); else KeyError or TypeError naming the file and key."""
+def require(doc: dict[str, Any], kinds: dict[str, Any], name: str) -> None:
+    """Nothing if ``doc`` holds every key of ``kinds`` with a value of that Python type
+    (``dict`` for a JSON object, ``list``, ``str``); else KeyError or TypeError naming the
+    file and key."""
     for k, kind in kinds.items():
         if k not in doc:
             raise KeyError(f"{name} has no key {k!r}")
         if not isinstance(doc[k], kind):
             raise TypeError(f"{name}: {k} is a JSON {json_type(doc[k])}, not "
                             + {dict: "an object", list: "a list", str: "a string"}[kind])
-    return doc
 
 
 _JSON_KINDS = {dict: (dict,), tuple: (list,), list: (list,), str: (str,), bool: (bool,),
                int: (int,), float: (int, float)}
 
 
-def _kind_error(hint, value, where: str) -> str | None:
+def _kind_error(hint: Any, value: Any, where: str) -> str | None:
     """Why ``value`` (from JSON) cannot be a ``hint``; None when it can or is unchecked."""
     origin, args = typing.get_origin(hint), typing.get_args(hint)
     if origin in (typing.Union, types.UnionType):
@@ -60,7 +61,7 @@ def _kind_error(hint, value, where: str) -> str | None:
         return f"{where} is a JSON {json_type(value)}, not {want}"
     if base is tuple and args:
         item = args[0]
-        for i, v in enumerate(value):
+        for i, v in enumerate(value if isinstance(value, list) else ()):
             why = _kind_error(item, v, f"{where}[{i}]")
             if why:
                 return why

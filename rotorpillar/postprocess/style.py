@@ -86,10 +86,10 @@ def figure(width_px: int = 900, height_px: int = 540, **subplots_kw):
 
 def save(fig, path: str | Path) -> Path:
     """Write ``fig`` as a PNG of exactly its pixel size, atomically, and close it;
-    its legibility record (:func:`layout`) goes into the PNG."""
+    its legibility record (:func:`legibility`) goes into the PNG."""
     plt = pyplot()
     path = Path(path)
-    record = layout(fig)
+    record = legibility(fig)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png", dpi=DPI,
                     metadata={LAYOUT_KEY: json.dumps(record, separators=(",", ":"))})
@@ -124,7 +124,7 @@ def _texts(fig) -> list:
             and (t.axes is None or t.axes.get_visible())]
 
 
-def layout(fig, display_width: float | None = None) -> dict:
+def legibility(fig, display_width: float | None = None) -> dict:
     """The figure's legibility as the renderer draws it: ``font_px`` (its
     smallest text, px), ``width_px``, ``display_font_px`` (the smallest
     text at the width the page shows it: ``display_width``, default
@@ -250,8 +250,8 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
     renderer = fig.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
     taken = [o.get_window_extent(renderer) for o in obstacles]
-    curve = [_line_points(ln, renderer) for ln in lines]
-    curve = np.concatenate(curve) if curve else np.zeros((0, 2))
+    pieces = [_line_points(ln, renderer) for ln in lines]
+    curve = np.concatenate(pieces) if pieces else np.zeros((0, 2))
     # the labelled points themselves (their markers): no label covers one
     from matplotlib.transforms import Bbox
     for spec in labels:

@@ -22,10 +22,14 @@ Figures, colours and the atomic PNG write come from :mod:`.style`.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .style import COLOURS, CYCLE, figure, save
+
+if TYPE_CHECKING:
+    from ..scene import Scene
 
 #: Standard gravity, to show the ground acceleration in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
@@ -310,7 +314,7 @@ def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: st
     return save(fig, path)
 
 
-def model_run_charts(out: Path, scene, run, stem: str) -> list[dict]:
+def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[str, str]]:
     """A transient run's charts (a ``rotorpillar.transients.model_run.ModelRun``): the
     earthquake's histories, the run-up's or run-down's speed and tip envelope,
     the sweep's curves; returns [{file, caption}]."""

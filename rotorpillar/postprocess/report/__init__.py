@@ -3,14 +3,14 @@
 - :mod:`.build`       the options, the build, the section list (``SECTIONS``), report.json
 - :mod:`.state`       what the page is assembled from (Build, Product, the options)
 - :mod:`.render`      the report's own charts, mode shapes and animations
-- :mod:`.figures`     the other commands' PNGs (each picture once), the section each belongs to
+- :mod:`.figures`     the other commands' PNGs (each picture once), the section each belongs to (from the JSON naming it)
 - :mod:`.parts`       pieces every section uses (a run's key numbers, each value once)
 - :mod:`.models`      the headline model and the paper's, side by side
 - :mod:`.summary`     the findings, in words
 - :mod:`.modal`       the scene, the modal validation, the paper's numbers
 - :mod:`.runs`        the passage through resonance and the transient runs
 - :mod:`.passage`     the run-ups' passage through each resonance against the averaging
-- :mod:`.comparison`  the models of one case side by side (compare_<case>.json), the record's spectrum
+- :mod:`.compare_section` the models of one case side by side (compare_<case>.json), the record's spectrum
 - :mod:`.earthquake`  a real record on the ROM and the 3D full order first, then the paper's case
 - :mod:`.convergence` the convergence study's choice; the integrators
 - :mod:`.provenance`  other figures; versions, machine and timings
@@ -30,6 +30,6 @@ Every image needs a caption; each picture appears once.
 tests/test_report_reader.py checks all of that in a browser.
 """
 
-from .build import ReportOptions, build_report, summary_text
+from .build import ReportOptions, build_report, report_text
 
-__all__ = ["ReportOptions", "build_report", "summary_text"]
+__all__ = ["ReportOptions", "build_report", "report_text"]

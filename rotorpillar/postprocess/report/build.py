@@ -1,7 +1,7 @@
 """`rotorpillar report`: every figure its inputs allow, then one HTML page.
 
 Reads what the other commands left in ``out/<scene>/`` (see
-:mod:`rotorpillar.postprocess.inputs`), renders what it can (charts, mode
+:mod:`rotorpillar.postprocess.readers`), renders what it can (charts, mode
 shapes, animations: :mod:`.render`), embeds the PNGs the other chart modules
 wrote there (:mod:`.figures`), and writes ``report.html``: the scene, the
 modal validation (the paper's Eq. 1 against the 3D model, the
@@ -21,27 +21,32 @@ import sys
 import traceback
 import zipfile
 from pathlib import Path
-from types import SimpleNamespace
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
 
 from ...provenance import write_text
 from .. import html as h
 from ...transients.run_comparisons import COMPARISONS
 from ..compare_reader import read_comparison
-from ..inputs import (CASES, INPUTS, SIMULATE_COMMAND, read_analysis, read_convergence, read_json,
-                      read_modal, read_record, read_simulation, require)
+from ..readers import (CASES, INPUTS, SIMULATE_COMMAND, Read, read_analysis, read_convergence,
+                       read_json, read_modal, read_simulation, read_study, require)
 from .convergence import section_convergence, section_integrators
 from .earthquake import section_earthquake
-from .engineering import section_forces, section_unbalance
-from .figures import external_figures, figure_group
+from .engineering import section_internal_forces, section_unbalance
+from .figures import external_figures
 from .modal import section_modal, section_paper, section_scene
 from .provenance import section_other, section_provenance
-from .render import mode_sets, render_animations, render_charts, render_comparisons, render_modes
+from .render import mode_sets, render_animations, render_charts, render_comparisons, render_mode_shapes
 from .runs import section_averaging, section_runs
 from .state import Build, Product, ReportOptions, attempt, debugging, say
 from .study import section_study
 from .summary import section_summary
 
-__all__ = ["ReportOptions", "build_report", "summary_text"]
+if TYPE_CHECKING:
+    from ...scene import Scene
+
+__all__ = ["ReportOptions", "build_report", "report_text"]
+
+R = TypeVar("R")
 
 #: The page, in order: (anchor, title, builder).  A builder takes the Build
 #: and returns the section's HTML (``html.section(anchor, title, parts)``) or
@@ -56,7 +61,7 @@ SECTIONS = [
     ("unbalance", "Unbalance response (Bode) and separation margins", section_unbalance),
     ("runs", "The runs", section_runs),
     ("earthquake", "The earthquake", section_earthquake),
-    ("forces", "Internal forces and stresses", section_forces),
+    ("forces", "Internal forces and stresses", section_internal_forces),
     ("study", "Design study", section_study),
     ("convergence", "Convergence and the model chosen", section_convergence),
     ("integrators", "Time integrators", section_integrators),
@@ -66,11 +71,7 @@ SECTIONS = [
 
 
 def _why(exc: Exception) -> str:
-    """What went wrong, in the input's words: a field missing from a record
-    read from JSON is the JSON's missing key."""
-    if (isinstance(exc, AttributeError) and isinstance(getattr(exc, "obj", None), SimpleNamespace)
-            and exc.name):
-        return f"KeyError: {exc.name!r}"
+    """What went wrong, in one line."""
     return f"{type(exc).__name__}: {exc}"
 
 
@@ -108,13 +109,21 @@ def _read(build: Build, command: str, what: str, read):
         return None
 
 
+def _record(build: Build, name: str, read: Callable[[Path], Read[R] | None]) -> R | None:
+    """The record of input ``name`` (its document kept in ``build.docs``), or None."""
+    file, command = INPUTS[name]
+    got = _read(build, command, file, lambda: read(build.out / file))
+    if got is None:
+        return None
+    build.docs[name] = got.doc
+    return got.record
+
+
 def load_inputs(build: Build) -> None:
     out = build.out
-    build.analysis = _read(build, "analyze", "analyze.json",
-                           lambda: read_analysis(out / INPUTS["analyze"][0]))
-    build.modal = _read(build, "modal", "modal.json", lambda: read_modal(out / INPUTS["modal"][0]))
-    build.convergence = _read(build, "converge", "convergence.json",
-                              lambda: read_convergence(out / INPUTS["convergence"][0]))
+    build.analysis = _record(build, "analyze", read_analysis)
+    build.modal = _record(build, "modal", read_modal)
+    build.convergence = _record(build, "convergence", read_convergence)
     build.integrators = _read(build, "integrators", "integrators.json", lambda: _keys(
         read_json(out / INPUTS["integrators"][0]), {"accuracy": dict}, "integrators.json"))
     for case in CASES:
@@ -128,23 +137,21 @@ def load_inputs(build: Build) -> None:
         or build.simulations.get("earthquake")
     for case in COMPARISONS:
         c = _read(build, "compare", f"compare_{case}.json", lambda: read_comparison(out, case))
-        if c is not None and _read(build, "compare", f"compare_{case}.json", lambda: _keys(
-                c.doc, {"models_run": list, "per_model": dict}, f"compare_{case}.json")) is not None:
+        if c is not None:
             build.comparisons[case] = c
     # study.json is read by its section; a damaged one is named here as a failed input
-    _read(build, "study", "study.json", lambda: _study(out / "study.json"))
+    study = _read(build, "study", "study.json", lambda: read_study(out / "study.json"))
+    if study is not None:
+        build.study, build.docs["study"] = study.record, study.doc
 
 
-def _keys(doc, keys, name):
-    return None if doc is None else require(doc, keys, name)
+def _keys(doc: dict[str, Any] | None, keys: dict[str, Any], name: str) -> dict[str, Any] | None:
+    if doc is not None:
+        require(doc, keys, name)
+    return doc
 
 
-def _study(path: Path):
-    from ...studies.result import StudyResult
-    return read_record(path, StudyResult) if path.is_file() else None
-
-
-def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None,
+def build_report(scene: Scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None,
                  timings=None) -> dict:
     """Render every figure the inputs in ``out`` allow and write ``out/report.html``."""
     from ...provenance import Timings
@@ -158,15 +165,15 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
     sets = {}
     with timings("mode_shapes"):
         sets = mode_sets(build)
-        render_modes(build, sets)
+        render_mode_shapes(build, sets)
     if build.options.animations:
         with timings("animations"):
             render_animations(build, sets)
     if any(s is not None for s in sets.values()) or any(k.startswith("animation_") for k in build.products):
         from ..offscreen import render_window_class
         build.render_window = attempt(build, "render_window", render_window_class) or ""
-    build.products["external"] = [Product(p, c, group=figure_group(p.name))
-                                  for p, c in external_figures(build.out)]
+    build.products["external"] = [Product(p, c, group=w.group, case=w.case)
+                                  for p, c, w in external_figures(build.out)]
     with timings("html"):
         nav, sections = [], []
         for ident, title, fn in SECTIONS:
@@ -200,7 +207,7 @@ def build_report(scene, out: str | Path, scene_cli: str, options: ReportOptions 
             "bytes": path.stat().st_size}
 
 
-def summary_text(result: dict) -> str:
+def report_text(result: dict) -> str:
     have = [k for k, v in result["inputs"].items() if v]
     lacking = [k for k, v in result["inputs"].items() if not v]
     lines = [f"report: {len(result['figures'])} figures, {len(result['animations'])} animation(s), "

@@ -6,6 +6,7 @@ earthquake and the runs sections both use."""
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from .. import html as h
 from ...transients.run_comparisons import comparison_command, comparison_overrides
@@ -174,8 +175,8 @@ def comparison_block(build: Build, case: str) -> list[str]:
     said = speed_accuracy(doc, models)
     if said:
         parts.append(h.tag("p", " ".join(said)))
-    notes = [(m, _full_order(c.metas.get(m) or {})) for m in models]
-    notes = [h.tag("li", f"{m}: {n}") for m, n in notes if n]
+    full = [(m, _full_order(c.metas.get(m) or {})) for m in models]
+    notes = [h.tag("li", f"{m}: {n}") for m, n in full if n]
     if notes:
         parts.append(h.tag("p", "Full-order models, as run here:", class_="meta"))
         parts.append(h.tag("ul", notes, class_="meta"))
@@ -226,6 +227,13 @@ RECORD_DIRECTION = (
     "by symmetry).")
 
 
+def spectrum_damping(spec: dict[str, Any]) -> float:
+    """The damping ratio a response spectrum was computed at (-): its ``damping``,
+    else ``damping_ratio``, else 5 %."""
+    value: Any = spec.get("damping", spec.get("damping_ratio", 0.05))
+    return float(value)
+
+
 def spectrum_block(build: Build) -> list[str]:
     """The record's response spectrum with the system's modes marked, and the
     ROM's spectral estimate of the peak tip beside the computed one."""
@@ -243,7 +251,7 @@ def spectrum_block(build: Build) -> list[str]:
     if "response_spectrum" in build.products:
         parts.append(product_image(build, "response_spectrum"))
     model, modes = system_modes(c)
-    damping = spec.get("damping", spec.get("damping_ratio", 0.05))
+    damping = spectrum_damping(spec)
     if modes:
         rows = []
         for m in modes:

@@ -3,28 +3,35 @@ reference frequencies and failures, and the integrator study."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 from .. import html as h
-from ..inputs import INPUTS, entries, plain
+from ..readers import INPUTS, part
 from .parts import figures_of, run_table, scene_differs
 from .state import Build
 
+if TYPE_CHECKING:
+    from ...converge.result import ConvergenceStudy
 
-def chosen(study) -> tuple[str, str] | None:
+
+def chosen(study: ConvergenceStudy) -> tuple[str, str] | None:
     """(what, why) of the model choice in convergence.json's ``selection``, or None."""
-    sel = getattr(study, "selection", None)
-    c = getattr(sel, "chosen", None)
+    sel = study.selection
+    c = part(sel, "chosen")
     if c is None:
         return None
-    band, needed = sel.band, sel.needed or []
-    bounds = ", ".join(f"{q} {h.num(getattr(c, f'{q}_error_bound', None), 2)}" for q in needed)
-    why = (f"the cheapest run whose error bound meets the tolerance {h.num(sel.tolerance)} on "
-           f"every frequency the scene excites: the band up to {h.num(band.omega_max, 4)} rad/s "
-           f"({h.num(band.margin)} x the {getattr(band, 'driver', 'highest excitation')}) holds "
+    band, needed = part(sel, "band"), part(sel, "needed") or []
+    bounds = ", ".join(f"{q} {h.num(part(c, f'{q}_error_bound'), 2)}" for q in needed)
+    why = (f"the cheapest run whose error bound meets the tolerance {h.num(part(sel, 'tolerance'))} "
+           f"on every frequency the scene excites: the band up to "
+           f"{h.num(part(band, 'omega_max'), 4)} rad/s ({h.num(part(band, 'margin'))} x the "
+           f"{part(band, 'driver', 'highest excitation')}) holds "
            f"{', '.join(needed) or 'no mode'}; its bounds: {bounds}")
-    return f"{c.label} ({c.dofs} DOFs, {h.num(c.wall_time, 3)} s)", why
+    return (f"{part(c, 'label')} ({part(c, 'dofs')} DOFs, {h.num(part(c, 'wall_time'), 3)} s)",
+            why)
 
 
-def _choice(study) -> list[str]:
+def _choice(study: ConvergenceStudy) -> list[str]:
     """The model chosen, why, and the cheaper ones that do not meet the tolerance."""
     what = chosen(study)
     if not what:
@@ -33,37 +40,40 @@ def _choice(study) -> list[str]:
     sel = study.selection
     parts = [h.tag("p", [h.tag("strong", "Chosen: "), what[0]]),
              h.tag("p", [h.tag("strong", "Why: "), what[1] + "."])]
-    if sel.rule:
-        parts.append(h.tag("p", f"Rule: {sel.rule}.", class_="meta"))
-    rejected = getattr(sel, "rejected_cheaper", None) or []
+    if part(sel, "rule"):
+        parts.append(h.tag("p", f"Rule: {part(sel, 'rule')}.", class_="meta"))
+    rejected = part(sel, "rejected_cheaper") or []
     if rejected:
         parts.append(h.tag("h3", "Cheaper models that do not meet it"))
         parts.append(h.table(["model", "DOFs", "wall time (s)", "why not"],
-                             [[r.label, r.dofs, h.num(r.wall_time, 3), r.why] for r in rejected]))
+                             [[part(r, "label"), part(r, "dofs"), h.num(part(r, "wall_time"), 3),
+                               part(r, "why")] for r in rejected]))
     return parts
 
 
-def _references(study) -> list[str]:
+def _references(study: ConvergenceStudy) -> list[str]:
     """The Richardson reference of each frequency and its check on the finest run."""
-    ref = entries(getattr(study, "reference", None))
+    ref = list((study.reference or {}).items())
     if not ref:
         return []
     rows = []
     for q, r in ref:
-        chk = getattr(r, "check", None)
-        rows.append([q, h.num(r.value, 7), h.num(r.error_estimate, 2), h.num(r.order, 3),
-                     h.num(r.order_theory, 2), ", ".join(getattr(r, "runs", None) or []),
-                     ("yes" if chk.within_estimate else "no") if chk else "-"])
+        chk = part(r, "check")
+        rows.append([q, h.num(part(r, "value"), 7), h.num(part(r, "error_estimate"), 2),
+                     h.num(part(r, "order"), 3), h.num(part(r, "order_theory"), 2),
+                     ", ".join(part(r, "runs") or []),
+                     ("yes" if part(chk, "within_estimate") else "no") if chk else "-"])
     return [h.tag("h3", "Reference frequencies (Richardson extrapolation)"),
             h.table(["mode", "reference (rad/s)", "+- estimate", "observed order", "theory", "from",
                      "three coarser runs predict the finest"], rows)]
 
 
-def cancellation(study) -> str | None:
+def cancellation(study: dict[str, Any]) -> str | None:
     """The sentence on a model whose measured error sits under the tolerance
     by cancellation (its model and mesh errors of opposite signs) and that
-    the choice rejects all the same, from the study's runs; None if none."""
-    doc = plain(study) or {}
+    the choice rejects all the same, from the study's runs (convergence.json's
+    document); None if none."""
+    doc = study
     sel = doc.get("selection") or {}
     tol, need = sel.get("tolerance"), sel.get("needed") or []
     if not isinstance(tol, (int, float)) or not need:
@@ -89,17 +99,17 @@ def cancellation(study) -> str | None:
     return None
 
 
-def _convergence_parts(study) -> list[str]:
+def _convergence_parts(study: ConvergenceStudy, doc: dict[str, Any]) -> list[str]:
     parts = _choice(study)
-    said = cancellation(study)
+    said = cancellation(doc)
     if said:
         parts.append(h.tag("p", said))
     parts += _references(study)
-    failures = getattr(study, "failures", None) or []
+    failures = list(study.failures or ())
     if failures:
         parts.append(h.tag("h3", "Where each method fails"))
         parts.append(h.tag("ul", [h.tag("li", f) for f in failures]))
-    slim = {k: v for k, v in plain(study).items()
+    slim = {k: v for k, v in doc.items()
             if k not in ("runs", "families", "selection", "reference", "failures", "extrapolations")}
     parts.append(h.details("convergence.json (less its runs)", run_table(slim)))
     return parts
@@ -115,8 +125,9 @@ def section_convergence(build: Build) -> str:
             parts.append(h.tag("p", "Until the study runs, the headline model's pillar is "
                                     f"{a.pillar_model.describe()}: {a.pillar_model.note}."))
     else:
-        parts += scene_differs(build, c)
-        parts += _convergence_parts(c)
+        doc = build.docs.get("convergence", {})
+        parts += scene_differs(build, doc)
+        parts += _convergence_parts(c, doc)
     parts += figures_of(build, "convergence")
     return h.section("convergence", "Convergence and the model chosen", parts)
 

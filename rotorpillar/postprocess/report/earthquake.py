@@ -11,9 +11,10 @@ from .. import html as h
 from ...transients.run_comparisons import comparison_models
 from ..compare_reader import relative_to_ground
 from ..directions import direction
-from ..inputs import INPUTS, SIMULATE_COMMAND
+from ..readers import INPUTS, SIMULATE_COMMAND
 from .compare_section import comparison_block, spectrum_block
-from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
+from .parts import (animation_video, failure, figures_of, key_results, product_image, run_table,
+                    scene_differs)
 from .references import pareto_block
 from .state import Build
 
@@ -23,7 +24,7 @@ STANDARD_GRAVITY = 9.80665
 BASE_FORCING_KEY = "eq4_base_forcing"
 
 
-def base_forcing_row(analysis):
+def base_forcing_finding(analysis):
     """The ``eq4_base_forcing`` row of analyze.json's paper comparison, or None."""
     for r in getattr(analysis, "paper_comparison", None) or []:
         if getattr(r, "key", None) == BASE_FORCING_KEY:
@@ -69,7 +70,7 @@ def _flaw(build: Build) -> list[str]:
     if build.analysis is None:
         return [h.missing("the base-forcing finding is "
                           + build.hint(INPUTS["analyze"][1]) + " (no analyze.json)")]
-    r = base_forcing_row(build.analysis)
+    r = base_forcing_finding(build.analysis)
     if r is None:
         return [h.tag("p", f"analyze.json has no {BASE_FORCING_KEY} finding (an older "
                            "rotorpillar wrote it): re-run analyze.", class_="meta")]
@@ -131,7 +132,7 @@ def paper_case(build: Build) -> list[str]:
     parts += figures_of(build, "earthquake")
     mine = build.products.get("quake_case_animation", "animation_earthquake_paper")
     parts += failure(build, mine)
-    parts += video(build, mine)
+    parts += animation_video(build, mine)
     if meta:
         key = key_results(meta)
         if key:
@@ -152,7 +153,7 @@ def section_earthquake(build: Build) -> str:
     parts += comparison_block(build, "earthquake")
     if build.products.get("quake_case_animation") != "animation_earthquake":
         parts += failure(build, "animation_earthquake")
-        parts += video(build, "animation_earthquake")
+        parts += animation_video(build, "animation_earthquake")
     parts.append(h.tag("h3", "Speed against accuracy: every model of the ladder on El Centro"))
     parts += pareto_block(build)
     parts.append(h.tag("h3", "Response spectrum of the record"))

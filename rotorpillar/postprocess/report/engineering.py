@@ -116,7 +116,7 @@ def _history(build: Build, doc: dict, key: str):
         return None
 
 
-def section_forces(build: Build) -> str:
+def section_internal_forces(build: Build) -> str:
     from ...verdict.summary import case_label
     runs = _runs(build)
     if not runs:

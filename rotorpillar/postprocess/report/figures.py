@@ -1,37 +1,99 @@
-"""The PNGs other commands left in the out folder, and the section each belongs to."""
+"""The PNGs other commands left in the out folder, and the section each belongs to:
+the one of the run's case, or of the command, whose JSON names the PNG (never a
+word in the file's name)."""
 
 from __future__ import annotations
 
 import hashlib
 import json
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .state import OWN_DIRS
 
 
-def external_figures(out: Path) -> list[tuple[Path, str]]:
-    """PNGs other commands wrote in ``out`` (and its direct subfolders, not ours),
-    with the caption a JSON beside them gives in a ``figures`` list
-    ({"file" or "path", "caption"}), else one made from the file name."""
-    captions = {}
+@dataclass(frozen=True)
+class Written:
+    """Where a PNG another command wrote belongs, from the JSON that names it."""
+    caption: str | None
+    """its caption in the JSON's ``figures`` list, if it gives one"""
+    group: str
+    """the report section (:data:`COMMAND_GROUPS`, else :data:`CASE_GROUPS`), "other" if none"""
+    case: str = ""
+    """the case of the run that drew it (runup, earthquake, ...), "" if not a run's"""
+
+
+#: A run's figure (simulate's, compare's) -> the section of its case.
+CASE_GROUPS = {"runup": "runs", "rundown": "runs", "sweep": "runs", "earthquake": "earthquake"}
+#: The figure of a result that is not one run's -> the section of the command that wrote it.
+COMMAND_GROUPS = {"converge": "convergence", "integrators": "integrators", "modal": "modal",
+                  "study": "study"}
+#: The results that name no command in their JSON -> that command (convergence.json).
+INPUT_COMMANDS = {"convergence.json": "converge", "integrators.json": "integrators",
+                  "study.json": "study"}
+
+
+def _charts_named(doc: dict[str, Any]) -> list[tuple[str, str | None]]:
+    """(file name, caption or None) of every chart a result's JSON names: its
+    ``figures`` (a list of {"file" or "path", "caption"}, or a mapping), its ``charts``
+    (name -> path), its ``chart`` and its ``pareto.chart``."""
+    out: list[tuple[str, str | None]] = []
+    figs = doc.get("figures")
+    if isinstance(figs, list):
+        for f in figs:
+            if isinstance(f, dict) and (f.get("file") or f.get("path")):
+                out.append((Path(str(f.get("file") or f.get("path"))).name,
+                            str(f.get("caption", ""))))
+    elif isinstance(figs, dict):
+        for k, v in figs.items():
+            if isinstance(v, dict):
+                out.append((Path(str(v.get("file") or v.get("path") or k)).name,
+                            str(v.get("caption", ""))))
+            elif isinstance(v, str):
+                out.append((Path(v).name, str(k).replace("_", " ")))
+    charts = doc.get("charts")
+    if isinstance(charts, dict):
+        out += [(Path(v).name, None) for v in charts.values() if isinstance(v, str)]
+    pareto = doc.get("pareto")
+    for chart in (doc.get("chart"), pareto.get("chart") if isinstance(pareto, dict) else None):
+        if isinstance(chart, str) and chart:
+            out.append((Path(chart).name, None))
+    return out
+
+
+def writers(out: Path) -> dict[str, Written]:
+    """PNG file name -> where it belongs, from every JSON in ``out`` that names it:
+    a study's, the convergence's, the integrators' by the command that wrote it, a
+    run's (simulate's, compare's) by its ``case``."""
+    found: dict[str, Written] = {}
     for js in sorted(out.glob("*.json")):
         try:
             doc = json.loads(js.read_text(encoding="utf-8"))
         except (OSError, ValueError):
             continue
-        figs = doc.get("figures") if isinstance(doc, dict) else None
-        if isinstance(figs, list):
-            for f in figs:
-                if isinstance(f, dict) and (f.get("file") or f.get("path")):
-                    name = Path(str(f.get("file") or f.get("path"))).name
-                    captions[name] = str(f.get("caption", ""))
-        elif isinstance(figs, dict):
-            for k, v in figs.items():
-                if isinstance(v, dict):
-                    name = Path(str(v.get("file") or v.get("path") or k)).name
-                    captions[name] = str(v.get("caption", ""))
-                elif isinstance(v, str):
-                    captions[Path(v).name] = str(k).replace("_", " ")
+        if not isinstance(doc, dict):
+            continue
+        said = doc.get("command")
+        command = said if isinstance(said, str) else INPUT_COMMANDS.get(js.name, "")
+        case = doc["case"] if isinstance(doc.get("case"), str) else ""
+        if command in COMMAND_GROUPS:
+            group, case = COMMAND_GROUPS[command], ""
+        else:
+            group = CASE_GROUPS.get(case, "other")
+        for name, caption in _charts_named(doc):
+            was = found.get(name)
+            found[name] = Written(caption if caption is not None else (was.caption if was else None),
+                                  group, case)
+    return found
+
+
+def external_figures(out: Path) -> list[tuple[Path, str, Written]]:
+    """PNGs other commands wrote in ``out`` (and its direct subfolders, not ours),
+    each with its caption (ours, else the one a JSON beside it gives in a ``figures``
+    list, else one made from the file name) and where it belongs (:func:`writers`;
+    a PNG no JSON names goes to "Other figures")."""
+    written = writers(out)
     found, seen = [], {}
     # the folder itself and its direct subfolders only: --out may point
     # anywhere, and a deep search could sweep up unrelated pictures
@@ -48,9 +110,9 @@ def external_figures(out: Path) -> list[tuple[Path, str]]:
         if digest in seen:          # the same picture under two names (simulate's copy)
             continue
         seen[digest] = p
+        w = written.get(p.name, Written(None, "other"))
         # ours first: integrators.json's caption says wall time where the axis is evaluations
-        found.append((p, CAPTIONS.get(p.name) or captions.get(p.name)
-                      or p.stem.replace("_", " ")))
+        found.append((p, CAPTIONS.get(p.name) or w.caption or p.stem.replace("_", " "), w))
     return sorted(found, key=lambda x: str(x[0]))
 
 
@@ -75,27 +137,3 @@ CAPTIONS = {
         "Bottom: energy drift of the undamped, unforced system. One colour and marker per "
         "method throughout."),
 }
-
-
-#: Where a PNG from another module goes, by words in its name (first match).
-FIGURE_GROUPS = [
-    ("earthquake", ("earthquake", "quake", "seismic")),
-    ("convergence", ("convergence", "pareto", "ladder", "refinement", "accuracy")),
-    ("integrators", ("integrator", "solver", "step")),
-    ("runs", ("runup", "run_up", "rundown", "run_down", "sweep", "transient", "omega",
-              "amplitude", "simulate", "speed", "averaging")),
-    ("modal", ("modal", "mode", "frequency")),
-]
-
-
-def figure_group(name: str) -> str:
-    """The report section for a figure file name.
-
-    >>> figure_group("pareto_front.png"), figure_group("runup_omega.png"), figure_group("x.png")
-    ('convergence', 'runs', 'other')
-    """
-    n = name.lower()
-    for group, words in FIGURE_GROUPS:
-        if any(w in n for w in words):
-            return group
-    return "other"

@@ -5,44 +5,49 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 from .. import html as h
 from ..directions import axes_legend, direction, mode_name, ordinal
-from ..inputs import INPUTS, entries, plain
+from ..readers import INPUTS, part, plain
 from .parts import failure, figures_of, scene_differs
 from .state import Build
 
+if TYPE_CHECKING:
+    from ...analysis.results import AnalysisResult
+    from ...fem3d.modal_summary import ModalSummary
+    from ...scene import Scene
 
-def bending(modes: list, kind: str) -> list:
-    """The modes of one kind ("bending_x", "bending_y") in their order."""
-    return [m for m in modes if str(m.kind) == kind]
+
+def bending(modes: Sequence[Any], kind: str) -> list[Any]:
+    """The modes of one kind ("bending_x", "bending_y") in their order (modal.json's rows)."""
+    return [m for m in modes if str(part(m, "kind")) == kind]
 
 
-def _mode_rows(modes: list) -> list:
-    return [[i + 1, mode_name(m.kind, getattr(m, "n_axial", None), m.n_circumferential),
-             h.num(m.n_circumferential), h.num(getattr(m, "n_axial", None)),
-             h.num(m.frequency_hz), h.num(m.omega), h.num(getattr(m, "modal_mass", None)),
-             m.normalisation] for i, m in enumerate(modes)]
+def _mode_rows(modes: Sequence[Any]) -> list[list[Any]]:
+    return [[i + 1, mode_name(part(m, "kind"), part(m, "n_axial"), part(m, "n_circumferential")),
+             h.num(part(m, "n_circumferential")), h.num(part(m, "n_axial")),
+             h.num(part(m, "frequency_hz")), h.num(part(m, "omega")), h.num(part(m, "modal_mass")),
+             part(m, "normalisation")] for i, m in enumerate(modes)]
 
 
 MODE_HEADERS = ["#", "mode", "waves around", "nodes along the height", "f (Hz)",
                 "omega (rad/s)", "modal mass (kg)", "normalisation"]
 
 
-def top_words(modal) -> tuple[str, str]:
-    """(what the tube's top carries, why), from modal.json's ``top`` block.
+def top_words(top: Any) -> tuple[str, str]:
+    """(what the tube's top carries, why), from modal.json's ``top`` block (None: unknown).
 
-    >>> from types import SimpleNamespace as S
-    >>> top_words(S(top=S(carries="gondola", mass=2300.0, model="rigid")))[0]
+    >>> top_words({"carries": "gondola", "mass": 2300.0, "model": "rigid"})[0]
     'the gondola (2300 kg) on a rigid top plate'
     """
-    top = getattr(modal, "top", None)
     if top is None:
         return "its top mass", ""
-    carries = str(getattr(top, "carries", "") or "its top mass").replace("_", " ")
-    mass = getattr(top, "mass", None)
+    carries = str(part(top, "carries", "") or "its top mass").replace("_", " ")
+    mass = part(top, "mass")
     how = {"rigid": "on a rigid top plate",
-           "ring_mass": "spread on the top face"}.get(str(getattr(top, "model", "")), "")
+           "ring_mass": "spread on the top face"}.get(str(part(top, "model", "")), "")
     what = f"the {carries}" + (f" ({mass:.4g} kg)" if isinstance(mass, (int, float)) else "") \
         + (f" {how}" if how else "")
     why = ("The rotor is not on it: it hangs on its elastic shaft, which the reduced model adds "
@@ -70,7 +75,7 @@ def section_scene(build: Build) -> str:
     return h.section("scene", "The scene", parts)
 
 
-def timoshenko_orders(scene, count: int) -> list:
+def timoshenko_orders(scene: Scene, count: int) -> list[float | None]:
     """The first ``count`` Timoshenko frequencies of the bare tube (rad/s;
     None where the closed form does not resolve one): the closed form of
     ``reduced.pillar`` on the scene's tube, shear and rotary inertia included."""
@@ -78,7 +83,7 @@ def timoshenko_orders(scene, count: int) -> list:
     p = scene.pillar
     sec = section_of(p)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
-    out = []
+    out: list[float | None] = []
     for k in range(1, count + 1):
         try:
             out.append(omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density,
@@ -88,32 +93,32 @@ def timoshenko_orders(scene, count: int) -> list:
     return out
 
 
-def _closed_forms_against_3d(build: Build, a, modes: list) -> list[str]:
+def _closed_forms_against_3d(build: Build, a: AnalysisResult, modes: Sequence[Any]) -> list[str]:
     """The table of the bare tube's frequencies: Euler-Bernoulli, Timoshenko, 3D."""
     p = a.pillar
     bx, by = bending(modes, "bending_x"), bending(modes, "bending_y")
     timo = timoshenko_orders(build.scene, len(p.omega_euler_bernoulli))
     rows = []
     for k, w_eb in enumerate(p.omega_euler_bernoulli, start=1):
-        w3 = bx[k - 1].omega if k - 1 < len(bx) else None
+        w3 = part(bx[k - 1], "omega") if k - 1 < len(bx) else None
         t = timo[k - 1]
         rows.append([f"{ordinal(k)} bending, {direction('X')}", h.num(w_eb), h.num(t), h.num(w3),
                      h.pct(w3 / w_eb - 1) if w3 else "-", h.pct(t / w_eb - 1) if t else "-",
                      h.pct(w3 / t - 1) if (w3 and t) else "-"])
     if by and bx:
-        rows.append([f"1st bending, {direction('Z')}", "-", "-", h.num(by[0].omega), "-", "-",
-                     h.pct(by[0].omega / bx[0].omega - 1) + " vs X"])
-    shells = [x for x in modes if not str(x.kind).startswith(("bending", "axial"))]
+        w_y, w_x = part(by[0], "omega"), part(bx[0], "omega")
+        rows.append([f"1st bending, {direction('Z')}", "-", "-", h.num(w_y), "-", "-",
+                     h.pct(w_y / w_x - 1) + " vs X"])
+    shells = [x for x in modes if not str(part(x, "kind")).startswith(("bending", "axial"))]
     if shells:
         s0 = shells[0]
-        rows.append([mode_name(s0.kind, getattr(s0, "n_axial", None),
-                               getattr(s0, "n_circumferential", None)),
-                     "none in beam theory", "-", h.num(s0.omega), "-", "-", "-"])
+        rows.append([mode_name(part(s0, "kind"), part(s0, "n_axial"), part(s0, "n_circumferential")),
+                     "none in beam theory", "-", h.num(part(s0, "omega")), "-", "-", "-"])
     parts = [h.table(["mode", "Eq. 1, Euler-Bernoulli (rad/s)", "Timoshenko (rad/s)",
                       "3D model (rad/s)", "3D vs Eq. 1", "Timoshenko vs Eq. 1", "3D vs Timoshenko"],
                      rows)]
     if len(bx) >= 2 and len(timo) >= 2 and timo[1]:
-        w3, t, eb = bx[1].omega, timo[1], p.omega_euler_bernoulli[1]
+        w3, t, eb = part(bx[1], "omega"), timo[1], p.omega_euler_bernoulli[1]
         parts.append(h.tag("p", f"The 2nd bending mode's {h.pct(w3 / eb - 1)} against Eq. 1 is "
                                 f"shear deformation and rotary inertia, which Eq. 1 leaves out: "
                                 f"Timoshenko's beam, which has them, is {h.pct(t / eb - 1)} from "
@@ -122,16 +127,16 @@ def _closed_forms_against_3d(build: Build, a, modes: list) -> list[str]:
     return parts
 
 
-def _reduction(build: Build) -> list[str]:
+def _reduction(build: Build, a: AnalysisResult) -> list[str]:
     """The tip mass and stiffness: stated, closed form, 3D, and the ones used."""
-    a, m = build.analysis, build.modal
+    m = build.modal
     p, r = a.pillar, a.paper_model.reduction
     red3 = m.reduction if m is not None else None
     chain = a.system.tip_reduction
     stated = build.scene.reduction
     cols = [("stated in the scene", stated.tip_mass, stated.tip_stiffness),
             ("Eq. 2, continuous first mode", p.tip_mass_limit, p.tip_stiffness_limit),
-            ("3D model", red3.m_reduced if red3 else None, red3.tip_stiffness if red3 else None),
+            ("3D model", part(red3, "m_reduced"), part(red3, "tip_stiffness")),
             (f"the chain: {chain.source}", chain.m_reduced, chain.tip_stiffness),
             (f"the paper's model uses (m_r: {r.tip_mass_source}, c1: {r.tip_stiffness_source})",
              r.tip_mass, r.tip_stiffness)]
@@ -145,17 +150,16 @@ def _reduction(build: Build) -> list[str]:
                 f"n = {x.n}: {x.tip_mass:.4g} kg" for x in p.tip_mass_lumped) + ".", class_="meta")]
 
 
-def _modes_3d(build: Build) -> list[str]:
+def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
     """The 3D modes of both configurations, with their pictures."""
-    m = build.modal
     parts = []
-    carries, why = top_words(m)
+    carries, why = top_words(m.top)
     for key, title, name in (("modes", "Modes of the bare tube (3D), clamped base, free top", "bare"),
                              ("modes_with_top", f"Modes of the tube carrying {carries} (3D)", "top")):
         parts.append(h.tag("h3", title))
         if name == "top" and why:
             parts.append(h.tag("p", why, class_="meta"))
-        modes = getattr(m, key, None) or []
+        modes = getattr(m, key) or []
         parts.append(h.table(MODE_HEADERS, _mode_rows(modes)) if modes
                      else h.tag("p", f"modal.json has no {key}.", class_="meta"))
         parts += failure(build, f"modes_{name}") + failure(build, f"load_modes_{name}")
@@ -169,8 +173,9 @@ def _modes_3d(build: Build) -> list[str]:
         elif not (build.out / INPUTS[f"modes_{name}"][0]).is_file():
             parts.append(h.missing(f"mode shapes not computed: run `rotorpillar modal {build.scene_cli}` "
                                    f"(no {INPUTS[f'modes_{name}'][0]})"))
-    extra = [(k, v) for k, v in h.flatten({"mesh": plain(m.mesh), "axes": dict(entries(m.axes)),
-                                            "timings": plain(m.timings)}) if v is not None]
+    doc = build.docs.get("modal", {})
+    extra = [(k, v) for k, v in h.flat_items({"mesh": plain(m.mesh), "axes": plain(m.axes),
+                                               "timings": doc.get("timings")}) if v is not None]
     parts.append(h.tag("p", axes_legend() + " Every picture carries a triad with the paper's "
                             "symbols: X horizontal in the rotor's plane, Z along the shaft, Y up.",
                        class_="meta"))
@@ -185,21 +190,21 @@ def section_modal(build: Build) -> str:
     parts = []
     if m is None:
         parts.append(h.missing(build.hint(INPUTS["modal"][1])))
-    parts += scene_differs(build, m)
+    parts += scene_differs(build, build.docs.get("modal"))
     parts.append(h.tag("h3", "Eq. 1 against the 3D model (bare tube)"))
     if a is None:
         parts.append(h.missing(build.hint(INPUTS["analyze"][1])))
     else:
-        parts += _closed_forms_against_3d(build, a, m.modes if m is not None else [])
+        parts += _closed_forms_against_3d(build, a, m.modes if m is not None else ())
         if m is None:
             parts.append(h.tag("p", "3D column empty: the 3D model has not run.", class_="meta"))
     parts.append(h.tag("h3", "The pillar reduced to its tip (Eq. 2)"))
     if a is None:
         parts.append(h.missing(build.hint(INPUTS["analyze"][1])))
     else:
-        parts += _reduction(build)
+        parts += _reduction(build, a)
     if m is not None:
-        parts += _modes_3d(build)
+        parts += _modes_3d(build, m)
     parts += figures_of(build, "modal")
     return h.section("modal", "Modal validation", parts)
 
@@ -218,12 +223,13 @@ def _fe_note(build: Build, r) -> str:
     """The 3D tube with its top beside the paper's FE model (its first X bending)."""
     if not str(r.key).startswith("fe_omega") or build.modal is None:
         return ""
-    bx = bending(getattr(build.modal, "modes_with_top", None) or [], "bending_x")
+    bx = bending(build.modal.modes_with_top or [], "bending_x")
     if not bx or r.key != "fe_omega1":
         return ""
-    carries, _ = top_words(build.modal)
-    return (f" Our 3D tube carrying {carries}, without the rotor: {bx[0].omega:.2f} rad/s "
-            f"({bx[0].omega / r.paper - 1:+.1%} against the printed value).")
+    carries, _ = top_words(build.modal.top)
+    w = part(bx[0], "omega")
+    return (f" Our 3D tube carrying {carries}, without the rotor: {w:.2f} rad/s "
+            f"({w / r.paper - 1:+.1%} against the printed value).")
 
 
 def section_paper(build: Build) -> str:
@@ -246,7 +252,7 @@ def section_paper(build: Build) -> str:
                      h.pct(r.rel_diff, 1), where, ours or "this scene", note])
         cls.append("flag" if r.flag else "ok")
     n = sum(1 for r in printed if r.flag)
-    parts = scene_differs(build, a) + [
+    parts = scene_differs(build, build.docs.get("analyze")) + [
         h.tag("p", f"Every number the paper prints that we compute, ours from first principles "
                    f"(never tuned to match), each computed on the case the paper's text gives it: "
                    f"Table 1 and Eq. 24 with the stiff shaft, the Sec. 3 finite-element model's "

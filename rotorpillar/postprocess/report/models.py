@@ -11,11 +11,16 @@ number of resonances: they are grouped by direction as the records hold them.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from .. import html as h
 from ..directions import direction
-from ..inputs import plain
+from ..readers import plain
+
+if TYPE_CHECKING:
+    from ...analysis.results import AnalysisResult, DriveRegimes, ResonanceAnalysis
 
 
 @dataclass(frozen=True)
@@ -23,22 +28,22 @@ class ModelView:
     """One model's resonance answers as analyze.json holds them."""
     title: str
     """how the page names it"""
-    resonances: list
-    drive: object
-    system: object
+    resonances: list[ResonanceAnalysis]
+    drive: DriveRegimes | None
+    system: Any
     headline: bool
 
 
-def pillar_model_text(doc) -> str:
-    """A record's ``pillar_model`` in words ("" without one).
+def pillar_model_text(pillar_model: Any) -> str:
+    """A ``pillar_model`` (a record, or its JSON) in words ("" without one).
 
-    >>> pillar_model_text({"pillar_model": {"kind": "solid", "mesh": "128x20x1", "dofs": 94464,
-    ...                    "source": "converge", "verified": True}})
+    >>> pillar_model_text({"kind": "solid", "mesh": "128x20x1", "dofs": 94464,
+    ...                    "source": "converge", "verified": True})
     'pillar modes: solid 128x20x1 (94464 DOFs), chosen by the convergence study'
-    >>> pillar_model_text({"pillar_model": {"kind": "beam", "source": "scene", "verified": False}})
+    >>> pillar_model_text({"kind": "beam", "source": "scene", "verified": False})
     "pillar modes: beam, the scene's own, unverified"
     """
-    pm = (plain(doc) or {}).get("pillar_model") if doc is not None else None
+    pm = plain(pillar_model)
     if not isinstance(pm, dict) or not pm:
         return ""
     what = pm.get("label") or " ".join(str(pm[k]) for k in ("kind", "mesh") if pm.get(k))
@@ -52,17 +57,17 @@ def pillar_model_text(doc) -> str:
     return text
 
 
-def headline_title(analysis) -> str:
+def headline_title(analysis: AnalysisResult) -> str:
     """The headline model's name: the reduced model with its pillar modes'
     source where analyze.json says it, else (no ``paper_model`` block) the
     paper's model itself."""
     if getattr(analysis, "paper_model", None) is None:
         return "the paper's model (Eq. 4 with the scene's reduction)"
-    said = pillar_model_text(analysis)
+    said = pillar_model_text(getattr(analysis, "pillar_model", None))
     return "the reduced model (ROM)" + (f": {said}" if said else "")
 
 
-def model_views(analysis) -> list[ModelView]:
+def model_views(analysis: AnalysisResult) -> list[ModelView]:
     """The headline model, then the paper's (where analyze.json has it)."""
     views = [ModelView(headline_title(analysis), list(analysis.resonances), analysis.drive,
                        analysis.system, True)]
@@ -74,9 +79,9 @@ def model_views(analysis) -> list[ModelView]:
     return views
 
 
-def by_direction(resonances) -> dict[str, list]:
+def by_direction(resonances: Iterable[Any]) -> dict[str, list[Any]]:
     """Resonances grouped by direction, X first, each group in order of frequency."""
-    out: dict[str, list] = {}
+    out: dict[str, list[Any]] = {}
     for r in sorted(resonances, key=lambda r: (str(r.direction) != "X", r.omega)):
         out.setdefault(str(r.direction), []).append(r)
     return out
@@ -98,7 +103,7 @@ def resonance_table(views: list[ModelView]) -> str:
     return h.table(["direction", "order", *[f"omega (rad/s), {v.title}" for v in views]], rows)
 
 
-def resonance_words(resonances) -> str:
+def resonance_words(resonances: Sequence[Any]) -> str:
     """The resonances in one sentence, by direction.
 
     >>> from types import SimpleNamespace as S
@@ -109,7 +114,7 @@ def resonance_words(resonances) -> str:
                      for d, rs in by_direction(resonances).items())
 
 
-def _omega_text(r) -> str:
+def _omega_text(r: Any) -> str:
     """A resonance's frequency, with its error bar where the record carries one
     (the headline model's: rotorpillar.chain.Uncertain)."""
     bars = getattr(r, "uncertainty", None)

@@ -5,10 +5,11 @@ the tables of a run's JSON."""
 from __future__ import annotations
 
 import json
+from typing import Any
 
 from ...provenance import to_json
 from .. import html as h
-from ..inputs import plain
+from ..readers import plain
 from .state import Build
 
 
@@ -29,7 +30,7 @@ def failure(build: Build, key: str) -> list[str]:
     return []
 
 
-def video(build: Build, key: str) -> list[str]:
+def animation_video(build: Build, key: str) -> list[str]:
     v = build.products.get(key)
     return [h.video(v.path, build.out, v.caption, v.poster)] if v else []
 
@@ -41,12 +42,12 @@ def _note(doc: dict | None) -> list[str]:
     return []
 
 
-def scene_differs(build: Build, result, ignore=()) -> list[str]:
+def scene_differs(build: Build, doc: dict[str, Any] | None,
+                  ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
     """A warning when an input was computed for another version of the scene
-    (and the input's own note, if it has one).  ``result``: a result as read
-    (a record or a dict), or None; ``ignore``: dotted keys its command set
-    on purpose (the comparisons' record)."""
-    doc = plain(result)
+    (and the input's own note, if it has one).  ``doc``: the input's whole JSON
+    document, or None; ``ignore``: dotted keys its command set on purpose (the
+    comparisons' record)."""
     if not doc or "scene" not in doc:
         return _note(doc)
     now = json.loads(to_json(build.scene.to_dict()))
@@ -117,10 +118,10 @@ def key_results(meta: dict) -> str | None:
     return h.table(["", ""], rows) if rows else None
 
 
-def run_table(result) -> str:
-    """Every field of a result (a record or a dict) but its provenance, as a table."""
+def run_table(result: Any) -> str:
+    """Every field of a result (its JSON document, or a record) but its provenance, as a table."""
     meta = plain(result)
-    keep = [(k, v) for k, v in h.flatten({k: v for k, v in meta.items()
+    keep = [(k, v) for k, v in h.flat_items({k: v for k, v in meta.items()
                                           if k not in ("scene", "versions", "machine", "figures",
                                                        "command", "scene_source", "overrides")})]
     return h.table(["field", "value"], [[k, h.num(v)] for k, v in keep])

@@ -25,7 +25,7 @@ def _stages_of(doc: dict) -> tuple[float | None, str]:
     total = t.get("total")
     per = doc.get("per_model") if isinstance(doc.get("per_model"), dict) else None
     if not stages and per:
-        stages = {f"{m} (wall time)": r.get("wall_seconds") for m, r in per.items()
+        stages = {f"{m} (wall time)": r["wall_seconds"] for m, r in per.items()
                   if isinstance(r, dict) and isinstance(r.get("wall_seconds"), (int, float))}
     if total is None and stages:
         total = sum(stages.values())

@@ -4,11 +4,13 @@ mode shapes and the animations, each step recorded and allowed to fail."""
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 from pathlib import Path
 
 from ..compare_reader import relative_to_ground
 from ..directions import direction
-from ..inputs import INPUTS, ModeSet, entries, plain
+from ..geometry import ModeSet
+from ..readers import INPUTS, Simulation, plain
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, say
 
 #: The animations the report makes (:func:`animated_runs`).
@@ -18,9 +20,10 @@ ANIMATED = ("runup", "earthquake", "earthquake_paper", "earthquake_scene")
 def render_charts(build: Build) -> None:
     from .. import charts, transient_charts
     fig = build.out / FIGURES_DIR
-    if build.analysis is not None:
+    analysis = build.analysis
+    if analysis is not None:
         p = attempt(build, "drive_chart",
-                    lambda: charts.drive_chart(build.analysis, fig / "drive_resistance.png"))
+                    lambda: charts.drive_chart(analysis, fig / "drive_resistance.png"))
         if p:
             build.products["drive_chart"] = Product(p, (
                 "Motor torque Md and total resistance L = Mc + sum dL_i against the speed "
@@ -30,7 +33,7 @@ def render_charts(build: Build) -> None:
                 "resonance, against z = Omega/omega_i, with L - Mc on the right axis; dots are the "
                 "curves stored in analyze.json."))
         p = attempt(build, "amplitude_chart",
-                    lambda: charts.amplitude_chart(build.analysis, fig / "resonance_amplitudes.png"))
+                    lambda: charts.amplitude_chart(analysis, fig / "resonance_amplitudes.png"))
         if p:
             build.products["amplitude_chart"] = Product(p, (
                 "Amplitude a_i of each quasi-normal coordinate near its resonance: the averaging "
@@ -83,11 +86,13 @@ def render_comparisons(build: Build) -> None:
                    f"{zoom[1]:.3g} s of the {c.doc.get('window', {}).get('end', '')} s run."
                    if zoom else "")
                 + (f" No arrays for {', '.join(lacking)}." if lacking else "")))
-    c = build.comparisons.get("earthquake")
-    spec = c.doc.get("spectrum") if c is not None else None
-    if isinstance(spec, dict) and spec.get("period") is not None and spec.get("psa") is not None:
-        from .compare_section import system_modes
-        damping = spec.get("damping", spec.get("damping_ratio", 0.05))
+    quake = build.comparisons.get("earthquake")
+    spec = quake.doc.get("spectrum") if quake is not None else None
+    if quake is not None and isinstance(spec, dict) and spec.get("period") is not None \
+            and spec.get("psa") is not None:
+        c = quake
+        from .compare_section import spectrum_damping, system_modes
+        damping = spectrum_damping(spec)
         model, modes = system_modes(c)
         # the modes the horizontal record excites: the coupled system's, in X
         marks = [(f"mode {m['index']}", m["period"]) for m in modes
@@ -127,14 +132,14 @@ def _record_name(doc: dict) -> str:
 
 def mode_sets(build: Build) -> dict[str, ModeSet | None]:
     """The bare and the topped tube's mode shapes, where modal.json and its VTU exist."""
-    from ..inputs import load_modes
+    from ..geometry import load_modes
     sets = {}
     m = build.modal
     for name, key in (("bare", "modes"), ("top", "modes_with_top")):
         vtu = build.out / INPUTS[f"modes_{name}"][0]
         if m is not None and vtu.is_file():
-            modes = plain(getattr(m, key, None)) or []
-            axes = dict(entries(getattr(m, "axes", None))) or None
+            modes = plain(getattr(m, key)) or []
+            axes = plain(m.axes) or None
             sets[name] = attempt(build, f"load_modes_{name}",
                                  lambda vtu=vtu, modes=modes, axes=axes: load_modes(vtu, modes, axes))
         else:
@@ -142,12 +147,12 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
     return sets
 
 
-def render_modes(build: Build, sets: dict) -> None:
-    from ..inputs import mode_label
+def render_mode_shapes(build: Build, sets: dict) -> None:
+    from ..directions import mode_label
     from ..modeshapes import render_modes as render
     from .modal import top_words
     captions = {"bare": "the bare tube (clamped base, free top)",
-                "top": f"the tube carrying {top_words(build.modal)[0]}"}
+                "top": f"the tube carrying {top_words(build.modal.top if build.modal else None)[0]}"}
     for name, ms in sets.items():
         if ms is None:
             continue
@@ -166,7 +171,7 @@ def render_modes(build: Build, sets: dict) -> None:
                 "mode's cross-sections beside it, seen from above."), group=name)
 
 
-def animated_runs(build: Build) -> list[tuple[str, object, str, dict]]:
+def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, Any]]]:
     """The runs the report animates: (name, Simulation, title, options).
 
     - ``runup``: the scene's run-up, time-warped into its passage through the
@@ -176,9 +181,8 @@ def animated_runs(build: Build) -> list[tuple[str, object, str, dict]]:
     - ``earthquake_paper``: the paper's pulse on its Eq. 4, the warning that
       it is no earthquake burnt into every frame.
     """
-    from ..inputs import Simulation
     from ..transient_charts import crossings, passage_window
-    out = []
+    out: list[tuple[str, Simulation, str, dict[str, Any]]] = []
     sim = build.simulations.get("runup")
     if sim is not None and sim.arrays.get("t") is not None:
         res = [(f"omega_{r.get('index')}", float(r["omega"])) for r in sim.meta.get("resonances") or []
@@ -215,7 +219,7 @@ def animated_runs(build: Build) -> list[tuple[str, object, str, dict]]:
 
 def render_animations(build: Build, sets: dict) -> None:
     from ..animation import animate
-    from ..inputs import cantilever_tube
+    from ..geometry import cantilever_tube
     top = sets.get("top")
     for name, sim, title, opts in animated_runs(build):
         if top is None and "fallback_tube" not in build.products:

@@ -6,11 +6,12 @@ from __future__ import annotations
 
 from .. import html as h
 from ...transients.run_comparisons import COMPARISONS
-from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
+from ..readers import CASES, INPUTS, SIMULATE_COMMAND
 from ..directions import direction
 from .compare_section import comparison_block
 from .models import model_views, resonance_table
-from .parts import failure, figures_of, key_results, product_image, run_table, scene_differs, video
+from .parts import (animation_video, failure, figures_of, key_results, product_image, run_table,
+                    scene_differs)
 from .passage import passage_block
 from .state import Build
 
@@ -61,7 +62,7 @@ def section_averaging(build: Build) -> str:
     if a is None:
         return h.section("averaging", "Passage through resonance (averaging)",
                          [h.missing(build.hint(INPUTS["analyze"][1]))])
-    parts = scene_differs(build, a)
+    parts = scene_differs(build, build.docs.get("analyze"))
     views = model_views(a)
     d = a.drive
     parts.append(h.tag("p", f"On {views[0].title}. Motor Md = {d.torque_at_zero:g} - {d.slope:g} "
@@ -86,12 +87,12 @@ def section_averaging(build: Build) -> str:
 
 
 def _own_charts(build: Build, case: str) -> list[str]:
-    """simulate's charts of the scene's run, each picture once (the generic
-    simulate_<case>.png is a copy of the model's: figures.external_figures
-    dropped the copy)."""
+    """The charts of the case's runs other commands drew (simulate's), each picture
+    once (the generic simulate_<case>.png is a copy of the model's:
+    figures.external_figures dropped the copy)."""
     out = []
     for p in build.products.get("external", []):
-        if p.group == "runs" and case in p.path.name.lower():
+        if p.group == "runs" and p.case == case:
             out.append(h.image(p.path, p.caption))
             p.group = "used"
     return out
@@ -128,7 +129,7 @@ def section_runs(build: Build) -> str:
             parts.append(key)
         parts += _own_charts(build, case)
         parts += failure(build, f"animation_{case}")
-        parts += video(build, f"animation_{case}")
+        parts += animation_video(build, f"animation_{case}")
         parts.append(h.details(f"simulate_{case}.json: every field", run_table(sim.meta))
                      if sim.meta else h.tag("p", "no JSON summary", class_="meta"))
     if not_run and build.simulations:

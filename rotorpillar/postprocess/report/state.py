@@ -13,8 +13,19 @@ import time
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
 
-from ..inputs import not_computed
+from ..readers import Simulation, not_computed
+
+if TYPE_CHECKING:
+    from ...analysis.results import AnalysisResult
+    from ...converge.result import ConvergenceStudy
+    from ...fem3d.modal_summary import ModalSummary
+    from ...scene import Scene
+    from ...studies.result import StudyResult
+    from ..compare_reader import Comparison
+
+T = TypeVar("T")
 
 FIGURES_DIR = "figures"
 MODES_DIR = "modes"
@@ -42,32 +53,39 @@ class Product:
     kind: str = "figure"       # figure | video
     group: str = ""
     poster: Path | None = None
+    case: str = ""
+    """the case of the run that drew it (another command's figure; "" if none)"""
 
 
 @dataclass
 class Build:
     """Everything the page is assembled from."""
-    scene: object
+    scene: Scene
     out: Path
     scene_cli: str
     options: ReportOptions
-    analysis: object = None
-    """analyze.json as read by ``inputs.read_analysis``, or None"""
-    modal: object = None
-    """modal.json as read by ``inputs.read_modal``, or None"""
-    convergence: object = None
-    """convergence.json as read by ``inputs.read_convergence``, or None"""
-    integrators: dict | None = None
-    simulations: dict = field(default_factory=dict)
-    """case -> ``inputs.Simulation`` of simulate_<case>.* (the last run of the case)"""
-    quake_case: object = None
+    analysis: AnalysisResult | None = None
+    """analyze.json's record (``readers.read_analysis``), or None"""
+    modal: ModalSummary | None = None
+    """modal.json's record (``readers.read_modal``), or None"""
+    convergence: ConvergenceStudy | None = None
+    """convergence.json's record (``readers.read_convergence``), or None"""
+    study: StudyResult | None = None
+    """study.json's record (``readers.read_study``), or None"""
+    docs: dict[str, dict[str, Any]] = field(default_factory=dict)
+    """input name (``readers.INPUTS``, "study") -> the whole JSON document its record was
+    read from: what the command wrote beside the record (scene, versions, timings, a note)"""
+    integrators: dict[str, Any] | None = None
+    simulations: dict[str, Simulation] = field(default_factory=dict)
+    """case -> ``readers.Simulation`` of simulate_<case>.* (the last run of the case)"""
+    quake_case: Simulation | None = None
     """the paper's earthquake case (simulate_earthquake_paper.*, else simulate_earthquake.*), or None"""
-    comparisons: dict = field(default_factory=dict)
-    """case -> ``comparisons.Comparison`` of compare_<case>.json and its models' runs"""
-    products: dict = field(default_factory=dict)     # key -> Product or list of Products
-    failures: dict = field(default_factory=dict)     # key -> message
-    damaged: dict = field(default_factory=dict)      # command -> what is wrong with its file
-    render_seconds: dict = field(default_factory=dict)
+    comparisons: dict[str, Comparison] = field(default_factory=dict)
+    """case -> ``compare_reader.Comparison`` of compare_<case>.json and its models' runs"""
+    products: dict[str, Any] = field(default_factory=dict)  # key -> Product, list of Products, or a value
+    failures: dict[str, str] = field(default_factory=dict)     # key -> message
+    damaged: dict[str, str] = field(default_factory=dict)      # command -> what is wrong with its file
+    render_seconds: dict[str, float] = field(default_factory=dict)
     render_window: str = ""
 
     def hint(self, command: str) -> str:
@@ -87,7 +105,7 @@ def say(message: str) -> None:
     print(f"[rotorpillar] report: {message}", file=sys.stderr, flush=True)
 
 
-def attempt(build: Build, key: str, fn):
+def attempt(build: Build, key: str, fn: Callable[..., T]) -> T | None:
     """Run one rendering step; on failure record why and carry on."""
     start = time.perf_counter()
     try:

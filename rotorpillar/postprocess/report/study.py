@@ -48,12 +48,12 @@ def _boundary_table(r: StudyResult) -> list[str]:
 
 
 def section_study(build: Build) -> str | None:
-    path = build.out / STUDY_JSON
-    if not path.is_file():
-        return None
-    r = StudyResult.read(path)
-    import json
-    meta = json.loads(path.read_text(encoding="utf-8"))
+    r = build.study
+    if r is None:
+        if not (build.out / STUDY_JSON).is_file():
+            return None
+        return h.section("study", "Design study", [h.missing(build.hint("study"))])
+    meta = build.docs["study"]
     p, ex, bt = r.performance, r.executor, r.batches
     axes = "; ".join(f"{a.key}: {len(a.values)} values from {a.values[0]} to {a.values[-1]}"
                      for a in r.axes)

@@ -4,9 +4,11 @@ detail), each input that is missing named with the command that makes it."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 from .. import html as h
 from ...transients.run_comparisons import COMPARISONS, comparison_command
-from ..inputs import CASES, INPUTS, SIMULATE_COMMAND
+from ..readers import CASES, INPUTS, SIMULATE_COMMAND, part
 from .compare_section import speed_accuracy
 from .convergence import chosen
 from .engineering import verdict_block
@@ -14,25 +16,28 @@ from .modal import bending, is_finding
 from .models import model_views, resonance_words
 from .state import Build
 
+if TYPE_CHECKING:
+    from ...analysis.results import AnalysisResult
+
 #: Where the detail of each finding is (section or subsection ids).
 FINDINGS_ANCHOR = "paper-findings"
 
 
-def _pillar(build: Build) -> str:
-    a, m = build.analysis, build.modal
+def _pillar(build: Build, a: AnalysisResult) -> str:
+    m = build.modal
     p = a.pillar
     text = (f"First bending mode of the bare tube: Eq. 1 gives {p.omega_col1:.3f} rad/s "
             f"({p.frequency_col1_hz:.3f} Hz); Timoshenko {h.pct(p.timoshenko_correction)}")
     bx = bending(m.modes, "bending_x") if m is not None else []
     if bx:
-        w = bx[0].omega
+        w = part(bx[0], "omega")
         text += f"; the 3D model {w:.3f} rad/s ({w / p.omega_col1 - 1:+.2%} against Eq. 1)."
     else:
         text += "; the 3D model: " + build.hint(INPUTS["modal"][1]) + "."
     return text
 
 
-def _drive(a, eccentricity: float) -> list:
+def _drive(a: AnalysisResult, eccentricity: float) -> list[str]:
     d = a.drive
     st = ", ".join(f"{x.omega:.2f} rad/s ({'stable' if x.stable else 'unstable'})"
                    for x in d.stationary) or "none"
@@ -50,18 +55,14 @@ def _drive(a, eccentricity: float) -> list:
     return items
 
 
-def _analysis_findings(build: Build) -> list:
-    a = build.analysis
-    items = [_pillar(build)]
+def _analysis_findings(build: Build, a: AnalysisResult) -> list[str | h.Raw]:
+    items: list[str | h.Raw] = [_pillar(build, a)]
     views = model_views(a)
     for v in views:
         items.append(f"Rotor-pillar resonances, {v.title}: {resonance_words(v.resonances)}.")
-    pm = getattr(a, "pillar_model", None)
-    if pm is not None:
-        items.append(f"The headline model's pillar: {pm.describe()}; its error bars: "
-                     f"{a.system.error_note}.")
-    paper = getattr(a, "paper_model", None)
-    r = paper.reduction if paper is not None else a.reduction
+    items.append(f"The headline model's pillar: {a.pillar_model.describe()}; its error bars: "
+                 f"{a.system.error_note}.")
+    r = a.paper_model.reduction
     items.append(f"Pillar reduced to its tip in the paper's model: m_r = {r.tip_mass:.4g} kg "
                  f"({r.tip_mass_source}), c1 = {r.tip_stiffness:.4g} N/m ({r.tip_stiffness_source}).")
     rows = [x for x in a.paper_comparison if not is_finding(x)]
@@ -78,7 +79,7 @@ def _analysis_findings(build: Build) -> list:
     return items
 
 
-def _item(text) -> str:
+def _item(text: str | h.Raw) -> str:
     """A list item, its "not computed: run `...`" command set as code."""
     if isinstance(text, h.Raw):
         return h.tag("li", [text])
@@ -89,7 +90,7 @@ def _item(text) -> str:
     return h.tag("li", text)
 
 
-def _bar(bars: dict, key: str, value, scale: float, unit: str) -> str:
+def _bar(bars: dict[str, Any] | None, key: str, value: Any, scale: float, unit: str) -> str:
     """A run's number with its error bar where the run carries one (the headline model's:
     ``uncertainty``), ``scale`` converting SI to ``unit``; what was not assessed is said."""
     u = bars.get(key) if isinstance(bars, dict) else None
@@ -103,8 +104,8 @@ def _bar(bars: dict, key: str, value, scale: float, unit: str) -> str:
     return text
 
 
-def _runs(build: Build) -> list:
-    items = []
+def _runs(build: Build) -> list[str | h.Raw]:
+    items: list[str | h.Raw] = []
     for case in CASES:
         sim = build.simulations.get(case)
         if sim is None or not sim.meta:
@@ -142,8 +143,9 @@ def _runs(build: Build) -> list:
 
 
 def section_summary(build: Build) -> str:
+    items: list[str | h.Raw]
     if build.analysis:
-        items = _analysis_findings(build)
+        items = _analysis_findings(build, build.analysis)
     else:
         items = ["Closed forms and averaging: " + build.hint(INPUTS["analyze"][1]) + "."]
     items += _runs(build)

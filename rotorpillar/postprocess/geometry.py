@@ -1,0 +1,212 @@
+"""The 3D model's geometry as the report draws it: which axis is what, the
+tube's outer surface carrying the mode shapes of a ``modes_*.vtu`` (a pyvista
+PolyData), the cantilever fallback when there is none, and which modes a
+simulation's modal coordinates refer to.  pyvista is imported lazily."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+# --------------------------------------------------------------------------
+# Axes of the 3D model
+
+
+@dataclass(frozen=True)
+class TubeAxes:
+    """Which axis of the 3D model is what (indices 0, 1, 2 = x, y, z)."""
+    axial: int
+    """along the tube, base to top"""
+    x: int
+    """the paper's X: the direction the pillar bends in"""
+
+    @property
+    def y(self) -> int:
+        """the remaining lateral axis"""
+        return 3 - self.axial - self.x
+
+
+def _axis_index(value) -> int | None:
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int) and 0 <= value <= 2:
+        return value
+    if isinstance(value, str):
+        s = value.strip().lower().lstrip("+-")
+        if s in ("x", "y", "z"):
+            return "xyz".index(s)
+        if s in ("0", "1", "2"):
+            return int(s)
+    if isinstance(value, (list, tuple)) and len(value) == 3:
+        try:
+            v = np.abs(np.asarray(value, dtype=float))
+        except (TypeError, ValueError):
+            return None
+        return int(np.argmax(v))
+    return None
+
+
+def tube_axes(meta, bounds=None) -> TubeAxes:
+    """Read ``modal.json``'s ``axes`` (strings "x"/"y"/"z", indices or unit
+    vectors, under keys naming the tube axis and the paper's X), falling back
+    to the longest extent of ``bounds`` (xmin, xmax, ymin, ymax, zmin, zmax)
+    for the tube and the first other axis for X.
+
+    >>> tube_axes({"tube": "z", "paper_x": "x"})
+    TubeAxes(axial=2, x=0)
+    >>> tube_axes({"axial": [0, 1, 0], "X": 2})
+    TubeAxes(axial=1, x=2)
+    >>> tube_axes(None, (-1, 1, -1, 1, 0, 20))
+    TubeAxes(axial=2, x=0)
+    """
+    axial = x = None
+    if isinstance(meta, dict):
+        for key, value in meta.items():
+            k = key.lower()
+            if axial is None and any(w in k for w in ("tube", "axial", "along", "height", "vertical")):
+                axial = _axis_index(value)
+            elif x is None and (k in ("x", "paper_x", "paperx", "paper x", "bending", "bending_x")
+                                or (k.startswith("paper") and k.endswith("x"))):
+                x = _axis_index(value)
+    if axial is None:
+        if bounds is not None:
+            ext = [bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]]
+            axial = int(np.argmax(ext))
+        else:
+            axial = 2
+    if x is None or x == axial:
+        x = 0 if axial != 0 else 1
+    return TubeAxes(axial, x)
+
+
+# --------------------------------------------------------------------------
+# Mode shapes
+
+
+@dataclass
+class ModeSet:
+    """Mode shapes on the tube's outer surface (a pyvista PolyData)."""
+    surface: Any
+    """pyvista.PolyData with point arrays ``arrays[i]`` (3-vectors)"""
+    modes: list[dict[str, Any]]
+    """metadata of each mode, from modal.json (kind, frequency_hz, ...)"""
+    arrays: list[str]
+    axes: TubeAxes
+    source: str
+    """where the shapes came from (a VTU path, or the closed-form fallback)"""
+    notes: list[str] = field(default_factory=list)
+    grid: Any = None
+    """the VTU's cells (pyvista.UnstructuredGrid) the surface was drawn from, or None"""
+
+    def coarser(self, subdivision: int) -> "ModeSet":
+        """The same modes on a surface subdivided ``subdivision`` times (quadratic
+        cells; an animation's hundreds of frames need fewer points than a picture)."""
+        if self.grid is None:
+            return self
+        return dataclasses.replace(self, surface=tube_surface(self.grid, subdivision))
+
+    def shape(self, i: int) -> np.ndarray:
+        """Point displacements of mode i (n_points x 3)."""
+        return np.asarray(self.surface.point_data[self.arrays[i]], dtype=float)
+
+    @property
+    def height(self) -> float:
+        b = self.surface.bounds
+        return float(b[2 * self.axes.axial + 1] - b[2 * self.axes.axial])
+
+
+#: Recursive subdivisions of each quadratic face on the drawn surface: 1
+#: triangulates it through its nodes, 2 adds the quadratic shapes at quarter
+#: points between them (needed on the graded default mesh, whose long top
+#: cells show the second bending mode's curvature as a kink at 1).
+SUBDIVISION = 2
+
+
+def tube_surface(grid, subdivision: int = SUBDIVISION):
+    """The outer surface of a VTU's cells as triangles, the mode arrays on it.
+
+    Quadratic cells (the 3D model's default) are drawn on their curved
+    geometry: each face is subdivided ``subdivision`` times through its
+    shape functions, so a mode's curvature between the nodes and the circles
+    between them show (a bending mode is not kinked at the cell faces).
+    Linear cells give their faces.
+    """
+    linear = {3, 5, 8, 9, 10, 12, 13, 14}      # VTK's linear cell types
+    if set(np.unique(np.asarray(grid.celltypes)).tolist()) <= linear:
+        return grid.extract_surface(algorithm=None)
+    return grid.extract_surface(nonlinear_subdivision=subdivision, algorithm="dataset_surface")
+
+
+def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | None:
+    """The mode shapes of a ``modes_*.vtu`` on its outer surface, with their metadata.
+
+    Point arrays ``mode_000``, ``mode_001``, ... in the order of ``modes``;
+    arrays beyond the list get a placeholder label, list entries without an
+    array are dropped.
+    """
+    from .offscreen import pyvista
+    vtu = Path(vtu)
+    if not vtu.is_file():
+        return None
+    with open(vtu, "rb") as fh:             # refuse a damaged file ourselves: VTK would print
+        head = fh.read(256).lstrip()         # its parser's errors and return an empty grid
+    if not (head.startswith(b"<?xml") or head.startswith(b"<VTKFile")):
+        raise ValueError(f"{vtu.name} is damaged (not a VTU file): rebuild it with `rotorpillar modal`")
+    pv = pyvista()
+    grid = pv.read(vtu)
+    names = sorted(n for n in grid.point_data.keys() if n.startswith("mode_"))
+    if grid.n_points == 0 or not names:
+        raise ValueError(f"{vtu.name}: no tube with point arrays mode_000, mode_001, ... "
+                         f"({grid.n_points} points, arrays {list(grid.point_data.keys())})")
+    surface = tube_surface(grid)
+    meta = [modes[i] if i < len(modes) else {"kind": "?"} for i in range(len(names))]
+    return ModeSet(surface, meta, names, tube_axes(axes_meta, surface.bounds), str(vtu), grid=grid)
+
+
+def cantilever_tube(height: float, outer_diameter: float, inner_diameter: float,
+                    around: int = 48, along: int = 60) -> ModeSet:
+    """The fallback when no 3D mode shapes exist: a tube surface generated by
+    pyvista (axis z, X = x) carrying the first Euler-Bernoulli cantilever mode
+    (:func:`rotorpillar.reduced.pillar.cantilever_mode`), unit tip."""
+    from ..reduced.pillar import cantilever_mode
+    from .offscreen import pyvista
+    pv = pyvista()
+    r_in = max(inner_diameter / 2, 1e-3 * outer_diameter)
+    grid = pv.CylinderStructured(radius=[r_in, outer_diameter / 2], height=height,
+                                 center=(0, 0, height / 2), direction=(0, 0, 1),
+                                 theta_resolution=around, z_resolution=along + 1)
+    surface = grid.extract_surface(algorithm=None)
+    xi = np.clip(surface.points[:, 2] / height, 0.0, 1.0)
+    u = np.zeros((surface.n_points, 3))
+    u[:, 0] = cantilever_mode(xi) / cantilever_mode(1.0)
+    surface.point_data["mode_000"] = u
+    meta = [{"kind": "bending_x", "normalisation": "unit_tip",
+             "note": "Euler-Bernoulli cantilever, Eq. 1"}]
+    return ModeSet(surface, meta, ["mode_000"], TubeAxes(2, 0),
+                   "Euler-Bernoulli cantilever shape on a generated tube (no modes_top.vtu)")
+
+
+def bending_columns(modes: list[dict], k: int, explicit=None) -> list[int]:
+    """Indices into ``modes`` of the k modes a simulation's ``modal_coordinates``
+    columns refer to: ``explicit`` if the simulation names them, else the
+    first k modes of kind "bending_x" (the paper's X), else the first k
+    bending modes of any direction.
+
+    >>> ms = [{"kind": "bending_x"}, {"kind": "bending_y"}, {"kind": "ovalling"}, {"kind": "bending_x"}]
+    >>> bending_columns(ms, 2), bending_columns(ms, 1, explicit=[3])
+    ([0, 3], [3])
+    """
+    if explicit is not None:
+        idx = [int(i) for i in explicit][:k]
+        if len(idx) == k and all(0 <= i < len(modes) for i in idx):
+            return idx
+    x = [i for i, m in enumerate(modes) if str(m.get("kind", "")) == "bending_x"]
+    if len(x) >= k:
+        return x[:k]
+    anyb = [i for i, m in enumerate(modes) if str(m.get("kind", "")).startswith("bending")]
+    return anyb[:k]
