@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..mesh.midsurface import BASE, TOP, MidSurface, gmsh_mid_surface, mid_surface_radius
+from .eigensolver import solve_gep_shift_invert
 
 SHEAR_CORRECTION = 5.0 / 6.0
 """k_s of Reissner-Mindlin theory (-)"""
@@ -45,6 +46,10 @@ REDUCED_DEGREE = 2
 FULL_DEGREE = 4
 """quadrature degree of the bending and kinetic energies (-)"""
 END_CONDITIONS = ("clamped-free", "simply-supported")
+EIGEN_TOLERANCE = 1e-10
+"""relative residual of the eigenpairs (-)"""
+EIGEN_MAX_IT = 200
+"""Krylov-Schur restarts at most (-)"""
 
 
 @dataclass(frozen=True)
@@ -212,44 +217,16 @@ def classify_mode(points: np.ndarray, displacement: np.ndarray, n_max: int = 8) 
 # The modal analysis
 
 
-def _eigensolve(A, M, n_modes: int, comm, shift: float):
-    """Lowest eigenpairs of A x = lambda M x by shift-invert (MUMPS Cholesky)."""
-    from slepc4py import SLEPc
-    eps = SLEPc.EPS().create(comm)
-    eps.setOperators(A, M)
-    eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
-    eps.setDimensions(n_modes)
-    eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
-    eps.setTarget(shift)
-    st = eps.getST()
-    st.setType(SLEPc.ST.Type.SINVERT)
-    st.setShift(shift)
-    ksp = st.getKSP()
-    ksp.setType("preonly")
-    pc = ksp.getPC()
-    pc.setType("cholesky")
-    pc.setFactorSolverType("mumps")
-    eps.setTolerances(1e-10, 200)
-    eps.setFromOptions()
-    eps.solve()
-    vr = A.createVecRight()
-    pairs = []
-    for i in range(eps.getConverged()):
-        lam = eps.getEigenpair(i, vr).real
-        pairs.append((lam, vr.copy()))
-    eps.destroy()
-    pairs.sort(key=lambda p: p[0])
-    return pairs
-
-
 def shell_modal_analysis(section: ShellSection, radius: float, height: float,
                          disc: ShellDiscretisation = ShellDiscretisation(), *,
                          n_modes: int = 12, ends: str = "clamped-free",
-                         comm=None) -> ShellModalResult:
+                         comm=None, method: str | None = None) -> ShellModalResult:
     """The lowest ``n_modes`` modes of the tube as a shell.
 
     ``ends``: "clamped-free" (the pillar) or "simply-supported" (shear
     diaphragms at both ends: u_x = u_y = 0, the closed-form check).
+    ``method``: the eigen-solver's (:func:`.eigensolver.solve_gep_shift_invert`;
+    None: its default for ``n_modes``).
     """
     if ends not in END_CONDITIONS:
         raise ValueError(f"ends must be one of {END_CONDITIONS}")
@@ -293,14 +270,15 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
     t0 = time.perf_counter()
     # a slightly negative shift keeps K - sigma M regular when rigid motions
     # are free (the axial translation of the simply supported cylinder)
-    pairs = _eigensolve(A, M, n_modes, comm, shift=-1.0)
+    sol = solve_gep_shift_invert(A, M, n_modes, sigma=-1.0, tol=EIGEN_TOLERANCE,
+                                 max_it=EIGEN_MAX_IT, method=method)
     timings["solve"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
     Vu, u_dofs = V.sub(0).collapse()
     points = Vu.tabulate_dof_coordinates()
     omega, kinds, ns = [], [], []
-    for lam, vec in pairs[:n_modes]:
+    for lam, vec in zip(sol.eigenvalues, sol.vectors):
         disp = vec.array[u_dofs].reshape(-1, 3)
         kind, k = classify_mode(_gather(points, comm), _gather(disp, comm))
         omega.append(np.sqrt(max(lam, 0.0)))
@@ -309,6 +287,8 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
     timings["classify"] = time.perf_counter() - t0
     dofs = V.dofmap.index_map.size_global * V.dofmap.index_map_bs
     cells = msh.topology.index_map(2).size_global
+    for vec in sol.vectors:
+        vec.destroy()
     A.destroy()
     M.destroy()
     return ShellModalResult(np.array(omega), kinds, ns, int(dofs), int(cells),
