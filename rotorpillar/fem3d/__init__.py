@@ -8,7 +8,7 @@ The public API (dolfinx, PETSc and SLEPc are imported inside the functions):
   other; see :mod:`rotorpillar.fem3d.identify`).
 - :func:`reduction_from_scene` (scene) -> (m_reduced, tip_stiffness): the
   paper's Eq. 2 done on the 3D model's first bending mode.
-- :func:`assemble_pillar` (scene, top=...) -> :class:`PillarModel`: the
+- :func:`assemble_pillar` (scene, top=...) -> :class:`AssembledPillar`: the
   assembled K and M in PETSc with the node coordinates and top-face nodes,
   for time integration of the 3D model.
 
@@ -49,7 +49,7 @@ def _top_settings(scene, top: bool):
 
 
 def assemble_pillar(scene, *, top: bool, mesh=None, comm=None, isolated: bool = True):
-    """The assembled 3D model of the scene's pillar (see :class:`model.PillarModel`).
+    """The assembled 3D model of the scene's pillar (see :class:`model.AssembledPillar`).
 
     ``mesh`` (a scene ``Mesh`` section) replaces ``scene.mesh``; ``top`` adds
     the masses on top as ``scene.modal`` says (rigid plate or ring mass).

@@ -19,7 +19,7 @@ import numpy as np
 from ..errors import ComputationError
 from . import identify
 from .eigensolver import solve_gep_shift_invert
-from .model import PillarModel
+from .model import AssembledPillar
 
 #: Two eigenvalues closer than this (relative) form a degenerate pair.
 PAIR_TOLERANCE = 1e-5
@@ -165,7 +165,7 @@ def _scene_top_mass(scene) -> float:
     return m
 
 
-def _vtu_map(model: PillarModel, coords: np.ndarray):
+def _vtu_map(model: AssembledPillar, coords: np.ndarray):
     """The VTU's nodes and cells (VTK order) and, for each node, its node in the global dof order.
 
     On a quadratic mesh with the degree-2 space (the default) every node of
@@ -228,7 +228,7 @@ def _align_and_normalise(omega, shapes, rings):
     return desc, T, norm, pairs
 
 
-def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
+def run_modal(model: AssembledPillar, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
               mesh_section=None, material: tuple[float, float] | None = None) -> ModalResult:
     """Solve, gather, name, align and normalise the modes of an assembled model.
 
@@ -329,7 +329,7 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
         section_resultants=None if cuts is None else cuts[1])
 
 
-def mode_resultants(model: PillarModel, local: np.ndarray, youngs_modulus: float,
+def mode_resultants(model: AssembledPillar, local: np.ndarray, youngs_modulus: float,
                     poisson_ratio: float) -> tuple[np.ndarray, np.ndarray]:
     """(heights, (modes, n_z, 3) resultants) of the distributed mode vectors ``local``
     (this rank's rows of the unknowns, one column per mode); collective."""

@@ -32,7 +32,7 @@ RIGID_DOFS = 6
 
 
 @dataclass
-class PillarModel:
+class AssembledPillar:
     """The assembled tube: what a modal solve or a time integrator needs.
 
     ``K`` and ``M`` are PETSc matrices over the tube's dofs (``3 *
@@ -162,7 +162,7 @@ def _rigid_links(coords: np.ndarray, height: float) -> np.ndarray:
 
 def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_mass: float = 0.0,
                    comm=None, isolated: bool = True, mesh_data: MeshData | None = None,
-                   clamped: bool = True) -> PillarModel:
+                   clamped: bool = True) -> AssembledPillar:
     """Mesh (Gmsh), assemble K and M (dolfinx) and add the top; see the module docstring.
 
     ``clamped`` False leaves the base free too (a free-free tube, for tests
@@ -230,7 +230,7 @@ def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_ma
         raise ValueError(f"unknown top model {top_model!r}")
     timings["assembly"] = time.perf_counter() - t0
     base_dofs = np.sort(np.concatenate([3 * base + c for c in range(3)]))
-    return PillarModel(comm, K, M, mesh, V, tags, params, mesh_data if comm.rank == 0 else None,
+    return AssembledPillar(comm, K, M, mesh, V, tags, params, mesh_data if comm.rank == 0 else None,
                        tube_dofs, extra, top_model, float(top_mass), base_dofs, top_nodes, T,
                        timings)
 

@@ -68,7 +68,7 @@ class SectionFunctionals:
 
 
 def section_functionals(model, youngs_modulus: float, poisson_ratio: float) -> SectionFunctionals:
-    """The functionals L_q of every cut of an assembled PillarModel (collective).
+    """The functionals L_q of every cut of an AssembledPillar (collective).
 
     One compiled vector form, its two coefficients (the layer weight chi,
     piecewise constant, and the cut's rigid field w) set per cut and component.
