@@ -115,6 +115,7 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
                              f"Eq. 2 on the bare tube's first bending mode, {pm.label}")
     if comm is not None and comm.size > 1:
         modes, red = comm.bcast((modes, red), root=0)
+    assert modes is not None and red is not None, "rank 0 computes them, then broadcasts"
     return modes, red, n
 
 

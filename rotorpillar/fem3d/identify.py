@@ -159,7 +159,10 @@ def describe_mode(xyz: np.ndarray | None, u: np.ndarray, rings: Rings | None = N
 
     ``xyz`` (n, 3) the nodes, or None with their ``rings``; ``n_max``: the highest
     circumferential harmonic analysed."""
-    rings = rings_of(xyz) if rings is None else rings
+    if rings is None:
+        if xyz is None:
+            raise ValueError("describe_mode: give the nodes xyz or their rings")
+        rings = rings_of(xyz)
     ucyl = cylindrical(rings, u)
     shares = harmonic_shares(rings, ucyl, n_max)
     per_n = shares.sum(axis=1)

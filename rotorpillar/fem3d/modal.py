@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import ComputationError
+from ..scene import Scene
 from . import identify
 from .eigensolver import solve_gep_shift_invert
 from .model import AssembledPillar
@@ -158,7 +159,7 @@ class ModalResult:
         return out
 
 
-def _scene_top_mass(scene) -> float:
+def _scene_top_mass(scene: Scene) -> float:
     m = scene.gondola.mass
     if scene.modal.top_mass == "gondola_and_rotor":
         m += scene.rotor.mass
@@ -177,6 +178,7 @@ def _vtu_map(model: AssembledPillar, coords: np.ndarray):
     from scipy.spatial import cKDTree
     from .output import vtk_cells
     data = model.mesh_data
+    assert data is not None, "the Gmsh arrays are on rank 0"
     whole = data.order == model.V.ufl_element().degree()
     cells = vtk_cells(data.cells, data.gmsh_cell) if whole else data.corner_cells()
     used, inverse = np.unique(cells, return_inverse=True)
@@ -256,7 +258,9 @@ def run_modal(model: AssembledPillar, n_modes: int, *, tol: float = 1e-10, sigma
     raw_q = [model.gather_vector(x) for x in sol.vectors] if model.extra_dofs else None
     desc = T = norm = pairs = None
     if comm.rank == 0:
-        shapes = np.stack([r.reshape(n_nodes, 3) for r in raw])
+        # rank 0 holds the gathered arrays (None elsewhere)
+        assert coords is not None and all(r is not None for r in raw)
+        shapes = np.stack([r.reshape(n_nodes, 3) for r in raw if r is not None])
         rings = identify.rings_of(coords, model.params.height)
         desc, T, norm, pairs = _align_and_normalise(omega, shapes, rings)
         desc, T, norm = desc[:n_modes], T[:, :n_modes], norm[:n_modes]
@@ -299,15 +303,18 @@ def run_modal(model: AssembledPillar, n_modes: int, *, tol: float = 1e-10, sigma
     norm = comm.bcast(norm, root=0)
     points = vtu_cells = shapes_out = beam_line = rigid = None
     if comm.rank == 0:
-        shapes_n = (np.stack(raw, axis=1) @ T).T.reshape(n_modes, n_nodes, 3)
+        assert coords is not None
+        shapes_n = (np.stack([r for r in raw if r is not None], axis=1) @ T).T.reshape(
+            n_modes, n_nodes, 3)
         points, vtu_cells, node = _vtu_map(model, coords)
         shapes_out = shapes_n[:, node, :]
         beam_line = {}
         for k, d in enumerate(desc):
             if d.kind == "bending_x":
                 beam_line[k] = (rings.levels.copy(), identify.level_mean(rings, shapes_n[k][:, 0]))
-        if model.extra_dofs:
-            rigid = (np.stack([q[model.tube_dofs:] for q in raw_q], axis=1) @ T).T.copy()
+        if raw_q is not None:
+            rigid = (np.stack([q[model.tube_dofs:] for q in raw_q if q is not None], axis=1)
+                     @ T).T.copy()
     timings["postprocess"] = time.perf_counter() - t0
     ms = mesh_section
     cell_type = model.params.cell_type if ms is None else ms.cell_type

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -40,12 +41,18 @@ class AssembledPillar:
     rows 3i, 3i+1, 3i+2 for x, y, z) followed, for the rigid top, by the
     plate's 6 dofs.  The base's Dirichlet rows have K_ii = 1, M_ii = 0.
     """
-    comm: object
-    K: object
-    M: object
-    mesh: object
-    V: object
-    facet_tags: object
+    comm: Any
+    """the MPI communicator (mpi4py)"""
+    K: Any
+    """stiffness matrix (PETSc Mat) (N/m)"""
+    M: Any
+    """mass matrix (PETSc Mat) (kg)"""
+    mesh: Any
+    """the dolfinx mesh"""
+    V: Any
+    """the vector Lagrange space (dolfinx FunctionSpace)"""
+    facet_tags: Any
+    """the facets' physical groups (dolfinx MeshTags)"""
     params: TubeMeshParams
     mesh_data: MeshData | None
     """the Gmsh arrays (rank 0 only; None elsewhere)"""
@@ -61,7 +68,7 @@ class AssembledPillar:
     """local indices of the clamped dofs (owned and ghost)"""
     top_nodes: np.ndarray
     """local indices of the owned nodes on the top face"""
-    T: object = None
+    T: Any = None
     """rigid top only: the tube's dofs u = T x from the unknowns x of K and M"""
     timings: dict = field(default_factory=dict)
 
@@ -127,6 +134,7 @@ def dolfinx_mesh(data: MeshData | None, comm):
     from dolfinx.io import gmshio
     from dolfinx.mesh import create_mesh, meshtags_from_entities
     if comm.rank == 0:
+        assert data is not None, "the Gmsh arrays are on rank 0"
         head = (data.gmsh_cell, data.gmsh_facet, data.cells.shape[1], data.facets.shape[1])
         cells, x = data.cells, data.points
         facets, markers = data.facets, data.facet_markers.astype(np.int32)

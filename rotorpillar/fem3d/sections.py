@@ -32,6 +32,7 @@ rank and one reduction).  With the rigid top the unknowns are x and u
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -53,7 +54,8 @@ class SectionFunctionals:
     rows: np.ndarray
     """(n_local, 3 n_z) this rank's rows of the functionals over the model's unknowns:
     per cut, the force along x, the y-moment, the force along z"""
-    comm: object
+    comm: Any
+    """the MPI communicator (mpi4py)"""
 
     def resultants(self, x) -> np.ndarray:
         """(n_z, 3) shear V (N), moment M (N*m) and axial force N (N, compression

@@ -22,13 +22,13 @@ import math
 import sys
 import time
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Any, Callable, Optional
 
 from ..cache import DiskCache, cache_key, source_hash
 from ..errors import InputError
 from ..executor import Executor
 from ..provenance import write_text
-from ..scene import STUDY_CASES, STUDY_MODELS
+from ..scene import STUDY_CASES, STUDY_MODELS, Scene
 from .axes import check_points, implied_settings, parse_axes, run_scene
 from .batch import group_key, run_batch
 from .boundary import found_boundary, predicted_boundary
@@ -54,7 +54,7 @@ def _source_hash() -> str:
 
 def plan(points: list[dict], case: str, batch_runs: int = BATCH_RUNS) -> list[list[dict]]:
     """The batches: runs sorted by what they must share, cut into near-equal chunks."""
-    runs = [{"index": i, "params": p} for i, p in enumerate(points)]
+    runs: list[dict[str, Any]] = [{"index": i, "params": p} for i, p in enumerate(points)]
     runs.sort(key=lambda r: (repr(group_key(r["params"], case)), r["index"]))
     if not runs:
         return []
@@ -68,7 +68,7 @@ def batch_key(spec: dict, source: str) -> str:
     return cache_key(spec, version=CACHE_VERSION, code=source)
 
 
-def _check_inputs(scene, case: str, model: str, vary: list[str]):
+def _check_inputs(scene: Scene, case: str, model: str, vary: list[str]):
     if case not in STUDY_CASES:
         raise InputError(f"--case {case!r}: a study runs one of {', '.join(STUDY_CASES)}")
     if model not in STUDY_MODELS:
@@ -91,7 +91,7 @@ def _check_inputs(scene, case: str, model: str, vary: list[str]):
     return axes, implied, points
 
 
-def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path,
+def design_study(scene: Scene, case: str, model: str, vary: list[str], *, out_dir: Path,
                  workers: int | None = None, scheduler: str | None = None,
                  cache_dir: Path | None = None, show_progress: bool = True,
                  charts: Optional[Charts] = None, log: Callable[[str], None] | None = None,
