@@ -123,3 +123,17 @@ def test_chain_modes_key_follows_the_mesh_and_the_tolerance():
     assert k != modes_key(override(scene, ["modal.tolerance=1e-10"]), mesh)
     # the drive does not change the pillar's modes
     assert k == modes_key(override(scene, ["rotor.mass=2000"]), mesh)
+
+
+def test_the_run_cache_hashes_files_that_exist():
+    """A module renamed under the run cache's lists would silently leave (or join) a key."""
+    from pathlib import Path
+    from rotorpillar.converge import runner
+    root = Path(runner.__file__).parent.parent
+    for name in (runner.SHELL_MODEL, runner.SHELL_MESH, *runner.SHELL_SOLVER):
+        assert (root / (name.replace(".", "/") + ".py")).exists(), name
+    for name in runner.SOLID_CONSUMERS:
+        assert (root / "fem3d" / f"{name}.py").exists(), name
+    shell, solid = runner._source_files("shell"), runner._source_files("solid")
+    assert all(f.exists() for f in shell + solid)
+    assert root / "fem3d" / "eigensolver.py" in shell and root / "fem3d" / "naghdi.py" not in solid
