@@ -37,10 +37,13 @@ import logging
 import socket
 import struct
 import time
-from typing import Callable, Iterable, Iterator
+from typing import Any, Callable, Iterable, Iterator, TypeVar
 
 from .errors import ComputationError, InputError
 from .provenance import usable_cores
+
+T = TypeVar("T")
+R = TypeVar("R")
 
 #: The whole probe of a scheduler's address (connect and its greeting), seconds.
 HANDSHAKE_SECONDS = 5.0
@@ -171,8 +174,10 @@ class Executor:
         self.scheduler = scheduler
         self.processes = processes
         self.timeout = timeout
-        self.client = None
-        self.cluster = None
+        self.client: Any = None
+        """the distributed.Client while entered, else None"""
+        self.cluster: Any = None
+        """the distributed.LocalCluster this executor started, else None"""
 
     # ------------------------------------------------------------ lifetime
     def __enter__(self) -> "Executor":
@@ -228,7 +233,8 @@ class Executor:
                 "threads": threads}
 
     # ------------------------------------------------------------ work
-    def map(self, fn: Callable, items: Iterable, *, pure: bool = False) -> Iterator[tuple[int, object]]:
+    def map(self, fn: Callable[[T], R], items: Iterable[T], *,
+            pure: bool = False) -> Iterator[tuple[int, R]]:
         """``(index, fn(item))`` for every item, in the order they finish.
 
         An exception in ``fn`` is raised here when its result comes up; the

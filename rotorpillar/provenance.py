@@ -321,14 +321,15 @@ class JsonRecord:
     """
 
     def to_json(self) -> dict:
-        return {f.name: _record_json(getattr(self, f.name)) for f in dataclasses.fields(self)
+        return {f.name: _record_json(getattr(self, f.name))
+                for f in dataclasses.fields(typing.cast(typing.Any, self))
                 if not (f.metadata.get("omit_if_none") and getattr(self, f.name) is None)}
 
     @classmethod
     def from_json(cls, doc: dict):
         hints = typing.get_type_hints(cls)
         kwargs = {}
-        for f in dataclasses.fields(cls):
+        for f in dataclasses.fields(typing.cast(typing.Any, cls)):
             if f.name in doc:
                 kwargs[f.name] = _record_from(hints.get(f.name), doc[f.name])
             elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:

@@ -25,10 +25,10 @@ from typing import Optional
 
 from ..scene import Scene
 from .choice import Choice, choose, solid_mesh_section, study_on_disk
-from .modes import ChainModes, TipReductionOf, cache_root, chain_modes, rom_band_top
+from .modes import ChainModes, TipReductionOf, chain_modes, rom_band_top
 from .record import PillarModel, Uncertain
 
-__all__ = ["ChainModes", "Choice", "PillarModel", "TipReductionOf", "Uncertain", "cache_root",
+__all__ = ["ChainModes", "Choice", "PillarModel", "TipReductionOf", "Uncertain",
            "chain_modes", "choose", "resolve", "rom_band_top", "solid_mesh_section",
            "study_on_disk"]
 

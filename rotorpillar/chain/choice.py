@@ -24,7 +24,7 @@ import dataclasses
 import json
 from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Optional
+from typing import Any, Optional
 
 from ..scene import Mesh, Scene
 from .record import PillarModel
@@ -38,7 +38,7 @@ STUDY_INPUTS = {
 }
 
 #: The closed form's own model, for the ROM's modes when the study chose Eq. 1.
-CLOSED_FORM_BEAM = {"theory": "euler", "elements": 64}
+CLOSED_FORM_BEAM: dict[str, Any] = {"theory": "euler", "elements": 64}
 
 
 @dataclass(frozen=True)

@@ -13,10 +13,7 @@ the same modes on this machine solves them once.
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
-import os
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -24,7 +21,8 @@ from typing import Optional
 
 import numpy as np
 
-from ..provenance import JsonRecord, write_json
+from ..cache import DiskCache, cache_key, source_hash, user_cache_root
+from ..provenance import JsonRecord
 from ..reduced.pillar_modes import PillarModes
 from ..scene import Scene
 from .choice import Choice, solid_mesh_section
@@ -70,44 +68,23 @@ class ChainModes:
         return max(1, int(np.sum(np.asarray(self.modes.omega) <= band_top)))
 
 
-def cache_root() -> Path:
-    """The user's cache of 3D results (``$ROTORPILLAR_CACHE``, else ~/.cache/rotorpillar)."""
-    env = os.environ.get("ROTORPILLAR_CACHE")
-    if env:
-        return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "rotorpillar"
-
-
 def _code_hash() -> str:
     """The source of everything a cached 3D result depends on."""
     root = Path(__file__).resolve().parent.parent
     files = sorted((root / "fem3d").glob("*.py")) + sorted((root / "mesh").glob("*.py"))
     files += [root / "reduced" / "pillar_modes.py", Path(__file__).resolve()]
-    h = hashlib.sha256()
-    for f in files:
-        h.update(f.name.encode())
-        h.update(f.read_bytes())
-    return h.hexdigest()[:16]
+    return source_hash(files)
 
 
 def modes_key(scene: Scene, mesh: dict) -> str:
     """Hash of what the loaded tube's 3D modes depend on."""
     p, md = scene.pillar, scene.modal
-    doc = {"version": CACHE_VERSION, "code": _code_hash(), "mesh": mesh,
-           "pillar": {k: getattr(p, k) for k in ("height", "outer_diameter", "inner_diameter",
-                                                  "youngs_modulus", "poisson_ratio", "density")},
-           "gondola": scene.gondola.mass, "top_model": md.top_model, "top_mass": md.top_mass,
-           "tolerance": md.tolerance}
-    return hashlib.sha256(json.dumps(doc, sort_keys=True).encode()).hexdigest()[:24]
-
-
-def _read(path: Path, key: str) -> Optional[dict]:
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    return doc if isinstance(doc, dict) and doc.get("key") == key else None
+    args = {"mesh": mesh,
+            "pillar": {k: getattr(p, k) for k in ("height", "outer_diameter", "inner_diameter",
+                                                   "youngs_modulus", "poisson_ratio", "density")},
+            "gondola": scene.gondola.mass, "top_model": md.top_model, "top_mass": md.top_mass,
+            "tolerance": md.tolerance}
+    return cache_key(args, version=CACHE_VERSION, code=_code_hash())
 
 
 def _enough(omega, band_top: float) -> bool:
@@ -138,6 +115,7 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
                              f"Eq. 2 on the bare tube's first bending mode, {pm.label}")
     if comm is not None and comm.size > 1:
         modes, red = comm.bcast((modes, red), root=0)
+    assert modes is not None and red is not None, "rank 0 computes them, then broadcasts"
     return modes, red, n
 
 
@@ -160,8 +138,9 @@ def chain_modes(scene: Scene, choice: Choice, band_top: float, *, comm=None,
         modes, red = _beam(scene, pm)
         return ChainModes(pm, modes, red, None, time.perf_counter() - start)
     key = modes_key(scene, pm.mesh)
-    path = (cache_root() if root is None else Path(root)) / "modes" / f"{key}.json"
-    doc = _read(path, key)
+    cache = DiskCache((user_cache_root() if root is None else Path(root)) / "modes")
+    path = cache.path(key)
+    doc = cache.read(key)
     if doc is not None and _enough(doc["modes"]["omega"], band_top):
         return ChainModes(pm, PillarModes.from_json(doc["modes"]),
                           TipReductionOf.from_json(doc["reduction"]), str(path), 0.0,
@@ -173,9 +152,9 @@ def chain_modes(scene: Scene, choice: Choice, band_top: float, *, comm=None,
     seconds = time.perf_counter() - start
     if comm is None or comm.rank == 0:
         try:
-            write_json(path, {"key": key, "label": pm.label, "mesh": pm.mesh,
-                              "modes": modes.to_json(), "reduction": red.to_json(),
-                              "seconds": seconds, "loaded_modes": asked})
+            cache.write(key, {"label": pm.label, "mesh": pm.mesh, "modes": modes.to_json(),
+                              "reduction": red.to_json(), "seconds": seconds,
+                              "loaded_modes": asked})
         except OSError:
             pass        # a read-only cache costs the next stage a solve, nothing else
     return ChainModes(pm, modes, red, str(path), seconds, asked)

@@ -8,14 +8,19 @@ dolfinx and run in a fresh subprocess (:func:`compute_fe`, called by
 
 from __future__ import annotations
 
-from typing import Optional
+from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
 from ..reduced.beam_fe import BeamProperties, beam_modes
 from ..reduced.cylinder import ring_frequency
 from ..reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, section_of
+from ..scene import Scene
 from .ladder import FAMILIES, N_MODES, N_MODES_FIRST, QUANTITIES, Case, solid_mesh
+
+if TYPE_CHECKING:       # the FE models import dolfinx: at run time, only where they run
+    from ..fem3d.modal import ModalResult
+    from ..fem3d.naghdi import ShellModalResult
 
 
 def _first(omega, kind, want: str) -> tuple[Optional[float], Optional[int]]:
@@ -27,8 +32,9 @@ def _first(omega, kind, want: str) -> tuple[Optional[float], Optional[int]]:
 
 def _modal_summary(omega, kind, n_circ) -> dict:
     """The run's quantities from a list of modes."""
-    out = {"modes": [{"omega": float(w), "kind": k, "n": None if n is None else int(n)}
-                     for w, k, n in zip(omega, kind, n_circ)]}
+    out: dict[str, Any] = {"modes": [{"omega": float(w), "kind": k,
+                                      "n": None if n is None else int(n)}
+                                     for w, k, n in zip(omega, kind, n_circ)]}
     for q in QUANTITIES:
         w, i = _first(omega, kind, q)
         out[q] = w
@@ -59,7 +65,7 @@ def compute_in_process(case: Case, pillar) -> dict:
             "dofs": int(m.dofs), "modes": [{"omega": float(m.omega[0]), "kind": "bending_x", "n": 1}]}
 
 
-def compute_fe(case: Case, scene, fresh: bool = False) -> dict:
+def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> dict:
     """A shell or solid run, in this process (the subprocess worker calls this).
 
     The run asks for ``N_MODES_FIRST`` modes and for ``N_MODES`` only when
@@ -78,10 +84,11 @@ def compute_fe(case: Case, scene, fresh: bool = False) -> dict:
     return out
 
 
-def _compute_fe(case: Case, scene, n_modes: int, fresh: bool) -> dict:
+def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> dict:
     fam = FAMILIES[case.family]
     pillar = scene.pillar
     s = case.settings
+    r: ShellModalResult | ModalResult
     if fam.model == "shell":
         from ..fem3d.naghdi import ShellDiscretisation, shell_modal_analysis, shell_section_of
         sec, R, H = shell_section_of(pillar)

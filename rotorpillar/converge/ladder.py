@@ -26,7 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ..scene import CELL_TYPES, SHELL_CELL_TYPES, Mesh
+from ..scene import CELL_TYPES, SHELL_CELL_TYPES, Mesh, Scene
 
 QUADRILATERAL, TRIANGLE = SHELL_CELL_TYPES
 HEXAHEDRON, TETRAHEDRON = CELL_TYPES
@@ -151,7 +151,7 @@ def _along(around: int) -> int:
     return max(1, int(round(ALONG_PER_AROUND * around)))
 
 
-def ladder(scene) -> list[Case]:
+def ladder(scene: Scene) -> list[Case]:
     """Every run of the study for a scene (its ``[converge]`` limits and ``[mesh]`` shape).
 
     The bending-only 3D family's level is its number of elements along.  The 3D rungs refine the scene's own [mesh] in proportion: elements along
@@ -242,6 +242,6 @@ def solid_mesh(case: Case):
                 cell_type=s["cell_type"], grading=s["grading"])
 
 
-def study_cases(scene) -> list[Case]:
+def study_cases(scene: Scene) -> list[Case]:
     """The study's runs for a scene (the whole ladder)."""
     return ladder(scene)

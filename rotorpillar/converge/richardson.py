@@ -12,7 +12,7 @@ limits of the most complete family, checked against the three runs before.
 
 from __future__ import annotations
 
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 from scipy.optimize import brentq
@@ -64,7 +64,7 @@ def family_series(records: list[dict], family: str, quantity: str) -> list[dict]
 
 def family_extrapolations(records: list[dict]) -> dict:
     """Per refined family and quantity: Richardson on its three finest runs."""
-    out = {}
+    out: dict[str, dict[str, Any]] = {}
     for name, fam in FAMILIES.items():
         if fam.order is None:
             continue

@@ -12,7 +12,6 @@ pure-Python models run in-process and report tracemalloc's peak.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import resource
 import sys
@@ -22,6 +21,7 @@ import tracemalloc
 from pathlib import Path
 from typing import Callable, Optional
 
+from ..cache import DiskCache, cache_key, source_hash
 from ..provenance import write_json
 from .compute import compute_fe, compute_in_process
 from .ladder import FAMILIES, N_MODES, Case, estimated_dofs, estimated_seconds, resolved_only
@@ -29,8 +29,10 @@ from .ladder import FAMILIES, N_MODES, Case, estimated_dofs, estimated_seconds, 
 
 SHELL_MODEL, SHELL_MESH = "fem3d.naghdi", "mesh.midsurface"
 """The shell model's modules (the solid model is every other module of fem3d and mesh)."""
+SHELL_SOLVER = ("fem3d.eigensolver", "fem3d.block_lanczos", "fem3d.identify")
+"""The modules the shell model shares with the solid one (its solve and its mode names)."""
 
-SOLID_CONSUMERS = ("summary", "pillar_modes", "transient", "output")
+SOLID_CONSUMERS = ("modal_summary", "pillar_modes", "full_order", "output")
 """fem3d modules that use the 3D modes but do not compute them."""
 
 CACHE_VERSION = 2
@@ -46,7 +48,7 @@ def _source_files(model: str) -> list[Path]:
         return [root / "reduced" / "beam_fe.py", root / "reduced" / "pillar.py"]
     shell = [root / (m.replace(".", "/") + ".py") for m in (SHELL_MODEL, SHELL_MESH)]
     if model == "shell":
-        return shell
+        return shell + [root / (m.replace(".", "/") + ".py") for m in SHELL_SOLVER]
     # the solid model: every module of fem3d and mesh but the shell's and those
     # that only use the modes (a change there leaves the cached frequencies valid)
     files = sorted((root / "fem3d").glob("*.py")) + sorted((root / "mesh").glob("*.py"))
@@ -54,28 +56,17 @@ def _source_files(model: str) -> list[Path]:
     return [f for f in files if f not in shell and f not in after]
 
 
-def _source_hash(model: str) -> str:
-    h = hashlib.sha256()
-    for f in _source_files(model):
-        if f.exists():
-            h.update(f.name.encode())
-            h.update(f.read_bytes())
-    return h.hexdigest()[:16]
-
-
 def case_key(case: Case, pillar, tolerance: float | None = None) -> str:
     """Hash of everything a run's result depends on (``tolerance``: the 3D
     eigen-solve's, ``modal.tolerance``; the other models have their own)."""
     fam = FAMILIES[case.family]
-    doc = {"cache_version": CACHE_VERSION, "model": fam.model, "params": case.settings,
-           "n_modes": N_MODES if fam.model in ("shell", "solid") else None,
-           "tolerance": tolerance if fam.model == "solid" else None,
-           "pillar": {k: getattr(pillar, k) for k in
-                      ("height", "outer_diameter", "inner_diameter", "youngs_modulus",
-                       "poisson_ratio", "density")},
-           "source": _source_hash(fam.model)}
-    text = json.dumps(doc, sort_keys=True)
-    return hashlib.sha256(text.encode()).hexdigest()[:24]
+    args = {"model": fam.model, "params": case.settings,
+            "n_modes": N_MODES if fam.model in ("shell", "solid") else None,
+            "tolerance": tolerance if fam.model == "solid" else None,
+            "pillar": {k: getattr(pillar, k) for k in
+                       ("height", "outer_diameter", "inner_diameter", "youngs_modulus",
+                        "poisson_ratio", "density")}}
+    return cache_key(args, version=CACHE_VERSION, code=source_hash(_source_files(fam.model)))
 
 
 def _run_in_process(case: Case, pillar) -> dict:
@@ -284,9 +275,9 @@ def check_memory(cases: list[Case], workers: int) -> None:
 
 def todo_cases(cases: list[Case], scene, cache_dir: Path) -> list[Case]:
     """The cases the run cache under ``cache_dir`` does not hold."""
+    cache = DiskCache(Path(cache_dir))
     return [c for c in cases
-            if _load_cached(Path(cache_dir) / f"{case_key(c, scene.pillar, scene.modal.tolerance)}.json",
-                            case_key(c, scene.pillar, scene.modal.tolerance)) is None]
+            if _load_cached(cache, case_key(c, scene.pillar, scene.modal.tolerance)) is None]
 
 
 def run_study(cases: list[Case], scene, cache_dir: Path, *,
@@ -308,12 +299,12 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
     """
     from tqdm import tqdm
 
-    cache_dir = Path(cache_dir)
+    cache = DiskCache(Path(cache_dir))
     keys = [case_key(c, scene.pillar, scene.modal.tolerance) for c in cases]
     records: list[Optional[dict]] = [None] * len(cases)
     todo = []
     for i, (c, key) in enumerate(zip(cases, keys)):
-        cached = _load_cached(cache_dir / f"{key}.json", key)
+        cached = _load_cached(cache, key)
         if cached is not None:
             # names follow the code, not the cache (they are not part of the key)
             records[i] = {**resolved_only(c.family, cached), "label": c.label,
@@ -347,7 +338,7 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
             raise exc
         else:
             rec = _record(case, key, result)
-            write_json(cache_dir / f"{key}.json", rec)
+            cache.write(key, rec)
             records[i] = {**resolved_only(case.family, rec), "cached": False}
         bar.set_postfix_str(case.label)
         bar.update(weights[i])
@@ -398,11 +389,6 @@ def _run_parallel(todo, cases, scene, runner, workers, executor, finish, weights
             ex.__exit__(None, None, None)
 
 
-def _load_cached(path: Path, key: str) -> Optional[dict]:
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    # a file of another shape (null, a list, cut short) is no cached run: recompute it
-    return doc if isinstance(doc, dict) and doc.get("key") == key and doc.get("status") == "ok" \
-        else None
+def _load_cached(cache: DiskCache, key: str) -> Optional[dict]:
+    # a damaged file or a failed run is no cached run: recompute it
+    return cache.read(key, accept=lambda doc: doc.get("status") == "ok")

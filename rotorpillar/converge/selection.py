@@ -112,13 +112,17 @@ def select_model(records: list[dict], reference: dict, band: dict, tolerance: fl
                            f"inside the band (up to {band['omega_max']:.4g} rad/s), so no run has "
                            "an error estimate to meet the tolerance with; extend the ladder "
                            "([converge] limits, converge.solid = true)")}
-    meets, rejected = [], []
+    meets: list[dict] = []
+    rejected: list[tuple[dict, float, str]] = []
     for r in ok_runs:
         missing = [q for q in needed if r.get(q) is None]
         if missing:
             rejected.append((r, math.inf, "no " + " and no ".join(missing) + " mode"))
             continue
         worst = band_error(r, needed, ref_unc)
+        if worst is None:
+            rejected.append((r, math.inf, "no error bound on " + " or ".join(needed)))
+            continue
         if worst <= tolerance:
             meets.append(r)
         else:
@@ -143,7 +147,7 @@ def select_model(records: list[dict], reference: dict, band: dict, tolerance: fl
         return out
     best = min(meets, key=lambda r: (r["wall_time"], r["dofs"]))
     # per family, its most accurate run among those cheaper than the choice
-    by_family = {}
+    by_family: dict[str, tuple[dict, str]] = {}
     for r, worst, why in sorted(rejected, key=lambda t: t[1]):
         if r["wall_time"] < best["wall_time"]:
             by_family.setdefault(r["family"], (r, why))
@@ -245,12 +249,16 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
     """
     quantities = tuple(q for q in quantities if q in reference)
     unc = reference_uncertainty(reference)
-    cands = [r for r in records if r.get("status") == "ok" and FAMILIES[r["family"]].model == "solid"
-             and (max_dofs is None or r["dofs"] <= max_dofs)
-             and band_error(r, list(quantities), unc) is not None]
+    err: dict[int, float] = {}
+    for r in records:
+        if r.get("status") == "ok" and FAMILIES[r["family"]].model == "solid" \
+                and (max_dofs is None or r["dofs"] <= max_dofs):
+            e = band_error(r, list(quantities), unc)
+            if e is not None:
+                err[id(r)] = e
+    cands = [r for r in records if id(r) in err]
     if not quantities or not cands:
         return None
-    err = {id(r): band_error(r, list(quantities), unc) for r in cands}
     by_cost = lambda r: (r["dofs"], r["wall_time"])      # noqa: E731
     within_tol = sorted((r for r in cands if err[id(r)] <= tolerance), key=by_cost)
     if not within_tol:

@@ -8,7 +8,7 @@ The public API (dolfinx, PETSc and SLEPc are imported inside the functions):
   other; see :mod:`rotorpillar.fem3d.identify`).
 - :func:`reduction_from_scene` (scene) -> (m_reduced, tip_stiffness): the
   paper's Eq. 2 done on the 3D model's first bending mode.
-- :func:`assemble_pillar` (scene, top=...) -> :class:`PillarModel`: the
+- :func:`assemble_pillar` (scene, top=...) -> :class:`AssembledPillar`: the
   assembled K and M in PETSc with the node coordinates and top-face nodes,
   for time integration of the 3D model.
 
@@ -29,6 +29,7 @@ Eq. 2    rotorpillar.fem3d.reduction.beam_line_tip_mass
 
 from __future__ import annotations
 
+from ..scene import Scene
 from .modal import AXES, ModalResult  # noqa: F401  (numpy-only modules)
 from .reduction import TipReduction, tip_reduction  # noqa: F401
 
@@ -41,15 +42,15 @@ _CACHE: OrderedDict = OrderedDict()
 CACHE_SIZE = 4
 
 
-def _top_settings(scene, top: bool):
+def _top_settings(scene: Scene, top: bool):
     if not top:
         return None, 0.0
     m = scene.gondola.mass + (scene.rotor.mass if scene.modal.top_mass == "gondola_and_rotor" else 0.0)
     return scene.modal.top_model, m
 
 
-def assemble_pillar(scene, *, top: bool, mesh=None, comm=None, isolated: bool = True):
-    """The assembled 3D model of the scene's pillar (see :class:`model.PillarModel`).
+def assemble_pillar(scene: Scene, *, top: bool, mesh=None, comm=None, isolated: bool = True):
+    """The assembled 3D model of the scene's pillar (see :class:`model.AssembledPillar`).
 
     ``mesh`` (a scene ``Mesh`` section) replaces ``scene.mesh``; ``top`` adds
     the masses on top as ``scene.modal`` says (rigid plate or ring mass).
@@ -60,7 +61,7 @@ def assemble_pillar(scene, *, top: bool, mesh=None, comm=None, isolated: bool = 
                           top_model=top_model, top_mass=top_mass, comm=comm, isolated=isolated)
 
 
-def modal_analysis(scene, *, top: bool, n_modes: int | None = None, mesh=None, comm=None,
+def modal_analysis(scene: Scene, *, top: bool, n_modes: int | None = None, mesh=None, comm=None,
                    isolated: bool = True, use_cache: bool = True) -> ModalResult:
     """The ``n_modes`` lowest modes (default ``scene.modal.n_modes``) of the pillar.
 
@@ -100,7 +101,7 @@ BAND_MODES = 8
 """Modes first computed for ``modal.n_modes = 0`` (doubled while the band is not passed)."""
 
 
-def _band_modes(scene, **kw) -> ModalResult:
+def _band_modes(scene: Scene, **kw) -> ModalResult:
     """Enough modes to pass the scene's band: the 3D modes a scene needs (its
     excitation up to the band's edge, and the mode beyond it), in blocks of
     BAND_MODES; not the 16 or more a fixed count asks on every scene."""
@@ -114,7 +115,7 @@ def _band_modes(scene, **kw) -> ModalResult:
         n *= 2
 
 
-def reduction_from_scene(scene) -> tuple[float, float]:
+def reduction_from_scene(scene: Scene) -> tuple[float, float]:
     """(m_reduced in kg, tip_stiffness in N/m) from the bare tube's first bending mode.
 
     Kinetic-energy equivalence (the paper's Eq. 2) on the 3D mode normalised

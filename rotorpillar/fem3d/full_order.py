@@ -53,12 +53,14 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field, fields
+from typing import Any
 
 import numpy as np
 
 from ..errors import InputError
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion
+from ..scene import Scene
 from .rotor_top import (Affine, Rotor, Step, coupling_torque, drive_torque, plate_and_rotor,
                         rotor_start, rotor_step_stiffness, solve_spin)
 from .step_operator import Plate, add_shaft_acceleration, step_operator
@@ -144,14 +146,16 @@ class Fem3dTransient:
     @classmethod
     def from_json(cls, data: dict) -> "Fem3dTransient":
         arrays = {f.name for f in fields(cls) if f.type == "np.ndarray"}
-        return cls(**{k: (np.asarray(v, dtype=float) if k in arrays else v) for k, v in data.items()})
+        kwargs: dict[str, Any] = {k: (np.asarray(v, dtype=float) if k in arrays else v)
+                                  for k, v in data.items()}
+        return cls(**kwargs)
 
 
 # --------------------------------------------------------------------------
 # The run
 
 
-def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
+def simulate_fem3d(scene: Scene, case: str, *, motion: GroundMotion | None = None,
                    drive: DriveSchedule | None = None, duration: float | None = None,
                    time_step: float | None = None, mesh=None, samples: int = 2001,
                    initial_speed: float | None = None, initial_angle: float = 0.0,
@@ -213,7 +217,7 @@ def simulate_fem3d(scene, case: str, *, motion: GroundMotion | None = None,
                    check.failed)
 
 
-def _scheme_name(scene) -> str:
+def _scheme_name(scene: Scene) -> str:
     fo = scene.full_order
     return fo.integrator + ("" if fo.integrator == "newmark" else f", rho_inf {fo.rho_inf:g}")
 
@@ -324,7 +328,7 @@ def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: Gro
     work = np.zeros(4)
     n_out = steps // stride + (1 if steps % stride else 0) + 1
     keys = ("t", "Omega", "theta", "tip_x", "rotor_x", "rotor_y", "plate_z", "shaft_x", "shaft_y", "energy")
-    out = {k: np.zeros(n_out) for k in keys}
+    out: dict[str, Any] = {k: np.zeros(n_out) for k in keys}
     out["work"] = np.zeros((n_out, 4))
     peaks = dict.fromkeys(("tip_x", "tip_x_absolute", "rotor_x", "rotor_y", "shaft_deflection_x",
                            "shaft_deflection_y", "plate_z"), 0.0)

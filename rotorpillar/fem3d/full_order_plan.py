@@ -22,12 +22,13 @@ from ..reduced.accuracy import (AccuracyCheck, StepRule, check_step, forcing_fre
                                 full_order_parameters, full_order_step)
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion, no_motion
+from ..scene import Scene
 
 CASES_3D = ("earthquake", "runup")
 SCHEMES_3D = ("newmark", "hht", "generalized_alpha")
 
 
-def case_setup(scene, case: str, motion: GroundMotion | None, drive: DriveSchedule | None,
+def case_setup(scene: Scene, case: str, motion: GroundMotion | None, drive: DriveSchedule | None,
                duration: float | None, initial_speed: float | None):
     """(motion, drive, duration, initial speed, notes) of a case, as the reduced models run it."""
     if case not in CASES_3D:
@@ -54,7 +55,7 @@ def case_setup(scene, case: str, motion: GroundMotion | None, drive: DriveSchedu
     return motion, drive, float(duration), float(initial_speed), notes
 
 
-def beam_operating_speed(scene, drive: DriveSchedule, motion: GroundMotion) -> float:
+def beam_operating_speed(scene: Scene, drive: DriveSchedule, motion: GroundMotion) -> float:
     """The operating speed from the modal model on the 1D beam's modes (cheap, no dolfinx):
     far from the resonances it differs from the 3D one by the beams' frequency error only."""
     from ..reduced.models import build_model
@@ -79,7 +80,7 @@ def top_speed(drive: DriveSchedule, speed: float) -> float:
     return max([abs(speed)] + [w for w in frees if math.isfinite(w)])
 
 
-def step_rule(scene, drive: DriveSchedule, motion: GroundMotion, speed: float,
+def step_rule(scene: Scene, drive: DriveSchedule, motion: GroundMotion, speed: float,
               time_step: float | None = None) -> StepRule:
     """The 3D run's step and why: ``time_step``, else ``simulate.time_step`` or
     ``full_order.time_step`` when set, else the band's rule (module text)."""
@@ -128,7 +129,7 @@ class RunEstimate(JsonRecord):
     """estimated wall time of the integration (s)"""
 
 
-def estimate(scene, duration: float, rule: StepRule, mesh=None) -> RunEstimate:
+def estimate(scene: Scene, duration: float, rule: StepRule, mesh=None) -> RunEstimate:
     """Steps and wall time of a run of ``duration`` at the rule's step on ``mesh``
     (default ``scene.mesh``), from the scene alone."""
     from ..mesh import tube_params
@@ -140,7 +141,7 @@ def estimate(scene, duration: float, rule: StepRule, mesh=None) -> RunEstimate:
                        float(steps * (a + b * dofs**1.5)))
 
 
-def check_budget(scene, case: str, est: RunEstimate) -> None:
+def check_budget(scene: Scene, case: str, est: RunEstimate) -> None:
     """Refuse (InputError, one line naming the keys) a run above ``simulate.max_steps``."""
     limit = scene.simulate.max_steps
     if math.isfinite(est.steps) and est.steps <= limit:
@@ -163,7 +164,7 @@ def _time(seconds: float) -> str:
     return f"{seconds:.3g} s"
 
 
-def accuracy(scene, h: float, duration: float, top: float, motion: GroundMotion) -> AccuracyCheck:
+def accuracy(scene: Scene, h: float, duration: float, top: float, motion: GroundMotion) -> AccuracyCheck:
     """The step ``h`` a run took against what it had to resolve: the unbalance's
     rotation at the fastest speed it reached, ``top``, and the ground motion's band
     (rotorpillar.reduced.accuracy.check_step)."""

@@ -51,7 +51,7 @@ def shaft_pull(shaft_stiffness: float, rotor_mass: float, shaft_damping: float, 
 
 
 def harmonic_response(model, rotor, tip_damping: float, speeds) -> HarmonicResponse:
-    """The steady response of an assembled PillarModel with the rigid top (collective).
+    """The steady response of an AssembledPillar with the rigid top (collective).
 
     The block matrices [[K, 0], [0, K]] and [[M, 0], [0, M]] are converted
     once (with explicit zeros where the plate's coupling terms go), so every

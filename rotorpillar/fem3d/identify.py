@@ -153,11 +153,18 @@ class ModeDescription:
     """max |u| over the nodes"""
 
 
-def describe_mode(xyz: np.ndarray, u: np.ndarray, rings: Rings | None = None) -> ModeDescription:
-    """Kind, circumferential and axial wave numbers of one mode shape u (n, 3)."""
-    rings = rings_of(xyz) if rings is None else rings
+def describe_mode(xyz: np.ndarray | None, u: np.ndarray, rings: Rings | None = None,
+                  n_max: int = N_MAX) -> ModeDescription:
+    """Kind, circumferential and axial wave numbers of one mode shape u (n, 3).
+
+    ``xyz`` (n, 3) the nodes, or None with their ``rings``; ``n_max``: the highest
+    circumferential harmonic analysed."""
+    if rings is None:
+        if xyz is None:
+            raise ValueError("describe_mode: give the nodes xyz or their rings")
+        rings = rings_of(xyz)
     ucyl = cylindrical(rings, u)
-    shares = harmonic_shares(rings, ucyl)
+    shares = harmonic_shares(rings, ucyl, n_max)
     per_n = shares.sum(axis=1)
     n = int(np.argmax(per_n))
     tip = (float(np.mean(u[rings.top, 0])), float(np.mean(u[rings.top, 1])))

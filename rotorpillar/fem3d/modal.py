@@ -17,9 +17,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import ComputationError
+from ..scene import Scene
 from . import identify
 from .eigensolver import solve_gep_shift_invert
-from .model import PillarModel
+from .model import AssembledPillar
 
 #: Two eigenvalues closer than this (relative) form a degenerate pair.
 PAIR_TOLERANCE = 1e-5
@@ -158,14 +159,14 @@ class ModalResult:
         return out
 
 
-def _scene_top_mass(scene) -> float:
+def _scene_top_mass(scene: Scene) -> float:
     m = scene.gondola.mass
     if scene.modal.top_mass == "gondola_and_rotor":
         m += scene.rotor.mass
     return m
 
 
-def _vtu_map(model: PillarModel, coords: np.ndarray):
+def _vtu_map(model: AssembledPillar, coords: np.ndarray):
     """The VTU's nodes and cells (VTK order) and, for each node, its node in the global dof order.
 
     On a quadratic mesh with the degree-2 space (the default) every node of
@@ -177,6 +178,7 @@ def _vtu_map(model: PillarModel, coords: np.ndarray):
     from scipy.spatial import cKDTree
     from .output import vtk_cells
     data = model.mesh_data
+    assert data is not None, "the Gmsh arrays are on rank 0"
     whole = data.order == model.V.ufl_element().degree()
     cells = vtk_cells(data.cells, data.gmsh_cell) if whole else data.corner_cells()
     used, inverse = np.unique(cells, return_inverse=True)
@@ -228,7 +230,7 @@ def _align_and_normalise(omega, shapes, rings):
     return desc, T, norm, pairs
 
 
-def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
+def run_modal(model: AssembledPillar, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
               mesh_section=None, material: tuple[float, float] | None = None) -> ModalResult:
     """Solve, gather, name, align and normalise the modes of an assembled model.
 
@@ -256,7 +258,9 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
     raw_q = [model.gather_vector(x) for x in sol.vectors] if model.extra_dofs else None
     desc = T = norm = pairs = None
     if comm.rank == 0:
-        shapes = np.stack([r.reshape(n_nodes, 3) for r in raw])
+        # rank 0 holds the gathered arrays (None elsewhere)
+        assert coords is not None and all(r is not None for r in raw)
+        shapes = np.stack([r.reshape(n_nodes, 3) for r in raw if r is not None])
         rings = identify.rings_of(coords, model.params.height)
         desc, T, norm, pairs = _align_and_normalise(omega, shapes, rings)
         desc, T, norm = desc[:n_modes], T[:, :n_modes], norm[:n_modes]
@@ -299,15 +303,18 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
     norm = comm.bcast(norm, root=0)
     points = vtu_cells = shapes_out = beam_line = rigid = None
     if comm.rank == 0:
-        shapes_n = (np.stack(raw, axis=1) @ T).T.reshape(n_modes, n_nodes, 3)
+        assert coords is not None
+        shapes_n = (np.stack([r for r in raw if r is not None], axis=1) @ T).T.reshape(
+            n_modes, n_nodes, 3)
         points, vtu_cells, node = _vtu_map(model, coords)
         shapes_out = shapes_n[:, node, :]
         beam_line = {}
         for k, d in enumerate(desc):
             if d.kind == "bending_x":
                 beam_line[k] = (rings.levels.copy(), identify.level_mean(rings, shapes_n[k][:, 0]))
-        if model.extra_dofs:
-            rigid = (np.stack([q[model.tube_dofs:] for q in raw_q], axis=1) @ T).T.copy()
+        if raw_q is not None:
+            rigid = (np.stack([q[model.tube_dofs:] for q in raw_q if q is not None], axis=1)
+                     @ T).T.copy()
     timings["postprocess"] = time.perf_counter() - t0
     ms = mesh_section
     cell_type = model.params.cell_type if ms is None else ms.cell_type
@@ -329,7 +336,7 @@ def run_modal(model: PillarModel, n_modes: int, *, tol: float = 1e-10, sigma: fl
         section_resultants=None if cuts is None else cuts[1])
 
 
-def mode_resultants(model: PillarModel, local: np.ndarray, youngs_modulus: float,
+def mode_resultants(model: AssembledPillar, local: np.ndarray, youngs_modulus: float,
                     poisson_ratio: float) -> tuple[np.ndarray, np.ndarray]:
     """(heights, (modes, n_z, 3) resultants) of the distributed mode vectors ``local``
     (this rank's rows of the unknowns, one column per mode); collective."""

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -32,7 +33,7 @@ RIGID_DOFS = 6
 
 
 @dataclass
-class PillarModel:
+class AssembledPillar:
     """The assembled tube: what a modal solve or a time integrator needs.
 
     ``K`` and ``M`` are PETSc matrices over the tube's dofs (``3 *
@@ -40,12 +41,18 @@ class PillarModel:
     rows 3i, 3i+1, 3i+2 for x, y, z) followed, for the rigid top, by the
     plate's 6 dofs.  The base's Dirichlet rows have K_ii = 1, M_ii = 0.
     """
-    comm: object
-    K: object
-    M: object
-    mesh: object
-    V: object
-    facet_tags: object
+    comm: Any
+    """the MPI communicator (mpi4py)"""
+    K: Any
+    """stiffness matrix (PETSc Mat) (N/m)"""
+    M: Any
+    """mass matrix (PETSc Mat) (kg)"""
+    mesh: Any
+    """the dolfinx mesh"""
+    V: Any
+    """the vector Lagrange space (dolfinx FunctionSpace)"""
+    facet_tags: Any
+    """the facets' physical groups (dolfinx MeshTags)"""
     params: TubeMeshParams
     mesh_data: MeshData | None
     """the Gmsh arrays (rank 0 only; None elsewhere)"""
@@ -61,7 +68,7 @@ class PillarModel:
     """local indices of the clamped dofs (owned and ghost)"""
     top_nodes: np.ndarray
     """local indices of the owned nodes on the top face"""
-    T: object = None
+    T: Any = None
     """rigid top only: the tube's dofs u = T x from the unknowns x of K and M"""
     timings: dict = field(default_factory=dict)
 
@@ -127,6 +134,7 @@ def dolfinx_mesh(data: MeshData | None, comm):
     from dolfinx.io import gmshio
     from dolfinx.mesh import create_mesh, meshtags_from_entities
     if comm.rank == 0:
+        assert data is not None, "the Gmsh arrays are on rank 0"
         head = (data.gmsh_cell, data.gmsh_facet, data.cells.shape[1], data.facets.shape[1])
         cells, x = data.cells, data.points
         facets, markers = data.facets, data.facet_markers.astype(np.int32)
@@ -162,7 +170,7 @@ def _rigid_links(coords: np.ndarray, height: float) -> np.ndarray:
 
 def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_mass: float = 0.0,
                    comm=None, isolated: bool = True, mesh_data: MeshData | None = None,
-                   clamped: bool = True) -> PillarModel:
+                   clamped: bool = True) -> AssembledPillar:
     """Mesh (Gmsh), assemble K and M (dolfinx) and add the top; see the module docstring.
 
     ``clamped`` False leaves the base free too (a free-free tube, for tests
@@ -230,7 +238,7 @@ def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_ma
         raise ValueError(f"unknown top model {top_model!r}")
     timings["assembly"] = time.perf_counter() - t0
     base_dofs = np.sort(np.concatenate([3 * base + c for c in range(3)]))
-    return PillarModel(comm, K, M, mesh, V, tags, params, mesh_data if comm.rank == 0 else None,
+    return AssembledPillar(comm, K, M, mesh, V, tags, params, mesh_data if comm.rank == 0 else None,
                        tube_dofs, extra, top_model, float(top_mass), base_dofs, top_nodes, T,
                        timings)
 

@@ -37,6 +37,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..mesh.midsurface import BASE, TOP, MidSurface, gmsh_mid_surface, mid_surface_radius
+from .eigensolver import solve_gep_shift_invert
+from .identify import describe_mode, rings_of
 
 SHEAR_CORRECTION = 5.0 / 6.0
 """k_s of Reissner-Mindlin theory (-)"""
@@ -44,7 +46,14 @@ REDUCED_DEGREE = 2
 """quadrature degree of the membrane and shear energies (-)"""
 FULL_DEGREE = 4
 """quadrature degree of the bending and kinetic energies (-)"""
+N_MAX = 8
+"""highest circumferential harmonic a mode is named by (-): the shell's coarsest meshes
+have 8 nodes around, where higher harmonics are aliases of lower ones"""
 END_CONDITIONS = ("clamped-free", "simply-supported")
+EIGEN_TOLERANCE = 1e-10
+"""relative residual of the eigenpairs (-)"""
+EIGEN_MAX_IT = 200
+"""Krylov-Schur restarts at most (-)"""
 
 
 @dataclass(frozen=True)
@@ -79,9 +88,9 @@ class ShellModalResult:
     omega: np.ndarray
     """natural angular frequencies (rad/s)"""
     kind: list
-    """per mode: "bending_x", "bending_y", "ovalling", "torsion", "axial" or "breathing" """
+    """per mode: one of fem3d.identify.KINDS ("bending_x", "ovalling", ...)"""
     n_circumferential: list
-    """per mode: dominant circumferential wave number n (-)"""
+    """per mode: dominant circumferential wave number n, None for "other" (-)"""
     dofs: int
     """number of unknowns (-)"""
     cells: int
@@ -168,88 +177,19 @@ def shell_mass_form(u, beta, v, gamma_, sec: ShellSection, dx_full):
 
 
 # --------------------------------------------------------------------------
-# Mode shapes: what kind of mode is it?
-
-
-def classify_mode(points: np.ndarray, displacement: np.ndarray, n_max: int = 8) -> tuple[str, int]:
-    """Kind and circumferential wave number of a tube's mode shape.
-
-    ``points`` (k, 3) and ``displacement`` (k, 3) sampled over the tube
-    (axis z).  The in-plane motion u_r + i u_theta and the axial motion u_z
-    are split into circumferential harmonics n = 0..n_max; the strongest
-    decides: n = 1 bending (x or y by the larger mean displacement), n >= 2
-    ovalling, n = 0 torsion (u_theta), axial (u_z) or breathing (u_r).
-
-    >>> th = np.linspace(0, 2 * np.pi, 64, endpoint=False)
-    >>> pts = np.c_[np.cos(th), np.sin(th), np.zeros(64)]
-    >>> classify_mode(pts, np.c_[np.cos(2 * th) * np.cos(th), np.cos(2 * th) * np.sin(th), 0 * th])
-    ('ovalling', 2)
-    >>> classify_mode(pts, np.c_[0 * th, np.ones(64), 0 * th])
-    ('bending_y', 1)
-    """
-    theta = np.arctan2(points[:, 1], points[:, 0])
-    c, s = np.cos(theta), np.sin(theta)
-    ur = displacement[:, 0] * c + displacement[:, 1] * s
-    ut = -displacement[:, 0] * s + displacement[:, 1] * c
-    uz = displacement[:, 2]
-    power = []
-    for k in range(n_max + 1):
-        phase = np.exp(-1j * k * theta)
-        power.append((abs(np.sum(ur * phase)) ** 2 + abs(np.sum(ut * phase)) ** 2,
-                      abs(np.sum(uz * phase)) ** 2))
-    power = np.array(power)
-    n = int(np.argmax(power.sum(axis=1)))
-    if n == 1:
-        mx, my = abs(np.sum(displacement[:, 0])), abs(np.sum(displacement[:, 1]))
-        return ("bending_x" if mx >= my else "bending_y"), 1
-    if n >= 2:
-        return "ovalling", n
-    parts = {"torsion": np.sum(ut**2), "axial": np.sum(uz**2), "breathing": np.sum(ur**2)}
-    return max(parts, key=parts.get), 0
-
-
-# --------------------------------------------------------------------------
 # The modal analysis
-
-
-def _eigensolve(A, M, n_modes: int, comm, shift: float):
-    """Lowest eigenpairs of A x = lambda M x by shift-invert (MUMPS Cholesky)."""
-    from slepc4py import SLEPc
-    eps = SLEPc.EPS().create(comm)
-    eps.setOperators(A, M)
-    eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
-    eps.setDimensions(n_modes)
-    eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
-    eps.setTarget(shift)
-    st = eps.getST()
-    st.setType(SLEPc.ST.Type.SINVERT)
-    st.setShift(shift)
-    ksp = st.getKSP()
-    ksp.setType("preonly")
-    pc = ksp.getPC()
-    pc.setType("cholesky")
-    pc.setFactorSolverType("mumps")
-    eps.setTolerances(1e-10, 200)
-    eps.setFromOptions()
-    eps.solve()
-    vr = A.createVecRight()
-    pairs = []
-    for i in range(eps.getConverged()):
-        lam = eps.getEigenpair(i, vr).real
-        pairs.append((lam, vr.copy()))
-    eps.destroy()
-    pairs.sort(key=lambda p: p[0])
-    return pairs
 
 
 def shell_modal_analysis(section: ShellSection, radius: float, height: float,
                          disc: ShellDiscretisation = ShellDiscretisation(), *,
                          n_modes: int = 12, ends: str = "clamped-free",
-                         comm=None) -> ShellModalResult:
+                         comm=None, method: str | None = None) -> ShellModalResult:
     """The lowest ``n_modes`` modes of the tube as a shell.
 
     ``ends``: "clamped-free" (the pillar) or "simply-supported" (shear
     diaphragms at both ends: u_x = u_y = 0, the closed-form check).
+    ``method``: the eigen-solver's (:func:`.eigensolver.solve_gep_shift_invert`;
+    None: its default for ``n_modes``).
     """
     if ends not in END_CONDITIONS:
         raise ValueError(f"ends must be one of {END_CONDITIONS}")
@@ -293,22 +233,26 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
     t0 = time.perf_counter()
     # a slightly negative shift keeps K - sigma M regular when rigid motions
     # are free (the axial translation of the simply supported cylinder)
-    pairs = _eigensolve(A, M, n_modes, comm, shift=-1.0)
+    sol = solve_gep_shift_invert(A, M, n_modes, sigma=-1.0, tol=EIGEN_TOLERANCE,
+                                 max_it=EIGEN_MAX_IT, method=method)
     timings["solve"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
     Vu, u_dofs = V.sub(0).collapse()
-    points = Vu.tabulate_dof_coordinates()
+    # the modes are named as the solid model's are (fem3d.identify), from the mid-surface's nodes
+    rings = rings_of(_gather(Vu.tabulate_dof_coordinates(), comm), height)
     omega, kinds, ns = [], [], []
-    for lam, vec in pairs[:n_modes]:
-        disp = vec.array[u_dofs].reshape(-1, 3)
-        kind, k = classify_mode(_gather(points, comm), _gather(disp, comm))
+    for lam, vec in zip(sol.eigenvalues, sol.vectors):
+        mode = describe_mode(None, _gather(vec.array[u_dofs].reshape(-1, 3), comm), rings,
+                             n_max=N_MAX)
         omega.append(np.sqrt(max(lam, 0.0)))
-        kinds.append(kind)
-        ns.append(k)
+        kinds.append(mode.kind)
+        ns.append(mode.n_circumferential)
     timings["classify"] = time.perf_counter() - t0
     dofs = V.dofmap.index_map.size_global * V.dofmap.index_map_bs
     cells = msh.topology.index_map(2).size_global
+    for vec in sol.vectors:
+        vec.destroy()
     A.destroy()
     M.destroy()
     return ShellModalResult(np.array(omega), kinds, ns, int(dofs), int(cells),

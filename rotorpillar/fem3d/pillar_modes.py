@@ -30,6 +30,7 @@ from ..errors import InputError
 from ..reduced.models import MAX_CANDIDATE_MODES
 from ..reduced.pillar import section_of
 from ..reduced.pillar_modes import PillarModes
+from ..scene import Scene
 
 
 def integrate_levels(z: np.ndarray, f: np.ndarray) -> float:
@@ -78,7 +79,7 @@ def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:
                        **resultants)
 
 
-def fem3d_pillar_modes(scene, count: int) -> PillarModes:
+def fem3d_pillar_modes(scene: Scene, count: int) -> PillarModes:
     """Run (or reuse, per process) the scene's 3D modal analysis and convert it."""
     if scene.modal.top_mass != "gondola":
         raise InputError('modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
@@ -87,7 +88,7 @@ def fem3d_pillar_modes(scene, count: int) -> PillarModes:
     return pillar_modes_from_fem3d(modal_analysis(scene, top=True), scene.pillar, count)
 
 
-def candidate_pillar_modes(scene) -> PillarModes:
+def candidate_pillar_modes(scene: Scene) -> PillarModes:
     """Every X bending mode the scene's 3D analysis finds (at most
     MAX_CANDIDATE_MODES): the candidates ``rotorpillar.reduced.models.build_model``
     takes as ``pillar_modes`` when ``modal_model.source = "fem3d"``."""

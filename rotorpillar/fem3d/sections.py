@@ -32,6 +32,7 @@ rank and one reduction).  With the rigid top the unknowns are x and u
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -53,7 +54,8 @@ class SectionFunctionals:
     rows: np.ndarray
     """(n_local, 3 n_z) this rank's rows of the functionals over the model's unknowns:
     per cut, the force along x, the y-moment, the force along z"""
-    comm: object
+    comm: Any
+    """the MPI communicator (mpi4py)"""
 
     def resultants(self, x) -> np.ndarray:
         """(n_z, 3) shear V (N), moment M (N*m) and axial force N (N, compression
@@ -68,7 +70,7 @@ class SectionFunctionals:
 
 
 def section_functionals(model, youngs_modulus: float, poisson_ratio: float) -> SectionFunctionals:
-    """The functionals L_q of every cut of an assembled PillarModel (collective).
+    """The functionals L_q of every cut of an AssembledPillar (collective).
 
     One compiled vector form, its two coefficients (the layer weight chi,
     piecewise constant, and the cut's rigid field w) set per cut and component.

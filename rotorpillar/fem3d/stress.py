@@ -35,11 +35,13 @@ import shutil
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ..reduced.internal_forces import STANDARD_GRAVITY, axial_force, extreme_fibre_stress
 from ..reduced.pillar import section_of
+from ..scene import Pillar
 from .stress_records import StressPeak, VonMisesSummary
 
 #: von Mises frames of the XDMF time series (evenly spaced over the run); each write of
@@ -56,7 +58,7 @@ def boundary_layer_length(radius: float, thickness: float, poisson_ratio: float)
 @dataclass
 class StressRecovery:
     """The observer of a 3D transient (see the module text); collective under MPI."""
-    pillar: object
+    pillar: Pillar
     """the scene's [pillar] section"""
     top_mass: float
     """what the top carries: gondola and rotor (kg)"""
@@ -76,8 +78,10 @@ class StressRecovery:
         self._heights = self._sections.heights
         self._vm = VonMisesProjection(model, self.pillar, self.top_mass)
         self._next_frame = 0.0
-        self._peaks = {"moment": (-1.0, None, None), "shear": (-1.0, None, None)}
-        self._frame_values = []
+        # per quantity: (|base value|, time (s), the state then: a PETSc Vec)
+        self._peaks: dict[str, tuple[float, float | None, Any]] = {
+            "moment": (-1.0, None, None), "shear": (-1.0, None, None)}
+        self._frame_values: list[tuple[float, np.ndarray]] = []
         self._writer = _Writer(self.xdmf_path, model, self._vm) if self.xdmf_path else None
 
     @property
@@ -110,7 +114,7 @@ class StressRecovery:
         """(t, resultants (n_t, n_z, 3) with N static included, the von Mises summary,
         the XDMF file or None); frees the PETSc objects."""
         for _, t, x in self._peaks.values():
-            if x is not None:
+            if x is not None and t is not None:
                 self._frame_values.append(self._evaluate(t, x, write=False))
                 x.destroy()
         self._peaks = {}
@@ -125,15 +129,13 @@ class StressRecovery:
 
     def close(self) -> None:
         """Free what attach built (idempotent; a failed run calls it too)."""
-        if getattr(self, "_writer", None) is not None:
-            self._writer.abandon()
-            self._writer = None
-        if getattr(self, "_sections", None) is not None:
-            self._sections.destroy()
-            self._sections = None
-        if getattr(self, "_vm", None) is not None:
-            self._vm.destroy()
-            self._vm = None
+        writer = self.__dict__.pop("_writer", None)
+        if writer is not None:
+            writer.abandon()
+        for name in ("_sections", "_vm"):
+            built = self.__dict__.pop(name, None)
+            if built is not None:
+                built.destroy()
 
     def _summary(self, t: np.ndarray, res: np.ndarray) -> VonMisesSummary:
         sec = section_of(self.pillar)
@@ -145,7 +147,7 @@ class StressRecovery:
         found = {}
         for name, mask in (("peak", np.ones(len(coords), bool)), ("clamp", coords[:, 2] <= lb),
                            ("away", coords[:, 2] > lb)):
-            best = (-1.0, None, None)
+            best: tuple[float, tuple[float, ...] | None, float | None] = (-1.0, None, None)
             for time_, vm in self._frame_values:
                 if mask.any():
                     i = int(np.argmax(np.where(mask, vm, -1.0)))
@@ -260,7 +262,7 @@ class _Writer:
             self.path.parent.mkdir(parents=True, exist_ok=True)
         scratch = tempfile.mkdtemp(prefix=".xdmf-", dir=self.path.parent) if self.comm.rank == 0 else None
         self.scratch = Path(self.comm.bcast(scratch, root=0))
-        self.file = XDMFFile(self.comm, str(self.scratch / self.path.name), "w")
+        self.file: Any = XDMFFile(self.comm, str(self.scratch / self.path.name), "w")
         self.file.write_mesh(model.mesh)
 
     def write(self, t: float, vm: VonMisesProjection) -> None:

@@ -98,7 +98,7 @@ def extract_mesh_data(model) -> MeshData:
     index = np.empty(int(tags.max()) + 1, dtype=np.int64)
     index[tags[order]] = np.arange(len(tags))
 
-    def elements(dim, group):
+    def elements(dim: int, group: int) -> tuple[np.ndarray, int]:
         blocks, etype = [], None
         for ent in model.getEntitiesForPhysicalGroup(dim, group):
             types, _, nodes = model.mesh.getElements(dim, ent)
@@ -107,6 +107,8 @@ def extract_mesh_data(model) -> MeshData:
             etype = int(types[0])
             nn = model.mesh.getElementProperties(etype)[3]
             blocks.append(index[nodes[0].astype(np.int64)].reshape(-1, nn))
+        if etype is None:
+            raise ComputationError(f"Gmsh: physical group ({dim}, {group}) holds no elements")
         return np.concatenate(blocks), etype
 
     cells, gmsh_cell = elements(3, TUBE)
@@ -114,7 +116,7 @@ def extract_mesh_data(model) -> MeshData:
         reference = np.asarray(model.mesh.getElementProperties(gmsh_cell)[4]).reshape(cells.shape[1], 3)
         points = points.copy()
         points[cells] = cylindrical_nodes(points, cells, reference, GMSH_CELLS[gmsh_cell][0])
-    facets, markers, gmsh_facet = [], [], None
+    facets, markers = [], []
     for group in (BASE, TOP, WALL):
         f, gmsh_facet = elements(2, group)
         facets.append(f)

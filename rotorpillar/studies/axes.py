@@ -138,7 +138,7 @@ def _split(text: str) -> tuple[str, str]:
     if "=" not in text:
         raise InputError(f"--vary {text!r}: expected KEY=START:STOP:N or KEY=v1,v2,...")
     key, body = (s.strip() for s in text.split("=", 1))
-    f = _field(key)
+    _field(key)                         # an unknown key: InputError naming it
     if not body:
         raise InputError(f"--vary {key}=: empty range; expected START:STOP:N or v1,v2,...")
     return key, body

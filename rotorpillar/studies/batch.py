@@ -30,6 +30,7 @@ import os
 import socket
 import time
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -41,7 +42,7 @@ from .modes import modes_of
 from ..reduced.stationary import operating_speed
 from ..transients.case_summary import capture_state, ground_displacement
 from ..reduced.integration import simulate_batch
-from ..scene import scene_from_dict
+from ..scene import Scene, scene_from_dict
 from .axes import run_scene
 
 #: scene key -> simulate_batch keyword, per case: what the batch loop takes per run
@@ -67,7 +68,7 @@ def samples_for(case: str, t_end: float) -> int:
     return int(min(MAX_SAMPLES, max(MIN_SAMPLES, t_end / SAMPLE_SPACING[case] + 1)))
 
 
-def settle_time(scene, t_end: float) -> float:
+def settle_time(scene: Scene, t_end: float) -> float:
     """When the start's shaft deflection e has decayed to 1 %: ln(100) 2 m_C / b2,
     at most half the run (s)."""
     b2, m = scene.shaft.damping, scene.rotor.mass
@@ -80,9 +81,9 @@ def _tail_mean(t, W) -> float:
     return float(np.mean(W[tail]))
 
 
-def _run_group(scene, case: str, which: str, runs: list[dict], pillar_modes=None) -> list[dict]:
+def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_modes=None) -> list[dict]:
     sim, d, L, r, sh = scene.simulate, scene.drive, scene.load, scene.rotor, scene.shaft
-    per = {"M0": [], "s": [], "k": [], "e": [], "c2": []}
+    per: dict[str, list[float]] = {"M0": [], "s": [], "k": [], "e": [], "c2": []}
     for p in runs:
         per["M0"].append(float(p["params"].get("drive.torque_at_zero", d.torque_at_zero)))
         per["s"].append(float(p["params"].get("drive.slope", d.slope)))
@@ -97,7 +98,7 @@ def _run_group(scene, case: str, which: str, runs: list[dict], pillar_modes=None
     motion = scene_motion(scene) if case == "earthquake" else no_motion()
     top = scene.modal_model.band_factor * forcing_top(top_scene, case, motion)
     model, info = build_model(top_scene, which, top, pillar_modes=pillar_modes)
-    kw = dict(torque_scale=M0 / M_ref, slope=per["s"], load=per["k"], eccentricity=per["e"],
+    kw: dict[str, Any] = dict(torque_scale=M0 / M_ref, slope=per["s"], load=per["k"], eccentricity=per["e"],
               shaft_stiffness=per["c2"], rtol=sim.rtol)
     extra = {}
     if case == "runup":
@@ -127,6 +128,8 @@ def _run_group(scene, case: str, which: str, runs: list[dict], pillar_modes=None
                            threads=1)
         extra["initial_speed"] = float(Wop)
     since = b.t >= extra.pop("shaft_from", 0.0)
+    shaft = b.shaft_deflection
+    assert shaft is not None, "the batch loop records the shaft's deflection"
     out = []
     for i, p in enumerate(runs):
         mr = replace(model, eccentricity=per["e"][i], shaft_stiffness=per["c2"][i])
@@ -142,7 +145,7 @@ def _run_group(scene, case: str, which: str, runs: list[dict], pillar_modes=None
                     "captured_at": captured, "speed_state": state["speed_state"],
                     "passed": None if case == "earthquake" else state["speed_state"] not in ("captured", "escaping"),
                     "peak_tip": tip,
-                    "peak_shaft_deflection": float(np.max(b.shaft_deflection[i, since])),
+                    "peak_shaft_deflection": float(np.max(shaft[i, since])),
                     "free_speed": float(frees[i]), "nfev": int(b.nfev[i]), **extra})
     return out
 

@@ -25,6 +25,7 @@ import numpy as np
 from ..reduced.band import forcing_top
 from ..reduced.models import build_model
 from ..reduced.stationary import predicted_passing_torque
+from ..scene import Scene
 from .axes import Axis, run_scene
 
 TORQUE = "drive.torque_at_zero"
@@ -36,7 +37,7 @@ def _numeric(axis: Axis) -> bool:
     return all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in axis.values)
 
 
-def _fold(scene, which: str, M_top: float, modes_of=None) -> tuple:
+def _fold(scene: Scene, which: str, M_top: float, modes_of=None) -> tuple:
     """(averaging's and exact linear passing torque, the index of the resonance
     that fold belongs to, the model's resonances [{index, direction, omega}])."""
     top_scene = replace(scene, drive=replace(scene.drive, torque_at_zero=M_top))
@@ -62,7 +63,7 @@ def _grid(axis: Axis) -> list:
     return list(np.linspace(lo, hi, CURVE_POINTS))
 
 
-def predicted_boundary(scene, case: str, which: str, axes: tuple[Axis, ...],
+def predicted_boundary(scene: Scene, case: str, which: str, axes: tuple[Axis, ...],
                        implied: dict, modes_of=None) -> dict | None:
     """The predicted passing torque along the other axis (run-ups), or None;
     ``modes_of(scene)``: the ROM's pillar modes for a point's scene."""

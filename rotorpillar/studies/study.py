@@ -18,18 +18,17 @@ or code never reuses a stale batch.
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
 import sys
 import time
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Any, Callable, Optional
 
+from ..cache import DiskCache, cache_key, source_hash
 from ..errors import InputError
 from ..executor import Executor
-from ..provenance import write_json, write_text
-from ..scene import STUDY_CASES, STUDY_MODELS
+from ..provenance import write_text
+from ..scene import STUDY_CASES, STUDY_MODELS, Scene
 from .axes import check_points, implied_settings, parse_axes, run_scene
 from .batch import group_key, run_batch
 from .boundary import found_boundary, predicted_boundary
@@ -50,16 +49,12 @@ Charts = Callable[[StudyResult, Path], list]
 
 def _source_hash() -> str:
     root = Path(__file__).parent.parent
-    h = hashlib.sha256()
-    for f in sorted((root / "reduced").glob("*.py")) + sorted((root / "studies").glob("*.py")):
-        h.update(f.name.encode())
-        h.update(f.read_bytes())
-    return h.hexdigest()[:16]
+    return source_hash(sorted((root / "reduced").glob("*.py")) + sorted((root / "studies").glob("*.py")))
 
 
 def plan(points: list[dict], case: str, batch_runs: int = BATCH_RUNS) -> list[list[dict]]:
     """The batches: runs sorted by what they must share, cut into near-equal chunks."""
-    runs = [{"index": i, "params": p} for i, p in enumerate(points)]
+    runs: list[dict[str, Any]] = [{"index": i, "params": p} for i, p in enumerate(points)]
     runs.sort(key=lambda r: (repr(group_key(r["params"], case)), r["index"]))
     if not runs:
         return []
@@ -69,20 +64,11 @@ def plan(points: list[dict], case: str, batch_runs: int = BATCH_RUNS) -> list[li
 
 
 def batch_key(spec: dict, source: str) -> str:
-    doc = {"version": CACHE_VERSION, "source": source, **spec}
-    return hashlib.sha256(json.dumps(doc, sort_keys=True, default=str).encode()).hexdigest()[:24]
+    """The batch's key in the cache: its spec and the code (``source``) that computes it."""
+    return cache_key(spec, version=CACHE_VERSION, code=source)
 
 
-def _load(path: Path, key: str) -> Optional[dict]:
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    # a file of another shape (null, a list, cut short) is no finished batch: recompute it
-    return doc if isinstance(doc, dict) and doc.get("key") == key else None
-
-
-def _check_inputs(scene, case: str, model: str, vary: list[str]):
+def _check_inputs(scene: Scene, case: str, model: str, vary: list[str]):
     if case not in STUDY_CASES:
         raise InputError(f"--case {case!r}: a study runs one of {', '.join(STUDY_CASES)}")
     if model not in STUDY_MODELS:
@@ -105,7 +91,7 @@ def _check_inputs(scene, case: str, model: str, vary: list[str]):
     return axes, implied, points
 
 
-def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path,
+def design_study(scene: Scene, case: str, model: str, vary: list[str], *, out_dir: Path,
                  workers: int | None = None, scheduler: str | None = None,
                  cache_dir: Path | None = None, show_progress: bool = True,
                  charts: Optional[Charts] = None, log: Callable[[str], None] | None = None,
@@ -116,6 +102,7 @@ def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path
     axes, implied, points = _check_inputs(scene, case, model, vary)
     out_dir = Path(out_dir)
     cache_dir = out_dir / "study" if cache_dir is None else Path(cache_dir)
+    cache = DiskCache(cache_dir)
     batches = plan(points, case)
     source = _source_hash()
     scene_doc = scene.to_dict()
@@ -132,7 +119,7 @@ def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path
         keys.append(batch_key(spec, source))
     done: dict[int, dict] = {}
     for i, k in enumerate(keys):
-        doc = _load(cache_dir / f"{k}.json", k)
+        doc = cache.read(k)     # a damaged file is no finished batch: recomputed
         if doc is not None:
             done[i] = doc
     todo = [i for i in range(len(batches)) if i not in done]
@@ -160,7 +147,7 @@ def design_study(scene, case: str, model: str, vary: list[str], *, out_dir: Path
                 for j, res in ex.map(run_batch, [specs[i] for i in todo]):
                     i = todo[j]
                     doc = {"key": keys[i], **res}
-                    write_json(cache_dir / f"{keys[i]}.json", doc)
+                    cache.write(keys[i], doc)
                     done[i] = {**doc, "computed": True}
                     compute += res["wall_seconds"]
                     bar.update(len(res["runs"]))

@@ -1,0 +1,100 @@
+"""The one on-disk cache of computed results: key, path, atomic write, tolerant read.
+
+The convergence study's runs (rotorpillar.converge.runner), a design study's
+batches (rotorpillar.studies.study) and the chain's 3D modes
+(rotorpillar.chain.modes) are each cached as one small JSON file a result,
+``<root>/<key>.json``:
+
+- the key hashes the arguments' JSON (sorted keys) with a version and the
+  hash of the source files the result depends on, so a changed argument or
+  code never reuses a stale file;
+- a file is written atomically (:func:`rotorpillar.provenance.write_json`:
+  a temporary file renamed over the target), so an interrupted run leaves the
+  finished entries whole and no partial one: the next run resumes;
+- a read is tolerant: a missing, unreadable, cut-short or foreign file
+  (another key, not an object, or one the caller's ``accept`` refuses) is a
+  miss, and the result is computed again.
+
+>>> import tempfile
+>>> c = DiskCache(Path(tempfile.mkdtemp()))
+>>> k = cache_key({"elements": 8}, version=1, code="abc")
+>>> c.read(k) is None
+True
+>>> _ = c.write(k, {"omega": 2.5})
+>>> c.read(k)["omega"]
+2.5
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .provenance import write_json
+
+KEY_LENGTH = 24
+"""hex digits of a key (96 bits)"""
+
+
+def source_hash(files: Iterable[Path]) -> str:
+    """Hash of source files (each one's name and bytes, in the order given; a missing
+    file is skipped): the code part of a key."""
+    h = hashlib.sha256()
+    for f in files:
+        f = Path(f)
+        if f.exists():
+            h.update(f.name.encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def cache_key(args: Mapping[str, Any], *, version: int, code: str) -> str:
+    """The key of a result: the hash of its arguments' JSON, the cache's layout ``version``
+    and the ``code`` it was computed by (:func:`source_hash`).  Values JSON cannot hold
+    are written as their ``str``."""
+    doc = {"args": args, "code": code, "version": version}
+    text = json.dumps(doc, sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()[:KEY_LENGTH]
+
+
+@dataclass(frozen=True)
+class DiskCache:
+    """A folder of cached results, one ``<prefix><key>.json`` file each."""
+    root: Path
+    """the folder (created on the first write)"""
+    prefix: str = ""
+    """put before the key in a file's name"""
+
+    def path(self, key: str) -> Path:
+        return Path(self.root) / f"{self.prefix}{key}.json"
+
+    def read(self, key: str, accept: Callable[[dict], bool] | None = None) -> dict | None:
+        """The entry stored under ``key``, or None (a miss) when there is none, it cannot
+        be read or parsed, it is not a JSON object holding this ``key``, or ``accept``
+        refuses it."""
+        try:
+            doc = json.loads(self.path(key).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return None
+        if not isinstance(doc, dict) or doc.get("key") != key:
+            return None
+        return doc if accept is None or accept(doc) else None
+
+    def write(self, key: str, doc: Mapping[str, Any]) -> Path:
+        """Store ``doc`` atomically, its ``key`` first (the read checks it)."""
+        return write_json(self.path(key), {"key": key, **{k: v for k, v in doc.items() if k != "key"}})
+
+
+def user_cache_root() -> Path:
+    """The user's cache of results shared between runs (``$ROTORPILLAR_CACHE``, else
+    ``$XDG_CACHE_HOME/rotorpillar``, else ~/.cache/rotorpillar)."""
+    env = os.environ.get("ROTORPILLAR_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "rotorpillar"
