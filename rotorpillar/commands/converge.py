@@ -39,7 +39,7 @@ def add_modal_arguments(p) -> None:
                    help="the study's run cache (default: <out>/cache)")
 
 
-def summary(st) -> str:
+def _summary(st) -> str:
     """The study in words: counts, references, orders, band, front, choice and failures."""
     ref, sel, n = st.reference, st.selection, st.study
     lines = [f"rotorpillar converge {st.scene_name}: {n['runs']} runs "
@@ -112,4 +112,4 @@ def converge_command(scene, args, timings):
     result = {"convergence_json": st.json_file, "charts": st.charts or {},
               "tolerance": st.tolerance, "reference": st.reference,
               "selection": st.selection, "failures": list(st.failures), "study": st.study}
-    return result, summary(st)
+    return result, _summary(st)

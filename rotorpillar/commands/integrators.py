@@ -60,10 +60,10 @@ def integrators_command(scene, args, timings):
                         "run-up (left), cost and failure as pillar modes are added (middle), energy "
                         "drift of the undamped, unforced system (right)."})
     result["figures"] = figures
-    return result, summary(scene, result)
+    return result, _summary(scene, result)
 
 
-def summary(scene, r: dict) -> str:
+def _summary(scene, r: dict) -> str:
     acc = r["accuracy"]
     lines = [f"rotorpillar integrators {scene.name}: run-up of {acc['duration']:g} s, reference dp5 "
              f"rtol 1e-12 (DOP853 1e-12 agrees to {acc['reference']['agreement_with_DOP853_1e-12']:.1e})",

@@ -133,7 +133,7 @@ def simulate_command(scene, args, timings):
         result["exit_status"] = EXIT_CHECKS
         for line in result.get("failed_checks") or []:
             progress(f"simulate: check failed: {line}")
-    return result, summary(scene, result)
+    return result, _summary(scene, result)
 
 
 def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) -> None:
@@ -149,7 +149,7 @@ def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) 
                                                                  plan["time_step"]), plan["_mesh"]))
 
 
-def summary(scene, r: dict) -> str:
+def _summary(scene, r: dict) -> str:
     lines = [f"rotorpillar simulate {scene.name}: case {r['case']}, {r['model']} model "
              f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"]
     it = r["integrator"]

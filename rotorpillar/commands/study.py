@@ -48,10 +48,10 @@ def study_command(scene, args, timings):
                            show_progress=not args.no_progress, charts=study_charts, log=progress)
     for k in ("cluster_start_seconds", "compute_wall_seconds"):
         timings[k.replace("_seconds", "")] = res.performance[k]
-    return res.to_json(), summary(res)
+    return res.to_json(), _summary(res)
 
 
-def summary(r) -> str:
+def _summary(r) -> str:
     p, b, ex = r.performance, r.batches, r.executor
     axes = " x ".join(f"{a.key} ({len(a.values)})" for a in r.axes)
     lines = [f"rotorpillar study {r.scene_name}: {r.case}, {r.model} model, {len(r.runs)} runs "

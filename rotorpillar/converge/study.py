@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Callable, Optional
 
 from ..errors import InputError
-from ..provenance import Timings, machine, versions, write_json
+from ..provenance import Timings, with_provenance, write_result
 from .failures import drop_aliases, failures
 from .ladder import FAMILIES, QUANTITIES, study_cases
 from .result import ConvergenceStudy
@@ -103,8 +103,8 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
         with timings("charts"):
             doc["charts"] = {k: str(v) for k, v in charts(doc, out_dir).items()}
     doc["study"]["wall_time"] = time.perf_counter() - start
-    doc.update(versions=versions(), machine=machine(), timings=dict(timings))
-    path = write_json(Path(out_dir) / "convergence.json", doc)
+    doc = with_provenance(doc, timings=dict(timings))
+    path = write_result(Path(out_dir) / "convergence.json", doc)
     return dataclasses.replace(ConvergenceStudy.from_json(doc), json_file=str(path))
 
 

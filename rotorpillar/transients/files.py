@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..provenance import atomic_path, machine, versions, write_json, write_text
+from ..provenance import atomic_path, with_provenance, write_result, write_text
 from .model_run import ModelRun
 
 CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_acceleration",
@@ -50,10 +50,10 @@ def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings
     model_files["figures"] = [f["file"] for f in figures]
     result = dict(run.result)
     result["model_files"] = model_files
-    doc = {"command": "simulate", **provenance, "scene": scene.to_dict(), **result,
-           "files": {k: str(v) for k, v in files.items()}, "figures": figures,
-           "versions": versions(), "machine": machine(), "timings": dict(timings or {})}
-    write_json(out / f"{stem}.json", doc)
+    doc = with_provenance({**result, "files": {k: str(v) for k, v in files.items()},
+                           "figures": figures},
+                          {"command": "simulate", **provenance, "scene": scene.to_dict()}, timings)
+    write_result(out / f"{stem}.json", doc)
     if not last_run:
         result.update(files={k: str(v) for k, v in files.items()}, figures=figures)
         return result
@@ -66,7 +66,7 @@ def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings
         _copy(out / fig["file"], out / name)
         gfigures.append({**fig, "file": name})
     result.update(files=gfiles, figures=gfigures)
-    write_json(out / f"{generic}.json", {**doc, "files": gfiles, "figures": gfigures})
+    write_result(out / f"{generic}.json", {**doc, "files": gfiles, "figures": gfigures})
     return result
 
 

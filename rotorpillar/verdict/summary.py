@@ -283,12 +283,14 @@ def _not_assessed(scene, governing: list[Check], have_harmonic: bool, have_runs:
 def write_summary(scene, out: Path) -> Path | None:
     """Write out/summary.json (atomically) and return its path; None, and nothing
     written, when there is nothing to check (no run, no harmonic.json, no modal.json)."""
-    from ..provenance import machine, versions, write_json
+    import time
+    from ..provenance import write_result
+    start = time.perf_counter()
     record = engineering_summary(scene, out)
     if not record.inputs:
         return None
-    return write_json(Path(out) / "summary.json", {**record.to_json(), "versions": versions(),
-                                                    "machine": machine()})
+    # its ``scene`` is the scene's name (the record's field); the resolved scene is report.json's
+    return write_result(Path(out) / "summary.json", record, timings={"summary": time.perf_counter() - start})
 
 
 def summary_lines(s: EngineeringSummary) -> list[str]:
