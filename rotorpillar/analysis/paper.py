@@ -23,6 +23,11 @@ that is possible.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import math
 from dataclasses import dataclass
 
@@ -155,7 +160,7 @@ def _implied_tip(omega1: float, omega2: float, mC: float, c2: float):
     return mA, c1
 
 
-def _notes(scene, result, stiff: StiffCase) -> dict:
+def _notes(scene: Scene, result, stiff: StiffCase) -> dict:
     """Likely causes, computed from the paper's own numbers where possible."""
     p, sysd, res = result.pillar, result.system, stiff.resonances
     E = scene.pillar.youngs_modulus
@@ -176,7 +181,7 @@ def _notes(scene, result, stiff: StiffCase) -> dict:
     notes["m_rho"] = "The paper's 'distributed beam mass m_i = 1e3' is read as kg per metre."
 
     sc = stiff.scene
-    mA, mC, c2 = sysd.tip_mass_total, scene.rotor.mass, scene.shaft.stiffness
+    mA, mC = sysd.tip_mass_total, scene.rotor.mass
     alt = ReducedSystem(mA, mC, scene.rotor.inertia, scene.rotor.eccentricity,
                         result.reduction.tip_stiffness, 0.4e6, scene.pillar.damping, 11e3)
     elastic = omega_pair(alt)
@@ -244,7 +249,7 @@ def _notes(scene, result, stiff: StiffCase) -> dict:
     return notes
 
 
-def compare_with_paper(scene, result: AnalysisResult, pillar_modes=None) -> tuple[PaperRow, ...]:
+def compare_with_paper(scene: Scene, result: AnalysisResult, pillar_modes=None) -> tuple[PaperRow, ...]:
     """Rows {quantity, paper, computed, rel_diff, flag, note, where} for the
     scene, each printed number computed on its own case (module docstring);
     ``pillar_modes`` (reduced.pillar_modes.PillarModes of the tube with the
@@ -282,7 +287,7 @@ def compare_with_paper(scene, result: AnalysisResult, pillar_modes=None) -> tupl
     return tuple(rows)
 
 
-def base_forcing_row(scene, result: AnalysisResult) -> PaperRow:
+def base_forcing_row(scene: Scene, result: AnalysisResult) -> PaperRow:
     """The finding ``eq4_base_forcing``: Eq. 4's published base forcing against the consistent one.
 
     Compared as the static tip gain q1/q5 under a slow ground displacement:

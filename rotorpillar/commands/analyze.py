@@ -1,10 +1,17 @@
 """`rotorpillar analyze`: the headline model (the validated ROM) and the paper's, side by side."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 from ..analysis import analyze, summary
 from . import out_dir, progress
 
 
-def analyze_command(scene, args, timings):
+def analyze_command(scene: Scene, args, timings):
     from ..chain import resolve
     with timings("pillar_modes"):
         chain = resolve(scene, out_dir(scene, args), progress=progress)

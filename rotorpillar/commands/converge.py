@@ -11,6 +11,11 @@ this module holds its arguments and its summary.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 from pathlib import Path
 
 from . import progress
@@ -81,7 +86,7 @@ def _under_mpi() -> bool:
     return any(int(os.environ.get(k, "1")) > 1 for k in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"))
 
 
-def preflight(scene, args) -> None:
+def preflight(scene: Scene, args) -> None:
     """What `converge` refuses before any work (`run` calls it for its stage too): MPI,
     --workers, --tolerance, and runs (not in the cache) this process's memory cannot hold."""
     from . import out_dir
@@ -99,7 +104,7 @@ def preflight(scene, args) -> None:
                  default_workers() if args.workers is None else args.workers)
 
 
-def converge_command(scene, args, timings):
+def converge_command(scene: Scene, args, timings):
     from . import out_dir
     preflight(scene, args)
     from ..converge import study

@@ -24,6 +24,11 @@ and beam full_order (mesh or elements, duration, time_step, note).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 from . import EXIT_CHECKS
 from ..scene import CASES, INTEGRATORS, MODELS
 
@@ -47,7 +52,7 @@ def add_arguments(p) -> None:
                         "(the scene's simulate.threshold = false)")
 
 
-def check_run(scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
+def check_run(scene: Scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
               motion=None, duration: float | None = None) -> None:
     """Refuse (InputError) a run of one model that its own code would refuse, before any
     work: the 3D model's mesh memory and step budget (fem3d.full_order_plan, before
@@ -82,7 +87,7 @@ def check_run(scene, case: str, which: str, integrator: str | None = None, modes
             pass
 
 
-def preflight(scene, args):
+def preflight(scene: Scene, args):
     """What `simulate` refuses before any work (`run` calls it for its stages too): its
     flags, MPI, the record, and the run's plan or step budget (``check_run``: before the
     chain's pillar modes, which may take a 3D solve).  Returns the ground motion of an
@@ -103,7 +108,7 @@ def preflight(scene, args):
     return motion
 
 
-def simulate_command(scene, args, timings):
+def simulate_command(scene: Scene, args, timings):
     from . import is_root_rank, mpi_progress, out_dir
     motion = preflight(scene, args)                                    # bad input: before any work
     from ..postprocess.transient_charts import model_run_charts
@@ -136,7 +141,7 @@ def simulate_command(scene, args, timings):
     return result, _summary(scene, result)
 
 
-def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) -> None:
+def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None = None) -> None:
     """Refuse, before any meshing, a 3D run above ``simulate.max_steps`` (InputError
     naming the keys; fem3d.full_order_plan), on the plan's mesh, duration and step."""
     from ..fem3d.full_order_plan import case_setup, check_budget, estimate, step_rule
@@ -149,7 +154,7 @@ def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) 
                                                                  plan["time_step"]), plan["_mesh"]))
 
 
-def _summary(scene, r: dict) -> str:
+def _summary(scene: Scene, r: dict) -> str:
     lines = [f"rotorpillar simulate {scene.name}: case {r['case']}, {r['model']} model "
              f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"]
     it = r["integrator"]

@@ -13,6 +13,11 @@ The study itself is :func:`rotorpillar.studies.design_study`.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 from . import progress
 from ..scene import STUDY_CASES, STUDY_MODELS
 
@@ -33,7 +38,7 @@ def add_arguments(p) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
-def study_command(scene, args, timings):
+def study_command(scene: Scene, args, timings):
     from . import out_dir
     from ..executor import Executor, probe_scheduler
     Executor(args.workers, args.scheduler)          # bad --workers / --scheduler: refused now

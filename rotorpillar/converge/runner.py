@@ -12,6 +12,11 @@ pure-Python models run in-process and report tracemalloc's peak.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import hashlib
 import json
 import resource
@@ -218,7 +223,7 @@ def worker(case_file: str, out_file: str) -> None:
         sys.exit(UNAVAILABLE_EXIT)
 
 
-def _run_in_service(case: Case, scene) -> dict:
+def _run_in_service(case: Case, scene: Scene) -> dict:
     from .service import service
     with tempfile.TemporaryDirectory(prefix="rotorpillar-converge-") as tmp:
         case_file, out_file = Path(tmp) / "case.json", Path(tmp) / "result.json"
@@ -237,7 +242,7 @@ def _run_in_service(case: Case, scene) -> dict:
     return out
 
 
-def run_case(case: Case, scene) -> dict:
+def run_case(case: Case, scene: Scene) -> dict:
     """Compute one case (in-process or in the serving process, by model)."""
     if FAMILIES[case.family].model in ("closed_form", "beam"):
         return _run_in_process(case, scene.pillar)
@@ -282,14 +287,14 @@ def check_memory(cases: list[Case], workers: int) -> None:
           + ", ".join(c.label for _, c in at_once) + ")", f"use --workers {max(fit, 1)}")
 
 
-def todo_cases(cases: list[Case], scene, cache_dir: Path) -> list[Case]:
+def todo_cases(cases: list[Case], scene: Scene, cache_dir: Path) -> list[Case]:
     """The cases the run cache under ``cache_dir`` does not hold."""
     return [c for c in cases
             if _load_cached(Path(cache_dir) / f"{case_key(c, scene.pillar, scene.modal.tolerance)}.json",
                             case_key(c, scene.pillar, scene.modal.tolerance)) is None]
 
 
-def run_study(cases: list[Case], scene, cache_dir: Path, *,
+def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
               runner: Callable[[Case, object], dict] = run_case,
               progress: bool = True, log: Callable[[str], None] | None = None,
               workers: int = 1, executor=None) -> list[dict]:
@@ -383,7 +388,7 @@ def _guarded(job):
         return None, exc
 
 
-def _run_parallel(todo, cases, scene, runner, workers, executor, finish, weights) -> None:
+def _run_parallel(todo, cases, scene: Scene, runner, workers, executor, finish, weights) -> None:
     from ..executor import Executor
     order = sorted(todo, key=lambda i: -weights[i])          # longest first
     ex = executor or Executor(workers)

@@ -11,6 +11,11 @@ and the cheapest model that meets a tolerance over the scene's band.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import dataclasses
 import time
 from pathlib import Path
@@ -30,7 +35,7 @@ Charts = Callable[[dict, Path], dict]
 """Draws the study's charts into a directory: (study document, out_dir) -> name: path."""
 
 
-def analyse(records: list[dict], scene, tolerance: float) -> dict:
+def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
     """Reference values, errors, fronts, failures and the chosen model."""
     drop_aliases(records)
     extrap = family_extrapolations(records)
@@ -61,7 +66,7 @@ def check_tolerance(tolerance: float) -> None:
         raise InputError(f"--tolerance = {tolerance!r} is out of range: must be > 0 and < 1")
 
 
-def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
+def study(scene: Scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
           show_progress: bool = True, charts: Optional[Charts] = None, timings=None,
           log: Callable[[str], None] | None = None, workers: int = 1) -> ConvergenceStudy:
     """Run (or load) the study and analyse it; write convergence.json (and the charts).
@@ -108,7 +113,7 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
     return dataclasses.replace(ConvergenceStudy.from_json(doc), json_file=str(path))
 
 
-def _cached_study(scene, tolerance: float, cache_dir: Path):
+def _cached_study(scene: Scene, tolerance: float, cache_dir: Path):
     """Under MPI: the runs from the cache only (a missing run is an input error)."""
     def runner(case, sc):
         raise InputError(f"modal --tolerance under MPI needs the convergence study cached "
@@ -118,7 +123,7 @@ def _cached_study(scene, tolerance: float, cache_dir: Path):
     return records, analyse(records, scene, tolerance)
 
 
-def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
+def model_for_modal(scene: Scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
                     timings=None, charts: Optional[Charts] = None,
                     log: Callable[[str], None] | None = None, show_progress: bool = False):
     """The scene with the [mesh] the study picks for ``tolerance``, and why.

@@ -10,6 +10,11 @@ JSON dicts (their keys are documented in docs/fem3d.md).  No dolfinx here.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import math
 from dataclasses import dataclass, field
 
@@ -50,7 +55,7 @@ def shell_modes_below_second_bending(result) -> tuple[float | None, list[dict]]:
     return w2, rows
 
 
-def modal_summary(scene, bare, loaded, closed: dict) -> "ModalSummary":
+def modal_summary(scene: Scene, bare, loaded, closed: dict) -> "ModalSummary":
     """What `rotorpillar modal` found (modal.json, less the files and what the CLI adds).
 
     ``bare`` and ``loaded`` are the :class:`~.modal.ModalResult` of the bare

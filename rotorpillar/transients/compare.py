@@ -19,6 +19,11 @@ beside the modal model's computed peak.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 from pathlib import Path
 
 import numpy as np
@@ -57,7 +62,7 @@ def parse_models(text: str | None, case: str) -> tuple[str, ...]:
     return tuple(names)
 
 
-def common_duration(scene, case: str, models, motion, study_dir=None) -> tuple[float, str]:
+def common_duration(scene: Scene, case: str, models, motion, study_dir=None) -> tuple[float, str]:
     """The one duration every model runs (s), and why."""
     own = own_duration(scene, case, motion)
     if "fem3d" not in models:
@@ -67,7 +72,7 @@ def common_duration(scene, case: str, models, motion, study_dir=None) -> tuple[f
                if d < own else "the case's own duration")
 
 
-def compare_models(scene, case: str, models, out: Path, provenance: dict, progress=None,
+def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict, progress=None,
                    write: bool = True, run_charts=None, compare_chart=None, pareto: bool = False,
                    pareto_chart=None, workers: int = 1, chain=None,
                    timings: dict | None = None) -> CompareResult:
@@ -187,7 +192,7 @@ def compare_stem(case: str, model: str) -> str:
     return f"compare_{case}_{model}"
 
 
-def _start_pareto(scene, motion, out: Path, workers: int, progress, chain):
+def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain):
     """The speed-against-accuracy study planned and its 3D runs started on ``workers`` - 1
     processes (this one runs compare's own models meanwhile; none: after them, here)."""
     from ..reduced.band import forcing_top
@@ -201,7 +206,7 @@ def _start_pareto(scene, motion, out: Path, workers: int, progress, chain):
     return ParetoRunning(plan, max(0, workers - 1), progress)
 
 
-def _finish_pareto(scene, pending, out: Path, write: bool, chart) -> ParetoStudy:
+def _finish_pareto(scene: Scene, pending, out: Path, write: bool, chart) -> ParetoStudy:
     """The study, its chart drawn."""
     from dataclasses import replace
     study, _ = pending.finish()
@@ -235,7 +240,7 @@ def _per_model(case: str, m: str, r: dict) -> ComparedModel:
         json=f"{stem}.json", npz=f"{stem}.npz")
 
 
-def _spectrum(scene, motion, runs: dict) -> ResponseSpectrum:
+def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
     """The record's spectrum, the pillar's modal periods, the ROM's spectral peak tip."""
     from ..reduced.band import forcing_top
     from .cases import spectral_estimate

@@ -12,6 +12,11 @@ rotor X - tip X - e cos(theta).  Charts by rotorpillar.postprocess.transient_cha
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import shutil
 from pathlib import Path
 
@@ -30,7 +35,7 @@ def model_stem(case: str, model: str) -> str:
     return f"simulate_{case}_{model}"
 
 
-def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings: dict | None = None,
+def write_model_files(out: Path, scene: Scene, run: ModelRun, provenance: dict, timings: dict | None = None,
                       last_run: bool = True, charts=None, stem: str | None = None) -> dict:
     """Write the model's files (and with ``last_run`` the ``simulate_<case>.*`` copies);
     returns the result dict with ``files`` and ``figures`` (those of the generic names

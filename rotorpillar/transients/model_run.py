@@ -28,6 +28,11 @@ before the timed run, and its time recorded apart as ``compile_seconds``.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import sys
 import time
 from dataclasses import dataclass, field
@@ -54,7 +59,7 @@ class ModelRun:
     """the reduced models' CaseResult (the run-up's brackets, the sweep's curves), else None"""
 
 
-def own_duration(scene, case: str, motion=None) -> float:
+def own_duration(scene: Scene, case: str, motion=None) -> float:
     """The length of a case's run as the reduced models run it (s)."""
     sim = scene.simulate
     if case == "earthquake":
@@ -65,13 +70,13 @@ def own_duration(scene, case: str, motion=None) -> float:
     raise InputError(f"case {case!r}: a common duration is defined for runup, rundown and earthquake")
 
 
-def with_duration(scene, case: str, duration: float):
+def with_duration(scene: Scene, case: str, duration: float):
     """The scene with the case's run length set to ``duration`` (s)."""
     key = "earthquake_duration" if case == "earthquake" else "duration"
     return override(scene, [f"simulate.{key}={float(duration)!r}"])
 
 
-def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
+def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None,
                study_dir=None) -> dict:
     """The 3D run's mesh, duration and step, and what was chosen, shortened and why
     (the ``full_order`` block of the JSON).  The mesh: the convergence study's
@@ -113,7 +118,7 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
             "reference": reference.to_json(), "_mesh": mesh}
 
 
-def run_model(scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
+def run_model(scene: Scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
               progress=None, motion=None, duration: float | None = None,
               chain: ChainModes | None = None, field_dir=None,
               field_stem: str | None = None, study_dir=None) -> ModelRun:
@@ -140,7 +145,7 @@ def run_model(scene, case: str, model: str, integrator: str | None = None, modes
     return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
 
 
-def reduced_pillar_model(scene, which: str, chain: ChainModes | None, info: dict) -> PillarModel:
+def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, info: dict) -> PillarModel:
     """The pillar model a reduced model ran on: the chain's (modal), the scene's beam at
     full order (beam), or the paper's stated tip reduction (paper: not the validated chain)."""
     if which == "modal":
@@ -166,7 +171,7 @@ def pillar_modes_for(which: str, chain: ChainModes | None):
     return chain.modes if which == "modal" and chain is not None else None
 
 
-def warm_up(scene, case: str, which: str, integrator, modes, motion, pillar_modes) -> float:
+def warm_up(scene: Scene, case: str, which: str, integrator, modes, motion, pillar_modes) -> float:
     """Compile what the run will (numba's kernels, per integrator and case) on a run of a
     few milliseconds of the same case; its wall time (s), kept apart from the run's."""
     from .cases import run_case
@@ -184,7 +189,7 @@ def warm_up(scene, case: str, which: str, integrator, modes, motion, pillar_mode
     return time.perf_counter() - start
 
 
-def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain) -> ModelRun:
+def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion, chain) -> ModelRun:
     from .cases import run_case, with_truncation
     from ..reduced.excitation import no_motion
     from .case_summary import ground_displacement, series
@@ -270,7 +275,7 @@ def _warnings(case: str, model, res) -> list[str]:
 # fem3d
 
 
-def fem3d_warm_up(scene, mesh) -> float:
+def fem3d_warm_up(scene: Scene, mesh) -> float:
     """Compile the 3D forms of ``mesh``'s cell type and degree (FFCx; once per machine, then
     read from its disk cache) on a mesh of a few cells, before the timed run (s)."""
     from dataclasses import replace as dc_replace
@@ -297,7 +302,7 @@ def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarMod
                        reference.get("study"))
 
 
-def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
+def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
                field_stem: str = "", study_dir=None) -> ModelRun:
     from ..fem3d.full_order import simulate_fem3d
     from ..reduced.band import forcing_top
@@ -367,7 +372,7 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field
                              recovered, observer.heights)
 
 
-def _free_speed(scene) -> float:
+def _free_speed(scene: Scene) -> float:
     from ..reduced.drive import DriveSchedule
     d, L = scene.drive, scene.load
     return DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()

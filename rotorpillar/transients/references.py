@@ -32,6 +32,11 @@ keys give the mesh, unverified; ``full_order.elements_around/along`` set
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import json
 import math
 from dataclasses import dataclass, replace
@@ -210,7 +215,7 @@ def _participation_statement(case, modes, part, left, band_top, floor, uncovered
     return text + "."
 
 
-def loaded_mode_rows(scene, study_dir: Path | None) -> tuple[list[dict], str, dict]:
+def loaded_mode_rows(scene: Scene, study_dir: Path | None) -> tuple[list[dict], str, dict]:
     """The loaded tube's mode table: from modal.json when it is this scene's modes
     and carries the participation, else computed on the scene's [mesh]."""
     doc = _read(Path(study_dir) / "modal.json") if study_dir is not None else None
@@ -225,7 +230,7 @@ def loaded_mode_rows(scene, study_dir: Path | None) -> tuple[list[dict], str, di
     return result.modes_table(), "computed", dict(vars(scene.mesh))
 
 
-def case_band_top(scene, case: str, motion=None) -> float:
+def case_band_top(scene: Scene, case: str, motion=None) -> float:
     """The band a case excites: converge.margin x its fastest forcing (the drive's
     free speed; the ground motion's band for the earthquake) (rad/s)."""
     from ..reduced.band import excitation_band
@@ -236,7 +241,7 @@ def case_band_top(scene, case: str, motion=None) -> float:
     return float(top)
 
 
-def load_participation(scene, case: str, study_dir: Path | None = None, motion=None) -> ParticipationTable:
+def load_participation(scene: Scene, case: str, study_dir: Path | None = None, motion=None) -> ParticipationTable:
     """The participation of the loaded tube's modes in ``case``."""
     from ..reduced.pillar import section_of
     rows, source, mesh = loaded_mode_rows(scene, study_dir)
@@ -260,7 +265,7 @@ def _read(path: Path) -> dict | None:
     return doc if isinstance(doc, dict) else None
 
 
-def read_study(scene, study_dir: Path | None):
+def read_study(scene: Scene, study_dir: Path | None):
     """The scene's convergence study on disk (ConvergenceStudy), or None when it is
     missing, damaged or for another tube ([pillar] but its damping, [mesh] or
     [converge] differ: what the study's runs and tolerance depend on)."""
@@ -282,7 +287,7 @@ def read_study(scene, study_dir: Path | None):
         return None
 
 
-def rom_source_record(scene, study) -> dict | None:
+def rom_source_record(scene: Scene, study) -> dict | None:
     """The study's record of the ROM's mode source (a beam: computed if the ladder
     lacks its element count; 3D: the study's run on that mesh), or None."""
     from ..converge.ladder import FAMILIES, _case
@@ -311,13 +316,13 @@ def rom_source_record(scene, study) -> dict | None:
     return dict(chosen) if chosen is not None else None
 
 
-def _mesh_of(scene, params: dict):
+def _mesh_of(scene: Scene, params: dict):
     return replace(scene.mesh, **{k: params[k] for k in ("elements_around", "elements_along",
                                                          "elements_through", "degree", "cell_type",
                                                          "grading") if k in params})
 
 
-def estimated_steps(scene, case: str, motion, duration: float) -> int:
+def estimated_steps(scene: Scene, case: str, motion, duration: float) -> int:
     """The 3D run's steps over ``duration`` (its step as simulate_fem3d sets it:
     fem3d.full_order_plan.step_rule)."""
     from ..fem3d.full_order_plan import case_setup, step_rule
@@ -326,7 +331,7 @@ def estimated_steps(scene, case: str, motion, duration: float) -> int:
     return max(1, int(round(duration / step_rule(scene, drive, motion, speed).time_step)))
 
 
-def choose_reference(scene, case: str, study_dir: Path | None = None, motion=None,
+def choose_reference(scene: Scene, case: str, study_dir: Path | None = None, motion=None,
                      steps: int | None = None) -> tuple[object, FullOrderReference]:
     """(the scene [mesh] section the 3D run uses, the record of why) for ``case``;
     ``steps``: the run's Newmark steps, which bound how far the run-up's reference

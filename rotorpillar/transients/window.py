@@ -16,6 +16,11 @@ models' ``RotorStructure.held_whirl_state``).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import math
 from dataclasses import dataclass
 
@@ -55,7 +60,7 @@ class RunupWindow(JsonRecord):
     reason: str
 
 
-def runup_window(scene, pillar_modes=None) -> RunupWindow:
+def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     """The window of the scene's run-up (see the module text): one run-up of the
     modal ROM from rest, without the passing-torque batch and the truncation check;
     ``pillar_modes``: the ROM's (the chain's; None: resolved for the scene, no study)."""

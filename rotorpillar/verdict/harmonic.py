@@ -17,6 +17,11 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
 import time
 from pathlib import Path
 
@@ -26,7 +31,7 @@ from ..reduced.margins import ModeEntry, separation_table
 from .records import HarmonicResult, PeakComparison
 
 
-def running_speeds(model, scene) -> list[float]:
+def running_speeds(model, scene: Scene) -> list[float]:
     """The ROM's stable stationary speeds with the scene's drive (rad/s)."""
     from ..reduced.stationary import stationary_exact
     d, L = scene.drive, scene.load
@@ -100,7 +105,7 @@ def _peaks(model, rom_curve, fem_curve, top) -> list[PeakComparison]:
     return out
 
 
-def harmonic_analysis(scene, out: Path, progress=None, with_fem3d: bool = True,
+def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool = True,
                       chain=None) -> HarmonicResult:
     """The Bode curves and the separation margins of the scene (see the module text);
     ``chain``: the chain's pillar model and modes (rotorpillar.chain.resolve; None: resolved
@@ -156,7 +161,7 @@ def harmonic_analysis(scene, out: Path, progress=None, with_fem3d: bool = True,
         pillar_model=chain.pillar_model)
 
 
-def _fem3d_curve(scene, model, top: float, say):
+def _fem3d_curve(scene: Scene, model, top: float, say):
     """The 3D harmonic response on the [full_order] mesh, or (None, None, why not)."""
     import importlib.util
     if importlib.util.find_spec("dolfinx") is None:
