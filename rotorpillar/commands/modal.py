@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .scene import Scene
+    from ..scene import Scene
 
 from . import progress
 

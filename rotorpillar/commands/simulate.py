@@ -27,7 +27,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .scene import Scene
+    from ..scene import Scene
 
 from . import EXIT_CHECKS
 from ..scene import CASES, INTEGRATORS, MODELS

@@ -16,7 +16,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .scene import Scene
+    from ..scene import Scene
 
 from . import progress
 from ..scene import STUDY_CASES, STUDY_MODELS
