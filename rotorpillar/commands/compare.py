@@ -83,6 +83,9 @@ def compare_command(scene: Scene, args, timings):
                              compare_chart=comparison_chart, pareto=getattr(args, "pareto", False),
                              pareto_chart=pareto_chart, workers=workers or default_workers(),
                              chain=chain, timings=timings)
+    for run in res.per_model.values():
+        for warning in run.warnings:
+            progress(f"warning: {warning}")
     doc = res.to_json()
     if any(p.ok is False for p in res.per_model.values()):
         doc["exit_status"] = EXIT_CHECKS

@@ -70,7 +70,7 @@ def check_run(scene: Scene, case: str, which: str, integrator: str | None = None
     from ..transients.model_run import fem3d_plan, with_duration
     if which == "fem3d":
         from ..mesh import tube_params
-        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration)["_mesh"])   # its memory
+        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration).mesh)   # its memory
         check_fem3d_budget(scene, case, motion, duration)
         return
     if duration is not None:
@@ -129,6 +129,8 @@ def simulate_command(scene: Scene, args, timings):
                         motion=motion, chain=chain, field_dir=out_dir(scene, args),
                         study_dir=out_dir(scene, args))
     result = dict(run.result)
+    for warning in result.get("warnings") or ():
+        progress(f"warning: {warning}")
     if is_root_rank():
         with timings("write"):
             provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
@@ -149,9 +151,9 @@ def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None =
     plan = fem3d_plan(scene, case, motion, duration)
     # the start speed 0: the step follows the drive's free speed, which the operating
     # speed never passes, so the rule's step is the run's without solving for it
-    motion, drive, length, _, _ = case_setup(scene, case, motion, None, plan["duration"], 0.0)
+    motion, drive, length, _, _ = case_setup(scene, case, motion, None, plan.duration, 0.0)
     check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, 0.0,
-                                                                 plan["time_step"]), plan["_mesh"]))
+                                                                 plan.time_step), plan.mesh))
 
 
 def _summary(scene: Scene, r: dict) -> str:

@@ -67,7 +67,7 @@ def common_duration(scene: Scene, case: str, models, motion, study_dir=None) -> 
     own = own_duration(scene, case, motion)
     if "fem3d" not in models:
         return own, "the case's own duration"
-    d = fem3d_plan(scene, case, motion, study_dir=study_dir)["duration"]
+    d = fem3d_plan(scene, case, motion, study_dir=study_dir).duration
     return d, (f"the 3D full order's duration ([full_order]); every model runs {d:g} s"
                if d < own else "the case's own duration")
 
@@ -198,7 +198,7 @@ def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain
     from ..reduced.band import forcing_top
     from ..reduced.models import build_model
     from .pareto import ParetoRunning, plan_pareto
-    mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out)["_mesh"]
+    mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out).mesh
     top = scene.modal_model.band_factor * forcing_top(scene, "earthquake", motion)
     _, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
     plan = plan_pareto(scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh,

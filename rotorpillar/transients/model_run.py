@@ -33,14 +33,16 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
-import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..chain import ChainModes, PillarModel
 from ..errors import InputError
+from ..provenance import JsonRecord
+from ..scene.sections import Mesh
+from .references import FullOrderReference
 from ..scene import MODELS, override
 
 
@@ -76,8 +78,36 @@ def with_duration(scene: Scene, case: str, duration: float):
     return override(scene, [f"simulate.{key}={float(duration)!r}"])
 
 
+@dataclass(frozen=True)
+class Fem3dPlan(JsonRecord):
+    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
+    (the ``full_order`` block of a fem3d run's JSON)."""
+    mesh: Mesh
+    """the scene [mesh] section the 3D run uses"""
+    duration: float
+    """the run's length (s)"""
+    case_duration: float
+    """the case's own length, as the reduced models run it (s)"""
+    time_step: float | None
+    """[full_order] time_step, None: the band's step; after the run, the step taken (s)"""
+    note: str
+    """what was coarsened or shortened, and why"""
+    reference: FullOrderReference
+    """where the mesh comes from and its own error"""
+
+    def to_json(self) -> dict:
+        return {"mesh": dict(vars(self.mesh)), "duration": self.duration,
+                "case_duration": self.case_duration, "time_step": self.time_step,
+                "note": self.note, "reference": self.reference.to_json()}
+
+    @classmethod
+    def from_json(cls, doc: dict) -> "Fem3dPlan":
+        return cls(Mesh(**doc["mesh"]), doc["duration"], doc["case_duration"], doc["time_step"],
+                   doc["note"], FullOrderReference.from_json(doc["reference"]))
+
+
 def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None,
-               study_dir=None) -> dict:
+               study_dir=None) -> Fem3dPlan:
     """The 3D run's mesh, duration and step, and what was chosen, shortened and why
     (the ``full_order`` block of the JSON).  The mesh: the convergence study's
     reference for the modes the case's load excites when ``study_dir`` holds
@@ -112,10 +142,8 @@ def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = No
     why = ("the 3D run costs its steps (40 per period of the fastest forcing) times one solve; the "
            "scene's [full_order] section keeps it to tens of seconds (its docstring and "
            "docs/transients.md give the measured cost and the agreement with the ROM)")
-    return {"mesh": dict(vars(mesh)), "duration": float(length), "case_duration": float(own),
-            "time_step": fo.time_step or None,
-            "note": "; ".join(notes) + (f": {why}" if length < own else ""),
-            "reference": reference.to_json(), "_mesh": mesh}
+    return Fem3dPlan(mesh, float(length), float(own), fo.time_step or None,
+                     "; ".join(notes) + (f": {why}" if length < own else ""), reference)
 
 
 def run_model(scene: Scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
@@ -255,7 +283,8 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
 
 def _warnings(case: str, model, res) -> list[str]:
     """The paper model's earthquake: the published base forcing's amplification;
-    any earthquake: a record whose sizes no recorded earthquake has."""
+    any earthquake: a record whose sizes no recorded earthquake has (the commands print
+    them on stderr)."""
     out = []
     quake = res.extra.get("excitation") or {}
     if case == "earthquake" and quake.get("kind") == "record" and not quake.get("realistic", True):
@@ -266,8 +295,6 @@ def _warnings(case: str, model, res) -> list[str]:
         w = published_forcing_warning(c1, model.shaft_stiffness)
         if w:
             out.append(w)
-    for w in out:
-        print(f"[rotorpillar] warning: {w}", file=sys.stderr, flush=True)
     return out
 
 
@@ -310,8 +337,8 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
     from ..reduced.stationary import operating_speed
     from .case_summary import capture_state
     plan = fem3d_plan(scene, case, motion, duration, study_dir)
-    mesh = plan.pop("_mesh")
-    steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"
+    mesh = plan.mesh
+    steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan.duration:g} s"
     ref, _ = build_model(scene, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion),
                          pillar_modes=chain.modes)
     initial = None
@@ -324,15 +351,15 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
     if case == "runup":
         initial = scene.simulate.runup_initial_speed or None
     from .forces import stress_observer, with_fem3d_forces
-    observer = stress_observer(scene, plan["duration"], field_dir, field_stem)
+    observer = stress_observer(scene, plan.duration, field_dir, field_stem)
     try:
-        r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
-                           time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
+        r = simulate_fem3d(scene, case, motion=motion, duration=plan.duration,
+                           time_step=plan.time_step, mesh=mesh, samples=scene.simulate.samples,
                            initial_speed=initial, progress=progress, observer=observer)
         recovered = observer.finish()
     finally:
         observer.close()
-    plan["time_step"] = r.integrator["time_step"]
+    plan = replace(plan, time_step=r.integrator["time_step"])
     drive_free = _free_speed(scene)
     state = capture_state(ref, r.t, r.Omega, drive_free)
     captured, settled = state["captured_at"], state["speed_state"] != "escaping"
@@ -358,13 +385,13 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
               "captured_at_source": "the chain's ROM: its resonances"
                                     + ("" if settled else "; the run ended before the speed settled, "
                                                           "so no capture is claimed"),
-              "pillar_model": solid_pillar_model(mesh, r.dofs, plan.get("reference") or {},
-                                                 plan["note"]).to_json(),
+              "pillar_model": solid_pillar_model(mesh, r.dofs, plan.reference.to_json(),
+                                                 plan.note).to_json(),
               "compile_seconds": compile_seconds,
-              "model_description": r.model, "model_info": {"dofs": r.dofs, "mesh": plan["mesh"]},
+              "model_description": r.model, "model_info": {"dofs": r.dofs, "mesh": dict(vars(mesh))},
               "resonances": [vars(x) for x in ref.quasi_normal()],
               "damped_frequencies": ref.damped_frequencies(), "tip_x_frame": "relative_to_ground",
-              "full_order": plan, "initial_speed": r.model.get("initial_speed")}
+              "full_order": plan.to_json(), "initial_speed": r.model.get("initial_speed")}
     if case == "earthquake":
         result["excitation"] = motion.sizes()
         result["excitation_in_model"] = r.model.get("forcing")

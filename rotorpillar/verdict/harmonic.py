@@ -170,7 +170,7 @@ def _fem3d_curve(scene: Scene, model, top: float, say):
     from ..fem3d.harmonic import harmonic_response, harmonic_speeds
     from ..fem3d.rotor_top import Rotor
     from ..transients.model_run import fem3d_plan
-    mesh = fem3d_plan(scene, "runup")["_mesh"]
+    mesh = fem3d_plan(scene, "runup").mesh
     res = [r.omega for r in model.quasi_normal() if r.direction == "X"]
     speeds = harmonic_speeds(res, top)
     say(f"harmonic: the 3D model on {mesh.elements_around} x {mesh.elements_along} elements at "
