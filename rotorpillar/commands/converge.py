@@ -96,11 +96,11 @@ def preflight(scene: Scene, args) -> None:
                          "start it without mpirun")
     check_workers(args.workers)
     from ..converge.ladder import study_cases
-    from ..converge.runner import check_memory, todo_cases
+    from ..converge.runner import check_study_memory, todo_cases
     from ..converge.study import check_tolerance
     check_tolerance(scene.converge.tolerance if args.tolerance is None else args.tolerance)
     cache = out_dir(scene, args) / "cache" if args.cache is None else args.cache
-    check_memory(todo_cases(study_cases(scene), scene, cache),
+    check_study_memory(todo_cases(study_cases(scene), scene, cache),
                  default_workers() if args.workers is None else args.workers)
 
 

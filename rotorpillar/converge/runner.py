@@ -242,7 +242,7 @@ def _run_in_service(case: Case, scene: Scene) -> dict:
     return out
 
 
-def run_case(case: Case, scene: Scene) -> dict:
+def run_point(case: Case, scene: Scene) -> dict:
     """Compute one case (in-process or in the serving process, by model)."""
     if FAMILIES[case.family].model in ("closed_form", "beam"):
         return _run_in_process(case, scene.pillar)
@@ -262,19 +262,19 @@ LIMIT_KEYS = {"shell_quad": "shell_max_around", "shell_tri": "shell_tri_max_arou
               "solid_tet_p2": "solid_tet_p2_max_around"}
 
 
-def check_memory(cases: list[Case], workers: int) -> None:
+def check_study_memory(cases: list[Case], workers: int) -> None:
     """Refuse (InputError, before any run) finite-element runs this process's memory limit
     cannot hold: the largest alone, or the ``workers`` largest at once (the longest run
     first on every worker: the largest start together).  Per run: mesh.tube.BYTES_PER_DOF
     per DOF (one modal solve), shells counted as the solids."""
     from ..mesh.tube import BYTES_PER_DOF
-    from ..provenance import check_memory as check, memory_limit
+    from ..provenance import check_memory, memory_limit
     fe = sorted(((estimated_dofs(c), c) for c in cases
                  if FAMILIES[c.family].model in ("shell", "solid")), key=lambda t: -t[0])
     if not fe:
         return
     dofs, big = fe[0]
-    check(BYTES_PER_DOF * dofs, f"converge: its largest run, {big.label} ({dofs:,} DOFs),",
+    check_memory(BYTES_PER_DOF * dofs, f"converge: its largest run, {big.label} ({dofs:,} DOFs),",
           f"lower converge.{LIMIT_KEYS.get(big.family, 'solid_p2_max_around')} or set "
           "converge.solid = false")
     at_once = fe[:max(1, workers)]
@@ -283,7 +283,7 @@ def check_memory(cases: list[Case], workers: int) -> None:
     for d, _ in at_once:
         total += BYTES_PER_DOF * d
         fit += total <= budget
-    check(need, f"converge: {len(at_once)} runs at once on {workers} workers (the largest first: "
+    check_memory(need, f"converge: {len(at_once)} runs at once on {workers} workers (the largest first: "
           + ", ".join(c.label for _, c in at_once) + ")", f"use --workers {max(fit, 1)}")
 
 
@@ -295,7 +295,7 @@ def todo_cases(cases: list[Case], scene: Scene, cache_dir: Path) -> list[Case]:
 
 
 def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
-              runner: Callable[[Case, object], dict] = run_case,
+              runner: Callable[[Case, object], dict] = run_point,
               progress: bool = True, log: Callable[[str], None] | None = None,
               workers: int = 1, executor=None) -> list[dict]:
     """Every case, each loaded from ``cache_dir`` or computed and cached.
@@ -325,7 +325,7 @@ def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
                           "family": c.family, "model": FAMILIES[c.family].model, "cached": True}
         else:
             todo.append(i)
-    check_memory([cases[i] for i in todo], workers)
+    check_study_memory([cases[i] for i in todo], workers)
     if log:
         log(f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute"
             + (f" on {workers} workers" if (workers > 1 or executor) and todo else ""))
