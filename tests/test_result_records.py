@@ -84,3 +84,58 @@ def test_compare_result_round_trips_its_file(compared):
     assert list(doc["window"]) == ["start", "end", "duration", "why"]
     assert list(doc["spectrum"]) == ["period", "psa", "damping", "mode_periods", "spectral_peak_tip",
                                      "computed_peak_tip", "modes", "note"]
+
+
+#: the keys of a reduced model's run, in the order the hand-built dict of
+#: transients/model_run.py wrote them (the case summary's, then the model's)
+REDUCED_KEYS = ["case", "model", "ok", "duration", "omega_final", "omega_final_mean", "max_abs",
+                "captured_at", "speed_state", "passages", "energy_balance", "integrator",
+                "prediction", "jumps", "excitation"]
+REDUCED_TAIL = ["warnings", "pillar_model", "uncertainty", "dofs", "wall_seconds", "compile_seconds",
+                "model_description", "model_info", "resonances", "damped_frequencies", "tip_x_frame",
+                "max_abs_sampled", "initial_speed", "excitation_in_model", "internal_forces"]
+#: what files.write_model_files adds after the record
+WRITER = ("model_files", "files", "figures")
+
+
+@pytest.mark.parametrize("model,middle", [("paper", []), ("modal", ["truncation"])])
+def test_reduced_run_round_trips_its_file(compared, model, middle):
+    from rotorpillar.chain.record import Uncertain
+    from rotorpillar.reduced.system import Resonance
+    from rotorpillar.transients.run_records import ReducedRun
+    doc = json.loads((compared / f"compare_earthquake_{model}.json").read_text())
+    fields = {k: v for k, v in _fields(doc).items() if k not in WRITER}
+    run = ReducedRun.from_json(fields)
+    assert run.to_json() == fields
+    assert list(run.to_json()) == REDUCED_KEYS + middle + REDUCED_TAIL
+    assert ReducedRun.from_json(run.to_json()) == run
+    assert all(isinstance(r, Resonance) for r in run.resonances) and run.resonances
+    assert run.summary.max_abs is run.max_abs and run.max_abs["tip_x_relative"] > 0
+    assert (run.uncertainty is None) is (model == "paper")
+    if run.uncertainty is not None:
+        assert all(isinstance(u, Uncertain) for u in run.uncertainty.values())
+    assert run.pillar_model.kind in ("beam", "solid", "shell", "closed_form", "reduction")
+
+
+@pytest.mark.slow                      # one 3D run: 8 x 10 elements, 3 s of El Centro
+def test_fem3d_run_round_trips_its_file(tmp_path):
+    from rotorpillar.transients.run_records import Fem3dPlan, Fem3dRun
+    p = cli("simulate", "paper", "--case", "earthquake", "--model", "fem3d", "--set",
+            "excitation.kind=record", "--set", "excitation.start=1", "--set",
+            "full_order.elements_around=8", "--set", "full_order.earthquake_duration=3",
+            "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "simulate_earthquake_fem3d.json").read_text())
+    fields = {k: v for k, v in _fields(doc).items() if k not in WRITER}
+    run = Fem3dRun.from_json(fields)
+    assert run.to_json() == fields and Fem3dRun.from_json(run.to_json()) == run
+    # the order the hand-built dict had: the 3D run's summary, then the capture through the ROM
+    assert list(fields) == [
+        "case", "model", "ok", "duration", "omega_final", "omega_final_mean", "max_abs",
+        "energy_balance", "integrator", "dofs", "wall_seconds", "captured_at", "captured_resonance",
+        "captured_index", "speed_state", "warnings", "captured_at_source", "pillar_model",
+        "compile_seconds", "model_description", "model_info", "resonances", "damped_frequencies",
+        "tip_x_frame", "full_order", "initial_speed", "excitation", "excitation_in_model",
+        "internal_forces"]
+    assert isinstance(run.full_order, Fem3dPlan) and run.full_order.mesh.elements_around == 8
+    assert run.full_order.reference.case == "earthquake"

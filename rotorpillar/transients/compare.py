@@ -35,6 +35,7 @@ from ..scene import MODELS
 from .measures import compare_series, envelope_window
 from .pareto import ParetoStudy
 from .references import FullOrderReference
+from .run_records import Fem3dRun
 from .records import (ComparedModel, CompareResult, CompareWindow, ModelErrors, ResponseSpectrum,
                       SpectralMode, reference_of)
 from .model_run import ModelRun, fem3d_plan, own_duration, run_model
@@ -137,8 +138,8 @@ def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict,
             results[m] = run.result
         runs[m] = run
         if progress:
-            progress(f"compare {case}: {m} done in {run.result['wall_seconds']:.3g} s "
-                     f"({run.result['dofs']} dofs)")
+            progress(f"compare {case}: {m} done in {run.record.wall_seconds:.3g} s "
+                     f"({run.record.dofs} dofs)")
     ref = reference_of(models)
     per_model = {m: _per_model(case, m, results[m]) for m in models}
     rd = runs[ref].data
@@ -223,8 +224,8 @@ def _full_order_reference(runs: dict[str, ModelRun]) -> FullOrderReference | Non
     """The 3D run's reference mesh and its error, or None without a 3D run."""
     if "fem3d" not in runs:
         return None
-    ref = runs["fem3d"].result["full_order"].get("reference")
-    return None if ref is None else FullOrderReference.from_json(ref)
+    record = runs["fem3d"].record
+    return record.full_order.reference if isinstance(record, Fem3dRun) else None
 
 
 def _per_model(case: str, m: str, r: dict) -> ComparedModel:
@@ -248,7 +249,7 @@ def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
     from ..reduced.models import build_model
     if "modal" in runs:
         model = runs["modal"].case_result.model
-        computed = runs["modal"].result["max_abs"]["tip_x_relative"]
+        computed = runs["modal"].record.max_abs["tip_x_relative"]
     else:
         from ..scene import override
         beam = override(scene, ["modal_model.source=beam"])

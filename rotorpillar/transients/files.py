@@ -83,10 +83,10 @@ def _copy(src: Path, dst: Path) -> Path:
 
 def _write_npz(path: Path, run: ModelRun) -> Path:
     arrays = {k: np.asarray(v) for k, v in run.data.items()}
-    arrays["tip_x_frame"] = np.array(run.result["tip_x_frame"])
+    arrays["tip_x_frame"] = np.array(run.record.tip_x_frame)
     arrays["model"] = np.array(run.model)
     arrays["case"] = np.array(run.case)
-    desc = run.result.get("model_description") or {}
+    desc = run.record.model_description or {}
     if isinstance(desc, dict) and "coordinates" in desc:
         arrays["coordinates"] = np.array(desc["coordinates"])
     with atomic_path(path) as tmp:

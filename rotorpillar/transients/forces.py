@@ -109,19 +109,18 @@ def _summarise(scene: Scene, model: str, method: str, t, heights, moment, shear,
 
 def _attach(run, summary: InternalForcesSummary | None, series: dict, force, extra_max: dict):
     """The run with its new JSON fields and series."""
-    result, data = dict(run.result), dict(run.data)
-    ma = dict(result.get("max_abs") or {})
+    data = dict(run.data)
+    ma = dict(run.record.max_abs or {})
     base = summary.base if summary is not None else None
     ma.update(base_moment=None if base is None else base.moment,
               base_shear=None if base is None else base.shear,
               base_stress=None if base is None else base.stress, **extra_max)
-    result["max_abs"] = ma
-    result["internal_forces"] = None if summary is None else summary.to_json()
+    record = replace(run.record.with_max_abs(ma), internal_forces=summary)
     t = np.asarray(data["t"], dtype=float)
     for key, values in series.items():
         data[key] = values
     data["bearing_force"] = np.asarray(force, dtype=float)[:len(t)]
-    return replace(run, result=result, data=data)
+    return replace(run, record=record, data=data)
 
 
 def _shaft_of_series(scene: Scene, data: dict, v_rotor=None) -> tuple[ShaftDemand, np.ndarray]:

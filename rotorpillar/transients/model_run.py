@@ -40,9 +40,7 @@ import numpy as np
 
 from ..chain import ChainModes, PillarModel
 from ..errors import InputError
-from ..provenance import JsonRecord
-from ..scene.sections import Mesh
-from .references import FullOrderReference
+from .run_records import BeamFullOrder, Fem3dPlan, Fem3dRun, ReducedRun, RunRecord
 from ..scene import MODELS, override
 
 
@@ -51,14 +49,20 @@ class ModelRun:
     """A model's run of a case: its JSON fields, its series, and what its charts need."""
     case: str
     model: str
-    result: dict
-    """the JSON fields of simulate_<case>_<model>.json (less files and provenance)"""
+    record: RunRecord
+    """the run's record: the JSON fields of simulate_<case>_<model>.json (less files and
+    provenance)"""
     data: dict
     """the series (arrays) of the NPZ/CSV"""
     resonances: list = field(default_factory=list)
     """rotorpillar.reduced.system.Resonance records (charts)"""
     case_result: object = None
     """the reduced models' CaseResult (the run-up's brackets, the sweep's curves), else None"""
+
+    @property
+    def result(self) -> dict:
+        """The JSON fields of the record (as the readers of the hand-built dict read them)."""
+        return self.record.to_json()
 
 
 def own_duration(scene: Scene, case: str, motion=None) -> float:
@@ -76,34 +80,6 @@ def with_duration(scene: Scene, case: str, duration: float):
     """The scene with the case's run length set to ``duration`` (s)."""
     key = "earthquake_duration" if case == "earthquake" else "duration"
     return override(scene, [f"simulate.{key}={float(duration)!r}"])
-
-
-@dataclass(frozen=True)
-class Fem3dPlan(JsonRecord):
-    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
-    (the ``full_order`` block of a fem3d run's JSON)."""
-    mesh: Mesh
-    """the scene [mesh] section the 3D run uses"""
-    duration: float
-    """the run's length (s)"""
-    case_duration: float
-    """the case's own length, as the reduced models run it (s)"""
-    time_step: float | None
-    """[full_order] time_step, None: the band's step; after the run, the step taken (s)"""
-    note: str
-    """what was coarsened or shortened, and why"""
-    reference: FullOrderReference
-    """where the mesh comes from and its own error"""
-
-    def to_json(self) -> dict:
-        return {"mesh": dict(vars(self.mesh)), "duration": self.duration,
-                "case_duration": self.case_duration, "time_step": self.time_step,
-                "note": self.note, "reference": self.reference.to_json()}
-
-    @classmethod
-    def from_json(cls, doc: dict) -> "Fem3dPlan":
-        return cls(Mesh(**doc["mesh"]), doc["duration"], doc["case_duration"], doc["time_step"],
-                   doc["note"], FullOrderReference.from_json(doc["reference"]))
 
 
 def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None,
@@ -235,7 +211,6 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
             bars = uncertainty(scene, case, integrator, motion, chain, res, progress)
     m, run = res.model, res.run
     data = series(run, scene.simulate.samples)
-    summary = res.summary.to_json()
     ground = data["ground_x"]
     if m.frame == "absolute":
         data["tip_x_absolute"] = data["tip_x"]
@@ -243,7 +218,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     else:
         data["tip_x_relative"] = data["tip_x"]
     data["shaft_deflection_x"] = data["q"][:, :m.nx] @ m.shaft - m.eccentricity * np.cos(data["theta"])
-    ma = dict(summary["max_abs"])
+    ma = dict(res.summary.max_abs)
     full_tip, full_ground = run.tip(), ground_displacement(m, run.motion or no_motion(), run.t)
     if m.frame == "absolute":
         ma["tip_x_absolute"] = ma["tip_x"]
@@ -252,31 +227,29 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         ma["tip_x_relative"] = ma["tip_x"]
         ma["tip_x_absolute"] = float(np.max(np.abs(full_tip + full_ground)))
     ma["shaft_deflection_x"] = ma["shaft_deflection_x_sampled"]
-    summary["max_abs"] = ma
-    result = {"case": case, "model": which, **summary, "warnings": _warnings(case, m, res),
-              "pillar_model": reduced_pillar_model(scene, which, chain,
-                                                   res.extra.get("model_info") or {}).to_json(),
-              "uncertainty": None if bars is None else {k: v.to_json() for k, v in bars.items()},
-              "dofs": int(m.n), "wall_seconds": wall, "compile_seconds": compile_seconds,
-              "model_description": m.describe(), "model_info": res.extra.get("model_info"),
-              "resonances": [vars(r) for r in m.quasi_normal()],
-              "damped_frequencies": m.damped_frequencies(), "tip_x_frame": m.frame,
-              "max_abs_sampled": ["tip_x_relative" if m.frame == "absolute" else "tip_x_absolute",
-                                  "shaft_deflection_x"]}
-    for key in ("initial_speed", "excitation_in_model"):
-        if key in res.extra:
-            result[key] = res.extra[key]
+    info = res.extra.get("model_info")
+    full_order = None
     if which == "beam":
-        info = res.extra["model_info"]
-        result["full_order"] = {
-            "elements": info["elements"], "theory": info["theory"], "duration": summary["duration"],
-            "time_step": run.stats.get("time_step"),
-            "note": (f"the 1D {info['theory']} beam with every degree of freedom ({info['elements']} "
-                     f"elements, {info['element_source']}), the case's full duration; implicit fixed "
-                     "step that resolves the fastest forcing within 2e-3 (full_order.time_step, 0 = "
-                     "that; integrator.step_rule): the beam's stiff shear modes are damped by the "
-                     "scheme, not resolved")}
-    run = ModelRun(case, which, result, data, m.quasi_normal(), res)
+        full_order = BeamFullOrder(
+            elements=info["elements"], theory=info["theory"], duration=res.summary.duration,
+            time_step=run.stats.get("time_step"),
+            note=(f"the 1D {info['theory']} beam with every degree of freedom ({info['elements']} "
+                  f"elements, {info['element_source']}), the case's full duration; implicit fixed "
+                  "step that resolves the fastest forcing within 2e-3 (full_order.time_step, 0 = "
+                  "that; integrator.step_rule): the beam's stiff shear modes are damped by the "
+                  "scheme, not resolved"))
+    record = ReducedRun(
+        case=case, model=which, summary=replace(res.summary, max_abs=ma),
+        warnings=tuple(_warnings(case, m, res)),
+        pillar_model=reduced_pillar_model(scene, which, chain, info or {}),
+        uncertainty=bars, dofs=int(m.n), wall_seconds=wall, compile_seconds=compile_seconds,
+        model_description=m.describe(), model_info=info, resonances=tuple(m.quasi_normal()),
+        damped_frequencies=tuple(m.damped_frequencies()), tip_x_frame=m.frame,
+        max_abs_sampled=("tip_x_relative" if m.frame == "absolute" else "tip_x_absolute",
+                         "shaft_deflection_x"),
+        initial_speed=res.extra.get("initial_speed"),
+        excitation_in_model=res.extra.get("excitation_in_model"), full_order=full_order)
+    run = ModelRun(case, which, record, data, m.quasi_normal(), res)
     from .forces import with_reduced_forces
     return with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progress)
 
@@ -374,28 +347,29 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
             "rotor_x_absolute": r.rotor_x + ground, "shaft_deflection_x": r.shaft_x,
             "shaft_deflection_y": r.shaft_y, "plate_z": r.plate_z, "drive_torque": r.drive_torque,
             "energy": r.energy, "work": r.work, "peak": np.abs(r.tip_x)[:, None]}
-    summary = {k: v for k, v in r.summary().items() if k != "model"}
     if case == "earthquake":
         r.model["initial_speed_source"] = ("the operating speed of the chain's ROM (the fastest "
                                            "stable stationary speed)")
-    result = {"case": case, "model": "fem3d", **summary, "max_abs": ma, "integrator": integ,
-              "captured_at": captured, "captured_resonance": state["captured_resonance"],
-              "captured_index": state["captured_index"],
-              "speed_state": state["speed_state"], "warnings": [],
-              "captured_at_source": "the chain's ROM: its resonances"
-                                    + ("" if settled else "; the run ended before the speed settled, "
-                                                          "so no capture is claimed"),
-              "pillar_model": solid_pillar_model(mesh, r.dofs, plan.reference.to_json(),
-                                                 plan.note).to_json(),
-              "compile_seconds": compile_seconds,
-              "model_description": r.model, "model_info": {"dofs": r.dofs, "mesh": dict(vars(mesh))},
-              "resonances": [vars(x) for x in ref.quasi_normal()],
-              "damped_frequencies": ref.damped_frequencies(), "tip_x_frame": "relative_to_ground",
-              "full_order": plan.to_json(), "initial_speed": r.model.get("initial_speed")}
-    if case == "earthquake":
-        result["excitation"] = motion.sizes()
-        result["excitation_in_model"] = r.model.get("forcing")
-    return with_fem3d_forces(scene, ModelRun(case, "fem3d", result, data, ref.quasi_normal(), None),
+    record = Fem3dRun(
+        case=case, model="fem3d", ok=r.ok, duration=float(r.t[-1] - r.t[0]),
+        omega_final=r.omega_final, omega_final_mean=r.omega_final_mean, max_abs=ma,
+        energy_balance=r.energy_balance, integrator=integ, dofs=r.dofs,
+        wall_seconds=r.wall_seconds,
+        failed_checks=tuple(r.failed_checks) if r.failed_checks else None,
+        captured_at=captured, captured_resonance=state["captured_resonance"],
+        captured_index=state["captured_index"], speed_state=state["speed_state"], warnings=(),
+        captured_at_source="the chain's ROM: its resonances"
+                           + ("" if settled else "; the run ended before the speed settled, "
+                                                 "so no capture is claimed"),
+        pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference.to_json(), plan.note),
+        compile_seconds=compile_seconds, model_description=r.model,
+        model_info={"dofs": r.dofs, "mesh": dict(vars(mesh))},
+        resonances=tuple(ref.quasi_normal()), damped_frequencies=tuple(ref.damped_frequencies()),
+        tip_x_frame="relative_to_ground", full_order=plan,
+        initial_speed=r.model.get("initial_speed"),
+        excitation=motion.sizes() if case == "earthquake" else None,
+        excitation_in_model=r.model.get("forcing") if case == "earthquake" else None)
+    return with_fem3d_forces(scene, ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None),
                              recovered, observer.heights)
 
 
