@@ -115,6 +115,12 @@ def test_reduced_run_round_trips_its_file(compared, model, middle):
     if run.uncertainty is not None:
         assert all(isinstance(u, Uncertain) for u in run.uncertainty.values())
     assert run.pillar_model.kind in ("beam", "solid", "shell", "closed_form", "reduction")
+    # the case summary to its leaves
+    from rotorpillar.transients.case_summary import CaseSummary, EnergyBalance, Passage
+    assert isinstance(run.summary.energy_balance, EnergyBalance)
+    assert run.summary.energy_balance.relative_error < 0.05         # ENERGY_CHECK: the run is ok
+    assert run.summary.passages and all(isinstance(p, Passage) for p in run.summary.passages)
+    assert CaseSummary.from_json(run.summary.to_json()) == run.summary
 
 
 @pytest.mark.slow                      # one 3D run: 8 x 10 elements, 3 s of El Centro

@@ -335,7 +335,7 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
     plan = replace(plan, time_step=r.integrator["time_step"])
     drive_free = _free_speed(scene)
     state = capture_state(ref, r.t, r.Omega, drive_free)
-    captured, settled = state["captured_at"], state["speed_state"] != "escaping"
+    captured, settled = state.captured_at, state.speed_state != "escaping"
     ma = dict(r.max_abs)
     ma["tip_x_relative"] = ma["tip_x"]
     integ = dict(r.integrator)
@@ -356,8 +356,8 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
         energy_balance=r.energy_balance, integrator=integ, dofs=r.dofs,
         wall_seconds=r.wall_seconds,
         failed_checks=tuple(r.failed_checks) if r.failed_checks else None,
-        captured_at=captured, captured_resonance=state["captured_resonance"],
-        captured_index=state["captured_index"], speed_state=state["speed_state"], warnings=(),
+        captured_at=captured, captured_resonance=state.captured_resonance,
+        captured_index=state.captured_index, speed_state=state.speed_state, warnings=(),
         captured_at_source="the chain's ROM: its resonances"
                            + ("" if settled else "; the run ended before the speed settled, "
                                                  "so no capture is claimed"),

@@ -83,7 +83,7 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     reached = np.nonzero(W >= w0)[0]
     whole = dict(initial_speed=0.0, start=0.0, end=float(t[-1]), duration=float(t[-1]),
                  resonances=tuple(qn), passed=tuple(w for w in qn if w <= W.max()),
-                 captured_resonance=state["captured_resonance"],
+                 captured_resonance=state.captured_resonance,
                  peak_time=float(t[int(np.argmax(tip))]))
     if reached.size == 0:
         return RunupWindow(**whole, reason=f"the run-up never reaches {START_FRACTION:g} x the lowest "
@@ -98,8 +98,8 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     i_peak = i0 + int(np.argmax(tip[after]))
     t_peak = float(t[i_peak])
     passed = tuple(w for w in qn if w <= float(W.max()))
-    if state["captured_resonance"] is not None:
-        wc = state["captured_resonance"]
+    if state.captured_resonance is not None:
+        wc = state.captured_resonance
         t_end = t_peak + SETTLE_PERIODS * 2 * math.pi / wc
         why = (f"captured at {wc:.2f} rad/s: until {SETTLE_PERIODS} periods of it after the tip's "
                f"peak at {t_peak:.3g} s")
@@ -114,7 +114,7 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     t_end = min(t_end, float(t[-1]))
     return RunupWindow(
         initial_speed=float(w0), start=t0, end=t_end, duration=t_end - t0, resonances=tuple(qn),
-        passed=passed, captured_resonance=state["captured_resonance"], peak_time=t_peak,
+        passed=passed, captured_resonance=state.captured_resonance, peak_time=t_peak,
         reason=(f"from {w0:.3g} rad/s ({START_FRACTION:g} x the lowest resonance {qn[0]:.2f} rad/s, "
                 f"reached at {t0:.3g} s from rest) {why}: {t_end - t0:.3g} s of the ROM's run-up, "
                 "every model from the same state (pillar at rest, rotor in its steady whirl)"))
