@@ -23,7 +23,7 @@ that is possible.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -37,7 +37,18 @@ from ..reduced import averaging as av
 from ..reduced.base_forcing import base_forcing_finding
 from ..reduced.pillar import tip_mass_lumped
 from ..reduced.system import ReducedSystem, linear_modes, omega_pair, reduced_system
-from .results import AnalysisResult, PaperRow
+from .results import CoupledModes, PaperRow, PillarClosedForms, TipReductionUsed
+
+
+class PaperBlocks(Protocol):
+    """What the paper's comparison reads: the pillar's closed forms and the paper model's
+    tip reduction and coupled modes (rotorpillar.analysis.scene_analysis hands them in)."""
+    @property
+    def pillar(self) -> PillarClosedForms: ...
+    @property
+    def reduction(self) -> TipReductionUsed: ...
+    @property
+    def system(self) -> CoupledModes: ...
 
 #: Differences above 2 % are flagged: the paper prints two or three digits.
 TOLERANCE = 0.02
@@ -88,7 +99,7 @@ FE_BEAM_ELEMENTS = 40
 @dataclass(frozen=True)
 class StiffCase:
     """The paper's model on the stiff shaft: what Table 1 and Eq. 24 print."""
-    scene: object
+    scene: Scene
     """the stiff-shaft scene (rotorpillar.scene.Scene)"""
     resonances: tuple
     """its X resonances (reduced.system.Resonance), in order"""
@@ -249,7 +260,7 @@ def _notes(scene: Scene, result, stiff: StiffCase) -> dict:
     return notes
 
 
-def compare_with_paper(scene: Scene, result: AnalysisResult, pillar_modes=None) -> tuple[PaperRow, ...]:
+def compare_with_paper(scene: Scene, result: PaperBlocks, pillar_modes=None) -> tuple[PaperRow, ...]:
     """Rows {quantity, paper, computed, rel_diff, flag, note, where} for the
     scene, each printed number computed on its own case (module docstring);
     ``pillar_modes`` (reduced.pillar_modes.PillarModes of the tube with the
@@ -287,7 +298,7 @@ def compare_with_paper(scene: Scene, result: AnalysisResult, pillar_modes=None) 
     return tuple(rows)
 
 
-def base_forcing_row(scene: Scene, result: AnalysisResult) -> PaperRow:
+def base_forcing_row(scene: Scene, result: PaperBlocks) -> PaperRow:
     """The finding ``eq4_base_forcing``: Eq. 4's published base forcing against the consistent one.
 
     Compared as the static tip gain q1/q5 under a slow ground displacement:

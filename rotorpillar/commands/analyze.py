@@ -17,7 +17,8 @@ def analyze_command(scene: Scene, args, timings):
         chain = resolve(scene, out_dir(scene, args), progress=progress)
     fem3d = None
     if scene.reduction.source == "fem3d" and chain.pillar_model.kind != "solid":
-        from ..fem3d import reduction_from_scene as fem3d
+        from ..fem3d import reduction_from_scene
+        fem3d = reduction_from_scene
     with timings("analyze"):
         result = analyze(scene, chain, fem3d_reduction=fem3d)
     return result.to_json(), summary(result)

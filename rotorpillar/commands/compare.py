@@ -99,8 +99,8 @@ def _summary(scene: Scene, r: CompareResult) -> str:
     for m in r.models_run:
         p = r.per_model[m]
         e = r.errors.get(m)
-        lead = None if e is None else (e.tip_history_error if e.lead == "history"
-                                       else e.tip_envelope_error)
+        lead = 0.0 if e is None else (e.tip_history_error if e.lead == "history"
+                                      else e.tip_envelope_error)
         err = ("reference" if e is None else
                f"tip {e.lead} error {100 * lead:.2f} % (leads: "
                f"{'rotors in phase' if e.lead == 'history' else 'the rotor angles drift'}), "

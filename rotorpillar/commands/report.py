@@ -62,8 +62,8 @@ def report_command(scene: Scene, args, timings):
     failed = None
     with timings("summary"):
         try:
-            written = write_summary(scene, out_dir(scene, args))
-            written = None if written is None else str(written)
+            path = write_summary(scene, out_dir(scene, args))
+            written = None if path is None else str(path)
         except (KeyError, TypeError, ValueError, AttributeError) as exc:   # a damaged input: said, not fatal
             written, failed = None, f"{type(exc).__name__}: {exc}"
             progress(f"report: summary.json not written: {failed}")

@@ -107,7 +107,9 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
     finished (their files stay whole); Ctrl-C or SIGTERM kills every stage
     still running.
     """
-    pending, running, seconds, failed = list(jobs), {}, {}, []
+    running: dict = {}
+    failed: list = []
+    pending, seconds = list(jobs), {}
     try:
         while pending or running:
             while pending and len(running) < slots and not failed:

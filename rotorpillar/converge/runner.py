@@ -295,7 +295,7 @@ def todo_cases(cases: list[Case], scene: Scene, cache_dir: Path) -> list[Case]:
 
 
 def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
-              runner: Callable[[Case, object], dict] = run_point,
+              runner: Callable[[Case, Scene], dict] = run_point,
               progress: bool = True, log: Callable[[str], None] | None = None,
               workers: int = 1, executor=None) -> list[dict]:
     """Every case, each loaded from ``cache_dir`` or computed and cached.
@@ -376,7 +376,7 @@ def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
         bar.close()
         from .service import close_services
         close_services()
-    return records
+    return [r for r in records if r is not None]     # finish() filled every one
 
 
 def _guarded(job):
@@ -396,7 +396,8 @@ def _run_parallel(todo, cases, scene: Scene, runner, workers, executor, finish, 
     if own:
         ex.__enter__()
     try:
-        for j, (result, exc) in ex.map(_guarded, [(runner, cases[i], scene) for i in order]):
+        for j, done in ex.map(_guarded, [(runner, cases[i], scene) for i in order]):
+            result, exc = done  # type: ignore[misc]  # _guarded's (result, exception)
             finish(order[j], result, exc)
     finally:
         if own:

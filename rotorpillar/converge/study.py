@@ -46,7 +46,7 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
     needed, ref_unc = selection["needed"], reference_uncertainty(reference)
     ok = [r for r in records if r.get("status") == "ok"]
     candidates = ok
-    fronts = {}
+    fronts: dict = {}
     for cost in ("dofs", "wall_time"):
         fronts[cost] = {}
         for q in QUANTITIES:
@@ -157,7 +157,8 @@ def model_for_modal(scene: Scene, tolerance: float, out_dir: Path, *, cache_dir:
     solid = [k for k, f in FAMILIES.items()
              if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
     sel = select_model(runs, reference, band, tolerance, families=solid)
-    chosen, unmet = sel["chosen"], None
+    unmet: str | None = None
+    chosen = sel["chosen"]
     if chosen is None:
         chosen, unmet = _closest(runs, reference, band, solid, tolerance, sel["reason"])
     if chosen is not None:
@@ -174,7 +175,7 @@ def model_for_modal(scene: Scene, tolerance: float, out_dir: Path, *, cache_dir:
     else:
         mesh = scene.mesh
         lines = [f"No 3D model of the study has an error estimate for tolerance {tolerance:g}: "
-                 f"the scene's own [mesh] is run, unverified.", "Why: " + unmet]
+                 f"the scene's own [mesh] is run, unverified.", f"Why: {unmet}"]
     if overall is not None and chosen is not None and overall["label"] != chosen["label"]:
         lines.append(f"Cheapest of all models at this tolerance: {overall['label']} "
                      f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "

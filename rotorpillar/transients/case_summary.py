@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 from dataclasses import dataclass, fields, replace
 
 import numpy as np
@@ -297,11 +298,12 @@ class CaseSummary:
 
     @classmethod
     def from_json(cls, d: dict) -> "CaseSummary":
-        kw = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
+        kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
         kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
         kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
         if "predicted_jumps" in d:
-            kw["sweep"] = SweepFindings(**{g.name: d.get(g.name) for g in fields(SweepFindings)})
+            found: dict[str, Any] = {g.name: d.get(g.name) for g in fields(SweepFindings)}
+            kw["sweep"] = SweepFindings(**found)
         return cls(**kw)
 
 
@@ -384,8 +386,9 @@ def run_checks(run: Transient, drive_free_speed: float,
                       f"exchanged (limit {100 * ENERGY_CHECK:g} %)")
     w = float(np.max(np.abs(run.Omega))) if len(run.Omega) else 0.0
     # the fastest the drive can hold at any of its knots, or the start, if faster
+    drive = run.drive
     top = max([drive_free_speed, abs(float(run.Omega[0]))]
-              + [run.drive.free_speed(t) for t in run.drive.times])
+              + ([] if drive is None else [drive.free_speed(t) for t in drive.times]))
     # a moving ground feeds the rotor through the structure: no bound from the drive alone
     still = run.motion is None or run.motion.kind == "none"
     if still and np.isfinite(top) and top > 0 and not run.prescribed_speed \
@@ -404,7 +407,7 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
     acc = accuracy_check(run)
     failed = run_checks(run, drive_free_speed, acc)
     state = capture_state(run.model, run.t, run.Omega, drive_free_speed)
-    base = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
+    base: dict[str, Any] = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
                 omega_final_mean=om_mean, max_abs=max_abs(run),
                 captured_at=state.captured_at, captured_resonance=state.captured_resonance,
                 captured_index=state.captured_index,

@@ -176,8 +176,8 @@ def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict,
         pareto=study)
     if write:
         if compare_chart is not None:
-            series = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
-            compare_chart(Path(out) / chart, series, ref,
+            histories = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
+            compare_chart(Path(out) / chart, histories, ref,
                           f"{scene.name}: {case}, tip relative to the ground, reference {ref}",
                           errors={m: e.tip_history_error for m, e in errors.items()},
                           walls=walls)

@@ -50,7 +50,7 @@ def write_model_files(out: Path, scene: Scene, run: ModelRun, provenance: dict, 
     stem = stem or model_stem(run.case, run.model)
     files = {"npz": _write_npz(out / f"{stem}.npz", run), "csv": _write_csv(out / f"{stem}.csv", run)}
     figures = charts(out, scene, run, stem) if charts is not None else []
-    model_files = {k: Path(v).name for k, v in files.items()}
+    model_files: dict[str, str | list[str]] = {k: Path(v).name for k, v in files.items()}
     model_files["json"] = f"{stem}.json"
     model_files["figures"] = [f["file"] for f in figures]
     result = dict(run.result)

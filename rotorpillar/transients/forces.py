@@ -215,6 +215,8 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
         pm = again.model.pillar_modes
     else:
         pm = res.model.pillar_modes
+    if pm is None:
+        raise ValueError("the modal model runs on pillar modes: it has none")
     q, v = np.asarray(data["q"], dtype=float), np.asarray(data["v"], dtype=float)
     t = np.asarray(run.data["t"], dtype=float)
     on = lambda a: np.column_stack([np.interp(t, data["t"], a[:, j]) for j in range(a.shape[1])])

@@ -138,12 +138,13 @@ def run_model(scene: Scene, case: str, model: str, integrator: str | None = None
     if case == "earthquake" and motion is None:
         from ..reduced.models import scene_motion
         motion = scene_motion(scene)
-    if chain is None and model in ("modal", "fem3d"):
-        from ..chain import resolve
-        chain = resolve(scene, None, motion=motion, progress=progress)
-    if model == "fem3d":
-        return _run_fem3d(scene, case, motion, duration, progress, chain, field_dir,
-                          field_stem or f"simulate_{case}_fem3d", study_dir)
+    if model in ("modal", "fem3d"):
+        if chain is None:
+            from ..chain import resolve
+            chain = resolve(scene, None, motion=motion, progress=progress)
+        if model == "fem3d":
+            return _run_fem3d(scene, case, motion, duration, progress, chain, field_dir,
+                              field_stem or f"simulate_{case}_fem3d", study_dir)
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
@@ -153,6 +154,8 @@ def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, inf
     """The pillar model a reduced model ran on: the chain's (modal), the scene's beam at
     full order (beam), or the paper's stated tip reduction (paper: not the validated chain)."""
     if which == "modal":
+        if chain is None:
+            raise ValueError("the modal model's pillar model is the chain's: none handed in")
         return chain.pillar_model
     if which == "beam":
         n, theory = info["elements"], info["theory"]
@@ -230,6 +233,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     info = res.extra.get("model_info")
     full_order = None
     if which == "beam":
+        info = res.extra["model_info"]
         full_order = BeamFullOrder(
             elements=info["elements"], theory=info["theory"], duration=res.summary.duration,
             time_step=run.stats.get("time_step"),
@@ -249,9 +253,9 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
                          "shaft_deflection_x"),
         initial_speed=res.extra.get("initial_speed"),
         excitation_in_model=res.extra.get("excitation_in_model"), full_order=full_order)
-    run = ModelRun(case, which, record, data, m.quasi_normal(), res)
+    model_run = ModelRun(case, which, record, data, m.quasi_normal(), res)
     from .forces import with_reduced_forces
-    return with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progress)
+    return with_reduced_forces(scene, model_run, res, integrator, pillar_modes, motion, progress)
 
 
 def _warnings(case: str, model, res) -> list[str]:

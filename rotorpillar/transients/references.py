@@ -45,6 +45,7 @@ from pathlib import Path
 import numpy as np
 
 from ..provenance import JsonRecord
+from ..scene.sections import Mesh
 
 PARTICIPATION_FLOOR = 1e-6
 """A mode whose largest share of a case's loads is below this takes no part (-);
@@ -168,7 +169,9 @@ def participation_table(rows, case: str, band_top: float, total_mass: float,
               "plate_z": plate[:, 2] ** 2 / stiff / compliance[1]}
     if np.any(~np.isfinite(shares["base_x"])) and "base_x" in loads:
         raise ValueError("the loaded modes carry no participation (modal.json from before it?)")
-    modes, part, left = [], [], []
+    modes: list[ModeParticipation] = []
+    part: list[int] = []
+    left: list[int] = []
     for i, r in enumerate(rows):
         s = {k: float(shares[k][i]) for k in loads}
         inside = bool(w[i] <= band_top)
@@ -316,7 +319,7 @@ def rom_source_record(scene: Scene, study) -> dict | None:
     return dict(chosen) if chosen is not None else None
 
 
-def _mesh_of(scene: Scene, params: dict):
+def _mesh_of(scene: Scene, params: dict) -> Mesh:
     return replace(scene.mesh, **{k: params[k] for k in ("elements_around", "elements_along",
                                                          "elements_through", "degree", "cell_type",
                                                          "grading") if k in params})
@@ -332,7 +335,7 @@ def estimated_steps(scene: Scene, case: str, motion, duration: float) -> int:
 
 
 def choose_reference(scene: Scene, case: str, study_dir: Path | None = None, motion=None,
-                     steps: int | None = None) -> tuple[object, FullOrderReference]:
+                     steps: int | None = None) -> tuple[Mesh, FullOrderReference]:
     """(the scene [mesh] section the 3D run uses, the record of why) for ``case``;
     ``steps``: the run's Newmark steps, which bound how far the run-up's reference
     is refined for the ROM source (REFERENCE_DOF_STEPS)."""
@@ -378,7 +381,8 @@ def choose_reference(scene: Scene, case: str, study_dir: Path | None = None, mot
             reason=why, statement=f"The 3D reference runs {_label(mesh)}, unverified: {why}. "
             + part.statement, study=study.json_file)
     mesh = _mesh_of(scene, choice.params)
-    errors, band_err, verified, label = choice.errors, choice.band_error, True, choice.label
+    band_err: float | None = choice.band_error
+    errors, verified, label = choice.errors, True, choice.label
     reason = choice.reason
     if overrides:
         mesh = replace(mesh, **{k: getattr(fo, k) for k in overrides})

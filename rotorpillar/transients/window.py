@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 import math
+from functools import partial
 from dataclasses import dataclass
 
 import numpy as np
@@ -81,17 +82,18 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     state = capture_state(res.model, t, W, free)
     w0 = START_FRACTION * qn[0]
     reached = np.nonzero(W >= w0)[0]
-    whole = dict(initial_speed=0.0, start=0.0, end=float(t[-1]), duration=float(t[-1]),
-                 resonances=tuple(qn), passed=tuple(w for w in qn if w <= W.max()),
-                 captured_resonance=state.captured_resonance,
-                 peak_time=float(t[int(np.argmax(tip))]))
+    whole = partial(RunupWindow, initial_speed=0.0, start=0.0, end=float(t[-1]),
+                    duration=float(t[-1]), resonances=tuple(qn),
+                    passed=tuple(w for w in qn if w <= W.max()),
+                    captured_resonance=state.captured_resonance,
+                    peak_time=float(t[int(np.argmax(tip))]))
     if reached.size == 0:
-        return RunupWindow(**whole, reason=f"the run-up never reaches {START_FRACTION:g} x the lowest "
+        return whole(reason=f"the run-up never reaches {START_FRACTION:g} x the lowest "
                            f"resonance ({qn[0]:.2f} rad/s): the whole run from rest")
     i0 = int(reached[0])
     t0 = float(t[i0])
     if sim.runup_ramp > t0:
-        return RunupWindow(**whole, reason=f"the motor's ramp (simulate.runup_ramp = {sim.runup_ramp:g} s) "
+        return whole(reason=f"the motor's ramp (simulate.runup_ramp = {sim.runup_ramp:g} s) "
                            f"lasts past {t0:.3g} s, where the speed reaches {w0:.3g} rad/s: a window "
                            "would start on a partial torque; the whole run from rest")
     after = slice(i0, None)

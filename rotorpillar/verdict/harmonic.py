@@ -57,7 +57,7 @@ def fem3d_modes(modal_doc, tip_damping: float) -> list[ModeEntry]:
     (the dashpot at the plate's X, as the 3D transient has it); every other
     mode: 0 (the model leaves it undamped; API 684 then asks the most).
     """
-    out = []
+    out: list = []
     for row in modal_doc.modes_with_top:
         kind = row["kind"]
         n = row.get("n_circumferential")
@@ -192,8 +192,10 @@ def summary_text(r: HarmonicResult) -> str:
     """The readable text of `rotorpillar harmonic`."""
     lines = [f"unbalance response up to {r.band_top:.1f} rad/s: {r.rom_model}; {r.fem3d_model}"]
     for p in r.peaks:
-        rom = "no peak (damped)" if p.rom_speed is None else f"{p.rom_amplitude * 1e3:.4g} mm at {p.rom_speed:.3f}"
-        fem = "-" if p.fem3d_speed is None else f"{p.fem3d_amplitude * 1e3:.4g} mm at {p.fem3d_speed:.3f}"
+        rom = ("no peak (damped)" if p.rom_speed is None or p.rom_amplitude is None
+               else f"{p.rom_amplitude * 1e3:.4g} mm at {p.rom_speed:.3f}")
+        fem = ("-" if p.fem3d_speed is None or p.fem3d_amplitude is None
+               else f"{p.fem3d_amplitude * 1e3:.4g} mm at {p.fem3d_speed:.3f}")
         lines.append(f"  resonance {p.omega:.3f} rad/s: ROM {rom}; 3D {fem}; Eq. 19 "
                      f"{p.averaging_amplitude * 1e3:.4g} mm")
     lines.append("separation margins (API 684), running speeds "

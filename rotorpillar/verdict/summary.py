@@ -142,7 +142,7 @@ def _margin_checks(h: HarmonicResult) -> list[Check]:
 
 def _governing(rows: list[Check]) -> list[Check]:
     """Per check name, the row with the largest utilisation (not assessed: the largest demand)."""
-    out = {}
+    out: dict[str, Check] = {}
     for c in rows:
         best = out.get(c.name)
         key = (c.utilisation if c.utilisation is not None else -1.0, c.demand or 0.0)
