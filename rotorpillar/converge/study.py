@@ -86,31 +86,32 @@ def study(scene: Scene, *, out_dir: Path, cache_dir: Path | None = None, toleran
                             workers=workers)
     with timings("analysis"):
         analysis = analyse(records, scene, tol)
-    doc = {
-        "scene_name": scene.name,
-        "scene": scene.to_dict(),
-        "tolerance": tol,
-        "cache_dir": str(cache_dir),
-        "families": {k: {"label": f.label, "model": f.model, "order_theory": f.order,
-                         "quantities": list(f.quantities), "sweep": f.sweep}
-                     for k, f in FAMILIES.items()},
-        "runs": records,
-        **analysis,
-        "study": {"runs": len(records), "workers": workers,
-                  "cached": sum(bool(r.get("cached")) for r in records),
-                  "computed": sum(not r.get("cached") for r in records),
-                  "failed": sum(r.get("status") == "failed" for r in records),
-                  "unavailable": sum(r.get("status") == "unavailable" for r in records),
-                  "compute_seconds": sum(r.get("process_time", r.get("wall_time", 0.0)) or 0.0
-                                         for r in records if not r.get("cached"))},
-    }
+    result = ConvergenceStudy(
+        scene_name=scene.name, scene=scene.to_dict(), tolerance=tol, cache_dir=str(cache_dir),
+        families={k: {"label": f.label, "model": f.model, "order_theory": f.order,
+                      "quantities": list(f.quantities), "sweep": f.sweep}
+                  for k, f in FAMILIES.items()},
+        runs=tuple(records), reference=analysis["reference"],
+        extrapolations=analysis["extrapolations"], band=analysis["band"],
+        selection=analysis["selection"], pareto=analysis["pareto"],
+        failures=tuple(analysis["failures"]),
+        study={"runs": len(records), "workers": workers,
+               "cached": sum(bool(r.get("cached")) for r in records),
+               "computed": sum(not r.get("cached") for r in records),
+               "failed": sum(r.get("status") == "failed" for r in records),
+               "unavailable": sum(r.get("status") == "unavailable" for r in records),
+               "compute_seconds": sum(r.get("process_time", r.get("wall_time", 0.0)) or 0.0
+                                      for r in records if not r.get("cached"))})
     if charts is not None:
         with timings("charts"):
-            doc["charts"] = {k: str(v) for k, v in charts(doc, out_dir).items()}
-    doc["study"]["wall_time"] = time.perf_counter() - start
-    doc = with_provenance(doc, timings=dict(timings))
+            drawn = charts(result.to_json(), out_dir)
+        result = dataclasses.replace(result, charts={k: str(v) for k, v in drawn.items()})
+    result = dataclasses.replace(result, study={**result.study,
+                                                "wall_time": time.perf_counter() - start})
+    doc = with_provenance(result.to_json(), timings=dict(timings))
     path = write_result(Path(out_dir) / "convergence.json", doc)
-    return dataclasses.replace(ConvergenceStudy.from_json(doc), json_file=str(path))
+    return dataclasses.replace(result, versions=doc["versions"], machine=doc["machine"],
+                               timings=doc["timings"], json_file=str(path))
 
 
 def _cached_study(scene: Scene, tolerance: float, cache_dir: Path):
