@@ -26,4 +26,4 @@ check = s.response_spectrum_check or {}
 for key in ("srss_tip_estimate", "ratio"):
     if key in check:
         print(f"response spectrum: {key} = {check[key]:.4g}")
-print(f"energy balance closes to {s.energy_balance['relative_error']:.1e}; ok = {s.ok}")
+print(f"energy balance closes to {s.energy_balance.relative_error:.1e}; ok = {s.ok}")

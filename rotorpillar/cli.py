@@ -19,7 +19,7 @@ import time
 from pathlib import Path
 
 from .errors import ComputationError, InputError, StageError
-from .provenance import Timings, machine, to_json, versions, write_json
+from .provenance import Timings, to_json, with_provenance, write_result
 from .commands import is_root_rank, out_dir
 from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
 from .scene import Scene, load_scene
@@ -33,11 +33,11 @@ def execute(name: str, scene: Scene, args) -> dict:
     result, text = fn(scene, args, timings)
     status = result.pop("exit_status", EXIT_OK)   # a command's own verdict (report --strict)
     timings["total"] = time.perf_counter() - start
-    doc = {"command": name, "scene_source": str(args.scene), "overrides": list(args.overrides),
-           "scene": scene.to_dict(), **result,
-           "versions": versions(), "machine": machine(), "timings": dict(timings)}
+    doc = with_provenance(result, {"command": name, "scene_source": str(args.scene),
+                                   "overrides": list(args.overrides), "scene": scene.to_dict()},
+                          dict(timings))
     if is_root_rank():
-        path = write_json(out_dir(scene, args) / f"{name}.json", doc)
+        path = write_result(out_dir(scene, args) / f"{name}.json", doc)
         doc["_path"] = str(path)
         doc["_summary"] = text
     doc["exit_status"] = status

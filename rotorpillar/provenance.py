@@ -271,6 +271,37 @@ def write_json(path: str | Path, obj) -> Path:
     return Path(path)
 
 
+#: What every result file carries beside its own fields (README: each JSON says where it
+#: comes from): the resolved scene, the versions, the machine and the timings.
+PROVENANCE_KEYS = ("scene", "versions", "machine", "timings")
+
+
+def with_provenance(result, head: dict | None = None, timings: dict | None = None) -> dict:
+    """The document of a result file: ``head`` first (command, scene_source, overrides,
+    scene: what the caller knows), then the result's fields (a JsonRecord or a dict), then
+    ``versions``, ``machine`` and ``timings`` (s) where the result does not carry its own."""
+    body = result.to_json() if isinstance(result, JsonRecord) else dict(result)
+    doc = {**(head or {}), **body}
+    if "versions" not in doc:
+        doc["versions"] = versions()
+    if "machine" not in doc:
+        doc["machine"] = machine()
+    if "timings" not in doc:
+        doc["timings"] = dict(timings or {})
+    return doc
+
+
+def write_result(path: str | Path, result, head: dict | None = None,
+                 timings: dict | None = None) -> Path:
+    """Write a result file (atomically) with its provenance (``with_provenance``): the one
+    writer of every JSON a command writes; a document without its scene is refused."""
+    doc = with_provenance(result, head, timings)
+    missing = [k for k in PROVENANCE_KEYS if k not in doc]
+    if missing:
+        raise ValueError(f"{path}: a result file needs its {', '.join(missing)}")
+    return write_json(path, doc)
+
+
 def write_text(path: str | Path, text: str) -> Path:
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
@@ -300,6 +331,8 @@ def _record_from(hint, value):
     if origin in (typing.Union, types.UnionType):
         inner = [a for a in args if a is not type(None)]
         return _record_from(inner[0], value) if len(inner) == 1 else value
+    if origin is dict and isinstance(value, dict) and len(args) == 2:
+        return {k: _record_from(args[1], v) for k, v in value.items()}
     if origin is tuple and isinstance(value, (list, tuple)):
         if len(args) == 2 and args[1] is Ellipsis:
             return tuple(_record_from(args[0], v) for v in value)

@@ -112,7 +112,7 @@ def test_an_interrupted_study_resumes_without_recomputing(tmp_path):
         if len(calls) == 5:
             raise KeyboardInterrupt      # mid-study, as a Ctrl-C would
         calls.append(case)
-        return cv.run_case(case, sc)
+        return cv.run_point(case, sc)
 
     with pytest.raises(KeyboardInterrupt):
         cv.run_study(cases, scene, tmp_path, runner=interrupted, progress=False)
@@ -125,7 +125,7 @@ def test_an_interrupted_study_resumes_without_recomputing(tmp_path):
 
     def counting(case, sc):
         again.append(case)
-        return cv.run_case(case, sc)
+        return cv.run_point(case, sc)
 
     recs = cv.run_study(cases, scene, tmp_path, runner=counting, progress=False)
     assert [c.label for c in again] == [c.label for c in cases[5:]]

@@ -74,9 +74,9 @@ def test_each_run_of_a_study_is_the_single_run(small_study):
         since = run.t >= settle_time(sc, sc.simulate.duration)
         assert r.peak_shaft_deflection == pytest.approx(float(shaft[since].max()), rel=1e-5)
         state = capture_state(model, run.t, run.Omega, drive.free_speed())
-        assert r.captured_at == state["captured_at"] or r.captured_at == pytest.approx(
-            state["captured_at"], rel=1e-5)                 # the batch and the single run's output grids
-        assert r.passed == (state["speed_state"] not in ("captured", "escaping"))
+        assert r.captured_at == state.captured_at or r.captured_at == pytest.approx(
+            state.captured_at, rel=1e-5)                 # the batch and the single run's output grids
+        assert r.passed == (state.speed_state not in ("captured", "escaping"))
         kinds.add(r.passed)
     assert kinds == {True, False}               # the grid holds both outcomes
 

@@ -72,8 +72,8 @@ def test_beam_case_energy_and_against_the_rom(case):
     beam = run_case(scene, case, "beam")
     rom = run_case(scene, case, "modal", truncation=False)
     assert beam.run.stats["method"] == scene.full_order.beam_integrator
-    assert beam.summary.ok and beam.summary.energy_balance["relative_error"] < 3e-4
-    assert rom.summary.energy_balance["relative_error"] < 1e-4
+    assert beam.summary.ok and beam.summary.energy_balance.relative_error < 3e-4
+    assert rom.summary.energy_balance.relative_error < 1e-4
     tip = np.interp(rom.run.t, beam.run.t, beam.run.tip())
     assert np.max(np.abs(rom.run.tip() - tip)) / np.max(np.abs(tip)) < 2e-2
     assert beam.summary.omega_final == pytest.approx(rom.summary.omega_final, rel=1e-5)
@@ -90,12 +90,21 @@ def test_published_forcing_warning_threshold():
 
 
 def test_compare_result_round_trip():
-    from rotorpillar.transients.records import CompareResult, reference_of
+    from rotorpillar.transients.records import (ComparedModel, CompareResult, CompareWindow,
+                                                ModelErrors, ResponseSpectrum, SpectralMode,
+                                                reference_of)
+
+    def model(dofs):
+        return ComparedModel(1e-3, 1.1e-3, 2e-3, 80.0, 0.5, 1.0, dofs, True, (), None,
+                             "a.json", "a.npz")
     r = CompareResult(case="earthquake", models_run=("modal", "fem3d"), reference=reference_of(("modal", "fem3d")),
-                      excitation={"kind": "record"}, per_model={"modal": {"dofs": 5}, "fem3d": {"dofs": 3033}},
-                      errors={"modal": {"tip_history_error": 0.0066}}, cost_ratio={"modal": 0.03, "fem3d": 1.0},
-                      chart="compare_earthquake.png", window={"start": 0.0, "end": 15.0},
-                      spectrum={"period": [0.1, 1.0], "psa": [1.0, 2.0]})
+                      excitation={"kind": "record"}, per_model={"modal": model(5), "fem3d": model(3033)},
+                      errors={"modal": ModelErrors(0.0066, 0.01, 0.0, 0.005, 0.4, 1e-4, -1e-5, "history",
+                                                   "in phase")},
+                      cost_ratio={"modal": 0.03, "fem3d": 1.0},
+                      chart="compare_earthquake.png", window=CompareWindow(0.0, 15.0, 15.0, "own"),
+                      spectrum=ResponseSpectrum((0.1, 1.0), (1.0, 2.0), 0.05, (0.25,), 0.1, None,
+                                                (SpectralMode(1, 0.25, 0.08, 1.39, 0.08, 0.11),), ""))
     doc = json.loads(json.dumps(r.to_json()))
     assert CompareResult.from_json(doc) == r and CompareResult.from_json(doc).to_json() == doc
     assert r.reference == "fem3d" and reference_of(("paper", "beam", "modal")) == "beam"

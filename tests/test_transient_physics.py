@@ -63,7 +63,7 @@ def test_energy_is_conserved_without_damping_motor_and_load():
 @pytest.mark.parametrize("scene", ["paper", "paper-stiff"])
 def test_work_closes_the_energy_balance_of_a_run_up(scene):
     r = run_case(load_scene(scene), "runup", "paper")
-    assert r.summary.energy_balance["relative_error"] < 1e-6
+    assert r.summary.energy_balance.relative_error < 1e-6
 
 
 def steady_run(model, W):

@@ -11,10 +11,10 @@ reduction it receives as a callable when a scene asks for it):
 
 from .paper import compare_with_paper
 from .results import (AnalysisResult, DriveRegimes, PaperRow, PillarClosedForms,
-                      ResonanceAnalysis, SystemModes, TipReductionUsed)
+                      ResonanceAnalysis, CoupledModes, TipReductionUsed)
 from .scene_analysis import analyze
 from .text import summary
 
 __all__ = ["AnalysisResult", "DriveRegimes", "PaperRow", "PillarClosedForms",
-           "ResonanceAnalysis", "SystemModes", "TipReductionUsed", "analyze",
+           "ResonanceAnalysis", "CoupledModes", "TipReductionUsed", "analyze",
            "compare_with_paper", "summary"]

@@ -23,6 +23,11 @@ that is possible.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Protocol
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import math
 from dataclasses import dataclass
 
@@ -32,7 +37,18 @@ from ..reduced import averaging as av
 from ..reduced.base_forcing import base_forcing_finding
 from ..reduced.pillar import tip_mass_lumped
 from ..reduced.system import ReducedSystem, linear_modes, omega_pair, reduced_system
-from .results import AnalysisResult, PaperRow
+from .results import CoupledModes, PaperRow, PillarClosedForms, TipReductionUsed
+
+
+class PaperBlocks(Protocol):
+    """What the paper's comparison reads: the pillar's closed forms and the paper model's
+    tip reduction and coupled modes (rotorpillar.analysis.scene_analysis hands them in)."""
+    @property
+    def pillar(self) -> PillarClosedForms: ...
+    @property
+    def reduction(self) -> TipReductionUsed: ...
+    @property
+    def system(self) -> CoupledModes: ...
 
 #: Differences above 2 % are flagged: the paper prints two or three digits.
 TOLERANCE = 0.02
@@ -83,7 +99,7 @@ FE_BEAM_ELEMENTS = 40
 @dataclass(frozen=True)
 class StiffCase:
     """The paper's model on the stiff shaft: what Table 1 and Eq. 24 print."""
-    scene: object
+    scene: Scene
     """the stiff-shaft scene (rotorpillar.scene.Scene)"""
     resonances: tuple
     """its X resonances (reduced.system.Resonance), in order"""
@@ -155,7 +171,7 @@ def _implied_tip(omega1: float, omega2: float, mC: float, c2: float):
     return mA, c1
 
 
-def _notes(scene, result, stiff: StiffCase) -> dict:
+def _notes(scene: Scene, result, stiff: StiffCase) -> dict:
     """Likely causes, computed from the paper's own numbers where possible."""
     p, sysd, res = result.pillar, result.system, stiff.resonances
     E = scene.pillar.youngs_modulus
@@ -176,7 +192,7 @@ def _notes(scene, result, stiff: StiffCase) -> dict:
     notes["m_rho"] = "The paper's 'distributed beam mass m_i = 1e3' is read as kg per metre."
 
     sc = stiff.scene
-    mA, mC, c2 = sysd.tip_mass_total, scene.rotor.mass, scene.shaft.stiffness
+    mA, mC = sysd.tip_mass_total, scene.rotor.mass
     alt = ReducedSystem(mA, mC, scene.rotor.inertia, scene.rotor.eccentricity,
                         result.reduction.tip_stiffness, 0.4e6, scene.pillar.damping, 11e3)
     elastic = omega_pair(alt)
@@ -244,7 +260,7 @@ def _notes(scene, result, stiff: StiffCase) -> dict:
     return notes
 
 
-def compare_with_paper(scene, result: AnalysisResult, pillar_modes=None) -> tuple[PaperRow, ...]:
+def compare_with_paper(scene: Scene, result: PaperBlocks, pillar_modes=None) -> tuple[PaperRow, ...]:
     """Rows {quantity, paper, computed, rel_diff, flag, note, where} for the
     scene, each printed number computed on its own case (module docstring);
     ``pillar_modes`` (reduced.pillar_modes.PillarModes of the tube with the
@@ -282,7 +298,7 @@ def compare_with_paper(scene, result: AnalysisResult, pillar_modes=None) -> tupl
     return tuple(rows)
 
 
-def base_forcing_row(scene, result: AnalysisResult) -> PaperRow:
+def base_forcing_row(scene: Scene, result: PaperBlocks) -> PaperRow:
     """The finding ``eq4_base_forcing``: Eq. 4's published base forcing against the consistent one.
 
     Compared as the static tip gain q1/q5 under a slow ground displacement:

@@ -77,7 +77,7 @@ class TipReductionUsed(JsonRecord):
 
 
 @dataclass(frozen=True)
-class SystemModes(JsonRecord):
+class CoupledModes(JsonRecord):
     """The reduced rotor-pillar system: its modes and quasi-normal coefficients."""
     tip_mass_total: float
     c0: float
@@ -244,7 +244,7 @@ class RomSystem(JsonRecord):
 class PaperModel(JsonRecord):
     """The paper's Eq. 4 with its stated tip reduction, analysed as the paper does."""
     reduction: TipReductionUsed
-    system: SystemModes
+    system: CoupledModes
     resonances: tuple[ResonanceAnalysis, ...]
     drive: DriveRegimes
     note: str

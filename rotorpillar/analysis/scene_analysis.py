@@ -26,7 +26,7 @@ from ..scene import Scene
 from .paper import compare_with_paper
 from .results import (AnalysisResult, DampedMode, DriveBars, DriveRegimes, PaperModel,
                       PillarClosedForms, ResonanceAnalysis, ResonanceBars, ResonanceCurves,
-                      RomSystem, SystemModes, TipReductionUsed)
+                      RomSystem, CoupledModes, TipReductionUsed)
 from .rom import RomVariants, bars, drive_quantity, resonance_quantity, rom_variants
 
 CURVE_POINTS = 201
@@ -171,7 +171,7 @@ def paper_model_analysis(scene: Scene, closed: dict, ch: av.Characteristic, c2e:
     modes = linear_modes(sys_)
     resonances, drive = averaging_results(modes.resonances, ch, scene.rotor.eccentricity, c2e)
     x = modes.resonances[:2]
-    system = SystemModes(
+    system = CoupledModes(
         tip_mass_total=sys_.tip_mass, c0=sys_.c0, b0=sys_.b0, omega=(x[0].omega, x[1].omega),
         omega3=modes.resonances[2].omega,
         frequency_hz=tuple(w / (2 * math.pi) for w in modes.omega),
@@ -192,7 +192,7 @@ class _PaperView:
     """What rotorpillar.analysis.paper reads: the pillar and the paper model's blocks."""
     pillar: PillarClosedForms
     reduction: TipReductionUsed
-    system: SystemModes
+    system: CoupledModes
     resonances: tuple
     drive: DriveRegimes
 

@@ -7,6 +7,13 @@ run`` hand results over through the files they write.  Commands stay thin: the p
 lives in the library modules they call.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import os
 import sys
 from pathlib import Path
@@ -19,7 +26,7 @@ from pathlib import Path
 EXIT_CHECKS = 4
 
 
-def out_dir(scene, args) -> Path:
+def out_dir(scene: Scene, args) -> Path:
     """Where a command writes: ``--out DIR``, or ``out/<scene name>/``."""
     return args.out if args.out is not None else Path("out") / scene.name
 

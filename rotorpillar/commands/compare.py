@@ -10,7 +10,12 @@ over one common duration, and writes ``compare_<case>.json`` and
 
 from __future__ import annotations
 
-from ..scene import MODELS
+from typing import TYPE_CHECKING
+
+from ..scene import MODELS, Scene
+
+if TYPE_CHECKING:
+    from ..transients.records import CompareResult
 
 
 def add_arguments(p) -> None:
@@ -29,7 +34,7 @@ def add_arguments(p) -> None:
                         "per core)")
 
 
-def preflight(scene, args) -> None:
+def preflight(scene: Scene, args) -> None:
     """What `compare` refuses before any work (`run` calls it for its stages too): the
     models, MPI, the record, the common duration and each model's run
     (commands.simulate.check_run: the 3D plan, mesh and step budget, the reduced runs'
@@ -49,7 +54,7 @@ def preflight(scene, args) -> None:
         check_run(scene, args.case, m, motion=motion, duration=duration)
 
 
-def compare_command(scene, args, timings):
+def compare_command(scene: Scene, args, timings):
     from . import EXIT_CHECKS, is_root_rank, mpi_progress, out_dir
     from ..transients.compare import compare_models, parse_models
     preflight(scene, args)
@@ -77,43 +82,49 @@ def compare_command(scene, args, timings):
                              write=is_root_rank(), run_charts=model_run_charts,
                              compare_chart=comparison_chart, pareto=getattr(args, "pareto", False),
                              pareto_chart=pareto_chart, workers=workers or default_workers(),
-                             chain=chain)
+                             chain=chain, timings=timings)
+    for run in res.per_model.values():
+        for warning in run.warnings:
+            progress(f"warning: {warning}")
     doc = res.to_json()
-    if any(p.get("ok") is False for p in res.per_model.values()):
+    if any(p.ok is False for p in res.per_model.values()):
         doc["exit_status"] = EXIT_CHECKS
-    return doc, summary(scene, res)
+    return doc, _summary(scene, res)
 
 
-def summary(scene, r) -> str:
+def _summary(scene: Scene, r: CompareResult) -> str:
+    w = r.window
     lines = [f"rotorpillar compare {scene.name}: case {r.case}, reference {r.reference} "
-             f"(over {r.window['start']:g}..{r.window['end']:g} s: {r.window['why']})"]
+             f"(over {w.start:g}..{w.end:g} s: {w.why})"]
     for m in r.models_run:
         p = r.per_model[m]
         e = r.errors.get(m)
+        lead = 0.0 if e is None else (e.tip_history_error if e.lead == "history"
+                                      else e.tip_envelope_error)
         err = ("reference" if e is None else
-               f"tip {e['lead']} error {100 * e['tip_' + e['lead'] + '_error']:.2f} % (leads: "
-               f"{'rotors in phase' if e['lead'] == 'history' else 'the rotor angles drift'}), "
-               f"history {100 * e['tip_history_error']:.2f} %, envelope "
-               f"{100 * e['tip_envelope_error']:.2f} %, peak {100 * (e['peak_tip_difference'] or 0):+.2f} %"
-               + ("" if e.get("angle_drift") is None else
-                  f", rotor angle drift {e['angle_drift']:.3g} rad"))
-        lines.append(f"  {m:6s} peak tip {p['peak_tip_relative']:.4g} m (relative), "
-                     f"{p['dofs']} dofs, {p['wall_seconds']:.3g} s ({r.cost_ratio[m]:.3g} x); {err}")
-        for w in p["warnings"]:
-            lines.append(f"         WARNING: {w}")
+               f"tip {e.lead} error {100 * lead:.2f} % (leads: "
+               f"{'rotors in phase' if e.lead == 'history' else 'the rotor angles drift'}), "
+               f"history {100 * e.tip_history_error:.2f} %, envelope "
+               f"{100 * e.tip_envelope_error:.2f} %, peak {100 * (e.peak_tip_difference or 0):+.2f} %"
+               + ("" if e.angle_drift is None else
+                  f", rotor angle drift {e.angle_drift:.3g} rad"))
+        lines.append(f"  {m:6s} peak tip {p.peak_tip_relative:.4g} m (relative), "
+                     f"{p.dofs} dofs, {p.wall_seconds:.3g} s ({r.cost_ratio[m]:.3g} x); {err}")
+        for warning in p.warnings:
+            lines.append(f"         WARNING: {warning}")
     if r.spectrum:
         s = r.spectrum
-        comp = f"{s['computed_peak_tip']:.4g} m" if s["computed_peak_tip"] is not None else "not run"
-        lines.append(f"  response spectrum: spectral peak tip {s['spectral_peak_tip']:.4g} m (SRSS), "
+        comp = f"{s.computed_peak_tip:.4g} m" if s.computed_peak_tip is not None else "not run"
+        lines.append(f"  response spectrum: spectral peak tip {s.spectral_peak_tip:.4g} m (SRSS), "
                      f"computed (modal) {comp}")
     if r.pareto:
         pa = r.pareto
-        lines.append(f"  speed against accuracy ({pa['cost']['runs']} runs, {pa['cost']['computed']} "
-                     f"computed in {pa['cost']['wall_seconds']:.3g} s): errors against "
-                     f"{pa['reference']['label']} (own peak error {_pct(pa['reference']['peak_error'])}, "
-                     f"{pa['reference']['method']}); {pa['chosen']['why']}")
+        lines.append(f"  speed against accuracy ({pa.cost['runs']} runs, {pa.cost['computed']} "
+                     f"computed in {pa.cost['wall_seconds']:.3g} s): errors against "
+                     f"{pa.reference['label']} (own peak error {_pct(pa.reference['peak_error'])}, "
+                     f"{pa.reference['method']}); {pa.chosen['why']}")
     if r.full_order_reference:
-        lines.append(f"  3D reference: {r.full_order_reference['statement']}")
+        lines.append(f"  3D reference: {r.full_order_reference.statement}")
     lines.append(f"  chart: {r.chart}")
     return "\n".join(lines)
 

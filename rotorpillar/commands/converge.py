@@ -11,6 +11,11 @@ this module holds its arguments and its summary.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 from pathlib import Path
 
 from . import progress
@@ -39,7 +44,7 @@ def add_modal_arguments(p) -> None:
                    help="the study's run cache (default: <out>/cache)")
 
 
-def summary(st) -> str:
+def _summary(st) -> str:
     """The study in words: counts, references, orders, band, front, choice and failures."""
     ref, sel, n = st.reference, st.selection, st.study
     lines = [f"rotorpillar converge {st.scene_name}: {n['runs']} runs "
@@ -81,7 +86,7 @@ def _under_mpi() -> bool:
     return any(int(os.environ.get(k, "1")) > 1 for k in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"))
 
 
-def preflight(scene, args) -> None:
+def preflight(scene: Scene, args) -> None:
     """What `converge` refuses before any work (`run` calls it for its stage too): MPI,
     --workers, --tolerance, and runs (not in the cache) this process's memory cannot hold."""
     from . import out_dir
@@ -91,15 +96,15 @@ def preflight(scene, args) -> None:
                          "start it without mpirun")
     check_workers(args.workers)
     from ..converge.ladder import study_cases
-    from ..converge.runner import check_memory, todo_cases
+    from ..converge.runner import check_study_memory, todo_cases
     from ..converge.study import check_tolerance
     check_tolerance(scene.converge.tolerance if args.tolerance is None else args.tolerance)
     cache = out_dir(scene, args) / "cache" if args.cache is None else args.cache
-    check_memory(todo_cases(study_cases(scene), scene, cache),
+    check_study_memory(todo_cases(study_cases(scene), scene, cache),
                  default_workers() if args.workers is None else args.workers)
 
 
-def converge_command(scene, args, timings):
+def converge_command(scene: Scene, args, timings):
     from . import out_dir
     preflight(scene, args)
     from ..converge import study
@@ -112,4 +117,4 @@ def converge_command(scene, args, timings):
     result = {"convergence_json": st.json_file, "charts": st.charts or {},
               "tolerance": st.tolerance, "reference": st.reference,
               "selection": st.selection, "failures": list(st.failures), "study": st.study}
-    return result, summary(st)
+    return result, _summary(st)

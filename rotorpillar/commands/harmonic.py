@@ -10,6 +10,11 @@ the loaded tube's 3D modes read from modal.json when it is there.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 from . import progress
 
 
@@ -18,7 +23,7 @@ def add_arguments(p) -> None:
                    help="the ROM only: skip the 3D model's harmonic response")
 
 
-def preflight(scene, args) -> None:
+def preflight(scene: Scene, args) -> None:
     """What `harmonic` refuses before any work (`run` calls it for its stage too): a 3D mesh
     this machine cannot hold, and a drive with no stable running speed."""
     from ..reduced.models import build_model
@@ -35,7 +40,7 @@ def preflight(scene, args) -> None:
     operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
 
 
-def harmonic_command(scene, args, timings):
+def harmonic_command(scene: Scene, args, timings):
     from . import out_dir
     from ..verdict.harmonic import harmonic_analysis, summary_text
     preflight(scene, args)

@@ -4,6 +4,11 @@ where each fails (rotorpillar.transients.integrator_study).  Writes
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import math
 
 from . import progress
@@ -20,7 +25,7 @@ def add_arguments(p) -> None:
                    help="fewer tolerances, steps and modes (for a first look)")
 
 
-def preflight(scene, args) -> None:
+def preflight(scene: Scene, args) -> None:
     """What `integrators` refuses before any work (`run` calls it for its stage too)."""
     from ..errors import InputError
     duration = getattr(args, "duration", 10.0)
@@ -30,7 +35,7 @@ def preflight(scene, args) -> None:
                          f"study costs about 2-6 s per simulated second on 2 cores")
 
 
-def integrators_command(scene, args, timings):
+def integrators_command(scene: Scene, args, timings):
     from . import is_root_rank, out_dir
     from ..chain import resolve
     from ..transients.integrator_study import run_study
@@ -60,10 +65,10 @@ def integrators_command(scene, args, timings):
                         "run-up (left), cost and failure as pillar modes are added (middle), energy "
                         "drift of the undamped, unforced system (right)."})
     result["figures"] = figures
-    return result, summary(scene, result)
+    return result, _summary(scene, result)
 
 
-def summary(scene, r: dict) -> str:
+def _summary(scene: Scene, r: dict) -> str:
     acc = r["accuracy"]
     lines = [f"rotorpillar integrators {scene.name}: run-up of {acc['duration']:g} s, reference dp5 "
              f"rtol 1e-12 (DOP853 1e-12 agrees to {acc['reference']['agreement_with_DOP853_1e-12']:.1e})",

@@ -14,13 +14,18 @@ pyvista, meshio) beside it, and prints a table.  Runs under MPI (``mpirun -n
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 from . import progress
 
 #: Mode-shape files, in the output directory.
 SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
 
 
-def band_edge(scene) -> float:
+def band_edge(scene: Scene) -> float:
     from ..reduced.band import excitation_band
     return excitation_band(scene)["omega_max"]
 
@@ -59,7 +64,7 @@ def _rank0() -> bool:
 SOLVES = 2
 
 
-def preflight(scene, args=None) -> None:
+def preflight(scene: Scene, args=None) -> None:
     """What `modal` refuses before any work (`run` calls it for its stage too): a mesh
     this process cannot hold, more modes than the mesh has, a tolerance out of range."""
     from ..errors import InputError
@@ -83,7 +88,7 @@ def preflight(scene, args=None) -> None:
         check_tolerance(args.tolerance)
 
 
-def modal_command(scene, args, timings):
+def modal_command(scene: Scene, args, timings):
     import sys
     from . import EXIT_CHECKS, out_dir
     preflight(scene, args)                         # bad input: refused before any import or work

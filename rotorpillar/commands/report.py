@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import shlex
 
 from . import progress
@@ -40,12 +45,12 @@ def checked_frames(args) -> int:
     return frames
 
 
-def preflight(scene, args) -> None:
+def preflight(scene: Scene, args) -> None:
     """What `report` refuses before any work (`run` calls it for its stage too)."""
     checked_frames(args)
 
 
-def report_command(scene, args, timings):
+def report_command(scene: Scene, args, timings):
     from . import is_root_rank, out_dir
     from ..postprocess.report import ReportOptions, build_report, report_text
     frames = checked_frames(args)
@@ -57,8 +62,8 @@ def report_command(scene, args, timings):
     failed = None
     with timings("summary"):
         try:
-            written = write_summary(scene, out_dir(scene, args))
-            written = None if written is None else str(written)
+            path = write_summary(scene, out_dir(scene, args))
+            written = None if path is None else str(path)
         except (KeyError, TypeError, ValueError, AttributeError) as exc:   # a damaged input: said, not fatal
             written, failed = None, f"{type(exc).__name__}: {exc}"
             progress(f"report: summary.json not written: {failed}")

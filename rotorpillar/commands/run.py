@@ -16,6 +16,11 @@ other, run side by side on the machine's cores; the report comes last.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import json
 import os
 import subprocess
@@ -102,7 +107,9 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
     finished (their files stay whole); Ctrl-C or SIGTERM kills every stage
     still running.
     """
-    pending, running, seconds, failed = list(jobs), {}, {}, []
+    running: dict = {}
+    failed: list = []
+    pending, seconds = list(jobs), {}
     try:
         while pending or running:
             while pending and len(running) < slots and not failed:
@@ -133,7 +140,7 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
     return seconds
 
 
-def preflight(scene, stages, args) -> None:
+def preflight(scene: Scene, stages, args) -> None:
     """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
     module), on the scene and arguments that stage will see: its command line parsed by
     the CLI's parser, its own --set before the user's.  Called before the first stage,
@@ -169,7 +176,7 @@ def add_arguments(parser) -> None:
                         help=f"leave out a stage ({', '.join(names)}); repeatable")
 
 
-def run_command(scene, args, timings):
+def run_command(scene: Scene, args, timings):
     """Every stage of RUN_STAGES, each writing its own JSON."""
     from . import out_dir
     from ..errors import InputError

@@ -24,6 +24,11 @@ and beam full_order (mesh or elements, duration, time_step, note).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 from . import EXIT_CHECKS
 from ..scene import CASES, INTEGRATORS, MODELS
 
@@ -47,7 +52,7 @@ def add_arguments(p) -> None:
                         "(the scene's simulate.threshold = false)")
 
 
-def check_run(scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
+def check_run(scene: Scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
               motion=None, duration: float | None = None) -> None:
     """Refuse (InputError) a run of one model that its own code would refuse, before any
     work: the 3D model's mesh memory and step budget (fem3d.full_order_plan, before
@@ -65,7 +70,7 @@ def check_run(scene, case: str, which: str, integrator: str | None = None, modes
     from ..transients.model_run import fem3d_plan, with_duration
     if which == "fem3d":
         from ..mesh import tube_params
-        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration)["_mesh"])   # its memory
+        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration).mesh)   # its memory
         check_fem3d_budget(scene, case, motion, duration)
         return
     if duration is not None:
@@ -82,7 +87,7 @@ def check_run(scene, case: str, which: str, integrator: str | None = None, modes
             pass
 
 
-def preflight(scene, args):
+def preflight(scene: Scene, args):
     """What `simulate` refuses before any work (`run` calls it for its stages too): its
     flags, MPI, the record, and the run's plan or step budget (``check_run``: before the
     chain's pillar modes, which may take a 3D solve).  Returns the ground motion of an
@@ -103,7 +108,7 @@ def preflight(scene, args):
     return motion
 
 
-def simulate_command(scene, args, timings):
+def simulate_command(scene: Scene, args, timings):
     from . import is_root_rank, mpi_progress, out_dir
     motion = preflight(scene, args)                                    # bad input: before any work
     from ..postprocess.transient_charts import model_run_charts
@@ -124,6 +129,8 @@ def simulate_command(scene, args, timings):
                         motion=motion, chain=chain, field_dir=out_dir(scene, args),
                         study_dir=out_dir(scene, args))
     result = dict(run.result)
+    for warning in result.get("warnings") or ():
+        progress(f"warning: {warning}")
     if is_root_rank():
         with timings("write"):
             provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
@@ -133,10 +140,10 @@ def simulate_command(scene, args, timings):
         result["exit_status"] = EXIT_CHECKS
         for line in result.get("failed_checks") or []:
             progress(f"simulate: check failed: {line}")
-    return result, summary(scene, result)
+    return result, _summary(scene, result)
 
 
-def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) -> None:
+def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None = None) -> None:
     """Refuse, before any meshing, a 3D run above ``simulate.max_steps`` (InputError
     naming the keys; fem3d.full_order_plan), on the plan's mesh, duration and step."""
     from ..fem3d.full_order_plan import case_setup, check_budget, estimate, step_rule
@@ -144,12 +151,12 @@ def check_fem3d_budget(scene, case: str, motion, duration: float | None = None) 
     plan = fem3d_plan(scene, case, motion, duration)
     # the start speed 0: the step follows the drive's free speed, which the operating
     # speed never passes, so the rule's step is the run's without solving for it
-    motion, drive, length, _, _ = case_setup(scene, case, motion, None, plan["duration"], 0.0)
+    motion, drive, length, _, _ = case_setup(scene, case, motion, None, plan.duration, 0.0)
     check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, 0.0,
-                                                                 plan["time_step"]), plan["_mesh"]))
+                                                                 plan.time_step), plan.mesh))
 
 
-def summary(scene, r: dict) -> str:
+def _summary(scene: Scene, r: dict) -> str:
     lines = [f"rotorpillar simulate {scene.name}: case {r['case']}, {r['model']} model "
              f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"]
     it = r["integrator"]

@@ -13,6 +13,11 @@ The study itself is :func:`rotorpillar.studies.design_study`.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 from . import progress
 from ..scene import STUDY_CASES, STUDY_MODELS
 
@@ -33,7 +38,7 @@ def add_arguments(p) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
-def study_command(scene, args, timings):
+def study_command(scene: Scene, args, timings):
     from . import out_dir
     from ..executor import Executor, probe_scheduler
     Executor(args.workers, args.scheduler)          # bad --workers / --scheduler: refused now
@@ -48,10 +53,10 @@ def study_command(scene, args, timings):
                            show_progress=not args.no_progress, charts=study_charts, log=progress)
     for k in ("cluster_start_seconds", "compute_wall_seconds"):
         timings[k.replace("_seconds", "")] = res.performance[k]
-    return res.to_json(), summary(res)
+    return res.to_json(), _summary(res)
 
 
-def summary(r) -> str:
+def _summary(r) -> str:
     p, b, ex = r.performance, r.batches, r.executor
     axes = " x ".join(f"{a.key} ({len(a.values)})" for a in r.axes)
     lines = [f"rotorpillar study {r.scene_name}: {r.case}, {r.model} model, {len(r.runs)} runs "

@@ -33,7 +33,7 @@ from .ladder import (ALONG_PER_AROUND, AROUND_LEVELS, EULER_LEVELS, FAMILIES, N_
 from .result import ConvergenceStudy
 from .richardson import (GCI_SAFETY, family_extrapolations, family_series, reference_values,
                          richardson)
-from .runner import (CACHE_VERSION, UNAVAILABLE_EXIT, ModelUnavailable, case_key, run_case,
+from .runner import (CACHE_VERSION, UNAVAILABLE_EXIT, ModelUnavailable, case_key, run_point,
                      run_study, worker)
 from .selection import (attach_errors, band_error, excitation_band, needed_quantities,
                         pareto_front, reference_uncertainty, select_model)
@@ -48,7 +48,7 @@ __all__ = [
     # compute
     "compute_in_process", "compute_fe",
     # runner
-    "CACHE_VERSION", "case_key", "ModelUnavailable", "UNAVAILABLE_EXIT", "worker", "run_case",
+    "CACHE_VERSION", "case_key", "ModelUnavailable", "UNAVAILABLE_EXIT", "worker", "run_point",
     "run_study",
     # richardson
     "GCI_SAFETY", "richardson", "family_series", "family_extrapolations", "reference_values",

@@ -19,12 +19,15 @@ import tempfile
 import time
 import tracemalloc
 from pathlib import Path
-from typing import Callable, Optional
+from typing import TYPE_CHECKING, Callable, Optional
 
 from ..cache import DiskCache, cache_key, source_hash
 from ..provenance import write_json
 from .compute import compute_fe, compute_in_process
 from .ladder import FAMILIES, N_MODES, Case, estimated_dofs, estimated_seconds, resolved_only
+
+if TYPE_CHECKING:
+    from ..scene import Scene
 
 
 SHELL_MODEL, SHELL_MESH = "fem3d.naghdi", "mesh.midsurface"
@@ -209,7 +212,7 @@ def worker(case_file: str, out_file: str) -> None:
         sys.exit(UNAVAILABLE_EXIT)
 
 
-def _run_in_service(case: Case, scene) -> dict:
+def _run_in_service(case: Case, scene: Scene) -> dict:
     from .service import service
     with tempfile.TemporaryDirectory(prefix="rotorpillar-converge-") as tmp:
         case_file, out_file = Path(tmp) / "case.json", Path(tmp) / "result.json"
@@ -228,7 +231,7 @@ def _run_in_service(case: Case, scene) -> dict:
     return out
 
 
-def run_case(case: Case, scene) -> dict:
+def run_point(case: Case, scene: Scene) -> dict:
     """Compute one case (in-process or in the serving process, by model)."""
     if FAMILIES[case.family].model in ("closed_form", "beam"):
         return _run_in_process(case, scene.pillar)
@@ -248,19 +251,19 @@ LIMIT_KEYS = {"shell_quad": "shell_max_around", "shell_tri": "shell_tri_max_arou
               "solid_tet_p2": "solid_tet_p2_max_around"}
 
 
-def check_memory(cases: list[Case], workers: int) -> None:
+def check_study_memory(cases: list[Case], workers: int) -> None:
     """Refuse (InputError, before any run) finite-element runs this process's memory limit
     cannot hold: the largest alone, or the ``workers`` largest at once (the longest run
     first on every worker: the largest start together).  Per run: mesh.tube.BYTES_PER_DOF
     per DOF (one modal solve), shells counted as the solids."""
     from ..mesh.tube import BYTES_PER_DOF
-    from ..provenance import check_memory as check, memory_limit
+    from ..provenance import check_memory, memory_limit
     fe = sorted(((estimated_dofs(c), c) for c in cases
                  if FAMILIES[c.family].model in ("shell", "solid")), key=lambda t: -t[0])
     if not fe:
         return
     dofs, big = fe[0]
-    check(BYTES_PER_DOF * dofs, f"converge: its largest run, {big.label} ({dofs:,} DOFs),",
+    check_memory(BYTES_PER_DOF * dofs, f"converge: its largest run, {big.label} ({dofs:,} DOFs),",
           f"lower converge.{LIMIT_KEYS.get(big.family, 'solid_p2_max_around')} or set "
           "converge.solid = false")
     at_once = fe[:max(1, workers)]
@@ -269,19 +272,19 @@ def check_memory(cases: list[Case], workers: int) -> None:
     for d, _ in at_once:
         total += BYTES_PER_DOF * d
         fit += total <= budget
-    check(need, f"converge: {len(at_once)} runs at once on {workers} workers (the largest first: "
+    check_memory(need, f"converge: {len(at_once)} runs at once on {workers} workers (the largest first: "
           + ", ".join(c.label for _, c in at_once) + ")", f"use --workers {max(fit, 1)}")
 
 
-def todo_cases(cases: list[Case], scene, cache_dir: Path) -> list[Case]:
+def todo_cases(cases: list[Case], scene: Scene, cache_dir: Path) -> list[Case]:
     """The cases the run cache under ``cache_dir`` does not hold."""
     cache = DiskCache(Path(cache_dir))
     return [c for c in cases
             if _load_cached(cache, case_key(c, scene.pillar, scene.modal.tolerance)) is None]
 
 
-def run_study(cases: list[Case], scene, cache_dir: Path, *,
-              runner: Callable[[Case, object], dict] = run_case,
+def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
+              runner: Callable[[Case, Scene], dict] = run_point,
               progress: bool = True, log: Callable[[str], None] | None = None,
               workers: int = 1, executor=None) -> list[dict]:
     """Every case, each loaded from ``cache_dir`` or computed and cached.
@@ -311,7 +314,7 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
                           "family": c.family, "model": FAMILIES[c.family].model, "cached": True}
         else:
             todo.append(i)
-    check_memory([cases[i] for i in todo], workers)
+    check_study_memory([cases[i] for i in todo], workers)
     if log:
         log(f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute"
             + (f" on {workers} workers" if (workers > 1 or executor) and todo else ""))
@@ -362,7 +365,7 @@ def run_study(cases: list[Case], scene, cache_dir: Path, *,
         bar.close()
         from .service import close_services
         close_services()
-    return records
+    return [r for r in records if r is not None]     # finish() filled every one
 
 
 def _guarded(job):
@@ -374,7 +377,7 @@ def _guarded(job):
         return None, exc
 
 
-def _run_parallel(todo, cases, scene, runner, workers, executor, finish, weights) -> None:
+def _run_parallel(todo, cases, scene: Scene, runner, workers, executor, finish, weights) -> None:
     from ..executor import Executor
     order = sorted(todo, key=lambda i: -weights[i])          # longest first
     ex = executor or Executor(workers)
@@ -382,7 +385,8 @@ def _run_parallel(todo, cases, scene, runner, workers, executor, finish, weights
     if own:
         ex.__enter__()
     try:
-        for j, (result, exc) in ex.map(_guarded, [(runner, cases[i], scene) for i in order]):
+        for j, done in ex.map(_guarded, [(runner, cases[i], scene) for i in order]):
+            result, exc = done  # type: ignore[misc]  # _guarded's (result, exception)
             finish(order[j], result, exc)
     finally:
         if own:

@@ -11,13 +11,18 @@ and the cheapest model that meets a tolerance over the scene's band.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import dataclasses
 import time
 from pathlib import Path
 from typing import Callable, Optional
 
 from ..errors import InputError
-from ..provenance import Timings, machine, versions, write_json
+from ..provenance import Timings, with_provenance, write_result
 from .failures import drop_aliases, failures
 from .ladder import FAMILIES, QUANTITIES, study_cases
 from .result import ConvergenceStudy
@@ -30,7 +35,7 @@ Charts = Callable[[dict, Path], dict]
 """Draws the study's charts into a directory: (study document, out_dir) -> name: path."""
 
 
-def analyse(records: list[dict], scene, tolerance: float) -> dict:
+def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
     """Reference values, errors, fronts, failures and the chosen model."""
     drop_aliases(records)
     extrap = family_extrapolations(records)
@@ -41,7 +46,7 @@ def analyse(records: list[dict], scene, tolerance: float) -> dict:
     needed, ref_unc = selection["needed"], reference_uncertainty(reference)
     ok = [r for r in records if r.get("status") == "ok"]
     candidates = ok
-    fronts = {}
+    fronts: dict = {}
     for cost in ("dofs", "wall_time"):
         fronts[cost] = {}
         for q in QUANTITIES:
@@ -61,7 +66,7 @@ def check_tolerance(tolerance: float) -> None:
         raise InputError(f"--tolerance = {tolerance!r} is out of range: must be > 0 and < 1")
 
 
-def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
+def study(scene: Scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
           show_progress: bool = True, charts: Optional[Charts] = None, timings=None,
           log: Callable[[str], None] | None = None, workers: int = 1) -> ConvergenceStudy:
     """Run (or load) the study and analyse it; write convergence.json (and the charts).
@@ -81,34 +86,35 @@ def study(scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: flo
                             workers=workers)
     with timings("analysis"):
         analysis = analyse(records, scene, tol)
-    doc = {
-        "scene_name": scene.name,
-        "scene": scene.to_dict(),
-        "tolerance": tol,
-        "cache_dir": str(cache_dir),
-        "families": {k: {"label": f.label, "model": f.model, "order_theory": f.order,
-                         "quantities": list(f.quantities), "sweep": f.sweep}
-                     for k, f in FAMILIES.items()},
-        "runs": records,
-        **analysis,
-        "study": {"runs": len(records), "workers": workers,
-                  "cached": sum(bool(r.get("cached")) for r in records),
-                  "computed": sum(not r.get("cached") for r in records),
-                  "failed": sum(r.get("status") == "failed" for r in records),
-                  "unavailable": sum(r.get("status") == "unavailable" for r in records),
-                  "compute_seconds": sum(r.get("process_time", r.get("wall_time", 0.0)) or 0.0
-                                         for r in records if not r.get("cached"))},
-    }
+    result = ConvergenceStudy(
+        scene_name=scene.name, scene=scene.to_dict(), tolerance=tol, cache_dir=str(cache_dir),
+        families={k: {"label": f.label, "model": f.model, "order_theory": f.order,
+                      "quantities": list(f.quantities), "sweep": f.sweep}
+                  for k, f in FAMILIES.items()},
+        runs=tuple(records), reference=analysis["reference"],
+        extrapolations=analysis["extrapolations"], band=analysis["band"],
+        selection=analysis["selection"], pareto=analysis["pareto"],
+        failures=tuple(analysis["failures"]),
+        study={"runs": len(records), "workers": workers,
+               "cached": sum(bool(r.get("cached")) for r in records),
+               "computed": sum(not r.get("cached") for r in records),
+               "failed": sum(r.get("status") == "failed" for r in records),
+               "unavailable": sum(r.get("status") == "unavailable" for r in records),
+               "compute_seconds": sum(r.get("process_time", r.get("wall_time", 0.0)) or 0.0
+                                      for r in records if not r.get("cached"))})
     if charts is not None:
         with timings("charts"):
-            doc["charts"] = {k: str(v) for k, v in charts(doc, out_dir).items()}
-    doc["study"]["wall_time"] = time.perf_counter() - start
-    doc.update(versions=versions(), machine=machine(), timings=dict(timings))
-    path = write_json(Path(out_dir) / "convergence.json", doc)
-    return dataclasses.replace(ConvergenceStudy.from_json(doc), json_file=str(path))
+            drawn = charts(result.to_json(), out_dir)
+        result = dataclasses.replace(result, charts={k: str(v) for k, v in drawn.items()})
+    result = dataclasses.replace(result, study={**result.study,
+                                                "wall_time": time.perf_counter() - start})
+    doc = with_provenance(result.to_json(), timings=dict(timings))
+    path = write_result(Path(out_dir) / "convergence.json", doc)
+    return dataclasses.replace(result, versions=doc["versions"], machine=doc["machine"],
+                               timings=doc["timings"], json_file=str(path))
 
 
-def _cached_study(scene, tolerance: float, cache_dir: Path):
+def _cached_study(scene: Scene, tolerance: float, cache_dir: Path):
     """Under MPI: the runs from the cache only (a missing run is an input error)."""
     def runner(case, sc):
         raise InputError(f"modal --tolerance under MPI needs the convergence study cached "
@@ -118,7 +124,7 @@ def _cached_study(scene, tolerance: float, cache_dir: Path):
     return records, analyse(records, scene, tolerance)
 
 
-def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
+def model_for_modal(scene: Scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
                     timings=None, charts: Optional[Charts] = None,
                     log: Callable[[str], None] | None = None, show_progress: bool = False):
     """The scene with the [mesh] the study picks for ``tolerance``, and why.
@@ -152,7 +158,8 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
     solid = [k for k, f in FAMILIES.items()
              if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
     sel = select_model(runs, reference, band, tolerance, families=solid)
-    chosen, unmet = sel["chosen"], None
+    unmet: str | None = None
+    chosen = sel["chosen"]
     if chosen is None:
         chosen, unmet = _closest(runs, reference, band, solid, tolerance, sel["reason"])
     if chosen is not None:
@@ -169,7 +176,7 @@ def model_for_modal(scene, tolerance: float, out_dir: Path, *, cache_dir: Path |
     else:
         mesh = scene.mesh
         lines = [f"No 3D model of the study has an error estimate for tolerance {tolerance:g}: "
-                 f"the scene's own [mesh] is run, unverified.", "Why: " + unmet]
+                 f"the scene's own [mesh] is run, unverified.", f"Why: {unmet}"]
     if overall is not None and chosen is not None and overall["label"] != chosen["label"]:
         lines.append(f"Cheapest of all models at this tolerance: {overall['label']} "
                      f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "

@@ -10,6 +10,11 @@ JSON dicts (their keys are documented in docs/fem3d.md).  No dolfinx here.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import math
 from dataclasses import dataclass, field
 
@@ -50,7 +55,7 @@ def shell_modes_below_second_bending(result) -> tuple[float | None, list[dict]]:
     return w2, rows
 
 
-def modal_summary(scene, bare, loaded, closed: dict) -> "ModalSummary":
+def modal_summary(scene: Scene, bare, loaded, closed: dict) -> "ModalSummary":
     """What `rotorpillar modal` found (modal.json, less the files and what the CLI adds).
 
     ``bare`` and ``loaded`` are the :class:`~.modal.ModalResult` of the bare
@@ -65,18 +70,18 @@ def modal_summary(scene, bare, loaded, closed: dict) -> "ModalSummary":
     # The paper's model of the loaded tube: m_r + m* on c1.
     w_reduced_top = math.sqrt(red.tip_stiffness / (red.m_reduced + m_top))
     ms = scene.mesh
-    return ModalSummary.from_json({
-        "axes": AXES,
-        "modes": bare.modes_table(),
-        "modes_with_top": loaded.modes_table(),
-        "top": {"model": loaded.top_model, "mass": m_top, "carries": scene.modal.top_mass,
+    return ModalSummary(
+        axes=AXES,
+        modes=tuple(bare.modes_table()),
+        modes_with_top=tuple(loaded.modes_table()),
+        top={"model": loaded.top_model, "mass": m_top, "carries": scene.modal.top_mass,
                 "mass_centre": [0.0, 0.0, scene.pillar.height],
                 "omega_bending": None if i1 is None else float(loaded.omega[i1]),
                 "omega_bending_reduced_model": w_reduced_top,
                 "note": "rigid: a rigid plate on the whole top face carries the mass at the "
                         "top centre (6 dofs appended after the tube's); ring_mass: the mass "
                         "spread on the top face, no stiffening"},
-        "reduction": {
+        reduction={
             "m_reduced": red.m_reduced, "tip_stiffness": red.tip_stiffness,
             "omega_bending": red.omega_bending, "m_reduced_beam_line": red.m_reduced_beam_line,
             "method": "kinetic energy of the 3D first bending mode at unit mean tip "
@@ -89,20 +94,20 @@ def modal_summary(scene, bare, loaded, closed: dict) -> "ModalSummary":
             "stated": {"m_reduced": scene.reduction.tip_mass,
                        "tip_stiffness": scene.reduction.tip_stiffness},
         },
-        "comparison": {
+        comparison={
             "omega_bending_over_euler_bernoulli": red.omega_bending / closed["omega_col1"] - 1,
             "omega_bending_over_timoshenko": red.omega_bending / closed["omega_col1_timoshenko"] - 1,
             "m_reduced_over_closed_form": red.m_reduced / closed["tip_mass_limit"] - 1,
         },
-        "shell_modes_below_second_bending": {
+        shell_modes_below_second_bending={
             "bare": {"omega_second_bending": w2_bare, "modes": shell_bare},
             "with_top": {"omega_second_bending": w2_top, "modes": shell_top}},
-        "mesh": {"cells": bare.cells, "dofs": bare.dofs, "dofs_with_top": loaded.dofs,
+        mesh={"cells": bare.cells, "dofs": bare.dofs, "dofs_with_top": loaded.dofs,
                  "cell_type": ms.cell_type, "degree": ms.degree,
                  "elements_around": ms.elements_around, "elements_along": ms.elements_along,
                  "elements_through": ms.elements_through, "grading": ms.grading},
-        "configurations": {"bare": _config_dict(bare), "with_top": _config_dict(loaded)},
-    })
+        configurations={"bare": _config_dict(bare), "with_top": _config_dict(loaded)},
+    )
 
 
 def _table(title: str, result) -> list[str]:

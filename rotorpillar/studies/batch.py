@@ -135,15 +135,15 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
         mr = replace(model, eccentricity=per["e"][i], shaft_stiffness=per["c2"][i])
         mean = _tail_mean(b.t, b.Omega[i])
         state = capture_state(mr, b.t, b.Omega[i], frees[i])
-        captured = state["captured_at"]
+        captured = state.captured_at
         if case == "earthquake" and model.frame == "absolute":
             tip = float(np.max(np.abs(b.tip[i] - ground_displacement(model, motion, b.t))))
         else:
             tip = float(np.max(b.tip_peak[i]))
         out.append({"index": p["index"], "params": p["params"], "ok": bool(b.ok[i]),
                     "final_speed": float(b.Omega[i, -1]), "final_speed_mean": mean,
-                    "captured_at": captured, "speed_state": state["speed_state"],
-                    "passed": None if case == "earthquake" else state["speed_state"] not in ("captured", "escaping"),
+                    "captured_at": captured, "speed_state": state.speed_state,
+                    "passed": None if case == "earthquake" else state.speed_state not in ("captured", "escaping"),
                     "peak_tip": tip,
                     "peak_shaft_deflection": float(np.max(shaft[i, since])),
                     "free_speed": float(frees[i]), "nfev": int(b.nfev[i]), **extra})

@@ -13,9 +13,12 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 from dataclasses import dataclass, fields, replace
 
 import numpy as np
+
+from ..provenance import JsonRecord
 
 from ..reduced.accuracy import AccuracyCheck, check_step, forcing_frequencies
 from ..reduced.excitation import GroundMotion, no_motion
@@ -46,7 +49,20 @@ ESCAPE_RISE = 0.005
 TAIL = 0.05
 
 
-def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> dict:
+@dataclass(frozen=True)
+class CaptureState:
+    """Where a run's speed ended (``capture_state``)."""
+    captured_at: float | None
+    """the speed the rotor settled at below a resonance (rad/s), or None"""
+    captured_resonance: float | None
+    """that resonance's omega_i (rad/s), or None"""
+    captured_index: int | None
+    """its index among the model's resonances (-), or None"""
+    speed_state: str
+    """"captured", "escaping", "accelerating" or "at_speed" (see capture_state)"""
+
+
+def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> CaptureState:
     """Where a run's speed ended: captured below a resonance, escaping it, or at speed.
 
     ``captured_at``: the speed the rotor settled at below the resonance (the
@@ -64,14 +80,52 @@ def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> d
     rising = rise > ESCAPE_RISE * max(abs(mean), 1e-9)
     resonance = capture(model, mean, drive_free_speed)
     if resonance is not None and not rising:
-        return {"captured_at": mean, "captured_resonance": resonance.omega,
-                "captured_index": resonance.index, "speed_state": "captured"}
+        return CaptureState(mean, resonance.omega, resonance.index, "captured")
     state = ("escaping" if resonance is not None else "accelerating") if rising else "at_speed"
-    return {"captured_at": None, "captured_resonance": None, "captured_index": None,
-            "speed_state": state}
+    return CaptureState(None, None, None, state)
 
 
-def passages(run: Transient) -> list[dict]:
+@dataclass(frozen=True)
+class Passage(JsonRecord):
+    """When a run's speed first crosses one resonance, and the peaks near it."""
+    index: int
+    """the resonance's index among the model's (-)"""
+    direction: str
+    """"X" (pillar and rotor) or "Y" (rotor on its shaft)"""
+    omega: float
+    """omega_i (rad/s)"""
+    crossed: bool
+    """the speed crossed omega_i"""
+    time: float | None
+    """when it first did (s), or None"""
+    peak_tip_near: float | None
+    """largest tip amplitude while the speed was within 10 % of omega_i (m), or None"""
+    peak_rotor_y_near: float | None
+    """largest |rotor Y| there (m), or None"""
+
+
+@dataclass(frozen=True)
+class EnergyBalance(JsonRecord):
+    """E(t) - E(0) against the work done over the run (J), and how well it closes."""
+    energy_change: float
+    """(J)"""
+    work_drive_minus_load: float
+    """(J)"""
+    work_shaft_on_structure: float
+    """(J)"""
+    dissipated: float
+    """(J)"""
+    work_base: float
+    """work of the ground motion (J)"""
+    max_abs_residual: float
+    """largest |energy change - work| over the run (J)"""
+    scale: float
+    """the energy exchanged the residual is measured against (J)"""
+    relative_error: float
+    """max_abs_residual / scale (-)"""
+
+
+def passages(run: Transient) -> tuple[Passage, ...]:
     """When the speed first crosses each resonance, and the largest tip
     amplitude within +-10 % of it."""
     out = []
@@ -80,12 +134,12 @@ def passages(run: Transient) -> list[dict]:
     for r in run.model.quasi_normal():
         idx = np.nonzero((W[:-1] - r.omega) * (W[1:] - r.omega) <= 0)[0]
         near = np.abs(W - r.omega) <= 0.1 * r.omega
-        entry = {"index": r.index, "direction": r.direction, "omega": r.omega,
-                 "crossed": bool(idx.size), "time": float(run.t[idx[0]]) if idx.size else None,
-                 "peak_tip_near": float(tip_peak[near].max()) if near.any() else None,
-                 "peak_rotor_y_near": float(run.peak[near, run.model.nx].max()) if near.any() else None}
-        out.append(entry)
-    return out
+        out.append(Passage(
+            index=r.index, direction=r.direction, omega=r.omega, crossed=bool(idx.size),
+            time=float(run.t[idx[0]]) if idx.size else None,
+            peak_tip_near=float(tip_peak[near].max()) if near.any() else None,
+            peak_rotor_y_near=float(run.peak[near, run.model.nx].max()) if near.any() else None))
+    return tuple(out)
 
 
 def max_abs(run: Transient) -> dict:
@@ -193,8 +247,10 @@ class CaseSummary:
     """largest |value| per coordinate (m)"""
     captured_at: float | None
     """the speed the rotor settled at below a resonance (rad/s), or None"""
-    passages: list
-    energy_balance: dict
+    passages: tuple[Passage, ...]
+    """when the speed first crossed each resonance"""
+    energy_balance: EnergyBalance
+    """the run's energy against the work done (J)"""
     integrator: dict
     """the integrator's statistics"""
     prediction: dict
@@ -232,15 +288,22 @@ class CaseSummary:
             elif f.name == "sweep":
                 if v is not None:
                     out.update({g.name: getattr(v, g.name) for g in fields(v)})
+            elif f.name == "passages":
+                out[f.name] = [p.to_json() for p in v]
+            elif f.name == "energy_balance":
+                out[f.name] = v.to_json()
             elif f.name not in _OPTIONAL or v is not None:
                 out[f.name] = v
         return out
 
     @classmethod
     def from_json(cls, d: dict) -> "CaseSummary":
-        kw = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
+        kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
+        kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
+        kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
         if "predicted_jumps" in d:
-            kw["sweep"] = SweepFindings(**{g.name: d.get(g.name) for g in fields(SweepFindings)})
+            found: dict[str, Any] = {g.name: d.get(g.name) for g in fields(SweepFindings)}
+            kw["sweep"] = SweepFindings(**found)
         return cls(**kw)
 
 
@@ -330,8 +393,9 @@ def run_checks(run: Transient, drive_free_speed: float,
                       f"exchanged (limit {100 * ENERGY_CHECK:g} %)")
     w = float(np.max(np.abs(run.Omega))) if len(run.Omega) else 0.0
     # the fastest the drive can hold at any of its knots, or the start, if faster
+    drive = run.drive
     top = max([drive_free_speed, abs(float(run.Omega[0]))]
-              + [run.drive.free_speed(t) for t in run.drive.times])
+              + ([] if drive is None else [drive.free_speed(t) for t in drive.times]))
     # a moving ground feeds the rotor through the structure: no bound from the drive alone
     still = run.motion is None or run.motion.kind == "none"
     if still and np.isfinite(top) and top > 0 and not run.prescribed_speed \
@@ -350,12 +414,12 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
     acc = accuracy_check(run)
     failed = run_checks(run, drive_free_speed, acc)
     state = capture_state(run.model, run.t, run.Omega, drive_free_speed)
-    base = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
+    base: dict[str, Any] = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
                 omega_final_mean=om_mean, max_abs=max_abs(run),
-                captured_at=state["captured_at"], captured_resonance=state["captured_resonance"],
-                captured_index=state["captured_index"],
-                speed_state=state["speed_state"], passages=passages(run),
-                energy_balance=run.energy_balance(),
+                captured_at=state.captured_at, captured_resonance=state.captured_resonance,
+                captured_index=state.captured_index,
+                speed_state=state.speed_state, passages=passages(run),
+                energy_balance=EnergyBalance(**run.energy_balance()),
                 integrator={**run.stats, "accuracy": acc.to_json()}, prediction=prediction,
                 jumps=[])
     base.update(sections)

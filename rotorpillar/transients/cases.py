@@ -159,7 +159,7 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
     return result
 
 
-def with_truncation(scene, result: CaseResult, motion: GroundMotion, integrator: str | None = None,
+def with_truncation(scene, result: CaseResult, motion: GroundMotion | None, integrator: str | None = None,
                     pillar_modes: PillarModes | None = None, progress=None) -> CaseResult:
     """A modal model's result with its truncation estimate: the same case with k + 1 modes."""
     model = result.model

@@ -19,15 +19,25 @@ beside the modal model's computed peak.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 from pathlib import Path
 
 import numpy as np
 
+from ..chain.record import PillarModel
 from ..errors import InputError
-from ..provenance import write_json
+from ..provenance import write_result
 from ..scene import MODELS
 from .measures import compare_series, envelope_window
-from .records import CompareResult, reference_of
+from .pareto import ParetoStudy
+from .references import FullOrderReference
+from .run_records import Fem3dRun
+from .records import (ComparedModel, CompareResult, CompareWindow, ModelErrors, ResponseSpectrum,
+                      SpectralMode, reference_of)
 from .model_run import ModelRun, fem3d_plan, own_duration, run_model
 
 COMPARE_CASES = ("earthquake", "runup")
@@ -53,19 +63,20 @@ def parse_models(text: str | None, case: str) -> tuple[str, ...]:
     return tuple(names)
 
 
-def common_duration(scene, case: str, models, motion, study_dir=None) -> tuple[float, str]:
+def common_duration(scene: Scene, case: str, models, motion, study_dir=None) -> tuple[float, str]:
     """The one duration every model runs (s), and why."""
     own = own_duration(scene, case, motion)
     if "fem3d" not in models:
         return own, "the case's own duration"
-    d = fem3d_plan(scene, case, motion, study_dir=study_dir)["duration"]
+    d = fem3d_plan(scene, case, motion, study_dir=study_dir).duration
     return d, (f"the 3D full order's duration ([full_order]); every model runs {d:g} s"
                if d < own else "the case's own duration")
 
 
-def compare_models(scene, case: str, models, out: Path, provenance: dict, progress=None,
+def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict, progress=None,
                    write: bool = True, run_charts=None, compare_chart=None, pareto: bool = False,
-                   pareto_chart=None, workers: int = 1, chain=None) -> CompareResult:
+                   pareto_chart=None, workers: int = 1, chain=None,
+                   timings: dict | None = None) -> CompareResult:
     """Run ``models`` on ``case`` and compare them (see the module text).
 
     ``run_charts`` draws each model's figures (see ``files.write_model_files``);
@@ -77,7 +88,11 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     earthquake against the 3D full order also runs the speed-against-accuracy
     study (rotorpillar.transients.pareto, its 3D runs on ``workers`` processes).
     ``chain``: the chain's pillar model and modes (rotorpillar.chain.resolve).
+    ``provenance`` (scene_source, overrides) and ``timings`` (s, the command's so far) go
+    into every file written, beside the scene, versions and machine.
     """
+    import time
+    start, given = time.perf_counter(), scene
     from ..reduced.models import scene_motion
     from ..scene import override
     models = tuple(models)
@@ -110,25 +125,27 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
     for i, m in enumerate(models):
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
+        begun = time.perf_counter()
         run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration,
                         chain=chain, field_dir=out if write else None, study_dir=out,
                         field_stem=f"{compare_stem(case, m)}")
         if write:
             from .files import write_model_files
-            results[m] = write_model_files(out, scene, run, provenance, last_run=False,
+            results[m] = write_model_files(out, scene, run, provenance,
+                                           {"simulate": time.perf_counter() - begun}, last_run=False,
                                            charts=run_charts, stem=compare_stem(case, m))
         else:
             results[m] = run.result
         runs[m] = run
         if progress:
-            progress(f"compare {case}: {m} done in {run.result['wall_seconds']:.3g} s "
-                     f"({run.result['dofs']} dofs)")
+            progress(f"compare {case}: {m} done in {run.record.wall_seconds:.3g} s "
+                     f"({run.record.dofs} dofs)")
     ref = reference_of(models)
     per_model = {m: _per_model(case, m, results[m]) for m in models}
     rd = runs[ref].data
     t_ref, x_ref = rd["t"], rd["tip_x_relative"]
     span = envelope_window(r.omega for r in runs[ref].resonances)
-    errors = {}
+    errors: dict[str, ModelErrors] = {}
     for m in models:
         if m == ref:
             continue
@@ -136,17 +153,15 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
         pm, pr = per_model[m], per_model[ref]
         series = compare_series(d["t"], d["tip_x_relative"], t_ref, x_ref, window=span,
                                 theta=d.get("theta"), theta_ref=rd.get("theta"))
-        errors[m] = {"tip_history_error": series.history_error,
-                     "peak_tip_difference": pm["peak_tip_relative"] / pr["peak_tip_relative"] - 1
-                     if pr["peak_tip_relative"] else None,
-                     "omega_final_difference": pm["omega_final"] / pr["omega_final"] - 1
-                     if pr["omega_final"] else None,
-                     "tip_envelope_error": series.envelope_error,
-                     "envelope_window": series.window,
-                     "angle_drift": series.angle_drift,
-                     "angle_drift_final": series.angle_drift_final,
-                     "lead": series.lead, "lead_why": series.why}
-    walls = {m: per_model[m]["wall_seconds"] for m in models}
+        errors[m] = ModelErrors(
+            tip_history_error=series.history_error,
+            peak_tip_difference=(pm.peak_tip_relative / pr.peak_tip_relative - 1
+                                 if pr.peak_tip_relative else None),
+            omega_final_difference=pm.omega_final / pr.omega_final - 1 if pr.omega_final else None,
+            tip_envelope_error=series.envelope_error, envelope_window=series.window,
+            angle_drift=series.angle_drift, angle_drift_final=series.angle_drift_final,
+            lead=series.lead, lead_why=series.why)
+    walls = {m: per_model[m].wall_seconds for m in models}
     cost = {m: walls[m] / walls[ref] if walls[ref] > 0 else None for m in models}
     chart = f"compare_{case}.png"
     spectrum = _spectrum(scene, motion, runs) if case == "earthquake" else None
@@ -155,20 +170,20 @@ def compare_models(scene, case: str, models, out: Path, provenance: dict, progre
         case=case, models_run=models, reference=ref,
         excitation=motion.sizes() if motion is not None else None, per_model=per_model,
         errors=errors, cost_ratio=cost, chart=chart,
-        window={"start": float(t_ref[0]), "end": float(t_ref[-1]), "duration": duration, "why": why,
-                **({"runup": window.to_json()} if window is not None else {})},
+        window=CompareWindow(float(t_ref[0]), float(t_ref[-1]), float(duration), why, window),
         spectrum=spectrum,
-        full_order_reference=(runs["fem3d"].result["full_order"].get("reference")
-                              if "fem3d" in runs else None),
+        full_order_reference=_full_order_reference(runs),
         pareto=study)
     if write:
         if compare_chart is not None:
-            series = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
-            compare_chart(Path(out) / chart, series, ref,
+            histories = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
+            compare_chart(Path(out) / chart, histories, ref,
                           f"{scene.name}: {case}, tip relative to the ground, reference {ref}",
-                          errors={m: e["tip_history_error"] for m, e in errors.items()},
+                          errors={m: e.tip_history_error for m, e in errors.items()},
                           walls=walls)
-        write_json(Path(out) / f"compare_{case}.json", {**provenance, **result.to_json()})
+        head = {"command": "compare", **provenance, "scene": given.to_dict()}
+        write_result(Path(out) / f"compare_{case}.json", result, head,
+                     {**(timings or {}), "compare": time.perf_counter() - start})
     return result
 
 
@@ -178,13 +193,13 @@ def compare_stem(case: str, model: str) -> str:
     return f"compare_{case}_{model}"
 
 
-def _start_pareto(scene, motion, out: Path, workers: int, progress, chain):
+def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain):
     """The speed-against-accuracy study planned and its 3D runs started on ``workers`` - 1
     processes (this one runs compare's own models meanwhile; none: after them, here)."""
     from ..reduced.band import forcing_top
     from ..reduced.models import build_model
     from .pareto import ParetoRunning, plan_pareto
-    mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out)["_mesh"]
+    mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out).mesh
     top = scene.modal_model.band_factor * forcing_top(scene, "earthquake", motion)
     _, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
     plan = plan_pareto(scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh,
@@ -192,8 +207,8 @@ def _start_pareto(scene, motion, out: Path, workers: int, progress, chain):
     return ParetoRunning(plan, max(0, workers - 1), progress)
 
 
-def _finish_pareto(scene, pending, out: Path, write: bool, chart) -> dict:
-    """The study's JSON, its chart drawn."""
+def _finish_pareto(scene: Scene, pending, out: Path, write: bool, chart) -> ParetoStudy:
+    """The study, its chart drawn."""
     from dataclasses import replace
     study, _ = pending.finish()
     if write and chart is not None:
@@ -202,21 +217,31 @@ def _finish_pareto(scene, pending, out: Path, write: bool, chart) -> dict:
               f"{scene.name}: El Centro, speed against accuracy (errors against "
               f"{study.reference['label']})")
         study = replace(study, chart=name)
-    return study.to_json()
+    return study
 
 
-def _per_model(case: str, m: str, r: dict) -> dict:
+def _full_order_reference(runs: dict[str, ModelRun]) -> FullOrderReference | None:
+    """The 3D run's reference mesh and its error, or None without a 3D run."""
+    if "fem3d" not in runs:
+        return None
+    record = runs["fem3d"].record
+    return record.full_order.reference if isinstance(record, Fem3dRun) else None
+
+
+def _per_model(case: str, m: str, r: dict) -> ComparedModel:
     ma = r["max_abs"]
     stem = compare_stem(case, m)
-    return {"peak_tip_relative": ma["tip_x_relative"], "peak_tip_absolute": ma["tip_x_absolute"],
-            "peak_shaft_deflection": ma["shaft_deflection_x"], "omega_final": r["omega_final"],
-            "wall_seconds": r["wall_seconds"], "compile_seconds": r.get("compile_seconds"),
-            "dofs": r["dofs"], "ok": r["ok"], "warnings": list(r.get("warnings") or []),
-            "pillar_model": r.get("pillar_model"),
-            "json": f"{stem}.json", "npz": f"{stem}.npz"}
+    pillar = r.get("pillar_model")
+    return ComparedModel(
+        peak_tip_relative=ma["tip_x_relative"], peak_tip_absolute=ma["tip_x_absolute"],
+        peak_shaft_deflection=ma["shaft_deflection_x"], omega_final=r["omega_final"],
+        wall_seconds=r["wall_seconds"], compile_seconds=r.get("compile_seconds"), dofs=r["dofs"],
+        ok=r["ok"], warnings=tuple(r.get("warnings") or ()),
+        pillar_model=None if pillar is None else PillarModel.from_json(pillar),
+        json=f"{stem}.json", npz=f"{stem}.npz")
 
 
-def _spectrum(scene, motion, runs: dict) -> dict:
+def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
     """The record's spectrum, the pillar's modal periods, the ROM's spectral peak tip."""
     from ..reduced.band import forcing_top
     from .cases import spectral_estimate
@@ -224,7 +249,7 @@ def _spectrum(scene, motion, runs: dict) -> dict:
     from ..reduced.models import build_model
     if "modal" in runs:
         model = runs["modal"].case_result.model
-        computed = runs["modal"].result["max_abs"]["tip_x_relative"]
+        computed = runs["modal"].record.max_abs["tip_x_relative"]
     else:
         from ..scene import override
         beam = override(scene, ["modal_model.source=beam"])
@@ -235,10 +260,11 @@ def _spectrum(scene, motion, runs: dict) -> dict:
     periods = np.geomspace(lo, hi, n)
     rs = response_spectrum(motion, periods, damping=0.05)
     est = spectral_estimate(model, motion)
-    return {"period": periods.tolist(), "psa": np.asarray(rs["s_a"]).tolist(), "damping": 0.05,
-            "mode_periods": [row["period"] for row in est["modes"]],
-            "spectral_peak_tip": est["srss_tip_estimate"], "computed_peak_tip": computed,
-            "modes": est["modes"],
-            "note": "psa at 5 % damping (eqsig); the spectral estimate takes each mode's own damping "
-                    "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
-                    "as a separate mass: an estimate, not a bound"}
+    return ResponseSpectrum(
+        period=tuple(periods.tolist()), psa=tuple(np.asarray(rs["s_a"]).tolist()), damping=0.05,
+        mode_periods=tuple(row["period"] for row in est["modes"]),
+        spectral_peak_tip=est["srss_tip_estimate"], computed_peak_tip=computed,
+        modes=tuple(SpectralMode(**row) for row in est["modes"]),
+        note="psa at 5 % damping (eqsig); the spectral estimate takes each mode's own damping "
+             "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
+             "as a separate mass: an estimate, not a bound")

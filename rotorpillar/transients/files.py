@@ -12,12 +12,17 @@ rotor X - tip X - e cos(theta).  Charts by rotorpillar.postprocess.transient_cha
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import shutil
 from pathlib import Path
 
 import numpy as np
 
-from ..provenance import atomic_path, machine, versions, write_json, write_text
+from ..provenance import atomic_path, with_provenance, write_result, write_text
 from .model_run import ModelRun
 
 CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_acceleration",
@@ -30,7 +35,7 @@ def model_stem(case: str, model: str) -> str:
     return f"simulate_{case}_{model}"
 
 
-def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings: dict | None = None,
+def write_model_files(out: Path, scene: Scene, run: ModelRun, provenance: dict, timings: dict | None = None,
                       last_run: bool = True, charts=None, stem: str | None = None) -> dict:
     """Write the model's files (and with ``last_run`` the ``simulate_<case>.*`` copies);
     returns the result dict with ``files`` and ``figures`` (those of the generic names
@@ -45,15 +50,15 @@ def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings
     stem = stem or model_stem(run.case, run.model)
     files = {"npz": _write_npz(out / f"{stem}.npz", run), "csv": _write_csv(out / f"{stem}.csv", run)}
     figures = charts(out, scene, run, stem) if charts is not None else []
-    model_files = {k: Path(v).name for k, v in files.items()}
+    model_files: dict[str, str | list[str]] = {k: Path(v).name for k, v in files.items()}
     model_files["json"] = f"{stem}.json"
     model_files["figures"] = [f["file"] for f in figures]
     result = dict(run.result)
     result["model_files"] = model_files
-    doc = {"command": "simulate", **provenance, "scene": scene.to_dict(), **result,
-           "files": {k: str(v) for k, v in files.items()}, "figures": figures,
-           "versions": versions(), "machine": machine(), "timings": dict(timings or {})}
-    write_json(out / f"{stem}.json", doc)
+    doc = with_provenance({**result, "files": {k: str(v) for k, v in files.items()},
+                           "figures": figures},
+                          {"command": "simulate", **provenance, "scene": scene.to_dict()}, timings)
+    write_result(out / f"{stem}.json", doc)
     if not last_run:
         result.update(files={k: str(v) for k, v in files.items()}, figures=figures)
         return result
@@ -66,7 +71,7 @@ def write_model_files(out: Path, scene, run: ModelRun, provenance: dict, timings
         _copy(out / fig["file"], out / name)
         gfigures.append({**fig, "file": name})
     result.update(files=gfiles, figures=gfigures)
-    write_json(out / f"{generic}.json", {**doc, "files": gfiles, "figures": gfigures})
+    write_result(out / f"{generic}.json", {**doc, "files": gfiles, "figures": gfigures})
     return result
 
 
@@ -78,10 +83,10 @@ def _copy(src: Path, dst: Path) -> Path:
 
 def _write_npz(path: Path, run: ModelRun) -> Path:
     arrays = {k: np.asarray(v) for k, v in run.data.items()}
-    arrays["tip_x_frame"] = np.array(run.result["tip_x_frame"])
+    arrays["tip_x_frame"] = np.array(run.record.tip_x_frame)
     arrays["model"] = np.array(run.model)
     arrays["case"] = np.array(run.case)
-    desc = run.result.get("model_description") or {}
+    desc = run.record.model_description or {}
     if isinstance(desc, dict) and "coordinates" in desc:
         arrays["coordinates"] = np.array(desc["coordinates"])
     with atomic_path(path) as tmp:

@@ -34,6 +34,11 @@ axially); the 3D model carries its own dynamic axial force.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 from dataclasses import replace
 
 import numpy as np
@@ -48,7 +53,7 @@ from .force_records import BaseReactions, InternalForcesSummary, ShaftDemand
 FORCE_SERIES = ("base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
 
 
-def top_mass(scene) -> float:
+def top_mass(scene: Scene) -> float:
     """What the tube's top carries under gravity: gondola and rotor (kg)."""
     return scene.gondola.mass + scene.rotor.mass
 
@@ -57,7 +62,7 @@ def top_mass(scene) -> float:
 # The shaft
 
 
-def shaft_demand(scene, t, dx, dy, vx, vy, sampled: bool) -> tuple[ShaftDemand, np.ndarray]:
+def shaft_demand(scene: Scene, t, dx, dy, vx, vy, sampled: bool) -> tuple[ShaftDemand, np.ndarray]:
     """Peaks of the radial shaft deflection and of the shaft's force, and the force's history (N)."""
     c2, b2 = scene.shaft.stiffness, scene.shaft.damping
     radial = np.hypot(dx, dy)
@@ -71,7 +76,7 @@ def shaft_demand(scene, t, dx, dy, vx, vy, sampled: bool) -> tuple[ShaftDemand, 
 # Assembling the fields
 
 
-def _summarise(scene, model: str, method: str, t, heights, moment, shear, axial, moment_rate,
+def _summarise(scene: Scene, model: str, method: str, t, heights, moment, shear, axial, moment_rate,
                shaft: ShaftDemand, **extra) -> tuple[InternalForcesSummary, dict]:
     """The JSON block and the series of section forces (n_t, n_z) at heights (m)."""
     sec = section_of(scene.pillar)
@@ -104,22 +109,21 @@ def _summarise(scene, model: str, method: str, t, heights, moment, shear, axial,
 
 def _attach(run, summary: InternalForcesSummary | None, series: dict, force, extra_max: dict):
     """The run with its new JSON fields and series."""
-    result, data = dict(run.result), dict(run.data)
-    ma = dict(result.get("max_abs") or {})
+    data = dict(run.data)
+    ma = dict(run.record.max_abs or {})
     base = summary.base if summary is not None else None
     ma.update(base_moment=None if base is None else base.moment,
               base_shear=None if base is None else base.shear,
               base_stress=None if base is None else base.stress, **extra_max)
-    result["max_abs"] = ma
-    result["internal_forces"] = None if summary is None else summary.to_json()
+    record = replace(run.record.with_max_abs(ma), internal_forces=summary)
     t = np.asarray(data["t"], dtype=float)
     for key, values in series.items():
         data[key] = values
     data["bearing_force"] = np.asarray(force, dtype=float)[:len(t)]
-    return replace(run, result=result, data=data)
+    return replace(run, record=record, data=data)
 
 
-def _shaft_of_series(scene, data: dict, v_rotor=None) -> tuple[ShaftDemand, np.ndarray]:
+def _shaft_of_series(scene: Scene, data: dict, v_rotor=None) -> tuple[ShaftDemand, np.ndarray]:
     t = np.asarray(data["t"], dtype=float)
     e = scene.rotor.eccentricity
     dx = np.asarray(data["shaft_deflection_x"], dtype=float)
@@ -137,7 +141,7 @@ def _shaft_of_series(scene, data: dict, v_rotor=None) -> tuple[ShaftDemand, np.n
 # The reduced models
 
 
-def with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progress=None):
+def with_reduced_forces(scene: Scene, run, res, integrator, pillar_modes, motion, progress=None):
     """paper, modal, beam: see the module text (``res`` the CaseResult of the run)."""
     m = res.model
     v = np.asarray(run.data["v"], dtype=float)
@@ -152,7 +156,7 @@ def with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progr
     return _attach(run, summary, series, force, extra_max)
 
 
-def _vertical_axial(scene, data, heights) -> np.ndarray:
+def _vertical_axial(scene: Scene, data, heights) -> np.ndarray:
     """N(z, t) of the reduced models: static, less the shaft's vertical pull c2 d_y (N)."""
     sec = section_of(scene.pillar)
     e, c2 = scene.rotor.eccentricity, scene.shaft.stiffness
@@ -161,7 +165,7 @@ def _vertical_axial(scene, data, heights) -> np.ndarray:
     return static[None, :] - c2 * dy[:, None]
 
 
-def _beam_forces(scene, run, res, shaft):
+def _beam_forces(scene: Scene, run, res, shaft):
     from ..reduced.beam_fe import section_forces
     from ..reduced.pillar_modes import beam_properties
     info = res.extra["model_info"]
@@ -179,7 +183,7 @@ def _beam_forces(scene, run, res, shaft):
                       heights, moment, shear, axial, rate[0], shaft)
 
 
-def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, progress):
+def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaft, progress):
     from ..reduced.band import forcing_top
     from .cases import run_case
     from ..reduced.models import candidate_modes
@@ -211,6 +215,8 @@ def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, prog
         pm = again.model.pillar_modes
     else:
         pm = res.model.pillar_modes
+    if pm is None:
+        raise ValueError("the modal model runs on pillar modes: it has none")
     q, v = np.asarray(data["q"], dtype=float), np.asarray(data["v"], dtype=float)
     t = np.asarray(run.data["t"], dtype=float)
     on = lambda a: np.column_stack([np.interp(t, data["t"], a[:, j]) for j in range(a.shape[1])])
@@ -236,7 +242,7 @@ def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, prog
 # The 3D model
 
 
-def stress_observer(scene, duration: float, field_dir, stem: str):
+def stress_observer(scene: Scene, duration: float, field_dir, stem: str):
     """The observer a 3D run hands its states to (rotorpillar.fem3d.stress)."""
     from pathlib import Path
     from ..fem3d.stress import StressRecovery
@@ -244,7 +250,7 @@ def stress_observer(scene, duration: float, field_dir, stem: str):
     return StressRecovery(scene.pillar, top_mass(scene), float(duration), path)
 
 
-def with_fem3d_forces(scene, run, recovered, heights):
+def with_fem3d_forces(scene: Scene, run, recovered, heights):
     """fem3d: ``recovered`` = StressRecovery.finish()'s (t, resultants, von Mises, xdmf path),
     ``heights`` its cuts' (m)."""
     from pathlib import Path

@@ -28,14 +28,19 @@ before the timed run, and its time recorded apart as ``compile_seconds``.
 
 from __future__ import annotations
 
-import sys
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..chain import ChainModes, PillarModel
 from ..errors import InputError
+from .run_records import BeamFullOrder, Fem3dPlan, Fem3dRun, ReducedRun, RunRecord
 from ..scene import MODELS, override
 
 
@@ -44,8 +49,9 @@ class ModelRun:
     """A model's run of a case: its JSON fields, its series, and what its charts need."""
     case: str
     model: str
-    result: dict
-    """the JSON fields of simulate_<case>_<model>.json (less files and provenance)"""
+    record: RunRecord
+    """the run's record: the JSON fields of simulate_<case>_<model>.json (less files and
+    provenance)"""
     data: dict
     """the series (arrays) of the NPZ/CSV"""
     resonances: list = field(default_factory=list)
@@ -53,8 +59,13 @@ class ModelRun:
     case_result: object = None
     """the reduced models' CaseResult (the run-up's brackets, the sweep's curves), else None"""
 
+    @property
+    def result(self) -> dict:
+        """The JSON fields of the record (as the readers of the hand-built dict read them)."""
+        return self.record.to_json()
 
-def own_duration(scene, case: str, motion=None) -> float:
+
+def own_duration(scene: Scene, case: str, motion=None) -> float:
     """The length of a case's run as the reduced models run it (s)."""
     sim = scene.simulate
     if case == "earthquake":
@@ -65,14 +76,14 @@ def own_duration(scene, case: str, motion=None) -> float:
     raise InputError(f"case {case!r}: a common duration is defined for runup, rundown and earthquake")
 
 
-def with_duration(scene, case: str, duration: float):
+def with_duration(scene: Scene, case: str, duration: float):
     """The scene with the case's run length set to ``duration`` (s)."""
     key = "earthquake_duration" if case == "earthquake" else "duration"
     return override(scene, [f"simulate.{key}={float(duration)!r}"])
 
 
-def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
-               study_dir=None) -> dict:
+def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None,
+               study_dir=None) -> Fem3dPlan:
     """The 3D run's mesh, duration and step, and what was chosen, shortened and why
     (the ``full_order`` block of the JSON).  The mesh: the convergence study's
     reference for the modes the case's load excites when ``study_dir`` holds
@@ -107,13 +118,11 @@ def fem3d_plan(scene, case: str, motion=None, duration: float | None = None,
     why = ("the 3D run costs its steps (40 per period of the fastest forcing) times one solve; the "
            "scene's [full_order] section keeps it to tens of seconds (its docstring and "
            "docs/transients.md give the measured cost and the agreement with the ROM)")
-    return {"mesh": dict(vars(mesh)), "duration": float(length), "case_duration": float(own),
-            "time_step": fo.time_step or None,
-            "note": "; ".join(notes) + (f": {why}" if length < own else ""),
-            "reference": reference.to_json(), "_mesh": mesh}
+    return Fem3dPlan(mesh, float(length), float(own), fo.time_step or None,
+                     "; ".join(notes) + (f": {why}" if length < own else ""), reference)
 
 
-def run_model(scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
+def run_model(scene: Scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
               progress=None, motion=None, duration: float | None = None,
               chain: ChainModes | None = None, field_dir=None,
               field_stem: str | None = None, study_dir=None) -> ModelRun:
@@ -129,21 +138,24 @@ def run_model(scene, case: str, model: str, integrator: str | None = None, modes
     if case == "earthquake" and motion is None:
         from ..reduced.models import scene_motion
         motion = scene_motion(scene)
-    if chain is None and model in ("modal", "fem3d"):
-        from ..chain import resolve
-        chain = resolve(scene, None, motion=motion, progress=progress)
-    if model == "fem3d":
-        return _run_fem3d(scene, case, motion, duration, progress, chain, field_dir,
-                          field_stem or f"simulate_{case}_fem3d", study_dir)
+    if model in ("modal", "fem3d"):
+        if chain is None:
+            from ..chain import resolve
+            chain = resolve(scene, None, motion=motion, progress=progress)
+        if model == "fem3d":
+            return _run_fem3d(scene, case, motion, duration, progress, chain, field_dir,
+                              field_stem or f"simulate_{case}_fem3d", study_dir)
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
 
 
-def reduced_pillar_model(scene, which: str, chain: ChainModes | None, info: dict) -> PillarModel:
+def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, info: dict) -> PillarModel:
     """The pillar model a reduced model ran on: the chain's (modal), the scene's beam at
     full order (beam), or the paper's stated tip reduction (paper: not the validated chain)."""
     if which == "modal":
+        if chain is None:
+            raise ValueError("the modal model's pillar model is the chain's: none handed in")
         return chain.pillar_model
     if which == "beam":
         n, theory = info["elements"], info["theory"]
@@ -166,7 +178,7 @@ def pillar_modes_for(which: str, chain: ChainModes | None):
     return chain.modes if which == "modal" and chain is not None else None
 
 
-def warm_up(scene, case: str, which: str, integrator, modes, motion, pillar_modes) -> float:
+def warm_up(scene: Scene, case: str, which: str, integrator, modes, motion, pillar_modes) -> float:
     """Compile what the run will (numba's kernels, per integrator and case) on a run of a
     few milliseconds of the same case; its wall time (s), kept apart from the run's."""
     from .cases import run_case
@@ -184,7 +196,7 @@ def warm_up(scene, case: str, which: str, integrator, modes, motion, pillar_mode
     return time.perf_counter() - start
 
 
-def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain) -> ModelRun:
+def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion, chain) -> ModelRun:
     from .cases import run_case, with_truncation
     from ..reduced.excitation import no_motion
     from .case_summary import ground_displacement, series
@@ -202,7 +214,6 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain)
             bars = uncertainty(scene, case, integrator, motion, chain, res, progress)
     m, run = res.model, res.run
     data = series(run, scene.simulate.samples)
-    summary = res.summary.to_json()
     ground = data["ground_x"]
     if m.frame == "absolute":
         data["tip_x_absolute"] = data["tip_x"]
@@ -210,7 +221,7 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain)
     else:
         data["tip_x_relative"] = data["tip_x"]
     data["shaft_deflection_x"] = data["q"][:, :m.nx] @ m.shaft - m.eccentricity * np.cos(data["theta"])
-    ma = dict(summary["max_abs"])
+    ma = dict(res.summary.max_abs)
     full_tip, full_ground = run.tip(), ground_displacement(m, run.motion or no_motion(), run.t)
     if m.frame == "absolute":
         ma["tip_x_absolute"] = ma["tip_x"]
@@ -219,38 +230,38 @@ def _run_reduced(scene, case, which, integrator, modes, progress, motion, chain)
         ma["tip_x_relative"] = ma["tip_x"]
         ma["tip_x_absolute"] = float(np.max(np.abs(full_tip + full_ground)))
     ma["shaft_deflection_x"] = ma["shaft_deflection_x_sampled"]
-    summary["max_abs"] = ma
-    result = {"case": case, "model": which, **summary, "warnings": _warnings(case, m, res),
-              "pillar_model": reduced_pillar_model(scene, which, chain,
-                                                   res.extra.get("model_info") or {}).to_json(),
-              "uncertainty": None if bars is None else {k: v.to_json() for k, v in bars.items()},
-              "dofs": int(m.n), "wall_seconds": wall, "compile_seconds": compile_seconds,
-              "model_description": m.describe(), "model_info": res.extra.get("model_info"),
-              "resonances": [vars(r) for r in m.quasi_normal()],
-              "damped_frequencies": m.damped_frequencies(), "tip_x_frame": m.frame,
-              "max_abs_sampled": ["tip_x_relative" if m.frame == "absolute" else "tip_x_absolute",
-                                  "shaft_deflection_x"]}
-    for key in ("initial_speed", "excitation_in_model"):
-        if key in res.extra:
-            result[key] = res.extra[key]
+    info = res.extra.get("model_info")
+    full_order = None
     if which == "beam":
         info = res.extra["model_info"]
-        result["full_order"] = {
-            "elements": info["elements"], "theory": info["theory"], "duration": summary["duration"],
-            "time_step": run.stats.get("time_step"),
-            "note": (f"the 1D {info['theory']} beam with every degree of freedom ({info['elements']} "
-                     f"elements, {info['element_source']}), the case's full duration; implicit fixed "
-                     "step that resolves the fastest forcing within 2e-3 (full_order.time_step, 0 = "
-                     "that; integrator.step_rule): the beam's stiff shear modes are damped by the "
-                     "scheme, not resolved")}
-    run = ModelRun(case, which, result, data, m.quasi_normal(), res)
+        full_order = BeamFullOrder(
+            elements=info["elements"], theory=info["theory"], duration=res.summary.duration,
+            time_step=run.stats.get("time_step"),
+            note=(f"the 1D {info['theory']} beam with every degree of freedom ({info['elements']} "
+                  f"elements, {info['element_source']}), the case's full duration; implicit fixed "
+                  "step that resolves the fastest forcing within 2e-3 (full_order.time_step, 0 = "
+                  "that; integrator.step_rule): the beam's stiff shear modes are damped by the "
+                  "scheme, not resolved"))
+    record = ReducedRun(
+        case=case, model=which, summary=replace(res.summary, max_abs=ma),
+        warnings=tuple(_warnings(case, m, res)),
+        pillar_model=reduced_pillar_model(scene, which, chain, info or {}),
+        uncertainty=bars, dofs=int(m.n), wall_seconds=wall, compile_seconds=compile_seconds,
+        model_description=m.describe(), model_info=info, resonances=tuple(m.quasi_normal()),
+        damped_frequencies=tuple(m.damped_frequencies()), tip_x_frame=m.frame,
+        max_abs_sampled=("tip_x_relative" if m.frame == "absolute" else "tip_x_absolute",
+                         "shaft_deflection_x"),
+        initial_speed=res.extra.get("initial_speed"),
+        excitation_in_model=res.extra.get("excitation_in_model"), full_order=full_order)
+    model_run = ModelRun(case, which, record, data, m.quasi_normal(), res)
     from .forces import with_reduced_forces
-    return with_reduced_forces(scene, run, res, integrator, pillar_modes, motion, progress)
+    return with_reduced_forces(scene, model_run, res, integrator, pillar_modes, motion, progress)
 
 
 def _warnings(case: str, model, res) -> list[str]:
     """The paper model's earthquake: the published base forcing's amplification;
-    any earthquake: a record whose sizes no recorded earthquake has."""
+    any earthquake: a record whose sizes no recorded earthquake has (the commands print
+    them on stderr)."""
     out = []
     quake = res.extra.get("excitation") or {}
     if case == "earthquake" and quake.get("kind") == "record" and not quake.get("realistic", True):
@@ -261,8 +272,6 @@ def _warnings(case: str, model, res) -> list[str]:
         w = published_forcing_warning(c1, model.shaft_stiffness)
         if w:
             out.append(w)
-    for w in out:
-        print(f"[rotorpillar] warning: {w}", file=sys.stderr, flush=True)
     return out
 
 
@@ -270,7 +279,7 @@ def _warnings(case: str, model, res) -> list[str]:
 # fem3d
 
 
-def fem3d_warm_up(scene, mesh) -> float:
+def fem3d_warm_up(scene: Scene, mesh) -> float:
     """Compile the 3D forms of ``mesh``'s cell type and degree (FFCx; once per machine, then
     read from its disk cache) on a mesh of a few cells, before the timed run (s)."""
     from dataclasses import replace as dc_replace
@@ -297,7 +306,7 @@ def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarMod
                        reference.get("study"))
 
 
-def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
+def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
                field_stem: str = "", study_dir=None) -> ModelRun:
     from ..fem3d.full_order import simulate_fem3d
     from ..reduced.band import forcing_top
@@ -305,8 +314,8 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field
     from ..reduced.stationary import operating_speed
     from .case_summary import capture_state
     plan = fem3d_plan(scene, case, motion, duration, study_dir)
-    mesh = plan.pop("_mesh")
-    steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan['duration']:g} s"
+    mesh = plan.mesh
+    steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan.duration:g} s"
     ref, _ = build_model(scene, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion),
                          pillar_modes=chain.modes)
     initial = None
@@ -319,18 +328,18 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field
     if case == "runup":
         initial = scene.simulate.runup_initial_speed or None
     from .forces import stress_observer, with_fem3d_forces
-    observer = stress_observer(scene, plan["duration"], field_dir, field_stem)
+    observer = stress_observer(scene, plan.duration, field_dir, field_stem)
     try:
-        r = simulate_fem3d(scene, case, motion=motion, duration=plan["duration"],
-                           time_step=plan["time_step"], mesh=mesh, samples=scene.simulate.samples,
+        r = simulate_fem3d(scene, case, motion=motion, duration=plan.duration,
+                           time_step=plan.time_step, mesh=mesh, samples=scene.simulate.samples,
                            initial_speed=initial, progress=progress, observer=observer)
         recovered = observer.finish()
     finally:
         observer.close()
-    plan["time_step"] = r.integrator["time_step"]
+    plan = replace(plan, time_step=r.integrator["time_step"])
     drive_free = _free_speed(scene)
     state = capture_state(ref, r.t, r.Omega, drive_free)
-    captured, settled = state["captured_at"], state["speed_state"] != "escaping"
+    captured, settled = state.captured_at, state.speed_state != "escaping"
     ma = dict(r.max_abs)
     ma["tip_x_relative"] = ma["tip_x"]
     integ = dict(r.integrator)
@@ -342,32 +351,33 @@ def _run_fem3d(scene, case, motion, duration, progress, chain: ChainModes, field
             "rotor_x_absolute": r.rotor_x + ground, "shaft_deflection_x": r.shaft_x,
             "shaft_deflection_y": r.shaft_y, "plate_z": r.plate_z, "drive_torque": r.drive_torque,
             "energy": r.energy, "work": r.work, "peak": np.abs(r.tip_x)[:, None]}
-    summary = {k: v for k, v in r.summary().items() if k != "model"}
     if case == "earthquake":
         r.model["initial_speed_source"] = ("the operating speed of the chain's ROM (the fastest "
                                            "stable stationary speed)")
-    result = {"case": case, "model": "fem3d", **summary, "max_abs": ma, "integrator": integ,
-              "captured_at": captured, "captured_resonance": state["captured_resonance"],
-              "captured_index": state["captured_index"],
-              "speed_state": state["speed_state"], "warnings": [],
-              "captured_at_source": "the chain's ROM: its resonances"
-                                    + ("" if settled else "; the run ended before the speed settled, "
-                                                          "so no capture is claimed"),
-              "pillar_model": solid_pillar_model(mesh, r.dofs, plan.get("reference") or {},
-                                                 plan["note"]).to_json(),
-              "compile_seconds": compile_seconds,
-              "model_description": r.model, "model_info": {"dofs": r.dofs, "mesh": plan["mesh"]},
-              "resonances": [vars(x) for x in ref.quasi_normal()],
-              "damped_frequencies": ref.damped_frequencies(), "tip_x_frame": "relative_to_ground",
-              "full_order": plan, "initial_speed": r.model.get("initial_speed")}
-    if case == "earthquake":
-        result["excitation"] = motion.sizes()
-        result["excitation_in_model"] = r.model.get("forcing")
-    return with_fem3d_forces(scene, ModelRun(case, "fem3d", result, data, ref.quasi_normal(), None),
+    record = Fem3dRun(
+        case=case, model="fem3d", ok=r.ok, duration=float(r.t[-1] - r.t[0]),
+        omega_final=r.omega_final, omega_final_mean=r.omega_final_mean, max_abs=ma,
+        energy_balance=r.energy_balance, integrator=integ, dofs=r.dofs,
+        wall_seconds=r.wall_seconds,
+        failed_checks=tuple(r.failed_checks) if r.failed_checks else None,
+        captured_at=captured, captured_resonance=state.captured_resonance,
+        captured_index=state.captured_index, speed_state=state.speed_state, warnings=(),
+        captured_at_source="the chain's ROM: its resonances"
+                           + ("" if settled else "; the run ended before the speed settled, "
+                                                 "so no capture is claimed"),
+        pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference.to_json(), plan.note),
+        compile_seconds=compile_seconds, model_description=r.model,
+        model_info={"dofs": r.dofs, "mesh": dict(vars(mesh))},
+        resonances=tuple(ref.quasi_normal()), damped_frequencies=tuple(ref.damped_frequencies()),
+        tip_x_frame="relative_to_ground", full_order=plan,
+        initial_speed=r.model.get("initial_speed"),
+        excitation=motion.sizes() if case == "earthquake" else None,
+        excitation_in_model=r.model.get("forcing") if case == "earthquake" else None)
+    return with_fem3d_forces(scene, ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None),
                              recovered, observer.heights)
 
 
-def _free_speed(scene) -> float:
+def _free_speed(scene: Scene) -> float:
     from ..reduced.drive import DriveSchedule
     d, L = scene.drive, scene.load
     return DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()

@@ -1,13 +1,121 @@
-"""The typed record of compare_<case>.json (no heavy imports: the report reads it back)."""
+"""The typed record of compare_<case>.json, to its leaves (no heavy imports: the report reads it back)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..chain.record import PillarModel
 from ..provenance import JsonRecord
+from .pareto import ParetoStudy
+from .references import FullOrderReference
+from .window import RunupWindow
 
 #: the reference of a comparison: the most complete model run
 REFERENCE_ORDER = ("fem3d", "beam", "modal", "paper")
+
+
+@dataclass(frozen=True)
+class ComparedModel(JsonRecord):
+    """One model's run in a comparison: its answers, its cost and its files."""
+    peak_tip_relative: float
+    """largest |tip X relative to the ground| (m)"""
+    peak_tip_absolute: float
+    """largest |absolute tip X| (m)"""
+    peak_shaft_deflection: float
+    """largest |shaft deflection along X| (m)"""
+    omega_final: float
+    """rotor speed at the end (rad/s)"""
+    wall_seconds: float
+    """the run's wall time, warm (s)"""
+    compile_seconds: float | None
+    """the warm-up's wall time: what the run compiled (s)"""
+    dofs: int
+    """unknowns of the model (-)"""
+    ok: bool
+    """the run's own checks held"""
+    warnings: tuple[str, ...]
+    """the run's warnings, in words"""
+    pillar_model: PillarModel | None
+    """the pillar model it ran on"""
+    json: str
+    """its compare_<case>_<model>.json"""
+    npz: str
+    """its compare_<case>_<model>.npz"""
+
+
+@dataclass(frozen=True)
+class ModelErrors(JsonRecord):
+    """One model against the reference (rotorpillar.transients.measures)."""
+    tip_history_error: float
+    """max_t |tip_m - tip_ref| / max_t |tip_ref|, tips relative to the ground on the
+    reference's times (-)"""
+    peak_tip_difference: float | None
+    """peak_m / peak_ref - 1 (-); None when the reference's peak is zero"""
+    omega_final_difference: float | None
+    """omega_final_m / omega_final_ref - 1 (-); None when the reference's is zero"""
+    tip_envelope_error: float
+    """the running peak over envelope_window compared as the history (-)"""
+    envelope_window: float
+    """the envelope's window: one period of the slowest resonance (s)"""
+    angle_drift: float | None
+    """largest |theta_m - theta_ref| (rad)"""
+    angle_drift_final: float | None
+    """theta_m - theta_ref at the end (rad)"""
+    lead: str
+    """"history" or "envelope": the measure that fits the case"""
+    lead_why: str
+    """why that measure, in words"""
+
+
+@dataclass(frozen=True)
+class CompareWindow(JsonRecord):
+    """The span every model's history is compared over."""
+    start: float
+    """(s)"""
+    end: float
+    """(s)"""
+    duration: float
+    """the one duration every model runs (s)"""
+    why: str
+    """why that duration, in words"""
+    runup: RunupWindow | None = field(default=None, metadata={"omit_if_none": True})
+    """the run-up's window through the resonances (runup against fem3d), else absent"""
+
+
+@dataclass(frozen=True)
+class SpectralMode(JsonRecord):
+    """One pillar mode's part in the response-spectrum estimate of the tip."""
+    mode: int
+    """its number, from 1 (-)"""
+    period: float
+    """(s)"""
+    damping_ratio: float
+    """its own damping ratio (-)"""
+    participation_factor: float
+    """Gamma_j for a base acceleration (-)"""
+    s_d: float
+    """the record's spectral displacement at its period and damping (m)"""
+    contribution: float
+    """|Gamma_j| S_d(T_j) (m)"""
+
+
+@dataclass(frozen=True)
+class ResponseSpectrum(JsonRecord):
+    """The earthquake's pseudo-acceleration spectrum and the ROM's spectral peak tip."""
+    period: tuple[float, ...]
+    """(s)"""
+    psa: tuple[float, ...]
+    """pseudo-acceleration at each period, 5 % damping (eqsig) (m/s**2)"""
+    damping: float
+    """the spectrum's damping ratio (-)"""
+    mode_periods: tuple[float, ...]
+    """the modal model's mode periods (s)"""
+    spectral_peak_tip: float
+    """SRSS of the modes' contributions (m)"""
+    computed_peak_tip: float | None
+    """the modal model's computed peak tip relative to the ground (m); None without it"""
+    modes: tuple[SpectralMode, ...]
+    note: str
 
 
 @dataclass(frozen=True)
@@ -21,34 +129,28 @@ class CompareResult(JsonRecord):
     reference: str
     """the most complete model run: fem3d > beam > modal > paper"""
     excitation: dict | None
-    """the ground motion's sizes (earthquake), as in simulate's JSON"""
-    per_model: dict
-    """model -> peak_tip_relative, peak_tip_absolute, peak_shaft_deflection, omega_final,
-    wall_seconds, dofs, ok, warnings, json, npz"""
-    errors: dict
-    """model (not the reference) -> tip_history_error = max_t |tip_m - tip_ref| / max_t |tip_ref|
-    (tips relative to the ground, on the reference's times), peak_tip_difference =
-    peak_m / peak_ref - 1, omega_final_difference = omega_final_m / omega_final_ref - 1,
-    tip_envelope_error (the running peak over envelope_window s compared the same way),
-    angle_drift and angle_drift_final (theta_m - theta_ref, rad), lead ("history" or
-    "envelope": the measure that fits the case) and lead_why
-    (rotorpillar.transients.measures)"""
-    cost_ratio: dict
+    """the ground motion's sizes (earthquake), as in simulate's JSON (their keys depend
+    on the excitation's kind: rotorpillar.reduced.excitation)"""
+    per_model: dict[str, ComparedModel]
+    """model -> its answers, cost and files"""
+    errors: dict[str, ModelErrors]
+    """model (not the reference) -> its errors against the reference"""
+    cost_ratio: dict[str, float | None]
     """model -> wall_seconds_m / wall_seconds_ref, both warm (compilation apart:
-    per_model's compile_seconds)"""
+    per_model's compile_seconds) (-)"""
     chart: str
     """compare_<case>.png: tip histories relative to the ground overlaid, difference below"""
-    window: dict = field(default_factory=dict)
-    """start, end (s) of the comparison and why"""
-    spectrum: dict | None = field(default=None, metadata={"omit_if_none": True})
-    """earthquake: period, psa (eqsig, 5 %), mode_periods, spectral_peak_tip, computed_peak_tip"""
-    full_order_reference: dict | None = field(default=None, metadata={"omit_if_none": True})
+    window: CompareWindow
+    """the span of the comparison and why"""
+    spectrum: ResponseSpectrum | None = field(default=None, metadata={"omit_if_none": True})
+    """earthquake: the record's spectrum and the ROM's spectral estimate of the peak tip"""
+    full_order_reference: FullOrderReference | None = field(default=None,
+                                                            metadata={"omit_if_none": True})
     """fem3d run: its mesh, where it comes from (the convergence study, or the scene), its own
-    error on the frequencies the load excites, and the participation of the loaded modes
-    (rotorpillar.transients.references.FullOrderReference)"""
-    pareto: dict | None = field(default=None, metadata={"omit_if_none": True})
+    error on the frequencies the load excites, and the participation of the loaded modes"""
+    pareto: ParetoStudy | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake against the 3D full order: speed against accuracy of every model of the
-    ladder on El Centro (rotorpillar.transients.pareto.ParetoStudy)"""
+    ladder on El Centro"""
 
 
 def reference_of(models) -> str:

@@ -32,6 +32,11 @@ keys give the mesh, unverified; ``full_order.elements_around/along`` set
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import json
 import math
 from dataclasses import dataclass, replace
@@ -40,6 +45,7 @@ from pathlib import Path
 import numpy as np
 
 from ..provenance import JsonRecord
+from ..scene.sections import Mesh
 
 PARTICIPATION_FLOOR = 1e-6
 """A mode whose largest share of a case's loads is below this takes no part (-);
@@ -163,7 +169,9 @@ def participation_table(rows, case: str, band_top: float, total_mass: float,
               "plate_z": plate[:, 2] ** 2 / stiff / compliance[1]}
     if np.any(~np.isfinite(shares["base_x"])) and "base_x" in loads:
         raise ValueError("the loaded modes carry no participation (modal.json from before it?)")
-    modes, part, left = [], [], []
+    modes: list[ModeParticipation] = []
+    part: list[int] = []
+    left: list[int] = []
     for i, r in enumerate(rows):
         s = {k: float(shares[k][i]) for k in loads}
         inside = bool(w[i] <= band_top)
@@ -210,7 +218,7 @@ def _participation_statement(case, modes, part, left, band_top, floor, uncovered
     return text + "."
 
 
-def loaded_mode_rows(scene, study_dir: Path | None) -> tuple[list[dict], str, dict]:
+def loaded_mode_rows(scene: Scene, study_dir: Path | None) -> tuple[list[dict], str, dict]:
     """The loaded tube's mode table: from modal.json when it is this scene's modes
     and carries the participation, else computed on the scene's [mesh]."""
     doc = _read(Path(study_dir) / "modal.json") if study_dir is not None else None
@@ -225,7 +233,7 @@ def loaded_mode_rows(scene, study_dir: Path | None) -> tuple[list[dict], str, di
     return result.modes_table(), "computed", dict(vars(scene.mesh))
 
 
-def case_band_top(scene, case: str, motion=None) -> float:
+def case_band_top(scene: Scene, case: str, motion=None) -> float:
     """The band a case excites: converge.margin x its fastest forcing (the drive's
     free speed; the ground motion's band for the earthquake) (rad/s)."""
     from ..reduced.band import excitation_band
@@ -236,7 +244,7 @@ def case_band_top(scene, case: str, motion=None) -> float:
     return float(top)
 
 
-def load_participation(scene, case: str, study_dir: Path | None = None, motion=None) -> ParticipationTable:
+def load_participation(scene: Scene, case: str, study_dir: Path | None = None, motion=None) -> ParticipationTable:
     """The participation of the loaded tube's modes in ``case``."""
     from ..reduced.pillar import section_of
     rows, source, mesh = loaded_mode_rows(scene, study_dir)
@@ -260,7 +268,7 @@ def _read(path: Path) -> dict | None:
     return doc if isinstance(doc, dict) else None
 
 
-def read_study(scene, study_dir: Path | None):
+def read_study(scene: Scene, study_dir: Path | None):
     """The scene's convergence study on disk (ConvergenceStudy), or None when it is
     missing, damaged or for another tube ([pillar] but its damping, [mesh] or
     [converge] differ: what the study's runs and tolerance depend on)."""
@@ -282,7 +290,7 @@ def read_study(scene, study_dir: Path | None):
         return None
 
 
-def rom_source_record(scene, study) -> dict | None:
+def rom_source_record(scene: Scene, study) -> dict | None:
     """The study's record of the ROM's mode source (a beam: computed if the ladder
     lacks its element count; 3D: the study's run on that mesh), or None."""
     from ..converge.ladder import FAMILIES, _case
@@ -311,13 +319,13 @@ def rom_source_record(scene, study) -> dict | None:
     return dict(chosen) if chosen is not None else None
 
 
-def _mesh_of(scene, params: dict):
+def _mesh_of(scene: Scene, params: dict) -> Mesh:
     return replace(scene.mesh, **{k: params[k] for k in ("elements_around", "elements_along",
                                                          "elements_through", "degree", "cell_type",
                                                          "grading") if k in params})
 
 
-def estimated_steps(scene, case: str, motion, duration: float) -> int:
+def estimated_steps(scene: Scene, case: str, motion, duration: float) -> int:
     """The 3D run's steps over ``duration`` (its step as simulate_fem3d sets it:
     fem3d.full_order_plan.step_rule)."""
     from ..fem3d.full_order_plan import case_setup, step_rule
@@ -326,8 +334,8 @@ def estimated_steps(scene, case: str, motion, duration: float) -> int:
     return max(1, int(round(duration / step_rule(scene, drive, motion, speed).time_step)))
 
 
-def choose_reference(scene, case: str, study_dir: Path | None = None, motion=None,
-                     steps: int | None = None) -> tuple[object, FullOrderReference]:
+def choose_reference(scene: Scene, case: str, study_dir: Path | None = None, motion=None,
+                     steps: int | None = None) -> tuple[Mesh, FullOrderReference]:
     """(the scene [mesh] section the 3D run uses, the record of why) for ``case``;
     ``steps``: the run's Newmark steps, which bound how far the run-up's reference
     is refined for the ROM source (REFERENCE_DOF_STEPS)."""
@@ -373,7 +381,8 @@ def choose_reference(scene, case: str, study_dir: Path | None = None, motion=Non
             reason=why, statement=f"The 3D reference runs {_label(mesh)}, unverified: {why}. "
             + part.statement, study=study.json_file)
     mesh = _mesh_of(scene, choice.params)
-    errors, band_err, verified, label = choice.errors, choice.band_error, True, choice.label
+    band_err: float | None = choice.band_error
+    errors, verified, label = choice.errors, True, choice.label
     reason = choice.reason
     if overrides:
         mesh = replace(mesh, **{k: getattr(fo, k) for k in overrides})

@@ -16,7 +16,13 @@ models' ``RotorStructure.held_whirl_state``).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import math
+from functools import partial
 from dataclasses import dataclass
 
 import numpy as np
@@ -55,7 +61,7 @@ class RunupWindow(JsonRecord):
     reason: str
 
 
-def runup_window(scene, pillar_modes=None) -> RunupWindow:
+def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     """The window of the scene's run-up (see the module text): one run-up of the
     modal ROM from rest, without the passing-torque batch and the truncation check;
     ``pillar_modes``: the ROM's (the chain's; None: resolved for the scene, no study)."""
@@ -76,25 +82,26 @@ def runup_window(scene, pillar_modes=None) -> RunupWindow:
     state = capture_state(res.model, t, W, free)
     w0 = START_FRACTION * qn[0]
     reached = np.nonzero(W >= w0)[0]
-    whole = dict(initial_speed=0.0, start=0.0, end=float(t[-1]), duration=float(t[-1]),
-                 resonances=tuple(qn), passed=tuple(w for w in qn if w <= W.max()),
-                 captured_resonance=state["captured_resonance"],
-                 peak_time=float(t[int(np.argmax(tip))]))
+    whole = partial(RunupWindow, initial_speed=0.0, start=0.0, end=float(t[-1]),
+                    duration=float(t[-1]), resonances=tuple(qn),
+                    passed=tuple(w for w in qn if w <= W.max()),
+                    captured_resonance=state.captured_resonance,
+                    peak_time=float(t[int(np.argmax(tip))]))
     if reached.size == 0:
-        return RunupWindow(**whole, reason=f"the run-up never reaches {START_FRACTION:g} x the lowest "
+        return whole(reason=f"the run-up never reaches {START_FRACTION:g} x the lowest "
                            f"resonance ({qn[0]:.2f} rad/s): the whole run from rest")
     i0 = int(reached[0])
     t0 = float(t[i0])
     if sim.runup_ramp > t0:
-        return RunupWindow(**whole, reason=f"the motor's ramp (simulate.runup_ramp = {sim.runup_ramp:g} s) "
+        return whole(reason=f"the motor's ramp (simulate.runup_ramp = {sim.runup_ramp:g} s) "
                            f"lasts past {t0:.3g} s, where the speed reaches {w0:.3g} rad/s: a window "
                            "would start on a partial torque; the whole run from rest")
     after = slice(i0, None)
     i_peak = i0 + int(np.argmax(tip[after]))
     t_peak = float(t[i_peak])
     passed = tuple(w for w in qn if w <= float(W.max()))
-    if state["captured_resonance"] is not None:
-        wc = state["captured_resonance"]
+    if state.captured_resonance is not None:
+        wc = state.captured_resonance
         t_end = t_peak + SETTLE_PERIODS * 2 * math.pi / wc
         why = (f"captured at {wc:.2f} rad/s: until {SETTLE_PERIODS} periods of it after the tip's "
                f"peak at {t_peak:.3g} s")
@@ -109,7 +116,7 @@ def runup_window(scene, pillar_modes=None) -> RunupWindow:
     t_end = min(t_end, float(t[-1]))
     return RunupWindow(
         initial_speed=float(w0), start=t0, end=t_end, duration=t_end - t0, resonances=tuple(qn),
-        passed=passed, captured_resonance=state["captured_resonance"], peak_time=t_peak,
+        passed=passed, captured_resonance=state.captured_resonance, peak_time=t_peak,
         reason=(f"from {w0:.3g} rad/s ({START_FRACTION:g} x the lowest resonance {qn[0]:.2f} rad/s, "
                 f"reached at {t0:.3g} s from rest) {why}: {t_end - t0:.3g} s of the ROM's run-up, "
                 "every model from the same state (pillar at rest, rotor in its steady whirl)"))

@@ -17,6 +17,11 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import time
 from pathlib import Path
 
@@ -26,7 +31,7 @@ from ..reduced.margins import ModeEntry, separation_table
 from .records import HarmonicResult, PeakComparison
 
 
-def running_speeds(model, scene) -> list[float]:
+def running_speeds(model, scene: Scene) -> list[float]:
     """The ROM's stable stationary speeds with the scene's drive (rad/s)."""
     from ..reduced.stationary import stationary_exact
     d, L = scene.drive, scene.load
@@ -52,7 +57,7 @@ def fem3d_modes(modal_doc, tip_damping: float) -> list[ModeEntry]:
     (the dashpot at the plate's X, as the 3D transient has it); every other
     mode: 0 (the model leaves it undamped; API 684 then asks the most).
     """
-    out = []
+    out: list = []
     for row in modal_doc.modes_with_top:
         kind = row["kind"]
         n = row.get("n_circumferential")
@@ -100,7 +105,7 @@ def _peaks(model, rom_curve, fem_curve, top) -> list[PeakComparison]:
     return out
 
 
-def harmonic_analysis(scene, out: Path, progress=None, with_fem3d: bool = True,
+def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool = True,
                       chain=None) -> HarmonicResult:
     """The Bode curves and the separation margins of the scene (see the module text);
     ``chain``: the chain's pillar model and modes (rotorpillar.chain.resolve; None: resolved
@@ -156,7 +161,7 @@ def harmonic_analysis(scene, out: Path, progress=None, with_fem3d: bool = True,
         pillar_model=chain.pillar_model)
 
 
-def _fem3d_curve(scene, model, top: float, say):
+def _fem3d_curve(scene: Scene, model, top: float, say):
     """The 3D harmonic response on the [full_order] mesh, or (None, None, why not)."""
     import importlib.util
     if importlib.util.find_spec("dolfinx") is None:
@@ -165,7 +170,7 @@ def _fem3d_curve(scene, model, top: float, say):
     from ..fem3d.harmonic import harmonic_response, harmonic_speeds
     from ..fem3d.rotor_top import Rotor
     from ..transients.model_run import fem3d_plan
-    mesh = fem3d_plan(scene, "runup")["_mesh"]
+    mesh = fem3d_plan(scene, "runup").mesh
     res = [r.omega for r in model.quasi_normal() if r.direction == "X"]
     speeds = harmonic_speeds(res, top)
     say(f"harmonic: the 3D model on {mesh.elements_around} x {mesh.elements_along} elements at "
@@ -187,8 +192,10 @@ def summary_text(r: HarmonicResult) -> str:
     """The readable text of `rotorpillar harmonic`."""
     lines = [f"unbalance response up to {r.band_top:.1f} rad/s: {r.rom_model}; {r.fem3d_model}"]
     for p in r.peaks:
-        rom = "no peak (damped)" if p.rom_speed is None else f"{p.rom_amplitude * 1e3:.4g} mm at {p.rom_speed:.3f}"
-        fem = "-" if p.fem3d_speed is None else f"{p.fem3d_amplitude * 1e3:.4g} mm at {p.fem3d_speed:.3f}"
+        rom = ("no peak (damped)" if p.rom_speed is None or p.rom_amplitude is None
+               else f"{p.rom_amplitude * 1e3:.4g} mm at {p.rom_speed:.3f}")
+        fem = ("-" if p.fem3d_speed is None or p.fem3d_amplitude is None
+               else f"{p.fem3d_amplitude * 1e3:.4g} mm at {p.fem3d_speed:.3f}")
         lines.append(f"  resonance {p.omega:.3f} rad/s: ROM {rom}; 3D {fem}; Eq. 19 "
                      f"{p.averaging_amplitude * 1e3:.4g} mm")
     lines.append("separation margins (API 684), running speeds "

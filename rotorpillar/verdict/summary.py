@@ -23,6 +23,11 @@ stated reduction) has no sections and stays out of the checks.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
 import json
 import math
 import re
@@ -75,13 +80,13 @@ def model_runs(out: Path) -> list[dict]:
     return [doc for _, doc in sorted(found.values(), key=lambda x: x[1]["_file"])]
 
 
-def _run_checks(scene, doc: dict) -> list[Check]:
+def _run_checks(scene: Scene, doc: dict) -> list[Check]:
     """The checks of one run's peaks."""
     model, case = doc.get("model"), case_label(doc)
     src = doc["_file"]
     ma = doc.get("max_abs") or {}
     forces = doc.get("internal_forces") or {}
-    mat, p = scene.material, scene.pillar
+    mat = scene.material
     out = []
     stress = ma.get("base_stress")
     out.append(check("base stress vs yield", "base_stress", "Pa", stress, mat.yield_strength / GAMMA_M0,
@@ -108,7 +113,7 @@ def _run_checks(scene, doc: dict) -> list[Check]:
     return [c for c in out if c.demand is not None or c.capacity is not None]
 
 
-def _buckling(scene, axial_share: float = 1.0):
+def _buckling(scene: Scene, axial_share: float = 1.0):
     p, mat = scene.pillar, scene.material
     sec = section_of(p)
     r = (p.outer_diameter + p.inner_diameter) / 4
@@ -137,7 +142,7 @@ def _margin_checks(h: HarmonicResult) -> list[Check]:
 
 def _governing(rows: list[Check]) -> list[Check]:
     """Per check name, the row with the largest utilisation (not assessed: the largest demand)."""
-    out = {}
+    out: dict[str, Check] = {}
     for c in rows:
         best = out.get(c.name)
         key = (c.utilisation if c.utilisation is not None else -1.0, c.demand or 0.0)
@@ -151,7 +156,7 @@ def _governing(rows: list[Check]) -> list[Check]:
 _BARRED = {"tip_x_relative": "peak_tip_relative"}
 
 
-def _headlines(scene, docs: list[dict], h: HarmonicResult | None, modal) -> list[Headline]:
+def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal) -> list[Headline]:
     out = []
     if modal is not None:
         rows = [r for r in modal.modes_with_top if r["kind"] == "bending_x"]
@@ -227,7 +232,7 @@ def _runup(docs: list[dict]) -> dict | None:
     return None
 
 
-def engineering_summary(scene, out: Path) -> EngineeringSummary:
+def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     """The verdict of the files in ``out`` (see the module text)."""
     from ..fem3d.modal_summary import ModalSummary
     out = Path(out)
@@ -268,7 +273,7 @@ def engineering_summary(scene, out: Path) -> EngineeringSummary:
                               tuple(missing), tuple(inputs))
 
 
-def _not_assessed(scene, governing: list[Check], have_harmonic: bool, have_runs: bool) -> list[str]:
+def _not_assessed(scene: Scene, governing: list[Check], have_harmonic: bool, have_runs: bool) -> list[str]:
     out = [f"{c.name}: " + ("no capacity stated" if c.capacity is None else "no demand computed")
            + (" (state rotor.clearance, m)" if c.quantity == "shaft_deflection" and c.capacity is None else "")
            + (" (state shaft.force_limit, N)" if c.quantity == "bearing_force" and c.capacity is None else "")
@@ -280,15 +285,17 @@ def _not_assessed(scene, governing: list[Check], have_harmonic: bool, have_runs:
     return out
 
 
-def write_summary(scene, out: Path) -> Path | None:
+def write_summary(scene: Scene, out: Path) -> Path | None:
     """Write out/summary.json (atomically) and return its path; None, and nothing
     written, when there is nothing to check (no run, no harmonic.json, no modal.json)."""
-    from ..provenance import machine, versions, write_json
+    import time
+    from ..provenance import write_result
+    start = time.perf_counter()
     record = engineering_summary(scene, out)
     if not record.inputs:
         return None
-    return write_json(Path(out) / "summary.json", {**record.to_json(), "versions": versions(),
-                                                    "machine": machine()})
+    # its ``scene`` is the scene's name (the record's field); the resolved scene is report.json's
+    return write_result(Path(out) / "summary.json", record, timings={"summary": time.perf_counter() - start})
 
 
 def summary_lines(s: EngineeringSummary) -> list[str]:
