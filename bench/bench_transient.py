@@ -225,8 +225,8 @@ def bench_rom_vs_3d(scene) -> list[dict]:
     theta0 = math.pi / 2
     t3, tip3, wall3, dofs = newmark_3d(scene, motion, Omega, theta0, h, t_end)
     # the 3D run's start: the structure at rest, the rotor in its steady whirl on the held plate
-    from rotorpillar.fem3d.rotor_top import Rotor, rotor_start
-    x, y, vx, vy = rotor_start(Rotor.from_scene(scene), theta0, Omega)
+    from rotorpillar.fem3d.rotor_top import RotorOnTop, rotor_start
+    x, y, vx, vy = rotor_start(RotorOnTop.from_scene(scene), theta0, Omega)
     q0, v0 = np.zeros(model.n), np.zeros(model.n)
     q0[model.rotor_x], q0[model.nx], q0[-1] = x, y, theta0
     v0[model.rotor_x], v0[model.nx], v0[-1] = vx, vy, Omega

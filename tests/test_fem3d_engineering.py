@@ -119,7 +119,7 @@ def test_harmonic_response_against_the_rom_on_the_same_modes():
     from rotorpillar.fem3d import assemble_pillar, modal_analysis
     from rotorpillar.fem3d.harmonic import harmonic_response
     from rotorpillar.fem3d.pillar_modes import pillar_modes_from_fem3d
-    from rotorpillar.fem3d.rotor_top import Rotor
+    from rotorpillar.fem3d.rotor_top import RotorOnTop
     from rotorpillar.reduced.bode import unbalance_response
     from rotorpillar.reduced.rotor_models import modal_model
     s = override(load_scene("paper"), ["mesh.elements_around=16", "mesh.elements_along=8"])
@@ -130,7 +130,7 @@ def test_harmonic_response_against_the_rom_on_the_same_modes():
     speeds = np.array([near[0], near[1], 0.98 * near[1], 89.7])
     model = assemble_pillar(s, top=True)
     try:
-        h = harmonic_response(model, Rotor.from_scene(s), s.pillar.damping, speeds)
+        h = harmonic_response(model, RotorOnTop.from_scene(s), s.pillar.damping, speeds)
     finally:
         model.K.destroy()
         model.M.destroy()

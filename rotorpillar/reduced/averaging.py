@@ -163,7 +163,7 @@ def branch_is_stable(Omega, slope: float, load_coefficient: float, resonances):
     return stability_margin(Omega, slope, load_coefficient, resonances) < 0
 
 
-def speed_grid(resonances, top: float, n: int = 4000) -> np.ndarray:
+def stationary_speed_grid(resonances, top: float, n: int = 4000) -> np.ndarray:
     """Speeds from 0 to ``top``, dense across each resonance peak."""
     parts = [np.linspace(0.0, top, n)]
     for r in resonances:
@@ -228,7 +228,7 @@ def analyse_drive(ch: Characteristic, resonances, top: float | None = None) -> D
     free = ch.free_speed()
     if top is None:
         top = max(3 * max(omegas), 1.05 * free if math.isfinite(free) else 10 * max(omegas))
-    grid = speed_grid(resonances, top)
+    grid = stationary_speed_grid(resonances, top)
     k, s = ch.load_coefficient, ch.slope
 
     F = lambda W: total_resistance(W, k, resonances) + s * W          # M0 on the branch
@@ -267,14 +267,14 @@ def critical_slope(load_coefficient: float, r: Resonance, top: float) -> float:
     """The largest drive slope s for which resonance i, alone, has a fold:
     max over Omega of -(2 k Omega + d(dL_i)/dOmega) (N*m*s).  Negative when
     no falling motor characteristic can cause a jump there."""
-    grid = speed_grid([r], top)
+    grid = stationary_speed_grid([r], top)
     return float(np.max(-(2 * load_coefficient * grid + resistance_increment_slope(grid, r))))
 
 
 def critical_eccentricity_factor(ch: Characteristic, r: Resonance, top: float) -> float:
     """The factor on the eccentricity beyond which resonance i, alone, has a
     fold with this drive's slope (dL grows as e**2)."""
-    grid = speed_grid([r], top)
+    grid = stationary_speed_grid([r], top)
     slope = resistance_increment_slope(grid, r)
     falling = slope < 0
     if not np.any(falling):

@@ -180,7 +180,7 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
     if speed_scale is None:
         speed_scale = max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0)) \
             if math.isfinite(drive.free_speed()) else max(abs(v0[-1]), 1.0)
-    check_budget(model, motion, t_end - t_start, settings, speed_scale)
+    check_step_budget(model, motion, t_end - t_start, settings, speed_scale)
     if _ESTIMATE_ONLY.get():
         raise Estimated()
     P = model.pack(drive, motion, prescribed_speed)
@@ -203,7 +203,7 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
 STEPS_PER_REVOLUTION = 10.0
 
 
-def estimated_steps(model: RotorStructure, motion: GroundMotion, duration: float,
+def estimated_step_count(model: RotorStructure, motion: GroundMotion, duration: float,
                     settings: Settings, speed_scale: float) -> float:
     """Integration steps a run will take, from its settings, before it starts (-).
 
@@ -219,10 +219,10 @@ def estimated_steps(model: RotorStructure, motion: GroundMotion, duration: float
     return n
 
 
-def check_budget(model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings,
+def check_step_budget(model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings,
                  speed_scale: float) -> None:
     """Refuse (one line, InputError) a run estimated above ``settings.max_steps``."""
-    n = estimated_steps(model, motion, duration, settings, speed_scale)
+    n = estimated_step_count(model, motion, duration, settings, speed_scale)
     if not math.isfinite(n) or n > settings.max_steps:
         raise InputError(
             f"this run of {duration:.4g} s would take about {n:.3g} {settings.method} steps, more "
@@ -392,11 +392,11 @@ class Batch:
 
 def shaft_deflection(q: np.ndarray, shaft: np.ndarray, e) -> tuple[np.ndarray, np.ndarray]:
     """|shaft deflection| and its x component (m) at states q (k, n), e (m) per
-    state or one for all: the same bits in any process (rhs.shaft_deflection)."""
+    state or one for all: the same bits in any process (rhs.shaft_deflection_into)."""
     q = np.ascontiguousarray(q, dtype=float)
     e = np.broadcast_to(np.asarray(e, dtype=float), (q.shape[0],)).copy()
     size, x = np.empty(q.shape[0]), np.empty(q.shape[0])
-    K.shaft_deflection(q, np.ascontiguousarray(shaft, dtype=float), e, size, x)
+    K.shaft_deflection_into(q, np.ascontiguousarray(shaft, dtype=float), e, size, x)
     return size, x
 
 

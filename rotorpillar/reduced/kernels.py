@@ -13,4 +13,4 @@ from .dp5 import dp5_batch, dp5_solve  # noqa: F401
 from .fixed_step import cd_solve, genalpha_solve  # noqa: F401
 from .rhs import (MAX_STEPS, N_WORK, NEWTON_FAILED, NOT_FINITE, OK, STEP_TOO_SMALL,  # noqa: F401
                   deriv_flat, flatten, jac_first_order, jacobians, rhs_first_order,
-                  shaft_deflection)
+                  shaft_deflection_into)

@@ -301,7 +301,7 @@ def record_peak(q, n, par, peak, k):
 
 
 @njit(cache=True)
-def shaft_deflection(q, shaft, e, out, out_x):
+def shaft_deflection_into(q, shaft, e, out, out_x):
     """The shaft's deflection (d.z - e cos theta, y - e sin theta) (m) for states
     q (k, n): z = q[:nx], y = q[nx], theta = q[nx + 1]; its size into out (k,),
     its x component into out_x (k,).

@@ -26,7 +26,7 @@ def stationary_exact(model: RotorStructure, M0: float, slope: float, load: float
     free = DriveSchedule.constant(M0, slope, load).free_speed()
     res = model.quasi_normal()
     top = top or 1.2 * max(free, max(r.omega for r in res))
-    grid = av.speed_grid(res, top, n)
+    grid = av.stationary_speed_grid(res, top, n)
     g = lambda W: M0 - slope * W - load * W * abs(W) + float(model.steady_torque(W))
     vals = np.array([g(w) for w in grid])
     out = []
@@ -66,7 +66,7 @@ def exact_folds(model: RotorStructure, slope: float, load: float, top: float) ->
     """Local maxima (A, run-up) and minima (D, run-down) of the exact linear
     F(W) = k W**2 + s W - <shaft torque>(W): the torques where quasi-static
     runs jump."""
-    W = av.speed_grid(model.quasi_normal(), top, 4000)
+    W = av.stationary_speed_grid(model.quasi_normal(), top, 4000)
     F = load * W**2 + slope * W - model.steady_torque(W)
     dF = np.diff(F)
     out = []

@@ -185,7 +185,7 @@ def drift_study(model, duration: float = 200.0, speed: float = 50.0, rtol: float
             "rows": rows}
 
 
-def run_study(scene, duration: float = 10.0, quick: bool = False, progress=None,
+def run_integrator_study(scene, duration: float = 10.0, quick: bool = False, progress=None,
               pillar_modes=None, probe_modes=None) -> dict:
     """All three experiments: accuracy (1) and energy drift (3) on the scene's headline
     model, the ROM on ``pillar_modes`` (the chain's; the paper model when None); the

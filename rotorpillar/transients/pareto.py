@@ -194,7 +194,7 @@ _WARM: dict = {}
 """family -> seconds of this process's warm-up run (once per process)."""
 
 
-def warm_up(family: str, scene, motion, speed: float, pillar_modes=None) -> float:
+def warm_up_family(family: str, scene, motion, speed: float, pillar_modes=None) -> float:
     """Run a tiny case of ``family`` once per process (numba kernels, FFCx forms); its seconds."""
     if family in _WARM:
         return 0.0
@@ -214,7 +214,7 @@ def compute_3d(job) -> dict:
     """One 3D run (a worker's job: picklable arguments); its result and warm-up seconds."""
     from ..fem3d.full_order import simulate_fem3d
     scene, params, motion, speed, duration = job
-    warm = warm_up("fem3d", scene, motion, speed)
+    warm = warm_up_family("fem3d", scene, motion, speed)
     mesh = replace(scene.mesh, **params)
     r = simulate_fem3d(scene, "earthquake", motion=motion, duration=duration, mesh=mesh,
                        samples=PARETO_SAMPLES, initial_speed=speed)
@@ -355,7 +355,7 @@ class ParetoRunning:
         t0 = time.perf_counter()
         for i in (i for i in self.todo if plan.specs[i][0] != "fem3d"):
             fam, _, params = plan.specs[i]
-            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up(fam, plan.scene, plan.motion,
+            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up_family(fam, plan.scene, plan.motion,
                                                                      plan.speed, plan.pillar_modes)
             self.keep(i, _reduced_run(plan.scene, fam, params, plan.motion, plan.speed,
                                       plan.pillar_modes, plan.duration))
@@ -370,7 +370,7 @@ class ParetoRunning:
                 self.keep(i, out)
         docs = [plan.results[i] for i in range(len(plan.specs))]
         k, mesh = plan.rom_modes, plan.chosen_mesh
-        study, series = analyse(docs, chosen={
+        study, series = analyse_pareto(docs, chosen={
             "rom": f"ROM, {k} mode{'s' if k > 1 else ''}",
             "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}"})
         case = {"record": plan.scene.excitation.record, "record_start": PARETO_RECORD_START,
@@ -426,7 +426,7 @@ def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
                     "converge monotonically at a plausible order, so no extrapolation"}
 
 
-def analyse(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
+def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
     """Errors against the finest 3D run, its own error, the fronts (the study, the histories)."""
     from ..converge.selection import pareto_front
     tips = {d["label"]: np.asarray(d["tip"], float) for d in docs}

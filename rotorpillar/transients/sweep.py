@@ -182,7 +182,7 @@ def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSch
                   f"what the motor and load alone allow; a jump needs > {JUMP_FACTOR:g}x), as the "
                   f"analysis predicts: no fold of Md = L in [{w.torque_low:g}, {w.torque_high:g}] N*m; "
                   f"the resonances draw at most {100 * worst:.2g} % of Mc at their own speed.")
-    W_curve = av.speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
+    W_curve = av.stationary_speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
     curves = {"omega": W_curve,
               "F_averaging": av.total_resistance(W_curve, k, res) + s * W_curve,
               "F_exact": k * W_curve**2 + s * W_curve - model.steady_torque(W_curve),

@@ -163,7 +163,7 @@ def _fem3d_curve(scene, model, top: float, say):
         return None, None, "not computed: dolfinx is not installed here"
     from ..fem3d import assemble_pillar
     from ..fem3d.harmonic import harmonic_response, harmonic_speeds
-    from ..fem3d.rotor_top import Rotor
+    from ..fem3d.rotor_top import RotorOnTop
     from ..transients.model_run import fem3d_plan
     mesh = fem3d_plan(scene, "runup")["_mesh"]
     res = [r.omega for r in model.quasi_normal() if r.direction == "X"]
@@ -172,7 +172,7 @@ def _fem3d_curve(scene, model, top: float, say):
         f"{len(speeds)} speeds")
     pillar = assemble_pillar(scene, top=True, mesh=mesh)
     try:
-        h = harmonic_response(pillar, Rotor.from_scene(scene), scene.pillar.damping, speeds)
+        h = harmonic_response(pillar, RotorOnTop.from_scene(scene), scene.pillar.damping, speeds)
     finally:
         pillar.K.destroy()
         pillar.M.destroy()
