@@ -165,7 +165,8 @@ def bench_rom_vs_full(scene) -> list[dict]:
     t_end = round(motion.end + 3.0, 1)
     samples = int(round(t_end / 0.01)) + 1          # outputs every 10 steps of 1 ms: the grids match
     elements = 10
-    full = beam_model(scene, elements, "timoshenko")
+    full = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, elements,
+                      "timoshenko")
     W = operating_speed(full, d.torque_at_zero, d.slope, L.coefficient)
     q0, v0 = full.steady_initial_state(W)
     st = Settings("newmark", time_step=1e-3, samples=samples)
@@ -174,7 +175,7 @@ def bench_rom_vs_full(scene) -> list[dict]:
     top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
     rom, info = build_model(scene, "modal", top)
     k = rom.pillar_modes.count
-    pm = beam_pillar_modes(scene, k, "timoshenko", elements)                           # same beam
+    pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, k, "timoshenko", elements)                           # same beam
     rom = modal_model(pm, scene.rotor.mass, scene.rotor.inertia, scene.rotor.eccentricity,
                       scene.shaft.stiffness, scene.shaft.damping, scene.pillar.damping)
     q0r, v0r = rom.steady_initial_state(operating_speed(rom, d.torque_at_zero, d.slope, L.coefficient))

@@ -108,7 +108,7 @@ def test_mode_resultants_against_the_beam(scene):
     from rotorpillar.reduced.pillar_modes import beam_pillar_modes
     r = modal_analysis(scene, top=True, n_modes=12)
     pm = pillar_modes_from_fem3d(r, scene.pillar, 2)
-    bm = beam_pillar_modes(scene, 2, "timoshenko", 40)
+    bm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 2, "timoshenko", 40)
     assert pm.has_resultants and pm.section_heights[0] == 0.0
     assert pm.omega[0] == pytest.approx(bm.omega[0], rel=3e-3)
     assert pm.moment_shapes[0, 0] == pytest.approx(bm.moment_shapes[0, 0], rel=1e-2)

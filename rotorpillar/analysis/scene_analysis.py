@@ -167,7 +167,8 @@ def paper_model_analysis(scene: Scene, closed: dict, ch: av.Characteristic, c2e:
                          fem3d_reduction=None) -> PaperModel:
     """Eq. 4 with the scene's stated tip reduction (or Eq. 2), analysed as the paper does."""
     red = resolve_reduction(scene, closed, fem3d_reduction)
-    sys_ = reduced_system(scene, red["tip_mass"], red["tip_stiffness"])
+    sys_ = reduced_system(scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping,
+                          red["tip_mass"], red["tip_stiffness"])
     modes = linear_modes(sys_)
     resonances, drive = averaging_results(modes.resonances, ch, scene.rotor.eccentricity, c2e)
     x = modes.resonances[:2]

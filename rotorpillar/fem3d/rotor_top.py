@@ -73,7 +73,7 @@ class Step:
     every force f but inertia, with Newmark's x1 = x~ + beta h**2 a1,
     v1 = v~ + gamma h a1 (``predict``: x~, v~).  Second order when
     gamma = 1/2 - alpha_m + alpha_f; parameters by
-    rotorpillar.reduced.integration.genalpha_parameters.
+    rotorpillar.reduced.fixed_step.genalpha_parameters.
     """
     h: float
     """the step (s)"""

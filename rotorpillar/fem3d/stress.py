@@ -40,6 +40,7 @@ import numpy as np
 
 from ..reduced.internal_forces import STANDARD_GRAVITY, axial_force, extreme_fibre_stress
 from ..reduced.pillar import section_of
+from ..scene import Pillar
 from .stress_records import StressPeak, VonMisesSummary
 
 #: von Mises frames of the XDMF time series (evenly spaced over the run); each write of
@@ -56,7 +57,7 @@ def boundary_layer_length(radius: float, thickness: float, poisson_ratio: float)
 @dataclass
 class StressRecovery:
     """The observer of a 3D transient (see the module text); collective under MPI."""
-    pillar: object
+    pillar: Pillar
     """the scene's [pillar] section"""
     top_mass: float
     """what the top carries: gondola and rotor (kg)"""

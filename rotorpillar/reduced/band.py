@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+from typing import Any
+
+from ..scene import Scene
 from .averaging import Characteristic
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 
 
-def excitation_band(scene) -> dict:
+def excitation_band(scene: Scene) -> dict[str, Any]:
     """The frequencies the scene excites, and the band a model must resolve.
 
     The rotor runs at most at the drive's free speed (Md = Mc, no resonance
@@ -24,7 +27,7 @@ def excitation_band(scene) -> dict:
             "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake"}
 
 
-def forcing_top(scene, case: str, motion: GroundMotion | None) -> float:
+def forcing_top(scene: Scene, case: str, motion: GroundMotion | None) -> float:
     """The highest forcing frequency of a case (rad/s): the fastest rotor speed
     it reaches, and the ground motion's band."""
     d, L = scene.drive, scene.load

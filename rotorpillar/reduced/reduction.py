@@ -9,6 +9,8 @@ caller: this package never builds the 3D model itself).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 from ..scene import Scene, SceneError
 from .pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bernoulli,
@@ -18,7 +20,7 @@ from .pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bern
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
 
-def pillar_closed_forms(scene: Scene) -> dict:
+def pillar_closed_forms(scene: Scene) -> dict[str, Any]:
     """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare tube."""
     p = scene.pillar
     sec = section_of(p)
@@ -58,7 +60,9 @@ def pillar_closed_forms(scene: Scene) -> dict:
     }
 
 
-def resolve_reduction(scene: Scene, closed: dict, fem3d_reduction=None) -> dict:
+def resolve_reduction(scene: Scene, closed: dict[str, Any],
+                      fem3d_reduction: Callable[[Scene], tuple[float, float]] | None = None
+                      ) -> dict[str, Any]:
     """The tip mass and stiffness the reduced model uses, and where each came from.
 
     ``fem3d_reduction`` is a callable scene -> (m_reduced, tip_stiffness), used

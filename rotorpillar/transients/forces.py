@@ -166,7 +166,7 @@ def _beam_forces(scene, run, res, shaft):
     from ..reduced.pillar_modes import beam_properties
     info = res.extra["model_info"]
     n, theory = info["elements"], info["theory"]
-    bp = beam_properties(scene, theory)
+    bp = beam_properties(scene.pillar, theory)
     nb = 2 * n
     q, v = np.asarray(run.data["q"], dtype=float), np.asarray(run.data["v"], dtype=float)
     pad = lambda a: np.vstack([np.zeros((2, a.shape[0])), a[:, :nb].T])
@@ -189,7 +189,7 @@ def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, prog
     if not candidates.has_resultants:
         return None, {}
     sec = section_of(scene.pillar)
-    bp = beam_properties(scene, scene.modal_model.theory)
+    bp = beam_properties(scene.pillar, scene.modal_model.theory)
     statics = cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
                                      bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,
                                      sec.mass_per_length, scene.gondola.mass)

@@ -32,7 +32,8 @@ import numpy as np
 from ..reduced.models import build_model
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
-from ..reduced.integration import FIXED_STEP, SCIPY_METHODS, Settings, simulate
+from ..reduced.integration import FIXED_STEP, Settings, simulate
+from ..scene import SCIPY_METHODS
 
 ADAPTIVE = ("dp5",) + SCIPY_METHODS
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)

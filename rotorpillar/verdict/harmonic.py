@@ -143,6 +143,7 @@ def harmonic_analysis(scene, out: Path, progress=None, with_fem3d: bool = True,
     modes = [m for m in modes if m.omega <= top]
     rows = separation_table(speeds, modes)
     pm = model.pillar_modes
+    assert pm is not None                   # the modal model carries its pillar modes
     return HarmonicResult(
         running_speeds=tuple(speeds),
         running_speed_source="the stable stationary speeds of the ROM with the scene's drive "
