@@ -186,7 +186,8 @@ def rom_band_top(scene: Scene, motion=None) -> float:
     forcing frequency of the scene's cases (the drive's free speed, the sweep's top, the
     ground motion's band)."""
     from ..reduced.band import forcing_top
-    top = max(forcing_top(scene, "sweep", None), forcing_top(scene, "earthquake", motion)
+    d, L, w = scene.drive, scene.load, scene.sweep
+    top = max(forcing_top(d, L, w, "sweep", None), forcing_top(d, L, w, "earthquake", motion)
               if motion is not None else 0.0)
     if not math.isfinite(top):
         top = 0.0

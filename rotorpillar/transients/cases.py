@@ -19,7 +19,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import InputError
-from ..scene import CASES
+from ..scene import CASES, Scene
 from ..reduced.accuracy import (FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters,
                        full_order_step)
 from ..reduced.band import forcing_top
@@ -45,14 +45,14 @@ class CaseResult:
     """model_info, initial_speed, excitation_in_model, and the sweep's bins and curves"""
 
 
-def settings_of(scene, integrator: str | None = None) -> Settings:
+def settings_of(scene: Scene, integrator: str | None = None) -> Settings:
     """The scene's [simulate] integration settings, ``integrator`` replacing its method."""
     s = scene.simulate
     return Settings(method=integrator or s.integrator, rtol=s.rtol, time_step=s.time_step,
                     samples=s.samples, max_steps=s.max_steps)
 
 
-def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
+def full_order_step_rule(scene: Scene, case: str, motion: GroundMotion, method: str,
                          model: RotorStructure | None = None) -> StepRule:
     """The beam's step and why (rotorpillar.reduced.accuracy.full_order_step): the
     longest that resolves the fastest forcing (the unbalance's rotation at the
@@ -61,9 +61,9 @@ def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
     shaft, the beam's shear modes): the implicit schemes damp those (rho_inf).
     Central difference (explicit) stays below 0.9 of its stability limit on ``model``."""
     fo = scene.full_order
-    forcing = forcing_frequencies(scene.rotor.eccentricity, forcing_top(scene, case, None), motion)
+    forcing = forcing_frequencies(scene.rotor.eccentricity, forcing_top(scene.drive, scene.load, scene.sweep, case, None), motion)
     if not forcing:                                   # nothing forces the structure: the spin's pace
-        forcing = {"rotor_speed": forcing_top(scene, case, None)}
+        forcing = {"rotor_speed": forcing_top(scene.drive, scene.load, scene.sweep, case, None)}
     rule = full_order_step(method, full_order_parameters(method, fo.rho_inf), forcing,
                            scene.modal_model.band_factor,
                            motion.time_step if motion.kind == "record" else None, fo.time_step)
@@ -75,7 +75,7 @@ def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
     return rule
 
 
-def full_order_settings(scene, case: str, motion: GroundMotion, integrator: str | None = None,
+def full_order_settings(scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None,
                         model: RotorStructure | None = None) -> tuple[Settings, StepRule | None]:
     """The beam's settings: [full_order] beam_integrator (or ``integrator``), rho_inf
     and the step of ``full_order_step_rule``; and that rule (None for an adaptive
@@ -89,7 +89,7 @@ def full_order_settings(scene, case: str, motion: GroundMotion, integrator: str 
     return replace(st, time_step=rule.time_step), rule
 
 
-def case_duration(scene, case: str, motion: GroundMotion) -> float:
+def case_duration(scene: Scene, case: str, motion: GroundMotion) -> float:
     """The length of a case's run as ``_run_on`` runs it (s)."""
     sim = scene.simulate
     if case == "earthquake":
@@ -107,7 +107,7 @@ def case_duration(scene, case: str, motion: GroundMotion) -> float:
 BEAM_SECONDS_PER_STEP_DOF2 = 3e-8
 
 
-def check_full_order_budget(scene, case: str, motion: GroundMotion, integrator: str | None = None) -> None:
+def check_full_order_budget(scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None) -> None:
     """Refuse (InputError naming the keys) a beam run estimated above ``simulate.max_steps``,
     before the beam is built: steps = the case's duration over the rule's step."""
     fo = scene.full_order
@@ -130,7 +130,7 @@ def check_full_order_budget(scene, case: str, motion: GroundMotion, integrator: 
         f"{length}, or raise simulate.max_steps")
 
 
-def run_case(scene, case: str, which: str | None = None, integrator: str | None = None,
+def run_case(scene: Scene, case: str, which: str | None = None, integrator: str | None = None,
              modes: int | None = None, truncation: bool = True, progress=None,
              motion: GroundMotion | None = None, pillar_modes: PillarModes | None = None) -> CaseResult:
     """Run one case of the scene; for the modal model also with k + 1 modes.
@@ -146,7 +146,7 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
         motion = scene_motion(scene)
     if which == "beam":                                    # before the beam is built
         check_full_order_budget(scene, case, motion, integrator)
-    top = scene.modal_model.band_factor * forcing_top(scene, case, motion)
+    top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, case, motion)
     model, info = build_model(scene, which, top, modes, pillar_modes)
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" \
         else (None, None)
@@ -159,7 +159,7 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
     return result
 
 
-def with_truncation(scene, result: CaseResult, motion: GroundMotion, integrator: str | None = None,
+def with_truncation(scene: Scene, result: CaseResult, motion: GroundMotion, integrator: str | None = None,
                     pillar_modes: PillarModes | None = None, progress=None) -> CaseResult:
     """A modal model's result with its truncation estimate: the same case with k + 1 modes."""
     model = result.model
@@ -193,7 +193,7 @@ def truncation_estimate(a: CaseResult, b: CaseResult) -> dict:
     return out
 
 
-def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
+def _run_on(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion,
             integrator: str | None, extra: dict | None = None, settings: Settings | None = None) -> CaseResult:
     d, L, sim = scene.drive, scene.load, scene.simulate
     st = settings or settings_of(scene, integrator)
@@ -248,9 +248,9 @@ def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
         run = simulate(model, drive, motion, t_end, settings=replace(st, samples=max(st.samples, 40 * w.bins)),
                        speed_scale=drive.free_speed(drive.times[2]))
         free = drive.free_speed()
-        extra.update(sweep_analysis(scene, model, run, drive))
+        extra.update(sweep_analysis(w, s, k, model, run, drive))
         if extra["numeric_jumps"]:
-            extra["rate_convergence"] = rate_convergence(scene, model, st, extra["numeric_jumps"],
+            extra["rate_convergence"] = rate_convergence(w, s, k, model, st, extra["numeric_jumps"],
                                                          extra["predicted_jumps"])
         sections["jumps"] = extra["numeric_jumps"]
         for key in ("captured_at", "captured_resonance", "captured_index"):

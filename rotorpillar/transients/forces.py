@@ -193,7 +193,7 @@ def _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, prog
     statics = cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
                                      bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,
                                      sec.mass_per_length, scene.gondola.mass)
-    band = scene.modal_model.band_factor * forcing_top(scene, run.case, motion)
+    band = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, run.case, motion)
     trunc = force_truncation(candidates, band, modal_damping(candidates, scene.pillar.damping),
                              scene.pillar.height, sec.mass_per_length, scene.gondola.mass, statics)
     k_run = res.model.pillar_modes.count

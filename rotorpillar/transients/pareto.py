@@ -45,6 +45,7 @@ from pathlib import Path
 import numpy as np
 
 from ..provenance import JsonRecord, write_json
+from ..scene import Scene
 
 PARETO_RECORD_START = 0.5
 """The record starts this long after the runs (s): the start's own transient is
@@ -114,7 +115,7 @@ class ParetoStudy(JsonRecord):
 # The case and its runs
 
 
-def pareto_scene(scene, duration: float = PARETO_DURATION):
+def pareto_scene(scene: Scene, duration: float = PARETO_DURATION):
     """The scene of the Pareto case: the scene's record from PARETO_RECORD_START, ``duration`` long."""
     from ..scene import override
     return override(scene, ["excitation.kind=record", f"excitation.start={PARETO_RECORD_START!r}",
@@ -150,7 +151,7 @@ def _source_hash(family: str) -> str:
     return h.hexdigest()[:16]
 
 
-def run_key(family: str, params: dict, scene, motion, modes_digest: str) -> str:
+def run_key(family: str, params: dict, scene: Scene, motion, modes_digest: str) -> str:
     """Hash of everything a run depends on."""
     doc = {"version": CACHE_VERSION, "family": family, "params": params,
            "scene": {k: v for k, v in scene.to_dict().items() if k not in ("name", "description")},
@@ -164,7 +165,7 @@ def _grid(duration: float) -> np.ndarray:
     return np.linspace(0.0, duration, PARETO_SAMPLES)
 
 
-def _reduced_run(scene, family: str, params: dict, motion, speed: float, pillar_modes,
+def _reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes,
                  duration: float) -> dict:
     from .cases import full_order_settings, settings_of
     from ..reduced.drive import DriveSchedule
@@ -194,7 +195,7 @@ _WARM: dict = {}
 """family -> seconds of this process's warm-up run (once per process)."""
 
 
-def warm_up_family(family: str, scene, motion, speed: float, pillar_modes=None) -> float:
+def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes=None) -> float:
     """Run a tiny case of ``family`` once per process (numba kernels, FFCx forms); its seconds."""
     if family in _WARM:
         return 0.0
@@ -239,7 +240,7 @@ def _load(path: Path, key: str) -> dict | None:
 @dataclass(frozen=True, eq=False)
 class ParetoPlan:
     """The Pareto case ready to run: its scene, record, start, runs, keys and the cached ones."""
-    scene: object
+    scene: Scene
     motion: object
     pillar_modes: object
     speed: float
@@ -255,7 +256,7 @@ class ParetoPlan:
     duration: float = PARETO_DURATION
 
 
-def plan_pareto(scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None,
+def plan_pareto(scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None,
                 duration: float = PARETO_DURATION, along=PARETO_ALONG,
                 beams=BEAM_ELEMENTS, pillar_modes=None) -> ParetoPlan:
     """The runs of the Pareto case, those on disk loaded (cheap: no run); ``duration``,
@@ -385,7 +386,7 @@ class ParetoRunning:
         return replace(study, case=case, compile_seconds=dict(self.compile), cost=cost), series
 
 
-def transient_pareto(scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None, workers: int = 0,
+def transient_pareto(scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None, workers: int = 0,
                      progress=None, **choices) -> tuple[ParetoStudy, dict]:
     """Run (or load) every run of the Pareto case; (the study, the histories by label).
     ``workers`` > 0: the 3D runs on that many worker processes, else in this one;

@@ -21,6 +21,7 @@ from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.integration import Settings, Transient, simulate
+from ..scene import Sweep
 
 JUMP_FACTOR = 5.0
 
@@ -145,13 +146,15 @@ def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
     return rows
 
 
-def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSchedule) -> dict:
-    """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves."""
-    w = scene.sweep
+def sweep_analysis(sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure,
+                   run: Transient, drive: DriveSchedule) -> dict:
+    """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves,
+    for the motor's ``slope`` s (N*m*s) and the load's coefficient k (N*m*s**2)."""
+    w = sweep
     t = drive.times
     up = sweep_bins(run, drive, (t[1], t[2]), w.bins, "up")
     down = sweep_bins(run, drive, (t[3], t[4]), w.bins, "down")
-    s, k = scene.drive.slope, scene.load.coefficient
+    s, k = slope, load_coefficient
     j_up, r_up = detect_jumps(up, s, k)
     j_down, r_down = detect_jumps(down, s, k)
     res = model.quasi_normal()
@@ -201,16 +204,17 @@ def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSch
             "curves": curves}
 
 
-def rate_convergence(scene, model: RotorStructure, st: Settings, jumps: list[dict],
-                     predicted: list[dict], factors=(1.0, 0.5, 0.25)) -> dict:
+def rate_convergence(sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure,
+                     st: Settings, jumps: list[dict], predicted: list[dict],
+                     factors: tuple[float, ...] = (1.0, 0.5, 0.25)) -> dict:
     """The sweep's jumps at rates r, r/2, r/4, and their limit at zero rate.
 
     A slow passage past a fold is delayed by a power of the rate (about 2/3
     for a saddle-node); with three rates halving, the exponent p follows from
     the differences d1, d2 and the limit is M(r/4) - d2 / (2**p - 1).
     """
-    w = scene.sweep
-    s, k = scene.drive.slope, scene.load.coefficient
+    w = sweep
+    s, k = slope, load_coefficient
     rows = []
     found = {1.0: jumps}
     for f in factors:

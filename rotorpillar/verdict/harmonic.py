@@ -113,7 +113,7 @@ def harmonic_analysis(scene, out: Path, progress=None, with_fem3d: bool = True,
         from ..chain import resolve
         chain = resolve(scene, out, progress=progress)
     # the ROM of the transients: its band is band_factor x the fastest rotor speed
-    top = scene.modal_model.band_factor * forcing_top(scene, "runup", None)
+    top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "runup", None)
     model, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
     speeds = running_speeds(model, scene)
     start = time.perf_counter()
