@@ -212,7 +212,7 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         chain = chain_modes(scene, choose(scene, None), rom_band_top(scene))
     if fem3d_reduction is None and chain.pillar_model.kind == "solid":
         fem3d_reduction = lambda _scene: (chain.reduction.m_reduced, chain.reduction.tip_stiffness)
-    closed = pillar_closed_forms(scene)
+    closed = pillar_closed_forms(scene.pillar)
     ch = av.Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
     c2e = scene.shaft.stiffness * scene.rotor.eccentricity
     system, resonances, drive = headline_analysis(scene, chain, ch, c2e)

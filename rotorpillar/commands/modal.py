@@ -136,7 +136,7 @@ def modal_command(scene, args, timings):
         timings[key] = bare.timings.get(key, 0.0) + loaded.timings.get(key, 0.0)
         timings[f"bare.{key}"] = bare.timings.get(key, 0.0)
         timings[f"with_top.{key}"] = loaded.timings.get(key, 0.0)
-    doc = modal_summary(scene, bare, loaded, pillar_closed_forms(scene)).to_json()
+    doc = modal_summary(scene, bare, loaded, pillar_closed_forms(scene.pillar)).to_json()
     files = {}
     if _rank0():
         with timings("write_shapes"):

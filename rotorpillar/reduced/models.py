@@ -26,7 +26,7 @@ MAX_CANDIDATE_MODES = 12
 
 def paper_system(scene: Scene) -> tuple[ReducedSystem, dict[str, Any]]:
     """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's Eq. 2)."""
-    red = resolve_reduction(scene, pillar_closed_forms(scene))
+    red = resolve_reduction(scene, pillar_closed_forms(scene.pillar))
     return reduced_system(scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping,
                           red["tip_mass"], red["tip_stiffness"]), red
 

@@ -12,7 +12,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from ..scene import Scene, SceneError
+from ..scene import Pillar, Scene, SceneError
 from .pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bernoulli,
                      omega_timoshenko, rayleigh_reduction, section_of,
                      tip_mass_continuous, tip_mass_lumped)
@@ -20,9 +20,10 @@ from .pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bern
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
 
-def pillar_closed_forms(scene: Scene) -> dict[str, Any]:
-    """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare tube."""
-    p = scene.pillar
+def pillar_closed_forms(pillar: Pillar) -> dict[str, Any]:
+    """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare
+    tube of ``[pillar]``."""
+    p = pillar
     sec = section_of(p)
     I, A, m_rho = sec.second_moment, sec.area, sec.mass_per_length
     mass = m_rho * p.height
