@@ -41,11 +41,12 @@ import math
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
 from ..provenance import JsonRecord, write_json
-from ..scene import Scene
+from ..scene import Mesh, Scene
 
 PARETO_RECORD_START = 0.5
 """The record starts this long after the runs (s): the start's own transient is
@@ -181,7 +182,7 @@ def _reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, 
     else:
         beam = override(scene, [f"full_order.beam_elements={params['elements']}"])
         model, _ = build_model(beam, "beam")
-        st = full_order_settings(beam, "earthquake", motion)
+        st, _ = full_order_settings(beam, "earthquake", motion)
     q0, v0 = model.held_whirl_state(speed)
     run = simulate(model, drive, motion, duration, q0, v0, settings=st, speed_scale=speed)
     wall = time.perf_counter() - t0
@@ -250,7 +251,7 @@ class ParetoPlan:
     results: dict
     """index -> run document (the cached ones first)"""
     rom_modes: int
-    chosen_mesh: object
+    chosen_mesh: Mesh | None
     cache_dir: Path
     plan_seconds: float
     duration: float = PARETO_DURATION
@@ -306,7 +307,8 @@ class ParetoRunning:
         self.compile: dict[str, float] = {}
         self.todo = [i for i in range(len(plan.specs)) if i not in plan.results]
         self.solid = [i for i in self.todo if plan.specs[i][0] == "fem3d"]
-        self.workers, self.error = 0, None
+        self.workers = 0
+        self.error: BaseException | None = None
         self.thread, self.pool_seconds = None, 0.0
         if progress:
             progress(f"speed against accuracy: {len(plan.specs)} runs, "
@@ -343,7 +345,8 @@ class ParetoRunning:
         t0 = time.perf_counter()
         try:
             with Executor(self.workers) as ex:
-                for j, out in ex.map(compute_3d, [self._job(i) for i in order]):
+                for j, done in ex.map(compute_3d, [self._job(i) for i in order]):
+                    out = cast(dict, done)           # compute_3d's document
                     self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
                     self.keep(order[j], out)
         except BaseException as exc:      # re-raised in finish(), in the caller's thread
@@ -457,7 +460,7 @@ def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
     by = {r.label: r for r in runs}
     why = []
     for role in ("rom", "fem3d"):
-        r = by.get(chosen.get(role))
+        r = by.get(chosen.get(role) or "")    # no label is empty: None finds nothing
         if r is not None:
             on = [m for m, f in fronts.items() if r.label in f]
             why.append(f"{r.label} ({'the ROM compare runs' if role == 'rom' else 'the 3D reference compare runs'}): "
