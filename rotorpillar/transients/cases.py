@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -163,10 +164,12 @@ def with_truncation(scene: Scene, result: CaseResult, motion: GroundMotion, inte
                     pillar_modes: PillarModes | None = None, progress=None) -> CaseResult:
     """A modal model's result with its truncation estimate: the same case with k + 1 modes."""
     model = result.model
+    assert model.pillar_modes is not None           # a modal model's result
     k = model.pillar_modes.count
     if progress:
         progress(f"truncation check: the same case with {k + 1} modes")
     model2, _ = build_model(scene, "modal", modes=k + 1, pillar_modes=pillar_modes)
+    assert model2.pillar_modes is not None
     if model2.pillar_modes.count == k:
         trunc = {"modes": k, "modes_check": None,
                  "statement": f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
@@ -181,10 +184,12 @@ def truncation_estimate(a: CaseResult, b: CaseResult) -> dict:
     ma, mb = a.summary.max_abs, b.summary.max_abs
     tip_b = np.interp(a.run.t, b.run.t, b.run.tip())
     scale = max(np.max(np.abs(tip_b)), 1e-300)
-    out = {"modes": a.model.pillar_modes.count, "modes_check": b.model.pillar_modes.count,
-           "omega_added": float(b.model.pillar_modes.omega[-1]),
-           "effective_mass_fraction": a.model.pillar_modes.effective_mass_fraction(),
-           "effective_mass_fraction_check": b.model.pillar_modes.effective_mass_fraction(),
+    pa, pb = a.model.pillar_modes, b.model.pillar_modes
+    assert pa is not None and pb is not None        # modal models' results
+    out = {"modes": pa.count, "modes_check": pb.count,
+           "omega_added": float(pb.omega[-1]),
+           "effective_mass_fraction": pa.effective_mass_fraction(),
+           "effective_mass_fraction_check": pb.effective_mass_fraction(),
            "omega_final_rel_diff": b.summary.omega_final / a.summary.omega_final - 1
            if a.summary.omega_final else None,
            "tip_series_max_rel_diff": float(np.max(np.abs(a.run.tip() - tip_b)) / scale)}
@@ -200,7 +205,7 @@ def _run_on(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion
     M0, s, k = d.torque_at_zero, d.slope, L.coefficient
     pred = averaging_prediction(model, M0, s, k)
     extra = dict(extra or {})
-    sections = {}
+    sections: dict[str, Any] = {}
     if case == "runup":
         drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
         if sim.runup_initial_speed > 0:
@@ -255,9 +260,10 @@ def _run_on(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion
         sections["jumps"] = extra["numeric_jumps"]
         for key in ("captured_at", "captured_resonance", "captured_index"):
             sections[key] = extra[key]
-        sections["sweep"] = SweepFindings(**{key: extra.get(key) for key in (
+        findings: dict[str, Any] = {key: extra.get(key) for key in (
             "predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
-            "rate_check", "no_jump_reason", "rate_convergence")})
+            "rate_check", "no_jump_reason", "rate_convergence")}
+        sections["sweep"] = SweepFindings(**findings)
     return CaseResult(case, model, run, run_summary(run, free, pred, **sections), extra)
 
 
@@ -266,6 +272,7 @@ def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> dict:
     ground: per pillar mode j, Gamma_j S_d(T_j, zeta_j) (zeta_j of the mode's diagonal
     damping), combined by SRSS (the modes are well separated).  Modal model only."""
     pm = model.pillar_modes
+    assert pm is not None                           # modal model only
     T = 2 * math.pi / np.asarray(pm.omega, dtype=float)
     zeta = [float(model.damping[j, j] / (2 * pm.modal_mass[j] * pm.omega[j])) for j in range(pm.count)]
     rows = []

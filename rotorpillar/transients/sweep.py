@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -52,11 +53,11 @@ def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float],
         cols["M0_inertia_corrected"][b] = cols["M0"][b] - m.rotor_inertia * acc
         cols["tip_x"][b], cols["rotor_y"][b], cols["rotor_x"][b] = tip[s].max(), ry[s].max(), rx[s].max()
     keep = np.isfinite(cols["M0"])
-    cols = {k: v[keep] for k, v in cols.items()}
+    out: dict[str, Any] = {k: v[keep] for k, v in cols.items()}
     if direction == "down":
-        cols = {k: v[::-1] for k, v in cols.items()}
-    cols["direction"] = direction
-    return cols
+        out = {k: v[::-1] for k, v in out.items()}
+    out["direction"] = direction
+    return out
 
 
 def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], float]:
@@ -109,7 +110,7 @@ def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
         if near.sum() < 2:
             continue
         num = cols[key][near]
-        eq19 = av.amplitude(W[near], r)
+        eq19 = np.asarray(av.amplitude(W[near], r))
         exact = model.steady_amplitudes(W[near])[key]
         k = int(np.argmax(num))
         out.append({"index": r.index, "direction": r.direction, "omega": r.omega, "coordinate": key,
@@ -230,7 +231,7 @@ def rate_convergence(sweep: Sweep, slope: float, load_coefficient: float, model:
         j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k)[0]
         found[f] = j_up + j_dn
     for idx, j in enumerate(jumps):
-        same = [j]
+        same: list[dict | None] = [j]
         for f in factors[1:]:
             c = [x for x in found[f] if x["direction"] == j["direction"]]
             same.append(min(c, key=lambda x: abs(x["omega_from"] - j["omega_from"])) if c else None)
