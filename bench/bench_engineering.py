@@ -98,10 +98,10 @@ def _harmonic_entries(scene, mesh, label):
     from petsc4py import PETSc
     from rotorpillar.fem3d import assemble_pillar
     from rotorpillar.fem3d.harmonic import harmonic_response
-    from rotorpillar.fem3d.rotor_top import Rotor
+    from rotorpillar.fem3d.rotor_top import RotorOnTop
     from rotorpillar.reduced.models import build_model
     model = assemble_pillar(scene, top=True, mesh=mesh)
-    rotor = Rotor.from_scene(scene)
+    rotor = RotorOnTop.from_scene(scene)
     W = 27.0
     batch = np.linspace(0.9, 1.1, SPEEDS) * W                   # one analysis, SPEEDS refactorisations
     harmonic_response(model, rotor, scene.pillar.damping, batch[:1])               # warm-up

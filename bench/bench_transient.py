@@ -165,7 +165,8 @@ def bench_rom_vs_full(scene) -> list[dict]:
     t_end = round(motion.end + 3.0, 1)
     samples = int(round(t_end / 0.01)) + 1          # outputs every 10 steps of 1 ms: the grids match
     elements = 10
-    full = beam_model(scene, elements, "timoshenko")
+    full = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, elements,
+                      "timoshenko")
     W = operating_speed(full, d.torque_at_zero, d.slope, L.coefficient)
     q0, v0 = full.steady_initial_state(W)
     st = Settings("newmark", time_step=1e-3, samples=samples)
@@ -174,7 +175,7 @@ def bench_rom_vs_full(scene) -> list[dict]:
     top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
     rom, info = build_model(scene, "modal", top)
     k = rom.pillar_modes.count
-    pm = beam_pillar_modes(scene, k, "timoshenko", elements)                           # same beam
+    pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, k, "timoshenko", elements)                           # same beam
     rom = modal_model(pm, scene.rotor.mass, scene.rotor.inertia, scene.rotor.eccentricity,
                       scene.shaft.stiffness, scene.shaft.damping, scene.pillar.damping)
     q0r, v0r = rom.steady_initial_state(operating_speed(rom, d.torque_at_zero, d.slope, L.coefficient))
@@ -225,8 +226,8 @@ def bench_rom_vs_3d(scene) -> list[dict]:
     theta0 = math.pi / 2
     t3, tip3, wall3, dofs = newmark_3d(scene, motion, Omega, theta0, h, t_end)
     # the 3D run's start: the structure at rest, the rotor in its steady whirl on the held plate
-    from rotorpillar.fem3d.rotor_top import Rotor, rotor_start
-    x, y, vx, vy = rotor_start(Rotor.from_scene(scene), theta0, Omega)
+    from rotorpillar.fem3d.rotor_top import RotorOnTop, rotor_start
+    x, y, vx, vy = rotor_start(RotorOnTop.from_scene(scene), theta0, Omega)
     q0, v0 = np.zeros(model.n), np.zeros(model.n)
     q0[model.rotor_x], q0[model.nx], q0[-1] = x, y, theta0
     v0[model.rotor_x], v0[model.nx], v0[-1] = vx, vy, Omega

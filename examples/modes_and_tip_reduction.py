@@ -15,7 +15,7 @@ bare = modal_analysis(scene, top=False)
 for row in bare.modes_table():
     print(f"{row['index']:>2} {row['kind']:<10} omega = {row['omega']:8.3f} rad/s")
 
-closed = pillar_closed_forms(scene)
+closed = pillar_closed_forms(scene.pillar)
 red = tip_reduction(bare, scene.pillar)
 print(f"first bending: 3D {red.omega_bending:.3f} rad/s, Eq. 1 {closed['omega_col1']:.3f} rad/s")
 print(f"tip reduction (Eq. 2 on the 3D mode): m_r = {red.m_reduced:.0f} kg, "

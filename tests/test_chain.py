@@ -121,7 +121,8 @@ def test_a_study_of_another_tube_is_not_used(tmp_path):
 
 
 def test_pillar_modes_round_trip_and_scale():
-    pm = beam_pillar_modes(load_scene("paper"), 3, elements=10)
+    paper = load_scene("paper")
+    pm = beam_pillar_modes(paper.pillar, paper.gondola.mass, 3, elements=10)
     back = PillarModes.from_json(json.loads(json.dumps(pm.to_json())))
     for name in ("omega", "modal_mass", "participation", "shapes", "heights"):
         np.testing.assert_array_equal(getattr(back, name), getattr(pm, name))
@@ -179,7 +180,7 @@ def test_3d_modes_of_the_scene_mesh_match_the_beam_and_are_cached(tmp_path, monk
     assert c.rom.kind == "solid" and c.rom.source == "scene" and not c.rom.verified
     first = chain_modes(s, c, 180.0)
     assert first.seconds > 0 and first.modes.count >= 3      # the band's 2 modes and one more
-    beam = beam_pillar_modes(s, 2, "timoshenko", 80)
+    beam = beam_pillar_modes(s.pillar, s.gondola.mass, 2, "timoshenko", 80)
     assert first.modes.omega[0] == pytest.approx(beam.omega[0], rel=1e-2)
     again = chain_modes(s, c, 180.0)
     assert again.seconds == 0.0 and again.cache_file == first.cache_file

@@ -108,7 +108,7 @@ def test_mode_resultants_against_the_beam(scene):
     from rotorpillar.reduced.pillar_modes import beam_pillar_modes
     r = modal_analysis(scene, top=True, n_modes=12)
     pm = pillar_modes_from_fem3d(r, scene.pillar, 2)
-    bm = beam_pillar_modes(scene, 2, "timoshenko", 40)
+    bm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 2, "timoshenko", 40)
     assert pm.has_resultants and pm.section_heights[0] == 0.0
     assert pm.omega[0] == pytest.approx(bm.omega[0], rel=3e-3)
     assert pm.moment_shapes[0, 0] == pytest.approx(bm.moment_shapes[0, 0], rel=1e-2)
@@ -119,7 +119,7 @@ def test_harmonic_response_against_the_rom_on_the_same_modes():
     from rotorpillar.fem3d import assemble_pillar, modal_analysis
     from rotorpillar.fem3d.harmonic import harmonic_response
     from rotorpillar.fem3d.pillar_modes import pillar_modes_from_fem3d
-    from rotorpillar.fem3d.rotor_top import Rotor
+    from rotorpillar.fem3d.rotor_top import RotorOnTop
     from rotorpillar.reduced.bode import unbalance_response
     from rotorpillar.reduced.rotor_models import modal_model
     s = override(load_scene("paper"), ["mesh.elements_around=16", "mesh.elements_along=8"])
@@ -130,7 +130,7 @@ def test_harmonic_response_against_the_rom_on_the_same_modes():
     speeds = np.array([near[0], near[1], 0.98 * near[1], 89.7])
     model = assemble_pillar(s, top=True)
     try:
-        h = harmonic_response(model, Rotor.from_scene(s), s.pillar.damping, speeds)
+        h = harmonic_response(model, RotorOnTop.from_scene(s), s.pillar.damping, speeds)
     finally:
         model.K.destroy()
         model.M.destroy()

@@ -27,7 +27,7 @@ import math
 import numpy as np
 import pytest
 
-from rotorpillar.fem3d.rotor_top import Affine, Rotor, drive_torque, solve_spin
+from rotorpillar.fem3d.rotor_top import Affine, RotorOnTop, drive_torque, solve_spin
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import GroundMotion
 from rotorpillar.scene import load_scene
@@ -38,7 +38,7 @@ COARSE = ["mesh.elements_around=16", "mesh.elements_along=6", "mesh.degree=2"]
 def test_solve_spin_without_coupling_is_newmark_on_the_drive():
     """No shaft torque: J alpha = M0 - s W - k W|W|, and the step's
     trapezoidal relations hold at the solution."""
-    rot = Rotor(1600.0, 100.0, 0.0, 4e5, 1.1e4)
+    rot = RotorOnTop(1600.0, 100.0, 0.0, 4e5, 1.1e4)
     zero = Affine(0.0, 0.0, 0.0)
     h, th, W, al = 1e-3, 0.4, 50.0, 2.0
     th1, W1, al1, it = solve_spin(rot, h, th, W, al, zero, zero, 5100.0, 12.0, 0.5)
@@ -124,8 +124,8 @@ def test_result_json_round_trip(static_run):
 
 def rom_start(rom, scene, theta0: float, W0: float):
     """The ROM's (q0, v0) matching the 3D start: structure at rest, rotor in its whirl."""
-    from rotorpillar.fem3d.rotor_top import Rotor, rotor_start
-    x, y, vx, vy = rotor_start(Rotor.from_scene(scene), theta0, W0)
+    from rotorpillar.fem3d.rotor_top import RotorOnTop, rotor_start
+    x, y, vx, vy = rotor_start(RotorOnTop.from_scene(scene), theta0, W0)
     q0, v0 = np.zeros(rom.n), np.zeros(rom.n)
     q0[rom.rotor_x], q0[rom.nx], q0[-1] = x, y, theta0
     v0[rom.rotor_x], v0[rom.nx], v0[-1] = vx, vy, W0

@@ -41,7 +41,7 @@ def scene():
 
 @pytest.mark.parametrize("theory", THEORIES)
 def test_static_tip_load_gives_PL_and_constant_shear(scene, theory):
-    bp = beam_properties(scene, theory)
+    bp = beam_properties(scene.pillar, theory)
     n, P = 40, 1.0e4
     K, _ = assemble(bp, n, theory, scene.gondola.mass)
     load = np.zeros(K.shape[0])
@@ -59,8 +59,8 @@ def test_all_modes_superposed_are_the_beam(scene, theory):
     """Harmonic tip force at 60 rad/s: modal superposition of the modes' resultants
     with every mode against the element end forces of the full-order solution."""
     n = 20
-    pm = beam_pillar_modes(scene, 2 * n, theory, n)
-    bp = beam_properties(scene, theory)
+    pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 2 * n, theory, n)
+    bp = beam_properties(scene.pillar, theory)
     K, M = assemble(bp, n, theory, scene.gondola.mass)
     w = 60.0
     load = np.zeros(K.shape[0])
@@ -76,8 +76,8 @@ def test_all_modes_superposed_are_the_beam(scene, theory):
 def test_truncation_reference_is_the_full_order_beam(scene):
     """The truncation check's reference base moment against the beam's own harmonic solution."""
     n, theory = 40, "timoshenko"
-    pm = beam_pillar_modes(scene, 12, theory, n)
-    bp = beam_properties(scene, theory)
+    pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 12, theory, n)
+    bp = beam_properties(scene.pillar, theory)
     sec = section_of(scene.pillar)
     K, M = assemble(bp, n, theory, scene.gondola.mass)
     C = np.zeros_like(K)
@@ -113,8 +113,8 @@ def test_truncation_reference_is_the_full_order_beam(scene):
 
 
 def test_moments_and_shears_need_more_modes_than_the_tip(scene):
-    pm = beam_pillar_modes(scene, 12, "timoshenko", 40)
-    bp = beam_properties(scene)
+    pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 12, "timoshenko", 40)
+    bp = beam_properties(scene.pillar)
     sec = section_of(scene.pillar)
     statics = f.cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
                                        bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,

@@ -40,7 +40,7 @@ def test_modal_summary_round_trips(tmp_path):
     scene = load_scene("paper", ["mesh.elements_around=8", "mesh.elements_along=4",
                                  "modal.n_modes=4"])
     summary = modal_summary(scene, modal_analysis(scene, top=False),
-                            modal_analysis(scene, top=True), pillar_closed_forms(scene))
+                            modal_analysis(scene, top=True), pillar_closed_forms(scene.pillar))
     doc = json.loads(to_json(summary))
     assert ModalSummary.from_json(doc).to_json() == doc
     assert doc["reduction"]["m_reduced"] > 0

@@ -33,7 +33,7 @@ import math
 import numpy as np
 import pytest
 
-from rotorpillar.fem3d.rotor_top import Affine, Rotor, Step, solve_spin
+from rotorpillar.fem3d.rotor_top import Affine, RotorOnTop, Step, solve_spin
 from rotorpillar.reduced.accuracy import (FULL_ORDER_ERROR, full_order_parameters, scheme_error,
                                           stability_function, steps_per_period_needed)
 
@@ -88,7 +88,7 @@ def test_scalar_step_is_second_order_on_a_forced_damped_oscillator(method, rho):
 def test_spin_equation_is_second_order_on_a_linear_drive(method, rho):
     """J theta'' = M0 - s Omega: Omega = (M0/s)(1 - exp(-s t/J)), theta its integral."""
     J, M0, s, T = 100.0, 5100.0, 12.0, 5.0
-    rot = Rotor(1600.0, J, 0.0, 4e5, 1.1e4)
+    rot = RotorOnTop(1600.0, J, 0.0, 4e5, 1.1e4)
     zero = Affine(0.0, 0.0, 0.0)
     p = full_order_parameters(method, rho)
     exact = (M0 / s) * (T - J / s * (1 - math.exp(-s * T / J)))

@@ -19,7 +19,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from rotorpillar.transients.pareto import analyse, run_specs
+from rotorpillar.transients.pareto import analyse_pareto, run_specs
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None,
                                  reason="needs dolfinx")
@@ -40,7 +40,7 @@ def test_reference_error_by_richardson():
     L, C = 0.0103, -0.5
     docs = [_solid(n, L + C * (1.0 / n) ** 3) for n in (10, 15, 20)]
     docs.append(_doc("rom", "ROM, 1 mode", 0.01, 0.0102, 0.0102 * np.sin(6 * GRID), modes=1))
-    study, _ = analyse(docs, {"rom": "ROM, 1 mode", "fem3d": "3D, 8x15"})
+    study, _ = analyse_pareto(docs, {"rom": "ROM, 1 mode", "fem3d": "3D, 8x15"})
     ref = study.reference
     assert ref["method"] == "richardson" and math.isclose(ref["order"], 3.0, rel_tol=1e-6)
     assert math.isclose(ref["limit"], L, rel_tol=1e-9)
@@ -54,7 +54,7 @@ def test_reference_error_by_richardson():
 
 def test_reference_error_without_monotone_convergence():
     docs = [_solid(10, 0.0100), _solid(15, 0.0103), _solid(20, 0.0102)]
-    study, _ = analyse(docs, {})
+    study, _ = analyse_pareto(docs, {})
     ref = study.reference
     assert ref["method"] == "next_coarser" and ref["order"] is None
     assert math.isclose(ref["peak_error"], abs(0.0102 / 0.0103 - 1))

@@ -204,7 +204,7 @@ def test_participation_of_the_3d_modes():
     # the same mode turned by 90 degrees: the same share along its own axis
     assert math.isclose(eff[j1, 1], eff[i1, 0], rel_tol=1e-6)
     # the effective mass in kg (the beam's r^T M r leaves out its clamped node's mass)
-    beam = beam_pillar_modes(scene, 1, "timoshenko", 40)
+    beam = beam_pillar_modes(scene.pillar, scene.gondola.mass, 1, "timoshenko", 40)
     assert math.isclose(r.participation[i1, 0] ** 2 / r.modal_mass[i1],
                         beam.participation[0] ** 2 / beam.modal_mass[0], rel_tol=1e-2)
 

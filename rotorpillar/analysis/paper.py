@@ -142,12 +142,13 @@ def stiff_case(pillar_modes=None) -> StiffCase:
     from ..reduced.reduction import pillar_closed_forms, resolve_reduction
     from ..scene import load_scene
     stiff = load_scene(STIFF_SCENE)
-    red = resolve_reduction(stiff, pillar_closed_forms(stiff), None)
-    modes = linear_modes(reduced_system(stiff, red["tip_mass"], red["tip_stiffness"]))
+    red = resolve_reduction(stiff, pillar_closed_forms(stiff.pillar), None)
+    modes = linear_modes(reduced_system(stiff.rotor, stiff.shaft, stiff.gondola.mass,
+                                        stiff.pillar.damping, red["tip_mass"], red["tip_stiffness"]))
     xs = [r for r in modes.resonances if r.direction == "X"]
     ch = av.Characteristic(stiff.drive.torque_at_zero, stiff.drive.slope, stiff.load.coefficient)
     if pillar_modes is None:
-        pillar_modes = beam_pillar_modes(stiff, 6, "timoshenko", FE_BEAM_ELEMENTS)
+        pillar_modes = beam_pillar_modes(stiff.pillar, stiff.gondola.mass, 6, "timoshenko", FE_BEAM_ELEMENTS)
     fe = coupled_x_frequencies(pillar_modes.omega, pillar_modes.modal_mass, stiff.rotor.mass,
                                stiff.shaft.stiffness)
     return StiffCase(stiff, tuple(xs), tuple(float(av.amplitude(r.omega, r)) for r in xs),

@@ -167,7 +167,8 @@ def paper_model_analysis(scene: Scene, closed: dict, ch: av.Characteristic, c2e:
                          fem3d_reduction=None) -> PaperModel:
     """Eq. 4 with the scene's stated tip reduction (or Eq. 2), analysed as the paper does."""
     red = resolve_reduction(scene, closed, fem3d_reduction)
-    sys_ = reduced_system(scene, red["tip_mass"], red["tip_stiffness"])
+    sys_ = reduced_system(scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping,
+                          red["tip_mass"], red["tip_stiffness"])
     modes = linear_modes(sys_)
     resonances, drive = averaging_results(modes.resonances, ch, scene.rotor.eccentricity, c2e)
     x = modes.resonances[:2]
@@ -211,7 +212,7 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         chain = chain_modes(scene, choose(scene, None), rom_band_top(scene))
     if fem3d_reduction is None and chain.pillar_model.kind == "solid":
         fem3d_reduction = lambda _scene: (chain.reduction.m_reduced, chain.reduction.tip_stiffness)
-    closed = pillar_closed_forms(scene)
+    closed = pillar_closed_forms(scene.pillar)
     ch = av.Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
     c2e = scene.shaft.stiffness * scene.rotor.eccentricity
     system, resonances, drive = headline_analysis(scene, chain, ch, c2e)

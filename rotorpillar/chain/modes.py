@@ -122,9 +122,9 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
 def _beam(scene: Scene, pm: PillarModel) -> tuple[PillarModes, TipReductionOf]:
     from ..reduced.pillar_modes import beam_pillar_modes, beam_tip_reduction
     theory, elements = pm.mesh["theory"], int(pm.mesh["elements"])
-    modes = beam_pillar_modes(scene, MAX_CANDIDATES, theory, elements,
+    modes = beam_pillar_modes(scene.pillar, scene.gondola.mass, MAX_CANDIDATES, theory, elements,
                               scene.modal_model.gondola_inertia)
-    m_r, c1, w = beam_tip_reduction(scene, theory, elements)
+    m_r, c1, w = beam_tip_reduction(scene.pillar, theory, elements)
     return modes, TipReductionOf(m_r, c1, w, f"Eq. 2 on the bare beam's first mode, {pm.label}")
 
 
@@ -165,7 +165,8 @@ def rom_band_top(scene: Scene, motion=None) -> float:
     forcing frequency of the scene's cases (the drive's free speed, the sweep's top, the
     ground motion's band)."""
     from ..reduced.band import forcing_top
-    top = max(forcing_top(scene, "sweep", None), forcing_top(scene, "earthquake", motion)
+    d, L, w = scene.drive, scene.load, scene.sweep
+    top = max(forcing_top(d, L, w, "sweep", None), forcing_top(d, L, w, "earthquake", motion)
               if motion is not None else 0.0)
     if not math.isfinite(top):
         top = 0.0

@@ -38,14 +38,14 @@ def preflight(scene: Scene, args) -> None:
 def integrators_command(scene: Scene, args, timings):
     from . import is_root_rank, out_dir
     from ..chain import resolve
-    from ..transients.integrator_study import run_study
+    from ..transients.integrator_study import run_integrator_study
     from ..reduced.models import beam_candidates
     preflight(scene, args)
     duration = getattr(args, "duration", 10.0)
     with timings("pillar_modes"):
         chain = resolve(scene, out_dir(scene, args), progress=progress)
     with timings("study"):
-        result = run_study(scene, duration, quick=getattr(args, "quick", False), progress=progress,
+        result = run_integrator_study(scene, duration, quick=getattr(args, "quick", False), progress=progress,
                            pillar_modes=chain.modes, probe_modes=beam_candidates(scene))
     result["pillar_model"] = chain.pillar_model.to_json()
     result["stiffness_probe"] = ("the stiffness study adds up to 8 pillar modes of the scene's 1D "

@@ -27,7 +27,7 @@ SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
 
 def band_edge(scene: Scene) -> float:
     from ..reduced.band import excitation_band
-    return excitation_band(scene)["omega_max"]
+    return excitation_band(scene.drive, scene.load, scene.converge)["omega_max"]
 
 
 def band_cut(result, edge: float, first: int = 8):
@@ -141,7 +141,7 @@ def modal_command(scene: Scene, args, timings):
         timings[key] = bare.timings.get(key, 0.0) + loaded.timings.get(key, 0.0)
         timings[f"bare.{key}"] = bare.timings.get(key, 0.0)
         timings[f"with_top.{key}"] = loaded.timings.get(key, 0.0)
-    doc = modal_summary(scene, bare, loaded, pillar_closed_forms(scene)).to_json()
+    doc = modal_summary(scene, bare, loaded, pillar_closed_forms(scene.pillar)).to_json()
     files = {}
     if _rank0():
         with timings("write_shapes"):

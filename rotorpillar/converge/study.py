@@ -41,7 +41,7 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
     extrap = family_extrapolations(records)
     reference = reference_values(records, extrap)
     attach_errors(records, reference, extrap)
-    band = excitation_band(scene)
+    band = excitation_band(scene.drive, scene.load, scene.converge)
     selection = select_model(records, reference, band, tolerance)
     needed, ref_unc = selection["needed"], reference_uncertainty(reference)
     ok = [r for r in records if r.get("status") == "ok"]

@@ -61,7 +61,7 @@ from ..errors import InputError
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion
 from ..scene import Scene
-from .rotor_top import (Affine, Rotor, Step, coupling_torque, drive_torque, plate_and_rotor,
+from .rotor_top import (Affine, RotorOnTop, Step, coupling_torque, drive_torque, plate_and_rotor,
                         rotor_start, rotor_step_stiffness, solve_spin)
 from .step_operator import Plate, add_shaft_acceleration, step_operator
 from .full_order_plan import (CASES_3D, accuracy, beam_operating_speed, case_setup,  # noqa: F401
@@ -190,7 +190,7 @@ def simulate_fem3d(scene: Scene, case: str, *, motion: GroundMotion | None = Non
     stride = max(1, int(math.ceil(steps / max(1, samples - 1))))
     start = time.perf_counter()
     model = assemble_pillar(scene, top=True, mesh=mesh, comm=comm)
-    rotor = Rotor.from_scene(scene)
+    rotor = RotorOnTop.from_scene(scene)
     try:
         if observer is not None:
             observer.attach(model)
@@ -262,7 +262,7 @@ def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed, faile
         model=info, ok=not failed, failed_checks=failed)
 
 
-def _integrate(model, rotor: Rotor, b1: float, drive: DriveSchedule, motion: GroundMotion, step: Step,
+def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion: GroundMotion, step: Step,
                steps: int, stride: int, theta0: float, W0: float, prescribed: bool, progress,
                observer=None):
     """The generalized-alpha ``step`` over ``steps`` steps; see the module text.

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 
 @dataclass(frozen=True)
-class Rotor:
+class RotorOnTop:
     """The rotor on its shaft (SI)."""
     mass: float
     """m_C (kg)"""
@@ -45,7 +45,7 @@ class Rotor:
     """b2 = b3, on the rotor centre's velocity relative to the ground (N*s/m)"""
 
     @classmethod
-    def from_scene(cls, scene) -> "Rotor":
+    def from_scene(cls, scene) -> "RotorOnTop":
         r, s = scene.rotor, scene.shaft
         return cls(r.mass, r.inertia, r.eccentricity, s.stiffness, s.damping)
 
@@ -73,7 +73,7 @@ class Step:
     every force f but inertia, with Newmark's x1 = x~ + beta h**2 a1,
     v1 = v~ + gamma h a1 (``predict``: x~, v~).  Second order when
     gamma = 1/2 - alpha_m + alpha_f; parameters by
-    rotorpillar.reduced.integration.genalpha_parameters.
+    rotorpillar.reduced.fixed_step.genalpha_parameters.
     """
     h: float
     """the step (s)"""
@@ -118,20 +118,20 @@ class Step:
                 + self.alpha_f * old_force)
 
 
-def newmark_rotor_stiffness(rotor: Rotor, h: float) -> float:
+def newmark_rotor_stiffness(rotor: RotorOnTop, h: float) -> float:
     """k_r = c2 + 2 b2 / h + 4 m / h**2: the rotor centre's effective stiffness in a
     Newmark step (N/m)."""
     return rotor_step_stiffness(rotor, Step(h))
 
 
-def rotor_step_stiffness(rotor: Rotor, step: Step) -> float:
+def rotor_step_stiffness(rotor: RotorOnTop, step: Step) -> float:
     """The rotor centre's effective stiffness in a step (N/m):
     (1 - af) c2 + (1 - af) gamma / (beta h) b2 + (1 - am) / (beta h**2) m."""
     return (step.new_weight * rotor.shaft_stiffness + step.damping_coefficient * rotor.shaft_damping
             + step.mass_coefficient * rotor.mass)
 
 
-def rotor_start(rotor: Rotor, theta0: float, speed0: float) -> tuple[float, float, float, float]:
+def rotor_start(rotor: RotorOnTop, theta0: float, speed0: float) -> tuple[float, float, float, float]:
     """(x_r, y_r, x_r', y_r'): the rotor's steady whirl at ``speed0`` on a motionless plate.
 
     X = c2 e / (c2 - m W**2 + i W b2), x_r = Re(X e^{i theta0}),
@@ -146,7 +146,7 @@ def rotor_start(rotor: Rotor, theta0: float, speed0: float) -> tuple[float, floa
     return z.real, z.imag, -speed0 * z.imag, speed0 * z.real
 
 
-def plate_and_rotor(rotor: Rotor, kr: float, ux_hat: float, uz_hat: float, rho_x: float,
+def plate_and_rotor(rotor: RotorOnTop, kr: float, ux_hat: float, uz_hat: float, rho_x: float,
                     rho_y: float, gamma: float, g: tuple[float, float, float, float],
                     weight: float = 1.0):
     """(U_x, U_z, x_r, y_r) at the new time as Affine functions of the new theta.
@@ -169,7 +169,7 @@ def plate_and_rotor(rotor: Rotor, kr: float, ux_hat: float, uz_hat: float, rho_x
     return Ux, Uz, xr, yr
 
 
-def coupling_torque(rotor: Rotor, sx: float, sy: float, theta: float) -> float:
+def coupling_torque(rotor: RotorOnTop, sx: float, sy: float, theta: float) -> float:
     """Torque of the shaft on the rotor, -c2 e sx sin(theta) + c2 e sy cos(theta) (N*m).
 
     sx = x_r - U_x, sy = y_r - U_z: the rotor centre relative to the plate
@@ -184,7 +184,7 @@ def drive_torque(M0: float, slope: float, load: float, W: float) -> float:
     return M0 - slope * W - load * W * abs(W)
 
 
-def solve_spin(rotor: Rotor, h: float, theta_n: float, W_n: float, alpha_n: float,
+def solve_spin(rotor: RotorOnTop, h: float, theta_n: float, W_n: float, alpha_n: float,
                sx: Affine, sy: Affine, M0: float, slope: float, load: float,
                tol: float = 1e-12, max_iter: int = 30, step: Step | None = None,
                old_torque: float = 0.0) -> tuple[float, float, float, int]:

@@ -34,8 +34,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..provenance import JsonRecord
+from .excitation import GroundMotion
 
 #: A run whose scheme moves the fastest frequency it must resolve by more than
 #: this (relative period error), or loses more than this share of an
@@ -77,7 +79,7 @@ class SchemeError(JsonRecord):
 
 
 def genalpha_amplification(Omega: float, alpha_m: float, alpha_f: float, beta: float,
-                           gamma: float) -> np.ndarray:
+                           gamma: float) -> NDArray[np.float64]:
     """The generalized-alpha step on x'' + omega**2 x = 0 as a matrix on (x, h v, h**2 a).
 
     (1 - am) a1 + am a0 + omega**2 ((1 - af) x1 + af x0) = 0 with Newmark's
@@ -89,23 +91,23 @@ def genalpha_amplification(Omega: float, alpha_m: float, alpha_f: float, beta: f
     return np.linalg.solve(L, R)
 
 
-def central_difference_amplification(Omega: float) -> np.ndarray:
+def central_difference_amplification(Omega: float) -> NDArray[np.float64]:
     """Velocity Verlet on x'' + omega**2 x = 0, a matrix on (x, h v)."""
     W2 = Omega * Omega
     x1 = np.array([1 - W2 / 2, 1.0])                      # x1 from (x0, V0)
     return np.array([x1, [-W2 / 2 * (1 + x1[0]), 1 - W2 / 2 * x1[1]]])
 
 
-def _rk_tableau(method: str) -> tuple[np.ndarray, np.ndarray]:
+def _rk_tableau(method: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     if method in ("dp5", "RK45"):
         from .dp5 import _A, _B
         s = len(_B)
         A = np.zeros((s, s))
         A[:, :_A.shape[1]] = _A
         return A, _B
-    from scipy.integrate._ivp.dop853_coefficients import A, B
-    s = len(B)
-    return np.asarray(A)[:s, :s], np.asarray(B)
+    from scipy.integrate._ivp import dop853_coefficients as dop853
+    s = len(dop853.B)
+    return np.asarray(dop853.A)[:s, :s], np.asarray(dop853.B)
 
 
 def stability_function(method: str, z: complex) -> complex:
@@ -129,7 +131,7 @@ def scheme_error(method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float
     """The error of ``method`` at Omega = omega h on an undamped oscillator.
 
     The generalized-alpha family takes its four parameters
-    (rotorpillar.reduced.integration.genalpha_parameters).
+    (rotorpillar.reduced.fixed_step.genalpha_parameters).
     """
     Omega = float(Omega)
     spp = 2 * math.pi / Omega if Omega > 0 else math.inf
@@ -160,11 +162,13 @@ def scheme_error(method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float
     return SchemeError(spp, float(period), float(loss), rho, bool(stable))
 
 
-def steps_per_period_needed(method: str, limit: float = ERROR_LIMIT, **params) -> float:
+def steps_per_period_needed(method: str, limit: float = ERROR_LIMIT, **params: float) -> float:
     """The fewest steps per period at which ``method`` keeps its period error and its
     amplitude loss per period within ``limit`` (-), by bisection (the errors fall
     as the step does); never fewer than NYQUIST_STEPS."""
-    ok = lambda n: scheme_error(method, 2 * math.pi / n, **params).worst <= limit
+    def ok(n: float) -> bool:
+        return scheme_error(method, 2 * math.pi / n, **params).worst <= limit
+
     lo, hi = NYQUIST_STEPS, 4.0
     if ok(lo):
         return lo
@@ -178,12 +182,12 @@ def steps_per_period_needed(method: str, limit: float = ERROR_LIMIT, **params) -
     return hi
 
 
-def largest_step(method: str, omega: float, limit: float, **params) -> float:
+def largest_step(method: str, omega: float, limit: float, **params: float) -> float:
     """The longest step (s) at which ``method`` resolves ``omega`` (rad/s) within ``limit``."""
     return 2 * math.pi / omega / steps_per_period_needed(method, limit, **params)
 
 
-def infinity_radius(method: str, **params) -> float | None:
+def infinity_radius(method: str, **params: float) -> float | None:
     """rho_inf: the spectral radius far above the step's reach (-); 1 for the
     schemes that damp nothing; None for the explicit ones (unstable there)."""
     if method == "central_difference" or method in EXPLICIT_RK:
@@ -200,7 +204,8 @@ FORCING_WORDS = {"unbalance_rotation": "the unbalance's rotation",
                  "ground_motion_band": "the ground motion's band", "rotor_speed": "the rotor's speed"}
 
 
-def forcing_frequencies(eccentricity: float, top_speed: float, motion) -> dict[str, float]:
+def forcing_frequencies(eccentricity: float, top_speed: float,
+                        motion: GroundMotion | None) -> dict[str, float]:
     """The frequencies that force a run (rad/s), by name: the unbalance's rotation at
     the fastest speed the run reaches (when e > 0) and the ground motion's band
     (the pulse's omega, or the record's 99 %-energy frequency)."""
@@ -218,13 +223,13 @@ def forcing_frequencies(eccentricity: float, top_speed: float, motion) -> dict[s
 FULL_ORDER_SCHEMES = GENALPHA + ("central_difference",)
 
 
-def full_order_parameters(method: str, rho_inf: float) -> dict:
+def full_order_parameters(method: str, rho_inf: float) -> dict[str, float]:
     """The generalized-alpha parameters of a full order's ``method`` at ``rho_inf``
-    (rotorpillar.reduced.integration.genalpha_parameters: Chung & Hulbert 1993; HHT-alpha
+    (rotorpillar.reduced.fixed_step.genalpha_parameters: Chung & Hulbert 1993; HHT-alpha
     with alpha = (rho_inf - 1) / (rho_inf + 1), Hilber, Hughes & Taylor 1977); empty
     for central difference.  InputError for HHT below its reach (rho_inf < 0.5)."""
     from ..errors import InputError
-    from .integration import Settings, genalpha_parameters
+    from .fixed_step import genalpha_parameters
     if method not in FULL_ORDER_SCHEMES:
         raise InputError(f"full order integrator {method!r}: must be one of {', '.join(FULL_ORDER_SCHEMES)}")
     if method == "central_difference":
@@ -232,8 +237,7 @@ def full_order_parameters(method: str, rho_inf: float) -> dict:
     if method == "hht" and rho_inf < 0.5:
         raise InputError(f"full_order.rho_inf = {rho_inf:g}: HHT-alpha reaches 0.5 at the least "
                          "(alpha = -1/3); take generalized_alpha for less")
-    am, af, beta, gamma = genalpha_parameters(method, Settings(rho_inf=rho_inf,
-                                                               hht_alpha=(rho_inf - 1) / (rho_inf + 1)))
+    am, af, beta, gamma = genalpha_parameters(method, (rho_inf - 1) / (rho_inf + 1), rho_inf)
     return {"alpha_m": am, "alpha_f": af, "beta": beta, "gamma": gamma}
 
 
@@ -277,7 +281,7 @@ class StepRule(JsonRecord):
     """the record's sampling, which the step never exceeds (s); None without a record"""
 
 
-def full_order_step(method: str, params: dict, forcing: dict[str, float], band_factor: float,
+def full_order_step(method: str, params: dict[str, float], forcing: dict[str, float], band_factor: float,
                     record_time_step: float | None = None, stated: float = 0.0,
                     stated_by: str = "full_order.time_step",
                     target: float = FULL_ORDER_ERROR) -> StepRule:
@@ -296,7 +300,7 @@ def full_order_step(method: str, params: dict, forcing: dict[str, float], band_f
         rule = f"stated: {stated_by} = {stated:g} s"
     elif top > 0:
         h, source = largest_step(method, top, target, **params), "rule"
-        which = max(forcing, key=forcing.get)
+        which = max(forcing, key=forcing.__getitem__)
         rule = (f"the longest step whose period error and amplitude loss per period stay within "
                 f"{target:g} at the fastest forcing, {names.get(which, which)} ({top:.4g} rad/s)")
         if record_time_step and record_time_step < h:
@@ -347,7 +351,7 @@ class AccuracyCheck(JsonRecord):
         return not self.failed
 
 
-def check_step(method: str, params: dict, step: float, frequencies: dict[str, float], duration: float,
+def check_step(method: str, params: dict[str, float], step: float, frequencies: dict[str, float], duration: float,
                *, adaptive: bool = False, periods: float | None = None, steps: int | None = None,
                window: tuple[float, float] | None = None, rtol: float | None = None,
                limit: float = ERROR_LIMIT) -> AccuracyCheck:
@@ -365,7 +369,7 @@ def check_step(method: str, params: dict, step: float, frequencies: dict[str, fl
     known = has_amplification(method)
     needed = steps_per_period_needed(method, limit, **params) if known else NYQUIST_STEPS
     fastest = max(frequencies.values(), default=0.0)
-    which = max(frequencies, key=frequencies.get) if frequencies else None
+    which = max(frequencies, key=frequencies.__getitem__) if frequencies else None
     if adaptive and steps is not None and periods:
         spp = steps / periods
     else:

@@ -33,71 +33,81 @@ highest root down to a local minimum (D) and jumps to C (paper Figs. 3-4).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.optimize import brentq
 
 from ..provenance import JsonRecord
 from .system import Resonance
+
+#: A speed or an array of speeds (rad/s), and what the closed forms give for it.
+Speeds = float | NDArray[np.float64]
 
 
 # --------------------------------------------------------------------------
 # Per-resonance closed forms
 
 
-def amplitude(Omega, r: Resonance):
+def amplitude(Omega: Speeds, r: Resonance) -> Speeds:
     """Eq. 19: a_i at speed Omega, with its omega_i**2 restored (m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
     with np.errstate(divide="ignore"):      # undamped (nu = 0): unbounded at z = 1, as it is
-        return abs(r.forcing) / (2 * r.omega**2 * np.sqrt((1 - z) ** 2 + r.nu**2))
+        a: Speeds = abs(r.forcing) / (2 * r.omega**2 * np.sqrt((1 - z) ** 2 + r.nu**2))
+    return a
 
 
-def amplitude_as_printed(Omega, r: Resonance):
+def amplitude_as_printed(Omega: Speeds, r: Resonance) -> Speeds:
     """The paper's Eq. 19 exactly as printed: f_i / (2 omega_i sqrt(...)) (m/s, not m)."""
     return amplitude(Omega, r) * r.omega
 
 
-def amplitude_linear(Omega, r: Resonance):
+def amplitude_linear(Omega: Speeds, r: Resonance) -> Speeds:
     """Exact steady amplitude of x'' + 2n x' + omega**2 x = f cos(Omega t) (m).
 
     The averaging result (Eq. 19) is its first-order expansion about Omega = omega.
     """
     W = np.asarray(Omega, dtype=float)
     with np.errstate(divide="ignore"):      # undamped: unbounded at Omega = omega
-        return abs(r.forcing) / np.sqrt((r.omega**2 - W**2) ** 2 + (r.two_n * W) ** 2)
+        a: Speeds = abs(r.forcing) / np.sqrt((r.omega**2 - W**2) ** 2 + (r.two_n * W) ** 2)
+    return a
 
 
-def resistance_increment(Omega, r: Resonance):
+def resistance_increment(Omega: Speeds, r: Resonance) -> Speeds:
     """Eq. 20: dL_i, the averaged torque drawn by resonance i (N*m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
     if r.nu == 0:       # undamped: a steady regime draws no average torque
         return np.zeros_like(z) if z.ndim else 0.0
-    return r.forcing * r.coupling * r.nu / (4 * r.omega**2 * ((1 - z) ** 2 + r.nu**2))
+    dL: Speeds = r.forcing * r.coupling * r.nu / (4 * r.omega**2 * ((1 - z) ** 2 + r.nu**2))
+    return dL
 
 
-def resistance_increment_slope(Omega, r: Resonance):
+def resistance_increment_slope(Omega: Speeds, r: Resonance) -> Speeds:
     """d(dL_i)/dOmega (N*m*s)."""
     z = np.asarray(Omega, dtype=float) / r.omega
     if r.nu == 0:
         return np.zeros_like(z) if z.ndim else 0.0
     C = r.forcing * r.coupling * r.nu / (4 * r.omega**2)
     D = (1 - z) ** 2 + r.nu**2
-    return 2 * C * (1 - z) / (r.omega * D**2)
+    slope: Speeds = 2 * C * (1 - z) / (r.omega * D**2)
+    return slope
 
 
-def resistance_increment_as_printed(Omega, r: Resonance, f4: float):
+def resistance_increment_as_printed(Omega: Speeds, r: Resonance, f4: float) -> Speeds:
     """The paper's Eq. 20 with its f4 = c2 e in place of g_i (N*m)."""
     return resistance_increment(Omega, r) * f4 / r.coupling
 
 
-def resistance_increment_linear(Omega, r: Resonance):
+def resistance_increment_linear(Omega: Speeds, r: Resonance) -> Speeds:
     """Exact averaged torque of the linear mode at constant Omega (N*m).
 
     Power balance: dL * Omega = I (2n) <x'**2> = I n a**2 Omega**2.
     """
     W = np.asarray(Omega, dtype=float)
-    return r.modal_mass * r.n * amplitude_linear(W, r) ** 2 * W
+    dL: Speeds = r.modal_mass * r.n * amplitude_linear(W, r) ** 2 * W
+    return dL
 
 
 # --------------------------------------------------------------------------
@@ -114,11 +124,13 @@ class Characteristic:
     load_coefficient: float
     """k (N*m*s**2)"""
 
-    def drive(self, Omega):
-        return self.torque_at_zero - self.slope * np.asarray(Omega, dtype=float)
+    def drive(self, Omega: Speeds) -> Speeds:
+        Md: Speeds = self.torque_at_zero - self.slope * np.asarray(Omega, dtype=float)
+        return Md
 
-    def load(self, Omega):
-        return self.load_coefficient * np.asarray(Omega, dtype=float) ** 2
+    def load(self, Omega: Speeds) -> Speeds:
+        Mc: Speeds = self.load_coefficient * np.asarray(Omega, dtype=float) ** 2
+        return Mc
 
     def free_speed(self) -> float:
         """Speed where Md = Mc with no resonance: an upper bound of every
@@ -131,10 +143,12 @@ class Characteristic:
         return math.inf
 
 
-def total_resistance(Omega, load_coefficient: float, resonances) -> np.ndarray:
+def total_resistance(Omega: Speeds, load_coefficient: float,
+                     resonances: Iterable[Resonance]) -> Speeds:
     """Eq. 21: L(Omega) = Mc(Omega) + sum_i dL_i(Omega) (N*m)."""
     W = np.asarray(Omega, dtype=float)
-    return load_coefficient * W**2 + sum(resistance_increment(W, r) for r in resonances)
+    L: Speeds = load_coefficient * W**2 + sum(resistance_increment(W, r) for r in resonances)
+    return L
 
 
 def peak_resistance_ratio(r: Resonance, load_coefficient: float) -> float:
@@ -143,16 +157,20 @@ def peak_resistance_ratio(r: Resonance, load_coefficient: float) -> float:
     Small (the paper's stiff shaft: 0.11) means the resonance cannot hold
     the rotor: no jump.
     """
-    return resistance_increment(r.omega, r) / (load_coefficient * r.omega**2)
+    return float(resistance_increment(r.omega, r)) / (load_coefficient * r.omega**2)
 
 
-def stability_margin(Omega, slope: float, load_coefficient: float, resonances):
+def stability_margin(Omega: Speeds, slope: float, load_coefficient: float,
+                     resonances: Iterable[Resonance]) -> Speeds:
     """d(Md - L)/dOmega = -(s + 2 k Omega + sum_i d(dL_i)/dOmega) (N*m*s): negative where stable."""
     W = np.asarray(Omega, dtype=float)
-    return -(2 * load_coefficient * W + slope + sum(resistance_increment_slope(W, r) for r in resonances))
+    margin: Speeds = -(2 * load_coefficient * W + slope
+                     + sum(resistance_increment_slope(W, r) for r in resonances))
+    return margin
 
 
-def branch_is_stable(Omega, slope: float, load_coefficient: float, resonances):
+def branch_is_stable(Omega: Speeds, slope: float, load_coefficient: float,
+                     resonances: Iterable[Resonance]) -> bool | NDArray[np.bool_]:
     """Eq. 23: is the stationary regime at Omega stable, d[Md - L]/dOmega < 0?
 
     Omega: speed (rad/s), a number or an array; slope: the motor's s in
@@ -163,20 +181,21 @@ def branch_is_stable(Omega, slope: float, load_coefficient: float, resonances):
     return stability_margin(Omega, slope, load_coefficient, resonances) < 0
 
 
-def speed_grid(resonances, top: float, n: int = 4000) -> np.ndarray:
+def stationary_speed_grid(resonances: Iterable[Resonance], top: float, n: int = 4000) -> NDArray[np.float64]:
     """Speeds from 0 to ``top``, dense across each resonance peak."""
     parts = [np.linspace(0.0, top, n)]
     for r in resonances:
         parts.append(r.omega * (1 + r.nu * np.linspace(-25, 25, 2001)))
     g = np.unique(np.concatenate(parts))
-    return g[(g > 0) & (g <= top)]
+    speeds: NDArray[np.float64] = g[(g > 0) & (g <= top)]
+    return speeds
 
 
-def _roots(fun, grid) -> list[float]:
-    vals = fun(grid)
-    out = []
+def _roots(fun: Callable[[Speeds], Speeds], grid: NDArray[np.float64]) -> list[float]:
+    vals = np.asarray(fun(grid))
+    out: list[float] = []
     for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-        out.append(brentq(fun, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1]))
+        out.append(brentq(fun, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1]))  # a float: scipy has no stubs
     out += [float(w) for w, v in zip(grid, vals) if v == 0.0]
     return sorted(out)
 
@@ -221,30 +240,38 @@ class DriveAnalysis:
     grid_top: float = field(default=0.0)
 
 
-def analyse_drive(ch: Characteristic, resonances, top: float | None = None) -> DriveAnalysis:
+def analyse_drive(ch: Characteristic, resonances: Sequence[Resonance],
+                  top: float | None = None) -> DriveAnalysis:
     """Stationary speeds for this drive, their stability, and the jumps of a
     quasi-static run-up and run-down of M0 with the drive's slope."""
     omegas = [r.omega for r in resonances]
     free = ch.free_speed()
     if top is None:
         top = max(3 * max(omegas), 1.05 * free if math.isfinite(free) else 10 * max(omegas))
-    grid = speed_grid(resonances, top)
+    grid = stationary_speed_grid(resonances, top)
     k, s = ch.load_coefficient, ch.slope
 
-    F = lambda W: total_resistance(W, k, resonances) + s * W          # M0 on the branch
-    dF = lambda W: -stability_margin(W, s, k, resonances)
-    nearest = lambda W: min(resonances, key=lambda r: abs(r.omega - W)).index
+    def F(W: Speeds) -> Speeds:                  # M0 on the branch
+        return total_resistance(W, k, resonances) + s * W
+
+    def dF(W: Speeds) -> Speeds:
+        return -stability_margin(W, s, k, resonances)
+
+    def nearest(W: float) -> int:
+        return min(resonances, key=lambda r: abs(r.omega - W)).index
 
     roots = _roots(lambda W: F(W) - ch.torque_at_zero, grid)
     stationary = [Stationary(w, bool(branch_is_stable(w, s, k, resonances)),
                              float(stability_margin(w, s, k, resonances))) for w in roots]
 
     folds = _roots(dF, grid)
-    jumps = []
+    jumps: list[Jump] = []
     for w in folds:
         level = float(F(w))
         curv = float(dF(w * (1 + 1e-6)) - dF(w * (1 - 1e-6)))
-        g = lambda W, level=level: F(W) - level
+        def g(W: Speeds, level: float = level) -> Speeds:
+            return F(W) - level
+
         if curv < 0:   # local maximum of F: end of the lower branch, A -> B
             above = [x for x in _roots(g, grid[grid > w * (1 + 1e-9)]) if x > w * (1 + 1e-7)]
             if above:
@@ -257,9 +284,9 @@ def analyse_drive(ch: Characteristic, resonances, top: float | None = None) -> D
     runup = roots[0] if roots else None
     rundown = roots[-1] if roots else None
     captured = None
-    if roots and rundown - runup > 1e-9 * rundown:
-        above = [r for r in resonances if r.omega > runup]
-        captured = min(above, key=lambda r: r.omega).index if above else None
+    if runup is not None and rundown is not None and rundown - runup > 1e-9 * rundown:
+        faster = [r for r in resonances if r.omega > runup]
+        captured = min(faster, key=lambda r: r.omega).index if faster else None
     return DriveAnalysis(stationary, jumps, runup, rundown, captured, top)
 
 
@@ -267,15 +294,15 @@ def critical_slope(load_coefficient: float, r: Resonance, top: float) -> float:
     """The largest drive slope s for which resonance i, alone, has a fold:
     max over Omega of -(2 k Omega + d(dL_i)/dOmega) (N*m*s).  Negative when
     no falling motor characteristic can cause a jump there."""
-    grid = speed_grid([r], top)
+    grid = stationary_speed_grid([r], top)
     return float(np.max(-(2 * load_coefficient * grid + resistance_increment_slope(grid, r))))
 
 
 def critical_eccentricity_factor(ch: Characteristic, r: Resonance, top: float) -> float:
     """The factor on the eccentricity beyond which resonance i, alone, has a
     fold with this drive's slope (dL grows as e**2)."""
-    grid = speed_grid([r], top)
-    slope = resistance_increment_slope(grid, r)
+    grid = stationary_speed_grid([r], top)
+    slope = np.asarray(resistance_increment_slope(grid, r))
     falling = slope < 0
     if not np.any(falling):
         return math.inf

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+from typing import Any
+
+from ..scene import Converge, Drive, Load, Sweep
 from .averaging import Characteristic
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 
 
-def excitation_band(scene) -> dict:
+def excitation_band(drive: Drive, load: Load, converge: Converge) -> dict[str, Any]:
     """The frequencies the scene excites, and the band a model must resolve.
 
     The rotor runs at most at the drive's free speed (Md = Mc, no resonance
@@ -15,22 +18,23 @@ def excitation_band(scene) -> dict:
     ``converge.earthquake_frequency``.  The band is the larger times
     ``converge.margin``.
     """
-    ch = Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
+    ch = Characteristic(drive.torque_at_zero, drive.slope, load.coefficient)
     free = ch.free_speed()
-    cv = scene.converge
+    cv = converge
     top = max(free, cv.earthquake_frequency)
     return {"free_speed": free, "earthquake_frequency": cv.earthquake_frequency,
             "margin": cv.margin, "omega_max": cv.margin * top,
             "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake"}
 
 
-def forcing_top(scene, case: str, motion: GroundMotion | None) -> float:
+def forcing_top(drive: Drive, load: Load, sweep: Sweep, case: str,
+                motion: GroundMotion | None) -> float:
     """The highest forcing frequency of a case (rad/s): the fastest rotor speed
-    it reaches, and the ground motion's band."""
-    d, L = scene.drive, scene.load
+    it reaches (the sweep's top torque for "sweep"), and the ground motion's band."""
+    d, L = drive, load
     fast = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()
     if case == "sweep":
-        fast = max(fast, DriveSchedule.constant(scene.sweep.torque_high, d.slope, L.coefficient).free_speed())
+        fast = max(fast, DriveSchedule.constant(sweep.torque_high, d.slope, L.coefficient).free_speed())
     if case == "earthquake" and motion is not None:
         fast = max(fast, motion.band())
     return fast

@@ -14,6 +14,8 @@ does not have.
 
 from __future__ import annotations
 
+from typing import Any
+
 #: Above this ratio of the published static gain over the consistent one (1),
 #: the paper model's earthquake is flagged: the published forcing then
 #: inflates the response by more than the scatter of a ground-motion record.
@@ -32,7 +34,7 @@ def published_static_gain(tip_stiffness: float, shaft_stiffness: float) -> float
 
 
 def base_forcing_finding(tip_stiffness: float, shaft_stiffness: float, pillar_damping: float,
-                         shaft_damping: float) -> dict:
+                         shaft_damping: float) -> dict[str, Any]:
     """The published and the consistent base forcing of Eq. 4 for a scene, and the gain."""
     c1, c2, b1, b2 = tip_stiffness, shaft_stiffness, pillar_damping, shaft_damping
     gain = published_static_gain(c1, c2)

@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.linalg import eigh
 
 THEORIES = ("euler", "timoshenko")
@@ -52,18 +53,18 @@ class BeamProperties:
 @dataclass(frozen=True)
 class BeamModes:
     """Modes of the cantilever, ascending."""
-    omega: np.ndarray
+    omega: NDArray[np.float64]
     """natural angular frequencies (rad/s)"""
-    x: np.ndarray
+    x: NDArray[np.float64]
     """node heights (m)"""
-    deflection: np.ndarray
+    deflection: NDArray[np.float64]
     """(n_nodes, n_modes) lateral deflection, mass-normalised (kg**-0.5)"""
-    rotation: np.ndarray
+    rotation: NDArray[np.float64]
     """(n_nodes, n_modes) section rotation (rad per sqrt(kg))"""
     dofs: int
 
 
-def _euler_element(p: BeamProperties, L: float):
+def _euler_element(p: BeamProperties, L: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     EI, mA = p.youngs_modulus * p.second_moment, p.density * p.area
     k = EI / L**3 * np.array([
         [12, 6 * L, -12, 6 * L],
@@ -78,7 +79,7 @@ def _euler_element(p: BeamProperties, L: float):
     return k, m
 
 
-def _timoshenko_element(p: BeamProperties, L: float):
+def _timoshenko_element(p: BeamProperties, L: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     EI = p.youngs_modulus * p.second_moment
     kGA = p.shear_coefficient * p.shear_modulus * p.area
     # dof order (w1, psi1, w2, psi2)
@@ -94,7 +95,7 @@ def _timoshenko_element(p: BeamProperties, L: float):
 
 
 def assemble(p: BeamProperties, n_elements: int, theory: str,
-             tip_mass: float = 0.0, tip_inertia: float = 0.0):
+             tip_mass: float = 0.0, tip_inertia: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Global K and M of the clamped-free beam (base dofs removed)."""
     if theory not in THEORIES:
         raise ValueError(f"theory must be one of {THEORIES}")
@@ -133,7 +134,8 @@ def beam_modes(p: BeamProperties, n_elements: int, theory: str = "euler",
     return BeamModes(np.sqrt(lam), x, full[0::2], full[1::2], K.shape[0])
 
 
-def section_forces(p: BeamProperties, n_elements: int, theory: str, u: np.ndarray):
+def section_forces(p: BeamProperties, n_elements: int, theory: str,
+                   u: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Shear V(z) and bending moment M(z) at the nodes from the element end forces K_e u_e.
 
     ``u`` holds (w, psi) per node from the base up, base included: shape

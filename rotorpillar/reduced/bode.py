@@ -19,18 +19,22 @@ is the first-order expansion of the tip's curve about omega_i.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..provenance import JsonRecord
 from . import averaging as av
 from .rotor_models import RotorStructure
+from .system import Resonance
 
 
-def phase_lag(Z) -> np.ndarray:
+def phase_lag(Z: ArrayLike) -> NDArray[np.float64]:
     """-arg(Z) in degrees, wrapped to [0, 360): how far the response lags the unbalance."""
-    return np.mod(-np.degrees(np.angle(np.asarray(Z))), 360.0)
+    lag: NDArray[np.float64] = np.mod(-np.degrees(np.angle(np.asarray(Z))), 360.0)
+    return lag
 
 
 @dataclass(frozen=True)
@@ -52,7 +56,7 @@ class BodeCurve(JsonRecord):
     """(speed rad/s, tip amplitude m) at each local maximum of the tip's curve"""
 
 
-def local_peaks(speeds, amplitude) -> tuple[tuple[float, float], ...]:
+def local_peaks(speeds: ArrayLike, amplitude: ArrayLike) -> tuple[tuple[float, float], ...]:
     """(speed, amplitude) at each interior local maximum, refined by a parabola through three points."""
     W, a = np.asarray(speeds, dtype=float), np.asarray(amplitude, dtype=float)
     out = []
@@ -69,7 +73,8 @@ def local_peaks(speeds, amplitude) -> tuple[tuple[float, float], ...]:
     return tuple(out)
 
 
-def curve(model: str, speeds, tip, shaft) -> BodeCurve:
+def curve(model: str, speeds: ArrayLike, tip: NDArray[np.complex128],
+          shaft: NDArray[np.complex128]) -> BodeCurve:
     """A BodeCurve from complex amplitudes of the tip and of the shaft deflection."""
     speeds = np.asarray(speeds, dtype=float)
     ta, sa = np.abs(tip), np.abs(shaft)
@@ -78,7 +83,7 @@ def curve(model: str, speeds, tip, shaft) -> BodeCurve:
                      tuple(map(float, phase_lag(shaft))), local_peaks(speeds, ta))
 
 
-def unbalance_response(model: RotorStructure, speeds) -> BodeCurve:
+def unbalance_response(model: RotorStructure, speeds: ArrayLike) -> BodeCurve:
     """The model's steady unbalance response at each speed (rad/s)."""
     speeds = np.asarray(speeds, dtype=float)
     tip, shaft = np.empty(len(speeds), complex), np.empty(len(speeds), complex)
@@ -89,7 +94,7 @@ def unbalance_response(model: RotorStructure, speeds) -> BodeCurve:
     return curve(model.name, speeds, tip, shaft)
 
 
-def speed_grid(resonances, top: float, n: int = 600, dense: int = 80) -> np.ndarray:
+def speed_grid(resonances: Iterable[Resonance], top: float, n: int = 600, dense: int = 80) -> NDArray[np.float64]:
     """Speeds from 0 (excluded) to ``top``: uniform, plus ``dense`` points within
     +-5 half-power widths of each resonance below ``top`` (rad/s)."""
     grid = [np.linspace(top / n, top, n)]
@@ -97,7 +102,8 @@ def speed_grid(resonances, top: float, n: int = 600, dense: int = 80) -> np.ndar
         if 0 < r.omega < top:
             width = max(5 * r.nu * r.omega, 0.01 * r.omega)
             grid.append(np.linspace(max(r.omega - width, top / n), min(r.omega + width, top), dense))
-    return np.unique(np.concatenate(grid))
+    speeds: NDArray[np.float64] = np.unique(np.concatenate(grid))
+    return speeds
 
 
 @dataclass(frozen=True)
@@ -126,7 +132,7 @@ def averaging_curves(model: RotorStructure, top: float, width: float = 0.3,
             continue
         W = np.linspace((1 - width) * r.omega, min((1 + width) * r.omega, top), n)
         out.append(AveragingCurve(r.index, r.direction, float(r.omega), float(r.nu),
-                                  tuple(map(float, W)), tuple(map(float, av.amplitude(W, r)))))
+                                  tuple(map(float, W)), tuple(map(float, np.asarray(av.amplitude(W, r))))))
     return tuple(out)
 
 

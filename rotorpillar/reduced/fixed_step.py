@@ -3,7 +3,8 @@
 - ``genalpha_solve``: the generalized-alpha family (Chung & Hulbert 1993)
   with Newton iterations on the analytic Jacobian: Newmark average
   acceleration (alpha_m = alpha_f = 0, beta = 1/4, gamma = 1/2), HHT-alpha
-  (alpha_m = 0) and Chung-Hulbert by rho_inf.
+  (alpha_m = 0) and Chung-Hulbert by rho_inf; ``genalpha_parameters`` gives
+  each one's (alpha_m, alpha_f, beta, gamma).
 - ``cd_solve``: explicit central difference in velocity-Verlet form,
   conditionally stable for h < 2/omega_max.
 """
@@ -15,11 +16,13 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import N_WORK, NEWTON_FAILED, NOT_FINITE, OK, deriv_flat, flatten, jacobians, record_peak
+from .rhs import (N_WORK, NEWTON_FAILED, NOT_FINITE, OK, Floats, Packed, deriv_flat, flatten,
+                  jacobians, record_peak)
 
 
 @njit(cache=True)
-def _start_output(q, v, par, out_q, out_v, out_w, out_peak):
+def _start_output(q: Floats, v: Floats, par: Floats, out_q: Floats, out_v: Floats,
+                  out_w: Floats, out_peak: Floats) -> int:
     """Clear the fixed-step schemes' peaks, store the initial state as row 0
     (no work done yet); returns the number of output rows."""
     out_peak[:, :] = 0.0
@@ -29,7 +32,8 @@ def _start_output(q, v, par, out_q, out_v, out_w, out_peak):
 
 
 @njit(cache=True)
-def _store_sample(k, q, v, W, out_q, out_v, out_w):
+def _store_sample(k: int, q: Floats, v: Floats, W: Floats, out_q: Floats, out_v: Floats,
+                  out_w: Floats) -> None:
     """Row k of the fixed-step schemes' output: coordinates, velocities, work."""
     for i in range(q.shape[0]):
         out_q[k, i] = q[i]
@@ -39,7 +43,7 @@ def _store_sample(k, q, v, W, out_q, out_v, out_w):
 
 
 @njit(cache=True)
-def _eval(t, q, v, par, yw, dw):
+def _eval(t: float, q: Floats, v: Floats, par: Floats, yw: Floats, dw: Floats) -> None:
     """Accelerations and powers at (t, q, v) through ``deriv_flat``: dw[n:2n], dw[2n:]."""
     n = q.shape[0]
     for i in range(n):
@@ -49,8 +53,9 @@ def _eval(t, q, v, par, yw, dw):
 
 
 @njit(cache=True)
-def _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout, out_q, out_v, out_w,
-                 out_peak):
+def _end_of_step(step: int, stride: int, h: float, n: int, q: Floats, v: Floats, dw: Floats,
+                 W: Floats, pw_old: Floats, par: Floats, kout: int, nout: int, out_q: Floats,
+                 out_v: Floats, out_w: Floats, out_peak: Floats) -> int:
     """A fixed-step scheme's step, closed: the work by the trapezoid rule, the
     peak of the output interval, the sample at every stride-th step.  Returns
     the next output index."""
@@ -66,8 +71,10 @@ def _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout, out_q
 
 
 @njit(cache=True)
-def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gamma,
-                   newton_tol, max_iter, out_q, out_v, out_w, out_peak):
+def genalpha_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nsteps: int,
+                   stride: int, alpha_m: float, alpha_f: float, beta: float, gamma: float,
+                   newton_tol: float, max_iter: int, out_q: Floats, out_v: Floats,
+                   out_w: Floats, out_peak: Floats) -> tuple[int, int, int]:
     """Fixed-step generalized-alpha with Newton iterations on the analytic Jacobian.
 
     Equilibrium is enforced at the weighted point
@@ -168,7 +175,8 @@ def genalpha_solve(P, q0, v0, t0, h, nsteps, stride, alpha_m, alpha_f, beta, gam
 
 
 @njit(cache=True)
-def cd_solve(P, q0, v0, t0, h, nsteps, stride, out_q, out_v, out_w, out_peak):
+def cd_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nsteps: int, stride: int,
+             out_q: Floats, out_v: Floats, out_w: Floats, out_peak: Floats) -> tuple[int, int, int]:
     """Explicit central difference (velocity-Verlet form).
 
     v_{n+1/2} = v_n + h/2 a_n;  q_{n+1} = q_n + h v_{n+1/2};
@@ -208,3 +216,24 @@ def cd_solve(P, q0, v0, t0, h, nsteps, stride, out_q, out_v, out_w, out_peak):
                             out_q, out_v, out_w, out_peak)
     return OK, nfev, 0
 
+
+def genalpha_parameters(method: str, hht_alpha: float, rho_inf: float) -> tuple[float, float, float, float]:
+    """(alpha_m, alpha_f, beta, gamma) of ``genalpha_solve`` for ``method`` (newmark, hht with
+    ``hht_alpha``, generalized_alpha with ``rho_inf``).
+
+    Newmark average acceleration: (0, 0, 1/4, 1/2).  HHT-alpha with
+    alpha in [-1/3, 0]: alpha_f = -alpha, gamma = (1 - 2 alpha)/2,
+    beta = (1 - alpha)**2/4.  Chung-Hulbert: alpha_m = (2 rho - 1)/(rho + 1),
+    alpha_f = rho/(rho + 1), gamma = 1/2 - alpha_m + alpha_f,
+    beta = (1 - alpha_m + alpha_f)**2/4.
+    """
+    if method == "newmark":
+        return 0.0, 0.0, 0.25, 0.5
+    if method == "hht":
+        a = hht_alpha
+        return 0.0, -a, (1 - a) ** 2 / 4, 0.5 - a
+    if method == "generalized_alpha":
+        r = rho_inf
+        am, af = (2 * r - 1) / (r + 1), r / (r + 1)
+        return am, af, 0.25 * (1 - am + af) ** 2, 0.5 - am + af
+    raise ValueError(method)

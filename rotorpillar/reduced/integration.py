@@ -31,16 +31,25 @@ import math
 import os
 import time
 from concurrent.futures import ThreadPoolExecutor
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
 from .drive import DriveSchedule
 from .excitation import GroundMotion
+from .rhs import Floats, Packed
 from .rotor_models import RotorStructure
+
+#: What one integrator gives: t, q, v, work, peak, stats (Transient's fields).
+#: An optional array argument (one value or one per run).
+Arr = ArrayLike | None
+_Run = tuple[Floats, Floats, Floats, Floats, Floats, dict[str, Any]]
 
 FIXED_STEP = FIXED_STEP_INTEGRATORS
 IMPLICIT = ("Radau", "BDF", "LSODA", "newmark", "hht", "generalized_alpha")
@@ -78,34 +87,34 @@ class Settings:
 class Transient:
     """A transient run: states on the output grid and what the integrator did."""
     model: RotorStructure
-    t: np.ndarray
+    t: NDArray[np.float64]
     """(n_t,) output times (s)"""
-    q: np.ndarray
+    q: NDArray[np.float64]
     """(n_t, n) coordinates z, y, theta (m, m, rad)"""
-    v: np.ndarray
+    v: NDArray[np.float64]
     """(n_t, n) their rates"""
-    work: np.ndarray
+    work: NDArray[np.float64]
     """(n_t, 4) work since the start: drive - load, shaft on structure, dissipated, base (J)"""
-    peak: np.ndarray
+    peak: NDArray[np.float64]
     """(n_t, n + 1) largest |q_i| (and, last, |tip X|) in the interval ending
     at each output, over every step (m); scipy methods: at the outputs only"""
-    stats: dict
+    stats: dict[str, Any]
     prescribed_speed: bool = False
     drive: DriveSchedule | None = None
     motion: GroundMotion | None = None
 
     @property
     def ok(self) -> bool:
-        return self.stats["status"] == "ok"
+        return bool(self.stats["status"] == "ok")
 
     @property
-    def Omega(self) -> np.ndarray:
+    def Omega(self) -> NDArray[np.float64]:
         return self.v[:, -1]
 
-    def tip(self) -> np.ndarray:
+    def tip(self) -> NDArray[np.float64]:
         return self.q[:, :self.model.nx] @ self.model.tip
 
-    def energy_balance(self) -> dict:
+    def energy_balance(self) -> dict[str, Any]:
         """E(t) - E(0) against the work done, and the relative error.
 
         Free rotor: d(T + P)/dt = (Md - Mc) W - dissipation + base power.
@@ -129,7 +138,7 @@ class Transient:
                 "relative_error": float(np.max(np.abs(resid)) / scale)}
 
 
-def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, rtol: float) -> np.ndarray:
+def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, rtol: float) -> NDArray[np.float64]:
     """Absolute tolerances of (q, v, work): rtol times each component's scale."""
     n = model.n
     om = model.undamped_modes_x()[0]
@@ -151,7 +160,7 @@ def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, 
     return atol
 
 
-def _breaks(drive: DriveSchedule, motion: GroundMotion) -> np.ndarray:
+def _breaks(drive: DriveSchedule, motion: GroundMotion) -> NDArray[np.float64]:
     return np.array(sorted(set(drive.breakpoints()) | set(motion.breakpoints())), dtype=float)
 
 
@@ -167,7 +176,7 @@ def auto_time_step(model: RotorStructure, speed_scale: float, settings: Settings
 
 
 def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, t_end: float,
-             q0=None, v0=None, settings: Settings = Settings(), t_start: float = 0.0,
+             q0: Arr = None, v0: Arr = None, settings: Settings = Settings(), t_start: float = 0.0,
              prescribed_speed: bool = False, speed_scale: float | None = None) -> Transient:
     """Integrate the model from (q0, v0) at t_start to t_end."""
     if not (math.isfinite(t_end) and t_end > t_start):
@@ -180,7 +189,7 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
     if speed_scale is None:
         speed_scale = max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0)) \
             if math.isfinite(drive.free_speed()) else max(abs(v0[-1]), 1.0)
-    check_budget(model, motion, t_end - t_start, settings, speed_scale)
+    check_step_budget(model, motion, t_end - t_start, settings, speed_scale)
     if _ESTIMATE_ONLY.get():
         raise Estimated()
     P = model.pack(drive, motion, prescribed_speed)
@@ -203,7 +212,7 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
 STEPS_PER_REVOLUTION = 10.0
 
 
-def estimated_steps(model: RotorStructure, motion: GroundMotion, duration: float,
+def estimated_step_count(model: RotorStructure, motion: GroundMotion, duration: float,
                     settings: Settings, speed_scale: float) -> float:
     """Integration steps a run will take, from its settings, before it starts (-).
 
@@ -219,10 +228,10 @@ def estimated_steps(model: RotorStructure, motion: GroundMotion, duration: float
     return n
 
 
-def check_budget(model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings,
+def check_step_budget(model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings,
                  speed_scale: float) -> None:
     """Refuse (one line, InputError) a run estimated above ``settings.max_steps``."""
-    n = estimated_steps(model, motion, duration, settings, speed_scale)
+    n = estimated_step_count(model, motion, duration, settings, speed_scale)
     if not math.isfinite(n) or n > settings.max_steps:
         raise InputError(
             f"this run of {duration:.4g} s would take about {n:.3g} {settings.method} steps, more "
@@ -238,7 +247,7 @@ _ESTIMATE_ONLY = contextvars.ContextVar("estimate_only", default=False)
 
 
 @contextlib.contextmanager
-def estimate_only():
+def estimate_only() -> Iterator[None]:
     """Inside, ``simulate`` checks its step budget and raises ``Estimated`` instead of
     integrating: a caller learns whether a case would be refused by running the case's
     own code up to its first integration (the models built, nothing integrated)."""
@@ -249,11 +258,12 @@ def estimate_only():
         _ESTIMATE_ONLY.reset(token)
 
 
-def _output_grid(t0, t1, samples):
+def _output_grid(t0: float, t1: float, samples: int) -> NDArray[np.float64]:
     return np.linspace(t0, t1, max(2, int(samples)))
 
 
-def _run_dp5(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
+def _run_dp5(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: float, t1: float,
+             drive: DriveSchedule, motion: GroundMotion, settings: Settings, speed_scale: float) -> _Run:
     n = model.n
     y0 = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
     t_out = _output_grid(t0, t1, settings.samples)
@@ -269,15 +279,16 @@ def _run_dp5(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
     return (t_out, out_y[:, :n], out_y[:, n:2 * n], out_y[:, 2 * n:], out_peak, stats)
 
 
-def _run_scipy(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
+def _run_scipy(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: float, t1: float,
+               drive: DriveSchedule, motion: GroundMotion, settings: Settings, speed_scale: float) -> _Run:
     from scipy.integrate import solve_ivp
     n = model.n
     y = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
     t_out = _output_grid(t0, t1, settings.samples)
     atol = tolerances(model, motion, speed_scale, settings.rtol)
     par = K.flatten(P)
-    fun = lambda t, yy: K.rhs_first_order(t, yy, par)
-    kw = {}
+    fun: Callable[[float, Floats], Floats] = lambda t, yy: K.rhs_first_order(t, yy, par)
+    kw: dict[str, Any] = {}
     if settings.method in ("Radau", "BDF", "LSODA"):
         kw["jac"] = lambda t, yy: K.jac_first_order(t, yy, P)
     edges = [t0] + [b for b in _breaks(drive, motion) if t0 < b < t1] + [t1]
@@ -286,7 +297,8 @@ def _run_scipy(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
         sel = (t_out >= a) & ((t_out < b) if b < t1 else (t_out <= b))
         # one-sided forcing at the segment's edges, as the compiled kernel
         eps = 1e-12 * (abs(a) + abs(b) + 1.0)
-        f = (lambda t, yy, a=a, b=b, eps=eps: fun(min(max(t, a + eps), b - eps), yy))
+        def f(t: float, yy: Floats, a: float = a, b: float = b, eps: float = eps) -> Floats:
+            return fun(min(max(t, a + eps), b - eps), yy)
         te = t_out[sel]
         # dense output instead of t_eval: the same interpolants at the outputs, and
         # the steps taken (sol.t), which the accuracy check counts
@@ -309,7 +321,8 @@ def _run_scipy(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
     return (t_out, Y[:, :n], Y[:, n:2 * n], Y[:, 2 * n:], peak, stats)
 
 
-def _run_fixed(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
+def _run_fixed(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: float, t1: float,
+               drive: DriveSchedule, motion: GroundMotion, settings: Settings, speed_scale: float) -> _Run:
     n = model.n
     h = settings.time_step or auto_time_step(model, speed_scale, settings, motion)
     nsteps = max(1, int(math.ceil((t1 - t0) / h - 1e-9)))
@@ -326,9 +339,9 @@ def _run_fixed(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
     if m == "central_difference":
         status, nfev, nit = K.cd_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
                                        out_q, out_v, out_w, out_peak)
-        scheme = {}
+        scheme: dict[str, float] = {}
     else:
-        am, af, beta, gamma = genalpha_parameters(m, settings)
+        am, af, beta, gamma = K.genalpha_parameters(m, settings.hht_alpha, settings.rho_inf)
         scheme = {"alpha_m": am, "alpha_f": af, "beta": beta, "gamma": gamma}
         status, nfev, nit = K.genalpha_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
                                              am, af, beta, gamma, settings.newton_tol, 30,
@@ -341,27 +354,6 @@ def _run_fixed(P, model, q0, v0, t0, t1, drive, motion, settings, speed_scale):
     return t, out_q, out_v, out_w, out_peak, stats
 
 
-def genalpha_parameters(method: str, settings: Settings = Settings()) -> tuple[float, float, float, float]:
-    """(alpha_m, alpha_f, beta, gamma) of the generalized-alpha kernel.
-
-    Newmark average acceleration: (0, 0, 1/4, 1/2).  HHT-alpha with
-    alpha in [-1/3, 0]: alpha_f = -alpha, gamma = (1 - 2 alpha)/2,
-    beta = (1 - alpha)**2/4.  Chung-Hulbert: alpha_m = (2 rho - 1)/(rho + 1),
-    alpha_f = rho/(rho + 1), gamma = 1/2 - alpha_m + alpha_f,
-    beta = (1 - alpha_m + alpha_f)**2/4.
-    """
-    if method == "newmark":
-        return 0.0, 0.0, 0.25, 0.5
-    if method == "hht":
-        a = settings.hht_alpha
-        return 0.0, -a, (1 - a) ** 2 / 4, 0.5 - a
-    if method == "generalized_alpha":
-        r = settings.rho_inf
-        am, af = (2 * r - 1) / (r + 1), r / (r + 1)
-        return am, af, 0.25 * (1 - am + af) ** 2, 0.5 - am + af
-    raise ValueError(method)
-
-
 # --------------------------------------------------------------------------
 # Many runs at once
 
@@ -369,38 +361,39 @@ def genalpha_parameters(method: str, settings: Settings = Settings()) -> tuple[f
 @dataclass(frozen=True, eq=False)
 class Batch:
     """Many runs of one model differing in M0 (scale), s, k, e or c2."""
-    t: np.ndarray
+    t: NDArray[np.float64]
     """(n_t,) output times (s)"""
-    Omega: np.ndarray
+    Omega: NDArray[np.float64]
     """(runs, n_t) rotor speed (rad/s)"""
-    tip_peak: np.ndarray
+    tip_peak: NDArray[np.float64]
     """(runs, n_t) largest |tip X| per output interval (m)"""
-    tip: np.ndarray
+    tip: NDArray[np.float64]
     """(runs, n_t) tip X at the outputs (m)"""
-    final_state: np.ndarray
+    final_state: NDArray[np.float64]
     """(runs, 2n + 4) state at t_end (theta unwrapped)"""
-    status: np.ndarray
-    nfev: np.ndarray
+    status: NDArray[np.int_]
+    nfev: NDArray[np.int_]
     wall_seconds: float
-    shaft_deflection: np.ndarray | None = None
+    shaft_deflection: NDArray[np.float64] | None = None
     """(runs, n_t) |shaft deflection| = |(d.z - e cos theta, y - e sin theta)| at the outputs (m)"""
 
     @property
-    def ok(self) -> np.ndarray:
-        return self.status == K.OK
+    def ok(self) -> NDArray[np.bool_]:
+        ok: NDArray[np.bool_] = self.status == K.OK
+        return ok
 
 
-def shaft_deflection(q: np.ndarray, shaft: np.ndarray, e) -> tuple[np.ndarray, np.ndarray]:
+def shaft_deflection(q: ArrayLike, shaft: ArrayLike, e: ArrayLike) -> tuple[Floats, Floats]:
     """|shaft deflection| and its x component (m) at states q (k, n), e (m) per
-    state or one for all: the same bits in any process (rhs.shaft_deflection)."""
-    q = np.ascontiguousarray(q, dtype=float)
-    e = np.broadcast_to(np.asarray(e, dtype=float), (q.shape[0],)).copy()
-    size, x = np.empty(q.shape[0]), np.empty(q.shape[0])
-    K.shaft_deflection(q, np.ascontiguousarray(shaft, dtype=float), e, size, x)
+    state or one for all: the same bits in any process (rhs.shaft_deflection_into)."""
+    qs = np.ascontiguousarray(q, dtype=float)
+    es = np.broadcast_to(np.asarray(e, dtype=float), (qs.shape[0],)).copy()
+    size, x = np.empty(qs.shape[0]), np.empty(qs.shape[0])
+    K.shaft_deflection_into(qs, np.ascontiguousarray(shaft, dtype=float), es, size, x)
     return size, x
 
 
-def project(q: np.ndarray, w: np.ndarray) -> np.ndarray:
+def project(q: NDArray[np.float64], w: NDArray[np.float64]) -> NDArray[np.float64]:
     """q @ w summed term by term in a fixed order, whatever BLAS would do with
     its threads there: a study's numbers must not depend on the process its
     batch ran in.  (CI's 1-ulp difference came from numpy's cos, see
@@ -412,8 +405,9 @@ def project(q: np.ndarray, w: np.ndarray) -> np.ndarray:
 
 
 def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
-                   torque_scale=None, slope=None, load=None, eccentricity=None, shaft_stiffness=None,
-                   motion: GroundMotion | None = None, q0=None, v0=None, rtol: float = 1e-7,
+                   torque_scale: Arr = None, slope: Arr = None, load: Arr = None,
+                   eccentricity: Arr = None, shaft_stiffness: Arr = None,
+                   motion: GroundMotion | None = None, q0: Arr = None, v0: Arr = None, rtol: float = 1e-7,
                    samples: int = 201, speed_scale: float | None = None,
                    threads: int | None = None) -> Batch:
     """Run-ups (or any drive schedule) for many parameter values in one compiled
@@ -431,8 +425,9 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     arrays = {"torque_scale": torque_scale, "slope": slope, "load": load,
               "eccentricity": eccentricity, "shaft_stiffness": shaft_stiffness}
     runs = max((len(np.atleast_1d(a)) for a in arrays.values() if a is not None), default=1)
-    fill = lambda a, default: (np.full(runs, default, dtype=float) if a is None
-                               else np.broadcast_to(np.asarray(a, dtype=float), (runs,)).copy())
+    fill: Callable[[ArrayLike | None, float], Floats] = lambda a, default: (
+        np.full(runs, default, dtype=float) if a is None
+        else np.broadcast_to(np.asarray(a, dtype=float), (runs,)).copy())
     ts = fill(torque_scale, 1.0)
     others = [fill(arrays[k], np.nan) for k in ("slope", "load", "eccentricity", "shaft_stiffness")]
     n = model.n
@@ -441,7 +436,7 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     y0 = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
     if speed_scale is None:
         speed_scale = max(drive.free_speed() * float(np.sqrt(np.max(ts))), abs(v0[-1]), 1.0)
-    ecc = np.nanmax(others[2]) if np.any(np.isfinite(others[2])) else model.eccentricity
+    ecc = float(np.nanmax(others[2])) if np.any(np.isfinite(others[2])) else model.eccentricity
     m_for_tol = model if ecc <= model.eccentricity else _with_eccentricity(model, ecc)
     atol = tolerances(m_for_tol, motion, speed_scale, rtol)
     t_out = _output_grid(0.0, t_end, samples)
@@ -451,10 +446,11 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     P = model.pack(drive, motion)
     args = (P, y0, 0.0, float(t_end), _breaks(drive, motion), rtol, atol, t_out, True,
             200_000_000, motion.time_step if motion.kind == "record" else np.inf)
-    per_run = [ts] + others
+    s_run, k_run, e_run, c2_run = others
     start = time.perf_counter()
-    _run_slices(lambda a, b: K.dp5_batch(*args, *(x[a:b] for x in per_run), out_y[a:b], out_peak[a:b],
-                                         stats[a:b]), runs, batch_threads() if threads is None else threads)
+    _run_slices(lambda a, b: K.dp5_batch(*args, ts[a:b], s_run[a:b], k_run[a:b], e_run[a:b],
+                                         c2_run[a:b], out_y[a:b], out_peak[a:b], stats[a:b]),
+                runs, batch_threads() if threads is None else threads)
     wall = time.perf_counter() - start
     e = np.where(np.isfinite(others[2]), others[2], model.eccentricity)
     shaft = shaft_deflection(out_y[:, :, :n].reshape(-1, n), model.shaft,
@@ -472,7 +468,7 @@ def batch_threads() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def _run_slices(run_slice, runs: int, threads: int) -> None:
+def _run_slices(run_slice: Callable[[int, int], object], runs: int, threads: int) -> None:
     """Call ``run_slice(a, b)`` over slices covering range(runs), on ``threads`` threads.
 
     Runs differ in cost (a slow run-up takes longer), so the slices are

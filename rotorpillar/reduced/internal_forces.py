@@ -37,6 +37,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..provenance import JsonRecord
 from .pillar import TubeSection
@@ -52,27 +53,31 @@ FORCE_TOLERANCE = 0.01
 # Pure formulas
 
 
-def axial_force(z, mass_per_length: float, height: float, top_mass: float,
-                g: float = STANDARD_GRAVITY) -> np.ndarray:
+def axial_force(z: ArrayLike, mass_per_length: float, height: float, top_mass: float,
+                g: float = STANDARD_GRAVITY) -> NDArray[np.float64]:
     """N(z) = g (m_rho (H - z) + m_top): the static axial force, compression positive (N)."""
-    z = np.asarray(z, dtype=float)
-    return g * (mass_per_length * (height - z) + top_mass)
+    zs = np.asarray(z, dtype=float)
+    force: NDArray[np.float64] = g * (mass_per_length * (height - zs) + top_mass)
+    return force
 
 
-def extreme_fibre_stress(moment, axial, section: TubeSection) -> np.ndarray:
+def extreme_fibre_stress(moment: ArrayLike, axial: ArrayLike, section: TubeSection) -> NDArray[np.float64]:
     """|M| c / I + N / A: the meridional stress at the compressed extreme fibre,
     compression positive (Pa); c = D0 / 2."""
     c = section.outer_diameter / 2
-    return np.abs(np.asarray(moment, dtype=float)) * c / section.second_moment \
-        + np.asarray(axial, dtype=float) / section.area
+    stress: NDArray[np.float64] = (np.abs(np.asarray(moment, dtype=float)) * c / section.second_moment
+                   + np.asarray(axial, dtype=float) / section.area)
+    return stress
 
 
-def superpose(coordinates, shapes) -> np.ndarray:
+def superpose(coordinates: ArrayLike, shapes: ArrayLike) -> NDArray[np.float64]:
     """sum_j eta_j(t) S_j(z): (n_t, k) coordinates on (n_z, k) shapes -> (n_t, n_z)."""
-    return np.asarray(coordinates, dtype=float) @ np.asarray(shapes, dtype=float).T
+    field: NDArray[np.float64] = np.asarray(coordinates, dtype=float) @ np.asarray(shapes, dtype=float).T
+    return field
 
 
-def static_resultants(z, height: float, mass_per_length: float, top_mass: float) -> dict:
+def static_resultants(z: ArrayLike, height: float, mass_per_length: float,
+                      top_mass: float) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]:
     """Exact static resultants (equilibrium) of the two loads of the transients.
 
     ``tip``: a unit force along +X at the tip, V = 1, M = H - z.
@@ -80,15 +85,15 @@ def static_resultants(z, height: float, mass_per_length: float, top_mass: float)
     is the inertia -m a (the pillar's and the top mass's):
     V = -(m_rho (H - z) + m_top), M = -(m_rho (H - z)**2 / 2 + m_top (H - z)).
     """
-    z = np.asarray(z, dtype=float)
-    arm = height - z
-    return {"tip": (np.ones_like(z), arm),
+    zs = np.asarray(z, dtype=float)
+    arm = height - zs
+    return {"tip": (np.ones_like(zs), arm),
             "base": (-(mass_per_length * arm + top_mass),
                      -(mass_per_length * arm**2 / 2 + top_mass * arm))}
 
 
 def cantilever_tip_statics(youngs_modulus: float, second_moment: float, shear_stiffness: float,
-                           height: float, mass_per_length: float, top_mass: float) -> dict:
+                           height: float, mass_per_length: float, top_mass: float) -> dict[str, float]:
     """Static tip deflection of a Timoshenko cantilever (m): per unit tip force
     (H**3 / 3EI + H / kGA) and per unit ground acceleration along +X (the
     inertia of the pillar and of its top mass, hence negative)."""
@@ -98,7 +103,7 @@ def cantilever_tip_statics(youngs_modulus: float, second_moment: float, shear_st
     return {"tip": per_force, "base": -(uniform + top_mass * per_force)}
 
 
-def hermite_peak(t, f, dfdt) -> tuple[float, float]:
+def hermite_peak(t: ArrayLike, f: ArrayLike, dfdt: ArrayLike) -> tuple[float, float]:
     """(max |f|, its time) of a sampled signal with its derivative: the cubic
     Hermite interpolant's largest |value| on every interval (error O(h**4),
     where the samples alone miss up to 1 - cos(pi / samples per period))."""
@@ -173,18 +178,21 @@ class ForceTruncation(JsonRecord):
         return self.modes_needed_base_moment or self.modes_available
 
 
-def _pillar_response(pm: PillarModes, k: int, omega, damping, load) -> np.ndarray:
+def _pillar_response(pm: PillarModes, k: int, omega: NDArray[np.float64], damping: ArrayLike,
+                     load: ArrayLike) -> NDArray[np.complex128]:
     """(n_w, k) modal coordinates of the first k modes under a harmonic load
     (per mode: 1 for a unit tip force, -L_j for a unit ground acceleration)."""
     m, kk = np.asarray(pm.modal_mass)[:k], np.asarray(pm.modal_stiffness)[:k]
     f = np.asarray(load, dtype=float)[:k]
     C = np.asarray(damping, dtype=float)[:k, :k]
     D = np.diag(kk)[None] - (omega**2)[:, None, None] * np.diag(m)[None] + 1j * omega[:, None, None] * C[None]
-    return np.linalg.solve(D, np.broadcast_to(f.astype(complex), (len(omega), k))[..., None])[..., 0]
+    eta: NDArray[np.complex128] = np.linalg.solve(
+        D, np.broadcast_to(f.astype(complex), (len(omega), k))[..., None])[..., 0]
+    return eta
 
 
-def force_truncation(pm: PillarModes, band_top: float, damping, height: float,
-                     mass_per_length: float, top_mass: float, tip_statics: dict,
+def force_truncation(pm: PillarModes, band_top: float, damping: ArrayLike, height: float,
+                     mass_per_length: float, top_mass: float, tip_statics: dict[str, float],
                      tolerance: float = FORCE_TOLERANCE, points: int = 600) -> ForceTruncation:
     """Errors of the first k modes on the tip, the base moment and the base shear.
 
@@ -210,7 +218,8 @@ def force_truncation(pm: PillarModes, band_top: float, damping, height: float,
     i0 = int(np.argmin(np.abs(np.asarray(pm.section_heights))))
     M0, V0 = np.asarray(pm.moment_shapes)[i0], np.asarray(pm.shear_shapes)[i0]
     kk = np.asarray(pm.modal_stiffness)
-    statics = static_resultants(np.array([pm.section_heights[i0]]), height, mass_per_length, top_mass)
+    statics = static_resultants(np.asarray(pm.section_heights)[i0:i0 + 1], height, mass_per_length,
+                                top_mass)
     loads = {"tip": np.ones(n), "base": -np.asarray(pm.participation)}
     errors = np.zeros((n, 3))
     for name, f in loads.items():
@@ -239,12 +248,12 @@ def force_truncation(pm: PillarModes, band_top: float, damping, height: float,
                            statement)
 
 
-def tip_dashpot(count: int, tip_damping: float) -> np.ndarray:
+def tip_dashpot(count: int, tip_damping: float) -> NDArray[np.float64]:
     """The modal damping matrix of a dashpot b1 at the tip (every pair: b1, tip = sum eta) (N*s/m)."""
     return np.full((count, count), float(tip_damping))
 
 
-def modal_damping(pm: PillarModes, tip_damping: float) -> np.ndarray:
+def modal_damping(pm: PillarModes, tip_damping: float) -> NDArray[np.float64]:
     """The modal model's damping of the pillar: its modal ratios, else the tip dashpot (N*s/m)."""
     if pm.damping_ratio is not None:
         return np.diag(2 * np.asarray(pm.damping_ratio) * pm.omega * pm.modal_mass)
@@ -256,7 +265,8 @@ def section_modulus(section: TubeSection) -> float:
     return section.second_moment / (section.outer_diameter / 2)
 
 
-def thin_tube_shear_stress(shear, section: TubeSection) -> np.ndarray:
+def thin_tube_shear_stress(shear: ArrayLike, section: TubeSection) -> NDArray[np.float64]:
     """Largest shear stress of a thin circular tube, 2 V / A at the neutral axis (Pa)."""
-    return 2 * np.abs(np.asarray(shear, dtype=float)) / section.area
+    stress: NDArray[np.float64] = 2 * np.abs(np.asarray(shear, dtype=float)) / section.area
+    return stress
 

@@ -29,6 +29,7 @@ most a mode can require.  Steel's own damping (zeta ~ 0.2-0.5 %) gives AF >
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ..provenance import JsonRecord
@@ -103,7 +104,7 @@ def separation(running_speed: float, mode: ModeEntry) -> SeparationRow:
                          "pass" if act >= req else "fail")
 
 
-def separation_table(running_speeds, modes, band_top: float | None = None) -> tuple[SeparationRow, ...]:
+def separation_table(running_speeds: Iterable[float], modes: Iterable[ModeEntry], band_top: float | None = None) -> tuple[SeparationRow, ...]:
     """Every running speed against every mode (up to ``band_top``, rad/s, when given)."""
     return tuple(separation(w, m) for w in running_speeds for m in modes
                  if band_top is None or m.omega <= band_top)

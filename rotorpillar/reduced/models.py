@@ -10,30 +10,34 @@ computed here.
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..errors import InputError
+from ..scene import Scene
 from .excitation import GroundMotion, load_record, paper_pulse
 from .pillar_modes import PillarModes, beam_pillar_modes, modes_in_band
 from .reduction import pillar_closed_forms, resolve_reduction
-from .rotor_models import beam_model, modal_model, paper_model
-from .system import reduced_system
+from .rotor_models import RotorStructure, beam_model, modal_model, paper_model
+from .system import ReducedSystem, reduced_system
 
 #: the most pillar modes a modal model picks from
 MAX_CANDIDATE_MODES = 12
 
 
-def paper_system(scene):
+def paper_system(scene: Scene) -> tuple[ReducedSystem, dict[str, Any]]:
     """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's Eq. 2)."""
-    red = resolve_reduction(scene, pillar_closed_forms(scene))
-    return reduced_system(scene, red["tip_mass"], red["tip_stiffness"]), red
+    red = resolve_reduction(scene, pillar_closed_forms(scene.pillar))
+    return reduced_system(scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping,
+                          red["tip_mass"], red["tip_stiffness"]), red
 
 
-def beam_candidates(scene, count: int = MAX_CANDIDATE_MODES) -> PillarModes:
+def beam_candidates(scene: Scene, count: int = MAX_CANDIDATE_MODES) -> PillarModes:
     """The first ``count`` pillar modes of the scene's 1D beam ([modal_model])."""
     m = scene.modal_model
-    return beam_pillar_modes(scene, count, m.theory, m.elements, m.gondola_inertia)
+    return beam_pillar_modes(scene.pillar, scene.gondola.mass, count, m.theory, m.elements, m.gondola_inertia)
 
 
-def candidate_modes(scene, pillar_modes: PillarModes | None = None) -> PillarModes:
+def candidate_modes(scene: Scene, pillar_modes: PillarModes | None = None) -> PillarModes:
     """The modes a modal model picks from: ``pillar_modes`` when given, else
     the beam's; the 3D source must be given (InputError otherwise)."""
     if pillar_modes is not None:
@@ -45,8 +49,8 @@ def candidate_modes(scene, pillar_modes: PillarModes | None = None) -> PillarMod
                      "rotorpillar.chain.resolve(scene, out_dir).modes)")
 
 
-def build_model(scene, which: str, band_top: float | None = None, modes: int | None = None,
-                pillar_modes: PillarModes | None = None):
+def build_model(scene: Scene, which: str, band_top: float | None = None, modes: int | None = None,
+                pillar_modes: PillarModes | None = None) -> tuple[RotorStructure, dict[str, Any]]:
     """(model, info) for "paper", "modal" or "beam"; the modal model keeps ``modes``
     modes, or those below ``band_top`` (rad/s), of ``candidate_modes``; the
     beam is the full-order 1D beam ([full_order] beam_elements, [modal_model]
@@ -57,7 +61,8 @@ def build_model(scene, which: str, band_top: float | None = None, modes: int | N
     if which == "beam":
         mm = scene.modal_model
         n = scene.full_order.beam_elements or mm.elements
-        model = beam_model(scene, n, mm.theory, mm.gondola_inertia)
+        model = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, n, mm.theory,
+                           mm.gondola_inertia)
         return model, {"elements": n, "theory": mm.theory, "dofs": model.n,
                        "element_source": "full_order.beam_elements" if scene.full_order.beam_elements
                        else "modal_model.elements"}
@@ -77,7 +82,7 @@ def build_model(scene, which: str, band_top: float | None = None, modes: int | N
     return model, info
 
 
-def scene_motion(scene) -> GroundMotion:
+def scene_motion(scene: Scene) -> GroundMotion:
     """The scene's [excitation] as a GroundMotion."""
     x = scene.excitation
     if x.kind == "paper":

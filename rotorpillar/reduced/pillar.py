@@ -19,11 +19,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from collections.abc import Callable
 from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import expm
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
+
+from ..scene import Pillar
 
 #: Euler-Bernoulli cantilever: the first mode's modal mass over its tip value
 #: squared, per unit beam mass, is exactly 1/4 (the paper's Eq. 2 in the limit n -> inf).
@@ -70,7 +74,7 @@ def tube_section(outer_diameter: float, inner_diameter: float, density: float) -
     return TubeSection(outer_diameter, inner_diameter, density)
 
 
-def section_of(pillar) -> TubeSection:
+def section_of(pillar: Pillar) -> TubeSection:
     """The tube section of a scene's ``[pillar]``."""
     return TubeSection(pillar.outer_diameter, pillar.inner_diameter, pillar.density)
 
@@ -89,7 +93,7 @@ def cantilever_root(k: int) -> float:
         raise ValueError("mode number k must be >= 1")
     guess = (2 * k - 1) * math.pi / 2
     lo, hi = (1.5, 2.5) if k == 1 else (guess - 0.3, guess + 0.3)
-    return brentq(lambda x: math.cos(x) + 1.0 / math.cosh(x), lo, hi, xtol=1e-15)
+    return float(brentq(lambda x: math.cos(x) + 1.0 / math.cosh(x), lo, hi, xtol=1e-15))
 
 
 def omega_euler_bernoulli(E: float, I: float, mass_per_length: float, H: float, k: int = 1) -> float:
@@ -100,7 +104,7 @@ def omega_euler_bernoulli(E: float, I: float, mass_per_length: float, H: float, 
     return cantilever_root(k) ** 2 * math.sqrt(E * I / (mass_per_length * H**4))
 
 
-def cantilever_mode(xi, k: int = 1):
+def cantilever_mode(xi: ArrayLike, k: int = 1) -> NDArray[np.float64]:
     """Shape of the k-th Euler-Bernoulli cantilever mode at xi = x/H in [0, 1].
 
     Normalised so that the integral of its square over [0, 1] is 1; the tip
@@ -111,7 +115,8 @@ def cantilever_mode(xi, k: int = 1):
     # The bounded form: cosh - sinh = exp(-x) keeps it accurate for large k.
     sigma = (math.cosh(b) + math.cos(b)) / (math.sinh(b) + math.sin(b))
     x = b * xi
-    return (np.cosh(x) - sigma * np.sinh(x)) - np.cos(x) + sigma * np.sin(x)
+    shape: NDArray[np.float64] = (np.cosh(x) - sigma * np.sinh(x)) - np.cos(x) + sigma * np.sin(x)
+    return shape
 
 
 # --------------------------------------------------------------------------
@@ -137,10 +142,10 @@ def tip_mass_continuous(mass: float) -> float:
     return CONTINUOUS_TIP_MASS_RATIO * mass
 
 
-_GAUSS = np.polynomial.legendre.leggauss(12)  # exact for polynomials up to degree 23
+_GAUSS: tuple[NDArray[np.float64], NDArray[np.float64]] = np.polynomial.legendre.leggauss(12)  # type: ignore[no-untyped-call]  # numpy's polynomial stubs leave leggauss untyped; exact for polynomials up to degree 23
 
 
-def _integrate01(f) -> float:
+def _integrate01(f: Callable[[NDArray[np.float64]], NDArray[np.float64]]) -> float:
     x, w = _GAUSS
     xi = 0.5 * (x + 1.0)
     return float(0.5 * np.sum(w * f(xi)))
@@ -163,7 +168,8 @@ class RayleighReduction:
 
 # Static deflection shapes of a cantilever, normalised to 1 at the tip, and
 # their second derivatives (in xi).
-_SHAPES = {
+_Shape = Callable[[NDArray[np.float64]], NDArray[np.float64]]
+_SHAPES: dict[str, tuple[_Shape, _Shape]] = {
     # Under its own weight (uniform load): Rayleigh's classical choice.
     "uniform_load": (lambda s: (s**4 - 4 * s**3 + 6 * s**2) / 3,
                      lambda s: 4 * (1 - s) ** 2),
@@ -197,7 +203,8 @@ def cowper_shear_coefficient(outer_diameter: float, inner_diameter: float, nu: f
     return 6 * (1 + nu) * a / ((7 + 6 * nu) * a + (20 + 12 * nu) * m**2)
 
 
-def _timoshenko_determinant(omega, E, G, kappa, rho, A, I, H, rotary_inertia=True):
+def _timoshenko_determinant(omega: float, E: float, G: float, kappa: float, rho: float, A: float,
+                            I: float, H: float, rotary_inertia: bool = True) -> float:
     """Boundary determinant of the clamped-free Timoshenko beam at omega.
 
     State y = [w, w', psi, psi'] obeys y' = S y with
@@ -214,7 +221,7 @@ def _timoshenko_determinant(omega, E, G, kappa, rho, A, I, H, rotary_inertia=Tru
     ])
     T = expm(S * H)
     # columns of T acting on the free unknowns w'(0), psi'(0)
-    return (T[3, 1] * (T[1, 3] - T[2, 3]) - T[3, 3] * (T[1, 1] - T[2, 1]))
+    return float(T[3, 1] * (T[1, 3] - T[2, 3]) - T[3, 3] * (T[1, 1] - T[2, 1]))
 
 
 def omega_timoshenko(E: float, nu: float, kappa: float, rho: float, A: float, I: float,
@@ -234,11 +241,13 @@ def omega_timoshenko(E: float, nu: float, kappa: float, rho: float, A: float, I:
         raise ValueError("beam too slender for the Timoshenko transfer matrix "
                          "(lambda H > 300): use rotorpillar.reduced.beam_fe")
     w_eb = omega_euler_bernoulli(E, I, m_rho, H, k)
-    det = lambda w: _timoshenko_determinant(w, E, G, kappa, rho, A, I, H, rotary_inertia)
+    def det(w: float) -> float:
+        return _timoshenko_determinant(w, E, G, kappa, rho, A, I, H, rotary_inertia)
+
     grid = np.linspace(1e-6 * w_eb, w_eb * 1.000001, 400 * k)
     vals = np.array([det(w) for w in grid])
     changes = np.nonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))[0]
     if len(changes) < k:
         raise RuntimeError("Timoshenko root not bracketed below the Euler-Bernoulli value")
     i = changes[k - 1]
-    return brentq(det, grid[i], grid[i + 1], xtol=1e-12 * w_eb)
+    return float(brentq(det, grid[i], grid[i + 1], xtol=1e-12 * w_eb))

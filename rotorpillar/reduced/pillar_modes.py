@@ -18,7 +18,8 @@ model (rotorpillar.fem3d) through ``pillar_modes_from_arrays``.  Nothing here
 imports dolfinx.
 
 >>> from rotorpillar.scene import load_scene
->>> pm = beam_pillar_modes(load_scene("paper"), 3, theory="euler", elements=40)
+>>> paper = load_scene("paper")
+>>> pm = beam_pillar_modes(paper.pillar, paper.gondola.mass, 3, theory="euler", elements=40)
 >>> [round(w, 2) for w in pm.omega]
 [25.92, 170.57, 491.23]
 >>> round(float(pm.effective_mass_fraction(3)), 3)
@@ -30,11 +31,14 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
 from ..errors import InputError
+from ..scene import Pillar
 from .beam_fe import THEORIES, BeamProperties, assemble, section_forces
 from .pillar import cowper_shear_coefficient, section_of
 
@@ -42,35 +46,35 @@ from .pillar import cowper_shear_coefficient, section_of
 @dataclass(frozen=True, eq=False)
 class PillarModes:
     """Bending modes of the pillar with the gondola on top, unit tip deflection."""
-    omega: np.ndarray
+    omega: NDArray[np.float64]
     """(k,) natural angular frequencies, ascending (rad/s)"""
-    modal_mass: np.ndarray
+    modal_mass: NDArray[np.float64]
     """(k,) m_j with phi_j(tip) = 1 (kg)"""
-    participation: np.ndarray
+    participation: NDArray[np.float64]
     """(k,) L_j = phi_j^T M r (kg)"""
     total_mass: float
     """r^T M r: everything the base carries in X, pillar and gondola (kg)"""
     source: str
     """where the modes come from, e.g. "beam:timoshenko:40" or "fem3d\""""
-    damping_ratio: np.ndarray | None = None
+    damping_ratio: NDArray[np.float64] | None = None
     """(k,) modal damping ratios, if the source gives them (-)"""
-    heights: np.ndarray | None = None
+    heights: NDArray[np.float64] | None = None
     """(n_nodes,) node heights of the shapes (m)"""
-    shapes: np.ndarray | None = None
+    shapes: NDArray[np.float64] | None = None
     """(n_nodes, k) lateral deflection along the height, 1 at the tip (m/m)"""
-    notes: dict = field(default_factory=dict)
-    section_heights: np.ndarray | None = None
+    notes: dict[str, Any] = field(default_factory=dict)
+    section_heights: NDArray[np.float64] | None = None
     """(n_z,) heights of the sections whose resultants each mode carries, base
     (0) first (m)"""
-    moment_shapes: np.ndarray | None = None
+    moment_shapes: NDArray[np.float64] | None = None
     """(n_z, k) bending moment M_j(z) at ``section_heights`` per unit modal
     coordinate: the y-moment the part above exerts on the part below, about
     the section's centre, positive for a tip pushed along +X (N*m per m)"""
-    shear_shapes: np.ndarray | None = None
+    shear_shapes: NDArray[np.float64] | None = None
     """(n_z, k) shear force V_j(z) in X that the part above exerts on the part
     below, per unit modal coordinate (N per m)"""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         k = len(self.omega)
         for name in ("modal_mass", "participation"):
             if len(getattr(self, name)) != k:
@@ -90,7 +94,7 @@ class PillarModes:
         return len(self.omega)
 
     @property
-    def modal_stiffness(self) -> np.ndarray:
+    def modal_stiffness(self) -> NDArray[np.float64]:
         """k_j = omega_j**2 m_j (N/m)"""
         return np.asarray(self.omega) ** 2 * np.asarray(self.modal_mass)
 
@@ -104,7 +108,9 @@ class PillarModes:
         """The first k modes."""
         if not 1 <= k <= self.count:
             raise ValueError(f"k must be in 1..{self.count}")
-        cut = lambda a: None if a is None else np.asarray(a)[..., :k]
+        def cut(a: NDArray[np.float64] | None) -> NDArray[np.float64] | None:
+            return None if a is None else np.asarray(a)[..., :k]
+
         return PillarModes(np.asarray(self.omega)[:k], np.asarray(self.modal_mass)[:k],
                            np.asarray(self.participation)[:k], self.total_mass, self.source,
                            cut(self.damping_ratio), self.heights, cut(self.shapes), dict(self.notes),
@@ -122,7 +128,7 @@ class PillarModes:
         return dataclasses.replace(self, omega=np.asarray(self.omega) * factor,
                                    notes={**self.notes, "frequency_scale": float(factor)})
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         """Every field, arrays as lists: :meth:`from_json` rebuilds it exactly."""
         out = {}
         for f in dataclasses.fields(self):
@@ -131,13 +137,13 @@ class PillarModes:
         return out
 
     @classmethod
-    def from_json(cls, doc: dict) -> "PillarModes":
-        arrays = {f.name for f in dataclasses.fields(cls) if "ndarray" in str(f.type)}
+    def from_json(cls, doc: dict[str, Any]) -> "PillarModes":
+        arrays = {f.name for f in dataclasses.fields(cls) if "ndarray" in str(f.type) or "NDArray" in str(f.type)}
         known = {f.name for f in dataclasses.fields(cls)}
-        return cls(**{k: (None if v is None else np.asarray(v, dtype=float)) if k in arrays else v
+        return cls(**{k: (None if v is None else np.asarray(v, dtype=float)) if k in arrays else v  # type: ignore[arg-type]  # one dict for every field: each value's type is the field's, which mypy cannot see per key
                       for k, v in doc.items() if k in known})
 
-    def describe(self) -> dict:
+    def describe(self) -> dict[str, Any]:
         return {"source": self.source, "count": self.count, "omega": list(map(float, self.omega)),
                 "frequency_hz": [float(w) / (2 * math.pi) for w in self.omega],
                 "modal_mass": list(map(float, self.modal_mass)),
@@ -149,27 +155,27 @@ class PillarModes:
                 **self.notes}
 
 
-def beam_properties(scene, theory: str = "timoshenko") -> BeamProperties:
-    """The scene's tube as a 1D beam (Cowper's shear coefficient for Timoshenko)."""
-    p = scene.pillar
+def beam_properties(pillar: Pillar, theory: str = "timoshenko") -> BeamProperties:
+    """The ``[pillar]`` tube as a 1D beam (Cowper's shear coefficient for Timoshenko)."""
+    p = pillar
     sec = section_of(p)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
     return BeamProperties(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area,
                           sec.second_moment, p.height)
 
 
-def beam_pillar_modes(scene, n_modes: int, theory: str = "timoshenko", elements: int = 40,
-                      gondola_inertia: float = 0.0) -> PillarModes:
+def beam_pillar_modes(pillar: Pillar, gondola_mass: float, n_modes: int, theory: str = "timoshenko",
+                      elements: int = 40, gondola_inertia: float = 0.0) -> PillarModes:
     """The first ``n_modes`` modes of the 1D beam with the gondola on top.
 
-    The gondola is a rigid mass at the tip (and, if given, a rotary inertia
+    The gondola is a rigid mass at the tip (``gondola_mass``, kg) (and, if given, a rotary inertia
     about the tip); the rotor is not included: the modal model attaches it
     through the shaft.
     """
     if theory not in THEORIES:
         raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
-    bp = beam_properties(scene, theory)
-    K, M = assemble(bp, elements, theory, scene.gondola.mass, gondola_inertia)
+    bp = beam_properties(pillar, theory)
+    K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
     n = K.shape[0]
     k = min(n_modes, n)
     mu, vec = eigh(M, K, subset_by_index=[n - k, n - 1])        # as beam_fe: lowest modes stable
@@ -183,7 +189,7 @@ def beam_pillar_modes(scene, n_modes: int, theory: str = "timoshenko", elements:
     r[0::2] = 1.0
     mj = np.einsum("ij,ik,kj->j", phi, M, phi)
     Lj = phi.T @ M @ r
-    heights = np.linspace(0.0, scene.pillar.height, elements + 1)
+    heights = np.linspace(0.0, pillar.height, elements + 1)
     shapes = np.zeros((elements + 1, k))
     shapes[1:] = phi[0::2]
     full = np.zeros((n + 2, k))
@@ -191,18 +197,24 @@ def beam_pillar_modes(scene, n_modes: int, theory: str = "timoshenko", elements:
     shear, moment = section_forces(bp, elements, theory, full)
     return PillarModes(omega, mj, Lj, float(r @ M @ r), f"beam:{theory}:{elements}",
                        None, heights, shapes,
-                       {"gondola_mass": scene.gondola.mass, "gondola_inertia": gondola_inertia},
+                       {"gondola_mass": gondola_mass, "gondola_inertia": gondola_inertia},
                        heights, moment, shear)
 
 
-def pillar_modes_from_arrays(omega, modal_mass, participation, total_mass, source: str = "fem3d",
-                             damping_ratio=None, heights=None, shapes=None, section_heights=None,
-                             moment_shapes=None, shear_shapes=None) -> PillarModes:
+def pillar_modes_from_arrays(omega: ArrayLike, modal_mass: ArrayLike, participation: ArrayLike,
+                             total_mass: float, source: str = "fem3d",
+                             damping_ratio: ArrayLike | None = None, heights: ArrayLike | None = None,
+                             shapes: ArrayLike | None = None,
+                             section_heights: ArrayLike | None = None,
+                             moment_shapes: ArrayLike | None = None,
+                             shear_shapes: ArrayLike | None = None) -> PillarModes:
     """Modes from another solver (e.g. rotorpillar.fem3d's modal.json), tip-scaled.
 
     Arrays as documented on PillarModes; bad data raise InputError.
     """
-    arr = lambda a: None if a is None else np.asarray(a, float)
+    def arr(a: ArrayLike | None) -> NDArray[np.float64] | None:
+        return None if a is None else np.asarray(a, float)
+
     try:
         return PillarModes(np.asarray(omega, float), np.asarray(modal_mass, float),
                            np.asarray(participation, float), float(total_mass), source,
@@ -212,12 +224,13 @@ def pillar_modes_from_arrays(omega, modal_mass, participation, total_mass, sourc
         raise InputError(f"pillar modes from {source}: {exc}") from None
 
 
-def modes_in_band(omega, band_top: float, minimum: int = 1) -> int:
+def modes_in_band(omega: ArrayLike, band_top: float, minimum: int = 1) -> int:
     """How many modes lie below ``band_top`` (at least ``minimum``)."""
     return max(minimum, int(np.sum(np.asarray(omega) <= band_top)))
 
 
-def beam_tip_reduction(scene, theory: str = "timoshenko", elements: int = 40) -> tuple[float, float, float]:
+def beam_tip_reduction(pillar: Pillar, theory: str = "timoshenko",
+                       elements: int = 40) -> tuple[float, float, float]:
     """Eq. 2 on the bare beam's first mode: (m_r in kg, c1 = m_r omega**2 in N/m, omega in rad/s).
 
     The first mode of the bare cantilever (no gondola) scaled to a unit tip
@@ -225,7 +238,7 @@ def beam_tip_reduction(scene, theory: str = "timoshenko", elements: int = 40) ->
     which for the continuous Euler-Bernoulli beam is m_col / 4.
 
     >>> from rotorpillar.scene import load_scene
-    >>> m_r, c1, w = beam_tip_reduction(load_scene("paper"), "euler", 40)
+    >>> m_r, c1, w = beam_tip_reduction(load_scene("paper").pillar, "euler", 40)
     >>> from rotorpillar.reduced.pillar import section_of
     >>> p = load_scene("paper").pillar
     >>> round(m_r / (section_of(p).mass_per_length * p.height / 4), 6)
@@ -233,7 +246,7 @@ def beam_tip_reduction(scene, theory: str = "timoshenko", elements: int = 40) ->
     """
     if theory not in THEORIES:
         raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
-    K, M = assemble(beam_properties(scene, theory), elements, theory, 0.0, 0.0)
+    K, M = assemble(beam_properties(pillar, theory), elements, theory, 0.0, 0.0)
     n = K.shape[0]
     mu, vec = eigh(M, K, subset_by_index=[n - 1, n - 1])
     omega = 1.0 / math.sqrt(mu[0])

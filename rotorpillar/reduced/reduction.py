@@ -9,8 +9,10 @@ caller: this package never builds the 3D model itself).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
-from ..scene import Scene, SceneError
+from ..scene import Pillar, Scene, SceneError
 from .pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bernoulli,
                      omega_timoshenko, rayleigh_reduction, section_of,
                      tip_mass_continuous, tip_mass_lumped)
@@ -18,9 +20,10 @@ from .pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bern
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
 
-def pillar_closed_forms(scene: Scene) -> dict:
-    """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare tube."""
-    p = scene.pillar
+def pillar_closed_forms(pillar: Pillar) -> dict[str, Any]:
+    """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare
+    tube of ``[pillar]``."""
+    p = pillar
     sec = section_of(p)
     I, A, m_rho = sec.second_moment, sec.area, sec.mass_per_length
     mass = m_rho * p.height
@@ -58,7 +61,9 @@ def pillar_closed_forms(scene: Scene) -> dict:
     }
 
 
-def resolve_reduction(scene: Scene, closed: dict, fem3d_reduction=None) -> dict:
+def resolve_reduction(scene: Scene, closed: dict[str, Any],
+                      fem3d_reduction: Callable[[Scene], tuple[float, float]] | None = None
+                      ) -> dict[str, Any]:
     """The tip mass and stiffness the reduced model uses, and where each came from.
 
     ``fem3d_reduction`` is a callable scene -> (m_reduced, tip_stiffness), used

@@ -38,13 +38,21 @@ import math
 
 import numpy as np
 from numba import njit
+from numpy.typing import NDArray
+
+#: A float64 array: every array the kernels take.
+Floats = NDArray[np.float64]
+#: The model's arrays as one tuple (Minv, Ks, C, d, base, scal, sched, gpar, gtab): above.
+Packed = tuple[Floats, Floats, Floats, Floats, Floats, Floats, Floats, Floats, Floats]
 
 N_WORK = 4
 #: status codes of the integrators
 OK, MAX_STEPS, STEP_TOO_SMALL, NOT_FINITE, NEWTON_FAILED = 0, 1, 2, 3, 4
 
 
-def eq4_rhs(y, m_A, m_C, J, e, c1, c2, b1, b2, M0, s, k, q5=0.0, q5_rate=0.0, q6=0.0, q6_rate=0.0):
+def eq4_rhs(y: Floats, m_A: float, m_C: float, J: float, e: float, c1: float, c2: float,
+            b1: float, b2: float, M0: float, s: float, k: float, q5: float = 0.0,
+            q5_rate: float = 0.0, q6: float = 0.0, q6_rate: float = 0.0) -> Floats:
     """Eq. 4 as published, the reference for deriv_flat: y' for y = (q1..q4, q1'..q4').
 
     q1 pillar tip X, q2 and q3 rotor mass centre X and Y, q4 rotor angle (m,
@@ -74,7 +82,8 @@ def eq4_rhs(y, m_A, m_C, J, e, c1, c2, b1, b2, M0, s, k, q5=0.0, q5_rate=0.0, q6
 
 
 @njit(cache=True)
-def ground_flat(t, a, o_gpar, o_gtab, ng):
+def ground_flat(t: float, a: Floats, o_gpar: int, o_gtab: int,
+                ng: int) -> tuple[float, float, float]:
     """Ground displacement, velocity, acceleration at t (m, m/s, m/s**2), from
     gpar at a[o_gpar:] and the table gtab (3, ng) at a[o_gtab:] (``layout``)."""
     kind = int(a[o_gpar])
@@ -101,7 +110,7 @@ def ground_flat(t, a, o_gpar, o_gtab, ng):
 
 
 @njit(cache=True)
-def drive_flat(t, a, o, m):
+def drive_flat(t: float, a: Floats, o: int, m: int) -> tuple[float, float]:
     """Motor M0 (N*m) and slope s (N*m*s) at t: piecewise linear, held outside;
     the schedule (3, m) of knot times, M0, s at a[o:] (``layout``)."""
     if m == 1 or t <= a[o]:
@@ -124,7 +133,7 @@ def drive_flat(t, a, o, m):
 
 
 @njit(cache=True)
-def drive_at(t, sched):
+def drive_at(t: float, sched: Floats) -> tuple[float, float]:
     """``drive_flat`` of a schedule (3, m)."""
     return drive_flat(t, sched.ravel(), 0, sched.shape[1])
 
@@ -139,7 +148,8 @@ HEADER = 3
 
 
 @njit(cache=True, inline="always")
-def layout(nx, m, ng):
+def layout(nx: int, m: int, ng: int) -> tuple[int, int, int, int, int, int, int, int, int,
+                                            int, int]:
     """Offsets in par of Minv (n, n), Ks, C (nx, nx), d (nx), base (4, nx), scal (4),
     sched (3, m), gpar (6), gtab (3, ng) and the force scratch F (n); then the size."""
     n = nx + 2
@@ -157,7 +167,7 @@ def layout(nx, m, ng):
 
 
 @njit(cache=True)
-def _put(par, k, a):
+def _put(par: Floats, k: int, a: Floats) -> None:
     for i in range(a.shape[0]):
         for j in range(a.shape[1]):
             par[k] = a[i, j]
@@ -165,7 +175,7 @@ def _put(par, k, a):
 
 
 @njit(cache=True)
-def flatten(P):
+def flatten(P: Packed) -> Floats:
     """The tuple P as one vector (``layout``), with room for the forces."""
     Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
     if gpar.shape[0] != 6:
@@ -187,7 +197,7 @@ def flatten(P):
 
 
 @njit(cache=True)
-def deriv_flat(t, y, par, out, o):
+def deriv_flat(t: float, y: Floats, par: Floats, out: Floats, o: int) -> None:
     """Eq. 4 in generic form: the first-order right-hand side y' of the flat model ``par``.
 
     Written into out[o:o + 2n + 4].
@@ -249,7 +259,7 @@ def deriv_flat(t, y, par, out, o):
 
 
 @njit(cache=True)
-def jacobians(t, q, v, P, Jq, Jv):
+def jacobians(t: float, q: Floats, v: Floats, P: Packed, Jq: Floats, Jv: Floats) -> None:
     """dF/dq and dF/dv of the forces of ``deriv_flat`` into Jq, Jv."""
     Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
     nx = Ks.shape[0]
@@ -284,7 +294,7 @@ def jacobians(t, q, v, P, Jq, Jv):
 
 
 @njit(cache=True)
-def record_peak(q, n, par, peak, k):
+def record_peak(q: Floats, n: int, par: Floats, peak: Floats, k: int) -> None:
     """peak[k, i] = max(peak[k, i], |q_i|) for i < n; peak[k, n] tracks |tip.z|
     (tip = row 3 of base in par)."""
     nx = n - 2
@@ -301,7 +311,8 @@ def record_peak(q, n, par, peak, k):
 
 
 @njit(cache=True)
-def shaft_deflection(q, shaft, e, out, out_x):
+def shaft_deflection_into(q: Floats, shaft: Floats, e: Floats, out: Floats,
+                          out_x: Floats) -> None:
     """The shaft's deflection (d.z - e cos theta, y - e sin theta) (m) for states
     q (k, n): z = q[:nx], y = q[nx], theta = q[nx + 1]; its size into out (k,),
     its x component into out_x (k,).
@@ -322,7 +333,7 @@ def shaft_deflection(q, shaft, e, out, out_x):
 
 
 @njit(cache=True)
-def rhs_first_order(t, y, par):
+def rhs_first_order(t: float, y: Floats, par: Floats) -> Floats:
     """y' for y = (q, v, work): the first-order form scipy integrates, on the
     flat model ``par`` (``flatten(P)``, once per run)."""
     out = np.empty_like(y)
@@ -331,7 +342,7 @@ def rhs_first_order(t, y, par):
 
 
 @njit(cache=True)
-def jac_first_order(t, y, P):
+def jac_first_order(t: float, y: Floats, P: Packed) -> Floats:
     """d(y')/dy of ``rhs_first_order`` (the work rows are left zero)."""
     Minv = P[0]
     n = Minv.shape[0]

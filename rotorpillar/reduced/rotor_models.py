@@ -41,13 +41,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eig, eigh
 
+from ..scene import Pillar, Rotor, Shaft
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 from .pillar_modes import PillarModes
+from .rhs import Packed
 from .system import ReducedSystem, Resonance
 
 FRAMES = ("absolute", "relative_to_ground")
@@ -60,15 +64,15 @@ class RotorStructure:
     """"paper" or "modal\""""
     coordinates: tuple[str, ...]
     """names of the X coordinates z"""
-    mass: np.ndarray
+    mass: NDArray[np.float64]
     """(nx, nx) M (kg)"""
-    stiffness: np.ndarray
+    stiffness: NDArray[np.float64]
     """(nx, nx) Ks, the structure without the shaft (N/m)"""
-    damping: np.ndarray
+    damping: NDArray[np.float64]
     """(nx, nx) C (N*s/m)"""
-    shaft: np.ndarray
+    shaft: NDArray[np.float64]
     """(nx,) d: shaft deflection in X = d.z - e cos(theta)"""
-    tip: np.ndarray
+    tip: NDArray[np.float64]
     """(nx,) tip X displacement = tip.z"""
     rotor_x: int
     """index of the rotor centre in z"""
@@ -82,16 +86,16 @@ class RotorStructure:
     """m_C (kg)"""
     rotor_inertia: float
     """J_C (kg*m**2)"""
-    base_displacement: np.ndarray
+    base_displacement: NDArray[np.float64]
     """(nx,) kb: force per metre of ground displacement (N/m)"""
-    base_velocity: np.ndarray
+    base_velocity: NDArray[np.float64]
     """(nx,) cb: force per m/s of ground velocity (N*s/m)"""
-    base_acceleration: np.ndarray
+    base_acceleration: NDArray[np.float64]
     """(nx,) mb: force per m/s**2 of ground acceleration (kg)"""
     frame: str
     """"absolute" (paper) or "relative_to_ground" (modal)"""
     pillar_modes: PillarModes | None = None
-    notes: dict = field(default_factory=dict)
+    notes: dict[str, Any] = field(default_factory=dict)
 
     # ------------------------------------------------------------ sizes
     @property
@@ -107,11 +111,11 @@ class RotorStructure:
     def names(self) -> list[str]:
         return list(self.coordinates) + ["rotor_y", "theta"]
 
-    def stiffness_full(self) -> np.ndarray:
+    def stiffness_full(self) -> NDArray[np.float64]:
         """Ks + c2 d d^T: the X stiffness with the shaft (N/m)."""
         return self.stiffness + self.shaft_stiffness * np.outer(self.shaft, self.shaft)
 
-    def full_mass(self) -> np.ndarray:
+    def full_mass(self) -> NDArray[np.float64]:
         n = self.n
         M = np.zeros((n, n))
         M[:self.nx, :self.nx] = self.mass
@@ -119,7 +123,7 @@ class RotorStructure:
         M[-1, -1] = self.rotor_inertia
         return M
 
-    def mass_inverse(self, prescribed_speed: bool = False) -> np.ndarray:
+    def mass_inverse(self, prescribed_speed: bool = False) -> NDArray[np.float64]:
         """Minv; with a prescribed speed theta's row is zero (theta'' = 0)."""
         Minv = np.zeros((self.n, self.n))
         Minv[:self.nx, :self.nx] = np.linalg.inv(self.mass)
@@ -130,10 +134,12 @@ class RotorStructure:
 
     # ------------------------------------------------------------ kernels
     def pack(self, drive: DriveSchedule, motion: GroundMotion, prescribed_speed: bool = False,
-             **overrides) -> tuple:
+             **overrides: float) -> Packed:
         """The tuple P of rotorpillar.reduced.rhs."""
         gpar, gtab = motion.pack()
-        c = lambda a: np.ascontiguousarray(a, dtype=float)
+        def c(a: ArrayLike) -> NDArray[np.float64]:
+            return np.ascontiguousarray(a, dtype=float)
+
         scal = np.array([overrides.get("shaft_stiffness", self.shaft_stiffness),
                          overrides.get("eccentricity", self.eccentricity),
                          self.shaft_damping, drive.load_coefficient], dtype=float)
@@ -143,7 +149,7 @@ class RotorStructure:
                 scal, c(drive.table()), c(gpar), c(gtab))
 
     # ------------------------------------------------------------ energy
-    def energy(self, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def energy(self, q: NDArray[np.float64], v: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Eq. 3 generalised: kinetic and potential energy per row of q, v (J); structure only
         when the last column (theta') is excluded by the caller."""
         nx = self.nx
@@ -157,7 +163,7 @@ class RotorStructure:
         return T, P
 
     # ------------------------------------------------------------ linear analysis
-    def undamped_modes_x(self) -> tuple[np.ndarray, np.ndarray]:
+    def undamped_modes_x(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """omega (ascending) and tip-scaled shapes (nx, nx) of the X structure."""
         lam, U = eigh(self.stiffness_full(), self.mass)
         tipv = self.tip @ U
@@ -181,7 +187,7 @@ class RotorStructure:
                              self.shaft_damping / self.rotor_mass))
         return out
 
-    def damped_frequencies(self) -> list[dict]:
+    def damped_frequencies(self) -> list[dict[str, Any]]:
         """Damped natural frequencies and damping ratios of the linear structure
         (X from the state-space eigenproblem, Y as one oscillator)."""
         nx = self.nx
@@ -199,7 +205,7 @@ class RotorStructure:
                     "damping_ratio": z})
         return out
 
-    def steady_state(self, Omega: float) -> tuple[np.ndarray, complex]:
+    def steady_state(self, Omega: float) -> tuple[NDArray[np.complex128], complex]:
         """Complex amplitudes (Z, Y) of the response to a rotor turning at
         constant Omega, theta = Omega t: z = Re(Z e^{i theta}), y = Re(Y e^{i theta})."""
         c2e = self.shaft_stiffness * self.eccentricity
@@ -208,7 +214,7 @@ class RotorStructure:
         Y = -1j * c2e / (self.shaft_stiffness - self.rotor_mass * Omega**2 + 1j * Omega * self.shaft_damping)
         return Z, Y
 
-    def steady_torque(self, Omega) -> np.ndarray:
+    def steady_torque(self, Omega: ArrayLike) -> NDArray[np.float64]:
         """Averaged shaft torque on the rotor at constant Omega (N*m); negative:
         the structure resists.  -steady_torque is the exact counterpart of
         the paper's Eq. 20 summed over dL_i."""
@@ -221,9 +227,10 @@ class RotorStructure:
         Z = np.linalg.solve(D, rhs)[..., 0]
         Y = -1j * c2e / (self.shaft_stiffness - self.rotor_mass * W**2 + 1j * W * self.shaft_damping)
         out = c2e * ((Z @ self.shaft).imag + Y.real) / 2
-        return out.reshape(np.shape(Omega))
+        torque: NDArray[np.float64] = out.reshape(np.shape(Omega))
+        return torque
 
-    def steady_amplitudes(self, Omega) -> dict:
+    def steady_amplitudes(self, Omega: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """Exact steady amplitudes at constant Omega: tip and rotor X, rotor Y (m)."""
         W = np.atleast_1d(np.asarray(Omega, dtype=float))
         tip, rx, ry = (np.empty_like(W) for _ in range(3))
@@ -232,7 +239,7 @@ class RotorStructure:
             tip[i], rx[i], ry[i] = abs(self.tip @ Z), abs(Z[self.rotor_x]), abs(Y)
         return {"tip_x": tip, "rotor_x": rx, "rotor_y": ry}
 
-    def steady_initial_state(self, Omega: float) -> tuple[np.ndarray, np.ndarray]:
+    def steady_initial_state(self, Omega: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(q0, v0) on the steady response at speed Omega with theta = 0."""
         Z, Y = self.steady_state(Omega)
         q0 = np.zeros(self.n)
@@ -244,7 +251,7 @@ class RotorStructure:
         v0[-1] = Omega
         return q0, v0
 
-    def held_whirl_state(self, Omega: float, theta0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    def held_whirl_state(self, Omega: float, theta0: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(q0, v0): the structure at rest, the rotor in its steady whirl at speed
         Omega on it as if it were held (the 3D full order's start, rotorpillar.fem3d.
         rotor_top.rotor_start): X = c2 e / (c2 - m_C Omega**2 + i Omega b2),
@@ -261,7 +268,7 @@ class RotorStructure:
         """The highest undamped natural frequency of the structure and shaft (rad/s)."""
         return float(max(self.undamped_modes_x()[0].max(), math.sqrt(self.shaft_stiffness / self.rotor_mass)))
 
-    def describe(self) -> dict:
+    def describe(self) -> dict[str, Any]:
         return {"name": self.name, "coordinates": self.names, "frame": self.frame,
                 "nx": self.nx, "mass": self.mass, "stiffness": self.stiffness,
                 "stiffness_with_shaft": self.stiffness_full(), "damping": self.damping,
@@ -333,8 +340,8 @@ def modal_model(modes: PillarModes, rotor_mass: float, rotor_inertia: float, ecc
                "modes": k})
 
 
-def beam_model(scene, elements: int = 10, theory: str = "timoshenko",
-               gondola_inertia: float = 0.0) -> RotorStructure:
+def beam_model(pillar: Pillar, gondola_mass: float, rotor: Rotor, shaft: Shaft, elements: int = 10,
+               theory: str = "timoshenko", gondola_inertia: float = 0.0) -> RotorStructure:
     """Full order: every degree of freedom of the 1D beam (deflection and
     rotation per node, the gondola on top) and the rotor centre in X,
     relative to the ground, with the same physics as ``modal_model`` (b1 as
@@ -342,19 +349,19 @@ def beam_model(scene, elements: int = 10, theory: str = "timoshenko",
     modes is this model in other coordinates; with fewer it is its reduction."""
     from .beam_fe import assemble
     from .pillar_modes import beam_properties
-    bp = beam_properties(scene, theory)
-    K, M = assemble(bp, elements, theory, scene.gondola.mass, gondola_inertia)
+    bp = beam_properties(pillar, theory)
+    K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
     nb = K.shape[0]
     nx = nb + 1
     tip_dof = nb - 2                      # (w, psi) per node: the top node's w
     Mx = np.zeros((nx, nx))
     Mx[:nb, :nb] = M
-    Mx[nb, nb] = scene.rotor.mass
+    Mx[nb, nb] = rotor.mass
     Ks = np.zeros((nx, nx))
     Ks[:nb, :nb] = K
     C = np.zeros((nx, nx))
-    C[tip_dof, tip_dof] = scene.pillar.damping
-    C[nb, nb] = scene.shaft.damping
+    C[tip_dof, tip_dof] = pillar.damping
+    C[nb, nb] = shaft.damping
     d = np.zeros(nx)
     d[tip_dof], d[nb] = -1.0, 1.0
     tip = np.zeros(nx)
@@ -365,9 +372,9 @@ def beam_model(scene, elements: int = 10, theory: str = "timoshenko",
     names = tuple(f"{'w' if i % 2 == 0 else 'psi'}{i // 2 + 1}" for i in range(nb)) + ("rotor_x",)
     return RotorStructure(
         name="beam", coordinates=names, mass=Mx, stiffness=Ks, damping=C, shaft=d, tip=tip,
-        rotor_x=nb, shaft_stiffness=scene.shaft.stiffness, shaft_damping=scene.shaft.damping,
-        eccentricity=scene.rotor.eccentricity, rotor_mass=scene.rotor.mass,
-        rotor_inertia=scene.rotor.inertia, base_displacement=np.zeros(nx),
+        rotor_x=nb, shaft_stiffness=shaft.stiffness, shaft_damping=shaft.damping,
+        eccentricity=rotor.eccentricity, rotor_mass=rotor.mass,
+        rotor_inertia=rotor.inertia, base_displacement=np.zeros(nx),
         base_velocity=np.zeros(nx), base_acceleration=-(Mx @ r), frame="relative_to_ground",
         notes={"equations": f"full-order 1D {theory} beam, {elements} elements, rotor on its shaft",
                "dofs": nx + 2, "full_order": True})

@@ -9,25 +9,30 @@ predicted and simulated (``passing_torque``).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
 from ..errors import InputError
 from . import averaging as av
 from .drive import DriveSchedule
 from .rotor_models import RotorStructure
-from .integration import simulate_batch
+from .integration import Batch, simulate_batch
 
 
 def stationary_exact(model: RotorStructure, M0: float, slope: float, load: float,
-                     top: float | None = None, n: int = 3000) -> list[dict]:
+                     top: float | None = None, n: int = 3000) -> list[dict[str, Any]]:
     """Stationary speeds of the exact linear torque balance
     M0 - s W - k W**2 + <shaft torque>(W) = 0 and their stability."""
     free = DriveSchedule.constant(M0, slope, load).free_speed()
     res = model.quasi_normal()
     top = top or 1.2 * max(free, max(r.omega for r in res))
-    grid = av.speed_grid(res, top, n)
-    g = lambda W: M0 - slope * W - load * W * abs(W) + float(model.steady_torque(W))
+    grid = av.stationary_speed_grid(res, top, n)
+    def g(W: float) -> float:
+        return M0 - slope * W - load * W * abs(W) + float(model.steady_torque(W))
+
     vals = np.array([g(w) for w in grid])
     out = []
     for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
@@ -44,10 +49,11 @@ def operating_speed(model: RotorStructure, M0: float, slope: float, load: float)
     if not stable:
         raise InputError(f"no stable stationary speed for M0 = {M0:g} N*m: the motor cannot "
                          "drive this machine")
-    return max(stable)
+    return float(max(stable))
 
 
-def averaging_prediction(model: RotorStructure, M0: float, slope: float, load: float) -> dict:
+def averaging_prediction(model: RotorStructure, M0: float, slope: float,
+                         load: float) -> dict[str, Any]:
     """What the paper's Eq. 19-23 predict for this drive on this model's quasi-normal modes."""
     res = model.quasi_normal()
     d = av.analyse_drive(av.Characteristic(M0, slope, load), res)
@@ -62,11 +68,12 @@ def averaging_prediction(model: RotorStructure, M0: float, slope: float, load: f
                             "dL_max": float(av.resistance_increment(r.omega, r))} for r in res]}
 
 
-def exact_folds(model: RotorStructure, slope: float, load: float, top: float) -> list[dict]:
+def exact_folds(model: RotorStructure, slope: float, load: float,
+                top: float) -> list[dict[str, Any]]:
     """Local maxima (A, run-up) and minima (D, run-down) of the exact linear
     F(W) = k W**2 + s W - <shaft torque>(W): the torques where quasi-static
     runs jump."""
-    W = av.speed_grid(model.quasi_normal(), top, 4000)
+    W = av.stationary_speed_grid(model.quasi_normal(), top, 4000)
     F = load * W**2 + slope * W - model.steady_torque(W)
     dF = np.diff(F)
     out = []
@@ -77,7 +84,7 @@ def exact_folds(model: RotorStructure, slope: float, load: float, top: float) ->
 
 
 def predicted_passing_torque(model: RotorStructure, torque_at_zero: float, slope: float,
-                             load: float) -> tuple:
+                             load: float) -> tuple[av.Jump | None, dict[str, Any] | None]:
     """(jump, exact): the first run-up fold of Eq. 19-23 (the lowest A
     fold; None when there is none) and the exact linear torque's A fold next to
     it (``exact_folds`` entry, or None).  ``torque_at_zero`` sets only the top
@@ -94,7 +101,7 @@ def predicted_passing_torque(model: RotorStructure, torque_at_zero: float, slope
 
 
 def passing_torque(model: RotorStructure, drive: DriveSchedule, duration: float, rtol: float,
-                   span: float = 0.2, points: int = 41) -> dict:
+                   span: float = 0.2, points: int = 41) -> dict[str, Any]:
     """The motor torque M0 needed to run up through the first resonance that
     can capture the rotor: predicted (the A fold of Eq. 19-23, and of the
     exact linear torque) and simulated (run-ups from rest for M0 around the
@@ -112,7 +119,7 @@ def passing_torque(model: RotorStructure, drive: DriveSchedule, duration: float,
     threshold = 0.5 * (j.omega_from + j.omega_to)
     M_scene = float(max(drive.torque_at_zero))
 
-    def runs(M):
+    def runs(M: ArrayLike) -> tuple[Batch, NDArray[np.float64], NDArray[np.bool_]]:
         b = simulate_batch(model, drive, duration, torque_scale=np.asarray(M) / M_scene, rtol=rtol,
                            samples=401)
         final = b.Omega[:, -20:].mean(axis=1)
@@ -121,7 +128,7 @@ def passing_torque(model: RotorStructure, drive: DriveSchedule, duration: float,
     grid = M_pred * np.linspace(1 - span, 1 + span, points)
     b1, final1, passed1 = runs(grid)
     wall = b1.wall_seconds
-    out = {"resonance": {"index": r.index, "direction": r.direction, "omega": r.omega, "nu": r.nu},
+    out: dict[str, Any] = {"resonance": {"index": r.index, "direction": r.direction, "omega": r.omega, "nu": r.nu},
            "predicted": M_pred, "predicted_jump": vars(j),
            "predicted_exact_linear": exact[0]["torque_at_zero"] if exact else None,
            "duration": duration, "pass_threshold_speed": threshold,

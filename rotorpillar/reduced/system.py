@@ -34,6 +34,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
+
+from ..scene import Rotor, Shaft
 
 
 @dataclass(frozen=True)
@@ -64,32 +67,34 @@ class ReducedSystem:
     def b0(self) -> float:
         return self.pillar_damping + self.shaft_damping
 
-    def mass_matrix(self) -> np.ndarray:
+    def mass_matrix(self) -> NDArray[np.float64]:
         """X-direction mass matrix of (q1, q2)."""
         return np.diag([self.tip_mass, self.rotor_mass])
 
-    def stiffness_matrix(self) -> np.ndarray:
+    def stiffness_matrix(self) -> NDArray[np.float64]:
         """X-direction stiffness matrix of (q1, q2), as the paper's Eq. 4 has it."""
         c0, c2 = self.c0, self.shaft_stiffness
         return np.array([[c0, -c2], [-c2, c2]])
 
-    def damping_matrix(self) -> np.ndarray:
+    def damping_matrix(self) -> NDArray[np.float64]:
         """X-direction damping matrix of (q1, q2) as the paper's Eq. 4 prints it:
         b0 on q1, absolute b2 on q2 and no coupling term."""
         return np.diag([self.b0, self.shaft_damping])
 
 
-def reduced_system(scene, tip_mass_reduced: float, tip_stiffness: float) -> ReducedSystem:
-    """The paper's system for a scene, given the pillar's tip reduction."""
+def reduced_system(rotor: Rotor, shaft: Shaft, gondola_mass: float, pillar_damping: float,
+                   tip_mass_reduced: float, tip_stiffness: float) -> ReducedSystem:
+    """The paper's system for a rotor on its shaft, a gondola of ``gondola_mass`` (kg) and
+    the pillar's tip reduction (m_r in kg, c1 in N/m; b1 = ``pillar_damping``, N*s/m)."""
     return ReducedSystem(
-        tip_mass=tip_mass_reduced + scene.gondola.mass,
-        rotor_mass=scene.rotor.mass,
-        rotor_inertia=scene.rotor.inertia,
-        eccentricity=scene.rotor.eccentricity,
+        tip_mass=tip_mass_reduced + gondola_mass,
+        rotor_mass=rotor.mass,
+        rotor_inertia=rotor.inertia,
+        eccentricity=rotor.eccentricity,
         pillar_stiffness=tip_stiffness,
-        shaft_stiffness=scene.shaft.stiffness,
-        pillar_damping=scene.pillar.damping,
-        shaft_damping=scene.shaft.damping,
+        shaft_stiffness=shaft.stiffness,
+        pillar_damping=pillar_damping,
+        shaft_damping=shaft.damping,
     )
 
 
@@ -174,4 +179,5 @@ def linear_modes(s: ReducedSystem) -> SystemModes:
     w3 = omega_y(s)
     res.append(Resonance(3, "Y", w3, (0.0, 1.0), s.rotor_mass, c2 * e / s.rotor_mass,
                          c2 * e, s.shaft_damping / s.rotor_mass))
-    return SystemModes(tuple(r.omega for r in res), tuple(res))
+    x1, x2, y = res            # two X resonances, one in Y: the shapes SystemModes states
+    return SystemModes((x1.omega, x2.omega, y.omega), (x1, x2, y))

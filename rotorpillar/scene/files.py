@@ -42,7 +42,7 @@ def read_text_file(path: Path, what: str) -> str:
     return text
 
 
-def read_scene_toml(spec: str | Path) -> tuple[dict, str]:
+def read_scene_toml(spec: str | Path) -> tuple[dict[str, Any], str]:
     """The raw TOML of a scene given by file path or embedded name."""
     path = Path(spec)
     if path.suffix == ".toml" or path.exists() or "/" in str(spec):
@@ -78,7 +78,7 @@ def parse_assignment(text: str) -> tuple[list[str], Any]:
     return path, value
 
 
-def apply_overrides(data: dict, assignments: list[str]) -> dict:
+def apply_overrides(data: dict[str, Any], assignments: list[str]) -> dict[str, Any]:
     """Apply ``--set`` assignments to a raw scene document (a copy)."""
     data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in data.items()}
     for text in assignments:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
+from collections.abc import Mapping, Sequence
 from typing import Any, Optional
 
 from ..errors import InputError
@@ -15,15 +16,16 @@ class SceneError(InputError):
     """Bad scene input; the message is one line naming the key and the range."""
 
 
-def param(doc: str, default: Any = dataclasses.MISSING, *, gt=None, ge=None,
-          lt=None, le=None, choices=None, optional=False):
+def param(doc: str, default: Any = dataclasses.MISSING, *, gt: float | None = None,
+          ge: float | None = None, lt: float | None = None, le: float | None = None,
+          choices: Sequence[Any] | None = None, optional: bool = False) -> Any:
     """A scene field: its docstring (with unit) and its allowed range."""
     meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices,
                 optional=optional)
     return field(default=default, metadata=meta)
 
 
-def _range_text(meta) -> str:
+def _range_text(meta: Mapping[str, Any]) -> str:
     if meta["choices"] is not None:
         return "one of " + ", ".join(repr(c) for c in meta["choices"])
     lo = (f"> {meta['gt']:g}" if meta["gt"] is not None else
@@ -360,6 +362,6 @@ class Scene:
     material: Material = Material()
     description: str = ""
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The resolved scene, as it would be written back to TOML."""
         return dataclasses.asdict(self)

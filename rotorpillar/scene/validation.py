@@ -12,7 +12,7 @@ from .sections import OPTIONAL_SECTIONS, SECTIONS, Scene, SceneError, _range_tex
 
 
 
-def _check_value(key: str, value: Any, f: dataclasses.Field) -> Any:
+def _check_value(key: str, value: Any, f: dataclasses.Field[Any]) -> Any:
     meta = f.metadata
     want = f.type if isinstance(f.type, str) else f.type.__name__
     if value is None:
@@ -48,7 +48,7 @@ def _check_value(key: str, value: Any, f: dataclasses.Field) -> Any:
     return value
 
 
-def _build_section(name: str, cls, table: Any):
+def _build_section(name: str, cls: type[Any], table: Any) -> Any:
     if not isinstance(table, dict):
         raise SceneError(f"[{name}] must be a table of keys, got {type(table).__name__}")
     known = {f.name: f for f in fields(cls)}
@@ -103,7 +103,7 @@ def check_combinations(scene: Scene) -> None:
 SCENE_NAME = re.compile(r"(?!.*\.\.)[^./\\\x00-\x1f][^/\\\x00-\x1f]{0,99}")
 
 
-def scene_from_dict(data: dict, name: str = "scene") -> Scene:
+def scene_from_dict(data: dict[str, Any], name: str = "scene") -> Scene:
     """Validate a parsed TOML document and build the scene."""
     data = dict(data)
     description = data.pop("description", "")

@@ -96,7 +96,7 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
     # (the batch loop's tolerances take the largest e as simulate would)
     top_scene = replace(scene, drive=replace(d, torque_at_zero=M_ref))
     motion = scene_motion(scene) if case == "earthquake" else no_motion()
-    top = scene.modal_model.band_factor * forcing_top(top_scene, case, motion)
+    top = scene.modal_model.band_factor * forcing_top(top_scene.drive, top_scene.load, top_scene.sweep, case, motion)
     model, info = build_model(top_scene, which, top, pillar_modes=pillar_modes)
     kw: dict[str, Any] = dict(torque_scale=M0 / M_ref, slope=per["s"], load=per["k"], eccentricity=per["e"],
               shaft_stiffness=per["c2"], rtol=sim.rtol)

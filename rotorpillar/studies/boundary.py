@@ -41,7 +41,7 @@ def _fold(scene: Scene, which: str, M_top: float, modes_of=None) -> tuple:
     """(averaging's and exact linear passing torque, the index of the resonance
     that fold belongs to, the model's resonances [{index, direction, omega}])."""
     top_scene = replace(scene, drive=replace(scene.drive, torque_at_zero=M_top))
-    top = scene.modal_model.band_factor * forcing_top(top_scene, "runup", None)
+    top = scene.modal_model.band_factor * forcing_top(top_scene.drive, top_scene.load, top_scene.sweep, "runup", None)
     model, _ = build_model(top_scene, which, top,
                            pillar_modes=modes_of(scene) if modes_of is not None else None)
     d, L = scene.drive, scene.load

@@ -15,11 +15,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
 from ..errors import InputError
-from ..scene import CASES
+from ..scene import CASES, Scene
 from ..reduced.accuracy import (FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters,
                        full_order_step)
 from ..reduced.band import forcing_top
@@ -45,14 +46,14 @@ class CaseResult:
     """model_info, initial_speed, excitation_in_model, and the sweep's bins and curves"""
 
 
-def settings_of(scene, integrator: str | None = None) -> Settings:
+def settings_of(scene: Scene, integrator: str | None = None) -> Settings:
     """The scene's [simulate] integration settings, ``integrator`` replacing its method."""
     s = scene.simulate
     return Settings(method=integrator or s.integrator, rtol=s.rtol, time_step=s.time_step,
                     samples=s.samples, max_steps=s.max_steps)
 
 
-def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
+def full_order_step_rule(scene: Scene, case: str, motion: GroundMotion, method: str,
                          model: RotorStructure | None = None) -> StepRule:
     """The beam's step and why (rotorpillar.reduced.accuracy.full_order_step): the
     longest that resolves the fastest forcing (the unbalance's rotation at the
@@ -61,9 +62,9 @@ def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
     shaft, the beam's shear modes): the implicit schemes damp those (rho_inf).
     Central difference (explicit) stays below 0.9 of its stability limit on ``model``."""
     fo = scene.full_order
-    forcing = forcing_frequencies(scene.rotor.eccentricity, forcing_top(scene, case, None), motion)
+    forcing = forcing_frequencies(scene.rotor.eccentricity, forcing_top(scene.drive, scene.load, scene.sweep, case, None), motion)
     if not forcing:                                   # nothing forces the structure: the spin's pace
-        forcing = {"rotor_speed": forcing_top(scene, case, None)}
+        forcing = {"rotor_speed": forcing_top(scene.drive, scene.load, scene.sweep, case, None)}
     rule = full_order_step(method, full_order_parameters(method, fo.rho_inf), forcing,
                            scene.modal_model.band_factor,
                            motion.time_step if motion.kind == "record" else None, fo.time_step)
@@ -75,7 +76,7 @@ def full_order_step_rule(scene, case: str, motion: GroundMotion, method: str,
     return rule
 
 
-def full_order_settings(scene, case: str, motion: GroundMotion, integrator: str | None = None,
+def full_order_settings(scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None,
                         model: RotorStructure | None = None) -> tuple[Settings, StepRule | None]:
     """The beam's settings: [full_order] beam_integrator (or ``integrator``), rho_inf
     and the step of ``full_order_step_rule``; and that rule (None for an adaptive
@@ -89,7 +90,7 @@ def full_order_settings(scene, case: str, motion: GroundMotion, integrator: str 
     return replace(st, time_step=rule.time_step), rule
 
 
-def case_duration(scene, case: str, motion: GroundMotion) -> float:
+def case_duration(scene: Scene, case: str, motion: GroundMotion) -> float:
     """The length of a case's run as ``_run_on`` runs it (s)."""
     sim = scene.simulate
     if case == "earthquake":
@@ -107,7 +108,7 @@ def case_duration(scene, case: str, motion: GroundMotion) -> float:
 BEAM_SECONDS_PER_STEP_DOF2 = 3e-8
 
 
-def check_full_order_budget(scene, case: str, motion: GroundMotion, integrator: str | None = None) -> None:
+def check_full_order_budget(scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None) -> None:
     """Refuse (InputError naming the keys) a beam run estimated above ``simulate.max_steps``,
     before the beam is built: steps = the case's duration over the rule's step."""
     fo = scene.full_order
@@ -130,7 +131,7 @@ def check_full_order_budget(scene, case: str, motion: GroundMotion, integrator: 
         f"{length}, or raise simulate.max_steps")
 
 
-def run_case(scene, case: str, which: str | None = None, integrator: str | None = None,
+def run_case(scene: Scene, case: str, which: str | None = None, integrator: str | None = None,
              modes: int | None = None, truncation: bool = True, progress=None,
              motion: GroundMotion | None = None, pillar_modes: PillarModes | None = None) -> CaseResult:
     """Run one case of the scene; for the modal model also with k + 1 modes.
@@ -146,7 +147,7 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
         motion = scene_motion(scene)
     if which == "beam":                                    # before the beam is built
         check_full_order_budget(scene, case, motion, integrator)
-    top = scene.modal_model.band_factor * forcing_top(scene, case, motion)
+    top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, case, motion)
     model, info = build_model(scene, which, top, modes, pillar_modes)
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" \
         else (None, None)
@@ -159,14 +160,16 @@ def run_case(scene, case: str, which: str | None = None, integrator: str | None 
     return result
 
 
-def with_truncation(scene, result: CaseResult, motion: GroundMotion | None, integrator: str | None = None,
+def with_truncation(scene: Scene, result: CaseResult, motion: GroundMotion | None, integrator: str | None = None,
                     pillar_modes: PillarModes | None = None, progress=None) -> CaseResult:
     """A modal model's result with its truncation estimate: the same case with k + 1 modes."""
     model = result.model
+    assert model.pillar_modes is not None           # a modal model's result
     k = model.pillar_modes.count
     if progress:
         progress(f"truncation check: the same case with {k + 1} modes")
     model2, _ = build_model(scene, "modal", modes=k + 1, pillar_modes=pillar_modes)
+    assert model2.pillar_modes is not None
     if model2.pillar_modes.count == k:
         trunc = {"modes": k, "modes_check": None,
                  "statement": f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
@@ -181,10 +184,12 @@ def truncation_estimate(a: CaseResult, b: CaseResult) -> dict:
     ma, mb = a.summary.max_abs, b.summary.max_abs
     tip_b = np.interp(a.run.t, b.run.t, b.run.tip())
     scale = max(np.max(np.abs(tip_b)), 1e-300)
-    out = {"modes": a.model.pillar_modes.count, "modes_check": b.model.pillar_modes.count,
-           "omega_added": float(b.model.pillar_modes.omega[-1]),
-           "effective_mass_fraction": a.model.pillar_modes.effective_mass_fraction(),
-           "effective_mass_fraction_check": b.model.pillar_modes.effective_mass_fraction(),
+    pa, pb = a.model.pillar_modes, b.model.pillar_modes
+    assert pa is not None and pb is not None        # modal models' results
+    out = {"modes": pa.count, "modes_check": pb.count,
+           "omega_added": float(pb.omega[-1]),
+           "effective_mass_fraction": pa.effective_mass_fraction(),
+           "effective_mass_fraction_check": pb.effective_mass_fraction(),
            "omega_final_rel_diff": b.summary.omega_final / a.summary.omega_final - 1
            if a.summary.omega_final else None,
            "tip_series_max_rel_diff": float(np.max(np.abs(a.run.tip() - tip_b)) / scale)}
@@ -193,14 +198,14 @@ def truncation_estimate(a: CaseResult, b: CaseResult) -> dict:
     return out
 
 
-def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
+def _run_on(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion,
             integrator: str | None, extra: dict | None = None, settings: Settings | None = None) -> CaseResult:
     d, L, sim = scene.drive, scene.load, scene.simulate
     st = settings or settings_of(scene, integrator)
     M0, s, k = d.torque_at_zero, d.slope, L.coefficient
     pred = averaging_prediction(model, M0, s, k)
     extra = dict(extra or {})
-    sections = {}
+    sections: dict[str, Any] = {}
     if case == "runup":
         drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
         if sim.runup_initial_speed > 0:
@@ -248,16 +253,17 @@ def _run_on(scene, case: str, model: RotorStructure, motion: GroundMotion,
         run = simulate(model, drive, motion, t_end, settings=replace(st, samples=max(st.samples, 40 * w.bins)),
                        speed_scale=drive.free_speed(drive.times[2]))
         free = drive.free_speed()
-        extra.update(sweep_analysis(scene, model, run, drive))
+        extra.update(sweep_analysis(w, s, k, model, run, drive))
         if extra["numeric_jumps"]:
-            extra["rate_convergence"] = rate_convergence(scene, model, st, extra["numeric_jumps"],
+            extra["rate_convergence"] = rate_convergence(w, s, k, model, st, extra["numeric_jumps"],
                                                          extra["predicted_jumps"])
         sections["jumps"] = extra["numeric_jumps"]
         for key in ("captured_at", "captured_resonance", "captured_index"):
             sections[key] = extra[key]
-        sections["sweep"] = SweepFindings(**{key: extra.get(key) for key in (
+        findings: dict[str, Any] = {key: extra.get(key) for key in (
             "predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
-            "rate_check", "no_jump_reason", "rate_convergence")})
+            "rate_check", "no_jump_reason", "rate_convergence")}
+        sections["sweep"] = SweepFindings(**findings)
     return CaseResult(case, model, run, run_summary(run, free, pred, **sections), extra)
 
 
@@ -266,6 +272,7 @@ def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> dict:
     ground: per pillar mode j, Gamma_j S_d(T_j, zeta_j) (zeta_j of the mode's diagonal
     damping), combined by SRSS (the modes are well separated).  Modal model only."""
     pm = model.pillar_modes
+    assert pm is not None                           # modal model only
     T = 2 * math.pi / np.asarray(pm.omega, dtype=float)
     zeta = [float(model.damping[j, j] / (2 * pm.modal_mass[j] * pm.omega[j])) for j in range(pm.count)]
     rows = []

@@ -200,7 +200,7 @@ def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain
     from ..reduced.models import build_model
     from .pareto import ParetoRunning, plan_pareto
     mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out).mesh
-    top = scene.modal_model.band_factor * forcing_top(scene, "earthquake", motion)
+    top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "earthquake", motion)
     _, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
     plan = plan_pareto(scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh,
                        pillar_modes=chain.modes)
@@ -254,7 +254,7 @@ def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
         from ..scene import override
         beam = override(scene, ["modal_model.source=beam"])
         model, _ = build_model(beam, "modal", scene.modal_model.band_factor
-                               * forcing_top(scene, "earthquake", motion))
+                               * forcing_top(scene.drive, scene.load, scene.sweep, "earthquake", motion))
         computed = None
     lo, hi, n = SPECTRUM_PERIODS
     periods = np.geomspace(lo, hi, n)

@@ -170,7 +170,7 @@ def _beam_forces(scene: Scene, run, res, shaft):
     from ..reduced.pillar_modes import beam_properties
     info = res.extra["model_info"]
     n, theory = info["elements"], info["theory"]
-    bp = beam_properties(scene, theory)
+    bp = beam_properties(scene.pillar, theory)
     nb = 2 * n
     q, v = np.asarray(run.data["q"], dtype=float), np.asarray(run.data["v"], dtype=float)
     pad = lambda a: np.vstack([np.zeros((2, a.shape[0])), a[:, :nb].T])
@@ -193,11 +193,11 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     if not candidates.has_resultants:
         return None, {}
     sec = section_of(scene.pillar)
-    bp = beam_properties(scene, scene.modal_model.theory)
+    bp = beam_properties(scene.pillar, scene.modal_model.theory)
     statics = cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
                                      bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,
                                      sec.mass_per_length, scene.gondola.mass)
-    band = scene.modal_model.band_factor * forcing_top(scene, run.case, motion)
+    band = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, run.case, motion)
     trunc = force_truncation(candidates, band, modal_damping(candidates, scene.pillar.damping),
                              scene.pillar.height, sec.mass_per_length, scene.gondola.mass, statics)
     k_run = res.model.pillar_modes.count

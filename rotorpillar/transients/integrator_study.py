@@ -32,7 +32,8 @@ import numpy as np
 from ..reduced.models import build_model
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
-from ..reduced.integration import FIXED_STEP, SCIPY_METHODS, Settings, simulate
+from ..reduced.integration import FIXED_STEP, Settings, simulate
+from ..scene import SCIPY_METHODS, Scene
 
 ADAPTIVE = ("dp5",) + SCIPY_METHODS
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
@@ -122,7 +123,7 @@ def _per_method(rows) -> dict:
     return out
 
 
-def stability_study(scene, drive, duration: float = 2.0, max_modes: int = 8, time_step: float = 2.5e-3,
+def stability_study(scene: Scene, drive, duration: float = 2.0, max_modes: int = 8, time_step: float = 2.5e-3,
                     rtol: float = 1e-6, progress=None, pillar_modes=None) -> dict:
     """Experiment 2: modal model with more and more pillar modes (of
     ``pillar_modes`` when given, see ``models.build_model``)."""
@@ -185,7 +186,7 @@ def drift_study(model, duration: float = 200.0, speed: float = 50.0, rtol: float
             "rows": rows}
 
 
-def run_study(scene, duration: float = 10.0, quick: bool = False, progress=None,
+def run_integrator_study(scene: Scene, duration: float = 10.0, quick: bool = False, progress=None,
               pillar_modes=None, probe_modes=None) -> dict:
     """All three experiments: accuracy (1) and energy drift (3) on the scene's headline
     model, the ROM on ``pillar_modes`` (the chain's; the paper model when None); the

@@ -316,8 +316,8 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
     plan = fem3d_plan(scene, case, motion, duration, study_dir)
     mesh = plan.mesh
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan.duration:g} s"
-    ref, _ = build_model(scene, "modal", scene.modal_model.band_factor * forcing_top(scene, case, motion),
-                         pillar_modes=chain.modes)
+    top = forcing_top(scene.drive, scene.load, scene.sweep, case, motion)
+    ref, _ = build_model(scene, "modal", scene.modal_model.band_factor * top, pillar_modes=chain.modes)
     initial = None
     if case == "earthquake":
         d, L = scene.drive, scene.load

@@ -41,10 +41,12 @@ import math
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
 from ..provenance import JsonRecord, write_json
+from ..scene import Mesh, Scene
 
 PARETO_RECORD_START = 0.5
 """The record starts this long after the runs (s): the start's own transient is
@@ -114,7 +116,7 @@ class ParetoStudy(JsonRecord):
 # The case and its runs
 
 
-def pareto_scene(scene, duration: float = PARETO_DURATION):
+def pareto_scene(scene: Scene, duration: float = PARETO_DURATION):
     """The scene of the Pareto case: the scene's record from PARETO_RECORD_START, ``duration`` long."""
     from ..scene import override
     return override(scene, ["excitation.kind=record", f"excitation.start={PARETO_RECORD_START!r}",
@@ -150,7 +152,7 @@ def _source_hash(family: str) -> str:
     return h.hexdigest()[:16]
 
 
-def run_key(family: str, params: dict, scene, motion, modes_digest: str) -> str:
+def run_key(family: str, params: dict, scene: Scene, motion, modes_digest: str) -> str:
     """Hash of everything a run depends on."""
     doc = {"version": CACHE_VERSION, "family": family, "params": params,
            "scene": {k: v for k, v in scene.to_dict().items() if k not in ("name", "description")},
@@ -164,7 +166,7 @@ def _grid(duration: float) -> np.ndarray:
     return np.linspace(0.0, duration, PARETO_SAMPLES)
 
 
-def _reduced_run(scene, family: str, params: dict, motion, speed: float, pillar_modes,
+def _reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes,
                  duration: float) -> dict:
     from .cases import full_order_settings, settings_of
     from ..reduced.drive import DriveSchedule
@@ -180,7 +182,7 @@ def _reduced_run(scene, family: str, params: dict, motion, speed: float, pillar_
     else:
         beam = override(scene, [f"full_order.beam_elements={params['elements']}"])
         model, _ = build_model(beam, "beam")
-        st = full_order_settings(beam, "earthquake", motion)
+        st, _ = full_order_settings(beam, "earthquake", motion)
     q0, v0 = model.held_whirl_state(speed)
     run = simulate(model, drive, motion, duration, q0, v0, settings=st, speed_scale=speed)
     wall = time.perf_counter() - t0
@@ -194,7 +196,7 @@ _WARM: dict = {}
 """family -> seconds of this process's warm-up run (once per process)."""
 
 
-def warm_up(family: str, scene, motion, speed: float, pillar_modes=None) -> float:
+def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes=None) -> float:
     """Run a tiny case of ``family`` once per process (numba kernels, FFCx forms); its seconds."""
     if family in _WARM:
         return 0.0
@@ -214,7 +216,7 @@ def compute_3d(job) -> dict:
     """One 3D run (a worker's job: picklable arguments); its result and warm-up seconds."""
     from ..fem3d.full_order import simulate_fem3d
     scene, params, motion, speed, duration = job
-    warm = warm_up("fem3d", scene, motion, speed)
+    warm = warm_up_family("fem3d", scene, motion, speed)
     mesh = replace(scene.mesh, **params)
     r = simulate_fem3d(scene, "earthquake", motion=motion, duration=duration, mesh=mesh,
                        samples=PARETO_SAMPLES, initial_speed=speed)
@@ -239,7 +241,7 @@ def _load(path: Path, key: str) -> dict | None:
 @dataclass(frozen=True, eq=False)
 class ParetoPlan:
     """The Pareto case ready to run: its scene, record, start, runs, keys and the cached ones."""
-    scene: object
+    scene: Scene
     motion: object
     pillar_modes: object
     speed: float
@@ -249,13 +251,13 @@ class ParetoPlan:
     results: dict
     """index -> run document (the cached ones first)"""
     rom_modes: int
-    chosen_mesh: object
+    chosen_mesh: Mesh | None
     cache_dir: Path
     plan_seconds: float
     duration: float = PARETO_DURATION
 
 
-def plan_pareto(scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None,
+def plan_pareto(scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None,
                 duration: float = PARETO_DURATION, along=PARETO_ALONG,
                 beams=BEAM_ELEMENTS, pillar_modes=None) -> ParetoPlan:
     """The runs of the Pareto case, those on disk loaded (cheap: no run); ``duration``,
@@ -305,7 +307,8 @@ class ParetoRunning:
         self.compile: dict[str, float] = {}
         self.todo = [i for i in range(len(plan.specs)) if i not in plan.results]
         self.solid = [i for i in self.todo if plan.specs[i][0] == "fem3d"]
-        self.workers, self.error = 0, None
+        self.workers = 0
+        self.error: BaseException | None = None
         self.thread, self.pool_seconds = None, 0.0
         if progress:
             progress(f"speed against accuracy: {len(plan.specs)} runs, "
@@ -342,7 +345,8 @@ class ParetoRunning:
         t0 = time.perf_counter()
         try:
             with Executor(self.workers) as ex:
-                for j, out in ex.map(compute_3d, [self._job(i) for i in order]):
+                for j, done in ex.map(compute_3d, [self._job(i) for i in order]):
+                    out = cast(dict, done)           # compute_3d's document
                     self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
                     self.keep(order[j], out)
         except BaseException as exc:      # re-raised in finish(), in the caller's thread
@@ -355,7 +359,7 @@ class ParetoRunning:
         t0 = time.perf_counter()
         for i in (i for i in self.todo if plan.specs[i][0] != "fem3d"):
             fam, _, params = plan.specs[i]
-            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up(fam, plan.scene, plan.motion,
+            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up_family(fam, plan.scene, plan.motion,
                                                                      plan.speed, plan.pillar_modes)
             self.keep(i, _reduced_run(plan.scene, fam, params, plan.motion, plan.speed,
                                       plan.pillar_modes, plan.duration))
@@ -370,7 +374,7 @@ class ParetoRunning:
                 self.keep(i, out)
         docs = [plan.results[i] for i in range(len(plan.specs))]
         k, mesh = plan.rom_modes, plan.chosen_mesh
-        study, series = analyse(docs, chosen={
+        study, series = analyse_pareto(docs, chosen={
             "rom": f"ROM, {k} mode{'s' if k > 1 else ''}",
             "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}"})
         case = {"record": plan.scene.excitation.record, "record_start": PARETO_RECORD_START,
@@ -385,7 +389,7 @@ class ParetoRunning:
         return replace(study, case=case, compile_seconds=dict(self.compile), cost=cost), series
 
 
-def transient_pareto(scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None, workers: int = 0,
+def transient_pareto(scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None, workers: int = 0,
                      progress=None, **choices) -> tuple[ParetoStudy, dict]:
     """Run (or load) every run of the Pareto case; (the study, the histories by label).
     ``workers`` > 0: the 3D runs on that many worker processes, else in this one;
@@ -426,7 +430,7 @@ def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
                     "converge monotonically at a plausible order, so no extrapolation"}
 
 
-def analyse(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
+def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
     """Errors against the finest 3D run, its own error, the fronts (the study, the histories)."""
     from ..converge.selection import pareto_front
     tips = {d["label"]: np.asarray(d["tip"], float) for d in docs}
@@ -456,7 +460,7 @@ def analyse(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
     by = {r.label: r for r in runs}
     why = []
     for role in ("rom", "fem3d"):
-        r = by.get(chosen.get(role))
+        r = by.get(chosen.get(role) or "")    # no label is empty: None finds nothing
         if r is not None:
             on = [m for m, f in fronts.items() if r.label in f]
             why.append(f"{r.label} ({'the ROM compare runs' if role == 'rom' else 'the 3D reference compare runs'}): "

@@ -237,7 +237,7 @@ def case_band_top(scene: Scene, case: str, motion=None) -> float:
     """The band a case excites: converge.margin x its fastest forcing (the drive's
     free speed; the ground motion's band for the earthquake) (rad/s)."""
     from ..reduced.band import excitation_band
-    band = excitation_band(scene)
+    band = excitation_band(scene.drive, scene.load, scene.converge)
     top = band["omega_max"]
     if case == "earthquake" and motion is not None:
         top = max(top, scene.converge.margin * motion.band())

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -21,6 +22,7 @@ from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.integration import Settings, Transient, simulate
+from ..scene import Sweep
 
 JUMP_FACTOR = 5.0
 
@@ -51,11 +53,11 @@ def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float],
         cols["M0_inertia_corrected"][b] = cols["M0"][b] - m.rotor_inertia * acc
         cols["tip_x"][b], cols["rotor_y"][b], cols["rotor_x"][b] = tip[s].max(), ry[s].max(), rx[s].max()
     keep = np.isfinite(cols["M0"])
-    cols = {k: v[keep] for k, v in cols.items()}
+    out: dict[str, Any] = {k: v[keep] for k, v in cols.items()}
     if direction == "down":
-        cols = {k: v[::-1] for k, v in cols.items()}
-    cols["direction"] = direction
-    return cols
+        out = {k: v[::-1] for k, v in out.items()}
+    out["direction"] = direction
+    return out
 
 
 def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], float]:
@@ -108,7 +110,7 @@ def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
         if near.sum() < 2:
             continue
         num = cols[key][near]
-        eq19 = av.amplitude(W[near], r)
+        eq19 = np.asarray(av.amplitude(W[near], r))
         exact = model.steady_amplitudes(W[near])[key]
         k = int(np.argmax(num))
         out.append({"index": r.index, "direction": r.direction, "omega": r.omega, "coordinate": key,
@@ -145,13 +147,15 @@ def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
     return rows
 
 
-def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSchedule) -> dict:
-    """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves."""
-    w = scene.sweep
+def sweep_analysis(sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure,
+                   run: Transient, drive: DriveSchedule) -> dict:
+    """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves,
+    for the motor's ``slope`` s (N*m*s) and the load's coefficient k (N*m*s**2)."""
+    w = sweep
     t = drive.times
     up = sweep_bins(run, drive, (t[1], t[2]), w.bins, "up")
     down = sweep_bins(run, drive, (t[3], t[4]), w.bins, "down")
-    s, k = scene.drive.slope, scene.load.coefficient
+    s, k = slope, load_coefficient
     j_up, r_up = detect_jumps(up, s, k)
     j_down, r_down = detect_jumps(down, s, k)
     res = model.quasi_normal()
@@ -182,7 +186,7 @@ def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSch
                   f"what the motor and load alone allow; a jump needs > {JUMP_FACTOR:g}x), as the "
                   f"analysis predicts: no fold of Md = L in [{w.torque_low:g}, {w.torque_high:g}] N*m; "
                   f"the resonances draw at most {100 * worst:.2g} % of Mc at their own speed.")
-    W_curve = av.speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
+    W_curve = av.stationary_speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
     curves = {"omega": W_curve,
               "F_averaging": av.total_resistance(W_curve, k, res) + s * W_curve,
               "F_exact": k * W_curve**2 + s * W_curve - model.steady_torque(W_curve),
@@ -201,16 +205,17 @@ def sweep_analysis(scene, model: RotorStructure, run: Transient, drive: DriveSch
             "curves": curves}
 
 
-def rate_convergence(scene, model: RotorStructure, st: Settings, jumps: list[dict],
-                     predicted: list[dict], factors=(1.0, 0.5, 0.25)) -> dict:
+def rate_convergence(sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure,
+                     st: Settings, jumps: list[dict], predicted: list[dict],
+                     factors: tuple[float, ...] = (1.0, 0.5, 0.25)) -> dict:
     """The sweep's jumps at rates r, r/2, r/4, and their limit at zero rate.
 
     A slow passage past a fold is delayed by a power of the rate (about 2/3
     for a saddle-node); with three rates halving, the exponent p follows from
     the differences d1, d2 and the limit is M(r/4) - d2 / (2**p - 1).
     """
-    w = scene.sweep
-    s, k = scene.drive.slope, scene.load.coefficient
+    w = sweep
+    s, k = slope, load_coefficient
     rows = []
     found = {1.0: jumps}
     for f in factors:
@@ -226,7 +231,7 @@ def rate_convergence(scene, model: RotorStructure, st: Settings, jumps: list[dic
         j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k)[0]
         found[f] = j_up + j_dn
     for idx, j in enumerate(jumps):
-        same = [j]
+        same: list[dict | None] = [j]
         for f in factors[1:]:
             c = [x for x in found[f] if x["direction"] == j["direction"]]
             same.append(min(c, key=lambda x: abs(x["omega_from"] - j["omega_from"])) if c else None)

@@ -118,7 +118,7 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
         from ..chain import resolve
         chain = resolve(scene, out, progress=progress)
     # the ROM of the transients: its band is band_factor x the fastest rotor speed
-    top = scene.modal_model.band_factor * forcing_top(scene, "runup", None)
+    top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "runup", None)
     model, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
     speeds = running_speeds(model, scene)
     start = time.perf_counter()
@@ -148,6 +148,7 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
     modes = [m for m in modes if m.omega <= top]
     rows = separation_table(speeds, modes)
     pm = model.pillar_modes
+    assert pm is not None                   # the modal model carries its pillar modes
     return HarmonicResult(
         running_speeds=tuple(speeds),
         running_speed_source="the stable stationary speeds of the ROM with the scene's drive "
@@ -168,7 +169,7 @@ def _fem3d_curve(scene: Scene, model, top: float, say):
         return None, None, "not computed: dolfinx is not installed here"
     from ..fem3d import assemble_pillar
     from ..fem3d.harmonic import harmonic_response, harmonic_speeds
-    from ..fem3d.rotor_top import Rotor
+    from ..fem3d.rotor_top import RotorOnTop
     from ..transients.model_run import fem3d_plan
     mesh = fem3d_plan(scene, "runup").mesh
     res = [r.omega for r in model.quasi_normal() if r.direction == "X"]
@@ -177,7 +178,7 @@ def _fem3d_curve(scene: Scene, model, top: float, say):
         f"{len(speeds)} speeds")
     pillar = assemble_pillar(scene, top=True, mesh=mesh)
     try:
-        h = harmonic_response(pillar, Rotor.from_scene(scene), scene.pillar.damping, speeds)
+        h = harmonic_response(pillar, RotorOnTop.from_scene(scene), scene.pillar.damping, speeds)
     finally:
         pillar.K.destroy()
         pillar.M.destroy()
