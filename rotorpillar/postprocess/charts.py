@@ -75,7 +75,7 @@ def drive_curve_data(analysis: AnalysisResult, points: int = 6000) -> dict[str, 
     grid = np.unique(np.concatenate([np.linspace(0.0, top, points)]
                                     + [r.omega * (1 + r.nu * np.linspace(-8, 8, 801)) for r in res]))
     grid = grid[(grid >= 0) & (grid <= top)]
-    L = av.total_resistance(grid, k, res)
+    L = np.asarray(av.total_resistance(grid, k, res), dtype=float)
     # The main panel: the speeds the motor runs at and the resonances; the
     # torques it can give there.
     x_max = max([1.1 * r.omega for r in res] + ([1.15 * free] if finite_free else []))
@@ -246,7 +246,7 @@ def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
     if lo_m < 0.25 * max(hi_m, 1e-300):          # near or below zero: show where it crosses
         mx.axhline(0.0, color=COLOURS["unstable"], lw=0.8)
     at = float(np.interp(1.0, z, margin))
-    hump = float(av.total_resistance(np.array([w]), 0.0, [r])[0])
+    hump = float(np.asarray(av.total_resistance(np.array([w]), 0.0, [r]))[0])
     mx.plot([1.0], [at], "o", color=COLOURS["drive"], ms=4)
     mx.set_xlim(lo / w, hi / w)
     mx.set_xlabel(f"z = Omega / omega_{r.index}")

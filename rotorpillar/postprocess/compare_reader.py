@@ -84,9 +84,9 @@ def read_comparison(out: str | Path, case: str) -> Comparison | None:
     c = Comparison(case, got.record, got.doc)
     per = got.record.per_model
     for m in c.models:
-        row = per.get(m) or {}
-        meta = read_case(_beside(out, row.get("json") or f"simulate_{case}_{m}.json"))
-        arrays = read_npz(_beside(out, row.get("npz") or f"simulate_{case}_{m}.npz"))
+        row = per.get(m)
+        meta = read_case(_beside(out, (row.json if row else "") or f"simulate_{case}_{m}.json"))
+        arrays = read_npz(_beside(out, (row.npz if row else "") or f"simulate_{case}_{m}.npz"))
         if meta is not None:
             c.metas[m] = meta
         if arrays is not None:

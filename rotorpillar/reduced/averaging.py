@@ -35,16 +35,49 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
 from ..provenance import JsonRecord
-from .system import Resonance
 
 #: A speed or an array of speeds (rad/s), and what the closed forms give for it.
 Speeds = float | NDArray[np.float64]
+
+
+class Resonance(Protocol):
+    """What the averaging theory reads of a resonance: reduced.system.Resonance, or the
+    record analyze.json holds of it (analysis.results.ResonanceAnalysis)."""
+
+    @property
+    def index(self) -> int:
+        """i, from 1"""
+
+    @property
+    def omega(self) -> float:
+        """omega_i (rad/s)"""
+
+    @property
+    def forcing(self) -> float:
+        """f_i (m/s**2)"""
+
+    @property
+    def coupling(self) -> float:
+        """g_i (N)"""
+
+    @property
+    def two_n(self) -> float:
+        """2 n_i (1/s)"""
+
+    @property
+    def nu(self) -> float:
+        """n_i / omega_i (-)"""
+
+    @property
+    def modal_mass(self) -> float:
+        """I_i (kg)"""
 
 
 # --------------------------------------------------------------------------
@@ -106,7 +139,7 @@ def resistance_increment_linear(Omega: Speeds, r: Resonance) -> Speeds:
     Power balance: dL * Omega = I (2n) <x'**2> = I n a**2 Omega**2.
     """
     W = np.asarray(Omega, dtype=float)
-    dL: Speeds = r.modal_mass * r.n * amplitude_linear(W, r) ** 2 * W
+    dL: Speeds = r.modal_mass * (r.two_n / 2) * amplitude_linear(W, r) ** 2 * W
     return dL
 
 

@@ -201,7 +201,7 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
         out["rotor_x_absolute"] = out["rotor_x"] + ground
     if m.pillar_modes is not None:
         out["modal_coordinates"] = run.q[:, :m.pillar_modes.count]
-        if m.pillar_modes.shapes is not None:
+        if m.pillar_modes.shapes is not None and m.pillar_modes.heights is not None:
             out["mode_heights"] = m.pillar_modes.heights
             out["mode_shapes"] = m.pillar_modes.shapes
             out["mode_omega"] = np.asarray(m.pillar_modes.omega)
@@ -333,7 +333,7 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     W = np.abs(np.asarray(run.Omega, dtype=float))
     finite = W[np.isfinite(W)]
     top = float(finite.max()) if len(finite) else 0.0
-    if motion.kind == "none" and not run.prescribed_speed:
+    if motion.kind == "none" and not run.prescribed_speed and run.drive is not None:
         # a diverged run's speed says nothing of what it had to resolve: with the ground
         # still the rotor cannot outrun its drive (run_checks flags it when it does)
         reach = max([abs(float(run.Omega[0])), run.drive.free_speed()]

@@ -175,7 +175,8 @@ def with_truncation(scene: Scene, result: CaseResult, motion: GroundMotion | Non
                  "statement": f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
                               f"offers only {k} X bending modes (for fem3d: raise modal.n_modes)"}
     else:
-        trunc = truncation_estimate(result, _run_on(scene, result.case, model2, motion, integrator))
+        trunc = truncation_estimate(result, _run_on(scene, result.case, model2, motion or no_motion(),
+                                                    integrator))
     return replace(result, summary=replace(result.summary, truncation=trunc))
 
 

@@ -221,6 +221,8 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     t = np.asarray(run.data["t"], dtype=float)
     on = lambda a: np.column_stack([np.interp(t, data["t"], a[:, j]) for j in range(a.shape[1])])
     eta, rate = on(q[:, :k]), on(v[:, :k])
+    if pm.moment_shapes is None or pm.shear_shapes is None:
+        raise ValueError("the modal model's pillar modes carry no section resultants")
     moment, shear = superpose(eta, pm.moment_shapes), superpose(eta, pm.shear_shapes)
     heights = np.asarray(pm.section_heights, dtype=float)
     i0 = int(np.argmin(np.abs(heights)))

@@ -41,7 +41,7 @@ import math
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import cast
+
 
 import numpy as np
 
@@ -346,7 +346,7 @@ class ParetoRunning:
         try:
             with Executor(self.workers) as ex:
                 for j, done in ex.map(compute_3d, [self._job(i) for i in order]):
-                    out = cast(dict, done)           # compute_3d's document
+                    out = done                       # compute_3d's document
                     self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
                     self.keep(order[j], out)
         except BaseException as exc:      # re-raised in finish(), in the caller's thread
