@@ -39,7 +39,8 @@ def _solve_entries(model, n, label, mesh_desc, tol):
     from petsc4py import PETSc
 
     from rotorpillar.fem3d.eigensolver import BLOCK_SIZE, factorisation_time, solve_gep_shift_invert
-    ref = solve_gep_shift_invert(model.K, model.M, n, method="krylovschur")       # warm-up
+
+    ref = solve_gep_shift_invert(model.K, model.M, n, method="krylovschur")  # warm-up
     for x in ref.vectors:
         x.destroy()
     PETSc.Log.begin()
@@ -61,41 +62,61 @@ def _solve_entries(model, n, label, mesh_desc, tol):
         triangular = (seconds() - t0s) / REPEAT
         t_solve, t_fact = min(ts), min(tf)
         diff = float(np.max(np.abs(sol.eigenvalues - ref.eigenvalues) / ref.eigenvalues))
-        settings = (f"block Lanczos, {BLOCK_SIZE} right-hand sides per MUMPS solve, sigma 0, "
-                    f"tol {tol:g}" if method == "block" else
-                    f"SLEPc Krylov-Schur, ncv default (2 nev), sigma 0, tol {tol:g}")
+        settings = (
+            f"block Lanczos, {BLOCK_SIZE} right-hand sides per MUMPS solve, sigma 0, tol {tol:g}"
+            if method == "block"
+            else f"SLEPc Krylov-Schur, ncv default (2 nev), sigma 0, tol {tol:g}"
+        )
         name = f"fem3d_solve_over_factorisation_{label}" + ("" if method == "block" else "_krylovschur")
-        out.append({"name": name,
-                    "compares": f"shift-invert solve of {n} modes ({settings}) / one MUMPS LDL^T "
-                                f"factorisation of K - sigma M ({model.size} dofs, {mesh_desc})",
-                    "value": t_solve / t_fact, "unit": "x", "solve_s": t_solve, "factorisation_s": t_fact,
-                    "method": method, "settings": settings, "steps": sol.iterations,
-                    "solve_calls": steps, "columns_solved": sol.solves or steps,
-                    "triangular_solves_s": triangular, "dofs": model.size,
-                    "max_eigenvalue_difference_vs_krylovschur": diff,
-                    "floor_ratio": 1 + triangular / t_fact, "target": 3.0})
+        out.append(
+            {
+                "name": name,
+                "compares": f"shift-invert solve of {n} modes ({settings}) / one MUMPS LDL^T "
+                f"factorisation of K - sigma M ({model.size} dofs, {mesh_desc})",
+                "value": t_solve / t_fact,
+                "unit": "x",
+                "solve_s": t_solve,
+                "factorisation_s": t_fact,
+                "method": method,
+                "settings": settings,
+                "steps": sol.iterations,
+                "solve_calls": steps,
+                "columns_solved": sol.solves or steps,
+                "triangular_solves_s": triangular,
+                "dofs": model.size,
+                "max_eigenvalue_difference_vs_krylovschur": diff,
+                "floor_ratio": 1 + triangular / t_fact,
+                "target": 3.0,
+            }
+        )
     return out
 
 
 def _case(scene, mesh, label):
     from rotorpillar.fem3d import assemble_pillar
+
     model = assemble_pillar(scene, top=False, mesh=mesh)
     from rotorpillar.fem3d import BAND_MODES
+
     # what rotorpillar modal computes (one more than it keeps, for a pair cut
     # at the end); modal.n_modes = 0: the band's, BAND_MODES on the paper's scene
     n = (scene.modal.n_modes or BAND_MODES) + 1
     dofs = model.size
-    mesh_desc = (f"{mesh.elements_around}x{mesh.elements_along}x{mesh.elements_through} "
-                 f"{mesh.cell_type} degree {mesh.degree}, grading {mesh.grading:g}")
+    mesh_desc = (
+        f"{mesh.elements_around}x{mesh.elements_along}x{mesh.elements_through} "
+        f"{mesh.cell_type} degree {mesh.degree}, grading {mesh.grading:g}"
+    )
     # at the scene's modal.tolerance (what modal solves to); the eigenvalue
     # difference is against Krylov-Schur at 1e-10
     solves = _solve_entries(model, n, label, mesh_desc, scene.modal.tolerance)
 
     # assembly throughput: K and M of the same mesh, forms already compiled
+    import dolfinx.fem.petsc  # noqa: F401
     import ufl
     from dolfinx import fem
-    import dolfinx.fem.petsc  # noqa: F401
+
     from rotorpillar.fem3d.forms import mass_form, stiffness_form
+
     V = model.V
     u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
     dx = ufl.Measure("dx", domain=model.mesh, metadata={"quadrature_degree": 2 * mesh.degree})
@@ -108,13 +129,19 @@ def _case(scene, mesh, label):
             A = fem.petsc.assemble_matrix(form)
             A.assemble()
             A.destroy()
+
     ta = _median_time(assemble)
     model.K.destroy()
     model.M.destroy()
     return solves + [
-        {"name": f"fem3d_assembly_throughput_{label}",
-         "compares": f"dofs of K and M assembled per second by dolfinx ({mesh_desc})",
-         "value": dofs / ta, "unit": "dofs/s", "assembly_s": ta, "dofs": dofs},
+        {
+            "name": f"fem3d_assembly_throughput_{label}",
+            "compares": f"dofs of K and M assembled per second by dolfinx ({mesh_desc})",
+            "value": dofs / ta,
+            "unit": "dofs/s",
+            "assembly_s": ta,
+            "dofs": dofs,
+        },
     ]
 
 
@@ -122,6 +149,7 @@ def run():
     from dataclasses import replace
 
     from rotorpillar.scene import load_scene
+
     scene = load_scene("paper")
     d = scene.mesh
     finer = replace(d, elements_along=2 * d.elements_along)

@@ -22,6 +22,7 @@ WINDOW = 0.3
 
 def _step_seconds(scene, around, along):
     from rotorpillar.fem3d.full_order import simulate_fem3d
+
     mesh = replace(scene.mesh, elements_around=around, elements_along=along)
     runs = []
     for _ in range(REPEAT):
@@ -33,18 +34,28 @@ def _step_seconds(scene, around, along):
 def run():
     from rotorpillar.scene import load_scene
     from rotorpillar.transients.pareto import transient_pareto
+
     scene = load_scene("paper", ["excitation.kind=record", "excitation.start=0.1"])
-    _step_seconds(scene, 4, 1)                                   # forms compiled, kernels loaded
+    _step_seconds(scene, 4, 1)  # forms compiled, kernels loaded
     base, dofs0 = _step_seconds(scene, 8, 10)
     out = []
-    for around, along, what in ((8, 15, "the earthquake's reference"),
-                                (8, 40, "the run-up's reference (as fine as the ROM's modes)")):
+    for around, along, what in (
+        (8, 15, "the earthquake's reference"),
+        (8, 40, "the run-up's reference (as fine as the ROM's modes)"),
+    ):
         t, dofs = _step_seconds(scene, around, along)
-        out.append({"name": f"fem3d_step_cost_{around}x{along}_over_8x10", "value": t / base, "unit": "x",
-                    "compares": f"seconds per Newmark step (assembly and factorisation spread over "
-                                f"{WINDOW:g} s), {around}x{along} ({dofs} DOFs, {what}) over 8x10 "
-                                f"({dofs0} DOFs, the old default)",
-                    "seconds_per_step": t, "seconds_per_step_8x10": base})
+        out.append(
+            {
+                "name": f"fem3d_step_cost_{around}x{along}_over_8x10",
+                "value": t / base,
+                "unit": "x",
+                "compares": f"seconds per Newmark step (assembly and factorisation spread over "
+                f"{WINDOW:g} s), {around}x{along} ({dofs} DOFs, {what}) over 8x10 "
+                f"({dofs0} DOFs, the old default)",
+                "seconds_per_step": t,
+                "seconds_per_step_8x10": base,
+            }
+        )
     short = dict(duration=0.3, along=(2, 3, 4), beams=(2, 4))
     mesh = replace(scene.mesh, elements_around=8, elements_along=3)
     with tempfile.TemporaryDirectory() as tmp:
@@ -54,8 +65,15 @@ def run():
         t0 = time.perf_counter()
         transient_pareto(scene, cache_dir=Path(tmp), rom_modes=2, chosen_mesh=mesh, **short)
         t_cached = time.perf_counter() - t0
-    out.append({"name": "pareto_cold_over_cached", "value": t_cold / t_cached, "unit": "x",
-                "compares": f"the speed-against-accuracy study on a short case ({cold.cost['runs']} runs): "
-                            "every run computed over every run read from the cache",
-                "cold_seconds": t_cold, "cached_seconds": t_cached})
+    out.append(
+        {
+            "name": "pareto_cold_over_cached",
+            "value": t_cold / t_cached,
+            "unit": "x",
+            "compares": f"the speed-against-accuracy study on a short case ({cold.cost['runs']} runs): "
+            "every run computed over every run read from the cache",
+            "cold_seconds": t_cold,
+            "cached_seconds": t_cached,
+        }
+    )
     return out

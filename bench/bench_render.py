@@ -49,8 +49,9 @@ def _measure(window: str) -> dict:
     env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW=window)
     env.pop("DISPLAY", None)
     with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run([sys.executable, "-c", WORKER, tmp, str(TESTS)], env=env, capture_output=True,
-                           text=True, check=True)
+        p = subprocess.run(
+            [sys.executable, "-c", WORKER, tmp, str(TESTS)], env=env, capture_output=True, text=True, check=True
+        )
     return json.loads(p.stdout.strip().splitlines()[-1])
 
 
@@ -58,13 +59,35 @@ def run():
     egl = _measure("vtkEGLRenderWindow")
     osm = _measure("vtkOSOpenGLRenderWindow")
     out = []
-    for key, what, unit in (("mode", "one mode-shape PNG (480x720)", "s"),
-                            ("sheet", "the contact sheet (6 views)", "s"),
-                            ("frame", "one animation frame (880x560, 3D view + chart panel, H.264)", "s")):
-        out.append({"name": f"render_{key}_egl", "compares": f"{what}, EGL ({egl['window']})",
-                    "value": egl[key], "unit": unit, "surface_points": egl["points"]})
-        out.append({"name": f"render_{key}_osmesa", "compares": f"{what}, OSMesa ({osm['window']})",
-                    "value": osm[key], "unit": unit, "surface_points": osm["points"]})
-        out.append({"name": f"render_{key}_osmesa_over_egl", "compares": f"{what}: OSMesa time / EGL time",
-                    "value": osm[key] / egl[key], "unit": "x"})
+    for key, what, unit in (
+        ("mode", "one mode-shape PNG (480x720)", "s"),
+        ("sheet", "the contact sheet (6 views)", "s"),
+        ("frame", "one animation frame (880x560, 3D view + chart panel, H.264)", "s"),
+    ):
+        out.append(
+            {
+                "name": f"render_{key}_egl",
+                "compares": f"{what}, EGL ({egl['window']})",
+                "value": egl[key],
+                "unit": unit,
+                "surface_points": egl["points"],
+            }
+        )
+        out.append(
+            {
+                "name": f"render_{key}_osmesa",
+                "compares": f"{what}, OSMesa ({osm['window']})",
+                "value": osm[key],
+                "unit": unit,
+                "surface_points": osm["points"],
+            }
+        )
+        out.append(
+            {
+                "name": f"render_{key}_osmesa_over_egl",
+                "compares": f"{what}: OSMesa time / EGL time",
+                "value": osm[key] / egl[key],
+                "unit": "x",
+            }
+        )
     return out

@@ -45,8 +45,7 @@ def _study(executor_kwargs: dict, scene):
         with Executor(**executor_kwargs) as ex:
             ex.client.run(warm_kernels)
             start = time.perf_counter() - t0
-            res = design_study(scene, "runup", "paper", VARY, out_dir=Path(tmp), executor=ex,
-                               show_progress=False)
+            res = design_study(scene, "runup", "paper", VARY, out_dir=Path(tmp), executor=ex, show_progress=False)
         p = res.performance
         return p["runs_per_second"], start, p["compute_wall_seconds"], res.executor
 
@@ -58,21 +57,43 @@ def _localhost_cluster(workers: int = 2):
     addr = f"tcp://127.0.0.1:{port}"
     env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parent.parent))
     quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
-    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--no-dashboard"], **quiet)]
+    procs = [
+        subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **quiet)
+    ]
     time.sleep(2.0)
     for _ in range(workers):
-        procs.append(subprocess.Popen([dask, "worker", addr, "--nthreads", "1", "--host",
-                                       "127.0.0.1", "--no-dashboard", "--memory-limit", "0"],
-                                      **quiet))
+        procs.append(
+            subprocess.Popen(
+                [
+                    dask,
+                    "worker",
+                    addr,
+                    "--nthreads",
+                    "1",
+                    "--host",
+                    "127.0.0.1",
+                    "--no-dashboard",
+                    "--memory-limit",
+                    "0",
+                ],
+                **quiet,
+            )
+        )
     return addr, procs
 
 
 def run():
     scene = load_scene("sommerfeld")
-    with tempfile.TemporaryDirectory() as tmp, Executor(processes=False) as ex:   # warm-up
-        design_study(scene, "runup", "paper", ["drive.torque_at_zero=600,700"], out_dir=Path(tmp),
-                     executor=ex, show_progress=False)
+    with tempfile.TemporaryDirectory() as tmp, Executor(processes=False) as ex:  # warm-up
+        design_study(
+            scene,
+            "runup",
+            "paper",
+            ["drive.torque_at_zero=600,700"],
+            out_dir=Path(tmp),
+            executor=ex,
+            show_progress=False,
+        )
     one = _study({"workers": 1}, scene)
     two = _study({"workers": 2}, scene)
     addr, procs = _localhost_cluster(2)
@@ -87,13 +108,28 @@ def run():
             p.wait(timeout=30)
     what = "90 run-ups of sommerfeld (the capture-map study), cold batch cache"
     out = []
-    for name, (rate, start, wall, info) in (("1 worker (LocalCluster)", one),
-                                            ("2 workers (LocalCluster)", two),
-                                            ("scheduler + 2 workers on localhost", sched)):
-        out.append({"name": f"study throughput, {name}", "compares": what,
-                    "value": rate, "unit": "runs/s", "cluster_start_seconds": start,
-                    "compute_wall_seconds": wall, "executor": info})
-    out.append({"name": "study speed-up, 2 workers over 1 (LocalCluster)",
-                "compares": "runs/s on 2 workers / runs/s on 1 worker, same study",
-                "value": two[0] / one[0], "unit": "x"})
+    for name, (rate, start, wall, info) in (
+        ("1 worker (LocalCluster)", one),
+        ("2 workers (LocalCluster)", two),
+        ("scheduler + 2 workers on localhost", sched),
+    ):
+        out.append(
+            {
+                "name": f"study throughput, {name}",
+                "compares": what,
+                "value": rate,
+                "unit": "runs/s",
+                "cluster_start_seconds": start,
+                "compute_wall_seconds": wall,
+                "executor": info,
+            }
+        )
+    out.append(
+        {
+            "name": "study speed-up, 2 workers over 1 (LocalCluster)",
+            "compares": "runs/s on 2 workers / runs/s on 1 worker, same study",
+            "value": two[0] / one[0],
+            "unit": "x",
+        }
+    )
     return out

@@ -38,16 +38,16 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from rotorpillar.transients.cases import run_case
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import load_record, no_motion
+from rotorpillar.reduced.integration import Settings, batch_threads, simulate, simulate_batch, tolerances
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.pillar_modes import beam_pillar_modes
 from rotorpillar.reduced.rhs import eq4_rhs
 from rotorpillar.reduced.rotor_models import beam_model, modal_model
 from rotorpillar.reduced.stationary import operating_speed
-from rotorpillar.reduced.integration import Settings, batch_threads, simulate, simulate_batch, tolerances
 from rotorpillar.scene import load_scene
+from rotorpillar.transients.cases import run_case
 
 RUNS = 1000
 PLAIN_SAMPLE = 8
@@ -62,14 +62,31 @@ def plain_rhs(p):
 
 
 def _params(model, M0, s, k):
-    return (model.mass[0, 0], model.rotor_mass, model.rotor_inertia, model.eccentricity,
-            model.stiffness[0, 0], model.shaft_stiffness, model.damping[0, 0] - model.shaft_damping,
-            model.shaft_damping, M0, s, k)
+    return (
+        model.mass[0, 0],
+        model.rotor_mass,
+        model.rotor_inertia,
+        model.eccentricity,
+        model.stiffness[0, 0],
+        model.shaft_stiffness,
+        model.damping[0, 0] - model.shaft_damping,
+        model.shaft_damping,
+        M0,
+        s,
+        k,
+    )
 
 
 def plain_run(model, M0, s, k, rtol, atol, t_eval):
-    sol = solve_ivp(plain_rhs(_params(model, M0, s, k)), (0.0, DURATION), np.zeros(8), method="RK45",
-                    t_eval=t_eval, rtol=rtol, atol=atol)
+    sol = solve_ivp(
+        plain_rhs(_params(model, M0, s, k)),
+        (0.0, DURATION),
+        np.zeros(8),
+        method="RK45",
+        t_eval=t_eval,
+        rtol=rtol,
+        atol=atol,
+    )
     return sol.y[0], sol.nfev
 
 
@@ -80,12 +97,11 @@ def bench_sweep(scene) -> list[dict]:
     tau = np.linspace(1.7, 17.0, RUNS)
     scale = 300.0 * tau / d.torque_at_zero
     rtol = 1e-7
-    simulate_batch(model, drive, 1.0, torque_scale=scale[:2], rtol=rtol, samples=SAMPLES)   # compile
-    serial = simulate_batch(model, drive, DURATION, torque_scale=scale, rtol=rtol, samples=SAMPLES,
-                            threads=1)
+    simulate_batch(model, drive, 1.0, torque_scale=scale[:2], rtol=rtol, samples=SAMPLES)  # compile
+    serial = simulate_batch(model, drive, DURATION, torque_scale=scale, rtol=rtol, samples=SAMPLES, threads=1)
     b = simulate_batch(model, drive, DURATION, torque_scale=scale, rtol=rtol, samples=SAMPLES)
     threads = batch_threads()
-    assert np.array_equal(b.tip, serial.tip)             # the same runs, whichever thread ran them
+    assert np.array_equal(b.tip, serial.tip)  # the same runs, whichever thread ran them
     serial_rate = RUNS / serial.wall_seconds
     batch_rate = RUNS / b.wall_seconds
     # accuracy on a sample of the runs against a tight reference
@@ -109,29 +125,69 @@ def bench_sweep(scene) -> list[dict]:
         rows[plain_rtol] = {"rate": len(pick) / wall, "error": err(tips), "nfev_per_run": nfev / len(pick)}
     equal = next((r for r in sorted(rows, reverse=True) if rows[r]["error"] <= batch_err), min(rows))
     out = [
-        {"name": "sweep_batch_runs_per_second", "compares": f"compiled batch on every core ({threads} "
-         f"threads): {RUNS} run-ups of {DURATION:g} s (tau 1.7..17), rtol {rtol:g}", "value": batch_rate,
-         "unit": "runs/s", "wall_seconds": b.wall_seconds, "error": batch_err, "threads": threads},
-        {"name": "sweep_batch_serial_runs_per_second", "compares": "the same compiled batch on one "
-         "thread", "value": serial_rate, "unit": "runs/s", "wall_seconds": serial.wall_seconds,
-         "threads": 1},
-        {"name": "sweep_batch_thread_speedup", "compares": f"batch on {threads} threads over the batch "
-         "on one (same runs, bit for bit)", "value": batch_rate / serial_rate, "unit": "x",
-         "threads": threads},
-        {"name": "sweep_plain_solve_ivp_runs_per_second", "compares": "Python loop of solve_ivp RK45 "
-         f"(numpy right-hand side), rtol {rtol:g}, {len(pick)} of the runs", "value": rows[rtol]["rate"],
-         "unit": "runs/s", "error": rows[rtol]["error"], "nfev_per_run": rows[rtol]["nfev_per_run"]},
-        {"name": "sweep_speedup_equal_rtol", "compares": "batch runs/s over the plain loop's, both rtol "
-         f"{rtol:g}", "value": batch_rate / rows[rtol]["rate"], "unit": "x",
-         "batch_error": batch_err, "plain_error": rows[rtol]["error"]},
-        {"name": "sweep_speedup_equal_accuracy", "compares": f"batch runs/s ({threads} threads) over the "
-         f"plain loop's (one process) at the loosest plain rtol ({equal:g}) whose error is no larger "
-         "than the batch's", "value": batch_rate / rows[equal]["rate"], "unit": "x",
-         "batch_error": batch_err, "plain_error": rows[equal]["error"], "plain_rtol": equal,
-         "target": 100.0, "threads": threads},
-        {"name": "sweep_speedup_equal_accuracy_serial", "compares": "the one-thread batch's runs/s over "
-         f"the plain loop's at rtol {equal:g} (equal accuracy, both on one core)",
-         "value": serial_rate / rows[equal]["rate"], "unit": "x", "plain_rtol": equal},
+        {
+            "name": "sweep_batch_runs_per_second",
+            "compares": f"compiled batch on every core ({threads} "
+            f"threads): {RUNS} run-ups of {DURATION:g} s (tau 1.7..17), rtol {rtol:g}",
+            "value": batch_rate,
+            "unit": "runs/s",
+            "wall_seconds": b.wall_seconds,
+            "error": batch_err,
+            "threads": threads,
+        },
+        {
+            "name": "sweep_batch_serial_runs_per_second",
+            "compares": "the same compiled batch on one thread",
+            "value": serial_rate,
+            "unit": "runs/s",
+            "wall_seconds": serial.wall_seconds,
+            "threads": 1,
+        },
+        {
+            "name": "sweep_batch_thread_speedup",
+            "compares": f"batch on {threads} threads over the batch on one (same runs, bit for bit)",
+            "value": batch_rate / serial_rate,
+            "unit": "x",
+            "threads": threads,
+        },
+        {
+            "name": "sweep_plain_solve_ivp_runs_per_second",
+            "compares": "Python loop of solve_ivp RK45 "
+            f"(numpy right-hand side), rtol {rtol:g}, {len(pick)} of the runs",
+            "value": rows[rtol]["rate"],
+            "unit": "runs/s",
+            "error": rows[rtol]["error"],
+            "nfev_per_run": rows[rtol]["nfev_per_run"],
+        },
+        {
+            "name": "sweep_speedup_equal_rtol",
+            "compares": f"batch runs/s over the plain loop's, both rtol {rtol:g}",
+            "value": batch_rate / rows[rtol]["rate"],
+            "unit": "x",
+            "batch_error": batch_err,
+            "plain_error": rows[rtol]["error"],
+        },
+        {
+            "name": "sweep_speedup_equal_accuracy",
+            "compares": f"batch runs/s ({threads} threads) over the "
+            f"plain loop's (one process) at the loosest plain rtol ({equal:g}) whose error is no larger "
+            "than the batch's",
+            "value": batch_rate / rows[equal]["rate"],
+            "unit": "x",
+            "batch_error": batch_err,
+            "plain_error": rows[equal]["error"],
+            "plain_rtol": equal,
+            "target": 100.0,
+            "threads": threads,
+        },
+        {
+            "name": "sweep_speedup_equal_accuracy_serial",
+            "compares": "the one-thread batch's runs/s over "
+            f"the plain loop's at rtol {equal:g} (equal accuracy, both on one core)",
+            "value": serial_rate / rows[equal]["rate"],
+            "unit": "x",
+            "plain_rtol": equal,
+        },
     ]
     return out
 
@@ -139,22 +195,39 @@ def bench_sweep(scene) -> list[dict]:
 def bench_cases(scene) -> list[dict]:
     out = []
     for case in ("runup", "earthquake", "sweep"):
-        run_case(scene, case, "paper")             # warm
+        run_case(scene, case, "paper")  # warm
         t0 = time.perf_counter()
         r = run_case(scene, case, "paper")
         wall = time.perf_counter() - t0
-        out.append({"name": f"case_{case}_paper_seconds", "compares": f"`simulate paper --case {case}` "
-                    "library call, compiled code warm (model, integration, summary)", "value": wall,
-                    "unit": "s", "integration_seconds": r.run.stats["wall_seconds"],
-                    "simulated_seconds": float(r.run.t[-1] - r.run.t[0])})
+        out.append(
+            {
+                "name": f"case_{case}_paper_seconds",
+                "compares": f"`simulate paper --case {case}` "
+                "library call, compiled code warm (model, integration, summary)",
+                "value": wall,
+                "unit": "s",
+                "integration_seconds": r.run.stats["wall_seconds"],
+                "simulated_seconds": float(r.run.t[-1] - r.run.t[0]),
+            }
+        )
     for case in ("runup", "earthquake"):
         t0 = time.perf_counter()
-        p = subprocess.run([sys.executable, "-m", "rotorpillar", "simulate", "paper", "--case", case,
-                            "--out", "bench/cache/simulate"], capture_output=True, text=True)
+        p = subprocess.run(
+            [sys.executable, "-m", "rotorpillar", "simulate", "paper", "--case", case, "--out", "bench/cache/simulate"],
+            capture_output=True,
+            text=True,
+        )
         wall = time.perf_counter() - t0
-        out.append({"name": f"cli_{case}_paper_seconds", "compares": f"`rotorpillar simulate paper --case "
-                    f"{case}` end to end (interpreter start, numba cache load, run, NPZ/CSV/JSON, chart)",
-                    "value": wall, "unit": "s", "returncode": p.returncode})
+        out.append(
+            {
+                "name": f"cli_{case}_paper_seconds",
+                "compares": f"`rotorpillar simulate paper --case "
+                f"{case}` end to end (interpreter start, numba cache load, run, NPZ/CSV/JSON, chart)",
+                "value": wall,
+                "unit": "s",
+                "returncode": p.returncode,
+            }
+        )
     return out
 
 
@@ -163,35 +236,53 @@ def bench_rom_vs_full(scene) -> list[dict]:
     drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
     motion = load_record("elcentro", start=2.0)
     t_end = round(motion.end + 3.0, 1)
-    samples = int(round(t_end / 0.01)) + 1          # outputs every 10 steps of 1 ms: the grids match
+    samples = int(round(t_end / 0.01)) + 1  # outputs every 10 steps of 1 ms: the grids match
     elements = 10
-    full = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, elements,
-                      "timoshenko")
+    full = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, elements, "timoshenko")
     W = operating_speed(full, d.torque_at_zero, d.slope, L.coefficient)
     q0, v0 = full.steady_initial_state(W)
     st = Settings("newmark", time_step=1e-3, samples=samples)
-    simulate(full, drive, motion, 0.1, q0, v0, settings=st, speed_scale=W)          # warm
+    simulate(full, drive, motion, 0.1, q0, v0, settings=st, speed_scale=W)  # warm
     F = simulate(full, drive, motion, t_end, q0, v0, settings=st, speed_scale=W)
     top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
     rom, info = build_model(scene, "modal", top)
     k = rom.pillar_modes.count
-    pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, k, "timoshenko", elements)                           # same beam
-    rom = modal_model(pm, scene.rotor.mass, scene.rotor.inertia, scene.rotor.eccentricity,
-                      scene.shaft.stiffness, scene.shaft.damping, scene.pillar.damping)
+    pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, k, "timoshenko", elements)  # same beam
+    rom = modal_model(
+        pm,
+        scene.rotor.mass,
+        scene.rotor.inertia,
+        scene.rotor.eccentricity,
+        scene.shaft.stiffness,
+        scene.shaft.damping,
+        scene.pillar.damping,
+    )
     q0r, v0r = rom.steady_initial_state(operating_speed(rom, d.torque_at_zero, d.slope, L.coefficient))
     sr = Settings("dp5", rtol=1e-7, samples=samples)
     simulate(rom, drive, motion, 0.1, q0r, v0r, settings=sr, speed_scale=W)
     R = simulate(rom, drive, motion, t_end, q0r, v0r, settings=sr, speed_scale=W)
     assert np.allclose(R.t, F.t)
     err = float(np.max(np.abs(R.tip() - F.tip())) / np.max(np.abs(F.tip())))
-    return [{"name": "earthquake_rom_over_full_order_time", "compares": f"modal ROM ({k} modes, dp5) "
-             f"over full-order 1D Timoshenko beam ({full.nx} dofs, Newmark h = 1 ms), El Centro 1940",
-             "value": R.stats["wall_seconds"] / F.stats["wall_seconds"], "unit": "x",
-             "rom_seconds": R.stats["wall_seconds"], "full_order_seconds": F.stats["wall_seconds"],
-             "full_order": "1D beam (rotorpillar.fem3d not installed)"},
-            {"name": "earthquake_rom_tip_error", "compares": "max |tip_ROM - tip_full| / max |tip_full|, "
-             "El Centro 1940", "value": err, "unit": "-", "modes": k,
-             "tip_max_full": float(np.max(np.abs(F.tip())))}]
+    return [
+        {
+            "name": "earthquake_rom_over_full_order_time",
+            "compares": f"modal ROM ({k} modes, dp5) "
+            f"over full-order 1D Timoshenko beam ({full.nx} dofs, Newmark h = 1 ms), El Centro 1940",
+            "value": R.stats["wall_seconds"] / F.stats["wall_seconds"],
+            "unit": "x",
+            "rom_seconds": R.stats["wall_seconds"],
+            "full_order_seconds": F.stats["wall_seconds"],
+            "full_order": "1D beam (rotorpillar.fem3d not installed)",
+        },
+        {
+            "name": "earthquake_rom_tip_error",
+            "compares": "max |tip_ROM - tip_full| / max |tip_full|, El Centro 1940",
+            "value": err,
+            "unit": "-",
+            "modes": k,
+            "tip_max_full": float(np.max(np.abs(F.tip()))),
+        },
+    ]
 
 
 def newmark_3d(scene, motion, Omega: float, theta0: float, h: float, t_end: float):
@@ -200,54 +291,85 @@ def newmark_3d(scene, motion, Omega: float, theta0: float, h: float, t_end: floa
     MUMPS factorisation).  Returns (t, tip X relative to the ground, wall s, dofs)."""
     from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.scene import override
-    scene = override(scene, ["full_order.integrator=newmark"])     # the ROM's Newmark beside it
+
+    scene = override(scene, ["full_order.integrator=newmark"])  # the ROM's Newmark beside it
     steps = int(round(t_end / h))
-    r = simulate_fem3d(scene, "earthquake", motion=motion, duration=t_end, time_step=h,
-                       samples=steps + 1, initial_speed=Omega, initial_angle=theta0,
-                       prescribed_speed=True)
+    r = simulate_fem3d(
+        scene,
+        "earthquake",
+        motion=motion,
+        duration=t_end,
+        time_step=h,
+        samples=steps + 1,
+        initial_speed=Omega,
+        initial_angle=theta0,
+        prescribed_speed=True,
+    )
     return r.t, r.tip_x, r.wall_seconds, r.dofs
 
 
 def bench_rom_vs_3d(scene) -> list[dict]:
     """The ROM built on the 3D modes against the 3D model itself (Newmark)."""
     import importlib.util
+
     if importlib.util.find_spec("dolfinx") is None:
         return []
     from rotorpillar.scene import override
+
     scene = override(scene, ["modal_model.source=fem3d"])
     motion = load_record("elcentro", start=1.0)
     h, t_end = 2e-3, 11.0
     d, L = scene.drive, scene.load
     from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
-    model, _ = build_model(scene, "modal", scene.modal_model.band_factor * max(
-        DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()),
-        pillar_modes=candidate_pillar_modes(scene))
+
+    model, _ = build_model(
+        scene,
+        "modal",
+        scene.modal_model.band_factor
+        * max(DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed(), motion.band()),
+        pillar_modes=candidate_pillar_modes(scene),
+    )
     Omega = operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
     theta0 = math.pi / 2
     t3, tip3, wall3, dofs = newmark_3d(scene, motion, Omega, theta0, h, t_end)
     # the 3D run's start: the structure at rest, the rotor in its steady whirl on the held plate
     from rotorpillar.fem3d.rotor_top import RotorOnTop, rotor_start
+
     x, y, vx, vy = rotor_start(RotorOnTop.from_scene(scene), theta0, Omega)
     q0, v0 = np.zeros(model.n), np.zeros(model.n)
     q0[model.rotor_x], q0[model.nx], q0[-1] = x, y, theta0
     v0[model.rotor_x], v0[model.nx], v0[-1] = vx, vy, Omega
     idle = DriveSchedule.constant(0.0, 0.0, 0.0)
     out = []
-    for label, st in (("dp5", Settings("dp5", rtol=1e-7, samples=len(t3))),
-                      ("newmark", Settings("newmark", time_step=h, samples=len(t3)))):
+    for label, st in (
+        ("dp5", Settings("dp5", rtol=1e-7, samples=len(t3))),
+        ("newmark", Settings("newmark", time_step=h, samples=len(t3))),
+    ):
         R = simulate(model, idle, motion, t_end, q0, v0, settings=st, prescribed_speed=True, speed_scale=Omega)
         assert np.allclose(R.t, t3)
         err = float(np.max(np.abs(R.tip() - tip3)) / np.max(np.abs(tip3)))
-        out.append({"name": f"earthquake_rom_{label}_over_3d_newmark_time", "compares":
-                    f"modal ROM on the 3D modes ({model.pillar_modes.count} X bending modes, {label}) "
-                    f"over the 3D model ({dofs} dofs, Newmark h = {h:g} s, one MUMPS factorisation), "
-                    f"El Centro 1940, {t_end:g} s, rotor at {Omega:.1f} rad/s",
-                    "value": R.stats["wall_seconds"] / wall3, "unit": "x",
-                    "rom_seconds": R.stats["wall_seconds"], "full_3d_seconds": wall3})
-        out.append({"name": f"earthquake_rom_{label}_tip_error_vs_3d", "compares":
-                    "max |tip_ROM - tip_3D| / max |tip_3D|" + (" (same Newmark step: truncation alone)"
-                                                               if label == "newmark" else ""),
-                    "value": err, "unit": "-", "tip_max_3d": float(np.max(np.abs(tip3)))})
+        out.append(
+            {
+                "name": f"earthquake_rom_{label}_over_3d_newmark_time",
+                "compares": f"modal ROM on the 3D modes ({model.pillar_modes.count} X bending modes, {label}) "
+                f"over the 3D model ({dofs} dofs, Newmark h = {h:g} s, one MUMPS factorisation), "
+                f"El Centro 1940, {t_end:g} s, rotor at {Omega:.1f} rad/s",
+                "value": R.stats["wall_seconds"] / wall3,
+                "unit": "x",
+                "rom_seconds": R.stats["wall_seconds"],
+                "full_3d_seconds": wall3,
+            }
+        )
+        out.append(
+            {
+                "name": f"earthquake_rom_{label}_tip_error_vs_3d",
+                "compares": "max |tip_ROM - tip_3D| / max |tip_3D|"
+                + (" (same Newmark step: truncation alone)" if label == "newmark" else ""),
+                "value": err,
+                "unit": "-",
+                "tip_max_3d": float(np.max(np.abs(tip3))),
+            }
+        )
     return out
 
 
@@ -258,15 +380,19 @@ def bench_full_order_step() -> list[dict]:
     """The 3D full order's steps and wall time, default and stiff shaft, in one run."""
     import importlib.util
     import os
+
     if importlib.util.find_spec("dolfinx") is None:
         return []
     from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.fem3d.full_order_plan import case_setup, top_speed
     from rotorpillar.transients.model_run import fem3d_plan
+
     out = []
-    cases = (("default shaft", [], []), ("stiff shaft", STIFF, []),
-             ("stiff shaft, 16 x 20 mesh", STIFF, ["full_order.elements_around=16",
-                                                   "full_order.elements_along=20"]))
+    cases = (
+        ("default shaft", [], []),
+        ("stiff shaft", STIFF, []),
+        ("stiff shaft, 16 x 20 mesh", STIFF, ["full_order.elements_around=16", "full_order.elements_along=20"]),
+    )
     for label, shaft, mesh in cases:
         scene = load_scene("paper", ["excitation.kind=record"] + shaft + mesh)
         plan = fem3d_plan(scene, "earthquake")
@@ -277,23 +403,40 @@ def bench_full_order_step() -> list[dict]:
         old_steps = plan["duration"] / min(2 * math.pi / fast / 40, motion.time_step)
         it = r.integrator
         m = plan["mesh"]
-        out.append({"name": f"full_order_3d_elcentro_{label.replace(', ', '_').replace(' ', '_')}_seconds",
-                    "compares": f"3D full order, El Centro {plan['duration']:g} s, {label} "
-                    f"({m['elements_around']} x {m['elements_along']} elements, {r.dofs} dofs): wall time "
-                    "of meshing, assembly, factorisation and integration",
-                    "value": r.wall_seconds, "unit": "s", "steps": it["steps"], "time_step": it["time_step"],
-                    "integration_seconds": it["integration_seconds"], "seconds_per_step": it["seconds_per_step"],
-                    "scheme": it["method"], "rule": it["step_rule"]["rule"],
-                    "peak_tip": r.max_abs["tip_x"], "ok": r.ok, "old_rule_steps": old_steps,
-                    "old_rule_seconds_extrapolated": old_steps * it["seconds_per_step"],
-                    "estimated_seconds": it["estimate"]["seconds"], "load_average": load})
+        out.append(
+            {
+                "name": f"full_order_3d_elcentro_{label.replace(', ', '_').replace(' ', '_')}_seconds",
+                "compares": f"3D full order, El Centro {plan['duration']:g} s, {label} "
+                f"({m['elements_around']} x {m['elements_along']} elements, {r.dofs} dofs): wall time "
+                "of meshing, assembly, factorisation and integration",
+                "value": r.wall_seconds,
+                "unit": "s",
+                "steps": it["steps"],
+                "time_step": it["time_step"],
+                "integration_seconds": it["integration_seconds"],
+                "seconds_per_step": it["seconds_per_step"],
+                "scheme": it["method"],
+                "rule": it["step_rule"]["rule"],
+                "peak_tip": r.max_abs["tip_x"],
+                "ok": r.ok,
+                "old_rule_steps": old_steps,
+                "old_rule_seconds_extrapolated": old_steps * it["seconds_per_step"],
+                "estimated_seconds": it["estimate"]["seconds"],
+                "load_average": load,
+            }
+        )
     return out
 
 
 def run() -> list[dict]:
     scene = load_scene("paper")
-    return (bench_sweep(scene) + bench_cases(scene) + bench_rom_vs_full(scene) + bench_rom_vs_3d(scene)
-            + bench_full_order_step())
+    return (
+        bench_sweep(scene)
+        + bench_cases(scene)
+        + bench_rom_vs_full(scene)
+        + bench_rom_vs_3d(scene)
+        + bench_full_order_step()
+    )
 
 
 if __name__ == "__main__":

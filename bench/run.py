@@ -27,8 +27,11 @@ def main(argv=None) -> int:
     mods = sorted(p.stem for p in HERE.glob("bench_*.py"))
     if only - set(mods):
         # an unknown name would otherwise run nothing and overwrite results.json with nothing
-        print(f"usage: bench/run.py [MODULE ...] with MODULE one of {', '.join(mods)} "
-              f"(got {', '.join(sorted(only - set(mods)))})", file=sys.stderr)
+        print(
+            f"usage: bench/run.py [MODULE ...] with MODULE one of {', '.join(mods)} "
+            f"(got {', '.join(sorted(only - set(mods)))})",
+            file=sys.stderr,
+        )
         return 2
     host = machine()
     entries, timings = [], {}
@@ -42,14 +45,18 @@ def main(argv=None) -> int:
             e.setdefault("module", name)
             e["machine"] = host
             entries.append(e)
-            print(f"[bench]   {e['name']}: {e['value']:.4g} {e.get('unit', '')}  ({e['compares']})",
-                  file=sys.stderr, flush=True)
+            print(
+                f"[bench]   {e['name']}: {e['value']:.4g} {e.get('unit', '')}  ({e['compares']})",
+                file=sys.stderr,
+                flush=True,
+            )
         timings[name] = time.perf_counter() - t0
     out = HERE / "results.json"
     if only and out.is_file():
         # a subset run replaces its modules' entries and keeps the others'
         # (each entry carries its module and machine)
         import json
+
         try:
             old = json.loads(out.read_text())
             kept = [e for e in old.get("benchmarks", []) if e.get("module") not in only]
@@ -57,8 +64,7 @@ def main(argv=None) -> int:
             timings = {**{k: v for k, v in old.get("timings", {}).items() if k not in only}, **timings}
         except (ValueError, AttributeError, TypeError):
             pass
-    write_json(out, {"benchmarks": entries, "machine": host, "versions": versions(),
-                     "timings": timings})
+    write_json(out, {"benchmarks": entries, "machine": host, "versions": versions(), "timings": timings})
     print(f"wrote {out}")
     return 0
 

@@ -12,16 +12,19 @@ from rotorpillar import load_scene
 from rotorpillar.chain import resolve
 from rotorpillar.transients.cases import run_case
 
-scene = load_scene("paper", ["excitation.kind=record", "excitation.record=elcentro",
-                             "simulate.earthquake_duration=20"])
-chain = resolve(scene, None)                     # no study here: the scene's own model
+scene = load_scene("paper", ["excitation.kind=record", "excitation.record=elcentro", "simulate.earthquake_duration=20"])
+chain = resolve(scene, None)  # no study here: the scene's own model
 print(f"pillar model: {chain.pillar_model.describe()}")
 result = run_case(scene, "earthquake", "modal", truncation=False, pillar_modes=chain.modes)
 s = result.summary
-print(f"record: PGA {s.excitation['peak_acceleration_g']:.2f} g, "
-      f"PGD {s.excitation['peak_displacement']:.3f} m ({'realistic' if s.excitation['realistic'] else 'NOT realistic'})")
-print(f"modal model with {result.model.pillar_modes.count} pillar modes: peak tip "
-      f"{1e3 * s.max_abs['tip_x']:.2f} mm relative to the ground")
+print(
+    f"record: PGA {s.excitation['peak_acceleration_g']:.2f} g, "
+    f"PGD {s.excitation['peak_displacement']:.3f} m ({'realistic' if s.excitation['realistic'] else 'NOT realistic'})"
+)
+print(
+    f"modal model with {result.model.pillar_modes.count} pillar modes: peak tip "
+    f"{1e3 * s.max_abs['tip_x']:.2f} mm relative to the ground"
+)
 check = s.response_spectrum_check or {}
 for key in ("srss_tip_estimate", "ratio"):
     if key in check:

@@ -9,8 +9,7 @@ from rotorpillar import load_scene
 from rotorpillar.fem3d import modal_analysis, tip_reduction
 from rotorpillar.reduced.reduction import pillar_closed_forms
 
-scene = load_scene("paper", ["mesh.elements_around=16", "mesh.elements_along=8",
-                             "modal.n_modes=8"])
+scene = load_scene("paper", ["mesh.elements_around=16", "mesh.elements_along=8", "modal.n_modes=8"])
 bare = modal_analysis(scene, top=False)
 for row in bare.modes_table():
     print(f"{row['index']:>2} {row['kind']:<10} omega = {row['omega']:8.3f} rad/s")
@@ -18,5 +17,7 @@ for row in bare.modes_table():
 closed = pillar_closed_forms(scene.pillar)
 red = tip_reduction(bare, scene.pillar)
 print(f"first bending: 3D {red.omega_bending:.3f} rad/s, Eq. 1 {closed['omega_col1']:.3f} rad/s")
-print(f"tip reduction (Eq. 2 on the 3D mode): m_r = {red.m_reduced:.0f} kg, "
-      f"closed form m_col/4 = {closed['tip_mass_limit']:.0f} kg")
+print(
+    f"tip reduction (Eq. 2 on the 3D mode): m_r = {red.m_reduced:.0f} kg, "
+    f"closed form m_col/4 = {closed['tip_mass_limit']:.0f} kg"
+)

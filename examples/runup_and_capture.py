@@ -10,18 +10,25 @@ CaseSummary (the fields of simulate_runup.json).
 from rotorpillar import load_scene, override
 from rotorpillar.transients.cases import run_case
 
-scene = load_scene("sommerfeld", ["simulate.threshold=false"])    # one run each, no batch
+scene = load_scene("sommerfeld", ["simulate.threshold=false"])  # one run each, no batch
 first = run_case(scene, "runup", "paper", truncation=False)
 # the averaging theory's fold: the quasi-static run-up jumps past resonance 1 above this M0
-fold = min(j["torque_at_zero"] for j in first.summary.prediction["jumps"]
-           if j["direction"] == "up" and j["resonance"] == 1)
-print(f"averaging theory: a run-up passes resonance 1 with M0 above {fold:.1f} N*m "
-      f"(the scene's motor: {scene.drive.torque_at_zero:g} N*m)")
+fold = min(
+    j["torque_at_zero"] for j in first.summary.prediction["jumps"] if j["direction"] == "up" and j["resonance"] == 1
+)
+print(
+    f"averaging theory: a run-up passes resonance 1 with M0 above {fold:.1f} N*m "
+    f"(the scene's motor: {scene.drive.torque_at_zero:g} N*m)"
+)
 
 for M0 in (600.0, 660.0):
-    s = run_case(override(scene, [f"drive.torque_at_zero={M0}"]), "runup", "paper",
-                 truncation=False).summary
-    where = (f"captured at {s.captured_at:.2f} rad/s below the resonance at "
-             f"{s.captured_resonance:.2f} rad/s" if s.captured_at is not None else s.speed_state)
-    print(f"M0 = {M0:5.0f} N*m: final speed {s.omega_final:6.2f} rad/s, {where}; "
-          f"largest tip {1e3 * s.max_abs['tip_x']:.1f} mm")
+    s = run_case(override(scene, [f"drive.torque_at_zero={M0}"]), "runup", "paper", truncation=False).summary
+    where = (
+        f"captured at {s.captured_at:.2f} rad/s below the resonance at {s.captured_resonance:.2f} rad/s"
+        if s.captured_at is not None
+        else s.speed_state
+    )
+    print(
+        f"M0 = {M0:5.0f} N*m: final speed {s.omega_final:6.2f} rad/s, {where}; "
+        f"largest tip {1e3 * s.max_abs['tip_x']:.1f} mm"
+    )

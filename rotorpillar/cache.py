@@ -65,6 +65,7 @@ def cache_key(args: Mapping[str, Any], *, version: int, code: str) -> str:
 @dataclass(frozen=True)
 class DiskCache:
     """A folder of cached results, one ``<prefix><key>.json`` file each."""
+
     root: Path
     """the folder (created on the first write)"""
     prefix: str = ""

@@ -18,11 +18,12 @@ import sys
 import time
 from pathlib import Path
 
-from .errors import ComputationError, InputError, StageError
-from .provenance import Timings, to_json, with_provenance, write_result
 from .commands import is_root_rank, out_dir
 from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
+from .errors import ComputationError, InputError, StageError
+from .provenance import Timings, to_json, with_provenance, write_result
 from .scene import Scene, load_scene
+
 
 def execute(name: str, scene: Scene, args) -> dict:
     """Run one command on a scene, write ``<out>/<name>.json``, return the result."""
@@ -31,11 +32,13 @@ def execute(name: str, scene: Scene, args) -> dict:
     timings = Timings()
     start = time.perf_counter()
     result, text = fn(scene, args, timings)
-    status = result.pop("exit_status", EXIT_OK)   # a command's own verdict (report --strict)
+    status = result.pop("exit_status", EXIT_OK)  # a command's own verdict (report --strict)
     timings["total"] = time.perf_counter() - start
-    doc = with_provenance(result, {"command": name, "scene_source": str(args.scene),
-                                   "overrides": list(args.overrides), "scene": scene.to_dict()},
-                          dict(timings))
+    doc = with_provenance(
+        result,
+        {"command": name, "scene_source": str(args.scene), "overrides": list(args.overrides), "scene": scene.to_dict()},
+        dict(timings),
+    )
     if is_root_rank():
         path = write_result(out_dir(scene, args) / f"{name}.json", doc)
         doc["_path"] = str(path)
@@ -45,8 +48,7 @@ def execute(name: str, scene: Scene, args) -> dict:
 
 
 #: Exit codes (README, "Exit codes"): the class of a failure, for scripts.
-EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINATED = \
-    0, 1, 2, 70, 130, 143
+EXIT_OK, EXIT_FAILED, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINATED = 0, 1, 2, 70, 130, 143
 
 
 #: Commands that share their work between MPI ranks; the others run on one process.
@@ -117,16 +119,19 @@ def main(argv: list[str] | None = None) -> int:
     quiet_third_party_logs(args.debug)
     signal.signal(signal.SIGTERM, _terminate)
     if args.debug:
-        os.environ["ROTORPILLAR_DEBUG"] = "1"      # run's stages and the report see it too
+        os.environ["ROTORPILLAR_DEBUG"] = "1"  # run's stages and the report see it too
     say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)
     try:
         if mpi_world_size() > 1 and args.command not in MPI_COMMANDS:
-            raise InputError(f"{args.command} runs on one process (only {', '.join(MPI_COMMANDS)} "
-                             "shares its work between MPI ranks): start it without mpirun")
+            raise InputError(
+                f"{args.command} runs on one process (only {', '.join(MPI_COMMANDS)} "
+                "shares its work between MPI ranks): start it without mpirun"
+            )
         scene = load_scene(args.scene, args.overrides)
         if scene.excitation.kind == "record":
             from .reduced.excitation import check_record
-            check_record(scene.excitation.record)       # a missing record: now, not at a late stage
+
+            check_record(scene.excitation.record)  # a missing record: now, not at a late stage
         check_output_dir(out_dir(scene, args))
         doc = execute(args.command, scene, args)
     except InputError as exc:
@@ -147,8 +152,11 @@ def main(argv: list[str] | None = None) -> int:
         if args.debug:
             raise
         where = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
-        say("failed", f"the file system refused{where}: {exc.strerror or exc}; files written "
-                      "before are intact, none is half-written")
+        say(
+            "failed",
+            f"the file system refused{where}: {exc.strerror or exc}; files written "
+            "before are intact, none is half-written",
+        )
         return EXIT_FAILED
     except MemoryError:
         if args.debug:
@@ -158,8 +166,10 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as exc:  # a bug: one line, the traceback on request
         if args.debug:
             raise
-        say("internal error", f"{type(exc).__name__}: {exc} (run again with --debug for the "
-                              "traceback, and please report it)")
+        say(
+            "internal error",
+            f"{type(exc).__name__}: {exc} (run again with --debug for the traceback, and please report it)",
+        )
         return EXIT_INTERNAL
     status = doc.pop("exit_status", EXIT_OK)
     if is_root_rank():
@@ -170,7 +180,7 @@ def main(argv: list[str] | None = None) -> int:
             print(text)
             print(f"\nwrote {path}")
             report = doc.get("report")
-            if isinstance(report, str):     # the last line: the page to open
+            if isinstance(report, str):  # the last line: the page to open
                 print(f"report: {Path(report).resolve()}")
     return status
 

@@ -37,7 +37,8 @@ import logging
 import socket
 import struct
 import time
-from typing import Any, Callable, Iterable, Iterator, TypeVar
+from collections.abc import Callable, Iterable, Iterator
+from typing import Any, TypeVar
 
 from .errors import ComputationError, InputError
 from .provenance import usable_cores
@@ -66,9 +67,11 @@ def check_workers(workers: int | None, flag: str = "--workers") -> None:
     if workers < 1:
         raise InputError(f"{flag} {workers}: must be >= 1")
     if workers > cores:
-        raise InputError(f"{flag} {workers}: this process may run on {cores} cores; at most "
-                         f"{cores} local workers (each runs one single-threaded run at a time: "
-                         "more only share the cores); use --scheduler for more machines")
+        raise InputError(
+            f"{flag} {workers}: this process may run on {cores} cores; at most "
+            f"{cores} local workers (each runs one single-threaded run at a time: "
+            "more only share the cores); use --scheduler for more machines"
+        )
 
 
 def _address(scheduler: str) -> tuple[str, int]:
@@ -76,8 +79,7 @@ def _address(scheduler: str) -> tuple[str, int]:
     host, _, port = rest.rpartition(":")
     host = host.strip("[]")
     if not host or not port.isdigit() or not 0 < int(port) < 65536:
-        raise InputError(f"--scheduler {scheduler!r}: expected tcp://HOST:PORT, "
-                         "e.g. tcp://127.0.0.1:8786")
+        raise InputError(f"--scheduler {scheduler!r}: expected tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786")
     return host, int(port)
 
 
@@ -107,9 +109,10 @@ def probe_scheduler(scheduler: str, timeout: float = HANDSHAKE_SECONDS) -> None:
         raise InputError(f"{where}: nothing listening there (connection refused)") from None
     except socket.gaierror as exc:
         raise InputError(f"{where}: unknown host {host!r} ({exc.strerror})") from None
-    except (socket.timeout, TimeoutError):
-        raise InputError(f"{where}: no answer within {timeout:g} s (the connection was not "
-                         "accepted: a wrong host, or a firewall)") from None
+    except TimeoutError:
+        raise InputError(
+            f"{where}: no answer within {timeout:g} s (the connection was not accepted: a wrong host, or a firewall)"
+        ) from None
     except OSError as exc:
         raise InputError(f"{where}: cannot connect ({exc.strerror or exc})") from None
     with sock:
@@ -118,16 +121,25 @@ def probe_scheduler(scheduler: str, timeout: float = HANDSHAKE_SECONDS) -> None:
         except OSError as exc:
             raise InputError(f"{where}: the connection failed ({exc.strerror or exc})") from None
     if not data:
-        raise InputError(f"{where}: a server that " + (
-            "closed the connection without a word" if closed else
-            f"accepts the connection but says nothing within {timeout:g} s")
-            + ": not a Dask scheduler")
+        raise InputError(
+            f"{where}: a server that "
+            + (
+                "closed the connection without a word"
+                if closed
+                else f"accepts the connection but says nothing within {timeout:g} s"
+            )
+            + ": not a Dask scheduler"
+        )
     size = struct.unpack("<Q", data[:8])[0] if len(data) >= 8 else None
-    greeting = data[8:8 + size] if size is not None else b""
-    if size is None or size > GREETING_MAX_BYTES or len(greeting) < size \
-            or b"compression" not in greeting or b"python" not in greeting:
-        raise InputError(f"{where}: a server that is not a Dask scheduler (it sent "
-                         f"{_shown(data)!r})")
+    greeting = data[8 : 8 + size] if size is not None else b""
+    if (
+        size is None
+        or size > GREETING_MAX_BYTES
+        or len(greeting) < size
+        or b"compression" not in greeting
+        or b"python" not in greeting
+    ):
+        raise InputError(f"{where}: a server that is not a Dask scheduler (it sent {_shown(data)!r})")
 
 
 def _greeting(sock: socket.socket, deadline: float) -> tuple[bytes, bool]:
@@ -143,7 +155,7 @@ def _greeting(sock: socket.socket, deadline: float) -> tuple[bytes, bool]:
         sock.settimeout(left)
         try:
             chunk = sock.recv(4096)
-        except (socket.timeout, TimeoutError):
+        except TimeoutError:
             return data, False
         if not chunk:
             return data, True
@@ -159,15 +171,20 @@ def describe_workers(info: dict) -> tuple[int, int]:
 class Executor:
     """A Dask client on a local cluster (default) or on ``scheduler``."""
 
-    def __init__(self, workers: int | None = None, scheduler: str | None = None, *,
-                 processes: bool = True, timeout: float = HANDSHAKE_SECONDS):
+    def __init__(
+        self,
+        workers: int | None = None,
+        scheduler: str | None = None,
+        *,
+        processes: bool = True,
+        timeout: float = HANDSHAKE_SECONDS,
+    ):
         if scheduler is None:
             check_workers(workers)
         elif workers is not None and workers < 1:
             raise InputError(f"--workers {workers}: must be >= 1")
         if scheduler is not None and not scheduler.startswith(("tcp://", "tls://", "inproc://")):
-            raise InputError(f"--scheduler {scheduler!r}: expected an address such as "
-                             "tcp://127.0.0.1:8786")
+            raise InputError(f"--scheduler {scheduler!r}: expected an address such as tcp://127.0.0.1:8786")
         if scheduler is not None and scheduler.startswith(("tcp://", "tls://")):
             _address(scheduler)
         self.workers = workers
@@ -180,35 +197,42 @@ class Executor:
         """the distributed.LocalCluster this executor started, else None"""
 
     # ------------------------------------------------------------ lifetime
-    def __enter__(self) -> "Executor":
+    def __enter__(self) -> Executor:
         if self.scheduler is not None:
-            probe_scheduler(self.scheduler, self.timeout)     # before Dask's imports: at once
+            probe_scheduler(self.scheduler, self.timeout)  # before Dask's imports: at once
         from distributed import Client, LocalCluster
+
         if self.scheduler is not None:
             where = f"--scheduler {self.scheduler}"
             try:
                 self.client = Client(self.scheduler, timeout=self.timeout)
             except (OSError, TimeoutError) as exc:
-                raise InputError(f"{where}: no Dask handshake within {self.timeout:g} s "
-                                 f"({type(exc).__name__}: {exc})") from None
-            except MemoryError:          # a length read from a stranger's bytes, never memory
-                raise InputError(f"{where}: a server that is not a Dask scheduler (its reply "
-                                 "could not be read)") from None
+                raise InputError(
+                    f"{where}: no Dask handshake within {self.timeout:g} s ({type(exc).__name__}: {exc})"
+                ) from None
+            except MemoryError:  # a length read from a stranger's bytes, never memory
+                raise InputError(
+                    f"{where}: a server that is not a Dask scheduler (its reply could not be read)"
+                ) from None
             try:
                 self.client.wait_for_workers(1, timeout=WORKERS_SECONDS)
             except (OSError, TimeoutError):
                 self.__exit__()
-                raise InputError(f"{where}: a Dask scheduler, but no worker joined it within "
-                                 f"{WORKERS_SECONDS:g} s: start `dask worker {self.scheduler}`"
-                                 ) from None
+                raise InputError(
+                    f"{where}: a Dask scheduler, but no worker joined it within "
+                    f"{WORKERS_SECONDS:g} s: start `dask worker {self.scheduler}`"
+                ) from None
             return self
         n = self.workers or default_workers()
         # no dashboard; the scheduler's bare HTTP endpoint on a free loopback port
-        quiet = dict(threads_per_worker=1, dashboard_address=None, silence_logs=logging.ERROR,
-                     scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+        quiet = dict(
+            threads_per_worker=1,
+            dashboard_address=None,
+            silence_logs=logging.ERROR,
+            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+        )
         if self.processes:
-            self.cluster = LocalCluster(n_workers=n, processes=True, host="127.0.0.1",
-                                        memory_limit=0, **quiet)
+            self.cluster = LocalCluster(n_workers=n, processes=True, host="127.0.0.1", memory_limit=0, **quiet)
         else:
             self.cluster = LocalCluster(n_workers=1, processes=False, **quiet)
         self.client = Client(self.cluster)
@@ -219,7 +243,7 @@ class Executor:
             if thing is not None:
                 try:
                     thing.close()
-                except Exception:      # closing after Ctrl-C must not hide the Ctrl-C
+                except Exception:  # closing after Ctrl-C must not hide the Ctrl-C
                     pass
         self.client = self.cluster = None
 
@@ -227,23 +251,22 @@ class Executor:
     def describe(self) -> dict:
         """The scheduler and the workers used (for the results' provenance)."""
         workers, threads = describe_workers(self.client.scheduler_info())
-        kind = ("scheduler" if self.scheduler else
-                "LocalCluster" if self.processes else "in-process")
-        return {"kind": kind, "scheduler": self.client.scheduler.address, "workers": workers,
-                "threads": threads}
+        kind = "scheduler" if self.scheduler else "LocalCluster" if self.processes else "in-process"
+        return {"kind": kind, "scheduler": self.client.scheduler.address, "workers": workers, "threads": threads}
 
     # ------------------------------------------------------------ work
-    def map(self, fn: Callable[[T], R], items: Iterable[T], *,
-            pure: bool = False) -> Iterator[tuple[int, R]]:
+    def map(self, fn: Callable[[T], R], items: Iterable[T], *, pure: bool = False) -> Iterator[tuple[int, R]]:
         """``(index, fn(item))`` for every item, in the order they finish.
 
         An exception in ``fn`` is raised here when its result comes up; the
         futures not yet finished are cancelled when the caller stops
         iterating (an exception, Ctrl-C, or ``break``)."""
         from distributed import as_completed
+
         items = list(items)
-        futures = [self.client.submit(fn, item, pure=pure, key=f"{fn.__name__}-{i}-{id(self)}")
-                   for i, item in enumerate(items)]
+        futures = [
+            self.client.submit(fn, item, pure=pure, key=f"{fn.__name__}-{i}-{id(self)}") for i, item in enumerate(items)
+        ]
         index = {f.key: i for i, f in enumerate(futures)}
         try:
             for fut in as_completed(futures):
@@ -261,9 +284,9 @@ def _result(fut, scheduler: str | None):
     """A future's result; the cluster failing under it is a ComputationError naming the
     cluster, never a memory or file-system failure (CommClosedError is an OSError)."""
     from distributed.comm.core import CommClosedError
+
     try:
         return fut.result()
     except CommClosedError as exc:
         where = f"the Dask scheduler at {scheduler}" if scheduler else "the local Dask cluster"
-        raise ComputationError(f"{where} stopped answering ({exc}); finished work is on "
-                               "disk") from None
+        raise ComputationError(f"{where} stopped answering ({exc}); finished work is on disk") from None

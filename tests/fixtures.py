@@ -48,23 +48,39 @@ def analytic_shapes(points: np.ndarray, height: float, axial: int, x: int) -> li
     for k in (1, 2):
         for direction, e_lat, lat in (("bending_x", ex, a), ("bending_y", ey, b)):
             # beam kinematics: the section turns with the slope of the axis
-            u = (np.outer(_tip_mode(xi, k), e_lat)
-                 - np.outer(lat * _tip_mode_slope(xi, k) / height, ea))
-            out.append(({"kind": direction, "n_circumferential": 1, "normalisation": "unit_tip",
-                         "order": k}, u))
+            u = np.outer(_tip_mode(xi, k), e_lat) - np.outer(lat * _tip_mode_slope(xi, k) / height, ea)
+            out.append(({"kind": direction, "n_circumferential": 1, "normalisation": "unit_tip", "order": k}, u))
     g = np.sin(np.pi * xi / 2) ** 2
     oval = e_r * (np.cos(2 * theta) * g)[:, None]
-    out.append(({"kind": "ovalling", "n_circumferential": 2, "normalisation": "unit_max"},
-                oval / np.max(np.linalg.norm(oval, axis=1))))
+    out.append(
+        (
+            {"kind": "ovalling", "n_circumferential": 2, "normalisation": "unit_max"},
+            oval / np.max(np.linalg.norm(oval, axis=1)),
+        )
+    )
     tors = e_t * (r / r.max() * xi)[:, None]
-    out.append(({"kind": "torsion", "n_circumferential": 0, "normalisation": "unit_max"},
-                tors / np.max(np.linalg.norm(tors, axis=1))))
+    out.append(
+        (
+            {"kind": "torsion", "n_circumferential": 0, "normalisation": "unit_max"},
+            tors / np.max(np.linalg.norm(tors, axis=1)),
+        )
+    )
     return out
 
 
-def write_modal_fixture(out: str | Path, height=20.0, outer_diameter=2.0, inner_diameter=1.96,
-                        density=8.1e3, youngs_modulus=2.1e11, axial: int = 2, x: int = 0,
-                        around: int = 32, along: int = 24, top_mass: float = 12e3) -> dict:
+def write_modal_fixture(
+    out: str | Path,
+    height=20.0,
+    outer_diameter=2.0,
+    inner_diameter=1.96,
+    density=8.1e3,
+    youngs_modulus=2.1e11,
+    axial: int = 2,
+    x: int = 0,
+    around: int = 32,
+    along: int = 24,
+    top_mass: float = 12e3,
+) -> dict:
     """Write ``modal.json``, ``modes_bare.vtu`` and ``modes_top.vtu`` into ``out``.
 
     Frequencies: Euler-Bernoulli for bending (the paper's Eq. 1), the top mass lowering
@@ -73,35 +89,47 @@ def write_modal_fixture(out: str | Path, height=20.0, outer_diameter=2.0, inner_
     Returns the modal.json document.
     """
     from rotorpillar.postprocess.offscreen import pyvista
+
     pv = pyvista()
     out = Path(out)
     direction = _unit(axial)
-    grid = pv.CylinderStructured(radius=[inner_diameter / 2, outer_diameter / 2], height=height,
-                                 center=tuple(direction * height / 2), direction=tuple(direction),
-                                 theta_resolution=around, z_resolution=along + 1)
+    grid = pv.CylinderStructured(
+        radius=[inner_diameter / 2, outer_diameter / 2],
+        height=height,
+        center=tuple(direction * height / 2),
+        direction=tuple(direction),
+        theta_resolution=around,
+        z_resolution=along + 1,
+    )
     grid = grid.cast_to_unstructured_grid()
     sec = tube_section(outer_diameter, inner_diameter, density)
     m_col = sec.mass_per_length * height
-    w = [omega_euler_bernoulli(youngs_modulus, sec.second_moment, sec.mass_per_length, height, k)
-         for k in (1, 2)]
+    w = [omega_euler_bernoulli(youngs_modulus, sec.second_moment, sec.mass_per_length, height, k) for k in (1, 2)]
     shapes = analytic_shapes(np.asarray(grid.points), height, axial, x)
     other = {"ovalling": 2.6 * w[0], "torsion": 9.0 * w[0]}
     # the top plate stiffens the section: its shell modes rise (13.7 -> 17.3 Hz on the
     # paper's tube), so the two sets' pictures differ as they do in a real run
     stiffening = {"modes": 1.0, "modes_with_top": 1.27}
     doc = {"axes": {"tube": "xyz"[axial], "paper_x": "xyz"[x]}}
-    for key, vtu, lowering in (("modes", "modes_bare.vtu", 1.0),
-                               ("modes_with_top", "modes_top.vtu",
-                                math.sqrt(0.25 * m_col / (0.25 * m_col + top_mass)))):
+    for key, vtu, lowering in (
+        ("modes", "modes_bare.vtu", 1.0),
+        ("modes_with_top", "modes_top.vtu", math.sqrt(0.25 * m_col / (0.25 * m_col + top_mass))),
+    ):
         g = grid.copy()
         entries = []
         for meta, u in shapes:
             # the top mass lowers the second bending mode less (178 -> 157 rad/s on the paper's)
-            omega = (w[meta["order"] - 1] * (lowering if meta["order"] == 1 else math.sqrt(lowering))
-                     if meta["kind"].startswith("bending") else other[meta["kind"]] * stiffening[key])
+            omega = (
+                w[meta["order"] - 1] * (lowering if meta["order"] == 1 else math.sqrt(lowering))
+                if meta["kind"].startswith("bending")
+                else other[meta["kind"]] * stiffening[key]
+            )
             m = {k: v for k, v in meta.items() if k != "order"}
-            m.update(omega=omega, frequency_hz=omega / (2 * math.pi),
-                     modal_mass=0.25 * m_col + (top_mass if key == "modes_with_top" else 0.0))
+            m.update(
+                omega=omega,
+                frequency_hz=omega / (2 * math.pi),
+                modal_mass=0.25 * m_col + (top_mass if key == "modes_with_top" else 0.0),
+            )
             entries.append((omega, m, u))
         entries.sort(key=lambda e: e[0])
         for i, (_, _, u) in enumerate(entries):
@@ -110,15 +138,25 @@ def write_modal_fixture(out: str | Path, height=20.0, outer_diameter=2.0, inner_
             g.save(str(tmp))
         doc[key] = [m for _, m, _ in entries]
     # every key of a ModalSummary (the report reads modal.json through it)
-    doc["top"] = {"model": "ring_mass", "mass": top_mass, "carries": "top_mass",
-                  "omega_bending": doc["modes_with_top"][0]["omega"]}
-    doc["reduction"] = {"m_reduced": 0.25 * m_col, "tip_stiffness": 0.25 * m_col * w[0] ** 2,
-                        "omega_bending": w[0]}
+    doc["top"] = {
+        "model": "ring_mass",
+        "mass": top_mass,
+        "carries": "top_mass",
+        "omega_bending": doc["modes_with_top"][0]["omega"],
+    }
+    doc["reduction"] = {"m_reduced": 0.25 * m_col, "tip_stiffness": 0.25 * m_col * w[0] ** 2, "omega_bending": w[0]}
     doc["comparison"] = {}
     doc["shell_modes_below_second_bending"] = {}
-    doc["mesh"] = {"cells": int(grid.n_cells), "dofs": int(3 * grid.n_points),
-                   "cell_type": "hexahedron", "degree": 1, "elements_around": around,
-                   "elements_along": along, "elements_through": 1, "grading": 1.0}
+    doc["mesh"] = {
+        "cells": int(grid.n_cells),
+        "dofs": int(3 * grid.n_points),
+        "cell_type": "hexahedron",
+        "degree": 1,
+        "elements_around": around,
+        "elements_along": along,
+        "elements_through": 1,
+        "grading": 1.0,
+    }
     doc["configurations"] = {}
     doc["timings"] = {"mesh": 0.1, "solve": 0.2}
     doc["note"] = "synthetic fixture: analytic shapes, not a finite-element result"
@@ -126,8 +164,9 @@ def write_modal_fixture(out: str | Path, height=20.0, outer_diameter=2.0, inner_
     return doc
 
 
-def simulation_arrays(case: str, omega1: float = 15.36, duration: float | None = None,
-                      n: int = 4000, n_modes: int = 2) -> dict[str, np.ndarray]:
+def simulation_arrays(
+    case: str, omega1: float = 15.36, duration: float | None = None, n: int = 4000, n_modes: int = 2
+) -> dict[str, np.ndarray]:
     """Arrays shaped like a `rotorpillar simulate` case: a run-up through a
     resonance at ``omega1`` (tip amplitude a resonance curve), or the paper's
     earthquake q5 = -g/pi + g/pi cos(pi t) for 5 <= t <= 12 s on a steady rotor."""
@@ -149,20 +188,27 @@ def simulation_arrays(case: str, omega1: float = 15.36, duration: float | None =
             Omega = Omega[::-1]
         phase = np.cumsum(Omega) * (t[1] - t[0])
         z = Omega / omega1
-        amp = 0.002 / np.sqrt((1 - z) ** 2 + 0.05 ** 2) * np.clip(z, 0, None) ** 2 / (1 + z ** 2)
+        amp = 0.002 / np.sqrt((1 - z) ** 2 + 0.05**2) * np.clip(z, 0, None) ** 2 / (1 + z**2)
         ground = np.zeros_like(t)
         rel = amp * np.cos(phase)
         tip = rel
     rotor_rel = 0.002 + 0.001 * np.tanh(Omega / omega1)
     modal = np.column_stack([rel * (1.0 if k == 0 else 0.05 / k) for k in range(n_modes)])
-    return {"t": t, "Omega": Omega, "tip_x": tip, "rotor_x": tip + rotor_rel * np.cos(phase),
-            "rotor_y": rotor_rel * np.sin(phase), "ground_x": ground,
-            "ground_acceleration": np.gradient(np.gradient(ground, t), t),
-            "modal_coordinates": modal}
+    return {
+        "t": t,
+        "Omega": Omega,
+        "tip_x": tip,
+        "rotor_x": tip + rotor_rel * np.cos(phase),
+        "rotor_y": rotor_rel * np.sin(phase),
+        "ground_x": ground,
+        "ground_acceleration": np.gradient(np.gradient(ground, t), t),
+        "modal_coordinates": modal,
+    }
 
 
-def write_simulation_fixture(out: str | Path, case: str, modal: bool = True, per_model: bool = False,
-                             warnings: list | None = None, **kw) -> dict:
+def write_simulation_fixture(
+    out: str | Path, case: str, modal: bool = True, per_model: bool = False, warnings: list | None = None, **kw
+) -> dict:
     """``simulate_<case>.json`` and ``.npz`` in ``out`` (with ``per_model``,
     the model's own ``simulate_<case>_<model>.*``); returns the JSON.  The
     earthquake carries the excitation block of the paper's pulse (its sizes
@@ -174,19 +220,31 @@ def write_simulation_fixture(out: str | Path, case: str, modal: bool = True, per
     model = "modal" if modal else "paper"
     stem = f"simulate_{case}" + (f"_{model}" if per_model else "")
     _save_npz(out / f"{stem}.npz", arrays)
-    doc = {"case": case, "model": model,
-           "omega_final": float(arrays["Omega"][-1]),
-           "max_abs": {k: float(np.max(np.abs(arrays[k]))) for k in ("tip_x", "rotor_x", "rotor_y")},
-           "jumps": [], "captured_at": None, "energy_balance_error": 1.2e-5,
-           "integrator": {"method": "synthetic", "steps": int(len(arrays["t"]))},
-           "tip_x_frame": "absolute",    # simulation_arrays: tip_x = ground + relative
-           "note": "synthetic fixture, not a simulation"}
+    doc = {
+        "case": case,
+        "model": model,
+        "omega_final": float(arrays["Omega"][-1]),
+        "max_abs": {k: float(np.max(np.abs(arrays[k]))) for k in ("tip_x", "rotor_x", "rotor_y")},
+        "jumps": [],
+        "captured_at": None,
+        "energy_balance_error": 1.2e-5,
+        "integrator": {"method": "synthetic", "steps": int(len(arrays["t"]))},
+        "tip_x_frame": "absolute",  # simulation_arrays: tip_x = ground + relative
+        "note": "synthetic fixture, not a simulation",
+    }
     if case == "earthquake":
         A, w, start = _G / np.pi, np.pi, 5.0
-        doc["excitation"] = {"kind": "pulse", "amplitude": A, "frequency": w, "start": start,
-                             "end": 12.0, "displacement_step_at_start": A * (math.cos(w * start) - 1),
-                             "peak_acceleration_g": A * w * w / 9.80665, "realistic": False,
-                             "statement": "The paper's pulse as written (synthetic fixture)."}
+        doc["excitation"] = {
+            "kind": "pulse",
+            "amplitude": A,
+            "frequency": w,
+            "start": start,
+            "end": 12.0,
+            "displacement_step_at_start": A * (math.cos(w * start) - 1),
+            "peak_acceleration_g": A * w * w / 9.80665,
+            "realistic": False,
+            "statement": "The paper's pulse as written (synthetic fixture).",
+        }
     if warnings is not None:
         doc["warnings"] = list(warnings)
     write_json(out / f"{stem}.json", doc)
@@ -204,8 +262,12 @@ def model_arrays(case: str, model: str, n: int = 1200, omega1: float = 15.36) ->
     compare contract): the model's tip relative to the ground is the modal
     one's, scaled and slightly shifted in phase per model, on its own time grid
     (the full-order models store more samples)."""
-    scale, lag, samples = {"modal": (1.0, 0.0, n), "fem3d": (1.02, 0.002, n + 301),
-                           "beam": (0.99, 0.003, n + 157), "paper": (1.4, 0.05, n)}[model]
+    scale, lag, samples = {
+        "modal": (1.0, 0.0, n),
+        "fem3d": (1.02, 0.002, n + 301),
+        "beam": (0.99, 0.003, n + 157),
+        "paper": (1.4, 0.05, n),
+    }[model]
     t = np.linspace(0.0, 20.0 if case == "earthquake" else 40.0, samples)
     if case == "earthquake":
         # a decaying burst standing in for a record: decimetres of ground, ~0.3 g
@@ -216,19 +278,33 @@ def model_arrays(case: str, model: str, n: int = 1200, omega1: float = 15.36) ->
         ground = np.zeros_like(t)
         Omega = 3.0 * omega1 * (1 - np.exp(-t / 14.0))
         z = Omega / omega1
-        rel = 0.002 * scale / np.sqrt((1 - z) ** 2 + 0.05 ** 2) * np.cos(np.cumsum(Omega) * (t[1] - t[0]) - lag)
+        rel = 0.002 * scale / np.sqrt((1 - z) ** 2 + 0.05**2) * np.cos(np.cumsum(Omega) * (t[1] - t[0]) - lag)
     phase = np.cumsum(Omega) * (t[1] - t[0])
     shaft = 0.002 * scale * np.cos(phase)
     rotor_x = rel + ground + shaft + 0.002 * np.cos(phase)
-    return {"t": t, "Omega": Omega, "tip_x_relative": rel, "tip_x_absolute": rel + ground,
-            "tip_x": rel if model != "paper" else rel + ground, "ground_x": ground,
-            "ground_acceleration": np.gradient(np.gradient(ground, t), t),
-            "rotor_x": rotor_x, "rotor_y": 0.002 * np.sin(phase), "shaft_deflection_x": shaft}
+    return {
+        "t": t,
+        "Omega": Omega,
+        "tip_x_relative": rel,
+        "tip_x_absolute": rel + ground,
+        "tip_x": rel if model != "paper" else rel + ground,
+        "ground_x": ground,
+        "ground_acceleration": np.gradient(np.gradient(ground, t), t),
+        "rotor_x": rotor_x,
+        "rotor_y": 0.002 * np.sin(phase),
+        "shaft_deflection_x": shaft,
+    }
 
 
-def write_comparison_fixture(out: str | Path, case: str, models=("modal", "fem3d"),
-                             reference: str | None = None, spectrum: bool = True,
-                             warnings: dict | None = None, n: int = 1200) -> dict:
+def write_comparison_fixture(
+    out: str | Path,
+    case: str,
+    models=("modal", "fem3d"),
+    reference: str | None = None,
+    spectrum: bool = True,
+    warnings: dict | None = None,
+    n: int = 1200,
+) -> dict:
     """``compare_<case>.json`` and each model's ``simulate_<case>_<model>.{json,npz}``
     in ``out``, as the compare contract (tests/../COMPARE_SPEC) shapes them;
     the errors and peaks are computed here from the arrays written.  Returns
@@ -241,68 +317,115 @@ def write_comparison_fixture(out: str | Path, case: str, models=("modal", "fem3d
     wall = {"modal": 0.8, "fem3d": 41.5, "beam": 3.2, "paper": 0.4}
     warnings = warnings or {}
     per, errors = {}, {}
-    excitation = ({"kind": "record", "name": "synthetic burst", "source": "tests/fixtures.py",
-                   "start": 2.0, "peak_acceleration_g": 0.31, "peak_velocity": 0.33,
-                   "peak_displacement": 0.12, "realistic": True}
-                  if case == "earthquake" else {"kind": "none"})
+    excitation = (
+        {
+            "kind": "record",
+            "name": "synthetic burst",
+            "source": "tests/fixtures.py",
+            "start": 2.0,
+            "peak_acceleration_g": 0.31,
+            "peak_velocity": 0.33,
+            "peak_displacement": 0.12,
+            "realistic": True,
+        }
+        if case == "earthquake"
+        else {"kind": "none"}
+    )
     for m in models:
         a = arrays[m]
         _save_npz(out / f"simulate_{case}_{m}.npz", a)
-        meta = {"model": m, "case": case, "ok": True, "warnings": list(warnings.get(m, [])),
-                "max_abs": {k: float(np.max(np.abs(a[k])))
-                            for k in ("tip_x_relative", "tip_x_absolute", "tip_x", "rotor_x", "rotor_y")},
-                "omega_final": float(a["Omega"][-1]), "captured_at": None,
-                "energy_balance": {"relative_error": 2e-5}, "integrator": {"method": "synthetic"},
-                "dofs": dofs[m], "wall_seconds": wall[m], "excitation": excitation,
-                "tip_x_frame": "absolute" if m == "paper" else "relative_to_ground",
-                "note": "synthetic fixture, not a simulation"}
+        meta = {
+            "model": m,
+            "case": case,
+            "ok": True,
+            "warnings": list(warnings.get(m, [])),
+            "max_abs": {
+                k: float(np.max(np.abs(a[k])))
+                for k in ("tip_x_relative", "tip_x_absolute", "tip_x", "rotor_x", "rotor_y")
+            },
+            "omega_final": float(a["Omega"][-1]),
+            "captured_at": None,
+            "energy_balance": {"relative_error": 2e-5},
+            "integrator": {"method": "synthetic"},
+            "dofs": dofs[m],
+            "wall_seconds": wall[m],
+            "excitation": excitation,
+            "tip_x_frame": "absolute" if m == "paper" else "relative_to_ground",
+            "note": "synthetic fixture, not a simulation",
+        }
         if m in ("fem3d", "beam"):
-            meta["full_order"] = {"mesh" if m == "fem3d" else "elements":
-                                  "12 x 24 x 1 quadratic hexahedra" if m == "fem3d" else 40,
-                                  "duration": float(a["t"][-1]), "time_step": 2e-3,
-                                  "note": f"synthetic {m}: coarsened for the fixture"}
+            meta["full_order"] = {
+                "mesh" if m == "fem3d" else "elements": "12 x 24 x 1 quadratic hexahedra" if m == "fem3d" else 40,
+                "duration": float(a["t"][-1]),
+                "time_step": 2e-3,
+                "note": f"synthetic {m}: coarsened for the fixture",
+            }
         write_json(out / f"simulate_{case}_{m}.json", meta)
-        per[m] = {"peak_tip_relative": meta["max_abs"]["tip_x_relative"],
-                  "peak_tip_absolute": meta["max_abs"]["tip_x_absolute"],
-                  "peak_shaft_deflection": float(np.max(np.abs(a["shaft_deflection_x"]))),
-                  "omega_final": meta["omega_final"], "wall_seconds": wall[m], "dofs": dofs[m],
-                  "ok": True, "warnings": meta["warnings"],
-                  "json": f"simulate_{case}_{m}.json", "npz": f"simulate_{case}_{m}.npz"}
+        per[m] = {
+            "peak_tip_relative": meta["max_abs"]["tip_x_relative"],
+            "peak_tip_absolute": meta["max_abs"]["tip_x_absolute"],
+            "peak_shaft_deflection": float(np.max(np.abs(a["shaft_deflection_x"]))),
+            "omega_final": meta["omega_final"],
+            "wall_seconds": wall[m],
+            "dofs": dofs[m],
+            "ok": True,
+            "warnings": meta["warnings"],
+            "json": f"simulate_{case}_{m}.json",
+            "npz": f"simulate_{case}_{m}.npz",
+        }
     r = arrays[reference]
     for m in models:
         if m == reference:
             continue
         y = np.interp(r["t"], arrays[m]["t"], arrays[m]["tip_x_relative"])
-        errors[m] = {"tip_history_error": float(np.max(np.abs(y - r["tip_x_relative"]))
-                                                / np.max(np.abs(r["tip_x_relative"]))),
-                     "peak_tip_difference": per[m]["peak_tip_relative"] / per[reference]["peak_tip_relative"] - 1,
-                     "omega_final_difference": per[m]["omega_final"] / per[reference]["omega_final"] - 1}
-    doc = {"case": case, "models_run": list(models), "reference": reference, "excitation": excitation,
-           "per_model": per, "errors": errors,
-           "cost_ratio": {m: wall[m] / wall[reference] for m in models},
-           "chart": f"compare_{case}.png", "note": "synthetic fixture, not a comparison",
-           "window": {"start": 0.0, "end": float(r["t"][-1]), "duration": float(r["t"][-1]),
-                      "why": "the case's own duration"}}
+        errors[m] = {
+            "tip_history_error": float(np.max(np.abs(y - r["tip_x_relative"])) / np.max(np.abs(r["tip_x_relative"]))),
+            "peak_tip_difference": per[m]["peak_tip_relative"] / per[reference]["peak_tip_relative"] - 1,
+            "omega_final_difference": per[m]["omega_final"] / per[reference]["omega_final"] - 1,
+        }
+    doc = {
+        "case": case,
+        "models_run": list(models),
+        "reference": reference,
+        "excitation": excitation,
+        "per_model": per,
+        "errors": errors,
+        "cost_ratio": {m: wall[m] / wall[reference] for m in models},
+        "chart": f"compare_{case}.png",
+        "note": "synthetic fixture, not a comparison",
+        "window": {
+            "start": 0.0,
+            "end": float(r["t"][-1]),
+            "duration": float(r["t"][-1]),
+            "why": "the case's own duration",
+        },
+    }
     if case == "earthquake" and spectrum:
         T = np.logspace(-1.5, 1.0, 80)
-        doc["spectrum"] = {"period": T.tolist(),
-                           "psa": (9.80665 * 0.3 * (1 + 1.5 * np.exp(-np.log(T / 0.4) ** 2))).tolist(),
-                           "damping": 0.05, "mode_periods": [2 * math.pi / 15.36, 2 * math.pi / 96.0],
-                           "spectral_peak_tip": 0.0042,
-                           "computed_peak_tip": per.get("modal", per[reference])["peak_tip_relative"],
-                           "note": "synthetic spectrum: an estimate, not a bound"}
+        doc["spectrum"] = {
+            "period": T.tolist(),
+            "psa": (9.80665 * 0.3 * (1 + 1.5 * np.exp(-(np.log(T / 0.4) ** 2)))).tolist(),
+            "damping": 0.05,
+            "mode_periods": [2 * math.pi / 15.36, 2 * math.pi / 96.0],
+            "spectral_peak_tip": 0.0042,
+            "computed_peak_tip": per.get("modal", per[reference])["peak_tip_relative"],
+            "note": "synthetic spectrum: an estimate, not a bound",
+        }
     write_json(out / f"compare_{case}.json", doc)
     return doc
 
 
 #: VTK cell type -> (the VTK class whose parametric coordinates order its
 #: nodes, the cell name of rotorpillar.mesh.arrays.cylindrical_nodes)
-_VTK_CELLS = {12: ("vtkHexahedron", "hexahedron"), 29: ("vtkTriQuadraticHexahedron", "hexahedron"),
-              10: ("vtkTetra", "tetrahedron"), 24: ("vtkQuadraticTetra", "tetrahedron")}
+_VTK_CELLS = {
+    12: ("vtkHexahedron", "hexahedron"),
+    29: ("vtkTriQuadraticHexahedron", "hexahedron"),
+    10: ("vtkTetra", "tetrahedron"),
+    24: ("vtkQuadraticTetra", "tetrahedron"),
+}
 
 
-def check_tube_vtu(path, height: float, outer_radius: float, inner_radius: float,
-                   around: int, through: int) -> dict:
+def check_tube_vtu(path, height: float, outer_radius: float, inner_radius: float, around: int, through: int) -> dict:
     """Check a modes_*.vtu's cells against VTK's own node order and the tube.
 
     - every node lies on the tube's geometry: radius one of the levels through
@@ -321,8 +444,10 @@ def check_tube_vtu(path, height: float, outer_radius: float, inner_radius: float
     Returns {"vtk_type", "points", "order"}.
     """
     import vtk
+
     from rotorpillar.mesh.arrays import cylindrical_nodes
     from rotorpillar.postprocess.offscreen import pyvista
+
     pv = pyvista()
     grid = pv.read(str(path))
     types = np.unique(np.asarray(grid.celltypes))
@@ -332,7 +457,7 @@ def check_tube_vtu(path, height: float, outer_radius: float, inner_radius: float
     cell = getattr(vtk, cls)()
     nn = cell.GetNumberOfPoints()
     par = np.array([cell.GetParametricCoords()[i] for i in range(3 * nn)]).reshape(nn, 3)
-    reference = 2 * par - 1 if cell_name == "hexahedron" else par     # Gmsh's reference cells
+    reference = 2 * par - 1 if cell_name == "hexahedron" else par  # Gmsh's reference cells
     cells = np.asarray(grid.cells_dict[vtk_type])
     pts = np.asarray(grid.points)
     expected = cylindrical_nodes(pts, cells, reference, cell_name)
@@ -351,4 +476,5 @@ def check_tube_vtu(path, height: float, outer_radius: float, inner_radius: float
 
 def pytest_approx(value, rel):
     import pytest
+
     return pytest.approx(value, rel=rel)

@@ -18,6 +18,7 @@ def png_size(path) -> tuple[int, int]:
 
 def pixels(path) -> np.ndarray:
     from PIL import Image
+
     with Image.open(path) as im:
         return np.asarray(im.convert("RGB"), dtype=float)
 
@@ -37,6 +38,7 @@ def labels_overlap(fig) -> list[tuple[str, str]]:
     of ``fig`` whose boxes, as the renderer draws them, intersect (an
     annotation's text box: ``Text.get_window_extent``, its leader line aside)."""
     from rotorpillar.postprocess.style import text_box
+
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     pairs = []

@@ -29,12 +29,11 @@ RESONANCES = linear_modes(paper_example()).resonances + linear_modes(paper_examp
 def integrate_mode(r, Omega, periods_settle=None, periods_measure=20):
     """Steady amplitude and averaged torque of one quasi-normal mode at fixed Omega."""
     T = 2 * np.pi / Omega
-    settle = periods_settle or int(np.ceil(12 / (r.n * T)))       # e^-12 of the transient
+    settle = periods_settle or int(np.ceil(12 / (r.n * T)))  # e^-12 of the transient
     t_end = (settle + periods_measure) * T
     rhs = lambda t, y: [y[1], r.forcing * np.cos(Omega * t) - r.two_n * y[1] - r.omega**2 * y[0]]
     t_eval = np.linspace(settle * T, t_end, periods_measure * 200 + 1)
-    sol = solve_ivp(rhs, (0, t_end), [0.0, 0.0], method="DOP853", rtol=1e-10, atol=1e-14,
-                    t_eval=t_eval)
+    sol = solve_ivp(rhs, (0, t_end), [0.0, 0.0], method="DOP853", rtol=1e-10, atol=1e-14, t_eval=t_eval)
     x, t = sol.y[0], sol.t
     basis = np.column_stack([np.cos(Omega * t), np.sin(Omega * t)])
     coef = np.linalg.lstsq(basis, x, rcond=None)[0]
@@ -86,9 +85,17 @@ def modal_damping_coupling(s):
     return abs(Cm[0, 1]) / np.sqrt(Cm[0, 0] * Cm[1, 1])
 
 
-@pytest.mark.parametrize("scene, index, agrees", [
-    ("elastic", 1, True), ("elastic", 2, True), ("elastic", 3, True),
-    ("stiff", 1, False), ("stiff", 2, True), ("stiff", 3, True)])
+@pytest.mark.parametrize(
+    "scene, index, agrees",
+    [
+        ("elastic", 1, True),
+        ("elastic", 2, True),
+        ("elastic", 3, True),
+        ("stiff", 1, False),
+        ("stiff", 2, True),
+        ("stiff", 3, True),
+    ],
+)
 def test_eq20_resonant_term_against_full_equations(scene, index, agrees):
     """Full Eq. 4 torque minus the other modes' exact tails = Eq. 20's term.
 
@@ -123,9 +130,18 @@ def test_paper_coupling_f4_misses_the_mode_factor():
 def strong_case():
     """The paper's elastic scene with a 20x eccentricity: resonances 1 and 3 fold."""
     from rotorpillar.reduced.system import ReducedSystem
+
     s = paper_example()
-    s = ReducedSystem(s.tip_mass, s.rotor_mass, s.rotor_inertia, 20 * s.eccentricity,
-                      s.pillar_stiffness, s.shaft_stiffness, s.pillar_damping, s.shaft_damping)
+    s = ReducedSystem(
+        s.tip_mass,
+        s.rotor_mass,
+        s.rotor_inertia,
+        20 * s.eccentricity,
+        s.pillar_stiffness,
+        s.shaft_stiffness,
+        s.pillar_damping,
+        s.shaft_damping,
+    )
     return linear_modes(s).resonances
 
 
@@ -137,7 +153,7 @@ def test_jumps_are_folds_of_the_stationary_curve():
     F = lambda W: float(av.total_resistance(W, 0.5, res) + 12.0 * W)
     for j in out.jumps:
         h = 1e-6 * j.omega_from
-        dF = (F(j.omega_from + h) - F(j.omega_from - h)) / (2 * h)    # independent derivative
+        dF = (F(j.omega_from + h) - F(j.omega_from - h)) / (2 * h)  # independent derivative
         assert abs(dF) < 1e-4 * 12.0
         assert F(j.omega_to) == pytest.approx(j.torque_at_zero, rel=1e-9)
         if j.direction == "up":
@@ -154,11 +170,9 @@ def test_jumps_are_folds_of_the_stationary_curve():
 
 def test_stability_alternates_and_quasistatic_branches():
     res = strong_case()
-    up = [j for j in av.analyse_drive(av.Characteristic(500.0, 12.0, 0.5), res).jumps
-          if j.direction == "up"][0]
-    down = [j for j in av.analyse_drive(av.Characteristic(500.0, 12.0, 0.5), res).jumps
-            if j.direction == "down"][0]
-    M0 = 0.5 * (up.torque_at_zero + down.torque_at_zero)   # inside the hysteresis band
+    up = [j for j in av.analyse_drive(av.Characteristic(500.0, 12.0, 0.5), res).jumps if j.direction == "up"][0]
+    down = [j for j in av.analyse_drive(av.Characteristic(500.0, 12.0, 0.5), res).jumps if j.direction == "down"][0]
+    M0 = 0.5 * (up.torque_at_zero + down.torque_at_zero)  # inside the hysteresis band
     out = av.analyse_drive(av.Characteristic(M0, 12.0, 0.5), res)
     assert [s.stable for s in out.stationary] == [True, False, True]
     assert out.runup_speed < up.omega_from < out.rundown_speed
@@ -170,7 +184,7 @@ def test_branch_is_stable_against_a_numerical_derivative():
     stationary speeds: stable exactly where d(Md - L)/dOmega < 0."""
     res = strong_case()
     s, k = 12.0, 0.5
-    G = lambda W: float(-s * W - av.total_resistance(W, k, res))     # Md - L without M0
+    G = lambda W: float(-s * W - av.total_resistance(W, k, res))  # Md - L without M0
     up = [j for j in av.analyse_drive(av.Characteristic(500.0, s, k), res).jumps if j.direction == "up"][0]
     out = av.analyse_drive(av.Characteristic(up.torque_at_zero * 0.999, s, k), res)
     assert len(out.stationary) == 3
@@ -186,20 +200,29 @@ def test_branch_is_stable_against_a_numerical_derivative():
 def test_peak_resistance_ratio_is_eq20_over_the_load_at_resonance():
     r = linear_modes(paper_example(5e6, 25e3)).resonances[0]
     assert av.peak_resistance_ratio(r, 0.5) == pytest.approx(
-        float(av.resistance_increment(r.omega, r)) / (0.5 * r.omega**2), rel=1e-15)
+        float(av.resistance_increment(r.omega, r)) / (0.5 * r.omega**2), rel=1e-15
+    )
 
 
 def test_critical_eccentricity_is_where_folds_appear():
     base = paper_example()
     from rotorpillar.reduced.system import ReducedSystem
+
     ch = av.Characteristic(5100.0, 12.0, 0.5)
-    r = linear_modes(base).resonances[2]            # the Y resonance, alone
+    r = linear_modes(base).resonances[2]  # the Y resonance, alone
     factor = av.critical_eccentricity_factor(ch, r, 200.0)
     for scale, expect in ((0.97, False), (1.03, True)):
         e = base.eccentricity * factor * scale
-        s = ReducedSystem(base.tip_mass, base.rotor_mass, base.rotor_inertia, e,
-                          base.pillar_stiffness, base.shaft_stiffness, base.pillar_damping,
-                          base.shaft_damping)
+        s = ReducedSystem(
+            base.tip_mass,
+            base.rotor_mass,
+            base.rotor_inertia,
+            e,
+            base.pillar_stiffness,
+            base.shaft_stiffness,
+            base.pillar_damping,
+            base.shaft_damping,
+        )
         r2 = linear_modes(s).resonances[2]
         folds = av.analyse_drive(av.Characteristic(2000.0, 12.0, 0.5), [r2], top=200.0).jumps
         assert bool(folds) is expect

@@ -26,8 +26,7 @@ from rotorpillar.scene import load_scene, override
 @pytest.fixture(scope="module")
 def rom():
     # the ROM on the beam's modes (any mode source has the closed forms below)
-    scene = override(load_scene("paper"), ["pillar.damping=300", "shaft.damping=110",
-                                           "modal_model.source=beam"])
+    scene = override(load_scene("paper"), ["pillar.damping=300", "shaft.damping=110", "modal_model.source=beam"])
     return build_model(scene, "modal", 186.0)[0]
 
 

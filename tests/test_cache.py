@@ -20,11 +20,11 @@ from rotorpillar.cache import DiskCache, cache_key, source_hash, user_cache_root
 def test_hit_after_write_and_miss_before(tmp_path):
     cache = DiskCache(tmp_path / "runs")
     key = cache_key({"elements": 8, "theory": "euler"}, version=1, code="c0")
-    assert cache.read(key) is None                                  # nothing on disk yet
+    assert cache.read(key) is None  # nothing on disk yet
     path = cache.write(key, {"omega": 2.5, "modes": [1.0, 2.0]})
     assert path == cache.path(key) and path.parent == tmp_path / "runs"
     assert cache.read(key) == {"key": key, "omega": 2.5, "modes": [1.0, 2.0]}
-    assert next(iter(json.loads(path.read_text()))) == "key"       # the key first
+    assert next(iter(json.loads(path.read_text()))) == "key"  # the key first
 
 
 def test_the_key_follows_arguments_version_and_code():
@@ -41,13 +41,12 @@ def test_source_hash_follows_the_files(tmp_path):
     a.write_text("x = 1\n")
     b.write_text("y = 2\n")
     h = source_hash([a, b])
-    assert h == source_hash([a, b, tmp_path / "missing.py"])       # a missing file is skipped
+    assert h == source_hash([a, b, tmp_path / "missing.py"])  # a missing file is skipped
     b.write_text("y = 3\n")
     assert source_hash([a, b]) != h
 
 
-@pytest.mark.parametrize("damage", ['{"key": "', "not json", "[1, 2]", "null",
-                                    '{"key": "another", "omega": 1.0}', ""])
+@pytest.mark.parametrize("damage", ['{"key": "', "not json", "[1, 2]", "null", '{"key": "another", "omega": 1.0}', ""])
 def test_a_damaged_entry_is_a_miss_and_is_rewritten(tmp_path, damage):
     cache = DiskCache(tmp_path)
     key = cache_key({"n": 1}, version=1, code="c")
@@ -68,9 +67,9 @@ def test_a_failed_write_keeps_the_previous_entry(tmp_path):
     cache = DiskCache(tmp_path)
     cache.write("k", {"omega": 1.0})
     with pytest.raises(TypeError):
-        cache.write("k", {"omega": object()})                       # not serialisable
+        cache.write("k", {"omega": object()})  # not serialisable
     assert cache.read("k") == {"key": "k", "omega": 1.0}
-    assert [p.name for p in tmp_path.iterdir()] == ["k.json"]       # no partial file
+    assert [p.name for p in tmp_path.iterdir()] == ["k.json"]  # no partial file
 
 
 def test_user_cache_root(monkeypatch, tmp_path):
@@ -84,12 +83,13 @@ def test_user_cache_root(monkeypatch, tmp_path):
 def test_converge_recomputes_exactly_a_damaged_run(tmp_path):
     from rotorpillar import converge as cv
     from rotorpillar.scene import load_scene
+
     scene = load_scene("paper")
     cases = [c for c in cv.ladder(scene) if cv.FAMILIES[c.family].model == "beam"][:4]
     first = cv.run_study(cases, scene, tmp_path, progress=False)
     key = cv.case_key(cases[1], scene.pillar, scene.modal.tolerance)
     path = tmp_path / f"{key}.json"
-    path.write_text(path.read_text()[:40])                          # cut short
+    path.write_text(path.read_text()[:40])  # cut short
     ran = []
 
     def counting(case, sc):
@@ -99,12 +99,13 @@ def test_converge_recomputes_exactly_a_damaged_run(tmp_path):
     again = cv.run_study(cases, scene, tmp_path, runner=counting, progress=False)
     assert ran == [cases[1].label]
     assert [r["cached"] for r in again] == [True, False, True, True]
-    assert again[1]["bending"] == first[1]["bending"]             # the same run, recomputed
-    assert json.loads(path.read_text())["status"] == "ok"          # and cached again
+    assert again[1]["bending"] == first[1]["bending"]  # the same run, recomputed
+    assert json.loads(path.read_text())["status"] == "ok"  # and cached again
 
 
 def test_study_batch_key_follows_spec_and_code():
     from rotorpillar.studies.study import batch_key
+
     spec = {"case": "runup", "model": "paper", "runs": [{"index": 0, "params": {"a": 1}}]}
     k = batch_key(spec, "src")
     assert k == batch_key(json.loads(json.dumps(spec)), "src")
@@ -115,6 +116,7 @@ def test_study_batch_key_follows_spec_and_code():
 def test_chain_modes_key_follows_the_mesh_and_the_tolerance():
     from rotorpillar.chain.modes import modes_key
     from rotorpillar.scene import load_scene, override
+
     scene = load_scene("paper")
     mesh = {"elements_around": 32, "elements_along": 10}
     k = modes_key(scene, mesh)
@@ -128,7 +130,9 @@ def test_chain_modes_key_follows_the_mesh_and_the_tolerance():
 def test_the_run_cache_hashes_files_that_exist():
     """A module renamed under the run cache's lists would silently leave (or join) a key."""
     from pathlib import Path
+
     from rotorpillar.converge import runner
+
     root = Path(runner.__file__).parent.parent
     for name in (runner.SHELL_MODEL, runner.SHELL_MESH, *runner.SHELL_SOLVER):
         assert (root / (name.replace(".", "/") + ".py")).exists(), name

@@ -60,8 +60,9 @@ def test_length_classes_and_branches():
 
 
 def test_checks_statuses():
-    assert c.check("stress", "s", "Pa", 1.0e8, 3.55e8, "modal", "earthquake", "").utilisation == \
-        pytest.approx(1e8 / 3.55e8)
+    assert c.check("stress", "s", "Pa", 1.0e8, 3.55e8, "modal", "earthquake", "").utilisation == pytest.approx(
+        1e8 / 3.55e8
+    )
     assert c.check("stress", "s", "Pa", 4.0e8, 3.55e8, "modal", "earthquake", "").status == c.FAIL
     assert c.check("clearance", "d", "m", 0.02, None, "modal", "earthquake", "").status == c.NOT_ASSESSED
     assert c.check("clearance", "d", "m", None, 0.01, None, None, "").status == c.NOT_ASSESSED

@@ -9,15 +9,18 @@ from rotorpillar.reduced.capacity import QUALITY_CLASSES
 from rotorpillar.scene import FABRICATION_CLASSES, load_scene
 
 
-@pytest.mark.parametrize("assignment, key, range_text", [
-    ("material.yield_strength=-355e6", "material.yield_strength", "> 0"),
-    ("material.yield_strength=0", "material.yield_strength", "> 0"),
-    ("rotor.clearance=0", "rotor.clearance", "> 0"),
-    ("rotor.clearance=-0.01", "rotor.clearance", "> 0"),
-    ("shaft.force_limit=0", "shaft.force_limit", "> 0"),
-    ("material.fabrication_class=D", "material.fabrication_class", "'A', 'B', 'C'"),
-    ("material.grade=1", "material.grade", "yield_strength"),
-])
+@pytest.mark.parametrize(
+    "assignment, key, range_text",
+    [
+        ("material.yield_strength=-355e6", "material.yield_strength", "> 0"),
+        ("material.yield_strength=0", "material.yield_strength", "> 0"),
+        ("rotor.clearance=0", "rotor.clearance", "> 0"),
+        ("rotor.clearance=-0.01", "rotor.clearance", "> 0"),
+        ("shaft.force_limit=0", "shaft.force_limit", "> 0"),
+        ("material.fabrication_class=D", "material.fabrication_class", "'A', 'B', 'C'"),
+        ("material.grade=1", "material.grade", "yield_strength"),
+    ],
+)
 def test_bad_capacities_exit_2_one_line_nothing_written(tmp_path, assignment, key, range_text):
     out = tmp_path / "out"
     p = cli("analyze", "paper", "--set", assignment, "--out", out)

@@ -10,16 +10,35 @@ import pytest
 from rotorpillar.provenance import to_json
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import averaging_prediction
-from rotorpillar.transients.case_summary import CaseSummary, SweepFindings, run_summary
-from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.scene import load_scene
+from rotorpillar.transients.case_summary import CaseSummary, SweepFindings, run_summary
 
-BASE_KEYS = ["ok", "duration", "omega_final", "omega_final_mean", "max_abs", "captured_at",
-             "speed_state", "passages", "energy_balance", "integrator", "prediction", "jumps"]
-SWEEP_KEYS = ["predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
-              "rate_check", "no_jump_reason", "rate_convergence"]
+BASE_KEYS = [
+    "ok",
+    "duration",
+    "omega_final",
+    "omega_final_mean",
+    "max_abs",
+    "captured_at",
+    "speed_state",
+    "passages",
+    "energy_balance",
+    "integrator",
+    "prediction",
+    "jumps",
+]
+SWEEP_KEYS = [
+    "predicted_jumps",
+    "jump_comparison",
+    "largest_speed_step_ratio",
+    "amplitudes",
+    "rate_check",
+    "no_jump_reason",
+    "rate_convergence",
+]
 
 
 @pytest.fixture(scope="module")
@@ -50,12 +69,18 @@ def test_plain_case_keys_and_roundtrip(summary):
 
 def test_optional_sections_in_the_order_simulate_writes_them(summary):
     from dataclasses import replace
+
     sweep = SweepFindings([{"direction": "up"}], [], {"up": 1.0, "down": 1.2}, [], [], None, None)
-    s = replace(summary, sweep=sweep, jumps=[{"direction": "up", "omega_from": 1.0}], captured_at=26.0,
-                truncation={"modes": 2, "modes_check": None, "statement": "x"})
+    s = replace(
+        summary,
+        sweep=sweep,
+        jumps=[{"direction": "up", "omega_from": 1.0}],
+        captured_at=26.0,
+        truncation={"modes": 2, "modes_check": None, "statement": "x"},
+    )
     d = _roundtrip(s)
     assert list(d) == BASE_KEYS + SWEEP_KEYS + ["truncation"]
-    assert d["no_jump_reason"] is None and d["rate_convergence"] is None     # present, null
+    assert d["no_jump_reason"] is None and d["rate_convergence"] is None  # present, null
     s = replace(summary, passing_torque={"predicted": None, "statement": "none"})
     assert list(_roundtrip(s)) == BASE_KEYS + ["passing_torque"]
     s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check={"ratio": 0.9})

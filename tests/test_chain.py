@@ -39,29 +39,64 @@ from rotorpillar.scene import load_scene, override
 
 
 def _run(label, family, model, params, dofs, wall, bending, ovalling=None):
-    return {"label": label, "family": family, "model": model, "params": params, "dofs": dofs,
-            "wall_time": wall, "status": "ok", "bending": 30.8, "ovalling": 85.0,
-            "bending_error_bound": bending, "ovalling_error_bound": ovalling,
-            "bending_error": bending, "ovalling_error": ovalling,
-            "bending_model_error": 0.0, "ovalling_model_error": 0.0,
-            "bending_discretisation_error": bending, "ovalling_discretisation_error": ovalling}
+    return {
+        "label": label,
+        "family": family,
+        "model": model,
+        "params": params,
+        "dofs": dofs,
+        "wall_time": wall,
+        "status": "ok",
+        "bending": 30.8,
+        "ovalling": 85.0,
+        "bending_error_bound": bending,
+        "ovalling_error_bound": ovalling,
+        "bending_error": bending,
+        "ovalling_error": ovalling,
+        "bending_model_error": 0.0,
+        "ovalling_model_error": 0.0,
+        "bending_discretisation_error": bending,
+        "ovalling_discretisation_error": ovalling,
+    }
 
 
-SOLID = {"elements_around": 128, "elements_along": 20, "elements_through": 1,
-         "cell_type": "hexahedron", "degree": 2, "grading": 30.0}
+SOLID = {
+    "elements_around": 128,
+    "elements_along": 20,
+    "elements_through": 1,
+    "cell_type": "hexahedron",
+    "degree": 2,
+    "grading": 30.0,
+}
 COARSE = {**SOLID, "elements_around": 64, "elements_along": 10}
 
 
 def _study_doc(scene, chosen: dict, runs: list[dict]) -> dict:
-    band = {"free_speed": 89.7, "earthquake_frequency": math.pi, "margin": 1.5,
-            "omega_max": 134.6, "driver": "drive free speed"}
-    return {"scene_name": scene.name, "scene": scene.to_dict(), "tolerance": 1e-3, "cache_dir": "x",
-            "families": {}, "runs": runs,
-            "reference": {"bending": {"value": 30.8, "error_estimate": 3.08e-3},
-                          "ovalling": {"value": 85.0, "error_estimate": 8.5e-3}},
-            "extrapolations": {}, "band": band,
-            "selection": {"chosen": chosen, "reason": "the cheapest", "needed": ["bending"]},
-            "pareto": {}, "failures": [], "study": {}}
+    band = {
+        "free_speed": 89.7,
+        "earthquake_frequency": math.pi,
+        "margin": 1.5,
+        "omega_max": 134.6,
+        "driver": "drive free speed",
+    }
+    return {
+        "scene_name": scene.name,
+        "scene": scene.to_dict(),
+        "tolerance": 1e-3,
+        "cache_dir": "x",
+        "families": {},
+        "runs": runs,
+        "reference": {
+            "bending": {"value": 30.8, "error_estimate": 3.08e-3},
+            "ovalling": {"value": 85.0, "error_estimate": 8.5e-3},
+        },
+        "extrapolations": {},
+        "band": band,
+        "selection": {"chosen": chosen, "reason": "the cheapest", "needed": ["bending"]},
+        "pareto": {},
+        "failures": [],
+        "study": {},
+    }
 
 
 def _write(tmp_path, doc):
@@ -72,8 +107,7 @@ def _write(tmp_path, doc):
 def test_a_3d_choice_is_the_roms_mode_source_with_the_studys_error(tmp_path):
     s = load_scene("paper")
     chosen = _run("3D P2 hexahedra, 128x20x1", "solid_hex_p2", "solid", SOLID, 94464, 6.4, 3e-4, 6e-4)
-    runs = [chosen, _run("3D P2 hexahedra, 64x10x1", "solid_hex_p2", "solid", COARSE, 24192, 1.5,
-                         1.5e-3, 8.7e-3)]
+    runs = [chosen, _run("3D P2 hexahedra, 64x10x1", "solid_hex_p2", "solid", COARSE, 24192, 1.5, 1.5e-3, 8.7e-3)]
     c = choose(s, _write(tmp_path, _study_doc(s, chosen, runs)))
     assert c.rom == c.solid and c.rom.kind == "solid" and c.rom.source == "converge"
     assert c.rom.mesh == SOLID and c.rom.verified
@@ -84,26 +118,42 @@ def test_a_3d_choice_is_the_roms_mode_source_with_the_studys_error(tmp_path):
 
 def test_a_beam_choice_feeds_the_rom_and_leaves_modal_on_the_cheapest_3d_mesh(tmp_path):
     s = load_scene("paper")
-    beam = _run("beam Timoshenko (linear), 16 el.", "beam_timoshenko", "beam",
-                {"theory": "timoshenko", "elements": 16}, 32, 0.001, 2e-4)
-    runs = [beam, _run("3D P2 hexahedra, 64x10x1", "solid_hex_p2", "solid", COARSE, 24192, 1.5, 1.5e-3),
-            _run("3D P2 hexahedra, 128x20x1", "solid_hex_p2", "solid", SOLID, 94464, 6.4, 3e-4)]
+    beam = _run(
+        "beam Timoshenko (linear), 16 el.",
+        "beam_timoshenko",
+        "beam",
+        {"theory": "timoshenko", "elements": 16},
+        32,
+        0.001,
+        2e-4,
+    )
+    runs = [
+        beam,
+        _run("3D P2 hexahedra, 64x10x1", "solid_hex_p2", "solid", COARSE, 24192, 1.5, 1.5e-3),
+        _run("3D P2 hexahedra, 128x20x1", "solid_hex_p2", "solid", SOLID, 94464, 6.4, 3e-4),
+    ]
     doc = _study_doc(s, beam, runs)
-    doc["band"]["omega_max"] = 60.0          # no shell mode in the band: a beam can serve
+    doc["band"]["omega_max"] = 60.0  # no shell mode in the band: a beam can serve
     c = choose(s, _write(tmp_path, doc))
     assert c.rom.kind == "beam" and c.rom.mesh == {"theory": "timoshenko", "elements": 16}
-    assert c.solid.kind == "solid" and c.solid.mesh == SOLID      # 64x10 misses the tolerance
+    assert c.solid.kind == "solid" and c.solid.mesh == SOLID  # 64x10 misses the tolerance
     modes = chain_modes(s, c, 180.0)
     assert modes.modes.source == "beam:timoshenko:16"
 
 
 def test_a_shell_choice_uses_the_3d_mesh_within_the_same_tolerance_and_says_why(tmp_path):
     s = load_scene("paper")
-    shell = _run("shell Q2 quadrilaterals, 16x20", "shell_quad", "shell",
-                 {"elements_around": 16, "elements_along": 20, "cell_type": "quadrilateral",
-                  "degree": 2}, 6600, 0.45, 2e-4, 4e-4)
-    runs = [shell, _run("3D P2 hexahedra, 128x20x1", "solid_hex_p2", "solid", SOLID, 94464, 6.4,
-                        3e-4, 6e-4)]
+    shell = _run(
+        "shell Q2 quadrilaterals, 16x20",
+        "shell_quad",
+        "shell",
+        {"elements_around": 16, "elements_along": 20, "cell_type": "quadrilateral", "degree": 2},
+        6600,
+        0.45,
+        2e-4,
+        4e-4,
+    )
+    runs = [shell, _run("3D P2 hexahedra, 128x20x1", "solid_hex_p2", "solid", SOLID, 94464, 6.4, 3e-4, 6e-4)]
     c = choose(s, _write(tmp_path, _study_doc(s, shell, runs)))
     assert c.rom.kind == "solid" and c.rom.mesh == SOLID
     assert "shell" in c.rom.note and "no top mass" in c.rom.note
@@ -132,8 +182,9 @@ def test_pillar_modes_round_trip_and_scale():
 
 
 def _one_mode_chain(scene, m_A: float, c1: float, delta=None) -> ChainModes:
-    modes = PillarModes(np.array([math.sqrt(c1 / m_A)]), np.array([m_A]), np.array([m_A]), m_A,
-                        "test", None, None, None)
+    modes = PillarModes(
+        np.array([math.sqrt(c1 / m_A)]), np.array([m_A]), np.array([m_A]), m_A, "test", None, None, None
+    )
     errors = {} if delta is None else {"bending": delta}
     pm = PillarModel("beam", "one mode", {}, 1, "scene", delta is not None, None, errors, "test")
     return ChainModes(pm, modes, TipReductionOf(m_A, c1, math.sqrt(c1 / m_A), "test"))
@@ -157,10 +208,10 @@ def test_error_bars_are_bounded_by_the_pillar_frequency_error():
         bar = r.uncertainty.omega
         assert bar.value == r.omega
         if r.direction == "Y":
-            assert bar.sources["discretisation"] == 0.0      # the rotor on its shaft alone
+            assert bar.sources["discretisation"] == 0.0  # the rotor on its shaft alone
         else:
             assert 0 < bar.sources["discretisation"] <= delta * r.omega * (1 + 1e-9)
-        assert "truncation" in bar.unassessed                 # one mode: no more to add
+        assert "truncation" in bar.unassessed  # one mode: no more to add
     assert a.paper_model.system.omega == pytest.approx(omega_pair(p), rel=1e-12)
     doc = json.loads(json.dumps(a.to_json()))
     assert AnalysisResult.from_json(doc).to_json() == doc
@@ -179,7 +230,7 @@ def test_3d_modes_of_the_scene_mesh_match_the_beam_and_are_cached(tmp_path, monk
     c = choose(s, None)
     assert c.rom.kind == "solid" and c.rom.source == "scene" and not c.rom.verified
     first = chain_modes(s, c, 180.0)
-    assert first.seconds > 0 and first.modes.count >= 3      # the band's 2 modes and one more
+    assert first.seconds > 0 and first.modes.count >= 3  # the band's 2 modes and one more
     beam = beam_pillar_modes(s.pillar, s.gondola.mass, 2, "timoshenko", 80)
     assert first.modes.omega[0] == pytest.approx(beam.omega[0], rel=1e-2)
     again = chain_modes(s, c, 180.0)

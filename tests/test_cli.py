@@ -13,7 +13,7 @@ from scipy.linalg import eigh
 def test_analyze_json_round_trip(tmp_path):
     p = cli("analyze", "paper-stiff", "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
-    doc = json.loads(p.stdout)                       # stdout is the JSON and nothing else
+    doc = json.loads(p.stdout)  # stdout is the JSON and nothing else
     assert doc == json.loads((tmp_path / "analyze.json").read_text())
     assert doc["scene"]["shaft"]["stiffness"] == 5e6
     assert {"versions", "timings", "machine", "paper_comparison"} <= doc.keys()
@@ -27,7 +27,7 @@ def test_analyze_json_round_trip(tmp_path):
     # the headline model is the ROM on the chain's pillar model, which it names
     assert doc["pillar_model"]["source"] == "scene" and doc["pillar_model"]["kind"] in ("solid", "beam")
     x = [r for r in doc["resonances"] if r["direction"] == "X"]
-    assert len(x) == doc["system"]["modes"] + 1                    # k pillar modes + the rotor
+    assert len(x) == doc["system"]["modes"] + 1  # k pillar modes + the rotor
     assert [r["omega"] for r in x] == doc["system"]["omega"]
     assert all(r["uncertainty"]["omega"]["value"] == r["omega"] for r in doc["resonances"])
     for row in doc["paper_comparison"]:
@@ -51,12 +51,15 @@ def test_summary_prints_the_comparison_table(tmp_path):
     assert "omega_col1" in p.stdout and (tmp_path / "analyze.json").exists()
 
 
-@pytest.mark.parametrize("args, key", [
-    (["analyze", "paper", "--set", "pillar.inner_diameter=2.1"], "pillar.inner_diameter"),
-    (["analyze", "paper", "--set", "rotor.mass=-5"], "rotor.mass"),
-    (["analyze", "missing.toml"], "missing.toml"),
-    (["analyze", "paper", "--set", "shaft.stiffness=abc"], "shaft.stiffness"),
-])
+@pytest.mark.parametrize(
+    "args, key",
+    [
+        (["analyze", "paper", "--set", "pillar.inner_diameter=2.1"], "pillar.inner_diameter"),
+        (["analyze", "paper", "--set", "rotor.mass=-5"], "rotor.mass"),
+        (["analyze", "missing.toml"], "missing.toml"),
+        (["analyze", "paper", "--set", "shaft.stiffness=abc"], "shaft.stiffness"),
+    ],
+)
 def test_bad_input_exits_2_with_one_line_and_writes_nothing(tmp_path, args, key):
     out = tmp_path / "out"
     p = cli(*args, "--out", out)

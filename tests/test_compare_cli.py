@@ -15,14 +15,35 @@ import numpy as np
 import pytest
 from conftest import cli
 
-SPEC_FIELDS = ("model", "case", "ok", "warnings", "max_abs", "omega_final", "captured_at",
-               "energy_balance", "integrator", "dofs", "wall_seconds", "excitation")
-COLUMNS = ("t", "Omega", "tip_x", "tip_x_relative", "tip_x_absolute", "ground_x", "ground_acceleration",
-           "rotor_x", "rotor_y", "shaft_deflection_x")
+SPEC_FIELDS = (
+    "model",
+    "case",
+    "ok",
+    "warnings",
+    "max_abs",
+    "omega_final",
+    "captured_at",
+    "energy_balance",
+    "integrator",
+    "dofs",
+    "wall_seconds",
+    "excitation",
+)
+COLUMNS = (
+    "t",
+    "Omega",
+    "tip_x",
+    "tip_x_relative",
+    "tip_x_absolute",
+    "ground_x",
+    "ground_acceleration",
+    "rotor_x",
+    "rotor_y",
+    "shaft_deflection_x",
+)
 RECORD = ["--set", "excitation.kind=record", "--set", "excitation.start=1"]
 COARSE_3D = ["--set", "full_order.elements_around=8", "--set", "full_order.earthquake_duration=6"]
-has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None,
-                                 reason="needs dolfinx")
+has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 
 
 def check_model_files(out, case, model, stem="simulate"):
@@ -42,10 +63,22 @@ def check_model_files(out, case, model, stem="simulate"):
     return doc
 
 
-@pytest.mark.slow                       # the full-order beam over 8 s of record
+@pytest.mark.slow  # the full-order beam over 8 s of record
 def test_beam_earthquake_files(tmp_path):
-    p = cli("simulate", "paper", "--case", "earthquake", "--model", "beam", *RECORD, "--set",
-            "simulate.earthquake_duration=8", "--json", "--out", tmp_path)
+    p = cli(
+        "simulate",
+        "paper",
+        "--case",
+        "earthquake",
+        "--model",
+        "beam",
+        *RECORD,
+        "--set",
+        "simulate.earthquake_duration=8",
+        "--json",
+        "--out",
+        tmp_path,
+    )
     assert p.returncode == 0, p.stderr
     doc = check_model_files(tmp_path, "earthquake", "beam")
     last = json.loads((tmp_path / "simulate_earthquake.json").read_text())
@@ -56,21 +89,37 @@ def test_beam_earthquake_files(tmp_path):
     assert (tmp_path / "simulate_earthquake.npz").exists() and (tmp_path / "simulate.json").exists()
 
 
-@pytest.mark.parametrize("scene,extra,warned", [
-    ("paper-stiff", [], True),
-    ("paper", ["--set", "excitation.kind=record", "--set", "shaft.stiffness=1e10"], True),
-    ("paper", [], False)])
+@pytest.mark.parametrize(
+    "scene,extra,warned",
+    [
+        ("paper-stiff", [], True),
+        ("paper", ["--set", "excitation.kind=record", "--set", "shaft.stiffness=1e10"], True),
+        ("paper", [], False),
+    ],
+)
 def test_paper_model_base_forcing_warning(tmp_path, scene, extra, warned):
-    p = cli("simulate", scene, "--case", "earthquake", "--model", "paper", *extra, "--set",
-            "simulate.earthquake_duration=6", "--json", "--out", tmp_path)
+    p = cli(
+        "simulate",
+        scene,
+        "--case",
+        "earthquake",
+        "--model",
+        "paper",
+        *extra,
+        "--set",
+        "simulate.earthquake_duration=6",
+        "--json",
+        "--out",
+        tmp_path,
+    )
     assert p.returncode == 0, p.stderr
     doc = check_model_files(tmp_path, "earthquake", "paper")
     assert bool(doc["warnings"]) is warned
     assert ("warning: Eq. 4's published base forcing" in p.stderr) is warned
-    assert doc["ok"] is True                             # ok is about the numerics only
+    assert doc["ok"] is True  # ok is about the numerics only
 
 
-@pytest.mark.slow                      # ~30 s: the 3D run (the issue's modal-against-3D check)
+@pytest.mark.slow  # ~30 s: the 3D run (the issue's modal-against-3D check)
 @has_dolfinx
 def test_compare_earthquake_modal_fem3d(tmp_path):
     p = cli("compare", "paper", "--case", "earthquake", *RECORD, *COARSE_3D, "--json", "--out", tmp_path)
@@ -79,9 +128,20 @@ def test_compare_earthquake_modal_fem3d(tmp_path):
     assert doc["models_run"] == ["modal", "fem3d"] and doc["reference"] == "fem3d"
     for m in ("modal", "fem3d"):
         pm = doc["per_model"][m]
-        assert {"peak_tip_relative", "peak_tip_absolute", "peak_shaft_deflection", "omega_final",
-                "wall_seconds", "compile_seconds", "dofs", "ok", "warnings", "json", "npz",
-                "pillar_model"} <= pm.keys()
+        assert {
+            "peak_tip_relative",
+            "peak_tip_absolute",
+            "peak_shaft_deflection",
+            "omega_final",
+            "wall_seconds",
+            "compile_seconds",
+            "dofs",
+            "ok",
+            "warnings",
+            "json",
+            "npz",
+            "pillar_model",
+        } <= pm.keys()
         # the comparison's own files, apart from the scene's simulate_<case>_<model>.*
         assert pm["json"] == f"compare_earthquake_{m}.json"
         check_model_files(tmp_path, "earthquake", m, stem="compare")

@@ -53,22 +53,26 @@ def test_pareto_front_is_what_brute_force_says():
     cost = rng.uniform(1, 100, 40)
     err = rng.uniform(-1, 1, 40) * 1e-2
     front = cv.pareto_front(list(cost), list(err))
-    brute = [i for i in range(40) if not any(
-        (cost[j] <= cost[i] and abs(err[j]) <= abs(err[i])) and
-        (cost[j] < cost[i] or abs(err[j]) < abs(err[i])) for j in range(40))]
+    brute = [
+        i
+        for i in range(40)
+        if not any(
+            (cost[j] <= cost[i] and abs(err[j]) <= abs(err[i])) and (cost[j] < cost[i] or abs(err[j]) < abs(err[i]))
+            for j in range(40)
+        )
+    ]
     assert sorted(front) == sorted(brute)
     assert [cost[i] for i in front] == sorted(cost[i] for i in front)
     assert cv.pareto_front([1.0, 2.0], [None, 0.1]) == [1]
 
 
 def _beam_cases():
-    return [c for c in cv.ladder(load_scene("paper"))
-            if cv.FAMILIES[c.family].model in ("closed_form", "beam")]
+    return [c for c in cv.ladder(load_scene("paper")) if cv.FAMILIES[c.family].model in ("closed_form", "beam")]
 
 
 def test_beam_ladder_orders_and_limits(tmp_path):
-    from rotorpillar.reduced.pillar import (cowper_shear_coefficient, omega_euler_bernoulli,
-                                            omega_timoshenko, section_of)
+    from rotorpillar.reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, omega_timoshenko, section_of
+
     scene = load_scene("paper")
     recs = cv.run_study(_beam_cases(), scene, tmp_path, progress=False)
     ex = cv.family_extrapolations(recs)
@@ -77,8 +81,7 @@ def test_beam_ladder_orders_and_limits(tmp_path):
     p, sec = scene.pillar, section_of(scene.pillar)
     eq1 = omega_euler_bernoulli(p.youngs_modulus, sec.second_moment, sec.mass_per_length, p.height)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
-    timo = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area,
-                            sec.second_moment, p.height)
+    timo = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area, sec.second_moment, p.height)
     assert ex["beam_euler"]["bending"]["value"] == pytest.approx(eq1, rel=1e-9)
     assert ex["beam_timoshenko"]["bending"]["value"] == pytest.approx(timo, rel=1e-6)
     closed = next(r for r in recs if r["family"] == "closed_form")
@@ -110,7 +113,7 @@ def test_an_interrupted_study_resumes_without_recomputing(tmp_path):
 
     def interrupted(case, sc):
         if len(calls) == 5:
-            raise KeyboardInterrupt      # mid-study, as a Ctrl-C would
+            raise KeyboardInterrupt  # mid-study, as a Ctrl-C would
         calls.append(case)
         return cv.run_point(case, sc)
 
@@ -119,7 +122,7 @@ def test_an_interrupted_study_resumes_without_recomputing(tmp_path):
     files = sorted(tmp_path.iterdir())
     assert len(files) == 5 and all(f.suffix == ".json" and not f.name.startswith(".") for f in files)
     for f in files:
-        json.loads(f.read_text())                       # every file complete
+        json.loads(f.read_text())  # every file complete
 
     again = []
 
@@ -140,32 +143,61 @@ def _records(**runs):
     last two (model error, discretisation error) relative, or None (no such mode)."""
     out = []
     for label, (fam, t, dofs, *qs) in runs.items():
-        r = {"label": label, "family": fam, "model": cv.FAMILIES[fam].model, "params": {},
-             "status": "ok", "wall_time": t, "dofs": dofs}
+        r = {
+            "label": label,
+            "family": fam,
+            "model": cv.FAMILIES[fam].model,
+            "params": {},
+            "status": "ok",
+            "wall_time": t,
+            "dofs": dofs,
+        }
         for q, ref, split in zip(("bending", "ovalling"), (30.0, 85.0), qs):
             if split is None:
-                r.update({q: None, f"{q}_error": None, f"{q}_model_error": None,
-                          f"{q}_discretisation_error": None, f"{q}_error_bound": None})
+                r.update(
+                    {
+                        q: None,
+                        f"{q}_error": None,
+                        f"{q}_model_error": None,
+                        f"{q}_discretisation_error": None,
+                        f"{q}_error_bound": None,
+                    }
+                )
                 continue
             model, disc = split
-            r.update({q: ref * (1 + model + disc), f"{q}_error": model + disc,
-                      f"{q}_model_error": model, f"{q}_discretisation_error": disc,
-                      f"{q}_error_bound": abs(model) + abs(disc)})
+            r.update(
+                {
+                    q: ref * (1 + model + disc),
+                    f"{q}_error": model + disc,
+                    f"{q}_model_error": model,
+                    f"{q}_discretisation_error": disc,
+                    f"{q}_error_bound": abs(model) + abs(disc),
+                }
+            )
         out.append(r)
     return out
 
 
-REF = {"bending": {"value": 30.0, "error_estimate": 30.0 * 1e-5},
-       "ovalling": {"value": 85.0, "error_estimate": 85.0 * 1e-5}}
-BAND = {"omega_max": 135.0, "free_speed": 90.0, "earthquake_frequency": math.pi,
-        "margin": 1.5, "driver": "drive free speed"}
+REF = {
+    "bending": {"value": 30.0, "error_estimate": 30.0 * 1e-5},
+    "ovalling": {"value": 85.0, "error_estimate": 85.0 * 1e-5},
+}
+BAND = {
+    "omega_max": 135.0,
+    "free_speed": 90.0,
+    "earthquake_frequency": math.pi,
+    "margin": 1.5,
+    "driver": "drive free speed",
+}
 
 
 def test_selection_takes_the_cheapest_run_that_meets_the_band():
-    recs = _records(beam=("beam_timoshenko", 0.001, 64, (1e-4, 1e-4), None),
-                    coarse=("shell_quad", 1.0, 5000, (1e-5, 1e-4), (1e-4, 3e-3)),
-                    fine=("shell_quad", 3.0, 20000, (1e-5, 1e-6), (1e-4, 4e-4)),
-                    solid=("solid_hex_p2", 10.0, 50000, (0, 1e-6), (0, 1e-5)))
+    recs = _records(
+        beam=("beam_timoshenko", 0.001, 64, (1e-4, 1e-4), None),
+        coarse=("shell_quad", 1.0, 5000, (1e-5, 1e-4), (1e-4, 3e-3)),
+        fine=("shell_quad", 3.0, 20000, (1e-5, 1e-6), (1e-4, 4e-4)),
+        solid=("solid_hex_p2", 10.0, 50000, (0, 1e-6), (0, 1e-5)),
+    )
     sel = cv.select_model(recs, REF, BAND, 1e-3)
     assert sel["needed"] == ["bending", "ovalling"]
     assert sel["chosen"]["label"] == "fine"
@@ -185,8 +217,10 @@ def test_selection_takes_the_cheapest_run_that_meets_the_band():
 def test_selection_gives_no_credit_for_cancelling_errors():
     # the shell's limit is 1.1e-3 off (model error); a coarse mesh that errs the
     # other way lands within 1e-4 of the reference by luck: not chosen
-    recs = _records(lucky=("shell_quad", 0.4, 6560, (1e-5, 1e-5), (-1.1e-3, 1.0e-3)),
-                    solid=("solid_hex_p2", 14.0, 94464, (0, 1e-4), (0, 6e-4)))
+    recs = _records(
+        lucky=("shell_quad", 0.4, 6560, (1e-5, 1e-5), (-1.1e-3, 1.0e-3)),
+        solid=("solid_hex_p2", 14.0, 94464, (0, 1e-4), (0, 6e-4)),
+    )
     sel = cv.select_model(recs, REF, BAND, 1e-3)
     assert abs(recs[0]["ovalling_error"]) < 1.5e-4
     assert sel["chosen"]["label"] == "solid"
@@ -194,11 +228,12 @@ def test_selection_gives_no_credit_for_cancelling_errors():
 
 
 def test_errors_split_into_model_and_discretisation():
-    recs = [{"family": "shell_quad", "status": "ok", "bending": 30.3, "ovalling": None},
-            {"family": "closed_form", "status": "ok", "bending": 31.0, "ovalling": 84.0}]
+    recs = [
+        {"family": "shell_quad", "status": "ok", "bending": 30.3, "ovalling": None},
+        {"family": "closed_form", "status": "ok", "bending": 31.0, "ovalling": 84.0},
+    ]
     ex = {"shell_quad": {"bending": {"value": 30.6}}}
-    ref = {"bending": {"value": 30.0, "error_estimate": 0.0},
-           "ovalling": {"value": 85.0, "error_estimate": 0.0}}
+    ref = {"bending": {"value": 30.0, "error_estimate": 0.0}, "ovalling": {"value": 85.0, "error_estimate": 0.0}}
     cv.attach_errors(recs, ref, ex)
     s, c = recs
     assert s["bending_error"] == pytest.approx(0.01)
@@ -206,7 +241,7 @@ def test_errors_split_into_model_and_discretisation():
     assert s["bending_discretisation_error"] == pytest.approx(-0.01)
     assert s["bending_error_bound"] == pytest.approx(0.03)
     assert s["ovalling_error"] is None and s["ovalling_error_bound"] is None
-    assert c["ovalling_error_bound"] == pytest.approx(1 / 85)      # no limit: |measured|
+    assert c["ovalling_error_bound"] == pytest.approx(1 / 85)  # no limit: |measured|
 
 
 def test_excitation_band_of_the_paper_scene():
@@ -220,7 +255,7 @@ def test_excitation_band_of_the_paper_scene():
     assert quake["driver"] == "earthquake" and quake["omega_max"] == pytest.approx(150.0)
 
 
-@pytest.mark.slow                       # a shell ladder up to 32 around
+@pytest.mark.slow  # a shell ladder up to 32 around
 def test_shell_reference_agrees_with_a_finer_run(tmp_path):
     scene = override(load_scene("paper"), ["converge.solid=false", "converge.shell_max_around=32"])
     cases = [c for c in cv.ladder(scene) if c.family == "shell_quad" and c.level >= 12]
@@ -235,10 +270,14 @@ def test_shell_reference_agrees_with_a_finer_run(tmp_path):
 def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
     """convergence.json as written is exactly ConvergenceStudy.to_json() of what reads it."""
     import importlib
+
     study_module = importlib.import_module("rotorpillar.converge.study")
     scene = override(load_scene("paper"), ["converge.solid=false"])
-    cheap = [c for c in cv.ladder(scene) if cv.FAMILIES[c.family].model in ("closed_form", "beam")
-             or (c.family == "shell_quad" and c.level <= 16)]
+    cheap = [
+        c
+        for c in cv.ladder(scene)
+        if cv.FAMILIES[c.family].model in ("closed_form", "beam") or (c.family == "shell_quad" and c.level <= 16)
+    ]
     monkeypatch.setattr(study_module, "study_cases", lambda sc: cheap)
     st = cv.study(scene, out_dir=tmp_path, tolerance=1e-2, show_progress=False)
     path = tmp_path / "convergence.json"
@@ -254,7 +293,7 @@ def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
         cv.ConvergenceStudy.from_json({**doc, "surprise": 1})
 
 
-@pytest.mark.slow                       # shell and 3D eigensolves, twice each
+@pytest.mark.slow  # shell and 3D eigensolves, twice each
 def test_runs_asking_few_modes_first_give_what_the_full_count_gives():
     """compute_fe asks N_MODES_FIRST modes and N_MODES when the first ovalling
     mode is not among them: the quantities are those of an N_MODES solve (the
@@ -263,6 +302,7 @@ def test_runs_asking_few_modes_first_give_what_the_full_count_gives():
     coarse P1 tube, whose locked ovalling mode lies high, widens to 12."""
     from rotorpillar.converge.compute import _compute_fe, compute_fe
     from rotorpillar.converge.ladder import N_MODES, N_MODES_FIRST
+
     scene = load_scene("paper")
     cases = {(c.family, c.level): c for c in cv.ladder(scene)}
     for key, asked in ((("shell_quad", 24), N_MODES_FIRST), (("solid_tet_p1", 32), N_MODES)):

@@ -16,10 +16,14 @@ import time
 import pytest
 from conftest import cli
 
-SMALL = ["--set", "converge.solid=false", "--set", "converge.shell_max_around=12",
-         "--set", "converge.shell_tri_max_around=8"]
-
-
+SMALL = [
+    "--set",
+    "converge.solid=false",
+    "--set",
+    "converge.shell_max_around=12",
+    "--set",
+    "converge.shell_tri_max_around=8",
+]
 
 
 def _png_size(path):
@@ -32,9 +36,12 @@ def _png_size(path):
 def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
     out = tmp_path / "out"
     cache = out / "cache"
-    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", "converge", "paper", *SMALL,
-                             "--out", str(out), "--no-progress"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "rotorpillar", "converge", "paper", *SMALL, "--out", str(out), "--no-progress"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     # wait for the beams and the first shell run to be cached, then Ctrl-C
     deadline = time.time() + 120
     while time.time() < deadline and proc.poll() is None:
@@ -46,7 +53,7 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
     assert proc.returncode == 130, err
     assert "interrupted" in err
     done = list(cache.glob("*.json"))
-    assert not list(cache.glob(".*"))                       # no half-written file
+    assert not list(cache.glob(".*"))  # no half-written file
     for f in done:
         json.loads(f.read_text())
     assert not (out / "convergence.json").exists()
@@ -57,13 +64,23 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
     assert doc["study"]["cached"] == len(done)
     assert doc["study"]["computed"] == doc["study"]["runs"] - len(done)
     study = json.loads((out / "convergence.json").read_text())
-    assert {"runs", "reference", "extrapolations", "pareto", "selection", "failures",
-            "charts", "versions", "machine"} <= study.keys()
+    assert {
+        "runs",
+        "reference",
+        "extrapolations",
+        "pareto",
+        "selection",
+        "failures",
+        "charts",
+        "versions",
+        "machine",
+    } <= study.keys()
     for name in ("convergence_dofs.png", "convergence_time.png"):
         w, h = _png_size(out / name)
         assert w > 1000 and h > 500
     assert any("no shell modes" in f for f in study["failures"])
     from rotorpillar.converge import ConvergenceStudy
+
     assert ConvergenceStudy.read(out / "convergence.json").to_json() == study
 
     again = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json")
@@ -79,9 +96,18 @@ def test_bad_tolerance_exits_2_and_writes_nothing(tmp_path):
     assert p.returncode == 2 and "converge.margin" in p.stderr
 
 
-SMALL_3D = ["--set", "converge.shell_max_around=16", "--set", "converge.shell_tri_max_around=8",
-            "--set", "converge.solid_p1_max_around=32", "--set", "converge.solid_p2_max_around=96",
-            "--set", "converge.solid_tet_p2_max_around=32"]
+SMALL_3D = [
+    "--set",
+    "converge.shell_max_around=16",
+    "--set",
+    "converge.shell_tri_max_around=8",
+    "--set",
+    "converge.solid_p1_max_around=32",
+    "--set",
+    "converge.solid_p2_max_around=96",
+    "--set",
+    "converge.solid_tet_p2_max_around=32",
+]
 
 
 @pytest.mark.slow
@@ -108,8 +134,9 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
             assert r["wall_time"] >= chosen["wall_time"]
     # a tolerance no 3D run meets: known only from the runs, so a result, not bad input
     # (issue 19): the most accurate 3D mesh is run and marked, exit 4
-    bad = cli("modal", "paper", *SMALL_3D, "--tolerance", "1e-9", "--out", tmp_path / "x",
-              "--cache", tmp_path / "cache")
+    bad = cli(
+        "modal", "paper", *SMALL_3D, "--tolerance", "1e-9", "--out", tmp_path / "x", "--cache", tmp_path / "cache"
+    )
     assert bad.returncode == 4, bad.stderr
     d = json.loads((tmp_path / "x" / "modal.json").read_text())
     assert d["ok"] is False and d["model_selection"]["met"] is False

@@ -23,12 +23,13 @@ from rotorpillar.scene import load_scene
 
 def _case_file(tmp_path, case, scene, name):
     f = tmp_path / f"{name}.json"
-    f.write_text(json.dumps({"family": case.family, "level": case.level, "params": list(case.params),
-                             "scene": scene.to_dict()}))
+    f.write_text(
+        json.dumps({"family": case.family, "level": case.level, "params": list(case.params), "scene": scene.to_dict()})
+    )
     return f
 
 
-@pytest.mark.slow                       # shell and 3D runs, served and fresh
+@pytest.mark.slow  # shell and 3D runs, served and fresh
 def test_served_runs_equal_fresh_runs_and_failures_are_reported(tmp_path):
     # Linux 4.0+: the per-run high-water mark; without it the process serves one run
     reused = reset_peak_memory()
@@ -38,17 +39,18 @@ def test_served_runs_equal_fresh_runs_and_failures_are_reported(tmp_path):
     fresh = []
     for i, c in enumerate(small):
         out = tmp_path / f"fresh{i}.out.json"
-        subprocess.run([sys.executable, "-m", "rotorpillar.converge",
-                        str(_case_file(tmp_path, c, scene, f"fresh{i}")), str(out)], check=True)
+        subprocess.run(
+            [sys.executable, "-m", "rotorpillar.converge", str(_case_file(tmp_path, c, scene, f"fresh{i}")), str(out)],
+            check=True,
+        )
         fresh.append(json.loads(out.read_text()))
     s = Service()
     try:
         bad = tmp_path / "bad.json"
-        bad.write_text(json.dumps({"family": "no_such_family", "level": 1, "params": [],
-                                   "scene": scene.to_dict()}))
+        bad.write_text(json.dumps({"family": "no_such_family", "level": 1, "params": [], "scene": scene.to_dict()}))
         reply = s.run(bad, tmp_path / "bad.out.json")
         assert reply["status"] == "error" and "no_such_family" in reply["error"]
-        assert (s.proc is not None) == reused          # the same process serves on
+        assert (s.proc is not None) == reused  # the same process serves on
         pid = s.proc.pid if reused else None
         for i, (c, ref) in enumerate(zip(small, fresh)):
             out = tmp_path / f"served{i}.out.json"
@@ -58,7 +60,7 @@ def test_served_runs_equal_fresh_runs_and_failures_are_reported(tmp_path):
             assert got["peak_memory"] == pytest.approx(ref["peak_memory"], rel=0.15)
         if reused:
             assert s.proc.pid == pid
-            s.proc.kill()                              # dead between runs: replaced
+            s.proc.kill()  # dead between runs: replaced
             s.proc.wait()
         reply = s.run(_case_file(tmp_path, small[0], scene, "again"), tmp_path / "again.out.json")
         assert reply["status"] == "ok" and (not reused or s.proc.pid != pid)
@@ -75,9 +77,14 @@ def test_a_process_that_dies_in_a_run_is_reported_with_its_stderr(tmp_path, monk
         start(self)
         self.proc.kill()
         self.proc.wait()
-        self.proc = subprocess.Popen([sys.executable, "-c", "import sys; sys.stderr.write('boom')"],
-                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=self.log, text=True)
+        self.proc = subprocess.Popen(
+            [sys.executable, "-c", "import sys; sys.stderr.write('boom')"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=self.log,
+            text=True,
+        )
+
     monkeypatch.setattr(Service, "_start", dying)
     try:
         reply = s.run(tmp_path / "case.json", tmp_path / "out.json")
@@ -91,8 +98,10 @@ def test_what_a_run_prints_stays_out_of_the_replies(tmp_path):
     """A library printing to stdout (Python or C) must not break the protocol:
     the serving process answers on its original stdout and sends fd 1 to stderr."""
     import textwrap
+
     script = tmp_path / "noisy.py"
-    script.write_text(textwrap.dedent("""
+    script.write_text(
+        textwrap.dedent("""
         import os, sys
         from rotorpillar.converge import runner
         def noisy(case_file, out_file, baseline, *, per_run_peak):
@@ -102,9 +111,15 @@ def test_what_a_run_prints_stays_out_of_the_replies(tmp_path):
         runner.run_one = noisy
         runner.import_models = lambda: 0
         sys.exit(runner.serve())
-    """))
-    p = subprocess.run([sys.executable, str(script)], input='{"case": "c", "out": "%s"}\n'
-                       % (tmp_path / "o.json"), capture_output=True, text=True, timeout=60)
+    """)
+    )
+    p = subprocess.run(
+        [sys.executable, str(script)],
+        input='{"case": "c", "out": "%s"}\n' % (tmp_path / "o.json"),
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert p.returncode == 0
-    reply = json.loads(p.stdout)                  # the reply alone on stdout
+    reply = json.loads(p.stdout)  # the reply alone on stdout
     assert reply["status"] == "ok" and "python noise" in p.stderr and "C noise" in p.stderr

@@ -40,12 +40,9 @@ def runs(tmp_path_factory):
     scene = load_scene("paper")
     graded = override(scene, ["mesh.grading=200"])
     return {
-        "g30": cv.run_study(_cases(scene, "solid_hex_p2", (64, 96, 128, 160)), scene, cache,
-                            progress=False),
-        "g200": cv.run_study(_cases(graded, "solid_hex_p2", (64, 96, 128)), graded, cache,
-                             progress=False),
-        "shell": cv.run_study(_cases(scene, "shell_quad", (24, 32, 48)), scene, cache,
-                              progress=False),
+        "g30": cv.run_study(_cases(scene, "solid_hex_p2", (64, 96, 128, 160)), scene, cache, progress=False),
+        "g200": cv.run_study(_cases(graded, "solid_hex_p2", (64, 96, 128)), graded, cache, progress=False),
+        "shell": cv.run_study(_cases(scene, "shell_quad", (24, 32, 48)), scene, cache, progress=False),
     }
 
 

@@ -26,6 +26,7 @@ from rotorpillar.studies.study import CSV_RESULTS
 from rotorpillar.transients.files import CSV_COLUMNS, write_model_files
 from rotorpillar.transients.model_run import run_model
 
+
 def _read(path: Path) -> tuple[list[str], list[dict[str, str]]]:
     with open(path, newline="") as fh:
         reader = csv.DictReader(fh)
@@ -63,12 +64,13 @@ def test_a_runs_csv_is_plain(tmp_path):
 def test_a_studys_csv_is_plain(tmp_path):
     vary = ["drive.torque_at_zero=560,700"]
     with Executor(processes=False) as ex:
-        result = design_study(load_scene("sommerfeld"), "runup", "paper", vary, out_dir=tmp_path,
-                              executor=ex, show_progress=False)
+        result = design_study(
+            load_scene("sommerfeld"), "runup", "paper", vary, out_dir=tmp_path, executor=ex, show_progress=False
+        )
     fields, rows = _read(tmp_path / "study.csv")
     assert fields == ["index", "drive.torque_at_zero", *CSV_RESULTS]
     assert len(rows) == len(result.runs) == 2
-    for row, run in zip(rows, result.runs):          # the records study.json holds
+    for row, run in zip(rows, result.runs):  # the records study.json holds
         assert int(row["index"]) == run.index
         assert float(row["drive.torque_at_zero"]) == run.params["drive.torque_at_zero"]
         for name in CSV_RESULTS:
@@ -78,13 +80,13 @@ def test_a_studys_csv_is_plain(tmp_path):
             elif isinstance(want, bool):
                 assert got == ("true" if want else "false"), name
             elif isinstance(want, (int, float)):
-                assert math.isclose(float(got), want, rel_tol=1e-9), name   # 10 digits written
+                assert math.isclose(float(got), want, rel_tol=1e-9), name  # 10 digits written
             else:
                 assert got == str(want), name
     assert result.files["csv"] == str(tmp_path / "study.csv")
 
 
-@pytest.mark.slow                       # the run_paper fixture: the whole main job
+@pytest.mark.slow  # the run_paper fixture: the whole main job
 def test_every_csv_of_the_main_job_is_plain(run_paper):
     paths = sorted(run_paper.out.glob("*.csv"))
     assert {"simulate_runup.csv", "simulate_earthquake.csv"} <= {p.name for p in paths}

@@ -27,7 +27,7 @@ print("rendered", img.shape, float(img.std()) > 0)
 """
 
 
-@pytest.mark.slow                       # a 3D model and a render, in a child process
+@pytest.mark.slow  # a 3D model and a render, in a child process
 def test_modal_then_scalar_bar_render_in_one_process():
     p = subprocess.run([sys.executable, "-c", CHILD], capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-2000:]

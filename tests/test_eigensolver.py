@@ -76,8 +76,8 @@ def test_block_lanczos_free_free_with_negative_shift():
     model = assemble_model(s.pillar, mesh, clamped=False)
     K, M = model.K, model.M
     first = solve_gep_shift_invert(K, M, 8, sigma=-1.0, method="krylovschur").eigenvalues[-1]
-    lam = check_same_modes(K, M, 10, sigma=-(0.5 ** 2) * first)
-    assert np.all(np.abs(lam[:6]) <= 1e-6 * lam[6])            # the rigid-body modes
+    lam = check_same_modes(K, M, 10, sigma=-(0.5**2) * first)
+    assert np.all(np.abs(lam[:6]) <= 1e-6 * lam[6])  # the rigid-body modes
     K.destroy()
     M.destroy()
 
@@ -87,7 +87,9 @@ def test_mass_matrix_read_in_place_equals_petsc4pys_copy():
     the same matrix, entry for entry, as petsc4py's getValuesCSR with scipy's
     eliminate_zeros (exact: no arithmetic, only selection)."""
     import scipy.sparse as sp
+
     from rotorpillar.fem3d.block_lanczos import _petsc_csr, seq_csr, without_zeros
+
     model = assemble_pillar(load_scene("paper"), top=True, mesh=MESH)
     ai, aj, av = model.M.getValuesCSR()
     ref = sp.csr_matrix((av, aj, ai), shape=model.M.getSize())
@@ -98,8 +100,8 @@ def test_mass_matrix_read_in_place_equals_petsc4pys_copy():
     rng = np.random.default_rng(5)
     D = rng.standard_normal((40, 30)) * (rng.random((40, 30)) < 0.2)
     D[5:9] = 0.0
-    B = sp.csr_matrix(D)                                # rows 5..8 empty
-    B.data[::3] = 0.0                                   # explicit zeros kept in the pattern
+    B = sp.csr_matrix(D)  # rows 5..8 empty
+    B.data[::3] = 0.0  # explicit zeros kept in the pattern
     assert np.any(np.diff(B.indptr) == 0)
     C = without_zeros(B.indptr, B.indices, B.data, B.shape)
     B.eliminate_zeros()
@@ -115,6 +117,7 @@ def test_band_modes_are_the_lowest_of_a_fixed_count_and_pass_the_band():
     last one lies beyond it."""
     from rotorpillar.fem3d import BAND_MODES, modal_analysis
     from rotorpillar.reduced.band import excitation_band
+
     scene = override(load_scene("paper"), ["mesh.elements_around=16", "mesh.elements_along=6"])
     assert scene.modal.n_modes == 0
     edge = excitation_band(scene.drive, scene.load, scene.converge)["omega_max"]

@@ -68,9 +68,18 @@ def test_reduced_names_no_equation_as_eq_parenthesis():
 def _paper_model_and_params():
     from rotorpillar.reduced.rotor_models import paper_model
     from rotorpillar.reduced.system import paper_example
+
     s = paper_example(0.4e6, 11e3, 30e3)
-    p = (s.tip_mass, s.rotor_mass, s.rotor_inertia, s.eccentricity, s.pillar_stiffness,
-         s.shaft_stiffness, s.pillar_damping, s.shaft_damping)
+    p = (
+        s.tip_mass,
+        s.rotor_mass,
+        s.rotor_inertia,
+        s.eccentricity,
+        s.pillar_stiffness,
+        s.shaft_stiffness,
+        s.pillar_damping,
+        s.shaft_damping,
+    )
     return paper_model(s), p
 
 
@@ -79,6 +88,7 @@ def test_compiled_rhs_of_the_paper_model_is_equation_4(with_ground):
     from rotorpillar.reduced.drive import DriveSchedule
     from rotorpillar.reduced.excitation import no_motion, paper_pulse
     from rotorpillar.reduced.rhs import N_WORK, eq4_rhs, flatten, rhs_first_order
+
     model, p = _paper_model_and_params()
     M0, slope, k = 1500.0, 12.0, 0.5
     motion = paper_pulse() if with_ground else no_motion()

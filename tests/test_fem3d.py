@@ -47,8 +47,7 @@ import pytest
 from rotorpillar.fem3d import assemble_pillar, modal_analysis, tip_reduction
 from rotorpillar.fem3d.modal import run_modal
 from rotorpillar.fem3d.model import assemble_model
-from rotorpillar.reduced.pillar import (cowper_shear_coefficient, omega_euler_bernoulli,
-                                        omega_timoshenko, section_of)
+from rotorpillar.reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, omega_timoshenko, section_of
 from rotorpillar.scene import Mesh, load_scene, override
 
 # every test here solves a 3D model: the slow tier (tests/conftest.py)
@@ -60,8 +59,9 @@ THICK = ["pillar.outer_diameter=0.5", "pillar.inner_diameter=0.3"]
 def timoshenko(p, k=1):
     sec = section_of(p)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
-    return omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area,
-                            sec.second_moment, p.height, k)
+    return omega_timoshenko(
+        p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area, sec.second_moment, p.height, k
+    )
 
 
 @pytest.fixture(scope="module")
@@ -89,10 +89,9 @@ def test_torsion_and_the_order_of_the_bending_modes(thick):
     s, r = thick
     p = s.pillar
     G = p.youngs_modulus / (2 * (1 + p.poisson_ratio))
-    assert r.first("torsion") == pytest.approx(math.pi / 2 * math.sqrt(G / p.density) / p.height,
-                                               rel=1e-4)
+    assert r.first("torsion") == pytest.approx(math.pi / 2 * math.sqrt(G / p.density) / p.height, rel=1e-4)
     bx = [i for i, k in enumerate(r.kind) if k == "bending_x"]
-    assert [r.n_axial[i] for i in bx] == list(range(len(bx)))       # 1st, 2nd, ... bending
+    assert [r.n_axial[i] for i in bx] == list(range(len(bx)))  # 1st, 2nd, ... bending
     assert r.n_circumferential[r.index("torsion")] == 0
 
 
@@ -131,20 +130,23 @@ def test_free_free_thin_tube_has_the_ring_modes():
     model = assemble_model(p, mesh, clamped=False)
     w2 = ring_omega(p, 2)
     # six rigid-body modes at zero: shift below them
-    r = run_modal(model, 12, sigma=-(0.5 * w2) ** 2, mesh_section=mesh)
+    r = run_modal(model, 12, sigma=-((0.5 * w2) ** 2), mesh_section=mesh)
     i2 = r.index("ovalling", n_circumferential=2)
     i3 = r.index("ovalling", n_circumferential=3)
     assert r.omega[i2] == pytest.approx(w2, rel=1e-2)
     assert r.omega[i3] == pytest.approx(ring_omega(p, 3), rel=1e-2)
-    assert r.omega[i2 + 1] == pytest.approx(r.omega[i2], rel=1e-7)     # the cos/sin pair
-    assert np.all(r.omega[:6] < 1e-3 * w2)                               # rigid-body modes
+    assert r.omega[i2 + 1] == pytest.approx(r.omega[i2], rel=1e-7)  # the cos/sin pair
+    assert np.all(r.omega[:6] < 1e-3 * w2)  # rigid-body modes
 
 
 def test_error_falls_under_refinement():
     s = override(load_scene("paper"), THICK)
-    w = [modal_analysis(s, top=False, n_modes=2, mesh=Mesh(elements_around=8, elements_along=L,
-                                                            elements_through=2, grading=1.0)).omega[0]
-         for L in (5, 10, 20)]
+    w = [
+        modal_analysis(
+            s, top=False, n_modes=2, mesh=Mesh(elements_around=8, elements_along=L, elements_through=2, grading=1.0)
+        ).omega[0]
+        for L in (5, 10, 20)
+    ]
     assert w[0] > w[1] > w[2]
     assert (w[0] - w[1]) / (w[1] - w[2]) > 2.0
 
@@ -176,8 +178,7 @@ def test_rigid_top_moves_rigidly_and_matches_the_tip_model():
     top = modal_analysis(s, top=True, n_modes=4, mesh=mesh)
     red = tip_reduction(bare, s.pillar)
     i = top.index("bending_x", n_axial=0)
-    assert top.omega[i] == pytest.approx(math.sqrt(red.tip_stiffness / (red.m_reduced + s.gondola.mass)),
-                                         rel=5e-3)
+    assert top.omega[i] == pytest.approx(math.sqrt(red.tip_stiffness / (red.m_reduced + s.gondola.mass)), rel=5e-3)
     # unit tip: the modal mass is the pillar's share plus the whole top mass
     assert top.modal_mass[i] - s.gondola.mass == pytest.approx(red.m_reduced, rel=0.05)
     # the top vertices follow the plate: u = U + Theta x (x - (0, 0, H))
@@ -195,7 +196,9 @@ def test_tetrahedra_and_linear_elements_run_and_bound_from_above(tmp_path):
     Each writes its VTU on its own cells (quadratic: every P2 node), in VTK's
     node order (tests/fixtures.check_tube_vtu)."""
     import fixtures
+
     from rotorpillar.fem3d.output import write_modes_vtu
+
     s = load_scene("paper")
     tim = timoshenko(s.pillar)
     w = {}
@@ -205,10 +208,15 @@ def test_tetrahedra_and_linear_elements_run_and_bound_from_above(tmp_path):
         r = modal_analysis(s, top=False, n_modes=2, mesh=m)
         assert r.kind[0].startswith("bending") and r.cell_type == ct and r.degree == deg
         w[(ct, deg)] = r.omega[0]
-        got = fixtures.check_tube_vtu(write_modes_vtu(tmp_path / f"{ct}{deg}.vtu", r),
-                                      s.pillar.height, s.pillar.outer_diameter / 2,
-                                      s.pillar.inner_diameter / 2, around=16, through=T)
+        got = fixtures.check_tube_vtu(
+            write_modes_vtu(tmp_path / f"{ct}{deg}.vtu", r),
+            s.pillar.height,
+            s.pillar.outer_diameter / 2,
+            s.pillar.inner_diameter / 2,
+            around=16,
+            through=T,
+        )
         assert got["vtk_type"] == vtk_types[(ct, deg)]
-        assert got["points"] == r.dofs // 3        # every node of the space, once
+        assert got["points"] == r.dofs // 3  # every node of the space, once
     assert w[("hexahedron", 2)] < w[("tetrahedron", 2)] < w[("hexahedron", 1)]
     assert w[("hexahedron", 2)] == pytest.approx(tim, rel=3e-3)

@@ -49,7 +49,9 @@ def scene():
 def static(scene):
     """The loaded tube under P along X and Q along z on its plate: (model, x, P, Q)."""
     from petsc4py import PETSc
+
     from rotorpillar.fem3d import assemble_pillar
+
     model = assemble_pillar(scene, top=True)
     ksp = PETSc.KSP().create(model.comm)
     ksp.setOperators(model.K)
@@ -70,6 +72,7 @@ def static(scene):
 
 def test_static_section_resultants_are_exact(scene, static):
     from rotorpillar.fem3d.sections import section_functionals
+
     model, x, P, Q = static
     sf = section_functionals(model, scene.pillar.youngs_modulus, scene.pillar.poisson_ratio)
     R = sf.resultants(x)
@@ -83,8 +86,9 @@ def test_static_section_resultants_are_exact(scene, static):
 def test_static_von_mises_is_the_beam_stress_away_from_the_clamp(scene, static):
     from rotorpillar.fem3d.sections import cut_heights
     from rotorpillar.fem3d.stress import VonMisesProjection
+
     model, x, P, Q = static
-    no_axial = override(scene, [])            # the axial load's own stress: Q / A, added to the beam's
+    no_axial = override(scene, [])  # the axial load's own stress: Q / A, added to the beam's
     vm = VonMisesProjection(model, no_axial.pillar, 0.0, gravity=False)
     v, c = vm.project(x), vm.coordinates
     vm.destroy()
@@ -106,6 +110,7 @@ def test_mode_resultants_against_the_beam(scene):
     from rotorpillar.fem3d import modal_analysis
     from rotorpillar.fem3d.pillar_modes import pillar_modes_from_fem3d
     from rotorpillar.reduced.pillar_modes import beam_pillar_modes
+
     r = modal_analysis(scene, top=True, n_modes=12)
     pm = pillar_modes_from_fem3d(r, scene.pillar, 2)
     bm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 2, "timoshenko", 40)
@@ -122,10 +127,12 @@ def test_harmonic_response_against_the_rom_on_the_same_modes():
     from rotorpillar.fem3d.rotor_top import RotorOnTop
     from rotorpillar.reduced.bode import unbalance_response
     from rotorpillar.reduced.rotor_models import modal_model
+
     s = override(load_scene("paper"), ["mesh.elements_around=16", "mesh.elements_along=8"])
     pm = pillar_modes_from_fem3d(modal_analysis(s, top=True, n_modes=12), s.pillar, 2)
-    rom = modal_model(pm, s.rotor.mass, s.rotor.inertia, s.rotor.eccentricity, s.shaft.stiffness,
-                      s.shaft.damping, s.pillar.damping)
+    rom = modal_model(
+        pm, s.rotor.mass, s.rotor.inertia, s.rotor.eccentricity, s.shaft.stiffness, s.shaft.damping, s.pillar.damping
+    )
     near = [r.omega for r in rom.quasi_normal() if r.direction == "X"][:2]
     speeds = np.array([near[0], near[1], 0.98 * near[1], 89.7])
     model = assemble_pillar(s, top=True)
@@ -144,8 +151,9 @@ def test_harmonic_response_against_the_rom_on_the_same_modes():
 
 
 def test_transient_observer_resultants_and_xdmf(tmp_path):
-    from rotorpillar.fem3d.stress import StressRecovery
     from rotorpillar.fem3d.full_order import simulate_fem3d
+    from rotorpillar.fem3d.stress import StressRecovery
+
     s = override(load_scene("paper"), ["mesh.elements_around=8", "mesh.elements_along=10"])
     top = s.gondola.mass + s.rotor.mass
     obs = StressRecovery(s.pillar, top, 0.2, tmp_path / "run.xdmf", frames=3)
@@ -167,6 +175,7 @@ def test_fem3d_run_forces_against_the_rom(tmp_path):
     the ROM: the base moment's peak within 2 % (the full 15 s run: 0.2 %), the 3D run's XDMF
     beside its JSON."""
     from rotorpillar.transients.model_run import run_model
+
     s = override(load_scene("paper"), ["excitation.kind=record"])
     fem = run_model(s, "earthquake", "fem3d", duration=9.0, field_dir=tmp_path)
     rom = run_model(s, "earthquake", "modal", duration=9.0)

@@ -48,8 +48,7 @@ def test_solve_spin_without_coupling_is_newmark_on_the_drive():
     assert it <= 3
 
 
-pytestmark_3d = pytest.mark.skipif(
-    __import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
+pytestmark_3d = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 
 
 def ramp_motion(a0: float, ramp: float, end: float, dt: float = 1e-3) -> GroundMotion:
@@ -64,7 +63,9 @@ def ramp_motion(a0: float, ramp: float, end: float, dt: float = 1e-3) -> GroundM
 def static_tip(scene, a0: float) -> float:
     """U_x of K u = -(M r + m_C e_x) a0, by a direct solve."""
     from petsc4py import PETSc
+
     from rotorpillar.fem3d import assemble_pillar
+
     m = assemble_pillar(scene, top=True)
     f = m.M.createVecLeft()
     m.M.mult(m.influence(0), f)
@@ -85,16 +86,26 @@ def static_tip(scene, a0: float) -> float:
 @pytest.fixture(scope="module")
 def static_run():
     from rotorpillar.fem3d.full_order import simulate_fem3d
+
     scene = load_scene("paper", COARSE)
     a0 = 0.5
     motion = ramp_motion(a0, 2.0, 9.0)
-    r = simulate_fem3d(scene, "earthquake", motion=motion, drive=DriveSchedule.constant(0.0, 0.0, 0.0),
-                       duration=9.0, time_step=5e-3, samples=181, initial_speed=0.0,
-                       initial_angle=0.0, prescribed_speed=True)
+    r = simulate_fem3d(
+        scene,
+        "earthquake",
+        motion=motion,
+        drive=DriveSchedule.constant(0.0, 0.0, 0.0),
+        duration=9.0,
+        time_step=5e-3,
+        samples=181,
+        initial_speed=0.0,
+        initial_angle=0.0,
+        prescribed_speed=True,
+    )
     return scene, a0, r
 
 
-@pytest.mark.slow                       # the 3D full-order transient
+@pytest.mark.slow  # the 3D full-order transient
 @pytestmark_3d
 def test_static_limit(static_run):
     scene, a0, r = static_run
@@ -106,25 +117,26 @@ def test_static_limit(static_run):
     # the shaft carries the rotor's inertia: c2 (x_r - U_x - e) = -m_C a0
     assert r.shaft_x[-1] == pytest.approx(-scene.rotor.mass * a0 / scene.shaft.stiffness, rel=5e-3)
     assert r.integrator["factorisations"] == 1
-    assert r.energy_balance["relative_error"] < 1e-8       # linear: Newmark's identity is exact
+    assert r.energy_balance["relative_error"] < 1e-8  # linear: Newmark's identity is exact
     assert np.allclose(r.tip_x_absolute, r.tip_x + r.ground_x)
 
 
-@pytest.mark.slow                       # the 3D full-order transient
+@pytest.mark.slow  # the 3D full-order transient
 @pytestmark_3d
 def test_result_json_round_trip(static_run):
     from rotorpillar.fem3d.full_order import Fem3dTransient
+
     r = static_run[2]
     back = Fem3dTransient.from_json(json.loads(json.dumps(r.to_json())))
     assert json.dumps(back.to_json()) == json.dumps(r.to_json())
     assert isinstance(back.t, np.ndarray) and np.array_equal(back.work, r.work)
-    assert set(r.summary()) >= {"max_abs", "omega_final", "energy_balance", "integrator", "dofs",
-                                "wall_seconds"}
+    assert set(r.summary()) >= {"max_abs", "omega_final", "energy_balance", "integrator", "dofs", "wall_seconds"}
 
 
 def rom_start(rom, scene, theta0: float, W0: float):
     """The ROM's (q0, v0) matching the 3D start: structure at rest, rotor in its whirl."""
     from rotorpillar.fem3d.rotor_top import RotorOnTop, rotor_start
+
     x, y, vx, vy = rotor_start(RotorOnTop.from_scene(scene), theta0, W0)
     q0, v0 = np.zeros(rom.n), np.zeros(rom.n)
     q0[rom.rotor_x], q0[rom.nx], q0[-1] = x, y, theta0
@@ -134,18 +146,38 @@ def rom_start(rom, scene, theta0: float, W0: float):
 
 def compare_with_rom(case, motion, drive, duration, W0, theta0, prescribed, h=2e-3, dt_out=0.01):
     from rotorpillar.fem3d.full_order import simulate_fem3d
-    from rotorpillar.reduced.models import build_model
     from rotorpillar.reduced.integration import Settings, simulate
+    from rotorpillar.reduced.models import build_model
+
     scene = load_scene("paper", COARSE + ["modal_model.source=fem3d"])
     samples = int(round(duration / dt_out)) + 1
-    r = simulate_fem3d(scene, case, motion=motion, drive=drive, duration=duration, time_step=h,
-                       samples=samples, initial_speed=W0, initial_angle=theta0,
-                       prescribed_speed=prescribed)
+    r = simulate_fem3d(
+        scene,
+        case,
+        motion=motion,
+        drive=drive,
+        duration=duration,
+        time_step=h,
+        samples=samples,
+        initial_speed=W0,
+        initial_angle=theta0,
+        prescribed_speed=prescribed,
+    )
     from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
+
     rom, _ = build_model(scene, "modal", modes=3, pillar_modes=candidate_pillar_modes(scene))
     q0, v0 = rom_start(rom, scene, theta0, W0)
-    R = simulate(rom, drive, motion, duration, q0, v0, settings=Settings("newmark", time_step=h,
-                 samples=samples), prescribed_speed=prescribed, speed_scale=max(W0, 1.0))
+    R = simulate(
+        rom,
+        drive,
+        motion,
+        duration,
+        q0,
+        v0,
+        settings=Settings("newmark", time_step=h, samples=samples),
+        prescribed_speed=prescribed,
+        speed_scale=max(W0, 1.0),
+    )
     assert np.allclose(R.t, r.t)
     return scene, r, R
 
@@ -155,6 +187,7 @@ def compare_with_rom(case, motion, drive, duration, W0, theta0, prescribed, h=2e
 @pytest.mark.parametrize("prescribed", [True, False], ids=["spin_locked", "free_spin"])
 def test_earthquake_against_rom_on_the_3d_modes(prescribed):
     from rotorpillar.reduced.excitation import load_record
+
     motion = load_record("elcentro", start=1.0)
     drive = DriveSchedule.constant(5100.0, 12.0, 0.5)
     scene, r, R = compare_with_rom("earthquake", motion, drive, 7.0, 89.0, 0.3, prescribed)
@@ -170,6 +203,7 @@ def test_earthquake_against_rom_on_the_3d_modes(prescribed):
 @pytestmark_3d
 def test_runup_against_rom_and_energy():
     from rotorpillar.reduced.excitation import no_motion
+
     drive = DriveSchedule.constant(5100.0, 12.0, 0.5)
     scene, r, R = compare_with_rom("runup", no_motion(), drive, 3.0, 0.0, 0.0, False)
     assert np.max(np.abs(R.Omega - r.Omega)) < 1e-3 * np.max(r.Omega)

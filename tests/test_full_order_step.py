@@ -31,8 +31,10 @@ from conftest import cli
 
 from rotorpillar.scene import load_scene
 
-pytestmark = [pytest.mark.slow, pytest.mark.skipif(
-    __import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")]
+pytestmark = [
+    pytest.mark.slow,
+    pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx"),
+]
 
 COARSE = ["mesh.elements_around=8", "mesh.elements_along=6", "mesh.degree=2"]
 STIFF = ["excitation.kind=record", "shaft.stiffness=1e10", "rotor.eccentricity=0", "shaft.damping=0"]
@@ -41,6 +43,7 @@ STIFF = ["excitation.kind=record", "shaft.stiffness=1e10", "rotor.eccentricity=0
 def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
     from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.reduced.excitation import load_record
+
     motion = load_record("elcentro", start=0.5)
     stiff = load_scene("paper", COARSE + STIFF)
     soft = load_scene("paper", COARSE + STIFF[:1] + STIFF[2:])
@@ -52,8 +55,9 @@ def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
     assert rule["spectral_radius_infinity"] == pytest.approx(0.8, abs=1e-3)
     assert rule["forcing"] == {"ground_motion_band": pytest.approx(motion.band())}
     assert rule["band_edge"] == pytest.approx(2.0 * motion.band())
-    assert math.sqrt(1e10 / 1600.0) * h > 5                     # the shaft's mode is not resolved
+    assert math.sqrt(1e10 / 1600.0) * h > 5  # the shaft's mode is not resolved
     from rotorpillar.fem3d.full_order_plan import case_setup, step_rule
+
     mo, drive, _, W0, _ = case_setup(soft, "earthquake", motion, None, 5.0, None)
     assert step_rule(soft, drive, mo, W0).time_step == pytest.approx(rule["time_step"], rel=1e-12)
     fine = load_scene("paper", COARSE + STIFF + ["full_order.integrator=newmark"])
@@ -62,10 +66,14 @@ def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
     assert r.integrator["factorisations"] == 1
 
 
-@pytest.mark.parametrize("eccentricity, start, T, keys", [
-    (0.0, 0.5, 1.0, ("tip_x", "rotor_x")),
-    (0.002, 0.0, 0.5, ("rotor_x", "Omega")),
-], ids=["ground-only", "whirl-and-spin"])
+@pytest.mark.parametrize(
+    "eccentricity, start, T, keys",
+    [
+        (0.0, 0.5, 1.0, ("tip_x", "rotor_x")),
+        (0.002, 0.0, 0.5, ("rotor_x", "Omega")),
+    ],
+    ids=["ground-only", "whirl-and-spin"],
+)
 def test_the_3d_generalized_alpha_is_second_order(eccentricity, start, T, keys):
     """ground-only: the pulse starts where its acceleration is zero (a_g continuous), so
     the tube is not struck; whirl-and-spin: the rotor whirls from t = 0 and its spin is
@@ -74,10 +82,15 @@ def test_the_3d_generalized_alpha_is_second_order(eccentricity, start, T, keys):
     steps: the rotor and its speed are the measures)."""
     from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.reduced.excitation import paper_pulse
+
     scene = load_scene("paper", COARSE + ["mesh.elements_along=4", f"rotor.eccentricity={eccentricity}"])
     motion = paper_pulse(0.05, math.pi, start, 10.0)
-    runs = {n: simulate_fem3d(scene, "earthquake", motion=motion, duration=T, time_step=T / n,
-                              samples=401, initial_speed=89.0) for n in (400, 800, 1600, 6400)}
+    runs = {
+        n: simulate_fem3d(
+            scene, "earthquake", motion=motion, duration=T, time_step=T / n, samples=401, initial_speed=89.0
+        )
+        for n in (400, 800, 1600, 6400)
+    }
     assert runs[400].integrator["method"] == "generalized_alpha"
     hs = [T / n for n in (400, 800, 1600)]
     for key in keys:
@@ -87,9 +100,22 @@ def test_the_3d_generalized_alpha_is_second_order(eccentricity, start, T, keys):
 
 
 def test_a_step_that_swallows_the_record_is_not_a_success(tmp_path):
-    p = cli("simulate", "paper", "--model", "fem3d", "--case", "earthquake", "--out", tmp_path,
-            "--set", "excitation.kind=record", "--set", "full_order.time_step=20",
-            "--set", "full_order.elements_along=4")
+    p = cli(
+        "simulate",
+        "paper",
+        "--model",
+        "fem3d",
+        "--case",
+        "earthquake",
+        "--out",
+        tmp_path,
+        "--set",
+        "excitation.kind=record",
+        "--set",
+        "full_order.time_step=20",
+        "--set",
+        "full_order.elements_along=4",
+    )
     assert p.returncode == 4, p.stderr
     doc = json.loads((tmp_path / "simulate.json").read_text())
     assert doc["ok"] is False
@@ -103,21 +129,36 @@ def mpirun_prefix():
     if exe is None:
         pytest.skip("mpirun not installed")
     env = dict(os.environ)
-    if os.geteuid() == 0:      # Open MPI refuses root unless told
+    if os.geteuid() == 0:  # Open MPI refuses root unless told
         env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     return [exe, "-n", "2"], env
 
 
-SHORT = ["--set", "excitation.kind=record", "--set", "excitation.start=0",
-         "--set", "full_order.earthquake_duration=1.5", "--set", "full_order.elements_around=8",
-         "--set", "full_order.elements_along=4", "--json"]
+SHORT = [
+    "--set",
+    "excitation.kind=record",
+    "--set",
+    "excitation.start=0",
+    "--set",
+    "full_order.earthquake_duration=1.5",
+    "--set",
+    "full_order.elements_around=8",
+    "--set",
+    "full_order.elements_along=4",
+    "--json",
+]
 
 
 def numbers(doc: dict) -> dict:
     """The JSON's numbers that the physics sets (not the timings)."""
-    return {"tip": doc["max_abs"]["tip_x"], "tip_abs": doc["max_abs"]["tip_x_absolute"],
-            "rotor_x": doc["max_abs"]["rotor_x"], "omega_final": doc["omega_final"],
-            "energy_change": doc["energy_balance"]["energy_change"], "steps": doc["integrator"]["steps"]}
+    return {
+        "tip": doc["max_abs"]["tip_x"],
+        "tip_abs": doc["max_abs"]["tip_x_absolute"],
+        "rotor_x": doc["max_abs"]["rotor_x"],
+        "omega_final": doc["omega_final"],
+        "energy_change": doc["energy_balance"]["energy_change"],
+        "steps": doc["integrator"]["steps"],
+    }
 
 
 @pytest.mark.mpi
@@ -129,7 +170,7 @@ def test_two_ranks_give_the_serial_numbers(tmp_path, command):
     p2 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "two", env=env, prefix=prefix)
     assert p1.returncode == 0, p1.stderr
     assert p2.returncode == 0, p2.stderr
-    a, b = json.loads(p1.stdout), json.loads(p2.stdout)       # rank 0 alone prints: one document
+    a, b = json.loads(p1.stdout), json.loads(p2.stdout)  # rank 0 alone prints: one document
     if command == "simulate":
         na, nb = numbers(a), numbers(b)
     else:
@@ -142,4 +183,4 @@ def test_two_ranks_give_the_serial_numbers(tmp_path, command):
     assert set(na) == set(nb)
     for k in na:
         assert nb[k] == pytest.approx(na[k], rel=1e-7, abs=1e-12), k
-    assert p2.stderr.count("[rotorpillar] simulate paper") <= 1       # rank 0 alone reports
+    assert p2.stderr.count("[rotorpillar] simulate paper") <= 1  # rank 0 alone reports

@@ -24,11 +24,15 @@ def one_line(p):
     return lines[0]
 
 
-@pytest.mark.parametrize("content, words", [
-    (b"\x00\x01\x02binary\xff", "not UTF-8"),
-    (LATIN1, "not UTF-8"),
-    (b"[pillar\nheight = ", "not valid TOML"),
-], ids=["binary", "latin-1", "broken-toml"])
+@pytest.mark.parametrize(
+    "content, words",
+    [
+        (b"\x00\x01\x02binary\xff", "not UTF-8"),
+        (LATIN1, "not UTF-8"),
+        (b"[pillar\nheight = ", "not valid TOML"),
+    ],
+    ids=["binary", "latin-1", "broken-toml"],
+)
 @pytest.mark.parametrize("command", ["analyze", "simulate", "modal", "report"])
 def test_a_scene_file_that_is_not_text_is_refused(tmp_path, content, words, command):
     scene = tmp_path / "scene.toml"
@@ -57,10 +61,10 @@ def test_an_output_path_that_is_not_a_directory_is_refused(tmp_path, target, com
 @pytest.mark.parametrize("name", ["../escape", "a/b", ".hidden"])
 def test_a_scene_name_cannot_leave_the_output_tree(tmp_path, name):
     from importlib import resources
+
     paper = resources.files("rotorpillar.scenes").joinpath("paper.toml").read_text("utf-8")
     scene = tmp_path / "scene.toml"
-    scene.write_text(f'name = "{name}"\n' + "\n".join(
-        l for l in paper.splitlines() if not l.startswith("name")))
+    scene.write_text(f'name = "{name}"\n' + "\n".join(l for l in paper.splitlines() if not l.startswith("name")))
     p = cli("analyze", scene, cwd=tmp_path)
     assert p.returncode == 2 and "name" in one_line(p)
     assert not (tmp_path / "out").exists() and not (tmp_path.parent / "escape").exists()
@@ -70,21 +74,32 @@ def test_an_accelerogram_that_is_not_utf8_is_refused(tmp_path):
     rec = tmp_path / "acc.txt"
     rec.write_bytes(b"0 0\n0.01 \xff\n")
     out = tmp_path / "out"
-    p = cli("simulate", "paper", "--case", "earthquake", "--out", out,
-            "--set", "excitation.kind=record", "--set", f"excitation.record='{rec}'")
+    p = cli(
+        "simulate",
+        "paper",
+        "--case",
+        "earthquake",
+        "--out",
+        out,
+        "--set",
+        "excitation.kind=record",
+        "--set",
+        f"excitation.record='{rec}'",
+    )
     assert p.returncode == 2 and "not UTF-8" in one_line(p)
     assert not out.exists()
 
 
-@pytest.mark.parametrize("key", ["mesh.elements_along=100000", "mesh.elements_through=1000",
-                                 "mesh.elements_around=100000"])
+@pytest.mark.parametrize(
+    "key", ["mesh.elements_along=100000", "mesh.elements_through=1000", "mesh.elements_around=100000"]
+)
 @pytest.mark.parametrize("command", ["modal", "run"])
 def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, key, command):
     out = tmp_path / "out"
     p = cli(command, "paper", "--set", key, "--out", out)
     assert p.returncode == 2
     line = one_line(p)
-    assert "DOFs" in line and "GiB" in line      # the estimate and the limit, in one line
+    assert "DOFs" in line and "GiB" in line  # the estimate and the limit, in one line
     assert not out.exists()
 
 
@@ -92,10 +107,26 @@ def test_sigterm_stops_run_and_its_stage(tmp_path):
     import signal
     import subprocess
     import sys
+
     out = tmp_path / "out"
-    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", "run", "paper", "--out", str(out),
-                             "--skip", "converge", "--skip", "integrators"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "rotorpillar",
+            "run",
+            "paper",
+            "--out",
+            str(out),
+            "--skip",
+            "converge",
+            "--skip",
+            "integrators",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     deadline = time.time() + 120
     while not (out / "analyze.json").exists() and time.time() < deadline:
         time.sleep(0.2)
@@ -107,13 +138,15 @@ def test_sigterm_stops_run_and_its_stage(tmp_path):
     ps = subprocess.run(["ps", "-eo", "args"], capture_output=True, text=True).stdout
     assert str(out) not in ps
     import json
+
     for f in out.glob("*.json"):
-        json.loads(f.read_text())                 # every file on disk is whole
+        json.loads(f.read_text())  # every file on disk is whole
 
 
 def test_a_killed_writers_part_file_is_removed_by_the_next_write(tmp_path):
     from rotorpillar.provenance import write_json
-    stale = tmp_path / ".result.json.999999999.abc.part.json"   # no such process
+
+    stale = tmp_path / ".result.json.999999999.abc.part.json"  # no such process
     stale.write_text("{")
     write_json(tmp_path / "result.json", {"a": 1})
     assert not stale.exists() and (tmp_path / "result.json").exists()
@@ -132,9 +165,24 @@ def test_zero_shaft_damping_is_the_undamped_limit_without_nan_or_warnings(tmp_pa
     import json
     import subprocess
     import sys
-    p = subprocess.run([sys.executable, "-W", "error", "-m", "rotorpillar", "analyze", "paper",
-                        "--set", "shaft.damping=0", "--out", str(tmp_path)],
-                       capture_output=True, text=True)
+
+    p = subprocess.run(
+        [
+            sys.executable,
+            "-W",
+            "error",
+            "-m",
+            "rotorpillar",
+            "analyze",
+            "paper",
+            "--set",
+            "shaft.damping=0",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "analyze.json").read_text())
     y = [r for r in doc["resonances"] if r["direction"] == "Y"][0]
@@ -143,15 +191,18 @@ def test_zero_shaft_damping_is_the_undamped_limit_without_nan_or_warnings(tmp_pa
     assert all(v is not None for v in y["curves"]["dL"])
 
 
-@pytest.mark.parametrize("sets, key", [
-    (["shaft.stiffness=1e300"], "shaft.stiffness"),
-    (["rotor.mass=1e300"], "rotor.mass"),
-    (["gondola.mass=1e300"], "gondola.mass"),
-    (["rotor.inertia=1e-300"], "rotor.inertia"),
-    (["pillar.youngs_modulus=1e30"], "pillar.youngs_modulus"),
-    (["pillar.density=1e30"], "pillar.density"),
-    (["drive.slope=0", "load.coefficient=0"], "drive.slope"),
-])
+@pytest.mark.parametrize(
+    "sets, key",
+    [
+        (["shaft.stiffness=1e300"], "shaft.stiffness"),
+        (["rotor.mass=1e300"], "rotor.mass"),
+        (["gondola.mass=1e300"], "gondola.mass"),
+        (["rotor.inertia=1e-300"], "rotor.inertia"),
+        (["pillar.youngs_modulus=1e30"], "pillar.youngs_modulus"),
+        (["pillar.density=1e30"], "pillar.density"),
+        (["drive.slope=0", "load.coefficient=0"], "drive.slope"),
+    ],
+)
 @pytest.mark.parametrize("command", ["analyze", "simulate"])
 def test_values_that_break_the_formulas_are_refused(tmp_path, sets, key, command):
     out = tmp_path / "out"
@@ -175,16 +226,21 @@ def computed(tmp_path_factory):
     return out
 
 
-@pytest.mark.parametrize("name, damage, command", [
-    ("analyze.json", lambda t: t[:100], "analyze"),
-    ("analyze.json", lambda t: "", "analyze"),
-    ("simulate_runup.json", lambda t: "\x00\x01binary", "simulate"),
-    ("simulate_runup.npz", None, "simulate"),
-    ("modal.json", lambda t: "[1, 2]", "modal"),
-], ids=["truncated", "empty", "binary-json", "binary-npz", "wrong-shape"])
+@pytest.mark.parametrize(
+    "name, damage, command",
+    [
+        ("analyze.json", lambda t: t[:100], "analyze"),
+        ("analyze.json", lambda t: "", "analyze"),
+        ("simulate_runup.json", lambda t: "\x00\x01binary", "simulate"),
+        ("simulate_runup.npz", None, "simulate"),
+        ("modal.json", lambda t: "[1, 2]", "modal"),
+    ],
+    ids=["truncated", "empty", "binary-json", "binary-npz", "wrong-shape"],
+)
 def test_the_report_survives_a_damaged_input(tmp_path, computed, name, damage, command):
     import html
     import shutil
+
     out = tmp_path / "out"
     shutil.copytree(computed, out)
     f = out / name
@@ -205,6 +261,7 @@ def test_only_modal_runs_under_mpirun(tmp_path, command):
     """Under mpirun every rank would do the whole job and write: refused, one line per rank.
     (The launcher's environment is what mpirun sets for each rank.)"""
     import os
+
     out = tmp_path / "out"
     p = cli(command, "paper", "--out", out, env=dict(os.environ, OMPI_COMM_WORLD_SIZE="2"))
     assert p.returncode == 2 and "without mpirun" in one_line(p)
@@ -214,8 +271,19 @@ def test_only_modal_runs_under_mpirun(tmp_path, command):
 def test_a_run_past_its_stability_limit_is_a_failure_not_a_success(tmp_path):
     """Central difference with h = 1 s on modes of ~30 rad/s: h omega = 29 > 2 (its limit)."""
     import json
-    p = cli("simulate", "paper", "--case", "runup", "--out", tmp_path,
-            "--set", "simulate.integrator=central_difference", "--set", "simulate.time_step=1")
+
+    p = cli(
+        "simulate",
+        "paper",
+        "--case",
+        "runup",
+        "--out",
+        tmp_path,
+        "--set",
+        "simulate.integrator=central_difference",
+        "--set",
+        "simulate.time_step=1",
+    )
     assert p.returncode == 4, p.stderr
     doc = json.loads((tmp_path / "simulate.json").read_text())
     assert doc["ok"] is False
@@ -226,6 +294,7 @@ def test_a_run_past_its_stability_limit_is_a_failure_not_a_success(tmp_path):
 @pytest.mark.parametrize("case", ["runup", "rundown", "earthquake"])
 def test_a_good_run_passes_its_checks(tmp_path, case):
     import json
+
     p = cli("simulate", "paper", "--case", case, "--out", tmp_path, "--set", "simulate.duration=10")
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "simulate.json").read_text())
@@ -238,34 +307,51 @@ def test_captured_at_is_the_settled_speed_and_an_escaping_run_is_not_captured(tm
     clear semantics).  The second run stops half a second after a passing motor's speed
     crosses omega_1, which the first of the two runs measures."""
     import json
+
     p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
     d = json.loads((tmp_path / "simulate.json").read_text())
     assert d["speed_state"] == "captured" and "passing_torque" not in d
     assert d["captured_at"] == pytest.approx(d["omega_final_mean"])
-    assert d["captured_at"] < d["captured_resonance"]           # held below the resonance
+    assert d["captured_at"] < d["captured_resonance"]  # held below the resonance
     assert d["captured_index"] == 1
     strong = ("--set", "drive.torque_at_zero=800")
     p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path, *strong)
     d = json.loads((tmp_path / "simulate.json").read_text())
     assert d["speed_state"] == "at_speed"
     crossing = d["passages"][0]["time"]
-    p = cli("simulate", "sommerfeld", "--case", "runup", "--no-threshold", "--out", tmp_path, *strong,
-            "--set", f"simulate.duration={crossing + 0.5}")
+    p = cli(
+        "simulate",
+        "sommerfeld",
+        "--case",
+        "runup",
+        "--no-threshold",
+        "--out",
+        tmp_path,
+        *strong,
+        "--set",
+        f"simulate.duration={crossing + 0.5}",
+    )
     d = json.loads((tmp_path / "simulate.json").read_text())
     assert d["speed_state"] == "escaping" and d["captured_at"] is None
     assert d.get("captured_resonance") is None and d.get("captured_index") is None
 
 
-@pytest.mark.parametrize("args, words", [
-    (["simulate", "--set", "simulate.integrator=newmark", "--set", "simulate.time_step=1e-9"],
-     "simulate.max_steps"),
-    (["simulate", "--case", "sweep", "--set", "sweep.rate=1e-6"], "simulate.max_steps"),
-    (["simulate", "--case", "sweep", "--set", "sweep.settle=1e12"], "simulate.max_steps"),
-    (["simulate", "--case", "sweep", "--set", "sweep.bins=100000"], "sweep.bins"),
-    (["simulate", "--set", "simulate.rtol=1e-300"], "simulate.rtol"),
-    (["integrators", "--duration", "1000"], "--duration"),
-], ids=["tiny-step", "slow-sweep", "long-settle", "many-bins", "rtol-underflow", "long-study"])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (
+            ["simulate", "--set", "simulate.integrator=newmark", "--set", "simulate.time_step=1e-9"],
+            "simulate.max_steps",
+        ),
+        (["simulate", "--case", "sweep", "--set", "sweep.rate=1e-6"], "simulate.max_steps"),
+        (["simulate", "--case", "sweep", "--set", "sweep.settle=1e12"], "simulate.max_steps"),
+        (["simulate", "--case", "sweep", "--set", "sweep.bins=100000"], "sweep.bins"),
+        (["simulate", "--set", "simulate.rtol=1e-300"], "simulate.rtol"),
+        (["integrators", "--duration", "1000"], "--duration"),
+    ],
+    ids=["tiny-step", "slow-sweep", "long-settle", "many-bins", "rtol-underflow", "long-study"],
+)
 def test_work_that_cannot_finish_is_refused_with_its_estimate(tmp_path, args, words):
     out = tmp_path / "out"
     p = cli(args[0], "paper", *args[1:], "--out", out, timeout=120)
@@ -276,8 +362,16 @@ def test_work_that_cannot_finish_is_refused_with_its_estimate(tmp_path, args, wo
 @pytest.mark.parametrize("command", ["analyze", "run"])
 def test_a_missing_record_is_noticed_before_any_work(tmp_path, command):
     out = tmp_path / "out"
-    p = cli(command, "paper", "--set", "excitation.kind=record", "--set",
-            f"excitation.record='{tmp_path / 'nope.txt'}'", "--out", out)
+    p = cli(
+        command,
+        "paper",
+        "--set",
+        "excitation.kind=record",
+        "--set",
+        f"excitation.record='{tmp_path / 'nope.txt'}'",
+        "--out",
+        out,
+    )
     assert p.returncode == 2 and "excitation.record" in one_line(p)
     assert not out.exists()
 
@@ -285,46 +379,84 @@ def test_a_missing_record_is_noticed_before_any_work(tmp_path, command):
 def test_a_record_timed_in_milliseconds_is_flagged_not_realistic(tmp_path):
     """Times read as seconds that were milliseconds: a 10 s step and tens of metres of ground."""
     import json
+
     rec = tmp_path / "ms.txt"
     rec.write_text("0 0\n10 0.3\n20 -0.3\n30 0.2\n40 0\n")
-    p = cli("simulate", "paper", "--case", "earthquake", "--model", "modal", "--out", tmp_path,
-            "--set", "excitation.kind=record", "--set", f"excitation.record='{rec}'")
+    p = cli(
+        "simulate",
+        "paper",
+        "--case",
+        "earthquake",
+        "--model",
+        "modal",
+        "--out",
+        tmp_path,
+        "--set",
+        "excitation.kind=record",
+        "--set",
+        f"excitation.record='{rec}'",
+    )
     doc = json.loads((tmp_path / "simulate.json").read_text())
     assert doc["excitation"]["realistic"] is False and "time step" in doc["excitation"]["statement"]
     assert any("not a realistic earthquake" in w for w in doc["warnings"])
     assert "not a realistic earthquake" in p.stderr
 
 
-@pytest.mark.slow                       # a convergence study (shell ladder in subprocesses)
+@pytest.mark.slow  # a convergence study (shell ladder in subprocesses)
 def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
     """No 3D model and an 8-around shell: no family converges, so there is no reference and
     no run has an error estimate; the study says so instead of choosing the closed forms."""
     import json
-    p = cli("converge", "paper", "--set", "converge.solid=false", "--set",
-            "converge.shell_max_around=8", "--set", "converge.shell_tri_max_around=8",
-            "--no-progress", "--out", tmp_path, timeout=600)
+
+    p = cli(
+        "converge",
+        "paper",
+        "--set",
+        "converge.solid=false",
+        "--set",
+        "converge.shell_max_around=8",
+        "--set",
+        "converge.shell_tri_max_around=8",
+        "--no-progress",
+        "--out",
+        tmp_path,
+        timeout=600,
+    )
     assert p.returncode == 0, p.stderr
     sel = json.loads((tmp_path / "convergence.json").read_text())["selection"]
     assert sel["chosen"] is None and "no converged reference" in sel["reason"]
 
 
-@pytest.mark.slow                       # two convergence studies per case
+@pytest.mark.slow  # two convergence studies per case
 @pytest.mark.parametrize("content", ["null", "[1, 2]"])
 def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path, content):
     """A run cache that parses to another shape (or not at all) is treated as absent."""
     import json
-    args = ["converge", "paper", "--set", "converge.solid=false", "--set",
-            "converge.shell_max_around=8", "--set", "converge.shell_tri_max_around=8",
-            "--no-progress", "--workers", "1", "--out", tmp_path]
+
+    args = [
+        "converge",
+        "paper",
+        "--set",
+        "converge.solid=false",
+        "--set",
+        "converge.shell_max_around=8",
+        "--set",
+        "converge.shell_tri_max_around=8",
+        "--no-progress",
+        "--workers",
+        "1",
+        "--out",
+        tmp_path,
+    ]
     assert cli(*args, timeout=600).returncode == 0
     files = sorted((tmp_path / "cache").glob("*.json"))
     files[0].write_text(content)
     p = cli(*args, timeout=600)
     assert p.returncode == 0, p.stderr
-    assert json.loads(files[0].read_text())["status"] == "ok"     # recomputed and rewritten
+    assert json.loads(files[0].read_text())["status"] == "ok"  # recomputed and rewritten
 
 
-@pytest.mark.slow                       # two convergence studies per case
+@pytest.mark.slow  # two convergence studies per case
 @pytest.mark.parametrize("sig", ["SIGTERM", "SIGKILL"])
 def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     """Killed mid-study (SIGTERM: stops its runs; SIGKILL: no chance to clean up): every
@@ -333,11 +465,25 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     import signal
     import subprocess
     import sys
-    args = ["converge", "paper", "--set", "converge.solid=false", "--set",
-            "converge.shell_max_around=8", "--set", "converge.shell_tri_max_around=8",
-            "--no-progress", "--workers", "1", "--out", str(tmp_path)]
-    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", *args],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+    args = [
+        "converge",
+        "paper",
+        "--set",
+        "converge.solid=false",
+        "--set",
+        "converge.shell_max_around=8",
+        "--set",
+        "converge.shell_tri_max_around=8",
+        "--no-progress",
+        "--workers",
+        "1",
+        "--out",
+        str(tmp_path),
+    ]
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "rotorpillar", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
     cache, deadline = tmp_path / "cache", time.time() + 120
     while time.time() < deadline and proc.poll() is None:
         if cache.exists() and len(list(cache.glob("*.json"))) >= 5:
@@ -346,14 +492,14 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     proc.send_signal(getattr(signal, sig))
     proc.communicate(timeout=60)
     for f in tmp_path.rglob("*.json"):
-        if not f.name.startswith("."):                     # a killed writer's temporary part
-            json.loads(f.read_text())                      # whole, or not there
+        if not f.name.startswith("."):  # a killed writer's temporary part
+            json.loads(f.read_text())  # whole, or not there
     done = len(list(cache.glob("*.json")))
     p = cli(*args, "--json", timeout=600)
     assert p.returncode == 0, p.stderr
     study = json.loads(p.stdout)["study"]
     assert study["cached"] >= done - 1 and study["computed"] == study["runs"] - study["cached"]
-    assert not list(cache.glob(".*.part*"))                 # a killed writer's part is gone
+    assert not list(cache.glob(".*.part*"))  # a killed writer's part is gone
 
 
 def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, computed):
@@ -361,7 +507,9 @@ def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, computed):
     the command that rebuilds it."""
     import json
     import shutil
+
     import fixtures
+
     out = tmp_path / "out"
     shutil.copytree(computed, out)
     fixtures.write_modal_fixture(out, around=24, along=16)
@@ -378,21 +526,25 @@ def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, computed):
 # limits of the process, Dask addresses and workers, one line with the right word.
 # No test asserts a time (TEAM.md): a subprocess timeout only turns a hang into a failure.
 
+
 def _nothing_written(out):
     assert not out.exists() or not any(out.iterdir())
 
 
-@pytest.mark.parametrize("vary", [
-    ["drive.torque_at_zero=560:700:1000000"],
-    ["drive.torque_at_zero=560:700:1000", "rotor.eccentricity=0.01:0.02:1000"],
-    ["drive.torque_at_zero=560:700:1000000000000"],
-], ids=["one-axis", "product", "1e12"])
+@pytest.mark.parametrize(
+    "vary",
+    [
+        ["drive.torque_at_zero=560:700:1000000"],
+        ["drive.torque_at_zero=560:700:1000", "rotor.eccentricity=0.01:0.02:1000"],
+        ["drive.torque_at_zero=560:700:1000000000000"],
+    ],
+    ids=["one-axis", "product", "1e12"],
+)
 def test_a_study_too_large_is_refused_from_its_counts(tmp_path, vary):
     """The 100,000-run limit from the axes' counts, before any value is built or checked
     (it hung: each of the 1e6 values was checked first)."""
     out = tmp_path / "out"
-    p = cli("study", "sommerfeld", *[a for v in vary for a in ("--vary", v)], "--out", out,
-            timeout=60)
+    p = cli("study", "sommerfeld", *[a for v in vary for a in ("--vary", v)], "--out", out, timeout=60)
     assert p.returncode == 2 and "at most 100,000" in one_line(p)
     _nothing_written(out)
 
@@ -402,34 +554,51 @@ def test_a_bad_point_of_a_large_study_is_named():
     from rotorpillar.errors import InputError
     from rotorpillar.scene import load_scene
     from rotorpillar.studies.axes import check_points, parse_axes
+
     scene = load_scene("paper", ["pillar.inner_diameter=1.0"])
     # each value passes alone (against the other key's 1.0 and 2.0); 1.95 inside 1.91 does not
-    axes = parse_axes(["pillar.inner_diameter=0.5:1.95:1000", "pillar.outer_diameter=2.0:1.91:100"],
-                      scene)
-    with pytest.raises(InputError, match=r"the point pillar.inner_diameter=1\.9.*, "
-                                         r"pillar.outer_diameter=1\.9.* is not a valid scene: "
-                                         r"pillar.inner_diameter"):
+    axes = parse_axes(["pillar.inner_diameter=0.5:1.95:1000", "pillar.outer_diameter=2.0:1.91:100"], scene)
+    with pytest.raises(
+        InputError,
+        match=r"the point pillar.inner_diameter=1\.9.*, "
+        r"pillar.outer_diameter=1\.9.* is not a valid scene: "
+        r"pillar.inner_diameter",
+    ):
         check_points(scene, axes, {})
 
 
 NANO_RECORD = "0 0\n1e-9 0.1\n0.01 0.2\n10 0\n"
 
 
-@pytest.mark.parametrize("args", [
-    ["simulate", "--case", "earthquake"],
-    ["simulate", "--case", "earthquake", "--model", "fem3d"],
-    ["compare", "--case", "earthquake"],
-    ["study", "--case", "earthquake", "--model", "modal", "--vary", "excitation.record_scale=0.5,1"],
-    ["run"],
-], ids=["simulate", "simulate-fem3d", "compare", "study", "run"])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["simulate", "--case", "earthquake"],
+        ["simulate", "--case", "earthquake", "--model", "fem3d"],
+        ["compare", "--case", "earthquake"],
+        ["study", "--case", "earthquake", "--model", "modal", "--vary", "excitation.record_scale=0.5,1"],
+        ["run"],
+    ],
+    ids=["simulate", "simulate-fem3d", "compare", "study", "run"],
+)
 def test_a_record_with_a_nanosecond_step_is_refused_before_any_allocation(tmp_path, args):
     """Resampled to its smallest step it would hold 1e10 samples (out of memory before):
     refused by every command that reads records, naming the file and its step."""
     rec = tmp_path / "nano.txt"
     rec.write_text(NANO_RECORD)
     out = tmp_path / "out"
-    p = cli(args[0], "paper", *args[1:], "--set", "excitation.kind=record",
-            "--set", f"excitation.record='{rec}'", "--out", out, timeout=120)
+    p = cli(
+        args[0],
+        "paper",
+        *args[1:],
+        "--set",
+        "excitation.kind=record",
+        "--set",
+        f"excitation.record='{rec}'",
+        "--out",
+        out,
+        timeout=120,
+    )
     assert p.returncode == 2, p.stderr
     line = one_line(p)
     assert "nano.txt" in line and "1e-09 s" in line and "simulate.max_steps" in line
@@ -439,19 +608,24 @@ def test_a_record_with_a_nanosecond_step_is_refused_before_any_allocation(tmp_pa
 def test_a_record_is_refused_by_the_memory_it_would_need():
     """Above the process's memory (not simulate.max_steps) a record names the limit."""
     import numpy as np
+
     from rotorpillar.errors import InputError
     from rotorpillar.reduced.excitation import check_record_size
-    t = np.array([0.0, 1e-9, 1000.0])            # 1e12 samples: 200 TB at 200 B each
+
+    t = np.array([0.0, 1e-9, 1000.0])  # 1e12 samples: 200 TB at 200 B each
     with pytest.raises(InputError, match="GiB.*this process may use"):
         check_record_size(t, "accelerogram 'x.txt'")
 
 
-@pytest.mark.parametrize("sets, stage, words", [
-    (["simulate.integrator=newmark", "simulate.time_step=1e-9"], "", "simulate.max_steps"),
-    (["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=2"], "modal",
-     "modal.n_modes"),
-    (["converge.solid_p2_max_around=256", "mesh.elements_along=640"], "", "GiB"),
-], ids=["tiny-step", "too-many-modes", "huge-ladder"])
+@pytest.mark.parametrize(
+    "sets, stage, words",
+    [
+        (["simulate.integrator=newmark", "simulate.time_step=1e-9"], "", "simulate.max_steps"),
+        (["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=2"], "modal", "modal.n_modes"),
+        (["converge.solid_p2_max_around=256", "mesh.elements_along=640"], "", "GiB"),
+    ],
+    ids=["tiny-step", "too-many-modes", "huge-ladder"],
+)
 def test_run_refuses_what_a_later_stage_would_before_its_first(tmp_path, sets, stage, words):
     """run checks every stage's scene with that stage's own pre-flight checks before the
     first stage: nothing written (before, analyze.json was, and a later stage exited 1)."""
@@ -466,20 +640,25 @@ def test_run_refuses_what_a_later_stage_would_before_its_first(tmp_path, sets, s
 def test_every_stage_of_run_has_the_preflight_its_command_calls():
     """run calls each stage's own checks: every command module it runs has one."""
     import importlib
+
     from rotorpillar.commands.parser import COMMANDS
     from rotorpillar.commands.run import RUN_STAGES
+
     for command, *_ in RUN_STAGES:
         name = command.split()[0]
-        if name == "analyze":                     # nothing beyond the scene itself
+        if name == "analyze":  # nothing beyond the scene itself
             continue
         assert callable(getattr(importlib.import_module(COMMANDS[name][0]), "preflight", None)), name
 
 
-@pytest.mark.parametrize("sets", [
-    ["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=2"],
-    ["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=1",
-     "modal.top_model=ring_mass"],
-], ids=["rigid-top", "ring-mass"])
+@pytest.mark.parametrize(
+    "sets",
+    [
+        ["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=2"],
+        ["modal.n_modes=500", "mesh.elements_around=8", "mesh.elements_along=1", "modal.top_model=ring_mass"],
+    ],
+    ids=["rigid-top", "ring-mass"],
+)
 def test_more_modes_than_the_mesh_has_are_refused_before_the_solve(tmp_path, sets):
     out = tmp_path / "out"
     p = cli("modal", "paper", *[a for s in sets for a in ("--set", s)], "--out", out)
@@ -493,10 +672,25 @@ def test_more_modes_than_the_mesh_has_are_refused_before_the_solve(tmp_path, set
 def test_a_tolerance_the_ladder_cannot_reach_is_a_result_not_bad_input(tmp_path):
     """The ladder's errors come from its runs: the study runs, modal runs the most accurate
     3D mesh and says the tolerance was not met (ok: false, exit 4), in a few stderr lines."""
-    p = cli("modal", "paper", "--tolerance", "1e-3", "--out", tmp_path,
-            "--set", "converge.solid_p2_max_around=32", "--set", "converge.solid_p1_max_around=32",
-            "--set", "converge.solid_tet_p2_max_around=32", "--set", "converge.shell_max_around=16",
-            "--set", "converge.shell_tri_max_around=8", timeout=900)
+    p = cli(
+        "modal",
+        "paper",
+        "--tolerance",
+        "1e-3",
+        "--out",
+        tmp_path,
+        "--set",
+        "converge.solid_p2_max_around=32",
+        "--set",
+        "converge.solid_p1_max_around=32",
+        "--set",
+        "converge.solid_tet_p2_max_around=32",
+        "--set",
+        "converge.shell_max_around=16",
+        "--set",
+        "converge.shell_tri_max_around=8",
+        timeout=900,
+    )
     assert p.returncode == 4, p.stderr
     doc = json.loads((tmp_path / "modal.json").read_text())
     assert doc["ok"] is False and doc["model_selection"]["met"] is False
@@ -522,10 +716,14 @@ def _fake_proc(tmp_path, cgroup_lines, mounts, files):
 def test_the_memory_limit_is_a_cgroup_v2_memory_max(tmp_path):
     """The process's group says max (no limit); its parent says 1 GiB: the parent's applies."""
     from rotorpillar.provenance import memory_limit
+
     root = tmp_path / "cg2"
-    proc = _fake_proc(tmp_path, ["0::/batch/job7"],
-                      [f"41 23 0:38 / {root} rw,relatime - cgroup2 cgroup2 rw"],
-                      {"cg2/batch/job7/memory.max": "max\n", "cg2/batch/memory.max": f"{2**30}\n"})
+    proc = _fake_proc(
+        tmp_path,
+        ["0::/batch/job7"],
+        [f"41 23 0:38 / {root} rw,relatime - cgroup2 cgroup2 rw"],
+        {"cg2/batch/job7/memory.max": "max\n", "cg2/batch/memory.max": f"{2**30}\n"},
+    )
     lim = memory_limit(proc)
     assert lim.bytes == 2**30 and "memory.max" in lim.source and "batch" in lim.source
 
@@ -534,34 +732,43 @@ def test_the_memory_limit_is_a_cgroup_v1_limit_in_bytes(tmp_path):
     """v1: the memory controller's hierarchy, its group's memory.limit_in_bytes; the
     page-rounded 2**63 of 'unlimited' is no limit."""
     from rotorpillar.provenance import memory_limit
+
     root = tmp_path / "cg1"
-    proc = _fake_proc(tmp_path, ["9:name=systemd:/", "4:memory:/docker/abc", "0::/"],
-                      [f"35 31 0:32 / {root} rw,relatime - cgroup cgroup rw,memory"],
-                      {"cg1/docker/abc/memory.limit_in_bytes": f"{3 * 2**30}\n",
-                       "cg1/docker/memory.limit_in_bytes": "9223372036854771712\n"})
+    proc = _fake_proc(
+        tmp_path,
+        ["9:name=systemd:/", "4:memory:/docker/abc", "0::/"],
+        [f"35 31 0:32 / {root} rw,relatime - cgroup cgroup rw,memory"],
+        {
+            "cg1/docker/abc/memory.limit_in_bytes": f"{3 * 2**30}\n",
+            "cg1/docker/memory.limit_in_bytes": "9223372036854771712\n",
+        },
+    )
     lim = memory_limit(proc)
     assert lim.bytes == 3 * 2**30 and "memory.limit_in_bytes" in lim.source
 
 
 def test_without_a_cgroup_limit_the_machine_or_ulimit_applies(tmp_path):
     from rotorpillar.provenance import memory_limit
+
     proc = _fake_proc(tmp_path, ["0::/"], ["41 23 0:38 / /nonexistent rw - cgroup2 cgroup2 rw"], {})
     assert memory_limit(proc).source in ("physical memory", "RLIMIT_AS (ulimit -v)")
 
 
-@pytest.mark.parametrize("args", [
-    ["modal", "--set", "mesh.elements_along=50"],
-    ["converge", "--no-progress"],
-], ids=["modal", "converge"])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["modal", "--set", "mesh.elements_along=50"],
+        ["converge", "--no-progress"],
+    ],
+    ids=["modal", "converge"],
+)
 def test_ulimit_v_is_the_limit_a_mesh_is_refused_against(tmp_path, args):
     """Under `ulimit -v` 3 GB (budget 2.4 GB) a 116 k-DOF modal mesh (2.8 GB for its two
     solves) and the convergence study's finest run (286 k DOFs, 3.4 GB) are refused,
     naming RLIMIT_AS; on this machine's memory alone both are accepted."""
     out = tmp_path / "out"
-    cmd = " ".join([sys.executable, "-m", "rotorpillar", args[0], "paper", *args[1:],
-                    "--out", str(out)])
-    p = subprocess.run(["bash", "-c", f"ulimit -v 3000000 && exec {cmd}"], capture_output=True,
-                       text=True, timeout=120)
+    cmd = " ".join([sys.executable, "-m", "rotorpillar", args[0], "paper", *args[1:], "--out", str(out)])
+    p = subprocess.run(["bash", "-c", f"ulimit -v 3000000 && exec {cmd}"], capture_output=True, text=True, timeout=120)
     assert p.returncode == 2, p.stderr
     line = one_line(p)
     assert "RLIMIT_AS" in line and "GiB" in line and "DOFs" in line
@@ -587,6 +794,7 @@ def _listener(chatty: bool):
             held.append(conn)
             if chatty:
                 conn.sendall(b"SSH-2.0-OpenSSH_9.2p1 Debian-2\r\n")
+
     threading.Thread(target=serve, daemon=True).start()
     return srv, held
 
@@ -613,6 +821,7 @@ def bad_address(request):
 def test_the_probe_names_what_is_at_a_bad_address(bad_address):
     from rotorpillar.errors import InputError
     from rotorpillar.executor import probe_scheduler
+
     address, words = bad_address
     with pytest.raises(InputError, match=words):
         probe_scheduler(address, timeout=1.0)
@@ -623,8 +832,18 @@ def test_study_refuses_a_bad_scheduler_in_one_line(tmp_path, bad_address):
     (before: past a minute on a silent port, 31 s on a closed one)."""
     address, words = bad_address
     out = tmp_path / "out"
-    p = cli("study", "sommerfeld", "--vary", "drive.torque_at_zero=600,700", "--scheduler",
-            address, "--out", out, "--no-progress", timeout=60)
+    p = cli(
+        "study",
+        "sommerfeld",
+        "--vary",
+        "drive.torque_at_zero=600,700",
+        "--scheduler",
+        address,
+        "--out",
+        out,
+        "--no-progress",
+        timeout=60,
+    )
     assert p.returncode == 2, p.stderr
     line = one_line(p)
     assert words in line and address in line and "memory" not in line
@@ -632,19 +851,26 @@ def test_study_refuses_a_bad_scheduler_in_one_line(tmp_path, bad_address):
 
 def test_the_probe_accepts_a_dask_scheduler():
     from distributed import LocalCluster
+
     from rotorpillar.executor import probe_scheduler
-    with LocalCluster(n_workers=0, processes=True, host="127.0.0.1", dashboard_address=None,
-                      scheduler_kwargs={"dashboard_address": "127.0.0.1:0"}) as cluster:
+
+    with LocalCluster(
+        n_workers=0,
+        processes=True,
+        host="127.0.0.1",
+        dashboard_address=None,
+        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+    ) as cluster:
         probe_scheduler(cluster.scheduler_address)
 
 
 @pytest.mark.parametrize("command", ["study", "converge"])
 def test_more_local_workers_than_cores_are_refused(tmp_path, command):
     from rotorpillar.provenance import usable_cores
+
     out = tmp_path / "out"
     extra = ["--vary", "drive.torque_at_zero=600,700"] if command == "study" else []
-    p = cli(command, "sommerfeld" if command == "study" else "paper", *extra, "--workers", "1000",
-            "--out", out)
+    p = cli(command, "sommerfeld" if command == "study" else "paper", *extra, "--workers", "1000", "--out", out)
     assert p.returncode == 2
     line = one_line(p)
     assert "--workers 1000" in line and f"{usable_cores()} cores" in line
@@ -654,17 +880,21 @@ def test_more_local_workers_than_cores_are_refused(tmp_path, command):
 # -------------------------------------------------------------- one line, the right word
 
 
-@pytest.mark.parametrize("args, allowed", [
-    (["compare", "--case", "sweep"], "'earthquake', 'runup'"),
-    (["simulate", "--case", "quake"], "'runup', 'rundown', 'sweep', 'earthquake'"),
-    (["simulate", "--model", "fe"], "'paper', 'modal', 'fem3d', 'beam'"),
-    (["simulate", "--integrator", "euler"], "'dp5'"),
-    (["study", "--case", "sweep"], "'runup'"),
-    (["study", "--model", "fem3d"], "'paper', 'modal', 'beam'"),
-    (["integrators", "--duration", "ten"], "invalid float value"),
-    (["run", "--skip", "everything"], "analyze"),
-    (["frobnicate"], "analyze"),
-], ids=lambda a: "-".join(a) if isinstance(a, list) else None)
+@pytest.mark.parametrize(
+    "args, allowed",
+    [
+        (["compare", "--case", "sweep"], "'earthquake', 'runup'"),
+        (["simulate", "--case", "quake"], "'runup', 'rundown', 'sweep', 'earthquake'"),
+        (["simulate", "--model", "fe"], "'paper', 'modal', 'fem3d', 'beam'"),
+        (["simulate", "--integrator", "euler"], "'dp5'"),
+        (["study", "--case", "sweep"], "'runup'"),
+        (["study", "--model", "fem3d"], "'paper', 'modal', 'beam'"),
+        (["integrators", "--duration", "ten"], "invalid float value"),
+        (["run", "--skip", "everything"], "analyze"),
+        (["frobnicate"], "analyze"),
+    ],
+    ids=lambda a: "-".join(a) if isinstance(a, list) else None,
+)
 def test_every_choice_error_is_one_line_naming_the_allowed_values(tmp_path, args, allowed):
     p = cli(*args, "--out", tmp_path / "out")
     assert p.returncode == 2
@@ -672,24 +902,28 @@ def test_every_choice_error_is_one_line_naming_the_allowed_values(tmp_path, args
     assert allowed in p.stderr and "usage:" not in p.stderr
 
 
-REPORT_INPUTS = {"analyze.json": "analyze", "modal.json": "modal", "convergence.json": "converge",
-                 "integrators.json": "integrators", "simulate_runup.json": "simulate",
-                 "compare_runup.json": "compare", "study.json": "study"}
-DAMAGES = {"null": "null", "empty-object": "{}", "list": "[1, 2]", "truncated": '{"a": [1, ',
-           "wrong-types": None}
+REPORT_INPUTS = {
+    "analyze.json": "analyze",
+    "modal.json": "modal",
+    "convergence.json": "converge",
+    "integrators.json": "integrators",
+    "simulate_runup.json": "simulate",
+    "compare_runup.json": "compare",
+    "study.json": "study",
+}
+DAMAGES = {"null": "null", "empty-object": "{}", "list": "[1, 2]", "truncated": '{"a": [1, ', "wrong-types": None}
 
 
 def _damaged(computed, tmp_path, name, damage):
     import shutil
+
     out = tmp_path / "out"
     shutil.copytree(computed, out)
     f = out / name
     text = DAMAGES[damage]
-    if text is None:      # every key a real file of it has (or a few), each of the wrong kind
-        keys = list(json.loads(f.read_text())) if f.exists() else ["modes", "runs", "accuracy",
-                                                                   "case", "model", "axes"]
-        text = json.dumps({k: 12345 for k in keys if k not in ("scene", "versions", "machine",
-                                                               "timings", "command")})
+    if text is None:  # every key a real file of it has (or a few), each of the wrong kind
+        keys = list(json.loads(f.read_text())) if f.exists() else ["modes", "runs", "accuracy", "case", "model", "axes"]
+        text = json.dumps({k: 12345 for k in keys if k not in ("scene", "versions", "machine", "timings", "command")})
     f.write_text(text)
     return out
 
@@ -703,6 +937,7 @@ def test_the_report_reads_every_damaged_input_as_damaged(tmp_path, computed, nam
     from rotorpillar.postprocess.report.build import load_inputs
     from rotorpillar.postprocess.report.state import Build, ReportOptions
     from rotorpillar.scene import load_scene
+
     out = _damaged(computed, tmp_path, name, damage)
     build = Build(load_scene("paper"), out, "paper", ReportOptions(animations=False))
     load_inputs(build)
@@ -712,14 +947,18 @@ def test_the_report_reads_every_damaged_input_as_damaged(tmp_path, computed, nam
     assert REPORT_INPUTS[name] in build.damaged
 
 
-@pytest.mark.parametrize("name, damage, words", [
-    ("analyze.json", "null", "holds a JSON null"),
-    ("modal.json", "empty-object", "modal.json has no key '"),
-])
+@pytest.mark.parametrize(
+    "name, damage, words",
+    [
+        ("analyze.json", "null", "holds a JSON null"),
+        ("modal.json", "empty-object", "modal.json has no key '"),
+    ],
+)
 def test_the_report_page_says_which_input_is_damaged(tmp_path, computed, name, damage, words):
     """The issue's two examples through the command: exit 0, the page and report.json
     name the file, the key and the command; the input is present, not 'not computed'."""
     import html
+
     out = _damaged(computed, tmp_path, name, damage)
     p = cli("report", "paper", "--out", out, "--no-animations")
     assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
@@ -730,6 +969,7 @@ def test_the_report_page_says_which_input_is_damaged(tmp_path, computed, name, d
     page = html.unescape((out / "report.html").read_text())
     assert words in page
 
+
 # --- issue 19.1 (developer integ): the full orders refuse before work, whatever the size.
 # The 3D and the beam full order estimate their steps from the scene alone (no mesh, no
 # assembly) and refuse above simulate.max_steps, naming the keys that change it.  The
@@ -738,19 +978,57 @@ def test_the_report_page_says_which_input_is_damaged(tmp_path, computed, name, d
 FULL_ORDER_KEYS = ("full_order.time_step", "simulate.max_steps")
 
 
-@pytest.mark.parametrize("args, words", [
-    (["simulate", "--model", "fem3d", "--case", "runup", "--set", "full_order.runup_duration=1e5",
-      "--set", "simulate.duration=1e5"], FULL_ORDER_KEYS + ("full_order.runup_duration", "simulate.duration")),
-    (["simulate", "--model", "fem3d", "--case", "earthquake", "--set", "full_order.time_step=1e-12"],
-     FULL_ORDER_KEYS + ("full_order.earthquake_duration",)),
-    (["compare", "--case", "earthquake", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
-    (["compare", "--case", "runup", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
-    (["simulate", "--model", "beam", "--case", "runup", "--set", "full_order.time_step=1e-12"],
-     FULL_ORDER_KEYS + ("simulate.duration",)),
-    (["simulate", "--model", "beam", "--case", "earthquake", "--set", "simulate.earthquake_duration=1e5",
-      "--set", "full_order.time_step=1e-6"], FULL_ORDER_KEYS + ("simulate.earthquake_duration",)),
-], ids=["fem3d-long-runup", "fem3d-tiny-step", "compare-earthquake-tiny-step", "compare-runup-tiny-step",
-        "beam-tiny-step", "beam-long-earthquake"])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (
+            [
+                "simulate",
+                "--model",
+                "fem3d",
+                "--case",
+                "runup",
+                "--set",
+                "full_order.runup_duration=1e5",
+                "--set",
+                "simulate.duration=1e5",
+            ],
+            FULL_ORDER_KEYS + ("full_order.runup_duration", "simulate.duration"),
+        ),
+        (
+            ["simulate", "--model", "fem3d", "--case", "earthquake", "--set", "full_order.time_step=1e-12"],
+            FULL_ORDER_KEYS + ("full_order.earthquake_duration",),
+        ),
+        (["compare", "--case", "earthquake", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
+        (["compare", "--case", "runup", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
+        (
+            ["simulate", "--model", "beam", "--case", "runup", "--set", "full_order.time_step=1e-12"],
+            FULL_ORDER_KEYS + ("simulate.duration",),
+        ),
+        (
+            [
+                "simulate",
+                "--model",
+                "beam",
+                "--case",
+                "earthquake",
+                "--set",
+                "simulate.earthquake_duration=1e5",
+                "--set",
+                "full_order.time_step=1e-6",
+            ],
+            FULL_ORDER_KEYS + ("simulate.earthquake_duration",),
+        ),
+    ],
+    ids=[
+        "fem3d-long-runup",
+        "fem3d-tiny-step",
+        "compare-earthquake-tiny-step",
+        "compare-runup-tiny-step",
+        "beam-tiny-step",
+        "beam-long-earthquake",
+    ],
+)
 def test_a_full_order_too_long_is_refused_before_any_meshing(tmp_path, args, words):
     out = tmp_path / "out"
     p = cli(args[0], "paper", *args[1:], "--out", out, timeout=120)
@@ -765,6 +1043,7 @@ def test_simulate_under_mpirun_shares_only_the_3d_full_order(tmp_path):
     """simulate and compare run under mpirun for the 3D full order; the reduced models,
     which would only repeat their work on every rank, are refused with one line."""
     import os
+
     out = tmp_path / "out"
     env = dict(os.environ, OMPI_COMM_WORLD_SIZE="2")
     for args in (["simulate", "--model", "modal"], ["compare", "--case", "runup"]):

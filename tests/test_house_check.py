@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def _load_tool():
     spec = importlib.util.spec_from_file_location("house_check", ROOT / "tools" / "house_check.py")
     mod = importlib.util.module_from_spec(spec)
-    sys.modules["house_check"] = mod            # dataclasses look their module up
+    sys.modules["house_check"] = mod  # dataclasses look their module up
     spec.loader.exec_module(mod)
     return mod
 
@@ -121,8 +121,14 @@ def test_an_import_circle_is_found(tmp_path):
 
 
 def test_a_package_reexporting_its_submodule_is_no_circle(tmp_path):
-    pkg = _package(tmp_path, **{"fem3d/__init__.py": "from .modal import numpy\n",
-                                "fem3d/modal.py": "from . import other\n", "fem3d/other.py": "x = 1\n"})
+    pkg = _package(
+        tmp_path,
+        **{
+            "fem3d/__init__.py": "from .modal import numpy\n",
+            "fem3d/modal.py": "from . import other\n",
+            "fem3d/other.py": "x = 1\n",
+        },
+    )
     assert _failing(pkg) == []
 
 
@@ -132,21 +138,27 @@ def test_a_long_module_is_found(tmp_path):
     assert "over 500 lines: 1" in fail and "fem3d/long.py" in fail
 
 
-@pytest.mark.parametrize("line", [
-    "def f():\n    from ..fem3d import modal\n",                   # lazy, relative
-    "import rotorpillar.fem3d.modal\n",                             # absolute
-    "def f():\n    import dolfinx\n",                               # the dolfinx world
-    "import importlib\nm = importlib.import_module('rotorpillar.fem3d')\n",
-])
+@pytest.mark.parametrize(
+    "line",
+    [
+        "def f():\n    from ..fem3d import modal\n",  # lazy, relative
+        "import rotorpillar.fem3d.modal\n",  # absolute
+        "def f():\n    import dolfinx\n",  # the dolfinx world
+        "import importlib\nm = importlib.import_module('rotorpillar.fem3d')\n",
+    ],
+)
 def test_reduced_reaching_for_the_3d_side_is_found(tmp_path, line):
     (fail,) = _failing(_package(tmp_path, **{"reduced/bad.py": line}))
     assert fail.startswith("reduced/ imports only") and "reduced/bad.py" in fail
 
 
-@pytest.mark.parametrize("rel, text", [
-    ("fem3d/plot.py", "def f():\n    import pyvista\n"),            # outside postprocess/
-    ("postprocess/eager.py", "import matplotlib.pyplot as plt\n"),  # at module level
-])
+@pytest.mark.parametrize(
+    "rel, text",
+    [
+        ("fem3d/plot.py", "def f():\n    import pyvista\n"),  # outside postprocess/
+        ("postprocess/eager.py", "import matplotlib.pyplot as plt\n"),  # at module level
+    ],
+)
 def test_plotting_outside_postprocess_or_at_import_is_found(tmp_path, rel, text):
     (fail,) = _failing(_package(tmp_path, **{rel: text}))
     assert fail.startswith("pyvista/matplotlib/vtk") and rel in fail
@@ -170,7 +182,7 @@ def test_an_indexed_function_that_does_not_exist_is_found(tmp_path):
     assert "pillar.pairs not found" in fail
 
 
-NEW_DICTS = '''
+NEW_DICTS = """
 def summary(scene) -> dict:
     return {"a": 1}
 
@@ -184,13 +196,15 @@ def builds() -> list:
     def inner():
         return {"d": 4}           # inner's result, not builds'
     return [inner()]
-'''
+"""
 
 
 def test_new_dict_results_and_untyped_scenes_are_counted_against_the_baseline(tmp_path):
     pkg = _package(tmp_path, **{"fem3d/modal_summary.py": NEW_DICTS})
     assert hc.ratchet_counts(hc.load_modules(pkg)["rotorpillar.fem3d.modal_summary"]) == {
-        "dict_results": 3, "untyped_scene": 1}
+        "dict_results": 3,
+        "untyped_scene": 1,
+    }
     fails = _failing(pkg)
     assert len(fails) == 2 and all("rotorpillar/fem3d/modal_summary.py 0->" in f for f in fails)
     # the same counts on record pass; one fewer than recorded asks for a lower baseline

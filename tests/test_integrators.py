@@ -28,10 +28,10 @@ import pytest
 
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
+from rotorpillar.reduced.integration import Settings, simulate, simulate_batch
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model, paper_model
 from rotorpillar.reduced.system import paper_example
-from rotorpillar.reduced.integration import Settings, simulate, simulate_batch
 
 IDLE = DriveSchedule.constant(0.0, 0.0, 0.0)
 
@@ -52,8 +52,15 @@ def test_central_difference_stability_limit(factor, stable):
     w = 30.0
     model = oscillator(w)
     h = factor * 2.0 / w
-    run = simulate(model, IDLE, no_motion(), 400 * h, start(model),
-                   settings=Settings("central_difference", time_step=h, samples=401), speed_scale=1.0)
+    run = simulate(
+        model,
+        IDLE,
+        no_motion(),
+        400 * h,
+        start(model),
+        settings=Settings("central_difference", time_step=h, samples=401),
+        speed_scale=1.0,
+    )
     peak = np.nanmax(run.peak[:, 0]) if run.ok else math.inf
     if stable:
         assert peak <= 0.01 / math.sqrt(1 - (h * w / 2) ** 2) * (1 + 1e-9)
@@ -64,10 +71,17 @@ def test_central_difference_stability_limit(factor, stable):
 def test_newmark_conserves_energy_and_lengthens_the_period():
     w, m = 30.0, 1000.0
     model = oscillator(w, m)
-    h = 0.02                                     # w h = 0.6: about 10 steps per period
+    h = 0.02  # w h = 0.6: about 10 steps per period
     n = 2000
-    run = simulate(model, IDLE, no_motion(), n * h, start(model),
-                   settings=Settings("newmark", time_step=h, samples=n + 1), speed_scale=1.0)
+    run = simulate(
+        model,
+        IDLE,
+        no_motion(),
+        n * h,
+        start(model),
+        settings=Settings("newmark", time_step=h, samples=n + 1),
+        speed_scale=1.0,
+    )
     E = 0.5 * m * run.v[:, 0] ** 2 + 0.5 * m * w**2 * run.q[:, 0] ** 2
     assert np.max(np.abs(E / E[0] - 1)) < 1e-12
     w_num = 2 * math.atan(w * h / 2) / h
@@ -97,10 +111,16 @@ def test_generalized_alpha_follows_chung_hulbert(wh):
     assert max(abs(np.linalg.eigvals(A_inf))) == pytest.approx(rho, abs=1e-3)
     model = oscillator(wh)
     n = 40
-    run = simulate(model, IDLE, no_motion(), float(n), start(model),
-                   settings=Settings("generalized_alpha", time_step=1.0, samples=n + 1, rho_inf=rho),
-                   speed_scale=1.0)
-    y = np.array([0.01, 0.0, -wh**2 * 0.01])
+    run = simulate(
+        model,
+        IDLE,
+        no_motion(),
+        float(n),
+        start(model),
+        settings=Settings("generalized_alpha", time_step=1.0, samples=n + 1, rho_inf=rho),
+        speed_scale=1.0,
+    )
+    y = np.array([0.01, 0.0, -(wh**2) * 0.01])
     expect = [y[0]]
     for _ in range(n):
         y = A @ y
@@ -131,8 +151,14 @@ def test_batch_equals_single_runs():
     b = simulate_batch(model, drive, 6.0, torque_scale=scales, rtol=1e-8, samples=61)
     for i, sc in enumerate(scales):
         d = DriveSchedule.constant(5100.0 * sc, 12.0, 0.5)
-        one = simulate(model, d, no_motion(), 6.0, settings=Settings(rtol=1e-8, samples=61),
-                       speed_scale=drive.free_speed() * math.sqrt(scales.max()))
+        one = simulate(
+            model,
+            d,
+            no_motion(),
+            6.0,
+            settings=Settings(rtol=1e-8, samples=61),
+            speed_scale=drive.free_speed() * math.sqrt(scales.max()),
+        )
         assert np.allclose(b.Omega[i], one.Omega, rtol=1e-12, atol=1e-12)
         assert np.allclose(b.tip_peak[i], one.peak[:, -1], rtol=1e-12, atol=1e-15)
 
@@ -161,6 +187,7 @@ def test_shaft_deflection_is_the_formula_and_does_not_depend_on_alignment():
     memory (numpy's own cos does not: a study run in another process
     differed by an ulp)."""
     from rotorpillar.reduced.integration import shaft_deflection
+
     rng = np.random.default_rng(3)
     n, k = 4, 1001
     q = rng.standard_normal((k, n)) * [1e-3, 1e-3, 1e-3, 40.0]
@@ -170,6 +197,6 @@ def test_shaft_deflection_is_the_formula_and_does_not_depend_on_alignment():
     assert np.allclose(x, ref_x, rtol=1e-14, atol=1e-18)
     assert np.allclose(size, np.hypot(ref_x, q[:, 2] - e * np.sin(q[:, 3])), rtol=1e-14, atol=1e-18)
     buf = np.empty(k * n + 1)
-    shifted = buf[1:].reshape(k, n)                       # 8 bytes off the allocation's alignment
+    shifted = buf[1:].reshape(k, n)  # 8 bytes off the allocation's alignment
     shifted[:] = q
     assert np.array_equal(shaft_deflection(shifted, shaft, e)[0], size)

@@ -67,7 +67,7 @@ def test_all_modes_superposed_are_the_beam(scene, theory):
     load[-2] = 1.0
     u = np.r_[0.0, 0.0, np.linalg.solve(K - w**2 * M, load)]
     V, Mz = section_forces(bp, n, theory, u)
-    eta = 1.0 / (pm.modal_stiffness - w**2 * pm.modal_mass)      # tip-scaled modes: f_j = 1
+    eta = 1.0 / (pm.modal_stiffness - w**2 * pm.modal_mass)  # tip-scaled modes: f_j = 1
     assert f.superpose(eta[None], pm.moment_shapes)[0] == pytest.approx(Mz, rel=1e-7, abs=1e-7 * np.max(np.abs(Mz)))
     assert f.superpose(eta[None], pm.shear_shapes)[0] == pytest.approx(V, rel=1e-7, abs=1e-7 * np.max(np.abs(V)))
     assert np.sum(eta) == pytest.approx(u[-2], rel=1e-8)
@@ -85,28 +85,37 @@ def test_truncation_reference_is_the_full_order_beam(scene):
     r = np.zeros(K.shape[0])
     r[0::2] = 1.0
     band = 186.0
-    statics = f.cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
-                                       bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,
-                                       sec.mass_per_length, scene.gondola.mass)
-    trunc = f.force_truncation(pm, band, f.tip_dashpot(12, scene.pillar.damping), bp.length,
-                               sec.mass_per_length, scene.gondola.mass, statics)
+    statics = f.cantilever_tip_statics(
+        bp.youngs_modulus,
+        bp.second_moment,
+        bp.shear_coefficient * bp.shear_modulus * bp.area,
+        bp.length,
+        sec.mass_per_length,
+        scene.gondola.mass,
+    )
+    trunc = f.force_truncation(
+        pm, band, f.tip_dashpot(12, scene.pillar.damping), bp.length, sec.mass_per_length, scene.gondola.mass, statics
+    )
     # the full-order beam: base moment under a unit tip force and a unit base acceleration
     omega = np.linspace(0, band, 300)
+
     def base_moment(u):
         return section_forces(bp, n, theory, np.r_[0.0, 0.0, u])[1][0]
-    for name, load, fj in (("tip", np.eye(K.shape[0])[-2], np.ones(12)),
-                           ("base", -(M @ r), -pm.participation)):
+
+    for name, load, fj in (("tip", np.eye(K.shape[0])[-2], np.ones(12)), ("base", -(M @ r), -pm.participation)):
         ref = []
         for w in omega:
             u = np.linalg.solve(K - w**2 * M + 1j * w * C, load.astype(complex))
             ref.append(base_moment(u.real) + 1j * base_moment(u.imag))
         ref = np.array(ref)
         # every mode available plus the static share of the rest: the check's reference
-        D = (np.diag(pm.modal_stiffness)[None] - (omega**2)[:, None, None] * np.diag(pm.modal_mass)[None]
-             + 1j * omega[:, None, None] * f.tip_dashpot(12, scene.pillar.damping)[None])
+        D = (
+            np.diag(pm.modal_stiffness)[None]
+            - (omega**2)[:, None, None] * np.diag(pm.modal_mass)[None]
+            + 1j * omega[:, None, None] * f.tip_dashpot(12, scene.pillar.damping)[None]
+        )
         eta = np.linalg.solve(D, np.broadcast_to(fj.astype(complex), (len(omega), 12))[..., None])[..., 0]
-        exact = f.static_resultants(np.array([0.0]), bp.length, sec.mass_per_length,
-                                    scene.gondola.mass)[name][1][0]
+        exact = f.static_resultants(np.array([0.0]), bp.length, sec.mass_per_length, scene.gondola.mass)[name][1][0]
         modal = eta @ pm.moment_shapes[0] + exact - np.sum(fj * pm.moment_shapes[0] / pm.modal_stiffness)
         assert np.max(np.abs(modal - ref)) <= 1e-3 * np.max(np.abs(ref))
     assert trunc.rows[-1].base_moment < 1e-3
@@ -116,16 +125,22 @@ def test_moments_and_shears_need_more_modes_than_the_tip(scene):
     pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 12, "timoshenko", 40)
     bp = beam_properties(scene.pillar)
     sec = section_of(scene.pillar)
-    statics = f.cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
-                                       bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,
-                                       sec.mass_per_length, scene.gondola.mass)
-    trunc = f.force_truncation(pm, 186.0, f.tip_dashpot(12, scene.pillar.damping), bp.length,
-                               sec.mass_per_length, scene.gondola.mass, statics)
+    statics = f.cantilever_tip_statics(
+        bp.youngs_modulus,
+        bp.second_moment,
+        bp.shear_coefficient * bp.shear_modulus * bp.area,
+        bp.length,
+        sec.mass_per_length,
+        scene.gondola.mass,
+    )
+    trunc = f.force_truncation(
+        pm, 186.0, f.tip_dashpot(12, scene.pillar.damping), bp.length, sec.mass_per_length, scene.gondola.mass, statics
+    )
     assert trunc.modes_needed_tip < trunc.modes_needed_base_moment
     # the base shear carries the missing modes' mass: more than 12 modes for 1 %
     assert trunc.modes_needed_base_shear is None and trunc.rows[-1].base_shear > 1e-2
     assert trunc.modes_for_forces == trunc.modes_needed_base_moment
-    for a, b in zip(trunc.rows, trunc.rows[1:]):      # errors fall as modes are added (to round-off)
+    for a, b in zip(trunc.rows, trunc.rows[1:]):  # errors fall as modes are added (to round-off)
         assert b.base_moment <= a.base_moment * 1.5 + 1e-6
 
 
@@ -143,7 +158,7 @@ def test_axial_force_and_extreme_fibre_stress_worked_numbers():
 def test_hermite_peak_finds_the_sine_between_samples():
     w = 2 * math.pi
     for n, tol in ((8, 2e-3), (4, 2e-2)):
-        t = (np.arange(n + 1) + 0.5) / n               # the crests fall between samples
+        t = (np.arange(n + 1) + 0.5) / n  # the crests fall between samples
         peak, when = f.hermite_peak(t, np.sin(w * t), w * np.cos(w * t))
         assert np.max(np.abs(np.sin(w * t))) < 1 - 0.07
         assert peak == pytest.approx(1.0, rel=tol)

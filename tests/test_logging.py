@@ -31,20 +31,35 @@ logging.getLogger("ffcx").warning("a real warning")
 
 @pytest.mark.parametrize("debug", [False, True])
 def test_compiler_lines_are_quiet_unless_debug(debug):
-    p = subprocess.run([sys.executable, "-c", CHILD.format(debug=debug)], capture_output=True,
-                       text=True, timeout=120)
+    p = subprocess.run([sys.executable, "-c", CHILD.format(debug=debug)], capture_output=True, text=True, timeout=120)
     assert p.returncode == 0, p.stderr
     assert "a real warning" in p.stderr
     assert ("x86_64-linux-gnu-gcc" in p.stderr) is debug
 
 
-@pytest.mark.slow                       # compiles two FFCx forms from nothing (~20 s)
+@pytest.mark.slow  # compiles two FFCx forms from nothing (~20 s)
 def test_a_first_3d_run_prints_no_compiler_lines(tmp_path):
-    env = dict(os.environ, XDG_CACHE_HOME=str(tmp_path / "cache"))   # an empty FFCx cache
-    p = cli("simulate", "paper", "--case", "earthquake", "--model", "fem3d", "--out",
-            tmp_path / "out", "--set", "mesh.elements_around=8", "--set", "mesh.elements_along=4",
-            "--set", "full_order.elements_around=8", "--set", "full_order.earthquake_duration=5.2",
-            env=env, timeout=600)
+    env = dict(os.environ, XDG_CACHE_HOME=str(tmp_path / "cache"))  # an empty FFCx cache
+    p = cli(
+        "simulate",
+        "paper",
+        "--case",
+        "earthquake",
+        "--model",
+        "fem3d",
+        "--out",
+        tmp_path / "out",
+        "--set",
+        "mesh.elements_around=8",
+        "--set",
+        "mesh.elements_along=4",
+        "--set",
+        "full_order.elements_around=8",
+        "--set",
+        "full_order.earthquake_duration=5.2",
+        env=env,
+        timeout=600,
+    )
     assert p.returncode == 0, p.stderr[-2000:]
     assert list((tmp_path / "cache" / "fenics").glob("libffcx_forms_*.so")), "nothing compiled"
     assert "INFO:" not in p.stderr and "gcc" not in p.stderr, p.stderr[-2000:]

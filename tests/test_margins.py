@@ -43,6 +43,5 @@ def test_rows_pass_and_fail():
     assert row.required == pytest.approx(0.17 * (1 - 1 / (1 / (2 * 0.0779) - 1.5)), rel=1e-9)
     assert row.required == pytest.approx(0.13543, rel=1e-4)
     assert row.status == "pass"
-    table = m.separation_table([89.7], [ovalling, bending, m.ModeEntry(400.0, 0.0, "x", "fem3d")],
-                               band_top=200.0)
+    table = m.separation_table([89.7], [ovalling, bending, m.ModeEntry(400.0, 0.0, "x", "fem3d")], band_top=200.0)
     assert len(table) == 2

@@ -32,9 +32,8 @@ def test_envelope_error_never_exceeds_history_error():
 def test_a_lagging_whirl_reads_as_phase_not_amplitude(phi):
     t = np.linspace(0.0, 30.0, 30001)
     w = 2.0 * math.pi
-    m = compare_series(t, np.cos(w * t - phi), t, np.cos(w * t), window=1.0,
-                       theta=w * t - phi, theta_ref=w * t)
-    assert m.history_error == pytest.approx(2 * math.sin(phi / 2), rel=1e-3)   # sampling: 1e-3
+    m = compare_series(t, np.cos(w * t - phi), t, np.cos(w * t), window=1.0, theta=w * t - phi, theta_ref=w * t)
+    assert m.history_error == pytest.approx(2 * math.sin(phi / 2), rel=1e-3)  # sampling: 1e-3
     assert m.envelope_error < 1e-3
     assert m.angle_drift == pytest.approx(phi)
     assert m.lead == ("envelope" if phi >= PHASE_LOCKED else "history")

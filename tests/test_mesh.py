@@ -18,20 +18,29 @@ import numpy as np
 import pytest
 
 from rotorpillar.errors import ComputationError, InputError
-from rotorpillar.mesh import (BASE, TOP, WALL, TubeMeshParams, layer_heights, tube_mesh_data,
-                              tube_params)
+from rotorpillar.mesh import BASE, TOP, WALL, TubeMeshParams, layer_heights, tube_mesh_data, tube_params
 from rotorpillar.scene import Mesh, load_scene
 
 
 def params(**kw):
-    base = dict(height=20.0, outer_radius=1.0, inner_radius=0.98, elements_around=16,
-                elements_along=6, elements_through=2, order=2, cell_type="hexahedron", grading=5.0)
+    base = dict(
+        height=20.0,
+        outer_radius=1.0,
+        inner_radius=0.98,
+        elements_around=16,
+        elements_along=6,
+        elements_through=2,
+        order=2,
+        cell_type="hexahedron",
+        grading=5.0,
+    )
     base.update(kw)
     return TubeMeshParams(**base)
 
 
-@pytest.mark.parametrize("cell_type, order", [("hexahedron", 1), ("hexahedron", 2),
-                                               ("tetrahedron", 1), ("tetrahedron", 2)])
+@pytest.mark.parametrize(
+    "cell_type, order", [("hexahedron", 1), ("hexahedron", 2), ("tetrahedron", 1), ("tetrahedron", 2)]
+)
 def test_counts_and_geometry(cell_type, order):
     p = params(cell_type=cell_type, order=order)
     d = tube_mesh_data(p, isolated=False)
@@ -50,8 +59,11 @@ def test_counts_and_geometry(cell_type, order):
     assert counts[WALL] == faces * 2 * N * L
     # every cell has positive volume on the sampled corner-tetrahedron test
     c = d.points[d.corner_cells()]
-    v = np.einsum("ij,ij->i", np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]),
-                  c[:, 3 if cell_type == "tetrahedron" else 4] - c[:, 0])
+    v = np.einsum(
+        "ij,ij->i",
+        np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]),
+        c[:, 3 if cell_type == "tetrahedron" else 4] - c[:, 0],
+    )
     assert np.all(np.abs(v) > 0)
 
 
@@ -59,11 +71,12 @@ def test_quarter_turn_symmetry_and_grading():
     p = params(elements_around=16)
     d = tube_mesh_data(p, isolated=False)
     from scipy.spatial import cKDTree
+
     rot = d.points @ np.array([[0, 1, 0], [-1, 0, 0], [0, 0, 1.0]])
     dist, _ = cKDTree(d.points).query(rot)
-    assert dist.max() < 1e-9          # Gmsh spaces the arc nodes to ~1e-10 m
+    assert dist.max() < 1e-9  # Gmsh spaces the arc nodes to ~1e-10 m
     z = np.unique(np.round(d.points[:, 2], 9))
-    first, last = z[2] - z[0], z[-1] - z[-3]          # degree 2: 2 node spacings per cell
+    first, last = z[2] - z[0], z[-1] - z[-3]  # degree 2: 2 node spacings per cell
     assert last / first == pytest.approx(p.grading, rel=1e-6)
     assert layer_heights(p)[-1] == pytest.approx(1.0)
 
@@ -75,18 +88,21 @@ def test_isolated_equals_in_process():
     assert np.array_equal(a.facet_markers, b.facet_markers)
 
 
-@pytest.mark.parametrize("kw, key", [
-    (dict(elements_around=0), "mesh.elements_around"),
-    (dict(elements_along=0), "mesh.elements_along"),
-    (dict(elements_through=-1), "mesh.elements_through"),
-    (dict(height=-20.0), "pillar.height"),
-    (dict(outer_radius=0.0), "pillar.outer_diameter"),
-    (dict(inner_radius=0.0), "pillar.inner_diameter"),
-    (dict(inner_radius=1.5), "pillar.inner_diameter"),
-    (dict(grading=0.5), "mesh.grading"),
-    (dict(cell_type="prism"), "mesh.cell_type"),
-    (dict(elements_around=2.5), "mesh.elements_around"),
-])
+@pytest.mark.parametrize(
+    "kw, key",
+    [
+        (dict(elements_around=0), "mesh.elements_around"),
+        (dict(elements_along=0), "mesh.elements_along"),
+        (dict(elements_through=-1), "mesh.elements_through"),
+        (dict(height=-20.0), "pillar.height"),
+        (dict(outer_radius=0.0), "pillar.outer_diameter"),
+        (dict(inner_radius=0.0), "pillar.inner_diameter"),
+        (dict(inner_radius=1.5), "pillar.inner_diameter"),
+        (dict(grading=0.5), "mesh.grading"),
+        (dict(cell_type="prism"), "mesh.cell_type"),
+        (dict(elements_around=2.5), "mesh.elements_around"),
+    ],
+)
 def test_bad_input_is_refused_in_one_line(kw, key):
     with pytest.raises(InputError) as err:
         params(**kw)
@@ -110,4 +126,4 @@ def test_a_gmsh_crash_is_an_error_not_a_dead_process(tmp_path, monkeypatch):
         tube_mesh_data(params(), isolated=True)
     msg = str(err.value)
     assert "Gmsh" in msg and "signal 11" in msg and "\n" not in msg
-    assert os.getpid() > 0 and math.isfinite(1.0)   # we are still here
+    assert os.getpid() > 0 and math.isfinite(1.0)  # we are still here

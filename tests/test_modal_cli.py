@@ -32,10 +32,7 @@ import numpy as np
 import pytest
 from conftest import cli
 
-SMALL = ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4",
-         "--set", "modal.n_modes=8"]
-
-
+SMALL = ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4", "--set", "modal.n_modes=8"]
 
 
 @pytest.fixture(scope="module")
@@ -46,7 +43,7 @@ def small_run(tmp_path_factory):
     return out, json.loads((out / "modal.json").read_text()), p.stdout
 
 
-@pytest.mark.slow                       # the 3D modal command
+@pytest.mark.slow  # the 3D modal command
 def test_modal_json_contract(small_run):
     out, doc, stdout = small_run
     assert {"modes", "modes_with_top", "reduction", "mesh", "axes", "timings", "top"} <= doc.keys()
@@ -57,8 +54,7 @@ def test_modal_json_contract(small_run):
         assert w == sorted(w)
         for m in modes:
             assert m["frequency_hz"] == pytest.approx(m["omega"] / (2 * math.pi), rel=1e-14)
-            assert m["kind"] in ("bending_x", "bending_y", "ovalling", "torsion", "axial",
-                                 "breathing", "other")
+            assert m["kind"] in ("bending_x", "bending_y", "ovalling", "torsion", "axial", "breathing", "other")
             assert m["normalisation"] == ("unit_tip" if m["kind"].startswith("bending") else "unit_max")
             # to 1e-7: a degenerate pair shares the mean of its two quotients
             assert m["modal_stiffness"] == pytest.approx(m["omega"] ** 2 * m["modal_mass"], rel=1e-7)
@@ -75,7 +71,7 @@ def test_modal_json_contract(small_run):
     assert first_top["pillar_modal_mass"] == pytest.approx(first_top["modal_mass"] - 2300.0)
 
 
-@pytest.mark.slow                       # the 3D modal command
+@pytest.mark.slow  # the 3D modal command
 def test_mode_shape_files(small_run):
     meshio = pytest.importorskip("meshio")
     out, doc, _ = small_run
@@ -94,14 +90,16 @@ def test_mode_shape_files(small_run):
                 assert np.linalg.norm(u, axis=1).max() <= 1 + 1e-12
 
 
-@pytest.mark.slow                       # the 3D modal command
+@pytest.mark.slow  # the 3D modal command
 def test_mode_shapes_are_on_the_quadratic_cells(small_run):
     import fixtures
+
     out, doc, _ = small_run
     p = doc["scene"]["pillar"]
     for name in ("modes_bare.vtu", "modes_top.vtu"):
-        got = fixtures.check_tube_vtu(out / name, p["height"], p["outer_diameter"] / 2,
-                                      p["inner_diameter"] / 2, around=16, through=1)
+        got = fixtures.check_tube_vtu(
+            out / name, p["height"], p["outer_diameter"] / 2, p["inner_diameter"] / 2, around=16, through=1
+        )
         assert got["vtk_type"] == 29 and got["order"] == 2
         assert got["points"] == doc["mesh"]["dofs"] // 3
 
@@ -111,7 +109,7 @@ def mpirun_prefix():
     if exe is None:
         pytest.skip("mpirun not installed")
     env = dict(os.environ)
-    if os.geteuid() == 0:      # Open MPI refuses root unless told
+    if os.geteuid() == 0:  # Open MPI refuses root unless told
         env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     return [exe, "-n", "2"], env
 
@@ -122,7 +120,7 @@ def test_mpi_two_ranks_equal_serial(tmp_path, small_run):
     prefix, env = mpirun_prefix()
     p = cli("modal", "paper", *SMALL, "--out", tmp_path, "--json", env=env, prefix=prefix)
     assert p.returncode == 0, p.stderr
-    doc = json.loads(p.stdout)                 # rank 0 alone prints: one JSON document
+    doc = json.loads(p.stdout)  # rank 0 alone prints: one JSON document
     serial = small_run[1]
     for key in ("modes", "modes_with_top"):
         a = np.array([m["omega"] for m in serial[key]])
@@ -133,13 +131,16 @@ def test_mpi_two_ranks_equal_serial(tmp_path, small_run):
     assert doc["configurations"]["bare"]["solver"]["ranks"] == 2
 
 
-@pytest.mark.parametrize("sets, key", [
-    (["mesh.elements_around=0"], "mesh.elements_around"),
-    (["mesh.elements_through=-2"], "mesh.elements_through"),
-    (["mesh.grading=0.5"], "mesh.grading"),
-    (["pillar.inner_diameter=0"], "pillar.inner_diameter"),
-    (["mesh.cell_type=prism"], "mesh.cell_type"),
-])
+@pytest.mark.parametrize(
+    "sets, key",
+    [
+        (["mesh.elements_around=0"], "mesh.elements_around"),
+        (["mesh.elements_through=-2"], "mesh.elements_through"),
+        (["mesh.grading=0.5"], "mesh.grading"),
+        (["pillar.inner_diameter=0"], "pillar.inner_diameter"),
+        (["mesh.cell_type=prism"], "mesh.cell_type"),
+    ],
+)
 def test_bad_mesh_input_exits_2_and_writes_nothing(tmp_path, sets, key):
     out = tmp_path / "out"
     args = [a for s in sets for a in ("--set", s)]
@@ -150,7 +151,7 @@ def test_bad_mesh_input_exits_2_and_writes_nothing(tmp_path, sets, key):
     assert not out.exists()
 
 
-@pytest.mark.slow                       # the 3D modal command
+@pytest.mark.slow  # the 3D modal command
 def test_slepc_failure_exits_1_and_writes_nothing(tmp_path):
     out = tmp_path / "out"
     env = dict(os.environ, PETSC_OPTIONS="-modal_eps_max_it 1 -modal_eps_ncv 12")
@@ -163,13 +164,15 @@ def test_slepc_failure_exits_1_and_writes_nothing(tmp_path):
 
 def test_gmsh_crash_exits_1_and_writes_nothing(tmp_path, monkeypatch, capsys):
     from rotorpillar import cli as cli_module
+
     fake = tmp_path / "crashing-python"
     fake.write_text("#!/bin/sh\nkill -SEGV $$\n")
     fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
     monkeypatch.setattr("rotorpillar.mesh.isolated.sys.executable", str(fake))
     out = tmp_path / "out"
-    code = cli_module.main(["modal", "paper", "--set", "mesh.elements_around=12",
-                            "--set", "mesh.elements_along=3", "--out", str(out)])
+    code = cli_module.main(
+        ["modal", "paper", "--set", "mesh.elements_around=12", "--set", "mesh.elements_along=3", "--out", str(out)]
+    )
     err = capsys.readouterr().err
     assert code == 1
     lines = [l for l in err.strip().splitlines() if not l.startswith("[rotorpillar]")]
@@ -177,7 +180,7 @@ def test_gmsh_crash_exits_1_and_writes_nothing(tmp_path, monkeypatch, capsys):
     assert not out.exists()
 
 
-@pytest.mark.slow                       # the 3D modal command
+@pytest.mark.slow  # the 3D modal command
 def test_analyze_takes_the_3d_reduction(tmp_path, small_run):
     p = cli("analyze", "paper", *SMALL, "--set", "reduction.source=fem3d", "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr

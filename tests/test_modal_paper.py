@@ -47,8 +47,7 @@ def test_default_mesh_first_bending_within_half_a_percent(paper):
     p = s.pillar
     sec = section_of(p)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
-    w_t = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area,
-                           sec.second_moment, p.height)
+    w_t = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area, sec.second_moment, p.height)
     assert bare.kind[:2] == ("bending_x", "bending_y")
     assert bare.omega[0] == pytest.approx(w_t, rel=5e-3)
 
@@ -72,10 +71,15 @@ def test_shell_modes_below_the_second_bending_are_found_and_named(paper):
 def test_default_mesh_against_a_finer_one(paper):
     s, bare, _ = paper
     d = s.mesh
-    fine = Mesh(elements_around=2 * d.elements_around, elements_along=4 * d.elements_along,
-                elements_through=d.elements_through, degree=d.degree, cell_type=d.cell_type,
-                grading=100.0)
+    fine = Mesh(
+        elements_around=2 * d.elements_around,
+        elements_along=4 * d.elements_along,
+        elements_through=d.elements_through,
+        degree=d.degree,
+        cell_type=d.cell_type,
+        grading=100.0,
+    )
     r = modal_analysis(s, top=False, n_modes=4, mesh=fine)
     assert bare.first("bending_x") == pytest.approx(r.first("bending_x"), rel=5e-3)
     assert bare.first("ovalling") == pytest.approx(r.first("ovalling"), rel=1.5e-2)
-    assert bare.first("bending_x") > r.first("bending_x")          # conforming: from above
+    assert bare.first("bending_x") > r.first("bending_x")  # conforming: from above

@@ -22,10 +22,17 @@ import numpy as np
 import pytest
 
 from rotorpillar.reduced.beam_fe import BeamProperties, beam_modes
-from rotorpillar.reduced.pillar import (cantilever_mode, cantilever_root, cowper_shear_coefficient,
-                                        omega_euler_bernoulli, omega_timoshenko,
-                                        rayleigh_reduction, tip_mass_continuous, tip_mass_lumped,
-                                        tube_section)
+from rotorpillar.reduced.pillar import (
+    cantilever_mode,
+    cantilever_root,
+    cowper_shear_coefficient,
+    omega_euler_bernoulli,
+    omega_timoshenko,
+    rayleigh_reduction,
+    tip_mass_continuous,
+    tip_mass_lumped,
+    tube_section,
+)
 
 E, NU, RHO, H = 2.1e11, 0.3, 8.1e3, 20.0
 SEC = tube_section(2.0, 1.96, RHO)
@@ -103,7 +110,7 @@ def test_timoshenko_root_against_timoshenko_fe():
     exact = omega_timoshenko(E, NU, kappa, RHO, SEC.area, SEC.second_moment, H)
     w256 = beam_modes(props(kappa), 256, "timoshenko", 1).omega[0]
     w512 = beam_modes(props(kappa), 512, "timoshenko", 1).omega[0]
-    richardson = (4 * w512 - w256) / 3          # h**2 convergence
+    richardson = (4 * w512 - w256) / 3  # h**2 convergence
     assert richardson == pytest.approx(exact, rel=1e-6)
     eb = omega_euler_bernoulli(E, SEC.second_moment, SEC.mass_per_length, H)
     assert exact < eb

@@ -48,7 +48,7 @@ def test_effective_masses(bare):
     assert eff == pytest.approx([0.6131, 0.1883, 0.0647], abs=1e-3)
     # what the base moves is the mass off the clamped node: r^T M r of the free dofs
     assert pm.total_mass == pytest.approx(m_col * (1 - 0.5 / 40), rel=1e-2)
-    full = beam_pillar_modes(bare.pillar, bare.gondola.mass, 200, "euler", 20)          # every mode of the discrete model
+    full = beam_pillar_modes(bare.pillar, bare.gondola.mass, 200, "euler", 20)  # every mode of the discrete model
     assert full.effective_mass_fraction() == pytest.approx(1.0, abs=1e-10)
 
 
@@ -58,8 +58,7 @@ def test_first_frequency_with_the_gondola():
     sec = section_of(p)
     m_col = sec.mass_per_length * p.height
     ratio = scene.gondola.mass / m_col
-    f = lambda b: 1 + math.cos(b) * math.cosh(b) + ratio * b * (math.cos(b) * math.sinh(b)
-                                                                - math.sin(b) * math.cosh(b))
+    f = lambda b: 1 + math.cos(b) * math.cosh(b) + ratio * b * (math.cos(b) * math.sinh(b) - math.sin(b) * math.cosh(b))
     b1 = brentq(f, 0.5, 1.875104)
     w1 = b1**2 * math.sqrt(p.youngs_modulus * sec.second_moment / (sec.mass_per_length * p.height**4))
     pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 1, "euler", 40)
@@ -68,7 +67,8 @@ def test_first_frequency_with_the_gondola():
 
 def test_simpson_on_quadratic_element_levels_is_exact_for_quadratics():
     from rotorpillar.fem3d.pillar_modes import integrate_levels
-    ends = np.array([0.0, 0.3, 1.0, 2.5, 4.0])                  # graded elements
+
+    ends = np.array([0.0, 0.3, 1.0, 2.5, 4.0])  # graded elements
     z = np.sort(np.r_[ends, 0.5 * (ends[:-1] + ends[1:])])
     f = 3 * z**2 - z + 2
     assert integrate_levels(z, f) == pytest.approx(4.0**3 - 8.0 + 8.0, rel=1e-13)
@@ -82,6 +82,7 @@ def test_modes_of_the_3d_model_agree_with_the_timoshenko_beam():
     flexibility separate them by ~1-2 % in the second mode: 3 %."""
     pytest.importorskip("dolfinx")
     from rotorpillar.fem3d.pillar_modes import fem3d_pillar_modes
+
     scene = override(load_scene("paper"), ["modal_model.source=fem3d"])
     pm = fem3d_pillar_modes(scene, 2)
     beam = beam_pillar_modes(scene.pillar, scene.gondola.mass, 2, "timoshenko", 40)
@@ -92,6 +93,7 @@ def test_modes_of_the_3d_model_agree_with_the_timoshenko_beam():
     # the candidates the simulate command passes to the reduced package
     from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
     from rotorpillar.reduced.models import build_model
+
     model, info = build_model(scene, "modal", modes=2, pillar_modes=candidate_pillar_modes(scene))
     assert list(model.pillar_modes.omega) == list(pm.omega) and info["modes"] == 2
 
@@ -101,6 +103,7 @@ def test_modal_model_on_3d_modes_needs_them_passed_in():
     without them, it names the key."""
     from rotorpillar.errors import InputError
     from rotorpillar.reduced.models import build_model
+
     scene = override(load_scene("paper"), ["modal_model.source=fem3d"])
     with pytest.raises(InputError, match="modal_model.source"):
         build_model(scene, "modal", modes=2)

@@ -36,22 +36,31 @@ Sources and tolerances:
 import json
 import math
 
+import fixtures
 import numpy as np
 import pytest
-
-import fixtures
 from imagecheck import assert_real_png, labels_overlap, pixels, png_size
+
 from rotorpillar.analysis import analyze
 from rotorpillar.analysis.results import AnalysisResult
 from rotorpillar.postprocess import charts, transient_charts
-from rotorpillar.postprocess.animation import (animate, elastic_field, frame_times, pillar_motion)
+from rotorpillar.postprocess.animation import animate, elastic_field, frame_times, pillar_motion
 from rotorpillar.postprocess.geometry import bending_columns, cantilever_tube, load_modes, tube_axes
+from rotorpillar.postprocess.modeshapes import (
+    BEAM_TARGET,
+    MODE_SIZE,
+    SHEET_TILE,
+    SPLIT,
+    deformed,
+    has_sections,
+    mode_scale,
+    render_contact_sheet,
+    render_mode,
+    section_levels,
+)
 from rotorpillar.postprocess.readers import Simulation, read_json, read_simulation
-from rotorpillar.postprocess.modeshapes import (BEAM_TARGET, MODE_SIZE, SHEET_TILE, SPLIT, deformed,
-                                                has_sections, mode_scale, render_contact_sheet,
-                                                render_mode, section_levels)
-from rotorpillar.reduced.pillar import cantilever_mode
 from rotorpillar.provenance import to_json
+from rotorpillar.reduced.pillar import cantilever_mode
 from rotorpillar.scene import load_scene, override
 
 # in-process pyvista renders: the VTK leak check of tests/conftest.py runs after each test
@@ -76,7 +85,7 @@ def _without_triad(px):
     modeshapes._triad) blanked: its coloured arrows are not the tube."""
     px = px.copy()
     h, w = px.shape[:2]
-    px[int(0.8 * h):, : int(0.3 * w)] = 255
+    px[int(0.8 * h) :, : int(0.3 * w)] = 255
     return px
 
 
@@ -90,7 +99,7 @@ def _coloured_columns(px, rows):
 
 def _tube_lean(path):
     px = _without_triad(pixels(path))
-    px = px[:, : int(0.8 * px.shape[1])]      # the colour bar sits at the right
+    px = px[:, : int(0.8 * px.shape[1])]  # the colour bar sits at the right
     sat = px.max(axis=2) - px.min(axis=2)
     rows = np.flatnonzero((sat > 40).sum(axis=1) > 3)
     # skip the label and the colour bar: the tube is the tallest coloured run
@@ -155,7 +164,7 @@ def test_ovalling_mode_is_drawn_with_its_cross_sections(modes_top, tmp_path):
     p_oval = render_mode(modes_top, oval, tmp_path / "oval.png")
     assert_real_png(p_oval, MODE_SIZE)
     # the right-hand view: one run of coloured rows per deformed ring
-    px = pixels(p_oval)[: int(0.9 * MODE_SIZE[1]), split + 5:]    # the colour bar sits below
+    px = pixels(p_oval)[: int(0.9 * MODE_SIZE[1]), split + 5 :]  # the colour bar sits below
     rows = np.flatnonzero(((px.max(axis=2) - px.min(axis=2)) > 40).sum(axis=1) > 0)
     runs = 1 + int(np.sum(np.diff(rows) > 5))
     assert runs == len(levels) == 3
@@ -163,16 +172,20 @@ def test_ovalling_mode_is_drawn_with_its_cross_sections(modes_top, tmp_path):
 
 def test_quadratic_cells_are_drawn_through_their_shape_functions(tmp_path):
     import meshio
+
     from rotorpillar.fem3d.output import vtk_cells
     from rotorpillar.mesh import tube_mesh_data
     from rotorpillar.mesh.tube import TubeMeshParams
+
     H = 20.0
     d = tube_mesh_data(TubeMeshParams(H, 1.0, 0.9, 8, 3, 1, 2, "hexahedron"), isolated=False)
     pts = d.points
     u = np.zeros_like(pts)
     u[:, 0] = pts[:, 2] ** 2
-    meshio.write(tmp_path / "q.vtu", meshio.Mesh(pts, [("hexahedron27", vtk_cells(d.cells, d.gmsh_cell))],
-                                                 point_data={"mode_000": u}))
+    meshio.write(
+        tmp_path / "q.vtu",
+        meshio.Mesh(pts, [("hexahedron27", vtk_cells(d.cells, d.gmsh_cell))], point_data={"mode_000": u}),
+    )
     ms = load_modes(tmp_path / "q.vtu", [{"kind": "bending_x"}], {"tube": "z", "paper_x": "x"})
     s = np.asarray(ms.surface.points)
     # VTK's surface filter gives float32 points: z**2 to 2 x 6e-8 relative
@@ -200,8 +213,11 @@ def test_fallback_tube_carries_the_cantilever_shape():
 def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
     n = 50
     q = np.column_stack([np.linspace(-0.01, 0.02, n), np.linspace(0.003, -0.001, n)])
-    sim = Simulation("runup", {}, {"t": np.linspace(0, 1, n), "modal_coordinates": q,
-                                  "tip_x": q.sum(axis=1), "Omega": np.linspace(0, 10, n)})
+    sim = Simulation(
+        "runup",
+        {},
+        {"t": np.linspace(0, 1, n), "modal_coordinates": q, "tip_x": q.sum(axis=1), "Omega": np.linspace(0, 10, n)},
+    )
     motion = pillar_motion(sim, modes_top)
     assert motion.coefficients.shape == (n, 2) and "modal coordinates" in motion.source
     pts = np.asarray(modes_top.surface.points)
@@ -210,8 +226,7 @@ def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
         U = elastic_field(motion.coefficients[j], motion.shapes)
         assert U[top, 0] == pytest.approx(q[j].sum(), abs=1e-12)
     # the paper's model: no modal coordinates, tip_x - ground_x drives mode 1
-    sim2 = Simulation("earthquake", {}, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0],
-                                        "ground_x": np.ones(n)})
+    sim2 = Simulation("earthquake", {}, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0], "ground_x": np.ones(n)})
     m2 = pillar_motion(sim2, modes_top)
     assert m2.coefficients[:, 0] == pytest.approx(q[:, 0], abs=1e-12)
 
@@ -225,10 +240,18 @@ def test_frame_times_are_bounded():
 
 def test_animation_mp4_frame_count_and_poster(modes_top, tmp_path):
     import imageio_ffmpeg
+
     fixtures.write_simulation_fixture(tmp_path, "runup", n=1500)
     sim = read_simulation(tmp_path, "runup")
-    r = animate(sim, modes_top, tmp_path / "runup.mp4", title="test", max_frames=12,
-                poster=tmp_path / "poster.png", progress=False)
+    r = animate(
+        sim,
+        modes_top,
+        tmp_path / "runup.mp4",
+        title="test",
+        max_frames=12,
+        poster=tmp_path / "poster.png",
+        progress=False,
+    )
     assert r.path.suffix == ".mp4" and r.frames == 12
     frames, _ = imageio_ffmpeg.count_frames_and_secs(str(r.path))
     assert frames == 12
@@ -237,6 +260,7 @@ def test_animation_mp4_frame_count_and_poster(modes_top, tmp_path):
 
 def test_animation_gif_fallback_and_cantilever_fallback(tmp_path):
     from PIL import Image
+
     fixtures.write_simulation_fixture(tmp_path, "earthquake", modal=False, n=800)
     sim = read_simulation(tmp_path, "earthquake")
     ms = cantilever_tube(20.0, 2.0, 1.96)
@@ -256,10 +280,10 @@ def test_animation_gif_fallback_and_cantilever_fallback(tmp_path):
 def analyses():
     paper = load_scene("paper")
     # through JSON, as the report reads them
-    return {"paper": AnalysisResult.from_json(json.loads(to_json(analyze(paper)))),
-            "fold": AnalysisResult.from_json(json.loads(to_json(
-                analyze(override(paper, ["rotor.eccentricity=0.04"])))))}
-
+    return {
+        "paper": AnalysisResult.from_json(json.loads(to_json(analyze(paper)))),
+        "fold": AnalysisResult.from_json(json.loads(to_json(analyze(override(paper, ["rotor.eccentricity=0.04"]))))),
+    }
 
 
 @pytest.mark.parametrize("case", ["paper", "fold"])
@@ -269,10 +293,9 @@ def test_drive_curves_match_analyze(analyses, case):
     for r in a.resonances:
         c = r.curves
         L = np.interp(c.omega, data["omega"], data["L"])
-        exact = charts.av.total_resistance(np.asarray(c.omega), a.drive.load_coefficient,
-                                           charts.resonances_of(a))
+        exact = charts.av.total_resistance(np.asarray(c.omega), a.drive.load_coefficient, charts.resonances_of(a))
         assert exact == pytest.approx(c.L_all, rel=1e-9)
-        assert L == pytest.approx(c.L_all, rel=2e-3)     # the chart's grid, interpolated
+        assert L == pytest.approx(c.L_all, rel=2e-3)  # the chart's grid, interpolated
 
 
 def test_stability_switches_at_the_fold_points(analyses):
@@ -306,11 +329,11 @@ def test_drive_chart_spans_the_motor_and_marks_what_lies_beyond(sommerfeld, tmp_
     fig = charts.drive_figure(a)
     top = fig.axes[0]
     M0 = a.drive.torque_at_zero
-    assert a.drive.slope > 0           # a falling characteristic: Md is largest at rest
+    assert a.drive.slope > 0  # a falling characteristic: Md is largest at rest
     assert top.get_ylim() == pytest.approx((0.0, charts.HEADROOM * M0))
     y_max = top.get_ylim()[1]
     far = {r.index for r in a.resonances if r.dL_max > y_max}
-    assert far and max(r.dL_max for r in a.resonances) > 20 * y_max   # the scene's point
+    assert far and max(r.dL_max for r in a.resonances) > 20 * y_max  # the scene's point
     assert {b["resonance"] for b in data["beyond"]} == far
     texts = [t.get_text() for t in top.texts]
     for b in data["beyond"]:
@@ -322,6 +345,7 @@ def test_drive_chart_spans_the_motor_and_marks_what_lies_beyond(sommerfeld, tmp_
         assert any(t.startswith(f"{st.omega:.2f} rad/s") for t in texts)
     assert labels_overlap(fig) == []
     from rotorpillar.postprocess.style import save
+
     assert_real_png(save(fig, tmp_path / "d.png"), (1060, _drive_height(a)))
 
 
@@ -332,8 +356,7 @@ def test_drive_chart_labels_do_not_overlap(analyses, case):
     # a resonance left off the chart lies beyond the drive's reach (the ROM's third X
     # resonance, 157 rad/s, against the paper's free speed of 90 rad/s)
     free = analyses[case].drive.free_speed
-    assert all(b["omega"] > free for b in charts.drive_curve_data(analyses[case])["beyond"]) \
-        or case == "fold"
+    assert all(b["omega"] > free for b in charts.drive_curve_data(analyses[case])["beyond"]) or case == "fold"
 
 
 def _drive_height(a) -> int:
@@ -346,10 +369,15 @@ def test_chart_files(analyses, tmp_path):
     a = analyses["fold"]
     assert_real_png(charts.drive_chart(a, tmp_path / "d.png"), (1060, _drive_height(a)))
     # the amplitude panels: 70 px of titles and legend, 330 px a row of three
-    assert_real_png(charts.amplitude_chart(a, tmp_path / "a.png"),
-                    (1060, 70 + 330 * math.ceil(len(a.resonances) / 3)))
+    assert_real_png(charts.amplitude_chart(a, tmp_path / "a.png"), (1060, 70 + 330 * math.ceil(len(a.resonances) / 3)))
     arrays = fixtures.simulation_arrays("earthquake", n=2000)
-    e = transient_charts.earthquake_chart(tmp_path / "e.png", arrays["t"], arrays["ground_acceleration"],
-                                          arrays["tip_x"], arrays["rotor_x"], arrays["Omega"])
+    e = transient_charts.earthquake_chart(
+        tmp_path / "e.png",
+        arrays["t"],
+        arrays["ground_acceleration"],
+        arrays["tip_x"],
+        arrays["rotor_x"],
+        arrays["Omega"],
+    )
     assert_real_png(e, (900, 800))
     assert png_size(tmp_path / "d.png") == (1060, _drive_height(a))

@@ -24,10 +24,10 @@ import subprocess
 from html.parser import HTMLParser
 from pathlib import Path
 
-import pytest
-
 import fixtures
+import pytest
 from imagecheck import PNG_SIGNATURE
+
 from rotorpillar import cli
 
 # in-process pyvista renders: the VTK leak check of tests/conftest.py runs after each test
@@ -74,9 +74,17 @@ def full(tmp_path_factory):
         fixtures.write_simulation_fixture(out, case, n=1500)
     # a chart another module wrote, captioned in its JSON
     from rotorpillar.postprocess import transient_charts
+
     a = fixtures.simulation_arrays("runup", n=500)
-    transient_charts.earthquake_chart(out / "runup_omega.png", a["t"], a["ground_acceleration"],
-                                      a["tip_x"], a["rotor_x"], a["Omega"], title="external")
+    transient_charts.earthquake_chart(
+        out / "runup_omega.png",
+        a["t"],
+        a["ground_acceleration"],
+        a["tip_x"],
+        a["rotor_x"],
+        a["Omega"],
+        title="external",
+    )
     doc = json.loads((out / "simulate_runup.json").read_text())
     doc["figures"] = [{"file": "runup_omega.png", "caption": "Omega(t) of the run-up <external>"}]
     (out / "simulate_runup.json").write_text(json.dumps(doc))
@@ -106,14 +114,22 @@ def test_report_is_complete(full):
     text = (full / "report.html").read_text(encoding="utf-8")
     a = json.loads((full / "analyze.json").read_text())
     import html
+
     for row in a["paper_comparison"]:
         assert html.escape(row["quantity"]) in text
     assert text.count('<tr class="flag">') == sum(r["flag"] for r in a["paper_comparison"])
-    for title in ("Modal validation", "Eq. 1 against the 3D model", "The pillar reduced to its tip",
-                  "Passage through resonance", "The runs", "The earthquake", "Versions"):
+    for title in (
+        "Modal validation",
+        "Eq. 1 against the 3D model",
+        "The pillar reduced to its tip",
+        "Passage through resonance",
+        "The runs",
+        "The earthquake",
+        "Versions",
+    ):
         assert title in text
     assert "Omega(t) of the run-up &lt;external&gt;" in text
-    assert "synthetic fixture" in text                    # the inputs' own note is shown
+    assert "synthetic fixture" in text  # the inputs' own note is shown
     assert "not computed: run <code>rotorpillar converge paper" in text
     doc = json.loads((full / "report.json").read_text())
     # no comparison here: the run-up and the scene's earthquake run (the paper's pulse)
@@ -139,14 +155,28 @@ window.addEventListener('load', function () { setTimeout(function () {
 </script></body>"""
     html_text = page.read_text(encoding="utf-8")
     probe.write_text(html_text.replace("</body>", script, 1), encoding="utf-8")
-    p = subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu",
-                        "--disable-background-networking", "--no-first-run", "--mute-audio",
-                        f"--user-data-dir={tmp / 'chromium-profile'}",
-                        "--virtual-time-budget=15000", "--dump-dom", probe.resolve().as_uri()],
-                       capture_output=True, text=True, timeout=180)
+    p = subprocess.run(
+        [
+            CHROMIUM,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-background-networking",
+            "--no-first-run",
+            "--mute-audio",
+            f"--user-data-dir={tmp / 'chromium-profile'}",
+            "--virtual-time-budget=15000",
+            "--dump-dom",
+            probe.resolve().as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
     m = re.search(r'<pre id="__verdict">(.*?)</pre>', p.stdout, re.S)
     assert m, f"no verdict from chromium: {p.stderr[-2000:]}"
     import html
+
     return json.loads(html.unescape(m.group(1)))
 
 
@@ -172,9 +202,11 @@ def test_report_without_inputs_says_what_to_run(tmp_path):
 
 def test_hostile_text_is_escaped(tmp_path):
     from rotorpillar.scene import read_scene_toml
+
     raw = (Path(cli.__file__).parent / "scenes" / "paper.toml").read_text()
     raw = raw.replace('name = "paper"', 'name = "evil"').replace(
-        'description = "', 'description = "<script>alert(1)</script> & <b>x</b> ', 1)
+        'description = "', 'description = "<script>alert(1)</script> & <b>x</b> ', 1
+    )
     scene = tmp_path / "evil.toml"
     scene.write_text(raw)
     assert read_scene_toml(scene)[0]["name"] == "evil"
@@ -185,7 +217,7 @@ def test_hostile_text_is_escaped(tmp_path):
     assert "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &lt;b&gt;x&lt;/b&gt;" in text
 
 
-@pytest.mark.filterwarnings("ignore:The VTK reader")      # the broken file, on purpose
+@pytest.mark.filterwarnings("ignore:The VTK reader")  # the broken file, on purpose
 def test_a_broken_input_costs_one_figure_not_the_report(tmp_path):
     run_cli("analyze", "paper", "--out", tmp_path)
     fixtures.write_modal_fixture(tmp_path, around=12, along=6)
@@ -258,20 +290,44 @@ def test_convergence_section_reads_the_selection(tmp_path):
     as `rotorpillar converge` writes them (selection.chosen, reference.<mode>)."""
     run_cli("analyze", "paper", "--out", tmp_path)
     scene = json.loads((tmp_path / "analyze.json").read_text())["scene"]
-    conv = {"scene_name": "paper", "scene": scene, "tolerance": 1e-3, "cache_dir": "cache",
-            "families": {}, "runs": [], "extrapolations": {}, "pareto": {}, "study": {},
+    conv = {
+        "scene_name": "paper",
+        "scene": scene,
+        "tolerance": 1e-3,
+        "cache_dir": "cache",
+        "families": {},
+        "runs": [],
+        "extrapolations": {},
+        "pareto": {},
+        "study": {},
+        "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
+        "selection": {
+            "tolerance": 1e-3,
+            "needed": ["bending"],
             "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
-            "selection": {"tolerance": 1e-3, "needed": ["bending"],
-                          "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
-                          "rule": "cheapest run meeting the tolerance",
-                          "chosen": {"label": "shell Q2 quadrilaterals, 16x20", "dofs": 6560,
-                                     "wall_time": 0.45, "bending_error_bound": 3e-4},
-                          "rejected_cheaper": [{"label": "Eq. 1 + ring (closed forms)", "dofs": 1,
-                                                "wall_time": 1e-4, "why": "bending bound 1.7e-02"}]},
-            "reference": {"bending": {"value": 30.818, "error_estimate": 4e-3, "order": 1.8,
-                                      "order_theory": 4, "runs": ["a", "b", "c"],
-                                      "check": {"within_estimate": True}}},
-            "failures": ["beams have no ovalling mode"]}
+            "rule": "cheapest run meeting the tolerance",
+            "chosen": {
+                "label": "shell Q2 quadrilaterals, 16x20",
+                "dofs": 6560,
+                "wall_time": 0.45,
+                "bending_error_bound": 3e-4,
+            },
+            "rejected_cheaper": [
+                {"label": "Eq. 1 + ring (closed forms)", "dofs": 1, "wall_time": 1e-4, "why": "bending bound 1.7e-02"}
+            ],
+        },
+        "reference": {
+            "bending": {
+                "value": 30.818,
+                "error_estimate": 4e-3,
+                "order": 1.8,
+                "order_theory": 4,
+                "runs": ["a", "b", "c"],
+                "check": {"within_estimate": True},
+            }
+        },
+        "failures": ["beams have no ovalling mode"],
+    }
     (tmp_path / "convergence.json").write_text(json.dumps(conv))
     run_cli("report", "paper", "--out", tmp_path, "--no-animations")
     text = (tmp_path / "report.html").read_text()

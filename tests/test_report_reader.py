@@ -32,15 +32,14 @@ import shutil
 import subprocess
 from pathlib import Path
 
+import fixtures
 import pytest
 
-import fixtures
 from rotorpillar import cli
 from rotorpillar.postprocess.style import MIN_FONT_PX, png_layout
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-needs_chromium = pytest.mark.skipif(CHROMIUM is None,
-                                    reason="chromium not installed (tools/setup.sh installs it)")
+needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (tools/setup.sh installs it)")
 #: The reader's window (px): a laptop's, the page's 1100 px column fits in it.
 WINDOW = (1280, 1000)
 
@@ -77,13 +76,28 @@ def read_as_a_reader(page: Path, tmp: Path) -> dict:
     """The probe's verdict on ``page`` in headless Chromium."""
     probe = tmp / f"reader_{page.stem}.html"
     probe.write_text(page.read_text(encoding="utf-8").replace("</body>", PROBE, 1), encoding="utf-8")
-    p = subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-                        "--no-first-run", "--disable-background-networking",
-                        "--disable-component-update", "--disable-sync", "--mute-audio",
-                        f"--user-data-dir={tmp / 'chromium-reader'}",
-                        f"--window-size={WINDOW[0]},{WINDOW[1]}",
-                        "--virtual-time-budget=20000", "--dump-dom", probe.resolve().as_uri()],
-                       capture_output=True, text=True, timeout=300)
+    p = subprocess.run(
+        [
+            CHROMIUM,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--mute-audio",
+            f"--user-data-dir={tmp / 'chromium-reader'}",
+            f"--window-size={WINDOW[0]},{WINDOW[1]}",
+            "--virtual-time-budget=20000",
+            "--dump-dom",
+            probe.resolve().as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     m = re.search(r'<pre id="__reader">(.*?)</pre>', p.stdout, re.S)
     assert m and m.group(1) != "pending", f"no verdict from chromium: {p.stderr[-2000:]}"
     return json.loads(html.unescape(m.group(1)))
@@ -121,15 +135,17 @@ def reader_problems(page: Path, tmp: Path) -> list[str]:
             continue
         rec = png_layout(b)
         if rec is None:
-            problems.append(f"image {im['index']} {name}: no legibility record (not drawn "
-                            "through postprocess.style)")
+            problems.append(f"image {im['index']} {name}: no legibility record (not drawn through postprocess.style)")
             continue
-        problems += [f"image {im['index']} {name}: {x}" for x in rec["problems"]
-                     if not x.startswith("smallest text")]       # measured below, as shown
+        problems += [
+            f"image {im['index']} {name}: {x}" for x in rec["problems"] if not x.startswith("smallest text")
+        ]  # measured below, as shown
         shown = im["shown"] * rec["font_px"] / im["natural"] if im["natural"] else 0.0
         if shown < MIN_FONT_PX:
-            problems.append(f"image {im['index']} {name}: smallest text {shown:.1f} px as shown "
-                            f"({im['shown']:.0f} of {im['natural']} px), below {MIN_FONT_PX:g}")
+            problems.append(
+                f"image {im['index']} {name}: smallest text {shown:.1f} px as shown "
+                f"({im['shown']:.0f} of {im['natural']} px), below {MIN_FONT_PX:g}"
+            )
     if v["uncaptioned_figures"]:
         problems.append(f"{v['uncaptioned_figures']} figure(s) without a caption")
     problems += [f"not in the contents: {x}" for x in v["not_in_contents"]]
@@ -166,21 +182,27 @@ def test_the_reader_check_finds_what_it_looks_for(synthetic_page, tmp_path):
     without caption, a section missing from the contents, a chart whose
     text runs together, a wide chart squeezed until its text is tiny."""
     import numpy as np
+
     from rotorpillar.postprocess import html as h
     from rotorpillar.postprocess.style import figure, save
+
     fig, ax = figure(900, 400)
     ax.plot(np.arange(3))
-    ax.set_title("a title " * 20)                  # runs off the figure
+    ax.set_title("a title " * 20)  # runs off the figure
     ax.text(0.5, 0.5, "one", transform=ax.transAxes)
-    ax.text(0.5, 0.5, "two", transform=ax.transAxes)   # on top of "one"
+    ax.text(0.5, 0.5, "two", transform=ax.transAxes)  # on top of "one"
     crowded = save(fig, tmp_path / "crowded.png")
-    fig, ax = figure(3000, 400)                    # shown at ~1060 px: 8 pt -> 5 px
+    fig, ax = figure(3000, 400)  # shown at ~1060 px: 8 pt -> 5 px
     ax.plot(np.arange(3))
     wide = save(fig, tmp_path / "wide.png")
     text = synthetic_page.read_text(encoding="utf-8")
     first = re.search(r"<figure>.*?</figure>", text, re.S).group(0)
-    extra = (first + h.image(crowded, "") + h.image(wide, "wide")
-             + '<section id="stray"><h2>Stray</h2><h3 id="stray-part">part</h3></section>')
+    extra = (
+        first
+        + h.image(crowded, "")
+        + h.image(wide, "wide")
+        + '<section id="stray"><h2>Stray</h2><h3 id="stray-part">part</h3></section>'
+    )
     bad = tmp_path / "bad.html"
     bad.write_text(text.replace("</body>", extra + "</body>", 1), encoding="utf-8")
     found = "\n".join(reader_problems(bad, tmp_path))

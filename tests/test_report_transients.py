@@ -18,11 +18,11 @@ import json
 import re
 from html.parser import HTMLParser
 
+import fixtures
 import numpy as np
 import pytest
-
-import fixtures
 from imagecheck import assert_real_png
+
 from rotorpillar import cli
 from rotorpillar.transients.run_comparisons import COMPARISONS, comparison_command
 
@@ -108,30 +108,43 @@ def page(tmp_path_factory):
     """A report on the analysis, both comparisons and the paper's case."""
     out = tmp_path_factory.mktemp("transients")
     run_cli("analyze", "paper", "--out", out)
-    docs = {"earthquake": fixtures.write_comparison_fixture(
-                out, "earthquake", ("modal", "fem3d"),
-                warnings={"fem3d": ["synthetic warning <one line>"]}),
-            "runup": fixtures.write_comparison_fixture(out, "runup", ("modal", "beam"))}
+    docs = {
+        "earthquake": fixtures.write_comparison_fixture(
+            out, "earthquake", ("modal", "fem3d"), warnings={"fem3d": ["synthetic warning <one line>"]}
+        ),
+        "runup": fixtures.write_comparison_fixture(out, "runup", ("modal", "beam")),
+    }
     paper = fixtures.write_simulation_fixture(
-        out, "earthquake", modal=False, per_model=True,
-        warnings=["the published base forcing amplifies the ground 1.6 times"])
+        out,
+        "earthquake",
+        modal=False,
+        per_model=True,
+        warnings=["the published base forcing amplifies the ground 1.6 times"],
+    )
     fixtures.write_simulation_fixture(out, "runup")
     run_cli("report", "paper", "--out", out, "--no-animations")
-    return {"out": out, "text": (out / "report.html").read_text(encoding="utf-8"),
-            "compare": docs, "paper": paper,
-            "analyze": json.loads((out / "analyze.json").read_text()),
-            "report": json.loads((out / "report.json").read_text())}
+    return {
+        "out": out,
+        "text": (out / "report.html").read_text(encoding="utf-8"),
+        "compare": docs,
+        "paper": paper,
+        "analyze": json.loads((out / "analyze.json").read_text()),
+        "report": json.loads((out / "report.json").read_text()),
+    }
 
 
 def test_the_record_comes_first_then_the_paper_case(page):
     eq = section(page["text"], "earthquake")
-    heads = ["A recorded earthquake on the physically consistent models",
-             "Response spectrum of the record", "The paper&#x27;s case"]
+    heads = [
+        "A recorded earthquake on the physically consistent models",
+        "Response spectrum of the record",
+        "The paper&#x27;s case",
+    ]
     at = [h3(eq, x) for x in heads]
     assert all(i >= 0 for i in at) and at == sorted(at), at
     # the overlay is the first picture of the section
     first_img = eq.find("<img")
-    assert 0 < first_img < at[1] and "overlaid" in eq[first_img:at[1]]
+    assert 0 < first_img < at[1] and "overlaid" in eq[first_img : at[1]]
     assert page["report"]["failures"] == {}
     assert page["report"]["inputs"]["compare_earthquake"] and page["report"]["inputs"]["compare_runup"]
 
@@ -147,20 +160,23 @@ def test_the_cost_table_shows_the_comparison_as_written(page, case, where):
         assert int(r["DOFs"]) == p["dofs"]
         assert number(r["wall time, warm (s)"]) == pytest.approx(p["wall_seconds"], rel=FOUR_DIGITS)
         assert number(r["peak tip relative to the ground (m)"]) == pytest.approx(
-            p["peak_tip_relative"], rel=FIVE_DIGITS)
-        assert number(r["peak shaft deflection (m)"]) == pytest.approx(
-            p["peak_shaft_deflection"], rel=FIVE_DIGITS)
+            p["peak_tip_relative"], rel=FIVE_DIGITS
+        )
+        assert number(r["peak shaft deflection (m)"]) == pytest.approx(p["peak_shaft_deflection"], rel=FIVE_DIGITS)
         assert number(r[f"cost ratio (warm wall time / {ref}'s)"]) == pytest.approx(
-            doc["cost_ratio"][m], rel=FOUR_DIGITS)
+            doc["cost_ratio"][m], rel=FOUR_DIGITS
+        )
         err = r[f"tip history error against {ref}"]
         if m == ref:
             assert err == "reference"
-        else:       # shown in percent ("(leads)" beside the measure that fits the case)
+        else:  # shown in percent ("(leads)" beside the measure that fits the case)
             assert number(err.replace("(leads)", "")) / 100 == pytest.approx(
-                doc["errors"][m]["tip_history_error"], rel=THREE_DIGITS)
+                doc["errors"][m]["tip_history_error"], rel=THREE_DIGITS
+            )
             # html.pct: 2 decimals of a percent, i.e. +-5e-5 absolute
             assert number(r[f"peak difference against {ref}"]) / 100 == pytest.approx(
-                doc["errors"][m]["peak_tip_difference"], abs=5e-5)
+                doc["errors"][m]["peak_tip_difference"], abs=5e-5
+            )
 
 
 def test_the_full_order_runs_and_their_warnings_are_stated(page):
@@ -177,9 +193,13 @@ def test_the_full_order_runs_and_their_warnings_are_stated(page):
 def test_the_spectrum_shows_the_modes_and_the_rom_estimate(page):
     eq = section(page["text"], "earthquake")
     spec = page["compare"]["earthquake"]["spectrum"]
-    part = eq[h3(eq, "Response spectrum of the record"):h3(eq, "The paper&#x27;s case")]
-    m = re.search(r"Spectral estimate of the peak tip: ([\d.e+-]+) m, .*?the time history's peak "
-                  r"on the same model: ([\d.e+-]+) m", plain_text(part), re.S)
+    part = eq[h3(eq, "Response spectrum of the record") : h3(eq, "The paper&#x27;s case")]
+    m = re.search(
+        r"Spectral estimate of the peak tip: ([\d.e+-]+) m, .*?the time history's peak "
+        r"on the same model: ([\d.e+-]+) m",
+        plain_text(part),
+        re.S,
+    )
     assert m, part[:2000]
     # 4 significant digits
     assert float(m.group(1)) == pytest.approx(spec["spectral_peak_tip"], rel=FOUR_DIGITS)
@@ -188,23 +208,24 @@ def test_the_spectrum_shows_the_modes_and_the_rom_estimate(page):
     assert "SRSS is an estimate, not a bound" in plain_text(part)
     assert "horizontal, in the rotor's plane (the paper's X)" in plain_text(part)
     assert "synthetic spectrum: an estimate, not a bound" in part
-    periods = [t for h_, rows in tables(part) if h_[:2] == ["pillar mode", "period T_j (s)"]
-               for t in rows]
+    periods = [t for h_, rows in tables(part) if h_[:2] == ["pillar mode", "period T_j (s)"] for t in rows]
     assert [float(r[1]) for r in periods] == pytest.approx(spec["mode_periods"], rel=FOUR_DIGITS)
 
 
 def test_the_paper_case_states_its_size_the_flaw_and_the_warnings(page):
     eq = section(page["text"], "earthquake")
-    part = plain_text(eq[h3(eq, "The paper&#x27;s case"):])
+    part = plain_text(eq[h3(eq, "The paper&#x27;s case") :])
     ex = page["paper"]["excitation"]
     assert "The paper's pulse on Eq. 4 as published." in part
     assert f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m" in part
     assert f"its acceleration reaches {ex['peak_acceleration_g']:.3g} g" in part
     row = next(r for r in page["analyze"]["paper_comparison"] if r["key"] == "eq4_base_forcing")
     # the flaw in one sentence with its number and a link; the finding is stated once, elsewhere
-    assert (f"The base-forcing flaw: Eq. 4 as published forces the rotor's shaft from the ground "
-            f"as well as the pillar: under a slow ground displacement it moves the tip "
-            f"{row['paper']:.3g} times as far as the ground") in part
+    assert (
+        f"The base-forcing flaw: Eq. 4 as published forces the rotor's shaft from the ground "
+        f"as well as the pillar: under a slow ground displacement it moves the tip "
+        f"{row['paper']:.3g} times as far as the ground"
+    ) in part
     assert row["note"] not in part and 'href="#paper-findings"' in eq
     assert "the published base forcing amplifies the ground 1.6 times" in part
     # the tip relative to the ground: the fixture's tip_x is absolute (ground + relative)
@@ -212,7 +233,7 @@ def test_the_paper_case_states_its_size_the_flaw_and_the_warnings(page):
     rel = np.abs(a["tip_x"] - a["ground_x"]).max()
     m = re.search(r"Largest tip displacement relative to the ground: ([\d.e+-]+) m", part)
     assert float(m.group(1)) == pytest.approx(rel, rel=FOUR_DIGITS)
-    assert rel < 0.01 * np.abs(a["tip_x"]).max()       # the ground dominates the absolute tip
+    assert rel < 0.01 * np.abs(a["tip_x"]).max()  # the ground dominates the absolute tip
     assert "relative to the ground, and the rotor speed" in part
 
 
@@ -224,17 +245,22 @@ def test_the_findings_list_eq4_base_forcing(page):
     assert "forces the rotor's shaft from the ground" in summary
     paper = plain_text(section(page["text"], "paper"))
     assert "Findings on the paper's formulation" in paper and f"{row['quantity']} (Eq. 4): " in paper
-    assert page["text"].count(html.escape(row["note"])) == 1          # stated once in the page
+    assert page["text"].count(html.escape(row["note"])) == 1  # stated once in the page
     printed = [r for r in page["analyze"]["paper_comparison"] if not r.get("details")]
     assert f"({sum(r['flag'] for r in printed)} of {len(printed)} printed numbers)" in paper
     # the speed-accuracy point in the summary
     assert "modal follows fem3d&#x27;s tip history within" in section(page["text"], "summary")
 
 
-@pytest.mark.parametrize("name, size", [("comparison_earthquake.png", (1060, 700)),
-                                        ("comparison_runup.png", (1060, 700)),
-                                        ("response_spectrum.png", (900, 540)),
-                                        ("earthquake_response.png", (900, 800))])
+@pytest.mark.parametrize(
+    "name, size",
+    [
+        ("comparison_earthquake.png", (1060, 700)),
+        ("comparison_runup.png", (1060, 700)),
+        ("response_spectrum.png", (900, 540)),
+        ("earthquake_response.png", (900, 800)),
+    ],
+)
 def test_the_charts_are_real_pngs(page, name, size):
     path = page["out"] / "figures" / name
     assert str(path) in page["report"]["figures"]
@@ -251,7 +277,7 @@ def test_missing_comparisons_name_the_commands(tmp_path):
     assert "--set excitation.kind=record" in comparison_command("earthquake")
     eq = section(text, "earthquake")
     assert f"<code>rotorpillar simulate --case earthquake --model paper paper --out {tmp_path}" in eq
-    assert "The base-forcing flaw: " in plain_text(eq)       # from analyze.json alone
+    assert "The base-forcing flaw: " in plain_text(eq)  # from analyze.json alone
     assert json.loads((tmp_path / "report.json").read_text())["failures"] == {}
 
 
@@ -275,20 +301,22 @@ def test_the_record_set_by_the_comparison_is_not_another_scene(tmp_path):
     scene["excitation"].update(kind="record", record="elcentro")
     (tmp_path / "compare_earthquake.json").write_text(json.dumps({**doc, "scene": scene}))
     run_cli("report", "paper", "--out", tmp_path, "--no-animations")
-    assert "computed for a different scene" not in section(
-        (tmp_path / "report.html").read_text(), "earthquake")
+    assert "computed for a different scene" not in section((tmp_path / "report.html").read_text(), "earthquake")
     scene["rotor"]["eccentricity"] *= 2
     (tmp_path / "compare_earthquake.json").write_text(json.dumps({**doc, "scene": scene}))
     run_cli("report", "paper", "--out", tmp_path, "--no-animations")
     assert "computed for a different scene (rotor.eccentricity differ)" in section(
-        (tmp_path / "report.html").read_text(), "earthquake")
+        (tmp_path / "report.html").read_text(), "earthquake"
+    )
 
 
 def test_run_compares_on_the_record_the_user_can_override(tmp_path):
     """run's compare stages: the record set before the user's --set (theirs win)."""
     from types import SimpleNamespace
+
     from rotorpillar.commands.run import RUN_STAGES, stage_argv
     from rotorpillar.scene import load_scene
+
     stages = {st[0]: st for st in RUN_STAGES}
     names = [st[0] for st in RUN_STAGES]
     for case in COMPARISONS:
@@ -297,11 +325,17 @@ def test_run_compares_on_the_record_the_user_can_override(tmp_path):
     # run side by side with them (one wave after analyze)
     assert stages["compare --case earthquake"][4] == stages["simulate --case earthquake"][4]
     assert names.index("analyze") < names.index("compare --case runup")
-    args = SimpleNamespace(scene="paper", out=tmp_path, overrides=["excitation.record=my.AT2"],
-                           _scene=load_scene("paper"))
+    args = SimpleNamespace(
+        scene="paper", out=tmp_path, overrides=["excitation.record=my.AT2"], _scene=load_scene("paper")
+    )
     command, _, extra, own, _ = stages["compare --case earthquake"]
     argv = stage_argv(command, args, extra, own)
     sets = [argv[i + 1] for i, a in enumerate(argv) if a == "--set"]
-    assert sets == ["excitation.kind=record", "excitation.record=elcentro", "excitation.start=1",
-                    "full_order.earthquake_duration=9", "excitation.record=my.AT2"]
+    assert sets == [
+        "excitation.kind=record",
+        "excitation.record=elcentro",
+        "excitation.start=1",
+        "full_order.earthquake_duration=9",
+        "excitation.record=my.AT2",
+    ]
     assert argv[argv.index("--models") + 1] == "modal,fem3d"

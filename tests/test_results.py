@@ -18,7 +18,7 @@ from rotorpillar.provenance import to_json
 @pytest.mark.parametrize("overrides", [[], ["shaft.stiffness=5e6"], ["rotor.eccentricity=0.04"]])
 def test_analysis_round_trips_through_its_json(overrides):
     result = analyze(override(load_scene("paper"), overrides))
-    doc = json.loads(to_json(result))                  # as analyze.json holds it
+    doc = json.loads(to_json(result))  # as analyze.json holds it
     back = AnalysisResult.from_json(doc)
     assert back.to_json() == doc
     assert back.system.omega == pytest.approx(result.system.omega)
@@ -37,10 +37,11 @@ def test_modal_summary_round_trips(tmp_path):
     from rotorpillar.fem3d import modal_analysis
     from rotorpillar.fem3d.modal_summary import ModalSummary, modal_summary
     from rotorpillar.reduced.reduction import pillar_closed_forms
-    scene = load_scene("paper", ["mesh.elements_around=8", "mesh.elements_along=4",
-                                 "modal.n_modes=4"])
-    summary = modal_summary(scene, modal_analysis(scene, top=False),
-                            modal_analysis(scene, top=True), pillar_closed_forms(scene.pillar))
+
+    scene = load_scene("paper", ["mesh.elements_around=8", "mesh.elements_along=4", "modal.n_modes=4"])
+    summary = modal_summary(
+        scene, modal_analysis(scene, top=False), modal_analysis(scene, top=True), pillar_closed_forms(scene.pillar)
+    )
     doc = json.loads(to_json(summary))
     assert ModalSummary.from_json(doc).to_json() == doc
     assert doc["reduction"]["m_reduced"] > 0

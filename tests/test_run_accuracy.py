@@ -30,13 +30,21 @@ def run_json(tmp_path, *args):
 
 @pytest.mark.parametrize("integrator, step, spp", [("newmark", 0.5, 0.14), ("central_difference", 0.05, 1.4)])
 def test_a_step_that_cannot_resolve_the_rotation_is_not_a_success(tmp_path, integrator, step, spp):
-    p, doc = run_json(tmp_path, "--case", "runup", "--no-threshold",
-                      "--set", f"simulate.integrator={integrator}", "--set", f"simulate.time_step={step}")
+    p, doc = run_json(
+        tmp_path,
+        "--case",
+        "runup",
+        "--no-threshold",
+        "--set",
+        f"simulate.integrator={integrator}",
+        "--set",
+        f"simulate.time_step={step}",
+    )
     assert p.returncode == 4, p.stderr
     assert doc["ok"] is False
     line = next(c for c in doc["failed_checks"] if c.startswith("step_accuracy:"))
     assert f"{spp:.3g} steps per period" in line and "unbalance's rotation" in line
-    assert "period error" in line                              # says why, in the scheme's terms
+    assert "period error" in line  # says why, in the scheme's terms
     assert doc["integrator"]["accuracy"]["steps_per_period"] == pytest.approx(spp, rel=0.02)
     assert "check failed: step_accuracy" in p.stderr
 
@@ -47,25 +55,38 @@ def test_a_loose_tolerance_is_not_a_success(tmp_path):
     assert any(c.startswith("tolerance:") for c in doc["failed_checks"])
 
 
-@pytest.mark.parametrize("args", [
-    ["--case", "runup", "--no-threshold"],
-    ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=newmark"],
-    ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=central_difference"],
-    # scipy's Radau on the 80 s run-up: about a minute on a quiet machine, the slow tier's
-    pytest.param(["--case", "runup", "--no-threshold", "--set", "simulate.integrator=Radau"],
-                 marks=pytest.mark.slow),
-    ["--case", "earthquake", "--model", "modal", "--set", "excitation.kind=record"],
-    ["--case", "earthquake", "--model", "beam", "--set", "excitation.kind=record",
-     "--set", "simulate.earthquake_duration=12"],
-    ["--case", "sweep"],
-], ids=["dp5", "newmark", "central-difference", "radau", "modal-record", "beam-record", "sweep"])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--case", "runup", "--no-threshold"],
+        ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=newmark"],
+        ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=central_difference"],
+        # scipy's Radau on the 80 s run-up: about a minute on a quiet machine, the slow tier's
+        pytest.param(
+            ["--case", "runup", "--no-threshold", "--set", "simulate.integrator=Radau"], marks=pytest.mark.slow
+        ),
+        ["--case", "earthquake", "--model", "modal", "--set", "excitation.kind=record"],
+        [
+            "--case",
+            "earthquake",
+            "--model",
+            "beam",
+            "--set",
+            "excitation.kind=record",
+            "--set",
+            "simulate.earthquake_duration=12",
+        ],
+        ["--case", "sweep"],
+    ],
+    ids=["dp5", "newmark", "central-difference", "radau", "modal-record", "beam-record", "sweep"],
+)
 def test_the_default_steps_pass_by_far(tmp_path, args):
     p, doc = run_json(tmp_path, *args)
     assert p.returncode == 0, p.stderr
     acc = doc["integrator"]["accuracy"]
     assert doc["ok"] is True and "failed_checks" not in doc
     assert acc["steps_per_period"] >= 2 * acc["steps_per_period_needed"]
-    if "beam" in args:                      # the full order's step: the band's, by its rule
+    if "beam" in args:  # the full order's step: the band's, by its rule
         rule = doc["integrator"]["step_rule"]
         assert rule["scheme"] == "generalized_alpha" and rule["source"] == "rule"
         assert rule["at_forcing_top"]["period_error"] == pytest.approx(2e-3, rel=1e-3)
@@ -76,10 +97,12 @@ def test_an_adaptive_run_is_judged_by_the_periods_it_went_through():
     """Steps over periods: a sound necessary condition (fewer steps than needed x periods
     means some step resolved its moment's fastest frequency with fewer than needed)."""
     need = steps_per_period_needed("dp5")
-    ok = check_step("dp5", {}, 0.01, {"unbalance_rotation": 90.0}, 10.0, adaptive=True,
-                    periods=100.0, steps=int(need * 100) + 1)
-    bad = check_step("dp5", {}, 0.01, {"unbalance_rotation": 90.0}, 10.0, adaptive=True,
-                     periods=100.0, steps=int(need * 100) - 1)
+    ok = check_step(
+        "dp5", {}, 0.01, {"unbalance_rotation": 90.0}, 10.0, adaptive=True, periods=100.0, steps=int(need * 100) + 1
+    )
+    bad = check_step(
+        "dp5", {}, 0.01, {"unbalance_rotation": 90.0}, 10.0, adaptive=True, periods=100.0, steps=int(need * 100) - 1
+    )
     assert ok.ok and not bad.ok and bad.failed[0].startswith("step_accuracy:")
 
 

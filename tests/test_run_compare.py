@@ -17,10 +17,19 @@ from rotorpillar.transients.run_comparisons import COMPARISONS, comparison_model
 @pytest.mark.slow
 @pytest.mark.skipif("compare" not in COMMANDS, reason="the compare command is not on this branch")
 def test_run_compare_stages_feed_the_report(tmp_path):
-    skip = [a for s in ("analyze", "simulate", "modal", "harmonic", "integrators", "converge")
-            for a in ("--skip", s)]
-    p = cli("run", "paper", "--out", tmp_path, *skip, "--no-animations",
-            "--set", "simulate.duration=10", "--set", "simulate.earthquake_duration=10")
+    skip = [a for s in ("analyze", "simulate", "modal", "harmonic", "integrators", "converge") for a in ("--skip", s)]
+    p = cli(
+        "run",
+        "paper",
+        "--out",
+        tmp_path,
+        *skip,
+        "--no-animations",
+        "--set",
+        "simulate.duration=10",
+        "--set",
+        "simulate.earthquake_duration=10",
+    )
     assert p.returncode == 0, p.stderr[-3000:]
     run = json.loads((tmp_path / "run.json").read_text())
     assert list(run["stages"]) == [f"compare_{c}" for c in COMPARISONS] + ["report"]

@@ -34,15 +34,18 @@ def test_the_stages_follow_the_chain():
 
 
 def _job(tmp_path, name: str, seconds: float, code: int = 0):
-    script = (f"import time, pathlib; p = pathlib.Path({str(tmp_path)!r}); "
-              f"(p / '{name}.start').write_text(repr(time.time())); time.sleep({seconds}); "
-              f"(p / '{name}.end').write_text(repr(time.time())); raise SystemExit({code})")
+    script = (
+        f"import time, pathlib; p = pathlib.Path({str(tmp_path)!r}); "
+        f"(p / '{name}.start').write_text(repr(time.time())); time.sleep({seconds}); "
+        f"(p / '{name}.end').write_text(repr(time.time())); raise SystemExit({code})"
+    )
     return name, [sys.executable, "-c", script]
 
 
 def _intervals(tmp_path, names):
-    return {n: (float((tmp_path / f"{n}.start").read_text()), float((tmp_path / f"{n}.end").read_text()))
-            for n in names}
+    return {
+        n: (float((tmp_path / f"{n}.start").read_text()), float((tmp_path / f"{n}.end").read_text())) for n in names
+    }
 
 
 def test_a_wave_runs_two_at_a_time(tmp_path):
@@ -56,9 +59,8 @@ def test_a_wave_runs_two_at_a_time(tmp_path):
 
 
 def test_a_failing_stage_is_named_after_the_running_ones_finish(tmp_path):
-    jobs = [_job(tmp_path, "slow", 0.8), _job(tmp_path, "bad", 0.1, code=3),
-            _job(tmp_path, "never", 0.1)]
+    jobs = [_job(tmp_path, "slow", 0.8), _job(tmp_path, "bad", 0.1, code=3), _job(tmp_path, "never", 0.1)]
     with pytest.raises(StageError, match="'bad' failed \\(exit 3\\)"):
         run_wave(jobs, slots=2)
-    assert (tmp_path / "slow.end").exists()            # finished, its files whole
-    assert not (tmp_path / "never.start").exists()     # not started after the failure
+    assert (tmp_path / "slow.end").exists()  # finished, its files whole
+    assert not (tmp_path / "never.start").exists()  # not started after the failure

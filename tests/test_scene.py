@@ -16,8 +16,9 @@ def test_embedded_scenes_load():
 
 
 def test_overrides_are_typed_and_repeatable():
-    s = load_scene("paper", ["shaft.stiffness=5e6", "shaft.damping=25e3", "mesh.cell_type=tetrahedron",
-                             "mesh.elements_around=16"])
+    s = load_scene(
+        "paper", ["shaft.stiffness=5e6", "shaft.damping=25e3", "mesh.cell_type=tetrahedron", "mesh.elements_around=16"]
+    )
     assert s.shaft.stiffness == 5e6 and s.mesh.cell_type == "tetrahedron"
     assert s.mesh.elements_around == 16 and isinstance(s.mesh.elements_around, int)
     assert override(s, ["rotor.eccentricity=0.01"]).rotor.eccentricity == 0.01
@@ -31,7 +32,7 @@ BAD = [
     (["pillar.height=0"], "pillar.height", "> 0"),
     (["pillar.poisson_ratio=0.5"], "pillar.poisson_ratio", "< 0.5"),
     (["pillar.poisson_ratio=-1"], "pillar.poisson_ratio", "> -1"),
-    (["shaft.stiffness=\"stiff\""], "shaft.stiffness", "must be a number"),
+    (['shaft.stiffness="stiff"'], "shaft.stiffness", "must be a number"),
     (["mesh.elements_around=12.5"], "mesh.elements_around", "must be an integer"),
     (["mesh.degree=3"], "mesh.degree", "one of 1, 2"),
     (["mesh.elements_along=0"], "mesh.elements_along", ">= 1"),
@@ -40,7 +41,7 @@ BAD = [
     (["shaft.damping=nan"], "shaft.damping", "finite"),
     (["shaftstiffness"], "shaftstiffness", "KEY=VALUE"),
     (["stiffness=1"], "stiffness=1", "section.key"),
-    (["reduction.source=\"guess\""], "reduction.source", "one of"),
+    (['reduction.source="guess"'], "reduction.source", "one of"),
 ]
 
 
@@ -65,6 +66,7 @@ def test_missing_file_and_bad_toml(tmp_path):
 
 def test_missing_key_and_section(tmp_path):
     from rotorpillar.scene import read_scene_toml, scene_from_dict
+
     data, _ = read_scene_toml("paper")
     del data["rotor"]["inertia"]
     with pytest.raises(SceneError, match=r"rotor.inertia: missing"):
@@ -77,8 +79,9 @@ def test_missing_key_and_section(tmp_path):
 
 def test_scene_file_round_trip(tmp_path):
     from importlib import resources
+
     text = resources.files("rotorpillar.scenes").joinpath("paper.toml").read_text()
     f = tmp_path / "mine.toml"
     f.write_text(text.replace("eccentricity = 0.002", "eccentricity = 0.004"))
     s = load_scene(f)
-    assert s.rotor.eccentricity == 0.004 and s.name == "paper"   # the file's own name wins
+    assert s.rotor.eccentricity == 0.004 and s.name == "paper"  # the file's own name wins

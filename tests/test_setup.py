@@ -14,8 +14,10 @@ ROOT = Path(__file__).resolve().parents[1]
 
 @pytest.mark.slow
 def test_setup_is_idempotent():
-    runs = [subprocess.run([str(ROOT / "tools" / "setup.sh")], capture_output=True, text=True,
-                           cwd=ROOT, timeout=1800) for _ in range(2)]
+    runs = [
+        subprocess.run([str(ROOT / "tools" / "setup.sh")], capture_output=True, text=True, cwd=ROOT, timeout=1800)
+        for _ in range(2)
+    ]
     for p in runs:
         assert p.returncode == 0, p.stderr
     second = runs[1].stdout + runs[1].stderr

@@ -54,13 +54,16 @@ def test_sanders_n1_is_the_euler_bernoulli_beam_for_a_long_tube():
 
 def test_sanders_n2_of_a_very_long_tube_is_the_ring():
     assert sanders_frequency(1, 2, E, NU, RHO, R, T, 2e4) == pytest.approx(
-        ring_frequency(2, E, NU, RHO, R, T), rel=1e-4)
+        ring_frequency(2, E, NU, RHO, R, T), rel=1e-4
+    )
 
 
 def _shell(na, nz, ends="clamped-free", n_modes=12, method=None):
     from rotorpillar.fem3d.naghdi import ShellDiscretisation, ShellSection, shell_modal_analysis
-    return shell_modal_analysis(ShellSection(E, NU, RHO, T), R, H, ShellDiscretisation(na, nz),
-                                n_modes=n_modes, ends=ends, method=method)
+
+    return shell_modal_analysis(
+        ShellSection(E, NU, RHO, T), R, H, ShellDiscretisation(na, nz), n_modes=n_modes, ends=ends, method=method
+    )
 
 
 def _first(res, kind, n=None):
@@ -70,17 +73,18 @@ def _first(res, kind, n=None):
     raise AssertionError(f"no {kind} mode (n={n}) in {list(zip(res.omega, res.kind))}")
 
 
-@pytest.mark.slow                       # shell models solved
+@pytest.mark.slow  # shell models solved
 def test_simply_supported_shell_matches_sanders():
     res = _shell(32, 40, ends="simply-supported", n_modes=12)
     # the axial rigid translation comes first (free axial motion), at ~0
     assert res.omega[0] < 1e-2 and res.kind[0] == "axial"
     for n in (1, 2, 3):
         assert _first(res, "bending" if n == 1 else "ovalling", n) == pytest.approx(
-            sanders_frequency(1, n, E, NU, RHO, R, T, H), rel=1e-3)
+            sanders_frequency(1, n, E, NU, RHO, R, T, H), rel=1e-3
+        )
 
 
-@pytest.mark.slow                       # shell models solved
+@pytest.mark.slow  # shell models solved
 def test_cantilever_bending_is_timoshenkos_beam():
     res = _shell(16, 20, n_modes=4)
     sec = tube_section(2.0, 1.96, RHO)
@@ -88,10 +92,10 @@ def test_cantilever_bending_is_timoshenkos_beam():
     timo = omega_timoshenko(E, NU, kappa, RHO, sec.area, sec.second_moment, H)
     assert res.kind[:2] == ["bending_x", "bending_y"] or set(res.kind[:2]) == {"bending_x", "bending_y"}
     assert res.omega[0] == pytest.approx(timo, rel=1e-3)
-    assert res.omega[1] == pytest.approx(res.omega[0], rel=1e-8)   # the x-y pair
+    assert res.omega[1] == pytest.approx(res.omega[0], rel=1e-8)  # the x-y pair
 
 
-@pytest.mark.slow                       # shell models solved
+@pytest.mark.slow  # shell models solved
 def test_shell_frequencies_agree_between_the_eigensolvers_methods():
     block, ks = (_shell(12, 15, n_modes=8, method=m) for m in ("block", "krylovschur"))
     assert block.omega == pytest.approx(ks.omega, rel=1e-8)
@@ -102,6 +106,7 @@ def test_shell_frequencies_agree_between_the_eigensolvers_methods():
 def test_rigid_rotation_has_no_bending_strain():
     import ufl
     from dolfinx import fem
+
     from rotorpillar.fem3d import naghdi as sh
     from rotorpillar.fem3d.naghdi import mid_surface_mesh
     from rotorpillar.mesh.midsurface import MidSurface
@@ -111,8 +116,12 @@ def test_rigid_rotation_has_no_bending_strain():
     for na in (8, 16):
         msh, _, _ = mid_surface_mesh(MidSurface(R, H, na, 10))
         cell = msh.ufl_cell()
-        V = fem.FunctionSpace(msh, ufl.MixedElement([ufl.VectorElement("Lagrange", cell, 2, dim=3),
-                                                     ufl.VectorElement("Lagrange", cell, 2, dim=2)]))
+        V = fem.FunctionSpace(
+            msh,
+            ufl.MixedElement(
+                [ufl.VectorElement("Lagrange", cell, 2, dim=3), ufl.VectorElement("Lagrange", cell, 2, dim=2)]
+            ),
+        )
         w = fem.Function(V)
         # rotation about x: u = e_x cross x, director turn e_x cross n = sin(theta) e_z
         w.sub(0).interpolate(lambda x: np.vstack([0 * x[0], -x[2], x[1]]))
@@ -129,7 +138,7 @@ def test_rigid_rotation_has_no_bending_strain():
     assert ours[1] < ours[0] and ours[1] < 1e-6 * facet
 
 
-@pytest.mark.slow                       # shell models solved
+@pytest.mark.slow  # shell models solved
 def test_q2_shell_converges_at_fourth_order():
     runs = [_shell(na, int(1.25 * na)) for na in (8, 12, 16, 24)]
     h = [1 / 12, 1 / 16, 1 / 24]

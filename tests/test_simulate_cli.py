@@ -20,12 +20,10 @@ import pytest
 from conftest import cli
 from scipy.integrate import solve_ivp
 
+from rotorpillar.reduced.excitation import STANDARD_GRAVITY
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import stationary_exact
-from rotorpillar.reduced.excitation import STANDARD_GRAVITY
 from rotorpillar.scene import load_scene
-
-
 
 
 @pytest.fixture(scope="module")
@@ -89,8 +87,7 @@ def test_modal_earthquake_contract(tmp_path):
 
 
 def test_paper_earthquake_ground_is_q5_as_written(tmp_path):
-    p = cli("simulate", "paper", "--case", "earthquake", "--model", "paper", "--json", "--out",
-            tmp_path)
+    p = cli("simulate", "paper", "--case", "earthquake", "--model", "paper", "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
     data = np.load(tmp_path / "simulate_earthquake.npz")
     t, g = data["t"], data["ground_x"]
@@ -100,8 +97,7 @@ def test_paper_earthquake_ground_is_q5_as_written(tmp_path):
 
 
 def test_rundown_with_the_motor_off(tmp_path):
-    p = cli("simulate", "paper", "--case", "rundown", "--json", "--out", tmp_path,
-            "--set", "simulate.duration=20")
+    p = cli("simulate", "paper", "--case", "rundown", "--json", "--out", tmp_path, "--set", "simulate.duration=20")
     doc = json.loads(p.stdout)
     # quasi-static reference: J W' = -k W^2 - dL(W), dL the exact averaged
     # torque of the linear structure at constant speed (frequency domain)
@@ -109,8 +105,9 @@ def test_rundown_with_the_motor_off(tmp_path):
     model, _ = build_model(load_scene("paper"), "paper")
     Wg = np.linspace(0.5, 1.1 * W0, 4000)
     Tg = model.steady_torque(Wg)
-    sol = solve_ivp(lambda t, W: [(-k * W[0] ** 2 + np.interp(W[0], Wg, Tg)) / J], (0, 20), [W0],
-                    rtol=1e-10, atol=1e-12)
+    sol = solve_ivp(
+        lambda t, W: [(-k * W[0] ** 2 + np.interp(W[0], Wg, Tg)) / J], (0, 20), [W0], rtol=1e-10, atol=1e-12
+    )
     assert doc["omega_final"] == pytest.approx(sol.y[0][-1], rel=1e-3)
     # the resonances cost the run-down about 1 % against Mc alone, W0 / (1 + W0 k t / J)
     assert doc["omega_final"] < W0 / (1 + W0 * k * 20 / J)
@@ -149,8 +146,9 @@ def test_integrators_command(tmp_path):
 
 
 def test_decimation_keeps_the_peaks():
-    from rotorpillar.transients.cases import run_case
     from rotorpillar.transients.case_summary import decimate
+    from rotorpillar.transients.cases import run_case
+
     r = run_case(load_scene("paper"), "runup", "paper").run
     d = decimate(r, 1000)
     assert len(d.t) <= 1000 and d.t[-1] == r.t[-1] and d.t[0] == r.t[0]
@@ -159,12 +157,15 @@ def test_decimation_keeps_the_peaks():
     assert np.array_equal(d.q, r.q[i])
 
 
-@pytest.mark.parametrize("sets, key", [
-    (["excitation.kind=record", "excitation.record=BAD"], "excitation.record"),
-    (["simulate.duration=-5"], "simulate.duration"),
-    (["simulate.earthquake_duration=-1"], "simulate.earthquake_duration"),
-    (["excitation.duration=nan"], "excitation.duration"),
-])
+@pytest.mark.parametrize(
+    "sets, key",
+    [
+        (["excitation.kind=record", "excitation.record=BAD"], "excitation.record"),
+        (["simulate.duration=-5"], "simulate.duration"),
+        (["simulate.earthquake_duration=-1"], "simulate.earthquake_duration"),
+        (["excitation.duration=nan"], "excitation.duration"),
+    ],
+)
 def test_cli_refuses_bad_earthquake_input(tmp_path, sets, key):
     args = ["simulate", "paper", "--case", "earthquake", "--out", tmp_path]
     for s in sets:
@@ -180,8 +181,18 @@ def test_cli_refuses_an_empty_accelerogram_file(tmp_path):
     f = tmp_path / "empty.txt"
     f.write_text("")
     out = tmp_path / "out"
-    p = cli("simulate", "paper", "--case", "earthquake", "--out", out,
-            "--set", "excitation.kind=record", "--set", f"excitation.record='{f}'")
+    p = cli(
+        "simulate",
+        "paper",
+        "--case",
+        "earthquake",
+        "--out",
+        out,
+        "--set",
+        "excitation.kind=record",
+        "--set",
+        f"excitation.record='{f}'",
+    )
     assert p.returncode == 2
     assert "empty" in p.stderr and len(p.stderr.strip().splitlines()) == 1
     assert not out.exists()

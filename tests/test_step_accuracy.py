@@ -34,11 +34,21 @@ import numpy as np
 import pytest
 
 from rotorpillar.fem3d.rotor_top import Affine, RotorOnTop, Step, solve_spin
-from rotorpillar.reduced.accuracy import (FULL_ORDER_ERROR, full_order_parameters, scheme_error,
-                                          stability_function, steps_per_period_needed)
+from rotorpillar.reduced.accuracy import (
+    FULL_ORDER_ERROR,
+    full_order_parameters,
+    scheme_error,
+    stability_function,
+    steps_per_period_needed,
+)
 
-SCHEMES = [("newmark", 1.0), ("hht", 0.8), ("generalized_alpha", 0.8), ("generalized_alpha", 0.5),
-           ("generalized_alpha", 0.0)]
+SCHEMES = [
+    ("newmark", 1.0),
+    ("hht", 0.8),
+    ("generalized_alpha", 0.8),
+    ("generalized_alpha", 0.5),
+    ("generalized_alpha", 0.0),
+]
 
 
 def slope(hs, errors) -> float:
@@ -50,9 +60,9 @@ def oscillator_exact(t, m, c, k, F0, W):
     wn = math.sqrt(k / m)
     z = c / (2 * math.sqrt(k * m))
     wd = wn * math.sqrt(1 - z * z)
-    X = F0 / complex(k - m * W * W, c * W)                  # steady state X e^{i W t}
-    x0p, v0p = X.real, -W * X.imag                          # its value and rate at t = 0
-    A = -x0p                                                # the homogeneous part cancels them
+    X = F0 / complex(k - m * W * W, c * W)  # steady state X e^{i W t}
+    x0p, v0p = X.real, -W * X.imag  # its value and rate at t = 0
+    A = -x0p  # the homogeneous part cancels them
     B = (z * wn * A - v0p) / wd
     return np.exp(-z * wn * t) * (A * np.cos(wd * t) + B * np.sin(wd * t)) + (X * np.exp(1j * W * t)).real
 
@@ -111,7 +121,7 @@ def test_far_above_the_band_the_step_shrinks_a_mode_by_rho_inf(rho):
     amplification's eigenvalues, whose radius is rho_inf far above the band; a
     free oscillation there is gone in a few dozen steps (Newmark would keep it)."""
     p = full_order_parameters("generalized_alpha", rho)
-    w, h = 1e4, 1.0                                         # omega h = 1e4: far above any band
+    w, h = 1e4, 1.0  # omega h = 1e4: far above any band
     st = Step(h, **p)
     m, k = 1.0, w * w
     kk = st.mass_coefficient * m + st.new_weight * k
@@ -120,7 +130,7 @@ def test_far_above_the_band_the_step_shrinks_a_mode_by_rho_inf(rho):
         x1 = st.history(m, 0.0, x, v, a, -k * x) / kk
         return (x1, *st.update(x1, *st.predict(x, v, a)))
 
-    scale = np.diag([1.0, h, h * h])                        # the state as (x, h v, h**2 a)
+    scale = np.diag([1.0, h, h * h])  # the state as (x, h v, h**2 a)
     A = np.column_stack([scale @ np.array(one(*(np.linalg.inv(scale) @ e))) for e in np.eye(3)])
     radius = max(abs(np.linalg.eigvals(A)))
     assert radius == pytest.approx(scheme_error("generalized_alpha", w * h, **p).spectral_radius, rel=1e-8)
@@ -141,9 +151,11 @@ def test_period_errors_are_the_closed_forms():
     assert scheme_error("newmark", 0.05).period_error == pytest.approx(0.05**2 / 12, rel=1e-3)
     z = 0.3 + 0.7j
     assert stability_function("dp5", z) == pytest.approx(
-        sum(z**k / math.factorial(k) for k in range(6)) + z**6 / 600, rel=1e-13)
+        sum(z**k / math.factorial(k) for k in range(6)) + z**6 / 600, rel=1e-13
+    )
     # Newmark's 10 % limit in closed form: Om / (2 atan(Om / 2)) = 1.1
     from scipy.optimize import brentq
+
     Om = brentq(lambda x: x / (2 * math.atan(x / 2)) - 1.1, 0.1, 3.0)
     assert steps_per_period_needed("newmark", 0.1) == pytest.approx(2 * math.pi / Om, rel=1e-8)
     assert not scheme_error("central_difference", 2.1).stable
@@ -154,8 +166,10 @@ def test_the_kernels_do_what_the_accuracy_module_says(method, rho):
     """An undamped oscillator at 12 steps per period, 50 periods, by the compiled kernel:
     its period (phase of the last cycles) and its amplitude decay are the predicted ones."""
     from test_integrators import IDLE, oscillator, start
+
     from rotorpillar.reduced.excitation import no_motion
     from rotorpillar.reduced.integration import Settings, simulate
+
     w, spp, periods = 30.0, 12, 50
     h = 2 * math.pi / w / spp
     n = spp * periods
@@ -165,19 +179,20 @@ def test_the_kernels_do_what_the_accuracy_module_says(method, rho):
     err = scheme_error(method, w * h, **full_order_parameters(method, rho))
     # once the spurious root has died, x_n = A r**n cos(n theta + phi) exactly, so
     # x_{n+1} = 2 r cos(theta) x_n - r**2 x_{n-1}: r and theta by least squares
-    x = run.q[len(run.q) // 2:, 0]
+    x = run.q[len(run.q) // 2 :, 0]
     (p1, q1), *_ = np.linalg.lstsq(np.column_stack([x[1:-1], x[:-2]]), x[2:], rcond=None)
     r = math.sqrt(-q1)
     theta = math.acos(p1 / (2 * r))
     assert w * h / theta - 1 == pytest.approx(err.period_error, rel=1e-6)
-    assert 1 - r ** spp == pytest.approx(err.amplitude_loss, rel=1e-6, abs=1e-12)
+    assert 1 - r**spp == pytest.approx(err.amplitude_loss, rel=1e-6, abs=1e-12)
 
 
 def test_the_full_orders_step_ignores_the_stiff_shaft():
     from rotorpillar.fem3d.full_order_plan import case_setup, step_rule
-    from rotorpillar.transients.cases import full_order_step_rule
     from rotorpillar.reduced.models import scene_motion
     from rotorpillar.scene import load_scene
+    from rotorpillar.transients.cases import full_order_step_rule
+
     rec = ["excitation.kind=record"]
     soft, stiff = load_scene("paper", rec), load_scene("paper", rec + ["shaft.stiffness=1e10"])
     motion = scene_motion(soft)

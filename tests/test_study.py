@@ -16,13 +16,13 @@ from rotorpillar.executor import Executor
 from rotorpillar.postprocess.study_charts import study_charts
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import passing_torque
-from rotorpillar.transients.case_summary import capture_state
-from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.scene import load_scene, override
 from rotorpillar.studies import StudyResult, design_study, plan
 from rotorpillar.studies.batch import settle_time
+from rotorpillar.transients.case_summary import capture_state
 
 SMALL = ["drive.torque_at_zero=560,600,700", "rotor.eccentricity=0.010:0.020:3"]
 
@@ -32,8 +32,9 @@ def small_study(tmp_path_factory):
     """The 3 x 3 run-ups of the sommerfeld scene on the in-process scheduler."""
     out = tmp_path_factory.mktemp("study_inproc")
     with Executor(processes=False) as ex:
-        return design_study(load_scene("sommerfeld"), "runup", "paper", SMALL, out_dir=out,
-                            executor=ex, show_progress=False)
+        return design_study(
+            load_scene("sommerfeld"), "runup", "paper", SMALL, out_dir=out, executor=ex, show_progress=False
+        )
 
 
 def test_each_run_of_a_study_is_the_single_run(small_study):
@@ -59,36 +60,40 @@ def test_each_run_of_a_study_is_the_single_run(small_study):
         sc = override(base, [f"{k}={v}" for k, v in r.params.items()])
         model, _ = build_model(sc, "paper")
         d = sc.drive
-        drive = DriveSchedule.ramp(d.torque_at_zero, d.slope, sc.load.coefficient,
-                                   sc.simulate.runup_ramp)
-        run = simulate(model, drive, no_motion(), sc.simulate.duration,
-                       settings=Settings(rtol=sc.simulate.rtol, samples=6001))
+        drive = DriveSchedule.ramp(d.torque_at_zero, d.slope, sc.load.coefficient, sc.simulate.runup_ramp)
+        run = simulate(
+            model, drive, no_motion(), sc.simulate.duration, settings=Settings(rtol=sc.simulate.rtol, samples=6001)
+        )
         assert r.ok and run.ok
         assert r.final_speed == pytest.approx(run.Omega[-1], rel=1e-5)
         h = sc.simulate.duration / run.stats["steps"]
         crest = 2 * (float(np.max(run.Omega)) * h) ** 2 / 8
         assert r.peak_tip == pytest.approx(float(np.max(run.peak[:, -1])), rel=crest)
         m = model
-        shaft = np.hypot(run.q[:, :m.nx] @ m.shaft - m.eccentricity * np.cos(run.q[:, -1]),
-                         run.q[:, m.nx] - m.eccentricity * np.sin(run.q[:, -1]))
+        shaft = np.hypot(
+            run.q[:, : m.nx] @ m.shaft - m.eccentricity * np.cos(run.q[:, -1]),
+            run.q[:, m.nx] - m.eccentricity * np.sin(run.q[:, -1]),
+        )
         since = run.t >= settle_time(sc, sc.simulate.duration)
         assert r.peak_shaft_deflection == pytest.approx(float(shaft[since].max()), rel=1e-5)
         state = capture_state(model, run.t, run.Omega, drive.free_speed())
         assert r.captured_at == state.captured_at or r.captured_at == pytest.approx(
-            state.captured_at, rel=1e-5)                 # the batch and the single run's output grids
+            state.captured_at, rel=1e-5
+        )  # the batch and the single run's output grids
         assert r.passed == (state.speed_state not in ("captured", "escaping"))
         kinds.add(r.passed)
-    assert kinds == {True, False}               # the grid holds both outcomes
+    assert kinds == {True, False}  # the grid holds both outcomes
 
 
-@pytest.mark.slow                       # a Dask LocalCluster's start and the study again
+@pytest.mark.slow  # a Dask LocalCluster's start and the study again
 def test_local_cluster_and_in_process_scheduler_agree(small_study, tmp_path):
     """The same batches on two worker processes: the same code on the same
     inputs, so the same numbers (bitwise: the integrator is deterministic)."""
     with Executor(workers=2) as ex:
         assert ex.describe()["workers"] == 2
-        other = design_study(load_scene("sommerfeld"), "runup", "paper", SMALL, out_dir=tmp_path,
-                             executor=ex, show_progress=False)
+        other = design_study(
+            load_scene("sommerfeld"), "runup", "paper", SMALL, out_dir=tmp_path, executor=ex, show_progress=False
+        )
     assert other.executor["kind"] == "LocalCluster" and small_study.executor["kind"] == "in-process"
     strip = lambda r: {k: v for k, v in r.to_json().items() if k != "batch"}
     assert [strip(a) for a in other.runs] == [strip(b) for b in small_study.runs]
@@ -106,6 +111,7 @@ def test_runs_sharing_a_model_go_to_one_batch_loop():
     """Run-ups varying only what the batch loop takes per run share one model:
     one group per batch; a key that changes the model makes its own groups."""
     from rotorpillar.studies.batch import group_key
+
     pts = [{"drive.torque_at_zero": m, "rotor.eccentricity": e} for m in (1, 2, 3) for e in (4, 5)]
     assert {group_key(p, "runup") for p in pts} == {()}
     assert len(plan(pts, "runup", batch_runs=8)) == 1
@@ -120,16 +126,27 @@ def test_the_study_boundary_brackets_the_simulated_passing_torque(tmp_path):
     bisection of run-ups), and the averaging prediction is carried beside it."""
     sc = load_scene("sommerfeld")
     with Executor(processes=False) as ex:
-        st = design_study(sc, "runup", "paper", ["drive.torque_at_zero=560:700:15"],
-                          out_dir=tmp_path, executor=ex, show_progress=False, charts=study_charts)
+        st = design_study(
+            sc,
+            "runup",
+            "paper",
+            ["drive.torque_at_zero=560:700:15"],
+            out_dir=tmp_path,
+            executor=ex,
+            show_progress=False,
+            charts=study_charts,
+        )
     (row,) = st.boundary["found"]
     lo, hi = row["captured_max"], row["passed_min"]
     assert hi - lo == pytest.approx(10.0)
     model, _ = build_model(sc, "paper")
     d = sc.drive
-    pt = passing_torque(model, DriveSchedule.ramp(d.torque_at_zero, d.slope, sc.load.coefficient,
-                                                  sc.simulate.runup_ramp),
-                        sc.simulate.duration, sc.simulate.rtol)
+    pt = passing_torque(
+        model,
+        DriveSchedule.ramp(d.torque_at_zero, d.slope, sc.load.coefficient, sc.simulate.runup_ramp),
+        sc.simulate.duration,
+        sc.simulate.rtol,
+    )
     assert lo - 10.0 <= pt["simulated"] <= hi + 10.0
     assert abs(0.5 * (lo + hi) - pt["simulated"]) <= 10.0
     assert st.boundary["averaging"][0] == pytest.approx(pt["predicted"], rel=1e-9)
@@ -137,11 +154,12 @@ def test_the_study_boundary_brackets_the_simulated_passing_torque(tmp_path):
     assert (Path(tmp_path) / "study_final.png").is_file()
 
 
-@pytest.mark.slow                       # a Dask LocalCluster's start
+@pytest.mark.slow  # a Dask LocalCluster's start
 def test_converge_runs_on_the_executor_give_the_serial_records(tmp_path):
     """The convergence study's runs through a LocalCluster: the same
     frequencies and DOFs as serially, each run cached once."""
     import rotorpillar.converge as cv
+
     scene = load_scene("paper")
     cases = [c for c in cv.ladder(scene) if cv.FAMILIES[c.family].model == "beam"][:6]
     serial = cv.run_study(cases, scene, tmp_path / "a", progress=False)
@@ -155,7 +173,8 @@ def test_modal_model_study_runs(tmp_path):
     """The modal model goes through the same batch loop (two pillar modes)."""
     sc = replace(load_scene("sommerfeld"))
     with Executor(processes=False) as ex:
-        st = design_study(sc, "runup", "modal", ["drive.torque_at_zero=600,700"], out_dir=tmp_path,
-                          executor=ex, show_progress=False)
+        st = design_study(
+            sc, "runup", "modal", ["drive.torque_at_zero=600,700"], out_dir=tmp_path, executor=ex, show_progress=False
+        )
     assert [r.ok for r in st.runs] == [True, True]
     assert st.runs[1].final_speed > st.runs[0].final_speed

@@ -56,14 +56,30 @@ def _png_size(path):
 AXES = ["--vary", "drive.torque_at_zero=560:700:8", "--vary", "rotor.eccentricity=0.010:0.020:6"]
 
 
-@pytest.mark.slow                       # a 48-run study, interrupted and resumed
+@pytest.mark.slow  # a 48-run study, interrupted and resumed
 def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path):
     out = tmp_path / "out"
     batches = out / "study"
-    proc = subprocess.Popen([sys.executable, "-m", "rotorpillar", "study", "sommerfeld",
-                             "--case", "runup", *AXES, "--workers", "1", "--out", str(out),
-                             "--no-progress"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "rotorpillar",
+            "study",
+            "sommerfeld",
+            "--case",
+            "runup",
+            *AXES,
+            "--workers",
+            "1",
+            "--out",
+            str(out),
+            "--no-progress",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     deadline = time.time() + 300
     while time.time() < deadline and proc.poll() is None:
         if batches.exists() and list(batches.glob("*.json")):
@@ -74,14 +90,13 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert proc.returncode == 130, err
     assert "interrupted" in err
     done = list(batches.glob("*.json"))
-    assert 1 <= len(done) < 6                                # 48 runs: 6 batches of 8
-    assert not list(batches.glob(".*"))                      # no half-written batch
+    assert 1 <= len(done) < 6  # 48 runs: 6 batches of 8
+    assert not list(batches.glob(".*"))  # no half-written batch
     for f in done:
         assert len(json.loads(f.read_text())["runs"]) == 8
     assert not (out / "study.json").exists()
 
-    p = cli("study", "sommerfeld", "--case", "runup", *AXES, "--workers", "1", "--out", out,
-            "--no-progress", "--json")
+    p = cli("study", "sommerfeld", "--case", "runup", *AXES, "--workers", "1", "--out", out, "--no-progress", "--json")
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     assert doc["batches"]["cached"] == len(done)
@@ -90,6 +105,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert len(doc["runs"]) == 48 and doc["executor"]["workers"] == 1
 
     from rotorpillar.studies import StudyResult
+
     on_disk = json.loads((out / "study.json").read_text())
     rec = StudyResult.read(out / "study.json")
     assert rec.to_json() == {k: on_disk[k] for k in rec.to_json()}
@@ -98,8 +114,9 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert w >= 1000 and h >= 700
     assert doc["boundary"]["kind"] == "torque" and len(doc["boundary"]["found"]) == 6
 
-    again = json.loads(cli("study", "sommerfeld", "--case", "runup", *AXES, "--out", out,
-                           "--no-progress", "--json").stdout)
+    again = json.loads(
+        cli("study", "sommerfeld", "--case", "runup", *AXES, "--out", out, "--no-progress", "--json").stdout
+    )
     assert again["batches"]["computed"] == 0 and again["executor"]["workers"] == 0
 
     # the report's study section: the map embedded once, the boundary table
@@ -108,23 +125,39 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     from rotorpillar.postprocess.report.state import Build, Product, ReportOptions
     from rotorpillar.postprocess.report.study import section_study
     from rotorpillar.scene import load_scene
+
     build = Build(load_scene("sommerfeld"), out, "sommerfeld", ReportOptions())
     read = read_study(out / "study.json")
     build.study, build.docs["study"] = read.record, read.doc
-    build.products["external"] = [Product(p, c, group=w.group, case=w.case)
-                                  for p, c, w in external_figures(out)]
+    build.products["external"] = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(out)]
     html = section_study(build)
     assert "Design study" in html and "found against predicted" in html
     assert html.count("<img") == 1
     assert not [p for p in build.products["external"] if p.path.name.startswith("study_")]
 
 
-@pytest.mark.slow                       # a design study on a Dask cluster
+@pytest.mark.slow  # a design study on a Dask cluster
 def test_earthquake_study_draws_the_ida_curves(tmp_path):
-    p = cli("study", "paper", "--case", "earthquake", "--model", "modal",
-            "--vary", "excitation.record_scale=0.5:1.5:3", "--vary", "excitation.record=elcentro",
-            "--set", "excitation.start=0", "--workers", "1", "--out", tmp_path, "--no-progress",
-            "--json")
+    p = cli(
+        "study",
+        "paper",
+        "--case",
+        "earthquake",
+        "--model",
+        "modal",
+        "--vary",
+        "excitation.record_scale=0.5:1.5:3",
+        "--vary",
+        "excitation.record=elcentro",
+        "--set",
+        "excitation.start=0",
+        "--workers",
+        "1",
+        "--out",
+        tmp_path,
+        "--no-progress",
+        "--json",
+    )
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     assert doc["implied"] == {"excitation.kind": "record"}

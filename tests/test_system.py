@@ -11,9 +11,12 @@ from scipy.linalg import eigh
 
 from rotorpillar.reduced.system import ReducedSystem, linear_modes, omega_pair, paper_example
 
-CASES = [paper_example(), paper_example(5e6, 25e3),
-         ReducedSystem(3.0e3, 7.0e2, 5.0, 0.01, 2.0e6, 8.0e5, 1e3, 2e2),
-         ReducedSystem(1.0e5, 10.0, 1.0, 1e-3, 1.0e9, 1.0e3, 0.0, 0.0)]   # widely split scales
+CASES = [
+    paper_example(),
+    paper_example(5e6, 25e3),
+    ReducedSystem(3.0e3, 7.0e2, 5.0, 0.01, 2.0e6, 8.0e5, 1e3, 2e2),
+    ReducedSystem(1.0e5, 10.0, 1.0, 1e-3, 1.0e9, 1.0e3, 0.0, 0.0),
+]  # widely split scales
 
 
 @pytest.mark.parametrize("s", CASES)
@@ -26,7 +29,7 @@ def test_eq5_against_numerical_eigensolve(s):
 def test_modal_vectors_and_projections(s):
     K, M, C = s.stiffness_matrix(), s.mass_matrix(), s.damping_matrix()
     c2e = s.shaft_stiffness * s.eccentricity
-    F = np.array([-c2e, c2e])           # Eq. 4 right-hand side over cos(q4)
+    F = np.array([-c2e, c2e])  # Eq. 4 right-hand side over cos(q4)
     for r in linear_modes(s).resonances[:2]:
         u = np.array(r.shape)
         assert u[0] == 1.0

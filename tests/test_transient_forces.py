@@ -27,9 +27,13 @@ from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.files import write_model_files
 from rotorpillar.transients.model_run import run_model
 
-SCENE = ["excitation.kind=record", "simulate.earthquake_duration=12", "modal_model.elements=10",
-         "modal_model.source=beam",          # the ROM on the beam's own modes: the beam is its full order
-         "full_order.beam_elements=10"]
+SCENE = [
+    "excitation.kind=record",
+    "simulate.earthquake_duration=12",
+    "modal_model.elements=10",
+    "modal_model.source=beam",  # the ROM on the beam's own modes: the beam is its full order
+    "full_order.beam_elements=10",
+]
 
 
 @pytest.fixture(scope="module")
@@ -50,34 +54,33 @@ def rom(scene):
 def test_rom_base_moment_against_the_full_order_beam(rom, beam):
     f = rom.result["internal_forces"]
     assert f["modes"] >= f["truncation"]["modes_needed_base_moment"]
-    assert f["modes"] > f["modes_in_run"]             # the paper's band keeps 2; the moment needs 3
+    assert f["modes"] > f["modes_in_run"]  # the paper's band keeps 2; the moment needs 3
     ma, mb = rom.result["max_abs"], beam.result["max_abs"]
     assert ma["base_moment"] == pytest.approx(mb["base_moment"], rel=1e-2)
     M = np.interp(beam.data["t"], rom.data["t"], rom.data["base_moment"])
     assert np.max(np.abs(M - beam.data["base_moment"])) <= 1e-2 * mb["base_moment"]
-    assert ma["base_moment"] > 5e5                    # El Centro bends the paper's pillar: ~1.1 MN m
+    assert ma["base_moment"] > 5e5  # El Centro bends the paper's pillar: ~1.1 MN m
 
 
 def test_more_modes_close_on_the_beam(scene, beam):
     run = run_model(scene, "earthquake", "modal", modes=12)
     assert run.result["internal_forces"]["modes"] == 12
-    assert run.result["max_abs"]["base_moment"] == pytest.approx(beam.result["max_abs"]["base_moment"],
-                                                                 rel=1e-3)
+    assert run.result["max_abs"]["base_moment"] == pytest.approx(beam.result["max_abs"]["base_moment"], rel=1e-3)
 
 
 def test_base_stress_and_axial_force(scene, rom):
     sec = section_of(scene.pillar)
     d = rom.data
     assert d["base_stress"] == pytest.approx(extreme_fibre_stress(d["base_moment"], d["base_axial"], sec))
-    N0 = STANDARD_GRAVITY * (sec.mass_per_length * scene.pillar.height + scene.gondola.mass
-                             + scene.rotor.mass)
+    N0 = STANDARD_GRAVITY * (sec.mass_per_length * scene.pillar.height + scene.gondola.mass + scene.rotor.mass)
     pull = scene.shaft.stiffness * np.max(np.abs(d["rotor_y"])) + scene.shaft.stiffness * scene.rotor.eccentricity
     assert np.all(np.abs(d["base_axial"] - N0) <= pull)
     f = rom.result["internal_forces"]
     assert f["axial_static"][0] == pytest.approx(N0, rel=1e-12)
     assert rom.result["max_abs"]["base_stress"] >= np.max(d["base_stress"]) * (1 - 1e-12)
     assert len(f["moment_envelope"]) == len(f["heights"]) and f["moment_envelope"][0] == pytest.approx(
-        rom.result["max_abs"]["base_moment"], rel=1e-2)
+        rom.result["max_abs"]["base_moment"], rel=1e-2
+    )
 
 
 def test_shaft_demand(scene, rom):

@@ -28,10 +28,10 @@ from scipy.linalg import expm
 
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model, paper_model
 from rotorpillar.reduced.system import paper_example
-from rotorpillar.reduced.integration import Settings, simulate
 
 IDLE = DriveSchedule.constant(0.0, 0.0, 0.0)
 TIGHT = Settings("dp5", rtol=1e-10, samples=2001)
@@ -40,8 +40,15 @@ TIGHT = Settings("dp5", rtol=1e-10, samples=2001)
 def sdof_model(m=7000.0, k=5e6, c=2e4):
     """A single pillar mode with nothing on top (shaft and rotor decoupled)."""
     modes = PillarModes(np.array([math.sqrt(k / m)]), np.array([m]), np.array([m]), m, "test")
-    return modal_model(modes, rotor_mass=1.0, rotor_inertia=1.0, eccentricity=0.0,
-                       shaft_stiffness=0.0, shaft_damping=0.0, tip_damping=c)
+    return modal_model(
+        modes,
+        rotor_mass=1.0,
+        rotor_inertia=1.0,
+        eccentricity=0.0,
+        shaft_stiffness=0.0,
+        shaft_damping=0.0,
+        tip_damping=c,
+    )
 
 
 def harmonic_fit(t, x, W):
@@ -65,7 +72,7 @@ def test_free_decay_of_a_pillar_mode():
 
 def test_free_decay_of_the_paper_x_system_against_the_matrix_exponential():
     s = paper_example(5e6, 25e3)
-    model = dataclasses.replace(paper_model(s), eccentricity=0.0)   # equilibrium at z = 0
+    model = dataclasses.replace(paper_model(s), eccentricity=0.0)  # equilibrium at z = 0
     q0 = np.zeros(model.n)
     q0[:2] = [0.002, -0.001]
     v0 = np.zeros(model.n)
@@ -87,8 +94,7 @@ def test_steady_amplitude_of_the_rotor_on_its_shaft(W):
     settle = 25 / (b2 / (2 * m))
     q0, v0 = np.zeros(model.n), np.zeros(model.n)
     v0[-1] = W
-    run = simulate(model, IDLE, no_motion(), settle + 2.0, q0, v0, settings=TIGHT,
-                   prescribed_speed=True, speed_scale=W)
+    run = simulate(model, IDLE, no_motion(), settle + 2.0, q0, v0, settings=TIGHT, prescribed_speed=True, speed_scale=W)
     tail = run.t >= settle
     amp = harmonic_fit(run.t[tail], run.q[tail, model.nx], W)
     exact = c2 * e / math.hypot(c2 - m * W * W, b2 * W)
@@ -99,8 +105,15 @@ def test_steady_amplitude_of_the_rotor_on_its_shaft(W):
 def test_steady_amplitudes_of_the_x_system_by_cramer(W):
     s = paper_example()
     model = paper_model(s)
-    mA, mC, c0, c2, b0, b2, e = (s.tip_mass, s.rotor_mass, s.c0, s.shaft_stiffness, s.b0,
-                                 s.shaft_damping, s.eccentricity)
+    mA, mC, c0, c2, b0, b2, e = (
+        s.tip_mass,
+        s.rotor_mass,
+        s.c0,
+        s.shaft_stiffness,
+        s.b0,
+        s.shaft_damping,
+        s.eccentricity,
+    )
     # [[c0 - mA W^2 + i W b0, -c2], [-c2, c2 - mC W^2 + i W b2]] Q = c2 e (-1, 1)
     a11, a12, a22 = c0 - mA * W**2 + 1j * W * b0, -c2, c2 - mC * W**2 + 1j * W * b2
     det = a11 * a22 - a12 * a12
@@ -110,8 +123,7 @@ def test_steady_amplitudes_of_the_x_system_by_cramer(W):
     settle = 25 / min(r.n for r in model.quasi_normal())
     q0, v0 = np.zeros(model.n), np.zeros(model.n)
     v0[-1] = W
-    run = simulate(model, IDLE, no_motion(), settle + 2.0, q0, v0, settings=TIGHT,
-                   prescribed_speed=True, speed_scale=W)
+    run = simulate(model, IDLE, no_motion(), settle + 2.0, q0, v0, settings=TIGHT, prescribed_speed=True, speed_scale=W)
     tail = run.t >= settle
     assert harmonic_fit(run.t[tail], run.q[tail, 0], W) == pytest.approx(abs(Q1), rel=1e-6)
     assert harmonic_fit(run.t[tail], run.q[tail, 1], W) == pytest.approx(abs(Q2), rel=1e-6)
@@ -123,10 +135,16 @@ def test_steady_amplitudes_of_the_x_system_by_cramer(W):
 def test_modal_model_with_one_mode_is_eq4_with_b1_on_q1():
     s = paper_example(5e6, 25e3)
     eq4 = dataclasses.replace(paper_model(s), damping=np.diag([s.pillar_damping, s.shaft_damping]))
-    modes = PillarModes(np.array([math.sqrt(s.pillar_stiffness / s.tip_mass)]), np.array([s.tip_mass]),
-                        np.array([s.tip_mass]), s.tip_mass, "one mode")
-    modal = modal_model(modes, s.rotor_mass, s.rotor_inertia, s.eccentricity, s.shaft_stiffness,
-                        s.shaft_damping, s.pillar_damping)
+    modes = PillarModes(
+        np.array([math.sqrt(s.pillar_stiffness / s.tip_mass)]),
+        np.array([s.tip_mass]),
+        np.array([s.tip_mass]),
+        s.tip_mass,
+        "one mode",
+    )
+    modal = modal_model(
+        modes, s.rotor_mass, s.rotor_inertia, s.eccentricity, s.shaft_stiffness, s.shaft_damping, s.pillar_damping
+    )
     for m in (eq4, modal):
         assert np.allclose(m.stiffness_full(), s.stiffness_matrix())
     drive = DriveSchedule.constant(5100.0, 12.0, 0.5)
@@ -149,8 +167,9 @@ def test_fixed_step_schemes_converge_at_second_order(method):
     errs, hs = [], []
     for steps_per_output in (8, 16, 32, 64):
         h = T / (200 * steps_per_output)
-        run = simulate(model, IDLE, no_motion(), T, q0, settings=Settings(method, time_step=h, samples=201),
-                       speed_scale=1.0)
+        run = simulate(
+            model, IDLE, no_motion(), T, q0, settings=Settings(method, time_step=h, samples=201), speed_scale=1.0
+        )
         exact = 0.01 * np.exp(-z * w * run.t) * (np.cos(wd * run.t) + z / math.sqrt(1 - z * z) * np.sin(wd * run.t))
         errs.append(np.max(np.abs(run.tip() - exact)))
         hs.append(h)

@@ -32,9 +32,9 @@ import pytest
 
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import GroundMotion
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.pillar_modes import beam_properties
-from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.scene import load_scene
 
 
@@ -52,8 +52,14 @@ def test_beam_static_limit_against_the_cantilever_closed_form():
     assert info["elements"] == scene.full_order.beam_elements and model.n == info["dofs"]
     a0 = 0.5
     motion = ramp_motion(a0, 3.0, 12.0)
-    run = simulate(model, DriveSchedule.constant(0.0, 0.0, 0.0), motion, 12.0,
-                   settings=Settings("dp5", rtol=1e-8, samples=1201), prescribed_speed=True)
+    run = simulate(
+        model,
+        DriveSchedule.constant(0.0, 0.0, 0.0),
+        motion,
+        12.0,
+        settings=Settings("dp5", rtol=1e-8, samples=1201),
+        prescribed_speed=True,
+    )
     bp = beam_properties(scene.pillar, "timoshenko")
     L, EI, kGA = bp.length, bp.youngs_modulus * bp.second_moment, bp.shear_coefficient * bp.shear_modulus * bp.area
     w, P = -bp.density * bp.area * a0, -(scene.gondola.mass + scene.rotor.mass) * a0
@@ -66,9 +72,17 @@ def test_beam_static_limit_against_the_cantilever_closed_form():
 @pytest.mark.parametrize("case", ["earthquake", "runup"])
 def test_beam_case_energy_and_against_the_rom(case):
     from rotorpillar.transients.cases import run_case
+
     # the ROM on the beam's own modes: the full-order beam is then its unreduced model
-    scene = load_scene("paper", ["excitation.kind=record", "simulate.earthquake_duration=12",
-                                 "simulate.duration=12", "modal_model.source=beam"])
+    scene = load_scene(
+        "paper",
+        [
+            "excitation.kind=record",
+            "simulate.earthquake_duration=12",
+            "simulate.duration=12",
+            "modal_model.source=beam",
+        ],
+    )
     beam = run_case(scene, case, "beam")
     rom = run_case(scene, case, "modal", truncation=False)
     assert beam.run.stats["method"] == scene.full_order.beam_integrator
@@ -81,30 +95,43 @@ def test_beam_case_energy_and_against_the_rom(case):
 
 def test_published_forcing_warning_threshold():
     from rotorpillar.reduced.base_forcing import AMPLIFICATION_LIMIT, published_forcing_warning
+
     c1 = 9.6e6
-    assert published_forcing_warning(c1, 0.4e6) is None              # the paper scene: 1.083
-    assert published_forcing_warning(c1, 5e6)                        # paper-stiff: 2.04
+    assert published_forcing_warning(c1, 0.4e6) is None  # the paper scene: 1.083
+    assert published_forcing_warning(c1, 5e6)  # paper-stiff: 2.04
     c2_edge = (AMPLIFICATION_LIMIT - 1) * c1 / 2
     assert published_forcing_warning(c1, 0.99 * c2_edge) is None
     assert "1.1" in published_forcing_warning(c1, 1.01 * c2_edge)
 
 
 def test_compare_result_round_trip():
-    from rotorpillar.transients.records import (ComparedModel, CompareResult, CompareWindow,
-                                                ModelErrors, ResponseSpectrum, SpectralMode,
-                                                reference_of)
+    from rotorpillar.transients.records import (
+        ComparedModel,
+        CompareResult,
+        CompareWindow,
+        ModelErrors,
+        ResponseSpectrum,
+        SpectralMode,
+        reference_of,
+    )
 
     def model(dofs):
-        return ComparedModel(1e-3, 1.1e-3, 2e-3, 80.0, 0.5, 1.0, dofs, True, (), None,
-                             "a.json", "a.npz")
-    r = CompareResult(case="earthquake", models_run=("modal", "fem3d"), reference=reference_of(("modal", "fem3d")),
-                      excitation={"kind": "record"}, per_model={"modal": model(5), "fem3d": model(3033)},
-                      errors={"modal": ModelErrors(0.0066, 0.01, 0.0, 0.005, 0.4, 1e-4, -1e-5, "history",
-                                                   "in phase")},
-                      cost_ratio={"modal": 0.03, "fem3d": 1.0},
-                      chart="compare_earthquake.png", window=CompareWindow(0.0, 15.0, 15.0, "own"),
-                      spectrum=ResponseSpectrum((0.1, 1.0), (1.0, 2.0), 0.05, (0.25,), 0.1, None,
-                                                (SpectralMode(1, 0.25, 0.08, 1.39, 0.08, 0.11),), ""))
+        return ComparedModel(1e-3, 1.1e-3, 2e-3, 80.0, 0.5, 1.0, dofs, True, (), None, "a.json", "a.npz")
+
+    r = CompareResult(
+        case="earthquake",
+        models_run=("modal", "fem3d"),
+        reference=reference_of(("modal", "fem3d")),
+        excitation={"kind": "record"},
+        per_model={"modal": model(5), "fem3d": model(3033)},
+        errors={"modal": ModelErrors(0.0066, 0.01, 0.0, 0.005, 0.4, 1e-4, -1e-5, "history", "in phase")},
+        cost_ratio={"modal": 0.03, "fem3d": 1.0},
+        chart="compare_earthquake.png",
+        window=CompareWindow(0.0, 15.0, 15.0, "own"),
+        spectrum=ResponseSpectrum(
+            (0.1, 1.0), (1.0, 2.0), 0.05, (0.25,), 0.1, None, (SpectralMode(1, 0.25, 0.08, 1.39, 0.08, 0.11),), ""
+        ),
+    )
     doc = json.loads(json.dumps(r.to_json()))
     assert CompareResult.from_json(doc) == r and CompareResult.from_json(doc).to_json() == doc
     assert r.reference == "fem3d" and reference_of(("paper", "beam", "modal")) == "beam"

@@ -21,19 +21,28 @@ import pytest
 
 from rotorpillar.transients.pareto import analyse_pareto, run_specs
 
-has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None,
-                                 reason="needs dolfinx")
+has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 GRID = np.linspace(0.0, 1.0, 101)
 
 
 def _doc(family, label, wall, peak, tip, **params):
-    return {"family": family, "label": label, "params": params, "dofs": 10, "wall_seconds": wall,
-            "peak_tip": peak, "tip": list(tip), "ok": True, "key": label}
+    return {
+        "family": family,
+        "label": label,
+        "params": params,
+        "dofs": 10,
+        "wall_seconds": wall,
+        "peak_tip": peak,
+        "tip": list(tip),
+        "ok": True,
+        "key": label,
+    }
 
 
 def _solid(along, peak):
-    return _doc("fem3d", f"3D, 8x{along}", along, peak, peak * np.sin(6 * GRID),
-                elements_around=8, elements_along=along)
+    return _doc(
+        "fem3d", f"3D, 8x{along}", along, peak, peak * np.sin(6 * GRID), elements_around=8, elements_along=along
+    )
 
 
 def test_reference_error_by_richardson():
@@ -47,9 +56,9 @@ def test_reference_error_by_richardson():
     assert math.isclose(ref["peak_error"], 1.25 * abs(L - docs[2]["peak_tip"]) / L, rel_tol=1e-6)
     by = {r.label: r for r in study.runs}
     assert math.isclose(by["ROM, 1 mode"].peak_tip_error, 0.0102 / docs[2]["peak_tip"] - 1)
-    assert by["3D, 8x20"].peak_tip_error == ref["peak_error"]        # the reference: its own error
-    assert "ROM, 1 mode" in study.fronts["peak_tip"]                 # cheapest: on every front
-    assert "3D, 8x10" not in study.fronts["peak_tip"]                # dearer and worse than the ROM
+    assert by["3D, 8x20"].peak_tip_error == ref["peak_error"]  # the reference: its own error
+    assert "ROM, 1 mode" in study.fronts["peak_tip"]  # cheapest: on every front
+    assert "3D, 8x10" not in study.fronts["peak_tip"]  # dearer and worse than the ROM
 
 
 def test_reference_error_without_monotone_convergence():
@@ -63,25 +72,26 @@ def test_reference_error_without_monotone_convergence():
 
 def test_run_specs():
     from rotorpillar.scene import Mesh
+
     specs = run_specs(2, 12, Mesh(elements_around=16, elements_along=12))
     fams = [f for f, _, _ in specs]
     assert fams.count("rom") == 4 and fams.count("beam") == 5
     meshes = [(p["elements_around"], p["elements_along"]) for f, _, p in specs if f == "fem3d"]
     assert (16, 12) in meshes and (8, 20) in meshes
-    assert run_specs(2, 3, None)[2][2] == {"modes": 3}      # no more modes than the source has
+    assert run_specs(2, 3, None)[2][2] == {"modes": 3}  # no more modes than the source has
     assert sum(f == "rom" for f, _, _ in run_specs(2, 3, None)) == 3
 
 
-@pytest.mark.slow           # 3D runs on 8 x 2, 3, 4 elements over 0.3 s, twice; a Dask worker
+@pytest.mark.slow  # 3D runs on 8 x 2, 3, 4 elements over 0.3 s, twice; a Dask worker
 @has_dolfinx
 def test_pareto_runs_cache_and_resume(tmp_path):
     from rotorpillar.scene import load_scene
     from rotorpillar.transients.pareto import compute_3d, plan_pareto, transient_pareto
+
     scene = load_scene("paper", ["excitation.kind=record"])
     short = dict(duration=0.3, along=(2, 3, 4), beams=(2, 4))
     mesh = replace(scene.mesh, elements_around=8, elements_along=3)
-    study, tips = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh,
-                                   workers=1, **short)
+    study, tips = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, workers=1, **short)
     assert all(r.ok for r in study.runs) and study.cost["computed"] == len(study.runs)
     assert study.cost["workers"] == 1 and "fem3d" in study.compile_seconds
     assert study.reference["label"] == "3D, 8x4" and study.chosen["fem3d"] == "3D, 8x3"

@@ -33,15 +33,15 @@ import numpy as np
 import pytest
 
 from rotorpillar.reduced import averaging as av
-from rotorpillar.transients.cases import run_case
-from rotorpillar.reduced.models import build_model
-from rotorpillar.reduced.stationary import passing_torque
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
-from rotorpillar.reduced.rotor_models import paper_model
-from rotorpillar.reduced.system import paper_example
 from rotorpillar.reduced.integration import Settings, simulate
+from rotorpillar.reduced.models import build_model
+from rotorpillar.reduced.rotor_models import paper_model
+from rotorpillar.reduced.stationary import passing_torque
+from rotorpillar.reduced.system import paper_example
 from rotorpillar.scene import load_scene
+from rotorpillar.transients.cases import run_case
 
 
 def test_energy_is_conserved_without_damping_motor_and_load():
@@ -49,8 +49,16 @@ def test_energy_is_conserved_without_damping_motor_and_load():
     m = dataclasses.replace(m, damping=np.zeros((2, 2)), shaft_damping=0.0)
     q0, v0 = m.steady_initial_state(40.0)
     q0[0] += 0.003
-    run = simulate(m, DriveSchedule.constant(0, 0, 0), no_motion(), 20.0, q0, v0,
-                   settings=Settings(rtol=1e-11, samples=2001), speed_scale=40.0)
+    run = simulate(
+        m,
+        DriveSchedule.constant(0, 0, 0),
+        no_motion(),
+        20.0,
+        q0,
+        v0,
+        settings=Settings(rtol=1e-11, samples=2001),
+        speed_scale=40.0,
+    )
     T, P = m.energy(run.q, run.v)
     E = T + P
     rotor = 0.5 * m.rotor_inertia * run.v[:, -1] ** 2
@@ -69,10 +77,19 @@ def test_work_closes_the_energy_balance_of_a_run_up(scene):
 def steady_run(model, W):
     """Eq. 4 integrated with the rotor turning at constant W, settled."""
     settle = 30 / min(r.n for r in model.quasi_normal())
-    q0, v0 = model.steady_initial_state(W * 0.9)      # a start off the answer
+    q0, v0 = model.steady_initial_state(W * 0.9)  # a start off the answer
     v0[-1] = W
-    run = simulate(model, DriveSchedule.constant(0, 0, 0), no_motion(), settle + 3.0, q0, v0,
-                   settings=Settings(rtol=1e-10, samples=4001), prescribed_speed=True, speed_scale=W)
+    run = simulate(
+        model,
+        DriveSchedule.constant(0, 0, 0),
+        no_motion(),
+        settle + 3.0,
+        q0,
+        v0,
+        settings=Settings(rtol=1e-10, samples=4001),
+        prescribed_speed=True,
+        speed_scale=W,
+    )
     return run, run.t >= settle
 
 
@@ -80,18 +97,19 @@ def quasi_normal_amplitude(model, W, index):
     """Steady amplitude of x_i = (U^-1 z)_i and the averaged resisting torque at speed W."""
     run, tail = steady_run(model, W)
     _, U = model.undamped_modes_x()
-    x = np.linalg.solve(U, run.q[tail, :model.nx].T)[index]
+    x = np.linalg.solve(U, run.q[tail, : model.nx].T)[index]
     A = np.column_stack([np.cos(W * run.t[tail]), np.sin(W * run.t[tail])])
     amp = float(np.hypot(*np.linalg.lstsq(A, x, rcond=None)[0]))
-    th, z, y = run.q[tail, -1], run.q[tail, :model.nx], run.q[tail, model.nx]
+    th, z, y = run.q[tail, -1], run.q[tail, : model.nx], run.q[tail, model.nx]
     c2e = model.shaft_stiffness * model.eccentricity
     torque = np.trapz(c2e * ((z @ model.shaft) * np.sin(th) - y * np.cos(th)), run.t[tail])
     return amp, torque / (run.t[tail][-1] - run.t[tail][0])
 
 
-@pytest.mark.parametrize("shaft, index, torque_holds", [
-    ((0.4e6, 11e3), 0, True), ((0.4e6, 11e3), 1, True),
-    ((5e6, 25e3), 0, False), ((5e6, 25e3), 1, True)])
+@pytest.mark.parametrize(
+    "shaft, index, torque_holds",
+    [((0.4e6, 11e3), 0, True), ((0.4e6, 11e3), 1, True), ((5e6, 25e3), 0, False), ((5e6, 25e3), 1, True)],
+)
 def test_steady_state_at_fixed_speed_against_eq19_eq20(shaft, index, torque_holds):
     model = paper_model(paper_example(*shaft))
     res = model.quasi_normal()
@@ -115,8 +133,17 @@ def test_y_resonance_amplitude_is_eq19_exactly():
     settle = 30 / r.n
     q0, v0 = np.zeros(model.n), np.zeros(model.n)
     v0[-1] = W
-    run = simulate(model, DriveSchedule.constant(0, 0, 0), no_motion(), settle + 3.0, q0, v0,
-                   settings=Settings(rtol=1e-10, samples=4001), prescribed_speed=True, speed_scale=W)
+    run = simulate(
+        model,
+        DriveSchedule.constant(0, 0, 0),
+        no_motion(),
+        settle + 3.0,
+        q0,
+        v0,
+        settings=Settings(rtol=1e-10, samples=4001),
+        prescribed_speed=True,
+        speed_scale=W,
+    )
     tail = run.t >= settle
     A = np.column_stack([np.cos(W * run.t[tail]), np.sin(W * run.t[tail])])
     amp = float(np.hypot(*np.linalg.lstsq(A, run.q[tail, model.nx], rcond=None)[0]))
@@ -141,20 +168,20 @@ def test_sommerfeld_capture_and_passage_as_predicted(sommerfeld, which):
     finals = {}
     for f in (0.95, 1.05):
         drive = DriveSchedule.constant(f * up.torque_at_zero, d.slope, L.coefficient)
-        run = simulate(model, drive, no_motion(), sommerfeld.simulate.duration,
-                       settings=Settings(samples=1201))
+        run = simulate(model, drive, no_motion(), sommerfeld.simulate.duration, settings=Settings(samples=1201))
         finals[f] = float(np.mean(run.Omega[-100:]))
     r1 = next(r for r in res if r.index == up.resonance)
-    assert abs(finals[0.95] - r1.omega) < 3 * r1.n          # captured at omega_1
-    assert finals[1.05] > middle                            # passed to the upper branch
+    assert abs(finals[0.95] - r1.omega) < 3 * r1.n  # captured at omega_1
+    assert finals[1.05] > middle  # passed to the upper branch
     assert finals[1.05] > 1.2 * r1.omega
 
 
 def test_passing_torque_matches_the_fold(sommerfeld):
     model, _ = build_model(sommerfeld, "paper")
     d, L = sommerfeld.drive, sommerfeld.load
-    out = passing_torque(model, DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient),
-                         sommerfeld.simulate.duration, 1e-7)
+    out = passing_torque(
+        model, DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient), sommerfeld.simulate.duration, 1e-7
+    )
     assert out["simulated"] == pytest.approx(out["predicted"], rel=0.03)
     assert [r["passed"] for r in out["bracket_runs"]] == [False, True]
 
@@ -191,6 +218,7 @@ def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
     first resonance's jump, a -70 % 'error'); each numeric jump pairs with
     one prediction at most."""
     from rotorpillar.transients.sweep import match_jumps
+
     up = lambda w0, w1, m: {"direction": "up", "omega_from": w0, "omega_to": w1, "torque_at_zero": m}
     predicted = [up(25.0, 31.0, 600.0), up(150.0, 170.0, 2000.0)]
     rows = match_jumps([up(25.5, 30.0, 610.0)], predicted)

@@ -27,25 +27,33 @@ from conftest import cli
 
 from rotorpillar.converge.selection import select_reference
 from rotorpillar.scene import load_scene, override
-from rotorpillar.transients.references import (PARTICIPATION_FLOOR, choose_reference,
-                                               participation_table, read_study)
+from rotorpillar.transients.references import PARTICIPATION_FLOOR, choose_reference, participation_table, read_study
 from rotorpillar.transients.window import START_FRACTION, runup_window, window_overrides
 
-has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None,
-                                 reason="needs dolfinx")
+has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 TOTAL, COMPLIANCE = 22_000.0, (1e-7, 1e-9)
 
 
 def _row(i, kind, omega, m, L=(0.0, 0.0, 0.0), plate=(0.0, 0.0, 0.0), n=None, m_ax=0):
-    return {"index": i, "kind": kind, "omega": omega, "modal_mass": m, "participation": list(L),
-            "top_plate_motion": list(plate) + [0.0] * 3, "n_circumferential": n, "n_axial": m_ax}
+    return {
+        "index": i,
+        "kind": kind,
+        "omega": omega,
+        "modal_mass": m,
+        "participation": list(L),
+        "top_plate_motion": list(plate) + [0.0] * 3,
+        "n_circumferential": n,
+        "n_axial": m_ax,
+    }
 
 
-ROWS = [_row(0, "bending_x", 25.0, 7000.0, (10_000.0, 0, 0), (1.0, 0, 0), n=1),
-        _row(1, "bending_y", 25.0, 7000.0, (1e-13, 10_000.0, 0), (0, 1.0, 0), n=1),
-        _row(2, "ovalling", 108.0, 4800.0, (1e-12, 1e-13, 0), (1e-17, 0, 1e-18), n=2),
-        _row(3, "bending_x", 157.0, 14_000.0, (-8000.0, 0, 0), (1.0, 0, 0), n=1, m_ax=1),
-        _row(4, "axial", 120.0, 9000.0, (0, 0, 9000.0), (0, 0, 1.0), n=0)]
+ROWS = [
+    _row(0, "bending_x", 25.0, 7000.0, (10_000.0, 0, 0), (1.0, 0, 0), n=1),
+    _row(1, "bending_y", 25.0, 7000.0, (1e-13, 10_000.0, 0), (0, 1.0, 0), n=1),
+    _row(2, "ovalling", 108.0, 4800.0, (1e-12, 1e-13, 0), (1e-17, 0, 1e-18), n=2),
+    _row(3, "bending_x", 157.0, 14_000.0, (-8000.0, 0, 0), (1.0, 0, 0), n=1, m_ax=1),
+    _row(4, "axial", 120.0, 9000.0, (0, 0, 9000.0), (0, 0, 1.0), n=0),
+]
 
 
 def test_participation_earthquake_keeps_bending_x_only():
@@ -53,31 +61,47 @@ def test_participation_earthquake_keeps_bending_x_only():
     assert t.participating == (0,) and t.left_out == (1, 2, 4)
     assert t.quantities == ("bending",) and t.uncovered == ()
     assert math.isclose(t.modes[0].shares["base_x"], 10_000.0**2 / 7000.0 / TOTAL, rel_tol=1e-12)
-    assert math.isclose(t.modes[0].shares["plate_x"], 1.0 / (7000.0 * 25.0**2) / COMPLIANCE[0],
-                        rel_tol=1e-12)
-    assert not t.modes[3].in_band and t.modes[3].participates     # out of the band: not needed
+    assert math.isclose(t.modes[0].shares["plate_x"], 1.0 / (7000.0 * 25.0**2) / COMPLIANCE[0], rel_tol=1e-12)
+    assert not t.modes[3].in_band and t.modes[3].participates  # out of the band: not needed
     assert all(max(t.modes[i].shares.values()) < PARTICIPATION_FLOOR for i in t.left_out)
     assert "take no part" in t.statement and "ovalling n = 2" in t.statement
 
 
 def test_participation_runup_sees_the_axial_mode_and_says_the_study_misses_it():
     t = participation_table(ROWS, "runup", 134.6, TOTAL, COMPLIANCE, source="test", mesh={})
-    assert t.participating == (0, 4)                 # the shaft's force along the axis
+    assert t.participating == (0, 4)  # the shaft's force along the axis
     assert t.quantities == ("bending",) and len(t.uncovered) == 1 and "axial" in t.uncovered[0]
     assert "bounds no frequency of axial" in t.statement
 
 
 def _run(family, around, along, dofs, bound, model_err=0.0, wall=1.0):
-    return {"family": family, "label": f"{family} {around}x{along}", "status": "ok", "dofs": dofs,
-            "wall_time": wall, "model": "solid", "bending": 30.8 * (1 + bound),
-            "bending_error": bound, "bending_model_error": model_err,
-            "bending_discretisation_error": bound - model_err, "bending_error_bound": bound,
-            "params": {"elements_around": around, "elements_along": along, "elements_through": 1,
-                       "degree": 2, "cell_type": "hexahedron", "grading": 30.0}}
+    return {
+        "family": family,
+        "label": f"{family} {around}x{along}",
+        "status": "ok",
+        "dofs": dofs,
+        "wall_time": wall,
+        "model": "solid",
+        "bending": 30.8 * (1 + bound),
+        "bending_error": bound,
+        "bending_model_error": model_err,
+        "bending_discretisation_error": bound - model_err,
+        "bending_error_bound": bound,
+        "params": {
+            "elements_around": around,
+            "elements_along": along,
+            "elements_through": 1,
+            "degree": 2,
+            "cell_type": "hexahedron",
+            "grading": 30.0,
+        },
+    }
 
 
-RUNS = [_run("solid_hex_p2_along", 8, n, 300 * n, b, -1.7e-4)
-        for n, b in ((5, 1.4e-2), (10, 1.7e-3), (15, 7.2e-4), (20, 4.7e-4), (40, 2.5e-4))]
+RUNS = [
+    _run("solid_hex_p2_along", 8, n, 300 * n, b, -1.7e-4)
+    for n, b in ((5, 1.4e-2), (10, 1.7e-3), (15, 7.2e-4), (20, 4.7e-4), (40, 2.5e-4))
+]
 RUNS += [_run("solid_hex_p2", 128, 20, 94_464, 3.1e-4), _run("solid_hex_p2", 224, 35, 286_272, 1e-4)]
 REFERENCE = {"bending": {"value": 30.818, "error_estimate": 30.818 * 1.4e-4}}
 
@@ -87,16 +111,25 @@ def test_select_reference_coarsest_meeting_the_bound():
     assert c.params["elements_along"] == 15 and c.meets
     assert math.isclose(c.band_error, 7.2e-4 + 1.4e-4, rel_tol=1e-9)
     # a ROM whose modes are better than that: the reference must be at least as good
-    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 7e-4},
-                         max_dofs=12_000)
+    c = select_reference(
+        RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 7e-4}, max_dofs=12_000
+    )
     assert c.params["elements_along"] == 20 and c.meets and c.required == 7e-4
     # out of reach within the transient's DOFs: the most accurate, and said so
-    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4},
-                         max_dofs=12_000)
+    c = select_reference(
+        RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4}, max_dofs=12_000
+    )
     assert c.params["elements_along"] == 40 and not c.meets and "only to the reference's own" in c.reason
     # what the case's steps afford caps that refinement
-    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4},
-                         max_dofs=12_000, floor_max_dofs=7_000)
+    c = select_reference(
+        RUNS,
+        REFERENCE,
+        ("bending",),
+        1e-3,
+        floor={"label": "rom", "band_error": 2e-4},
+        max_dofs=12_000,
+        floor_max_dofs=7_000,
+    )
     assert c.params["elements_along"] == 20 and not c.meets and "within 7,000 DOFs" in c.reason
     # without the DOFs cap the fine solid run would do
     c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2.5e-4})
@@ -105,10 +138,21 @@ def test_select_reference_coarsest_meeting_the_bound():
 
 
 def _study_on_disk(tmp_path, scene, runs=RUNS):
-    doc = {"scene_name": scene.name, "scene": scene.to_dict(), "tolerance": 1e-3,
-           "cache_dir": str(tmp_path / "cache"), "families": {}, "runs": runs, "reference": REFERENCE,
-           "extrapolations": {"beam_timoshenko": {"bending": {"value": 30.8208}}},
-           "band": {}, "selection": {"chosen": None}, "pareto": {}, "failures": [], "study": {}}
+    doc = {
+        "scene_name": scene.name,
+        "scene": scene.to_dict(),
+        "tolerance": 1e-3,
+        "cache_dir": str(tmp_path / "cache"),
+        "families": {},
+        "runs": runs,
+        "reference": REFERENCE,
+        "extrapolations": {"beam_timoshenko": {"bending": {"value": 30.8208}}},
+        "band": {},
+        "selection": {"chosen": None},
+        "pareto": {},
+        "failures": [],
+        "study": {},
+    }
     (tmp_path / "convergence.json").write_text(json.dumps(doc))
     (tmp_path / "modal.json").write_text(json.dumps({"scene": scene.to_dict(), "modes_with_top": ROWS}))
 
@@ -154,10 +198,10 @@ def test_runup_window(name):
     w = runup_window(scene)
     assert math.isclose(w.initial_speed, START_FRACTION * min(w.resonances), rel_tol=1e-12)
     assert 0 < w.start < w.end <= scene.simulate.duration and w.duration < scene.simulate.duration
-    if name == "sommerfeld":          # captured at its first resonance (the scene's point)
+    if name == "sommerfeld":  # captured at its first resonance (the scene's point)
         assert w.captured_resonance is not None and abs(w.captured_resonance - 22.76) < 0.1
         assert w.end > w.peak_time
-    else:                             # passes 14.9, 15.8 and 27.1 rad/s within its first second
+    else:  # passes 14.9, 15.8 and 27.1 rad/s within its first second
         assert w.captured_resonance is None and len(w.passed) == 3 and w.end < 1.0
     keys = dict(k.split("=") for k in window_overrides(w))
     assert float(keys["simulate.runup_initial_speed"]) == w.initial_speed
@@ -170,33 +214,44 @@ def test_held_whirl_is_steady_on_a_rigid_pillar():
     tip to ~3e-6 of the whirl), the rotor stays on its circle."""
     from rotorpillar.reduced.drive import DriveSchedule
     from rotorpillar.reduced.excitation import no_motion
-    from rotorpillar.reduced.models import build_model
     from rotorpillar.reduced.integration import Settings, simulate
+    from rotorpillar.reduced.models import build_model
+
     scene = override(load_scene("paper"), ["gondola.mass=1e8", "modal_model.source=beam"])
     model, _ = build_model(scene, "modal", modes=1)
     W = 40.0
     q0, v0 = model.held_whirl_state(W)
-    assert np.all(q0[:model.nx - 1] == 0) and np.all(v0[:model.nx - 1] == 0)
+    assert np.all(q0[: model.nx - 1] == 0) and np.all(v0[: model.nx - 1] == 0)
     X = abs(complex(q0[model.rotor_x], q0[model.nx]))
     c2, m, b, e = scene.shaft.stiffness, scene.rotor.mass, scene.shaft.damping, scene.rotor.eccentricity
     assert math.isclose(X, c2 * e / abs(complex(c2 - m * W**2, W * b)), rel_tol=1e-12)
-    run = simulate(model, DriveSchedule.constant(0, 0, 0), no_motion(), 2.0, q0, v0,
-                   settings=Settings(rtol=1e-9), prescribed_speed=True, speed_scale=W)
+    run = simulate(
+        model,
+        DriveSchedule.constant(0, 0, 0),
+        no_motion(),
+        2.0,
+        q0,
+        v0,
+        settings=Settings(rtol=1e-9),
+        prescribed_speed=True,
+        speed_scale=W,
+    )
     r = np.hypot(run.q[:, model.rotor_x], run.q[:, model.nx])
     # the start's own transient is the held tip's ~3e-6 X; the integrator's 1e-9: 1e-4 is loose
     assert np.max(np.abs(r / X - 1)) < 1e-4
 
 
-@pytest.mark.slow                     # one 3D modal solve of the loaded tube, 8 x 10
+@pytest.mark.slow  # one 3D modal solve of the loaded tube, 8 x 10
 @has_dolfinx
 def test_participation_of_the_3d_modes():
     from rotorpillar.fem3d import modal_analysis
     from rotorpillar.reduced.pillar import section_of
     from rotorpillar.reduced.pillar_modes import beam_pillar_modes
+
     scene = load_scene("paper")
     r = modal_analysis(scene, top=True, mesh=replace(scene.mesh, elements_around=8, elements_along=10))
     total = section_of(scene.pillar).mass_per_length * scene.pillar.height + r.top_mass
-    eff = r.participation ** 2 / r.modal_mass[:, None] / total
+    eff = r.participation**2 / r.modal_mass[:, None] / total
     for i, kind in enumerate(r.kind):
         if kind != "bending_x":
             assert eff[i, 0] < 1e-12, (kind, eff[i])
@@ -205,15 +260,27 @@ def test_participation_of_the_3d_modes():
     assert math.isclose(eff[j1, 1], eff[i1, 0], rel_tol=1e-6)
     # the effective mass in kg (the beam's r^T M r leaves out its clamped node's mass)
     beam = beam_pillar_modes(scene.pillar, scene.gondola.mass, 1, "timoshenko", 40)
-    assert math.isclose(r.participation[i1, 0] ** 2 / r.modal_mass[i1],
-                        beam.participation[0] ** 2 / beam.modal_mass[0], rel_tol=1e-2)
+    assert math.isclose(
+        r.participation[i1, 0] ** 2 / r.modal_mass[i1], beam.participation[0] ** 2 / beam.modal_mass[0], rel_tol=1e-2
+    )
 
 
-@pytest.mark.slow                     # the 3D run-up over the window (0.7 s, 8 x 10): ~30 s
+@pytest.mark.slow  # the 3D run-up over the window (0.7 s, 8 x 10): ~30 s
 @has_dolfinx
 def test_compare_runup_on_the_3d_full_order(tmp_path):
-    p = cli("compare", "paper", "--case", "runup", "--models", "modal,fem3d", "--set",
-            "simulate.threshold=false", "--json", "--out", tmp_path)
+    p = cli(
+        "compare",
+        "paper",
+        "--case",
+        "runup",
+        "--models",
+        "modal,fem3d",
+        "--set",
+        "simulate.threshold=false",
+        "--json",
+        "--out",
+        tmp_path,
+    )
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "compare_runup.json").read_text())
     w = doc["window"]["runup"]
@@ -222,7 +289,7 @@ def test_compare_runup_on_the_3d_full_order(tmp_path):
     for m, r in runs.items():
         assert r["initial_speed"] == pytest.approx(w["initial_speed"], rel=1e-12), m
     ref = doc["full_order_reference"]
-    assert ref["source"] == "scene" and ref["verified"] is False     # no study in tmp_path
+    assert ref["source"] == "scene" and ref["verified"] is False  # no study in tmp_path
     assert runs["fem3d"]["full_order"]["mesh"]["elements_around"] == 8
     # ROM against the 3D tube through three resonances: 0.6 % history, 0.4 % peak measured
     # on this mesh (its bending error 1.5e-3 shifts the passages' phase); tolerance 2 %
@@ -234,13 +301,18 @@ def test_the_ladder_has_the_bending_only_family():
     """Its rungs refine along only, at 8 around; its runs report bending alone, even a
     cached run it shares with the around-only sweep (8 x 10: the same mesh)."""
     from rotorpillar.converge.ladder import ALONG_FAMILY_AROUND, ALONG_LEVELS, ladder, resolved_only
+
     scene = load_scene("paper")
     rungs = [c for c in ladder(scene) if c.family == "solid_hex_p2_along"]
     assert [c.level for c in rungs] == list(ALONG_LEVELS)
     assert {c.settings["elements_around"] for c in rungs} == {ALONG_FAMILY_AROUND}
-    shared = [c for c in ladder(scene) if c.family == "solid_hex_p2_around"
-              and c.settings == next(r for r in rungs if r.level == scene.mesh.elements_along).settings]
-    assert len(shared) == 1                     # one cached run, two families
+    shared = [
+        c
+        for c in ladder(scene)
+        if c.family == "solid_hex_p2_around"
+        and c.settings == next(r for r in rungs if r.level == scene.mesh.elements_along).settings
+    ]
+    assert len(shared) == 1  # one cached run, two families
     run = {"bending": 30.86, "ovalling": 696.0}
     assert resolved_only("solid_hex_p2_along", run) == {"bending": 30.86, "ovalling": None}
     assert resolved_only("solid_hex_p2_around", run) is run

@@ -43,6 +43,7 @@ def out(tmp_path_factory):
 
 def test_harmonic_rom_only(out):
     from rotorpillar.chain import resolve
+
     r = HarmonicResult.read(out / "harmonic.json")
     scene = load_scene("paper")
     # the harmonic stage's ROM is the chain's, as every stage's: the same modes here
@@ -50,10 +51,11 @@ def test_harmonic_rom_only(out):
     assert r.pillar_model == chain.pillar_model
     model, _ = build_model(scene, "modal", r.band_top, pillar_modes=chain.modes)
     d, L = scene.drive, scene.load
-    assert r.running_speeds[-1] == pytest.approx(operating_speed(model, d.torque_at_zero, d.slope,
-                                                                 L.coefficient), rel=1e-9)
+    assert r.running_speeds[-1] == pytest.approx(
+        operating_speed(model, d.torque_at_zero, d.slope, L.coefficient), rel=1e-9
+    )
     assert r.fem3d is None and len(r.rom.speeds) > 100
-    assert {m.model for m in r.modes} == {"modal"}          # no modal.json beside: the ROM's modes only
+    assert {m.model for m in r.modes} == {"modal"}  # no modal.json beside: the ROM's modes only
     assert any("modal.json" in n for n in r.notes)
     for row in r.separation:
         af = amplification_factor(row.mode.damping_ratio)
@@ -62,16 +64,15 @@ def test_harmonic_rom_only(out):
 
 
 def test_checks_against_capacities(out):
-    s = engineering_summary(override(load_scene("paper"), ["rotor.clearance=0.01",
-                                                          "shaft.force_limit=2e4"]), out)
+    s = engineering_summary(override(load_scene("paper"), ["rotor.clearance=0.01", "shaft.force_limit=2e4"]), out)
     by = {c.name: c for c in s.checks}
     stress = by["base stress vs yield"]
     doc = json.loads((out / "simulate_earthquake_modal.json").read_text())
     assert stress.demand == doc["max_abs"]["base_stress"]
     assert stress.utilisation == pytest.approx(stress.demand / 355e6, rel=1e-12)
     assert (stress.model, stress.case) == ("modal", "earthquake (elcentro)")
-    assert by["shaft deflection vs clearance"].status == "fail"       # 27 mm against 10 mm
-    assert by["shaft force vs force limit"].status == "pass"          # 11 kN against 20 kN
+    assert by["shaft deflection vs clearance"].status == "fail"  # 27 mm against 10 mm
+    assert by["shaft force vs force limit"].status == "pass"  # 11 kN against 20 kN
     assert by["base stress vs shell buckling"].capacity == pytest.approx(s.buckling.design_stress)
     assert s.verdict == "fail"
     plain = engineering_summary(load_scene("paper"), out)
@@ -85,7 +86,7 @@ def test_report_writes_summary_and_opens_with_the_verdict(out):
     s = EngineeringSummary.read(out / "summary.json")
     assert s.scene == "paper" and s.checks
     html = (out / "report.html").read_text()
-    summary = html[html.index('<section id="summary">'):]
+    summary = html[html.index('<section id="summary">') :]
     assert summary.index("Verdict:") < summary.index("</section>")
     assert "base stress vs shell buckling" in summary and "earthquake (elcentro)" in summary
     assert '<section id="forces">' in html and '<section id="unbalance">' in html

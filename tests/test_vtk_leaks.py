@@ -17,7 +17,7 @@ import pytest
 
 pytest_plugins = ["pytester"]
 
-CASES = '''
+CASES = """
 import pytest
 
 import functools
@@ -66,19 +66,23 @@ def test_plotter_closed():
     p.add_mesh(pv.Sphere())
     p.screenshot(return_img=True)
     p.close()
-'''
+"""
 
 
 def test_the_leak_check_fails_leaking_tests_and_passes_clean_ones(pytester: pytest.Pytester):
     shutil.copy(Path(__file__).with_name("conftest.py"), pytester.path / "conftest.py")
     pytester.makepyfile(test_cases=CASES)
-    result = pytester.runpytest_subprocess("-p", "no:cacheprovider", "-q",
-                                           "-o", "markers=renders: in-process rendering")
+    result = pytester.runpytest_subprocess(
+        "-p", "no:cacheprovider", "-q", "-o", "markers=renders: in-process rendering"
+    )
     # the fixture checks after the test, as pyvista's does: a leak is an error at teardown
     result.assert_outcomes(passed=5, errors=3)
     errors = sorted(line.split()[1] for line in result.outlines if line.startswith("ERROR "))
-    assert errors == ["test_cases.py::test_cache", "test_cases.py::test_global",
-                      "test_cases.py::test_plotter_left_open"]
+    assert errors == [
+        "test_cases.py::test_cache",
+        "test_cases.py::test_global",
+        "test_cases.py::test_plotter_left_open",
+    ]
     text = "\n".join(result.outlines)
     assert "vtkSphereSource" in text and "PolyData" in text
     assert "VTK objects outlive the test" in text and "plotter(s) left open" in text

@@ -54,16 +54,17 @@ REDUCED = f"{PACKAGE}.reduced"
 #: What reduced/ may import from the package (besides itself).
 REDUCED_MAY_IMPORT = (f"{PACKAGE}.scene", f"{PACKAGE}.errors", f"{PACKAGE}.provenance")
 #: Third-party packages of the finite-element side, which reduced/ never imports.
-DOLFINX_WORLD = ("dolfinx", "ufl", "basix", "ffcx", "petsc4py", "slepc4py", "mpi4py", "gmsh",
-                 "meshio")
+DOLFINX_WORLD = ("dolfinx", "ufl", "basix", "ffcx", "petsc4py", "slepc4py", "mpi4py", "gmsh", "meshio")
 PLOTTING = ("pyvista", "matplotlib", "vtk", "vtkmodules")
 POSTPROCESS = f"{PACKAGE}.postprocess"
 #: The equations the index must name (the paper's model and its averaging theory).
 REQUIRED_EQUATIONS = ("1", "2", "4", "5", "19", "23")
 INDEX_LINE = re.compile(rf"^Eq\. (\d+)\s+({PACKAGE}\.[\w.]+)\s*$", re.M)
 SERIALISERS = {"to_json", "to_dict", "as_dict", "_asdict", "__getstate__", "json_fields"}
-DICT_ANNOTATIONS = re.compile(r"^(dict|Dict|typing\.Dict|Mapping|typing\.Mapping|"
-                              r"collections\.abc\.Mapping)(\[.*\])?$")
+DICT_ANNOTATIONS = re.compile(
+    r"^(dict|Dict|typing\.Dict|Mapping|typing\.Mapping|"
+    r"collections\.abc\.Mapping)(\[.*\])?$"
+)
 
 
 @dataclass(frozen=True)
@@ -121,14 +122,18 @@ def load_modules(root: Path, package: str = PACKAGE) -> dict[str, Module]:
             parts.pop()
         source = path.read_text(encoding="utf-8")
         name = ".".join(parts)
-        mods[name] = Module(name, path, source, path.relative_to(root).as_posix(),
-                            ast.parse(source, filename=str(path)))
+        mods[name] = Module(
+            name, path, source, path.relative_to(root).as_posix(), ast.parse(source, filename=str(path))
+        )
     return mods
 
 
 def _function_spans(tree: ast.Module) -> list[tuple[int, int]]:
-    return [(n.lineno, n.end_lineno or n.lineno) for n in ast.walk(tree)
-            if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))]
+    return [
+        (n.lineno, n.end_lineno or n.lineno)
+        for n in ast.walk(tree)
+        if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))
+    ]
 
 
 def imports(mod: Module) -> list[Import]:
@@ -153,16 +158,20 @@ def _scan_imports(mod: Module) -> Iterator[Import]:
             base = node.module or ""
             if node.level:
                 up = pkg.split(".")
-                up = up[:len(up) - (node.level - 1)]
+                up = up[: len(up) - (node.level - 1)]
                 base = ".".join(up + ([base] if base else []))
             for alias in node.names:
-                yield Import(f"{base}.{alias.name}" if alias.name != "*" else base,
-                             node.lineno, lazy(node.lineno))
-        elif (isinstance(node, ast.Call) and node.args
-              and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
-              and ((isinstance(node.func, ast.Attribute) and node.func.attr == "import_module")
-                   or (isinstance(node.func, ast.Name)
-                       and node.func.id in ("import_module", "__import__")))):
+                yield Import(f"{base}.{alias.name}" if alias.name != "*" else base, node.lineno, lazy(node.lineno))
+        elif (
+            isinstance(node, ast.Call)
+            and node.args
+            and isinstance(node.args[0], ast.Constant)
+            and isinstance(node.args[0].value, str)
+            and (
+                (isinstance(node.func, ast.Attribute) and node.func.attr == "import_module")
+                or (isinstance(node.func, ast.Name) and node.func.id in ("import_module", "__import__"))
+            )
+        ):
             yield Import(node.args[0].value, node.lineno, lazy(node.lineno))
 
 
@@ -192,8 +201,7 @@ def _is_reexport(a: str, b: str, mods: dict[str, Module]) -> bool:
 
 def import_circles(mods: dict[str, Module]) -> list[list[str]]:
     """Strongly connected components of more than one module (Tarjan, iterative)."""
-    graph = {a: sorted(b for b in bs if not _is_reexport(a, b, mods))
-             for a, bs in import_graph(mods).items()}
+    graph = {a: sorted(b for b in bs if not _is_reexport(a, b, mods)) for a, bs in import_graph(mods).items()}
     index: dict[str, int] = {}
     low: dict[str, int] = {}
     stack: list[str] = []
@@ -244,11 +252,13 @@ def check_circles(mods: dict[str, Module]) -> Verdict:
 
 
 def check_sizes(mods: dict[str, Module]) -> Verdict:
-    big = sorted((len(m.source.splitlines()), m.rel) for m in mods.values()
-                 if len(m.source.splitlines()) > MAX_LINES)
+    big = sorted((len(m.source.splitlines()), m.rel) for m in mods.values() if len(m.source.splitlines()) > MAX_LINES)
     largest = max((len(m.source.splitlines()), m.rel) for m in mods.values())
-    return Verdict(not big, f"modules over {MAX_LINES} lines: {len(big)} "
-                            + (str(big) if big else f"(largest: {largest[1]}, {largest[0]})"))
+    return Verdict(
+        not big,
+        f"modules over {MAX_LINES} lines: {len(big)} "
+        + (str(big) if big else f"(largest: {largest[1]}, {largest[0]})"),
+    )
 
 
 def _top(target: str) -> str:
@@ -264,15 +274,21 @@ def check_reduced(mods: dict[str, Module]) -> Verdict:
             owner = _owner(imp.target, mods)
             where = f"{mod.rel}:{imp.line} {imp.target}{' (lazy)' if imp.lazy else ''}"
             if owner is not None:
-                allowed = (owner == PACKAGE or owner == REDUCED or owner.startswith(REDUCED + ".")
-                           or any(owner == a or owner.startswith(a + ".")
-                                  for a in REDUCED_MAY_IMPORT))
+                allowed = (
+                    owner == PACKAGE
+                    or owner == REDUCED
+                    or owner.startswith(REDUCED + ".")
+                    or any(owner == a or owner.startswith(a + ".") for a in REDUCED_MAY_IMPORT)
+                )
                 if not allowed:
                     bad.append(where)
             elif _top(imp.target) in DOLFINX_WORLD:
                 bad.append(where)
-    return Verdict(not bad, "reduced/ imports only reduced/, scene, errors, provenance and no "
-                            f"dolfinx-world package: {len(bad)}" + (f" {bad[:8]}" if bad else ""))
+    return Verdict(
+        not bad,
+        "reduced/ imports only reduced/, scene, errors, provenance and no "
+        f"dolfinx-world package: {len(bad)}" + (f" {bad[:8]}" if bad else ""),
+    )
 
 
 def check_plotting(mods: dict[str, Module]) -> Verdict:
@@ -287,9 +303,11 @@ def check_plotting(mods: dict[str, Module]) -> Verdict:
             elif not imp.lazy:
                 eager.append(where)
     bad = outside + eager
-    return Verdict(not bad, "pyvista/matplotlib/vtk imported only in postprocess/, inside "
-                            f"functions: {len(outside)} outside, {len(eager)} at module level"
-                            + (f" {bad[:8]}" if bad else ""))
+    return Verdict(
+        not bad,
+        "pyvista/matplotlib/vtk imported only in postprocess/, inside "
+        f"functions: {len(outside)} outside, {len(eager)} at module level" + (f" {bad[:8]}" if bad else ""),
+    )
 
 
 def _first_doc_line(node: ast.AST) -> str:
@@ -305,10 +323,11 @@ def _definition(dotted: str, mods: dict[str, Module]) -> ast.AST | None:
     if owner is None:
         return None
     node: ast.AST = mods[owner].tree
-    for part in dotted[len(owner) + 1:].split(".") if dotted != owner else []:
+    for part in dotted[len(owner) + 1 :].split(".") if dotted != owner else []:
         body = getattr(node, "body", [])
-        found = [n for n in body if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef,
-                                                   ast.ClassDef)) and n.name == part]
+        found = [
+            n for n in body if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) and n.name == part
+        ]
         if not found:
             return None
         node = found[0]
@@ -329,13 +348,17 @@ def check_equation_index(mods: dict[str, Module]) -> Verdict:
         elif not re.search(rf"\bEq\. {n}\b(?!\.\d)", _first_doc_line(node)):
             untagged.append(f"Eq. {n}: {dotted} lacks the tag on its first docstring line")
     ok = not missing and not untagged
-    return Verdict(ok, f"equation index in reduced/__init__: {len(entries)} entries, names "
-                       f"Eq. {', '.join(sorted(named, key=int))}"
-                       + (f"; missing Eq. {', '.join(missing)}" if missing else "")
-                       + (f"; {untagged[:6]}" if untagged else "; every named function tagged"))
+    return Verdict(
+        ok,
+        f"equation index in reduced/__init__: {len(entries)} entries, names "
+        f"Eq. {', '.join(sorted(named, key=int))}"
+        + (f"; missing Eq. {', '.join(missing)}" if missing else "")
+        + (f"; {untagged[:6]}" if untagged else "; every named function tagged"),
+    )
 
 
 # -- the ratchet ---------------------------------------------------------------------------
+
 
 def _is_dict_annotation(node: ast.expr | None) -> bool:
     if node is None:
@@ -362,12 +385,14 @@ def ratchet_counts(mod: Module) -> dict[str, int]:
         if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
             continue
         if node.name not in SERIALISERS and (
-                _is_dict_annotation(node.returns)
-                or any(isinstance(r.value, (ast.Dict, ast.DictComp)) for r in _own_returns(node))):
+            _is_dict_annotation(node.returns)
+            or any(isinstance(r.value, (ast.Dict, ast.DictComp)) for r in _own_returns(node))
+        ):
             dict_results += 1
         args = node.args
-        untyped_scene += sum(1 for a in (*args.posonlyargs, *args.args, *args.kwonlyargs)
-                             if a.arg == "scene" and a.annotation is None)
+        untyped_scene += sum(
+            1 for a in (*args.posonlyargs, *args.args, *args.kwonlyargs) if a.arg == "scene" and a.annotation is None
+        )
     return {"dict_results": dict_results, "untyped_scene": untyped_scene}
 
 
@@ -383,8 +408,10 @@ def all_counts(mods: dict[str, Module]) -> dict[str, dict[str, int]]:
 def check_ratchet(mods: dict[str, Module], baseline: dict[str, dict[str, int]]) -> list[Verdict]:
     counts = all_counts(mods)
     verdicts = []
-    for key, what in (("dict_results", "functions returning a dict (results are dataclasses)"),
-                      ("untyped_scene", "`scene` parameters without `: Scene`")):
+    for key, what in (
+        ("dict_results", "functions returning a dict (results are dataclasses)"),
+        ("untyped_scene", "`scene` parameters without `: Scene`"),
+    ):
         grew, fell = [], []
         for rel in sorted(set(counts) | set(baseline)):
             now = counts.get(rel, {}).get(key, 0)
@@ -406,19 +433,26 @@ def check_ratchet(mods: dict[str, Module], baseline: dict[str, dict[str, int]]) 
 def run(root: Path = ROOT, baseline_path: Path = BASELINE) -> list[Verdict]:
     mods = load_modules(root)
     baseline = json.loads(baseline_path.read_text()) if baseline_path.exists() else {}
-    return [check_circles(mods), check_sizes(mods), check_reduced(mods), check_plotting(mods),
-            check_equation_index(mods), *check_ratchet(mods, baseline)]
+    return [
+        check_circles(mods),
+        check_sizes(mods),
+        check_reduced(mods),
+        check_plotting(mods),
+        check_equation_index(mods),
+        *check_ratchet(mods, baseline),
+    ]
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0] if __doc__ else None)
-    parser.add_argument("--write-baseline", action="store_true",
-                        help=f"record today's ratchet counts in {BASELINE.name} and exit")
+    parser.add_argument(
+        "--write-baseline", action="store_true", help=f"record today's ratchet counts in {BASELINE.name} and exit"
+    )
     args = parser.parse_args(argv)
     if args.write_baseline:
         counts = all_counts(load_modules(ROOT))
         rows = [f" {json.dumps(rel)}: {json.dumps(c)}" for rel, c in counts.items()]
-        BASELINE.write_text("{\n" + ",\n".join(rows) + "\n}\n")     # a line a module: small diffs
+        BASELINE.write_text("{\n" + ",\n".join(rows) + "\n}\n")  # a line a module: small diffs
         print(f"wrote {BASELINE.relative_to(ROOT)}: {len(counts)} modules")
         return 0
     verdicts = run()

@@ -33,8 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: The override the strict flip adds to pyproject.toml: ``--strict``'s flags, one by one
 #: (mypy 2.4 applies a per-module ``strict = true`` to every module).
 STRICT_BLOCK: dict[str, Any] = {
-    "module": ["rotorpillar.reduced", "rotorpillar.reduced.*",
-               "rotorpillar.scene", "rotorpillar.scene.*"],
+    "module": ["rotorpillar.reduced", "rotorpillar.reduced.*", "rotorpillar.scene", "rotorpillar.scene.*"],
     "disallow_any_generics": True,
     "disallow_subclassing_any": True,
     "disallow_untyped_calls": True,
@@ -88,8 +87,9 @@ def counts(output: str) -> tuple[Counter[str], Counter[str]]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
-    parser.add_argument("--strict", action="store_true",
-                        help="the target configuration: no debt, strict reduced/ and scene/")
+    parser.add_argument(
+        "--strict", action="store_true", help="the target configuration: no debt, strict reduced/ and scene/"
+    )
     args = parser.parse_args(argv)
     cmd = [sys.executable, "-m", "mypy"]
     if not args.strict:
@@ -97,18 +97,18 @@ def main(argv: list[str] | None = None) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         config = Path(tmp) / "mypy-target.toml"
         config.write_text(target_config(ROOT / "pyproject.toml"))
-        p = subprocess.run([*cmd, "--config-file", str(config)], cwd=ROOT, capture_output=True,
-                           text=True)
+        p = subprocess.run([*cmd, "--config-file", str(config)], cwd=ROOT, capture_output=True, text=True)
     print(p.stdout, end="")
     print(p.stderr, end="", file=sys.stderr)
     by_code, by_file = counts(p.stdout)
     print(f"\nmypy, target configuration: {sum(by_code.values())} errors in {len(by_file)} files")
     print("by code:   " + ", ".join(f"{c} {n}" for c, n in by_code.most_common()))
-    strict = Counter({f: n for f, n in by_file.items()
-                      if f.startswith(("rotorpillar/reduced/", "rotorpillar/scene/"))})
-    print(f"strict reduced/ and scene/: {sum(strict.values())} errors in {len(strict)} files; "
-          f"the rest: {sum(by_file.values()) - sum(strict.values())} errors in "
-          f"{len(by_file) - len(strict)} files")
+    strict = Counter({f: n for f, n in by_file.items() if f.startswith(("rotorpillar/reduced/", "rotorpillar/scene/"))})
+    print(
+        f"strict reduced/ and scene/: {sum(strict.values())} errors in {len(strict)} files; "
+        f"the rest: {sum(by_file.values()) - sum(strict.values())} errors in "
+        f"{len(by_file) - len(strict)} files"
+    )
     return p.returncode
 
 

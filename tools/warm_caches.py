@@ -66,14 +66,17 @@ SHORT_STAGES = {
 SMALL_SOLID = {"elements_around": 8, "elements_along": 2, "elements_through": 1}
 SMALL_SHELL = {"elements_around": 8, "elements_along": 4}
 #: Where the forms and the elements come from (their code is in the hash of the key).
-FORM_SOURCES = ("rotorpillar/fem3d", "rotorpillar/mesh", "rotorpillar/scenes/paper.toml",
-                "rotorpillar/scene/sections.py")
+FORM_SOURCES = (
+    "rotorpillar/fem3d",
+    "rotorpillar/mesh",
+    "rotorpillar/scenes/paper.toml",
+    "rotorpillar/scene/sections.py",
+)
 
 
 def kernel_files() -> list[Path]:
     """The package's files with cached numba kernels."""
-    return sorted(p for p in (ROOT / "rotorpillar").rglob("*.py")
-                  if "cache=True" in p.read_text(encoding="utf-8"))
+    return sorted(p for p in (ROOT / "rotorpillar").rglob("*.py") if "cache=True" in p.read_text(encoding="utf-8"))
 
 
 def key() -> str:
@@ -81,11 +84,12 @@ def key() -> str:
     import os
     import platform
     from importlib.metadata import version
+
     h = hashlib.sha256()
     h.update(platform.python_version().encode())
     for dist in ("numba", "llvmlite", "fenics-ffcx", "fenics-ufl", "fenics-basix", "fenics-dolfinx"):
         h.update(f" {dist} {version(dist)}".encode())
-    for var in ("NUMBA_CACHE_DIR", "XDG_CACHE_HOME"):          # where the caches are
+    for var in ("NUMBA_CACHE_DIR", "XDG_CACHE_HOME"):  # where the caches are
         h.update(f"{var}={os.environ.get(var, '')}\n".encode())
     for p in kernel_files():
         st = p.stat()
@@ -102,6 +106,7 @@ def _dispatchers() -> Iterator[tuple[Path, Any]]:
     import importlib
 
     from numba.core.registry import CPUDispatcher
+
     for p in kernel_files():
         mod = importlib.import_module(".".join(p.relative_to(ROOT).with_suffix("").parts))
         for obj in vars(mod).values():
@@ -113,23 +118,22 @@ def warm_kernels(out: Path) -> tuple[int, int, list[Path]]:
     """Run the short stages; (signatures compiled, loaded from the cache, index files)."""
     from rotorpillar.cli import main
     from rotorpillar.commands.run import RUN_STAGES
+
     stages = [(st[0], st[3]) for st in RUN_STAGES if st[0] in SHORT_STAGES]
     missing = set(SHORT_STAGES) - {c for c, _ in stages}
     if missing:
-        raise SystemExit(f"warm_caches: the main job has no stage {sorted(missing)}: update "
-                         "SHORT_STAGES")
+        raise SystemExit(f"warm_caches: the main job has no stage {sorted(missing)}: update SHORT_STAGES")
     for command, own in stages:
         argv = [*command.split(), *own, SCENE, "--out", str(out), *SHORT_STAGES[command]]
         sink = io.StringIO()
         with contextlib.redirect_stdout(sink), contextlib.redirect_stderr(sink):
             status = main(argv)
         if status != 0:
-            raise SystemExit(f"warm_caches: rotorpillar {' '.join(argv)} exited {status}:\n"
-                             + sink.getvalue()[-2000:])
+            raise SystemExit(f"warm_caches: rotorpillar {' '.join(argv)} exited {status}:\n" + sink.getvalue()[-2000:])
     compiled = loaded = 0
     index: set[Path] = set()
     for path, d in _dispatchers():
-        compiled += len(d.stats.cache_misses)                  # signatures, not calls
+        compiled += len(d.stats.cache_misses)  # signatures, not calls
         loaded += len(set(d.stats.cache_hits) - set(d.stats.cache_misses))
         # numba's index files, one a function: <module>.<function>-<line>.py311.nbi
         index.update(Path(d.stats.cache_path).glob(f"{path.stem}.*.nbi"))
@@ -145,6 +149,7 @@ def cached_signatures(index: list[Path]) -> int:
 def _recording_ffcx_modules() -> Iterator[list[Path]]:
     """The shared libraries FFCx compiles or loads while inside (dolfinx calls these)."""
     import ffcx.codegeneration.jit as jit
+
     seen: list[Path] = []
     originals = {name: getattr(jit, name) for name in ("compile_forms", "compile_elements")}
 
@@ -155,6 +160,7 @@ def _recording_ffcx_modules() -> Iterator[list[Path]]:
             if getattr(module, "__file__", None):
                 seen.append(Path(module.__file__))
             return result
+
         return call
 
     for name, original in originals.items():
@@ -173,14 +179,14 @@ def warm_forms() -> tuple[list[str], list[Path]]:
     from rotorpillar import load_scene
     from rotorpillar.converge.compute import compute_fe
     from rotorpillar.converge.ladder import FAMILIES, ladder
+
     scene = load_scene(SCENE)
     firsts: dict[str, Any] = {}
     for case in ladder(scene):
         fam = FAMILIES[case.family]
         if fam.model in ("shell", "solid") and not fam.sweep and case.family not in firsts:
             small = SMALL_SHELL if fam.model == "shell" else SMALL_SOLID
-            firsts[case.family] = replace(case, params=tuple(sorted({**case.settings,
-                                                                    **small}.items())))
+            firsts[case.family] = replace(case, params=tuple(sorted({**case.settings, **small}.items())))
     with _recording_ffcx_modules() as seen:
         for case in firsts.values():
             compute_fe(case, scene)
@@ -198,19 +204,23 @@ def main(argv: list[str] | None = None) -> int:
             return 0
     sys.path.insert(0, str(ROOT))
     from rotorpillar.cli import quiet_third_party_logs
-    quiet_third_party_logs()          # the compiler's command lines stay off the console
-    print("setup: warming the compiled code of the first run (numba kernels, FFCx forms; "
-          "once, about a minute)", flush=True)
+
+    quiet_third_party_logs()  # the compiler's command lines stay off the console
+    print(
+        "setup: warming the compiled code of the first run (numba kernels, FFCx forms; once, about a minute)",
+        flush=True,
+    )
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="rotorpillar-warm-") as tmp:
         compiled, loaded, index = warm_kernels(Path(tmp))
     t1 = time.perf_counter()
     families, libraries = warm_forms()
     t2 = time.perf_counter()
-    print(f"setup: numba: {cached_signatures(index)} signatures of {len(index)} kernels in the "
-          f"cache; {compiled} compiled now, {loaded} loaded ({t1 - t0:.0f} s)")
-    print(f"setup: FFCx: {len(libraries)} elements and forms of {', '.join(families)} "
-          f"({t2 - t1:.0f} s)")
+    print(
+        f"setup: numba: {cached_signatures(index)} signatures of {len(index)} kernels in the "
+        f"cache; {compiled} compiled now, {loaded} loaded ({t1 - t0:.0f} s)"
+    )
+    print(f"setup: FFCx: {len(libraries)} elements and forms of {', '.join(families)} ({t2 - t1:.0f} s)")
     files = [str(p) for p in [*index, *libraries]]
     STAMP.write_text(json.dumps({"key": want, "files": files}, indent=1) + "\n")
     return 0

@@ -10,11 +10,27 @@ reduction it receives as a callable when a scene asks for it):
 """
 
 from .paper import compare_with_paper
-from .results import (AnalysisResult, DriveRegimes, PaperRow, PillarClosedForms,
-                      ResonanceAnalysis, CoupledModes, TipReductionUsed)
+from .results import (
+    AnalysisResult,
+    CoupledModes,
+    DriveRegimes,
+    PaperRow,
+    PillarClosedForms,
+    ResonanceAnalysis,
+    TipReductionUsed,
+)
 from .scene_analysis import analyze
 from .text import summary
 
-__all__ = ["AnalysisResult", "DriveRegimes", "PaperRow", "PillarClosedForms",
-           "ResonanceAnalysis", "CoupledModes", "TipReductionUsed", "analyze",
-           "compare_with_paper", "summary"]
+__all__ = [
+    "AnalysisResult",
+    "DriveRegimes",
+    "PaperRow",
+    "PillarClosedForms",
+    "ResonanceAnalysis",
+    "CoupledModes",
+    "TipReductionUsed",
+    "analyze",
+    "compare_with_paper",
+    "summary",
+]

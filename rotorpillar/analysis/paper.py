@@ -43,12 +43,14 @@ from .results import CoupledModes, PaperRow, PillarClosedForms, TipReductionUsed
 class PaperBlocks(Protocol):
     """What the paper's comparison reads: the pillar's closed forms and the paper model's
     tip reduction and coupled modes (rotorpillar.analysis.scene_analysis hands them in)."""
+
     @property
     def pillar(self) -> PillarClosedForms: ...
     @property
     def reduction(self) -> TipReductionUsed: ...
     @property
     def system(self) -> CoupledModes: ...
+
 
 #: Differences above 2 % are flagged: the paper prints two or three digits.
 TOLERANCE = 0.02
@@ -81,16 +83,31 @@ PRINTED = [
     ("fe_omega2", "Sec. 3 FE model: omega2 (rad/s)", 61.58, "Sec. 3, Fig. 5a"),
 ]
 
-PAPER_TABLE1 = {"omega": (26.0, 59.1), "two_n": (6.25, 13.75), "nu": (0.22, 0.16),
-                "f": (0.065, 0.356)}
+PAPER_TABLE1 = {"omega": (26.0, 59.1), "two_n": (6.25, 13.75), "nu": (0.22, 0.16), "f": (0.065, 0.356)}
 
 #: The embedded scene of the paper's stiff-shaft case (Table 1, Eq. 24, Sec. 3).
 STIFF_SCENE = "paper-stiff"
 #: What a row's ``where`` says after the place it is printed: the case ours is computed on.
 OURS = "; ours: "
 #: The rows computed on the stiff shaft.
-STIFF_KEYS = {"omega1", "omega2", "f1", "f2", "two_n1", "two_n2", "nu1", "nu2", "I1", "I2",
-              "a1max", "a2max", "ratio1", "ratio2", "Mc1", "Mc2"}
+STIFF_KEYS = {
+    "omega1",
+    "omega2",
+    "f1",
+    "f2",
+    "two_n1",
+    "two_n2",
+    "nu1",
+    "nu2",
+    "I1",
+    "I2",
+    "a1max",
+    "a2max",
+    "ratio1",
+    "ratio2",
+    "Mc1",
+    "Mc2",
+}
 FE_KEYS = {"fe_omega1", "fe_omega2"}
 #: Beam elements of the pillar modes when the caller hands in none.
 FE_BEAM_ELEMENTS = 40
@@ -99,6 +116,7 @@ FE_BEAM_ELEMENTS = 40
 @dataclass(frozen=True)
 class StiffCase:
     """The paper's model on the stiff shaft: what Table 1 and Eq. 24 print."""
+
     scene: Scene
     """the stiff-shaft scene (rotorpillar.scene.Scene)"""
     resonances: tuple
@@ -128,9 +146,10 @@ def coupled_x_frequencies(omega, modal_mass, rotor_mass: float, shaft_stiffness:
     k = m * np.asarray(omega, dtype=float) ** 2
     n = len(m)
     M = np.diag(np.r_[m, rotor_mass])
-    d = np.r_[-np.ones(n), 1.0]                      # shaft stretch: rotor minus tip
+    d = np.r_[-np.ones(n), 1.0]  # shaft stretch: rotor minus tip
     K = np.diag(np.r_[k, 0.0]) + shaft_stiffness * np.outer(d, d)
     from scipy.linalg import eigh
+
     return np.sqrt(np.abs(eigh(K, M, eigvals_only=True)))
 
 
@@ -141,20 +160,28 @@ def stiff_case(pillar_modes=None) -> StiffCase:
     from ..reduced.pillar_modes import beam_pillar_modes
     from ..reduced.reduction import pillar_closed_forms, resolve_reduction
     from ..scene import load_scene
+
     stiff = load_scene(STIFF_SCENE)
     red = resolve_reduction(stiff, pillar_closed_forms(stiff.pillar), None)
-    modes = linear_modes(reduced_system(stiff.rotor, stiff.shaft, stiff.gondola.mass,
-                                        stiff.pillar.damping, red["tip_mass"], red["tip_stiffness"]))
+    modes = linear_modes(
+        reduced_system(
+            stiff.rotor, stiff.shaft, stiff.gondola.mass, stiff.pillar.damping, red["tip_mass"], red["tip_stiffness"]
+        )
+    )
     xs = [r for r in modes.resonances if r.direction == "X"]
     ch = av.Characteristic(stiff.drive.torque_at_zero, stiff.drive.slope, stiff.load.coefficient)
     if pillar_modes is None:
         pillar_modes = beam_pillar_modes(stiff.pillar, stiff.gondola.mass, 6, "timoshenko", FE_BEAM_ELEMENTS)
-    fe = coupled_x_frequencies(pillar_modes.omega, pillar_modes.modal_mass, stiff.rotor.mass,
-                               stiff.shaft.stiffness)
-    return StiffCase(stiff, tuple(xs), tuple(float(av.amplitude(r.omega, r)) for r in xs),
-                     tuple(float(av.resistance_increment(r.omega, r)) for r in xs),
-                     tuple(float(ch.load(r.omega)) for r in xs), tuple(map(float, fe)),
-                     str(pillar_modes.source))
+    fe = coupled_x_frequencies(pillar_modes.omega, pillar_modes.modal_mass, stiff.rotor.mass, stiff.shaft.stiffness)
+    return StiffCase(
+        stiff,
+        tuple(xs),
+        tuple(float(av.amplitude(r.omega, r)) for r in xs),
+        tuple(float(av.resistance_increment(r.omega, r)) for r in xs),
+        tuple(float(ch.load(r.omega)) for r in xs),
+        tuple(map(float, fe)),
+        str(pillar_modes.source),
+    )
 
 
 def _implied_tip(omega1: float, omega2: float, mC: float, c2: float):
@@ -180,31 +207,46 @@ def _notes(scene: Scene, result, stiff: StiffCase) -> dict:
     notes = {}
     notes["omega_col1"] = (
         f"E is not given in the paper; we assume E = {E:.3g} Pa. The printed value needs "
-        f"E = {E * (31.45 / p.omega_col1)**2:.4g} Pa with the stated geometry and density.")
+        f"E = {E * (31.45 / p.omega_col1) ** 2:.4g} Pa with the stated geometry and density."
+    )
     best = min(range(1, 51), key=lambda n: abs(tip_mass_lumped(mass, n) - 9.7e3))
     notes["m_r"] = (
         f"Eq. 2 on the continuous first mode gives m_col/4 = {p.tip_mass_limit:.4g} kg; "
         f"lumped into n masses (top node a full segment) it falls from m_col = {mass:.4g} kg "
         f"(n = 1) to that limit; n = {best} gives {tip_mass_lumped(mass, best):.4g} kg, the "
-        "nearest to the printed value. The paper's lumping is not stated.")
+        "nearest to the printed value. The paper's lumping is not stated."
+    )
     notes["c1"] = (
         f"The printed c1 is the printed m_r times omega_col1**2 ({9.7e3 * 31.45**2:.4g}); the "
-        "difference is inherited from m_r (and from E).")
+        "difference is inherited from m_r (and from E)."
+    )
     notes["m_rho"] = "The paper's 'distributed beam mass m_i = 1e3' is read as kg per metre."
 
     sc = stiff.scene
     mA, mC = sysd.tip_mass_total, scene.rotor.mass
-    alt = ReducedSystem(mA, mC, scene.rotor.inertia, scene.rotor.eccentricity,
-                        result.reduction.tip_stiffness, 0.4e6, scene.pillar.damping, 11e3)
+    alt = ReducedSystem(
+        mA,
+        mC,
+        scene.rotor.inertia,
+        scene.rotor.eccentricity,
+        result.reduction.tip_stiffness,
+        0.4e6,
+        scene.pillar.damping,
+        11e3,
+    )
     elastic = omega_pair(alt)
     implied = _implied_tip(26.0, 59.1, mC, sc.shaft.stiffness)
-    txt = (f"Table 1 is headed 'c2 = 0.4e6' yet calls itself the stiff shaft, and its pair is "
-           f"the stiff shaft's: ours on {STIFF_SCENE} (c2 = {sc.shaft.stiffness:.3g}); the "
-           f"elastic shaft c2 = 0.4e6 gives {elastic[0]:.2f} and {elastic[1]:.2f} rad/s.")
+    txt = (
+        f"Table 1 is headed 'c2 = 0.4e6' yet calls itself the stiff shaft, and its pair is "
+        f"the stiff shaft's: ours on {STIFF_SCENE} (c2 = {sc.shaft.stiffness:.3g}); the "
+        f"elastic shaft c2 = 0.4e6 gives {elastic[0]:.2f} and {elastic[1]:.2f} rad/s."
+    )
     if implied:
-        txt += (f" The printed pair needs m_A = {implied[0]:.4g} kg and c1 = {implied[1]:.4g} N/m "
-                f"with the stiff shaft (ours: m_A = {mA:.4g} kg, c1 = "
-                f"{result.reduction.tip_stiffness:.4g} N/m, the stated values).")
+        txt += (
+            f" The printed pair needs m_A = {implied[0]:.4g} kg and c1 = {implied[1]:.4g} N/m "
+            f"with the stiff shaft (ours: m_A = {mA:.4g} kg, c1 = "
+            f"{result.reduction.tip_stiffness:.4g} N/m, the stated values)."
+        )
     notes["omega1"] = notes["omega2"] = txt
 
     tab = PAPER_TABLE1
@@ -219,43 +261,50 @@ def _notes(scene: Scene, result, stiff: StiffCase) -> dict:
         notes[f"two_n{i + 1}"] = (
             f"2n_i depends on b1, which the paper gives as a range (10e3 ... 50e3); ours uses "
             f"b1 = {sc.pillar.damping:.3g}. With the stiff shaft's modes, the printed value needs "
-            f"b1 = {b1_implied:.3g} N*s/m.")
+            f"b1 = {b1_implied:.3g} N*s/m."
+        )
         w, tn = tab["omega"][i], tab["two_n"][i]
         notes[f"nu{i + 1}"] = (
             f"nu_i = n_i/omega_i (Eq. 19). From Table 1's own 2n_i and omega_i: n/omega = "
             f"{tn / 2 / w:.3f}, 2n/omega = {tn / w:.3f}; the printed nu_i matches neither. The "
             f"text before Table 1 gives 0.22 and 0.16 as two values of nu_1 for Figs. 3-4 (the "
             f"elastic shaft); this scene's (c2 = {scene.shaft.stiffness:.3g}) is {elastic_nu:.3f}."
-            if elastic_nu else
-            f"nu_i = n_i/omega_i (Eq. 19). From Table 1's own 2n_i and omega_i: n/omega = "
-            f"{tn / 2 / w:.3f}, 2n/omega = {tn / w:.3f}; the printed nu_i matches neither.")
+            if elastic_nu
+            else f"nu_i = n_i/omega_i (Eq. 19). From Table 1's own 2n_i and omega_i: n/omega = "
+            f"{tn / 2 / w:.3f}, 2n/omega = {tn / w:.3f}; the printed nu_i matches neither."
+        )
         notes[f"I{i + 1}"] = (
             "The modal mass depends on the scaling of the modal vectors, which the paper does "
-            "not state; we scale u_1i = 1 (Eq. 6). Differences in omega_i carry over.")
+            "not state; we scale u_1i = 1 (Eq. 6). Differences in omega_i carry over."
+        )
         notes[f"f{i + 1}"] = (
-            "f_i = c2 e (u_2i - u_1i)/I_i depends on the same unstated scaling and on omega_i "
-            "through u_2i.")
+            "f_i = c2 e (u_2i - u_1i)/I_i depends on the same unstated scaling and on omega_i through u_2i."
+        )
         f, nu = tab["f"][i], tab["nu"][i]
         notes[f"a{i + 1}max"] = (
             f"Eq. 19 as printed divides by omega_i, not omega_i**2 (dimensionally an m/s). From "
             f"Table 1's own f, omega, nu: printed form {f / (2 * w * nu):.3g}, corrected "
-            f"{f / (2 * w**2 * nu):.3g} m; neither is the printed a_max.")
+            f"{f / (2 * w**2 * nu):.3g} m; neither is the printed a_max."
+        )
         c2e = sc.shaft.stiffness * sc.rotor.eccentricity
         notes[f"ratio{i + 1}"] = (
             f"Ours uses the modal torque coupling g_i; with the paper's f4 = c2 e it is "
             f"{c2e / 2 * stiff.a_max[i] / stiff.Mc[i]:.3g}. The printed ratio (f4/2) a_max/Mc with "
             f"the printed a_max, Mc and c2 e = {c2e:.3g} (stiff shaft) is "
-            f"{c2e / 2 * (0.010, 0.027)[i] / (454.0, 1930.0)[i]:.3g}.")
+            f"{c2e / 2 * (0.010, 0.027)[i] / (454.0, 1930.0)[i]:.3g}."
+        )
         Mc_printed = (454.0, 1930.0)[i]
         notes[f"Mc{i + 1}"] = (
             f"Mc = {sc.load.coefficient:g} Omega**2 (Eq. 22): the printed value is Mc at "
             f"Omega = {math.sqrt(Mc_printed / sc.load.coefficient):.2f} rad/s, not at the "
-            f"paper's omega_{i + 1} = {tab['omega'][i]}.")
+            f"paper's omega_{i + 1} = {tab['omega'][i]}."
+        )
         notes[f"fe_omega{i + 1}"] = (
             f"The paper's model of the whole structure: three beam elements with section "
             f"rotation, element data not stated. Ours: the rotor on the stiff shaft "
             f"(c2 = {sc.shaft.stiffness:.3g}) atop the pillar's modes with the gondola "
-            f"({stiff.fe_source}).")
+            f"({stiff.fe_source})."
+        )
     notes["omega3"] = "omega3 = sqrt(c2/m_C) depends on the shaft only (the elastic shaft's here)."
     notes["I"] = ""
     return notes
@@ -270,20 +319,32 @@ def compare_with_paper(scene: Scene, result: PaperBlocks, pillar_modes=None) -> 
     st = stiff_case(pillar_modes)
     sr = st.resonances
     computed = {
-        "I": p.second_moment, "m_rho": p.mass_per_length, "omega_col1": p.omega_col1,
-        "m_r": red.tip_mass_computed, "c1": red.tip_stiffness_computed,
-        "omega3": s.omega3, "omega1": sr[0].omega, "omega2": sr[1].omega,
-        "f1": abs(sr[0].forcing), "f2": abs(sr[1].forcing),
-        "two_n1": sr[0].two_n, "two_n2": sr[1].two_n,
-        "nu1": sr[0].nu, "nu2": sr[1].nu,
-        "I1": sr[0].modal_mass, "I2": sr[1].modal_mass,
-        "a1max": st.a_max[0], "a2max": st.a_max[1],
-        "ratio1": st.dL_max[0] / st.Mc[0], "ratio2": st.dL_max[1] / st.Mc[1],
-        "Mc1": st.Mc[0], "Mc2": st.Mc[1],
-        "fe_omega1": st.fe_omega[0], "fe_omega2": st.fe_omega[1],
+        "I": p.second_moment,
+        "m_rho": p.mass_per_length,
+        "omega_col1": p.omega_col1,
+        "m_r": red.tip_mass_computed,
+        "c1": red.tip_stiffness_computed,
+        "omega3": s.omega3,
+        "omega1": sr[0].omega,
+        "omega2": sr[1].omega,
+        "f1": abs(sr[0].forcing),
+        "f2": abs(sr[1].forcing),
+        "two_n1": sr[0].two_n,
+        "two_n2": sr[1].two_n,
+        "nu1": sr[0].nu,
+        "nu2": sr[1].nu,
+        "I1": sr[0].modal_mass,
+        "I2": sr[1].modal_mass,
+        "a1max": st.a_max[0],
+        "a2max": st.a_max[1],
+        "ratio1": st.dL_max[0] / st.Mc[0],
+        "ratio2": st.dL_max[1] / st.Mc[1],
+        "Mc1": st.Mc[0],
+        "Mc2": st.Mc[1],
+        "fe_omega1": st.fe_omega[0],
+        "fe_omega2": st.fe_omega[1],
     }
-    stiff_text = (f"{STIFF_SCENE} (stiff shaft c2 = {st.scene.shaft.stiffness:.3g} N/m, "
-                  "the paper's model)")
+    stiff_text = f"{STIFF_SCENE} (stiff shaft c2 = {st.scene.shaft.stiffness:.3g} N/m, the paper's model)"
     fe_text = f"{STIFF_SCENE}, rotor on the stiff shaft atop {st.fe_source} pillar modes"
     notes = _notes(scene, result, st)
     rows = []
@@ -292,9 +353,18 @@ def compare_with_paper(scene: Scene, result: PaperBlocks, pillar_modes=None) -> 
         rel = (c - printed) / printed
         flag = abs(rel) > TOLERANCE
         on = stiff_text if key in STIFF_KEYS else fe_text if key in FE_KEYS else ""
-        rows.append(PaperRow(key=key, quantity=quantity, paper=printed, computed=c,
-                             rel_diff=rel, flag=flag, where=where + (OURS + on if on else ""),
-                             note=notes.get(key, "") if flag else ""))
+        rows.append(
+            PaperRow(
+                key=key,
+                quantity=quantity,
+                paper=printed,
+                computed=c,
+                rel_diff=rel,
+                flag=flag,
+                where=where + (OURS + on if on else ""),
+                note=notes.get(key, "") if flag else "",
+            )
+        )
     rows.append(base_forcing_row(scene, result))
     return tuple(rows)
 
@@ -309,16 +379,28 @@ def base_forcing_row(scene: Scene, result: PaperBlocks) -> PaperRow:
     c1, c2 = result.reduction.tip_stiffness, scene.shaft.stiffness
     f = base_forcing_finding(c1, c2, scene.pillar.damping, scene.shaft.damping)
     gain = f["static_gain_published"]
-    note = (f"Eq. 4 forces q1 by {f['published']['q1']} and q2 by {f['published']['q2']}, as if "
-            f"the shaft were anchored to the ground; only the pillar reaches it: "
-            f"{f['consistent']['q1']} on q1 and nothing on q2 (in relative coordinates "
-            f"{f['consistent']['relative_coordinates']}). Under a slow ground displacement the "
-            f"published forcing gives the tip (c1 + 2 c2)/c1 = {gain:.3g} times the ground's, "
-            "not 1; the modal model uses the consistent forcing.")
+    note = (
+        f"Eq. 4 forces q1 by {f['published']['q1']} and q2 by {f['published']['q2']}, as if "
+        f"the shaft were anchored to the ground; only the pillar reaches it: "
+        f"{f['consistent']['q1']} on q1 and nothing on q2 (in relative coordinates "
+        f"{f['consistent']['relative_coordinates']}). Under a slow ground displacement the "
+        f"published forcing gives the tip (c1 + 2 c2)/c1 = {gain:.3g} times the ground's, "
+        "not 1; the modal model uses the consistent forcing."
+    )
     if f["amplifies"]:
-        note += (f" With this scene's shaft that is more than {f['limit']:.2f}: the paper "
-                 "model's earthquake is inflated (simulate warns).")
+        note += (
+            f" With this scene's shaft that is more than {f['limit']:.2f}: the paper "
+            "model's earthquake is inflated (simulate warns)."
+        )
     rel = (1.0 - gain) / gain
-    return PaperRow(key="eq4_base_forcing", quantity="Eq. 4 base forcing: static tip gain q1/q5 (-)",
-                    paper=gain, computed=1.0, rel_diff=rel, flag=abs(rel) > TOLERANCE,
-                    where="Eq. 4", note=note, details=f)
+    return PaperRow(
+        key="eq4_base_forcing",
+        quantity="Eq. 4 base forcing: static tip gain q1/q5 (-)",
+        paper=gain,
+        computed=1.0,
+        rel_diff=rel,
+        flag=abs(rel) > TOLERANCE,
+        where="Eq. 4",
+        note=note,
+        details=f,
+    )

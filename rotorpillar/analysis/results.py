@@ -10,17 +10,18 @@ units: rad/s, kg, N/m, N*m, m.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Optional
 
 from ..chain.modes import TipReductionOf
 from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
-from ..reduced.averaging import Jump, Stationary as StationarySpeed  # noqa: F401  (records of analyze.json too)
+from ..reduced.averaging import Jump  # noqa: F401  (records of analyze.json too)
+from ..reduced.averaging import Stationary as StationarySpeed
 
 
 @dataclass(frozen=True)
 class Lumping(JsonRecord):
     """The paper's Eq. 2 with the tube lumped into ``n`` equal masses."""
+
     n: int
     tip_mass: float
     """m_r (kg)"""
@@ -31,6 +32,7 @@ class Lumping(JsonRecord):
 @dataclass(frozen=True)
 class RayleighEstimate(JsonRecord):
     """Rayleigh's quotient on a static deflection shape."""
+
     shape: str
     """"uniform_load" or "tip_load\""""
     tip_mass: float
@@ -43,6 +45,7 @@ class RayleighEstimate(JsonRecord):
 @dataclass(frozen=True)
 class PillarClosedForms(JsonRecord):
     """The bare tube: its section, Eq. 1, Timoshenko's correction, Eq. 2's reductions."""
+
     area: float
     second_moment: float
     mass_per_length: float
@@ -66,6 +69,7 @@ class PillarClosedForms(JsonRecord):
 @dataclass(frozen=True)
 class TipReductionUsed(JsonRecord):
     """The tip mass and stiffness the reduced model uses, and where each came from."""
+
     source: str
     tip_mass: float
     tip_mass_source: str
@@ -79,6 +83,7 @@ class TipReductionUsed(JsonRecord):
 @dataclass(frozen=True)
 class CoupledModes(JsonRecord):
     """The reduced rotor-pillar system: its modes and quasi-normal coefficients."""
+
     tip_mass_total: float
     c0: float
     b0: float
@@ -100,6 +105,7 @@ class CoupledModes(JsonRecord):
 @dataclass(frozen=True)
 class ResonanceCurves(JsonRecord):
     """The averaging curves around one resonance, on z = Omega / omega_i."""
+
     z: tuple[float, ...]
     omega: tuple[float, ...]
     a: tuple[float, ...]
@@ -113,6 +119,7 @@ class ResonanceCurves(JsonRecord):
 @dataclass(frozen=True)
 class ResonanceAnalysis(JsonRecord):
     """One resonance by the averaging theory: amplitude, extra torque, jumps."""
+
     index: int
     direction: str
     omega: float
@@ -127,21 +134,22 @@ class ResonanceAnalysis(JsonRecord):
     a_max_as_printed: float
     dL_max: float
     Mc_at_omega: float
-    dL_max_over_Mc: Optional[float]
-    dL_max_over_Mc_as_printed: Optional[float]
+    dL_max_over_Mc: float | None
+    dL_max_over_Mc_as_printed: float | None
     stationary: tuple[StationarySpeed, ...]
     jumps: tuple[Jump, ...]
     critical_slope: float
     critical_eccentricity: float
     statement: str
     curves: ResonanceCurves
-    uncertainty: Optional["ResonanceBars"] = field(default=None, metadata={"omit_if_none": True})
+    uncertainty: ResonanceBars | None = field(default=None, metadata={"omit_if_none": True})
     """error bars of omega, a_max and dL_max (the headline model's; absent on the paper's)"""
 
 
 @dataclass(frozen=True)
 class ResonanceBars(JsonRecord):
     """A resonance's headline numbers with their error bars (rotorpillar.analysis.rom)."""
+
     omega: Uncertain
     """rad/s"""
     a_max: Uncertain
@@ -153,38 +161,41 @@ class ResonanceBars(JsonRecord):
 @dataclass(frozen=True)
 class DriveBars(JsonRecord):
     """The drive's stationary speeds with their error bars."""
-    runup_speed: Optional[Uncertain]
+
+    runup_speed: Uncertain | None
     """rad/s"""
-    rundown_speed: Optional[Uncertain]
+    rundown_speed: Uncertain | None
     """rad/s"""
 
 
 @dataclass(frozen=True)
 class DriveRegimes(JsonRecord):
     """The motor on the whole machine: stationary speeds, jumps, capture."""
+
     torque_at_zero: float
     slope: float
     load_coefficient: float
     free_speed: float
     stationary: tuple[StationarySpeed, ...]
     jumps: tuple[Jump, ...]
-    runup_speed: Optional[float]
+    runup_speed: float | None
     """where a quasi-static run-up to this M0 settles (rad/s)"""
-    rundown_speed: Optional[float]
+    rundown_speed: float | None
     """where a quasi-static run-down to this M0 settles (rad/s)"""
-    captured_index: Optional[int]
+    captured_index: int | None
     """the resonance (its index) below which the run-up settles while a faster stable
     regime exists: Sommerfeld capture; None when the run-up passes"""
-    captured_resonance: Optional[float]
+    captured_resonance: float | None
     """that resonance's omega_i (rad/s)"""
-    captured_at: Optional[float]
+    captured_at: float | None
     """the speed the rotor settles at when captured (rad/s)"""
-    uncertainty: Optional[DriveBars] = field(default=None, metadata={"omit_if_none": True})
+    uncertainty: DriveBars | None = field(default=None, metadata={"omit_if_none": True})
 
 
 @dataclass(frozen=True)
 class PaperRow(JsonRecord):
     """One number the paper prints, beside ours."""
+
     key: str
     quantity: str
     paper: float
@@ -193,13 +204,14 @@ class PaperRow(JsonRecord):
     flag: bool
     where: str
     note: str
-    details: Optional[dict] = field(default=None, metadata={"omit_if_none": True})
+    details: dict | None = field(default=None, metadata={"omit_if_none": True})
     """what a finding (not a printed number) states, e.g. eq4_base_forcing"""
 
 
 @dataclass(frozen=True)
 class DampedMode(JsonRecord):
     """A damped natural frequency of the linear structure."""
+
     direction: str
     """"X" (horizontal, in the rotor's plane) or "Y" (vertical)"""
     omega: float
@@ -213,6 +225,7 @@ class DampedMode(JsonRecord):
 @dataclass(frozen=True)
 class RomSystem(JsonRecord):
     """The headline model: the chain's pillar modes with the rotor on its shaft."""
+
     modes: int
     """pillar modes kept, those below band_top (-)"""
     band_top: float
@@ -232,9 +245,9 @@ class RomSystem(JsonRecord):
     """c2 e, the paper's torque coupling (N)"""
     tip_reduction: TipReductionOf
     """Eq. 2 on the chain model's bare first bending mode"""
-    truncation_modes: Optional[int]
+    truncation_modes: int | None
     """pillar modes of the truncation check (None: the source offers no more)"""
-    frequency_error: Optional[float]
+    frequency_error: float | None
     """relative error bound of the pillar frequencies from the study (None: unverified) (-)"""
     error_note: str
     """how the error bars were made"""
@@ -243,6 +256,7 @@ class RomSystem(JsonRecord):
 @dataclass(frozen=True)
 class PaperModel(JsonRecord):
     """The paper's Eq. 4 with its stated tip reduction, analysed as the paper does."""
+
     reduction: TipReductionUsed
     system: CoupledModes
     resonances: tuple[ResonanceAnalysis, ...]
@@ -259,6 +273,7 @@ class AnalysisResult(JsonRecord):
     the paper's stated reduction, in its own block, and ``paper_comparison``
     sets the paper's printed numbers beside it.
     """
+
     pillar: PillarClosedForms
     pillar_model: PillarModel
     system: RomSystem

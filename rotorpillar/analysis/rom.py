@@ -18,8 +18,8 @@ Each headline number carries its error bar (``chain.Uncertain``):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, Optional
 
 from ..chain import ChainModes, Uncertain
 from ..reduced import averaging as av
@@ -31,21 +31,23 @@ from ..scene import Scene
 def rom_of(scene: Scene, chain: ChainModes, k: int) -> RotorStructure:
     """The ROM with the first ``k`` of the chain's pillar modes."""
     r, sh = scene.rotor, scene.shaft
-    return modal_model(chain.modes.truncate(k), r.mass, r.inertia, r.eccentricity,
-                       sh.stiffness, sh.damping, scene.pillar.damping)
+    return modal_model(
+        chain.modes.truncate(k), r.mass, r.inertia, r.eccentricity, sh.stiffness, sh.damping, scene.pillar.damping
+    )
 
 
 @dataclass(frozen=True, eq=False)
 class RomVariants:
     """The ROM and the two variants its error bars come from."""
+
     base: RotorStructure
     modes: int
     """pillar modes kept (-)"""
-    discretised: Optional[RotorStructure]
+    discretised: RotorStructure | None
     """pillar frequencies moved by the study's bending error bound (None: unverified)"""
-    truncated: Optional[RotorStructure]
+    truncated: RotorStructure | None
     """one more pillar mode (None: the mode source offers no more)"""
-    frequency_error: Optional[float]
+    frequency_error: float | None
     """the relative frequency error bound applied (-)"""
 
 
@@ -62,7 +64,7 @@ def rom_variants(scene: Scene, chain: ChainModes, band_top: float) -> RomVariant
     return RomVariants(base, k, disc, trunc, delta)
 
 
-def matched(base: list[Resonance], other: list[Resonance]) -> list[Optional[Resonance]]:
+def matched(base: list[Resonance], other: list[Resonance]) -> list[Resonance | None]:
     """``other``'s resonance that corresponds to each of ``base``'s: X by order, Y to Y."""
     bx = [r for r in other if r.direction == "X"]
     by = [r for r in other if r.direction == "Y"]
@@ -79,26 +81,31 @@ def matched(base: list[Resonance], other: list[Resonance]) -> list[Optional[Reso
 def bars(value: float, quantity: Callable, variants: RomVariants, unit: str = "") -> Uncertain:
     """``value`` with its discretisation and truncation sources, ``quantity(model)`` giving
     the same number on a variant (None where it has no counterpart)."""
+
     def diff(model):
         if model is None:
             return None
         v = quantity(model)
         return None if v is None or not math.isfinite(v) else v - value
-    return Uncertain.of(value, unit, discretisation=diff(variants.discretised),
-                        truncation=diff(variants.truncated))
+
+    return Uncertain.of(value, unit, discretisation=diff(variants.discretised), truncation=diff(variants.truncated))
 
 
 def resonance_quantity(i: int, base_res: list[Resonance], fn: Callable[[Resonance], float]):
     """A function model -> fn(the model's resonance matching base resonance i)."""
+
     def q(model: RotorStructure):
         m = matched(base_res, model.quasi_normal())[i]
         return None if m is None else fn(m)
+
     return q
 
 
 def drive_quantity(ch: av.Characteristic, which: str):
     """A function model -> the averaging's run-up or run-down speed on that model."""
+
     def q(model: RotorStructure):
         d = av.analyse_drive(ch, model.quasi_normal())
         return getattr(d, which)
+
     return q

@@ -24,46 +24,65 @@ from ..reduced.reduction import pillar_closed_forms, resolve_reduction
 from ..reduced.system import linear_modes, reduced_system
 from ..scene import Scene
 from .paper import compare_with_paper
-from .results import (AnalysisResult, DampedMode, DriveBars, DriveRegimes, PaperModel,
-                      PillarClosedForms, ResonanceAnalysis, ResonanceBars, ResonanceCurves,
-                      RomSystem, CoupledModes, TipReductionUsed)
+from .results import (
+    AnalysisResult,
+    CoupledModes,
+    DampedMode,
+    DriveBars,
+    DriveRegimes,
+    PaperModel,
+    PillarClosedForms,
+    ResonanceAnalysis,
+    ResonanceBars,
+    ResonanceCurves,
+    RomSystem,
+    TipReductionUsed,
+)
 from .rom import RomVariants, bars, drive_quantity, resonance_quantity, rom_variants
 
 CURVE_POINTS = 201
-CURVE_SPAN = 0.5          # z from 1 - span to 1 + span
+CURVE_SPAN = 0.5  # z from 1 - span to 1 + span
 
 
 def _curves(r, others, ch: av.Characteristic) -> dict:
     z = np.linspace(1 - CURVE_SPAN, 1 + CURVE_SPAN, CURVE_POINTS)
     W = z * r.omega
     dL = av.resistance_increment(W, r)
-    return {"z": z, "omega": W, "a": av.amplitude(W, r), "a_linear": av.amplitude_linear(W, r),
-            "dL": dL, "L": ch.load(W) + dL,
-            "L_all": av.total_resistance(W, ch.load_coefficient, others), "Md": ch.drive(W)}
+    return {
+        "z": z,
+        "omega": W,
+        "a": av.amplitude(W, r),
+        "a_linear": av.amplitude_linear(W, r),
+        "dL": dL,
+        "L": ch.load(W) + dL,
+        "L_all": av.total_resistance(W, ch.load_coefficient, others),
+        "Md": ch.drive(W),
+    }
 
 
 def _statement(r, jumps, ch, s_crit, e_factor, e) -> str:
     if r.nu == 0:
-        return (f"Resonance {r.index} ({r.omega:.2f} rad/s) is undamped (nu = 0): its steady "
-                "amplitude at Omega = omega is unbounded and, off it, it draws no average "
-                "torque; the averaging theory predicts no steady regime there.")
+        return (
+            f"Resonance {r.index} ({r.omega:.2f} rad/s) is undamped (nu = 0): its steady "
+            "amplitude at Omega = omega is unbounded and, off it, it draws no average "
+            "torque; the averaging theory predicts no steady regime there."
+        )
     if jumps:
         parts = []
         for j in jumps:
             name = "run-up A->B" if j.direction == "up" else "run-down D->C"
-            parts.append(f"{name}: {j.omega_from:.2f} -> {j.omega_to:.2f} rad/s at M0 = "
-                         f"{j.torque_at_zero:.1f} N*m")
+            parts.append(f"{name}: {j.omega_from:.2f} -> {j.omega_to:.2f} rad/s at M0 = {j.torque_at_zero:.1f} N*m")
         return f"Resonance {r.index} ({r.omega:.2f} rad/s) jumps: " + "; ".join(parts) + "."
-    dL_slope = -min(0.0, float(np.min(av.resistance_increment_slope(
-        r.omega * (1 + r.nu * np.linspace(0, 3, 301)), r))))
-    text = (f"No jumps at resonance {r.index} ({r.omega:.2f} rad/s) with this drive: dL_{r.index} "
-            f"falls at most {dL_slope:.3g} N*m*s while Mc' + slope is "
-            f"{2 * ch.load_coefficient * r.omega + ch.slope:.3g} N*m*s there.")
+    dL_slope = -min(0.0, float(np.min(av.resistance_increment_slope(r.omega * (1 + r.nu * np.linspace(0, 3, 301)), r))))
+    text = (
+        f"No jumps at resonance {r.index} ({r.omega:.2f} rad/s) with this drive: dL_{r.index} "
+        f"falls at most {dL_slope:.3g} N*m*s while Mc' + slope is "
+        f"{2 * ch.load_coefficient * r.omega + ch.slope:.3g} N*m*s there."
+    )
     if s_crit > 0:
         text += f" A motor characteristic flatter than slope {s_crit:.3g} N*m*s would cause them"
     else:
-        text += " No falling motor characteristic can cause them (critical slope "\
-                f"{s_crit:.3g} N*m*s < 0)"
+        text += f" No falling motor characteristic can cause them (critical slope {s_crit:.3g} N*m*s < 0)"
     if math.isfinite(e_factor):
         text += f"; with this motor, an eccentricity above {e * e_factor:.3g} m ({e_factor:.3g} x e) would."
     else:
@@ -71,8 +90,9 @@ def _statement(r, jumps, ch, s_crit, e_factor, e) -> str:
     return text
 
 
-def _resonance(r, others, ch: av.Characteristic, eccentricity: float, c2e: float, drive,
-               top: float, uncertainty=None) -> ResonanceAnalysis:
+def _resonance(
+    r, others, ch: av.Characteristic, eccentricity: float, c2e: float, drive, top: float, uncertainty=None
+) -> ResonanceAnalysis:
     a_max = float(av.amplitude(r.omega, r))
     dL_max = float(av.resistance_increment(r.omega, r))
     Mc = float(ch.load(r.omega))
@@ -80,40 +100,59 @@ def _resonance(r, others, ch: av.Characteristic, eccentricity: float, c2e: float
     e_factor = av.critical_eccentricity_factor(ch, r, top)
     jumps = [j for j in drive.jumps if j.resonance == r.index]
     return ResonanceAnalysis(
-        index=r.index, direction=r.direction, omega=r.omega, forcing=r.forcing,
-        coupling=r.coupling, two_n=r.two_n, nu=r.nu, modal_mass=r.modal_mass,
-        shape=tuple(r.shape), a_max=a_max,
-        rotor_relative_amplitude_max=(a_max * abs(r.shape[1] - r.shape[0])
-                                      if r.direction == "X" else a_max),
-        a_max_as_printed=float(av.amplitude_as_printed(r.omega, r)), dL_max=dL_max,
-        Mc_at_omega=Mc, dL_max_over_Mc=dL_max / Mc if Mc > 0 else None,
+        index=r.index,
+        direction=r.direction,
+        omega=r.omega,
+        forcing=r.forcing,
+        coupling=r.coupling,
+        two_n=r.two_n,
+        nu=r.nu,
+        modal_mass=r.modal_mass,
+        shape=tuple(r.shape),
+        a_max=a_max,
+        rotor_relative_amplitude_max=(a_max * abs(r.shape[1] - r.shape[0]) if r.direction == "X" else a_max),
+        a_max_as_printed=float(av.amplitude_as_printed(r.omega, r)),
+        dL_max=dL_max,
+        Mc_at_omega=Mc,
+        dL_max_over_Mc=dL_max / Mc if Mc > 0 else None,
         dL_max_over_Mc_as_printed=(c2e / 2 * a_max / Mc) if Mc > 0 else None,
-        stationary=tuple(s for s in drive.stationary
-                         if abs(s.omega - r.omega) < 5 * r.nu * r.omega + 1e-12),
-        jumps=tuple(jumps), critical_slope=s_crit,
+        stationary=tuple(s for s in drive.stationary if abs(s.omega - r.omega) < 5 * r.nu * r.omega + 1e-12),
+        jumps=tuple(jumps),
+        critical_slope=s_crit,
         critical_eccentricity=eccentricity * e_factor,
         statement=_statement(r, jumps, ch, s_crit, e_factor, eccentricity),
-        curves=ResonanceCurves(**{k: tuple(map(float, v))
-                                  for k, v in _curves(r, others, ch).items()}),
-        uncertainty=uncertainty)
+        curves=ResonanceCurves(**{k: tuple(map(float, v)) for k, v in _curves(r, others, ch).items()}),
+        uncertainty=uncertainty,
+    )
 
 
-def averaging_results(resonances, ch: av.Characteristic, eccentricity: float, c2e: float,
-                      bars_of=None, drive_bars=None):
+def averaging_results(
+    resonances, ch: av.Characteristic, eccentricity: float, c2e: float, bars_of=None, drive_bars=None
+):
     """Per-resonance averaging results and the drive's stationary regimes
     (``bars_of(i, r)``: the error bars of resonance i, or None)."""
     res = list(resonances)
     drive = av.analyse_drive(ch, res)
-    out = [_resonance(r, res, ch, eccentricity, c2e, drive, drive.grid_top,
-                      bars_of(i, r) if bars_of else None) for i, r in enumerate(res)]
+    out = [
+        _resonance(r, res, ch, eccentricity, c2e, drive, drive.grid_top, bars_of(i, r) if bars_of else None)
+        for i, r in enumerate(res)
+    ]
     idx = drive.captured_index
     captured = next((r for r in res if r.index == idx), None) if idx is not None else None
     drive_out = DriveRegimes(
-        torque_at_zero=ch.torque_at_zero, slope=ch.slope, load_coefficient=ch.load_coefficient,
-        free_speed=ch.free_speed(), stationary=tuple(drive.stationary), jumps=tuple(drive.jumps),
-        runup_speed=drive.runup_speed, rundown_speed=drive.rundown_speed,
-        captured_index=idx, captured_resonance=None if captured is None else captured.omega,
-        captured_at=drive.runup_speed if captured is not None else None, uncertainty=drive_bars)
+        torque_at_zero=ch.torque_at_zero,
+        slope=ch.slope,
+        load_coefficient=ch.load_coefficient,
+        free_speed=ch.free_speed(),
+        stationary=tuple(drive.stationary),
+        jumps=tuple(drive.jumps),
+        runup_speed=drive.runup_speed,
+        rundown_speed=drive.rundown_speed,
+        captured_index=idx,
+        captured_resonance=None if captured is None else captured.omega,
+        captured_at=drive.runup_speed if captured is not None else None,
+        uncertainty=drive_bars,
+    )
     return tuple(out), drive_out
 
 
@@ -125,21 +164,31 @@ def _rom_bars(v: RomVariants, ch: av.Characteristic):
         q = lambda fn: resonance_quantity(i, base, fn)
         return ResonanceBars(
             omega=bars(r.omega, q(lambda m: m.omega), v, "rad/s"),
-            a_max=bars(float(av.amplitude(r.omega, r)),
-                       q(lambda m: float(av.amplitude(m.omega, m))), v, "m"),
-            dL_max=bars(float(av.resistance_increment(r.omega, r)),
-                        q(lambda m: float(av.resistance_increment(m.omega, m))), v, "N*m"))
+            a_max=bars(float(av.amplitude(r.omega, r)), q(lambda m: float(av.amplitude(m.omega, m))), v, "m"),
+            dL_max=bars(
+                float(av.resistance_increment(r.omega, r)),
+                q(lambda m: float(av.resistance_increment(m.omega, m))),
+                v,
+                "N*m",
+            ),
+        )
+
     d = av.analyse_drive(ch, base)
-    drive = DriveBars(*(None if getattr(d, w) is None else
-                        bars(getattr(d, w), drive_quantity(ch, w), v, "rad/s")
-                        for w in ("runup_speed", "rundown_speed")))
+    drive = DriveBars(
+        *(
+            None if getattr(d, w) is None else bars(getattr(d, w), drive_quantity(ch, w), v, "rad/s")
+            for w in ("runup_speed", "rundown_speed")
+        )
+    )
     return of, drive
 
 
-ERROR_NOTE = ("discretisation: the change when every pillar mode's frequency moves by the "
-              "convergence study's error bound on the first bending frequency (the study measures "
-              "the first bending and ovalling; the higher bending modes are taken at the same "
-              "relative error); truncation: the ROM against itself with one more pillar mode")
+ERROR_NOTE = (
+    "discretisation: the change when every pillar mode's frequency moves by the "
+    "convergence study's error bound on the first bending frequency (the study measures "
+    "the first bending and ovalling; the higher bending modes are taken at the same "
+    "relative error); truncation: the ROM against itself with one more pillar mode"
+)
 
 
 def headline_analysis(scene: Scene, chain: ChainModes, ch: av.Characteristic, c2e: float):
@@ -147,33 +196,44 @@ def headline_analysis(scene: Scene, chain: ChainModes, ch: av.Characteristic, c2
     top = rom_band_top(scene)
     v = rom_variants(scene, chain, top)
     of, drive_bars = _rom_bars(v, ch)
-    resonances, drive = averaging_results(v.base.quasi_normal(), ch, scene.rotor.eccentricity,
-                                          c2e, of, drive_bars)
+    resonances, drive = averaging_results(v.base.quasi_normal(), ch, scene.rotor.eccentricity, c2e, of, drive_bars)
     damped = tuple(DampedMode(**d) for d in v.base.damped_frequencies())
     x = [r for r in resonances if r.direction == "X"]
     y = [r for r in resonances if r.direction == "Y"]
     system = RomSystem(
-        modes=v.modes, band_top=top, mode_source=chain.modes.source,
+        modes=v.modes,
+        band_top=top,
+        mode_source=chain.modes.source,
         candidate_omega=tuple(map(float, chain.modes.omega)),
-        omega=tuple(r.omega for r in x), omega_vertical=y[0].omega,
-        frequency_hz=tuple(r.omega / (2 * math.pi) for r in resonances), damped=damped,
-        f4=c2e, tip_reduction=chain.reduction,
+        omega=tuple(r.omega for r in x),
+        omega_vertical=y[0].omega,
+        frequency_hz=tuple(r.omega / (2 * math.pi) for r in resonances),
+        damped=damped,
+        f4=c2e,
+        tip_reduction=chain.reduction,
         truncation_modes=None if v.truncated is None else v.modes + 1,
-        frequency_error=v.frequency_error, error_note=ERROR_NOTE)
+        frequency_error=v.frequency_error,
+        error_note=ERROR_NOTE,
+    )
     return system, resonances, drive
 
 
-def paper_model_analysis(scene: Scene, closed: dict, ch: av.Characteristic, c2e: float,
-                         fem3d_reduction=None) -> PaperModel:
+def paper_model_analysis(
+    scene: Scene, closed: dict, ch: av.Characteristic, c2e: float, fem3d_reduction=None
+) -> PaperModel:
     """Eq. 4 with the scene's stated tip reduction (or Eq. 2), analysed as the paper does."""
     red = resolve_reduction(scene, closed, fem3d_reduction)
-    sys_ = reduced_system(scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping,
-                          red["tip_mass"], red["tip_stiffness"])
+    sys_ = reduced_system(
+        scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping, red["tip_mass"], red["tip_stiffness"]
+    )
     modes = linear_modes(sys_)
     resonances, drive = averaging_results(modes.resonances, ch, scene.rotor.eccentricity, c2e)
     x = modes.resonances[:2]
     system = CoupledModes(
-        tip_mass_total=sys_.tip_mass, c0=sys_.c0, b0=sys_.b0, omega=(x[0].omega, x[1].omega),
+        tip_mass_total=sys_.tip_mass,
+        c0=sys_.c0,
+        b0=sys_.b0,
+        omega=(x[0].omega, x[1].omega),
         omega3=modes.resonances[2].omega,
         frequency_hz=tuple(w / (2 * math.pi) for w in modes.omega),
         modal_vectors=tuple(tuple(r.shape) for r in x),
@@ -181,16 +241,24 @@ def paper_model_analysis(scene: Scene, closed: dict, ch: av.Characteristic, c2e:
         forcing=tuple(r.forcing for r in modes.resonances),
         coupling=tuple(r.coupling for r in modes.resonances),
         two_n=tuple(r.two_n for r in modes.resonances),
-        nu=tuple(r.nu for r in modes.resonances), f4=c2e)
-    return PaperModel(TipReductionUsed.from_json(red), system, resonances, drive,
-                      "the paper's Eq. 4 as published, with the tip reduction the scene states "
-                      "(m_r, c1; Eq. 2 where it states none): the paper's own model, beside the "
-                      "headline model, never instead of it")
+        nu=tuple(r.nu for r in modes.resonances),
+        f4=c2e,
+    )
+    return PaperModel(
+        TipReductionUsed.from_json(red),
+        system,
+        resonances,
+        drive,
+        "the paper's Eq. 4 as published, with the tip reduction the scene states "
+        "(m_r, c1; Eq. 2 where it states none): the paper's own model, beside the "
+        "headline model, never instead of it",
+    )
 
 
 @dataclass(frozen=True)
 class _PaperView:
     """What rotorpillar.analysis.paper reads: the pillar and the paper model's blocks."""
+
     pillar: PillarClosedForms
     reduction: TipReductionUsed
     system: CoupledModes
@@ -218,8 +286,13 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
     system, resonances, drive = headline_analysis(scene, chain, ch, c2e)
     paper = paper_model_analysis(scene, closed, ch, c2e, fem3d_reduction)
     pillar = PillarClosedForms.from_json(closed)
-    rows = compare_with_paper(scene, _PaperView(pillar, paper.reduction, paper.system,
-                                                paper.resonances, paper.drive))
-    return AnalysisResult(pillar=pillar, pillar_model=chain.pillar_model, system=system,
-                          resonances=resonances, drive=drive, paper_model=paper,
-                          paper_comparison=rows)
+    rows = compare_with_paper(scene, _PaperView(pillar, paper.reduction, paper.system, paper.resonances, paper.drive))
+    return AnalysisResult(
+        pillar=pillar,
+        pillar_model=chain.pillar_model,
+        system=system,
+        resonances=resonances,
+        drive=drive,
+        paper_model=paper,
+        paper_comparison=rows,
+    )

@@ -15,10 +15,11 @@ def summary(result: AnalysisResult) -> str:
         f"{p.diameter_to_thickness:.0f}",
         f"  omega_col1 = {p.omega_col1:.4f} rad/s ({p.frequency_col1_hz:.4f} Hz) Euler-Bernoulli, "
         f"{p.omega_col1_timoshenko:.4f} Timoshenko ({100 * p.timoshenko_correction:+.2f} %)",
-        "  tip mass by Eq. 2: " + ", ".join(f"n={d.n}: {d.tip_mass:.4g}" for d in p.tip_mass_lumped[:4])
+        "  tip mass by Eq. 2: "
+        + ", ".join(f"n={d.n}: {d.tip_mass:.4g}" for d in p.tip_mass_lumped[:4])
         + f", limit {p.tip_mass_limit:.4g} kg (c1 = {p.tip_stiffness_limit:.4g} N/m)",
-        "  Rayleigh: " + ", ".join(f"{d.shape}: m = {d.tip_mass:.4g} kg, c = {d.tip_stiffness:.4g} N/m"
-                                   for d in p.rayleigh),
+        "  Rayleigh: "
+        + ", ".join(f"{d.shape}: m = {d.tip_mass:.4g} kg, c = {d.tip_stiffness:.4g} N/m" for d in p.rayleigh),
         f"Pillar model (the chain): {result.pillar_model.describe()}",
         f"  {result.pillar_model.note}",
         f"  Eq. 2 on its first bending mode: m_r = {s.tip_reduction.m_reduced:.5g} kg, "
@@ -33,27 +34,35 @@ def summary(result: AnalysisResult) -> str:
         bar = r.uncertainty.omega.text(".4f") if r.uncertainty else f"{r.omega:.4f}"
         p_r = paper.get((r.direction, n))
         beside = f"{p_r.omega:.4f}" if p_r else "-"
-        lines.append(f"  {r.index:>2} {r.direction:>3} {bar:>19} {r.modal_mass:>11.5g} "
-                     f"{r.forcing:>10.4g} {r.two_n:>8.4g} {r.nu:>7.4f} {r.a_max:>10.4g} "
-                     f"{_ratio(r.dL_max_over_Mc):>8}   {beside}")
+        lines.append(
+            f"  {r.index:>2} {r.direction:>3} {bar:>19} {r.modal_mass:>11.5g} "
+            f"{r.forcing:>10.4g} {r.two_n:>8.4g} {r.nu:>7.4f} {r.a_max:>10.4g} "
+            f"{_ratio(r.dL_max_over_Mc):>8}   {beside}"
+        )
     lines.append(f"  error bars: {s.error_note}")
     red = result.paper_model.reduction
-    lines.append(f"Paper's model (Eq. 4): m_r = {red.tip_mass:.5g} kg ({red.tip_mass_source}), "
-                 f"c1 = {red.tip_stiffness:.5g} N/m ({red.tip_stiffness_source})")
+    lines.append(
+        f"Paper's model (Eq. 4): m_r = {red.tip_mass:.5g} kg ({red.tip_mass_source}), "
+        f"c1 = {red.tip_stiffness:.5g} N/m ({red.tip_stiffness_source})"
+    )
     d = result.drive
-    lines.append(f"Drive M0 = {d.torque_at_zero:g} N*m, slope {d.slope:g}: stationary speeds "
-                 + (", ".join(f"{x.omega:.3f} ({'stable' if x.stable else 'unstable'})"
-                              for x in d.stationary) or "none")
-                 + (f"; captured below resonance {d.captured_index} ({d.captured_resonance:.3f} "
-                    f"rad/s) at {d.captured_at:.3f} rad/s" if d.captured_index is not None else ""))
+    lines.append(
+        f"Drive M0 = {d.torque_at_zero:g} N*m, slope {d.slope:g}: stationary speeds "
+        + (", ".join(f"{x.omega:.3f} ({'stable' if x.stable else 'unstable'})" for x in d.stationary) or "none")
+        + (
+            f"; captured below resonance {d.captured_index} ({d.captured_resonance:.3f} "
+            f"rad/s) at {d.captured_at:.3f} rad/s"
+            if d.captured_index is not None
+            else ""
+        )
+    )
     for r in result.resonances:
         lines.append("  " + r.statement)
     lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")
     lines.append(f"  {'quantity':<34} {'paper':>11} {'computed':>11} {'diff':>8}")
     for row in result.paper_comparison:
         flag = "*" if row.flag else " "
-        lines.append(f"{flag} {row.quantity:<34} {row.paper:>11.5g} {row.computed:>11.5g} "
-                     f"{100 * row.rel_diff:>+7.1f}%")
+        lines.append(f"{flag} {row.quantity:<34} {row.paper:>11.5g} {row.computed:>11.5g} {100 * row.rel_diff:>+7.1f}%")
     notes = [r for r in result.paper_comparison if r.flag and r.note]
     if notes:
         lines.append("Likely causes of the flagged differences:")

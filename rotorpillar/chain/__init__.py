@@ -21,20 +21,30 @@ reduced/, below analysis/, transients/ and commands/.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 from ..scene import Scene
 from .choice import Choice, choose, solid_mesh_section, study_on_disk
 from .modes import ChainModes, TipReductionOf, chain_modes, rom_band_top
 from .record import PillarModel, Uncertain
 
-__all__ = ["ChainModes", "Choice", "PillarModel", "TipReductionOf", "Uncertain",
-           "chain_modes", "choose", "resolve", "rom_band_top", "solid_mesh_section",
-           "study_on_disk"]
+__all__ = [
+    "ChainModes",
+    "Choice",
+    "PillarModel",
+    "TipReductionOf",
+    "Uncertain",
+    "chain_modes",
+    "choose",
+    "resolve",
+    "rom_band_top",
+    "solid_mesh_section",
+    "study_on_disk",
+]
 
 
-def resolve(scene: Scene, out_dir: Optional[Path], *, motion=None, comm=None, progress=None,
-            cache_dir: Optional[Path] = None) -> ChainModes:
+def resolve(
+    scene: Scene, out_dir: Path | None, *, motion=None, comm=None, progress=None, cache_dir: Path | None = None
+) -> ChainModes:
     """The chain's pillar model for ``scene`` and the ROM's candidate modes from it.
 
     ``motion``: the ground motion the stage runs (its band widens the ROM's);

@@ -24,7 +24,7 @@ import dataclasses
 import json
 from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any
 
 from ..scene import Mesh, Scene
 from .record import PillarModel
@@ -32,9 +32,11 @@ from .record import PillarModel
 #: Scene keys a convergence study's choice depends on: the tube, the ladder's
 #: shape (from [mesh]), the tolerance and limits, and the band (drive, load).
 STUDY_INPUTS = {
-    "pillar": ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio",
-               "density"),
-    "mesh": None, "converge": None, "drive": None, "load": None,
+    "pillar": ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density"),
+    "mesh": None,
+    "converge": None,
+    "drive": None,
+    "load": None,
 }
 
 #: The closed form's own model, for the ROM's modes when the study chose Eq. 1.
@@ -44,6 +46,7 @@ CLOSED_FORM_BEAM: dict[str, Any] = {"theory": "euler", "elements": 64}
 @dataclass(frozen=True)
 class Choice:
     """The chain's pillar models: the ROM's mode source and the 3D mesh `modal` runs."""
+
     rom: PillarModel
     """where the ROM's pillar modes come from"""
     solid: PillarModel
@@ -60,7 +63,7 @@ def solid_mesh_section(mesh: dict) -> Mesh:
     return Mesh(**{k: v for k, v in mesh.items() if k in names})
 
 
-def _mismatch(scene: Scene, study_scene: dict) -> Optional[str]:
+def _mismatch(scene: Scene, study_scene: dict) -> str | None:
     """The first scene key the study was run with a different value of, or None."""
     mine = scene.to_dict()
     for section, keys in STUDY_INPUTS.items():
@@ -74,20 +77,24 @@ def _mismatch(scene: Scene, study_scene: dict) -> Optional[str]:
 def study_on_disk(scene: Scene, out_dir: Path):
     """(ConvergenceStudy or None, why): the study in ``out_dir`` when it was run for this scene."""
     from ..converge.result import ConvergenceStudy
+
     path = Path(out_dir) / "convergence.json"
     if not path.is_file():
         return None, f"no convergence study in {out_dir} (rotorpillar converge {scene.name})"
     try:
         doc = json.loads(path.read_text(encoding="utf-8"))
-        study = ConvergenceStudy.from_json({k: v for k, v in doc.items()
-                                            if k not in ("command", "scene_source", "overrides")})
+        study = ConvergenceStudy.from_json(
+            {k: v for k, v in doc.items() if k not in ("command", "scene_source", "overrides")}
+        )
     except (OSError, ValueError, KeyError, TypeError) as exc:
         return None, f"{path} is unreadable ({type(exc).__name__}); run rotorpillar converge again"
     study = dataclasses.replace(study, json_file=str(path))
     key = _mismatch(scene, study.scene or {})
     if key is not None:
-        return None, (f"{path} was run for another {key.split('.')[0]} ({key} differs): not used; "
-                      f"run rotorpillar converge for this scene")
+        return None, (
+            f"{path} was run for another {key.split('.')[0]} ({key} differs): not used; "
+            f"run rotorpillar converge for this scene"
+        )
     return study, f"the convergence study {path}"
 
 
@@ -101,33 +108,37 @@ def _errors(run: dict, ref_unc: dict) -> dict:
     return out
 
 
-def model_of_run(run: dict, reference_uncertainty: dict, tolerance: float, note: str,
-                 study: Optional[str] = None) -> PillarModel:
+def model_of_run(
+    run: dict, reference_uncertainty: dict, tolerance: float, note: str, study: str | None = None
+) -> PillarModel:
     """A run the study chose (its brief: label, family, params, dofs, error bounds) as the
     chain's PillarModel."""
-    return _model(run, "converge", True, tolerance, _errors(run, reference_uncertainty), note,
-                  study)
+    return _model(run, "converge", True, tolerance, _errors(run, reference_uncertainty), note, study)
 
 
-def _model(run: dict, source: str, verified: bool, tolerance, errors: dict, note: str,
-           study: Optional[str]) -> PillarModel:
+def _model(
+    run: dict, source: str, verified: bool, tolerance, errors: dict, note: str, study: str | None
+) -> PillarModel:
     from ..converge.ladder import FAMILIES
+
     kind = FAMILIES[run["family"]].model
-    return PillarModel(kind, run["label"], dict(run["params"]), int(run["dofs"]), source, verified,
-                       tolerance, errors, note, study)
+    return PillarModel(
+        kind, run["label"], dict(run["params"]), int(run["dofs"]), source, verified, tolerance, errors, note, study
+    )
 
 
 def solid_families() -> list[str]:
     """The 3D families whose meshes resolve every frequency the study measures (not the
     bending-only family: `modal` shows the shell modes too)."""
     from ..converge.ladder import FAMILIES, QUANTITIES
-    return [k for k, f in FAMILIES.items()
-            if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
+
+    return [k for k, f in FAMILIES.items() if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
 
 
 def _solid_within(study, tolerance: float):
     """The cheapest 3D run of the study that meets the tolerance, or None."""
     from ..converge.selection import select_model
+
     solid = solid_families()
     sel = select_model(list(study.runs), study.reference, study.band, tolerance, families=solid)
     return sel.get("chosen")
@@ -141,13 +152,24 @@ def scene_solid_run(scene: Scene) -> dict:
 def solid_run_of(m: Mesh) -> dict:
     """A 3D mesh as a run of the ladder (label, family, params, dofs)."""
     from ..converge.ladder import FAMILIES, Case, estimated_dofs
+
     family = f"solid_{'hex' if m.cell_type == 'hexahedron' else 'tet'}_p{m.degree}"
-    params = {"elements_around": m.elements_around, "elements_along": m.elements_along,
-              "elements_through": m.elements_through, "cell_type": m.cell_type,
-              "degree": m.degree, "grading": m.grading}
+    params = {
+        "elements_around": m.elements_around,
+        "elements_along": m.elements_along,
+        "elements_through": m.elements_through,
+        "cell_type": m.cell_type,
+        "degree": m.degree,
+        "grading": m.grading,
+    }
     case = Case(family, m.elements_around, tuple(sorted(params.items())))
-    return {"label": case.label, "family": family, "model": FAMILIES[family].model,
-            "params": params, "dofs": estimated_dofs(case)}
+    return {
+        "label": case.label,
+        "family": family,
+        "model": FAMILIES[family].model,
+        "params": params,
+        "dofs": estimated_dofs(case),
+    }
 
 
 def _same_mesh(run: dict, params: dict) -> bool:
@@ -157,6 +179,7 @@ def _same_mesh(run: dict, params: dict) -> bool:
 
 def _scene_errors(runs, reference: dict, params: dict) -> dict:
     from ..converge.selection import reference_uncertainty
+
     ref_unc = reference_uncertainty(reference) if reference else {}
     for r in runs:
         if r.get("status") == "ok" and r.get("model") == "solid" and _same_mesh(r, params):
@@ -169,14 +192,14 @@ def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict, str]:
     from ..converge.ladder import study_cases
     from ..converge.runner import run_study
     from ..converge.study import analyse
+
     if not Path(cache_dir).is_dir():
         return {}, "no study's run cache"
 
     def not_cached(case, sc):
         raise RuntimeError("not in the cache")
 
-    records = run_study(study_cases(scene), scene, Path(cache_dir), runner=not_cached,
-                        progress=False)
+    records = run_study(study_cases(scene), scene, Path(cache_dir), runner=not_cached, progress=False)
     if not any(r.get("cached") for r in records):
         return {}, "no study's run cache"
     analysis = analyse(records, scene, scene.converge.tolerance)
@@ -186,87 +209,169 @@ def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict, str]:
 
 def _dolfinx_here() -> bool:
     import importlib.util
+
     return importlib.util.find_spec("dolfinx") is not None
 
 
-def _beam_model(scene: Scene, source: str, note: str, theory: str, elements: int,
-                errors: Optional[dict] = None, tolerance=None, study=None, label=None) -> PillarModel:
+def _beam_model(
+    scene: Scene,
+    source: str,
+    note: str,
+    theory: str,
+    elements: int,
+    errors: dict | None = None,
+    tolerance=None,
+    study=None,
+    label=None,
+) -> PillarModel:
     kind = "beam"
-    return PillarModel(kind, label or f"beam {theory}, {elements} el.",
-                       {"theory": theory, "elements": elements}, 2 * elements, source,
-                       bool(errors), tolerance, errors or {}, note, study)
+    return PillarModel(
+        kind,
+        label or f"beam {theory}, {elements} el.",
+        {"theory": theory, "elements": elements},
+        2 * elements,
+        source,
+        bool(errors),
+        tolerance,
+        errors or {},
+        note,
+        study,
+    )
 
 
 def from_scene(scene: Scene, cache_dir: Path, why: str) -> Choice:
     """No usable study: the scene's own [mesh], verified from the run cache where it can be."""
     if not _dolfinx_here():
         mm = scene.modal_model
-        rom = _beam_model(scene, "scene", f"{why}; the 3D model (dolfinx) is not installed here, so "
-                          f"the ROM takes the {mm.theory} beam of [modal_model] (unverified)",
-                          mm.theory, mm.elements)
+        rom = _beam_model(
+            scene,
+            "scene",
+            f"{why}; the 3D model (dolfinx) is not installed here, so "
+            f"the ROM takes the {mm.theory} beam of [modal_model] (unverified)",
+            mm.theory,
+            mm.elements,
+        )
         return Choice(rom, rom)
     run = scene_solid_run(scene)
     errors, where = _from_cache(scene, cache_dir)
-    note = (f"{why}; the stages use the scene's own [mesh], {run['label']}: "
-            + (f"its error from {where}" if errors else
-               "unverified (no convergence study measured this mesh)"))
-    pm = PillarModel("solid", run["label"], run["params"], int(run["dofs"]), "scene", bool(errors),
-                     scene.converge.tolerance if errors else None, errors, note, None)
+    note = f"{why}; the stages use the scene's own [mesh], {run['label']}: " + (
+        f"its error from {where}" if errors else "unverified (no convergence study measured this mesh)"
+    )
+    pm = PillarModel(
+        "solid",
+        run["label"],
+        run["params"],
+        int(run["dofs"]),
+        "scene",
+        bool(errors),
+        scene.converge.tolerance if errors else None,
+        errors,
+        note,
+        None,
+    )
     return Choice(pm, pm)
 
 
 def from_study(scene: Scene, study) -> Choice:
     """The study's choice for the scene's band, made usable by the chain (see the module text)."""
     from ..converge.selection import reference_uncertainty
+
     sel, path, tol = study.selection, study.json_file, study.tolerance
     ref_unc = {q: reference_uncertainty(study.reference)[q] for q in study.reference}
     chosen = sel.get("chosen")
     if chosen is None:
         run = scene_solid_run(scene)
         errors = _scene_errors(study.runs, study.reference, run["params"])
-        pm = PillarModel("solid", run["label"], run["params"], int(run["dofs"]), "scene",
-                         bool(errors), tol, errors,
-                         f"the convergence study found no model that meets {tol:g} on the band "
-                         f"({sel.get('reason', '')}); the stages use the scene's own [mesh]", path)
+        pm = PillarModel(
+            "solid",
+            run["label"],
+            run["params"],
+            int(run["dofs"]),
+            "scene",
+            bool(errors),
+            tol,
+            errors,
+            f"the convergence study found no model that meets {tol:g} on the band "
+            f"({sel.get('reason', '')}); the stages use the scene's own [mesh]",
+            path,
+        )
         return Choice(pm, pm)
     kind = chosen["model"]
-    why = (f"the model the convergence study chose for the scene's band (up to "
-           f"{study.band['omega_max']:.1f} rad/s) at tolerance {tol:g}: {sel.get('reason', '')}")
+    why = (
+        f"the model the convergence study chose for the scene's band (up to "
+        f"{study.band['omega_max']:.1f} rad/s) at tolerance {tol:g}: {sel.get('reason', '')}"
+    )
     if kind == "solid":
         pm = _model(chosen, "converge", True, tol, _errors(chosen, ref_unc), why, path)
         return Choice(pm, pm)
     solid_run = _solid_within(study, tol)
     if solid_run is None:
         run = scene_solid_run(scene)
-        solid = PillarModel("solid", run["label"], run["params"], int(run["dofs"]), "scene",
-                            False, None, {}, "no 3D mesh of the study meets the tolerance: the "
-                            "scene's own [mesh]", path)
+        solid = PillarModel(
+            "solid",
+            run["label"],
+            run["params"],
+            int(run["dofs"]),
+            "scene",
+            False,
+            None,
+            {},
+            "no 3D mesh of the study meets the tolerance: the scene's own [mesh]",
+            path,
+        )
     else:
-        solid = _model(solid_run, "converge", True, tol, _errors(solid_run, ref_unc),
-                       f"the cheapest 3D mesh of the study within {tol:g} (the study's choice, "
-                       f"{chosen['label']}, is not a 3D model)", path)
+        solid = _model(
+            solid_run,
+            "converge",
+            True,
+            tol,
+            _errors(solid_run, ref_unc),
+            f"the cheapest 3D mesh of the study within {tol:g} (the study's choice, "
+            f"{chosen['label']}, is not a 3D model)",
+            path,
+        )
     if kind == "beam":
         p = chosen["params"]
-        rom = _beam_model(scene, "converge", why, p["theory"], p["elements"],
-                          _errors(chosen, ref_unc), tol, path, chosen["label"])
+        rom = _beam_model(
+            scene, "converge", why, p["theory"], p["elements"], _errors(chosen, ref_unc), tol, path, chosen["label"]
+        )
         return Choice(rom, solid)
     if kind == "closed_form":
-        rom = PillarModel("closed_form", chosen["label"], dict(CLOSED_FORM_BEAM),
-                          2 * CLOSED_FORM_BEAM["elements"], "converge", True, tol,
-                          _errors(chosen, ref_unc),
-                          why + "; its modes for the ROM come from the Euler-Bernoulli beam (the "
-                          f"closed form's own model) with {CLOSED_FORM_BEAM['elements']} elements",
-                          path)
+        rom = PillarModel(
+            "closed_form",
+            chosen["label"],
+            dict(CLOSED_FORM_BEAM),
+            2 * CLOSED_FORM_BEAM["elements"],
+            "converge",
+            True,
+            tol,
+            _errors(chosen, ref_unc),
+            why + "; its modes for the ROM come from the Euler-Bernoulli beam (the "
+            f"closed form's own model) with {CLOSED_FORM_BEAM['elements']} elements",
+            path,
+        )
         return Choice(rom, solid)
     # a shell: no top mass in the shell model here, so the 3D mesh within the tolerance serves
-    note = (why + f"; the shell model carries no top mass here, so the chain uses {solid.label}, "
-            "the cheapest 3D mesh within the same tolerance")
-    rom = PillarModel(solid.kind, solid.label, solid.mesh, solid.dofs, solid.source, solid.verified,
-                      solid.tolerance, solid.errors, note, path)
+    note = (
+        why + f"; the shell model carries no top mass here, so the chain uses {solid.label}, "
+        "the cheapest 3D mesh within the same tolerance"
+    )
+    rom = PillarModel(
+        solid.kind,
+        solid.label,
+        solid.mesh,
+        solid.dofs,
+        solid.source,
+        solid.verified,
+        solid.tolerance,
+        solid.errors,
+        note,
+        path,
+    )
     return Choice(rom, rom)
 
 
-def choose(scene: Scene, out_dir: Optional[Path], cache_dir: Optional[Path] = None) -> Choice:
+def choose(scene: Scene, out_dir: Path | None, cache_dir: Path | None = None) -> Choice:
     """The chain's pillar models for a scene whose results go to ``out_dir``.
 
     ``modal_model.source`` "beam" or "fem3d" state the mode source outright
@@ -280,9 +385,14 @@ def choose(scene: Scene, out_dir: Optional[Path], cache_dir: Optional[Path] = No
     src = scene.modal_model.source
     if src == "beam":
         mm = scene.modal_model
-        rom = _beam_model(scene, "scene", f'modal_model.source = "beam": the {mm.theory} beam of '
-                          "[modal_model], as the scene states", mm.theory, mm.elements)
-        solid = from_scene(scene, cache_dir, "modal_model.source = \"beam\"").solid
+        rom = _beam_model(
+            scene,
+            "scene",
+            f'modal_model.source = "beam": the {mm.theory} beam of [modal_model], as the scene states',
+            mm.theory,
+            mm.elements,
+        )
+        solid = from_scene(scene, cache_dir, 'modal_model.source = "beam"').solid
         return Choice(rom, solid)
     if src == "fem3d":
         return from_scene(scene, cache_dir, 'modal_model.source = "fem3d" (the scene\'s [mesh])')

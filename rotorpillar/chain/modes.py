@@ -17,7 +17,6 @@ import math
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Optional
 
 import numpy as np
 
@@ -38,6 +37,7 @@ FIRST_SOLVE = 32
 @dataclass(frozen=True)
 class TipReductionOf(JsonRecord):
     """Eq. 2 on the chain model's bare first bending mode."""
+
     m_reduced: float
     """m_r: the first mode's mass referred to the tip, unit tip deflection (kg)"""
     tip_stiffness: float
@@ -51,11 +51,12 @@ class TipReductionOf(JsonRecord):
 @dataclass(frozen=True, eq=False)
 class ChainModes:
     """The chain's pillar model and the ROM's candidate modes from it."""
+
     pillar_model: PillarModel
     modes: PillarModes
     """the X bending modes of the pillar with the gondola on top, ascending, tip-scaled"""
     reduction: TipReductionOf
-    cache_file: Optional[str] = None
+    cache_file: str | None = None
     """where a 3D result was cached (None for a beam)"""
     seconds: float = 0.0
     """time spent computing (0 when read from the cache) (s)"""
@@ -79,11 +80,17 @@ def _code_hash() -> str:
 def modes_key(scene: Scene, mesh: dict) -> str:
     """Hash of what the loaded tube's 3D modes depend on."""
     p, md = scene.pillar, scene.modal
-    args = {"mesh": mesh,
-            "pillar": {k: getattr(p, k) for k in ("height", "outer_diameter", "inner_diameter",
-                                                   "youngs_modulus", "poisson_ratio", "density")},
-            "gondola": scene.gondola.mass, "top_model": md.top_model, "top_mass": md.top_mass,
-            "tolerance": md.tolerance}
+    args = {
+        "mesh": mesh,
+        "pillar": {
+            k: getattr(p, k)
+            for k in ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
+        },
+        "gondola": scene.gondola.mass,
+        "top_model": md.top_model,
+        "top_mass": md.top_mass,
+        "tolerance": md.tolerance,
+    }
     return cache_key(args, version=CACHE_VERSION, code=_code_hash())
 
 
@@ -97,6 +104,7 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
     """The loaded tube's X bending modes and the bare tube's Eq. 2 on the chain's mesh."""
     from ..fem3d import modal_analysis, tip_reduction
     from ..fem3d.pillar_modes import pillar_modes_from_fem3d
+
     mesh = solid_mesh_section(pm.mesh)
     n = FIRST_SOLVE
     while True:
@@ -111,8 +119,9 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
         modes = pillar_modes_from_fem3d(loaded, scene.pillar, min(len(bx), MAX_CANDIDATES))
         modes = replace(modes, source=f"fem3d:{pm.label}")
         t = tip_reduction(bare, scene.pillar)
-        red = TipReductionOf(t.m_reduced, t.tip_stiffness, t.omega_bending,
-                             f"Eq. 2 on the bare tube's first bending mode, {pm.label}")
+        red = TipReductionOf(
+            t.m_reduced, t.tip_stiffness, t.omega_bending, f"Eq. 2 on the bare tube's first bending mode, {pm.label}"
+        )
     if comm is not None and comm.size > 1:
         modes, red = comm.bcast((modes, red), root=0)
     assert modes is not None and red is not None, "rank 0 computes them, then broadcasts"
@@ -121,15 +130,18 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
 
 def _beam(scene: Scene, pm: PillarModel) -> tuple[PillarModes, TipReductionOf]:
     from ..reduced.pillar_modes import beam_pillar_modes, beam_tip_reduction
+
     theory, elements = pm.mesh["theory"], int(pm.mesh["elements"])
-    modes = beam_pillar_modes(scene.pillar, scene.gondola.mass, MAX_CANDIDATES, theory, elements,
-                              scene.modal_model.gondola_inertia)
+    modes = beam_pillar_modes(
+        scene.pillar, scene.gondola.mass, MAX_CANDIDATES, theory, elements, scene.modal_model.gondola_inertia
+    )
     m_r, c1, w = beam_tip_reduction(scene.pillar, theory, elements)
     return modes, TipReductionOf(m_r, c1, w, f"Eq. 2 on the bare beam's first mode, {pm.label}")
 
 
-def chain_modes(scene: Scene, choice: Choice, band_top: float, *, comm=None,
-                root: Optional[Path] = None, progress=None) -> ChainModes:
+def chain_modes(
+    scene: Scene, choice: Choice, band_top: float, *, comm=None, root: Path | None = None, progress=None
+) -> ChainModes:
     """The ROM's candidate modes from ``choice.rom``, enough to pass ``band_top`` (rad/s) and
     one more; a 3D result is read from, or written to, the cache (see the module text)."""
     pm = choice.rom
@@ -142,9 +154,14 @@ def chain_modes(scene: Scene, choice: Choice, band_top: float, *, comm=None,
     path = cache.path(key)
     doc = cache.read(key)
     if doc is not None and _enough(doc["modes"]["omega"], band_top):
-        return ChainModes(pm, PillarModes.from_json(doc["modes"]),
-                          TipReductionOf.from_json(doc["reduction"]), str(path), 0.0,
-                          int(doc.get("loaded_modes", FIRST_SOLVE)))
+        return ChainModes(
+            pm,
+            PillarModes.from_json(doc["modes"]),
+            TipReductionOf.from_json(doc["reduction"]),
+            str(path),
+            0.0,
+            int(doc.get("loaded_modes", FIRST_SOLVE)),
+        )
     if progress:
         progress(f"chain: the 3D modes of {pm.label} for the ROM (cached after this)")
     start = time.perf_counter()
@@ -152,11 +169,19 @@ def chain_modes(scene: Scene, choice: Choice, band_top: float, *, comm=None,
     seconds = time.perf_counter() - start
     if comm is None or comm.rank == 0:
         try:
-            cache.write(key, {"label": pm.label, "mesh": pm.mesh, "modes": modes.to_json(),
-                              "reduction": red.to_json(), "seconds": seconds,
-                              "loaded_modes": asked})
+            cache.write(
+                key,
+                {
+                    "label": pm.label,
+                    "mesh": pm.mesh,
+                    "modes": modes.to_json(),
+                    "reduction": red.to_json(),
+                    "seconds": seconds,
+                    "loaded_modes": asked,
+                },
+            )
         except OSError:
-            pass        # a read-only cache costs the next stage a solve, nothing else
+            pass  # a read-only cache costs the next stage a solve, nothing else
     return ChainModes(pm, modes, red, str(path), seconds, asked)
 
 
@@ -165,9 +190,11 @@ def rom_band_top(scene: Scene, motion=None) -> float:
     forcing frequency of the scene's cases (the drive's free speed, the sweep's top, the
     ground motion's band)."""
     from ..reduced.band import forcing_top
+
     d, L, w = scene.drive, scene.load, scene.sweep
-    top = max(forcing_top(d, L, w, "sweep", None), forcing_top(d, L, w, "earthquake", motion)
-              if motion is not None else 0.0)
+    top = max(
+        forcing_top(d, L, w, "sweep", None), forcing_top(d, L, w, "earthquake", motion) if motion is not None else 0.0
+    )
     if not math.isfinite(top):
         top = 0.0
     return scene.modal_model.band_factor * top

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Optional
 
 from ..provenance import JsonRecord
 
@@ -21,6 +20,7 @@ CHOICE_SOURCES = ("converge", "scene")
 @dataclass(frozen=True)
 class PillarModel(JsonRecord):
     """The pillar model a stage used, where the choice came from and its error."""
+
     kind: str
     """"solid" (the 3D tube, SLEPc modes), "beam" (1D finite elements), "shell" or
     "closed_form\""""
@@ -36,26 +36,29 @@ class PillarModel(JsonRecord):
     the scene's own [mesh] (no study on disk, or the study's choice cannot be used)"""
     verified: bool
     """its frequency error is known from a convergence study (a reference and this run)"""
-    tolerance: Optional[float]
+    tolerance: float | None
     """the relative frequency tolerance the study chose it for (-), None without a study"""
     errors: dict
     """per frequency the study measured (bending, ovalling, ...): the error bound, model +
     discretisation + the reference's uncertainty (relative, -); empty when unverified"""
     note: str
     """why this model, in words (and what it means when it is not the study's choice)"""
-    study: Optional[str] = None
+    study: str | None = None
     """the convergence.json the choice was read from"""
 
     @property
-    def bending_error(self) -> Optional[float]:
+    def bending_error(self) -> float | None:
         """Relative error bound of the first bending frequency, or None (-)."""
         e = self.errors.get("bending")
         return None if e is None or not math.isfinite(e) else float(e)
 
     def describe(self) -> str:
         """One line: the model, its DOFs, where it came from, its error."""
-        err = ("error bound " + ", ".join(f"{q} {e:.1e}" for q, e in self.errors.items())
-               if self.errors else "unverified: no convergence study measured its error")
+        err = (
+            "error bound " + ", ".join(f"{q} {e:.1e}" for q, e in self.errors.items())
+            if self.errors
+            else "unverified: no convergence study measured its error"
+        )
         return f"{self.label} ({self.dofs:,} DOFs; {self.source}; {err})"
 
 
@@ -69,6 +72,7 @@ class Uncertain(JsonRecord):
     (the run against one at a hundredth of its tolerance).  A source that was
     not assessed is absent, and ``unassessed`` names it.
     """
+
     value: float
     error: float
     sources: dict = field(default_factory=dict)
@@ -76,13 +80,13 @@ class Uncertain(JsonRecord):
     unit: str = ""
 
     @classmethod
-    def of(cls, value: float, unit: str = "", **sources) -> "Uncertain":
+    def of(cls, value: float, unit: str = "", **sources) -> Uncertain:
         """The value with the magnitudes of the sources given (None: not assessed)."""
         known = {k: abs(float(v)) for k, v in sources.items() if v is not None and math.isfinite(v)}
         missing = tuple(k for k, v in sources.items() if v is None or not math.isfinite(v))
         return cls(float(value), float(sum(known.values())), known, missing, unit)
 
     def text(self, fmt: str = ".4g") -> str:
-        """"15.36 +- 0.02 rad/s\""""
+        """ "15.36 +- 0.02 rad/s\""""
         unit = f" {self.unit}" if self.unit else ""
         return f"{self.value:{fmt}} ± {self.error:.2g}{unit}"

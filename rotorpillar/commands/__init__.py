@@ -18,7 +18,6 @@ import os
 import sys
 from pathlib import Path
 
-
 #: Exit code of a command whose computation ran to its end but failed its own
 #: checks (an integrator past its stability limit, an energy balance that does
 #: not close, ...): the results are written, marked ``ok: false`` with the
@@ -58,4 +57,5 @@ def mpi_progress():
     if launched_ranks() <= 1:
         return progress
     from mpi4py import MPI
+
     return progress if MPI.COMM_WORLD.rank == 0 else (lambda message: None)

@@ -13,11 +13,13 @@ from . import out_dir, progress
 
 def analyze_command(scene: Scene, args, timings):
     from ..chain import resolve
+
     with timings("pillar_modes"):
         chain = resolve(scene, out_dir(scene, args), progress=progress)
     fem3d = None
     if scene.reduction.source == "fem3d" and chain.pillar_model.kind != "solid":
         from ..fem3d import reduction_from_scene
+
         fem3d = reduction_from_scene
     with timings("analyze"):
         result = analyze(scene, chain, fem3d_reduction=fem3d)

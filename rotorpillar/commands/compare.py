@@ -19,19 +19,31 @@ if TYPE_CHECKING:
 
 
 def add_arguments(p) -> None:
-    p.add_argument("--case", choices=("earthquake", "runup"), default="earthquake",
-                   help="the case compared (default: earthquake)")
-    p.add_argument("--models", default=None, metavar="M1,M2",
-                   help=f"comma-separated, among {', '.join(MODELS)}; default: modal,fem3d for the "
-                        "earthquake, modal,beam for the run-up.  The reference is the most complete "
-                        "model given: fem3d > beam > modal > paper")
-    p.add_argument("--pareto", action="store_true",
-                   help="earthquake against fem3d: also the speed-against-accuracy study (the ROM by "
-                        "its modes, beams and 3D meshes on El Centro, errors against the finest 3D "
-                        "run; each run cached under cache/): compare_earthquake.json's pareto")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="processes for the speed-against-accuracy study's 3D runs (default: one "
-                        "per core)")
+    p.add_argument(
+        "--case", choices=("earthquake", "runup"), default="earthquake", help="the case compared (default: earthquake)"
+    )
+    p.add_argument(
+        "--models",
+        default=None,
+        metavar="M1,M2",
+        help=f"comma-separated, among {', '.join(MODELS)}; default: modal,fem3d for the "
+        "earthquake, modal,beam for the run-up.  The reference is the most complete "
+        "model given: fem3d > beam > modal > paper",
+    )
+    p.add_argument(
+        "--pareto",
+        action="store_true",
+        help="earthquake against fem3d: also the speed-against-accuracy study (the ROM by "
+        "its modes, beams and 3D meshes on El Centro, errors against the finest 3D "
+        "run; each run cached under cache/): compare_earthquake.json's pareto",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="processes for the speed-against-accuracy study's 3D runs (default: one per core)",
+    )
 
 
 def preflight(scene: Scene, args) -> None:
@@ -39,24 +51,28 @@ def preflight(scene: Scene, args) -> None:
     models, MPI, the record, the common duration and each model's run
     (commands.simulate.check_run: the 3D plan, mesh and step budget, the reduced runs'
     step budgets)."""
-    from . import launched_ranks
     from ..errors import InputError
     from ..reduced.models import scene_motion
     from ..transients.compare import common_duration, parse_models
+    from . import launched_ranks
     from .simulate import check_run
+
     models = parse_models(args.models, args.case)
     motion = scene_motion(scene) if args.case == "earthquake" else None
     duration, _ = common_duration(scene, args.case, models, motion)
     if launched_ranks() > 1 and "fem3d" not in models:
-        raise InputError(f"compare --models {','.join(models)} runs on one process (under mpirun only "
-                         "the 3D full order, fem3d, shares its work): start it without mpirun")
-    for m in models:                    # the full orders' budgets over the common duration
+        raise InputError(
+            f"compare --models {','.join(models)} runs on one process (under mpirun only "
+            "the 3D full order, fem3d, shares its work): start it without mpirun"
+        )
+    for m in models:  # the full orders' budgets over the common duration
         check_run(scene, args.case, m, motion=motion, duration=duration)
 
 
 def compare_command(scene: Scene, args, timings):
-    from . import EXIT_CHECKS, is_root_rank, mpi_progress, out_dir
     from ..transients.compare import compare_models, parse_models
+    from . import EXIT_CHECKS, is_root_rank, mpi_progress, out_dir
+
     preflight(scene, args)
     case = args.case
     models = parse_models(args.models, case)
@@ -67,6 +83,7 @@ def compare_command(scene: Scene, args, timings):
     from ..postprocess.compare_charts import comparison_chart
     from ..postprocess.pareto_charts import pareto_chart
     from ..postprocess.transient_charts import model_run_charts
+
     workers = getattr(args, "workers", None)
     if workers is not None and workers < 1:
         raise InputError(f"--workers {workers}: must be >= 1")
@@ -74,15 +91,31 @@ def compare_command(scene: Scene, args, timings):
     if any(m in ("modal", "fem3d") for m in models):
         from ..chain import resolve
         from ..reduced.models import scene_motion
+
         with timings("pillar_modes"):
-            chain = resolve(scene, out_dir(scene, args), progress=progress,
-                            motion=scene_motion(scene) if case == "earthquake" else None)
+            chain = resolve(
+                scene,
+                out_dir(scene, args),
+                progress=progress,
+                motion=scene_motion(scene) if case == "earthquake" else None,
+            )
     with timings("compare"):
-        res = compare_models(scene, case, models, out_dir(scene, args), provenance, progress=progress,
-                             write=is_root_rank(), run_charts=model_run_charts,
-                             compare_chart=comparison_chart, pareto=getattr(args, "pareto", False),
-                             pareto_chart=pareto_chart, workers=workers or default_workers(),
-                             chain=chain, timings=timings)
+        res = compare_models(
+            scene,
+            case,
+            models,
+            out_dir(scene, args),
+            provenance,
+            progress=progress,
+            write=is_root_rank(),
+            run_charts=model_run_charts,
+            compare_chart=comparison_chart,
+            pareto=getattr(args, "pareto", False),
+            pareto_chart=pareto_chart,
+            workers=workers or default_workers(),
+            chain=chain,
+            timings=timings,
+        )
     for run in res.per_model.values():
         for warning in run.warnings:
             progress(f"warning: {warning}")
@@ -94,35 +127,43 @@ def compare_command(scene: Scene, args, timings):
 
 def _summary(scene: Scene, r: CompareResult) -> str:
     w = r.window
-    lines = [f"rotorpillar compare {scene.name}: case {r.case}, reference {r.reference} "
-             f"(over {w.start:g}..{w.end:g} s: {w.why})"]
+    lines = [
+        f"rotorpillar compare {scene.name}: case {r.case}, reference {r.reference} "
+        f"(over {w.start:g}..{w.end:g} s: {w.why})"
+    ]
     for m in r.models_run:
         p = r.per_model[m]
         e = r.errors.get(m)
-        lead = 0.0 if e is None else (e.tip_history_error if e.lead == "history"
-                                      else e.tip_envelope_error)
-        err = ("reference" if e is None else
-               f"tip {e.lead} error {100 * lead:.2f} % (leads: "
-               f"{'rotors in phase' if e.lead == 'history' else 'the rotor angles drift'}), "
-               f"history {100 * e.tip_history_error:.2f} %, envelope "
-               f"{100 * e.tip_envelope_error:.2f} %, peak {100 * (e.peak_tip_difference or 0):+.2f} %"
-               + ("" if e.angle_drift is None else
-                  f", rotor angle drift {e.angle_drift:.3g} rad"))
-        lines.append(f"  {m:6s} peak tip {p.peak_tip_relative:.4g} m (relative), "
-                     f"{p.dofs} dofs, {p.wall_seconds:.3g} s ({r.cost_ratio[m]:.3g} x); {err}")
+        lead = 0.0 if e is None else (e.tip_history_error if e.lead == "history" else e.tip_envelope_error)
+        err = (
+            "reference"
+            if e is None
+            else f"tip {e.lead} error {100 * lead:.2f} % (leads: "
+            f"{'rotors in phase' if e.lead == 'history' else 'the rotor angles drift'}), "
+            f"history {100 * e.tip_history_error:.2f} %, envelope "
+            f"{100 * e.tip_envelope_error:.2f} %, peak {100 * (e.peak_tip_difference or 0):+.2f} %"
+            + ("" if e.angle_drift is None else f", rotor angle drift {e.angle_drift:.3g} rad")
+        )
+        lines.append(
+            f"  {m:6s} peak tip {p.peak_tip_relative:.4g} m (relative), "
+            f"{p.dofs} dofs, {p.wall_seconds:.3g} s ({r.cost_ratio[m]:.3g} x); {err}"
+        )
         for warning in p.warnings:
             lines.append(f"         WARNING: {warning}")
     if r.spectrum:
         s = r.spectrum
         comp = f"{s.computed_peak_tip:.4g} m" if s.computed_peak_tip is not None else "not run"
-        lines.append(f"  response spectrum: spectral peak tip {s.spectral_peak_tip:.4g} m (SRSS), "
-                     f"computed (modal) {comp}")
+        lines.append(
+            f"  response spectrum: spectral peak tip {s.spectral_peak_tip:.4g} m (SRSS), computed (modal) {comp}"
+        )
     if r.pareto:
         pa = r.pareto
-        lines.append(f"  speed against accuracy ({pa.cost['runs']} runs, {pa.cost['computed']} "
-                     f"computed in {pa.cost['wall_seconds']:.3g} s): errors against "
-                     f"{pa.reference['label']} (own peak error {_pct(pa.reference['peak_error'])}, "
-                     f"{pa.reference['method']}); {pa.chosen['why']}")
+        lines.append(
+            f"  speed against accuracy ({pa.cost['runs']} runs, {pa.cost['computed']} "
+            f"computed in {pa.cost['wall_seconds']:.3g} s): errors against "
+            f"{pa.reference['label']} (own peak error {_pct(pa.reference['peak_error'])}, "
+            f"{pa.reference['method']}); {pa.chosen['why']}"
+        )
     if r.full_order_reference:
         lines.append(f"  3D reference: {r.full_order_reference.statement}")
     lines.append(f"  chart: {r.chart}")

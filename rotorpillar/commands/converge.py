@@ -18,62 +18,90 @@ if TYPE_CHECKING:
 
 from pathlib import Path
 
-from . import progress
 from ..errors import InputError
+from . import progress
 
 
 def add_arguments(p) -> None:
-    p.add_argument("--cache", type=Path, default=None, metavar="DIR",
-                   help="run cache directory (default: <out>/cache)")
-    p.add_argument("--tolerance", type=float, default=None, metavar="TOL",
-                   help="relative frequency tolerance of the chosen model "
-                        "(default: the scene's converge.tolerance)")
+    p.add_argument("--cache", type=Path, default=None, metavar="DIR", help="run cache directory (default: <out>/cache)")
+    p.add_argument(
+        "--tolerance",
+        type=float,
+        default=None,
+        metavar="TOL",
+        help="relative frequency tolerance of the chosen model (default: the scene's converge.tolerance)",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="runs at once, on a Dask LocalCluster (default: one per core; 1 = serially "
-                        "in this process)")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="runs at once, on a Dask LocalCluster (default: one per core; 1 = serially in this process)",
+    )
 
 
 def add_modal_arguments(p) -> None:
     """`rotorpillar modal --tolerance TOL`: run the model the study picks for TOL."""
-    p.add_argument("--tolerance", type=float, default=None, metavar="TOL",
-                   help="pick the cheapest 3D mesh that meets this relative frequency "
-                        "tolerance over the scene's band, from the convergence study "
-                        "(run, or loaded from its cache: see `rotorpillar converge`)")
-    p.add_argument("--cache", type=Path, default=None, metavar="DIR",
-                   help="the study's run cache (default: <out>/cache)")
+    p.add_argument(
+        "--tolerance",
+        type=float,
+        default=None,
+        metavar="TOL",
+        help="pick the cheapest 3D mesh that meets this relative frequency "
+        "tolerance over the scene's band, from the convergence study "
+        "(run, or loaded from its cache: see `rotorpillar converge`)",
+    )
+    p.add_argument(
+        "--cache", type=Path, default=None, metavar="DIR", help="the study's run cache (default: <out>/cache)"
+    )
 
 
 def _summary(st) -> str:
     """The study in words: counts, references, orders, band, front, choice and failures."""
     ref, sel, n = st.reference, st.selection, st.study
-    lines = [f"rotorpillar converge {st.scene_name}: {n['runs']} runs "
-             f"({n['cached']} cached, {n['computed']} computed, "
-             f"{n['failed']} failed) in {n['wall_time']:.0f} s", "",
-             "Reference values (Richardson on the finest three runs):"]
+    lines = [
+        f"rotorpillar converge {st.scene_name}: {n['runs']} runs "
+        f"({n['cached']} cached, {n['computed']} computed, "
+        f"{n['failed']} failed) in {n['wall_time']:.0f} s",
+        "",
+        "Reference values (Richardson on the finest three runs):",
+    ]
     for q, r in ref.items():
         p = "n/a" if r["order"] is None else f"{r['order']:.2f}"
-        lines.append(f"  first {q:9s} {r['value']:10.4f} rad/s +- {r['error_estimate']:.1e} "
-                     f"({st.families[r['family']]['label']}; observed order {p}, "
-                     f"theory {r['order_theory']:g})")
+        lines.append(
+            f"  first {q:9s} {r['value']:10.4f} rad/s +- {r['error_estimate']:.1e} "
+            f"({st.families[r['family']]['label']}; observed order {p}, "
+            f"theory {r['order_theory']:g})"
+        )
         if "check" in r:
             c = r["check"]
-            lines.append(f"    check: from the three runs before, {c['value']:.4f} +- "
-                         f"{c['error_estimate']:.1e}; the finer run gives {c['finer_value']:.4f} "
-                         f"({'within' if c['within_estimate'] else 'OUTSIDE'} the estimate)")
+            lines.append(
+                f"    check: from the three runs before, {c['value']:.4f} +- "
+                f"{c['error_estimate']:.1e}; the finer run gives {c['finer_value']:.4f} "
+                f"({'within' if c['within_estimate'] else 'OUTSIDE'} the estimate)"
+            )
     lines += ["", "Observed orders per family (theory in brackets):"]
     for fam, qs in st.extrapolations.items():
-        parts = [f"{q} {('n/a' if e['order'] is None else format(e['order'], '.2f'))} "
-                 f"[{e['order_theory']:g}] -> {e['value']:.4f}" for q, e in qs.items()]
+        parts = [
+            f"{q} {('n/a' if e['order'] is None else format(e['order'], '.2f'))} "
+            f"[{e['order_theory']:g}] -> {e['value']:.4f}"
+            for q, e in qs.items()
+        ]
         lines.append(f"  {st.families[fam]['label']:34s} " + "; ".join(parts))
     b = sel["band"]
-    lines += ["", f"Band: up to {b['omega_max']:.1f} rad/s = {b['margin']:g} x "
-                  f"max(drive free speed {b['free_speed']:.1f}, earthquake "
-                  f"{b['earthquake_frequency']:.2f}) rad/s; needs: {', '.join(sel['needed'])}",
-              "Pareto front (band error vs wall time): "
-              + ", ".join(st.pareto["wall_time"]["band"])]
-    lines += ["", f"Chosen at tolerance {sel['tolerance']:g}: "
-              + (sel["chosen"]["label"] if sel["chosen"] else "none"), "  " + sel["reason"]]
+    lines += [
+        "",
+        f"Band: up to {b['omega_max']:.1f} rad/s = {b['margin']:g} x "
+        f"max(drive free speed {b['free_speed']:.1f}, earthquake "
+        f"{b['earthquake_frequency']:.2f}) rad/s; needs: {', '.join(sel['needed'])}",
+        "Pareto front (band error vs wall time): " + ", ".join(st.pareto["wall_time"]["band"]),
+    ]
+    lines += [
+        "",
+        f"Chosen at tolerance {sel['tolerance']:g}: " + (sel["chosen"]["label"] if sel["chosen"] else "none"),
+        "  " + sel["reason"],
+    ]
     if st.failures:
         lines += ["", "Where methods fail:"] + [f"  - {f}" for f in st.failures]
     if st.charts is not None:
@@ -83,38 +111,59 @@ def _summary(st) -> str:
 
 def _under_mpi() -> bool:
     import os
+
     return any(int(os.environ.get(k, "1")) > 1 for k in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"))
 
 
 def preflight(scene: Scene, args) -> None:
     """What `converge` refuses before any work (`run` calls it for its stage too): MPI,
     --workers, --tolerance, and runs (not in the cache) this process's memory cannot hold."""
-    from . import out_dir
     from ..executor import check_workers, default_workers
+    from . import out_dir
+
     if _under_mpi():
-        raise InputError("rotorpillar converge runs its runs as subprocesses (--workers at once): "
-                         "start it without mpirun")
+        raise InputError(
+            "rotorpillar converge runs its runs as subprocesses (--workers at once): start it without mpirun"
+        )
     check_workers(args.workers)
     from ..converge.ladder import study_cases
     from ..converge.runner import check_study_memory, todo_cases
     from ..converge.study import check_tolerance
+
     check_tolerance(scene.converge.tolerance if args.tolerance is None else args.tolerance)
     cache = out_dir(scene, args) / "cache" if args.cache is None else args.cache
-    check_study_memory(todo_cases(study_cases(scene), scene, cache),
-                 default_workers() if args.workers is None else args.workers)
+    check_study_memory(
+        todo_cases(study_cases(scene), scene, cache), default_workers() if args.workers is None else args.workers
+    )
 
 
 def converge_command(scene: Scene, args, timings):
     from . import out_dir
+
     preflight(scene, args)
     from ..converge import study
     from ..executor import default_workers
     from ..postprocess.convergence_charts import convergence_charts
+
     workers = default_workers() if args.workers is None else args.workers
-    st = study(scene, out_dir=out_dir(scene, args), cache_dir=args.cache,
-               tolerance=args.tolerance, show_progress=not args.no_progress,
-               charts=convergence_charts, timings=timings, log=progress, workers=workers)
-    result = {"convergence_json": st.json_file, "charts": st.charts or {},
-              "tolerance": st.tolerance, "reference": st.reference,
-              "selection": st.selection, "failures": list(st.failures), "study": st.study}
+    st = study(
+        scene,
+        out_dir=out_dir(scene, args),
+        cache_dir=args.cache,
+        tolerance=args.tolerance,
+        show_progress=not args.no_progress,
+        charts=convergence_charts,
+        timings=timings,
+        log=progress,
+        workers=workers,
+    )
+    result = {
+        "convergence_json": st.json_file,
+        "charts": st.charts or {},
+        "tolerance": st.tolerance,
+        "reference": st.reference,
+        "selection": st.selection,
+        "failures": list(st.failures),
+        "study": st.study,
+    }
     return result, _summary(st)

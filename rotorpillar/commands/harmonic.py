@@ -19,8 +19,7 @@ from . import progress
 
 
 def add_arguments(p) -> None:
-    p.add_argument("--no-fem3d", action="store_true",
-                   help="the ROM only: skip the 3D model's harmonic response")
+    p.add_argument("--no-fem3d", action="store_true", help="the ROM only: skip the 3D model's harmonic response")
 
 
 def preflight(scene: Scene, args) -> None:
@@ -29,10 +28,13 @@ def preflight(scene: Scene, args) -> None:
     from ..reduced.models import build_model
     from ..reduced.stationary import operating_speed
     from ..scene import override
+
     if not getattr(args, "no_fem3d", False):
         import importlib.util
+
         if importlib.util.find_spec("dolfinx") is not None:
             from .simulate import check_run
+
             check_run(scene, "runup", "fem3d")
     # the running speed on the beam's modes: within the beam's error of the chain's ROM
     model, _ = build_model(override(scene, ["modal_model.source=beam"]), "modal", modes=1)
@@ -41,11 +43,13 @@ def preflight(scene: Scene, args) -> None:
 
 
 def harmonic_command(scene: Scene, args, timings):
-    from . import out_dir
     from ..verdict.harmonic import harmonic_analysis, summary_text
+    from . import out_dir
+
     preflight(scene, args)
     progress(f"harmonic {scene.name}: unbalance response and separation margins")
     with timings("harmonic"):
-        result = harmonic_analysis(scene, out_dir(scene, args), progress,
-                                   with_fem3d=not getattr(args, "no_fem3d", False))
+        result = harmonic_analysis(
+            scene, out_dir(scene, args), progress, with_fem3d=not getattr(args, "no_fem3d", False)
+        )
     return result.to_json(), summary_text(result)

@@ -27,6 +27,7 @@ SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
 
 def band_edge(scene: Scene) -> float:
     from ..reduced.band import excitation_band
+
     return excitation_band(scene.drive, scene.load, scene.converge)["omega_max"]
 
 
@@ -47,6 +48,7 @@ def quiet_jit_logging() -> None:
     console to our own progress lines.
     """
     import logging
+
     root = logging.getLogger()
     if not root.handlers:
         logging.basicConfig()
@@ -56,6 +58,7 @@ def quiet_jit_logging() -> None:
 
 def _rank0() -> bool:
     from mpi4py import MPI
+
     return MPI.COMM_WORLD.rank == 0
 
 
@@ -70,71 +73,99 @@ def preflight(scene: Scene, args=None) -> None:
     from ..errors import InputError
     from ..mesh import tube_params
     from ..provenance import check_memory
+
     p = tube_params(scene.pillar, scene.mesh)
-    check_memory(SOLVES * p.estimated_bytes,
-                 f"modal: the mesh {p.elements_around} around x {p.elements_along} along x "
-                 f"{p.elements_through} through ({p.estimated_dofs:,} DOFs, two solves)",
-                 "use fewer elements")
+    check_memory(
+        SOLVES * p.estimated_bytes,
+        f"modal: the mesh {p.elements_around} around x {p.elements_along} along x "
+        f"{p.elements_through} through ({p.estimated_dofs:,} DOFs, two solves)",
+        "use fewer elements",
+    )
     n, rigid = scene.modal.n_modes, scene.modal.top_model == "rigid"
     dofs = min(p.solver_dofs(False), p.solver_dofs(rigid))
     if n and n + 1 > dofs:
-        raise InputError(f"modal.n_modes = {n}: the mesh {p.elements_around} x {p.elements_along} x "
-                         f"{p.elements_through} has {dofs} unknowns"
-                         + (" with its rigid top" if rigid else "")
-                         + f"; the solver returns at most {dofs - 1} modes (it asks one more "
-                           "than n_modes): ask fewer or refine the mesh")
+        raise InputError(
+            f"modal.n_modes = {n}: the mesh {p.elements_around} x {p.elements_along} x "
+            f"{p.elements_through} has {dofs} unknowns"
+            + (" with its rigid top" if rigid else "")
+            + f"; the solver returns at most {dofs - 1} modes (it asks one more "
+            "than n_modes): ask fewer or refine the mesh"
+        )
     if getattr(args, "tolerance", None) is not None:
         from ..converge.study import check_tolerance
+
         check_tolerance(args.tolerance)
 
 
 def modal_command(scene: Scene, args, timings):
     import sys
+
     from . import EXIT_CHECKS, out_dir
-    preflight(scene, args)                         # bad input: refused before any import or work
-    from ..reduced.reduction import pillar_closed_forms
+
+    preflight(scene, args)  # bad input: refused before any import or work
     from ..fem3d import modal_analysis
-    from ..fem3d.output import write_modes_vtu
     from ..fem3d.modal_summary import modal_summary, summary
+    from ..fem3d.output import write_modes_vtu
+    from ..reduced.reduction import pillar_closed_forms
+
     quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
     from dataclasses import replace
+
     from mpi4py import MPI
+
     from ..chain import chain_modes, choose, rom_band_top
     from ..chain.choice import Choice, from_scene, model_of_run
+
     selection = None
     if getattr(args, "tolerance", None) is not None:
         from ..converge import model_for_modal
         from ..postprocess.convergence_charts import convergence_charts
+
         with timings("model_selection"):
-            scene, selection = model_for_modal(scene, args.tolerance, out_dir(scene, args),
-                                               cache_dir=args.cache, charts=convergence_charts,
-                                               log=say, show_progress=sys.stderr.isatty())
+            scene, selection = model_for_modal(
+                scene,
+                args.tolerance,
+                out_dir(scene, args),
+                cache_dir=args.cache,
+                charts=convergence_charts,
+                log=say,
+                show_progress=sys.stderr.isatty(),
+            )
         say(selection["text"].splitlines()[0])
-        if selection["chosen"] is None:     # no 3D run has an error estimate: the scene's [mesh]
-            choice = from_scene(scene, args.cache or out_dir(scene, args) / "cache",
-                                selection["reason"])
+        if selection["chosen"] is None:  # no 3D run has an error estimate: the scene's [mesh]
+            choice = from_scene(scene, args.cache or out_dir(scene, args) / "cache", selection["reason"])
         else:
-            pm = model_of_run(selection["chosen"], selection.get("reference_uncertainty") or {},
-                              args.tolerance, selection["reason"], selection.get("convergence_json"))
+            pm = model_of_run(
+                selection["chosen"],
+                selection.get("reference_uncertainty") or {},
+                args.tolerance,
+                selection["reason"],
+                selection.get("convergence_json"),
+            )
             choice = Choice(*(2 * [pm if selection["met"] else replace(pm, verified=False)]))
     else:
         choice = choose(scene, out_dir(scene, args))
         scene = replace(scene, mesh=choice.solid_mesh)
-    preflight(scene)                               # the mesh run: its memory and modes
+    preflight(scene)  # the mesh run: its memory and modes
     say(f"modal: {choice.solid.describe()}")
     with timings("rom_modes"):
         # the ROM's modes on this mesh, computed once here and cached for the stages after
         chain = chain_modes(scene, choice, rom_band_top(scene), comm=MPI.COMM_WORLD, progress=say)
-    say("modal: bare tube, " + (f"{scene.modal.n_modes} modes" if scene.modal.n_modes else
-                                f"the modes past the band ({band_edge(scene):.1f} rad/s)"))
+    say(
+        "modal: bare tube, "
+        + (
+            f"{scene.modal.n_modes} modes"
+            if scene.modal.n_modes
+            else f"the modes past the band ({band_edge(scene):.1f} rad/s)"
+        )
+    )
     bare = modal_analysis(scene, top=False)
     say(f"modal: tube with its top mass ({scene.modal.top_model} top)")
     if chain.loaded_modes and scene.modal.n_modes == 0:
         # the ROM's solve of the loaded tube, reused (in this process's cache when the chain
         # solved it here), cut to the modes the band asks: one solve, not two
-        loaded = band_cut(modal_analysis(scene, top=True, n_modes=chain.loaded_modes),
-                          band_edge(scene))
+        loaded = band_cut(modal_analysis(scene, top=True, n_modes=chain.loaded_modes), band_edge(scene))
     else:
         loaded = modal_analysis(scene, top=True)
     for key in ("mesh", "assembly", "solve", "postprocess"):
@@ -155,7 +186,7 @@ def modal_command(scene: Scene, args, timings):
     if selection is not None:
         doc["model_selection"] = selection
         text = selection["text"] + "\n\n" + text
-        if not selection["met"]:          # written, and marked: the exit code says so too
+        if not selection["met"]:  # written, and marked: the exit code says so too
             doc.update(ok=False, failed_checks=[selection["reason"]], exit_status=EXIT_CHECKS)
             say(f"modal: check failed: {selection['reason']}")
     return doc, text

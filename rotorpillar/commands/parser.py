@@ -18,36 +18,59 @@ from ..scene import embedded_scenes
 # name -> (module, function, help).  A command function takes
 # (scene, args, timings) and returns (result: dict, summary: str).
 COMMANDS = {
-    "analyze": ("rotorpillar.commands.analyze", "analyze_command",
-                "closed forms, reduced system modes, averaging, paper comparison"),
-    "converge": ("rotorpillar.commands.converge", "converge_command",
-                 "mesh convergence, speed against accuracy, and the cheapest model a scene needs"),
-    "modal": ("rotorpillar.commands.modal", "modal_command",
-              "3D tube (Gmsh, dolfinx, SLEPc): modes bare and with the top mass, tip reduction"),
-    "report": ("rotorpillar.commands.report", "report_command",
-               "the HTML validation report, its charts, mode-shape pictures and animations"),
-    "run": ("rotorpillar.commands.run", "run_command",
-            "the main job: every analysis of the scene, then the report"),
-    "simulate": ("rotorpillar.commands.simulate", "simulate_command",
-                 "transients: run-up, run-down, sweep, earthquake on the paper, modal, 3D or beam model"),
-    "compare": ("rotorpillar.commands.compare", "compare_command",
-                "several transient models on one case: tip histories, errors and cost against the "
-                "most complete"),
-    "integrators": ("rotorpillar.commands.integrators", "integrators_command",
-                    "time integrators: error against cost, where each fails"),
-    "study": ("rotorpillar.commands.study", "study_command",
-              "design study on Dask: capture maps of run-ups, earthquake IDA curves"),
-    "harmonic": ("rotorpillar.commands.harmonic", "harmonic_command",
-                 "unbalance response against speed (Bode: ROM, 3D, Eq. 19) and separation "
-                 "margins (API 684)"),
+    "analyze": (
+        "rotorpillar.commands.analyze",
+        "analyze_command",
+        "closed forms, reduced system modes, averaging, paper comparison",
+    ),
+    "converge": (
+        "rotorpillar.commands.converge",
+        "converge_command",
+        "mesh convergence, speed against accuracy, and the cheapest model a scene needs",
+    ),
+    "modal": (
+        "rotorpillar.commands.modal",
+        "modal_command",
+        "3D tube (Gmsh, dolfinx, SLEPc): modes bare and with the top mass, tip reduction",
+    ),
+    "report": (
+        "rotorpillar.commands.report",
+        "report_command",
+        "the HTML validation report, its charts, mode-shape pictures and animations",
+    ),
+    "run": ("rotorpillar.commands.run", "run_command", "the main job: every analysis of the scene, then the report"),
+    "simulate": (
+        "rotorpillar.commands.simulate",
+        "simulate_command",
+        "transients: run-up, run-down, sweep, earthquake on the paper, modal, 3D or beam model",
+    ),
+    "compare": (
+        "rotorpillar.commands.compare",
+        "compare_command",
+        "several transient models on one case: tip histories, errors and cost against the most complete",
+    ),
+    "integrators": (
+        "rotorpillar.commands.integrators",
+        "integrators_command",
+        "time integrators: error against cost, where each fails",
+    ),
+    "study": (
+        "rotorpillar.commands.study",
+        "study_command",
+        "design study on Dask: capture maps of run-ups, earthquake IDA curves",
+    ),
+    "harmonic": (
+        "rotorpillar.commands.harmonic",
+        "harmonic_command",
+        "unbalance response against speed (Bode: ROM, 3D, Eq. 19) and separation margins (API 684)",
+    ),
 }
 
 
 def _arguments(*modules: str):
     """A command's extra arguments: each module's ``add_arguments`` (modules by name:
     `run` parses its stages with this parser, so no command module is imported here)."""
-    return lambda p: [importlib.import_module(f"rotorpillar.commands.{m}").add_arguments(p)
-                      for m in modules]
+    return lambda p: [importlib.import_module(f"rotorpillar.commands.{m}").add_arguments(p) for m in modules]
 
 
 # Extra arguments of a command: name -> callable(parser)
@@ -65,17 +88,23 @@ EXTRA_ARGUMENTS = {
 
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("scene", nargs="?", default="paper",
-                   help=f"scene file (.toml) or embedded scene: {', '.join(embedded_scenes())} "
-                        "(default: paper)")
-    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
-                   help="override a scene key, e.g. --set shaft.stiffness=5e6 (repeatable)")
-    p.add_argument("--out", type=Path, default=None, metavar="DIR",
-                   help="output directory (default: out/<scene>/)")
-    p.add_argument("--json", action="store_true",
-                   help="print the result JSON on stdout and nothing else there")
-    p.add_argument("--debug", action="store_true",
-                   help="show the Python traceback of a failure instead of one line")
+    p.add_argument(
+        "scene",
+        nargs="?",
+        default="paper",
+        help=f"scene file (.toml) or embedded scene: {', '.join(embedded_scenes())} (default: paper)",
+    )
+    p.add_argument(
+        "--set",
+        dest="overrides",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a scene key, e.g. --set shaft.stiffness=5e6 (repeatable)",
+    )
+    p.add_argument("--out", type=Path, default=None, metavar="DIR", help="output directory (default: out/<scene>/)")
+    p.add_argument("--json", action="store_true", help="print the result JSON on stdout and nothing else there")
+    p.add_argument("--debug", action="store_true", help="show the Python traceback of a failure instead of one line")
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -86,21 +115,21 @@ class OneLineParser(argparse.ArgumentParser):
         message = " ".join(message.split())
         # "argument --case: invalid choice: 'sweep' (choose from 'earthquake', 'runup')"
         if message.startswith("argument ") and "invalid choice:" in message:
-            flag, rest = message[len("argument "):].split(": invalid choice: ", 1)
+            flag, rest = message[len("argument ") :].split(": invalid choice: ", 1)
             value, _, allowed = rest.partition(" (choose from ")
             message = f"{flag.split('/')[-1]} {value}: must be one of {allowed.rstrip(')')}"
         elif message.startswith("argument "):
-            flag, _, why = message[len("argument "):].partition(": ")
+            flag, _, why = message[len("argument ") :].partition(": ")
             message = f"{flag.split('/')[-1]}: {why}"
         elif message.endswith("required: COMMAND"):
             message = "give a COMMAND, one of " + ", ".join(COMMANDS)
-        self.exit(2, f"{self.prog}: error: {message}\n")     # cli.EXIT_INPUT
+        self.exit(2, f"{self.prog}: error: {message}\n")  # cli.EXIT_INPUT
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = OneLineParser(
-        prog="rotorpillar",
-        description="Dynamics of a heavy eccentric rotor on a tall flexible pillar.")
+        prog="rotorpillar", description="Dynamics of a heavy eccentric rotor on a tall flexible pillar."
+    )
     parser.add_argument("--version", action="version", version=f"rotorpillar {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name, (_, _, help_) in COMMANDS.items():

@@ -22,13 +22,13 @@ def scene_cli(args) -> str:
 
 
 def add_arguments(parser) -> None:
-    parser.add_argument("--max-frames", type=int, default=180, metavar="N",
-                        help="frames per animation (default 180)")
-    parser.add_argument("--no-animations", action="store_true",
-                        help="skip the run-up and earthquake animations")
-    parser.add_argument("--strict", action="store_true",
-                        help="exit 1 when an input is damaged or a section failed (the page is "
-                             "written all the same)")
+    parser.add_argument("--max-frames", type=int, default=180, metavar="N", help="frames per animation (default 180)")
+    parser.add_argument("--no-animations", action="store_true", help="skip the run-up and earthquake animations")
+    parser.add_argument(
+        "--strict",
+        action="store_true",
+        help="exit 1 when an input is damaged or a section failed (the page is written all the same)",
+    )
 
 
 #: Frames an animation may have: 2 make a motion, 3600 are two minutes at 30 fps.
@@ -38,6 +38,7 @@ MAX_FRAMES_RANGE = (2, 3600)
 def checked_frames(args) -> int:
     """``--max-frames``, refused (one line) outside MAX_FRAMES_RANGE; `run` checks it first."""
     from ..errors import InputError
+
     frames = getattr(args, "max_frames", 180)
     lo, hi = MAX_FRAMES_RANGE
     if not lo <= frames <= hi:
@@ -51,20 +52,22 @@ def preflight(scene: Scene, args) -> None:
 
 
 def report_command(scene: Scene, args, timings):
-    from . import is_root_rank, out_dir
     from ..postprocess.report import ReportOptions, build_report, report_text
+    from . import is_root_rank, out_dir
+
     frames = checked_frames(args)
     if not is_root_rank():
         return {"report": None}, ""
     options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
     progress(f"report: rendering into {out_dir(scene, args)}")
     from ..verdict.summary import write_summary
+
     failed = None
     with timings("summary"):
         try:
             path = write_summary(scene, out_dir(scene, args))
             written = None if path is None else str(path)
-        except (KeyError, TypeError, ValueError, AttributeError) as exc:   # a damaged input: said, not fatal
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:  # a damaged input: said, not fatal
             written, failed = None, f"{type(exc).__name__}: {exc}"
             progress(f"report: summary.json not written: {failed}")
     result = build_report(scene, out_dir(scene, args), scene_cli(args), options, timings)

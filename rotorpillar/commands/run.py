@@ -51,19 +51,27 @@ def _report_flags(args) -> list[str]:
 # from the scene's own runs (simulate_<case>_<model>.*).
 RUN_STAGES = [
     # minutes the first time, then read from its cache: it chooses the pillar model
-    ("converge", "mesh convergence, speed against accuracy: the pillar model the band needs",
-     None, (), 0),
+    ("converge", "mesh convergence, speed against accuracy: the pillar model the band needs", None, (), 0),
     ("modal", "3D modes of the tube on the chosen mesh, bare and with its top mass", None, (), 1),
     ("analyze", "the headline model (the ROM) and the paper's, averaging", None, (), 2),
     # El Centro on the ROM and the 3D full order (the study's reference mesh for the modes
     # the load excites), with the speed-against-accuracy study
-    ("compare --case earthquake", "a recorded earthquake: the ROM against the 3D full order",
-     None, COMPARISONS["earthquake"], 3),
-    ("compare --case runup", "run-up through the resonances: the ROM against the 3D full order",
-     None, COMPARISONS["runup"], 3),
+    (
+        "compare --case earthquake",
+        "a recorded earthquake: the ROM against the 3D full order",
+        None,
+        COMPARISONS["earthquake"],
+        3,
+    ),
+    (
+        "compare --case runup",
+        "run-up through the resonances: the ROM against the 3D full order",
+        None,
+        COMPARISONS["runup"],
+        3,
+    ),
     ("simulate --case runup", "run-up from rest on the headline model", None, (), 3),
-    ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None,
-     ("--model", "paper"), 3),
+    ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ("--model", "paper"), 3),
     ("integrators", "time integrators: error against cost, where each fails", None, (), 3),
     # the ROM's and the 3D model's unbalance response, the margins to the loaded tube's modes
     ("harmonic", "unbalance response (Bode) and separation margins (API 684)", None, (), 3),
@@ -75,8 +83,17 @@ def stage_argv(command: str, args, extra=None, own=()) -> list[str]:
     """The command line of one stage: the command, its own arguments, run's
     scene, --out and overrides (after the stage's own --set: the user's win)."""
     from . import out_dir
-    argv = [sys.executable, "-m", "rotorpillar", *command.split(), *own, str(args.scene),
-            "--out", str(out_dir(args._scene, args))]
+
+    argv = [
+        sys.executable,
+        "-m",
+        "rotorpillar",
+        *command.split(),
+        *own,
+        str(args.scene),
+        "--out",
+        str(out_dir(args._scene, args)),
+    ]
     for o in args.overrides:
         argv += ["--set", o]
     return argv + (extra(args) if extra else [])
@@ -135,8 +152,7 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
         raise
     if failed:
         command, code = failed[0]
-        raise StageError(f"stage {command!r} failed (exit {code}); the stages before it finished "
-                         "and wrote their files")
+        raise StageError(f"stage {command!r} failed (exit {code}); the stages before it finished and wrote their files")
     return seconds
 
 
@@ -146,9 +162,11 @@ def preflight(scene: Scene, stages, args) -> None:
     the CLI's parser, its own --set before the user's.  Called before the first stage,
     so a stage that would refuse its input refuses `run`, with nothing written."""
     import importlib
+
     from ..errors import InputError
     from ..scene import load_scene
     from .parser import COMMANDS, build_parser
+
     parser = build_parser()
     checks = []
     for command, _, extra, own, *_ in stages:
@@ -159,8 +177,7 @@ def preflight(scene: Scene, stages, args) -> None:
             raise InputError(f"stage {command!r}: {exc}") from None
     # every stage is checked; those that read a record (seconds: a library's imports) last,
     # so that what a cheaper stage also refuses is refused at once
-    for command, stage_scene, stage_args in sorted(
-            checks, key=lambda c: c[1].excitation.kind == "record"):
+    for command, stage_scene, stage_args in sorted(checks, key=lambda c: c[1].excitation.kind == "record"):
         check = getattr(importlib.import_module(COMMANDS[stage_args.command][0]), "preflight", None)
         try:
             if check is not None:
@@ -172,21 +189,27 @@ def preflight(scene: Scene, stages, args) -> None:
 def add_arguments(parser) -> None:
     """run's own flags, beside the report's (which it passes on)."""
     names = sorted({st[0].split()[0] for st in RUN_STAGES} - {"report"})
-    parser.add_argument("--skip", action="append", default=[], metavar="STAGE",
-                        help=f"leave out a stage ({', '.join(names)}); repeatable")
+    parser.add_argument(
+        "--skip",
+        action="append",
+        default=[],
+        metavar="STAGE",
+        help=f"leave out a stage ({', '.join(names)}); repeatable",
+    )
 
 
 def run_command(scene: Scene, args, timings):
     """Every stage of RUN_STAGES, each writing its own JSON."""
-    from . import out_dir
     from ..errors import InputError
+    from . import out_dir
+
     args._scene = scene
     skip = set(getattr(args, "skip", []))
     known = {st[0].split()[0] for st in RUN_STAGES} - {"report"}
     if skip - known:
         raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
     todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
-    preflight(scene, todo, args)               # every stage's bad input: refused now, not late
+    preflight(scene, todo, args)  # every stage's bad input: refused now, not late
     stages, lines, report = {}, [], None
     waves = sorted({st[4] for st in todo})
     slots = max(1, min(os.cpu_count() or 1, MAX_SIDE_BY_SIDE))
@@ -195,21 +218,24 @@ def run_command(scene: Scene, args, timings):
         group = [st for st in todo if st[4] == wave]
         for command, what, *_ in group:
             n += 1
-            progress(f"run {n}/{len(todo)}: {command} ({what})"
-                     + (" [side by side]" if len(group) > 1 else ""))
+            progress(f"run {n}/{len(todo)}: {command} ({what})" + (" [side by side]" if len(group) > 1 else ""))
         seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in group], slots)
         for command, what, extra, own, _ in group:
             timings[command] = seconds[command]
             stem = stage_stem(command)
             path = out_dir(scene, args) / f"{stem}.json"
             doc = json.loads(path.read_text(encoding="utf-8"))
-            stages[stem] = {"json": str(path), "seconds": timings[command], "command": command,
-                            "arguments": list(own), "wave": wave,
-                            "stage_seconds": doc.get("timings", {}).get("total")}
+            stages[stem] = {
+                "json": str(path),
+                "seconds": timings[command],
+                "command": command,
+                "arguments": list(own),
+                "wave": wave,
+                "stage_seconds": doc.get("timings", {}).get("total"),
+            }
             lines.append(f"{command:>26}: {timings[command]:8.2f} s  -> {path}")
             if command.split()[0] == "report":
                 report = doc.get("report")
     if report:
         lines.append(f"{'page':>26}: {report}")
-    return ({"stages": stages, "report": report},
-            f"rotorpillar run {scene.name}\n" + "\n".join(lines))
+    return ({"stages": stages, "report": report}, f"rotorpillar run {scene.name}\n" + "\n".join(lines))

@@ -29,31 +29,53 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
-from . import EXIT_CHECKS
 from ..scene import CASES, INTEGRATORS, MODELS
+from . import EXIT_CHECKS
 
 
 def add_arguments(p) -> None:
-    p.add_argument("--case", choices=CASES, default=None,
-                   help="which transient (default: the scene's simulate.case)")
-    p.add_argument("--model", choices=MODELS, default=None,
-                   help="paper: Eq. 4 as published; modal: the pillar by its modes (the ROM); "
-                        "fem3d: the 3D tube at full order (earthquake, runup; mesh and duration from "
-                        "[full_order]); beam: the 1D Timoshenko beam at full order "
-                        "(default: the scene's simulate.model)")
-    p.add_argument("--integrator", default=None, choices=INTEGRATORS,
-                   help="time integrator (default: the scene's simulate.integrator)")
-    p.add_argument("--modes", type=int, default=None, metavar="K",
-                   help="modal model: keep K pillar modes (default: the scene's modal_model.modes, "
-                        "0 = from the frequency band)")
-    p.add_argument("--no-threshold", dest="overrides", action="append_const",
-                   const="simulate.threshold=false",
-                   help="run-up: skip the batch that finds the torque needed to pass the resonance "
-                        "(the scene's simulate.threshold = false)")
+    p.add_argument("--case", choices=CASES, default=None, help="which transient (default: the scene's simulate.case)")
+    p.add_argument(
+        "--model",
+        choices=MODELS,
+        default=None,
+        help="paper: Eq. 4 as published; modal: the pillar by its modes (the ROM); "
+        "fem3d: the 3D tube at full order (earthquake, runup; mesh and duration from "
+        "[full_order]); beam: the 1D Timoshenko beam at full order "
+        "(default: the scene's simulate.model)",
+    )
+    p.add_argument(
+        "--integrator",
+        default=None,
+        choices=INTEGRATORS,
+        help="time integrator (default: the scene's simulate.integrator)",
+    )
+    p.add_argument(
+        "--modes",
+        type=int,
+        default=None,
+        metavar="K",
+        help="modal model: keep K pillar modes (default: the scene's modal_model.modes, 0 = from the frequency band)",
+    )
+    p.add_argument(
+        "--no-threshold",
+        dest="overrides",
+        action="append_const",
+        const="simulate.threshold=false",
+        help="run-up: skip the batch that finds the torque needed to pass the resonance "
+        "(the scene's simulate.threshold = false)",
+    )
 
 
-def check_run(scene: Scene, case: str, which: str, integrator: str | None = None, modes: int | None = None,
-              motion=None, duration: float | None = None) -> None:
+def check_run(
+    scene: Scene,
+    case: str,
+    which: str,
+    integrator: str | None = None,
+    modes: int | None = None,
+    motion=None,
+    duration: float | None = None,
+) -> None:
     """Refuse (InputError) a run of one model that its own code would refuse, before any
     work: the 3D model's mesh memory and step budget (fem3d.full_order_plan, before
     meshing), the beam full order's step budget (transients.cases.check_full_order_budget),
@@ -63,18 +85,20 @@ def check_run(scene: Scene, case: str, which: str, integrator: str | None = None
     is estimated on the 1D beam's modes (the estimate's inputs from the modes, the
     operating speed and the fastest mode in the band, agree within the beam's error; the
     run checks again on its own modes)."""
-    from ..transients.cases import check_full_order_budget, run_case
     from ..reduced.excitation import no_motion
     from ..reduced.integration import Estimated, estimate_only
     from ..scene import override
+    from ..transients.cases import check_full_order_budget, run_case
     from ..transients.model_run import fem3d_plan, with_duration
+
     if which == "fem3d":
         from ..mesh import tube_params
-        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration).mesh)   # its memory
+
+        tube_params(scene.pillar, fem3d_plan(scene, case, motion, duration).mesh)  # its memory
         check_fem3d_budget(scene, case, motion, duration)
         return
     if duration is not None:
-        scene = with_duration(scene, case, duration)          # as run_model shortens a run
+        scene = with_duration(scene, case, duration)  # as run_model shortens a run
     if which == "beam":
         check_full_order_budget(scene, case, motion or no_motion(), integrator)
         return
@@ -92,17 +116,20 @@ def preflight(scene: Scene, args):
     flags, MPI, the record, and the run's plan or step budget (``check_run``: before the
     chain's pillar modes, which may take a 3D solve).  Returns the ground motion of an
     earthquake (read once), else None."""
-    from . import launched_ranks
     from ..errors import InputError
     from ..reduced.models import scene_motion
+    from . import launched_ranks
+
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
     if modes is not None and modes < 1:
         raise InputError(f"--modes {modes}: must be >= 1")
     if launched_ranks() > 1 and which != "fem3d":
-        raise InputError(f"simulate --model {which} runs on one process (under mpirun only the 3D "
-                         "full order, --model fem3d, shares its work): start it without mpirun")
+        raise InputError(
+            f"simulate --model {which} runs on one process (under mpirun only the 3D "
+            "full order, --model fem3d, shares its work): start it without mpirun"
+        )
     motion = scene_motion(scene) if case == "earthquake" else None
     check_run(scene, case, which, getattr(args, "integrator", None), modes, motion)
     return motion
@@ -110,10 +137,12 @@ def preflight(scene: Scene, args):
 
 def simulate_command(scene: Scene, args, timings):
     from . import is_root_rank, mpi_progress, out_dir
-    motion = preflight(scene, args)                                    # bad input: before any work
+
+    motion = preflight(scene, args)  # bad input: before any work
     from ..postprocess.transient_charts import model_run_charts
     from ..transients.files import write_model_files
     from ..transients.model_run import run_model
+
     case = getattr(args, "case", None) or scene.simulate.case
     which = getattr(args, "model", None) or scene.simulate.model
     modes = getattr(args, "modes", None)
@@ -122,21 +151,32 @@ def simulate_command(scene: Scene, args, timings):
     chain = None
     if which in ("modal", "fem3d"):
         from ..chain import resolve
+
         with timings("pillar_modes"):
             chain = resolve(scene, out_dir(scene, args), motion=motion, progress=progress)
     with timings(case):
-        run = run_model(scene, case, which, getattr(args, "integrator", None), modes, progress=progress,
-                        motion=motion, chain=chain, field_dir=out_dir(scene, args),
-                        study_dir=out_dir(scene, args))
+        run = run_model(
+            scene,
+            case,
+            which,
+            getattr(args, "integrator", None),
+            modes,
+            progress=progress,
+            motion=motion,
+            chain=chain,
+            field_dir=out_dir(scene, args),
+            study_dir=out_dir(scene, args),
+        )
     result = dict(run.result)
     for warning in result.get("warnings") or ():
         progress(f"warning: {warning}")
     if is_root_rank():
         with timings("write"):
             provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
-            result = write_model_files(out_dir(scene, args), scene, run, provenance, dict(timings),
-                                       charts=model_run_charts)
-    if result.get("ok") is False:           # written, and marked: the exit code says so too
+            result = write_model_files(
+                out_dir(scene, args), scene, run, provenance, dict(timings), charts=model_run_charts
+            )
+    if result.get("ok") is False:  # written, and marked: the exit code says so too
         result["exit_status"] = EXIT_CHECKS
         for line in result.get("failed_checks") or []:
             progress(f"simulate: check failed: {line}")
@@ -148,66 +188,84 @@ def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None =
     naming the keys; fem3d.full_order_plan), on the plan's mesh, duration and step."""
     from ..fem3d.full_order_plan import case_setup, check_budget, estimate, step_rule
     from ..transients.model_run import fem3d_plan
+
     plan = fem3d_plan(scene, case, motion, duration)
     # the start speed 0: the step follows the drive's free speed, which the operating
     # speed never passes, so the rule's step is the run's without solving for it
     motion, drive, length, _, _ = case_setup(scene, case, motion, None, plan.duration, 0.0)
-    check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, 0.0,
-                                                                 plan.time_step), plan.mesh))
+    check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, 0.0, plan.time_step), plan.mesh))
 
 
 def _summary(scene: Scene, r: dict) -> str:
-    lines = [f"rotorpillar simulate {scene.name}: case {r['case']}, {r['model']} model "
-             f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"]
+    lines = [
+        f"rotorpillar simulate {scene.name}: case {r['case']}, {r['model']} model "
+        f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"
+    ]
     it = r["integrator"]
-    lines.append(f"  integrator {it['method']}: {it['status']}, {it.get('steps')} steps, "
-                 + (f"{it['nfev']} force evaluations, " if "nfev" in it else "")
-                 + f"{it.get('wall_seconds') or 0.0:.3f} s; {r['dofs']} dofs, {r['wall_seconds']:.3f} s in all")
+    lines.append(
+        f"  integrator {it['method']}: {it['status']}, {it.get('steps')} steps, "
+        + (f"{it['nfev']} force evaluations, " if "nfev" in it else "")
+        + f"{it.get('wall_seconds') or 0.0:.3f} s; {r['dofs']} dofs, {r['wall_seconds']:.3f} s in all"
+    )
     if r.get("full_order"):
         lines.append(f"  full order: {r['full_order']['note']}")
     for w in r.get("warnings") or []:
         lines.append(f"  WARNING: {w}")
-    lines.append(f"  final speed {r['omega_final']:.4f} rad/s; captured at "
-                 + (f"{r['captured_at']:.3f} rad/s" if r["captured_at"] else "no resonance"))
+    lines.append(
+        f"  final speed {r['omega_final']:.4f} rad/s; captured at "
+        + (f"{r['captured_at']:.3f} rad/s" if r["captured_at"] else "no resonance")
+    )
     ma = r["max_abs"]
-    lines.append(f"  max |tip X| {ma['tip_x_relative']:.4g} m relative to the ground, "
-                 f"{ma['tip_x_absolute']:.4g} m absolute; |rotor X| {ma['rotor_x']:.4g} m, "
-                 f"|rotor Y| {ma['rotor_y']:.4g} m")
+    lines.append(
+        f"  max |tip X| {ma['tip_x_relative']:.4g} m relative to the ground, "
+        f"{ma['tip_x_absolute']:.4g} m absolute; |rotor X| {ma['rotor_x']:.4g} m, "
+        f"|rotor Y| {ma['rotor_y']:.4g} m"
+    )
     if ma.get("base_moment") is not None:
-        lines.append(f"  base: |M| {ma['base_moment']:.4g} N m, |V| {ma['base_shear']:.4g} N, stress "
-                     f"{ma['base_stress'] / 1e6:.4g} MPa (|M| c/I + N/A)"
-                     + (f"; von Mises {ma['von_mises'] / 1e6:.4g} MPa" if ma.get("von_mises") else "")
-                     + f"; shaft {ma['shaft_deflection']:.4g} m, bearing force {ma['bearing_force']:.4g} N")
+        lines.append(
+            f"  base: |M| {ma['base_moment']:.4g} N m, |V| {ma['base_shear']:.4g} N, stress "
+            f"{ma['base_stress'] / 1e6:.4g} MPa (|M| c/I + N/A)"
+            + (f"; von Mises {ma['von_mises'] / 1e6:.4g} MPa" if ma.get("von_mises") else "")
+            + f"; shaft {ma['shaft_deflection']:.4g} m, bearing force {ma['bearing_force']:.4g} N"
+        )
     eb = r["energy_balance"]
     lines.append(f"  energy balance: relative error {eb['relative_error']:.2e}")
     if r.get("truncation") and r["truncation"].get("modes_check") is None:
         lines.append("  " + r["truncation"]["statement"])
     elif r.get("truncation"):
         t = r["truncation"]
-        lines.append(f"  modes: {t['modes']} (effective mass {100 * t['effective_mass_fraction']:.1f} %); "
-                     f"with {t['modes_check']}: tip max changes {100 * (t['tip_x_max_rel_diff'] or 0):+.3f} %, "
-                     f"tip series {100 * t['tip_series_max_rel_diff']:.3f} %")
+        lines.append(
+            f"  modes: {t['modes']} (effective mass {100 * t['effective_mass_fraction']:.1f} %); "
+            f"with {t['modes_check']}: tip max changes {100 * (t['tip_x_max_rel_diff'] or 0):+.3f} %, "
+            f"tip series {100 * t['tip_series_max_rel_diff']:.3f} %"
+        )
     pt = r.get("passing_torque")
     if pt and pt.get("statement"):
         lines.append("  " + pt["statement"])
     if r["case"] == "sweep":
         if r["jumps"]:
             for j in r["jumps"]:
-                lines.append(f"  jump {j['direction']}: {j['omega_from']:.3f} -> {j['omega_to']:.3f} rad/s "
-                             f"at M0 = {j['torque_at_zero']:.1f} N*m")
+                lines.append(
+                    f"  jump {j['direction']}: {j['omega_from']:.3f} -> {j['omega_to']:.3f} rad/s "
+                    f"at M0 = {j['torque_at_zero']:.1f} N*m"
+                )
             for row in (r.get("rate_convergence") or {}).get("rows", []):
                 lim = row.get("torque_at_zero_limit")
                 if lim is not None and row.get("predicted_torque_at_zero"):
-                    lines.append(f"    {row['direction']}: M0 at rates {', '.join(f'{x:g}' for x in row['rates'])} "
-                                 f"N*m/s -> {', '.join(f'{x:.1f}' for x in row['torque_at_zero'] if x)}; "
-                                 f"limit {lim:.1f} vs Eq. 19-23 {row['predicted_torque_at_zero']:.1f} "
-                                 f"({100 * row['rel_error_limit_vs_predicted']:+.2f} %)")
+                    lines.append(
+                        f"    {row['direction']}: M0 at rates {', '.join(f'{x:g}' for x in row['rates'])} "
+                        f"N*m/s -> {', '.join(f'{x:.1f}' for x in row['torque_at_zero'] if x)}; "
+                        f"limit {lim:.1f} vs Eq. 19-23 {row['predicted_torque_at_zero']:.1f} "
+                        f"({100 * row['rel_error_limit_vs_predicted']:+.2f} %)"
+                    )
         else:
             lines.append("  " + (r.get("no_jump_reason") or "no jumps"))
         for a in r.get("amplitudes") or []:
-            lines.append(f"  amplitude near omega_{a['index']} ({a['sweep']}): numeric peak "
-                         f"{a['numeric_peak']:.4g} m; Eq. 19 median error {100 * a['rel_error_eq19_median']:.1f} %, "
-                         f"exact linear {100 * a['rel_error_exact_median']:.2f} %")
+            lines.append(
+                f"  amplitude near omega_{a['index']} ({a['sweep']}): numeric peak "
+                f"{a['numeric_peak']:.4g} m; Eq. 19 median error {100 * a['rel_error_eq19_median']:.1f} %, "
+                f"exact linear {100 * a['rel_error_exact_median']:.2f} %"
+            )
     if r["case"] == "earthquake":
         ex = r["excitation"]
         if ex.get("statement"):

@@ -26,37 +26,95 @@ is the function; reach a module's other names with ``from .X import``.
 
 from .compute import compute_fe, compute_in_process
 from .failures import case_degree, drop_aliases, failures, nyquist
-from .ladder import (ALONG_PER_AROUND, AROUND_LEVELS, EULER_LEVELS, FAMILIES, N_MODES,
-                     ORDER_NOTES, QUANTITIES, SOLID_AROUND_LEVELS, SOLID_SWEEP_AROUND,
-                     SWEEP_ALONG, SWEEP_AROUND, TIMOSHENKO_LEVELS, Case, Family,
-                     estimated_dofs, estimated_seconds, ladder, solid_mesh, study_cases)
+from .ladder import (
+    ALONG_PER_AROUND,
+    AROUND_LEVELS,
+    EULER_LEVELS,
+    FAMILIES,
+    N_MODES,
+    ORDER_NOTES,
+    QUANTITIES,
+    SOLID_AROUND_LEVELS,
+    SOLID_SWEEP_AROUND,
+    SWEEP_ALONG,
+    SWEEP_AROUND,
+    TIMOSHENKO_LEVELS,
+    Case,
+    Family,
+    estimated_dofs,
+    estimated_seconds,
+    ladder,
+    solid_mesh,
+    study_cases,
+)
 from .result import ConvergenceStudy
-from .richardson import (GCI_SAFETY, family_extrapolations, family_series, reference_values,
-                         richardson)
-from .runner import (CACHE_VERSION, UNAVAILABLE_EXIT, ModelUnavailable, case_key, run_point,
-                     run_study, worker)
-from .selection import (attach_errors, band_error, excitation_band, needed_quantities,
-                        pareto_front, reference_uncertainty, select_model)
+from .richardson import GCI_SAFETY, family_extrapolations, family_series, reference_values, richardson
+from .runner import CACHE_VERSION, UNAVAILABLE_EXIT, ModelUnavailable, case_key, run_point, run_study, worker
+from .selection import (
+    attach_errors,
+    band_error,
+    excitation_band,
+    needed_quantities,
+    pareto_front,
+    reference_uncertainty,
+    select_model,
+)
 from .study import analyse, model_for_modal, study
 
 __all__ = [
     # ladder
-    "QUANTITIES", "AROUND_LEVELS", "ALONG_PER_AROUND", "SOLID_AROUND_LEVELS", "SWEEP_AROUND",
-    "SOLID_SWEEP_AROUND", "SWEEP_ALONG", "EULER_LEVELS", "TIMOSHENKO_LEVELS", "N_MODES",
-    "Family", "FAMILIES", "ORDER_NOTES", "Case", "ladder", "study_cases", "estimated_dofs",
-    "estimated_seconds", "solid_mesh",
+    "QUANTITIES",
+    "AROUND_LEVELS",
+    "ALONG_PER_AROUND",
+    "SOLID_AROUND_LEVELS",
+    "SWEEP_AROUND",
+    "SOLID_SWEEP_AROUND",
+    "SWEEP_ALONG",
+    "EULER_LEVELS",
+    "TIMOSHENKO_LEVELS",
+    "N_MODES",
+    "Family",
+    "FAMILIES",
+    "ORDER_NOTES",
+    "Case",
+    "ladder",
+    "study_cases",
+    "estimated_dofs",
+    "estimated_seconds",
+    "solid_mesh",
     # compute
-    "compute_in_process", "compute_fe",
+    "compute_in_process",
+    "compute_fe",
     # runner
-    "CACHE_VERSION", "case_key", "ModelUnavailable", "UNAVAILABLE_EXIT", "worker", "run_point",
+    "CACHE_VERSION",
+    "case_key",
+    "ModelUnavailable",
+    "UNAVAILABLE_EXIT",
+    "worker",
+    "run_point",
     "run_study",
     # richardson
-    "GCI_SAFETY", "richardson", "family_series", "family_extrapolations", "reference_values",
+    "GCI_SAFETY",
+    "richardson",
+    "family_series",
+    "family_extrapolations",
+    "reference_values",
     # selection
-    "attach_errors", "pareto_front", "excitation_band", "reference_uncertainty",
-    "needed_quantities", "band_error", "select_model",
+    "attach_errors",
+    "pareto_front",
+    "excitation_band",
+    "reference_uncertainty",
+    "needed_quantities",
+    "band_error",
+    "select_model",
     # failures
-    "nyquist", "case_degree", "failures", "drop_aliases",
+    "nyquist",
+    "case_degree",
+    "failures",
+    "drop_aliases",
     # result and study
-    "ConvergenceStudy", "analyse", "study", "model_for_modal",
+    "ConvergenceStudy",
+    "analyse",
+    "study",
+    "model_for_modal",
 ]

@@ -8,11 +8,13 @@ import sys
 def main(argv: list[str]) -> int:
     if argv == ["--serve"]:
         from .runner import serve
+
         return serve()
     if len(argv) != 2:
         print("usage: python -m rotorpillar.converge --serve | CASE.json RESULT.json", file=sys.stderr)
         return 2
     from .runner import worker
+
     worker(argv[0], argv[1])
     return 0
 

@@ -8,7 +8,7 @@ dolfinx and run in a fresh subprocess (:func:`compute_fe`, called by
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Optional
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -18,12 +18,12 @@ from ..reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, se
 from ..scene import Scene
 from .ladder import FAMILIES, N_MODES, N_MODES_FIRST, QUANTITIES, Case, solid_mesh
 
-if TYPE_CHECKING:       # the FE models import dolfinx: at run time, only where they run
+if TYPE_CHECKING:  # the FE models import dolfinx: at run time, only where they run
     from ..fem3d.modal import ModalResult
     from ..fem3d.naghdi import ShellModalResult
 
 
-def _first(omega, kind, want: str) -> tuple[Optional[float], Optional[int]]:
+def _first(omega, kind, want: str) -> tuple[float | None, int | None]:
     for i, (w, k) in enumerate(zip(omega, kind)):
         if (want == "bending" and k.startswith("bending")) or (want == "ovalling" and k == "ovalling"):
             return float(w), i
@@ -32,9 +32,11 @@ def _first(omega, kind, want: str) -> tuple[Optional[float], Optional[int]]:
 
 def _modal_summary(omega, kind, n_circ) -> dict:
     """The run's quantities from a list of modes."""
-    out: dict[str, Any] = {"modes": [{"omega": float(w), "kind": k,
-                                      "n": None if n is None else int(n)}
-                                     for w, k, n in zip(omega, kind, n_circ)]}
+    out: dict[str, Any] = {
+        "modes": [
+            {"omega": float(w), "kind": k, "n": None if n is None else int(n)} for w, k, n in zip(omega, kind, n_circ)
+        ]
+    }
     for q in QUANTITIES:
         w, i = _first(omega, kind, q)
         out[q] = w
@@ -50,19 +52,28 @@ def compute_in_process(case: Case, pillar) -> dict:
     if fam.model == "closed_form":
         t = (pillar.outer_diameter - pillar.inner_diameter) / 2
         R = (pillar.outer_diameter + pillar.inner_diameter) / 4
-        return {"bending": omega_euler_bernoulli(pillar.youngs_modulus, sec.second_moment,
-                                                 sec.mass_per_length, pillar.height),
-                "ovalling": ring_frequency(2, pillar.youngs_modulus, pillar.poisson_ratio,
-                                           pillar.density, R, t),
-                "ovalling_n": 2, "dofs": 1, "modes": []}
+        return {
+            "bending": omega_euler_bernoulli(
+                pillar.youngs_modulus, sec.second_moment, sec.mass_per_length, pillar.height
+            ),
+            "ovalling": ring_frequency(2, pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, R, t),
+            "ovalling_n": 2,
+            "dofs": 1,
+            "modes": [],
+        }
     s = case.settings
-    kappa = cowper_shear_coefficient(pillar.outer_diameter, pillar.inner_diameter,
-                                     pillar.poisson_ratio)
-    props = BeamProperties(pillar.youngs_modulus, pillar.poisson_ratio, kappa, pillar.density,
-                           sec.area, sec.second_moment, pillar.height)
+    kappa = cowper_shear_coefficient(pillar.outer_diameter, pillar.inner_diameter, pillar.poisson_ratio)
+    props = BeamProperties(
+        pillar.youngs_modulus, pillar.poisson_ratio, kappa, pillar.density, sec.area, sec.second_moment, pillar.height
+    )
     m = beam_modes(props, s["elements"], s["theory"], n_modes=1)
-    return {"bending": float(m.omega[0]), "ovalling": None, "ovalling_n": None,
-            "dofs": int(m.dofs), "modes": [{"omega": float(m.omega[0]), "kind": "bending_x", "n": 1}]}
+    return {
+        "bending": float(m.omega[0]),
+        "ovalling": None,
+        "ovalling_n": None,
+        "dofs": int(m.dofs),
+        "modes": [{"omega": float(m.omega[0]), "kind": "bending_x", "n": 1}],
+    }
 
 
 def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> dict:
@@ -91,15 +102,18 @@ def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> dict:
     r: ShellModalResult | ModalResult
     if fam.model == "shell":
         from ..fem3d.naghdi import ShellDiscretisation, shell_modal_analysis, shell_section_of
+
         sec, R, H = shell_section_of(pillar)
-        disc = ShellDiscretisation(s["elements_around"], s["elements_along"], s["cell_type"],
-                                   s["degree"])
+        disc = ShellDiscretisation(s["elements_around"], s["elements_along"], s["cell_type"], s["degree"])
         r = shell_modal_analysis(sec, R, H, disc, n_modes=n_modes)
     else:
         import inspect
+
         from .. import fem3d
-        extra = ({"use_cache": False} if fresh and "use_cache" in
-                 inspect.signature(fem3d.modal_analysis).parameters else {})
+
+        extra = (
+            {"use_cache": False} if fresh and "use_cache" in inspect.signature(fem3d.modal_analysis).parameters else {}
+        )
         r = fem3d.modal_analysis(scene, top=False, n_modes=n_modes, mesh=solid_mesh(case), **extra)
     out = _modal_summary(np.asarray(r.omega), list(r.kind), list(r.n_circumferential))
     out.update(dofs=int(r.dofs), cells=int(r.cells), timings=dict(r.timings), modes_asked=n_modes)

@@ -24,7 +24,6 @@ Each rung is a :class:`Case`; :func:`ladder` lists them for a scene, and
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
 
 from ..scene import CELL_TYPES, SHELL_CELL_TYPES, Mesh, Scene
 
@@ -69,49 +68,71 @@ n = 2 pair on every mesh of 24 or more elements around; N_MODES where not."""
 @dataclass(frozen=True)
 class Family:
     """A model and a way to refine it."""
+
     name: str
     label: str
     model: str
     """"closed_form", "beam", "shell" or "solid" """
     quantities: tuple
     """which of QUANTITIES the model can have at all"""
-    order: Optional[float]
+    order: float | None
     """theoretical order p of the frequency error ~ h**p (None: not refined)"""
     sweep: bool = False
     """refined around the circumference only: shows a failure, no extrapolation"""
     fidelity: int = 0
     """preference as the reference family (highest with enough runs wins)"""
-    parent: Optional[str] = None
+    parent: str | None = None
     """a sweep's refined family: the same model, whose limit splits its errors"""
 
 
-FAMILIES = {f.name: f for f in [
-    Family("closed_form", "Eq. 1 + ring (closed forms)", "closed_form", QUANTITIES, None),
-    Family("beam_euler", "beam Euler-Bernoulli (Hermite)", "beam", ("bending",), 4.0),
-    Family("beam_timoshenko", "beam Timoshenko (linear)", "beam", ("bending",), 2.0),
-    Family("shell_quad", "shell Q2 quadrilaterals", "shell", QUANTITIES, 4.0, fidelity=2),
-    Family("shell_tri", "shell P2 triangles", "shell", QUANTITIES, 4.0, fidelity=1),
-    Family("shell_quad_around", "shell Q2, around only (40 along)", "shell", QUANTITIES, None, True,
-           parent="shell_quad"),
-    Family("solid_hex_p1", "3D P1 hexahedra", "solid", QUANTITIES, 2.0),
-    Family("solid_tet_p1", "3D P1 tetrahedra", "solid", QUANTITIES, 2.0),
-    Family("solid_hex_p2", "3D P2 hexahedra", "solid", QUANTITIES, 4.0, fidelity=4),
-    Family("solid_tet_p2", "3D P2 tetrahedra", "solid", QUANTITIES, 4.0, fidelity=3),
-    Family("solid_hex_p2_around", "3D P2 hexahedra, around only", "solid",
-           QUANTITIES, None, True, parent="solid_hex_p2"),
-    Family("solid_hex_p2_along", f"3D P2 hexahedra, {ALONG_FAMILY_AROUND} around, along only",
-           "solid", ("bending",), 4.0),
-]}
+FAMILIES = {
+    f.name: f
+    for f in [
+        Family("closed_form", "Eq. 1 + ring (closed forms)", "closed_form", QUANTITIES, None),
+        Family("beam_euler", "beam Euler-Bernoulli (Hermite)", "beam", ("bending",), 4.0),
+        Family("beam_timoshenko", "beam Timoshenko (linear)", "beam", ("bending",), 2.0),
+        Family("shell_quad", "shell Q2 quadrilaterals", "shell", QUANTITIES, 4.0, fidelity=2),
+        Family("shell_tri", "shell P2 triangles", "shell", QUANTITIES, 4.0, fidelity=1),
+        Family(
+            "shell_quad_around",
+            "shell Q2, around only (40 along)",
+            "shell",
+            QUANTITIES,
+            None,
+            True,
+            parent="shell_quad",
+        ),
+        Family("solid_hex_p1", "3D P1 hexahedra", "solid", QUANTITIES, 2.0),
+        Family("solid_tet_p1", "3D P1 tetrahedra", "solid", QUANTITIES, 2.0),
+        Family("solid_hex_p2", "3D P2 hexahedra", "solid", QUANTITIES, 4.0, fidelity=4),
+        Family("solid_tet_p2", "3D P2 tetrahedra", "solid", QUANTITIES, 4.0, fidelity=3),
+        Family(
+            "solid_hex_p2_around",
+            "3D P2 hexahedra, around only",
+            "solid",
+            QUANTITIES,
+            None,
+            True,
+            parent="solid_hex_p2",
+        ),
+        Family(
+            "solid_hex_p2_along",
+            f"3D P2 hexahedra, {ALONG_FAMILY_AROUND} around, along only",
+            "solid",
+            ("bending",),
+            4.0,
+        ),
+    ]
+}
 
 
 ORDER_NOTES = {
-    ("solid_hex_p2", "bending"):
-        "the clamp's 3D boundary layer under the base rim, about a wall thickness deep, is "
-        "much finer than the smallest cell at the base (11 cm at 20 along with grading 30); "
-        "with grading 200 the order returns to 4 (tests/test_converge_solid.py)",
+    ("solid_hex_p2", "bending"): "the clamp's 3D boundary layer under the base rim, about a wall thickness deep, is "
+    "much finer than the smallest cell at the base (11 cm at 20 along with grading 30); "
+    "with grading 200 the order returns to 4 (tests/test_converge_solid.py)",
     ("solid_tet_p2", "bending"): "as for the P2 hexahedra: the clamp's boundary layer",
     ("shell_tri", "bending"): "P2 triangles lock: their error falls far slower than the "
-                              "quadrilaterals' at the same DOFs",
+    "quadrilaterals' at the same DOFs",
     ("solid_hex_p2_along", "bending"): "as for the P2 hexahedra: the clamp's boundary layer",
 }
 """Why a family's observed order departs from theory, where we checked it."""
@@ -120,6 +141,7 @@ ORDER_NOTES = {
 @dataclass(frozen=True)
 class Case:
     """One run: a family at one refinement ``level`` (elements, or elements around)."""
+
     family: str
     level: int
     params: tuple
@@ -161,35 +183,70 @@ def ladder(scene: Scene) -> list[Case]:
     cv, ms = scene.converge, scene.mesh
     cases = [_case("closed_form", 0)]
     cases += [_case("beam_euler", n, theory="euler", elements=n) for n in EULER_LEVELS]
-    cases += [_case("beam_timoshenko", n, theory="timoshenko", elements=n)
-              for n in TIMOSHENKO_LEVELS]
+    cases += [_case("beam_timoshenko", n, theory="timoshenko", elements=n) for n in TIMOSHENKO_LEVELS]
     for name, cell in (("shell_quad", QUADRILATERAL), ("shell_tri", TRIANGLE)):
         top = cv.shell_max_around if cell == QUADRILATERAL else cv.shell_tri_max_around
-        cases += [_case(name, n, elements_around=n, elements_along=_along(n), cell_type=cell,
-                        degree=2) for n in AROUND_LEVELS if n <= top]
-    cases += [_case("shell_quad_around", n, elements_around=n, elements_along=SWEEP_ALONG,
-                    cell_type=QUADRILATERAL, degree=2) for n in SWEEP_AROUND]
+        cases += [
+            _case(name, n, elements_around=n, elements_along=_along(n), cell_type=cell, degree=2)
+            for n in AROUND_LEVELS
+            if n <= top
+        ]
+    cases += [
+        _case("shell_quad_around", n, elements_around=n, elements_along=SWEEP_ALONG, cell_type=QUADRILATERAL, degree=2)
+        for n in SWEEP_AROUND
+    ]
     if cv.solid:
         ratio = ms.elements_along / ms.elements_around
-        limits = {"solid_hex_p1": cv.solid_p1_max_around, "solid_tet_p1": cv.solid_p1_max_around,
-                  "solid_hex_p2": cv.solid_p2_max_around,
-                  "solid_tet_p2": cv.solid_tet_p2_max_around}
+        limits = {
+            "solid_hex_p1": cv.solid_p1_max_around,
+            "solid_tet_p1": cv.solid_p1_max_around,
+            "solid_hex_p2": cv.solid_p2_max_around,
+            "solid_tet_p2": cv.solid_tet_p2_max_around,
+        }
         for name, top in limits.items():
             cell = HEXAHEDRON if "hex" in name else TETRAHEDRON
             degree = 2 if name.endswith("p2") else 1
-            cases += [_case(name, n, elements_around=n,
-                            elements_along=max(1, int(round(ratio * n))),
-                            elements_through=ms.elements_through, cell_type=cell, degree=degree,
-                            grading=ms.grading)
-                      for n in SOLID_AROUND_LEVELS if n <= top]
-        cases += [_case("solid_hex_p2_around", n, elements_around=n,
-                        elements_along=ms.elements_along, elements_through=ms.elements_through,
-                        cell_type=HEXAHEDRON, degree=2, grading=ms.grading)
-                  for n in SOLID_SWEEP_AROUND if n <= cv.solid_p2_max_around]
-        cases += [_case("solid_hex_p2_along", n, elements_around=ALONG_FAMILY_AROUND,
-                        elements_along=n, elements_through=ms.elements_through,
-                        cell_type=HEXAHEDRON, degree=2, grading=ms.grading)
-                  for n in ALONG_LEVELS]
+            cases += [
+                _case(
+                    name,
+                    n,
+                    elements_around=n,
+                    elements_along=max(1, int(round(ratio * n))),
+                    elements_through=ms.elements_through,
+                    cell_type=cell,
+                    degree=degree,
+                    grading=ms.grading,
+                )
+                for n in SOLID_AROUND_LEVELS
+                if n <= top
+            ]
+        cases += [
+            _case(
+                "solid_hex_p2_around",
+                n,
+                elements_around=n,
+                elements_along=ms.elements_along,
+                elements_through=ms.elements_through,
+                cell_type=HEXAHEDRON,
+                degree=2,
+                grading=ms.grading,
+            )
+            for n in SOLID_SWEEP_AROUND
+            if n <= cv.solid_p2_max_around
+        ]
+        cases += [
+            _case(
+                "solid_hex_p2_along",
+                n,
+                elements_around=ALONG_FAMILY_AROUND,
+                elements_along=n,
+                elements_through=ms.elements_through,
+                cell_type=HEXAHEDRON,
+                degree=2,
+                grading=ms.grading,
+            )
+            for n in ALONG_LEVELS
+        ]
     return cases
 
 
@@ -226,7 +283,7 @@ def estimated_seconds(case: Case) -> float:
     model = FAMILIES[case.family].model
     n = estimated_dofs(case)
     if model in ("closed_form", "beam"):
-        return 0.001 + 2e-9 * n ** 2
+        return 0.001 + 2e-9 * n**2
     if model == "shell":
         return 1.3 + 1.0e-4 * n
     if case.settings["degree"] == 1:
@@ -237,9 +294,14 @@ def estimated_seconds(case: Case) -> float:
 def solid_mesh(case: Case):
     """The scene ``[mesh]`` section of a 3D case."""
     s = case.settings
-    return Mesh(elements_around=s["elements_around"], elements_along=s["elements_along"],
-                elements_through=s["elements_through"], degree=s["degree"],
-                cell_type=s["cell_type"], grading=s["grading"])
+    return Mesh(
+        elements_around=s["elements_around"],
+        elements_along=s["elements_along"],
+        elements_through=s["elements_through"],
+        degree=s["degree"],
+        cell_type=s["cell_type"],
+        grading=s["grading"],
+    )
 
 
 def study_cases(scene: Scene) -> list[Case]:

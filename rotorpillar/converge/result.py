@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Optional
 
 _KEYS = {"json_file": "json"}
 """Attributes whose key in the document differs from their name."""
@@ -20,6 +19,7 @@ _KEYS = {"json_file": "json"}
 @dataclass(frozen=True)
 class ConvergenceStudy:
     """Every run of the ladder, the reference values, the fronts, the choice and the failures."""
+
     scene_name: str
     scene: dict
     """the scene as ``Scene.to_dict()`` gives it"""
@@ -48,16 +48,16 @@ class ConvergenceStudy:
     """where methods fail, one sentence each"""
     study: dict
     """counts (runs, cached, computed, failed, unavailable), compute_seconds, wall_time"""
-    charts: Optional[dict] = None
+    charts: dict | None = None
     """chart name -> path (absent when no charts were drawn)"""
-    versions: Optional[dict] = None
-    machine: Optional[dict] = None
-    timings: Optional[dict] = None
-    json_file: Optional[str] = None
+    versions: dict | None = None
+    machine: dict | None = None
+    timings: dict | None = None
+    json_file: str | None = None
     """where the study was written (key ``json``; never in the file itself)"""
 
     @property
-    def chosen(self) -> Optional[dict]:
+    def chosen(self) -> dict | None:
         """The chosen run's brief (label, family, params, dofs, errors...), or None."""
         return self.selection.get("chosen")
 
@@ -72,7 +72,7 @@ class ConvergenceStudy:
         return out
 
     @classmethod
-    def from_json(cls, doc: dict) -> "ConvergenceStudy":
+    def from_json(cls, doc: dict) -> ConvergenceStudy:
         names = {_KEYS.get(f.name, f.name): f.name for f in fields(cls)}
         unknown = set(doc) - set(names)
         if unknown:
@@ -83,6 +83,6 @@ class ConvergenceStudy:
         return cls(**kwargs)
 
     @classmethod
-    def read(cls, path: str | Path) -> "ConvergenceStudy":
+    def read(cls, path: str | Path) -> ConvergenceStudy:
         """The study in a ``convergence.json``."""
         return cls.from_json(json.loads(Path(path).read_text(encoding="utf-8")))

@@ -12,7 +12,7 @@ limits of the most complete family, checked against the three runs before.
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
@@ -23,7 +23,7 @@ GCI_SAFETY = 1.25
 """Roache's safety factor of the grid convergence index for three-grid studies."""
 
 
-def richardson(h, f, order_theory: Optional[float] = None) -> dict:
+def richardson(h, f, order_theory: float | None = None) -> dict:
     """Observed order and extrapolated value from three runs at sizes h1 > h2 > h3.
 
     Solves (f1 - f2)/(f2 - f3) = (h1**p - h2**p)/(h2**p - h3**p) for p (any
@@ -51,14 +51,20 @@ def richardson(h, f, order_theory: Optional[float] = None) -> dict:
         value = float(f[2])
     else:
         value = float(f[2] + (f[2] - f[1]) / ((h[1] / h[2]) ** p_used - 1))
-    return {"order": p, "order_theory": order_theory, "monotone": monotone, "value": value,
-            "error_estimate": GCI_SAFETY * abs(value - f[2]), "h": h.tolist(), "f": f.tolist()}
+    return {
+        "order": p,
+        "order_theory": order_theory,
+        "monotone": monotone,
+        "value": value,
+        "error_estimate": GCI_SAFETY * abs(value - f[2]),
+        "h": h.tolist(),
+        "f": f.tolist(),
+    }
 
 
 def family_series(records: list[dict], family: str, quantity: str) -> list[dict]:
     """A family's successful runs that have the quantity, coarse to fine."""
-    rows = [r for r in records if r["family"] == family and r.get("status") == "ok"
-            and r.get(quantity) is not None]
+    rows = [r for r in records if r["family"] == family and r.get("status") == "ok" and r.get(quantity) is not None]
     return sorted(rows, key=lambda r: r["level"])
 
 
@@ -99,9 +105,12 @@ def reference_values(records: list[dict], extrapolations: dict) -> dict:
                 prev = rows[-4:-1]
                 chk = richardson([1.0 / x["level"] for x in prev], [x[q] for x in prev], fam.order)
                 finest = rows[-1][q]
-                chk.update(finer_run=rows[-1]["label"], finer_value=finest,
-                           difference=finest - chk["value"],
-                           within_estimate=abs(finest - chk["value"]) <= chk["error_estimate"])
+                chk.update(
+                    finer_run=rows[-1]["label"],
+                    finer_value=finest,
+                    difference=finest - chk["value"],
+                    within_estimate=abs(finest - chk["value"]) <= chk["error_estimate"],
+                )
                 ref["check"] = chk
             out[q] = ref
             break

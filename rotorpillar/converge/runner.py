@@ -18,8 +18,9 @@ import sys
 import tempfile
 import time
 import tracemalloc
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable, Optional
+from typing import TYPE_CHECKING
 
 from ..cache import DiskCache, cache_key, source_hash
 from ..provenance import write_json
@@ -63,12 +64,16 @@ def case_key(case: Case, pillar, tolerance: float | None = None) -> str:
     """Hash of everything a run's result depends on (``tolerance``: the 3D
     eigen-solve's, ``modal.tolerance``; the other models have their own)."""
     fam = FAMILIES[case.family]
-    args = {"model": fam.model, "params": case.settings,
-            "n_modes": N_MODES if fam.model in ("shell", "solid") else None,
-            "tolerance": tolerance if fam.model == "solid" else None,
-            "pillar": {k: getattr(pillar, k) for k in
-                       ("height", "outer_diameter", "inner_diameter", "youngs_modulus",
-                        "poisson_ratio", "density")}}
+    args = {
+        "model": fam.model,
+        "params": case.settings,
+        "n_modes": N_MODES if fam.model in ("shell", "solid") else None,
+        "tolerance": tolerance if fam.model == "solid" else None,
+        "pillar": {
+            k: getattr(pillar, k)
+            for k in ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
+        },
+    }
     return cache_key(args, version=CACHE_VERSION, code=source_hash(_source_files(fam.model)))
 
 
@@ -83,8 +88,9 @@ def _run_in_process(case: Case, pillar) -> dict:
         _, peak = tracemalloc.get_traced_memory()
     finally:
         tracemalloc.stop()
-    out.update(wall_time=wall, peak_memory=peak, memory_method="tracemalloc (Python heap peak)",
-               timings={"total": wall})
+    out.update(
+        wall_time=wall, peak_memory=peak, memory_method="tracemalloc (Python heap peak)", timings={"total": wall}
+    )
     return out
 
 
@@ -99,8 +105,10 @@ UNAVAILABLE_EXIT = 3
 def _jit_files() -> int:
     """How many files FFCx's disk cache holds (it grows when a form is compiled)."""
     from ..fem3d.dolfinx_import import import_dolfinx
+
     import_dolfinx()
     from dolfinx.jit import get_parameters
+
     root = Path(get_parameters()["cache_dir"])
     return sum(1 for _ in root.rglob("*")) if root.exists() else 0
 
@@ -110,8 +118,18 @@ def import_models() -> int:
     same state (imports excluded); returns their resident memory (bytes), the
     baseline a run adds to."""
     import importlib
-    for name in ("gmsh", "ufl", "basix", "dolfinx", "dolfinx.fem.petsc", "dolfinx.io.gmshio",
-                 "petsc4py.PETSc", "slepc4py.SLEPc", "mpi4py.MPI"):
+
+    for name in (
+        "gmsh",
+        "ufl",
+        "basix",
+        "dolfinx",
+        "dolfinx.fem.petsc",
+        "dolfinx.io.gmshio",
+        "petsc4py.PETSc",
+        "slepc4py.SLEPc",
+        "mpi4py.MPI",
+    ):
         importlib.import_module(name)
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
 
@@ -125,11 +143,13 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
     """
     from ..scene import scene_from_dict
     from .service import peak_memory, reset_peak_memory, resident_memory
+
     doc = json.loads(Path(case_file).read_text())
     case = Case(doc["family"], doc["level"], tuple((k, v) for k, v in doc["params"]))
     scene_doc = dict(doc["scene"])
     scene = scene_from_dict(scene_doc, name=scene_doc.pop("name"))
     import importlib
+
     if FAMILIES[case.family].model == "solid":
         try:
             from ..fem3d import modal_analysis  # noqa: F401
@@ -158,12 +178,18 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
         out["first_run_with_compilation"] = first
     # the model's whole time: mesh, forms, assembly, solve and naming the modes
     if per_run_peak:
-        peak, method = baseline + max((peak_memory() or start) - start, 0), (
-            "baseline_memory (the imports) + the run's growth of the serving process's resident "
-            "set (VmHWM reset before the run, over the resident set at its start)")
+        peak, method = (
+            baseline + max((peak_memory() or start) - start, 0),
+            (
+                "baseline_memory (the imports) + the run's growth of the serving process's resident "
+                "set (VmHWM reset before the run, over the resident set at its start)"
+            ),
+        )
     else:
-        peak, method = (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
-                        "ru_maxrss of a fresh subprocess (includes ~baseline_memory of imports)")
+        peak, method = (
+            resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
+            "ru_maxrss of a fresh subprocess (includes ~baseline_memory of imports)",
+        )
     out.update(wall_time=total, peak_memory=peak, baseline_memory=baseline, memory_method=method)
     write_json(out_file, out)
 
@@ -175,7 +201,9 @@ def serve(stdin=sys.stdin, replies=None) -> int:
     points at stderr, so that whatever a library prints (Python or C) lands
     in the log, never in the middle of the protocol."""
     import os
+
     from .service import RETAINED_LIMIT, reset_peak_memory, resident_memory
+
     if replies is None:
         sys.stdout.flush()
         replies = os.fdopen(os.dup(1), "w")
@@ -214,11 +242,14 @@ def worker(case_file: str, out_file: str) -> None:
 
 def _run_in_service(case: Case, scene: Scene) -> dict:
     from .service import service
+
     with tempfile.TemporaryDirectory(prefix="rotorpillar-converge-") as tmp:
         case_file, out_file = Path(tmp) / "case.json", Path(tmp) / "result.json"
-        case_file.write_text(json.dumps({"family": case.family, "level": case.level,
-                                         "params": list(case.params),
-                                         "scene": scene.to_dict()}))
+        case_file.write_text(
+            json.dumps(
+                {"family": case.family, "level": case.level, "params": list(case.params), "scene": scene.to_dict()}
+            )
+        )
         t0 = time.perf_counter()
         reply = service().run(case_file, out_file)
         elapsed = time.perf_counter() - t0
@@ -240,15 +271,28 @@ def run_point(case: Case, scene: Scene) -> dict:
 
 def _record(case: Case, key: str, result: dict) -> dict:
     fam = FAMILIES[case.family]
-    return {"key": key, "family": case.family, "model": fam.model, "label": case.label,
-            "level": case.level, "params": case.settings, "status": "ok", **result}
+    return {
+        "key": key,
+        "family": case.family,
+        "model": fam.model,
+        "label": case.label,
+        "level": case.level,
+        "params": case.settings,
+        "status": "ok",
+        **result,
+    }
 
 
 #: The [converge] key that bounds each finite-element family's finest run.
-LIMIT_KEYS = {"shell_quad": "shell_max_around", "shell_tri": "shell_tri_max_around",
-              "solid_hex_p1": "solid_p1_max_around", "solid_tet_p1": "solid_p1_max_around",
-              "solid_hex_p2": "solid_p2_max_around", "solid_hex_p2_around": "solid_p2_max_around",
-              "solid_tet_p2": "solid_tet_p2_max_around"}
+LIMIT_KEYS = {
+    "shell_quad": "shell_max_around",
+    "shell_tri": "shell_tri_max_around",
+    "solid_hex_p1": "solid_p1_max_around",
+    "solid_tet_p1": "solid_p1_max_around",
+    "solid_hex_p2": "solid_p2_max_around",
+    "solid_hex_p2_around": "solid_p2_max_around",
+    "solid_tet_p2": "solid_tet_p2_max_around",
+}
 
 
 def check_study_memory(cases: list[Case], workers: int) -> None:
@@ -258,35 +302,50 @@ def check_study_memory(cases: list[Case], workers: int) -> None:
     per DOF (one modal solve), shells counted as the solids."""
     from ..mesh.tube import BYTES_PER_DOF
     from ..provenance import check_memory, memory_limit
-    fe = sorted(((estimated_dofs(c), c) for c in cases
-                 if FAMILIES[c.family].model in ("shell", "solid")), key=lambda t: -t[0])
+
+    fe = sorted(
+        ((estimated_dofs(c), c) for c in cases if FAMILIES[c.family].model in ("shell", "solid")), key=lambda t: -t[0]
+    )
     if not fe:
         return
     dofs, big = fe[0]
-    check_memory(BYTES_PER_DOF * dofs, f"converge: its largest run, {big.label} ({dofs:,} DOFs),",
-          f"lower converge.{LIMIT_KEYS.get(big.family, 'solid_p2_max_around')} or set "
-          "converge.solid = false")
-    at_once = fe[:max(1, workers)]
+    check_memory(
+        BYTES_PER_DOF * dofs,
+        f"converge: its largest run, {big.label} ({dofs:,} DOFs),",
+        f"lower converge.{LIMIT_KEYS.get(big.family, 'solid_p2_max_around')} or set converge.solid = false",
+    )
+    at_once = fe[: max(1, workers)]
     need = BYTES_PER_DOF * sum(d for d, _ in at_once)
     budget, fit, total = memory_limit().budget, 0, 0.0
     for d, _ in at_once:
         total += BYTES_PER_DOF * d
         fit += total <= budget
-    check_memory(need, f"converge: {len(at_once)} runs at once on {workers} workers (the largest first: "
-          + ", ".join(c.label for _, c in at_once) + ")", f"use --workers {max(fit, 1)}")
+    check_memory(
+        need,
+        f"converge: {len(at_once)} runs at once on {workers} workers (the largest first: "
+        + ", ".join(c.label for _, c in at_once)
+        + ")",
+        f"use --workers {max(fit, 1)}",
+    )
 
 
 def todo_cases(cases: list[Case], scene: Scene, cache_dir: Path) -> list[Case]:
     """The cases the run cache under ``cache_dir`` does not hold."""
     cache = DiskCache(Path(cache_dir))
-    return [c for c in cases
-            if _load_cached(cache, case_key(c, scene.pillar, scene.modal.tolerance)) is None]
+    return [c for c in cases if _load_cached(cache, case_key(c, scene.pillar, scene.modal.tolerance)) is None]
 
 
-def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
-              runner: Callable[[Case, Scene], dict] = run_point,
-              progress: bool = True, log: Callable[[str], None] | None = None,
-              workers: int = 1, executor=None) -> list[dict]:
+def run_study(
+    cases: list[Case],
+    scene: Scene,
+    cache_dir: Path,
+    *,
+    runner: Callable[[Case, Scene], dict] = run_point,
+    progress: bool = True,
+    log: Callable[[str], None] | None = None,
+    workers: int = 1,
+    executor=None,
+) -> list[dict]:
     """Every case, each loaded from ``cache_dir`` or computed and cached.
 
     A run is written to ``cache_dir/<key>.json`` atomically as soon as it
@@ -304,24 +363,35 @@ def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
 
     cache = DiskCache(Path(cache_dir))
     keys = [case_key(c, scene.pillar, scene.modal.tolerance) for c in cases]
-    records: list[Optional[dict]] = [None] * len(cases)
+    records: list[dict | None] = [None] * len(cases)
     todo = []
     for i, (c, key) in enumerate(zip(cases, keys)):
         cached = _load_cached(cache, key)
         if cached is not None:
             # names follow the code, not the cache (they are not part of the key)
-            records[i] = {**resolved_only(c.family, cached), "label": c.label,
-                          "family": c.family, "model": FAMILIES[c.family].model, "cached": True}
+            records[i] = {
+                **resolved_only(c.family, cached),
+                "label": c.label,
+                "family": c.family,
+                "model": FAMILIES[c.family].model,
+                "cached": True,
+            }
         else:
             todo.append(i)
     check_study_memory([cases[i] for i in todo], workers)
     if log:
-        log(f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute"
-            + (f" on {workers} workers" if (workers > 1 or executor) and todo else ""))
+        log(
+            f"converge: {len(cases)} runs, {len(cases) - len(todo)} cached, {len(todo)} to compute"
+            + (f" on {workers} workers" if (workers > 1 or executor) and todo else "")
+        )
     weights = {i: estimated_seconds(cases[i]) for i in todo}
-    bar = tqdm(total=sum(weights.values()), disable=not progress or not todo, unit="s~",
-               file=sys.stderr,
-               bar_format="{l_bar}{bar}| {n:.0f}/{total:.0f} est. s [{elapsed}<{remaining}] {postfix}")
+    bar = tqdm(
+        total=sum(weights.values()),
+        disable=not progress or not todo,
+        unit="s~",
+        file=sys.stderr,
+        bar_format="{l_bar}{bar}| {n:.0f}/{total:.0f} est. s [{elapsed}<{remaining}] {postfix}",
+    )
     unavailable = {}
 
     def finish(i, result=None, exc=None):
@@ -332,11 +402,14 @@ def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
                 unavailable[model] = str(exc)
                 if log:
                     log(f"converge: skipping the {model} runs: {exc}")
-            records[i] = {**_record(case, key, {}), "status": "unavailable",
-                          "error": unavailable[model], "cached": False}
+            records[i] = {
+                **_record(case, key, {}),
+                "status": "unavailable",
+                "error": unavailable[model],
+                "cached": False,
+            }
         elif isinstance(exc, (RuntimeError, ValueError, ArithmeticError)):
-            records[i] = {**_record(case, key, {}), "status": "failed", "error": str(exc),
-                          "cached": False}
+            records[i] = {**_record(case, key, {}), "status": "failed", "error": str(exc), "cached": False}
         elif exc is not None:
             raise exc
         else:
@@ -364,8 +437,9 @@ def run_study(cases: list[Case], scene: Scene, cache_dir: Path, *,
     finally:
         bar.close()
         from .service import close_services
+
         close_services()
-    return [r for r in records if r is not None]     # finish() filled every one
+    return [r for r in records if r is not None]  # finish() filled every one
 
 
 def _guarded(job):
@@ -379,7 +453,8 @@ def _guarded(job):
 
 def _run_parallel(todo, cases, scene: Scene, runner, workers, executor, finish, weights) -> None:
     from ..executor import Executor
-    order = sorted(todo, key=lambda i: -weights[i])          # longest first
+
+    order = sorted(todo, key=lambda i: -weights[i])  # longest first
     ex = executor or Executor(workers)
     own = executor is None
     if own:
@@ -393,6 +468,6 @@ def _run_parallel(todo, cases, scene: Scene, runner, workers, executor, finish, 
             ex.__exit__(None, None, None)
 
 
-def _load_cached(cache: DiskCache, key: str) -> Optional[dict]:
+def _load_cached(cache: DiskCache, key: str) -> dict | None:
     # a damaged file or a failed run is no cached run: recompute it
     return cache.read(key, accept=lambda doc: doc.get("status") == "ok")

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
 
 from ..provenance import JsonRecord
 from ..reduced.band import excitation_band  # noqa: F401  (the study's band, re-exported)
@@ -45,14 +44,23 @@ def attach_errors(records: list[dict], reference: dict, extrapolations: dict) ->
                 model, disc = err, 0.0
             else:
                 model, disc = (limit - f_ref) / f_ref, (v - limit) / f_ref
-            r.update({f"{q}_error": err, f"{q}_model_error": model,
-                      f"{q}_discretisation_error": disc, f"{q}_error_bound": abs(model) + abs(disc)})
+            r.update(
+                {
+                    f"{q}_error": err,
+                    f"{q}_model_error": model,
+                    f"{q}_discretisation_error": disc,
+                    f"{q}_error_bound": abs(model) + abs(disc),
+                }
+            )
 
 
 def pareto_front(cost, error) -> list[int]:
     """Indices of the points no other point beats in both cost and |error|, by cost."""
-    pts = [(c, abs(e), i) for i, (c, e) in enumerate(zip(cost, error))
-           if c is not None and e is not None and math.isfinite(e)]
+    pts = [
+        (c, abs(e), i)
+        for i, (c, e) in enumerate(zip(cost, error))
+        if c is not None and e is not None and math.isfinite(e)
+    ]
     pts.sort(key=lambda t: (t[0], t[1]))
     front, best = [], math.inf
     for c, e, i in pts:
@@ -72,7 +80,7 @@ def needed_quantities(reference: dict, band: dict) -> list[str]:
     return [q for q in QUANTITIES if q in reference and reference[q]["value"] <= band["omega_max"]]
 
 
-def band_error(record: dict, needed: list[str], ref_unc: dict) -> Optional[float]:
+def band_error(record: dict, needed: list[str], ref_unc: dict) -> float | None:
     """What the choice compares with the tolerance: the largest, over the needed
     quantities, of the error bound plus the reference's uncertainty (None: a
     needed mode is missing)."""
@@ -82,8 +90,9 @@ def band_error(record: dict, needed: list[str], ref_unc: dict) -> Optional[float
     return max((e + ref_unc.get(q, 0.0) for q, e in zip(needed, errs)), default=0.0)
 
 
-def select_model(records: list[dict], reference: dict, band: dict, tolerance: float,
-                 families: Optional[list[str]] = None) -> dict:
+def select_model(
+    records: list[dict], reference: dict, band: dict, tolerance: float, families: list[str] | None = None
+) -> dict:
     """The cheapest run (wall time) whose needed frequencies all meet ``tolerance``.
 
     Needed: the quantities whose reference lies inside the band.  A run meets
@@ -95,23 +104,34 @@ def select_model(records: list[dict], reference: dict, band: dict, tolerance: fl
     """
     needed = needed_quantities(reference, band)
     ref_unc = reference_uncertainty(reference)
-    ok_runs = [r for r in records if r.get("status") == "ok"
-               and (families is None or r["family"] in families)]
+    ok_runs = [r for r in records if r.get("status") == "ok" and (families is None or r["family"] in families)]
     # a frequency some run puts inside the band but no reference covers has no error
     # estimate: no model can be shown to meet the tolerance on it
-    unreferenced = [q for q in QUANTITIES if q not in reference
-                    and any(r.get(q) is not None and r[q] <= band["omega_max"]
-                            for r in records if r.get("status") == "ok")]
+    unreferenced = [
+        q
+        for q in QUANTITIES
+        if q not in reference
+        and any(r.get(q) is not None and r[q] <= band["omega_max"] for r in records if r.get("status") == "ok")
+    ]
     if unreferenced or not reference:
         what = ", ".join(unreferenced) or "any frequency"
-        return {"tolerance": tolerance, "band": band, "needed": needed + unreferenced,
-                "reference_uncertainty": {q: ref_unc[q] for q in needed},
-                "families": families, "candidates": 0, "chosen": None, "rejected_cheaper": [],
-                "rule": "no choice without an error estimate that meets the tolerance",
-                "reason": (f"no model chosen: the study has no converged reference for {what} "
-                           f"inside the band (up to {band['omega_max']:.4g} rad/s), so no run has "
-                           "an error estimate to meet the tolerance with; extend the ladder "
-                           "([converge] limits, converge.solid = true)")}
+        return {
+            "tolerance": tolerance,
+            "band": band,
+            "needed": needed + unreferenced,
+            "reference_uncertainty": {q: ref_unc[q] for q in needed},
+            "families": families,
+            "candidates": 0,
+            "chosen": None,
+            "rejected_cheaper": [],
+            "rule": "no choice without an error estimate that meets the tolerance",
+            "reason": (
+                f"no model chosen: the study has no converged reference for {what} "
+                f"inside the band (up to {band['omega_max']:.4g} rad/s), so no run has "
+                "an error estimate to meet the tolerance with; extend the ladder "
+                "([converge] limits, converge.solid = true)"
+            ),
+        }
     meets: list[dict] = []
     rejected: list[tuple[dict, float, str]] = []
     for r in ok_runs:
@@ -127,23 +147,37 @@ def select_model(records: list[dict], reference: dict, band: dict, tolerance: fl
             meets.append(r)
         else:
             q = max(needed, key=lambda q: r[f"{q}_error_bound"] + ref_unc[q])
-            why = (f"{q} error bound {r[f'{q}_error_bound'] + ref_unc[q]:.1e} > {tolerance:g}: "
-                   f"model {r[f'{q}_model_error']:+.1e}, discretisation "
-                   f"{r[f'{q}_discretisation_error']:+.1e}, reference {ref_unc[q]:.0e}")
+            why = (
+                f"{q} error bound {r[f'{q}_error_bound'] + ref_unc[q]:.1e} > {tolerance:g}: "
+                f"model {r[f'{q}_model_error']:+.1e}, discretisation "
+                f"{r[f'{q}_discretisation_error']:+.1e}, reference {ref_unc[q]:.0e}"
+            )
             rejected.append((r, worst, why))
-    out = {"tolerance": tolerance, "band": band, "needed": needed,
-           "reference_uncertainty": {q: ref_unc[q] for q in needed},
-           "families": families, "candidates": len(meets),
-           "rule": "cheapest wall time among runs whose error bound (|model error| + "
-                   "|discretisation error| + reference uncertainty) meets the tolerance on "
-                   "every frequency inside the band"}
+    out = {
+        "tolerance": tolerance,
+        "band": band,
+        "needed": needed,
+        "reference_uncertainty": {q: ref_unc[q] for q in needed},
+        "families": families,
+        "candidates": len(meets),
+        "rule": "cheapest wall time among runs whose error bound (|model error| + "
+        "|discretisation error| + reference uncertainty) meets the tolerance on "
+        "every frequency inside the band",
+    }
     if not meets:
-        out.update(chosen=None, rejected_cheaper=[], reason=(
-            f"no model in the study meets {tolerance:g} on {', '.join(needed) or 'nothing'} "
-            "(error bounds: " + "; ".join(
-                f"{FAMILIES[f].label} best {min(w for r, w, _ in rejected if r['family'] == f):.1e}"
-                for f in dict.fromkeys(r["family"] for r, _, _ in rejected)) +
-            "); refine the ladder ([converge] limits) or loosen the tolerance"))
+        out.update(
+            chosen=None,
+            rejected_cheaper=[],
+            reason=(
+                f"no model in the study meets {tolerance:g} on {', '.join(needed) or 'nothing'} "
+                "(error bounds: "
+                + "; ".join(
+                    f"{FAMILIES[f].label} best {min(w for r, w, _ in rejected if r['family'] == f):.1e}"
+                    for f in dict.fromkeys(r["family"] for r, _, _ in rejected)
+                )
+                + "); refine the ladder ([converge] limits) or loosen the tolerance"
+            ),
+        )
         return out
     best = min(meets, key=lambda r: (r["wall_time"], r["dofs"]))
     # per family, its most accurate run among those cheaper than the choice
@@ -154,39 +188,62 @@ def select_model(records: list[dict], reference: dict, band: dict, tolerance: fl
     out.update(
         chosen=_brief(best, needed),
         rejected_cheaper=[{**_brief(r, needed), "why": why} for r, why in by_family.values()],
-        reason=_reason(best, needed, band, tolerance, reference, by_family))
+        reason=_reason(best, needed, band, tolerance, reference, by_family),
+    )
     return out
 
 
 def _brief(r: dict, needed) -> dict:
-    return {"label": r["label"], "family": r["family"], "model": r["model"], "params": r["params"],
-            "dofs": r["dofs"], "wall_time": r["wall_time"], "peak_memory": r.get("peak_memory"),
-            **{q: r.get(q) for q in QUANTITIES},
-            **{f"{q}_{k}": r.get(f"{q}_{k}") for q in QUANTITIES
-               for k in ("error", "model_error", "discretisation_error", "error_bound")}}
+    return {
+        "label": r["label"],
+        "family": r["family"],
+        "model": r["model"],
+        "params": r["params"],
+        "dofs": r["dofs"],
+        "wall_time": r["wall_time"],
+        "peak_memory": r.get("peak_memory"),
+        **{q: r.get(q) for q in QUANTITIES},
+        **{
+            f"{q}_{k}": r.get(f"{q}_{k}")
+            for q in QUANTITIES
+            for k in ("error", "model_error", "discretisation_error", "error_bound")
+        },
+    }
 
 
 def _reason(best, needed, band, tol, reference, rejected) -> str:
-    parts = [f"{best['label']} ({best['dofs']:,} DOFs, {best['wall_time']:.2f} s) is the cheapest "
-             f"run whose "]
-    parts.append(" and ".join(f"first {q} ({best[q]:.3f} rad/s, error {best[q + '_error']:+.1e}, "
-                              f"bound {best[q + '_error_bound']:.1e})" for q in needed))
-    parts.append(f" meet {tol:g} against the reference. The band to resolve reaches "
-                 f"{band['omega_max']:.1f} rad/s ({band['margin']:g} x the {band['driver']}, "
-                 f"{max(band['free_speed'], band['earthquake_frequency']):.1f} rad/s)")
+    parts = [f"{best['label']} ({best['dofs']:,} DOFs, {best['wall_time']:.2f} s) is the cheapest run whose "]
+    parts.append(
+        " and ".join(
+            f"first {q} ({best[q]:.3f} rad/s, error {best[q + '_error']:+.1e}, bound {best[q + '_error_bound']:.1e})"
+            for q in needed
+        )
+    )
+    parts.append(
+        f" meet {tol:g} against the reference. The band to resolve reaches "
+        f"{band['omega_max']:.1f} rad/s ({band['margin']:g} x the {band['driver']}, "
+        f"{max(band['free_speed'], band['earthquake_frequency']):.1f} rad/s)"
+    )
     inside = [f"first {q} {reference[q]['value']:.2f}" for q in needed]
-    outside = [f"first {q} {reference[q]['value']:.2f}" for q in QUANTITIES
-               if q in reference and q not in needed]
+    outside = [f"first {q} {reference[q]['value']:.2f}" for q in QUANTITIES if q in reference and q not in needed]
     if inside:
         parts.append(", which contains the " + " and the ".join(inside) + " rad/s")
     if outside:
         parts.append("; " + ", ".join(outside) + " rad/s lie(s) above it")
     parts.append(".")
     if rejected:
-        parts.append(" Cheaper runs fail: " + "; ".join(
-            (f"{FAMILIES[f].label} ({why})" if r["label"] == FAMILIES[f].label else
-             f"{FAMILIES[f].label} (best {r['label'].split(', ')[-1]}: {why})")
-            for f, (r, why) in rejected.items()) + ".")
+        parts.append(
+            " Cheaper runs fail: "
+            + "; ".join(
+                (
+                    f"{FAMILIES[f].label} ({why})"
+                    if r["label"] == FAMILIES[f].label
+                    else f"{FAMILIES[f].label} (best {r['label'].split(', ')[-1]}: {why})"
+                )
+                for f, (r, why) in rejected.items()
+            )
+            + "."
+        )
     return "".join(parts)
 
 
@@ -198,6 +255,7 @@ def _reason(best, needed, band, tol, reference, rejected) -> str:
 class ReferenceChoice(JsonRecord):
     """The 3D mesh a transient's full-order reference runs on, chosen from the study
     for the frequencies the load excites (relative errors, -)."""
+
     label: str
     """the study's run: family and mesh"""
     family: str
@@ -227,15 +285,22 @@ class ReferenceChoice(JsonRecord):
     reason: str
 
 
-def run_band_error(record: dict, quantities, reference: dict) -> Optional[float]:
+def run_band_error(record: dict, quantities, reference: dict) -> float | None:
     """A run's band error on ``quantities``: its largest error bound plus the
     reference's uncertainty (None: a quantity is missing)."""
     return band_error(record, list(quantities), reference_uncertainty(reference))
 
 
-def select_reference(records: list[dict], reference: dict, quantities, tolerance: float, *,
-                     floor: dict | None = None, max_dofs: int | None = None,
-                     floor_max_dofs: int | None = None) -> Optional[ReferenceChoice]:
+def select_reference(
+    records: list[dict],
+    reference: dict,
+    quantities,
+    tolerance: float,
+    *,
+    floor: dict | None = None,
+    max_dofs: int | None = None,
+    floor_max_dofs: int | None = None,
+) -> ReferenceChoice | None:
     """The coarsest 3D run (fewest DOFs) whose band error on ``quantities`` meets
     the tolerance; where ``floor["band_error"]`` (the ROM's mode source) is
     smaller, the coarsest that meets that too: the reference must be at least
@@ -251,15 +316,18 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
     unc = reference_uncertainty(reference)
     err: dict[int, float] = {}
     for r in records:
-        if r.get("status") == "ok" and FAMILIES[r["family"]].model == "solid" \
-                and (max_dofs is None or r["dofs"] <= max_dofs):
+        if (
+            r.get("status") == "ok"
+            and FAMILIES[r["family"]].model == "solid"
+            and (max_dofs is None or r["dofs"] <= max_dofs)
+        ):
             e = band_error(r, list(quantities), unc)
             if e is not None:
                 err[id(r)] = e
     cands = [r for r in records if id(r) in err]
     if not quantities or not cands:
         return None
-    by_cost = lambda r: (r["dofs"], r["wall_time"])      # noqa: E731
+    by_cost = lambda r: (r["dofs"], r["wall_time"])  # noqa: E731
     within_tol = sorted((r for r in cands if err[id(r)] <= tolerance), key=by_cost)
     if not within_tol:
         return None
@@ -272,35 +340,63 @@ def select_reference(records: list[dict], reference: dict, quantities, tolerance
         reach = [r for r in pool if err[id(r)] <= required]
         best, ok = (reach[0], True) if reach else (min(pool, key=lambda r: (err[id(r)], r["dofs"])), False)
     e = err[id(best)]
-    what = " and ".join(f"first {q} {best[q]:.4f} rad/s (bound {best[q + '_error_bound']:.1e})"
-                        for q in quantities)
+    what = " and ".join(f"first {q} {best[q]:.4f} rad/s (bound {best[q + '_error_bound']:.1e})" for q in quantities)
     if ok:
-        reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the coarsest 3D run of the study whose "
-                  f"{what} meet{'s' if len(quantities) == 1 else ''} {required:.2g} with the "
-                  f"reference's uncertainty (band error {e:.1e})")
+        reason = (
+            f"{best['label']} ({best['dofs']:,} DOFs) is the coarsest 3D run of the study whose "
+            f"{what} meet{'s' if len(quantities) == 1 else ''} {required:.2g} with the "
+            f"reference's uncertainty (band error {e:.1e})"
+        )
     else:
         cap = min(limit if limit is not None else math.inf, max_dofs if max_dofs is not None else math.inf)
         within = ""
         if math.isfinite(cap):
-            within = (f" within {cap:,.0f} DOFs ("
-                      + ("what the case's steps afford" if limit is not None and limit <= cap
-                         else "the finest the transient's candidates go") + ")")
-        reason = (f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study"
-                  f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}")
+            within = (
+                f" within {cap:,.0f} DOFs ("
+                + (
+                    "what the case's steps afford"
+                    if limit is not None and limit <= cap
+                    else "the finest the transient's candidates go"
+                )
+                + ")"
+            )
+        reason = (
+            f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study"
+            f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}"
+        )
     if floor is not None and floor.get("band_error") is not None:
-        reason += (f"; the ROM's mode source ({floor['label']}) has {floor['band_error']:.1e}, "
-                   + ("and the reference is at least as accurate" if ok else
-                      "which no 3D run the case affords reaches: the comparison checks the ROM "
-                      "only to the reference's own error"))
-    rule = ("fewest DOFs among the study's 3D runs (at most max_dofs) whose error bound plus the "
-            "reference's uncertainty on the frequencies of the modes the load excites meets the "
-            "tolerance, and the ROM mode source's own bound where smaller (within floor_max_dofs)")
+        reason += f"; the ROM's mode source ({floor['label']}) has {floor['band_error']:.1e}, " + (
+            "and the reference is at least as accurate"
+            if ok
+            else "which no 3D run the case affords reaches: the comparison checks the ROM "
+            "only to the reference's own error"
+        )
+    rule = (
+        "fewest DOFs among the study's 3D runs (at most max_dofs) whose error bound plus the "
+        "reference's uncertainty on the frequencies of the modes the load excites meets the "
+        "tolerance, and the ROM mode source's own bound where smaller (within floor_max_dofs)"
+    )
     return ReferenceChoice(
-        label=best["label"], family=best["family"], params=dict(best["params"]), dofs=int(best["dofs"]),
-        quantities=quantities, band_error=float(e),
-        errors={q: {"value": best[q], **{k: best.get(f"{q}_{k}") for k in
-                                         ("error", "model_error", "discretisation_error", "error_bound")}}
-                for q in quantities},
-        required=float(required), tolerance=float(tolerance), floor=floor, meets=ok,
-        candidates=len(cands), max_dofs=max_dofs, floor_max_dofs=floor_max_dofs, rule=rule,
-        reason=reason)
+        label=best["label"],
+        family=best["family"],
+        params=dict(best["params"]),
+        dofs=int(best["dofs"]),
+        quantities=quantities,
+        band_error=float(e),
+        errors={
+            q: {
+                "value": best[q],
+                **{k: best.get(f"{q}_{k}") for k in ("error", "model_error", "discretisation_error", "error_bound")},
+            }
+            for q in quantities
+        },
+        required=float(required),
+        tolerance=float(tolerance),
+        floor=floor,
+        meets=ok,
+        candidates=len(cands),
+        max_dofs=max_dofs,
+        floor_max_dofs=floor_max_dofs,
+        rule=rule,
+        reason=reason,
+    )

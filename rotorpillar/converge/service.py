@@ -72,6 +72,7 @@ def resident_memory() -> int | None:
     system (``gc``, glibc's ``malloc_trim``)."""
     import ctypes
     import gc
+
     gc.collect()
     try:
         ctypes.CDLL("libc.so.6").malloc_trim(0)
@@ -106,7 +107,7 @@ class Service:
             self.proc = None
             return {"status": "error", "exit": code, "error": f"worker ended ({code}): " + self._tail()}
         reply = json.loads(line)
-        if reply.get("last"):                   # it ends after this run: the next gets a new one
+        if reply.get("last"):  # it ends after this run: the next gets a new one
             self.proc.wait()
             self.proc = None
         return reply
@@ -120,8 +121,14 @@ class Service:
             self.log = tempfile.TemporaryFile(mode="w+", prefix="rotorpillar-converge-")
         self.log.seek(0)
         self.log.truncate()
-        self.proc = subprocess.Popen([sys.executable, "-m", MODULE, "--serve"], stdin=subprocess.PIPE,
-                                     stdout=subprocess.PIPE, stderr=self.log, text=True, env=env)
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", MODULE, "--serve"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=self.log,
+            text=True,
+            env=env,
+        )
 
     def _tail(self) -> str:
         self.log.flush()

@@ -18,8 +18,8 @@ if TYPE_CHECKING:
 
 import dataclasses
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable, Optional
 
 from ..errors import InputError
 from ..provenance import Timings, with_provenance, write_result
@@ -28,8 +28,16 @@ from .ladder import FAMILIES, QUANTITIES, study_cases
 from .result import ConvergenceStudy
 from .richardson import family_extrapolations, reference_values
 from .runner import run_study
-from .selection import (_brief, attach_errors, band_error, excitation_band,
-                        needed_quantities, pareto_front, reference_uncertainty, select_model)
+from .selection import (
+    _brief,
+    attach_errors,
+    band_error,
+    excitation_band,
+    needed_quantities,
+    pareto_front,
+    reference_uncertainty,
+    select_model,
+)
 
 Charts = Callable[[dict, Path], dict]
 """Draws the study's charts into a directory: (study document, out_dir) -> name: path."""
@@ -53,11 +61,15 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
             errs = [r.get(f"{q}_error") for r in ok]
             fronts[cost][q] = [ok[i]["label"] for i in pareto_front([r[cost] for r in ok], errs)]
         errs = [band_error(r, needed, ref_unc) for r in candidates]
-        fronts[cost]["band"] = [candidates[i]["label"]
-                                for i in pareto_front([r[cost] for r in candidates], errs)]
-    return {"reference": reference, "extrapolations": extrap, "band": band,
-            "selection": selection, "pareto": fronts,
-            "failures": failures(records, extrap, reference, tolerance)}
+        fronts[cost]["band"] = [candidates[i]["label"] for i in pareto_front([r[cost] for r in candidates], errs)]
+    return {
+        "reference": reference,
+        "extrapolations": extrap,
+        "band": band,
+        "selection": selection,
+        "pareto": fronts,
+        "failures": failures(records, extrap, reference, tolerance),
+    }
 
 
 def check_tolerance(tolerance: float) -> None:
@@ -66,9 +78,18 @@ def check_tolerance(tolerance: float) -> None:
         raise InputError(f"--tolerance = {tolerance!r} is out of range: must be > 0 and < 1")
 
 
-def study(scene: Scene, *, out_dir: Path, cache_dir: Path | None = None, tolerance: float | None = None,
-          show_progress: bool = True, charts: Optional[Charts] = None, timings=None,
-          log: Callable[[str], None] | None = None, workers: int = 1) -> ConvergenceStudy:
+def study(
+    scene: Scene,
+    *,
+    out_dir: Path,
+    cache_dir: Path | None = None,
+    tolerance: float | None = None,
+    show_progress: bool = True,
+    charts: Charts | None = None,
+    timings=None,
+    log: Callable[[str], None] | None = None,
+    workers: int = 1,
+) -> ConvergenceStudy:
     """Run (or load) the study and analyse it; write convergence.json (and the charts).
 
     ``workers`` > 1 runs that many at once (rotorpillar.executor: a Dask
@@ -82,51 +103,80 @@ def study(scene: Scene, *, out_dir: Path, cache_dir: Path | None = None, toleran
     cache_dir = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
     start = time.perf_counter()
     with timings("study"):
-        records = run_study(study_cases(scene), scene, cache_dir, progress=show_progress, log=log,
-                            workers=workers)
+        records = run_study(study_cases(scene), scene, cache_dir, progress=show_progress, log=log, workers=workers)
     with timings("analysis"):
         analysis = analyse(records, scene, tol)
     result = ConvergenceStudy(
-        scene_name=scene.name, scene=scene.to_dict(), tolerance=tol, cache_dir=str(cache_dir),
-        families={k: {"label": f.label, "model": f.model, "order_theory": f.order,
-                      "quantities": list(f.quantities), "sweep": f.sweep}
-                  for k, f in FAMILIES.items()},
-        runs=tuple(records), reference=analysis["reference"],
-        extrapolations=analysis["extrapolations"], band=analysis["band"],
-        selection=analysis["selection"], pareto=analysis["pareto"],
+        scene_name=scene.name,
+        scene=scene.to_dict(),
+        tolerance=tol,
+        cache_dir=str(cache_dir),
+        families={
+            k: {
+                "label": f.label,
+                "model": f.model,
+                "order_theory": f.order,
+                "quantities": list(f.quantities),
+                "sweep": f.sweep,
+            }
+            for k, f in FAMILIES.items()
+        },
+        runs=tuple(records),
+        reference=analysis["reference"],
+        extrapolations=analysis["extrapolations"],
+        band=analysis["band"],
+        selection=analysis["selection"],
+        pareto=analysis["pareto"],
         failures=tuple(analysis["failures"]),
-        study={"runs": len(records), "workers": workers,
-               "cached": sum(bool(r.get("cached")) for r in records),
-               "computed": sum(not r.get("cached") for r in records),
-               "failed": sum(r.get("status") == "failed" for r in records),
-               "unavailable": sum(r.get("status") == "unavailable" for r in records),
-               "compute_seconds": sum(r.get("process_time", r.get("wall_time", 0.0)) or 0.0
-                                      for r in records if not r.get("cached"))})
+        study={
+            "runs": len(records),
+            "workers": workers,
+            "cached": sum(bool(r.get("cached")) for r in records),
+            "computed": sum(not r.get("cached") for r in records),
+            "failed": sum(r.get("status") == "failed" for r in records),
+            "unavailable": sum(r.get("status") == "unavailable" for r in records),
+            "compute_seconds": sum(
+                r.get("process_time", r.get("wall_time", 0.0)) or 0.0 for r in records if not r.get("cached")
+            ),
+        },
+    )
     if charts is not None:
         with timings("charts"):
             drawn = charts(result.to_json(), out_dir)
         result = dataclasses.replace(result, charts={k: str(v) for k, v in drawn.items()})
-    result = dataclasses.replace(result, study={**result.study,
-                                                "wall_time": time.perf_counter() - start})
+    result = dataclasses.replace(result, study={**result.study, "wall_time": time.perf_counter() - start})
     doc = with_provenance(result.to_json(), timings=dict(timings))
     path = write_result(Path(out_dir) / "convergence.json", doc)
-    return dataclasses.replace(result, versions=doc["versions"], machine=doc["machine"],
-                               timings=doc["timings"], json_file=str(path))
+    return dataclasses.replace(
+        result, versions=doc["versions"], machine=doc["machine"], timings=doc["timings"], json_file=str(path)
+    )
 
 
 def _cached_study(scene: Scene, tolerance: float, cache_dir: Path):
     """Under MPI: the runs from the cache only (a missing run is an input error)."""
+
     def runner(case, sc):
-        raise InputError(f"modal --tolerance under MPI needs the convergence study cached "
-                         f"({case.label} is not): run `rotorpillar converge {scene.name}` "
-                         "serially first")
+        raise InputError(
+            f"modal --tolerance under MPI needs the convergence study cached "
+            f"({case.label} is not): run `rotorpillar converge {scene.name}` "
+            "serially first"
+        )
+
     records = run_study(study_cases(scene), scene, cache_dir, runner=runner, progress=False)
     return records, analyse(records, scene, tolerance)
 
 
-def model_for_modal(scene: Scene, tolerance: float, out_dir: Path, *, cache_dir: Path | None = None,
-                    timings=None, charts: Optional[Charts] = None,
-                    log: Callable[[str], None] | None = None, show_progress: bool = False):
+def model_for_modal(
+    scene: Scene,
+    tolerance: float,
+    out_dir: Path,
+    *,
+    cache_dir: Path | None = None,
+    timings=None,
+    charts: Charts | None = None,
+    log: Callable[[str], None] | None = None,
+    show_progress: bool = False,
+):
     """The scene with the [mesh] the study picks for ``tolerance``, and why.
 
     `modal` computes the 3D model, so the choice is among the 3D families;
@@ -146,17 +196,27 @@ def model_for_modal(scene: Scene, tolerance: float, out_dir: Path, *, cache_dir:
     if MPI.COMM_WORLD.size > 1:
         cache = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
         runs, analysis = _cached_study(scene, tolerance, cache)
-        reference, band, overall, json_file = (analysis["reference"], analysis["band"],
-                                               analysis["selection"]["chosen"], None)
+        reference, band, overall, json_file = (
+            analysis["reference"],
+            analysis["band"],
+            analysis["selection"]["chosen"],
+            None,
+        )
     else:
-        st = study(scene, out_dir=out_dir, cache_dir=cache_dir, tolerance=tolerance,
-                   timings=timings, charts=charts, log=log, show_progress=show_progress)
-        runs, reference, band, overall, json_file = (st.runs, st.reference, st.band, st.chosen,
-                                                     st.json_file)
+        st = study(
+            scene,
+            out_dir=out_dir,
+            cache_dir=cache_dir,
+            tolerance=tolerance,
+            timings=timings,
+            charts=charts,
+            log=log,
+            show_progress=show_progress,
+        )
+        runs, reference, band, overall, json_file = (st.runs, st.reference, st.band, st.chosen, st.json_file)
     # the 3D families that resolve every frequency the study measures: modal shows the
     # shell modes too (not the bending-only family)
-    solid = [k for k, f in FAMILIES.items()
-             if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
+    solid = [k for k, f in FAMILIES.items() if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
     sel = select_model(runs, reference, band, tolerance, families=solid)
     unmet: str | None = None
     chosen = sel["chosen"]
@@ -164,31 +224,51 @@ def model_for_modal(scene: Scene, tolerance: float, out_dir: Path, *, cache_dir:
         chosen, unmet = _closest(runs, reference, band, solid, tolerance, sel["reason"])
     if chosen is not None:
         p = chosen["params"]
-        mesh = dataclasses.replace(scene.mesh, elements_around=p["elements_around"],
-                                   elements_along=p["elements_along"],
-                                   elements_through=p["elements_through"], degree=p["degree"],
-                                   cell_type=p["cell_type"], grading=p["grading"])
-        lines = [f"Model {'chosen' if unmet is None else 'run'} for tolerance {tolerance:g}: "
-                 f"{chosen['label']} ({chosen['dofs']:,} DOFs, {chosen['wall_time']:.1f} s for "
-                 "the bare tube in the study).",
-                 "Why: " + (sel["reason"] if unmet is None else unmet),
-                 "The same mesh carries the top mass (the study's errors are the bare tube's)."]
+        mesh = dataclasses.replace(
+            scene.mesh,
+            elements_around=p["elements_around"],
+            elements_along=p["elements_along"],
+            elements_through=p["elements_through"],
+            degree=p["degree"],
+            cell_type=p["cell_type"],
+            grading=p["grading"],
+        )
+        lines = [
+            f"Model {'chosen' if unmet is None else 'run'} for tolerance {tolerance:g}: "
+            f"{chosen['label']} ({chosen['dofs']:,} DOFs, {chosen['wall_time']:.1f} s for "
+            "the bare tube in the study).",
+            "Why: " + (sel["reason"] if unmet is None else unmet),
+            "The same mesh carries the top mass (the study's errors are the bare tube's).",
+        ]
     else:
         mesh = scene.mesh
-        lines = [f"No 3D model of the study has an error estimate for tolerance {tolerance:g}: "
-                 f"the scene's own [mesh] is run, unverified.", f"Why: {unmet}"]
+        lines = [
+            f"No 3D model of the study has an error estimate for tolerance {tolerance:g}: "
+            f"the scene's own [mesh] is run, unverified.",
+            f"Why: {unmet}",
+        ]
     if overall is not None and chosen is not None and overall["label"] != chosen["label"]:
-        lines.append(f"Cheapest of all models at this tolerance: {overall['label']} "
-                     f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "
-                     "has it.")
+        lines.append(
+            f"Cheapest of all models at this tolerance: {overall['label']} "
+            f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "
+            "has it."
+        )
     if json_file:
         lines.append(f"Study: {json_file}")
-    selection = {"tolerance": tolerance, "met": unmet is None, "chosen": chosen,
-                 "reason": sel["reason"] if unmet is None else unmet,
-                 "rule": sel["rule"], "band": sel["band"], "needed": sel["needed"],
-                 "reference_uncertainty": sel["reference_uncertainty"],
-                 "rejected_cheaper": sel["rejected_cheaper"], "overall_cheapest": overall,
-                 "convergence_json": json_file, "text": "\n".join(lines)}
+    selection = {
+        "tolerance": tolerance,
+        "met": unmet is None,
+        "chosen": chosen,
+        "reason": sel["reason"] if unmet is None else unmet,
+        "rule": sel["rule"],
+        "band": sel["band"],
+        "needed": sel["needed"],
+        "reference_uncertainty": sel["reference_uncertainty"],
+        "rejected_cheaper": sel["rejected_cheaper"],
+        "overall_cheapest": overall,
+        "convergence_json": json_file,
+        "text": "\n".join(lines),
+    }
     return dataclasses.replace(scene, mesh=mesh), selection
 
 
@@ -196,8 +276,11 @@ def _closest(runs, reference, band, families, tolerance: float, why_none: str):
     """Where no 3D run meets the tolerance: the 3D run with the smallest error bound
     over the band (None when no run has one), and the sentence that says so."""
     needed, unc = needed_quantities(reference, band), reference_uncertainty(reference)
-    rated = [(band_error(r, needed, unc), r) for r in runs
-             if r.get("status") == "ok" and r["family"] in families and reference]
+    rated = [
+        (band_error(r, needed, unc), r)
+        for r in runs
+        if r.get("status") == "ok" and r["family"] in families and reference
+    ]
     rated = [(e, r) for e, r in rated if e is not None]
     if not rated:
         return None, (f"tolerance {tolerance:g} not met: {why_none}")
@@ -205,4 +288,5 @@ def _closest(runs, reference, band, families, tolerance: float, why_none: str):
     return _brief(best, needed), (
         f"tolerance {tolerance:g} not met: no 3D model of the study reaches it; the most "
         f"accurate, {best['label']}, has an error bound of {err:.1e} over the band "
-        "(raise converge.solid_p2_max_around, or loosen the tolerance)")
+        "(raise converge.solid_p2_max_around, or loosen the tolerance)"
+    )

@@ -29,11 +29,11 @@ Eq. 2    rotorpillar.fem3d.reduction.beam_line_tip_mass
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 from ..scene import Scene
 from .modal import AXES, ModalResult  # noqa: F401  (numpy-only modules)
 from .reduction import TipReduction, tip_reduction  # noqa: F401
-
-from collections import OrderedDict
 
 #: The last few results, so that `run` (analyze with reduction.source = fem3d,
 #: then modal) solves each configuration once; small, because a result holds
@@ -56,13 +56,28 @@ def assemble_pillar(scene: Scene, *, top: bool, mesh=None, comm=None, isolated: 
     the masses on top as ``scene.modal`` says (rigid plate or ring mass).
     """
     from .model import assemble_model
+
     top_model, top_mass = _top_settings(scene, top)
-    return assemble_model(scene.pillar, scene.mesh if mesh is None else mesh,
-                          top_model=top_model, top_mass=top_mass, comm=comm, isolated=isolated)
+    return assemble_model(
+        scene.pillar,
+        scene.mesh if mesh is None else mesh,
+        top_model=top_model,
+        top_mass=top_mass,
+        comm=comm,
+        isolated=isolated,
+    )
 
 
-def modal_analysis(scene: Scene, *, top: bool, n_modes: int | None = None, mesh=None, comm=None,
-                   isolated: bool = True, use_cache: bool = True) -> ModalResult:
+def modal_analysis(
+    scene: Scene,
+    *,
+    top: bool,
+    n_modes: int | None = None,
+    mesh=None,
+    comm=None,
+    isolated: bool = True,
+    use_cache: bool = True,
+) -> ModalResult:
     """The ``n_modes`` lowest modes (default ``scene.modal.n_modes``) of the pillar.
 
     ``top`` False: the bare tube, clamped at the base, free at the top (what
@@ -72,7 +87,9 @@ def modal_analysis(scene: Scene, *, top: bool, n_modes: int | None = None, mesh=
     settings, n_modes, communicator size) within a process.
     """
     from mpi4py import MPI
+
     from .modal import run_modal
+
     comm = MPI.COMM_WORLD if comm is None else comm
     mesh = scene.mesh if mesh is None else mesh
     n_modes = scene.modal.n_modes if n_modes is None else n_modes
@@ -85,8 +102,13 @@ def modal_analysis(scene: Scene, *, top: bool, n_modes: int | None = None, mesh=
         return _CACHE[key]
     model = assemble_pillar(scene, top=top, mesh=mesh, comm=comm, isolated=isolated)
     try:
-        result = run_modal(model, n_modes, tol=scene.modal.tolerance, mesh_section=mesh,
-                           material=(scene.pillar.youngs_modulus, scene.pillar.poisson_ratio) if top else None)
+        result = run_modal(
+            model,
+            n_modes,
+            tol=scene.modal.tolerance,
+            mesh_section=mesh,
+            material=(scene.pillar.youngs_modulus, scene.pillar.poisson_ratio) if top else None,
+        )
     finally:
         model.K.destroy()
         model.M.destroy()
@@ -106,6 +128,7 @@ def _band_modes(scene: Scene, **kw) -> ModalResult:
     excitation up to the band's edge, and the mode beyond it), in blocks of
     BAND_MODES; not the 16 or more a fixed count asks on every scene."""
     from ..reduced.band import excitation_band
+
     edge = excitation_band(scene.drive, scene.load, scene.converge)["omega_max"]
     n = BAND_MODES
     while True:

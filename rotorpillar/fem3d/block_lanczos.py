@@ -36,9 +36,11 @@ DROP = 1e-10
 
 def modal_solve_failure(tool: str, exc) -> ComputationError:
     """The one-line error of a failed modal solve, with the usual cause."""
-    return ComputationError(f"{tool} failed in the modal solve (error code {exc.ierr}; a MUMPS "
-                            "factorisation failure is typical of an unclamped or disconnected "
-                            "model)")
+    return ComputationError(
+        f"{tool} failed in the modal solve (error code {exc.ierr}; a MUMPS "
+        "factorisation failure is typical of an unclamped or disconnected "
+        "model)"
+    )
 
 
 def shifted_cholesky(K, M, sigma: float = 0.0):
@@ -46,8 +48,9 @@ def shifted_cholesky(K, M, sigma: float = 0.0):
     matrix or None when it is K itself).  ``ksp.setUp()`` factorises; the caller
     destroys both."""
     from petsc4py import PETSc
+
     A = None
-    if sigma != 0.0:                     # the factorisation leaves K untouched: no copy at sigma 0
+    if sigma != 0.0:  # the factorisation leaves K untouched: no copy at sigma 0
         A = K.copy()
         A.axpy(-sigma, M)
     ksp = PETSc.KSP().create(K.getComm())
@@ -59,14 +62,24 @@ def shifted_cholesky(K, M, sigma: float = 0.0):
     return ksp, A
 
 
-def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10, block: int = 8,
-                  max_columns: int = 400, seed: int = 20240607):
+def block_lanczos(
+    K,
+    M,
+    n_modes: int,
+    *,
+    sigma: float = 0.0,
+    tol: float = 1e-10,
+    block: int = 8,
+    max_columns: int = 400,
+    seed: int = 20240607,
+):
     """The ``n_modes`` eigenpairs nearest ``sigma``: (eigenvalues ascending, their
     PETSc Vecs, steps, relative residuals, columns solved), or None when the
     basis would pass ``max_columns`` before they converge."""
     from petsc4py import PETSc
+
     comm = K.getComm().tompi4py()
-    block = max(int(block), 2)           # degenerate pairs need two vectors per step
+    block = max(int(block), 2)  # degenerate pairs need two vectors per step
     if max_columns < n_modes + block:
         return None
     ksp, A = shifted_cholesky(K, M, sigma)
@@ -84,7 +97,7 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
             m0 = basis.m
             basis.append(Vn, MVn)
             V = basis.V
-            W = op.solve(MVn)                                    # A V_j
+            W = op.solve(MVn)  # A V_j
             # the new block's images against the whole basis: C = V^T M A V_j, a
             # column block of T = V^T M A V (symmetric in the M inner product)
             Vn, MVn, C, G = op.orthonormalise(W, op.mass(W), basis)
@@ -106,9 +119,10 @@ def block_lanczos(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
                 return None
             if Vn.shape[1] == 0:
                 if len(theta) < n_modes:
-                    raise ComputationError(f"block Lanczos: the model has only {len(theta)} "
-                                           f"finite eigenvalues, {n_modes} asked")
-                return None                                      # exhausted, not converged
+                    raise ComputationError(
+                        f"block Lanczos: the model has only {len(theta)} finite eigenvalues, {n_modes} asked"
+                    )
+                return None  # exhausted, not converged
         X = V @ S
         vecs = []
         for k in range(n_modes):
@@ -139,6 +153,7 @@ def seq_csr(M):
         return _petsc_csr(M)
     except (OSError, AttributeError, RuntimeError):
         import scipy.sparse as sp
+
         ai, aj, av = M.getValuesCSR()
         A = sp.csr_matrix((av, aj, ai), shape=M.getSize())
         A.eliminate_zeros()
@@ -148,6 +163,7 @@ def seq_csr(M):
 def without_zeros(ia, ja, vals, shape):
     """CSR of (ia, ja, vals) without its zero entries, in new arrays (the inputs may be PETSc's)."""
     import scipy.sparse as sp
+
     keep = vals != 0.0
     if len(ia) > 1 and np.all(ia[1:] > ia[:-1]):
         # no empty row (an assembled matrix has its diagonal): per-row counts,
@@ -155,7 +171,7 @@ def without_zeros(ia, ja, vals, shape):
         indptr = np.zeros(len(ia), dtype=ja.dtype)
         indptr[1:] = np.cumsum(np.add.reduceat(keep, ia[:-1], dtype=ja.dtype))
     else:
-        before = np.zeros(len(keep) + 1, dtype=ja.dtype)    # kept entries before entry k
+        before = np.zeros(len(keep) + 1, dtype=ja.dtype)  # kept entries before entry k
         before[1:] = np.cumsum(keep, dtype=ja.dtype)
         indptr = before[ia]
     return sp.csr_matrix((vals[keep], ja[keep], indptr), shape=shape, copy=False)
@@ -164,7 +180,9 @@ def without_zeros(ia, ja, vals, shape):
 def _petsc_csr(M):
     """``without_zeros`` of a real SeqAIJ matrix's own arrays, read in place."""
     import ctypes
+
     from petsc4py import PETSc
+
     if M.getType() != "seqaij" or PETSc.ScalarType != np.float64:
         raise RuntimeError("not a real sequential AIJ matrix")
     lib = ctypes.CDLL(_petsc_library())
@@ -173,8 +191,10 @@ def _petsc_csr(M):
     n, done = c_int(), c_int()
     ia_p, ja_p = ctypes.POINTER(c_int)(), ctypes.POINTER(c_int)()
     v_p = ctypes.POINTER(ctypes.c_double)()
-    if lib.MatGetRowIJ(h, 0, 0, 0, ctypes.byref(n), ctypes.byref(ia_p), ctypes.byref(ja_p),
-                       ctypes.byref(done)) != 0 or not done.value:
+    if (
+        lib.MatGetRowIJ(h, 0, 0, 0, ctypes.byref(n), ctypes.byref(ia_p), ctypes.byref(ja_p), ctypes.byref(done)) != 0
+        or not done.value
+    ):
         raise RuntimeError("MatGetRowIJ")
     try:
         if lib.MatSeqAIJGetArrayRead(h, ctypes.byref(v_p)) != 0:
@@ -187,8 +207,7 @@ def _petsc_csr(M):
         finally:
             lib.MatSeqAIJRestoreArrayRead(h, ctypes.byref(v_p))
     finally:
-        lib.MatRestoreRowIJ(h, 0, 0, 0, ctypes.byref(n), ctypes.byref(ia_p), ctypes.byref(ja_p),
-                            ctypes.byref(done))
+        lib.MatRestoreRowIJ(h, 0, 0, 0, ctypes.byref(n), ctypes.byref(ia_p), ctypes.byref(ja_p), ctypes.byref(done))
 
 
 def _petsc_library() -> str:
@@ -214,8 +233,10 @@ class _Operator:
 
     def _dense(self, X):
         from petsc4py import PETSc
-        return PETSc.Mat().createDense(((self.n_local, self.n), (None, X.shape[1])),
-                                       array=np.asfortranarray(X), comm=self.K.getComm())
+
+        return PETSc.Mat().createDense(
+            ((self.n_local, self.n), (None, X.shape[1])), array=np.asfortranarray(X), comm=self.K.getComm()
+        )
 
     def mass(self, X):
         if self.csr is not None:
@@ -228,7 +249,7 @@ class _Operator:
         return out
 
     def solve(self, Y):
-        out = np.empty(Y.shape, order="F")      # the solution lands here: PETSc wraps it, no copy
+        out = np.empty(Y.shape, order="F")  # the solution lands here: PETSc wraps it, no copy
         B, X = self._dense(Y), self._dense(out)
         try:
             self.F.matSolve(B, X)
@@ -269,18 +290,18 @@ class _Basis:
 
     def __init__(self, rows: int, limit: int, guess: int):
         self.limit = limit
-        cap = min(guess, limit)                             # usually enough: no copy
-        self._V = np.empty((rows, cap), order="F")          # columns contiguous: appending
-        self._MV = np.empty((rows, cap), order="F")         # a block writes one stretch
+        cap = min(guess, limit)  # usually enough: no copy
+        self._V = np.empty((rows, cap), order="F")  # columns contiguous: appending
+        self._MV = np.empty((rows, cap), order="F")  # a block writes one stretch
         self.m = 0
 
     @property
     def V(self):
-        return self._V[:, :self.m]
+        return self._V[:, : self.m]
 
     @property
     def MV(self):
-        return self._MV[:, :self.m]
+        return self._MV[:, : self.m]
 
     def append(self, X, MX):
         k = X.shape[1]
@@ -289,8 +310,8 @@ class _Basis:
             for name in ("_V", "_MV"):
                 old = getattr(self, name)
                 new = np.empty((old.shape[0], cap), order="F")
-                new[:, :self.m] = old[:, :self.m]
+                new[:, : self.m] = old[:, : self.m]
                 setattr(self, name, new)
-        self._V[:, self.m:self.m + k] = X
-        self._MV[:, self.m:self.m + k] = MX
+        self._V[:, self.m : self.m + k] = X
+        self._MV[:, self.m : self.m + k] = MX
         self.m += k

@@ -48,6 +48,7 @@ BLOCK_MAX_BYTES = 2**30
 @dataclass(frozen=True)
 class EigenSolution:
     """Eigenpairs of the pencil (K, M), ascending, M-orthonormal vectors."""
+
     eigenvalues: np.ndarray
     """lambda = omega**2 (rad**2/s**2)"""
     vectors: list
@@ -62,9 +63,18 @@ class EigenSolution:
     """right-hand sides solved with the factors (block method; 0: not counted)"""
 
 
-def solve_gep_shift_invert(K, M, n_modes: int, *, sigma: float = 0.0, tol: float = 1e-10,
-                           max_it: int = 500, ncv: int | None = None,
-                           method: str | None = None, block: int = BLOCK_SIZE) -> EigenSolution:
+def solve_gep_shift_invert(
+    K,
+    M,
+    n_modes: int,
+    *,
+    sigma: float = 0.0,
+    tol: float = 1e-10,
+    max_it: int = 500,
+    ncv: int | None = None,
+    method: str | None = None,
+    block: int = BLOCK_SIZE,
+) -> EigenSolution:
     """The ``n_modes`` eigenpairs of K x = lambda M x nearest ``sigma`` (rad**2/s**2).
 
     K must be nonsingular after the shift (a clamped structure with sigma = 0,
@@ -82,6 +92,7 @@ def solve_gep_shift_invert(K, M, n_modes: int, *, sigma: float = 0.0, tol: float
         raise ValueError(f"method must be one of {METHODS}")
     if method == "block":
         from .block_lanczos import block_lanczos
+
         columns = min(BLOCK_MAX_COLUMNS, BLOCK_MAX_BYTES // (16 * max(K.getLocalSize()[0], 1)))
         sol = block_lanczos(K, M, n_modes, sigma=sigma, tol=tol, block=block, max_columns=columns)
         if sol is not None:
@@ -94,12 +105,12 @@ def default_method(n_modes: int) -> str:
     """``-modal_method`` if given; else Krylov-Schur when any other ``modal_``
     PETSc option is set (they are Krylov-Schur's) or past BLOCK_MAX_MODES; else block."""
     from petsc4py import PETSc
+
     opts = PETSc.Options().getAll()
     if OPTIONS_PREFIX + "method" in opts:
         method = str(opts[OPTIONS_PREFIX + "method"])
         if method not in METHODS:
-            raise InputError(f"-{OPTIONS_PREFIX}method must be one of {', '.join(METHODS)}, "
-                             f"not {method!r}")
+            raise InputError(f"-{OPTIONS_PREFIX}method must be one of {', '.join(METHODS)}, not {method!r}")
         return method
     if any(k.startswith(OPTIONS_PREFIX) for k in opts) or n_modes > BLOCK_MAX_MODES:
         return "krylovschur"
@@ -110,6 +121,7 @@ def _krylov_schur(K, M, n_modes, *, sigma, tol, max_it, ncv) -> EigenSolution:
     """SLEPc Krylov-Schur, shift-invert, MUMPS LDL^T."""
     from petsc4py import PETSc
     from slepc4py import SLEPc
+
     eps = SLEPc.EPS().create(K.getComm())
     try:
         eps.setOptionsPrefix(OPTIONS_PREFIX)
@@ -138,7 +150,8 @@ def _krylov_schur(K, M, n_modes, *, sigma, tol, max_it, ncv) -> EigenSolution:
         if nconv < n_modes:
             raise ComputationError(
                 f"SLEPc converged {nconv} of {n_modes} eigenpairs in {eps.getIterationNumber()} "
-                f"restarts (reason {eps.getConvergedReason()}, tolerance {tol:g})")
+                f"restarts (reason {eps.getConvergedReason()}, tolerance {tol:g})"
+            )
         lam, vecs, res = [], [], []
         for i in range(nconv):
             x = K.createVecRight()
@@ -153,8 +166,9 @@ def _krylov_schur(K, M, n_modes, *, sigma, tol, max_it, ncv) -> EigenSolution:
     order = np.argsort(lam)[:n_modes]
     for i in set(range(len(vecs))) - set(order[:n_modes]):
         vecs[i].destroy()
-    return EigenSolution(np.asarray(lam)[order], [vecs[i] for i in order], iterations,
-                         np.asarray(res)[order], "krylovschur")
+    return EigenSolution(
+        np.asarray(lam)[order], [vecs[i] for i in order], iterations, np.asarray(res)[order], "krylovschur"
+    )
 
 
 def factorisation_time(K, M, sigma: float = 0.0) -> float:

@@ -21,12 +21,14 @@ def lame_parameters(youngs_modulus: float, poisson_ratio: float) -> tuple[float,
 def epsilon(u):
     """Small-strain tensor sym(grad u) (-)."""
     import ufl
+
     return ufl.sym(ufl.grad(u))
 
 
 def sigma(u, youngs_modulus: float, poisson_ratio: float):
     """Cauchy stress of an isotropic linear material (Pa)."""
     import ufl
+
     lam, mu = lame_parameters(youngs_modulus, poisson_ratio)
     eps = epsilon(u)
     return lam * ufl.tr(eps) * ufl.Identity(len(u)) + 2 * mu * eps
@@ -35,10 +37,12 @@ def sigma(u, youngs_modulus: float, poisson_ratio: float):
 def stiffness_form(u, v, youngs_modulus: float, poisson_ratio: float, dx):
     """a(u, v) = int sigma(u) : eps(v) dx (J per unit displacements)."""
     import ufl
+
     return ufl.inner(sigma(u, youngs_modulus, poisson_ratio), epsilon(v)) * dx
 
 
 def mass_form(u, v, density: float, dx):
     """m(u, v) = int rho u . v dx (kg)."""
     import ufl
+
     return density * ufl.inner(u, v) * dx

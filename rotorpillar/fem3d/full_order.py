@@ -61,11 +61,29 @@ from ..errors import InputError
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion
 from ..scene import Scene
-from .rotor_top import (Affine, RotorOnTop, Step, coupling_torque, drive_torque, plate_and_rotor,
-                        rotor_start, rotor_step_stiffness, solve_spin)
+from .full_order_plan import (  # noqa: F401
+    CASES_3D,
+    accuracy,
+    beam_operating_speed,
+    case_setup,
+    check_budget,
+    estimate,
+    scheme_parameters,
+    step_rule,
+    top_speed,
+)
+from .rotor_top import (
+    Affine,
+    RotorOnTop,
+    Step,
+    coupling_torque,
+    drive_torque,
+    plate_and_rotor,
+    rotor_start,
+    rotor_step_stiffness,
+    solve_spin,
+)
 from .step_operator import Plate, add_shaft_acceleration, step_operator
-from .full_order_plan import (CASES_3D, accuracy, beam_operating_speed, case_setup,  # noqa: F401
-                             check_budget, estimate, scheme_parameters, step_rule, top_speed)
 
 WORK_COLUMNS = ("drive_minus_load", "shaft_on_structure", "dissipated", "base")
 #: the share of the energy exchanged the balance may miss (as transients.case_summary.ENERGY_CHECK)
@@ -75,6 +93,7 @@ ENERGY_CHECK = 0.05
 @dataclass(frozen=True, eq=False)
 class Fem3dTransient:
     """A 3D full-order run on its output grid, with its summary (SI)."""
+
     case: str
     t: np.ndarray
     """(n,) output times (s)"""
@@ -125,29 +144,38 @@ class Fem3dTransient:
 
     def summary(self) -> dict:
         """The JSON fields the reduced models' runs report, plus dofs and wall time."""
-        out = {"ok": self.ok, "duration": float(self.t[-1] - self.t[0]), "omega_final": self.omega_final,
-               "omega_final_mean": self.omega_final_mean, "max_abs": self.max_abs,
-               "energy_balance": self.energy_balance, "integrator": self.integrator,
-               "dofs": self.dofs, "wall_seconds": self.wall_seconds, "model": self.model}
+        out = {
+            "ok": self.ok,
+            "duration": float(self.t[-1] - self.t[0]),
+            "omega_final": self.omega_final,
+            "omega_final_mean": self.omega_final_mean,
+            "max_abs": self.max_abs,
+            "energy_balance": self.energy_balance,
+            "integrator": self.integrator,
+            "dofs": self.dofs,
+            "wall_seconds": self.wall_seconds,
+            "model": self.model,
+        }
         if self.failed_checks:
             out["failed_checks"] = list(self.failed_checks)
         return out
 
     def series(self) -> dict:
         """The arrays, by name (for NPZ/CSV)."""
-        return {f.name: getattr(self, f.name) for f in fields(self)
-                if isinstance(getattr(self, f.name), np.ndarray)}
+        return {f.name: getattr(self, f.name) for f in fields(self) if isinstance(getattr(self, f.name), np.ndarray)}
 
     def to_json(self) -> dict:
         """JSON-ready; ``from_json`` rebuilds it exactly."""
-        return {f.name: (v.tolist() if isinstance(v, np.ndarray) else v)
-                for f in fields(self) for v in (getattr(self, f.name),)}
+        return {
+            f.name: (v.tolist() if isinstance(v, np.ndarray) else v)
+            for f in fields(self)
+            for v in (getattr(self, f.name),)
+        }
 
     @classmethod
-    def from_json(cls, data: dict) -> "Fem3dTransient":
+    def from_json(cls, data: dict) -> Fem3dTransient:
         arrays = {f.name for f in fields(cls) if f.type == "np.ndarray"}
-        kwargs: dict[str, Any] = {k: (np.asarray(v, dtype=float) if k in arrays else v)
-                                  for k, v in data.items()}
+        kwargs: dict[str, Any] = {k: (np.asarray(v, dtype=float) if k in arrays else v) for k, v in data.items()}
         return cls(**kwargs)
 
 
@@ -155,12 +183,23 @@ class Fem3dTransient:
 # The run
 
 
-def simulate_fem3d(scene: Scene, case: str, *, motion: GroundMotion | None = None,
-                   drive: DriveSchedule | None = None, duration: float | None = None,
-                   time_step: float | None = None, mesh=None, samples: int = 2001,
-                   initial_speed: float | None = None, initial_angle: float = 0.0,
-                   prescribed_speed: bool = False, comm=None, progress=None,
-                   observer=None) -> Fem3dTransient:
+def simulate_fem3d(
+    scene: Scene,
+    case: str,
+    *,
+    motion: GroundMotion | None = None,
+    drive: DriveSchedule | None = None,
+    duration: float | None = None,
+    time_step: float | None = None,
+    mesh=None,
+    samples: int = 2001,
+    initial_speed: float | None = None,
+    initial_angle: float = 0.0,
+    prescribed_speed: bool = False,
+    comm=None,
+    progress=None,
+    observer=None,
+) -> Fem3dTransient:
     """Run ``case`` ("earthquake" or "runup") on the 3D tube with the rotor at its top.
 
     Defaults follow the reduced models' cases: the scene's excitation, a
@@ -170,19 +209,23 @@ def simulate_fem3d(scene: Scene, case: str, *, motion: GroundMotion | None = Non
                                 initial_angle, W0, prescribed_speed, progress)
     """
     from . import assemble_pillar
+
     if scene.modal.top_model != "rigid":
-        raise InputError('the 3D transient hangs the rotor on the rigid top plate: modal.top_model '
-                         'must be "rigid"')
+        raise InputError('the 3D transient hangs the rotor on the rigid top plate: modal.top_model must be "rigid"')
     if scene.modal.top_mass != "gondola":
-        raise InputError('modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
-                         'the 3D transient hangs it on its shaft: use modal.top_mass = "gondola"')
+        raise InputError(
+            'modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
+            'the 3D transient hangs it on its shaft: use modal.top_mass = "gondola"'
+        )
     motion, drive, duration, W0, notes = case_setup(scene, case, motion, drive, duration, initial_speed)
     rule = step_rule(scene, drive, motion, W0, time_step)
     est = estimate(scene, duration, rule, mesh)
-    check_budget(scene, case, est)                        # before any meshing
+    check_budget(scene, case, est)  # before any meshing
     if progress:
-        progress(f"3D transient: {est.steps:.0f} steps of {rule.time_step:.3g} s ({_scheme_name(scene)}), "
-                 f"about {est.seconds:.0f} s on ~{est.dofs:,} dofs (estimate)")
+        progress(
+            f"3D transient: {est.steps:.0f} steps of {rule.time_step:.3g} s ({_scheme_name(scene)}), "
+            f"about {est.seconds:.0f} s on ~{est.dofs:,} dofs (estimate)"
+        )
     steps = max(1, int(round(duration / rule.time_step)))
     h = duration / steps
     fo = scene.full_order
@@ -194,27 +237,51 @@ def simulate_fem3d(scene: Scene, case: str, *, motion: GroundMotion | None = Non
     try:
         if observer is not None:
             observer.attach(model)
-        out, stats = _integrate(model, rotor, scene.pillar.damping, drive, motion, step, steps, stride,
-                                initial_angle, W0, prescribed_speed, progress, observer)
+        out, stats = _integrate(
+            model,
+            rotor,
+            scene.pillar.damping,
+            drive,
+            motion,
+            step,
+            steps,
+            stride,
+            initial_angle,
+            W0,
+            prescribed_speed,
+            progress,
+            observer,
+        )
     finally:
         model.K.destroy()
         model.M.destroy()
     wall = time.perf_counter() - start
     reached = W0 if prescribed_speed else float(np.max(np.abs(out["Omega"])))
     check = accuracy(scene, h, duration, max(reached, abs(W0)), motion)
-    stats.update(method=fo.integrator, scheme=_scheme_words(fo.integrator, step, rule),
-                 time_step=h, step_rule=rule.to_json(), accuracy=check.to_json(),
-                 estimate=est.to_json(), assembly_seconds=sum(model.timings.values()))
+    stats.update(
+        method=fo.integrator,
+        scheme=_scheme_words(fo.integrator, step, rule),
+        time_step=h,
+        step_rule=rule.to_json(),
+        accuracy=check.to_json(),
+        estimate=est.to_json(),
+        assembly_seconds=sum(model.timings.values()),
+    )
     mesh_section = scene.mesh if mesh is None else mesh
-    info = {"mesh": dict(vars(mesh_section)), "top": "rigid plate with the gondola",
-            "damping_law": "pillar: b1 as a dashpot on the plate's X; b2 on the rotor centre's "
-                           "velocity relative to the ground in X and Y; no Rayleigh term",
-            "frame": "relative_to_ground", "forcing": "-M r a_g in X on tube, plate and rotor",
-            "start": "tube at rest, rotor in its steady whirl on a held plate",
-            "initial_speed": W0, "initial_angle": initial_angle,
-            "prescribed_speed": bool(prescribed_speed), **notes}
-    return _result(case, out, stats, model.size + 3, wall, info, motion, drive, prescribed_speed,
-                   check.failed)
+    info = {
+        "mesh": dict(vars(mesh_section)),
+        "top": "rigid plate with the gondola",
+        "damping_law": "pillar: b1 as a dashpot on the plate's X; b2 on the rotor centre's "
+        "velocity relative to the ground in X and Y; no Rayleigh term",
+        "frame": "relative_to_ground",
+        "forcing": "-M r a_g in X on tube, plate and rotor",
+        "start": "tube at rest, rotor in its steady whirl on a held plate",
+        "initial_speed": W0,
+        "initial_angle": initial_angle,
+        "prescribed_speed": bool(prescribed_speed),
+        **notes,
+    }
+    return _result(case, out, stats, model.size + 3, wall, info, motion, drive, prescribed_speed, check.failed)
 
 
 def _scheme_name(scene: Scene) -> str:
@@ -223,11 +290,16 @@ def _scheme_name(scene: Scene) -> str:
 
 
 def _scheme_words(method: str, step: Step, rule) -> str:
-    name = {"newmark": "Newmark's average acceleration", "hht": "HHT-alpha",
-            "generalized_alpha": "generalized-alpha (Chung & Hulbert 1993)"}[method]
-    return (f"{name}: alpha_m {step.alpha_m:.4g}, alpha_f {step.alpha_f:.4g}, beta {step.beta:.4g}, "
-            f"gamma {step.gamma:.4g}, spectral radius at infinity {rule.spectral_radius_infinity:.3g}; "
-            "one MUMPS factorisation, the spin equation by scalar Newton inside each step")
+    name = {
+        "newmark": "Newmark's average acceleration",
+        "hht": "HHT-alpha",
+        "generalized_alpha": "generalized-alpha (Chung & Hulbert 1993)",
+    }[method]
+    return (
+        f"{name}: alpha_m {step.alpha_m:.4g}, alpha_f {step.alpha_f:.4g}, beta {step.beta:.4g}, "
+        f"gamma {step.gamma:.4g}, spectral radius at infinity {rule.spectral_radius_infinity:.3g}; "
+        "one MUMPS factorisation, the spin equation by scalar Newton inside each step"
+    )
 
 
 def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed, failed) -> Fem3dTransient:
@@ -238,33 +310,73 @@ def _result(case, out, stats, dofs, wall, info, motion, drive, prescribed, faile
     E, work = out["energy"], out["work"]
     inflow = work[:, 1] if prescribed else work[:, 0]
     resid = (E - E[0]) - (inflow - work[:, 2] + work[:, 3])
-    scale = max(np.max(np.abs(E - E[0])), np.max(np.abs(inflow)), np.max(np.abs(work[:, 2])),
-                np.max(np.abs(work[:, 3])), 1e-300)
-    balance = {"energy_change": float(E[-1] - E[0]), "work_drive_minus_load": float(work[-1, 0]),
-               "work_shaft_on_structure": float(work[-1, 1]), "dissipated": float(work[-1, 2]),
-               "work_base": float(work[-1, 3]), "max_abs_residual": float(np.max(np.abs(resid))),
-               "scale": float(scale), "relative_error": float(np.max(np.abs(resid)) / scale)}
+    scale = max(
+        np.max(np.abs(E - E[0])), np.max(np.abs(inflow)), np.max(np.abs(work[:, 2])), np.max(np.abs(work[:, 3])), 1e-300
+    )
+    balance = {
+        "energy_change": float(E[-1] - E[0]),
+        "work_drive_minus_load": float(work[-1, 0]),
+        "work_shaft_on_structure": float(work[-1, 1]),
+        "dissipated": float(work[-1, 2]),
+        "work_base": float(work[-1, 3]),
+        "max_abs_residual": float(np.max(np.abs(resid))),
+        "scale": float(scale),
+        "relative_error": float(np.max(np.abs(resid)) / scale),
+    }
     failed = list(failed)
     if stats["status"] != "ok":
         failed.insert(0, f"integrator_stopped: {stats['status']}")
     e = balance["relative_error"]
     if not np.isfinite(e) or e > ENERGY_CHECK:
-        failed.append(f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
-                      f"exchanged (limit {100 * ENERGY_CHECK:g} %)")
+        failed.append(
+            f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
+            f"exchanged (limit {100 * ENERGY_CHECK:g} %)"
+        )
     return Fem3dTransient(
-        case=case, t=t, Omega=W, theta=out["theta"], tip_x=out["tip_x"],
-        tip_x_absolute=out["tip_x"] + ground, ground_x=ground,
-        ground_acceleration=motion.evaluate(t)[2], rotor_x=out["rotor_x"], rotor_y=out["rotor_y"],
-        plate_z=out["plate_z"], shaft_x=out["shaft_x"], shaft_y=out["shaft_y"],
-        drive_torque=np.asarray(drive.torque(t, W), dtype=float), energy=E, work=work,
-        max_abs=out["max_abs"], omega_final=float(W[-1]), omega_final_mean=float(np.mean(W[tail])),
-        energy_balance=balance, integrator=stats, dofs=int(dofs), wall_seconds=float(wall),
-        model=info, ok=not failed, failed_checks=failed)
+        case=case,
+        t=t,
+        Omega=W,
+        theta=out["theta"],
+        tip_x=out["tip_x"],
+        tip_x_absolute=out["tip_x"] + ground,
+        ground_x=ground,
+        ground_acceleration=motion.evaluate(t)[2],
+        rotor_x=out["rotor_x"],
+        rotor_y=out["rotor_y"],
+        plate_z=out["plate_z"],
+        shaft_x=out["shaft_x"],
+        shaft_y=out["shaft_y"],
+        drive_torque=np.asarray(drive.torque(t, W), dtype=float),
+        energy=E,
+        work=work,
+        max_abs=out["max_abs"],
+        omega_final=float(W[-1]),
+        omega_final_mean=float(np.mean(W[tail])),
+        energy_balance=balance,
+        integrator=stats,
+        dofs=int(dofs),
+        wall_seconds=float(wall),
+        model=info,
+        ok=not failed,
+        failed_checks=failed,
+    )
 
 
-def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion: GroundMotion, step: Step,
-               steps: int, stride: int, theta0: float, W0: float, prescribed: bool, progress,
-               observer=None):
+def _integrate(
+    model,
+    rotor: RotorOnTop,
+    b1: float,
+    drive: DriveSchedule,
+    motion: GroundMotion,
+    step: Step,
+    steps: int,
+    stride: int,
+    theta0: float,
+    W0: float,
+    prescribed: bool,
+    progress,
+    observer=None,
+):
     """The generalized-alpha ``step`` over ``steps`` steps; see the module text.
 
     Each scalar dof's equation (rotor centre x, y; the plate's dashpot) is
@@ -273,22 +385,22 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
     """
     K, M = model.K, model.M
     N = model.tube_dofs
-    rows = (N, N + 2)                                      # the plate's U_x, U_z
-    c2, b2, mC, J, e = (rotor.shaft_stiffness, rotor.shaft_damping, rotor.mass, rotor.inertia,
-                        rotor.eccentricity)
+    rows = (N, N + 2)  # the plate's U_x, U_z
+    c2, b2, mC, J, e = (rotor.shaft_stiffness, rotor.shaft_damping, rotor.mass, rotor.inertia, rotor.eccentricity)
     h, am, af, wf = step.h, step.alpha_m, step.alpha_f, step.new_weight
     cm, cc = step.mass_coefficient, step.damping_coefficient
     kr = rotor_step_stiffness(rotor, step)
     t0 = time.perf_counter()
     # the plate's rows: its dashpot, and the rotor centre condensed onto it (w c2 - (w c2)**2 / k_r)
-    ksp, Keff, (d_x, d_z) = step_operator(K, M, N, cc * b1 + wf * c2 - (wf * c2)**2 / kr,
-                                          wf * c2 - (wf * c2)**2 / kr, wf, cm, model.comm)
+    ksp, Keff, (d_x, d_z) = step_operator(
+        K, M, N, cc * b1 + wf * c2 - (wf * c2) ** 2 / kr, wf * c2 - (wf * c2) ** 2 / kr, wf, cm, model.comm
+    )
     vecs = [K.createVecRight() for _ in range(14)]
     u, v, a, w, R, u1, gN, gZ, tmp, pred, Ku, Mu, Mv, Ma = vecs
     plate = Plate(u, rows, model.comm)
     for x in vecs:
         x.set(0.0)
-    for g, i in ((gN, 0), (gZ, 1)):                        # the plate under a unit load on U_x, U_z
+    for g, i in ((gN, 0), (gZ, 1)):  # the plate under a unit load on U_x, U_z
         unit = [0.0, 0.0]
         unit[i] = 1.0
         plate.add(R, unit)
@@ -301,7 +413,7 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
     r = model.influence(0)
     Mr = M.createVecLeft()
     M.mult(r, Mr)
-    mask = M.getDiagonal()                                 # rows with mass: not clamped, not placeholders
+    mask = M.getDiagonal()  # rows with mass: not clamped, not placeholders
     mask.getArray()[:] = mask.getArray(readonly=True) != 0.0
     vecs += [r, Mr, mask]
 
@@ -330,8 +442,9 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
     keys = ("t", "Omega", "theta", "tip_x", "rotor_x", "rotor_y", "plate_z", "shaft_x", "shaft_y", "energy")
     out: dict[str, Any] = {k: np.zeros(n_out) for k in keys}
     out["work"] = np.zeros((n_out, 4))
-    peaks = dict.fromkeys(("tip_x", "tip_x_absolute", "rotor_x", "rotor_y", "shaft_deflection_x",
-                           "shaft_deflection_y", "plate_z"), 0.0)
+    peaks = dict.fromkeys(
+        ("tip_x", "tip_x_absolute", "rotor_x", "rotor_y", "shaft_deflection_x", "shaft_deflection_y", "plate_z"), 0.0
+    )
 
     M.mult(a, Ma)
 
@@ -341,9 +454,18 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
         return E + (0.0 if prescribed else 0.5 * J * W * W)
 
     def record(j, t):
-        for k, val in (("t", t), ("Omega", W), ("theta", th), ("tip_x", Ux), ("rotor_x", x),
-                       ("rotor_y", y), ("plate_z", Uz), ("shaft_x", x - Ux - e * math.cos(th)),
-                       ("shaft_y", y - Uz - e * math.sin(th)), ("energy", energy())):
+        for k, val in (
+            ("t", t),
+            ("Omega", W),
+            ("theta", th),
+            ("tip_x", Ux),
+            ("rotor_x", x),
+            ("rotor_y", y),
+            ("plate_z", Uz),
+            ("shaft_x", x - Ux - e * math.cos(th)),
+            ("shaft_y", y - Uz - e * math.sin(th)),
+            ("energy", energy()),
+        ):
             out[k][j] = val
         out["work"][j] = work
         if observer is not None:
@@ -361,10 +483,10 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
         # from the products M u, M v, M a, K u the last step left (no product here)
         u.copy(pred)
         pred.axpy(bu, v)
-        pred.axpy(bv, a)                                   # pred = u~
+        pred.axpy(bv, a)  # pred = u~
         Mu.copy(w)
         w.axpy(bu, Mv)
-        w.axpy(bv, Ma)                                     # w = M u~
+        w.axpy(bv, Ma)  # w = M u~
         w.copy(R)
         R.scale(cm)
         if am:
@@ -385,8 +507,9 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
             th1, W1, alpha1, it = theta0 + W0 * t, W0, 0.0, 0
         else:
             try:
-                th1, W1, alpha1, it = solve_spin(rotor, h, th, W, alpha, sx, sy, M0s[n], slopes[n], kload,
-                                                 step=step, old_torque=tau + Tc)
+                th1, W1, alpha1, it = solve_spin(
+                    rotor, h, th, W, alpha, sx, sy, M0s[n], slopes[n], kload, step=step, old_torque=tau + Tc
+                )
             except ArithmeticError:
                 status = f"Newton on the spin equation failed at t = {t:g} s"
                 break
@@ -408,10 +531,10 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
         plate.add(tmp, (gamma * c - d_x * Ux1, gamma * s - d_z * Uz1))
         tmp.axpy(-wf, Ku)
         tmp.scale(1.0 / cm)
-        tmp.copy(Mu)                                       # M u1
-        v.axpy(ba, a)                                      # v~
+        tmp.copy(Mu)  # M u1
+        v.axpy(ba, a)  # v~
         a.waxpy(-1.0, pred, u1)
-        a.scale(1.0 / (step.beta * h * h))                 # a1 = (u1 - u~) / (beta h**2)
+        a.scale(1.0 / (step.beta * h * h))  # a1 = (u1 - u~) / (beta h**2)
         v.axpy(step.gamma * h, a)
         Mv.axpy(ba, Ma)
         Ma.waxpy(-1.0, w, Mu)
@@ -427,14 +550,21 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
         # work increments by the trapezoidal rule (Newmark's energy identity for its linear part)
         work[0] += 0.5 * (tau + tau1) * (th1 - th)
         work[1] -= 0.5 * (Tc + Tc1) * (th1 - th)
-        work[2] += (b1 * (Ux1 - Ux) * 0.5 * (vUx + vUx1) + b2 * (x1 - x) * 0.5 * (vx + vx1)
-                    + b2 * (y1 - y) * 0.5 * (vy + vy1))
+        work[2] += (
+            b1 * (Ux1 - Ux) * 0.5 * (vUx + vUx1) + b2 * (x1 - x) * 0.5 * (vx + vx1) + b2 * (y1 - y) * 0.5 * (vy + vy1)
+        )
         work[3] += dbase
         Ux, Uz, vUx, aUx, x, y, vx, vy, ax, ay = Ux1, Uz1, vUx1, aUx1, x1, y1, vx1, vy1, ax1, ay1
         th, W, alpha, tau, Tc = th1, W1, alpha1, tau1, Tc1
-        for k, val in (("tip_x", Ux), ("tip_x_absolute", Ux + ug[n]), ("rotor_x", x), ("rotor_y", y),
-                       ("plate_z", Uz), ("shaft_deflection_x", x - Ux - e * c),
-                       ("shaft_deflection_y", y - Uz - e * s)):
+        for k, val in (
+            ("tip_x", Ux),
+            ("tip_x_absolute", Ux + ug[n]),
+            ("rotor_x", x),
+            ("rotor_y", y),
+            ("plate_z", Uz),
+            ("shaft_deflection_x", x - Ux - e * c),
+            ("shaft_deflection_y", y - Uz - e * s),
+        ):
             peaks[k] = max(peaks[k], abs(val))
         if n % stride == 0 or n == steps:
             record(j, t)
@@ -446,8 +576,16 @@ def _integrate(model, rotor: RotorOnTop, b1: float, drive: DriveSchedule, motion
         obj.destroy()
     out = {k: val[:j] for k, val in out.items()}
     out["max_abs"] = {k: float(val) for k, val in peaks.items()}
-    stats = {"status": status, "steps": int(n if status == "ok" else n - 1), "factorisations": 1,
-             "solves": int(n + 2), "newton_iterations": int(newton), "newton_max": int(newton_max),
-             "factorisation_seconds": setup, "integration_seconds": t_int,
-             "seconds_per_step": t_int / max(n, 1), "output_stride": stride}
+    stats = {
+        "status": status,
+        "steps": int(n if status == "ok" else n - 1),
+        "factorisations": 1,
+        "solves": int(n + 2),
+        "newton_iterations": int(newton),
+        "newton_max": int(newton_max),
+        "factorisation_seconds": setup,
+        "integration_seconds": t_int,
+        "seconds_per_step": t_int / max(n, 1),
+        "output_stride": stride,
+    }
     return out, stats

@@ -18,8 +18,14 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 from ..provenance import JsonRecord
-from ..reduced.accuracy import (AccuracyCheck, StepRule, check_step, forcing_frequencies,
-                                full_order_parameters, full_order_step)
+from ..reduced.accuracy import (
+    AccuracyCheck,
+    StepRule,
+    check_step,
+    forcing_frequencies,
+    full_order_parameters,
+    full_order_step,
+)
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion, no_motion
 from ..scene import Scene
@@ -28,8 +34,14 @@ CASES_3D = ("earthquake", "runup")
 SCHEMES_3D = ("newmark", "hht", "generalized_alpha")
 
 
-def case_setup(scene: Scene, case: str, motion: GroundMotion | None, drive: DriveSchedule | None,
-               duration: float | None, initial_speed: float | None):
+def case_setup(
+    scene: Scene,
+    case: str,
+    motion: GroundMotion | None,
+    drive: DriveSchedule | None,
+    duration: float | None,
+    initial_speed: float | None,
+):
     """(motion, drive, duration, initial speed, notes) of a case, as the reduced models run it."""
     if case not in CASES_3D:
         raise InputError(f"case {case!r}: the 3D full-order model runs {', '.join(CASES_3D)}")
@@ -38,13 +50,15 @@ def case_setup(scene: Scene, case: str, motion: GroundMotion | None, drive: Driv
     if case == "earthquake":
         if motion is None:
             from ..reduced.models import scene_motion
+
             motion = scene_motion(scene)
         drive = drive or DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
         duration = duration or sim.earthquake_duration or motion.end + 5.0
         if initial_speed is None:
             initial_speed = beam_operating_speed(scene, drive, motion)
-            notes["initial_speed_source"] = ("the operating speed of the modal model on the 1D beam's "
-                                             "modes (the fastest stable stationary speed)")
+            notes["initial_speed_source"] = (
+                "the operating speed of the modal model on the 1D beam's modes (the fastest stable stationary speed)"
+            )
     else:
         motion = motion or no_motion()
         drive = drive or DriveSchedule.ramp(d.torque_at_zero, d.slope, L.coefficient, sim.runup_ramp)
@@ -61,6 +75,7 @@ def beam_operating_speed(scene: Scene, drive: DriveSchedule, motion: GroundMotio
     from ..reduced.models import build_model
     from ..reduced.stationary import operating_speed
     from ..scene import override
+
     beam = override(scene, ["modal_model.source=beam"])
     top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
     model, _ = build_model(beam, "modal", top)
@@ -80,27 +95,42 @@ def top_speed(drive: DriveSchedule, speed: float) -> float:
     return max([abs(speed)] + [w for w in frees if math.isfinite(w)])
 
 
-def step_rule(scene: Scene, drive: DriveSchedule, motion: GroundMotion, speed: float,
-              time_step: float | None = None) -> StepRule:
+def step_rule(
+    scene: Scene, drive: DriveSchedule, motion: GroundMotion, speed: float, time_step: float | None = None
+) -> StepRule:
     """The 3D run's step and why: ``time_step``, else ``simulate.time_step`` or
     ``full_order.time_step`` when set, else the band's rule (module text)."""
     fo = scene.full_order
     forcing = forcing_frequencies(scene.rotor.eccentricity, top_speed(drive, speed), motion)
-    if not forcing:                                    # nothing forces the structure: the spin's pace
+    if not forcing:  # nothing forces the structure: the spin's pace
         forcing = {"rotor_speed": top_speed(drive, speed)}
     stated, by = 0.0, ""
-    for value, key in ((time_step, "time_step"), (scene.simulate.time_step, "simulate.time_step"),
-                       (fo.time_step, "full_order.time_step")):
+    for value, key in (
+        (time_step, "time_step"),
+        (scene.simulate.time_step, "simulate.time_step"),
+        (fo.time_step, "full_order.time_step"),
+    ):
         if value:
             stated, by = float(value), key
             break
-    if by == "time_step":                                  # the caller's: name the key it came from
-        by = next((k for v, k in ((fo.time_step, "full_order.time_step"),
-                                  (scene.simulate.time_step, "simulate.time_step")) if v == stated),
-                  "the caller's time_step")
-    return full_order_step(fo.integrator, scheme_parameters(fo.integrator, fo.rho_inf), forcing,
-                           scene.modal_model.band_factor,
-                           motion.time_step if motion.kind == "record" else None, stated, by)
+    if by == "time_step":  # the caller's: name the key it came from
+        by = next(
+            (
+                k
+                for v, k in ((fo.time_step, "full_order.time_step"), (scene.simulate.time_step, "simulate.time_step"))
+                if v == stated
+            ),
+            "the caller's time_step",
+        )
+    return full_order_step(
+        fo.integrator,
+        scheme_parameters(fo.integrator, fo.rho_inf),
+        forcing,
+        scene.modal_model.band_factor,
+        motion.time_step if motion.kind == "record" else None,
+        stated,
+        by,
+    )
 
 
 # --------------------------------------------------------------------------
@@ -117,6 +147,7 @@ SECONDS_PER_STEP = (3.0e-4, 6.0e-9)
 @dataclass(frozen=True)
 class RunEstimate(JsonRecord):
     """A 3D run's size before it starts."""
+
     steps: float
     """integration steps (-)"""
     time_step: float
@@ -133,12 +164,12 @@ def estimate(scene: Scene, duration: float, rule: StepRule, mesh=None) -> RunEst
     """Steps and wall time of a run of ``duration`` at the rule's step on ``mesh``
     (default ``scene.mesh``), from the scene alone."""
     from ..mesh import tube_params
+
     mesh = scene.mesh if mesh is None else mesh
     dofs = tube_params(scene.pillar, mesh).estimated_dofs + 9
     steps = duration / rule.time_step if rule.time_step > 0 else math.inf
     a, b = SECONDS_PER_STEP
-    return RunEstimate(float(steps), rule.time_step, float(duration), int(dofs),
-                       float(steps * (a + b * dofs**1.5)))
+    return RunEstimate(float(steps), rule.time_step, float(duration), int(dofs), float(steps * (a + b * dofs**1.5)))
 
 
 def check_budget(scene: Scene, case: str, est: RunEstimate) -> None:
@@ -152,7 +183,8 @@ def check_budget(scene: Scene, case: str, est: RunEstimate) -> None:
         f"the 3D {case} of {est.duration:.4g} s at a step of {est.time_step:.3g} s would take about "
         f"{est.steps:.3g} steps (~{_time(est.seconds)} on ~{est.dofs:,} dofs), more than "
         f"simulate.max_steps = {limit:.3g}: raise full_order.time_step (0 = the band's step), "
-        f"shorten {length} or {own}, or raise simulate.max_steps")
+        f"shorten {length} or {own}, or raise simulate.max_steps"
+    )
 
 
 def _time(seconds: float) -> str:
@@ -170,5 +202,11 @@ def accuracy(scene: Scene, h: float, duration: float, top: float, motion: Ground
     (rotorpillar.reduced.accuracy.check_step)."""
     fo = scene.full_order
     window = (motion.start, motion.end) if motion.kind != "none" else None
-    return check_step(fo.integrator, scheme_parameters(fo.integrator, fo.rho_inf), h,
-                      forcing_frequencies(scene.rotor.eccentricity, top, motion), duration, window=window)
+    return check_step(
+        fo.integrator,
+        scheme_parameters(fo.integrator, fo.rho_inf),
+        h,
+        forcing_frequencies(scene.rotor.eccentricity, top, motion),
+        duration,
+        window=window,
+    )

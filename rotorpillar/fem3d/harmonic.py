@@ -32,6 +32,7 @@ import numpy as np
 @dataclass(frozen=True)
 class HarmonicResponse:
     """Complex amplitudes of the 3D model's steady unbalance response."""
+
     speeds: np.ndarray
     """Omega (rad/s)"""
     tip: np.ndarray
@@ -59,6 +60,7 @@ def harmonic_response(model, rotor, tip_damping: float, speeds) -> HarmonicRespo
     numerically per speed (0.6 of a fresh LU here).
     """
     from petsc4py import PETSc
+
     if model.extra_dofs == 0:
         raise ValueError("the harmonic response hangs the rotor on the rigid top plate")
     N = model.tube_dofs
@@ -93,7 +95,7 @@ def harmonic_response(model, rotor, tip_damping: float, speeds) -> HarmonicRespo
     for i, w in enumerate(speeds):
         h = shaft_pull(c2, m, b2, w)
         BK.copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
-        A.axpy(-w**2, BM, structure=PETSc.Mat.Structure.SUBSET_NONZERO_PATTERN)
+        A.axpy(-(w**2), BM, structure=PETSc.Mat.Structure.SUBSET_NONZERO_PATTERN)
         a_imag = {N: w * tip_damping - h.imag, N + 2: -h.imag}
         force = {N: h * e, N + 2: h * -1j * e}
         b.set(0.0)
@@ -136,4 +138,3 @@ def relative_error(a, b) -> float:
     """max |a - b| / max |b| (-)."""
     b = np.asarray(b)
     return float(np.max(np.abs(np.asarray(a) - b)) / max(np.max(np.abs(b)), 1e-300))
-

@@ -51,6 +51,7 @@ KINDS = ("bending_x", "bending_y", "ovalling", "torsion", "axial", "breathing", 
 @dataclass(frozen=True)
 class Rings:
     """The nodes of the tube grouped into rings (one z, one r), with weights."""
+
     r: np.ndarray
     theta: np.ndarray
     z: np.ndarray
@@ -89,7 +90,7 @@ def rings_of(xyz: np.ndarray, height: float | None = None) -> Rings:
     if len(levels) == 1:
         wz[:] = 1.0
     count = np.bincount(ring)
-    radial_count = np.bincount(level_of_ring)      # rings per level
+    radial_count = np.bincount(level_of_ring)  # rings per level
     ring_weight = wz[level_of_ring] / radial_count[level_of_ring] / count
     top = np.isclose(z, levels[-1], atol=1e-7 * scale)
     return Rings(r, theta, z, ring, ring_z, ring_weight, levels, level_of_ring, top)
@@ -104,11 +105,11 @@ def cylindrical(rings: Rings, u: np.ndarray) -> np.ndarray:
 def ring_harmonics(rings: Rings, ucyl: np.ndarray, n_max: int = N_MAX) -> np.ndarray:
     """Complex coefficients c[ring, n, component] = sum over the ring of u e^{-i n theta}."""
     from scipy.sparse import csr_matrix
+
     n = np.arange(n_max + 1)
-    phase = np.exp(-1j * np.outer(rings.theta, n))                 # (nodes, n)
+    phase = np.exp(-1j * np.outer(rings.theta, n))  # (nodes, n)
     terms = (phase[:, :, None] * ucyl[:, None, :]).reshape(len(ucyl), -1)
-    member = csr_matrix((np.ones(len(ucyl)), (rings.ring, np.arange(len(ucyl)))),
-                        shape=(rings.ring_z.size, len(ucyl)))
+    member = csr_matrix((np.ones(len(ucyl)), (rings.ring, np.arange(len(ucyl)))), shape=(rings.ring_z.size, len(ucyl)))
     return (member @ terms).reshape(rings.ring_z.size, n.size, 3)
 
 
@@ -135,13 +136,15 @@ def _sign_changes(profile: np.ndarray) -> int:
 def level_mean(rings: Rings, values: np.ndarray) -> np.ndarray:
     """Mean of a nodal quantity over each height level (ascending z)."""
     level = rings.level_of_ring[rings.ring]
-    return (np.bincount(level, weights=values, minlength=rings.levels.size)
-            / np.bincount(level, minlength=rings.levels.size))
+    return np.bincount(level, weights=values, minlength=rings.levels.size) / np.bincount(
+        level, minlength=rings.levels.size
+    )
 
 
 @dataclass(frozen=True)
 class ModeDescription:
     """What a mode is (see the module docstring for the kinds)."""
+
     kind: str
     n_circumferential: int | None
     n_axial: int | None
@@ -153,8 +156,9 @@ class ModeDescription:
     """max |u| over the nodes"""
 
 
-def describe_mode(xyz: np.ndarray | None, u: np.ndarray, rings: Rings | None = None,
-                  n_max: int = N_MAX) -> ModeDescription:
+def describe_mode(
+    xyz: np.ndarray | None, u: np.ndarray, rings: Rings | None = None, n_max: int = N_MAX
+) -> ModeDescription:
     """Kind, circumferential and axial wave numbers of one mode shape u (n, 3).
 
     ``xyz`` (n, 3) the nodes, or None with their ``rings``; ``n_max``: the highest
@@ -175,19 +179,18 @@ def describe_mode(xyz: np.ndarray | None, u: np.ndarray, rings: Rings | None = N
         ux, uy = level_mean(rings, u[:, 0]), level_mean(rings, u[:, 1])
         along_x = np.sum(ux**2) >= np.sum(uy**2)
         kind = "bending_x" if along_x else "bending_y"
-        return ModeDescription(kind, 1, _sign_changes(ux if along_x else uy), float(per_n[n]),
-                               tip, max_abs)
+        return ModeDescription(kind, 1, _sign_changes(ux if along_x else uy), float(per_n[n]), tip, max_abs)
     if n == 0:
         comp = int(np.argmax(shares[0]))
         kind = ("breathing", "torsion", "axial")[comp]
-        return ModeDescription(kind, 0, _sign_changes(level_mean(rings, ucyl[:, comp])),
-                               float(per_n[n]), tip, max_abs)
-    c = ring_harmonics(rings, ucyl, n)[:, n, 0]                     # u_r coefficient per ring
+        return ModeDescription(kind, 0, _sign_changes(level_mean(rings, ucyl[:, comp])), float(per_n[n]), tip, max_abs)
+    c = ring_harmonics(rings, ucyl, n)[:, n, 0]  # u_r coefficient per ring
     k = int(np.argmax(np.abs(c)))
-    along = np.real(c * np.exp(-1j * np.angle(c[k])))               # in phase with the largest ring
+    along = np.real(c * np.exp(-1j * np.angle(c[k])))  # in phase with the largest ring
     level = rings.level_of_ring
-    profile = (np.bincount(level, weights=along, minlength=rings.levels.size)
-               / np.bincount(level, minlength=rings.levels.size))
+    profile = np.bincount(level, weights=along, minlength=rings.levels.size) / np.bincount(
+        level, minlength=rings.levels.size
+    )
     return ModeDescription("ovalling", n, _sign_changes(profile), float(per_n[n]), tip, max_abs)
 
 

@@ -41,6 +41,7 @@ class ModalResult:
 
     Arrays of shapes and geometry are on MPI rank 0 only (None elsewhere).
     """
+
     omega: np.ndarray
     """angular frequencies (rad/s)"""
     kind: tuple
@@ -99,31 +100,44 @@ class ModalResult:
     acceleration a_g along d forces mode j with -L_j a_g; L_j**2 / m_j is its
     effective mass"""
 
-    def lowest(self, n: int) -> "ModalResult":
+    def lowest(self, n: int) -> ModalResult:
         """The lowest ``n`` modes of this result (every per-mode field cut to them)."""
         if n >= len(self.omega):
             return self
         cut = lambda a: None if a is None else a[:n]
-        return replace(self, omega=self.omega[:n], kind=self.kind[:n],
-                       n_circumferential=self.n_circumferential[:n], n_axial=self.n_axial[:n],
-                       share=self.share[:n], normalisation=self.normalisation[:n],
-                       modal_mass=self.modal_mass[:n], modal_stiffness=self.modal_stiffness[:n],
-                       tip=self.tip[:n], shapes=cut(self.shapes), rigid_top=cut(self.rigid_top),
-                       participation=cut(self.participation),
-                       section_resultants=cut(self.section_resultants),
-                       beam_line=None if self.beam_line is None else
-                       {i: v for i, v in self.beam_line.items() if i < n})
+        return replace(
+            self,
+            omega=self.omega[:n],
+            kind=self.kind[:n],
+            n_circumferential=self.n_circumferential[:n],
+            n_axial=self.n_axial[:n],
+            share=self.share[:n],
+            normalisation=self.normalisation[:n],
+            modal_mass=self.modal_mass[:n],
+            modal_stiffness=self.modal_stiffness[:n],
+            tip=self.tip[:n],
+            shapes=cut(self.shapes),
+            rigid_top=cut(self.rigid_top),
+            participation=cut(self.participation),
+            section_resultants=cut(self.section_resultants),
+            beam_line=None if self.beam_line is None else {i: v for i, v in self.beam_line.items() if i < n},
+        )
 
     @property
     def frequency_hz(self) -> np.ndarray:
         return self.omega / (2 * math.pi)
 
-    def index(self, kind: str, n_axial: int | None = None, n_circumferential: int | None = None,
-              nth: int = 0) -> int | None:
+    def index(
+        self, kind: str, n_axial: int | None = None, n_circumferential: int | None = None, nth: int = 0
+    ) -> int | None:
         """Index of the ``nth`` mode of a kind (and wave numbers), or None."""
-        hits = [i for i, k in enumerate(self.kind) if k == kind
-                and (n_axial is None or self.n_axial[i] == n_axial)
-                and (n_circumferential is None or self.n_circumferential[i] == n_circumferential)]
+        hits = [
+            i
+            for i, k in enumerate(self.kind)
+            if k == kind
+            and (n_axial is None or self.n_axial[i] == n_axial)
+            and (n_circumferential is None or self.n_circumferential[i] == n_circumferential)
+        ]
         return hits[nth] if len(hits) > nth else None
 
     def first(self, kind: str, **kw) -> float | None:
@@ -135,14 +149,19 @@ class ModalResult:
         """One JSON-ready dict per mode."""
         out = []
         for i in range(len(self.omega)):
-            row = {"index": i, "omega": float(self.omega[i]),
-                   "frequency_hz": float(self.frequency_hz[i]), "kind": self.kind[i],
-                   "n_circumferential": self.n_circumferential[i], "n_axial": self.n_axial[i],
-                   "harmonic_share": float(self.share[i]),
-                   "normalisation": self.normalisation[i],
-                   "modal_mass": float(self.modal_mass[i]),
-                   "modal_stiffness": float(self.modal_stiffness[i]),
-                   "tip_displacement": [float(t) for t in self.tip[i]]}
+            row = {
+                "index": i,
+                "omega": float(self.omega[i]),
+                "frequency_hz": float(self.frequency_hz[i]),
+                "kind": self.kind[i],
+                "n_circumferential": self.n_circumferential[i],
+                "n_axial": self.n_axial[i],
+                "harmonic_share": float(self.share[i]),
+                "normalisation": self.normalisation[i],
+                "modal_mass": float(self.modal_mass[i]),
+                "modal_stiffness": float(self.modal_stiffness[i]),
+                "tip_displacement": [float(t) for t in self.tip[i]],
+            }
             if self.kind[i] in ("bending_x", "bending_y"):
                 # Unit tip: the modal mass is the mass referred to the tip displacement.
                 row["tip_modal_mass"] = float(self.modal_mass[i])
@@ -176,7 +195,9 @@ def _vtu_map(model: AssembledPillar, coords: np.ndarray):
     vertices only.
     """
     from scipy.spatial import cKDTree
+
     from .output import vtk_cells
+
     data = model.mesh_data
     assert data is not None, "the Gmsh arrays are on rank 0"
     whole = data.order == model.V.ufl_element().degree()
@@ -186,8 +207,7 @@ def _vtu_map(model: AssembledPillar, coords: np.ndarray):
     dist, node = cKDTree(coords).query(pts)
     scale = max(model.params.height, model.params.outer_radius)
     if np.max(dist) > 1e-8 * scale:
-        raise ComputationError("mode shapes: a mesh node has no dof at its place "
-                               f"(distance {np.max(dist):.3g} m)")
+        raise ComputationError(f"mode shapes: a mesh node has no dof at its place (distance {np.max(dist):.3g} m)")
     return pts, inverse.reshape(cells.shape), node
 
 
@@ -225,13 +245,22 @@ def _align_and_normalise(omega, shapes, rings):
             scale[k], label = np.sign(flat[j]) / d.max_abs, "unit_max"
         norm.append(label)
     T = T * scale[None, :]
-    desc = [replace(d, tip=(d.tip[0] * scale[k], d.tip[1] * scale[k]),
-                    max_abs=d.max_abs * abs(scale[k])) for k, d in enumerate(desc)]
+    desc = [
+        replace(d, tip=(d.tip[0] * scale[k], d.tip[1] * scale[k]), max_abs=d.max_abs * abs(scale[k]))
+        for k, d in enumerate(desc)
+    ]
     return desc, T, norm, pairs
 
 
-def run_modal(model: AssembledPillar, n_modes: int, *, tol: float = 1e-10, sigma: float = 0.0,
-              mesh_section=None, material: tuple[float, float] | None = None) -> ModalResult:
+def run_modal(
+    model: AssembledPillar,
+    n_modes: int,
+    *,
+    tol: float = 1e-10,
+    sigma: float = 0.0,
+    mesh_section=None,
+    material: tuple[float, float] | None = None,
+) -> ModalResult:
     """Solve, gather, name, align and normalise the modes of an assembled model.
 
     ``material`` (E in Pa, nu) adds each mode's section resultants at the
@@ -304,8 +333,7 @@ def run_modal(model: AssembledPillar, n_modes: int, *, tol: float = 1e-10, sigma
     points = vtu_cells = shapes_out = beam_line = rigid = None
     if comm.rank == 0:
         assert coords is not None
-        shapes_n = (np.stack([r for r in raw if r is not None], axis=1) @ T).T.reshape(
-            n_modes, n_nodes, 3)
+        shapes_n = (np.stack([r for r in raw if r is not None], axis=1) @ T).T.reshape(n_modes, n_nodes, 3)
         points, vtu_cells, node = _vtu_map(model, coords)
         shapes_out = shapes_n[:, node, :]
         beam_line = {}
@@ -313,34 +341,57 @@ def run_modal(model: AssembledPillar, n_modes: int, *, tol: float = 1e-10, sigma
             if d.kind == "bending_x":
                 beam_line[k] = (rings.levels.copy(), identify.level_mean(rings, shapes_n[k][:, 0]))
         if raw_q is not None:
-            rigid = (np.stack([q[model.tube_dofs:] for q in raw_q if q is not None], axis=1)
-                     @ T).T.copy()
+            rigid = (np.stack([q[model.tube_dofs :] for q in raw_q if q is not None], axis=1) @ T).T.copy()
     timings["postprocess"] = time.perf_counter() - t0
     ms = mesh_section
     cell_type = model.params.cell_type if ms is None else ms.cell_type
     return ModalResult(
-        omega=omega, kind=tuple(d.kind for d in desc),
+        omega=omega,
+        kind=tuple(d.kind for d in desc),
         n_circumferential=tuple(d.n_circumferential for d in desc),
-        n_axial=tuple(d.n_axial for d in desc), share=np.array([d.share for d in desc]),
-        normalisation=tuple(norm), modal_mass=mm, modal_stiffness=kk,
-        tip=np.array([d.tip for d in desc]), top=model.top_model is not None,
-        top_model=model.top_model, top_mass=model.top_mass, dofs=model.size,
-        cells=model.mesh.topology.index_map(3).size_global, cell_type=cell_type,
-        degree=model.V.ufl_element().degree(), mesh=ms, timings=timings,
-        solver={"iterations": sol.iterations, "tolerance": tol, "shift": sigma,
-                "max_error_estimate": float(np.max(sol.errors)), "computed": len(sol.eigenvalues),
-                "type": f"{sol.method}, sinvert, mumps ldlt", "solves": sol.solves,
-                "ranks": comm.size},
-        points=points, vtu_cells=vtu_cells, shapes=shapes_out, beam_line=beam_line,
-        rigid_top=rigid, participation=part, section_heights=None if cuts is None else cuts[0],
-        section_resultants=None if cuts is None else cuts[1])
+        n_axial=tuple(d.n_axial for d in desc),
+        share=np.array([d.share for d in desc]),
+        normalisation=tuple(norm),
+        modal_mass=mm,
+        modal_stiffness=kk,
+        tip=np.array([d.tip for d in desc]),
+        top=model.top_model is not None,
+        top_model=model.top_model,
+        top_mass=model.top_mass,
+        dofs=model.size,
+        cells=model.mesh.topology.index_map(3).size_global,
+        cell_type=cell_type,
+        degree=model.V.ufl_element().degree(),
+        mesh=ms,
+        timings=timings,
+        solver={
+            "iterations": sol.iterations,
+            "tolerance": tol,
+            "shift": sigma,
+            "max_error_estimate": float(np.max(sol.errors)),
+            "computed": len(sol.eigenvalues),
+            "type": f"{sol.method}, sinvert, mumps ldlt",
+            "solves": sol.solves,
+            "ranks": comm.size,
+        },
+        points=points,
+        vtu_cells=vtu_cells,
+        shapes=shapes_out,
+        beam_line=beam_line,
+        rigid_top=rigid,
+        participation=part,
+        section_heights=None if cuts is None else cuts[0],
+        section_resultants=None if cuts is None else cuts[1],
+    )
 
 
-def mode_resultants(model: AssembledPillar, local: np.ndarray, youngs_modulus: float,
-                    poisson_ratio: float) -> tuple[np.ndarray, np.ndarray]:
+def mode_resultants(
+    model: AssembledPillar, local: np.ndarray, youngs_modulus: float, poisson_ratio: float
+) -> tuple[np.ndarray, np.ndarray]:
     """(heights, (modes, n_z, 3) resultants) of the distributed mode vectors ``local``
     (this rank's rows of the unknowns, one column per mode); collective."""
     from .sections import section_functionals
+
     sf = section_functionals(model, youngs_modulus, poisson_ratio)
     part = sf.rows.T @ local
     full = model.comm.allreduce(part) if model.comm.size > 1 else part

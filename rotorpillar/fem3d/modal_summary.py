@@ -26,6 +26,7 @@ from .reduction import tip_reduction
 @dataclass(frozen=True)
 class ModalSummary(JsonRecord):
     """The content of modal.json (SI units: rad/s, Hz, kg, N/m)."""
+
     axes: dict
     modes: tuple[dict, ...]
     """the bare tube's modes, lowest first (index, kind, n_circumferential, n_axial, omega, ...)"""
@@ -42,20 +43,22 @@ class ModalSummary(JsonRecord):
 
 
 def _config_dict(result) -> dict:
-    return {"dofs": result.dofs, "cells": result.cells, "solver": result.solver,
-            "timings": result.timings}
+    return {"dofs": result.dofs, "cells": result.cells, "solver": result.solver, "timings": result.timings}
 
 
 def shell_modes_below_second_bending(result) -> tuple[float | None, list[dict]]:
     """The second bending frequency and the non-bending modes below it."""
     i2 = result.index("bending_x", n_axial=1)
     w2 = None if i2 is None else float(result.omega[i2])
-    rows = [m for m in result.modes_table()
-            if m["kind"] not in ("bending_x", "bending_y") and (w2 is None or m["omega"] < w2)]
+    rows = [
+        m
+        for m in result.modes_table()
+        if m["kind"] not in ("bending_x", "bending_y") and (w2 is None or m["omega"] < w2)
+    ]
     return w2, rows
 
 
-def modal_summary(scene: Scene, bare, loaded, closed: dict) -> "ModalSummary":
+def modal_summary(scene: Scene, bare, loaded, closed: dict) -> ModalSummary:
     """What `rotorpillar modal` found (modal.json, less the files and what the CLI adds).
 
     ``bare`` and ``loaded`` are the :class:`~.modal.ModalResult` of the bare
@@ -74,25 +77,32 @@ def modal_summary(scene: Scene, bare, loaded, closed: dict) -> "ModalSummary":
         axes=AXES,
         modes=tuple(bare.modes_table()),
         modes_with_top=tuple(loaded.modes_table()),
-        top={"model": loaded.top_model, "mass": m_top, "carries": scene.modal.top_mass,
-                "mass_centre": [0.0, 0.0, scene.pillar.height],
-                "omega_bending": None if i1 is None else float(loaded.omega[i1]),
-                "omega_bending_reduced_model": w_reduced_top,
-                "note": "rigid: a rigid plate on the whole top face carries the mass at the "
-                        "top centre (6 dofs appended after the tube's); ring_mass: the mass "
-                        "spread on the top face, no stiffening"},
+        top={
+            "model": loaded.top_model,
+            "mass": m_top,
+            "carries": scene.modal.top_mass,
+            "mass_centre": [0.0, 0.0, scene.pillar.height],
+            "omega_bending": None if i1 is None else float(loaded.omega[i1]),
+            "omega_bending_reduced_model": w_reduced_top,
+            "note": "rigid: a rigid plate on the whole top face carries the mass at the "
+            "top centre (6 dofs appended after the tube's); ring_mass: the mass "
+            "spread on the top face, no stiffening",
+        },
         reduction={
-            "m_reduced": red.m_reduced, "tip_stiffness": red.tip_stiffness,
-            "omega_bending": red.omega_bending, "m_reduced_beam_line": red.m_reduced_beam_line,
+            "m_reduced": red.m_reduced,
+            "tip_stiffness": red.tip_stiffness,
+            "omega_bending": red.omega_bending,
+            "m_reduced_beam_line": red.m_reduced_beam_line,
             "method": "kinetic energy of the 3D first bending mode at unit mean tip "
-                      "displacement (Eq. 2), c1 = m_r omega^2; m_reduced_beam_line: Eq. 2 on "
-                      "the deflection line (mean u_x per height level)",
-            "closed_form": {"m_reduced": closed["tip_mass_limit"],
-                            "tip_stiffness": closed["tip_stiffness_limit"],
-                            "omega_col1": closed["omega_col1"],
-                            "omega_col1_timoshenko": closed["omega_col1_timoshenko"]},
-            "stated": {"m_reduced": scene.reduction.tip_mass,
-                       "tip_stiffness": scene.reduction.tip_stiffness},
+            "displacement (Eq. 2), c1 = m_r omega^2; m_reduced_beam_line: Eq. 2 on "
+            "the deflection line (mean u_x per height level)",
+            "closed_form": {
+                "m_reduced": closed["tip_mass_limit"],
+                "tip_stiffness": closed["tip_stiffness_limit"],
+                "omega_col1": closed["omega_col1"],
+                "omega_col1_timoshenko": closed["omega_col1_timoshenko"],
+            },
+            "stated": {"m_reduced": scene.reduction.tip_mass, "tip_stiffness": scene.reduction.tip_stiffness},
         },
         comparison={
             "omega_bending_over_euler_bernoulli": red.omega_bending / closed["omega_col1"] - 1,
@@ -101,24 +111,36 @@ def modal_summary(scene: Scene, bare, loaded, closed: dict) -> "ModalSummary":
         },
         shell_modes_below_second_bending={
             "bare": {"omega_second_bending": w2_bare, "modes": shell_bare},
-            "with_top": {"omega_second_bending": w2_top, "modes": shell_top}},
-        mesh={"cells": bare.cells, "dofs": bare.dofs, "dofs_with_top": loaded.dofs,
-                 "cell_type": ms.cell_type, "degree": ms.degree,
-                 "elements_around": ms.elements_around, "elements_along": ms.elements_along,
-                 "elements_through": ms.elements_through, "grading": ms.grading},
+            "with_top": {"omega_second_bending": w2_top, "modes": shell_top},
+        },
+        mesh={
+            "cells": bare.cells,
+            "dofs": bare.dofs,
+            "dofs_with_top": loaded.dofs,
+            "cell_type": ms.cell_type,
+            "degree": ms.degree,
+            "elements_around": ms.elements_around,
+            "elements_along": ms.elements_along,
+            "elements_through": ms.elements_through,
+            "grading": ms.grading,
+        },
         configurations={"bare": _config_dict(bare), "with_top": _config_dict(loaded)},
     )
 
 
 def _table(title: str, result) -> list[str]:
-    lines = [title,
-             f"  {'#':>3} {'kind':<10} {'n':>3} {'m':>3} {'omega [rad/s]':>14} {'f [Hz]':>9} "
-             f"{'modal mass [kg]':>16} {'norm':>9}"]
+    lines = [
+        title,
+        f"  {'#':>3} {'kind':<10} {'n':>3} {'m':>3} {'omega [rad/s]':>14} {'f [Hz]':>9} "
+        f"{'modal mass [kg]':>16} {'norm':>9}",
+    ]
     for row in result.modes_table():
         n = "-" if row["n_circumferential"] is None else row["n_circumferential"]
         m = "-" if row["n_axial"] is None else row["n_axial"]
-        lines.append(f"  {row['index']:>3} {row['kind']:<10} {n:>3} {m:>3} {row['omega']:>14.4f} "
-                     f"{row['frequency_hz']:>9.4f} {row['modal_mass']:>16.6g} {row['normalisation']:>9}")
+        lines.append(
+            f"  {row['index']:>3} {row['kind']:<10} {n:>3} {m:>3} {row['omega']:>14.4f} "
+            f"{row['frequency_hz']:>9.4f} {row['modal_mass']:>16.6g} {row['normalisation']:>9}"
+        )
     return lines
 
 
@@ -127,40 +149,54 @@ def summary(doc: dict, bare, loaded) -> str:
     red, cmp_, top = doc["reduction"], doc["comparison"], doc["top"]
     cf = red["closed_form"]
     mesh = doc["mesh"]
-    lines = [f"3D pillar: {mesh['cells']} {mesh['cell_type']} cells, degree {mesh['degree']}, "
-             f"{mesh['dofs']} dofs ({mesh['elements_around']} around x {mesh['elements_along']} "
-             f"along x {mesh['elements_through']} through, grading {mesh['grading']:g})"]
-    lines.append("(n: waves around the circumference; m: sign changes along the height; "
-                 "x is the rotor's plane, z the tube axis)")
+    lines = [
+        f"3D pillar: {mesh['cells']} {mesh['cell_type']} cells, degree {mesh['degree']}, "
+        f"{mesh['dofs']} dofs ({mesh['elements_around']} around x {mesh['elements_along']} "
+        f"along x {mesh['elements_through']} through, grading {mesh['grading']:g})"
+    ]
+    lines.append(
+        "(n: waves around the circumference; m: sign changes along the height; x is the rotor's plane, z the tube axis)"
+    )
     lines += _table("Bare tube (clamped base, free top)", bare)
-    lines += _table(f"With {top['carries'].replace('_', ' ')} on top ({top['mass']:g} kg, "
-                    f"{top['model']} top)", loaded)
-    lines.append(f"First bending, bare: {red['omega_bending']:.4f} rad/s; Eq. 1 "
-                 f"{cf['omega_col1']:.4f} ({100 * cmp_['omega_bending_over_euler_bernoulli']:+.2f} %), "
-                 f"Timoshenko {cf['omega_col1_timoshenko']:.4f} "
-                 f"({100 * cmp_['omega_bending_over_timoshenko']:+.2f} %)")
+    lines += _table(f"With {top['carries'].replace('_', ' ')} on top ({top['mass']:g} kg, {top['model']} top)", loaded)
+    lines.append(
+        f"First bending, bare: {red['omega_bending']:.4f} rad/s; Eq. 1 "
+        f"{cf['omega_col1']:.4f} ({100 * cmp_['omega_bending_over_euler_bernoulli']:+.2f} %), "
+        f"Timoshenko {cf['omega_col1_timoshenko']:.4f} "
+        f"({100 * cmp_['omega_bending_over_timoshenko']:+.2f} %)"
+    )
     if top["omega_bending"] is not None:
-        lines.append(f"First bending with top: {top['omega_bending']:.4f} rad/s; the tip model "
-                     f"c1/(m_r + m_top) gives {top['omega_bending_reduced_model']:.4f}")
-    lines.append(f"Tip reduction (Eq. 2 on the 3D mode): m_r = {red['m_reduced']:.5g} kg "
-                 f"(beam line {red['m_reduced_beam_line']:.5g}; closed form m_col/4 = "
-                 f"{cf['m_reduced']:.5g}, {100 * cmp_['m_reduced_over_closed_form']:+.2f} %), "
-                 f"c1 = {red['tip_stiffness']:.5g} N/m")
+        lines.append(
+            f"First bending with top: {top['omega_bending']:.4f} rad/s; the tip model "
+            f"c1/(m_r + m_top) gives {top['omega_bending_reduced_model']:.4f}"
+        )
+    lines.append(
+        f"Tip reduction (Eq. 2 on the 3D mode): m_r = {red['m_reduced']:.5g} kg "
+        f"(beam line {red['m_reduced_beam_line']:.5g}; closed form m_col/4 = "
+        f"{cf['m_reduced']:.5g}, {100 * cmp_['m_reduced_over_closed_form']:+.2f} %), "
+        f"c1 = {red['tip_stiffness']:.5g} N/m"
+    )
     for key, label in (("bare", "bare"), ("with_top", "with top")):
         s = doc["shell_modes_below_second_bending"][key]
         w2 = s["omega_second_bending"]
-        found = ", ".join(f"{m['omega']:.2f} ({m['kind']}"
-                          + (f" n={m['n_circumferential']}" if m["kind"] == "ovalling" else "") + ")"
-                          for m in s["modes"])
+        found = ", ".join(
+            f"{m['omega']:.2f} ({m['kind']}" + (f" n={m['n_circumferential']}" if m["kind"] == "ovalling" else "") + ")"
+            for m in s["modes"]
+        )
         if w2 is None:
-            lines.append(f"Second bending ({label}) not among the {len(bare.omega)} modes computed; "
-                         f"non-bending modes found: {found or 'none'}")
+            lines.append(
+                f"Second bending ({label}) not among the {len(bare.omega)} modes computed; "
+                f"non-bending modes found: {found or 'none'}"
+            )
         else:
             lines.append(f"Below the second bending ({label}, {w2:.2f} rad/s): {found or 'no shell mode'}")
     t = doc["configurations"]
-    lines.append("Timings [s]: " + "; ".join(
-        f"{k}: mesh {v['timings']['mesh']:.2f}, assembly {v['timings']['assembly']:.2f}, "
-        f"solve {v['timings']['solve']:.2f}" for k, v in t.items()))
+    lines.append(
+        "Timings [s]: "
+        + "; ".join(
+            f"{k}: mesh {v['timings']['mesh']:.2f}, assembly {v['timings']['assembly']:.2f}, "
+            f"solve {v['timings']['solve']:.2f}"
+            for k, v in t.items()
+        )
+    )
     return "\n".join(lines)
-
-

@@ -41,6 +41,7 @@ class AssembledPillar:
     rows 3i, 3i+1, 3i+2 for x, y, z) followed, for the rigid top, by the
     plate's 6 dofs.  The base's Dirichlet rows have K_ii = 1, M_ii = 0.
     """
+
     comm: Any
     """the MPI communicator (mpi4py)"""
     K: Any
@@ -96,7 +97,7 @@ class AssembledPillar:
         n_local = self.V.dofmap.index_map.size_local
         arr = r.getArray()
         arr[:] = 0.0
-        arr[direction: 3 * n_local: 3] = 1.0
+        arr[direction : 3 * n_local : 3] = 1.0
         if self.extra_dofs and self.comm.rank == self.comm.size - 1:
             arr[3 * n_local + direction] = 1.0
         r.setArray(arr)
@@ -113,6 +114,7 @@ class AssembledPillar:
     def gather_vector(self, vec) -> np.ndarray | None:
         """A PETSc Vec of this model on rank 0 as a numpy array (None elsewhere)."""
         from petsc4py import PETSc
+
         scatter, v0 = PETSc.Scatter.toZero(vec)
         try:
             scatter.scatter(vec, v0, addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
@@ -129,10 +131,12 @@ def dolfinx_mesh(data: MeshData | None, comm):
     that Gmsh itself may run in another process.
     """
     from .dolfinx_import import import_dolfinx
+
     import_dolfinx()
     from dolfinx import cpp
     from dolfinx.io import gmshio
     from dolfinx.mesh import create_mesh, meshtags_from_entities
+
     if comm.rank == 0:
         assert data is not None, "the Gmsh arrays are on rank 0"
         head = (data.gmsh_cell, data.gmsh_facet, data.cells.shape[1], data.facets.shape[1])
@@ -151,8 +155,7 @@ def dolfinx_mesh(data: MeshData | None, comm):
     cpp_mesh = getattr(mesh, "_mesh", mesh)
     entities, values = cpp.io.distribute_entity_data(cpp_mesh, 2, facets.astype(np.int64), markers)
     mesh.topology.create_connectivity(2, 3)
-    tags = meshtags_from_entities(mesh, 2, cpp.graph.AdjacencyList_int32(entities),
-                                  values.astype(np.int32))
+    tags = meshtags_from_entities(mesh, 2, cpp.graph.AdjacencyList_int32(entities), values.astype(np.int32))
     return mesh, tags
 
 
@@ -168,22 +171,33 @@ def _rigid_links(coords: np.ndarray, height: float) -> np.ndarray:
     return R.reshape(-1, 6)
 
 
-def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_mass: float = 0.0,
-                   comm=None, isolated: bool = True, mesh_data: MeshData | None = None,
-                   clamped: bool = True) -> AssembledPillar:
+def assemble_model(
+    pillar,
+    mesh_section,
+    *,
+    top_model: str | None = None,
+    top_mass: float = 0.0,
+    comm=None,
+    isolated: bool = True,
+    mesh_data: MeshData | None = None,
+    clamped: bool = True,
+) -> AssembledPillar:
     """Mesh (Gmsh), assemble K and M (dolfinx) and add the top; see the module docstring.
 
     ``clamped`` False leaves the base free too (a free-free tube, for tests
     against ring theory): K is then singular and a solve needs sigma < 0.
     """
     from .dolfinx_import import import_dolfinx
+
     import_dolfinx()
+    import dolfinx.fem.petsc  # noqa: F401  (the PETSc assemblers live there)
     import ufl
+    from dolfinx import fem
     from mpi4py import MPI
     from petsc4py import PETSc
-    from dolfinx import fem
-    import dolfinx.fem.petsc  # noqa: F401  (the PETSc assemblers live there)
+
     from ..mesh import tube_params
+
     comm = MPI.COMM_WORLD if comm is None else comm
     timings = {}
     params = tube_params(pillar, mesh_section)
@@ -211,8 +225,7 @@ def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_ma
     a = stiffness_form(u, v, pillar.youngs_modulus, pillar.poisson_ratio, dx)
     m = mass_form(u, v, pillar.density, dx)
     if top_model == "ring_mass" and top_mass > 0:
-        ds = ufl.Measure("ds", domain=mesh, subdomain_data=tags,
-                         metadata={"quadrature_degree": 2 * degree})
+        ds = ufl.Measure("ds", domain=mesh, subdomain_data=tags, metadata={"quadrature_degree": 2 * degree})
         # The discrete face's area, so that exactly top_mass is added.
         one = fem.Constant(mesh, PETSc.ScalarType(1.0))
         area = comm.allreduce(fem.assemble_scalar(fem.form(one * ds(TOP))))
@@ -238,9 +251,24 @@ def assemble_model(pillar, mesh_section, *, top_model: str | None = None, top_ma
         raise ValueError(f"unknown top model {top_model!r}")
     timings["assembly"] = time.perf_counter() - t0
     base_dofs = np.sort(np.concatenate([3 * base + c for c in range(3)]))
-    return AssembledPillar(comm, K, M, mesh, V, tags, params, mesh_data if comm.rank == 0 else None,
-                       tube_dofs, extra, top_model, float(top_mass), base_dofs, top_nodes, T,
-                       timings)
+    return AssembledPillar(
+        comm,
+        K,
+        M,
+        mesh,
+        V,
+        tags,
+        params,
+        mesh_data if comm.rank == 0 else None,
+        tube_dofs,
+        extra,
+        top_model,
+        float(top_mass),
+        base_dofs,
+        top_nodes,
+        T,
+        timings,
+    )
 
 
 def _congruence(A, T):
@@ -260,13 +288,14 @@ def _rigid_top(K, M, V, comm, top_nodes, height, top_mass, tube_dofs):
     off the top face, u_i = R_i q on it.  An exact constraint, no penalty.
     """
     from petsc4py import PETSc
+
     n_local = 3 * V.dofmap.index_map.size_local
     start = 3 * V.dofmap.index_map.local_range[0]
     last = comm.rank == comm.size - 1
     n_extra_local = RIGID_DOFS if last else 0
     N = tube_dofs
-    R = _rigid_links(V.tabulate_dof_coordinates()[top_nodes], height)      # (3 n_top, 6)
-    top_rows = (3 * top_nodes[:, None] + np.arange(3)).ravel()              # local rows
+    R = _rigid_links(V.tabulate_dof_coordinates()[top_nodes], height)  # (3 n_top, 6)
+    top_rows = (3 * top_nodes[:, None] + np.arange(3)).ravel()  # local rows
     is_top = np.zeros(n_local, dtype=bool)
     is_top[top_rows] = True
     # A top row holds an explicit 0 on its own column, so that K~ keeps a
@@ -281,8 +310,9 @@ def _rigid_top(K, M, V, comm, top_nodes, height, top_mass, tube_dofs):
     slots = indptr[top_rows][:, None] + 1 + np.arange(RIGID_DOFS)
     indices[slots] = N + np.arange(RIGID_DOFS)
     values[slots] = R
-    T = PETSc.Mat().createAIJ(((n_local, N), (n_local + n_extra_local, N + RIGID_DOFS)),
-                              csr=(indptr, indices, values), comm=comm)
+    T = PETSc.Mat().createAIJ(
+        ((n_local, N), (n_local + n_extra_local, N + RIGID_DOFS)), csr=(indptr, indices, values), comm=comm
+    )
     T.assemble()
     Kt, Mt = _congruence(K, T), _congruence(M, T)
     for A in (Kt, Mt):

@@ -59,6 +59,7 @@ EIGEN_MAX_IT = 200
 @dataclass(frozen=True)
 class ShellSection:
     """A homogeneous isotropic wall."""
+
     youngs_modulus: float
     """E (Pa)"""
     poisson_ratio: float
@@ -72,6 +73,7 @@ class ShellSection:
 @dataclass(frozen=True)
 class ShellDiscretisation:
     """Mesh of the mid-surface for the shell model."""
+
     elements_around: int = 32
     """cells around the circumference (-)"""
     elements_along: int = 40
@@ -85,6 +87,7 @@ class ShellDiscretisation:
 @dataclass(frozen=True)
 class ShellModalResult:
     """Modes of the shell model, ascending (the fields of fem3d's ModalResult)."""
+
     omega: np.ndarray
     """natural angular frequencies (rad/s)"""
     kind: list
@@ -109,8 +112,7 @@ def shell_section_of(pillar) -> tuple[ShellSection, float, float]:
     """(section, mid-surface radius R (m), height H (m)) of a scene's ``[pillar]``."""
     t = (pillar.outer_diameter - pillar.inner_diameter) / 2
     R = mid_surface_radius(pillar.outer_diameter, pillar.inner_diameter)
-    return (ShellSection(pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, t),
-            R, pillar.height)
+    return (ShellSection(pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, t), R, pillar.height)
 
 
 # --------------------------------------------------------------------------
@@ -120,6 +122,7 @@ def shell_section_of(pillar) -> tuple[ShellSection, float, float]:
 def cylinder_frame(x):
     """Orthonormal frame (e_theta, e_z, e_r) of the cylinder at spatial point x."""
     import ufl
+
     r = ufl.sqrt(x[0] ** 2 + x[1] ** 2)
     e1 = ufl.as_vector([-x[1] / r, x[0] / r, 0.0])
     e2 = ufl.as_vector([0.0, 0.0, 1.0])
@@ -130,27 +133,32 @@ def cylinder_frame(x):
 def tangent_projector(e1, e2):
     """P = [e1 e2], 3x2: takes tangent-plane components to Cartesian ones."""
     import ufl
+
     return ufl.as_matrix([[e1[i], e2[i]] for i in range(3)])
 
 
 def membrane_strain(u, P):
     import ufl
+
     return ufl.sym(P.T * ufl.grad(u) * P)
 
 
 def bending_strain(u, beta, P, n):
     import ufl
+
     return ufl.sym(P.T * (ufl.grad(beta) - ufl.grad(u) * ufl.grad(n)) * P)
 
 
 def shear_strain(u, beta, P, n):
     import ufl
+
     return P.T * beta + P.T * (ufl.grad(u).T * n)
 
 
 def plane_stress(e, E: float, nu: float):
     """C : e for an isotropic plane-stress material."""
     import ufl
+
     lmbda = E * nu / (1 - nu**2)
     mu = E / (2 * (1 + nu))
     return lmbda * ufl.tr(e) * ufl.Identity(2) + 2 * mu * e
@@ -159,19 +167,19 @@ def plane_stress(e, E: float, nu: float):
 def shell_stiffness_form(u, beta, v, gamma_, sec: ShellSection, P, n, dx_reduced, dx_full):
     """Bilinear strain-energy form a((u, beta), (v, gamma_))."""
     import ufl
+
     E, nu, t = sec.youngs_modulus, sec.poisson_ratio, sec.thickness
     mu = E / (2 * (1 + nu))
     membrane = t * ufl.inner(plane_stress(membrane_strain(u, P), E, nu), membrane_strain(v, P))
-    bending = t**3 / 12 * ufl.inner(plane_stress(bending_strain(u, beta, P, n), E, nu),
-                                    bending_strain(v, gamma_, P, n))
-    shear = SHEAR_CORRECTION * mu * t * ufl.dot(shear_strain(u, beta, P, n),
-                                                 shear_strain(v, gamma_, P, n))
+    bending = t**3 / 12 * ufl.inner(plane_stress(bending_strain(u, beta, P, n), E, nu), bending_strain(v, gamma_, P, n))
+    shear = SHEAR_CORRECTION * mu * t * ufl.dot(shear_strain(u, beta, P, n), shear_strain(v, gamma_, P, n))
     return (membrane + shear) * dx_reduced + bending * dx_full
 
 
 def shell_mass_form(u, beta, v, gamma_, sec: ShellSection, dx_full):
     """Bilinear kinetic-energy form: translation and rotary inertia of the wall."""
     import ufl
+
     rho, t = sec.density, sec.thickness
     return (rho * t * ufl.dot(u, v) + rho * t**3 / 12 * ufl.dot(beta, gamma_)) * dx_full
 
@@ -180,10 +188,17 @@ def shell_mass_form(u, beta, v, gamma_, sec: ShellSection, dx_full):
 # The modal analysis
 
 
-def shell_modal_analysis(section: ShellSection, radius: float, height: float,
-                         disc: ShellDiscretisation = ShellDiscretisation(), *,
-                         n_modes: int = 12, ends: str = "clamped-free",
-                         comm=None, method: str | None = None) -> ShellModalResult:
+def shell_modal_analysis(
+    section: ShellSection,
+    radius: float,
+    height: float,
+    disc: ShellDiscretisation = ShellDiscretisation(),
+    *,
+    n_modes: int = 12,
+    ends: str = "clamped-free",
+    comm=None,
+    method: str | None = None,
+) -> ShellModalResult:
     """The lowest ``n_modes`` modes of the tube as a shell.
 
     ``ends``: "clamped-free" (the pillar) or "simply-supported" (shear
@@ -194,11 +209,12 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
     if ends not in END_CONDITIONS:
         raise ValueError(f"ends must be one of {END_CONDITIONS}")
     from .dolfinx_import import import_dolfinx
+
     import_dolfinx()
-    from mpi4py import MPI
+    import dolfinx.fem.petsc  # noqa: F401  (registers fem.petsc)
     import ufl
     from dolfinx import fem
-    import dolfinx.fem.petsc  # noqa: F401  (registers fem.petsc)
+    from mpi4py import MPI
 
     comm = MPI.COMM_WORLD if comm is None else comm
     timings = {}
@@ -233,8 +249,7 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
     t0 = time.perf_counter()
     # a slightly negative shift keeps K - sigma M regular when rigid motions
     # are free (the axial translation of the simply supported cylinder)
-    sol = solve_gep_shift_invert(A, M, n_modes, sigma=-1.0, tol=EIGEN_TOLERANCE,
-                                 max_it=EIGEN_MAX_IT, method=method)
+    sol = solve_gep_shift_invert(A, M, n_modes, sigma=-1.0, tol=EIGEN_TOLERANCE, max_it=EIGEN_MAX_IT, method=method)
     timings["solve"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
@@ -243,8 +258,7 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
     rings = rings_of(_gather(Vu.tabulate_dof_coordinates(), comm), height)
     omega, kinds, ns = [], [], []
     for lam, vec in zip(sol.eigenvalues, sol.vectors):
-        mode = describe_mode(None, _gather(vec.array[u_dofs].reshape(-1, 3), comm), rings,
-                             n_max=N_MAX)
+        mode = describe_mode(None, _gather(vec.array[u_dofs].reshape(-1, 3), comm), rings, n_max=N_MAX)
         omega.append(np.sqrt(max(lam, 0.0)))
         kinds.append(mode.kind)
         ns.append(mode.n_circumferential)
@@ -255,17 +269,16 @@ def shell_modal_analysis(section: ShellSection, radius: float, height: float,
         vec.destroy()
     A.destroy()
     M.destroy()
-    return ShellModalResult(np.array(omega), kinds, ns, int(dofs), int(cells),
-                            disc.cell_type, disc.degree, timings)
+    return ShellModalResult(np.array(omega), kinds, ns, int(dofs), int(cells), disc.cell_type, disc.degree, timings)
 
 
 def _mesh(radius, height, disc: ShellDiscretisation, comm):
-    return mid_surface_mesh(MidSurface(radius, height, disc.elements_around,
-                                       disc.elements_along, disc.cell_type), comm)
+    return mid_surface_mesh(MidSurface(radius, height, disc.elements_around, disc.elements_along, disc.cell_type), comm)
 
 
 def _boundary_conditions(V, facets, ends: str):
     from dolfinx import fem
+
     if ends == "clamped-free":
         base = facets.find(BASE)
         bcs = []
@@ -295,7 +308,9 @@ def mid_surface_mesh(params: MidSurface, comm=None):
     """The dolfinx mesh of the mid-surface: (mesh, cell_tags, facet_tags)."""
     import gmsh
     from mpi4py import MPI
+
     from .dolfinx_import import import_dolfinx
+
     import_dolfinx()
     from dolfinx.io import gmshio
 

@@ -29,8 +29,7 @@ from ..provenance import atomic_path
 GMSH_TO_VTK = {
     5: list(range(8)),
     4: list(range(4)),
-    12: [0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15,
-         22, 23, 21, 24, 20, 25, 26],
+    12: [0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26],
     11: [0, 1, 2, 3, 4, 5, 6, 7, 9, 8],
 }
 
@@ -55,13 +54,16 @@ def vtk_cells(gmsh_cells: np.ndarray, gmsh_type: int) -> np.ndarray:
 def write_modes_vtu(path: str | Path, result) -> Path:
     """Write a ModalResult's shapes to ``path`` (.vtu); call on rank 0."""
     import meshio
+
     if result.shapes is None:
         raise ValueError("this ModalResult has no shapes (not rank 0?)")
     cells = np.asarray(result.vtu_cells, dtype=np.int64)
-    point_data = {mode_array_name(i): np.ascontiguousarray(result.shapes[i], dtype=np.float64)
-                  for i in range(len(result.omega))}
-    mesh = meshio.Mesh(np.asarray(result.points, dtype=np.float64),
-                       [(VTK_CELL[cells.shape[1]], cells)], point_data=point_data)
+    point_data = {
+        mode_array_name(i): np.ascontiguousarray(result.shapes[i], dtype=np.float64) for i in range(len(result.omega))
+    }
+    mesh = meshio.Mesh(
+        np.asarray(result.points, dtype=np.float64), [(VTK_CELL[cells.shape[1]], cells)], point_data=point_data
+    )
     with atomic_path(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
     return Path(path)

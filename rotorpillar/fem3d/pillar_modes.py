@@ -47,12 +47,13 @@ def integrate_levels(z: np.ndarray, f: np.ndarray) -> float:
 def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:
     """The first ``count`` X bending modes of a 3D ModalResult with its top mass."""
     if not getattr(result, "top", False):
-        raise InputError("the modal model needs the 3D modes with the gondola on top "
-                         "(modal_analysis(scene, top=True))")
+        raise InputError("the modal model needs the 3D modes with the gondola on top (modal_analysis(scene, top=True))")
     idx = [i for i, k in enumerate(result.kind) if k == "bending_x"]
     if len(idx) < count:
-        raise InputError(f"the 3D analysis found {len(idx)} X bending modes, the modal model needs "
-                         f"{count}: raise modal.n_modes (now {len(result.kind)} modes)")
+        raise InputError(
+            f"the 3D analysis found {len(idx)} X bending modes, the modal model needs "
+            f"{count}: raise modal.n_modes (now {len(result.kind)} modes)"
+        )
     idx = idx[:count]
     if result.beam_line is None:
         raise InputError("the 3D modes carry no beam line (not on MPI rank 0?)")
@@ -61,30 +62,49 @@ def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:
     for i in idx:
         z, phi = result.beam_line[i]
         z, phi = np.asarray(z, float), np.asarray(phi, float)
-        phi = phi / phi[-1]                            # unit tip, as the result normalises
+        phi = phi / phi[-1]  # unit tip, as the result normalises
         L.append(m_rho * integrate_levels(z, phi) + result.top_mass * phi[-1])
         heights = z if heights is None else heights
         shapes.append(phi)
     total = m_rho * pillar.height + result.top_mass
     cuts = getattr(result, "section_resultants", None)
-    resultants = {} if cuts is None else {
-        "section_heights": np.asarray(result.section_heights, float),
-        "moment_shapes": np.asarray(cuts)[idx, :, 1].T.copy(),
-        "shear_shapes": np.asarray(cuts)[idx, :, 0].T.copy()}
-    return PillarModes(np.asarray(result.omega)[idx], np.asarray(result.modal_mass)[idx], np.array(L),
-                       float(total), f"fem3d:{result.cell_type}:{result.cells}cells:deg{result.degree}",
-                       None, heights, np.column_stack(shapes),
-                       {"top_model": result.top_model, "top_mass": result.top_mass, "dofs": result.dofs,
-                        "participation_by": "Simpson along the section-mean deflection"},
-                       **resultants)
+    resultants = (
+        {}
+        if cuts is None
+        else {
+            "section_heights": np.asarray(result.section_heights, float),
+            "moment_shapes": np.asarray(cuts)[idx, :, 1].T.copy(),
+            "shear_shapes": np.asarray(cuts)[idx, :, 0].T.copy(),
+        }
+    )
+    return PillarModes(
+        np.asarray(result.omega)[idx],
+        np.asarray(result.modal_mass)[idx],
+        np.array(L),
+        float(total),
+        f"fem3d:{result.cell_type}:{result.cells}cells:deg{result.degree}",
+        None,
+        heights,
+        np.column_stack(shapes),
+        {
+            "top_model": result.top_model,
+            "top_mass": result.top_mass,
+            "dofs": result.dofs,
+            "participation_by": "Simpson along the section-mean deflection",
+        },
+        **resultants,
+    )
 
 
 def fem3d_pillar_modes(scene: Scene, count: int) -> PillarModes:
     """Run (or reuse, per process) the scene's 3D modal analysis and convert it."""
     if scene.modal.top_mass != "gondola":
-        raise InputError('modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
-                         'the modal model hangs it on its shaft: use modal.top_mass = "gondola"')
-    from . import modal_analysis            # dolfinx: imported only on this request
+        raise InputError(
+            'modal.top_mass = "gondola_and_rotor" puts the rotor on the tube rigidly; '
+            'the modal model hangs it on its shaft: use modal.top_mass = "gondola"'
+        )
+    from . import modal_analysis  # dolfinx: imported only on this request
+
     return pillar_modes_from_fem3d(modal_analysis(scene, top=True), scene.pillar, count)
 
 
@@ -93,9 +113,13 @@ def candidate_pillar_modes(scene: Scene) -> PillarModes:
     MAX_CANDIDATE_MODES): the candidates ``rotorpillar.reduced.models.build_model``
     takes as ``pillar_modes`` when ``modal_model.source = "fem3d"``."""
     import importlib.util
+
     if importlib.util.find_spec("dolfinx") is None:
-        raise InputError('modal_model.source = "fem3d" needs the 3D model (dolfinx), which is not '
-                         'installed here; use modal_model.source = "beam"')
+        raise InputError(
+            'modal_model.source = "fem3d" needs the 3D model (dolfinx), which is not '
+            'installed here; use modal_model.source = "beam"'
+        )
     from . import modal_analysis
+
     n = sum(1 for k in modal_analysis(scene, top=True).kind if k == "bending_x")
     return fem3d_pillar_modes(scene, max(1, min(n, MAX_CANDIDATE_MODES)))

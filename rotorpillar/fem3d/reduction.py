@@ -28,8 +28,7 @@ import numpy as np
 from ..errors import ComputationError
 
 
-def beam_line_tip_mass(z: np.ndarray, w: np.ndarray, mass_per_length: float,
-                       degree: int = 1) -> float:
+def beam_line_tip_mass(z: np.ndarray, w: np.ndarray, mass_per_length: float, degree: int = 1) -> float:
     """Eq. 2 on a sampled deflection line: int m_rho w**2 dz / w_tip**2 (kg).
 
     ``degree`` 2: the samples are the nodes of quadratic elements (end,
@@ -57,6 +56,7 @@ def beam_line_tip_mass(z: np.ndarray, w: np.ndarray, mass_per_length: float,
 @dataclass(frozen=True)
 class TipReduction:
     """The pillar reduced to its tip from the 3D first bending mode."""
+
     m_reduced: float
     """m_r by kinetic energy of the 3D mode (kg)"""
     tip_stiffness: float
@@ -72,10 +72,10 @@ class TipReduction:
 def tip_reduction(result, pillar) -> TipReduction:
     """Eq. 2 on the 3D model: tip mass and stiffness from a bare tube's first bending_x mode."""
     from ..reduced.pillar import section_of
+
     i = result.index("bending_x", n_axial=0)
     if i is None:
-        raise ComputationError("no first bending mode in x among the computed modes "
-                               f"({', '.join(result.kind)})")
+        raise ComputationError(f"no first bending mode in x among the computed modes ({', '.join(result.kind)})")
     if result.normalisation[i] != "unit_tip":
         raise ComputationError("the first bending mode is not normalised to its tip")
     omega = float(result.omega[i])

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 @dataclass(frozen=True)
 class RotorOnTop:
     """The rotor on its shaft (SI)."""
+
     mass: float
     """m_C (kg)"""
     inertia: float
@@ -45,7 +46,7 @@ class RotorOnTop:
     """b2 = b3, on the rotor centre's velocity relative to the ground (N*s/m)"""
 
     @classmethod
-    def from_scene(cls, scene) -> "RotorOnTop":
+    def from_scene(cls, scene) -> RotorOnTop:
         r, s = scene.rotor, scene.shaft
         return cls(r.mass, r.inertia, r.eccentricity, s.stiffness, s.damping)
 
@@ -53,6 +54,7 @@ class RotorOnTop:
 @dataclass(frozen=True)
 class Affine:
     """a0 + ac cos(theta) + as_ sin(theta)."""
+
     a0: float
     ac: float
     as_: float
@@ -75,6 +77,7 @@ class Step:
     gamma = 1/2 - alpha_m + alpha_f; parameters by
     rotorpillar.reduced.fixed_step.genalpha_parameters.
     """
+
     h: float
     """the step (s)"""
     alpha_m: float = 0.0
@@ -107,15 +110,16 @@ class Step:
         a1 = (x1 - xt) / (self.beta * self.h**2)
         return vt + self.gamma * self.h * a1, a1
 
-    def history(self, mass: float, damping: float, x: float, v: float, a: float,
-                old_force: float) -> float:
+    def history(self, mass: float, damping: float, x: float, v: float, a: float, old_force: float) -> float:
         """The known part of a scalar dof's step equation (N): the new x times
         ``stiffness`` = history + the new-time coupling forces.  ``old_force``:
         the old time's elastic and external forces acting on it (N)."""
         xt, vt = self.predict(x, v, a)
-        return (mass * (self.mass_coefficient * xt - self.alpha_m * a)
-                + damping * (self.damping_coefficient * xt - self.new_weight * vt - self.alpha_f * v)
-                + self.alpha_f * old_force)
+        return (
+            mass * (self.mass_coefficient * xt - self.alpha_m * a)
+            + damping * (self.damping_coefficient * xt - self.new_weight * vt - self.alpha_f * v)
+            + self.alpha_f * old_force
+        )
 
 
 def newmark_rotor_stiffness(rotor: RotorOnTop, h: float) -> float:
@@ -127,8 +131,11 @@ def newmark_rotor_stiffness(rotor: RotorOnTop, h: float) -> float:
 def rotor_step_stiffness(rotor: RotorOnTop, step: Step) -> float:
     """The rotor centre's effective stiffness in a step (N/m):
     (1 - af) c2 + (1 - af) gamma / (beta h) b2 + (1 - am) / (beta h**2) m."""
-    return (step.new_weight * rotor.shaft_stiffness + step.damping_coefficient * rotor.shaft_damping
-            + step.mass_coefficient * rotor.mass)
+    return (
+        step.new_weight * rotor.shaft_stiffness
+        + step.damping_coefficient * rotor.shaft_damping
+        + step.mass_coefficient * rotor.mass
+    )
 
 
 def rotor_start(rotor: RotorOnTop, theta0: float, speed0: float) -> tuple[float, float, float, float]:
@@ -146,9 +153,17 @@ def rotor_start(rotor: RotorOnTop, theta0: float, speed0: float) -> tuple[float,
     return z.real, z.imag, -speed0 * z.imag, speed0 * z.real
 
 
-def plate_and_rotor(rotor: RotorOnTop, kr: float, ux_hat: float, uz_hat: float, rho_x: float,
-                    rho_y: float, gamma: float, g: tuple[float, float, float, float],
-                    weight: float = 1.0):
+def plate_and_rotor(
+    rotor: RotorOnTop,
+    kr: float,
+    ux_hat: float,
+    uz_hat: float,
+    rho_x: float,
+    rho_y: float,
+    gamma: float,
+    g: tuple[float, float, float, float],
+    weight: float = 1.0,
+):
     """(U_x, U_z, x_r, y_r) at the new time as Affine functions of the new theta.
 
     ``ux_hat``, ``uz_hat``: the plate's motion solved without the unbalance;
@@ -184,10 +199,22 @@ def drive_torque(M0: float, slope: float, load: float, W: float) -> float:
     return M0 - slope * W - load * W * abs(W)
 
 
-def solve_spin(rotor: RotorOnTop, h: float, theta_n: float, W_n: float, alpha_n: float,
-               sx: Affine, sy: Affine, M0: float, slope: float, load: float,
-               tol: float = 1e-12, max_iter: int = 30, step: Step | None = None,
-               old_torque: float = 0.0) -> tuple[float, float, float, int]:
+def solve_spin(
+    rotor: RotorOnTop,
+    h: float,
+    theta_n: float,
+    W_n: float,
+    alpha_n: float,
+    sx: Affine,
+    sy: Affine,
+    M0: float,
+    slope: float,
+    load: float,
+    tol: float = 1e-12,
+    max_iter: int = 30,
+    step: Step | None = None,
+    old_torque: float = 0.0,
+) -> tuple[float, float, float, int]:
     """The new (theta, Omega, Omega', Newton iterations) of a step (Newmark's by default).
 
     (1 - am) J alpha + am J alpha_n = (1 - af) (Md - Mc + T_shaft)(new)
@@ -208,8 +235,11 @@ def solve_spin(rotor: RotorOnTop, h: float, theta_n: float, W_n: float, alpha_n:
         x, y = sx.at(c, s), sy.at(c, s)
         Tc = c2e * (y * c - x * s)
         dTc = c2e * (sy.slope(c, s) * c - y * s - sx.slope(c, s) * s - x * c)
-        R = J * ((1 - am) * alpha + am * alpha_n) - wf * (drive_torque(M0, slope, load, W) + Tc) \
+        R = (
+            J * ((1 - am) * alpha + am * alpha_n)
+            - wf * (drive_torque(M0, slope, load, W) + Tc)
             - step.alpha_f * old_torque
+        )
         dR = (1 - am) * J / (b * hh * hh) + wf * ((slope + 2 * load * abs(W)) * g / (b * hh) - dTc)
         dth = -R / dR
         th += dth

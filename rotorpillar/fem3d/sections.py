@@ -43,12 +43,14 @@ COMPONENTS = ("shear", "moment", "axial")
 def cut_heights(params) -> np.ndarray:
     """The element-layer interfaces of the structured tube, base and top included (m)."""
     from ..mesh.tube import layer_heights
+
     return np.r_[0.0, layer_heights(params) * params.height]
 
 
 @dataclass
 class SectionFunctionals:
     """The linear functionals of the section resultants of one assembled model."""
+
     heights: np.ndarray
     """(n_z,) cut heights, base first (m)"""
     rows: np.ndarray
@@ -76,13 +78,16 @@ def section_functionals(model, youngs_modulus: float, poisson_ratio: float) -> S
     piecewise constant, and the cut's rigid field w) set per cut and component.
     """
     from .dolfinx_import import import_dolfinx
+
     import_dolfinx()
+    import dolfinx.fem.petsc  # noqa: F401
     import ufl
-    from petsc4py import PETSc
     from dolfinx import fem
     from dolfinx.mesh import compute_midpoints
-    import dolfinx.fem.petsc  # noqa: F401
+    from petsc4py import PETSc
+
     from .forms import epsilon, sigma
+
     mesh, V = model.mesh, model.V
     heights = cut_heights(model.params)
     H = model.params.height
@@ -98,7 +103,7 @@ def section_functionals(model, youngs_modulus: float, poisson_ratio: float) -> S
     dx = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": 2 * model.V.ufl_element().degree()})
     form = fem.form(chi * ufl.inner(sigma(w, youngs_modulus, poisson_ratio), epsilon(v)) * dx)
     coords = V.tabulate_dof_coordinates()
-    n_nodes = coords.shape[0]                                   # owned and ghost nodes
+    n_nodes = coords.shape[0]  # owned and ghost nodes
     columns = []
     for k, zk in enumerate(heights):
         weights = np.zeros(n_cells)

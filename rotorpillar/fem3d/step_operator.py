@@ -16,6 +16,7 @@ def step_operator(K, M, N: int, plate_x: float, plate_z: float, wf: float, cm: f
     """(ksp, Keff, (plate_x, plate_z)): Keff = wf K + cm M + plate_x on row N (the plate's
     U_x) + plate_z on row N + 2 (its U_z), factorised."""
     from petsc4py import PETSc
+
     Keff = K.copy()
     Keff.scale(wf)
     Keff.axpy(cm, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
@@ -68,6 +69,7 @@ def add_shaft_acceleration(M, mask, plate: Plate, a, force) -> None:
     if not any(force):
         return
     from petsc4py import PETSc
+
     Mm = M.copy()
     Mm.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
     ones = mask.duplicate()

@@ -58,6 +58,7 @@ def boundary_layer_length(radius: float, thickness: float, poisson_ratio: float)
 @dataclass
 class StressRecovery:
     """The observer of a 3D transient (see the module text); collective under MPI."""
+
     pillar: Pillar
     """the scene's [pillar] section"""
     top_mass: float
@@ -73,6 +74,7 @@ class StressRecovery:
     def attach(self, model) -> None:
         """Build the functionals and the projection on the assembled model."""
         from .sections import section_functionals
+
         self._model = model
         self._sections = section_functionals(model, self.pillar.youngs_modulus, self.pillar.poisson_ratio)
         self._heights = self._sections.heights
@@ -80,7 +82,9 @@ class StressRecovery:
         self._next_frame = 0.0
         # per quantity: (|base value|, time (s), the state then: a PETSc Vec)
         self._peaks: dict[str, tuple[float, float | None, Any]] = {
-            "moment": (-1.0, None, None), "shear": (-1.0, None, None)}
+            "moment": (-1.0, None, None),
+            "shear": (-1.0, None, None),
+        }
         self._frame_values: list[tuple[float, np.ndarray]] = []
         self._writer = _Writer(self.xdmf_path, model, self._vm) if self.xdmf_path else None
 
@@ -119,8 +123,7 @@ class StressRecovery:
                 x.destroy()
         self._peaks = {}
         res = np.array(self.resultants)
-        static = axial_force(self.heights, section_of(self.pillar).mass_per_length, self.pillar.height,
-                             self.top_mass)
+        static = axial_force(self.heights, section_of(self.pillar).mass_per_length, self.pillar.height, self.top_mass)
         res[:, :, 2] += static[None, :]
         summary = self._summary(np.array(self.times), res)
         path = self._writer.close() if self._writer is not None else None
@@ -145,8 +148,11 @@ class StressRecovery:
         coords = self._vm.coordinates
         comm = self._model.comm
         found = {}
-        for name, mask in (("peak", np.ones(len(coords), bool)), ("clamp", coords[:, 2] <= lb),
-                           ("away", coords[:, 2] > lb)):
+        for name, mask in (
+            ("peak", np.ones(len(coords), bool)),
+            ("clamp", coords[:, 2] <= lb),
+            ("away", coords[:, 2] > lb),
+        ):
             best: tuple[float, tuple[float, ...] | None, float | None] = (-1.0, None, None)
             for time_, vm in self._frame_values:
                 if mask.any():
@@ -164,11 +170,16 @@ class StressRecovery:
             if name == "clamp":
                 nominal = float(extreme_fibre_stress(res[j, 0, 1], res[j, 0, 2], sec))
             out[name] = StressPeak(val, pos, float(when), nominal, val / nominal if nominal else math.nan)
-        return VonMisesSummary(out["peak"], out["clamp"], out["away"], float(lb),
-                               len(self._frame_values),
-                               "the beam's axial stress -N(z)/A (self-weight, gondola, rotor; g = "
-                               f"{STANDARD_GRAVITY}) superposed on the 3D dynamic field",
-                               self._vm.space_name)
+        return VonMisesSummary(
+            out["peak"],
+            out["clamp"],
+            out["away"],
+            float(lb),
+            len(self._frame_values),
+            "the beam's axial stress -N(z)/A (self-weight, gondola, rotor; g = "
+            f"{STANDARD_GRAVITY}) superposed on the 3D dynamic field",
+            self._vm.space_name,
+        )
 
 
 def _global_best(comm, best):
@@ -186,12 +197,15 @@ class VonMisesProjection:
 
     def __init__(self, model, pillar, top_mass: float, gravity: bool = True):
         from .dolfinx_import import import_dolfinx
+
         import_dolfinx()
-        import ufl
-        from petsc4py import PETSc
-        from dolfinx import fem
         import dolfinx.fem.petsc  # noqa: F401
+        import ufl
+        from dolfinx import fem
+        from petsc4py import PETSc
+
         from .forms import sigma
+
         mesh = model.mesh
         degree = mesh.geometry.cmap.degree
         self.S = fem.FunctionSpace(mesh, ("Lagrange", degree))
@@ -228,9 +242,10 @@ class VonMisesProjection:
 
     def project(self, x) -> np.ndarray:
         """The projected von Mises stress at this rank's owned nodes for the unknowns x (Pa)."""
-        from petsc4py import PETSc
-        from dolfinx import fem
         import dolfinx.fem.petsc  # noqa: F401
+        from dolfinx import fem
+        from petsc4py import PETSc
+
         u = self.model.tube_displacement(x)
         n = self.u.vector.getLocalSize()
         self.u.vector.getArray()[:n] = u.getArray(readonly=True)[:n]
@@ -245,7 +260,7 @@ class VonMisesProjection:
         self.vm.x.scatter_forward()
         if self.u_out is not self.u:
             self.u_out.interpolate(self.u)
-        return self.vm.x.array[:len(self.coordinates)].copy()
+        return self.vm.x.array[: len(self.coordinates)].copy()
 
     def destroy(self) -> None:
         for obj in (self.ksp, self.A, self.b):
@@ -257,6 +272,7 @@ class _Writer:
 
     def __init__(self, path: Path, model, vm: VonMisesProjection):
         from dolfinx.io import XDMFFile
+
         self.path, self.comm = Path(path), model.comm
         if self.comm.rank == 0:
             self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -273,7 +289,7 @@ class _Writer:
         self.file.close()
         self.comm.barrier()
         if self.comm.rank == 0:
-            for f in sorted(self.scratch.iterdir()):       # .h5 first, then the .xdmf naming it
+            for f in sorted(self.scratch.iterdir()):  # .h5 first, then the .xdmf naming it
                 os.replace(f, self.path.parent / f.name)
             shutil.rmtree(self.scratch, ignore_errors=True)
         self.comm.barrier()

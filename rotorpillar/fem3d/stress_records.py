@@ -10,6 +10,7 @@ from ..provenance import JsonRecord
 @dataclass(frozen=True)
 class StressPeak(JsonRecord):
     """A peak of the von Mises field: its value, where and when."""
+
     value: float
     """von Mises stress (Pa)"""
     position: tuple[float, float, float]
@@ -25,6 +26,7 @@ class StressPeak(JsonRecord):
 @dataclass(frozen=True)
 class VonMisesSummary(JsonRecord):
     """What the von Mises recovery found over the frames and the peak instants."""
+
     peak: StressPeak
     """the largest anywhere"""
     clamp: StressPeak

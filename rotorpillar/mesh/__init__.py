@@ -31,10 +31,39 @@ rotorpillar.errors.InputError: mesh.elements_around = 0 is out of range: must be
 from .arrays import MeshData, cylindrical_nodes, extract_mesh_data
 from .isolated import MESH_TIMEOUT, tube_mesh_data, worker_command
 from .midsurface import MidSurface, gmsh_mid_surface, mid_surface_radius
-from .tube import (BASE, GMSH_CELLS, GROUP_NAMES, TOP, TUBE, WALL, TubeMeshParams, TubeTags,
-                   build_tube, layer_heights, tube_params)
+from .tube import (
+    BASE,
+    GMSH_CELLS,
+    GROUP_NAMES,
+    TOP,
+    TUBE,
+    WALL,
+    TubeMeshParams,
+    TubeTags,
+    build_tube,
+    layer_heights,
+    tube_params,
+)
 
-__all__ = ["BASE", "GMSH_CELLS", "GROUP_NAMES", "MESH_TIMEOUT", "TOP", "TUBE", "WALL",
-           "MeshData", "MidSurface", "TubeMeshParams", "TubeTags", "build_tube",
-           "cylindrical_nodes", "extract_mesh_data", "gmsh_mid_surface", "layer_heights",
-           "mid_surface_radius", "tube_mesh_data", "tube_params", "worker_command"]
+__all__ = [
+    "BASE",
+    "GMSH_CELLS",
+    "GROUP_NAMES",
+    "MESH_TIMEOUT",
+    "TOP",
+    "TUBE",
+    "WALL",
+    "MeshData",
+    "MidSurface",
+    "TubeMeshParams",
+    "TubeTags",
+    "build_tube",
+    "cylindrical_nodes",
+    "extract_mesh_data",
+    "gmsh_mid_surface",
+    "layer_heights",
+    "mid_surface_radius",
+    "tube_mesh_data",
+    "tube_params",
+    "worker_command",
+]

@@ -18,6 +18,7 @@ class MeshData:
     ``cells`` and ``facets`` index rows of ``points``; ``facet_markers`` holds
     the physical group (BASE, TOP, WALL) of each facet.
     """
+
     points: np.ndarray
     """node coordinates (n, 3) (m)"""
     cells: np.ndarray
@@ -41,24 +42,27 @@ class MeshData:
 
     def corner_cells(self) -> np.ndarray:
         """The cells by their vertices only (first-order connectivity, VTK order)."""
-        return self.cells[:, :8 if self.cell_type == "hexahedron" else 4]
+        return self.cells[:, : 8 if self.cell_type == "hexahedron" else 4]
 
     def to_bytes(self) -> bytes:
         buf = io.BytesIO()
-        np.savez(buf, points=self.points, cells=self.cells, facets=self.facets,
-                 facet_markers=self.facet_markers,
-                 types=np.array([self.gmsh_cell, self.gmsh_facet]))
+        np.savez(
+            buf,
+            points=self.points,
+            cells=self.cells,
+            facets=self.facets,
+            facet_markers=self.facet_markers,
+            types=np.array([self.gmsh_cell, self.gmsh_facet]),
+        )
         return buf.getvalue()
 
     @classmethod
-    def from_bytes(cls, data: bytes) -> "MeshData":
+    def from_bytes(cls, data: bytes) -> MeshData:
         z = np.load(io.BytesIO(data))
-        return cls(z["points"], z["cells"], int(z["types"][0]), z["facets"], int(z["types"][1]),
-                   z["facet_markers"])
+        return cls(z["points"], z["cells"], int(z["types"][0]), z["facets"], int(z["types"][1]), z["facet_markers"])
 
 
-def cylindrical_nodes(points: np.ndarray, cells: np.ndarray, reference: np.ndarray,
-                      cell_type: str) -> np.ndarray:
+def cylindrical_nodes(points: np.ndarray, cells: np.ndarray, reference: np.ndarray, cell_type: str) -> np.ndarray:
     """Positions of the cells' nodes, mapped from their vertices in cylindrical coordinates.
 
     Gmsh puts the mid-edge node of a straight mesh edge (a tetrahedron's
@@ -80,8 +84,10 @@ def cylindrical_nodes(points: np.ndarray, cells: np.ndarray, reference: np.ndarr
     theta = theta[:, :1] + (theta - theta[:, :1] + np.pi) % (2 * np.pi) - np.pi
     if cell_type == "hexahedron":
         # trilinear shape functions on [-1, 1]**3 in Gmsh's vertex order
-        sign = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
-                         [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], dtype=float)
+        sign = np.array(
+            [[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1], [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]],
+            dtype=float,
+        )
         shape = np.prod(1 + reference[:, None, :] * sign[None, :, :], axis=2) / 8
     else:
         u, w, s = reference.T
@@ -125,5 +131,6 @@ def extract_mesh_data(model) -> MeshData:
     used = np.unique(cells)
     renumber = np.full(len(points), -1, dtype=np.int64)
     renumber[used] = np.arange(len(used))
-    return MeshData(points[used], renumber[cells], gmsh_cell, renumber[np.concatenate(facets)],
-                    gmsh_facet, np.concatenate(markers))
+    return MeshData(
+        points[used], renumber[cells], gmsh_cell, renumber[np.concatenate(facets)], gmsh_facet, np.concatenate(markers)
+    )

@@ -21,6 +21,7 @@ MESH_TIMEOUT = 600.0
 
 def _mesh_in_process(p: TubeMeshParams) -> MeshData:
     import gmsh
+
     gmsh.initialize(["-noenv"], readConfigFiles=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
@@ -54,8 +55,12 @@ def tube_mesh_data(p: TubeMeshParams, *, isolated: bool = True) -> MeshData:
         # the pipe of a child that has already died raises SIGPIPE, which
         # PETSc's signal handler (installed once petsc4py is imported) turns
         # into an abort of the caller.
-        proc = subprocess.run(worker_command() + [json.dumps(asdict(p))], capture_output=True,
-                              stdin=subprocess.DEVNULL, timeout=MESH_TIMEOUT)
+        proc = subprocess.run(
+            worker_command() + [json.dumps(asdict(p))],
+            capture_output=True,
+            stdin=subprocess.DEVNULL,
+            timeout=MESH_TIMEOUT,
+        )
     except subprocess.TimeoutExpired:
         raise ComputationError(f"Gmsh did not finish meshing the tube within {MESH_TIMEOUT:g} s") from None
     if proc.returncode != 0:

@@ -24,10 +24,10 @@ TOP = 2
 """Facet tag of the top circle, z = H."""
 
 
-
 @dataclass(frozen=True)
 class MidSurface:
     """A structured mesh of a cylinder's lateral surface."""
+
     radius: float
     """mid-surface radius R (m)"""
     height: float
@@ -63,9 +63,14 @@ def gmsh_mid_surface(model, params: MidSurface) -> dict[str, int]:
     occ.synchronize()
     # A closed curve: n + 1 nodes make n segments (the end node is the start).
     model.mesh.setTransfiniteCurve(circle, params.elements_around + 1)
-    out = occ.extrude([(1, circle)], 0.0, 0.0, params.height,
-                      numElements=[params.elements_along],
-                      recombine=params.cell_type == "quadrilateral")
+    out = occ.extrude(
+        [(1, circle)],
+        0.0,
+        0.0,
+        params.height,
+        numElements=[params.elements_along],
+        recombine=params.cell_type == "quadrilateral",
+    )
     occ.synchronize()
     # extrude returns [top curve, surface, seam curves...]
     (_, top), (_, surface) = out[0], out[1]

@@ -24,9 +24,16 @@ WALL = 3
 GROUP_NAMES = {(3, TUBE): "tube", (2, BASE): "base", (2, TOP): "top", (2, WALL): "wall"}
 
 #: Gmsh element type -> (cell name, geometry order)
-GMSH_CELLS = {5: ("hexahedron", 1), 12: ("hexahedron", 2), 4: ("tetrahedron", 1),
-              11: ("tetrahedron", 2), 3: ("quadrilateral", 1), 10: ("quadrilateral", 2),
-              2: ("triangle", 1), 9: ("triangle", 2)}
+GMSH_CELLS = {
+    5: ("hexahedron", 1),
+    12: ("hexahedron", 2),
+    4: ("tetrahedron", 1),
+    11: ("tetrahedron", 2),
+    3: ("quadrilateral", 1),
+    10: ("quadrilateral", 2),
+    2: ("triangle", 1),
+    9: ("triangle", 2),
+}
 
 
 #: Peak memory per displacement DOF of one modal solve in one process (mesh,
@@ -49,6 +56,7 @@ def memory_budget() -> float:
 @dataclass(frozen=True)
 class TubeMeshParams:
     """What Gmsh needs to build the tube: its geometry and its discretisation."""
+
     height: float
     """H (m)"""
     outer_radius: float
@@ -80,24 +88,31 @@ class TubeMeshParams:
                 raise InputError(f"{name}: {key} = {v!r} is out of range: must be > 0 (m)")
         ri = self.inner_radius
         if not (isinstance(ri, (int, float)) and math.isfinite(ri) and 0 < ri < self.outer_radius):
-            raise InputError(f"pillar.inner_diameter = {2 * ri!r} is out of range: the 3D model needs "
-                             f"a tube, 0 < inner_diameter < outer_diameter = {2 * self.outer_radius:g} (m)")
+            raise InputError(
+                f"pillar.inner_diameter = {2 * ri!r} is out of range: the 3D model needs "
+                f"a tube, 0 < inner_diameter < outer_diameter = {2 * self.outer_radius:g} (m)"
+            )
         if self.height < MIN_SIZE or self.outer_radius - self.inner_radius < MIN_SIZE / 100:
-            raise InputError(f"pillar: the 3D mesh needs height >= {MIN_SIZE:g} m and a wall "
-                             f">= {MIN_SIZE / 100:g} m thick (height {self.height:g} m, wall "
-                             f"{self.outer_radius - self.inner_radius:g} m): Gmsh's tolerances")
+            raise InputError(
+                f"pillar: the 3D mesh needs height >= {MIN_SIZE:g} m and a wall "
+                f">= {MIN_SIZE / 100:g} m thick (height {self.height:g} m, wall "
+                f"{self.outer_radius - self.inner_radius:g} m): Gmsh's tolerances"
+            )
         g = self.grading
         if not (isinstance(g, (int, float)) and math.isfinite(g) and g >= 1):
             raise InputError(f"mesh.grading = {g!r} is out of range: must be >= 1")
         if self.order not in (1, 2):
             raise InputError(f"mesh.degree = {self.order!r}: must be one of 1, 2")
         if self.cell_type not in CELL_TYPES:
-            raise InputError(f"mesh.cell_type = {self.cell_type!r}: must be one of "
-                             + ", ".join(repr(c) for c in CELL_TYPES))
-        check_memory(self.estimated_bytes,
-                     f"mesh: {self.elements_around} around x {self.elements_along} along x "
-                     f"{self.elements_through} through: about {self.estimated_dofs:.3g} DOFs",
-                     "use fewer elements")
+            raise InputError(
+                f"mesh.cell_type = {self.cell_type!r}: must be one of " + ", ".join(repr(c) for c in CELL_TYPES)
+            )
+        check_memory(
+            self.estimated_bytes,
+            f"mesh: {self.elements_around} around x {self.elements_along} along x "
+            f"{self.elements_through} through: about {self.estimated_dofs:.3g} DOFs",
+            "use fewer elements",
+        )
 
     @property
     def estimated_dofs(self) -> int:
@@ -108,8 +123,7 @@ class TubeMeshParams:
         hexahedral P2 mesh has, so the same count is a fair estimate).
         """
         k = self.order
-        nodes = (k * self.elements_around) * (k * self.elements_through + 1) \
-            * (k * self.elements_along + 1)
+        nodes = (k * self.elements_around) * (k * self.elements_through + 1) * (k * self.elements_along + 1)
         return 3 * nodes
 
     def solver_dofs(self, rigid_top: bool) -> int:
@@ -160,15 +174,22 @@ def layer_heights(p: TubeMeshParams) -> np.ndarray:
 def tube_params(pillar, mesh) -> TubeMeshParams:
     """The mesh parameters of a scene's ``[pillar]`` and ``[mesh]`` sections."""
     return TubeMeshParams(
-        height=pillar.height, outer_radius=pillar.outer_diameter / 2,
-        inner_radius=pillar.inner_diameter / 2, elements_around=mesh.elements_around,
-        elements_along=mesh.elements_along, elements_through=mesh.elements_through,
-        order=mesh.degree, cell_type=mesh.cell_type, grading=getattr(mesh, "grading", 1.0))
+        height=pillar.height,
+        outer_radius=pillar.outer_diameter / 2,
+        inner_radius=pillar.inner_diameter / 2,
+        elements_around=mesh.elements_around,
+        elements_along=mesh.elements_along,
+        elements_through=mesh.elements_through,
+        order=mesh.degree,
+        cell_type=mesh.cell_type,
+        grading=getattr(mesh, "grading", 1.0),
+    )
 
 
 @dataclass(frozen=True)
 class TubeTags:
     """Gmsh entity tags of the built tube, per physical group."""
+
     volumes: tuple
     base: tuple
     top: tuple
@@ -182,6 +203,7 @@ def build_tube(model, p: TubeMeshParams) -> TubeTags:
     TOP) and "wall" (inner and outer lateral surfaces, WALL).
     """
     import gmsh
+
     geo = model.geo
     s, layers = p.sectors, p.elements_through
     per_sector = p.elements_around // s
@@ -193,14 +215,12 @@ def build_tube(model, p: TubeMeshParams) -> TubeTags:
     # of a mesh edge that is not on a curve at the chord's midpoint).
     radii = [p.inner_radius + (p.outer_radius - p.inner_radius) * j / layers for j in range(layers + 1)]
     pts = [[geo.addPoint(r * math.cos(a), r * math.sin(a), 0) for a in angles] for r in radii]
-    arcs = [[geo.addCircleArc(pts[j][k], centre, pts[j][(k + 1) % s]) for k in range(s)]
-            for j in range(layers + 1)]
+    arcs = [[geo.addCircleArc(pts[j][k], centre, pts[j][(k + 1) % s]) for k in range(s)] for j in range(layers + 1)]
     radial = [[geo.addLine(pts[j][k], pts[j + 1][k]) for k in range(s)] for j in range(layers)]
     surfaces, inner, outer = [], [], []
     for j in range(layers):
         for k in range(s):
-            loop = geo.addCurveLoop([radial[j][k], arcs[j + 1][k], -radial[j][(k + 1) % s],
-                                     -arcs[j][k]])
+            loop = geo.addCurveLoop([radial[j][k], arcs[j + 1][k], -radial[j][(k + 1) % s], -arcs[j][k]])
             surfaces.append(geo.addPlaneSurface([loop]))
             inner.append(j == 0)
             outer.append(j == layers - 1)
@@ -213,15 +233,21 @@ def build_tube(model, p: TubeMeshParams) -> TubeTags:
         if hexa:
             geo.mesh.setRecombine(2, sf)
     # Extruded triangles without recombination become 3 tetrahedra per prism.
-    out = geo.extrude([(2, sf) for sf in surfaces], 0, 0, p.height,
-                      numElements=[1] * p.elements_along, heights=list(layer_heights(p)),
-                      recombine=hexa)
+    out = geo.extrude(
+        [(2, sf) for sf in surfaces],
+        0,
+        0,
+        p.height,
+        numElements=[1] * p.elements_along,
+        heights=list(layer_heights(p)),
+        recombine=hexa,
+    )
     geo.synchronize()
     # Per extruded surface: [top, volume, side(radial k), side(outer arc), side(radial k+1),
     # side(inner arc)], in the order of the curve loop.
     tops, vols, walls = [], [], []
     for i in range(len(surfaces)):
-        chunk = out[6 * i: 6 * i + 6]
+        chunk = out[6 * i : 6 * i + 6]
         tops.append(chunk[0][1])
         vols.append(chunk[1][1])
         if outer[i]:
@@ -230,8 +256,7 @@ def build_tube(model, p: TubeMeshParams) -> TubeTags:
             walls.append(chunk[5][1])
     tags = TubeTags(tuple(vols), tuple(surfaces), tuple(tops), tuple(walls))
     for (dim, tag), name in GROUP_NAMES.items():
-        ents = {TUBE: tags.volumes}[tag] if dim == 3 else {BASE: tags.base, TOP: tags.top,
-                                                           WALL: tags.wall}[tag]
+        ents = {TUBE: tags.volumes}[tag] if dim == 3 else {BASE: tags.base, TOP: tags.top, WALL: tags.wall}[tag]
         model.addPhysicalGroup(dim, list(ents), tag, name=name)
     gmsh.option.setNumber("Mesh.ElementOrder", p.order)
     gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)

@@ -31,29 +31,30 @@ from __future__ import annotations
 import math
 import sys
 import time
-from typing import Any
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ..provenance import atomic_path
 from .geometry import ModeSet, bending_columns
-from .readers import Simulation
 from .modeshapes import BEAM_TARGET, nice_factor
 from .offscreen import pyvista
+from .readers import Simulation
 
 MAX_FRAMES = 180
 #: Subdivisions of the quadratic faces in an animation (see inputs.SUBDIVISION).
 ANIMATION_SUBDIVISION = 1
 FPS = 20
-VIEW_SIZE = (400, 560)       # 3D view, width x height (px)
-PANEL_SIZE = (480, 560)      # chart panel; 880 x 560 together, multiples of 16
+VIEW_SIZE = (400, 560)  # 3D view, width x height (px)
+PANEL_SIZE = (480, 560)  # chart panel; 880 x 560 together, multiples of 16
 
 
 @dataclass(frozen=True)
 class PillarMotion:
     """What moves the tube: coefficients times shapes, plus the ground."""
+
     t: np.ndarray
     """times (s), n_t"""
     coefficients: np.ndarray
@@ -85,20 +86,27 @@ def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
         q = np.asarray(q, dtype=float).reshape(n, -1)
         cols = bending_columns(modeset.modes, q.shape[1], sim.meta.get("modal_modes"))
         if len(cols) == q.shape[1]:
-            return PillarMotion(t, q, [modeset.shape(i) for i in cols], ground,
-                                f"modal coordinates x {q.shape[1]} bending mode(s) of the 3D model")
+            return PillarMotion(
+                t,
+                q,
+                [modeset.shape(i) for i in cols],
+                ground,
+                f"modal coordinates x {q.shape[1]} bending mode(s) of the 3D model",
+            )
     tip = sim.get("tip_x")
     if tip is None:
         raise ValueError(f"simulate_{sim.case}.npz has neither modal_coordinates nor tip_x")
     cols = bending_columns(modeset.modes, 1)
     i = cols[0] if cols else 0
-    what = ("tip_x x first bending mode of the 3D model" if modeset.source.endswith(".vtu")
-            else "tip_x x Euler-Bernoulli cantilever shape (no 3D mode shapes)")
+    what = (
+        "tip_x x first bending mode of the 3D model"
+        if modeset.source.endswith(".vtu")
+        else "tip_x x Euler-Bernoulli cantilever shape (no 3D mode shapes)"
+    )
     return PillarMotion(t, (tip - ground)[:, None], [modeset.shape(i)], ground, what)
 
 
-def frame_times(t: np.ndarray, max_frames: int = MAX_FRAMES, focus=None,
-                share: float = 0.7) -> np.ndarray:
+def frame_times(t: np.ndarray, max_frames: int = MAX_FRAMES, focus=None, share: float = 0.7) -> np.ndarray:
     """Frame times over the run, at most ``max_frames`` and at most one per
     stored sample: uniform, or with ``focus`` = (t0, t1) time-warped, a
     ``share`` of the frames spread over that window (the passage through
@@ -121,9 +129,11 @@ def frame_times(t: np.ndarray, max_frames: int = MAX_FRAMES, focus=None,
     rest = n - inside
     before = int(round(rest * (a - t0) / ((a - t0) + (t1 - b)))) if (a - t0) + (t1 - b) > 0 else 0
     after = rest - before
-    parts = [np.linspace(t0, a, before, endpoint=False) if before else np.zeros(0),
-             np.linspace(a, b, inside),
-             np.linspace(b, t1, after + 1)[1:] if after else np.zeros(0)]
+    parts = [
+        np.linspace(t0, a, before, endpoint=False) if before else np.zeros(0),
+        np.linspace(a, b, inside),
+        np.linspace(b, t1, after + 1)[1:] if after else np.zeros(0),
+    ]
     return np.concatenate(parts)
 
 
@@ -154,6 +164,7 @@ def exaggeration(motion: PillarMotion, height: float) -> float:
 @dataclass(frozen=True)
 class AnimationResult:
     """What an animation shows and what it cost."""
+
     path: Path
     """the MP4 (or GIF) written"""
     frames: int
@@ -196,15 +207,14 @@ def _decimate(idx_lo: int, idx_hi: int, most: int) -> slice:
 class _Panel:
     """The matplotlib half of a frame, redrawn by blitting the moving artists."""
 
-    def __init__(self, sim: Simulation, motion: PillarMotion, size, title: str, tf=None,
-                 focus=None):
+    def __init__(self, sim: Simulation, motion: PillarMotion, size, title: str, tf=None, focus=None):
         from .style import COLOURS, pyplot
+
         plt = pyplot()
         self.t = motion.t
         # the time axis as the frames run: warped where the frames are dense
         n = len(tf) if tf is not None else 2
-        self.u = (lambda x: np.interp(x, tf, np.linspace(0.0, 1.0, n))) if focus is not None \
-            else (lambda x: x)
+        self.u = (lambda x: np.interp(x, tf, np.linspace(0.0, 1.0, n))) if focus is not None else (lambda x: x)
         self.orbit = _orbit(sim)
         w, h = size
         fig = plt.figure(figsize=(w / 100, h / 100), dpi=100, layout="constrained")
@@ -223,13 +233,12 @@ class _Panel:
             ax_o.set_xlabel("horizontal X, rotor minus pillar top (mm)")
             ax_o.set_ylabel("vertical Y (mm)")
             ax_o.set_title("rotor orbit relative to the pillar top", fontsize=9)
-            self.trail, = ax_o.plot([], [], color=COLOURS["drive"], lw=1.0, animated=True)
-            self.dot, = ax_o.plot([], [], "o", color=COLOURS["unstable"], ms=5, animated=True)
+            (self.trail,) = ax_o.plot([], [], color=COLOURS["drive"], lw=1.0, animated=True)
+            (self.dot,) = ax_o.plot([], [], "o", color=COLOURS["unstable"], ms=5, animated=True)
             self.ox, self.oy = ox, oy
             self.moving += [(ax_o, self.trail), (ax_o, self.dot)]
         else:
-            ax_o.text(0.5, 0.5, "no rotor_x / rotor_y in this run", ha="center", va="center",
-                      transform=ax_o.transAxes)
+            ax_o.text(0.5, 0.5, "no rotor_x / rotor_y in this run", ha="center", va="center", transform=ax_o.transAxes)
             ax_o.set_axis_off()
         Om = sim.get("Omega")
         u = self.u(self.t)
@@ -240,8 +249,7 @@ class _Panel:
         if focus is not None:
             ax_t.axvspan(self.u(focus[0]), self.u(focus[1]), color="#E69F00", alpha=0.12, lw=0)
             ticks: list[float] = []
-            for x in np.round([self.t[0], focus[0], 0.5 * (focus[0] + focus[1]), focus[1],
-                               self.t[-1]], 2):
+            for x in np.round([self.t[0], focus[0], 0.5 * (focus[0] + focus[1]), focus[1], self.t[-1]], 2):
                 if all(abs(self.u(x) - self.u(y)) > 0.08 for y in ticks):
                     ticks.append(float(x))
             ax_t.set_xticks(self.u(np.array(ticks)), [f"{x:g}" for x in ticks])
@@ -255,7 +263,7 @@ class _Panel:
         ax_d.grid(False)
         self.cursor = ax_t.axvline(u[0], color="black", lw=1.0, animated=True)
         self.moving.append((ax_t, self.cursor))
-        for a in fig.axes:      # 9.5 pt at 100 dpi: 13 px, legible in the video
+        for a in fig.axes:  # 9.5 pt at 100 dpi: 13 px, legible in the video
             a.tick_params(labelsize=9.5)
             a.xaxis.label.set_fontsize(10)
             a.yaxis.label.set_fontsize(10)
@@ -280,6 +288,7 @@ class _Panel:
 
     def close(self):
         from .style import pyplot
+
         pyplot().close(self.fig)
 
 
@@ -287,6 +296,7 @@ def have_ffmpeg() -> bool:
     """Is imageio-ffmpeg's ffmpeg binary available?"""
     try:
         import imageio_ffmpeg
+
         return bool(imageio_ffmpeg.get_ffmpeg_exe())
     except (ImportError, RuntimeError):
         return False
@@ -295,15 +305,34 @@ def have_ffmpeg() -> bool:
 def _writer(path: Path, fps: int):
     """An imageio writer for MP4 (H.264, yuv420p: what browsers play)."""
     import imageio.v2 as iio
-    return iio.get_writer(str(path), format="FFMPEG", fps=fps, codec="libx264", quality=6,
-                          pixelformat="yuv420p", macro_block_size=16, ffmpeg_log_level="error")
+
+    return iio.get_writer(
+        str(path),
+        format="FFMPEG",
+        fps=fps,
+        codec="libx264",
+        quality=6,
+        pixelformat="yuv420p",
+        macro_block_size=16,
+        ffmpeg_log_level="error",
+    )
 
 
-def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = "",
-            max_frames: int = MAX_FRAMES, fps: int = FPS, view_size=VIEW_SIZE,
-            panel_size=PANEL_SIZE, poster: str | Path | None = None,
-            progress: bool = True, gif: bool = False, focus=None,
-            banner: str = "") -> AnimationResult:
+def animate(
+    sim: Simulation,
+    modeset: ModeSet,
+    path: str | Path,
+    title: str = "",
+    max_frames: int = MAX_FRAMES,
+    fps: int = FPS,
+    view_size=VIEW_SIZE,
+    panel_size=PANEL_SIZE,
+    poster: str | Path | None = None,
+    progress: bool = True,
+    gif: bool = False,
+    focus=None,
+    banner: str = "",
+) -> AnimationResult:
     """Write the animation of one run to ``path`` (.mp4; .gif if ``gif`` or
     if ffmpeg is missing) and, if asked, a poster PNG at the frame of
     largest deflection.  ``focus`` = (t0, t1): the frames time-warped into
@@ -336,41 +365,59 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
 
     mesh = modeset.surface.copy(deep=True)
     mesh.point_data["elastic deflection (mm)"] = np.zeros(mesh.n_points)
-    hub = top_centre + 1.3 * radius * ea          # the rotor's centre at rest, on its shaft
+    hub = top_centre + 1.3 * radius * ea  # the rotor's centre at rest, on its shaft
     rotor = pv.Sphere(radius=0.4 * radius, center=tuple(hub))
     rotor_base = np.asarray(rotor.points, dtype=float)
     # the rotor's orbit about the pillar top: its own factor, to about 1.5 tube radii
-    reach = (max(float(np.abs(orbit[0]).max()), float(np.abs(orbit[1]).max()))
-             if orbit is not None else 0.0)
+    reach = max(float(np.abs(orbit[0]).max()), float(np.abs(orbit[1]).max())) if orbit is not None else 0.0
     orbit_factor = min(factor, nice_factor(1.5 * radius / reach)) if reach > 0 else factor
     shaft = pv.Line(tuple(top_centre), tuple(hub)).tube(radius=0.08 * radius)
     p = pv.Plotter(off_screen=True, window_size=list(view_size))
     p.set_background("white")
-    p.add_mesh(modeset.surface, color="white", opacity=0.0,
-               silhouette=dict(color="#a0a0a0", line_width=1.0))
-    p.add_mesh(mesh, scalars="elastic deflection (mm)", cmap="viridis", clim=(0.0, u_max),
-               smooth_shading=True,
-               scalar_bar_args=dict(title="", vertical=False, width=0.5, height=0.05,
-                                    position_x=0.45, position_y=0.03, color="black",
-                                    label_font_size=16, fmt="%.3g", n_labels=3))
+    p.add_mesh(modeset.surface, color="white", opacity=0.0, silhouette=dict(color="#a0a0a0", line_width=1.0))
+    p.add_mesh(
+        mesh,
+        scalars="elastic deflection (mm)",
+        cmap="viridis",
+        clim=(0.0, u_max),
+        smooth_shading=True,
+        scalar_bar_args=dict(
+            title="",
+            vertical=False,
+            width=0.5,
+            height=0.05,
+            position_x=0.45,
+            position_y=0.03,
+            color="black",
+            label_font_size=16,
+            fmt="%.3g",
+            n_labels=3,
+        ),
+    )
     # the colour bar's title beside it, never over its ticks
     p.add_text("deflection (mm):", position=(8, 14), font_size=9, color="black")
     p.add_mesh(rotor, color="#D55E00")
     p.add_mesh(shaft, color="#333333")
     g_lo, g_hi = float(min(g.min(), 0.0)), float(max(g.max(), 0.0))
-    ground = pv.Plane(center=tuple(np.array(modeset.surface.center) * (1 - ea)
-                                   + ea * base[:, ax.axial].min()),
-                      direction=tuple(ea), i_size=6 * radius + (g_hi - g_lo),
-                      j_size=6 * radius + (g_hi - g_lo))
+    ground = pv.Plane(
+        center=tuple(np.array(modeset.surface.center) * (1 - ea) + ea * base[:, ax.axial].min()),
+        direction=tuple(ea),
+        i_size=6 * radius + (g_hi - g_lo),
+        j_size=6 * radius + (g_hi - g_lo),
+    )
     ground_base = np.asarray(ground.points, dtype=float)
     p.add_mesh(ground, color="#d9c9a8", opacity=0.6)
-    readout = p.add_text("", position=(8, view_size[1] - 44 - 16 * banner.count("\n")
-                                       - (22 if banner else 0)), font_size=10, color="black")
+    readout = p.add_text(
+        "",
+        position=(8, view_size[1] - 44 - 16 * banner.count("\n") - (22 if banner else 0)),
+        font_size=10,
+        color="black",
+    )
     if banner:
-        p.add_text(banner, position=(8, view_size[1] - 8 - 16 * (banner.count("\n") + 1)),
-                   font_size=10, color="#C00000")
-    notes = [f"pillar deflection x{factor:g}",
-             f"rotor about the pillar top x{orbit_factor:g}"]
+        p.add_text(
+            banner, position=(8, view_size[1] - 8 - 16 * (banner.count("\n") + 1)), font_size=10, color="#C00000"
+        )
+    notes = [f"pillar deflection x{factor:g}", f"rotor about the pillar top x{orbit_factor:g}"]
     if np.any(g != 0):
         notes.append("ground motion true scale")
     if warped:
@@ -381,12 +428,13 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
         notes.append("shape: Euler-Bernoulli cantilever (no 3D modes)")
     p.add_text("\n".join(notes), position=(8, 44), font_size=9, color="#333333")
     # fixed camera across the bending plane, framing the whole excursion
-    lateral = (factor * float(np.max(np.abs(q) @ peak)) + max(abs(g_lo), abs(g_hi))
-               + 2 * radius + orbit_factor * reach)
+    lateral = factor * float(np.max(np.abs(q) @ peak)) + max(abs(g_lo), abs(g_hi)) + 2 * radius + orbit_factor * reach
     centre = np.array(modeset.surface.center) + ex * 0.5 * (g_lo + g_hi)
     across = -np.eye(3)[ax.y]
-    d = math.cos(math.radians(8)) * (math.cos(math.radians(20)) * across
-                                     + math.sin(math.radians(20)) * ex) + math.sin(math.radians(8)) * ea
+    d = (
+        math.cos(math.radians(8)) * (math.cos(math.radians(20)) * across + math.sin(math.radians(20)) * ex)
+        + math.sin(math.radians(8)) * ea
+    )
     p.camera.focal_point = tuple(centre)
     p.camera.position = tuple(centre + 4 * H * d)
     p.camera.up = tuple(ea)
@@ -405,8 +453,10 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     bar = None
     if progress:
         from tqdm import tqdm
-        bar = tqdm(total=len(tf), desc=f"animation {sim.case}", unit="frame", file=sys.stderr,
-                   leave=False, mininterval=0.5)
+
+        bar = tqdm(
+            total=len(tf), desc=f"animation {sim.case}", unit="frame", file=sys.stderr, leave=False, mininterval=0.5
+        )
     try:
         with atomic_path(path) as tmp:
             if not use_gif:
@@ -417,15 +467,15 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
                 mesh.point_data["elastic deflection (mm)"] = 1e3 * np.linalg.norm(U, axis=1)
                 rel = np.zeros(3)
                 if orbit is not None:
-                    rel = (np.interp(t, motion.t, orbit[0]) * ex
-                           + np.interp(t, motion.t, orbit[1]) * ea)
-                tip = factor * q[j] @ np.array([s[np.argmax(base[:, ax.axial])] @ ex
-                                                for s in motion.shapes])
+                    rel = np.interp(t, motion.t, orbit[0]) * ex + np.interp(t, motion.t, orbit[1]) * ea
+                tip = factor * q[j] @ np.array([s[np.argmax(base[:, ax.axial])] @ ex for s in motion.shapes])
                 rotor.points = rotor_base + (tip + g[j]) * ex + orbit_factor * rel
                 top_now = top_centre + (tip + g[j]) * ex
-                shaft.copy_from(pv.Line(tuple(top_now), tuple(hub + (tip + g[j]) * ex
-                                                              + orbit_factor * rel))
-                                .tube(radius=0.08 * radius))
+                shaft.copy_from(
+                    pv.Line(tuple(top_now), tuple(hub + (tip + g[j]) * ex + orbit_factor * rel)).tube(
+                        radius=0.08 * radius
+                    )
+                )
                 ground.points = ground_base + g[j] * ex
                 text = f"t = {t:7.3f} s" if warped else f"t = {t:7.2f} s"
                 if Om is not None:
@@ -449,6 +499,7 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
                     bar.update()
             if use_gif:
                 import imageio.v2 as iio
+
                 iio.mimsave(str(tmp), frames_gif, format="GIF", duration=1.0 / fps, loop=0)
             else:
                 writer.close()
@@ -463,19 +514,29 @@ def animate(sim: Simulation, modeset: ModeSet, path: str | Path, title: str = ""
     poster_path = None
     if poster is not None and best_frame is not None:
         import imageio.v2 as iio
+
         with atomic_path(poster) as tmp:
             iio.imwrite(str(tmp), best_frame, format="PNG")
         poster_path = Path(poster)
-    return AnimationResult(path, len(tf), fps, factor, poster_path, motion.source,
-                           "GIF (Pillow)" if use_gif else "MP4 (H.264, imageio-ffmpeg)",
-                           time.perf_counter() - start, tuple(notes), orbit_factor,
-                           tuple(focus) if warped else None,
-                           int(np.sum((tf >= focus[0]) & (tf <= focus[1]))) if warped else 0)
+    return AnimationResult(
+        path,
+        len(tf),
+        fps,
+        factor,
+        poster_path,
+        motion.source,
+        "GIF (Pillow)" if use_gif else "MP4 (H.264, imageio-ffmpeg)",
+        time.perf_counter() - start,
+        tuple(notes),
+        orbit_factor,
+        tuple(focus) if warped else None,
+        int(np.sum((tf >= focus[0]) & (tf <= focus[1]))) if warped else 0,
+    )
 
 
 def _pad(img: np.ndarray, h: int) -> np.ndarray:
     if img.shape[0] == h:
         return img
     out = np.full((h, img.shape[1], 3), 255, dtype=np.uint8)
-    out[:img.shape[0]] = img
+    out[: img.shape[0]] = img
     return out

@@ -44,6 +44,7 @@ if TYPE_CHECKING:
 #: Headroom of the main panel's torque axis over the motor's largest torque.
 HEADROOM = 1.15
 
+
 def resonances_of(analysis: AnalysisResult) -> list[ResonanceAnalysis]:
     """The resonances of analyze.json (the averaging closed forms take their index,
     direction, omega, forcing, coupling and nu)."""
@@ -72,8 +73,9 @@ def drive_curve_data(analysis: AnalysisResult, points: int = 6000) -> dict[str, 
         ends.append(1.08 * free)
     ends += [1.1 * j.omega_to for j in d.jumps] + [1.1 * j.omega_from for j in d.jumps]
     top = max(ends)
-    grid = np.unique(np.concatenate([np.linspace(0.0, top, points)]
-                                    + [r.omega * (1 + r.nu * np.linspace(-8, 8, 801)) for r in res]))
+    grid = np.unique(
+        np.concatenate([np.linspace(0.0, top, points)] + [r.omega * (1 + r.nu * np.linspace(-8, 8, 801)) for r in res])
+    )
     grid = grid[(grid >= 0) & (grid <= top)]
     L = np.asarray(av.total_resistance(grid, k, res), dtype=float)
     # The main panel: the speeds the motor runs at and the resonances; the
@@ -90,10 +92,19 @@ def drive_curve_data(analysis: AnalysisResult, points: int = 6000) -> dict[str, 
         shown = all(0 <= y <= y_max for _, y in pair)
         if shown:
             x_max = max(x_max, 1.05 * max(j.omega_from, j.omega_to))
-        jumps.append({"direction": j.direction, "resonance": j.resonance,
-                      "label_from": ("A" if up else "D"), "label_to": ("B" if up else "C"),
-                      "number": n, "level": level, "from": pair[0], "to": pair[1],
-                      "shown": shown})
+        jumps.append(
+            {
+                "direction": j.direction,
+                "resonance": j.resonance,
+                "label_from": ("A" if up else "D"),
+                "label_to": ("B" if up else "C"),
+                "number": n,
+                "level": level,
+                "from": pair[0],
+                "to": pair[1],
+                "shown": shown,
+            }
+        )
     x_max = min(x_max, top)
     beyond = []
     for r in res:
@@ -102,11 +113,21 @@ def drive_curve_data(analysis: AnalysisResult, points: int = 6000) -> dict[str, 
         peak = float(np.max(av.total_resistance(np.append(near, r.omega), k, [r])))
         if peak > y_max and r.omega <= x_max:
             beyond.append({"resonance": r.index, "omega": r.omega, "peak": peak})
-    return {"omega": grid, "L": L, "Mc": k * grid**2, "Md": M0 - s * grid,
-            "stable": np.asarray(av.branch_is_stable(grid, s, k, res), dtype=bool),
-            "jumps": jumps, "stationary": d.stationary,
-            "slope": s, "torque_at_zero": M0, "top": top,
-            "x_max": x_max, "y_max": y_max, "beyond": beyond}
+    return {
+        "omega": grid,
+        "L": L,
+        "Mc": k * grid**2,
+        "Md": M0 - s * grid,
+        "stable": np.asarray(av.branch_is_stable(grid, s, k, res), dtype=bool),
+        "jumps": jumps,
+        "stationary": d.stationary,
+        "slope": s,
+        "torque_at_zero": M0,
+        "top": top,
+        "x_max": x_max,
+        "y_max": y_max,
+        "beyond": beyond,
+    }
 
 
 def _branches(ax, x, y, stable, label=True):
@@ -119,14 +140,20 @@ def _branches(ax, x, y, stable, label=True):
         st = bool(stable[a])
         sl = slice(max(a - 1, 0), b)
         name = "L: stable regimes" if st else "L: unstable regimes"
-        ax.plot(x[sl], y[sl], color=COLOURS["stable" if st else "unstable"],
-                ls="-" if st else "--", lw=1.8 if st else 1.6,
-                label=name if (label and name not in seen) else None)
+        ax.plot(
+            x[sl],
+            y[sl],
+            color=COLOURS["stable" if st else "unstable"],
+            ls="-" if st else "--",
+            lw=1.8 if st else 1.6,
+            label=name if (label and name not in seen) else None,
+        )
         seen.add(name)
 
 
-def _jump_arrows(ax: Any, jumps: list[dict[str, Any]], s: float, xlim: tuple[float, float],
-                 z_scale: float = 1.0) -> list[dict[str, Any]]:
+def _jump_arrows(
+    ax: Any, jumps: list[dict[str, Any]], s: float, xlim: tuple[float, float], z_scale: float = 1.0
+) -> list[dict[str, Any]]:
     """Draw each jump's drive line, arrow and end points; return their labels
     (for :func:`place_labels`)."""
     labels = []
@@ -134,8 +161,12 @@ def _jump_arrows(ax: Any, jumps: list[dict[str, Any]], s: float, xlim: tuple[flo
         (x0, y0), (x1, y1) = j["from"], j["to"]
         xs = np.linspace(*xlim, 50)
         ax.plot(xs / z_scale, j["level"] - s * xs, color=COLOURS["drive"], lw=0.7, ls=":")
-        ax.annotate("", xy=(x1 / z_scale, y1), xytext=(x0 / z_scale, y0),
-                    arrowprops=dict(arrowstyle="->", color="black", lw=1.2))
+        ax.annotate(
+            "",
+            xy=(x1 / z_scale, y1),
+            xytext=(x0 / z_scale, y0),
+            arrowprops=dict(arrowstyle="->", color="black", lw=1.2),
+        )
         n = j["number"]
         for (x, y), name in (((x0, y0), j["label_from"]), ((x1, y1), j["label_to"])):
             ax.plot([x / z_scale], [y], "o", color="black", ms=3.5)
@@ -156,39 +187,67 @@ def _grid_of(n: int, most: int = 3) -> tuple[int, int]:
     return rows, math.ceil(n / rows)
 
 
-def _overview(top: Any, data: dict[str, Any], res: list[ResonanceAnalysis],
-              W: Any) -> tuple[list[dict[str, Any]], list[Any]]:
+def _overview(
+    top: Any, data: dict[str, Any], res: list[ResonanceAnalysis], W: Any
+) -> tuple[list[dict[str, Any]], list[Any]]:
     """The top panel: Md, L and Mc over the drive's range, the stationary
     speeds, the jumps shown there, each resonance marked; returns its labels
     and the curves they must stay off."""
     s, x_max, y_max = data["slope"], data["x_max"], data["y_max"]
     top.plot(W, data["Mc"], color=COLOURS["load"], ls=":", label="Mc = k Omega^2 (the load alone)")
     _branches(top, W, data["L"], data["stable"])
-    md, = top.plot(W, data["Md"], color=COLOURS["drive"],
-                   label=f"Md = {data['torque_at_zero']:g} - {s:g} Omega (the scene's motor)")
+    (md,) = top.plot(
+        W,
+        data["Md"],
+        color=COLOURS["drive"],
+        label=f"Md = {data['torque_at_zero']:g} - {s:g} Omega (the scene's motor)",
+    )
     labels = []
     for st in data["stationary"]:
         y = data["torque_at_zero"] - s * st.omega
-        top.plot([st.omega], [y], "o", ms=7, mec="black",
-                 mfc=COLOURS["stable"] if st.stable else "white", zorder=5)
-        labels.append({"xy": (st.omega, y), "offset": (6, 6), "fontsize": 8,
-                       "text": f"{st.omega:.2f} rad/s ({'stable' if st.stable else 'unstable'})"})
+        top.plot([st.omega], [y], "o", ms=7, mec="black", mfc=COLOURS["stable"] if st.stable else "white", zorder=5)
+        labels.append(
+            {
+                "xy": (st.omega, y),
+                "offset": (6, 6),
+                "fontsize": 8,
+                "text": f"{st.omega:.2f} rad/s ({'stable' if st.stable else 'unstable'})",
+            }
+        )
     labels += _jump_arrows(top, [j for j in data["jumps"] if j["shown"]], s, (0, x_max))
     peaks = {b["resonance"]: b for b in data["beyond"]}
     for r in res:
         top.axvline(r.omega, color=COLOURS["reference"], lw=0.6, ls="--")
         b = peaks.get(r.index)
         if b is None:
-            labels.append({"xy": (r.omega, 0.04 * y_max), "offset": (3, 2), "fontsize": 8,
-                           "color": "#555555", "text": f"omega_{r.index}"})
+            labels.append(
+                {
+                    "xy": (r.omega, 0.04 * y_max),
+                    "offset": (3, 2),
+                    "fontsize": 8,
+                    "color": "#555555",
+                    "text": f"omega_{r.index}",
+                }
+            )
             continue
         # beyond the panel: an arrow at the top edge with the peak's value
-        top.annotate("", xy=(r.omega, y_max), xytext=(r.omega, 0.9 * y_max),
-                     arrowprops=dict(arrowstyle="->", color=COLOURS["unstable"], lw=1.4),
-                     annotation_clip=False)
-        labels.append({"xy": (r.omega, 0.9 * y_max), "offset": (4, -4), "fontsize": 8,
-                       "va": "top", "color": COLOURS["unstable"],
-                       "text": f"omega_{r.index}: L peaks at {b['peak']:,.0f} N*m"})
+        top.annotate(
+            "",
+            xy=(r.omega, y_max),
+            xytext=(r.omega, 0.9 * y_max),
+            arrowprops=dict(arrowstyle="->", color=COLOURS["unstable"], lw=1.4),
+            annotation_clip=False,
+        )
+        labels.append(
+            {
+                "xy": (r.omega, 0.9 * y_max),
+                "offset": (4, -4),
+                "fontsize": 8,
+                "va": "top",
+                "color": COLOURS["unstable"],
+                "text": f"omega_{r.index}: L peaks at {b['peak']:,.0f} N*m",
+            }
+        )
     top.set_xlim(0, x_max)
     top.set_ylim(0, y_max)
     top.set_xlabel("rotor speed Omega (rad/s)")
@@ -213,8 +272,14 @@ def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
     ax.plot(z, data["Mc"][m], color=COLOURS["load"], ls=":")
     _branches(ax, z, data["L"][m], data["stable"][m], label=False)
     c = r.curves
-    ax.plot(np.asarray(c.z)[::8], np.asarray(c.L_all)[::8], ".", color="black", ms=2.5,
-            label="analyze.json" if first else None)
+    ax.plot(
+        np.asarray(c.z)[::8],
+        np.asarray(c.L_all)[::8],
+        ".",
+        color="black",
+        ms=2.5,
+        label="analyze.json" if first else None,
+    )
     jump_labels = _jump_arrows(ax, mine, s, (lo, hi), z_scale=w)
     ys = [data["L"][m]] + [np.array([j["from"][1], j["to"][1]]) for j in mine]
     y0, y1 = float(min(map(np.min, ys))), float(max(map(np.max, ys)))
@@ -224,8 +289,8 @@ def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
     ax.set_ylabel("L (N*m)")
     ax.tick_params(labelbottom=False)
     note = (f"{len(mine)} jump(s)" if mine else "no jump") + (
-        "; above the motor's free speed" if data["free_speed"] is not None
-        and w > data["free_speed"] else "")
+        "; above the motor's free speed" if data["free_speed"] is not None and w > data["free_speed"] else ""
+    )
     ax.set_title(f"resonance {r.index}: {w:.2f} rad/s, {short(r.direction)}\n{note}", fontsize=9)
     own = av.total_resistance(W[m], 0.0, [r])
     extra = ax.twinx()
@@ -234,8 +299,7 @@ def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
     if rest:
         theirs = av.total_resistance(W[m], 0.0, rest)
         if np.max(np.abs(theirs)) > 0.02 * max(np.max(np.abs(own)), 1e-300):
-            extra.plot(z, theirs, color=COLOURS["reference"], lw=0.9, ls="--",
-                       label="other resonances' dL (right)")
+            extra.plot(z, theirs, color=COLOURS["reference"], lw=0.9, ls="--", label="other resonances' dL (right)")
     extra.set_ylabel("dL (N*m)", color=COLOURS["accent"])
     extra.grid(False)
     extra.spines["right"].set_visible(True)
@@ -243,7 +307,7 @@ def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
     margin = data["Md"][m] - data["L"][m]
     mx.plot(z, margin, color=COLOURS["drive"], lw=1.3)
     lo_m, hi_m = float(margin.min()), float(margin.max())
-    if lo_m < 0.25 * max(hi_m, 1e-300):          # near or below zero: show where it crosses
+    if lo_m < 0.25 * max(hi_m, 1e-300):  # near or below zero: show where it crosses
         mx.axhline(0.0, color=COLOURS["unstable"], lw=0.8)
     at = float(np.interp(1.0, z, margin))
     hump = float(np.asarray(av.total_resistance(np.array([w]), 0.0, [r]))[0])
@@ -254,9 +318,16 @@ def _resonance_block(ax, mx, data, r, others, W, first: bool) -> list:
     share = f" ({100 * hump / at:.2g} %)" if at > 0 else ""
     # a legend without a handle: matplotlib puts it where it covers the least of the curve
     from matplotlib.lines import Line2D
-    mx.legend([Line2D([], [], ls="none")],
-              [f"at z = 1:\nMd - L = {at:,.0f} N*m\ndL_{r.index} = {hump:.3g} N*m{share}"],
-              loc="best", fontsize=8, handlelength=0, handletextpad=0, framealpha=0.85)
+
+    mx.legend(
+        [Line2D([], [], ls="none")],
+        [f"at z = 1:\nMd - L = {at:,.0f} N*m\ndL_{r.index} = {hump:.3g} N*m{share}"],
+        loc="best",
+        fontsize=8,
+        handlelength=0,
+        handletextpad=0,
+        framealpha=0.85,
+    )
     return jump_labels
 
 
@@ -276,26 +347,36 @@ def drive_figure(analysis: AnalysisResult, width: int = 1060) -> Any:
     W = data["omega"]
     labels, curves = _overview(top, data, res, W)
     far = [j for j in data["jumps"] if not j["shown"]]
-    verdict = (f"{len(data['jumps'])} jump(s): " + ", ".join(
-        f"{j['label_from']}{j['number']}->{j['label_to']}{j['number']}" for j in data["jumps"])
-        if data["jumps"] else "no jumps: with this drive every stationary regime is stable")
-    fig.suptitle(f"Motor torque and resistance (paper Figs. 3-4): {verdict}"
-                 + (f"\ntorque axis: the motor's range; {len(far)} jump(s) above it, "
-                    "in the panels below" if far else ""), fontsize=10)
+    verdict = (
+        f"{len(data['jumps'])} jump(s): "
+        + ", ".join(f"{j['label_from']}{j['number']}->{j['label_to']}{j['number']}" for j in data["jumps"])
+        if data["jumps"]
+        else "no jumps: with this drive every stationary regime is stable"
+    )
+    fig.suptitle(
+        f"Motor torque and resistance (paper Figs. 3-4): {verdict}"
+        + (f"\ntorque axis: the motor's range; {len(far)} jump(s) above it, in the panels below" if far else ""),
+        fontsize=10,
+    )
     blocks = []
     for n, r in enumerate(res):
         row, col = divmod(n, cols)
         ax = fig.add_subplot(gs[1 + 2 * row, col])
         mx = fig.add_subplot(gs[2 + 2 * row, col], sharex=ax)
-        blocks.append((ax, _resonance_block(ax, mx, data, r, resonances_of(analysis), W,
-                                            first=n == 0)))
+        blocks.append((ax, _resonance_block(ax, mx, data, r, resonances_of(analysis), W, first=n == 0)))
     handles: dict[str, Any] = {}
     for a in fig.axes:
         for h, lab in zip(*a.get_legend_handles_labels()):
             handles.setdefault(lab, h)
     # the legend outside every panel: it covers no curve
-    fig.legend(list(handles.values()), list(handles.keys()), loc="outside lower center",
-               ncol=min(4, len(handles)), fontsize=8, frameon=False)
+    fig.legend(
+        list(handles.values()),
+        list(handles.keys()),
+        loc="outside lower center",
+        ncol=min(4, len(handles)),
+        fontsize=8,
+        frameon=False,
+    )
     # Labels last, on the final layout, frozen so that saving does not move the axes.
     fig.canvas.draw()
     fig.set_layout_engine("none")
@@ -320,15 +401,16 @@ def amplitude_chart(analysis: AnalysisResult, path: str | Path, width: int = 106
         c = r.curves
         z = np.asarray(c.z)
         ax.plot(z, 1e3 * np.asarray(c.a), color=COLOURS["analytic"], label="averaging, Eq. 19")
-        ax.plot(z, 1e3 * np.asarray(c.a_linear), color=COLOURS["numeric"], ls="--",
-                label="linear steady state")
+        ax.plot(z, 1e3 * np.asarray(c.a_linear), color=COLOURS["numeric"], ls="--", label="linear steady state")
         ax.set_xlabel(f"z = Omega / omega_{r.index}")
         ax.set_ylabel(f"a_{r.index} (mm)")
-        ax.set_title(f"resonance {r.index}: {r.omega:.2f} rad/s, {short(r.direction)}\n"
-                     f"nu = {r.nu:.3f}, a_max = {1e3 * r.a_max:.3g} mm", fontsize=9)
-    for ax in list(axes.flat)[len(res):]:
+        ax.set_title(
+            f"resonance {r.index}: {r.omega:.2f} rad/s, {short(r.direction)}\n"
+            f"nu = {r.nu:.3f}, a_max = {1e3 * r.a_max:.3g} mm",
+            fontsize=9,
+        )
+    for ax in list(axes.flat)[len(res) :]:
         ax.set_visible(False)
     # outside the panels: it covers no curve
-    fig.legend(*axes.flat[0].get_legend_handles_labels(), loc="outside lower center", ncol=2,
-               fontsize=8, frameon=False)
+    fig.legend(*axes.flat[0].get_legend_handles_labels(), loc="outside lower center", ncol=2, fontsize=8, frameon=False)
     return save(fig, path)

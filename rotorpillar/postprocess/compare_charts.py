@@ -21,9 +21,16 @@ from .style import COLOURS, CYCLE, figure, save
 STANDARD_GRAVITY = 9.80665
 
 
-def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 700),
-                     errors: dict | None = None, walls: dict | None = None,
-                     zoom: tuple[float, float] | None = None) -> Path:
+def comparison_chart(
+    path,
+    series,
+    reference: str,
+    title: str = "",
+    size=(1060, 700),
+    errors: dict | None = None,
+    walls: dict | None = None,
+    zoom: tuple[float, float] | None = None,
+) -> Path:
     """``series``: [(model, t, tip relative to the ground)], one of them
     named ``reference``.  Top: the histories overlaid (mm); below: each
     other model minus the reference, the reference interpolated linearly
@@ -33,8 +40,7 @@ def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 
     through resonance of a run-up)."""
     cols = 2 if zoom else 1
     t0, t1 = zoom if zoom else (0.0, 0.0)
-    fig, axes = figure(*size, nrows=2, ncols=cols, sharex="col", height_ratios=(3, 2),
-                       squeeze=False)
+    fig, axes = figure(*size, nrows=2, ncols=cols, sharex="col", height_ratios=(3, 2), squeeze=False)
     ref = next(((t, y) for m, t, y in series if m == reference), None)
     for col in range(cols):
         a1, a2 = axes[:, col]
@@ -47,11 +53,23 @@ def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 
                 label += f": error {100 * errors[model]:.2f} %"
             if walls and model in walls:
                 label += f", {walls[model]:.3g} s"
-            a1.plot(t[sel], 1e3 * y[sel], lw=1.6 if is_ref else 0.9, ls="-" if is_ref else "--",
-                    color=c, label=label if col == 0 else None, zorder=1 if is_ref else 2)
+            a1.plot(
+                t[sel],
+                1e3 * y[sel],
+                lw=1.6 if is_ref else 0.9,
+                ls="-" if is_ref else "--",
+                color=c,
+                label=label if col == 0 else None,
+                zorder=1 if is_ref else 2,
+            )
             if ref is not None and not is_ref:
-                a2.plot(t[sel], 1e3 * (y - np.interp(t, ref[0], ref[1]))[sel], lw=0.9, color=c,
-                        label=f"{model} - {reference}" if col == 0 else None)
+                a2.plot(
+                    t[sel],
+                    1e3 * (y - np.interp(t, ref[0], ref[1]))[sel],
+                    lw=0.9,
+                    color=c,
+                    label=f"{model} - {reference}" if col == 0 else None,
+                )
         a2.axhline(0.0, color=COLOURS["reference"], lw=0.7)
         a2.set_xlabel("t [s]")
         if col == 0:
@@ -64,8 +82,7 @@ def comparison_chart(path, series, reference: str, title: str = "", size=(1060, 
     if zoom:
         a1.set_title("the whole run", fontsize=9)
     if ref is None:
-        a2.text(0.5, 0.5, f"no arrays of the reference ({reference})", ha="center", va="center",
-                transform=a2.transAxes)
+        a2.text(0.5, 0.5, f"no arrays of the reference ({reference})", ha="center", va="center", transform=a2.transAxes)
     elif len(series) > 1:
         a2.legend(loc="upper right", fontsize=8)
     fig.suptitle(title, fontsize=10)
@@ -89,34 +106,42 @@ def spectral_value(period, psa, T: float) -> float:
     return float(np.interp(np.log(T), np.log(T_), S))
 
 
-def spectrum_chart(path, period, psa, mode_periods=(), damping: float | None = None,
-                   title: str = "", size=(900, 540)) -> Path:
+def spectrum_chart(
+    path, period, psa, mode_periods=(), damping: float | None = None, title: str = "", size=(900, 540)
+) -> Path:
     """The pseudo-acceleration ``psa`` (m/s**2) against ``period`` (s), shown
     in g on a logarithmic period axis; each mode of ``mode_periods`` (a
     period, or (label, period)) marked on the curve at its spectral value,
     its label placed off the curve."""
     from .style import place_labels
+
     fig, ax = figure(*size)
     T, S = np.asarray(period, dtype=float), np.asarray(psa, dtype=float) / STANDARD_GRAVITY
     ok = np.isfinite(T) & np.isfinite(S) & (T > 0)
     label = "PSA" + (f", {100 * damping:g} % damping" if damping is not None else "")
-    curve, = ax.plot(T[ok], S[ok], color=COLOURS["drive"], lw=1.4, label=label)
+    (curve,) = ax.plot(T[ok], S[ok], color=COLOURS["drive"], lw=1.4, label=label)
     top = float(np.max(S[ok])) if ok.any() else 1.0
     labels = []
     for j, m in enumerate(mode_periods, start=1):
-        name, Tj = (m if isinstance(m, (tuple, list)) else (f"mode {j}", m))
+        name, Tj = m if isinstance(m, (tuple, list)) else (f"mode {j}", m)
         Sj = spectral_value(T[ok], S[ok], float(Tj))
         ax.axvline(Tj, color=COLOURS["unstable"], lw=0.8, ls="--", zorder=1)
         if np.isfinite(Sj):
             ax.plot([Tj], [Sj], "o", color=COLOURS["unstable"], ms=6, zorder=3)
-            labels.append({"xy": (Tj, Sj), "offset": (6, 6), "fontsize": 8,
-                           "color": COLOURS["unstable"],
-                           "text": f"{name}: T = {Tj:.3g} s, {Sj:.3g} g",
-                           "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.9)})
+            labels.append(
+                {
+                    "xy": (Tj, Sj),
+                    "offset": (6, 6),
+                    "fontsize": 8,
+                    "color": COLOURS["unstable"],
+                    "text": f"{name}: T = {Tj:.3g} s, {Sj:.3g} g",
+                    "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.9),
+                }
+            )
     ax.set_xscale("log")
     ax.set_xlabel("period T [s]")
     ax.set_ylabel("pseudo-acceleration [g]")
-    ax.set_ylim(0, 1.25 * top)       # room above the curve for the labels
+    ax.set_ylim(0, 1.25 * top)  # room above the curve for the labels
     legend = ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title or "Response spectrum")
     fig.canvas.draw()

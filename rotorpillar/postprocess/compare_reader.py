@@ -14,8 +14,8 @@ import numpy as np
 from ..transients.records import CompareResult
 from .readers import read_case, read_npz, read_record
 
-def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x",
-                       frame: str | None = None) -> np.ndarray | None:
+
+def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x", frame: str | None = None) -> np.ndarray | None:
     """The X displacement ``name`` (tip_x or rotor_x) relative to the ground:
     the ``<name>_relative`` column where the run wrote one, else the column
     itself when ``frame`` says it is already relative, else the column minus
@@ -40,6 +40,7 @@ def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x",
 @dataclass
 class Comparison:
     """``compare_<case>.json`` and the runs it names: each model's JSON and arrays."""
+
     case: str
     record: CompareResult
     doc: dict[str, Any]

@@ -48,9 +48,11 @@ STYLE: dict[str, dict[str, Any]] = {
     "solid_hex_p2_along": dict(color=FAMILY_COLOURS["solid_p2"], marker="v", ls="-.", mfc="none"),
 }
 COST_LABEL = {"dofs": "degrees of freedom", "wall_time": "wall time per run (s)"}
-PANELS = (("bending", "first bending frequency: |error|"),
-          ("ovalling", "first ovalling frequency: |error|"),
-          ("band", "the band's frequencies: error bound (model + mesh + reference)"))
+PANELS = (
+    ("bending", "first bending frequency: |error|"),
+    ("ovalling", "first ovalling frequency: |error|"),
+    ("band", "the band's frequencies: error bound (model + mesh + reference)"),
+)
 FLOOR = 1e-9
 
 
@@ -70,10 +72,15 @@ def _error(run: dict, q: str, needed, ref_unc=None) -> float | None:
 def _missing_row(study: dict) -> float:
     """Height of the "no such mode" strip, above every error of every panel."""
     import numpy as np
+
     needed = study["selection"]["needed"]
     unc = study["selection"]["reference_uncertainty"]
-    ys = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
-          for q in ("bending", "ovalling", "band")]
+    ys = [
+        _error(r, q, needed, unc)
+        for r in study["runs"]
+        if r.get("status") == "ok"
+        for q in ("bending", "ovalling", "band")
+    ]
     top = max([y for y in ys if y is not None] + [study["selection"]["tolerance"] * 10])
     return 3 * 10 ** np.ceil(np.log10(top))
 
@@ -81,17 +88,21 @@ def _missing_row(study: dict) -> float:
 def _bottom_row(study: dict) -> float:
     """Bottom of the error axis: a decade under the smallest error or uncertainty."""
     import numpy as np
+
     needed = study["selection"]["needed"]
     unc = study["selection"]["reference_uncertainty"]
-    found = [_error(r, q, needed, unc) for r in study["runs"] if r.get("status") == "ok"
-             for q in ("bending", "ovalling", "band")]
+    found = [
+        _error(r, q, needed, unc)
+        for r in study["runs"]
+        if r.get("status") == "ok"
+        for q in ("bending", "ovalling", "band")
+    ]
     ys = [y for y in found if y is not None and y > 0] + list(unc.values())
     lo = min([y for y in ys if y > 0] or [1e-6])
     return max(FLOOR, 10 ** (np.floor(np.log10(lo)) - 1))
 
 
-def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str,
-           families: dict[str, str]) -> None:
+def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str, families: dict[str, str]) -> None:
     runs = [r for r in study["runs"] if r.get("status") == "ok"]
     sel = study["selection"]
     needed = sel["needed"]
@@ -117,54 +128,97 @@ def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str,
         if miss:
             if len(miss) == len(pts):
                 no_mode.append(families[fam])
-            ax.plot(miss, [missing_y] * len(miss), ls="none", marker="x", color=kw["color"],
-                    label=None if have else families[fam])
+            ax.plot(
+                miss,
+                [missing_y] * len(miss),
+                ls="none",
+                marker="x",
+                color=kw["color"],
+                label=None if have else families[fam],
+            )
     # Pareto front
     front = set(study["pareto"][cost][q])
-    fr = sorted(((r[cost], max(err_of(r, q, needed), FLOOR)) for r in runs
-                 if r["label"] in front), key=lambda t: t[0])
+    fr = sorted(((r[cost], max(err_of(r, q, needed), FLOOR)) for r in runs if r["label"] in front), key=lambda t: t[0])
     if fr:
         xs, es = zip(*fr)
-        ax.step(xs, es, where="post", color="0.3", lw=2.5, alpha=0.35, zorder=0,
-                label="Pareto front")
+        ax.step(xs, es, where="post", color="0.3", lw=2.5, alpha=0.35, zorder=0, label="Pareto front")
         ax.plot(xs, es, ls="none", marker="o", ms=13, mfc="none", mec="0.3", zorder=0)
     ax.axhline(tol, color=COLOURS["tolerance"], ls=":", lw=1.2, label=f"tolerance {tol:g}")
     ref = study["reference"]
-    shade = ([ref[k]["error_estimate"] / abs(ref[k]["value"]) for k in needed if k in ref]
-             if q == "band" else
-             [ref[q]["error_estimate"] / abs(ref[q]["value"])] if q in ref else [])
+    shade = (
+        [ref[k]["error_estimate"] / abs(ref[k]["value"]) for k in needed if k in ref]
+        if q == "band"
+        else [ref[q]["error_estimate"] / abs(ref[q]["value"])]
+        if q in ref
+        else []
+    )
     if shade:
-        ax.axhspan(_bottom_row(study), max(max(shade), FLOOR), color="0.85", zorder=-1,
-                   label="reference uncertainty")
+        ax.axhspan(_bottom_row(study), max(max(shade), FLOOR), color="0.85", zorder=-1, label="reference uncertainty")
     chosen = sel.get("chosen")
     if chosen is not None:
         e = err_of(chosen, q, needed)
         if e is not None:
-            ax.plot([chosen[cost]], [max(e, FLOOR)], marker="*", ms=20, color=COLOURS["numeric"], mec="k",
-                    ls="none", zorder=5, label="chosen")
+            ax.plot(
+                [chosen[cost]],
+                [max(e, FLOOR)],
+                marker="*",
+                ms=20,
+                color=COLOURS["numeric"],
+                mec="k",
+                ls="none",
+                zorder=5,
+                label="chosen",
+            )
     ax.axhline(missing_y, color="0.6", lw=0.6)
     # at the right: the runs without the mode are marked on this line at the left
-    ax.text(0.99, missing_y, "no such mode ", transform=ax.get_yaxis_transform(), va="bottom",
-            ha="right", fontsize=8, color="0.4")
+    ax.text(
+        0.99,
+        missing_y,
+        "no such mode ",
+        transform=ax.get_yaxis_transform(),
+        va="bottom",
+        ha="right",
+        fontsize=8,
+        color="0.4",
+    )
     if no_mode:
-        ax.text(0.02, 0.02, "no " + (q if q != "band" else "needed") + " mode:\n  "
-                + "\n  ".join(no_mode), transform=ax.transAxes, fontsize=8, va="bottom",
-                bbox=dict(fc="white", ec="0.7"))
+        ax.text(
+            0.02,
+            0.02,
+            "no " + (q if q != "band" else "needed") + " mode:\n  " + "\n  ".join(no_mode),
+            transform=ax.transAxes,
+            fontsize=8,
+            va="bottom",
+            bbox=dict(fc="white", ec="0.7"),
+        )
     labels = []
     for fam in ("solid_hex_p1", "solid_tet_p1"):
         rows = [r for r in runs if r["family"] == fam and err_of(r, q, needed) is not None]
         if rows:
             r = max(rows, key=lambda r: r[cost])
-            labels.append({"xy": (r[cost], err_of(r, q, needed)), "text": "P1 locking",
-                           "fontsize": 8, "offset": (5, 5), "color": STYLE[fam]["color"]})
+            labels.append(
+                {
+                    "xy": (r[cost], err_of(r, q, needed)),
+                    "text": "P1 locking",
+                    "fontsize": 8,
+                    "offset": (5, 5),
+                    "color": STYLE[fam]["color"],
+                }
+            )
     for fam in ("shell_quad_around", "solid_hex_p2_around"):
         rows = [r for r in runs if r["family"] == fam]
         if rows:
             r = min(rows, key=lambda r: r["level"])
             e = err_of(r, q, needed)
-            labels.append({"xy": (r[cost], missing_y if e is None else max(e, FLOOR)),
-                           "text": f"{r['params']['elements_around']} around", "fontsize": 8,
-                           "offset": (4, -12), "color": STYLE[fam]["color"]})
+            labels.append(
+                {
+                    "xy": (r[cost], missing_y if e is None else max(e, FLOOR)),
+                    "text": f"{r['params']['elements_around']} around",
+                    "fontsize": 8,
+                    "offset": (4, -12),
+                    "color": STYLE[fam]["color"],
+                }
+            )
     ax._pending_labels = labels
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -179,6 +233,7 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
     "wall_time"): the three panels and the legend in a 2 x 2 grid, at the
     width the report shows it (its text legible there)."""
     from .style import place_labels
+
     families = {k: v["label"] for k, v in study["families"].items()}
     fig, grid = figure(1060, 960, nrows=2, ncols=2)
     axes = [grid[0, 0], grid[0, 1], grid[1, 0]]
@@ -191,11 +246,11 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
             handles.setdefault(lab, h)
     spare = grid[1, 1]
     spare.set_axis_off()
-    spare.legend(list(handles.values()), list(handles.keys()), loc="center", fontsize=8,
-                 frameon=False, ncol=1)
+    spare.legend(list(handles.values()), list(handles.keys()), loc="center", fontsize=8, frameon=False, ncol=1)
     band = study["selection"]["band"]
-    fig.suptitle(f"{study['scene_name']}: error against {COST_LABEL[cost]} "
-                 f"(band to {band['omega_max']:.0f} rad/s)", fontsize=11)
+    fig.suptitle(
+        f"{study['scene_name']}: error against {COST_LABEL[cost]} (band to {band['omega_max']:.0f} rad/s)", fontsize=11
+    )
     fig.canvas.draw()
     fig.set_layout_engine("none")
     for ax in axes:
@@ -206,5 +261,7 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
 def convergence_charts(study: dict, out_dir: str | Path) -> dict[str, Path]:
     """Both charts: ``convergence_dofs.png`` and ``convergence_time.png``."""
     out_dir = Path(out_dir)
-    return {"dofs": convergence_chart(study, "dofs", out_dir / "convergence_dofs.png"),
-            "wall_time": convergence_chart(study, "wall_time", out_dir / "convergence_time.png")}
+    return {
+        "dofs": convergence_chart(study, "dofs", out_dir / "convergence_dofs.png"),
+        "wall_time": convergence_chart(study, "wall_time", out_dir / "convergence_time.png"),
+    }

@@ -53,7 +53,7 @@ def ordinal(k: int) -> str:
     """
     if 10 <= k % 100 <= 20:
         return f"{k}th"
-    return f"{k}{ {1: 'st', 2: 'nd', 3: 'rd'}.get(k % 10, 'th')}"
+    return f"{k}{ {1: 'st', 2: 'nd', 3: 'rd'}.get(k % 10, 'th') }"
 
 
 def mode_name(kind, n_axial=None, n_circumferential=None, short_form: bool = False) -> str:
@@ -85,8 +85,7 @@ def mode_name(kind, n_axial=None, n_circumferential=None, short_form: bool = Fal
 
 def axes_legend() -> str:
     """One sentence naming the 3D model's axes in words."""
-    return ("3D model axes: x = " + direction("X") + ", y = " + direction("Z") + ", z = "
-            + direction("Y") + ".")
+    return "3D model axes: x = " + direction("X") + ", y = " + direction("Z") + ", z = " + direction("Y") + "."
 
 
 def mode_label(mode: dict[str, Any], i: int, lines: bool = False) -> str:

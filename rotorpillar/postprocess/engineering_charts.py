@@ -19,30 +19,45 @@ import numpy as np
 from .style import COLOURS, CYCLE, figure, save
 
 #: line styles per model: the ROM dashed over the full orders' solid lines
-STYLE = {"modal": dict(ls="--", lw=1.2), "fem3d": dict(ls="-", lw=1.8, alpha=0.8),
-         "beam": dict(ls="-", lw=1.6, alpha=0.8)}
+STYLE = {
+    "modal": dict(ls="--", lw=1.2),
+    "fem3d": dict(ls="-", lw=1.8, alpha=0.8),
+    "beam": dict(ls="-", lw=1.6, alpha=0.8),
+}
 NAMES = {"modal": "ROM", "fem3d": "3D", "beam": "1D beam"}
 
 
-def bode_chart(path, curves, averaging=(), running_speeds=(), title: str = "",
-               size=(1000, 760)) -> Path:
+def bode_chart(path, curves, averaging=(), running_speeds=(), title: str = "", size=(1000, 760)) -> Path:
     """``curves``: BodeCurve records (model, speeds, tip/shaft amplitude and phase);
     ``averaging``: AveragingCurve records (Eq. 19 near each resonance)."""
     fig, axes = figure(*size, nrows=2, ncols=2, sharex=True, height_ratios=(3, 2))
-    for col, (amp, phase, what) in enumerate((("tip_amplitude", "tip_phase", "tip X"),
-                                              ("shaft_amplitude", "shaft_phase", "shaft deflection X"))):
+    for col, (amp, phase, what) in enumerate(
+        (("tip_amplitude", "tip_phase", "tip X"), ("shaft_amplitude", "shaft_phase", "shaft deflection X"))
+    ):
         a, p = axes[0][col], axes[1][col]
         for c, colour in zip(curves, CYCLE):
             W = np.asarray(c.speeds)
             style = dict(STYLE.get(c.model, {}))
-            a.semilogy(W, 1e3 * np.asarray(getattr(c, amp)), color=colour,
-                       label=NAMES.get(c.model, c.model), marker="." if c.model == "fem3d" else None,
-                       ms=3, **style)
+            a.semilogy(
+                W,
+                1e3 * np.asarray(getattr(c, amp)),
+                color=colour,
+                label=NAMES.get(c.model, c.model),
+                marker="." if c.model == "fem3d" else None,
+                ms=3,
+                **style,
+            )
             p.plot(W, getattr(c, phase), color=colour, **style)
         if col == 0:
             for k, av in enumerate(averaging):
-                a.semilogy(av.speeds, 1e3 * np.asarray(av.amplitude), color=COLOURS.get("reference", "k"),
-                           lw=0.8, ls=":", label="Eq. 19 (averaging)" if k == 0 else None)
+                a.semilogy(
+                    av.speeds,
+                    1e3 * np.asarray(av.amplitude),
+                    color=COLOURS.get("reference", "k"),
+                    lw=0.8,
+                    ls=":",
+                    label="Eq. 19 (averaging)" if k == 0 else None,
+                )
         for w in running_speeds:
             for ax in (a, p):
                 ax.axvline(w, color="#888888", lw=0.8, ls="-.")
@@ -60,8 +75,7 @@ def bode_chart(path, curves, averaging=(), running_speeds=(), title: str = "",
     return save(fig, path)
 
 
-def campbell_chart(path, modes, running_speeds, top: float, title: str = "",
-                   size=(1000, 640)) -> Path:
+def campbell_chart(path, modes, running_speeds, top: float, title: str = "", size=(1000, 640)) -> Path:
     """Modes (ModeEntry: omega, damping_ratio, kind, model) as horizontal lines (the
     model has no gyroscopic terms: its modes do not move with the speed), the 1x
     line, the running speeds, and per mode the speeds API 684 keeps clear,
@@ -69,6 +83,7 @@ def campbell_chart(path, modes, running_speeds, top: float, title: str = "",
     running speed falls inside."""
     from ..reduced.margins import amplification_factor, required_margin
     from .style import place_labels
+
     fig, ax = figure(*size)
     ax.plot([0.0, top], [0.0, top], color="k", lw=1.0, label="1x (synchronous unbalance)")
     for w in running_speeds:
@@ -85,15 +100,28 @@ def campbell_chart(path, modes, running_speeds, top: float, title: str = "",
         key = (m.model, round(m.omega, 6))
         if key not in done:
             ax.axhline(m.omega, color=colour, lw=0.9, ls="--" if m.model == "modal" else "-")
-            labels[key] = dict(xy=(top, m.omega), text=f"{m.kind} ({NAMES.get(m.model, m.model)})",
-                               color=colour, fontsize=7, ha="right", offset=(-4, 3))
+            labels[key] = dict(
+                xy=(top, m.omega),
+                text=f"{m.kind} ({NAMES.get(m.model, m.model)})",
+                color=colour,
+                fontsize=7,
+                ha="right",
+                offset=(-4, 3),
+            )
             done[key] = True
         else:
-            labels[key]["text"] = labels[key]["text"].replace(f" ({NAMES.get(m.model, m.model)})",
-                                                              f", {m.kind} ({NAMES.get(m.model, m.model)})")
+            labels[key]["text"] = labels[key]["text"].replace(
+                f" ({NAMES.get(m.model, m.model)})", f", {m.kind} ({NAMES.get(m.model, m.model)})"
+            )
         if hi > lo:
-            ax.plot([lo, min(hi, top)], [m.omega, m.omega], color="#d62728" if hit else colour, lw=5,
-                    alpha=0.55 if hit else 0.3, solid_capstyle="butt")
+            ax.plot(
+                [lo, min(hi, top)],
+                [m.omega, m.omega],
+                color="#d62728" if hit else colour,
+                lw=5,
+                alpha=0.55 if hit else 0.3,
+                solid_capstyle="butt",
+            )
             if hit:
                 ax.axvspan(lo, min(hi, top), color="#d62728", alpha=0.12, lw=0)
     ax.set_xlim(0, top)
@@ -124,8 +152,7 @@ def envelope_chart(path, runs, title: str = "", size=(1000, 560)) -> Path:
     return save(fig, path)
 
 
-def history_chart(path, series, ylabel: str, scale: float = 1.0, title: str = "",
-                  size=(1000, 420)) -> Path:
+def history_chart(path, series, ylabel: str, scale: float = 1.0, title: str = "", size=(1000, 420)) -> Path:
     """``series``: [(label, model, t, values)] overlaid."""
     fig, ax = figure(*size)
     for (label, model, t, y), colour in zip(series, CYCLE):

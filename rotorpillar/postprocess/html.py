@@ -21,8 +21,15 @@ from pathlib import Path
 #: Videos up to this size are embedded in the page as well as linked.
 EMBED_VIDEO_BYTES = 12 * 2**20
 
-_MIME = {".png": "image/png", ".gif": "image/gif", ".jpg": "image/jpeg", ".jpeg": "image/jpeg",
-         ".svg": "image/svg+xml", ".mp4": "video/mp4", ".webm": "video/webm"}
+_MIME = {
+    ".png": "image/png",
+    ".gif": "image/gif",
+    ".jpg": "image/jpeg",
+    ".jpeg": "image/jpeg",
+    ".svg": "image/svg+xml",
+    ".mp4": "video/mp4",
+    ".webm": "video/webm",
+}
 
 
 class Raw(str):
@@ -115,14 +122,20 @@ def relative(path: str | Path, base: str | Path) -> str:
 
 def image(path: str | Path, caption: str, alt: str | None = None, width: int | None = None) -> str:
     """A figure with the image embedded and an escaped caption."""
-    img = tag("img", "", src=data_uri(path), alt=alt or caption, loading=None,
-              style=f"max-width:{width}px" if width else None)
+    img = tag(
+        "img", "", src=data_uri(path), alt=alt or caption, loading=None, style=f"max-width:{width}px" if width else None
+    )
     img = Raw(img.replace("></img>", ">"))
     return tag("figure", [img, tag("figcaption", caption)])
 
 
-def video(path: str | Path, base: str | Path, caption: str, poster: str | Path | None = None,
-          embed_limit: int = EMBED_VIDEO_BYTES) -> str:
+def video(
+    path: str | Path,
+    base: str | Path,
+    caption: str,
+    poster: str | Path | None = None,
+    embed_limit: int = EMBED_VIDEO_BYTES,
+) -> str:
     """A video: embedded when small enough, and linked to the file beside the page."""
     path = Path(path)
     rel = relative(path, base)
@@ -131,12 +144,19 @@ def video(path: str | Path, base: str | Path, caption: str, poster: str | Path |
     if path.suffix.lower() == ".gif":
         media = Raw(tag("img", "", src=src, alt=caption).replace("></img>", ">"))
     else:
-        media = tag("video", "Your browser cannot play this video; open the file linked below.",
-                    src=src, controls=True, muted=True, loop=True, preload="metadata",
-                    playsinline=True, poster=data_uri(poster) if poster else None)
+        media = tag(
+            "video",
+            "Your browser cannot play this video; open the file linked below.",
+            src=src,
+            controls=True,
+            muted=True,
+            loop=True,
+            preload="metadata",
+            playsinline=True,
+            poster=data_uri(poster) if poster else None,
+        )
     link = tag("a", f"{path.name} ({path.stat().st_size / 2**20:.1f} MB)", href=rel)
-    return tag("figure", [media, tag("figcaption", [caption, Raw(" &mdash; file: "), link])],
-               class_="video")
+    return tag("figure", [media, tag("figcaption", [caption, Raw(" &mdash; file: "), link])], class_="video")
 
 
 def missing(text: str) -> str:
@@ -164,6 +184,7 @@ def slug(text: str) -> str:
     'eq-1-against-the-3d-model-bare-tube'
     """
     import re
+
     return re.sub(r"[^a-z0-9]+", "-", str(text).lower()).strip("-")[:60] or "part"
 
 
@@ -242,6 +263,7 @@ def subsections(section_html: str, section_id: str) -> tuple[str, list[tuple[str
     ('<h3 id="s-a-b">A b</h3><h3 id="x">C</h3><h3 id="s-a-b-2">A b</h3>', [('s-a-b', 'A b'), ('x', 'C'), ('s-a-b-2', 'A b')])
     """
     import re
+
     global _H3
     _H3 = _H3 or re.compile(r"<h3(\s+id=\"([^\"]*)\")?>(.*?)</h3>", re.S)
     found, seen = [], set()
@@ -274,8 +296,12 @@ def page(title: str, header_parts, nav: list[tuple[str, str]], sections) -> str:
         items.append(tag("li", inner))
     sections = done
     nav_html = tag("nav", [tag("h2", "Contents"), tag("ol", items)])
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
-            f"<title>{esc(title)}</title><style>{STYLE}</style></head><body>"
-            + "".join(str(h) for h in header_parts) + nav_html + "".join(str(s) for s in sections)
-            + "</body></html>\n")
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f"<title>{esc(title)}</title><style>{STYLE}</style></head><body>"
+        + "".join(str(h) for h in header_parts)
+        + nav_html
+        + "".join(str(s) for s in sections)
+        + "</body></html>\n"
+    )

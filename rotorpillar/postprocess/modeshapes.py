@@ -21,8 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from ..provenance import atomic_path
-from .directions import MODEL_AXIS
-from .directions import mode_label
+from .directions import MODEL_AXIS, mode_label
 from .geometry import ModeSet
 from .offscreen import pyvista
 from .style import tag_png
@@ -44,8 +43,8 @@ PX_PER_POINT = 2.0
 #: sheet (14 px; the sheet is shown at 1060/1200 of its size: 12 px).
 MODE_FONT, SHEET_FONT = 9, 7
 
-MODE_SIZE = (480, 720)        # width, height of one mode's PNG (px)
-SHEET_TILE = (300, 450)       # one tile of the contact sheet (px)
+MODE_SIZE = (480, 720)  # width, height of one mode's PNG (px)
+SHEET_TILE = (300, 450)  # one tile of the contact sheet (px)
 SHEET_COLUMNS = 4
 SHEET_MODES = 8
 #: Width of the side view : the sections' view, in a tile of an ovalling mode.
@@ -85,13 +84,11 @@ def mode_scale(modeset: ModeSet, i: int) -> float:
     """The factor that brings mode i's largest displacement to its target size."""
     u = np.linalg.norm(modeset.shape(i), axis=1).max()
     kind = str(modeset.modes[i].get("kind", ""))
-    target = (BEAM_TARGET * modeset.height if is_beam_mode(kind)
-              else SHELL_TARGET * radius_of(modeset))
+    target = BEAM_TARGET * modeset.height if is_beam_mode(kind) else SHELL_TARGET * radius_of(modeset)
     return nice_factor(target / u) if u > 0 else 1.0
 
 
-def view_direction(modeset: ModeSet, u: np.ndarray, elevation_deg: float = 12.0,
-                   turn_deg: float = 25.0) -> np.ndarray:
+def view_direction(modeset: ModeSet, u: np.ndarray, elevation_deg: float = 12.0, turn_deg: float = 25.0) -> np.ndarray:
     """Unit vector from the focal point to the camera: across the lateral
     direction the mode moves most in, turned by ``turn_deg``, raised by
     ``elevation_deg``."""
@@ -104,8 +101,9 @@ def view_direction(modeset: ModeSet, u: np.ndarray, elevation_deg: float = 12.0,
     return d / np.linalg.norm(d)
 
 
-def frame(camera, points: np.ndarray, direction: np.ndarray, up: np.ndarray, aspect: float,
-          free=(0.03, 0.03, 0.03, 0.12)) -> float:
+def frame(
+    camera, points: np.ndarray, direction: np.ndarray, up: np.ndarray, aspect: float, free=(0.03, 0.03, 0.03, 0.12)
+) -> float:
     """Point a parallel-projection camera along ``-direction`` so that ``points``
     fill the view but for the ``free`` fractions (left, right, bottom, top)
     kept for the label and the colour bar; ``aspect`` = view width / height.
@@ -120,11 +118,10 @@ def frame(camera, points: np.ndarray, direction: np.ndarray, up: np.ndarray, asp
     d = direction / np.linalg.norm(direction)
     u_s = up - (up @ d) * d
     u_s = u_s / np.linalg.norm(u_s)
-    r_s = np.cross(u_s, d)                 # screen right for a camera looking along -d
+    r_s = np.cross(u_s, d)  # screen right for a camera looking along -d
     a, b = points @ r_s, points @ u_s
     left, right, bottom, top = free
-    half = max((np.ptp(b) or 1e-9) / (2 * (1 - bottom - top)),
-               (np.ptp(a) or 1e-9) / (2 * aspect * (1 - left - right)))
+    half = max((np.ptp(b) or 1e-9) / (2 * (1 - bottom - top)), (np.ptp(a) or 1e-9) / (2 * aspect * (1 - left - right)))
     # the points' centre goes to the centre of the free part of the view
     a_c = 0.5 * (a.min() + a.max()) - ((left + 1 - right) / 2 - 0.5) * 2 * half * aspect
     b_c = 0.5 * (b.min() + b.max()) - ((bottom + 1 - top) / 2 - 0.5) * 2 * half
@@ -169,8 +166,7 @@ def section_levels(modeset: ModeSet, u: np.ndarray, count: int = SECTIONS) -> li
     peak = float(np.clip(levels[int(np.argmax(amp))], z0 + 0.02 * H, z0 + 0.98 * H))
     chosen = [peak]
     for h in sorted((z0 + f * H for f in (0.95, 0.75, 0.5, 0.25)), key=lambda h: -amplitude(h)):
-        if (len(chosen) < count and amplitude(h) >= 0.1 * amp.max()
-                and all(abs(h - c) > H / 8 for c in chosen)):
+        if len(chosen) < count and amplitude(h) >= 0.1 * amp.max() and all(abs(h - c) > H / 8 for c in chosen):
             chosen.append(float(h))
     return sorted(chosen, reverse=True)
 
@@ -185,31 +181,36 @@ def deformed(modeset: ModeSet, u: np.ndarray, factor: float):
 
 
 def _bar_args(font: int, horizontal: bool = False) -> dict:
-    where = (dict(vertical=False, height=0.05, width=0.45, position_x=0.52, position_y=0.02)
-             if horizontal else
-             dict(vertical=True, height=0.4, width=0.06, position_x=0.88, position_y=0.05))
+    where = (
+        dict(vertical=False, height=0.05, width=0.45, position_x=0.52, position_y=0.02)
+        if horizontal
+        else dict(vertical=True, height=0.4, width=0.06, position_x=0.88, position_y=0.05)
+    )
     # a scalar bar's labels come out at ~1 px per point (add_text's ~2): twice the size
-    return dict(title="", label_font_size=2 * font, color="black", fmt="%.1f",
-                n_labels=2 if horizontal else 3, **where)
+    return dict(title="", label_font_size=2 * font, color="black", fmt="%.1f", n_labels=2 if horizontal else 3, **where)
 
 
 def _bar_title(plotter, font: int, horizontal: bool = False) -> None:
     """The colour bar's title, clear of its ticks: above a vertical bar,
     left of a horizontal one."""
     if horizontal:
-        plotter.add_text(BAR_TITLE, position=(0.03, 0.025), viewport=True, font_size=font,
-                         color="black")
+        plotter.add_text(BAR_TITLE, position=(0.03, 0.025), viewport=True, font_size=font, color="black")
     else:
-        plotter.add_text(BAR_TITLE, position=(0.70, 0.49), viewport=True, font_size=font,
-                         color="black")
+        plotter.add_text(BAR_TITLE, position=(0.70, 0.49), viewport=True, font_size=font, color="black")
 
 
 def _triad(plotter, modeset: ModeSet, font: int) -> None:
     """The axes, named as the paper names them: X horizontal in the rotor's
     plane, Z along the shaft, Y up (bending in X and in Z look alike without it)."""
     names = {i: MODEL_AXIS["xyz"[i]] for i in range(3)}
-    plotter.add_axes(xlabel=names[0], ylabel=names[1], zlabel=names[2], line_width=3,
-                     viewport=(0.0, 0.0, 0.3, 0.2), label_size=(0.5, 0.25))
+    plotter.add_axes(
+        xlabel=names[0],
+        ylabel=names[1],
+        zlabel=names[2],
+        line_width=3,
+        viewport=(0.0, 0.0, 0.3, 0.2),
+        label_size=(0.5, 0.25),
+    )
 
 
 def _label(plotter, text: str, font: int, view_height: float) -> None:
@@ -220,22 +221,39 @@ def _label(plotter, text: str, font: int, view_height: float) -> None:
     plotter.add_text(text, position=(0.03, y), viewport=True, font_size=font, color="black")
 
 
-def _add_mode(plotter, modeset: ModeSet, i: int, label: str, font: int, bar: bool,
-              aspect: float, free, view_height: float, triad: bool = True) -> None:
+def _add_mode(
+    plotter,
+    modeset: ModeSet,
+    i: int,
+    label: str,
+    font: int,
+    bar: bool,
+    aspect: float,
+    free,
+    view_height: float,
+    triad: bool = True,
+) -> None:
     """The deformed tube over the undeformed one's outline, in the current view."""
     u = modeset.shape(i)
     factor = mode_scale(modeset, i)
     mesh = deformed(modeset, u, factor)
     # The undeformed tube as an outline (silhouette and rims): a translucent
     # surface z-fights with the deformed one near the clamped base.
-    plotter.add_mesh(modeset.surface, color="white", opacity=0.0,
-                     silhouette=dict(color="#808080", line_width=1.2))
-    plotter.add_mesh(modeset.surface.extract_feature_edges(60, boundary_edges=False,
-                                                           non_manifold_edges=False,
-                                                           manifold_edges=False),
-                     color="#808080", line_width=1.2)
-    plotter.add_mesh(mesh, scalars=SCALAR, cmap="viridis", clim=(0.0, 1.0),
-                     smooth_shading=True, show_scalar_bar=bar, scalar_bar_args=_bar_args(font))
+    plotter.add_mesh(modeset.surface, color="white", opacity=0.0, silhouette=dict(color="#808080", line_width=1.2))
+    plotter.add_mesh(
+        modeset.surface.extract_feature_edges(60, boundary_edges=False, non_manifold_edges=False, manifold_edges=False),
+        color="#808080",
+        line_width=1.2,
+    )
+    plotter.add_mesh(
+        mesh,
+        scalars=SCALAR,
+        cmap="viridis",
+        clim=(0.0, 1.0),
+        smooth_shading=True,
+        show_scalar_bar=bar,
+        scalar_bar_args=_bar_args(font),
+    )
     if bar:
         _bar_title(plotter, font)
     if triad:
@@ -248,8 +266,9 @@ def _add_mode(plotter, modeset: ModeSet, i: int, label: str, font: int, bar: boo
     plotter.renderer.ResetCameraClippingRange()
 
 
-def _add_sections(plotter, modeset: ModeSet, i: int, font: int, aspect: float, free,
-                  bar: bool, view_height: float) -> None:
+def _add_sections(
+    plotter, modeset: ModeSet, i: int, font: int, aspect: float, free, bar: bool, view_height: float
+) -> None:
     """Mode i's cross-sections seen along the axis (top down), stacked top first."""
     ax = modeset.axes
     ex, ey, ea = np.eye(3)[ax.x], np.eye(3)[ax.y], np.eye(3)[ax.axial]
@@ -267,8 +286,11 @@ def _add_sections(plotter, modeset: ModeSet, i: int, font: int, aspect: float, f
         # the outer wall's ring, as one polyline
         q = np.asarray(cut.points)
         r = np.hypot(q[:, ax.x], q[:, ax.y])
-        cut = cut.extract_points(r > 0.5 * (r.min() + r.max()) - 1e-12 * R,
-                                 adjacent_cells=False).extract_surface(algorithm=None).strip()
+        cut = (
+            cut.extract_points(r > 0.5 * (r.min() + r.max()) - 1e-12 * R, adjacent_cells=False)
+            .extract_surface(algorithm=None)
+            .strip()
+        )
         p = np.asarray(cut.points)
         w = np.asarray(cut.point_data[modeset.arrays[i]], dtype=float)
         shift = -k * step * ey
@@ -278,11 +300,18 @@ def _add_sections(plotter, modeset: ModeSet, i: int, font: int, aspect: float, f
         rest.points, ring.points = flat, moved
         ring.point_data[SCALAR] = np.linalg.norm(w, axis=1) / peak
         # wide GL lines break up on the software renderer: lines drawn as tubes
-        plotter.add_mesh(rest, color="#909090", line_width=2, render_lines_as_tubes=True,
-                         lighting=False)
-        plotter.add_mesh(ring, scalars=SCALAR, cmap="viridis", clim=(0.0, 1.0), line_width=4,
-                         render_lines_as_tubes=True, lighting=False,
-                         show_scalar_bar=bar and k == 0, scalar_bar_args=_bar_args(font, True))
+        plotter.add_mesh(rest, color="#909090", line_width=2, render_lines_as_tubes=True, lighting=False)
+        plotter.add_mesh(
+            ring,
+            scalars=SCALAR,
+            cmap="viridis",
+            clim=(0.0, 1.0),
+            line_width=4,
+            render_lines_as_tubes=True,
+            lighting=False,
+            show_scalar_bar=bar and k == 0,
+            scalar_bar_args=_bar_args(font, True),
+        )
         if bar and k == 0:
             _bar_title(plotter, font, True)
         anchors.append(shift + 1.45 * R * ey - 1.3 * R * ex)
@@ -291,8 +320,15 @@ def _add_sections(plotter, modeset: ModeSet, i: int, font: int, aspect: float, f
     if not anchors:
         return
     # a point label's font is ~1 px per point, not add_text's ~2: twice the size
-    plotter.add_point_labels(np.array(anchors), texts, font_size=2 * font, text_color="black",
-                             shape=None, show_points=False, always_visible=True)
+    plotter.add_point_labels(
+        np.array(anchors),
+        texts,
+        font_size=2 * font,
+        text_color="black",
+        shape=None,
+        show_points=False,
+        always_visible=True,
+    )
     _label(plotter, "sections, from above", font, view_height)
     frame(plotter.camera, np.concatenate(every), ea, ey, aspect, free)
     plotter.renderer.ResetCameraClippingRange()
@@ -310,8 +346,13 @@ def render_mode(modeset: ModeSet, i: int, path: str | Path, size=MODE_SIZE) -> P
     its cross-sections."""
     pv = pyvista()
     split = has_sections(modeset.modes[i])
-    p = pv.Plotter(off_screen=True, window_size=list(size), shape=(1, 2 if split else 1),
-                   col_weights=list(SPLIT) if split else None, border=False)
+    p = pv.Plotter(
+        off_screen=True,
+        window_size=list(size),
+        shape=(1, 2 if split else 1),
+        col_weights=list(SPLIT) if split else None,
+        border=False,
+    )
     try:
         p.set_background("white")
         w = size[0] * SPLIT[0] / sum(SPLIT) if split else size[0]
@@ -319,13 +360,29 @@ def render_mode(modeset: ModeSet, i: int, path: str | Path, size=MODE_SIZE) -> P
         lines = label.count("\n") + 2
         font = MODE_FONT
         p.subplot(0, 0)
-        _add_mode(p, modeset, i, label, font=font, bar=not split, aspect=w / size[1],
-                  free=_free(font, size[1], lines, not split), view_height=size[1])
+        _add_mode(
+            p,
+            modeset,
+            i,
+            label,
+            font=font,
+            bar=not split,
+            aspect=w / size[1],
+            free=_free(font, size[1], lines, not split),
+            view_height=size[1],
+        )
         if split:
             p.subplot(0, 1)
-            _add_sections(p, modeset, i, font, (size[0] - w) / size[1],
-                          free=(0.03, 0.03, 0.1, _free(font, size[1], 2, False)[3]), bar=True,
-                          view_height=size[1])
+            _add_sections(
+                p,
+                modeset,
+                i,
+                font,
+                (size[0] - w) / size[1],
+                free=(0.03, 0.03, 0.1, _free(font, size[1], 2, False)[3]),
+                bar=True,
+                view_height=size[1],
+            )
         with atomic_path(path) as tmp:
             p.screenshot(str(tmp))
         tag_png(path, PX_PER_POINT * font, size[0])
@@ -343,8 +400,14 @@ def _sheet_label(m: dict, i: int) -> str:
     return mode_label(m, i, lines=True).removeprefix("mode ")
 
 
-def render_contact_sheet(modeset: ModeSet, path: str | Path, count: int = SHEET_MODES,
-                         columns: int = SHEET_COLUMNS, tile=SHEET_TILE, title: str = "") -> Path:
+def render_contact_sheet(
+    modeset: ModeSet,
+    path: str | Path,
+    count: int = SHEET_MODES,
+    columns: int = SHEET_COLUMNS,
+    tile=SHEET_TILE,
+    title: str = "",
+) -> Path:
     """The first ``count`` modes side by side, one render of a multi-view window;
     an ovalling mode's tile holds its side view and its cross-sections."""
     pv = pyvista()
@@ -352,14 +415,23 @@ def render_contact_sheet(modeset: ModeSet, path: str | Path, count: int = SHEET_
     if count < 1:
         raise ValueError("no mode to draw")
     rows = math.ceil(count / columns)
-    columns = math.ceil(count / rows)     # no empty tiles in a 6-mode sheet
+    columns = math.ceil(count / rows)  # no empty tiles in a 6-mode sheet
     # Two views per tile; a tile without sections merges its two into one.
     split = [has_sections(modeset.modes[i]) for i in range(count)]
-    groups = [(i // columns, np.s_[2 * (i % columns): 2 * (i % columns) + 2])
-              for i in range(rows * columns) if i >= count or not split[i]]
-    p = pv.Plotter(off_screen=True, shape=(rows, 2 * columns), groups=groups or None,
-                   col_weights=list(SPLIT) * columns, border=True, border_color="#dddddd",
-                   window_size=[tile[0] * columns, tile[1] * rows])
+    groups = [
+        (i // columns, np.s_[2 * (i % columns) : 2 * (i % columns) + 2])
+        for i in range(rows * columns)
+        if i >= count or not split[i]
+    ]
+    p = pv.Plotter(
+        off_screen=True,
+        shape=(rows, 2 * columns),
+        groups=groups or None,
+        col_weights=list(SPLIT) * columns,
+        border=True,
+        border_color="#dddddd",
+        window_size=[tile[0] * columns, tile[1] * rows],
+    )
     try:
         p.set_background("white")
         w_side = tile[0] * SPLIT[0] / sum(SPLIT)
@@ -368,14 +440,30 @@ def render_contact_sheet(modeset: ModeSet, path: str | Path, count: int = SHEET_
             p.subplot(r, c)
             label = _sheet_label(modeset.modes[i], i)
             free = _free(SHEET_FONT, tile[1], label.count("\n") + 2, False)
-            _add_mode(p, modeset, i, label, font=SHEET_FONT, bar=False,
-                      aspect=(w_side if split[i] else tile[0]) / tile[1], free=free,
-                      view_height=tile[1], triad=not split[i])
+            _add_mode(
+                p,
+                modeset,
+                i,
+                label,
+                font=SHEET_FONT,
+                bar=False,
+                aspect=(w_side if split[i] else tile[0]) / tile[1],
+                free=free,
+                view_height=tile[1],
+                triad=not split[i],
+            )
             if split[i]:
                 p.subplot(r, c + 1)
-                _add_sections(p, modeset, i, SHEET_FONT, (tile[0] - w_side) / tile[1],
-                              free=(0.03, 0.03, 0.03, _free(SHEET_FONT, tile[1], 2, False)[3]),
-                              bar=False, view_height=tile[1])
+                _add_sections(
+                    p,
+                    modeset,
+                    i,
+                    SHEET_FONT,
+                    (tile[0] - w_side) / tile[1],
+                    free=(0.03, 0.03, 0.03, _free(SHEET_FONT, tile[1], 2, False)[3]),
+                    bar=False,
+                    view_height=tile[1],
+                )
         with atomic_path(path) as tmp:
             p.screenshot(str(tmp))
         tag_png(path, PX_PER_POINT * SHEET_FONT, tile[0] * columns)
@@ -384,8 +472,7 @@ def render_contact_sheet(modeset: ModeSet, path: str | Path, count: int = SHEET_
     return Path(path)
 
 
-def render_modes(modeset: ModeSet, directory: str | Path, prefix: str, count: int = SHEET_MODES,
-                 progress=None) -> dict:
+def render_modes(modeset: ModeSet, directory: str | Path, prefix: str, count: int = SHEET_MODES, progress=None) -> dict:
     """PNG of each of the first ``count`` modes and the contact sheet.
 
     Returns {"modes": [paths], "sheet": path}.

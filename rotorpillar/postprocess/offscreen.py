@@ -37,8 +37,9 @@ def configure() -> None:
     """Set the environment for off-screen rendering before VTK is imported."""
     os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
     if "VTK_DEFAULT_OPENGL_WINDOW" not in os.environ:
-        window = choose_window(ctypes.util.find_library("OSMesa") is not None,
-                               ctypes.util.find_library("EGL") is not None)
+        window = choose_window(
+            ctypes.util.find_library("OSMesa") is not None, ctypes.util.find_library("EGL") is not None
+        )
         if window:
             os.environ["VTK_DEFAULT_OPENGL_WINDOW"] = window
 
@@ -47,6 +48,7 @@ def pyvista():
     """The pyvista module, configured to render off screen."""
     configure()
     import pyvista as pv
+
     pv.OFF_SCREEN = True
     return pv
 

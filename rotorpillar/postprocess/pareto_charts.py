@@ -19,14 +19,17 @@ FAMILY_STYLE = {
     "beam": dict(color="#009E73", marker="s", label="beam, full order (elements)"),
     "fem3d": dict(color="#CC79A7", marker="D", label="3D, full order (mesh)"),
 }
-PANELS = (("peak_tip_error", "peak_tip", "peak tip relative to the ground: |error|"),
-          ("history_error", "history", "tip history: max |difference| / max |tip|"))
+PANELS = (
+    ("peak_tip_error", "peak_tip", "peak tip relative to the ground: |error|"),
+    ("history_error", "history", "tip history: max |difference| / max |tip|"),
+)
 FLOOR = 1e-7
 
 
 def _short(label: str) -> str:
-    return label.replace("ROM, ", "").replace(" modes", "").replace(" mode", "").replace(
-        "beam, ", "").replace("3D, ", "")
+    return (
+        label.replace("ROM, ", "").replace(" modes", "").replace(" mode", "").replace("beam, ", "").replace("3D, ", "")
+    )
 
 
 def pareto_chart(pareto: dict, path: str | Path, title: str = "") -> Path:
@@ -40,17 +43,28 @@ def pareto_chart(pareto: dict, path: str | Path, title: str = "") -> Path:
     bottom = max(FLOOR, 0.3 * min(errs)) if errs else FLOOR
     for ax, (field, front_key, panel_title) in zip(axes, PANELS):
         for fam, style in FAMILY_STYLE.items():
-            pts = sorted(((r["wall_seconds"], abs(r[field]), r["label"]) for r in runs
-                          if r["family"] == fam and r.get(field) is not None),
-                         key=lambda p: p[0])
+            pts = sorted(
+                (
+                    (r["wall_seconds"], abs(r[field]), r["label"])
+                    for r in runs
+                    if r["family"] == fam and r.get(field) is not None
+                ),
+                key=lambda p: p[0],
+            )
             if not pts:
                 continue
             xs, ys, labels = zip(*pts)
             kw = dict(style)
             ax.plot(xs, [max(y, FLOOR) for y in ys], ls="-", lw=1.2, ms=5, **kw)
             for x, y, lab in pts:
-                ax.annotate(_short(lab), (x, max(y, FLOOR)), fontsize=7, xytext=(3, 3),
-                            textcoords="offset points", color=style["color"])
+                ax.annotate(
+                    _short(lab),
+                    (x, max(y, FLOOR)),
+                    fontsize=7,
+                    xytext=(3, 3),
+                    textcoords="offset points",
+                    color=style["color"],
+                )
         front = [r for r in runs if r["label"] in set(pareto["fronts"].get(front_key, []))]
         fr = sorted((r["wall_seconds"], max(abs(r[field]), FLOOR)) for r in front if r.get(field) is not None)
         if fr:
@@ -59,13 +73,20 @@ def pareto_chart(pareto: dict, path: str | Path, title: str = "") -> Path:
             ax.plot(xs, ys, ls="none", marker="o", ms=12, mfc="none", mec="0.3", zorder=0)
         for r in runs:
             if r["label"] in chosen and r.get(field) is not None:
-                ax.plot([r["wall_seconds"]], [max(abs(r[field]), FLOOR)], marker="*", ms=17,
-                        color=COLOURS["numeric"], mec="k", ls="none", zorder=5,
-                        label="compare's models" if r["label"] == min(chosen) else None)
+                ax.plot(
+                    [r["wall_seconds"]],
+                    [max(abs(r[field]), FLOOR)],
+                    marker="*",
+                    ms=17,
+                    color=COLOURS["numeric"],
+                    mec="k",
+                    ls="none",
+                    zorder=5,
+                    label="compare's models" if r["label"] == min(chosen) else None,
+                )
         own = ref.get("peak_error" if front_key == "peak_tip" else "history_error")
         if own:
-            ax.axhspan(bottom, own, color="0.85", zorder=-1,
-                       label=f"the reference's own error ({ref.get('method')})")
+            ax.axhspan(bottom, own, color="0.85", zorder=-1, label=f"the reference's own error ({ref.get('method')})")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_ylim(bottom=bottom)

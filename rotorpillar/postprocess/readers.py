@@ -97,6 +97,7 @@ def read_json(path: str | Path) -> dict[str, Any] | None:
 @dataclass(frozen=True)
 class Read(Generic[R]):
     """A command's result as read: its record, and the document it came from."""
+
     record: R
     doc: dict[str, Any]
     """the whole JSON object: the record's fields and what the command wrote beside
@@ -122,9 +123,11 @@ def read_record(path: str | Path, record_type: type[R]) -> Read[R] | None:
         key = exc.args[0] if exc.args else "?"
         raise KeyError(f"{name} has no key {key!r}") from None
     except (TypeError, ValueError, AttributeError) as exc:
-        missing = [f.name for f in dataclasses.fields(record_type)  # type: ignore[arg-type]
-                   if f.name not in doc and f.default is dataclasses.MISSING
-                   and f.default_factory is dataclasses.MISSING]
+        missing = [
+            f.name
+            for f in dataclasses.fields(record_type)  # type: ignore[arg-type]
+            if f.name not in doc and f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        ]
         if missing:
             raise KeyError(f"{name} has no key {missing[0]!r}") from None
         raise TypeError(f"{name}: {exc}") from None
@@ -134,24 +137,28 @@ def read_record(path: str | Path, record_type: type[R]) -> Read[R] | None:
 def read_analysis(path: str | Path) -> Read[AnalysisResult] | None:
     """``analyze.json``, or None."""
     from ..analysis.results import AnalysisResult
+
     return read_record(path, AnalysisResult)
 
 
 def read_modal(path: str | Path) -> Read[ModalSummary] | None:
     """``modal.json``, or None."""
     from ..fem3d.modal_summary import ModalSummary
+
     return read_record(path, ModalSummary)
 
 
 def read_convergence(path: str | Path) -> Read[ConvergenceStudy] | None:
     """``convergence.json``, or None."""
     from ..converge.result import ConvergenceStudy
+
     return read_record(path, ConvergenceStudy)
 
 
 def read_study(path: str | Path) -> Read[StudyResult] | None:
     """``study.json``, or None."""
     from ..studies.result import StudyResult
+
     return read_record(path, StudyResult)
 
 
@@ -177,6 +184,7 @@ def read_npz(path: str | Path | None) -> dict[str, np.ndarray] | None:
 @dataclass
 class Simulation:
     """One case of `rotorpillar simulate`: its JSON summary and its arrays."""
+
     case: str
     meta: dict[str, Any]
     arrays: dict[str, np.ndarray]

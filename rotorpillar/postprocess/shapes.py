@@ -20,8 +20,7 @@ from typing import Any
 
 
 def json_type(doc: Any) -> str:
-    return {type(None): "null", list: "list", dict: "object", str: "string", bool: "boolean"}.get(
-        type(doc), "number")
+    return {type(None): "null", list: "list", dict: "object", str: "string", bool: "boolean"}.get(type(doc), "number")
 
 
 def require(doc: dict[str, Any], kinds: dict[str, Any], name: str) -> None:
@@ -32,12 +31,21 @@ def require(doc: dict[str, Any], kinds: dict[str, Any], name: str) -> None:
         if k not in doc:
             raise KeyError(f"{name} has no key {k!r}")
         if not isinstance(doc[k], kind):
-            raise TypeError(f"{name}: {k} is a JSON {json_type(doc[k])}, not "
-                            + {dict: "an object", list: "a list", str: "a string"}[kind])
+            raise TypeError(
+                f"{name}: {k} is a JSON {json_type(doc[k])}, not "
+                + {dict: "an object", list: "a list", str: "a string"}[kind]
+            )
 
 
-_JSON_KINDS = {dict: (dict,), tuple: (list,), list: (list,), str: (str,), bool: (bool,),
-               int: (int,), float: (int, float)}
+_JSON_KINDS = {
+    dict: (dict,),
+    tuple: (list,),
+    list: (list,),
+    str: (str,),
+    bool: (bool,),
+    int: (int,),
+    float: (int, float),
+}
 
 
 def _kind_error(hint: Any, value: Any, where: str) -> str | None:
@@ -49,15 +57,25 @@ def _kind_error(hint: Any, value: Any, where: str) -> str | None:
         inner = [a for a in args if a is not type(None)]
         return _kind_error(inner[0], value, where) if len(inner) == 1 else None
     if isinstance(hint, type) and dataclasses.is_dataclass(hint) and hasattr(hint, "from_json"):
-        return (shape_error(hint, value, where + ".") if isinstance(value, dict)
-                else f"{where} is a JSON {json_type(value)}, not an object")
+        return (
+            shape_error(hint, value, where + ".")
+            if isinstance(value, dict)
+            else f"{where} is a JSON {json_type(value)}, not an object"
+        )
     base = origin or hint
     kinds = _JSON_KINDS.get(base) if isinstance(base, type) else None
-    if kinds is None or (value is None and base in (float, int)):   # non-finite numbers: null
+    if kinds is None or (value is None and base in (float, int)):  # non-finite numbers: null
         return None
     if not isinstance(value, kinds) or (base is not bool and isinstance(value, bool)):
-        want = {int: "a number", float: "a number", tuple: "a list", list: "a list",
-                dict: "an object", str: "a string", bool: "a boolean"}[base]
+        want = {
+            int: "a number",
+            float: "a number",
+            tuple: "a list",
+            list: "a list",
+            dict: "an object",
+            str: "a string",
+            bool: "a boolean",
+        }[base]
         return f"{where} is a JSON {json_type(value)}, not {want}"
     if base is tuple and args:
         item = args[0]

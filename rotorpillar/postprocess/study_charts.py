@@ -44,16 +44,23 @@ def _edges(v) -> np.ndarray:
 
 
 def _label(key: str) -> str:
-    units = {"drive.torque_at_zero": "M0 [N*m]", "rotor.eccentricity": "eccentricity e [m]",
-             "shaft.stiffness": "c2 [N/m]", "drive.slope": "slope s [N*m*s]",
-             "load.coefficient": "k [N*m*s^2]", "rotor.mass": "m_C [kg]"}
+    units = {
+        "drive.torque_at_zero": "M0 [N*m]",
+        "rotor.eccentricity": "eccentricity e [m]",
+        "shaft.stiffness": "c2 [N/m]",
+        "drive.slope": "slope s [N*m*s]",
+        "load.coefficient": "k [N*m*s^2]",
+        "rotor.mass": "m_C [kg]",
+    }
     return units.get(key, key)
 
 
 #: A run-up's outcome on the capture map: (code, colour, legend).
-OUTCOMES = ((0, COLOURS["unstable"], "captured at a resonance"),
-            (1, COLOURS["accent"], "passed what it reached: free speed below the next resonance"),
-            (2, COLOURS["stable"], "passed every resonance"))
+OUTCOMES = (
+    (0, COLOURS["unstable"], "captured at a resonance"),
+    (1, COLOURS["accent"], "passed what it reached: free speed below the next resonance"),
+    (2, COLOURS["stable"], "passed every resonance"),
+)
 
 
 def outcome(run, resonances) -> int:
@@ -89,7 +96,9 @@ def capture_map(path, result) -> Path:
     labelled with the resonance it belongs to."""
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
+
     from .style import place_labels
+
     axes = list(result.axes)
     keys = [a.key for a in axes]
     # the torque on the vertical axis, the other axis horizontal
@@ -108,14 +117,22 @@ def capture_map(path, result) -> Path:
         grid[i, j] = outcome(r, res) if res else (2.0 if r.passed else 0.0)
     fig, ax = figure(1060, 720)
     cmap = ListedColormap([c for _, c, _ in OUTCOMES])
-    ax.pcolormesh(_edges(xs), _edges(ys), np.ma.masked_invalid(grid), cmap=cmap, vmin=-0.5,
-                  vmax=2.5, alpha=0.55, edgecolors="white", linewidth=0.6)
+    ax.pcolormesh(
+        _edges(xs),
+        _edges(ys),
+        np.ma.masked_invalid(grid),
+        cmap=cmap,
+        vmin=-0.5,
+        vmax=2.5,
+        alpha=0.55,
+        edgecolors="white",
+        linewidth=0.6,
+    )
     seen = {int(v) for v in grid[np.isfinite(grid)]}
     handles = [Patch(color=c, alpha=0.55, label=lab) for k, c, lab in OUTCOMES if k in seen]
     bad = [r for r in result.runs if not r.ok]
     if bad:
-        h, = ax.plot([r.params[xkey] for r in bad], [r.params[ykey] for r in bad], "kx",
-                     label="integrator failed")
+        (h,) = ax.plot([r.params[xkey] for r in bad], [r.params[ykey] for r in bad], "kx", label="integrator failed")
         handles.append(h)
     y_lo, y_hi = _edges(ys)[0], _edges(ys)[-1]
     labels = []
@@ -123,13 +140,14 @@ def capture_map(path, result) -> Path:
         bx = list(np.asarray(b["other_values"], dtype=float))
         which = list(b.get("resonance") or [None] * len(bx))
         omega = {r["index"]: r["omega"] for r in res}
-        for name, style, lab in (("averaging", "-", "needed to pass: averaging (Eq. 19-23), A fold"),
-                                 ("exact_linear", "--", "needed to pass: exact linear balance")):
+        for name, style, lab in (
+            ("averaging", "-", "needed to pass: averaging (Eq. 19-23), A fold"),
+            ("exact_linear", "--", "needed to pass: exact linear balance"),
+        ):
             by = [np.nan if v is None else v for v in b[name]]
             first = True
             for idx, sx, sy in _segments(bx, by, which):
-                h, = ax.plot(sx, sy, style, color=COLOURS["analytic"], lw=1.8,
-                             label=lab if first else None)
+                (h,) = ax.plot(sx, sy, style, color=COLOURS["analytic"], lw=1.8, label=lab if first else None)
                 if first:
                     handles.append(h)
                 first = False
@@ -139,29 +157,41 @@ def capture_map(path, result) -> Path:
                 what = f"resonance {idx}" + (f" ({omega[idx]:.1f} rad/s)" if idx in omega else "")
                 if inside.size:
                     k = inside[len(inside) // 2]
-                    labels.append({"xy": (float(sx[k]), float(sy[k])), "offset": (6, 6),
-                                   "fontsize": 8, "text": what,
-                                   "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none",
-                                                alpha=0.85)})
+                    labels.append(
+                        {
+                            "xy": (float(sx[k]), float(sy[k])),
+                            "offset": (6, 6),
+                            "fontsize": 8,
+                            "text": what,
+                            "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.85),
+                        }
+                    )
                 elif np.isfinite(sy).any():
                     # the whole piece lies off the map: say where, at the edge it lies beyond
                     up = np.nanmin(sy) > y_hi
                     xm = float(np.clip(np.nanmean(sx), _edges(xs)[0], _edges(xs)[-1]))
-                    labels.append({"xy": (xm, y_hi if up else y_lo), "offset": (4, -14 if up else 6),
-                                   "fontsize": 8, "text": f"{xkey.split('.')[-1]} {sx.min():.3g} .. "
-                                   f"{sx.max():.3g}: {what} needs M0 = {np.nanmin(sy):,.0f} N*m, "
-                                   f"{'above' if up else 'below'} the map",
-                                   "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none",
-                                                alpha=0.85)})
+                    labels.append(
+                        {
+                            "xy": (xm, y_hi if up else y_lo),
+                            "offset": (4, -14 if up else 6),
+                            "fontsize": 8,
+                            "text": f"{xkey.split('.')[-1]} {sx.min():.3g} .. "
+                            f"{sx.max():.3g}: {what} needs M0 = {np.nanmin(sy):,.0f} N*m, "
+                            f"{'above' if up else 'below'} the map",
+                            "bbox": dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.85),
+                        }
+                    )
     ax.set_xlim(_edges(xs)[0], _edges(xs)[-1])
     ax.set_ylim(y_lo, y_hi)
     ax.set_xlabel(_label(xkey))
     ax.set_ylabel(_label(ykey))
     ax.grid(False)
-    legend = fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=8,
-                        frameon=False)
-    ax.set_title(f"{result.scene_name}: run-ups from rest, {len(result.runs)} runs "
-                 f"({result.model} model); the lines: torque needed to pass", fontsize=10)
+    legend = fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=8, frameon=False)
+    ax.set_title(
+        f"{result.scene_name}: run-ups from rest, {len(result.runs)} runs "
+        f"({result.model} model); the lines: torque needed to pass",
+        fontsize=10,
+    )
     fig.canvas.draw()
     fig.set_layout_engine("none")
     place_labels(ax, labels, obstacles=[legend], lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2])
@@ -181,15 +211,15 @@ def final_speed_chart(path, result) -> Path:
     b = result.boundary or {}
     marks = []
     if b.get("kind") == "torque" and key == TORQUE:
-        marks = [(b["averaging"][0], "-", "averaging theory (Eq. 19-23)"),
-                 (b["exact_linear"][0], "--", "exact linear")]
+        marks = [(b["averaging"][0], "-", "averaging theory (Eq. 19-23)"), (b["exact_linear"][0], "--", "exact linear")]
     elif b.get("kind") == "threshold":
-        marks = [(b.get("threshold_averaging"), "-", "averaging theory (Eq. 19-23)"),
-                 (b.get("threshold_exact_linear"), "--", "exact linear")]
+        marks = [
+            (b.get("threshold_averaging"), "-", "averaging theory (Eq. 19-23)"),
+            (b.get("threshold_exact_linear"), "--", "exact linear"),
+        ]
     for v, style, lab in marks:
         if v is not None:
-            ax.axvline(v, ls=style, color=COLOURS["analytic"], lw=1.4,
-                       label=f"predicted threshold, {lab}: {v:.4g}")
+            ax.axvline(v, ls=style, color=COLOURS["analytic"], lw=1.4, label=f"predicted threshold, {lab}: {v:.4g}")
     ax.set_xlabel(_label(key))
     ax.set_ylabel("final speed [rad/s]")
     ax.legend(fontsize=8)
@@ -204,8 +234,10 @@ def ida_chart(path, result) -> Path:
     others = [k for k in keys if k != inten]
     lines: dict = {}
     for r in result.runs:
-        label = ", ".join(f"{Path(str(r.params[k])).name if k == 'excitation.record' else r.params[k]}"
-                          for k in others) or "record"
+        label = (
+            ", ".join(f"{Path(str(r.params[k])).name if k == 'excitation.record' else r.params[k]}" for k in others)
+            or "record"
+        )
         lines.setdefault(label, []).append(r)
     fig, (a1, a2) = figure(1060, 560, ncols=2, sharey=True)
     for (label, runs), c in zip(lines.items(), CYCLE * 10):
@@ -229,21 +261,37 @@ def study_charts(result, out_dir) -> list[dict]:
     keys = [a.key for a in result.axes]
     if result.case == "earthquake":
         ida_chart(out / IDA, result)
-        figs.append({"file": IDA, "caption": "Incremental dynamic analysis: peak tip displacement "
-                     "relative to the ground and peak shaft deflection against the peak ground "
-                     "acceleration, one line per record."})
+        figs.append(
+            {
+                "file": IDA,
+                "caption": "Incremental dynamic analysis: peak tip displacement "
+                "relative to the ground and peak shaft deflection against the peak ground "
+                "acceleration, one line per record.",
+            }
+        )
     elif len(keys) == 2 and all(_numeric(a.values) for a in result.axes):
         capture_map(out / CAPTURE_MAP, result)
-        figs.append({"file": CAPTURE_MAP, "caption": "Capture map of run-ups from rest, per run: "
-                     "captured at a resonance (red), passed the resonances it reached but settled "
-                     "at a free speed below the next one (blue), or passed every resonance "
-                     "(green); the lines are the torque needed to pass by the averaging theory "
-                     "(Eq. 19-23, solid) and by the exact linear torque balance (dashed), in "
-                     "pieces, each labelled with the resonance it belongs to." if result.case == "runup" else
-                     "Run-downs: settled at no resonance (green) or caught at one (red)."})
+        figs.append(
+            {
+                "file": CAPTURE_MAP,
+                "caption": "Capture map of run-ups from rest, per run: "
+                "captured at a resonance (red), passed the resonances it reached but settled "
+                "at a free speed below the next one (blue), or passed every resonance "
+                "(green); the lines are the torque needed to pass by the averaging theory "
+                "(Eq. 19-23, solid) and by the exact linear torque balance (dashed), in "
+                "pieces, each labelled with the resonance it belongs to."
+                if result.case == "runup"
+                else "Run-downs: settled at no resonance (green) or caught at one (red).",
+            }
+        )
     elif len(keys) == 1 and _numeric(result.axes[0].values):
         final_speed_chart(out / FINAL, result)
-        figs.append({"file": FINAL, "caption": "Final speed of each run against the study's axis; "
-                     "squares: captured at a resonance; vertical lines: the threshold the "
-                     "averaging theory and the exact linear balance predict."})
+        figs.append(
+            {
+                "file": FINAL,
+                "caption": "Final speed of each run against the study's axis; "
+                "squares: captured at a resonance; vertical lines: the threshold the "
+                "averaging theory and the exact linear balance predict.",
+            }
+        )
     return figs

@@ -36,18 +36,18 @@ LAYOUT_KEY = "rotorpillar:layout"
 
 #: Colours by role, colour-blind safe (Okabe-Ito).
 COLOURS = {
-    "drive": "#0072B2",      # motor torque Md
-    "load": "#7f7f7f",       # machine load Mc
+    "drive": "#0072B2",  # motor torque Md
+    "load": "#7f7f7f",  # machine load Mc
     "stable": "#009E73",
     "unstable": "#D55E00",
     "analytic": "#000000",
     "numeric": "#E69F00",
     "ground": "#CC79A7",
     "accent": "#56B4E9",
-    "rising": "#D55E00",     # a run or sweep going up in speed or torque
-    "falling": "#0072B2",    # ... going down
+    "rising": "#D55E00",  # a run or sweep going up in speed or torque
+    "falling": "#0072B2",  # ... going down
     "reference": "#999999",  # marker lines: resonances, thresholds
-    "tolerance": "#CC0000",   # red: the line a result must get under
+    "tolerance": "#CC0000",  # red: the line a result must get under
 }
 CYCLE = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"]
 
@@ -70,9 +70,11 @@ RC = {
 def pyplot():
     """matplotlib.pyplot on the Agg backend (no display), with our style."""
     import matplotlib
+
     matplotlib.use("Agg", force=True)
     import matplotlib.pyplot as plt
     from cycler import cycler
+
     plt.rcParams.update(RC)
     plt.rcParams["axes.prop_cycle"] = cycler(color=CYCLE)
     return plt
@@ -91,8 +93,7 @@ def save(fig, path: str | Path) -> Path:
     path = Path(path)
     record = legibility(fig)
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=DPI,
-                    metadata={LAYOUT_KEY: json.dumps(record, separators=(",", ":"))})
+        fig.savefig(tmp, format="png", dpi=DPI, metadata={LAYOUT_KEY: json.dumps(record, separators=(",", ":"))})
     plt.close(fig)
     return path
 
@@ -105,23 +106,30 @@ def _texts(fig) -> list:
     for leg in fig.legends:
         out += list(leg.get_texts()) + [leg.get_title()]
     for ax in fig.axes:
-        out += [ax.title, getattr(ax, "_left_title", None), getattr(ax, "_right_title", None),
-                ax.xaxis.label, ax.yaxis.label]
+        out += [
+            ax.title,
+            getattr(ax, "_left_title", None),
+            getattr(ax, "_right_title", None),
+            ax.xaxis.label,
+            ax.yaxis.label,
+        ]
         for axis in (ax.xaxis, ax.yaxis):
             lo, hi = sorted(axis.get_view_interval())
             log = axis.get_scale() == "log" and lo > 0
             slack = 1e-9 * (abs(hi - lo) if not log else 0.0)
             for tick in axis.get_major_ticks() + axis.get_minor_ticks():
                 x = tick.get_loc()
-                inside = (lo * (1 - 1e-9) <= x <= hi * (1 + 1e-9)) if log else \
-                    (lo - slack <= x <= hi + slack)
+                inside = (lo * (1 - 1e-9) <= x <= hi * (1 + 1e-9)) if log else (lo - slack <= x <= hi + slack)
                 if inside:
                     out += [tick.label1, tick.label2]
         out += list(ax.texts)
         if ax.get_legend() is not None:
             out += list(ax.get_legend().get_texts()) + [ax.get_legend().get_title()]
-    return [t for t in out if t is not None and t.get_visible() and t.get_text().strip()
-            and (t.axes is None or t.axes.get_visible())]
+    return [
+        t
+        for t in out
+        if t is not None and t.get_visible() and t.get_text().strip() and (t.axes is None or t.axes.get_visible())
+    ]
 
 
 def legibility(fig, display_width: float | None = None) -> dict:
@@ -142,8 +150,7 @@ def legibility(fig, display_width: float | None = None) -> dict:
             problems.append(f"off the figure: {t.get_text()[:60]!r}")
     for i in range(len(texts)):
         for j in range(i + 1, len(texts)):
-            if boxes[i].width and boxes[j].width and boxes[i].overlaps(boxes[j]) \
-                    and _area(boxes[i], boxes[j]) > 2.0:
+            if boxes[i].width and boxes[j].width and boxes[i].overlaps(boxes[j]) and _area(boxes[i], boxes[j]) > 2.0:
                 problems.append(f"overlap: {texts[i].get_text()[:40]!r} / {texts[j].get_text()[:40]!r}")
     problems += [f"no free place for the label {x!r}" for x in getattr(fig, "_unplaced_labels", [])]
     sizes = [t.get_fontsize() * fig.dpi / 72.0 for t in texts]
@@ -152,10 +159,11 @@ def legibility(fig, display_width: float | None = None) -> dict:
     shown = min(width, display_width or PAGE_WIDTH_PX)
     display_font = None if font_px is None else font_px * shown / width
     if display_font is not None and display_font < MIN_FONT_PX - 1e-6:
-        problems.append(f"smallest text {display_font:.1f} px where the page shows the figure "
-                        f"({shown:.0f} px wide), below {MIN_FONT_PX:g} px")
-    return {"font_px": font_px, "width_px": width, "display_font_px": display_font,
-            "problems": problems}
+        problems.append(
+            f"smallest text {display_font:.1f} px where the page shows the figure "
+            f"({shown:.0f} px wide), below {MIN_FONT_PX:g} px"
+        )
+    return {"font_px": font_px, "width_px": width, "display_font_px": display_font, "problems": problems}
 
 
 def _area(a, b) -> float:
@@ -171,12 +179,15 @@ def tag_png(path: str | Path, font_px: float, width_px: float, problems=()) -> P
     path = Path(path)
     raw = path.read_bytes()
     shown = min(width_px, PAGE_WIDTH_PX)
-    record = {"font_px": float(font_px), "width_px": float(width_px),
-              "display_font_px": float(font_px) * shown / width_px, "problems": list(problems)}
+    record = {
+        "font_px": float(font_px),
+        "width_px": float(width_px),
+        "display_font_px": float(font_px) * shown / width_px,
+        "problems": list(problems),
+    }
     body = LAYOUT_KEY.encode("latin-1") + b"\0" + json.dumps(record).encode("latin-1")
-    chunk = struct.pack(">I", len(body)) + b"tEXt" + body + struct.pack(
-        ">I", zlib.crc32(b"tEXt" + body) & 0xFFFFFFFF)
-    end = raw.rfind(b"IEND") - 4                  # the IEND chunk's length field
+    chunk = struct.pack(">I", len(body)) + b"tEXt" + body + struct.pack(">I", zlib.crc32(b"tEXt" + body) & 0xFFFFFFFF)
+    end = raw.rfind(b"IEND") - 4  # the IEND chunk's length field
     with atomic_path(path) as tmp:
         Path(tmp).write_bytes(raw[:end] + chunk + raw[end:])
     return path
@@ -186,9 +197,9 @@ def png_layout(data: bytes) -> dict | None:
     """The legibility record in a PNG's bytes (:data:`LAYOUT_KEY`), or None."""
     pos = 8
     while pos + 8 <= len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        n, kind = struct.unpack(">I4s", data[pos : pos + 8])
         if kind == b"tEXt":
-            key, _, value = data[pos + 8:pos + 8 + n].partition(b"\0")
+            key, _, value = data[pos + 8 : pos + 8 + n].partition(b"\0")
             if key.decode("latin-1") == LAYOUT_KEY:
                 return json.loads(value.decode("latin-1"))
         if kind == b"IEND":
@@ -206,6 +217,7 @@ def blank(width_px: int = 900, height_px: int = 540):
 def text_box(text, renderer):
     """The drawn box of a Text or an Annotation's text alone (without its arrow)."""
     from matplotlib.text import Annotation, Text
+
     if isinstance(text, Annotation):
         text.update_positions(renderer)
     return Text.get_window_extent(text, renderer)
@@ -215,6 +227,7 @@ def _line_points(line, renderer, step_px: float = 2.0):
     """The display points of a drawn line, at most ``step_px`` apart (its
     segments filled in), as an (n, 2) array: what a label must not cover."""
     import numpy as np
+
     xy = line.get_transform().transform(np.column_stack(line.get_data()).astype(float))
     xy = xy[np.all(np.isfinite(xy), axis=1)]
     if len(xy) < 2:
@@ -245,6 +258,7 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
     the final layout.  Returns the annotations.
     """
     import numpy as np
+
     fig = ax.figure
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
@@ -254,6 +268,7 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
     curve = np.concatenate(pieces) if pieces else np.zeros((0, 2))
     # the labelled points themselves (their markers): no label covers one
     from matplotlib.transforms import Bbox
+
     for spec in labels:
         x, y = ax.transData.transform(spec["xy"])
         taken.append(Bbox.from_extents(x - 3, y - 3, x + 3, y + 3))
@@ -264,8 +279,9 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
 
     def on_curve(box) -> bool:
         b = box.padded(pad_px / 2)
-        return bool(len(curve)) and bool(np.any((curve[:, 0] >= b.x0) & (curve[:, 0] <= b.x1)
-                                                & (curve[:, 1] >= b.y0) & (curve[:, 1] <= b.y1)))
+        return bool(len(curve)) and bool(
+            np.any((curve[:, 0] >= b.x0) & (curve[:, 0] <= b.x1) & (curve[:, 1] >= b.y0) & (curve[:, 1] <= b.y1))
+        )
 
     for k in order:
         spec = dict(labels[k])
@@ -273,9 +289,16 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
         dx, dy = spec.pop("offset", (4, 4))
         ha = spec.pop("ha", "left")
         spec.setdefault("fontsize", 8)
-        t = ax.annotate(text, xy, xytext=(dx, dy), textcoords="offset points", ha=ha,
-                        arrowprops=dict(arrowstyle="-", lw=0.5, color="#888888",
-                                        shrinkA=0, shrinkB=2), annotation_clip=False, **spec)
+        t = ax.annotate(
+            text,
+            xy,
+            xytext=(dx, dy),
+            textcoords="offset points",
+            ha=ha,
+            arrowprops=dict(arrowstyle="-", lw=0.5, color="#888888", shrinkA=0, shrinkB=2),
+            annotation_clip=False,
+            **spec,
+        )
         step = (text_box(t, renderer).height + pad_px) * to_pt
         chosen = None
         for n in range(0, 61):
@@ -284,15 +307,13 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
                 t.xyann = (side * dx, dy + shift)
                 t.set_ha(ha if side == 1 else flip[ha])
                 box = text_box(t, renderer)
-                inside = (box.y0 >= frame.y0 and box.y1 <= frame.y1
-                          and box.x0 >= frame.x0 and box.x1 <= frame.x1)
-                if inside and not any(box.padded(pad_px / 2).overlaps(b) for b in taken) \
-                        and not on_curve(box):
+                inside = box.y0 >= frame.y0 and box.y1 <= frame.y1 and box.x0 >= frame.x0 and box.x1 <= frame.x1
+                if inside and not any(box.padded(pad_px / 2).overlaps(b) for b in taken) and not on_curve(box):
                     chosen = shift
                     break
             if chosen is not None:
                 break
-        if chosen is None:        # nowhere free: keep the first place, and say so
+        if chosen is None:  # nowhere free: keep the first place, and say so
             t.xyann = (dx, dy)
             t.set_ha(ha)
             box = text_box(t, renderer)

@@ -38,6 +38,7 @@ STANDARD_GRAVITY = 9.80665
 def envelope(x, t, window: float):
     """Running maximum of |x| over ``window`` seconds (an amplitude envelope)."""
     from scipy.ndimage import maximum_filter1d
+
     t = np.asarray(t)
     dt = (t[-1] - t[0]) / max(len(t) - 1, 1)
     return maximum_filter1d(np.abs(np.asarray(x)), size=max(1, int(round(window / dt))))
@@ -76,8 +77,18 @@ def passage_window(t, passes) -> tuple[float, float] | None:
     return max(float(t[0]), t0 - pad), min(float(t[-1]), t1 + 2 * pad)
 
 
-def runup_chart(path, t, Omega, tip_peak, resonances, title: str = "", extra_runs=None,
-                label: str = "this run", tip=None, a_max=None) -> Path:
+def runup_chart(
+    path,
+    t,
+    Omega,
+    tip_peak,
+    resonances,
+    title: str = "",
+    extra_runs=None,
+    label: str = "this run",
+    tip=None,
+    a_max=None,
+) -> Path:
     """Omega(t) and the tip envelope over the whole run (left) and, where
     the run crosses resonances, zoomed on the passage (right): the speed with
     each crossing's Omega-dot / omega**2, the tip's X itself with the
@@ -85,11 +96,19 @@ def runup_chart(path, t, Omega, tip_peak, resonances, title: str = "", extra_run
     ``resonances`` = [(label, omega)]; ``extra_runs`` = [(label, t, Omega,
     tip_peak or None)]; ``tip``: the tip's X (m); ``a_max``: {label: m}."""
     from .style import place_labels
+
     t, Omega = np.asarray(t, dtype=float), np.asarray(Omega, dtype=float)
     passes = crossings(t, Omega, resonances)
     window = passage_window(t, passes)
-    fig, axes = figure(1060, 715, nrows=2, ncols=2 if window else 1, squeeze=False,
-                       sharex="col", width_ratios=(1, 1) if window else None)
+    fig, axes = figure(
+        1060,
+        715,
+        nrows=2,
+        ncols=2 if window else 1,
+        squeeze=False,
+        sharex="col",
+        width_ratios=(1, 1) if window else None,
+    )
     (a1, a2) = axes[:, 0]
     a1.plot(t, Omega, lw=1.6, label=label, color=COLOURS["drive"])
     span = t[-1] - t[0]
@@ -101,8 +120,9 @@ def runup_chart(path, t, Omega, tip_peak, resonances, title: str = "", extra_run
     labels = []
     for name, w in resonances:
         a1.axhline(w, color=COLOURS["reference"], lw=0.7, ls=":")
-        labels.append({"xy": (t[-1], w), "offset": (-4, 2), "ha": "right", "fontsize": 8,
-                       "color": "0.35", "text": name})
+        labels.append(
+            {"xy": (t[-1], w), "offset": (-4, 2), "ha": "right", "fontsize": 8, "color": "0.35", "text": name}
+        )
     a1.set_ylabel("rotor speed Omega [rad/s]")
     a1.legend(loc="lower right", fontsize=8)
     a1.set_title("the whole run" + ("\n" if window else ""), fontsize=9)
@@ -117,20 +137,22 @@ def runup_chart(path, t, Omega, tip_peak, resonances, title: str = "", extra_run
         for name, w, tc, acc in passes:
             z1.axhline(w, color=COLOURS["reference"], lw=0.7, ls=":")
             z1.plot([tc], [w], "o", color=COLOURS["unstable"], ms=4)
-            zoom_labels.append({"xy": (tc, w), "offset": (6, -10), "fontsize": 8,
-                                "text": f"{name.split(' ')[0]}: {acc / w ** 2:.2g}"})
-        z1.set_title(f"the passage, {window[0]:.3g} .. {window[1]:.3g} s\n"
-                     "at each crossing: Omega-dot / omega^2", fontsize=9)
+            zoom_labels.append(
+                {"xy": (tc, w), "offset": (6, -10), "fontsize": 8, "text": f"{name.split(' ')[0]}: {acc / w**2:.2g}"}
+            )
+        z1.set_title(
+            f"the passage, {window[0]:.3g} .. {window[1]:.3g} s\nat each crossing: Omega-dot / omega^2", fontsize=9
+        )
         y = np.asarray(tip if tip is not None else tip_peak, dtype=float)[sel]
-        z2.plot(t[sel], 1e3 * y, lw=0.8, color=COLOURS["drive"],
-                label="tip X" if tip is not None else "|tip X|")
+        z2.plot(t[sel], 1e3 * y, lw=0.8, color=COLOURS["drive"], label="tip X" if tip is not None else "|tip X|")
         for (name, w), c in zip(resonances, CYCLE[1:]):
             a = (a_max or {}).get(name)
             if a is None or not any(p[0] == name for p in passes):
                 continue
-            for sgn in ((1, -1) if tip is not None else (1,)):
-                z2.axhline(sgn * 1e3 * a, color=c, lw=0.9, ls="--",
-                           label=f"+-a_max, {name} (averaging)" if sgn == 1 else None)
+            for sgn in (1, -1) if tip is not None else (1,):
+                z2.axhline(
+                    sgn * 1e3 * a, color=c, lw=0.9, ls="--", label=f"+-a_max, {name} (averaging)" if sgn == 1 else None
+                )
         z2.set_ylabel("tip, horizontal X [mm]")
         z2.set_xlabel("t [s]")
         z2.legend(loc="upper right", fontsize=8)
@@ -155,8 +177,9 @@ def _plain_axis(ax, y) -> None:
         ax.set_ylim(c - pad, c + pad)
 
 
-def earthquake_chart(path, t, ground_acceleration, tip_x, rotor_x, Omega, title: str = "",
-                     frame: str = "", size=(900, 800)) -> Path:
+def earthquake_chart(
+    path, t, ground_acceleration, tip_x, rotor_x, Omega, title: str = "", frame: str = "", size=(900, 800)
+) -> Path:
     """Ground acceleration (in g), the tip's and the rotor's X (in ``frame``,
     e.g. "absolute") and the rotor speed against time; the interval when the
     ground moves is shaded.  A series that is None (not stored) leaves its
@@ -188,8 +211,9 @@ def earthquake_chart(path, t, ground_acceleration, tip_x, rotor_x, Omega, title:
     return save(fig, path)
 
 
-def sweep_chart(path, up: dict, down: dict, curves: dict, resonances, jumps_numeric,
-                jumps_predicted, title: str = "") -> Path:
+def sweep_chart(
+    path, up: dict, down: dict, curves: dict, resonances, jumps_numeric, jumps_predicted, title: str = ""
+) -> Path:
     """Two panels: M0 against Omega (stationary curves and jumps) and the
     amplitude against z for the resonance(s) the sweep crosses.
 
@@ -202,22 +226,41 @@ def sweep_chart(path, up: dict, down: dict, curves: dict, resonances, jumps_nume
     lo = min(np.nanmin(up["omega"]), np.nanmin(down["omega"])) * 0.95
     hi = max(np.nanmax(up["omega"]), np.nanmax(down["omega"])) * 1.02
     sel = (W >= lo) & (W <= hi)
-    a1.plot(W[sel], np.asarray(curves["F_averaging"])[sel], color=COLOURS["analytic"], lw=1.2,
-            label="Eq. 19-23: M0 = L + s Omega")
-    a1.plot(W[sel], np.asarray(curves["F_exact"])[sel], color=COLOURS["stable"], lw=1.0, ls="--",
-            label="exact linear balance")
+    a1.plot(
+        W[sel],
+        np.asarray(curves["F_averaging"])[sel],
+        color=COLOURS["analytic"],
+        lw=1.2,
+        label="Eq. 19-23: M0 = L + s Omega",
+    )
+    a1.plot(
+        W[sel],
+        np.asarray(curves["F_exact"])[sel],
+        color=COLOURS["stable"],
+        lw=1.0,
+        ls="--",
+        label="exact linear balance",
+    )
     key = "M0_inertia_corrected" if "M0_inertia_corrected" in up else "M0"
-    a1.plot(up["omega"], up[key], ".", ms=3, color=COLOURS["rising"],
-            label="numeric, M0 rising (M0 - J dOmega/dt)")
-    a1.plot(down["omega"], down[key], ".", ms=3, color=COLOURS["falling"],
-            label="numeric, M0 falling (M0 - J dOmega/dt)")
+    a1.plot(up["omega"], up[key], ".", ms=3, color=COLOURS["rising"], label="numeric, M0 rising (M0 - J dOmega/dt)")
+    a1.plot(
+        down["omega"], down[key], ".", ms=3, color=COLOURS["falling"], label="numeric, M0 falling (M0 - J dOmega/dt)"
+    )
     for j in jumps_predicted:
-        a1.annotate("", xy=(j["omega_to"], j["torque_at_zero"]), xytext=(j["omega_from"], j["torque_at_zero"]),
-                    arrowprops=dict(arrowstyle="->", color=COLOURS["analytic"], lw=1.0))
+        a1.annotate(
+            "",
+            xy=(j["omega_to"], j["torque_at_zero"]),
+            xytext=(j["omega_from"], j["torque_at_zero"]),
+            arrowprops=dict(arrowstyle="->", color=COLOURS["analytic"], lw=1.0),
+        )
     for j in jumps_numeric:
         c = COLOURS["rising"] if j["direction"] == "up" else COLOURS["falling"]
-        a1.annotate("", xy=(j["omega_to"], j["torque_at_zero"]), xytext=(j["omega_from"], j["torque_at_zero"]),
-                    arrowprops=dict(arrowstyle="->", color=c, lw=1.0, ls="--"))
+        a1.annotate(
+            "",
+            xy=(j["omega_to"], j["torque_at_zero"]),
+            xytext=(j["omega_from"], j["torque_at_zero"]),
+            arrowprops=dict(arrowstyle="->", color=c, lw=1.0, ls="--"),
+        )
     a1.set_xlabel("Omega [rad/s]")
     a1.set_ylabel("M0 [N*m]")
     a1.legend(fontsize=8, loc="upper left")
@@ -226,14 +269,24 @@ def sweep_chart(path, up: dict, down: dict, curves: dict, resonances, jumps_nume
         if not (lo <= w <= hi):
             continue
         key = "tip_x" if direction == "X" else "rotor_y"
-        a2.plot(W[sel] / w, 1e3 * np.asarray(curves["eq19"][label])[sel], lw=1.2,
-                label=f"Eq. 19, {label} ({key})")
-        a2.plot(W[sel] / w, 1e3 * np.asarray(curves["exact"][key])[sel], lw=0.9, ls="--",
-                label=f"exact linear ({key})")
-        a2.plot(np.asarray(up["omega"]) / w, 1e3 * np.asarray(up[key]), ".", ms=3,
-                color=COLOURS["rising"], label=f"numeric, rising ({key})")
-        a2.plot(np.asarray(down["omega"]) / w, 1e3 * np.asarray(down[key]), ".", ms=3,
-                color=COLOURS["falling"], label=f"numeric, falling ({key})")
+        a2.plot(W[sel] / w, 1e3 * np.asarray(curves["eq19"][label])[sel], lw=1.2, label=f"Eq. 19, {label} ({key})")
+        a2.plot(W[sel] / w, 1e3 * np.asarray(curves["exact"][key])[sel], lw=0.9, ls="--", label=f"exact linear ({key})")
+        a2.plot(
+            np.asarray(up["omega"]) / w,
+            1e3 * np.asarray(up[key]),
+            ".",
+            ms=3,
+            color=COLOURS["rising"],
+            label=f"numeric, rising ({key})",
+        )
+        a2.plot(
+            np.asarray(down["omega"]) / w,
+            1e3 * np.asarray(down[key]),
+            ".",
+            ms=3,
+            color=COLOURS["falling"],
+            label=f"numeric, falling ({key})",
+        )
         a2.set_xlim(0.7, 1.3)
         break
     a2.set_xlabel("z = Omega / omega_i")
@@ -270,19 +323,23 @@ def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: st
     Three panels stacked: error against force evaluations, cost and
     failure as modes are added, energy drift; one colour and marker per
     method throughout, one legend for all."""
-    methods = sorted({r["method"] for r in accuracy_rows} | {r["method"] for r in stability_rows}
-                     | {r["method"] for r in drift_rows})
+    methods = sorted(
+        {r["method"] for r in accuracy_rows} | {r["method"] for r in stability_rows} | {r["method"] for r in drift_rows}
+    )
     style = method_styles(methods)
     fig, ax = figure(1060, 1100, nrows=3, height_ratios=(1.2, 1.0, 0.9))
     for m in methods:
         # along the ladder (loose to tight), cost as force evaluations: the
         # wall time of a shared machine is too noisy for a curve
-        rows = sorted((r for r in accuracy_rows if r["method"] == m and r["error"] is not None
-                       and np.isfinite(r["error"])), key=lambda r: -r["setting"])
+        rows = sorted(
+            (r for r in accuracy_rows if r["method"] == m and r["error"] is not None and np.isfinite(r["error"])),
+            key=lambda r: -r["setting"],
+        )
         if rows:
             ls = "--" if rows[0].get("family") == "fixed" else "-"
-            ax[0].loglog([r["nfev"] for r in rows], [max(r["error"], 1e-16) for r in rows],
-                         ls=ls, lw=1, label=m, **style[m])
+            ax[0].loglog(
+                [r["nfev"] for r in rows], [max(r["error"], 1e-16) for r in rows], ls=ls, lw=1, label=m, **style[m]
+            )
     ax[0].axhline(0.1, color=COLOURS["reference"], lw=0.7, ls=":")
     ax[0].set_xlabel("force evaluations (dashed lines: fixed step)")
     ax[0].set_ylabel("max tip error / max tip")
@@ -308,8 +365,7 @@ def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: st
     ax[2].set_title("energy drift", fontsize=10)
     ax[2].grid(alpha=0.3, axis="x")
     handles, labels = ax[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside right upper", fontsize=8,
-               title="integrator", title_fontsize=8)
+    fig.legend(handles, labels, loc="outside right upper", fontsize=8, title="integrator", title_fontsize=8)
     fig.suptitle(title, fontsize=10)
     return save(fig, path)
 
@@ -323,44 +379,97 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
     title = f"{scene.name}: {case}, {name} model"
     path = out / f"{stem}.png"
     if case == "earthquake":
-        earthquake_chart(path, data["t"], data["ground_acceleration"], data["tip_x"], data["rotor_x"],
-                            data["Omega"], title, frame=frame)
-        return [{"file": path.name, "caption": f"Earthquake on the {name} model: ground acceleration, "
-                                                f"tip and rotor X ({frame}), rotor speed."}]
-    resonances = [(f"omega_{r.index} ({r.direction})", r.omega) for r in run.resonances
-                  if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)]
+        earthquake_chart(
+            path,
+            data["t"],
+            data["ground_acceleration"],
+            data["tip_x"],
+            data["rotor_x"],
+            data["Omega"],
+            title,
+            frame=frame,
+        )
+        return [
+            {
+                "file": path.name,
+                "caption": f"Earthquake on the {name} model: ground acceleration, "
+                f"tip and rotor X ({frame}), rotor speed.",
+            }
+        ]
+    resonances = [
+        (f"omega_{r.index} ({r.direction})", r.omega)
+        for r in run.resonances
+        if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)
+    ]
     extra = []
     pt = run.result.get("passing_torque") or {}
     if pt.get("bracket_series"):
         bs = pt["bracket_series"]
         for row, W, pk, f in zip(pt["bracket_runs"], bs["Omega"], bs["tip_peak"], (0.95, 1.05)):
-            extra.append((f"M0 = {row['torque_at_zero']:.0f} N*m ({f:g} x the predicted "
-                          f"{pt['predicted']:.0f})", bs["t"], W, pk))
+            extra.append(
+                (f"M0 = {row['torque_at_zero']:.0f} N*m ({f:g} x the predicted {pt['predicted']:.0f})", bs["t"], W, pk)
+            )
     tip_peak = data["peak"][:, -1] if data["peak"].ndim == 2 else np.abs(data["tip_x"])
     from ..reduced import averaging as av
-    a_max = {f"omega_{r.index} ({r.direction})": float(av.amplitude(r.omega, r))
-             for r in run.resonances if str(r.direction) == "X"}
+
+    a_max = {
+        f"omega_{r.index} ({r.direction})": float(av.amplitude(r.omega, r))
+        for r in run.resonances
+        if str(r.direction) == "X"
+    }
     tip = data.get("tip_x_relative", data["tip_x"])
-    runup_chart(path, data["t"], data["Omega"], tip_peak, resonances, title, extra,
-                label=f"M0 = {scene.drive.torque_at_zero:g} N*m (the scene's motor)"
-                if case == "runup" else "this run", tip=tip, a_max=a_max)
-    zoom = (" Right: zoomed on the passage through the resonances, each crossing's "
-            "Omega-dot / omega^2, the tip's X against the averaging's stationary +-a_max.")
-    caption = {"runup": "Run-up from rest: rotor speed and tip envelope" + (
-                        " (dashed: motors 5 % below and above the torque the analysis says is "
-                        "needed to pass)." if extra else ".") + zoom,
-               "rundown": "Run-down from the operating speed: rotor speed and tip envelope." + zoom,
-               "sweep": "Quasi-static sweep of M0 up and down: rotor speed and tip envelope."}[case]
+    runup_chart(
+        path,
+        data["t"],
+        data["Omega"],
+        tip_peak,
+        resonances,
+        title,
+        extra,
+        label=f"M0 = {scene.drive.torque_at_zero:g} N*m (the scene's motor)" if case == "runup" else "this run",
+        tip=tip,
+        a_max=a_max,
+    )
+    zoom = (
+        " Right: zoomed on the passage through the resonances, each crossing's "
+        "Omega-dot / omega^2, the tip's X against the averaging's stationary +-a_max."
+    )
+    caption = {
+        "runup": "Run-up from rest: rotor speed and tip envelope"
+        + (" (dashed: motors 5 % below and above the torque the analysis says is needed to pass)." if extra else ".")
+        + zoom,
+        "rundown": "Run-down from the operating speed: rotor speed and tip envelope." + zoom,
+        "sweep": "Quasi-static sweep of M0 up and down: rotor speed and tip envelope.",
+    }[case]
     figs = [{"file": path.name, "caption": caption}]
     if case == "sweep" and run.case_result is not None:
         ex = run.case_result.extra
         labels = [(f"{r.direction}{r.index}", r.omega, r.direction) for r in run.resonances]
-        labels.sort(key=lambda L: -max((a["numeric_peak"] for a in ex["amplitudes"]
-                                        if f"{a['direction']}{a['index']}" == L[0]), default=0.0))
+        labels.sort(
+            key=lambda L: (
+                -max(
+                    (a["numeric_peak"] for a in ex["amplitudes"] if f"{a['direction']}{a['index']}" == L[0]),
+                    default=0.0,
+                )
+            )
+        )
         p2 = out / f"{stem}_az.png".replace(f"_{name}_az", f"_az_{name}")
-        sweep_chart(p2, ex["up"], ex["down"], ex["curves"], labels, ex["numeric_jumps"],
-                       ex["predicted_jumps"], f"{scene.name}: quasi-static sweep against Eq. 19-23")
-        figs.append({"file": p2.name, "caption": "Quasi-static sweep against the averaging theory: "
-                                                 "stationary curve M0(Omega) with the jumps (left), "
-                                                 "amplitude against z = Omega/omega_i (right)."})
+        sweep_chart(
+            p2,
+            ex["up"],
+            ex["down"],
+            ex["curves"],
+            labels,
+            ex["numeric_jumps"],
+            ex["predicted_jumps"],
+            f"{scene.name}: quasi-static sweep against Eq. 19-23",
+        )
+        figs.append(
+            {
+                "file": p2.name,
+                "caption": "Quasi-static sweep against the averaging theory: "
+                "stationary curve M0(Omega) with the jumps (left), "
+                "amplitude against z = Omega/omega_i (right).",
+            }
+        )
     return figs

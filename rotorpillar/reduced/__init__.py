@@ -34,7 +34,29 @@ mode); ``pillar.tip_mass_lumped`` is Eq. 2 with n lumped masses, for the
 paper's table.
 """
 
-__all__ = ["accuracy", "averaging", "band", "base_forcing", "beam_fe", "bode", "capacity",
-           "cylinder", "drive", "dp5", "excitation", "fixed_step", "integration", "internal_forces",
-           "kernels", "margins", "models", "pillar", "pillar_modes", "reduction", "rhs",
-           "rotor_models", "stationary", "system"]
+__all__ = [
+    "accuracy",
+    "averaging",
+    "band",
+    "base_forcing",
+    "beam_fe",
+    "bode",
+    "capacity",
+    "cylinder",
+    "drive",
+    "dp5",
+    "excitation",
+    "fixed_step",
+    "integration",
+    "internal_forces",
+    "kernels",
+    "margins",
+    "models",
+    "pillar",
+    "pillar_modes",
+    "reduction",
+    "rhs",
+    "rotor_models",
+    "stationary",
+    "system",
+]

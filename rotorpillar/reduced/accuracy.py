@@ -61,6 +61,7 @@ VARIABLE_ORDER = ("BDF", "LSODA")
 @dataclass(frozen=True)
 class SchemeError(JsonRecord):
     """A scheme's error on an undamped oscillator at one step."""
+
     steps_per_period: float
     """2 pi / (omega h) (-)"""
     period_error: float
@@ -78,8 +79,9 @@ class SchemeError(JsonRecord):
         return max(abs(self.period_error), abs(self.amplitude_loss))
 
 
-def genalpha_amplification(Omega: float, alpha_m: float, alpha_f: float, beta: float,
-                           gamma: float) -> NDArray[np.float64]:
+def genalpha_amplification(
+    Omega: float, alpha_m: float, alpha_f: float, beta: float, gamma: float
+) -> NDArray[np.float64]:
     """The generalized-alpha step on x'' + omega**2 x = 0 as a matrix on (x, h v, h**2 a).
 
     (1 - am) a1 + am a0 + omega**2 ((1 - af) x1 + af x0) = 0 with Newmark's
@@ -94,18 +96,20 @@ def genalpha_amplification(Omega: float, alpha_m: float, alpha_f: float, beta: f
 def central_difference_amplification(Omega: float) -> NDArray[np.float64]:
     """Velocity Verlet on x'' + omega**2 x = 0, a matrix on (x, h v)."""
     W2 = Omega * Omega
-    x1 = np.array([1 - W2 / 2, 1.0])                      # x1 from (x0, V0)
+    x1 = np.array([1 - W2 / 2, 1.0])  # x1 from (x0, V0)
     return np.array([x1, [-W2 / 2 * (1 + x1[0]), 1 - W2 / 2 * x1[1]]])
 
 
 def _rk_tableau(method: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     if method in ("dp5", "RK45"):
         from .dp5 import _A, _B
+
         s = len(_B)
         A = np.zeros((s, s))
-        A[:, :_A.shape[1]] = _A
+        A[:, : _A.shape[1]] = _A
         return A, _B
     from scipy.integrate._ivp import dop853_coefficients as dop853
+
     s = len(dop853.B)
     return np.asarray(dop853.A)[:s, :s], np.asarray(dop853.B)
 
@@ -116,7 +120,7 @@ def stability_function(method: str, z: complex) -> complex:
         A, b = _rk_tableau(method)
         s = len(b)
         return complex(1 + z * (b @ np.linalg.solve(np.eye(s) - z * A, np.ones(s))))
-    if method == "Radau":                                  # Radau IIA, 3 stages: the (2, 3) Pade
+    if method == "Radau":  # Radau IIA, 3 stages: the (2, 3) Pade
         return (1 + 2 * z / 5 + z**2 / 20) / (1 - 3 * z / 5 + 3 * z**2 / 20 - z**3 / 60)
     raise ValueError(f"no stability function for {method!r}")
 
@@ -126,8 +130,9 @@ def has_amplification(method: str) -> bool:
     return method in GENALPHA + ("central_difference", "Radau") + EXPLICIT_RK
 
 
-def scheme_error(method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float = 0.0,
-                 beta: float = 0.25, gamma: float = 0.5) -> SchemeError:
+def scheme_error(
+    method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float = 0.0, beta: float = 0.25, gamma: float = 0.5
+) -> SchemeError:
     """The error of ``method`` at Omega = omega h on an undamped oscillator.
 
     The generalized-alpha family takes its four parameters
@@ -137,10 +142,13 @@ def scheme_error(method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float
     spp = 2 * math.pi / Omega if Omega > 0 else math.inf
     if not Omega > 0:
         return SchemeError(spp, 0.0, 0.0, 1.0, True)
-    Omega = min(Omega, 1e8)                                # beyond: as far above the reach as 1e8
+    Omega = min(Omega, 1e8)  # beyond: as far above the reach as 1e8
     if method in GENALPHA or method == "central_difference":
-        A = (central_difference_amplification(Omega) if method == "central_difference"
-             else genalpha_amplification(Omega, alpha_m, alpha_f, beta, gamma))
+        A = (
+            central_difference_amplification(Omega)
+            if method == "central_difference"
+            else genalpha_amplification(Omega, alpha_m, alpha_f, beta, gamma)
+        )
         lam = np.linalg.eigvals(A)
         rho = float(np.max(np.abs(lam)))
         # the principal pair: the complex root of largest modulus (the spurious root is real)
@@ -148,7 +156,7 @@ def scheme_error(method: str, Omega: float, alpha_m: float = 0.0, alpha_f: float
         if cplx:
             root = max(cplx, key=abs)
             phase, mod = abs(cmath.phase(root)), abs(root)
-        else:                                              # real roots: no oscillation left
+        else:  # real roots: no oscillation left
             root = max(lam, key=abs)
             phase, mod = (math.pi if root.real < 0 else 0.0), abs(root)
     else:
@@ -166,6 +174,7 @@ def steps_per_period_needed(method: str, limit: float = ERROR_LIMIT, **params: f
     """The fewest steps per period at which ``method`` keeps its period error and its
     amplitude loss per period within ``limit`` (-), by bisection (the errors fall
     as the step does); never fewer than NYQUIST_STEPS."""
+
     def ok(n: float) -> bool:
         return scheme_error(method, 2 * math.pi / n, **params).worst <= limit
 
@@ -200,12 +209,14 @@ def infinity_radius(method: str, **params: float) -> float | None:
 
 
 #: The forcing frequencies' names in words.
-FORCING_WORDS = {"unbalance_rotation": "the unbalance's rotation",
-                 "ground_motion_band": "the ground motion's band", "rotor_speed": "the rotor's speed"}
+FORCING_WORDS = {
+    "unbalance_rotation": "the unbalance's rotation",
+    "ground_motion_band": "the ground motion's band",
+    "rotor_speed": "the rotor's speed",
+}
 
 
-def forcing_frequencies(eccentricity: float, top_speed: float,
-                        motion: GroundMotion | None) -> dict[str, float]:
+def forcing_frequencies(eccentricity: float, top_speed: float, motion: GroundMotion | None) -> dict[str, float]:
     """The frequencies that force a run (rad/s), by name: the unbalance's rotation at
     the fastest speed the run reaches (when e > 0) and the ground motion's band
     (the pulse's omega, or the record's 99 %-energy frequency)."""
@@ -230,13 +241,16 @@ def full_order_parameters(method: str, rho_inf: float) -> dict[str, float]:
     for central difference.  InputError for HHT below its reach (rho_inf < 0.5)."""
     from ..errors import InputError
     from .fixed_step import genalpha_parameters
+
     if method not in FULL_ORDER_SCHEMES:
         raise InputError(f"full order integrator {method!r}: must be one of {', '.join(FULL_ORDER_SCHEMES)}")
     if method == "central_difference":
         return {}
     if method == "hht" and rho_inf < 0.5:
-        raise InputError(f"full_order.rho_inf = {rho_inf:g}: HHT-alpha reaches 0.5 at the least "
-                         "(alpha = -1/3); take generalized_alpha for less")
+        raise InputError(
+            f"full_order.rho_inf = {rho_inf:g}: HHT-alpha reaches 0.5 at the least "
+            "(alpha = -1/3); take generalized_alpha for less"
+        )
     am, af, beta, gamma = genalpha_parameters(method, (rho_inf - 1) / (rho_inf + 1), rho_inf)
     return {"alpha_m": am, "alpha_f": af, "beta": beta, "gamma": gamma}
 
@@ -254,6 +268,7 @@ FULL_ORDER_ERROR = 2e-3
 @dataclass(frozen=True)
 class StepRule(JsonRecord):
     """How a full-order run's step was chosen and what it resolves (the JSON's ``integrator``)."""
+
     scheme: str
     """newmark, hht or generalized_alpha"""
     spectral_radius_infinity: float | None
@@ -281,10 +296,16 @@ class StepRule(JsonRecord):
     """the record's sampling, which the step never exceeds (s); None without a record"""
 
 
-def full_order_step(method: str, params: dict[str, float], forcing: dict[str, float], band_factor: float,
-                    record_time_step: float | None = None, stated: float = 0.0,
-                    stated_by: str = "full_order.time_step",
-                    target: float = FULL_ORDER_ERROR) -> StepRule:
+def full_order_step(
+    method: str,
+    params: dict[str, float],
+    forcing: dict[str, float],
+    band_factor: float,
+    record_time_step: float | None = None,
+    stated: float = 0.0,
+    stated_by: str = "full_order.time_step",
+    target: float = FULL_ORDER_ERROR,
+) -> StepRule:
     """The full order's step (s): the longest whose error at the fastest forcing is within
     ``target`` for ``method`` (its generalized-alpha ``params``), no coarser than a
     record's sampling; ``stated`` > 0 takes that step instead.
@@ -301,8 +322,10 @@ def full_order_step(method: str, params: dict[str, float], forcing: dict[str, fl
     elif top > 0:
         h, source = largest_step(method, top, target, **params), "rule"
         which = max(forcing, key=forcing.__getitem__)
-        rule = (f"the longest step whose period error and amplitude loss per period stay within "
-                f"{target:g} at the fastest forcing, {names.get(which, which)} ({top:.4g} rad/s)")
+        rule = (
+            f"the longest step whose period error and amplitude loss per period stay within "
+            f"{target:g} at the fastest forcing, {names.get(which, which)} ({top:.4g} rad/s)"
+        )
         if record_time_step and record_time_step < h:
             h = float(record_time_step)
             rule += f"; no coarser than the record's sampling ({record_time_step:g} s)"
@@ -310,10 +333,20 @@ def full_order_step(method: str, params: dict[str, float], forcing: dict[str, fl
     else:
         h, source, rule = 0.01, "rule", "nothing forces the run: 0.01 s"
     ref = top if top > 0 else 2 * math.pi / (100 * h)
-    return StepRule(method, infinity_radius(method, **params), h, rule, source, dict(forcing), top,
-                    band_factor * top, target, scheme_error(method, ref * h, **params),
-                    scheme_error(method, band_factor * ref * h, **params),
-                    record_time_step if record_time_step else None)
+    return StepRule(
+        method,
+        infinity_radius(method, **params),
+        h,
+        rule,
+        source,
+        dict(forcing),
+        top,
+        band_factor * top,
+        target,
+        scheme_error(method, ref * h, **params),
+        scheme_error(method, band_factor * ref * h, **params),
+        record_time_step if record_time_step else None,
+    )
 
 
 # --------------------------------------------------------------------------
@@ -323,6 +356,7 @@ def full_order_step(method: str, params: dict[str, float], forcing: dict[str, fl
 @dataclass(frozen=True)
 class AccuracyCheck(JsonRecord):
     """The step a run took against the periods it had to resolve and its duration."""
+
     method: str
     step: float
     """the fixed step, or the adaptive steps' mean (s)"""
@@ -351,10 +385,20 @@ class AccuracyCheck(JsonRecord):
         return not self.failed
 
 
-def check_step(method: str, params: dict[str, float], step: float, frequencies: dict[str, float], duration: float,
-               *, adaptive: bool = False, periods: float | None = None, steps: int | None = None,
-               window: tuple[float, float] | None = None, rtol: float | None = None,
-               limit: float = ERROR_LIMIT) -> AccuracyCheck:
+def check_step(
+    method: str,
+    params: dict[str, float],
+    step: float,
+    frequencies: dict[str, float],
+    duration: float,
+    *,
+    adaptive: bool = False,
+    periods: float | None = None,
+    steps: int | None = None,
+    window: tuple[float, float] | None = None,
+    rtol: float | None = None,
+    limit: float = ERROR_LIMIT,
+) -> AccuracyCheck:
     """Is ``step`` fit for a run of ``duration`` that must resolve ``frequencies``?
 
     Fixed step: the scheme's error at the fastest frequency within ``limit``.
@@ -380,32 +424,61 @@ def check_step(method: str, params: dict[str, float], step: float, frequencies: 
     where = f"{words.get(which, which)} ({fastest:.4g} rad/s)" if which else ""
     kind = "mean step" if adaptive else "step"
     if which and spp < needed:
-        said = (f"period error {_pct(err.period_error)}, amplitude {_loss(err.amplitude_loss)} per period"
-                if err is not None else "aliased below 2 steps a period" if spp < NYQUIST_STEPS else "")
-        failed.append(f"step_accuracy: {method} at a {kind} of {step:.4g} s takes {spp:.3g} steps per "
-                      f"period of {where}, fewer than the {needed:.3g} it needs to keep its error within "
-                      f"{100 * limit:g} %" + (f" (at this step: {said})" if said else ""))
+        said = (
+            f"period error {_pct(err.period_error)}, amplitude {_loss(err.amplitude_loss)} per period"
+            if err is not None
+            else "aliased below 2 steps a period"
+            if spp < NYQUIST_STEPS
+            else ""
+        )
+        failed.append(
+            f"step_accuracy: {method} at a {kind} of {step:.4g} s takes {spp:.3g} steps per "
+            f"period of {where}, fewer than the {needed:.3g} it needs to keep its error within "
+            f"{100 * limit:g} %" + (f" (at this step: {said})" if said else "")
+        )
     if step > 0 and duration / step < NYQUIST_STEPS:
-        failed.append(f"step_swallows_run: a {kind} of {step:.4g} s against a run of {duration:.4g} s "
-                      f"({duration / step:.3g} steps)")
-    if window is not None and step > 0 and window[1] > window[0] \
-            and (min(window[1], duration) - window[0]) / step < NYQUIST_STEPS and window[0] < duration:
-        failed.append(f"step_swallows_ground_motion: a {kind} of {step:.4g} s against the ground "
-                      f"motion's {window[1] - window[0]:.4g} s inside the run")
+        failed.append(
+            f"step_swallows_run: a {kind} of {step:.4g} s against a run of {duration:.4g} s "
+            f"({duration / step:.3g} steps)"
+        )
+    if (
+        window is not None
+        and step > 0
+        and window[1] > window[0]
+        and (min(window[1], duration) - window[0]) / step < NYQUIST_STEPS
+        and window[0] < duration
+    ):
+        failed.append(
+            f"step_swallows_ground_motion: a {kind} of {step:.4g} s against the ground "
+            f"motion's {window[1] - window[0]:.4g} s inside the run"
+        )
     if rtol is not None and rtol > limit:
-        failed.append(f"tolerance: rtol = {rtol:g} lets each step err by more than {100 * limit:g} % "
-                      "of the response")
+        failed.append(f"tolerance: rtol = {rtol:g} lets each step err by more than {100 * limit:g} % of the response")
     if not which:
         statement = "nothing forces the run at a frequency; only its duration is checked"
     else:
-        statement = (f"{method}, {kind} {step:.4g} s: {spp:.3g} steps per period of {where} "
-                     f"(needs {needed:.3g} for {100 * limit:g} %)")
+        statement = (
+            f"{method}, {kind} {step:.4g} s: {spp:.3g} steps per period of {where} "
+            f"(needs {needed:.3g} for {100 * limit:g} %)"
+        )
         if err is not None:
-            statement += (f"; the scheme's period error there {_pct(err.period_error)}, amplitude "
-                          f"{_loss(err.amplitude_loss)} per period")
-    return AccuracyCheck(method, float(step), "mean of the adaptive steps" if adaptive else "fixed",
-                         dict(frequencies), float(spp), float(needed), err, limit, float(duration),
-                         failed, statement)
+            statement += (
+                f"; the scheme's period error there {_pct(err.period_error)}, amplitude "
+                f"{_loss(err.amplitude_loss)} per period"
+            )
+    return AccuracyCheck(
+        method,
+        float(step),
+        "mean of the adaptive steps" if adaptive else "fixed",
+        dict(frequencies),
+        float(spp),
+        float(needed),
+        err,
+        limit,
+        float(duration),
+        failed,
+        statement,
+    )
 
 
 def _pct(x: float) -> str:

@@ -87,7 +87,7 @@ class Resonance(Protocol):
 def amplitude(Omega: Speeds, r: Resonance) -> Speeds:
     """Eq. 19: a_i at speed Omega, with its omega_i**2 restored (m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
-    with np.errstate(divide="ignore"):      # undamped (nu = 0): unbounded at z = 1, as it is
+    with np.errstate(divide="ignore"):  # undamped (nu = 0): unbounded at z = 1, as it is
         a: Speeds = abs(r.forcing) / (2 * r.omega**2 * np.sqrt((1 - z) ** 2 + r.nu**2))
     return a
 
@@ -103,7 +103,7 @@ def amplitude_linear(Omega: Speeds, r: Resonance) -> Speeds:
     The averaging result (Eq. 19) is its first-order expansion about Omega = omega.
     """
     W = np.asarray(Omega, dtype=float)
-    with np.errstate(divide="ignore"):      # undamped: unbounded at Omega = omega
+    with np.errstate(divide="ignore"):  # undamped: unbounded at Omega = omega
         a: Speeds = abs(r.forcing) / np.sqrt((r.omega**2 - W**2) ** 2 + (r.two_n * W) ** 2)
     return a
 
@@ -111,7 +111,7 @@ def amplitude_linear(Omega: Speeds, r: Resonance) -> Speeds:
 def resistance_increment(Omega: Speeds, r: Resonance) -> Speeds:
     """Eq. 20: dL_i, the averaged torque drawn by resonance i (N*m)."""
     z = np.asarray(Omega, dtype=float) / r.omega
-    if r.nu == 0:       # undamped: a steady regime draws no average torque
+    if r.nu == 0:  # undamped: a steady regime draws no average torque
         return np.zeros_like(z) if z.ndim else 0.0
     dL: Speeds = r.forcing * r.coupling * r.nu / (4 * r.omega**2 * ((1 - z) ** 2 + r.nu**2))
     return dL
@@ -150,6 +150,7 @@ def resistance_increment_linear(Omega: Speeds, r: Resonance) -> Speeds:
 @dataclass(frozen=True)
 class Characteristic:
     """Eq. 22: motor and machine torques, Md = M0 - s Omega, Mc = k Omega**2."""
+
     torque_at_zero: float
     """M0 (N*m)"""
     slope: float
@@ -176,8 +177,7 @@ class Characteristic:
         return math.inf
 
 
-def total_resistance(Omega: Speeds, load_coefficient: float,
-                     resonances: Iterable[Resonance]) -> Speeds:
+def total_resistance(Omega: Speeds, load_coefficient: float, resonances: Iterable[Resonance]) -> Speeds:
     """Eq. 21: L(Omega) = Mc(Omega) + sum_i dL_i(Omega) (N*m)."""
     W = np.asarray(Omega, dtype=float)
     L: Speeds = load_coefficient * W**2 + sum(resistance_increment(W, r) for r in resonances)
@@ -193,17 +193,16 @@ def peak_resistance_ratio(r: Resonance, load_coefficient: float) -> float:
     return float(resistance_increment(r.omega, r)) / (load_coefficient * r.omega**2)
 
 
-def stability_margin(Omega: Speeds, slope: float, load_coefficient: float,
-                     resonances: Iterable[Resonance]) -> Speeds:
+def stability_margin(Omega: Speeds, slope: float, load_coefficient: float, resonances: Iterable[Resonance]) -> Speeds:
     """d(Md - L)/dOmega = -(s + 2 k Omega + sum_i d(dL_i)/dOmega) (N*m*s): negative where stable."""
     W = np.asarray(Omega, dtype=float)
-    margin: Speeds = -(2 * load_coefficient * W + slope
-                     + sum(resistance_increment_slope(W, r) for r in resonances))
+    margin: Speeds = -(2 * load_coefficient * W + slope + sum(resistance_increment_slope(W, r) for r in resonances))
     return margin
 
 
-def branch_is_stable(Omega: Speeds, slope: float, load_coefficient: float,
-                     resonances: Iterable[Resonance]) -> bool | NDArray[np.bool_]:
+def branch_is_stable(
+    Omega: Speeds, slope: float, load_coefficient: float, resonances: Iterable[Resonance]
+) -> bool | NDArray[np.bool_]:
     """Eq. 23: is the stationary regime at Omega stable, d[Md - L]/dOmega < 0?
 
     Omega: speed (rad/s), a number or an array; slope: the motor's s in
@@ -273,8 +272,7 @@ class DriveAnalysis:
     grid_top: float = field(default=0.0)
 
 
-def analyse_drive(ch: Characteristic, resonances: Sequence[Resonance],
-                  top: float | None = None) -> DriveAnalysis:
+def analyse_drive(ch: Characteristic, resonances: Sequence[Resonance], top: float | None = None) -> DriveAnalysis:
     """Stationary speeds for this drive, their stability, and the jumps of a
     quasi-static run-up and run-down of M0 with the drive's slope."""
     omegas = [r.omega for r in resonances]
@@ -284,7 +282,7 @@ def analyse_drive(ch: Characteristic, resonances: Sequence[Resonance],
     grid = stationary_speed_grid(resonances, top)
     k, s = ch.load_coefficient, ch.slope
 
-    def F(W: Speeds) -> Speeds:                  # M0 on the branch
+    def F(W: Speeds) -> Speeds:  # M0 on the branch
         return total_resistance(W, k, resonances) + s * W
 
     def dF(W: Speeds) -> Speeds:
@@ -294,22 +292,25 @@ def analyse_drive(ch: Characteristic, resonances: Sequence[Resonance],
         return min(resonances, key=lambda r: abs(r.omega - W)).index
 
     roots = _roots(lambda W: F(W) - ch.torque_at_zero, grid)
-    stationary = [Stationary(w, bool(branch_is_stable(w, s, k, resonances)),
-                             float(stability_margin(w, s, k, resonances))) for w in roots]
+    stationary = [
+        Stationary(w, bool(branch_is_stable(w, s, k, resonances)), float(stability_margin(w, s, k, resonances)))
+        for w in roots
+    ]
 
     folds = _roots(dF, grid)
     jumps: list[Jump] = []
     for w in folds:
         level = float(F(w))
         curv = float(dF(w * (1 + 1e-6)) - dF(w * (1 - 1e-6)))
+
         def g(W: Speeds, level: float = level) -> Speeds:
             return F(W) - level
 
-        if curv < 0:   # local maximum of F: end of the lower branch, A -> B
+        if curv < 0:  # local maximum of F: end of the lower branch, A -> B
             above = [x for x in _roots(g, grid[grid > w * (1 + 1e-9)]) if x > w * (1 + 1e-7)]
             if above:
                 jumps.append(Jump("up", w, above[0], level, nearest(w)))
-        else:          # local minimum: end of the upper branch, D -> C
+        else:  # local minimum: end of the upper branch, D -> C
             below = [x for x in _roots(g, grid[grid < w * (1 - 1e-9)]) if x < w * (1 - 1e-7)]
             if below:
                 jumps.append(Jump("down", w, below[-1], level, nearest(w)))

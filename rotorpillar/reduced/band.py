@@ -22,13 +22,16 @@ def excitation_band(drive: Drive, load: Load, converge: Converge) -> dict[str, A
     free = ch.free_speed()
     cv = converge
     top = max(free, cv.earthquake_frequency)
-    return {"free_speed": free, "earthquake_frequency": cv.earthquake_frequency,
-            "margin": cv.margin, "omega_max": cv.margin * top,
-            "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake"}
+    return {
+        "free_speed": free,
+        "earthquake_frequency": cv.earthquake_frequency,
+        "margin": cv.margin,
+        "omega_max": cv.margin * top,
+        "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake",
+    }
 
 
-def forcing_top(drive: Drive, load: Load, sweep: Sweep, case: str,
-                motion: GroundMotion | None) -> float:
+def forcing_top(drive: Drive, load: Load, sweep: Sweep, case: str, motion: GroundMotion | None) -> float:
     """The highest forcing frequency of a case (rad/s): the fastest rotor speed
     it reaches (the sweep's top torque for "sweep"), and the ground motion's band."""
     d, L = drive, load

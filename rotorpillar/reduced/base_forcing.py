@@ -33,16 +33,22 @@ def published_static_gain(tip_stiffness: float, shaft_stiffness: float) -> float
     return (tip_stiffness + 2 * shaft_stiffness) / tip_stiffness
 
 
-def base_forcing_finding(tip_stiffness: float, shaft_stiffness: float, pillar_damping: float,
-                         shaft_damping: float) -> dict[str, Any]:
+def base_forcing_finding(
+    tip_stiffness: float, shaft_stiffness: float, pillar_damping: float, shaft_damping: float
+) -> dict[str, Any]:
     """The published and the consistent base forcing of Eq. 4 for a scene, and the gain."""
     c1, c2, b1, b2 = tip_stiffness, shaft_stiffness, pillar_damping, shaft_damping
     gain = published_static_gain(c1, c2)
     return {
-        "published": {"q1": f"c0 q5 + b0 q5' = {c1 + c2:.4g} q5 + {b1 + b2:.4g} q5'",
-                      "q2": f"c2 q5 + b2 q5' = {c2:.4g} q5 + {b2:.4g} q5'"},
-        "consistent": {"q1": f"c1 q5 + b1 q5' = {c1:.4g} q5 + {b1:.4g} q5'", "q2": "0",
-                       "relative_coordinates": "-M r a_g (m_A a_g on q1, m_C a_g on q2)"},
+        "published": {
+            "q1": f"c0 q5 + b0 q5' = {c1 + c2:.4g} q5 + {b1 + b2:.4g} q5'",
+            "q2": f"c2 q5 + b2 q5' = {c2:.4g} q5 + {b2:.4g} q5'",
+        },
+        "consistent": {
+            "q1": f"c1 q5 + b1 q5' = {c1:.4g} q5 + {b1:.4g} q5'",
+            "q2": "0",
+            "relative_coordinates": "-M r a_g (m_A a_g on q1, m_C a_g on q2)",
+        },
         "static_gain_published": gain,
         "static_gain_consistent": 1.0,
         "amplification": gain,
@@ -61,7 +67,9 @@ def published_forcing_warning(tip_stiffness: float, shaft_stiffness: float) -> s
     gain = published_static_gain(tip_stiffness, shaft_stiffness)
     if gain <= AMPLIFICATION_LIMIT:
         return None
-    return (f"Eq. 4's published base forcing (c0 q5 on q1, c2 q5 on q2) amplifies the ground "
-            f"{gain:.3g}x statically ((c1 + 2 c2)/c1 with c1 = {tip_stiffness:.4g}, c2 = "
-            f"{shaft_stiffness:.4g} N/m), over {AMPLIFICATION_LIMIT:g}x: this response is inflated; "
-            f"the modal model (-M r a_g) is the consistent one")
+    return (
+        f"Eq. 4's published base forcing (c0 q5 on q1, c2 q5 on q2) amplifies the ground "
+        f"{gain:.3g}x statically ((c1 + 2 c2)/c1 with c1 = {tip_stiffness:.4g}, c2 = "
+        f"{shaft_stiffness:.4g} N/m), over {AMPLIFICATION_LIMIT:g}x: this response is inflated; "
+        f"the modal model (-M r a_g) is the consistent one"
+    )

@@ -30,6 +30,7 @@ THEORIES = ("euler", "timoshenko")
 @dataclass(frozen=True)
 class BeamProperties:
     """A uniform beam."""
+
     youngs_modulus: float
     """E (Pa)"""
     poisson_ratio: float
@@ -53,6 +54,7 @@ class BeamProperties:
 @dataclass(frozen=True)
 class BeamModes:
     """Modes of the cantilever, ascending."""
+
     omega: NDArray[np.float64]
     """natural angular frequencies (rad/s)"""
     x: NDArray[np.float64]
@@ -66,16 +68,31 @@ class BeamModes:
 
 def _euler_element(p: BeamProperties, L: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     EI, mA = p.youngs_modulus * p.second_moment, p.density * p.area
-    k = EI / L**3 * np.array([
-        [12, 6 * L, -12, 6 * L],
-        [6 * L, 4 * L**2, -6 * L, 2 * L**2],
-        [-12, -6 * L, 12, -6 * L],
-        [6 * L, 2 * L**2, -6 * L, 4 * L**2]])
-    m = mA * L / 420 * np.array([
-        [156, 22 * L, 54, -13 * L],
-        [22 * L, 4 * L**2, 13 * L, -3 * L**2],
-        [54, 13 * L, 156, -22 * L],
-        [-13 * L, -3 * L**2, -22 * L, 4 * L**2]])
+    k = (
+        EI
+        / L**3
+        * np.array(
+            [
+                [12, 6 * L, -12, 6 * L],
+                [6 * L, 4 * L**2, -6 * L, 2 * L**2],
+                [-12, -6 * L, 12, -6 * L],
+                [6 * L, 2 * L**2, -6 * L, 4 * L**2],
+            ]
+        )
+    )
+    m = (
+        mA
+        * L
+        / 420
+        * np.array(
+            [
+                [156, 22 * L, 54, -13 * L],
+                [22 * L, 4 * L**2, 13 * L, -3 * L**2],
+                [54, 13 * L, 156, -22 * L],
+                [-13 * L, -3 * L**2, -22 * L, 4 * L**2],
+            ]
+        )
+    )
     return k, m
 
 
@@ -85,7 +102,7 @@ def _timoshenko_element(p: BeamProperties, L: float) -> tuple[NDArray[np.float64
     # dof order (w1, psi1, w2, psi2)
     bend = np.zeros((4, 4))
     bend[np.ix_([1, 3], [1, 3])] = EI / L * np.array([[1, -1], [-1, 1]])
-    b = np.array([-1 / L, -0.5, 1 / L, -0.5])      # shear strain at the midpoint
+    b = np.array([-1 / L, -0.5, 1 / L, -0.5])  # shear strain at the midpoint
     k = bend + kGA * L * np.outer(b, b)
     lin = L / 6 * np.array([[2, 1], [1, 2]])
     m = np.zeros((4, 4))
@@ -94,8 +111,9 @@ def _timoshenko_element(p: BeamProperties, L: float) -> tuple[NDArray[np.float64
     return k, m
 
 
-def assemble(p: BeamProperties, n_elements: int, theory: str,
-             tip_mass: float = 0.0, tip_inertia: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def assemble(
+    p: BeamProperties, n_elements: int, theory: str, tip_mass: float = 0.0, tip_inertia: float = 0.0
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Global K and M of the clamped-free beam (base dofs removed)."""
     if theory not in THEORIES:
         raise ValueError(f"theory must be one of {THEORIES}")
@@ -115,8 +133,14 @@ def assemble(p: BeamProperties, n_elements: int, theory: str,
     return K[2:, 2:], M[2:, 2:]
 
 
-def beam_modes(p: BeamProperties, n_elements: int, theory: str = "euler",
-               n_modes: int = 4, tip_mass: float = 0.0, tip_inertia: float = 0.0) -> BeamModes:
+def beam_modes(
+    p: BeamProperties,
+    n_elements: int,
+    theory: str = "euler",
+    n_modes: int = 4,
+    tip_mass: float = 0.0,
+    tip_inertia: float = 0.0,
+) -> BeamModes:
     """The lowest ``n_modes`` bending modes of the cantilever."""
     K, M = assemble(p, n_elements, theory, tip_mass, tip_inertia)
     k = min(n_modes, K.shape[0])
@@ -134,8 +158,9 @@ def beam_modes(p: BeamProperties, n_elements: int, theory: str = "euler",
     return BeamModes(np.sqrt(lam), x, full[0::2], full[1::2], K.shape[0])
 
 
-def section_forces(p: BeamProperties, n_elements: int, theory: str,
-                   u: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def section_forces(
+    p: BeamProperties, n_elements: int, theory: str, u: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Shear V(z) and bending moment M(z) at the nodes from the element end forces K_e u_e.
 
     ``u`` holds (w, psi) per node from the base up, base included: shape
@@ -164,10 +189,10 @@ def section_forces(p: BeamProperties, n_elements: int, theory: str,
         raise ValueError(f"u must have 2 (n_elements + 1) = {2 * (n_elements + 1)} rows")
     L = p.length / n_elements
     ke, _ = (_euler_element if theory == "euler" else _timoshenko_element)(p, L)
-    ue = np.stack([u[2 * e: 2 * e + 4] for e in range(n_elements)])     # (n_el, 4, ...)
+    ue = np.stack([u[2 * e : 2 * e + 4] for e in range(n_elements)])  # (n_el, 4, ...)
     f = np.einsum("ij,ej...->ei...", ke, ue)
-    below = np.zeros((n_elements + 1, 2) + u.shape[1:])                  # from the element below
-    above = np.zeros_like(below)                                          # from the element above
+    below = np.zeros((n_elements + 1, 2) + u.shape[1:])  # from the element below
+    above = np.zeros_like(below)  # from the element above
     below[1:] = f[:, 2:4]
     above[:-1] = -f[:, 0:2]
     mean = 0.5 * (below + above)

@@ -40,6 +40,7 @@ def phase_lag(Z: ArrayLike) -> NDArray[np.float64]:
 @dataclass(frozen=True)
 class BodeCurve(JsonRecord):
     """Steady unbalance response of one model against speed."""
+
     model: str
     """"modal" (the ROM), "fem3d" (3D harmonic response), "paper\""""
     speeds: tuple[float, ...]
@@ -62,7 +63,7 @@ def local_peaks(speeds: ArrayLike, amplitude: ArrayLike) -> tuple[tuple[float, f
     out = []
     for i in range(1, len(W) - 1):
         if a[i] >= a[i - 1] and a[i] > a[i + 1]:
-            x, y = W[i - 1:i + 2], a[i - 1:i + 2]
+            x, y = W[i - 1 : i + 2], a[i - 1 : i + 2]
             c = np.polyfit(x - x[1], y, 2)
             if c[0] < 0:
                 s = -c[1] / (2 * c[0])
@@ -73,14 +74,19 @@ def local_peaks(speeds: ArrayLike, amplitude: ArrayLike) -> tuple[tuple[float, f
     return tuple(out)
 
 
-def curve(model: str, speeds: ArrayLike, tip: NDArray[np.complex128],
-          shaft: NDArray[np.complex128]) -> BodeCurve:
+def curve(model: str, speeds: ArrayLike, tip: NDArray[np.complex128], shaft: NDArray[np.complex128]) -> BodeCurve:
     """A BodeCurve from complex amplitudes of the tip and of the shaft deflection."""
     speeds = np.asarray(speeds, dtype=float)
     ta, sa = np.abs(tip), np.abs(shaft)
-    return BodeCurve(model, tuple(map(float, speeds)), tuple(map(float, ta)),
-                     tuple(map(float, phase_lag(tip))), tuple(map(float, sa)),
-                     tuple(map(float, phase_lag(shaft))), local_peaks(speeds, ta))
+    return BodeCurve(
+        model,
+        tuple(map(float, speeds)),
+        tuple(map(float, ta)),
+        tuple(map(float, phase_lag(tip))),
+        tuple(map(float, sa)),
+        tuple(map(float, phase_lag(shaft))),
+        local_peaks(speeds, ta),
+    )
 
 
 def unbalance_response(model: RotorStructure, speeds: ArrayLike) -> BodeCurve:
@@ -109,6 +115,7 @@ def speed_grid(resonances: Iterable[Resonance], top: float, n: int = 600, dense:
 @dataclass(frozen=True)
 class AveragingCurve(JsonRecord):
     """Eq. 19's amplitude of one resonance, over the speeds near it."""
+
     index: int
     """the resonance's index (the quasi-normal mode)"""
     direction: str
@@ -123,16 +130,23 @@ class AveragingCurve(JsonRecord):
     """a_i (Eq. 19) (m): for an X resonance, the tip's amplitude (u_tip = 1)"""
 
 
-def averaging_curves(model: RotorStructure, top: float, width: float = 0.3,
-                     n: int = 200) -> tuple[AveragingCurve, ...]:
+def averaging_curves(model: RotorStructure, top: float, width: float = 0.3, n: int = 200) -> tuple[AveragingCurve, ...]:
     """Eq. 19 near each X resonance below ``top`` (rad/s), over +-``width`` of omega_i."""
     out = []
     for r in model.quasi_normal():
         if r.direction != "X" or not (0 < r.omega < top):
             continue
         W = np.linspace((1 - width) * r.omega, min((1 + width) * r.omega, top), n)
-        out.append(AveragingCurve(r.index, r.direction, float(r.omega), float(r.nu),
-                                  tuple(map(float, W)), tuple(map(float, np.asarray(av.amplitude(W, r))))))
+        out.append(
+            AveragingCurve(
+                r.index,
+                r.direction,
+                float(r.omega),
+                float(r.nu),
+                tuple(map(float, W)),
+                tuple(map(float, np.asarray(av.amplitude(W, r)))),
+            )
+        )
     return tuple(out)
 
 

@@ -63,8 +63,9 @@ def length_parameter(length: float, radius: float, thickness: float) -> float:
     return length / math.sqrt(radius * thickness)
 
 
-def cx_factor(omega: float, radius: float, thickness: float, cxb: float = CXB_CANTILEVER,
-              axial_share: float = 1.0) -> float:
+def cx_factor(
+    omega: float, radius: float, thickness: float, cxb: float = CXB_CANTILEVER, axial_share: float = 1.0
+) -> float:
     """EN 1993-1-6 D.1.2.1: C_x of a short, medium or long cylinder (-).
 
     ``axial_share`` = s_N / (s_N + s_M): the share of the meridional stress
@@ -80,8 +81,7 @@ def cx_factor(omega: float, radius: float, thickness: float, cxb: float = CXB_CA
     return cxn * share + (1.0 - share)
 
 
-def critical_meridional_stress(youngs_modulus: float, radius: float, thickness: float,
-                               cx: float = 1.0) -> float:
+def critical_meridional_stress(youngs_modulus: float, radius: float, thickness: float, cx: float = 1.0) -> float:
     """EN 1993-1-6 D.1.2.1: sigma_x,Rcr = 0.605 E C_x t / r (Pa), the classical
     critical stress of a cylinder under axial compression (nu = 0.3) times C_x."""
     return 0.605 * youngs_modulus * cx * thickness / radius
@@ -95,8 +95,9 @@ def imperfection_reduction(radius: float, thickness: float, quality_class: str) 
     return 0.62 / (1.0 + 1.91 * (dwk / thickness) ** 1.44)  # type: ignore[no-any-return]  # float ** float is Any in typeshed (a negative base gives a complex)
 
 
-def buckling_reduction(slenderness: float, alpha: float, lambda0: float = LAMBDA_X0,
-                       beta: float = BETA_X, eta: float = ETA_X) -> float:
+def buckling_reduction(
+    slenderness: float, alpha: float, lambda0: float = LAMBDA_X0, beta: float = BETA_X, eta: float = ETA_X
+) -> float:
     """EN 1993-1-6 8.5.2: chi from the relative slenderness (-)."""
     lam_p = math.sqrt(alpha / (1.0 - beta))
     if slenderness <= lambda0:
@@ -109,6 +110,7 @@ def buckling_reduction(slenderness: float, alpha: float, lambda0: float = LAMBDA
 @dataclass(frozen=True)
 class MeridionalBuckling(JsonRecord):
     """The tube's design buckling stress under meridional compression and bending."""
+
     quality_class: str
     """fabrication quality class, "A", "B" or "C" (EN 1993-1-6 Table 8.1)"""
     radius: float
@@ -145,9 +147,17 @@ class MeridionalBuckling(JsonRecord):
     """where the method is: "EN 1993-1-6:2007 Annex D.1.2, 8.5.2\""""
 
 
-def meridional_buckling(youngs_modulus: float, radius: float, thickness: float, length: float,
-                        yield_strength: float, quality_class: str, axial_share: float = 1.0,
-                        cxb: float = CXB_CANTILEVER, gamma_m1: float = GAMMA_M1) -> MeridionalBuckling:
+def meridional_buckling(
+    youngs_modulus: float,
+    radius: float,
+    thickness: float,
+    length: float,
+    yield_strength: float,
+    quality_class: str,
+    axial_share: float = 1.0,
+    cxb: float = CXB_CANTILEVER,
+    gamma_m1: float = GAMMA_M1,
+) -> MeridionalBuckling:
     """EN 1993-1-6 D.1.2, 8.5.2: the design meridional buckling stress of the tube (Pa).
 
     ``axial_share`` as in ``cx_factor``: s_N / (s_N + s_M) of the demand
@@ -163,9 +173,25 @@ def meridional_buckling(youngs_modulus: float, radius: float, thickness: float, 
     lam = math.sqrt(yield_strength / s_cr)
     chi = buckling_reduction(lam, alpha)
     rk = chi * yield_strength
-    return MeridionalBuckling(quality_class, radius, thickness, length, om, kind, cx, s_cr, alpha, lam,
-                              math.sqrt(alpha / (1.0 - BETA_X)), chi, rk, rk / gamma_m1, gamma_m1,
-                              yield_strength, "EN 1993-1-6:2007 Annex D.1.2, 8.5.2")
+    return MeridionalBuckling(
+        quality_class,
+        radius,
+        thickness,
+        length,
+        om,
+        kind,
+        cx,
+        s_cr,
+        alpha,
+        lam,
+        math.sqrt(alpha / (1.0 - BETA_X)),
+        chi,
+        rk,
+        rk / gamma_m1,
+        gamma_m1,
+        yield_strength,
+        "EN 1993-1-6:2007 Annex D.1.2, 8.5.2",
+    )
 
 
 # --------------------------------------------------------------------------
@@ -178,6 +204,7 @@ PASS, FAIL, NOT_ASSESSED = "pass", "fail", "not assessed"
 @dataclass(frozen=True)
 class Check(JsonRecord):
     """One demand against one capacity."""
+
     name: str
     """what is checked, e.g. "base stress vs yield\""""
     quantity: str
@@ -200,8 +227,16 @@ class Check(JsonRecord):
     """where demand and capacity come from, in words"""
 
 
-def check(name: str, quantity: str, unit: str, demand: float | None, capacity: float | None,
-          model: str | None, case: str | None, source: str) -> Check:
+def check(
+    name: str,
+    quantity: str,
+    unit: str,
+    demand: float | None,
+    capacity: float | None,
+    model: str | None,
+    case: str | None,
+    source: str,
+) -> Check:
     """A check: passes when demand <= capacity; not assessed without a capacity or a demand.
 
     >>> check("x", "q", "m", 2.0, 4.0, "modal", "runup", "").status
@@ -212,5 +247,6 @@ def check(name: str, quantity: str, unit: str, demand: float | None, capacity: f
     if demand is None or capacity is None or not (math.isfinite(demand) and capacity > 0):
         return Check(name, quantity, unit, demand, capacity, None, NOT_ASSESSED, model, case, source)
     u = demand / capacity
-    return Check(name, quantity, unit, float(demand), float(capacity), float(u),
-                 PASS if u <= 1.0 else FAIL, model, case, source)
+    return Check(
+        name, quantity, unit, float(demand), float(capacity), float(u), PASS if u <= 1.0 else FAIL, model, case, source
+    )

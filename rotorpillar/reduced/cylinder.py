@@ -41,8 +41,9 @@ def ring_frequency(n: int, E: float, nu: float, rho: float, R: float, t: float) 
     return math.sqrt(D / (rho * t * R**4) * n**2 * (n**2 - 1) ** 2 / (n**2 + 1))
 
 
-def sanders_frequencies(m: int, n: int, E: float, nu: float, rho: float, R: float, t: float,
-                        L: float) -> NDArray[np.float64]:
+def sanders_frequencies(
+    m: int, n: int, E: float, nu: float, rho: float, R: float, t: float, L: float
+) -> NDArray[np.float64]:
     """The three frequencies (rad/s) of mode (m, n) of a simply supported cylinder.
 
     Sanders' strains of the mode, per amplitude (A, B, C) of (u, v, w); each
@@ -64,11 +65,10 @@ def sanders_frequencies(m: int, n: int, E: float, nu: float, rho: float, R: floa
     K_m = E * t / (1 - nu**2)
     D = E * t**3 / (12 * (1 - nu**2))
 
-    def energy(a: NDArray[np.float64], b: NDArray[np.float64],
-               c: NDArray[np.float64]) -> NDArray[np.float64]:
-        form: NDArray[np.float64] = (np.outer(a, a) + np.outer(b, b)
-                                     + nu * (np.outer(a, b) + np.outer(b, a))
-                                     + (1 - nu) / 2 * np.outer(c, c))
+    def energy(a: NDArray[np.float64], b: NDArray[np.float64], c: NDArray[np.float64]) -> NDArray[np.float64]:
+        form: NDArray[np.float64] = (
+            np.outer(a, a) + np.outer(b, b) + nu * (np.outer(a, b) + np.outer(b, a)) + (1 - nu) / 2 * np.outer(c, c)
+        )
         return form
 
     K = K_m * energy(eps_x, eps_th, gam) + D * energy(kap_x, kap_th, tau)
@@ -76,7 +76,6 @@ def sanders_frequencies(m: int, n: int, E: float, nu: float, rho: float, R: floa
     return np.sqrt(w2)
 
 
-def sanders_frequency(m: int, n: int, E: float, nu: float, rho: float, R: float, t: float,
-                      L: float) -> float:
+def sanders_frequency(m: int, n: int, E: float, nu: float, rho: float, R: float, t: float, L: float) -> float:
     """The lowest (flexural) frequency of mode (m, n) (rad/s)."""
     return float(sanders_frequencies(m, n, E, nu, rho, R, t, L)[0])

@@ -17,34 +17,39 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import (MAX_STEPS, NOT_FINITE, OK, STEP_TOO_SMALL, Floats, Packed, deriv_flat, flatten,
-                  record_peak)
+from .rhs import MAX_STEPS, NOT_FINITE, OK, STEP_TOO_SMALL, Floats, Packed, deriv_flat, flatten, record_peak
 
 TWO_PI = 2.0 * math.pi
 
 
 # scipy RK45's tableau and step control
 _C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
-_A = np.array([
-    [0.0, 0.0, 0.0, 0.0, 0.0],
-    [1 / 5, 0.0, 0.0, 0.0, 0.0],
-    [3 / 40, 9 / 40, 0.0, 0.0, 0.0],
-    [44 / 45, -56 / 15, 32 / 9, 0.0, 0.0],
-    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0],
-    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656]])
+_A = np.array(
+    [
+        [0.0, 0.0, 0.0, 0.0, 0.0],
+        [1 / 5, 0.0, 0.0, 0.0, 0.0],
+        [3 / 40, 9 / 40, 0.0, 0.0, 0.0],
+        [44 / 45, -56 / 15, 32 / 9, 0.0, 0.0],
+        [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0],
+        [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656],
+    ]
+)
 _B = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
 _E = np.array([-71 / 57600, 0.0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
 # scipy's RK45 dense output (Shampine's 4th-order continuous extension):
 # y(t + x h) = y + h K^T P [x, x**2, x**3, x**4]
-_P = np.array([
-    [1.0, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
-    [0.0, 0.0, 0.0, 0.0],
-    [0.0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
-    [0.0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
-    [0.0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
-    [0.0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
-    [0.0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423]])
+_P = np.array(
+    [
+        [1.0, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+        [0.0, 0.0, 0.0, 0.0],
+        [0.0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
+        [0.0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+        [0.0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
+        [0.0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+        [0.0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423],
+    ]
+)
 
 
 @njit(cache=True)
@@ -68,8 +73,9 @@ def _rms_norm(x: Floats, scale: Floats, m: int) -> float:
 
 
 @njit(cache=True)
-def _initial_step(t: float, y: Floats, f0: Floats, par: Floats, lo: float, hi: float,
-                  rtol: float, atol: Floats, m: int) -> float:
+def _initial_step(
+    t: float, y: Floats, f0: Floats, par: Floats, lo: float, hi: float, rtol: float, atol: Floats, m: int
+) -> float:
     """Hairer's starting step, as scipy's select_initial_step (order 4)."""
     n2 = y.shape[0]
     scale = np.empty(n2)
@@ -95,9 +101,21 @@ def _initial_step(t: float, y: Floats, f0: Floats, par: Floats, lo: float, hi: f
 
 
 @njit(cache=True, nogil=True)
-def dp5_solve(P: Packed, y0: Floats, t0: float, t1: float, breaks: Floats, rtol: float,
-              atol: Floats, t_out: Floats, wrap: bool, max_steps: int, out_y: Floats,
-              out_peak: Floats, h_max: float) -> tuple[int, int, int, int, float]:
+def dp5_solve(
+    P: Packed,
+    y0: Floats,
+    t0: float,
+    t1: float,
+    breaks: Floats,
+    rtol: float,
+    atol: Floats,
+    t_out: Floats,
+    wrap: bool,
+    max_steps: int,
+    out_y: Floats,
+    out_peak: Floats,
+    h_max: float,
+) -> tuple[int, int, int, int, float]:
     """Integrate y' = f from t0 to t1 (adaptive Dormand-Prince 5(4)).
 
     breaks: sorted times where the forcing may jump (the step lands on each);
@@ -106,12 +124,12 @@ def dp5_solve(P: Packed, y0: Floats, t0: float, t1: float, breaks: Floats, rtol:
     per output interval, the largest |q_i| at the steps and outputs inside it
     into out_peak.  Returns (status, nfev, n_accepted, n_rejected, h_min_used).
     """
-    par = flatten(P)                    # the model as one vector (rhs.deriv_flat)
+    par = flatten(P)  # the model as one vector (rhs.deriv_flat)
     n = P[0].shape[0]
-    nth = n - 1                         # theta's index
-    m = 2 * n                           # error-controlled components
+    nth = n - 1  # theta's index
+    m = 2 * n  # error-controlled components
     N = y0.shape[0]
-    K = np.zeros(7 * N)                 # stage j at K[j N:(j + 1) N]: no row views in the loop
+    K = np.zeros(7 * N)  # stage j at K[j N:(j + 1) N]: no row views in the loop
     y = y0.copy()
     ynew = np.empty(N)
     ytmp = np.empty(N)
@@ -260,10 +278,27 @@ def dp5_solve(P: Packed, y0: Floats, t0: float, t1: float, breaks: Floats, rtol:
 
 
 @njit(cache=True, nogil=True)
-def dp5_batch(P: Packed, y0: Floats, t0: float, t1: float, breaks: Floats, rtol: float,
-              atol: Floats, t_out: Floats, wrap: bool, max_steps: int, h_max: float,
-              torque_scale: Floats, slope: Floats, load: Floats, eccentricity: Floats,
-              shaft_stiffness: Floats, out_y: Floats, out_peak: Floats, stats: Floats) -> None:
+def dp5_batch(
+    P: Packed,
+    y0: Floats,
+    t0: float,
+    t1: float,
+    breaks: Floats,
+    rtol: float,
+    atol: Floats,
+    t_out: Floats,
+    wrap: bool,
+    max_steps: int,
+    h_max: float,
+    torque_scale: Floats,
+    slope: Floats,
+    load: Floats,
+    eccentricity: Floats,
+    shaft_stiffness: Floats,
+    out_y: Floats,
+    out_peak: Floats,
+    stats: Floats,
+) -> None:
     """Run ``dp5_solve`` once per entry of the per-run parameter arrays.
 
     torque_scale multiplies the schedule's M0; slope, load, eccentricity and
@@ -288,11 +323,9 @@ def dp5_batch(P: Packed, y0: Floats, t0: float, t1: float, breaks: Floats, rtol:
             sc[0] = shaft_stiffness[r]
         Pr = (Minv, Ks, C, d, base, sc, sh, gpar, gtab)
         y = y0.copy()
-        res = dp5_solve(Pr, y, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps,
-                        out_y[r], out_peak[r], h_max)
+        res = dp5_solve(Pr, y, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps, out_y[r], out_peak[r], h_max)
         stats[r, 0] = res[0]
         stats[r, 1] = res[1]
         stats[r, 2] = res[2]
         stats[r, 3] = res[3]
         stats[r, 4] = res[4]
-

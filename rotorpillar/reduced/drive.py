@@ -18,8 +18,8 @@ turns backwards).
 from __future__ import annotations
 
 import math
-from typing import Any
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -32,6 +32,7 @@ class DriveSchedule:
     M0 and s are linear between the knots and held beyond them; a repeated
     knot time makes a switch.
     """
+
     times: tuple[float, ...]
     """knot times (s), non-decreasing"""
     torque_at_zero: tuple[float, ...]
@@ -49,29 +50,39 @@ class DriveSchedule:
 
     # ----------------------------------------------------------- builders
     @classmethod
-    def constant(cls, torque_at_zero: float, slope: float, load_coefficient: float) -> "DriveSchedule":
+    def constant(cls, torque_at_zero: float, slope: float, load_coefficient: float) -> DriveSchedule:
         return cls((0.0,), (float(torque_at_zero),), (float(slope),), float(load_coefficient))
 
     @classmethod
-    def ramp(cls, torque_at_zero: float, slope: float, load_coefficient: float,
-             ramp_time: float) -> "DriveSchedule":
+    def ramp(cls, torque_at_zero: float, slope: float, load_coefficient: float, ramp_time: float) -> DriveSchedule:
         """M0 rising linearly from 0 to its value over ``ramp_time`` (a soft start)."""
         if ramp_time <= 0:
             return cls.constant(torque_at_zero, slope, load_coefficient)
-        return cls((0.0, float(ramp_time)), (0.0, float(torque_at_zero)), (float(slope),) * 2,
-                   float(load_coefficient))
+        return cls((0.0, float(ramp_time)), (0.0, float(torque_at_zero)), (float(slope),) * 2, float(load_coefficient))
 
     @classmethod
-    def switched(cls, torque_at_zero: float, slope: float, load_coefficient: float, at: float,
-                 torque_after: float, slope_after: float) -> "DriveSchedule":
+    def switched(
+        cls,
+        torque_at_zero: float,
+        slope: float,
+        load_coefficient: float,
+        at: float,
+        torque_after: float,
+        slope_after: float,
+    ) -> DriveSchedule:
         """The motor (M0, s) until ``at``, then (torque_after, slope_after):
         (0, 0) is the motor switched off, Md = 0."""
-        return cls((0.0, float(at), float(at)), (float(torque_at_zero),) * 2 + (float(torque_after),),
-                   (float(slope),) * 2 + (float(slope_after),), float(load_coefficient))
+        return cls(
+            (0.0, float(at), float(at)),
+            (float(torque_at_zero),) * 2 + (float(torque_after),),
+            (float(slope),) * 2 + (float(slope_after),),
+            float(load_coefficient),
+        )
 
     @classmethod
-    def sweep(cls, slope: float, load_coefficient: float, torque_low: float, torque_high: float,
-              rate: float, settle: float) -> "DriveSchedule":
+    def sweep(
+        cls, slope: float, load_coefficient: float, torque_low: float, torque_high: float, rate: float, settle: float
+    ) -> DriveSchedule:
         """M0 held at ``torque_low`` for ``settle``, raised at ``rate`` to
         ``torque_high``, held for ``settle``, lowered back at ``rate``."""
         ramp = (torque_high - torque_low) / rate
@@ -102,7 +113,9 @@ class DriveSchedule:
 
     def breakpoints(self) -> list[float]:
         """Times where dM0/dt or ds/dt jumps: integrators step onto them."""
-        return sorted(set(float(t) for t in self.times[1:]) | ({float(self.times[0])} if len(self.times) > 1 else set()))
+        return sorted(
+            set(float(t) for t in self.times[1:]) | ({float(self.times[0])} if len(self.times) > 1 else set())
+        )
 
     def free_speed(self, t: float | None = None) -> float:
         """Speed where Md = Mc with no resonance, for M0, s at time t (default:
@@ -114,6 +127,10 @@ class DriveSchedule:
         return M0 / s if s > 0 else math.inf
 
     def describe(self) -> dict[str, Any]:
-        return {"times": list(self.times), "torque_at_zero": list(self.torque_at_zero),
-                "slope": list(self.slope), "load_coefficient": self.load_coefficient,
-                "law": "Md = M0(t) - s(t)*Omega, Mc = k*Omega*|Omega|, M0 and s linear between knots"}
+        return {
+            "times": list(self.times),
+            "torque_at_zero": list(self.torque_at_zero),
+            "slope": list(self.slope),
+            "load_coefficient": self.load_coefficient,
+            "law": "Md = M0(t) - s(t)*Omega, Mc = k*Omega*|Omega|, M0 and s linear between knots",
+        }

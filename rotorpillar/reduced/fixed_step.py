@@ -16,13 +16,13 @@ import math
 import numpy as np
 from numba import njit
 
-from .rhs import (N_WORK, NEWTON_FAILED, NOT_FINITE, OK, Floats, Packed, deriv_flat, flatten,
-                  jacobians, record_peak)
+from .rhs import N_WORK, NEWTON_FAILED, NOT_FINITE, OK, Floats, Packed, deriv_flat, flatten, jacobians, record_peak
 
 
 @njit(cache=True)
-def _start_output(q: Floats, v: Floats, par: Floats, out_q: Floats, out_v: Floats,
-                  out_w: Floats, out_peak: Floats) -> int:
+def _start_output(
+    q: Floats, v: Floats, par: Floats, out_q: Floats, out_v: Floats, out_w: Floats, out_peak: Floats
+) -> int:
     """Clear the fixed-step schemes' peaks, store the initial state as row 0
     (no work done yet); returns the number of output rows."""
     out_peak[:, :] = 0.0
@@ -32,8 +32,7 @@ def _start_output(q: Floats, v: Floats, par: Floats, out_q: Floats, out_v: Float
 
 
 @njit(cache=True)
-def _store_sample(k: int, q: Floats, v: Floats, W: Floats, out_q: Floats, out_v: Floats,
-                  out_w: Floats) -> None:
+def _store_sample(k: int, q: Floats, v: Floats, W: Floats, out_q: Floats, out_v: Floats, out_w: Floats) -> None:
     """Row k of the fixed-step schemes' output: coordinates, velocities, work."""
     for i in range(q.shape[0]):
         out_q[k, i] = q[i]
@@ -53,9 +52,24 @@ def _eval(t: float, q: Floats, v: Floats, par: Floats, yw: Floats, dw: Floats) -
 
 
 @njit(cache=True)
-def _end_of_step(step: int, stride: int, h: float, n: int, q: Floats, v: Floats, dw: Floats,
-                 W: Floats, pw_old: Floats, par: Floats, kout: int, nout: int, out_q: Floats,
-                 out_v: Floats, out_w: Floats, out_peak: Floats) -> int:
+def _end_of_step(
+    step: int,
+    stride: int,
+    h: float,
+    n: int,
+    q: Floats,
+    v: Floats,
+    dw: Floats,
+    W: Floats,
+    pw_old: Floats,
+    par: Floats,
+    kout: int,
+    nout: int,
+    out_q: Floats,
+    out_v: Floats,
+    out_w: Floats,
+    out_peak: Floats,
+) -> int:
     """A fixed-step scheme's step, closed: the work by the trapezoid rule, the
     peak of the output interval, the sample at every stride-th step.  Returns
     the next output index."""
@@ -71,10 +85,25 @@ def _end_of_step(step: int, stride: int, h: float, n: int, q: Floats, v: Floats,
 
 
 @njit(cache=True)
-def genalpha_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nsteps: int,
-                   stride: int, alpha_m: float, alpha_f: float, beta: float, gamma: float,
-                   newton_tol: float, max_iter: int, out_q: Floats, out_v: Floats,
-                   out_w: Floats, out_peak: Floats) -> tuple[int, int, int]:
+def genalpha_solve(
+    P: Packed,
+    q0: Floats,
+    v0: Floats,
+    t0: float,
+    h: float,
+    nsteps: int,
+    stride: int,
+    alpha_m: float,
+    alpha_f: float,
+    beta: float,
+    gamma: float,
+    newton_tol: float,
+    max_iter: int,
+    out_q: Floats,
+    out_v: Floats,
+    out_w: Floats,
+    out_peak: Floats,
+) -> tuple[int, int, int]:
     """Fixed-step generalized-alpha with Newton iterations on the analytic Jacobian.
 
     Equilibrium is enforced at the weighted point
@@ -91,11 +120,11 @@ def genalpha_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nstep
     q = q0.copy()
     v = v0.copy()
     _eval(t0, q, v, par, yw, dw)
-    a = dw[n:2 * n].copy()
+    a = dw[n : 2 * n].copy()
     nfev = 1
     nit = 0
     W = np.zeros(N_WORK)
-    pw_old = dw[2 * n:].copy()
+    pw_old = dw[2 * n :].copy()
     qn = np.empty(n)
     vn = np.empty(n)
     an = np.empty(n)
@@ -139,8 +168,11 @@ def genalpha_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nstep
             # terms of the residual are far larger than the accelerations),
             # or no longer falling once far below the first (stagnation at
             # round-off).  A linear problem needs one update.
-            if it > 0 and (rn <= newton_tol * (math.sqrt(ref) + 1e-300) or rn <= 1e-13 * r0
-                           or (it > 1 and rn >= 0.5 * r_prev and rn <= 1e-8 * r0)):
+            if it > 0 and (
+                rn <= newton_tol * (math.sqrt(ref) + 1e-300)
+                or rn <= 1e-13 * r0
+                or (it > 1 and rn >= 0.5 * r_prev and rn <= 1e-8 * r0)
+            ):
                 converged = True
                 break
             r_prev = rn
@@ -169,14 +201,24 @@ def genalpha_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nstep
                 return NOT_FINITE, nfev, nit
         _eval(t, q, v, par, yw, dw)
         nfev += 1
-        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout,
-                            out_q, out_v, out_w, out_peak)
+        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout, out_q, out_v, out_w, out_peak)
     return OK, nfev, nit
 
 
 @njit(cache=True)
-def cd_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nsteps: int, stride: int,
-             out_q: Floats, out_v: Floats, out_w: Floats, out_peak: Floats) -> tuple[int, int, int]:
+def cd_solve(
+    P: Packed,
+    q0: Floats,
+    v0: Floats,
+    t0: float,
+    h: float,
+    nsteps: int,
+    stride: int,
+    out_q: Floats,
+    out_v: Floats,
+    out_w: Floats,
+    out_peak: Floats,
+) -> tuple[int, int, int]:
     """Explicit central difference (velocity-Verlet form).
 
     v_{n+1/2} = v_n + h/2 a_n;  q_{n+1} = q_n + h v_{n+1/2};
@@ -193,10 +235,10 @@ def cd_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nsteps: int
     v = v0.copy()
     vp = np.empty(n)
     _eval(t0, q, v, par, yw, dw)
-    a = dw[n:2 * n].copy()
+    a = dw[n : 2 * n].copy()
     nfev = 1
     W = np.zeros(N_WORK)
-    pw_old = dw[2 * n:].copy()
+    pw_old = dw[2 * n :].copy()
     nout = _start_output(q, v, par, out_q, out_v, out_w, out_peak)
     kout = 1
     for step in range(nsteps):
@@ -212,8 +254,7 @@ def cd_solve(P: Packed, q0: Floats, v0: Floats, t0: float, h: float, nsteps: int
             v[i] += 0.5 * h * a[i]
             if not math.isfinite(q[i]) or abs(q[i]) > 1e100:
                 return NOT_FINITE, nfev, 0
-        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout,
-                            out_q, out_v, out_w, out_peak)
+        kout = _end_of_step(step, stride, h, n, q, v, dw, W, pw_old, par, kout, nout, out_q, out_v, out_w, out_peak)
     return OK, nfev, 0
 
 

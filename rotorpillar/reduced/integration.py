@@ -30,8 +30,8 @@ import contextvars
 import math
 import os
 import time
-from concurrent.futures import ThreadPoolExecutor
 from collections.abc import Callable, Iterator
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any
 
@@ -53,13 +53,19 @@ _Run = tuple[Floats, Floats, Floats, Floats, Floats, dict[str, Any]]
 
 FIXED_STEP = FIXED_STEP_INTEGRATORS
 IMPLICIT = ("Radau", "BDF", "LSODA", "newmark", "hht", "generalized_alpha")
-STATUS = {K.OK: "ok", K.MAX_STEPS: "too many steps", K.STEP_TOO_SMALL: "step size underflow",
-          K.NOT_FINITE: "solution diverged (not finite)", K.NEWTON_FAILED: "Newton iterations failed"}
+STATUS = {
+    K.OK: "ok",
+    K.MAX_STEPS: "too many steps",
+    K.STEP_TOO_SMALL: "step size underflow",
+    K.NOT_FINITE: "solution diverged (not finite)",
+    K.NEWTON_FAILED: "Newton iterations failed",
+}
 
 
 @dataclass(frozen=True)
 class Settings:
     """How to integrate."""
+
     method: str = "dp5"
     """one of INTEGRATORS"""
     rtol: float = 1e-7
@@ -86,6 +92,7 @@ class Settings:
 @dataclass(frozen=True, eq=False)
 class Transient:
     """A transient run: states on the output grid and what the integrator did."""
+
     model: RotorStructure
     t: NDArray[np.float64]
     """(n_t,) output times (s)"""
@@ -112,7 +119,7 @@ class Transient:
         return self.v[:, -1]
 
     def tip(self) -> NDArray[np.float64]:
-        return self.q[:, :self.model.nx] @ self.model.tip
+        return self.q[:, : self.model.nx] @ self.model.tip
 
     def energy_balance(self) -> dict[str, Any]:
         """E(t) - E(0) against the work done, and the relative error.
@@ -129,13 +136,23 @@ class Transient:
             inflow = self.work[:, 0]
         E = T + P
         resid = (E - E[0]) - (inflow - self.work[:, 2] + self.work[:, 3])
-        scale = max(np.max(np.abs(E - E[0])), np.max(np.abs(inflow)), np.max(np.abs(self.work[:, 2])),
-                    np.max(np.abs(self.work[:, 3])), 1e-300)
-        return {"energy_change": float(E[-1] - E[0]), "work_drive_minus_load": float(self.work[-1, 0]),
-                "work_shaft_on_structure": float(self.work[-1, 1]),
-                "dissipated": float(self.work[-1, 2]), "work_base": float(self.work[-1, 3]),
-                "max_abs_residual": float(np.max(np.abs(resid))), "scale": float(scale),
-                "relative_error": float(np.max(np.abs(resid)) / scale)}
+        scale = max(
+            np.max(np.abs(E - E[0])),
+            np.max(np.abs(inflow)),
+            np.max(np.abs(self.work[:, 2])),
+            np.max(np.abs(self.work[:, 3])),
+            1e-300,
+        )
+        return {
+            "energy_change": float(E[-1] - E[0]),
+            "work_drive_minus_load": float(self.work[-1, 0]),
+            "work_shaft_on_structure": float(self.work[-1, 1]),
+            "dissipated": float(self.work[-1, 2]),
+            "work_base": float(self.work[-1, 3]),
+            "max_abs_residual": float(np.max(np.abs(resid))),
+            "scale": float(scale),
+            "relative_error": float(np.max(np.abs(resid)) / scale),
+        }
 
 
 def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, rtol: float) -> NDArray[np.float64]:
@@ -143,7 +160,7 @@ def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, 
     n = model.n
     om = model.undamped_modes_x()[0]
     elastic = om[om > 1e-6 * max(float(om.max()), 1e-300)] if len(om) else om
-    w_min = float(elastic.min()) if len(elastic) else 1.0        # rigid modes carry no scale
+    w_min = float(elastic.min()) if len(elastic) else 1.0  # rigid modes carry no scale
     g_scale = 0.0
     if motion.kind != "none":
         g_scale = motion.sizes()["peak_acceleration"] / w_min**2
@@ -152,11 +169,11 @@ def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, 
     xs = max(model.eccentricity, 1e-3 * g_scale, 1e-7)
     W = max(speed_scale, 1.0)
     atol = np.empty(2 * n + K.N_WORK)
-    atol[:n - 1] = rtol * xs
+    atol[: n - 1] = rtol * xs
     atol[n - 1] = rtol * 1.0
-    atol[n:2 * n - 1] = rtol * xs * max(W, w_min)
+    atol[n : 2 * n - 1] = rtol * xs * max(W, w_min)
     atol[2 * n - 1] = rtol * W
-    atol[2 * n:] = 1e300
+    atol[2 * n :] = 1e300
     return atol
 
 
@@ -164,8 +181,7 @@ def _breaks(drive: DriveSchedule, motion: GroundMotion) -> NDArray[np.float64]:
     return np.array(sorted(set(drive.breakpoints()) | set(motion.breakpoints())), dtype=float)
 
 
-def auto_time_step(model: RotorStructure, speed_scale: float, settings: Settings,
-                   motion: GroundMotion) -> float:
+def auto_time_step(model: RotorStructure, speed_scale: float, settings: Settings, motion: GroundMotion) -> float:
     """Fixed step resolving the fastest of the rotor and the structure's modes
     below the band (steps_per_period each), and the record's sampling."""
     fast = max(speed_scale, model.stiffest_frequency(), motion.band(), 1e-3)
@@ -175,9 +191,18 @@ def auto_time_step(model: RotorStructure, speed_scale: float, settings: Settings
     return h
 
 
-def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, t_end: float,
-             q0: Arr = None, v0: Arr = None, settings: Settings = Settings(), t_start: float = 0.0,
-             prescribed_speed: bool = False, speed_scale: float | None = None) -> Transient:
+def simulate(
+    model: RotorStructure,
+    drive: DriveSchedule,
+    motion: GroundMotion,
+    t_end: float,
+    q0: Arr = None,
+    v0: Arr = None,
+    settings: Settings = Settings(),
+    t_start: float = 0.0,
+    prescribed_speed: bool = False,
+    speed_scale: float | None = None,
+) -> Transient:
     """Integrate the model from (q0, v0) at t_start to t_end."""
     if not (math.isfinite(t_end) and t_end > t_start):
         raise ValueError(f"t_end = {t_end!r} must be finite and > t_start = {t_start!r}")
@@ -187,8 +212,11 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
     q0 = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float)
     v0 = np.zeros(n) if v0 is None else np.asarray(v0, dtype=float)
     if speed_scale is None:
-        speed_scale = max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0)) \
-            if math.isfinite(drive.free_speed()) else max(abs(v0[-1]), 1.0)
+        speed_scale = (
+            max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0))
+            if math.isfinite(drive.free_speed())
+            else max(abs(v0[-1]), 1.0)
+        )
     check_step_budget(model, motion, t_end - t_start, settings, speed_scale)
     if _ESTIMATE_ONLY.get():
         raise Estimated()
@@ -212,8 +240,9 @@ def simulate(model: RotorStructure, drive: DriveSchedule, motion: GroundMotion, 
 STEPS_PER_REVOLUTION = 10.0
 
 
-def estimated_step_count(model: RotorStructure, motion: GroundMotion, duration: float,
-                    settings: Settings, speed_scale: float) -> float:
+def estimated_step_count(
+    model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings, speed_scale: float
+) -> float:
     """Integration steps a run will take, from its settings, before it starts (-).
 
     Fixed step: duration / h.  Adaptive: at least STEPS_PER_REVOLUTION per
@@ -228,15 +257,17 @@ def estimated_step_count(model: RotorStructure, motion: GroundMotion, duration: 
     return n
 
 
-def check_step_budget(model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings,
-                 speed_scale: float) -> None:
+def check_step_budget(
+    model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings, speed_scale: float
+) -> None:
     """Refuse (one line, InputError) a run estimated above ``settings.max_steps``."""
     n = estimated_step_count(model, motion, duration, settings, speed_scale)
     if not math.isfinite(n) or n > settings.max_steps:
         raise InputError(
             f"this run of {duration:.4g} s would take about {n:.3g} {settings.method} steps, more "
             f"than simulate.max_steps = {settings.max_steps:.3g}: shorten it, coarsen the step, "
-            "or raise simulate.max_steps")
+            "or raise simulate.max_steps"
+        )
 
 
 class Estimated(Exception):
@@ -262,8 +293,18 @@ def _output_grid(t0: float, t1: float, samples: int) -> NDArray[np.float64]:
     return np.linspace(t0, t1, max(2, int(samples)))
 
 
-def _run_dp5(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: float, t1: float,
-             drive: DriveSchedule, motion: GroundMotion, settings: Settings, speed_scale: float) -> _Run:
+def _run_dp5(
+    P: Packed,
+    model: RotorStructure,
+    q0: Floats,
+    v0: Floats,
+    t0: float,
+    t1: float,
+    drive: DriveSchedule,
+    motion: GroundMotion,
+    settings: Settings,
+    speed_scale: float,
+) -> _Run:
     n = model.n
     y0 = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
     t_out = _output_grid(t0, t1, settings.samples)
@@ -272,16 +313,45 @@ def _run_dp5(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: float
     atol = tolerances(model, motion, speed_scale, settings.rtol)
     h_max = motion.time_step if motion.kind == "record" else np.inf
     status, nfev, nacc, nrej, hmin = K.dp5_solve(
-        P, y0, float(t0), float(t1), _breaks(drive, motion), settings.rtol, atol, t_out,
-        settings.wrap_angle, settings.max_steps, out_y, out_peak, h_max)
-    stats = {"status": STATUS[status], "nfev": int(nfev), "steps": int(nacc), "rejected": int(nrej),
-             "smallest_step": float(hmin), "rtol": settings.rtol}
-    return (t_out, out_y[:, :n], out_y[:, n:2 * n], out_y[:, 2 * n:], out_peak, stats)
+        P,
+        y0,
+        float(t0),
+        float(t1),
+        _breaks(drive, motion),
+        settings.rtol,
+        atol,
+        t_out,
+        settings.wrap_angle,
+        settings.max_steps,
+        out_y,
+        out_peak,
+        h_max,
+    )
+    stats = {
+        "status": STATUS[status],
+        "nfev": int(nfev),
+        "steps": int(nacc),
+        "rejected": int(nrej),
+        "smallest_step": float(hmin),
+        "rtol": settings.rtol,
+    }
+    return (t_out, out_y[:, :n], out_y[:, n : 2 * n], out_y[:, 2 * n :], out_peak, stats)
 
 
-def _run_scipy(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: float, t1: float,
-               drive: DriveSchedule, motion: GroundMotion, settings: Settings, speed_scale: float) -> _Run:
+def _run_scipy(
+    P: Packed,
+    model: RotorStructure,
+    q0: Floats,
+    v0: Floats,
+    t0: float,
+    t1: float,
+    drive: DriveSchedule,
+    motion: GroundMotion,
+    settings: Settings,
+    speed_scale: float,
+) -> _Run:
     from scipy.integrate import solve_ivp
+
     n = model.n
     y = np.concatenate([q0, v0, np.zeros(K.N_WORK)])
     t_out = _output_grid(t0, t1, settings.samples)
@@ -297,13 +367,14 @@ def _run_scipy(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: flo
         sel = (t_out >= a) & ((t_out < b) if b < t1 else (t_out <= b))
         # one-sided forcing at the segment's edges, as the compiled kernel
         eps = 1e-12 * (abs(a) + abs(b) + 1.0)
+
         def f(t: float, yy: Floats, a: float = a, b: float = b, eps: float = eps) -> Floats:
             return fun(min(max(t, a + eps), b - eps), yy)
+
         te = t_out[sel]
         # dense output instead of t_eval: the same interpolants at the outputs, and
         # the steps taken (sol.t), which the accuracy check counts
-        sol = solve_ivp(f, (a, b), y, method=settings.method, dense_output=True,
-                        rtol=settings.rtol, atol=atol, **kw)
+        sol = solve_ivp(f, (a, b), y, method=settings.method, dense_output=True, rtol=settings.rtol, atol=atol, **kw)
         nfev += sol.nfev
         njev += getattr(sol, "njev", 0)
         if sol.status != 0 or not sol.success:
@@ -315,20 +386,29 @@ def _run_scipy(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: flo
     Y = np.vstack(ys) if ys else np.zeros((0, len(y)))
     if len(Y) < len(t_out):
         Y = np.vstack([Y, np.full((len(t_out) - len(Y), Y.shape[1] if len(Y) else 2 * n + K.N_WORK), np.nan)])
-    peak = np.column_stack([np.abs(Y[:, :n]), np.abs(Y[:, :model.nx] @ model.tip)])
-    stats = {"status": status, "nfev": int(nfev), "njev": int(njev), "rtol": settings.rtol,
-             "steps": int(steps)}
-    return (t_out, Y[:, :n], Y[:, n:2 * n], Y[:, 2 * n:], peak, stats)
+    peak = np.column_stack([np.abs(Y[:, :n]), np.abs(Y[:, : model.nx] @ model.tip)])
+    stats = {"status": status, "nfev": int(nfev), "njev": int(njev), "rtol": settings.rtol, "steps": int(steps)}
+    return (t_out, Y[:, :n], Y[:, n : 2 * n], Y[:, 2 * n :], peak, stats)
 
 
-def _run_fixed(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: float, t1: float,
-               drive: DriveSchedule, motion: GroundMotion, settings: Settings, speed_scale: float) -> _Run:
+def _run_fixed(
+    P: Packed,
+    model: RotorStructure,
+    q0: Floats,
+    v0: Floats,
+    t0: float,
+    t1: float,
+    drive: DriveSchedule,
+    motion: GroundMotion,
+    settings: Settings,
+    speed_scale: float,
+) -> _Run:
     n = model.n
     h = settings.time_step or auto_time_step(model, speed_scale, settings, motion)
     nsteps = max(1, int(math.ceil((t1 - t0) / h - 1e-9)))
     h = (t1 - t0) / nsteps
     stride = max(1, int(math.ceil(nsteps / max(1, settings.samples - 1))))
-    nsteps = stride * int(math.ceil(nsteps / stride))      # the last output lands on t1
+    nsteps = stride * int(math.ceil(nsteps / stride))  # the last output lands on t1
     h = (t1 - t0) / nsteps
     nout = nsteps // stride + 1
     out_q = np.zeros((nout, n))
@@ -337,18 +417,41 @@ def _run_fixed(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: flo
     out_peak = np.zeros((nout, n + 1))
     m = settings.method
     if m == "central_difference":
-        status, nfev, nit = K.cd_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
-                                       out_q, out_v, out_w, out_peak)
+        status, nfev, nit = K.cd_solve(
+            P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride, out_q, out_v, out_w, out_peak
+        )
         scheme: dict[str, float] = {}
     else:
         am, af, beta, gamma = K.genalpha_parameters(m, settings.hht_alpha, settings.rho_inf)
         scheme = {"alpha_m": am, "alpha_f": af, "beta": beta, "gamma": gamma}
-        status, nfev, nit = K.genalpha_solve(P, q0.copy(), v0.copy(), float(t0), h, nsteps, stride,
-                                             am, af, beta, gamma, settings.newton_tol, 30,
-                                             out_q, out_v, out_w, out_peak)
+        status, nfev, nit = K.genalpha_solve(
+            P,
+            q0.copy(),
+            v0.copy(),
+            float(t0),
+            h,
+            nsteps,
+            stride,
+            am,
+            af,
+            beta,
+            gamma,
+            settings.newton_tol,
+            30,
+            out_q,
+            out_v,
+            out_w,
+            out_peak,
+        )
     t = t0 + h * stride * np.arange(nout)
-    stats = {"status": STATUS[status], "nfev": int(nfev), "steps": int(nsteps), "time_step": h,
-             "newton_iterations": int(nit), "scheme": scheme}
+    stats = {
+        "status": STATUS[status],
+        "nfev": int(nfev),
+        "steps": int(nsteps),
+        "time_step": h,
+        "newton_iterations": int(nit),
+        "scheme": scheme,
+    }
     if status != K.OK:
         out_q[:] = np.nan if status == K.NOT_FINITE else out_q
     return t, out_q, out_v, out_w, out_peak, stats
@@ -361,6 +464,7 @@ def _run_fixed(P: Packed, model: RotorStructure, q0: Floats, v0: Floats, t0: flo
 @dataclass(frozen=True, eq=False)
 class Batch:
     """Many runs of one model differing in M0 (scale), s, k, e or c2."""
+
     t: NDArray[np.float64]
     """(n_t,) output times (s)"""
     Omega: NDArray[np.float64]
@@ -404,12 +508,24 @@ def project(q: NDArray[np.float64], w: NDArray[np.float64]) -> NDArray[np.float6
     return out
 
 
-def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
-                   torque_scale: Arr = None, slope: Arr = None, load: Arr = None,
-                   eccentricity: Arr = None, shaft_stiffness: Arr = None,
-                   motion: GroundMotion | None = None, q0: Arr = None, v0: Arr = None, rtol: float = 1e-7,
-                   samples: int = 201, speed_scale: float | None = None,
-                   threads: int | None = None) -> Batch:
+def simulate_batch(
+    model: RotorStructure,
+    drive: DriveSchedule,
+    t_end: float,
+    *,
+    torque_scale: Arr = None,
+    slope: Arr = None,
+    load: Arr = None,
+    eccentricity: Arr = None,
+    shaft_stiffness: Arr = None,
+    motion: GroundMotion | None = None,
+    q0: Arr = None,
+    v0: Arr = None,
+    rtol: float = 1e-7,
+    samples: int = 201,
+    speed_scale: float | None = None,
+    threads: int | None = None,
+) -> Batch:
     """Run-ups (or any drive schedule) for many parameter values in one compiled
     loop: no Python between runs.  Each keyword is an array over the runs
     (torque_scale multiplies the schedule's M0; the others replace s, k, e, c2).
@@ -421,13 +537,21 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     does not depend on ``threads`` (bit for bit).  Inside a process that is
     itself one of several workers on the machine, pass ``threads=1``."""
     from .excitation import no_motion
+
     motion = motion or no_motion()
-    arrays = {"torque_scale": torque_scale, "slope": slope, "load": load,
-              "eccentricity": eccentricity, "shaft_stiffness": shaft_stiffness}
+    arrays = {
+        "torque_scale": torque_scale,
+        "slope": slope,
+        "load": load,
+        "eccentricity": eccentricity,
+        "shaft_stiffness": shaft_stiffness,
+    }
     runs = max((len(np.atleast_1d(a)) for a in arrays.values() if a is not None), default=1)
     fill: Callable[[ArrayLike | None, float], Floats] = lambda a, default: (
-        np.full(runs, default, dtype=float) if a is None
-        else np.broadcast_to(np.asarray(a, dtype=float), (runs,)).copy())
+        np.full(runs, default, dtype=float)
+        if a is None
+        else np.broadcast_to(np.asarray(a, dtype=float), (runs,)).copy()
+    )
     ts = fill(torque_scale, 1.0)
     others = [fill(arrays[k], np.nan) for k in ("slope", "load", "eccentricity", "shaft_stiffness")]
     n = model.n
@@ -444,27 +568,51 @@ def simulate_batch(model: RotorStructure, drive: DriveSchedule, t_end: float, *,
     out_peak = np.zeros((runs, len(t_out), n + 1))
     stats = np.zeros((runs, 5))
     P = model.pack(drive, motion)
-    args = (P, y0, 0.0, float(t_end), _breaks(drive, motion), rtol, atol, t_out, True,
-            200_000_000, motion.time_step if motion.kind == "record" else np.inf)
+    args = (
+        P,
+        y0,
+        0.0,
+        float(t_end),
+        _breaks(drive, motion),
+        rtol,
+        atol,
+        t_out,
+        True,
+        200_000_000,
+        motion.time_step if motion.kind == "record" else np.inf,
+    )
     s_run, k_run, e_run, c2_run = others
     start = time.perf_counter()
-    _run_slices(lambda a, b: K.dp5_batch(*args, ts[a:b], s_run[a:b], k_run[a:b], e_run[a:b],
-                                         c2_run[a:b], out_y[a:b], out_peak[a:b], stats[a:b]),
-                runs, batch_threads() if threads is None else threads)
+    _run_slices(
+        lambda a, b: K.dp5_batch(
+            *args, ts[a:b], s_run[a:b], k_run[a:b], e_run[a:b], c2_run[a:b], out_y[a:b], out_peak[a:b], stats[a:b]
+        ),
+        runs,
+        batch_threads() if threads is None else threads,
+    )
     wall = time.perf_counter() - start
     e = np.where(np.isfinite(others[2]), others[2], model.eccentricity)
-    shaft = shaft_deflection(out_y[:, :, :n].reshape(-1, n), model.shaft,
-                             np.repeat(e, len(t_out)))[0].reshape(runs, len(t_out))
-    return Batch(t_out, out_y[:, :, 2 * n - 1], out_peak[:, :, -1], project(out_y[:, :, :model.nx], model.tip),
-                 out_y[:, -1, :],
-                 stats[:, 0].astype(int), stats[:, 1].astype(int), wall, shaft)
+    shaft = shaft_deflection(out_y[:, :, :n].reshape(-1, n), model.shaft, np.repeat(e, len(t_out)))[0].reshape(
+        runs, len(t_out)
+    )
+    return Batch(
+        t_out,
+        out_y[:, :, 2 * n - 1],
+        out_peak[:, :, -1],
+        project(out_y[:, :, : model.nx], model.tip),
+        out_y[:, -1, :],
+        stats[:, 0].astype(int),
+        stats[:, 1].astype(int),
+        wall,
+        shaft,
+    )
 
 
 def batch_threads() -> int:
     """The cores this process may run on (its CPU affinity), at least 1."""
     try:
         return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:                                  # not on Linux
+    except AttributeError:  # not on Linux
         return max(1, os.cpu_count() or 1)
 
 
@@ -489,4 +637,5 @@ def _run_slices(run_slice: Callable[[int, int], object], runs: int, threads: int
 
 def _with_eccentricity(model: RotorStructure, e: float) -> RotorStructure:
     from dataclasses import replace
+
     return replace(model, eccentricity=e)

@@ -53,8 +53,9 @@ FORCE_TOLERANCE = 0.01
 # Pure formulas
 
 
-def axial_force(z: ArrayLike, mass_per_length: float, height: float, top_mass: float,
-                g: float = STANDARD_GRAVITY) -> NDArray[np.float64]:
+def axial_force(
+    z: ArrayLike, mass_per_length: float, height: float, top_mass: float, g: float = STANDARD_GRAVITY
+) -> NDArray[np.float64]:
     """N(z) = g (m_rho (H - z) + m_top): the static axial force, compression positive (N)."""
     zs = np.asarray(z, dtype=float)
     force: NDArray[np.float64] = g * (mass_per_length * (height - zs) + top_mass)
@@ -65,8 +66,10 @@ def extreme_fibre_stress(moment: ArrayLike, axial: ArrayLike, section: TubeSecti
     """|M| c / I + N / A: the meridional stress at the compressed extreme fibre,
     compression positive (Pa); c = D0 / 2."""
     c = section.outer_diameter / 2
-    stress: NDArray[np.float64] = (np.abs(np.asarray(moment, dtype=float)) * c / section.second_moment
-                   + np.asarray(axial, dtype=float) / section.area)
+    stress: NDArray[np.float64] = (
+        np.abs(np.asarray(moment, dtype=float)) * c / section.second_moment
+        + np.asarray(axial, dtype=float) / section.area
+    )
     return stress
 
 
@@ -76,8 +79,9 @@ def superpose(coordinates: ArrayLike, shapes: ArrayLike) -> NDArray[np.float64]:
     return field
 
 
-def static_resultants(z: ArrayLike, height: float, mass_per_length: float,
-                      top_mass: float) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]:
+def static_resultants(
+    z: ArrayLike, height: float, mass_per_length: float, top_mass: float
+) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]:
     """Exact static resultants (equilibrium) of the two loads of the transients.
 
     ``tip``: a unit force along +X at the tip, V = 1, M = H - z.
@@ -87,13 +91,20 @@ def static_resultants(z: ArrayLike, height: float, mass_per_length: float,
     """
     zs = np.asarray(z, dtype=float)
     arm = height - zs
-    return {"tip": (np.ones_like(zs), arm),
-            "base": (-(mass_per_length * arm + top_mass),
-                     -(mass_per_length * arm**2 / 2 + top_mass * arm))}
+    return {
+        "tip": (np.ones_like(zs), arm),
+        "base": (-(mass_per_length * arm + top_mass), -(mass_per_length * arm**2 / 2 + top_mass * arm)),
+    }
 
 
-def cantilever_tip_statics(youngs_modulus: float, second_moment: float, shear_stiffness: float,
-                           height: float, mass_per_length: float, top_mass: float) -> dict[str, float]:
+def cantilever_tip_statics(
+    youngs_modulus: float,
+    second_moment: float,
+    shear_stiffness: float,
+    height: float,
+    mass_per_length: float,
+    top_mass: float,
+) -> dict[str, float]:
     """Static tip deflection of a Timoshenko cantilever (m): per unit tip force
     (H**3 / 3EI + H / kGA) and per unit ground acceleration along +X (the
     inertia of the pillar and of its top mass, hence negative)."""
@@ -142,6 +153,7 @@ def hermite_peak(t: ArrayLike, f: ArrayLike, dfdt: ArrayLike) -> tuple[float, fl
 @dataclass(frozen=True)
 class TruncationRow(JsonRecord):
     """The k-mode superposition's error over the band, the worse of the two loads."""
+
     modes: int
     """k (-)"""
     tip: float
@@ -155,6 +167,7 @@ class TruncationRow(JsonRecord):
 @dataclass(frozen=True)
 class ForceTruncation(JsonRecord):
     """How many modes the section forces need (the mode displacement method)."""
+
     band_top: float
     """highest frequency checked: the forcing band of the run (rad/s)"""
     tolerance: float
@@ -178,22 +191,32 @@ class ForceTruncation(JsonRecord):
         return self.modes_needed_base_moment or self.modes_available
 
 
-def _pillar_response(pm: PillarModes, k: int, omega: NDArray[np.float64], damping: ArrayLike,
-                     load: ArrayLike) -> NDArray[np.complex128]:
+def _pillar_response(
+    pm: PillarModes, k: int, omega: NDArray[np.float64], damping: ArrayLike, load: ArrayLike
+) -> NDArray[np.complex128]:
     """(n_w, k) modal coordinates of the first k modes under a harmonic load
     (per mode: 1 for a unit tip force, -L_j for a unit ground acceleration)."""
     m, kk = np.asarray(pm.modal_mass)[:k], np.asarray(pm.modal_stiffness)[:k]
     f = np.asarray(load, dtype=float)[:k]
     C = np.asarray(damping, dtype=float)[:k, :k]
     D = np.diag(kk)[None] - (omega**2)[:, None, None] * np.diag(m)[None] + 1j * omega[:, None, None] * C[None]
-    eta: NDArray[np.complex128] = np.linalg.solve(
-        D, np.broadcast_to(f.astype(complex), (len(omega), k))[..., None])[..., 0]
+    eta: NDArray[np.complex128] = np.linalg.solve(D, np.broadcast_to(f.astype(complex), (len(omega), k))[..., None])[
+        ..., 0
+    ]
     return eta
 
 
-def force_truncation(pm: PillarModes, band_top: float, damping: ArrayLike, height: float,
-                     mass_per_length: float, top_mass: float, tip_statics: dict[str, float],
-                     tolerance: float = FORCE_TOLERANCE, points: int = 600) -> ForceTruncation:
+def force_truncation(
+    pm: PillarModes,
+    band_top: float,
+    damping: ArrayLike,
+    height: float,
+    mass_per_length: float,
+    top_mass: float,
+    tip_statics: dict[str, float],
+    tolerance: float = FORCE_TOLERANCE,
+    points: int = 600,
+) -> ForceTruncation:
     """Errors of the first k modes on the tip, the base moment and the base shear.
 
     The pillar alone with its top mass, forced harmonically over [0,
@@ -213,20 +236,17 @@ def force_truncation(pm: PillarModes, band_top: float, damping: ArrayLike, heigh
     if not pm.has_resultants:
         raise ValueError("the pillar modes carry no section resultants")
     n = pm.count
-    omega = np.unique(np.r_[np.linspace(0.0, band_top, points),
-                            np.asarray(pm.omega)[np.asarray(pm.omega) <= band_top]])
+    omega = np.unique(np.r_[np.linspace(0.0, band_top, points), np.asarray(pm.omega)[np.asarray(pm.omega) <= band_top]])
     i0 = int(np.argmin(np.abs(np.asarray(pm.section_heights))))
     M0, V0 = np.asarray(pm.moment_shapes)[i0], np.asarray(pm.shear_shapes)[i0]
     kk = np.asarray(pm.modal_stiffness)
-    statics = static_resultants(np.asarray(pm.section_heights)[i0:i0 + 1], height, mass_per_length,
-                                top_mass)
+    statics = static_resultants(np.asarray(pm.section_heights)[i0 : i0 + 1], height, mass_per_length, top_mass)
     loads = {"tip": np.ones(n), "base": -np.asarray(pm.participation)}
     errors = np.zeros((n, 3))
     for name, f in loads.items():
         V_static, M_static = statics[name][0][0], statics[name][1][0]
         # the static share of the modes beyond the source's: exact minus the modes' static sum
-        resid = (tip_statics[name] - np.sum(f / kk), M_static - np.sum(f * M0 / kk),
-                 V_static - np.sum(f * V0 / kk))
+        resid = (tip_statics[name] - np.sum(f / kk), M_static - np.sum(f * M0 / kk), V_static - np.sum(f * V0 / kk))
         eta = _pillar_response(pm, n, omega, damping, f)
         ref = (eta.sum(axis=1) + resid[0], eta @ M0 + resid[1], eta @ V0 + resid[2])
         # at each frequency against the response there, never less than the static one:
@@ -236,16 +256,16 @@ def force_truncation(pm: PillarModes, band_top: float, damping: ArrayLike, heigh
             e = _pillar_response(pm, k, omega, damping, f)
             got = (e.sum(axis=1), e @ M0[:k], e @ V0[:k])
             for q in range(3):
-                errors[k - 1, q] = max(errors[k - 1, q],
-                                       float(np.max(np.abs(got[q] - ref[q]) / scale[q])))
+                errors[k - 1, q] = max(errors[k - 1, q], float(np.max(np.abs(got[q] - ref[q]) / scale[q])))
     rows = tuple(TruncationRow(k + 1, *map(float, errors[k])) for k in range(n))
     need = [next((k + 1 for k in range(n) if errors[k, q] <= tolerance), None) for q in range(3)]
-    statement = (f"the first k of {n} modes ({pm.source}) against all {n} plus the static share of "
-                 f"the rest, the pillar forced at its tip and at its base from 0 to "
-                 f"{band_top:.4g} rad/s; at each frequency, the error over the response there "
-                 "(never less than the static response)")
-    return ForceTruncation(float(band_top), float(tolerance), n, rows, need[0], need[1], need[2],
-                           statement)
+    statement = (
+        f"the first k of {n} modes ({pm.source}) against all {n} plus the static share of "
+        f"the rest, the pillar forced at its tip and at its base from 0 to "
+        f"{band_top:.4g} rad/s; at each frequency, the error over the response there "
+        "(never less than the static response)"
+    )
+    return ForceTruncation(float(band_top), float(tolerance), n, rows, need[0], need[1], need[2], statement)
 
 
 def tip_dashpot(count: int, tip_damping: float) -> NDArray[np.float64]:
@@ -269,4 +289,3 @@ def thin_tube_shear_stress(shear: ArrayLike, section: TubeSection) -> NDArray[np
     """Largest shear stress of a thin circular tube, 2 V / A at the neutral axis (Pa)."""
     stress: NDArray[np.float64] = 2 * np.abs(np.asarray(shear, dtype=float)) / section.area
     return stress
-

@@ -12,10 +12,37 @@
 
 from .dp5 import dp5_batch, dp5_solve
 from .fixed_step import cd_solve, genalpha_parameters, genalpha_solve
-from .rhs import (MAX_STEPS, N_WORK, NEWTON_FAILED, NOT_FINITE, OK, STEP_TOO_SMALL, deriv_flat,
-                  flatten, jac_first_order, jacobians, rhs_first_order, shaft_deflection_into)
+from .rhs import (
+    MAX_STEPS,
+    N_WORK,
+    NEWTON_FAILED,
+    NOT_FINITE,
+    OK,
+    STEP_TOO_SMALL,
+    deriv_flat,
+    flatten,
+    jac_first_order,
+    jacobians,
+    rhs_first_order,
+    shaft_deflection_into,
+)
 
-__all__ = ["MAX_STEPS", "NEWTON_FAILED", "NOT_FINITE", "N_WORK", "OK", "STEP_TOO_SMALL",
-           "cd_solve", "deriv_flat", "dp5_batch", "dp5_solve", "flatten", "genalpha_parameters",
-           "genalpha_solve",
-           "jac_first_order", "jacobians", "rhs_first_order", "shaft_deflection_into"]
+__all__ = [
+    "MAX_STEPS",
+    "NEWTON_FAILED",
+    "NOT_FINITE",
+    "N_WORK",
+    "OK",
+    "STEP_TOO_SMALL",
+    "cd_solve",
+    "deriv_flat",
+    "dp5_batch",
+    "dp5_solve",
+    "flatten",
+    "genalpha_parameters",
+    "genalpha_solve",
+    "jac_first_order",
+    "jacobians",
+    "rhs_first_order",
+    "shaft_deflection_into",
+]

@@ -63,6 +63,7 @@ def actual_margin(running_speed: float, mode_frequency: float) -> float:
 @dataclass(frozen=True)
 class ModeEntry(JsonRecord):
     """One structural mode a running speed is checked against."""
+
     omega: float
     """natural (undamped) angular frequency (rad/s)"""
     damping_ratio: float
@@ -78,6 +79,7 @@ class ModeEntry(JsonRecord):
 @dataclass(frozen=True)
 class SeparationRow(JsonRecord):
     """A running speed against one mode (API 684)."""
+
     running_speed: float
     """Omega_run (rad/s)"""
     mode: ModeEntry
@@ -99,12 +101,19 @@ def separation(running_speed: float, mode: ModeEntry) -> SeparationRow:
     below = mode.omega < running_speed
     req = required_margin(af, below)
     act = actual_margin(running_speed, mode.omega)
-    return SeparationRow(float(running_speed), mode, None if math.isinf(af) else float(af),
-                         "below" if below else "above", float(req), float(act),
-                         "pass" if act >= req else "fail")
+    return SeparationRow(
+        float(running_speed),
+        mode,
+        None if math.isinf(af) else float(af),
+        "below" if below else "above",
+        float(req),
+        float(act),
+        "pass" if act >= req else "fail",
+    )
 
 
-def separation_table(running_speeds: Iterable[float], modes: Iterable[ModeEntry], band_top: float | None = None) -> tuple[SeparationRow, ...]:
+def separation_table(
+    running_speeds: Iterable[float], modes: Iterable[ModeEntry], band_top: float | None = None
+) -> tuple[SeparationRow, ...]:
     """Every running speed against every mode (up to ``band_top``, rad/s, when given)."""
-    return tuple(separation(w, m) for w in running_speeds for m in modes
-                 if band_top is None or m.omega <= band_top)
+    return tuple(separation(w, m) for w in running_speeds for m in modes if band_top is None or m.omega <= band_top)

@@ -27,8 +27,9 @@ MAX_CANDIDATE_MODES = 12
 def paper_system(scene: Scene) -> tuple[ReducedSystem, dict[str, Any]]:
     """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's Eq. 2)."""
     red = resolve_reduction(scene, pillar_closed_forms(scene.pillar))
-    return reduced_system(scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping,
-                          red["tip_mass"], red["tip_stiffness"]), red
+    return reduced_system(
+        scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping, red["tip_mass"], red["tip_stiffness"]
+    ), red
 
 
 def beam_candidates(scene: Scene, count: int = MAX_CANDIDATE_MODES) -> PillarModes:
@@ -44,13 +45,20 @@ def candidate_modes(scene: Scene, pillar_modes: PillarModes | None = None) -> Pi
         return pillar_modes
     if scene.modal_model.source == "beam":
         return beam_candidates(scene)
-    raise InputError(f'modal_model.source = "{scene.modal_model.source}": the modal model needs the '
-                     "chain's pillar modes passed in (pillar_modes=, from "
-                     "rotorpillar.chain.resolve(scene, out_dir).modes)")
+    raise InputError(
+        f'modal_model.source = "{scene.modal_model.source}": the modal model needs the '
+        "chain's pillar modes passed in (pillar_modes=, from "
+        "rotorpillar.chain.resolve(scene, out_dir).modes)"
+    )
 
 
-def build_model(scene: Scene, which: str, band_top: float | None = None, modes: int | None = None,
-                pillar_modes: PillarModes | None = None) -> tuple[RotorStructure, dict[str, Any]]:
+def build_model(
+    scene: Scene,
+    which: str,
+    band_top: float | None = None,
+    modes: int | None = None,
+    pillar_modes: PillarModes | None = None,
+) -> tuple[RotorStructure, dict[str, Any]]:
     """(model, info) for "paper", "modal" or "beam"; the modal model keeps ``modes``
     modes, or those below ``band_top`` (rad/s), of ``candidate_modes``; the
     beam is the full-order 1D beam ([full_order] beam_elements, [modal_model]
@@ -61,11 +69,13 @@ def build_model(scene: Scene, which: str, band_top: float | None = None, modes: 
     if which == "beam":
         mm = scene.modal_model
         n = scene.full_order.beam_elements or mm.elements
-        model = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, n, mm.theory,
-                           mm.gondola_inertia)
-        return model, {"elements": n, "theory": mm.theory, "dofs": model.n,
-                       "element_source": "full_order.beam_elements" if scene.full_order.beam_elements
-                       else "modal_model.elements"}
+        model = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, n, mm.theory, mm.gondola_inertia)
+        return model, {
+            "elements": n,
+            "theory": mm.theory,
+            "dofs": model.n,
+            "element_source": "full_order.beam_elements" if scene.full_order.beam_elements else "modal_model.elements",
+        }
     if which != "modal":
         raise InputError(f"model {which!r}: build_model makes paper, modal or beam")
     candidates = candidate_modes(scene, pillar_modes)
@@ -73,12 +83,17 @@ def build_model(scene: Scene, which: str, band_top: float | None = None, modes: 
     k = min(k, candidates.count)
     pm = candidates.truncate(k)
     r, sh = scene.rotor, scene.shaft
-    model = modal_model(pm, r.mass, r.inertia, r.eccentricity, sh.stiffness, sh.damping,
-                        scene.pillar.damping)
-    info = {"modes": k, "band_top": band_top, "candidate_omega": list(map(float, candidates.omega)),
-            "mode_choice": ("stated (modal_model.modes)" if (modes or scene.modal_model.modes) else
-                            f"the pillar modes below {band_top:.4g} rad/s = band_factor x the highest "
-                            "forcing frequency")}
+    model = modal_model(pm, r.mass, r.inertia, r.eccentricity, sh.stiffness, sh.damping, scene.pillar.damping)
+    info = {
+        "modes": k,
+        "band_top": band_top,
+        "candidate_omega": list(map(float, candidates.omega)),
+        "mode_choice": (
+            "stated (modal_model.modes)"
+            if (modes or scene.modal_model.modes)
+            else f"the pillar modes below {band_top:.4g} rad/s = band_factor x the highest forcing frequency"
+        ),
+    }
     return model, info
 
 
@@ -87,5 +102,4 @@ def scene_motion(scene: Scene) -> GroundMotion:
     x = scene.excitation
     if x.kind == "paper":
         return paper_pulse(x.amplitude, x.frequency, x.start, x.duration)
-    return load_record(x.record, x.record_units, x.record_scale, x.start,
-                       max_samples=scene.simulate.max_steps)
+    return load_record(x.record, x.record_units, x.record_scale, x.start, max_samples=scene.simulate.max_steps)

@@ -18,13 +18,13 @@ All quantities SI: m, kg, Pa, rad/s.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from collections.abc import Callable
-from functools import lru_cache
+from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
-from scipy.linalg import expm
 from numpy.typing import ArrayLike, NDArray
+from scipy.linalg import expm
 from scipy.optimize import brentq
 
 from ..scene import Pillar
@@ -37,6 +37,7 @@ CONTINUOUS_TIP_MASS_RATIO = 0.25
 @dataclass(frozen=True)
 class TubeSection:
     """Cross-section of a circular tube."""
+
     outer_diameter: float
     """D0 (m)"""
     inner_diameter: float
@@ -83,7 +84,7 @@ def section_of(pillar: Pillar) -> TubeSection:
 # Euler-Bernoulli cantilever
 
 
-@lru_cache(maxsize=None)
+@cache
 def cantilever_root(k: int) -> float:
     """k-th root beta_k*L of 1 + cos(x) cosh(x) = 0 (clamped-free beam).
 
@@ -99,7 +100,7 @@ def cantilever_root(k: int) -> float:
 def omega_euler_bernoulli(E: float, I: float, mass_per_length: float, H: float, k: int = 1) -> float:
     """Eq. 1: natural angular frequency of the k-th cantilever mode (rad/s)::
 
-        omega_k = (beta_k H)**2 * sqrt(E I / (m_rho H**4))
+    omega_k = (beta_k H)**2 * sqrt(E I / (m_rho H**4))
     """
     return cantilever_root(k) ** 2 * math.sqrt(E * I / (mass_per_length * H**4))
 
@@ -154,6 +155,7 @@ def _integrate01(f: Callable[[NDArray[np.float64]], NDArray[np.float64]]) -> flo
 @dataclass(frozen=True)
 class RayleighReduction:
     """A tip-referred mass and stiffness from an assumed shape psi(xi), psi(1) = 1."""
+
     shape: str
     tip_mass: float
     """m = m_col * int psi**2 dxi (kg)"""
@@ -171,16 +173,13 @@ class RayleighReduction:
 _Shape = Callable[[NDArray[np.float64]], NDArray[np.float64]]
 _SHAPES: dict[str, tuple[_Shape, _Shape]] = {
     # Under its own weight (uniform load): Rayleigh's classical choice.
-    "uniform_load": (lambda s: (s**4 - 4 * s**3 + 6 * s**2) / 3,
-                     lambda s: 4 * (1 - s) ** 2),
+    "uniform_load": (lambda s: (s**4 - 4 * s**3 + 6 * s**2) / 3, lambda s: 4 * (1 - s) ** 2),
     # Under a tip load: the textbook 33/140 of the beam mass.
-    "tip_load": (lambda s: (3 * s**2 - s**3) / 2,
-                 lambda s: 3 * (1 - s)),
+    "tip_load": (lambda s: (3 * s**2 - s**3) / 2, lambda s: 3 * (1 - s)),
 }
 
 
-def rayleigh_reduction(mass: float, E: float, I: float, H: float,
-                       shape: str = "uniform_load") -> RayleighReduction:
+def rayleigh_reduction(mass: float, E: float, I: float, H: float, shape: str = "uniform_load") -> RayleighReduction:
     """Tip mass and stiffness from a static deflection shape (Rayleigh)."""
     psi, psi2 = _SHAPES[shape]
     m = mass * _integrate01(lambda s: psi(s) ** 2)
@@ -203,8 +202,17 @@ def cowper_shear_coefficient(outer_diameter: float, inner_diameter: float, nu: f
     return 6 * (1 + nu) * a / ((7 + 6 * nu) * a + (20 + 12 * nu) * m**2)
 
 
-def _timoshenko_determinant(omega: float, E: float, G: float, kappa: float, rho: float, A: float,
-                            I: float, H: float, rotary_inertia: bool = True) -> float:
+def _timoshenko_determinant(
+    omega: float,
+    E: float,
+    G: float,
+    kappa: float,
+    rho: float,
+    A: float,
+    I: float,
+    H: float,
+    rotary_inertia: bool = True,
+) -> float:
     """Boundary determinant of the clamped-free Timoshenko beam at omega.
 
     State y = [w, w', psi, psi'] obeys y' = S y with
@@ -213,19 +221,22 @@ def _timoshenko_determinant(omega: float, E: float, G: float, kappa: float, rho:
     clamped base: w = psi = 0; free top: psi' = 0 (moment) and w' - psi = 0 (shear).
     """
     rI = rho * omega**2 / E if rotary_inertia else 0.0
-    S = np.array([
-        [0.0, 1.0, 0.0, 0.0],
-        [-rho * omega**2 / (kappa * G), 0.0, 0.0, 1.0],
-        [0.0, 0.0, 0.0, 1.0],
-        [0.0, -kappa * G * A / (E * I), kappa * G * A / (E * I) - rI, 0.0],
-    ])
+    S = np.array(
+        [
+            [0.0, 1.0, 0.0, 0.0],
+            [-rho * omega**2 / (kappa * G), 0.0, 0.0, 1.0],
+            [0.0, 0.0, 0.0, 1.0],
+            [0.0, -kappa * G * A / (E * I), kappa * G * A / (E * I) - rI, 0.0],
+        ]
+    )
     T = expm(S * H)
     # columns of T acting on the free unknowns w'(0), psi'(0)
     return float(T[3, 1] * (T[1, 3] - T[2, 3]) - T[3, 3] * (T[1, 1] - T[2, 1]))
 
 
-def omega_timoshenko(E: float, nu: float, kappa: float, rho: float, A: float, I: float,
-                     H: float, k: int = 1, rotary_inertia: bool = True) -> float:
+def omega_timoshenko(
+    E: float, nu: float, kappa: float, rho: float, A: float, I: float, H: float, k: int = 1, rotary_inertia: bool = True
+) -> float:
     """k-th natural angular frequency of a clamped-free Timoshenko beam (rad/s).
 
     Found as the k-th sign change of the boundary determinant below the
@@ -238,9 +249,11 @@ def omega_timoshenko(E: float, nu: float, kappa: float, rho: float, A: float, I:
     # past ~300 its boundary determinant cancels to noise.  Such slender beams
     # are Euler-Bernoulli to 1e-5; use reduced.beam_fe for them.
     if math.sqrt(kappa * G * A / (E * I)) * H > 300:
-        raise ValueError("beam too slender for the Timoshenko transfer matrix "
-                         "(lambda H > 300): use rotorpillar.reduced.beam_fe")
+        raise ValueError(
+            "beam too slender for the Timoshenko transfer matrix (lambda H > 300): use rotorpillar.reduced.beam_fe"
+        )
     w_eb = omega_euler_bernoulli(E, I, m_rho, H, k)
+
     def det(w: float) -> float:
         return _timoshenko_determinant(w, E, G, kappa, rho, A, I, H, rotary_inertia)
 

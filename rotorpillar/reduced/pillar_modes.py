@@ -46,6 +46,7 @@ from .pillar import cowper_shear_coefficient, section_of
 @dataclass(frozen=True, eq=False)
 class PillarModes:
     """Bending modes of the pillar with the gondola on top, unit tip deflection."""
+
     omega: NDArray[np.float64]
     """(k,) natural angular frequencies, ascending (rad/s)"""
     modal_mass: NDArray[np.float64]
@@ -81,8 +82,7 @@ class PillarModes:
                 raise ValueError(f"{name} must have {k} entries")
         for name in ("moment_shapes", "shear_shapes"):
             a = getattr(self, name)
-            if a is not None and (self.section_heights is None
-                                  or np.shape(a) != (len(self.section_heights), k)):
+            if a is not None and (self.section_heights is None or np.shape(a) != (len(self.section_heights), k)):
                 raise ValueError(f"{name} must be (len(section_heights), {k})")
         if k == 0 or np.any(~np.isfinite(self.omega)) or np.any(np.asarray(self.omega) <= 0):
             raise ValueError("omega must be finite and > 0")
@@ -104,29 +104,41 @@ class PillarModes:
         L, m = np.asarray(self.participation[:k]), np.asarray(self.modal_mass[:k])
         return float(np.sum(L**2 / m) / self.total_mass)
 
-    def truncate(self, k: int) -> "PillarModes":
+    def truncate(self, k: int) -> PillarModes:
         """The first k modes."""
         if not 1 <= k <= self.count:
             raise ValueError(f"k must be in 1..{self.count}")
+
         def cut(a: NDArray[np.float64] | None) -> NDArray[np.float64] | None:
             return None if a is None else np.asarray(a)[..., :k]
 
-        return PillarModes(np.asarray(self.omega)[:k], np.asarray(self.modal_mass)[:k],
-                           np.asarray(self.participation)[:k], self.total_mass, self.source,
-                           cut(self.damping_ratio), self.heights, cut(self.shapes), dict(self.notes),
-                           self.section_heights, cut(self.moment_shapes), cut(self.shear_shapes))
+        return PillarModes(
+            np.asarray(self.omega)[:k],
+            np.asarray(self.modal_mass)[:k],
+            np.asarray(self.participation)[:k],
+            self.total_mass,
+            self.source,
+            cut(self.damping_ratio),
+            self.heights,
+            cut(self.shapes),
+            dict(self.notes),
+            self.section_heights,
+            cut(self.moment_shapes),
+            cut(self.shear_shapes),
+        )
 
     @property
     def has_resultants(self) -> bool:
         """Whether the modes carry their section resultants (moment and shear)."""
         return self.moment_shapes is not None and self.shear_shapes is not None
 
-    def scaled(self, factor: float) -> "PillarModes":
+    def scaled(self, factor: float) -> PillarModes:
         """The same modes with every frequency times ``factor`` (the shapes and
         modal masses kept, so the modal stiffnesses scale by factor**2): how a
         frequency error of the mode source propagates into what the ROM gives."""
-        return dataclasses.replace(self, omega=np.asarray(self.omega) * factor,
-                                   notes={**self.notes, "frequency_scale": float(factor)})
+        return dataclasses.replace(
+            self, omega=np.asarray(self.omega) * factor, notes={**self.notes, "frequency_scale": float(factor)}
+        )
 
     def to_json(self) -> dict[str, Any]:
         """Every field, arrays as lists: :meth:`from_json` rebuilds it exactly."""
@@ -137,22 +149,31 @@ class PillarModes:
         return out
 
     @classmethod
-    def from_json(cls, doc: dict[str, Any]) -> "PillarModes":
+    def from_json(cls, doc: dict[str, Any]) -> PillarModes:
         arrays = {f.name for f in dataclasses.fields(cls) if "ndarray" in str(f.type) or "NDArray" in str(f.type)}
         known = {f.name for f in dataclasses.fields(cls)}
-        return cls(**{k: (None if v is None else np.asarray(v, dtype=float)) if k in arrays else v  # type: ignore[arg-type]  # one dict for every field: each value's type is the field's, which mypy cannot see per key
-                      for k, v in doc.items() if k in known})
+        return cls(
+            **{
+                k: (None if v is None else np.asarray(v, dtype=float)) if k in arrays else v  # type: ignore[arg-type]  # one dict for every field: each value's type is the field's, which mypy cannot see per key
+                for k, v in doc.items()
+                if k in known
+            }
+        )
 
     def describe(self) -> dict[str, Any]:
-        return {"source": self.source, "count": self.count, "omega": list(map(float, self.omega)),
-                "frequency_hz": [float(w) / (2 * math.pi) for w in self.omega],
-                "modal_mass": list(map(float, self.modal_mass)),
-                "modal_stiffness": list(map(float, self.modal_stiffness)),
-                "participation": list(map(float, self.participation)),
-                "total_mass": self.total_mass,
-                "effective_mass_fraction": self.effective_mass_fraction(),
-                "damping_ratio": None if self.damping_ratio is None else list(map(float, self.damping_ratio)),
-                **self.notes}
+        return {
+            "source": self.source,
+            "count": self.count,
+            "omega": list(map(float, self.omega)),
+            "frequency_hz": [float(w) / (2 * math.pi) for w in self.omega],
+            "modal_mass": list(map(float, self.modal_mass)),
+            "modal_stiffness": list(map(float, self.modal_stiffness)),
+            "participation": list(map(float, self.participation)),
+            "total_mass": self.total_mass,
+            "effective_mass_fraction": self.effective_mass_fraction(),
+            "damping_ratio": None if self.damping_ratio is None else list(map(float, self.damping_ratio)),
+            **self.notes,
+        }
 
 
 def beam_properties(pillar: Pillar, theory: str = "timoshenko") -> BeamProperties:
@@ -160,12 +181,17 @@ def beam_properties(pillar: Pillar, theory: str = "timoshenko") -> BeamPropertie
     p = pillar
     sec = section_of(p)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
-    return BeamProperties(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area,
-                          sec.second_moment, p.height)
+    return BeamProperties(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area, sec.second_moment, p.height)
 
 
-def beam_pillar_modes(pillar: Pillar, gondola_mass: float, n_modes: int, theory: str = "timoshenko",
-                      elements: int = 40, gondola_inertia: float = 0.0) -> PillarModes:
+def beam_pillar_modes(
+    pillar: Pillar,
+    gondola_mass: float,
+    n_modes: int,
+    theory: str = "timoshenko",
+    elements: int = 40,
+    gondola_inertia: float = 0.0,
+) -> PillarModes:
     """The first ``n_modes`` modes of the 1D beam with the gondola on top.
 
     The gondola is a rigid mass at the tip (``gondola_mass``, kg) (and, if given, a rotary inertia
@@ -178,10 +204,10 @@ def beam_pillar_modes(pillar: Pillar, gondola_mass: float, n_modes: int, theory:
     K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
     n = K.shape[0]
     k = min(n_modes, n)
-    mu, vec = eigh(M, K, subset_by_index=[n - k, n - 1])        # as beam_fe: lowest modes stable
+    mu, vec = eigh(M, K, subset_by_index=[n - k, n - 1])  # as beam_fe: lowest modes stable
     omega = 1.0 / np.sqrt(mu[::-1])
     vec = vec[:, ::-1]
-    tip = vec[-2]                                               # (w, psi) per node: tip w
+    tip = vec[-2]  # (w, psi) per node: tip w
     if np.any(np.abs(tip) < 1e-12 * np.max(np.abs(vec), axis=0)):
         raise RuntimeError("a pillar mode with no tip deflection cannot be tip-scaled")
     phi = vec / tip
@@ -195,31 +221,58 @@ def beam_pillar_modes(pillar: Pillar, gondola_mass: float, n_modes: int, theory:
     full = np.zeros((n + 2, k))
     full[2:] = phi
     shear, moment = section_forces(bp, elements, theory, full)
-    return PillarModes(omega, mj, Lj, float(r @ M @ r), f"beam:{theory}:{elements}",
-                       None, heights, shapes,
-                       {"gondola_mass": gondola_mass, "gondola_inertia": gondola_inertia},
-                       heights, moment, shear)
+    return PillarModes(
+        omega,
+        mj,
+        Lj,
+        float(r @ M @ r),
+        f"beam:{theory}:{elements}",
+        None,
+        heights,
+        shapes,
+        {"gondola_mass": gondola_mass, "gondola_inertia": gondola_inertia},
+        heights,
+        moment,
+        shear,
+    )
 
 
-def pillar_modes_from_arrays(omega: ArrayLike, modal_mass: ArrayLike, participation: ArrayLike,
-                             total_mass: float, source: str = "fem3d",
-                             damping_ratio: ArrayLike | None = None, heights: ArrayLike | None = None,
-                             shapes: ArrayLike | None = None,
-                             section_heights: ArrayLike | None = None,
-                             moment_shapes: ArrayLike | None = None,
-                             shear_shapes: ArrayLike | None = None) -> PillarModes:
+def pillar_modes_from_arrays(
+    omega: ArrayLike,
+    modal_mass: ArrayLike,
+    participation: ArrayLike,
+    total_mass: float,
+    source: str = "fem3d",
+    damping_ratio: ArrayLike | None = None,
+    heights: ArrayLike | None = None,
+    shapes: ArrayLike | None = None,
+    section_heights: ArrayLike | None = None,
+    moment_shapes: ArrayLike | None = None,
+    shear_shapes: ArrayLike | None = None,
+) -> PillarModes:
     """Modes from another solver (e.g. rotorpillar.fem3d's modal.json), tip-scaled.
 
     Arrays as documented on PillarModes; bad data raise InputError.
     """
+
     def arr(a: ArrayLike | None) -> NDArray[np.float64] | None:
         return None if a is None else np.asarray(a, float)
 
     try:
-        return PillarModes(np.asarray(omega, float), np.asarray(modal_mass, float),
-                           np.asarray(participation, float), float(total_mass), source,
-                           arr(damping_ratio), arr(heights), arr(shapes), {}, arr(section_heights),
-                           arr(moment_shapes), arr(shear_shapes))
+        return PillarModes(
+            np.asarray(omega, float),
+            np.asarray(modal_mass, float),
+            np.asarray(participation, float),
+            float(total_mass),
+            source,
+            arr(damping_ratio),
+            arr(heights),
+            arr(shapes),
+            {},
+            arr(section_heights),
+            arr(moment_shapes),
+            arr(shear_shapes),
+        )
     except ValueError as exc:
         raise InputError(f"pillar modes from {source}: {exc}") from None
 
@@ -229,8 +282,7 @@ def modes_in_band(omega: ArrayLike, band_top: float, minimum: int = 1) -> int:
     return max(minimum, int(np.sum(np.asarray(omega) <= band_top)))
 
 
-def beam_tip_reduction(pillar: Pillar, theory: str = "timoshenko",
-                       elements: int = 40) -> tuple[float, float, float]:
+def beam_tip_reduction(pillar: Pillar, theory: str = "timoshenko", elements: int = 40) -> tuple[float, float, float]:
     """Eq. 2 on the bare beam's first mode: (m_r in kg, c1 = m_r omega**2 in N/m, omega in rad/s).
 
     The first mode of the bare cantilever (no gondola) scaled to a unit tip

@@ -13,9 +13,16 @@ from collections.abc import Callable
 from typing import Any
 
 from ..scene import Pillar, Scene, SceneError
-from .pillar import (cantilever_root, cowper_shear_coefficient, omega_euler_bernoulli,
-                     omega_timoshenko, rayleigh_reduction, section_of,
-                     tip_mass_continuous, tip_mass_lumped)
+from .pillar import (
+    cantilever_root,
+    cowper_shear_coefficient,
+    omega_euler_bernoulli,
+    omega_timoshenko,
+    rayleigh_reduction,
+    section_of,
+    tip_mass_continuous,
+    tip_mass_lumped,
+)
 
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
@@ -30,14 +37,23 @@ def pillar_closed_forms(pillar: Pillar) -> dict[str, Any]:
     w1 = omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
     w_timo = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, A, I, p.height)
-    lumped = [{"n": n, "tip_mass": tip_mass_lumped(mass, n),
-               "tip_stiffness": tip_mass_lumped(mass, n) * w1**2} for n in LUMPINGS]
+    lumped = [
+        {"n": n, "tip_mass": tip_mass_lumped(mass, n), "tip_stiffness": tip_mass_lumped(mass, n) * w1**2}
+        for n in LUMPINGS
+    ]
     m_inf = tip_mass_continuous(mass)
     rayleigh = []
     for shape in ("uniform_load", "tip_load"):
         r = rayleigh_reduction(mass, p.youngs_modulus, I, p.height, shape)
-        rayleigh.append({"shape": shape, "tip_mass": r.tip_mass, "tip_stiffness": r.tip_stiffness,
-                         "omega": r.omega, "omega_error": r.omega / w1 - 1})
+        rayleigh.append(
+            {
+                "shape": shape,
+                "tip_mass": r.tip_mass,
+                "tip_stiffness": r.tip_stiffness,
+                "omega": r.omega,
+                "omega_error": r.omega / w1 - 1,
+            }
+        )
     return {
         "area": A,
         "second_moment": I,
@@ -49,8 +65,7 @@ def pillar_closed_forms(pillar: Pillar) -> dict[str, Any]:
         "omega_col1": w1,
         "frequency_col1_hz": w1 / (2 * math.pi),
         "cantilever_root": cantilever_root(1),
-        "omega_euler_bernoulli": [omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height, k)
-                                  for k in (1, 2, 3)],
+        "omega_euler_bernoulli": [omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height, k) for k in (1, 2, 3)],
         "shear_coefficient": kappa,
         "omega_col1_timoshenko": w_timo,
         "timoshenko_correction": w_timo / w1 - 1,
@@ -61,9 +76,9 @@ def pillar_closed_forms(pillar: Pillar) -> dict[str, Any]:
     }
 
 
-def resolve_reduction(scene: Scene, closed: dict[str, Any],
-                      fem3d_reduction: Callable[[Scene], tuple[float, float]] | None = None
-                      ) -> dict[str, Any]:
+def resolve_reduction(
+    scene: Scene, closed: dict[str, Any], fem3d_reduction: Callable[[Scene], tuple[float, float]] | None = None
+) -> dict[str, Any]:
     """The tip mass and stiffness the reduced model uses, and where each came from.
 
     ``fem3d_reduction`` is a callable scene -> (m_reduced, tip_stiffness), used
@@ -74,8 +89,9 @@ def resolve_reduction(scene: Scene, closed: dict[str, Any],
     source = "closed_form"
     if red.source == "fem3d":
         if fem3d_reduction is None:
-            raise SceneError('reduction.source = "fem3d" needs the 3D model (rotorpillar.fem3d), '
-                             "which is not available here")
+            raise SceneError(
+                'reduction.source = "fem3d" needs the 3D model (rotorpillar.fem3d), which is not available here'
+            )
         m, c = fem3d_reduction(scene)
         computed, source = {"tip_mass": m, "tip_stiffness": c}, "fem3d"
     out = {"source": red.source}

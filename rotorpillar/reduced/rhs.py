@@ -50,9 +50,24 @@ N_WORK = 4
 OK, MAX_STEPS, STEP_TOO_SMALL, NOT_FINITE, NEWTON_FAILED = 0, 1, 2, 3, 4
 
 
-def eq4_rhs(y: Floats, m_A: float, m_C: float, J: float, e: float, c1: float, c2: float,
-            b1: float, b2: float, M0: float, s: float, k: float, q5: float = 0.0,
-            q5_rate: float = 0.0, q6: float = 0.0, q6_rate: float = 0.0) -> Floats:
+def eq4_rhs(
+    y: Floats,
+    m_A: float,
+    m_C: float,
+    J: float,
+    e: float,
+    c1: float,
+    c2: float,
+    b1: float,
+    b2: float,
+    M0: float,
+    s: float,
+    k: float,
+    q5: float = 0.0,
+    q5_rate: float = 0.0,
+    q6: float = 0.0,
+    q6_rate: float = 0.0,
+) -> Floats:
     """Eq. 4 as published, the reference for deriv_flat: y' for y = (q1..q4, q1'..q4').
 
     q1 pillar tip X, q2 and q3 rotor mass centre X and Y, q4 rotor angle (m,
@@ -72,18 +87,22 @@ def eq4_rhs(y: Floats, m_A: float, m_C: float, J: float, e: float, c1: float, c2
     """
     q1, q2, q3, q4, v1, v2, v3, v4 = y
     c0, b0 = c1 + c2, b1 + b2
-    return np.array([
-        v1, v2, v3, v4,
-        (-c0 * q1 - b0 * v1 + c2 * q2 - c2 * e * np.cos(q4) + c0 * q5 + b0 * q5_rate) / m_A,
-        (c2 * q1 - c2 * q2 - b2 * v2 + c2 * e * np.cos(q4) + c2 * q5 + b2 * q5_rate) / m_C,
-        (-c2 * q3 - b2 * v3 + c2 * e * np.sin(q4) + c2 * q6 + b2 * q6_rate) / m_C,
-        (M0 - s * v4 - k * v4 * abs(v4) - c2 * e * (q2 - q1) * np.sin(q4) + c2 * e * q3 * np.cos(q4)) / J,
-    ])
+    return np.array(
+        [
+            v1,
+            v2,
+            v3,
+            v4,
+            (-c0 * q1 - b0 * v1 + c2 * q2 - c2 * e * np.cos(q4) + c0 * q5 + b0 * q5_rate) / m_A,
+            (c2 * q1 - c2 * q2 - b2 * v2 + c2 * e * np.cos(q4) + c2 * q5 + b2 * q5_rate) / m_C,
+            (-c2 * q3 - b2 * v3 + c2 * e * np.sin(q4) + c2 * q6 + b2 * q6_rate) / m_C,
+            (M0 - s * v4 - k * v4 * abs(v4) - c2 * e * (q2 - q1) * np.sin(q4) + c2 * e * q3 * np.cos(q4)) / J,
+        ]
+    )
 
 
 @njit(cache=True)
-def ground_flat(t: float, a: Floats, o_gpar: int, o_gtab: int,
-                ng: int) -> tuple[float, float, float]:
+def ground_flat(t: float, a: Floats, o_gpar: int, o_gtab: int, ng: int) -> tuple[float, float, float]:
     """Ground displacement, velocity, acceleration at t (m, m/s, m/s**2), from
     gpar at a[o_gpar:] and the table gtab (3, ng) at a[o_gtab:] (``layout``)."""
     kind = int(a[o_gpar])
@@ -104,8 +123,7 @@ def ground_flat(t: float, a: Floats, o_gpar: int, o_gtab: int,
             i = ng - 2
         f = x - i
         u, v, w = o_gtab + i, o_gtab + ng + i, o_gtab + 2 * ng + i
-        return ((1.0 - f) * a[u] + f * a[u + 1], (1.0 - f) * a[v] + f * a[v + 1],
-                (1.0 - f) * a[w] + f * a[w + 1])
+        return ((1.0 - f) * a[u] + f * a[u + 1], (1.0 - f) * a[v] + f * a[v + 1], (1.0 - f) * a[w] + f * a[w + 1])
     return 0.0, 0.0, 0.0
 
 
@@ -128,8 +146,7 @@ def drive_flat(t: float, a: Floats, o: int, m: int) -> tuple[float, float]:
     if span <= 0.0:
         return a[o + m + hi], a[o + 2 * m + hi]
     f = (t - a[o + lo]) / span
-    return ((1.0 - f) * a[o + m + lo] + f * a[o + m + hi],
-            (1.0 - f) * a[o + 2 * m + lo] + f * a[o + 2 * m + hi])
+    return ((1.0 - f) * a[o + m + lo] + f * a[o + m + hi], (1.0 - f) * a[o + 2 * m + lo] + f * a[o + 2 * m + hi])
 
 
 @njit(cache=True)
@@ -148,8 +165,7 @@ HEADER = 3
 
 
 @njit(cache=True, inline="always")
-def layout(nx: int, m: int, ng: int) -> tuple[int, int, int, int, int, int, int, int, int,
-                                            int, int]:
+def layout(nx: int, m: int, ng: int) -> tuple[int, int, int, int, int, int, int, int, int, int, int]:
     """Offsets in par of Minv (n, n), Ks, C (nx, nx), d (nx), base (4, nx), scal (4),
     sched (3, m), gpar (6), gtab (3, ng) and the force scratch F (n); then the size."""
     n = nx + 2
@@ -292,7 +308,6 @@ def jacobians(t: float, q: Floats, v: Floats, P: Packed, Jq: Floats, Jv: Floats)
     Jv[nx + 1, nx + 1] = -s - 2.0 * kload * abs(W)
 
 
-
 @njit(cache=True)
 def record_peak(q: Floats, n: int, par: Floats, peak: Floats, k: int) -> None:
     """peak[k, i] = max(peak[k, i], |q_i|) for i < n; peak[k, n] tracks |tip.z|
@@ -309,10 +324,8 @@ def record_peak(q: Floats, n: int, par: Floats, peak: Floats, k: int) -> None:
         peak[k, n] = abs(tipz)
 
 
-
 @njit(cache=True)
-def shaft_deflection_into(q: Floats, shaft: Floats, e: Floats, out: Floats,
-                          out_x: Floats) -> None:
+def shaft_deflection_into(q: Floats, shaft: Floats, e: Floats, out: Floats, out_x: Floats) -> None:
     """The shaft's deflection (d.z - e cos theta, y - e sin theta) (m) for states
     q (k, n): z = q[:nx], y = q[nx], theta = q[nx + 1]; its size into out (k,),
     its x component into out_x (k,).
@@ -350,7 +363,7 @@ def jac_first_order(t: float, y: Floats, P: Packed) -> Floats:
     J = np.zeros((m, m))
     Jq = np.empty((n, n))
     Jv = np.empty((n, n))
-    jacobians(t, y[:n], y[n:2 * n], P, Jq, Jv)
+    jacobians(t, y[:n], y[n : 2 * n], P, Jq, Jv)
     Aq = Minv @ Jq
     Av = Minv @ Jv
     for i in range(n):
@@ -359,4 +372,3 @@ def jac_first_order(t: float, y: Floats, P: Packed) -> Floats:
             J[n + i, j] = Aq[i, j]
             J[n + i, n + j] = Av[i, j]
     return J
-

@@ -60,6 +60,7 @@ FRAMES = ("absolute", "relative_to_ground")
 @dataclass(frozen=True, eq=False)
 class RotorStructure:
     """A linear structure in X with the rotor on its shaft (see the module text)."""
+
     name: str
     """"paper" or "modal\""""
     coordinates: tuple[str, ...]
@@ -118,7 +119,7 @@ class RotorStructure:
     def full_mass(self) -> NDArray[np.float64]:
         n = self.n
         M = np.zeros((n, n))
-        M[:self.nx, :self.nx] = self.mass
+        M[: self.nx, : self.nx] = self.mass
         M[self.nx, self.nx] = self.rotor_mass
         M[-1, -1] = self.rotor_inertia
         return M
@@ -126,27 +127,42 @@ class RotorStructure:
     def mass_inverse(self, prescribed_speed: bool = False) -> NDArray[np.float64]:
         """Minv; with a prescribed speed theta's row is zero (theta'' = 0)."""
         Minv = np.zeros((self.n, self.n))
-        Minv[:self.nx, :self.nx] = np.linalg.inv(self.mass)
+        Minv[: self.nx, : self.nx] = np.linalg.inv(self.mass)
         Minv[self.nx, self.nx] = 1.0 / self.rotor_mass
         if not prescribed_speed:
             Minv[-1, -1] = 1.0 / self.rotor_inertia
         return Minv
 
     # ------------------------------------------------------------ kernels
-    def pack(self, drive: DriveSchedule, motion: GroundMotion, prescribed_speed: bool = False,
-             **overrides: float) -> Packed:
+    def pack(
+        self, drive: DriveSchedule, motion: GroundMotion, prescribed_speed: bool = False, **overrides: float
+    ) -> Packed:
         """The tuple P of rotorpillar.reduced.rhs."""
         gpar, gtab = motion.pack()
+
         def c(a: ArrayLike) -> NDArray[np.float64]:
             return np.ascontiguousarray(a, dtype=float)
 
-        scal = np.array([overrides.get("shaft_stiffness", self.shaft_stiffness),
-                         overrides.get("eccentricity", self.eccentricity),
-                         self.shaft_damping, drive.load_coefficient], dtype=float)
-        return (c(self.mass_inverse(prescribed_speed)), c(self.stiffness), c(self.damping),
-                c(self.shaft), c(np.vstack([self.base_displacement, self.base_velocity,
-                                            self.base_acceleration, self.tip])),
-                scal, c(drive.table()), c(gpar), c(gtab))
+        scal = np.array(
+            [
+                overrides.get("shaft_stiffness", self.shaft_stiffness),
+                overrides.get("eccentricity", self.eccentricity),
+                self.shaft_damping,
+                drive.load_coefficient,
+            ],
+            dtype=float,
+        )
+        return (
+            c(self.mass_inverse(prescribed_speed)),
+            c(self.stiffness),
+            c(self.damping),
+            c(self.shaft),
+            c(np.vstack([self.base_displacement, self.base_velocity, self.base_acceleration, self.tip])),
+            scal,
+            c(drive.table()),
+            c(gpar),
+            c(gtab),
+        )
 
     # ------------------------------------------------------------ energy
     def energy(self, q: NDArray[np.float64], v: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -158,8 +174,11 @@ class RotorStructure:
         T = 0.5 * np.einsum("ti,ij,tj->t", vz, self.mass, vz) + 0.5 * self.rotor_mass * vy**2
         T = T + 0.5 * self.rotor_inertia * W**2
         e, c2 = self.eccentricity, self.shaft_stiffness
-        P = (0.5 * np.einsum("ti,ij,tj->t", z, self.stiffness, z)
-             + 0.5 * c2 * (z @ self.shaft - e * np.cos(th)) ** 2 + 0.5 * c2 * (y - e * np.sin(th)) ** 2)
+        P = (
+            0.5 * np.einsum("ti,ij,tj->t", z, self.stiffness, z)
+            + 0.5 * c2 * (z @ self.shaft - e * np.cos(th)) ** 2
+            + 0.5 * c2 * (y - e * np.sin(th)) ** 2
+        )
         return T, P
 
     # ------------------------------------------------------------ linear analysis
@@ -167,8 +186,7 @@ class RotorStructure:
         """omega (ascending) and tip-scaled shapes (nx, nx) of the X structure."""
         lam, U = eigh(self.stiffness_full(), self.mass)
         tipv = self.tip @ U
-        scale = np.where(np.abs(tipv) > 1e-9 * np.max(np.abs(U), axis=0), tipv,
-                         U[self.rotor_x] if self.nx else 1.0)
+        scale = np.where(np.abs(tipv) > 1e-9 * np.max(np.abs(U), axis=0), tipv, U[self.rotor_x] if self.nx else 1.0)
         return np.sqrt(np.maximum(lam, 0.0)), U / scale
 
     def quasi_normal(self) -> list[Resonance]:
@@ -180,11 +198,30 @@ class RotorStructure:
             u = U[:, i]
             I = float(u @ self.mass @ u)
             g = float(c2 * e * (self.shaft @ u))
-            out.append(Resonance(i + 1, "X", float(om[i]), (float(self.tip @ u), float(u[self.rotor_x])),
-                                 I, g / I, g, float(u @ self.damping @ u) / I))
-        out.append(Resonance(self.nx + 1, "Y", math.sqrt(c2 / self.rotor_mass), (0.0, 1.0),
-                             self.rotor_mass, c2 * e / self.rotor_mass, c2 * e,
-                             self.shaft_damping / self.rotor_mass))
+            out.append(
+                Resonance(
+                    i + 1,
+                    "X",
+                    float(om[i]),
+                    (float(self.tip @ u), float(u[self.rotor_x])),
+                    I,
+                    g / I,
+                    g,
+                    float(u @ self.damping @ u) / I,
+                )
+            )
+        out.append(
+            Resonance(
+                self.nx + 1,
+                "Y",
+                math.sqrt(c2 / self.rotor_mass),
+                (0.0, 1.0),
+                self.rotor_mass,
+                c2 * e / self.rotor_mass,
+                c2 * e,
+                self.shaft_damping / self.rotor_mass,
+            )
+        )
         return out
 
     def damped_frequencies(self) -> list[dict[str, Any]]:
@@ -192,17 +229,24 @@ class RotorStructure:
         (X from the state-space eigenproblem, Y as one oscillator)."""
         nx = self.nx
         Minv = np.linalg.inv(self.mass)
-        A = np.block([[np.zeros((nx, nx)), np.eye(nx)],
-                      [-Minv @ self.stiffness_full(), -Minv @ self.damping]])
+        A = np.block([[np.zeros((nx, nx)), np.eye(nx)], [-Minv @ self.stiffness_full(), -Minv @ self.damping]])
         lam = eig(A, right=False)
         lam = lam[lam.imag > 0]
-        out = [{"direction": "X", "omega": float(abs(l)), "damped_omega": float(l.imag),
-                "damping_ratio": float(-l.real / abs(l))} for l in sorted(lam, key=abs)]
+        out = [
+            {
+                "direction": "X",
+                "omega": float(abs(l)),
+                "damped_omega": float(l.imag),
+                "damping_ratio": float(-l.real / abs(l)),
+            }
+            for l in sorted(lam, key=abs)
+        ]
         m, c, k = self.rotor_mass, self.shaft_damping, self.shaft_stiffness
         w = math.sqrt(k / m)
         z = c / (2 * math.sqrt(k * m))
-        out.append({"direction": "Y", "omega": w, "damped_omega": w * math.sqrt(max(0.0, 1 - z * z)),
-                    "damping_ratio": z})
+        out.append(
+            {"direction": "Y", "omega": w, "damped_omega": w * math.sqrt(max(0.0, 1 - z * z)), "damping_ratio": z}
+        )
         return out
 
     def steady_state(self, Omega: float) -> tuple[NDArray[np.complex128], complex]:
@@ -221,8 +265,11 @@ class RotorStructure:
         W = np.atleast_1d(np.asarray(Omega, dtype=float)).ravel()
         c2e = self.shaft_stiffness * self.eccentricity
         # steady_state at every speed at once (one stacked solve)
-        D = (self.stiffness_full()[None] - (W**2)[:, None, None] * self.mass[None]
-             + 1j * W[:, None, None] * self.damping[None])
+        D = (
+            self.stiffness_full()[None]
+            - (W**2)[:, None, None] * self.mass[None]
+            + 1j * W[:, None, None] * self.damping[None]
+        )
         rhs = np.broadcast_to(c2e * self.shaft.astype(complex), (len(W), self.nx))[..., None]
         Z = np.linalg.solve(D, rhs)[..., 0]
         Y = -1j * c2e / (self.shaft_stiffness - self.rotor_mass * W**2 + 1j * W * self.shaft_damping)
@@ -244,8 +291,8 @@ class RotorStructure:
         Z, Y = self.steady_state(Omega)
         q0 = np.zeros(self.n)
         v0 = np.zeros(self.n)
-        q0[:self.nx] = Z.real
-        v0[:self.nx] = -Omega * Z.imag
+        q0[: self.nx] = Z.real
+        v0[: self.nx] = -Omega * Z.imag
         q0[self.nx] = Y.real
         v0[self.nx] = -Omega * Y.imag
         v0[-1] = Omega
@@ -269,17 +316,28 @@ class RotorStructure:
         return float(max(self.undamped_modes_x()[0].max(), math.sqrt(self.shaft_stiffness / self.rotor_mass)))
 
     def describe(self) -> dict[str, Any]:
-        return {"name": self.name, "coordinates": self.names, "frame": self.frame,
-                "nx": self.nx, "mass": self.mass, "stiffness": self.stiffness,
-                "stiffness_with_shaft": self.stiffness_full(), "damping": self.damping,
-                "shaft": self.shaft, "tip": self.tip,
-                "base_displacement": self.base_displacement, "base_velocity": self.base_velocity,
-                "base_acceleration": self.base_acceleration,
-                "rotor_mass": self.rotor_mass, "rotor_inertia": self.rotor_inertia,
-                "eccentricity": self.eccentricity, "shaft_stiffness": self.shaft_stiffness,
-                "shaft_damping": self.shaft_damping,
-                "pillar_modes": None if self.pillar_modes is None else self.pillar_modes.describe(),
-                **self.notes}
+        return {
+            "name": self.name,
+            "coordinates": self.names,
+            "frame": self.frame,
+            "nx": self.nx,
+            "mass": self.mass,
+            "stiffness": self.stiffness,
+            "stiffness_with_shaft": self.stiffness_full(),
+            "damping": self.damping,
+            "shaft": self.shaft,
+            "tip": self.tip,
+            "base_displacement": self.base_displacement,
+            "base_velocity": self.base_velocity,
+            "base_acceleration": self.base_acceleration,
+            "rotor_mass": self.rotor_mass,
+            "rotor_inertia": self.rotor_inertia,
+            "eccentricity": self.eccentricity,
+            "shaft_stiffness": self.shaft_stiffness,
+            "shaft_damping": self.shaft_damping,
+            "pillar_modes": None if self.pillar_modes is None else self.pillar_modes.describe(),
+            **self.notes,
+        }
 
 
 # --------------------------------------------------------------------------
@@ -290,21 +348,42 @@ def paper_model(s: ReducedSystem) -> RotorStructure:
     """The paper's Eq. 4 as published (absolute coordinates q1, q2, q3, q4)."""
     c0, c2, b0, b2 = s.c0, s.shaft_stiffness, s.b0, s.shaft_damping
     return RotorStructure(
-        name="paper", coordinates=("q1_tip_x", "q2_rotor_x"),
-        mass=s.mass_matrix(), stiffness=np.diag([s.pillar_stiffness, 0.0]),
-        damping=s.damping_matrix(), shaft=np.array([-1.0, 1.0]), tip=np.array([1.0, 0.0]),
-        rotor_x=1, shaft_stiffness=c2, shaft_damping=b2, eccentricity=s.eccentricity,
-        rotor_mass=s.rotor_mass, rotor_inertia=s.rotor_inertia,
-        base_displacement=np.array([c0, c2]), base_velocity=np.array([b0, b2]),
-        base_acceleration=np.zeros(2), frame="absolute",
-        notes={"equations": "paper Eq. 4 as published: damping diag(b0, b2), base forcing "
-                            "c0 q5 + b0 q5' on q1 and c2 q5 + b2 q5' on q2",
-               "tip_mass": s.tip_mass, "pillar_stiffness": s.pillar_stiffness,
-               "pillar_damping": s.pillar_damping})
+        name="paper",
+        coordinates=("q1_tip_x", "q2_rotor_x"),
+        mass=s.mass_matrix(),
+        stiffness=np.diag([s.pillar_stiffness, 0.0]),
+        damping=s.damping_matrix(),
+        shaft=np.array([-1.0, 1.0]),
+        tip=np.array([1.0, 0.0]),
+        rotor_x=1,
+        shaft_stiffness=c2,
+        shaft_damping=b2,
+        eccentricity=s.eccentricity,
+        rotor_mass=s.rotor_mass,
+        rotor_inertia=s.rotor_inertia,
+        base_displacement=np.array([c0, c2]),
+        base_velocity=np.array([b0, b2]),
+        base_acceleration=np.zeros(2),
+        frame="absolute",
+        notes={
+            "equations": "paper Eq. 4 as published: damping diag(b0, b2), base forcing "
+            "c0 q5 + b0 q5' on q1 and c2 q5 + b2 q5' on q2",
+            "tip_mass": s.tip_mass,
+            "pillar_stiffness": s.pillar_stiffness,
+            "pillar_damping": s.pillar_damping,
+        },
+    )
 
 
-def modal_model(modes: PillarModes, rotor_mass: float, rotor_inertia: float, eccentricity: float,
-                shaft_stiffness: float, shaft_damping: float, tip_damping: float) -> RotorStructure:
+def modal_model(
+    modes: PillarModes,
+    rotor_mass: float,
+    rotor_inertia: float,
+    eccentricity: float,
+    shaft_stiffness: float,
+    shaft_damping: float,
+    tip_damping: float,
+) -> RotorStructure:
     """The pillar by its modes, the rotor on its shaft at the tip, relative to the ground.
 
     ``tip_damping`` is the pillar's b1 as a dashpot at the tip, used unless
@@ -322,26 +401,48 @@ def modal_model(modes: PillarModes, rotor_mass: float, rotor_inertia: float, ecc
         C[:k, :k] = np.diag(2 * np.asarray(modes.damping_ratio) * modes.omega * modes.modal_mass)
         damping_law = "modal damping ratios from the mode source"
     else:
-        C[:k, :k] = tip_damping                       # b1 (sum eta')**2 / 2: every pair of modes
+        C[:k, :k] = tip_damping  # b1 (sum eta')**2 / 2: every pair of modes
         damping_law = "pillar: the scene's b1 as a dashpot at the tip"
     C[k, k] = shaft_damping
     d = np.r_[-np.ones(k), 1.0]
     tip = np.r_[np.ones(k), 0.0]
     mb = -np.r_[modes.participation, rotor_mass]
     return RotorStructure(
-        name="modal", coordinates=tuple(f"eta{j + 1}" for j in range(k)) + ("rotor_x",),
-        mass=M, stiffness=Ks, damping=C, shaft=d, tip=tip, rotor_x=k,
-        shaft_stiffness=shaft_stiffness, shaft_damping=shaft_damping, eccentricity=eccentricity,
-        rotor_mass=rotor_mass, rotor_inertia=rotor_inertia,
-        base_displacement=np.zeros(nx), base_velocity=np.zeros(nx), base_acceleration=mb,
-        frame="relative_to_ground", pillar_modes=modes,
-        notes={"equations": "pillar modes + rotor, relative to the ground; base forcing -M r a_g",
-               "damping_law": damping_law + "; b2 on the rotor centre's velocity relative to the ground",
-               "modes": k})
+        name="modal",
+        coordinates=tuple(f"eta{j + 1}" for j in range(k)) + ("rotor_x",),
+        mass=M,
+        stiffness=Ks,
+        damping=C,
+        shaft=d,
+        tip=tip,
+        rotor_x=k,
+        shaft_stiffness=shaft_stiffness,
+        shaft_damping=shaft_damping,
+        eccentricity=eccentricity,
+        rotor_mass=rotor_mass,
+        rotor_inertia=rotor_inertia,
+        base_displacement=np.zeros(nx),
+        base_velocity=np.zeros(nx),
+        base_acceleration=mb,
+        frame="relative_to_ground",
+        pillar_modes=modes,
+        notes={
+            "equations": "pillar modes + rotor, relative to the ground; base forcing -M r a_g",
+            "damping_law": damping_law + "; b2 on the rotor centre's velocity relative to the ground",
+            "modes": k,
+        },
+    )
 
 
-def beam_model(pillar: Pillar, gondola_mass: float, rotor: Rotor, shaft: Shaft, elements: int = 10,
-               theory: str = "timoshenko", gondola_inertia: float = 0.0) -> RotorStructure:
+def beam_model(
+    pillar: Pillar,
+    gondola_mass: float,
+    rotor: Rotor,
+    shaft: Shaft,
+    elements: int = 10,
+    theory: str = "timoshenko",
+    gondola_inertia: float = 0.0,
+) -> RotorStructure:
     """Full order: every degree of freedom of the 1D beam (deflection and
     rotation per node, the gondola on top) and the rotor centre in X,
     relative to the ground, with the same physics as ``modal_model`` (b1 as
@@ -349,11 +450,12 @@ def beam_model(pillar: Pillar, gondola_mass: float, rotor: Rotor, shaft: Shaft, 
     modes is this model in other coordinates; with fewer it is its reduction."""
     from .beam_fe import assemble
     from .pillar_modes import beam_properties
+
     bp = beam_properties(pillar, theory)
     K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
     nb = K.shape[0]
     nx = nb + 1
-    tip_dof = nb - 2                      # (w, psi) per node: the top node's w
+    tip_dof = nb - 2  # (w, psi) per node: the top node's w
     Mx = np.zeros((nx, nx))
     Mx[:nb, :nb] = M
     Mx[nb, nb] = rotor.mass
@@ -371,10 +473,26 @@ def beam_model(pillar: Pillar, gondola_mass: float, rotor: Rotor, shaft: Shaft, 
     r[nb] = 1.0
     names = tuple(f"{'w' if i % 2 == 0 else 'psi'}{i // 2 + 1}" for i in range(nb)) + ("rotor_x",)
     return RotorStructure(
-        name="beam", coordinates=names, mass=Mx, stiffness=Ks, damping=C, shaft=d, tip=tip,
-        rotor_x=nb, shaft_stiffness=shaft.stiffness, shaft_damping=shaft.damping,
-        eccentricity=rotor.eccentricity, rotor_mass=rotor.mass,
-        rotor_inertia=rotor.inertia, base_displacement=np.zeros(nx),
-        base_velocity=np.zeros(nx), base_acceleration=-(Mx @ r), frame="relative_to_ground",
-        notes={"equations": f"full-order 1D {theory} beam, {elements} elements, rotor on its shaft",
-               "dofs": nx + 2, "full_order": True})
+        name="beam",
+        coordinates=names,
+        mass=Mx,
+        stiffness=Ks,
+        damping=C,
+        shaft=d,
+        tip=tip,
+        rotor_x=nb,
+        shaft_stiffness=shaft.stiffness,
+        shaft_damping=shaft.damping,
+        eccentricity=rotor.eccentricity,
+        rotor_mass=rotor.mass,
+        rotor_inertia=rotor.inertia,
+        base_displacement=np.zeros(nx),
+        base_velocity=np.zeros(nx),
+        base_acceleration=-(Mx @ r),
+        frame="relative_to_ground",
+        notes={
+            "equations": f"full-order 1D {theory} beam, {elements} elements, rotor on its shaft",
+            "dofs": nx + 2,
+            "full_order": True,
+        },
+    )

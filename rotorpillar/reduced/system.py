@@ -42,6 +42,7 @@ from ..scene import Rotor, Shaft
 @dataclass(frozen=True)
 class ReducedSystem:
     """Parameters of the paper's Eq. 4."""
+
     tip_mass: float
     """m_A = m_r + m*: reduced pillar mass and gondola at the tip (kg)"""
     rotor_mass: float
@@ -82,8 +83,14 @@ class ReducedSystem:
         return np.diag([self.b0, self.shaft_damping])
 
 
-def reduced_system(rotor: Rotor, shaft: Shaft, gondola_mass: float, pillar_damping: float,
-                   tip_mass_reduced: float, tip_stiffness: float) -> ReducedSystem:
+def reduced_system(
+    rotor: Rotor,
+    shaft: Shaft,
+    gondola_mass: float,
+    pillar_damping: float,
+    tip_mass_reduced: float,
+    tip_stiffness: float,
+) -> ReducedSystem:
     """The paper's system for a rotor on its shaft, a gondola of ``gondola_mass`` (kg) and
     the pillar's tip reduction (m_r in kg, c1 in N/m; b1 = ``pillar_damping``, N*s/m)."""
     return ReducedSystem(
@@ -98,11 +105,11 @@ def reduced_system(rotor: Rotor, shaft: Shaft, gondola_mass: float, pillar_dampi
     )
 
 
-def paper_example(shaft_stiffness: float = 0.4e6, shaft_damping: float = 11e3,
-                  pillar_damping: float = 30e3) -> ReducedSystem:
+def paper_example(
+    shaft_stiffness: float = 0.4e6, shaft_damping: float = 11e3, pillar_damping: float = 30e3
+) -> ReducedSystem:
     """The paper's turbo-generator with its stated reduction (m_r, c1)."""
-    return ReducedSystem(9.7e3 + 2.3e3, 1.6e3, 100.0, 0.002, 9.6e6,
-                         shaft_stiffness, pillar_damping, shaft_damping)
+    return ReducedSystem(9.7e3 + 2.3e3, 1.6e3, 100.0, 0.002, 9.6e6, shaft_stiffness, pillar_damping, shaft_damping)
 
 
 def omega_pair(s: ReducedSystem) -> tuple[float, float]:
@@ -128,6 +135,7 @@ def omega_y(s: ReducedSystem) -> float:
 @dataclass(frozen=True)
 class Resonance:
     """Quasi-normal data of one resonance (the paper's Eq. 7)."""
+
     index: int
     direction: str
     """"X" (pillar and rotor) or "Y" (rotor on its shaft)"""
@@ -177,7 +185,8 @@ def linear_modes(s: ReducedSystem) -> SystemModes:
         two_n = (s.b0 * u1**2 + s.shaft_damping * u2**2) / I
         res.append(Resonance(i, "X", w, (u1, u2), I, g / I, g, two_n))
     w3 = omega_y(s)
-    res.append(Resonance(3, "Y", w3, (0.0, 1.0), s.rotor_mass, c2 * e / s.rotor_mass,
-                         c2 * e, s.shaft_damping / s.rotor_mass))
-    x1, x2, y = res            # two X resonances, one in Y: the shapes SystemModes states
+    res.append(
+        Resonance(3, "Y", w3, (0.0, 1.0), s.rotor_mass, c2 * e / s.rotor_mass, c2 * e, s.shaft_damping / s.rotor_mass)
+    )
+    x1, x2, y = res  # two X resonances, one in Y: the shapes SystemModes states
     return SystemModes((x1.omega, x2.omega, y.omega), (x1, x2, y))

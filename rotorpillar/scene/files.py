@@ -13,8 +13,7 @@ from .validation import scene_from_dict
 
 def embedded_scenes() -> list[str]:
     """Names of the scenes shipped inside the package."""
-    return sorted(p.name[:-5] for p in resources.files("rotorpillar.scenes").iterdir()
-                  if p.name.endswith(".toml"))
+    return sorted(p.name[:-5] for p in resources.files("rotorpillar.scenes").iterdir() if p.name.endswith(".toml"))
 
 
 def read_text_file(path: Path, what: str) -> str:
@@ -35,8 +34,10 @@ def read_text_file(path: Path, what: str) -> str:
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise SceneError(f"{what} {str(path)!r} is not UTF-8 text (byte 0x{data[exc.start]:02x} at "
-                         f"offset {exc.start}); save it as UTF-8") from None
+        raise SceneError(
+            f"{what} {str(path)!r} is not UTF-8 text (byte 0x{data[exc.start]:02x} at "
+            f"offset {exc.start}); save it as UTF-8"
+        ) from None
     if "\x00" in text:
         raise SceneError(f"{what} {str(path)!r} is binary, not text")
     return text
@@ -47,13 +48,15 @@ def read_scene_toml(spec: str | Path) -> tuple[dict[str, Any], str]:
     path = Path(spec)
     if path.suffix == ".toml" or path.exists() or "/" in str(spec):
         if not path.is_file():
-            raise SceneError(f"scene file {str(spec)!r} not found (give a .toml path "
-                             f"or one of: {', '.join(embedded_scenes())})")
+            raise SceneError(
+                f"scene file {str(spec)!r} not found (give a .toml path or one of: {', '.join(embedded_scenes())})"
+            )
         text, name = read_text_file(path, "scene file"), path.stem
     else:
         if str(spec) not in embedded_scenes():
-            raise SceneError(f"scene {str(spec)!r}: no such file or embedded scene "
-                             f"(embedded: {', '.join(embedded_scenes())})")
+            raise SceneError(
+                f"scene {str(spec)!r}: no such file or embedded scene (embedded: {', '.join(embedded_scenes())})"
+            )
         text = resources.files("rotorpillar.scenes").joinpath(f"{spec}.toml").read_text("utf-8")
         name = str(spec)
     try:
@@ -100,6 +103,5 @@ def override(scene: Scene, assignments: list[str]) -> Scene:
     """A validated copy of ``scene`` with ``--set`` style assignments applied."""
     data = scene.to_dict()
     name = data.pop("name")
-    data = {k: {kk: vv for kk, vv in v.items()} if isinstance(v, dict) else v
-            for k, v in data.items()}
+    data = {k: {kk: vv for kk, vv in v.items()} if isinstance(v, dict) else v for k, v in data.items()}
     return scene_from_dict(apply_overrides(data, assignments), name=name)

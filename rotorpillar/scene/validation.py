@@ -11,7 +11,6 @@ from typing import Any
 from .sections import OPTIONAL_SECTIONS, SECTIONS, Scene, SceneError, _range_text
 
 
-
 def _check_value(key: str, value: Any, f: dataclasses.Field[Any]) -> Any:
     meta = f.metadata
     want = f.type if isinstance(f.type, str) else f.type.__name__
@@ -39,10 +38,12 @@ def _check_value(key: str, value: Any, f: dataclasses.Field[Any]) -> Any:
         if value not in meta["choices"]:
             raise SceneError(f"{key} = {value!r}: must be {_range_text(meta)} ({meta['doc']})")
         return value
-    ok = ((meta["gt"] is None or value > meta["gt"]) and
-          (meta["ge"] is None or value >= meta["ge"]) and
-          (meta["lt"] is None or value < meta["lt"]) and
-          (meta["le"] is None or value <= meta["le"]))
+    ok = (
+        (meta["gt"] is None or value > meta["gt"])
+        and (meta["ge"] is None or value >= meta["ge"])
+        and (meta["lt"] is None or value < meta["lt"])
+        and (meta["le"] is None or value <= meta["le"])
+    )
     if not ok:
         raise SceneError(f"{key} = {value!r} is out of range: must be {_range_text(meta)} ({meta['doc']})")
     return value
@@ -54,15 +55,13 @@ def _build_section(name: str, cls: type[Any], table: Any) -> Any:
     known = {f.name: f for f in fields(cls)}
     for key in table:
         if key not in known:
-            raise SceneError(f"{name}.{key}: unknown key; [{name}] takes "
-                             + ", ".join(known))
+            raise SceneError(f"{name}.{key}: unknown key; [{name}] takes " + ", ".join(known))
     values = {}
     for key, f in known.items():
         if key in table:
             values[key] = _check_value(f"{name}.{key}", table[key], f)
         elif f.default is dataclasses.MISSING:
-            raise SceneError(f"{name}.{key}: missing ({f.metadata['doc']}; "
-                             f"{_range_text(f.metadata)})")
+            raise SceneError(f"{name}.{key}: missing ({f.metadata['doc']}; {_range_text(f.metadata)})")
     return cls(**values)
 
 
@@ -71,17 +70,24 @@ def _cross_checks(scene: Scene) -> None:
     if p.inner_diameter >= p.outer_diameter:
         raise SceneError(
             f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
-            f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)")
+            f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)"
+        )
     if scene.drive.slope == 0 and scene.load.coefficient == 0:
-        raise SceneError("drive.slope = 0 and load.coefficient = 0: nothing limits the speed "
-                         "(Md = Mc never holds); give drive.slope > 0 or load.coefficient > 0")
+        raise SceneError(
+            "drive.slope = 0 and load.coefficient = 0: nothing limits the speed "
+            "(Md = Mc never holds); give drive.slope > 0 or load.coefficient > 0"
+        )
     if 0 < scene.full_order.elements_around < 4:
-        raise SceneError(f"full_order.elements_around = {scene.full_order.elements_around} is out of "
-                         "range: must be 0 (the scene's [mesh]) or >= 4 (-)")
+        raise SceneError(
+            f"full_order.elements_around = {scene.full_order.elements_around} is out of "
+            "range: must be 0 (the scene's [mesh]) or >= 4 (-)"
+        )
     w = scene.sweep
     if w.torque_high <= w.torque_low:
-        raise SceneError(f"sweep.torque_high = {w.torque_high:g} is out of range: must be > "
-                         f"sweep.torque_low = {w.torque_low:g} (N*m)")
+        raise SceneError(
+            f"sweep.torque_high = {w.torque_high:g} is out of range: must be > "
+            f"sweep.torque_low = {w.torque_low:g} (N*m)"
+        )
 
 
 def check_field(key: str, value: Any) -> Any:
@@ -111,12 +117,13 @@ def scene_from_dict(data: dict[str, Any], name: str = "scene") -> Scene:
     if not isinstance(name, str) or not isinstance(description, str):
         raise SceneError("name and description must be strings")
     if not SCENE_NAME.fullmatch(name):
-        raise SceneError(f"name = {name!r}: must be 1-100 characters without '/', '\\\\', '..' or "
-                         "control characters, not starting with '.' (it names out/<name>/)")
+        raise SceneError(
+            f"name = {name!r}: must be 1-100 characters without '/', '\\\\', '..' or "
+            "control characters, not starting with '.' (it names out/<name>/)"
+        )
     for key in data:
         if key not in SECTIONS:
-            raise SceneError(f"[{key}]: unknown section; a scene has "
-                             + ", ".join(f"[{s}]" for s in SECTIONS))
+            raise SceneError(f"[{key}]: unknown section; a scene has " + ", ".join(f"[{s}]" for s in SECTIONS))
     sections = {}
     for sec, cls in SECTIONS.items():
         if sec not in data:

@@ -5,7 +5,6 @@ Every module, the CLI and the report take them from here (re-exported by
 added once.
 """
 
-
 #: Transient cases of `rotorpillar simulate`.
 CASES = ("runup", "rundown", "sweep", "earthquake")
 #: The cases of `rotorpillar study` (the sweep is a study of its own).

@@ -16,5 +16,15 @@ from .axes import Axis, parse_axes, parse_vary, points
 from .result import StudyResult, StudyRun
 from .study import BATCH_RUNS, design_study, plan, study_csv
 
-__all__ = ["Axis", "parse_axes", "parse_vary", "points", "StudyResult", "StudyRun",
-           "BATCH_RUNS", "design_study", "plan", "study_csv"]
+__all__ = [
+    "Axis",
+    "parse_axes",
+    "parse_vary",
+    "points",
+    "StudyResult",
+    "StudyRun",
+    "BATCH_RUNS",
+    "design_study",
+    "plan",
+    "study_csv",
+]

@@ -30,8 +30,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..provenance import JsonRecord
-from ..scene import (CASES, SECTIONS, Scene, SceneError, check_combinations, check_field,
-                     override)
+from ..scene import CASES, SECTIONS, Scene, SceneError, check_combinations, check_field, override
 
 #: keys a study sets itself (by --case and --model) or does not use: the
 #: batch loop integrates with the compiled dp5 at the scene's rtol
@@ -51,6 +50,7 @@ MAX_RUNS = 100_000
 @dataclass(frozen=True)
 class Axis(JsonRecord):
     """One axis of a study: a scene key and its values."""
+
     key: str
     """section.key of the scene"""
     values: tuple
@@ -75,8 +75,7 @@ def assignment(key: str, value) -> str:
 def _field(key: str):
     parts = key.split(".")
     if len(parts) != 2 or parts[0] not in SECTIONS:
-        raise InputError(f"--vary {key}: unknown key; KEY is section.key with section one of "
-                         + ", ".join(SECTIONS))
+        raise InputError(f"--vary {key}: unknown key; KEY is section.key with section one of " + ", ".join(SECTIONS))
     fields = {f.name: f for f in dataclasses.fields(SECTIONS[parts[0]])}
     if parts[1] not in fields:
         raise InputError(f"--vary {key}: unknown key; [{parts[0]}] takes " + ", ".join(fields))
@@ -111,8 +110,9 @@ def _range(key: str, body: str, is_int: bool) -> tuple:
     vals = [a] if n == 1 else [a + (b - a) * i / (n - 1) for i in range(n)]
     if is_int:
         if any(abs(v - round(v)) > 1e-9 * max(1.0, abs(v)) for v in vals):
-            raise InputError(f"--vary {key}={body}: {key} takes integers; "
-                             f"START:STOP:N gives {', '.join(f'{v:g}' for v in vals)}")
+            raise InputError(
+                f"--vary {key}={body}: {key} takes integers; START:STOP:N gives {', '.join(f'{v:g}' for v in vals)}"
+            )
         vals = [int(round(v)) for v in vals]
         if len(set(vals)) < len(vals):
             raise InputError(f"--vary {key}={body}: repeated values")
@@ -128,7 +128,7 @@ def _list(key: str, body: str) -> tuple:
         try:
             vals.append(tomllib.loads(f"v = {t}")["v"])
         except tomllib.TOMLDecodeError:
-            vals.append(t)      # a bare word or a path
+            vals.append(t)  # a bare word or a path
     if len(set(map(repr, vals))) < len(vals):
         raise InputError(f"--vary {key}={body}: repeated values")
     return tuple(vals)
@@ -138,7 +138,7 @@ def _split(text: str) -> tuple[str, str]:
     if "=" not in text:
         raise InputError(f"--vary {text!r}: expected KEY=START:STOP:N or KEY=v1,v2,...")
     key, body = (s.strip() for s in text.split("=", 1))
-    _field(key)                         # an unknown key: InputError naming it
+    _field(key)  # an unknown key: InputError naming it
     if not body:
         raise InputError(f"--vary {key}=: empty range; expected START:STOP:N or v1,v2,...")
     return key, body
@@ -200,9 +200,13 @@ def _with(scene: Scene, params: dict) -> Scene:
     for key, v in params.items():
         sec, name = key.split(".", 1)
         by_section.setdefault(sec, {})[name] = v
-    return _copy(scene, {sec: (SECTIONS[sec](**vals) if getattr(scene, sec) is None
-                               else _copy(getattr(scene, sec), vals))
-                         for sec, vals in by_section.items()})
+    return _copy(
+        scene,
+        {
+            sec: (SECTIONS[sec](**vals) if getattr(scene, sec) is None else _copy(getattr(scene, sec), vals))
+            for sec, vals in by_section.items()
+        },
+    )
 
 
 def parse_vary(text: str, scene: Scene) -> Axis:
@@ -233,9 +237,11 @@ def parse_axes(texts: list[str], scene: Scene) -> tuple[Axis, ...]:
     sizes = [axis_size(t) for t in texts]
     n = math.prod(sizes)
     if n > MAX_RUNS:
-        raise InputError(f"--vary: {n:,} runs in the product ("
-                         + " x ".join(f"{k} {m:,}" for k, m in zip(keys, sizes))
-                         + f"); a study holds at most {MAX_RUNS:,}")
+        raise InputError(
+            f"--vary: {n:,} runs in the product ("
+            + " x ".join(f"{k} {m:,}" for k, m in zip(keys, sizes))
+            + f"); a study holds at most {MAX_RUNS:,}"
+        )
     return tuple(parse_vary(t, scene) for t in texts)
 
 
@@ -246,17 +252,19 @@ def implied_settings(axes: tuple[Axis, ...], case: str, scene: Scene) -> dict:
         raise InputError(f"--case {case!r}: must be one of {', '.join(CASES)}")
     keys = {a.key for a in axes}
     out = {}
-    if case == "earthquake" and keys & {"excitation.record", "excitation.record_scale",
-                                        "excitation.record_units"} \
-            and "excitation.kind" not in keys and scene.excitation.kind != "record":
+    if (
+        case == "earthquake"
+        and keys & {"excitation.record", "excitation.record_scale", "excitation.record_units"}
+        and "excitation.kind" not in keys
+        and scene.excitation.kind != "record"
+    ):
         out["excitation.kind"] = "record"
     return out
 
 
 def points(axes: tuple[Axis, ...]) -> list[dict]:
     """The product of the axes: one {key: value} per run, the last axis fastest."""
-    return [dict(zip((a.key for a in axes), combo))
-            for combo in itertools.product(*(a.values for a in axes))]
+    return [dict(zip((a.key for a in axes), combo)) for combo in itertools.product(*(a.values for a in axes))]
 
 
 def run_scene(scene: Scene, params: dict, implied: dict | None = None) -> Scene:
@@ -276,6 +284,7 @@ def check_points(scene: Scene, axes: tuple[Axis, ...], implied: dict) -> list[di
         try:
             check_combinations(_with(base, dict(zip(keys, combo))))
         except SceneError as exc:
-            raise InputError(f"--vary: the point {', '.join(f'{k}={v}' for k, v in zip(keys, raw))} "
-                             f"is not a valid scene: {exc}") from None
+            raise InputError(
+                f"--vary: the point {', '.join(f'{k}={v}' for k, v in zip(keys, raw))} is not a valid scene: {exc}"
+            ) from None
     return points(axes)

@@ -37,19 +37,23 @@ import numpy as np
 from ..reduced.band import forcing_top
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
-from ..reduced.models import build_model, scene_motion
-from .modes import modes_of
-from ..reduced.stationary import operating_speed
-from ..transients.case_summary import capture_state, ground_displacement
 from ..reduced.integration import simulate_batch
+from ..reduced.models import build_model, scene_motion
+from ..reduced.stationary import operating_speed
 from ..scene import Scene, scene_from_dict
+from ..transients.case_summary import capture_state, ground_displacement
 from .axes import run_scene
+from .modes import modes_of
 
 #: scene key -> simulate_batch keyword, per case: what the batch loop takes per run
 PER_RUN = {
-    "runup": {"drive.torque_at_zero": "torque_scale", "drive.slope": "slope",
-              "load.coefficient": "load", "rotor.eccentricity": "eccentricity",
-              "shaft.stiffness": "shaft_stiffness"},
+    "runup": {
+        "drive.torque_at_zero": "torque_scale",
+        "drive.slope": "slope",
+        "load.coefficient": "load",
+        "rotor.eccentricity": "eccentricity",
+        "shaft.stiffness": "shaft_stiffness",
+    },
     "rundown": {},
     "earthquake": {},
 }
@@ -98,16 +102,21 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
     motion = scene_motion(scene) if case == "earthquake" else no_motion()
     top = scene.modal_model.band_factor * forcing_top(top_scene.drive, top_scene.load, top_scene.sweep, case, motion)
     model, info = build_model(top_scene, which, top, pillar_modes=pillar_modes)
-    kw: dict[str, Any] = dict(torque_scale=M0 / M_ref, slope=per["s"], load=per["k"], eccentricity=per["e"],
-              shaft_stiffness=per["c2"], rtol=sim.rtol)
+    kw: dict[str, Any] = dict(
+        torque_scale=M0 / M_ref,
+        slope=per["s"],
+        load=per["k"],
+        eccentricity=per["e"],
+        shaft_stiffness=per["c2"],
+        rtol=sim.rtol,
+    )
     extra = {}
     if case == "runup":
         drive = DriveSchedule.ramp(M_ref, d.slope, L.coefficient, sim.runup_ramp)
         t_end = sim.duration
         # one thread: the study's parallelism is its Dask workers, one per core
         b = simulate_batch(model, drive, t_end, samples=samples_for(case, t_end), threads=1, **kw)
-        frees = [DriveSchedule.ramp(m, s, k, sim.runup_ramp).free_speed()
-                 for m, s, k in zip(M0, per["s"], per["k"])]
+        frees = [DriveSchedule.ramp(m, s, k, sim.runup_ramp).free_speed() for m, s, k in zip(M0, per["s"], per["k"])]
         extra = {"shaft_from": float(settle_time(scene, t_end))}
     else:
         assert len(runs) == 1, "a run-down or an earthquake run is its own group"
@@ -123,9 +132,19 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
             t_end = sim.earthquake_duration or motion.end + 5.0
             frees = [drive.free_speed()]
             extra = {"pga": float(motion.sizes()["peak_acceleration"])}
-        b = simulate_batch(model, drive, t_end, q0=q0, v0=v0, motion=motion, speed_scale=Wop,
-                           samples=samples_for(case, t_end), torque_scale=[1.0], rtol=sim.rtol,
-                           threads=1)
+        b = simulate_batch(
+            model,
+            drive,
+            t_end,
+            q0=q0,
+            v0=v0,
+            motion=motion,
+            speed_scale=Wop,
+            samples=samples_for(case, t_end),
+            torque_scale=[1.0],
+            rtol=sim.rtol,
+            threads=1,
+        )
         extra["initial_speed"] = float(Wop)
     since = b.t >= extra.pop("shaft_from", 0.0)
     shaft = b.shaft_deflection
@@ -140,13 +159,23 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
             tip = float(np.max(np.abs(b.tip[i] - ground_displacement(model, motion, b.t))))
         else:
             tip = float(np.max(b.tip_peak[i]))
-        out.append({"index": p["index"], "params": p["params"], "ok": bool(b.ok[i]),
-                    "final_speed": float(b.Omega[i, -1]), "final_speed_mean": mean,
-                    "captured_at": captured, "speed_state": state.speed_state,
-                    "passed": None if case == "earthquake" else state.speed_state not in ("captured", "escaping"),
-                    "peak_tip": tip,
-                    "peak_shaft_deflection": float(np.max(shaft[i, since])),
-                    "free_speed": float(frees[i]), "nfev": int(b.nfev[i]), **extra})
+        out.append(
+            {
+                "index": p["index"],
+                "params": p["params"],
+                "ok": bool(b.ok[i]),
+                "final_speed": float(b.Omega[i, -1]),
+                "final_speed_mean": mean,
+                "captured_at": captured,
+                "speed_state": state.speed_state,
+                "passed": None if case == "earthquake" else state.speed_state not in ("captured", "escaping"),
+                "peak_tip": tip,
+                "peak_shaft_deflection": float(np.max(shaft[i, since])),
+                "free_speed": float(frees[i]),
+                "nfev": int(b.nfev[i]),
+                **extra,
+            }
+        )
     return out
 
 
@@ -154,6 +183,7 @@ def warm_kernels() -> None:
     """Load the compiled batch loop in this process (numba's disk cache): one
     tiny run, so that a worker's first batch is timed like the others."""
     from ..scene import load_scene
+
     model, _ = build_model(load_scene("sommerfeld"), "paper")
     simulate_batch(model, DriveSchedule.constant(600.0, 2.0, 0.5), 0.1)
 
@@ -174,8 +204,10 @@ def run_batch(spec: dict) -> dict:
     for key, runs in groups.items():
         group_params = {k: v for k, v in key if k != "_index"}
         scene = run_scene(base, group_params, spec.get("implied"))
-        results += _run_group(scene, spec["case"], spec["model"], runs,
-                              modes_of(spec, base, scene))
-    return {"runs": sorted(results, key=lambda r: r["index"]), "groups": len(groups),
-            "wall_seconds": time.perf_counter() - start,
-            "worker": f"{socket.gethostname()}:{os.getpid()}"}
+        results += _run_group(scene, spec["case"], spec["model"], runs, modes_of(spec, base, scene))
+    return {
+        "runs": sorted(results, key=lambda r: r["index"]),
+        "groups": len(groups),
+        "wall_seconds": time.perf_counter() - start,
+        "worker": f"{socket.gethostname()}:{os.getpid()}",
+    }

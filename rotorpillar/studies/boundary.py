@@ -42,29 +42,34 @@ def _fold(scene: Scene, which: str, M_top: float, modes_of=None) -> tuple:
     that fold belongs to, the model's resonances [{index, direction, omega}])."""
     top_scene = replace(scene, drive=replace(scene.drive, torque_at_zero=M_top))
     top = scene.modal_model.band_factor * forcing_top(top_scene.drive, top_scene.load, top_scene.sweep, "runup", None)
-    model, _ = build_model(top_scene, which, top,
-                           pillar_modes=modes_of(scene) if modes_of is not None else None)
+    model, _ = build_model(top_scene, which, top, pillar_modes=modes_of(scene) if modes_of is not None else None)
     d, L = scene.drive, scene.load
     j, exact = predicted_passing_torque(model, M_top, d.slope, L.coefficient)
-    res = [{"index": int(r.index), "direction": str(r.direction), "omega": float(r.omega)}
-           for r in model.quasi_normal()]
-    return (None if j is None else float(j.torque_at_zero),
-            None if exact is None else float(exact["torque_at_zero"]),
-            None if j is None else int(j.resonance), res)
+    res = [
+        {"index": int(r.index), "direction": str(r.direction), "omega": float(r.omega)} for r in model.quasi_normal()
+    ]
+    return (
+        None if j is None else float(j.torque_at_zero),
+        None if exact is None else float(exact["torque_at_zero"]),
+        None if j is None else int(j.resonance),
+        res,
+    )
 
 
 def _grid(axis: Axis) -> list:
     from .modes import affects_modes
+
     if affects_modes(axis.key):
-        return sorted(axis.values)      # each value a pillar of its own: its own modes, no finer grid
+        return sorted(axis.values)  # each value a pillar of its own: its own modes, no finer grid
     lo, hi = min(axis.values), max(axis.values)
     if len(axis.values) == 1 or lo == hi:
         return [lo]
     return list(np.linspace(lo, hi, CURVE_POINTS))
 
 
-def predicted_boundary(scene: Scene, case: str, which: str, axes: tuple[Axis, ...],
-                       implied: dict, modes_of=None) -> dict | None:
+def predicted_boundary(
+    scene: Scene, case: str, which: str, axes: tuple[Axis, ...], implied: dict, modes_of=None
+) -> dict | None:
     """The predicted passing torque along the other axis (run-ups), or None;
     ``modes_of(scene)``: the ROM's pillar modes for a point's scene."""
     if case != "runup":
@@ -84,11 +89,18 @@ def predicted_boundary(scene: Scene, case: str, which: str, axes: tuple[Axis, ..
             avg.append(a)
             lin.append(e)
             which_res.append(i)
-        return {"kind": "torque", "torque_key": TORQUE, "other_key": other.key if other else None,
-                "other_values": xs if other is not None else [], "averaging": avg,
-                "exact_linear": lin, "resonance": which_res, "resonances": res,
-                "statement": "M0 needed to pass the first capturing resonance on run-up: the A fold "
-                             "of Eq. 19-23 (averaging) and of the exact linear torque balance"}
+        return {
+            "kind": "torque",
+            "torque_key": TORQUE,
+            "other_key": other.key if other else None,
+            "other_values": xs if other is not None else [],
+            "averaging": avg,
+            "exact_linear": lin,
+            "resonance": which_res,
+            "resonances": res,
+            "statement": "M0 needed to pass the first capturing resonance on run-up: the A fold "
+            "of Eq. 19-23 (averaging) and of the exact linear torque balance",
+        }
     if len(axes) == 1 and _numeric(axes[0]):
         ax = axes[0]
         xs = _grid(ax)
@@ -98,11 +110,18 @@ def predicted_boundary(scene: Scene, case: str, which: str, axes: tuple[Axis, ..
             a, e, _, _ = _fold(run_scene(scene, {ax.key: x}, implied), which, M0, modes_of)
             avg.append(a)
             lin.append(e)
-        return {"kind": "threshold", "torque_key": TORQUE, "other_key": ax.key, "other_values": xs,
-                "averaging": avg, "exact_linear": lin, "scene_torque": M0,
-                "threshold_averaging": crossing(xs, avg, M0),
-                "threshold_exact_linear": crossing(xs, lin, M0),
-                "statement": f"where the torque needed to pass equals the scene's M0 = {M0:g} N*m"}
+        return {
+            "kind": "threshold",
+            "torque_key": TORQUE,
+            "other_key": ax.key,
+            "other_values": xs,
+            "averaging": avg,
+            "exact_linear": lin,
+            "scene_torque": M0,
+            "threshold_averaging": crossing(xs, avg, M0),
+            "threshold_exact_linear": crossing(xs, lin, M0),
+            "statement": f"where the torque needed to pass equals the scene's M0 = {M0:g} N*m",
+        }
     return None
 
 
@@ -133,7 +152,12 @@ def found_boundary(axes: tuple[Axis, ...], runs) -> list[dict] | None:
         captured = [m for m, p in cells if p is False]
         lo = max((m for m in captured if not passed or m < min(passed)), default=None)
         hi = min(passed) if passed else None
-        out.append({"other": x, "captured_max": lo, "passed_min": hi,
-                    "monotonic": not passed or all(m >= hi for m in passed) and
-                    not any(m > hi for m in captured)})
+        out.append(
+            {
+                "other": x,
+                "captured_max": lo,
+                "passed_min": hi,
+                "monotonic": not passed or all(m >= hi for m in passed) and not any(m > hi for m in captured),
+            }
+        )
     return out

@@ -12,16 +12,27 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Optional
 
 from ..reduced.pillar_modes import PillarModes
 from ..scene import Scene
 
 #: Scene keys that change the pillar's modes (every other key leaves them alone).
-MODE_KEYS = ("pillar.height", "pillar.outer_diameter", "pillar.inner_diameter",
-             "pillar.youngs_modulus", "pillar.poisson_ratio", "pillar.density", "gondola.mass",
-             "modal.top_model", "modal.top_mass", "modal.tolerance", "modal_model.source",
-             "modal_model.theory", "modal_model.elements", "modal_model.gondola_inertia")
+MODE_KEYS = (
+    "pillar.height",
+    "pillar.outer_diameter",
+    "pillar.inner_diameter",
+    "pillar.youngs_modulus",
+    "pillar.poisson_ratio",
+    "pillar.density",
+    "gondola.mass",
+    "modal.top_model",
+    "modal.top_mass",
+    "modal.tolerance",
+    "modal_model.source",
+    "modal_model.theory",
+    "modal_model.elements",
+    "modal_model.gondola_inertia",
+)
 
 
 def affects_modes(key: str) -> bool:
@@ -50,7 +61,7 @@ def mode_key(base: Scene, scene: Scene) -> str:
 class StudyModes:
     """The pillar modes of a study's scenes, each pillar resolved once (rotorpillar.chain)."""
 
-    def __init__(self, base: Scene, out_dir: Optional[Path], log=None):
+    def __init__(self, base: Scene, out_dir: Path | None, log=None):
         self.base, self.out_dir, self.log = base, out_dir, log
         self.table: dict[str, dict] = {}
         self.pillar_model: dict = {}
@@ -61,6 +72,7 @@ class StudyModes:
     def __call__(self, scene: Scene) -> PillarModes:
         """The ROM's candidate modes for ``scene`` (solved once per distinct pillar)."""
         from ..chain import resolve
+
         key = self.key(scene)
         if key not in self.table:
             varied = key != "[]"
@@ -70,13 +82,14 @@ class StudyModes:
             if not varied or not self.pillar_model:
                 pm = chain.pillar_model.to_json()
                 if varied:
-                    pm["note"] = ("the pillar varies across the study: each value's own model "
-                                  "(the scene's [mesh]); " + pm["note"])
+                    pm["note"] = (
+                        "the pillar varies across the study: each value's own model (the scene's [mesh]); " + pm["note"]
+                    )
                 self.pillar_model = pm
         return PillarModes.from_json(self.table[key])
 
 
-def modes_of(spec: dict, base: Scene, scene: Scene) -> Optional[PillarModes]:
+def modes_of(spec: dict, base: Scene, scene: Scene) -> PillarModes | None:
     """A batch's pillar modes for a group's ``scene`` (None: not the ROM)."""
     table = spec.get("pillar_modes")
     if not table:

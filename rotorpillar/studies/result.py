@@ -11,6 +11,7 @@ from .axes import Axis
 @dataclass(frozen=True)
 class StudyRun(JsonRecord):
     """One run of the study: its parameters and what it reached."""
+
     index: int
     """position in the product of the axes (last axis fastest)"""
     params: dict
@@ -47,6 +48,7 @@ class StudyRun(JsonRecord):
 class StudyResult(JsonRecord):
     """A design study (study.json): the axes, every run, the analytic boundary, where it
     ran and how fast."""
+
     scene_name: str
     case: str
     """runup, rundown or earthquake"""

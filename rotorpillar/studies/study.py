@@ -21,8 +21,9 @@ from __future__ import annotations
 import math
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable, Optional
+from typing import Any
 
 from ..cache import DiskCache, cache_key, source_hash
 from ..errors import InputError
@@ -40,8 +41,19 @@ from .result import StudyResult, StudyRun
 #: speed is not lost to the per-batch overhead (~10 ms against ~60 ms a run)
 BATCH_RUNS = 8
 CACHE_VERSION = 1
-CSV_RESULTS = ("final_speed", "final_speed_mean", "captured_at", "speed_state", "passed", "peak_tip",
-               "peak_shaft_deflection", "free_speed", "pga", "ok", "nfev")
+CSV_RESULTS = (
+    "final_speed",
+    "final_speed_mean",
+    "captured_at",
+    "speed_state",
+    "passed",
+    "peak_tip",
+    "peak_shaft_deflection",
+    "free_speed",
+    "pga",
+    "ok",
+    "nfev",
+)
 
 Charts = Callable[[StudyResult, Path], list]
 """Draws a study's charts: (result, out_dir) -> [{file, caption}]."""
@@ -74,16 +86,18 @@ def _check_inputs(scene: Scene, case: str, model: str, vary: list[str]):
     if model not in STUDY_MODELS:
         raise InputError(f"--model {model!r}: a study runs one of {', '.join(STUDY_MODELS)}")
     if scene.reduction.source == "fem3d" and model == "paper":
-        raise InputError('reduction.source = "fem3d": a study runs the reduced models only; '
-                         "use the stated or closed-form reduction for the paper model")
+        raise InputError(
+            'reduction.source = "fem3d": a study runs the reduced models only; '
+            "use the stated or closed-form reduction for the paper model"
+        )
     axes = parse_axes(vary, scene)
     implied = implied_settings(axes, case, scene)
     points = check_points(scene, axes, implied)
     if case == "earthquake":
-        from ..reduced.models import scene_motion
         from ..reduced.excitation import BUILTIN_RECORDS
-        motions = {tuple((k, v) for k, v in p.items() if k.startswith("excitation."))
-                   for p in points}
+        from ..reduced.models import scene_motion
+
+        motions = {tuple((k, v) for k, v in p.items() if k.startswith("excitation.")) for p in points}
         # every record readable before anything runs, each once; the user's files before
         # the built-in records (whose library takes seconds to import): a bad file, at once
         for m in sorted(motions, key=lambda m: (any(v in BUILTIN_RECORDS for _, v in m), repr(m))):
@@ -91,13 +105,24 @@ def _check_inputs(scene: Scene, case: str, model: str, vary: list[str]):
     return axes, implied, points
 
 
-def design_study(scene: Scene, case: str, model: str, vary: list[str], *, out_dir: Path,
-                 workers: int | None = None, scheduler: str | None = None,
-                 cache_dir: Path | None = None, show_progress: bool = True,
-                 charts: Optional[Charts] = None, log: Callable[[str], None] | None = None,
-                 executor: Executor | None = None) -> StudyResult:
+def design_study(
+    scene: Scene,
+    case: str,
+    model: str,
+    vary: list[str],
+    *,
+    out_dir: Path,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    cache_dir: Path | None = None,
+    show_progress: bool = True,
+    charts: Charts | None = None,
+    log: Callable[[str], None] | None = None,
+    executor: Executor | None = None,
+) -> StudyResult:
     """Run (or load) every batch of the study and condense it (see the module text)."""
     from tqdm import tqdm
+
     start = time.perf_counter()
     axes, implied, points = _check_inputs(scene, case, model, vary)
     out_dir = Path(out_dir)
@@ -119,14 +144,16 @@ def design_study(scene: Scene, case: str, model: str, vary: list[str], *, out_di
         keys.append(batch_key(spec, source))
     done: dict[int, dict] = {}
     for i, k in enumerate(keys):
-        doc = cache.read(k)     # a damaged file is no finished batch: recomputed
+        doc = cache.read(k)  # a damaged file is no finished batch: recomputed
         if doc is not None:
             done[i] = doc
     todo = [i for i in range(len(batches)) if i not in done]
     n_cached = sum(len(batches[i]) for i in done)
     if log:
-        log(f"study {scene.name}: {case}, {len(points)} runs in {len(batches)} batches "
-            f"({len(done)} on disk, {len(todo)} to compute)")
+        log(
+            f"study {scene.name}: {case}, {len(points)} runs in {len(batches)} batches "
+            f"({len(done)} on disk, {len(todo)} to compute)"
+        )
     info = {"kind": "none (every batch on disk)", "scheduler": None, "workers": 0, "threads": 0}
     t_cluster = t_compute = compute = 0.0
     if todo:
@@ -140,8 +167,14 @@ def design_study(scene: Scene, case: str, model: str, vary: list[str], *, out_di
             t_cluster = time.perf_counter() - t0
             if log:
                 log(f"study: {info['kind']} at {info['scheduler']}, {info['workers']} workers")
-            bar = tqdm(total=len(points), initial=n_cached, disable=not show_progress,
-                       unit="run", file=sys.stderr, desc="study")
+            bar = tqdm(
+                total=len(points),
+                initial=n_cached,
+                disable=not show_progress,
+                unit="run",
+                file=sys.stderr,
+                desc="study",
+            )
             t1 = time.perf_counter()
             try:
                 for j, res in ex.map(run_batch, [specs[i] for i in todo]):
@@ -168,24 +201,44 @@ def design_study(scene: Scene, case: str, model: str, vary: list[str], *, out_di
         boundary = {**(boundary or {}), "found": found}
     n_computed = len(points) - n_cached
     result = StudyResult(
-        scene_name=scene.name, case=case, model=model, axes=axes, implied=implied,
-        runs=tuple(runs), boundary=boundary, executor=info,
-        batches={"total": len(batches), "cached": len(done) - len(todo), "computed": len(todo),
-                 "runs_per_batch_max": BATCH_RUNS,
-                 "groups": sum(done[i].get("groups", 0) for i in done),
-                 "cache_dir": str(cache_dir)},
-        performance={"runs": len(points), "runs_computed": n_computed,
-                     "cluster_start_seconds": t_cluster, "compute_wall_seconds": t_compute,
-                     "batch_seconds": compute,
-                     "runs_per_second": n_computed / t_compute if t_compute > 0 else None,
-                     "wall_seconds": 0.0})
+        scene_name=scene.name,
+        case=case,
+        model=model,
+        axes=axes,
+        implied=implied,
+        runs=tuple(runs),
+        boundary=boundary,
+        executor=info,
+        batches={
+            "total": len(batches),
+            "cached": len(done) - len(todo),
+            "computed": len(todo),
+            "runs_per_batch_max": BATCH_RUNS,
+            "groups": sum(done[i].get("groups", 0) for i in done),
+            "cache_dir": str(cache_dir),
+        },
+        performance={
+            "runs": len(points),
+            "runs_computed": n_computed,
+            "cluster_start_seconds": t_cluster,
+            "compute_wall_seconds": t_compute,
+            "batch_seconds": compute,
+            "runs_per_second": n_computed / t_compute if t_compute > 0 else None,
+            "wall_seconds": 0.0,
+        },
+    )
     csv = write_text(out_dir / "study.csv", study_csv(result))
     figures = charts(result, out_dir) if charts is not None else []
     perf = {**result.performance, "wall_seconds": time.perf_counter() - start}
     from dataclasses import replace
-    return replace(result, figures=tuple(figures), performance=perf,
-                   pillar_model=modes.pillar_model if modes is not None else None,
-                   files={"csv": str(csv), "cache_dir": str(cache_dir)})
+
+    return replace(
+        result,
+        figures=tuple(figures),
+        performance=perf,
+        pillar_model=modes.pillar_model if modes is not None else None,
+        files={"csv": str(csv), "cache_dir": str(cache_dir)},
+    )
 
 
 def study_csv(result: StudyResult) -> str:

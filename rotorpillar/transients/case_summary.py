@@ -13,20 +13,19 @@
 from __future__ import annotations
 
 import math
-from typing import Any
 from dataclasses import dataclass, fields, replace
+from typing import Any
 
 import numpy as np
 
 from ..provenance import JsonRecord
-
 from ..reduced.accuracy import AccuracyCheck, check_step, forcing_frequencies
 from ..reduced.excitation import GroundMotion, no_motion
-from ..reduced.rotor_models import RotorStructure
 from ..reduced.integration import Transient, shaft_deflection
+from ..reduced.rotor_models import RotorStructure
 
-CAPTURE_WIDTH = 3.0          # in n_i = nu_i omega_i
-CAPTURE_MIN_WIDTH = 0.03     # relative
+CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
+CAPTURE_MIN_WIDTH = 0.03  # relative
 
 
 def capture(model: RotorStructure, omega_final: float, drive_free_speed: float):
@@ -36,8 +35,9 @@ def capture(model: RotorStructure, omega_final: float, drive_free_speed: float):
     best = None
     for r in model.quasi_normal():
         width = max(CAPTURE_WIDTH * r.n, CAPTURE_MIN_WIDTH * r.omega)
-        if abs(omega_final - r.omega) <= width and (best is None or
-                                                     abs(omega_final - r.omega) < abs(omega_final - best.omega)):
+        if abs(omega_final - r.omega) <= width and (
+            best is None or abs(omega_final - r.omega) < abs(omega_final - best.omega)
+        ):
             best = r
     return best
 
@@ -52,6 +52,7 @@ TAIL = 0.05
 @dataclass(frozen=True)
 class CaptureState:
     """Where a run's speed ended (``capture_state``)."""
+
     captured_at: float | None
     """the speed the rotor settled at below a resonance (rad/s), or None"""
     captured_resonance: float | None
@@ -88,6 +89,7 @@ def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> C
 @dataclass(frozen=True)
 class Passage(JsonRecord):
     """When a run's speed first crosses one resonance, and the peaks near it."""
+
     index: int
     """the resonance's index among the model's (-)"""
     direction: str
@@ -107,6 +109,7 @@ class Passage(JsonRecord):
 @dataclass(frozen=True)
 class EnergyBalance(JsonRecord):
     """E(t) - E(0) against the work done over the run (J), and how well it closes."""
+
     energy_change: float
     """(J)"""
     work_drive_minus_load: float
@@ -134,11 +137,17 @@ def passages(run: Transient) -> tuple[Passage, ...]:
     for r in run.model.quasi_normal():
         idx = np.nonzero((W[:-1] - r.omega) * (W[1:] - r.omega) <= 0)[0]
         near = np.abs(W - r.omega) <= 0.1 * r.omega
-        out.append(Passage(
-            index=r.index, direction=r.direction, omega=r.omega, crossed=bool(idx.size),
-            time=float(run.t[idx[0]]) if idx.size else None,
-            peak_tip_near=float(tip_peak[near].max()) if near.any() else None,
-            peak_rotor_y_near=float(run.peak[near, run.model.nx].max()) if near.any() else None))
+        out.append(
+            Passage(
+                index=r.index,
+                direction=r.direction,
+                omega=r.omega,
+                crossed=bool(idx.size),
+                time=float(run.t[idx[0]]) if idx.size else None,
+                peak_tip_near=float(tip_peak[near].max()) if near.any() else None,
+                peak_rotor_y_near=float(run.peak[near, run.model.nx].max()) if near.any() else None,
+            )
+        )
     return tuple(out)
 
 
@@ -147,7 +156,7 @@ def max_abs(run: Transient) -> dict:
     m = run.model
     pk = np.nanmax(run.peak, axis=0)
     out = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
-    if not m.notes.get("full_order"):            # a full-order model's nodes: not worth a key each
+    if not m.notes.get("full_order"):  # a full-order model's nodes: not worth a key each
         for i, name in enumerate(m.coordinates):
             out[name] = float(pk[i])
     shaft_x = shaft_deflection(run.q, m.shaft, m.eccentricity)[1]
@@ -187,10 +196,20 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
     motion = run.motion or no_motion()
     ground = ground_displacement(m, motion, run.t)
     tip = run.tip()
-    out = {"t": run.t, "Omega": run.Omega, "theta": run.q[:, -1], "tip_x": tip,
-           "rotor_x": run.q[:, m.rotor_x], "rotor_y": run.q[:, m.nx], "ground_x": ground,
-           "ground_acceleration": motion.evaluate(run.t)[2],
-           "q": run.q, "v": run.v, "peak": run.peak, "work": run.work}
+    out = {
+        "t": run.t,
+        "Omega": run.Omega,
+        "theta": run.q[:, -1],
+        "tip_x": tip,
+        "rotor_x": run.q[:, m.rotor_x],
+        "rotor_y": run.q[:, m.nx],
+        "ground_x": ground,
+        "ground_acceleration": motion.evaluate(run.t)[2],
+        "q": run.q,
+        "v": run.v,
+        "peak": run.peak,
+        "work": run.work,
+    }
     if run.drive is not None:
         out["M0"] = run.drive.at(run.t)[0]
         out["drive_torque"] = run.drive.torque(run.t, run.Omega)
@@ -200,7 +219,7 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
         out["tip_x_absolute"] = tip + ground
         out["rotor_x_absolute"] = out["rotor_x"] + ground
     if m.pillar_modes is not None:
-        out["modal_coordinates"] = run.q[:, :m.pillar_modes.count]
+        out["modal_coordinates"] = run.q[:, : m.pillar_modes.count]
         if m.pillar_modes.shapes is not None and m.pillar_modes.heights is not None:
             out["mode_heights"] = m.pillar_modes.heights
             out["mode_shapes"] = m.pillar_modes.shapes
@@ -215,6 +234,7 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
 @dataclass(frozen=True)
 class SweepFindings:
     """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep)."""
+
     predicted_jumps: list
     """the averaging theory's jumps inside the swept torque range"""
     jump_comparison: list
@@ -236,6 +256,7 @@ class CaseSummary:
     """A case condensed for ``simulate_<case>.json``; values are JSON-ready
     (numpy arrays allowed: the writer converts them).  Optional sections are
     None when the case has none, and then absent from ``to_json()``."""
+
     ok: bool
     duration: float
     """length of the run (s)"""
@@ -297,7 +318,7 @@ class CaseSummary:
         return out
 
     @classmethod
-    def from_json(cls, d: dict) -> "CaseSummary":
+    def from_json(cls, d: dict) -> CaseSummary:
         kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
         kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
         kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
@@ -309,8 +330,16 @@ class CaseSummary:
 
 #: Written right after captured_at, where they are read together (when not None).
 BESIDE_CAPTURE = ("captured_resonance", "captured_index", "speed_state")
-_OPTIONAL = ("passing_torque", "excitation", "response_spectrum_check", "truncation",
-             "captured_resonance", "captured_index", "speed_state", "failed_checks")
+_OPTIONAL = (
+    "passing_torque",
+    "excitation",
+    "response_spectrum_check",
+    "truncation",
+    "captured_resonance",
+    "captured_index",
+    "speed_state",
+    "failed_checks",
+)
 
 #: A run whose energy balance misses by more than this share of the energy
 #: exchanged is no solution of its equations (dp5 at rtol 1e-7 closes to ~1e-6,
@@ -336,8 +365,9 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     if motion.kind == "none" and not run.prescribed_speed and run.drive is not None:
         # a diverged run's speed says nothing of what it had to resolve: with the ground
         # still the rotor cannot outrun its drive (run_checks flags it when it does)
-        reach = max([abs(float(run.Omega[0])), run.drive.free_speed()]
-                    + [run.drive.free_speed(ti) for ti in run.drive.times])
+        reach = max(
+            [abs(float(run.Omega[0])), run.drive.free_speed()] + [run.drive.free_speed(ti) for ti in run.drive.times]
+        )
         if math.isfinite(reach) and reach > 0:
             top = min(top, reach)
     W = np.where(np.isfinite(W), np.minimum(W, top), top)
@@ -358,12 +388,21 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     periods = float(np.sum(0.5 * (fast[1:] + fast[:-1]) * np.diff(t)) / (2 * math.pi))
     steps = st.get("steps")
     mean = duration / steps if steps else 0.0
-    return check_step(method, {}, mean, freq, duration, adaptive=True, periods=periods, steps=steps,
-                      window=window, rtol=st.get("rtol"))
+    return check_step(
+        method,
+        {},
+        mean,
+        freq,
+        duration,
+        adaptive=True,
+        periods=periods,
+        steps=steps,
+        window=window,
+        rtol=st.get("rtol"),
+    )
 
 
-def run_checks(run: Transient, drive_free_speed: float,
-               accuracy: AccuracyCheck | None = None) -> list[str]:
+def run_checks(run: Transient, drive_free_speed: float, accuracy: AccuracyCheck | None = None) -> list[str]:
     """The run's own checks, one named line each ("name: why") for every one that
     fails (empty: all hold).
 
@@ -384,26 +423,29 @@ def run_checks(run: Transient, drive_free_speed: float,
     if run.stats.get("method") == "central_difference" and h:
         w_max = run.model.stiffest_frequency()
         if h * w_max > 2.0:
-            failed.append(f"stability: central difference past its stability limit: h omega_max = "
-                          f"{h * w_max:.3g} > 2 (h = {h:g} s)")
+            failed.append(
+                f"stability: central difference past its stability limit: h omega_max = "
+                f"{h * w_max:.3g} > 2 (h = {h:g} s)"
+            )
     failed += (accuracy or accuracy_check(run)).failed
     e = run.energy_balance().get("relative_error", 0.0)
     if not np.isfinite(e) or e > ENERGY_CHECK:
-        failed.append(f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
-                      f"exchanged (limit {100 * ENERGY_CHECK:g} %)")
+        failed.append(
+            f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
+            f"exchanged (limit {100 * ENERGY_CHECK:g} %)"
+        )
     w = float(np.max(np.abs(run.Omega))) if len(run.Omega) else 0.0
     # the fastest the drive can hold at any of its knots, or the start, if faster
     drive = run.drive
-    top = max([drive_free_speed, abs(float(run.Omega[0]))]
-              + ([] if drive is None else [drive.free_speed(t) for t in drive.times]))
+    top = max(
+        [drive_free_speed, abs(float(run.Omega[0]))]
+        + ([] if drive is None else [drive.free_speed(t) for t in drive.times])
+    )
     # a moving ground feeds the rotor through the structure: no bound from the drive alone
     still = run.motion is None or run.motion.kind == "none"
-    if still and np.isfinite(top) and top > 0 and not run.prescribed_speed \
-            and w > (1 + SPEED_CHECK) * top:
-        failed.append(f"speed: the rotor reached {w:.4g} rad/s, above the drive's free speed "
-                      f"{top:.4g} rad/s")
+    if still and np.isfinite(top) and top > 0 and not run.prescribed_speed and w > (1 + SPEED_CHECK) * top:
+        failed.append(f"speed: the rotor reached {w:.4g} rad/s, above the drive's free speed {top:.4g} rad/s")
     return failed
-
 
 
 def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sections) -> CaseSummary:
@@ -414,14 +456,22 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
     acc = accuracy_check(run)
     failed = run_checks(run, drive_free_speed, acc)
     state = capture_state(run.model, run.t, run.Omega, drive_free_speed)
-    base: dict[str, Any] = dict(ok=not failed, duration=float(run.t[-1] - run.t[0]), omega_final=float(run.Omega[-1]),
-                omega_final_mean=om_mean, max_abs=max_abs(run),
-                captured_at=state.captured_at, captured_resonance=state.captured_resonance,
-                captured_index=state.captured_index,
-                speed_state=state.speed_state, passages=passages(run),
-                energy_balance=EnergyBalance(**run.energy_balance()),
-                integrator={**run.stats, "accuracy": acc.to_json()}, prediction=prediction,
-                jumps=[])
+    base: dict[str, Any] = dict(
+        ok=not failed,
+        duration=float(run.t[-1] - run.t[0]),
+        omega_final=float(run.Omega[-1]),
+        omega_final_mean=om_mean,
+        max_abs=max_abs(run),
+        captured_at=state.captured_at,
+        captured_resonance=state.captured_resonance,
+        captured_index=state.captured_index,
+        speed_state=state.speed_state,
+        passages=passages(run),
+        energy_balance=EnergyBalance(**run.energy_balance()),
+        integrator={**run.stats, "accuracy": acc.to_json()},
+        prediction=prediction,
+        jumps=[],
+    )
     base.update(sections)
     if failed:
         base["failed_checks"] = failed

@@ -20,24 +20,24 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..scene import CASES, Scene
-from ..reduced.accuracy import (FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters,
-                       full_order_step)
+from ..reduced.accuracy import FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters, full_order_step
 from ..reduced.band import forcing_top
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion, no_motion, response_spectrum
+from ..reduced.integration import Settings, Transient, simulate
 from ..reduced.models import build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
+from ..scene import CASES, Scene
 from .case_summary import CaseSummary, SweepFindings, run_summary
 from .sweep import rate_convergence, sweep_analysis
-from ..reduced.integration import Settings, Transient, simulate
 
 
 @dataclass(frozen=True)
 class CaseResult:
     """One case run on one model: the run, its summary, and what the charts need."""
+
     case: str
     model: RotorStructure
     run: Transient
@@ -49,12 +49,14 @@ class CaseResult:
 def settings_of(scene: Scene, integrator: str | None = None) -> Settings:
     """The scene's [simulate] integration settings, ``integrator`` replacing its method."""
     s = scene.simulate
-    return Settings(method=integrator or s.integrator, rtol=s.rtol, time_step=s.time_step,
-                    samples=s.samples, max_steps=s.max_steps)
+    return Settings(
+        method=integrator or s.integrator, rtol=s.rtol, time_step=s.time_step, samples=s.samples, max_steps=s.max_steps
+    )
 
 
-def full_order_step_rule(scene: Scene, case: str, motion: GroundMotion, method: str,
-                         model: RotorStructure | None = None) -> StepRule:
+def full_order_step_rule(
+    scene: Scene, case: str, motion: GroundMotion, method: str, model: RotorStructure | None = None
+) -> StepRule:
     """The beam's step and why (rotorpillar.reduced.accuracy.full_order_step): the
     longest that resolves the fastest forcing (the unbalance's rotation at the
     rotor's top speed, the ground motion's band) within 2e-3, no coarser than a
@@ -62,22 +64,34 @@ def full_order_step_rule(scene: Scene, case: str, motion: GroundMotion, method: 
     shaft, the beam's shear modes): the implicit schemes damp those (rho_inf).
     Central difference (explicit) stays below 0.9 of its stability limit on ``model``."""
     fo = scene.full_order
-    forcing = forcing_frequencies(scene.rotor.eccentricity, forcing_top(scene.drive, scene.load, scene.sweep, case, None), motion)
-    if not forcing:                                   # nothing forces the structure: the spin's pace
+    forcing = forcing_frequencies(
+        scene.rotor.eccentricity, forcing_top(scene.drive, scene.load, scene.sweep, case, None), motion
+    )
+    if not forcing:  # nothing forces the structure: the spin's pace
         forcing = {"rotor_speed": forcing_top(scene.drive, scene.load, scene.sweep, case, None)}
-    rule = full_order_step(method, full_order_parameters(method, fo.rho_inf), forcing,
-                           scene.modal_model.band_factor,
-                           motion.time_step if motion.kind == "record" else None, fo.time_step)
+    rule = full_order_step(
+        method,
+        full_order_parameters(method, fo.rho_inf),
+        forcing,
+        scene.modal_model.band_factor,
+        motion.time_step if motion.kind == "record" else None,
+        fo.time_step,
+    )
     if method == "central_difference" and model is not None and not fo.time_step:
         limit = 0.9 * 2.0 / model.stiffest_frequency()
         if limit < rule.time_step:
-            rule = replace(rule, time_step=limit, rule=rule.rule + "; below 0.9 of central difference's "
-                           f"stability limit 2 / omega_max ({model.stiffest_frequency():.4g} rad/s)")
+            rule = replace(
+                rule,
+                time_step=limit,
+                rule=rule.rule + "; below 0.9 of central difference's "
+                f"stability limit 2 / omega_max ({model.stiffest_frequency():.4g} rad/s)",
+            )
     return rule
 
 
-def full_order_settings(scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None,
-                        model: RotorStructure | None = None) -> tuple[Settings, StepRule | None]:
+def full_order_settings(
+    scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None, model: RotorStructure | None = None
+) -> tuple[Settings, StepRule | None]:
     """The beam's settings: [full_order] beam_integrator (or ``integrator``), rho_inf
     and the step of ``full_order_step_rule``; and that rule (None for an adaptive
     ``integrator``: it chooses its own steps)."""
@@ -97,8 +111,7 @@ def case_duration(scene: Scene, case: str, motion: GroundMotion) -> float:
         return sim.earthquake_duration or motion.end + 5.0
     if case == "sweep":
         d, L, w = scene.drive, scene.load, scene.sweep
-        return DriveSchedule.sweep(d.slope, L.coefficient, w.torque_low, w.torque_high, w.rate,
-                                   w.settle).times[-1]
+        return DriveSchedule.sweep(d.slope, L.coefficient, w.torque_low, w.torque_high, w.rate, w.settle).times[-1]
     return sim.duration
 
 
@@ -113,7 +126,7 @@ def check_full_order_budget(scene: Scene, case: str, motion: GroundMotion, integ
     before the beam is built: steps = the case's duration over the rule's step."""
     fo = scene.full_order
     method = integrator or fo.beam_integrator
-    if method not in FULL_ORDER_SCHEMES:                   # adaptive: simulate's own estimate
+    if method not in FULL_ORDER_SCHEMES:  # adaptive: simulate's own estimate
         return
     duration = case_duration(scene, case, motion)
     h = full_order_step_rule(scene, case, motion, method).time_step
@@ -122,18 +135,32 @@ def check_full_order_budget(scene: Scene, case: str, motion: GroundMotion, integ
         return
     n = 2 * (fo.beam_elements or scene.modal_model.elements) + 3
     seconds = steps * BEAM_SECONDS_PER_STEP_DOF2 * n * n
-    length = "simulate.earthquake_duration" if case == "earthquake" else \
-        "sweep.rate" if case == "sweep" else "simulate.duration"
+    length = (
+        "simulate.earthquake_duration"
+        if case == "earthquake"
+        else "sweep.rate"
+        if case == "sweep"
+        else "simulate.duration"
+    )
     raise InputError(
         f"the beam's {case} of {duration:.4g} s at a step of {h:.3g} s would take about {steps:.3g} "
         f"steps (~{seconds:.3g} s on {n} dofs), more than simulate.max_steps = "
         f"{scene.simulate.max_steps:.3g}: raise full_order.time_step (0 = the band's step), shorten "
-        f"{length}, or raise simulate.max_steps")
+        f"{length}, or raise simulate.max_steps"
+    )
 
 
-def run_case(scene: Scene, case: str, which: str | None = None, integrator: str | None = None,
-             modes: int | None = None, truncation: bool = True, progress=None,
-             motion: GroundMotion | None = None, pillar_modes: PillarModes | None = None) -> CaseResult:
+def run_case(
+    scene: Scene,
+    case: str,
+    which: str | None = None,
+    integrator: str | None = None,
+    modes: int | None = None,
+    truncation: bool = True,
+    progress=None,
+    motion: GroundMotion | None = None,
+    pillar_modes: PillarModes | None = None,
+) -> CaseResult:
     """Run one case of the scene; for the modal model also with k + 1 modes.
     ``motion`` (earthquake) defaults to the scene's [excitation];
     ``pillar_modes``: the modal model's candidate modes (needed when
@@ -145,12 +172,11 @@ def run_case(scene: Scene, case: str, which: str | None = None, integrator: str 
         motion = no_motion()
     elif motion is None:
         motion = scene_motion(scene)
-    if which == "beam":                                    # before the beam is built
+    if which == "beam":  # before the beam is built
         check_full_order_budget(scene, case, motion, integrator)
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, case, motion)
     model, info = build_model(scene, which, top, modes, pillar_modes)
-    settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" \
-        else (None, None)
+    settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" else (None, None)
     result = _run_on(scene, case, model, motion, integrator, {"model_info": info}, settings)
     if rule is not None:
         result.run.stats["step_rule"] = rule.to_json()
@@ -160,23 +186,31 @@ def run_case(scene: Scene, case: str, which: str | None = None, integrator: str 
     return result
 
 
-def with_truncation(scene: Scene, result: CaseResult, motion: GroundMotion | None, integrator: str | None = None,
-                    pillar_modes: PillarModes | None = None, progress=None) -> CaseResult:
+def with_truncation(
+    scene: Scene,
+    result: CaseResult,
+    motion: GroundMotion | None,
+    integrator: str | None = None,
+    pillar_modes: PillarModes | None = None,
+    progress=None,
+) -> CaseResult:
     """A modal model's result with its truncation estimate: the same case with k + 1 modes."""
     model = result.model
-    assert model.pillar_modes is not None           # a modal model's result
+    assert model.pillar_modes is not None  # a modal model's result
     k = model.pillar_modes.count
     if progress:
         progress(f"truncation check: the same case with {k + 1} modes")
     model2, _ = build_model(scene, "modal", modes=k + 1, pillar_modes=pillar_modes)
     assert model2.pillar_modes is not None
     if model2.pillar_modes.count == k:
-        trunc = {"modes": k, "modes_check": None,
-                 "statement": f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
-                              f"offers only {k} X bending modes (for fem3d: raise modal.n_modes)"}
+        trunc = {
+            "modes": k,
+            "modes_check": None,
+            "statement": f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
+            f"offers only {k} X bending modes (for fem3d: raise modal.n_modes)",
+        }
     else:
-        trunc = truncation_estimate(result, _run_on(scene, result.case, model2, motion or no_motion(),
-                                                    integrator))
+        trunc = truncation_estimate(result, _run_on(scene, result.case, model2, motion or no_motion(), integrator))
     return replace(result, summary=replace(result.summary, truncation=trunc))
 
 
@@ -186,21 +220,30 @@ def truncation_estimate(a: CaseResult, b: CaseResult) -> dict:
     tip_b = np.interp(a.run.t, b.run.t, b.run.tip())
     scale = max(np.max(np.abs(tip_b)), 1e-300)
     pa, pb = a.model.pillar_modes, b.model.pillar_modes
-    assert pa is not None and pb is not None        # modal models' results
-    out = {"modes": pa.count, "modes_check": pb.count,
-           "omega_added": float(pb.omega[-1]),
-           "effective_mass_fraction": pa.effective_mass_fraction(),
-           "effective_mass_fraction_check": pb.effective_mass_fraction(),
-           "omega_final_rel_diff": b.summary.omega_final / a.summary.omega_final - 1
-           if a.summary.omega_final else None,
-           "tip_series_max_rel_diff": float(np.max(np.abs(a.run.tip() - tip_b)) / scale)}
+    assert pa is not None and pb is not None  # modal models' results
+    out = {
+        "modes": pa.count,
+        "modes_check": pb.count,
+        "omega_added": float(pb.omega[-1]),
+        "effective_mass_fraction": pa.effective_mass_fraction(),
+        "effective_mass_fraction_check": pb.effective_mass_fraction(),
+        "omega_final_rel_diff": b.summary.omega_final / a.summary.omega_final - 1 if a.summary.omega_final else None,
+        "tip_series_max_rel_diff": float(np.max(np.abs(a.run.tip() - tip_b)) / scale),
+    }
     for key in ("tip_x", "rotor_x", "rotor_y"):
         out[f"{key}_max_rel_diff"] = mb[key] / ma[key] - 1 if ma[key] > 0 else None
     return out
 
 
-def _run_on(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion,
-            integrator: str | None, extra: dict | None = None, settings: Settings | None = None) -> CaseResult:
+def _run_on(
+    scene: Scene,
+    case: str,
+    model: RotorStructure,
+    motion: GroundMotion,
+    integrator: str | None,
+    extra: dict | None = None,
+    settings: Settings | None = None,
+) -> CaseResult:
     d, L, sim = scene.drive, scene.load, scene.simulate
     st = settings or settings_of(scene, integrator)
     M0, s, k = d.torque_at_zero, d.slope, L.coefficient
@@ -211,8 +254,7 @@ def _run_on(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion
         drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
         if sim.runup_initial_speed > 0:
             q0, v0 = model.held_whirl_state(sim.runup_initial_speed)
-            run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st,
-                           speed_scale=sim.runup_initial_speed)
+            run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st, speed_scale=sim.runup_initial_speed)
             extra["initial_speed"] = sim.runup_initial_speed
         else:
             run = simulate(model, drive, motion, sim.duration, settings=st)
@@ -234,36 +276,54 @@ def _run_on(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion
         drive = DriveSchedule.constant(M0, s, k)
         t_end = sim.earthquake_duration or motion.end + 5.0
         if t_end <= motion.start:
-            raise InputError(f"simulate.earthquake_duration = {t_end:g} s ends before the ground "
-                             f"motion starts ({motion.start:g} s)")
+            raise InputError(
+                f"simulate.earthquake_duration = {t_end:g} s ends before the ground motion starts ({motion.start:g} s)"
+            )
         run = simulate(model, drive, motion, t_end, q0, v0, settings=st, speed_scale=Wop)
         free = drive.free_speed()
         extra["initial_speed"] = Wop
         extra["excitation"] = sections["excitation"] = motion.sizes()
         extra["excitation_in_model"] = (
             "Eq. 4 as published: c0 q5 + b0 q5' on q1, c2 q5 + b2 q5' on q2 (absolute coordinates)"
-            if model.frame == "absolute" else
-            "relative to the ground, forced by -M r a_g (a_g = q5'' inside the window; the "
-            "displacement step of the written q5 carries no finite acceleration and is not applied)")
+            if model.frame == "absolute"
+            else "relative to the ground, forced by -M r a_g (a_g = q5'' inside the window; the "
+            "displacement step of the written q5 carries no finite acceleration and is not applied)"
+        )
         if motion.kind == "record":
             sections["response_spectrum_check"] = spectrum_check(model, motion, run)
     else:
         w = scene.sweep
         drive = DriveSchedule.sweep(s, k, w.torque_low, w.torque_high, w.rate, w.settle)
         t_end = drive.times[-1]
-        run = simulate(model, drive, motion, t_end, settings=replace(st, samples=max(st.samples, 40 * w.bins)),
-                       speed_scale=drive.free_speed(drive.times[2]))
+        run = simulate(
+            model,
+            drive,
+            motion,
+            t_end,
+            settings=replace(st, samples=max(st.samples, 40 * w.bins)),
+            speed_scale=drive.free_speed(drive.times[2]),
+        )
         free = drive.free_speed()
         extra.update(sweep_analysis(w, s, k, model, run, drive))
         if extra["numeric_jumps"]:
-            extra["rate_convergence"] = rate_convergence(w, s, k, model, st, extra["numeric_jumps"],
-                                                         extra["predicted_jumps"])
+            extra["rate_convergence"] = rate_convergence(
+                w, s, k, model, st, extra["numeric_jumps"], extra["predicted_jumps"]
+            )
         sections["jumps"] = extra["numeric_jumps"]
         for key in ("captured_at", "captured_resonance", "captured_index"):
             sections[key] = extra[key]
-        findings: dict[str, Any] = {key: extra.get(key) for key in (
-            "predicted_jumps", "jump_comparison", "largest_speed_step_ratio", "amplitudes",
-            "rate_check", "no_jump_reason", "rate_convergence")}
+        findings: dict[str, Any] = {
+            key: extra.get(key)
+            for key in (
+                "predicted_jumps",
+                "jump_comparison",
+                "largest_speed_step_ratio",
+                "amplitudes",
+                "rate_check",
+                "no_jump_reason",
+                "rate_convergence",
+            )
+        }
         sections["sweep"] = SweepFindings(**findings)
     return CaseResult(case, model, run, run_summary(run, free, pred, **sections), extra)
 
@@ -273,15 +333,23 @@ def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> dict:
     ground: per pillar mode j, Gamma_j S_d(T_j, zeta_j) (zeta_j of the mode's diagonal
     damping), combined by SRSS (the modes are well separated).  Modal model only."""
     pm = model.pillar_modes
-    assert pm is not None                           # modal model only
+    assert pm is not None  # modal model only
     T = 2 * math.pi / np.asarray(pm.omega, dtype=float)
     zeta = [float(model.damping[j, j] / (2 * pm.modal_mass[j] * pm.omega[j])) for j in range(pm.count)]
     rows = []
     for j in range(pm.count):
         sd = float(response_spectrum(motion, [T[j]], damping=zeta[j])["s_d"][0])
         gamma = float(pm.participation[j] / pm.modal_mass[j])
-        rows.append({"mode": j + 1, "period": float(T[j]), "damping_ratio": zeta[j],
-                     "participation_factor": gamma, "s_d": sd, "contribution": abs(gamma) * sd})
+        rows.append(
+            {
+                "mode": j + 1,
+                "period": float(T[j]),
+                "damping_ratio": zeta[j],
+                "participation_factor": gamma,
+                "s_d": sd,
+                "contribution": abs(gamma) * sd,
+            }
+        )
     return {"modes": rows, "srss_tip_estimate": math.sqrt(sum(r["contribution"] ** 2 for r in rows))}
 
 
@@ -296,9 +364,16 @@ def spectrum_check(model: RotorStructure, motion: GroundMotion, run: Transient) 
     T1, zeta, gamma, sd = first["period"], first["damping_ratio"], first["participation_factor"], first["s_d"]
     est = first["contribution"]
     num = float(np.max(np.abs(run.tip()[run.t >= motion.start])))
-    return {"period": T1, "damping_ratio": zeta, "participation_factor": gamma,
-            "s_d": sd, "tip_estimate": est, "tip_numeric": num,
-            "ratio": num / est if est > 0 else None,
-            "srss_tip_estimate": est_all["srss_tip_estimate"], "modes": est_all["modes"],
-            "note": "first mode alone, rotor as a separate mass: an estimate, not a bound; "
-                    "srss_tip_estimate: every mode kept"}
+    return {
+        "period": T1,
+        "damping_ratio": zeta,
+        "participation_factor": gamma,
+        "s_d": sd,
+        "tip_estimate": est,
+        "tip_numeric": num,
+        "ratio": num / est if est > 0 else None,
+        "srss_tip_estimate": est_all["srss_tip_estimate"],
+        "modes": est_all["modes"],
+        "note": "first mode alone, rotor as a separate mass: an estimate, not a bound; "
+        "srss_tip_estimate: every mode kept",
+    }

@@ -33,12 +33,19 @@ from ..errors import InputError
 from ..provenance import write_result
 from ..scene import MODELS
 from .measures import compare_series, envelope_window
+from .model_run import ModelRun, fem3d_plan, own_duration, run_model
 from .pareto import ParetoStudy
+from .records import (
+    ComparedModel,
+    CompareResult,
+    CompareWindow,
+    ModelErrors,
+    ResponseSpectrum,
+    SpectralMode,
+    reference_of,
+)
 from .references import FullOrderReference
 from .run_records import Fem3dRun
-from .records import (ComparedModel, CompareResult, CompareWindow, ModelErrors, ResponseSpectrum,
-                      SpectralMode, reference_of)
-from .model_run import ModelRun, fem3d_plan, own_duration, run_model
 
 COMPARE_CASES = ("earthquake", "runup")
 DEFAULT_MODELS = {"earthquake": ("modal", "fem3d"), "runup": ("modal", "beam")}
@@ -69,14 +76,29 @@ def common_duration(scene: Scene, case: str, models, motion, study_dir=None) -> 
     if "fem3d" not in models:
         return own, "the case's own duration"
     d = fem3d_plan(scene, case, motion, study_dir=study_dir).duration
-    return d, (f"the 3D full order's duration ([full_order]); every model runs {d:g} s"
-               if d < own else "the case's own duration")
+    return d, (
+        f"the 3D full order's duration ([full_order]); every model runs {d:g} s"
+        if d < own
+        else "the case's own duration"
+    )
 
 
-def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict, progress=None,
-                   write: bool = True, run_charts=None, compare_chart=None, pareto: bool = False,
-                   pareto_chart=None, workers: int = 1, chain=None,
-                   timings: dict | None = None) -> CompareResult:
+def compare_models(
+    scene: Scene,
+    case: str,
+    models,
+    out: Path,
+    provenance: dict,
+    progress=None,
+    write: bool = True,
+    run_charts=None,
+    compare_chart=None,
+    pareto: bool = False,
+    pareto_chart=None,
+    workers: int = 1,
+    chain=None,
+    timings: dict | None = None,
+) -> CompareResult:
     """Run ``models`` on ``case`` and compare them (see the module text).
 
     ``run_charts`` draws each model's figures (see ``files.write_model_files``);
@@ -92,9 +114,11 @@ def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict,
     into every file written, beside the scene, versions and machine.
     """
     import time
+
     start, given = time.perf_counter(), scene
     from ..reduced.models import scene_motion
     from ..scene import override
+
     models = tuple(models)
     # each model runs the case only: the passing-torque batch belongs to the scene's own
     # run on the headline model (simulate), not to a comparison of models
@@ -104,11 +128,13 @@ def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict,
     motion = scene_motion(scene) if case == "earthquake" else None
     if chain is None and any(m in ("modal", "fem3d") for m in models):
         from ..chain import resolve
+
         chain = resolve(scene, out, motion=motion, progress=progress)
     window = None
     if case == "runup" and "fem3d" in models:
         # the 3D run-up through the resonances only; every model from the same state
         from .window import runup_window, window_overrides
+
         if progress:
             progress("compare runup: the window through the resonances (the ROM's run-up from rest)")
         window = runup_window(scene, chain.modes)
@@ -126,20 +152,36 @@ def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict,
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
         begun = time.perf_counter()
-        run = run_model(scene, case, m, progress=progress, motion=motion, duration=duration,
-                        chain=chain, field_dir=out if write else None, study_dir=out,
-                        field_stem=f"{compare_stem(case, m)}")
+        run = run_model(
+            scene,
+            case,
+            m,
+            progress=progress,
+            motion=motion,
+            duration=duration,
+            chain=chain,
+            field_dir=out if write else None,
+            study_dir=out,
+            field_stem=f"{compare_stem(case, m)}",
+        )
         if write:
             from .files import write_model_files
-            results[m] = write_model_files(out, scene, run, provenance,
-                                           {"simulate": time.perf_counter() - begun}, last_run=False,
-                                           charts=run_charts, stem=compare_stem(case, m))
+
+            results[m] = write_model_files(
+                out,
+                scene,
+                run,
+                provenance,
+                {"simulate": time.perf_counter() - begun},
+                last_run=False,
+                charts=run_charts,
+                stem=compare_stem(case, m),
+            )
         else:
             results[m] = run.result
         runs[m] = run
         if progress:
-            progress(f"compare {case}: {m} done in {run.record.wall_seconds:.3g} s "
-                     f"({run.record.dofs} dofs)")
+            progress(f"compare {case}: {m} done in {run.record.wall_seconds:.3g} s ({run.record.dofs} dofs)")
     ref = reference_of(models)
     per_model = {m: _per_model(case, m, results[m]) for m in models}
     rd = runs[ref].data
@@ -151,39 +193,57 @@ def compare_models(scene: Scene, case: str, models, out: Path, provenance: dict,
             continue
         d = runs[m].data
         pm, pr = per_model[m], per_model[ref]
-        series = compare_series(d["t"], d["tip_x_relative"], t_ref, x_ref, window=span,
-                                theta=d.get("theta"), theta_ref=rd.get("theta"))
+        series = compare_series(
+            d["t"], d["tip_x_relative"], t_ref, x_ref, window=span, theta=d.get("theta"), theta_ref=rd.get("theta")
+        )
         errors[m] = ModelErrors(
             tip_history_error=series.history_error,
-            peak_tip_difference=(pm.peak_tip_relative / pr.peak_tip_relative - 1
-                                 if pr.peak_tip_relative else None),
+            peak_tip_difference=(pm.peak_tip_relative / pr.peak_tip_relative - 1 if pr.peak_tip_relative else None),
             omega_final_difference=pm.omega_final / pr.omega_final - 1 if pr.omega_final else None,
-            tip_envelope_error=series.envelope_error, envelope_window=series.window,
-            angle_drift=series.angle_drift, angle_drift_final=series.angle_drift_final,
-            lead=series.lead, lead_why=series.why)
+            tip_envelope_error=series.envelope_error,
+            envelope_window=series.window,
+            angle_drift=series.angle_drift,
+            angle_drift_final=series.angle_drift_final,
+            lead=series.lead,
+            lead_why=series.why,
+        )
     walls = {m: per_model[m].wall_seconds for m in models}
     cost = {m: walls[m] / walls[ref] if walls[ref] > 0 else None for m in models}
     chart = f"compare_{case}.png"
     spectrum = _spectrum(scene, motion, runs) if case == "earthquake" else None
     study = None if pending is None else _finish_pareto(scene, pending, out, write, pareto_chart)
     result = CompareResult(
-        case=case, models_run=models, reference=ref,
-        excitation=motion.sizes() if motion is not None else None, per_model=per_model,
-        errors=errors, cost_ratio=cost, chart=chart,
+        case=case,
+        models_run=models,
+        reference=ref,
+        excitation=motion.sizes() if motion is not None else None,
+        per_model=per_model,
+        errors=errors,
+        cost_ratio=cost,
+        chart=chart,
         window=CompareWindow(float(t_ref[0]), float(t_ref[-1]), float(duration), why, window),
         spectrum=spectrum,
         full_order_reference=_full_order_reference(runs),
-        pareto=study)
+        pareto=study,
+    )
     if write:
         if compare_chart is not None:
             histories = [(m, runs[m].data["t"], runs[m].data["tip_x_relative"]) for m in models]
-            compare_chart(Path(out) / chart, histories, ref,
-                          f"{scene.name}: {case}, tip relative to the ground, reference {ref}",
-                          errors={m: e.tip_history_error for m, e in errors.items()},
-                          walls=walls)
+            compare_chart(
+                Path(out) / chart,
+                histories,
+                ref,
+                f"{scene.name}: {case}, tip relative to the ground, reference {ref}",
+                errors={m: e.tip_history_error for m, e in errors.items()},
+                walls=walls,
+            )
         head = {"command": "compare", **provenance, "scene": given.to_dict()}
-        write_result(Path(out) / f"compare_{case}.json", result, head,
-                     {**(timings or {}), "compare": time.perf_counter() - start})
+        write_result(
+            Path(out) / f"compare_{case}.json",
+            result,
+            head,
+            {**(timings or {}), "compare": time.perf_counter() - start},
+        )
     return result
 
 
@@ -199,23 +259,28 @@ def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain
     from ..reduced.band import forcing_top
     from ..reduced.models import build_model
     from .pareto import ParetoRunning, plan_pareto
+
     mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out).mesh
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "earthquake", motion)
     _, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
-    plan = plan_pareto(scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh,
-                       pillar_modes=chain.modes)
+    plan = plan_pareto(
+        scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh, pillar_modes=chain.modes
+    )
     return ParetoRunning(plan, max(0, workers - 1), progress)
 
 
 def _finish_pareto(scene: Scene, pending, out: Path, write: bool, chart) -> ParetoStudy:
     """The study, its chart drawn."""
     from dataclasses import replace
+
     study, _ = pending.finish()
     if write and chart is not None:
         name = "compare_earthquake_pareto.png"
-        chart(study.to_json(), Path(out) / name,
-              f"{scene.name}: El Centro, speed against accuracy (errors against "
-              f"{study.reference['label']})")
+        chart(
+            study.to_json(),
+            Path(out) / name,
+            f"{scene.name}: El Centro, speed against accuracy (errors against {study.reference['label']})",
+        )
         study = replace(study, chart=name)
     return study
 
@@ -233,38 +298,54 @@ def _per_model(case: str, m: str, r: dict) -> ComparedModel:
     stem = compare_stem(case, m)
     pillar = r.get("pillar_model")
     return ComparedModel(
-        peak_tip_relative=ma["tip_x_relative"], peak_tip_absolute=ma["tip_x_absolute"],
-        peak_shaft_deflection=ma["shaft_deflection_x"], omega_final=r["omega_final"],
-        wall_seconds=r["wall_seconds"], compile_seconds=r.get("compile_seconds"), dofs=r["dofs"],
-        ok=r["ok"], warnings=tuple(r.get("warnings") or ()),
+        peak_tip_relative=ma["tip_x_relative"],
+        peak_tip_absolute=ma["tip_x_absolute"],
+        peak_shaft_deflection=ma["shaft_deflection_x"],
+        omega_final=r["omega_final"],
+        wall_seconds=r["wall_seconds"],
+        compile_seconds=r.get("compile_seconds"),
+        dofs=r["dofs"],
+        ok=r["ok"],
+        warnings=tuple(r.get("warnings") or ()),
         pillar_model=None if pillar is None else PillarModel.from_json(pillar),
-        json=f"{stem}.json", npz=f"{stem}.npz")
+        json=f"{stem}.json",
+        npz=f"{stem}.npz",
+    )
 
 
 def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
     """The record's spectrum, the pillar's modal periods, the ROM's spectral peak tip."""
     from ..reduced.band import forcing_top
-    from .cases import spectral_estimate
     from ..reduced.excitation import response_spectrum
     from ..reduced.models import build_model
+    from .cases import spectral_estimate
+
     if "modal" in runs:
         model = runs["modal"].case_result.model
         computed = runs["modal"].record.max_abs["tip_x_relative"]
     else:
         from ..scene import override
+
         beam = override(scene, ["modal_model.source=beam"])
-        model, _ = build_model(beam, "modal", scene.modal_model.band_factor
-                               * forcing_top(scene.drive, scene.load, scene.sweep, "earthquake", motion))
+        model, _ = build_model(
+            beam,
+            "modal",
+            scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "earthquake", motion),
+        )
         computed = None
     lo, hi, n = SPECTRUM_PERIODS
     periods = np.geomspace(lo, hi, n)
     rs = response_spectrum(motion, periods, damping=0.05)
     est = spectral_estimate(model, motion)
     return ResponseSpectrum(
-        period=tuple(periods.tolist()), psa=tuple(np.asarray(rs["s_a"]).tolist()), damping=0.05,
+        period=tuple(periods.tolist()),
+        psa=tuple(np.asarray(rs["s_a"]).tolist()),
+        damping=0.05,
         mode_periods=tuple(row["period"] for row in est["modes"]),
-        spectral_peak_tip=est["srss_tip_estimate"], computed_peak_tip=computed,
+        spectral_peak_tip=est["srss_tip_estimate"],
+        computed_peak_tip=computed,
         modes=tuple(SpectralMode(**row) for row in est["modes"]),
         note="psa at 5 % damping (eqsig); the spectral estimate takes each mode's own damping "
-             "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
-             "as a separate mass: an estimate, not a bound")
+        "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
+        "as a separate mass: an estimate, not a bound",
+    )

@@ -25,9 +25,23 @@ import numpy as np
 from ..provenance import atomic_path, with_provenance, write_result, write_text
 from .model_run import ModelRun
 
-CSV_COLUMNS = ("t", "Omega", "tip_x", "rotor_x", "rotor_y", "ground_x", "ground_acceleration",
-               "tip_x_relative", "tip_x_absolute", "shaft_deflection_x",     # the old ones first
-               "base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
+CSV_COLUMNS = (
+    "t",
+    "Omega",
+    "tip_x",
+    "rotor_x",
+    "rotor_y",
+    "ground_x",
+    "ground_acceleration",
+    "tip_x_relative",
+    "tip_x_absolute",
+    "shaft_deflection_x",  # the old ones first
+    "base_moment",
+    "base_shear",
+    "base_axial",
+    "base_stress",
+    "bearing_force",
+)
 NPZ_SCALARS = ("tip_x_frame", "model", "case")
 
 
@@ -35,8 +49,16 @@ def model_stem(case: str, model: str) -> str:
     return f"simulate_{case}_{model}"
 
 
-def write_model_files(out: Path, scene: Scene, run: ModelRun, provenance: dict, timings: dict | None = None,
-                      last_run: bool = True, charts=None, stem: str | None = None) -> dict:
+def write_model_files(
+    out: Path,
+    scene: Scene,
+    run: ModelRun,
+    provenance: dict,
+    timings: dict | None = None,
+    last_run: bool = True,
+    charts=None,
+    stem: str | None = None,
+) -> dict:
     """Write the model's files (and with ``last_run`` the ``simulate_<case>.*`` copies);
     returns the result dict with ``files`` and ``figures`` (those of the generic names
     when ``last_run``, else the model's) and ``model_files``.
@@ -55,9 +77,11 @@ def write_model_files(out: Path, scene: Scene, run: ModelRun, provenance: dict, 
     model_files["figures"] = [f["file"] for f in figures]
     result = dict(run.result)
     result["model_files"] = model_files
-    doc = with_provenance({**result, "files": {k: str(v) for k, v in files.items()},
-                           "figures": figures},
-                          {"command": "simulate", **provenance, "scene": scene.to_dict()}, timings)
+    doc = with_provenance(
+        {**result, "files": {k: str(v) for k, v in files.items()}, "figures": figures},
+        {"command": "simulate", **provenance, "scene": scene.to_dict()},
+        timings,
+    )
     write_result(out / f"{stem}.json", doc)
     if not last_run:
         result.update(files={k: str(v) for k, v in files.items()}, figures=figures)

@@ -20,6 +20,7 @@ from ..reduced.internal_forces import ForceTruncation
 @dataclass(frozen=True)
 class BaseReactions(JsonRecord):
     """What the clamp carries, peaks over the run (the foundation designer's loads)."""
+
     moment: float
     """largest |M(0, t)| (N*m)"""
     moment_time: float
@@ -43,6 +44,7 @@ class BaseReactions(JsonRecord):
 @dataclass(frozen=True)
 class ShaftDemand(JsonRecord):
     """The shaft's deflection and force, peaks over the run."""
+
     deflection: float
     """largest radial shaft deflection sqrt(d_x**2 + d_y**2) (m)"""
     deflection_time: float
@@ -63,6 +65,7 @@ class ShaftDemand(JsonRecord):
 @dataclass(frozen=True)
 class InternalForcesSummary(JsonRecord):
     """The ``internal_forces`` block of a transient's JSON (SI units)."""
+
     model: str
     """"modal", "beam", "fem3d\""""
     method: str

@@ -43,9 +43,16 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..reduced.internal_forces import (STANDARD_GRAVITY, axial_force, cantilever_tip_statics,
-                                       extreme_fibre_stress, force_truncation, hermite_peak,
-                                       modal_damping, superpose)
+from ..reduced.internal_forces import (
+    STANDARD_GRAVITY,
+    axial_force,
+    cantilever_tip_statics,
+    extreme_fibre_stress,
+    force_truncation,
+    hermite_peak,
+    modal_damping,
+    superpose,
+)
 from ..reduced.pillar import section_of
 from .force_records import BaseReactions, InternalForcesSummary, ShaftDemand
 
@@ -68,16 +75,18 @@ def shaft_demand(scene: Scene, t, dx, dy, vx, vy, sampled: bool) -> tuple[ShaftD
     radial = np.hypot(dx, dy)
     force = np.hypot(c2 * dx + b2 * vx, c2 * dy + b2 * vy)
     i, j = int(np.argmax(radial)), int(np.argmax(force))
-    return ShaftDemand(float(radial[i]), float(t[i]), float(c2 * radial[i]), float(force[j]),
-                       float(t[j]), sampled), force
+    return ShaftDemand(
+        float(radial[i]), float(t[i]), float(c2 * radial[i]), float(force[j]), float(t[j]), sampled
+    ), force
 
 
 # --------------------------------------------------------------------------
 # Assembling the fields
 
 
-def _summarise(scene: Scene, model: str, method: str, t, heights, moment, shear, axial, moment_rate,
-               shaft: ShaftDemand, **extra) -> tuple[InternalForcesSummary, dict]:
+def _summarise(
+    scene: Scene, model: str, method: str, t, heights, moment, shear, axial, moment_rate, shaft: ShaftDemand, **extra
+) -> tuple[InternalForcesSummary, dict]:
     """The JSON block and the series of section forces (n_t, n_z) at heights (m)."""
     sec = section_of(scene.pillar)
     i0 = int(np.argmin(np.abs(heights)))
@@ -93,17 +102,38 @@ def _summarise(scene: Scene, model: str, method: str, t, heights, moment, shear,
     s_peak, s_time = (s_peak_m, m_time) if s_peak_m >= stress[k] else (float(stress[k]), float(t[k]))
     n_at = float(np.interp(s_time, t, N0))
     v = int(np.argmax(np.abs(V0)))
-    base = BaseReactions(float(m_peak), float(m_time), float(abs(V0[v])), float(t[v]), float(N0.min()),
-                         float(N0.max()), float(s_peak), float(s_time), n_at / sec.area / s_peak)
+    base = BaseReactions(
+        float(m_peak),
+        float(m_time),
+        float(abs(V0[v])),
+        float(t[v]),
+        float(N0.min()),
+        float(N0.max()),
+        float(s_peak),
+        float(s_time),
+        n_at / sec.area / s_peak,
+    )
     static = axial_force(heights, sec.mass_per_length, scene.pillar.height, top_mass(scene))
     summary = InternalForcesSummary(
-        model=model, method=method, heights=tuple(map(float, heights)),
+        model=model,
+        method=method,
+        heights=tuple(map(float, heights)),
         moment_envelope=tuple(map(float, np.max(np.abs(moment), axis=0))),
         shear_envelope=tuple(map(float, np.max(np.abs(shear), axis=0))),
-        axial_static=tuple(map(float, static)), base=base, shaft=shaft, **extra)
-    series = {"base_moment": M0, "base_shear": V0, "base_axial": N0, "base_stress": stress,
-              "section_heights": np.asarray(heights, float), "section_moment": moment,
-              "section_shear": shear}
+        axial_static=tuple(map(float, static)),
+        base=base,
+        shaft=shaft,
+        **extra,
+    )
+    series = {
+        "base_moment": M0,
+        "base_shear": V0,
+        "base_axial": N0,
+        "base_stress": stress,
+        "section_heights": np.asarray(heights, float),
+        "section_moment": moment,
+        "section_shear": shear,
+    }
     return summary, series
 
 
@@ -112,14 +142,17 @@ def _attach(run, summary: InternalForcesSummary | None, series: dict, force, ext
     data = dict(run.data)
     ma = dict(run.record.max_abs or {})
     base = summary.base if summary is not None else None
-    ma.update(base_moment=None if base is None else base.moment,
-              base_shear=None if base is None else base.shear,
-              base_stress=None if base is None else base.stress, **extra_max)
+    ma.update(
+        base_moment=None if base is None else base.moment,
+        base_shear=None if base is None else base.shear,
+        base_stress=None if base is None else base.stress,
+        **extra_max,
+    )
     record = replace(run.record.with_max_abs(ma), internal_forces=summary)
     t = np.asarray(data["t"], dtype=float)
     for key, values in series.items():
         data[key] = values
-    data["bearing_force"] = np.asarray(force, dtype=float)[:len(t)]
+    data["bearing_force"] = np.asarray(force, dtype=float)[: len(t)]
     return replace(run, record=record, data=data)
 
 
@@ -127,8 +160,11 @@ def _shaft_of_series(scene: Scene, data: dict, v_rotor=None) -> tuple[ShaftDeman
     t = np.asarray(data["t"], dtype=float)
     e = scene.rotor.eccentricity
     dx = np.asarray(data["shaft_deflection_x"], dtype=float)
-    dy = (np.asarray(data["shaft_deflection_y"], dtype=float) if "shaft_deflection_y" in data
-          else np.asarray(data["rotor_y"], dtype=float) - e * np.sin(np.asarray(data["theta"], dtype=float)))
+    dy = (
+        np.asarray(data["shaft_deflection_y"], dtype=float)
+        if "shaft_deflection_y" in data
+        else np.asarray(data["rotor_y"], dtype=float) - e * np.sin(np.asarray(data["theta"], dtype=float))
+    )
     if v_rotor is None:
         vx = np.gradient(np.asarray(data["rotor_x"], dtype=float), t)
         vy = np.gradient(np.asarray(data["rotor_y"], dtype=float), t)
@@ -168,6 +204,7 @@ def _vertical_axial(scene: Scene, data, heights) -> np.ndarray:
 def _beam_forces(scene: Scene, run, res, shaft):
     from ..reduced.beam_fe import section_forces
     from ..reduced.pillar_modes import beam_properties
+
     info = res.extra["model_info"]
     n, theory = info["elements"], info["theory"]
     bp = beam_properties(scene.pillar, theory)
@@ -178,39 +215,65 @@ def _beam_forces(scene: Scene, run, res, shaft):
     _, rate = section_forces(bp, n, theory, pad(v))
     heights = np.linspace(0.0, bp.length, n + 1)
     axial = _vertical_axial(scene, run.data, heights)
-    return _summarise(scene, "beam", f"element end forces K_e u_e of the full-order {theory} beam "
-                      f"({n} elements), mean of the two elements at an inner node", run.data["t"],
-                      heights, moment, shear, axial, rate[0], shaft)
+    return _summarise(
+        scene,
+        "beam",
+        f"element end forces K_e u_e of the full-order {theory} beam "
+        f"({n} elements), mean of the two elements at an inner node",
+        run.data["t"],
+        heights,
+        moment,
+        shear,
+        axial,
+        rate[0],
+        shaft,
+    )
 
 
 def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaft, progress):
     from ..reduced.band import forcing_top
-    from .cases import run_case
     from ..reduced.models import candidate_modes
     from ..reduced.pillar_modes import beam_properties
     from ..scene import override
+    from .cases import run_case
+
     candidates = candidate_modes(scene, pillar_modes)
     if not candidates.has_resultants:
         return None, {}
     sec = section_of(scene.pillar)
     bp = beam_properties(scene.pillar, scene.modal_model.theory)
-    statics = cantilever_tip_statics(bp.youngs_modulus, bp.second_moment,
-                                     bp.shear_coefficient * bp.shear_modulus * bp.area, bp.length,
-                                     sec.mass_per_length, scene.gondola.mass)
+    statics = cantilever_tip_statics(
+        bp.youngs_modulus,
+        bp.second_moment,
+        bp.shear_coefficient * bp.shear_modulus * bp.area,
+        bp.length,
+        sec.mass_per_length,
+        scene.gondola.mass,
+    )
     band = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, run.case, motion)
-    trunc = force_truncation(candidates, band, modal_damping(candidates, scene.pillar.damping),
-                             scene.pillar.height, sec.mass_per_length, scene.gondola.mass, statics)
+    trunc = force_truncation(
+        candidates,
+        band,
+        modal_damping(candidates, scene.pillar.damping),
+        scene.pillar.height,
+        sec.mass_per_length,
+        scene.gondola.mass,
+        statics,
+    )
     k_run = res.model.pillar_modes.count
     k = min(max(k_run, trunc.modes_for_forces), candidates.count)
     data = run.data
     if k > k_run:
         if progress:
-            progress(f"section forces: the base moment needs {k} modes (the run kept {k_run}); "
-                     "the case again with them")
+            progress(
+                f"section forces: the base moment needs {k} modes (the run kept {k_run}); the case again with them"
+            )
         quiet = override(scene, ["simulate.threshold=false"])
         from .case_summary import series
-        again = run_case(quiet, run.case, "modal", integrator, k, truncation=False, motion=motion,
-                         pillar_modes=pillar_modes)
+
+        again = run_case(
+            quiet, run.case, "modal", integrator, k, truncation=False, motion=motion, pillar_modes=pillar_modes
+        )
         data = series(again.run, scene.simulate.samples)
         pm = again.model.pillar_modes
     else:
@@ -227,17 +290,35 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     heights = np.asarray(pm.section_heights, dtype=float)
     i0 = int(np.argmin(np.abs(heights)))
     axial = _vertical_axial(scene, run.data, heights)
-    method = (f"modal superposition of {k} modes' section resultants ({pm.source}); for "
-              f"{100 * trunc.tolerance:g} % over the band the base moment needs "
-              f"{trunc.modes_needed_base_moment or f'more than {trunc.modes_available}'}, the tip "
-              f"{trunc.modes_needed_tip}; the base shear's error with {k}: "
-              f"{100 * trunc.rows[k - 1].base_shear:.2g} %")
-    note = ("" if k == k_run else
-            f"the case's run kept {k_run} modes (its band); the section forces come from the same "
-            f"case run again with {k}")
-    return _summarise(scene, "modal", method, t, heights, moment, shear, axial,
-                      rate @ np.asarray(pm.moment_shapes)[i0], shaft, modes=k, modes_in_run=k_run,
-                      truncation=trunc, note=note)
+    method = (
+        f"modal superposition of {k} modes' section resultants ({pm.source}); for "
+        f"{100 * trunc.tolerance:g} % over the band the base moment needs "
+        f"{trunc.modes_needed_base_moment or f'more than {trunc.modes_available}'}, the tip "
+        f"{trunc.modes_needed_tip}; the base shear's error with {k}: "
+        f"{100 * trunc.rows[k - 1].base_shear:.2g} %"
+    )
+    note = (
+        ""
+        if k == k_run
+        else f"the case's run kept {k_run} modes (its band); the section forces come from the same "
+        f"case run again with {k}"
+    )
+    return _summarise(
+        scene,
+        "modal",
+        method,
+        t,
+        heights,
+        moment,
+        shear,
+        axial,
+        rate @ np.asarray(pm.moment_shapes)[i0],
+        shaft,
+        modes=k,
+        modes_in_run=k_run,
+        truncation=trunc,
+        note=note,
+    )
 
 
 # --------------------------------------------------------------------------
@@ -247,7 +328,9 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
 def stress_observer(scene: Scene, duration: float, field_dir, stem: str):
     """The observer a 3D run hands its states to (rotorpillar.fem3d.stress)."""
     from pathlib import Path
+
     from ..fem3d.stress import StressRecovery
+
     path = None if field_dir is None else Path(field_dir) / f"{stem}.xdmf"
     return StressRecovery(scene.pillar, top_mass(scene), float(duration), path)
 
@@ -256,15 +339,25 @@ def with_fem3d_forces(scene: Scene, run, recovered, heights):
     """fem3d: ``recovered`` = StressRecovery.finish()'s (t, resultants, von Mises, xdmf path),
     ``heights`` its cuts' (m)."""
     from pathlib import Path
+
     t, res, vm, path = recovered
     shaft, force = _shaft_of_series(scene, run.data)
     heights = np.asarray(heights, dtype=float)
     summary, series = _summarise(
-        scene, "fem3d", "nodal forces of the elements beside each element-layer cut, on the rigid "
+        scene,
+        "fem3d",
+        "nodal forces of the elements beside each element-layer cut, on the rigid "
         "sections' motions (rotorpillar.fem3d.sections; mean of the two sides), at every output time; "
-        f"g = {STANDARD_GRAVITY} for the static axial force", t, heights, res[:, :, 1], res[:, :, 0],
-        res[:, :, 2], None, shaft, von_mises=vm, stress_field=None if path is None else Path(path).name)
-    extra_max = {"shaft_deflection": shaft.deflection, "bearing_force": shaft.bearing_force,
-                 "von_mises": vm.peak.value}
+        f"g = {STANDARD_GRAVITY} for the static axial force",
+        t,
+        heights,
+        res[:, :, 1],
+        res[:, :, 0],
+        res[:, :, 2],
+        None,
+        shaft,
+        von_mises=vm,
+        stress_field=None if path is None else Path(path).name,
+    )
+    extra_max = {"shaft_deflection": shaft.deflection, "bearing_force": shaft.bearing_force, "von_mises": vm.peak.value}
     return _attach(run, summary, series, force, extra_max)
-

@@ -29,16 +29,16 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..reduced.models import build_model
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.integration import FIXED_STEP, Settings, simulate
+from ..reduced.models import build_model
 from ..scene import SCIPY_METHODS, Scene
 
 ADAPTIVE = ("dp5",) + SCIPY_METHODS
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
 RTOLS_IMPLICIT = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
-STEP_REFINEMENTS = (1, 2, 4, 8, 16, 32, 64, 128)     # steps per output interval
+STEP_REFINEMENTS = (1, 2, 4, 8, 16, 32, 64, 128)  # steps per output interval
 FAIL = 0.1
 
 
@@ -49,8 +49,7 @@ def _error(run, ref) -> float:
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
 
 
-def accuracy_study(model, drive, duration: float, samples: int = 401, quick: bool = False,
-                   progress=None) -> dict:
+def accuracy_study(model, drive, duration: float, samples: int = 401, quick: bool = False, progress=None) -> dict:
     """Experiment 1: error against cost on a run-up."""
     ref = simulate(model, drive, no_motion(), duration, settings=Settings("dp5", rtol=1e-12, samples=samples))
     check = simulate(model, drive, no_motion(), duration, settings=Settings("DOP853", rtol=1e-12, samples=samples))
@@ -64,37 +63,64 @@ def accuracy_study(model, drive, duration: float, samples: int = 401, quick: boo
             progress(f"integrators: {m}")
         for rtol in ladder:
             run = simulate(model, drive, no_motion(), duration, settings=Settings(m, rtol=rtol, samples=samples))
-            rows.append({"method": m, "family": "adaptive", "setting": rtol, "setting_name": "rtol",
-                         "error": _error(run, ref), "wall_seconds": run.stats["wall_seconds"],
-                         "nfev": run.stats["nfev"], "status": run.stats["status"]})
+            rows.append(
+                {
+                    "method": m,
+                    "family": "adaptive",
+                    "setting": rtol,
+                    "setting_name": "rtol",
+                    "error": _error(run, ref),
+                    "wall_seconds": run.stats["wall_seconds"],
+                    "nfev": run.stats["nfev"],
+                    "status": run.stats["status"],
+                }
+            )
     spacing = duration / (samples - 1)
     for m in FIXED_STEP:
         if progress:
             progress(f"integrators: {m}")
-        for k in (STEP_REFINEMENTS[::2] if quick else STEP_REFINEMENTS):
+        for k in STEP_REFINEMENTS[::2] if quick else STEP_REFINEMENTS:
             h = spacing / k
-            run = simulate(model, drive, no_motion(), duration,
-                           settings=Settings(m, time_step=h, samples=samples))
-            rows.append({"method": m, "family": "fixed", "setting": h, "setting_name": "time_step",
-                         "steps_per_rotor_period": 2 * math.pi / (W_max * h),
-                         "error": _error(run, ref), "wall_seconds": run.stats["wall_seconds"],
-                         "nfev": run.stats["nfev"], "status": run.stats["status"]})
-    return {"duration": duration, "samples": samples, "omega_max": W_max,
-            "reference": {"method": "dp5", "rtol": 1e-12, "nfev": ref.stats["nfev"],
-                          "wall_seconds": ref.stats["wall_seconds"],
-                          "agreement_with_DOP853_1e-12": ref_agreement},
-            "rows": rows, "per_method": _per_method(rows)}
+            run = simulate(model, drive, no_motion(), duration, settings=Settings(m, time_step=h, samples=samples))
+            rows.append(
+                {
+                    "method": m,
+                    "family": "fixed",
+                    "setting": h,
+                    "setting_name": "time_step",
+                    "steps_per_rotor_period": 2 * math.pi / (W_max * h),
+                    "error": _error(run, ref),
+                    "wall_seconds": run.stats["wall_seconds"],
+                    "nfev": run.stats["nfev"],
+                    "status": run.stats["status"],
+                }
+            )
+    return {
+        "duration": duration,
+        "samples": samples,
+        "omega_max": W_max,
+        "reference": {
+            "method": "dp5",
+            "rtol": 1e-12,
+            "nfev": ref.stats["nfev"],
+            "wall_seconds": ref.stats["wall_seconds"],
+            "agreement_with_DOP853_1e-12": ref_agreement,
+        },
+        "rows": rows,
+        "per_method": _per_method(rows),
+    }
 
 
 def _cost_at(rows, target):
     """Wall time and evaluations to reach ``target`` error, log-interpolated along the ladder."""
-    pts = sorted(((r["wall_seconds"], r["error"], r["nfev"]) for r in rows
-                  if math.isfinite(r["error"]) and r["error"] > 0), key=lambda p: p[0])
+    pts = sorted(
+        ((r["wall_seconds"], r["error"], r["nfev"]) for r in rows if math.isfinite(r["error"]) and r["error"] > 0),
+        key=lambda p: p[0],
+    )
     for (w0, e0, n0), (w1, e1, n1) in zip(pts, pts[1:]):
         if e0 > target >= e1:
             f = (math.log(target) - math.log(e0)) / (math.log(e1) - math.log(e0))
-            return (math.exp(math.log(w0) + f * (math.log(w1) - math.log(w0))),
-                    n0 + f * (n1 - n0))
+            return (math.exp(math.log(w0) + f * (math.log(w1) - math.log(w0))), n0 + f * (n1 - n0))
     ok = [p for p in pts if p[1] <= target]
     return (ok[0][0], ok[0][2]) if ok else (None, None)
 
@@ -106,15 +132,20 @@ def _per_method(rows) -> dict:
         bad = [r for r in mine if not math.isfinite(r["error"]) or r["error"] > FAIL]
         if mine[0]["family"] == "fixed":
             worst_ok = min((r["steps_per_rotor_period"] for r in mine if r not in bad), default=None)
-            fails = (f"error > {100 * FAIL:g} % at {max(r['steps_per_rotor_period'] for r in bad):.3g} "
-                     "steps per rotor period (top speed) or fewer" if bad else
-                     f"no failure down to {min(r['steps_per_rotor_period'] for r in mine):.3g} steps per period")
+            fails = (
+                f"error > {100 * FAIL:g} % at {max(r['steps_per_rotor_period'] for r in bad):.3g} "
+                "steps per rotor period (top speed) or fewer"
+                if bad
+                else f"no failure down to {min(r['steps_per_rotor_period'] for r in mine):.3g} steps per period"
+            )
         else:
             worst_ok = None
-            fails = (f"error > {100 * FAIL:g} % at rtol >= {min(r['setting'] for r in bad):g}" if bad else
-                     f"no failure up to rtol {max(r['setting'] for r in mine):g}")
-        entry = {"fails": fails, "coarsest_ok_steps_per_period": worst_ok,
-                 "best_error": min(r["error"] for r in mine)}
+            fails = (
+                f"error > {100 * FAIL:g} % at rtol >= {min(r['setting'] for r in bad):g}"
+                if bad
+                else f"no failure up to rtol {max(r['setting'] for r in mine):g}"
+            )
+        entry = {"fails": fails, "coarsest_ok_steps_per_period": worst_ok, "best_error": min(r["error"] for r in mine)}
         for target in (1e-3, 1e-6):
             w, n = _cost_at(mine, target)
             entry[f"wall_seconds_at_{target:g}"] = w
@@ -123,8 +154,16 @@ def _per_method(rows) -> dict:
     return out
 
 
-def stability_study(scene: Scene, drive, duration: float = 2.0, max_modes: int = 8, time_step: float = 2.5e-3,
-                    rtol: float = 1e-6, progress=None, pillar_modes=None) -> dict:
+def stability_study(
+    scene: Scene,
+    drive,
+    duration: float = 2.0,
+    max_modes: int = 8,
+    time_step: float = 2.5e-3,
+    rtol: float = 1e-6,
+    progress=None,
+    pillar_modes=None,
+) -> dict:
     """Experiment 2: modal model with more and more pillar modes (of
     ``pillar_modes`` when given, see ``models.build_model``)."""
     rows = []
@@ -139,31 +178,61 @@ def stability_study(scene: Scene, drive, duration: float = 2.0, max_modes: int =
             run = simulate(model, drive, no_motion(), duration, settings=st)
             wall = time.perf_counter() - t0
             ok = run.ok and bool(np.all(np.isfinite(run.q))) and float(np.max(np.abs(run.tip()))) < 1.0
-            rows.append({"method": m, "modes": k, "omega_max": w_max, "ok": ok,
-                         "nfev": run.stats["nfev"], "wall_seconds": wall, "status": run.stats["status"],
-                         "time_step": time_step if m in FIXED_STEP else None,
-                         "stability_limit_central_difference": 2.0 / w_max})
+            rows.append(
+                {
+                    "method": m,
+                    "modes": k,
+                    "omega_max": w_max,
+                    "ok": ok,
+                    "nfev": run.stats["nfev"],
+                    "wall_seconds": wall,
+                    "status": run.stats["status"],
+                    "time_step": time_step if m in FIXED_STEP else None,
+                    "stability_limit_central_difference": 2.0 / w_max,
+                }
+            )
     first_fail = {}
     for m in ADAPTIVE + FIXED_STEP:
         bad = [r for r in rows if r["method"] == m and not r["ok"]]
-        first_fail[m] = None if not bad else {"modes": bad[0]["modes"], "omega_max": bad[0]["omega_max"],
-                                              "h_times_omega_max": time_step * bad[0]["omega_max"]}
+        first_fail[m] = (
+            None
+            if not bad
+            else {
+                "modes": bad[0]["modes"],
+                "omega_max": bad[0]["omega_max"],
+                "h_times_omega_max": time_step * bad[0]["omega_max"],
+            }
+        )
     growth = {}
     for m in ADAPTIVE + FIXED_STEP:
         mine = sorted((r for r in rows if r["method"] == m and r["ok"]), key=lambda r: r["modes"])
         if len(mine) > 1:
-            growth[m] = {"modes": [mine[0]["modes"], mine[-1]["modes"]],
-                         "nfev": [mine[0]["nfev"], mine[-1]["nfev"]],
-                         "factor": mine[-1]["nfev"] / mine[0]["nfev"]}
-    return {"duration": duration, "time_step": time_step, "rtol": rtol, "rows": rows,
-            "first_failure": first_fail, "cost_growth": growth,
-            "note": "central difference is stable for h*omega_max < 2 (undamped); the implicit "
-                    "schemes and the adaptive ones never blow up, the explicit adaptive ones pay "
-                    "with steps ~ 1/omega_max"}
+            growth[m] = {
+                "modes": [mine[0]["modes"], mine[-1]["modes"]],
+                "nfev": [mine[0]["nfev"], mine[-1]["nfev"]],
+                "factor": mine[-1]["nfev"] / mine[0]["nfev"],
+            }
+    return {
+        "duration": duration,
+        "time_step": time_step,
+        "rtol": rtol,
+        "rows": rows,
+        "first_failure": first_fail,
+        "cost_growth": growth,
+        "note": "central difference is stable for h*omega_max < 2 (undamped); the implicit "
+        "schemes and the adaptive ones never blow up, the explicit adaptive ones pay "
+        "with steps ~ 1/omega_max",
+    }
 
 
-def drift_study(model, duration: float = 200.0, speed: float = 50.0, rtol: float = 1e-4,
-                steps_per_period: float = 20.0, progress=None) -> dict:
+def drift_study(
+    model,
+    duration: float = 200.0,
+    speed: float = 50.0,
+    rtol: float = 1e-4,
+    steps_per_period: float = 20.0,
+    progress=None,
+) -> dict:
     """Experiment 3: energy drift without damping, motor or load."""
     m0 = replace(model, damping=np.zeros_like(model.damping), shaft_damping=0.0)
     drive = DriveSchedule.constant(0.0, 0.0, 0.0)
@@ -178,16 +247,22 @@ def drift_study(model, duration: float = 200.0, speed: float = 50.0, rtol: float
         T, P = m0.energy(run.q, run.v)
         E = T + P
         ok = run.ok and np.all(np.isfinite(E))
-        rows.append({"method": m, "drift": float((E[-1] - E[0]) / E[0]) if ok else None,
-                     "max_deviation": float(np.max(np.abs(E - E[0])) / E[0]) if ok else None,
-                     "nfev": run.stats["nfev"], "status": run.stats["status"],
-                     "setting": rtol if m not in FIXED_STEP else run.stats.get("time_step")})
-    return {"duration": duration, "speed": speed, "rtol": rtol, "steps_per_period": steps_per_period,
-            "rows": rows}
+        rows.append(
+            {
+                "method": m,
+                "drift": float((E[-1] - E[0]) / E[0]) if ok else None,
+                "max_deviation": float(np.max(np.abs(E - E[0])) / E[0]) if ok else None,
+                "nfev": run.stats["nfev"],
+                "status": run.stats["status"],
+                "setting": rtol if m not in FIXED_STEP else run.stats.get("time_step"),
+            }
+        )
+    return {"duration": duration, "speed": speed, "rtol": rtol, "steps_per_period": steps_per_period, "rows": rows}
 
 
-def run_integrator_study(scene: Scene, duration: float = 10.0, quick: bool = False, progress=None,
-              pillar_modes=None, probe_modes=None) -> dict:
+def run_integrator_study(
+    scene: Scene, duration: float = 10.0, quick: bool = False, progress=None, pillar_modes=None, probe_modes=None
+) -> dict:
     """All three experiments: accuracy (1) and energy drift (3) on the scene's headline
     model, the ROM on ``pillar_modes`` (the chain's; the paper model when None); the
     stiffness study (2) on ``probe_modes`` (many pillar modes: the 1D beam's, a probe of
@@ -198,13 +273,18 @@ def run_integrator_study(scene: Scene, duration: float = 10.0, quick: bool = Fal
         model, _ = build_model(scene, "paper")
     else:
         from ..reduced.pillar_modes import modes_in_band
+
         band = scene.modal_model.band_factor * drive.free_speed()
-        model, _ = build_model(scene, "modal", modes=modes_in_band(pillar_modes.omega, band),
-                               pillar_modes=pillar_modes)
+        model, _ = build_model(scene, "modal", modes=modes_in_band(pillar_modes.omega, band), pillar_modes=pillar_modes)
     acc = accuracy_study(model, drive, duration, quick=quick, progress=progress)
     acc["model"] = model.name
-    stab = stability_study(scene, drive, max_modes=5 if quick else 8, progress=progress,
-                           pillar_modes=probe_modes if probe_modes is not None else pillar_modes)
+    stab = stability_study(
+        scene,
+        drive,
+        max_modes=5 if quick else 8,
+        progress=progress,
+        pillar_modes=probe_modes if probe_modes is not None else pillar_modes,
+    )
     # 40 s of the ROM's free whirl (20 quick; 320 rotor periods at 50 rad/s): its third
     # resonance (~156 rad/s on the paper's tube) makes the scipy methods take many times the
     # steps of the paper's two masses; the drifts grow with time, and the study compares

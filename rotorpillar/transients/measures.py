@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
 
 import numpy as np
 
@@ -47,24 +46,25 @@ def running_peak(t: np.ndarray, x: np.ndarray, window: float) -> np.ndarray:
     hi = np.searchsorted(t, t + window / 2, side="right")
     out = np.empty_like(a)
     for i, (j, k) in enumerate(zip(lo, hi)):
-        out[i] = a[j:max(k, j + 1)].max()
+        out[i] = a[j : max(k, j + 1)].max()
     return out
 
 
 @dataclass(frozen=True)
 class SeriesErrors(JsonRecord):
     """One model's tip history against the reference's, on the reference's times."""
+
     history_error: float
     """max |x - x_ref| / max |x_ref| (-)"""
     envelope_error: float
     """max |env - env_ref| / max env_ref, env the running peak over ``window`` (-)"""
     window: float
     """the envelope's window: one period of the slowest resonance (s)"""
-    peak_difference: Optional[float]
+    peak_difference: float | None
     """max |x| / max |x_ref| - 1 (-)"""
-    angle_drift: Optional[float]
+    angle_drift: float | None
     """largest |theta - theta_ref| over the run (rad); None without rotor angles"""
-    angle_drift_final: Optional[float]
+    angle_drift_final: float | None
     """theta - theta_ref at the end (rad)"""
     lead: str
     """"history" or "envelope": the measure that fits the case"""
@@ -89,17 +89,22 @@ def compare_series(t, x, t_ref, x_ref, *, window: float, theta=None, theta_ref=N
         drift, final = float(np.max(np.abs(d))), float(d[-1])
     if drift is not None and drift >= PHASE_LOCKED:
         lead = "envelope"
-        why = (f"the rotor angles drift apart by up to {drift:.3g} rad: the whirl's history error "
-               "measures that phase drift, not the model; the envelope (the running peak over "
-               f"{window:.3g} s) and the peak measure the model")
+        why = (
+            f"the rotor angles drift apart by up to {drift:.3g} rad: the whirl's history error "
+            "measures that phase drift, not the model; the envelope (the running peak over "
+            f"{window:.3g} s) and the peak measure the model"
+        )
     else:
         lead = "history"
-        why = ("the rotors stay in phase (angle drift "
-               + ("not measured" if drift is None else f"{drift:.2g} rad") +
-               "): both models see the same forcing at the same time, so the history error "
-               "measures the model")
-    return SeriesErrors(hist, envelope, float(window), peak / peak_ref - 1 if peak_ref > 0 else None,
-                        drift, final, lead, why)
+        why = (
+            "the rotors stay in phase (angle drift "
+            + ("not measured" if drift is None else f"{drift:.2g} rad")
+            + "): both models see the same forcing at the same time, so the history error "
+            "measures the model"
+        )
+    return SeriesErrors(
+        hist, envelope, float(window), peak / peak_ref - 1 if peak_ref > 0 else None, drift, final, lead, why
+    )
 
 
 def envelope_window(omegas) -> float:

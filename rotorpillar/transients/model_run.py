@@ -40,13 +40,14 @@ import numpy as np
 
 from ..chain import ChainModes, PillarModel
 from ..errors import InputError
-from .run_records import BeamFullOrder, Fem3dPlan, Fem3dRun, ReducedRun, RunRecord
 from ..scene import MODELS, override
+from .run_records import BeamFullOrder, Fem3dPlan, Fem3dRun, ReducedRun, RunRecord
 
 
 @dataclass(frozen=True, eq=False)
 class ModelRun:
     """A model's run of a case: its JSON fields, its series, and what its charts need."""
+
     case: str
     model: str
     record: RunRecord
@@ -70,6 +71,7 @@ def own_duration(scene: Scene, case: str, motion=None) -> float:
     sim = scene.simulate
     if case == "earthquake":
         from ..reduced.models import scene_motion
+
         return sim.earthquake_duration or (motion or scene_motion(scene)).end + 5.0
     if case in ("runup", "rundown"):
         return sim.duration
@@ -82,8 +84,7 @@ def with_duration(scene: Scene, case: str, duration: float):
     return override(scene, [f"simulate.{key}={float(duration)!r}"])
 
 
-def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None,
-               study_dir=None) -> Fem3dPlan:
+def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None, study_dir=None) -> Fem3dPlan:
     """The 3D run's mesh, duration and step, and what was chosen, shortened and why
     (the ``full_order`` block of the JSON).  The mesh: the convergence study's
     reference for the modes the case's load excites when ``study_dir`` holds
@@ -91,41 +92,66 @@ def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = No
     ``reference`` says which, its own error and the participation of the modes."""
     from ..fem3d.full_order import CASES_3D
     from .references import choose_reference, estimated_steps
+
     if case not in CASES_3D:
-        raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs "
-                         f"{', '.join(CASES_3D)}")
+        raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs {', '.join(CASES_3D)}")
     fo, m = scene.full_order, scene.mesh
     own = own_duration(scene, case, motion)
     stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
     length = min(own, stated or own, duration or own)
     steps = estimated_steps(scene, case, motion, length) if study_dir is not None else None
     mesh, reference = choose_reference(scene, case, study_dir, motion, steps)
-    source = ("the convergence study's reference for the modes the load excites"
-              if reference.source == "converge" else "[full_order]'s, no study on disk")
+    source = (
+        "the convergence study's reference for the modes the load excites"
+        if reference.source == "converge"
+        else "[full_order]'s, no study on disk"
+    )
     if reference.overrides:
         source += f", full_order.{' and full_order.'.join(reference.overrides)} set"
     notes = []
     if (mesh.elements_around, mesh.elements_along) != (m.elements_around, m.elements_along):
         coarser = mesh.elements_around * mesh.elements_along < m.elements_around * m.elements_along
-        notes.append(f"mesh {'coarsened' if coarser else 'changed'} from the scene's "
-                     f"{m.elements_around} x {m.elements_along} to {mesh.elements_around} x "
-                     f"{mesh.elements_along} elements (around x along; {source})")
+        notes.append(
+            f"mesh {'coarsened' if coarser else 'changed'} from the scene's "
+            f"{m.elements_around} x {m.elements_along} to {mesh.elements_around} x "
+            f"{mesh.elements_along} elements (around x along; {source})"
+        )
     else:
         notes.append(f"the scene's mesh ({source})")
     if length < own:
-        notes.append(f"run shortened from the case's {own:g} s to {length:g} s "
-                     f"(full_order.{'earthquake' if case == 'earthquake' else 'runup'}_duration)")
-    why = ("the 3D run costs its steps (40 per period of the fastest forcing) times one solve; the "
-           "scene's [full_order] section keeps it to tens of seconds (its docstring and "
-           "docs/transients.md give the measured cost and the agreement with the ROM)")
-    return Fem3dPlan(mesh, float(length), float(own), fo.time_step or None,
-                     "; ".join(notes) + (f": {why}" if length < own else ""), reference)
+        notes.append(
+            f"run shortened from the case's {own:g} s to {length:g} s "
+            f"(full_order.{'earthquake' if case == 'earthquake' else 'runup'}_duration)"
+        )
+    why = (
+        "the 3D run costs its steps (40 per period of the fastest forcing) times one solve; the "
+        "scene's [full_order] section keeps it to tens of seconds (its docstring and "
+        "docs/transients.md give the measured cost and the agreement with the ROM)"
+    )
+    return Fem3dPlan(
+        mesh,
+        float(length),
+        float(own),
+        fo.time_step or None,
+        "; ".join(notes) + (f": {why}" if length < own else ""),
+        reference,
+    )
 
 
-def run_model(scene: Scene, case: str, model: str, integrator: str | None = None, modes: int | None = None,
-              progress=None, motion=None, duration: float | None = None,
-              chain: ChainModes | None = None, field_dir=None,
-              field_stem: str | None = None, study_dir=None) -> ModelRun:
+def run_model(
+    scene: Scene,
+    case: str,
+    model: str,
+    integrator: str | None = None,
+    modes: int | None = None,
+    progress=None,
+    motion=None,
+    duration: float | None = None,
+    chain: ChainModes | None = None,
+    field_dir=None,
+    field_stem: str | None = None,
+    study_dir=None,
+) -> ModelRun:
     """Run ``model`` (one of scene.MODELS) on ``case``; ``duration`` shortens the run
     (compare: one window for every model); ``chain`` the chain's pillar model and
     modes (rotorpillar.chain.resolve; None: the scene's own, no study); ``field_dir``:
@@ -137,14 +163,25 @@ def run_model(scene: Scene, case: str, model: str, integrator: str | None = None
         raise InputError(f"model {model!r}: must be one of {', '.join(MODELS)}")
     if case == "earthquake" and motion is None:
         from ..reduced.models import scene_motion
+
         motion = scene_motion(scene)
     if model in ("modal", "fem3d"):
         if chain is None:
             from ..chain import resolve
+
             chain = resolve(scene, None, motion=motion, progress=progress)
         if model == "fem3d":
-            return _run_fem3d(scene, case, motion, duration, progress, chain, field_dir,
-                              field_stem or f"simulate_{case}_fem3d", study_dir)
+            return _run_fem3d(
+                scene,
+                case,
+                motion,
+                duration,
+                progress,
+                chain,
+                field_dir,
+                field_stem or f"simulate_{case}_fem3d",
+                study_dir,
+            )
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
@@ -159,14 +196,32 @@ def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, inf
         return chain.pillar_model
     if which == "beam":
         n, theory = info["elements"], info["theory"]
-        return PillarModel("beam", f"beam {theory}, {n} el. (full order)",
-                           {"theory": theory, "elements": n}, 2 * n, "scene", False, None, {},
-                           f"the full-order 1D {theory} beam of {info['element_source']}", None)
+        return PillarModel(
+            "beam",
+            f"beam {theory}, {n} el. (full order)",
+            {"theory": theory, "elements": n},
+            2 * n,
+            "scene",
+            False,
+            None,
+            {},
+            f"the full-order 1D {theory} beam of {info['element_source']}",
+            None,
+        )
     red = info["reduction"]
-    return PillarModel("reduction", "Eq. 4: one tip mass and spring", {
-        "tip_mass": red["tip_mass"], "tip_stiffness": red["tip_stiffness"]}, 1, "scene", False,
-        None, {}, f"the paper's model: m_r ({red['tip_mass_source']}) and c1 "
-        f"({red['tip_stiffness_source']}) at the tip; not the validated chain", None)
+    return PillarModel(
+        "reduction",
+        "Eq. 4: one tip mass and spring",
+        {"tip_mass": red["tip_mass"], "tip_stiffness": red["tip_stiffness"]},
+        1,
+        "scene",
+        False,
+        None,
+        {},
+        f"the paper's model: m_r ({red['tip_mass_source']}) and c1 "
+        f"({red['tip_stiffness_source']}) at the tip; not the validated chain",
+        None,
+    )
 
 
 # --------------------------------------------------------------------------
@@ -182,35 +237,41 @@ def warm_up(scene: Scene, case: str, which: str, integrator, modes, motion, pill
     """Compile what the run will (numba's kernels, per integrator and case) on a run of a
     few milliseconds of the same case; its wall time (s), kept apart from the run's."""
     from .cases import run_case
-    short = override(scene, ["simulate.threshold=false",
-                             f"simulate.{'earthquake_duration' if case == 'earthquake' else 'duration'}"
-                             f"={(motion.start + 1e-2) if case == 'earthquake' else 1e-2!r}"])
+
+    short = override(
+        scene,
+        [
+            "simulate.threshold=false",
+            f"simulate.{'earthquake_duration' if case == 'earthquake' else 'duration'}"
+            f"={(motion.start + 1e-2) if case == 'earthquake' else 1e-2!r}",
+        ],
+    )
     if case == "sweep":
-        return 0.0                      # a sweep's schedule has no short form; its kernels are dp5's
+        return 0.0  # a sweep's schedule has no short form; its kernels are dp5's
     start = time.perf_counter()
     try:
-        run_case(short, case, which, integrator, modes, truncation=False, motion=motion,
-                 pillar_modes=pillar_modes)
+        run_case(short, case, which, integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes)
     except InputError:
-        pass                            # the real run refuses it the same way, with its own message
+        pass  # the real run refuses it the same way, with its own message
     return time.perf_counter() - start
 
 
 def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion, chain) -> ModelRun:
-    from .cases import run_case, with_truncation
     from ..reduced.excitation import no_motion
     from .case_summary import ground_displacement, series
+    from .cases import run_case, with_truncation
+
     pillar_modes = pillar_modes_for(which, chain)
     compile_seconds = warm_up(scene, case, which, integrator, modes, motion, pillar_modes)
     start = time.perf_counter()
-    res = run_case(scene, case, which, integrator, modes, truncation=False, motion=motion,
-                   pillar_modes=pillar_modes)
+    res = run_case(scene, case, which, integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes)
     wall = time.perf_counter() - start
     bars = None
     if which == "modal":
         res = with_truncation(scene, res, res.run.motion, integrator, pillar_modes, progress)
         if case != "sweep":
             from .uncertainty import uncertainty
+
             bars = uncertainty(scene, case, integrator, motion, chain, res, progress)
     m, run = res.model, res.run
     data = series(run, scene.simulate.samples)
@@ -220,7 +281,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         data["tip_x_relative"] = data["tip_x"] - ground
     else:
         data["tip_x_relative"] = data["tip_x"]
-    data["shaft_deflection_x"] = data["q"][:, :m.nx] @ m.shaft - m.eccentricity * np.cos(data["theta"])
+    data["shaft_deflection_x"] = data["q"][:, : m.nx] @ m.shaft - m.eccentricity * np.cos(data["theta"])
     ma = dict(res.summary.max_abs)
     full_tip, full_ground = run.tip(), ground_displacement(m, run.motion or no_motion(), run.t)
     if m.frame == "absolute":
@@ -235,26 +296,41 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     if which == "beam":
         info = res.extra["model_info"]
         full_order = BeamFullOrder(
-            elements=info["elements"], theory=info["theory"], duration=res.summary.duration,
+            elements=info["elements"],
+            theory=info["theory"],
+            duration=res.summary.duration,
             time_step=run.stats.get("time_step"),
-            note=(f"the 1D {info['theory']} beam with every degree of freedom ({info['elements']} "
-                  f"elements, {info['element_source']}), the case's full duration; implicit fixed "
-                  "step that resolves the fastest forcing within 2e-3 (full_order.time_step, 0 = "
-                  "that; integrator.step_rule): the beam's stiff shear modes are damped by the "
-                  "scheme, not resolved"))
+            note=(
+                f"the 1D {info['theory']} beam with every degree of freedom ({info['elements']} "
+                f"elements, {info['element_source']}), the case's full duration; implicit fixed "
+                "step that resolves the fastest forcing within 2e-3 (full_order.time_step, 0 = "
+                "that; integrator.step_rule): the beam's stiff shear modes are damped by the "
+                "scheme, not resolved"
+            ),
+        )
     record = ReducedRun(
-        case=case, model=which, summary=replace(res.summary, max_abs=ma),
+        case=case,
+        model=which,
+        summary=replace(res.summary, max_abs=ma),
         warnings=tuple(_warnings(case, m, res)),
         pillar_model=reduced_pillar_model(scene, which, chain, info or {}),
-        uncertainty=bars, dofs=int(m.n), wall_seconds=wall, compile_seconds=compile_seconds,
-        model_description=m.describe(), model_info=info, resonances=tuple(m.quasi_normal()),
-        damped_frequencies=tuple(m.damped_frequencies()), tip_x_frame=m.frame,
-        max_abs_sampled=("tip_x_relative" if m.frame == "absolute" else "tip_x_absolute",
-                         "shaft_deflection_x"),
+        uncertainty=bars,
+        dofs=int(m.n),
+        wall_seconds=wall,
+        compile_seconds=compile_seconds,
+        model_description=m.describe(),
+        model_info=info,
+        resonances=tuple(m.quasi_normal()),
+        damped_frequencies=tuple(m.damped_frequencies()),
+        tip_x_frame=m.frame,
+        max_abs_sampled=("tip_x_relative" if m.frame == "absolute" else "tip_x_absolute", "shaft_deflection_x"),
         initial_speed=res.extra.get("initial_speed"),
-        excitation_in_model=res.extra.get("excitation_in_model"), full_order=full_order)
+        excitation_in_model=res.extra.get("excitation_in_model"),
+        full_order=full_order,
+    )
     model_run = ModelRun(case, which, record, data, m.quasi_normal(), res)
     from .forces import with_reduced_forces
+
     return with_reduced_forces(scene, model_run, res, integrator, pillar_modes, motion, progress)
 
 
@@ -268,6 +344,7 @@ def _warnings(case: str, model, res) -> list[str]:
         out.append(quake.get("statement", "the record is not a realistic earthquake"))
     if case == "earthquake" and model.name == "paper":
         from ..reduced.base_forcing import published_forcing_warning
+
         c1 = res.extra["model_info"]["reduction"]["tip_stiffness"]
         w = published_forcing_warning(c1, model.shaft_stiffness)
         if w:
@@ -283,7 +360,9 @@ def fem3d_warm_up(scene: Scene, mesh) -> float:
     """Compile the 3D forms of ``mesh``'s cell type and degree (FFCx; once per machine, then
     read from its disk cache) on a mesh of a few cells, before the timed run (s)."""
     from dataclasses import replace as dc_replace
+
     from ..fem3d import assemble_pillar
+
     tiny = dc_replace(mesh, elements_around=8, elements_along=1, elements_through=1)
     start = time.perf_counter()
     model = assemble_pillar(scene, top=True, mesh=tiny)
@@ -296,23 +375,44 @@ def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarMod
     """The 3D full order's mesh as a PillarModel, its source and error the reference's
     (rotorpillar.transients.references.FullOrderReference)."""
     from ..chain.choice import solid_run_of
+
     run = solid_run_of(mesh)
-    errors = {q: float(e["error_bound"]) for q, e in (reference.get("errors") or {}).items()
-              if isinstance(e, dict) and e.get("error_bound") is not None}
-    return PillarModel("solid", run["label"] + " (full order)", run["params"], int(dofs),
-                       reference.get("source", "scene"), bool(reference.get("verified")),
-                       reference.get("tolerance"), errors,
-                       note + ("; " + reference["statement"] if reference.get("statement") else ""),
-                       reference.get("study"))
+    errors = {
+        q: float(e["error_bound"])
+        for q, e in (reference.get("errors") or {}).items()
+        if isinstance(e, dict) and e.get("error_bound") is not None
+    }
+    return PillarModel(
+        "solid",
+        run["label"] + " (full order)",
+        run["params"],
+        int(dofs),
+        reference.get("source", "scene"),
+        bool(reference.get("verified")),
+        reference.get("tolerance"),
+        errors,
+        note + ("; " + reference["statement"] if reference.get("statement") else ""),
+        reference.get("study"),
+    )
 
 
-def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes, field_dir=None,
-               field_stem: str = "", study_dir=None) -> ModelRun:
+def _run_fem3d(
+    scene: Scene,
+    case,
+    motion,
+    duration,
+    progress,
+    chain: ChainModes,
+    field_dir=None,
+    field_stem: str = "",
+    study_dir=None,
+) -> ModelRun:
     from ..fem3d.full_order import simulate_fem3d
     from ..reduced.band import forcing_top
     from ..reduced.models import build_model
     from ..reduced.stationary import operating_speed
     from .case_summary import capture_state
+
     plan = fem3d_plan(scene, case, motion, duration, study_dir)
     mesh = plan.mesh
     steps_hint = f"{mesh.elements_around} x {mesh.elements_along} elements, {plan.duration:g} s"
@@ -328,11 +428,21 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
     if case == "runup":
         initial = scene.simulate.runup_initial_speed or None
     from .forces import stress_observer, with_fem3d_forces
+
     observer = stress_observer(scene, plan.duration, field_dir, field_stem)
     try:
-        r = simulate_fem3d(scene, case, motion=motion, duration=plan.duration,
-                           time_step=plan.time_step, mesh=mesh, samples=scene.simulate.samples,
-                           initial_speed=initial, progress=progress, observer=observer)
+        r = simulate_fem3d(
+            scene,
+            case,
+            motion=motion,
+            duration=plan.duration,
+            time_step=plan.time_step,
+            mesh=mesh,
+            samples=scene.simulate.samples,
+            initial_speed=initial,
+            progress=progress,
+            observer=observer,
+        )
         recovered = observer.finish()
     finally:
         observer.close()
@@ -345,39 +455,67 @@ def _run_fem3d(scene: Scene, case, motion, duration, progress, chain: ChainModes
     integ = dict(r.integrator)
     integ.setdefault("wall_seconds", integ.get("integration_seconds"))
     ground = r.ground_x
-    data = {"t": r.t, "Omega": r.Omega, "theta": r.theta, "tip_x": r.tip_x, "tip_x_relative": r.tip_x,
-            "tip_x_absolute": r.tip_x_absolute, "ground_x": ground,
-            "ground_acceleration": r.ground_acceleration, "rotor_x": r.rotor_x, "rotor_y": r.rotor_y,
-            "rotor_x_absolute": r.rotor_x + ground, "shaft_deflection_x": r.shaft_x,
-            "shaft_deflection_y": r.shaft_y, "plate_z": r.plate_z, "drive_torque": r.drive_torque,
-            "energy": r.energy, "work": r.work, "peak": np.abs(r.tip_x)[:, None]}
+    data = {
+        "t": r.t,
+        "Omega": r.Omega,
+        "theta": r.theta,
+        "tip_x": r.tip_x,
+        "tip_x_relative": r.tip_x,
+        "tip_x_absolute": r.tip_x_absolute,
+        "ground_x": ground,
+        "ground_acceleration": r.ground_acceleration,
+        "rotor_x": r.rotor_x,
+        "rotor_y": r.rotor_y,
+        "rotor_x_absolute": r.rotor_x + ground,
+        "shaft_deflection_x": r.shaft_x,
+        "shaft_deflection_y": r.shaft_y,
+        "plate_z": r.plate_z,
+        "drive_torque": r.drive_torque,
+        "energy": r.energy,
+        "work": r.work,
+        "peak": np.abs(r.tip_x)[:, None],
+    }
     if case == "earthquake":
-        r.model["initial_speed_source"] = ("the operating speed of the chain's ROM (the fastest "
-                                           "stable stationary speed)")
+        r.model["initial_speed_source"] = "the operating speed of the chain's ROM (the fastest stable stationary speed)"
     record = Fem3dRun(
-        case=case, model="fem3d", ok=r.ok, duration=float(r.t[-1] - r.t[0]),
-        omega_final=r.omega_final, omega_final_mean=r.omega_final_mean, max_abs=ma,
-        energy_balance=r.energy_balance, integrator=integ, dofs=r.dofs,
+        case=case,
+        model="fem3d",
+        ok=r.ok,
+        duration=float(r.t[-1] - r.t[0]),
+        omega_final=r.omega_final,
+        omega_final_mean=r.omega_final_mean,
+        max_abs=ma,
+        energy_balance=r.energy_balance,
+        integrator=integ,
+        dofs=r.dofs,
         wall_seconds=r.wall_seconds,
         failed_checks=tuple(r.failed_checks) if r.failed_checks else None,
-        captured_at=captured, captured_resonance=state.captured_resonance,
-        captured_index=state.captured_index, speed_state=state.speed_state, warnings=(),
+        captured_at=captured,
+        captured_resonance=state.captured_resonance,
+        captured_index=state.captured_index,
+        speed_state=state.speed_state,
+        warnings=(),
         captured_at_source="the chain's ROM: its resonances"
-                           + ("" if settled else "; the run ended before the speed settled, "
-                                                 "so no capture is claimed"),
+        + ("" if settled else "; the run ended before the speed settled, so no capture is claimed"),
         pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference.to_json(), plan.note),
-        compile_seconds=compile_seconds, model_description=r.model,
+        compile_seconds=compile_seconds,
+        model_description=r.model,
         model_info={"dofs": r.dofs, "mesh": dict(vars(mesh))},
-        resonances=tuple(ref.quasi_normal()), damped_frequencies=tuple(ref.damped_frequencies()),
-        tip_x_frame="relative_to_ground", full_order=plan,
+        resonances=tuple(ref.quasi_normal()),
+        damped_frequencies=tuple(ref.damped_frequencies()),
+        tip_x_frame="relative_to_ground",
+        full_order=plan,
         initial_speed=r.model.get("initial_speed"),
         excitation=motion.sizes() if case == "earthquake" else None,
-        excitation_in_model=r.model.get("forcing") if case == "earthquake" else None)
-    return with_fem3d_forces(scene, ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None),
-                             recovered, observer.heights)
+        excitation_in_model=r.model.get("forcing") if case == "earthquake" else None,
+    )
+    return with_fem3d_forces(
+        scene, ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None), recovered, observer.heights
+    )
 
 
 def _free_speed(scene: Scene) -> float:
     from ..reduced.drive import DriveSchedule
+
     d, L = scene.drive, scene.load
     return DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()

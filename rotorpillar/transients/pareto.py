@@ -42,7 +42,6 @@ import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-
 import numpy as np
 
 from ..provenance import JsonRecord, write_json
@@ -68,6 +67,7 @@ CACHE_VERSION = 1
 @dataclass(frozen=True)
 class ParetoRun(JsonRecord):
     """One model's run of the Pareto case (SI)."""
+
     family: str
     """rom, beam or fem3d"""
     label: str
@@ -91,6 +91,7 @@ class ParetoRun(JsonRecord):
 @dataclass(frozen=True)
 class ParetoStudy(JsonRecord):
     """Speed against accuracy on El Centro (``pareto`` in compare_earthquake.json)."""
+
     case: dict
     """record, record_start, duration, initial_speed, samples, start"""
     runs: tuple[ParetoRun, ...]
@@ -119,24 +120,40 @@ class ParetoStudy(JsonRecord):
 def pareto_scene(scene: Scene, duration: float = PARETO_DURATION):
     """The scene of the Pareto case: the scene's record from PARETO_RECORD_START, ``duration`` long."""
     from ..scene import override
-    return override(scene, ["excitation.kind=record", f"excitation.start={PARETO_RECORD_START!r}",
-                            f"simulate.earthquake_duration={duration!r}"])
+
+    return override(
+        scene,
+        [
+            "excitation.kind=record",
+            f"excitation.start={PARETO_RECORD_START!r}",
+            f"simulate.earthquake_duration={duration!r}",
+        ],
+    )
 
 
-def run_specs(rom_modes: int, candidates: int, chosen_mesh, along=PARETO_ALONG,
-              beams=BEAM_ELEMENTS) -> list[tuple[str, str, dict]]:
+def run_specs(
+    rom_modes: int, candidates: int, chosen_mesh, along=PARETO_ALONG, beams=BEAM_ELEMENTS
+) -> list[tuple[str, str, dict]]:
     """(family, label, params) of every run, cheapest family first."""
     from ..converge.ladder import ALONG_FAMILY_AROUND
-    specs = [("rom", f"ROM, {k} mode{'s' if k > 1 else ''}", {"modes": k})
-             for k in range(1, min(candidates, rom_modes + ROM_EXTRA_MODES) + 1)]
+
+    specs = [
+        ("rom", f"ROM, {k} mode{'s' if k > 1 else ''}", {"modes": k})
+        for k in range(1, min(candidates, rom_modes + ROM_EXTRA_MODES) + 1)
+    ]
     specs += [("beam", f"beam, {n} el.", {"elements": n}) for n in beams]
     meshes = [(ALONG_FAMILY_AROUND, n) for n in along]
     if chosen_mesh is not None and (chosen_mesh.elements_around, chosen_mesh.elements_along) not in meshes:
         meshes.append((chosen_mesh.elements_around, chosen_mesh.elements_along))
-    base = {} if chosen_mesh is None else {k: v for k, v in vars(chosen_mesh).items()
-                                           if k not in ("elements_around", "elements_along")}
-    specs += [("fem3d", f"3D, {a}x{n}", {"elements_around": a, "elements_along": n, **base})
-              for a, n in sorted(meshes, key=lambda m: m[0] * m[1])]
+    base = (
+        {}
+        if chosen_mesh is None
+        else {k: v for k, v in vars(chosen_mesh).items() if k not in ("elements_around", "elements_along")}
+    )
+    specs += [
+        ("fem3d", f"3D, {a}x{n}", {"elements_around": a, "elements_along": n, **base})
+        for a, n in sorted(meshes, key=lambda m: m[0] * m[1])
+    ]
     return specs
 
 
@@ -154,11 +171,16 @@ def _source_hash(family: str) -> str:
 
 def run_key(family: str, params: dict, scene: Scene, motion, modes_digest: str) -> str:
     """Hash of everything a run depends on."""
-    doc = {"version": CACHE_VERSION, "family": family, "params": params,
-           "scene": {k: v for k, v in scene.to_dict().items() if k not in ("name", "description")},
-           "record": hashlib.sha256(np.asarray(motion.acceleration, float).tobytes()).hexdigest()[:16],
-           "samples": PARETO_SAMPLES, "modes": modes_digest if family == "rom" else None,
-           "source": _source_hash(family)}
+    doc = {
+        "version": CACHE_VERSION,
+        "family": family,
+        "params": params,
+        "scene": {k: v for k, v in scene.to_dict().items() if k not in ("name", "description")},
+        "record": hashlib.sha256(np.asarray(motion.acceleration, float).tobytes()).hexdigest()[:16],
+        "samples": PARETO_SAMPLES,
+        "modes": modes_digest if family == "rom" else None,
+        "source": _source_hash(family),
+    }
     return hashlib.sha256(json.dumps(doc, sort_keys=True, default=str).encode()).hexdigest()[:24]
 
 
@@ -166,13 +188,13 @@ def _grid(duration: float) -> np.ndarray:
     return np.linspace(0.0, duration, PARETO_SAMPLES)
 
 
-def _reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes,
-                 duration: float) -> dict:
-    from .cases import full_order_settings, settings_of
+def _reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes, duration: float) -> dict:
     from ..reduced.drive import DriveSchedule
-    from ..reduced.models import build_model
     from ..reduced.integration import simulate
+    from ..reduced.models import build_model
     from ..scene import override
+    from .cases import full_order_settings, settings_of
+
     d, L = scene.drive, scene.load
     drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
     t0 = time.perf_counter()
@@ -187,9 +209,13 @@ def _reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, 
     run = simulate(model, drive, motion, duration, q0, v0, settings=st, speed_scale=speed)
     wall = time.perf_counter() - t0
     grid = _grid(duration)
-    return {"dofs": int(model.n), "wall_seconds": wall, "ok": run.ok,
-            "peak_tip": float(np.nanmax(run.peak[:, -1])),
-            "tip": np.interp(grid, run.t, run.tip()).tolist()}
+    return {
+        "dofs": int(model.n),
+        "wall_seconds": wall,
+        "ok": run.ok,
+        "peak_tip": float(np.nanmax(run.peak[:, -1])),
+        "tip": np.interp(grid, run.t, run.tip()).tolist(),
+    }
 
 
 _WARM: dict = {}
@@ -203,9 +229,11 @@ def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes
     t0 = time.perf_counter()
     if family == "fem3d":
         from ..fem3d.full_order import simulate_fem3d
+
         tiny = replace(scene.mesh, elements_around=4, elements_along=1)
-        simulate_fem3d(scene, "earthquake", motion=motion, duration=1e-3, time_step=5e-4,
-                       mesh=tiny, samples=3, initial_speed=speed)
+        simulate_fem3d(
+            scene, "earthquake", motion=motion, duration=1e-3, time_step=5e-4, mesh=tiny, samples=3, initial_speed=speed
+        )
     else:
         _reduced_run(scene, family, {"modes": 1, "elements": 2}, motion, speed, pillar_modes, 1e-2)
     _WARM[family] = time.perf_counter() - t0
@@ -215,15 +243,22 @@ def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes
 def compute_3d(job) -> dict:
     """One 3D run (a worker's job: picklable arguments); its result and warm-up seconds."""
     from ..fem3d.full_order import simulate_fem3d
+
     scene, params, motion, speed, duration = job
     warm = warm_up_family("fem3d", scene, motion, speed)
     mesh = replace(scene.mesh, **params)
-    r = simulate_fem3d(scene, "earthquake", motion=motion, duration=duration, mesh=mesh,
-                       samples=PARETO_SAMPLES, initial_speed=speed)
+    r = simulate_fem3d(
+        scene, "earthquake", motion=motion, duration=duration, mesh=mesh, samples=PARETO_SAMPLES, initial_speed=speed
+    )
     grid = _grid(duration)
-    return {"dofs": int(r.dofs), "wall_seconds": float(r.wall_seconds), "ok": bool(r.ok),
-            "peak_tip": float(r.max_abs["tip_x"]), "tip": np.interp(grid, r.t, r.tip_x).tolist(),
-            "compile_seconds": warm}
+    return {
+        "dofs": int(r.dofs),
+        "wall_seconds": float(r.wall_seconds),
+        "ok": bool(r.ok),
+        "peak_tip": float(r.max_abs["tip_x"]),
+        "tip": np.interp(grid, r.t, r.tip_x).tolist(),
+        "compile_seconds": warm,
+    }
 
 
 def _load(path: Path, key: str) -> dict | None:
@@ -241,6 +276,7 @@ def _load(path: Path, key: str) -> dict | None:
 @dataclass(frozen=True, eq=False)
 class ParetoPlan:
     """The Pareto case ready to run: its scene, record, start, runs, keys and the cached ones."""
+
     scene: Scene
     motion: object
     pillar_modes: object
@@ -257,25 +293,38 @@ class ParetoPlan:
     duration: float = PARETO_DURATION
 
 
-def plan_pareto(scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None,
-                duration: float = PARETO_DURATION, along=PARETO_ALONG,
-                beams=BEAM_ELEMENTS, pillar_modes=None) -> ParetoPlan:
+def plan_pareto(
+    scene: Scene,
+    *,
+    cache_dir: Path,
+    rom_modes: int,
+    chosen_mesh=None,
+    duration: float = PARETO_DURATION,
+    along=PARETO_ALONG,
+    beams=BEAM_ELEMENTS,
+    pillar_modes=None,
+) -> ParetoPlan:
     """The runs of the Pareto case, those on disk loaded (cheap: no run); ``duration``,
     ``along`` and ``beams`` replace the module's choices (tests: a short, coarse case);
     ``pillar_modes``: the ROM's candidate modes (the chain's; None: resolved for the
     scene without a study)."""
     from ..reduced.models import build_model, candidate_modes, scene_motion
     from ..reduced.stationary import operating_speed
+
     started = time.perf_counter()
     sc = pareto_scene(scene, duration)
     motion = scene_motion(sc)
     pm = pillar_modes
     if pm is None:
         from ..chain import resolve
+
         pm = resolve(sc, None, motion=motion).modes
     cands = candidate_modes(sc, pm)
-    digest = hashlib.sha256(np.concatenate([np.asarray(cands.omega), np.asarray(cands.modal_mass),
-                                            np.asarray(cands.participation)]).tobytes()).hexdigest()[:16]
+    digest = hashlib.sha256(
+        np.concatenate(
+            [np.asarray(cands.omega), np.asarray(cands.modal_mass), np.asarray(cands.participation)]
+        ).tobytes()
+    ).hexdigest()[:16]
     rom, _ = build_model(sc, "modal", modes=rom_modes, pillar_modes=pm)
     d, L = sc.drive, sc.load
     speed = operating_speed(rom, d.torque_at_zero, d.slope, L.coefficient)
@@ -286,13 +335,26 @@ def plan_pareto(scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=No
         doc = _load(Path(cache_dir) / f"pareto-{key}.json", key)
         if doc is not None:
             results[i] = {**doc, "cached": True}
-    return ParetoPlan(sc, motion, pm, speed, specs, keys, results, rom_modes, chosen_mesh,
-                      Path(cache_dir), time.perf_counter() - started, float(duration))
+    return ParetoPlan(
+        sc,
+        motion,
+        pm,
+        speed,
+        specs,
+        keys,
+        results,
+        rom_modes,
+        chosen_mesh,
+        Path(cache_dir),
+        time.perf_counter() - started,
+        float(duration),
+    )
 
 
 def _mpi_rank_size() -> tuple[int, int]:
     """(rank, size) when running under MPI (mpi4py imported), else (0, 1)."""
     import sys
+
     mpi = sys.modules.get("mpi4py.MPI")
     return (0, 1) if mpi is None else (mpi.COMM_WORLD.rank, mpi.COMM_WORLD.size)
 
@@ -303,6 +365,7 @@ class ParetoRunning:
 
     def __init__(self, plan: ParetoPlan, workers: int, progress=None):
         import threading
+
         self.plan, self.progress = plan, progress
         self.compile: dict[str, float] = {}
         self.todo = [i for i in range(len(plan.specs)) if i not in plan.results]
@@ -311,12 +374,17 @@ class ParetoRunning:
         self.error: BaseException | None = None
         self.thread, self.pool_seconds = None, 0.0
         if progress:
-            progress(f"speed against accuracy: {len(plan.specs)} runs, "
-                     f"{len(plan.specs) - len(self.todo)} cached, {len(self.todo)} to compute"
-                     + (f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es))"
-                        if self.solid and workers > 0 else ""))
+            progress(
+                f"speed against accuracy: {len(plan.specs)} runs, "
+                f"{len(plan.specs) - len(self.todo)} cached, {len(self.todo)} to compute"
+                + (
+                    f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es))"
+                    if self.solid and workers > 0
+                    else ""
+                )
+            )
         if _mpi_rank_size()[1] > 1:
-            workers = 0          # under mpirun every rank runs the 3D runs together, here
+            workers = 0  # under mpirun every rank runs the 3D runs together, here
         if self.solid and workers > 0:
             self.workers = min(workers, len(self.solid))
             self.thread = threading.Thread(target=self._pool, daemon=True)
@@ -338,18 +406,22 @@ class ParetoRunning:
 
     def _pool(self) -> None:
         import logging
+
         from ..executor import Executor
-        logging.getLogger("distributed").setLevel(logging.ERROR)   # dolfinx leaves INFO on
-        order = sorted(self.solid, key=lambda i: -self.plan.specs[i][2]["elements_around"]
-                       * self.plan.specs[i][2]["elements_along"])
+
+        logging.getLogger("distributed").setLevel(logging.ERROR)  # dolfinx leaves INFO on
+        order = sorted(
+            self.solid,
+            key=lambda i: -self.plan.specs[i][2]["elements_around"] * self.plan.specs[i][2]["elements_along"],
+        )
         t0 = time.perf_counter()
         try:
             with Executor(self.workers) as ex:
                 for j, done in ex.map(compute_3d, [self._job(i) for i in order]):
-                    out = done                       # compute_3d's document
+                    out = done  # compute_3d's document
                     self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
                     self.keep(order[j], out)
-        except BaseException as exc:      # re-raised in finish(), in the caller's thread
+        except BaseException as exc:  # re-raised in finish(), in the caller's thread
             self.error = exc
         self.pool_seconds = time.perf_counter() - t0
 
@@ -359,10 +431,12 @@ class ParetoRunning:
         t0 = time.perf_counter()
         for i in (i for i in self.todo if plan.specs[i][0] != "fem3d"):
             fam, _, params = plan.specs[i]
-            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up_family(fam, plan.scene, plan.motion,
-                                                                     plan.speed, plan.pillar_modes)
-            self.keep(i, _reduced_run(plan.scene, fam, params, plan.motion, plan.speed,
-                                      plan.pillar_modes, plan.duration))
+            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up_family(
+                fam, plan.scene, plan.motion, plan.speed, plan.pillar_modes
+            )
+            self.keep(
+                i, _reduced_run(plan.scene, fam, params, plan.motion, plan.speed, plan.pillar_modes, plan.duration)
+            )
         if self.thread is not None:
             self.thread.join()
             if self.error is not None:
@@ -374,28 +448,40 @@ class ParetoRunning:
                 self.keep(i, out)
         docs = [plan.results[i] for i in range(len(plan.specs))]
         k, mesh = plan.rom_modes, plan.chosen_mesh
-        study, series = analyse_pareto(docs, chosen={
-            "rom": f"ROM, {k} mode{'s' if k > 1 else ''}",
-            "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}"})
-        case = {"record": plan.scene.excitation.record, "record_start": PARETO_RECORD_START,
-                "duration": plan.duration, "initial_speed": plan.speed, "samples": PARETO_SAMPLES,
-                "start": "every model from the pillar at rest, the rotor in its steady whirl at the "
-                         "ROM's operating speed"}
-        cost = {"runs": len(plan.specs), "computed": len(self.todo),
-                "cached": len(plan.specs) - len(self.todo), "workers": self.workers,
-                "wall_seconds": plan.plan_seconds + time.perf_counter() - t0,
-                "pool_seconds": self.pool_seconds,
-                "compute_seconds": float(sum(plan.results[i]["wall_seconds"] for i in self.todo))}
+        study, series = analyse_pareto(
+            docs,
+            chosen={
+                "rom": f"ROM, {k} mode{'s' if k > 1 else ''}",
+                "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}",
+            },
+        )
+        case = {
+            "record": plan.scene.excitation.record,
+            "record_start": PARETO_RECORD_START,
+            "duration": plan.duration,
+            "initial_speed": plan.speed,
+            "samples": PARETO_SAMPLES,
+            "start": "every model from the pillar at rest, the rotor in its steady whirl at the ROM's operating speed",
+        }
+        cost = {
+            "runs": len(plan.specs),
+            "computed": len(self.todo),
+            "cached": len(plan.specs) - len(self.todo),
+            "workers": self.workers,
+            "wall_seconds": plan.plan_seconds + time.perf_counter() - t0,
+            "pool_seconds": self.pool_seconds,
+            "compute_seconds": float(sum(plan.results[i]["wall_seconds"] for i in self.todo)),
+        }
         return replace(study, case=case, compile_seconds=dict(self.compile), cost=cost), series
 
 
-def transient_pareto(scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None, workers: int = 0,
-                     progress=None, **choices) -> tuple[ParetoStudy, dict]:
+def transient_pareto(
+    scene: Scene, *, cache_dir: Path, rom_modes: int, chosen_mesh=None, workers: int = 0, progress=None, **choices
+) -> tuple[ParetoStudy, dict]:
     """Run (or load) every run of the Pareto case; (the study, the histories by label).
     ``workers`` > 0: the 3D runs on that many worker processes, else in this one;
     ``choices``: plan_pareto's duration, along, beams."""
-    plan = plan_pareto(scene, cache_dir=cache_dir, rom_modes=rom_modes, chosen_mesh=chosen_mesh,
-                       **choices)
+    plan = plan_pareto(scene, cache_dir=cache_dir, rom_modes=rom_modes, chosen_mesh=chosen_mesh, **choices)
     return ParetoRunning(plan, workers, progress).finish()
 
 
@@ -403,14 +489,22 @@ def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
     """The finest 3D run's own error: Richardson over the three finest where monotone at a
     plausible order, else the difference to the next coarser."""
     from ..converge.richardson import richardson
+
     ref = fine[-1]
     out = {"label": ref["label"], "peak_tip": ref["peak_tip"]}
     if len(fine) < 2:
-        return {**out, "peak_error": None, "history_error": None, "method": "none", "order": None,
-                "note": "a single 3D run: its own error is not estimated"}
+        return {
+            **out,
+            "peak_error": None,
+            "history_error": None,
+            "method": "none",
+            "order": None,
+            "note": "a single 3D run: its own error is not estimated",
+        }
     prev = fine[-2]
-    diff = np.max(np.abs(grid_tips[ref["label"]] - grid_tips[prev["label"]])) / \
-        max(np.max(np.abs(grid_tips[ref["label"]])), 1e-300)
+    diff = np.max(np.abs(grid_tips[ref["label"]] - grid_tips[prev["label"]])) / max(
+        np.max(np.abs(grid_tips[ref["label"]])), 1e-300
+    )
     if len(fine) >= 3:
         last = fine[-3:]
         h = [1.0 / r["params"]["elements_along"] for r in last]
@@ -418,24 +512,37 @@ def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
         p = rich["order"]
         if rich["monotone"] and p is not None and 0.5 <= p <= 8:
             factor = 1.0 / ((h[1] / h[2]) ** p - 1)
-            return {**out, "peak_error": rich["error_estimate"] / abs(rich["value"]),
-                    "history_error": 1.25 * factor * float(diff), "method": "richardson", "order": p,
-                    "limit": rich["value"],
-                    "note": f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
-                            f"{p:.2f}): Roache's 1.25 |limit - finest| for the peak; the history's "
-                            "difference to the next coarser times 1.25 / (r**p - 1)"}
-    return {**out, "peak_error": abs(ref["peak_tip"] / prev["peak_tip"] - 1), "history_error": float(diff),
-            "method": "next_coarser", "order": None,
-            "note": f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
-                    "converge monotonically at a plausible order, so no extrapolation"}
+            return {
+                **out,
+                "peak_error": rich["error_estimate"] / abs(rich["value"]),
+                "history_error": 1.25 * factor * float(diff),
+                "method": "richardson",
+                "order": p,
+                "limit": rich["value"],
+                "note": f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
+                f"{p:.2f}): Roache's 1.25 |limit - finest| for the peak; the history's "
+                "difference to the next coarser times 1.25 / (r**p - 1)",
+            }
+    return {
+        **out,
+        "peak_error": abs(ref["peak_tip"] / prev["peak_tip"] - 1),
+        "history_error": float(diff),
+        "method": "next_coarser",
+        "order": None,
+        "note": f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
+        "converge monotonically at a plausible order, so no extrapolation",
+    }
 
 
 def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
     """Errors against the finest 3D run, its own error, the fronts (the study, the histories)."""
     from ..converge.selection import pareto_front
+
     tips = {d["label"]: np.asarray(d["tip"], float) for d in docs}
-    fine = sorted((d for d in docs if d["family"] == "fem3d" and d["ok"]),
-                  key=lambda d: (d["params"]["elements_along"], d["params"]["elements_around"]))
+    fine = sorted(
+        (d for d in docs if d["family"] == "fem3d" and d["ok"]),
+        key=lambda d: (d["params"]["elements_along"], d["params"]["elements_around"]),
+    )
     if not fine:
         raise ValueError("no 3D run finished: no reference")
     ref_err = _reference_error(fine, tips)
@@ -451,26 +558,48 @@ def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
             he = float(np.max(np.abs(tips[d["label"]] - x_ref)) / scale)
         else:
             pe = he = None
-        runs.append(ParetoRun(family=d["family"], label=d["label"], params=d["params"], dofs=d["dofs"],
-                              wall_seconds=d["wall_seconds"], peak_tip=d["peak_tip"], peak_tip_error=pe,
-                              history_error=he, ok=d["ok"], cached=d.get("cached", False), key=d["key"]))
+        runs.append(
+            ParetoRun(
+                family=d["family"],
+                label=d["label"],
+                params=d["params"],
+                dofs=d["dofs"],
+                wall_seconds=d["wall_seconds"],
+                peak_tip=d["peak_tip"],
+                peak_tip_error=pe,
+                history_error=he,
+                ok=d["ok"],
+                cached=d.get("cached", False),
+                key=d["key"],
+            )
+        )
     wall = [r.wall_seconds for r in runs]
-    fronts = {"peak_tip": [runs[i].label for i in pareto_front(wall, [r.peak_tip_error for r in runs])],
-              "history": [runs[i].label for i in pareto_front(wall, [r.history_error for r in runs])]}
+    fronts = {
+        "peak_tip": [runs[i].label for i in pareto_front(wall, [r.peak_tip_error for r in runs])],
+        "history": [runs[i].label for i in pareto_front(wall, [r.history_error for r in runs])],
+    }
     by = {r.label: r for r in runs}
     why = []
     for role in ("rom", "fem3d"):
-        r = by.get(chosen.get(role) or "")    # no label is empty: None finds nothing
+        r = by.get(chosen.get(role) or "")  # no label is empty: None finds nothing
         if r is not None:
             on = [m for m, f in fronts.items() if r.label in f]
-            why.append(f"{r.label} ({'the ROM compare runs' if role == 'rom' else 'the 3D reference compare runs'}): "
-                       f"peak {_pct(r.peak_tip_error)}, history {_pct(r.history_error)} in "
-                       f"{r.wall_seconds:.3g} s, " + (f"on the front of {' and '.join(on)}" if on
-                                                       else "on no front"))
-    study = ParetoStudy(case={}, runs=tuple(runs), reference=ref_err, fronts=fronts,
-                        chosen={**chosen, "why": "; ".join(why)}, compile_seconds={}, cost={},
-                        note="errors of the tip relative to the ground against the finest 3D run; "
-                             "wall times warm, measured on a shared machine (noisy)")
+            why.append(
+                f"{r.label} ({'the ROM compare runs' if role == 'rom' else 'the 3D reference compare runs'}): "
+                f"peak {_pct(r.peak_tip_error)}, history {_pct(r.history_error)} in "
+                f"{r.wall_seconds:.3g} s, " + (f"on the front of {' and '.join(on)}" if on else "on no front")
+            )
+    study = ParetoStudy(
+        case={},
+        runs=tuple(runs),
+        reference=ref_err,
+        fronts=fronts,
+        chosen={**chosen, "why": "; ".join(why)},
+        compile_seconds={},
+        cost={},
+        note="errors of the tip relative to the ground against the finest 3D run; "
+        "wall times warm, measured on a shared machine (noisy)",
+    )
     return study, tips
 
 

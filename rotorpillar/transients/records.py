@@ -17,6 +17,7 @@ REFERENCE_ORDER = ("fem3d", "beam", "modal", "paper")
 @dataclass(frozen=True)
 class ComparedModel(JsonRecord):
     """One model's run in a comparison: its answers, its cost and its files."""
+
     peak_tip_relative: float
     """largest |tip X relative to the ground| (m)"""
     peak_tip_absolute: float
@@ -46,6 +47,7 @@ class ComparedModel(JsonRecord):
 @dataclass(frozen=True)
 class ModelErrors(JsonRecord):
     """One model against the reference (rotorpillar.transients.measures)."""
+
     tip_history_error: float
     """max_t |tip_m - tip_ref| / max_t |tip_ref|, tips relative to the ground on the
     reference's times (-)"""
@@ -70,6 +72,7 @@ class ModelErrors(JsonRecord):
 @dataclass(frozen=True)
 class CompareWindow(JsonRecord):
     """The span every model's history is compared over."""
+
     start: float
     """(s)"""
     end: float
@@ -85,6 +88,7 @@ class CompareWindow(JsonRecord):
 @dataclass(frozen=True)
 class SpectralMode(JsonRecord):
     """One pillar mode's part in the response-spectrum estimate of the tip."""
+
     mode: int
     """its number, from 1 (-)"""
     period: float
@@ -102,6 +106,7 @@ class SpectralMode(JsonRecord):
 @dataclass(frozen=True)
 class ResponseSpectrum(JsonRecord):
     """The earthquake's pseudo-acceleration spectrum and the ROM's spectral peak tip."""
+
     period: tuple[float, ...]
     """(s)"""
     psa: tuple[float, ...]
@@ -123,6 +128,7 @@ class CompareResult(JsonRecord):
     """Several models on one case (SI: m, rad/s, s).  ``errors`` and ``cost_ratio`` are
     against ``reference``; the histories are compared over ``window`` (every model is
     run over the same duration)."""
+
     case: str
     models_run: tuple[str, ...]
     """in the order given"""
@@ -144,8 +150,7 @@ class CompareResult(JsonRecord):
     """the span of the comparison and why"""
     spectrum: ResponseSpectrum | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake: the record's spectrum and the ROM's spectral estimate of the peak tip"""
-    full_order_reference: FullOrderReference | None = field(default=None,
-                                                            metadata={"omit_if_none": True})
+    full_order_reference: FullOrderReference | None = field(default=None, metadata={"omit_if_none": True})
     """fem3d run: its mesh, where it comes from (the convergence study, or the scene), its own
     error on the frequencies the load excites, and the participation of the loaded modes"""
     pareto: ParetoStudy | None = field(default=None, metadata={"omit_if_none": True})

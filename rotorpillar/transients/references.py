@@ -71,6 +71,7 @@ QUANTITY_OF = {("bending_x", 0): "bending", ("ovalling", 0): "ovalling"}
 @dataclass(frozen=True)
 class ModeParticipation(JsonRecord):
     """One mode of the loaded tube and its part in a case's loads."""
+
     index: int
     kind: str
     """bending_x, bending_y, ovalling, torsion, axial, breathing or other"""
@@ -92,6 +93,7 @@ class ModeParticipation(JsonRecord):
 @dataclass(frozen=True)
 class ParticipationTable(JsonRecord):
     """The loaded tube's modes and which of them a case's loads excite."""
+
     case: str
     loads: tuple[str, ...]
     band_top: float
@@ -119,6 +121,7 @@ class ParticipationTable(JsonRecord):
 @dataclass(frozen=True)
 class FullOrderReference(JsonRecord):
     """The 3D full order's mesh for one case, where it comes from, and its own error."""
+
     case: str
     mesh: dict
     """the scene [mesh] section the 3D run uses"""
@@ -152,9 +155,17 @@ class FullOrderReference(JsonRecord):
 # Participation
 
 
-def participation_table(rows, case: str, band_top: float, total_mass: float,
-                        compliance: tuple[float, float], *, source: str, mesh: dict,
-                        floor: float = PARTICIPATION_FLOOR) -> ParticipationTable:
+def participation_table(
+    rows,
+    case: str,
+    band_top: float,
+    total_mass: float,
+    compliance: tuple[float, float],
+    *,
+    source: str,
+    mesh: dict,
+    floor: float = PARTICIPATION_FLOOR,
+) -> ParticipationTable:
     """Which modes the case's loads excite, from the loaded modes' table rows
     (``ModalResult.modes_table()`` or modal.json's ``modes_with_top``: omega, kind,
     modal_mass, participation, top_plate_motion); ``compliance``: the plate's static
@@ -165,8 +176,11 @@ def participation_table(rows, case: str, band_top: float, total_mass: float,
     plate = np.array([(r.get("top_plate_motion") or [0.0] * 6)[:3] for r in rows], float)
     Lx = np.array([(r.get("participation") or [math.nan] * 3)[0] for r in rows], float)
     stiff = np.maximum(m * w**2, 1e-300)
-    shares = {"base_x": Lx**2 / m / total_mass, "plate_x": plate[:, 0] ** 2 / stiff / compliance[0],
-              "plate_z": plate[:, 2] ** 2 / stiff / compliance[1]}
+    shares = {
+        "base_x": Lx**2 / m / total_mass,
+        "plate_x": plate[:, 0] ** 2 / stiff / compliance[0],
+        "plate_z": plate[:, 2] ** 2 / stiff / compliance[1],
+    }
     if np.any(~np.isfinite(shares["base_x"])) and "base_x" in loads:
         raise ValueError("the loaded modes carry no participation (modal.json from before it?)")
     modes: list[ModeParticipation] = []
@@ -176,11 +190,20 @@ def participation_table(rows, case: str, band_top: float, total_mass: float,
         s = {k: float(shares[k][i]) for k in loads}
         inside = bool(w[i] <= band_top)
         takes = max(s.values()) >= floor
-        modes.append(ModeParticipation(
-            index=int(r["index"]), kind=r["kind"], n_circumferential=r.get("n_circumferential"),
-            n_axial=r.get("n_axial"), omega=float(w[i]), modal_mass=float(m[i]),
-            effective_mass_x=None if not math.isfinite(Lx[i]) else float(Lx[i] ** 2 / m[i]),
-            shares=s, in_band=inside, participates=bool(takes)))
+        modes.append(
+            ModeParticipation(
+                index=int(r["index"]),
+                kind=r["kind"],
+                n_circumferential=r.get("n_circumferential"),
+                n_axial=r.get("n_axial"),
+                omega=float(w[i]),
+                modal_mass=float(m[i]),
+                effective_mass_x=None if not math.isfinite(Lx[i]) else float(Lx[i] ** 2 / m[i]),
+                shares=s,
+                in_band=inside,
+                participates=bool(takes),
+            )
+        )
         if inside:
             (part if takes else left).append(i)
     quantities, uncovered = [], []
@@ -191,30 +214,51 @@ def participation_table(rows, case: str, band_top: float, total_mass: float,
         elif q not in quantities:
             quantities.append(q)
     return ParticipationTable(
-        case=case, loads=loads, band_top=float(band_top), floor=floor, total_mass=float(total_mass),
-        source=source, mesh=dict(mesh), modes=tuple(modes), participating=tuple(part),
-        left_out=tuple(left), quantities=tuple(quantities), uncovered=tuple(uncovered),
-        statement=_participation_statement(case, modes, part, left, band_top, floor, uncovered))
+        case=case,
+        loads=loads,
+        band_top=float(band_top),
+        floor=floor,
+        total_mass=float(total_mass),
+        source=source,
+        mesh=dict(mesh),
+        modes=tuple(modes),
+        participating=tuple(part),
+        left_out=tuple(left),
+        quantities=tuple(quantities),
+        uncovered=tuple(uncovered),
+        statement=_participation_statement(case, modes, part, left, band_top, floor, uncovered),
+    )
 
 
 def _participation_statement(case, modes, part, left, band_top, floor, uncovered) -> str:
     def name(p):
         extra = f" n = {p.n_circumferential}" if p.kind == "ovalling" else ""
         return f"{p.kind}{extra} ({p.omega:.2f} rad/s)"
-    loads = " and ".join({"base_x": "the ground's acceleration along x",
-                          "plate_x": "the shaft force on the plate along x",
-                          "plate_z": "along the axis"}[k] for k in LOADS[case])
-    text = (f"In the band up to {band_top:.1f} rad/s, {loads} excite "
-            + (", ".join(f"{name(modes[i])}, share {max(modes[i].shares.values()):.2g}" for i in part)
-               or "no mode"))
+
+    loads = " and ".join(
+        {
+            "base_x": "the ground's acceleration along x",
+            "plate_x": "the shaft force on the plate along x",
+            "plate_z": "along the axis",
+        }[k]
+        for k in LOADS[case]
+    )
+    text = f"In the band up to {band_top:.1f} rad/s, {loads} excite " + (
+        ", ".join(f"{name(modes[i])}, share {max(modes[i].shares.values()):.2g}" for i in part) or "no mode"
+    )
     if left:
         worst = max(max(modes[i].shares.values()) for i in left)
-        text += ("; " + ", ".join(name(modes[i]) for i in left) + f" take no part (largest share "
-                 f"{worst:.1e}, below {floor:g}: the tube's symmetry leaves them unloaded), so their "
-                 "frequencies, however coarse the mesh, do not enter the response")
+        text += (
+            "; " + ", ".join(name(modes[i]) for i in left) + f" take no part (largest share "
+            f"{worst:.1e}, below {floor:g}: the tube's symmetry leaves them unloaded), so their "
+            "frequencies, however coarse the mesh, do not enter the response"
+        )
     if uncovered:
-        text += ("; the study bounds no frequency of " + ", ".join(uncovered)
-                 + ": its error is not part of the reference's bound")
+        text += (
+            "; the study bounds no frequency of "
+            + ", ".join(uncovered)
+            + ": its error is not part of the reference's bound"
+        )
     return text + "."
 
 
@@ -223,12 +267,15 @@ def loaded_mode_rows(scene: Scene, study_dir: Path | None) -> tuple[list[dict], 
     and carries the participation, else computed on the scene's [mesh]."""
     doc = _read(Path(study_dir) / "modal.json") if study_dir is not None else None
     mine = scene.to_dict()
-    if doc is not None and all(doc.get("scene", {}).get(k) == mine[k]
-                               for k in ("pillar", "gondola", "mesh", "modal", "converge", "drive", "load")):
+    if doc is not None and all(
+        doc.get("scene", {}).get(k) == mine[k]
+        for k in ("pillar", "gondola", "mesh", "modal", "converge", "drive", "load")
+    ):
         rows = doc.get("modes_with_top") or []
         if rows and all("participation" in r for r in rows):
             return rows, "modal.json", dict(mine["mesh"])
     from ..fem3d import modal_analysis
+
     result = modal_analysis(scene, top=True)
     return result.modes_table(), "computed", dict(vars(scene.mesh))
 
@@ -237,6 +284,7 @@ def case_band_top(scene: Scene, case: str, motion=None) -> float:
     """The band a case excites: converge.margin x its fastest forcing (the drive's
     free speed; the ground motion's band for the earthquake) (rad/s)."""
     from ..reduced.band import excitation_band
+
     band = excitation_band(scene.drive, scene.load, scene.converge)
     top = band["omega_max"]
     if case == "earthquake" and motion is not None:
@@ -247,13 +295,14 @@ def case_band_top(scene: Scene, case: str, motion=None) -> float:
 def load_participation(scene: Scene, case: str, study_dir: Path | None = None, motion=None) -> ParticipationTable:
     """The participation of the loaded tube's modes in ``case``."""
     from ..reduced.pillar import section_of
+
     rows, source, mesh = loaded_mode_rows(scene, study_dir)
     p, sec = scene.pillar, section_of(scene.pillar)
     total = sec.mass_per_length * p.height + scene.gondola.mass
-    compliance = (p.height**3 / (3 * p.youngs_modulus * sec.second_moment),
-                  p.height / (p.youngs_modulus * sec.area))
-    return participation_table(rows, case, case_band_top(scene, case, motion), total, compliance,
-                               source=source, mesh=mesh)
+    compliance = (p.height**3 / (3 * p.youngs_modulus * sec.second_moment), p.height / (p.youngs_modulus * sec.area))
+    return participation_table(
+        rows, case, case_band_top(scene, case, motion), total, compliance, source=source, mesh=mesh
+    )
 
 
 # --------------------------------------------------------------------------
@@ -279,11 +328,13 @@ def read_study(scene: Scene, study_dir: Path | None):
     if doc is None:
         return None
     mine, theirs = scene.to_dict(), doc.get("scene", {})
-    tube = lambda d: {k: v for k, v in (d or {}).items() if k != "damping"}   # noqa: E731
+    tube = lambda d: {k: v for k, v in (d or {}).items() if k != "damping"}  # noqa: E731
     if tube(theirs.get("pillar")) != tube(mine["pillar"]) or any(
-            theirs.get(k) != mine[k] for k in ("mesh", "converge")):
+        theirs.get(k) != mine[k] for k in ("mesh", "converge")
+    ):
         return None
     from ..converge.result import ConvergenceStudy
+
     try:
         return ConvergenceStudy.from_json({**doc, "json": str(path)})
     except (KeyError, TypeError, ValueError):
@@ -294,6 +345,7 @@ def rom_source_record(scene: Scene, study) -> dict | None:
     """The study's record of the ROM's mode source (a beam: computed if the ladder
     lacks its element count; 3D: the study's run on that mesh), or None."""
     from ..converge.ladder import FAMILIES, _case
+
     mm = scene.modal_model
     source = getattr(mm, "source", "beam")
     runs = [r for r in study.runs if r.get("status") == "ok"]
@@ -304,9 +356,17 @@ def rom_source_record(scene: Scene, study) -> dict | None:
                 return r
         from ..converge.compute import compute_in_process
         from ..converge.selection import attach_errors
-        rec = {"family": case.family, "model": "beam", "label": case.label, "level": case.level,
-               "params": case.settings, "status": "ok", "wall_time": 0.0,
-               **compute_in_process(case, scene.pillar)}
+
+        rec = {
+            "family": case.family,
+            "model": "beam",
+            "label": case.label,
+            "level": case.level,
+            "params": case.settings,
+            "status": "ok",
+            "wall_time": 0.0,
+            **compute_in_process(case, scene.pillar),
+        }
         attach_errors([rec], study.reference, study.extrapolations)
         return rec
     if source == "fem3d":
@@ -315,47 +375,73 @@ def rom_source_record(scene: Scene, study) -> dict | None:
             if FAMILIES[r["family"]].model == "solid" and all(r["params"].get(k) == v for k, v in want.items()):
                 return r
         return None
-    chosen = study.chosen          # modal_model.source = "auto": the study's choice feeds the ROM
+    chosen = study.chosen  # modal_model.source = "auto": the study's choice feeds the ROM
     return dict(chosen) if chosen is not None else None
 
 
 def _mesh_of(scene: Scene, params: dict) -> Mesh:
-    return replace(scene.mesh, **{k: params[k] for k in ("elements_around", "elements_along",
-                                                         "elements_through", "degree", "cell_type",
-                                                         "grading") if k in params})
+    return replace(
+        scene.mesh,
+        **{
+            k: params[k]
+            for k in ("elements_around", "elements_along", "elements_through", "degree", "cell_type", "grading")
+            if k in params
+        },
+    )
 
 
 def estimated_steps(scene: Scene, case: str, motion, duration: float) -> int:
     """The 3D run's steps over ``duration`` (its step as simulate_fem3d sets it:
     fem3d.full_order_plan.step_rule)."""
     from ..fem3d.full_order_plan import case_setup, step_rule
+
     start = scene.simulate.runup_initial_speed if case == "runup" else None
     motion, drive, duration, speed, _ = case_setup(scene, case, motion, None, duration, start or None)
     return max(1, int(round(duration / step_rule(scene, drive, motion, speed).time_step)))
 
 
-def choose_reference(scene: Scene, case: str, study_dir: Path | None = None, motion=None,
-                     steps: int | None = None) -> tuple[Mesh, FullOrderReference]:
+def choose_reference(
+    scene: Scene, case: str, study_dir: Path | None = None, motion=None, steps: int | None = None
+) -> tuple[Mesh, FullOrderReference]:
     """(the scene [mesh] section the 3D run uses, the record of why) for ``case``;
     ``steps``: the run's Newmark steps, which bound how far the run-up's reference
     is refined for the ROM source (REFERENCE_DOF_STEPS)."""
     from ..converge.ladder import FAMILIES
     from ..converge.selection import run_band_error, select_reference
+
     fo = scene.full_order
     study = read_study(scene, study_dir)
     overrides = tuple(k for k in ("elements_around", "elements_along") if getattr(fo, k))
     if study is None:
-        mesh = replace(scene.mesh, elements_around=fo.elements_around or FALLBACK_AROUND,
-                       elements_along=fo.elements_along or scene.mesh.elements_along)
-        why = ("no convergence study of this tube on disk (out/<scene>/convergence.json; "
-               "`rotorpillar converge` writes it): the mesh is the scene's [full_order] "
-               f"({fo.elements_around or f'{FALLBACK_AROUND} (default)'} around) on [mesh]'s "
-               f"along ({mesh.elements_along}), its error unknown")
+        mesh = replace(
+            scene.mesh,
+            elements_around=fo.elements_around or FALLBACK_AROUND,
+            elements_along=fo.elements_along or scene.mesh.elements_along,
+        )
+        why = (
+            "no convergence study of this tube on disk (out/<scene>/convergence.json; "
+            "`rotorpillar converge` writes it): the mesh is the scene's [full_order] "
+            f"({fo.elements_around or f'{FALLBACK_AROUND} (default)'} around) on [mesh]'s "
+            f"along ({mesh.elements_along}), its error unknown"
+        )
         return mesh, FullOrderReference(
-            case=case, mesh=dict(vars(mesh)), label=_label(mesh), source="scene", verified=False,
-            band_error=None, errors={}, quantities=(), tolerance=None, required=None, floor=None,
-            meets=None, overrides=overrides, participation=None, reason=why,
-            statement=f"The 3D reference runs {_label(mesh)}, unverified: {why}.")
+            case=case,
+            mesh=dict(vars(mesh)),
+            label=_label(mesh),
+            source="scene",
+            verified=False,
+            band_error=None,
+            errors={},
+            quantities=(),
+            tolerance=None,
+            required=None,
+            floor=None,
+            meets=None,
+            overrides=overrides,
+            participation=None,
+            reason=why,
+            statement=f"The 3D reference runs {_label(mesh)}, unverified: {why}.",
+        )
     part = load_participation(scene, case, study_dir, motion)
     quantities = part.quantities
     runs = list(study.runs)
@@ -365,56 +451,113 @@ def choose_reference(scene: Scene, case: str, study_dir: Path | None = None, mot
         rec = rom_source_record(scene, study)
         if rec is not None:
             floor = {"label": rec["label"], "band_error": run_band_error(rec, quantities, study.reference)}
-    choice = select_reference(runs, study.reference, quantities, study.tolerance, floor=floor,
-                              max_dofs=max(along) if along else None,
-                              floor_max_dofs=None if steps is None else int(REFERENCE_DOF_STEPS / steps))
+    choice = select_reference(
+        runs,
+        study.reference,
+        quantities,
+        study.tolerance,
+        floor=floor,
+        max_dofs=max(along) if along else None,
+        floor_max_dofs=None if steps is None else int(REFERENCE_DOF_STEPS / steps),
+    )
     if choice is None:
-        mesh = replace(scene.mesh, elements_around=fo.elements_around or FALLBACK_AROUND,
-                       elements_along=fo.elements_along or scene.mesh.elements_along)
-        why = (f"no 3D run of the study meets {study.tolerance:g} on "
-               f"{', '.join(quantities) or 'the participating modes'}: the scene's [full_order] mesh, "
-               "its error unknown")
+        mesh = replace(
+            scene.mesh,
+            elements_around=fo.elements_around or FALLBACK_AROUND,
+            elements_along=fo.elements_along or scene.mesh.elements_along,
+        )
+        why = (
+            f"no 3D run of the study meets {study.tolerance:g} on "
+            f"{', '.join(quantities) or 'the participating modes'}: the scene's [full_order] mesh, "
+            "its error unknown"
+        )
         return mesh, FullOrderReference(
-            case=case, mesh=dict(vars(mesh)), label=_label(mesh), source="scene", verified=False,
-            band_error=None, errors={}, quantities=quantities, tolerance=study.tolerance,
-            required=None, floor=floor, meets=False, overrides=overrides, participation=part,
-            reason=why, statement=f"The 3D reference runs {_label(mesh)}, unverified: {why}. "
-            + part.statement, study=study.json_file)
+            case=case,
+            mesh=dict(vars(mesh)),
+            label=_label(mesh),
+            source="scene",
+            verified=False,
+            band_error=None,
+            errors={},
+            quantities=quantities,
+            tolerance=study.tolerance,
+            required=None,
+            floor=floor,
+            meets=False,
+            overrides=overrides,
+            participation=part,
+            reason=why,
+            statement=f"The 3D reference runs {_label(mesh)}, unverified: {why}. " + part.statement,
+            study=study.json_file,
+        )
     mesh = _mesh_of(scene, choice.params)
     band_err: float | None = choice.band_error
     errors, verified, label = choice.errors, True, choice.label
     reason = choice.reason
     if overrides:
         mesh = replace(mesh, **{k: getattr(fo, k) for k in overrides})
-        same = next((r for r in runs if r.get("status") == "ok"
-                     and FAMILIES[r["family"]].model == "solid"
-                     and all(r["params"].get(k) == v for k, v in vars(mesh).items())), None)
-        reason = (f"full_order.{' and full_order.'.join(overrides)} set: {_label(mesh)} instead of the "
-                  f"study's {choice.label}")
+        same = next(
+            (
+                r
+                for r in runs
+                if r.get("status") == "ok"
+                and FAMILIES[r["family"]].model == "solid"
+                and all(r["params"].get(k) == v for k, v in vars(mesh).items())
+            ),
+            None,
+        )
+        reason = (
+            f"full_order.{' and full_order.'.join(overrides)} set: {_label(mesh)} instead of the study's {choice.label}"
+        )
         if same is not None and run_band_error(same, quantities, study.reference) is not None:
             band_err = run_band_error(same, quantities, study.reference)
-            errors = {q: {"value": same[q], **{k: same.get(f"{q}_{k}") for k in
-                          ("error", "model_error", "discretisation_error", "error_bound")}}
-                      for q in quantities}
+            errors = {
+                q: {
+                    "value": same[q],
+                    **{
+                        k: same.get(f"{q}_{k}") for k in ("error", "model_error", "discretisation_error", "error_bound")
+                    },
+                }
+                for q in quantities
+            }
             label = same["label"]
             reason += f" (the study has it: band error {band_err:.1e})"
         else:
             band_err, errors, verified, label = None, {}, False, _label(mesh)
             reason += " (not a run of the study: its error is unknown)"
-    statement = (f"The 3D reference runs {label}"
-                 + (f": its error on the frequencies the load excites is at most {band_err:.1e} "
-                    f"(the study's bound on the bare tube, "
-                    + ", ".join(f"first {q} {e['error']:+.1e}" for q, e in errors.items()) + ")"
-                    if band_err is not None else ", its error unknown")
-                 + ". " + part.statement)
+    statement = (
+        f"The 3D reference runs {label}"
+        + (
+            f": its error on the frequencies the load excites is at most {band_err:.1e} "
+            f"(the study's bound on the bare tube, "
+            + ", ".join(f"first {q} {e['error']:+.1e}" for q, e in errors.items())
+            + ")"
+            if band_err is not None
+            else ", its error unknown"
+        )
+        + ". "
+        + part.statement
+    )
     return mesh, FullOrderReference(
-        case=case, mesh=dict(vars(mesh)), label=label, source="converge", verified=verified,
-        band_error=band_err, errors=errors, quantities=quantities, tolerance=choice.tolerance,
-        required=choice.required, floor=floor, meets=choice.meets if not overrides else None,
-        overrides=overrides, participation=part, reason=reason, statement=statement,
-        study=study.json_file)
+        case=case,
+        mesh=dict(vars(mesh)),
+        label=label,
+        source="converge",
+        verified=verified,
+        band_error=band_err,
+        errors=errors,
+        quantities=quantities,
+        tolerance=choice.tolerance,
+        required=choice.required,
+        floor=floor,
+        meets=choice.meets if not overrides else None,
+        overrides=overrides,
+        participation=part,
+        reason=reason,
+        statement=statement,
+        study=study.json_file,
+    )
 
 
 def _label(mesh) -> str:
-    return (f"3D P{mesh.degree} {mesh.cell_type}, {mesh.elements_around}x{mesh.elements_along}"
-            f"x{mesh.elements_through}")
+    return f"3D P{mesh.degree} {mesh.cell_type}, {mesh.elements_around}x{mesh.elements_along}x{mesh.elements_through}"

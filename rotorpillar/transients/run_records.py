@@ -34,6 +34,7 @@ def _resonance_json(r: Resonance) -> dict:
 @dataclass(frozen=True)
 class BeamFullOrder(JsonRecord):
     """The full-order 1D beam's discretisation and step (the beam's ``full_order`` block)."""
+
     elements: int
     """elements along the pillar (-)"""
     theory: str
@@ -50,6 +51,7 @@ class BeamFullOrder(JsonRecord):
 class Fem3dPlan(JsonRecord):
     """The 3D run's mesh, duration and step, and what was chosen, shortened and why
     (the ``full_order`` block of a fem3d run's JSON)."""
+
     mesh: Mesh
     """the scene [mesh] section the 3D run uses"""
     duration: float
@@ -64,19 +66,31 @@ class Fem3dPlan(JsonRecord):
     """where the mesh comes from and its own error"""
 
     def to_json(self) -> dict:
-        return {"mesh": dict(vars(self.mesh)), "duration": self.duration,
-                "case_duration": self.case_duration, "time_step": self.time_step,
-                "note": self.note, "reference": self.reference.to_json()}
+        return {
+            "mesh": dict(vars(self.mesh)),
+            "duration": self.duration,
+            "case_duration": self.case_duration,
+            "time_step": self.time_step,
+            "note": self.note,
+            "reference": self.reference.to_json(),
+        }
 
     @classmethod
     def from_json(cls, doc: dict) -> Fem3dPlan:
-        return cls(Mesh(**doc["mesh"]), doc["duration"], doc["case_duration"], doc["time_step"],
-                   doc["note"], FullOrderReference.from_json(doc["reference"]))
+        return cls(
+            Mesh(**doc["mesh"]),
+            doc["duration"],
+            doc["case_duration"],
+            doc["time_step"],
+            doc["note"],
+            FullOrderReference.from_json(doc["reference"]),
+        )
 
 
 @dataclass(frozen=True)
 class ReducedRun(JsonRecord):
     """paper, modal or beam on one case (SI: m, rad/s, s)."""
+
     case: str
     model: str
     summary: CaseSummary
@@ -136,13 +150,15 @@ class ReducedRun(JsonRecord):
     def from_json(cls, doc: dict) -> ReducedRun:
         rest = {k: v for k, v in doc.items() if k not in ("summary", "resonances")}
         base = super().from_json({**rest, "summary": None, "resonances": []})
-        return replace(base, summary=CaseSummary.from_json(doc),
-                       resonances=tuple(_resonance(r) for r in doc["resonances"]))
+        return replace(
+            base, summary=CaseSummary.from_json(doc), resonances=tuple(_resonance(r) for r in doc["resonances"])
+        )
 
 
 @dataclass(frozen=True)
 class Fem3dRun(JsonRecord):
     """The 3D full order on one case (SI: m, rad/s, s)."""
+
     case: str
     model: str
     ok: bool
@@ -206,7 +222,7 @@ class Fem3dRun(JsonRecord):
 
     def to_json(self) -> dict:
         out = super().to_json()
-        if self.excitation is None:          # written for the earthquake only, null or not
+        if self.excitation is None:  # written for the earthquake only, null or not
             out.pop("excitation_in_model")
         out["resonances"] = [_resonance_json(r) for r in self.resonances]
         return out

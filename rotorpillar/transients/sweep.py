@@ -20,15 +20,14 @@ import numpy as np
 from ..reduced import averaging as av
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
-from ..reduced.rotor_models import RotorStructure
 from ..reduced.integration import Settings, Transient, simulate
+from ..reduced.rotor_models import RotorStructure
 from ..scene import Sweep
 
 JUMP_FACTOR = 5.0
 
 
-def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float], bins: int,
-               direction: str) -> dict:
+def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float], bins: int, direction: str) -> dict:
     """Stationary speed and amplitudes per M0 bin over one ramp of a sweep."""
     m = run.model
     t0, t1 = phase
@@ -40,8 +39,7 @@ def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float],
     W = run.Omega[sel]
     tt = run.t[sel]
     tip, ry, rx = run.peak[sel, -1], run.peak[sel, m.nx], run.peak[sel, m.rotor_x]
-    cols = {k: np.full(bins, np.nan) for k in ("M0", "omega", "tip_x", "rotor_y", "rotor_x",
-                                                "M0_inertia_corrected")}
+    cols = {k: np.full(bins, np.nan) for k in ("M0", "omega", "tip_x", "rotor_y", "rotor_x", "M0_inertia_corrected")}
     for b in range(bins):
         s = idx == b
         if not s.any():
@@ -87,9 +85,15 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
             j += 1
         w_from, w_to = float(W[i]), float(W[j + 1])
         if abs(w_to - w_from) > 0.01 * abs(w_from):
-            jumps.append({"direction": cols["direction"], "omega_from": w_from, "omega_to": w_to,
-                          "torque_at_zero": float(0.5 * (M0[i] + M0[i + 1])),
-                          "bins": int(j - i + 1)})
+            jumps.append(
+                {
+                    "direction": cols["direction"],
+                    "omega_from": w_from,
+                    "omega_to": w_to,
+                    "torque_at_zero": float(0.5 * (M0[i] + M0[i + 1])),
+                    "bins": int(j - i + 1),
+                }
+            )
         i = j + 1
     return jumps, float(np.max(ratio)) if len(ratio) else 0.0
 
@@ -104,8 +108,7 @@ def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
         key = "tip_x" if r.direction == "X" else "rotor_y"
         # where resonance i dominates: within 2 n_i, and nearer to omega_i than
         # to any other resonance of the same direction; stationary bins only
-        gap = min((abs(q.omega - r.omega) for q in res if q.direction == r.direction and q is not r),
-                  default=math.inf)
+        gap = min((abs(q.omega - r.omega) for q in res if q.direction == r.direction and q is not r), default=math.inf)
         near = (np.abs(W - r.omega) <= min(2 * r.n, 0.5 * gap)) & ~cols.get("in_jump", np.zeros(len(W), bool))
         if near.sum() < 2:
             continue
@@ -113,17 +116,27 @@ def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
         eq19 = np.asarray(av.amplitude(W[near], r))
         exact = model.steady_amplitudes(W[near])[key]
         k = int(np.argmax(num))
-        out.append({"index": r.index, "direction": r.direction, "omega": r.omega, "coordinate": key,
-                    "sweep": cols["direction"], "bins": int(near.sum()),
-                    "numeric_peak": float(num[k]), "omega_at_numeric_peak": float(W[near][k]),
-                    "eq19_at_that_speed": float(eq19[k]), "exact_at_that_speed": float(exact[k]),
-                    "eq19_a_max": float(av.amplitude(r.omega, r)),
-                    "rel_error_eq19": float(np.max(np.abs(eq19 / num - 1))),
-                    "rel_error_exact": float(np.max(np.abs(exact / num - 1))),
-                    "rel_error_eq19_median": float(np.median(np.abs(eq19 / num - 1))),
-                    "rel_error_exact_median": float(np.median(np.abs(exact / num - 1))),
-                    "rel_error_eq19_at_peak": float(eq19[k] / num[k] - 1),
-                    "rel_error_exact_at_peak": float(exact[k] / num[k] - 1)})
+        out.append(
+            {
+                "index": r.index,
+                "direction": r.direction,
+                "omega": r.omega,
+                "coordinate": key,
+                "sweep": cols["direction"],
+                "bins": int(near.sum()),
+                "numeric_peak": float(num[k]),
+                "omega_at_numeric_peak": float(W[near][k]),
+                "eq19_at_that_speed": float(eq19[k]),
+                "exact_at_that_speed": float(exact[k]),
+                "eq19_a_max": float(av.amplitude(r.omega, r)),
+                "rel_error_eq19": float(np.max(np.abs(eq19 / num - 1))),
+                "rel_error_exact": float(np.max(np.abs(exact / num - 1))),
+                "rel_error_eq19_median": float(np.median(np.abs(eq19 / num - 1))),
+                "rel_error_exact_median": float(np.median(np.abs(exact / num - 1))),
+                "rel_error_eq19_at_peak": float(eq19[k] / num[k] - 1),
+                "rel_error_exact_at_peak": float(exact[k] / num[k] - 1),
+            }
+        )
     return out
 
 
@@ -132,23 +145,31 @@ def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
     nearest to and that is nearest to it (in the speed it leaves), or beside
     none: a jump the sweep did not make (a resonance out of its range) is not
     measured against another resonance's jump."""
+
     def nearest(x, cands):
         return min(cands, key=lambda c: abs(c["omega_from"] - x["omega_from"]), default=None)
+
     rows = []
     for p in predicted:
         j = nearest(p, [j for j in numeric if j["direction"] == p["direction"]])
         if j is None or nearest(j, [q for q in predicted if q["direction"] == p["direction"]]) is not p:
             rows.append({"predicted": p, "numeric": None})
             continue
-        rows.append({"predicted": p, "numeric": j,
-                     "rel_error_omega_from": j["omega_from"] / p["omega_from"] - 1,
-                     "rel_error_omega_to": j["omega_to"] / p["omega_to"] - 1,
-                     "rel_error_torque": j["torque_at_zero"] / p["torque_at_zero"] - 1})
+        rows.append(
+            {
+                "predicted": p,
+                "numeric": j,
+                "rel_error_omega_from": j["omega_from"] / p["omega_from"] - 1,
+                "rel_error_omega_to": j["omega_to"] / p["omega_to"] - 1,
+                "rel_error_torque": j["torque_at_zero"] / p["torque_at_zero"] - 1,
+            }
+        )
     return rows
 
 
-def sweep_analysis(sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure,
-                   run: Transient, drive: DriveSchedule) -> dict:
+def sweep_analysis(
+    sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure, run: Transient, drive: DriveSchedule
+) -> dict:
     """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves,
     for the motor's ``slope`` s (N*m*s) and the load's coefficient k (N*m*s**2)."""
     w = sweep
@@ -172,42 +193,65 @@ def sweep_analysis(sweep: Sweep, slope: float, load_coefficient: float, model: R
         if not (w.torque_low <= float(r.omega * (s + k * r.omega)) <= w.torque_high):
             continue
         acc = w.rate / (s + 2 * k * r.omega)
-        rate_check.append({"index": r.index, "omega": r.omega, "n": r.n,
-                           "speed_rate": acc, "ratio": acc / r.n**2,
-                           "quasi_static": bool(acc / r.n**2 < 0.1)})
+        rate_check.append(
+            {
+                "index": r.index,
+                "omega": r.omega,
+                "n": r.n,
+                "speed_rate": acc,
+                "ratio": acc / r.n**2,
+                "quasi_static": bool(acc / r.n**2 < 0.1),
+            }
+        )
     if numeric:
         reason = None
     elif predicted:
         reason = "the analysis predicts jumps the sweep did not find (see predicted_jumps)"
     else:
-        worst = max((av.peak_resistance_ratio(r, k) for r in res if k > 0),
-                    default=0.0)
-        reason = (f"No jumps: the speed rose and fell smoothly with M0 (largest step {max(r_up, r_down):.2f}x "
-                  f"what the motor and load alone allow; a jump needs > {JUMP_FACTOR:g}x), as the "
-                  f"analysis predicts: no fold of Md = L in [{w.torque_low:g}, {w.torque_high:g}] N*m; "
-                  f"the resonances draw at most {100 * worst:.2g} % of Mc at their own speed.")
+        worst = max((av.peak_resistance_ratio(r, k) for r in res if k > 0), default=0.0)
+        reason = (
+            f"No jumps: the speed rose and fell smoothly with M0 (largest step {max(r_up, r_down):.2f}x "
+            f"what the motor and load alone allow; a jump needs > {JUMP_FACTOR:g}x), as the "
+            f"analysis predicts: no fold of Md = L in [{w.torque_low:g}, {w.torque_high:g}] N*m; "
+            f"the resonances draw at most {100 * worst:.2g} % of Mc at their own speed."
+        )
     W_curve = av.stationary_speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
-    curves = {"omega": W_curve,
-              "F_averaging": av.total_resistance(W_curve, k, res) + s * W_curve,
-              "F_exact": k * W_curve**2 + s * W_curve - model.steady_torque(W_curve),
-              "exact": model.steady_amplitudes(W_curve),
-              "eq19": {f"{r.direction}{r.index}": av.amplitude(W_curve, r) for r in res}}
-    return {"up": up, "down": down, "numeric_jumps": numeric, "predicted_jumps": predicted,
-            "jump_comparison": match_jumps(numeric, predicted),
-            "largest_speed_step_ratio": {"up": r_up, "down": r_down},
-            "amplitudes": compare_amplitudes(model, up) + compare_amplitudes(model, down),
-            "rate_check": rate_check, "no_jump_reason": reason,
-            # the up-sweep held below a resonance until its fold: the speed it was held at,
-            # that resonance's omega_i and index
-            "captured_at": j_up[0]["omega_from"] if held is not None else None,
-            "captured_resonance": None if held is None else held.omega,
-            "captured_index": None if held is None else held.index,
-            "curves": curves}
+    curves = {
+        "omega": W_curve,
+        "F_averaging": av.total_resistance(W_curve, k, res) + s * W_curve,
+        "F_exact": k * W_curve**2 + s * W_curve - model.steady_torque(W_curve),
+        "exact": model.steady_amplitudes(W_curve),
+        "eq19": {f"{r.direction}{r.index}": av.amplitude(W_curve, r) for r in res},
+    }
+    return {
+        "up": up,
+        "down": down,
+        "numeric_jumps": numeric,
+        "predicted_jumps": predicted,
+        "jump_comparison": match_jumps(numeric, predicted),
+        "largest_speed_step_ratio": {"up": r_up, "down": r_down},
+        "amplitudes": compare_amplitudes(model, up) + compare_amplitudes(model, down),
+        "rate_check": rate_check,
+        "no_jump_reason": reason,
+        # the up-sweep held below a resonance until its fold: the speed it was held at,
+        # that resonance's omega_i and index
+        "captured_at": j_up[0]["omega_from"] if held is not None else None,
+        "captured_resonance": None if held is None else held.omega,
+        "captured_index": None if held is None else held.index,
+        "curves": curves,
+    }
 
 
-def rate_convergence(sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure,
-                     st: Settings, jumps: list[dict], predicted: list[dict],
-                     factors: tuple[float, ...] = (1.0, 0.5, 0.25)) -> dict:
+def rate_convergence(
+    sweep: Sweep,
+    slope: float,
+    load_coefficient: float,
+    model: RotorStructure,
+    st: Settings,
+    jumps: list[dict],
+    predicted: list[dict],
+    factors: tuple[float, ...] = (1.0, 0.5, 0.25),
+) -> dict:
     """The sweep's jumps at rates r, r/2, r/4, and their limit at zero rate.
 
     A slow passage past a fold is delayed by a power of the rate (about 2/3
@@ -222,9 +266,14 @@ def rate_convergence(sweep: Sweep, slope: float, load_coefficient: float, model:
         if f == 1.0:
             continue
         drive = DriveSchedule.sweep(s, k, w.torque_low, w.torque_high, w.rate * f, w.settle)
-        run = simulate(model, drive, no_motion(), drive.times[-1],
-                       settings=replace(st, samples=max(st.samples, int(40 * w.bins / f))),
-                       speed_scale=drive.free_speed(drive.times[2]))
+        run = simulate(
+            model,
+            drive,
+            no_motion(),
+            drive.times[-1],
+            settings=replace(st, samples=max(st.samples, int(40 * w.bins / f))),
+            speed_scale=drive.free_speed(drive.times[2]),
+        )
         t = drive.times
         bins = int(w.bins / f)
         j_up = detect_jumps(sweep_bins(run, drive, (t[1], t[2]), bins, "up"), s, k)[0]
@@ -235,10 +284,13 @@ def rate_convergence(sweep: Sweep, slope: float, load_coefficient: float, model:
         for f in factors[1:]:
             c = [x for x in found[f] if x["direction"] == j["direction"]]
             same.append(min(c, key=lambda x: abs(x["omega_from"] - j["omega_from"])) if c else None)
-        row = {"direction": j["direction"], "rates": [w.rate * f for f in factors],
-               "torque_at_zero": [None if x is None else x["torque_at_zero"] for x in same],
-               "omega_from": [None if x is None else x["omega_from"] for x in same],
-               "omega_to": [None if x is None else x["omega_to"] for x in same]}
+        row = {
+            "direction": j["direction"],
+            "rates": [w.rate * f for f in factors],
+            "torque_at_zero": [None if x is None else x["torque_at_zero"] for x in same],
+            "omega_from": [None if x is None else x["omega_from"] for x in same],
+            "omega_to": [None if x is None else x["omega_to"] for x in same],
+        }
         for key in ("torque_at_zero", "omega_from", "omega_to"):
             v = row[key]
             lim, p = None, None
@@ -255,5 +307,8 @@ def rate_convergence(sweep: Sweep, slope: float, load_coefficient: float, model:
             row["predicted_torque_at_zero"] = q["torque_at_zero"]
             row["rel_error_limit_vs_predicted"] = row["torque_at_zero_limit"] / q["torque_at_zero"] - 1
         rows.append(row)
-    return {"rows": rows, "note": "jump torques at decreasing sweep rates, extrapolated to a "
-                                  "quasi-static sweep (rate -> 0) with a fitted power of the rate"}
+    return {
+        "rows": rows,
+        "note": "jump torques at decreasing sweep rates, extrapolated to a "
+        "quasi-static sweep (rate -> 0) with a fitted power of the rate",
+    }

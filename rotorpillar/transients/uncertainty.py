@@ -16,56 +16,61 @@ Each number's error is the sum of the sources' magnitudes
 from __future__ import annotations
 
 import math
-from typing import Optional
 
 from ..chain import ChainModes, Uncertain
 from ..scene import ADAPTIVE_INTEGRATORS, SCIPY_METHODS, Scene, override
 
 #: the numbers that get error bars, and their units
-HEADLINE = {"peak_tip_relative": "m", "peak_shaft_deflection": "m", "omega_final": "rad/s",
-            "captured_at": "rad/s"}
+HEADLINE = {"peak_tip_relative": "m", "peak_shaft_deflection": "m", "omega_final": "rad/s", "captured_at": "rad/s"}
 
 
-def headline_numbers(res) -> dict[str, Optional[float]]:
+def headline_numbers(res) -> dict[str, float | None]:
     """A ROM CaseResult's headline numbers (the modal model is relative to the ground)."""
     s = res.summary
-    return {"peak_tip_relative": s.max_abs["tip_x"],
-            "peak_shaft_deflection": s.max_abs["shaft_deflection_x_sampled"],
-            "omega_final": s.omega_final_mean, "captured_at": s.captured_at}
+    return {
+        "peak_tip_relative": s.max_abs["tip_x"],
+        "peak_shaft_deflection": s.max_abs["shaft_deflection_x_sampled"],
+        "omega_final": s.omega_final_mean,
+        "captured_at": s.captured_at,
+    }
 
 
-def _finer(scene: Scene, integrator: Optional[str]) -> Scene:
+def _finer(scene: Scene, integrator: str | None) -> Scene:
     sim = scene.simulate
     method = integrator or sim.integrator
     if method in ADAPTIVE_INTEGRATORS + SCIPY_METHODS:
         return override(scene, [f"simulate.rtol={max(sim.rtol / 100, 1e-13)!r}"])
     if sim.time_step > 0:
         return override(scene, [f"simulate.time_step={sim.time_step / 2!r}"])
-    return scene        # an automatic step: the integrator study measures it, not this check
+    return scene  # an automatic step: the integrator study measures it, not this check
 
 
-def uncertainty(scene: Scene, case: str, integrator, motion, chain: ChainModes, base,
-                progress=None) -> dict[str, Uncertain]:
+def uncertainty(
+    scene: Scene, case: str, integrator, motion, chain: ChainModes, base, progress=None
+) -> dict[str, Uncertain]:
     """``{name: Uncertain}`` for the headline numbers of ``base`` (a modal CaseResult)."""
     from .cases import run_case
+
     quiet = override(scene, ["simulate.threshold=false"])
     k = base.model.pillar_modes.count
     values = headline_numbers(base)
 
     def run(sc, modes, pillar_modes):
-        return headline_numbers(run_case(sc, case, "modal", integrator, modes, truncation=False,
-                                         motion=motion, pillar_modes=pillar_modes))
+        return headline_numbers(
+            run_case(sc, case, "modal", integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes)
+        )
 
     delta = chain.pillar_model.bending_error
     if progress:
-        progress(f"error bars: the {case} again with the pillar frequencies moved, one more mode, "
-                 "and a finer integration")
+        progress(
+            f"error bars: the {case} again with the pillar frequencies moved, one more mode, and a finer integration"
+        )
     variants = {
-        "discretisation": (None if delta is None else
-                           run(quiet, k, chain.modes.scaled(1 + delta))),
+        "discretisation": (None if delta is None else run(quiet, k, chain.modes.scaled(1 + delta))),
         "truncation": run(quiet, k + 1, chain.modes) if chain.modes.count > k else None,
-        "integration": (run(_finer(quiet, integrator), k, chain.modes)
-                        if _finer(quiet, integrator) is not quiet else None),
+        "integration": (
+            run(_finer(quiet, integrator), k, chain.modes) if _finer(quiet, integrator) is not quiet else None
+        ),
     }
     out = {}
     for name, unit in HEADLINE.items():

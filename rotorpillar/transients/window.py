@@ -22,8 +22,8 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 import math
-from functools import partial
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -42,6 +42,7 @@ SETTLE_PERIODS = 10
 @dataclass(frozen=True)
 class RunupWindow(JsonRecord):
     """Where the compared run-up starts and ends, from the ROM's run-up from rest (SI)."""
+
     initial_speed: float
     """the speed every model starts at (rad/s); 0: from rest (no window)"""
     start: float
@@ -65,14 +66,16 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     """The window of the scene's run-up (see the module text): one run-up of the
     modal ROM from rest, without the passing-torque batch and the truncation check;
     ``pillar_modes``: the ROM's (the chain's; None: resolved for the scene, no study)."""
-    from .cases import run_case
     from ..reduced.drive import DriveSchedule
-    from .case_summary import capture_state
     from ..scene import override
+    from .case_summary import capture_state
+    from .cases import run_case
+
     sim = scene.simulate
     if pillar_modes is None:
         from ..chain import resolve
-        pillar_modes = resolve(scene, None).modes          # no study here: the scene's own model
+
+        pillar_modes = resolve(scene, None).modes  # no study here: the scene's own model
     rest = override(scene, ["simulate.threshold=false", "simulate.runup_initial_speed=0"])
     res = run_case(rest, "runup", "modal", truncation=False, pillar_modes=pillar_modes)
     t, W, tip = res.run.t, res.run.Omega, np.abs(res.run.tip())
@@ -82,20 +85,30 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     state = capture_state(res.model, t, W, free)
     w0 = START_FRACTION * qn[0]
     reached = np.nonzero(W >= w0)[0]
-    whole = partial(RunupWindow, initial_speed=0.0, start=0.0, end=float(t[-1]),
-                    duration=float(t[-1]), resonances=tuple(qn),
-                    passed=tuple(w for w in qn if w <= W.max()),
-                    captured_resonance=state.captured_resonance,
-                    peak_time=float(t[int(np.argmax(tip))]))
+    whole = partial(
+        RunupWindow,
+        initial_speed=0.0,
+        start=0.0,
+        end=float(t[-1]),
+        duration=float(t[-1]),
+        resonances=tuple(qn),
+        passed=tuple(w for w in qn if w <= W.max()),
+        captured_resonance=state.captured_resonance,
+        peak_time=float(t[int(np.argmax(tip))]),
+    )
     if reached.size == 0:
-        return whole(reason=f"the run-up never reaches {START_FRACTION:g} x the lowest "
-                           f"resonance ({qn[0]:.2f} rad/s): the whole run from rest")
+        return whole(
+            reason=f"the run-up never reaches {START_FRACTION:g} x the lowest "
+            f"resonance ({qn[0]:.2f} rad/s): the whole run from rest"
+        )
     i0 = int(reached[0])
     t0 = float(t[i0])
     if sim.runup_ramp > t0:
-        return whole(reason=f"the motor's ramp (simulate.runup_ramp = {sim.runup_ramp:g} s) "
-                           f"lasts past {t0:.3g} s, where the speed reaches {w0:.3g} rad/s: a window "
-                           "would start on a partial torque; the whole run from rest")
+        return whole(
+            reason=f"the motor's ramp (simulate.runup_ramp = {sim.runup_ramp:g} s) "
+            f"lasts past {t0:.3g} s, where the speed reaches {w0:.3g} rad/s: a window "
+            "would start on a partial torque; the whole run from rest"
+        )
     after = slice(i0, None)
     i_peak = i0 + int(np.argmax(tip[after]))
     t_peak = float(t[i_peak])
@@ -103,23 +116,32 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     if state.captured_resonance is not None:
         wc = state.captured_resonance
         t_end = t_peak + SETTLE_PERIODS * 2 * math.pi / wc
-        why = (f"captured at {wc:.2f} rad/s: until {SETTLE_PERIODS} periods of it after the tip's "
-               f"peak at {t_peak:.3g} s")
+        why = f"captured at {wc:.2f} rad/s: until {SETTLE_PERIODS} periods of it after the tip's peak at {t_peak:.3g} s"
     elif passed:
         last = max(passed)
         beyond = np.nonzero(W >= PASS_FACTOR * last)[0]
         t_end = max(float(t[beyond[0]]) if beyond.size else float(t[-1]), t_peak)
-        why = (f"through the last resonance passed ({last:.2f} rad/s) to {PASS_FACTOR:g} x it"
-               + ("" if beyond.size else " (not reached: the end of the run)"))
+        why = f"through the last resonance passed ({last:.2f} rad/s) to {PASS_FACTOR:g} x it" + (
+            "" if beyond.size else " (not reached: the end of the run)"
+        )
     else:
         t_end, why = float(t[-1]), "no resonance passed: to the end of the run"
     t_end = min(t_end, float(t[-1]))
     return RunupWindow(
-        initial_speed=float(w0), start=t0, end=t_end, duration=t_end - t0, resonances=tuple(qn),
-        passed=passed, captured_resonance=state.captured_resonance, peak_time=t_peak,
-        reason=(f"from {w0:.3g} rad/s ({START_FRACTION:g} x the lowest resonance {qn[0]:.2f} rad/s, "
-                f"reached at {t0:.3g} s from rest) {why}: {t_end - t0:.3g} s of the ROM's run-up, "
-                "every model from the same state (pillar at rest, rotor in its steady whirl)"))
+        initial_speed=float(w0),
+        start=t0,
+        end=t_end,
+        duration=t_end - t0,
+        resonances=tuple(qn),
+        passed=passed,
+        captured_resonance=state.captured_resonance,
+        peak_time=t_peak,
+        reason=(
+            f"from {w0:.3g} rad/s ({START_FRACTION:g} x the lowest resonance {qn[0]:.2f} rad/s, "
+            f"reached at {t0:.3g} s from rest) {why}: {t_end - t0:.3g} s of the ROM's run-up, "
+            "every model from the same state (pillar at rest, rotor in its steady whirl)"
+        ),
+    )
 
 
 def window_overrides(window: RunupWindow) -> list[str]:

@@ -25,7 +25,6 @@ if TYPE_CHECKING:
 import time
 from pathlib import Path
 
-
 from ..reduced import bode
 from ..reduced.margins import ModeEntry, separation_table
 from .records import HarmonicResult, PeakComparison
@@ -34,9 +33,9 @@ from .records import HarmonicResult, PeakComparison
 def running_speeds(model, scene: Scene) -> list[float]:
     """The ROM's stable stationary speeds with the scene's drive (rad/s)."""
     from ..reduced.stationary import stationary_exact
+
     d, L = scene.drive, scene.load
-    return sorted(s["omega"] for s in stationary_exact(model, d.torque_at_zero, d.slope, L.coefficient)
-                  if s["stable"])
+    return sorted(s["omega"] for s in stationary_exact(model, d.torque_at_zero, d.slope, L.coefficient) if s["stable"])
 
 
 def rom_modes(model) -> list[ModeEntry]:
@@ -45,8 +44,15 @@ def rom_modes(model) -> list[ModeEntry]:
     for row in model.damped_frequencies():
         i += row["direction"] == "X"
         kind = f"coupled X {i}" if row["direction"] == "X" else "rotor Y on its shaft"
-        out.append(ModeEntry(float(row["omega"]), float(row["damping_ratio"]), kind, "modal",
-                             "damping ratio of the coupled system's eigenvalue (b1 at the tip, b2)"))
+        out.append(
+            ModeEntry(
+                float(row["omega"]),
+                float(row["damping_ratio"]),
+                kind,
+                "modal",
+                "damping ratio of the coupled system's eigenvalue (b1 at the tip, b2)",
+            )
+        )
     return out
 
 
@@ -63,8 +69,7 @@ def fem3d_modes(modal_doc, tip_damping: float) -> list[ModeEntry]:
         n = row.get("n_circumferential")
         label = f"{kind} n={n}" if kind == "ovalling" and n is not None else kind
         if out and out[-1].kind.startswith(label) and abs(out[-1].omega - row["omega"]) <= 1e-6 * row["omega"]:
-            out[-1] = ModeEntry(out[-1].omega, out[-1].damping_ratio, f"{label} (pair)", "fem3d",
-                                out[-1].note)
+            out[-1] = ModeEntry(out[-1].omega, out[-1].damping_ratio, f"{label} (pair)", "fem3d", out[-1].note)
             continue
         if kind == "bending_x":
             zeta = tip_damping / (2 * row["modal_mass"] * row["omega"])
@@ -83,39 +88,50 @@ def _open_top_note(modal_doc, speeds) -> list[str]:
         return []
     w = float(rows[0]["omega"])
     near = min(speeds, key=lambda s: abs(s - w))
-    return [f"the bare tube's first ovalling mode (n = {rows[0].get('n_circumferential')}) is at "
-            f"{w:.4g} rad/s, {100 * abs(w - near) / near:.1f} % {'below' if w < near else 'above'} the "
-            f"running speed {near:.4g} rad/s: the loaded tube's is higher only because its rigid top "
-            "plate holds the top section round (modal.top_model); a top that does not would bring "
-            "it back"]
+    return [
+        f"the bare tube's first ovalling mode (n = {rows[0].get('n_circumferential')}) is at "
+        f"{w:.4g} rad/s, {100 * abs(w - near) / near:.1f} % {'below' if w < near else 'above'} the "
+        f"running speed {near:.4g} rad/s: the loaded tube's is higher only because its rigid top "
+        "plate holds the top section round (modal.top_model); a top that does not would bring "
+        "it back"
+    ]
 
 
 def _peaks(model, rom_curve, fem_curve, top) -> list[PeakComparison]:
     from ..reduced import averaging as av
+
     out = []
     for r in model.quasi_normal():
         if r.direction != "X" or not (0 < r.omega < top):
             continue
         a = bode.peak_near(rom_curve, r.omega, 0.15)
         b = bode.peak_near(fem_curve, r.omega, 0.15) if fem_curve is not None else None
-        out.append(PeakComparison(float(r.omega), None if a is None else a[0], None if a is None else a[1],
-                                  None if b is None else b[0], None if b is None else b[1],
-                                  float(av.amplitude(r.omega, r)),
-                                  None if (a is None or b is None) else b[1] / a[1] - 1))
+        out.append(
+            PeakComparison(
+                float(r.omega),
+                None if a is None else a[0],
+                None if a is None else a[1],
+                None if b is None else b[0],
+                None if b is None else b[1],
+                float(av.amplitude(r.omega, r)),
+                None if (a is None or b is None) else b[1] / a[1] - 1,
+            )
+        )
     return out
 
 
-def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool = True,
-                      chain=None) -> HarmonicResult:
+def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool = True, chain=None) -> HarmonicResult:
     """The Bode curves and the separation margins of the scene (see the module text);
     ``chain``: the chain's pillar model and modes (rotorpillar.chain.resolve; None: resolved
     here for ``out``)."""
     from ..fem3d.modal_summary import ModalSummary
     from ..reduced.band import forcing_top
     from ..reduced.models import build_model
+
     say = progress or (lambda m: None)
     if chain is None:
         from ..chain import resolve
+
         chain = resolve(scene, out, progress=progress)
     # the ROM of the transients: its band is band_factor x the fastest rotor speed
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "runup", None)
@@ -139,43 +155,55 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
         modes += loaded
         highest = max((m.omega for m in loaded), default=0.0)
         if highest < top:
-            notes.append(f"modal.json's loaded-tube modes reach {highest:.4g} rad/s, below the band's "
-                         f"{top:.4g}: a 3D mode between them is not checked (raise modal.n_modes)")
+            notes.append(
+                f"modal.json's loaded-tube modes reach {highest:.4g} rad/s, below the band's "
+                f"{top:.4g}: a 3D mode between them is not checked (raise modal.n_modes)"
+            )
         notes += _open_top_note(doc, speeds)
     else:
-        notes.append("no modal.json beside: the loaded tube's 3D modes (ovalling, torsion) are not "
-                     "checked; run `rotorpillar modal` first")
+        notes.append(
+            "no modal.json beside: the loaded tube's 3D modes (ovalling, torsion) are not "
+            "checked; run `rotorpillar modal` first"
+        )
     modes = [m for m in modes if m.omega <= top]
     rows = separation_table(speeds, modes)
     pm = model.pillar_modes
-    assert pm is not None                   # the modal model carries its pillar modes
+    assert pm is not None  # the modal model carries its pillar modes
     return HarmonicResult(
         running_speeds=tuple(speeds),
         running_speed_source="the stable stationary speeds of the ROM with the scene's drive "
-                             "(Md = Mc + the structure's averaged torque)",
-        band_top=float(top), rom=rom_curve, fem3d=fem_curve,
-        averaging=bode.averaging_curves(model, top), peaks=tuple(_peaks(model, rom_curve, fem_curve, top)),
-        modes=tuple(modes), separation=rows,
+        "(Md = Mc + the structure's averaged torque)",
+        band_top=float(top),
+        rom=rom_curve,
+        fem3d=fem_curve,
+        averaging=bode.averaging_curves(model, top),
+        peaks=tuple(_peaks(model, rom_curve, fem_curve, top)),
+        modes=tuple(modes),
+        separation=rows,
         rom_model=f"modal ROM: {pm.count} pillar modes ({pm.source}) + the rotor on its shaft",
-        fem3d_model=fem_text, rom_seconds_per_speed=float(rom_cost),
-        fem3d_seconds_per_speed=None if fem_cost is None else float(fem_cost), notes=tuple(notes),
-        pillar_model=chain.pillar_model)
+        fem3d_model=fem_text,
+        rom_seconds_per_speed=float(rom_cost),
+        fem3d_seconds_per_speed=None if fem_cost is None else float(fem_cost),
+        notes=tuple(notes),
+        pillar_model=chain.pillar_model,
+    )
 
 
 def _fem3d_curve(scene: Scene, model, top: float, say):
     """The 3D harmonic response on the [full_order] mesh, or (None, None, why not)."""
     import importlib.util
+
     if importlib.util.find_spec("dolfinx") is None:
         return None, None, "not computed: dolfinx is not installed here"
     from ..fem3d import assemble_pillar
     from ..fem3d.harmonic import harmonic_response, harmonic_speeds
     from ..fem3d.rotor_top import RotorOnTop
     from ..transients.model_run import fem3d_plan
+
     mesh = fem3d_plan(scene, "runup").mesh
     res = [r.omega for r in model.quasi_normal() if r.direction == "X"]
     speeds = harmonic_speeds(res, top)
-    say(f"harmonic: the 3D model on {mesh.elements_around} x {mesh.elements_along} elements at "
-        f"{len(speeds)} speeds")
+    say(f"harmonic: the 3D model on {mesh.elements_around} x {mesh.elements_along} elements at {len(speeds)} speeds")
     pillar = assemble_pillar(scene, top=True, mesh=mesh)
     try:
         h = harmonic_response(pillar, RotorOnTop.from_scene(scene), scene.pillar.damping, speeds)
@@ -183,9 +211,11 @@ def _fem3d_curve(scene: Scene, model, top: float, say):
         pillar.K.destroy()
         pillar.M.destroy()
     curve = bode.curve("fem3d", speeds, h.tip, h.shaft)
-    text = (f"3D tube, {mesh.elements_around} x {mesh.elements_along} x {mesh.elements_through} "
-            f"elements of degree {mesh.degree} ([full_order], the 3D transients' mesh), "
-            f"{h.dofs} real unknowns (2 x {h.dofs // 2})")
+    text = (
+        f"3D tube, {mesh.elements_around} x {mesh.elements_along} x {mesh.elements_through} "
+        f"elements of degree {mesh.degree} ([full_order], the 3D transients' mesh), "
+        f"{h.dofs} real unknowns (2 x {h.dofs // 2})"
+    )
     return curve, h.seconds_per_speed, text
 
 
@@ -193,19 +223,29 @@ def summary_text(r: HarmonicResult) -> str:
     """The readable text of `rotorpillar harmonic`."""
     lines = [f"unbalance response up to {r.band_top:.1f} rad/s: {r.rom_model}; {r.fem3d_model}"]
     for p in r.peaks:
-        rom = ("no peak (damped)" if p.rom_speed is None or p.rom_amplitude is None
-               else f"{p.rom_amplitude * 1e3:.4g} mm at {p.rom_speed:.3f}")
-        fem = ("-" if p.fem3d_speed is None or p.fem3d_amplitude is None
-               else f"{p.fem3d_amplitude * 1e3:.4g} mm at {p.fem3d_speed:.3f}")
-        lines.append(f"  resonance {p.omega:.3f} rad/s: ROM {rom}; 3D {fem}; Eq. 19 "
-                     f"{p.averaging_amplitude * 1e3:.4g} mm")
-    lines.append("separation margins (API 684), running speeds "
-                 + ", ".join(f"{w:.3f}" for w in r.running_speeds) + " rad/s:")
+        rom = (
+            "no peak (damped)"
+            if p.rom_speed is None or p.rom_amplitude is None
+            else f"{p.rom_amplitude * 1e3:.4g} mm at {p.rom_speed:.3f}"
+        )
+        fem = (
+            "-"
+            if p.fem3d_speed is None or p.fem3d_amplitude is None
+            else f"{p.fem3d_amplitude * 1e3:.4g} mm at {p.fem3d_speed:.3f}"
+        )
+        lines.append(
+            f"  resonance {p.omega:.3f} rad/s: ROM {rom}; 3D {fem}; Eq. 19 {p.averaging_amplitude * 1e3:.4g} mm"
+        )
+    lines.append(
+        "separation margins (API 684), running speeds " + ", ".join(f"{w:.3f}" for w in r.running_speeds) + " rad/s:"
+    )
     for row in r.separation:
         af = "inf" if row.amplification_factor is None else f"{row.amplification_factor:.3g}"
-        lines.append(f"  {row.mode.model:>5} {row.mode.kind:<22} {row.mode.omega:9.3f} rad/s  AF {af:>6}  "
-                     f"{row.position:<5} required {100 * row.required:5.1f} %  actual "
-                     f"{100 * row.actual:6.1f} %  {row.status}")
+        lines.append(
+            f"  {row.mode.model:>5} {row.mode.kind:<22} {row.mode.omega:9.3f} rad/s  AF {af:>6}  "
+            f"{row.position:<5} required {100 * row.required:5.1f} %  actual "
+            f"{100 * row.actual:6.1f} %  {row.status}"
+        )
     for n in r.notes:
         lines.append("  note: " + n)
     return "\n".join(lines)
@@ -214,4 +254,3 @@ def summary_text(r: HarmonicResult) -> str:
 def nearest(rows) -> object | None:
     """The row with the smallest actual margin, or None."""
     return min(rows, key=lambda r: r.actual) if rows else None
-

@@ -18,6 +18,7 @@ from ..reduced.margins import ModeEntry, SeparationRow
 @dataclass(frozen=True)
 class PeakComparison(JsonRecord):
     """One resonance's Bode peak on the ROM, on the 3D model and by Eq. 19."""
+
     omega: float
     """the ROM's omega_i (rad/s)"""
     rom_speed: float | None
@@ -37,6 +38,7 @@ class PeakComparison(JsonRecord):
 @dataclass(frozen=True)
 class HarmonicResult(JsonRecord):
     """What `rotorpillar harmonic` found (harmonic.json)."""
+
     running_speeds: tuple[float, ...]
     """the stable stationary speeds of the ROM with the scene's drive (rad/s)"""
     running_speed_source: str
@@ -67,6 +69,7 @@ class HarmonicResult(JsonRecord):
 @dataclass(frozen=True)
 class Headline(JsonRecord):
     """A number a reader came for, with the model and the case it came from."""
+
     key: str
     """e.g. "loaded_first_frequency\""""
     label: str
@@ -86,6 +89,7 @@ class Headline(JsonRecord):
 @dataclass(frozen=True)
 class EngineeringSummary(JsonRecord):
     """summary.json: the verdict first, then the numbers a reader came for."""
+
     scene: str
     verdict: str
     """"pass" (every assessed check passes), "fail" (one fails) or "incomplete" (none assessed)"""

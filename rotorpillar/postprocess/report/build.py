@@ -20,15 +20,27 @@ from __future__ import annotations
 import sys
 import traceback
 import zipfile
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from ...provenance import write_text
-from .. import html as h
 from ...transients.run_comparisons import COMPARISONS
+from .. import html as h
 from ..compare_reader import read_comparison
-from ..readers import (CASES, INPUTS, SIMULATE_COMMAND, Read, read_analysis, read_convergence,
-                       read_json, read_modal, read_simulation, read_study, require)
+from ..readers import (
+    CASES,
+    INPUTS,
+    SIMULATE_COMMAND,
+    Read,
+    read_analysis,
+    read_convergence,
+    read_json,
+    read_modal,
+    read_simulation,
+    read_study,
+    require,
+)
 from .convergence import section_convergence, section_integrators
 from .earthquake import section_earthquake
 from .engineering import section_internal_forces, section_unbalance
@@ -86,10 +98,19 @@ def _guarded_section(build: Build, ident: str, title: str, fn) -> str | None:
         say(f"section {title!r} failed: {build.failures[key]}")
         if debugging():
             traceback.print_exc(file=sys.stderr)
-        return h.section(ident, title, [h.tag(
-            "p", f"This section could not be written from its inputs ({build.failures[key]}); "
-                 "they may come from another version of rotorpillar: re-run the command that "
-                 "wrote them.", class_="failed")])
+        return h.section(
+            ident,
+            title,
+            [
+                h.tag(
+                    "p",
+                    f"This section could not be written from its inputs ({build.failures[key]}); "
+                    "they may come from another version of rotorpillar: re-run the command that "
+                    "wrote them.",
+                    class_="failed",
+                )
+            ],
+        )
 
 
 #: What a damaged input file raises when read (truncated, empty, binary, wrong shape).
@@ -103,8 +124,9 @@ def _read(build: Build, command: str, what: str, read):
     except DAMAGE as exc:
         why = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)
         build.damaged[command] = f"{what} is damaged ({type(exc).__name__}: {why[:120]})"
-        build.failures[f"input {what}"] = (f"{build.damaged[command]}: rebuild it with "
-                                           f"`rotorpillar {command} {build.scene_cli}`")
+        build.failures[f"input {what}"] = (
+            f"{build.damaged[command]}: rebuild it with `rotorpillar {command} {build.scene_cli}`"
+        )
         say(f"{what} is damaged ({type(exc).__name__}); its sections say how to rebuild it")
         return None
 
@@ -124,17 +146,23 @@ def load_inputs(build: Build) -> None:
     build.analysis = _record(build, "analyze", read_analysis)
     build.modal = _record(build, "modal", read_modal)
     build.convergence = _record(build, "convergence", read_convergence)
-    build.integrators = _read(build, "integrators", "integrators.json", lambda: _keys(
-        read_json(out / INPUTS["integrators"][0]), {"accuracy": dict}, "integrators.json"))
+    build.integrators = _read(
+        build,
+        "integrators",
+        "integrators.json",
+        lambda: _keys(read_json(out / INPUTS["integrators"][0]), {"accuracy": dict}, "integrators.json"),
+    )
     for case in CASES:
-        sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz",
-                    lambda: read_simulation(out, case))
+        sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz", lambda: read_simulation(out, case))
         if sim is not None:
             build.simulations[case] = sim
     # the paper's case: the paper model's own file, else the last earthquake run
-    build.quake_case = _read(build, SIMULATE_COMMAND, "simulate_earthquake_paper.json/.npz",
-                             lambda: read_simulation(out, "earthquake", "paper")) \
-        or build.simulations.get("earthquake")
+    build.quake_case = _read(
+        build,
+        SIMULATE_COMMAND,
+        "simulate_earthquake_paper.json/.npz",
+        lambda: read_simulation(out, "earthquake", "paper"),
+    ) or build.simulations.get("earthquake")
     for case in COMPARISONS:
         c = _read(build, "compare", f"compare_{case}.json", lambda: read_comparison(out, case))
         if c is not None:
@@ -151,10 +179,12 @@ def _keys(doc: dict[str, Any] | None, keys: dict[str, Any], name: str) -> dict[s
     return doc
 
 
-def build_report(scene: Scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None,
-                 timings=None) -> dict:
+def build_report(
+    scene: Scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None, timings=None
+) -> dict:
     """Render every figure the inputs in ``out`` allow and write ``out/report.html``."""
     from ...provenance import Timings
+
     timings = Timings() if timings is None else timings
     build = Build(scene, Path(out), scene_cli, options or ReportOptions())
     with timings("read_inputs"):
@@ -171,9 +201,9 @@ def build_report(scene: Scene, out: str | Path, scene_cli: str, options: ReportO
             render_animations(build, sets)
     if any(s is not None for s in sets.values()) or any(k.startswith("animation_") for k in build.products):
         from ..offscreen import render_window_class
+
         build.render_window = attempt(build, "render_window", render_window_class) or ""
-    build.products["external"] = [Product(p, c, group=w.group, case=w.case)
-                                  for p, c, w in external_figures(build.out)]
+    build.products["external"] = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(build.out)]
     with timings("html"):
         nav, sections = [], []
         for ident, title, fn in SECTIONS:
@@ -182,43 +212,58 @@ def build_report(scene: Scene, out: str | Path, scene_cli: str, options: ReportO
                 nav.append((ident, title))
                 sections.append(html_)
         title = f"rotorpillar report: {scene.name}"
-        header = [h.tag("h1", title),
-                  h.tag("p", scene.description or "", class_="meta"),
-                  h.tag("p", "Validation report of the rotor on its pillar: the 3D modes against the "
-                             "paper's closed forms, the paper's printed numbers against ours, the "
-                             "passage through resonance, the transients, and how far to trust each "
-                             "number.", class_="meta")]
+        header = [
+            h.tag("h1", title),
+            h.tag("p", scene.description or "", class_="meta"),
+            h.tag(
+                "p",
+                "Validation report of the rotor on its pillar: the 3D modes against the "
+                "paper's closed forms, the paper's printed numbers against ours, the "
+                "passage through resonance, the transients, and how far to trust each "
+                "number.",
+                class_="meta",
+            ),
+        ]
         document = h.page(title, header, nav, sections)
         path = write_text(build.out / "report.html", document)
-    figures = [str(p.path) for k, p in build.products.items()
-               if isinstance(p, Product) and p.kind == "figure"]
-    figures += [str(x.path) for k, v in build.products.items() if isinstance(v, list)
-                for x in v if isinstance(x, Product)]
-    animations = {k[len("animation_"):-len("_info")]: {kk: (str(vv) if isinstance(vv, Path) else vv)
-                                                       for kk, vv in v.items()}
-                  for k, v in build.products.items() if k.startswith("animation_") and k.endswith("_info")}
+    figures = [str(p.path) for k, p in build.products.items() if isinstance(p, Product) and p.kind == "figure"]
+    figures += [
+        str(x.path) for k, v in build.products.items() if isinstance(v, list) for x in v if isinstance(x, Product)
+    ]
+    animations = {
+        k[len("animation_") : -len("_info")]: {kk: (str(vv) if isinstance(vv, Path) else vv) for kk, vv in v.items()}
+        for k, v in build.products.items()
+        if k.startswith("animation_") and k.endswith("_info")
+    }
     present = {name: (build.out / f).is_file() for name, (f, _) in INPUTS.items()}
     present.update({f"simulate_{c}": c in build.simulations for c in CASES})
     present["simulate_earthquake_paper"] = (build.out / "simulate_earthquake_paper.json").is_file()
     present.update({f"compare_{c}": c in build.comparisons for c in COMPARISONS})
-    return {"report": str(path), "inputs": present, "figures": sorted(figures),
-            "animations": animations, "failures": build.failures, "damaged": build.damaged,
-            "render_seconds": build.render_seconds, "render_window": build.render_window,
-            "bytes": path.stat().st_size}
+    return {
+        "report": str(path),
+        "inputs": present,
+        "figures": sorted(figures),
+        "animations": animations,
+        "failures": build.failures,
+        "damaged": build.damaged,
+        "render_seconds": build.render_seconds,
+        "render_window": build.render_window,
+        "bytes": path.stat().st_size,
+    }
 
 
 def report_text(result: dict) -> str:
     have = [k for k, v in result["inputs"].items() if v]
     lacking = [k for k, v in result["inputs"].items() if not v]
-    lines = [f"report: {len(result['figures'])} figures, {len(result['animations'])} animation(s), "
-             f"{result['bytes'] / 2**20:.1f} MB",
-             "  inputs found: " + (", ".join(have) or "none"),
-             "  not computed: " + (", ".join(lacking) or "nothing")]
+    lines = [
+        f"report: {len(result['figures'])} figures, {len(result['animations'])} animation(s), "
+        f"{result['bytes'] / 2**20:.1f} MB",
+        "  inputs found: " + (", ".join(have) or "none"),
+        "  not computed: " + (", ".join(lacking) or "nothing"),
+    ]
     for k, v in result["animations"].items():
-        lines.append(f"  animation {k}: {v['frames']} frames, x{v['factor']:g}, "
-                     f"{v['seconds']:.1f} s -> {v['path']}")
+        lines.append(f"  animation {k}: {v['frames']} frames, x{v['factor']:g}, {v['seconds']:.1f} s -> {v['path']}")
     for k, v in result["failures"].items():
         lines.append(f"  FAILED {k}: {v}")
-    lines.append("  render seconds: " + ", ".join(f"{k} {v:.1f}"
-                                                  for k, v in result["render_seconds"].items()))
+    lines.append("  render seconds: " + ", ".join(f"{k} {v:.1f}" for k, v in result["render_seconds"].items()))
     return "\n".join(lines)

@@ -8,18 +8,27 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from .. import html as h
 from ...transients.run_comparisons import comparison_command, comparison_overrides
+from .. import html as h
 from .parts import failure, product_image, scene_differs
 from .references import reference_block
 from .state import Build
 
 #: The headers of the speed-accuracy table (the reference's name goes in the errors).
-COST_HEADERS = ("model", "DOFs", "wall time, warm (s)", "compilation, apart (s)",
-                "peak tip relative to the ground (m)", "peak shaft deflection (m)",
-                "final speed (rad/s)", "tip history error against {ref}",
-                "tip envelope error against {ref}", "peak difference against {ref}",
-                "rotor angle drift (rad)", "cost ratio (warm wall time / {ref}'s)")
+COST_HEADERS = (
+    "model",
+    "DOFs",
+    "wall time, warm (s)",
+    "compilation, apart (s)",
+    "peak tip relative to the ground (m)",
+    "peak shaft deflection (m)",
+    "final speed (rad/s)",
+    "tip history error against {ref}",
+    "tip envelope error against {ref}",
+    "peak difference against {ref}",
+    "rotor angle drift (rad)",
+    "cost ratio (warm wall time / {ref}'s)",
+)
 
 
 def share(x) -> str:
@@ -35,8 +44,11 @@ def share(x) -> str:
 
 def missing_comparison(build: Build, case: str) -> list[str]:
     """The notice naming the command that makes ``compare_<case>.json``."""
-    return [h.missing(f"not computed: run `rotorpillar {comparison_command(case)} {build.scene_cli}` "
-                      f"(no compare_{case}.json)")]
+    return [
+        h.missing(
+            f"not computed: run `rotorpillar {comparison_command(case)} {build.scene_cli}` (no compare_{case}.json)"
+        )
+    ]
 
 
 def excitation_text(ex) -> str | None:
@@ -53,8 +65,14 @@ def excitation_text(ex) -> str | None:
     if ex.get("peak_displacement") is not None:
         what.append(f"peak displacement {h.num(ex['peak_displacement'], 3)} m")
     start = f", from t = {h.num(ex['start'], 4)} s" if ex.get("start") is not None else ""
-    return (f"Ground motion: the record {ex.get('name', '?')}"
-            + (f" ({ex['source']})" if ex.get("source") else "") + ": " + ", ".join(what) + start + ".")
+    return (
+        f"Ground motion: the record {ex.get('name', '?')}"
+        + (f" ({ex['source']})" if ex.get("source") else "")
+        + ": "
+        + ", ".join(what)
+        + start
+        + "."
+    )
 
 
 def cost_table(doc: dict, models: list[str]) -> str:
@@ -68,15 +86,22 @@ def cost_table(doc: dict, models: list[str]) -> str:
         r = 1.0 if is_ref and m not in ratio else ratio.get(m)
         lead = e.get("lead")
         mark = lambda name, text: f"{text} (leads)" if lead == name else text
-        rows.append([m + (" (reference)" if is_ref else ""), h.num(p.get("dofs")),
-                     h.num(p.get("wall_seconds"), 4), h.num(p.get("compile_seconds"), 3),
-                     h.num(p.get("peak_tip_relative")),
-                     h.num(p.get("peak_shaft_deflection")), h.num(p.get("omega_final")),
-                     "reference" if is_ref else mark("history", share(e.get("tip_history_error"))),
-                     "reference" if is_ref else mark("envelope", share(e.get("tip_envelope_error"))),
-                     "reference" if is_ref else h.pct(e.get("peak_tip_difference")),
-                     "reference" if is_ref else h.num(e.get("angle_drift"), 3),
-                     h.num(r, 4)])
+        rows.append(
+            [
+                m + (" (reference)" if is_ref else ""),
+                h.num(p.get("dofs")),
+                h.num(p.get("wall_seconds"), 4),
+                h.num(p.get("compile_seconds"), 3),
+                h.num(p.get("peak_tip_relative")),
+                h.num(p.get("peak_shaft_deflection")),
+                h.num(p.get("omega_final")),
+                "reference" if is_ref else mark("history", share(e.get("tip_history_error"))),
+                "reference" if is_ref else mark("envelope", share(e.get("tip_envelope_error"))),
+                "reference" if is_ref else h.pct(e.get("peak_tip_difference")),
+                "reference" if is_ref else h.num(e.get("angle_drift"), 3),
+                h.num(r, 4),
+            ]
+        )
         classes.append("flag" if p.get("ok") is False else "ok")
     return h.table([c.format(ref=ref) for c in COST_HEADERS], rows, row_classes=classes)
 
@@ -94,22 +119,25 @@ def speed_accuracy(doc: dict, models: list[str]) -> list[str]:
         e, r = em.get("tip_history_error"), ratio.get(m)
         if m == ref or e is None:
             continue
-        env, peak, drift = (em.get("tip_envelope_error"), em.get("peak_tip_difference"),
-                            em.get("angle_drift"))
+        env, peak, drift = (em.get("tip_envelope_error"), em.get("peak_tip_difference"), em.get("angle_drift"))
         if em.get("lead") == "envelope" and env is not None:
-            text = (f"{m} follows {ref}'s tip envelope within {share(env)} of its largest value "
-                    f"(peak {h.pct(peak) if peak is not None else '-'}); its history differs by "
-                    f"{share(e)} because the rotor angles drift apart by up to {h.num(drift, 3)} rad, "
-                    "a phase error of the whirl, not of the amplitudes")
+            text = (
+                f"{m} follows {ref}'s tip envelope within {share(env)} of its largest value "
+                f"(peak {h.pct(peak) if peak is not None else '-'}); its history differs by "
+                f"{share(e)} because the rotor angles drift apart by up to {h.num(drift, 3)} rad, "
+                "a phase error of the whirl, not of the amplitudes"
+            )
         else:
             text = f"{m} follows {ref}'s tip history within {share(e)} of its largest value"
             if peak is not None:
                 text += f" (peak {h.pct(peak)}"
-                text += (f"; the rotors stay within {h.num(drift, 2)} rad of each other)"
-                         if drift is not None else ")")
+                text += f"; the rotors stay within {h.num(drift, 2)} rad of each other)" if drift is not None else ")"
         if isinstance(r, (int, float)) and r > 0:
-            text += (f", at {h.num(r, 3)} of its wall time ({h.num(1 / r, 3)} times faster)"
-                     if r < 1 else f", at {h.num(r, 3)} times its wall time")
+            text += (
+                f", at {h.num(r, 3)} of its wall time ({h.num(1 / r, 3)} times faster)"
+                if r < 1
+                else f", at {h.num(r, 3)} times its wall time"
+            )
         out.append(text + ".")
     return out
 
@@ -125,12 +153,11 @@ def _full_order(meta: dict) -> str | None:
         return None
     what = []
     for k, v in fo.items():
-        if k in ("note", "reference") or v is None:     # the reference: references.reference_block
+        if k in ("note", "reference") or v is None:  # the reference: references.reference_block
             continue
         if isinstance(v, dict):
             v = ", ".join(f"{a} {h.num(b)}" for a, b in v.items())
-        what.append(f"{k.replace('_', ' ')} {h.num(v)}"
-                    + (f" {FULL_ORDER_UNITS[k]}" if k in FULL_ORDER_UNITS else ""))
+        what.append(f"{k.replace('_', ' ')} {h.num(v)}" + (f" {FULL_ORDER_UNITS[k]}" if k in FULL_ORDER_UNITS else ""))
     return "; ".join(what) + (f". {fo['note']}" if fo.get("note") else "")
 
 
@@ -161,14 +188,19 @@ def comparison_block(build: Build, case: str) -> list[str]:
         parts.append(h.tag("p", ex))
     w = doc.get("window")
     if isinstance(w, dict) and w.get("end") is not None:
-        parts.append(h.tag("p", f"Every model ran over t = {h.num(w.get('start'), 4)} .. "
-                                f"{h.num(w['end'], 4)} s" + (f" ({w['why']})" if w.get("why") else "")
-                                + ".", class_="meta"))
+        parts.append(
+            h.tag(
+                "p",
+                f"Every model ran over t = {h.num(w.get('start'), 4)} .. "
+                f"{h.num(w['end'], 4)} s" + (f" ({w['why']})" if w.get("why") else "") + ".",
+                class_="meta",
+            )
+        )
     theirs = _claim_figures(build, case, models)
     parts += failure(build, f"comparison_{case}")
     if f"comparison_{case}" in build.products:
         parts.append(product_image(build, f"comparison_{case}"))
-    else:   # no arrays to draw from: compare's own chart, if it left one
+    else:  # no arrays to draw from: compare's own chart, if it left one
         parts += [h.image(p.path, p.caption) for p in theirs if p.path.name == f"compare_{case}.png"]
     parts.append(cost_table(doc, models))
     parts += reference_block(doc)
@@ -186,8 +218,11 @@ def comparison_block(build: Build, case: str) -> list[str]:
         parts.append(h.tag("ul", warns, class_="warn"))
     own = [(m, p) for m in models for p in theirs if p.path.name == f"{_stem(case, m)}.png"]
     if own:
-        parts.append(h.details(f"each model's own chart ({len(own)})",
-                               "".join(h.image(p.path, f"{m}: {p.caption}") for m, p in own)))
+        parts.append(
+            h.details(
+                f"each model's own chart ({len(own)})", "".join(h.image(p.path, f"{m}: {p.caption}") for m, p in own)
+            )
+        )
     return parts
 
 
@@ -209,10 +244,20 @@ def system_modes(c) -> tuple[str | None, list[dict]]:
             w = r.get("omega")
             if not isinstance(w, (int, float)) or w <= 0:
                 continue
-            near = min((d for d in damped if d.get("direction") == r.get("direction")),
-                       key=lambda d: abs(float(d.get("omega") or 0) - w), default={})
-            out.append({"index": r.get("index"), "direction": r.get("direction"), "omega": float(w),
-                        "period": 2 * math.pi / w, "damping_ratio": near.get("damping_ratio")})
+            near = min(
+                (d for d in damped if d.get("direction") == r.get("direction")),
+                key=lambda d: abs(float(d.get("omega") or 0) - w),
+                default={},
+            )
+            out.append(
+                {
+                    "index": r.get("index"),
+                    "direction": r.get("direction"),
+                    "omega": float(w),
+                    "period": 2 * math.pi / w,
+                    "damping_ratio": near.get("damping_ratio"),
+                }
+            )
         return m, out
     return None, []
 
@@ -224,7 +269,8 @@ RECORD_DIRECTION = (
     "which the rotor's unbalance and the pillar's bending couple. The modes it excites are "
     "the coupled modes in that direction; the vertical mode (the rotor bouncing on its shaft) "
     "takes no part in a horizontal motion, nor do the tube's ovalling modes (zero participation "
-    "by symmetry).")
+    "by symmetry)."
+)
 
 
 def spectrum_damping(spec: dict[str, Any]) -> float:
@@ -239,13 +285,20 @@ def spectrum_block(build: Build) -> list[str]:
     ROM's spectral estimate of the peak tip beside the computed one."""
     from ..compare_charts import STANDARD_GRAVITY, spectral_value
     from ..directions import direction
+
     c = build.comparisons.get("earthquake")
     if c is None:
         return missing_comparison(build, "earthquake")
     spec = c.doc.get("spectrum")
     if not isinstance(spec, dict):
-        return [h.tag("p", "compare_earthquake.json holds no response spectrum (the excitation "
-                           "is not a record, or the modal model was not run).", class_="meta")]
+        return [
+            h.tag(
+                "p",
+                "compare_earthquake.json holds no response spectrum (the excitation "
+                "is not a record, or the modal model was not run).",
+                class_="meta",
+            )
+        ]
     parts = [h.tag("p", RECORD_DIRECTION.format(where=direction("X")))]
     parts += failure(build, "response_spectrum")
     if "response_spectrum" in build.products:
@@ -257,41 +310,99 @@ def spectrum_block(build: Build) -> list[str]:
         for m in modes:
             horizontal = str(m["direction"]).upper() == "X"
             S = spectral_value(spec.get("period") or [], spec.get("psa") or [], m["period"])
-            rows.append([m["index"], direction(m["direction"]), h.num(m["omega"], 4),
-                         h.num(m["period"], 3), share(m["damping_ratio"]),
-                         h.num(S / STANDARD_GRAVITY, 3) if horizontal and math.isfinite(S) else "-",
-                         h.num(1e3 * S / m["omega"] ** 2, 3) if horizontal and math.isfinite(S) else
-                         ("not excited by a horizontal record" if not horizontal else "-")])
-        parts.append(h.tag("p", f"The coupled rotor-pillar modes of the reduced model the "
-                                f"comparison ran ({model}), read off the curve above "
-                                f"({100 * float(damping):g} % damping; each mode's own damping "
-                                "ratio is beside it):", class_="meta"))
-        parts.append(h.table(["mode", "direction", "omega (rad/s)", "period T (s)",
-                              "damping ratio", "PSA at T (g)", "S_d = PSA / omega^2 (mm)"], rows))
+            rows.append(
+                [
+                    m["index"],
+                    direction(m["direction"]),
+                    h.num(m["omega"], 4),
+                    h.num(m["period"], 3),
+                    share(m["damping_ratio"]),
+                    h.num(S / STANDARD_GRAVITY, 3) if horizontal and math.isfinite(S) else "-",
+                    h.num(1e3 * S / m["omega"] ** 2, 3)
+                    if horizontal and math.isfinite(S)
+                    else ("not excited by a horizontal record" if not horizontal else "-"),
+                ]
+            )
+        parts.append(
+            h.tag(
+                "p",
+                f"The coupled rotor-pillar modes of the reduced model the "
+                f"comparison ran ({model}), read off the curve above "
+                f"({100 * float(damping):g} % damping; each mode's own damping "
+                "ratio is beside it):",
+                class_="meta",
+            )
+        )
+        parts.append(
+            h.table(
+                [
+                    "mode",
+                    "direction",
+                    "omega (rad/s)",
+                    "period T (s)",
+                    "damping ratio",
+                    "PSA at T (g)",
+                    "S_d = PSA / omega^2 (mm)",
+                ],
+                rows,
+            )
+        )
     est, num = spec.get("spectral_peak_tip"), spec.get("computed_peak_tip")
-    text = (f"Spectral estimate of the peak tip: {h.num(est, 4)} m, the square root of the sum "
-            f"of the squares (SRSS) of each pillar mode's peak Gamma_j S_d(T_j, zeta_j) at its "
-            f"own damping; the time history's peak on the same model: {h.num(num, 4)} m")
+    text = (
+        f"Spectral estimate of the peak tip: {h.num(est, 4)} m, the square root of the sum "
+        f"of the squares (SRSS) of each pillar mode's peak Gamma_j S_d(T_j, zeta_j) at its "
+        f"own damping; the time history's peak on the same model: {h.num(num, 4)} m"
+    )
     if isinstance(est, (int, float)) and isinstance(num, (int, float)) and est > 0:
         text += f" (computed / estimate = {h.num(num / est, 3)})"
-    text += (". SRSS is an estimate, not a bound: it combines the modes' peaks as if they were "
-             "independent random maxima, so the true peak may fall on either side of it; a "
-             "ratio below 1 says the modes' peaks did not meet in time, above 1 that they added.")
+    text += (
+        ". SRSS is an estimate, not a bound: it combines the modes' peaks as if they were "
+        "independent random maxima, so the true peak may fall on either side of it; a "
+        "ratio below 1 says the modes' peaks did not meet in time, above 1 that they added."
+    )
     parts.append(h.tag("p", text))
     if isinstance(spec.get("note"), str):
         parts.append(h.tag("p", spec["note"], class_="meta"))
     terms = spec.get("modes")
     periods = spec.get("mode_periods") or []
     if isinstance(terms, list) and terms and all(isinstance(t, dict) for t in terms):
-        rows = [[t.get("mode"), h.num(t.get("period"), 4),
-                 h.num(1 / t["period"], 4) if t.get("period") else "-", share(t.get("damping_ratio")),
-                 h.num(t.get("participation_factor"), 4), h.num(t.get("s_d"), 4),
-                 h.num(t.get("contribution"), 4)] for t in terms]
-        parts.append(h.details("the estimate's terms: the pillar's modes (rotor apart)", h.table(
-            ["pillar mode", "period T_j (s)", "frequency (Hz)", "damping ratio",
-             "participation Gamma_j", "S_d (m)", "Gamma_j S_d (m)"], rows)))
+        rows = [
+            [
+                t.get("mode"),
+                h.num(t.get("period"), 4),
+                h.num(1 / t["period"], 4) if t.get("period") else "-",
+                share(t.get("damping_ratio")),
+                h.num(t.get("participation_factor"), 4),
+                h.num(t.get("s_d"), 4),
+                h.num(t.get("contribution"), 4),
+            ]
+            for t in terms
+        ]
+        parts.append(
+            h.details(
+                "the estimate's terms: the pillar's modes (rotor apart)",
+                h.table(
+                    [
+                        "pillar mode",
+                        "period T_j (s)",
+                        "frequency (Hz)",
+                        "damping ratio",
+                        "participation Gamma_j",
+                        "S_d (m)",
+                        "Gamma_j S_d (m)",
+                    ],
+                    rows,
+                ),
+            )
+        )
     elif periods:
-        parts.append(h.details("the estimate's terms: the pillar's modes (rotor apart)", h.table(
-            ["pillar mode", "period T_j (s)", "frequency (Hz)"],
-            [[j, h.num(T, 4), h.num(1 / T, 4) if T else "-"] for j, T in enumerate(periods, start=1)])))
+        parts.append(
+            h.details(
+                "the estimate's terms: the pillar's modes (rotor apart)",
+                h.table(
+                    ["pillar mode", "period T_j (s)", "frequency (Hz)"],
+                    [[j, h.num(T, 4), h.num(1 / T, 4) if T else "-"] for j, T in enumerate(periods, start=1)],
+                ),
+            )
+        )
     return parts

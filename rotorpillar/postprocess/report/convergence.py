@@ -22,32 +22,34 @@ def chosen(study: ConvergenceStudy) -> tuple[str, str] | None:
         return None
     band, needed = part(sel, "band"), part(sel, "needed") or []
     bounds = ", ".join(f"{q} {h.num(part(c, f'{q}_error_bound'), 2)}" for q in needed)
-    why = (f"the cheapest run whose error bound meets the tolerance {h.num(part(sel, 'tolerance'))} "
-           f"on every frequency the scene excites: the band up to "
-           f"{h.num(part(band, 'omega_max'), 4)} rad/s ({h.num(part(band, 'margin'))} x the "
-           f"{part(band, 'driver', 'highest excitation')}) holds "
-           f"{', '.join(needed) or 'no mode'}; its bounds: {bounds}")
-    return (f"{part(c, 'label')} ({part(c, 'dofs')} DOFs, {h.num(part(c, 'wall_time'), 3)} s)",
-            why)
+    why = (
+        f"the cheapest run whose error bound meets the tolerance {h.num(part(sel, 'tolerance'))} "
+        f"on every frequency the scene excites: the band up to "
+        f"{h.num(part(band, 'omega_max'), 4)} rad/s ({h.num(part(band, 'margin'))} x the "
+        f"{part(band, 'driver', 'highest excitation')}) holds "
+        f"{', '.join(needed) or 'no mode'}; its bounds: {bounds}"
+    )
+    return (f"{part(c, 'label')} ({part(c, 'dofs')} DOFs, {h.num(part(c, 'wall_time'), 3)} s)", why)
 
 
 def _choice(study: ConvergenceStudy) -> list[str]:
     """The model chosen, why, and the cheaper ones that do not meet the tolerance."""
     what = chosen(study)
     if not what:
-        return [h.tag("p", "convergence.json names no chosen model (no run meets the "
-                           "tolerance).", class_="meta")]
+        return [h.tag("p", "convergence.json names no chosen model (no run meets the tolerance).", class_="meta")]
     sel = study.selection
-    parts = [h.tag("p", [h.tag("strong", "Chosen: "), what[0]]),
-             h.tag("p", [h.tag("strong", "Why: "), what[1] + "."])]
+    parts = [h.tag("p", [h.tag("strong", "Chosen: "), what[0]]), h.tag("p", [h.tag("strong", "Why: "), what[1] + "."])]
     if part(sel, "rule"):
         parts.append(h.tag("p", f"Rule: {part(sel, 'rule')}.", class_="meta"))
     rejected = part(sel, "rejected_cheaper") or []
     if rejected:
         parts.append(h.tag("h3", "Cheaper models that do not meet it"))
-        parts.append(h.table(["model", "DOFs", "wall time (s)", "why not"],
-                             [[part(r, "label"), part(r, "dofs"), h.num(part(r, "wall_time"), 3),
-                               part(r, "why")] for r in rejected]))
+        parts.append(
+            h.table(
+                ["model", "DOFs", "wall time (s)", "why not"],
+                [[part(r, "label"), part(r, "dofs"), h.num(part(r, "wall_time"), 3), part(r, "why")] for r in rejected],
+            )
+        )
     return parts
 
 
@@ -59,13 +61,32 @@ def _references(study: ConvergenceStudy) -> list[str]:
     rows = []
     for q, r in ref:
         chk = part(r, "check")
-        rows.append([q, h.num(part(r, "value"), 7), h.num(part(r, "error_estimate"), 2),
-                     h.num(part(r, "order"), 3), h.num(part(r, "order_theory"), 2),
-                     ", ".join(part(r, "runs") or []),
-                     ("yes" if part(chk, "within_estimate") else "no") if chk else "-"])
-    return [h.tag("h3", "Reference frequencies (Richardson extrapolation)"),
-            h.table(["mode", "reference (rad/s)", "+- estimate", "observed order", "theory", "from",
-                     "three coarser runs predict the finest"], rows)]
+        rows.append(
+            [
+                q,
+                h.num(part(r, "value"), 7),
+                h.num(part(r, "error_estimate"), 2),
+                h.num(part(r, "order"), 3),
+                h.num(part(r, "order_theory"), 2),
+                ", ".join(part(r, "runs") or []),
+                ("yes" if part(chk, "within_estimate") else "no") if chk else "-",
+            ]
+        )
+    return [
+        h.tag("h3", "Reference frequencies (Richardson extrapolation)"),
+        h.table(
+            [
+                "mode",
+                "reference (rad/s)",
+                "+- estimate",
+                "observed order",
+                "theory",
+                "from",
+                "three coarser runs predict the finest",
+            ],
+            rows,
+        ),
+    ]
 
 
 def cancellation(study: dict[str, Any]) -> str | None:
@@ -89,13 +110,15 @@ def cancellation(study: dict[str, Any]) -> str | None:
         m, d = r.get(f"{q}_model_error"), r.get(f"{q}_discretisation_error")
         if m is None or d is None or m * d >= 0:
             continue
-        return (f"A model can sit under the tolerance line and still be rejected: {r['label']} "
-                f"measures {'an' if q[0] in 'aeiou' else 'a'} {q} error of "
-                f"{e[need.index(q)]:+.1e}, below {tol:g}, only because its "
-                f"model error ({m:+.1e}, the shell theory's) and its mesh error ({d:+.1e}) have "
-                f"opposite signs and cancel; a finer mesh would remove the one and leave the "
-                f"other, so the choice counts |model| + |mesh| + the reference's uncertainty "
-                f"({max(b):.1e}), over the tolerance.")
+        return (
+            f"A model can sit under the tolerance line and still be rejected: {r['label']} "
+            f"measures {'an' if q[0] in 'aeiou' else 'a'} {q} error of "
+            f"{e[need.index(q)]:+.1e}, below {tol:g}, only because its "
+            f"model error ({m:+.1e}, the shell theory's) and its mesh error ({d:+.1e}) have "
+            f"opposite signs and cancel; a finer mesh would remove the one and leave the "
+            f"other, so the choice counts |model| + |mesh| + the reference's uncertainty "
+            f"({max(b):.1e}), over the tolerance."
+        )
     return None
 
 
@@ -109,8 +132,11 @@ def _convergence_parts(study: ConvergenceStudy, doc: dict[str, Any]) -> list[str
     if failures:
         parts.append(h.tag("h3", "Where each method fails"))
         parts.append(h.tag("ul", [h.tag("li", f) for f in failures]))
-    slim = {k: v for k, v in doc.items()
-            if k not in ("runs", "families", "selection", "reference", "failures", "extrapolations")}
+    slim = {
+        k: v
+        for k, v in doc.items()
+        if k not in ("runs", "families", "selection", "reference", "failures", "extrapolations")
+    }
     parts.append(h.details("convergence.json (less its runs)", run_table(slim)))
     return parts
 
@@ -122,8 +148,13 @@ def section_convergence(build: Build) -> str:
         parts.append(h.missing(build.hint(INPUTS["convergence"][1])))
         a = build.analysis
         if a is not None:
-            parts.append(h.tag("p", "Until the study runs, the headline model's pillar is "
-                                    f"{a.pillar_model.describe()}: {a.pillar_model.note}."))
+            parts.append(
+                h.tag(
+                    "p",
+                    "Until the study runs, the headline model's pillar is "
+                    f"{a.pillar_model.describe()}: {a.pillar_model.note}.",
+                )
+            )
     else:
         doc = build.docs.get("convergence", {})
         parts += scene_differs(build, doc)
@@ -134,8 +165,11 @@ def section_convergence(build: Build) -> str:
 
 def _best(per: dict, key: str, among=None):
     """(method, value) with the smallest positive ``key`` in per_method (among ``among``)."""
-    vals = [(m, v.get(key)) for m, v in per.items() if (among is None or m in among)
-            and isinstance(v.get(key), (int, float)) and v.get(key) > 0]
+    vals = [
+        (m, v.get(key))
+        for m, v in per.items()
+        if (among is None or m in among) and isinstance(v.get(key), (int, float)) and v.get(key) > 0
+    ]
     return min(vals, key=lambda x: x[1]) if vals else (None, None)
 
 
@@ -150,31 +184,48 @@ def integrators_conclusion(doc: dict) -> str:
     said = []
     m, n = _best(per, "nfev_at_1e-06", adaptive)
     if m:
-        said.append(f"On the reduced models (a few degrees of freedom, the band's modes only) an "
-                    f"explicit adaptive method is the right tool: {m} reaches a 1e-6 error in the "
-                    f"fewest force evaluations ({n:.0f}); dp5, the default, is the same "
-                    f"Dormand-Prince pair as scipy's RK45, compiled, so their points coincide.")
+        said.append(
+            f"On the reduced models (a few degrees of freedom, the band's modes only) an "
+            f"explicit adaptive method is the right tool: {m} reaches a 1e-6 error in the "
+            f"fewest force evaluations ({n:.0f}); dp5, the default, is the same "
+            f"Dormand-Prince pair as scipy's RK45, compiled, so their points coincide."
+        )
     # central difference is explicit: its cost stays flat only until it blows up (below)
-    flat = sorted(k for k, g in growth.items() if isinstance(g, dict) and g.get("factor") == 1
-                  and k in fixed and "central" not in k)
-    steep = sorted(((k, g["factor"]) for k, g in growth.items() if isinstance(g, dict)
-                    and isinstance(g.get("factor"), (int, float)) and k in adaptive),
-                   key=lambda x: -x[1])
+    flat = sorted(
+        k
+        for k, g in growth.items()
+        if isinstance(g, dict) and g.get("factor") == 1 and k in fixed and "central" not in k
+    )
+    steep = sorted(
+        (
+            (k, g["factor"])
+            for k, g in growth.items()
+            if isinstance(g, dict) and isinstance(g.get("factor"), (int, float)) and k in adaptive
+        ),
+        key=lambda x: -x[1],
+    )
     if flat and steep:
-        said.append(f"As stiffer modes are added (a beam or 3D full order), the explicit methods' "
-                    f"cost grows with the highest frequency ({steep[0][0]}: x{steep[0][1]:.3g} "
-                    f"from {growth[steep[0][0]]['modes'][0]} to {growth[steep[0][0]]['modes'][-1]} "
-                    f"modes) while the implicit fixed-step ones ({', '.join(flat)}) cost the same: "
-                    "for stiff full-order models use Newmark (energy-conserving) or, to damp "
-                    "the unresolved high modes, HHT or generalised-alpha.")
-    fails = [f"{k}: {v['fails']}" for k, v in sorted(per.items())
-             if isinstance(v, dict) and v.get("fails") and not str(v["fails"]).startswith("no failure")]
+        said.append(
+            f"As stiffer modes are added (a beam or 3D full order), the explicit methods' "
+            f"cost grows with the highest frequency ({steep[0][0]}: x{steep[0][1]:.3g} "
+            f"from {growth[steep[0][0]]['modes'][0]} to {growth[steep[0][0]]['modes'][-1]} "
+            f"modes) while the implicit fixed-step ones ({', '.join(flat)}) cost the same: "
+            "for stiff full-order models use Newmark (energy-conserving) or, to damp "
+            "the unresolved high modes, HHT or generalised-alpha."
+        )
+    fails = [
+        f"{k}: {v['fails']}"
+        for k, v in sorted(per.items())
+        if isinstance(v, dict) and v.get("fails") and not str(v["fails"]).startswith("no failure")
+    ]
     first = stab.get("first_failure") or {}
     for k, v in first.items():
         if isinstance(v, dict) and v.get("omega_max"):
-            fails.append(f"{k}: unstable once the highest frequency reaches "
-                         f"{v['omega_max']:.4g} rad/s (h omega_max = "
-                         f"{v.get('h_times_omega_max', float('nan')):.3g} > 2)")
+            fails.append(
+                f"{k}: unstable once the highest frequency reaches "
+                f"{v['omega_max']:.4g} rad/s (h omega_max = "
+                f"{v.get('h_times_omega_max', float('nan')):.3g} > 2)"
+            )
     if fails:
         said.append("Where each fails: " + "; ".join(fails) + ".")
     return " ".join(said)
@@ -199,20 +250,31 @@ def section_integrators(build: Build) -> str:
         acc, stab = doc.get("accuracy") or {}, doc.get("stability") or {}
         rows = acc.get("rows") or []
         if rows:
-            parts.append(h.details(f"accuracy runs ({len(rows)})", _rows_table(
-                rows, ["method", "family", "setting_name", "setting", "error", "nfev",
-                       "wall_seconds", "status"])))
+            parts.append(
+                h.details(
+                    f"accuracy runs ({len(rows)})",
+                    _rows_table(
+                        rows, ["method", "family", "setting_name", "setting", "error", "nfev", "wall_seconds", "status"]
+                    ),
+                )
+            )
         rows = stab.get("rows") or []
         if rows:
-            parts.append(h.details(f"stiffness runs ({len(rows)})", _rows_table(
-                rows, ["method", "modes", "omega_max", "ok", "nfev", "time_step", "status"])))
+            parts.append(
+                h.details(
+                    f"stiffness runs ({len(rows)})",
+                    _rows_table(rows, ["method", "modes", "omega_max", "ok", "nfev", "time_step", "status"]),
+                )
+            )
         rows = (doc.get("energy_drift") or {}).get("rows") or []
         if rows:
-            parts.append(h.details(f"energy drift runs ({len(rows)})", _rows_table(
-                rows, ["method", "drift", "max_deviation", "nfev", "setting", "status"])))
+            parts.append(
+                h.details(
+                    f"energy drift runs ({len(rows)})",
+                    _rows_table(rows, ["method", "drift", "max_deviation", "nfev", "setting", "status"]),
+                )
+            )
         slim = {k: v for k, v in doc.items() if k in ("accuracy", "stability", "energy_drift")}
-        slim = {k: {kk: vv for kk, vv in v.items() if kk != "rows"} for k, v in slim.items()
-                if isinstance(v, dict)}
-        parts.append(h.details("integrators.json: the rest (per method, settings)",
-                               run_table(slim)))
+        slim = {k: {kk: vv for kk, vv in v.items() if kk != "rows"} for k, v in slim.items() if isinstance(v, dict)}
+        parts.append(h.details("integrators.json: the rest (per method, settings)", run_table(slim)))
     return h.section("integrators", "Time integrators", parts)

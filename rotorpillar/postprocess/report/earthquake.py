@@ -7,14 +7,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import html as h
 from ...transients.run_comparisons import comparison_models
+from .. import html as h
 from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..readers import INPUTS, SIMULATE_COMMAND
 from .compare_section import comparison_block, spectrum_block
-from .parts import (animation_video, failure, figures_of, key_results, product_image, run_table,
-                    scene_differs)
+from .parts import animation_video, failure, figures_of, key_results, product_image, run_table, scene_differs
 from .references import pareto_block
 from .state import Build
 
@@ -38,8 +37,9 @@ def _size(sim) -> str:
     g, a = sim.get("ground_x"), sim.get("ground_acceleration")
     said = []
     if ex.get("displacement_step_at_start") is not None:
-        said.append(f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m at "
-                    f"t = {h.num(ex.get('start'), 4)} s")
+        said.append(
+            f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m at t = {h.num(ex.get('start'), 4)} s"
+        )
     if ex.get("peak_acceleration_g") is not None:
         said.append(f"its acceleration reaches {ex['peak_acceleration_g']:.3g} g")
     elif a is not None and len(a):
@@ -68,19 +68,31 @@ def _flaw(build: Build) -> list[str]:
     """Eq. 4's published base forcing, in one sentence with a link to
     the finding (stated once, in the paper's section)."""
     if build.analysis is None:
-        return [h.missing("the base-forcing finding is "
-                          + build.hint(INPUTS["analyze"][1]) + " (no analyze.json)")]
+        return [h.missing("the base-forcing finding is " + build.hint(INPUTS["analyze"][1]) + " (no analyze.json)")]
     r = base_forcing_finding(build.analysis)
     if r is None:
-        return [h.tag("p", f"analyze.json has no {BASE_FORCING_KEY} finding (an older "
-                           "rotorpillar wrote it): re-run analyze.", class_="meta")]
+        return [
+            h.tag(
+                "p",
+                f"analyze.json has no {BASE_FORCING_KEY} finding (an older rotorpillar wrote it): re-run analyze.",
+                class_="meta",
+            )
+        ]
     gain = r.paper
-    return [h.tag("p", [h.tag("strong", "The base-forcing flaw: "),
-                        f"Eq. 4 as published forces the rotor's shaft from the ground as well as "
-                        f"the pillar: under a slow ground displacement it moves the tip "
-                        f"{h.num(gain, 3)} times as far as the ground (the consistent forcing: 1). ",
-                        h.link("The finding", "paper-findings"), " states it in full."],
-                  class_="warn")]
+    return [
+        h.tag(
+            "p",
+            [
+                h.tag("strong", "The base-forcing flaw: "),
+                f"Eq. 4 as published forces the rotor's shaft from the ground as well as "
+                f"the pillar: under a slow ground displacement it moves the tip "
+                f"{h.num(gain, 3)} times as far as the ground (the consistent forcing: 1). ",
+                h.link("The finding", "paper-findings"),
+                " states it in full.",
+            ],
+            class_="warn",
+        )
+    ]
 
 
 def _warnings(meta: dict, name: str) -> list[str]:
@@ -89,8 +101,10 @@ def _warnings(meta: dict, name: str) -> list[str]:
         return []
     if not w:
         return [h.tag("p", f"{name}: simulate raised no warning.", class_="meta")]
-    return [h.tag("p", f"{name}: simulate warned:", class_="warn"),
-            h.tag("ul", [h.tag("li", str(x)) for x in w], class_="warn")]
+    return [
+        h.tag("p", f"{name}: simulate warned:", class_="warn"),
+        h.tag("ul", [h.tag("li", str(x)) for x in w], class_="warn"),
+    ]
 
 
 def _simulate_charts(build: Build, model: str | None):
@@ -108,14 +122,21 @@ def paper_case(build: Build) -> list[str]:
     """The paper's pulse on Eq. 4 as published (``simulate --case earthquake``)."""
     sim = build.quake_case
     if sim is None:
-        return [h.missing(f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case earthquake "
-                          f"--model paper {build.scene_cli}` (no simulate_earthquake.json)")] + _flaw(build)
+        return [
+            h.missing(
+                f"not computed: run `rotorpillar {SIMULATE_COMMAND} --case earthquake "
+                f"--model paper {build.scene_cli}` (no simulate_earthquake.json)"
+            )
+        ] + _flaw(build)
     meta = sim.meta or {}
     model = meta.get("model", "model not stated")
     name = f"simulate_earthquake_{model}.json" if meta.get("model") else "simulate_earthquake.json"
     ex = meta.get("excitation") or {}
-    what = ("The paper's pulse on Eq. 4 as published" if model == "paper" and ex.get("kind") == "pulse"
-            else f"The scene's earthquake run ({model} model, {ex.get('kind', 'excitation not stated')})")
+    what = (
+        "The paper's pulse on Eq. 4 as published"
+        if model == "paper" and ex.get("kind") == "pulse"
+        else f"The scene's earthquake run ({model} model, {ex.get('kind', 'excitation not stated')})"
+    )
     parts = scene_differs(build, meta)
     parts.append(h.tag("p", what + ". " + _size(sim) + _tip(sim)))
     if isinstance(ex.get("statement"), str):
@@ -125,7 +146,7 @@ def paper_case(build: Build) -> list[str]:
     parts += _warnings(meta, name)
     parts += failure(build, "earthquake_chart")
     theirs = _simulate_charts(build, meta.get("model"))
-    if "earthquake_chart" in build.products:      # simulate's own is the same run: left out
+    if "earthquake_chart" in build.products:  # simulate's own is the same run: left out
         parts.append(product_image(build, "earthquake_chart"))
     elif theirs:
         parts.append(h.image(theirs.path, theirs.caption))
@@ -144,12 +165,18 @@ def paper_case(build: Build) -> list[str]:
 def section_earthquake(build: Build) -> str:
     c = build.comparisons.get("earthquake")
     models = c.models if c is not None else comparison_models("earthquake")
-    parts = [h.tag("h3", "A recorded earthquake on the physically consistent models"),
-             h.tag("p", f"The models {' and '.join(models)} force the structure by the "
-                        "ground's inertia (-M r a_g), the ground moving "
-                        f"{direction('X')} (why: see the response spectrum below), and report "
-                        "the tip relative to the ground; the most complete one run is the "
-                        "reference.", class_="meta")]
+    parts = [
+        h.tag("h3", "A recorded earthquake on the physically consistent models"),
+        h.tag(
+            "p",
+            f"The models {' and '.join(models)} force the structure by the "
+            "ground's inertia (-M r a_g), the ground moving "
+            f"{direction('X')} (why: see the response spectrum below), and report "
+            "the tip relative to the ground; the most complete one run is the "
+            "reference.",
+            class_="meta",
+        ),
+    ]
     parts += comparison_block(build, "earthquake")
     if build.products.get("quake_case_animation") != "animation_earthquake":
         parts += failure(build, "animation_earthquake")

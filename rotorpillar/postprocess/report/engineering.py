@@ -46,12 +46,24 @@ def _check_rows(checks) -> list[list]:
     rows = []
     for c in checks:
         demand = _value(c.demand, c.unit) if c.unit != "-" else h.pct(c.demand).lstrip("+")
-        cap = (_value(c.capacity, c.unit) if c.unit != "-" else h.pct(c.capacity).lstrip("+")) \
-            if c.capacity is not None else "not stated"
+        cap = (
+            (_value(c.capacity, c.unit) if c.unit != "-" else h.pct(c.capacity).lstrip("+"))
+            if c.capacity is not None
+            else "not stated"
+        )
         util = "-" if c.utilisation is None else f"{c.utilisation:.3f}"
         names = MODE_SOURCES if c.quantity == "separation_margin" else NAMES
-        rows.append([c.name, demand, cap, util, h.tag("strong", c.status) if c.status == "fail" else c.status,
-                     names.get(c.model, c.model or "-"), c.case or "-"])
+        rows.append(
+            [
+                c.name,
+                demand,
+                cap,
+                util,
+                h.tag("strong", c.status) if c.status == "fail" else c.status,
+                names.get(c.model, c.model or "-"),
+                c.case or "-",
+            ]
+        )
     return rows
 
 
@@ -59,15 +71,30 @@ def verdict_block(build: Build) -> list[str]:
     """The Summary's opening: the checks table, then the numbers a reader came for."""
     s = _read(build, "summary.json", EngineeringSummary)
     if s is None:
-        return [h.missing("The verdict: nothing to check yet (no run, no harmonic.json, no modal.json "
-                          f"here): run `rotorpillar run {build.scene_cli}`")]
-    word = {"pass": "every assessed check passes", "fail": "a check fails",
-            "incomplete": "no check could be assessed"}[s.verdict]
-    parts = [h.tag("p", [h.tag("strong", f"Verdict: {s.verdict}"), f" ({word}; each row names the model "
-                         "and the case its demand came from, the largest utilisation over them)."]),
-             h.table(["check", "demand", "capacity", "utilisation", "status", "model", "case"],
-                     _check_rows(s.checks),
-                     row_classes=["failed" if c.status == "fail" else "" for c in s.checks])]
+        return [
+            h.missing(
+                "The verdict: nothing to check yet (no run, no harmonic.json, no modal.json "
+                f"here): run `rotorpillar run {build.scene_cli}`"
+            )
+        ]
+    word = {"pass": "every assessed check passes", "fail": "a check fails", "incomplete": "no check could be assessed"}[
+        s.verdict
+    ]
+    parts = [
+        h.tag(
+            "p",
+            [
+                h.tag("strong", f"Verdict: {s.verdict}"),
+                f" ({word}; each row names the model "
+                "and the case its demand came from, the largest utilisation over them).",
+            ],
+        ),
+        h.table(
+            ["check", "demand", "capacity", "utilisation", "status", "model", "case"],
+            _check_rows(s.checks),
+            row_classes=["failed" if c.status == "fail" else "" for c in s.checks],
+        ),
+    ]
     if s.not_assessed:
         parts.append(h.tag("p", "Not assessed: " + "; ".join(s.not_assessed) + ".", class_="warn"))
     if s.headlines:
@@ -85,8 +112,11 @@ def _headline_texts(headlines) -> list[str]:
         if len(xs) == 1:
             out.append(xs[0].text)
         else:
-            out.append(f"{label[0].upper()}{label[1:]}: " + ", ".join(
-                f"{_value(x.value, x.unit)} ({NAMES.get(x.model, x.model)})" for x in xs) + ".")
+            out.append(
+                f"{label[0].upper()}{label[1:]}: "
+                + ", ".join(f"{_value(x.value, x.unit)} ({NAMES.get(x.model, x.model)})" for x in xs)
+                + "."
+            )
     return out
 
 
@@ -96,6 +126,7 @@ def _headline_texts(headlines) -> list[str]:
 
 def _runs(build: Build) -> list[tuple[dict, InternalForcesSummary]]:
     from ...verdict.summary import model_runs
+
     out = []
     for doc in model_runs(build.out):
         block = doc.get("internal_forces")
@@ -118,50 +149,109 @@ def _history(build: Build, doc: dict, key: str):
 
 def section_internal_forces(build: Build) -> str:
     from ...verdict.summary import case_label
+
     runs = _runs(build)
     if not runs:
-        return h.section("forces", "Internal forces and stresses", [h.missing(
-            f"No run with internal forces: run `rotorpillar compare {build.scene_cli} --case "
-            "earthquake` (or `simulate`)")])
-    parts = [h.tag("p", "Section forces of the pillar (V, M along the rotor's plane X; N axial, "
-                        "compression positive) and the base's extreme-fibre stress |M| c/I + N/A, "
-                        "peaks over each run. The ROM superposes its modes' section resultants with "
-                        "at least as many modes as the base moment needs for 1 % over its band; the "
-                        "full orders read their own element forces. Self-weight, gondola and rotor "
-                        "enter N(z) under g.")]
+        return h.section(
+            "forces",
+            "Internal forces and stresses",
+            [
+                h.missing(
+                    f"No run with internal forces: run `rotorpillar compare {build.scene_cli} --case "
+                    "earthquake` (or `simulate`)"
+                )
+            ],
+        )
+    parts = [
+        h.tag(
+            "p",
+            "Section forces of the pillar (V, M along the rotor's plane X; N axial, "
+            "compression positive) and the base's extreme-fibre stress |M| c/I + N/A, "
+            "peaks over each run. The ROM superposes its modes' section resultants with "
+            "at least as many modes as the base moment needs for 1 % over its band; the "
+            "full orders read their own element forces. Self-weight, gondola and rotor "
+            "enter N(z) under g.",
+        )
+    ]
     rows = []
     for doc, f in runs:
         b = f.base
-        rows.append([NAMES.get(f.model, f.model), case_label(doc), _value(b.moment, "N*m"),
-                     _value(b.shear, "N"), f"{_value(b.axial_min, 'N')} ... {_value(b.axial_max, 'N')}",
-                     _value(b.stress, "Pa"), h.num(b.moment_time, 4), _value(f.shaft.deflection, "m"),
-                     _value(max(f.shaft.spring_force, f.shaft.bearing_force), "N"),
-                     "-" if f.modes is None else f"{f.modes} (run {f.modes_in_run})"])
+        rows.append(
+            [
+                NAMES.get(f.model, f.model),
+                case_label(doc),
+                _value(b.moment, "N*m"),
+                _value(b.shear, "N"),
+                f"{_value(b.axial_min, 'N')} ... {_value(b.axial_max, 'N')}",
+                _value(b.stress, "Pa"),
+                h.num(b.moment_time, 4),
+                _value(f.shaft.deflection, "m"),
+                _value(max(f.shaft.spring_force, f.shaft.bearing_force), "N"),
+                "-" if f.modes is None else f"{f.modes} (run {f.modes_in_run})",
+            ]
+        )
     parts.append(h.tag("h3", "Base reactions and shaft demand, side by side"))
-    parts.append(h.table(["model", "case", "|M(0)| max", "|V(0)| max", "N(0)", "base stress", "at t (s)",
-                          "shaft deflection", "shaft force", "modes"], rows))
+    parts.append(
+        h.table(
+            [
+                "model",
+                "case",
+                "|M(0)| max",
+                "|V(0)| max",
+                "N(0)",
+                "base stress",
+                "at t (s)",
+                "shaft deflection",
+                "shaft force",
+                "modes",
+            ],
+            rows,
+        )
+    )
     parts += _differences(runs)
     by_case: dict[str, list] = {}
     for doc, f in runs:
         by_case.setdefault(case_label(doc), []).append((doc, f))
     from .. import engineering_charts as ec
+
     fig = build.out / FIGURES_DIR
     for case, items in by_case.items():
         stem = case.split(" ")[0]
         key = f"envelope_{stem}"
-        p = attempt(build, key, lambda items=items, case=case, stem=stem: ec.envelope_chart(
-            fig / f"forces_{stem}.png", [(NAMES.get(f.model, f.model), f.model, f.heights, f.moment_envelope,
-                                           f.shear_envelope) for _, f in items],
-            title=f"{case}: envelopes along the height"))
+        p = attempt(
+            build,
+            key,
+            lambda items=items, case=case, stem=stem: ec.envelope_chart(
+                fig / f"forces_{stem}.png",
+                [
+                    (NAMES.get(f.model, f.model), f.model, f.heights, f.moment_envelope, f.shear_envelope)
+                    for _, f in items
+                ],
+                title=f"{case}: envelopes along the height",
+            ),
+        )
         if p:
-            parts.append(h.image(p, f"{case}: the largest |M(z)| and |V(z)| over the run at each "
-                                    "section height, per model."))
-        series = [(NAMES.get(f.model, f.model), f.model, *hist) for doc, f in items
-                  for hist in [_history(build, doc, "base_moment")] if hist is not None]
+            parts.append(
+                h.image(p, f"{case}: the largest |M(z)| and |V(z)| over the run at each section height, per model.")
+            )
+        series = [
+            (NAMES.get(f.model, f.model), f.model, *hist)
+            for doc, f in items
+            for hist in [_history(build, doc, "base_moment")]
+            if hist is not None
+        ]
         if series:
-            p = attempt(build, f"base_moment_{stem}", lambda series=series, case=case, stem=stem:
-                        ec.history_chart(fig / f"base_moment_{stem}.png", series, "base moment [MN m]",
-                                         1e-6, title=f"{case}: the base moment"))
+            p = attempt(
+                build,
+                f"base_moment_{stem}",
+                lambda series=series, case=case, stem=stem: ec.history_chart(
+                    fig / f"base_moment_{stem}.png",
+                    series,
+                    "base moment [MN m]",
+                    1e-6,
+                    title=f"{case}: the base moment",
+                ),
+            )
             if p:
                 parts.append(h.image(p, f"{case}: the base moment M(0, t), per model overlaid."))
     parts += _truncation(runs) + _von_mises(runs) + _buckling_and_details(build)
@@ -170,6 +260,7 @@ def section_internal_forces(build: Build) -> str:
 
 def _differences(runs) -> list[str]:
     from ...verdict.summary import case_label
+
     rows = []
     cases = {case_label(d) for d, _ in runs}
     for case in sorted(cases):
@@ -181,12 +272,20 @@ def _differences(runs) -> list[str]:
         for key, label in (("moment", "|M(0)| max"), ("shear", "|V(0)| max"), ("stress", "base stress")):
             a, b = getattr(rom.base, key), getattr(ref.base, key)
             rows.append([case, label, NAMES[ref.model], h.pct(a / b - 1 if b else None)])
-        rows.append([case, "shaft deflection", NAMES[ref.model],
-                     h.pct(rom.shaft.deflection / ref.shaft.deflection - 1 if ref.shaft.deflection else None)])
+        rows.append(
+            [
+                case,
+                "shaft deflection",
+                NAMES[ref.model],
+                h.pct(rom.shaft.deflection / ref.shaft.deflection - 1 if ref.shaft.deflection else None),
+            ]
+        )
     if not rows:
         return []
-    return [h.tag("h3", "The ROM against the full order"),
-            h.table(["case", "quantity", "reference", "ROM - reference"], rows)]
+    return [
+        h.tag("h3", "The ROM against the full order"),
+        h.table(["case", "quantity", "reference", "ROM - reference"], rows),
+    ]
 
 
 def _truncation(runs) -> list[str]:
@@ -195,16 +294,22 @@ def _truncation(runs) -> list[str]:
         return []
     t = f.truncation
     need = lambda k: str(k) if k is not None else f"more than the {t.modes_available} available"
-    rows = [[r.modes, h.pct(r.tip, 3).lstrip("+"), h.pct(r.base_moment, 3).lstrip("+"),
-             h.pct(r.base_shear, 3).lstrip("+")] for r in t.rows]
-    return [h.tag("h3", "How many modes the forces need"),
-            h.tag("p", f"{t.statement}. For {100 * t.tolerance:g} % the tip needs {need(t.modes_needed_tip)}, "
-                       f"the base moment {need(t.modes_needed_base_moment)}, the base shear "
-                       f"{need(t.modes_needed_base_shear)} modes: the forces use {f.modes}, with which "
-                       f"the base shear's error is {h.pct(t.rows[f.modes - 1].base_shear, 1).lstrip('+')}"
-                       f" (the modes left out carry mass the shear feels). {f.note}"),
-            h.details("errors per number of modes", h.table(
-                ["modes", "tip", "base moment", "base shear"], rows))]
+    rows = [
+        [r.modes, h.pct(r.tip, 3).lstrip("+"), h.pct(r.base_moment, 3).lstrip("+"), h.pct(r.base_shear, 3).lstrip("+")]
+        for r in t.rows
+    ]
+    return [
+        h.tag("h3", "How many modes the forces need"),
+        h.tag(
+            "p",
+            f"{t.statement}. For {100 * t.tolerance:g} % the tip needs {need(t.modes_needed_tip)}, "
+            f"the base moment {need(t.modes_needed_base_moment)}, the base shear "
+            f"{need(t.modes_needed_base_shear)} modes: the forces use {f.modes}, with which "
+            f"the base shear's error is {h.pct(t.rows[f.modes - 1].base_shear, 1).lstrip('+')}"
+            f" (the modes left out carry mass the shear feels). {f.note}",
+        ),
+        h.details("errors per number of modes", h.table(["modes", "tip", "base moment", "base shear"], rows)),
+    ]
 
 
 def _von_mises(runs) -> list[str]:
@@ -214,19 +319,34 @@ def _von_mises(runs) -> list[str]:
         if vm is None:
             continue
         rows = []
-        for label, p in (("peak", vm.peak), (f"at the clamp (z <= {vm.clamp_zone:.3f} m)", vm.clamp),
-                         ("above the clamp's boundary layer", vm.away_from_clamp)):
-            rows.append([label, _value(p.value, "Pa"), f"({p.position[0]:.3f}, {p.position[1]:.3f}, "
-                         f"{p.position[2]:.3f})", h.num(p.time, 4), _value(p.nominal, "Pa"), h.num(p.ratio, 4)])
-        out += [h.tag("h3", "Stresses in the 3D tube"),
-                h.tag("p", f"Von Mises stress of the 3D full order ({doc['_file']}), {vm.space}; "
-                           f"{vm.gravity}; over {vm.instants} instants (the time series' frames and "
-                           "the peaks of base moment and shear). The ratio at the clamp is its stress "
-                           "concentration over the section's nominal stress |M| c/I + N/A there; a "
-                           "linear elastic corner makes it mesh-dependent, the nominal stress is not."
-                           + (f" ParaView: {f.stress_field} (displacement and von Mises)."
-                              if f.stress_field else "")),
-                h.table(["where", "von Mises", "position (x, y, z) m", "t (s)", "nominal", "ratio"], rows)]
+        for label, p in (
+            ("peak", vm.peak),
+            (f"at the clamp (z <= {vm.clamp_zone:.3f} m)", vm.clamp),
+            ("above the clamp's boundary layer", vm.away_from_clamp),
+        ):
+            rows.append(
+                [
+                    label,
+                    _value(p.value, "Pa"),
+                    f"({p.position[0]:.3f}, {p.position[1]:.3f}, {p.position[2]:.3f})",
+                    h.num(p.time, 4),
+                    _value(p.nominal, "Pa"),
+                    h.num(p.ratio, 4),
+                ]
+            )
+        out += [
+            h.tag("h3", "Stresses in the 3D tube"),
+            h.tag(
+                "p",
+                f"Von Mises stress of the 3D full order ({doc['_file']}), {vm.space}; "
+                f"{vm.gravity}; over {vm.instants} instants (the time series' frames and "
+                "the peaks of base moment and shear). The ratio at the clamp is its stress "
+                "concentration over the section's nominal stress |M| c/I + N/A there; a "
+                "linear elastic corner makes it mesh-dependent, the nominal stress is not."
+                + (f" ParaView: {f.stress_field} (displacement and von Mises)." if f.stress_field else ""),
+            ),
+            h.table(["where", "von Mises", "position (x, y, z) m", "t (s)", "nominal", "ratio"], rows),
+        ]
     return out
 
 
@@ -237,17 +357,27 @@ def _buckling_and_details(build: Build) -> list[str]:
     out = []
     b = s.buckling
     if b is not None:
-        out += [h.tag("h3", "Shell buckling resistance (EN 1993-1-6)"),
-                h.tag("p", f"{b.clause}: r = {b.radius:.4g} m, t = {b.thickness:.4g} m, l = {b.length:.4g} m, "
-                           f"omega = {b.omega:.4g} ({b.length_class} cylinder), C_x = {b.cx:.4g}, "
-                           f"sigma_x,Rcr = {_value(b.critical_stress, 'Pa')}; class {b.quality_class}: "
-                           f"alpha_x = {b.alpha:.4g}, lambda_x = {b.slenderness:.4g}, lambda_p = "
-                           f"{b.plastic_slenderness:.4g}, chi = {b.chi:.4g}; sigma_x,Rk = "
-                           f"{_value(b.characteristic_stress, 'Pa')}, sigma_x,Rd = "
-                           f"{_value(b.design_stress, 'Pa')} (gamma_M1 = {b.gamma_m1:g}).")]
-    out.append(h.details("every check on every model and case", h.table(
-        ["check", "demand", "capacity", "utilisation", "status", "model", "case"],
-        _check_rows(s.check_details))))
+        out += [
+            h.tag("h3", "Shell buckling resistance (EN 1993-1-6)"),
+            h.tag(
+                "p",
+                f"{b.clause}: r = {b.radius:.4g} m, t = {b.thickness:.4g} m, l = {b.length:.4g} m, "
+                f"omega = {b.omega:.4g} ({b.length_class} cylinder), C_x = {b.cx:.4g}, "
+                f"sigma_x,Rcr = {_value(b.critical_stress, 'Pa')}; class {b.quality_class}: "
+                f"alpha_x = {b.alpha:.4g}, lambda_x = {b.slenderness:.4g}, lambda_p = "
+                f"{b.plastic_slenderness:.4g}, chi = {b.chi:.4g}; sigma_x,Rk = "
+                f"{_value(b.characteristic_stress, 'Pa')}, sigma_x,Rd = "
+                f"{_value(b.design_stress, 'Pa')} (gamma_M1 = {b.gamma_m1:g}).",
+            ),
+        ]
+    out.append(
+        h.details(
+            "every check on every model and case",
+            h.table(
+                ["check", "demand", "capacity", "utilisation", "status", "model", "case"], _check_rows(s.check_details)
+            ),
+        )
+    )
     return out
 
 
@@ -259,51 +389,102 @@ def section_unbalance(build: Build) -> str:
     r = _read(build, "harmonic.json", HarmonicResult)
     title = "Unbalance response (Bode) and separation margins"
     if r is None:
-        return h.section("unbalance", title, [h.missing(
-            f"Not computed: run `rotorpillar harmonic {build.scene_cli}`")])
+        return h.section("unbalance", title, [h.missing(f"Not computed: run `rotorpillar harmonic {build.scene_cli}`")])
     from .. import engineering_charts as ec
+
     fig = build.out / FIGURES_DIR
     curves = [c for c in (r.rom, r.fem3d) if c is not None]
-    parts = [h.tag("p", f"Steady response to the unbalance at constant speed, up to {r.band_top:.4g} rad/s: "
-                        f"{r.rom_model}; {r.fem3d_model}. The averaging's Eq. 19 near each resonance "
-                        "(dotted) is the first-order expansion of the ROM's curve about it.")]
+    parts = [
+        h.tag(
+            "p",
+            f"Steady response to the unbalance at constant speed, up to {r.band_top:.4g} rad/s: "
+            f"{r.rom_model}; {r.fem3d_model}. The averaging's Eq. 19 near each resonance "
+            "(dotted) is the first-order expansion of the ROM's curve about it.",
+        )
+    ]
     p = attempt(build, "bode", lambda: ec.bode_chart(fig / "bode.png", curves, r.averaging, r.running_speeds))
     if p:
-        parts.append(h.image(p, "Amplitude and phase lag of the tip (left) and of the shaft deflection "
-                                "(right) against the rotor speed: the ROM (dashed), the 3D model (dots), "
-                                "Eq. 19 (dotted); the running speed dash-dotted."))
-    rows = [[h.num(x.omega, 5), "-" if x.rom_speed is None else h.num(x.rom_speed, 5),
-             _value(x.rom_amplitude, "m"), "-" if x.fem3d_speed is None else h.num(x.fem3d_speed, 5),
-             _value(x.fem3d_amplitude, "m"), _value(x.averaging_amplitude, "m"),
-             h.pct(x.amplitude_difference)] for x in r.peaks]
-    parts.append(h.table(["omega_i (rad/s)", "ROM peak at", "ROM tip", "3D peak at", "3D tip",
-                          "Eq. 19 at omega_i", "3D / ROM - 1"], rows))
-    cost = (f"Cost of one speed: the ROM {r.rom_seconds_per_speed:.3g} s"
-            + (f", the 3D model {r.fem3d_seconds_per_speed:.3g} s (one LU of its real block form)"
-               if r.fem3d_seconds_per_speed else "") + " (wall time on a shared machine; bench/ has ratios).")
+        parts.append(
+            h.image(
+                p,
+                "Amplitude and phase lag of the tip (left) and of the shaft deflection "
+                "(right) against the rotor speed: the ROM (dashed), the 3D model (dots), "
+                "Eq. 19 (dotted); the running speed dash-dotted.",
+            )
+        )
+    rows = [
+        [
+            h.num(x.omega, 5),
+            "-" if x.rom_speed is None else h.num(x.rom_speed, 5),
+            _value(x.rom_amplitude, "m"),
+            "-" if x.fem3d_speed is None else h.num(x.fem3d_speed, 5),
+            _value(x.fem3d_amplitude, "m"),
+            _value(x.averaging_amplitude, "m"),
+            h.pct(x.amplitude_difference),
+        ]
+        for x in r.peaks
+    ]
+    parts.append(
+        h.table(
+            ["omega_i (rad/s)", "ROM peak at", "ROM tip", "3D peak at", "3D tip", "Eq. 19 at omega_i", "3D / ROM - 1"],
+            rows,
+        )
+    )
+    cost = (
+        f"Cost of one speed: the ROM {r.rom_seconds_per_speed:.3g} s"
+        + (
+            f", the 3D model {r.fem3d_seconds_per_speed:.3g} s (one LU of its real block form)"
+            if r.fem3d_seconds_per_speed
+            else ""
+        )
+        + " (wall time on a shared machine; bench/ has ratios)."
+    )
     parts.append(h.tag("p", cost))
-    p = attempt(build, "campbell", lambda: ec.campbell_chart(fig / "campbell.png", r.modes, r.running_speeds,
-                                                             r.band_top))
+    p = attempt(
+        build, "campbell", lambda: ec.campbell_chart(fig / "campbell.png", r.modes, r.running_speeds, r.band_top)
+    )
     parts.append(h.tag("h3", "Separation margins (API 684)"))
     if p:
-        parts.append(h.image(p, "Campbell diagram: each structural mode (the ROM's coupled system dashed, "
-                                "the loaded tube's 3D modes solid), the 1x line, the running speed, and "
-                                "the speeds API 684 keeps clear of each mode (red: a running speed inside)."))
-    rows = [[MODE_SOURCES.get(x.mode.model, x.mode.model), x.mode.kind, h.num(x.mode.omega, 5),
-             h.num(x.mode.damping_ratio, 3), "inf" if x.amplification_factor is None else
-             h.num(x.amplification_factor, 3), x.position, h.pct(x.required).lstrip("+"),
-             h.pct(x.actual).lstrip("+"), h.tag("strong", x.status) if x.status == "fail" else x.status]
-            for x in r.separation]
-    parts.append(h.table(["model", "mode", "omega (rad/s)", "zeta", "AF", "position", "required",
-                          "actual", "status"], rows,
-                         row_classes=["failed" if x.status == "fail" else "" for x in r.separation]))
-    parts.append(h.tag("p", "AF = 1/(2 zeta); API 684 asks 17 (1 - 1/(AF - 1.5)) % below the running "
-                            "speed and 10 % more above it, nothing when AF < 2.5. The 3D model leaves "
-                            "ovalling, torsion and the bending normal to the rotor's plane undamped "
-                            "(the tip dashpot does not move them): AF is infinite and the full 17 % "
-                            "/ 27 % apply; steel's own damping (0.2-0.5 %) would change that by "
-                            "less than 0.2 %."))
+        parts.append(
+            h.image(
+                p,
+                "Campbell diagram: each structural mode (the ROM's coupled system dashed, "
+                "the loaded tube's 3D modes solid), the 1x line, the running speed, and "
+                "the speeds API 684 keeps clear of each mode (red: a running speed inside).",
+            )
+        )
+    rows = [
+        [
+            MODE_SOURCES.get(x.mode.model, x.mode.model),
+            x.mode.kind,
+            h.num(x.mode.omega, 5),
+            h.num(x.mode.damping_ratio, 3),
+            "inf" if x.amplification_factor is None else h.num(x.amplification_factor, 3),
+            x.position,
+            h.pct(x.required).lstrip("+"),
+            h.pct(x.actual).lstrip("+"),
+            h.tag("strong", x.status) if x.status == "fail" else x.status,
+        ]
+        for x in r.separation
+    ]
+    parts.append(
+        h.table(
+            ["model", "mode", "omega (rad/s)", "zeta", "AF", "position", "required", "actual", "status"],
+            rows,
+            row_classes=["failed" if x.status == "fail" else "" for x in r.separation],
+        )
+    )
+    parts.append(
+        h.tag(
+            "p",
+            "AF = 1/(2 zeta); API 684 asks 17 (1 - 1/(AF - 1.5)) % below the running "
+            "speed and 10 % more above it, nothing when AF < 2.5. The 3D model leaves "
+            "ovalling, torsion and the bending normal to the rotor's plane undamped "
+            "(the tip dashpot does not move them): AF is infinite and the full 17 % "
+            "/ 27 % apply; steel's own damping (0.2-0.5 %) would change that by "
+            "less than 0.2 %.",
+        )
+    )
     for n in r.notes:
         parts.append(h.tag("p", n, class_="warn"))
     return h.section("unbalance", title, parts)
-

@@ -16,6 +16,7 @@ from .state import OWN_DIRS
 @dataclass(frozen=True)
 class Written:
     """Where a PNG another command wrote belongs, from the JSON that names it."""
+
     caption: str | None
     """its caption in the JSON's ``figures`` list, if it gives one"""
     group: str
@@ -27,11 +28,9 @@ class Written:
 #: A run's figure (simulate's, compare's) -> the section of its case.
 CASE_GROUPS = {"runup": "runs", "rundown": "runs", "sweep": "runs", "earthquake": "earthquake"}
 #: The figure of a result that is not one run's -> the section of the command that wrote it.
-COMMAND_GROUPS = {"converge": "convergence", "integrators": "integrators", "modal": "modal",
-                  "study": "study"}
+COMMAND_GROUPS = {"converge": "convergence", "integrators": "integrators", "modal": "modal", "study": "study"}
 #: The results that name no command in their JSON -> that command (convergence.json).
-INPUT_COMMANDS = {"convergence.json": "converge", "integrators.json": "integrators",
-                  "study.json": "study"}
+INPUT_COMMANDS = {"convergence.json": "converge", "integrators.json": "integrators", "study.json": "study"}
 
 
 def _charts_named(doc: dict[str, Any]) -> list[tuple[str, str | None]]:
@@ -43,13 +42,11 @@ def _charts_named(doc: dict[str, Any]) -> list[tuple[str, str | None]]:
     if isinstance(figs, list):
         for f in figs:
             if isinstance(f, dict) and (f.get("file") or f.get("path")):
-                out.append((Path(str(f.get("file") or f.get("path"))).name,
-                            str(f.get("caption", ""))))
+                out.append((Path(str(f.get("file") or f.get("path"))).name, str(f.get("caption", ""))))
     elif isinstance(figs, dict):
         for k, v in figs.items():
             if isinstance(v, dict):
-                out.append((Path(str(v.get("file") or v.get("path") or k)).name,
-                            str(v.get("caption", ""))))
+                out.append((Path(str(v.get("file") or v.get("path") or k)).name, str(v.get("caption", ""))))
             elif isinstance(v, str):
                 out.append((Path(v).name, str(k).replace("_", " ")))
     charts = doc.get("charts")
@@ -83,8 +80,7 @@ def writers(out: Path) -> dict[str, Written]:
             group = CASE_GROUPS.get(case, "other")
         for name, caption in _charts_named(doc):
             was = found.get(name)
-            found[name] = Written(caption if caption is not None else (was.caption if was else None),
-                                  group, case)
+            found[name] = Written(caption if caption is not None else (was.caption if was else None), group, case)
     return found
 
 
@@ -97,8 +93,9 @@ def external_figures(out: Path) -> list[tuple[Path, str, Written]]:
     found, seen = [], {}
     # the folder itself and its direct subfolders only: --out may point
     # anywhere, and a deep search could sweep up unrelated pictures
-    paths = sorted([*out.glob("*.png"), *out.glob("*/*.png")],
-                   key=lambda p: (-len(p.stem), str(p)))   # a model's own name before its copy
+    paths = sorted(
+        [*out.glob("*.png"), *out.glob("*/*.png")], key=lambda p: (-len(p.stem), str(p))
+    )  # a model's own name before its copy
     for p in paths:
         rel = p.relative_to(out)
         if rel.parts[0] in OWN_DIRS or any(part.startswith(".") for part in rel.parts):
@@ -107,7 +104,7 @@ def external_figures(out: Path) -> list[tuple[Path, str, Written]]:
             digest = hashlib.sha256(p.read_bytes()).hexdigest()
         except OSError:
             continue
-        if digest in seen:          # the same picture under two names (simulate's copy)
+        if digest in seen:  # the same picture under two names (simulate's copy)
             continue
         seen[digest] = p
         w = written.get(p.name, Written(None, "other"))
@@ -125,15 +122,18 @@ CAPTIONS = {
         "(and the grey staircase): the Pareto front, no run both cheaper and more accurate; "
         "star: the model chosen; red dotted line: the tolerance; grey band: the reference's own "
         "uncertainty (errors inside it cannot be told apart); x on the top strip: a run without "
-        "that mode."),
+        "that mode."
+    ),
     "convergence_time.png": (
         "The same against the wall time per run (on this machine, shared: a noisy measure): "
         "circles: the Pareto front; star: the choice; red dotted line: the tolerance; grey band: "
-        "the reference's uncertainty."),
+        "the reference's uncertainty."
+    ),
     "integrators.png": (
         "Time integrators. Top: error of the tip history against the number of force "
         "evaluations on a run-up (dashed lines: fixed-step methods; dotted: 10 % error). "
         "Middle: force evaluations as stiffer pillar modes are added (x: the method failed). "
         "Bottom: energy drift of the undamped, unforced system. One colour and marker per "
-        "method throughout."),
+        "method throughout."
+    ),
 }

@@ -26,14 +26,31 @@ def bending(modes: Sequence[Any], kind: str) -> list[Any]:
 
 
 def _mode_rows(modes: Sequence[Any]) -> list[list[Any]]:
-    return [[i + 1, mode_name(part(m, "kind"), part(m, "n_axial"), part(m, "n_circumferential")),
-             h.num(part(m, "n_circumferential")), h.num(part(m, "n_axial")),
-             h.num(part(m, "frequency_hz")), h.num(part(m, "omega")), h.num(part(m, "modal_mass")),
-             part(m, "normalisation")] for i, m in enumerate(modes)]
+    return [
+        [
+            i + 1,
+            mode_name(part(m, "kind"), part(m, "n_axial"), part(m, "n_circumferential")),
+            h.num(part(m, "n_circumferential")),
+            h.num(part(m, "n_axial")),
+            h.num(part(m, "frequency_hz")),
+            h.num(part(m, "omega")),
+            h.num(part(m, "modal_mass")),
+            part(m, "normalisation"),
+        ]
+        for i, m in enumerate(modes)
+    ]
 
 
-MODE_HEADERS = ["#", "mode", "waves around", "nodes along the height", "f (Hz)",
-                "omega (rad/s)", "modal mass (kg)", "normalisation"]
+MODE_HEADERS = [
+    "#",
+    "mode",
+    "waves around",
+    "nodes along the height",
+    "f (Hz)",
+    "omega (rad/s)",
+    "modal mass (kg)",
+    "normalisation",
+]
 
 
 def top_words(top: Any) -> tuple[str, str]:
@@ -46,19 +63,23 @@ def top_words(top: Any) -> tuple[str, str]:
         return "its top mass", ""
     carries = str(part(top, "carries", "") or "its top mass").replace("_", " ")
     mass = part(top, "mass")
-    how = {"rigid": "on a rigid top plate",
-           "ring_mass": "spread on the top face"}.get(str(part(top, "model", "")), "")
-    what = f"the {carries}" + (f" ({mass:.4g} kg)" if isinstance(mass, (int, float)) else "") \
-        + (f" {how}" if how else "")
-    why = ("The rotor is not on it: it hangs on its elastic shaft, which the reduced model adds "
-           "to these modes (stiffness c2), so the coupled rotor-pillar resonances are the reduced "
-           "model's, not these." if "rotor" not in carries else
-           "The rotor sits on the top rigidly here: its shaft's elasticity is left out.")
+    how = {"rigid": "on a rigid top plate", "ring_mass": "spread on the top face"}.get(str(part(top, "model", "")), "")
+    what = (
+        f"the {carries}" + (f" ({mass:.4g} kg)" if isinstance(mass, (int, float)) else "") + (f" {how}" if how else "")
+    )
+    why = (
+        "The rotor is not on it: it hangs on its elastic shaft, which the reduced model adds "
+        "to these modes (stiffness c2), so the coupled rotor-pillar resonances are the reduced "
+        "model's, not these."
+        if "rotor" not in carries
+        else "The rotor sits on the top rigidly here: its shaft's elasticity is left out."
+    )
     return what, why
 
 
 def section_scene(build: Build) -> str:
     from ...scene import SECTIONS
+
     d = build.scene.to_dict()
     rows = []
     for sec, cls in SECTIONS.items():
@@ -67,11 +88,20 @@ def section_scene(build: Build) -> str:
             continue
         for f in dataclasses.fields(cls):
             rows.append([f"{sec}.{f.name}", h.num(values.get(f.name)), f.metadata.get("doc", "")])
-    parts = [h.tag("p", [h.tag("strong", build.scene.name), ": ", build.scene.description or ""]),
-             h.tag("p", ["Invoked as ", h.tag("code", f"rotorpillar report {build.scene_cli}"),
-                         ". SI units throughout. ", axes_legend()], class_="meta"),
-             h.details(f"every key of the scene ({len(rows)})",
-                       h.table(["key", "value", "meaning (unit)"], rows))]
+    parts = [
+        h.tag("p", [h.tag("strong", build.scene.name), ": ", build.scene.description or ""]),
+        h.tag(
+            "p",
+            [
+                "Invoked as ",
+                h.tag("code", f"rotorpillar report {build.scene_cli}"),
+                ". SI units throughout. ",
+                axes_legend(),
+            ],
+            class_="meta",
+        ),
+        h.details(f"every key of the scene ({len(rows)})", h.table(["key", "value", "meaning (unit)"], rows)),
+    ]
     return h.section("scene", "The scene", parts)
 
 
@@ -80,14 +110,18 @@ def timoshenko_orders(scene: Scene, count: int) -> list[float | None]:
     None where the closed form does not resolve one): the closed form of
     ``reduced.pillar`` on the scene's tube, shear and rotary inertia included."""
     from ...reduced.pillar import cowper_shear_coefficient, omega_timoshenko, section_of
+
     p = scene.pillar
     sec = section_of(p)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
     out: list[float | None] = []
     for k in range(1, count + 1):
         try:
-            out.append(omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density,
-                                        sec.area, sec.second_moment, p.height, k))
+            out.append(
+                omega_timoshenko(
+                    p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area, sec.second_moment, p.height, k
+                )
+            )
         except (ValueError, RuntimeError):
             out.append(None)
     return out
@@ -102,28 +136,60 @@ def _closed_forms_against_3d(build: Build, a: AnalysisResult, modes: Sequence[An
     for k, w_eb in enumerate(p.omega_euler_bernoulli, start=1):
         w3 = part(bx[k - 1], "omega") if k - 1 < len(bx) else None
         t = timo[k - 1]
-        rows.append([f"{ordinal(k)} bending, {direction('X')}", h.num(w_eb), h.num(t), h.num(w3),
-                     h.pct(w3 / w_eb - 1) if w3 else "-", h.pct(t / w_eb - 1) if t else "-",
-                     h.pct(w3 / t - 1) if (w3 and t) else "-"])
+        rows.append(
+            [
+                f"{ordinal(k)} bending, {direction('X')}",
+                h.num(w_eb),
+                h.num(t),
+                h.num(w3),
+                h.pct(w3 / w_eb - 1) if w3 else "-",
+                h.pct(t / w_eb - 1) if t else "-",
+                h.pct(w3 / t - 1) if (w3 and t) else "-",
+            ]
+        )
     if by and bx:
         w_y, w_x = part(by[0], "omega"), part(bx[0], "omega")
-        rows.append([f"1st bending, {direction('Z')}", "-", "-", h.num(w_y), "-", "-",
-                     h.pct(w_y / w_x - 1) + " vs X"])
+        rows.append([f"1st bending, {direction('Z')}", "-", "-", h.num(w_y), "-", "-", h.pct(w_y / w_x - 1) + " vs X"])
     shells = [x for x in modes if not str(part(x, "kind")).startswith(("bending", "axial"))]
     if shells:
         s0 = shells[0]
-        rows.append([mode_name(part(s0, "kind"), part(s0, "n_axial"), part(s0, "n_circumferential")),
-                     "none in beam theory", "-", h.num(part(s0, "omega")), "-", "-", "-"])
-    parts = [h.table(["mode", "Eq. 1, Euler-Bernoulli (rad/s)", "Timoshenko (rad/s)",
-                      "3D model (rad/s)", "3D vs Eq. 1", "Timoshenko vs Eq. 1", "3D vs Timoshenko"],
-                     rows)]
+        rows.append(
+            [
+                mode_name(part(s0, "kind"), part(s0, "n_axial"), part(s0, "n_circumferential")),
+                "none in beam theory",
+                "-",
+                h.num(part(s0, "omega")),
+                "-",
+                "-",
+                "-",
+            ]
+        )
+    parts = [
+        h.table(
+            [
+                "mode",
+                "Eq. 1, Euler-Bernoulli (rad/s)",
+                "Timoshenko (rad/s)",
+                "3D model (rad/s)",
+                "3D vs Eq. 1",
+                "Timoshenko vs Eq. 1",
+                "3D vs Timoshenko",
+            ],
+            rows,
+        )
+    ]
     if len(bx) >= 2 and len(timo) >= 2 and timo[1]:
         w3, t, eb = part(bx[1], "omega"), timo[1], p.omega_euler_bernoulli[1]
-        parts.append(h.tag("p", f"The 2nd bending mode's {h.pct(w3 / eb - 1)} against Eq. 1 is "
-                                f"shear deformation and rotary inertia, which Eq. 1 leaves out: "
-                                f"Timoshenko's beam, which has them, is {h.pct(t / eb - 1)} from "
-                                f"Eq. 1, and the 3D model lies within {h.pct(w3 / t - 1)} of it.",
-                       class_="meta"))
+        parts.append(
+            h.tag(
+                "p",
+                f"The 2nd bending mode's {h.pct(w3 / eb - 1)} against Eq. 1 is "
+                f"shear deformation and rotary inertia, which Eq. 1 leaves out: "
+                f"Timoshenko's beam, which has them, is {h.pct(t / eb - 1)} from "
+                f"Eq. 1, and the 3D model lies within {h.pct(w3 / t - 1)} of it.",
+                class_="meta",
+            )
+        )
     return parts
 
 
@@ -134,54 +200,84 @@ def _reduction(build: Build, a: AnalysisResult) -> list[str]:
     red3 = m.reduction if m is not None else None
     chain = a.system.tip_reduction
     stated = build.scene.reduction
-    cols = [("stated in the scene", stated.tip_mass, stated.tip_stiffness),
-            ("Eq. 2, continuous first mode", p.tip_mass_limit, p.tip_stiffness_limit),
-            ("3D model", part(red3, "m_reduced"), part(red3, "tip_stiffness")),
-            (f"the chain: {chain.source}", chain.m_reduced, chain.tip_stiffness),
-            (f"the paper's model uses (m_r: {r.tip_mass_source}, c1: {r.tip_stiffness_source})",
-             r.tip_mass, r.tip_stiffness)]
+    cols = [
+        ("stated in the scene", stated.tip_mass, stated.tip_stiffness),
+        ("Eq. 2, continuous first mode", p.tip_mass_limit, p.tip_stiffness_limit),
+        ("3D model", part(red3, "m_reduced"), part(red3, "tip_stiffness")),
+        (f"the chain: {chain.source}", chain.m_reduced, chain.tip_stiffness),
+        (
+            f"the paper's model uses (m_r: {r.tip_mass_source}, c1: {r.tip_stiffness_source})",
+            r.tip_mass,
+            r.tip_stiffness,
+        ),
+    ]
     rows = []
     for name, mr, c1 in cols:
         w = math.sqrt(c1 / mr) if (mr and c1) else None
-        rows.append([name, h.num(mr), h.num(c1), h.num(w),
-                     h.pct(w / p.omega_col1 - 1) if w else "-"])
-    return [h.table(["source", "m_r (kg)", "c1 (N/m)", "sqrt(c1/m_r) (rad/s)", "vs Eq. 1"], rows),
-            h.tag("p", "Eq. 2 lumped into n masses: " + ", ".join(
-                f"n = {x.n}: {x.tip_mass:.4g} kg" for x in p.tip_mass_lumped) + ".", class_="meta")]
+        rows.append([name, h.num(mr), h.num(c1), h.num(w), h.pct(w / p.omega_col1 - 1) if w else "-"])
+    return [
+        h.table(["source", "m_r (kg)", "c1 (N/m)", "sqrt(c1/m_r) (rad/s)", "vs Eq. 1"], rows),
+        h.tag(
+            "p",
+            "Eq. 2 lumped into n masses: "
+            + ", ".join(f"n = {x.n}: {x.tip_mass:.4g} kg" for x in p.tip_mass_lumped)
+            + ".",
+            class_="meta",
+        ),
+    ]
 
 
 def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
     """The 3D modes of both configurations, with their pictures."""
     parts = []
     carries, why = top_words(m.top)
-    for key, title, name in (("modes", "Modes of the bare tube (3D), clamped base, free top", "bare"),
-                             ("modes_with_top", f"Modes of the tube carrying {carries} (3D)", "top")):
+    for key, title, name in (
+        ("modes", "Modes of the bare tube (3D), clamped base, free top", "bare"),
+        ("modes_with_top", f"Modes of the tube carrying {carries} (3D)", "top"),
+    ):
         parts.append(h.tag("h3", title))
         if name == "top" and why:
             parts.append(h.tag("p", why, class_="meta"))
         modes = getattr(m, key) or []
-        parts.append(h.table(MODE_HEADERS, _mode_rows(modes)) if modes
-                     else h.tag("p", f"modal.json has no {key}.", class_="meta"))
+        parts.append(
+            h.table(MODE_HEADERS, _mode_rows(modes))
+            if modes
+            else h.tag("p", f"modal.json has no {key}.", class_="meta")
+        )
         parts += failure(build, f"modes_{name}") + failure(build, f"load_modes_{name}")
         sheet = build.products.get(f"sheet_{name}")
         if sheet:
             parts.append(h.image(sheet.path, sheet.caption))
             singles = build.products.get(f"modes_{name}", [])
             gallery = "".join(h.image(x.path, x.caption) for x in singles)
-            parts.append(h.details(f"each mode separately ({len(singles)} pictures)",
-                                   f'<div class="gallery">{gallery}</div>'))
+            parts.append(
+                h.details(f"each mode separately ({len(singles)} pictures)", f'<div class="gallery">{gallery}</div>')
+            )
         elif not (build.out / INPUTS[f"modes_{name}"][0]).is_file():
-            parts.append(h.missing(f"mode shapes not computed: run `rotorpillar modal {build.scene_cli}` "
-                                   f"(no {INPUTS[f'modes_{name}'][0]})"))
+            parts.append(
+                h.missing(
+                    f"mode shapes not computed: run `rotorpillar modal {build.scene_cli}` "
+                    f"(no {INPUTS[f'modes_{name}'][0]})"
+                )
+            )
     doc = build.docs.get("modal", {})
-    extra = [(k, v) for k, v in h.flat_items({"mesh": plain(m.mesh), "axes": plain(m.axes),
-                                               "timings": doc.get("timings")}) if v is not None]
-    parts.append(h.tag("p", axes_legend() + " Every picture carries a triad with the paper's "
-                            "symbols: X horizontal in the rotor's plane, Z along the shaft, Y up.",
-                       class_="meta"))
+    extra = [
+        (k, v)
+        for k, v in h.flat_items({"mesh": plain(m.mesh), "axes": plain(m.axes), "timings": doc.get("timings")})
+        if v is not None
+    ]
+    parts.append(
+        h.tag(
+            "p",
+            axes_legend() + " Every picture carries a triad with the paper's "
+            "symbols: X horizontal in the rotor's plane, Z along the shaft, Y up.",
+            class_="meta",
+        )
+    )
     if extra:
-        parts.append(h.details("3D model: mesh, axes, timings",
-                               h.table(["field", "value"], [[k, h.num(v)] for k, v in extra])))
+        parts.append(
+            h.details("3D model: mesh, axes, timings", h.table(["field", "value"], [[k, h.num(v)] for k, v in extra]))
+        )
     return parts
 
 
@@ -228,15 +324,16 @@ def _fe_note(build: Build, r) -> str:
         return ""
     carries, _ = top_words(build.modal.top)
     w = part(bx[0], "omega")
-    return (f" Our 3D tube carrying {carries}, without the rotor: {w:.2f} rad/s "
-            f"({w / r.paper - 1:+.1%} against the printed value).")
+    return (
+        f" Our 3D tube carrying {carries}, without the rotor: {w:.2f} rad/s "
+        f"({w / r.paper - 1:+.1%} against the printed value)."
+    )
 
 
 def section_paper(build: Build) -> str:
     a = build.analysis
     if a is None:
-        return h.section("paper", "The paper's numbers against ours",
-                         [h.missing(build.hint(INPUTS["analyze"][1]))])
+        return h.section("paper", "The paper's numbers against ours", [h.missing(build.hint(INPUTS["analyze"][1]))])
     found = [r for r in a.paper_comparison if is_finding(r)]
     printed = [r for r in a.paper_comparison if not is_finding(r)]
     rows, cls = [], []
@@ -244,24 +341,45 @@ def section_paper(build: Build) -> str:
         where, _, ours = str(r.where).partition(OURS)
         note = getattr(r, "note", "") or ""
         if is_finding(r):
-            note = h.Raw(h.esc("a finding on the paper's formulation: ")
-                         + h.link("see below", "paper-findings"))
+            note = h.Raw(h.esc("a finding on the paper's formulation: ") + h.link("see below", "paper-findings"))
         else:
             note = note + _fe_note(build, r)
-        rows.append(["*" if r.flag else "", r.quantity, h.num(r.paper), h.num(r.computed),
-                     h.pct(r.rel_diff, 1), where, ours or "this scene", note])
+        rows.append(
+            [
+                "*" if r.flag else "",
+                r.quantity,
+                h.num(r.paper),
+                h.num(r.computed),
+                h.pct(r.rel_diff, 1),
+                where,
+                ours or "this scene",
+                note,
+            ]
+        )
         cls.append("flag" if r.flag else "ok")
     n = sum(1 for r in printed if r.flag)
     parts = scene_differs(build, build.docs.get("analyze")) + [
-        h.tag("p", f"Every number the paper prints that we compute, ours from first principles "
-                   f"(never tuned to match), each computed on the case the paper's text gives it: "
-                   f"Table 1 and Eq. 24 with the stiff shaft, the Sec. 3 finite-element model's "
-                   f"with the rotor on that shaft. * = differs by more than 2 % ({n} of "
-                   f"{len(printed)} printed numbers); the last column gives the likely cause."),
-        h.table(["", "quantity", "paper", "ours", "difference", "printed in", "ours computed on",
-                 "likely cause"], rows, row_classes=cls)]
+        h.tag(
+            "p",
+            f"Every number the paper prints that we compute, ours from first principles "
+            f"(never tuned to match), each computed on the case the paper's text gives it: "
+            f"Table 1 and Eq. 24 with the stiff shaft, the Sec. 3 finite-element model's "
+            f"with the rotor on that shaft. * = differs by more than 2 % ({n} of "
+            f"{len(printed)} printed numbers); the last column gives the likely cause.",
+        ),
+        h.table(
+            ["", "quantity", "paper", "ours", "difference", "printed in", "ours computed on", "likely cause"],
+            rows,
+            row_classes=cls,
+        ),
+    ]
     if found:
         parts.append(h.tag("h3", "Findings on the paper's formulation", id="paper-findings"))
-        parts.append(h.tag("ul", [h.tag("li", [h.tag("strong", f"{r.quantity} ({r.where}): "),
-                                               r.note]) for r in found], class_="findings"))
+        parts.append(
+            h.tag(
+                "ul",
+                [h.tag("li", [h.tag("strong", f"{r.quantity} ({r.where}): "), r.note]) for r in found],
+                class_="findings",
+            )
+        )
     return h.section("paper", "The paper's numbers against ours (Table 1 and the rest)", parts)

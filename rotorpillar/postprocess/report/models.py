@@ -26,6 +26,7 @@ if TYPE_CHECKING:
 @dataclass(frozen=True)
 class ModelView:
     """One model's resonance answers as analyze.json holds them."""
+
     title: str
     """how the page names it"""
     resonances: list[ResonanceAnalysis]
@@ -50,7 +51,8 @@ def pillar_model_text(pillar_model: Any) -> str:
     if pm.get("dofs"):
         what += f" ({pm['dofs']} DOFs)"
     src = {"converge": "chosen by the convergence study", "scene": "the scene's own"}.get(
-        str(pm.get("source")), str(pm.get("source") or ""))
+        str(pm.get("source")), str(pm.get("source") or "")
+    )
     text = f"pillar modes: {what}" + (f", {src}" if src else "")
     if pm.get("verified") is False:
         text += ", unverified"
@@ -69,13 +71,18 @@ def headline_title(analysis: AnalysisResult) -> str:
 
 def model_views(analysis: AnalysisResult) -> list[ModelView]:
     """The headline model, then the paper's (where analyze.json has it)."""
-    views = [ModelView(headline_title(analysis), list(analysis.resonances), analysis.drive,
-                       analysis.system, True)]
+    views = [ModelView(headline_title(analysis), list(analysis.resonances), analysis.drive, analysis.system, True)]
     pm = getattr(analysis, "paper_model", None)
     if pm is not None and getattr(pm, "resonances", None) is not None:
-        views.append(ModelView("the paper's model (Eq. 4, its stated reduction)",
-                               list(pm.resonances), getattr(pm, "drive", None),
-                               getattr(pm, "system", None), False))
+        views.append(
+            ModelView(
+                "the paper's model (Eq. 4, its stated reduction)",
+                list(pm.resonances),
+                getattr(pm, "drive", None),
+                getattr(pm, "system", None),
+                False,
+            )
+        )
     return views
 
 
@@ -110,8 +117,10 @@ def resonance_words(resonances: Sequence[Any]) -> str:
     >>> resonance_words([S(direction="X", omega=14.89, index=1), S(direction="Y", omega=15.81, index=2)])
     "horizontal, in the rotor's plane (the paper's X): 14.89 rad/s; vertical (the paper's Y): 15.81 rad/s"
     """
-    return "; ".join(f"{direction(d)}: " + ", ".join(_omega_text(r) for r in rs) + " rad/s"
-                     for d, rs in by_direction(resonances).items())
+    return "; ".join(
+        f"{direction(d)}: " + ", ".join(_omega_text(r) for r in rs) + " rad/s"
+        for d, rs in by_direction(resonances).items()
+    )
 
 
 def _omega_text(r: Any) -> str:

@@ -20,8 +20,7 @@ def product_image(build: Build, key: str) -> str:
 
 def figures_of(build: Build, group: str) -> list[str]:
     """The other commands' figures that belong to ``group``."""
-    return [h.image(p.path, p.caption) for p in build.products.get("external", [])
-            if p.group == group]
+    return [h.image(p.path, p.caption) for p in build.products.get("external", []) if p.group == group]
 
 
 def failure(build: Build, key: str) -> list[str]:
@@ -42,8 +41,7 @@ def _note(doc: dict | None) -> list[str]:
     return []
 
 
-def scene_differs(build: Build, doc: dict[str, Any] | None,
-                  ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
+def scene_differs(build: Build, doc: dict[str, Any] | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
     """A warning when an input was computed for another version of the scene
     (and the input's own note, if it has one).  ``doc``: the input's whole JSON
     document, or None; ``ignore``: dotted keys its command set on purpose (the
@@ -52,15 +50,25 @@ def scene_differs(build: Build, doc: dict[str, Any] | None,
         return _note(doc)
     now = json.loads(to_json(build.scene.to_dict()))
     then = doc["scene"]
-    diffs = [f"{k}.{kk}" for k, v in now.items() if isinstance(v, dict)
-             for kk in v if (not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk])
-             and f"{k}.{kk}" not in ignore]
+    diffs = [
+        f"{k}.{kk}"
+        for k, v in now.items()
+        if isinstance(v, dict)
+        for kk in v
+        if (not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk]) and f"{k}.{kk}" not in ignore
+    ]
     if not diffs:
         return _note(doc)
-    return _note(doc) + [h.tag("p", "Warning: this input was computed for a different scene ("
-                  + ", ".join(diffs[:8]) + (" ..." if len(diffs) > 8 else "")
-                  + f" differ); re-run {doc.get('command', 'its command')} on this scene.",
-                  class_="warn")]
+    return _note(doc) + [
+        h.tag(
+            "p",
+            "Warning: this input was computed for a different scene ("
+            + ", ".join(diffs[:8])
+            + (" ..." if len(diffs) > 8 else "")
+            + f" differ); re-run {doc.get('command', 'its command')} on this scene.",
+            class_="warn",
+        )
+    ]
 
 
 #: A run's peaks (max_abs keys) in words, in the order shown; the first name
@@ -78,8 +86,7 @@ PEAK_WORDS = {
 def _peaks(mx: dict) -> list[list]:
     """Rows of a run's largest displacements, each value once: names with
     the same value are one row (the words of the first, the others beside)."""
-    items = [(k, float(v)) for k, v in mx.items()
-             if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    items = [(k, float(v)) for k, v in mx.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
     order = {k: i for i, k in enumerate(PEAK_WORDS)}
     items.sort(key=lambda kv: order.get(kv[0], len(order)))
     groups: list[list] = []
@@ -90,8 +97,10 @@ def _peaks(mx: dict) -> list[list]:
                 break
         else:
             groups.append([k, v, []])
-    return [[f"largest |{PEAK_WORDS.get(k, k)}| (m)" + (f" = {', '.join(same)}" if same else ""),
-             h.num(v)] for k, v, same in groups]
+    return [
+        [f"largest |{PEAK_WORDS.get(k, k)}| (m)" + (f" = {', '.join(same)}" if same else ""), h.num(v)]
+        for k, v, same in groups
+    ]
 
 
 def key_results(meta: dict) -> str | None:
@@ -99,12 +108,14 @@ def key_results(meta: dict) -> str | None:
     them, each value once; a run that failed its own checks says so first."""
     rows = []
     if meta.get("ok") is False:
-        rows.append(["FAILED: not a solution", "; ".join(meta.get("failed_checks") or
-                                                        ["the run reports ok: false"])])
-    for key, label in (("model", "model"), ("omega_final", "final speed (rad/s)"),
-                       ("captured_at", "captured at (rad/s)"),
-                       ("captured_resonance", "held by the resonance at (rad/s)"),
-                       ("speed_state", "speed at the end")):
+        rows.append(["FAILED: not a solution", "; ".join(meta.get("failed_checks") or ["the run reports ok: false"])])
+    for key, label in (
+        ("model", "model"),
+        ("omega_final", "final speed (rad/s)"),
+        ("captured_at", "captured at (rad/s)"),
+        ("captured_resonance", "held by the resonance at (rad/s)"),
+        ("speed_state", "speed at the end"),
+    ):
         if meta.get(key) is not None:
             rows.append([label, h.num(meta[key])])
     if isinstance(meta.get("jumps"), list):
@@ -121,7 +132,14 @@ def key_results(meta: dict) -> str | None:
 def run_table(result: Any) -> str:
     """Every field of a result (its JSON document, or a record) but its provenance, as a table."""
     meta = plain(result)
-    keep = [(k, v) for k, v in h.flat_items({k: v for k, v in meta.items()
-                                          if k not in ("scene", "versions", "machine", "figures",
-                                                       "command", "scene_source", "overrides")})]
+    keep = [
+        (k, v)
+        for k, v in h.flat_items(
+            {
+                k: v
+                for k, v in meta.items()
+                if k not in ("scene", "versions", "machine", "figures", "command", "scene_source", "overrides")
+            }
+        )
+    ]
     return h.table(["field", "value"], [[k, h.num(v)] for k, v in keep])

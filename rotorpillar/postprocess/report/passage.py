@@ -31,8 +31,7 @@ def _acceleration(arrays: dict, at: float) -> float | None:
 
 def passage_rows(model: str, meta: dict, arrays: dict) -> list[list]:
     """One row per resonance the run crossed."""
-    pred = {r.get("index"): r for r in ((meta.get("prediction") or {}).get("resonances") or [])
-            if isinstance(r, dict)}
+    pred = {r.get("index"): r for r in ((meta.get("prediction") or {}).get("resonances") or []) if isinstance(r, dict)}
     rows = []
     for p in meta.get("passages") or []:
         if not isinstance(p, dict) or not p.get("crossed") or p.get("time") is None:
@@ -45,19 +44,37 @@ def passage_rows(model: str, meta: dict, arrays: dict) -> list[list]:
         peak = p.get("peak_rotor_y_near") if vertical else p.get("peak_tip_near")
         ratio = acc / w**2 if acc else None
         crossing = (2 * nu**2 * w**2 / acc) if (acc and nu) else None
-        rows.append([model, f"{p.get('index')}: {short(p.get('direction'))}", h.num(w, 4),
-                     h.num(tc, 3), h.num(acc, 3), h.num(ratio, 2),
-                     h.num(2 * nu**2, 2) if nu else "-", h.num(crossing, 2),
-                     ("rotor " if vertical else "tip ") + h.num(1e3 * peak, 3) if peak else "-",
-                     h.num(1e3 * a_max, 3) if a_max else "-",
-                     h.num(peak / a_max, 2) if (peak and a_max) else "-"])
+        rows.append(
+            [
+                model,
+                f"{p.get('index')}: {short(p.get('direction'))}",
+                h.num(w, 4),
+                h.num(tc, 3),
+                h.num(acc, 3),
+                h.num(ratio, 2),
+                h.num(2 * nu**2, 2) if nu else "-",
+                h.num(crossing, 2),
+                ("rotor " if vertical else "tip ") + h.num(1e3 * peak, 3) if peak else "-",
+                h.num(1e3 * a_max, 3) if a_max else "-",
+                h.num(peak / a_max, 2) if (peak and a_max) else "-",
+            ]
+        )
     return rows
 
 
-HEADERS = ["model", "resonance", "omega (rad/s)", "crossed at t (s)", "Omega-dot (rad/s^2)",
-           "Omega-dot / omega^2", "2 nu^2 (quasi-static needs Omega-dot / omega^2 far below it)",
-           "crossing / decay time", "transient peak near it (mm)", "a_max, averaging (mm)",
-           "peak / a_max"]
+HEADERS = [
+    "model",
+    "resonance",
+    "omega (rad/s)",
+    "crossed at t (s)",
+    "Omega-dot (rad/s^2)",
+    "Omega-dot / omega^2",
+    "2 nu^2 (quasi-static needs Omega-dot / omega^2 far below it)",
+    "crossing / decay time",
+    "transient peak near it (mm)",
+    "a_max, averaging (mm)",
+    "peak / a_max",
+]
 
 
 def passage_block(build: Build) -> list[str]:
@@ -74,15 +91,18 @@ def passage_block(build: Build) -> list[str]:
     if not rows:
         return []
     slow = [r for r in rows if r[7] != "-" and float(r[7]) > 10]
-    text = ("The run-ups cross the resonances in a fraction of a second. The averaging's a_max "
-            "is a steady state, reached only when the speed crosses a resonance's half-power "
-            "band (2 nu omega wide) in many of its decay times (1 / (nu omega)): crossing / "
-            "decay time = 2 nu^2 omega^2 / Omega-dot much above 1. "
-            + ("Here it is of order 1 or below at every crossing: the passage is far from "
-               "quasi-static, and the transient peaks differ from the averaging's a_max (last "
-               "column); the averaging's jumps and stationary amplitudes describe the slow "
-               "(quasi-static) limit, not this run-up."
-               if not slow else
-               f"{len(slow)} of the {len(rows)} crossings are slow enough to approach the "
-               "steady state."))
+    text = (
+        "The run-ups cross the resonances in a fraction of a second. The averaging's a_max "
+        "is a steady state, reached only when the speed crosses a resonance's half-power "
+        "band (2 nu omega wide) in many of its decay times (1 / (nu omega)): crossing / "
+        "decay time = 2 nu^2 omega^2 / Omega-dot much above 1. "
+        + (
+            "Here it is of order 1 or below at every crossing: the passage is far from "
+            "quasi-static, and the transient peaks differ from the averaging's a_max (last "
+            "column); the averaging's jumps and stationary amplitudes describe the slow "
+            "(quasi-static) limit, not this run-up."
+            if not slow
+            else f"{len(slow)} of the {len(rows)} crossings are slow enough to approach the steady state."
+        )
+    )
     return [h.tag("p", text), h.table(HEADERS, rows)]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import json
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 from ... import __version__
 from ...provenance import machine, versions
@@ -25,8 +25,11 @@ def _stages_of(doc: dict) -> tuple[float | None, str]:
     total = t.get("total")
     per = doc.get("per_model") if isinstance(doc.get("per_model"), dict) else None
     if not stages and per:
-        stages = {f"{m} (wall time)": r["wall_seconds"] for m, r in per.items()
-                  if isinstance(r, dict) and isinstance(r.get("wall_seconds"), (int, float))}
+        stages = {
+            f"{m} (wall time)": r["wall_seconds"]
+            for m, r in per.items()
+            if isinstance(r, dict) and isinstance(r.get("wall_seconds"), (int, float))
+        }
     if total is None and stages:
         total = sum(stages.values())
     if total is None and isinstance(doc.get("wall_seconds"), (int, float)):
@@ -40,7 +43,7 @@ def _timing_rows(build: Build) -> list:
     previous run's, said so); then this report's."""
     rows = []
     for js in sorted(build.out.glob("*.json")):
-        if js.name in ("report.json", "run.json"):     # written after this page: stale here
+        if js.name in ("report.json", "run.json"):  # written after this page: stale here
             continue
         try:
             doc = json.loads(js.read_text(encoding="utf-8"))
@@ -50,8 +53,9 @@ def _timing_rows(build: Build) -> list:
             continue
         total, stages = _stages_of(doc)
         link = h.tag("a", js.name, href=h.relative(js, build.out))
-        rows.append([link, h.num(total, 4), stages,
-                     datetime.fromtimestamp(js.stat().st_mtime).strftime("%Y-%m-%d %H:%M:%S")])
+        rows.append(
+            [link, h.num(total, 4), stages, datetime.fromtimestamp(js.stat().st_mtime).strftime("%Y-%m-%d %H:%M:%S")]
+        )
     run = build.out / "run.json"
     try:
         doc = json.loads(run.read_text(encoding="utf-8")) if run.is_file() else None
@@ -59,22 +63,38 @@ def _timing_rows(build: Build) -> list:
         doc = None
     st = doc.get("stages") if isinstance(doc, dict) else None
     if isinstance(st, dict) and st:
-        secs = {k: v.get("seconds") for k, v in st.items() if isinstance(v, dict)
-                and isinstance(v.get("seconds"), (int, float))}
+        secs = {
+            k: v.get("seconds")
+            for k, v in st.items()
+            if isinstance(v, dict) and isinstance(v.get("seconds"), (int, float))
+        }
         when = datetime.fromtimestamp(run.stat().st_mtime).strftime("%Y-%m-%d %H:%M:%S")
-        rows.append([h.Raw(h.tag("a", "run.json", href=h.relative(run, build.out))
-                           + " (the last <code>rotorpillar run</code>, stages as processes)"),
-            h.num(sum(secs.values()), 4), ", ".join(f"{k} {v:.2f}" for k, v in secs.items()),
-            when])
+        rows.append(
+            [
+                h.Raw(
+                    h.tag("a", "run.json", href=h.relative(run, build.out))
+                    + " (the last <code>rotorpillar run</code>, stages as processes)"
+                ),
+                h.num(sum(secs.values()), 4),
+                ", ".join(f"{k} {v:.2f}" for k, v in secs.items()),
+                when,
+            ]
+        )
     own = ", ".join(f"{k} {v:.2f}" for k, v in build.render_seconds.items())
     rows.append(["this report", h.num(sum(build.render_seconds.values()), 4), own, "now"])
     return rows
 
 
 def section_provenance(build: Build) -> str:
-    parts = [h.tag("p", f"rotorpillar {__version__}; report written "
-                        f"{datetime.now(timezone.utc).strftime('%Y-%m-%d %H:%M UTC')}; off-screen "
-                        f"rendering through {build.render_window or 'no 3D render'}.", class_="meta")]
+    parts = [
+        h.tag(
+            "p",
+            f"rotorpillar {__version__}; report written "
+            f"{datetime.now(UTC).strftime('%Y-%m-%d %H:%M UTC')}; off-screen "
+            f"rendering through {build.render_window or 'no 3D render'}.",
+            class_="meta",
+        )
+    ]
     parts.append(h.tag("h3", "Timings (s)"))
     parts.append(h.table(["result", "total", "stages", "written"], _timing_rows(build)))
     parts.append(h.tag("h3", "Versions"))

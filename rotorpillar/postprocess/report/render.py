@@ -4,8 +4,8 @@ mode shapes and the animations, each step recorded and allowed to fail."""
 from __future__ import annotations
 
 import dataclasses
-from typing import Any
 from pathlib import Path
+from typing import Any
 
 from ..compare_reader import relative_to_ground
 from ..directions import direction
@@ -19,26 +19,35 @@ ANIMATED = ("runup", "earthquake", "earthquake_paper", "earthquake_scene")
 
 def render_charts(build: Build) -> None:
     from .. import charts, transient_charts
+
     fig = build.out / FIGURES_DIR
     analysis = build.analysis
     if analysis is not None:
-        p = attempt(build, "drive_chart",
-                    lambda: charts.drive_chart(analysis, fig / "drive_resistance.png"))
+        p = attempt(build, "drive_chart", lambda: charts.drive_chart(analysis, fig / "drive_resistance.png"))
         if p:
-            build.products["drive_chart"] = Product(p, (
-                "Motor torque Md and total resistance L = Mc + sum dL_i against the speed "
-                "(the paper's Figs. 3-4). L is solid where a stationary regime there is stable "
-                "(d(Md - L)/dOmega < 0, Eq. 23) and dashed where it is not; jumps A->B (run-up) and "
-                "D->C (run-down) are drawn on the motor lines through them. Below: near each "
-                "resonance, against z = Omega/omega_i, with L - Mc on the right axis; dots are the "
-                "curves stored in analyze.json."))
-        p = attempt(build, "amplitude_chart",
-                    lambda: charts.amplitude_chart(analysis, fig / "resonance_amplitudes.png"))
+            build.products["drive_chart"] = Product(
+                p,
+                (
+                    "Motor torque Md and total resistance L = Mc + sum dL_i against the speed "
+                    "(the paper's Figs. 3-4). L is solid where a stationary regime there is stable "
+                    "(d(Md - L)/dOmega < 0, Eq. 23) and dashed where it is not; jumps A->B (run-up) and "
+                    "D->C (run-down) are drawn on the motor lines through them. Below: near each "
+                    "resonance, against z = Omega/omega_i, with L - Mc on the right axis; dots are the "
+                    "curves stored in analyze.json."
+                ),
+            )
+        p = attempt(
+            build, "amplitude_chart", lambda: charts.amplitude_chart(analysis, fig / "resonance_amplitudes.png")
+        )
         if p:
-            build.products["amplitude_chart"] = Product(p, (
-                "Amplitude a_i of each quasi-normal coordinate near its resonance: the averaging "
-                "result (Eq. 19 with omega_i**2 restored) against the exact steady state of the "
-                "linear mode at constant speed."))
+            build.products["amplitude_chart"] = Product(
+                p,
+                (
+                    "Amplitude a_i of each quasi-normal coordinate near its resonance: the averaging "
+                    "result (Eq. 19 with omega_i**2 restored) against the exact steady state of the "
+                    "linear mode at constant speed."
+                ),
+            )
     quake = build.quake_case
     if quake is not None and quake.arrays.get("t") is not None:
         # relative to the ground: under the paper's pulse the absolute tip is
@@ -48,23 +57,37 @@ def render_charts(build: Build) -> None:
         rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
         model = quake.meta.get("model", "model not stated")
         ex = quake.meta.get("excitation") or {}
-        what = (": the paper's pulse as written, not a realistic earthquake"
-                if ex.get("realistic") is False else "")
-        p = attempt(build, "earthquake_chart", lambda: transient_charts.earthquake_chart(
-            fig / "earthquake_response.png", quake.get("t"), quake.get("ground_acceleration"),
-            tip, rotor, quake.get("Omega"), title=f"Earthquake response ({model} model){what}",
-            frame="relative to the ground"))
+        what = ": the paper's pulse as written, not a realistic earthquake" if ex.get("realistic") is False else ""
+        p = attempt(
+            build,
+            "earthquake_chart",
+            lambda: transient_charts.earthquake_chart(
+                fig / "earthquake_response.png",
+                quake.get("t"),
+                quake.get("ground_acceleration"),
+                tip,
+                rotor,
+                quake.get("Omega"),
+                title=f"Earthquake response ({model} model){what}",
+                frame="relative to the ground",
+            ),
+        )
         if p:
-            build.products["earthquake_chart"] = Product(p, (
-                f"Earthquake on the {model} model: ground acceleration (the shaded interval is "
-                "when the ground moves), the X displacement of the pillar's tip and of the rotor "
-                "relative to the ground, and the rotor speed."))
+            build.products["earthquake_chart"] = Product(
+                p,
+                (
+                    f"Earthquake on the {model} model: ground acceleration (the shaded interval is "
+                    "when the ground moves), the X displacement of the pillar's tip and of the rotor "
+                    "relative to the ground, and the rotor speed."
+                ),
+            )
 
 
 def render_comparisons(build: Build) -> None:
     """Each comparison's tip histories overlaid with their differences, and
     the record's response spectrum."""
     from .. import compare_charts as cc
+
     fig = build.out / FIGURES_DIR
     for case, c in build.comparisons.items():
         series = [(m, *s) for m in c.models for s in [c.tip_relative(m)] if s is not None]
@@ -72,41 +95,73 @@ def render_comparisons(build: Build) -> None:
             continue
         ref = c.reference or series[0][0]
         zoom = passage_of(c, ref) if case != "earthquake" else None
-        p = attempt(build, f"comparison_{case}", lambda c=c, case=case, series=series, ref=ref,
-                    zoom=zoom: cc.comparison_chart(
-                        fig / f"comparison_{case}.png", series, ref, zoom=zoom,
-                        title=f"{CASE_TITLES.get(case, case)}: {', '.join(m for m, _, _ in series)}"))
+        p = attempt(
+            build,
+            f"comparison_{case}",
+            lambda c=c, case=case, series=series, ref=ref, zoom=zoom: cc.comparison_chart(
+                fig / f"comparison_{case}.png",
+                series,
+                ref,
+                zoom=zoom,
+                title=f"{CASE_TITLES.get(case, case)}: {', '.join(m for m, _, _ in series)}",
+            ),
+        )
         if p:
             lacking = [m for m in c.models if m not in {s[0] for s in series}]
-            build.products[f"comparison_{case}"] = Product(p, (
-                f"The {CASE_TITLES.get(case, case).lower()} on each model: the pillar tip's "
-                f"displacement {direction('X')}, relative to the ground, overlaid (the reference, "
-                f"{ref}, solid); below, each model minus {ref}."
-                + (f" Right: zoomed on the passage through the resonances, {zoom[0]:.3g} .. "
-                   f"{zoom[1]:.3g} s of the {c.doc.get('window', {}).get('end', '')} s run."
-                   if zoom else "")
-                + (f" No arrays for {', '.join(lacking)}." if lacking else "")))
+            build.products[f"comparison_{case}"] = Product(
+                p,
+                (
+                    f"The {CASE_TITLES.get(case, case).lower()} on each model: the pillar tip's "
+                    f"displacement {direction('X')}, relative to the ground, overlaid (the reference, "
+                    f"{ref}, solid); below, each model minus {ref}."
+                    + (
+                        f" Right: zoomed on the passage through the resonances, {zoom[0]:.3g} .. "
+                        f"{zoom[1]:.3g} s of the {c.doc.get('window', {}).get('end', '')} s run."
+                        if zoom
+                        else ""
+                    )
+                    + (f" No arrays for {', '.join(lacking)}." if lacking else "")
+                ),
+            )
     quake = build.comparisons.get("earthquake")
     spec = quake.doc.get("spectrum") if quake is not None else None
-    if quake is not None and isinstance(spec, dict) and spec.get("period") is not None \
-            and spec.get("psa") is not None:
+    if quake is not None and isinstance(spec, dict) and spec.get("period") is not None and spec.get("psa") is not None:
         c = quake
         from .compare_section import spectrum_damping, system_modes
+
         damping = spectrum_damping(spec)
         model, modes = system_modes(c)
         # the modes the horizontal record excites: the coupled system's, in X
-        marks = [(f"mode {m['index']}", m["period"]) for m in modes
-                 if str(m["direction"]).upper() == "X"] or list(spec.get("mode_periods") or ())
-        what = (f"the coupled rotor-pillar modes of the {model} model in the record's direction "
-                "(horizontal, in the rotor's plane)" if modes else "the pillar's modal periods")
-        p = attempt(build, "response_spectrum", lambda: cc.spectrum_chart(
-            fig / "response_spectrum.png", spec["period"], spec["psa"], marks, damping,
-            title=f"Response spectrum of the record ({_record_name(c.doc)})"))
+        marks = [(f"mode {m['index']}", m["period"]) for m in modes if str(m["direction"]).upper() == "X"] or list(
+            spec.get("mode_periods") or ()
+        )
+        what = (
+            f"the coupled rotor-pillar modes of the {model} model in the record's direction "
+            "(horizontal, in the rotor's plane)"
+            if modes
+            else "the pillar's modal periods"
+        )
+        p = attempt(
+            build,
+            "response_spectrum",
+            lambda: cc.spectrum_chart(
+                fig / "response_spectrum.png",
+                spec["period"],
+                spec["psa"],
+                marks,
+                damping,
+                title=f"Response spectrum of the record ({_record_name(c.doc)})",
+            ),
+        )
         if p:
-            build.products["response_spectrum"] = Product(p, (
-                f"Pseudo-acceleration response spectrum of the record ({_record_name(c.doc)}, "
-                f"{100 * float(damping):g} % damping, eqsig); marked on the curve, with the value "
-                f"read off it: {what}."))
+            build.products["response_spectrum"] = Product(
+                p,
+                (
+                    f"Pseudo-acceleration response spectrum of the record ({_record_name(c.doc)}, "
+                    f"{100 * float(damping):g} % damping, eqsig); marked on the curve, with the value "
+                    f"read off it: {what}."
+                ),
+            )
 
 
 #: How the report names a case.
@@ -117,11 +172,15 @@ def passage_of(c, model: str):
     """The window around the passage through the resonances of ``model``'s
     run in comparison ``c`` (its speed and its JSON's resonances), or None."""
     from ..transient_charts import crossings, passage_window
+
     a, meta = c.arrays.get(model) or {}, c.metas.get(model) or {}
     if a.get("t") is None or a.get("Omega") is None:
         return None
-    res = [(f"omega_{r.get('index')}", float(r["omega"])) for r in meta.get("resonances") or []
-           if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))]
+    res = [
+        (f"omega_{r.get('index')}", float(r["omega"]))
+        for r in meta.get("resonances") or []
+        if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))
+    ]
     return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
 
 
@@ -133,6 +192,7 @@ def _record_name(doc: dict) -> str:
 def mode_sets(build: Build) -> dict[str, ModeSet | None]:
     """The bare and the topped tube's mode shapes, where modal.json and its VTU exist."""
     from ..geometry import load_modes
+
     sets = {}
     m = build.modal
     for name, key in (("bare", "modes"), ("top", "modes_with_top")):
@@ -140,8 +200,9 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
         if m is not None and vtu.is_file():
             modes = plain(getattr(m, key)) or []
             axes = plain(m.axes) or None
-            sets[name] = attempt(build, f"load_modes_{name}",
-                                 lambda vtu=vtu, modes=modes, axes=axes: load_modes(vtu, modes, axes))
+            sets[name] = attempt(
+                build, f"load_modes_{name}", lambda vtu=vtu, modes=modes, axes=axes: load_modes(vtu, modes, axes)
+            )
         else:
             sets[name] = None
     return sets
@@ -151,24 +212,35 @@ def render_mode_shapes(build: Build, sets: dict) -> None:
     from ..directions import mode_label
     from ..modeshapes import render_modes as render
     from .modal import top_words
-    captions = {"bare": "the bare tube (clamped base, free top)",
-                "top": f"the tube carrying {top_words(build.modal.top if build.modal else None)[0]}"}
+
+    captions = {
+        "bare": "the bare tube (clamped base, free top)",
+        "top": f"the tube carrying {top_words(build.modal.top if build.modal else None)[0]}",
+    }
     for name, ms in sets.items():
         if ms is None:
             continue
         say(f"mode shapes of {captions[name]}")
-        r = attempt(build, f"modes_{name}",
-                    lambda ms=ms, name=name: render(ms, build.out / MODES_DIR, name,
-                                                    build.options.modes))
+        r = attempt(
+            build,
+            f"modes_{name}",
+            lambda ms=ms, name=name: render(ms, build.out / MODES_DIR, name, build.options.modes),
+        )
         if r:
             build.products[f"modes_{name}"] = [
-                Product(p, mode_label(ms.modes[i], i), group=name) for i, p in enumerate(r["modes"])]
-            build.products[f"sheet_{name}"] = Product(r["sheet"], (
-                f"The first {len(r['modes'])} modes of {captions[name]} (3D model, {Path(ms.source).name}): "
-                "deformed shape coloured by |u| / max |u| over the undeformed outline; the scale "
-                "factor is on each view; the triad names the axes as the paper does (X horizontal, "
-                "in the rotor's plane; Z horizontal, along the shaft; Y vertical); an ovalling "
-                "mode's cross-sections beside it, seen from above."), group=name)
+                Product(p, mode_label(ms.modes[i], i), group=name) for i, p in enumerate(r["modes"])
+            ]
+            build.products[f"sheet_{name}"] = Product(
+                r["sheet"],
+                (
+                    f"The first {len(r['modes'])} modes of {captions[name]} (3D model, {Path(ms.source).name}): "
+                    "deformed shape coloured by |u| / max |u| over the undeformed outline; the scale "
+                    "factor is on each view; the triad names the axes as the paper does (X horizontal, "
+                    "in the rotor's plane; Z horizontal, along the shaft; Y vertical); an ovalling "
+                    "mode's cross-sections beside it, seen from above."
+                ),
+                group=name,
+            )
 
 
 def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, Any]]]:
@@ -182,22 +254,40 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
       it is no earthquake burnt into every frame.
     """
     from ..transient_charts import crossings, passage_window
+
     out: list[tuple[str, Simulation, str, dict[str, Any]]] = []
     sim = build.simulations.get("runup")
     if sim is not None and sim.arrays.get("t") is not None:
-        res = [(f"omega_{r.get('index')}", float(r["omega"])) for r in sim.meta.get("resonances") or []
-               if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))]
-        focus = (passage_window(sim.get("t"), crossings(sim.get("t"), sim.get("Omega"), res))
-                 if sim.get("Omega") is not None else None)
+        res = [
+            (f"omega_{r.get('index')}", float(r["omega"]))
+            for r in sim.meta.get("resonances") or []
+            if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))
+        ]
+        focus = (
+            passage_window(sim.get("t"), crossings(sim.get("t"), sim.get("Omega"), res))
+            if sim.get("Omega") is not None
+            else None
+        )
         out.append(("runup", sim, "Run-up", {"focus": focus}))
     c = build.comparisons.get("earthquake")
     if c is not None:
-        model = next((m for m in sorted(c.models, key=lambda m: m != "modal")
-                      if (c.arrays.get(m) or {}).get("t") is not None and m != c.reference), None)
+        model = next(
+            (
+                m
+                for m in sorted(c.models, key=lambda m: m != "modal")
+                if (c.arrays.get(m) or {}).get("t") is not None and m != c.reference
+            ),
+            None,
+        )
         if model is not None:
-            out.append(("earthquake", Simulation("earthquake", c.metas.get(model) or {},
-                                                 c.arrays[model]),
-                        f"{_record_name(c.doc)} on the {model} model", {}))
+            out.append(
+                (
+                    "earthquake",
+                    Simulation("earthquake", c.metas.get(model) or {}, c.arrays[model]),
+                    f"{_record_name(c.doc)} on the {model} model",
+                    {},
+                )
+            )
     quake = build.quake_case
     if quake is not None and quake.arrays.get("t") is not None:
         ex = quake.meta.get("excitation") or {}
@@ -205,46 +295,68 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
         banner = ""
         if pulse:
             step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0.0)
-            banner = ("NOT AN EARTHQUAKE: the paper's pulse\n"
-                      f"as written: the ground steps {step:.3g} m,\n"
-                      f"{ex.get('peak_acceleration_g', 0):.3g} g (see the report)")
-        name = ("earthquake_paper" if pulse or quake.meta.get("model") == "paper" else
-                "earthquake_scene" if any(n == "earthquake" for n, *_ in out) else "earthquake")
+            banner = (
+                "NOT AN EARTHQUAKE: the paper's pulse\n"
+                f"as written: the ground steps {step:.3g} m,\n"
+                f"{ex.get('peak_acceleration_g', 0):.3g} g (see the report)"
+            )
+        name = (
+            "earthquake_paper"
+            if pulse or quake.meta.get("model") == "paper"
+            else "earthquake_scene"
+            if any(n == "earthquake" for n, *_ in out)
+            else "earthquake"
+        )
         build.products["quake_case_animation"] = f"animation_{name}"
         what = "The paper's pulse" if pulse else "The scene's earthquake"
-        out.append((name, quake, f"{what} on the {quake.meta.get('model', '?')} model",
-                    {"banner": banner}))
+        out.append((name, quake, f"{what} on the {quake.meta.get('model', '?')} model", {"banner": banner}))
     return out
 
 
 def render_animations(build: Build, sets: dict) -> None:
     from ..animation import animate
     from ..geometry import cantilever_tube
+
     top = sets.get("top")
     for name, sim, title, opts in animated_runs(build):
         if top is None and "fallback_tube" not in build.products:
             p = build.scene.pillar
-            build.products["fallback_tube"] = cantilever_tube(p.height, p.outer_diameter,
-                                                              p.inner_diameter)
+            build.products["fallback_tube"] = cantilever_tube(p.height, p.outer_diameter, p.inner_diameter)
         ms = top if top is not None else build.products["fallback_tube"]
         say(f"animation of the {name} ({build.options.max_frames} frames at most)")
-        r = attempt(build, f"animation_{name}", lambda sim=sim, ms=ms, title=title, name=name,
-                    opts=opts: animate(
-            sim, ms, build.out / ANIMATIONS_DIR / f"{name}.mp4",
-            title=f"{title} (scene {build.scene.name})",
-            max_frames=build.options.max_frames,
-            poster=build.out / ANIMATIONS_DIR / f"{name}_poster.png", **opts))
+        r = attempt(
+            build,
+            f"animation_{name}",
+            lambda sim=sim, ms=ms, title=title, name=name, opts=opts: animate(
+                sim,
+                ms,
+                build.out / ANIMATIONS_DIR / f"{name}.mp4",
+                title=f"{title} (scene {build.scene.name})",
+                max_frames=build.options.max_frames,
+                poster=build.out / ANIMATIONS_DIR / f"{name}_poster.png",
+                **opts,
+            ),
+        )
         if r:
-            timing = (f"time-warped: {r.frames_in_focus} of its {r.frames} frames in the passage "
-                      f"through the resonances, {r.focus[0]:.3g} .. {r.focus[1]:.3g} s (slow motion "
-                      "there, said on the frame), the rest over the remaining run" if r.focus else
-                      "sampling the run uniformly")
-            build.products[f"animation_{name}"] = Product(r.path, (
-                f"{title}: the pillar deformed by {r.source}; the pillar's elastic deflection "
-                f"exaggerated x{r.factor:g}, the rotor's motion about the pillar top (drawn on its "
-                f"shaft) x{r.orbit_factor:g}"
-                + ("; ground motion at true scale" if name.startswith("earthquake") else "")
-                + f". {r.frames} frames at {r.fps} frames/s, {timing} (stroboscopic: the pillar's "
-                "vibration at the rotor speed aliases; the orbit trail uses every stored sample). "
-                f"{r.writer}."), kind="video", poster=r.poster)
+            timing = (
+                f"time-warped: {r.frames_in_focus} of its {r.frames} frames in the passage "
+                f"through the resonances, {r.focus[0]:.3g} .. {r.focus[1]:.3g} s (slow motion "
+                "there, said on the frame), the rest over the remaining run"
+                if r.focus
+                else "sampling the run uniformly"
+            )
+            build.products[f"animation_{name}"] = Product(
+                r.path,
+                (
+                    f"{title}: the pillar deformed by {r.source}; the pillar's elastic deflection "
+                    f"exaggerated x{r.factor:g}, the rotor's motion about the pillar top (drawn on its "
+                    f"shaft) x{r.orbit_factor:g}"
+                    + ("; ground motion at true scale" if name.startswith("earthquake") else "")
+                    + f". {r.frames} frames at {r.fps} frames/s, {timing} (stroboscopic: the pillar's "
+                    "vibration at the rotor speed aliases; the orbit trail uses every stored sample). "
+                    f"{r.writer}."
+                ),
+                kind="video",
+                poster=r.poster,
+            )
             build.products[f"animation_{name}_info"] = dataclasses.asdict(r)

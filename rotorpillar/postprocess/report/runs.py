@@ -4,14 +4,13 @@ against a full-order model; run-down, sweep)."""
 
 from __future__ import annotations
 
-from .. import html as h
 from ...transients.run_comparisons import COMPARISONS
-from ..readers import CASES, INPUTS, SIMULATE_COMMAND
+from .. import html as h
 from ..directions import direction
+from ..readers import CASES, INPUTS, SIMULATE_COMMAND
 from .compare_section import comparison_block
 from .models import model_views, resonance_table
-from .parts import (animation_video, failure, figures_of, key_results, product_image, run_table,
-                    scene_differs)
+from .parts import animation_video, failure, figures_of, key_results, product_image, run_table, scene_differs
 from .passage import passage_block
 from .state import Build
 
@@ -21,52 +20,108 @@ RUN_TITLES = {"runup": "Run-up", "rundown": "Run-down", "sweep": "Sweep"}
 
 def _stationary_and_jumps(d) -> list[str]:
     parts = [h.tag("h3", "Stationary speeds and jumps")]
-    rows = [[h.num(s.omega), "stable" if s.stable else "unstable", h.num(s.margin)]
-            for s in d.stationary]
-    parts.append(h.table(["Omega (rad/s)", "stability (Eq. 23)", "d(Md - L)/dOmega (N*m*s)"], rows)
-                 if rows else h.tag("p", "No stationary speed."))
+    rows = [[h.num(s.omega), "stable" if s.stable else "unstable", h.num(s.margin)] for s in d.stationary]
+    parts.append(
+        h.table(["Omega (rad/s)", "stability (Eq. 23)", "d(Md - L)/dOmega (N*m*s)"], rows)
+        if rows
+        else h.tag("p", "No stationary speed.")
+    )
     if d.jumps:
         name = {"up": "A->B (run-up)", "down": "D->C (run-down)"}
-        rows = [[name.get(j.direction, j.direction), h.num(j.omega_from), h.num(j.omega_to),
-                 h.num(j.torque_at_zero), h.num(j.resonance)] for j in d.jumps]
+        rows = [
+            [
+                name.get(j.direction, j.direction),
+                h.num(j.omega_from),
+                h.num(j.omega_to),
+                h.num(j.torque_at_zero),
+                h.num(j.resonance),
+            ]
+            for j in d.jumps
+        ]
         parts.append(h.table(["jump", "from (rad/s)", "to (rad/s)", "at M0 (N*m)", "resonance"], rows))
     else:
-        parts.append(h.tag("p", "No jumps: a quasi-static run-up and run-down pass every resonance "
-                                "without the Sommerfeld effect with this drive."))
+        parts.append(
+            h.tag(
+                "p",
+                "No jumps: a quasi-static run-up and run-down pass every resonance "
+                "without the Sommerfeld effect with this drive.",
+            )
+        )
     # quasi-static: M0 raised (or lowered) slowly, as in the paper's Figs. 3-4; not the
     # scene's run-down, whose motor may be switched off
     said = f"A quasi-static run-up (M0 raised slowly) settles at {h.num(d.runup_speed)} rad/s"
     if d.rundown_speed is not None and d.rundown_speed != d.runup_speed:
-        said += (f"; a quasi-static run-down (M0 lowered slowly from above) at "
-                 f"{h.num(d.rundown_speed)} rad/s")
+        said += f"; a quasi-static run-down (M0 lowered slowly from above) at {h.num(d.rundown_speed)} rad/s"
     captured = getattr(d, "captured_index", None)
-    parts.append(h.tag("p", said + (f"; captured below resonance {captured} "
-                                    f"({h.num(d.captured_resonance)} rad/s) at "
-                                    f"{h.num(d.captured_at)} rad/s."
-                                    if captured is not None else ".")))
+    parts.append(
+        h.tag(
+            "p",
+            said
+            + (
+                f"; captured below resonance {captured} "
+                f"({h.num(d.captured_resonance)} rad/s) at "
+                f"{h.num(d.captured_at)} rad/s."
+                if captured is not None
+                else "."
+            ),
+        )
+    )
     return parts
 
 
 def _resonance_rows(resonances) -> str:
-    rows = [[r.index, direction(r.direction), h.num(r.omega), h.num(r.modal_mass), h.num(r.forcing),
-             h.num(r.two_n), h.num(r.nu), h.num(r.a_max), h.num(r.dL_max),
-             h.num(r.dL_max_over_Mc), h.num(r.critical_slope), h.num(r.critical_eccentricity)]
-            for r in resonances]
-    return h.table(["i", "direction", "omega_i (rad/s)", "I_i (kg)", "f_i (m/s^2)",
-                    "2n_i (1/s)", "nu_i", "a_max (m)", "dL_max (N*m)", "dL_max/Mc",
-                    "critical slope (N*m*s)", "critical e (m)"], rows)
+    rows = [
+        [
+            r.index,
+            direction(r.direction),
+            h.num(r.omega),
+            h.num(r.modal_mass),
+            h.num(r.forcing),
+            h.num(r.two_n),
+            h.num(r.nu),
+            h.num(r.a_max),
+            h.num(r.dL_max),
+            h.num(r.dL_max_over_Mc),
+            h.num(r.critical_slope),
+            h.num(r.critical_eccentricity),
+        ]
+        for r in resonances
+    ]
+    return h.table(
+        [
+            "i",
+            "direction",
+            "omega_i (rad/s)",
+            "I_i (kg)",
+            "f_i (m/s^2)",
+            "2n_i (1/s)",
+            "nu_i",
+            "a_max (m)",
+            "dL_max (N*m)",
+            "dL_max/Mc",
+            "critical slope (N*m*s)",
+            "critical e (m)",
+        ],
+        rows,
+    )
 
 
 def section_averaging(build: Build) -> str:
     a = build.analysis
     if a is None:
-        return h.section("averaging", "Passage through resonance (averaging)",
-                         [h.missing(build.hint(INPUTS["analyze"][1]))])
+        return h.section(
+            "averaging", "Passage through resonance (averaging)", [h.missing(build.hint(INPUTS["analyze"][1]))]
+        )
     parts = scene_differs(build, build.docs.get("analyze"))
     views = model_views(a)
     d = a.drive
-    parts.append(h.tag("p", f"On {views[0].title}. Motor Md = {d.torque_at_zero:g} - {d.slope:g} "
-                            f"Omega, load Mc = {d.load_coefficient:g} Omega^2 (Eq. 22)."))
+    parts.append(
+        h.tag(
+            "p",
+            f"On {views[0].title}. Motor Md = {d.torque_at_zero:g} - {d.slope:g} "
+            f"Omega, load Mc = {d.load_coefficient:g} Omega^2 (Eq. 22).",
+        )
+    )
     parts.append(resonance_table(views))
     parts += failure(build, "drive_chart")
     if "drive_chart" in build.products:
@@ -76,8 +131,9 @@ def section_averaging(build: Build) -> str:
     parts.append(h.tag("h3", "The resonances"))
     for v in views:
         table = _resonance_rows(v.resonances)
-        parts.append(h.tag("p", f"On {v.title}:", class_="meta") if v.headline
-                     else h.details(f"the same on {v.title}", table))
+        parts.append(
+            h.tag("p", f"On {v.title}:", class_="meta") if v.headline else h.details(f"the same on {v.title}", table)
+        )
         if v.headline:
             parts.append(table)
     parts += failure(build, "amplitude_chart")
@@ -107,7 +163,7 @@ def section_runs(build: Build) -> str:
         if case == "earthquake":
             continue
         sim = build.simulations.get(case)
-        if sim is None and case not in COMPARISONS:      # not what the main job runs
+        if sim is None and case not in COMPARISONS:  # not what the main job runs
             not_run.append(case)
             continue
         parts.append(h.tag("h3", RUN_TITLES[case]))
@@ -121,8 +177,12 @@ def section_runs(build: Build) -> str:
                 parts += block
         if sim is None:
             continue
-        parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the scene's own run ({sim.meta.get('model', '?')} "
-                                 f"model, simulate_{case}.json)"))
+        parts.append(
+            h.tag(
+                "h4",
+                f"{RUN_TITLES[case]}: the scene's own run ({sim.meta.get('model', '?')} model, simulate_{case}.json)",
+            )
+        )
         parts += scene_differs(build, sim.meta)
         key = key_results(sim.meta)
         if key:
@@ -130,13 +190,20 @@ def section_runs(build: Build) -> str:
         parts += _own_charts(build, case)
         parts += failure(build, f"animation_{case}")
         parts += animation_video(build, f"animation_{case}")
-        parts.append(h.details(f"simulate_{case}.json: every field", run_table(sim.meta))
-                     if sim.meta else h.tag("p", "no JSON summary", class_="meta"))
+        parts.append(
+            h.details(f"simulate_{case}.json: every field", run_table(sim.meta))
+            if sim.meta
+            else h.tag("p", "no JSON summary", class_="meta")
+        )
     if not_run and build.simulations:
         said = ["Not run by this job: "]
         for k, case in enumerate(not_run):
-            said += (["; "] if k else []) + [RUN_TITLES[case].lower(), " (", h.tag(
-                "code", f"rotorpillar {SIMULATE_COMMAND} --case {case} {build.scene_cli}"), ")"]
+            said += (["; "] if k else []) + [
+                RUN_TITLES[case].lower(),
+                " (",
+                h.tag("code", f"rotorpillar {SIMULATE_COMMAND} --case {case} {build.scene_cli}"),
+                ")",
+            ]
         parts.append(h.tag("p", said + ["."], class_="meta"))
     parts += figures_of(build, "runs")
     return h.section("runs", "The runs", parts)

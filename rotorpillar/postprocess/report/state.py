@@ -11,9 +11,10 @@ import os
 import sys
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from ..readers import Simulation, not_computed
 
@@ -37,6 +38,7 @@ OWN_DIRS = (FIGURES_DIR, MODES_DIR, ANIMATIONS_DIR)
 @dataclass(frozen=True)
 class ReportOptions:
     """What `rotorpillar report` renders."""
+
     animations: bool = True
     """render the run-up and earthquake animations"""
     max_frames: int = 180
@@ -48,9 +50,10 @@ class ReportOptions:
 @dataclass
 class Product:
     """A file the report made or found, with its caption."""
+
     path: Path
     caption: str
-    kind: str = "figure"       # figure | video
+    kind: str = "figure"  # figure | video
     group: str = ""
     poster: Path | None = None
     case: str = ""
@@ -60,6 +63,7 @@ class Product:
 @dataclass
 class Build:
     """Everything the page is assembled from."""
+
     scene: Scene
     out: Path
     scene_cli: str
@@ -83,16 +87,15 @@ class Build:
     comparisons: dict[str, Comparison] = field(default_factory=dict)
     """case -> ``compare_reader.Comparison`` of compare_<case>.json and its models' runs"""
     products: dict[str, Any] = field(default_factory=dict)  # key -> Product, list of Products, or a value
-    failures: dict[str, str] = field(default_factory=dict)     # key -> message
-    damaged: dict[str, str] = field(default_factory=dict)      # command -> what is wrong with its file
+    failures: dict[str, str] = field(default_factory=dict)  # key -> message
+    damaged: dict[str, str] = field(default_factory=dict)  # command -> what is wrong with its file
     render_seconds: dict[str, float] = field(default_factory=dict)
     render_window: str = ""
 
     def hint(self, command: str) -> str:
         """What the reader must run: the input is missing, or damaged and to be rebuilt."""
         if command in self.damaged:
-            return (f"{self.damaged[command]}: rebuild it with `rotorpillar {command} "
-                    f"{self.scene_cli}`")
+            return f"{self.damaged[command]}: rebuild it with `rotorpillar {command} {self.scene_cli}`"
         return not_computed(command, self.scene_cli)
 
 

@@ -35,16 +35,36 @@ def _boundary_table(r: StudyResult) -> list[str]:
     rows = []
     for row in found:
         x = row["other"]
-        rows.append([h.num(x, 4) if x is not None else "-", h.num(row["captured_max"], 5),
-                     h.num(row["passed_min"], 5), h.num(_predicted_at(b, x, "averaging"), 5),
-                     h.num(_predicted_at(b, x, "exact_linear"), 5),
-                     "yes" if row.get("monotonic", True) else "no"])
-    return [h.tag("h3", "The capture boundary: found against predicted"),
-            h.tag("p", "Per value of the other axis: the largest motor torque M0 the study saw "
-                       "captured and the smallest that passed, beside the torque the averaging "
-                       "theory (Eq. 19-23) and the exact linear torque balance say is needed."),
-            h.table([other or "", "captured up to M0 (N*m)", "passes from M0 (N*m)",
-                     "averaging (N*m)", "exact linear (N*m)", "monotonic"], rows)]
+        rows.append(
+            [
+                h.num(x, 4) if x is not None else "-",
+                h.num(row["captured_max"], 5),
+                h.num(row["passed_min"], 5),
+                h.num(_predicted_at(b, x, "averaging"), 5),
+                h.num(_predicted_at(b, x, "exact_linear"), 5),
+                "yes" if row.get("monotonic", True) else "no",
+            ]
+        )
+    return [
+        h.tag("h3", "The capture boundary: found against predicted"),
+        h.tag(
+            "p",
+            "Per value of the other axis: the largest motor torque M0 the study saw "
+            "captured and the smallest that passed, beside the torque the averaging "
+            "theory (Eq. 19-23) and the exact linear torque balance say is needed.",
+        ),
+        h.table(
+            [
+                other or "",
+                "captured up to M0 (N*m)",
+                "passes from M0 (N*m)",
+                "averaging (N*m)",
+                "exact linear (N*m)",
+                "monotonic",
+            ],
+            rows,
+        ),
+    ]
 
 
 def section_study(build: Build) -> str | None:
@@ -55,14 +75,18 @@ def section_study(build: Build) -> str | None:
         return h.section("study", "Design study", [h.missing(build.hint("study"))])
     meta = build.docs["study"]
     p, ex, bt = r.performance, r.executor, r.batches
-    axes = "; ".join(f"{a.key}: {len(a.values)} values from {a.values[0]} to {a.values[-1]}"
-                     for a in r.axes)
+    axes = "; ".join(f"{a.key}: {len(a.values)} values from {a.values[0]} to {a.values[-1]}" for a in r.axes)
     parts = scene_differs(build, meta)
-    parts.append(h.tag("p", f"{len(r.runs)} {r.case} runs of the {r.model} model over {axes}. "
-                            f"Ran on {ex.get('kind')} ({ex.get('workers')} workers) in "
-                            f"{bt.get('total')} batches ({bt.get('cached')} from disk); "
-                            f"{p.get('runs_computed')} runs computed at "
-                            f"{h.num(p.get('runs_per_second'), 3)} runs/s."))
+    parts.append(
+        h.tag(
+            "p",
+            f"{len(r.runs)} {r.case} runs of the {r.model} model over {axes}. "
+            f"Ran on {ex.get('kind')} ({ex.get('workers')} workers) in "
+            f"{bt.get('total')} batches ({bt.get('cached')} from disk); "
+            f"{p.get('runs_computed')} runs computed at "
+            f"{h.num(p.get('runs_per_second'), 3)} runs/s.",
+        )
+    )
     if r.case != "earthquake":
         passed = sum(bool(x.passed) for x in r.runs)
         parts.append(h.tag("p", f"Passed: {passed}; captured at a resonance: {len(r.runs) - passed}."))
@@ -72,10 +96,31 @@ def section_study(build: Build) -> str | None:
     for prod in [x for x in external if x.path.name in names]:
         parts.append(h.image(prod.path, prod.caption))
     build.products["external"] = [x for x in external if x.path.name not in names]
-    rows = [[x.index, *(str(x.params.get(a.key)) for a in r.axes), h.num(x.final_speed, 5),
-             "-" if x.passed is None else ("yes" if x.passed else "no"),
-             h.num(x.peak_tip, 4), h.num(x.peak_shaft_deflection, 4)] for x in r.runs[:500]]
-    parts.append(h.details(f"the runs ({len(r.runs)}; study.csv has them all)", h.table(
-        ["run", *(a.key for a in r.axes), "final speed (rad/s)", "passed", "peak tip (m)",
-         "peak shaft deflection (m)"], rows)))
+    rows = [
+        [
+            x.index,
+            *(str(x.params.get(a.key)) for a in r.axes),
+            h.num(x.final_speed, 5),
+            "-" if x.passed is None else ("yes" if x.passed else "no"),
+            h.num(x.peak_tip, 4),
+            h.num(x.peak_shaft_deflection, 4),
+        ]
+        for x in r.runs[:500]
+    ]
+    parts.append(
+        h.details(
+            f"the runs ({len(r.runs)}; study.csv has them all)",
+            h.table(
+                [
+                    "run",
+                    *(a.key for a in r.axes),
+                    "final speed (rad/s)",
+                    "passed",
+                    "peak tip (m)",
+                    "peak shaft deflection (m)",
+                ],
+                rows,
+            ),
+        )
+    )
     return h.section("study", "Design study", parts)

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from .. import html as h
 from ...transients.run_comparisons import COMPARISONS, comparison_command
+from .. import html as h
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND, part
 from .compare_section import speed_accuracy
 from .convergence import chosen
@@ -26,8 +26,10 @@ FINDINGS_ANCHOR = "paper-findings"
 def _pillar(build: Build, a: AnalysisResult) -> str:
     m = build.modal
     p = a.pillar
-    text = (f"First bending mode of the bare tube: Eq. 1 gives {p.omega_col1:.3f} rad/s "
-            f"({p.frequency_col1_hz:.3f} Hz); Timoshenko {h.pct(p.timoshenko_correction)}")
+    text = (
+        f"First bending mode of the bare tube: Eq. 1 gives {p.omega_col1:.3f} rad/s "
+        f"({p.frequency_col1_hz:.3f} Hz); Timoshenko {h.pct(p.timoshenko_correction)}"
+    )
     bx = bending(m.modes, "bending_x") if m is not None else []
     if bx:
         w = part(bx[0], "omega")
@@ -39,19 +41,25 @@ def _pillar(build: Build, a: AnalysisResult) -> str:
 
 def _drive(a: AnalysisResult, eccentricity: float) -> list[str]:
     d = a.drive
-    st = ", ".join(f"{x.omega:.2f} rad/s ({'stable' if x.stable else 'unstable'})"
-                   for x in d.stationary) or "none"
-    items = [f"Stationary speed(s) with the scene's motor: {st}. "
-             + (f"{len(d.jumps)} jump(s) in a quasi-static run-up or run-down."
-                if d.jumps else "No jumps (no Sommerfeld effect) with this drive.")]
+    st = ", ".join(f"{x.omega:.2f} rad/s ({'stable' if x.stable else 'unstable'})" for x in d.stationary) or "none"
+    items = [
+        f"Stationary speed(s) with the scene's motor: {st}. "
+        + (
+            f"{len(d.jumps)} jump(s) in a quasi-static run-up or run-down."
+            if d.jumps
+            else "No jumps (no Sommerfeld effect) with this drive."
+        )
+    ]
     items += [r.statement for r in a.resonances if r.jumps]
     calm = [r for r in a.resonances if not r.jumps and r.critical_eccentricity > 0]
     if calm:
         e = min(calm, key=lambda r: r.critical_eccentricity)
-        items.append(f"No jumps at {'any' if len(calm) == len(a.resonances) else 'the other'} "
-                     f"resonance with this drive; the first to show them would be resonance "
-                     f"{e.index} ({e.omega:.2f} rad/s), above an eccentricity of "
-                     f"{e.critical_eccentricity:.3g} m (the scene's: {eccentricity:.3g} m).")
+        items.append(
+            f"No jumps at {'any' if len(calm) == len(a.resonances) else 'the other'} "
+            f"resonance with this drive; the first to show them would be resonance "
+            f"{e.index} ({e.omega:.2f} rad/s), above an eccentricity of "
+            f"{e.critical_eccentricity:.3g} m (the scene's: {eccentricity:.3g} m)."
+        )
     return items
 
 
@@ -60,21 +68,36 @@ def _analysis_findings(build: Build, a: AnalysisResult) -> list[str | h.Raw]:
     views = model_views(a)
     for v in views:
         items.append(f"Rotor-pillar resonances, {v.title}: {resonance_words(v.resonances)}.")
-    items.append(f"The headline model's pillar: {a.pillar_model.describe()}; its error bars: "
-                 f"{a.system.error_note}.")
+    items.append(f"The headline model's pillar: {a.pillar_model.describe()}; its error bars: {a.system.error_note}.")
     r = a.paper_model.reduction
-    items.append(f"Pillar reduced to its tip in the paper's model: m_r = {r.tip_mass:.4g} kg "
-                 f"({r.tip_mass_source}), c1 = {r.tip_stiffness:.4g} N/m ({r.tip_stiffness_source}).")
+    items.append(
+        f"Pillar reduced to its tip in the paper's model: m_r = {r.tip_mass:.4g} kg "
+        f"({r.tip_mass_source}), c1 = {r.tip_stiffness:.4g} N/m ({r.tip_stiffness_source})."
+    )
     rows = [x for x in a.paper_comparison if not is_finding(x)]
-    items.append(h.Raw(h.esc(f"{sum(1 for x in rows if x.flag)} of the {len(rows)} numbers the "
-                             "paper prints differ from ours by more than 2 %, each compared with "
-                             "the case it belongs to; ") + h.link("the table", "paper")
-                       + h.esc(" gives each one's likely cause.")))
+    items.append(
+        h.Raw(
+            h.esc(
+                f"{sum(1 for x in rows if x.flag)} of the {len(rows)} numbers the "
+                "paper prints differ from ours by more than 2 %, each compared with "
+                "the case it belongs to; "
+            )
+            + h.link("the table", "paper")
+            + h.esc(" gives each one's likely cause.")
+        )
+    )
     if any(is_finding(x) for x in a.paper_comparison):
-        items.append(h.Raw(h.esc("The paper's Eq. 4 forces the rotor's shaft from the ground as "
-                                 "well as the pillar; our reduced models use the consistent "
-                                 "forcing (") + h.link("the finding", FINDINGS_ANCHOR)
-                           + h.esc(").")))
+        items.append(
+            h.Raw(
+                h.esc(
+                    "The paper's Eq. 4 forces the rotor's shaft from the ground as "
+                    "well as the pillar; our reduced models use the consistent "
+                    "forcing ("
+                )
+                + h.link("the finding", FINDINGS_ANCHOR)
+                + h.esc(").")
+            )
+        )
     items += _drive(a, build.scene.rotor.eccentricity)
     return items
 
@@ -116,20 +139,28 @@ def _runs(build: Build) -> list[str | h.Raw]:
             ex = meta.get("excitation") or {}
             if ex.get("realistic") is False:
                 step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0)
-                items.append(h.Raw(h.esc(f"The paper's own earthquake ({model} model) is a "
-                                         f"{step:.3g} m ground step at "
-                                         f"{ex.get('peak_acceleration_g', float('nan')):.3g} g, "
-                                         "not an earthquake: ")
-                                   + h.link("see the earthquake section", "earthquake")
-                                   + h.esc(" for a recorded one.")))
+                items.append(
+                    h.Raw(
+                        h.esc(
+                            f"The paper's own earthquake ({model} model) is a "
+                            f"{step:.3g} m ground step at "
+                            f"{ex.get('peak_acceleration_g', float('nan')):.3g} g, "
+                            "not an earthquake: "
+                        )
+                        + h.link("see the earthquake section", "earthquake")
+                        + h.esc(" for a recorded one.")
+                    )
+                )
             continue
         peak = (meta.get("max_abs") or {}).get("tip_x_relative")
         name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
         text = f"The scene's {name} ({model} model): "
         bars = meta.get("uncertainty") if isinstance(meta.get("uncertainty"), dict) else {}
         if meta.get("captured_at") is not None:
-            text += (f"captured at {_bar(bars, 'captured_at', meta['captured_at'], 1.0, 'rad/s')} "
-                     f"below the resonance at {h.num(meta.get('captured_resonance'), 4)} rad/s")
+            text += (
+                f"captured at {_bar(bars, 'captured_at', meta['captured_at'], 1.0, 'rad/s')} "
+                f"below the resonance at {h.num(meta.get('captured_resonance'), 4)} rad/s"
+            )
         else:
             text += f"ends at {_bar(bars, 'omega_final', meta.get('omega_final'), 1.0, 'rad/s')}"
         if meta.get("speed_state") == "escaping":
@@ -153,14 +184,19 @@ def section_summary(build: Build) -> str:
         c = build.comparisons.get(case)
         name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
         if c is None:
-            items.append(f"The reduced model against the full order on the {name}: not computed: "
-                         f"run `rotorpillar {comparison_command(case)} {build.scene_cli}`.")
+            items.append(
+                f"The reduced model against the full order on the {name}: not computed: "
+                f"run `rotorpillar {comparison_command(case)} {build.scene_cli}`."
+            )
         else:
             said = speed_accuracy(c.doc, c.models)
-            items.append(f"The {name}, models compared ({', '.join(c.models)}): "
-                         + (" ".join(said) if said else "no error against a reference recorded."))
+            items.append(
+                f"The {name}, models compared ({', '.join(c.models)}): "
+                + (" ".join(said) if said else "no error against a reference recorded.")
+            )
     what = chosen(build.convergence) if build.convergence else None
     if what:
         items.append(f"Model chosen for the scene's band: {what[0]}.")
-    return h.section("summary", "Summary", verdict_block(build) + [h.tag("ul", [_item(it) for it in items],
-                                                                          class_="findings")])
+    return h.section(
+        "summary", "Summary", verdict_block(build) + [h.tag("ul", [_item(it) for it in items], class_="findings")]
+    )
