@@ -4,7 +4,7 @@ VENV := .venv
 PY   := $(VENV)/bin/python
 SCENE ?= paper
 
-.PHONY: run test test-fast check check-strict bench setup clean
+.PHONY: run test test-fast check bench setup clean
 
 # The last line `rotorpillar run` prints is the report's path:
 # "report: /abs/path/out/<scene>/report.html".
@@ -26,13 +26,9 @@ test: setup
 test-fast: setup
 	$(PY) -m pytest $(XDIST) -m "not slow" --durations=10
 
-# The house rules, ruff's lint and mypy (tools/check.sh); STRICT=1, or
-# `make check-strict`, adds what the lead switches on after the merges.
+# The house rules, ruff's lint and format check, mypy (tools/check.sh).
 check: setup
-	@STRICT=$(STRICT) tools/check.sh
-
-check-strict: setup
-	@STRICT=1 tools/check.sh
+	@tools/check.sh
 
 bench: setup
 	$(PY) bench/run.py
