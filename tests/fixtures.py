@@ -15,6 +15,7 @@ import numpy as np
 
 from rotorpillar.provenance import atomic_path, write_json
 from rotorpillar.reduced.pillar import cantilever_mode, omega_euler_bernoulli, tube_section
+from rotorpillar.transients.measures import compare_series, envelope_window
 
 _G = 9.81
 
@@ -367,9 +368,11 @@ def write_comparison_fixture(
             "peak_shaft_deflection": float(np.max(np.abs(a["shaft_deflection_x"]))),
             "omega_final": meta["omega_final"],
             "wall_seconds": wall[m],
+            "compile_seconds": 0.0,
             "dofs": dofs[m],
             "ok": True,
             "warnings": meta["warnings"],
+            "pillar_model": None,
             "json": f"simulate_{case}_{m}.json",
             "npz": f"simulate_{case}_{m}.npz",
         }
@@ -378,7 +381,23 @@ def write_comparison_fixture(
         if m == reference:
             continue
         y = np.interp(r["t"], arrays[m]["t"], arrays[m]["tip_x_relative"])
+        # the measures the comparison itself computes (transients.measures), on the fixture's series
+        series = compare_series(
+            arrays[m]["t"],
+            arrays[m]["tip_x_relative"],
+            r["t"],
+            r["tip_x_relative"],
+            window=envelope_window([15.36]),
+            theta=arrays[m].get("theta"),
+            theta_ref=r.get("theta"),
+        )
         errors[m] = {
+            "tip_envelope_error": series.envelope_error,
+            "envelope_window": series.window,
+            "angle_drift": series.angle_drift,
+            "angle_drift_final": series.angle_drift_final,
+            "lead": series.lead,
+            "lead_why": series.why,
             "tip_history_error": float(np.max(np.abs(y - r["tip_x_relative"])) / np.max(np.abs(r["tip_x_relative"]))),
             "peak_tip_difference": per[m]["peak_tip_relative"] / per[reference]["peak_tip_relative"] - 1,
             "omega_final_difference": per[m]["omega_final"] / per[reference]["omega_final"] - 1,
@@ -409,6 +428,17 @@ def write_comparison_fixture(
             "mode_periods": [2 * math.pi / 15.36, 2 * math.pi / 96.0],
             "spectral_peak_tip": 0.0042,
             "computed_peak_tip": per.get("modal", per[reference])["peak_tip_relative"],
+            "modes": [
+                {
+                    "mode": i + 1,
+                    "period": 2 * math.pi / w,
+                    "damping_ratio": 0.02,
+                    "participation_factor": 1.0 / (i + 1),
+                    "s_d": 0.004 / (i + 1),
+                    "contribution": 0.004 / (i + 1) ** 2,
+                }
+                for i, w in enumerate((15.36, 96.0))
+            ],
             "note": "synthetic spectrum: an estimate, not a bound",
         }
     write_json(out / f"compare_{case}.json", doc)
