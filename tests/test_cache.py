@@ -94,7 +94,7 @@ def test_converge_recomputes_exactly_a_damaged_run(tmp_path):
 
     def counting(case, sc):
         ran.append(case.label)
-        return cv.run_case(case, sc)
+        return cv.run_point(case, sc)
 
     again = cv.run_study(cases, scene, tmp_path, runner=counting, progress=False)
     assert ran == [cases[1].label]
