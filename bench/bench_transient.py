@@ -385,7 +385,7 @@ def bench_full_order_step() -> list[dict]:
         return []
     from rotorpillar.fem3d.full_order import simulate_fem3d
     from rotorpillar.fem3d.full_order_plan import case_setup, top_speed
-    from rotorpillar.transients.model_run import fem3d_plan
+    from rotorpillar.transients.run_plan import fem3d_plan
 
     out = []
     cases = (

@@ -44,7 +44,8 @@ from imagecheck import assert_real_png, labels_overlap, pixels, png_size
 from rotorpillar.analysis import analyze
 from rotorpillar.analysis.results import AnalysisResult
 from rotorpillar.postprocess import charts, transient_charts
-from rotorpillar.postprocess.animation import animate, elastic_field, frame_times, pillar_motion
+from rotorpillar.postprocess.animation import animate
+from rotorpillar.postprocess.animation_frames import elastic_field, frame_times, pillar_motion
 from rotorpillar.postprocess.geometry import bending_columns, cantilever_tube, load_modes, tube_axes
 from rotorpillar.postprocess.modeshapes import (
     BEAM_TARGET,

@@ -89,7 +89,7 @@ def check_run(
     from ..reduced.integration import Estimated, estimate_only
     from ..scene import override
     from ..transients.cases import check_full_order_budget, run_case
-    from ..transients.model_run import fem3d_plan, with_duration
+    from ..transients.run_plan import fem3d_plan, with_duration
 
     if which == "fem3d":
         from ..mesh import tube_params
@@ -187,7 +187,7 @@ def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None =
     """Refuse, before any meshing, a 3D run above ``simulate.max_steps`` (InputError
     naming the keys; fem3d.full_order_plan), on the plan's mesh, duration and step."""
     from ..fem3d.full_order_plan import case_setup, check_budget, estimate, step_rule
-    from ..transients.model_run import fem3d_plan
+    from ..transients.run_plan import fem3d_plan
 
     plan = fem3d_plan(scene, case, motion, duration)
     # the start speed 0: the step follows the drive's free speed, which the operating

@@ -2,8 +2,9 @@
 
 Above rotorpillar.reduced (the paper, modal and beam models) and
 rotorpillar.fem3d (the 3D tube at full order), this package runs one model
-of a case the same way for `simulate` and `compare` (``run.run_model`` ->
-``ModelRun``), writes its files (``files.write_model_files``:
+of a case the same way for `simulate` and `compare`
+(``model_run.run_model`` -> ``ModelRun``; ``run_plan`` its length and the
+3D plan), writes its files (``files.write_model_files``:
 ``simulate_<case>_<model>.{json,npz,csv,png}``), and compares models on one
 case (``compare.compare_models`` -> ``records.CompareResult``,
 ``compare_<case>.json`` and ``compare_<case>.png``).  Charts are drawn by

@@ -33,7 +33,7 @@ from ..errors import InputError
 from ..provenance import write_result
 from ..scene import MODELS
 from .measures import compare_series, envelope_window
-from .model_run import ModelRun, fem3d_plan, own_duration, run_model
+from .model_run import ModelRun, run_model
 from .pareto import ParetoStudy
 from .records import (
     ComparedModel,
@@ -45,6 +45,7 @@ from .records import (
     reference_of,
 )
 from .references import FullOrderReference
+from .run_plan import fem3d_plan, own_duration
 from .run_records import Fem3dRun
 
 COMPARE_CASES = ("earthquake", "runup")

@@ -15,15 +15,16 @@ beside the existing columns).
   chain (rotorpillar.chain: the model the convergence study chose, or the
   scene's own), which the caller resolves once and hands in;
 - fem3d: rotorpillar.fem3d.full_order.simulate_fem3d on the mesh and over the
-  duration [full_order] states (``fem3d_plan``); its ``captured_at`` and
-  resonances come from the chain's ROM (the 3D run has no quasi-normal data
-  of its own; the capture width, 3 % at least, is far wider than the ROM's
-  frequency error).
+  duration [full_order] states (rotorpillar.transients.run_plan.fem3d_plan);
+  its ``captured_at`` and resonances come from the chain's ROM (the 3D run has
+  no quasi-normal data of its own; the capture width, 3 % at least, is far
+  wider than the ROM's frequency error).
 
 Every result names the pillar model it ran on (``pillar_model``, a
-rotorpillar.chain.PillarModel) and its costs measured warm: what a run
-compiles (numba's kernels, FFCx's forms) is compiled by a short warm-up
-before the timed run, and its time recorded apart as ``compile_seconds``.
+rotorpillar.chain.PillarModel from rotorpillar.transients.pillar_models) and
+its costs measured warm: what a run compiles (numba's kernels, FFCx's forms)
+is compiled by a short warm-up before the timed run, and its time recorded
+apart as ``compile_seconds``.
 """
 
 from __future__ import annotations
@@ -38,10 +39,12 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..chain import ChainModes, PillarModel
+from ..chain import ChainModes
 from ..errors import InputError
 from ..scene import MODELS, override
-from .run_records import BeamFullOrder, Fem3dPlan, Fem3dRun, ReducedRun, RunRecord
+from .pillar_models import reduced_pillar_model, solid_pillar_model
+from .run_plan import fem3d_plan, with_duration
+from .run_records import BeamFullOrder, Fem3dRun, ReducedRun, RunRecord
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,78 +67,6 @@ class ModelRun:
     def result(self) -> dict:
         """The JSON fields of the record (as the readers of the hand-built dict read them)."""
         return self.record.to_json()
-
-
-def own_duration(scene: Scene, case: str, motion=None) -> float:
-    """The length of a case's run as the reduced models run it (s)."""
-    sim = scene.simulate
-    if case == "earthquake":
-        from ..reduced.models import scene_motion
-
-        return sim.earthquake_duration or (motion or scene_motion(scene)).end + 5.0
-    if case in ("runup", "rundown"):
-        return sim.duration
-    raise InputError(f"case {case!r}: a common duration is defined for runup, rundown and earthquake")
-
-
-def with_duration(scene: Scene, case: str, duration: float):
-    """The scene with the case's run length set to ``duration`` (s)."""
-    key = "earthquake_duration" if case == "earthquake" else "duration"
-    return override(scene, [f"simulate.{key}={float(duration)!r}"])
-
-
-def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None, study_dir=None) -> Fem3dPlan:
-    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
-    (the ``full_order`` block of the JSON).  The mesh: the convergence study's
-    reference for the modes the case's load excites when ``study_dir`` holds
-    convergence.json, else [full_order]'s (rotorpillar.transients.references);
-    ``reference`` says which, its own error and the participation of the modes."""
-    from ..fem3d.full_order import CASES_3D
-    from .references import choose_reference, estimated_steps
-
-    if case not in CASES_3D:
-        raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs {', '.join(CASES_3D)}")
-    fo, m = scene.full_order, scene.mesh
-    own = own_duration(scene, case, motion)
-    stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
-    length = min(own, stated or own, duration or own)
-    steps = estimated_steps(scene, case, motion, length) if study_dir is not None else None
-    mesh, reference = choose_reference(scene, case, study_dir, motion, steps)
-    source = (
-        "the convergence study's reference for the modes the load excites"
-        if reference.source == "converge"
-        else "[full_order]'s, no study on disk"
-    )
-    if reference.overrides:
-        source += f", full_order.{' and full_order.'.join(reference.overrides)} set"
-    notes = []
-    if (mesh.elements_around, mesh.elements_along) != (m.elements_around, m.elements_along):
-        coarser = mesh.elements_around * mesh.elements_along < m.elements_around * m.elements_along
-        notes.append(
-            f"mesh {'coarsened' if coarser else 'changed'} from the scene's "
-            f"{m.elements_around} x {m.elements_along} to {mesh.elements_around} x "
-            f"{mesh.elements_along} elements (around x along; {source})"
-        )
-    else:
-        notes.append(f"the scene's mesh ({source})")
-    if length < own:
-        notes.append(
-            f"run shortened from the case's {own:g} s to {length:g} s "
-            f"(full_order.{'earthquake' if case == 'earthquake' else 'runup'}_duration)"
-        )
-    why = (
-        "the 3D run costs its steps (40 per period of the fastest forcing) times one solve; the "
-        "scene's [full_order] section keeps it to tens of seconds (its docstring and "
-        "docs/transients.md give the measured cost and the agreement with the ROM)"
-    )
-    return Fem3dPlan(
-        mesh,
-        float(length),
-        float(own),
-        fo.time_step or None,
-        "; ".join(notes) + (f": {why}" if length < own else ""),
-        reference,
-    )
 
 
 def run_model(
@@ -185,43 +116,6 @@ def run_model(
     if duration is not None:
         scene = with_duration(scene, case, duration)
     return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
-
-
-def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, info: dict) -> PillarModel:
-    """The pillar model a reduced model ran on: the chain's (modal), the scene's beam at
-    full order (beam), or the paper's stated tip reduction (paper: not the validated chain)."""
-    if which == "modal":
-        if chain is None:
-            raise ValueError("the modal model's pillar model is the chain's: none handed in")
-        return chain.pillar_model
-    if which == "beam":
-        n, theory = info["elements"], info["theory"]
-        return PillarModel(
-            "beam",
-            f"beam {theory}, {n} el. (full order)",
-            {"theory": theory, "elements": n},
-            2 * n,
-            "scene",
-            False,
-            None,
-            {},
-            f"the full-order 1D {theory} beam of {info['element_source']}",
-            None,
-        )
-    red = info["reduction"]
-    return PillarModel(
-        "reduction",
-        "Eq. 4: one tip mass and spring",
-        {"tip_mass": red["tip_mass"], "tip_stiffness": red["tip_stiffness"]},
-        1,
-        "scene",
-        False,
-        None,
-        {},
-        f"the paper's model: m_r ({red['tip_mass_source']}) and c1 "
-        f"({red['tip_stiffness_source']}) at the tip; not the validated chain",
-        None,
-    )
 
 
 # --------------------------------------------------------------------------
@@ -369,31 +263,6 @@ def fem3d_warm_up(scene: Scene, mesh) -> float:
     model.K.destroy()
     model.M.destroy()
     return time.perf_counter() - start
-
-
-def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarModel:
-    """The 3D full order's mesh as a PillarModel, its source and error the reference's
-    (rotorpillar.transients.references.FullOrderReference)."""
-    from ..chain.choice import solid_run_of
-
-    run = solid_run_of(mesh)
-    errors = {
-        q: float(e["error_bound"])
-        for q, e in (reference.get("errors") or {}).items()
-        if isinstance(e, dict) and e.get("error_bound") is not None
-    }
-    return PillarModel(
-        "solid",
-        run["label"] + " (full order)",
-        run["params"],
-        int(dofs),
-        reference.get("source", "scene"),
-        bool(reference.get("verified")),
-        reference.get("tolerance"),
-        errors,
-        note + ("; " + reference["statement"] if reference.get("statement") else ""),
-        reference.get("study"),
-    )
 
 
 def _run_fem3d(

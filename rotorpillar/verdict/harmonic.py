@@ -198,7 +198,7 @@ def _fem3d_curve(scene: Scene, model, top: float, say):
     from ..fem3d import assemble_pillar
     from ..fem3d.harmonic import harmonic_response, harmonic_speeds
     from ..fem3d.rotor_top import RotorOnTop
-    from ..transients.model_run import fem3d_plan
+    from ..transients.run_plan import fem3d_plan
 
     mesh = fem3d_plan(scene, "runup").mesh
     res = [r.omega for r in model.quasi_normal() if r.direction == "X"]

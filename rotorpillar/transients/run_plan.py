@@ -1,0 +1,92 @@
+"""The length of a transient case's run and the 3D full order's plan for it.
+
+``own_duration`` is a case's run length as the reduced models run it,
+``with_duration`` the scene with it set (compare: one window for every model);
+``fem3d_plan`` the 3D run's mesh, duration and step from [full_order] and the
+convergence study's reference (rotorpillar.transients.references), what was
+chosen, shortened and why (the ``full_order`` block of the JSON).  Moved out of
+rotorpillar.transients.model_run, which runs the models on them.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
+from ..errors import InputError
+from ..scene import override
+from .run_records import Fem3dPlan
+
+
+def own_duration(scene: Scene, case: str, motion=None) -> float:
+    """The length of a case's run as the reduced models run it (s)."""
+    sim = scene.simulate
+    if case == "earthquake":
+        from ..reduced.models import scene_motion
+
+        return sim.earthquake_duration or (motion or scene_motion(scene)).end + 5.0
+    if case in ("runup", "rundown"):
+        return sim.duration
+    raise InputError(f"case {case!r}: a common duration is defined for runup, rundown and earthquake")
+
+
+def with_duration(scene: Scene, case: str, duration: float):
+    """The scene with the case's run length set to ``duration`` (s)."""
+    key = "earthquake_duration" if case == "earthquake" else "duration"
+    return override(scene, [f"simulate.{key}={float(duration)!r}"])
+
+
+def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None, study_dir=None) -> Fem3dPlan:
+    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
+    (the ``full_order`` block of the JSON).  The mesh: the convergence study's
+    reference for the modes the case's load excites when ``study_dir`` holds
+    convergence.json, else [full_order]'s (rotorpillar.transients.references);
+    ``reference`` says which, its own error and the participation of the modes."""
+    from ..fem3d.full_order import CASES_3D
+    from .references import choose_reference, estimated_steps
+
+    if case not in CASES_3D:
+        raise InputError(f"--model fem3d: case {case!r} is not available; the 3D full order runs {', '.join(CASES_3D)}")
+    fo, m = scene.full_order, scene.mesh
+    own = own_duration(scene, case, motion)
+    stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
+    length = min(own, stated or own, duration or own)
+    steps = estimated_steps(scene, case, motion, length) if study_dir is not None else None
+    mesh, reference = choose_reference(scene, case, study_dir, motion, steps)
+    source = (
+        "the convergence study's reference for the modes the load excites"
+        if reference.source == "converge"
+        else "[full_order]'s, no study on disk"
+    )
+    if reference.overrides:
+        source += f", full_order.{' and full_order.'.join(reference.overrides)} set"
+    notes = []
+    if (mesh.elements_around, mesh.elements_along) != (m.elements_around, m.elements_along):
+        coarser = mesh.elements_around * mesh.elements_along < m.elements_around * m.elements_along
+        notes.append(
+            f"mesh {'coarsened' if coarser else 'changed'} from the scene's "
+            f"{m.elements_around} x {m.elements_along} to {mesh.elements_around} x "
+            f"{mesh.elements_along} elements (around x along; {source})"
+        )
+    else:
+        notes.append(f"the scene's mesh ({source})")
+    if length < own:
+        notes.append(
+            f"run shortened from the case's {own:g} s to {length:g} s "
+            f"(full_order.{'earthquake' if case == 'earthquake' else 'runup'}_duration)"
+        )
+    why = (
+        "the 3D run costs its steps (40 per period of the fastest forcing) times one solve; the "
+        "scene's [full_order] section keeps it to tens of seconds (its docstring and "
+        "docs/transients.md give the measured cost and the agreement with the ROM)"
+    )
+    return Fem3dPlan(
+        mesh,
+        float(length),
+        float(own),
+        fo.time_step or None,
+        "; ".join(notes) + (f": {why}" if length < own else ""),
+        reference,
+    )
