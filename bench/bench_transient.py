@@ -2,7 +2,7 @@
 
 1. A design sweep: run-ups of the paper's model for 1000 values of tau
    (M0 = 300 tau, 1.7 <= tau <= 17), 20 s each.  The compiled batch (one
-   numba loop over the runs, rotorpillar.reduced.integration.simulate_batch,
+   numba loop over the runs, rotorpillar.reduced.batch.simulate_batch,
    on every core: threads share the runs, and on one thread)
    against a plain Python loop of scipy.integrate.solve_ivp (RK45, the
    right-hand side written in numpy as one would by hand), at the same rtol
@@ -38,9 +38,10 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from rotorpillar.reduced.batch import batch_threads, simulate_batch
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import load_record, no_motion
-from rotorpillar.reduced.integration import Settings, batch_threads, simulate, simulate_batch, tolerances
+from rotorpillar.reduced.integration import Settings, simulate, tolerances
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.pillar_modes import beam_pillar_modes
 from rotorpillar.reduced.rhs import eq4_rhs

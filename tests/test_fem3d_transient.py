@@ -124,7 +124,7 @@ def test_static_limit(static_run):
 @pytest.mark.slow  # the 3D full-order transient
 @pytestmark_3d
 def test_result_json_round_trip(static_run):
-    from rotorpillar.fem3d.full_order import Fem3dTransient
+    from rotorpillar.fem3d.full_order_result import Fem3dTransient
 
     r = static_run[2]
     back = Fem3dTransient.from_json(json.loads(json.dumps(r.to_json())))

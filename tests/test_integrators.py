@@ -26,9 +26,10 @@ import math
 import numpy as np
 import pytest
 
+from rotorpillar.reduced.batch import simulate_batch
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
-from rotorpillar.reduced.integration import Settings, simulate, simulate_batch
+from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model, paper_model
 from rotorpillar.reduced.system import paper_example
@@ -186,7 +187,7 @@ def test_shaft_deflection_is_the_formula_and_does_not_depend_on_alignment():
     there, hence rtol 1e-14) and has the same bits wherever the states sit in
     memory (numpy's own cos does not: a study run in another process
     differed by an ulp)."""
-    from rotorpillar.reduced.integration import shaft_deflection
+    from rotorpillar.reduced.batch import shaft_deflection
 
     rng = np.random.default_rng(3)
     n, k = 4, 1001

@@ -36,7 +36,7 @@ SHELL_MODEL, SHELL_MESH = "fem3d.naghdi", "mesh.midsurface"
 SHELL_SOLVER = ("fem3d.eigensolver", "fem3d.block_lanczos", "fem3d.identify")
 """The modules the shell model shares with the solid one (its solve and its mode names)."""
 
-SOLID_CONSUMERS = ("modal_summary", "pillar_modes", "full_order", "output")
+SOLID_CONSUMERS = ("modal_summary", "pillar_modes", "full_order", "full_order_result", "output")
 """fem3d modules that use the 3D modes but do not compute them."""
 
 CACHE_VERSION = 2

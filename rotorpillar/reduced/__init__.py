@@ -38,6 +38,7 @@ __all__ = [
     "accuracy",
     "averaging",
     "band",
+    "batch",
     "base_forcing",
     "beam_fe",
     "bode",

@@ -6,7 +6,7 @@ uniform output grid, interval peaks, breakpoints where the forcing is
 discontinuous, and optional wrapping of theta into [0, 2 pi) so the relative
 tolerance does not loosen as theta grows.  ``dp5_batch``: many runs
 differing in M0, slope, load, e or c2, in one compiled loop.  Both release
-the GIL (``nogil``): rotorpillar.reduced.integration.simulate_batch runs
+the GIL (``nogil``): rotorpillar.reduced.batch.simulate_batch runs
 slices of a batch on several threads at once.
 """
 

@@ -17,8 +17,8 @@ from scipy.optimize import brentq
 
 from ..errors import InputError
 from . import averaging as av
+from .batch import Batch, simulate_batch
 from .drive import DriveSchedule
-from .integration import Batch, simulate_batch
 from .rotor_models import RotorStructure
 
 

@@ -2,7 +2,7 @@
 
 Runs that share a compiled model, drive schedule, ground motion and initial
 state go to ONE call of the compiled batch loop
-(``rotorpillar.reduced.integration.simulate_batch``), which takes per run only
+(``rotorpillar.reduced.batch.simulate_batch``), which takes per run only
 what its signature takes: the motor's M0 (as a scale on the schedule), its
 slope s, the load k, the eccentricity e and the shaft stiffness c2 (none of
 them enters the model's matrices: the shaft acts through c2 and e in the
@@ -35,9 +35,9 @@ from typing import Any
 import numpy as np
 
 from ..reduced.band import forcing_top
+from ..reduced.batch import simulate_batch
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
-from ..reduced.integration import simulate_batch
 from ..reduced.models import build_model, scene_motion
 from ..reduced.stationary import operating_speed
 from ..scene import Scene, scene_from_dict

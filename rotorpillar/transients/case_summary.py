@@ -20,8 +20,9 @@ import numpy as np
 
 from ..provenance import JsonRecord
 from ..reduced.accuracy import AccuracyCheck, check_step, forcing_frequencies
+from ..reduced.batch import shaft_deflection
 from ..reduced.excitation import GroundMotion, no_motion
-from ..reduced.integration import Transient, shaft_deflection
+from ..reduced.integration import Transient
 from ..reduced.rotor_models import RotorStructure
 
 CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
