@@ -19,7 +19,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from rotorpillar.transients.pareto import analyse_pareto, run_specs
+from rotorpillar.transients.pareto import analyse_pareto
+from rotorpillar.transients.pareto_runs import run_specs
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 GRID = np.linspace(0.0, 1.0, 101)
@@ -86,7 +87,8 @@ def test_run_specs():
 @has_dolfinx
 def test_pareto_runs_cache_and_resume(tmp_path):
     from rotorpillar.scene import load_scene
-    from rotorpillar.transients.pareto import compute_3d, plan_pareto, transient_pareto
+    from rotorpillar.transients.pareto import plan_pareto, transient_pareto
+    from rotorpillar.transients.pareto_runs import compute_3d
 
     scene = load_scene("paper", ["excitation.kind=record"])
     short = dict(duration=0.3, along=(2, 3, 4), beams=(2, 4))

@@ -36,7 +36,6 @@ compare's own models and the study share the machine's cores.
 from __future__ import annotations
 
 import hashlib
-import json
 import math
 import time
 from dataclasses import dataclass, replace
@@ -46,46 +45,21 @@ import numpy as np
 
 from ..provenance import JsonRecord, write_json
 from ..scene import Mesh, Scene
-
-PARETO_RECORD_START = 0.5
-"""The record starts this long after the runs (s): the start's own transient is
-the same for every model and small beside the record's (the rotor's whirl alone)."""
-PARETO_DURATION = 5.0
-"""Length of every run (s): 4.5 s of the record, its largest pulses and the tip's peak."""
-PARETO_SAMPLES = 2001
-"""Points of the common output grid the histories are compared on (2.5 ms apart:
-more than 25 per period of the fastest forcing of the embedded scenes)."""
-BEAM_ELEMENTS = (2, 4, 8, 16, 32)
-"""The beam's implicit step costs ~n**3: 64 elements took 21 s (32: 2.4 s) for 0.05 % less error."""
-ROM_EXTRA_MODES = 2
-PARETO_ALONG = (5, 10, 15, 20)
-"""Elements along of the 3D runs (the bending-only family of the ladder); the
-finest is the reference, so its cost bounds the study's."""
-CACHE_VERSION = 1
-
-
-@dataclass(frozen=True)
-class ParetoRun(JsonRecord):
-    """One model's run of the Pareto case (SI)."""
-
-    family: str
-    """rom, beam or fem3d"""
-    label: str
-    params: dict
-    """modes (rom), elements (beam), the mesh (fem3d)"""
-    dofs: int
-    wall_seconds: float
-    """warm: building the model and integrating (s)"""
-    peak_tip: float
-    """largest |tip X relative to the ground| over every step (m)"""
-    peak_tip_error: float | None
-    """peak_tip / the reference's - 1 (-); the reference: its own estimated error"""
-    history_error: float | None
-    """max_t |tip - tip_ref| / max_t |tip_ref| on the common grid (-); the reference:
-    its own estimated error"""
-    ok: bool
-    cached: bool
-    key: str
+from .pareto_runs import (
+    BEAM_ELEMENTS,
+    PARETO_ALONG,
+    PARETO_DURATION,
+    PARETO_RECORD_START,
+    PARETO_SAMPLES,
+    ParetoRun,
+    compute_3d,
+    load_run,
+    pareto_scene,
+    reduced_run,
+    run_key,
+    run_specs,
+    warm_up_family,
+)
 
 
 @dataclass(frozen=True)
@@ -115,162 +89,6 @@ class ParetoStudy(JsonRecord):
 
 # --------------------------------------------------------------------------
 # The case and its runs
-
-
-def pareto_scene(scene: Scene, duration: float = PARETO_DURATION):
-    """The scene of the Pareto case: the scene's record from PARETO_RECORD_START, ``duration`` long."""
-    from ..scene import override
-
-    return override(
-        scene,
-        [
-            "excitation.kind=record",
-            f"excitation.start={PARETO_RECORD_START!r}",
-            f"simulate.earthquake_duration={duration!r}",
-        ],
-    )
-
-
-def run_specs(
-    rom_modes: int, candidates: int, chosen_mesh, along=PARETO_ALONG, beams=BEAM_ELEMENTS
-) -> list[tuple[str, str, dict]]:
-    """(family, label, params) of every run, cheapest family first."""
-    from ..converge.ladder import ALONG_FAMILY_AROUND
-
-    specs = [
-        ("rom", f"ROM, {k} mode{'s' if k > 1 else ''}", {"modes": k})
-        for k in range(1, min(candidates, rom_modes + ROM_EXTRA_MODES) + 1)
-    ]
-    specs += [("beam", f"beam, {n} el.", {"elements": n}) for n in beams]
-    meshes = [(ALONG_FAMILY_AROUND, n) for n in along]
-    if chosen_mesh is not None and (chosen_mesh.elements_around, chosen_mesh.elements_along) not in meshes:
-        meshes.append((chosen_mesh.elements_around, chosen_mesh.elements_along))
-    base = (
-        {}
-        if chosen_mesh is None
-        else {k: v for k, v in vars(chosen_mesh).items() if k not in ("elements_around", "elements_along")}
-    )
-    specs += [
-        ("fem3d", f"3D, {a}x{n}", {"elements_around": a, "elements_along": n, **base})
-        for a, n in sorted(meshes, key=lambda m: m[0] * m[1])
-    ]
-    return specs
-
-
-def _source_hash(family: str) -> str:
-    root = Path(__file__).parent.parent
-    files = sorted((root / "reduced").glob("*.py"))
-    if family == "fem3d":
-        files += sorted((root / "fem3d").glob("*.py")) + sorted((root / "mesh").glob("*.py"))
-    h = hashlib.sha256()
-    for f in files:
-        h.update(f.name.encode())
-        h.update(f.read_bytes())
-    return h.hexdigest()[:16]
-
-
-def run_key(family: str, params: dict, scene: Scene, motion, modes_digest: str) -> str:
-    """Hash of everything a run depends on."""
-    doc = {
-        "version": CACHE_VERSION,
-        "family": family,
-        "params": params,
-        "scene": {k: v for k, v in scene.to_dict().items() if k not in ("name", "description")},
-        "record": hashlib.sha256(np.asarray(motion.acceleration, float).tobytes()).hexdigest()[:16],
-        "samples": PARETO_SAMPLES,
-        "modes": modes_digest if family == "rom" else None,
-        "source": _source_hash(family),
-    }
-    return hashlib.sha256(json.dumps(doc, sort_keys=True, default=str).encode()).hexdigest()[:24]
-
-
-def _grid(duration: float) -> np.ndarray:
-    return np.linspace(0.0, duration, PARETO_SAMPLES)
-
-
-def _reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes, duration: float) -> dict:
-    from ..reduced.drive import DriveSchedule
-    from ..reduced.integration import simulate
-    from ..reduced.models import build_model
-    from ..scene import override
-    from .cases import full_order_settings, settings_of
-
-    d, L = scene.drive, scene.load
-    drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
-    t0 = time.perf_counter()
-    if family == "rom":
-        model, _ = build_model(scene, "modal", modes=params["modes"], pillar_modes=pillar_modes)
-        st = settings_of(scene)
-    else:
-        beam = override(scene, [f"full_order.beam_elements={params['elements']}"])
-        model, _ = build_model(beam, "beam")
-        st, _ = full_order_settings(beam, "earthquake", motion)
-    q0, v0 = model.held_whirl_state(speed)
-    run = simulate(model, drive, motion, duration, q0, v0, settings=st, speed_scale=speed)
-    wall = time.perf_counter() - t0
-    grid = _grid(duration)
-    return {
-        "dofs": int(model.n),
-        "wall_seconds": wall,
-        "ok": run.ok,
-        "peak_tip": float(np.nanmax(run.peak[:, -1])),
-        "tip": np.interp(grid, run.t, run.tip()).tolist(),
-    }
-
-
-_WARM: dict = {}
-"""family -> seconds of this process's warm-up run (once per process)."""
-
-
-def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes=None) -> float:
-    """Run a tiny case of ``family`` once per process (numba kernels, FFCx forms); its seconds."""
-    if family in _WARM:
-        return 0.0
-    t0 = time.perf_counter()
-    if family == "fem3d":
-        from ..fem3d.full_order import simulate_fem3d
-
-        tiny = replace(scene.mesh, elements_around=4, elements_along=1)
-        simulate_fem3d(
-            scene, "earthquake", motion=motion, duration=1e-3, time_step=5e-4, mesh=tiny, samples=3, initial_speed=speed
-        )
-    else:
-        _reduced_run(scene, family, {"modes": 1, "elements": 2}, motion, speed, pillar_modes, 1e-2)
-    _WARM[family] = time.perf_counter() - t0
-    return _WARM[family]
-
-
-def compute_3d(job) -> dict:
-    """One 3D run (a worker's job: picklable arguments); its result and warm-up seconds."""
-    from ..fem3d.full_order import simulate_fem3d
-
-    scene, params, motion, speed, duration = job
-    warm = warm_up_family("fem3d", scene, motion, speed)
-    mesh = replace(scene.mesh, **params)
-    r = simulate_fem3d(
-        scene, "earthquake", motion=motion, duration=duration, mesh=mesh, samples=PARETO_SAMPLES, initial_speed=speed
-    )
-    grid = _grid(duration)
-    return {
-        "dofs": int(r.dofs),
-        "wall_seconds": float(r.wall_seconds),
-        "ok": bool(r.ok),
-        "peak_tip": float(r.max_abs["tip_x"]),
-        "tip": np.interp(grid, r.t, r.tip_x).tolist(),
-        "compile_seconds": warm,
-    }
-
-
-def _load(path: Path, key: str) -> dict | None:
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    return doc if isinstance(doc, dict) and doc.get("key") == key and doc.get("ok") is not None else None
-
-
-# --------------------------------------------------------------------------
-# The study
 
 
 @dataclass(frozen=True, eq=False)
@@ -332,7 +150,7 @@ def plan_pareto(
     keys = [run_key(f, p, sc, motion, digest) for f, _, p in specs]
     results = {}
     for i, key in enumerate(keys):
-        doc = _load(Path(cache_dir) / f"pareto-{key}.json", key)
+        doc = load_run(Path(cache_dir) / f"pareto-{key}.json", key)
         if doc is not None:
             results[i] = {**doc, "cached": True}
     return ParetoPlan(
@@ -435,7 +253,7 @@ class ParetoRunning:
                 fam, plan.scene, plan.motion, plan.speed, plan.pillar_modes
             )
             self.keep(
-                i, _reduced_run(plan.scene, fam, params, plan.motion, plan.speed, plan.pillar_modes, plan.duration)
+                i, reduced_run(plan.scene, fam, params, plan.motion, plan.speed, plan.pillar_modes, plan.duration)
             )
         if self.thread is not None:
             self.thread.join()
