@@ -35,7 +35,7 @@ def test_a_missing_field_names_itself():
 def test_modal_summary_round_trips(tmp_path):
     pytest.importorskip("dolfinx")
     from rotorpillar.fem3d import modal_analysis
-    from rotorpillar.fem3d.modal_summary import ModalSummary, modal_summary
+    from rotorpillar.fem3d.modal_summary import ModalComparison, ModalMesh, ModalSummary, modal_summary
     from rotorpillar.reduced.reduction import pillar_closed_forms
 
     scene = load_scene("paper", ["mesh.elements_around=8", "mesh.elements_along=4", "modal.n_modes=4"])
@@ -43,5 +43,9 @@ def test_modal_summary_round_trips(tmp_path):
         scene, modal_analysis(scene, top=False), modal_analysis(scene, top=True), pillar_closed_forms(scene.pillar)
     )
     doc = json.loads(to_json(summary))
-    assert ModalSummary.from_json(doc).to_json() == doc
+    back = ModalSummary.from_json(doc)
+    assert back.to_json() == doc
+    # the typed sections come back as records, their leaves as the scene set them
+    assert isinstance(back.mesh, ModalMesh) and isinstance(back.comparison, ModalComparison)
+    assert (back.mesh.elements_around, back.mesh.elements_along) == (8, 4)
     assert doc["reduction"]["m_reduced"] > 0

@@ -24,6 +24,42 @@ from .reduction import tip_reduction
 
 
 @dataclass(frozen=True)
+class ModalMesh(JsonRecord):
+    """The 3D mesh the modes were computed on (modal.json's ``mesh``)."""
+
+    cells: int
+    """number of cells of the tube's mesh (-)"""
+    dofs: int
+    """degrees of freedom of the bare tube (-)"""
+    dofs_with_top: int
+    """degrees of freedom with the top's model (-)"""
+    cell_type: str
+    """the scene's ``mesh.cell_type`` (hexahedron, tetrahedron, ...)"""
+    degree: int
+    """polynomial degree of the displacement (-)"""
+    elements_around: int
+    """elements around the circumference (-)"""
+    elements_along: int
+    """elements along the height (-)"""
+    elements_through: int
+    """elements through the wall (-)"""
+    grading: float
+    """the ratio of the axial element sizes, base over top (-)"""
+
+
+@dataclass(frozen=True)
+class ModalComparison(JsonRecord):
+    """The 3D first bending mode against the closed forms, as relative differences (-)."""
+
+    omega_bending_over_euler_bernoulli: float
+    """3D bare first bending frequency over Eq. 1's omega_col1, minus 1 (-)"""
+    omega_bending_over_timoshenko: float
+    """3D bare first bending frequency over the Timoshenko beam's, minus 1 (-)"""
+    m_reduced_over_closed_form: float
+    """Eq. 2's reduced mass on the 3D mode over the closed form m_col/4, minus 1 (-)"""
+
+
+@dataclass(frozen=True)
 class ModalSummary(JsonRecord):
     """The content of modal.json (SI units: rad/s, Hz, kg, N/m)."""
 
@@ -33,9 +69,9 @@ class ModalSummary(JsonRecord):
     modes_with_top: tuple[dict, ...]
     top: dict
     reduction: dict
-    comparison: dict
+    comparison: ModalComparison
     shell_modes_below_second_bending: dict
-    mesh: dict
+    mesh: ModalMesh
     configurations: dict
     pillar_model: dict | None = field(default=None, metadata={"omit_if_none": True})
     """the chain's 3D mesh the modes were computed on, where it came from and its error
@@ -104,26 +140,26 @@ def modal_summary(scene: Scene, bare, loaded, closed: dict) -> ModalSummary:
             },
             "stated": {"m_reduced": scene.reduction.tip_mass, "tip_stiffness": scene.reduction.tip_stiffness},
         },
-        comparison={
-            "omega_bending_over_euler_bernoulli": red.omega_bending / closed["omega_col1"] - 1,
-            "omega_bending_over_timoshenko": red.omega_bending / closed["omega_col1_timoshenko"] - 1,
-            "m_reduced_over_closed_form": red.m_reduced / closed["tip_mass_limit"] - 1,
-        },
+        comparison=ModalComparison(
+            omega_bending_over_euler_bernoulli=red.omega_bending / closed["omega_col1"] - 1,
+            omega_bending_over_timoshenko=red.omega_bending / closed["omega_col1_timoshenko"] - 1,
+            m_reduced_over_closed_form=red.m_reduced / closed["tip_mass_limit"] - 1,
+        ),
         shell_modes_below_second_bending={
             "bare": {"omega_second_bending": w2_bare, "modes": shell_bare},
             "with_top": {"omega_second_bending": w2_top, "modes": shell_top},
         },
-        mesh={
-            "cells": bare.cells,
-            "dofs": bare.dofs,
-            "dofs_with_top": loaded.dofs,
-            "cell_type": ms.cell_type,
-            "degree": ms.degree,
-            "elements_around": ms.elements_around,
-            "elements_along": ms.elements_along,
-            "elements_through": ms.elements_through,
-            "grading": ms.grading,
-        },
+        mesh=ModalMesh(
+            cells=bare.cells,
+            dofs=bare.dofs,
+            dofs_with_top=loaded.dofs,
+            cell_type=ms.cell_type,
+            degree=ms.degree,
+            elements_around=ms.elements_around,
+            elements_along=ms.elements_along,
+            elements_through=ms.elements_through,
+            grading=ms.grading,
+        ),
         configurations={"bare": _config_dict(bare), "with_top": _config_dict(loaded)},
     )
 

@@ -240,7 +240,7 @@ def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal) 
                     "modal.json: modes_with_top",
                     f"The loaded tube's first bending mode: "
                     f"{w / (2 * math.pi):.3f} Hz{bar} ({w:.2f} rad/s), 3D model "
-                    f"({mesh['elements_around']} x {mesh['elements_along']} elements), "
+                    f"({mesh.elements_around} x {mesh.elements_along} elements), "
                     "modal analysis.",
                     err,
                 )
