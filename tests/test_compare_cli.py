@@ -89,6 +89,7 @@ def test_beam_earthquake_files(tmp_path):
     assert (tmp_path / "simulate_earthquake.npz").exists() and (tmp_path / "simulate.json").exists()
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 @pytest.mark.parametrize(
     "scene,extra,warned",
     [

@@ -26,6 +26,9 @@ from rotorpillar.studies.study import CSV_RESULTS
 from rotorpillar.transients.files import CSV_COLUMNS, write_model_files
 from rotorpillar.transients.model_run import run_model
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 
 def _read(path: Path) -> tuple[list[str], list[dict[str, str]]]:
     with open(path, newline="") as fh:

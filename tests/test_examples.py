@@ -46,6 +46,9 @@ from scipy.linalg import eigh
 
 from rotorpillar import analyze, load_scene, override
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 BETA1_L = 1.8751040687119611  # first root of cos(x) cosh(x) = -1
 G = 9.80665  # m/s**2 per g

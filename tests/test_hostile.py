@@ -103,6 +103,7 @@ def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, ke
     assert not out.exists()
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_sigterm_stops_run_and_its_stage(tmp_path):
     import signal
     import subprocess
@@ -226,6 +227,7 @@ def computed(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 @pytest.mark.parametrize(
     "name, damage, command",
     [
@@ -291,6 +293,7 @@ def test_a_run_past_its_stability_limit_is_a_failure_not_a_success(tmp_path):
     assert any("energy balance" in c for c in doc["failed_checks"])
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 @pytest.mark.parametrize("case", ["runup", "rundown", "earthquake"])
 def test_a_good_run_passes_its_checks(tmp_path, case):
     import json
@@ -301,6 +304,7 @@ def test_a_good_run_passes_its_checks(tmp_path, case):
     assert doc["ok"] is True and "failed_checks" not in doc
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_captured_at_is_the_settled_speed_and_an_escaping_run_is_not_captured(tmp_path):
     """sommerfeld: at M0 = 600 N*m the rotor settles below omega_1 (captured); a run that
     ends while the rotor is still rising through omega_1 (escaping) is not captured (issue:
@@ -376,6 +380,7 @@ def test_a_missing_record_is_noticed_before_any_work(tmp_path, command):
     assert not out.exists()
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_a_record_timed_in_milliseconds_is_flagged_not_realistic(tmp_path):
     """Times read as seconds that were milliseconds: a 10 s step and tens of metres of ground."""
     import json
@@ -502,6 +507,7 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     assert not list(cache.glob(".*.part*"))  # a killed writer's part is gone
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, computed):
     """No VTK parser errors on the terminal, no traceback: one failure naming the file and
     the command that rebuilds it."""
@@ -827,6 +833,7 @@ def test_the_probe_names_what_is_at_a_bad_address(bad_address):
         probe_scheduler(address, timeout=1.0)
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_study_refuses_a_bad_scheduler_in_one_line(tmp_path, bad_address):
     """Exit 2 naming what was found (never 'out of memory'), within the bounded handshake
     (before: past a minute on a silent port, 31 s on a closed one)."""
@@ -947,6 +954,7 @@ def test_the_report_reads_every_damaged_input_as_damaged(tmp_path, computed, nam
     assert REPORT_INPUTS[name] in build.damaged
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 @pytest.mark.parametrize(
     "name, damage, words",
     [

@@ -239,6 +239,7 @@ def test_frame_times_are_bounded():
     assert len(frame_times(t[:10], 150)) == 10
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_animation_mp4_frame_count_and_poster(modes_top, tmp_path):
     import imageio_ffmpeg
 
@@ -324,6 +325,7 @@ def sommerfeld():
     return AnalysisResult.from_json(json.loads(to_json(analyze(load_scene("sommerfeld")))))
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_drive_chart_spans_the_motor_and_marks_what_lies_beyond(sommerfeld, tmp_path):
     a = sommerfeld
     data = charts.drive_curve_data(a)
@@ -350,6 +352,7 @@ def test_drive_chart_spans_the_motor_and_marks_what_lies_beyond(sommerfeld, tmp_
     assert_real_png(save(fig, tmp_path / "d.png"), (1060, _drive_height(a)))
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 @pytest.mark.parametrize("case", ["paper", "fold"])
 def test_drive_chart_labels_do_not_overlap(analyses, case):
     fig = charts.drive_figure(analyses[case])
@@ -366,6 +369,7 @@ def _drive_height(a) -> int:
     return 420 + 400 * math.ceil(len(a.resonances) / 3)
 
 
+@pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_chart_files(analyses, tmp_path):
     a = analyses["fold"]
     assert_real_png(charts.drive_chart(a, tmp_path / "d.png"), (1060, _drive_height(a)))

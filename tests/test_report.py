@@ -31,7 +31,8 @@ from imagecheck import PNG_SIGNATURE
 from rotorpillar import cli
 
 # in-process pyvista renders: the VTK leak check of tests/conftest.py runs after each test
-pytestmark = pytest.mark.renders
+# seconds each: the report of a whole output directory per test; the slow tier runs it
+pytestmark = [pytest.mark.renders, pytest.mark.slow]
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 

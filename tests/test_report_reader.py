@@ -38,6 +38,9 @@ import pytest
 from rotorpillar import cli
 from rotorpillar.postprocess.style import MIN_FONT_PX, png_layout
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (tools/setup.sh installs it)")
 #: The reader's window (px): a laptop's, the page's 1100 px column fits in it.

@@ -26,6 +26,9 @@ from imagecheck import assert_real_png
 from rotorpillar import cli
 from rotorpillar.transients.run_comparisons import COMPARISONS, comparison_command
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 # 5 significant digits (html.num's default) round a value by at most 5e-6 of
 # it... up to half a unit in the 5th digit: 5e-5 relative at worst.
 FIVE_DIGITS = 5e-5

@@ -20,6 +20,9 @@ from conftest import cli
 from rotorpillar.provenance import PROVENANCE_KEYS
 from rotorpillar.transients.records import CompareResult
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 #: what a command writes beside a record's own fields
 HEAD = ("command", "scene_source", "overrides", "scene")
 

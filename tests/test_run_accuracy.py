@@ -20,6 +20,9 @@ from conftest import cli
 
 from rotorpillar.reduced.accuracy import check_step, steps_per_period_needed
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 
 def run_json(tmp_path, *args):
     p = cli("simulate", "paper", *args, "--out", tmp_path)

@@ -25,6 +25,9 @@ from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import stationary_exact
 from rotorpillar.scene import load_scene
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def runup(tmp_path_factory):

@@ -27,6 +27,9 @@ from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.files import write_model_files
 from rotorpillar.transients.model_run import run_model
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 SCENE = [
     "excitation.kind=record",
     "simulate.earthquake_duration=12",

@@ -27,6 +27,9 @@ from rotorpillar.transients.model_run import run_model
 from rotorpillar.verdict.records import EngineeringSummary, HarmonicResult
 from rotorpillar.verdict.summary import engineering_summary
 
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+pytestmark = pytest.mark.slow
+
 QUAKE = ["excitation.kind=record", "simulate.earthquake_duration=12"]
 
 
