@@ -178,7 +178,7 @@ def test_two_ranks_give_the_serial_numbers(tmp_path, command):
         nb = {m: b["per_model"][m]["peak_tip_relative"] for m in b["models_run"]}
         na["error"] = a["errors"]["modal"]["tip_history_error"]
         nb["error"] = b["errors"]["modal"]["tip_history_error"]
-        run = json.loads((tmp_path / "two" / "simulate_earthquake_fem3d.json").read_text())
+        run = json.loads((tmp_path / "two" / "compare_earthquake_fem3d.json").read_text())  # compare_<case>_<model>
         assert run["ok"] is True
     assert set(na) == set(nb)
     for k in na:

@@ -71,7 +71,7 @@ def preflight(scene: Scene, args) -> None:
 
 def compare_command(scene: Scene, args, timings):
     from ..transients.compare import compare_models, parse_models
-    from . import EXIT_CHECKS, is_root_rank, mpi_progress, out_dir
+    from . import EXIT_CHECKS, is_root_rank, launched_ranks, mpi_progress, out_dir
 
     preflight(scene, args)
     case = args.case
@@ -108,6 +108,7 @@ def compare_command(scene: Scene, args, timings):
             provenance,
             progress=progress,
             write=is_root_rank(),
+            collective=launched_ranks() > 1,
             run_charts=model_run_charts,
             compare_chart=comparison_chart,
             pareto=getattr(args, "pareto", False),

@@ -92,6 +92,7 @@ def compare_models(
     provenance: dict,
     progress=None,
     write: bool = True,
+    collective: bool = False,
     run_charts=None,
     compare_chart=None,
     pareto: bool = False,
@@ -161,7 +162,8 @@ def compare_models(
             motion=motion,
             duration=duration,
             chain=chain,
-            field_dir=out if write else None,
+            # the 3D run's XDMF series is written by every rank together (rank 0 places it)
+            field_dir=out if write or collective else None,
             study_dir=out,
             field_stem=f"{compare_stem(case, m)}",
         )
