@@ -19,6 +19,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 
+from rotorpillar.cli import quiet_third_party_logs  # noqa: E402
 from rotorpillar.provenance import machine, versions, write_json  # noqa: E402
 
 
@@ -33,6 +34,7 @@ def main(argv=None) -> int:
             file=sys.stderr,
         )
         return 2
+    quiet_third_party_logs()  # dask's nannies and schedulers talk at INFO; the CLI keeps them quiet too
     host = machine()
     entries, timings = [], {}
     for name in mods:

@@ -3,8 +3,9 @@
 - :func:`cli` runs ``python -m rotorpillar ARGS...`` in a child process, as a
   user would, and returns the CompletedProcess (text stdout and stderr).
 - ``run_paper`` (session fixture): one ``rotorpillar run paper --skip
-  converge --skip compare`` into a temporary directory, shared by every test
-  that checks what the main job writes, instead of one run each (the
+  converge --skip compare --max-frames 12`` into a temporary directory, shared by the tests
+  of what the main job writes (all in tests/test_main_job.py, so that one xdist worker
+  runs them and the other never idles on the fixture's lock), instead of one run each (the
   comparisons run the 3D full order: tests/test_run_compare.py runs that
   stage alone); under pytest-xdist, shared by the workers too
   (:func:`once_per_session`).
@@ -84,7 +85,8 @@ def once_per_session(name: str, tmp_path_factory, compute: Callable[[Path], dict
 @pytest.fixture(scope="session")
 def run_paper(tmp_path_factory) -> RunOutput:
     def run(out: Path) -> dict:
-        p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare")
+        # 12 frames per animation: the animations' wiring, not 180 frames of pyvista (a minute)
+        p = cli("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare", "--max-frames", "12")
         return {"args": p.args, "returncode": p.returncode, "stdout": p.stdout, "stderr": p.stderr}
 
     out, done = once_per_session("run_paper", tmp_path_factory, run)

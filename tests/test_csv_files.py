@@ -7,7 +7,7 @@ with ``csv.DictReader`` exactly as a user would: the field names must be the
 columns the writer documents, and every row must have a value for each,
 parsing as a number (the study's text columns aside) equal to the run's own
 record: the NPZ beside a run's CSV, the StudyResult of a study.
-The main job's CSVs (the ``run_paper`` fixture) are checked in the slow tier.
+The main job's CSVs (the ``run_paper`` fixture) are checked in test_main_job.py.
 """
 
 from __future__ import annotations
@@ -87,11 +87,3 @@ def test_a_studys_csv_is_plain(tmp_path):
             else:
                 assert got == str(want), name
     assert result.files["csv"] == str(tmp_path / "study.csv")
-
-
-@pytest.mark.slow  # the run_paper fixture: the whole main job
-def test_every_csv_of_the_main_job_is_plain(run_paper):
-    paths = sorted(run_paper.out.glob("*.csv"))
-    assert {"simulate_runup.csv", "simulate_earthquake.csv"} <= {p.name for p in paths}
-    for path in paths:
-        check_run_csv(path)

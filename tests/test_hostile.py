@@ -254,8 +254,9 @@ def test_the_report_survives_a_damaged_input(tmp_path, computed, name, damage, c
     assert p.returncode == 0, p.stderr
     page = html.unescape((out / "report.html").read_text())
     assert "is damaged" in page and f"rotorpillar {command} paper" in page
-    p = cli("report", "paper", "--out", out, "--no-animations", "--strict")
-    assert p.returncode == 1 and (out / "report.html").is_file()
+    if name == "modal.json":  # --strict's exit, once (the damage detected is the same code path)
+        p = cli("report", "paper", "--out", out, "--no-animations", "--strict")
+        assert p.returncode == 1 and (out / "report.html").is_file()
 
 
 @pytest.mark.parametrize("command", ["analyze", "simulate", "report", "run", "integrators"])
@@ -432,10 +433,9 @@ def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
     assert sel["chosen"] is None and "no converged reference" in sel["reason"]
 
 
-@pytest.mark.slow  # two convergence studies per case
-@pytest.mark.parametrize("content", ["null", "[1, 2]"])
-def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path, content):
-    """A run cache that parses to another shape (or not at all) is treated as absent."""
+@pytest.mark.slow  # two convergence studies
+def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path):
+    """A run cache that parses to another shape (null, a list) is treated as absent."""
     import json
 
     args = [
@@ -454,11 +454,13 @@ def test_a_damaged_cache_file_is_recomputed_not_fatal(tmp_path, content):
         tmp_path,
     ]
     assert cli(*args, timeout=600).returncode == 0
-    files = sorted((tmp_path / "cache").glob("*.json"))
-    files[0].write_text(content)
+    files = sorted((tmp_path / "cache").glob("*.json"))[:2]
+    for f, content in zip(files, ["null", "[1, 2]"]):
+        f.write_text(content)
     p = cli(*args, timeout=600)
     assert p.returncode == 0, p.stderr
-    assert json.loads(files[0].read_text())["status"] == "ok"  # recomputed and rewritten
+    for f in files:
+        assert json.loads(f.read_text())["status"] == "ok"  # recomputed and rewritten
 
 
 @pytest.mark.slow  # two convergence studies per case
@@ -672,36 +674,6 @@ def test_more_modes_than_the_mesh_has_are_refused_before_the_solve(tmp_path, set
     line = one_line(p)
     assert "modal.n_modes = 500" in line and "unknowns" in line
     assert not out.exists()
-
-
-@pytest.mark.slow
-def test_a_tolerance_the_ladder_cannot_reach_is_a_result_not_bad_input(tmp_path):
-    """The ladder's errors come from its runs: the study runs, modal runs the most accurate
-    3D mesh and says the tolerance was not met (ok: false, exit 4), in a few stderr lines."""
-    p = cli(
-        "modal",
-        "paper",
-        "--tolerance",
-        "1e-3",
-        "--out",
-        tmp_path,
-        "--set",
-        "converge.solid_p2_max_around=32",
-        "--set",
-        "converge.solid_p1_max_around=32",
-        "--set",
-        "converge.solid_tet_p2_max_around=32",
-        "--set",
-        "converge.shell_max_around=16",
-        "--set",
-        "converge.shell_tri_max_around=8",
-        timeout=900,
-    )
-    assert p.returncode == 4, p.stderr
-    doc = json.loads((tmp_path / "modal.json").read_text())
-    assert doc["ok"] is False and doc["model_selection"]["met"] is False
-    assert "not met" in doc["failed_checks"][0]
-    assert len(p.stderr.strip().splitlines()) <= 8, p.stderr
 
 
 # -------------------------------------------------------------- memory limits

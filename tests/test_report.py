@@ -238,18 +238,6 @@ def test_inputs_from_another_scene_are_flagged(tmp_path):
     assert "computed for a different scene (rotor.eccentricity differ)" in text
 
 
-def test_run_ends_with_the_report_path(run_paper):
-    out = run_paper.out
-    last = run_paper.process.stdout.strip().splitlines()[-1]
-    assert last == f"report: {(out / 'report.html').resolve()}"
-    assert (out / "report.html").is_file()
-    run = json.loads((out / "run.json").read_text())
-    assert list(run["stages"])[-1] == "report"
-    # every section written from the real commands' outputs, read through their records
-    report = json.loads((out / "report.json").read_text())
-    assert report["failures"] == {} and report["damaged"] == {}
-
-
 def _analyze_without(tmp_path, *path):
     """analyze.json as `analyze` writes it, less the key at ``path`` (as if another
     version wrote it)."""

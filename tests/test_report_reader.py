@@ -20,7 +20,7 @@ opens every <details>, measures and writes its verdict into the DOM, read
 back with --dump-dom.  Skipped, with the reason, where Chromium is missing.
 
 Pages: a report on synthetic inputs of every kind (tests/fixtures.py, fast)
-and, marked slow, the page the main job writes (the shared ``run_paper``).
+and, in test_main_job.py, the page the main job writes (the shared ``run_paper``).
 """
 
 import base64
@@ -214,9 +214,3 @@ def test_the_reader_check_finds_what_it_looks_for(synthetic_page, tmp_path):
     assert "not in the contents: stray" in found and "not in the contents: stray-part" in found
     assert "off the figure: 'a title" in found and "overlap: 'one' / 'two'" in found
     assert re.search(r"'wide': smallest text [\d.]+ px as shown", found)
-
-
-@pytest.mark.slow
-@needs_chromium
-def test_the_main_jobs_page_reads_well(run_paper, tmp_path):
-    assert reader_problems(run_paper.out / "report.html", tmp_path) == []

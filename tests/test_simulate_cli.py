@@ -116,14 +116,6 @@ def test_rundown_with_the_motor_off(tmp_path):
     assert doc["omega_final"] < W0 / (1 + W0 * k * 20 / J)
 
 
-def test_run_includes_runup_and_earthquake(run_paper):
-    doc = json.loads((run_paper.out / "run.json").read_text())
-    assert {"analyze", "simulate_runup", "simulate_earthquake"} <= doc["stages"].keys()
-    for case in ("runup", "earthquake"):
-        assert (run_paper.out / f"simulate_{case}.json").exists()
-        assert (run_paper.out / f"simulate_{case}.npz").exists()
-
-
 def test_bad_modes_and_integrator(tmp_path):
     p = cli("simulate", "paper", "--modes", "0", "--out", tmp_path)
     assert p.returncode == 2 and "--modes" in p.stderr

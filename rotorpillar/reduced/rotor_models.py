@@ -272,8 +272,10 @@ class RotorStructure:
         )
         rhs = np.broadcast_to(c2e * self.shaft.astype(complex), (len(W), self.nx))[..., None]
         Z = np.linalg.solve(D, rhs)[..., 0]
-        Y = -1j * c2e / (self.shaft_stiffness - self.rotor_mass * W**2 + 1j * W * self.shaft_damping)
-        out = c2e * ((Z @ self.shaft).imag + Y.real) / 2
+        # Re Y = -c2e b/(a^2 + b^2) written out: an undamped shaft at resonance gives 0, not 0/0
+        a, b = self.shaft_stiffness - self.rotor_mass * W**2, W * self.shaft_damping
+        y_real = np.divide(-c2e * b, a**2 + b**2, out=np.zeros_like(W), where=a**2 + b**2 > 0)
+        out = c2e * ((Z @ self.shaft).imag + y_real) / 2
         torque: NDArray[np.float64] = out.reshape(np.shape(Omega))
         return torque
 
