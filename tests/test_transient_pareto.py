@@ -115,3 +115,48 @@ def test_pareto_runs_cache_and_resume(tmp_path):
     i = next(i for i, s in enumerate(plan.specs) if s[1] == "3D, 8x2")
     here = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
     assert math.isclose(here["peak_tip"], victim.peak_tip, rel_tol=1e-9)
+
+
+def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_path):
+    """The reduced runs of a short case (no 3D: no reference, so the analysis refuses,
+    after the runs are kept): a second plan finds every run in the cache (rotorpillar.cache,
+    ``pareto-<key>.json``) with the numbers the first computed; an entry cut short, one of
+    another key and one without its verdict are misses, to compute again; the others stay."""
+    import json
+
+    from rotorpillar.reduced.models import beam_candidates
+    from rotorpillar.scene import load_scene
+    from rotorpillar.transients.pareto import ParetoRunning, plan_pareto
+
+    scene = load_scene("paper", ["excitation.kind=record"])
+    choices = dict(duration=0.2, along=(), beams=(2,), pillar_modes=beam_candidates(scene))
+    plan = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
+    assert plan.results == {} and len(plan.specs) >= 3  # ROMs with 1, 2, 3 modes and a beam
+    with pytest.raises(ValueError, match="no 3D run"):
+        ParetoRunning(plan, workers=0).finish()
+    files = sorted(tmp_path.glob("pareto-*.json"))
+    assert len(files) == len(plan.specs)
+    computed = {i: {k: v for k, v in d.items() if k != "cached"} for i, d in plan.results.items()}
+
+    again = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
+    assert again.keys == plan.keys and sorted(again.results) == list(range(len(plan.specs)))
+    assert all(d["cached"] for d in again.results.values())
+    assert {i: {k: v for k, v in d.items() if k != "cached"} for i, d in again.results.items()} == computed
+
+    path = {i: tmp_path / f"pareto-{key}.json" for i, key in enumerate(plan.keys)}
+    path[0].write_text(path[0].read_text()[:40])  # cut short
+    doc = json.loads(path[1].read_text())
+    path[1].write_text(json.dumps({**doc, "key": "another"}))  # another run's
+    doc = json.loads(path[2].read_text())
+    path[2].write_text(json.dumps({k: v for k, v in doc.items() if k != "ok"}))  # no verdict
+    damaged = {0, 1, 2}
+    third = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
+    assert set(third.results) == set(range(len(plan.specs))) - damaged
+    running = ParetoRunning(third, workers=0)
+    assert sorted(running.todo) == sorted(damaged)
+    with pytest.raises(ValueError, match="no 3D run"):
+        running.finish()
+    # recomputed and stored whole again: the next plan finds every run
+    assert sorted(plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices).results) == list(
+        range(len(plan.specs))
+    )

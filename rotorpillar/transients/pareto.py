@@ -25,7 +25,8 @@ kernels, FFCx's forms), outside the timed region, ``compile_seconds``; the
 timed region is what the model costs a user: building it (the ROM and the
 beam: their modes; 3D: mesh, assembly, factorisation) and integrating.
 Each run is cached as one JSON under ``out/<scene>/cache/``
-(``pareto-<key>.json``), the key a hash of the scene, the window, the
+(``pareto-<key>.json``, :func:`.pareto_runs.run_cache`: the project's one
+cache, rotorpillar.cache), the key a hash of the scene, the window, the
 model, the record's samples and the source of the code, written
 atomically: an interrupted study resumes and computes nothing twice.  The
 3D runs go to ``workers`` processes (rotorpillar.executor), started before
@@ -43,7 +44,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..provenance import JsonRecord, write_json
+from ..provenance import JsonRecord
 from ..scene import Mesh, Scene
 from .pareto_runs import (
     BEAM_ELEMENTS,
@@ -56,6 +57,7 @@ from .pareto_runs import (
     load_run,
     pareto_scene,
     reduced_run,
+    run_cache,
     run_key,
     run_specs,
     warm_up_family,
@@ -149,8 +151,9 @@ def plan_pareto(
     specs = run_specs(rom_modes, cands.count, chosen_mesh, along, beams)
     keys = [run_key(f, p, sc, motion, digest) for f, _, p in specs]
     results = {}
+    cache = run_cache(cache_dir)
     for i, key in enumerate(keys):
-        doc = load_run(Path(cache_dir) / f"pareto-{key}.json", key)
+        doc = load_run(cache, key)
         if doc is not None:
             results[i] = {**doc, "cached": True}
     return ParetoPlan(
@@ -213,7 +216,7 @@ class ParetoRunning:
         fam, label, params = plan.specs[i]
         doc = {"key": plan.keys[i], "family": fam, "label": label, "params": params, **out}
         if _mpi_rank_size()[0] == 0:
-            write_json(plan.cache_dir / f"pareto-{plan.keys[i]}.json", doc)
+            run_cache(plan.cache_dir).write(plan.keys[i], doc)
         plan.results[i] = {**doc, "cached": False}
         if self.progress:
             self.progress(f"speed against accuracy: {label} in {out['wall_seconds']:.3g} s")
