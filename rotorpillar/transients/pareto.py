@@ -39,7 +39,7 @@ from __future__ import annotations
 import hashlib
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -65,15 +65,35 @@ from .pareto_runs import (
 
 
 @dataclass(frozen=True)
+class ParetoReference(JsonRecord):
+    """The finest 3D run, every error's reference, and its own error."""
+
+    label: str
+    """the run's label (e.g. "3D, 8x20")"""
+    peak_tip: float
+    """its largest |tip X relative to the ground| (m)"""
+    peak_error: float | None
+    """its own relative error of the peak (-); None for a single 3D run"""
+    history_error: float | None
+    """its own relative error of the tip's history (-); None for a single 3D run"""
+    method: str
+    """how the error was estimated ("richardson", "next_coarser" or "none")"""
+    order: float | None
+    """the observed order of convergence (-); Richardson only"""
+    limit: float | None = field(default=None, metadata={"omit_if_none": True})
+    """the extrapolated peak (m); Richardson only"""
+    note: str = ""
+    """how the error was estimated, in words"""
+
+
+@dataclass(frozen=True)
 class ParetoStudy(JsonRecord):
     """Speed against accuracy on El Centro (``pareto`` in compare_earthquake.json)."""
 
     case: dict
     """record, record_start, duration, initial_speed, samples, start"""
     runs: tuple[ParetoRun, ...]
-    reference: dict
-    """label, peak_tip, peak_error, history_error, method (richardson | next_coarser),
-    order, note"""
+    reference: ParetoReference
     fronts: dict
     """error measure (peak_tip, history) -> labels on the Pareto front of |error| against
     wall time, cheapest first"""
@@ -306,22 +326,17 @@ def transient_pareto(
     return ParetoRunning(plan, workers, progress).finish()
 
 
-def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
+def _reference_error(fine: list[dict], grid_tips: dict) -> ParetoReference:
     """The finest 3D run's own error: Richardson over the three finest where monotone at a
     plausible order, else the difference to the next coarser."""
     from ..converge.richardson import richardson
 
     ref = fine[-1]
-    out = {"label": ref["label"], "peak_tip": ref["peak_tip"]}
+    label, peak = ref["label"], ref["peak_tip"]
     if len(fine) < 2:
-        return {
-            **out,
-            "peak_error": None,
-            "history_error": None,
-            "method": "none",
-            "order": None,
-            "note": "a single 3D run: its own error is not estimated",
-        }
+        return ParetoReference(
+            label, peak, None, None, "none", None, note="a single 3D run: its own error is not estimated"
+        )
     prev = fine[-2]
     diff = np.max(np.abs(grid_tips[ref["label"]] - grid_tips[prev["label"]])) / max(
         np.max(np.abs(grid_tips[ref["label"]])), 1e-300
@@ -333,26 +348,28 @@ def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
         p = rich["order"]
         if rich["monotone"] and p is not None and 0.5 <= p <= 8:
             factor = 1.0 / ((h[1] / h[2]) ** p - 1)
-            return {
-                **out,
-                "peak_error": rich["error_estimate"] / abs(rich["value"]),
-                "history_error": 1.25 * factor * float(diff),
-                "method": "richardson",
-                "order": p,
-                "limit": rich["value"],
-                "note": f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
+            return ParetoReference(
+                label,
+                peak,
+                peak_error=rich["error_estimate"] / abs(rich["value"]),
+                history_error=1.25 * factor * float(diff),
+                method="richardson",
+                order=p,
+                limit=rich["value"],
+                note=f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
                 f"{p:.2f}): Roache's 1.25 |limit - finest| for the peak; the history's "
                 "difference to the next coarser times 1.25 / (r**p - 1)",
-            }
-    return {
-        **out,
-        "peak_error": abs(ref["peak_tip"] / prev["peak_tip"] - 1),
-        "history_error": float(diff),
-        "method": "next_coarser",
-        "order": None,
-        "note": f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
+            )
+    return ParetoReference(
+        label,
+        peak,
+        peak_error=abs(ref["peak_tip"] / prev["peak_tip"] - 1),
+        history_error=float(diff),
+        method="next_coarser",
+        order=None,
+        note=f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
         "converge monotonically at a plausible order, so no extrapolation",
-    }
+    )
 
 
 def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
@@ -373,7 +390,7 @@ def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
     runs = []
     for d in docs:
         if d is ref:
-            pe, he = ref_err["peak_error"], ref_err["history_error"]
+            pe, he = ref_err.peak_error, ref_err.history_error
         elif d["ok"]:
             pe = d["peak_tip"] / ref["peak_tip"] - 1 if ref["peak_tip"] else None
             he = float(np.max(np.abs(tips[d["label"]] - x_ref)) / scale)
