@@ -374,14 +374,16 @@ class JsonRecord:
     ``from_json(doc)`` builds the record back from such a dict, typed by the
     fields' annotations, so ``from_json(d).to_json() == d``.  A field with
     ``metadata={"omit_if_none": True}`` is left out of the JSON while None
-    (an optional detail most records lack).  Keys of ``doc``
+    (an optional detail most records lack); one with ``metadata={"json": key}``
+    is written and read under ``key`` (a JSON name that is no Python name, e.g.
+    ``"nfev_at_1e-06"``).  Keys of ``doc``
     that are not fields (the scene, versions and timings a command writes
     beside a result) are left out.
     """
 
     def to_json(self) -> dict:
         return {
-            f.name: _record_json(getattr(self, f.name))
+            f.metadata.get("json", f.name): _record_json(getattr(self, f.name))
             for f in dataclasses.fields(typing.cast(typing.Any, self))
             if not (f.metadata.get("omit_if_none") and getattr(self, f.name) is None)
         }
@@ -391,10 +393,11 @@ class JsonRecord:
         hints = typing.get_type_hints(cls)
         kwargs = {}
         for f in dataclasses.fields(typing.cast(typing.Any, cls)):
-            if f.name in doc:
-                kwargs[f.name] = _record_from(hints.get(f.name), doc[f.name])
+            key = f.metadata.get("json", f.name)
+            if key in doc:
+                kwargs[f.name] = _record_from(hints.get(f.name), doc[key])
             elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
-                raise KeyError(f.name)  # as a dict would: the report names the key
+                raise KeyError(key)  # as a dict would: the report names the key
         return cls(**kwargs)
 
     @classmethod

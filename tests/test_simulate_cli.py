@@ -138,6 +138,15 @@ def test_integrators_command(tmp_path):
     for m in ("newmark", "Radau", "BDF", "dp5"):
         assert ff[m] is None
     assert (tmp_path / "integrators.png").exists()
+    # the file, through its record: the result part gives itself back, beside its provenance
+    from rotorpillar.provenance import PROVENANCE_KEYS
+    from rotorpillar.transients.integrator_records import IntegratorStudy
+
+    written = json.loads((tmp_path / "integrators.json").read_text())
+    assert set(PROVENANCE_KEYS) <= set(written)
+    result = IntegratorStudy.from_json(written).to_json()
+    assert result == {k: v for k, v in written.items() if k in result}
+    assert set(result) == {"accuracy", "stability", "energy_drift", "pillar_model", "stiffness_probe", "figures"}
 
 
 def test_decimation_keeps_the_peaks():

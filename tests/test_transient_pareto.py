@@ -52,12 +52,12 @@ def test_reference_error_by_richardson():
     docs.append(_doc("rom", "ROM, 1 mode", 0.01, 0.0102, 0.0102 * np.sin(6 * GRID), modes=1))
     study, _ = analyse_pareto(docs, {"rom": "ROM, 1 mode", "fem3d": "3D, 8x15"})
     ref = study.reference
-    assert ref["method"] == "richardson" and math.isclose(ref["order"], 3.0, rel_tol=1e-6)
-    assert math.isclose(ref["limit"], L, rel_tol=1e-9)
-    assert math.isclose(ref["peak_error"], 1.25 * abs(L - docs[2]["peak_tip"]) / L, rel_tol=1e-6)
+    assert ref.method == "richardson" and math.isclose(ref.order, 3.0, rel_tol=1e-6)
+    assert math.isclose(ref.limit, L, rel_tol=1e-9)
+    assert math.isclose(ref.peak_error, 1.25 * abs(L - docs[2]["peak_tip"]) / L, rel_tol=1e-6)
     by = {r.label: r for r in study.runs}
     assert math.isclose(by["ROM, 1 mode"].peak_tip_error, 0.0102 / docs[2]["peak_tip"] - 1)
-    assert by["3D, 8x20"].peak_tip_error == ref["peak_error"]  # the reference: its own error
+    assert by["3D, 8x20"].peak_tip_error == ref.peak_error  # the reference: its own error
     assert "ROM, 1 mode" in study.fronts["peak_tip"]  # cheapest: on every front
     assert "3D, 8x10" not in study.fronts["peak_tip"]  # dearer and worse than the ROM
 
@@ -66,9 +66,9 @@ def test_reference_error_without_monotone_convergence():
     docs = [_solid(10, 0.0100), _solid(15, 0.0103), _solid(20, 0.0102)]
     study, _ = analyse_pareto(docs, {})
     ref = study.reference
-    assert ref["method"] == "next_coarser" and ref["order"] is None
-    assert math.isclose(ref["peak_error"], abs(0.0102 / 0.0103 - 1))
-    assert math.isclose(ref["history_error"], abs(0.0102 - 0.0103) / 0.0102, rel_tol=1e-2)
+    assert ref.method == "next_coarser" and ref.order is None
+    assert math.isclose(ref.peak_error, abs(0.0102 / 0.0103 - 1))
+    assert math.isclose(ref.history_error, abs(0.0102 - 0.0103) / 0.0102, rel_tol=1e-2)
 
 
 def test_run_specs():
@@ -96,7 +96,7 @@ def test_pareto_runs_cache_and_resume(tmp_path):
     study, tips = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, workers=1, **short)
     assert all(r.ok for r in study.runs) and study.cost["computed"] == len(study.runs)
     assert study.cost["workers"] == 1 and "fem3d" in study.compile_seconds
-    assert study.reference["label"] == "3D, 8x4" and study.chosen["fem3d"] == "3D, 8x3"
+    assert study.reference.label == "3D, 8x4" and study.chosen["fem3d"] == "3D, 8x3"
     # the same start for every model: their tips agree at t = 0 (the pillar at rest)
     assert max(abs(v[0]) for v in tips.values()) < 1e-12
     err = {r.label: abs(r.history_error) for r in study.runs}
@@ -115,3 +115,75 @@ def test_pareto_runs_cache_and_resume(tmp_path):
     i = next(i for i, s in enumerate(plan.specs) if s[1] == "3D, 8x2")
     here = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
     assert math.isclose(here["peak_tip"], victim.peak_tip, rel_tol=1e-9)
+
+
+def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_path):
+    """The reduced runs of a short case (no 3D: no reference, so the analysis refuses,
+    after the runs are kept): a second plan finds every run in the cache (rotorpillar.cache,
+    ``pareto-<key>.json``) with the numbers the first computed; an entry cut short, one of
+    another key and one without its verdict are misses, to compute again; the others stay."""
+    import json
+
+    from rotorpillar.reduced.models import beam_candidates
+    from rotorpillar.scene import load_scene
+    from rotorpillar.transients.pareto import ParetoRunning, plan_pareto
+
+    scene = load_scene("paper", ["excitation.kind=record"])
+    choices = dict(duration=0.2, along=(), beams=(2,), pillar_modes=beam_candidates(scene))
+    plan = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
+    assert plan.results == {} and len(plan.specs) >= 3  # ROMs with 1, 2, 3 modes and a beam
+    with pytest.raises(ValueError, match="no 3D run"):
+        ParetoRunning(plan, workers=0).finish()
+    files = sorted(tmp_path.glob("pareto-*.json"))
+    assert len(files) == len(plan.specs)
+    computed = {i: {k: v for k, v in d.items() if k != "cached"} for i, d in plan.results.items()}
+
+    again = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
+    assert again.keys == plan.keys and sorted(again.results) == list(range(len(plan.specs)))
+    assert all(d["cached"] for d in again.results.values())
+    assert {i: {k: v for k, v in d.items() if k != "cached"} for i, d in again.results.items()} == computed
+
+    path = {i: tmp_path / f"pareto-{key}.json" for i, key in enumerate(plan.keys)}
+    path[0].write_text(path[0].read_text()[:40])  # cut short
+    doc = json.loads(path[1].read_text())
+    path[1].write_text(json.dumps({**doc, "key": "another"}))  # another run's
+    doc = json.loads(path[2].read_text())
+    path[2].write_text(json.dumps({k: v for k, v in doc.items() if k != "ok"}))  # no verdict
+    damaged = {0, 1, 2}
+    third = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
+    assert set(third.results) == set(range(len(plan.specs))) - damaged
+    running = ParetoRunning(third, workers=0)
+    assert sorted(running.todo) == sorted(damaged)
+    with pytest.raises(ValueError, match="no 3D run"):
+        running.finish()
+    # recomputed and stored whole again: the next plan finds every run
+    assert sorted(plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices).results) == list(
+        range(len(plan.specs))
+    )
+
+
+@pytest.mark.parametrize(
+    "peaks, method",
+    [
+        ((0.0103 - 0.5 / 10**3, 0.0103 - 0.5 / 15**3, 0.0103 - 0.5 / 20**3), "richardson"),
+        ((0.0100, 0.0103, 0.0102), "next_coarser"),
+        ((0.0102,), "none"),
+    ],
+)
+def test_the_reference_writes_the_keys_it_wrote_as_a_dict(peaks, method):
+    """``reference`` in compare_earthquake.json's ``pareto``, now a record: the same keys in
+    the same order for each way its error is estimated (``limit`` only by Richardson), and
+    the study's JSON read back gives itself."""
+    import json
+
+    from rotorpillar.transients.pareto import ParetoStudy
+
+    docs = [_solid(n, p) for n, p in zip((10, 15, 20), peaks)]
+    study, _ = analyse_pareto(docs, {})
+    doc = json.loads(json.dumps(study.to_json()))
+    ref = doc["reference"]
+    assert ref["method"] == method
+    keys = ["label", "peak_tip", "peak_error", "history_error", "method", "order"]
+    assert list(ref) == keys + (["limit"] if method == "richardson" else []) + ["note"]
+    again = ParetoStudy.from_json(doc)
+    assert again.reference == study.reference and again.to_json() == doc

@@ -162,8 +162,8 @@ def _summary(scene: Scene, r: CompareResult) -> str:
         lines.append(
             f"  speed against accuracy ({pa.cost['runs']} runs, {pa.cost['computed']} "
             f"computed in {pa.cost['wall_seconds']:.3g} s): errors against "
-            f"{pa.reference['label']} (own peak error {_pct(pa.reference['peak_error'])}, "
-            f"{pa.reference['method']}); {pa.chosen['why']}"
+            f"{pa.reference.label} (own peak error {_pct(pa.reference.peak_error)}, "
+            f"{pa.reference.method}); {pa.chosen['why']}"
         )
     if r.full_order_reference:
         lines.append(f"  3D reference: {r.full_order_reference.statement}")

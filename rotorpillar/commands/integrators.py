@@ -8,8 +8,10 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..scene import Scene
+    from ..transients.integrator_records import IntegratorStudy
 
 import math
+from dataclasses import replace
 
 from . import progress
 
@@ -41,7 +43,7 @@ def preflight(scene: Scene, args) -> None:
         )
 
 
-def integrators_command(scene: Scene, args, timings):
+def integrators_command(scene: Scene, args, timings) -> tuple[dict, str]:
     from ..chain import resolve
     from ..reduced.models import beam_candidates
     from ..transients.integrator_study import run_integrator_study
@@ -60,8 +62,7 @@ def integrators_command(scene: Scene, args, timings):
             pillar_modes=chain.modes,
             probe_modes=beam_candidates(scene),
         )
-    result["pillar_model"] = chain.pillar_model.to_json()
-    result["stiffness_probe"] = (
+    probe = (
         "the stiffness study adds up to 8 pillar modes of the scene's 1D "
         f"{scene.modal_model.theory} beam ({scene.modal_model.elements} "
         "elements): a probe of how each integrator copes with stiffness, "
@@ -75,9 +76,9 @@ def integrators_command(scene: Scene, args, timings):
         with timings("chart"):
             integrators_chart(
                 path,
-                result["accuracy"]["rows"],
-                result["stability"]["rows"],
-                result["energy_drift"]["rows"],
+                result.accuracy.rows,
+                result.stability.rows,
+                result.energy_drift.rows,
                 f"{scene.name}: time integrators (run-up {duration:g} s, the ROM; stiffness: the beam's modes added)",
             )
         figures.append(
@@ -88,43 +89,45 @@ def integrators_command(scene: Scene, args, timings):
                 "drift of the undamped, unforced system (right).",
             }
         )
-    result["figures"] = figures
-    return result, _summary(scene, result)
+    result = replace(result, pillar_model=chain.pillar_model, stiffness_probe=probe, figures=tuple(figures))
+    return result.to_json(), _summary(scene, result)
 
 
-def _summary(scene: Scene, r: dict) -> str:
-    acc = r["accuracy"]
+def _summary(scene: Scene, r: IntegratorStudy) -> str:
+    acc = r.accuracy
     lines = [
-        f"rotorpillar integrators {scene.name}: run-up of {acc['duration']:g} s, reference dp5 "
-        f"rtol 1e-12 (DOP853 1e-12 agrees to {acc['reference']['agreement_with_DOP853_1e-12']:.1e})",
+        f"rotorpillar integrators {scene.name}: run-up of {acc.duration:g} s, reference dp5 "
+        f"rtol 1e-12 (DOP853 1e-12 agrees to {acc.reference.agreement_with_dop853:.1e})",
         f"  {'method':<20} {'s to 1e-3':>10} {'s to 1e-6':>10} {'nfev 1e-6':>10}  fails",
     ]
-    fmt = lambda x, f: "-" if x is None else format(x, f)
-    for m, e in acc["per_method"].items():
+
+    def fmt(x: float | None, f: str) -> str:
+        return "-" if x is None else format(x, f)
+
+    for m, e in acc.per_method.items():
         lines.append(
-            f"  {m:<20} {fmt(e['wall_seconds_at_0.001'], '10.4f')} "
-            f"{fmt(e['wall_seconds_at_1e-06'], '10.4f')} {fmt(e['nfev_at_1e-06'], '10.0f')}  {e['fails']}"
+            f"  {m:<20} {fmt(e.wall_seconds_at_1e_3, '10.4f')} "
+            f"{fmt(e.wall_seconds_at_1e_6, '10.4f')} {fmt(e.nfev_at_1e_6, '10.0f')}  {e.fails}"
         )
     lines.append("  stiffness (modal model, pillar modes added): first failure per method")
-    growth = r["stability"].get("cost_growth", {})
-    for m, f in r["stability"]["first_failure"].items():
+    growth = r.stability.cost_growth
+    for m, f in r.stability.first_failure.items():
         g = growth.get(m)
-        cost = f"; force evaluations x{g['factor']:.1f} from {g['modes'][0]} to {g['modes'][1]} modes" if g else ""
+        cost = f"; force evaluations x{g.factor:.1f} from {g.modes[0]} to {g.modes[1]} modes" if g else ""
         lines.append(
             f"    {m:<20} "
             + (
                 "never"
                 if f is None
-                else f"{f['modes']} modes, omega_max {f['omega_max']:.0f} rad/s, "
-                f"h*omega_max = {f['h_times_omega_max']:.2f}"
+                else f"{f.modes} modes, omega_max {f.omega_max:.0f} rad/s, h*omega_max = {f.h_times_omega_max:.2f}"
             )
             + cost
         )
     lines.append(
         "  energy drift (undamped, unforced): "
         + ", ".join(
-            f"{row['method']} {row['drift']:.1e}" if row["drift"] is not None else f"{row['method']} failed"
-            for row in r["energy_drift"]["rows"]
+            f"{row.method} {row.drift:.1e}" if row.drift is not None else f"{row.method} failed"
+            for row in r.energy_drift.rows
         )
     )
     return "\n".join(lines)

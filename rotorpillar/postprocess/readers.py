@@ -26,8 +26,9 @@ Contracts (field names are the writers'; we read, never write, them):
 - ``compare_<case>.json`` (`rotorpillar compare`): a
   :class:`~rotorpillar.transients.records.CompareResult`, read with the runs it
   names by :func:`rotorpillar.postprocess.compare_reader.read_comparison`.
-- ``integrators.json`` (`rotorpillar integrators`): its ``accuracy``,
-  ``stability`` and ``energy_drift`` blocks.
+- ``integrators.json`` (`rotorpillar integrators`): an
+  :class:`~rotorpillar.transients.integrator_records.IntegratorStudy` (its
+  ``accuracy``, ``stability`` and ``energy_drift`` blocks).
 
 A missing file is not an error: every reader returns None and the report
 says which command would produce it.  A damaged one (not JSON, not an object,
@@ -56,6 +57,7 @@ if TYPE_CHECKING:
     from ..converge.result import ConvergenceStudy
     from ..fem3d.modal_summary import ModalSummary
     from ..studies.result import StudyResult
+    from ..transients.integrator_records import IntegratorStudy
 
 #: Input name -> (file in out/<scene>/, the command that writes it).
 INPUTS = {
@@ -160,6 +162,13 @@ def read_study(path: str | Path) -> Read[StudyResult] | None:
     from ..studies.result import StudyResult
 
     return read_record(path, StudyResult)
+
+
+def read_integrators(path: str | Path) -> Read[IntegratorStudy] | None:
+    """``integrators.json``, or None."""
+    from ..transients.integrator_records import IntegratorStudy
+
+    return read_record(path, IntegratorStudy)
 
 
 def read_case(path: str | Path | None) -> dict[str, Any] | None:

@@ -92,8 +92,9 @@ def shape_error(record_type, doc: dict, where: str = "") -> str | None:
     None when every key present can (keys missing are another matter: another version)."""
     hints = typing.get_type_hints(record_type)
     for f in dataclasses.fields(record_type):
-        if f.name in doc:
-            why = _kind_error(hints.get(f.name), doc[f.name], where + f.name)
+        key = f.metadata.get("json", f.name)
+        if key in doc:
+            why = _kind_error(hints.get(f.name), doc[key], where + key)
             if why:
                 return why
     return None

@@ -21,6 +21,7 @@ Figures, colours and the atomic PNG write come from :mod:`.style`.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -30,6 +31,7 @@ from .style import COLOURS, CYCLE, figure, save
 
 if TYPE_CHECKING:
     from ..scene import Scene
+    from ..transients.integrator_records import AccuracyRow, DriftRow, StabilityRow
 
 #: Standard gravity, to show the ground acceleration in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
@@ -317,14 +319,20 @@ def method_styles(methods) -> dict:
     return out
 
 
-def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: str = "") -> Path:
-    """accuracy_rows: [{method, wall_seconds, nfev, error}]; stability_rows:
-    [{method, modes, omega_max, ok, nfev}]; drift_rows: [{method, drift}].
+def integrators_chart(
+    path,
+    accuracy_rows: Sequence[AccuracyRow],
+    stability_rows: Sequence[StabilityRow],
+    drift_rows: Sequence[DriftRow],
+    title: str = "",
+) -> Path:
+    """The rows of the integrator study's three experiments
+    (``rotorpillar.transients.integrator_records``).
     Three panels stacked: error against force evaluations, cost and
     failure as modes are added, energy drift; one colour and marker per
     method throughout, one legend for all."""
     methods = sorted(
-        {r["method"] for r in accuracy_rows} | {r["method"] for r in stability_rows} | {r["method"] for r in drift_rows}
+        {r.method for r in accuracy_rows} | {r.method for r in stability_rows} | {r.method for r in drift_rows}
     )
     style = method_styles(methods)
     fig, ax = figure(1060, 1100, nrows=3, height_ratios=(1.2, 1.0, 0.9))
@@ -332,25 +340,23 @@ def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: st
         # along the ladder (loose to tight), cost as force evaluations: the
         # wall time of a shared machine is too noisy for a curve
         rows = sorted(
-            (r for r in accuracy_rows if r["method"] == m and r["error"] is not None and np.isfinite(r["error"])),
-            key=lambda r: -r["setting"],
+            (r for r in accuracy_rows if r.method == m and r.error is not None and np.isfinite(r.error)),
+            key=lambda r: -r.setting,
         )
         if rows:
-            ls = "--" if rows[0].get("family") == "fixed" else "-"
-            ax[0].loglog(
-                [r["nfev"] for r in rows], [max(r["error"], 1e-16) for r in rows], ls=ls, lw=1, label=m, **style[m]
-            )
+            ls = "--" if rows[0].family == "fixed" else "-"
+            ax[0].loglog([r.nfev for r in rows], [max(r.error, 1e-16) for r in rows], ls=ls, lw=1, label=m, **style[m])
     ax[0].axhline(0.1, color=COLOURS["reference"], lw=0.7, ls=":")
     ax[0].set_xlabel("force evaluations (dashed lines: fixed step)")
     ax[0].set_ylabel("max tip error / max tip")
     ax[0].set_title("accuracy against cost on a run-up (dotted: 10 % error)", fontsize=10)
     ax[0].grid(alpha=0.3, which="both")
-    for m in sorted({r["method"] for r in stability_rows}):
-        rows = sorted((r for r in stability_rows if r["method"] == m), key=lambda r: r["modes"])
-        xs = [r["omega_max"] for r in rows]
-        ys = [r["nfev"] if r["ok"] else np.nan for r in rows]
+    for m in sorted({r.method for r in stability_rows}):
+        srows = sorted((r for r in stability_rows if r.method == m), key=lambda r: r.modes)
+        xs = [r.omega_max for r in srows]
+        ys = [r.nfev if r.ok else np.nan for r in srows]
         ax[1].loglog(xs, ys, "-", lw=1, **style[m])
-        bad = [r["omega_max"] for r in rows if not r["ok"]]
+        bad = [r.omega_max for r in srows if not r.ok]
         if bad:
             top = max(y for y in ys if np.isfinite(y)) if np.isfinite(ys).any() else 1
             ax[1].plot(bad, [top] * len(bad), "x", color=style[m]["color"], ms=8, mew=2)
@@ -358,8 +364,8 @@ def integrators_chart(path, accuracy_rows, stability_rows, drift_rows, title: st
     ax[1].set_ylabel("force evaluations (x = failed)")
     ax[1].set_title("stiffness: cost and stability as modes are added", fontsize=10)
     ax[1].grid(alpha=0.3, which="both")
-    names = [r["method"] for r in drift_rows]
-    vals = [max(abs(r["drift"]), 1e-17) if r["drift"] is not None else np.nan for r in drift_rows]
+    names = [r.method for r in drift_rows]
+    vals = [max(abs(r.drift), 1e-17) if r.drift is not None else np.nan for r in drift_rows]
     ax[2].barh(names, vals, log=True, color=[style[n]["color"] for n in names])
     ax[2].set_xlabel("|relative energy drift|, undamped and unforced")
     ax[2].set_title("energy drift", fontsize=10)

@@ -282,7 +282,7 @@ def _finish_pareto(scene: Scene, pending, out: Path, write: bool, chart) -> Pare
         chart(
             study.to_json(),
             Path(out) / name,
-            f"{scene.name}: El Centro, speed against accuracy (errors against {study.reference['label']})",
+            f"{scene.name}: El Centro, speed against accuracy (errors against {study.reference.label})",
         )
         study = replace(study, chart=name)
     return study

@@ -34,6 +34,19 @@ from ..reduced.excitation import no_motion
 from ..reduced.integration import FIXED_STEP, Settings, simulate
 from ..reduced.models import build_model
 from ..scene import SCIPY_METHODS, Scene
+from .integrator_records import (
+    AccuracyRow,
+    AccuracyStudy,
+    CostGrowth,
+    DriftRow,
+    DriftStudy,
+    FirstFailure,
+    IntegratorStudy,
+    MethodSummary,
+    Reference,
+    StabilityRow,
+    StabilityStudy,
+)
 
 ADAPTIVE = ("dp5",) + SCIPY_METHODS
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
@@ -49,13 +62,15 @@ def _error(run, ref) -> float:
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
 
 
-def accuracy_study(model, drive, duration: float, samples: int = 401, quick: bool = False, progress=None) -> dict:
+def accuracy_study(
+    model, drive, duration: float, samples: int = 401, quick: bool = False, progress=None
+) -> AccuracyStudy:
     """Experiment 1: error against cost on a run-up."""
     ref = simulate(model, drive, no_motion(), duration, settings=Settings("dp5", rtol=1e-12, samples=samples))
     check = simulate(model, drive, no_motion(), duration, settings=Settings("DOP853", rtol=1e-12, samples=samples))
     ref_agreement = _error(check, ref)
     W_max = float(np.max(ref.Omega))
-    rows = []
+    rows: list[AccuracyRow] = []
     rtols = RTOLS[::2] if quick else RTOLS
     for m in ADAPTIVE:
         ladder = [r for r in rtols if m not in ("Radau", "BDF", "LSODA") or r in RTOLS_IMPLICIT]
@@ -64,16 +79,16 @@ def accuracy_study(model, drive, duration: float, samples: int = 401, quick: boo
         for rtol in ladder:
             run = simulate(model, drive, no_motion(), duration, settings=Settings(m, rtol=rtol, samples=samples))
             rows.append(
-                {
-                    "method": m,
-                    "family": "adaptive",
-                    "setting": rtol,
-                    "setting_name": "rtol",
-                    "error": _error(run, ref),
-                    "wall_seconds": run.stats["wall_seconds"],
-                    "nfev": run.stats["nfev"],
-                    "status": run.stats["status"],
-                }
+                AccuracyRow(
+                    method=m,
+                    family="adaptive",
+                    setting=rtol,
+                    setting_name="rtol",
+                    error=_error(run, ref),
+                    wall_seconds=run.stats["wall_seconds"],
+                    nfev=run.stats["nfev"],
+                    status=run.stats["status"],
+                )
             )
     spacing = duration / (samples - 1)
     for m in FIXED_STEP:
@@ -83,38 +98,32 @@ def accuracy_study(model, drive, duration: float, samples: int = 401, quick: boo
             h = spacing / k
             run = simulate(model, drive, no_motion(), duration, settings=Settings(m, time_step=h, samples=samples))
             rows.append(
-                {
-                    "method": m,
-                    "family": "fixed",
-                    "setting": h,
-                    "setting_name": "time_step",
-                    "steps_per_rotor_period": 2 * math.pi / (W_max * h),
-                    "error": _error(run, ref),
-                    "wall_seconds": run.stats["wall_seconds"],
-                    "nfev": run.stats["nfev"],
-                    "status": run.stats["status"],
-                }
+                AccuracyRow(
+                    method=m,
+                    family="fixed",
+                    setting=h,
+                    setting_name="time_step",
+                    steps_per_rotor_period=2 * math.pi / (W_max * h),
+                    error=_error(run, ref),
+                    wall_seconds=run.stats["wall_seconds"],
+                    nfev=run.stats["nfev"],
+                    status=run.stats["status"],
+                )
             )
-    return {
-        "duration": duration,
-        "samples": samples,
-        "omega_max": W_max,
-        "reference": {
-            "method": "dp5",
-            "rtol": 1e-12,
-            "nfev": ref.stats["nfev"],
-            "wall_seconds": ref.stats["wall_seconds"],
-            "agreement_with_DOP853_1e-12": ref_agreement,
-        },
-        "rows": rows,
-        "per_method": _per_method(rows),
-    }
+    return AccuracyStudy(
+        duration=duration,
+        samples=samples,
+        omega_max=W_max,
+        reference=Reference("dp5", 1e-12, ref.stats["nfev"], ref.stats["wall_seconds"], ref_agreement),
+        rows=tuple(rows),
+        per_method=_per_method(rows),
+    )
 
 
-def _cost_at(rows, target):
+def _cost_at(rows: list[AccuracyRow], target: float) -> tuple[float | None, float | None]:
     """Wall time and evaluations to reach ``target`` error, log-interpolated along the ladder."""
     pts = sorted(
-        ((r["wall_seconds"], r["error"], r["nfev"]) for r in rows if math.isfinite(r["error"]) and r["error"] > 0),
+        ((r.wall_seconds, r.error, r.nfev) for r in rows if math.isfinite(r.error) and r.error > 0),
         key=lambda p: p[0],
     )
     for (w0, e0, n0), (w1, e1, n1) in zip(pts, pts[1:]):
@@ -125,32 +134,36 @@ def _cost_at(rows, target):
     return (ok[0][0], ok[0][2]) if ok else (None, None)
 
 
-def _per_method(rows) -> dict:
+def _steps(r: AccuracyRow) -> float:
+    """A fixed-step run's steps per rotor period (-)."""
+    assert r.steps_per_rotor_period is not None  # every fixed-step row has them
+    return r.steps_per_rotor_period
+
+
+def _per_method(rows: list[AccuracyRow]) -> dict[str, MethodSummary]:
     out = {}
-    for m in sorted({r["method"] for r in rows}):
-        mine = [r for r in rows if r["method"] == m]
-        bad = [r for r in mine if not math.isfinite(r["error"]) or r["error"] > FAIL]
-        if mine[0]["family"] == "fixed":
-            worst_ok = min((r["steps_per_rotor_period"] for r in mine if r not in bad), default=None)
+    for m in sorted({r.method for r in rows}):
+        mine = [r for r in rows if r.method == m]
+        bad = [r for r in mine if not math.isfinite(r.error) or r.error > FAIL]
+        worst_ok: float | None
+        if mine[0].family == "fixed":
+            worst_ok = min((_steps(r) for r in mine if r not in bad), default=None)
             fails = (
-                f"error > {100 * FAIL:g} % at {max(r['steps_per_rotor_period'] for r in bad):.3g} "
+                f"error > {100 * FAIL:g} % at {max(_steps(r) for r in bad):.3g} "
                 "steps per rotor period (top speed) or fewer"
                 if bad
-                else f"no failure down to {min(r['steps_per_rotor_period'] for r in mine):.3g} steps per period"
+                else f"no failure down to {min(_steps(r) for r in mine):.3g} steps per period"
             )
         else:
             worst_ok = None
             fails = (
-                f"error > {100 * FAIL:g} % at rtol >= {min(r['setting'] for r in bad):g}"
+                f"error > {100 * FAIL:g} % at rtol >= {min(r.setting for r in bad):g}"
                 if bad
-                else f"no failure up to rtol {max(r['setting'] for r in mine):g}"
+                else f"no failure up to rtol {max(r.setting for r in mine):g}"
             )
-        entry = {"fails": fails, "coarsest_ok_steps_per_period": worst_ok, "best_error": min(r["error"] for r in mine)}
-        for target in (1e-3, 1e-6):
-            w, n = _cost_at(mine, target)
-            entry[f"wall_seconds_at_{target:g}"] = w
-            entry[f"nfev_at_{target:g}"] = n
-        out[m] = entry
+        w3, n3 = _cost_at(mine, 1e-3)
+        w6, n6 = _cost_at(mine, 1e-6)
+        out[m] = MethodSummary(fails, worst_ok, min(r.error for r in mine), w3, n3, w6, n6)
     return out
 
 
@@ -163,10 +176,10 @@ def stability_study(
     rtol: float = 1e-6,
     progress=None,
     pillar_modes=None,
-) -> dict:
+) -> StabilityStudy:
     """Experiment 2: modal model with more and more pillar modes (of
     ``pillar_modes`` when given, see ``models.build_model``)."""
-    rows = []
+    rows: list[StabilityRow] = []
     for k in range(1, max_modes + 1):
         model, _ = build_model(scene, "modal", modes=k, pillar_modes=pillar_modes)
         w_max = model.stiffest_frequency()
@@ -179,50 +192,40 @@ def stability_study(
             wall = time.perf_counter() - t0
             ok = run.ok and bool(np.all(np.isfinite(run.q))) and float(np.max(np.abs(run.tip()))) < 1.0
             rows.append(
-                {
-                    "method": m,
-                    "modes": k,
-                    "omega_max": w_max,
-                    "ok": ok,
-                    "nfev": run.stats["nfev"],
-                    "wall_seconds": wall,
-                    "status": run.stats["status"],
-                    "time_step": time_step if m in FIXED_STEP else None,
-                    "stability_limit_central_difference": 2.0 / w_max,
-                }
+                StabilityRow(
+                    method=m,
+                    modes=k,
+                    omega_max=w_max,
+                    ok=ok,
+                    nfev=run.stats["nfev"],
+                    wall_seconds=wall,
+                    status=run.stats["status"],
+                    time_step=time_step if m in FIXED_STEP else None,
+                    stability_limit_central_difference=2.0 / w_max,
+                )
             )
-    first_fail = {}
+    first_fail: dict[str, FirstFailure | None] = {}
     for m in ADAPTIVE + FIXED_STEP:
-        bad = [r for r in rows if r["method"] == m and not r["ok"]]
-        first_fail[m] = (
-            None
-            if not bad
-            else {
-                "modes": bad[0]["modes"],
-                "omega_max": bad[0]["omega_max"],
-                "h_times_omega_max": time_step * bad[0]["omega_max"],
-            }
-        )
+        bad = [r for r in rows if r.method == m and not r.ok]
+        first_fail[m] = None if not bad else FirstFailure(bad[0].modes, bad[0].omega_max, time_step * bad[0].omega_max)
     growth = {}
     for m in ADAPTIVE + FIXED_STEP:
-        mine = sorted((r for r in rows if r["method"] == m and r["ok"]), key=lambda r: r["modes"])
+        mine = sorted((r for r in rows if r.method == m and r.ok), key=lambda r: r.modes)
         if len(mine) > 1:
-            growth[m] = {
-                "modes": [mine[0]["modes"], mine[-1]["modes"]],
-                "nfev": [mine[0]["nfev"], mine[-1]["nfev"]],
-                "factor": mine[-1]["nfev"] / mine[0]["nfev"],
-            }
-    return {
-        "duration": duration,
-        "time_step": time_step,
-        "rtol": rtol,
-        "rows": rows,
-        "first_failure": first_fail,
-        "cost_growth": growth,
-        "note": "central difference is stable for h*omega_max < 2 (undamped); the implicit "
+            growth[m] = CostGrowth(
+                (mine[0].modes, mine[-1].modes), (mine[0].nfev, mine[-1].nfev), mine[-1].nfev / mine[0].nfev
+            )
+    return StabilityStudy(
+        duration=duration,
+        time_step=time_step,
+        rtol=rtol,
+        rows=tuple(rows),
+        first_failure=first_fail,
+        cost_growth=growth,
+        note="central difference is stable for h*omega_max < 2 (undamped); the implicit "
         "schemes and the adaptive ones never blow up, the explicit adaptive ones pay "
         "with steps ~ 1/omega_max",
-    }
+    )
 
 
 def drift_study(
@@ -232,7 +235,7 @@ def drift_study(
     rtol: float = 1e-4,
     steps_per_period: float = 20.0,
     progress=None,
-) -> dict:
+) -> DriftStudy:
     """Experiment 3: energy drift without damping, motor or load."""
     m0 = replace(model, damping=np.zeros_like(model.damping), shaft_damping=0.0)
     drive = DriveSchedule.constant(0.0, 0.0, 0.0)
@@ -248,21 +251,21 @@ def drift_study(
         E = T + P
         ok = run.ok and np.all(np.isfinite(E))
         rows.append(
-            {
-                "method": m,
-                "drift": float((E[-1] - E[0]) / E[0]) if ok else None,
-                "max_deviation": float(np.max(np.abs(E - E[0])) / E[0]) if ok else None,
-                "nfev": run.stats["nfev"],
-                "status": run.stats["status"],
-                "setting": rtol if m not in FIXED_STEP else run.stats.get("time_step"),
-            }
+            DriftRow(
+                method=m,
+                drift=float((E[-1] - E[0]) / E[0]) if ok else None,
+                max_deviation=float(np.max(np.abs(E - E[0])) / E[0]) if ok else None,
+                nfev=run.stats["nfev"],
+                status=run.stats["status"],
+                setting=rtol if m not in FIXED_STEP else run.stats.get("time_step"),
+            )
         )
-    return {"duration": duration, "speed": speed, "rtol": rtol, "steps_per_period": steps_per_period, "rows": rows}
+    return DriftStudy(duration, speed, rtol, steps_per_period, tuple(rows))
 
 
 def run_integrator_study(
     scene: Scene, duration: float = 10.0, quick: bool = False, progress=None, pillar_modes=None, probe_modes=None
-) -> dict:
+) -> IntegratorStudy:
     """All three experiments: accuracy (1) and energy drift (3) on the scene's headline
     model, the ROM on ``pillar_modes`` (the chain's; the paper model when None); the
     stiffness study (2) on ``probe_modes`` (many pillar modes: the 1D beam's, a probe of
@@ -276,8 +279,7 @@ def run_integrator_study(
 
         band = scene.modal_model.band_factor * drive.free_speed()
         model, _ = build_model(scene, "modal", modes=modes_in_band(pillar_modes.omega, band), pillar_modes=pillar_modes)
-    acc = accuracy_study(model, drive, duration, quick=quick, progress=progress)
-    acc["model"] = model.name
+    acc = replace(accuracy_study(model, drive, duration, quick=quick, progress=progress), model=model.name)
     stab = stability_study(
         scene,
         drive,
@@ -290,4 +292,4 @@ def run_integrator_study(
     # steps of the paper's two masses; the drifts grow with time, and the study compares
     # the integrators at one duration (measured: 6 s against 25 s for 200 s, quiet machine)
     drift = drift_study(model, duration=20.0 if quick else 40.0, progress=progress)
-    return {"accuracy": acc, "stability": stab, "energy_drift": drift}
+    return IntegratorStudy(acc, stab, drift)

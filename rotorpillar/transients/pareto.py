@@ -25,7 +25,8 @@ kernels, FFCx's forms), outside the timed region, ``compile_seconds``; the
 timed region is what the model costs a user: building it (the ROM and the
 beam: their modes; 3D: mesh, assembly, factorisation) and integrating.
 Each run is cached as one JSON under ``out/<scene>/cache/``
-(``pareto-<key>.json``), the key a hash of the scene, the window, the
+(``pareto-<key>.json``, :func:`.pareto_runs.run_cache`: the project's one
+cache, rotorpillar.cache), the key a hash of the scene, the window, the
 model, the record's samples and the source of the code, written
 atomically: an interrupted study resumes and computes nothing twice.  The
 3D runs go to ``workers`` processes (rotorpillar.executor), started before
@@ -38,12 +39,12 @@ from __future__ import annotations
 import hashlib
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from ..provenance import JsonRecord, write_json
+from ..provenance import JsonRecord
 from ..scene import Mesh, Scene
 from .pareto_runs import (
     BEAM_ELEMENTS,
@@ -56,10 +57,33 @@ from .pareto_runs import (
     load_run,
     pareto_scene,
     reduced_run,
+    run_cache,
     run_key,
     run_specs,
     warm_up_family,
 )
+
+
+@dataclass(frozen=True)
+class ParetoReference(JsonRecord):
+    """The finest 3D run, every error's reference, and its own error."""
+
+    label: str
+    """the run's label (e.g. "3D, 8x20")"""
+    peak_tip: float
+    """its largest |tip X relative to the ground| (m)"""
+    peak_error: float | None
+    """its own relative error of the peak (-); None for a single 3D run"""
+    history_error: float | None
+    """its own relative error of the tip's history (-); None for a single 3D run"""
+    method: str
+    """how the error was estimated ("richardson", "next_coarser" or "none")"""
+    order: float | None
+    """the observed order of convergence (-); Richardson only"""
+    limit: float | None = field(default=None, metadata={"omit_if_none": True})
+    """the extrapolated peak (m); Richardson only"""
+    note: str = ""
+    """how the error was estimated, in words"""
 
 
 @dataclass(frozen=True)
@@ -69,9 +93,7 @@ class ParetoStudy(JsonRecord):
     case: dict
     """record, record_start, duration, initial_speed, samples, start"""
     runs: tuple[ParetoRun, ...]
-    reference: dict
-    """label, peak_tip, peak_error, history_error, method (richardson | next_coarser),
-    order, note"""
+    reference: ParetoReference
     fronts: dict
     """error measure (peak_tip, history) -> labels on the Pareto front of |error| against
     wall time, cheapest first"""
@@ -149,8 +171,9 @@ def plan_pareto(
     specs = run_specs(rom_modes, cands.count, chosen_mesh, along, beams)
     keys = [run_key(f, p, sc, motion, digest) for f, _, p in specs]
     results = {}
+    cache = run_cache(cache_dir)
     for i, key in enumerate(keys):
-        doc = load_run(Path(cache_dir) / f"pareto-{key}.json", key)
+        doc = load_run(cache, key)
         if doc is not None:
             results[i] = {**doc, "cached": True}
     return ParetoPlan(
@@ -213,7 +236,7 @@ class ParetoRunning:
         fam, label, params = plan.specs[i]
         doc = {"key": plan.keys[i], "family": fam, "label": label, "params": params, **out}
         if _mpi_rank_size()[0] == 0:
-            write_json(plan.cache_dir / f"pareto-{plan.keys[i]}.json", doc)
+            run_cache(plan.cache_dir).write(plan.keys[i], doc)
         plan.results[i] = {**doc, "cached": False}
         if self.progress:
             self.progress(f"speed against accuracy: {label} in {out['wall_seconds']:.3g} s")
@@ -303,22 +326,17 @@ def transient_pareto(
     return ParetoRunning(plan, workers, progress).finish()
 
 
-def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
+def _reference_error(fine: list[dict], grid_tips: dict) -> ParetoReference:
     """The finest 3D run's own error: Richardson over the three finest where monotone at a
     plausible order, else the difference to the next coarser."""
     from ..converge.richardson import richardson
 
     ref = fine[-1]
-    out = {"label": ref["label"], "peak_tip": ref["peak_tip"]}
+    label, peak = ref["label"], ref["peak_tip"]
     if len(fine) < 2:
-        return {
-            **out,
-            "peak_error": None,
-            "history_error": None,
-            "method": "none",
-            "order": None,
-            "note": "a single 3D run: its own error is not estimated",
-        }
+        return ParetoReference(
+            label, peak, None, None, "none", None, note="a single 3D run: its own error is not estimated"
+        )
     prev = fine[-2]
     diff = np.max(np.abs(grid_tips[ref["label"]] - grid_tips[prev["label"]])) / max(
         np.max(np.abs(grid_tips[ref["label"]])), 1e-300
@@ -330,26 +348,28 @@ def _reference_error(fine: list[dict], grid_tips: dict) -> dict:
         p = rich["order"]
         if rich["monotone"] and p is not None and 0.5 <= p <= 8:
             factor = 1.0 / ((h[1] / h[2]) ** p - 1)
-            return {
-                **out,
-                "peak_error": rich["error_estimate"] / abs(rich["value"]),
-                "history_error": 1.25 * factor * float(diff),
-                "method": "richardson",
-                "order": p,
-                "limit": rich["value"],
-                "note": f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
+            return ParetoReference(
+                label,
+                peak,
+                peak_error=rich["error_estimate"] / abs(rich["value"]),
+                history_error=1.25 * factor * float(diff),
+                method="richardson",
+                order=p,
+                limit=rich["value"],
+                note=f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
                 f"{p:.2f}): Roache's 1.25 |limit - finest| for the peak; the history's "
                 "difference to the next coarser times 1.25 / (r**p - 1)",
-            }
-    return {
-        **out,
-        "peak_error": abs(ref["peak_tip"] / prev["peak_tip"] - 1),
-        "history_error": float(diff),
-        "method": "next_coarser",
-        "order": None,
-        "note": f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
+            )
+    return ParetoReference(
+        label,
+        peak,
+        peak_error=abs(ref["peak_tip"] / prev["peak_tip"] - 1),
+        history_error=float(diff),
+        method="next_coarser",
+        order=None,
+        note=f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
         "converge monotonically at a plausible order, so no extrapolation",
-    }
+    )
 
 
 def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
@@ -370,7 +390,7 @@ def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
     runs = []
     for d in docs:
         if d is ref:
-            pe, he = ref_err["peak_error"], ref_err["history_error"]
+            pe, he = ref_err.peak_error, ref_err.history_error
         elif d["ok"]:
             pe = d["peak_tip"] / ref["peak_tip"] - 1 if ref["peak_tip"] else None
             he = float(np.max(np.abs(tips[d["label"]] - x_ref)) / scale)

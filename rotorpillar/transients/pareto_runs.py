@@ -2,22 +2,23 @@
 models run (``run_specs``), the scene and window they share, each run's cache key, the
 reduced runs in-process and the 3D runs on workers (``compute_3d``), warm.
 
-Each run is cached as one JSON under ``out/<scene>/cache/`` (``pareto-<key>.json``),
-the key a hash of the scene, the window, the model, the record's samples and the
-source of the code, written atomically: an interrupted study resumes and computes
-nothing twice.
+Each run is cached as one JSON under ``out/<scene>/cache/`` (``pareto-<key>.json``)
+by the project's one cache (:mod:`rotorpillar.cache`): the key a hash of the scene,
+the window, the model, the record's samples and the source of the code, written
+atomically: an interrupted study resumes and computes nothing twice; a damaged entry
+is a miss, computed again.
 """
 
 from __future__ import annotations
 
 import hashlib
-import json
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
+from ..cache import DiskCache, cache_key, source_hash
 from ..provenance import JsonRecord
 from ..scene import Scene
 
@@ -102,31 +103,31 @@ def run_specs(
     return specs
 
 
-def _source_hash(family: str) -> str:
+def _source_files(family: str) -> list[Path]:
+    """The code a run of ``family`` depends on: reduced/ (and fem3d/, mesh/ for the 3D runs)."""
     root = Path(__file__).parent.parent
     files = sorted((root / "reduced").glob("*.py"))
     if family == "fem3d":
         files += sorted((root / "fem3d").glob("*.py")) + sorted((root / "mesh").glob("*.py"))
-    h = hashlib.sha256()
-    for f in files:
-        h.update(f.name.encode())
-        h.update(f.read_bytes())
-    return h.hexdigest()[:16]
+    return files
 
 
 def run_key(family: str, params: dict, scene: Scene, motion, modes_digest: str) -> str:
-    """Hash of everything a run depends on."""
-    doc = {
-        "version": CACHE_VERSION,
+    """The cache key of a run: the hash of everything it depends on (its arguments, the code)."""
+    args = {
         "family": family,
         "params": params,
         "scene": {k: v for k, v in scene.to_dict().items() if k not in ("name", "description")},
         "record": hashlib.sha256(np.asarray(motion.acceleration, float).tobytes()).hexdigest()[:16],
         "samples": PARETO_SAMPLES,
         "modes": modes_digest if family == "rom" else None,
-        "source": _source_hash(family),
     }
-    return hashlib.sha256(json.dumps(doc, sort_keys=True, default=str).encode()).hexdigest()[:24]
+    return cache_key(args, version=CACHE_VERSION, code=source_hash(_source_files(family)))
+
+
+def run_cache(cache_dir: Path) -> DiskCache:
+    """The runs' cache: ``pareto-<key>.json`` files in ``cache_dir``."""
+    return DiskCache(Path(cache_dir), prefix="pareto-")
 
 
 def _grid(duration: float) -> np.ndarray:
@@ -206,12 +207,10 @@ def compute_3d(job) -> dict:
     }
 
 
-def load_run(path: Path, key: str) -> dict | None:
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    return doc if isinstance(doc, dict) and doc.get("key") == key and doc.get("ok") is not None else None
+def load_run(cache: DiskCache, key: str) -> dict | None:
+    """The run cached under ``key``, or None: a missing, damaged or foreign entry, or one
+    without its verdict (``ok``), is no cached run (computed again)."""
+    return cache.read(key, accept=lambda doc: doc.get("ok") is not None)
 
 
 # --------------------------------------------------------------------------

@@ -22,7 +22,7 @@ import traceback
 import zipfile
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from ...provenance import write_text
 from ...transients.run_comparisons import COMPARISONS
@@ -35,11 +35,10 @@ from ..readers import (
     Read,
     read_analysis,
     read_convergence,
-    read_json,
+    read_integrators,
     read_modal,
     read_simulation,
     read_study,
-    require,
 )
 from .convergence import section_convergence, section_integrators
 from .earthquake import section_earthquake
@@ -146,12 +145,7 @@ def load_inputs(build: Build) -> None:
     build.analysis = _record(build, "analyze", read_analysis)
     build.modal = _record(build, "modal", read_modal)
     build.convergence = _record(build, "convergence", read_convergence)
-    build.integrators = _read(
-        build,
-        "integrators",
-        "integrators.json",
-        lambda: _keys(read_json(out / INPUTS["integrators"][0]), {"accuracy": dict}, "integrators.json"),
-    )
+    build.integrators = _record(build, "integrators", read_integrators)
     for case in CASES:
         sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz", lambda: read_simulation(out, case))
         if sim is not None:
@@ -171,12 +165,6 @@ def load_inputs(build: Build) -> None:
     study = _read(build, "study", "study.json", lambda: read_study(out / "study.json"))
     if study is not None:
         build.study, build.docs["study"] = study.record, study.doc
-
-
-def _keys(doc: dict[str, Any] | None, keys: dict[str, Any], name: str) -> dict[str, Any] | None:
-    if doc is not None:
-        require(doc, keys, name)
-    return doc
 
 
 def build_report(

@@ -3,6 +3,7 @@ reference frequencies and failures, and the integrator study."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from .. import html as h
@@ -12,6 +13,8 @@ from .state import Build
 
 if TYPE_CHECKING:
     from ...converge.result import ConvergenceStudy
+    from ...provenance import JsonRecord
+    from ...transients.integrator_records import IntegratorStudy, MethodSummary
 
 
 def chosen(study: ConvergenceStudy) -> tuple[str, str] | None:
@@ -163,26 +166,27 @@ def section_convergence(build: Build) -> str:
     return h.section("convergence", "Convergence and the model chosen", parts)
 
 
-def _best(per: dict, key: str, among=None):
-    """(method, value) with the smallest positive ``key`` in per_method (among ``among``)."""
+def _best(per: dict[str, MethodSummary], key: str, among=None) -> tuple[str | None, float | None]:
+    """(method, value) with the smallest positive ``key`` (a field of the methods'
+    summaries) in per_method (among ``among``)."""
     vals = [
-        (m, v.get(key))
-        for m, v in per.items()
-        if (among is None or m in among) and isinstance(v.get(key), (int, float)) and v.get(key) > 0
+        (m, v)
+        for m, v in ((m, getattr(s, key)) for m, s in per.items() if among is None or m in among)
+        if isinstance(v, (int, float)) and v > 0
     ]
     return min(vals, key=lambda x: x[1]) if vals else (None, None)
 
 
-def integrators_conclusion(doc: dict) -> str:
+def integrators_conclusion(study: IntegratorStudy) -> str:
     """One paragraph from integrators.json: which integrator for which case,
     where each fails."""
-    acc, stab = doc.get("accuracy") or {}, doc.get("stability") or {}
-    per = acc.get("per_method") or {}
-    growth = stab.get("cost_growth") or {}
-    fixed = {r["method"] for r in acc.get("rows") or [] if r.get("family") == "fixed"}
+    acc, stab = study.accuracy, study.stability
+    per = acc.per_method
+    growth = stab.cost_growth
+    fixed = {r.method for r in acc.rows if r.family == "fixed"}
     adaptive = set(per) - fixed
     said = []
-    m, n = _best(per, "nfev_at_1e-06", adaptive)
+    m, n = _best(per, "nfev_at_1e_6", adaptive)
     if m:
         said.append(
             f"On the reduced models (a few degrees of freedom, the band's modes only) an "
@@ -191,90 +195,77 @@ def integrators_conclusion(doc: dict) -> str:
             f"Dormand-Prince pair as scipy's RK45, compiled, so their points coincide."
         )
     # central difference is explicit: its cost stays flat only until it blows up (below)
-    flat = sorted(
-        k
-        for k, g in growth.items()
-        if isinstance(g, dict) and g.get("factor") == 1 and k in fixed and "central" not in k
-    )
+    flat = sorted(k for k, g in growth.items() if g.factor == 1 and k in fixed and "central" not in k)
     steep = sorted(
-        (
-            (k, g["factor"])
-            for k, g in growth.items()
-            if isinstance(g, dict) and isinstance(g.get("factor"), (int, float)) and k in adaptive
-        ),
+        ((k, g.factor) for k, g in growth.items() if isinstance(g.factor, (int, float)) and k in adaptive),
         key=lambda x: -x[1],
     )
     if flat and steep:
         said.append(
             f"As stiffer modes are added (a beam or 3D full order), the explicit methods' "
             f"cost grows with the highest frequency ({steep[0][0]}: x{steep[0][1]:.3g} "
-            f"from {growth[steep[0][0]]['modes'][0]} to {growth[steep[0][0]]['modes'][-1]} "
+            f"from {growth[steep[0][0]].modes[0]} to {growth[steep[0][0]].modes[-1]} "
             f"modes) while the implicit fixed-step ones ({', '.join(flat)}) cost the same: "
             "for stiff full-order models use Newmark (energy-conserving) or, to damp "
             "the unresolved high modes, HHT or generalised-alpha."
         )
-    fails = [
-        f"{k}: {v['fails']}"
-        for k, v in sorted(per.items())
-        if isinstance(v, dict) and v.get("fails") and not str(v["fails"]).startswith("no failure")
-    ]
-    first = stab.get("first_failure") or {}
-    for k, v in first.items():
-        if isinstance(v, dict) and v.get("omega_max"):
+    fails = [f"{k}: {v.fails}" for k, v in sorted(per.items()) if v.fails and not str(v.fails).startswith("no failure")]
+    for k, f in stab.first_failure.items():
+        if f is not None and f.omega_max:
             fails.append(
                 f"{k}: unstable once the highest frequency reaches "
-                f"{v['omega_max']:.4g} rad/s (h omega_max = "
-                f"{v.get('h_times_omega_max', float('nan')):.3g} > 2)"
+                f"{f.omega_max:.4g} rad/s (h omega_max = "
+                f"{f.h_times_omega_max:.3g} > 2)"
             )
     if fails:
         said.append("Where each fails: " + "; ".join(fails) + ".")
     return " ".join(said)
 
 
-def _rows_table(rows: list, keys: list[str]) -> str:
-    return h.table(keys, [[h.num(r.get(k), 4) for k in keys] for r in rows])
+def _rows_table(rows: Sequence[JsonRecord], keys: list[str]) -> str:
+    return h.table(keys, [[h.num(getattr(r, k, None), 4) for k in keys] for r in rows])
 
 
 def section_integrators(build: Build) -> str:
     parts = []
-    doc = build.integrators
-    if doc is None:
+    study = build.integrators
+    if study is None:
         parts.append(h.missing(build.hint(INPUTS["integrators"][1])))
     else:
-        parts += scene_differs(build, doc)
-        said = integrators_conclusion(doc)
+        parts += scene_differs(build, build.docs.get("integrators", {}))
+        said = integrators_conclusion(study)
         if said:
             parts.append(h.tag("p", said))
     parts += figures_of(build, "integrators")
-    if doc is not None:
-        acc, stab = doc.get("accuracy") or {}, doc.get("stability") or {}
-        rows = acc.get("rows") or []
-        if rows:
+    if study is not None:
+        acc, stab, drift = study.accuracy, study.stability, study.energy_drift
+        if acc.rows:
             parts.append(
                 h.details(
-                    f"accuracy runs ({len(rows)})",
+                    f"accuracy runs ({len(acc.rows)})",
                     _rows_table(
-                        rows, ["method", "family", "setting_name", "setting", "error", "nfev", "wall_seconds", "status"]
+                        acc.rows,
+                        ["method", "family", "setting_name", "setting", "error", "nfev", "wall_seconds", "status"],
                     ),
                 )
             )
-        rows = stab.get("rows") or []
-        if rows:
+        if stab.rows:
             parts.append(
                 h.details(
-                    f"stiffness runs ({len(rows)})",
-                    _rows_table(rows, ["method", "modes", "omega_max", "ok", "nfev", "time_step", "status"]),
+                    f"stiffness runs ({len(stab.rows)})",
+                    _rows_table(stab.rows, ["method", "modes", "omega_max", "ok", "nfev", "time_step", "status"]),
                 )
             )
-        rows = (doc.get("energy_drift") or {}).get("rows") or []
-        if rows:
+        if drift.rows:
             parts.append(
                 h.details(
-                    f"energy drift runs ({len(rows)})",
-                    _rows_table(rows, ["method", "drift", "max_deviation", "nfev", "setting", "status"]),
+                    f"energy drift runs ({len(drift.rows)})",
+                    _rows_table(drift.rows, ["method", "drift", "max_deviation", "nfev", "setting", "status"]),
                 )
             )
-        slim = {k: v for k, v in doc.items() if k in ("accuracy", "stability", "energy_drift")}
-        slim = {k: {kk: vv for kk, vv in v.items() if kk != "rows"} for k, v in slim.items() if isinstance(v, dict)}
+        slim = {
+            name: {k: v for k, v in block.to_json().items() if k != "rows"}
+            for name, block in (("accuracy", acc), ("stability", stab), ("energy_drift", drift))
+        }
         parts.append(h.details("integrators.json: the rest (per method, settings)", run_table(slim)))
     return h.section("integrators", "Time integrators", parts)

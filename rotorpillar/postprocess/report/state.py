@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from ...fem3d.modal_summary import ModalSummary
     from ...scene import Scene
     from ...studies.result import StudyResult
+    from ...transients.integrator_records import IntegratorStudy
     from ..compare_reader import Comparison
 
 T = TypeVar("T")
@@ -79,7 +80,8 @@ class Build:
     docs: dict[str, dict[str, Any]] = field(default_factory=dict)
     """input name (``readers.INPUTS``, "study") -> the whole JSON document its record was
     read from: what the command wrote beside the record (scene, versions, timings, a note)"""
-    integrators: dict[str, Any] | None = None
+    integrators: IntegratorStudy | None = None
+    """integrators.json's record (``readers.read_integrators``), or None"""
     simulations: dict[str, Simulation] = field(default_factory=dict)
     """case -> ``readers.Simulation`` of simulate_<case>.* (the last run of the case)"""
     quake_case: Simulation | None = None
