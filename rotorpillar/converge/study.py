@@ -56,8 +56,8 @@ from .selection import (
     select_model,
 )
 
-Charts = Callable[[dict, Path], dict]
-"""Draws the study's charts into a directory: (study document, out_dir) -> name: path."""
+Charts = Callable[[ConvergenceStudy, Path], dict]
+"""Draws the study's charts into a directory: (the study, out_dir) -> name: path."""
 
 
 def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
@@ -281,7 +281,7 @@ def study(
     )
     if charts is not None:
         with timings("charts"):
-            drawn = charts(result.to_json(), out_dir)
+            drawn = charts(result, out_dir)
         result = dataclasses.replace(result, charts={k: str(v) for k, v in drawn.items()})
     result = dataclasses.replace(result, study=dataclasses.replace(counts, wall_time=time.perf_counter() - start))
     doc = with_provenance(result.to_json(), timings=dict(timings))
