@@ -27,6 +27,7 @@ import math
 
 import numpy as np
 import pytest
+from convergence_doc import convergence_doc
 
 from rotorpillar.analysis import AnalysisResult, analyze
 from rotorpillar.analysis.rom import rom_of
@@ -72,31 +73,15 @@ COARSE = {**SOLID, "elements_around": 64, "elements_along": 10}
 
 
 def _study_doc(scene, chosen: dict, runs: list[dict]) -> dict:
-    band = {
-        "free_speed": 89.7,
-        "earthquake_frequency": math.pi,
-        "margin": 1.5,
-        "omega_max": 134.6,
-        "driver": "drive free speed",
-    }
-    return {
-        "scene_name": scene.name,
-        "scene": scene.to_dict(),
-        "tolerance": 1e-3,
-        "cache_dir": "x",
-        "families": {},
-        "runs": runs,
-        "reference": {
+    return convergence_doc(
+        scene,
+        runs,
+        {
             "bending": {"value": 30.8, "error_estimate": 3.08e-3},
             "ovalling": {"value": 85.0, "error_estimate": 8.5e-3},
         },
-        "extrapolations": {},
-        "band": band,
-        "selection": {"chosen": chosen, "reason": "the cheapest", "needed": ["bending"]},
-        "pareto": {},
-        "failures": [],
-        "study": {},
-    }
+        chosen=chosen,
+    )
 
 
 def _write(tmp_path, doc):

@@ -23,9 +23,11 @@ import shutil
 import subprocess
 from html.parser import HTMLParser
 from pathlib import Path
+from types import SimpleNamespace
 
 import fixtures
 import pytest
+from convergence_doc import convergence_doc
 from imagecheck import PNG_SIGNATURE
 
 from rotorpillar import cli
@@ -279,44 +281,29 @@ def test_convergence_section_reads_the_selection(tmp_path):
     as `rotorpillar converge` writes them (selection.chosen, reference.<mode>)."""
     run_cli("analyze", "paper", "--out", tmp_path)
     scene = json.loads((tmp_path / "analyze.json").read_text())["scene"]
-    conv = {
-        "scene_name": "paper",
-        "scene": scene,
-        "tolerance": 1e-3,
-        "cache_dir": "cache",
-        "families": {},
-        "runs": [],
-        "extrapolations": {},
-        "pareto": {},
-        "study": {},
-        "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
-        "selection": {
-            "tolerance": 1e-3,
-            "needed": ["bending"],
-            "band": {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"},
-            "rule": "cheapest run meeting the tolerance",
-            "chosen": {
-                "label": "shell Q2 quadrilaterals, 16x20",
-                "dofs": 6560,
-                "wall_time": 0.45,
-                "bending_error_bound": 3e-4,
-            },
-            "rejected_cheaper": [
-                {"label": "Eq. 1 + ring (closed forms)", "dofs": 1, "wall_time": 1e-4, "why": "bending bound 1.7e-02"}
-            ],
-        },
-        "reference": {
+    band = {"omega_max": 60.0, "margin": 1.5, "driver": "drive free speed"}
+    chosen = {"label": "shell Q2 quadrilaterals, 16x20", "dofs": 6560, "wall_time": 0.45, "bending_error_bound": 3e-4}
+    rejected = {"label": "Eq. 1 + ring (closed forms)", "dofs": 1, "wall_time": 1e-4, "why": "bending bound 1.7e-02"}
+    check = {"order": 4.0, "order_theory": 4, "monotone": True, "value": 30.81, "error_estimate": 0.01, "h": []}
+    check |= {"f": [], "finer_run": "c", "finer_value": 30.818, "difference": 0.008, "within_estimate": True}
+    conv = convergence_doc(
+        SimpleNamespace(name="paper", to_dict=lambda: scene),
+        [],
+        {
             "bending": {
                 "value": 30.818,
                 "error_estimate": 4e-3,
                 "order": 1.8,
                 "order_theory": 4,
                 "runs": ["a", "b", "c"],
-                "check": {"within_estimate": True},
+                "check": check,
             }
         },
-        "failures": ["beams have no ovalling mode"],
-    }
+        chosen=chosen,
+        band=band,
+        selection={"rejected_cheaper": [rejected]},
+        failures=["beams have no ovalling mode"],
+    )
     (tmp_path / "convergence.json").write_text(json.dumps(conv))
     run_cli("report", "paper", "--out", tmp_path, "--no-animations")
     text = (tmp_path / "report.html").read_text()

@@ -24,6 +24,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from conftest import cli
+from convergence_doc import convergence_doc
 
 from rotorpillar.converge.selection import select_reference
 from rotorpillar.scene import load_scene, override
@@ -139,21 +140,13 @@ def test_select_reference_coarsest_meeting_the_bound():
 
 
 def _study_on_disk(tmp_path, scene, runs=RUNS):
-    doc = {
-        "scene_name": scene.name,
-        "scene": scene.to_dict(),
-        "tolerance": 1e-3,
-        "cache_dir": str(tmp_path / "cache"),
-        "families": {},
-        "runs": runs,
-        "reference": REFERENCE,
-        "extrapolations": {"beam_timoshenko": {"bending": {"value": 30.8208}}},
-        "band": {},
-        "selection": {"chosen": None},
-        "pareto": {},
-        "failures": [],
-        "study": {},
-    }
+    doc = convergence_doc(
+        scene,
+        runs,
+        REFERENCE,
+        extrapolations={"beam_timoshenko": {"bending": {"value": 30.8208}}},
+        selection={"reason": "none meets it"},
+    )
     (tmp_path / "convergence.json").write_text(json.dumps(doc))
     (tmp_path / "modal.json").write_text(json.dumps({"scene": scene.to_dict(), "modes_with_top": ROWS}))
 

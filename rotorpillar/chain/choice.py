@@ -24,10 +24,13 @@ import dataclasses
 import json
 from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..scene import Mesh, Scene
 from .record import PillarModel
+
+if TYPE_CHECKING:
+    from ..converge.result import ConvergenceStudy
 
 #: Scene keys a convergence study's choice depends on: the tube, the ladder's
 #: shape (from [mesh]), the tolerance and limits, and the band (drive, load).
@@ -135,12 +138,13 @@ def solid_families() -> list[str]:
     return [k for k, f in FAMILIES.items() if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
 
 
-def _solid_within(study, tolerance: float):
-    """The cheapest 3D run of the study that meets the tolerance, or None."""
+def _solid_within(study: ConvergenceStudy, tolerance: float):
+    """The cheapest 3D run of the study that meets the tolerance (its brief), or None."""
     from ..converge.selection import select_model
 
     solid = solid_families()
-    sel = select_model(list(study.runs), study.reference, study.band, tolerance, families=solid)
+    reference = {q: r.to_json() for q, r in study.reference.items()}
+    sel = select_model(study.run_documents(), reference, study.band.to_json(), tolerance, families=solid)
     return sel.get("chosen")
 
 
@@ -272,16 +276,16 @@ def from_scene(scene: Scene, cache_dir: Path, why: str) -> Choice:
     return Choice(pm, pm)
 
 
-def from_study(scene: Scene, study) -> Choice:
+def from_study(scene: Scene, study: ConvergenceStudy) -> Choice:
     """The study's choice for the scene's band, made usable by the chain (see the module text)."""
     from ..converge.selection import reference_uncertainty
 
     sel, path, tol = study.selection, study.json_file, study.tolerance
-    ref_unc = {q: reference_uncertainty(study.reference)[q] for q in study.reference}
-    chosen = sel.get("chosen")
-    if chosen is None:
+    reference = {q: r.to_json() for q, r in study.reference.items()}  # as the selection's functions take it
+    ref_unc = reference_uncertainty(reference)
+    if sel.chosen is None:
         run = scene_solid_run(scene)
-        errors = _scene_errors(study.runs, study.reference, run["params"])
+        errors = _scene_errors(study.run_documents(), reference, run["params"])
         pm = PillarModel(
             "solid",
             run["label"],
@@ -292,14 +296,15 @@ def from_study(scene: Scene, study) -> Choice:
             tol,
             errors,
             f"the convergence study found no model that meets {tol:g} on the band "
-            f"({sel.get('reason', '')}); the stages use the scene's own [mesh]",
+            f"({sel.reason}); the stages use the scene's own [mesh]",
             path,
         )
         return Choice(pm, pm)
-    kind = chosen["model"]
+    chosen = sel.chosen.to_json()  # the brief, as the chain's models of a run read it
+    kind = sel.chosen.model
     why = (
         f"the model the convergence study chose for the scene's band (up to "
-        f"{study.band['omega_max']:.1f} rad/s) at tolerance {tol:g}: {sel.get('reason', '')}"
+        f"{study.band.omega_max:.1f} rad/s) at tolerance {tol:g}: {sel.reason}"
     )
     if kind == "solid":
         pm = _model(chosen, "converge", True, tol, _errors(chosen, ref_unc), why, path)

@@ -14,6 +14,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ..converge.result import ConvergenceStudy
     from ..scene import Scene
 
 from pathlib import Path
@@ -57,50 +58,49 @@ def add_modal_arguments(p) -> None:
     )
 
 
-def _summary(st) -> str:
+def _summary(st: ConvergenceStudy) -> str:
     """The study in words: counts, references, orders, band, front, choice and failures."""
     ref, sel, n = st.reference, st.selection, st.study
     lines = [
-        f"rotorpillar converge {st.scene_name}: {n['runs']} runs "
-        f"({n['cached']} cached, {n['computed']} computed, "
-        f"{n['failed']} failed) in {n['wall_time']:.0f} s",
+        f"rotorpillar converge {st.scene_name}: {n.runs} runs "
+        f"({n.cached} cached, {n.computed} computed, "
+        f"{n.failed} failed) in {n.wall_time or 0.0:.0f} s",
         "",
         "Reference values (Richardson on the finest three runs):",
     ]
     for q, r in ref.items():
-        p = "n/a" if r["order"] is None else f"{r['order']:.2f}"
+        p = "n/a" if r.order is None else f"{r.order:.2f}"
         lines.append(
-            f"  first {q:9s} {r['value']:10.4f} rad/s +- {r['error_estimate']:.1e} "
-            f"({st.families[r['family']]['label']}; observed order {p}, "
-            f"theory {r['order_theory']:g})"
+            f"  first {q:9s} {r.value:10.4f} rad/s +- {r.error_estimate:.1e} "
+            f"({st.families[r.family].label}; observed order {p}, "
+            f"theory {r.order_theory:g})"
         )
-        if "check" in r:
-            c = r["check"]
+        if r.check is not None:
+            c = r.check
             lines.append(
-                f"    check: from the three runs before, {c['value']:.4f} +- "
-                f"{c['error_estimate']:.1e}; the finer run gives {c['finer_value']:.4f} "
-                f"({'within' if c['within_estimate'] else 'OUTSIDE'} the estimate)"
+                f"    check: from the three runs before, {c.value:.4f} +- "
+                f"{c.error_estimate:.1e}; the finer run gives {c.finer_value:.4f} "
+                f"({'within' if c.within_estimate else 'OUTSIDE'} the estimate)"
             )
     lines += ["", "Observed orders per family (theory in brackets):"]
     for fam, qs in st.extrapolations.items():
         parts = [
-            f"{q} {('n/a' if e['order'] is None else format(e['order'], '.2f'))} "
-            f"[{e['order_theory']:g}] -> {e['value']:.4f}"
+            f"{q} {('n/a' if e.order is None else format(e.order, '.2f'))} [{e.order_theory:g}] -> {e.value:.4f}"
             for q, e in qs.items()
         ]
-        lines.append(f"  {st.families[fam]['label']:34s} " + "; ".join(parts))
-    b = sel["band"]
+        lines.append(f"  {st.families[fam].label:34s} " + "; ".join(parts))
+    b = sel.band
     lines += [
         "",
-        f"Band: up to {b['omega_max']:.1f} rad/s = {b['margin']:g} x "
-        f"max(drive free speed {b['free_speed']:.1f}, earthquake "
-        f"{b['earthquake_frequency']:.2f}) rad/s; needs: {', '.join(sel['needed'])}",
-        "Pareto front (band error vs wall time): " + ", ".join(st.pareto["wall_time"]["band"]),
+        f"Band: up to {b.omega_max:.1f} rad/s = {b.margin:g} x "
+        f"max(drive free speed {b.free_speed:.1f}, earthquake "
+        f"{b.earthquake_frequency:.2f}) rad/s; needs: {', '.join(sel.needed)}",
+        "Pareto front (band error vs wall time): " + ", ".join(st.pareto.wall_time.band),
     ]
     lines += [
         "",
-        f"Chosen at tolerance {sel['tolerance']:g}: " + (sel["chosen"]["label"] if sel["chosen"] else "none"),
-        "  " + sel["reason"],
+        f"Chosen at tolerance {sel.tolerance:g}: " + (sel.chosen.label if sel.chosen else "none"),
+        "  " + sel.reason,
     ]
     if st.failures:
         lines += ["", "Where methods fail:"] + [f"  - {f}" for f in st.failures]

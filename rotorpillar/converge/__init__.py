@@ -15,7 +15,7 @@ The rooms, bottom up:
 - :mod:`.richardson`  Richardson extrapolation, observed orders, Roache's error estimates
 - :mod:`.selection`   errors per run, Pareto fronts, the band, the choice of a model
 - :mod:`.failures`    where each method fails, in words
-- :mod:`.result`      :class:`ConvergenceStudy`, what convergence.json holds
+- :mod:`.result`      :class:`ConvergenceStudy`, what convergence.json holds, typed to its leaves
 - :mod:`.study`       the whole study (:func:`study`) and the 3D mesh for `modal --tolerance`
 
 ``python -m rotorpillar.converge CASE.json RESULT.json`` is the subprocess
@@ -47,7 +47,24 @@ from .ladder import (
     solid_mesh,
     study_cases,
 )
-from .result import ConvergenceStudy
+from .result import (
+    ConvergenceRun,
+    ConvergenceStudy,
+    ExcitationBand,
+    Extrapolation,
+    FamilyExtrapolation,
+    FamilyInfo,
+    Fronts,
+    Mode,
+    ModelSelection,
+    OvallingAlias,
+    ParetoFronts,
+    ReferenceValue,
+    RejectedRun,
+    RichardsonCheck,
+    RunBrief,
+    StudyCounts,
+)
 from .richardson import GCI_SAFETY, family_extrapolations, family_series, reference_values, richardson
 from .runner import CACHE_VERSION, UNAVAILABLE_EXIT, ModelUnavailable, case_key, run_point, run_study, worker
 from .selection import (
@@ -114,6 +131,21 @@ __all__ = [
     "drop_aliases",
     # result and study
     "ConvergenceStudy",
+    "ConvergenceRun",
+    "ExcitationBand",
+    "Extrapolation",
+    "FamilyExtrapolation",
+    "FamilyInfo",
+    "Fronts",
+    "Mode",
+    "ModelSelection",
+    "OvallingAlias",
+    "ParetoFronts",
+    "ReferenceValue",
+    "RejectedRun",
+    "RichardsonCheck",
+    "RunBrief",
+    "StudyCounts",
     "analyse",
     "study",
     "model_for_modal",

@@ -2,74 +2,352 @@
 
 :class:`ConvergenceStudy` is the study the command writes and the report
 reads; ``to_json()`` is exactly the document on disk and ``from_json`` its
-inverse.  The records inside (each run, each reference value, the
-selection) stay the plain dicts they are in the file.
+inverse (``rotorpillar.provenance.JsonRecord``).  Inside it, typed to the
+leaves: each run of the ladder (:class:`ConvergenceRun`), the Richardson
+extrapolations and references (:class:`Extrapolation`,
+:class:`ReferenceValue`), the band (:class:`ExcitationBand`), the choice
+(:class:`ModelSelection`, its runs as :class:`RunBrief`), the fronts
+(:class:`ParetoFronts`) and the counts (:class:`StudyCounts`).  Frequencies
+are circular (rad/s); errors are relative (-).
 """
 
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from pathlib import Path
+from typing import Any
+
+from ..provenance import JsonRecord
+
+_OMIT: dict[str, Any] = {"omit_if_none": True}
+_OK_ONLY: dict[str, Any] = {"omit_if_none": True, "ok_only": True}
+"""A run's result: in the document (None or not) exactly when the run is ok."""
+
+Param = int | float | str
+"""A value of a run's discretisation (elements, degree, cell type, grading...)."""
+
+
+@dataclass(frozen=True)
+class FamilyInfo(JsonRecord):
+    """A family of the ladder as the study records it (rotorpillar.converge.ladder.Family)."""
+
+    label: str
+    model: str
+    """"closed_form", "beam", "shell" or "solid" """
+    order_theory: float | None
+    """theoretical order p of the frequency error ~ h**p (None: not refined)"""
+    quantities: tuple[str, ...]
+    """the frequencies the model can have at all (bending, ovalling)"""
+    sweep: bool
+    """refined around the circumference only"""
+
+
+@dataclass(frozen=True)
+class Mode(JsonRecord):
+    """One mode of a run's solve."""
+
+    omega: float
+    """circular frequency (rad/s)"""
+    kind: str
+    """the mode's name (bending_x, ovalling, ...)"""
+    n: int | None
+    """circumferential wave number (None: not a shell mode)"""
+
+
+@dataclass(frozen=True)
+class OvallingAlias(JsonRecord):
+    """An "ovalling" mode with more waves than the nodes around carry: an alias."""
+
+    omega: float
+    """its frequency (rad/s)"""
+    n: int
+    """the wave number it was read with (-)"""
+
+
+@dataclass(frozen=True)
+class ConvergenceRun(JsonRecord):
+    """One run of the ladder: its case, its frequencies, cost and errors against the reference.
+
+    A failed or unavailable run has no result (``bending`` ... ``peak_memory`` absent) but
+    ``error``; old cached runs may lack the details added since (``cells``, ``modes_asked``...).
+    """
+
+    key: str
+    """the run cache's key (a hash of what the result depends on)"""
+    family: str
+    model: str
+    label: str
+    level: int
+    """the rung of the family (elements around, or along, or beam elements)"""
+    params: dict[str, Param]
+    """the discretisation (elements_around, elements_along, degree, cell_type...; beams: theory, elements)"""
+    status: str
+    """"ok", "failed" or "unavailable" """
+    bending: float | None = field(default=None, metadata=_OK_ONLY)
+    """first bending frequency (rad/s; None: no bending mode resolved)"""
+    ovalling: float | None = field(default=None, metadata=_OK_ONLY)
+    """first ovalling (n = 2) frequency (rad/s; None: none resolved)"""
+    ovalling_n: int | None = field(default=None, metadata=_OK_ONLY)
+    """the ovalling mode's wave number (-)"""
+    dofs: int | None = field(default=None, metadata=_OMIT)
+    """degrees of freedom of the bare tube's model (-)"""
+    cells: int | None = field(default=None, metadata=_OMIT)
+    """cells of the finite-element mesh (-)"""
+    modes: tuple[Mode, ...] | None = field(default=None, metadata=_OMIT)
+    """the modes the solve found, lowest first"""
+    timings: dict[str, float] | None = field(default=None, metadata=_OMIT)
+    """the model's stages (mesh, assembly, solve, ...): wall time (s)"""
+    modes_asked: int | None = field(default=None, metadata=_OMIT)
+    """modes the eigen-solve was asked for (-)"""
+    first_run_with_compilation: float | None = field(default=None, metadata=_OMIT)
+    """wall time of the first run, which compiled forms (s)"""
+    wall_time: float | None = field(default=None, metadata=_OMIT)
+    """the model's whole time, warm (s)"""
+    peak_memory: float | None = field(default=None, metadata=_OMIT)
+    """peak memory of the run (bytes; how: ``memory_method``)"""
+    baseline_memory: float | None = field(default=None, metadata=_OMIT)
+    """resident memory of the worker's imports (bytes)"""
+    memory_method: str | None = field(default=None, metadata=_OMIT)
+    process_time: float | None = field(default=None, metadata=_OMIT)
+    """the run's time as the study waited for it, serving process included (s)"""
+    error: str | None = field(default=None, metadata=_OMIT)
+    """why the run failed or did not run"""
+    cached: bool = False
+    """loaded from the run cache (not computed by this study)"""
+    ovalling_alias: OvallingAlias | None = field(default=None, metadata=_OMIT)
+    """the aliased "ovalling" mode dropped (rotorpillar.converge.failures.drop_aliases)"""
+    bending_error: float | None = None
+    """(f - f_ref)/f_ref on the first bending frequency (-)"""
+    bending_model_error: float | None = None
+    """(L - f_ref)/f_ref, L the family's Richardson limit: what no refinement removes (-)"""
+    bending_discretisation_error: float | None = None
+    """(f - L)/f_ref (-)"""
+    bending_error_bound: float | None = None
+    """|model error| + |discretisation error| (-)"""
+    ovalling_error: float | None = None
+    """as ``bending_error``, on the first ovalling frequency (-)"""
+    ovalling_model_error: float | None = None
+    ovalling_discretisation_error: float | None = None
+    ovalling_error_bound: float | None = None
+
+    def to_json(self) -> dict:
+        doc = super().to_json()
+        if self.status == "ok":  # an ok run states its frequencies, None where not resolved
+            for f in fields(self):
+                if f.metadata.get("ok_only") and f.name not in doc:
+                    doc[f.name] = None
+        return doc
+
+
+@dataclass(frozen=True)
+class Extrapolation(JsonRecord):
+    """Richardson extrapolation of three runs at sizes h1 > h2 > h3
+    (rotorpillar.converge.richardson.richardson)."""
+
+    order: float | None
+    """observed order p (None: no monotone convergence, the theoretical one used)"""
+    order_theory: float | None
+    """the family's theoretical order (-)"""
+    monotone: bool
+    value: float
+    """the extrapolated frequency (rad/s)"""
+    error_estimate: float
+    """Roache's grid convergence index on ``value`` (rad/s)"""
+    h: tuple[float, ...]
+    """the runs' relative cell sizes, 1/level (-)"""
+    f: tuple[float, ...]
+    """the runs' frequencies (rad/s)"""
+
+
+@dataclass(frozen=True)
+class FamilyExtrapolation(Extrapolation):
+    """A family's extrapolation on its three finest runs."""
+
+    runs: tuple[str, ...]
+    """the runs' labels, coarse to fine"""
+
+
+@dataclass(frozen=True)
+class RichardsonCheck(Extrapolation):
+    """The extrapolation from the three runs before the finest, against the finest."""
+
+    finer_run: str
+    finer_value: float
+    """the finest run's frequency (rad/s)"""
+    difference: float
+    """finer_value - value (rad/s)"""
+    within_estimate: bool
+
+
+@dataclass(frozen=True)
+class ReferenceValue(FamilyExtrapolation):
+    """A quantity's reference: the extrapolation of the highest-fidelity family that has one."""
+
+    family: str
+    check: RichardsonCheck | None = field(default=None, metadata=_OMIT)
+    """absent when the family has fewer than four runs"""
+
+
+@dataclass(frozen=True)
+class ExcitationBand(JsonRecord):
+    """The frequencies the scene excites, and the band a model must resolve
+    (rotorpillar.reduced.band.excitation_band)."""
+
+    free_speed: float
+    """the drive's free speed (rad/s)"""
+    earthquake_frequency: float
+    """the ground motion's highest frequency, converge.earthquake_frequency (rad/s)"""
+    margin: float
+    """converge.margin (-)"""
+    omega_max: float
+    """the band's top: margin x the larger (rad/s)"""
+    driver: str
+    """which sets it: "drive free speed" or "earthquake" """
+
+
+@dataclass(frozen=True)
+class RunBrief(JsonRecord):
+    """A run as the choice names it: its case, cost, frequencies and errors."""
+
+    label: str
+    family: str
+    model: str
+    params: dict[str, Param]
+    dofs: int
+    """degrees of freedom (-)"""
+    wall_time: float
+    """(s)"""
+    peak_memory: float | None
+    """(bytes)"""
+    bending: float | None
+    """first bending frequency (rad/s)"""
+    ovalling: float | None
+    """first ovalling frequency (rad/s)"""
+    bending_error: float | None
+    """relative errors (-), as ConvergenceRun's"""
+    bending_model_error: float | None
+    bending_discretisation_error: float | None
+    bending_error_bound: float | None
+    ovalling_error: float | None
+    ovalling_model_error: float | None
+    ovalling_discretisation_error: float | None
+    ovalling_error_bound: float | None
+
+
+@dataclass(frozen=True)
+class RejectedRun(RunBrief):
+    """A run cheaper than the choice that does not meet the tolerance, and why."""
+
+    why: str
+
+
+@dataclass(frozen=True)
+class ModelSelection(JsonRecord):
+    """The choice: the cheapest run whose error bound meets the tolerance over the band."""
+
+    tolerance: float
+    """relative frequency tolerance (-)"""
+    band: ExcitationBand
+    needed: tuple[str, ...]
+    """the quantities whose reference lies inside the band"""
+    reference_uncertainty: dict[str, float]
+    """per needed quantity: the reference's own relative error estimate (-)"""
+    families: tuple[str, ...] | None
+    """the families the choice was restricted to (None: all)"""
+    candidates: int
+    """runs that meet the tolerance (-)"""
+    rule: str
+    chosen: RunBrief | None
+    """None: no run meets the tolerance (``reason`` says why)"""
+    rejected_cheaper: tuple[RejectedRun, ...]
+    """per family, its most accurate run cheaper than the choice"""
+    reason: str
+
+
+@dataclass(frozen=True)
+class Fronts(JsonRecord):
+    """Per error (each frequency's, and the band's), the labels of the runs on the front."""
+
+    bending: tuple[str, ...]
+    ovalling: tuple[str, ...]
+    band: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class ParetoFronts(JsonRecord):
+    """The Pareto fronts of error against each cost."""
+
+    dofs: Fronts
+    """against degrees of freedom"""
+    wall_time: Fronts
+    """against wall time (s)"""
+
+
+@dataclass(frozen=True)
+class StudyCounts(JsonRecord):
+    """How the study went: its runs and its time."""
+
+    runs: int
+    workers: int
+    cached: int
+    computed: int
+    failed: int
+    unavailable: int
+    compute_seconds: float
+    """the computed runs' time (s)"""
+    wall_time: float | None = field(default=None, metadata=_OMIT)
+    """the whole study's wall time (s)"""
+
 
 _KEYS = {"json_file": "json"}
 """Attributes whose key in the document differs from their name."""
 
 
 @dataclass(frozen=True)
-class ConvergenceStudy:
+class ConvergenceStudy(JsonRecord):
     """Every run of the ladder, the reference values, the fronts, the choice and the failures."""
 
     scene_name: str
-    scene: dict
+    scene: dict[str, Any]
     """the scene as ``Scene.to_dict()`` gives it"""
     tolerance: float
-    """relative frequency tolerance of the choice"""
+    """relative frequency tolerance of the choice (-)"""
     cache_dir: str
-    families: dict
-    """per family name: label, model, order_theory, quantities, sweep"""
-    runs: tuple
-    """one dict per run: key, family, model, label, level, params, status, the frequencies
-    (``bending``, ``ovalling``), dofs, wall_time, peak_memory, errors (``{q}_error``,
-    ``{q}_model_error``, ``{q}_discretisation_error``, ``{q}_error_bound``), cached..."""
-    reference: dict
-    """per quantity: Richardson on the finest runs of the best family (value, order,
-    order_theory, error_estimate, family, runs, check)"""
-    extrapolations: dict
+    families: dict[str, FamilyInfo]
+    """per family name"""
+    runs: tuple[ConvergenceRun, ...]
+    reference: dict[str, ReferenceValue]
+    """per quantity: Richardson on the finest runs of the best family"""
+    extrapolations: dict[str, dict[str, FamilyExtrapolation]]
     """per refined family, per quantity: Richardson on its three finest runs"""
-    band: dict
-    """the excitation band (free_speed, earthquake_frequency, margin, omega_max, driver)"""
-    selection: dict
-    """the choice: tolerance, band, needed, chosen (a run's brief or None), reason,
-    rejected_cheaper, rule..."""
-    pareto: dict
-    """per cost ("dofs", "wall_time"), per error ("bending", "ovalling", "band"): labels"""
-    failures: tuple
+    band: ExcitationBand
+    selection: ModelSelection
+    pareto: ParetoFronts
+    failures: tuple[str, ...]
     """where methods fail, one sentence each"""
-    study: dict
-    """counts (runs, cached, computed, failed, unavailable), compute_seconds, wall_time"""
-    charts: dict | None = None
+    study: StudyCounts
+    charts: dict[str, str] | None = field(default=None, metadata=_OMIT)
     """chart name -> path (absent when no charts were drawn)"""
-    versions: dict | None = None
-    machine: dict | None = None
-    timings: dict | None = None
-    json_file: str | None = None
+    versions: dict[str, str] | None = field(default=None, metadata=_OMIT)
+    machine: dict[str, Any] | None = field(default=None, metadata=_OMIT)
+    timings: dict[str, float] | None = field(default=None, metadata=_OMIT)
+    """the command's stages (s)"""
+    json_file: str | None = field(default=None, metadata=_OMIT)
     """where the study was written (key ``json``; never in the file itself)"""
 
     @property
-    def chosen(self) -> dict | None:
+    def chosen(self) -> RunBrief | None:
         """The chosen run's brief (label, family, params, dofs, errors...), or None."""
-        return self.selection.get("chosen")
+        return self.selection.chosen
+
+    def run_documents(self) -> list[dict]:
+        """The runs as the analysis functions (rotorpillar.converge.selection) take them."""
+        return [r.to_json() for r in self.runs]
 
     def to_json(self) -> dict:
         """The document as written to convergence.json (optional parts left out when None)."""
-        out = {}
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if value is None and f.default is None:
-                continue
-            out[_KEYS.get(f.name, f.name)] = list(value) if isinstance(value, tuple) else value
-        return out
+        return {_KEYS.get(k, k): v for k, v in super().to_json().items()}
 
     @classmethod
     def from_json(cls, doc: dict) -> ConvergenceStudy:
@@ -77,10 +355,8 @@ class ConvergenceStudy:
         unknown = set(doc) - set(names)
         if unknown:
             raise ValueError(f"convergence study: unknown keys {sorted(unknown)}")
-        kwargs = {names[k]: v for k, v in doc.items()}
-        kwargs["runs"] = tuple(kwargs.get("runs", ()))
-        kwargs["failures"] = tuple(kwargs.get("failures", ()))
-        return cls(**kwargs)
+        study: ConvergenceStudy = super().from_json({names[k]: v for k, v in doc.items()})
+        return study
 
     @classmethod
     def read(cls, path: str | Path) -> ConvergenceStudy:

@@ -25,7 +25,24 @@ from ..errors import InputError
 from ..provenance import Timings, with_provenance, write_result
 from .failures import drop_aliases, failures
 from .ladder import FAMILIES, QUANTITIES, study_cases
-from .result import ConvergenceStudy
+from .result import (
+    ConvergenceRun,
+    ConvergenceStudy,
+    ExcitationBand,
+    Extrapolation,
+    FamilyExtrapolation,
+    FamilyInfo,
+    Fronts,
+    Mode,
+    ModelSelection,
+    OvallingAlias,
+    ParetoFronts,
+    ReferenceValue,
+    RejectedRun,
+    RichardsonCheck,
+    RunBrief,
+    StudyCounts,
+)
 from .richardson import family_extrapolations, reference_values
 from .runner import run_study
 from .selection import (
@@ -39,8 +56,8 @@ from .selection import (
     select_model,
 )
 
-Charts = Callable[[dict, Path], dict]
-"""Draws the study's charts into a directory: (study document, out_dir) -> name: path."""
+Charts = Callable[[ConvergenceStudy, Path], dict]
+"""Draws the study's charts into a directory: (the study, out_dir) -> name: path."""
 
 
 def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
@@ -53,15 +70,9 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
     selection = select_model(records, reference, band, tolerance)
     needed, ref_unc = selection["needed"], reference_uncertainty(reference)
     ok = [r for r in records if r.get("status") == "ok"]
-    candidates = ok
-    fronts: dict = {}
-    for cost in ("dofs", "wall_time"):
-        fronts[cost] = {}
-        for q in QUANTITIES:
-            errs = [r.get(f"{q}_error") for r in ok]
-            fronts[cost][q] = [ok[i]["label"] for i in pareto_front([r[cost] for r in ok], errs)]
-        errs = [band_error(r, needed, ref_unc) for r in candidates]
-        fronts[cost]["band"] = [candidates[i]["label"] for i in pareto_front([r[cost] for r in candidates], errs)]
+    fronts = ParetoFronts(
+        dofs=_fronts(ok, "dofs", needed, ref_unc), wall_time=_fronts(ok, "wall_time", needed, ref_unc)
+    )
     return {
         "reference": reference,
         "extrapolations": extrap,
@@ -70,6 +81,135 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
         "pareto": fronts,
         "failures": failures(records, extrap, reference, tolerance),
     }
+
+
+# --------------------------------------------------------------------------
+# The analysis's parts as the study's records (the analysis itself works on the runs' dicts)
+
+
+def study_run(r: dict) -> ConvergenceRun:
+    """A run of the ladder (the runner's dict, its errors attached) as the study records it."""
+    alias = r.get("ovalling_alias")
+    return ConvergenceRun(
+        key=r["key"],
+        family=r["family"],
+        model=r["model"],
+        label=r["label"],
+        level=r["level"],
+        params=dict(r["params"]),
+        status=r["status"],
+        bending=r.get("bending"),
+        ovalling=r.get("ovalling"),
+        ovalling_n=r.get("ovalling_n"),
+        dofs=r.get("dofs"),
+        cells=r.get("cells"),
+        modes=None if r.get("modes") is None else tuple(Mode(m["omega"], m["kind"], m["n"]) for m in r["modes"]),
+        timings=r.get("timings"),
+        modes_asked=r.get("modes_asked"),
+        first_run_with_compilation=r.get("first_run_with_compilation"),
+        wall_time=r.get("wall_time"),
+        peak_memory=r.get("peak_memory"),
+        baseline_memory=r.get("baseline_memory"),
+        memory_method=r.get("memory_method"),
+        process_time=r.get("process_time"),
+        error=r.get("error"),
+        cached=bool(r.get("cached")),
+        ovalling_alias=None if alias is None else OvallingAlias(omega=alias["omega"], n=alias["n"]),
+        **{k: r.get(k) for k in _ERROR_KEYS},
+    )
+
+
+_ERROR_KEYS = tuple(
+    f"{q}_{k}" for q in QUANTITIES for k in ("error", "model_error", "discretisation_error", "error_bound")
+)
+
+
+def _extrapolation(d: dict) -> Extrapolation:
+    return Extrapolation(
+        order=d["order"],
+        order_theory=d["order_theory"],
+        monotone=bool(d["monotone"]),
+        value=d["value"],
+        error_estimate=d["error_estimate"],
+        h=tuple(d["h"]),
+        f=tuple(d["f"]),
+    )
+
+
+def family_extrapolation(d: dict) -> FamilyExtrapolation:
+    """A family's Richardson extrapolation (rotorpillar.converge.richardson) as a record."""
+    return FamilyExtrapolation(**vars(_extrapolation(d)), runs=tuple(d["runs"]))
+
+
+def reference_value(d: dict) -> ReferenceValue:
+    """A quantity's reference (rotorpillar.converge.richardson.reference_values) as a record."""
+    chk = d.get("check")
+    check = None
+    if chk is not None:
+        check = RichardsonCheck(
+            **vars(_extrapolation(chk)),
+            finer_run=chk["finer_run"],
+            finer_value=chk["finer_value"],
+            difference=chk["difference"],
+            within_estimate=bool(chk["within_estimate"]),
+        )
+    return ReferenceValue(**vars(family_extrapolation(d)), family=d["family"], check=check)
+
+
+def excitation_band_record(b: dict) -> ExcitationBand:
+    """The band (rotorpillar.reduced.band.excitation_band) as a record."""
+    return ExcitationBand(
+        free_speed=b["free_speed"],
+        earthquake_frequency=b["earthquake_frequency"],
+        margin=b["margin"],
+        omega_max=b["omega_max"],
+        driver=b["driver"],
+    )
+
+
+def run_brief(b: dict) -> RunBrief:
+    """A run as the choice names it (rotorpillar.converge.selection's brief)."""
+    return RunBrief(
+        label=b["label"],
+        family=b["family"],
+        model=b["model"],
+        params=dict(b["params"]),
+        dofs=b["dofs"],
+        wall_time=b["wall_time"],
+        peak_memory=b["peak_memory"],
+        bending=b["bending"],
+        ovalling=b["ovalling"],
+        **{k: b[k] for k in _ERROR_KEYS},
+    )
+
+
+def model_selection(sel: dict) -> ModelSelection:
+    """The choice (rotorpillar.converge.selection.select_model) as a record."""
+    return ModelSelection(
+        tolerance=sel["tolerance"],
+        band=excitation_band_record(sel["band"]),
+        needed=tuple(sel["needed"]),
+        reference_uncertainty=dict(sel["reference_uncertainty"]),
+        families=None if sel["families"] is None else tuple(sel["families"]),
+        candidates=sel["candidates"],
+        rule=sel["rule"],
+        chosen=None if sel["chosen"] is None else run_brief(sel["chosen"]),
+        rejected_cheaper=tuple(RejectedRun(**vars(run_brief(r)), why=r["why"]) for r in sel["rejected_cheaper"]),
+        reason=sel["reason"],
+    )
+
+
+def _fronts(ok: list[dict], cost: str, needed: list[str], ref_unc: dict) -> Fronts:
+    """The runs on the Pareto front of each error against ``cost`` ("dofs" or "wall_time")."""
+
+    def front(errors: list) -> tuple[str, ...]:
+        return tuple(ok[i]["label"] for i in pareto_front([r[cost] for r in ok], errors))
+
+    return Fronts(
+        bending=front([r.get("bending_error") for r in ok]),
+        ovalling=front([r.get("ovalling_error") for r in ok]),
+        band=front([band_error(r, needed, ref_unc) for r in ok]),
+    )
 
 
 def check_tolerance(tolerance: float) -> None:
@@ -106,45 +246,44 @@ def study(
         records = run_study(study_cases(scene), scene, cache_dir, progress=show_progress, log=log, workers=workers)
     with timings("analysis"):
         analysis = analyse(records, scene, tol)
+    counts = StudyCounts(
+        runs=len(records),
+        workers=workers,
+        cached=sum(bool(r.get("cached")) for r in records),
+        computed=sum(not r.get("cached") for r in records),
+        failed=sum(r.get("status") == "failed" for r in records),
+        unavailable=sum(r.get("status") == "unavailable" for r in records),
+        compute_seconds=sum(
+            r.get("process_time", r.get("wall_time", 0.0)) or 0.0 for r in records if not r.get("cached")
+        ),
+    )
     result = ConvergenceStudy(
         scene_name=scene.name,
         scene=scene.to_dict(),
         tolerance=tol,
         cache_dir=str(cache_dir),
         families={
-            k: {
-                "label": f.label,
-                "model": f.model,
-                "order_theory": f.order,
-                "quantities": list(f.quantities),
-                "sweep": f.sweep,
-            }
+            k: FamilyInfo(
+                label=f.label, model=f.model, order_theory=f.order, quantities=tuple(f.quantities), sweep=f.sweep
+            )
             for k, f in FAMILIES.items()
         },
-        runs=tuple(records),
-        reference=analysis["reference"],
-        extrapolations=analysis["extrapolations"],
-        band=analysis["band"],
-        selection=analysis["selection"],
+        runs=tuple(study_run(r) for r in records),
+        reference={q: reference_value(v) for q, v in analysis["reference"].items()},
+        extrapolations={
+            name: {q: family_extrapolation(v) for q, v in qs.items()} for name, qs in analysis["extrapolations"].items()
+        },
+        band=excitation_band_record(analysis["band"]),
+        selection=model_selection(analysis["selection"]),
         pareto=analysis["pareto"],
         failures=tuple(analysis["failures"]),
-        study={
-            "runs": len(records),
-            "workers": workers,
-            "cached": sum(bool(r.get("cached")) for r in records),
-            "computed": sum(not r.get("cached") for r in records),
-            "failed": sum(r.get("status") == "failed" for r in records),
-            "unavailable": sum(r.get("status") == "unavailable" for r in records),
-            "compute_seconds": sum(
-                r.get("process_time", r.get("wall_time", 0.0)) or 0.0 for r in records if not r.get("cached")
-            ),
-        },
+        study=counts,
     )
     if charts is not None:
         with timings("charts"):
-            drawn = charts(result.to_json(), out_dir)
+            drawn = charts(result, out_dir)
         result = dataclasses.replace(result, charts={k: str(v) for k, v in drawn.items()})
-    result = dataclasses.replace(result, study={**result.study, "wall_time": time.perf_counter() - start})
+    result = dataclasses.replace(result, study=dataclasses.replace(counts, wall_time=time.perf_counter() - start))
     doc = with_provenance(result.to_json(), timings=dict(timings))
     path = write_result(Path(out_dir) / "convergence.json", doc)
     return dataclasses.replace(
@@ -213,7 +352,13 @@ def model_for_modal(
             log=log,
             show_progress=show_progress,
         )
-        runs, reference, band, overall, json_file = (st.runs, st.reference, st.band, st.chosen, st.json_file)
+        runs, reference, band, json_file = (
+            st.run_documents(),
+            {q: r.to_json() for q, r in st.reference.items()},
+            st.band.to_json(),
+            st.json_file,
+        )
+        overall = None if st.chosen is None else st.chosen.to_json()
     # the 3D families that resolve every frequency the study measures: modal shows the
     # shell modes too (not the bending-only family)
     solid = [k for k, f in FAMILIES.items() if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]

@@ -16,9 +16,12 @@ PNG write come from :mod:`.style`.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .style import COLOURS, figure, save
+
+if TYPE_CHECKING:
+    from ..converge.result import ConvergenceRun, ConvergenceStudy, RunBrief
 
 #: Colours of the model families (one hue per kind of model, a lighter one
 #: for its variant); markers and line styles tell the variants apart.
@@ -56,69 +59,59 @@ PANELS = (
 FLOOR = 1e-9
 
 
-def _error(run: dict, q: str, needed, ref_unc=None) -> float | None:
+def _error(run: ConvergenceRun | RunBrief, q: str, needed, ref_unc=None) -> float | None:
     """|measured error| of quantity q, or for the band what the choice uses: the
     largest error bound plus the reference's uncertainty over the needed ones."""
     if q != "band":
-        e = run.get(f"{q}_error")
+        e = getattr(run, f"{q}_error")
         return None if e is None else abs(e)
-    errs = [run.get(f"{k}_error_bound") for k in needed]
+    errs = [getattr(run, f"{k}_error_bound") for k in needed]
     if any(e is None for e in errs):
         return None
     ref_unc = ref_unc or {}
     return max((e + ref_unc.get(k, 0.0) for k, e in zip(needed, errs)), default=0.0)
 
 
-def _missing_row(study: dict) -> float:
+def _missing_row(study: ConvergenceStudy) -> float:
     """Height of the "no such mode" strip, above every error of every panel."""
     import numpy as np
 
-    needed = study["selection"]["needed"]
-    unc = study["selection"]["reference_uncertainty"]
-    ys = [
-        _error(r, q, needed, unc)
-        for r in study["runs"]
-        if r.get("status") == "ok"
-        for q in ("bending", "ovalling", "band")
-    ]
-    top = max([y for y in ys if y is not None] + [study["selection"]["tolerance"] * 10])
+    needed = study.selection.needed
+    unc = study.selection.reference_uncertainty
+    ys = [_error(r, q, needed, unc) for r in study.runs if r.status == "ok" for q in ("bending", "ovalling", "band")]
+    top = max([y for y in ys if y is not None] + [study.selection.tolerance * 10])
     return 3 * 10 ** np.ceil(np.log10(top))
 
 
-def _bottom_row(study: dict) -> float:
+def _bottom_row(study: ConvergenceStudy) -> float:
     """Bottom of the error axis: a decade under the smallest error or uncertainty."""
     import numpy as np
 
-    needed = study["selection"]["needed"]
-    unc = study["selection"]["reference_uncertainty"]
-    found = [
-        _error(r, q, needed, unc)
-        for r in study["runs"]
-        if r.get("status") == "ok"
-        for q in ("bending", "ovalling", "band")
-    ]
+    needed = study.selection.needed
+    unc = study.selection.reference_uncertainty
+    found = [_error(r, q, needed, unc) for r in study.runs if r.status == "ok" for q in ("bending", "ovalling", "band")]
     ys = [y for y in found if y is not None and y > 0] + list(unc.values())
     lo = min([y for y in ys if y > 0] or [1e-6])
     return max(FLOOR, 10 ** (np.floor(np.log10(lo)) - 1))
 
 
-def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str, families: dict[str, str]) -> None:
-    runs = [r for r in study["runs"] if r.get("status") == "ok"]
-    sel = study["selection"]
-    needed = sel["needed"]
-    unc = sel["reference_uncertainty"]
+def _panel(ax: Any, study: ConvergenceStudy, cost: str, q: str, title: str, families: dict[str, str]) -> None:
+    runs = [r for r in study.runs if r.status == "ok"]
+    sel = study.selection
+    needed = sel.needed
+    unc = sel.reference_uncertainty
 
     def err_of(run, q, needed):
         return _error(run, q, needed, unc)
 
-    tol = sel["tolerance"]
+    tol = sel.tolerance
     missing_y = _missing_row(study)
     no_mode = []
     for fam, style in STYLE.items():
-        rows = sorted((r for r in runs if r["family"] == fam), key=lambda r: r[cost])
+        rows = sorted((r for r in runs if r.family == fam), key=lambda r: getattr(r, cost))
         if not rows:
             continue
-        pts = [(r[cost], err_of(r, q, needed)) for r in rows]
+        pts = [(getattr(r, cost), err_of(r, q, needed)) for r in rows]
         have = [(c, max(e, FLOOR)) for c, e in pts if e is not None]
         miss = [c for c, e in pts if e is None]
         kw: dict[str, Any] = dict(style)
@@ -137,29 +130,31 @@ def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str, famili
                 label=None if have else families[fam],
             )
     # Pareto front
-    front = set(study["pareto"][cost][q])
-    fr = sorted(((r[cost], max(err_of(r, q, needed), FLOOR)) for r in runs if r["label"] in front), key=lambda t: t[0])
+    front = set(getattr(getattr(study.pareto, cost), q))
+    fr = sorted(
+        ((getattr(r, cost), max(err_of(r, q, needed), FLOOR)) for r in runs if r.label in front), key=lambda t: t[0]
+    )
     if fr:
         xs, es = zip(*fr)
         ax.step(xs, es, where="post", color="0.3", lw=2.5, alpha=0.35, zorder=0, label="Pareto front")
         ax.plot(xs, es, ls="none", marker="o", ms=13, mfc="none", mec="0.3", zorder=0)
     ax.axhline(tol, color=COLOURS["tolerance"], ls=":", lw=1.2, label=f"tolerance {tol:g}")
-    ref = study["reference"]
+    ref = study.reference
     shade = (
-        [ref[k]["error_estimate"] / abs(ref[k]["value"]) for k in needed if k in ref]
+        [ref[k].error_estimate / abs(ref[k].value) for k in needed if k in ref]
         if q == "band"
-        else [ref[q]["error_estimate"] / abs(ref[q]["value"])]
+        else [ref[q].error_estimate / abs(ref[q].value)]
         if q in ref
         else []
     )
     if shade:
         ax.axhspan(_bottom_row(study), max(max(shade), FLOOR), color="0.85", zorder=-1, label="reference uncertainty")
-    chosen = sel.get("chosen")
+    chosen = sel.chosen
     if chosen is not None:
         e = err_of(chosen, q, needed)
         if e is not None:
             ax.plot(
-                [chosen[cost]],
+                [getattr(chosen, cost)],
                 [max(e, FLOOR)],
                 marker="*",
                 ms=20,
@@ -193,12 +188,12 @@ def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str, famili
         )
     labels = []
     for fam in ("solid_hex_p1", "solid_tet_p1"):
-        rows = [r for r in runs if r["family"] == fam and err_of(r, q, needed) is not None]
+        rows = [r for r in runs if r.family == fam and err_of(r, q, needed) is not None]
         if rows:
-            r = max(rows, key=lambda r: r[cost])
+            r = max(rows, key=lambda r: getattr(r, cost))
             labels.append(
                 {
-                    "xy": (r[cost], err_of(r, q, needed)),
+                    "xy": (getattr(r, cost), err_of(r, q, needed)),
                     "text": "P1 locking",
                     "fontsize": 8,
                     "offset": (5, 5),
@@ -206,14 +201,14 @@ def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str, famili
                 }
             )
     for fam in ("shell_quad_around", "solid_hex_p2_around"):
-        rows = [r for r in runs if r["family"] == fam]
+        rows = [r for r in runs if r.family == fam]
         if rows:
-            r = min(rows, key=lambda r: r["level"])
+            r = min(rows, key=lambda r: r.level)
             e = err_of(r, q, needed)
             labels.append(
                 {
-                    "xy": (r[cost], missing_y if e is None else max(e, FLOOR)),
-                    "text": f"{r['params']['elements_around']} around",
+                    "xy": (getattr(r, cost), missing_y if e is None else max(e, FLOOR)),
+                    "text": f"{r.params['elements_around']} around",
                     "fontsize": 8,
                     "offset": (4, -12),
                     "color": STYLE[fam]["color"],
@@ -228,13 +223,13 @@ def _panel(ax: Any, study: dict[str, Any], cost: str, q: str, title: str, famili
     ax.grid(True, which="major", alpha=0.3)
 
 
-def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
+def convergence_chart(study: ConvergenceStudy, cost: str, path: str | Path) -> Path:
     """Write one chart (PNG) of |relative error| against ``cost`` ("dofs" or
     "wall_time"): the three panels and the legend in a 2 x 2 grid, at the
     width the report shows it (its text legible there)."""
     from .style import place_labels
 
-    families = {k: v["label"] for k, v in study["families"].items()}
+    families = {k: v.label for k, v in study.families.items()}
     fig, grid = figure(1060, 960, nrows=2, ncols=2)
     axes = [grid[0, 0], grid[0, 1], grid[1, 0]]
     for ax, (q, title) in zip(axes, PANELS):
@@ -247,9 +242,9 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
     spare = grid[1, 1]
     spare.set_axis_off()
     spare.legend(list(handles.values()), list(handles.keys()), loc="center", fontsize=8, frameon=False, ncol=1)
-    band = study["selection"]["band"]
+    band = study.selection.band
     fig.suptitle(
-        f"{study['scene_name']}: error against {COST_LABEL[cost]} (band to {band['omega_max']:.0f} rad/s)", fontsize=11
+        f"{study.scene_name}: error against {COST_LABEL[cost]} (band to {band.omega_max:.0f} rad/s)", fontsize=11
     )
     fig.canvas.draw()
     fig.set_layout_engine("none")
@@ -258,7 +253,7 @@ def convergence_chart(study: dict, cost: str, path: str | Path) -> Path:
     return save(fig, path)
 
 
-def convergence_charts(study: dict, out_dir: str | Path) -> dict[str, Path]:
+def convergence_charts(study: ConvergenceStudy, out_dir: str | Path) -> dict[str, Path]:
     """Both charts: ``convergence_dofs.png`` and ``convergence_time.png``."""
     out_dir = Path(out_dir)
     return {

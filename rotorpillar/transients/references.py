@@ -24,6 +24,7 @@ from ..scene.sections import Mesh
 from .participation import ParticipationTable, load_participation, read_document
 
 if TYPE_CHECKING:
+    from ..converge.result import ConvergenceStudy
     from ..scene import Scene
 
 FLOOR_CASES = ("runup",)
@@ -100,14 +101,14 @@ def read_study(scene: Scene, study_dir: Path | None):
         return None
 
 
-def rom_source_record(scene: Scene, study) -> dict | None:
+def rom_source_record(scene: Scene, study: ConvergenceStudy) -> dict | None:
     """The study's record of the ROM's mode source (a beam: computed if the ladder
     lacks its element count; 3D: the study's run on that mesh), or None."""
     from ..converge.ladder import FAMILIES, _case
 
     mm = scene.modal_model
     source = getattr(mm, "source", "beam")
-    runs = [r for r in study.runs if r.get("status") == "ok"]
+    runs = [r for r in study.run_documents() if r.get("status") == "ok"]
     if source == "beam":
         case = _case(f"beam_{mm.theory}", mm.elements, theory=mm.theory, elements=mm.elements)
         for r in runs:
@@ -126,7 +127,11 @@ def rom_source_record(scene: Scene, study) -> dict | None:
             "wall_time": 0.0,
             **compute_in_process(case, scene.pillar),
         }
-        attach_errors([rec], study.reference, study.extrapolations)
+        attach_errors(
+            [rec],
+            {q: v.to_json() for q, v in study.reference.items()},
+            {name: {q: e.to_json() for q, e in qs.items()} for name, qs in study.extrapolations.items()},
+        )
         return rec
     if source == "fem3d":
         want = dict(vars(scene.mesh))
@@ -135,7 +140,7 @@ def rom_source_record(scene: Scene, study) -> dict | None:
                 return r
         return None
     chosen = study.chosen  # modal_model.source = "auto": the study's choice feeds the ROM
-    return dict(chosen) if chosen is not None else None
+    return chosen.to_json() if chosen is not None else None
 
 
 def _mesh_of(scene: Scene, params: dict) -> Mesh:
@@ -203,16 +208,17 @@ def choose_reference(
         )
     part = load_participation(scene, case, study_dir, motion)
     quantities = part.quantities
-    runs = list(study.runs)
+    runs = study.run_documents()
+    reference = {q: v.to_json() for q, v in study.reference.items()}
     along = [r["dofs"] for r in runs if r["family"] == "solid_hex_p2_along" and r.get("status") == "ok"]
     floor = None
     if case in FLOOR_CASES:
         rec = rom_source_record(scene, study)
         if rec is not None:
-            floor = {"label": rec["label"], "band_error": run_band_error(rec, quantities, study.reference)}
+            floor = {"label": rec["label"], "band_error": run_band_error(rec, quantities, reference)}
     choice = select_reference(
         runs,
-        study.reference,
+        reference,
         quantities,
         study.tolerance,
         floor=floor,
@@ -268,8 +274,8 @@ def choose_reference(
         reason = (
             f"full_order.{' and full_order.'.join(overrides)} set: {_label(mesh)} instead of the study's {choice.label}"
         )
-        if same is not None and run_band_error(same, quantities, study.reference) is not None:
-            band_err = run_band_error(same, quantities, study.reference)
+        if same is not None and run_band_error(same, quantities, reference) is not None:
+            band_err = run_band_error(same, quantities, reference)
             errors = {
                 q: {
                     "value": same[q],

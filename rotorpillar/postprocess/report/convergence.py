@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from .. import html as h
-from ..readers import INPUTS, part
+from ..readers import INPUTS
 from .parts import figures_of, run_table, scene_differs
 from .state import Build
 
@@ -20,19 +20,19 @@ if TYPE_CHECKING:
 def chosen(study: ConvergenceStudy) -> tuple[str, str] | None:
     """(what, why) of the model choice in convergence.json's ``selection``, or None."""
     sel = study.selection
-    c = part(sel, "chosen")
+    c = sel.chosen
     if c is None:
         return None
-    band, needed = part(sel, "band"), part(sel, "needed") or []
-    bounds = ", ".join(f"{q} {h.num(part(c, f'{q}_error_bound'), 2)}" for q in needed)
+    band, needed = sel.band, sel.needed
+    bounds = ", ".join(f"{q} {h.num(getattr(c, f'{q}_error_bound'), 2)}" for q in needed)
     why = (
-        f"the cheapest run whose error bound meets the tolerance {h.num(part(sel, 'tolerance'))} "
+        f"the cheapest run whose error bound meets the tolerance {h.num(sel.tolerance)} "
         f"on every frequency the scene excites: the band up to "
-        f"{h.num(part(band, 'omega_max'), 4)} rad/s ({h.num(part(band, 'margin'))} x the "
-        f"{part(band, 'driver', 'highest excitation')}) holds "
+        f"{h.num(band.omega_max, 4)} rad/s ({h.num(band.margin)} x the "
+        f"{band.driver or 'highest excitation'}) holds "
         f"{', '.join(needed) or 'no mode'}; its bounds: {bounds}"
     )
-    return (f"{part(c, 'label')} ({part(c, 'dofs')} DOFs, {h.num(part(c, 'wall_time'), 3)} s)", why)
+    return (f"{c.label} ({c.dofs} DOFs, {h.num(c.wall_time, 3)} s)", why)
 
 
 def _choice(study: ConvergenceStudy) -> list[str]:
@@ -42,15 +42,14 @@ def _choice(study: ConvergenceStudy) -> list[str]:
         return [h.tag("p", "convergence.json names no chosen model (no run meets the tolerance).", class_="meta")]
     sel = study.selection
     parts = [h.tag("p", [h.tag("strong", "Chosen: "), what[0]]), h.tag("p", [h.tag("strong", "Why: "), what[1] + "."])]
-    if part(sel, "rule"):
-        parts.append(h.tag("p", f"Rule: {part(sel, 'rule')}.", class_="meta"))
-    rejected = part(sel, "rejected_cheaper") or []
-    if rejected:
+    if sel.rule:
+        parts.append(h.tag("p", f"Rule: {sel.rule}.", class_="meta"))
+    if sel.rejected_cheaper:
         parts.append(h.tag("h3", "Cheaper models that do not meet it"))
         parts.append(
             h.table(
                 ["model", "DOFs", "wall time (s)", "why not"],
-                [[part(r, "label"), part(r, "dofs"), h.num(part(r, "wall_time"), 3), part(r, "why")] for r in rejected],
+                [[r.label, r.dofs, h.num(r.wall_time, 3), r.why] for r in sel.rejected_cheaper],
             )
         )
     return parts
@@ -58,23 +57,20 @@ def _choice(study: ConvergenceStudy) -> list[str]:
 
 def _references(study: ConvergenceStudy) -> list[str]:
     """The Richardson reference of each frequency and its check on the finest run."""
-    ref = list((study.reference or {}).items())
-    if not ref:
+    if not study.reference:
         return []
-    rows = []
-    for q, r in ref:
-        chk = part(r, "check")
-        rows.append(
-            [
-                q,
-                h.num(part(r, "value"), 7),
-                h.num(part(r, "error_estimate"), 2),
-                h.num(part(r, "order"), 3),
-                h.num(part(r, "order_theory"), 2),
-                ", ".join(part(r, "runs") or []),
-                ("yes" if part(chk, "within_estimate") else "no") if chk else "-",
-            ]
-        )
+    rows = [
+        [
+            q,
+            h.num(r.value, 7),
+            h.num(r.error_estimate, 2),
+            h.num(r.order, 3),
+            h.num(r.order_theory, 2),
+            ", ".join(r.runs),
+            ("yes" if r.check.within_estimate else "no") if r.check is not None else "-",
+        ]
+        for q, r in study.reference.items()
+    ]
     return [
         h.tag("h3", "Reference frequencies (Richardson extrapolation)"),
         h.table(
@@ -92,29 +88,27 @@ def _references(study: ConvergenceStudy) -> list[str]:
     ]
 
 
-def cancellation(study: dict[str, Any]) -> str | None:
+def cancellation(study: ConvergenceStudy) -> str | None:
     """The sentence on a model whose measured error sits under the tolerance
     by cancellation (its model and mesh errors of opposite signs) and that
-    the choice rejects all the same, from the study's runs (convergence.json's
-    document); None if none."""
-    doc = study
-    sel = doc.get("selection") or {}
-    tol, need = sel.get("tolerance"), sel.get("needed") or []
-    if not isinstance(tol, (int, float)) or not need:
+    the choice rejects all the same, from the study's runs; None if none."""
+    sel = study.selection
+    tol, need = sel.tolerance, sel.needed
+    if not need:
         return None
-    for r in sorted(doc.get("runs") or [], key=lambda r: r.get("wall_time") or 0.0):
-        if r.get("status") != "ok":
+    for r in sorted(study.runs, key=lambda r: r.wall_time or 0.0):
+        if r.status != "ok":
             continue
-        e = [r.get(f"{q}_error") for q in need]
-        b = [r.get(f"{q}_error_bound") for q in need]
+        e = [getattr(r, f"{q}_error") for q in need]
+        b = [getattr(r, f"{q}_error_bound") for q in need]
         if any(x is None for x in e + b) or not all(abs(x) <= tol for x in e) or max(b) <= tol:
             continue
         q = need[b.index(max(b))]
-        m, d = r.get(f"{q}_model_error"), r.get(f"{q}_discretisation_error")
+        m, d = getattr(r, f"{q}_model_error"), getattr(r, f"{q}_discretisation_error")
         if m is None or d is None or m * d >= 0:
             continue
         return (
-            f"A model can sit under the tolerance line and still be rejected: {r['label']} "
+            f"A model can sit under the tolerance line and still be rejected: {r.label} "
             f"measures {'an' if q[0] in 'aeiou' else 'a'} {q} error of "
             f"{e[need.index(q)]:+.1e}, below {tol:g}, only because its "
             f"model error ({m:+.1e}, the shell theory's) and its mesh error ({d:+.1e}) have "
@@ -127,11 +121,11 @@ def cancellation(study: dict[str, Any]) -> str | None:
 
 def _convergence_parts(study: ConvergenceStudy, doc: dict[str, Any]) -> list[str]:
     parts = _choice(study)
-    said = cancellation(doc)
+    said = cancellation(study)
     if said:
         parts.append(h.tag("p", said))
     parts += _references(study)
-    failures = list(study.failures or ())
+    failures = list(study.failures)
     if failures:
         parts.append(h.tag("h3", "Where each method fails"))
         parts.append(h.tag("ul", [h.tag("li", f) for f in failures]))
