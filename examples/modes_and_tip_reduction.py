@@ -12,7 +12,7 @@ from rotorpillar.reduced.reduction import pillar_closed_forms
 scene = load_scene("paper", ["mesh.elements_around=16", "mesh.elements_along=8", "modal.n_modes=8"])
 bare = modal_analysis(scene, top=False)
 for row in bare.modes_table():
-    print(f"{row['index']:>2} {row['kind']:<10} omega = {row['omega']:8.3f} rad/s")
+    print(f"{row.index:>2} {row.kind:<10} omega = {row.omega:8.3f} rad/s")
 
 closed = pillar_closed_forms(scene.pillar)
 red = tip_reduction(bare, scene.pillar)

@@ -89,6 +89,22 @@ def write_modal_fixture(
     its square root, made-up values for the shell modes (raised by the top plate).
     Returns the modal.json document.
     """
+    from rotorpillar.fem3d.modal import ModeRow
+    from rotorpillar.fem3d.modal_summary import (
+        ClosedFormReduction,
+        ModalAxes,
+        ModalComparison,
+        ModalConfiguration,
+        ModalConfigurations,
+        ModalMesh,
+        ModalReduction,
+        ModalSolver,
+        ModalSummary,
+        ModalTop,
+        ShellModes,
+        ShellModesBelow,
+        StatedReduction,
+    )
     from rotorpillar.postprocess.offscreen import pyvista
 
     pv = pyvista()
@@ -111,7 +127,7 @@ def write_modal_fixture(
     # the top plate stiffens the section: its shell modes rise (13.7 -> 17.3 Hz on the
     # paper's tube), so the two sets' pictures differ as they do in a real run
     stiffening = {"modes": 1.0, "modes_with_top": 1.27}
-    doc = {"axes": {"tube": "xyz"[axial], "paper_x": "xyz"[x]}}
+    rows = {}
     for key, vtu, lowering in (
         ("modes", "modes_bare.vtu", 1.0),
         ("modes_with_top", "modes_top.vtu", math.sqrt(0.25 * m_col / (0.25 * m_col + top_mass))),
@@ -125,46 +141,86 @@ def write_modal_fixture(
                 if meta["kind"].startswith("bending")
                 else other[meta["kind"]] * stiffening[key]
             )
-            m = {k: v for k, v in meta.items() if k != "order"}
-            m.update(
-                omega=omega,
-                frequency_hz=omega / (2 * math.pi),
-                modal_mass=0.25 * m_col + (top_mass if key == "modes_with_top" else 0.0),
-            )
-            entries.append((omega, m, u))
+            entries.append((omega, meta, u))
         entries.sort(key=lambda e: e[0])
         for i, (_, _, u) in enumerate(entries):
             g.point_data[f"mode_{i:03d}"] = u
         with atomic_path(out / vtu) as tmp:
             g.save(str(tmp))
-        doc[key] = [m for _, m, _ in entries]
-    # every key of a ModalSummary (the report reads modal.json through it)
-    doc["top"] = {
-        "model": "ring_mass",
-        "mass": top_mass,
-        "carries": "top_mass",
-        "omega_bending": doc["modes_with_top"][0]["omega"],
-    }
-    doc["reduction"] = {"m_reduced": 0.25 * m_col, "tip_stiffness": 0.25 * m_col * w[0] ** 2, "omega_bending": w[0]}
-    # the synthetic shapes take their frequencies from the closed forms: no difference to state
-    doc["comparison"] = {
-        "omega_bending_over_euler_bernoulli": 0.0,
-        "omega_bending_over_timoshenko": 0.0,
-        "m_reduced_over_closed_form": 0.0,
-    }
-    doc["shell_modes_below_second_bending"] = {}
-    doc["mesh"] = {
-        "cells": int(grid.n_cells),
-        "dofs": int(3 * grid.n_points),
-        "dofs_with_top": int(3 * grid.n_points),  # a ring_mass top adds no dofs
-        "cell_type": "hexahedron",
-        "degree": 1,
-        "elements_around": around,
-        "elements_along": along,
-        "elements_through": 1,
-        "grading": 1.0,
-    }
-    doc["configurations"] = {}
+        mass = 0.25 * m_col + (top_mass if key == "modes_with_top" else 0.0)
+        rows[key] = tuple(
+            ModeRow(
+                index=i,
+                omega=omega,
+                frequency_hz=omega / (2 * math.pi),
+                kind=meta["kind"],
+                n_circumferential=meta["n_circumferential"],
+                n_axial=meta.get("order", 1) - 1,
+                harmonic_share=1.0,
+                normalisation=meta["normalisation"],
+                modal_mass=mass,
+                modal_stiffness=mass * omega**2,
+                tip_displacement=(1.0, 0.0) if meta["kind"] == "bending_x" else (0.0, 0.0),
+            )
+            for i, (omega, meta, _) in enumerate(entries)
+        )
+    # every key of a ModalSummary (the report reads modal.json through it); the synthetic
+    # shapes take their frequencies from the closed forms: no difference to state
+    solver = ModalSolver(
+        iterations=1, tolerance=1e-8, shift=0.0, max_error_estimate=0.0, computed=6, type="analytic", solves=0, ranks=1
+    )
+    config = ModalConfiguration(dofs=int(3 * grid.n_points), cells=int(grid.n_cells), solver=solver, timings={})
+    red = 0.25 * m_col
+
+    def shells(modes):
+        w2 = next((r.omega for r in modes if r.kind == "bending_x" and r.n_axial == 1), None)
+        below = tuple(r for r in modes if not r.kind.startswith("bending") and (w2 is None or r.omega < w2))
+        return ShellModes(omega_second_bending=w2, modes=below)
+
+    summary = ModalSummary(
+        axes=ModalAxes(tube_axis="xyz"[axial], x="xyz"[x], y="xyz"[3 - axial - x], z="-", origin="base centre"),
+        modes=rows["modes"],
+        modes_with_top=rows["modes_with_top"],
+        top=ModalTop(
+            model="ring_mass",
+            mass=top_mass,
+            carries="top_mass",
+            mass_centre=tuple(float(v) for v in direction * height),
+            omega_bending=rows["modes_with_top"][0].omega,
+            omega_bending_reduced_model=math.sqrt(red * w[0] ** 2 / (red + top_mass)),
+            note="synthetic",
+        ),
+        reduction=ModalReduction(
+            m_reduced=red,
+            tip_stiffness=red * w[0] ** 2,
+            omega_bending=w[0],
+            m_reduced_beam_line=red,
+            method="the closed forms",
+            closed_form=ClosedFormReduction(
+                m_reduced=red, tip_stiffness=red * w[0] ** 2, omega_col1=w[0], omega_col1_timoshenko=w[0]
+            ),
+            stated=StatedReduction(m_reduced=None, tip_stiffness=None),
+        ),
+        comparison=ModalComparison(
+            omega_bending_over_euler_bernoulli=0.0, omega_bending_over_timoshenko=0.0, m_reduced_over_closed_form=0.0
+        ),
+        shell_modes_below_second_bending=ShellModesBelow(
+            bare=shells(rows["modes"]), with_top=shells(rows["modes_with_top"])
+        ),
+        mesh=ModalMesh(
+            cells=int(grid.n_cells),
+            dofs=int(3 * grid.n_points),
+            dofs_with_top=int(3 * grid.n_points),  # a ring_mass top adds no dofs
+            cell_type="hexahedron",
+            degree=1,
+            elements_around=around,
+            elements_along=along,
+            elements_through=1,
+            grading=1.0,
+        ),
+        configurations=ModalConfigurations(bare=config, with_top=config),
+    )
+    doc = summary.to_json()
     doc["timings"] = {"mesh": 0.1, "solve": 0.2}
     doc["note"] = "synthetic fixture: analytic shapes, not a finite-element result"
     write_json(out / "modal.json", doc)

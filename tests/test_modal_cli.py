@@ -72,6 +72,30 @@ def test_modal_json_contract(small_run):
 
 
 @pytest.mark.slow  # the 3D modal command
+def test_modal_json_round_trips_through_its_record(small_run):
+    # modal.json as `modal` wrote it, read through ModalSummary and written back: the
+    # same document, key for key and in the same order (the record loses nothing and adds
+    # nothing); what the command writes beside the record (scene, files, versions) is left out
+    import dataclasses
+
+    from rotorpillar.chain import PillarModel
+    from rotorpillar.fem3d.modal import ModeRow
+    from rotorpillar.fem3d.modal_summary import ModalSummary, ModalTop, ShellModes
+
+    _, doc, _ = small_run
+    names = {f.name for f in dataclasses.fields(ModalSummary)}
+    mine = {k: v for k, v in doc.items() if k in names}
+    back = ModalSummary.from_json(doc)
+    assert json.dumps(back.to_json()) == json.dumps(mine)
+    # typed to the leaves: rows, sections and the chain's pillar model are records
+    assert all(isinstance(r, ModeRow) for r in back.modes + back.modes_with_top)
+    assert isinstance(back.top, ModalTop) and isinstance(back.pillar_model, PillarModel)
+    assert isinstance(back.shell_modes_below_second_bending.bare, ShellModes)
+    assert back.reduction.omega_bending == back.modes[0].omega
+    assert back.configurations.bare.solver.ranks == 1
+
+
+@pytest.mark.slow  # the 3D modal command
 def test_mode_shape_files(small_run):
     meshio = pytest.importorskip("meshio")
     out, doc, _ = small_run

@@ -254,3 +254,30 @@ def test_fem3d_run_round_trips_its_file(tmp_path):
     ]
     assert isinstance(run.full_order, Fem3dPlan) and run.full_order.mesh.elements_around == 8
     assert run.full_order.reference.case == "earthquake"
+
+
+def test_simulate_files_round_trip_through_the_run_record(tmp_path):
+    # simulate_<case>.json (the scene's run, which the report reads) and the model's own
+    # simulate_<case>_<model>.json are ReducedRun's JSON plus the writer's keys: read through
+    # the record and written back, each gives its fields back, key order included
+    from rotorpillar.transients.run_records import ReducedRun
+
+    p = cli(
+        "simulate",
+        "paper",
+        "--case",
+        "earthquake",
+        "--model",
+        "paper",
+        "--set",
+        "simulate.earthquake_duration=12",
+        "--out",
+        tmp_path,
+    )
+    assert p.returncode == 0, p.stderr
+    for name in ("simulate_earthquake.json", "simulate_earthquake_paper.json"):
+        doc = json.loads((tmp_path / name).read_text())
+        fields = {k: v for k, v in _fields(doc).items() if k not in WRITER}
+        run = ReducedRun.from_json(fields)
+        assert json.dumps(run.to_json()) == json.dumps(fields), name
+        assert run.case == "earthquake" and run.model == "paper"

@@ -48,4 +48,6 @@ def test_modal_summary_round_trips(tmp_path):
     # the typed sections come back as records, their leaves as the scene set them
     assert isinstance(back.mesh, ModalMesh) and isinstance(back.comparison, ModalComparison)
     assert (back.mesh.elements_around, back.mesh.elements_along) == (8, 4)
+    assert back.modes == summary.modes and back.reduction == summary.reduction
+    assert back.configurations.with_top.dofs == summary.mesh.dofs_with_top
     assert doc["reduction"]["m_reduced"] > 0

@@ -27,6 +27,7 @@ from conftest import cli
 from convergence_doc import convergence_doc
 
 from rotorpillar.converge.selection import select_reference
+from rotorpillar.fem3d.modal import ModeRow
 from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.participation import PARTICIPATION_FLOOR, participation_table
 from rotorpillar.transients.references import choose_reference, read_study
@@ -37,16 +38,22 @@ TOTAL, COMPLIANCE = 22_000.0, (1e-7, 1e-9)
 
 
 def _row(i, kind, omega, m, L=(0.0, 0.0, 0.0), plate=(0.0, 0.0, 0.0), n=None, m_ax=0):
-    return {
-        "index": i,
-        "kind": kind,
-        "omega": omega,
-        "modal_mass": m,
-        "participation": list(L),
-        "top_plate_motion": list(plate) + [0.0] * 3,
-        "n_circumferential": n,
-        "n_axial": m_ax,
-    }
+    # what the bookkeeping reads: omega, modal mass, L, the plate's motion, the names
+    return ModeRow(
+        index=i,
+        omega=omega,
+        frequency_hz=omega / (2 * math.pi),
+        kind=kind,
+        n_circumferential=n,
+        n_axial=m_ax,
+        harmonic_share=1.0,
+        normalisation="unit_tip" if kind.startswith("bending") else "unit_max",
+        modal_mass=m,
+        modal_stiffness=m * omega**2,
+        tip_displacement=(0.0, 0.0),
+        top_plate_motion=tuple(plate) + (0.0,) * 3,
+        participation=tuple(L),
+    )
 
 
 ROWS = [
@@ -148,7 +155,8 @@ def _study_on_disk(tmp_path, scene, runs=RUNS):
         selection={"reason": "none meets it"},
     )
     (tmp_path / "convergence.json").write_text(json.dumps(doc))
-    (tmp_path / "modal.json").write_text(json.dumps({"scene": scene.to_dict(), "modes_with_top": ROWS}))
+    modes = [r.to_json() for r in ROWS]
+    (tmp_path / "modal.json").write_text(json.dumps({"scene": scene.to_dict(), "modes_with_top": modes}))
 
 
 def test_choose_reference_from_the_study_on_disk(tmp_path):

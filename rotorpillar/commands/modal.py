@@ -172,7 +172,8 @@ def modal_command(scene: Scene, args, timings):
         timings[key] = bare.timings.get(key, 0.0) + loaded.timings.get(key, 0.0)
         timings[f"bare.{key}"] = bare.timings.get(key, 0.0)
         timings[f"with_top.{key}"] = loaded.timings.get(key, 0.0)
-    doc = modal_summary(scene, bare, loaded, pillar_closed_forms(scene.pillar)).to_json()
+    found = modal_summary(scene, bare, loaded, pillar_closed_forms(scene.pillar))
+    doc = found.to_json()
     files = {}
     if _rank0():
         with timings("write_shapes"):
@@ -180,8 +181,8 @@ def modal_command(scene: Scene, args, timings):
             files["modes_bare"] = str(write_modes_vtu(d / SHAPE_FILES["bare"], bare))
             files["modes_top"] = str(write_modes_vtu(d / SHAPE_FILES["top"], loaded))
     doc["files"] = files
-    doc["pillar_model"] = choice.solid.to_json()
-    text = summary(doc, bare, loaded)
+    doc["pillar_model"] = choice.solid.to_json()  # after files, as modal.json has always had it
+    text = summary(found, bare, loaded)
     text = f"Pillar model: {choice.solid.describe()}\n  {choice.solid.note}\n\n" + text
     if selection is not None:
         doc["model_selection"] = selection

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import ComputationError
+from ..provenance import JsonRecord
 from ..scene import Scene
 from . import identify
 from .eigensolver import solve_gep_shift_invert
@@ -33,6 +34,49 @@ AXES = {
     "z": "the paper's Y (vertical, along the pillar)",
     "origin": "centre of the base section",
 }
+
+
+_OPTIONAL = {"omit_if_none": True}
+
+
+@dataclass(frozen=True)
+class ModeRow(JsonRecord):
+    """One mode of the tube as modal.json lists it (``modes``, ``modes_with_top``)."""
+
+    index: int
+    """its place in the ascending list (-)"""
+    omega: float
+    """angular frequency (rad/s)"""
+    frequency_hz: float
+    """frequency (Hz)"""
+    kind: str
+    """bending_x, bending_y, ovalling, torsion, axial, breathing or other"""
+    n_circumferential: int | None
+    """waves around the circumference (1 bending, 0 torsion/axial/breathing), or None (-)"""
+    n_axial: int | None
+    """sign changes of its profile along the height (0 = first of its family), or None (-)"""
+    harmonic_share: float
+    """share of its dominant circumferential harmonic (-)"""
+    normalisation: str
+    """"unit_tip" (bending: unit mean tip displacement) or "unit_max\""""
+    modal_mass: float
+    """phi^T M phi for the normalised shape (kg)"""
+    modal_stiffness: float
+    """phi^T K phi for the normalised shape (N/m)"""
+    tip_displacement: tuple[float, ...]
+    """mean (u_x, u_y) of the top section, normalised shape (m per unit modal coordinate)"""
+    tip_modal_mass: float | None = field(default=None, metadata=_OPTIONAL)
+    """bending only: the modal mass referred to the tip displacement (kg)"""
+    tip_stiffness: float | None = field(default=None, metadata=_OPTIONAL)
+    """bending only: the modal stiffness referred to the tip displacement (N/m)"""
+    pillar_modal_mass: float | None = field(default=None, metadata=_OPTIONAL)
+    """bending with the top mass only: the tip modal mass less the top's (kg)"""
+    top_plate_motion: tuple[float, ...] | None = field(default=None, metadata=_OPTIONAL)
+    """rigid top only: the plate's (U, Theta) per normalised mode (m, rad)"""
+    participation: tuple[float, ...] | None = field(default=None, metadata=_OPTIONAL)
+    """L_j = phi_j^T M r_d along x, y, z for the normalised shape (kg)"""
+    effective_mass: tuple[float, ...] | None = field(default=None, metadata=_OPTIONAL)
+    """L_j**2 / m_j along x, y, z (kg)"""
 
 
 @dataclass(frozen=True)
@@ -145,36 +189,34 @@ class ModalResult:
         i = self.index(kind, **kw)
         return None if i is None else float(self.omega[i])
 
-    def modes_table(self) -> list[dict]:
-        """One JSON-ready dict per mode."""
+    def modes_table(self) -> list[ModeRow]:
+        """One row per mode (modal.json's ``modes`` and ``modes_with_top``)."""
         out = []
         for i in range(len(self.omega)):
-            row = {
-                "index": i,
-                "omega": float(self.omega[i]),
-                "frequency_hz": float(self.frequency_hz[i]),
-                "kind": self.kind[i],
-                "n_circumferential": self.n_circumferential[i],
-                "n_axial": self.n_axial[i],
-                "harmonic_share": float(self.share[i]),
-                "normalisation": self.normalisation[i],
-                "modal_mass": float(self.modal_mass[i]),
-                "modal_stiffness": float(self.modal_stiffness[i]),
-                "tip_displacement": [float(t) for t in self.tip[i]],
-            }
-            if self.kind[i] in ("bending_x", "bending_y"):
-                # Unit tip: the modal mass is the mass referred to the tip displacement.
-                row["tip_modal_mass"] = float(self.modal_mass[i])
-                row["tip_stiffness"] = float(self.modal_stiffness[i])
-                if self.top:
-                    row["pillar_modal_mass"] = float(self.modal_mass[i] - self.top_mass)
-            if self.rigid_top is not None:
-                row["top_plate_motion"] = [float(q) for q in self.rigid_top[i]]
-            if self.participation is not None:
-                L = self.participation[i]
-                row["participation"] = [float(x) for x in L]
-                row["effective_mass"] = [float(x * x / self.modal_mass[i]) for x in L]
-            out.append(row)
+            bending = self.kind[i] in ("bending_x", "bending_y")
+            L = None if self.participation is None else self.participation[i]
+            out.append(
+                ModeRow(
+                    index=i,
+                    omega=float(self.omega[i]),
+                    frequency_hz=float(self.frequency_hz[i]),
+                    kind=self.kind[i],
+                    n_circumferential=self.n_circumferential[i],
+                    n_axial=self.n_axial[i],
+                    harmonic_share=float(self.share[i]),
+                    normalisation=self.normalisation[i],
+                    modal_mass=float(self.modal_mass[i]),
+                    modal_stiffness=float(self.modal_stiffness[i]),
+                    tip_displacement=tuple(float(t) for t in self.tip[i]),
+                    # unit tip: the modal mass is the mass referred to the tip displacement
+                    tip_modal_mass=float(self.modal_mass[i]) if bending else None,
+                    tip_stiffness=float(self.modal_stiffness[i]) if bending else None,
+                    pillar_modal_mass=float(self.modal_mass[i] - self.top_mass) if bending and self.top else None,
+                    top_plate_motion=None if self.rigid_top is None else tuple(float(q) for q in self.rigid_top[i]),
+                    participation=None if L is None else tuple(float(x) for x in L),
+                    effective_mass=None if L is None else tuple(float(x * x / self.modal_mass[i]) for x in L),
+                )
+            )
         return out
 
 

@@ -9,7 +9,8 @@ Contracts (field names are the writers'; we read, never write, them):
   ``paper_comparison``, ``paper_model``, ``pillar_model``).
 - ``modal.json`` (`rotorpillar modal`): a
   :class:`~rotorpillar.fem3d.modal_summary.ModalSummary` (``modes`` and
-  ``modes_with_top`` lists, ``top``, ``reduction``, ``mesh``, ``axes``); mode
+  ``modes_with_top`` tuples of :class:`~rotorpillar.fem3d.modal.ModeRow`, ``top``,
+  ``reduction``, ``mesh``, ``axes``: records to the leaves); mode
   shapes in ``modes_bare.vtu`` and ``modes_top.vtu``, point arrays
   ``mode_000``, ``mode_001``, ... in the order of the lists
   (:mod:`rotorpillar.postprocess.geometry`).

@@ -35,6 +35,9 @@ import numpy as np
 from ..provenance import JsonRecord
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from ..fem3d.modal import ModeRow
     from ..scene import Scene
 
 PARTICIPATION_FLOOR = 1e-6
@@ -42,7 +45,7 @@ PARTICIPATION_FLOOR = 1e-6
 symmetry leaves the others at round-off, ~1e-20, and bending at 0.2 - 0.6."""
 LOADS = {"earthquake": ("base_x", "plate_x"), "runup": ("plate_x", "plate_z")}
 """The loads of each case: the ground's acceleration along x, the shaft force on the plate."""
-QUANTITY_OF = {("bending_x", 0): "bending", ("ovalling", 0): "ovalling"}
+QUANTITY_OF: dict[tuple[str, int | None], str] = {("bending_x", 0): "bending", ("ovalling", 0): "ovalling"}
 """(kind, n_axial) of a loaded mode -> the study's frequency that bounds its error
 (the study measures the first bending and the first n = 2 ovalling of the bare tube)."""
 
@@ -98,7 +101,7 @@ class ParticipationTable(JsonRecord):
 
 
 def participation_table(
-    rows,
+    rows: Sequence[ModeRow],
     case: str,
     band_top: float,
     total_mass: float,
@@ -113,10 +116,10 @@ def participation_table(
     modal_mass, participation, top_plate_motion); ``compliance``: the plate's static
     compliance along x and z that the plate shares are parts of (m/N)."""
     loads = LOADS[case]
-    w = np.array([r["omega"] for r in rows], float)
-    m = np.array([r["modal_mass"] for r in rows], float)
-    plate = np.array([(r.get("top_plate_motion") or [0.0] * 6)[:3] for r in rows], float)
-    Lx = np.array([(r.get("participation") or [math.nan] * 3)[0] for r in rows], float)
+    w = np.array([r.omega for r in rows], float)
+    m = np.array([r.modal_mass for r in rows], float)
+    plate = np.array([(r.top_plate_motion or (0.0,) * 6)[:3] for r in rows], float)
+    Lx = np.array([(r.participation or (math.nan,) * 3)[0] for r in rows], float)
     stiff = np.maximum(m * w**2, 1e-300)
     shares = {
         "base_x": Lx**2 / m / total_mass,
@@ -134,10 +137,10 @@ def participation_table(
         takes = max(s.values()) >= floor
         modes.append(
             ModeParticipation(
-                index=int(r["index"]),
-                kind=r["kind"],
-                n_circumferential=r.get("n_circumferential"),
-                n_axial=r.get("n_axial"),
+                index=int(r.index),
+                kind=r.kind,
+                n_circumferential=r.n_circumferential,
+                n_axial=r.n_axial,
                 omega=float(w[i]),
                 modal_mass=float(m[i]),
                 effective_mass_x=None if not math.isfinite(Lx[i]) else float(Lx[i] ** 2 / m[i]),
@@ -150,9 +153,9 @@ def participation_table(
             (part if takes else left).append(i)
     quantities, uncovered = [], []
     for i in part:
-        q = QUANTITY_OF.get((rows[i]["kind"], rows[i].get("n_axial")))
+        q = QUANTITY_OF.get((rows[i].kind, rows[i].n_axial))
         if q is None:
-            uncovered.append(f"{rows[i]['kind']} at {w[i]:.2f} rad/s")
+            uncovered.append(f"{rows[i].kind} at {w[i]:.2f} rad/s")
         elif q not in quantities:
             quantities.append(q)
     return ParticipationTable(
@@ -204,7 +207,7 @@ def _participation_statement(case, modes, part, left, band_top, floor, uncovered
     return text + "."
 
 
-def loaded_mode_rows(scene: Scene, study_dir: Path | None) -> tuple[list[dict], str, dict]:
+def loaded_mode_rows(scene: Scene, study_dir: Path | None) -> tuple[list[ModeRow], str, dict]:
     """The loaded tube's mode table: from modal.json when it is this scene's modes
     and carries the participation, else computed on the scene's [mesh]."""
     doc = read_document(Path(study_dir) / "modal.json") if study_dir is not None else None
@@ -213,8 +216,10 @@ def loaded_mode_rows(scene: Scene, study_dir: Path | None) -> tuple[list[dict], 
         doc.get("scene", {}).get(k) == mine[k]
         for k in ("pillar", "gondola", "mesh", "modal", "converge", "drive", "load")
     ):
-        rows = doc.get("modes_with_top") or []
-        if rows and all("participation" in r for r in rows):
+        from ..fem3d.modal import ModeRow
+
+        rows = [ModeRow.from_json(r) for r in doc.get("modes_with_top") or []]
+        if rows and all(r.participation is not None for r in rows):
             return rows, "modal.json", dict(mine["mesh"])
     from ..fem3d import modal_analysis
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ..fem3d.modal_summary import ModalSummary
     from ..scene import Scene
 
 import time
@@ -56,7 +57,7 @@ def rom_modes(model) -> list[ModeEntry]:
     return out
 
 
-def fem3d_modes(modal_doc, tip_damping: float) -> list[ModeEntry]:
+def fem3d_modes(modal_doc: ModalSummary, tip_damping: float) -> list[ModeEntry]:
     """The loaded tube's 3D modes (modal.json's modes_with_top) with their damping.
 
     bending_x: zeta = b1 / (2 m_j omega_j), m_j the mass referred to the tip
@@ -65,31 +66,31 @@ def fem3d_modes(modal_doc, tip_damping: float) -> list[ModeEntry]:
     """
     out: list = []
     for row in modal_doc.modes_with_top:
-        kind = row["kind"]
-        n = row.get("n_circumferential")
+        kind = row.kind
+        n = row.n_circumferential
         label = f"{kind} n={n}" if kind == "ovalling" and n is not None else kind
-        if out and out[-1].kind.startswith(label) and abs(out[-1].omega - row["omega"]) <= 1e-6 * row["omega"]:
+        if out and out[-1].kind.startswith(label) and abs(out[-1].omega - row.omega) <= 1e-6 * row.omega:
             out[-1] = ModeEntry(out[-1].omega, out[-1].damping_ratio, f"{label} (pair)", "fem3d", out[-1].note)
             continue
         if kind == "bending_x":
-            zeta = tip_damping / (2 * row["modal_mass"] * row["omega"])
+            zeta = tip_damping / (2 * row.modal_mass * row.omega)
             note = "b1 at the tip on the mode's tip-scaled mass (the rotor not on it)"
         else:
             zeta, note = 0.0, "undamped in the model: the tip dashpot does not move it"
-        out.append(ModeEntry(float(row["omega"]), float(zeta), label, "fem3d", note))
+        out.append(ModeEntry(float(row.omega), float(zeta), label, "fem3d", note))
     return out
 
 
-def _open_top_note(modal_doc, speeds) -> list[str]:
+def _open_top_note(modal_doc: ModalSummary, speeds) -> list[str]:
     """The bare tube's first ovalling mode against the running speeds: where the top
     does not hold the section round (modal.top_model = "ring_mass"), it is the one."""
-    rows = [r for r in modal_doc.modes if r["kind"] == "ovalling"]
+    rows = [r for r in modal_doc.modes if r.kind == "ovalling"]
     if not rows or not speeds:
         return []
-    w = float(rows[0]["omega"])
+    w = float(rows[0].omega)
     near = min(speeds, key=lambda s: abs(s - w))
     return [
-        f"the bare tube's first ovalling mode (n = {rows[0].get('n_circumferential')}) is at "
+        f"the bare tube's first ovalling mode (n = {rows[0].n_circumferential}) is at "
         f"{w:.4g} rad/s, {100 * abs(w - near) / near:.1f} % {'below' if w < near else 'above'} the "
         f"running speed {near:.4g} rad/s: the loaded tube's is higher only because its rigid top "
         "plate holds the top section round (modal.top_model); a top that does not would bring "

@@ -26,6 +26,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ..fem3d.modal_summary import ModalSummary
     from ..scene import Scene
 
 import json
@@ -213,16 +214,16 @@ def _governing(rows: list[Check]) -> list[Check]:
 _BARRED = {"tip_x_relative": "peak_tip_relative"}
 
 
-def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal) -> list[Headline]:
+def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal: ModalSummary | None) -> list[Headline]:
     out = []
     if modal is not None:
-        rows = [r for r in modal.modes_with_top if r["kind"] == "bending_x"]
+        rows = [r for r in modal.modes_with_top if r.kind == "bending_x"]
         if rows:
-            w = rows[0]["omega"]
+            w = rows[0].omega
             mesh = modal.mesh
             # its discretisation error: the study's bound on this mesh's bending frequency
-            pm = getattr(modal, "pillar_model", None) or {}
-            rel = (pm.get("errors") or {}).get("bending") if isinstance(pm, dict) else None
+            pm = modal.pillar_model
+            rel = None if pm is None else pm.errors.get("bending")
             err = None if rel is None else rel * w / (2 * math.pi)
             bar = (
                 f" ± {err:.2g} Hz (the convergence study's bound on this mesh)"

@@ -10,32 +10,33 @@ from typing import TYPE_CHECKING, Any
 
 from .. import html as h
 from ..directions import axes_legend, direction, mode_name, ordinal
-from ..readers import INPUTS, part, plain
+from ..readers import INPUTS
 from .parts import failure, figures_of, scene_differs
 from .state import Build
 
 if TYPE_CHECKING:
     from ...analysis.results import AnalysisResult
-    from ...fem3d.modal_summary import ModalSummary
+    from ...fem3d.modal import ModeRow
+    from ...fem3d.modal_summary import ModalSummary, ModalTop
     from ...scene import Scene
 
 
-def bending(modes: Sequence[Any], kind: str) -> list[Any]:
+def bending(modes: Sequence[ModeRow], kind: str) -> list[ModeRow]:
     """The modes of one kind ("bending_x", "bending_y") in their order (modal.json's rows)."""
-    return [m for m in modes if str(part(m, "kind")) == kind]
+    return [m for m in modes if m.kind == kind]
 
 
-def _mode_rows(modes: Sequence[Any]) -> list[list[Any]]:
+def _mode_rows(modes: Sequence[ModeRow]) -> list[list[Any]]:
     return [
         [
             i + 1,
-            mode_name(part(m, "kind"), part(m, "n_axial"), part(m, "n_circumferential")),
-            h.num(part(m, "n_circumferential")),
-            h.num(part(m, "n_axial")),
-            h.num(part(m, "frequency_hz")),
-            h.num(part(m, "omega")),
-            h.num(part(m, "modal_mass")),
-            part(m, "normalisation"),
+            mode_name(m.kind, m.n_axial, m.n_circumferential),
+            h.num(m.n_circumferential),
+            h.num(m.n_axial),
+            h.num(m.frequency_hz),
+            h.num(m.omega),
+            h.num(m.modal_mass),
+            m.normalisation,
         ]
         for i, m in enumerate(modes)
     ]
@@ -53,17 +54,18 @@ MODE_HEADERS = [
 ]
 
 
-def top_words(top: Any) -> tuple[str, str]:
+def top_words(top: ModalTop | None) -> tuple[str, str]:
     """(what the tube's top carries, why), from modal.json's ``top`` block (None: unknown).
 
-    >>> top_words({"carries": "gondola", "mass": 2300.0, "model": "rigid"})[0]
+    >>> from rotorpillar.fem3d.modal_summary import ModalTop
+    >>> top_words(ModalTop("rigid", 2300.0, "gondola", (0.0, 0.0, 20.0), None, 25.6, ""))[0]
     'the gondola (2300 kg) on a rigid top plate'
     """
     if top is None:
         return "its top mass", ""
-    carries = str(part(top, "carries", "") or "its top mass").replace("_", " ")
-    mass = part(top, "mass")
-    how = {"rigid": "on a rigid top plate", "ring_mass": "spread on the top face"}.get(str(part(top, "model", "")), "")
+    carries = (top.carries or "its top mass").replace("_", " ")
+    mass = top.mass
+    how = {"rigid": "on a rigid top plate", "ring_mass": "spread on the top face"}.get(str(top.model or ""), "")
     what = (
         f"the {carries}" + (f" ({mass:.4g} kg)" if isinstance(mass, (int, float)) else "") + (f" {how}" if how else "")
     )
@@ -127,14 +129,14 @@ def timoshenko_orders(scene: Scene, count: int) -> list[float | None]:
     return out
 
 
-def _closed_forms_against_3d(build: Build, a: AnalysisResult, modes: Sequence[Any]) -> list[str]:
+def _closed_forms_against_3d(build: Build, a: AnalysisResult, modes: Sequence[ModeRow]) -> list[str]:
     """The table of the bare tube's frequencies: Euler-Bernoulli, Timoshenko, 3D."""
     p = a.pillar
     bx, by = bending(modes, "bending_x"), bending(modes, "bending_y")
     timo = timoshenko_orders(build.scene, len(p.omega_euler_bernoulli))
     rows = []
     for k, w_eb in enumerate(p.omega_euler_bernoulli, start=1):
-        w3 = part(bx[k - 1], "omega") if k - 1 < len(bx) else None
+        w3 = bx[k - 1].omega if k - 1 < len(bx) else None
         t = timo[k - 1]
         rows.append(
             [
@@ -148,17 +150,17 @@ def _closed_forms_against_3d(build: Build, a: AnalysisResult, modes: Sequence[An
             ]
         )
     if by and bx:
-        w_y, w_x = part(by[0], "omega"), part(bx[0], "omega")
+        w_y, w_x = by[0].omega, bx[0].omega
         rows.append([f"1st bending, {direction('Z')}", "-", "-", h.num(w_y), "-", "-", h.pct(w_y / w_x - 1) + " vs X"])
-    shells = [x for x in modes if not str(part(x, "kind")).startswith(("bending", "axial"))]
+    shells = [x for x in modes if not x.kind.startswith(("bending", "axial"))]
     if shells:
         s0 = shells[0]
         rows.append(
             [
-                mode_name(part(s0, "kind"), part(s0, "n_axial"), part(s0, "n_circumferential")),
+                mode_name(s0.kind, s0.n_axial, s0.n_circumferential),
                 "none in beam theory",
                 "-",
-                h.num(part(s0, "omega")),
+                h.num(s0.omega),
                 "-",
                 "-",
                 "-",
@@ -179,7 +181,7 @@ def _closed_forms_against_3d(build: Build, a: AnalysisResult, modes: Sequence[An
         )
     ]
     if len(bx) >= 2 and len(timo) >= 2 and timo[1]:
-        w3, t, eb = part(bx[1], "omega"), timo[1], p.omega_euler_bernoulli[1]
+        w3, t, eb = bx[1].omega, timo[1], p.omega_euler_bernoulli[1]
         parts.append(
             h.tag(
                 "p",
@@ -203,7 +205,7 @@ def _reduction(build: Build, a: AnalysisResult) -> list[str]:
     cols = [
         ("stated in the scene", stated.tip_mass, stated.tip_stiffness),
         ("Eq. 2, continuous first mode", p.tip_mass_limit, p.tip_stiffness_limit),
-        ("3D model", part(red3, "m_reduced"), part(red3, "tip_stiffness")),
+        ("3D model", None if red3 is None else red3.m_reduced, None if red3 is None else red3.tip_stiffness),
         (f"the chain: {chain.source}", chain.m_reduced, chain.tip_stiffness),
         (
             f"the paper's model uses (m_r: {r.tip_mass_source}, c1: {r.tip_stiffness_source})",
@@ -238,7 +240,7 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
         parts.append(h.tag("h3", title))
         if name == "top" and why:
             parts.append(h.tag("p", why, class_="meta"))
-        modes = getattr(m, key) or []
+        modes: Sequence[ModeRow] = getattr(m, key)
         parts.append(
             h.table(MODE_HEADERS, _mode_rows(modes))
             if modes
@@ -263,7 +265,7 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
     doc = build.docs.get("modal", {})
     extra = [
         (k, v)
-        for k, v in h.flat_items({"mesh": plain(m.mesh), "axes": plain(m.axes), "timings": doc.get("timings")})
+        for k, v in h.flat_items({"mesh": m.mesh.to_json(), "axes": m.axes.to_json(), "timings": doc.get("timings")})
         if v is not None
     ]
     parts.append(
@@ -319,11 +321,11 @@ def _fe_note(build: Build, r) -> str:
     """The 3D tube with its top beside the paper's FE model (its first X bending)."""
     if not str(r.key).startswith("fe_omega") or build.modal is None:
         return ""
-    bx = bending(build.modal.modes_with_top or [], "bending_x")
+    bx = bending(build.modal.modes_with_top, "bending_x")
     if not bx or r.key != "fe_omega1":
         return ""
     carries, _ = top_words(build.modal.top)
-    w = part(bx[0], "omega")
+    w = bx[0].omega
     return (
         f" Our 3D tube carrying {carries}, without the rotor: {w:.2f} rad/s "
         f"({w / r.paper - 1:+.1%} against the printed value)."

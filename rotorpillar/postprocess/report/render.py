@@ -10,7 +10,7 @@ from typing import Any
 from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..geometry import ModeSet
-from ..readers import INPUTS, Simulation, plain
+from ..readers import INPUTS, Simulation
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, say
 
 #: The animations the report makes (:func:`animated_runs`).
@@ -198,8 +198,8 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
     for name, key in (("bare", "modes"), ("top", "modes_with_top")):
         vtu = build.out / INPUTS[f"modes_{name}"][0]
         if m is not None and vtu.is_file():
-            modes = plain(getattr(m, key)) or []
-            axes = plain(m.axes) or None
+            modes = [row.to_json() for row in getattr(m, key)]
+            axes = m.axes.to_json()
             sets[name] = attempt(
                 build, f"load_modes_{name}", lambda vtu=vtu, modes=modes, axes=axes: load_modes(vtu, modes, axes)
             )

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from ...transients.run_comparisons import COMPARISONS, comparison_command
 from .. import html as h
-from ..readers import CASES, INPUTS, SIMULATE_COMMAND, part
+from ..readers import CASES, INPUTS, SIMULATE_COMMAND
 from .compare_section import speed_accuracy
 from .convergence import chosen
 from .engineering import verdict_block
@@ -32,7 +32,7 @@ def _pillar(build: Build, a: AnalysisResult) -> str:
     )
     bx = bending(m.modes, "bending_x") if m is not None else []
     if bx:
-        w = part(bx[0], "omega")
+        w = bx[0].omega
         text += f"; the 3D model {w:.3f} rad/s ({w / p.omega_col1 - 1:+.2%} against Eq. 1)."
     else:
         text += "; the 3D model: " + build.hint(INPUTS["modal"][1]) + "."
