@@ -18,7 +18,7 @@ References:
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
+from scipy.integrate import solve_ivp, trapezoid
 
 from rotorpillar.reduced import averaging as av
 from rotorpillar.reduced.system import linear_modes, paper_example
@@ -38,7 +38,7 @@ def integrate_mode(r, Omega, periods_settle=None, periods_measure=20):
     basis = np.column_stack([np.cos(Omega * t), np.sin(Omega * t)])
     coef = np.linalg.lstsq(basis, x, rcond=None)[0]
     amp = np.hypot(*coef)
-    torque = np.trapz(r.coupling * x * np.sin(Omega * t), t) / (t[-1] - t[0])
+    torque = trapezoid(r.coupling * x * np.sin(Omega * t), t) / (t[-1] - t[0])
     return amp, torque
 
 

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.integrate import trapezoid  # np.trapz is gone in NumPy 2
 
 from rotorpillar.reduced.beam_fe import BeamProperties, beam_modes
 from rotorpillar.reduced.pillar import (
@@ -52,7 +53,7 @@ def test_mode_shape_normalisation_and_boundary_conditions():
     xi = np.linspace(0, 1, 20001)
     for k in (1, 2, 3):
         u = cantilever_mode(xi, k)
-        assert np.trapz(u**2, xi) == pytest.approx(1.0, rel=1e-6)
+        assert trapezoid(u**2, xi) == pytest.approx(1.0, rel=1e-6)
         assert abs(u[-1]) == pytest.approx(2.0, rel=1e-9)
         assert u[0] == pytest.approx(0.0, abs=1e-12)
         # clamped: zero slope at the base, so u(h) ~ u''(0) h^2 / 2 = beta^2 h^2

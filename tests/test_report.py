@@ -199,7 +199,7 @@ def test_report_without_inputs_says_what_to_run(tmp_path):
         assert f"not computed: run <code>rotorpillar {cmd} paper --out" in text, cmd
     page = parse(tmp_path / "report.html")
     assert page.imgs == 0 and page.videos == 0
-    for tag, attr, ref in page.refs:
+    for _tag, _attr, ref in page.refs:
         assert ref.startswith("#") and ref[1:] in page.ids
 
 

@@ -59,10 +59,12 @@ def test_linear_pillar_under_a_base_pulse_against_duhamel():
         total = 0.0
         for wj, mj, Lj, zj in zip(omega, mass, part, zeta):
             wd = wj * math.sqrt(1 - zj * zj)
-            h = lambda s: math.exp(-zj * wj * (t - s)) * math.sin(wd * (t - s)) / wd
+            h = lambda s, zj=zj, wj=wj, wd=wd: math.exp(-zj * wj * (t - s)) * math.sin(wd * (t - s)) / wd
             hi = min(t, motion.end)
             if hi > t0:
-                total += -(Lj / mj) * quad(lambda s: a_g(s) * h(s), t0, hi, epsabs=1e-14, epsrel=1e-12, limit=400)[0]
+                total += (
+                    -(Lj / mj) * quad(lambda s, h=h: a_g(s) * h(s), t0, hi, epsabs=1e-14, epsrel=1e-12, limit=400)[0]
+                )
         return total
 
     exact = np.array([tip(t) for t in run.t])

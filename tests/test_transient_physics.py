@@ -31,6 +31,7 @@ import dataclasses
 
 import numpy as np
 import pytest
+from scipy.integrate import trapezoid  # np.trapz is gone in NumPy 2
 
 from rotorpillar.reduced import averaging as av
 from rotorpillar.reduced.drive import DriveSchedule
@@ -102,7 +103,7 @@ def quasi_normal_amplitude(model, W, index):
     amp = float(np.hypot(*np.linalg.lstsq(A, x, rcond=None)[0]))
     th, z, y = run.q[tail, -1], run.q[tail, : model.nx], run.q[tail, model.nx]
     c2e = model.shaft_stiffness * model.eccentricity
-    torque = np.trapz(c2e * ((z @ model.shaft) * np.sin(th) - y * np.cos(th)), run.t[tail])
+    torque = trapezoid(c2e * ((z @ model.shaft) * np.sin(th) - y * np.cos(th)), run.t[tail])
     return amp, torque / (run.t[tail][-1] - run.t[tail][0])
 
 

@@ -220,7 +220,7 @@ def run_command(scene: Scene, args, timings):
             n += 1
             progress(f"run {n}/{len(todo)}: {command} ({what})" + (" [side by side]" if len(group) > 1 else ""))
         seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in group], slots)
-        for command, what, extra, own, _ in group:
+        for command, _what, _extra, own, _ in group:
             timings[command] = seconds[command]
             stem = stage_stem(command)
             path = out_dir(scene, args) / f"{stem}.json"

@@ -63,7 +63,7 @@ def pareto_front(cost, error) -> list[int]:
     ]
     pts.sort(key=lambda t: (t[0], t[1]))
     front, best = [], math.inf
-    for c, e, i in pts:
+    for _c, e, i in pts:
         if e < best:
             front.append(i)
             best = e
@@ -182,7 +182,7 @@ def select_model(
     best = min(meets, key=lambda r: (r["wall_time"], r["dofs"]))
     # per family, its most accurate run among those cheaper than the choice
     by_family: dict[str, tuple[dict, str]] = {}
-    for r, worst, why in sorted(rejected, key=lambda t: t[1]):
+    for r, _worst, why in sorted(rejected, key=lambda t: t[1]):
         if r["wall_time"] < best["wall_time"]:
             by_family.setdefault(r["family"], (r, why))
     out.update(

@@ -25,6 +25,7 @@ the PillarModes' ``moment_shapes`` and ``shear_shapes``.
 from __future__ import annotations
 
 import numpy as np
+from scipy.integrate import trapezoid  # np.trapz is gone in NumPy 2
 
 from ..errors import InputError
 from ..reduced.models import MAX_CANDIDATE_MODES
@@ -41,7 +42,7 @@ def integrate_levels(z: np.ndarray, f: np.ndarray) -> float:
     if n >= 3 and n % 2 == 1 and np.allclose(z[1:-1:2], 0.5 * (z[0:-2:2] + z[2::2]), rtol=0, atol=1e-9 * z[-1]):
         h = z[2::2] - z[0:-2:2]
         return float(np.sum(h / 6 * (f[0:-2:2] + 4 * f[1:-1:2] + f[2::2])))
-    return float(np.trapz(f, z))
+    return float(trapezoid(f, z))
 
 
 def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:

@@ -24,6 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.integrate import trapezoid  # np.trapz is gone in NumPy 2
 
 from ..errors import ComputationError
 
@@ -49,7 +50,7 @@ def beam_line_tip_mass(z: np.ndarray, w: np.ndarray, mass_per_length: float, deg
             wg = l0 * w0 + lm * wm + l1 * w1
             total += np.sum(c * wg**2 * (z1 - z0) / 2)
     else:
-        total = np.trapz(w**2, z)
+        total = trapezoid(w**2, z)
     return float(mass_per_length * total / w[-1] ** 2)
 
 

@@ -228,7 +228,7 @@ def solve_spin(
     am, wf, b, g, hh = step.alpha_m, step.new_weight, step.beta, step.gamma, step.h
     th_t, W_t = step.predict(theta_n, W_n, alpha_n)
     th = theta_n + hh * W_n + 0.5 * hh * hh * alpha_n
-    for it in range(1, max_iter + 1):
+    for it in range(1, max_iter + 1):  # noqa: B007 (returned below: the Newton iterations taken)
         c, s = math.cos(th), math.sin(th)
         alpha = (th - th_t) / (b * hh * hh)
         W = W_t + g * hh * alpha

@@ -147,7 +147,7 @@ def runup_chart(
         )
         y = np.asarray(tip if tip is not None else tip_peak, dtype=float)[sel]
         z2.plot(t[sel], 1e3 * y, lw=0.8, color=COLOURS["drive"], label="tip X" if tip is not None else "|tip X|")
-        for (name, w), c in zip(resonances, CYCLE[1:]):
+        for (name, _w), c in zip(resonances, CYCLE[1:]):
             a = (a_max or {}).get(name)
             if a is None or not any(p[0] == name for p in passes):
                 continue

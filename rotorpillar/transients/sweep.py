@@ -279,7 +279,7 @@ def rate_convergence(
         j_up = detect_jumps(sweep_bins(run, drive, (t[1], t[2]), bins, "up"), s, k)[0]
         j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k)[0]
         found[f] = j_up + j_dn
-    for idx, j in enumerate(jumps):
+    for j in jumps:
         same: list[dict | None] = [j]
         for f in factors[1:]:
             c = [x for x in found[f] if x["direction"] == j["direction"]]

@@ -147,7 +147,7 @@ def load_inputs(build: Build) -> None:
     build.convergence = _record(build, "convergence", read_convergence)
     build.integrators = _record(build, "integrators", read_integrators)
     for case in CASES:
-        sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz", lambda: read_simulation(out, case))
+        sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz", lambda case=case: read_simulation(out, case))
         if sim is not None:
             build.simulations[case] = sim
     # the paper's case: the paper model's own file, else the last earthquake run
@@ -158,7 +158,7 @@ def load_inputs(build: Build) -> None:
         lambda: read_simulation(out, "earthquake", "paper"),
     ) or build.simulations.get("earthquake")
     for case in COMPARISONS:
-        c = _read(build, "compare", f"compare_{case}.json", lambda: read_comparison(out, case))
+        c = _read(build, "compare", f"compare_{case}.json", lambda case=case: read_comparison(out, case))
         if c is not None:
             build.comparisons[case] = c
     # study.json is read by its section; a damaged one is named here as a failed input

@@ -85,7 +85,7 @@ def cost_table(doc: dict, models: list[str]) -> str:
         is_ref = m == ref
         r = 1.0 if is_ref and m not in ratio else ratio.get(m)
         lead = e.get("lead")
-        mark = lambda name, text: f"{text} (leads)" if lead == name else text
+        mark = lambda name, text, lead=lead: f"{text} (leads)" if lead == name else text
         rows.append(
             [
                 m + (" (reference)" if is_ref else ""),
