@@ -42,10 +42,12 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
         stderr=subprocess.PIPE,
         text=True,
     )
-    # wait for the beams and the first shell run to be cached, then Ctrl-C
+    # Ctrl-C once 5 of the 24 runs are cached: the runs go to two processes in an order of
+    # their own, and waiting for 17 left, now and then, only beams of milliseconds to run,
+    # so the study finished before the signal (a race, not a resume)
     deadline = time.time() + 120
     while time.time() < deadline and proc.poll() is None:
-        if cache.exists() and len(list(cache.glob("*.json"))) >= 17:
+        if cache.exists() and len(list(cache.glob("*.json"))) >= 5:
             break
         time.sleep(0.05)
     proc.send_signal(signal.SIGINT)
