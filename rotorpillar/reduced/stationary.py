@@ -35,7 +35,14 @@ def stationary_exact(
     def g(W: float) -> float:
         return M0 - slope * W - load * W * abs(W) + float(model.steady_torque(W))
 
-    vals = np.array([g(w) for w in grid])
+    # the grid at once: steady_torque solves its speeds in one stacked solve (chunks bound
+    # the memory of a many-DOF model); speed by speed it was ~0.5 s per call
+    vals = np.concatenate(
+        [
+            M0 - slope * w - load * w * np.abs(w) + model.steady_torque(w)
+            for w in np.array_split(grid, 1 + len(grid) // 500)
+        ]
+    )
     out = []
     for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
         w = brentq(g, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1])
