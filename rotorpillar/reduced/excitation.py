@@ -495,5 +495,5 @@ def response_spectrum(motion: GroundMotion, periods: ArrayLike, damping: float =
     return {"periods": T, "damping": damping, "s_a": s_a.copy(), "s_d": s_d.copy()}
 
 
-_SPECTRA: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
+_SPECTRA: dict[tuple[str, float, bytes, float], tuple[NDArray[np.float64], NDArray[np.float64]]] = {}
 """Response spectra computed in this process, by (signal hash, dt, periods, damping)."""
