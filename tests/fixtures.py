@@ -269,35 +269,20 @@ def simulation_arrays(
     }
 
 
-def write_simulation_fixture(
-    out: str | Path, case: str, modal: bool = True, per_model: bool = False, warnings: list | None = None, **kw
-) -> dict:
-    """``simulate_<case>.json`` and ``.npz`` in ``out`` (with ``per_model``,
-    the model's own ``simulate_<case>_<model>.*``); returns the JSON.  The
-    earthquake carries the excitation block of the paper's pulse (its sizes
-    from the pulse's law) and, when given, ``warnings``."""
-    out = Path(out)
-    arrays = simulation_arrays(case, **kw)
-    if not modal:
-        arrays.pop("modal_coordinates")
-    model = "modal" if modal else "paper"
-    stem = f"simulate_{case}" + (f"_{model}" if per_model else "")
-    _save_npz(out / f"{stem}.npz", arrays)
-    doc = {
-        "case": case,
-        "model": model,
-        "omega_final": float(arrays["Omega"][-1]),
-        "max_abs": {k: float(np.max(np.abs(arrays[k]))) for k in ("tip_x", "rotor_x", "rotor_y")},
-        "jumps": [],
-        "captured_at": None,
-        "energy_balance_error": 1.2e-5,
-        "integrator": {"method": "synthetic", "steps": int(len(arrays["t"]))},
-        "tip_x_frame": "absolute",  # simulation_arrays: tip_x = ground + relative
-        "note": "synthetic fixture, not a simulation",
-    }
+def simulation_run(case: str, arrays: dict[str, np.ndarray], model: str, warnings: list | None = None):
+    """A ``ReducedRun`` shaped like `rotorpillar simulate`'s on ``arrays``, built by its
+    records' constructors (a valid ``simulate_<case>.json``): its peaks, final speed and
+    length read from the arrays; no resonance, passage or jump; the earthquake carries
+    the excitation block of the paper's pulse (its sizes from the pulse's law)."""
+    from rotorpillar.chain.record import PillarModel
+    from rotorpillar.transients.case_summary import CaseSummary, EnergyBalance
+    from rotorpillar.transients.run_records import ReducedRun
+
+    t, Omega = arrays["t"], arrays["Omega"]
+    excitation = None
     if case == "earthquake":
         A, w, start = _G / np.pi, np.pi, 5.0
-        doc["excitation"] = {
+        excitation = {
             "kind": "pulse",
             "amplitude": A,
             "frequency": w,
@@ -308,8 +293,77 @@ def write_simulation_fixture(
             "realistic": False,
             "statement": "The paper's pulse as written (synthetic fixture).",
         }
-    if warnings is not None:
-        doc["warnings"] = list(warnings)
+    tail = Omega[int(0.95 * len(Omega)) :]
+    summary = CaseSummary(
+        ok=True,
+        duration=float(t[-1] - t[0]),
+        omega_final=float(Omega[-1]),
+        omega_final_mean=float(np.mean(tail)),
+        max_abs={k: float(np.max(np.abs(arrays[k]))) for k in ("tip_x", "rotor_x", "rotor_y")},
+        captured_at=None,
+        passages=(),
+        energy_balance=EnergyBalance(
+            energy_change=1.0,  # the drive's work less the residual below
+            work_drive_minus_load=1.0 + 1.2e-5,
+            work_shaft_on_structure=0.0,
+            dissipated=0.0,
+            work_base=0.0,
+            max_abs_residual=1.2e-5,
+            scale=1.0,
+            relative_error=1.2e-5,
+        ),
+        integrator={"method": "synthetic", "steps": int(len(t))},
+        prediction={},
+        jumps=[],
+        excitation=excitation,
+    )
+    pillar = PillarModel(
+        kind="closed_form",
+        label="synthetic",
+        mesh={},
+        dofs=0,
+        source="scene",
+        verified=False,
+        tolerance=None,
+        errors={},
+        note="synthetic fixture",
+    )
+    n_modes = arrays["modal_coordinates"].shape[1] if "modal_coordinates" in arrays else 1
+    return ReducedRun(
+        case=case,
+        model=model,
+        summary=summary,
+        warnings=tuple(warnings or ()),
+        pillar_model=pillar,
+        uncertainty=None,
+        dofs=n_modes + 3,
+        wall_seconds=0.01,
+        compile_seconds=0.0,
+        model_description={},
+        model_info=None,
+        resonances=(),
+        damped_frequencies=(),
+        tip_x_frame="absolute",  # simulation_arrays: tip_x = ground + relative
+        max_abs_sampled=(),
+    )
+
+
+def write_simulation_fixture(
+    out: str | Path, case: str, modal: bool = True, per_model: bool = False, warnings: list | None = None, **kw
+) -> dict:
+    """``simulate_<case>.json`` and ``.npz`` in ``out`` (with ``per_model``,
+    the model's own ``simulate_<case>_<model>.*``); returns the JSON: the record of
+    :func:`simulation_run` with a note.  The earthquake carries the excitation block of
+    the paper's pulse and, when given, ``warnings``."""
+    out = Path(out)
+    arrays = simulation_arrays(case, **kw)
+    if not modal:
+        arrays.pop("modal_coordinates")
+    model = "modal" if modal else "paper"
+    stem = f"simulate_{case}" + (f"_{model}" if per_model else "")
+    _save_npz(out / f"{stem}.npz", arrays)
+    doc = simulation_run(case, arrays, model, warnings).to_json()
+    doc["note"] = "synthetic fixture, not a simulation"
     write_json(out / f"{stem}.json", doc)
     return doc
 

@@ -216,7 +216,7 @@ def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
     q = np.column_stack([np.linspace(-0.01, 0.02, n), np.linspace(0.003, -0.001, n)])
     sim = Simulation(
         "runup",
-        {},
+        None,
         {"t": np.linspace(0, 1, n), "modal_coordinates": q, "tip_x": q.sum(axis=1), "Omega": np.linspace(0, 10, n)},
     )
     motion = pillar_motion(sim, modes_top)
@@ -227,7 +227,7 @@ def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
         U = elastic_field(motion.coefficients[j], motion.shapes)
         assert U[top, 0] == pytest.approx(q[j].sum(), abs=1e-12)
     # the paper's model: no modal coordinates, tip_x - ground_x drives mode 1
-    sim2 = Simulation("earthquake", {}, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0], "ground_x": np.ones(n)})
+    sim2 = Simulation("earthquake", None, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0], "ground_x": np.ones(n)})
     m2 = pillar_motion(sim2, modes_top)
     assert m2.coefficients[:, 0] == pytest.approx(q[:, 0], abs=1e-12)
 
@@ -237,6 +237,50 @@ def test_frame_times_are_bounded():
     f = frame_times(t, 150)
     assert len(f) == 150 and f[0] == 0 and f[-1] == 80
     assert len(frame_times(t[:10], 150)) == 10
+
+
+@pytest.mark.parametrize("case, modal", [("runup", True), ("earthquake", False)])
+def test_the_simulation_fixture_is_a_run_record_document(tmp_path, case, modal):
+    # the report reads simulate_<case>.json through ReducedRun: the fixture is one, written
+    # by the records' constructors, and reads back to the record it was written from
+    from rotorpillar.transients.run_records import ReducedRun
+
+    doc = fixtures.write_simulation_fixture(tmp_path, case, modal=modal, n=400, warnings=["w"])
+    fields = {k: v for k, v in doc.items() if k != "note"}
+    assert ReducedRun.from_json(fields).to_json() == fields
+    sim = read_simulation(tmp_path, case)
+    assert isinstance(sim.run, ReducedRun) and sim.doc == doc
+    assert sim.run.model == ("modal" if modal else "paper") and sim.run.warnings == ("w",)
+    assert sim.run.max_abs["tip_x"] == pytest.approx(np.abs(sim.arrays["tip_x"]).max(), rel=1e-15)
+    assert (sim.excitation is None) is (case != "earthquake")
+
+
+@pytest.mark.parametrize(
+    "change, error, words",
+    [
+        ({"passages": 5}, TypeError, "simulate_runup.json: passages is a JSON number, not a list"),
+        ({"energy_balance": None}, TypeError, "simulate_runup.json: energy_balance is a JSON null, not an object"),
+        ({"omega_final": None, "drop": "omega_final"}, KeyError, "simulate_runup.json has no key 'omega_final'"),
+        ({"drop": "pillar_model"}, KeyError, "simulate_runup.json has no key 'pillar_model'"),
+        ({"resonances": {}}, TypeError, "simulate_runup.json: resonances is a JSON object, not a list"),
+        ({"model": "fem3d"}, KeyError, "simulate_runup.json has no key 'ok'"),  # read as the 3D run's
+    ],
+    ids=["kind", "summary-record", "summary-key", "run-key", "run-kind", "fem3d"],
+)
+def test_a_simulate_file_its_record_cannot_take_is_damaged(tmp_path, change, error, words):
+    # named with its file and key, never read around (the report names it damaged)
+    doc = fixtures.write_simulation_fixture(tmp_path, "runup", n=100)
+    change = dict(change)
+    drop = change.pop("drop", None)
+    doc.update(change)
+    if drop:
+        doc.pop(drop)
+    if doc["model"] == "fem3d":
+        doc = {"case": "runup", "model": "fem3d"}
+    (tmp_path / "simulate_runup.json").write_text(json.dumps(doc))
+    with pytest.raises(error) as exc:
+        read_simulation(tmp_path, "runup")
+    assert words in str(exc.value.args[0])
 
 
 @pytest.mark.slow  # seconds: whole commands (the slow tier runs it)

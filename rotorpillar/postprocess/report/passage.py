@@ -13,11 +13,17 @@ omega)), i.e. if crossing / decay = 2 nu**2 omega**2 / Omega-dot >> 1.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .. import html as h
 from ..directions import short
 from .state import Build
+
+if TYPE_CHECKING:
+    from ...transients.case_summary import Passage
 
 
 def _acceleration(arrays: dict, at: float) -> float | None:
@@ -29,25 +35,26 @@ def _acceleration(arrays: dict, at: float) -> float | None:
     return float(np.interp(at, t, np.gradient(W, t)))
 
 
-def passage_rows(model: str, meta: dict, arrays: dict) -> list[list]:
-    """One row per resonance the run crossed."""
-    pred = {r.get("index"): r for r in ((meta.get("prediction") or {}).get("resonances") or []) if isinstance(r, dict)}
+def passage_rows(model: str, passages: Sequence[Passage], prediction: dict, arrays: dict) -> list[list]:
+    """One row per resonance the run crossed (``prediction``: the run's averaging
+    prediction, its ``resonances`` carrying nu and a_max)."""
+    pred = {r.get("index"): r for r in (prediction.get("resonances") or []) if isinstance(r, dict)}
     rows = []
-    for p in meta.get("passages") or []:
-        if not isinstance(p, dict) or not p.get("crossed") or p.get("time") is None:
+    for p in passages:
+        if not p.crossed or p.time is None:
             continue
-        w, tc = float(p["omega"]), float(p["time"])
+        w, tc = float(p.omega), float(p.time)
         acc = _acceleration(arrays, tc)
-        r = pred.get(p.get("index")) or {}
+        r = pred.get(p.index) or {}
         nu, a_max = r.get("nu"), r.get("a_max")
-        vertical = str(p.get("direction")).upper() == "Y"
-        peak = p.get("peak_rotor_y_near") if vertical else p.get("peak_tip_near")
+        vertical = str(p.direction).upper() == "Y"
+        peak = p.peak_rotor_y_near if vertical else p.peak_tip_near
         ratio = acc / w**2 if acc else None
         crossing = (2 * nu**2 * w**2 / acc) if (acc and nu) else None
         rows.append(
             [
                 model,
-                f"{p.get('index')}: {short(p.get('direction'))}",
+                f"{p.index}: {short(p.direction)}",
                 h.num(w, 4),
                 h.num(tc, 3),
                 h.num(acc, 3),
@@ -60,6 +67,15 @@ def passage_rows(model: str, meta: dict, arrays: dict) -> list[list]:
             ]
         )
     return rows
+
+
+def _compared(meta: dict) -> tuple[list[Passage], dict]:
+    """A comparison's run (its per-model JSON, a dict): its passages as records, its prediction."""
+    from ...transients.case_summary import Passage
+
+    passages = [Passage.from_json(p) for p in meta.get("passages") or [] if isinstance(p, dict)]
+    prediction = meta.get("prediction")
+    return passages, prediction if isinstance(prediction, dict) else {}
 
 
 HEADERS = [
@@ -80,14 +96,18 @@ HEADERS = [
 def passage_block(build: Build) -> list[str]:
     """The table over every run-up the page has (the comparison's models, the
     scene's own run), and what it says."""
-    runs = []
+    from ...transients.run_records import ReducedRun
+
+    runs: list[tuple[str, Sequence[Passage], dict, dict]] = []
     c = build.comparisons.get("runup")
     if c is not None:
-        runs += [(m, c.metas.get(m) or {}, c.arrays.get(m) or {}) for m in c.models]
+        runs += [(m, *_compared(c.metas.get(m) or {}), c.arrays.get(m) or {}) for m in c.models]
     sim = build.simulations.get("runup")
     if sim is not None:
-        runs.append((f"{sim.meta.get('model', '?')} (the scene's run)", sim.meta, sim.arrays))
-    rows = [row for m, meta, arrays in runs for row in passage_rows(m, meta, arrays)]
+        run = sim.run
+        if isinstance(run, ReducedRun):
+            runs.append((f"{run.model} (the scene's run)", run.summary.passages, run.summary.prediction, sim.arrays))
+    rows = [row for m, passages, prediction, arrays in runs for row in passage_rows(m, passages, prediction, arrays)]
     if not rows:
         return []
     slow = [r for r in rows if r[7] != "-" and float(r[7]) > 10]
