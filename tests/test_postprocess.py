@@ -255,6 +255,24 @@ def test_the_simulation_fixture_is_a_run_record_document(tmp_path, case, modal):
     assert (sim.excitation is None) is (case != "earthquake")
 
 
+@pytest.mark.parametrize("case, models", [("earthquake", ("modal", "fem3d")), ("runup", ("modal", "beam", "paper"))])
+def test_the_comparison_fixture_runs_are_run_record_documents(tmp_path, case, models):
+    # each model's simulate_<case>_<model>.json is its record's JSON (Fem3dRun for the 3D
+    # full order, else ReducedRun), read by the comparison's reader to that record
+    from rotorpillar.postprocess.compare_reader import read_comparison
+    from rotorpillar.transients.run_records import Fem3dRun, ReducedRun
+
+    fixtures.write_comparison_fixture(tmp_path, case, models, n=200)
+    c = read_comparison(tmp_path, case)
+    assert list(c.runs) == list(models)
+    for m in models:
+        doc = json.loads((tmp_path / f"simulate_{case}_{m}.json").read_text())
+        fields = {k: v for k, v in doc.items() if k != "note"}
+        kind = Fem3dRun if m == "fem3d" else ReducedRun
+        assert isinstance(c.runs[m], kind) and kind.from_json(fields).to_json() == fields
+        assert c.runs[m].max_abs["tip_x_relative"] == pytest.approx(np.abs(c.arrays[m]["tip_x_relative"]).max())
+
+
 @pytest.mark.parametrize(
     "change, error, words",
     [

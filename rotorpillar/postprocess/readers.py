@@ -180,17 +180,6 @@ def read_integrators(path: str | Path) -> Read[IntegratorStudy] | None:
     return read_record(path, IntegratorStudy)
 
 
-def read_case(path: str | Path | None) -> dict[str, Any] | None:
-    """A comparison's per-model ``simulate_<case>_<model>.json`` as its dict, or None
-    (:mod:`rotorpillar.postprocess.compare_reader`; the scene's own runs are read
-    through their record, :func:`read_run`).  One without its case and model is
-    damaged (KeyError)."""
-    doc = None if path is None else read_json(path)
-    if doc is not None:
-        require(doc, {"case": str, "model": str}, Path(str(path)).name)
-    return doc
-
-
 def read_run(path: str | Path) -> Read[RunRecord] | None:
     """``simulate_<case>.json`` (or ``simulate_<case>_<model>.json``) through its record:
     a ``Fem3dRun`` for the 3D full order, else a ``ReducedRun``; None if there is none.
@@ -243,7 +232,8 @@ class Simulation:
     arrays: dict[str, np.ndarray]
     doc: dict[str, Any] = field(default_factory=dict)
     """the whole JSON document: the record's fields and what the writer put beside them
-    (scene, files, figures, a note, versions, timings); empty without a JSON"""
+    (scene, files, figures, a note, versions, timings); empty without a JSON (or where
+    the run came with its comparison, which keeps the record only)"""
 
     def get(self, name: str) -> np.ndarray | None:
         a = self.arrays.get(name)

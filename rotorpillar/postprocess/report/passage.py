@@ -24,6 +24,7 @@ from .state import Build
 
 if TYPE_CHECKING:
     from ...transients.case_summary import Passage
+    from ...transients.run_records import RunRecord
 
 
 def _acceleration(arrays: dict, at: float) -> float | None:
@@ -69,15 +70,6 @@ def passage_rows(model: str, passages: Sequence[Passage], prediction: dict, arra
     return rows
 
 
-def _compared(meta: dict) -> tuple[list[Passage], dict]:
-    """A comparison's run (its per-model JSON, a dict): its passages as records, its prediction."""
-    from ...transients.case_summary import Passage
-
-    passages = [Passage.from_json(p) for p in meta.get("passages") or [] if isinstance(p, dict)]
-    prediction = meta.get("prediction")
-    return passages, prediction if isinstance(prediction, dict) else {}
-
-
 HEADERS = [
     "model",
     "resonance",
@@ -98,16 +90,19 @@ def passage_block(build: Build) -> list[str]:
     scene's own run), and what it says."""
     from ...transients.run_records import ReducedRun
 
-    runs: list[tuple[str, Sequence[Passage], dict, dict]] = []
+    runs: list[tuple[str, RunRecord | None, dict]] = []
     c = build.comparisons.get("runup")
     if c is not None:
-        runs += [(m, *_compared(c.metas.get(m) or {}), c.arrays.get(m) or {}) for m in c.models]
+        runs += [(m, c.runs.get(m), c.arrays.get(m) or {}) for m in c.models]
     sim = build.simulations.get("runup")
-    if sim is not None:
-        run = sim.run
-        if isinstance(run, ReducedRun):
-            runs.append((f"{run.model} (the scene's run)", run.summary.passages, run.summary.prediction, sim.arrays))
-    rows = [row for m, passages, prediction, arrays in runs for row in passage_rows(m, passages, prediction, arrays)]
+    if sim is not None and sim.run is not None:
+        runs.append((f"{sim.run.model} (the scene's run)", sim.run, sim.arrays))
+    rows = [
+        row
+        for m, run, arrays in runs
+        if isinstance(run, ReducedRun)  # the 3D run records no passages
+        for row in passage_rows(m, run.summary.passages, run.summary.prediction, arrays)
+    ]
     if not rows:
         return []
     slow = [r for r in rows if r[7] != "-" and float(r[7]) > 10]

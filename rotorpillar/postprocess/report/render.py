@@ -174,14 +174,10 @@ def passage_of(c, model: str):
     run in comparison ``c`` (its speed and its JSON's resonances), or None."""
     from ..transient_charts import crossings, passage_window
 
-    a, meta = c.arrays.get(model) or {}, c.metas.get(model) or {}
+    a, run = c.arrays.get(model) or {}, c.runs.get(model)
     if a.get("t") is None or a.get("Omega") is None:
         return None
-    res = [
-        (f"omega_{r.get('index')}", float(r["omega"]))
-        for r in meta.get("resonances") or []
-        if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))
-    ]
+    res = [(f"omega_{r.index}", float(r.omega)) for r in (run.resonances if run is not None else ())]
     return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
 
 
@@ -280,7 +276,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
             out.append(
                 (
                     "earthquake",
-                    Simulation("earthquake", None, c.arrays[model], c.metas.get(model) or {}),
+                    Simulation("earthquake", c.runs.get(model), c.arrays[model]),
                     f"{_record_name(c.doc)} on the {model} model",
                     {},
                 )
