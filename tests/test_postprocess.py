@@ -273,6 +273,19 @@ def test_the_comparison_fixture_runs_are_run_record_documents(tmp_path, case, mo
         assert c.runs[m].max_abs["tip_x_relative"] == pytest.approx(np.abs(c.arrays[m]["tip_x_relative"]).max())
 
 
+def test_the_forces_section_reads_each_run_through_its_record(tmp_path):
+    # a run without internal forces is left out; a damaged one is named, not skipped
+    from rotorpillar.postprocess.report.force_runs import forces_runs
+    from rotorpillar.postprocess.report.state import Build, ReportOptions
+
+    build = Build(load_scene("paper"), tmp_path, "paper", ReportOptions(animations=False))
+    doc = fixtures.write_simulation_fixture(tmp_path, "runup", per_model=True, n=100)
+    assert forces_runs(build) == []
+    (tmp_path / "simulate_runup_modal.json").write_text(json.dumps({**doc, "internal_forces": 7}))
+    with pytest.raises(TypeError, match="simulate_runup_modal.json: internal_forces is a JSON number"):
+        forces_runs(build)
+
+
 @pytest.mark.parametrize(
     "change, error, words",
     [
