@@ -44,6 +44,7 @@ from imagecheck import assert_real_png, labels_overlap, pixels, png_size
 from rotorpillar.analysis import analyze
 from rotorpillar.analysis.results import AnalysisResult
 from rotorpillar.postprocess import charts, transient_charts
+from rotorpillar.postprocess import html as h
 from rotorpillar.postprocess.animation import animate
 from rotorpillar.postprocess.animation_frames import elastic_field, frame_times, pillar_motion
 from rotorpillar.postprocess.geometry import bending_columns, cantilever_tube, load_modes, tube_axes
@@ -284,6 +285,34 @@ def test_the_forces_section_reads_each_run_through_its_record(tmp_path):
     (tmp_path / "simulate_runup_modal.json").write_text(json.dumps({**doc, "internal_forces": 7}))
     with pytest.raises(TypeError, match="simulate_runup_modal.json: internal_forces is a JSON number"):
         forces_runs(build)
+
+
+def test_the_scene_run_of_the_3d_full_order_reads_by_its_record(tmp_path):
+    # simulate --model fem3d writes simulate_<case>.json as a Fem3dRun: the runs, summary
+    # and earthquake sections read it by attribute (its outcome on the run itself)
+    from rotorpillar.postprocess.report.earthquake import paper_case
+    from rotorpillar.postprocess.report.runs import section_runs
+    from rotorpillar.postprocess.report.state import Build, ReportOptions
+    from rotorpillar.postprocess.report.summary import _runs
+
+    build = Build(load_scene("paper"), tmp_path, "paper", ReportOptions(animations=False))
+    for case in ("runup", "earthquake"):
+        a = fixtures.model_arrays(case, "fem3d", n=200)
+        peaks = {k: float(np.abs(a[k]).max()) for k in ("tip_x_relative", "tip_x", "rotor_x", "rotor_y")}
+        ex = {"kind": "record", "name": "synthetic"} if case == "earthquake" else None
+        run = fixtures.fem3d_run(case, a["t"], a["Omega"], peaks, dofs=9, wall_seconds=1.0, excitation=ex)
+        build.simulations[case] = Simulation(case, run, a, run.to_json())
+    build.quake_case = build.simulations["earthquake"]
+    runs = section_runs(build)
+    assert "the scene&#x27;s own run (fem3d model, simulate_runup.json)" in runs
+    final = build.simulations["runup"].run.omega_final
+    assert f"<td>final speed (rad/s)</td><td>{h.num(final)}</td>" in runs
+    assert "<td>energy balance: relative error (-)</td><td>2e-05</td>" in runs and ">jumps<" not in runs
+    said = " ".join(map(str, _runs(build)))
+    assert f"The scene's run-up (fem3d model): ends at {h.num(final, 4)} rad/s" in said
+    quake = "".join(paper_case(build))
+    assert "The scene&#x27;s earthquake run (fem3d model, record)" in quake
+    assert "simulate_earthquake_fem3d.json: simulate raised no warning." in quake
 
 
 @pytest.mark.parametrize(
