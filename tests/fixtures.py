@@ -16,6 +16,7 @@ import numpy as np
 from rotorpillar.provenance import atomic_path, write_json
 from rotorpillar.reduced.pillar import cantilever_mode, omega_euler_bernoulli, tube_section
 from rotorpillar.transients.measures import compare_series, envelope_window
+from rotorpillar.transients.run_records import BeamFullOrder, Fem3dRun, ReducedRun
 
 _G = 9.81
 
@@ -269,13 +270,197 @@ def simulation_arrays(
     }
 
 
+def _pulse() -> dict:
+    """The excitation block of the paper's pulse, its sizes from the pulse's law."""
+    A, w, start = _G / np.pi, np.pi, 5.0
+    return {
+        "kind": "pulse",
+        "amplitude": A,
+        "frequency": w,
+        "start": start,
+        "end": 12.0,
+        "displacement_step_at_start": A * (math.cos(w * start) - 1),
+        "peak_acceleration_g": A * w * w / 9.80665,
+        "realistic": False,
+        "statement": "The paper's pulse as written (synthetic fixture).",
+    }
+
+
+def _synthetic_pillar():
+    from rotorpillar.chain.record import PillarModel
+
+    return PillarModel(
+        kind="closed_form",
+        label="synthetic",
+        mesh={},
+        dofs=0,
+        source="scene",
+        verified=False,
+        tolerance=None,
+        errors={},
+        note="synthetic fixture",
+    )
+
+
+def reduced_run(
+    case: str,
+    model: str,
+    t: np.ndarray,
+    Omega: np.ndarray,
+    max_abs: dict,
+    *,
+    tip_x_frame: str,
+    dofs: int,
+    wall_seconds: float,
+    excitation: dict | None = None,
+    warnings=(),
+    full_order=None,
+):
+    """A ``ReducedRun`` (``simulate_<case>_<model>.json`` of paper, modal or beam) built by
+    its records' constructors: its final speed and length from ``t`` and ``Omega``, the
+    peaks given; no resonance, passage or jump; an energy balance closed to 1.2e-5."""
+    from rotorpillar.transients.case_summary import CaseSummary, EnergyBalance
+
+    summary = CaseSummary(
+        ok=True,
+        duration=float(t[-1] - t[0]),
+        omega_final=float(Omega[-1]),
+        omega_final_mean=float(np.mean(Omega[int(0.95 * len(Omega)) :])),
+        max_abs=dict(max_abs),
+        captured_at=None,
+        passages=(),
+        energy_balance=EnergyBalance(
+            energy_change=1.0,  # the drive's work less the residual below
+            work_drive_minus_load=1.0 + 1.2e-5,
+            work_shaft_on_structure=0.0,
+            dissipated=0.0,
+            work_base=0.0,
+            max_abs_residual=1.2e-5,
+            scale=1.0,
+            relative_error=1.2e-5,
+        ),
+        integrator={"method": "synthetic", "steps": int(len(t))},
+        prediction={},
+        jumps=[],
+        excitation=excitation,
+    )
+    return ReducedRun(
+        case=case,
+        model=model,
+        summary=summary,
+        warnings=tuple(warnings),
+        pillar_model=_synthetic_pillar(),
+        uncertainty=None,
+        dofs=dofs,
+        wall_seconds=wall_seconds,
+        compile_seconds=0.0,
+        model_description={},
+        model_info=None,
+        resonances=(),
+        damped_frequencies=(),
+        tip_x_frame=tip_x_frame,
+        max_abs_sampled=(),
+        full_order=full_order,
+    )
+
+
+def fem3d_run(
+    case: str,
+    t: np.ndarray,
+    Omega: np.ndarray,
+    max_abs: dict,
+    *,
+    dofs: int,
+    wall_seconds: float,
+    excitation: dict | None,
+    warnings=(),
+    note: str = "",
+):
+    """A ``Fem3dRun`` (``simulate_<case>_fem3d.json``) built by its records' constructors: a
+    12 x 24 x 1 quadratic hexahedral mesh from the scene (unverified), the step 2 ms."""
+    from rotorpillar.scene.sections import Mesh
+    from rotorpillar.transients.references import FullOrderReference
+    from rotorpillar.transients.run_records import Fem3dPlan
+
+    mesh = Mesh(elements_around=12, elements_along=24, elements_through=1, degree=2, grading=1.0)
+    duration = float(t[-1] - t[0])
+    reference = FullOrderReference(
+        case=case,
+        mesh=dict(vars(mesh)),
+        label="3D P2 hexahedra, 12x24x1",
+        source="scene",
+        verified=False,
+        band_error=None,
+        errors={},
+        quantities=(),
+        tolerance=None,
+        required=None,
+        floor=None,
+        meets=None,
+        overrides=(),
+        participation=None,
+        reason="synthetic fixture",
+        statement="synthetic fixture: no study",
+    )
+    return Fem3dRun(
+        case=case,
+        model="fem3d",
+        ok=True,
+        duration=duration,
+        omega_final=float(Omega[-1]),
+        omega_final_mean=float(np.mean(Omega[int(0.95 * len(Omega)) :])),
+        max_abs=dict(max_abs),
+        energy_balance={"relative_error": 2e-5},
+        integrator={"method": "synthetic"},
+        dofs=dofs,
+        wall_seconds=wall_seconds,
+        failed_checks=None,
+        captured_at=None,
+        captured_resonance=None,
+        captured_index=None,
+        speed_state="at_speed",
+        warnings=tuple(warnings),
+        captured_at_source="synthetic fixture",
+        pillar_model=_synthetic_pillar(),
+        compile_seconds=0.0,
+        model_description={},
+        model_info={"dofs": dofs},
+        resonances=(),
+        damped_frequencies=(),
+        tip_x_frame="relative_to_ground",
+        full_order=Fem3dPlan(mesh, duration, duration, 2e-3, note, reference),
+        initial_speed=None,
+        excitation=excitation,
+        excitation_in_model="-M r a_g (synthetic fixture)" if case == "earthquake" else None,
+    )
+
+
+def simulation_run(case: str, arrays: dict[str, np.ndarray], model: str, warnings: list | None = None):
+    """A ``ReducedRun`` shaped like `rotorpillar simulate`'s on ``arrays`` (a valid
+    ``simulate_<case>.json``): its peaks, final speed and length read from the arrays;
+    the earthquake carries the excitation block of the paper's pulse."""
+    n_modes = arrays["modal_coordinates"].shape[1] if "modal_coordinates" in arrays else 1
+    return reduced_run(
+        case,
+        model,
+        arrays["t"],
+        arrays["Omega"],
+        {k: float(np.max(np.abs(arrays[k]))) for k in ("tip_x", "rotor_x", "rotor_y")},
+        tip_x_frame="absolute",  # simulation_arrays: tip_x = ground + relative
+        dofs=n_modes + 3,
+        wall_seconds=0.01,
+        excitation=_pulse() if case == "earthquake" else None,
+        warnings=warnings or (),
+    )
+
+
 def write_simulation_fixture(
     out: str | Path, case: str, modal: bool = True, per_model: bool = False, warnings: list | None = None, **kw
 ) -> dict:
     """``simulate_<case>.json`` and ``.npz`` in ``out`` (with ``per_model``,
-    the model's own ``simulate_<case>_<model>.*``); returns the JSON.  The
-    earthquake carries the excitation block of the paper's pulse (its sizes
-    from the pulse's law) and, when given, ``warnings``."""
+    the model's own ``simulate_<case>_<model>.*``); returns the JSON: the record of
+    :func:`simulation_run` with a note.  The earthquake carries the excitation block of
+    the paper's pulse and, when given, ``warnings``."""
     out = Path(out)
     arrays = simulation_arrays(case, **kw)
     if not modal:
@@ -283,33 +468,8 @@ def write_simulation_fixture(
     model = "modal" if modal else "paper"
     stem = f"simulate_{case}" + (f"_{model}" if per_model else "")
     _save_npz(out / f"{stem}.npz", arrays)
-    doc = {
-        "case": case,
-        "model": model,
-        "omega_final": float(arrays["Omega"][-1]),
-        "max_abs": {k: float(np.max(np.abs(arrays[k]))) for k in ("tip_x", "rotor_x", "rotor_y")},
-        "jumps": [],
-        "captured_at": None,
-        "energy_balance_error": 1.2e-5,
-        "integrator": {"method": "synthetic", "steps": int(len(arrays["t"]))},
-        "tip_x_frame": "absolute",  # simulation_arrays: tip_x = ground + relative
-        "note": "synthetic fixture, not a simulation",
-    }
-    if case == "earthquake":
-        A, w, start = _G / np.pi, np.pi, 5.0
-        doc["excitation"] = {
-            "kind": "pulse",
-            "amplitude": A,
-            "frequency": w,
-            "start": start,
-            "end": 12.0,
-            "displacement_step_at_start": A * (math.cos(w * start) - 1),
-            "peak_acceleration_g": A * w * w / 9.80665,
-            "realistic": False,
-            "statement": "The paper's pulse as written (synthetic fixture).",
-        }
-    if warnings is not None:
-        doc["warnings"] = list(warnings)
+    doc = simulation_run(case, arrays, model, warnings).to_json()
+    doc["note"] = "synthetic fixture, not a simulation"
     write_json(out / f"{stem}.json", doc)
     return doc
 
@@ -397,32 +557,20 @@ def write_comparison_fixture(
     for m in models:
         a = arrays[m]
         _save_npz(out / f"simulate_{case}_{m}.npz", a)
-        meta = {
-            "model": m,
-            "case": case,
-            "ok": True,
-            "warnings": list(warnings.get(m, [])),
-            "max_abs": {
-                k: float(np.max(np.abs(a[k])))
-                for k in ("tip_x_relative", "tip_x_absolute", "tip_x", "rotor_x", "rotor_y")
-            },
-            "omega_final": float(a["Omega"][-1]),
-            "captured_at": None,
-            "energy_balance": {"relative_error": 2e-5},
-            "integrator": {"method": "synthetic"},
-            "dofs": dofs[m],
-            "wall_seconds": wall[m],
-            "excitation": excitation,
-            "tip_x_frame": "absolute" if m == "paper" else "relative_to_ground",
-            "note": "synthetic fixture, not a simulation",
+        max_abs = {
+            k: float(np.max(np.abs(a[k]))) for k in ("tip_x_relative", "tip_x_absolute", "tip_x", "rotor_x", "rotor_y")
         }
-        if m in ("fem3d", "beam"):
-            meta["full_order"] = {
-                "mesh" if m == "fem3d" else "elements": "12 x 24 x 1 quadratic hexahedra" if m == "fem3d" else 40,
-                "duration": float(a["t"][-1]),
-                "time_step": 2e-3,
-                "note": f"synthetic {m}: coarsened for the fixture",
-            }
+        note = f"synthetic {m}: coarsened for the fixture"
+        said = {"dofs": dofs[m], "wall_seconds": wall[m], "excitation": excitation, "warnings": warnings.get(m, [])}
+        run: ReducedRun | Fem3dRun
+        if m == "fem3d":
+            run = fem3d_run(case, a["t"], a["Omega"], max_abs, note=note, **said)
+        else:
+            beam = BeamFullOrder(40, "timoshenko", float(a["t"][-1]), 2e-3, note) if m == "beam" else None
+            frame = "absolute" if m == "paper" else "relative_to_ground"
+            run = reduced_run(case, m, a["t"], a["Omega"], max_abs, tip_x_frame=frame, full_order=beam, **said)
+        meta = run.to_json()
+        meta["note"] = "synthetic fixture, not a simulation"
         write_json(out / f"simulate_{case}_{m}.json", meta)
         per[m] = {
             "peak_tip_relative": meta["max_abs"]["tip_x_relative"],

@@ -44,6 +44,7 @@ from imagecheck import assert_real_png, labels_overlap, pixels, png_size
 from rotorpillar.analysis import analyze
 from rotorpillar.analysis.results import AnalysisResult
 from rotorpillar.postprocess import charts, transient_charts
+from rotorpillar.postprocess import html as h
 from rotorpillar.postprocess.animation import animate
 from rotorpillar.postprocess.animation_frames import elastic_field, frame_times, pillar_motion
 from rotorpillar.postprocess.geometry import bending_columns, cantilever_tube, load_modes, tube_axes
@@ -216,7 +217,7 @@ def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
     q = np.column_stack([np.linspace(-0.01, 0.02, n), np.linspace(0.003, -0.001, n)])
     sim = Simulation(
         "runup",
-        {},
+        None,
         {"t": np.linspace(0, 1, n), "modal_coordinates": q, "tip_x": q.sum(axis=1), "Omega": np.linspace(0, 10, n)},
     )
     motion = pillar_motion(sim, modes_top)
@@ -227,7 +228,7 @@ def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
         U = elastic_field(motion.coefficients[j], motion.shapes)
         assert U[top, 0] == pytest.approx(q[j].sum(), abs=1e-12)
     # the paper's model: no modal coordinates, tip_x - ground_x drives mode 1
-    sim2 = Simulation("earthquake", {}, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0], "ground_x": np.ones(n)})
+    sim2 = Simulation("earthquake", None, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0], "ground_x": np.ones(n)})
     m2 = pillar_motion(sim2, modes_top)
     assert m2.coefficients[:, 0] == pytest.approx(q[:, 0], abs=1e-12)
 
@@ -237,6 +238,109 @@ def test_frame_times_are_bounded():
     f = frame_times(t, 150)
     assert len(f) == 150 and f[0] == 0 and f[-1] == 80
     assert len(frame_times(t[:10], 150)) == 10
+
+
+@pytest.mark.parametrize("case, modal", [("runup", True), ("earthquake", False)])
+def test_the_simulation_fixture_is_a_run_record_document(tmp_path, case, modal):
+    # the report reads simulate_<case>.json through ReducedRun: the fixture is one, written
+    # by the records' constructors, and reads back to the record it was written from
+    from rotorpillar.transients.run_records import ReducedRun
+
+    doc = fixtures.write_simulation_fixture(tmp_path, case, modal=modal, n=400, warnings=["w"])
+    fields = {k: v for k, v in doc.items() if k != "note"}
+    assert ReducedRun.from_json(fields).to_json() == fields
+    sim = read_simulation(tmp_path, case)
+    assert isinstance(sim.run, ReducedRun) and sim.doc == doc
+    assert sim.run.model == ("modal" if modal else "paper") and sim.run.warnings == ("w",)
+    assert sim.run.max_abs["tip_x"] == pytest.approx(np.abs(sim.arrays["tip_x"]).max(), rel=1e-15)
+    assert (sim.excitation is None) is (case != "earthquake")
+
+
+@pytest.mark.parametrize("case, models", [("earthquake", ("modal", "fem3d")), ("runup", ("modal", "beam", "paper"))])
+def test_the_comparison_fixture_runs_are_run_record_documents(tmp_path, case, models):
+    # each model's simulate_<case>_<model>.json is its record's JSON (Fem3dRun for the 3D
+    # full order, else ReducedRun), read by the comparison's reader to that record
+    from rotorpillar.postprocess.compare_reader import read_comparison
+    from rotorpillar.transients.run_records import Fem3dRun, ReducedRun
+
+    fixtures.write_comparison_fixture(tmp_path, case, models, n=200)
+    c = read_comparison(tmp_path, case)
+    assert list(c.runs) == list(models)
+    for m in models:
+        doc = json.loads((tmp_path / f"simulate_{case}_{m}.json").read_text())
+        fields = {k: v for k, v in doc.items() if k != "note"}
+        kind = Fem3dRun if m == "fem3d" else ReducedRun
+        assert isinstance(c.runs[m], kind) and kind.from_json(fields).to_json() == fields
+        assert c.runs[m].max_abs["tip_x_relative"] == pytest.approx(np.abs(c.arrays[m]["tip_x_relative"]).max())
+
+
+def test_the_forces_section_reads_each_run_through_its_record(tmp_path):
+    # a run without internal forces is left out; a damaged one is named, not skipped
+    from rotorpillar.postprocess.report.force_runs import forces_runs
+    from rotorpillar.postprocess.report.state import Build, ReportOptions
+
+    build = Build(load_scene("paper"), tmp_path, "paper", ReportOptions(animations=False))
+    doc = fixtures.write_simulation_fixture(tmp_path, "runup", per_model=True, n=100)
+    assert forces_runs(build) == []
+    (tmp_path / "simulate_runup_modal.json").write_text(json.dumps({**doc, "internal_forces": 7}))
+    with pytest.raises(TypeError, match="simulate_runup_modal.json: internal_forces is a JSON number"):
+        forces_runs(build)
+
+
+def test_the_scene_run_of_the_3d_full_order_reads_by_its_record(tmp_path):
+    # simulate --model fem3d writes simulate_<case>.json as a Fem3dRun: the runs, summary
+    # and earthquake sections read it by attribute (its outcome on the run itself)
+    from rotorpillar.postprocess.report.earthquake import paper_case
+    from rotorpillar.postprocess.report.runs import section_runs
+    from rotorpillar.postprocess.report.state import Build, ReportOptions
+    from rotorpillar.postprocess.report.summary import _runs
+
+    build = Build(load_scene("paper"), tmp_path, "paper", ReportOptions(animations=False))
+    for case in ("runup", "earthquake"):
+        a = fixtures.model_arrays(case, "fem3d", n=200)
+        peaks = {k: float(np.abs(a[k]).max()) for k in ("tip_x_relative", "tip_x", "rotor_x", "rotor_y")}
+        ex = {"kind": "record", "name": "synthetic"} if case == "earthquake" else None
+        run = fixtures.fem3d_run(case, a["t"], a["Omega"], peaks, dofs=9, wall_seconds=1.0, excitation=ex)
+        build.simulations[case] = Simulation(case, run, a, run.to_json())
+    build.quake_case = build.simulations["earthquake"]
+    runs = section_runs(build)
+    assert "the scene&#x27;s own run (fem3d model, simulate_runup.json)" in runs
+    final = build.simulations["runup"].run.omega_final
+    assert f"<td>final speed (rad/s)</td><td>{h.num(final)}</td>" in runs
+    assert "<td>energy balance: relative error (-)</td><td>2e-05</td>" in runs and ">jumps<" not in runs
+    said = " ".join(map(str, _runs(build)))
+    assert f"The scene's run-up (fem3d model): ends at {h.num(final, 4)} rad/s" in said
+    quake = "".join(paper_case(build))
+    assert "The scene&#x27;s earthquake run (fem3d model, record)" in quake
+    assert "simulate_earthquake_fem3d.json: simulate raised no warning." in quake
+
+
+@pytest.mark.parametrize(
+    "change, error, words",
+    [
+        ({"passages": 5}, TypeError, "simulate_runup.json: passages is a JSON number, not a list"),
+        ({"energy_balance": None}, TypeError, "simulate_runup.json: energy_balance is a JSON null, not an object"),
+        ({"omega_final": None, "drop": "omega_final"}, KeyError, "simulate_runup.json has no key 'omega_final'"),
+        ({"drop": "pillar_model"}, KeyError, "simulate_runup.json has no key 'pillar_model'"),
+        ({"resonances": {}}, TypeError, "simulate_runup.json: resonances is a JSON object, not a list"),
+        ({"model": "fem3d"}, KeyError, "simulate_runup.json has no key 'ok'"),  # read as the 3D run's
+    ],
+    ids=["kind", "summary-record", "summary-key", "run-key", "run-kind", "fem3d"],
+)
+def test_a_simulate_file_its_record_cannot_take_is_damaged(tmp_path, change, error, words):
+    # named with its file and key, never read around (the report names it damaged)
+    doc = fixtures.write_simulation_fixture(tmp_path, "runup", n=100)
+    change = dict(change)
+    drop = change.pop("drop", None)
+    doc.update(change)
+    if drop:
+        doc.pop(drop)
+    if doc["model"] == "fem3d":
+        doc = {"case": "runup", "model": "fem3d"}
+    (tmp_path / "simulate_runup.json").write_text(json.dumps(doc))
+    with pytest.raises(error) as exc:
+        read_simulation(tmp_path, "runup")
+    assert words in str(exc.value.args[0])
 
 
 @pytest.mark.slow  # seconds: whole commands (the slow tier runs it)

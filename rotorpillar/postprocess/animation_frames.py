@@ -47,8 +47,7 @@ def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
     """Match a simulation's modal coordinates to the mode shapes of ``modeset``.
 
     ``modal_coordinates`` column k goes with the k-th bending mode in the
-    paper's X (or with the modes the simulation names in ``modal_modes``);
-    without them, the elastic tip displacement tip_x - ground_x drives the
+    paper's X (no run's JSON names its modes otherwise); without them, the elastic tip displacement tip_x - ground_x drives the
     first such mode.
     """
     t = sim.get("t")
@@ -60,7 +59,7 @@ def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
     q = sim.arrays.get("modal_coordinates")
     if q is not None:
         q = np.asarray(q, dtype=float).reshape(n, -1)
-        cols = bending_columns(modeset.modes, q.shape[1], sim.meta.get("modal_modes"))
+        cols = bending_columns(modeset.modes, q.shape[1])
         if len(cols) == q.shape[1]:
             return PillarMotion(
                 t,

@@ -7,12 +7,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..transients.records import CompareResult
-from .readers import read_case, read_npz, read_record
+from .readers import read_npz, read_record, read_run
+
+if TYPE_CHECKING:
+    from ..transients.run_records import RunRecord
 
 
 def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x", frame: str | None = None) -> np.ndarray | None:
@@ -45,8 +48,8 @@ class Comparison:
     record: CompareResult
     doc: dict[str, Any]
     """the whole JSON document (the record's fields, and the scene and notes beside them)"""
-    metas: dict[str, dict[str, Any]] = field(default_factory=dict)
-    """model -> its simulate_<case>_<model>.json (missing: absent)"""
+    runs: dict[str, RunRecord] = field(default_factory=dict)
+    """model -> the record of its simulate_<case>_<model>.json (missing: absent)"""
     arrays: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
     """model -> its simulate_<case>_<model>.npz arrays (missing: absent)"""
 
@@ -64,7 +67,8 @@ class Comparison:
         a = self.arrays.get(model)
         if not a or a.get("t") is None:
             return None
-        y = relative_to_ground(a, "tip_x", (self.metas.get(model) or {}).get("tip_x_frame"))
+        run = self.runs.get(model)
+        y = relative_to_ground(a, "tip_x", run.tip_x_frame if run is not None else None)
         return None if y is None else (np.asarray(a["t"], dtype=float), y)
 
 
@@ -86,10 +90,11 @@ def read_comparison(out: str | Path, case: str) -> Comparison | None:
     per = got.record.per_model
     for m in c.models:
         row = per.get(m)
-        meta = read_case(_beside(out, (row.json if row else "") or f"simulate_{case}_{m}.json"))
+        path = _beside(out, (row.json if row else "") or f"simulate_{case}_{m}.json")
+        run = read_run(path) if path is not None else None
         arrays = read_npz(_beside(out, (row.npz if row else "") or f"simulate_{case}_{m}.npz"))
-        if meta is not None:
-            c.metas[m] = meta
+        if run is not None:
+            c.runs[m] = run.record
         if arrays is not None:
             c.arrays[m] = arrays
     return c

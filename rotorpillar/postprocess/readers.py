@@ -19,11 +19,12 @@ Contracts (field names are the writers'; we read, never write, them):
 - ``study.json`` (`rotorpillar study`): a
   :class:`~rotorpillar.studies.result.StudyResult`.
 - ``simulate_<case>.json`` and ``.npz`` (`rotorpillar simulate`), cases
-  runup, rundown, sweep, earthquake: arrays ``t``, ``Omega``, ``tip_x``,
-  ``rotor_x``, ``rotor_y``, ``ground_x`` and, for the modal model,
-  ``modal_coordinates``; per model also ``simulate_<case>_<model>.*``
-  (:class:`Simulation`: the JSON is the run's summary, whose fields differ by
-  model, kept as its dict).
+  runup, rundown, sweep, earthquake: the JSON a
+  :class:`~rotorpillar.transients.run_records.ReducedRun` (paper, modal, beam) or a
+  :class:`~rotorpillar.transients.run_records.Fem3dRun` (the 3D full order);
+  arrays ``t``, ``Omega``, ``tip_x``, ``rotor_x``, ``rotor_y``, ``ground_x`` and, for
+  the modal model, ``modal_coordinates``; per model also
+  ``simulate_<case>_<model>.*`` (:class:`Simulation`, by :func:`read_run`).
 - ``compare_<case>.json`` (`rotorpillar compare`): a
   :class:`~rotorpillar.transients.records.CompareResult`, read with the runs it
   names by :func:`rotorpillar.postprocess.compare_reader.read_comparison`.
@@ -44,7 +45,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
@@ -58,7 +59,9 @@ if TYPE_CHECKING:
     from ..converge.result import ConvergenceStudy
     from ..fem3d.modal_summary import ModalSummary
     from ..studies.result import StudyResult
+    from ..transients.case_summary import CaseSummary
     from ..transients.integrator_records import IntegratorStudy
+    from ..transients.run_records import Fem3dRun, RunRecord
 
 #: Input name -> (file in out/<scene>/, the command that writes it).
 INPUTS = {
@@ -116,12 +119,17 @@ def read_record(path: str | Path, record_type: type[R]) -> Read[R] | None:
     doc = read_json(path)
     if doc is None:
         return None
-    name = Path(path).name
+    return Read(record_of(doc, record_type, Path(path).name), doc)
+
+
+def record_of(doc: dict[str, Any], record_type: type[R], name: str) -> R:
+    """``doc`` (the JSON of file ``name``) as a ``record_type``; KeyError or TypeError
+    naming the file and the key when it cannot be one."""
     wrong = shape_error(record_type, doc)
     if wrong:
         raise TypeError(f"{name}: {wrong}")
     try:
-        record = record_type.from_json(doc)  # type: ignore[attr-defined]
+        record: R = record_type.from_json(doc)  # type: ignore[attr-defined]  # R: any record
     except KeyError as exc:
         key = exc.args[0] if exc.args else "?"
         raise KeyError(f"{name} has no key {key!r}") from None
@@ -134,7 +142,7 @@ def read_record(path: str | Path, record_type: type[R]) -> Read[R] | None:
         if missing:
             raise KeyError(f"{name} has no key {missing[0]!r}") from None
         raise TypeError(f"{name}: {exc}") from None
-    return Read(record, doc)
+    return record
 
 
 def read_analysis(path: str | Path) -> Read[AnalysisResult] | None:
@@ -172,15 +180,38 @@ def read_integrators(path: str | Path) -> Read[IntegratorStudy] | None:
     return read_record(path, IntegratorStudy)
 
 
-def read_case(path: str | Path | None) -> dict[str, Any] | None:
-    """``simulate_<case>.json``: one transient run's summary, or None.
+def read_run(path: str | Path) -> Read[RunRecord] | None:
+    """``simulate_<case>.json`` (or ``simulate_<case>_<model>.json``) through its record:
+    a ``Fem3dRun`` for the 3D full order, else a ``ReducedRun``; None if there is none.
 
-    A plain dict: its fields differ by model and the report shows most of
-    them as a generic table; one without its case and model is damaged (KeyError)."""
-    doc = None if path is None else read_json(path)
-    if doc is not None:
-        require(doc, {"case": str, "model": str}, Path(str(path)).name)
-    return doc
+    A ``ReducedRun``'s case summary leads its JSON: a key of it missing or of the
+    wrong kind is damage too (KeyError or TypeError naming the file and the key)."""
+    from ..transients.case_summary import CaseSummary
+    from ..transients.run_records import Fem3dRun, ReducedRun
+
+    doc = read_json(path)
+    if doc is None:
+        return None
+    name = Path(path).name
+    require(doc, {"case": str, "model": str}, name)
+    if doc["model"] == "fem3d":
+        return Read(record_of(doc, Fem3dRun, name), doc)
+    wrong = shape_error(CaseSummary, doc)
+    if wrong:
+        raise TypeError(f"{name}: {wrong}")
+    for f in dataclasses.fields(CaseSummary):
+        if f.default is dataclasses.MISSING and f.name not in doc:
+            raise KeyError(f"{name} has no key {f.name!r}")
+    return Read(record_of(doc, ReducedRun, name), doc)
+
+
+def outcome(run: RunRecord) -> CaseSummary | Fem3dRun:
+    """Where a run's outcome is (``ok``, ``failed_checks``, ``omega_final``,
+    ``captured_at``, ``captured_resonance``, ``speed_state``, ``excitation``, ``max_abs``,
+    ``energy_balance``): a reduced model's case summary, the 3D run itself."""
+    from ..transients.run_records import Fem3dRun
+
+    return run if isinstance(run, Fem3dRun) else run.summary
 
 
 def read_npz(path: str | Path | None) -> dict[str, np.ndarray] | None:
@@ -193,15 +224,25 @@ def read_npz(path: str | Path | None) -> dict[str, np.ndarray] | None:
 
 @dataclass
 class Simulation:
-    """One case of `rotorpillar simulate`: its JSON summary and its arrays."""
+    """One case of `rotorpillar simulate`: its run's record, its arrays and its document."""
 
     case: str
-    meta: dict[str, Any]
+    run: RunRecord | None
+    """the JSON's record (:func:`read_run`), None without a JSON"""
     arrays: dict[str, np.ndarray]
+    doc: dict[str, Any] = field(default_factory=dict)
+    """the whole JSON document: the record's fields and what the writer put beside them
+    (scene, files, figures, a note, versions, timings); empty without a JSON (or where
+    the run came with its comparison, which keeps the record only)"""
 
     def get(self, name: str) -> np.ndarray | None:
         a = self.arrays.get(name)
         return None if a is None else np.asarray(a, dtype=float)
+
+    @property
+    def excitation(self) -> dict[str, Any] | None:
+        """The run's ground motion's sizes (the earthquake's ``excitation``), or None."""
+        return outcome(self.run).excitation if self.run is not None else None
 
 
 def read_simulation(out: str | Path, case: str, model: str | None = None) -> Simulation | None:
@@ -209,11 +250,13 @@ def read_simulation(out: str | Path, case: str, model: str | None = None) -> Sim
     ``model``, that model's own ``simulate_<case>_<model>.*``."""
     out = Path(out)
     stem = f"simulate_{case}" + (f"_{model}" if model else "")
-    meta = read_case(out / f"{stem}.json")
+    got = read_run(out / f"{stem}.json")
     arrays = read_npz(out / f"{stem}.npz")
-    if meta is None and arrays is None:
+    if got is None and arrays is None:
         return None
-    return Simulation(case, meta or {}, arrays or {})
+    if got is None:
+        return Simulation(case, None, arrays or {})
+    return Simulation(case, got.record, arrays or {}, got.doc)
 
 
 def plain(obj: Any) -> Any:

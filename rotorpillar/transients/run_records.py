@@ -123,8 +123,8 @@ class ReducedRun(JsonRecord):
     """the ``max_abs`` keys read from the decimated output, not from every step"""
     initial_speed: float | None = field(default=None, metadata={"omit_if_none": True})
     """the speed the run starts at, where the case sets one (rad/s)"""
-    excitation_in_model: dict | None = field(default=None, metadata={"omit_if_none": True})
-    """earthquake: how the model applies the ground motion"""
+    excitation_in_model: str | None = field(default=None, metadata={"omit_if_none": True})
+    """earthquake: how the model applies the ground motion, in words"""
     full_order: BeamFullOrder | None = field(default=None, metadata={"omit_if_none": True})
     """beam: its discretisation and step"""
     internal_forces: InternalForcesSummary | None = None
@@ -212,8 +212,9 @@ class Fem3dRun(JsonRecord):
     """the speed the run starts at (rad/s), None: from rest"""
     excitation: dict | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake: the ground motion's sizes"""
-    excitation_in_model: dict | None = None
-    """earthquake: how the 3D model applies the ground motion (absent for the other cases)"""
+    excitation_in_model: str | None = None
+    """earthquake: how the 3D model applies the ground motion, in words (absent for the
+    other cases)"""
     internal_forces: InternalForcesSummary | None = None
     """section resultants, base reactions, the shaft's demand and the von Mises peaks"""
 

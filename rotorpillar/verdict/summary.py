@@ -48,9 +48,13 @@ _RUN_FILE = re.compile(rf"(simulate|compare)_({'|'.join(CASES)})_({'|'.join(MODE
 
 
 def case_label(doc: dict) -> str:
+    """The case of a run's JSON document as a reader names it (:func:`case_name`)."""
+    return case_name(doc.get("case", "?"), doc.get("excitation"))
+
+
+def case_name(case: str, excitation: dict | None) -> str:
     """The case as a reader names it: "earthquake (elcentro)", "runup"."""
-    case = doc.get("case", "?")
-    ex = doc.get("excitation") or {}
+    ex = excitation or {}
     if case == "earthquake" and ex.get("name"):
         return f"earthquake ({ex['name']})"
     if case == "earthquake" and ex.get("kind") == "paper":

@@ -6,13 +6,17 @@ earthquake and the runs sections both use."""
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ...transients.run_comparisons import comparison_command, comparison_overrides
 from .. import html as h
 from .parts import failure, product_image, scene_differs
 from .references import reference_block
 from .state import Build
+
+if TYPE_CHECKING:
+    from ...transients.run_records import RunRecord
+    from ..compare_reader import Comparison
 
 #: The headers of the speed-accuracy table (the reference's name goes in the errors).
 COST_HEADERS = (
@@ -146,19 +150,26 @@ def speed_accuracy(doc: dict, models: list[str]) -> list[str]:
 FULL_ORDER_UNITS = {"duration": "s", "time_step": "s"}
 
 
-def _full_order(meta: dict) -> str | None:
+def _full_order(run: RunRecord | None) -> str | None:
     """What a full-order run was (mesh or elements, duration, step) and its note."""
-    fo = meta.get("full_order")
-    if not isinstance(fo, dict):
+    from ...transients.run_records import BeamFullOrder, Fem3dPlan
+
+    fo = run.full_order if run is not None else None
+    items: list[tuple[str, Any]]
+    if isinstance(fo, Fem3dPlan):  # its reference: references.reference_block
+        mesh = ", ".join(f"{a} {h.num(b)}" for a, b in vars(fo.mesh).items())
+        items = [("mesh", mesh), ("duration", fo.duration), ("case_duration", fo.case_duration)]
+    elif isinstance(fo, BeamFullOrder):
+        items = [("elements", fo.elements), ("theory", fo.theory), ("duration", fo.duration)]
+    else:
         return None
-    what = []
-    for k, v in fo.items():
-        if k in ("note", "reference") or v is None:  # the reference: references.reference_block
-            continue
-        if isinstance(v, dict):
-            v = ", ".join(f"{a} {h.num(b)}" for a, b in v.items())
-        what.append(f"{k.replace('_', ' ')} {h.num(v)}" + (f" {FULL_ORDER_UNITS[k]}" if k in FULL_ORDER_UNITS else ""))
-    return "; ".join(what) + (f". {fo['note']}" if fo.get("note") else "")
+    items.append(("time_step", fo.time_step))
+    what = [
+        f"{k.replace('_', ' ')} {h.num(v)}" + (f" {FULL_ORDER_UNITS[k]}" if k in FULL_ORDER_UNITS else "")
+        for k, v in items
+        if v is not None
+    ]
+    return "; ".join(what) + (f". {fo.note}" if fo.note else "")
 
 
 def _stem(case: str, model: str) -> str:
@@ -207,7 +218,7 @@ def comparison_block(build: Build, case: str) -> list[str]:
     said = speed_accuracy(doc, models)
     if said:
         parts.append(h.tag("p", " ".join(said)))
-    full = [(m, _full_order(c.metas.get(m) or {})) for m in models]
+    full = [(m, _full_order(c.runs.get(m))) for m in models]
     notes = [h.tag("li", f"{m}: {n}") for m, n in full if n]
     if notes:
         parts.append(h.tag("p", "Full-order models, as run here:", class_="meta"))
@@ -226,7 +237,7 @@ def comparison_block(build: Build, case: str) -> list[str]:
     return parts
 
 
-def system_modes(c) -> tuple[str | None, list[dict]]:
+def system_modes(c: Comparison | None) -> tuple[str | None, list[dict]]:
     """The coupled rotor-pillar modes of the reduced model a comparison ran
     (its JSON's ``resonances`` with their ``damped_frequencies``): (model,
     [{index, direction, omega, period, damping_ratio}]), the ROM first."""
@@ -234,25 +245,24 @@ def system_modes(c) -> tuple[str | None, list[dict]]:
         return None, []
     order = sorted(c.models, key=lambda m: (m != "modal", m == c.reference))
     for m in order:
-        meta = c.metas.get(m) or {}
-        res = meta.get("resonances")
-        if not isinstance(res, list) or not res:
+        run = c.runs.get(m)
+        if run is None or not run.resonances:
             continue
-        damped = [d for d in meta.get("damped_frequencies") or [] if isinstance(d, dict)]
+        damped = run.damped_frequencies
         out = []
-        for r in res:
-            w = r.get("omega")
-            if not isinstance(w, (int, float)) or w <= 0:
+        for r in run.resonances:
+            w = r.omega
+            if w <= 0:
                 continue
             near = min(
-                (d for d in damped if d.get("direction") == r.get("direction")),
+                (d for d in damped if d.get("direction") == r.direction),
                 key=lambda d: abs(float(d.get("omega") or 0) - w),
                 default={},
             )
             out.append(
                 {
-                    "index": r.get("index"),
-                    "direction": r.get("direction"),
+                    "index": r.index,
+                    "direction": r.direction,
                     "omega": float(w),
                     "period": 2 * math.pi / w,
                     "damping_ratio": near.get("damping_ratio"),

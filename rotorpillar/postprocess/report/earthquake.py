@@ -5,17 +5,22 @@ published), its excitation's size and the base-forcing flaw stated."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ...transients.run_comparisons import comparison_models
 from .. import html as h
 from ..compare_reader import relative_to_ground
 from ..directions import direction
-from ..readers import INPUTS, SIMULATE_COMMAND
+from ..readers import INPUTS, SIMULATE_COMMAND, Simulation
 from .compare_section import comparison_block, spectrum_block
 from .parts import animation_video, failure, figures_of, key_results, product_image, run_table, scene_differs
 from .references import pareto_block
 from .state import Build
+
+if TYPE_CHECKING:
+    from ...transients.run_records import RunRecord
 
 #: Standard gravity, to state accelerations in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
@@ -31,9 +36,9 @@ def base_forcing_finding(analysis):
     return None
 
 
-def _size(sim) -> str:
+def _size(sim: Simulation) -> str:
     """How large the run's ground motion is: from its excitation block, else its arrays."""
-    ex = (sim.meta or {}).get("excitation") or {}
+    ex = sim.excitation or {}
     g, a = sim.get("ground_x"), sim.get("ground_acceleration")
     said = []
     if ex.get("displacement_step_at_start") is not None:
@@ -49,9 +54,9 @@ def _size(sim) -> str:
     return ("Size of the excitation: " + ", ".join(said) + ".") if said else ""
 
 
-def _tip(sim) -> str:
+def _tip(sim: Simulation) -> str:
     """The largest tip displacement relative to the ground, beside the absolute one."""
-    frame = (sim.meta or {}).get("tip_x_frame")
+    frame = sim.run.tip_x_frame if sim.run is not None else None
     rel = relative_to_ground(sim.arrays, "tip_x", frame)
     if rel is None or not len(rel):
         return ""
@@ -95,10 +100,8 @@ def _flaw(build: Build) -> list[str]:
     ]
 
 
-def _warnings(meta: dict, name: str) -> list[str]:
-    w = meta.get("warnings")
-    if not isinstance(w, list):
-        return []
+def _warnings(run: RunRecord, name: str) -> list[str]:
+    w = run.warnings
     if not w:
         return [h.tag("p", f"{name}: simulate raised no warning.", class_="meta")]
     return [
@@ -128,24 +131,25 @@ def paper_case(build: Build) -> list[str]:
                 f"--model paper {build.scene_cli}` (no simulate_earthquake.json)"
             )
         ] + _flaw(build)
-    meta = sim.meta or {}
-    model = meta.get("model", "model not stated")
-    name = f"simulate_earthquake_{model}.json" if meta.get("model") else "simulate_earthquake.json"
-    ex = meta.get("excitation") or {}
+    run = sim.run
+    model = run.model if run is not None else "model not stated"
+    name = f"simulate_earthquake_{model}.json" if run is not None and run.model else "simulate_earthquake.json"
+    ex = sim.excitation or {}
     what = (
         "The paper's pulse on Eq. 4 as published"
         if model == "paper" and ex.get("kind") == "pulse"
         else f"The scene's earthquake run ({model} model, {ex.get('kind', 'excitation not stated')})"
     )
-    parts = scene_differs(build, meta)
+    parts = scene_differs(build, sim.doc)
     parts.append(h.tag("p", what + ". " + _size(sim) + _tip(sim)))
     if isinstance(ex.get("statement"), str):
         parts.append(h.tag("p", ex["statement"], class_="warn" if ex.get("realistic") is False else None))
     if model == "paper":
         parts += _flaw(build)
-    parts += _warnings(meta, name)
+    if run is not None:
+        parts += _warnings(run, name)
     parts += failure(build, "earthquake_chart")
-    theirs = _simulate_charts(build, meta.get("model"))
+    theirs = _simulate_charts(build, run.model if run is not None else None)
     if "earthquake_chart" in build.products:  # simulate's own is the same run: left out
         parts.append(product_image(build, "earthquake_chart"))
     elif theirs:
@@ -154,11 +158,9 @@ def paper_case(build: Build) -> list[str]:
     mine = build.products.get("quake_case_animation", "animation_earthquake_paper")
     parts += failure(build, mine)
     parts += animation_video(build, mine)
-    if meta:
-        key = key_results(meta)
-        if key:
-            parts.append(key)
-        parts.append(h.details(name, run_table(meta)))
+    if run is not None:
+        parts.append(key_results(run))
+        parts.append(h.details(name, run_table(sim.doc)))
     return parts
 
 

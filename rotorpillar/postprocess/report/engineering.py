@@ -4,18 +4,17 @@ the separation margins.
 
 Read through their records: summary.json (``verdict.records.EngineeringSummary``,
 written by `rotorpillar report` before the page), harmonic.json
-(``HarmonicResult``) and each run's ``internal_forces`` block
-(``transients.force_records.InternalForcesSummary``) with its NPZ histories.
+(``HarmonicResult``) and each run's ``internal_forces``
+(``transients.force_records.InternalForcesSummary``, read with its run's record) with
+its NPZ histories.
 Charts by :mod:`rotorpillar.postprocess.engineering_charts`.
 """
 
 from __future__ import annotations
 
-import numpy as np
-
-from ...transients.force_records import InternalForcesSummary
 from ...verdict.records import EngineeringSummary, HarmonicResult
 from .. import html as h
+from .force_runs import ForcesRun, forces_runs, history
 from .state import FIGURES_DIR, Build, attempt
 
 NAMES = {"modal": "ROM", "fem3d": "3D full order", "beam": "1D beam full order", "paper": "paper Eq. 4"}
@@ -124,33 +123,8 @@ def _headline_texts(headlines) -> list[str]:
 # Forces and stresses
 
 
-def _runs(build: Build) -> list[tuple[dict, InternalForcesSummary]]:
-    from ...verdict.summary import model_runs
-
-    out = []
-    for doc in model_runs(build.out):
-        block = doc.get("internal_forces")
-        if block:
-            try:
-                out.append((doc, InternalForcesSummary.from_json(block)))
-            except (KeyError, TypeError, ValueError):
-                continue
-    return out
-
-
-def _history(build: Build, doc: dict, key: str):
-    path = build.out / doc["_file"].replace(".json", ".npz")
-    try:
-        with np.load(path) as z:
-            return np.asarray(z["t"]), np.asarray(z[key])
-    except (OSError, KeyError, ValueError):
-        return None
-
-
 def section_internal_forces(build: Build) -> str:
-    from ...verdict.summary import case_label
-
-    runs = _runs(build)
+    runs = forces_runs(build)
     if not runs:
         return h.section(
             "forces",
@@ -174,12 +148,12 @@ def section_internal_forces(build: Build) -> str:
         )
     ]
     rows = []
-    for doc, f in runs:
-        b = f.base
+    for r in runs:
+        f, b = r.forces, r.forces.base
         rows.append(
             [
                 NAMES.get(f.model, f.model),
-                case_label(doc),
+                r.case,
                 _value(b.moment, "N*m"),
                 _value(b.shear, "N"),
                 f"{_value(b.axial_min, 'N')} ... {_value(b.axial_max, 'N')}",
@@ -209,9 +183,9 @@ def section_internal_forces(build: Build) -> str:
         )
     )
     parts += _differences(runs)
-    by_case: dict[str, list] = {}
-    for doc, f in runs:
-        by_case.setdefault(case_label(doc), []).append((doc, f))
+    by_case: dict[str, list[ForcesRun]] = {}
+    for r in runs:
+        by_case.setdefault(r.case, []).append(r)
     from .. import engineering_charts as ec
 
     fig = build.out / FIGURES_DIR
@@ -225,7 +199,7 @@ def section_internal_forces(build: Build) -> str:
                 fig / f"forces_{stem}.png",
                 [
                     (NAMES.get(f.model, f.model), f.model, f.heights, f.moment_envelope, f.shear_envelope)
-                    for _, f in items
+                    for f in (r.forces for r in items)
                 ],
                 title=f"{case}: envelopes along the height",
             ),
@@ -235,9 +209,9 @@ def section_internal_forces(build: Build) -> str:
                 h.image(p, f"{case}: the largest |M(z)| and |V(z)| over the run at each section height, per model.")
             )
         series = [
-            (NAMES.get(f.model, f.model), f.model, *hist)
-            for doc, f in items
-            for hist in [_history(build, doc, "base_moment")]
+            (NAMES.get(r.forces.model, r.forces.model), r.forces.model, *hist)
+            for r in items
+            for hist in [history(build, r, "base_moment")]
             if hist is not None
         ]
         if series:
@@ -258,13 +232,12 @@ def section_internal_forces(build: Build) -> str:
     return h.section("forces", "Internal forces and stresses", parts)
 
 
-def _differences(runs) -> list[str]:
-    from ...verdict.summary import case_label
+def _differences(runs: list[ForcesRun]) -> list[str]:
 
     rows = []
-    cases = {case_label(d) for d, _ in runs}
+    cases = {r.case for r in runs}
     for case in sorted(cases):
-        models = {f.model: f for d, f in runs if case_label(d) == case}
+        models = {r.forces.model: r.forces for r in runs if r.case == case}
         ref = models.get("fem3d") or models.get("beam")
         rom = models.get("modal")
         if ref is None or rom is None:
@@ -289,7 +262,7 @@ def _differences(runs) -> list[str]:
 
 
 def _truncation(runs) -> list[str]:
-    f = next((f for _, f in runs if f.truncation is not None), None)
+    f = next((r.forces for r in runs if r.forces.truncation is not None), None)
     if f is None:
         return []
     t = f.truncation
@@ -312,9 +285,10 @@ def _truncation(runs) -> list[str]:
     ]
 
 
-def _von_mises(runs) -> list[str]:
+def _von_mises(runs: list[ForcesRun]) -> list[str]:
     out = []
-    for doc, f in runs:
+    for r in runs:
+        f = r.forces
         vm = f.von_mises
         if vm is None:
             continue
@@ -338,7 +312,7 @@ def _von_mises(runs) -> list[str]:
             h.tag("h3", "Stresses in the 3D tube"),
             h.tag(
                 "p",
-                f"Von Mises stress of the 3D full order ({doc['_file']}), {vm.space}; "
+                f"Von Mises stress of the 3D full order ({r.file}), {vm.space}; "
                 f"{vm.gravity}; over {vm.instants} instants (the time series' frames and "
                 "the peaks of base moment and shear). The ratio at the clamp is its stress "
                 "concentration over the section's nominal stress |M| c/I + N/A there; a "

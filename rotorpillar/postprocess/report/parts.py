@@ -5,12 +5,15 @@ the tables of a run's JSON."""
 from __future__ import annotations
 
 import json
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ...provenance import to_json
 from .. import html as h
-from ..readers import plain
+from ..readers import outcome, plain
 from .state import Build
+
+if TYPE_CHECKING:
+    from ...transients.run_records import RunRecord
 
 
 def product_image(build: Build, key: str) -> str:
@@ -103,30 +106,34 @@ def _peaks(mx: dict) -> list[list]:
     ]
 
 
-def key_results(meta: dict) -> str | None:
-    """The few numbers of a run a reader looks for first, where the JSON has
-    them, each value once; a run that failed its own checks says so first."""
+def key_results(run: RunRecord) -> str:
+    """The few numbers of a run a reader looks for first, each value once; a run that
+    failed its own checks says so first."""
+    from ...transients.case_summary import CaseSummary
+
+    got = outcome(run)
     rows = []
-    if meta.get("ok") is False:
-        rows.append(["FAILED: not a solution", "; ".join(meta.get("failed_checks") or ["the run reports ok: false"])])
-    for key, label in (
-        ("model", "model"),
-        ("omega_final", "final speed (rad/s)"),
-        ("captured_at", "captured at (rad/s)"),
-        ("captured_resonance", "held by the resonance at (rad/s)"),
-        ("speed_state", "speed at the end"),
+    if got.ok is False:
+        rows.append(["FAILED: not a solution", "; ".join(got.failed_checks or ["the run reports ok: false"])])
+    rows.append(["model", h.num(run.model)])
+    for value, label in (
+        (got.omega_final, "final speed (rad/s)"),
+        (got.captured_at, "captured at (rad/s)"),
+        (got.captured_resonance, "held by the resonance at (rad/s)"),
+        (got.speed_state, "speed at the end"),
     ):
-        if meta.get(key) is not None:
-            rows.append([label, h.num(meta[key])])
-    if isinstance(meta.get("jumps"), list):
-        rows.append(["jumps", str(len(meta["jumps"]))])
-    eb = meta.get("energy_balance")
-    if isinstance(eb, dict) and isinstance(eb.get("relative_error"), (int, float)):
-        rows.append(["energy balance: relative error (-)", h.num(eb["relative_error"], 3)])
-    mx = meta.get("max_abs")
-    if isinstance(mx, dict):
-        rows += _peaks(mx)
-    return h.table(["", ""], rows) if rows else None
+        if value is not None:
+            rows.append([label, h.num(value)])
+    error: float | None
+    if isinstance(got, CaseSummary):  # the 3D run has no jumps; its energy balance is a dict
+        rows.append(["jumps", str(len(got.jumps))])
+        error = got.energy_balance.relative_error
+    else:
+        error = got.energy_balance.get("relative_error")
+    if isinstance(error, (int, float)):
+        rows.append(["energy balance: relative error (-)", h.num(error, 3)])
+    rows += _peaks(run.max_abs)
+    return h.table(["", ""], rows)
 
 
 def run_table(result: Any) -> str:

@@ -13,11 +13,18 @@ omega)), i.e. if crossing / decay = 2 nu**2 omega**2 / Omega-dot >> 1.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .. import html as h
 from ..directions import short
 from .state import Build
+
+if TYPE_CHECKING:
+    from ...transients.case_summary import Passage
+    from ...transients.run_records import RunRecord
 
 
 def _acceleration(arrays: dict, at: float) -> float | None:
@@ -29,25 +36,26 @@ def _acceleration(arrays: dict, at: float) -> float | None:
     return float(np.interp(at, t, np.gradient(W, t)))
 
 
-def passage_rows(model: str, meta: dict, arrays: dict) -> list[list]:
-    """One row per resonance the run crossed."""
-    pred = {r.get("index"): r for r in ((meta.get("prediction") or {}).get("resonances") or []) if isinstance(r, dict)}
+def passage_rows(model: str, passages: Sequence[Passage], prediction: dict, arrays: dict) -> list[list]:
+    """One row per resonance the run crossed (``prediction``: the run's averaging
+    prediction, its ``resonances`` carrying nu and a_max)."""
+    pred = {r.get("index"): r for r in (prediction.get("resonances") or []) if isinstance(r, dict)}
     rows = []
-    for p in meta.get("passages") or []:
-        if not isinstance(p, dict) or not p.get("crossed") or p.get("time") is None:
+    for p in passages:
+        if not p.crossed or p.time is None:
             continue
-        w, tc = float(p["omega"]), float(p["time"])
+        w, tc = float(p.omega), float(p.time)
         acc = _acceleration(arrays, tc)
-        r = pred.get(p.get("index")) or {}
+        r = pred.get(p.index) or {}
         nu, a_max = r.get("nu"), r.get("a_max")
-        vertical = str(p.get("direction")).upper() == "Y"
-        peak = p.get("peak_rotor_y_near") if vertical else p.get("peak_tip_near")
+        vertical = str(p.direction).upper() == "Y"
+        peak = p.peak_rotor_y_near if vertical else p.peak_tip_near
         ratio = acc / w**2 if acc else None
         crossing = (2 * nu**2 * w**2 / acc) if (acc and nu) else None
         rows.append(
             [
                 model,
-                f"{p.get('index')}: {short(p.get('direction'))}",
+                f"{p.index}: {short(p.direction)}",
                 h.num(w, 4),
                 h.num(tc, 3),
                 h.num(acc, 3),
@@ -80,14 +88,21 @@ HEADERS = [
 def passage_block(build: Build) -> list[str]:
     """The table over every run-up the page has (the comparison's models, the
     scene's own run), and what it says."""
-    runs = []
+    from ...transients.run_records import ReducedRun
+
+    runs: list[tuple[str, RunRecord | None, dict]] = []
     c = build.comparisons.get("runup")
     if c is not None:
-        runs += [(m, c.metas.get(m) or {}, c.arrays.get(m) or {}) for m in c.models]
+        runs += [(m, c.runs.get(m), c.arrays.get(m) or {}) for m in c.models]
     sim = build.simulations.get("runup")
-    if sim is not None:
-        runs.append((f"{sim.meta.get('model', '?')} (the scene's run)", sim.meta, sim.arrays))
-    rows = [row for m, meta, arrays in runs for row in passage_rows(m, meta, arrays)]
+    if sim is not None and sim.run is not None:
+        runs.append((f"{sim.run.model} (the scene's run)", sim.run, sim.arrays))
+    rows = [
+        row
+        for m, run, arrays in runs
+        if isinstance(run, ReducedRun)  # the 3D run records no passages
+        for row in passage_rows(m, run.summary.passages, run.summary.prediction, arrays)
+    ]
     if not rows:
         return []
     slow = [r for r in rows if r[7] != "-" and float(r[7]) > 10]

@@ -52,11 +52,12 @@ def render_charts(build: Build) -> None:
     if quake is not None and quake.arrays.get("t") is not None:
         # relative to the ground: under the paper's pulse the absolute tip is
         # the ground's 6 m step and hides the pillar's response
-        frame = str(quake.meta.get("tip_x_frame") or "")
+        run = quake.run
+        frame = run.tip_x_frame if run is not None else ""
         tip = relative_to_ground(quake.arrays, "tip_x", frame)
         rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
-        model = quake.meta.get("model", "model not stated")
-        ex = quake.meta.get("excitation") or {}
+        model = run.model if run is not None else "model not stated"
+        ex = quake.excitation or {}
         what = ": the paper's pulse as written, not a realistic earthquake" if ex.get("realistic") is False else ""
         p = attempt(
             build,
@@ -173,14 +174,10 @@ def passage_of(c, model: str):
     run in comparison ``c`` (its speed and its JSON's resonances), or None."""
     from ..transient_charts import crossings, passage_window
 
-    a, meta = c.arrays.get(model) or {}, c.metas.get(model) or {}
+    a, run = c.arrays.get(model) or {}, c.runs.get(model)
     if a.get("t") is None or a.get("Omega") is None:
         return None
-    res = [
-        (f"omega_{r.get('index')}", float(r["omega"]))
-        for r in meta.get("resonances") or []
-        if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))
-    ]
+    res = [(f"omega_{r.index}", float(r.omega)) for r in (run.resonances if run is not None else ())]
     return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
 
 
@@ -258,11 +255,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
     out: list[tuple[str, Simulation, str, dict[str, Any]]] = []
     sim = build.simulations.get("runup")
     if sim is not None and sim.arrays.get("t") is not None:
-        res = [
-            (f"omega_{r.get('index')}", float(r["omega"]))
-            for r in sim.meta.get("resonances") or []
-            if isinstance(r, dict) and isinstance(r.get("omega"), (int, float))
-        ]
+        res = [(f"omega_{r.index}", float(r.omega)) for r in (sim.run.resonances if sim.run is not None else ())]
         focus = (
             passage_window(sim.get("t"), crossings(sim.get("t"), sim.get("Omega"), res))
             if sim.get("Omega") is not None
@@ -283,14 +276,14 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
             out.append(
                 (
                     "earthquake",
-                    Simulation("earthquake", c.metas.get(model) or {}, c.arrays[model]),
+                    Simulation("earthquake", c.runs.get(model), c.arrays[model]),
                     f"{_record_name(c.doc)} on the {model} model",
                     {},
                 )
             )
     quake = build.quake_case
     if quake is not None and quake.arrays.get("t") is not None:
-        ex = quake.meta.get("excitation") or {}
+        ex = quake.excitation or {}
         pulse = ex.get("realistic") is False or ex.get("kind") == "pulse"
         banner = ""
         if pulse:
@@ -302,14 +295,15 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
             )
         name = (
             "earthquake_paper"
-            if pulse or quake.meta.get("model") == "paper"
+            if pulse or (quake.run is not None and quake.run.model == "paper")
             else "earthquake_scene"
             if any(n == "earthquake" for n, *_ in out)
             else "earthquake"
         )
         build.products["quake_case_animation"] = f"animation_{name}"
         what = "The paper's pulse" if pulse else "The scene's earthquake"
-        out.append((name, quake, f"{what} on the {quake.meta.get('model', '?')} model", {"banner": banner}))
+        model = quake.run.model if quake.run is not None else "?"
+        out.append((name, quake, f"{what} on the {model} model", {"banner": banner}))
     return out
 
 

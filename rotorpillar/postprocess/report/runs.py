@@ -177,22 +177,17 @@ def section_runs(build: Build) -> str:
                 parts += block
         if sim is None:
             continue
-        parts.append(
-            h.tag(
-                "h4",
-                f"{RUN_TITLES[case]}: the scene's own run ({sim.meta.get('model', '?')} model, simulate_{case}.json)",
-            )
-        )
-        parts += scene_differs(build, sim.meta)
-        key = key_results(sim.meta)
-        if key:
-            parts.append(key)
+        model = sim.run.model if sim.run is not None else "?"
+        parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the scene's own run ({model} model, simulate_{case}.json)"))
+        parts += scene_differs(build, sim.doc)
+        if sim.run is not None:
+            parts.append(key_results(sim.run))
         parts += _own_charts(build, case)
         parts += failure(build, f"animation_{case}")
         parts += animation_video(build, f"animation_{case}")
         parts.append(
-            h.details(f"simulate_{case}.json: every field", run_table(sim.meta))
-            if sim.meta
+            h.details(f"simulate_{case}.json: every field", run_table(sim.doc))
+            if sim.doc
             else h.tag("p", "no JSON summary", class_="meta")
         )
     if not_run and build.simulations:

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from ...transients.run_comparisons import COMPARISONS, comparison_command
 from .. import html as h
-from ..readers import CASES, INPUTS, SIMULATE_COMMAND
+from ..readers import CASES, INPUTS, SIMULATE_COMMAND, outcome
 from .compare_section import speed_accuracy
 from .convergence import chosen
 from .engineering import verdict_block
@@ -18,6 +18,7 @@ from .state import Build
 
 if TYPE_CHECKING:
     from ...analysis.results import AnalysisResult
+    from ...chain.record import Uncertain
 
 #: Where the detail of each finding is (section or subsection ids).
 FINDINGS_ANCHOR = "paper-findings"
@@ -113,30 +114,33 @@ def _item(text: str | h.Raw) -> str:
     return h.tag("li", text)
 
 
-def _bar(bars: dict[str, Any] | None, key: str, value: Any, scale: float, unit: str) -> str:
+def _bar(bars: dict[str, Uncertain] | None, key: str, value: Any, scale: float, unit: str) -> str:
     """A run's number with its error bar where the run carries one (the headline model's:
     ``uncertainty``), ``scale`` converting SI to ``unit``; what was not assessed is said."""
-    u = bars.get(key) if isinstance(bars, dict) else None
+    u = (bars or {}).get(key)
     if not isinstance(value, (int, float)):
         return "-"
-    if not isinstance(u, dict) or not isinstance(u.get("error"), (int, float)):
+    if u is None or not isinstance(u.error, (int, float)):
         return f"{h.num(scale * value, 4)} {unit}"
-    text = f"{h.num(scale * value, 4)} ± {scale * u['error']:.2g} {unit}"
-    if u.get("unassessed"):
-        text += f" ({', '.join(u['unassessed'])} not assessed)"
+    text = f"{h.num(scale * value, 4)} ± {scale * u.error:.2g} {unit}"
+    if u.unassessed:
+        text += f" ({', '.join(u.unassessed)} not assessed)"
     return text
 
 
 def _runs(build: Build) -> list[str | h.Raw]:
+    from ...transients.run_records import ReducedRun
+
     items: list[str | h.Raw] = []
     for case in CASES:
         sim = build.simulations.get(case)
-        if sim is None or not sim.meta:
+        if sim is None or sim.run is None:
             continue
-        meta = sim.meta
-        model = meta.get("model", "?")
+        run = sim.run
+        got = outcome(run)
+        model = run.model
         if case == "earthquake":
-            ex = meta.get("excitation") or {}
+            ex = got.excitation or {}
             if ex.get("realistic") is False:
                 step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0)
                 items.append(
@@ -152,18 +156,18 @@ def _runs(build: Build) -> list[str | h.Raw]:
                     )
                 )
             continue
-        peak = (meta.get("max_abs") or {}).get("tip_x_relative")
+        peak = run.max_abs.get("tip_x_relative")
         name = {"runup": "run-up", "rundown": "run-down"}.get(case, case)
         text = f"The scene's {name} ({model} model): "
-        bars = meta.get("uncertainty") if isinstance(meta.get("uncertainty"), dict) else {}
-        if meta.get("captured_at") is not None:
+        bars = run.uncertainty if isinstance(run, ReducedRun) else None  # the 3D run has none
+        if got.captured_at is not None:
             text += (
-                f"captured at {_bar(bars, 'captured_at', meta['captured_at'], 1.0, 'rad/s')} "
-                f"below the resonance at {h.num(meta.get('captured_resonance'), 4)} rad/s"
+                f"captured at {_bar(bars, 'captured_at', got.captured_at, 1.0, 'rad/s')} "
+                f"below the resonance at {h.num(got.captured_resonance, 4)} rad/s"
             )
         else:
-            text += f"ends at {_bar(bars, 'omega_final', meta.get('omega_final'), 1.0, 'rad/s')}"
-        if meta.get("speed_state") == "escaping":
+            text += f"ends at {_bar(bars, 'omega_final', got.omega_final, 1.0, 'rad/s')}"
+        if got.speed_state == "escaping":
             text += ", still escaping a resonance at the end of the run"
         if isinstance(peak, (int, float)):
             text += f"; largest tip displacement {_bar(bars, 'peak_tip_relative', peak, 1e3, 'mm')}"
