@@ -14,6 +14,7 @@ from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import averaging_prediction
 from rotorpillar.scene import load_scene
+from rotorpillar.transients.case_checks import NoSpectrumCheck, NoTruncationEstimate
 from rotorpillar.transients.case_summary import CaseSummary, SweepFindings, run_summary
 
 BASE_KEYS = [
@@ -76,14 +77,14 @@ def test_optional_sections_in_the_order_simulate_writes_them(summary):
         sweep=sweep,
         jumps=[{"direction": "up", "omega_from": 1.0}],
         captured_at=26.0,
-        truncation={"modes": 2, "modes_check": None, "statement": "x"},
+        truncation=NoTruncationEstimate(2, None, "x"),
     )
     d = _roundtrip(s)
     assert list(d) == BASE_KEYS + SWEEP_KEYS + ["truncation"]
     assert d["no_jump_reason"] is None and d["rate_convergence"] is None  # present, null
     s = replace(summary, passing_torque={"predicted": None, "statement": "none"})
     assert list(_roundtrip(s)) == BASE_KEYS + ["passing_torque"]
-    s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check={"ratio": 0.9})
+    s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check=NoSpectrumCheck("x"))
     assert list(_roundtrip(s)) == BASE_KEYS + ["excitation", "response_spectrum_check"]
 
 

@@ -24,6 +24,14 @@ from ..reduced.batch import shaft_deflection
 from ..reduced.excitation import GroundMotion, no_motion
 from ..reduced.integration import Transient
 from ..reduced.rotor_models import RotorStructure
+from .case_checks import (
+    NoSpectrumCheck,
+    NoTruncationEstimate,
+    SpectrumCheck,
+    TruncationEstimate,
+    spectrum_check_from_json,
+    truncation_from_json,
+)
 
 CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03  # relative
@@ -284,9 +292,9 @@ class CaseSummary:
     sweep: SweepFindings | None = None
     excitation: dict | None = None
     """earthquake: the ground motion's sizes"""
-    response_spectrum_check: dict | None = None
+    response_spectrum_check: SpectrumCheck | NoSpectrumCheck | None = None
     """earthquake on a record: the tip against the response-spectrum estimate"""
-    truncation: dict | None = None
+    truncation: TruncationEstimate | NoTruncationEstimate | None = None
     """modal model: the same case with one mode more"""
     captured_resonance: float | None = None
     """omega_i of the resonance that holds the rotor (rad/s), or None"""
@@ -312,7 +320,7 @@ class CaseSummary:
                     out.update({g.name: getattr(v, g.name) for g in fields(v)})
             elif f.name == "passages":
                 out[f.name] = [p.to_json() for p in v]
-            elif f.name == "energy_balance":
+            elif f.name in ("energy_balance", "response_spectrum_check", "truncation") and v is not None:
                 out[f.name] = v.to_json()
             elif f.name not in _OPTIONAL or v is not None:
                 out[f.name] = v
@@ -323,6 +331,10 @@ class CaseSummary:
         kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
         kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
         kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
+        if d.get("truncation") is not None:
+            kw["truncation"] = truncation_from_json(d["truncation"])
+        if d.get("response_spectrum_check") is not None:
+            kw["response_spectrum_check"] = spectrum_check_from_json(d["response_spectrum_check"])
         if "predicted_jumps" in d:
             found: dict[str, Any] = {g.name: d.get(g.name) for g in fields(SweepFindings)}
             kw["sweep"] = SweepFindings(**found)
