@@ -20,24 +20,24 @@ import numpy as np
 import pytest
 
 from rotorpillar.transients.pareto import analyse_pareto
-from rotorpillar.transients.pareto_runs import run_specs
+from rotorpillar.transients.pareto_runs import StoredRun, run_specs
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 GRID = np.linspace(0.0, 1.0, 101)
 
 
 def _doc(family, label, wall, peak, tip, **params):
-    return {
-        "family": family,
-        "label": label,
-        "params": params,
-        "dofs": 10,
-        "wall_seconds": wall,
-        "peak_tip": peak,
-        "tip": list(tip),
-        "ok": True,
-        "key": label,
-    }
+    return StoredRun(
+        key=label,
+        family=family,
+        label=label,
+        params=params,
+        dofs=10,
+        wall_seconds=wall,
+        ok=True,
+        peak_tip=peak,
+        tip=tuple(tip),
+    )
 
 
 def _solid(along, peak):
@@ -54,9 +54,9 @@ def test_reference_error_by_richardson():
     ref = study.reference
     assert ref.method == "richardson" and math.isclose(ref.order, 3.0, rel_tol=1e-6)
     assert math.isclose(ref.limit, L, rel_tol=1e-9)
-    assert math.isclose(ref.peak_error, 1.25 * abs(L - docs[2]["peak_tip"]) / L, rel_tol=1e-6)
+    assert math.isclose(ref.peak_error, 1.25 * abs(L - docs[2].peak_tip) / L, rel_tol=1e-6)
     by = {r.label: r for r in study.runs}
-    assert math.isclose(by["ROM, 1 mode"].peak_tip_error, 0.0102 / docs[2]["peak_tip"] - 1)
+    assert math.isclose(by["ROM, 1 mode"].peak_tip_error, 0.0102 / docs[2].peak_tip - 1)
     assert by["3D, 8x20"].peak_tip_error == ref.peak_error  # the reference: its own error
     assert "ROM, 1 mode" in study.fronts["peak_tip"]  # cheapest: on every front
     assert "3D, 8x10" not in study.fronts["peak_tip"]  # dearer and worse than the ROM
@@ -113,8 +113,8 @@ def test_pareto_runs_cache_and_resume(tmp_path):
     # the worker's run is this process's run
     plan = plan_pareto(scene, cache_dir=tmp_path / "none", rom_modes=2, chosen_mesh=mesh, **short)
     i = next(i for i, s in enumerate(plan.specs) if s[1] == "3D, 8x2")
-    here = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
-    assert math.isclose(here["peak_tip"], victim.peak_tip, rel_tol=1e-9)
+    here, _ = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
+    assert math.isclose(here.peak_tip, victim.peak_tip, rel_tol=1e-9)
 
 
 def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_path):
@@ -136,12 +136,17 @@ def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_pa
         ParetoRunning(plan, workers=0).finish()
     files = sorted(tmp_path.glob("pareto-*.json"))
     assert len(files) == len(plan.specs)
-    computed = {i: {k: v for k, v in d.items() if k != "cached"} for i, d in plan.results.items()}
+    computed = {i: run.to_json() for i, run in plan.results.items()}
+    # the record is the file: its JSON is the document on disk, read back whole
+    assert all(
+        json.loads((tmp_path / f"pareto-{r.key}.json").read_text()) == r.to_json() for r in plan.results.values()
+    )
+    assert not any(r.cached for r in plan.results.values())
 
     again = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
     assert again.keys == plan.keys and sorted(again.results) == list(range(len(plan.specs)))
-    assert all(d["cached"] for d in again.results.values())
-    assert {i: {k: v for k, v in d.items() if k != "cached"} for i, d in again.results.items()} == computed
+    assert all(r.cached for r in again.results.values())
+    assert {i: r.to_json() for i, r in again.results.items()} == computed
 
     path = {i: tmp_path / f"pareto-{key}.json" for i, key in enumerate(plan.keys)}
     path[0].write_text(path[0].read_text()[:40])  # cut short
