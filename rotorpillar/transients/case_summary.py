@@ -32,6 +32,7 @@ from .case_checks import (
     spectrum_check_from_json,
     truncation_from_json,
 )
+from .sweep import RateConvergence
 
 CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03  # relative
@@ -256,7 +257,7 @@ class SweepFindings:
     """per resonance in range: speed rate over n_i**2 (quasi-static when < 0.1)"""
     no_jump_reason: str | None
     """why no jump was found, or None"""
-    rate_convergence: dict | None
+    rate_convergence: RateConvergence | None
     """the jumps at rates r, r/2, r/4 and their limit, or None without jumps"""
 
 
@@ -317,7 +318,9 @@ class CaseSummary:
                 out.update({k: getattr(self, k) for k in BESIDE_CAPTURE if getattr(self, k) is not None})
             elif f.name == "sweep":
                 if v is not None:
+                    rates = v.rate_convergence
                     out.update({g.name: getattr(v, g.name) for g in fields(v)})
+                    out["rate_convergence"] = None if rates is None else rates.to_json()
             elif f.name == "passages":
                 out[f.name] = [p.to_json() for p in v]
             elif f.name in ("energy_balance", "response_spectrum_check", "truncation") and v is not None:
@@ -337,6 +340,8 @@ class CaseSummary:
             kw["response_spectrum_check"] = spectrum_check_from_json(d["response_spectrum_check"])
         if "predicted_jumps" in d:
             found: dict[str, Any] = {g.name: d.get(g.name) for g in fields(SweepFindings)}
+            if found["rate_convergence"] is not None:
+                found["rate_convergence"] = RateConvergence.from_json(found["rate_convergence"])
             kw["sweep"] = SweepFindings(**found)
         return cls(**kw)
 

@@ -317,27 +317,26 @@ def _run_on(
             speed_scale=drive.free_speed(drive.times[2]),
         )
         free = drive.free_speed()
-        extra.update(sweep_analysis(w, s, k, model, run, drive))
-        if extra["numeric_jumps"]:
-            extra["rate_convergence"] = rate_convergence(
-                w, s, k, model, st, extra["numeric_jumps"], extra["predicted_jumps"]
+        sw = sweep_analysis(w, s, k, model, run, drive)
+        extra.update(sw.as_dict())
+        rates = None
+        if sw.numeric_jumps:
+            rates = extra["rate_convergence"] = rate_convergence(
+                w, s, k, model, st, sw.numeric_jumps, sw.predicted_jumps
             )
-        sections["jumps"] = extra["numeric_jumps"]
-        for key in ("captured_at", "captured_resonance", "captured_index"):
-            sections[key] = extra[key]
-        findings: dict[str, Any] = {
-            key: extra.get(key)
-            for key in (
-                "predicted_jumps",
-                "jump_comparison",
-                "largest_speed_step_ratio",
-                "amplitudes",
-                "rate_check",
-                "no_jump_reason",
-                "rate_convergence",
-            )
-        }
-        sections["sweep"] = SweepFindings(**findings)
+        sections["jumps"] = sw.numeric_jumps
+        sections["captured_at"] = sw.captured_at
+        sections["captured_resonance"] = sw.captured_resonance
+        sections["captured_index"] = sw.captured_index
+        sections["sweep"] = SweepFindings(
+            predicted_jumps=sw.predicted_jumps,
+            jump_comparison=sw.jump_comparison,
+            largest_speed_step_ratio=sw.largest_speed_step_ratio,
+            amplitudes=sw.amplitudes,
+            rate_check=sw.rate_check,
+            no_jump_reason=sw.no_jump_reason,
+            rate_convergence=rates,
+        )
     return CaseResult(case, model, run, run_summary(run, free, pred, **sections), extra)
 
 

@@ -12,11 +12,12 @@ finite sweep rate is extrapolated to a zero rate (``rate_convergence``).
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
 
+from ..provenance import JsonRecord
 from ..reduced import averaging as av
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
@@ -27,7 +28,55 @@ from ..scene import Sweep
 JUMP_FACTOR = 5.0
 
 
-def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float], bins: int, direction: str) -> dict:
+@dataclass(frozen=True)
+class SweepBins(JsonRecord):
+    """Stationary speed and amplitudes per M0 bin over one ramp of a sweep, the bins in
+    the ramp's order (M0 rising for "up", falling for "down"); empty bins left out."""
+
+    M0: np.ndarray
+    """the bin's middle torque at zero speed (N*m)"""
+    omega: np.ndarray
+    """mean rotor speed in the bin (rad/s)"""
+    tip_x: np.ndarray
+    """largest |tip X| in the bin (m)"""
+    rotor_y: np.ndarray
+    """largest |rotor Y| in the bin (m)"""
+    rotor_x: np.ndarray
+    """largest |rotor X| in the bin (m)"""
+    M0_inertia_corrected: np.ndarray
+    """M0 - J dOmega/dt: the torque the stationary balance sees (N*m)"""
+    direction: str
+    """up or down"""
+    in_jump: np.ndarray | None = field(default=None, metadata={"omit_if_none": True})
+    """per bin: inside a jump, not stationary (``detect_jumps``); None before the scan"""
+
+    def column(self, name: str) -> np.ndarray:
+        """The column called ``name`` ("tip_x", "rotor_y", ...)."""
+        value: np.ndarray = getattr(self, name)
+        return value
+
+    def as_dict(self) -> dict[str, Any]:
+        """The columns by name, as ``CaseResult.extra`` carries them (the sweep chart
+        reads them by key): the fields in order, ``in_jump`` once scanned."""
+        return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name) is not None}
+
+
+@dataclass(frozen=True)
+class JumpScan:
+    """One ramp's jumps (``detect_jumps``)."""
+
+    jumps: list[dict[str, Any]]
+    """the numeric jumps: direction, omega_from, omega_to (rad/s), torque_at_zero (N*m),
+    bins (-); rows of the JSON's ``jumps``"""
+    largest_step_ratio: float
+    """the largest speed step over what the motor and load alone allow (-; 1 on a smooth curve)"""
+    in_jump: np.ndarray
+    """per bin: inside a jump (not stationary)"""
+
+
+def sweep_bins(
+    run: Transient, drive: DriveSchedule, phase: tuple[float, float], bins: int, direction: str
+) -> SweepBins:
     """Stationary speed and amplitudes per M0 bin over one ramp of a sweep."""
     m = run.model
     t0, t1 = phase
@@ -51,20 +100,25 @@ def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float],
         cols["M0_inertia_corrected"][b] = cols["M0"][b] - m.rotor_inertia * acc
         cols["tip_x"][b], cols["rotor_y"][b], cols["rotor_x"][b] = tip[s].max(), ry[s].max(), rx[s].max()
     keep = np.isfinite(cols["M0"])
-    out: dict[str, Any] = {k: v[keep] for k, v in cols.items()}
-    if direction == "down":
-        out = {k: v[::-1] for k, v in out.items()}
-    out["direction"] = direction
-    return out
+    step = -1 if direction == "down" else 1
+    kept = {k: v[keep][::step] for k, v in cols.items()}
+    return SweepBins(
+        M0=kept["M0"],
+        omega=kept["omega"],
+        tip_x=kept["tip_x"],
+        rotor_y=kept["rotor_y"],
+        rotor_x=kept["rotor_x"],
+        M0_inertia_corrected=kept["M0_inertia_corrected"],
+        direction=direction,
+    )
 
 
-def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], float]:
+def detect_jumps(bins: SweepBins, slope: float, load: float) -> JumpScan:
     """Jumps along one ramp's bins; also the largest speed step over what the
-    motor and load alone allow (1 on a smooth curve).  Marks the bins inside
-    a jump in cols["in_jump"] (not stationary: left out of the amplitude
-    comparison)."""
-    M0, W = cols["M0"], cols["omega"]
-    sign = 1.0 if cols["direction"] == "up" else -1.0
+    motor and load alone allow (1 on a smooth curve), and the bins inside a
+    jump (not stationary: left out of the amplitude comparison)."""
+    M0, W = bins.M0, bins.omega
+    sign = 1.0 if bins.direction == "up" else -1.0
     dM = np.abs(np.diff(M0))
     dW = sign * np.diff(W)
     expected = dM / (slope + 2 * load * np.abs(W[:-1]))
@@ -73,7 +127,6 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
     in_jump = np.zeros(len(W), dtype=bool)
     in_jump[:-1] |= flagged
     in_jump[1:] |= flagged
-    cols["in_jump"] = in_jump
     jumps = []
     i = 0
     while i < len(flagged):
@@ -87,7 +140,7 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
         if abs(w_to - w_from) > 0.01 * abs(w_from):
             jumps.append(
                 {
-                    "direction": cols["direction"],
+                    "direction": bins.direction,
                     "omega_from": w_from,
                     "omega_to": w_to,
                     "torque_at_zero": float(0.5 * (M0[i] + M0[i + 1])),
@@ -95,24 +148,25 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
                 }
             )
         i = j + 1
-    return jumps, float(np.max(ratio)) if len(ratio) else 0.0
+    return JumpScan(jumps, float(np.max(ratio)) if len(ratio) else 0.0, in_jump)
 
 
-def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
+def compare_amplitudes(model: RotorStructure, bins: SweepBins) -> list[dict]:
     """Numeric stationary amplitudes of the sweep against the paper's Eq. 19 and the exact
     linear steady state, near each resonance the sweep crosses."""
     out = []
-    W = cols["omega"]
+    W = bins.omega
+    stationary = ~bins.in_jump if bins.in_jump is not None else np.ones(len(W), bool)
     res = model.quasi_normal()
     for r in res:
         key = "tip_x" if r.direction == "X" else "rotor_y"
         # where resonance i dominates: within 2 n_i, and nearer to omega_i than
         # to any other resonance of the same direction; stationary bins only
         gap = min((abs(q.omega - r.omega) for q in res if q.direction == r.direction and q is not r), default=math.inf)
-        near = (np.abs(W - r.omega) <= min(2 * r.n, 0.5 * gap)) & ~cols.get("in_jump", np.zeros(len(W), bool))
+        near = (np.abs(W - r.omega) <= min(2 * r.n, 0.5 * gap)) & stationary
         if near.sum() < 2:
             continue
-        num = cols[key][near]
+        num = bins.column(key)[near]
         eq19 = np.asarray(av.amplitude(W[near], r))
         exact = model.steady_amplitudes(W[near])[key]
         k = int(np.argmax(num))
@@ -122,7 +176,7 @@ def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
                 "direction": r.direction,
                 "omega": r.omega,
                 "coordinate": key,
-                "sweep": cols["direction"],
+                "sweep": bins.direction,
                 "bins": int(near.sum()),
                 "numeric_peak": float(num[k]),
                 "omega_at_numeric_peak": float(W[near][k]),
@@ -167,9 +221,50 @@ def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
     return rows
 
 
+@dataclass(frozen=True)
+class SweepAnalysis(JsonRecord):
+    """A quasi-static sweep against the averaging theory (``sweep_analysis``); its parts
+    that ``simulate_sweep.json`` writes are rows as the JSON has them."""
+
+    up: SweepBins
+    """the bins of the ramp with M0 rising"""
+    down: SweepBins
+    """the bins of the ramp with M0 falling"""
+    numeric_jumps: list[dict[str, Any]]
+    """the jumps the sweep made, up then down (``JumpScan.jumps``)"""
+    predicted_jumps: list[dict[str, Any]]
+    """the averaging theory's jumps inside the swept torque range (rotorpillar.reduced.averaging.Jump's fields)"""
+    jump_comparison: list[dict[str, Any]]
+    """each predicted jump beside the nearest numeric one (``match_jumps``)"""
+    largest_speed_step_ratio: dict[str, float]
+    """per direction ("up", "down"): the largest speed step over what motor and load alone allow (-)"""
+    amplitudes: list[dict[str, Any]]
+    """numeric stationary amplitudes against the paper's Eq. 19 and the exact linear ones
+    (``compare_amplitudes``)"""
+    rate_check: list[dict[str, Any]]
+    """per resonance in range: speed rate (rad/s**2) over n_i**2 (quasi-static when < 0.1)"""
+    no_jump_reason: str | None
+    """why no jump was found, or None"""
+    captured_at: float | None
+    """the up-sweep held below a resonance until its fold: the speed it left (rad/s), or None"""
+    captured_resonance: float | None
+    """that resonance's omega_i (rad/s), or None"""
+    captured_index: int | None
+    """that resonance's index (-), or None"""
+    curves: dict[str, Any]
+    """the stationary curves on a speed grid, by name: omega (rad/s), F_averaging and F_exact
+    (N*m), exact (m, by coordinate) and eq19 (m, by resonance label)"""
+
+    def as_dict(self) -> dict[str, Any]:
+        """The analysis as ``CaseResult.extra`` carries it (the sweep chart reads it by key)."""
+        out = {f.name: getattr(self, f.name) for f in fields(self)}
+        out["up"], out["down"] = self.up.as_dict(), self.down.as_dict()
+        return out
+
+
 def sweep_analysis(
     sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure, run: Transient, drive: DriveSchedule
-) -> dict:
+) -> SweepAnalysis:
     """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves,
     for the motor's ``slope`` s (N*m*s) and the load's coefficient k (N*m*s**2)."""
     w = sweep
@@ -177,8 +272,10 @@ def sweep_analysis(
     up = sweep_bins(run, drive, (t[1], t[2]), w.bins, "up")
     down = sweep_bins(run, drive, (t[3], t[4]), w.bins, "down")
     s, k = slope, load_coefficient
-    j_up, r_up = detect_jumps(up, s, k)
-    j_down, r_down = detect_jumps(down, s, k)
+    scan_up, scan_down = detect_jumps(up, s, k), detect_jumps(down, s, k)
+    up, down = replace(up, in_jump=scan_up.in_jump), replace(down, in_jump=scan_down.in_jump)
+    j_up, r_up = scan_up.jumps, scan_up.largest_step_ratio
+    j_down, r_down = scan_down.jumps, scan_down.largest_step_ratio
     res = model.quasi_normal()
     # the analysis' folds: for this drive slope and load, M0 free
     pred = av.analyse_drive(av.Characteristic(w.torque_high, s, k), res)
@@ -215,7 +312,7 @@ def sweep_analysis(
             f"analysis predicts: no fold of Md = L in [{w.torque_low:g}, {w.torque_high:g}] N*m; "
             f"the resonances draw at most {100 * worst:.2g} % of Mc at their own speed."
         )
-    W_curve = av.stationary_speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
+    W_curve = av.stationary_speed_grid(res, 1.05 * max(np.nanmax(up.omega), np.nanmax(down.omega)), 1500)
     curves = {
         "omega": W_curve,
         "F_averaging": av.total_resistance(W_curve, k, res) + s * W_curve,
@@ -223,23 +320,78 @@ def sweep_analysis(
         "exact": model.steady_amplitudes(W_curve),
         "eq19": {f"{r.direction}{r.index}": av.amplitude(W_curve, r) for r in res},
     }
-    return {
-        "up": up,
-        "down": down,
-        "numeric_jumps": numeric,
-        "predicted_jumps": predicted,
-        "jump_comparison": match_jumps(numeric, predicted),
-        "largest_speed_step_ratio": {"up": r_up, "down": r_down},
-        "amplitudes": compare_amplitudes(model, up) + compare_amplitudes(model, down),
-        "rate_check": rate_check,
-        "no_jump_reason": reason,
-        # the up-sweep held below a resonance until its fold: the speed it was held at,
-        # that resonance's omega_i and index
-        "captured_at": j_up[0]["omega_from"] if held is not None else None,
-        "captured_resonance": None if held is None else held.omega,
-        "captured_index": None if held is None else held.index,
-        "curves": curves,
-    }
+    return SweepAnalysis(
+        up=up,
+        down=down,
+        numeric_jumps=numeric,
+        predicted_jumps=predicted,
+        jump_comparison=match_jumps(numeric, predicted),
+        largest_speed_step_ratio={"up": r_up, "down": r_down},
+        amplitudes=compare_amplitudes(model, up) + compare_amplitudes(model, down),
+        rate_check=rate_check,
+        no_jump_reason=reason,
+        captured_at=j_up[0]["omega_from"] if held is not None else None,
+        captured_resonance=None if held is None else held.omega,
+        captured_index=None if held is None else held.index,
+        curves=curves,
+    )
+
+
+@dataclass(frozen=True)
+class RateRow(JsonRecord):
+    """One numeric jump at the sweep rates r, r/2, r/4, and its limit at zero rate: per
+    quantity the limit and the fitted exponent p of the delay ~ rate**p (None where the
+    three do not converge monotonically, or a rate found no such jump)."""
+
+    direction: str
+    """up or down"""
+    rates: tuple[float, ...]
+    """the sweep rates of M0 (N*m/s)"""
+    torque_at_zero: tuple[float | None, ...]
+    """the jump's M0 at each rate (N*m); None where that rate found no jump of the direction"""
+    omega_from: tuple[float | None, ...]
+    """the speed it left at each rate (rad/s)"""
+    omega_to: tuple[float | None, ...]
+    """the speed it reached at each rate (rad/s)"""
+    torque_at_zero_limit: float | None
+    """M0 extrapolated to zero rate (N*m)"""
+    torque_at_zero_exponent: float | None
+    """p of M0's delay (-)"""
+    omega_from_limit: float | None
+    """the speed left, extrapolated to zero rate (rad/s)"""
+    omega_from_exponent: float | None
+    """p of its delay (-)"""
+    omega_to_limit: float | None
+    """the speed reached, extrapolated to zero rate (rad/s)"""
+    omega_to_exponent: float | None
+    """p of its delay (-)"""
+    predicted_torque_at_zero: float | None = field(default=None, metadata={"omit_if_none": True})
+    """the averaging theory's M0 of the nearest predicted jump (N*m); absent without one or without a limit"""
+    rel_error_limit_vs_predicted: float | None = field(default=None, metadata={"omit_if_none": True})
+    """torque_at_zero_limit / predicted_torque_at_zero - 1 (-); absent with it"""
+
+
+@dataclass(frozen=True)
+class RateConvergence(JsonRecord):
+    """The sweep's jumps at decreasing rates, extrapolated to a quasi-static sweep
+    (``rate_convergence`` in ``simulate_sweep.json``)."""
+
+    rows: tuple[RateRow, ...]
+    """one per numeric jump at the scene's rate"""
+    note: str
+    """what the rows are, in words"""
+
+
+def _zero_rate_limit(v: tuple[float | None, ...]) -> tuple[float | None, float | None]:
+    """(limit, exponent p) of three values at rates halving, or (None, None)."""
+    if len(v) != 3 or any(x is None for x in v):
+        return None, None
+    a, b, c = (float(x) for x in v if x is not None)
+    d1, d2 = a - b, b - c
+    if not (d1 * d2 > 0 and abs(d2) < abs(d1)):
+        return None, None
+    p = math.log2(d1 / d2)
+    return c - d2 / (2**p - 1), p
 
 
 def rate_convergence(
@@ -251,7 +403,7 @@ def rate_convergence(
     jumps: list[dict],
     predicted: list[dict],
     factors: tuple[float, ...] = (1.0, 0.5, 0.25),
-) -> dict:
+) -> RateConvergence:
     """The sweep's jumps at rates r, r/2, r/4, and their limit at zero rate.
 
     A slow passage past a fold is delayed by a power of the rate (about 2/3
@@ -276,39 +428,43 @@ def rate_convergence(
         )
         t = drive.times
         bins = int(w.bins / f)
-        j_up = detect_jumps(sweep_bins(run, drive, (t[1], t[2]), bins, "up"), s, k)[0]
-        j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k)[0]
+        j_up = detect_jumps(sweep_bins(run, drive, (t[1], t[2]), bins, "up"), s, k).jumps
+        j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k).jumps
         found[f] = j_up + j_dn
     for j in jumps:
         same: list[dict | None] = [j]
         for f in factors[1:]:
             c = [x for x in found[f] if x["direction"] == j["direction"]]
             same.append(min(c, key=lambda x: abs(x["omega_from"] - j["omega_from"])) if c else None)
-        row = {
-            "direction": j["direction"],
-            "rates": [w.rate * f for f in factors],
-            "torque_at_zero": [None if x is None else x["torque_at_zero"] for x in same],
-            "omega_from": [None if x is None else x["omega_from"] for x in same],
-            "omega_to": [None if x is None else x["omega_to"] for x in same],
-        }
-        for key in ("torque_at_zero", "omega_from", "omega_to"):
-            v = row[key]
-            lim, p = None, None
-            if None not in v and len(v) == 3:
-                d1, d2 = v[0] - v[1], v[1] - v[2]
-                if d1 * d2 > 0 and abs(d2) < abs(d1):
-                    p = math.log2(d1 / d2)
-                    lim = v[2] - d2 / (2**p - 1)
-            row[f"{key}_limit"] = lim
-            row[f"{key}_exponent"] = p
+        torque = tuple(None if x is None else x["torque_at_zero"] for x in same)
+        w_from = tuple(None if x is None else x["omega_from"] for x in same)
+        w_to = tuple(None if x is None else x["omega_to"] for x in same)
+        (m_lim, m_p), (f_lim, f_p), (t_lim, t_p) = map(_zero_rate_limit, (torque, w_from, w_to))
         pred = [q for q in predicted if q["direction"] == j["direction"]]
-        if pred and row["torque_at_zero_limit"] is not None:
+        predicted_torque = rel_error = None
+        if pred and m_lim is not None:
             q = min(pred, key=lambda q: abs(q["omega_from"] - j["omega_from"]))
-            row["predicted_torque_at_zero"] = q["torque_at_zero"]
-            row["rel_error_limit_vs_predicted"] = row["torque_at_zero_limit"] / q["torque_at_zero"] - 1
-        rows.append(row)
-    return {
-        "rows": rows,
-        "note": "jump torques at decreasing sweep rates, extrapolated to a "
+            predicted_torque = q["torque_at_zero"]
+            rel_error = m_lim / q["torque_at_zero"] - 1
+        rows.append(
+            RateRow(
+                direction=j["direction"],
+                rates=tuple(w.rate * f for f in factors),
+                torque_at_zero=torque,
+                omega_from=w_from,
+                omega_to=w_to,
+                torque_at_zero_limit=m_lim,
+                torque_at_zero_exponent=m_p,
+                omega_from_limit=f_lim,
+                omega_from_exponent=f_p,
+                omega_to_limit=t_lim,
+                omega_to_exponent=t_p,
+                predicted_torque_at_zero=predicted_torque,
+                rel_error_limit_vs_predicted=rel_error,
+            )
+        )
+    return RateConvergence(
+        rows=tuple(rows),
+        note="jump torques at decreasing sweep rates, extrapolated to a "
         "quasi-static sweep (rate -> 0) with a fitted power of the rate",
-    }
+    )
