@@ -161,8 +161,9 @@ def passages(run: Transient) -> tuple[Passage, ...]:
     return tuple(out)
 
 
-def max_abs(run: Transient) -> dict:
-    """Largest |value| over the run, from the integrator's per-step peaks (m)."""
+def max_abs(run: Transient) -> dict[str, float]:
+    """Largest |value| over the run, from the integrator's per-step peaks (m); a mapping by
+    coordinate name, not a record: its keys are the model's coordinates (the JSON's max_abs)."""
     m = run.model
     pk = np.nanmax(run.peak, axis=0)
     out = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
@@ -198,8 +199,9 @@ def decimate(run: Transient, max_samples: int) -> Transient:
     return replace(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
 
 
-def series(run: Transient, max_samples: int | None = None) -> dict:
-    """The arrays written to the NPZ/CSV (contract with the animations)."""
+def series(run: Transient, max_samples: int | None = None) -> dict[str, np.ndarray]:
+    """The arrays written to the NPZ/CSV (contract with the animations); a mapping by column
+    name, not a record: the columns present depend on the model (drive, frame, modes)."""
     if max_samples:
         run = decimate(run, max_samples)
     m = run.model
@@ -245,15 +247,15 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
 class SweepFindings:
     """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep)."""
 
-    predicted_jumps: list
+    predicted_jumps: list[dict[str, Any]]
     """the averaging theory's jumps inside the swept torque range"""
-    jump_comparison: list
+    jump_comparison: list[dict[str, Any]]
     """each predicted jump beside the nearest numeric one"""
-    largest_speed_step_ratio: dict
+    largest_speed_step_ratio: dict[str, float]
     """{"up", "down"}: the largest speed step over what motor and load alone allow (-)"""
-    amplitudes: list
+    amplitudes: list[dict[str, Any]]
     """numeric stationary amplitudes against the paper's Eq. 19 and the exact linear ones"""
-    rate_check: list
+    rate_check: list[dict[str, Any]]
     """per resonance in range: speed rate over n_i**2 (quasi-static when < 0.1)"""
     no_jump_reason: str | None
     """why no jump was found, or None"""

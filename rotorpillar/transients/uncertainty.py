@@ -69,7 +69,8 @@ def _finer(scene: Scene, integrator: str | None) -> Scene:
 def uncertainty(
     scene: Scene, case: str, integrator, motion, chain: ChainModes, base, progress=None
 ) -> dict[str, Uncertain]:
-    """``{name: Uncertain}`` for the headline numbers of ``base`` (a modal CaseResult)."""
+    """``{name: Uncertain}`` for the headline numbers of ``base`` (a modal CaseResult); a
+    mapping by quantity name, not a record: a number without a finite value has no entry."""
     from .cases import run_case
 
     quiet = override(scene, ["simulate.threshold=false"])
