@@ -86,30 +86,45 @@ def test_run_specs():
 @pytest.mark.slow  # 3D runs on 8 x 2, 3, 4 elements over 0.3 s, twice; a Dask worker
 @has_dolfinx
 def test_pareto_runs_cache_and_resume(tmp_path):
+    import json
+
+    from rotorpillar.provenance import to_json
     from rotorpillar.scene import load_scene
-    from rotorpillar.transients.pareto import plan_pareto, transient_pareto
+    from rotorpillar.transients.pareto import ParetoStudy, plan_pareto, transient_pareto
     from rotorpillar.transients.pareto_runs import compute_3d
 
     scene = load_scene("paper", ["excitation.kind=record"])
     short = dict(duration=0.3, along=(2, 3, 4), beams=(2, 4))
     mesh = replace(scene.mesh, elements_around=8, elements_along=3)
     study, tips = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, workers=1, **short)
-    assert all(r.ok for r in study.runs) and study.cost["computed"] == len(study.runs)
-    assert study.cost["workers"] == 1 and "fem3d" in study.compile_seconds
+    assert all(r.ok for r in study.runs) and study.cost.computed == len(study.runs)
+    assert study.cost.workers == 1 and "fem3d" in study.compile_seconds
     assert study.reference.label == "3D, 8x4" and study.chosen["fem3d"] == "3D, 8x3"
+    # the study is a record writing the JSON it reads back (compare_earthquake.json's pareto)
+    doc = json.loads(to_json(study.to_json()))
+    assert ParetoStudy.from_json(doc).to_json() == doc
+    assert list(doc["cost"]) == [
+        "runs",
+        "computed",
+        "cached",
+        "workers",
+        "wall_seconds",
+        "pool_seconds",
+        "compute_seconds",
+    ]
     # the same start for every model: their tips agree at t = 0 (the pillar at rest)
     assert max(abs(v[0]) for v in tips.values()) < 1e-12
     err = {r.label: abs(r.history_error) for r in study.runs}
     assert err["3D, 8x3"] < err["3D, 8x2"]
     # cached: nothing computed, the same numbers
     again, _ = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, **short)
-    assert again.cost["computed"] == 0 and all(r.cached for r in again.runs)
+    assert again.cost.computed == 0 and all(r.cached for r in again.runs)
     assert [r.peak_tip for r in again.runs] == [r.peak_tip for r in study.runs]
     # resumable: one run lost, one run computed
     victim = next(r for r in study.runs if r.label == "3D, 8x2")
     (tmp_path / f"pareto-{victim.key}.json").unlink()
     third, _ = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, **short)
-    assert third.cost["computed"] == 1
+    assert third.cost.computed == 1
     # the worker's run is this process's run
     plan = plan_pareto(scene, cache_dir=tmp_path / "none", rom_modes=2, chosen_mesh=mesh, **short)
     i = next(i for i, s in enumerate(plan.specs) if s[1] == "3D, 8x2")

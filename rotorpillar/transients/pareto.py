@@ -89,11 +89,49 @@ class ParetoReference(JsonRecord):
 
 
 @dataclass(frozen=True)
+class ParetoCase(JsonRecord):
+    """The case every model of the study runs."""
+
+    record: str
+    """the ground-motion record's name"""
+    record_start: float
+    """the record starts this long after the runs (s)"""
+    duration: float
+    """length of every run (s)"""
+    initial_speed: float
+    """the rotor's speed at the start: the ROM's operating speed (rad/s)"""
+    samples: int
+    """points of the common grid the tips are compared on (-)"""
+    start: str
+    """the initial state, in words"""
+
+
+@dataclass(frozen=True)
+class ParetoCost(JsonRecord):
+    """What the study cost (wall times on a shared machine: noisy)."""
+
+    runs: int
+    """runs of the study (-)"""
+    computed: int
+    """of them computed by this call (-)"""
+    cached: int
+    """of them read from the cache (-)"""
+    workers: int
+    """worker processes of the 3D runs (-; 0: in the caller's process)"""
+    wall_seconds: float
+    """what the caller waited for the study: planning, its own runs, waiting for the workers (s)"""
+    pool_seconds: float
+    """the workers' elapsed time, beside the caller's own work (s)"""
+    compute_seconds: float
+    """the computed runs' times, summed (s)"""
+
+
+@dataclass(frozen=True)
 class ParetoStudy(JsonRecord):
     """Speed against accuracy on El Centro (``pareto`` in compare_earthquake.json)."""
 
-    case: dict
-    """record, record_start, duration, initial_speed, samples, start"""
+    case: ParetoCase | None
+    """the case every model runs (None until the runs are done: ``analyse_pareto`` alone)"""
     runs: tuple[ParetoRun, ...]
     reference: ParetoReference
     fronts: dict
@@ -101,12 +139,11 @@ class ParetoStudy(JsonRecord):
     wall time, cheapest first"""
     chosen: dict
     """rom, fem3d: the labels of the comparison's models, and why"""
-    compile_seconds: dict
-    """family -> seconds of the warm-up run in this process (numba, FFCx), outside every timing"""
-    cost: dict
-    """runs, computed, cached, workers; wall_seconds: what the caller waited for the study
-    (planning, its own runs, waiting for the workers); pool_seconds: the workers' elapsed
-    time, beside the caller's own work; compute_seconds: the computed runs' times, summed"""
+    compile_seconds: dict[str, float]
+    """family -> seconds of the warm-up run in this process (numba, FFCx), outside every timing
+    (a mapping: the families that ran)"""
+    cost: ParetoCost | None
+    """what the study cost (None until the runs are done)"""
     chart: str | None = None
     note: str = ""
 
@@ -297,23 +334,23 @@ class ParetoRunning:
                 "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}",
             },
         )
-        case = {
-            "record": plan.scene.excitation.record,
-            "record_start": PARETO_RECORD_START,
-            "duration": plan.duration,
-            "initial_speed": plan.speed,
-            "samples": PARETO_SAMPLES,
-            "start": "every model from the pillar at rest, the rotor in its steady whirl at the ROM's operating speed",
-        }
-        cost = {
-            "runs": len(plan.specs),
-            "computed": len(self.todo),
-            "cached": len(plan.specs) - len(self.todo),
-            "workers": self.workers,
-            "wall_seconds": plan.plan_seconds + time.perf_counter() - t0,
-            "pool_seconds": self.pool_seconds,
-            "compute_seconds": float(sum(plan.results[i].wall_seconds for i in self.todo)),
-        }
+        case = ParetoCase(
+            record=plan.scene.excitation.record,
+            record_start=PARETO_RECORD_START,
+            duration=plan.duration,
+            initial_speed=plan.speed,
+            samples=PARETO_SAMPLES,
+            start="every model from the pillar at rest, the rotor in its steady whirl at the ROM's operating speed",
+        )
+        cost = ParetoCost(
+            runs=len(plan.specs),
+            computed=len(self.todo),
+            cached=len(plan.specs) - len(self.todo),
+            workers=self.workers,
+            wall_seconds=plan.plan_seconds + time.perf_counter() - t0,
+            pool_seconds=self.pool_seconds,
+            compute_seconds=float(sum(plan.results[i].wall_seconds for i in self.todo)),
+        )
         return replace(study, case=case, compile_seconds=dict(self.compile), cost=cost), series
 
 
@@ -429,13 +466,13 @@ def analyse_pareto(docs: list[StoredRun], chosen: dict) -> tuple[ParetoStudy, di
                 f"{r.wall_seconds:.3g} s, " + (f"on the front of {' and '.join(on)}" if on else "on no front")
             )
     study = ParetoStudy(
-        case={},
+        case=None,
         runs=tuple(runs),
         reference=ref_err,
         fronts=fronts,
         chosen={**chosen, "why": "; ".join(why)},
         compile_seconds={},
-        cost={},
+        cost=None,
         note="errors of the tip relative to the ground against the finest 3D run; "
         "wall times warm, measured on a shared machine (noisy)",
     )
