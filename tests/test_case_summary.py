@@ -8,6 +8,7 @@ import json
 import pytest
 
 from rotorpillar.provenance import to_json
+from rotorpillar.reduced.averaging import Jump
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.integration import Settings, simulate
@@ -15,7 +16,8 @@ from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import averaging_prediction
 from rotorpillar.scene import load_scene
 from rotorpillar.transients.case_checks import NoSpectrumCheck, NoTruncationEstimate
-from rotorpillar.transients.case_summary import CaseSummary, SweepFindings, run_summary
+from rotorpillar.transients.case_summary import CaseSummary, run_summary
+from rotorpillar.transients.sweep_records import JumpMatch, NumericJump, SweepFindings
 
 BASE_KEYS = [
     "ok",
@@ -71,11 +73,12 @@ def test_plain_case_keys_and_roundtrip(summary):
 def test_optional_sections_in_the_order_simulate_writes_them(summary):
     from dataclasses import replace
 
-    sweep = SweepFindings([{"direction": "up"}], [], {"up": 1.0, "down": 1.2}, [], [], None, None)
+    jump = Jump("up", 25.0, 31.0, 600.0, 1)
+    sweep = SweepFindings((jump,), (JumpMatch(jump, None),), {"up": 1.0, "down": 1.2}, (), (), None, None)
     s = replace(
         summary,
         sweep=sweep,
-        jumps=[{"direction": "up", "omega_from": 1.0}],
+        jumps=(NumericJump("up", 25.5, 30.0, 610.0, 2),),
         captured_at=26.0,
         truncation=NoTruncationEstimate(2, None, "x"),
     )

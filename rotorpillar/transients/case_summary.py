@@ -32,7 +32,7 @@ from .case_checks import (
     spectrum_check_from_json,
     truncation_from_json,
 )
-from .sweep import RateConvergence
+from .sweep_records import NumericJump, SweepFindings
 
 CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03  # relative
@@ -244,26 +244,6 @@ def series(run: Transient, max_samples: int | None = None) -> dict[str, np.ndarr
 
 
 @dataclass(frozen=True)
-class SweepFindings:
-    """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep)."""
-
-    predicted_jumps: list[dict[str, Any]]
-    """the averaging theory's jumps inside the swept torque range"""
-    jump_comparison: list[dict[str, Any]]
-    """each predicted jump beside the nearest numeric one"""
-    largest_speed_step_ratio: dict[str, float]
-    """{"up", "down"}: the largest speed step over what motor and load alone allow (-)"""
-    amplitudes: list[dict[str, Any]]
-    """numeric stationary amplitudes against the paper's Eq. 19 and the exact linear ones"""
-    rate_check: list[dict[str, Any]]
-    """per resonance in range: speed rate over n_i**2 (quasi-static when < 0.1)"""
-    no_jump_reason: str | None
-    """why no jump was found, or None"""
-    rate_convergence: RateConvergence | None
-    """the jumps at rates r, r/2, r/4 and their limit, or None without jumps"""
-
-
-@dataclass(frozen=True)
 class CaseSummary:
     """A case condensed for ``simulate_<case>.json``; values are JSON-ready
     (numpy arrays allowed: the writer converts them).  Optional sections are
@@ -288,7 +268,7 @@ class CaseSummary:
     """the integrator's statistics"""
     prediction: dict
     """what the averaging theory predicts for the drive"""
-    jumps: list
+    jumps: tuple[NumericJump, ...]
     """the sweep's numeric jumps (empty for the other cases)"""
     passing_torque: dict | None = None
     """run-up: the torque needed to pass the first capturing resonance"""
@@ -320,10 +300,8 @@ class CaseSummary:
                 out.update({k: getattr(self, k) for k in BESIDE_CAPTURE if getattr(self, k) is not None})
             elif f.name == "sweep":
                 if v is not None:
-                    rates = v.rate_convergence
-                    out.update({g.name: getattr(v, g.name) for g in fields(v)})
-                    out["rate_convergence"] = None if rates is None else rates.to_json()
-            elif f.name == "passages":
+                    out.update(v.to_json())
+            elif f.name in ("passages", "jumps"):
                 out[f.name] = [p.to_json() for p in v]
             elif f.name in ("energy_balance", "response_spectrum_check", "truncation") and v is not None:
                 out[f.name] = v.to_json()
@@ -335,16 +313,14 @@ class CaseSummary:
     def from_json(cls, d: dict) -> CaseSummary:
         kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
         kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
+        kw["jumps"] = tuple(NumericJump.from_json(j) for j in d.get("jumps") or ())
         kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
         if d.get("truncation") is not None:
             kw["truncation"] = truncation_from_json(d["truncation"])
         if d.get("response_spectrum_check") is not None:
             kw["response_spectrum_check"] = spectrum_check_from_json(d["response_spectrum_check"])
         if "predicted_jumps" in d:
-            found: dict[str, Any] = {g.name: d.get(g.name) for g in fields(SweepFindings)}
-            if found["rate_convergence"] is not None:
-                found["rate_convergence"] = RateConvergence.from_json(found["rate_convergence"])
-            kw["sweep"] = SweepFindings(**found)
+            kw["sweep"] = SweepFindings.from_json(d)
         return cls(**kw)
 
 
@@ -490,7 +466,7 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
         energy_balance=EnergyBalance(**run.energy_balance()),
         integrator={**run.stats, "accuracy": acc.to_json()},
         prediction=prediction,
-        jumps=[],
+        jumps=(),
     )
     base.update(sections)
     if failed:

@@ -38,8 +38,9 @@ from .case_checks import (
     SpectrumCheck,
     TruncationEstimate,
 )
-from .case_summary import CaseSummary, SweepFindings, run_summary
+from .case_summary import CaseSummary, run_summary
 from .sweep import rate_convergence, sweep_analysis
+from .sweep_records import SweepFindings
 
 
 @dataclass(frozen=True)

@@ -12,66 +12,50 @@ finite sweep rate is extrapolated to a zero rate (``rate_convergence``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields, replace
-from typing import Any
+from dataclasses import replace
 
 import numpy as np
 
-from ..provenance import JsonRecord
 from ..reduced import averaging as av
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.integration import Settings, Transient, simulate
 from ..reduced.rotor_models import RotorStructure
 from ..scene import Sweep
+from .sweep_records import (
+    AmplitudeCheck,
+    JumpMatch,
+    JumpScan,
+    NumericJump,
+    RateCheck,
+    RateConvergence,
+    RateRow,
+    SweepAnalysis,
+    SweepBins,
+    SweepFindings,
+)
+
+__all__ = [  # the records are sweep_records'; named here too, beside the functions that build them
+    "JUMP_FACTOR",
+    "AmplitudeCheck",
+    "JumpMatch",
+    "JumpScan",
+    "NumericJump",
+    "RateCheck",
+    "RateConvergence",
+    "RateRow",
+    "SweepAnalysis",
+    "SweepBins",
+    "SweepFindings",
+    "compare_amplitudes",
+    "detect_jumps",
+    "match_jumps",
+    "rate_convergence",
+    "sweep_analysis",
+    "sweep_bins",
+]
 
 JUMP_FACTOR = 5.0
-
-
-@dataclass(frozen=True)
-class SweepBins(JsonRecord):
-    """Stationary speed and amplitudes per M0 bin over one ramp of a sweep, the bins in
-    the ramp's order (M0 rising for "up", falling for "down"); empty bins left out."""
-
-    M0: np.ndarray
-    """the bin's middle torque at zero speed (N*m)"""
-    omega: np.ndarray
-    """mean rotor speed in the bin (rad/s)"""
-    tip_x: np.ndarray
-    """largest |tip X| in the bin (m)"""
-    rotor_y: np.ndarray
-    """largest |rotor Y| in the bin (m)"""
-    rotor_x: np.ndarray
-    """largest |rotor X| in the bin (m)"""
-    M0_inertia_corrected: np.ndarray
-    """M0 - J dOmega/dt: the torque the stationary balance sees (N*m)"""
-    direction: str
-    """up or down"""
-    in_jump: np.ndarray | None = field(default=None, metadata={"omit_if_none": True})
-    """per bin: inside a jump, not stationary (``detect_jumps``); None before the scan"""
-
-    def column(self, name: str) -> np.ndarray:
-        """The column called ``name`` ("tip_x", "rotor_y", ...)."""
-        value: np.ndarray = getattr(self, name)
-        return value
-
-    def as_dict(self) -> dict[str, Any]:
-        """The columns by name, as ``CaseResult.extra`` carries them (the sweep chart
-        reads them by key): the fields in order, ``in_jump`` once scanned."""
-        return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name) is not None}
-
-
-@dataclass(frozen=True)
-class JumpScan:
-    """One ramp's jumps (``detect_jumps``)."""
-
-    jumps: list[dict[str, Any]]
-    """the numeric jumps: direction, omega_from, omega_to (rad/s), torque_at_zero (N*m),
-    bins (-); rows of the JSON's ``jumps``"""
-    largest_step_ratio: float
-    """the largest speed step over what the motor and load alone allow (-; 1 on a smooth curve)"""
-    in_jump: np.ndarray
-    """per bin: inside a jump (not stationary)"""
 
 
 def sweep_bins(
@@ -139,19 +123,19 @@ def detect_jumps(bins: SweepBins, slope: float, load: float) -> JumpScan:
         w_from, w_to = float(W[i]), float(W[j + 1])
         if abs(w_to - w_from) > 0.01 * abs(w_from):
             jumps.append(
-                {
-                    "direction": bins.direction,
-                    "omega_from": w_from,
-                    "omega_to": w_to,
-                    "torque_at_zero": float(0.5 * (M0[i] + M0[i + 1])),
-                    "bins": int(j - i + 1),
-                }
+                NumericJump(
+                    direction=bins.direction,
+                    omega_from=w_from,
+                    omega_to=w_to,
+                    torque_at_zero=float(0.5 * (M0[i] + M0[i + 1])),
+                    bins=int(j - i + 1),
+                )
             )
         i = j + 1
     return JumpScan(jumps, float(np.max(ratio)) if len(ratio) else 0.0, in_jump)
 
 
-def compare_amplitudes(model: RotorStructure, bins: SweepBins) -> list[dict]:
+def compare_amplitudes(model: RotorStructure, bins: SweepBins) -> list[AmplitudeCheck]:
     """Numeric stationary amplitudes of the sweep against the paper's Eq. 19 and the exact
     linear steady state, near each resonance the sweep crosses."""
     out = []
@@ -171,95 +155,54 @@ def compare_amplitudes(model: RotorStructure, bins: SweepBins) -> list[dict]:
         exact = model.steady_amplitudes(W[near])[key]
         k = int(np.argmax(num))
         out.append(
-            {
-                "index": r.index,
-                "direction": r.direction,
-                "omega": r.omega,
-                "coordinate": key,
-                "sweep": bins.direction,
-                "bins": int(near.sum()),
-                "numeric_peak": float(num[k]),
-                "omega_at_numeric_peak": float(W[near][k]),
-                "eq19_at_that_speed": float(eq19[k]),
-                "exact_at_that_speed": float(exact[k]),
-                "eq19_a_max": float(av.amplitude(r.omega, r)),
-                "rel_error_eq19": float(np.max(np.abs(eq19 / num - 1))),
-                "rel_error_exact": float(np.max(np.abs(exact / num - 1))),
-                "rel_error_eq19_median": float(np.median(np.abs(eq19 / num - 1))),
-                "rel_error_exact_median": float(np.median(np.abs(exact / num - 1))),
-                "rel_error_eq19_at_peak": float(eq19[k] / num[k] - 1),
-                "rel_error_exact_at_peak": float(exact[k] / num[k] - 1),
-            }
+            AmplitudeCheck(
+                index=r.index,
+                direction=r.direction,
+                omega=r.omega,
+                coordinate=key,
+                sweep=bins.direction,
+                bins=int(near.sum()),
+                numeric_peak=float(num[k]),
+                omega_at_numeric_peak=float(W[near][k]),
+                eq19_at_that_speed=float(eq19[k]),
+                exact_at_that_speed=float(exact[k]),
+                eq19_a_max=float(av.amplitude(r.omega, r)),
+                rel_error_eq19=float(np.max(np.abs(eq19 / num - 1))),
+                rel_error_exact=float(np.max(np.abs(exact / num - 1))),
+                rel_error_eq19_median=float(np.median(np.abs(eq19 / num - 1))),
+                rel_error_exact_median=float(np.median(np.abs(exact / num - 1))),
+                rel_error_eq19_at_peak=float(eq19[k] / num[k] - 1),
+                rel_error_exact_at_peak=float(exact[k] / num[k] - 1),
+            )
         )
     return out
 
 
-def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
+def match_jumps(numeric: list[NumericJump], predicted: list[av.Jump]) -> list[JumpMatch]:
     """Each predicted jump beside the numeric one of the same direction it is
     nearest to and that is nearest to it (in the speed it leaves), or beside
     none: a jump the sweep did not make (a resonance out of its range) is not
     measured against another resonance's jump."""
 
     def nearest(x, cands):
-        return min(cands, key=lambda c: abs(c["omega_from"] - x["omega_from"]), default=None)
+        return min(cands, key=lambda c: abs(c.omega_from - x.omega_from), default=None)
 
     rows = []
     for p in predicted:
-        j = nearest(p, [j for j in numeric if j["direction"] == p["direction"]])
-        if j is None or nearest(j, [q for q in predicted if q["direction"] == p["direction"]]) is not p:
-            rows.append({"predicted": p, "numeric": None})
+        j = nearest(p, [j for j in numeric if j.direction == p.direction])
+        if j is None or nearest(j, [q for q in predicted if q.direction == p.direction]) is not p:
+            rows.append(JumpMatch(p, None))
             continue
         rows.append(
-            {
-                "predicted": p,
-                "numeric": j,
-                "rel_error_omega_from": j["omega_from"] / p["omega_from"] - 1,
-                "rel_error_omega_to": j["omega_to"] / p["omega_to"] - 1,
-                "rel_error_torque": j["torque_at_zero"] / p["torque_at_zero"] - 1,
-            }
+            JumpMatch(
+                p,
+                j,
+                rel_error_omega_from=j.omega_from / p.omega_from - 1,
+                rel_error_omega_to=j.omega_to / p.omega_to - 1,
+                rel_error_torque=j.torque_at_zero / p.torque_at_zero - 1,
+            )
         )
     return rows
-
-
-@dataclass(frozen=True)
-class SweepAnalysis(JsonRecord):
-    """A quasi-static sweep against the averaging theory (``sweep_analysis``); its parts
-    that ``simulate_sweep.json`` writes are rows as the JSON has them."""
-
-    up: SweepBins
-    """the bins of the ramp with M0 rising"""
-    down: SweepBins
-    """the bins of the ramp with M0 falling"""
-    numeric_jumps: list[dict[str, Any]]
-    """the jumps the sweep made, up then down (``JumpScan.jumps``)"""
-    predicted_jumps: list[dict[str, Any]]
-    """the averaging theory's jumps inside the swept torque range (rotorpillar.reduced.averaging.Jump's fields)"""
-    jump_comparison: list[dict[str, Any]]
-    """each predicted jump beside the nearest numeric one (``match_jumps``)"""
-    largest_speed_step_ratio: dict[str, float]
-    """per direction ("up", "down"): the largest speed step over what motor and load alone allow (-)"""
-    amplitudes: list[dict[str, Any]]
-    """numeric stationary amplitudes against the paper's Eq. 19 and the exact linear ones
-    (``compare_amplitudes``)"""
-    rate_check: list[dict[str, Any]]
-    """per resonance in range: speed rate (rad/s**2) over n_i**2 (quasi-static when < 0.1)"""
-    no_jump_reason: str | None
-    """why no jump was found, or None"""
-    captured_at: float | None
-    """the up-sweep held below a resonance until its fold: the speed it left (rad/s), or None"""
-    captured_resonance: float | None
-    """that resonance's omega_i (rad/s), or None"""
-    captured_index: int | None
-    """that resonance's index (-), or None"""
-    curves: dict[str, Any]
-    """the stationary curves on a speed grid, by name: omega (rad/s), F_averaging and F_exact
-    (N*m), exact (m, by coordinate) and eq19 (m, by resonance label)"""
-
-    def as_dict(self) -> dict[str, Any]:
-        """The analysis as ``CaseResult.extra`` carries it (the sweep chart reads it by key)."""
-        out = {f.name: getattr(self, f.name) for f in fields(self)}
-        out["up"], out["down"] = self.up.as_dict(), self.down.as_dict()
-        return out
 
 
 def sweep_analysis(
@@ -279,27 +222,18 @@ def sweep_analysis(
     res = model.quasi_normal()
     # the analysis' folds: for this drive slope and load, M0 free
     pred = av.analyse_drive(av.Characteristic(w.torque_high, s, k), res)
-    predicted = [vars(j) for j in pred.jumps if w.torque_low <= j.torque_at_zero <= w.torque_high]
+    predicted = [j for j in pred.jumps if w.torque_low <= j.torque_at_zero <= w.torque_high]
     numeric = j_up + j_down
     held = None
     if j_up:
-        below = [r for r in res if r.omega <= j_up[0]["omega_from"] * (1 + 0.03)]
+        below = [r for r in res if r.omega <= j_up[0].omega_from * (1 + 0.03)]
         held = max(below, key=lambda r: r.omega) if below else None
     rate_check = []
     for r in res:
         if not (w.torque_low <= float(r.omega * (s + k * r.omega)) <= w.torque_high):
             continue
         acc = w.rate / (s + 2 * k * r.omega)
-        rate_check.append(
-            {
-                "index": r.index,
-                "omega": r.omega,
-                "n": r.n,
-                "speed_rate": acc,
-                "ratio": acc / r.n**2,
-                "quasi_static": bool(acc / r.n**2 < 0.1),
-            }
-        )
+        rate_check.append(RateCheck(r.index, r.omega, r.n, acc, acc / r.n**2, bool(acc / r.n**2 < 0.1)))
     if numeric:
         reason = None
     elif predicted:
@@ -323,63 +257,18 @@ def sweep_analysis(
     return SweepAnalysis(
         up=up,
         down=down,
-        numeric_jumps=numeric,
-        predicted_jumps=predicted,
-        jump_comparison=match_jumps(numeric, predicted),
+        numeric_jumps=tuple(numeric),
+        predicted_jumps=tuple(predicted),
+        jump_comparison=tuple(match_jumps(numeric, predicted)),
         largest_speed_step_ratio={"up": r_up, "down": r_down},
-        amplitudes=compare_amplitudes(model, up) + compare_amplitudes(model, down),
-        rate_check=rate_check,
+        amplitudes=tuple(compare_amplitudes(model, up) + compare_amplitudes(model, down)),
+        rate_check=tuple(rate_check),
         no_jump_reason=reason,
-        captured_at=j_up[0]["omega_from"] if held is not None else None,
+        captured_at=j_up[0].omega_from if held is not None else None,
         captured_resonance=None if held is None else held.omega,
         captured_index=None if held is None else held.index,
         curves=curves,
     )
-
-
-@dataclass(frozen=True)
-class RateRow(JsonRecord):
-    """One numeric jump at the sweep rates r, r/2, r/4, and its limit at zero rate: per
-    quantity the limit and the fitted exponent p of the delay ~ rate**p (None where the
-    three do not converge monotonically, or a rate found no such jump)."""
-
-    direction: str
-    """up or down"""
-    rates: tuple[float, ...]
-    """the sweep rates of M0 (N*m/s)"""
-    torque_at_zero: tuple[float | None, ...]
-    """the jump's M0 at each rate (N*m); None where that rate found no jump of the direction"""
-    omega_from: tuple[float | None, ...]
-    """the speed it left at each rate (rad/s)"""
-    omega_to: tuple[float | None, ...]
-    """the speed it reached at each rate (rad/s)"""
-    torque_at_zero_limit: float | None
-    """M0 extrapolated to zero rate (N*m)"""
-    torque_at_zero_exponent: float | None
-    """p of M0's delay (-)"""
-    omega_from_limit: float | None
-    """the speed left, extrapolated to zero rate (rad/s)"""
-    omega_from_exponent: float | None
-    """p of its delay (-)"""
-    omega_to_limit: float | None
-    """the speed reached, extrapolated to zero rate (rad/s)"""
-    omega_to_exponent: float | None
-    """p of its delay (-)"""
-    predicted_torque_at_zero: float | None = field(default=None, metadata={"omit_if_none": True})
-    """the averaging theory's M0 of the nearest predicted jump (N*m); absent without one or without a limit"""
-    rel_error_limit_vs_predicted: float | None = field(default=None, metadata={"omit_if_none": True})
-    """torque_at_zero_limit / predicted_torque_at_zero - 1 (-); absent with it"""
-
-
-@dataclass(frozen=True)
-class RateConvergence(JsonRecord):
-    """The sweep's jumps at decreasing rates, extrapolated to a quasi-static sweep
-    (``rate_convergence`` in ``simulate_sweep.json``)."""
-
-    rows: tuple[RateRow, ...]
-    """one per numeric jump at the scene's rate"""
-    note: str
-    """what the rows are, in words"""
 
 
 def _zero_rate_limit(v: tuple[float | None, ...]) -> tuple[float | None, float | None]:
@@ -400,8 +289,8 @@ def rate_convergence(
     load_coefficient: float,
     model: RotorStructure,
     st: Settings,
-    jumps: list[dict],
-    predicted: list[dict],
+    jumps: tuple[NumericJump, ...] | list[NumericJump],
+    predicted: tuple[av.Jump, ...] | list[av.Jump],
     factors: tuple[float, ...] = (1.0, 0.5, 0.25),
 ) -> RateConvergence:
     """The sweep's jumps at rates r, r/2, r/4, and their limit at zero rate.
@@ -413,7 +302,7 @@ def rate_convergence(
     w = sweep
     s, k = slope, load_coefficient
     rows = []
-    found = {1.0: jumps}
+    found: dict[float, list[NumericJump]] = {1.0: list(jumps)}
     for f in factors:
         if f == 1.0:
             continue
@@ -432,23 +321,23 @@ def rate_convergence(
         j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k).jumps
         found[f] = j_up + j_dn
     for j in jumps:
-        same: list[dict | None] = [j]
+        same: list[NumericJump | None] = [j]
         for f in factors[1:]:
-            c = [x for x in found[f] if x["direction"] == j["direction"]]
-            same.append(min(c, key=lambda x: abs(x["omega_from"] - j["omega_from"])) if c else None)
-        torque = tuple(None if x is None else x["torque_at_zero"] for x in same)
-        w_from = tuple(None if x is None else x["omega_from"] for x in same)
-        w_to = tuple(None if x is None else x["omega_to"] for x in same)
+            c = [x for x in found[f] if x.direction == j.direction]
+            same.append(min(c, key=lambda x: abs(x.omega_from - j.omega_from)) if c else None)
+        torque = tuple(None if x is None else x.torque_at_zero for x in same)
+        w_from = tuple(None if x is None else x.omega_from for x in same)
+        w_to = tuple(None if x is None else x.omega_to for x in same)
         (m_lim, m_p), (f_lim, f_p), (t_lim, t_p) = map(_zero_rate_limit, (torque, w_from, w_to))
-        pred = [q for q in predicted if q["direction"] == j["direction"]]
+        pred = [q for q in predicted if q.direction == j.direction]
         predicted_torque = rel_error = None
         if pred and m_lim is not None:
-            q = min(pred, key=lambda q: abs(q["omega_from"] - j["omega_from"]))
-            predicted_torque = q["torque_at_zero"]
-            rel_error = m_lim / q["torque_at_zero"] - 1
+            q = min(pred, key=lambda q: abs(q.omega_from - j.omega_from))
+            predicted_torque = q.torque_at_zero
+            rel_error = m_lim / q.torque_at_zero - 1
         rows.append(
             RateRow(
-                direction=j["direction"],
+                direction=j.direction,
                 rates=tuple(w.rate * f for f in factors),
                 torque_at_zero=torque,
                 omega_from=w_from,
