@@ -14,7 +14,7 @@ from ..provenance import JsonRecord
 from ..reduced.averaging import Jump
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # arrays: no elementwise ==
 class SweepBins(JsonRecord):
     """Stationary speed and amplitudes per M0 bin over one ramp of a sweep, the bins in
     the ramp's order (M0 rising for "up", falling for "down"); empty bins left out."""
@@ -47,8 +47,8 @@ class SweepBins(JsonRecord):
         return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name) is not None}
 
 
-@dataclass(frozen=True)
-class JumpScan:
+@dataclass(frozen=True, eq=False)
+class JumpScan(JsonRecord):
     """One ramp's jumps (``detect_jumps``)."""
 
     jumps: list[NumericJump]
@@ -197,7 +197,7 @@ class RateConvergence(JsonRecord):
     """what the rows are, in words"""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class SweepAnalysis(JsonRecord):
     """A quasi-static sweep against the averaging theory (``sweep_analysis``); its parts
     that ``simulate_sweep.json`` writes are rows as the JSON has them."""
