@@ -8,13 +8,16 @@ import json
 import pytest
 
 from rotorpillar.provenance import to_json
+from rotorpillar.reduced.averaging import Jump
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import averaging_prediction
 from rotorpillar.scene import load_scene
-from rotorpillar.transients.case_summary import CaseSummary, SweepFindings, run_summary
+from rotorpillar.transients.case_checks import NoSpectrumCheck, NoTruncationEstimate
+from rotorpillar.transients.case_summary import CaseSummary, run_summary
+from rotorpillar.transients.sweep_records import JumpMatch, NumericJump, SweepFindings
 
 BASE_KEYS = [
     "ok",
@@ -70,20 +73,21 @@ def test_plain_case_keys_and_roundtrip(summary):
 def test_optional_sections_in_the_order_simulate_writes_them(summary):
     from dataclasses import replace
 
-    sweep = SweepFindings([{"direction": "up"}], [], {"up": 1.0, "down": 1.2}, [], [], None, None)
+    jump = Jump("up", 25.0, 31.0, 600.0, 1)
+    sweep = SweepFindings((jump,), (JumpMatch(jump, None),), {"up": 1.0, "down": 1.2}, (), (), None, None)
     s = replace(
         summary,
         sweep=sweep,
-        jumps=[{"direction": "up", "omega_from": 1.0}],
+        jumps=(NumericJump("up", 25.5, 30.0, 610.0, 2),),
         captured_at=26.0,
-        truncation={"modes": 2, "modes_check": None, "statement": "x"},
+        truncation=NoTruncationEstimate(2, None, "x"),
     )
     d = _roundtrip(s)
     assert list(d) == BASE_KEYS + SWEEP_KEYS + ["truncation"]
     assert d["no_jump_reason"] is None and d["rate_convergence"] is None  # present, null
     s = replace(summary, passing_torque={"predicted": None, "statement": "none"})
     assert list(_roundtrip(s)) == BASE_KEYS + ["passing_torque"]
-    s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check={"ratio": 0.9})
+    s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check=NoSpectrumCheck("x"))
     assert list(_roundtrip(s)) == BASE_KEYS + ["excitation", "response_spectrum_check"]
 
 

@@ -20,24 +20,24 @@ import numpy as np
 import pytest
 
 from rotorpillar.transients.pareto import analyse_pareto
-from rotorpillar.transients.pareto_runs import run_specs
+from rotorpillar.transients.pareto_runs import StoredRun, run_specs
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 GRID = np.linspace(0.0, 1.0, 101)
 
 
 def _doc(family, label, wall, peak, tip, **params):
-    return {
-        "family": family,
-        "label": label,
-        "params": params,
-        "dofs": 10,
-        "wall_seconds": wall,
-        "peak_tip": peak,
-        "tip": list(tip),
-        "ok": True,
-        "key": label,
-    }
+    return StoredRun(
+        key=label,
+        family=family,
+        label=label,
+        params=params,
+        dofs=10,
+        wall_seconds=wall,
+        ok=True,
+        peak_tip=peak,
+        tip=tuple(tip),
+    )
 
 
 def _solid(along, peak):
@@ -54,9 +54,9 @@ def test_reference_error_by_richardson():
     ref = study.reference
     assert ref.method == "richardson" and math.isclose(ref.order, 3.0, rel_tol=1e-6)
     assert math.isclose(ref.limit, L, rel_tol=1e-9)
-    assert math.isclose(ref.peak_error, 1.25 * abs(L - docs[2]["peak_tip"]) / L, rel_tol=1e-6)
+    assert math.isclose(ref.peak_error, 1.25 * abs(L - docs[2].peak_tip) / L, rel_tol=1e-6)
     by = {r.label: r for r in study.runs}
-    assert math.isclose(by["ROM, 1 mode"].peak_tip_error, 0.0102 / docs[2]["peak_tip"] - 1)
+    assert math.isclose(by["ROM, 1 mode"].peak_tip_error, 0.0102 / docs[2].peak_tip - 1)
     assert by["3D, 8x20"].peak_tip_error == ref.peak_error  # the reference: its own error
     assert "ROM, 1 mode" in study.fronts["peak_tip"]  # cheapest: on every front
     assert "3D, 8x10" not in study.fronts["peak_tip"]  # dearer and worse than the ROM
@@ -86,35 +86,50 @@ def test_run_specs():
 @pytest.mark.slow  # 3D runs on 8 x 2, 3, 4 elements over 0.3 s, twice; a Dask worker
 @has_dolfinx
 def test_pareto_runs_cache_and_resume(tmp_path):
+    import json
+
+    from rotorpillar.provenance import to_json
     from rotorpillar.scene import load_scene
-    from rotorpillar.transients.pareto import plan_pareto, transient_pareto
+    from rotorpillar.transients.pareto import ParetoStudy, plan_pareto, transient_pareto
     from rotorpillar.transients.pareto_runs import compute_3d
 
     scene = load_scene("paper", ["excitation.kind=record"])
     short = dict(duration=0.3, along=(2, 3, 4), beams=(2, 4))
     mesh = replace(scene.mesh, elements_around=8, elements_along=3)
     study, tips = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, workers=1, **short)
-    assert all(r.ok for r in study.runs) and study.cost["computed"] == len(study.runs)
-    assert study.cost["workers"] == 1 and "fem3d" in study.compile_seconds
+    assert all(r.ok for r in study.runs) and study.cost.computed == len(study.runs)
+    assert study.cost.workers == 1 and "fem3d" in study.compile_seconds
     assert study.reference.label == "3D, 8x4" and study.chosen["fem3d"] == "3D, 8x3"
+    # the study is a record writing the JSON it reads back (compare_earthquake.json's pareto)
+    doc = json.loads(to_json(study.to_json()))
+    assert ParetoStudy.from_json(doc).to_json() == doc
+    assert list(doc["cost"]) == [
+        "runs",
+        "computed",
+        "cached",
+        "workers",
+        "wall_seconds",
+        "pool_seconds",
+        "compute_seconds",
+    ]
     # the same start for every model: their tips agree at t = 0 (the pillar at rest)
     assert max(abs(v[0]) for v in tips.values()) < 1e-12
     err = {r.label: abs(r.history_error) for r in study.runs}
     assert err["3D, 8x3"] < err["3D, 8x2"]
     # cached: nothing computed, the same numbers
     again, _ = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, **short)
-    assert again.cost["computed"] == 0 and all(r.cached for r in again.runs)
+    assert again.cost.computed == 0 and all(r.cached for r in again.runs)
     assert [r.peak_tip for r in again.runs] == [r.peak_tip for r in study.runs]
     # resumable: one run lost, one run computed
     victim = next(r for r in study.runs if r.label == "3D, 8x2")
     (tmp_path / f"pareto-{victim.key}.json").unlink()
     third, _ = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, **short)
-    assert third.cost["computed"] == 1
+    assert third.cost.computed == 1
     # the worker's run is this process's run
     plan = plan_pareto(scene, cache_dir=tmp_path / "none", rom_modes=2, chosen_mesh=mesh, **short)
     i = next(i for i, s in enumerate(plan.specs) if s[1] == "3D, 8x2")
-    here = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
-    assert math.isclose(here["peak_tip"], victim.peak_tip, rel_tol=1e-9)
+    here, _ = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
+    assert math.isclose(here.peak_tip, victim.peak_tip, rel_tol=1e-9)
 
 
 def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_path):
@@ -136,12 +151,17 @@ def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_pa
         ParetoRunning(plan, workers=0).finish()
     files = sorted(tmp_path.glob("pareto-*.json"))
     assert len(files) == len(plan.specs)
-    computed = {i: {k: v for k, v in d.items() if k != "cached"} for i, d in plan.results.items()}
+    computed = {i: run.to_json() for i, run in plan.results.items()}
+    # the record is the file: its JSON is the document on disk, read back whole
+    assert all(
+        json.loads((tmp_path / f"pareto-{r.key}.json").read_text()) == r.to_json() for r in plan.results.values()
+    )
+    assert not any(r.cached for r in plan.results.values())
 
     again = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
     assert again.keys == plan.keys and sorted(again.results) == list(range(len(plan.specs)))
-    assert all(d["cached"] for d in again.results.values())
-    assert {i: {k: v for k, v in d.items() if k != "cached"} for i, d in again.results.items()} == computed
+    assert all(r.cached for r in again.results.values())
+    assert {i: r.to_json() for i, r in again.results.items()} == computed
 
     path = {i: tmp_path / f"pareto-{key}.json" for i, key in enumerate(plan.keys)}
     path[0].write_text(path[0].read_text()[:40])  # cut short

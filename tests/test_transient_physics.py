@@ -25,9 +25,12 @@ References and tolerances:
   a few per cent, and extrapolated to a zero rate they land within 2 % of
   the predicted fold torques.  The paper's scene shows no jump, as the
   analysis predicts.
+- the jump detector on synthetic bins whose speed follows the motor alone
+  (dOmega = dM0 / s, exact) but for one step: exactly that step is a jump.
 """
 
 import dataclasses
+import json
 
 import numpy as np
 import pytest
@@ -199,6 +202,19 @@ def test_sommerfeld_sweep_finds_the_predicted_jumps(sommerfeld):
     assert -0.15 < num["down"]["torque_at_zero"] / pred["down"]["torque_at_zero"] - 1 <= 0
     for row in s["rate_convergence"]["rows"]:
         assert abs(row["rel_error_limit_vs_predicted"]) < 0.02
+    # the rate study is a record writing the JSON it reads back (the document as written)
+    from rotorpillar.provenance import to_json
+    from rotorpillar.transients.case_summary import CaseSummary
+    from rotorpillar.transients.sweep import RateConvergence, SweepFindings
+
+    doc = json.loads(to_json(s))
+    assert isinstance(r.summary.sweep.rate_convergence, RateConvergence)
+    assert RateConvergence.from_json(doc["rate_convergence"]).to_json() == doc["rate_convergence"]
+    assert "predicted_torque_at_zero" in doc["rate_convergence"]["rows"][0]
+    found = SweepFindings.from_json(doc).to_json()  # the sweep's part of the document, read back whole
+    assert list(found)[0] == "predicted_jumps" and found == {k: doc[k] for k in found}
+    assert doc["jump_comparison"][0]["numeric"] is not None  # the nested rows too
+    assert CaseSummary.from_json(doc).to_json() == doc
     # the up-sweep was held below omega_1 until its fold, and jumped from there
     assert s["captured_resonance"] == pytest.approx(r.model.quasi_normal()[0].omega)
     assert s["captured_index"] == r.model.quasi_normal()[0].index
@@ -218,16 +234,37 @@ def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
     first: the second stays unmatched (it used to be measured against the
     first resonance's jump, a -70 % 'error'); each numeric jump pairs with
     one prediction at most."""
-    from rotorpillar.transients.sweep import match_jumps
+    from rotorpillar.transients.sweep import NumericJump, match_jumps
 
-    up = lambda w0, w1, m: {"direction": "up", "omega_from": w0, "omega_to": w1, "torque_at_zero": m}
-    predicted = [up(25.0, 31.0, 600.0), up(150.0, 170.0, 2000.0)]
+    def up(w0, w1, m, direction="up"):
+        return NumericJump(direction, w0, w1, m, 1)
+
+    predicted = [av.Jump("up", 25.0, 31.0, 600.0, 1), av.Jump("up", 150.0, 170.0, 2000.0, 2)]
     rows = match_jumps([up(25.5, 30.0, 610.0)], predicted)
-    assert rows[0]["numeric"] is not None
-    assert rows[0]["rel_error_omega_from"] == pytest.approx(25.5 / 25.0 - 1)
-    assert rows[1]["numeric"] is None
+    assert rows[0].numeric is not None
+    assert rows[0].rel_error_omega_from == pytest.approx(25.5 / 25.0 - 1)
+    assert rows[1].numeric is None and list(rows[1].to_json()) == ["predicted", "numeric"]
     # two numeric jumps near two predictions: each with its own
     rows = match_jumps([up(151.0, 168.0, 1990.0), up(24.0, 32.0, 590.0)], predicted)
-    assert [r["numeric"]["omega_from"] for r in rows] == [24.0, 151.0]
+    assert [r.numeric.omega_from for r in rows] == [24.0, 151.0]
     # a down jump is never paired with an up prediction
-    assert match_jumps([{**up(25.5, 20.0, 610.0), "direction": "down"}], predicted[:1])[0]["numeric"] is None
+    assert match_jumps([up(25.5, 20.0, 610.0, "down")], predicted[:1])[0].numeric is None
+
+
+def test_a_speed_step_beyond_the_motor_and_load_is_one_jump_and_its_bins_are_marked():
+    """Bins along a rising M0 whose speed follows the motor and load alone (dOmega =
+    dM0 / (s + 2 k Omega)) but for one step of 10 rad/s between bins 4 and 5: one jump
+    from bin 4's speed to bin 5's, the two bins marked as not stationary, and the
+    largest step ratio far above JUMP_FACTOR (the smooth steps have ratio 1)."""
+    from rotorpillar.transients.sweep import JUMP_FACTOR, SweepBins, detect_jumps
+
+    s, k = 10.0, 0.0  # no load: dOmega = dM0 / s exactly
+    M0 = np.linspace(100.0, 200.0, 11)
+    W = M0 / s
+    W[5:] += 10.0
+    zeros = np.zeros_like(M0)
+    bins = SweepBins(M0, W, zeros, zeros, zeros, M0, "up")
+    scan = detect_jumps(bins, s, k)
+    assert [(j.omega_from, j.omega_to, j.bins) for j in scan.jumps] == [(W[4], W[5], 1)]
+    assert scan.in_jump.tolist() == [i in (4, 5) for i in range(11)]
+    assert scan.largest_step_ratio > JUMP_FACTOR and bins.as_dict()["direction"] == "up"

@@ -157,11 +157,11 @@ def _summary(scene: Scene, r: CompareResult) -> str:
         lines.append(
             f"  response spectrum: spectral peak tip {s.spectral_peak_tip:.4g} m (SRSS), computed (modal) {comp}"
         )
-    if r.pareto:
-        pa = r.pareto
+    if r.pareto and r.pareto.cost:  # a finished study: its runs done, their cost known
+        pa, cost = r.pareto, r.pareto.cost
         lines.append(
-            f"  speed against accuracy ({pa.cost['runs']} runs, {pa.cost['computed']} "
-            f"computed in {pa.cost['wall_seconds']:.3g} s): errors against "
+            f"  speed against accuracy ({cost.runs} runs, {cost.computed} "
+            f"computed in {cost.wall_seconds:.3g} s): errors against "
             f"{pa.reference.label} (own peak error {_pct(pa.reference.peak_error)}, "
             f"{pa.reference.method}); {pa.chosen['why']}"
         )

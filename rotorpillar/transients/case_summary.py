@@ -24,6 +24,15 @@ from ..reduced.batch import shaft_deflection
 from ..reduced.excitation import GroundMotion, no_motion
 from ..reduced.integration import Transient
 from ..reduced.rotor_models import RotorStructure
+from .case_checks import (
+    NoSpectrumCheck,
+    NoTruncationEstimate,
+    SpectrumCheck,
+    TruncationEstimate,
+    spectrum_check_from_json,
+    truncation_from_json,
+)
+from .sweep_records import NumericJump, SweepFindings
 
 CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03  # relative
@@ -152,8 +161,9 @@ def passages(run: Transient) -> tuple[Passage, ...]:
     return tuple(out)
 
 
-def max_abs(run: Transient) -> dict:
-    """Largest |value| over the run, from the integrator's per-step peaks (m)."""
+def max_abs(run: Transient) -> dict[str, float]:
+    """Largest |value| over the run, from the integrator's per-step peaks (m); a mapping by
+    coordinate name, not a record: its keys are the model's coordinates (the JSON's max_abs)."""
     m = run.model
     pk = np.nanmax(run.peak, axis=0)
     out = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
@@ -189,8 +199,9 @@ def decimate(run: Transient, max_samples: int) -> Transient:
     return replace(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
 
 
-def series(run: Transient, max_samples: int | None = None) -> dict:
-    """The arrays written to the NPZ/CSV (contract with the animations)."""
+def series(run: Transient, max_samples: int | None = None) -> dict[str, np.ndarray]:
+    """The arrays written to the NPZ/CSV (contract with the animations); a mapping by column
+    name, not a record: the columns present depend on the model (drive, frame, modes)."""
     if max_samples:
         run = decimate(run, max_samples)
     m = run.model
@@ -233,26 +244,6 @@ def series(run: Transient, max_samples: int | None = None) -> dict:
 
 
 @dataclass(frozen=True)
-class SweepFindings:
-    """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep)."""
-
-    predicted_jumps: list
-    """the averaging theory's jumps inside the swept torque range"""
-    jump_comparison: list
-    """each predicted jump beside the nearest numeric one"""
-    largest_speed_step_ratio: dict
-    """{"up", "down"}: the largest speed step over what motor and load alone allow (-)"""
-    amplitudes: list
-    """numeric stationary amplitudes against the paper's Eq. 19 and the exact linear ones"""
-    rate_check: list
-    """per resonance in range: speed rate over n_i**2 (quasi-static when < 0.1)"""
-    no_jump_reason: str | None
-    """why no jump was found, or None"""
-    rate_convergence: dict | None
-    """the jumps at rates r, r/2, r/4 and their limit, or None without jumps"""
-
-
-@dataclass(frozen=True)
 class CaseSummary:
     """A case condensed for ``simulate_<case>.json``; values are JSON-ready
     (numpy arrays allowed: the writer converts them).  Optional sections are
@@ -277,16 +268,16 @@ class CaseSummary:
     """the integrator's statistics"""
     prediction: dict
     """what the averaging theory predicts for the drive"""
-    jumps: list
+    jumps: tuple[NumericJump, ...]
     """the sweep's numeric jumps (empty for the other cases)"""
     passing_torque: dict | None = None
     """run-up: the torque needed to pass the first capturing resonance"""
     sweep: SweepFindings | None = None
     excitation: dict | None = None
     """earthquake: the ground motion's sizes"""
-    response_spectrum_check: dict | None = None
+    response_spectrum_check: SpectrumCheck | NoSpectrumCheck | None = None
     """earthquake on a record: the tip against the response-spectrum estimate"""
-    truncation: dict | None = None
+    truncation: TruncationEstimate | NoTruncationEstimate | None = None
     """modal model: the same case with one mode more"""
     captured_resonance: float | None = None
     """omega_i of the resonance that holds the rotor (rad/s), or None"""
@@ -309,10 +300,10 @@ class CaseSummary:
                 out.update({k: getattr(self, k) for k in BESIDE_CAPTURE if getattr(self, k) is not None})
             elif f.name == "sweep":
                 if v is not None:
-                    out.update({g.name: getattr(v, g.name) for g in fields(v)})
-            elif f.name == "passages":
+                    out.update(v.to_json())
+            elif f.name in ("passages", "jumps"):
                 out[f.name] = [p.to_json() for p in v]
-            elif f.name == "energy_balance":
+            elif f.name in ("energy_balance", "response_spectrum_check", "truncation") and v is not None:
                 out[f.name] = v.to_json()
             elif f.name not in _OPTIONAL or v is not None:
                 out[f.name] = v
@@ -322,10 +313,14 @@ class CaseSummary:
     def from_json(cls, d: dict) -> CaseSummary:
         kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
         kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
+        kw["jumps"] = tuple(NumericJump.from_json(j) for j in d.get("jumps") or ())
         kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
+        if d.get("truncation") is not None:
+            kw["truncation"] = truncation_from_json(d["truncation"])
+        if d.get("response_spectrum_check") is not None:
+            kw["response_spectrum_check"] = spectrum_check_from_json(d["response_spectrum_check"])
         if "predicted_jumps" in d:
-            found: dict[str, Any] = {g.name: d.get(g.name) for g in fields(SweepFindings)}
-            kw["sweep"] = SweepFindings(**found)
+            kw["sweep"] = SweepFindings.from_json(d)
         return cls(**kw)
 
 
@@ -471,7 +466,7 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sec
         energy_balance=EnergyBalance(**run.energy_balance()),
         integrator={**run.stats, "accuracy": acc.to_json()},
         prediction=prediction,
-        jumps=[],
+        jumps=(),
     )
     base.update(sections)
     if failed:

@@ -30,8 +30,17 @@ from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
 from ..scene import CASES, Scene
-from .case_summary import CaseSummary, SweepFindings, run_summary
+from .case_checks import (
+    NoSpectrumCheck,
+    NoTruncationEstimate,
+    SpectralEstimate,
+    SpectralMode,
+    SpectrumCheck,
+    TruncationEstimate,
+)
+from .case_summary import CaseSummary, run_summary
 from .sweep import rate_convergence, sweep_analysis
+from .sweep_records import SweepFindings
 
 
 @dataclass(frozen=True)
@@ -202,37 +211,42 @@ def with_truncation(
         progress(f"truncation check: the same case with {k + 1} modes")
     model2, _ = build_model(scene, "modal", modes=k + 1, pillar_modes=pillar_modes)
     assert model2.pillar_modes is not None
+    trunc: TruncationEstimate | NoTruncationEstimate
     if model2.pillar_modes.count == k:
-        trunc = {
-            "modes": k,
-            "modes_check": None,
-            "statement": f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
+        trunc = NoTruncationEstimate(
+            modes=k,
+            modes_check=None,
+            statement=f"no truncation estimate: the mode source ({model.pillar_modes.source}) "
             f"offers only {k} X bending modes (for fem3d: raise modal.n_modes)",
-        }
+        )
     else:
         trunc = truncation_estimate(result, _run_on(scene, result.case, model2, motion or no_motion(), integrator))
     return replace(result, summary=replace(result.summary, truncation=trunc))
 
 
-def truncation_estimate(a: CaseResult, b: CaseResult) -> dict:
+def truncation_estimate(a: CaseResult, b: CaseResult) -> TruncationEstimate:
     """How much the (k+1)-th mode changes the answers: the truncation error estimate."""
     ma, mb = a.summary.max_abs, b.summary.max_abs
     tip_b = np.interp(a.run.t, b.run.t, b.run.tip())
     scale = max(np.max(np.abs(tip_b)), 1e-300)
     pa, pb = a.model.pillar_modes, b.model.pillar_modes
     assert pa is not None and pb is not None  # modal models' results
-    out = {
-        "modes": pa.count,
-        "modes_check": pb.count,
-        "omega_added": float(pb.omega[-1]),
-        "effective_mass_fraction": pa.effective_mass_fraction(),
-        "effective_mass_fraction_check": pb.effective_mass_fraction(),
-        "omega_final_rel_diff": b.summary.omega_final / a.summary.omega_final - 1 if a.summary.omega_final else None,
-        "tip_series_max_rel_diff": float(np.max(np.abs(a.run.tip() - tip_b)) / scale),
-    }
-    for key in ("tip_x", "rotor_x", "rotor_y"):
-        out[f"{key}_max_rel_diff"] = mb[key] / ma[key] - 1 if ma[key] > 0 else None
-    return out
+
+    def rel(key: str) -> float | None:
+        return mb[key] / ma[key] - 1 if ma[key] > 0 else None
+
+    return TruncationEstimate(
+        modes=pa.count,
+        modes_check=pb.count,
+        omega_added=float(pb.omega[-1]),
+        effective_mass_fraction=pa.effective_mass_fraction(),
+        effective_mass_fraction_check=pb.effective_mass_fraction(),
+        omega_final_rel_diff=b.summary.omega_final / a.summary.omega_final - 1 if a.summary.omega_final else None,
+        tip_series_max_rel_diff=float(np.max(np.abs(a.run.tip() - tip_b)) / scale),
+        tip_x_max_rel_diff=rel("tip_x"),
+        rotor_x_max_rel_diff=rel("rotor_x"),
+        rotor_y_max_rel_diff=rel("rotor_y"),
+    )
 
 
 def _run_on(
@@ -304,31 +318,30 @@ def _run_on(
             speed_scale=drive.free_speed(drive.times[2]),
         )
         free = drive.free_speed()
-        extra.update(sweep_analysis(w, s, k, model, run, drive))
-        if extra["numeric_jumps"]:
-            extra["rate_convergence"] = rate_convergence(
-                w, s, k, model, st, extra["numeric_jumps"], extra["predicted_jumps"]
+        sw = sweep_analysis(w, s, k, model, run, drive)
+        extra.update(sw.as_dict())
+        rates = None
+        if sw.numeric_jumps:
+            rates = extra["rate_convergence"] = rate_convergence(
+                w, s, k, model, st, sw.numeric_jumps, sw.predicted_jumps
             )
-        sections["jumps"] = extra["numeric_jumps"]
-        for key in ("captured_at", "captured_resonance", "captured_index"):
-            sections[key] = extra[key]
-        findings: dict[str, Any] = {
-            key: extra.get(key)
-            for key in (
-                "predicted_jumps",
-                "jump_comparison",
-                "largest_speed_step_ratio",
-                "amplitudes",
-                "rate_check",
-                "no_jump_reason",
-                "rate_convergence",
-            )
-        }
-        sections["sweep"] = SweepFindings(**findings)
+        sections["jumps"] = sw.numeric_jumps
+        sections["captured_at"] = sw.captured_at
+        sections["captured_resonance"] = sw.captured_resonance
+        sections["captured_index"] = sw.captured_index
+        sections["sweep"] = SweepFindings(
+            predicted_jumps=sw.predicted_jumps,
+            jump_comparison=sw.jump_comparison,
+            largest_speed_step_ratio=sw.largest_speed_step_ratio,
+            amplitudes=sw.amplitudes,
+            rate_check=sw.rate_check,
+            no_jump_reason=sw.no_jump_reason,
+            rate_convergence=rates,
+        )
     return CaseResult(case, model, run, run_summary(run, free, pred, **sections), extra)
 
 
-def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> dict:
+def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> SpectralEstimate:
     """The response-spectrum estimate of the tip's largest displacement relative to the
     ground: per pillar mode j, Gamma_j S_d(T_j, zeta_j) (zeta_j of the mode's diagonal
     damping), combined by SRSS (the modes are well separated).  Modal model only."""
@@ -341,39 +354,37 @@ def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> dict:
         sd = float(response_spectrum(motion, [T[j]], damping=zeta[j])["s_d"][0])
         gamma = float(pm.participation[j] / pm.modal_mass[j])
         rows.append(
-            {
-                "mode": j + 1,
-                "period": float(T[j]),
-                "damping_ratio": zeta[j],
-                "participation_factor": gamma,
-                "s_d": sd,
-                "contribution": abs(gamma) * sd,
-            }
+            SpectralMode(
+                mode=j + 1,
+                period=float(T[j]),
+                damping_ratio=zeta[j],
+                participation_factor=gamma,
+                s_d=sd,
+                contribution=abs(gamma) * sd,
+            )
         )
-    return {"modes": rows, "srss_tip_estimate": math.sqrt(sum(r["contribution"] ** 2 for r in rows))}
+    return SpectralEstimate(tuple(rows), math.sqrt(sum(r.contribution**2 for r in rows)))
 
 
-def spectrum_check(model: RotorStructure, motion: GroundMotion, run: Transient) -> dict:
+def spectrum_check(model: RotorStructure, motion: GroundMotion, run: Transient) -> SpectrumCheck | NoSpectrumCheck:
     """The tip's largest relative displacement beside the response-spectrum
     estimate of the first pillar mode alone (modal model: Gamma_1 S_d(T_1), 5 %),
     and of all the modes kept (SRSS, ``spectral_estimate``)."""
     if model.pillar_modes is None:
-        return {"note": "needs the modal model"}
+        return NoSpectrumCheck("needs the modal model")
     est_all = spectral_estimate(model, motion)
-    first = est_all["modes"][0]
-    T1, zeta, gamma, sd = first["period"], first["damping_ratio"], first["participation_factor"], first["s_d"]
-    est = first["contribution"]
+    first = est_all.modes[0]
+    est = first.contribution
     num = float(np.max(np.abs(run.tip()[run.t >= motion.start])))
-    return {
-        "period": T1,
-        "damping_ratio": zeta,
-        "participation_factor": gamma,
-        "s_d": sd,
-        "tip_estimate": est,
-        "tip_numeric": num,
-        "ratio": num / est if est > 0 else None,
-        "srss_tip_estimate": est_all["srss_tip_estimate"],
-        "modes": est_all["modes"],
-        "note": "first mode alone, rotor as a separate mass: an estimate, not a bound; "
-        "srss_tip_estimate: every mode kept",
-    }
+    return SpectrumCheck(
+        period=first.period,
+        damping_ratio=first.damping_ratio,
+        participation_factor=first.participation_factor,
+        s_d=first.s_d,
+        tip_estimate=est,
+        tip_numeric=num,
+        ratio=num / est if est > 0 else None,
+        srss_tip_estimate=est_all.srss_tip_estimate,
+        modes=est_all.modes,
+        note="first mode alone, rotor as a separate mass: an estimate, not a bound; srss_tip_estimate: every mode kept",
+    )

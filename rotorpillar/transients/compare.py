@@ -41,7 +41,6 @@ from .records import (
     CompareWindow,
     ModelErrors,
     ResponseSpectrum,
-    SpectralMode,
     reference_of,
 )
 from .references import FullOrderReference
@@ -344,10 +343,10 @@ def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
         period=tuple(periods.tolist()),
         psa=tuple(np.asarray(rs["s_a"]).tolist()),
         damping=0.05,
-        mode_periods=tuple(row["period"] for row in est["modes"]),
-        spectral_peak_tip=est["srss_tip_estimate"],
+        mode_periods=tuple(row.period for row in est.modes),
+        spectral_peak_tip=est.srss_tip_estimate,
         computed_peak_tip=computed,
-        modes=tuple(SpectralMode(**row) for row in est["modes"]),
+        modes=est.modes,
         note="psa at 5 % damping (eqsig); the spectral estimate takes each mode's own damping "
         "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
         "as a separate mass: an estimate, not a bound",

@@ -141,6 +141,7 @@ def _steps(r: AccuracyRow) -> float:
 
 
 def _per_method(rows: list[AccuracyRow]) -> dict[str, MethodSummary]:
+    # keyed by the integrator's name: the methods present are the study's choice
     out = {}
     for m in sorted({r.method for r in rows}):
         mine = [r for r in rows if r.method == m]

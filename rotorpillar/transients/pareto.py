@@ -53,6 +53,8 @@ from .pareto_runs import (
     PARETO_RECORD_START,
     PARETO_SAMPLES,
     ParetoRun,
+    RunOutcome,
+    StoredRun,
     compute_3d,
     load_run,
     pareto_scene,
@@ -87,11 +89,49 @@ class ParetoReference(JsonRecord):
 
 
 @dataclass(frozen=True)
+class ParetoCase(JsonRecord):
+    """The case every model of the study runs."""
+
+    record: str
+    """the ground-motion record's name"""
+    record_start: float
+    """the record starts this long after the runs (s)"""
+    duration: float
+    """length of every run (s)"""
+    initial_speed: float
+    """the rotor's speed at the start: the ROM's operating speed (rad/s)"""
+    samples: int
+    """points of the common grid the tips are compared on (-)"""
+    start: str
+    """the initial state, in words"""
+
+
+@dataclass(frozen=True)
+class ParetoCost(JsonRecord):
+    """What the study cost (wall times on a shared machine: noisy)."""
+
+    runs: int
+    """runs of the study (-)"""
+    computed: int
+    """of them computed by this call (-)"""
+    cached: int
+    """of them read from the cache (-)"""
+    workers: int
+    """worker processes of the 3D runs (-; 0: in the caller's process)"""
+    wall_seconds: float
+    """what the caller waited for the study: planning, its own runs, waiting for the workers (s)"""
+    pool_seconds: float
+    """the workers' elapsed time, beside the caller's own work (s)"""
+    compute_seconds: float
+    """the computed runs' times, summed (s)"""
+
+
+@dataclass(frozen=True)
 class ParetoStudy(JsonRecord):
     """Speed against accuracy on El Centro (``pareto`` in compare_earthquake.json)."""
 
-    case: dict
-    """record, record_start, duration, initial_speed, samples, start"""
+    case: ParetoCase | None
+    """the case every model runs (None until the runs are done: ``analyse_pareto`` alone)"""
     runs: tuple[ParetoRun, ...]
     reference: ParetoReference
     fronts: dict
@@ -99,12 +139,11 @@ class ParetoStudy(JsonRecord):
     wall time, cheapest first"""
     chosen: dict
     """rom, fem3d: the labels of the comparison's models, and why"""
-    compile_seconds: dict
-    """family -> seconds of the warm-up run in this process (numba, FFCx), outside every timing"""
-    cost: dict
-    """runs, computed, cached, workers; wall_seconds: what the caller waited for the study
-    (planning, its own runs, waiting for the workers); pool_seconds: the workers' elapsed
-    time, beside the caller's own work; compute_seconds: the computed runs' times, summed"""
+    compile_seconds: dict[str, float]
+    """family -> seconds of the warm-up run in this process (numba, FFCx), outside every timing
+    (a mapping: the families that ran)"""
+    cost: ParetoCost | None
+    """what the study cost (None until the runs are done)"""
     chart: str | None = None
     note: str = ""
 
@@ -124,8 +163,8 @@ class ParetoPlan:
     """the ROM's operating speed: every model starts there (rad/s)"""
     specs: list
     keys: list
-    results: dict
-    """index -> run document (the cached ones first)"""
+    results: dict[int, StoredRun]
+    """index into ``specs`` -> its run (the cached ones first; the computed ones added as they end)"""
     rom_modes: int
     chosen_mesh: Mesh | None
     cache_dir: Path
@@ -173,9 +212,9 @@ def plan_pareto(
     results = {}
     cache = run_cache(cache_dir)
     for i, key in enumerate(keys):
-        doc = load_run(cache, key)
-        if doc is not None:
-            results[i] = {**doc, "cached": True}
+        stored = load_run(cache, key)
+        if stored is not None:
+            results[i] = stored
     return ParetoPlan(
         sc,
         motion,
@@ -231,15 +270,15 @@ class ParetoRunning:
             self.thread = threading.Thread(target=self._pool, daemon=True)
             self.thread.start()
 
-    def keep(self, i: int, out: dict) -> None:
+    def keep(self, i: int, out: RunOutcome) -> None:
         plan = self.plan
         fam, label, params = plan.specs[i]
-        doc = {"key": plan.keys[i], "family": fam, "label": label, "params": params, **out}
+        run = StoredRun.of(plan.keys[i], fam, label, params, out)
         if _mpi_rank_size()[0] == 0:
-            run_cache(plan.cache_dir).write(plan.keys[i], doc)
-        plan.results[i] = {**doc, "cached": False}
+            run_cache(plan.cache_dir).write(plan.keys[i], run.to_json())
+        plan.results[i] = run
         if self.progress:
-            self.progress(f"speed against accuracy: {label} in {out['wall_seconds']:.3g} s")
+            self.progress(f"speed against accuracy: {label} in {out.wall_seconds:.3g} s")
 
     def _job(self, i: int):
         p = self.plan
@@ -258,9 +297,8 @@ class ParetoRunning:
         t0 = time.perf_counter()
         try:
             with Executor(self.workers) as ex:
-                for j, done in ex.map(compute_3d, [self._job(i) for i in order]):
-                    out = done  # compute_3d's document
-                    self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
+                for j, (out, warm) in ex.map(compute_3d, [self._job(i) for i in order]):
+                    self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + warm
                     self.keep(order[j], out)
         except BaseException as exc:  # re-raised in finish(), in the caller's thread
             self.error = exc
@@ -284,8 +322,8 @@ class ParetoRunning:
                 raise self.error
         else:
             for i in self.solid:
-                out = compute_3d(self._job(i))
-                self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + out.pop("compile_seconds")
+                out, warm = compute_3d(self._job(i))
+                self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + warm
                 self.keep(i, out)
         docs = [plan.results[i] for i in range(len(plan.specs))]
         k, mesh = plan.rom_modes, plan.chosen_mesh
@@ -296,23 +334,23 @@ class ParetoRunning:
                 "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}",
             },
         )
-        case = {
-            "record": plan.scene.excitation.record,
-            "record_start": PARETO_RECORD_START,
-            "duration": plan.duration,
-            "initial_speed": plan.speed,
-            "samples": PARETO_SAMPLES,
-            "start": "every model from the pillar at rest, the rotor in its steady whirl at the ROM's operating speed",
-        }
-        cost = {
-            "runs": len(plan.specs),
-            "computed": len(self.todo),
-            "cached": len(plan.specs) - len(self.todo),
-            "workers": self.workers,
-            "wall_seconds": plan.plan_seconds + time.perf_counter() - t0,
-            "pool_seconds": self.pool_seconds,
-            "compute_seconds": float(sum(plan.results[i]["wall_seconds"] for i in self.todo)),
-        }
+        case = ParetoCase(
+            record=plan.scene.excitation.record,
+            record_start=PARETO_RECORD_START,
+            duration=plan.duration,
+            initial_speed=plan.speed,
+            samples=PARETO_SAMPLES,
+            start="every model from the pillar at rest, the rotor in its steady whirl at the ROM's operating speed",
+        )
+        cost = ParetoCost(
+            runs=len(plan.specs),
+            computed=len(self.todo),
+            cached=len(plan.specs) - len(self.todo),
+            workers=self.workers,
+            wall_seconds=plan.plan_seconds + time.perf_counter() - t0,
+            pool_seconds=self.pool_seconds,
+            compute_seconds=float(sum(plan.results[i].wall_seconds for i in self.todo)),
+        )
         return replace(study, case=case, compile_seconds=dict(self.compile), cost=cost), series
 
 
@@ -326,25 +364,25 @@ def transient_pareto(
     return ParetoRunning(plan, workers, progress).finish()
 
 
-def _reference_error(fine: list[dict], grid_tips: dict) -> ParetoReference:
+def _reference_error(fine: list[StoredRun], grid_tips: dict) -> ParetoReference:
     """The finest 3D run's own error: Richardson over the three finest where monotone at a
     plausible order, else the difference to the next coarser."""
     from ..converge.richardson import richardson
 
     ref = fine[-1]
-    label, peak = ref["label"], ref["peak_tip"]
+    label, peak = ref.label, ref.peak_tip
     if len(fine) < 2:
         return ParetoReference(
             label, peak, None, None, "none", None, note="a single 3D run: its own error is not estimated"
         )
     prev = fine[-2]
-    diff = np.max(np.abs(grid_tips[ref["label"]] - grid_tips[prev["label"]])) / max(
-        np.max(np.abs(grid_tips[ref["label"]])), 1e-300
+    diff = np.max(np.abs(grid_tips[ref.label] - grid_tips[prev.label])) / max(
+        np.max(np.abs(grid_tips[ref.label])), 1e-300
     )
     if len(fine) >= 3:
         last = fine[-3:]
-        h = [1.0 / r["params"]["elements_along"] for r in last]
-        rich = richardson(h, [r["peak_tip"] for r in last], 4.0)
+        h = [1.0 / r.params["elements_along"] for r in last]
+        rich = richardson(h, [r.peak_tip for r in last], 4.0)
         p = rich["order"]
         if rich["monotone"] and p is not None and 0.5 <= p <= 8:
             factor = 1.0 / ((h[1] / h[2]) ** p - 1)
@@ -356,59 +394,59 @@ def _reference_error(fine: list[dict], grid_tips: dict) -> ParetoReference:
                 method="richardson",
                 order=p,
                 limit=rich["value"],
-                note=f"Richardson over {', '.join(r['label'] for r in last)} (observed order "
+                note=f"Richardson over {', '.join(r.label for r in last)} (observed order "
                 f"{p:.2f}): Roache's 1.25 |limit - finest| for the peak; the history's "
                 "difference to the next coarser times 1.25 / (r**p - 1)",
             )
     return ParetoReference(
         label,
         peak,
-        peak_error=abs(ref["peak_tip"] / prev["peak_tip"] - 1),
+        peak_error=abs(ref.peak_tip / prev.peak_tip - 1),
         history_error=float(diff),
         method="next_coarser",
         order=None,
-        note=f"the difference to the next coarser run ({prev['label']}): the 3D runs do not "
+        note=f"the difference to the next coarser run ({prev.label}): the 3D runs do not "
         "converge monotonically at a plausible order, so no extrapolation",
     )
 
 
-def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
+def analyse_pareto(docs: list[StoredRun], chosen: dict) -> tuple[ParetoStudy, dict]:
     """Errors against the finest 3D run, its own error, the fronts (the study, the histories)."""
     from ..converge.selection import pareto_front
 
-    tips = {d["label"]: np.asarray(d["tip"], float) for d in docs}
+    tips = {d.label: np.asarray(d.tip, float) for d in docs}
     fine = sorted(
-        (d for d in docs if d["family"] == "fem3d" and d["ok"]),
-        key=lambda d: (d["params"]["elements_along"], d["params"]["elements_around"]),
+        (d for d in docs if d.family == "fem3d" and d.ok),
+        key=lambda d: (d.params["elements_along"], d.params["elements_around"]),
     )
     if not fine:
         raise ValueError("no 3D run finished: no reference")
     ref_err = _reference_error(fine, tips)
     ref = fine[-1]
-    x_ref = tips[ref["label"]]
+    x_ref = tips[ref.label]
     scale = max(float(np.max(np.abs(x_ref))), 1e-300)
     runs = []
     for d in docs:
         if d is ref:
             pe, he = ref_err.peak_error, ref_err.history_error
-        elif d["ok"]:
-            pe = d["peak_tip"] / ref["peak_tip"] - 1 if ref["peak_tip"] else None
-            he = float(np.max(np.abs(tips[d["label"]] - x_ref)) / scale)
+        elif d.ok:
+            pe = d.peak_tip / ref.peak_tip - 1 if ref.peak_tip else None
+            he = float(np.max(np.abs(tips[d.label] - x_ref)) / scale)
         else:
             pe = he = None
         runs.append(
             ParetoRun(
-                family=d["family"],
-                label=d["label"],
-                params=d["params"],
-                dofs=d["dofs"],
-                wall_seconds=d["wall_seconds"],
-                peak_tip=d["peak_tip"],
+                family=d.family,
+                label=d.label,
+                params=d.params,
+                dofs=d.dofs,
+                wall_seconds=d.wall_seconds,
+                peak_tip=d.peak_tip,
                 peak_tip_error=pe,
                 history_error=he,
-                ok=d["ok"],
-                cached=d.get("cached", False),
-                key=d["key"],
+                ok=d.ok,
+                cached=d.cached,
+                key=d.key,
             )
         )
     wall = [r.wall_seconds for r in runs]
@@ -428,13 +466,13 @@ def analyse_pareto(docs: list[dict], chosen: dict) -> tuple[ParetoStudy, dict]:
                 f"{r.wall_seconds:.3g} s, " + (f"on the front of {' and '.join(on)}" if on else "on no front")
             )
     study = ParetoStudy(
-        case={},
+        case=None,
         runs=tuple(runs),
         reference=ref_err,
         fronts=fronts,
         chosen={**chosen, "why": "; ".join(why)},
         compile_seconds={},
-        cost={},
+        cost=None,
         note="errors of the tip relative to the ground against the finest 3D run; "
         "wall times warm, measured on a shared machine (noisy)",
     )

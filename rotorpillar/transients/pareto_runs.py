@@ -15,6 +15,7 @@ import hashlib
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -61,6 +62,59 @@ class ParetoRun(JsonRecord):
     ok: bool
     cached: bool
     key: str
+
+
+@dataclass(frozen=True)
+class RunOutcome(JsonRecord):
+    """How one model's run of the Pareto case ended: its size, cost and tip (SI)."""
+
+    dofs: int
+    """unknowns of the model (-)"""
+    wall_seconds: float
+    """warm: building the model and integrating (s)"""
+    ok: bool
+    """the integrator's verdict"""
+    peak_tip: float
+    """largest |tip X relative to the ground| over every step (m)"""
+    tip: tuple[float, ...]
+    """tip X relative to the ground on the common grid: PARETO_SAMPLES points over the run (m)"""
+
+
+@dataclass(frozen=True)
+class StoredRun(JsonRecord):
+    """One run as the cache stores it: ``to_json()`` is ``pareto-<key>.json``'s document
+    (these keys in this order; ``cached`` is not stored), ``from_json`` reads it back."""
+
+    key: str
+    """the run's cache key (``run_key``)"""
+    family: str
+    """rom, beam or fem3d"""
+    label: str
+    params: dict[str, Any]
+    """modes (rom), elements (beam), the mesh (fem3d)"""
+    dofs: int
+    """unknowns of the model (-)"""
+    wall_seconds: float
+    """warm: building the model and integrating (s)"""
+    ok: bool
+    """the integrator's verdict"""
+    peak_tip: float
+    """largest |tip X relative to the ground| over every step (m)"""
+    tip: tuple[float, ...]
+    """tip X relative to the ground on the common grid: PARETO_SAMPLES points over the run (m)"""
+    cached: bool = False
+    """read from the cache rather than computed by this process (in memory only)"""
+
+    @classmethod
+    def of(cls, key: str, family: str, label: str, params: dict[str, Any], outcome: RunOutcome) -> StoredRun:
+        """The run ``(family, label, params)`` under ``key`` that ended as ``outcome``, computed here."""
+        o = outcome
+        return cls(key, family, label, params, o.dofs, o.wall_seconds, o.ok, o.peak_tip, o.tip)
+
+    def to_json(self) -> dict:
+        doc = super().to_json()
+        del doc["cached"]  # a property of this process's plan, not of the run
+        return doc
 
 
 def pareto_scene(scene: Scene, duration: float = PARETO_DURATION):
@@ -134,7 +188,9 @@ def _grid(duration: float) -> np.ndarray:
     return np.linspace(0.0, duration, PARETO_SAMPLES)
 
 
-def reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes, duration: float) -> dict:
+def reduced_run(
+    scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes, duration: float
+) -> RunOutcome:
     from ..reduced.drive import DriveSchedule
     from ..reduced.integration import simulate
     from ..reduced.models import build_model
@@ -155,13 +211,13 @@ def reduced_run(scene: Scene, family: str, params: dict, motion, speed: float, p
     run = simulate(model, drive, motion, duration, q0, v0, settings=st, speed_scale=speed)
     wall = time.perf_counter() - t0
     grid = _grid(duration)
-    return {
-        "dofs": int(model.n),
-        "wall_seconds": wall,
-        "ok": run.ok,
-        "peak_tip": float(np.nanmax(run.peak[:, -1])),
-        "tip": np.interp(grid, run.t, run.tip()).tolist(),
-    }
+    return RunOutcome(
+        dofs=int(model.n),
+        wall_seconds=wall,
+        ok=bool(run.ok),
+        peak_tip=float(np.nanmax(run.peak[:, -1])),
+        tip=tuple(np.interp(grid, run.t, run.tip()).tolist()),
+    )
 
 
 _WARM: dict = {}
@@ -186,8 +242,9 @@ def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes
     return _WARM[family]
 
 
-def compute_3d(job) -> dict:
-    """One 3D run (a worker's job: picklable arguments); its result and warm-up seconds."""
+def compute_3d(job) -> tuple[RunOutcome, float]:
+    """One 3D run (a worker's job: picklable arguments); its outcome and this process's
+    warm-up seconds (s)."""
     from ..fem3d.full_order import simulate_fem3d
 
     scene, params, motion, speed, duration = job
@@ -197,20 +254,27 @@ def compute_3d(job) -> dict:
         scene, "earthquake", motion=motion, duration=duration, mesh=mesh, samples=PARETO_SAMPLES, initial_speed=speed
     )
     grid = _grid(duration)
-    return {
-        "dofs": int(r.dofs),
-        "wall_seconds": float(r.wall_seconds),
-        "ok": bool(r.ok),
-        "peak_tip": float(r.max_abs["tip_x"]),
-        "tip": np.interp(grid, r.t, r.tip_x).tolist(),
-        "compile_seconds": warm,
-    }
+    outcome = RunOutcome(
+        dofs=int(r.dofs),
+        wall_seconds=float(r.wall_seconds),
+        ok=bool(r.ok),
+        peak_tip=float(r.max_abs["tip_x"]),
+        tip=tuple(np.interp(grid, r.t, r.tip_x).tolist()),
+    )
+    return outcome, warm
 
 
-def load_run(cache: DiskCache, key: str) -> dict | None:
-    """The run cached under ``key``, or None: a missing, damaged or foreign entry, or one
-    without its verdict (``ok``), is no cached run (computed again)."""
-    return cache.read(key, accept=lambda doc: doc.get("ok") is not None)
+def load_run(cache: DiskCache, key: str) -> StoredRun | None:
+    """The run cached under ``key`` (``cached``), or None: a missing, damaged or foreign
+    entry, one without its verdict (``ok``) or without a field of the run, is no cached
+    run (computed again)."""
+    doc = cache.read(key, accept=lambda doc: doc.get("ok") is not None)
+    if doc is None:
+        return None
+    try:
+        return replace(StoredRun.from_json(doc), cached=True)
+    except (KeyError, TypeError, ValueError):
+        return None
 
 
 # --------------------------------------------------------------------------

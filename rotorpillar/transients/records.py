@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from ..chain.record import PillarModel
 from ..provenance import JsonRecord
+from .case_checks import SpectralMode
 from .pareto import ParetoStudy
 from .references import FullOrderReference
 from .window import RunupWindow
@@ -83,24 +84,6 @@ class CompareWindow(JsonRecord):
     """why that duration, in words"""
     runup: RunupWindow | None = field(default=None, metadata={"omit_if_none": True})
     """the run-up's window through the resonances (runup against fem3d), else absent"""
-
-
-@dataclass(frozen=True)
-class SpectralMode(JsonRecord):
-    """One pillar mode's part in the response-spectrum estimate of the tip."""
-
-    mode: int
-    """its number, from 1 (-)"""
-    period: float
-    """(s)"""
-    damping_ratio: float
-    """its own damping ratio (-)"""
-    participation_factor: float
-    """Gamma_j for a base acceleration (-)"""
-    s_d: float
-    """the record's spectral displacement at its period and damping (m)"""
-    contribution: float
-    """|Gamma_j| S_d(T_j) (m)"""
 
 
 @dataclass(frozen=True)

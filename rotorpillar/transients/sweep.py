@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Any
 
 import numpy as np
 
@@ -23,11 +22,45 @@ from ..reduced.excitation import no_motion
 from ..reduced.integration import Settings, Transient, simulate
 from ..reduced.rotor_models import RotorStructure
 from ..scene import Sweep
+from .sweep_records import (
+    AmplitudeCheck,
+    JumpMatch,
+    JumpScan,
+    NumericJump,
+    RateCheck,
+    RateConvergence,
+    RateRow,
+    SweepAnalysis,
+    SweepBins,
+    SweepFindings,
+)
+
+__all__ = [  # the records are sweep_records'; named here too, beside the functions that build them
+    "JUMP_FACTOR",
+    "AmplitudeCheck",
+    "JumpMatch",
+    "JumpScan",
+    "NumericJump",
+    "RateCheck",
+    "RateConvergence",
+    "RateRow",
+    "SweepAnalysis",
+    "SweepBins",
+    "SweepFindings",
+    "compare_amplitudes",
+    "detect_jumps",
+    "match_jumps",
+    "rate_convergence",
+    "sweep_analysis",
+    "sweep_bins",
+]
 
 JUMP_FACTOR = 5.0
 
 
-def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float], bins: int, direction: str) -> dict:
+def sweep_bins(
+    run: Transient, drive: DriveSchedule, phase: tuple[float, float], bins: int, direction: str
+) -> SweepBins:
     """Stationary speed and amplitudes per M0 bin over one ramp of a sweep."""
     m = run.model
     t0, t1 = phase
@@ -51,20 +84,25 @@ def sweep_bins(run: Transient, drive: DriveSchedule, phase: tuple[float, float],
         cols["M0_inertia_corrected"][b] = cols["M0"][b] - m.rotor_inertia * acc
         cols["tip_x"][b], cols["rotor_y"][b], cols["rotor_x"][b] = tip[s].max(), ry[s].max(), rx[s].max()
     keep = np.isfinite(cols["M0"])
-    out: dict[str, Any] = {k: v[keep] for k, v in cols.items()}
-    if direction == "down":
-        out = {k: v[::-1] for k, v in out.items()}
-    out["direction"] = direction
-    return out
+    step = -1 if direction == "down" else 1
+    kept = {k: v[keep][::step] for k, v in cols.items()}
+    return SweepBins(
+        M0=kept["M0"],
+        omega=kept["omega"],
+        tip_x=kept["tip_x"],
+        rotor_y=kept["rotor_y"],
+        rotor_x=kept["rotor_x"],
+        M0_inertia_corrected=kept["M0_inertia_corrected"],
+        direction=direction,
+    )
 
 
-def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], float]:
+def detect_jumps(bins: SweepBins, slope: float, load: float) -> JumpScan:
     """Jumps along one ramp's bins; also the largest speed step over what the
-    motor and load alone allow (1 on a smooth curve).  Marks the bins inside
-    a jump in cols["in_jump"] (not stationary: left out of the amplitude
-    comparison)."""
-    M0, W = cols["M0"], cols["omega"]
-    sign = 1.0 if cols["direction"] == "up" else -1.0
+    motor and load alone allow (1 on a smooth curve), and the bins inside a
+    jump (not stationary: left out of the amplitude comparison)."""
+    M0, W = bins.M0, bins.omega
+    sign = 1.0 if bins.direction == "up" else -1.0
     dM = np.abs(np.diff(M0))
     dW = sign * np.diff(W)
     expected = dM / (slope + 2 * load * np.abs(W[:-1]))
@@ -73,7 +111,6 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
     in_jump = np.zeros(len(W), dtype=bool)
     in_jump[:-1] |= flagged
     in_jump[1:] |= flagged
-    cols["in_jump"] = in_jump
     jumps = []
     i = 0
     while i < len(flagged):
@@ -86,90 +123,91 @@ def detect_jumps(cols: dict, slope: float, load: float) -> tuple[list[dict], flo
         w_from, w_to = float(W[i]), float(W[j + 1])
         if abs(w_to - w_from) > 0.01 * abs(w_from):
             jumps.append(
-                {
-                    "direction": cols["direction"],
-                    "omega_from": w_from,
-                    "omega_to": w_to,
-                    "torque_at_zero": float(0.5 * (M0[i] + M0[i + 1])),
-                    "bins": int(j - i + 1),
-                }
+                NumericJump(
+                    direction=bins.direction,
+                    omega_from=w_from,
+                    omega_to=w_to,
+                    torque_at_zero=float(0.5 * (M0[i] + M0[i + 1])),
+                    bins=int(j - i + 1),
+                )
             )
         i = j + 1
-    return jumps, float(np.max(ratio)) if len(ratio) else 0.0
+    return JumpScan(jumps, float(np.max(ratio)) if len(ratio) else 0.0, in_jump)
 
 
-def compare_amplitudes(model: RotorStructure, cols: dict) -> list[dict]:
+def compare_amplitudes(model: RotorStructure, bins: SweepBins) -> list[AmplitudeCheck]:
     """Numeric stationary amplitudes of the sweep against the paper's Eq. 19 and the exact
     linear steady state, near each resonance the sweep crosses."""
     out = []
-    W = cols["omega"]
+    W = bins.omega
+    stationary = ~bins.in_jump if bins.in_jump is not None else np.ones(len(W), bool)
     res = model.quasi_normal()
     for r in res:
         key = "tip_x" if r.direction == "X" else "rotor_y"
         # where resonance i dominates: within 2 n_i, and nearer to omega_i than
         # to any other resonance of the same direction; stationary bins only
         gap = min((abs(q.omega - r.omega) for q in res if q.direction == r.direction and q is not r), default=math.inf)
-        near = (np.abs(W - r.omega) <= min(2 * r.n, 0.5 * gap)) & ~cols.get("in_jump", np.zeros(len(W), bool))
+        near = (np.abs(W - r.omega) <= min(2 * r.n, 0.5 * gap)) & stationary
         if near.sum() < 2:
             continue
-        num = cols[key][near]
+        num = bins.column(key)[near]
         eq19 = np.asarray(av.amplitude(W[near], r))
         exact = model.steady_amplitudes(W[near])[key]
         k = int(np.argmax(num))
         out.append(
-            {
-                "index": r.index,
-                "direction": r.direction,
-                "omega": r.omega,
-                "coordinate": key,
-                "sweep": cols["direction"],
-                "bins": int(near.sum()),
-                "numeric_peak": float(num[k]),
-                "omega_at_numeric_peak": float(W[near][k]),
-                "eq19_at_that_speed": float(eq19[k]),
-                "exact_at_that_speed": float(exact[k]),
-                "eq19_a_max": float(av.amplitude(r.omega, r)),
-                "rel_error_eq19": float(np.max(np.abs(eq19 / num - 1))),
-                "rel_error_exact": float(np.max(np.abs(exact / num - 1))),
-                "rel_error_eq19_median": float(np.median(np.abs(eq19 / num - 1))),
-                "rel_error_exact_median": float(np.median(np.abs(exact / num - 1))),
-                "rel_error_eq19_at_peak": float(eq19[k] / num[k] - 1),
-                "rel_error_exact_at_peak": float(exact[k] / num[k] - 1),
-            }
+            AmplitudeCheck(
+                index=r.index,
+                direction=r.direction,
+                omega=r.omega,
+                coordinate=key,
+                sweep=bins.direction,
+                bins=int(near.sum()),
+                numeric_peak=float(num[k]),
+                omega_at_numeric_peak=float(W[near][k]),
+                eq19_at_that_speed=float(eq19[k]),
+                exact_at_that_speed=float(exact[k]),
+                eq19_a_max=float(av.amplitude(r.omega, r)),
+                rel_error_eq19=float(np.max(np.abs(eq19 / num - 1))),
+                rel_error_exact=float(np.max(np.abs(exact / num - 1))),
+                rel_error_eq19_median=float(np.median(np.abs(eq19 / num - 1))),
+                rel_error_exact_median=float(np.median(np.abs(exact / num - 1))),
+                rel_error_eq19_at_peak=float(eq19[k] / num[k] - 1),
+                rel_error_exact_at_peak=float(exact[k] / num[k] - 1),
+            )
         )
     return out
 
 
-def match_jumps(numeric: list[dict], predicted: list[dict]) -> list[dict]:
+def match_jumps(numeric: list[NumericJump], predicted: list[av.Jump]) -> list[JumpMatch]:
     """Each predicted jump beside the numeric one of the same direction it is
     nearest to and that is nearest to it (in the speed it leaves), or beside
     none: a jump the sweep did not make (a resonance out of its range) is not
     measured against another resonance's jump."""
 
     def nearest(x, cands):
-        return min(cands, key=lambda c: abs(c["omega_from"] - x["omega_from"]), default=None)
+        return min(cands, key=lambda c: abs(c.omega_from - x.omega_from), default=None)
 
     rows = []
     for p in predicted:
-        j = nearest(p, [j for j in numeric if j["direction"] == p["direction"]])
-        if j is None or nearest(j, [q for q in predicted if q["direction"] == p["direction"]]) is not p:
-            rows.append({"predicted": p, "numeric": None})
+        j = nearest(p, [j for j in numeric if j.direction == p.direction])
+        if j is None or nearest(j, [q for q in predicted if q.direction == p.direction]) is not p:
+            rows.append(JumpMatch(p, None))
             continue
         rows.append(
-            {
-                "predicted": p,
-                "numeric": j,
-                "rel_error_omega_from": j["omega_from"] / p["omega_from"] - 1,
-                "rel_error_omega_to": j["omega_to"] / p["omega_to"] - 1,
-                "rel_error_torque": j["torque_at_zero"] / p["torque_at_zero"] - 1,
-            }
+            JumpMatch(
+                p,
+                j,
+                rel_error_omega_from=j.omega_from / p.omega_from - 1,
+                rel_error_omega_to=j.omega_to / p.omega_to - 1,
+                rel_error_torque=j.torque_at_zero / p.torque_at_zero - 1,
+            )
         )
     return rows
 
 
 def sweep_analysis(
     sweep: Sweep, slope: float, load_coefficient: float, model: RotorStructure, run: Transient, drive: DriveSchedule
-) -> dict:
+) -> SweepAnalysis:
     """The sweep's bins, jumps (numeric and predicted), amplitudes, rate check and curves,
     for the motor's ``slope`` s (N*m*s) and the load's coefficient k (N*m*s**2)."""
     w = sweep
@@ -177,32 +215,25 @@ def sweep_analysis(
     up = sweep_bins(run, drive, (t[1], t[2]), w.bins, "up")
     down = sweep_bins(run, drive, (t[3], t[4]), w.bins, "down")
     s, k = slope, load_coefficient
-    j_up, r_up = detect_jumps(up, s, k)
-    j_down, r_down = detect_jumps(down, s, k)
+    scan_up, scan_down = detect_jumps(up, s, k), detect_jumps(down, s, k)
+    up, down = replace(up, in_jump=scan_up.in_jump), replace(down, in_jump=scan_down.in_jump)
+    j_up, r_up = scan_up.jumps, scan_up.largest_step_ratio
+    j_down, r_down = scan_down.jumps, scan_down.largest_step_ratio
     res = model.quasi_normal()
     # the analysis' folds: for this drive slope and load, M0 free
     pred = av.analyse_drive(av.Characteristic(w.torque_high, s, k), res)
-    predicted = [vars(j) for j in pred.jumps if w.torque_low <= j.torque_at_zero <= w.torque_high]
+    predicted = [j for j in pred.jumps if w.torque_low <= j.torque_at_zero <= w.torque_high]
     numeric = j_up + j_down
     held = None
     if j_up:
-        below = [r for r in res if r.omega <= j_up[0]["omega_from"] * (1 + 0.03)]
+        below = [r for r in res if r.omega <= j_up[0].omega_from * (1 + 0.03)]
         held = max(below, key=lambda r: r.omega) if below else None
     rate_check = []
     for r in res:
         if not (w.torque_low <= float(r.omega * (s + k * r.omega)) <= w.torque_high):
             continue
         acc = w.rate / (s + 2 * k * r.omega)
-        rate_check.append(
-            {
-                "index": r.index,
-                "omega": r.omega,
-                "n": r.n,
-                "speed_rate": acc,
-                "ratio": acc / r.n**2,
-                "quasi_static": bool(acc / r.n**2 < 0.1),
-            }
-        )
+        rate_check.append(RateCheck(r.index, r.omega, r.n, acc, acc / r.n**2, bool(acc / r.n**2 < 0.1)))
     if numeric:
         reason = None
     elif predicted:
@@ -215,7 +246,7 @@ def sweep_analysis(
             f"analysis predicts: no fold of Md = L in [{w.torque_low:g}, {w.torque_high:g}] N*m; "
             f"the resonances draw at most {100 * worst:.2g} % of Mc at their own speed."
         )
-    W_curve = av.stationary_speed_grid(res, 1.05 * max(np.nanmax(up["omega"]), np.nanmax(down["omega"])), 1500)
+    W_curve = av.stationary_speed_grid(res, 1.05 * max(np.nanmax(up.omega), np.nanmax(down.omega)), 1500)
     curves = {
         "omega": W_curve,
         "F_averaging": av.total_resistance(W_curve, k, res) + s * W_curve,
@@ -223,23 +254,33 @@ def sweep_analysis(
         "exact": model.steady_amplitudes(W_curve),
         "eq19": {f"{r.direction}{r.index}": av.amplitude(W_curve, r) for r in res},
     }
-    return {
-        "up": up,
-        "down": down,
-        "numeric_jumps": numeric,
-        "predicted_jumps": predicted,
-        "jump_comparison": match_jumps(numeric, predicted),
-        "largest_speed_step_ratio": {"up": r_up, "down": r_down},
-        "amplitudes": compare_amplitudes(model, up) + compare_amplitudes(model, down),
-        "rate_check": rate_check,
-        "no_jump_reason": reason,
-        # the up-sweep held below a resonance until its fold: the speed it was held at,
-        # that resonance's omega_i and index
-        "captured_at": j_up[0]["omega_from"] if held is not None else None,
-        "captured_resonance": None if held is None else held.omega,
-        "captured_index": None if held is None else held.index,
-        "curves": curves,
-    }
+    return SweepAnalysis(
+        up=up,
+        down=down,
+        numeric_jumps=tuple(numeric),
+        predicted_jumps=tuple(predicted),
+        jump_comparison=tuple(match_jumps(numeric, predicted)),
+        largest_speed_step_ratio={"up": r_up, "down": r_down},
+        amplitudes=tuple(compare_amplitudes(model, up) + compare_amplitudes(model, down)),
+        rate_check=tuple(rate_check),
+        no_jump_reason=reason,
+        captured_at=j_up[0].omega_from if held is not None else None,
+        captured_resonance=None if held is None else held.omega,
+        captured_index=None if held is None else held.index,
+        curves=curves,
+    )
+
+
+def _zero_rate_limit(v: tuple[float | None, ...]) -> tuple[float | None, float | None]:
+    """(limit, exponent p) of three values at rates halving, or (None, None)."""
+    if len(v) != 3 or any(x is None for x in v):
+        return None, None
+    a, b, c = (float(x) for x in v if x is not None)
+    d1, d2 = a - b, b - c
+    if not (d1 * d2 > 0 and abs(d2) < abs(d1)):
+        return None, None
+    p = math.log2(d1 / d2)
+    return c - d2 / (2**p - 1), p
 
 
 def rate_convergence(
@@ -248,10 +289,10 @@ def rate_convergence(
     load_coefficient: float,
     model: RotorStructure,
     st: Settings,
-    jumps: list[dict],
-    predicted: list[dict],
+    jumps: tuple[NumericJump, ...] | list[NumericJump],
+    predicted: tuple[av.Jump, ...] | list[av.Jump],
     factors: tuple[float, ...] = (1.0, 0.5, 0.25),
-) -> dict:
+) -> RateConvergence:
     """The sweep's jumps at rates r, r/2, r/4, and their limit at zero rate.
 
     A slow passage past a fold is delayed by a power of the rate (about 2/3
@@ -261,7 +302,7 @@ def rate_convergence(
     w = sweep
     s, k = slope, load_coefficient
     rows = []
-    found = {1.0: jumps}
+    found: dict[float, list[NumericJump]] = {1.0: list(jumps)}
     for f in factors:
         if f == 1.0:
             continue
@@ -276,39 +317,43 @@ def rate_convergence(
         )
         t = drive.times
         bins = int(w.bins / f)
-        j_up = detect_jumps(sweep_bins(run, drive, (t[1], t[2]), bins, "up"), s, k)[0]
-        j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k)[0]
+        j_up = detect_jumps(sweep_bins(run, drive, (t[1], t[2]), bins, "up"), s, k).jumps
+        j_dn = detect_jumps(sweep_bins(run, drive, (t[3], t[4]), bins, "down"), s, k).jumps
         found[f] = j_up + j_dn
     for j in jumps:
-        same: list[dict | None] = [j]
+        same: list[NumericJump | None] = [j]
         for f in factors[1:]:
-            c = [x for x in found[f] if x["direction"] == j["direction"]]
-            same.append(min(c, key=lambda x: abs(x["omega_from"] - j["omega_from"])) if c else None)
-        row = {
-            "direction": j["direction"],
-            "rates": [w.rate * f for f in factors],
-            "torque_at_zero": [None if x is None else x["torque_at_zero"] for x in same],
-            "omega_from": [None if x is None else x["omega_from"] for x in same],
-            "omega_to": [None if x is None else x["omega_to"] for x in same],
-        }
-        for key in ("torque_at_zero", "omega_from", "omega_to"):
-            v = row[key]
-            lim, p = None, None
-            if None not in v and len(v) == 3:
-                d1, d2 = v[0] - v[1], v[1] - v[2]
-                if d1 * d2 > 0 and abs(d2) < abs(d1):
-                    p = math.log2(d1 / d2)
-                    lim = v[2] - d2 / (2**p - 1)
-            row[f"{key}_limit"] = lim
-            row[f"{key}_exponent"] = p
-        pred = [q for q in predicted if q["direction"] == j["direction"]]
-        if pred and row["torque_at_zero_limit"] is not None:
-            q = min(pred, key=lambda q: abs(q["omega_from"] - j["omega_from"]))
-            row["predicted_torque_at_zero"] = q["torque_at_zero"]
-            row["rel_error_limit_vs_predicted"] = row["torque_at_zero_limit"] / q["torque_at_zero"] - 1
-        rows.append(row)
-    return {
-        "rows": rows,
-        "note": "jump torques at decreasing sweep rates, extrapolated to a "
+            c = [x for x in found[f] if x.direction == j.direction]
+            same.append(min(c, key=lambda x: abs(x.omega_from - j.omega_from)) if c else None)
+        torque = tuple(None if x is None else x.torque_at_zero for x in same)
+        w_from = tuple(None if x is None else x.omega_from for x in same)
+        w_to = tuple(None if x is None else x.omega_to for x in same)
+        (m_lim, m_p), (f_lim, f_p), (t_lim, t_p) = map(_zero_rate_limit, (torque, w_from, w_to))
+        pred = [q for q in predicted if q.direction == j.direction]
+        predicted_torque = rel_error = None
+        if pred and m_lim is not None:
+            q = min(pred, key=lambda q: abs(q.omega_from - j.omega_from))
+            predicted_torque = q.torque_at_zero
+            rel_error = m_lim / q.torque_at_zero - 1
+        rows.append(
+            RateRow(
+                direction=j.direction,
+                rates=tuple(w.rate * f for f in factors),
+                torque_at_zero=torque,
+                omega_from=w_from,
+                omega_to=w_to,
+                torque_at_zero_limit=m_lim,
+                torque_at_zero_exponent=m_p,
+                omega_from_limit=f_lim,
+                omega_from_exponent=f_p,
+                omega_to_limit=t_lim,
+                omega_to_exponent=t_p,
+                predicted_torque_at_zero=predicted_torque,
+                rel_error_limit_vs_predicted=rel_error,
+            )
+        )
+    return RateConvergence(
+        rows=tuple(rows),
+        note="jump torques at decreasing sweep rates, extrapolated to a "
         "quasi-static sweep (rate -> 0) with a fitted power of the rate",
-    }
+    )

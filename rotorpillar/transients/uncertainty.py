@@ -16,23 +16,44 @@ Each number's error is the sum of the sources' magnitudes
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from ..chain import ChainModes, Uncertain
+from ..provenance import JsonRecord
 from ..scene import ADAPTIVE_INTEGRATORS, SCIPY_METHODS, Scene, override
 
 #: the numbers that get error bars, and their units
 HEADLINE = {"peak_tip_relative": "m", "peak_shaft_deflection": "m", "omega_final": "rad/s", "captured_at": "rad/s"}
 
 
-def headline_numbers(res) -> dict[str, float | None]:
+@dataclass(frozen=True)
+class HeadlineNumbers(JsonRecord):
+    """A ROM run's numbers that get error bars (the names and units of ``HEADLINE``)."""
+
+    peak_tip_relative: float
+    """largest |tip X| relative to the ground (m)"""
+    peak_shaft_deflection: float
+    """largest |shaft deflection X| over the sampled series (m)"""
+    omega_final: float
+    """mean speed over the last 5 % of the run (rad/s)"""
+    captured_at: float | None
+    """the speed the rotor settled at below a resonance (rad/s), or None"""
+
+    def value(self, name: str) -> float | None:
+        """The number called ``name`` (a key of ``HEADLINE``)."""
+        value: float | None = getattr(self, name)
+        return value
+
+
+def headline_numbers(res) -> HeadlineNumbers:
     """A ROM CaseResult's headline numbers (the modal model is relative to the ground)."""
     s = res.summary
-    return {
-        "peak_tip_relative": s.max_abs["tip_x"],
-        "peak_shaft_deflection": s.max_abs["shaft_deflection_x_sampled"],
-        "omega_final": s.omega_final_mean,
-        "captured_at": s.captured_at,
-    }
+    return HeadlineNumbers(
+        peak_tip_relative=s.max_abs["tip_x"],
+        peak_shaft_deflection=s.max_abs["shaft_deflection_x_sampled"],
+        omega_final=s.omega_final_mean,
+        captured_at=s.captured_at,
+    )
 
 
 def _finer(scene: Scene, integrator: str | None) -> Scene:
@@ -48,7 +69,8 @@ def _finer(scene: Scene, integrator: str | None) -> Scene:
 def uncertainty(
     scene: Scene, case: str, integrator, motion, chain: ChainModes, base, progress=None
 ) -> dict[str, Uncertain]:
-    """``{name: Uncertain}`` for the headline numbers of ``base`` (a modal CaseResult)."""
+    """``{name: Uncertain}`` for the headline numbers of ``base`` (a modal CaseResult); a
+    mapping by quantity name, not a record: a number without a finite value has no entry."""
     from .cases import run_case
 
     quiet = override(scene, ["simulate.threshold=false"])
@@ -72,14 +94,15 @@ def uncertainty(
             run(_finer(quiet, integrator), k, chain.modes) if _finer(quiet, integrator) is not quiet else None
         ),
     }
-    out = {}
+    # keyed by the quantity's name: the JSON's "uncertainty" object, one entry per number
+    out: dict[str, Uncertain] = {}
     for name, unit in HEADLINE.items():
-        v = values[name]
+        v = values.value(name)
         if v is None or not math.isfinite(v):
             continue
         sources = {}
         for src, nums in variants.items():
-            other = None if nums is None else nums[name]
+            other = None if nums is None else nums.value(name)
             sources[src] = None if other is None else other - v
         out[name] = Uncertain.of(v, unit, **sources)
     return out
