@@ -95,8 +95,6 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> StudyAnalysi
         dofs=_fronts(ok, "dofs", selection.needed, ref_unc),
         wall_time=_fronts(ok, "wall_time", selection.needed, ref_unc),
     )
-    # failures reads the runs' documents: the errors by key, as convergence.json holds them
-    docs = [r.to_json() for r in runs]
     return StudyAnalysis(
         runs=runs,
         reference=references,
@@ -104,7 +102,7 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> StudyAnalysi
         band=band,
         selection=selection,
         pareto=fronts,
-        failures=tuple(failures(docs, extrap, reference, tolerance)),
+        failures=tuple(failures(runs, extrapolations, references, tolerance)),
     )
 
 
