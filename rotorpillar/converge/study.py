@@ -111,8 +111,8 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> StudyAnalysi
 
 
 def study_run(r: dict) -> ConvergenceRun:
-    """A run of the ladder (the runner's dict) as the study records it; its errors,
-    where the dict has them (attach_errors gives them)."""
+    """A run of the ladder (the runner's dict) as the study records it, without errors
+    yet (attach_errors gives them)."""
     alias = r.get("ovalling_alias")
     return ConvergenceRun(
         key=r["key"],
@@ -139,13 +139,7 @@ def study_run(r: dict) -> ConvergenceRun:
         error=r.get("error"),
         cached=bool(r.get("cached")),
         ovalling_alias=None if alias is None else OvallingAlias(omega=alias["omega"], n=alias["n"]),
-        **{k: r.get(k) for k in _ERROR_KEYS},
     )
-
-
-_ERROR_KEYS = tuple(
-    f"{q}_{k}" for q in QUANTITIES for k in ("error", "model_error", "discretisation_error", "error_bound")
-)
 
 
 def _extrapolation(d: dict) -> Extrapolation:
