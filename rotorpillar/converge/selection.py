@@ -24,6 +24,7 @@ from .result import (
     ExcitationBand,
     Extrapolation,
     ModelSelection,
+    Param,
     ReferenceValue,
     RejectedRun,
     RunBrief,
@@ -319,7 +320,7 @@ class ReferenceChoice(JsonRecord):
     label: str
     """the study's run: family and mesh"""
     family: str
-    params: dict
+    params: dict[str, Param]
     """the run's discretisation (elements_around, elements_along, ... as in the study)"""
     dofs: int
     """the bare tube's DOFs in the study"""
@@ -327,8 +328,8 @@ class ReferenceChoice(JsonRecord):
     """the study's frequencies the choice had to meet (those of the modes the load excites)"""
     band_error: float
     """the largest, over ``quantities``, of the error bound plus the reference's uncertainty"""
-    errors: dict
-    """per quantity: value (rad/s), error, model_error, discretisation_error, error_bound"""
+    errors: dict[str, dict[str, float | None]]
+    """per quantity: value (rad/s), error, model_error, discretisation_error, error_bound (-)"""
     required: float
     """the bound the choice had to meet: the tolerance, or the ROM source's own if smaller"""
     tolerance: float
