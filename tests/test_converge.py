@@ -21,6 +21,7 @@ Sources and tolerances:
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -143,52 +144,50 @@ def _records(**runs):
     last two (model error, discretisation error) relative, or None (no such mode)."""
     out = []
     for label, (fam, t, dofs, *qs) in runs.items():
-        r = {
-            "label": label,
-            "family": fam,
-            "model": cv.FAMILIES[fam].model,
-            "params": {},
-            "status": "ok",
-            "wall_time": t,
-            "dofs": dofs,
-        }
+        r = cv.ConvergenceRun(
+            key=label,
+            family=fam,
+            model=cv.FAMILIES[fam].model,
+            label=label,
+            level=0,
+            params={},
+            status="ok",
+            wall_time=t,
+            dofs=dofs,
+        )
         for q, ref, split in zip(("bending", "ovalling"), (30.0, 85.0), qs):
             if split is None:
-                r.update(
-                    {
-                        q: None,
-                        f"{q}_error": None,
-                        f"{q}_model_error": None,
-                        f"{q}_discretisation_error": None,
-                        f"{q}_error_bound": None,
-                    }
-                )
-                continue
+                continue  # no such mode: the frequency and its errors None
             model, disc = split
-            r.update(
-                {
+            r = replace(
+                r,
+                **{
                     q: ref * (1 + model + disc),
                     f"{q}_error": model + disc,
                     f"{q}_model_error": model,
                     f"{q}_discretisation_error": disc,
                     f"{q}_error_bound": abs(model) + abs(disc),
-                }
+                },
             )
         out.append(r)
     return out
 
 
+def _extrapolation(value, error_estimate=0.0, family=None):
+    """A Richardson value (rad/s) with its error estimate: a family's, or a reference."""
+    ex = cv.FamilyExtrapolation(
+        order=4.0, order_theory=4.0, monotone=True, value=value, error_estimate=error_estimate, h=(), f=(), runs=()
+    )
+    return ex if family is None else cv.ReferenceValue(**vars(ex), family=family)
+
+
 REF = {
-    "bending": {"value": 30.0, "error_estimate": 30.0 * 1e-5},
-    "ovalling": {"value": 85.0, "error_estimate": 85.0 * 1e-5},
+    "bending": _extrapolation(30.0, 30.0 * 1e-5, "solid_hex_p2"),
+    "ovalling": _extrapolation(85.0, 85.0 * 1e-5, "solid_hex_p2"),
 }
-BAND = {
-    "omega_max": 135.0,
-    "free_speed": 90.0,
-    "earthquake_frequency": math.pi,
-    "margin": 1.5,
-    "driver": "drive free speed",
-}
+BAND = cv.ExcitationBand(
+    omega_max=135.0, free_speed=90.0, earthquake_frequency=math.pi, margin=1.5, driver="drive free speed"
+)
 
 
 def test_selection_takes_the_cheapest_run_that_meets_the_band():
@@ -199,19 +198,19 @@ def test_selection_takes_the_cheapest_run_that_meets_the_band():
         solid=("solid_hex_p2", 10.0, 50000, (0, 1e-6), (0, 1e-5)),
     )
     sel = cv.select_model(recs, REF, BAND, 1e-3)
-    assert sel["needed"] == ["bending", "ovalling"]
-    assert sel["chosen"]["label"] == "fine"
-    why = {r["label"]: r["why"] for r in sel["rejected_cheaper"]}
+    assert sel.needed == ("bending", "ovalling")
+    assert sel.chosen is not None and sel.chosen.label == "fine"
+    why = {r.label: r.why for r in sel.rejected_cheaper}
     assert "no ovalling" in why["beam"] and "ovalling error bound" in why["coarse"]
-    assert "fine" in sel["reason"] and "135.0 rad/s" in sel["reason"]
+    assert "fine" in sel.reason and "135.0 rad/s" in sel.reason
     # a slow scene whose band stops below the ovalling mode: the beam will do
-    low = dict(BAND, omega_max=50.0)
-    assert cv.select_model(recs, REF, low, 1e-3)["chosen"]["label"] == "beam"
+    low = replace(BAND, omega_max=50.0)
+    assert cv.select_model(recs, REF, low, 1e-3).chosen.label == "beam"
     # a tolerance nothing meets: no choice, and it says so
     none = cv.select_model(recs, REF, BAND, 1e-7)
-    assert none["chosen"] is None and "no model" in none["reason"]
+    assert none.chosen is None and "no model" in none.reason
     # restricted to the 3D models
-    assert cv.select_model(recs, REF, BAND, 1e-3, families=["solid_hex_p2"])["chosen"]["label"] == "solid"
+    assert cv.select_model(recs, REF, BAND, 1e-3, families=["solid_hex_p2"]).chosen.label == "solid"
 
 
 def test_selection_gives_no_credit_for_cancelling_errors():
@@ -222,26 +221,37 @@ def test_selection_gives_no_credit_for_cancelling_errors():
         solid=("solid_hex_p2", 14.0, 94464, (0, 1e-4), (0, 6e-4)),
     )
     sel = cv.select_model(recs, REF, BAND, 1e-3)
-    assert abs(recs[0]["ovalling_error"]) < 1.5e-4
-    assert sel["chosen"]["label"] == "solid"
-    assert "model -1.1e-03" in sel["rejected_cheaper"][0]["why"]
+    assert abs(recs[0].ovalling_error) < 1.5e-4
+    assert sel.chosen.label == "solid"
+    assert "model -1.1e-03" in sel.rejected_cheaper[0].why
 
 
 def test_errors_split_into_model_and_discretisation():
-    recs = [
-        {"family": "shell_quad", "status": "ok", "bending": 30.3, "ovalling": None},
-        {"family": "closed_form", "status": "ok", "bending": 31.0, "ovalling": 84.0},
-    ]
-    ex = {"shell_quad": {"bending": {"value": 30.6}}}
-    ref = {"bending": {"value": 30.0, "error_estimate": 0.0}, "ovalling": {"value": 85.0, "error_estimate": 0.0}}
-    cv.attach_errors(recs, ref, ex)
-    s, c = recs
-    assert s["bending_error"] == pytest.approx(0.01)
-    assert s["bending_model_error"] == pytest.approx(0.02)
-    assert s["bending_discretisation_error"] == pytest.approx(-0.01)
-    assert s["bending_error_bound"] == pytest.approx(0.03)
-    assert s["ovalling_error"] is None and s["ovalling_error_bound"] is None
-    assert c["ovalling_error_bound"] == pytest.approx(1 / 85)  # no limit: |measured|
+    def run(family, bending, ovalling):
+        model = cv.FAMILIES[family].model
+        return cv.ConvergenceRun(
+            key=family,
+            family=family,
+            model=model,
+            label=family,
+            level=0,
+            params={},
+            status="ok",
+            bending=bending,
+            ovalling=ovalling,
+        )
+
+    recs = (run("shell_quad", 30.3, None), run("closed_form", 31.0, 84.0))
+    ex = {"shell_quad": {"bending": _extrapolation(30.6)}}
+    ref = {"bending": _extrapolation(30.0, family="shell_quad"), "ovalling": _extrapolation(85.0, family="shell_quad")}
+    s, c = cv.attach_errors(recs, ref, ex)
+    assert recs[0].bending_error is None  # new records: the runs given are left as they were
+    assert s.bending_error == pytest.approx(0.01)
+    assert s.bending_model_error == pytest.approx(0.02)
+    assert s.bending_discretisation_error == pytest.approx(-0.01)
+    assert s.bending_error_bound == pytest.approx(0.03)
+    assert s.ovalling_error is None and s.ovalling_error_bound is None
+    assert c.ovalling_error_bound == pytest.approx(1 / 85)  # no limit: |measured|
 
 
 def test_excitation_band_of_the_paper_scene():

@@ -16,6 +16,8 @@ import time
 import pytest
 from conftest import cli
 
+from rotorpillar.converge import ModalModelSelection
+
 SMALL = [
     "--set",
     "converge.solid=false",
@@ -118,6 +120,7 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     sel = doc["model_selection"]
+    assert ModalModelSelection.from_json(sel).to_json() == sel  # read through its record, unchanged
     chosen = sel["chosen"]
     assert chosen["model"] == "solid" and "Model chosen for tolerance 0.03" in sel["text"]
     # modal ran on the chosen mesh
@@ -142,5 +145,6 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
     assert bad.returncode == 4, bad.stderr
     d = json.loads((tmp_path / "x" / "modal.json").read_text())
     assert d["ok"] is False and d["model_selection"]["met"] is False
+    assert ModalModelSelection.from_json(d["model_selection"]).to_json() == d["model_selection"]
     assert "not met" in d["failed_checks"][0] and "not met" in bad.stderr
     assert len(bad.stderr.strip().splitlines()) <= 8, bad.stderr  # a few lines, no traceback

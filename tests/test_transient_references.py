@@ -26,6 +26,7 @@ import pytest
 from conftest import cli
 from convergence_doc import convergence_doc
 
+from rotorpillar.converge.result import ConvergenceStudy
 from rotorpillar.converge.selection import select_reference
 from rotorpillar.fem3d.modal import ModeRow
 from rotorpillar.scene import load_scene, override
@@ -115,24 +116,31 @@ RUNS += [_run("solid_hex_p2", 128, 20, 94_464, 3.1e-4), _run("solid_hex_p2", 224
 REFERENCE = {"bending": {"value": 30.818, "error_estimate": 30.818 * 1.4e-4}}
 
 
+def _study():
+    """RUNS and REFERENCE as a study on disk reads (its runs and reference records)."""
+    return ConvergenceStudy.from_json(convergence_doc(load_scene("paper"), RUNS, REFERENCE))
+
+
 def test_select_reference_coarsest_meeting_the_bound():
-    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, max_dofs=12_000)
+    study = _study()
+    runs, reference = study.runs, study.reference
+    c = select_reference(runs, reference, ("bending",), 1e-3, max_dofs=12_000)
     assert c.params["elements_along"] == 15 and c.meets
     assert math.isclose(c.band_error, 7.2e-4 + 1.4e-4, rel_tol=1e-9)
     # a ROM whose modes are better than that: the reference must be at least as good
     c = select_reference(
-        RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 7e-4}, max_dofs=12_000
+        runs, reference, ("bending",), 1e-3, floor={"label": "rom", "band_error": 7e-4}, max_dofs=12_000
     )
     assert c.params["elements_along"] == 20 and c.meets and c.required == 7e-4
     # out of reach within the transient's DOFs: the most accurate, and said so
     c = select_reference(
-        RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4}, max_dofs=12_000
+        runs, reference, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4}, max_dofs=12_000
     )
     assert c.params["elements_along"] == 40 and not c.meets and "only to the reference's own" in c.reason
     # what the case's steps afford caps that refinement
     c = select_reference(
-        RUNS,
-        REFERENCE,
+        runs,
+        reference,
         ("bending",),
         1e-3,
         floor={"label": "rom", "band_error": 2e-4},
@@ -141,9 +149,9 @@ def test_select_reference_coarsest_meeting_the_bound():
     )
     assert c.params["elements_along"] == 20 and not c.meets and "within 7,000 DOFs" in c.reason
     # without the DOFs cap the fine solid run would do
-    c = select_reference(RUNS, REFERENCE, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2.5e-4})
+    c = select_reference(runs, reference, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2.5e-4})
     assert c.params["elements_around"] == 224
-    assert select_reference(RUNS, REFERENCE, ("bending",), 1e-4) is None
+    assert select_reference(runs, reference, ("bending",), 1e-4) is None
 
 
 def _study_on_disk(tmp_path, scene, runs=RUNS):

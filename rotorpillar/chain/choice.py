@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -30,7 +31,7 @@ from ..scene import Mesh, Scene
 from .record import PillarModel
 
 if TYPE_CHECKING:
-    from ..converge.result import ConvergenceStudy
+    from ..converge.result import ConvergenceRun, ConvergenceStudy, ReferenceValue, RunBrief, RunErrors
 
 #: Scene keys a convergence study's choice depends on: the tube, the ladder's
 #: shape (from [mesh]), the tolerance and limits, and the band (drive, load).
@@ -101,18 +102,18 @@ def study_on_disk(scene: Scene, out_dir: Path):
     return study, f"the convergence study {path}"
 
 
-def _errors(run: dict, ref_unc: dict) -> dict:
+def _errors(run: RunErrors, ref_unc: dict[str, float]) -> dict[str, float]:
     """Per frequency: the run's error bound plus the reference's uncertainty (-)."""
     out = {}
     for q, u in ref_unc.items():
-        b = run.get(f"{q}_error_bound")
+        b = run.error_bound(q)
         if b is not None:
             out[q] = float(b) + float(u)
     return out
 
 
 def model_of_run(
-    run: dict, reference_uncertainty: dict, tolerance: float, note: str, study: str | None = None
+    run: RunBrief, reference_uncertainty: dict[str, float], tolerance: float, note: str, study: str | None = None
 ) -> PillarModel:
     """A run the study chose (its brief: label, family, params, dofs, error bounds) as the
     chain's PillarModel."""
@@ -120,13 +121,19 @@ def model_of_run(
 
 
 def _model(
-    run: dict, source: str, verified: bool, tolerance, errors: dict, note: str, study: str | None
+    run: RunBrief,
+    source: str,
+    verified: bool,
+    tolerance: float | None,
+    errors: dict[str, float],
+    note: str,
+    study: str | None,
 ) -> PillarModel:
     from ..converge.ladder import FAMILIES
 
-    kind = FAMILIES[run["family"]].model
+    kind = FAMILIES[run.family].model
     return PillarModel(
-        kind, run["label"], dict(run["params"]), int(run["dofs"]), source, verified, tolerance, errors, note, study
+        kind, run.label, dict(run.params), int(run.dofs), source, verified, tolerance, errors, note, study
     )
 
 
@@ -138,14 +145,11 @@ def solid_families() -> list[str]:
     return [k for k, f in FAMILIES.items() if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
 
 
-def _solid_within(study: ConvergenceStudy, tolerance: float):
+def _solid_within(study: ConvergenceStudy, tolerance: float) -> RunBrief | None:
     """The cheapest 3D run of the study that meets the tolerance (its brief), or None."""
     from ..converge.selection import select_model
 
-    solid = solid_families()
-    reference = {q: r.to_json() for q, r in study.reference.items()}
-    sel = select_model(study.run_documents(), reference, study.band.to_json(), tolerance, families=solid)
-    return sel.get("chosen")
+    return select_model(study.runs, study.reference, study.band, tolerance, families=solid_families()).chosen
 
 
 def scene_solid_run(scene: Scene) -> dict:
@@ -176,22 +180,23 @@ def solid_run_of(m: Mesh) -> dict:
     }
 
 
-def _same_mesh(run: dict, params: dict) -> bool:
-    p = run.get("params") or {}
-    return all(p.get(k) == v for k, v in params.items())
+def _same_mesh(run: ConvergenceRun, params: dict) -> bool:
+    return all(run.params.get(k) == v for k, v in params.items())
 
 
-def _scene_errors(runs, reference: dict, params: dict) -> dict:
+def _scene_errors(
+    runs: Iterable[ConvergenceRun], reference: Mapping[str, ReferenceValue], params: dict
+) -> dict[str, float]:
     from ..converge.selection import reference_uncertainty
 
     ref_unc = reference_uncertainty(reference) if reference else {}
     for r in runs:
-        if r.get("status") == "ok" and r.get("model") == "solid" and _same_mesh(r, params):
+        if r.status == "ok" and r.model == "solid" and _same_mesh(r, params):
             return _errors(r, ref_unc)
     return {}
 
 
-def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict, str]:
+def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict[str, float], str]:
     """The scene mesh's errors from the study's run cache alone (nothing computed)."""
     from ..converge.ladder import study_cases
     from ..converge.runner import run_study
@@ -207,7 +212,7 @@ def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict, str]:
     if not any(r.get("cached") for r in records):
         return {}, "no study's run cache"
     analysis = analyse(records, scene, scene.converge.tolerance)
-    errs = _scene_errors(records, analysis["reference"], scene_solid_run(scene)["params"])
+    errs = _scene_errors(analysis.runs, analysis.reference, scene_solid_run(scene)["params"])
     return errs, f"the study's run cache {cache_dir}"
 
 
@@ -281,11 +286,10 @@ def from_study(scene: Scene, study: ConvergenceStudy) -> Choice:
     from ..converge.selection import reference_uncertainty
 
     sel, path, tol = study.selection, study.json_file, study.tolerance
-    reference = {q: r.to_json() for q, r in study.reference.items()}  # as the selection's functions take it
-    ref_unc = reference_uncertainty(reference)
+    ref_unc = reference_uncertainty(study.reference)
     if sel.chosen is None:
         run = scene_solid_run(scene)
-        errors = _scene_errors(study.run_documents(), reference, run["params"])
+        errors = _scene_errors(study.runs, study.reference, run["params"])
         pm = PillarModel(
             "solid",
             run["label"],
@@ -300,8 +304,8 @@ def from_study(scene: Scene, study: ConvergenceStudy) -> Choice:
             path,
         )
         return Choice(pm, pm)
-    chosen = sel.chosen.to_json()  # the brief, as the chain's models of a run read it
-    kind = sel.chosen.model
+    chosen = sel.chosen
+    kind = chosen.model
     why = (
         f"the model the convergence study chose for the scene's band (up to "
         f"{study.band.omega_max:.1f} rad/s) at tolerance {tol:g}: {sel.reason}"
@@ -331,20 +335,27 @@ def from_study(scene: Scene, study: ConvergenceStudy) -> Choice:
             True,
             tol,
             _errors(solid_run, ref_unc),
-            f"the cheapest 3D mesh of the study within {tol:g} (the study's choice, "
-            f"{chosen['label']}, is not a 3D model)",
+            f"the cheapest 3D mesh of the study within {tol:g} (the study's choice, {chosen.label}, is not a 3D model)",
             path,
         )
     if kind == "beam":
-        p = chosen["params"]
+        p = chosen.params
         rom = _beam_model(
-            scene, "converge", why, p["theory"], p["elements"], _errors(chosen, ref_unc), tol, path, chosen["label"]
+            scene,
+            "converge",
+            why,
+            str(p["theory"]),
+            int(p["elements"]),
+            _errors(chosen, ref_unc),
+            tol,
+            path,
+            chosen.label,
         )
         return Choice(rom, solid)
     if kind == "closed_form":
         rom = PillarModel(
             "closed_form",
-            chosen["label"],
+            chosen.label,
             dict(CLOSED_FORM_BEAM),
             2 * CLOSED_FORM_BEAM["elements"],
             "converge",

@@ -131,7 +131,7 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
 def _beam(scene: Scene, pm: PillarModel) -> tuple[PillarModes, TipReductionOf]:
     from ..reduced.pillar_modes import beam_pillar_modes, beam_tip_reduction
 
-    theory, elements = pm.mesh["theory"], int(pm.mesh["elements"])
+    theory, elements = str(pm.mesh["theory"]), int(pm.mesh["elements"])
     modes = beam_pillar_modes(
         scene.pillar, scene.gondola.mass, MAX_CANDIDATES, theory, elements, scene.modal_model.gondola_inertia
     )

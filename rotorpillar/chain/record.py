@@ -16,6 +16,11 @@ from ..provenance import JsonRecord
 PILLAR_KINDS = ("solid", "shell", "beam", "closed_form")
 CHOICE_SOURCES = ("converge", "scene")
 
+MeshValue = int | float | str
+"""A value of a model's discretisation (elements, degree, cell type, grading, beam theory;
+the paper's reduction: tip mass and stiffness): a run's ``params`` in the convergence
+study (rotorpillar.converge.result.Param), here without importing the study."""
+
 
 @dataclass(frozen=True)
 class PillarModel(JsonRecord):
@@ -26,9 +31,10 @@ class PillarModel(JsonRecord):
     "closed_form\""""
     label: str
     """the ladder's name of the model, e.g. "3D P2 hexahedra, 128x20x1\""""
-    mesh: dict
+    mesh: dict[str, MeshValue]
     """its discretisation: elements_around/along/through, degree, cell_type, grading
-    (solid, shell) or theory and elements (beam)"""
+    (solid, shell), theory and elements (beam), or tip_mass (kg) and tip_stiffness (N/m)
+    (the paper's reduction)"""
     dofs: int
     """unknowns of the bare tube's model (-)"""
     source: str
@@ -38,7 +44,7 @@ class PillarModel(JsonRecord):
     """its frequency error is known from a convergence study (a reference and this run)"""
     tolerance: float | None
     """the relative frequency tolerance the study chose it for (-), None without a study"""
-    errors: dict
+    errors: dict[str, float]
     """per frequency the study measured (bending, ovalling, ...): the error bound, model +
     discretisation + the reference's uncertainty (relative, -); empty when unverified"""
     note: str

@@ -17,6 +17,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ..converge.result import ModalModelSelection
     from ..scene import Scene
 
 from . import progress
@@ -117,7 +118,7 @@ def modal_command(scene: Scene, args, timings):
     from ..chain import chain_modes, choose, rom_band_top
     from ..chain.choice import Choice, from_scene, model_of_run
 
-    selection = None
+    selection: ModalModelSelection | None = None
     if getattr(args, "tolerance", None) is not None:
         from ..converge import model_for_modal
         from ..postprocess.convergence_charts import convergence_charts
@@ -132,18 +133,18 @@ def modal_command(scene: Scene, args, timings):
                 log=say,
                 show_progress=sys.stderr.isatty(),
             )
-        say(selection["text"].splitlines()[0])
-        if selection["chosen"] is None:  # no 3D run has an error estimate: the scene's [mesh]
-            choice = from_scene(scene, args.cache or out_dir(scene, args) / "cache", selection["reason"])
+        say(selection.text.splitlines()[0])
+        if selection.chosen is None:  # no 3D run has an error estimate: the scene's [mesh]
+            choice = from_scene(scene, args.cache or out_dir(scene, args) / "cache", selection.reason)
         else:
             pm = model_of_run(
-                selection["chosen"],
-                selection.get("reference_uncertainty") or {},
+                selection.chosen,
+                selection.reference_uncertainty,
                 args.tolerance,
-                selection["reason"],
-                selection.get("convergence_json"),
+                selection.reason,
+                selection.convergence_json,
             )
-            choice = Choice(*(2 * [pm if selection["met"] else replace(pm, verified=False)]))
+            choice = Choice(*(2 * [pm if selection.met else replace(pm, verified=False)]))
     else:
         choice = choose(scene, out_dir(scene, args))
         scene = replace(scene, mesh=choice.solid_mesh)
@@ -185,9 +186,9 @@ def modal_command(scene: Scene, args, timings):
     text = summary(found, bare, loaded)
     text = f"Pillar model: {choice.solid.describe()}\n  {choice.solid.note}\n\n" + text
     if selection is not None:
-        doc["model_selection"] = selection
-        text = selection["text"] + "\n\n" + text
-        if not selection["met"]:  # written, and marked: the exit code says so too
-            doc.update(ok=False, failed_checks=[selection["reason"]], exit_status=EXIT_CHECKS)
-            say(f"modal: check failed: {selection['reason']}")
+        doc["model_selection"] = selection.to_json()
+        text = selection.text + "\n\n" + text
+        if not selection.met:  # written, and marked: the exit code says so too
+            doc.update(ok=False, failed_checks=[selection.reason], exit_status=EXIT_CHECKS)
+            say(f"modal: check failed: {selection.reason}")
     return doc, text

@@ -55,6 +55,7 @@ from .result import (
     FamilyExtrapolation,
     FamilyInfo,
     Fronts,
+    ModalModelSelection,
     Mode,
     ModelSelection,
     OvallingAlias,
@@ -76,7 +77,7 @@ from .selection import (
     reference_uncertainty,
     select_model,
 )
-from .study import analyse, model_for_modal, study
+from .study import StudyAnalysis, analyse, model_for_modal, study
 
 __all__ = [
     # ladder
@@ -137,6 +138,7 @@ __all__ = [
     "FamilyExtrapolation",
     "FamilyInfo",
     "Fronts",
+    "ModalModelSelection",
     "Mode",
     "ModelSelection",
     "OvallingAlias",
@@ -146,6 +148,7 @@ __all__ = [
     "RichardsonCheck",
     "RunBrief",
     "StudyCounts",
+    "StudyAnalysis",
     "analyse",
     "study",
     "model_for_modal",

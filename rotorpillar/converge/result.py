@@ -7,7 +7,8 @@ leaves: each run of the ladder (:class:`ConvergenceRun`), the Richardson
 extrapolations and references (:class:`Extrapolation`,
 :class:`ReferenceValue`), the band (:class:`ExcitationBand`), the choice
 (:class:`ModelSelection`, its runs as :class:`RunBrief`), the fronts
-(:class:`ParetoFronts`) and the counts (:class:`StudyCounts`).  Frequencies
+(:class:`ParetoFronts`) and the counts (:class:`StudyCounts`); beside it,
+modal.json's ``model_selection`` (:class:`ModalModelSelection`).  Frequencies
 are circular (rad/s); errors are relative (-).
 """
 
@@ -26,6 +27,28 @@ _OK_ONLY: dict[str, Any] = {"omit_if_none": True, "ok_only": True}
 
 Param = int | float | str
 """A value of a run's discretisation (elements, degree, cell type, grading...)."""
+
+ERROR_KINDS = ("error", "model_error", "discretisation_error", "error_bound")
+"""A run's errors per frequency: ``{quantity}_{kind}`` (rotorpillar.converge.selection.attach_errors)."""
+
+
+class RunErrors:
+    """A run's frequencies and their errors read by quantity name ("bending", "ovalling"):
+    the fields ``{q}`` and ``{q}_{kind}`` of :class:`ConvergenceRun` and :class:`RunBrief`."""
+
+    def frequency(self, quantity: str) -> float | None:
+        """The run's first ``quantity`` frequency (rad/s), None where not resolved."""
+        value: float | None = getattr(self, quantity)
+        return value
+
+    def relative_error(self, quantity: str, kind: str = "error") -> float | None:
+        """The run's relative error of that kind (ERROR_KINDS) on ``quantity`` (-)."""
+        value: float | None = getattr(self, f"{quantity}_{kind}")
+        return value
+
+    def error_bound(self, quantity: str) -> float | None:
+        """|model error| + |discretisation error| on ``quantity`` (-), None without one."""
+        return self.relative_error(quantity, "error_bound")
 
 
 @dataclass(frozen=True)
@@ -66,7 +89,7 @@ class OvallingAlias(JsonRecord):
 
 
 @dataclass(frozen=True)
-class ConvergenceRun(JsonRecord):
+class ConvergenceRun(JsonRecord, RunErrors):
     """One run of the ladder: its case, its frequencies, cost and errors against the reference.
 
     A failed or unavailable run has no result (``bending`` ... ``peak_memory`` absent) but
@@ -207,7 +230,7 @@ class ExcitationBand(JsonRecord):
 
 
 @dataclass(frozen=True)
-class RunBrief(JsonRecord):
+class RunBrief(JsonRecord, RunErrors):
     """A run as the choice names it: its case, cost, frequencies and errors."""
 
     label: str
@@ -263,6 +286,35 @@ class ModelSelection(JsonRecord):
     rejected_cheaper: tuple[RejectedRun, ...]
     """per family, its most accurate run cheaper than the choice"""
     reason: str
+
+
+@dataclass(frozen=True)
+class ModalModelSelection(JsonRecord):
+    """The 3D mesh `rotorpillar modal --tolerance` runs, and why: modal.json's
+    ``model_selection`` (rotorpillar.converge.study.model_for_modal)."""
+
+    tolerance: float
+    """relative frequency tolerance asked (-)"""
+    met: bool
+    """a 3D run of the study meets the tolerance (False: the most accurate is run, and `modal` exits 4)"""
+    chosen: RunBrief | None
+    """the 3D run whose mesh `modal` runs (None: no 3D run has an error estimate; the scene's [mesh])"""
+    reason: str
+    """why, in words (when not met: why not)"""
+    rule: str
+    band: ExcitationBand
+    needed: tuple[str, ...]
+    """the quantities whose reference lies inside the band"""
+    reference_uncertainty: dict[str, float]
+    """per needed quantity: the reference's own relative error estimate (-)"""
+    rejected_cheaper: tuple[RejectedRun, ...]
+    """per 3D family, its most accurate run cheaper than the choice"""
+    overall_cheapest: RunBrief | None
+    """the study's own choice among all its models (a shell or a beam may be cheaper)"""
+    convergence_json: str | None
+    """the convergence.json written (None: under MPI, the study read from its cache)"""
+    text: str
+    """the choice in a few lines, as `modal` prints it"""
 
 
 @dataclass(frozen=True)
@@ -340,10 +392,6 @@ class ConvergenceStudy(JsonRecord):
     def chosen(self) -> RunBrief | None:
         """The chosen run's brief (label, family, params, dofs, errors...), or None."""
         return self.selection.chosen
-
-    def run_documents(self) -> list[dict]:
-        """The runs as the analysis functions (rotorpillar.converge.selection) take them."""
-        return [r.to_json() for r in self.runs]
 
     def to_json(self) -> dict:
         """The document as written to convergence.json (optional parts left out when None)."""

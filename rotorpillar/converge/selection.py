@@ -10,16 +10,35 @@ reference: the coarsest 3D run for the frequencies the load excites.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
 from ..provenance import JsonRecord
 from ..reduced.band import excitation_band  # noqa: F401  (the study's band, re-exported)
 from .ladder import FAMILIES, QUANTITIES
+from .result import (
+    ERROR_KINDS,
+    ConvergenceRun,
+    ExcitationBand,
+    Extrapolation,
+    ModelSelection,
+    Param,
+    ReferenceValue,
+    RejectedRun,
+    RunBrief,
+    RunErrors,
+)
+
+Reference = Mapping[str, ReferenceValue]
+"""Per quantity, its reference value (the study's ``reference``)."""
 
 
-def attach_errors(records: list[dict], reference: dict, extrapolations: dict) -> None:
-    """Each run's errors per quantity against the reference (in place).
+def attach_errors(
+    runs: Iterable[ConvergenceRun], reference: Reference, extrapolations: Mapping[str, Mapping[str, Extrapolation]]
+) -> tuple[ConvergenceRun, ...]:
+    """The runs with their errors per quantity against the reference.
 
     ``{q}_error``: measured, (f - f_ref)/f_ref.  Split through the family's
     own Richardson limit L: ``{q}_model_error`` = (L - f_ref)/f_ref (what
@@ -29,29 +48,42 @@ def attach_errors(records: list[dict], reference: dict, extrapolations: dict) ->
     family's limit (same model).  Without a limit (a closed form, a family
     with fewer than three runs) the bound is |measured|.
     """
-    for r in records:
-        fam = FAMILIES[r["family"]]
-        for q in QUANTITIES:
-            v, ref = r.get(q), reference.get(q)
-            keys = ("error", "model_error", "discretisation_error", "error_bound")
-            if v is None or ref is None or r.get("status") != "ok":
-                r.update({f"{q}_{k}": None for k in keys})
-                continue
-            f_ref = ref["value"]
-            err = (v - f_ref) / f_ref
-            limit = extrapolations.get(fam.parent or r["family"], {}).get(q, {}).get("value")
-            if limit is None:
-                model, disc = err, 0.0
-            else:
-                model, disc = (limit - f_ref) / f_ref, (v - limit) / f_ref
-            r.update(
-                {
-                    f"{q}_error": err,
-                    f"{q}_model_error": model,
-                    f"{q}_discretisation_error": disc,
-                    f"{q}_error_bound": abs(model) + abs(disc),
-                }
-            )
+    return tuple(_with_errors(r, reference, extrapolations) for r in runs)
+
+
+def _with_errors(
+    r: ConvergenceRun, reference: Reference, extrapolations: Mapping[str, Mapping[str, Extrapolation]]
+) -> ConvergenceRun:
+    b = _split(r, "bending", reference, extrapolations)
+    o = _split(r, "ovalling", reference, extrapolations)
+    return dataclasses.replace(
+        r,
+        bending_error=b[0],
+        bending_model_error=b[1],
+        bending_discretisation_error=b[2],
+        bending_error_bound=b[3],
+        ovalling_error=o[0],
+        ovalling_model_error=o[1],
+        ovalling_discretisation_error=o[2],
+        ovalling_error_bound=o[3],
+    )
+
+
+def _split(
+    r: ConvergenceRun, q: str, reference: Reference, extrapolations: Mapping[str, Mapping[str, Extrapolation]]
+) -> tuple[float | None, float | None, float | None, float | None]:
+    """A run's (error, model error, discretisation error, error bound) on ``q`` (see attach_errors)."""
+    v, ref = r.frequency(q), reference.get(q)
+    if v is None or ref is None or r.status != "ok":
+        return None, None, None, None
+    f_ref = ref.value
+    err = (v - f_ref) / f_ref
+    ex = extrapolations.get(FAMILIES[r.family].parent or r.family, {}).get(q)
+    if ex is None:
+        model, disc = err, 0.0
+    else:
+        model, disc = (ex.value - f_ref) / f_ref, (v - ex.value) / f_ref
+    return err, model, disc, abs(model) + abs(disc)
 
 
 def pareto_front(cost, error) -> list[int]:
@@ -70,29 +102,33 @@ def pareto_front(cost, error) -> list[int]:
     return front
 
 
-def reference_uncertainty(reference: dict) -> dict:
-    """Per quantity, the reference's own relative error estimate."""
-    return {q: r["error_estimate"] / abs(r["value"]) for q, r in reference.items()}
+def reference_uncertainty(reference: Reference) -> dict[str, float]:
+    """Per quantity, the reference's own relative error estimate (-)."""
+    return {q: r.error_estimate / abs(r.value) for q, r in reference.items()}
 
 
-def needed_quantities(reference: dict, band: dict) -> list[str]:
+def needed_quantities(reference: Reference, band: ExcitationBand) -> list[str]:
     """The quantities whose reference frequency lies inside the band."""
-    return [q for q in QUANTITIES if q in reference and reference[q]["value"] <= band["omega_max"]]
+    return [q for q in QUANTITIES if q in reference and reference[q].value <= band.omega_max]
 
 
-def band_error(record: dict, needed: list[str], ref_unc: dict) -> float | None:
+def band_error(run: RunErrors, needed: Sequence[str], ref_unc: Mapping[str, float]) -> float | None:
     """What the choice compares with the tolerance: the largest, over the needed
     quantities, of the error bound plus the reference's uncertainty (None: a
     needed mode is missing)."""
-    errs = [record.get(f"{q}_error_bound") for q in needed]
+    errs = [run.error_bound(q) for q in needed]
     if any(e is None for e in errs):
         return None
-    return max((e + ref_unc.get(q, 0.0) for q, e in zip(needed, errs)), default=0.0)
+    return max((e + ref_unc.get(q, 0.0) for q, e in zip(needed, errs) if e is not None), default=0.0)
 
 
 def select_model(
-    records: list[dict], reference: dict, band: dict, tolerance: float, families: list[str] | None = None
-) -> dict:
+    runs: Sequence[ConvergenceRun],
+    reference: Reference,
+    band: ExcitationBand,
+    tolerance: float,
+    families: Sequence[str] | None = None,
+) -> ModelSelection:
     """The cheapest run (wall time) whose needed frequencies all meet ``tolerance``.
 
     Needed: the quantities whose reference lies inside the band.  A run meets
@@ -104,38 +140,39 @@ def select_model(
     """
     needed = needed_quantities(reference, band)
     ref_unc = reference_uncertainty(reference)
-    ok_runs = [r for r in records if r.get("status") == "ok" and (families is None or r["family"] in families)]
+    fams = None if families is None else tuple(families)
+    ok_runs = [r for r in runs if r.status == "ok" and (fams is None or r.family in fams)]
     # a frequency some run puts inside the band but no reference covers has no error
     # estimate: no model can be shown to meet the tolerance on it
     unreferenced = [
         q
         for q in QUANTITIES
         if q not in reference
-        and any(r.get(q) is not None and r[q] <= band["omega_max"] for r in records if r.get("status") == "ok")
+        and any((f := r.frequency(q)) is not None and f <= band.omega_max for r in runs if r.status == "ok")
     ]
     if unreferenced or not reference:
         what = ", ".join(unreferenced) or "any frequency"
-        return {
-            "tolerance": tolerance,
-            "band": band,
-            "needed": needed + unreferenced,
-            "reference_uncertainty": {q: ref_unc[q] for q in needed},
-            "families": families,
-            "candidates": 0,
-            "chosen": None,
-            "rejected_cheaper": [],
-            "rule": "no choice without an error estimate that meets the tolerance",
-            "reason": (
+        return ModelSelection(
+            tolerance=tolerance,
+            band=band,
+            needed=tuple(needed + unreferenced),
+            reference_uncertainty={q: ref_unc[q] for q in needed},
+            families=fams,
+            candidates=0,
+            rule="no choice without an error estimate that meets the tolerance",
+            chosen=None,
+            rejected_cheaper=(),
+            reason=(
                 f"no model chosen: the study has no converged reference for {what} "
-                f"inside the band (up to {band['omega_max']:.4g} rad/s), so no run has "
+                f"inside the band (up to {band.omega_max:.4g} rad/s), so no run has "
                 "an error estimate to meet the tolerance with; extend the ladder "
                 "([converge] limits, converge.solid = true)"
             ),
-        }
-    meets: list[dict] = []
-    rejected: list[tuple[dict, float, str]] = []
+        )
+    meets: list[ConvergenceRun] = []
+    rejected: list[tuple[ConvergenceRun, float, str]] = []
     for r in ok_runs:
-        missing = [q for q in needed if r.get(q) is None]
+        missing = [q for q in needed if r.frequency(q) is None]
         if missing:
             rejected.append((r, math.inf, "no " + " and no ".join(missing) + " mode"))
             continue
@@ -146,86 +183,110 @@ def select_model(
         if worst <= tolerance:
             meets.append(r)
         else:
-            q = max(needed, key=lambda q: r[f"{q}_error_bound"] + ref_unc[q])
-            why = (
-                f"{q} error bound {r[f'{q}_error_bound'] + ref_unc[q]:.1e} > {tolerance:g}: "
-                f"model {r[f'{q}_model_error']:+.1e}, discretisation "
-                f"{r[f'{q}_discretisation_error']:+.1e}, reference {ref_unc[q]:.0e}"
+            rejected.append((r, worst, _why(r, needed, ref_unc, tolerance)))
+    chosen: ConvergenceRun | None = None
+    by_family: dict[str, tuple[ConvergenceRun, str]] = {}
+    if meets:
+        chosen = min(meets, key=lambda r: (_cost(r.wall_time), _cost(r.dofs)))
+        # per family, its most accurate run among those cheaper than the choice
+        for r, _worst, why in sorted(rejected, key=lambda t: t[1]):
+            if _cost(r.wall_time) < _cost(chosen.wall_time):
+                by_family.setdefault(r.family, (r, why))
+        reason = _reason(chosen, needed, band, tolerance, reference, by_family)
+    else:
+        reason = (
+            f"no model in the study meets {tolerance:g} on {', '.join(needed) or 'nothing'} "
+            "(error bounds: "
+            + "; ".join(
+                f"{FAMILIES[f].label} best {min(w for r, w, _ in rejected if r.family == f):.1e}"
+                for f in dict.fromkeys(r.family for r, _, _ in rejected)
             )
-            rejected.append((r, worst, why))
-    out = {
-        "tolerance": tolerance,
-        "band": band,
-        "needed": needed,
-        "reference_uncertainty": {q: ref_unc[q] for q in needed},
-        "families": families,
-        "candidates": len(meets),
-        "rule": "cheapest wall time among runs whose error bound (|model error| + "
+            + "); refine the ladder ([converge] limits) or loosen the tolerance"
+        )
+    return ModelSelection(
+        tolerance=tolerance,
+        band=band,
+        needed=tuple(needed),
+        reference_uncertainty={q: ref_unc[q] for q in needed},
+        families=fams,
+        candidates=len(meets),
+        rule="cheapest wall time among runs whose error bound (|model error| + "
         "|discretisation error| + reference uncertainty) meets the tolerance on "
         "every frequency inside the band",
-    }
-    if not meets:
-        out.update(
-            chosen=None,
-            rejected_cheaper=[],
-            reason=(
-                f"no model in the study meets {tolerance:g} on {', '.join(needed) or 'nothing'} "
-                "(error bounds: "
-                + "; ".join(
-                    f"{FAMILIES[f].label} best {min(w for r, w, _ in rejected if r['family'] == f):.1e}"
-                    for f in dict.fromkeys(r["family"] for r, _, _ in rejected)
-                )
-                + "); refine the ladder ([converge] limits) or loosen the tolerance"
-            ),
-        )
-        return out
-    best = min(meets, key=lambda r: (r["wall_time"], r["dofs"]))
-    # per family, its most accurate run among those cheaper than the choice
-    by_family: dict[str, tuple[dict, str]] = {}
-    for r, _worst, why in sorted(rejected, key=lambda t: t[1]):
-        if r["wall_time"] < best["wall_time"]:
-            by_family.setdefault(r["family"], (r, why))
-    out.update(
-        chosen=_brief(best, needed),
-        rejected_cheaper=[{**_brief(r, needed), "why": why} for r, why in by_family.values()],
-        reason=_reason(best, needed, band, tolerance, reference, by_family),
+        chosen=None if chosen is None else brief(chosen),
+        rejected_cheaper=tuple(rejected_run(brief(r), why) for r, why in by_family.values()),
+        reason=reason,
     )
-    return out
 
 
-def _brief(r: dict, needed) -> dict:
-    return {
-        "label": r["label"],
-        "family": r["family"],
-        "model": r["model"],
-        "params": r["params"],
-        "dofs": r["dofs"],
-        "wall_time": r["wall_time"],
-        "peak_memory": r.get("peak_memory"),
-        **{q: r.get(q) for q in QUANTITIES},
-        **{
-            f"{q}_{k}": r.get(f"{q}_{k}")
-            for q in QUANTITIES
-            for k in ("error", "model_error", "discretisation_error", "error_bound")
-        },
-    }
+def _cost(value: float | None) -> float:
+    """An ok run's wall time or DOFs (an ok run has both)."""
+    if value is None:
+        raise ValueError("an ok run of the study without its cost (wall_time, dofs)")
+    return value
 
 
-def _reason(best, needed, band, tol, reference, rejected) -> str:
-    parts = [f"{best['label']} ({best['dofs']:,} DOFs, {best['wall_time']:.2f} s) is the cheapest run whose "]
+def _why(r: ConvergenceRun, needed: Sequence[str], ref_unc: Mapping[str, float], tolerance: float) -> str:
+    """Why a run with every needed mode misses the tolerance: its worst quantity's split."""
+    bound = {q: (r.error_bound(q) or 0.0) + ref_unc[q] for q in needed}
+    q = max(needed, key=lambda q: bound[q])
+    return (
+        f"{q} error bound {bound[q]:.1e} > {tolerance:g}: "
+        f"model {r.relative_error(q, 'model_error'):+.1e}, discretisation "
+        f"{r.relative_error(q, 'discretisation_error'):+.1e}, reference {ref_unc[q]:.0e}"
+    )
+
+
+def brief(r: ConvergenceRun) -> RunBrief:
+    """An ok run as the choice names it: its case, cost, frequencies and errors."""
+    return RunBrief(
+        label=r.label,
+        family=r.family,
+        model=r.model,
+        params=r.params,
+        dofs=int(_cost(r.dofs)),
+        wall_time=_cost(r.wall_time),
+        peak_memory=r.peak_memory,
+        bending=r.bending,
+        ovalling=r.ovalling,
+        bending_error=r.bending_error,
+        bending_model_error=r.bending_model_error,
+        bending_discretisation_error=r.bending_discretisation_error,
+        bending_error_bound=r.bending_error_bound,
+        ovalling_error=r.ovalling_error,
+        ovalling_model_error=r.ovalling_model_error,
+        ovalling_discretisation_error=r.ovalling_discretisation_error,
+        ovalling_error_bound=r.ovalling_error_bound,
+    )
+
+
+def rejected_run(b: RunBrief, why: str) -> RejectedRun:
+    """A run's brief with why it does not meet the tolerance."""
+    return RejectedRun(**{f.name: getattr(b, f.name) for f in dataclasses.fields(b)}, why=why)
+
+
+def _reason(
+    best: ConvergenceRun,
+    needed: Sequence[str],
+    band: ExcitationBand,
+    tol: float,
+    reference: Reference,
+    rejected: Mapping[str, tuple[ConvergenceRun, str]],
+) -> str:
+    parts = [f"{best.label} ({_cost(best.dofs):,} DOFs, {_cost(best.wall_time):.2f} s) is the cheapest run whose "]
     parts.append(
         " and ".join(
-            f"first {q} ({best[q]:.3f} rad/s, error {best[q + '_error']:+.1e}, bound {best[q + '_error_bound']:.1e})"
+            f"first {q} ({best.frequency(q):.3f} rad/s, error {best.relative_error(q):+.1e}, bound {best.error_bound(q):.1e})"
             for q in needed
         )
     )
     parts.append(
         f" meet {tol:g} against the reference. The band to resolve reaches "
-        f"{band['omega_max']:.1f} rad/s ({band['margin']:g} x the {band['driver']}, "
-        f"{max(band['free_speed'], band['earthquake_frequency']):.1f} rad/s)"
+        f"{band.omega_max:.1f} rad/s ({band.margin:g} x the {band.driver}, "
+        f"{max(band.free_speed, band.earthquake_frequency):.1f} rad/s)"
     )
-    inside = [f"first {q} {reference[q]['value']:.2f}" for q in needed]
-    outside = [f"first {q} {reference[q]['value']:.2f}" for q in QUANTITIES if q in reference and q not in needed]
+    inside = [f"first {q} {reference[q].value:.2f}" for q in needed]
+    outside = [f"first {q} {reference[q].value:.2f}" for q in QUANTITIES if q in reference and q not in needed]
     if inside:
         parts.append(", which contains the " + " and the ".join(inside) + " rad/s")
     if outside:
@@ -237,8 +298,8 @@ def _reason(best, needed, band, tol, reference, rejected) -> str:
             + "; ".join(
                 (
                     f"{FAMILIES[f].label} ({why})"
-                    if r["label"] == FAMILIES[f].label
-                    else f"{FAMILIES[f].label} (best {r['label'].split(', ')[-1]}: {why})"
+                    if r.label == FAMILIES[f].label
+                    else f"{FAMILIES[f].label} (best {r.label.split(', ')[-1]}: {why})"
                 )
                 for f, (r, why) in rejected.items()
             )
@@ -259,7 +320,7 @@ class ReferenceChoice(JsonRecord):
     label: str
     """the study's run: family and mesh"""
     family: str
-    params: dict
+    params: dict[str, Param]
     """the run's discretisation (elements_around, elements_along, ... as in the study)"""
     dofs: int
     """the bare tube's DOFs in the study"""
@@ -267,8 +328,8 @@ class ReferenceChoice(JsonRecord):
     """the study's frequencies the choice had to meet (those of the modes the load excites)"""
     band_error: float
     """the largest, over ``quantities``, of the error bound plus the reference's uncertainty"""
-    errors: dict
-    """per quantity: value (rad/s), error, model_error, discretisation_error, error_bound"""
+    errors: dict[str, dict[str, float | None]]
+    """per quantity: value (rad/s), error, model_error, discretisation_error, error_bound (-)"""
     required: float
     """the bound the choice had to meet: the tolerance, or the ROM source's own if smaller"""
     tolerance: float
@@ -285,16 +346,16 @@ class ReferenceChoice(JsonRecord):
     reason: str
 
 
-def run_band_error(record: dict, quantities, reference: dict) -> float | None:
+def run_band_error(run: RunErrors, quantities: Iterable[str], reference: Reference) -> float | None:
     """A run's band error on ``quantities``: its largest error bound plus the
     reference's uncertainty (None: a quantity is missing)."""
-    return band_error(record, list(quantities), reference_uncertainty(reference))
+    return band_error(run, list(quantities), reference_uncertainty(reference))
 
 
 def select_reference(
-    records: list[dict],
-    reference: dict,
-    quantities,
+    runs: Sequence[ConvergenceRun],
+    reference: Reference,
+    quantities: Iterable[str],
     tolerance: float,
     *,
     floor: dict | None = None,
@@ -312,22 +373,21 @@ def select_reference(
     most accurate one is taken with ``meets`` False; when none meets even the
     tolerance, None.
     """
-    quantities = tuple(q for q in quantities if q in reference)
+    wanted = tuple(q for q in quantities if q in reference)
     unc = reference_uncertainty(reference)
     err: dict[int, float] = {}
-    for r in records:
-        if (
-            r.get("status") == "ok"
-            and FAMILIES[r["family"]].model == "solid"
-            and (max_dofs is None or r["dofs"] <= max_dofs)
-        ):
-            e = band_error(r, list(quantities), unc)
+    for r in runs:
+        if r.status == "ok" and FAMILIES[r.family].model == "solid" and (max_dofs is None or _cost(r.dofs) <= max_dofs):
+            e = band_error(r, wanted, unc)
             if e is not None:
                 err[id(r)] = e
-    cands = [r for r in records if id(r) in err]
-    if not quantities or not cands:
+    cands = [r for r in runs if id(r) in err]
+    if not wanted or not cands:
         return None
-    by_cost = lambda r: (r["dofs"], r["wall_time"])  # noqa: E731
+
+    def by_cost(r: ConvergenceRun) -> tuple[float, float]:
+        return (_cost(r.dofs), _cost(r.wall_time))
+
     within_tol = sorted((r for r in cands if err[id(r)] <= tolerance), key=by_cost)
     if not within_tol:
         return None
@@ -335,16 +395,17 @@ def select_reference(
     limit = None
     if floor is not None and floor.get("band_error") is not None and floor["band_error"] < err[id(best)]:
         required = floor["band_error"]
-        limit = max(floor_max_dofs if floor_max_dofs is not None else math.inf, best["dofs"])
-        pool = [r for r in within_tol if r["dofs"] <= limit]
+        limit = max(floor_max_dofs if floor_max_dofs is not None else math.inf, _cost(best.dofs))
+        pool = [r for r in within_tol if _cost(r.dofs) <= limit]
         reach = [r for r in pool if err[id(r)] <= required]
-        best, ok = (reach[0], True) if reach else (min(pool, key=lambda r: (err[id(r)], r["dofs"])), False)
+        best, ok = (reach[0], True) if reach else (min(pool, key=lambda r: (err[id(r)], _cost(r.dofs))), False)
     e = err[id(best)]
-    what = " and ".join(f"first {q} {best[q]:.4f} rad/s (bound {best[q + '_error_bound']:.1e})" for q in quantities)
+    dofs = _cost(best.dofs)
+    what = " and ".join(f"first {q} {best.frequency(q):.4f} rad/s (bound {best.error_bound(q):.1e})" for q in wanted)
     if ok:
         reason = (
-            f"{best['label']} ({best['dofs']:,} DOFs) is the coarsest 3D run of the study whose "
-            f"{what} meet{'s' if len(quantities) == 1 else ''} {required:.2g} with the "
+            f"{best.label} ({dofs:,} DOFs) is the coarsest 3D run of the study whose "
+            f"{what} meet{'s' if len(wanted) == 1 else ''} {required:.2g} with the "
             f"reference's uncertainty (band error {e:.1e})"
         )
     else:
@@ -361,7 +422,7 @@ def select_reference(
                 + ")"
             )
         reason = (
-            f"{best['label']} ({best['dofs']:,} DOFs) is the most accurate 3D run of the study"
+            f"{best.label} ({dofs:,} DOFs) is the most accurate 3D run of the study"
             f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}"
         )
     if floor is not None and floor.get("band_error") is not None:
@@ -377,19 +438,13 @@ def select_reference(
         "tolerance, and the ROM mode source's own bound where smaller (within floor_max_dofs)"
     )
     return ReferenceChoice(
-        label=best["label"],
-        family=best["family"],
-        params=dict(best["params"]),
-        dofs=int(best["dofs"]),
-        quantities=quantities,
+        label=best.label,
+        family=best.family,
+        params=dict(best.params),
+        dofs=int(dofs),
+        quantities=wanted,
         band_error=float(e),
-        errors={
-            q: {
-                "value": best[q],
-                **{k: best.get(f"{q}_{k}") for k in ("error", "model_error", "discretisation_error", "error_bound")},
-            }
-            for q in quantities
-        },
+        errors={q: {"value": best.frequency(q), **{k: best.relative_error(q, k) for k in ERROR_KINDS}} for q in wanted},
         required=float(required),
         tolerance=float(tolerance),
         floor=floor,

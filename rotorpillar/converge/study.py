@@ -11,18 +11,19 @@ and the cheapest model that meets a tolerance over the scene's band.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ..scene import Scene
 
 import dataclasses
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
-from ..provenance import Timings, with_provenance, write_result
+from ..provenance import JsonRecord, Timings, with_provenance, write_result
 from .failures import drop_aliases, failures
 from .ladder import FAMILIES, QUANTITIES, study_cases
 from .result import (
@@ -33,12 +34,12 @@ from .result import (
     FamilyExtrapolation,
     FamilyInfo,
     Fronts,
+    ModalModelSelection,
     Mode,
     ModelSelection,
     OvallingAlias,
     ParetoFronts,
     ReferenceValue,
-    RejectedRun,
     RichardsonCheck,
     RunBrief,
     StudyCounts,
@@ -46,9 +47,9 @@ from .result import (
 from .richardson import family_extrapolations, reference_values
 from .runner import run_study
 from .selection import (
-    _brief,
     attach_errors,
     band_error,
+    brief,
     excitation_band,
     needed_quantities,
     pareto_front,
@@ -60,35 +61,58 @@ Charts = Callable[[ConvergenceStudy, Path], dict]
 """Draws the study's charts into a directory: (the study, out_dir) -> name: path."""
 
 
-def analyse(records: list[dict], scene: Scene, tolerance: float) -> dict:
-    """Reference values, errors, fronts, failures and the chosen model."""
+@dataclass(frozen=True)
+class StudyAnalysis(JsonRecord):
+    """What the study makes of its runs (the parts of convergence.json after the runs' own)."""
+
+    runs: tuple[ConvergenceRun, ...]
+    """the runs, their errors against the reference attached"""
+    reference: dict[str, ReferenceValue]
+    """per quantity: Richardson on the finest runs of the best family"""
+    extrapolations: dict[str, dict[str, FamilyExtrapolation]]
+    """per refined family, per quantity: Richardson on its three finest runs"""
+    band: ExcitationBand
+    selection: ModelSelection
+    pareto: ParetoFronts
+    failures: tuple[str, ...]
+    """where methods fail, one sentence each"""
+
+
+def analyse(records: list[dict], scene: Scene, tolerance: float) -> StudyAnalysis:
+    """Reference values, errors, fronts, failures and the chosen model, from the
+    runner's runs (``records``: their aliased ovalling modes dropped in place)."""
     drop_aliases(records)
     extrap = family_extrapolations(records)
     reference = reference_values(records, extrap)
-    attach_errors(records, reference, extrap)
-    band = excitation_band(scene.drive, scene.load, scene.converge)
-    selection = select_model(records, reference, band, tolerance)
-    needed, ref_unc = selection["needed"], reference_uncertainty(reference)
-    ok = [r for r in records if r.get("status") == "ok"]
+    extrapolations = {name: {q: family_extrapolation(v) for q, v in qs.items()} for name, qs in extrap.items()}
+    references = {q: reference_value(v) for q, v in reference.items()}
+    runs = attach_errors((study_run(r) for r in records), references, extrapolations)
+    band = excitation_band_record(excitation_band(scene.drive, scene.load, scene.converge))
+    selection = select_model(runs, references, band, tolerance)
+    ref_unc = reference_uncertainty(references)
+    ok = [r for r in runs if r.status == "ok"]
     fronts = ParetoFronts(
-        dofs=_fronts(ok, "dofs", needed, ref_unc), wall_time=_fronts(ok, "wall_time", needed, ref_unc)
+        dofs=_fronts(ok, "dofs", selection.needed, ref_unc),
+        wall_time=_fronts(ok, "wall_time", selection.needed, ref_unc),
     )
-    return {
-        "reference": reference,
-        "extrapolations": extrap,
-        "band": band,
-        "selection": selection,
-        "pareto": fronts,
-        "failures": failures(records, extrap, reference, tolerance),
-    }
+    return StudyAnalysis(
+        runs=runs,
+        reference=references,
+        extrapolations=extrapolations,
+        band=band,
+        selection=selection,
+        pareto=fronts,
+        failures=tuple(failures(runs, extrapolations, references, tolerance)),
+    )
 
 
 # --------------------------------------------------------------------------
-# The analysis's parts as the study's records (the analysis itself works on the runs' dicts)
+# The runner's and Richardson's dicts as the study's records
 
 
 def study_run(r: dict) -> ConvergenceRun:
-    """A run of the ladder (the runner's dict, its errors attached) as the study records it."""
+    """A run of the ladder (the runner's dict) as the study records it, without errors
+    yet (attach_errors gives them)."""
     alias = r.get("ovalling_alias")
     return ConvergenceRun(
         key=r["key"],
@@ -115,13 +139,7 @@ def study_run(r: dict) -> ConvergenceRun:
         error=r.get("error"),
         cached=bool(r.get("cached")),
         ovalling_alias=None if alias is None else OvallingAlias(omega=alias["omega"], n=alias["n"]),
-        **{k: r.get(k) for k in _ERROR_KEYS},
     )
-
-
-_ERROR_KEYS = tuple(
-    f"{q}_{k}" for q in QUANTITIES for k in ("error", "model_error", "discretisation_error", "error_bound")
-)
 
 
 def _extrapolation(d: dict) -> Extrapolation:
@@ -167,47 +185,15 @@ def excitation_band_record(b: dict) -> ExcitationBand:
     )
 
 
-def run_brief(b: dict) -> RunBrief:
-    """A run as the choice names it (rotorpillar.converge.selection's brief)."""
-    return RunBrief(
-        label=b["label"],
-        family=b["family"],
-        model=b["model"],
-        params=dict(b["params"]),
-        dofs=b["dofs"],
-        wall_time=b["wall_time"],
-        peak_memory=b["peak_memory"],
-        bending=b["bending"],
-        ovalling=b["ovalling"],
-        **{k: b[k] for k in _ERROR_KEYS},
-    )
-
-
-def model_selection(sel: dict) -> ModelSelection:
-    """The choice (rotorpillar.converge.selection.select_model) as a record."""
-    return ModelSelection(
-        tolerance=sel["tolerance"],
-        band=excitation_band_record(sel["band"]),
-        needed=tuple(sel["needed"]),
-        reference_uncertainty=dict(sel["reference_uncertainty"]),
-        families=None if sel["families"] is None else tuple(sel["families"]),
-        candidates=sel["candidates"],
-        rule=sel["rule"],
-        chosen=None if sel["chosen"] is None else run_brief(sel["chosen"]),
-        rejected_cheaper=tuple(RejectedRun(**vars(run_brief(r)), why=r["why"]) for r in sel["rejected_cheaper"]),
-        reason=sel["reason"],
-    )
-
-
-def _fronts(ok: list[dict], cost: str, needed: list[str], ref_unc: dict) -> Fronts:
+def _fronts(ok: list[ConvergenceRun], cost: str, needed: Sequence[str], ref_unc: dict[str, float]) -> Fronts:
     """The runs on the Pareto front of each error against ``cost`` ("dofs" or "wall_time")."""
 
-    def front(errors: list) -> tuple[str, ...]:
-        return tuple(ok[i]["label"] for i in pareto_front([r[cost] for r in ok], errors))
+    def front(errors: list[float | None]) -> tuple[str, ...]:
+        return tuple(ok[i].label for i in pareto_front([getattr(r, cost) for r in ok], errors))
 
     return Fronts(
-        bending=front([r.get("bending_error") for r in ok]),
-        ovalling=front([r.get("ovalling_error") for r in ok]),
+        bending=front([r.bending_error for r in ok]),
+        ovalling=front([r.ovalling_error for r in ok]),
         band=front([band_error(r, needed, ref_unc) for r in ok]),
     )
 
@@ -268,15 +254,13 @@ def study(
             )
             for k, f in FAMILIES.items()
         },
-        runs=tuple(study_run(r) for r in records),
-        reference={q: reference_value(v) for q, v in analysis["reference"].items()},
-        extrapolations={
-            name: {q: family_extrapolation(v) for q, v in qs.items()} for name, qs in analysis["extrapolations"].items()
-        },
-        band=excitation_band_record(analysis["band"]),
-        selection=model_selection(analysis["selection"]),
-        pareto=analysis["pareto"],
-        failures=tuple(analysis["failures"]),
+        runs=analysis.runs,
+        reference=analysis.reference,
+        extrapolations=analysis.extrapolations,
+        band=analysis.band,
+        selection=analysis.selection,
+        pareto=analysis.pareto,
+        failures=analysis.failures,
         study=counts,
     )
     if charts is not None:
@@ -291,7 +275,7 @@ def study(
     )
 
 
-def _cached_study(scene: Scene, tolerance: float, cache_dir: Path):
+def _cached_study(scene: Scene, tolerance: float, cache_dir: Path) -> StudyAnalysis:
     """Under MPI: the runs from the cache only (a missing run is an input error)."""
 
     def runner(case, sc):
@@ -302,7 +286,7 @@ def _cached_study(scene: Scene, tolerance: float, cache_dir: Path):
         )
 
     records = run_study(study_cases(scene), scene, cache_dir, runner=runner, progress=False)
-    return records, analyse(records, scene, tolerance)
+    return analyse(records, scene, tolerance)
 
 
 def model_for_modal(
@@ -315,7 +299,7 @@ def model_for_modal(
     charts: Charts | None = None,
     log: Callable[[str], None] | None = None,
     show_progress: bool = False,
-):
+) -> tuple[Scene, ModalModelSelection]:
     """The scene with the [mesh] the study picks for ``tolerance``, and why.
 
     `modal` computes the 3D model, so the choice is among the 3D families;
@@ -332,15 +316,12 @@ def model_for_modal(
     """
     from mpi4py import MPI
 
+    json_file: str | None
     if MPI.COMM_WORLD.size > 1:
         cache = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
-        runs, analysis = _cached_study(scene, tolerance, cache)
-        reference, band, overall, json_file = (
-            analysis["reference"],
-            analysis["band"],
-            analysis["selection"]["chosen"],
-            None,
-        )
+        analysis = _cached_study(scene, tolerance, cache)
+        runs, reference, band, overall = analysis.runs, analysis.reference, analysis.band, analysis.selection.chosen
+        json_file = None
     else:
         st = study(
             scene,
@@ -352,23 +333,17 @@ def model_for_modal(
             log=log,
             show_progress=show_progress,
         )
-        runs, reference, band, json_file = (
-            st.run_documents(),
-            {q: r.to_json() for q, r in st.reference.items()},
-            st.band.to_json(),
-            st.json_file,
-        )
-        overall = None if st.chosen is None else st.chosen.to_json()
+        runs, reference, band, overall, json_file = st.runs, st.reference, st.band, st.chosen, st.json_file
     # the 3D families that resolve every frequency the study measures: modal shows the
     # shell modes too (not the bending-only family)
     solid = [k for k, f in FAMILIES.items() if f.model == "solid" and set(QUANTITIES) <= set(f.quantities)]
     sel = select_model(runs, reference, band, tolerance, families=solid)
     unmet: str | None = None
-    chosen = sel["chosen"]
+    chosen = sel.chosen
     if chosen is None:
-        chosen, unmet = _closest(runs, reference, band, solid, tolerance, sel["reason"])
+        chosen, unmet = _closest(runs, reference, band, solid, tolerance, sel.reason)
     if chosen is not None:
-        p = chosen["params"]
+        p: dict[str, Any] = chosen.params  # the 3D run's mesh keys, as the scene's [mesh] has them
         mesh = dataclasses.replace(
             scene.mesh,
             elements_around=p["elements_around"],
@@ -380,9 +355,9 @@ def model_for_modal(
         )
         lines = [
             f"Model {'chosen' if unmet is None else 'run'} for tolerance {tolerance:g}: "
-            f"{chosen['label']} ({chosen['dofs']:,} DOFs, {chosen['wall_time']:.1f} s for "
+            f"{chosen.label} ({chosen.dofs:,} DOFs, {chosen.wall_time:.1f} s for "
             "the bare tube in the study).",
-            "Why: " + (sel["reason"] if unmet is None else unmet),
+            "Why: " + (sel.reason if unmet is None else unmet),
             "The same mesh carries the top mass (the study's errors are the bare tube's).",
         ]
     else:
@@ -392,46 +367,53 @@ def model_for_modal(
             f"the scene's own [mesh] is run, unverified.",
             f"Why: {unmet}",
         ]
-    if overall is not None and chosen is not None and overall["label"] != chosen["label"]:
+    if overall is not None and chosen is not None and overall.label != chosen.label:
         lines.append(
-            f"Cheapest of all models at this tolerance: {overall['label']} "
-            f"({overall['wall_time']:.2f} s), not a 3D model: `rotorpillar converge` "
+            f"Cheapest of all models at this tolerance: {overall.label} "
+            f"({overall.wall_time:.2f} s), not a 3D model: `rotorpillar converge` "
             "has it."
         )
     if json_file:
         lines.append(f"Study: {json_file}")
-    selection = {
-        "tolerance": tolerance,
-        "met": unmet is None,
-        "chosen": chosen,
-        "reason": sel["reason"] if unmet is None else unmet,
-        "rule": sel["rule"],
-        "band": sel["band"],
-        "needed": sel["needed"],
-        "reference_uncertainty": sel["reference_uncertainty"],
-        "rejected_cheaper": sel["rejected_cheaper"],
-        "overall_cheapest": overall,
-        "convergence_json": json_file,
-        "text": "\n".join(lines),
-    }
+    selection = ModalModelSelection(
+        tolerance=tolerance,
+        met=unmet is None,
+        chosen=chosen,
+        reason=sel.reason if unmet is None else unmet,
+        rule=sel.rule,
+        band=sel.band,
+        needed=sel.needed,
+        reference_uncertainty=sel.reference_uncertainty,
+        rejected_cheaper=sel.rejected_cheaper,
+        overall_cheapest=overall,
+        convergence_json=json_file,
+        text="\n".join(lines),
+    )
     return dataclasses.replace(scene, mesh=mesh), selection
 
 
-def _closest(runs, reference, band, families, tolerance: float, why_none: str):
+def _closest(
+    runs: Sequence[ConvergenceRun],
+    reference: dict[str, ReferenceValue],
+    band: ExcitationBand,
+    families: Sequence[str],
+    tolerance: float,
+    why_none: str,
+) -> tuple[RunBrief | None, str]:
     """Where no 3D run meets the tolerance: the 3D run with the smallest error bound
     over the band (None when no run has one), and the sentence that says so."""
     needed, unc = needed_quantities(reference, band), reference_uncertainty(reference)
     rated = [
-        (band_error(r, needed, unc), r)
+        (e, r)
         for r in runs
-        if r.get("status") == "ok" and r["family"] in families and reference
+        if r.status == "ok" and r.family in families and reference
+        if (e := band_error(r, needed, unc)) is not None
     ]
-    rated = [(e, r) for e, r in rated if e is not None]
     if not rated:
         return None, (f"tolerance {tolerance:g} not met: {why_none}")
-    err, best = min(rated, key=lambda t: (t[0], t[1]["wall_time"]))
-    return _brief(best, needed), (
+    err, best = min(rated, key=lambda t: (t[0], t[1].wall_time or 0.0))
+    return brief(best), (
         f"tolerance {tolerance:g} not met: no 3D model of the study reaches it; the most "
-        f"accurate, {best['label']}, has an error bound of {err:.1e} over the band "
+        f"accurate, {best.label}, has an error bound of {err:.1e} over the band "
         "(raise converge.solid_p2_max_around, or loosen the tolerance)"
     )

@@ -24,7 +24,7 @@ from ..scene.sections import Mesh
 from .participation import ParticipationTable, load_participation, read_document
 
 if TYPE_CHECKING:
-    from ..converge.result import ConvergenceStudy
+    from ..converge.result import ConvergenceRun, ConvergenceStudy, RunBrief
     from ..scene import Scene
 
 FLOOR_CASES = ("runup",)
@@ -101,46 +101,45 @@ def read_study(scene: Scene, study_dir: Path | None):
         return None
 
 
-def rom_source_record(scene: Scene, study: ConvergenceStudy) -> dict | None:
+def rom_source_record(scene: Scene, study: ConvergenceStudy) -> ConvergenceRun | RunBrief | None:
     """The study's record of the ROM's mode source (a beam: computed if the ladder
     lacks its element count; 3D: the study's run on that mesh), or None."""
     from ..converge.ladder import FAMILIES, _case
 
     mm = scene.modal_model
     source = getattr(mm, "source", "beam")
-    runs = [r for r in study.run_documents() if r.get("status") == "ok"]
+    runs = [r for r in study.runs if r.status == "ok"]
     if source == "beam":
         case = _case(f"beam_{mm.theory}", mm.elements, theory=mm.theory, elements=mm.elements)
         for r in runs:
-            if r["family"] == case.family and r["params"] == case.settings:
+            if r.family == case.family and r.params == case.settings:
                 return r
         from ..converge.compute import compute_in_process
+        from ..converge.runner import case_key
         from ..converge.selection import attach_errors
+        from ..converge.study import study_run
 
-        rec = {
-            "family": case.family,
-            "model": "beam",
-            "label": case.label,
-            "level": case.level,
-            "params": case.settings,
-            "status": "ok",
-            "wall_time": 0.0,
-            **compute_in_process(case, scene.pillar),
-        }
-        attach_errors(
-            [rec],
-            {q: v.to_json() for q, v in study.reference.items()},
-            {name: {q: e.to_json() for q, e in qs.items()} for name, qs in study.extrapolations.items()},
+        computed = study_run(
+            {
+                "key": case_key(case, scene.pillar),
+                "family": case.family,
+                "model": "beam",
+                "label": case.label,
+                "level": case.level,
+                "params": case.settings,
+                "status": "ok",
+                "wall_time": 0.0,
+                **compute_in_process(case, scene.pillar),
+            }
         )
-        return rec
+        return attach_errors([computed], study.reference, study.extrapolations)[0]
     if source == "fem3d":
         want = dict(vars(scene.mesh))
         for r in runs:
-            if FAMILIES[r["family"]].model == "solid" and all(r["params"].get(k) == v for k, v in want.items()):
+            if FAMILIES[r.family].model == "solid" and all(r.params.get(k) == v for k, v in want.items()):
                 return r
         return None
-    chosen = study.chosen  # modal_model.source = "auto": the study's choice feeds the ROM
-    return chosen.to_json() if chosen is not None else None
+    return study.chosen  # modal_model.source = "auto": the study's choice feeds the ROM
 
 
 def _mesh_of(scene: Scene, params: dict) -> Mesh:
@@ -171,6 +170,7 @@ def choose_reference(
     ``steps``: the run's Newmark steps, which bound how far the run-up's reference
     is refined for the ROM source (REFERENCE_DOF_STEPS)."""
     from ..converge.ladder import FAMILIES
+    from ..converge.result import ERROR_KINDS
     from ..converge.selection import run_band_error, select_reference
 
     fo = scene.full_order
@@ -208,14 +208,13 @@ def choose_reference(
         )
     part = load_participation(scene, case, study_dir, motion)
     quantities = part.quantities
-    runs = study.run_documents()
-    reference = {q: v.to_json() for q, v in study.reference.items()}
-    along = [r["dofs"] for r in runs if r["family"] == "solid_hex_p2_along" and r.get("status") == "ok"]
+    runs, reference = study.runs, study.reference
+    along = [r.dofs for r in runs if r.family == "solid_hex_p2_along" and r.status == "ok" and r.dofs is not None]
     floor = None
     if case in FLOOR_CASES:
         rec = rom_source_record(scene, study)
         if rec is not None:
-            floor = {"label": rec["label"], "band_error": run_band_error(rec, quantities, reference)}
+            floor = {"label": rec.label, "band_error": run_band_error(rec, quantities, reference)}
     choice = select_reference(
         runs,
         reference,
@@ -265,9 +264,9 @@ def choose_reference(
             (
                 r
                 for r in runs
-                if r.get("status") == "ok"
-                and FAMILIES[r["family"]].model == "solid"
-                and all(r["params"].get(k) == v for k, v in vars(mesh).items())
+                if r.status == "ok"
+                and FAMILIES[r.family].model == "solid"
+                and all(r.params.get(k) == v for k, v in vars(mesh).items())
             ),
             None,
         )
@@ -277,15 +276,10 @@ def choose_reference(
         if same is not None and run_band_error(same, quantities, reference) is not None:
             band_err = run_band_error(same, quantities, reference)
             errors = {
-                q: {
-                    "value": same[q],
-                    **{
-                        k: same.get(f"{q}_{k}") for k in ("error", "model_error", "discretisation_error", "error_bound")
-                    },
-                }
+                q: {"value": same.frequency(q), **{k: same.relative_error(q, k) for k in ERROR_KINDS}}
                 for q in quantities
             }
-            label = same["label"]
+            label = same.label
             reason += f" (the study has it: band error {band_err:.1e})"
         else:
             band_err, errors, verified, label = None, {}, False, _label(mesh)
