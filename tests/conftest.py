@@ -98,10 +98,6 @@ def pytest_collection_modifyitems(config, items) -> None:
     for item in items:
         if SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
-    # The slow tests first (a stable sort: a module's tests stay together, the main job's
-    # on one process): the long ones start at once and the many short ones fill the end,
-    # where a long test started last would keep one process busy while the other idles
-    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
 
 
 # -- VTK hygiene ----------------------------------------------------------------------
