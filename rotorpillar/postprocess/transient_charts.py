@@ -32,6 +32,7 @@ from .style import COLOURS, CYCLE, figure, save
 if TYPE_CHECKING:
     from ..scene import Scene
     from ..transients.integrator_records import AccuracyRow, DriftRow, StabilityRow
+    from ..transients.sweep_records import SweepAnalysis
 
 #: Standard gravity, to show the ground acceleration in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
@@ -213,20 +214,19 @@ def earthquake_chart(
     return save(fig, path)
 
 
-def sweep_chart(
-    path, up: dict, down: dict, curves: dict, resonances, jumps_numeric, jumps_predicted, title: str = ""
-) -> Path:
+def sweep_chart(path, sweep: SweepAnalysis, resonances, title: str = "") -> Path:
     """Two panels: M0 against Omega (stationary curves and jumps) and the
     amplitude against z for the resonance(s) the sweep crosses.
 
-    up/down: bins with M0, omega, tip_x, rotor_y; curves: omega,
-    F_averaging, F_exact, exact {tip_x, rotor_y}, eq19 {label: a};
+    ``sweep``: the sweep's bins up and down, its curves (omega, F_averaging,
+    F_exact, exact {tip_x, rotor_y}, eq19 {label: a}) and jumps;
     resonances: [(label, omega, direction)].
     """
+    up, down, curves = sweep.up, sweep.down, sweep.curves
     fig, (a1, a2) = figure(1060, 605, ncols=2)
     W = np.asarray(curves["omega"])
-    lo = min(np.nanmin(up["omega"]), np.nanmin(down["omega"])) * 0.95
-    hi = max(np.nanmax(up["omega"]), np.nanmax(down["omega"])) * 1.02
+    lo = min(np.nanmin(up.omega), np.nanmin(down.omega)) * 0.95
+    hi = max(np.nanmax(up.omega), np.nanmax(down.omega)) * 1.02
     sel = (W >= lo) & (W <= hi)
     a1.plot(
         W[sel],
@@ -243,24 +243,35 @@ def sweep_chart(
         ls="--",
         label="exact linear balance",
     )
-    key = "M0_inertia_corrected" if "M0_inertia_corrected" in up else "M0"
-    a1.plot(up["omega"], up[key], ".", ms=3, color=COLOURS["rising"], label="numeric, M0 rising (M0 - J dOmega/dt)")
     a1.plot(
-        down["omega"], down[key], ".", ms=3, color=COLOURS["falling"], label="numeric, M0 falling (M0 - J dOmega/dt)"
+        up.omega,
+        up.M0_inertia_corrected,
+        ".",
+        ms=3,
+        color=COLOURS["rising"],
+        label="numeric, M0 rising (M0 - J dOmega/dt)",
     )
-    for j in jumps_predicted:
+    a1.plot(
+        down.omega,
+        down.M0_inertia_corrected,
+        ".",
+        ms=3,
+        color=COLOURS["falling"],
+        label="numeric, M0 falling (M0 - J dOmega/dt)",
+    )
+    for jp in sweep.predicted_jumps:
         a1.annotate(
             "",
-            xy=(j["omega_to"], j["torque_at_zero"]),
-            xytext=(j["omega_from"], j["torque_at_zero"]),
+            xy=(jp.omega_to, jp.torque_at_zero),
+            xytext=(jp.omega_from, jp.torque_at_zero),
             arrowprops=dict(arrowstyle="->", color=COLOURS["analytic"], lw=1.0),
         )
-    for j in jumps_numeric:
-        c = COLOURS["rising"] if j["direction"] == "up" else COLOURS["falling"]
+    for j in sweep.numeric_jumps:
+        c = COLOURS["rising"] if j.direction == "up" else COLOURS["falling"]
         a1.annotate(
             "",
-            xy=(j["omega_to"], j["torque_at_zero"]),
-            xytext=(j["omega_from"], j["torque_at_zero"]),
+            xy=(j.omega_to, j.torque_at_zero),
+            xytext=(j.omega_from, j.torque_at_zero),
             arrowprops=dict(arrowstyle="->", color=c, lw=1.0, ls="--"),
         )
     a1.set_xlabel("Omega [rad/s]")
@@ -274,16 +285,16 @@ def sweep_chart(
         a2.plot(W[sel] / w, 1e3 * np.asarray(curves["eq19"][label])[sel], lw=1.2, label=f"Eq. 19, {label} ({key})")
         a2.plot(W[sel] / w, 1e3 * np.asarray(curves["exact"][key])[sel], lw=0.9, ls="--", label=f"exact linear ({key})")
         a2.plot(
-            np.asarray(up["omega"]) / w,
-            1e3 * np.asarray(up[key]),
+            np.asarray(up.omega) / w,
+            1e3 * np.asarray(up.column(key)),
             ".",
             ms=3,
             color=COLOURS["rising"],
             label=f"numeric, rising ({key})",
         )
         a2.plot(
-            np.asarray(down["omega"]) / w,
-            1e3 * np.asarray(down[key]),
+            np.asarray(down.omega) / w,
+            1e3 * np.asarray(down.column(key)),
             ".",
             ms=3,
             color=COLOURS["falling"],
@@ -449,27 +460,15 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
     }[case]
     figs = [{"file": path.name, "caption": caption}]
     if case == "sweep" and run.case_result is not None:
-        ex = run.case_result.extra
+        sweep = run.case_result.extra["sweep"]
         labels = [(f"{r.direction}{r.index}", r.omega, r.direction) for r in run.resonances]
         labels.sort(
             key=lambda L: (
-                -max(
-                    (a["numeric_peak"] for a in ex["amplitudes"] if f"{a['direction']}{a['index']}" == L[0]),
-                    default=0.0,
-                )
+                -max((a.numeric_peak for a in sweep.amplitudes if f"{a.direction}{a.index}" == L[0]), default=0.0)
             )
         )
         p2 = out / f"{stem}_az.png".replace(f"_{name}_az", f"_az_{name}")
-        sweep_chart(
-            p2,
-            ex["up"],
-            ex["down"],
-            ex["curves"],
-            labels,
-            ex["numeric_jumps"],
-            ex["predicted_jumps"],
-            f"{scene.name}: quasi-static sweep against Eq. 19-23",
-        )
+        sweep_chart(p2, sweep, labels, f"{scene.name}: quasi-static sweep against Eq. 19-23")
         figs.append(
             {
                 "file": p2.name,

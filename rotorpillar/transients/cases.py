@@ -319,12 +319,10 @@ def _run_on(
         )
         free = drive.free_speed()
         sw = sweep_analysis(w, s, k, model, run, drive)
-        extra.update(sw.as_dict())
+        extra["sweep"] = sw  # the sweep chart's input
         rates = None
         if sw.numeric_jumps:
-            rates = extra["rate_convergence"] = rate_convergence(
-                w, s, k, model, st, sw.numeric_jumps, sw.predicted_jumps
-            )
+            rates = rate_convergence(w, s, k, model, st, sw.numeric_jumps, sw.predicted_jumps)
         sections["jumps"] = sw.numeric_jumps
         sections["captured_at"] = sw.captured_at
         sections["captured_resonance"] = sw.captured_resonance

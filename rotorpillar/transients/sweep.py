@@ -32,28 +32,7 @@ from .sweep_records import (
     RateRow,
     SweepAnalysis,
     SweepBins,
-    SweepFindings,
 )
-
-__all__ = [  # the records are sweep_records'; named here too, beside the functions that build them
-    "JUMP_FACTOR",
-    "AmplitudeCheck",
-    "JumpMatch",
-    "JumpScan",
-    "NumericJump",
-    "RateCheck",
-    "RateConvergence",
-    "RateRow",
-    "SweepAnalysis",
-    "SweepBins",
-    "SweepFindings",
-    "compare_amplitudes",
-    "detect_jumps",
-    "match_jumps",
-    "rate_convergence",
-    "sweep_analysis",
-    "sweep_bins",
-]
 
 JUMP_FACTOR = 5.0
 

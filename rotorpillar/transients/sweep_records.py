@@ -5,7 +5,7 @@ record's ``to_json()`` a row or section as that file writes it)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -40,11 +40,6 @@ class SweepBins(JsonRecord):
         """The column called ``name`` ("tip_x", "rotor_y", ...)."""
         value: np.ndarray = getattr(self, name)
         return value
-
-    def as_dict(self) -> dict[str, Any]:
-        """The columns by name, as ``CaseResult.extra`` carries them (the sweep chart
-        reads them by key): the fields in order, ``in_jump`` once scanned."""
-        return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name) is not None}
 
 
 @dataclass(frozen=True, eq=False)
@@ -231,15 +226,6 @@ class SweepAnalysis(JsonRecord):
     curves: dict[str, Any]
     """the stationary curves on a speed grid, by name: omega (rad/s), F_averaging and F_exact
     (N*m), exact (m, by coordinate) and eq19 (m, by resonance label)"""
-
-    def as_dict(self) -> dict[str, Any]:
-        """The analysis as ``CaseResult.extra`` carries it (the sweep chart reads it by key):
-        the bins' and curves' arrays as they are, the rows as their JSON."""
-        out = {f.name: getattr(self, f.name) for f in fields(self)}
-        for name in ("numeric_jumps", "predicted_jumps", "jump_comparison", "amplitudes", "rate_check"):
-            out[name] = [row.to_json() for row in out[name]]
-        out["up"], out["down"] = self.up.as_dict(), self.down.as_dict()
-        return out
 
 
 @dataclass(frozen=True)
