@@ -380,9 +380,9 @@ def drive_figure(analysis: AnalysisResult, width: int = 1060) -> Any:
     # Labels last, on the final layout, frozen so that saving does not move the axes.
     fig.canvas.draw()
     fig.set_layout_engine("none")
-    place_labels(top, labels, lines=curves)
+    place_labels(top, labels, lines=curves, drawn=True)
     for ax, jump_labels in blocks:
-        place_labels(ax, jump_labels, lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2])
+        place_labels(ax, jump_labels, lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2], drawn=True)
     return fig
 
 

@@ -146,5 +146,5 @@ def spectrum_chart(
     ax.set_title(title or "Response spectrum")
     fig.canvas.draw()
     fig.set_layout_engine("none")
-    place_labels(ax, labels, obstacles=[legend], lines=[curve])
+    place_labels(ax, labels, obstacles=[legend], lines=[curve], drawn=True)
     return save(fig, path)

@@ -249,7 +249,7 @@ def convergence_chart(study: ConvergenceStudy, cost: str, path: str | Path) -> P
     fig.canvas.draw()
     fig.set_layout_engine("none")
     for ax in axes:
-        place_labels(ax, getattr(ax, "_pending_labels", []), lines=list(ax.lines))
+        place_labels(ax, getattr(ax, "_pending_labels", []), lines=list(ax.lines), drawn=True)
     return save(fig, path)
 
 

@@ -194,7 +194,7 @@ def capture_map(path, result) -> Path:
     )
     fig.canvas.draw()
     fig.set_layout_engine("none")
-    place_labels(ax, labels, obstacles=[legend], lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2])
+    place_labels(ax, labels, obstacles=[legend], lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2], drawn=True)
     return save(fig, path)
 
 

@@ -89,13 +89,32 @@ def figure(width_px: int = 900, height_px: int = 540, **subplots_kw):
 def save(fig, path: str | Path) -> Path:
     """Write ``fig`` as a PNG of exactly its pixel size, atomically, and close it;
     its legibility record (:func:`legibility`) goes into the PNG."""
+    import matplotlib.image
+
     plt = pyplot()
     path = Path(path)
-    record = legibility(fig)
+    record = legibility(fig)  # draws the figure
+    metadata = {LAYOUT_KEY: json.dumps(record, separators=(",", ":"))}
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=DPI, metadata={LAYOUT_KEY: json.dumps(record, separators=(",", ":"))})
+        if fig.dpi == DPI and not fig.stale and _frozen(fig):
+            # what savefig writes (Agg's print_png), without drawing it a second time;
+            # a layout engine would move the axes again on a second draw: savefig's
+            matplotlib.image.imsave(
+                tmp, fig.canvas.buffer_rgba(), format="png", origin="upper", dpi=DPI, metadata=metadata
+            )
+        else:
+            fig.savefig(tmp, format="png", dpi=DPI, metadata=metadata)
     plt.close(fig)
     return path
+
+
+def _frozen(fig) -> bool:
+    """No layout engine moves the axes when ``fig`` is drawn again (none, or the
+    placeholder ``set_layout_engine("none")`` leaves)."""
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    engine = fig.get_layout_engine()
+    return engine is None or isinstance(engine, PlaceHolderLayoutEngine)
 
 
 def _texts(fig) -> list:
@@ -232,15 +251,16 @@ def _line_points(line, renderer, step_px: float = 2.0):
     xy = xy[np.all(np.isfinite(xy), axis=1)]
     if len(xy) < 2:
         return xy
-    seg = np.hypot(*np.diff(xy, axis=0).T)
-    pieces = [xy[:1]]
-    for (a, b), n in zip(zip(xy[:-1], xy[1:]), np.ceil(seg / step_px).astype(int)):
-        s = np.linspace(0.0, 1.0, max(n, 1) + 1)[1:, None]
-        pieces.append(a + s * (b - a))
-    return np.concatenate(pieces)
+    a, b = xy[:-1], xy[1:]
+    n = np.maximum(np.ceil(np.hypot(*(b - a).T) / step_px).astype(int), 1)  # pieces per segment
+    seg = np.repeat(np.arange(len(n)), n)
+    k = np.arange(1, len(seg) + 1) - np.repeat(np.cumsum(n) - n, n)  # 1..n within each segment
+    # linspace(0, 1, n + 1)[1:], bit for bit: k * (1 / n), the end exactly 1
+    s = np.where(k == n[seg], 1.0, k * (1.0 / n[seg]))[:, None]
+    return np.concatenate([xy[:1], a[seg] + s * (b - a)[seg]])
 
 
-def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> list:
+def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=(), drawn: bool = False) -> list:
     """Annotate ``ax`` with labels that overlap neither each other nor ``obstacles``.
 
     ``labels``: dicts with ``xy`` (data coordinates of the point labelled),
@@ -255,12 +275,15 @@ def place_labels(ax, labels, obstacles=(), pad_px: float = 2.0, lines=()) -> lis
     inside the axes; a label moved off its point gets a thin leader line to
     it.  A label with no free place keeps its first place and is recorded on
     the figure (``fig._unplaced_labels``): :func:`save` reports it.  Call on
-    the final layout.  Returns the annotations.
+    the final layout; ``drawn``: the caller has drawn it since (a draw is a
+    quarter of a second on a large figure; labels placed on another axes
+    move no axes once the layout engine is off).  Returns the annotations.
     """
     import numpy as np
 
     fig = ax.figure
-    fig.canvas.draw()
+    if not drawn:
+        fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
     taken = [o.get_window_extent(renderer) for o in obstacles]

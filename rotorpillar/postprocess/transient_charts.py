@@ -162,9 +162,9 @@ def runup_chart(
     fig.suptitle(title, fontsize=10)
     fig.canvas.draw()
     fig.set_layout_engine("none")
-    place_labels(a1, labels, lines=[ln for ln in a1.lines if len(ln.get_xdata()) > 2])
+    place_labels(a1, labels, lines=[ln for ln in a1.lines if len(ln.get_xdata()) > 2], drawn=True)
     if window:
-        place_labels(axes[0, 1], zoom_labels, lines=[axes[0, 1].lines[0]])
+        place_labels(axes[0, 1], zoom_labels, lines=[axes[0, 1].lines[0]], drawn=True)
     return save(fig, path)
 
 
