@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from rotorpillar.transients.pareto import analyse_pareto
-from rotorpillar.transients.pareto_runs import StoredRun, run_specs
+from rotorpillar.transients.pareto_runs import StoredRun, pareto_along, run_specs
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 GRID = np.linspace(0.0, 1.0, 101)
@@ -74,13 +74,17 @@ def test_reference_error_without_monotone_convergence():
 def test_run_specs():
     from rotorpillar.scene import Mesh
 
-    specs = run_specs(2, 12, Mesh(elements_around=16, elements_along=12))
+    along = pareto_along(20)
+    assert along == (5, 10, 15, 20)  # the default's ladder: quarters of the finest
+    assert pareto_along(8) == (2, 4, 6, 8) and pareto_along(4) == (1, 2, 3, 4)
+    assert pareto_along(10) == (2, 5, 8, 10)  # rounded half to even: still four rungs
+    specs = run_specs(2, 12, Mesh(elements_around=16, elements_along=12), along)
     fams = [f for f, _, _ in specs]
     assert fams.count("rom") == 4 and fams.count("beam") == 5
     meshes = [(p["elements_around"], p["elements_along"]) for f, _, p in specs if f == "fem3d"]
     assert (16, 12) in meshes and (8, 20) in meshes
-    assert run_specs(2, 3, None)[2][2] == {"modes": 3}  # no more modes than the source has
-    assert sum(f == "rom" for f, _, _ in run_specs(2, 3, None)) == 3
+    assert run_specs(2, 3, None, along)[2][2] == {"modes": 3}  # no more modes than the source has
+    assert sum(f == "rom" for f, _, _ in run_specs(2, 3, None, along)) == 3
 
 
 @pytest.mark.slow  # 3D runs on 8 x 2, 3, 4 elements over 0.3 s, twice; a Dask worker

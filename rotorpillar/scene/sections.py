@@ -392,6 +392,13 @@ class FullOrder:
         ge=0,
         le=1,
     )
+    pareto_along: int = param(
+        "Speed against accuracy (compare --pareto): elements along of its finest 3D run, "
+        "every error's reference; the others at 1/4, 1/2 and 3/4 of it (-)",
+        20,
+        ge=4,
+        le=400,
+    )
 
 
 SECTIONS = {

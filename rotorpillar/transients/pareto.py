@@ -11,7 +11,8 @@ run on
   comparison's ROM keeps), from the scene's mode source;
 - the 1D Timoshenko beam at full order with ``BEAM_ELEMENTS`` elements;
 - the 3D tube at full order on the bending-only meshes of the convergence
-  ladder (``ALONG_FAMILY_AROUND`` around, ``PARETO_ALONG`` along) and the
+  ladder (``ALONG_FAMILY_AROUND`` around, :func:`pareto_along` of
+  ``full_order.pareto_along`` along) and the
   mesh the comparison's reference runs on;
 
 every model from the same state: the pillar at rest, the rotor in its
@@ -48,7 +49,6 @@ from ..provenance import JsonRecord
 from ..scene import Mesh, Scene
 from .pareto_runs import (
     BEAM_ELEMENTS,
-    PARETO_ALONG,
     PARETO_DURATION,
     PARETO_RECORD_START,
     PARETO_SAMPLES,
@@ -57,6 +57,7 @@ from .pareto_runs import (
     StoredRun,
     compute_3d,
     load_run,
+    pareto_along,
     pareto_scene,
     reduced_run,
     run_cache,
@@ -179,12 +180,13 @@ def plan_pareto(
     rom_modes: int,
     chosen_mesh=None,
     duration: float = PARETO_DURATION,
-    along=PARETO_ALONG,
+    along: tuple[int, ...] | None = None,
     beams=BEAM_ELEMENTS,
     pillar_modes=None,
 ) -> ParetoPlan:
     """The runs of the Pareto case, those on disk loaded (cheap: no run); ``duration``,
-    ``along`` and ``beams`` replace the module's choices (tests: a short, coarse case);
+    ``along`` (default: :func:`pareto_along` of the scene's ``full_order.pareto_along``)
+    and ``beams`` replace the module's choices (tests: a short, coarse case);
     ``pillar_modes``: the ROM's candidate modes (the chain's; None: resolved for the
     scene without a study)."""
     from ..reduced.models import build_model, candidate_modes, scene_motion
@@ -207,6 +209,8 @@ def plan_pareto(
     rom, _ = build_model(sc, "modal", modes=rom_modes, pillar_modes=pm)
     d, L = sc.drive, sc.load
     speed = operating_speed(rom, d.torque_at_zero, d.slope, L.coefficient)
+    if along is None:
+        along = pareto_along(scene.full_order.pareto_along)
     specs = run_specs(rom_modes, cands.count, chosen_mesh, along, beams)
     keys = [run_key(f, p, sc, motion, digest) for f, _, p in specs]
     results = {}
