@@ -229,34 +229,58 @@ def computed(tmp_path_factory):
     return out
 
 
+def _truncated(text):
+    return text[:100]
+
+
+def _emptied(text):
+    return ""
+
+
+def _binary(text):
+    return "\x00\x01binary"
+
+
+def _wrong_shape(text):
+    return "[1, 2]"
+
+
 @pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 @pytest.mark.parametrize(
-    "name, damage, command",
+    "damages",
     [
-        ("analyze.json", lambda t: t[:100], "analyze"),
-        ("analyze.json", lambda t: "", "analyze"),
-        ("simulate_runup.json", lambda t: "\x00\x01binary", "simulate"),
-        ("simulate_runup.npz", None, "simulate"),
-        ("modal.json", lambda t: "[1, 2]", "modal"),
+        # file: (damage, the command that rebuilds it); None: bytes that are no NPZ.  Several
+        # inputs damaged at once, each of another kind: each named, none hiding another.
+        {
+            "analyze.json": (_truncated, "analyze"),
+            "simulate_runup.npz": (None, "simulate"),
+            "modal.json": (_wrong_shape, "modal"),
+        },
+        {"analyze.json": (_emptied, "analyze"), "simulate_runup.json": (_binary, "simulate")},
     ],
-    ids=["truncated", "empty", "binary-json", "binary-npz", "wrong-shape"],
+    ids=["truncated-json+binary-npz+wrong-shape", "empty-json+binary-json"],
 )
-def test_the_report_survives_a_damaged_input(tmp_path, computed, name, damage, command):
+def test_the_report_survives_damaged_inputs(tmp_path, computed, damages):
     import html
     import shutil
 
     out = tmp_path / "out"
     shutil.copytree(computed, out)
-    f = out / name
-    if damage is None:
-        f.write_bytes(b"\x00\x01\x02 not an npz")
-    else:
-        f.write_text(damage(f.read_text() if f.exists() else ""))
+    for name, (damage, _) in damages.items():
+        f = out / name
+        if damage is None:
+            f.write_bytes(b"\x00\x01\x02 not an npz")
+        else:
+            f.write_text(damage(f.read_text() if f.exists() else ""))
     p = cli("report", "paper", "--out", out, "--no-animations")
     assert p.returncode == 0, p.stderr
     page = html.unescape((out / "report.html").read_text())
-    assert "is damaged" in page and f"rotorpillar {command} paper" in page
-    if name == "modal.json":  # --strict's exit, once (the damage detected is the same code path)
+    failures = json.loads((out / "report.json").read_text())["failures"]
+    for name, (_, command) in damages.items():
+        said = [v for k, v in failures.items() if k.startswith(f"input {name.rsplit('.', 1)[0]}.")]
+        assert len(said) == 1 and "is damaged" in said[0] and f"rotorpillar {command} paper" in said[0], failures
+        assert said[0].split(": rebuild")[0] in page  # the page says it too
+    if "modal.json" in damages:  # --strict's exit, once (the damage detected is the same code path)
         p = cli("report", "paper", "--out", out, "--no-animations", "--strict")
         assert p.returncode == 1 and (out / "report.html").is_file()
 
