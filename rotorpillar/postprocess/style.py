@@ -162,7 +162,7 @@ def legibility(fig, display_width: float | None = None) -> dict:
     renderer = fig.canvas.get_renderer()
     frame = fig.bbox
     texts = _texts(fig)
-    boxes = [text_box(t, renderer) for t in texts]
+    boxes = [text_box(t, renderer, drawn=True) for t in texts]
     problems = []
     for t, b in zip(texts, boxes):
         if b.x0 < frame.x0 - 1 or b.y0 < frame.y0 - 1 or b.x1 > frame.x1 + 1 or b.y1 > frame.y1 + 1:
@@ -233,11 +233,13 @@ def blank(width_px: int = 900, height_px: int = 540):
     return plt.figure(figsize=(width_px / DPI, height_px / DPI), dpi=DPI)
 
 
-def text_box(text, renderer):
-    """The drawn box of a Text or an Annotation's text alone (without its arrow)."""
+def text_box(text, renderer, drawn: bool = False):
+    """The drawn box of a Text or an Annotation's text alone (without its arrow).
+    ``drawn``: the figure was drawn since the annotation last moved, so its place is
+    current (placing it again would mark the figure stale: :func:`save` redraws it)."""
     from matplotlib.text import Annotation, Text
 
-    if isinstance(text, Annotation):
+    if isinstance(text, Annotation) and not drawn:
         text.update_positions(renderer)
     return Text.get_window_extent(text, renderer)
 
