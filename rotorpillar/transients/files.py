@@ -115,7 +115,8 @@ def _write_npz(path: Path, run: ModelRun) -> Path:
         arrays["coordinates"] = np.array(desc["coordinates"])
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as fh:
-            np.savez_compressed(fh, **arrays)
+            # uncompressed: zlib takes 13 % off a run's doubles for 20 times the time (0.3 s)
+            np.savez(fh, **arrays)
     return path
 
 
