@@ -73,13 +73,13 @@ RUN_STAGES = [
     # A wave's stages start in this order, two at a time: the longest first, so that
     # the two slots end together (paper, measured: integrators 16 s, harmonic 7 s, each
     # simulate 2-3 s; integrators after the two simulate runs left one slot idle 2.5 s
-    # longer, and the whole wave waited for it).  The run-up last: simulate.json is the
-    # last case run, the headline model's run-up.
+    # longer, and the whole wave waited for it).  The earthquake after the run-up, as
+    # before: simulate.json is the last case run.
     ("integrators", "time integrators: error against cost, where each fails", None, (), 3),
     # the ROM's and the 3D model's unbalance response, the margins to the loaded tube's modes
     ("harmonic", "unbalance response (Bode) and separation margins (API 684)", None, (), 3),
-    ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ("--model", "paper"), 3),
     ("simulate --case runup", "run-up from rest on the headline model", None, (), 3),
+    ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ("--model", "paper"), 3),
     ("report", "charts, mode shapes, animations, report.html", _report_flags, (), 4),
 ]
 
