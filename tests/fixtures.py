@@ -384,24 +384,7 @@ def fem3d_run(
 
     mesh = Mesh(elements_around=12, elements_along=24, elements_through=1, degree=2, grading=1.0)
     duration = float(t[-1] - t[0])
-    reference = FullOrderReference(
-        case=case,
-        mesh=dict(vars(mesh)),
-        label="3D P2 hexahedra, 12x24x1",
-        source="scene",
-        verified=False,
-        band_error=None,
-        errors={},
-        quantities=(),
-        tolerance=None,
-        required=None,
-        floor=None,
-        meets=None,
-        overrides=(),
-        participation=None,
-        reason="synthetic fixture",
-        statement="synthetic fixture: no study",
-    )
+    reference = FullOrderReference.unverified(case, mesh, "synthetic fixture: no study")
     return Fem3dRun(
         case=case,
         model="fem3d",

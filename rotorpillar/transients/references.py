@@ -72,6 +72,29 @@ class FullOrderReference(JsonRecord):
     study: str | None = None
     """the convergence.json read"""
 
+    @classmethod
+    def unverified(cls, case: str, mesh, why: str, overrides: tuple[str, ...] = ()) -> FullOrderReference:
+        """The scene's own mesh for ``case``, no study bounding its error (``why``: why not)."""
+        label = _label(mesh)
+        return cls(
+            case=case,
+            mesh=dict(vars(mesh)),
+            label=label,
+            source="scene",
+            verified=False,
+            band_error=None,
+            errors={},
+            quantities=(),
+            tolerance=None,
+            required=None,
+            floor=None,
+            meets=None,
+            overrides=overrides,
+            participation=None,
+            reason=why,
+            statement=f"The 3D reference runs {label}, unverified: {why}.",
+        )
+
 
 # --------------------------------------------------------------------------
 # The reference mesh
@@ -188,24 +211,7 @@ def choose_reference(
             f"({fo.elements_around or f'{FALLBACK_AROUND} (default)'} around) on [mesh]'s "
             f"along ({mesh.elements_along}), its error unknown"
         )
-        return mesh, FullOrderReference(
-            case=case,
-            mesh=dict(vars(mesh)),
-            label=_label(mesh),
-            source="scene",
-            verified=False,
-            band_error=None,
-            errors={},
-            quantities=(),
-            tolerance=None,
-            required=None,
-            floor=None,
-            meets=None,
-            overrides=overrides,
-            participation=None,
-            reason=why,
-            statement=f"The 3D reference runs {_label(mesh)}, unverified: {why}.",
-        )
+        return mesh, FullOrderReference.unverified(case, mesh, why, overrides)
     part = load_participation(scene, case, study_dir, motion)
     quantities = part.quantities
     runs, reference = study.runs, study.reference
