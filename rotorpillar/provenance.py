@@ -356,7 +356,17 @@ def _record_from(hint, value):
     origin, args = typing.get_origin(hint), typing.get_args(hint)
     if origin in (typing.Union, types.UnionType):
         inner = [a for a in args if a is not type(None)]
-        return _record_from(inner[0], value) if len(inner) == 1 else value
+        if len(inner) == 1:
+            return _record_from(inner[0], value)
+        records = [a for a in inner if isinstance(a, type) and issubclass(a, JsonRecord)]
+        if records and isinstance(value, dict):
+            # a union of records is told apart by its keys: exactly one may fit
+            fits = [r for r in records if r.fits(value)]
+            if len(fits) != 1:
+                names = ", ".join(r.__name__ for r in records)
+                raise KeyError(f"keys {sorted(value)} fit {len(fits)} of {names}, not one")
+            return fits[0].from_json(value)
+        return value
     if origin is dict and isinstance(value, dict) and len(args) == 2:
         return {k: _record_from(args[1], v) for k, v in value.items()}
     if origin is tuple and isinstance(value, (list, tuple)):
@@ -399,6 +409,15 @@ class JsonRecord:
             elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
                 raise KeyError(key)  # as a dict would: the report names the key
         return cls(**kwargs)
+
+    @classmethod
+    def fits(cls, doc: dict) -> bool:
+        """Whether ``doc`` has every required key of this record and no key it lacks."""
+        keys = {f.metadata.get("json", f.name): f for f in dataclasses.fields(typing.cast(typing.Any, cls))}
+        required = {
+            k for k, f in keys.items() if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        }
+        return required <= doc.keys() <= keys.keys()
 
     @classmethod
     def read(cls, path: str | Path):

@@ -19,7 +19,7 @@ def test_published_gain_is_the_static_solution_of_eq4(scene_name):
     scene = load_scene(scene_name)
     model, info = build_model(scene, "paper")
     q = np.linalg.solve(model.stiffness_full(), model.base_displacement * 1.0)
-    c1 = info["reduction"]["tip_stiffness"]
+    c1 = info.reduction.tip_stiffness
     assert q[0] == pytest.approx(published_static_gain(c1, scene.shaft.stiffness), rel=1e-12)
     # the consistent forcing, c1 u on q1 only: rigid-body motion with the ground
     consistent = np.zeros(model.nx)

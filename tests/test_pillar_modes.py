@@ -95,7 +95,7 @@ def test_modes_of_the_3d_model_agree_with_the_timoshenko_beam():
     from rotorpillar.reduced.models import build_model
 
     model, info = build_model(scene, "modal", modes=2, pillar_modes=candidate_pillar_modes(scene))
-    assert list(model.pillar_modes.omega) == list(pm.omega) and info["modes"] == 2
+    assert list(model.pillar_modes.omega) == list(pm.omega) and info.modes == 2
 
 
 def test_modal_model_on_3d_modes_needs_them_passed_in():

@@ -184,6 +184,9 @@ def test_reduced_run_round_trips_its_file(compared, model, middle):
     if run.uncertainty is not None:
         assert all(isinstance(u, Uncertain) for u in run.uncertainty.values())
     assert run.pillar_model.kind in ("beam", "solid", "shell", "closed_form", "reduction")
+    from rotorpillar.reduced.models import ModalModelInfo, PaperModelInfo
+
+    assert isinstance(run.model_info, PaperModelInfo if model == "paper" else ModalModelInfo)
     # the case summary to its leaves
     from rotorpillar.transients.case_summary import CaseSummary, EnergyBalance, Passage
 

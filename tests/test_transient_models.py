@@ -49,7 +49,7 @@ def ramp_motion(a0: float, ramp: float, end: float, dt: float = 1e-3) -> GroundM
 def test_beam_static_limit_against_the_cantilever_closed_form():
     scene = load_scene("paper", ["rotor.eccentricity=0"])
     model, info = build_model(scene, "beam")
-    assert info["elements"] == scene.full_order.beam_elements and model.n == info["dofs"]
+    assert info.elements == scene.full_order.beam_elements and model.n == info.dofs
     a0 = 0.5
     motion = ramp_motion(a0, 3.0, 12.0)
     run = simulate(

@@ -165,7 +165,7 @@ def stiff_case(pillar_modes=None) -> StiffCase:
     red = resolve_reduction(stiff, pillar_closed_forms(stiff.pillar), None)
     modes = linear_modes(
         reduced_system(
-            stiff.rotor, stiff.shaft, stiff.gondola.mass, stiff.pillar.damping, red["tip_mass"], red["tip_stiffness"]
+            stiff.rotor, stiff.shaft, stiff.gondola.mass, stiff.pillar.damping, red.tip_mass, red.tip_stiffness
         )
     )
     xs = [r for r in modes.resonances if r.direction == "X"]

@@ -16,68 +16,12 @@ from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
 from ..reduced.averaging import Jump  # noqa: F401  (records of analyze.json too)
 from ..reduced.averaging import Stationary as StationarySpeed
-
-
-@dataclass(frozen=True)
-class Lumping(JsonRecord):
-    """The paper's Eq. 2 with the tube lumped into ``n`` equal masses."""
-
-    n: int
-    tip_mass: float
-    """m_r (kg)"""
-    tip_stiffness: float
-    """c1 = m_r omega_col1**2 (N/m)"""
-
-
-@dataclass(frozen=True)
-class RayleighEstimate(JsonRecord):
-    """Rayleigh's quotient on a static deflection shape."""
-
-    shape: str
-    """"uniform_load" or "tip_load\""""
-    tip_mass: float
-    tip_stiffness: float
-    omega: float
-    omega_error: float
-    """omega / omega_col1 - 1"""
-
-
-@dataclass(frozen=True)
-class PillarClosedForms(JsonRecord):
-    """The bare tube: its section, Eq. 1, Timoshenko's correction, Eq. 2's reductions."""
-
-    area: float
-    second_moment: float
-    mass_per_length: float
-    mass: float
-    wall_thickness: float
-    diameter_to_thickness: float
-    slenderness: float
-    omega_col1: float
-    frequency_col1_hz: float
-    cantilever_root: float
-    omega_euler_bernoulli: tuple[float, ...]
-    shear_coefficient: float
-    omega_col1_timoshenko: float
-    timoshenko_correction: float
-    tip_mass_lumped: tuple[Lumping, ...]
-    tip_mass_limit: float
-    tip_stiffness_limit: float
-    rayleigh: tuple[RayleighEstimate, ...]
-
-
-@dataclass(frozen=True)
-class TipReductionUsed(JsonRecord):
-    """The tip mass and stiffness the reduced model uses, and where each came from."""
-
-    source: str
-    tip_mass: float
-    tip_mass_source: str
-    tip_mass_computed: float
-    tip_stiffness: float
-    tip_stiffness_source: str
-    tip_stiffness_computed: float
-    computed_source: str
+from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
+    Lumping,
+    PillarClosedForms,
+    RayleighEstimate,
+    TipReductionUsed,
+)
 
 
 @dataclass(frozen=True)

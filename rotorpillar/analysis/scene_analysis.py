@@ -219,12 +219,12 @@ def headline_analysis(scene: Scene, chain: ChainModes, ch: av.Characteristic, c2
 
 
 def paper_model_analysis(
-    scene: Scene, closed: dict, ch: av.Characteristic, c2e: float, fem3d_reduction=None
+    scene: Scene, closed: PillarClosedForms, ch: av.Characteristic, c2e: float, fem3d_reduction=None
 ) -> PaperModel:
     """Eq. 4 with the scene's stated tip reduction (or Eq. 2), analysed as the paper does."""
     red = resolve_reduction(scene, closed, fem3d_reduction)
     sys_ = reduced_system(
-        scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping, red["tip_mass"], red["tip_stiffness"]
+        scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping, red.tip_mass, red.tip_stiffness
     )
     modes = linear_modes(sys_)
     resonances, drive = averaging_results(modes.resonances, ch, scene.rotor.eccentricity, c2e)
@@ -245,7 +245,7 @@ def paper_model_analysis(
         f4=c2e,
     )
     return PaperModel(
-        TipReductionUsed.from_json(red),
+        red,
         system,
         resonances,
         drive,
@@ -285,10 +285,9 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
     c2e = scene.shaft.stiffness * scene.rotor.eccentricity
     system, resonances, drive = headline_analysis(scene, chain, ch, c2e)
     paper = paper_model_analysis(scene, closed, ch, c2e, fem3d_reduction)
-    pillar = PillarClosedForms.from_json(closed)
-    rows = compare_with_paper(scene, _PaperView(pillar, paper.reduction, paper.system, paper.resonances, paper.drive))
+    rows = compare_with_paper(scene, _PaperView(closed, paper.reduction, paper.system, paper.resonances, paper.drive))
     return AnalysisResult(
-        pillar=pillar,
+        pillar=closed,
         pillar_model=chain.pillar_model,
         system=system,
         resonances=resonances,

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 from ..chain.record import PillarModel
 from ..provenance import JsonRecord
+from ..reduced.reduction import PillarClosedForms
 from .modal import AXES, ModeRow
 from .reduction import tip_reduction
 
@@ -257,7 +258,7 @@ def shell_modes_below_second_bending(result) -> ShellModes:
     return ShellModes(omega_second_bending=w2, modes=rows)
 
 
-def modal_summary(scene: Scene, bare, loaded, closed: dict) -> ModalSummary:
+def modal_summary(scene: Scene, bare, loaded, closed: PillarClosedForms) -> ModalSummary:
     """What `rotorpillar modal` found (modal.json, less the files and what the CLI adds).
 
     ``bare`` and ``loaded`` are the :class:`~.modal.ModalResult` of the bare
@@ -294,17 +295,17 @@ def modal_summary(scene: Scene, bare, loaded, closed: dict) -> ModalSummary:
             "displacement (Eq. 2), c1 = m_r omega^2; m_reduced_beam_line: Eq. 2 on "
             "the deflection line (mean u_x per height level)",
             closed_form=ClosedFormReduction(
-                m_reduced=closed["tip_mass_limit"],
-                tip_stiffness=closed["tip_stiffness_limit"],
-                omega_col1=closed["omega_col1"],
-                omega_col1_timoshenko=closed["omega_col1_timoshenko"],
+                m_reduced=closed.tip_mass_limit,
+                tip_stiffness=closed.tip_stiffness_limit,
+                omega_col1=closed.omega_col1,
+                omega_col1_timoshenko=closed.omega_col1_timoshenko,
             ),
             stated=StatedReduction(m_reduced=scene.reduction.tip_mass, tip_stiffness=scene.reduction.tip_stiffness),
         ),
         comparison=ModalComparison(
-            omega_bending_over_euler_bernoulli=red.omega_bending / closed["omega_col1"] - 1,
-            omega_bending_over_timoshenko=red.omega_bending / closed["omega_col1_timoshenko"] - 1,
-            m_reduced_over_closed_form=red.m_reduced / closed["tip_mass_limit"] - 1,
+            omega_bending_over_euler_bernoulli=red.omega_bending / closed.omega_col1 - 1,
+            omega_bending_over_timoshenko=red.omega_bending / closed.omega_col1_timoshenko - 1,
+            m_reduced_over_closed_form=red.m_reduced / closed.tip_mass_limit - 1,
         ),
         shell_modes_below_second_bending=ShellModesBelow(
             bare=shell_modes_below_second_bending(bare), with_top=shell_modes_below_second_bending(loaded)

@@ -460,7 +460,7 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
     }[case]
     figs = [{"file": path.name, "caption": caption}]
     if case == "sweep" and run.case_result is not None:
-        sweep = run.case_result.extra["sweep"]
+        sweep = run.case_result.sweep
         labels = [(f"{r.direction}{r.index}", r.omega, r.direction) for r in run.resonances]
         labels.sort(
             key=lambda L: (

@@ -10,13 +10,14 @@ computed here.
 
 from __future__ import annotations
 
-from typing import Any
+from dataclasses import dataclass
 
 from ..errors import InputError
+from ..provenance import JsonRecord
 from ..scene import Scene
 from .excitation import GroundMotion, load_record, paper_pulse
 from .pillar_modes import PillarModes, beam_pillar_modes, modes_in_band
-from .reduction import pillar_closed_forms, resolve_reduction
+from .reduction import TipReductionUsed, pillar_closed_forms, resolve_reduction
 from .rotor_models import RotorStructure, beam_model, modal_model, paper_model
 from .system import ReducedSystem, reduced_system
 
@@ -24,11 +25,50 @@ from .system import ReducedSystem, reduced_system
 MAX_CANDIDATE_MODES = 12
 
 
-def paper_system(scene: Scene) -> tuple[ReducedSystem, dict[str, Any]]:
+@dataclass(frozen=True)
+class PaperModelInfo(JsonRecord):
+    """How the paper's Eq. 4 model was built: its tip reduction."""
+
+    reduction: TipReductionUsed
+
+
+@dataclass(frozen=True)
+class BeamModelInfo(JsonRecord):
+    """How the full-order 1D beam was built."""
+
+    elements: int
+    """finite elements along the pillar (-)"""
+    theory: str
+    """"euler_bernoulli" or "timoshenko\""""
+    dofs: int
+    """unknowns of the rotor-beam model (-)"""
+    element_source: str
+    """the scene key that set ``elements``"""
+
+
+@dataclass(frozen=True)
+class ModalModelInfo(JsonRecord):
+    """How the modal model chose its pillar modes."""
+
+    modes: int
+    """pillar modes kept (-)"""
+    band_top: float | None
+    """the band the modes were chosen below (rad/s); None when the count was stated"""
+    candidate_omega: tuple[float, ...]
+    """the candidates' natural frequencies (rad/s)"""
+    mode_choice: str
+    """why that many, in words"""
+
+
+#: How a reduced model was built, by model (``build_model``).
+ModelInfo = PaperModelInfo | BeamModelInfo | ModalModelInfo
+
+
+def paper_system(scene: Scene) -> tuple[ReducedSystem, TipReductionUsed]:
     """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's Eq. 2)."""
     red = resolve_reduction(scene, pillar_closed_forms(scene.pillar))
     return reduced_system(
-        scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping, red["tip_mass"], red["tip_stiffness"]
+        scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping, red.tip_mass, red.tip_stiffness
     ), red
 
 
@@ -58,24 +98,20 @@ def build_model(
     band_top: float | None = None,
     modes: int | None = None,
     pillar_modes: PillarModes | None = None,
-) -> tuple[RotorStructure, dict[str, Any]]:
+) -> tuple[RotorStructure, ModelInfo]:
     """(model, info) for "paper", "modal" or "beam"; the modal model keeps ``modes``
     modes, or those below ``band_top`` (rad/s), of ``candidate_modes``; the
     beam is the full-order 1D beam ([full_order] beam_elements, [modal_model]
     theory and gondola inertia).  "fem3d" is not built here (rotorpillar.fem3d)."""
     if which == "paper":
         s, red = paper_system(scene)
-        return paper_model(s), {"reduction": red}
+        return paper_model(s), PaperModelInfo(red)
     if which == "beam":
         mm = scene.modal_model
         n = scene.full_order.beam_elements or mm.elements
         model = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, n, mm.theory, mm.gondola_inertia)
-        return model, {
-            "elements": n,
-            "theory": mm.theory,
-            "dofs": model.n,
-            "element_source": "full_order.beam_elements" if scene.full_order.beam_elements else "modal_model.elements",
-        }
+        source = "full_order.beam_elements" if scene.full_order.beam_elements else "modal_model.elements"
+        return model, BeamModelInfo(n, mm.theory, model.n, source)
     if which != "modal":
         raise InputError(f"model {which!r}: build_model makes paper, modal or beam")
     candidates = candidate_modes(scene, pillar_modes)
@@ -84,17 +120,12 @@ def build_model(
     pm = candidates.truncate(k)
     r, sh = scene.rotor, scene.shaft
     model = modal_model(pm, r.mass, r.inertia, r.eccentricity, sh.stiffness, sh.damping, scene.pillar.damping)
-    info = {
-        "modes": k,
-        "band_top": band_top,
-        "candidate_omega": list(map(float, candidates.omega)),
-        "mode_choice": (
-            "stated (modal_model.modes)"
-            if (modes or scene.modal_model.modes)
-            else f"the pillar modes below {band_top:.4g} rad/s = band_factor x the highest forcing frequency"
-        ),
-    }
-    return model, info
+    choice = (
+        "stated (modal_model.modes)"
+        if (modes or scene.modal_model.modes)
+        else f"the pillar modes below {band_top:.4g} rad/s = band_factor x the highest forcing frequency"
+    )
+    return model, ModalModelInfo(k, band_top, tuple(map(float, candidates.omega)), choice)
 
 
 def scene_motion(scene: Scene) -> GroundMotion:

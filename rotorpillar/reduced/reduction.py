@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
+from dataclasses import dataclass
 
+from ..provenance import JsonRecord
 from ..scene import Pillar, Scene, SceneError
 from .pillar import (
     cantilever_root,
@@ -27,7 +28,94 @@ from .pillar import (
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
 
-def pillar_closed_forms(pillar: Pillar) -> dict[str, Any]:
+@dataclass(frozen=True)
+class Lumping(JsonRecord):
+    """The paper's Eq. 2 with the tube lumped into ``n`` equal masses."""
+
+    n: int
+    tip_mass: float
+    """m_r (kg)"""
+    tip_stiffness: float
+    """c1 = m_r omega_col1**2 (N/m)"""
+
+
+@dataclass(frozen=True)
+class RayleighEstimate(JsonRecord):
+    """Rayleigh's quotient on a static deflection shape."""
+
+    shape: str
+    """"uniform_load" or "tip_load\""""
+    tip_mass: float
+    """(kg)"""
+    tip_stiffness: float
+    """(N/m)"""
+    omega: float
+    """(rad/s)"""
+    omega_error: float
+    """omega / omega_col1 - 1 (-)"""
+
+
+@dataclass(frozen=True)
+class PillarClosedForms(JsonRecord):
+    """The bare tube: its section, Eq. 1, Timoshenko's correction, Eq. 2's reductions."""
+
+    area: float
+    """steel cross-section (m**2)"""
+    second_moment: float
+    """I (m**4)"""
+    mass_per_length: float
+    """(kg/m)"""
+    mass: float
+    """the tube's mass (kg)"""
+    wall_thickness: float
+    """(m)"""
+    diameter_to_thickness: float
+    """D0 / t (-)"""
+    slenderness: float
+    """height over the radius of gyration (-)"""
+    omega_col1: float
+    """Eq. 1, Euler-Bernoulli (rad/s)"""
+    frequency_col1_hz: float
+    """(Hz)"""
+    cantilever_root: float
+    """beta_1 L of the clamped-free beam (-)"""
+    omega_euler_bernoulli: tuple[float, ...]
+    """the first three bending modes, Euler-Bernoulli (rad/s)"""
+    shear_coefficient: float
+    """Cowper's kappa (-)"""
+    omega_col1_timoshenko: float
+    """(rad/s)"""
+    timoshenko_correction: float
+    """omega_col1_timoshenko / omega_col1 - 1 (-)"""
+    tip_mass_lumped: tuple[Lumping, ...]
+    tip_mass_limit: float
+    """Eq. 2's continuous limit m_r (kg)"""
+    tip_stiffness_limit: float
+    """m_r omega_col1**2 (N/m)"""
+    rayleigh: tuple[RayleighEstimate, ...]
+
+
+@dataclass(frozen=True)
+class TipReductionUsed(JsonRecord):
+    """The tip mass and stiffness the reduced model uses, and where each came from."""
+
+    source: str
+    """[reduction] source: "auto", "stated", "closed_form" or "fem3d\""""
+    tip_mass: float
+    """m_r (kg)"""
+    tip_mass_source: str
+    tip_mass_computed: float
+    """(kg)"""
+    tip_stiffness: float
+    """c1 (N/m)"""
+    tip_stiffness_source: str
+    tip_stiffness_computed: float
+    """(N/m)"""
+    computed_source: str
+    """"closed_form" or "fem3d\""""
+
+
+def pillar_closed_forms(pillar: Pillar) -> PillarClosedForms:
     """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare
     tube of ``[pillar]``."""
     p = pillar
@@ -37,55 +125,44 @@ def pillar_closed_forms(pillar: Pillar) -> dict[str, Any]:
     w1 = omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
     w_timo = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, A, I, p.height)
-    lumped = [
-        {"n": n, "tip_mass": tip_mass_lumped(mass, n), "tip_stiffness": tip_mass_lumped(mass, n) * w1**2}
-        for n in LUMPINGS
-    ]
+    lumped = tuple(Lumping(n, tip_mass_lumped(mass, n), tip_mass_lumped(mass, n) * w1**2) for n in LUMPINGS)
     m_inf = tip_mass_continuous(mass)
     rayleigh = []
     for shape in ("uniform_load", "tip_load"):
         r = rayleigh_reduction(mass, p.youngs_modulus, I, p.height, shape)
-        rayleigh.append(
-            {
-                "shape": shape,
-                "tip_mass": r.tip_mass,
-                "tip_stiffness": r.tip_stiffness,
-                "omega": r.omega,
-                "omega_error": r.omega / w1 - 1,
-            }
-        )
-    return {
-        "area": A,
-        "second_moment": I,
-        "mass_per_length": m_rho,
-        "mass": mass,
-        "wall_thickness": sec.wall_thickness,
-        "diameter_to_thickness": p.outer_diameter / sec.wall_thickness,
-        "slenderness": p.height / sec.radius_of_gyration,
-        "omega_col1": w1,
-        "frequency_col1_hz": w1 / (2 * math.pi),
-        "cantilever_root": cantilever_root(1),
-        "omega_euler_bernoulli": [omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height, k) for k in (1, 2, 3)],
-        "shear_coefficient": kappa,
-        "omega_col1_timoshenko": w_timo,
-        "timoshenko_correction": w_timo / w1 - 1,
-        "tip_mass_lumped": lumped,
-        "tip_mass_limit": m_inf,
-        "tip_stiffness_limit": m_inf * w1**2,
-        "rayleigh": rayleigh,
-    }
+        rayleigh.append(RayleighEstimate(shape, r.tip_mass, r.tip_stiffness, r.omega, r.omega / w1 - 1))
+    return PillarClosedForms(
+        area=A,
+        second_moment=I,
+        mass_per_length=m_rho,
+        mass=mass,
+        wall_thickness=sec.wall_thickness,
+        diameter_to_thickness=p.outer_diameter / sec.wall_thickness,
+        slenderness=p.height / sec.radius_of_gyration,
+        omega_col1=w1,
+        frequency_col1_hz=w1 / (2 * math.pi),
+        cantilever_root=cantilever_root(1),
+        omega_euler_bernoulli=tuple(omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height, k) for k in (1, 2, 3)),
+        shear_coefficient=kappa,
+        omega_col1_timoshenko=w_timo,
+        timoshenko_correction=w_timo / w1 - 1,
+        tip_mass_lumped=lumped,
+        tip_mass_limit=m_inf,
+        tip_stiffness_limit=m_inf * w1**2,
+        rayleigh=tuple(rayleigh),
+    )
 
 
 def resolve_reduction(
-    scene: Scene, closed: dict[str, Any], fem3d_reduction: Callable[[Scene], tuple[float, float]] | None = None
-) -> dict[str, Any]:
+    scene: Scene, closed: PillarClosedForms, fem3d_reduction: Callable[[Scene], tuple[float, float]] | None = None
+) -> TipReductionUsed:
     """The tip mass and stiffness the reduced model uses, and where each came from.
 
     ``fem3d_reduction`` is a callable scene -> (m_reduced, tip_stiffness), used
     when the scene's source is "fem3d".
     """
     red = scene.reduction
-    computed = {"tip_mass": closed["tip_mass_limit"], "tip_stiffness": closed["tip_stiffness_limit"]}
+    computed = {"tip_mass": closed.tip_mass_limit, "tip_stiffness": closed.tip_stiffness_limit}
     source = "closed_form"
     if red.source == "fem3d":
         if fem3d_reduction is None:
@@ -94,15 +171,22 @@ def resolve_reduction(
             )
         m, c = fem3d_reduction(scene)
         computed, source = {"tip_mass": m, "tip_stiffness": c}, "fem3d"
-    out = {"source": red.source}
+    used: dict[str, tuple[float, str]] = {}
     for key in ("tip_mass", "tip_stiffness"):
         stated = getattr(red, key)
         if stated is not None and red.source in ("auto", "stated"):
-            out[key], out[f"{key}_source"] = stated, "stated"
+            used[key] = (stated, "stated")
         elif red.source == "stated":
             raise SceneError(f'reduction.{key}: required when reduction.source = "stated"')
         else:
-            out[key], out[f"{key}_source"] = computed[key], source
-        out[f"{key}_computed"] = computed[key]
-    out["computed_source"] = source
-    return out
+            used[key] = (computed[key], source)
+    return TipReductionUsed(
+        source=red.source,
+        tip_mass=used["tip_mass"][0],
+        tip_mass_source=used["tip_mass"][1],
+        tip_mass_computed=computed["tip_mass"],
+        tip_stiffness=used["tip_stiffness"][0],
+        tip_stiffness_source=used["tip_stiffness"][1],
+        tip_stiffness_computed=computed["tip_stiffness"],
+        computed_source=source,
+    )

@@ -14,7 +14,7 @@ The 3D model's pillar modes (``modal_model.source = "fem3d"``) come in as
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -25,7 +25,7 @@ from ..reduced.band import forcing_top
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion, no_motion, response_spectrum
 from ..reduced.integration import Settings, Transient, simulate
-from ..reduced.models import build_model, scene_motion
+from ..reduced.models import ModelInfo, build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
@@ -40,7 +40,7 @@ from .case_checks import (
 )
 from .case_summary import CaseSummary, run_summary
 from .sweep import rate_convergence, sweep_analysis
-from .sweep_records import SweepFindings
+from .sweep_records import SweepAnalysis, SweepFindings
 
 
 @dataclass(frozen=True)
@@ -51,8 +51,16 @@ class CaseResult:
     model: RotorStructure
     run: Transient
     summary: CaseSummary
-    extra: dict = field(default_factory=dict)
-    """model_info, initial_speed, excitation_in_model, and the sweep's bins and curves"""
+    model_info: ModelInfo | None = None
+    """how the model was built (build_model); None for a model handed in"""
+    initial_speed: float | None = None
+    """the speed the run starts at, where the case sets one (rad/s)"""
+    excitation: dict | None = None
+    """earthquake: the ground motion's sizes (GroundMotion.sizes)"""
+    excitation_in_model: str | None = None
+    """earthquake: how the model applies the ground motion, in words"""
+    sweep: SweepAnalysis | None = None
+    """sweep: the chart's bins and curves"""
 
 
 def settings_of(scene: Scene, integrator: str | None = None) -> Settings:
@@ -186,7 +194,7 @@ def run_case(
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, case, motion)
     model, info = build_model(scene, which, top, modes, pillar_modes)
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" else (None, None)
-    result = _run_on(scene, case, model, motion, integrator, {"model_info": info}, settings)
+    result = _run_on(scene, case, model, motion, integrator, info, settings)
     if rule is not None:
         result.run.stats["step_rule"] = rule.to_json()
         result.summary.integrator["step_rule"] = rule.to_json()
@@ -255,21 +263,21 @@ def _run_on(
     model: RotorStructure,
     motion: GroundMotion,
     integrator: str | None,
-    extra: dict | None = None,
+    model_info: ModelInfo | None = None,
     settings: Settings | None = None,
 ) -> CaseResult:
     d, L, sim = scene.drive, scene.load, scene.simulate
     st = settings or settings_of(scene, integrator)
     M0, s, k = d.torque_at_zero, d.slope, L.coefficient
     pred = averaging_prediction(model, M0, s, k)
-    extra = dict(extra or {})
     sections: dict[str, Any] = {}
+    initial_speed, excitation, excitation_in_model, sweep = None, None, None, None
     if case == "runup":
         drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
         if sim.runup_initial_speed > 0:
             q0, v0 = model.held_whirl_state(sim.runup_initial_speed)
             run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st, speed_scale=sim.runup_initial_speed)
-            extra["initial_speed"] = sim.runup_initial_speed
+            initial_speed = sim.runup_initial_speed
         else:
             run = simulate(model, drive, motion, sim.duration, settings=st)
         free = drive.free_speed()
@@ -282,7 +290,7 @@ def _run_on(
         drive = DriveSchedule.switched(M0, s, k, 0.0, *after)
         run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st, speed_scale=Wop)
         free = drive.free_speed() if sim.rundown_motor == "weaker" else 0.0
-        extra["initial_speed"] = Wop
+        initial_speed = Wop
         pred = averaging_prediction(model, after[0], after[1], k)
     elif case == "earthquake":
         Wop = operating_speed(model, M0, s, k)
@@ -295,9 +303,9 @@ def _run_on(
             )
         run = simulate(model, drive, motion, t_end, q0, v0, settings=st, speed_scale=Wop)
         free = drive.free_speed()
-        extra["initial_speed"] = Wop
-        extra["excitation"] = sections["excitation"] = motion.sizes()
-        extra["excitation_in_model"] = (
+        initial_speed = Wop
+        excitation = sections["excitation"] = motion.sizes()
+        excitation_in_model = (
             "Eq. 4 as published: c0 q5 + b0 q5' on q1, c2 q5 + b2 q5' on q2 (absolute coordinates)"
             if model.frame == "absolute"
             else "relative to the ground, forced by -M r a_g (a_g = q5'' inside the window; the "
@@ -319,7 +327,7 @@ def _run_on(
         )
         free = drive.free_speed()
         sw = sweep_analysis(w, s, k, model, run, drive)
-        extra["sweep"] = sw  # the sweep chart's input
+        sweep = sw
         rates = None
         if sw.numeric_jumps:
             rates = rate_convergence(w, s, k, model, st, sw.numeric_jumps, sw.predicted_jumps)
@@ -336,7 +344,8 @@ def _run_on(
             no_jump_reason=sw.no_jump_reason,
             rate_convergence=rates,
         )
-    return CaseResult(case, model, run, run_summary(run, free, pred, **sections), extra)
+    summary = run_summary(run, free, pred, **sections)
+    return CaseResult(case, model, run, summary, model_info, initial_speed, excitation, excitation_in_model, sweep)
 
 
 def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> SpectralEstimate:

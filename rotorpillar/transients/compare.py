@@ -259,14 +259,15 @@ def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain
     """The speed-against-accuracy study planned and its 3D runs started on ``workers`` - 1
     processes (this one runs compare's own models meanwhile; none: after them, here)."""
     from ..reduced.band import forcing_top
-    from ..reduced.models import build_model
+    from ..reduced.models import ModalModelInfo, build_model
     from .pareto import ParetoRunning, plan_pareto
 
     mesh = fem3d_plan(scene, "earthquake", motion, study_dir=out).mesh
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "earthquake", motion)
     _, info = build_model(scene, "modal", top, pillar_modes=chain.modes)
+    assert isinstance(info, ModalModelInfo)  # build_model's for "modal"
     plan = plan_pareto(
-        scene, cache_dir=Path(out) / "cache", rom_modes=info["modes"], chosen_mesh=mesh, pillar_modes=chain.modes
+        scene, cache_dir=Path(out) / "cache", rom_modes=info.modes, chosen_mesh=mesh, pillar_modes=chain.modes
     )
     return ParetoRunning(plan, max(0, workers - 1), progress)
 

@@ -53,6 +53,7 @@ from ..reduced.internal_forces import (
     modal_damping,
     superpose,
 )
+from ..reduced.models import BeamModelInfo
 from ..reduced.pillar import section_of
 from .force_records import BaseReactions, InternalForcesSummary, ShaftDemand
 
@@ -205,8 +206,9 @@ def _beam_forces(scene: Scene, run, res, shaft):
     from ..reduced.beam_fe import section_forces
     from ..reduced.pillar_modes import beam_properties
 
-    info = res.extra["model_info"]
-    n, theory = info["elements"], info["theory"]
+    info = res.model_info
+    assert isinstance(info, BeamModelInfo)  # the beam's forces are of a beam's run
+    n, theory = info.elements, info.theory
     bp = beam_properties(scene.pillar, theory)
     nb = 2 * n
     q, v = np.asarray(run.data["q"], dtype=float), np.asarray(run.data["v"], dtype=float)

@@ -41,6 +41,7 @@ import numpy as np
 
 from ..chain import ChainModes
 from ..errors import InputError
+from ..reduced.models import BeamModelInfo, PaperModelInfo
 from ..scene import MODELS, override
 from .pillar_models import reduced_pillar_model, solid_pillar_model
 from .run_plan import fem3d_plan, with_duration
@@ -185,18 +186,18 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         ma["tip_x_relative"] = ma["tip_x"]
         ma["tip_x_absolute"] = float(np.max(np.abs(full_tip + full_ground)))
     ma["shaft_deflection_x"] = ma["shaft_deflection_x_sampled"]
-    info = res.extra.get("model_info")
+    info = res.model_info
     full_order = None
     if which == "beam":
-        info = res.extra["model_info"]
+        assert isinstance(info, BeamModelInfo)  # build_model's for "beam"
         full_order = BeamFullOrder(
-            elements=info["elements"],
-            theory=info["theory"],
+            elements=info.elements,
+            theory=info.theory,
             duration=res.summary.duration,
             time_step=run.stats.get("time_step"),
             note=(
-                f"the 1D {info['theory']} beam with every degree of freedom ({info['elements']} "
-                f"elements, {info['element_source']}), the case's full duration; implicit fixed "
+                f"the 1D {info.theory} beam with every degree of freedom ({info.elements} "
+                f"elements, {info.element_source}), the case's full duration; implicit fixed "
                 "step that resolves the fastest forcing within 2e-3 (full_order.time_step, 0 = "
                 "that; integrator.step_rule): the beam's stiff shear modes are damped by the "
                 "scheme, not resolved"
@@ -207,7 +208,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         model=which,
         summary=replace(res.summary, max_abs=ma),
         warnings=tuple(_warnings(case, m, res)),
-        pillar_model=reduced_pillar_model(scene, which, chain, info or {}),
+        pillar_model=reduced_pillar_model(which, chain, info),
         uncertainty=bars,
         dofs=int(m.n),
         wall_seconds=wall,
@@ -218,8 +219,8 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         damped_frequencies=tuple(m.damped_frequencies()),
         tip_x_frame=m.frame,
         max_abs_sampled=("tip_x_relative" if m.frame == "absolute" else "tip_x_absolute", "shaft_deflection_x"),
-        initial_speed=res.extra.get("initial_speed"),
-        excitation_in_model=res.extra.get("excitation_in_model"),
+        initial_speed=res.initial_speed,
+        excitation_in_model=res.excitation_in_model,
         full_order=full_order,
     )
     model_run = ModelRun(case, which, record, data, m.quasi_normal(), res)
@@ -233,13 +234,14 @@ def _warnings(case: str, model, res) -> list[str]:
     any earthquake: a record whose sizes no recorded earthquake has (the commands print
     them on stderr)."""
     out = []
-    quake = res.extra.get("excitation") or {}
+    quake = res.excitation or {}
     if case == "earthquake" and quake.get("kind") == "record" and not quake.get("realistic", True):
         out.append(quake.get("statement", "the record is not a realistic earthquake"))
     if case == "earthquake" and model.name == "paper":
         from ..reduced.base_forcing import published_forcing_warning
 
-        c1 = res.extra["model_info"]["reduction"]["tip_stiffness"]
+        assert isinstance(res.model_info, PaperModelInfo)  # build_model's for "paper"
+        c1 = res.model_info.reduction.tip_stiffness
         w = published_forcing_warning(c1, model.shaft_stiffness)
         if w:
             out.append(w)

@@ -8,15 +8,11 @@ rotorpillar.transients.model_run, which puts them in every run's record.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from ..scene import Scene
-
 from ..chain import ChainModes, PillarModel
+from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
 
 
-def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, info: dict) -> PillarModel:
+def reduced_pillar_model(which: str, chain: ChainModes | None, info: ModelInfo | None) -> PillarModel:
     """The pillar model a reduced model ran on: the chain's (modal), the scene's beam at
     full order (beam), or the paper's stated tip reduction (paper: not the validated chain)."""
     if which == "modal":
@@ -24,7 +20,8 @@ def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, inf
             raise ValueError("the modal model's pillar model is the chain's: none handed in")
         return chain.pillar_model
     if which == "beam":
-        n, theory = info["elements"], info["theory"]
+        assert isinstance(info, BeamModelInfo)  # build_model's for "beam"
+        n, theory = info.elements, info.theory
         return PillarModel(
             "beam",
             f"beam {theory}, {n} el. (full order)",
@@ -34,21 +31,22 @@ def reduced_pillar_model(scene: Scene, which: str, chain: ChainModes | None, inf
             False,
             None,
             {},
-            f"the full-order 1D {theory} beam of {info['element_source']}",
+            f"the full-order 1D {theory} beam of {info.element_source}",
             None,
         )
-    red = info["reduction"]
+    assert isinstance(info, PaperModelInfo)  # build_model's for "paper"
+    red = info.reduction
     return PillarModel(
         "reduction",
         "Eq. 4: one tip mass and spring",
-        {"tip_mass": red["tip_mass"], "tip_stiffness": red["tip_stiffness"]},
+        {"tip_mass": red.tip_mass, "tip_stiffness": red.tip_stiffness},
         1,
         "scene",
         False,
         None,
         {},
-        f"the paper's model: m_r ({red['tip_mass_source']}) and c1 "
-        f"({red['tip_stiffness_source']}) at the tip; not the validated chain",
+        f"the paper's model: m_r ({red.tip_mass_source}) and c1 "
+        f"({red.tip_stiffness_source}) at the tip; not the validated chain",
         None,
     )
 

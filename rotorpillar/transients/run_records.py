@@ -16,6 +16,7 @@ from dataclasses import asdict, dataclass, field, replace
 
 from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
+from ..reduced.models import ModelInfo
 from ..reduced.system import Resonance
 from ..scene.sections import Mesh
 from .case_summary import CaseSummary
@@ -110,7 +111,7 @@ class ReducedRun(JsonRecord):
     """the warm-up's wall time: what the run compiled (s)"""
     model_description: dict
     """the model's matrices and coordinates (RotorStructure.describe; keys by model)"""
-    model_info: dict | None
+    model_info: ModelInfo | None
     """how the model was built: the reduction (paper), the modes chosen (modal), the
     elements (beam)"""
     resonances: tuple[Resonance, ...]
