@@ -152,17 +152,31 @@ def _solid_within(study: ConvergenceStudy, tolerance: float) -> RunBrief | None:
     return select_model(study.runs, study.reference, study.band, tolerance, families=solid_families()).chosen
 
 
-def scene_solid_run(scene: Scene) -> dict:
-    """The scene's own [mesh] as a run of the ladder (label, family, params, dofs)."""
+@dataclass(frozen=True)
+class SolidCase:
+    """A 3D mesh as a case of the convergence ladder."""
+
+    label: str
+    family: str
+    model: str
+    """"solid\""""
+    params: dict[str, int | float | str]
+    """the mesh's keys as the ladder names a run's"""
+    dofs: int
+    """degrees of freedom, estimated from the mesh (-)"""
+
+
+def scene_solid_run(scene: Scene) -> SolidCase:
+    """The scene's own [mesh] as a case of the ladder."""
     return solid_run_of(scene.mesh)
 
 
-def solid_run_of(m: Mesh) -> dict:
-    """A 3D mesh as a run of the ladder (label, family, params, dofs)."""
+def solid_run_of(m: Mesh) -> SolidCase:
+    """A 3D mesh as a case of the ladder."""
     from ..converge.ladder import FAMILIES, Case, estimated_dofs
 
     family = f"solid_{'hex' if m.cell_type == 'hexahedron' else 'tet'}_p{m.degree}"
-    params = {
+    params: dict[str, int | float | str] = {
         "elements_around": m.elements_around,
         "elements_along": m.elements_along,
         "elements_through": m.elements_through,
@@ -171,13 +185,7 @@ def solid_run_of(m: Mesh) -> dict:
         "grading": m.grading,
     }
     case = Case(family, m.elements_around, tuple(sorted(params.items())))
-    return {
-        "label": case.label,
-        "family": family,
-        "model": FAMILIES[family].model,
-        "params": params,
-        "dofs": estimated_dofs(case),
-    }
+    return SolidCase(case.label, family, FAMILIES[family].model, params, estimated_dofs(case))
 
 
 def _same_mesh(run: ConvergenceRun, params: dict) -> bool:
@@ -212,7 +220,7 @@ def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict[str, float], str]:
     if not any(r.get("cached") for r in records):
         return {}, "no study's run cache"
     analysis = analyse(records, scene, scene.converge.tolerance)
-    errs = _scene_errors(analysis.runs, analysis.reference, scene_solid_run(scene)["params"])
+    errs = _scene_errors(analysis.runs, analysis.reference, scene_solid_run(scene).params)
     return errs, f"the study's run cache {cache_dir}"
 
 
@@ -263,14 +271,14 @@ def from_scene(scene: Scene, cache_dir: Path, why: str) -> Choice:
         return Choice(rom, rom)
     run = scene_solid_run(scene)
     errors, where = _from_cache(scene, cache_dir)
-    note = f"{why}; the stages use the scene's own [mesh], {run['label']}: " + (
+    note = f"{why}; the stages use the scene's own [mesh], {run.label}: " + (
         f"its error from {where}" if errors else "unverified (no convergence study measured this mesh)"
     )
     pm = PillarModel(
         "solid",
-        run["label"],
-        run["params"],
-        int(run["dofs"]),
+        run.label,
+        run.params,
+        run.dofs,
         "scene",
         bool(errors),
         scene.converge.tolerance if errors else None,
@@ -289,12 +297,12 @@ def from_study(scene: Scene, study: ConvergenceStudy) -> Choice:
     ref_unc = reference_uncertainty(study.reference)
     if sel.chosen is None:
         run = scene_solid_run(scene)
-        errors = _scene_errors(study.runs, study.reference, run["params"])
+        errors = _scene_errors(study.runs, study.reference, run.params)
         pm = PillarModel(
             "solid",
-            run["label"],
-            run["params"],
-            int(run["dofs"]),
+            run.label,
+            run.params,
+            run.dofs,
             "scene",
             bool(errors),
             tol,
@@ -318,9 +326,9 @@ def from_study(scene: Scene, study: ConvergenceStudy) -> Choice:
         run = scene_solid_run(scene)
         solid = PillarModel(
             "solid",
-            run["label"],
-            run["params"],
-            int(run["dofs"]),
+            run.label,
+            run.params,
+            run.dofs,
             "scene",
             False,
             None,

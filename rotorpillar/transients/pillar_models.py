@@ -64,8 +64,8 @@ def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarMod
     }
     return PillarModel(
         "solid",
-        run["label"] + " (full order)",
-        run["params"],
+        run.label + " (full order)",
+        run.params,
         int(dofs),
         reference.get("source", "scene"),
         bool(reference.get("verified")),
