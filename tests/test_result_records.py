@@ -187,6 +187,9 @@ def test_reduced_run_round_trips_its_file(compared, model, middle):
     from rotorpillar.reduced.models import ModalModelInfo, PaperModelInfo
 
     assert isinstance(run.model_info, PaperModelInfo if model == "paper" else ModalModelInfo)
+    from rotorpillar.reduced.system import DampedMode
+
+    assert run.damped_frequencies and all(isinstance(d, DampedMode) for d in run.damped_frequencies)
     # the case summary to its leaves
     from rotorpillar.transients.case_summary import CaseSummary, EnergyBalance, Passage
 

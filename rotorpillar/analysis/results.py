@@ -22,6 +22,7 @@ from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
     RayleighEstimate,
     TipReductionUsed,
 )
+from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json too)
 
 
 @dataclass(frozen=True)
@@ -150,20 +151,6 @@ class PaperRow(JsonRecord):
     note: str
     details: dict | None = field(default=None, metadata={"omit_if_none": True})
     """what a finding (not a printed number) states, e.g. eq4_base_forcing"""
-
-
-@dataclass(frozen=True)
-class DampedMode(JsonRecord):
-    """A damped natural frequency of the linear structure."""
-
-    direction: str
-    """"X" (horizontal, in the rotor's plane) or "Y" (vertical)"""
-    omega: float
-    """undamped natural frequency |lambda| (rad/s)"""
-    damped_omega: float
-    """rad/s"""
-    damping_ratio: float
-    """-"""
 
 
 @dataclass(frozen=True)

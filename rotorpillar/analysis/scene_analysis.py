@@ -27,7 +27,6 @@ from .paper import compare_with_paper
 from .results import (
     AnalysisResult,
     CoupledModes,
-    DampedMode,
     DriveBars,
     DriveRegimes,
     PaperModel,
@@ -197,7 +196,7 @@ def headline_analysis(scene: Scene, chain: ChainModes, ch: av.Characteristic, c2
     v = rom_variants(scene, chain, top)
     of, drive_bars = _rom_bars(v, ch)
     resonances, drive = averaging_results(v.base.quasi_normal(), ch, scene.rotor.eccentricity, c2e, of, drive_bars)
-    damped = tuple(DampedMode(**d) for d in v.base.damped_frequencies())
+    damped = tuple(v.base.damped_frequencies())
     x = [r for r in resonances if r.direction == "X"]
     y = [r for r in resonances if r.direction == "Y"]
     system = RomSystem(

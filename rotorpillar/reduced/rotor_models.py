@@ -52,7 +52,7 @@ from .drive import DriveSchedule
 from .excitation import GroundMotion
 from .pillar_modes import PillarModes
 from .rhs import Packed
-from .system import ReducedSystem, Resonance
+from .system import DampedMode, ReducedSystem, Resonance
 
 FRAMES = ("absolute", "relative_to_ground")
 
@@ -224,7 +224,7 @@ class RotorStructure:
         )
         return out
 
-    def damped_frequencies(self) -> list[dict[str, Any]]:
+    def damped_frequencies(self) -> list[DampedMode]:
         """Damped natural frequencies and damping ratios of the linear structure
         (X from the state-space eigenproblem, Y as one oscillator)."""
         nx = self.nx
@@ -232,21 +232,11 @@ class RotorStructure:
         A = np.block([[np.zeros((nx, nx)), np.eye(nx)], [-Minv @ self.stiffness_full(), -Minv @ self.damping]])
         lam = eig(A, right=False)
         lam = lam[lam.imag > 0]
-        out = [
-            {
-                "direction": "X",
-                "omega": float(abs(l)),
-                "damped_omega": float(l.imag),
-                "damping_ratio": float(-l.real / abs(l)),
-            }
-            for l in sorted(lam, key=abs)
-        ]
+        out = [DampedMode("X", float(abs(l)), float(l.imag), float(-l.real / abs(l))) for l in sorted(lam, key=abs)]
         m, c, k = self.rotor_mass, self.shaft_damping, self.shaft_stiffness
         w = math.sqrt(k / m)
         z = c / (2 * math.sqrt(k * m))
-        out.append(
-            {"direction": "Y", "omega": w, "damped_omega": w * math.sqrt(max(0.0, 1 - z * z)), "damping_ratio": z}
-        )
+        out.append(DampedMode("Y", w, w * math.sqrt(max(0.0, 1 - z * z)), z))
         return out
 
     def steady_state(self, Omega: float) -> tuple[NDArray[np.complex128], complex]:

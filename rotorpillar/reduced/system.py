@@ -36,7 +36,22 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..provenance import JsonRecord
 from ..scene import Rotor, Shaft
+
+
+@dataclass(frozen=True)
+class DampedMode(JsonRecord):
+    """A damped natural frequency of the linear structure."""
+
+    direction: str
+    """"X" (horizontal, in the rotor's plane) or "Y" (vertical)"""
+    omega: float
+    """undamped natural frequency |lambda| (rad/s)"""
+    damped_omega: float
+    """rad/s"""
+    damping_ratio: float
+    """-"""
 
 
 @dataclass(frozen=True)

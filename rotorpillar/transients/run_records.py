@@ -17,7 +17,7 @@ from dataclasses import asdict, dataclass, field, replace
 from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
 from ..reduced.models import ModelInfo
-from ..reduced.system import Resonance
+from ..reduced.system import DampedMode, Resonance
 from ..scene.sections import Mesh
 from .case_summary import CaseSummary
 from .force_records import InternalForcesSummary
@@ -116,7 +116,7 @@ class ReducedRun(JsonRecord):
     elements (beam)"""
     resonances: tuple[Resonance, ...]
     """the model's quasi-normal resonances (Eq. 7)"""
-    damped_frequencies: tuple[dict, ...]
+    damped_frequencies: tuple[DampedMode, ...]
     """damped natural frequencies (rad/s) and damping ratios (-) of the linear structure"""
     tip_x_frame: str
     """the frame of ``tip_x``: "absolute" or "relative_to_ground\""""
@@ -203,7 +203,7 @@ class Fem3dRun(JsonRecord):
     """dofs and the mesh"""
     resonances: tuple[Resonance, ...]
     """the chain's ROM's quasi-normal resonances (Eq. 7)"""
-    damped_frequencies: tuple[dict, ...]
+    damped_frequencies: tuple[DampedMode, ...]
     """the ROM's damped natural frequencies (rad/s) and damping ratios (-)"""
     tip_x_frame: str
     """"relative_to_ground\""""

@@ -43,12 +43,12 @@ def rom_modes(model) -> list[ModeEntry]:
     """The coupled system's modes (X: state-space eigenvalues; Y: the rotor on its shaft)."""
     out, i = [], 0
     for row in model.damped_frequencies():
-        i += row["direction"] == "X"
-        kind = f"coupled X {i}" if row["direction"] == "X" else "rotor Y on its shaft"
+        i += row.direction == "X"
+        kind = f"coupled X {i}" if row.direction == "X" else "rotor Y on its shaft"
         out.append(
             ModeEntry(
-                float(row["omega"]),
-                float(row["damping_ratio"]),
+                row.omega,
+                row.damping_ratio,
                 kind,
                 "modal",
                 "damping ratio of the coupled system's eigenvalue (b1 at the tip, b2)",

@@ -254,18 +254,14 @@ def system_modes(c: Comparison | None) -> tuple[str | None, list[dict]]:
             w = r.omega
             if w <= 0:
                 continue
-            near = min(
-                (d for d in damped if d.get("direction") == r.direction),
-                key=lambda d: abs(float(d.get("omega") or 0) - w),
-                default={},
-            )
+            near = min((d for d in damped if d.direction == r.direction), key=lambda d: abs(d.omega - w), default=None)
             out.append(
                 {
                     "index": r.index,
                     "direction": r.direction,
                     "omega": float(w),
                     "period": 2 * math.pi / w,
-                    "damping_ratio": near.get("damping_ratio"),
+                    "damping_ratio": None if near is None else near.damping_ratio,
                 }
             )
         return m, out
