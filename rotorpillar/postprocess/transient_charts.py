@@ -392,7 +392,7 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
     earthquake's histories, the run-up's or run-down's speed and tip envelope,
     the sweep's curves; returns [{file, caption}]."""
     data, case, name = run.data, run.case, run.model
-    frame = run.result["tip_x_frame"].replace("_", " ")
+    frame = run.record.tip_x_frame.replace("_", " ")
     title = f"{scene.name}: {case}, {name} model"
     path = out / f"{stem}.png"
     if case == "earthquake":

@@ -28,7 +28,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ..chain.record import PillarModel
 from ..errors import InputError
 from ..provenance import write_result
 from ..scene import MODELS
@@ -45,7 +44,7 @@ from .records import (
 )
 from .references import FullOrderReference
 from .run_plan import fem3d_plan, own_duration
-from .run_records import Fem3dRun
+from .run_records import Fem3dRun, RunRecord
 
 COMPARE_CASES = ("earthquake", "runup")
 DEFAULT_MODELS = {"earthquake": ("modal", "fem3d"), "runup": ("modal", "beam")}
@@ -148,7 +147,6 @@ def compare_models(
         # started first: its 3D runs take the other core while this process runs the models
         pending = _start_pareto(scene, motion, out, workers, progress, chain)
     runs: dict[str, ModelRun] = {}
-    results: dict[str, dict] = {}
     for i, m in enumerate(models):
         if progress:
             progress(f"compare {case}: model {i + 1} of {len(models)}: {m}")
@@ -169,7 +167,7 @@ def compare_models(
         if write:
             from .files import write_model_files
 
-            results[m] = write_model_files(
+            write_model_files(
                 out,
                 scene,
                 run,
@@ -179,13 +177,11 @@ def compare_models(
                 charts=run_charts,
                 stem=compare_stem(case, m),
             )
-        else:
-            results[m] = run.result
         runs[m] = run
         if progress:
             progress(f"compare {case}: {m} done in {run.record.wall_seconds:.3g} s ({run.record.dofs} dofs)")
     ref = reference_of(models)
-    per_model = {m: _per_model(case, m, results[m]) for m in models}
+    per_model = {m: _per_model(case, m, runs[m].record) for m in models}
     rd = runs[ref].data
     t_ref, x_ref = rd["t"], rd["tip_x_relative"]
     span = envelope_window(r.omega for r in runs[ref].resonances)
@@ -296,21 +292,20 @@ def _full_order_reference(runs: dict[str, ModelRun]) -> FullOrderReference | Non
     return record.full_order.reference if isinstance(record, Fem3dRun) else None
 
 
-def _per_model(case: str, m: str, r: dict) -> ComparedModel:
-    ma = r["max_abs"]
+def _per_model(case: str, m: str, r: RunRecord) -> ComparedModel:
+    ma = r.max_abs
     stem = compare_stem(case, m)
-    pillar = r.get("pillar_model")
     return ComparedModel(
         peak_tip_relative=ma["tip_x_relative"],
         peak_tip_absolute=ma["tip_x_absolute"],
         peak_shaft_deflection=ma["shaft_deflection_x"],
-        omega_final=r["omega_final"],
-        wall_seconds=r["wall_seconds"],
-        compile_seconds=r.get("compile_seconds"),
-        dofs=r["dofs"],
-        ok=r["ok"],
-        warnings=tuple(r.get("warnings") or ()),
-        pillar_model=None if pillar is None else PillarModel.from_json(pillar),
+        omega_final=r.omega_final,
+        wall_seconds=r.wall_seconds,
+        compile_seconds=r.compile_seconds,
+        dofs=r.dofs,
+        ok=r.ok,
+        warnings=tuple(r.warnings),
+        pillar_model=r.pillar_model,
         json=f"{stem}.json",
         npz=f"{stem}.npz",
     )

@@ -136,6 +136,16 @@ class ReducedRun(JsonRecord):
         """largest |value| per coordinate (m), and the forces' (N, N m, Pa)"""
         return self.summary.max_abs
 
+    @property
+    def ok(self) -> bool:
+        """whether the run passed its own checks (as Fem3dRun.ok)"""
+        return self.summary.ok
+
+    @property
+    def omega_final(self) -> float:
+        """rotor speed at the end (rad/s; as Fem3dRun.omega_final)"""
+        return self.summary.omega_final
+
     def with_max_abs(self, max_abs: dict) -> ReducedRun:
         return replace(self, summary=replace(self.summary, max_abs=max_abs))
 
