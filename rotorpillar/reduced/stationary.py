@@ -5,6 +5,10 @@ The exact linear torque balance M0 - s W - k W**2 + <shaft torque>(W) = 0
 paper's Eq. 19-23 (``averaging_prediction``), and the motor torque
 needed to run up through the first resonance that can capture the rotor,
 predicted and simulated (``passing_torque``).
+
+Each returns its records (``StationarySpeed``, ``Fold``, ``AveragingPrediction``,
+``PassingTorqueStudy`` or ``NoPassingFold``), which ``simulate_<case>.json`` writes as
+its ``prediction`` and ``passing_torque``.
 """
 
 from __future__ import annotations
