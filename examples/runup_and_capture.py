@@ -13,9 +13,7 @@ from rotorpillar.transients.cases import run_case
 scene = load_scene("sommerfeld", ["simulate.threshold=false"])  # one run each, no batch
 first = run_case(scene, "runup", "paper", truncation=False)
 # the averaging theory's fold: the quasi-static run-up jumps past resonance 1 above this M0
-fold = min(
-    j["torque_at_zero"] for j in first.summary.prediction["jumps"] if j["direction"] == "up" and j["resonance"] == 1
-)
+fold = min(j.torque_at_zero for j in first.summary.prediction.jumps if j.direction == "up" and j.resonance == 1)
 print(
     f"averaging theory: a run-up passes resonance 1 with M0 above {fold:.1f} N*m "
     f"(the scene's motor: {scene.drive.torque_at_zero:g} N*m)"

@@ -319,6 +319,7 @@ def reduced_run(
     """A ``ReducedRun`` (``simulate_<case>_<model>.json`` of paper, modal or beam) built by
     its records' constructors: its final speed and length from ``t`` and ``Omega``, the
     peaks given; no resonance, passage or jump; an energy balance closed to 1.2e-5."""
+    from rotorpillar.reduced.stationary import AveragingPrediction
     from rotorpillar.transients.case_summary import CaseSummary, EnergyBalance
 
     summary = CaseSummary(
@@ -340,7 +341,16 @@ def reduced_run(
             relative_error=1.2e-5,
         ),
         integrator={"method": "synthetic", "steps": int(len(t))},
-        prediction={},
+        prediction=AveragingPrediction(
+            stationary=(),
+            jumps=(),
+            runup_speed=None,
+            rundown_speed=None,
+            captured_index=None,
+            captured_resonance=None,
+            captured_at=None,
+            resonances=(),
+        ),
         jumps=[],
         excitation=excitation,
     )

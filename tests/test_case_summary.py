@@ -13,7 +13,7 @@ from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.models import build_model
-from rotorpillar.reduced.stationary import averaging_prediction
+from rotorpillar.reduced.stationary import NoPassingFold, averaging_prediction
 from rotorpillar.scene import load_scene
 from rotorpillar.transients.case_checks import NoSpectrumCheck, NoTruncationEstimate
 from rotorpillar.transients.case_summary import CaseSummary, run_summary
@@ -85,7 +85,7 @@ def test_optional_sections_in_the_order_simulate_writes_them(summary):
     d = _roundtrip(s)
     assert list(d) == BASE_KEYS + SWEEP_KEYS + ["truncation"]
     assert d["no_jump_reason"] is None and d["rate_convergence"] is None  # present, null
-    s = replace(summary, passing_torque={"predicted": None, "statement": "none"})
+    s = replace(summary, passing_torque=NoPassingFold(statement="none"))
     assert list(_roundtrip(s)) == BASE_KEYS + ["passing_torque"]
     s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check=NoSpectrumCheck("x"))
     assert list(_roundtrip(s)) == BASE_KEYS + ["excitation", "response_spectrum_check"]

@@ -141,7 +141,7 @@ def check_runup_and_capture(out: str) -> None:
     omega_1 = x_pair(scene)[0]
     model, _ = build_model(scene, "paper")
     stable = {
-        m0: [s["omega"] for s in stationary_exact(model, m0, scene.drive.slope, scene.load.coefficient) if s["stable"]]
+        m0: [s.omega for s in stationary_exact(model, m0, scene.drive.slope, scene.load.coefficient) if s.stable]
         for m0 in lines
     }
     ((final, at, resonance),) = numbers(

@@ -66,7 +66,7 @@ def test_runup_settles_on_the_exact_stationary_speed(runup):
     scene = load_scene("paper")
     model, _ = build_model(scene, "paper")
     st = stationary_exact(model, scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
-    assert doc["omega_final"] == pytest.approx(max(s["omega"] for s in st), rel=1e-6)
+    assert doc["omega_final"] == pytest.approx(max(s.omega for s in st), rel=1e-6)
     # Md = Mc alone (no resonance) differs by the tail torque only: < 0.1 %
     free = (-12 + math.sqrt(144 + 4 * 0.5 * 5100)) / (2 * 0.5)
     assert doc["omega_final"] == pytest.approx(free, rel=1e-3)

@@ -147,10 +147,10 @@ def test_the_study_boundary_brackets_the_simulated_passing_torque(tmp_path):
         sc.simulate.duration,
         sc.simulate.rtol,
     )
-    assert lo - 10.0 <= pt["simulated"] <= hi + 10.0
-    assert abs(0.5 * (lo + hi) - pt["simulated"]) <= 10.0
-    assert st.boundary["averaging"][0] == pytest.approx(pt["predicted"], rel=1e-9)
-    print(f"study boundary {lo}..{hi}, simulate {pt['simulated']:.2f}, averaging {pt['predicted']:.2f}")
+    assert lo - 10.0 <= pt.simulated <= hi + 10.0
+    assert abs(0.5 * (lo + hi) - pt.simulated) <= 10.0
+    assert st.boundary["averaging"][0] == pytest.approx(pt.predicted, rel=1e-9)
+    print(f"study boundary {lo}..{hi}, simulate {pt.simulated:.2f}, averaging {pt.predicted:.2f}")
     assert (Path(tmp_path) / "study_final.png").is_file()
 
 

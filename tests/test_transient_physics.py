@@ -186,8 +186,8 @@ def test_passing_torque_matches_the_fold(sommerfeld):
     out = passing_torque(
         model, DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient), sommerfeld.simulate.duration, 1e-7
     )
-    assert out["simulated"] == pytest.approx(out["predicted"], rel=0.03)
-    assert [r["passed"] for r in out["bracket_runs"]] == [False, True]
+    assert out.simulated == pytest.approx(out.predicted, rel=0.03)
+    assert [r.passed for r in out.bracket_runs] == [False, True]
 
 
 @pytest.mark.slow

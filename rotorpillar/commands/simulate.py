@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..scene import Scene
+    from ..transients.run_records import RunRecord
 
 from ..scene import CASES, INTEGRATORS, MODELS
 from . import EXIT_CHECKS
@@ -180,7 +181,7 @@ def simulate_command(scene: Scene, args, timings):
         result["exit_status"] = EXIT_CHECKS
         for line in result.get("failed_checks") or []:
             progress(f"simulate: check failed: {line}")
-    return result, _summary(scene, result)
+    return result, _summary(scene, result, run.record)
 
 
 def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None = None) -> None:
@@ -196,7 +197,9 @@ def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None =
     check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, 0.0, plan.time_step), plan.mesh))
 
 
-def _summary(scene: Scene, r: dict) -> str:
+def _summary(scene: Scene, r: dict, record: RunRecord) -> str:
+    from ..transients.run_records import ReducedRun
+
     lines = [
         f"rotorpillar simulate {scene.name}: case {r['case']}, {r['model']} model "
         f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"
@@ -239,9 +242,9 @@ def _summary(scene: Scene, r: dict) -> str:
             f"with {t['modes_check']}: tip max changes {100 * (t['tip_x_max_rel_diff'] or 0):+.3f} %, "
             f"tip series {100 * t['tip_series_max_rel_diff']:.3f} %"
         )
-    pt = r.get("passing_torque")
-    if pt and pt.get("statement"):
-        lines.append("  " + pt["statement"])
+    pt = record.summary.passing_torque if isinstance(record, ReducedRun) else None
+    if pt is not None:
+        lines.append("  " + pt.statement)
     if r["case"] == "sweep":
         if r["jumps"]:
             for j in r["jumps"]:

@@ -418,13 +418,21 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
         for r in run.resonances
         if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)
     ]
+    from ..reduced.stationary import PassingTorqueStudy
+    from ..transients.run_records import ReducedRun
+
     extra = []
-    pt = run.result.get("passing_torque") or {}
-    if pt.get("bracket_series"):
-        bs = pt["bracket_series"]
-        for row, W, pk, f in zip(pt["bracket_runs"], bs["Omega"], bs["tip_peak"], (0.95, 1.05)):
+    pt = run.record.summary.passing_torque if isinstance(run.record, ReducedRun) else None
+    if isinstance(pt, PassingTorqueStudy):
+        bs = pt.bracket_series
+        for row, W, pk, f in zip(pt.bracket_runs, bs.Omega, bs.tip_peak, (0.95, 1.05)):
             extra.append(
-                (f"M0 = {row['torque_at_zero']:.0f} N*m ({f:g} x the predicted {pt['predicted']:.0f})", bs["t"], W, pk)
+                (
+                    f"M0 = {row.torque_at_zero:.0f} N*m ({f:g} x the predicted {pt.predicted:.0f})",
+                    np.asarray(bs.t),
+                    np.asarray(W),
+                    np.asarray(pk),
+                )
             )
     tip_peak = data["peak"][:, -1] if data["peak"].ndim == 2 else np.abs(data["tip_x"])
     from ..reduced import averaging as av

@@ -238,6 +238,8 @@ def _roots(fun: Callable[[Speeds], Speeds], grid: NDArray[np.float64]) -> list[f
 
 @dataclass(frozen=True)
 class Stationary(JsonRecord):
+    """A stationary regime of the averaged equations (Md = L, Eq. 21-23)."""
+
     omega: float
     """stationary speed Omega (rad/s)"""
     stable: bool
@@ -248,10 +250,14 @@ class Stationary(JsonRecord):
 
 @dataclass(frozen=True)
 class Jump(JsonRecord):
+    """Where a quasi-static run-up or run-down leaves its branch, and where it lands."""
+
     direction: str
     """"up" (A -> B, quasi-static run-up) or "down" (D -> C, run-down)"""
     omega_from: float
+    """the speed the branch ends at: the fold A or D (rad/s)"""
     omega_to: float
+    """the speed it jumps to: B or C (rad/s)"""
     torque_at_zero: float
     """M0 at which the jump happens (N*m)"""
     resonance: int

@@ -5,10 +5,15 @@ The exact linear torque balance M0 - s W - k W**2 + <shaft torque>(W) = 0
 paper's Eq. 19-23 (``averaging_prediction``), and the motor torque
 needed to run up through the first resonance that can capture the rotor,
 predicted and simulated (``passing_torque``).
+
+Each returns its records (``StationarySpeed``, ``Fold``, ``AveragingPrediction``,
+``PassingTorqueStudy`` or ``NoPassingFold``), which ``simulate_<case>.json`` writes as
+its ``prediction`` and ``passing_torque``.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -16,15 +21,191 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
 from ..errors import InputError
+from ..provenance import JsonRecord
 from . import averaging as av
 from .batch import Batch, simulate_batch
 from .drive import DriveSchedule
 from .rotor_models import RotorStructure
 
+#: A field left out of the JSON while None.
+_OMIT = {"omit_if_none": True}
+
+
+@dataclass(frozen=True)
+class StationarySpeed(JsonRecord):
+    """A stationary speed of the exact linear torque balance (``stationary_exact``)."""
+
+    omega: float
+    """the speed (rad/s)"""
+    stable: bool
+    """the balance falls through it (its slope in W is negative): a disturbed run returns"""
+
+
+@dataclass(frozen=True)
+class Fold(JsonRecord):
+    """A fold of the exact linear F(W) = k W**2 + s W - <shaft torque>(W) (``exact_folds``)."""
+
+    kind: str
+    """"A" (a local maximum: a run-up's branch ends) or "D" (a local minimum: a run-down's)"""
+    omega: float
+    """where the fold lies (rad/s)"""
+    torque_at_zero: float
+    """F there: the motor's M0 at which a quasi-static run jumps (N*m)"""
+
+
+@dataclass(frozen=True)
+class ResonancePeak(JsonRecord):
+    """One resonance and the averaging's response at its peak (Eq. 19-20 at Omega = omega_i)."""
+
+    index: int
+    """i, from 1 (-)"""
+    direction: str
+    """"X" (pillar and rotor) or "Y" (rotor on its shaft)"""
+    omega: float
+    """omega_i (rad/s)"""
+    nu: float
+    """n_i / omega_i (-)"""
+    a_max: float | None
+    """Eq. 19 at Omega = omega_i (m); None (JSON null) where unbounded: an undamped resonance"""
+    dL_max: float
+    """Eq. 20 at Omega = omega_i (N*m)"""
+
+
+@dataclass(frozen=True)
+class AveragingPrediction(JsonRecord):
+    """What the paper's Eq. 19-23 predict for one drive on a model (``averaging_prediction``):
+    the ``prediction`` of ``simulate_<case>.json``."""
+
+    stationary: tuple[av.Stationary, ...]
+    """the stationary speeds of the averaged torque balance, ascending"""
+    jumps: tuple[av.Jump, ...]
+    """the jumps of a quasi-static run-up and run-down of M0 with the drive's slope"""
+    runup_speed: float | None
+    """where a quasi-static run-up settles: the lowest stationary speed (rad/s), or None"""
+    rundown_speed: float | None
+    """where a quasi-static run-down settles: the highest (rad/s), or None"""
+    captured_index: int | None
+    """the resonance (index) that holds a run-up below a faster stable regime (-), or None"""
+    captured_resonance: float | None
+    """that resonance's omega_i (rad/s), or None"""
+    captured_at: float | None
+    """the speed the run-up settles at when captured: ``runup_speed`` (rad/s), or None"""
+    resonances: tuple[ResonancePeak, ...]
+    """every resonance of the model with its peak amplitude and torque"""
+
+
+@dataclass(frozen=True)
+class PassingResonance(JsonRecord):
+    """The resonance whose fold sets the passing torque."""
+
+    index: int
+    """i, from 1 (-)"""
+    direction: str
+    """"X" (pillar and rotor) or "Y" (rotor on its shaft)"""
+    omega: float
+    """omega_i (rad/s)"""
+    nu: float
+    """n_i / omega_i (-)"""
+
+
+@dataclass(frozen=True)
+class BracketRun(JsonRecord):
+    """A simulated run-up from rest just below or above the predicted passing torque."""
+
+    torque_at_zero: float
+    """its motor's M0 (N*m)"""
+    final_speed: float
+    """mean speed over its last 20 outputs (rad/s)"""
+    passed: bool
+    """the final speed lies above the pass threshold (the predicted jump's midpoint)"""
+
+
+@dataclass(frozen=True)
+class BracketSeries(JsonRecord):
+    """The two bracket runs' histories, for the run-up chart: rows in ``bracket_runs``' order."""
+
+    t: tuple[float, ...]
+    """output times (s)"""
+    Omega: tuple[tuple[float, ...], ...]
+    """(2, n_t) rotor speed (rad/s)"""
+    tip_peak: tuple[tuple[float, ...], ...]
+    """(2, n_t) largest |tip X| per output interval (m)"""
+
+
+@dataclass(frozen=True, kw_only=True)
+class NoPassingFold(JsonRecord):
+    """The passing-torque study when the analysis finds no run-up fold: nothing to test."""
+
+    predicted: None = None
+    """no passing torque: null in the JSON"""
+    statement: str
+    """why, in words"""
+
+
+@dataclass(frozen=True, kw_only=True)
+class PassingTorqueStudy(JsonRecord):
+    """The motor torque M0 needed to run up through the first resonance that can capture
+    the rotor, predicted and simulated (``passing_torque``): ``passing_torque`` of
+    ``simulate_runup.json``."""
+
+    resonance: PassingResonance
+    """the resonance the run-up must pass"""
+    predicted: float
+    """M0 at the A fold of Eq. 19-23 (N*m)"""
+    predicted_jump: av.Jump
+    """that fold's jump"""
+    predicted_exact_linear: float | None
+    """M0 at the exact linear torque's A fold next to it (N*m), or None"""
+    duration: float
+    """length of each simulated run-up (s)"""
+    pass_threshold_speed: float
+    """a run passed when its final speed lies above this: the jump's midpoint (rad/s)"""
+    grid: tuple[float, ...]
+    """M0 of the first batch of run-ups, around the prediction (N*m)"""
+    grid_final_speed: tuple[float, ...]
+    """their final speeds (rad/s)"""
+    grid_passed: tuple[bool, ...]
+    """whether each passed"""
+    non_monotonic: bool | None = field(default=None, metadata=_OMIT)
+    """True when a run above the first that passed was captured (absent otherwise)"""
+    simulated: float | None
+    """the smallest M0 that passes, refined between two grid points (N*m); None when every
+    run passed or none did"""
+    simulated_bracket: tuple[float, float] | None = field(default=None, metadata=_OMIT)
+    """the refined M0 captured and passed around it (N*m) (absent without ``simulated``)"""
+    rel_error_predicted: float | None = field(default=None, metadata=_OMIT)
+    """predicted / simulated - 1 (-) (absent without ``simulated``)"""
+    rel_error_exact_linear: float | None = None
+    """predicted_exact_linear / simulated - 1 (-), None without the exact fold (absent
+    without ``simulated``)"""
+    statement: str
+    """the outcome in words"""
+    bracket_runs: tuple[BracketRun, ...]
+    """run-ups at 0.95 and 1.05 times the prediction"""
+    bracket_series: BracketSeries
+    """their histories"""
+    runs: int
+    """run-ups simulated in all (-)"""
+    batch_wall_seconds: float
+    """wall time of the batches (s)"""
+
+    def to_json(self) -> dict[str, Any]:
+        out: dict[str, Any] = super().to_json()
+        if self.simulated_bracket is None:  # no simulated torque, nothing to compare: absent, not null
+            del out["rel_error_exact_linear"]
+        return out
+
+
+def passing_torque_from_json(doc: dict[str, Any]) -> PassingTorqueStudy | NoPassingFold:
+    """The ``passing_torque`` section back from its JSON (either shape)."""
+    shape = NoPassingFold if doc.get("predicted") is None else PassingTorqueStudy
+    record: PassingTorqueStudy | NoPassingFold = shape.from_json(doc)
+    return record
+
 
 def stationary_exact(
     model: RotorStructure, M0: float, slope: float, load: float, top: float | None = None, n: int = 3000
-) -> list[dict[str, Any]]:
+) -> list[StationarySpeed]:
     """Stationary speeds of the exact linear torque balance
     M0 - s W - k W**2 + <shaft torque>(W) = 0 and their stability."""
     free = DriveSchedule.constant(M0, slope, load).free_speed()
@@ -47,48 +228,51 @@ def stationary_exact(
     for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
         w = brentq(g, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1])
         h = 1e-6 * w
-        out.append({"omega": w, "stable": bool(g(w + h) - g(w - h) < 0)})
+        out.append(StationarySpeed(float(w), bool(g(w + h) - g(w - h) < 0)))
     return out
 
 
 def operating_speed(model: RotorStructure, M0: float, slope: float, load: float) -> float:
     """The fastest stationary speed: where the machine runs in service (rad/s)."""
     st = stationary_exact(model, M0, slope, load)
-    stable = [s["omega"] for s in st if s["stable"]]
+    stable = [s.omega for s in st if s.stable]
     if not stable:
         raise InputError(f"no stable stationary speed for M0 = {M0:g} N*m: the motor cannot drive this machine")
     return float(max(stable))
 
 
-def averaging_prediction(model: RotorStructure, M0: float, slope: float, load: float) -> dict[str, Any]:
+def averaging_prediction(model: RotorStructure, M0: float, slope: float, load: float) -> AveragingPrediction:
     """What the paper's Eq. 19-23 predict for this drive on this model's quasi-normal modes."""
     res = model.quasi_normal()
     d = av.analyse_drive(av.Characteristic(M0, slope, load), res)
-    return {
-        "stationary": [vars(s) for s in d.stationary],
-        "jumps": [vars(j) for j in d.jumps],
-        "runup_speed": d.runup_speed,
-        "rundown_speed": d.rundown_speed,
-        "captured_index": d.captured_index,
-        "captured_resonance": None
+    peaks = []
+    for r in res:
+        a_max = float(av.amplitude(r.omega, r))
+        peaks.append(
+            ResonancePeak(
+                index=r.index,
+                direction=r.direction,
+                omega=r.omega,
+                nu=r.nu,
+                a_max=a_max if np.isfinite(a_max) else None,  # what the JSON has always held: null
+                dL_max=float(av.resistance_increment(r.omega, r)),
+            )
+        )
+    return AveragingPrediction(
+        stationary=tuple(d.stationary),
+        jumps=tuple(d.jumps),
+        runup_speed=d.runup_speed,
+        rundown_speed=d.rundown_speed,
+        captured_index=d.captured_index,
+        captured_resonance=None
         if d.captured_index is None
         else next(r.omega for r in res if r.index == d.captured_index),
-        "captured_at": None if d.captured_index is None else d.runup_speed,
-        "resonances": [
-            {
-                "index": r.index,
-                "direction": r.direction,
-                "omega": r.omega,
-                "nu": r.nu,
-                "a_max": float(av.amplitude(r.omega, r)),
-                "dL_max": float(av.resistance_increment(r.omega, r)),
-            }
-            for r in res
-        ],
-    }
+        captured_at=None if d.captured_index is None else d.runup_speed,
+        resonances=tuple(peaks),
+    )
 
 
-def exact_folds(model: RotorStructure, slope: float, load: float, top: float) -> list[dict[str, Any]]:
+def exact_folds(model: RotorStructure, slope: float, load: float, top: float) -> list[Fold]:
     """Local maxima (A, run-up) and minima (D, run-down) of the exact linear
     F(W) = k W**2 + s W - <shaft torque>(W): the torques where quasi-static
     runs jump."""
@@ -97,13 +281,13 @@ def exact_folds(model: RotorStructure, slope: float, load: float, top: float) ->
     dF = np.diff(F)
     out = []
     for i in np.nonzero(np.sign(dF[:-1]) != np.sign(dF[1:]))[0]:
-        out.append({"kind": "A" if dF[i] > 0 else "D", "omega": float(W[i + 1]), "torque_at_zero": float(F[i + 1])})
+        out.append(Fold("A" if dF[i] > 0 else "D", float(W[i + 1]), float(F[i + 1])))
     return out
 
 
 def predicted_passing_torque(
     model: RotorStructure, torque_at_zero: float, slope: float, load: float
-) -> tuple[av.Jump | None, dict[str, Any] | None]:
+) -> tuple[av.Jump | None, Fold | None]:
     """(jump, exact): the first run-up fold of Eq. 19-23 (the lowest A
     fold; None when there is none) and the exact linear torque's A fold next to
     it (``exact_folds`` entry, or None).  ``torque_at_zero`` sets only the top
@@ -117,14 +301,14 @@ def predicted_passing_torque(
     exact = [
         f
         for f in exact_folds(model, slope, load, 1.5 * j.omega_to)
-        if f["kind"] == "A" and abs(f["omega"] - j.omega_from) < 0.2 * j.omega_from
+        if f.kind == "A" and abs(f.omega - j.omega_from) < 0.2 * j.omega_from
     ]
     return j, (exact[0] if exact else None)
 
 
 def passing_torque(
     model: RotorStructure, drive: DriveSchedule, duration: float, rtol: float, span: float = 0.2, points: int = 41
-) -> dict[str, Any]:
+) -> PassingTorqueStudy | NoPassingFold:
     """The motor torque M0 needed to run up through the first resonance that
     can capture the rotor: predicted (the A fold of Eq. 19-23, and of the
     exact linear torque) and simulated (run-ups from rest for M0 around the
@@ -133,13 +317,11 @@ def passing_torque(
     res = model.quasi_normal()
     j, fold = predicted_passing_torque(model, max(drive.torque_at_zero), s, k)
     if j is None:
-        return {
-            "predicted": None,
-            "statement": "The analysis finds no fold for this motor slope and load: a run-up "
-            "passes every resonance with any torque that reaches it; nothing to test.",
-        }
+        return NoPassingFold(
+            statement="The analysis finds no fold for this motor slope and load: a run-up "
+            "passes every resonance with any torque that reaches it; nothing to test."
+        )
     r = next(r for r in res if r.index == j.resonance)
-    exact = [fold] if fold else []
     M_pred = j.torque_at_zero
     threshold = 0.5 * (j.omega_from + j.omega_to)
     M_scene = float(max(drive.torque_at_zero))
@@ -152,20 +334,13 @@ def passing_torque(
     grid = M_pred * np.linspace(1 - span, 1 + span, points)
     b1, final1, passed1 = runs(grid)
     wall = b1.wall_seconds
-    out: dict[str, Any] = {
-        "resonance": {"index": r.index, "direction": r.direction, "omega": r.omega, "nu": r.nu},
-        "predicted": M_pred,
-        "predicted_jump": vars(j),
-        "predicted_exact_linear": exact[0]["torque_at_zero"] if exact else None,
-        "duration": duration,
-        "pass_threshold_speed": threshold,
-        "grid": grid,
-        "grid_final_speed": final1,
-        "grid_passed": passed1,
-    }
+    non_monotonic: bool | None = None
+    simulated: float | None = None
+    bracket: tuple[float, float] | None = None
+    rel_pred: float | None = None
+    rel_exact: float | None = None
     if passed1.all() or not passed1.any():
-        out["simulated"] = None
-        out["statement"] = (
+        statement = (
             "every run "
             + ("passed" if passed1.all() else "was captured")
             + f" for M0 within +-{100 * span:g} % of the prediction"
@@ -173,35 +348,48 @@ def passing_torque(
     else:
         i = int(np.argmax(passed1))
         if not passed1[i:].all():
-            out["non_monotonic"] = True
+            non_monotonic = True
         fine = np.linspace(grid[i - 1], grid[i], 21)
         b2, final2, passed2 = runs(fine)
         wall += b2.wall_seconds
         i2 = int(np.argmax(passed2)) if passed2.any() else len(fine) - 1
         lo, hi = fine[max(i2 - 1, 0)], fine[i2]
-        out.update(
-            {
-                "simulated": 0.5 * (lo + hi),
-                "simulated_bracket": [lo, hi],
-                "rel_error_predicted": M_pred / (0.5 * (lo + hi)) - 1,
-                "rel_error_exact_linear": (exact[0]["torque_at_zero"] / (0.5 * (lo + hi)) - 1) if exact else None,
-            }
-        )
-        out["statement"] = (
+        simulated = float(0.5 * (lo + hi))
+        bracket = (float(lo), float(hi))
+        rel_pred = float(M_pred / (0.5 * (lo + hi)) - 1)
+        rel_exact = None if fold is None else float(fold.torque_at_zero / (0.5 * (lo + hi)) - 1)
+        statement = (
             f"Run-up through resonance {r.index} ({r.omega:.2f} rad/s): the analysis "
             f"(Eq. 19-23) says M0 >= {M_pred:.1f} N*m passes; simulated run-ups "
             f"from rest over {duration:g} s pass from {0.5 * (lo + hi):.1f} N*m "
-            f"({100 * out['rel_error_predicted']:+.1f} %)."
+            f"({100 * rel_pred:+.1f} %)."
         )
     # two runs just below and above the prediction, for the charts
     below, above = 0.95 * M_pred, 1.05 * M_pred
     b3, final3, passed3 = runs([below, above])
     wall += b3.wall_seconds
-    out["bracket_runs"] = [
-        {"torque_at_zero": float(M), "final_speed": float(f), "passed": bool(p)}
-        for M, f, p in zip((below, above), final3, passed3)
-    ]
-    out["bracket_series"] = {"t": b3.t, "Omega": b3.Omega, "tip_peak": b3.tip_peak}
-    out["runs"] = int(len(grid) + (21 if out.get("simulated") else 0) + 2)
-    out["batch_wall_seconds"] = wall
-    return out
+    return PassingTorqueStudy(
+        resonance=PassingResonance(r.index, r.direction, r.omega, r.nu),
+        predicted=M_pred,
+        predicted_jump=j,
+        predicted_exact_linear=None if fold is None else fold.torque_at_zero,
+        duration=duration,
+        pass_threshold_speed=threshold,
+        grid=tuple(grid.tolist()),
+        grid_final_speed=tuple(final1.tolist()),
+        grid_passed=tuple(passed1.tolist()),
+        non_monotonic=non_monotonic,
+        simulated=simulated,
+        simulated_bracket=bracket,
+        rel_error_predicted=rel_pred,
+        rel_error_exact_linear=rel_exact,
+        statement=statement,
+        bracket_runs=tuple(BracketRun(float(M), float(f), bool(p)) for M, f, p in zip((below, above), final3, passed3)),
+        bracket_series=BracketSeries(
+            t=tuple(b3.t.tolist()),
+            Omega=tuple(map(tuple, b3.Omega.tolist())),
+            tip_peak=tuple(map(tuple, b3.tip_peak.tolist())),
+        ),
+        runs=int(len(grid) + (21 if simulated else 0) + 2),
+        batch_wall_seconds=wall,
+    )

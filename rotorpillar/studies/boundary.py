@@ -50,7 +50,7 @@ def _fold(scene: Scene, which: str, M_top: float, modes_of=None) -> tuple:
     ]
     return (
         None if j is None else float(j.torque_at_zero),
-        None if exact is None else float(exact["torque_at_zero"]),
+        None if exact is None else float(exact.torque_at_zero),
         None if j is None else int(j.resonance),
         res,
     )

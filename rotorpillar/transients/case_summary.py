@@ -24,6 +24,7 @@ from ..reduced.batch import shaft_deflection
 from ..reduced.excitation import GroundMotion, no_motion
 from ..reduced.integration import Transient
 from ..reduced.rotor_models import RotorStructure
+from ..reduced.stationary import AveragingPrediction, NoPassingFold, PassingTorqueStudy, passing_torque_from_json
 from .case_checks import (
     NoSpectrumCheck,
     NoTruncationEstimate,
@@ -266,11 +267,11 @@ class CaseSummary:
     """the run's energy against the work done (J)"""
     integrator: dict
     """the integrator's statistics"""
-    prediction: dict
+    prediction: AveragingPrediction
     """what the averaging theory predicts for the drive"""
     jumps: tuple[NumericJump, ...]
     """the sweep's numeric jumps (empty for the other cases)"""
-    passing_torque: dict | None = None
+    passing_torque: PassingTorqueStudy | NoPassingFold | None = None
     """run-up: the torque needed to pass the first capturing resonance"""
     sweep: SweepFindings | None = None
     excitation: dict | None = None
@@ -301,6 +302,9 @@ class CaseSummary:
             elif f.name == "sweep":
                 if v is not None:
                     out.update(v.to_json())
+            elif f.name in ("prediction", "passing_torque"):
+                if v is not None:
+                    out[f.name] = v.to_json()
             elif f.name in ("passages", "jumps"):
                 out[f.name] = [p.to_json() for p in v]
             elif f.name in ("energy_balance", "response_spectrum_check", "truncation") and v is not None:
@@ -313,6 +317,9 @@ class CaseSummary:
     def from_json(cls, d: dict) -> CaseSummary:
         kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
         kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
+        kw["prediction"] = AveragingPrediction.from_json(d["prediction"])
+        if d.get("passing_torque") is not None:
+            kw["passing_torque"] = passing_torque_from_json(d["passing_torque"])
         kw["jumps"] = tuple(NumericJump.from_json(j) for j in d.get("jumps") or ())
         kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
         if d.get("truncation") is not None:
@@ -444,7 +451,7 @@ def run_checks(run: Transient, drive_free_speed: float, accuracy: AccuracyCheck 
     return failed
 
 
-def run_summary(run: Transient, drive_free_speed: float, prediction: dict, **sections) -> CaseSummary:
+def run_summary(run: Transient, drive_free_speed: float, prediction: AveragingPrediction, **sections) -> CaseSummary:
     """The summary of ``run``; ``sections`` override or add fields (jumps,
     captured_at, passing_torque, sweep, ...)."""
     tail = run.t >= run.t[-1] - max(0.05 * (run.t[-1] - run.t[0]), 1e-9)

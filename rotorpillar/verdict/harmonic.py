@@ -36,7 +36,7 @@ def running_speeds(model, scene: Scene) -> list[float]:
     from ..reduced.stationary import stationary_exact
 
     d, L = scene.drive, scene.load
-    return sorted(s["omega"] for s in stationary_exact(model, d.torque_at_zero, d.slope, L.coefficient) if s["stable"])
+    return sorted(s.omega for s in stationary_exact(model, d.torque_at_zero, d.slope, L.coefficient) if s.stable)
 
 
 def rom_modes(model) -> list[ModeEntry]:

@@ -23,6 +23,7 @@ from ..directions import short
 from .state import Build
 
 if TYPE_CHECKING:
+    from ...reduced.stationary import AveragingPrediction
     from ...transients.case_summary import Passage
     from ...transients.run_records import RunRecord
 
@@ -36,18 +37,18 @@ def _acceleration(arrays: dict, at: float) -> float | None:
     return float(np.interp(at, t, np.gradient(W, t)))
 
 
-def passage_rows(model: str, passages: Sequence[Passage], prediction: dict, arrays: dict) -> list[list]:
+def passage_rows(model: str, passages: Sequence[Passage], prediction: AveragingPrediction, arrays: dict) -> list[list]:
     """One row per resonance the run crossed (``prediction``: the run's averaging
     prediction, its ``resonances`` carrying nu and a_max)."""
-    pred = {r.get("index"): r for r in (prediction.get("resonances") or []) if isinstance(r, dict)}
+    pred = {r.index: r for r in prediction.resonances}
     rows = []
     for p in passages:
         if not p.crossed or p.time is None:
             continue
         w, tc = float(p.omega), float(p.time)
         acc = _acceleration(arrays, tc)
-        r = pred.get(p.index) or {}
-        nu, a_max = r.get("nu"), r.get("a_max")
+        r = pred.get(p.index)
+        nu, a_max = (None, None) if r is None else (r.nu, r.a_max)
         vertical = str(p.direction).upper() == "Y"
         peak = p.peak_rotor_y_near if vertical else p.peak_tip_near
         ratio = acc / w**2 if acc else None
