@@ -349,7 +349,7 @@ def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> SpectralEs
     zeta = [float(model.damping[j, j] / (2 * pm.modal_mass[j] * pm.omega[j])) for j in range(pm.count)]
     rows = []
     for j in range(pm.count):
-        sd = float(response_spectrum(motion, [T[j]], damping=zeta[j])["s_d"][0])
+        sd = float(response_spectrum(motion, [T[j]], damping=zeta[j]).s_d[0])
         gamma = float(pm.participation[j] / pm.modal_mass[j])
         rows.append(
             SpectralMode(

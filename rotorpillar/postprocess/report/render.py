@@ -7,6 +7,7 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
+from ...reduced.excitation_records import PulseSizes, RecordSizes
 from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..geometry import ModeSet
@@ -57,8 +58,9 @@ def render_charts(build: Build) -> None:
         tip = relative_to_ground(quake.arrays, "tip_x", frame)
         rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
         model = run.model if run is not None else "model not stated"
-        ex = quake.excitation or {}
-        what = ": the paper's pulse as written, not a realistic earthquake" if ex.get("realistic") is False else ""
+        ex = quake.excitation
+        unreal = isinstance(ex, (PulseSizes, RecordSizes)) and not ex.realistic
+        what = ": the paper's pulse as written, not a realistic earthquake" if unreal else ""
         p = attempt(
             build,
             "earthquake_chart",
@@ -283,15 +285,15 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
             )
     quake = build.quake_case
     if quake is not None and quake.arrays.get("t") is not None:
-        ex = quake.excitation or {}
-        pulse = ex.get("realistic") is False or ex.get("kind") == "pulse"
+        ex = quake.excitation
+        pulse = isinstance(ex, PulseSizes) or (isinstance(ex, RecordSizes) and not ex.realistic)
         banner = ""
-        if pulse:
-            step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0.0)
+        if isinstance(ex, (PulseSizes, RecordSizes)) and pulse:
+            step = abs((ex.displacement_step_at_start if isinstance(ex, PulseSizes) else 0.0) or ex.peak_displacement)
             banner = (
                 "NOT AN EARTHQUAKE: the paper's pulse\n"
                 f"as written: the ground steps {step:.3g} m,\n"
-                f"{ex.get('peak_acceleration_g', 0):.3g} g (see the report)"
+                f"{ex.peak_acceleration_g:.3g} g (see the report)"
             )
         name = (
             "earthquake_paper"
