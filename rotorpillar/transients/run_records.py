@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass, field, replace
 from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
 from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
+from ..reduced.integration import EnergyBalance
 from ..reduced.system import Resonance
 from ..scene.sections import Mesh
 from .case_summary import CaseSummary
@@ -172,7 +173,7 @@ class Fem3dRun(JsonRecord):
     """mean speed over the last 5 % of the run (rad/s)"""
     max_abs: dict
     """largest |value| per output (m), and the forces' (N, N m, Pa)"""
-    energy_balance: dict
+    energy_balance: EnergyBalance
     """the energy balance of the run (J) and its relative error (-)"""
     integrator: dict
     """the scheme, its step (s), steps and wall times (s)"""
