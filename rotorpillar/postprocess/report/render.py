@@ -7,7 +7,7 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
-from ...reduced.excitation_records import PulseSizes, RecordSizes
+from ...reduced.excitation_records import ExcitationSizes, PulseSizes, RecordSizes
 from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..geometry import ModeSet
@@ -153,14 +153,14 @@ def render_comparisons(build: Build) -> None:
                 spec["psa"],
                 marks,
                 damping,
-                title=f"Response spectrum of the record ({_record_name(c.doc)})",
+                title=f"Response spectrum of the record ({_record_name(c.record.excitation)})",
             ),
         )
         if p:
             build.products["response_spectrum"] = Product(
                 p,
                 (
-                    f"Pseudo-acceleration response spectrum of the record ({_record_name(c.doc)}, "
+                    f"Pseudo-acceleration response spectrum of the record ({_record_name(c.record.excitation)}, "
                     f"{100 * float(damping):g} % damping, eqsig); marked on the curve, with the value "
                     f"read off it: {what}."
                 ),
@@ -183,9 +183,11 @@ def passage_of(c, model: str):
     return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
 
 
-def _record_name(doc: dict) -> str:
-    ex = doc.get("excitation") or {}
-    return str(ex.get("name") or ex.get("record") or ex.get("kind") or "the scene's excitation")
+def _record_name(ex: ExcitationSizes | None) -> str:
+    """The ground motion a comparison ran on, by its name (a record's) or its kind."""
+    if isinstance(ex, RecordSizes) and ex.name:
+        return ex.name
+    return ex.kind if ex is not None else "the scene's excitation"
 
 
 def mode_sets(build: Build) -> dict[str, ModeSet | None]:
@@ -279,7 +281,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
                 (
                     "earthquake",
                     Simulation("earthquake", c.runs.get(model), c.arrays[model]),
-                    f"{_record_name(c.doc)} on the {model} model",
+                    f"{_record_name(c.record.excitation)} on the {model} model",
                     {},
                 )
             )
