@@ -318,3 +318,32 @@ def test_run_records_read_the_sizes_back_as_records(name, tmp_path):
     doc["excitation"] = sizes.to_json()
     result = CompareResult.from_json(doc)
     assert result.excitation == sizes and result.to_json()["excitation"] == _old_sizes(MOTIONS[name])
+
+
+def _old_excitation_text(ex) -> str | None:
+    """postprocess.report.compare_section.excitation_text as it was, on the JSON block."""
+    from rotorpillar.postprocess import html as h
+
+    if not isinstance(ex, dict):
+        return None
+    if isinstance(ex.get("statement"), str):
+        return ex["statement"]
+    if ex.get("kind") != "record":
+        return None
+    what = [f"peak acceleration {h.num(ex.get('peak_acceleration_g'), 3)} g"]
+    if ex.get("peak_velocity") is not None:
+        what.append(f"peak velocity {h.num(ex['peak_velocity'], 3)} m/s")
+    if ex.get("peak_displacement") is not None:
+        what.append(f"peak displacement {h.num(ex['peak_displacement'], 3)} m")
+    start = f", from t = {h.num(ex['start'], 4)} s" if ex.get("start") is not None else ""
+    name = f"Ground motion: the record {ex.get('name', '?')}" + (f" ({ex['source']})" if ex.get("source") else "")
+    return name + ": " + ", ".join(what) + start + "."
+
+
+@pytest.mark.parametrize("name", list(MOTIONS))
+def test_the_report_states_the_motion_as_before(name):
+    from rotorpillar.postprocess.report.compare_section import excitation_text
+
+    sizes = MOTIONS[name].sizes()
+    assert excitation_text(sizes) == _old_excitation_text(sizes.to_json())
+    assert excitation_text(None) is None
