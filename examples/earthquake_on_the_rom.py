@@ -19,8 +19,8 @@ print(f"pillar model: {chain.pillar_model.describe()}")
 result = run_case(scene, "earthquake", "modal", truncation=False, pillar_modes=chain.modes)
 s = result.summary
 print(
-    f"record: PGA {s.excitation['peak_acceleration_g']:.2f} g, "
-    f"PGD {s.excitation['peak_displacement']:.3f} m ({'realistic' if s.excitation['realistic'] else 'NOT realistic'})"
+    f"record: PGA {s.excitation.peak_acceleration_g:.2f} g, "
+    f"PGD {s.excitation.peak_displacement:.3f} m ({'realistic' if s.excitation.realistic else 'NOT realistic'})"
 )
 print(
     f"modal model with {result.model.pillar_modes.count} pillar modes: peak tip "

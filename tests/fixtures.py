@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorpillar.provenance import atomic_path, write_json
+from rotorpillar.reduced.excitation_records import ExcitationSizes
 from rotorpillar.reduced.pillar import cantilever_mode, omega_euler_bernoulli, tube_section
 from rotorpillar.transients.measures import compare_series, envelope_window
 from rotorpillar.transients.run_records import BeamFullOrder, Fem3dRun, ReducedRun
@@ -270,20 +271,32 @@ def simulation_arrays(
     }
 
 
-def _pulse() -> dict:
-    """The excitation block of the paper's pulse, its sizes from the pulse's law."""
-    A, w, start = _G / np.pi, np.pi, 5.0
-    return {
-        "kind": "pulse",
-        "amplitude": A,
-        "frequency": w,
-        "start": start,
-        "end": 12.0,
-        "displacement_step_at_start": A * (math.cos(w * start) - 1),
-        "peak_acceleration_g": A * w * w / 9.80665,
-        "realistic": False,
-        "statement": "The paper's pulse as written (synthetic fixture).",
-    }
+def _pulse():
+    """The excitation block of the paper's pulse: its sizes, from the pulse's law."""
+    from rotorpillar.reduced.excitation import paper_pulse
+
+    return paper_pulse(_G / np.pi, np.pi, 5.0, 7.0).sizes()
+
+
+def burst_sizes():
+    """The excitation block of a synthetic record (no accelerogram behind it)."""
+    from rotorpillar.reduced.excitation_records import RecordSizes
+
+    return RecordSizes(
+        kind="record",
+        name="synthetic burst",
+        source="tests/fixtures.py",
+        time_step=0.01,
+        start=2.0,
+        end=22.0,
+        samples=2001,
+        peak_acceleration=0.31 * _G,
+        peak_acceleration_g=0.31,
+        peak_velocity=0.33,
+        peak_displacement=0.12,
+        band=60.0,
+        realistic=True,
+    )
 
 
 def _synthetic_pillar():
@@ -312,7 +325,7 @@ def reduced_run(
     tip_x_frame: str,
     dofs: int,
     wall_seconds: float,
-    excitation: dict | None = None,
+    excitation: ExcitationSizes | None = None,
     warnings=(),
     full_order=None,
 ):
@@ -382,12 +395,13 @@ def fem3d_run(
     *,
     dofs: int,
     wall_seconds: float,
-    excitation: dict | None,
+    excitation: ExcitationSizes | None,
     warnings=(),
     note: str = "",
 ):
     """A ``Fem3dRun`` (``simulate_<case>_fem3d.json``) built by its records' constructors: a
     12 x 24 x 1 quadratic hexahedral mesh from the scene (unverified), the step 2 ms."""
+    from rotorpillar.reduced.integration import EnergyBalance
     from rotorpillar.scene.sections import Mesh
     from rotorpillar.transients.references import FullOrderReference
     from rotorpillar.transients.run_records import Fem3dPlan
@@ -403,7 +417,16 @@ def fem3d_run(
         omega_final=float(Omega[-1]),
         omega_final_mean=float(np.mean(Omega[int(0.95 * len(Omega)) :])),
         max_abs=dict(max_abs),
-        energy_balance={"relative_error": 2e-5},
+        energy_balance=EnergyBalance(
+            energy_change=1.0,  # the drive's work less the residual below
+            work_drive_minus_load=1.0 + 2e-5,
+            work_shaft_on_structure=0.0,
+            dissipated=0.0,
+            work_base=0.0,
+            max_abs_residual=2e-5,
+            scale=1.0,
+            relative_error=2e-5,
+        ),
         integrator={"method": "synthetic"},
         dofs=dofs,
         wall_seconds=wall_seconds,
@@ -533,20 +556,9 @@ def write_comparison_fixture(
     wall = {"modal": 0.8, "fem3d": 41.5, "beam": 3.2, "paper": 0.4}
     warnings = warnings or {}
     per, errors = {}, {}
-    excitation = (
-        {
-            "kind": "record",
-            "name": "synthetic burst",
-            "source": "tests/fixtures.py",
-            "start": 2.0,
-            "peak_acceleration_g": 0.31,
-            "peak_velocity": 0.33,
-            "peak_displacement": 0.12,
-            "realistic": True,
-        }
-        if case == "earthquake"
-        else {"kind": "none"}
-    )
+    from rotorpillar.reduced.excitation_records import NoMotionSizes
+
+    excitation = burst_sizes() if case == "earthquake" else NoMotionSizes()
     for m in models:
         a = arrays[m]
         _save_npz(out / f"simulate_{case}_{m}.npz", a)
@@ -609,7 +621,7 @@ def write_comparison_fixture(
         "case": case,
         "models_run": list(models),
         "reference": reference,
-        "excitation": excitation,
+        "excitation": excitation.to_json(),
         "per_model": per,
         "errors": errors,
         "cost_ratio": {m: wall[m] / wall[reference] for m in models},

@@ -31,6 +31,6 @@ def test_the_finding_is_flagged_and_explained():
     rows = {r.key: r for r in analyze(load_scene("paper-stiff")).paper_comparison}
     row = rows["eq4_base_forcing"]
     assert row.paper == pytest.approx((9.6e6 + 2 * 5e6) / 9.6e6)
-    assert row.details["amplifies"] and "anchored to the ground" in row.note
+    assert row.details.amplifies and "anchored to the ground" in row.note
     default = {r.key: r for r in analyze(load_scene("paper")).paper_comparison}["eq4_base_forcing"]
-    assert not default.details["amplifies"]  # 8 %: under the 10 % limit
+    assert not default.details.amplifies  # 8 %: under the 10 % limit

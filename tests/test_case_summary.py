@@ -10,7 +10,7 @@ import pytest
 from rotorpillar.provenance import to_json
 from rotorpillar.reduced.averaging import Jump
 from rotorpillar.reduced.drive import DriveSchedule
-from rotorpillar.reduced.excitation import no_motion
+from rotorpillar.reduced.excitation import no_motion, paper_pulse
 from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import NoPassingFold, averaging_prediction
@@ -87,7 +87,7 @@ def test_optional_sections_in_the_order_simulate_writes_them(summary):
     assert d["no_jump_reason"] is None and d["rate_convergence"] is None  # present, null
     s = replace(summary, passing_torque=NoPassingFold(statement="none"))
     assert list(_roundtrip(s)) == BASE_KEYS + ["passing_torque"]
-    s = replace(summary, excitation={"amplitude": 3.1}, response_spectrum_check=NoSpectrumCheck("x"))
+    s = replace(summary, excitation=paper_pulse().sizes(), response_spectrum_check=NoSpectrumCheck("x"))
     assert list(_roundtrip(s)) == BASE_KEYS + ["excitation", "response_spectrum_check"]
 
 

@@ -258,11 +258,11 @@ def test_excitation_band_of_the_paper_scene():
     paper = load_scene("paper")
     band = cv.excitation_band(paper.drive, paper.load, paper.converge)
     # Md = Mc: 5100 - 12 W = 0.5 W**2
-    assert band["free_speed"] == pytest.approx(-12 + math.sqrt(144 + 2 * 5100))
-    assert band["omega_max"] == pytest.approx(1.5 * band["free_speed"])
+    assert band.free_speed == pytest.approx(-12 + math.sqrt(144 + 2 * 5100))
+    assert band.omega_max == pytest.approx(1.5 * band.free_speed)
     fast = override(paper, ["converge.earthquake_frequency=100"])
     quake = cv.excitation_band(fast.drive, fast.load, fast.converge)
-    assert quake["driver"] == "earthquake" and quake["omega_max"] == pytest.approx(150.0)
+    assert quake.driver == "earthquake" and quake.omega_max == pytest.approx(150.0)
 
 
 @pytest.mark.slow  # a shell ladder up to 32 around

@@ -120,7 +120,7 @@ def test_band_modes_are_the_lowest_of_a_fixed_count_and_pass_the_band():
 
     scene = override(load_scene("paper"), ["mesh.elements_around=16", "mesh.elements_along=6"])
     assert scene.modal.n_modes == 0
-    edge = excitation_band(scene.drive, scene.load, scene.converge)["omega_max"]
+    edge = excitation_band(scene.drive, scene.load, scene.converge).omega_max
     band = modal_analysis(scene, top=False, use_cache=False)
     fixed = modal_analysis(scene, top=False, n_modes=2 * BAND_MODES + 8, use_cache=False)
     k = len(band.omega)

@@ -299,7 +299,7 @@ def test_the_scene_run_of_the_3d_full_order_reads_by_its_record(tmp_path):
     for case in ("runup", "earthquake"):
         a = fixtures.model_arrays(case, "fem3d", n=200)
         peaks = {k: float(np.abs(a[k]).max()) for k in ("tip_x_relative", "tip_x", "rotor_x", "rotor_y")}
-        ex = {"kind": "record", "name": "synthetic"} if case == "earthquake" else None
+        ex = fixtures.burst_sizes() if case == "earthquake" else None
         run = fixtures.fem3d_run(case, a["t"], a["Omega"], peaks, dofs=9, wall_seconds=1.0, excitation=ex)
         build.simulations[case] = Simulation(case, run, a, run.to_json())
     build.quake_case = build.simulations["earthquake"]

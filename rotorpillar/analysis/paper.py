@@ -378,18 +378,18 @@ def base_forcing_row(scene: Scene, result: PaperBlocks) -> PaperRow:
     """
     c1, c2 = result.reduction.tip_stiffness, scene.shaft.stiffness
     f = base_forcing_finding(c1, c2, scene.pillar.damping, scene.shaft.damping)
-    gain = f["static_gain_published"]
+    gain = f.static_gain_published
     note = (
-        f"Eq. 4 forces q1 by {f['published']['q1']} and q2 by {f['published']['q2']}, as if "
+        f"Eq. 4 forces q1 by {f.published.q1} and q2 by {f.published.q2}, as if "
         f"the shaft were anchored to the ground; only the pillar reaches it: "
-        f"{f['consistent']['q1']} on q1 and nothing on q2 (in relative coordinates "
-        f"{f['consistent']['relative_coordinates']}). Under a slow ground displacement the "
+        f"{f.consistent.q1} on q1 and nothing on q2 (in relative coordinates "
+        f"{f.consistent.relative_coordinates}). Under a slow ground displacement the "
         f"published forcing gives the tip (c1 + 2 c2)/c1 = {gain:.3g} times the ground's, "
         "not 1; the modal model uses the consistent forcing."
     )
-    if f["amplifies"]:
+    if f.amplifies:
         note += (
-            f" With this scene's shaft that is more than {f['limit']:.2f}: the paper "
+            f" With this scene's shaft that is more than {f.limit:.2f}: the paper "
             "model's earthquake is inflated (simulate warns)."
         )
     rel = (1.0 - gain) / gain

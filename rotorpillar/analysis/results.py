@@ -16,6 +16,7 @@ from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
 from ..reduced.averaging import Jump  # noqa: F401  (records of analyze.json too)
 from ..reduced.averaging import Stationary as StationarySpeed
+from ..reduced.base_forcing import BaseForcingFinding
 from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
     Lumping,
     PillarClosedForms,
@@ -149,8 +150,8 @@ class PaperRow(JsonRecord):
     flag: bool
     where: str
     note: str
-    details: dict | None = field(default=None, metadata={"omit_if_none": True})
-    """what a finding (not a printed number) states, e.g. eq4_base_forcing"""
+    details: BaseForcingFinding | None = field(default=None, metadata={"omit_if_none": True})
+    """what a finding (not a printed number) states: eq4_base_forcing's"""
 
 
 @dataclass(frozen=True)

@@ -29,7 +29,7 @@ SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
 def band_edge(scene: Scene) -> float:
     from ..reduced.band import excitation_band
 
-    return excitation_band(scene.drive, scene.load, scene.converge)["omega_max"]
+    return excitation_band(scene.drive, scene.load, scene.converge).omega_max
 
 
 def band_cut(result, edge: float, first: int = 8):

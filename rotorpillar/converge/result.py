@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from ..provenance import JsonRecord
+from ..reduced.band import ExcitationBand  # noqa: F401  (defined where the band is computed; read here)
 
 _OMIT: dict[str, Any] = {"omit_if_none": True}
 _OK_ONLY: dict[str, Any] = {"omit_if_none": True, "ok_only": True}
@@ -210,23 +211,6 @@ class ReferenceValue(FamilyExtrapolation):
     family: str
     check: RichardsonCheck | None = field(default=None, metadata=_OMIT)
     """absent when the family has fewer than four runs"""
-
-
-@dataclass(frozen=True)
-class ExcitationBand(JsonRecord):
-    """The frequencies the scene excites, and the band a model must resolve
-    (rotorpillar.reduced.band.excitation_band)."""
-
-    free_speed: float
-    """the drive's free speed (rad/s)"""
-    earthquake_frequency: float
-    """the ground motion's highest frequency, converge.earthquake_frequency (rad/s)"""
-    margin: float
-    """converge.margin (-)"""
-    omega_max: float
-    """the band's top: margin x the larger (rad/s)"""
-    driver: str
-    """which sets it: "drive free speed" or "earthquake" """
 
 
 @dataclass(frozen=True)

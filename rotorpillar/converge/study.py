@@ -87,7 +87,7 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> StudyAnalysi
     extrapolations = {name: {q: family_extrapolation(v) for q, v in qs.items()} for name, qs in extrap.items()}
     references = {q: reference_value(v) for q, v in reference.items()}
     runs = attach_errors((study_run(r) for r in records), references, extrapolations)
-    band = excitation_band_record(excitation_band(scene.drive, scene.load, scene.converge))
+    band = excitation_band(scene.drive, scene.load, scene.converge)
     selection = select_model(runs, references, band, tolerance)
     ref_unc = reference_uncertainty(references)
     ok = [r for r in runs if r.status == "ok"]
@@ -172,17 +172,6 @@ def reference_value(d: dict) -> ReferenceValue:
             within_estimate=bool(chk["within_estimate"]),
         )
     return ReferenceValue(**vars(family_extrapolation(d)), family=d["family"], check=check)
-
-
-def excitation_band_record(b: dict) -> ExcitationBand:
-    """The band (rotorpillar.reduced.band.excitation_band) as a record."""
-    return ExcitationBand(
-        free_speed=b["free_speed"],
-        earthquake_frequency=b["earthquake_frequency"],
-        margin=b["margin"],
-        omega_max=b["omega_max"],
-        driver=b["driver"],
-    )
 
 
 def _fronts(ok: list[ConvergenceRun], cost: str, needed: Sequence[str], ref_unc: dict[str, float]) -> Fronts:

@@ -129,7 +129,7 @@ def _band_modes(scene: Scene, **kw) -> ModalResult:
     BAND_MODES; not the 16 or more a fixed count asks on every scene."""
     from ..reduced.band import excitation_band
 
-    edge = excitation_band(scene.drive, scene.load, scene.converge)["omega_max"]
+    edge = excitation_band(scene.drive, scene.load, scene.converge).omega_max
     n = BAND_MODES
     while True:
         result = modal_analysis(scene, n_modes=n, **kw)

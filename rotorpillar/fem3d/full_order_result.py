@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from ..reduced.integration import EnergyBalance
+
 WORK_COLUMNS = ("drive_minus_load", "shaft_on_structure", "dissipated", "base")
 #: the share of the energy exchanged the balance may miss (as transients.case_summary.ENERGY_CHECK)
 ENERGY_CHECK = 0.05
@@ -59,7 +61,8 @@ class Fem3dTransient:
     omega_final: float
     omega_final_mean: float
     """mean speed over the last 5 % of the run (rad/s)"""
-    energy_balance: dict
+    energy_balance: EnergyBalance
+    """E(t) - E(0) against the work done (J), as the reduced models' runs state it"""
     integrator: dict
     dofs: int
     """unknowns: the tube's (with inert constrained rows), the plate's 6, the rotor's 3"""
@@ -96,7 +99,7 @@ class Fem3dTransient:
     def to_json(self) -> dict:
         """JSON-ready; ``from_json`` rebuilds it exactly."""
         return {
-            f.name: (v.tolist() if isinstance(v, np.ndarray) else v)
+            f.name: (v.tolist() if isinstance(v, np.ndarray) else v.to_json() if isinstance(v, EnergyBalance) else v)
             for f in fields(self)
             for v in (getattr(self, f.name),)
         }
@@ -105,6 +108,7 @@ class Fem3dTransient:
     def from_json(cls, data: dict) -> Fem3dTransient:
         arrays = {f.name for f in fields(cls) if f.type == "np.ndarray"}
         kwargs: dict[str, Any] = {k: (np.asarray(v, dtype=float) if k in arrays else v) for k, v in data.items()}
+        kwargs["energy_balance"] = EnergyBalance.from_json(data["energy_balance"])
         return cls(**kwargs)
 
 
@@ -121,20 +125,20 @@ def transient_result(case, out, stats, dofs, wall, info, motion, drive, prescrib
     scale = max(
         np.max(np.abs(E - E[0])), np.max(np.abs(inflow)), np.max(np.abs(work[:, 2])), np.max(np.abs(work[:, 3])), 1e-300
     )
-    balance = {
-        "energy_change": float(E[-1] - E[0]),
-        "work_drive_minus_load": float(work[-1, 0]),
-        "work_shaft_on_structure": float(work[-1, 1]),
-        "dissipated": float(work[-1, 2]),
-        "work_base": float(work[-1, 3]),
-        "max_abs_residual": float(np.max(np.abs(resid))),
-        "scale": float(scale),
-        "relative_error": float(np.max(np.abs(resid)) / scale),
-    }
+    balance = EnergyBalance(
+        energy_change=float(E[-1] - E[0]),
+        work_drive_minus_load=float(work[-1, 0]),
+        work_shaft_on_structure=float(work[-1, 1]),
+        dissipated=float(work[-1, 2]),
+        work_base=float(work[-1, 3]),
+        max_abs_residual=float(np.max(np.abs(resid))),
+        scale=float(scale),
+        relative_error=float(np.max(np.abs(resid)) / scale),
+    )
     failed = list(failed)
     if stats["status"] != "ok":
         failed.insert(0, f"integrator_stopped: {stats['status']}")
-    e = balance["relative_error"]
+    e = balance.relative_error
     if not np.isfinite(e) or e > ENERGY_CHECK:
         failed.append(
             f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "

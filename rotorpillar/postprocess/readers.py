@@ -58,6 +58,7 @@ if TYPE_CHECKING:
     from ..analysis.results import AnalysisResult
     from ..converge.result import ConvergenceStudy
     from ..fem3d.modal_summary import ModalSummary
+    from ..reduced.excitation_records import ExcitationSizes
     from ..studies.result import StudyResult
     from ..transients.case_summary import CaseSummary
     from ..transients.integrator_records import IntegratorStudy
@@ -240,7 +241,7 @@ class Simulation:
         return None if a is None else np.asarray(a, dtype=float)
 
     @property
-    def excitation(self) -> dict[str, Any] | None:
+    def excitation(self) -> ExcitationSizes | None:
         """The run's ground motion's sizes (the earthquake's ``excitation``), or None."""
         return outcome(self.run).excitation if self.run is not None else None
 

@@ -2,15 +2,33 @@
 
 from __future__ import annotations
 
-from typing import Any
+from dataclasses import dataclass
 
+from ..provenance import JsonRecord
 from ..scene import Converge, Drive, Load, Sweep
 from .averaging import Characteristic
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 
 
-def excitation_band(drive: Drive, load: Load, converge: Converge) -> dict[str, Any]:
+@dataclass(frozen=True)
+class ExcitationBand(JsonRecord):
+    """The frequencies the scene excites, and the band a model must resolve
+    (``excitation_band``)."""
+
+    free_speed: float
+    """the drive's free speed (rad/s)"""
+    earthquake_frequency: float
+    """the ground motion's highest frequency, converge.earthquake_frequency (rad/s)"""
+    margin: float
+    """converge.margin (-)"""
+    omega_max: float
+    """the band's top: margin x the larger (rad/s)"""
+    driver: str
+    """which sets it: "drive free speed" or "earthquake" """
+
+
+def excitation_band(drive: Drive, load: Load, converge: Converge) -> ExcitationBand:
     """The frequencies the scene excites, and the band a model must resolve.
 
     The rotor runs at most at the drive's free speed (Md = Mc, no resonance
@@ -22,13 +40,13 @@ def excitation_band(drive: Drive, load: Load, converge: Converge) -> dict[str, A
     free = ch.free_speed()
     cv = converge
     top = max(free, cv.earthquake_frequency)
-    return {
-        "free_speed": free,
-        "earthquake_frequency": cv.earthquake_frequency,
-        "margin": cv.margin,
-        "omega_max": cv.margin * top,
-        "driver": "drive free speed" if free >= cv.earthquake_frequency else "earthquake",
-    }
+    return ExcitationBand(
+        free_speed=free,
+        earthquake_frequency=cv.earthquake_frequency,
+        margin=cv.margin,
+        omega_max=cv.margin * top,
+        driver="drive free speed" if free >= cv.earthquake_frequency else "earthquake",
+    )
 
 
 def forcing_top(drive: Drive, load: Load, sweep: Sweep, case: str, motion: GroundMotion | None) -> float:

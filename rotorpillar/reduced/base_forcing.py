@@ -14,7 +14,9 @@ does not have.
 
 from __future__ import annotations
 
-from typing import Any
+from dataclasses import dataclass, field
+
+from ..provenance import JsonRecord
 
 #: Above this ratio of the published static gain over the consistent one (1),
 #: the paper model's earthquake is flagged: the published forcing then
@@ -33,28 +35,61 @@ def published_static_gain(tip_stiffness: float, shaft_stiffness: float) -> float
     return (tip_stiffness + 2 * shaft_stiffness) / tip_stiffness
 
 
+@dataclass(frozen=True)
+class ForcingTerms(JsonRecord):
+    """Eq. 4's base forcing on q1 and q2, in words with this scene's numbers
+    (stiffness N/m on q5, damping N*s/m on q5')."""
+
+    q1: str
+    """the forcing on the tip q1"""
+    q2: str
+    """the forcing on the rotor centre q2"""
+    relative_coordinates: str | None = field(default=None, metadata={"omit_if_none": True})
+    """the same forcing in coordinates relative to the ground (absent for the published one)"""
+
+
+@dataclass(frozen=True)
+class BaseForcingFinding(JsonRecord):
+    """Eq. 4's published base forcing against the consistent one, for a scene."""
+
+    published: ForcingTerms
+    """c0 q5 + b0 q5' on q1, c2 q5 + b2 q5' on q2"""
+    consistent: ForcingTerms
+    """c1 q5 + b1 q5' on q1, nothing on q2"""
+    static_gain_published: float
+    """static tip gain q1/q5 of the published forcing, (c1 + 2 c2)/c1 (-)"""
+    static_gain_consistent: float
+    """static tip gain of the consistent forcing: 1 (-)"""
+    amplification: float
+    """the published gain over the consistent one (-)"""
+    amplifies: bool
+    """the amplification passes ``limit``"""
+    limit: float
+    """AMPLIFICATION_LIMIT (-)"""
+
+
 def base_forcing_finding(
     tip_stiffness: float, shaft_stiffness: float, pillar_damping: float, shaft_damping: float
-) -> dict[str, Any]:
+) -> BaseForcingFinding:
     """The published and the consistent base forcing of Eq. 4 for a scene, and the gain."""
     c1, c2, b1, b2 = tip_stiffness, shaft_stiffness, pillar_damping, shaft_damping
     gain = published_static_gain(c1, c2)
-    return {
-        "published": {
-            "q1": f"c0 q5 + b0 q5' = {c1 + c2:.4g} q5 + {b1 + b2:.4g} q5'",
-            "q2": f"c2 q5 + b2 q5' = {c2:.4g} q5 + {b2:.4g} q5'",
-        },
-        "consistent": {
-            "q1": f"c1 q5 + b1 q5' = {c1:.4g} q5 + {b1:.4g} q5'",
-            "q2": "0",
-            "relative_coordinates": "-M r a_g (m_A a_g on q1, m_C a_g on q2)",
-        },
-        "static_gain_published": gain,
-        "static_gain_consistent": 1.0,
-        "amplification": gain,
-        "amplifies": gain > AMPLIFICATION_LIMIT,
-        "limit": AMPLIFICATION_LIMIT,
-    }
+    return BaseForcingFinding(
+        published=ForcingTerms(
+            q1=f"c0 q5 + b0 q5' = {c1 + c2:.4g} q5 + {b1 + b2:.4g} q5'",
+            q2=f"c2 q5 + b2 q5' = {c2:.4g} q5 + {b2:.4g} q5'",
+        ),
+        consistent=ForcingTerms(
+            q1=f"c1 q5 + b1 q5' = {c1:.4g} q5 + {b1:.4g} q5'",
+            q2="0",
+            relative_coordinates="-M r a_g (m_A a_g on q1, m_C a_g on q2)",
+        ),
+        static_gain_published=gain,
+        static_gain_consistent=1.0,
+        amplification=gain,
+        amplifies=gain > AMPLIFICATION_LIMIT,
+        limit=AMPLIFICATION_LIMIT,
+    )
 
 
 def published_forcing_warning(tip_stiffness: float, shaft_stiffness: float) -> str | None:

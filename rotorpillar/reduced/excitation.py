@@ -29,7 +29,7 @@ baseline-corrected so its velocity and displacement end at zero (eqsig's
 >>> g = paper_pulse()
 >>> [round(float(x), 4) for x in g.evaluate(5.0)]
 [-6.2431, -0.0, 30.8085]
->>> round(g.sizes()["peak_acceleration_g"], 4)
+>>> round(g.sizes().peak_acceleration_g, 4)
 3.1416
 """
 
@@ -47,6 +47,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..scene import read_text_file
+from .excitation_records import ExcitationSizes, NoMotionSizes, PulseSizes, RecordSizes, SpectralOrdinates
 
 STANDARD_GRAVITY = 9.80665  # m/s**2
 UNITS = {"g": STANDARD_GRAVITY, "m/s2": 1.0, "cm/s2": 0.01}
@@ -143,59 +144,57 @@ class GroundMotion:
             return float(2 * math.pi * f[min(int(np.searchsorted(cum, 0.99)), len(f) - 1)])
         return 0.0
 
-    def sizes(self) -> dict[str, Any]:
-        """How big the motion is, in the units an engineer checks (JSON-ready)."""
+    def sizes(self) -> ExcitationSizes:
+        """How big the motion is, in the units an engineer checks."""
         if self.kind == "none":
-            return {"kind": "none"}
+            return NoMotionSizes()
         if self.kind == "pulse":
             A, w = self.amplitude, self.frequency
             u0 = A * (math.cos(w * self.start) - 1)
-            return {
-                "kind": "pulse",
-                "law": "q5 = A*(cos(omega*t) - 1) for start <= t < end, 0 outside",
-                "amplitude": A,
-                "frequency": w,
-                "start": self.start,
-                "end": self.end,
-                "displacement_step_at_start": u0,
-                "peak_displacement": float(2 * A) if w * (self.end - self.start) >= math.pi else abs(u0),
-                "peak_velocity": A * w,
-                "peak_acceleration": A * w * w,
-                "peak_acceleration_g": A * w * w / STANDARD_GRAVITY,
-                "inertial_final_displacement": float(self.inertial_displacement(self.end)),
-                "realistic": False,
-                "statement": (
+            return PulseSizes(
+                kind="pulse",
+                law="q5 = A*(cos(omega*t) - 1) for start <= t < end, 0 outside",
+                amplitude=A,
+                frequency=w,
+                start=self.start,
+                end=self.end,
+                displacement_step_at_start=u0,
+                peak_displacement=float(2 * A) if w * (self.end - self.start) >= math.pi else abs(u0),
+                peak_velocity=A * w,
+                peak_acceleration=A * w * w,
+                peak_acceleration_g=A * w * w / STANDARD_GRAVITY,
+                inertial_final_displacement=float(self.inertial_displacement(self.end)),
+                realistic=False,
+                statement=(
                     f"The paper's pulse as written: the ground jumps {u0:.3g} m at t = "
                     f"{self.start:g} s and swings {2 * A:.3g} m at {w / (2 * math.pi):.3g} Hz "
                     f"with a peak acceleration of {A * w * w / STANDARD_GRAVITY:.3g} g. "
                     "This is not a realistic earthquake (strong records: 0.3-1 g, "
                     'ground displacements of decimetres); use kind = "record" for one.'
                 ),
-            }
+            )
         pga = float(np.max(np.abs(self.acceleration)))
-        sizes = {
-            "kind": "record",
-            "name": self.name,
-            "source": self.source,
-            "time_step": self.time_step,
-            "start": self.start,
-            "end": self.end,
-            "samples": int(len(self.acceleration)),
-            "peak_acceleration": pga,
+        peaks = {
             "peak_acceleration_g": pga / STANDARD_GRAVITY,
             "peak_velocity": float(np.max(np.abs(self.velocity))),
             "peak_displacement": float(np.max(np.abs(self.displacement))),
-            "band": self.band(),
         }
-        why = unrealistic_record(sizes)
-        sizes["realistic"] = not why
-        if why:
-            sizes["statement"] = (
-                "This record is not a realistic earthquake: "
-                + "; ".join(why)
-                + " (check its time column's unit and its acceleration unit)."
-            )
-        return sizes
+        why = "; ".join(unrealistic_record({**peaks, "time_step": self.time_step}))
+        unit = "check its time column's unit and its acceleration unit"
+        return RecordSizes(
+            kind="record",
+            name=self.name,
+            source=self.source,
+            time_step=self.time_step,
+            start=self.start,
+            end=self.end,
+            samples=int(len(self.acceleration)),
+            peak_acceleration=pga,
+            band=self.band(),
+            realistic=not why,
+            statement=f"This record is not a realistic earthquake: {why} ({unit})." if why else None,
+            **peaks,
+        )
 
 
 def no_motion() -> GroundMotion:
@@ -470,7 +469,7 @@ def load_record(
     )
 
 
-def response_spectrum(motion: GroundMotion, periods: ArrayLike, damping: float = 0.05) -> dict[str, Any]:
+def response_spectrum(motion: GroundMotion, periods: ArrayLike, damping: float = 0.05) -> SpectralOrdinates:
     """Pseudo-acceleration and displacement response spectra of a record (eqsig); a
     pulse is sampled at 1/200 of its period over its window first."""
     import eqsig
@@ -492,7 +491,7 @@ def response_spectrum(motion: GroundMotion, periods: ArrayLike, damping: float =
             _SPECTRA.clear()
         _SPECTRA[key] = (np.asarray(sig.s_a), np.asarray(sig.s_d))
     s_a, s_d = _SPECTRA[key]
-    return {"periods": T, "damping": damping, "s_a": s_a.copy(), "s_d": s_d.copy()}
+    return SpectralOrdinates(periods=T, damping=damping, s_a=s_a.copy(), s_d=s_d.copy())
 
 
 _SPECTRA: dict[tuple[str, float, bytes, float], tuple[NDArray[np.float64], NDArray[np.float64]]] = {}

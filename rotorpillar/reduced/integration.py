@@ -39,10 +39,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..provenance import JsonRecord
 from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
 from .drive import DriveSchedule
 from .excitation import GroundMotion
+from .excitation_records import NoMotionSizes
 from .rhs import Floats, Packed
 from .rotor_models import RotorStructure
 
@@ -60,6 +62,28 @@ STATUS = {
     K.NOT_FINITE: "solution diverged (not finite)",
     K.NEWTON_FAILED: "Newton iterations failed",
 }
+
+
+@dataclass(frozen=True)
+class EnergyBalance(JsonRecord):
+    """E(t) - E(0) against the work done over the run (J), and how well it closes."""
+
+    energy_change: float
+    """(J)"""
+    work_drive_minus_load: float
+    """(J)"""
+    work_shaft_on_structure: float
+    """(J)"""
+    dissipated: float
+    """(J)"""
+    work_base: float
+    """work of the ground motion (J)"""
+    max_abs_residual: float
+    """largest |energy change - work| over the run (J)"""
+    scale: float
+    """the energy exchanged the residual is measured against (J)"""
+    relative_error: float
+    """max_abs_residual / scale (-)"""
 
 
 @dataclass(frozen=True)
@@ -121,7 +145,7 @@ class Transient:
     def tip(self) -> NDArray[np.float64]:
         return self.q[:, : self.model.nx] @ self.model.tip
 
-    def energy_balance(self) -> dict[str, Any]:
+    def energy_balance(self) -> EnergyBalance:
         """E(t) - E(0) against the work done, and the relative error.
 
         Free rotor: d(T + P)/dt = (Md - Mc) W - dissipation + base power.
@@ -143,16 +167,16 @@ class Transient:
             np.max(np.abs(self.work[:, 3])),
             1e-300,
         )
-        return {
-            "energy_change": float(E[-1] - E[0]),
-            "work_drive_minus_load": float(self.work[-1, 0]),
-            "work_shaft_on_structure": float(self.work[-1, 1]),
-            "dissipated": float(self.work[-1, 2]),
-            "work_base": float(self.work[-1, 3]),
-            "max_abs_residual": float(np.max(np.abs(resid))),
-            "scale": float(scale),
-            "relative_error": float(np.max(np.abs(resid)) / scale),
-        }
+        return EnergyBalance(
+            energy_change=float(E[-1] - E[0]),
+            work_drive_minus_load=float(self.work[-1, 0]),
+            work_shaft_on_structure=float(self.work[-1, 1]),
+            dissipated=float(self.work[-1, 2]),
+            work_base=float(self.work[-1, 3]),
+            max_abs_residual=float(np.max(np.abs(resid))),
+            scale=float(scale),
+            relative_error=float(np.max(np.abs(resid)) / scale),
+        )
 
 
 def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, rtol: float) -> NDArray[np.float64]:
@@ -162,10 +186,11 @@ def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, 
     elastic = om[om > 1e-6 * max(float(om.max()), 1e-300)] if len(om) else om
     w_min = float(elastic.min()) if len(elastic) else 1.0  # rigid modes carry no scale
     g_scale = 0.0
-    if motion.kind != "none":
-        g_scale = motion.sizes()["peak_acceleration"] / w_min**2
+    sizes = motion.sizes()
+    if not isinstance(sizes, NoMotionSizes):
+        g_scale = sizes.peak_acceleration / w_min**2
         if model.frame == "absolute":
-            g_scale = max(g_scale, motion.sizes()["peak_displacement"])
+            g_scale = max(g_scale, sizes.peak_displacement)
     xs = max(model.eccentricity, 1e-3 * g_scale, 1e-7)
     W = max(speed_scale, 1.0)
     atol = np.empty(2 * n + K.N_WORK)

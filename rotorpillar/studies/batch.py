@@ -38,6 +38,7 @@ from ..reduced.band import forcing_top
 from ..reduced.batch import simulate_batch
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
+from ..reduced.excitation_records import NoMotionSizes
 from ..reduced.models import build_model, scene_motion
 from ..reduced.stationary import operating_speed
 from ..scene import Scene, scene_from_dict
@@ -131,7 +132,8 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
             drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
             t_end = sim.earthquake_duration or motion.end + 5.0
             frees = [drive.free_speed()]
-            extra = {"pga": float(motion.sizes()["peak_acceleration"])}
+            sizes = motion.sizes()
+            extra = {"pga": 0.0 if isinstance(sizes, NoMotionSizes) else float(sizes.peak_acceleration)}
         b = simulate_batch(
             model,
             drive,

@@ -22,7 +22,8 @@ from ..provenance import JsonRecord
 from ..reduced.accuracy import AccuracyCheck, check_step, forcing_frequencies
 from ..reduced.batch import shaft_deflection
 from ..reduced.excitation import GroundMotion, no_motion
-from ..reduced.integration import Transient
+from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
+from ..reduced.integration import EnergyBalance, Transient
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.stationary import AveragingPrediction, NoPassingFold, PassingTorqueStudy, passing_torque_from_json
 from .case_checks import (
@@ -115,28 +116,6 @@ class Passage(JsonRecord):
     """largest tip amplitude while the speed was within 10 % of omega_i (m), or None"""
     peak_rotor_y_near: float | None
     """largest |rotor Y| there (m), or None"""
-
-
-@dataclass(frozen=True)
-class EnergyBalance(JsonRecord):
-    """E(t) - E(0) against the work done over the run (J), and how well it closes."""
-
-    energy_change: float
-    """(J)"""
-    work_drive_minus_load: float
-    """(J)"""
-    work_shaft_on_structure: float
-    """(J)"""
-    dissipated: float
-    """(J)"""
-    work_base: float
-    """work of the ground motion (J)"""
-    max_abs_residual: float
-    """largest |energy change - work| over the run (J)"""
-    scale: float
-    """the energy exchanged the residual is measured against (J)"""
-    relative_error: float
-    """max_abs_residual / scale (-)"""
 
 
 def passages(run: Transient) -> tuple[Passage, ...]:
@@ -274,7 +253,7 @@ class CaseSummary:
     passing_torque: PassingTorqueStudy | NoPassingFold | None = None
     """run-up: the torque needed to pass the first capturing resonance"""
     sweep: SweepFindings | None = None
-    excitation: dict | None = None
+    excitation: ExcitationSizes | None = None
     """earthquake: the ground motion's sizes"""
     response_spectrum_check: SpectrumCheck | NoSpectrumCheck | None = None
     """earthquake on a record: the tip against the response-spectrum estimate"""
@@ -307,7 +286,7 @@ class CaseSummary:
                     out[f.name] = v.to_json()
             elif f.name in ("passages", "jumps"):
                 out[f.name] = [p.to_json() for p in v]
-            elif f.name in ("energy_balance", "response_spectrum_check", "truncation") and v is not None:
+            elif f.name in ("energy_balance", "excitation", "response_spectrum_check", "truncation") and v is not None:
                 out[f.name] = v.to_json()
             elif f.name not in _OPTIONAL or v is not None:
                 out[f.name] = v
@@ -322,6 +301,8 @@ class CaseSummary:
             kw["passing_torque"] = passing_torque_from_json(d["passing_torque"])
         kw["jumps"] = tuple(NumericJump.from_json(j) for j in d.get("jumps") or ())
         kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
+        if d.get("excitation") is not None:
+            kw["excitation"] = excitation_sizes_from_json(d["excitation"])
         if d.get("truncation") is not None:
             kw["truncation"] = truncation_from_json(d["truncation"])
         if d.get("response_spectrum_check") is not None:
@@ -431,7 +412,7 @@ def run_checks(run: Transient, drive_free_speed: float, accuracy: AccuracyCheck 
                 f"{h * w_max:.3g} > 2 (h = {h:g} s)"
             )
     failed += (accuracy or accuracy_check(run)).failed
-    e = run.energy_balance().get("relative_error", 0.0)
+    e = run.energy_balance().relative_error
     if not np.isfinite(e) or e > ENERGY_CHECK:
         failed.append(
             f"energy_balance: the energy balance misses by {100 * e:.3g} % of the energy "
@@ -470,7 +451,7 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: AveragingPr
         captured_index=state.captured_index,
         speed_state=state.speed_state,
         passages=passages(run),
-        energy_balance=EnergyBalance(**run.energy_balance()),
+        energy_balance=run.energy_balance(),
         integrator={**run.stats, "accuracy": acc.to_json()},
         prediction=prediction,
         jumps=(),

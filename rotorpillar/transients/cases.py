@@ -24,6 +24,7 @@ from ..reduced.accuracy import FULL_ORDER_SCHEMES, StepRule, forcing_frequencies
 from ..reduced.band import forcing_top
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import GroundMotion, no_motion, response_spectrum
+from ..reduced.excitation_records import ExcitationSizes
 from ..reduced.integration import Settings, Transient, simulate
 from ..reduced.models import ModelInfo, build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
@@ -55,7 +56,7 @@ class CaseResult:
     """how the model was built (build_model); None for a model handed in"""
     initial_speed: float | None = None
     """the speed the run starts at, where the case sets one (rad/s)"""
-    excitation: dict | None = None
+    excitation: ExcitationSizes | None = None
     """earthquake: the ground motion's sizes (GroundMotion.sizes)"""
     excitation_in_model: str | None = None
     """earthquake: how the model applies the ground motion, in words"""
@@ -358,7 +359,7 @@ def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> SpectralEs
     zeta = [float(model.damping[j, j] / (2 * pm.modal_mass[j] * pm.omega[j])) for j in range(pm.count)]
     rows = []
     for j in range(pm.count):
-        sd = float(response_spectrum(motion, [T[j]], damping=zeta[j])["s_d"][0])
+        sd = float(response_spectrum(motion, [T[j]], damping=zeta[j]).s_d[0])
         gamma = float(pm.participation[j] / pm.modal_mass[j])
         rows.append(
             SpectralMode(

@@ -337,7 +337,7 @@ def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
     est = spectral_estimate(model, motion)
     return ResponseSpectrum(
         period=tuple(periods.tolist()),
-        psa=tuple(np.asarray(rs["s_a"]).tolist()),
+        psa=tuple(rs.s_a.tolist()),
         damping=0.05,
         mode_periods=tuple(row.period for row in est.modes),
         spectral_peak_tip=est.srss_tip_estimate,

@@ -234,9 +234,11 @@ def _warnings(case: str, model, res) -> list[str]:
     any earthquake: a record whose sizes no recorded earthquake has (the commands print
     them on stderr)."""
     out = []
-    quake = res.excitation or {}
-    if case == "earthquake" and quake.get("kind") == "record" and not quake.get("realistic", True):
-        out.append(quake.get("statement", "the record is not a realistic earthquake"))
+    from ..reduced.excitation_records import RecordSizes
+
+    quake = res.excitation  # the ground motion's sizes, for the earthquake only
+    if case == "earthquake" and isinstance(quake, RecordSizes) and not quake.realistic:
+        out.append(quake.statement or "the record is not a realistic earthquake")
     if case == "earthquake" and model.name == "paper":
         from ..reduced.base_forcing import published_forcing_warning
 

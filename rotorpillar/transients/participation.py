@@ -232,8 +232,7 @@ def case_band_top(scene: Scene, case: str, motion=None) -> float:
     free speed; the ground motion's band for the earthquake) (rad/s)."""
     from ..reduced.band import excitation_band
 
-    band = excitation_band(scene.drive, scene.load, scene.converge)
-    top = band["omega_max"]
+    top = excitation_band(scene.drive, scene.load, scene.converge).omega_max
     if case == "earthquake" and motion is not None:
         top = max(top, scene.converge.margin * motion.band())
     return float(top)

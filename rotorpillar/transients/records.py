@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from ..chain.record import PillarModel
 from ..provenance import JsonRecord
+from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
 from .case_checks import SpectralMode
 from .pareto import ParetoStudy
 from .references import FullOrderReference
@@ -117,9 +118,9 @@ class CompareResult(JsonRecord):
     """in the order given"""
     reference: str
     """the most complete model run: fem3d > beam > modal > paper"""
-    excitation: dict | None
-    """the ground motion's sizes (earthquake), as in simulate's JSON (their keys depend
-    on the excitation's kind: rotorpillar.reduced.excitation)"""
+    excitation: ExcitationSizes | None
+    """the ground motion's sizes (earthquake), as in simulate's JSON (their fields depend
+    on the excitation's kind: rotorpillar.reduced.excitation_records)"""
     per_model: dict[str, ComparedModel]
     """model -> its answers, cost and files"""
     errors: dict[str, ModelErrors]
@@ -139,6 +140,12 @@ class CompareResult(JsonRecord):
     pareto: ParetoStudy | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake against the 3D full order: speed against accuracy of every model of the
     ladder on El Centro"""
+
+    @classmethod
+    def from_json(cls, doc: dict) -> CompareResult:
+        base = super().from_json(doc)
+        ex = doc.get("excitation")
+        return replace(base, excitation=None if ex is None else excitation_sizes_from_json(ex))
 
 
 def reference_of(models) -> str:

@@ -16,6 +16,8 @@ from dataclasses import asdict, dataclass, field, replace
 
 from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
+from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
+from ..reduced.integration import EnergyBalance
 from ..reduced.models import ModelInfo
 from ..reduced.system import DampedMode, Resonance
 from ..scene.sections import Mesh
@@ -182,7 +184,7 @@ class Fem3dRun(JsonRecord):
     """mean speed over the last 5 % of the run (rad/s)"""
     max_abs: dict
     """largest |value| per output (m), and the forces' (N, N m, Pa)"""
-    energy_balance: dict
+    energy_balance: EnergyBalance
     """the energy balance of the run (J) and its relative error (-)"""
     integrator: dict
     """the scheme, its step (s), steps and wall times (s)"""
@@ -221,7 +223,7 @@ class Fem3dRun(JsonRecord):
     """the mesh, duration and step, and why"""
     initial_speed: float | None
     """the speed the run starts at (rad/s), None: from rest"""
-    excitation: dict | None = field(default=None, metadata={"omit_if_none": True})
+    excitation: ExcitationSizes | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake: the ground motion's sizes"""
     excitation_in_model: str | None = None
     """earthquake: how the 3D model applies the ground motion, in words (absent for the
@@ -242,7 +244,12 @@ class Fem3dRun(JsonRecord):
     @classmethod
     def from_json(cls, doc: dict) -> Fem3dRun:
         base = super().from_json({**doc, "failed_checks": doc.get("failed_checks"), "resonances": []})
-        return replace(base, resonances=tuple(_resonance(r) for r in doc["resonances"]))
+        ex = doc.get("excitation")
+        return replace(
+            base,
+            resonances=tuple(_resonance(r) for r in doc["resonances"]),
+            excitation=None if ex is None else excitation_sizes_from_json(ex),
+        )
 
 
 #: one model's run, as ``ModelRun.record`` holds it

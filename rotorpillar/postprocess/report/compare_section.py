@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
+from ...reduced.excitation_records import ExcitationSizes, PulseSizes, RecordSizes
 from ...transients.run_comparisons import comparison_command, comparison_overrides
 from .. import html as h
 from .parts import failure, product_image, scene_differs
@@ -55,27 +56,23 @@ def missing_comparison(build: Build, case: str) -> list[str]:
     ]
 
 
-def excitation_text(ex) -> str | None:
+def excitation_text(ex: ExcitationSizes | None) -> str | None:
     """One sentence on the ground motion a run used (its excitation block)."""
-    if not isinstance(ex, dict):
+    if isinstance(ex, (PulseSizes, RecordSizes)) and ex.statement is not None:
+        return ex.statement
+    if not isinstance(ex, RecordSizes):
         return None
-    if isinstance(ex.get("statement"), str):
-        return ex["statement"]
-    if ex.get("kind") != "record":
-        return None
-    what = [f"peak acceleration {h.num(ex.get('peak_acceleration_g'), 3)} g"]
-    if ex.get("peak_velocity") is not None:
-        what.append(f"peak velocity {h.num(ex['peak_velocity'], 3)} m/s")
-    if ex.get("peak_displacement") is not None:
-        what.append(f"peak displacement {h.num(ex['peak_displacement'], 3)} m")
-    start = f", from t = {h.num(ex['start'], 4)} s" if ex.get("start") is not None else ""
+    what = [
+        f"peak acceleration {h.num(ex.peak_acceleration_g, 3)} g",
+        f"peak velocity {h.num(ex.peak_velocity, 3)} m/s",
+        f"peak displacement {h.num(ex.peak_displacement, 3)} m",
+    ]
     return (
-        f"Ground motion: the record {ex.get('name', '?')}"
-        + (f" ({ex['source']})" if ex.get("source") else "")
+        f"Ground motion: the record {ex.name}"
+        + (f" ({ex.source})" if ex.source else "")
         + ": "
         + ", ".join(what)
-        + start
-        + "."
+        + f", from t = {h.num(ex.start, 4)} s."
     )
 
 
@@ -194,7 +191,7 @@ def comparison_block(build: Build, case: str) -> list[str]:
         return missing_comparison(build, case)
     doc, models = c.doc, c.models
     parts = scene_differs(build, doc, ignore=comparison_overrides(case))
-    ex = excitation_text(doc.get("excitation"))
+    ex = excitation_text(c.record.excitation)
     if ex:
         parts.append(h.tag("p", ex))
     w = doc.get("window")

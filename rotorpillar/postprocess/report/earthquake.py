@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...reduced.excitation_records import PulseSizes, RecordSizes
 from ...transients.run_comparisons import comparison_models
 from .. import html as h
 from ..compare_reader import relative_to_ground
@@ -38,15 +39,13 @@ def base_forcing_finding(analysis):
 
 def _size(sim: Simulation) -> str:
     """How large the run's ground motion is: from its excitation block, else its arrays."""
-    ex = sim.excitation or {}
+    ex = sim.excitation
     g, a = sim.get("ground_x"), sim.get("ground_acceleration")
     said = []
-    if ex.get("displacement_step_at_start") is not None:
-        said.append(
-            f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m at t = {h.num(ex.get('start'), 4)} s"
-        )
-    if ex.get("peak_acceleration_g") is not None:
-        said.append(f"its acceleration reaches {ex['peak_acceleration_g']:.3g} g")
+    if isinstance(ex, PulseSizes):
+        said.append(f"the ground steps {abs(ex.displacement_step_at_start):.3g} m at t = {h.num(ex.start, 4)} s")
+    if isinstance(ex, (PulseSizes, RecordSizes)):
+        said.append(f"its acceleration reaches {ex.peak_acceleration_g:.3g} g")
     elif a is not None and len(a):
         said.append(f"its acceleration reaches {np.abs(a).max() / STANDARD_GRAVITY:.3g} g")
     if g is not None and len(g):
@@ -134,16 +133,17 @@ def paper_case(build: Build) -> list[str]:
     run = sim.run
     model = run.model if run is not None else "model not stated"
     name = f"simulate_earthquake_{model}.json" if run is not None and run.model else "simulate_earthquake.json"
-    ex = sim.excitation or {}
+    ex = sim.excitation
+    kind = ex.kind if ex is not None else "excitation not stated"
     what = (
         "The paper's pulse on Eq. 4 as published"
-        if model == "paper" and ex.get("kind") == "pulse"
-        else f"The scene's earthquake run ({model} model, {ex.get('kind', 'excitation not stated')})"
+        if model == "paper" and kind == "pulse"
+        else f"The scene's earthquake run ({model} model, {kind})"
     )
     parts = scene_differs(build, sim.doc)
     parts.append(h.tag("p", what + ". " + _size(sim) + _tip(sim)))
-    if isinstance(ex.get("statement"), str):
-        parts.append(h.tag("p", ex["statement"], class_="warn" if ex.get("realistic") is False else None))
+    if isinstance(ex, (PulseSizes, RecordSizes)) and ex.statement is not None:
+        parts.append(h.tag("p", ex.statement, class_="warn" if not ex.realistic else None))
     if model == "paper":
         parts += _flaw(build)
     if run is not None:

@@ -36,7 +36,8 @@ def forces_runs(build: Build) -> list[ForcesRun]:
         got = read_run(build.out / doc["_file"])
         run = got.record if got is not None else None
         if run is not None and run.internal_forces is not None:
-            label = case_name(run.case, outcome(run).excitation)
+            ex = outcome(run).excitation
+            label = case_name(run.case, None if ex is None else ex.to_json())  # verdict reads documents
             out.append(ForcesRun(label, doc["_file"], run.internal_forces))
     return out
 

@@ -124,12 +124,9 @@ def key_results(run: RunRecord) -> str:
     ):
         if value is not None:
             rows.append([label, h.num(value)])
-    error: float | None
-    if isinstance(got, CaseSummary):  # the 3D run has no jumps; its energy balance is a dict
+    if isinstance(got, CaseSummary):  # the 3D run has no jumps
         rows.append(["jumps", str(len(got.jumps))])
-        error = got.energy_balance.relative_error
-    else:
-        error = got.energy_balance.get("relative_error")
+    error = got.energy_balance.relative_error
     if isinstance(error, (int, float)):
         rows.append(["energy balance: relative error (-)", h.num(error, 3)])
     rows += _peaks(run.max_abs)

@@ -7,6 +7,7 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
+from ...reduced.excitation_records import ExcitationSizes, PulseSizes, RecordSizes
 from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..geometry import ModeSet
@@ -57,8 +58,9 @@ def render_charts(build: Build) -> None:
         tip = relative_to_ground(quake.arrays, "tip_x", frame)
         rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
         model = run.model if run is not None else "model not stated"
-        ex = quake.excitation or {}
-        what = ": the paper's pulse as written, not a realistic earthquake" if ex.get("realistic") is False else ""
+        ex = quake.excitation
+        unreal = isinstance(ex, (PulseSizes, RecordSizes)) and not ex.realistic
+        what = ": the paper's pulse as written, not a realistic earthquake" if unreal else ""
         p = attempt(
             build,
             "earthquake_chart",
@@ -151,14 +153,14 @@ def render_comparisons(build: Build) -> None:
                 spec["psa"],
                 marks,
                 damping,
-                title=f"Response spectrum of the record ({_record_name(c.doc)})",
+                title=f"Response spectrum of the record ({_record_name(c.record.excitation)})",
             ),
         )
         if p:
             build.products["response_spectrum"] = Product(
                 p,
                 (
-                    f"Pseudo-acceleration response spectrum of the record ({_record_name(c.doc)}, "
+                    f"Pseudo-acceleration response spectrum of the record ({_record_name(c.record.excitation)}, "
                     f"{100 * float(damping):g} % damping, eqsig); marked on the curve, with the value "
                     f"read off it: {what}."
                 ),
@@ -181,9 +183,11 @@ def passage_of(c, model: str):
     return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
 
 
-def _record_name(doc: dict) -> str:
-    ex = doc.get("excitation") or {}
-    return str(ex.get("name") or ex.get("record") or ex.get("kind") or "the scene's excitation")
+def _record_name(ex: ExcitationSizes | None) -> str:
+    """The ground motion a comparison ran on, by its name (a record's) or its kind."""
+    if isinstance(ex, RecordSizes) and ex.name:
+        return ex.name
+    return ex.kind if ex is not None else "the scene's excitation"
 
 
 def mode_sets(build: Build) -> dict[str, ModeSet | None]:
@@ -277,21 +281,21 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
                 (
                     "earthquake",
                     Simulation("earthquake", c.runs.get(model), c.arrays[model]),
-                    f"{_record_name(c.doc)} on the {model} model",
+                    f"{_record_name(c.record.excitation)} on the {model} model",
                     {},
                 )
             )
     quake = build.quake_case
     if quake is not None and quake.arrays.get("t") is not None:
-        ex = quake.excitation or {}
-        pulse = ex.get("realistic") is False or ex.get("kind") == "pulse"
+        ex = quake.excitation
+        pulse = isinstance(ex, PulseSizes) or (isinstance(ex, RecordSizes) and not ex.realistic)
         banner = ""
-        if pulse:
-            step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0.0)
+        if isinstance(ex, (PulseSizes, RecordSizes)) and pulse:
+            step = abs((ex.displacement_step_at_start if isinstance(ex, PulseSizes) else 0.0) or ex.peak_displacement)
             banner = (
                 "NOT AN EARTHQUAKE: the paper's pulse\n"
                 f"as written: the ground steps {step:.3g} m,\n"
-                f"{ex.get('peak_acceleration_g', 0):.3g} g (see the report)"
+                f"{ex.peak_acceleration_g:.3g} g (see the report)"
             )
         name = (
             "earthquake_paper"

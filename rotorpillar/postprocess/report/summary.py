@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from ...reduced.excitation_records import PulseSizes, RecordSizes
 from ...transients.run_comparisons import COMPARISONS, comparison_command
 from .. import html as h
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND, outcome
@@ -140,15 +141,17 @@ def _runs(build: Build) -> list[str | h.Raw]:
         got = outcome(run)
         model = run.model
         if case == "earthquake":
-            ex = got.excitation or {}
-            if ex.get("realistic") is False:
-                step = abs(ex.get("displacement_step_at_start") or ex.get("peak_displacement") or 0)
+            ex = got.excitation
+            if isinstance(ex, (PulseSizes, RecordSizes)) and not ex.realistic:
+                step = abs(
+                    (ex.displacement_step_at_start if isinstance(ex, PulseSizes) else 0.0) or ex.peak_displacement
+                )
                 items.append(
                     h.Raw(
                         h.esc(
                             f"The paper's own earthquake ({model} model) is a "
                             f"{step:.3g} m ground step at "
-                            f"{ex.get('peak_acceleration_g', float('nan')):.3g} g, "
+                            f"{ex.peak_acceleration_g:.3g} g, "
                             "not an earthquake: "
                         )
                         + h.link("see the earthquake section", "earthquake")
