@@ -179,10 +179,10 @@ def test_fem3d_run_forces_against_the_rom(tmp_path):
     s = override(load_scene("paper"), ["excitation.kind=record"])
     fem = run_model(s, "earthquake", "fem3d", duration=9.0, field_dir=tmp_path)
     rom = run_model(s, "earthquake", "modal", duration=9.0)
-    mf, mr = fem.result["max_abs"], rom.result["max_abs"]
+    mf, mr = fem.record.to_json()["max_abs"], rom.record.to_json()["max_abs"]
     assert mf["base_moment"] == pytest.approx(mr["base_moment"], rel=2e-2)
     assert mf["von_mises"] >= 0.9 * mf["base_stress"]
-    f = fem.result["internal_forces"]
+    f = fem.record.to_json()["internal_forces"]
     assert f["stress_field"] == "simulate_earthquake_fem3d.xdmf"
     assert (tmp_path / "simulate_earthquake_fem3d.xdmf").is_file()
     assert len(f["heights"]) >= 10 and f["heights"][0] == 0.0

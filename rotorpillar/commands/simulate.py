@@ -168,7 +168,7 @@ def simulate_command(scene: Scene, args, timings):
             field_dir=out_dir(scene, args),
             study_dir=out_dir(scene, args),
         )
-    result = dict(run.result)
+    result = run.record.to_json()
     for warning in result.get("warnings") or ():
         progress(f"warning: {warning}")
     if is_root_rank():

@@ -75,7 +75,7 @@ def write_model_files(
     model_files: dict[str, str | list[str]] = {k: Path(v).name for k, v in files.items()}
     model_files["json"] = f"{stem}.json"
     model_files["figures"] = [f["file"] for f in figures]
-    result = dict(run.result)
+    result = run.record.to_json()
     result["model_files"] = model_files
     doc = with_provenance(
         {**result, "files": {k: str(v) for k, v in files.items()}, "figures": figures},

@@ -64,11 +64,6 @@ class ModelRun:
     case_result: object = None
     """the reduced models' CaseResult (the run-up's brackets, the sweep's curves), else None"""
 
-    @property
-    def result(self) -> dict:
-        """The JSON fields of the record (as the readers of the hand-built dict read them)."""
-        return self.record.to_json()
-
 
 def run_model(
     scene: Scene,
