@@ -323,6 +323,21 @@ def test_the_ladder_has_the_bending_only_family():
         and c.settings == next(r for r in rungs if r.level == scene.mesh.elements_along).settings
     ]
     assert len(shared) == 1  # one cached run, two families
-    run = {"bending": 30.86, "ovalling": 696.0}
-    assert resolved_only("solid_hex_p2_along", run) == {"bending": 30.86, "ovalling": None}
+    from rotorpillar.converge.result import ConvergenceRun
+
+    case = shared[0]
+    run = ConvergenceRun(
+        key="k",
+        family=case.family,
+        model="solid",
+        label=case.label,
+        level=case.level,
+        params=case.settings,
+        status="ok",
+        bending=30.86,
+        ovalling=696.0,
+        ovalling_n=2,
+    )
+    along = resolved_only("solid_hex_p2_along", run)
+    assert (along.bending, along.ovalling, along.ovalling_n) == (30.86, None, 2)
     assert resolved_only("solid_hex_p2_around", run) is run

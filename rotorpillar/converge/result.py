@@ -82,10 +82,46 @@ class Mode(JsonRecord):
 class OvallingAlias(JsonRecord):
     """An "ovalling" mode with more waves than the nodes around carry: an alias."""
 
-    omega: float
-    """its frequency (rad/s)"""
+    omega: float | None
+    """its frequency (rad/s; None where the run's family does not resolve ovalling,
+    rotorpillar.converge.ladder.resolved_only)"""
     n: int
     """the wave number it was read with (-)"""
+
+
+@dataclass(frozen=True)
+class RunResult(JsonRecord):
+    """What one run of the ladder computes (rotorpillar.converge.compute) and what it cost
+    (rotorpillar.converge.runner): the fields of :class:`ConvergenceRun` after its case, as
+    the serving process sends it back and the run cache stores it."""
+
+    bending: float | None
+    """first bending frequency (rad/s; None: no bending mode resolved)"""
+    ovalling: float | None
+    """first ovalling frequency (rad/s; None: none resolved)"""
+    ovalling_n: int | None
+    """the ovalling mode's wave number (-)"""
+    dofs: int
+    """degrees of freedom of the bare tube's model (-)"""
+    modes: tuple[Mode, ...]
+    """the modes the solve found, lowest first"""
+    cells: int | None = field(default=None, metadata=_OMIT)
+    """cells of the finite-element mesh (-)"""
+    timings: dict[str, float] | None = field(default=None, metadata=_OMIT)
+    """the model's stages (mesh, assembly, solve, ...): wall time (s)"""
+    modes_asked: int | None = field(default=None, metadata=_OMIT)
+    """modes the eigen-solve was asked for (-)"""
+    first_run_with_compilation: float | None = field(default=None, metadata=_OMIT)
+    """wall time of the first run, which compiled forms (s)"""
+    wall_time: float | None = field(default=None, metadata=_OMIT)
+    """the model's whole time, warm (s)"""
+    peak_memory: float | None = field(default=None, metadata=_OMIT)
+    """peak memory of the run (bytes; how: ``memory_method``)"""
+    baseline_memory: float | None = field(default=None, metadata=_OMIT)
+    """resident memory of the worker's imports (bytes)"""
+    memory_method: str | None = field(default=None, metadata=_OMIT)
+    process_time: float | None = field(default=None, metadata=_OMIT)
+    """the run's time as the study waited for it, serving process included (s)"""
 
 
 @dataclass(frozen=True)

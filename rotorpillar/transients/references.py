@@ -138,23 +138,11 @@ def rom_source_record(scene: Scene, study: ConvergenceStudy) -> ConvergenceRun |
             if r.family == case.family and r.params == case.settings:
                 return r
         from ..converge.compute import compute_in_process
-        from ..converge.runner import case_key
+        from ..converge.runner import case_key, run_record
         from ..converge.selection import attach_errors
-        from ..converge.study import study_run
 
-        computed = study_run(
-            {
-                "key": case_key(case, scene.pillar),
-                "family": case.family,
-                "model": "beam",
-                "label": case.label,
-                "level": case.level,
-                "params": case.settings,
-                "status": "ok",
-                "wall_time": 0.0,
-                **compute_in_process(case, scene.pillar),
-            }
-        )
+        result = replace(compute_in_process(case, scene.pillar), wall_time=0.0)
+        computed = run_record(case, case_key(case, scene.pillar), result)
         return attach_errors([computed], study.reference, study.extrapolations)[0]
     if source == "fem3d":
         want = dict(vars(scene.mesh))
