@@ -446,3 +446,36 @@ class ConvergenceStudy(JsonRecord):
     def read(cls, path: str | Path) -> ConvergenceStudy:
         """The study in a ``convergence.json``."""
         return cls.from_json(json.loads(Path(path).read_text(encoding="utf-8")))
+
+
+@dataclass(frozen=True)
+class QuantityErrors(JsonRecord):
+    """A run's first frequency of one quantity and its errors against the study's reference
+    (rotorpillar.converge.selection.attach_errors): a reference mesh's ``errors`` per quantity."""
+
+    value: float | None
+    """the run's first frequency of the quantity (rad/s)"""
+    error: float | None
+    """(f - f_ref)/f_ref (-)"""
+    model_error: float | None
+    """(L - f_ref)/f_ref, L the family's Richardson limit (-)"""
+    discretisation_error: float | None
+    """(f - L)/f_ref (-)"""
+    error_bound: float | None
+    """|model error| + |discretisation error| (-)"""
+
+    @classmethod
+    def of(cls, run: RunErrors, quantity: str) -> QuantityErrors:
+        """``run``'s frequency and errors (ERROR_KINDS) on ``quantity``."""
+        kinds = {kind: run.relative_error(quantity, kind) for kind in ERROR_KINDS}
+        return cls(value=run.frequency(quantity), **kinds)
+
+
+@dataclass(frozen=True)
+class ModeSourceFloor(JsonRecord):
+    """The ROM's mode source as the run-up's full-order reference must match it: at least as fine."""
+
+    label: str
+    """the study's run of the mode source (a beam or a 3D mesh)"""
+    band_error: float | None
+    """its error bound plus the reference's uncertainty over the case's quantities (-; None: not measured)"""
