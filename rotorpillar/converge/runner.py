@@ -203,7 +203,7 @@ def serve(stdin=sys.stdin, replies=None) -> int:
     in the log, never in the middle of the protocol."""
     import os
 
-    from .service import RETAINED_LIMIT, reset_peak_memory, resident_memory
+    from .service import RETAINED_LIMIT, ServiceReply, reset_peak_memory, resident_memory
 
     if replies is None:
         sys.stdout.flush()
@@ -216,15 +216,15 @@ def serve(stdin=sys.stdin, replies=None) -> int:
         if not line.strip():
             continue
         job = json.loads(line)
+        status, error = "ok", None
         try:
             run_one(job["case"], job["out"], baseline, per_run_peak=reusable)
-            reply = {"status": "ok"}
         except ModelUnavailable as exc:
-            reply = {"status": "unavailable", "error": str(exc)}
+            status, error = "unavailable", str(exc)
         except Exception as exc:  # the parent records the run as failed and goes on
-            reply = {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
+            status, error = "error", f"{type(exc).__name__}: {exc}"
         last = not reusable or (resident_memory() or 0) - imported > RETAINED_LIMIT
-        replies.write(json.dumps({**reply, "last": last}) + "\n")
+        replies.write(json.dumps(ServiceReply(status=status, error=error, last=last).to_json()) + "\n")
         replies.flush()
         if last:
             return 0
@@ -254,10 +254,10 @@ def _run_in_service(case: Case, scene: Scene) -> RunResult:
         t0 = time.perf_counter()
         reply = service().run(case_file, out_file)
         elapsed = time.perf_counter() - t0
-        if reply["status"] == "unavailable":
-            raise ModelUnavailable(reply["error"])
-        if reply["status"] != "ok" or not out_file.exists():
-            raise RuntimeError(f"{case.label}: worker failed: {reply.get('error')}")
+        if reply.status == "unavailable":
+            raise ModelUnavailable(reply.error)
+        if reply.status != "ok" or not out_file.exists():
+            raise RuntimeError(f"{case.label}: worker failed: {reply.error}")
         out = RunResult.read(out_file)
     return dataclasses.replace(out, process_time=elapsed)
 
