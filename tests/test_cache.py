@@ -98,8 +98,8 @@ def test_converge_recomputes_exactly_a_damaged_run(tmp_path):
 
     again = cv.run_study(cases, scene, tmp_path, runner=counting, progress=False)
     assert ran == [cases[1].label]
-    assert [r["cached"] for r in again] == [True, False, True, True]
-    assert again[1]["bending"] == first[1]["bending"]  # the same run, recomputed
+    assert [r.cached for r in again] == [True, False, True, True]
+    assert again[1].bending == first[1].bending  # the same run, recomputed
     assert json.loads(path.read_text())["status"] == "ok"  # and cached again
 
 

@@ -35,16 +35,16 @@ def test_richardson_recovers_order_and_limit_for_any_ratios():
         h = np.array([1 / 8, 1 / 12, 1 / 16])
         f = 3.0 + 0.7 * h**p
         r = cv.richardson(h, f, p)
-        assert r["order"] == pytest.approx(p, rel=1e-9)
-        assert r["value"] == pytest.approx(3.0, abs=1e-9)
-        assert r["monotone"]
-        assert r["error_estimate"] == pytest.approx(1.25 * 0.7 * h[2] ** p, rel=1e-6)
+        assert r.order == pytest.approx(p, rel=1e-9)
+        assert r.value == pytest.approx(3.0, abs=1e-9)
+        assert r.monotone
+        assert r.error_estimate == pytest.approx(1.25 * 0.7 * h[2] ** p, rel=1e-6)
 
 
 def test_richardson_falls_back_to_theory_when_not_monotone():
     r = cv.richardson([0.5, 0.25, 0.125], [1.0, 1.1, 1.05], 2.0)
-    assert r["order"] is None and not r["monotone"]
-    assert r["value"] == pytest.approx(1.05 + (1.05 - 1.1) / 3)
+    assert r.order is None and not r.monotone
+    assert r.value == pytest.approx(1.05 + (1.05 - 1.1) / 3)
     with pytest.raises(ValueError):
         cv.richardson([0.1, 0.2, 0.3], [1, 2, 3])
 
@@ -77,19 +77,19 @@ def test_beam_ladder_orders_and_limits(tmp_path):
     scene = load_scene("paper")
     recs = cv.run_study(_beam_cases(), scene, tmp_path, progress=False)
     ex = cv.family_extrapolations(recs)
-    assert ex["beam_euler"]["bending"]["order"] == pytest.approx(4.0, abs=0.3)
-    assert ex["beam_timoshenko"]["bending"]["order"] == pytest.approx(2.0, abs=0.3)
+    assert ex["beam_euler"]["bending"].order == pytest.approx(4.0, abs=0.3)
+    assert ex["beam_timoshenko"]["bending"].order == pytest.approx(2.0, abs=0.3)
     p, sec = scene.pillar, section_of(scene.pillar)
     eq1 = omega_euler_bernoulli(p.youngs_modulus, sec.second_moment, sec.mass_per_length, p.height)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
     timo = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area, sec.second_moment, p.height)
-    assert ex["beam_euler"]["bending"]["value"] == pytest.approx(eq1, rel=1e-9)
-    assert ex["beam_timoshenko"]["bending"]["value"] == pytest.approx(timo, rel=1e-6)
-    closed = next(r for r in recs if r["family"] == "closed_form")
-    assert closed["bending"] == pytest.approx(eq1) and closed["ovalling_n"] == 2
-    assert all(r["ovalling"] is None for r in recs if r["model"] == "beam")
+    assert ex["beam_euler"]["bending"].value == pytest.approx(eq1, rel=1e-9)
+    assert ex["beam_timoshenko"]["bending"].value == pytest.approx(timo, rel=1e-6)
+    closed = next(r for r in recs if r.family == "closed_form")
+    assert closed.bending == pytest.approx(eq1) and closed.ovalling_n == 2
+    assert all(r.ovalling is None for r in recs if r.model == "beam")
     for r in recs:
-        assert r["dofs"] >= 1 and r["wall_time"] >= 0 and r["peak_memory"] > 0
+        assert r.dofs >= 1 and r.wall_time >= 0 and r.peak_memory > 0
 
 
 def test_cache_key_follows_the_parameters():
@@ -133,10 +133,10 @@ def test_an_interrupted_study_resumes_without_recomputing(tmp_path):
 
     recs = cv.run_study(cases, scene, tmp_path, runner=counting, progress=False)
     assert [c.label for c in again] == [c.label for c in cases[5:]]
-    assert sum(r["cached"] for r in recs) == 5
+    assert sum(r.cached for r in recs) == 5
     assert len(list(tmp_path.iterdir())) == len(cases)
     third = cv.run_study(cases, scene, tmp_path, runner=counting, progress=False)
-    assert len(again) == len(cases) - 5 and all(r["cached"] for r in third)
+    assert len(again) == len(cases) - 5 and all(r.cached for r in third)
 
 
 def _records(**runs):
@@ -272,9 +272,9 @@ def test_shell_reference_agrees_with_a_finer_run(tmp_path):
     recs = cv.run_study(cases, scene, tmp_path, progress=False)
     ref = cv.reference_values(recs, cv.family_extrapolations(recs))
     for q in ("bending", "ovalling"):
-        chk = ref[q]["check"]
-        assert chk["within_estimate"], (q, chk)
-        assert abs(chk["finer_value"] - chk["value"]) <= chk["error_estimate"]
+        chk = ref[q].check
+        assert chk.within_estimate, (q, chk)
+        assert abs(chk.finer_value - chk.value) <= chk.error_estimate
 
 
 def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
@@ -318,6 +318,6 @@ def test_runs_asking_few_modes_first_give_what_the_full_count_gives():
     for key, asked in ((("shell_quad", 24), N_MODES_FIRST), (("solid_tet_p1", 32), N_MODES)):
         got = compute_fe(cases[key], scene, fresh=True)
         full = _compute_fe(cases[key], scene, N_MODES, True)
-        assert got["modes_asked"] == asked
+        assert got.modes_asked == asked
         for q in ("bending", "ovalling"):
-            assert got[q] == pytest.approx(full[q], rel=1e-8)
+            assert getattr(got, q) == pytest.approx(getattr(full, q), rel=1e-8)

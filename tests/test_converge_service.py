@@ -49,12 +49,12 @@ def test_served_runs_equal_fresh_runs_and_failures_are_reported(tmp_path):
         bad = tmp_path / "bad.json"
         bad.write_text(json.dumps({"family": "no_such_family", "level": 1, "params": [], "scene": scene.to_dict()}))
         reply = s.run(bad, tmp_path / "bad.out.json")
-        assert reply["status"] == "error" and "no_such_family" in reply["error"]
+        assert reply.status == "error" and "no_such_family" in reply.error
         assert (s.proc is not None) == reused  # the same process serves on
         pid = s.proc.pid if reused else None
         for i, (c, ref) in enumerate(zip(small, fresh)):
             out = tmp_path / f"served{i}.out.json"
-            assert s.run(_case_file(tmp_path, c, scene, f"served{i}"), out)["status"] == "ok"
+            assert s.run(_case_file(tmp_path, c, scene, f"served{i}"), out).status == "ok"
             got = json.loads(out.read_text())
             assert (got["bending"], got["ovalling"]) == (ref["bending"], ref["ovalling"])
             assert got["peak_memory"] == pytest.approx(ref["peak_memory"], rel=0.15)
@@ -63,7 +63,7 @@ def test_served_runs_equal_fresh_runs_and_failures_are_reported(tmp_path):
             s.proc.kill()  # dead between runs: replaced
             s.proc.wait()
         reply = s.run(_case_file(tmp_path, small[0], scene, "again"), tmp_path / "again.out.json")
-        assert reply["status"] == "ok" and (not reused or s.proc.pid != pid)
+        assert reply.status == "ok" and (not reused or s.proc.pid != pid)
     finally:
         s.close()
     assert s.proc is None
@@ -88,7 +88,7 @@ def test_a_process_that_dies_in_a_run_is_reported_with_its_stderr(tmp_path, monk
     monkeypatch.setattr(Service, "_start", dying)
     try:
         reply = s.run(tmp_path / "case.json", tmp_path / "out.json")
-        assert reply["status"] == "error" and "worker ended" in reply["error"] and "boom" in reply["error"]
+        assert reply.status == "error" and "worker ended" in reply.error and "boom" in reply.error
         assert s.proc is None
     finally:
         s.close()

@@ -48,13 +48,13 @@ def runs(tmp_path_factory):
 
 def _order(recs, q):
     rows = recs[-3:]
-    return cv.richardson([1 / r["level"] for r in rows], [r[q] for r in rows], 4.0)
+    return cv.richardson([1 / r.level for r in rows], [r.frequency(q) for r in rows], 4.0)
 
 
 def test_p2_hexahedra_bending_order_is_theirs_once_the_clamp_layer_is_resolved(runs):
-    assert all(r["status"] == "ok" for rs in runs.values() for r in rs)
-    p200 = _order(runs["g200"], "bending")["order"]
-    p30 = _order(runs["g30"][:3], "bending")["order"]
+    assert all(r.status == "ok" for rs in runs.values() for r in rs)
+    p200 = _order(runs["g200"], "bending").order
+    p30 = _order(runs["g30"][:3], "bending").order
     assert p200 is not None and 3.3 <= p200 <= 4.7, p200
     assert p30 is not None and p30 < p200
 
@@ -63,13 +63,13 @@ def test_p2_hexahedra_reference_predicts_a_finer_run(runs):
     recs = runs["g30"]
     ref = cv.reference_values(recs, cv.family_extrapolations(recs))
     for q in ("bending", "ovalling"):
-        chk = ref[q]["check"]
-        assert chk["finer_run"].endswith("160x25x1")
-        assert abs(chk["finer_value"] - chk["value"]) <= chk["error_estimate"], (q, chk)
+        chk = ref[q].check
+        assert chk.finer_run.endswith("160x25x1")
+        assert abs(chk.finer_value - chk.value) <= chk.error_estimate, (q, chk)
 
 
 def test_shell_and_3d_limits_agree_within_the_shells_model_error(runs):
     solid = cv.family_extrapolations(runs["g30"][1:])["solid_hex_p2"]
     shell = cv.family_extrapolations(runs["shell"])["shell_quad"]
-    assert shell["bending"]["value"] == pytest.approx(solid["bending"]["value"], rel=3e-4)
-    assert shell["ovalling"]["value"] == pytest.approx(solid["ovalling"]["value"], rel=2e-3)
+    assert shell["bending"].value == pytest.approx(solid["bending"].value, rel=3e-4)
+    assert shell["ovalling"].value == pytest.approx(solid["ovalling"].value, rel=2e-3)

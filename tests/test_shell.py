@@ -144,5 +144,5 @@ def test_q2_shell_converges_at_fourth_order():
     h = [1 / 12, 1 / 16, 1 / 24]
     for kind in ("bending", "ovalling"):
         f = [_first(r, kind) for r in runs[1:]]
-        p = richardson(h, f, 4.0)["order"]
+        p = richardson(h, f, 4.0).order
         assert p is not None and 3.0 <= p <= 5.0, (kind, f, p)

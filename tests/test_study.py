@@ -165,7 +165,7 @@ def test_converge_runs_on_the_executor_give_the_serial_records(tmp_path):
     serial = cv.run_study(cases, scene, tmp_path / "a", progress=False)
     parallel = cv.run_study(cases, scene, tmp_path / "b", progress=False, workers=2)
     for a, b in zip(serial, parallel):
-        assert (a["label"], a["bending"], a["dofs"]) == (b["label"], b["bending"], b["dofs"])
+        assert (a.label, a.bending, a.dofs) == (b.label, b.bending, b.dofs)
     assert len(list((tmp_path / "b").glob("*.json"))) == len(cases)
 
 

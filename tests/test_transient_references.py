@@ -26,7 +26,7 @@ import pytest
 from conftest import cli
 from convergence_doc import convergence_doc
 
-from rotorpillar.converge.result import ConvergenceStudy
+from rotorpillar.converge.result import ERROR_KINDS, ConvergenceStudy, ModeSourceFloor
 from rotorpillar.converge.selection import select_reference
 from rotorpillar.fem3d.modal import ModeRow
 from rotorpillar.scene import load_scene, override
@@ -128,14 +128,10 @@ def test_select_reference_coarsest_meeting_the_bound():
     assert c.params["elements_along"] == 15 and c.meets
     assert math.isclose(c.band_error, 7.2e-4 + 1.4e-4, rel_tol=1e-9)
     # a ROM whose modes are better than that: the reference must be at least as good
-    c = select_reference(
-        runs, reference, ("bending",), 1e-3, floor={"label": "rom", "band_error": 7e-4}, max_dofs=12_000
-    )
+    c = select_reference(runs, reference, ("bending",), 1e-3, floor=ModeSourceFloor("rom", 7e-4), max_dofs=12_000)
     assert c.params["elements_along"] == 20 and c.meets and c.required == 7e-4
     # out of reach within the transient's DOFs: the most accurate, and said so
-    c = select_reference(
-        runs, reference, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2e-4}, max_dofs=12_000
-    )
+    c = select_reference(runs, reference, ("bending",), 1e-3, floor=ModeSourceFloor("rom", 2e-4), max_dofs=12_000)
     assert c.params["elements_along"] == 40 and not c.meets and "only to the reference's own" in c.reason
     # what the case's steps afford caps that refinement
     c = select_reference(
@@ -143,13 +139,13 @@ def test_select_reference_coarsest_meeting_the_bound():
         reference,
         ("bending",),
         1e-3,
-        floor={"label": "rom", "band_error": 2e-4},
+        floor=ModeSourceFloor("rom", 2e-4),
         max_dofs=12_000,
         floor_max_dofs=7_000,
     )
     assert c.params["elements_along"] == 20 and not c.meets and "within 7,000 DOFs" in c.reason
     # without the DOFs cap the fine solid run would do
-    c = select_reference(runs, reference, ("bending",), 1e-3, floor={"label": "rom", "band_error": 2.5e-4})
+    c = select_reference(runs, reference, ("bending",), 1e-3, floor=ModeSourceFloor("rom", 2.5e-4))
     assert c.params["elements_around"] == 224
     assert select_reference(runs, reference, ("bending",), 1e-4) is None
 
@@ -178,8 +174,17 @@ def test_choose_reference_from_the_study_on_disk(tmp_path):
     # the run-up: at least as fine as the ROM's modes (the 40-element Timoshenko beam, its
     # error computed against this study: ~1.6e-4 + the reference's 1.4e-4)
     mesh, ref = choose_reference(scene, "runup", tmp_path)
-    assert ref.floor["label"].startswith("beam Timoshenko") and ref.floor["band_error"] < 4e-4
+    assert ref.floor.label.startswith("beam Timoshenko") and ref.floor.band_error < 4e-4
     assert mesh.elements_along == 40 and ref.meets is False
+    # errors and floor serialise as the dicts they were (compare_<case>.json's full_order_reference)
+    run = next(r for r in _study().runs if r.label == ref.label)
+    doc = ref.to_json()
+    assert doc["floor"] == {"label": ref.floor.label, "band_error": ref.floor.band_error}
+    assert doc["errors"] == {
+        q: {"value": run.frequency(q), **{k: run.relative_error(q, k) for k in ERROR_KINDS}} for q in ref.quantities
+    }
+    assert list(doc["errors"]["bending"]) == ["value", *ERROR_KINDS]
+    assert type(ref).from_json(json.loads(json.dumps(doc))) == ref
     # a long run-up (5,000 steps) affords 8,000 DOFs (REFERENCE_DOF_STEPS): 8 x 20, said so
     mesh, ref = choose_reference(scene, "runup", tmp_path, steps=5_000)
     assert mesh.elements_along == 20 and ref.meets is False and "afford" in ref.reason
@@ -323,6 +328,21 @@ def test_the_ladder_has_the_bending_only_family():
         and c.settings == next(r for r in rungs if r.level == scene.mesh.elements_along).settings
     ]
     assert len(shared) == 1  # one cached run, two families
-    run = {"bending": 30.86, "ovalling": 696.0}
-    assert resolved_only("solid_hex_p2_along", run) == {"bending": 30.86, "ovalling": None}
+    from rotorpillar.converge.result import ConvergenceRun
+
+    case = shared[0]
+    run = ConvergenceRun(
+        key="k",
+        family=case.family,
+        model="solid",
+        label=case.label,
+        level=case.level,
+        params=case.settings,
+        status="ok",
+        bending=30.86,
+        ovalling=696.0,
+        ovalling_n=2,
+    )
+    along = resolved_only("solid_hex_p2_along", run)
+    assert (along.bending, along.ovalling, along.ovalling_n) == (30.86, None, 2)
     assert resolved_only("solid_hex_p2_around", run) is run

@@ -217,7 +217,7 @@ def _from_cache(scene: Scene, cache_dir: Path) -> tuple[dict[str, float], str]:
         raise RuntimeError("not in the cache")
 
     records = run_study(study_cases(scene), scene, Path(cache_dir), runner=not_cached, progress=False)
-    if not any(r.get("cached") for r in records):
+    if not any(r.cached for r in records):
         return {}, "no study's run cache"
     analysis = analyse(records, scene, scene.converge.tolerance)
     errs = _scene_errors(analysis.runs, analysis.reference, scene_solid_run(scene).params)

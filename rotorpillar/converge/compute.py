@@ -8,7 +8,8 @@ dolfinx and run in a fresh subprocess (:func:`compute_fe`, called by
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+import dataclasses
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,7 +17,8 @@ from ..reduced.beam_fe import BeamProperties, beam_modes
 from ..reduced.cylinder import ring_frequency
 from ..reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, section_of
 from ..scene import Scene
-from .ladder import FAMILIES, N_MODES, N_MODES_FIRST, QUANTITIES, Case, solid_mesh
+from .ladder import FAMILIES, N_MODES, N_MODES_FIRST, Case, solid_mesh
+from .result import Mode, RunResult
 
 if TYPE_CHECKING:  # the FE models import dolfinx: at run time, only where they run
     from ..fem3d.modal import ModalResult
@@ -30,53 +32,49 @@ def _first(omega, kind, want: str) -> tuple[float | None, int | None]:
     return None, None
 
 
-def _modal_summary(omega, kind, n_circ) -> dict:
+def _modal_summary(omega, kind, n_circ, dofs: int) -> RunResult:
     """The run's quantities from a list of modes."""
-    out: dict[str, Any] = {
-        "modes": [
-            {"omega": float(w), "kind": k, "n": None if n is None else int(n)} for w, k, n in zip(omega, kind, n_circ)
-        ]
-    }
-    for q in QUANTITIES:
-        w, i = _first(omega, kind, q)
-        out[q] = w
-        if q == "ovalling":
-            out["ovalling_n"] = None if i is None or n_circ[i] is None else int(n_circ[i])
-    return out
+    bending, _ = _first(omega, kind, "bending")
+    ovalling, i = _first(omega, kind, "ovalling")
+    return RunResult(
+        bending=bending,
+        ovalling=ovalling,
+        ovalling_n=None if i is None or n_circ[i] is None else int(n_circ[i]),
+        dofs=dofs,
+        modes=tuple(Mode(float(w), k, None if n is None else int(n)) for w, k, n in zip(omega, kind, n_circ)),
+    )
 
 
-def compute_in_process(case: Case, pillar) -> dict:
+def compute_in_process(case: Case, pillar) -> RunResult:
     """The closed forms and the 1D beam models (numpy only)."""
     sec = section_of(pillar)
     fam = FAMILIES[case.family]
     if fam.model == "closed_form":
         t = (pillar.outer_diameter - pillar.inner_diameter) / 2
         R = (pillar.outer_diameter + pillar.inner_diameter) / 4
-        return {
-            "bending": omega_euler_bernoulli(
-                pillar.youngs_modulus, sec.second_moment, sec.mass_per_length, pillar.height
-            ),
-            "ovalling": ring_frequency(2, pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, R, t),
-            "ovalling_n": 2,
-            "dofs": 1,
-            "modes": [],
-        }
+        return RunResult(
+            bending=omega_euler_bernoulli(pillar.youngs_modulus, sec.second_moment, sec.mass_per_length, pillar.height),
+            ovalling=ring_frequency(2, pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, R, t),
+            ovalling_n=2,
+            dofs=1,
+            modes=(),
+        )
     s = case.settings
     kappa = cowper_shear_coefficient(pillar.outer_diameter, pillar.inner_diameter, pillar.poisson_ratio)
     props = BeamProperties(
         pillar.youngs_modulus, pillar.poisson_ratio, kappa, pillar.density, sec.area, sec.second_moment, pillar.height
     )
     m = beam_modes(props, s["elements"], s["theory"], n_modes=1)
-    return {
-        "bending": float(m.omega[0]),
-        "ovalling": None,
-        "ovalling_n": None,
-        "dofs": int(m.dofs),
-        "modes": [{"omega": float(m.omega[0]), "kind": "bending_x", "n": 1}],
-    }
+    return RunResult(
+        bending=float(m.omega[0]),
+        ovalling=None,
+        ovalling_n=None,
+        dofs=int(m.dofs),
+        modes=(Mode(float(m.omega[0]), "bending_x", 1),),
+    )
 
 
-def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> dict:
+def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> RunResult:
     """A shell or solid run, in this process (the subprocess worker calls this).
 
     The run asks for ``N_MODES_FIRST`` modes and for ``N_MODES`` only when
@@ -88,14 +86,14 @@ def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> dict:
     ``fresh``: bypass the 3D model's in-process result cache (a second, timed call).
     """
     out = _compute_fe(case, scene, N_MODES_FIRST, fresh)
-    if out["ovalling"] is None:
-        first = out["timings"]
+    if out.ovalling is None:
+        first = out.timings or {}
         out = _compute_fe(case, scene, N_MODES, fresh)
-        out["timings"] = {k: v + first.get(k, 0.0) for k, v in out["timings"].items()}
+        out = dataclasses.replace(out, timings={k: v + first.get(k, 0.0) for k, v in (out.timings or {}).items()})
     return out
 
 
-def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> dict:
+def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> RunResult:
     fam = FAMILIES[case.family]
     pillar = scene.pillar
     s = case.settings
@@ -115,6 +113,5 @@ def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> dict:
             {"use_cache": False} if fresh and "use_cache" in inspect.signature(fem3d.modal_analysis).parameters else {}
         )
         r = fem3d.modal_analysis(scene, top=False, n_modes=n_modes, mesh=solid_mesh(case), **extra)
-    out = _modal_summary(np.asarray(r.omega), list(r.kind), list(r.n_circumferential))
-    out.update(dofs=int(r.dofs), cells=int(r.cells), timings=dict(r.timings), modes_asked=n_modes)
-    return out
+    out = _modal_summary(np.asarray(r.omega), list(r.kind), list(r.n_circumferential), int(r.dofs))
+    return dataclasses.replace(out, cells=int(r.cells), timings=dict(r.timings), modes_asked=n_modes)

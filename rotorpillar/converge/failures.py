@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import replace
 
 from .ladder import FAMILIES, N_MODES, ORDER_NOTES, Family
-from .result import ConvergenceRun, Extrapolation, Param, ReferenceValue
+from .result import ConvergenceRun, Extrapolation, OvallingAlias, Param, ReferenceValue
 
 Extrapolations = Mapping[str, Mapping[str, Extrapolation]]
 """Per refined family, per quantity: Richardson on its three finest runs."""
@@ -136,11 +137,15 @@ def failures(
     return out
 
 
-def drop_aliases(records: list[dict]) -> None:
+def drop_aliases(runs: Iterable[ConvergenceRun]) -> list[ConvergenceRun]:
     """An "ovalling" mode with more waves than the nodes around can carry is an
     alias (with 8 nodes around, the bending pair reads as n = 7): no ovalling
-    mode was resolved (in place; the alias stays as ``ovalling_alias``)."""
-    for r in records:
-        n = r.get("ovalling_n")
-        if r.get("status") == "ok" and n is not None and n > nyquist(r.get("params", {})):
-            r.update(ovalling_alias={"omega": r["ovalling"], "n": n}, ovalling=None, ovalling_n=None)
+    mode was resolved (the alias stays as ``ovalling_alias``)."""
+    return [_dealiased(r) for r in runs]
+
+
+def _dealiased(r: ConvergenceRun) -> ConvergenceRun:
+    n = r.ovalling_n
+    if r.status == "ok" and n is not None and n > nyquist(r.params):
+        return replace(r, ovalling_alias=OvallingAlias(omega=r.ovalling, n=n), ovalling=None, ovalling_n=None)
+    return r

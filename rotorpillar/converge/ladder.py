@@ -23,9 +23,12 @@ Each rung is a :class:`Case`; :func:`ladder` lists them for a scene, and
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
+from typing import Any
 
 from ..scene import CELL_TYPES, SHELL_CELL_TYPES, Mesh, Scene
+from .result import ConvergenceRun
 
 QUADRILATERAL, TRIANGLE = SHELL_CELL_TYPES
 HEXAHEDRON, TETRAHEDRON = CELL_TYPES
@@ -250,16 +253,16 @@ def ladder(scene: Scene) -> list[Case]:
     return cases
 
 
-def resolved_only(family: str, result: dict) -> dict:
-    """A run's result with the quantities its family does not resolve set to None.
+def resolved_only(family: str, run: ConvergenceRun) -> ConvergenceRun:
+    """A run with the quantities its family does not resolve set to None.
 
     A bending-only mesh may run the very case of another family (8 around at
     the scene's along is also a rung of the around-only sweep, one cached
     run for both): its ovalling frequency is then that run's, but not a
     quantity of this family."""
     fam = FAMILIES[family]
-    drop = {q: None for q in QUANTITIES if q not in fam.quantities and result.get(q) is not None}
-    return {**result, **drop} if drop else result
+    drop: dict[str, Any] = {q: None for q in QUANTITIES if q not in fam.quantities and run.frequency(q) is not None}
+    return dataclasses.replace(run, **drop) if drop else run
 
 
 def estimated_dofs(case: Case) -> int:

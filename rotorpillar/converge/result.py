@@ -83,10 +83,46 @@ class Mode(JsonRecord):
 class OvallingAlias(JsonRecord):
     """An "ovalling" mode with more waves than the nodes around carry: an alias."""
 
-    omega: float
-    """its frequency (rad/s)"""
+    omega: float | None
+    """its frequency (rad/s; None where the run's family does not resolve ovalling,
+    rotorpillar.converge.ladder.resolved_only)"""
     n: int
     """the wave number it was read with (-)"""
+
+
+@dataclass(frozen=True)
+class RunResult(JsonRecord):
+    """What one run of the ladder computes (rotorpillar.converge.compute) and what it cost
+    (rotorpillar.converge.runner): the fields of :class:`ConvergenceRun` after its case, as
+    the serving process sends it back and the run cache stores it."""
+
+    bending: float | None
+    """first bending frequency (rad/s; None: no bending mode resolved)"""
+    ovalling: float | None
+    """first ovalling frequency (rad/s; None: none resolved)"""
+    ovalling_n: int | None
+    """the ovalling mode's wave number (-)"""
+    dofs: int
+    """degrees of freedom of the bare tube's model (-)"""
+    modes: tuple[Mode, ...]
+    """the modes the solve found, lowest first"""
+    cells: int | None = field(default=None, metadata=_OMIT)
+    """cells of the finite-element mesh (-)"""
+    timings: dict[str, float] | None = field(default=None, metadata=_OMIT)
+    """the model's stages (mesh, assembly, solve, ...): wall time (s)"""
+    modes_asked: int | None = field(default=None, metadata=_OMIT)
+    """modes the eigen-solve was asked for (-)"""
+    first_run_with_compilation: float | None = field(default=None, metadata=_OMIT)
+    """wall time of the first run, which compiled forms (s)"""
+    wall_time: float | None = field(default=None, metadata=_OMIT)
+    """the model's whole time, warm (s)"""
+    peak_memory: float | None = field(default=None, metadata=_OMIT)
+    """peak memory of the run (bytes; how: ``memory_method``)"""
+    baseline_memory: float | None = field(default=None, metadata=_OMIT)
+    """resident memory of the worker's imports (bytes)"""
+    memory_method: str | None = field(default=None, metadata=_OMIT)
+    process_time: float | None = field(default=None, metadata=_OMIT)
+    """the run's time as the study waited for it, serving process included (s)"""
 
 
 @dataclass(frozen=True)
@@ -394,3 +430,36 @@ class ConvergenceStudy(JsonRecord):
     def read(cls, path: str | Path) -> ConvergenceStudy:
         """The study in a ``convergence.json``."""
         return cls.from_json(json.loads(Path(path).read_text(encoding="utf-8")))
+
+
+@dataclass(frozen=True)
+class QuantityErrors(JsonRecord):
+    """A run's first frequency of one quantity and its errors against the study's reference
+    (rotorpillar.converge.selection.attach_errors): a reference mesh's ``errors`` per quantity."""
+
+    value: float | None
+    """the run's first frequency of the quantity (rad/s)"""
+    error: float | None
+    """(f - f_ref)/f_ref (-)"""
+    model_error: float | None
+    """(L - f_ref)/f_ref, L the family's Richardson limit (-)"""
+    discretisation_error: float | None
+    """(f - L)/f_ref (-)"""
+    error_bound: float | None
+    """|model error| + |discretisation error| (-)"""
+
+    @classmethod
+    def of(cls, run: RunErrors, quantity: str) -> QuantityErrors:
+        """``run``'s frequency and errors (ERROR_KINDS) on ``quantity``."""
+        kinds = {kind: run.relative_error(quantity, kind) for kind in ERROR_KINDS}
+        return cls(value=run.frequency(quantity), **kinds)
+
+
+@dataclass(frozen=True)
+class ModeSourceFloor(JsonRecord):
+    """The ROM's mode source as the run-up's full-order reference must match it: at least as fine."""
+
+    label: str
+    """the study's run of the mode source (a beam or a 3D mesh)"""
+    band_error: float | None
+    """its error bound plus the reference's uncertainty over the case's quantities (-; None: not measured)"""

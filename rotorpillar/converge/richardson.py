@@ -6,24 +6,25 @@ estimate by Roache's grid convergence index; the reference values are the
 limits of the most complete family, checked against the three runs before.
 
 >>> p = richardson([1/8, 1/16, 1/32], [1.0 + 8.0**-2, 1.0 + 16.0**-2, 1.0 + 32.0**-2])
->>> round(p["order"], 6), round(p["value"], 9)
+>>> round(p.order, 6), round(p.value, 9)
 (2.0, 1.0)
 """
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
 
 import numpy as np
 from scipy.optimize import brentq
 
 from .ladder import FAMILIES, QUANTITIES
+from .result import ConvergenceRun, Extrapolation, FamilyExtrapolation, ReferenceValue, RichardsonCheck
 
 GCI_SAFETY = 1.25
 """Roache's safety factor of the grid convergence index for three-grid studies."""
 
 
-def richardson(h, f, order_theory: float | None = None) -> dict:
+def richardson(h, f, order_theory: float | None = None) -> Extrapolation:
     """Observed order and extrapolated value from three runs at sizes h1 > h2 > h3.
 
     Solves (f1 - f2)/(f2 - f3) = (h1**p - h2**p)/(h2**p - h3**p) for p (any
@@ -51,67 +52,72 @@ def richardson(h, f, order_theory: float | None = None) -> dict:
         value = float(f[2])
     else:
         value = float(f[2] + (f[2] - f[1]) / ((h[1] / h[2]) ** p_used - 1))
-    return {
-        "order": p,
-        "order_theory": order_theory,
-        "monotone": monotone,
-        "value": value,
-        "error_estimate": GCI_SAFETY * abs(value - f[2]),
-        "h": h.tolist(),
-        "f": f.tolist(),
-    }
+    return Extrapolation(
+        order=p,
+        order_theory=order_theory,
+        monotone=bool(monotone),
+        value=value,
+        error_estimate=float(GCI_SAFETY * abs(value - f[2])),
+        h=tuple(h.tolist()),
+        f=tuple(f.tolist()),
+    )
 
 
-def family_series(records: list[dict], family: str, quantity: str) -> list[dict]:
+def family_series(runs: Sequence[ConvergenceRun], family: str, quantity: str) -> list[ConvergenceRun]:
     """A family's successful runs that have the quantity, coarse to fine."""
-    rows = [r for r in records if r["family"] == family and r.get("status") == "ok" and r.get(quantity) is not None]
-    return sorted(rows, key=lambda r: r["level"])
+    rows = [r for r in runs if r.family == family and r.status == "ok" and r.frequency(quantity) is not None]
+    return sorted(rows, key=lambda r: r.level)
 
 
-def family_extrapolations(records: list[dict]) -> dict:
+def _richardson_on(rows: Sequence[ConvergenceRun], quantity: str, order_theory: float | None) -> Extrapolation:
+    """Richardson on three runs of a family (their sizes 1/level)."""
+    return richardson([1.0 / r.level for r in rows], [r.frequency(quantity) for r in rows], order_theory)
+
+
+def family_extrapolations(runs: Sequence[ConvergenceRun]) -> dict[str, dict[str, FamilyExtrapolation]]:
     """Per refined family and quantity: Richardson on its three finest runs."""
-    out: dict[str, dict[str, Any]] = {}
+    out: dict[str, dict[str, FamilyExtrapolation]] = {}
     for name, fam in FAMILIES.items():
         if fam.order is None:
             continue
         for q in fam.quantities:
-            rows = family_series(records, name, q)
+            rows = family_series(runs, name, q)
             if len(rows) < 3:
                 continue
             last = rows[-3:]
-            r = richardson([1.0 / x["level"] for x in last], [x[q] for x in last], fam.order)
-            r["runs"] = [x["label"] for x in last]
-            out.setdefault(name, {})[q] = r
+            ex = _richardson_on(last, q, fam.order)
+            out.setdefault(name, {})[q] = FamilyExtrapolation(**vars(ex), runs=tuple(x.label for x in last))
     return out
 
 
-def reference_values(records: list[dict], extrapolations: dict) -> dict:
+def reference_values(
+    runs: Sequence[ConvergenceRun], extrapolations: dict[str, dict[str, FamilyExtrapolation]]
+) -> dict[str, ReferenceValue]:
     """Per quantity, the Richardson value of the highest-fidelity family that has one.
 
     ``check``: the same extrapolation from the three runs before the finest,
     and whether the finest (an independent, finer run) lies within its
     error estimate.
     """
-    out = {}
+    out: dict[str, ReferenceValue] = {}
     ranked = sorted(FAMILIES.values(), key=lambda f: -f.fidelity)
     for q in QUANTITIES:
         for fam in ranked:
             if fam.fidelity <= 0 or q not in extrapolations.get(fam.name, {}):
                 continue
-            ref = dict(extrapolations[fam.name][q])
-            ref["family"] = fam.name
-            rows = family_series(records, fam.name, q)
+            rows = family_series(runs, fam.name, q)
+            check = None
             if len(rows) >= 4:
-                prev = rows[-4:-1]
-                chk = richardson([1.0 / x["level"] for x in prev], [x[q] for x in prev], fam.order)
-                finest = rows[-1][q]
-                chk.update(
-                    finer_run=rows[-1]["label"],
+                chk = _richardson_on(rows[-4:-1], q, fam.order)
+                finest = rows[-1].frequency(q)
+                assert finest is not None  # family_series keeps the runs that have it
+                check = RichardsonCheck(
+                    **vars(chk),
+                    finer_run=rows[-1].label,
                     finer_value=finest,
-                    difference=finest - chk["value"],
-                    within_estimate=abs(finest - chk["value"]) <= chk["error_estimate"],
+                    difference=finest - chk.value,
+                    within_estimate=bool(abs(finest - chk.value) <= chk.error_estimate),
                 )
-                ref["check"] = chk
-            out[q] = ref
+            out[q] = ReferenceValue(**vars(extrapolations[fam.name][q]), family=fam.name, check=check)
             break
     return out

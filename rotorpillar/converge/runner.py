@@ -12,6 +12,7 @@ pure-Python models run in-process and report tracemalloc's peak.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import resource
 import sys
@@ -25,7 +26,8 @@ from typing import TYPE_CHECKING
 from ..cache import DiskCache, cache_key, source_hash
 from ..provenance import write_json
 from .compute import compute_fe, compute_in_process
-from .ladder import FAMILIES, N_MODES, Case, estimated_dofs, estimated_seconds, resolved_only
+from .ladder import FAMILIES, N_MODES, QUANTITIES, Case, estimated_dofs, estimated_seconds, resolved_only
+from .result import ERROR_KINDS, ConvergenceRun, RunResult
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -77,7 +79,7 @@ def case_key(case: Case, pillar, tolerance: float | None = None) -> str:
     return cache_key(args, version=CACHE_VERSION, code=source_hash(_source_files(fam.model)))
 
 
-def _run_in_process(case: Case, pillar) -> dict:
+def _run_in_process(case: Case, pillar) -> RunResult:
     # time without tracemalloc (it slows Python code), then measure memory
     t0 = time.perf_counter()
     out = compute_in_process(case, pillar)
@@ -88,10 +90,9 @@ def _run_in_process(case: Case, pillar) -> dict:
         _, peak = tracemalloc.get_traced_memory()
     finally:
         tracemalloc.stop()
-    out.update(
-        wall_time=wall, peak_memory=peak, memory_method="tracemalloc (Python heap peak)", timings={"total": wall}
+    return dataclasses.replace(
+        out, wall_time=wall, peak_memory=peak, memory_method="tracemalloc (Python heap peak)", timings={"total": wall}
     )
-    return out
 
 
 class ModelUnavailable(RuntimeError):
@@ -175,7 +176,7 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
         t0 = time.perf_counter()
         out = compute_fe(case, scene, fresh=True)
         total = time.perf_counter() - t0
-        out["first_run_with_compilation"] = first
+        out = dataclasses.replace(out, first_run_with_compilation=first)
     # the model's whole time: mesh, forms, assembly, solve and naming the modes
     if per_run_peak:
         peak, method = (
@@ -190,8 +191,8 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
             resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
             "ru_maxrss of a fresh subprocess (includes ~baseline_memory of imports)",
         )
-    out.update(wall_time=total, peak_memory=peak, baseline_memory=baseline, memory_method=method)
-    write_json(out_file, out)
+    out = dataclasses.replace(out, wall_time=total, peak_memory=peak, baseline_memory=baseline, memory_method=method)
+    write_json(out_file, out.to_json())
 
 
 def serve(stdin=sys.stdin, replies=None) -> int:
@@ -202,7 +203,7 @@ def serve(stdin=sys.stdin, replies=None) -> int:
     in the log, never in the middle of the protocol."""
     import os
 
-    from .service import RETAINED_LIMIT, reset_peak_memory, resident_memory
+    from .service import RETAINED_LIMIT, ServiceReply, reset_peak_memory, resident_memory
 
     if replies is None:
         sys.stdout.flush()
@@ -215,15 +216,15 @@ def serve(stdin=sys.stdin, replies=None) -> int:
         if not line.strip():
             continue
         job = json.loads(line)
+        status, error = "ok", None
         try:
             run_one(job["case"], job["out"], baseline, per_run_peak=reusable)
-            reply = {"status": "ok"}
         except ModelUnavailable as exc:
-            reply = {"status": "unavailable", "error": str(exc)}
+            status, error = "unavailable", str(exc)
         except Exception as exc:  # the parent records the run as failed and goes on
-            reply = {"status": "error", "error": f"{type(exc).__name__}: {exc}"}
+            status, error = "error", f"{type(exc).__name__}: {exc}"
         last = not reusable or (resident_memory() or 0) - imported > RETAINED_LIMIT
-        replies.write(json.dumps({**reply, "last": last}) + "\n")
+        replies.write(json.dumps(ServiceReply(status=status, error=error, last=last).to_json()) + "\n")
         replies.flush()
         if last:
             return 0
@@ -240,7 +241,7 @@ def worker(case_file: str, out_file: str) -> None:
         sys.exit(UNAVAILABLE_EXIT)
 
 
-def _run_in_service(case: Case, scene: Scene) -> dict:
+def _run_in_service(case: Case, scene: Scene) -> RunResult:
     from .service import service
 
     with tempfile.TemporaryDirectory(prefix="rotorpillar-converge-") as tmp:
@@ -253,34 +254,59 @@ def _run_in_service(case: Case, scene: Scene) -> dict:
         t0 = time.perf_counter()
         reply = service().run(case_file, out_file)
         elapsed = time.perf_counter() - t0
-        if reply["status"] == "unavailable":
-            raise ModelUnavailable(reply["error"])
-        if reply["status"] != "ok" or not out_file.exists():
-            raise RuntimeError(f"{case.label}: worker failed: {reply.get('error')}")
-        out = json.loads(out_file.read_text())
-    out["process_time"] = elapsed
-    return out
+        if reply.status == "unavailable":
+            raise ModelUnavailable(reply.error)
+        if reply.status != "ok" or not out_file.exists():
+            raise RuntimeError(f"{case.label}: worker failed: {reply.error}")
+        out = RunResult.read(out_file)
+    return dataclasses.replace(out, process_time=elapsed)
 
 
-def run_point(case: Case, scene: Scene) -> dict:
+def run_point(case: Case, scene: Scene) -> RunResult:
     """Compute one case (in-process or in the serving process, by model)."""
     if FAMILIES[case.family].model in ("closed_form", "beam"):
         return _run_in_process(case, scene.pillar)
     return _run_in_service(case, scene)
 
 
-def _record(case: Case, key: str, result: dict) -> dict:
-    fam = FAMILIES[case.family]
-    return {
-        "key": key,
-        "family": case.family,
-        "model": fam.model,
-        "label": case.label,
-        "level": case.level,
-        "params": case.settings,
-        "status": "ok",
-        **result,
-    }
+def run_record(case: Case, key: str, result: RunResult) -> ConvergenceRun:
+    """An ok run of the ladder: its case and what it computed (no errors yet:
+    rotorpillar.converge.selection.attach_errors gives them)."""
+    return ConvergenceRun(
+        key=key,
+        family=case.family,
+        model=FAMILIES[case.family].model,
+        label=case.label,
+        level=case.level,
+        params=case.settings,
+        status="ok",
+        **vars(result),
+    )
+
+
+def _no_run(case: Case, key: str, status: str, error: str) -> ConvergenceRun:
+    """A run that failed or could not run: its case and why."""
+    return ConvergenceRun(
+        key=key,
+        family=case.family,
+        model=FAMILIES[case.family].model,
+        label=case.label,
+        level=case.level,
+        params=case.settings,
+        status=status,
+        error=error,
+    )
+
+
+_NOT_CACHED = {"cached", "ovalling_alias"} | {f"{q}_{kind}" for q in QUANTITIES for kind in ERROR_KINDS}
+"""A run's fields the cache does not hold: how this study got it, and what the study makes of it."""
+
+
+def cache_doc(run: ConvergenceRun) -> dict:
+    """The run as its cache file holds it: its case and its result, in the record's
+    field order (the keys and values of CACHE_VERSION 2, read back by ConvergenceRun.from_json)."""
+    doc = run.to_json()
+    return {f.name: doc[f.name] for f in dataclasses.fields(run) if f.name in doc and f.name not in _NOT_CACHED}
 
 
 #: The [converge] key that bounds each finite-element family's finest run.
@@ -340,12 +366,12 @@ def run_study(
     scene: Scene,
     cache_dir: Path,
     *,
-    runner: Callable[[Case, Scene], dict] = run_point,
+    runner: Callable[[Case, Scene], RunResult] = run_point,
     progress: bool = True,
     log: Callable[[str], None] | None = None,
     workers: int = 1,
     executor=None,
-) -> list[dict]:
+) -> list[ConvergenceRun]:
     """Every case, each loaded from ``cache_dir`` or computed and cached.
 
     A run is written to ``cache_dir/<key>.json`` atomically as soon as it
@@ -363,19 +389,19 @@ def run_study(
 
     cache = DiskCache(Path(cache_dir))
     keys = [case_key(c, scene.pillar, scene.modal.tolerance) for c in cases]
-    records: list[dict | None] = [None] * len(cases)
+    records: list[ConvergenceRun | None] = [None] * len(cases)
     todo = []
     for i, (c, key) in enumerate(zip(cases, keys)):
         cached = _load_cached(cache, key)
         if cached is not None:
             # names follow the code, not the cache (they are not part of the key)
-            records[i] = {
-                **resolved_only(c.family, cached),
-                "label": c.label,
-                "family": c.family,
-                "model": FAMILIES[c.family].model,
-                "cached": True,
-            }
+            records[i] = dataclasses.replace(
+                resolved_only(c.family, cached),
+                label=c.label,
+                family=c.family,
+                model=FAMILIES[c.family].model,
+                cached=True,
+            )
         else:
             todo.append(i)
     check_study_memory([cases[i] for i in todo], workers)
@@ -402,20 +428,15 @@ def run_study(
                 unavailable[model] = str(exc)
                 if log:
                     log(f"converge: skipping the {model} runs: {exc}")
-            records[i] = {
-                **_record(case, key, {}),
-                "status": "unavailable",
-                "error": unavailable[model],
-                "cached": False,
-            }
+            records[i] = _no_run(case, key, "unavailable", unavailable[model])
         elif isinstance(exc, (RuntimeError, ValueError, ArithmeticError)):
-            records[i] = {**_record(case, key, {}), "status": "failed", "error": str(exc), "cached": False}
+            records[i] = _no_run(case, key, "failed", str(exc))
         elif exc is not None:
             raise exc
         else:
-            rec = _record(case, key, result)
-            cache.write(key, rec)
-            records[i] = {**resolved_only(case.family, rec), "cached": False}
+            rec = run_record(case, key, result)
+            cache.write(key, cache_doc(rec))
+            records[i] = resolved_only(case.family, rec)
         bar.set_postfix_str(case.label)
         bar.update(weights[i])
 
@@ -468,6 +489,12 @@ def _run_parallel(todo, cases, scene: Scene, runner, workers, executor, finish, 
             ex.__exit__(None, None, None)
 
 
-def _load_cached(cache: DiskCache, key: str) -> dict | None:
+def _load_cached(cache: DiskCache, key: str) -> ConvergenceRun | None:
     # a damaged file or a failed run is no cached run: recompute it
-    return cache.read(key, accept=lambda doc: doc.get("status") == "ok")
+    doc = cache.read(key, accept=lambda doc: doc.get("status") == "ok")
+    if doc is None:
+        return None
+    try:
+        return ConvergenceRun.from_json(doc)
+    except (KeyError, TypeError, ValueError):  # not a run of this layout: recompute it
+        return None

@@ -19,12 +19,13 @@ from ..provenance import JsonRecord
 from ..reduced.band import excitation_band  # noqa: F401  (the study's band, re-exported)
 from .ladder import FAMILIES, QUANTITIES
 from .result import (
-    ERROR_KINDS,
     ConvergenceRun,
     ExcitationBand,
     Extrapolation,
     ModelSelection,
+    ModeSourceFloor,
     Param,
+    QuantityErrors,
     ReferenceValue,
     RejectedRun,
     RunBrief,
@@ -328,13 +329,13 @@ class ReferenceChoice(JsonRecord):
     """the study's frequencies the choice had to meet (those of the modes the load excites)"""
     band_error: float
     """the largest, over ``quantities``, of the error bound plus the reference's uncertainty"""
-    errors: dict[str, dict[str, float | None]]
+    errors: dict[str, QuantityErrors]
     """per quantity: value (rad/s), error, model_error, discretisation_error, error_bound (-)"""
     required: float
     """the bound the choice had to meet: the tolerance, or the ROM source's own if smaller"""
     tolerance: float
-    floor: dict | None
-    """the ROM's mode source the reference must be at least as fine as: label, band_error"""
+    floor: ModeSourceFloor | None
+    """the ROM's mode source the reference must be at least as fine as"""
     meets: bool
     """band_error <= required (False: no candidate met it; the most accurate was taken)"""
     candidates: int
@@ -358,12 +359,12 @@ def select_reference(
     quantities: Iterable[str],
     tolerance: float,
     *,
-    floor: dict | None = None,
+    floor: ModeSourceFloor | None = None,
     max_dofs: int | None = None,
     floor_max_dofs: int | None = None,
 ) -> ReferenceChoice | None:
     """The coarsest 3D run (fewest DOFs) whose band error on ``quantities`` meets
-    the tolerance; where ``floor["band_error"]`` (the ROM's mode source) is
+    the tolerance; where ``floor.band_error`` (the ROM's mode source) is
     smaller, the coarsest that meets that too: the reference must be at least
     as accurate as what it checks.
 
@@ -393,8 +394,8 @@ def select_reference(
         return None
     best, ok, required = within_tol[0], True, tolerance
     limit = None
-    if floor is not None and floor.get("band_error") is not None and floor["band_error"] < err[id(best)]:
-        required = floor["band_error"]
+    if floor is not None and floor.band_error is not None and floor.band_error < err[id(best)]:
+        required = floor.band_error
         limit = max(floor_max_dofs if floor_max_dofs is not None else math.inf, _cost(best.dofs))
         pool = [r for r in within_tol if _cost(r.dofs) <= limit]
         reach = [r for r in pool if err[id(r)] <= required]
@@ -425,8 +426,8 @@ def select_reference(
             f"{best.label} ({dofs:,} DOFs) is the most accurate 3D run of the study"
             f"{within}: {what}, band error {e:.1e}, within the tolerance {tolerance:g}"
         )
-    if floor is not None and floor.get("band_error") is not None:
-        reason += f"; the ROM's mode source ({floor['label']}) has {floor['band_error']:.1e}, " + (
+    if floor is not None and floor.band_error is not None:
+        reason += f"; the ROM's mode source ({floor.label}) has {floor.band_error:.1e}, " + (
             "and the reference is at least as accurate"
             if ok
             else "which no 3D run the case affords reaches: the comparison checks the ROM "
@@ -444,7 +445,7 @@ def select_reference(
         dofs=int(dofs),
         quantities=wanted,
         band_error=float(e),
-        errors={q: {"value": best.frequency(q), **{k: best.relative_error(q, k) for k in ERROR_KINDS}} for q in wanted},
+        errors={q: QuantityErrors.of(best, q) for q in wanted},
         required=float(required),
         tolerance=float(tolerance),
         floor=floor,

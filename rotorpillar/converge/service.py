@@ -32,7 +32,10 @@ import subprocess
 import sys
 import tempfile
 import threading
+from dataclasses import dataclass, field
 from pathlib import Path
+
+from ..provenance import JsonRecord
 
 MODULE = "rotorpillar.converge"
 """What ``python -m`` runs (its ``__main__``: ``--serve``, or one CASE RESULT pair)."""
@@ -82,6 +85,20 @@ def resident_memory() -> int | None:
     return None if kib is None else 1024 * kib
 
 
+@dataclass(frozen=True)
+class ServiceReply(JsonRecord):
+    """The serving process's answer to one run: a line of the protocol."""
+
+    status: str
+    """"ok", "unavailable" (the model cannot be imported here) or "error" """
+    error: str | None = field(default=None, metadata={"omit_if_none": True})
+    """why the run did not give a result"""
+    exit: int | None = field(default=None, metadata={"omit_if_none": True})
+    """the exit code of a serving process that ended without a reply"""
+    last: bool = False
+    """the process ends after this run: the next run gets a new one"""
+
+
 class Service:
     """The parent's handle on one serving process (started on first use, restarted
     after it ends or dies)."""
@@ -90,9 +107,9 @@ class Service:
         self.proc = None
         self.log = None
 
-    def run(self, case_file: Path, out_file: Path) -> dict:
-        """Send one run; its reply (a dead process: ``{"status": "error"}`` with
-        the end of its stderr)."""
+    def run(self, case_file: Path, out_file: Path) -> ServiceReply:
+        """Send one run; its reply (a dead process: status "error" with the end of
+        its stderr)."""
         if self.proc is None or self.proc.poll() is not None:
             self._start()
         try:
@@ -105,9 +122,9 @@ class Service:
             self.proc.wait()
             code = self.proc.returncode
             self.proc = None
-            return {"status": "error", "exit": code, "error": f"worker ended ({code}): " + self._tail()}
-        reply = json.loads(line)
-        if reply.get("last"):  # it ends after this run: the next gets a new one
+            return ServiceReply(status="error", exit=code, error=f"worker ended ({code}): " + self._tail())
+        reply = ServiceReply.from_json(json.loads(line))
+        if reply.last:  # it ends after this run: the next gets a new one
             self.proc.wait()
             self.proc = None
         return reply

@@ -30,17 +30,13 @@ from .result import (
     ConvergenceRun,
     ConvergenceStudy,
     ExcitationBand,
-    Extrapolation,
     FamilyExtrapolation,
     FamilyInfo,
     Fronts,
     ModalModelSelection,
-    Mode,
     ModelSelection,
-    OvallingAlias,
     ParetoFronts,
     ReferenceValue,
-    RichardsonCheck,
     RunBrief,
     StudyCounts,
 )
@@ -78,15 +74,13 @@ class StudyAnalysis(JsonRecord):
     """where methods fail, one sentence each"""
 
 
-def analyse(records: list[dict], scene: Scene, tolerance: float) -> StudyAnalysis:
+def analyse(records: Sequence[ConvergenceRun], scene: Scene, tolerance: float) -> StudyAnalysis:
     """Reference values, errors, fronts, failures and the chosen model, from the
-    runner's runs (``records``: their aliased ovalling modes dropped in place)."""
-    drop_aliases(records)
-    extrap = family_extrapolations(records)
-    reference = reference_values(records, extrap)
-    extrapolations = {name: {q: family_extrapolation(v) for q, v in qs.items()} for name, qs in extrap.items()}
-    references = {q: reference_value(v) for q, v in reference.items()}
-    runs = attach_errors((study_run(r) for r in records), references, extrapolations)
+    runner's runs (their aliased ovalling modes dropped first)."""
+    dealiased = drop_aliases(records)
+    extrapolations = family_extrapolations(dealiased)
+    references = reference_values(dealiased, extrapolations)
+    runs = attach_errors(dealiased, references, extrapolations)
     band = excitation_band(scene.drive, scene.load, scene.converge)
     selection = select_model(runs, references, band, tolerance)
     ref_unc = reference_uncertainty(references)
@@ -106,74 +100,6 @@ def analyse(records: list[dict], scene: Scene, tolerance: float) -> StudyAnalysi
     )
 
 
-# --------------------------------------------------------------------------
-# The runner's and Richardson's dicts as the study's records
-
-
-def study_run(r: dict) -> ConvergenceRun:
-    """A run of the ladder (the runner's dict) as the study records it, without errors
-    yet (attach_errors gives them)."""
-    alias = r.get("ovalling_alias")
-    return ConvergenceRun(
-        key=r["key"],
-        family=r["family"],
-        model=r["model"],
-        label=r["label"],
-        level=r["level"],
-        params=dict(r["params"]),
-        status=r["status"],
-        bending=r.get("bending"),
-        ovalling=r.get("ovalling"),
-        ovalling_n=r.get("ovalling_n"),
-        dofs=r.get("dofs"),
-        cells=r.get("cells"),
-        modes=None if r.get("modes") is None else tuple(Mode(m["omega"], m["kind"], m["n"]) for m in r["modes"]),
-        timings=r.get("timings"),
-        modes_asked=r.get("modes_asked"),
-        first_run_with_compilation=r.get("first_run_with_compilation"),
-        wall_time=r.get("wall_time"),
-        peak_memory=r.get("peak_memory"),
-        baseline_memory=r.get("baseline_memory"),
-        memory_method=r.get("memory_method"),
-        process_time=r.get("process_time"),
-        error=r.get("error"),
-        cached=bool(r.get("cached")),
-        ovalling_alias=None if alias is None else OvallingAlias(omega=alias["omega"], n=alias["n"]),
-    )
-
-
-def _extrapolation(d: dict) -> Extrapolation:
-    return Extrapolation(
-        order=d["order"],
-        order_theory=d["order_theory"],
-        monotone=bool(d["monotone"]),
-        value=d["value"],
-        error_estimate=d["error_estimate"],
-        h=tuple(d["h"]),
-        f=tuple(d["f"]),
-    )
-
-
-def family_extrapolation(d: dict) -> FamilyExtrapolation:
-    """A family's Richardson extrapolation (rotorpillar.converge.richardson) as a record."""
-    return FamilyExtrapolation(**vars(_extrapolation(d)), runs=tuple(d["runs"]))
-
-
-def reference_value(d: dict) -> ReferenceValue:
-    """A quantity's reference (rotorpillar.converge.richardson.reference_values) as a record."""
-    chk = d.get("check")
-    check = None
-    if chk is not None:
-        check = RichardsonCheck(
-            **vars(_extrapolation(chk)),
-            finer_run=chk["finer_run"],
-            finer_value=chk["finer_value"],
-            difference=chk["difference"],
-            within_estimate=bool(chk["within_estimate"]),
-        )
-    return ReferenceValue(**vars(family_extrapolation(d)), family=d["family"], check=check)
-
-
 def _fronts(ok: list[ConvergenceRun], cost: str, needed: Sequence[str], ref_unc: dict[str, float]) -> Fronts:
     """The runs on the Pareto front of each error against ``cost`` ("dofs" or "wall_time")."""
 
@@ -185,6 +111,12 @@ def _fronts(ok: list[ConvergenceRun], cost: str, needed: Sequence[str], ref_unc:
         ovalling=front([r.ovalling_error for r in ok]),
         band=front([band_error(r, needed, ref_unc) for r in ok]),
     )
+
+
+def _compute_seconds(r: ConvergenceRun) -> float:
+    """The time the study waited for a computed run (s): its serving process's, else its own."""
+    seconds = r.process_time if r.process_time is not None else r.wall_time
+    return seconds or 0.0
 
 
 def check_tolerance(tolerance: float) -> None:
@@ -224,13 +156,11 @@ def study(
     counts = StudyCounts(
         runs=len(records),
         workers=workers,
-        cached=sum(bool(r.get("cached")) for r in records),
-        computed=sum(not r.get("cached") for r in records),
-        failed=sum(r.get("status") == "failed" for r in records),
-        unavailable=sum(r.get("status") == "unavailable" for r in records),
-        compute_seconds=sum(
-            r.get("process_time", r.get("wall_time", 0.0)) or 0.0 for r in records if not r.get("cached")
-        ),
+        cached=sum(r.cached for r in records),
+        computed=sum(not r.cached for r in records),
+        failed=sum(r.status == "failed" for r in records),
+        unavailable=sum(r.status == "unavailable" for r in records),
+        compute_seconds=sum(_compute_seconds(r) for r in records if not r.cached),
     )
     result = ConvergenceStudy(
         scene_name=scene.name,

@@ -387,17 +387,17 @@ def _reference_error(fine: list[StoredRun], grid_tips: dict) -> ParetoReference:
         last = fine[-3:]
         h = [1.0 / r.params["elements_along"] for r in last]
         rich = richardson(h, [r.peak_tip for r in last], 4.0)
-        p = rich["order"]
-        if rich["monotone"] and p is not None and 0.5 <= p <= 8:
+        p = rich.order
+        if rich.monotone and p is not None and 0.5 <= p <= 8:
             factor = 1.0 / ((h[1] / h[2]) ** p - 1)
             return ParetoReference(
                 label,
                 peak,
-                peak_error=rich["error_estimate"] / abs(rich["value"]),
+                peak_error=rich.error_estimate / abs(rich.value),
                 history_error=1.25 * factor * float(diff),
                 method="richardson",
                 order=p,
-                limit=rich["value"],
+                limit=rich.value,
                 note=f"Richardson over {', '.join(r.label for r in last)} (observed order "
                 f"{p:.2f}): Roache's 1.25 |limit - finest| for the peak; the history's "
                 "difference to the next coarser times 1.25 / (r**p - 1)",

@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..converge.result import ModeSourceFloor, QuantityErrors
 from ..provenance import JsonRecord
 from ..scene.sections import Mesh
 from .participation import ParticipationTable, load_participation, read_document
@@ -54,14 +55,14 @@ class FullOrderReference(JsonRecord):
     """the study bounds this mesh's error on the participating modes"""
     band_error: float | None
     """largest error bound plus the reference's uncertainty over ``quantities`` (-)"""
-    errors: dict
+    errors: dict[str, QuantityErrors]
     """per quantity: value, error, model_error, discretisation_error, error_bound (the
     bare tube's, from the study)"""
     quantities: tuple[str, ...]
     tolerance: float | None
     required: float | None
-    floor: dict | None
-    """the ROM's mode source: label and band error (run-up: the reference is at least as fine)"""
+    floor: ModeSourceFloor | None
+    """the ROM's mode source (run-up: the reference is at least as fine)"""
     meets: bool | None
     overrides: tuple[str, ...]
     """[full_order] keys that replaced the study's choice"""
@@ -138,23 +139,11 @@ def rom_source_record(scene: Scene, study: ConvergenceStudy) -> ConvergenceRun |
             if r.family == case.family and r.params == case.settings:
                 return r
         from ..converge.compute import compute_in_process
-        from ..converge.runner import case_key
+        from ..converge.runner import case_key, run_record
         from ..converge.selection import attach_errors
-        from ..converge.study import study_run
 
-        computed = study_run(
-            {
-                "key": case_key(case, scene.pillar),
-                "family": case.family,
-                "model": "beam",
-                "label": case.label,
-                "level": case.level,
-                "params": case.settings,
-                "status": "ok",
-                "wall_time": 0.0,
-                **compute_in_process(case, scene.pillar),
-            }
-        )
+        result = replace(compute_in_process(case, scene.pillar), wall_time=0.0)
+        computed = run_record(case, case_key(case, scene.pillar), result)
         return attach_errors([computed], study.reference, study.extrapolations)[0]
     if source == "fem3d":
         want = dict(vars(scene.mesh))
@@ -193,7 +182,6 @@ def choose_reference(
     ``steps``: the run's Newmark steps, which bound how far the run-up's reference
     is refined for the ROM source (REFERENCE_DOF_STEPS)."""
     from ..converge.ladder import FAMILIES
-    from ..converge.result import ERROR_KINDS
     from ..converge.selection import run_band_error, select_reference
 
     fo = scene.full_order
@@ -220,7 +208,7 @@ def choose_reference(
     if case in FLOOR_CASES:
         rec = rom_source_record(scene, study)
         if rec is not None:
-            floor = {"label": rec.label, "band_error": run_band_error(rec, quantities, reference)}
+            floor = ModeSourceFloor(label=rec.label, band_error=run_band_error(rec, quantities, reference))
     choice = select_reference(
         runs,
         reference,
@@ -281,10 +269,7 @@ def choose_reference(
         )
         if same is not None and run_band_error(same, quantities, reference) is not None:
             band_err = run_band_error(same, quantities, reference)
-            errors = {
-                q: {"value": same.frequency(q), **{k: same.relative_error(q, k) for k in ERROR_KINDS}}
-                for q in quantities
-            }
+            errors = {q: QuantityErrors.of(same, q) for q in quantities}
             label = same.label
             reason += f" (the study has it: band error {band_err:.1e})"
         else:
@@ -295,7 +280,7 @@ def choose_reference(
         + (
             f": its error on the frequencies the load excites is at most {band_err:.1e} "
             f"(the study's bound on the bare tube, "
-            + ", ".join(f"first {q} {e['error']:+.1e}" for q, e in errors.items())
+            + ", ".join(f"first {q} {e.error:+.1e}" for q, e in errors.items())
             + ")"
             if band_err is not None
             else ", its error unknown"
