@@ -365,7 +365,7 @@ def _run_fem3d(
         warnings=(),
         captured_at_source="the chain's ROM: its resonances"
         + ("" if settled else "; the run ended before the speed settled, so no capture is claimed"),
-        pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference.to_json(), plan.note),
+        pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference, plan.note),
         compile_seconds=compile_seconds,
         model_description=r.model,
         model_info={"dofs": r.dofs, "mesh": dict(vars(mesh))},

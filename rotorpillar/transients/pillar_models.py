@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from ..chain import ChainModes, PillarModel
 from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
+from ..scene import Mesh
+from .references import FullOrderReference
 
 
 def reduced_pillar_model(which: str, chain: ChainModes | None, info: ModelInfo | None) -> PillarModel:
@@ -51,26 +53,21 @@ def reduced_pillar_model(which: str, chain: ChainModes | None, info: ModelInfo |
     )
 
 
-def solid_pillar_model(mesh, dofs: int, reference: dict, note: str) -> PillarModel:
-    """The 3D full order's mesh as a PillarModel, its source and error the reference's
-    (rotorpillar.transients.references.FullOrderReference)."""
+def solid_pillar_model(mesh: Mesh, dofs: int, reference: FullOrderReference, note: str) -> PillarModel:
+    """The 3D full order's mesh as a PillarModel, its source and error the reference's."""
     from ..chain.choice import solid_run_of
 
     run = solid_run_of(mesh)
-    errors = {
-        q: float(e["error_bound"])
-        for q, e in (reference.get("errors") or {}).items()
-        if isinstance(e, dict) and e.get("error_bound") is not None
-    }
+    errors = {q: e.error_bound for q, e in reference.errors.items() if e.error_bound is not None}
     return PillarModel(
         "solid",
         run.label + " (full order)",
         run.params,
         int(dofs),
-        reference.get("source", "scene"),
-        bool(reference.get("verified")),
-        reference.get("tolerance"),
+        reference.source,
+        reference.verified,
+        reference.tolerance,
         errors,
-        note + ("; " + reference["statement"] if reference.get("statement") else ""),
-        reference.get("study"),
+        note + ("; " + reference.statement if reference.statement else ""),
+        reference.study,
     )
