@@ -269,23 +269,12 @@ def run_point(case: Case, scene: Scene) -> RunResult:
     return _run_in_service(case, scene)
 
 
-def run_record(case: Case, key: str, result: RunResult) -> ConvergenceRun:
-    """An ok run of the ladder: its case and what it computed (no errors yet:
-    rotorpillar.converge.selection.attach_errors gives them)."""
-    return ConvergenceRun(
-        key=key,
-        family=case.family,
-        model=FAMILIES[case.family].model,
-        label=case.label,
-        level=case.level,
-        params=case.settings,
-        status="ok",
-        **vars(result),
-    )
-
-
-def _no_run(case: Case, key: str, status: str, error: str) -> ConvergenceRun:
-    """A run that failed or could not run: its case and why."""
+def run_record(
+    case: Case, key: str, result: RunResult | None, status: str = "ok", error: str | None = None
+) -> ConvergenceRun:
+    """A run of the ladder: its case and what it computed (no errors yet:
+    rotorpillar.converge.selection.attach_errors gives them); a run that failed or could
+    not run has no ``result`` but its ``status`` and ``error``: why."""
     return ConvergenceRun(
         key=key,
         family=case.family,
@@ -295,6 +284,7 @@ def _no_run(case: Case, key: str, status: str, error: str) -> ConvergenceRun:
         params=case.settings,
         status=status,
         error=error,
+        **(vars(result) if result is not None else {}),
     )
 
 
@@ -428,9 +418,9 @@ def run_study(
                 unavailable[model] = str(exc)
                 if log:
                     log(f"converge: skipping the {model} runs: {exc}")
-            records[i] = _no_run(case, key, "unavailable", unavailable[model])
+            records[i] = run_record(case, key, None, "unavailable", unavailable[model])
         elif isinstance(exc, (RuntimeError, ValueError, ArithmeticError)):
-            records[i] = _no_run(case, key, "failed", str(exc))
+            records[i] = run_record(case, key, None, "failed", str(exc))
         elif exc is not None:
             raise exc
         else:
