@@ -16,8 +16,8 @@ for row in bare.modes_table():
 
 closed = pillar_closed_forms(scene.pillar)
 red = tip_reduction(bare, scene.pillar)
-print(f"first bending: 3D {red.omega_bending:.3f} rad/s, Eq. 1 {closed['omega_col1']:.3f} rad/s")
+print(f"first bending: 3D {red.omega_bending:.3f} rad/s, Eq. 1 {closed.omega_col1:.3f} rad/s")
 print(
     f"tip reduction (Eq. 2 on the 3D mode): m_r = {red.m_reduced:.0f} kg, "
-    f"closed form m_col/4 = {closed['tip_mass_limit']:.0f} kg"
+    f"closed form m_col/4 = {closed.tip_mass_limit:.0f} kg"
 )

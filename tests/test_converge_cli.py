@@ -41,9 +41,10 @@ def _study_stopped_after_its_first_run(out, cache):
     cached; None when it ended before it could be frozen.
 
     The whole small study computes in ~1 s and a loaded machine can starve the polling
-    loop past its end (a race seen three times), so the study is frozen first and asked
-    afterwards whether it had already exited: a frozen process cannot exit, so the answer
-    is race-free, and only a study that was alive when frozen is given the Ctrl-C."""
+    loop past its end (a race seen four times), so the study is frozen first and asked
+    afterwards whether it had already exited or written its result: a frozen process can
+    do neither, so the answer is race-free, and only a study frozen with work left is given
+    the Ctrl-C."""
     proc = subprocess.Popen(
         [sys.executable, "-m", "rotorpillar", "converge", "paper", *SMALL, "--out", str(out), "--no-progress"],
         stdout=subprocess.PIPE,
@@ -61,6 +62,10 @@ def _study_stopped_after_its_first_run(out, cache):
         return None
     os.killpg(proc.pid, signal.SIGSTOP)  # an unreaped leader keeps the group alive
     if os.waitid(os.P_PID, proc.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None:
+        proc.communicate(timeout=60)
+        return None
+    if (out / "convergence.json").exists():  # frozen past its work, on its way out: a Ctrl-C
+        os.killpg(proc.pid, signal.SIGCONT)  # there meets the interpreter's shutdown (rc 0)
         proc.communicate(timeout=60)
         return None
     return proc
