@@ -28,6 +28,7 @@ import fcntl
 import gc
 import json
 import os
+import signal
 import subprocess
 import sys
 from collections.abc import Callable, Iterator
@@ -41,6 +42,17 @@ if str(TESTS) not in sys.path:  # tests import their helpers (imagecheck, fixtur
 
 #: Fixtures that make a test slow by themselves: each runs the whole main job.
 SLOW_FIXTURES = frozenset({"run_paper"})
+
+
+def sigint_as_in_the_foreground() -> None:
+    """``preexec_fn`` of a command a test interrupts: SIGINT back to its default.
+
+    A shell without job control starts a background job with SIGINT ignored, and the
+    ignore is inherited by every process below it (`make test &` in a script, some CI
+    runners); a Python started so installs no KeyboardInterrupt and runs through a
+    Ctrl-C.  A user's Ctrl-C reaches a command in the foreground, whose SIGINT is the
+    default: that is the command the test interrupts."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.CompletedProcess:

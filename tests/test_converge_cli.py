@@ -16,7 +16,7 @@ import sys
 import time
 
 import pytest
-from conftest import cli
+from conftest import cli, sigint_as_in_the_foreground
 
 from rotorpillar.converge import ModalModelSelection
 
@@ -41,7 +41,7 @@ def _study_stopped_after_its_first_run(out, cache):
     cached; None when it ended before it could be frozen.
 
     The whole small study computes in ~1 s and a loaded machine can starve the polling
-    loop past its end (a race seen four times), so the study is frozen first and asked
+    loop past its end (a race seen twice), so the study is frozen first and asked
     afterwards whether it had already exited or written its result: a frozen process can
     do neither, so the answer is race-free, and only a study frozen with work left is given
     the Ctrl-C."""
@@ -51,6 +51,7 @@ def _study_stopped_after_its_first_run(out, cache):
         stderr=subprocess.PIPE,
         text=True,
         start_new_session=True,  # its own process group: the study with its workers
+        preexec_fn=sigint_as_in_the_foreground,
     )
     deadline = time.time() + 120
     while time.time() < deadline and proc.poll() is None:
@@ -64,8 +65,8 @@ def _study_stopped_after_its_first_run(out, cache):
     if os.waitid(os.P_PID, proc.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None:
         proc.communicate(timeout=60)
         return None
-    if (out / "convergence.json").exists():  # frozen past its work, on its way out: a Ctrl-C
-        os.killpg(proc.pid, signal.SIGCONT)  # there meets the interpreter's shutdown (rc 0)
+    if (out / "convergence.json").exists():  # frozen past its work: nothing left to interrupt
+        os.killpg(proc.pid, signal.SIGCONT)
         proc.communicate(timeout=60)
         return None
     return proc

@@ -13,7 +13,7 @@ import sys
 import time
 
 import pytest
-from conftest import cli
+from conftest import cli, sigint_as_in_the_foreground
 
 from rotorpillar.cli import main
 
@@ -79,6 +79,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        preexec_fn=sigint_as_in_the_foreground,
     )
     deadline = time.time() + 300
     while time.time() < deadline and proc.poll() is None:
