@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 from ..chain.record import PillarModel
 from ..provenance import JsonRecord
-from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
+from ..reduced.excitation_records import ExcitationSizes
 from .case_checks import SpectralMode
 from .pareto import ParetoStudy
 from .references import FullOrderReference
@@ -140,12 +140,6 @@ class CompareResult(JsonRecord):
     pareto: ParetoStudy | None = field(default=None, metadata={"omit_if_none": True})
     """earthquake against the 3D full order: speed against accuracy of every model of the
     ladder on El Centro"""
-
-    @classmethod
-    def from_json(cls, doc: dict) -> CompareResult:
-        base = super().from_json(doc)
-        ex = doc.get("excitation")
-        return replace(base, excitation=None if ex is None else excitation_sizes_from_json(ex))
 
 
 def reference_of(models) -> str:

@@ -16,7 +16,7 @@ from dataclasses import asdict, dataclass, field, replace
 
 from ..chain.record import PillarModel, Uncertain
 from ..provenance import JsonRecord
-from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
+from ..reduced.excitation_records import ExcitationSizes
 from ..reduced.integration import EnergyBalance
 from ..reduced.models import ModelInfo
 from ..reduced.system import DampedMode, Resonance
@@ -244,12 +244,7 @@ class Fem3dRun(JsonRecord):
     @classmethod
     def from_json(cls, doc: dict) -> Fem3dRun:
         base = super().from_json({**doc, "failed_checks": doc.get("failed_checks"), "resonances": []})
-        ex = doc.get("excitation")
-        return replace(
-            base,
-            resonances=tuple(_resonance(r) for r in doc["resonances"]),
-            excitation=None if ex is None else excitation_sizes_from_json(ex),
-        )
+        return replace(base, resonances=tuple(_resonance(r) for r in doc["resonances"]))
 
 
 #: one model's run, as ``ModelRun.record`` holds it
