@@ -52,7 +52,7 @@ BASELINE = Path(__file__).with_name("house_baseline.json")
 MAX_LINES = 500
 REDUCED = f"{PACKAGE}.reduced"
 #: What reduced/ may import from the package (besides itself).
-REDUCED_MAY_IMPORT = (f"{PACKAGE}.scene", f"{PACKAGE}.errors", f"{PACKAGE}.provenance")
+REDUCED_MAY_IMPORT = (f"{PACKAGE}.scene", f"{PACKAGE}.errors", f"{PACKAGE}.provenance", f"{PACKAGE}.records")
 #: Third-party packages of the finite-element side, which reduced/ never imports.
 DOLFINX_WORLD = ("dolfinx", "ufl", "basix", "ffcx", "petsc4py", "slepc4py", "mpi4py", "gmsh", "meshio")
 PLOTTING = ("pyvista", "matplotlib", "vtk", "vtkmodules")

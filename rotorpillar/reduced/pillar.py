@@ -76,7 +76,13 @@ def tube_section(outer_diameter: float, inner_diameter: float, density: float) -
 
 
 def section_of(pillar: Pillar) -> TubeSection:
-    """The tube section of a scene's ``[pillar]``."""
+    """The tube section of a scene's uniform ``[pillar]``; a tower of cans has one per height
+    (rotorpillar.reduced.tower.section_at)."""
+    if pillar.cans or pillar.outer_diameter is None or pillar.inner_diameter is None:
+        if pillar.is_uniform:
+            s = pillar.segments()[0]
+            return TubeSection(s.outer_bottom, s.inner_bottom, pillar.density)
+        raise ValueError("a tower of cans has a section per height: use rotorpillar.reduced.tower.section_at")
     return TubeSection(pillar.outer_diameter, pillar.inner_diameter, pillar.density)
 
 
@@ -118,6 +124,48 @@ def cantilever_mode(xi: ArrayLike, k: int = 1) -> NDArray[np.float64]:
     x = b * xi
     shape: NDArray[np.float64] = (np.cosh(x) - sigma * np.sinh(x)) - np.cos(x) + sigma * np.sin(x)
     return shape
+
+
+def _hyperbolic_parts(xi: ArrayLike, k: int) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    """(cosh x - sigma sinh x, sinh x - sigma cosh x, beta_k) at x = beta_k xi, without cancellation.
+
+    sigma = 1 + delta with delta ~ 2 exp(-beta) (cos beta - sin beta): the two
+    hyperbolic terms stay of order one where cosh x and sinh x reach 1e13 (k ~ 10).
+    """
+    b = cantilever_root(k)
+    x = b * np.asarray(xi, dtype=float)
+    delta = (math.exp(-b) + math.cos(b) - math.sin(b)) / (math.sinh(b) + math.sin(b))
+    e = np.exp(-x)
+    ch_minus_sh = e  # cosh x - sinh x
+    sh_minus_ch = -e
+    return ch_minus_sh - delta * np.sinh(x), sh_minus_ch - delta * np.cosh(x), b
+
+
+def cantilever_mode_stable(xi: ArrayLike, k: int = 1) -> NDArray[np.float64]:
+    """``cantilever_mode`` without the cancellation of cosh and sinh at large k (same shape)."""
+    c, _, b = _hyperbolic_parts(xi, k)
+    x = b * np.asarray(xi, dtype=float)
+    sigma = 1 + (math.exp(-b) + math.cos(b) - math.sin(b)) / (math.sinh(b) + math.sin(b))
+    out: NDArray[np.float64] = c - np.cos(x) + sigma * np.sin(x)
+    return out
+
+
+def cantilever_slope(xi: ArrayLike, k: int = 1) -> NDArray[np.float64]:
+    """d/dxi of ``cantilever_mode`` (the same normalisation)."""
+    _, s, b = _hyperbolic_parts(xi, k)
+    x = b * np.asarray(xi, dtype=float)
+    sigma = 1 + (math.exp(-b) + math.cos(b) - math.sin(b)) / (math.sinh(b) + math.sin(b))
+    out: NDArray[np.float64] = b * (s + np.sin(x) + sigma * np.cos(x))
+    return out
+
+
+def cantilever_curvature(xi: ArrayLike, k: int = 1) -> NDArray[np.float64]:
+    """d**2/dxi**2 of ``cantilever_mode`` (the same normalisation)."""
+    c, _, b = _hyperbolic_parts(xi, k)
+    x = b * np.asarray(xi, dtype=float)
+    sigma = 1 + (math.exp(-b) + math.cos(b) - math.sin(b)) / (math.sinh(b) + math.sin(b))
+    out: NDArray[np.float64] = b**2 * (c + np.cos(x) - sigma * np.sin(x))
+    return out
 
 
 # --------------------------------------------------------------------------

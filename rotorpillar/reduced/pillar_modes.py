@@ -39,8 +39,18 @@ from scipy.linalg import eigh
 
 from ..errors import InputError
 from ..scene import Pillar
-from .beam_fe import THEORIES, BeamProperties, assemble, section_forces
-from .pillar import cowper_shear_coefficient, section_of
+from .beam_fe import (
+    THEORIES,
+    BaseSprings,
+    BeamLine,
+    BeamProperties,
+    assemble,
+    first_free_dof,
+    section_forces,
+    uniform_line,
+)
+from .pillar import cowper_shear_coefficient
+from .tower import section_at, tower_line
 
 
 @dataclass(frozen=True, eq=False)
@@ -74,6 +84,9 @@ class PillarModes:
     shear_shapes: NDArray[np.float64] | None = None
     """(n_z, k) shear force V_j(z) in X that the part above exerts on the part
     below, per unit modal coordinate (N per m)"""
+    base_rotation: NDArray[np.float64] | None = None
+    """(k,) the base's rotation per unit modal coordinate on a flexible foundation
+    (its translation is ``shapes[0]``); None: clamped (rad per m)"""
 
     def __post_init__(self) -> None:
         k = len(self.omega)
@@ -125,6 +138,7 @@ class PillarModes:
             self.section_heights,
             cut(self.moment_shapes),
             cut(self.shear_shapes),
+            cut(self.base_rotation),
         )
 
     @property
@@ -177,11 +191,30 @@ class PillarModes:
 
 
 def beam_properties(pillar: Pillar, theory: str = "timoshenko") -> BeamProperties:
-    """The ``[pillar]`` tube as a 1D beam (Cowper's shear coefficient for Timoshenko)."""
+    """The uniform ``[pillar]`` tube as a 1D beam (Cowper's shear coefficient for Timoshenko);
+    a tower of cans has no single section: ``beam_line`` takes it element by element."""
     p = pillar
-    sec = section_of(p)
-    kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
+    if not p.is_uniform:
+        raise ValueError("a tower of cans has no single beam section: use rotorpillar.reduced.pillar_modes.beam_line")
+    sec = section_at(p, 0.0)
+    kappa = cowper_shear_coefficient(sec.outer_diameter, sec.inner_diameter, p.poisson_ratio)
     return BeamProperties(p.youngs_modulus, p.poisson_ratio, kappa, p.density, sec.area, sec.second_moment, p.height)
+
+
+def beam_line(pillar: Pillar, elements: int) -> BeamLine:
+    """The ``[pillar]`` tube as a beam of ``elements``: each element's own section (rotorpillar.reduced.tower)."""
+    if pillar.is_uniform:
+        return uniform_line(beam_properties(pillar), elements)
+    return tower_line(pillar, elements)
+
+
+def _solve_lowest(
+    K: NDArray[np.float64], M: NDArray[np.float64], k: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The k lowest (omega, vectors) of K v = omega**2 M v."""
+    n = K.shape[0]
+    mu, vec = eigh(M, K, subset_by_index=[n - k, n - 1])  # as beam_fe: lowest modes stable
+    return 1.0 / np.sqrt(mu[::-1]), vec[:, ::-1]
 
 
 def beam_pillar_modes(
@@ -191,36 +224,36 @@ def beam_pillar_modes(
     theory: str = "timoshenko",
     elements: int = 40,
     gondola_inertia: float = 0.0,
+    base: BaseSprings | None = None,
 ) -> PillarModes:
     """The first ``n_modes`` modes of the 1D beam with the gondola on top.
 
     The gondola is a rigid mass at the tip (``gondola_mass``, kg) (and, if given, a rotary inertia
     about the tip); the rotor is not included: the modal model attaches it
-    through the shaft.
+    through the shaft.  ``base``: the foundation's springs (None: clamped);
+    the base's translation and rotation per mode are then in ``shapes[0]``
+    and ``base_rotation``.
     """
     if theory not in THEORIES:
         raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
-    bp = beam_properties(pillar, theory)
-    K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
-    n = K.shape[0]
-    k = min(n_modes, n)
-    mu, vec = eigh(M, K, subset_by_index=[n - k, n - 1])  # as beam_fe: lowest modes stable
-    omega = 1.0 / np.sqrt(mu[::-1])
-    vec = vec[:, ::-1]
+    line = beam_line(pillar, elements)
+    K, M = assemble(line, elements, theory, gondola_mass, gondola_inertia, base)
+    f = first_free_dof(base)
+    k = min(n_modes, K.shape[0])
+    omega, vec = _solve_lowest(K, M, k)
     tip = vec[-2]  # (w, psi) per node: tip w
     if np.any(np.abs(tip) < 1e-12 * np.max(np.abs(vec), axis=0)):
         raise RuntimeError("a pillar mode with no tip deflection cannot be tip-scaled")
     phi = vec / tip
-    r = np.zeros(n)
+    r = np.zeros(K.shape[0])
     r[0::2] = 1.0
     mj = np.einsum("ij,ik,kj->j", phi, M, phi)
     Lj = phi.T @ M @ r
-    heights = np.linspace(0.0, pillar.height, elements + 1)
-    shapes = np.zeros((elements + 1, k))
-    shapes[1:] = phi[0::2]
-    full = np.zeros((n + 2, k))
-    full[2:] = phi
-    shear, moment = section_forces(bp, elements, theory, full)
+    heights = line.nodes
+    full = np.zeros((2 * (elements + 1), k))
+    full[f:] = phi
+    shapes = full[0::2]
+    shear, moment = section_forces(line, elements, theory, full)
     return PillarModes(
         omega,
         mj,
@@ -234,6 +267,7 @@ def beam_pillar_modes(
         heights,
         moment,
         shear,
+        None if base is None else full[1],
     )
 
 
@@ -282,12 +316,15 @@ def modes_in_band(omega: ArrayLike, band_top: float, minimum: int = 1) -> int:
     return max(minimum, int(np.sum(np.asarray(omega) <= band_top)))
 
 
-def beam_tip_reduction(pillar: Pillar, theory: str = "timoshenko", elements: int = 40) -> tuple[float, float, float]:
+def beam_tip_reduction(
+    pillar: Pillar, theory: str = "timoshenko", elements: int = 40, base: BaseSprings | None = None
+) -> tuple[float, float, float]:
     """Eq. 2 on the bare beam's first mode: (m_r in kg, c1 = m_r omega**2 in N/m, omega in rad/s).
 
-    The first mode of the bare cantilever (no gondola) scaled to a unit tip
-    deflection; m_r = phi^T M phi is its kinetic energy referred to the tip,
-    which for the continuous Euler-Bernoulli beam is m_col / 4.
+    The first mode of the bare cantilever (no gondola; on the foundation's
+    springs when ``base`` is given), tapered or stepped as the tube is, scaled
+    to a unit tip deflection; m_r = phi^T M phi is its kinetic energy referred
+    to the tip, which for the continuous uniform Euler-Bernoulli beam is m_col / 4.
 
     >>> from rotorpillar.scene import load_scene
     >>> m_r, c1, w = beam_tip_reduction(load_scene("paper").pillar, "euler", 40)
@@ -298,10 +335,8 @@ def beam_tip_reduction(pillar: Pillar, theory: str = "timoshenko", elements: int
     """
     if theory not in THEORIES:
         raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
-    K, M = assemble(beam_properties(pillar, theory), elements, theory, 0.0, 0.0)
-    n = K.shape[0]
-    mu, vec = eigh(M, K, subset_by_index=[n - 1, n - 1])
-    omega = 1.0 / math.sqrt(mu[0])
+    K, M = assemble(beam_line(pillar, elements), elements, theory, 0.0, 0.0, base)
+    omega, vec = _solve_lowest(K, M, 1)
     phi = vec[:, 0] / vec[-2, 0]
     m_r = float(phi @ M @ phi)
-    return m_r, m_r * omega**2, omega
+    return m_r, m_r * float(omega[0]) ** 2, float(omega[0])

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ..provenance import JsonRecord
 from ..scene import Pillar, Scene, SceneError
+from .beam_fe import BaseSprings
 from .pillar import (
     cantilever_root,
     cowper_shear_coefficient,
@@ -24,6 +25,7 @@ from .pillar import (
     tip_mass_continuous,
     tip_mass_lumped,
 )
+from .tower import rayleigh_ritz, section_at, tower_mass
 
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
@@ -53,6 +55,22 @@ class RayleighEstimate(JsonRecord):
     """(rad/s)"""
     omega_error: float
     """omega / omega_col1 - 1 (-)"""
+
+
+@dataclass(frozen=True)
+class RitzEstimate(JsonRecord):
+    """The bare tube's bending modes by Rayleigh-Ritz (rotorpillar.reduced.tower.rayleigh_ritz)."""
+
+    omega: tuple[float, ...]
+    """the first three, each an upper bound of the Euler-Bernoulli beam's (rad/s)"""
+    terms: int
+    """assumed shapes: the uniform cantilever's modes (-)"""
+    tip_mass: float
+    """Eq. 2 on the first Ritz mode (kg)"""
+    tip_stiffness: float
+    """m_r omega_1**2 (N/m)"""
+    on_foundation: bool
+    """with the foundation's springs (else clamped)"""
 
 
 @dataclass(frozen=True)
@@ -93,6 +111,17 @@ class PillarClosedForms(JsonRecord):
     tip_stiffness_limit: float
     """m_r omega_col1**2 (N/m)"""
     rayleigh: tuple[RayleighEstimate, ...]
+    rayleigh_ritz: RitzEstimate | None = field(default=None, metadata={"omit_if_none": True})
+    """the bending modes by Rayleigh-Ritz (upper bounds), in Eq. 1's place for a tapered or
+    stepped tower or on a flexible foundation; None (left out) for the uniform tube on a
+    clamp, where the closed forms hold"""
+    statement: str | None = field(default=None, metadata={"omit_if_none": True})
+    """what the numbers above are where the closed forms do not hold; None where they do"""
+
+    @property
+    def uniform(self) -> bool:
+        """A uniform tube clamped at its base: the paper's closed forms hold."""
+        return self.statement is None
 
 
 @dataclass(frozen=True)
@@ -115,15 +144,35 @@ class TipReductionUsed(JsonRecord):
     """"closed_form" or "fem3d\""""
 
 
-def pillar_closed_forms(pillar: Pillar) -> PillarClosedForms:
+#: Timoshenko beam elements of the tower's reference where no closed form holds
+#: (error ~1e-5 of omega_1 at h**2 from 200 elements)
+TOWER_TIMOSHENKO_ELEMENTS = 200
+
+
+def _ritz(pillar: Pillar, base: BaseSprings | None) -> RitzEstimate:
+    r = rayleigh_ritz(pillar, base=base)
+    return RitzEstimate(tuple(map(float, r.omega[:3])), r.terms, r.tip_mass, r.tip_stiffness, base is not None)
+
+
+def pillar_closed_forms(pillar: Pillar, base: BaseSprings | None = None) -> PillarClosedForms:
     """The paper's Eq. 1 (with Timoshenko's correction) and 2 (the reductions) on the bare
-    tube of ``[pillar]``."""
+    tube of ``[pillar]``, with the Rayleigh-Ritz modes beside them.
+
+    Eq. 1 is a uniform tube's on a clamp.  For a tapered or stepped tower,
+    or on a flexible foundation (``base``), Rayleigh-Ritz takes its place
+    (omega_col1, the first three, Eq. 2 on the first Ritz mode), the
+    Timoshenko value is the beam's (rotorpillar.reduced.beam_fe, 200
+    elements), the section numbers are the base's, and the uniform tube's
+    lumping and static shapes are left out (``statement`` says so).
+    """
     p = pillar
+    if not p.is_uniform or base is not None:
+        return _tower_closed_forms(p, base)
     sec = section_of(p)
     I, A, m_rho = sec.second_moment, sec.area, sec.mass_per_length
     mass = m_rho * p.height
     w1 = omega_euler_bernoulli(p.youngs_modulus, I, m_rho, p.height)
-    kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
+    kappa = cowper_shear_coefficient(sec.outer_diameter, sec.inner_diameter, p.poisson_ratio)
     w_timo = omega_timoshenko(p.youngs_modulus, p.poisson_ratio, kappa, p.density, A, I, p.height)
     lumped = tuple(Lumping(n, tip_mass_lumped(mass, n), tip_mass_lumped(mass, n) * w1**2) for n in LUMPINGS)
     m_inf = tip_mass_continuous(mass)
@@ -137,7 +186,7 @@ def pillar_closed_forms(pillar: Pillar) -> PillarClosedForms:
         mass_per_length=m_rho,
         mass=mass,
         wall_thickness=sec.wall_thickness,
-        diameter_to_thickness=p.outer_diameter / sec.wall_thickness,
+        diameter_to_thickness=sec.outer_diameter / sec.wall_thickness,
         slenderness=p.height / sec.radius_of_gyration,
         omega_col1=w1,
         frequency_col1_hz=w1 / (2 * math.pi),
@@ -150,6 +199,50 @@ def pillar_closed_forms(pillar: Pillar) -> PillarClosedForms:
         tip_mass_limit=m_inf,
         tip_stiffness_limit=m_inf * w1**2,
         rayleigh=tuple(rayleigh),
+    )
+
+
+def _tower_closed_forms(p: Pillar, base: BaseSprings | None) -> PillarClosedForms:
+    from .beam_fe import beam_modes
+    from .pillar_modes import beam_line
+
+    sec = section_at(p, 0.0)
+    ritz = _ritz(p, base)
+    w1 = ritz.omega[0]
+    n = max(TOWER_TIMOSHENKO_ELEMENTS, len(p.segments()))
+    w_timo = float(beam_modes(beam_line(p, n), n, "timoshenko", 1, base=base).omega[0])
+    where = []
+    if not p.is_uniform:
+        where.append(f"a tower of {len(p.segments())} can(s), tapered or stepped")
+    if base is not None:
+        where.append("on the foundation's springs")
+    statement = (
+        f"Eq. 1 and Eq. 2's closed forms hold for a uniform tube on a clamp, not for this pillar "
+        f"({' and '.join(where)}): omega_col1 and the first three are Rayleigh-Ritz's upper bounds "
+        f"({ritz.terms} cantilever modes as shapes), the tip mass is Eq. 2 on the first Ritz mode, "
+        f"the Timoshenko value the {n}-element beam's, the section numbers the base's"
+    )
+    return PillarClosedForms(
+        area=sec.area,
+        second_moment=sec.second_moment,
+        mass_per_length=sec.mass_per_length,
+        mass=tower_mass(p),
+        wall_thickness=sec.wall_thickness,
+        diameter_to_thickness=sec.outer_diameter / sec.wall_thickness,
+        slenderness=p.height / sec.radius_of_gyration,
+        omega_col1=w1,
+        frequency_col1_hz=w1 / (2 * math.pi),
+        cantilever_root=cantilever_root(1),
+        omega_euler_bernoulli=ritz.omega,
+        shear_coefficient=cowper_shear_coefficient(sec.outer_diameter, sec.inner_diameter, p.poisson_ratio),
+        omega_col1_timoshenko=w_timo,
+        timoshenko_correction=w_timo / w1 - 1,
+        tip_mass_lumped=(),
+        tip_mass_limit=ritz.tip_mass,
+        tip_stiffness_limit=ritz.tip_stiffness,
+        rayleigh=(),
+        rayleigh_ritz=ritz,
+        statement=statement,
     )
 
 

@@ -17,6 +17,7 @@ the documentation all come from the same place.
 5000000.0
 """
 
+from .fields import param
 from .files import (
     apply_overrides,
     embedded_scenes,
@@ -54,7 +55,6 @@ from .sections import (
     Shaft,
     Simulate,
     Sweep,
-    param,
 )
 from .validation import SCENE_NAME, check_combinations, check_field, scene_from_dict
 from .words import (

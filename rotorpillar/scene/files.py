@@ -24,7 +24,7 @@ def read_text_file(path: Path, what: str) -> str:
     >>> read_text_file(Path(f.name), "scene file")
     Traceback (most recent call last):
     ...
-    rotorpillar.scene.sections.SceneError: scene file ... is not UTF-8 text (byte 0xff at offset 0); save it as UTF-8
+    rotorpillar.scene.fields.SceneError: scene file ... is not UTF-8 text (byte 0xff at offset 0); save it as UTF-8
     >>> os.unlink(f.name)
     """
     try:

@@ -4,51 +4,27 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
-from ..errors import InputError
+from .fields import SceneError as SceneError
+from .fields import _range_text as _range_text
+from .fields import param
+from .tower import Can, Foundation, Segment, segments_of_cans
 from .words import CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS, INTEGRATORS, MODELS
-
-
-class SceneError(InputError):
-    """Bad scene input; the message is one line naming the key and the range."""
-
-
-def param(
-    doc: str,
-    default: Any = dataclasses.MISSING,
-    *,
-    gt: float | None = None,
-    ge: float | None = None,
-    lt: float | None = None,
-    le: float | None = None,
-    choices: Sequence[Any] | None = None,
-    optional: bool = False,
-) -> Any:
-    """A scene field: its docstring (with unit) and its allowed range."""
-    meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices, optional=optional)
-    return field(default=default, metadata=meta)
-
-
-def _range_text(meta: Mapping[str, Any]) -> str:
-    if meta["choices"] is not None:
-        return "one of " + ", ".join(repr(c) for c in meta["choices"])
-    lo = f"> {meta['gt']:g}" if meta["gt"] is not None else f">= {meta['ge']:g}" if meta["ge"] is not None else None
-    hi = f"< {meta['lt']:g}" if meta["lt"] is not None else f"<= {meta['le']:g}" if meta["le"] is not None else None
-    parts = [p for p in (lo, hi) if p]
-    return " and ".join(parts) if parts else "any finite value"
-
 
 # --------------------------------------------------------------------------
 # Sections.  Defaults exist only where a scene may reasonably leave a key out
 # (numerical settings); physical data must be stated.
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Pillar:
-    """The steel tube: a cantilever clamped at its base.
+    """The steel tube: a cantilever on its foundation (clamped at its base by default).
+
+    Either a uniform tube (``height``, ``outer_diameter``, ``inner_diameter``)
+    or a stack of cans from the base up (``[[pillar.cans]]``, rotorpillar.scene.tower:
+    a linear taper is one can); ``height`` is then the cans' sum and may be left out.
 
     The ranges of this section and of [gondola], [rotor], [shaft], [drive]
     and [load] span the machines the tool is for (a fan on a 0.1 m post to a
@@ -56,13 +32,44 @@ class Pillar:
     design, yet short of where the formulas overflow (1e300).
     """
 
-    height: float = param("Height H (m)", gt=0, le=1000)
-    outer_diameter: float = param("Outer diameter D0 (m)", gt=0, le=100)
-    inner_diameter: float = param("Inner diameter D1 (m), < outer_diameter", ge=0)
+    height: float = param("Height H (m); with cans, their sum (may be left out)", None, gt=0, le=1000, optional=True)
+    outer_diameter: float | None = param("Outer diameter D0 (m) of the uniform tube", None, gt=0, le=100, optional=True)
+    inner_diameter: float | None = param(
+        "Inner diameter D1 (m) of the uniform tube, < outer_diameter", None, ge=0, optional=True
+    )
     youngs_modulus: float = param("Young's modulus E (Pa)", ge=1e6, le=1e13)
     poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
     density: float = param("Density rho (kg/m**3)", ge=1, le=1e5)
     damping: float = param("Damping b1 at the tip (N*s/m)", ge=0, le=1e12)
+    cans: tuple[Can, ...] = param(
+        "The tower's cans from the base up ([[pillar.cans]]), instead of the uniform tube's diameters",
+        (),
+        ge=0,
+        le=1000,
+        table=Can,
+    )
+
+    def __post_init__(self) -> None:
+        # the cans' sum stands for a height left out, so every model reads one height
+        if self.height is None and self.cans:
+            object.__setattr__(self, "height", float(sum(c.height for c in self.cans)))
+
+    def segments(self) -> tuple[Segment, ...]:
+        """The tube as segments from the base up (rotorpillar.scene.tower): one for the uniform tube."""
+        if self.cans:
+            return segments_of_cans(self.cans)
+        assert self.outer_diameter is not None and self.inner_diameter is not None  # validation's
+        return (
+            Segment(
+                0.0, self.height, self.outer_diameter, self.outer_diameter, self.inner_diameter, self.inner_diameter
+            ),
+        )
+
+    @property
+    def is_uniform(self) -> bool:
+        """One cylinder from base to top: the closed forms of a uniform tube (Eq. 1) hold."""
+        s = self.segments()
+        return all(x.is_cylinder for x in s) and len({(x.outer_bottom, x.inner_bottom) for x in s}) == 1
 
 
 @dataclass(frozen=True)
@@ -418,6 +425,7 @@ SECTIONS = {
     "modal_model": ModalModel,
     "full_order": FullOrder,
     "material": Material,
+    "foundation": Foundation,
 }
 OPTIONAL_SECTIONS = (
     "reduction",
@@ -430,6 +438,7 @@ OPTIONAL_SECTIONS = (
     "modal_model",
     "full_order",
     "material",
+    "foundation",
 )
 
 
@@ -454,6 +463,7 @@ class Scene:
     modal_model: ModalModel = ModalModel()
     full_order: FullOrder = FullOrder()
     material: Material = Material()
+    foundation: Foundation = Foundation()
     description: str = ""
 
     def to_dict(self) -> dict[str, Any]:

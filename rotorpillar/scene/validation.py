@@ -8,12 +8,25 @@ import re
 from dataclasses import fields
 from typing import Any
 
-from .sections import OPTIONAL_SECTIONS, SECTIONS, Scene, SceneError, _range_text
+from .sections import OPTIONAL_SECTIONS, SECTIONS, Pillar, Scene, SceneError, _range_text
+from .tower import check_cans, check_foundation
+
+
+def _check_table(key: str, value: Any, meta: Any) -> tuple[Any, ...]:
+    """An array of tables ([[section.key]]): each built as its section class, their count in range."""
+    if not isinstance(value, (list, tuple)) or not all(isinstance(v, dict) for v in value):
+        raise SceneError(f"{key} must be an array of tables ([[{key}]] in TOML) ({meta['doc']})")
+    lo, hi = meta["ge"], meta["le"]
+    if (lo is not None and len(value) < lo) or (hi is not None and len(value) > hi):
+        raise SceneError(f"{key}: {len(value)} tables is out of range: must be {_range_text(meta)} ({meta['doc']})")
+    return tuple(_build_section(f"{key}[{i}]", meta["table"], dict(v)) for i, v in enumerate(value))
 
 
 def _check_value(key: str, value: Any, f: dataclasses.Field[Any]) -> Any:
     meta = f.metadata
     want = f.type if isinstance(f.type, str) else f.type.__name__
+    if meta.get("table") is not None:
+        return _check_table(key, value, meta)
     if value is None:
         if meta.get("optional"):
             return None
@@ -65,13 +78,35 @@ def _build_section(name: str, cls: type[Any], table: Any) -> Any:
     return cls(**values)
 
 
-def _cross_checks(scene: Scene) -> None:
-    p = scene.pillar
+def _pillar_checks(p: Pillar) -> None:
+    """The uniform tube's three keys, or the cans (and then a height, if given, their sum)."""
+    uniform = {f.name: f for f in fields(Pillar) if f.name in ("height", "outer_diameter", "inner_diameter")}
+    if p.cans:
+        check_cans(p.cans)
+        for key in ("outer_diameter", "inner_diameter"):
+            if getattr(p, key) is not None:
+                raise SceneError(f"pillar.{key}: give either the uniform tube's diameters or [[pillar.cans]], not both")
+        total = sum(c.height for c in p.cans)
+        if abs(p.height - total) > 1e-9 * total:
+            raise SceneError(
+                f"pillar.height = {p.height:g} is out of range: must equal the sum of the cans' heights, "
+                f"{total:g} (m), or be left out"
+            )
+        return
+    for key, f in uniform.items():
+        if getattr(p, key) is None:
+            raise SceneError(f"pillar.{key}: missing ({f.metadata['doc']}; {_range_text(f.metadata)})")
+    assert p.inner_diameter is not None and p.outer_diameter is not None
     if p.inner_diameter >= p.outer_diameter:
         raise SceneError(
             f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
             f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)"
         )
+
+
+def _cross_checks(scene: Scene) -> None:
+    _pillar_checks(scene.pillar)
+    check_foundation(scene.foundation)
     if scene.drive.slope == 0 and scene.load.coefficient == 0:
         raise SceneError(
             "drive.slope = 0 and load.coefficient = 0: nothing limits the speed "

@@ -1,0 +1,279 @@
+"""Section properties along the tower's height: the one function every model reads.
+
+The tube (``Pillar.segments()``: one cylinder, or the cans of a tapered or
+stepped tower) has at each height z a circular annulus of outer diameter
+D0(z) and inner diameter D1(z), each linear in z within a segment:
+
+- area                A   = pi/4 (D0**2 - D1**2)                        (m**2)
+- second moment       I   = pi/64 (D0**4 - D1**4), about a diameter     (m**4)
+- torsion constant    J   = 2 I (a closed circular section)             (m**4)
+- mass per length     m   = rho A                                       (kg/m)
+- shear coefficient   kappa of Cowper (1966) for the hollow circle     (-)
+
+At a joint between two cans the section may jump (a step in the wall):
+``side`` says which side a height exactly at a joint takes.  The beam puts
+its nodes on the joints, so no element straddles one, and integrates each
+element's section by Gauss-Legendre quadrature, exact for these polynomials
+in z (A quadratic, I quartic).
+
+>>> from rotorpillar.scene import load_scene
+>>> p = load_scene("paper").pillar
+>>> s = sections_along(p, [0.0, 20.0])
+>>> s.second_moment.round(4).tolist(), round(tower_mass(p), 1)
+([0.061, 0.061], 20153.9)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.linalg import eigh
+
+from ..scene import Pillar
+from ..scene.tower import Segment, segment_index
+from .beam_fe import GAUSS_POINTS as BEAM_GAUSS
+from .beam_fe import BaseSprings, BeamLine
+from .pillar import (
+    TubeSection,
+    cantilever_curvature,
+    cantilever_mode_stable,
+    cantilever_slope,
+    cowper_shear_coefficient,
+)
+
+#: Gauss-Legendre points and weights on [0, 1]: 5 points integrate degree 9 exactly
+#: (a Hermite beam element's mass term rho A N N is degree 8 in z on a cone).
+_XG, _WG = np.polynomial.legendre.leggauss(5)  # type: ignore[no-untyped-call]  # numpy's polynomial stubs leave leggauss untyped
+GAUSS_POINTS: NDArray[np.float64] = 0.5 * (np.asarray(_XG) + 1.0)
+GAUSS_WEIGHTS: NDArray[np.float64] = 0.5 * np.asarray(_WG)
+
+
+@dataclass(frozen=True, eq=False)
+class SectionsAlong:
+    """The tube's sections at heights z (arrays of the heights' shape)."""
+
+    z: NDArray[np.float64]
+    """heights (m)"""
+    outer_diameter: NDArray[np.float64]
+    """D0 (m)"""
+    inner_diameter: NDArray[np.float64]
+    """D1 (m)"""
+    density: float
+    """rho (kg/m**3)"""
+    poisson_ratio: float
+    """nu (-)"""
+
+    @property
+    def wall_thickness(self) -> NDArray[np.float64]:
+        """t = (D0 - D1) / 2 (m)"""
+        return (self.outer_diameter - self.inner_diameter) / 2
+
+    @property
+    def mid_radius(self) -> NDArray[np.float64]:
+        """r = (D0 + D1) / 4, the wall's mid-surface radius (m)"""
+        return (self.outer_diameter + self.inner_diameter) / 4
+
+    @property
+    def area(self) -> NDArray[np.float64]:
+        """A (m**2)"""
+        return math.pi / 4 * (self.outer_diameter**2 - self.inner_diameter**2)
+
+    @property
+    def second_moment(self) -> NDArray[np.float64]:
+        """I about a diameter (m**4)"""
+        return math.pi / 64 * (self.outer_diameter**4 - self.inner_diameter**4)
+
+    @property
+    def torsion_constant(self) -> NDArray[np.float64]:
+        """J = 2 I, the polar moment of the closed circular section (m**4)"""
+        return 2 * self.second_moment
+
+    @property
+    def mass_per_length(self) -> NDArray[np.float64]:
+        """rho A (kg/m)"""
+        return self.density * self.area
+
+    @property
+    def shear_coefficient(self) -> NDArray[np.float64]:
+        """Cowper's kappa (-)"""
+        # Cowper's formula is arithmetic: arrays pass through it
+        kappa = cowper_shear_coefficient(self.outer_diameter, self.inner_diameter, self.poisson_ratio)  # type: ignore[arg-type]
+        return np.asarray(kappa, dtype=float)
+
+    @property
+    def section_modulus(self) -> NDArray[np.float64]:
+        """W = I / (D0 / 2) (m**3)"""
+        return self.second_moment / (self.outer_diameter / 2)
+
+
+def sections_along(pillar: Pillar, z: ArrayLike, side: str = "above") -> SectionsAlong:
+    """The sections at heights ``z`` (m); at a joint, the segment ``side`` of it."""
+    segs = pillar.segments()
+    zs = np.atleast_1d(np.asarray(z, dtype=float))
+    idx = segment_index(segs, zs, side)
+    d0, d1 = np.empty_like(zs), np.empty_like(zs)
+    for i, s in enumerate(segs):
+        on = idx == i
+        if on.any():
+            d0[on], d1[on] = s.outer_diameter(zs[on]), s.inner_diameter(zs[on])
+    return SectionsAlong(zs, d0, d1, pillar.density, pillar.poisson_ratio)
+
+
+def section_at(pillar: Pillar, z: float, side: str = "above") -> TubeSection:
+    """The section at one height as a :class:`~rotorpillar.reduced.pillar.TubeSection`."""
+    s = sections_along(pillar, [z], side)
+    return TubeSection(float(s.outer_diameter[0]), float(s.inner_diameter[0]), pillar.density)
+
+
+def base_section(pillar: Pillar) -> TubeSection:
+    """The section at the base (z = 0): what the base's stress and the foundation carry."""
+    return section_at(pillar, 0.0)
+
+
+def joints(pillar: Pillar) -> tuple[float, ...]:
+    """Heights of the joints between segments (m), base and top excluded."""
+    return tuple(s.top for s in pillar.segments()[:-1])
+
+
+def _segment_integral(s: Segment, density: float, power: int) -> float:
+    """integral of rho A(z) (power 2) or rho I(z) (power 4) over one segment (exact)."""
+    z = s.bottom + GAUSS_POINTS * s.length
+    d0, d1 = s.outer_diameter(z), s.inner_diameter(z)
+    f = density * math.pi / (4 if power == 2 else 64) * (d0**power - d1**power)
+    return float(np.sum(GAUSS_WEIGHTS * f) * s.length)
+
+
+def tower_mass(pillar: Pillar) -> float:
+    """The tube's mass, integral of rho A over the height (kg)."""
+    return sum(_segment_integral(s, pillar.density, 2) for s in pillar.segments())
+
+
+def mass_above(pillar: Pillar, z: ArrayLike) -> NDArray[np.float64]:
+    """The tube's mass above each height z (kg): what its self-weight puts on that section."""
+    zs = np.atleast_1d(np.asarray(z, dtype=float))
+    out: NDArray[np.float64] = np.zeros_like(zs)
+    for s in pillar.segments():
+        lo = np.clip(zs, s.bottom, s.top)
+        for j, a in enumerate(lo):
+            if a < s.top:
+                part = Segment(a, s.top, s.outer_diameter(a), s.outer_top, s.inner_diameter(a), s.inner_top)
+                out[j] += _segment_integral(part, pillar.density, 2)
+    return out
+
+
+def element_nodes(pillar: Pillar, n_elements: int) -> NDArray[np.float64]:
+    """Node heights of a beam of ``n_elements`` along the tube (m), a node on every joint.
+
+    Each segment gets elements in proportion to its length (at least one),
+    equal within it: the uniform tube's nodes are today's equal spacing.
+    """
+    segs = pillar.segments()
+    if n_elements < len(segs):
+        raise ValueError(f"a beam along {len(segs)} cans needs at least {len(segs)} elements")
+    H = pillar.height
+    share = np.array([s.length / H for s in segs]) * n_elements
+    counts = np.maximum(1, np.floor(share).astype(int))
+    # the elements left go to the segments whose share lost most to the floor
+    while counts.sum() < n_elements:
+        counts[int(np.argmax(share - counts))] += 1
+    while counts.sum() > n_elements:
+        counts[int(np.argmax(np.where(counts > 1, counts - share, -np.inf)))] -= 1
+    if len(segs) == 1:
+        return np.asarray(np.linspace(0.0, H, n_elements + 1), dtype=float)
+    parts = [np.linspace(s.bottom, s.top, c + 1)[:-1] for s, c in zip(segs, counts)]
+    return np.asarray(np.r_[np.concatenate(parts), H], dtype=float)
+
+
+def tower_line(pillar: Pillar, n_elements: int) -> BeamLine:
+    """The tube as a beam of ``n_elements`` (rotorpillar.reduced.beam_fe), a node on every joint,
+    each element's section at its Gauss points."""
+    nodes = element_nodes(pillar, n_elements)
+    L = np.diff(nodes)
+    z = nodes[:-1, None] + BEAM_GAUSS[None, :] * L[:, None]
+    # Gauss points lie inside the elements, and no element straddles a joint: no side to choose
+    s = sections_along(pillar, z.ravel())
+    shape = z.shape
+    G = pillar.youngs_modulus / (2 * (1 + pillar.poisson_ratio))
+    return BeamLine(
+        nodes,
+        pillar.youngs_modulus,
+        G,
+        pillar.density,
+        s.area.reshape(shape),
+        s.second_moment.reshape(shape),
+        s.shear_coefficient.reshape(shape),
+    )
+
+
+# --------------------------------------------------------------------------
+# Rayleigh-Ritz: the tapered cantilever's bending modes, an upper bound
+
+
+#: Gauss-Legendre points per segment of the Ritz integrals: the uniform
+#: cantilever's modes up to the 12th have under 12 half-waves, which 40
+#: points integrate to round-off.
+_RITZ_POINTS = 40
+
+
+@dataclass(frozen=True, eq=False)
+class RitzModes:
+    """Euler-Bernoulli bending modes of the tube by Rayleigh-Ritz."""
+
+    omega: NDArray[np.float64]
+    """natural angular frequencies, ascending; each an upper bound of the exact (rad/s)"""
+    terms: int
+    """assumed shapes: the uniform cantilever's first ``terms`` modes (plus the base's
+    translation and rotation on springs) (-)"""
+    tip_mass: float
+    """Eq. 2 on the first mode: its kinetic energy referred to the tip, int rho A phi**2 dz / phi(H)**2 (kg)"""
+
+    @property
+    def tip_stiffness(self) -> float:
+        """m_r omega_1**2 (N/m)"""
+        return self.tip_mass * float(self.omega[0]) ** 2
+
+
+def rayleigh_ritz(
+    pillar: Pillar, terms: int = 10, top_mass: float = 0.0, top_inertia: float = 0.0, base: BaseSprings | None = None
+) -> RitzModes:
+    """The tube's bending modes (Euler-Bernoulli) by Rayleigh-Ritz on the uniform cantilever's modes.
+
+    The uniform clamped-free beam's modes phi_k(z/H) are complete and meet the
+    clamp, so each Ritz frequency bounds the exact one of the tapered or
+    stepped beam from above and falls to it as ``terms`` grows (Rayleigh-Ritz's
+    theorem): K_kl = int EI phi_k'' phi_l'' dz, M_kl = int rho A phi_k phi_l dz,
+    plus the top's mass and rotary inertia.  On springs the base's translation
+    and rotation join the shapes (1 and z), with the springs' energy.
+    """
+    H = pillar.height
+    xg, wg = np.polynomial.legendre.leggauss(_RITZ_POINTS)  # type: ignore[no-untyped-call]  # numpy's stubs leave it untyped
+    zs, ws = [], []
+    for s in pillar.segments():
+        zs.append(s.bottom + 0.5 * (np.asarray(xg) + 1) * s.length)
+        ws.append(0.5 * np.asarray(wg) * s.length)
+    z, w = np.concatenate(zs), np.concatenate(ws)
+    sec = sections_along(pillar, z)
+    EI, m = pillar.youngs_modulus * sec.second_moment, sec.mass_per_length
+    xi = z / H
+    phi = [cantilever_mode_stable(xi, k) for k in range(1, terms + 1)]
+    d2 = [cantilever_curvature(xi, k) / H**2 for k in range(1, terms + 1)]
+    tip = [float(cantilever_mode_stable(np.array([1.0]), k)[0]) for k in range(1, terms + 1)]
+    slope = [float(cantilever_slope(np.array([1.0]), k)[0]) / H for k in range(1, terms + 1)]
+    if base is not None:
+        phi = [np.ones_like(z), z] + phi
+        d2 = [np.zeros_like(z), np.zeros_like(z)] + d2
+        tip, slope = [1.0, H] + tip, [0.0, 1.0] + slope
+    P, D = np.array(phi), np.array(d2)
+    K = np.einsum("q,iq,jq->ij", w * EI, D, D)
+    M = np.einsum("q,iq,jq->ij", w * m, P, P)
+    t, r = np.array(tip), np.array(slope)
+    M += top_mass * np.outer(t, t) + top_inertia * np.outer(r, r)
+    if base is not None:
+        K[:2, :2] += base.matrix()
+    lam, vec = eigh(K, M)
+    v = vec[:, 0]
+    m_tube = float(v @ np.einsum("q,iq,jq->ij", w * m, P, P) @ v)
+    return RitzModes(np.sqrt(lam), terms, m_tube / float(t @ v) ** 2)
