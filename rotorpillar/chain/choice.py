@@ -23,11 +23,12 @@ from __future__ import annotations
 import dataclasses
 import json
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, fields
+from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..scene import Mesh, Scene
+from ..scene.tower import Foundation
 from .record import PillarModel
 
 if TYPE_CHECKING:
@@ -36,7 +37,8 @@ if TYPE_CHECKING:
 #: Scene keys a convergence study's choice depends on: the tube, the ladder's
 #: shape (from [mesh]), the tolerance and limits, and the band (drive, load).
 STUDY_INPUTS = {
-    "pillar": ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density"),
+    "pillar": ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density", "cans"),
+    "foundation": None,
     "mesh": None,
     "converge": None,
     "drive": None,
@@ -70,12 +72,24 @@ def solid_mesh_section(mesh: dict) -> Mesh:
 def _mismatch(scene: Scene, study_scene: dict) -> str | None:
     """The first scene key the study was run with a different value of, or None."""
     mine = scene.to_dict()
+    # a key the study's scene predates (the cans, the foundation) stands at its default there
+    defaults = {"pillar": {"cans": []}, "foundation": asdict(Foundation())}
     for section, keys in STUDY_INPUTS.items():
         a, b = mine.get(section) or {}, study_scene.get(section) or {}
         for k in keys or sorted(set(a) | set(b)):
-            if a.get(k) != b.get(k):
+            old = defaults.get(section, {})
+            if _plain(a.get(k, old.get(k))) != _plain(b.get(k, old.get(k))):
                 return f"{section}.{k}"
     return None
+
+
+def _plain(v: Any) -> Any:
+    """A scene value as JSON reads it back (tuples as lists)."""
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, dict):
+        return {k: _plain(x) for k, x in v.items()}
+    return v
 
 
 def study_on_disk(scene: Scene, out_dir: Path):

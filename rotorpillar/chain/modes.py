@@ -24,6 +24,7 @@ from ..cache import DiskCache, cache_key, source_hash, user_cache_root
 from ..provenance import JsonRecord
 from ..reduced.pillar_modes import PillarModes
 from ..scene import Scene
+from ..scene.tower import foundation_key, pillar_key
 from .choice import Choice, solid_mesh_section
 from .record import PillarModel
 
@@ -82,10 +83,8 @@ def modes_key(scene: Scene, mesh: dict) -> str:
     p, md = scene.pillar, scene.modal
     args = {
         "mesh": mesh,
-        "pillar": {
-            k: getattr(p, k)
-            for k in ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
-        },
+        "pillar": pillar_key(p),
+        **foundation_key(scene.foundation),
         "gondola": scene.gondola.mass,
         "top_model": md.top_model,
         "top_mass": md.top_mass,
@@ -129,13 +128,15 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
 
 
 def _beam(scene: Scene, pm: PillarModel) -> tuple[PillarModes, TipReductionOf]:
+    from ..reduced.foundation import base_springs
     from ..reduced.pillar_modes import beam_pillar_modes, beam_tip_reduction
 
     theory, elements = str(pm.mesh["theory"]), int(pm.mesh["elements"])
+    base = base_springs(scene.foundation)
     modes = beam_pillar_modes(
-        scene.pillar, scene.gondola.mass, MAX_CANDIDATES, theory, elements, scene.modal_model.gondola_inertia
+        scene.pillar, scene.gondola.mass, MAX_CANDIDATES, theory, elements, scene.modal_model.gondola_inertia, base
     )
-    m_r, c1, w = beam_tip_reduction(scene.pillar, theory, elements)
+    m_r, c1, w = beam_tip_reduction(scene.pillar, theory, elements, base)
     return modes, TipReductionOf(m_r, c1, w, f"Eq. 2 on the bare beam's first mode, {pm.label}")
 
 

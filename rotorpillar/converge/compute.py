@@ -13,10 +13,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..reduced.beam_fe import BeamProperties, beam_modes
+from ..reduced.beam_fe import beam_modes
 from ..reduced.cylinder import ring_frequency
-from ..reduced.pillar import cowper_shear_coefficient, omega_euler_bernoulli, section_of
+from ..reduced.foundation import base_springs
+from ..reduced.pillar import omega_euler_bernoulli, section_of
+from ..reduced.pillar_modes import beam_line
+from ..reduced.tower import rayleigh_ritz
 from ..scene import Scene
+from ..scene.tower import Foundation
 from .ladder import FAMILIES, N_MODES, N_MODES_FIRST, Case, solid_mesh
 from .result import Mode, RunResult
 
@@ -45,26 +49,30 @@ def _modal_summary(omega, kind, n_circ, dofs: int) -> RunResult:
     )
 
 
-def compute_in_process(case: Case, pillar) -> RunResult:
-    """The closed forms and the 1D beam models (numpy only)."""
-    sec = section_of(pillar)
+def compute_in_process(case: Case, pillar, foundation: Foundation | None = None) -> RunResult:
+    """The closed forms and the 1D beam models (numpy only), on the ``foundation``'s springs
+    (None: clamped).
+
+    The closed forms (Eq. 1, the ring) are a uniform tube's on a clamp; a
+    tapered or stepped tower, or one on springs, has Rayleigh-Ritz's first
+    bending frequency (an upper bound) in Eq. 1's place and no ovalling
+    closed form (rotorpillar.reduced.reduction.pillar_closed_forms)."""
     fam = FAMILIES[case.family]
+    base = base_springs(foundation or Foundation())
     if fam.model == "closed_form":
-        t = (pillar.outer_diameter - pillar.inner_diameter) / 2
-        R = (pillar.outer_diameter + pillar.inner_diameter) / 4
-        return RunResult(
-            bending=omega_euler_bernoulli(pillar.youngs_modulus, sec.second_moment, sec.mass_per_length, pillar.height),
-            ovalling=ring_frequency(2, pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, R, t),
-            ovalling_n=2,
-            dofs=1,
-            modes=(),
-        )
+        if pillar.is_uniform and base is None:
+            sec = section_of(pillar)
+            t, R = sec.wall_thickness, (sec.outer_diameter + sec.inner_diameter) / 4
+            bending = omega_euler_bernoulli(
+                pillar.youngs_modulus, sec.second_moment, sec.mass_per_length, pillar.height
+            )
+            ovalling = ring_frequency(2, pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, R, t)
+            return RunResult(bending=bending, ovalling=ovalling, ovalling_n=2, dofs=1, modes=())
+        ritz = rayleigh_ritz(pillar, base=base)
+        return RunResult(bending=float(ritz.omega[0]), ovalling=None, ovalling_n=None, dofs=ritz.terms, modes=())
     s = case.settings
-    kappa = cowper_shear_coefficient(pillar.outer_diameter, pillar.inner_diameter, pillar.poisson_ratio)
-    props = BeamProperties(
-        pillar.youngs_modulus, pillar.poisson_ratio, kappa, pillar.density, sec.area, sec.second_moment, pillar.height
-    )
-    m = beam_modes(props, s["elements"], s["theory"], n_modes=1)
+    line = beam_line(pillar, s["elements"])
+    m = beam_modes(line, s["elements"], s["theory"], n_modes=1, base=base)
     return RunResult(
         bending=float(m.omega[0]),
         ovalling=None,

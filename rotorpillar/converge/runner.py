@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 from ..cache import DiskCache, cache_key, source_hash
 from ..provenance import write_json
+from ..scene.tower import Foundation, foundation_key, pillar_key
 from .compute import compute_fe, compute_in_process
 from .ladder import FAMILIES, N_MODES, QUANTITIES, Case, estimated_dofs, estimated_seconds, resolved_only
 from .result import ERROR_KINDS, ConvergenceRun, RunResult
@@ -48,10 +49,11 @@ CACHE_VERSION = 2
 def _source_files(model: str) -> list[Path]:
     """The source files a model's results depend on (their hash is in the cache key)."""
     root = Path(__file__).parent.parent
+    tower = [root / "reduced" / "tower.py", root / "reduced" / "foundation.py", root / "scene" / "tower.py"]
     if model == "closed_form":
-        return [root / "reduced" / "pillar.py", root / "reduced" / "cylinder.py"]
+        return [root / "reduced" / "pillar.py", root / "reduced" / "cylinder.py", *tower]
     if model == "beam":
-        return [root / "reduced" / "beam_fe.py", root / "reduced" / "pillar.py"]
+        return [root / "reduced" / "beam_fe.py", root / "reduced" / "pillar.py", *tower]
     shell = [root / (m.replace(".", "/") + ".py") for m in (SHELL_MODEL, SHELL_MESH)]
     if model == "shell":
         return shell + [root / (m.replace(".", "/") + ".py") for m in SHELL_SOLVER]
@@ -62,7 +64,7 @@ def _source_files(model: str) -> list[Path]:
     return [f for f in files if f not in shell and f not in after]
 
 
-def case_key(case: Case, pillar, tolerance: float | None = None) -> str:
+def case_key(case: Case, pillar, tolerance: float | None = None, foundation: Foundation | None = None) -> str:
     """Hash of everything a run's result depends on (``tolerance``: the 3D
     eigen-solve's, ``modal.tolerance``; the other models have their own)."""
     fam = FAMILIES[case.family]
@@ -71,22 +73,20 @@ def case_key(case: Case, pillar, tolerance: float | None = None) -> str:
         "params": case.settings,
         "n_modes": N_MODES if fam.model in ("shell", "solid") else None,
         "tolerance": tolerance if fam.model == "solid" else None,
-        "pillar": {
-            k: getattr(pillar, k)
-            for k in ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
-        },
+        "pillar": pillar_key(pillar),
+        **foundation_key(foundation or Foundation()),
     }
     return cache_key(args, version=CACHE_VERSION, code=source_hash(_source_files(fam.model)))
 
 
-def _run_in_process(case: Case, pillar) -> RunResult:
+def _run_in_process(case: Case, pillar, foundation: Foundation | None = None) -> RunResult:
     # time without tracemalloc (it slows Python code), then measure memory
     t0 = time.perf_counter()
-    out = compute_in_process(case, pillar)
+    out = compute_in_process(case, pillar, foundation)
     wall = time.perf_counter() - t0
     tracemalloc.start()
     try:
-        compute_in_process(case, pillar)
+        compute_in_process(case, pillar, foundation)
         _, peak = tracemalloc.get_traced_memory()
     finally:
         tracemalloc.stop()
@@ -265,7 +265,7 @@ def _run_in_service(case: Case, scene: Scene) -> RunResult:
 def run_point(case: Case, scene: Scene) -> RunResult:
     """Compute one case (in-process or in the serving process, by model)."""
     if FAMILIES[case.family].model in ("closed_form", "beam"):
-        return _run_in_process(case, scene.pillar)
+        return _run_in_process(case, scene.pillar, scene.foundation)
     return _run_in_service(case, scene)
 
 
@@ -348,7 +348,11 @@ def check_study_memory(cases: list[Case], workers: int) -> None:
 def todo_cases(cases: list[Case], scene: Scene, cache_dir: Path) -> list[Case]:
     """The cases the run cache under ``cache_dir`` does not hold."""
     cache = DiskCache(Path(cache_dir))
-    return [c for c in cases if _load_cached(cache, case_key(c, scene.pillar, scene.modal.tolerance)) is None]
+    return [
+        c
+        for c in cases
+        if _load_cached(cache, case_key(c, scene.pillar, scene.modal.tolerance, scene.foundation)) is None
+    ]
 
 
 def run_study(
@@ -378,7 +382,7 @@ def run_study(
     from tqdm import tqdm
 
     cache = DiskCache(Path(cache_dir))
-    keys = [case_key(c, scene.pillar, scene.modal.tolerance) for c in cases]
+    keys = [case_key(c, scene.pillar, scene.modal.tolerance, scene.foundation) for c in cases]
     records: list[ConvergenceRun | None] = [None] * len(cases)
     todo = []
     for i, (c, key) in enumerate(zip(cases, keys)):

@@ -16,6 +16,7 @@ from ..errors import InputError
 from ..provenance import JsonRecord
 from ..scene import Scene
 from .excitation import GroundMotion, load_record, paper_pulse
+from .foundation import base_springs
 from .pillar_modes import PillarModes, beam_pillar_modes, modes_in_band
 from .reduction import TipReductionUsed, pillar_closed_forms, resolve_reduction
 from .rotor_models import RotorStructure, beam_model, modal_model, paper_model
@@ -66,7 +67,7 @@ ModelInfo = PaperModelInfo | BeamModelInfo | ModalModelInfo
 
 def paper_system(scene: Scene) -> tuple[ReducedSystem, TipReductionUsed]:
     """The paper's ReducedSystem with the scene's tip reduction (stated, or the paper's Eq. 2)."""
-    red = resolve_reduction(scene, pillar_closed_forms(scene.pillar))
+    red = resolve_reduction(scene, pillar_closed_forms(scene.pillar, base_springs(scene.foundation)))
     return reduced_system(
         scene.rotor, scene.shaft, scene.gondola.mass, scene.pillar.damping, red.tip_mass, red.tip_stiffness
     ), red
@@ -75,7 +76,9 @@ def paper_system(scene: Scene) -> tuple[ReducedSystem, TipReductionUsed]:
 def beam_candidates(scene: Scene, count: int = MAX_CANDIDATE_MODES) -> PillarModes:
     """The first ``count`` pillar modes of the scene's 1D beam ([modal_model])."""
     m = scene.modal_model
-    return beam_pillar_modes(scene.pillar, scene.gondola.mass, count, m.theory, m.elements, m.gondola_inertia)
+    return beam_pillar_modes(
+        scene.pillar, scene.gondola.mass, count, m.theory, m.elements, m.gondola_inertia, base_springs(scene.foundation)
+    )
 
 
 def candidate_modes(scene: Scene, pillar_modes: PillarModes | None = None) -> PillarModes:
@@ -109,7 +112,16 @@ def build_model(
     if which == "beam":
         mm = scene.modal_model
         n = scene.full_order.beam_elements or mm.elements
-        model = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, n, mm.theory, mm.gondola_inertia)
+        model = beam_model(
+            scene.pillar,
+            scene.gondola.mass,
+            scene.rotor,
+            scene.shaft,
+            n,
+            mm.theory,
+            mm.gondola_inertia,
+            base_springs(scene.foundation),
+        )
         source = "full_order.beam_elements" if scene.full_order.beam_elements else "modal_model.elements"
         return model, BeamModelInfo(n, mm.theory, model.n, source)
     if which != "modal":

@@ -48,6 +48,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eig, eigh
 
 from ..scene import Pillar, Rotor, Shaft
+from .beam_fe import BaseSprings
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 from .pillar_modes import PillarModes
@@ -434,17 +435,19 @@ def beam_model(
     elements: int = 10,
     theory: str = "timoshenko",
     gondola_inertia: float = 0.0,
+    base: BaseSprings | None = None,
 ) -> RotorStructure:
     """Full order: every degree of freedom of the 1D beam (deflection and
-    rotation per node, the gondola on top) and the rotor centre in X,
-    relative to the ground, with the same physics as ``modal_model`` (b1 as
-    a dashpot at the tip, -M r a_g).  The modal model with all the beam's
-    modes is this model in other coordinates; with fewer it is its reduction."""
+    rotation per node, the gondola on top; on a flexible foundation the base
+    node's too, on the ``base`` springs) and the rotor centre in X, relative
+    to the ground, with the same physics as ``modal_model`` (b1 as a dashpot
+    at the tip, -M r a_g: the ground moves beneath the springs).  The modal
+    model with all the beam's modes is this model in other coordinates; with
+    fewer it is its reduction."""
     from .beam_fe import assemble
-    from .pillar_modes import beam_properties
+    from .pillar_modes import beam_line
 
-    bp = beam_properties(pillar, theory)
-    K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
+    K, M = assemble(beam_line(pillar, elements), elements, theory, gondola_mass, gondola_inertia, base)
     nb = K.shape[0]
     nx = nb + 1
     tip_dof = nb - 2  # (w, psi) per node: the top node's w

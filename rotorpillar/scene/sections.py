@@ -467,5 +467,7 @@ class Scene:
     description: str = ""
 
     def to_dict(self) -> dict[str, Any]:
-        """The resolved scene, as it would be written back to TOML."""
-        return dataclasses.asdict(self)
+        """The resolved scene, as it would be written back to TOML (an array of tables as a list)."""
+        out = dataclasses.asdict(self)
+        out["pillar"]["cans"] = list(out["pillar"]["cans"])
+        return out

@@ -21,7 +21,7 @@ springs come from Gazetas' formulas (rotorpillar.reduced.foundation).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, fields
+from dataclasses import asdict, dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -132,6 +132,27 @@ def segment_index(segs: Sequence[Segment], z: ArrayLike, side: str = "above") ->
     zs = np.asarray(z, dtype=float)
     idx: NDArray[np.int64] = np.searchsorted(joints, zs, side="right" if side == "above" else "left").astype(np.int64)
     return idx
+
+
+#: the uniform tube's keys that set its modes
+PILLAR_MODEL_KEYS = ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
+
+
+def pillar_key(pillar: Any) -> dict[str, Any]:
+    """What a model of the pillar depends on, for a cache key: today's keys, and the
+    cans when there are any (so a uniform tube's keys are those it always had)."""
+    out = {k: getattr(pillar, k) for k in PILLAR_MODEL_KEYS}
+    if pillar.cans:
+        out["cans"] = [asdict(c) for c in pillar.cans]
+    return out
+
+
+def foundation_key(foundation: Foundation) -> dict[str, Any]:
+    """The foundation's part of a cache key: nothing for a clamp (so keys made before
+    foundations existed stay valid), its springs' keys otherwise."""
+    if foundation.kind == "clamped":
+        return {}
+    return {"foundation": {k: v for k, v in asdict(foundation).items() if k != "rotation_limit"}}
 
 
 def check_cans(cans: Sequence[Can], key: str = "pillar.cans") -> None:

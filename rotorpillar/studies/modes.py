@@ -11,6 +11,7 @@ cache key holds the modes it ran on.
 from __future__ import annotations
 
 import json
+from dataclasses import asdict
 from pathlib import Path
 
 from ..reduced.pillar_modes import PillarModes
@@ -21,6 +22,7 @@ MODE_KEYS = (
     "pillar.height",
     "pillar.outer_diameter",
     "pillar.inner_diameter",
+    "pillar.cans",
     "pillar.youngs_modulus",
     "pillar.poisson_ratio",
     "pillar.density",
@@ -36,7 +38,11 @@ MODE_KEYS = (
 
 
 def affects_modes(key: str) -> bool:
-    return key in MODE_KEYS or key.startswith("mesh.")
+    return (
+        key in MODE_KEYS
+        or key.startswith("mesh.")
+        or (key.startswith("foundation.") and key != "foundation.rotation_limit")
+    )
 
 
 def mode_params(base: Scene, scene: Scene) -> dict:
@@ -46,10 +52,11 @@ def mode_params(base: Scene, scene: Scene) -> dict:
         section, name = key.split(".")
         value = getattr(getattr(scene, section), name)
         if getattr(getattr(base, section), name) != value:
-            out[key] = value
-    for name, value in vars(scene.mesh).items():
-        if getattr(base.mesh, name) != value:
-            out[f"mesh.{name}"] = value
+            out[key] = [asdict(c) for c in value] if key == "pillar.cans" else value
+    for section in ("mesh", "foundation"):
+        for name, value in vars(getattr(scene, section)).items():
+            if getattr(getattr(base, section), name) != value and f"{section}.{name}" != "foundation.rotation_limit":
+                out[f"{section}.{name}"] = value
     return out
 
 

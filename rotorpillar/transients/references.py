@@ -142,8 +142,8 @@ def rom_source_record(scene: Scene, study: ConvergenceStudy) -> ConvergenceRun |
         from ..converge.runner import case_key, run_record
         from ..converge.selection import attach_errors
 
-        result = replace(compute_in_process(case, scene.pillar), wall_time=0.0)
-        computed = run_record(case, case_key(case, scene.pillar), result)
+        result = replace(compute_in_process(case, scene.pillar, scene.foundation), wall_time=0.0)
+        computed = run_record(case, case_key(case, scene.pillar, foundation=scene.foundation), result)
         return attach_errors([computed], study.reference, study.extrapolations)[0]
     if source == "fem3d":
         want = dict(vars(scene.mesh))
