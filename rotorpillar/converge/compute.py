@@ -107,11 +107,11 @@ def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> RunResul
     s = case.settings
     r: ShellModalResult | ModalResult
     if fam.model == "shell":
-        from ..fem3d.naghdi import ShellDiscretisation, shell_modal_analysis, shell_section_of
+        from ..fem3d.naghdi import ShellDiscretisation, shell_modal_analysis, shell_section_of, shell_segments_of
 
         sec, R, H = shell_section_of(pillar)
         disc = ShellDiscretisation(s["elements_around"], s["elements_along"], s["cell_type"], s["degree"])
-        r = shell_modal_analysis(sec, R, H, disc, n_modes=n_modes)
+        r = shell_modal_analysis(sec, R, H, disc, n_modes=n_modes, segments=shell_segments_of(pillar))
     else:
         import inspect
 

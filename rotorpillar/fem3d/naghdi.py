@@ -31,12 +31,13 @@ cylinder in Sanders' shell theory (Leissa, Vibration of Shells, NASA SP-288,
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..mesh.midsurface import BASE, TOP, MidSurface, gmsh_mid_surface, mid_surface_radius
+from ..mesh.midsurface import BASE, TOP, MidSurface, cone_points, gmsh_mid_surface, mid_surface_radius
 from .eigensolver import solve_gep_shift_invert
 from .identify import describe_mode, rings_of
 
@@ -109,10 +110,30 @@ class ShellModalResult:
 
 
 def shell_section_of(pillar) -> tuple[ShellSection, float, float]:
-    """(section, mid-surface radius R (m), height H (m)) of a scene's ``[pillar]``."""
-    t = (pillar.outer_diameter - pillar.inner_diameter) / 2
-    R = mid_surface_radius(pillar.outer_diameter, pillar.inner_diameter)
+    """(section, mid-surface radius R (m), height H (m)) of a scene's ``[pillar]``: the
+    base's, for a tower of cans (whose cones and walls ``shell_segments_of`` gives)."""
+    base = pillar.segments()[0]
+    t = (base.outer_bottom - base.inner_bottom) / 2
+    R = mid_surface_radius(base.outer_bottom, base.inner_bottom)
     return (ShellSection(pillar.youngs_modulus, pillar.poisson_ratio, pillar.density, t), R, pillar.height)
+
+
+def shell_segments_of(pillar) -> tuple:
+    """A tower's segments as the shell takes them: (bottom, top, mid-surface radius at bottom,
+    at top, wall at bottom, at top) (m); empty for the uniform tube."""
+    if pillar.is_uniform:
+        return ()
+    return tuple(
+        (
+            s.bottom,
+            s.top,
+            mid_surface_radius(s.outer_bottom, s.inner_bottom),
+            mid_surface_radius(s.outer_top, s.inner_top),
+            (s.outer_bottom - s.inner_bottom) / 2,
+            (s.outer_top - s.inner_top) / 2,
+        )
+        for s in pillar.segments()
+    )
 
 
 # --------------------------------------------------------------------------
@@ -128,6 +149,31 @@ def cylinder_frame(x):
     e2 = ufl.as_vector([0.0, 0.0, 1.0])
     n = ufl.as_vector([x[0] / r, x[1] / r, 0.0])
     return e1, e2, n
+
+
+def cone_frame(x, slope):
+    """Orthonormal frame (e_theta, meridian, normal) of a cone dR/dz = ``slope`` at x:
+    the meridian (slope e_r + e_z) / c and the normal (e_r - slope e_z) / c, c =
+    sqrt(1 + slope**2); the cylinder's frame at slope 0."""
+    import ufl
+
+    r = ufl.sqrt(x[0] ** 2 + x[1] ** 2)
+    c = ufl.sqrt(1.0 + slope**2)
+    er = ufl.as_vector([x[0] / r, x[1] / r, 0.0])
+    ez = ufl.as_vector([0.0, 0.0, 1.0])
+    e1 = ufl.as_vector([-x[1] / r, x[0] / r, 0.0])
+    return e1, (slope * er + ez) / c, (er - slope * ez) / c
+
+
+def _piecewise(z, segments, value):
+    """A UFL expression equal to ``value(segment)`` on each segment's heights (the cells
+    meet every joint, so no quadrature point sits on one)."""
+    import ufl
+
+    expr = value(segments[-1])
+    for seg in reversed(segments[:-1]):
+        expr = ufl.conditional(ufl.lt(z, seg[1]), value(seg), expr)
+    return expr
 
 
 def tangent_projector(e1, e2):
@@ -198,8 +244,13 @@ def shell_modal_analysis(
     ends: str = "clamped-free",
     comm=None,
     method: str | None = None,
+    segments: tuple = (),
 ) -> ShellModalResult:
     """The lowest ``n_modes`` modes of the tube as a shell.
+
+    ``segments``: a tower of cans (``shell_segments_of``): the mid-surface
+    on each can's cone (its frame ``cone_frame``), the wall linear along
+    each; ``section.thickness`` and ``radius`` are then the base's.
 
     ``ends``: "clamped-free" (the pillar) or "simply-supported" (shear
     diaphragms at both ends: u_x = u_y = 0, the closed-form check).
@@ -219,7 +270,7 @@ def shell_modal_analysis(
     comm = MPI.COMM_WORLD if comm is None else comm
     timings = {}
     t0 = time.perf_counter()
-    msh, _, facets = _mesh(radius, height, disc, comm)
+    msh, _, facets = _mesh(radius, height, disc, comm, segments)
     timings["mesh"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
@@ -227,7 +278,15 @@ def shell_modal_analysis(
     Ue = ufl.VectorElement("Lagrange", cell, disc.degree, dim=3)
     Be = ufl.VectorElement("Lagrange", cell, disc.degree, dim=2)
     V = fem.FunctionSpace(msh, ufl.MixedElement([Ue, Be]))
-    e1, e2, n = cylinder_frame(ufl.SpatialCoordinate(msh))
+    x = ufl.SpatialCoordinate(msh)
+    if segments:
+        z = x[2]
+        slope = _piecewise(z, segments, lambda s: (s[3] - s[2]) / (s[1] - s[0]))
+        e1, e2, n = cone_frame(x, slope)
+        thickness = _piecewise(z, segments, lambda s: s[4] + (s[5] - s[4]) * (z - s[0]) / (s[1] - s[0]))
+        section = dataclasses.replace(section, thickness=thickness)
+    else:
+        e1, e2, n = cylinder_frame(x)
     P = tangent_projector(e1, e2)
     (u, b), (v, c) = ufl.TrialFunctions(V), ufl.TestFunctions(V)
     beta, gamma_ = b[0] * e1 + b[1] * e2, c[0] * e1 + c[1] * e2
@@ -272,8 +331,10 @@ def shell_modal_analysis(
     return ShellModalResult(np.array(omega), kinds, ns, int(dofs), int(cells), disc.cell_type, disc.degree, timings)
 
 
-def _mesh(radius, height, disc: ShellDiscretisation, comm):
-    return mid_surface_mesh(MidSurface(radius, height, disc.elements_around, disc.elements_along, disc.cell_type), comm)
+def _mesh(radius, height, disc: ShellDiscretisation, comm, segments: tuple = ()):
+    mid = tuple(s[:4] for s in segments)
+    params = MidSurface(radius, height, disc.elements_around, disc.elements_along, disc.cell_type, segments=mid)
+    return mid_surface_mesh(params, comm)
 
 
 def _boundary_conditions(V, facets, ends: str):
@@ -325,6 +386,9 @@ def mid_surface_mesh(params: MidSurface, comm=None):
             # complete 9-node quadrilaterals: dolfinx reads these, not 8-node ones
             gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
             gmsh.model.mesh.setOrder(params.order)
-        return gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
+        msh, cells, facets = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
     finally:
         gmsh.finalize()
+    if params.segments:
+        msh.geometry.x[:] = cone_points(msh.geometry.x, params)
+    return msh, cells, facets

@@ -31,6 +31,7 @@ from ..errors import InputError
 from ..reduced.models import MAX_CANDIDATE_MODES
 from ..reduced.pillar import section_of
 from ..reduced.pillar_modes import PillarModes
+from ..reduced.tower import sections_along, tower_mass
 from ..scene import Scene
 
 
@@ -58,16 +59,21 @@ def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:
     idx = idx[:count]
     if result.beam_line is None:
         raise InputError("the 3D modes carry no beam line (not on MPI rank 0?)")
-    m_rho = section_of(pillar).mass_per_length
     L, shapes, heights = [], [], None
     for i in idx:
         z, phi = result.beam_line[i]
         z, phi = np.asarray(z, float), np.asarray(phi, float)
         phi = phi / phi[-1]  # unit tip, as the result normalises
-        L.append(m_rho * integrate_levels(z, phi) + result.top_mass * phi[-1])
+        if pillar.is_uniform:
+            L.append(section_of(pillar).mass_per_length * integrate_levels(z, phi) + result.top_mass * phi[-1])
+        else:
+            m_z = sections_along(pillar, z).mass_per_length
+            L.append(integrate_levels(z, m_z * phi) + result.top_mass * phi[-1])
         heights = z if heights is None else heights
         shapes.append(phi)
-    total = m_rho * pillar.height + result.top_mass
+    total = (section_of(pillar).mass_per_length * pillar.height if pillar.is_uniform else tower_mass(pillar)) + (
+        result.top_mass
+    )
     cuts = getattr(result, "section_resultants", None)
     resultants = (
         {}

@@ -29,13 +29,16 @@ from scipy.integrate import trapezoid  # np.trapz is gone in NumPy 2
 from ..errors import ComputationError
 
 
-def beam_line_tip_mass(z: np.ndarray, w: np.ndarray, mass_per_length: float, degree: int = 1) -> float:
+def beam_line_tip_mass(z: np.ndarray, w: np.ndarray, mass_per_length, degree: int = 1) -> float:
     """Eq. 2 on a sampled deflection line: int m_rho w**2 dz / w_tip**2 (kg).
 
+    ``mass_per_length``: m_rho (kg/m), or a function of z giving it along a tower.
     ``degree`` 2: the samples are the nodes of quadratic elements (end,
     middle, end, ...) and w**2 is integrated exactly on each element's
     quadratic interpolant (3-point Gauss); degree 1: trapezoids.
     """
+    if callable(mass_per_length):
+        return _varying_tip_mass(np.asarray(z, dtype=float), np.asarray(w, dtype=float), mass_per_length, degree)
     z, w = np.asarray(z, dtype=float), np.asarray(w, dtype=float)
     if degree == 2 and len(z) % 2 == 1 and len(z) >= 3:
         z0, zm, z1 = z[:-1:2], z[1::2], z[2::2]
@@ -52,6 +55,24 @@ def beam_line_tip_mass(z: np.ndarray, w: np.ndarray, mass_per_length: float, deg
     else:
         total = trapezoid(w**2, z)
     return float(mass_per_length * total / w[-1] ** 2)
+
+
+def _varying_tip_mass(z: np.ndarray, w: np.ndarray, m_of, degree: int) -> float:
+    """``beam_line_tip_mass`` with m_rho(z): the same rules, m_rho at the rule's points."""
+    if degree == 2 and len(z) % 2 == 1 and len(z) >= 3:
+        z0, zm, z1 = z[:-1:2], z[1::2], z[2::2]
+        w0, wm, w1 = w[:-1:2], w[1::2], w[2::2]
+        total = 0.0
+        for g, c in zip((-np.sqrt(0.6), 0.0, np.sqrt(0.6)), (5 / 9, 8 / 9, 5 / 9)):
+            zg = (z0 + z1) / 2 + g * (z1 - z0) / 2
+            l0 = (zg - zm) * (zg - z1) / ((z0 - zm) * (z0 - z1))
+            lm = (zg - z0) * (zg - z1) / ((zm - z0) * (zm - z1))
+            l1 = (zg - z0) * (zg - zm) / ((z1 - z0) * (z1 - zm))
+            wg = l0 * w0 + lm * wm + l1 * w1
+            total += float(np.sum(c * m_of(zg) * wg**2 * (z1 - z0) / 2))
+    else:
+        total = float(trapezoid(m_of(z) * w**2, z))
+    return float(total / w[-1] ** 2)
 
 
 @dataclass(frozen=True)
@@ -73,6 +94,7 @@ class TipReduction:
 def tip_reduction(result, pillar) -> TipReduction:
     """Eq. 2 on the 3D model: tip mass and stiffness from a bare tube's first bending_x mode."""
     from ..reduced.pillar import section_of
+    from ..reduced.tower import sections_along
 
     i = result.index("bending_x", n_axial=0)
     if i is None:
@@ -84,5 +106,10 @@ def tip_reduction(result, pillar) -> TipReduction:
     m_line = float("nan")
     if result.beam_line is not None and i in result.beam_line:
         z, w = result.beam_line[i]
-        m_line = beam_line_tip_mass(z, w, section_of(pillar).mass_per_length, result.degree)
+        m_rho = (
+            section_of(pillar).mass_per_length
+            if pillar.is_uniform
+            else (lambda zz: sections_along(pillar, zz).mass_per_length)
+        )
+        m_line = beam_line_tip_mass(z, w, m_rho, result.degree)
     return TipReduction(m_r, m_r * omega**2, omega, m_line, i)

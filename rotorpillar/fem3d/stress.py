@@ -39,8 +39,9 @@ from typing import Any
 
 import numpy as np
 
-from ..reduced.internal_forces import STANDARD_GRAVITY, axial_force, extreme_fibre_stress
+from ..reduced.internal_forces import STANDARD_GRAVITY, extreme_fibre_stress, tower_axial_force
 from ..reduced.pillar import section_of
+from ..reduced.tower import base_section, section_at, sections_along
 from ..scene import Pillar
 from .stress_records import StressPeak, VonMisesSummary
 
@@ -123,7 +124,7 @@ class StressRecovery:
                 x.destroy()
         self._peaks = {}
         res = np.array(self.resultants)
-        static = axial_force(self.heights, section_of(self.pillar).mass_per_length, self.pillar.height, self.top_mass)
+        static = tower_axial_force(self.pillar, self.heights, self.top_mass)
         res[:, :, 2] += static[None, :]
         summary = self._summary(np.array(self.times), res)
         path = self._writer.close() if self._writer is not None else None
@@ -141,9 +142,9 @@ class StressRecovery:
                 built.destroy()
 
     def _summary(self, t: np.ndarray, res: np.ndarray) -> VonMisesSummary:
-        sec = section_of(self.pillar)
         p = self.pillar
-        r = (p.outer_diameter + p.inner_diameter) / 4
+        sec = base_section(p)
+        r = (sec.outer_diameter + sec.inner_diameter) / 4
         lb = boundary_layer_length(r, sec.wall_thickness, p.poisson_ratio)
         coords = self._vm.coordinates
         comm = self._model.comm
@@ -166,7 +167,7 @@ class StressRecovery:
             z = pos[2]
             Mz = np.interp(z, self.heights, res[j, :, 1])
             Nz = np.interp(z, self.heights, res[j, :, 2])
-            nominal = float(extreme_fibre_stress(Mz, Nz, sec))
+            nominal = float(extreme_fibre_stress(Mz, Nz, section_at(p, min(max(z, 0.0), p.height))))
             if name == "clamp":
                 nominal = float(extreme_fibre_stress(res[j, 0, 1], res[j, 0, 2], sec))
             out[name] = StressPeak(val, pos, float(when), nominal, val / nominal if nominal else math.nan)
@@ -214,10 +215,15 @@ class VonMisesProjection:
         self.u = fem.Function(model.V, name="displacement")
         self.u_out = self.u if model.V.ufl_element().degree() == degree else fem.Function(Vd, name="displacement")
         self.vm = fem.Function(self.S, name="von_mises")
-        sec = section_of(pillar)
-        z = ufl.SpatialCoordinate(mesh)[2]
         g = STANDARD_GRAVITY
-        nz = g * (sec.mass_per_length * (pillar.height - z) + top_mass) / sec.area
+        if pillar.is_uniform:
+            sec = section_of(pillar)
+            z = ufl.SpatialCoordinate(mesh)[2]
+            nz = g * (sec.mass_per_length * (pillar.height - z) + top_mass) / sec.area
+        else:
+            # a tower: N(z)/A(z) of its own sections, interpolated on the stress space
+            nz = fem.Function(self.S)
+            nz.interpolate(lambda x: tower_axial_force(pillar, x[2], top_mass) / sections_along(pillar, x[2]).area)
         ez = ufl.as_vector((0.0, 0.0, 1.0))
         s = sigma(self.u, pillar.youngs_modulus, pillar.poisson_ratio)
         if gravity:

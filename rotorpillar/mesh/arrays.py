@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ComputationError
-from .tube import BASE, GMSH_CELLS, TOP, TUBE, WALL
+from .tube import BASE, GMSH_CELLS, TOP, TUBE, WALL, TubeMeshParams, conical_points
 
 
 @dataclass(frozen=True)
@@ -96,11 +96,14 @@ def cylindrical_nodes(points: np.ndarray, cells: np.ndarray, reference: np.ndarr
     return np.stack([rn * np.cos(tn), rn * np.sin(tn), zn], axis=-1)
 
 
-def extract_mesh_data(model) -> MeshData:
-    """The arrays of a meshed Gmsh model with the tube's physical groups."""
+def extract_mesh_data(model, params: TubeMeshParams | None = None) -> MeshData:
+    """The arrays of a meshed Gmsh model with the tube's physical groups; a tower's
+    (``params.segments``) with its nodes on the cans' cones (tube.conical_points)."""
     tags, coords, _ = model.mesh.getNodes()
     order = np.argsort(tags)
     points = coords.reshape(-1, 3)[order]
+    if params is not None:
+        points = conical_points(points, params)
     index = np.empty(int(tags.max()) + 1, dtype=np.int64)
     index[tags[order]] = np.arange(len(tags))
 

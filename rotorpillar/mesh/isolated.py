@@ -28,7 +28,7 @@ def _mesh_in_process(p: TubeMeshParams) -> MeshData:
         gmsh.option.setNumber("General.NumThreads", 1)
         gmsh.model.add("tube")
         build_tube(gmsh.model, p)
-        data = extract_mesh_data(gmsh.model)
+        data = extract_mesh_data(gmsh.model, p)
     except InputError:
         raise
     except Exception as exc:  # Gmsh raises plain Exceptions carrying its log line

@@ -76,8 +76,16 @@ class TubeMeshParams:
     grading: float = 1.0
     """ratio of the longest cell along the height (at the top) to the shortest
     (at the clamped base), a geometric progression; 1 = uniform (-)"""
+    segments: tuple = ()
+    """a tower of cans: per segment from the base, (bottom, top, outer diameter at bottom,
+    at top, inner diameter at bottom, at top) (m), each diameter linear between; the mesh's
+    layers meet every joint and its nodes lie on each can's cones (``conical_points``).
+    Empty: the uniform tube of ``outer_radius`` and ``inner_radius``"""
 
     def __post_init__(self):
+        object.__setattr__(self, "segments", tuple(tuple(float(v) for v in s) for s in self.segments))
+        if self.segments:
+            self._check_segments()
         for key, lo in (("elements_around", 4), ("elements_along", 1), ("elements_through", 1)):
             v = getattr(self, key)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
@@ -113,6 +121,20 @@ class TubeMeshParams:
             f"{self.elements_through} through: about {self.estimated_dofs:.3g} DOFs",
             "use fewer elements",
         )
+
+    def _check_segments(self) -> None:
+        if len(self.segments) > self.elements_along:
+            raise InputError(
+                f"mesh.elements_along = {self.elements_along} is out of range: must be >= the "
+                f"{len(self.segments)} cans, a layer of cells each at least"
+            )
+        for i, (_, _, o0, o1, i0, i1) in enumerate(self.segments):
+            wall = min(o0 - i0, o1 - i1) / 2
+            if wall < MIN_SIZE / 100 or min(i0, i1) <= 0:
+                raise InputError(
+                    f"pillar.cans[{i}]: the 3D mesh needs a tube with a wall >= {MIN_SIZE / 100:g} m "
+                    f"and an inner diameter > 0 (wall {wall:g} m): Gmsh's tolerances"
+                )
 
     @property
     def estimated_dofs(self) -> int:
@@ -168,15 +190,36 @@ def layer_heights(p: TubeMeshParams) -> np.ndarray:
     n = p.elements_along
     q = p.grading ** (1 / (n - 1)) if n > 1 else 1.0
     sizes = q ** np.arange(n)
-    return np.cumsum(sizes) / sizes.sum()
+    cum = np.cumsum(sizes) / sizes.sum()
+    if len(p.segments) <= 1:
+        return cum
+    # a tower of cans: the same graded cells, shared out among the cans (each at least one)
+    # and rescaled within each, so that a layer interface lies on every joint
+    H = p.height
+    tops = np.array([s[1] for s in p.segments]) / H
+    owner = np.minimum(np.searchsorted(tops, cum - 1e-12), len(tops) - 1)
+    counts = np.array([max(1, int(np.sum(owner == k))) for k in range(len(tops))])
+    while counts.sum() > n:
+        counts[int(np.argmax(counts))] -= 1
+    out, start, lo = [], 0, 0.0
+    for k, c in enumerate(counts):
+        part = sizes[start : start + c]
+        out.append(lo + np.cumsum(part) / part.sum() * (tops[k] - lo))
+        start, lo = start + c, tops[k]
+    return np.concatenate(out)
 
 
 def tube_params(pillar, mesh) -> TubeMeshParams:
     """The mesh parameters of a scene's ``[pillar]`` and ``[mesh]`` sections."""
+    segs = pillar.segments()
+    base = segs[0]
     return TubeMeshParams(
         height=pillar.height,
-        outer_radius=pillar.outer_diameter / 2,
-        inner_radius=pillar.inner_diameter / 2,
+        outer_radius=base.outer_bottom / 2,
+        inner_radius=base.inner_bottom / 2,
+        segments=()
+        if pillar.is_uniform
+        else tuple((s.bottom, s.top, s.outer_bottom, s.outer_top, s.inner_bottom, s.inner_top) for s in segs),
         elements_around=mesh.elements_around,
         elements_along=mesh.elements_along,
         elements_through=mesh.elements_through,
@@ -264,3 +307,37 @@ def build_tube(model, p: TubeMeshParams) -> TubeTags:
     if p.order == 2:
         model.mesh.setOrder(2)
     return tags
+
+
+def tube_radii(p: TubeMeshParams, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(outer, inner) radius at heights z (m); at a joint where the wall steps, the mean of
+    the two cans' (a node there belongs to both: the step spreads over the layers beside it)."""
+    z = np.asarray(z, dtype=float)
+    if not p.segments:
+        return np.full_like(z, p.outer_radius), np.full_like(z, p.inner_radius)
+    ro, ri, hits = np.zeros_like(z), np.zeros_like(z), np.zeros_like(z)
+    tol = 1e-9 * p.height
+    for z0, z1, o0, o1, i0, i1 in p.segments:
+        on = (z >= z0 - tol) & (z <= z1 + tol)
+        s = np.clip((z[on] - z0) / (z1 - z0), 0.0, 1.0)
+        ro[on] += (o0 + s * (o1 - o0)) / 2
+        ri[on] += (i0 + s * (i1 - i0)) / 2
+        hits[on] += 1
+    return ro / hits, ri / hits
+
+
+def conical_points(points: np.ndarray, p: TubeMeshParams) -> np.ndarray:
+    """The structured tube's nodes moved onto the cans' cones: a node at the fraction s of
+    the reference wall (radii ``inner_radius`` .. ``outer_radius``) goes to the same
+    fraction of the wall at its height, at its angle and height.  A straight generator of
+    a can stays straight, so the first-order map of each cell in (r, theta, z)
+    (arrays.cylindrical_nodes) puts the quadratic nodes on the cones exactly."""
+    if not p.segments:
+        return points
+    x, y, z = points[:, 0], points[:, 1], points[:, 2]
+    r = np.hypot(x, y)
+    s = (r - p.inner_radius) / (p.outer_radius - p.inner_radius)
+    ro, ri = tube_radii(p, z)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        scale = np.where(r > 0, (ri + s * (ro - ri)) / r, 1.0)
+    return np.column_stack([x * scale, y * scale, z])

@@ -40,8 +40,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..provenance import JsonRecord
+from ..scene import Pillar
+from .beam_fe import BaseSprings
 from .pillar import TubeSection
 from .pillar_modes import PillarModes
+from .tower import first_moment_above, mass_above, section_at
 
 #: g_n, the standard acceleration of gravity (m/s**2), ISO 80000-3
 STANDARD_GRAVITY = 9.80665
@@ -216,6 +219,7 @@ def force_truncation(
     tip_statics: dict[str, float],
     tolerance: float = FORCE_TOLERANCE,
     points: int = 600,
+    base_statics: dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None,
 ) -> ForceTruncation:
     """Errors of the first k modes on the tip, the base moment and the base shear.
 
@@ -225,8 +229,10 @@ def force_truncation(
     damped by ``damping`` (k x k in the modal coordinates, e.g. the tip
     dashpot b1 on every pair).  The reference is every mode of ``pm`` plus
     the static share of the modes beyond them (``static_resultants``,
-    ``tip_statics`` from ``cantilever_tip_statics``): exact for the section
-    forces by equilibrium, whatever the mode source.  The error at each
+    ``tip_statics`` from ``cantilever_tip_statics``; a tower's or one on a
+    foundation from ``tower_static_resultants`` at the base, ``base_statics``,
+    and ``tip_statics_of_beam``): exact for the section forces by
+    equilibrium, whatever the mode source.  The error at each
     frequency is taken over the reference's magnitude there, but not less
     than its static value: measured over the peak alone it let 3 modes pass
     a base shear that El Centro shows 3-7 % off (the record's energy lies
@@ -240,7 +246,9 @@ def force_truncation(
     i0 = int(np.argmin(np.abs(np.asarray(pm.section_heights))))
     M0, V0 = np.asarray(pm.moment_shapes)[i0], np.asarray(pm.shear_shapes)[i0]
     kk = np.asarray(pm.modal_stiffness)
-    statics = static_resultants(np.asarray(pm.section_heights)[i0 : i0 + 1], height, mass_per_length, top_mass)
+    statics = base_statics or static_resultants(
+        np.asarray(pm.section_heights)[i0 : i0 + 1], height, mass_per_length, top_mass
+    )
     loads = {"tip": np.ones(n), "base": -np.asarray(pm.participation)}
     errors = np.zeros((n, 3))
     for name, f in loads.items():
@@ -289,3 +297,117 @@ def thin_tube_shear_stress(shear: ArrayLike, section: TubeSection) -> NDArray[np
     """Largest shear stress of a thin circular tube, 2 V / A at the neutral axis (Pa)."""
     stress: NDArray[np.float64] = 2 * np.abs(np.asarray(shear, dtype=float)) / section.area
     return stress
+
+
+# --------------------------------------------------------------------------
+# A tower of cans: the same quantities with the section of each height
+
+
+def tower_axial_force(
+    pillar: Pillar, z: ArrayLike, top_mass: float, g: float = STANDARD_GRAVITY
+) -> NDArray[np.float64]:
+    """N(z) = g (mass of the tube above z + m_top), compression positive (N); the
+    uniform tube's is ``axial_force``, to the last digit."""
+    if pillar.is_uniform:
+        return axial_force(z, section_at(pillar, 0.0).mass_per_length, pillar.height, top_mass, g)
+    return g * (mass_above(pillar, z) + top_mass)
+
+
+def tower_static_resultants(
+    pillar: Pillar, z: ArrayLike, top_mass: float
+) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]:
+    """``static_resultants`` with the tube's mass as it is along the height (exact by
+    equilibrium): the base load's V = -(m above z + m_top), M = -(int_z^H m(s) (s - z) ds
+    + m_top (H - z))."""
+    if pillar.is_uniform:
+        return static_resultants(z, pillar.height, section_at(pillar, 0.0).mass_per_length, top_mass)
+    zs = np.atleast_1d(np.asarray(z, dtype=float))
+    arm = pillar.height - zs
+    return {
+        "tip": (np.ones_like(zs), arm),
+        "base": (-(mass_above(pillar, zs) + top_mass), -(first_moment_above(pillar, zs) + top_mass * arm)),
+    }
+
+
+def tip_statics_of_beam(
+    pillar: Pillar, top_mass: float, theory: str, elements: int, base: BaseSprings | None
+) -> dict[str, float]:
+    """``cantilever_tip_statics`` of the beam model: the static tip deflection per unit tip
+    force and per unit ground acceleration along +X (m), by the beam's own static solve
+    (tapered or stepped, on the foundation's springs): exact for that model."""
+    from .beam_fe import assemble
+    from .pillar_modes import beam_line
+
+    K, M = assemble(beam_line(pillar, elements), elements, theory, top_mass, 0.0, base)
+    f_tip = np.zeros(K.shape[0])
+    f_tip[-2] = 1.0
+    r = np.zeros(K.shape[0])
+    r[0::2] = 1.0
+    tip = np.linalg.solve(K, np.column_stack([f_tip, -(M @ r)]))[-2]
+    return {"tip": float(tip[0]), "base": float(tip[1])}
+
+
+@dataclass(frozen=True)
+class CanStress(JsonRecord):
+    """The largest meridional stress of one can over a run, where and when it occurred."""
+
+    can: int
+    """the can's index from the base, 0 first (-)"""
+    bottom: float
+    """the can's lower end (m)"""
+    top: float
+    """the can's upper end (m)"""
+    stress: float
+    """largest |M| c / I + N / A over the can's sections, compression (Pa)"""
+    height: float
+    """where (m)"""
+    time: float
+    """when (s)"""
+    axial_share: float
+    """N / A over that stress there and then (EN 1993-1-6's C_x) (-)"""
+    outer_diameter: float
+    """D0 at that height (m)"""
+    wall_thickness: float
+    """t at that height (m)"""
+    cone_angle: float
+    """the can's half-angle beta, from the axis (rad)"""
+
+
+def can_stresses(
+    pillar: Pillar, t: ArrayLike, heights: ArrayLike, moment: ArrayLike, axial: ArrayLike
+) -> tuple[CanStress, ...]:
+    """Per can, the largest extreme-fibre stress |M| c / I + N / A over the sections at
+    ``heights`` within it (its ends included, each with the can's own section there).
+
+    ``moment`` and ``axial`` are (n_t, n_z) at ``heights`` (m), compression positive."""
+    t, z = np.asarray(t, dtype=float), np.asarray(heights, dtype=float)
+    Mz, Nz = np.abs(np.asarray(moment, dtype=float)), np.asarray(axial, dtype=float)
+    out = []
+    for i, seg in enumerate(pillar.segments()):
+        tol = 1e-9 * pillar.height
+        inside = np.nonzero((z >= seg.bottom - tol) & (z <= seg.top + tol))[0]
+        if len(inside) == 0:
+            continue
+        zi = np.clip(z[inside], seg.bottom, seg.top)
+        d0, d1 = np.asarray(seg.outer_diameter(zi), dtype=float), np.asarray(seg.inner_diameter(zi), dtype=float)
+        d0, d1 = np.broadcast_to(d0, zi.shape), np.broadcast_to(d1, zi.shape)
+        area = np.pi / 4 * (d0**2 - d1**2)
+        inertia = np.pi / 64 * (d0**4 - d1**4)
+        sigma = Mz[:, inside] * (d0 / 2) / inertia + Nz[:, inside] / area
+        j, k = np.unravel_index(int(np.argmax(sigma)), sigma.shape)
+        s = float(sigma[j, k])
+        out.append(
+            CanStress(
+                i,
+                seg.bottom,
+                seg.top,
+                s,
+                float(zi[k]),
+                float(t[j]),
+                float(Nz[j, inside[k]] / area[k] / s) if s > 0 else 1.0,
+                float(d0[k]),
+                float((d0[k] - d1[k]) / 2),
+                float(abs(np.arctan(seg.slope()))),
+            )
+        )
+    return tuple(out)

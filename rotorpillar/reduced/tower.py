@@ -153,14 +153,24 @@ def tower_mass(pillar: Pillar) -> float:
 
 def mass_above(pillar: Pillar, z: ArrayLike) -> NDArray[np.float64]:
     """The tube's mass above each height z (kg): what its self-weight puts on that section."""
+    return _above(pillar, z, 0)
+
+
+def first_moment_above(pillar: Pillar, z: ArrayLike) -> NDArray[np.float64]:
+    """int_z^H rho A(s) (s - z) ds at each height z (kg*m): the lever of the mass above
+    about that section (what a unit horizontal acceleration of it bends the section by)."""
+    return _above(pillar, z, 1)
+
+
+def _above(pillar: Pillar, z: ArrayLike, power: int) -> NDArray[np.float64]:
+    """int_z^H rho A(s) (s - z)**power ds at each z (exact: Gauss on each segment's part above z)."""
     zs = np.atleast_1d(np.asarray(z, dtype=float))
     out: NDArray[np.float64] = np.zeros_like(zs)
     for s in pillar.segments():
-        lo = np.clip(zs, s.bottom, s.top)
-        for j, a in enumerate(lo):
-            if a < s.top:
-                part = Segment(a, s.top, s.outer_diameter(a), s.outer_top, s.inner_diameter(a), s.inner_top)
-                out[j] += _segment_integral(part, pillar.density, 2)
+        a = np.clip(zs, s.bottom, s.top)[:, None]
+        zq = a + GAUSS_POINTS[None, :] * (s.top - a)
+        f = pillar.density * math.pi / 4 * (s.outer_diameter(zq) ** 2 - s.inner_diameter(zq) ** 2)
+        out += np.sum(GAUSS_WEIGHTS[None, :] * f * (zq - zs[:, None]) ** power, axis=1) * (s.top - a[:, 0])
     return out
 
 

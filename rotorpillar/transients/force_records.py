@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 
 from ..fem3d.stress_records import VonMisesSummary
 from ..provenance import JsonRecord
-from ..reduced.internal_forces import ForceTruncation
+from ..reduced.foundation import FoundationStiffness
+from ..reduced.internal_forces import CanStress, ForceTruncation
 
 
 @dataclass(frozen=True)
@@ -63,6 +64,32 @@ class ShaftDemand(JsonRecord):
 
 
 @dataclass(frozen=True)
+class FoundationResponse(JsonRecord):
+    """What the foundation's springs carry over a run, and how far the base turns."""
+
+    kind: str
+    """the foundation's kind: springs or footing"""
+    horizontal_force: float
+    """largest |K_H u + K_HR theta| (N)"""
+    horizontal_force_time: float
+    """when (s)"""
+    moment: float
+    """largest |K_HR u + K_R theta| (N*m)"""
+    moment_time: float
+    """when (s)"""
+    rotation: float
+    """largest |theta|, the base's rotation (rad); against foundation.rotation_limit"""
+    rotation_time: float
+    """when (s)"""
+    displacement: float
+    """largest |u|, the base's horizontal displacement relative to the ground (m)"""
+    rotation_limit: float | None
+    """the scene's serviceability limit on the rotation (rad); None: not stated"""
+    springs: FoundationStiffness
+    """the springs (at the tube's base)"""
+
+
+@dataclass(frozen=True)
 class InternalForcesSummary(JsonRecord):
     """The ``internal_forces`` block of a transient's JSON (SI units)."""
 
@@ -91,3 +118,7 @@ class InternalForcesSummary(JsonRecord):
     stress_field: str | None = None
     """the 3D model: the XDMF time series (file name, beside the JSON), or None"""
     note: str = ""
+    cans: tuple[CanStress, ...] | None = field(default=None, metadata={"omit_if_none": True})
+    """a tower of cans: each can's largest meridional stress, where and when (EN 1993-1-6 per can)"""
+    foundation: FoundationResponse | None = field(default=None, metadata={"omit_if_none": True})
+    """on a flexible foundation: the springs' forces and the base's rotation"""

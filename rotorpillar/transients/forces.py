@@ -43,19 +43,23 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..reduced.foundation import foundation_stiffness
 from ..reduced.internal_forces import (
     STANDARD_GRAVITY,
-    axial_force,
+    can_stresses,
     cantilever_tip_statics,
     extreme_fibre_stress,
     force_truncation,
     hermite_peak,
     modal_damping,
     superpose,
+    tip_statics_of_beam,
+    tower_axial_force,
+    tower_static_resultants,
 )
 from ..reduced.models import BeamModelInfo
-from ..reduced.pillar import section_of
-from .force_records import BaseReactions, InternalForcesSummary, ShaftDemand
+from ..reduced.tower import base_section
+from .force_records import BaseReactions, FoundationResponse, InternalForcesSummary, ShaftDemand
 
 #: the series each run gains (CSV and NPZ)
 FORCE_SERIES = ("base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
@@ -86,10 +90,22 @@ def shaft_demand(scene: Scene, t, dx, dy, vx, vy, sampled: bool) -> tuple[ShaftD
 
 
 def _summarise(
-    scene: Scene, model: str, method: str, t, heights, moment, shear, axial, moment_rate, shaft: ShaftDemand, **extra
+    scene: Scene,
+    model: str,
+    method: str,
+    t,
+    heights,
+    moment,
+    shear,
+    axial,
+    moment_rate,
+    shaft: ShaftDemand,
+    base_motion=None,
+    **extra,
 ) -> tuple[InternalForcesSummary, dict]:
-    """The JSON block and the series of section forces (n_t, n_z) at heights (m)."""
-    sec = section_of(scene.pillar)
+    """The JSON block and the series of section forces (n_t, n_z) at heights (m);
+    ``base_motion`` = (u, theta) of the base on a flexible foundation, each (n_t,) (m, rad)."""
+    sec = base_section(scene.pillar)
     i0 = int(np.argmin(np.abs(heights)))
     M0, V0, N0 = moment[:, i0], shear[:, i0], axial[:, i0]
     stress = extreme_fibre_stress(M0, N0, sec)
@@ -114,7 +130,12 @@ def _summarise(
         float(s_time),
         n_at / sec.area / s_peak,
     )
-    static = axial_force(heights, sec.mass_per_length, scene.pillar.height, top_mass(scene))
+    static = tower_axial_force(scene.pillar, heights, top_mass(scene))
+    if scene.pillar.cans:
+        extra["cans"] = can_stresses(scene.pillar, t, heights, moment, axial)
+    foundation, motion = _foundation_response(scene, t, base_motion)
+    if foundation is not None:
+        extra["foundation"] = foundation
     summary = InternalForcesSummary(
         model=model,
         method=method,
@@ -134,8 +155,33 @@ def _summarise(
         "section_heights": np.asarray(heights, float),
         "section_moment": moment,
         "section_shear": shear,
+        **motion,
     }
     return summary, series
+
+
+def _foundation_response(scene: Scene, t, base_motion) -> tuple[FoundationResponse | None, dict]:
+    """The springs' forces and the base's rotation over the run (None on a clamp), and their series."""
+    springs = foundation_stiffness(scene.foundation)
+    if springs is None or base_motion is None:
+        return None, {}
+    u, theta = (np.asarray(a, dtype=float) for a in base_motion)
+    force = springs.horizontal * u + springs.coupling * theta
+    moment = springs.coupling * u + springs.rocking * theta
+    i, j, k = (int(np.argmax(np.abs(a))) for a in (force, moment, theta))
+    response = FoundationResponse(
+        kind=springs.kind,
+        horizontal_force=float(abs(force[i])),
+        horizontal_force_time=float(t[i]),
+        moment=float(abs(moment[j])),
+        moment_time=float(t[j]),
+        rotation=float(abs(theta[k])),
+        rotation_time=float(t[k]),
+        displacement=float(np.max(np.abs(u))),
+        rotation_limit=scene.foundation.rotation_limit,
+        springs=springs,
+    )
+    return response, {"base_displacement": u, "base_rotation": theta, "foundation_moment": moment}
 
 
 def _attach(run, summary: InternalForcesSummary | None, series: dict, force, extra_max: dict):
@@ -195,28 +241,30 @@ def with_reduced_forces(scene: Scene, run, res, integrator, pillar_modes, motion
 
 def _vertical_axial(scene: Scene, data, heights) -> np.ndarray:
     """N(z, t) of the reduced models: static, less the shaft's vertical pull c2 d_y (N)."""
-    sec = section_of(scene.pillar)
     e, c2 = scene.rotor.eccentricity, scene.shaft.stiffness
     dy = np.asarray(data["rotor_y"], dtype=float) - e * np.sin(np.asarray(data["theta"], dtype=float))
-    static = axial_force(heights, sec.mass_per_length, scene.pillar.height, top_mass(scene))
+    static = tower_axial_force(scene.pillar, heights, top_mass(scene))
     return static[None, :] - c2 * dy[:, None]
 
 
 def _beam_forces(scene: Scene, run, res, shaft):
-    from ..reduced.beam_fe import section_forces
-    from ..reduced.pillar_modes import beam_properties
+    from ..reduced.beam_fe import first_free_dof, section_forces
+    from ..reduced.foundation import base_springs
+    from ..reduced.pillar_modes import beam_line
 
     info = res.model_info
     assert isinstance(info, BeamModelInfo)  # the beam's forces are of a beam's run
     n, theory = info.elements, info.theory
-    bp = beam_properties(scene.pillar, theory)
-    nb = 2 * n
+    line = beam_line(scene.pillar, n)
+    f = first_free_dof(base_springs(scene.foundation))
+    nb = 2 * (n + 1) - f
     q, v = np.asarray(run.data["q"], dtype=float), np.asarray(run.data["v"], dtype=float)
-    pad = lambda a: np.vstack([np.zeros((2, a.shape[0])), a[:, :nb].T])
-    shear, moment = (x.T for x in section_forces(bp, n, theory, pad(q)))
-    _, rate = section_forces(bp, n, theory, pad(v))
-    heights = np.linspace(0.0, bp.length, n + 1)
+    pad = lambda a: np.vstack([np.zeros((f, a.shape[0])), a[:, :nb].T])
+    shear, moment = (x.T for x in section_forces(line, n, theory, pad(q)))
+    _, rate = section_forces(line, n, theory, pad(v))
+    heights = line.nodes
     axial = _vertical_axial(scene, run.data, heights)
+    base_motion = (q[:, 0], q[:, 1]) if f == 0 else None
     return _summarise(
         scene,
         "beam",
@@ -229,29 +277,41 @@ def _beam_forces(scene: Scene, run, res, shaft):
         axial,
         rate[0],
         shaft,
+        base_motion,
     )
 
 
 def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaft, progress):
     from ..reduced.band import forcing_top
+    from ..reduced.foundation import base_springs
     from ..reduced.models import candidate_modes
-    from ..reduced.pillar_modes import beam_properties
     from ..scene import override
     from .cases import run_case
 
     candidates = candidate_modes(scene, pillar_modes)
     if not candidates.has_resultants:
         return None, {}
-    sec = section_of(scene.pillar)
-    bp = beam_properties(scene.pillar, scene.modal_model.theory)
-    statics = cantilever_tip_statics(
-        bp.youngs_modulus,
-        bp.second_moment,
-        bp.shear_coefficient * bp.shear_modulus * bp.area,
-        bp.length,
-        sec.mass_per_length,
-        scene.gondola.mass,
-    )
+    sec = base_section(scene.pillar)
+    base = base_springs(scene.foundation)
+    base_statics = None
+    if scene.pillar.is_uniform and base is None:
+        from ..reduced.pillar_modes import beam_properties
+
+        bp = beam_properties(scene.pillar, scene.modal_model.theory)
+        statics = cantilever_tip_statics(
+            bp.youngs_modulus,
+            bp.second_moment,
+            bp.shear_coefficient * bp.shear_modulus * bp.area,
+            bp.length,
+            sec.mass_per_length,
+            scene.gondola.mass,
+        )
+    else:
+        # a tower's or a foundation's static tip: the fine beam's own solve (rotorpillar.reduced.internal_forces)
+        mm = scene.modal_model
+        statics = tip_statics_of_beam(scene.pillar, scene.gondola.mass, mm.theory, max(mm.elements, 200), base)
+        z0 = np.asarray(candidates.section_heights, dtype=float)[:1]
+        base_statics = tower_static_resultants(scene.pillar, z0, scene.gondola.mass)
     band = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, run.case, motion)
     trunc = force_truncation(
         candidates,
@@ -261,6 +321,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
         sec.mass_per_length,
         scene.gondola.mass,
         statics,
+        base_statics=base_statics,
     )
     k_run = res.model.pillar_modes.count
     k = min(max(k_run, trunc.modes_for_forces), candidates.count)
@@ -292,6 +353,9 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     heights = np.asarray(pm.section_heights, dtype=float)
     i0 = int(np.argmin(np.abs(heights)))
     axial = _vertical_axial(scene, run.data, heights)
+    base_motion = None
+    if pm.base_rotation is not None and pm.shapes is not None:
+        base_motion = (eta @ np.asarray(pm.shapes)[0, :k], eta @ np.asarray(pm.base_rotation)[:k])
     method = (
         f"modal superposition of {k} modes' section resultants ({pm.source}); for "
         f"{100 * trunc.tolerance:g} % over the band the base moment needs "
@@ -316,6 +380,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
         axial,
         rate @ np.asarray(pm.moment_shapes)[i0],
         shaft,
+        base_motion,
         modes=k,
         modes_in_run=k_run,
         truncation=trunc,
