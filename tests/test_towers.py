@@ -85,7 +85,7 @@ def shooting_frequencies(pillar, near, springs: BaseSprings | None = None) -> li
         y = np.asarray(y0, dtype=float)
         for s in segs:
 
-            def rhs(z, y):
+            def rhs(z, y, s=s):
                 sec = sections_along(pillar, [z], "above" if z < s.top else "below")
                 return [y[1], y[2] / (E_ * sec.second_moment[0]), y[3], omega**2 * sec.mass_per_length[0] * y[0]]
 
