@@ -24,6 +24,7 @@ from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
     TipReductionUsed,
 )
 from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json too)
+from .tower import TowerFindings
 
 
 @dataclass(frozen=True)
@@ -213,3 +214,6 @@ class AnalysisResult(JsonRecord):
     drive: DriveRegimes
     paper_model: PaperModel
     paper_comparison: tuple[PaperRow, ...] = ()
+    tower: TowerFindings | None = field(default=None, metadata={"omit_if_none": True})
+    """a tower (cans, a flexible foundation, or published numbers of its own): its first
+    frequencies clamped and on its foundation, the published ones beside ours"""

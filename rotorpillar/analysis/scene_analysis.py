@@ -20,6 +20,7 @@ from ..chain import ChainModes
 from ..chain.choice import choose
 from ..chain.modes import chain_modes, rom_band_top
 from ..reduced import averaging as av
+from ..reduced.foundation import base_springs
 from ..reduced.reduction import pillar_closed_forms, resolve_reduction
 from ..reduced.system import linear_modes, reduced_system
 from ..scene import Scene
@@ -38,6 +39,7 @@ from .results import (
     TipReductionUsed,
 )
 from .rom import RomVariants, bars, drive_quantity, resonance_quantity, rom_variants
+from .tower import tower_findings
 
 CURVE_POINTS = 201
 CURVE_SPAN = 0.5  # z from 1 - span to 1 + span
@@ -279,12 +281,19 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         chain = chain_modes(scene, choose(scene, None), rom_band_top(scene))
     if fem3d_reduction is None and chain.pillar_model.kind == "solid":
         fem3d_reduction = lambda _scene: (chain.reduction.m_reduced, chain.reduction.tip_stiffness)
-    closed = pillar_closed_forms(scene.pillar)
+    closed = pillar_closed_forms(scene.pillar, base_springs(scene.foundation))
     ch = av.Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
     c2e = scene.shaft.stiffness * scene.rotor.eccentricity
     system, resonances, drive = headline_analysis(scene, chain, ch, c2e)
     paper = paper_model_analysis(scene, closed, ch, c2e, fem3d_reduction)
-    rows = compare_with_paper(scene, _PaperView(closed, paper.reduction, paper.system, paper.resonances, paper.drive))
+    # a scene of another machine, with published numbers of its own, is not set against the paper's
+    own = scene.reference.stated
+    rows = (
+        ()
+        if own
+        else compare_with_paper(scene, _PaperView(closed, paper.reduction, paper.system, paper.resonances, paper.drive))
+    )
+    tower = tower_findings(scene, system.omega[0], chain.pillar_model.label)
     return AnalysisResult(
         pillar=closed,
         pillar_model=chain.pillar_model,
@@ -293,4 +302,5 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         drive=drive,
         paper_model=paper,
         paper_comparison=rows,
+        tower=tower,
     )

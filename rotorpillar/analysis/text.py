@@ -9,7 +9,7 @@ def summary(result: AnalysisResult) -> str:
     """A readable report of an analyze result."""
     p, s = result.pillar, result.system
     lines = [
-        "Pillar (bare tube, closed forms)",
+        "Pillar (bare tube, closed forms)" if p.statement is None else f"Pillar (bare tube): {p.statement}",
         f"  I = {p.second_moment:.5g} m^4, A = {p.area:.5g} m^2, "
         f"m_rho = {p.mass_per_length:.5g} kg/m, mass = {p.mass:.5g} kg, D/t = "
         f"{p.diameter_to_thickness:.0f}",
@@ -58,6 +58,10 @@ def summary(result: AnalysisResult) -> str:
     )
     for r in result.resonances:
         lines.append("  " + r.statement)
+    if result.tower is not None:
+        lines += tower_lines(result.tower)
+    if not result.paper_comparison:
+        return "\n".join(lines)
     lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")
     lines.append(f"  {'quantity':<34} {'paper':>11} {'computed':>11} {'diff':>8}")
     for row in result.paper_comparison:
@@ -69,6 +73,31 @@ def summary(result: AnalysisResult) -> str:
         for row in notes:
             lines.append(f"  {row.quantity}: {row.note}")
     return "\n".join(lines)
+
+
+def tower_lines(t) -> list[str]:
+    """The tower's block: first frequencies clamped and on the foundation, the published beside ours."""
+    out = [f"Tower: {t.cans} can(s), {t.tower_mass:.6g} kg, {t.top_mass:.6g} kg on top"]
+    for f in t.frequencies:
+        on = "" if f.on_foundation is None else f", on the foundation {f.on_foundation:.4f} Hz ({100 * f.shift:+.2f} %)"
+        out.append(f"  first bending: {f.clamped:.4f} Hz clamped{on}: {f.model}")
+    out.append(f"  the headline ROM's first coupled mode (X): {t.rom_first:.4f} Hz")
+    if t.foundation is not None:
+        k = t.foundation
+        out.append(
+            f"  foundation ({k.kind}): K_H = {k.horizontal:.4g} N/m, K_R = {k.rocking:.4g} N*m/rad, "
+            f"K_HR = {k.coupling:.4g} N/rad"
+        )
+    if t.published:
+        out.append(f"  published ({t.source}) against ours:")
+        for r in t.published:
+            out.append(
+                f"    {r.quantity}: {r.published:.4f} Hz published, {r.computed:.4f} Hz {r.model} ({100 * r.difference:+.1f} %)"
+            )
+        if t.note:
+            out.append(f"    why they differ: {t.note}")
+    out.append(f"  {t.symmetry}")
+    return out
 
 
 def _numbered(resonances):

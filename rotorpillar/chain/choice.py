@@ -85,11 +85,7 @@ def _mismatch(scene: Scene, study_scene: dict) -> str | None:
 
 def _plain(v: Any) -> Any:
     """A scene value as JSON reads it back (tuples as lists)."""
-    if isinstance(v, (list, tuple)):
-        return [_plain(x) for x in v]
-    if isinstance(v, dict):
-        return {k: _plain(x) for k, x in v.items()}
-    return v
+    return json.loads(json.dumps(v))
 
 
 def study_on_disk(scene: Scene, out_dir: Path):

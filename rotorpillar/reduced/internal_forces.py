@@ -35,6 +35,7 @@ the reduced models carries to the base unchanged.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -216,10 +217,10 @@ def force_truncation(
     height: float,
     mass_per_length: float,
     top_mass: float,
-    tip_statics: dict[str, float],
+    tip_statics: dict[str, float] | UnitLoads,
     tolerance: float = FORCE_TOLERANCE,
     points: int = 600,
-    base_statics: dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None,
+    base_statics: UnitLoads | None = None,
 ) -> ForceTruncation:
     """Errors of the first k modes on the tip, the base moment and the base shear.
 
@@ -313,25 +314,33 @@ def tower_axial_force(
     return g * (mass_above(pillar, z) + top_mass)
 
 
-def tower_static_resultants(
-    pillar: Pillar, z: ArrayLike, top_mass: float
-) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]:
+@dataclass(frozen=True, eq=False)
+class UnitLoads:
+    """A quantity under the transients' two unit loads: a tip force along +X and a ground
+    acceleration along +X (``static_resultants``' and ``cantilever_tip_statics``' keys)."""
+
+    tip: Any
+    base: Any
+
+    def __getitem__(self, load: str) -> Any:
+        return getattr(self, load)
+
+
+def tower_static_resultants(pillar: Pillar, z: ArrayLike, top_mass: float) -> UnitLoads:
     """``static_resultants`` with the tube's mass as it is along the height (exact by
     equilibrium): the base load's V = -(m above z + m_top), M = -(int_z^H m(s) (s - z) ds
-    + m_top (H - z))."""
-    if pillar.is_uniform:
-        return static_resultants(z, pillar.height, section_at(pillar, 0.0).mass_per_length, top_mass)
+    + m_top (H - z)); each a (V, M) pair of arrays at z (N, N*m)."""
     zs = np.atleast_1d(np.asarray(z, dtype=float))
     arm = pillar.height - zs
-    return {
-        "tip": (np.ones_like(zs), arm),
-        "base": (-(mass_above(pillar, zs) + top_mass), -(first_moment_above(pillar, zs) + top_mass * arm)),
-    }
+    return UnitLoads(
+        (np.ones_like(zs), arm),
+        (-(mass_above(pillar, zs) + top_mass), -(first_moment_above(pillar, zs) + top_mass * arm)),
+    )
 
 
 def tip_statics_of_beam(
     pillar: Pillar, top_mass: float, theory: str, elements: int, base: BaseSprings | None
-) -> dict[str, float]:
+) -> UnitLoads:
     """``cantilever_tip_statics`` of the beam model: the static tip deflection per unit tip
     force and per unit ground acceleration along +X (m), by the beam's own static solve
     (tapered or stepped, on the foundation's springs): exact for that model."""
@@ -344,7 +353,7 @@ def tip_statics_of_beam(
     r = np.zeros(K.shape[0])
     r[0::2] = 1.0
     tip = np.linalg.solve(K, np.column_stack([f_tip, -(M @ r)]))[-2]
-    return {"tip": float(tip[0]), "base": float(tip[1])}
+    return UnitLoads(float(tip[0]), float(tip[1]))
 
 
 @dataclass(frozen=True)

@@ -117,3 +117,99 @@ def separation_table(
 ) -> tuple[SeparationRow, ...]:
     """Every running speed against every mode (up to ``band_top``, rad/s, when given)."""
     return tuple(separation(w, m) for w in running_speeds for m in modes if band_top is None or m.omega <= band_top)
+
+
+# --------------------------------------------------------------------------
+# Excitation orders: 1P and the blade-passing order (a wind turbine's 3P)
+
+#: what the first tower mode's place among the orders is called (wind-turbine usage)
+REGIMES = ("stiff-stiff", "soft-stiff", "soft-soft", "resonant")
+
+
+@dataclass(frozen=True)
+class OrderMargin(JsonRecord):
+    """A tower mode against one excitation order at one running speed."""
+
+    running_speed: float
+    """Omega_run (rad/s)"""
+    order: int
+    """the order: 1 (1P, the unbalance) or the blades' count (the blade passing) (-)"""
+    excitation: float
+    """order x Omega_run (rad/s)"""
+    mode: ModeEntry
+    position: str
+    """the mode "below" or "above" the excitation"""
+    required: float
+    """the scene's rotor.order_margin (-)"""
+    actual: float
+    """|omega_mode - excitation| / excitation (-)"""
+    status: str
+    """"pass" (actual >= required) or "fail\""""
+
+
+@dataclass(frozen=True)
+class ExcitationOrders(JsonRecord):
+    """The first tower mode against 1P and the blade-passing order, the Campbell diagram's data."""
+
+    orders: tuple[int, ...]
+    """the excitation orders (1, and the blades' count when there are blades) (-); on a
+    Campbell diagram each is a line omega = order x Omega"""
+    margin: float
+    """the separation required from each (rotor.order_margin) (-)"""
+    first_mode: ModeEntry
+    """the first tower mode in the rotor's plane"""
+    regime: str
+    """where it lies at the highest running speed: "soft-stiff" (above 1P, below the blade
+    passing), "stiff-stiff" (above both), "soft-soft" (below 1P), "resonant" (within a margin of one)"""
+    rows: tuple[OrderMargin, ...]
+    """every running speed against every order"""
+    status: str
+    """"pass" when every row passes, else "fail\""""
+
+
+def order_margins(
+    running_speeds: Iterable[float], first_mode: ModeEntry, blades: int, margin: float
+) -> ExcitationOrders:
+    """The first tower mode's separation from 1P and from the blade-passing order.
+
+    >>> m = ModeEntry(2.03, 0.01, "coupled X 1", "modal")
+    >>> r = order_margins([1.2671], m, 3, 0.10)
+    >>> r.regime, r.status, [round(x.actual, 3) for x in r.rows]
+    ('soft-stiff', 'pass', [0.602, 0.466])
+    """
+    orders = (1,) if blades <= 1 else (1, blades)
+    rows = []
+    for w in running_speeds:
+        for k in orders:
+            f = k * w
+            act = actual_margin(f, first_mode.omega)
+            rows.append(
+                OrderMargin(
+                    float(w),
+                    k,
+                    float(f),
+                    first_mode,
+                    "below" if first_mode.omega < f else "above",
+                    float(margin),
+                    float(act),
+                    "pass" if act >= margin else "fail",
+                )
+            )
+    top = max(running_speeds, default=0.0)
+    w1 = first_mode.omega
+    if any(r.status == "fail" and r.running_speed == top for r in rows):
+        regime = "resonant"
+    elif w1 < top:
+        regime = "soft-soft"
+    elif w1 < orders[-1] * top:
+        regime = "soft-stiff"
+    else:
+        regime = "stiff-stiff"
+    return ExcitationOrders(
+        orders,
+        float(margin),
+        first_mode,
+        regime,
+        tuple(rows),
+        "pass" if all(r.status == "pass" for r in rows) else "fail",
+    )

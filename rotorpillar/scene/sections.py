@@ -10,7 +10,7 @@ from typing import Any
 from .fields import SceneError as SceneError
 from .fields import _range_text as _range_text
 from .fields import param
-from .tower import Can, Foundation, Segment, segments_of_cans
+from .tower import Can, Foundation, Reference, Segment, segments_of_cans
 from .words import CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS, INTEGRATORS, MODELS
 
 # --------------------------------------------------------------------------
@@ -65,6 +65,15 @@ class Pillar:
             ),
         )
 
+    def json_fields(self) -> dict[str, Any]:
+        """What a model of the pillar depends on, for a cache key: today's keys, and the
+        cans when there are any (so a uniform tube's keys are those it always had)."""
+        keys = ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
+        out = {k: getattr(self, k) for k in keys}
+        if self.cans:
+            out["cans"] = [dataclasses.asdict(c) for c in self.cans]
+        return out
+
     @property
     def is_uniform(self) -> bool:
         """One cylinder from base to top: the closed forms of a uniform tube (Eq. 1) hold."""
@@ -93,6 +102,21 @@ class Rotor:
         gt=0,
         le=1,
         optional=True,
+    )
+    blades: int = param(
+        "Blades (-): the blade-passing order (blades x the rotor speed, 3P on a three-bladed "
+        "turbine) forces the tower beside 1P; 0 = none",
+        0,
+        ge=0,
+        le=100,
+    )
+    order_margin: float = param(
+        "Separation the tower's modes keep from each excitation order, 1P and the blade-passing "
+        "one, as a fraction of the order's frequency (-); soft-stiff: the first mode above 1P and "
+        "below the blade-passing frequency by this much",
+        0.10,
+        ge=0,
+        lt=1,
     )
 
 
@@ -426,6 +450,7 @@ SECTIONS = {
     "full_order": FullOrder,
     "material": Material,
     "foundation": Foundation,
+    "reference": Reference,
 }
 OPTIONAL_SECTIONS = (
     "reduction",
@@ -439,6 +464,7 @@ OPTIONAL_SECTIONS = (
     "full_order",
     "material",
     "foundation",
+    "reference",
 )
 
 
@@ -464,6 +490,7 @@ class Scene:
     full_order: FullOrder = FullOrder()
     material: Material = Material()
     foundation: Foundation = Foundation()
+    reference: Reference = Reference()
     description: str = ""
 
     def to_dict(self) -> dict[str, Any]:

@@ -138,21 +138,14 @@ def segment_index(segs: Sequence[Segment], z: ArrayLike, side: str = "above") ->
 PILLAR_MODEL_KEYS = ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
 
 
-def pillar_key(pillar: Any) -> dict[str, Any]:
-    """What a model of the pillar depends on, for a cache key: today's keys, and the
-    cans when there are any (so a uniform tube's keys are those it always had)."""
-    out = {k: getattr(pillar, k) for k in PILLAR_MODEL_KEYS}
-    if pillar.cans:
-        out["cans"] = [asdict(c) for c in pillar.cans]
-    return out
+def pillar_key(pillar: Any) -> Any:
+    """What a model of the pillar depends on, for a cache key (``Pillar.json_fields``)."""
+    return pillar.json_fields()
 
 
-def foundation_key(foundation: Foundation) -> dict[str, Any]:
-    """The foundation's part of a cache key: nothing for a clamp (so keys made before
-    foundations existed stay valid), its springs' keys otherwise."""
-    if foundation.kind == "clamped":
-        return {}
-    return {"foundation": {k: v for k, v in asdict(foundation).items() if k != "rotation_limit"}}
+def foundation_key(foundation: Foundation) -> Any:
+    """The foundation's part of a cache key (``Foundation.json_fields``)."""
+    return foundation.json_fields()
 
 
 def check_cans(cans: Sequence[Can], key: str = "pillar.cans") -> None:
@@ -245,6 +238,13 @@ class Foundation:
     def is_clamped(self) -> bool:
         return self.kind == "clamped"
 
+    def json_fields(self) -> dict[str, Any]:
+        """The foundation's part of a cache key: nothing for a clamp (so keys made before
+        foundations existed stay valid), its springs' keys otherwise."""
+        if self.kind == "clamped":
+            return {}
+        return {"foundation": {k: v for k, v in asdict(self).items() if k != "rotation_limit"}}
+
 
 def check_foundation(f: Foundation) -> None:
     """The keys that belong to the foundation's kind, and only those (SceneError)."""
@@ -272,3 +272,31 @@ def check_foundation(f: Foundation) -> None:
         for k in ("soil_shear_modulus", "soil_poisson_ratio", "radius"):
             if getattr(f, k) is None:
                 raise SceneError(f"foundation.{k}: required with kind = 'footing'")
+
+
+@dataclass(frozen=True)
+class Reference:
+    """Published numbers of the machine the scene describes, set beside ours (`analyze`, the report)."""
+
+    source: str = param("Where the numbers are published (a citation, with its table)", "")
+    first_fore_aft_frequency: float | None = param(
+        "The published first fore-aft (along the rotor's axis, Y) tower frequency (Hz)",
+        None,
+        gt=0,
+        le=1e4,
+        optional=True,
+    )
+    first_side_side_frequency: float | None = param(
+        "The published first side-side (in the rotor's plane, X) tower frequency (Hz)",
+        None,
+        gt=0,
+        le=1e4,
+        optional=True,
+    )
+    note: str = param("What the published model has that ours has not, or the reverse: why they differ", "")
+
+    @property
+    def stated(self) -> bool:
+        return (
+            bool(self.source) or self.first_fore_aft_frequency is not None or self.first_side_side_frequency is not None
+        )

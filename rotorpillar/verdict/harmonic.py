@@ -27,7 +27,7 @@ import time
 from pathlib import Path
 
 from ..reduced import bode
-from ..reduced.margins import ModeEntry, separation_table
+from ..reduced.margins import ModeEntry, order_margins, separation_table
 from .records import HarmonicResult, PeakComparison
 
 
@@ -168,6 +168,12 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
         )
     modes = [m for m in modes if m.omega <= top]
     rows = separation_table(speeds, modes)
+    first = next((m for m in rom_modes(model) if m.kind == "coupled X 1"), None)
+    orders = (
+        None
+        if first is None or not speeds or scene.rotor.blades == 0
+        else order_margins(speeds, first, scene.rotor.blades, scene.rotor.order_margin)
+    )
     pm = model.pillar_modes
     assert pm is not None  # the modal model carries its pillar modes
     return HarmonicResult(
@@ -187,6 +193,7 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
         fem3d_seconds_per_speed=None if fem_cost is None else float(fem_cost),
         notes=tuple(notes),
         pillar_model=chain.pillar_model,
+        orders=orders,
     )
 
 

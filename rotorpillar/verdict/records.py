@@ -12,7 +12,7 @@ from ..chain.record import PillarModel
 from ..provenance import JsonRecord
 from ..reduced.bode import AveragingCurve, BodeCurve
 from ..reduced.capacity import Check, MeridionalBuckling
-from ..reduced.margins import ModeEntry, SeparationRow
+from ..reduced.margins import ExcitationOrders, ModeEntry, SeparationRow
 
 
 @dataclass(frozen=True)
@@ -64,6 +64,9 @@ class HarmonicResult(JsonRecord):
     notes: tuple[str, ...]
     pillar_model: PillarModel | None = field(default=None, metadata={"omit_if_none": True})
     """the chain's pillar model the ROM's modes come from (rotorpillar.chain)"""
+    orders: ExcitationOrders | None = field(default=None, metadata={"omit_if_none": True})
+    """a bladed rotor (rotor.blades > 0): the first tower mode against 1P and the
+    blade-passing order (soft-stiff), the lines a Campbell diagram draws"""
 
 
 @dataclass(frozen=True)

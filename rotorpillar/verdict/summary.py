@@ -38,6 +38,7 @@ from ..reduced.capacity import FAIL, GAMMA_M0, NOT_ASSESSED, PASS, Check, check,
 from ..reduced.tower import base_section
 from ..scene import CASES, MODELS
 from .records import EngineeringSummary, HarmonicResult, Headline
+from .tower_checks import can_checks, foundation_checks, order_checks
 
 #: the models whose runs the checks read (the paper's Eq. 4 has no sections)
 CHECKED_MODELS = ("modal", "beam", "fem3d")
@@ -120,8 +121,8 @@ def _run_checks(scene: Scene, doc: dict) -> list[Check]:
             f"{share:.3g})",
         )
     )
-    out += _can_checks(scene, forces.get("cans") or [], model, case, src)
-    out += _foundation_checks(scene, forces.get("foundation"), model, case, src)
+    out += can_checks(scene, forces.get("cans") or [], model, case, src)
+    out += foundation_checks(scene, forces.get("foundation"), model, case, src)
     if model == "fem3d":
         out.append(
             check(
@@ -176,71 +177,6 @@ def _buckling(scene: Scene, axial_share: float = 1.0):
     )
 
 
-def _can_checks(scene: Scene, cans: list, model, case, src: str) -> list[Check]:
-    """Each can's largest stress (where along it, when) against yield and against its own
-    shell buckling resistance: EN 1993-1-6 with the can's D/t there, a cone as its
-    equivalent cylinder (Annex D.2: r / cos beta), the length the tower's height (its
-    girth welds are no boundaries: the long cylinder's C_x is not overstated)."""
-    p, mat = scene.pillar, scene.material
-    out = []
-    for c in cans:
-        t = c["wall_thickness"]
-        cos_b = math.cos(c["cone_angle"])
-        r = (c["outer_diameter"] - t) / 2 / cos_b
-        b = meridional_buckling(
-            p.youngs_modulus, r, t, p.height / cos_b, mat.yield_strength, mat.fabrication_class, c["axial_share"]
-        )
-        where = f"can {c['can']} ({c['bottom']:.4g}-{c['top']:.4g} m)"
-        stress = c["stress"]
-        at = f"at z = {c['height']:.4g} m, t = {c['time']:.4g} s, D/t = {c['outer_diameter'] / t:.0f}"
-        out.append(
-            check(
-                f"{where} stress vs yield",
-                "can_stress",
-                "Pa",
-                stress,
-                mat.yield_strength / GAMMA_M0,
-                model,
-                case,
-                f"{src}: internal_forces.cans[{c['can']}].stress {at}; f_yk, gamma_M0 = {GAMMA_M0:g}",
-            )
-        )
-        out.append(
-            check(
-                f"{where} stress vs shell buckling",
-                "can_stress",
-                "Pa",
-                stress,
-                b.design_stress,
-                model,
-                case,
-                f"{src}: internal_forces.cans[{c['can']}].stress {at}; sigma_x,Rd of EN 1993-1-6 with "
-                f"the can's r = {r:.4g} m and t = {t:.4g} m there (class {mat.fabrication_class}, C_x "
-                f"{b.cx:.3g} at the demand's axial share {c['axial_share']:.3g})",
-            )
-        )
-    return out
-
-
-def _foundation_checks(scene: Scene, found: dict | None, model, case, src: str) -> list[Check]:
-    """The base's peak rotation on a flexible foundation against foundation.rotation_limit."""
-    if not found:
-        return []
-    return [
-        check(
-            "foundation rotation vs limit",
-            "foundation_rotation",
-            "rad",
-            found["rotation"],
-            scene.foundation.rotation_limit,
-            model,
-            case,
-            f"{src}: internal_forces.foundation.rotation (the base's, on the {found['kind']} springs); "
-            "foundation.rotation_limit (serviceability)",
-        )
-    ]
-
-
 def _margin_checks(h: HarmonicResult) -> list[Check]:
     out = []
     for row in h.separation:
@@ -267,6 +203,7 @@ def _margin_checks(h: HarmonicResult) -> list[Check]:
                 "capacity = the margin there is",
             )
         )
+    out += order_checks(h)
     return out
 
 
