@@ -63,6 +63,15 @@ class Pillar:
     poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
     density: float = param("Density rho (kg/m**3)", ge=1, le=1e5)
     damping: float = param("Damping b1 at the tip (N*s/m)", ge=0, le=1e12)
+    damping_ratio: float = param(
+        "Structural damping ratio zeta of every pillar mode of the spatial model (bending in both "
+        "planes, torsion, axial, ovalling), on top of the tip dashpot b1 (-); default 0.0019 = the "
+        "logarithmic decrement 0.012 / (2 pi) that EN 1991-1-4 Annex F Table F.2 gives for an unlined "
+        "welded steel stack; the planar ROM and the paper's Eq. 4 leave it out, as today",
+        0.012 / (2 * math.pi),
+        ge=0,
+        lt=1,
+    )
 
 
 @dataclass(frozen=True)
@@ -70,6 +79,30 @@ class Gondola:
     """The stator housing on top of the pillar, moving with its tip."""
 
     mass: float = param("Mass m* (kg)", gt=0, le=1e8)
+    roll_inertia: float = param(
+        "Moment of inertia about its own centre, about the horizontal axis along the spin axis "
+        "(roll: the rotor's plane's rotation) (kg*m**2); the paper neglects it",
+        0.0,
+        ge=0,
+        le=1e10,
+    )
+    pitch_inertia: float = param(
+        "Moment of inertia about its own centre, about the horizontal axis in the rotor's plane (pitch) "
+        "(kg*m**2); the paper neglects it",
+        0.0,
+        ge=0,
+        le=1e10,
+    )
+    yaw_inertia: float = param(
+        "Moment of inertia about its own centre, about the vertical (yaw: the pillar's torsion) "
+        "(kg*m**2); the paper neglects it",
+        0.0,
+        ge=0,
+        le=1e10,
+    )
+    height: float = param(
+        "Height of its centre above the pillar's top (m); 0 = at the top, as the paper has it", 0.0, ge=0, le=1000
+    )
 
 
 @dataclass(frozen=True)
@@ -79,6 +112,27 @@ class Rotor:
     mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
     inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
     eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
+    diametral_inertia: float | None = param(
+        "Moment of inertia I_d about a diameter through its centre (kg*m**2); unset = J_C / 2, a thin disc's",
+        None,
+        gt=0,
+        le=1e10,
+        optional=True,
+    )
+    height: float = param(
+        "Height of its centre (and of the shaft's bearing point) above the pillar's top (m); 0 = at the "
+        "top, as the paper has it",
+        0.0,
+        ge=0,
+        le=1000,
+    )
+    couple_unbalance: float = param(
+        "Couple unbalance U_c (kg*m**2): the product of inertia that tilts the principal axis off the "
+        "spin axis, a moment U_c Omega**2 turning with the rotor about the lateral axes; 0 = none",
+        0.0,
+        ge=0,
+        le=1e6,
+    )
     clearance: float | None = param(
         "Shaft deflection allowed before the rotor touches its stator: the air gap or seal "
         "clearance (m); unset = the clearance check is not assessed",
@@ -95,6 +149,27 @@ class Shaft:
 
     stiffness: float = param("Stiffness c2 = c3 (N/m)", ge=1, le=1e14)
     damping: float = param("Damping b2 = b3 (N*s/m)", ge=0, le=1e12)
+    axial_stiffness: float | None = param(
+        "Stiffness along the spin axis between the rotor and the gondola (N/m); unset = c2",
+        None,
+        ge=1,
+        le=1e14,
+        optional=True,
+    )
+    tilt_stiffness: float | None = param(
+        "Stiffness against the rotor's tilt (pitch and yaw) relative to the gondola (N*m/rad); unset = "
+        "rigid: the rotor tilts with the gondola (the paper models no tilt)",
+        None,
+        ge=1,
+        le=1e14,
+        optional=True,
+    )
+    tilt_damping: float = param(
+        "Damping of the rotor's tilt relative to the gondola (N*m*s/rad); used with tilt_stiffness",
+        0.0,
+        ge=0,
+        le=1e12,
+    )
     force_limit: float | None = param(
         "Force the shaft and its bearings may carry (N), against the peak of the shaft's force "
         "on the rotor; unset = the force check is not assessed",
@@ -311,6 +386,28 @@ class Excitation:
     )
     record_units: str = param("Units of the acceleration column of a two-column file", "g", choices=RECORD_UNITS)
     record_scale: float = param("Factor on the record's acceleration (-)", 1.0, gt=0, le=1e3)
+    components: int = param(
+        "Components of the ground motion: 1 = horizontal in the rotor's plane only (the paper's q5), "
+        "2 = both horizontal directions, 3 = both and the vertical (-)",
+        1,
+        choices=(1, 2, 3),
+    )
+    angle: float = param(
+        "Angle of the record's first horizontal component from the rotor's plane, turning towards the "
+        "spin axis (deg): the horizontal pair rotated about the vertical",
+        0.0,
+        ge=-360,
+        le=360,
+    )
+    second_record: str = param(
+        "The second horizontal component (components >= 2), normal to the first: a file as `record`, "
+        "or elcentro (El Centro 1940's 270 component; the first, `record`, is its 180)",
+        "elcentro",
+    )
+    vertical_record: str = param(
+        "The vertical component (components = 3): a file as `record`, or elcentro (El Centro 1940's vertical, UP)",
+        "elcentro",
+    )
 
 
 @dataclass(frozen=True)
@@ -326,6 +423,7 @@ class Sweep:
 
 
 MODAL_SOURCES = ("auto", "beam", "fem3d")
+PLANES = ("auto", "planar", "spatial")
 
 
 @dataclass(frozen=True)
@@ -349,6 +447,14 @@ class ModalModel:
     elements: int = param("Elements of the 1D beam (-)", 40, ge=2, le=2000)
     gondola_inertia: float = param(
         "Rotary inertia of the gondola about the pillar tip (kg*m**2); the paper neglects it", 0.0, ge=0
+    )
+    planes: str = param(
+        "Directions of the modal model: planar = the rotor's plane only (the paper's), spatial = both "
+        "horizontal directions, vertical, torsion, the rotor's tilt and gyroscopic whirl, auto = "
+        "planar where the scene's excitation and band leave the other directions unexcited (the "
+        "result says which and why)",
+        "auto",
+        choices=PLANES,
     )
 
 
