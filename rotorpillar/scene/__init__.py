@@ -1,7 +1,8 @@
 """The scene: one structure and what to run on it, read from TOML.
 
 Rooms: :mod:`.words` (the project's word lists), :mod:`.sections` (the
-sections as frozen dataclasses), :mod:`.validation` (checks, building),
+sections as frozen dataclasses; the machine's in :mod:`.machine`, a field's
+declaration in :mod:`.fields`), :mod:`.validation` (checks, building),
 :mod:`.files` (TOML files, embedded scenes, ``--set``); every public name is
 re-exported here.
 
