@@ -147,17 +147,14 @@ class RotorStructure:
             [
                 overrides.get("shaft_stiffness", self.shaft_stiffness),
                 overrides.get("eccentricity", self.eccentricity),
-                self.shaft_damping,
+                0.0,
                 drive.load_coefficient,
             ],
             dtype=float,
         )
         return (
             c(self.mass_inverse(prescribed_speed)),
-            c(self.stiffness),
-            c(self.damping),
-            c(self.shaft),
-            c(np.vstack([self.base_displacement, self.base_velocity, self.base_acceleration, self.tip])),
+            *generic_arrays(self),
             scal,
             c(drive.table()),
             c(gpar),
@@ -330,6 +327,32 @@ class RotorStructure:
             "pillar_modes": None if self.pillar_modes is None else self.pillar_modes.describe(),
             **self.notes,
         }
+
+
+def generic_arrays(
+    m: RotorStructure,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """(K, C, G, shaft, base) of rotorpillar.reduced.rhs for a planar model: Z = (z, y),
+    K = diag(Ks, 0), C = diag(C, b2), no gyroscopic term, d_x = (d, 0), d_v = (0, 1),
+    one ground component (kb, cb, mb), the tip, no motor reaction, no couple unbalance."""
+    nx = m.nx
+    nz = nx + 1
+    K = np.zeros((nz, nz))
+    K[:nx, :nx] = m.stiffness
+    C = np.zeros((nz, nz))
+    C[:nx, :nx] = m.damping
+    C[nx, nx] = m.shaft_damping
+    shaft = np.zeros((2, nz))
+    shaft[0, :nx] = m.shaft
+    shaft[1, nx] = 1.0
+    base = np.zeros((7, nz))
+    base[0, :nx], base[1, :nx], base[2, :nx], base[3, :nx] = (
+        m.base_displacement,
+        m.base_velocity,
+        m.base_acceleration,
+        m.tip,
+    )
+    return K, C, np.zeros((nz, nz)), shaft, base
 
 
 # --------------------------------------------------------------------------

@@ -47,10 +47,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..records import ArrayMarker, Record
+from .pillar_modes import PillarModes
 
 #: A float ndarray field of a record (``records.Array``, typed for mypy's strict mode).
 Array = Annotated[NDArray[np.float64], ArrayMarker]
-from .pillar_modes import PillarModes
 
 #: The top plate's six components, in the order of ``SpatialPillarModes.top``: word, symbol.
 TOP_COMPONENTS = (
