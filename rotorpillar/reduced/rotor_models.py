@@ -50,6 +50,7 @@ from scipy.linalg import eig, eigh
 from ..scene import Pillar, Rotor, Shaft
 from .drive import DriveSchedule
 from .excitation import GroundMotion
+from .ground3d import SpatialGroundMotion
 from .pillar_modes import PillarModes
 from .rhs import Packed
 from .system import DampedMode, ReducedSystem, Resonance
@@ -135,9 +136,16 @@ class RotorStructure:
 
     # ------------------------------------------------------------ kernels
     def pack(
-        self, drive: DriveSchedule, motion: GroundMotion, prescribed_speed: bool = False, **overrides: float
+        self,
+        drive: DriveSchedule,
+        motion: GroundMotion | SpatialGroundMotion,
+        prescribed_speed: bool = False,
+        **overrides: float,
     ) -> Packed:
-        """The tuple P of rotorpillar.reduced.rhs."""
+        """The tuple P of rotorpillar.reduced.rhs; a SpatialGroundMotion only with one
+        component in the rotor's plane (the planar model has no other direction)."""
+        if isinstance(motion, SpatialGroundMotion) and (motion.count != 1 or motion.directions[0] != (1.0, 0.0, 0.0)):
+            raise ValueError("the planar model takes one ground-motion component, in the rotor's plane")
         gpar, gtab = motion.pack()
 
         def c(a: ArrayLike) -> NDArray[np.float64]:
