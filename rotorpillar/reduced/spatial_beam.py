@@ -112,6 +112,7 @@ def beam_spatial_modes(
     }
     shapes = []
     total = np.zeros(3)
+    flex = np.zeros((6, 6))
     for omega, kind, vec, K, M, line in blocks:
         k = len(omega)
         p = 2 if line in BENDING_THEORIES else 1
@@ -127,13 +128,16 @@ def beam_spatial_modes(
         forces = line_resultants(s, line, full)  # (nodes, p, k)
         zero = np.zeros((nodes, k))
         cols = dict.fromkeys(res, zero)
+        F = np.linalg.solve(K, np.eye(K.shape[0])[:, -p:])[-p:]  # the top node's static flexibility
         if kind == BENDING_IN_PLANE:
+            flex[np.ix_([0, 4], [0, 4])] = F
             top[:, 0], top[:, 4] = vec[-2], vec[-1]
             shape[:, :, 0], shape[:, :, 4] = full[0::2], full[1::2]
             part[:, 0] = L
             total[0] = r @ M @ r
             cols["shear_x"], cols["moment_y"] = forces[:, 0], forces[:, 1]
         elif kind == BENDING_ACROSS:
+            flex[np.ix_([1, 3], [1, 3])] = F * np.array([[1.0, -1.0], [-1.0, 1.0]])  # theta_x = -psi
             top[:, 1], top[:, 3] = vec[-2], -vec[-1]
             shape[:, :, 1], shape[:, :, 3] = full[0::2], -full[1::2]
             part[:, 1] = L
@@ -141,10 +145,12 @@ def beam_spatial_modes(
             # a tip load along +y gives the moment about x -P (H - z): the line's M with its sign turned
             cols["shear_y"], cols["moment_x"] = forces[:, 0], -forces[:, 1]
         elif kind == TORSION:
+            flex[5, 5] = F[0, 0]
             top[:, 5] = vec[-1]
             shape[:, :, 5] = full
             cols["torque"] = forces[:, 0]
         else:
+            flex[2, 2] = F[0, 0]
             top[:, 2] = vec[-1]
             shape[:, :, 2] = full
             part[:, 2] = L
@@ -183,6 +189,7 @@ def beam_spatial_modes(
         torque=cat(res["torque"], 1),
         heights=z,
         shapes=cat(shapes, 1),
+        top_compliance=flex,
         notes=(
             "1D beams: bending in both planes, Saint-Venant torsion, axial; the gondola a rigid body on top",
             f"gondola: {gondola.mass:g} kg, inertias roll {gondola.roll_inertia + extra_roll_inertia:g}, pitch "
