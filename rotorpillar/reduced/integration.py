@@ -33,7 +33,7 @@ import math
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from typing import Any, Generic, Protocol, TypeVar
+from typing import Any, Generic
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -43,43 +43,9 @@ from ..provenance import JsonRecord
 from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
 from .drive import DriveSchedule
-from .excitation import GroundMotion
 from .excitation_records import NoMotionSizes
-from .ground3d import SpatialGroundMotion
 from .rhs import Floats, Packed
-
-#: A ground motion the integrators take: one component in the rotor's plane, or several.
-Motion = GroundMotion | SpatialGroundMotion
-
-
-class TransientModel(Protocol):
-    """What the integrators need of a model: the planar RotorStructure or the spatial
-    SpatialStructure (rotorpillar.reduced.spatial_model)."""
-
-    @property
-    def name(self) -> str: ...
-    @property
-    def frame(self) -> str: ...
-    @property
-    def eccentricity(self) -> float: ...
-    @property
-    def rotor_inertia(self) -> float: ...
-    @property
-    def n(self) -> int: ...
-    @property
-    def nx(self) -> int: ...
-    @property
-    def tip(self) -> NDArray[np.float64]: ...
-    def pack(self, drive: DriveSchedule, motion: Any, prescribed_speed: bool = False, **overrides: float) -> Packed: ...
-    def energy(
-        self, q: NDArray[np.float64], v: NDArray[np.float64]
-    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
-    def undamped_modes_x(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
-    def stiffest_frequency(self) -> float: ...
-
-
-#: the model a Transient was run on
-M = TypeVar("M", bound=TransientModel)
+from .transient_model import M, Motion, TransientModel
 
 #: What one integrator gives: t, q, v, work, peak, stats (Transient's fields).
 #: An optional array argument (one value or one per run).
