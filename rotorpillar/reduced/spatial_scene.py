@@ -27,13 +27,15 @@ import math
 from dataclasses import replace
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..scene import Scene
+from .campbell import CampbellDiagram
 from .drive import DriveSchedule
 from .excitation import no_motion
 from .rotor_models import RotorStructure
 from .spatial_beam import beam_spatial_modes
-from .spatial_linear import critical_speeds, damped_modes, mode_kind, mode_whirl
+from .spatial_linear import campbell, critical_speeds, damped_modes, mode_kind, mode_whirl
 from .spatial_model import SpatialStructure, spatial_model
 from .spatial_modes import AXIAL, SpatialPillarModes
 from .spatial_records import (
@@ -44,7 +46,7 @@ from .spatial_records import (
     SpatialAnalysis,
     SpatialResonance,
 )
-from .spatial_response import unbalance_response
+from .spatial_response import peak_near, unbalance_response
 from .spatial_statics import drive_reaction
 
 #: modes per line the beam source computes (its four lines; the band keeps fewer)
@@ -235,3 +237,40 @@ def drive_reaction_analysis(
             float(np.max(np.abs(roll))),
         )
     return DriveReactionAnalysis(st.torque, st.tip_displacement, st.tip_rotation, st.base_moment, st, run)
+
+
+def scene_campbell(
+    scene: Scene,
+    speeds: NDArray[np.float64],
+    band_top: float,
+    running_speed: float | None,
+    modes: SpatialPillarModes | None = None,
+) -> CampbellDiagram:
+    """The Campbell diagram of the scene's spatial model over ``speeds`` (rad/s), each critical
+    speed with the AF of the unbalance response's peak near it (None: no peak there)."""
+    from ..records import replace as record_replace
+
+    m = scene_spatial_model(scene, band_top, modes)
+    diagram = campbell(m, speeds, running_speed)
+    top = max(float(speeds[-1]), 1e-9)
+    grid = np.unique(
+        np.concatenate(
+            [np.linspace(top / 600, top, 600)]
+            + [np.linspace(0.9 * c.speed, min(1.1 * c.speed, top), 41) for c in diagram.critical_speeds]
+        )
+    )
+    response = unbalance_response(m, grid)
+    crit = tuple(
+        record_replace(c, amplification_factor=None if p is None else p.amplification_factor)
+        for c in diagram.critical_speeds
+        for p in [peak_near(response, c.speed, 0.1)]
+    )
+    result: CampbellDiagram = record_replace(
+        diagram,
+        critical_speeds=crit,
+        notes=diagram.notes
+        + (
+            "amplification_factor: API 684's half-power AF of the unbalance response's peak within 10 % of the critical speed",
+        ),
+    )
+    return result
