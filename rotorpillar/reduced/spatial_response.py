@@ -46,7 +46,11 @@ from .spatial_modes import Array
 #: how far from a peak its half-power points are looked for (a fraction of its speed, -)
 HALF_POWER_SPAN = 0.3
 #: the curves whose peaks are read (API 684 reads the rotor's and the bearings' response)
-PEAK_CURVES = ("shaft_x", "shaft_z", "rotor_x", "rotor_z", "tip_x", "tip_y", "tip_z")
+PEAK_CURVES = ("shaft_x", "shaft_z", "rotor_x", "rotor_z", "rotor_y", "tip_x", "tip_y", "tip_z", "top_pitch", "top_yaw")
+#: the rotations among them, compared with the translations times the pillar's height
+ROTATIONS = ("top_pitch", "top_yaw", "top_roll", "rotor_pitch", "rotor_yaw")
+#: a mode moves a curve's output when that output's share of its largest is at least this (-)
+CURVE_SHARE = 0.1
 #: the orbits drawn: name, the two outputs, what the plane is
 ORBITS = (
     ("shaft", "shaft_x", "shaft_z", "the shaft's deflection in the plane normal to the spin axis (x, vertical)"),
@@ -215,7 +219,10 @@ def half_power_peak(amp: object, speed: float, peak: float, curve: str = "") -> 
             b = a + sign * step
             if b <= 0:
                 return None
-            if f(b) <= level:
+            fb = f(b)
+            if not math.isfinite(fb):
+                return None
+            if fb <= level:
                 lo, hi = (b, a) if sign < 0 else (a, b)
                 return float(brentq(lambda w: f(w) - level, lo, hi, xtol=1e-10 * speed))
             a = b
@@ -240,13 +247,43 @@ def half_power_peak(amp: object, speed: float, peak: float, curve: str = "") -> 
     return ResponsePeak(curve, float(speed), float(peak), lower, upper, af, note)
 
 
-def peak_near(response: SpatialResponse, omega: float, width: float = 0.15) -> ResponsePeak | None:
-    """Of every curve's peaks within +-``width`` of ``omega`` (rad/s) that has an AF, the one with
-    the largest AF (the most demanding); None when the response shows no peak there."""
+def curves_moved(
+    m: SpatialStructure, v: NDArray[np.complex128], names: tuple[str, ...] = PEAK_CURVES
+) -> tuple[str, ...]:
+    """The outputs among ``names`` a mode shape v moves: at least CURVE_SHARE of the largest of
+    them, a rotation counted times the pillar's height (the shaft's deflection without e)."""
+    H = float(m.modes.section_heights[-1]) if m.modes.section_heights is not None else 1.0
+    size = {n: abs(complex(v @ m.outputs[n])) * (H if n in ROTATIONS else 1.0) for n in names}
+    top = max(size.values(), default=0.0)
+    return tuple(n for n in names if top > 0 and size[n] >= CURVE_SHARE * top)
+
+
+def peak_near(
+    response: SpatialResponse, omega: float, width: float = 0.15, curves: tuple[str, ...] | None = None
+) -> ResponsePeak | None:
+    """Of the peaks within +-``width`` of ``omega`` (rad/s) that have an AF, on ``curves`` (None:
+    every curve), the one with the largest AF (the most demanding); None when the response shows
+    no peak there."""
     near = [
         p
         for c in response.curves
+        if curves is None or c.name in curves
         for p in c.peaks
         if p.amplification_factor is not None and abs(p.speed - omega) <= width * omega
     ]
     return max(near, key=lambda p: p.amplification_factor or 0.0) if near else None
+
+
+def peaks_from_samples(
+    curve: str, speeds: NDArray[np.float64], amplitude: NDArray[np.float64]
+) -> tuple[ResponsePeak, ...]:
+    """The peaks of a sampled response curve (another model's: the 3D harmonic response), each with
+    its half-power points on the curve interpolated linearly between the samples."""
+    from .bode import local_peaks
+
+    W, a = np.asarray(speeds, dtype=float), np.asarray(amplitude, dtype=float)
+
+    def amp(w: float) -> float:
+        return float(np.interp(w, W, a, left=np.inf, right=np.inf))
+
+    return tuple(half_power_peak(amp, s, p, curve) for s, p in local_peaks(W, a))
