@@ -66,6 +66,8 @@ def campbell_command(scene: Scene, args, timings):
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "runup", None)
     speeds = parse_speeds(getattr(args, "speeds", None), top)
     model = getattr(args, "model", "modal")
+    if model == "fem3d":
+        _fem3d_function()  # refused now, before any work, when the 3D side is absent
     out = out_dir(scene, args)
     with timings("pillar_modes"):
         chain = resolve(scene, out, progress=progress)
@@ -92,7 +94,7 @@ def campbell_command(scene: Scene, args, timings):
     return to_builtins(diagram), summary_text(diagram)
 
 
-def _fem3d(scene: Scene, speeds, running):
+def _fem3d_function():
     try:
         from ..fem3d.campbell import campbell_fem3d
     except ImportError:
@@ -100,6 +102,11 @@ def _fem3d(scene: Scene, speeds, running):
             "campbell --model fem3d: the 3D Campbell diagram is not in this build yet (rotorpillar.fem3d.campbell); "
             "use --model modal"
         ) from None
+    return campbell_fem3d
+
+
+def _fem3d(scene: Scene, speeds, running):
+    campbell_fem3d = _fem3d_function()
     return campbell_fem3d(scene, speeds, band_top=float(speeds[-1]), running_speed=running, progress=progress)
 
 

@@ -271,7 +271,8 @@ def separation_rows(running, modes, response, sampled, curves) -> tuple:
         else:
             moved = FEM3D_CURVES.get(m.kind.split(" ")[0], ())
         best = peak_near(response, m.omega, PEAK_WIDTH, moved) if moved else None
-        if m.model == "fem3d":
+        # the 3D response is the tip's and the shaft's in the rotor's plane: the modes it can show
+        if m.model == "fem3d" and m.kind.split(" ")[0] not in ("bending_y", "torsion", "axial"):
             near = [
                 p
                 for p in sampled
