@@ -95,9 +95,11 @@ def campbell_command(scene: Scene, args, timings):
 
 
 def _fem3d_function():
+    import importlib
+
     try:
-        from ..fem3d.campbell import campbell_fem3d
-    except ImportError:
+        campbell_fem3d = importlib.import_module("rotorpillar.fem3d.campbell").campbell_fem3d
+    except (ImportError, AttributeError):
         raise InputError(
             "campbell --model fem3d: the 3D Campbell diagram is not in this build yet (rotorpillar.fem3d.campbell); "
             "use --model modal"

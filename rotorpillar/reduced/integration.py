@@ -45,7 +45,7 @@ from . import kernels as K
 from .drive import DriveSchedule
 from .excitation_records import NoMotionSizes
 from .rhs import Floats, Packed
-from .transient_model import M, Motion, TransientModel
+from .transient_model import G, M, Motion, TransientModel
 
 #: What one integrator gives: t, q, v, work, peak, stats (Transient's fields).
 #: An optional array argument (one value or one per run).
@@ -113,7 +113,7 @@ class Settings:
 
 
 @dataclass(frozen=True, eq=False)
-class Transient(Generic[M]):
+class Transient(Generic[M, G]):
     """A transient run: states on the output grid and what the integrator did."""
 
     model: M
@@ -131,7 +131,7 @@ class Transient(Generic[M]):
     stats: dict[str, Any]
     prescribed_speed: bool = False
     drive: DriveSchedule | None = None
-    motion: Motion | None = None
+    motion: G | None = None
 
     @property
     def ok(self) -> bool:
@@ -218,7 +218,7 @@ def auto_time_step(model: TransientModel, speed_scale: float, settings: Settings
 def simulate(
     model: M,
     drive: DriveSchedule,
-    motion: Motion,
+    motion: G,
     t_end: float,
     q0: Arr = None,
     v0: Arr = None,
@@ -226,7 +226,7 @@ def simulate(
     t_start: float = 0.0,
     prescribed_speed: bool = False,
     speed_scale: float | None = None,
-) -> Transient[M]:
+) -> Transient[M, G]:
     """Integrate the model from (q0, v0) at t_start to t_end."""
     if not (math.isfinite(t_end) and t_end > t_start):
         raise ValueError(f"t_end = {t_end!r} must be finite and > t_start = {t_start!r}")

@@ -44,3 +44,6 @@ class TransientModel(Protocol):
 
 #: the model a Transient was run on
 M = TypeVar("M", bound=TransientModel)
+
+#: the ground motion a Transient was run under
+G = TypeVar("G", bound=Motion)
