@@ -338,10 +338,10 @@ def write_text(path: str | Path, text: str) -> Path:
 def _record_json(value):
     if isinstance(value, JsonRecord):
         return value.to_json()
-    if isinstance(value, msgspec.Struct):  # a new record (rotorpillar.records) nested in an older one
-        from .records import to_builtins
+    if isinstance(value, msgspec.Struct):  # a records.Record inside a JsonRecord (the move to msgspec)
+        from . import records
 
-        return to_builtins(value)
+        return records.to_builtins(value)
     if isinstance(value, dict):
         return {k: _record_json(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -359,9 +359,9 @@ def _record_from(hint, value):
     if isinstance(hint, type) and issubclass(hint, JsonRecord):
         return hint.from_json(value)
     if isinstance(hint, type) and issubclass(hint, msgspec.Struct):
-        from .records import convert
+        from . import records
 
-        return convert(value, hint)
+        return records.convert(value, hint)
     origin, args = typing.get_origin(hint), typing.get_args(hint)
     if origin in (typing.Union, types.UnionType):
         inner = [a for a in args if a is not type(None)]

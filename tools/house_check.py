@@ -8,7 +8,7 @@ Rules that hold for the whole package:
 - no import circle between the package's modules (a package's ``__init__``
   re-exporting its own submodules is not a circle);
 - no module over 500 lines;
-- ``reduced/`` imports only ``reduced/``, ``scene``, ``errors``, ``provenance``
+- ``reduced/`` imports only ``reduced/``, ``scene``, ``errors``, ``provenance``, ``records``
   (and the package root), and none of the dolfinx world (dolfinx, ufl,
   basix, ffcx, petsc4py, slepc4py, mpi4py, gmsh, meshio): not at the top of a
   module, not inside a function, not by ``importlib.import_module("...")``;
@@ -286,7 +286,7 @@ def check_reduced(mods: dict[str, Module]) -> Verdict:
                 bad.append(where)
     return Verdict(
         not bad,
-        "reduced/ imports only reduced/, scene, errors, provenance and no "
+        "reduced/ imports only reduced/, scene, errors, provenance, records and no "
         f"dolfinx-world package: {len(bad)}" + (f" {bad[:8]}" if bad else ""),
     )
 

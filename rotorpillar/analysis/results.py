@@ -23,6 +23,7 @@ from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
     RayleighEstimate,
     TipReductionUsed,
 )
+from ..reduced.spatial_records import DriveReactionAnalysis, SpatialAnalysis
 from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json too)
 from .tower import TowerFindings
 
@@ -214,6 +215,13 @@ class AnalysisResult(JsonRecord):
     drive: DriveRegimes
     paper_model: PaperModel
     paper_comparison: tuple[PaperRow, ...] = ()
+    spatial: SpatialAnalysis | None = None
+    """the machine in three dimensions beside the planar ROM (issue 26): every direction's
+    resonances under their own names, the critical speeds, which planes the scene needs and
+    the planar model's error; ``system.omega`` stays the resonances in the rotor's plane"""
+    drive_reaction: DriveReactionAnalysis | None = None
+    """the motor's stall torque reacting on the gondola: static tip displacement and rotation,
+    base moment, and the run-up's transient with the reaction acting"""
     tower: TowerFindings | None = field(default=None, metadata={"omit_if_none": True})
     """a tower (cans, a flexible foundation, or published numbers of its own): its first
     frequencies clamped and on its foundation, the published ones beside ours"""

@@ -1,4 +1,9 @@
-"""The scene's sections: frozen dataclasses, SI units and the allowed range in each field."""
+"""The scene's sections: frozen dataclasses, SI units and the allowed range in each field.
+
+The machine's sections (pillar, gondola, rotor, shaft, material, reduction, drive,
+load) live in :mod:`.machine`, the field declaration in :mod:`.fields`; both are
+re-exported here.
+"""
 
 from __future__ import annotations
 
@@ -8,188 +13,36 @@ from dataclasses import dataclass
 from typing import Any
 
 from .fields import SceneError as SceneError
-from .fields import _range_text as _range_text
-from .fields import param
-from .tower import Can, Foundation, Reference, Segment, segments_of_cans
+from .fields import _range_text, param
+from .machine import (
+    FABRICATION_CLASSES,
+    REDUCTION_SOURCES,
+    Drive,
+    Gondola,
+    Load,
+    Material,
+    Pillar,
+    Reduction,
+    Rotor,
+    Shaft,
+)
+from .tower import Foundation, Reference
 from .words import CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS, INTEGRATORS, MODELS
 
-# --------------------------------------------------------------------------
-# Sections.  Defaults exist only where a scene may reasonably leave a key out
-# (numerical settings); physical data must be stated.
-
-
-@dataclass(frozen=True, kw_only=True)
-class Pillar:
-    """The steel tube: a cantilever on its foundation (clamped at its base by default).
-
-    Either a uniform tube (``height``, ``outer_diameter``, ``inner_diameter``)
-    or a stack of cans from the base up (``[[pillar.cans]]``, rotorpillar.scene.tower:
-    a linear taper is one can); ``height`` is then the cans' sum and may be left out.
-
-    The ranges of this section and of [gondola], [rotor], [shaft], [drive]
-    and [load] span the machines the tool is for (a fan on a 0.1 m post to a
-    100,000 t machine on a 1 km tower, rubber to diamond): far past any real
-    design, yet short of where the formulas overflow (1e300).
-    """
-
-    height: float = param("Height H (m); with cans, their sum (may be left out)", None, gt=0, le=1000, optional=True)
-    outer_diameter: float | None = param("Outer diameter D0 (m) of the uniform tube", None, gt=0, le=100, optional=True)
-    inner_diameter: float | None = param(
-        "Inner diameter D1 (m) of the uniform tube, < outer_diameter", None, ge=0, optional=True
-    )
-    youngs_modulus: float = param("Young's modulus E (Pa)", ge=1e6, le=1e13)
-    poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
-    density: float = param("Density rho (kg/m**3)", ge=1, le=1e5)
-    damping: float = param("Damping b1 at the tip (N*s/m)", ge=0, le=1e12)
-    cans: tuple[Can, ...] = param(
-        "The tower's cans from the base up ([[pillar.cans]]), instead of the uniform tube's diameters",
-        (),
-        ge=0,
-        le=1000,
-        table=Can,
-    )
-
-    def __post_init__(self) -> None:
-        # the cans' sum stands for a height left out, so every model reads one height
-        if self.height is None and self.cans:
-            object.__setattr__(self, "height", float(sum(c.height for c in self.cans)))
-
-    def segments(self) -> tuple[Segment, ...]:
-        """The tube as segments from the base up (rotorpillar.scene.tower): one for the uniform tube."""
-        if self.cans:
-            return segments_of_cans(self.cans)
-        assert self.outer_diameter is not None and self.inner_diameter is not None  # validation's
-        return (
-            Segment(
-                0.0, self.height, self.outer_diameter, self.outer_diameter, self.inner_diameter, self.inner_diameter
-            ),
-        )
-
-    def json_fields(self) -> dict[str, Any]:
-        """What a model of the pillar depends on, for a cache key: today's keys, and the
-        cans when there are any (so a uniform tube's keys are those it always had)."""
-        keys = ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
-        out = {k: getattr(self, k) for k in keys}
-        if self.cans:
-            out["cans"] = [dataclasses.asdict(c) for c in self.cans]
-        return out
-
-    @property
-    def is_uniform(self) -> bool:
-        """One cylinder from base to top: the closed forms of a uniform tube (Eq. 1) hold."""
-        s = self.segments()
-        return all(x.is_cylinder for x in s) and len({(x.outer_bottom, x.inner_bottom) for x in s}) == 1
-
-
-@dataclass(frozen=True)
-class Gondola:
-    """The stator housing on top of the pillar, moving with its tip."""
-
-    mass: float = param("Mass m* (kg)", gt=0, le=1e8)
-
-
-@dataclass(frozen=True)
-class Rotor:
-    """The rotor on its elastic shaft."""
-
-    mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
-    inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
-    eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
-    clearance: float | None = param(
-        "Shaft deflection allowed before the rotor touches its stator: the air gap or seal "
-        "clearance (m); unset = the clearance check is not assessed",
-        None,
-        gt=0,
-        le=1,
-        optional=True,
-    )
-    blades: int = param(
-        "Blades (-): the blade-passing order (blades x the rotor speed, 3P on a three-bladed "
-        "turbine) forces the tower beside 1P; 0 = none",
-        0,
-        ge=0,
-        le=100,
-    )
-    order_margin: float = param(
-        "Separation the tower's modes keep from each excitation order, 1P and the blade-passing "
-        "one, as a fraction of the order's frequency (-); soft-stiff: the first mode above 1P and "
-        "below the blade-passing frequency by this much",
-        0.10,
-        ge=0,
-        lt=1,
-    )
-
-
-@dataclass(frozen=True)
-class Shaft:
-    """Shaft and bearings, the same in X and Y (c2 = c3, b2 = b3)."""
-
-    stiffness: float = param("Stiffness c2 = c3 (N/m)", ge=1, le=1e14)
-    damping: float = param("Damping b2 = b3 (N*s/m)", ge=0, le=1e12)
-    force_limit: float | None = param(
-        "Force the shaft and its bearings may carry (N), against the peak of the shaft's force "
-        "on the rotor; unset = the force check is not assessed",
-        None,
-        gt=0,
-        le=1e12,
-        optional=True,
-    )
-
-
-FABRICATION_CLASSES = ("A", "B", "C")
-
-
-@dataclass(frozen=True)
-class Material:
-    """The tube's steel as the checks need it (its stiffness and density are in [pillar])."""
-
-    yield_strength: float = param(
-        "Characteristic yield strength f_yk (Pa); S355 by default, the usual grade of welded steel towers (EN 10025-2)",
-        355e6,
-        gt=0,
-        le=1e10,
-    )
-    fabrication_class: str = param(
-        "Fabrication tolerance quality class of the thin-walled tube for shell buckling "
-        "(EN 1993-1-6 Table 8.1: A excellent, B high, C normal; Q = 40, 25, 16 in D.1.2.2). "
-        "Default C: the lowest class, whose tolerances any fabricator must meet, so an "
-        "unstated class never overstates the buckling resistance",
-        "C",
-        choices=FABRICATION_CLASSES,
-    )
-
-
-REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
-
-
-@dataclass(frozen=True)
-class Reduction:
-    """The pillar reduced to one mass and one spring at its tip (the paper's Eq. 2).
-
-    Stated values are used as given; absent ones are computed, by
-    ``source``: "closed_form" (the continuous first Euler-Bernoulli mode),
-    "fem3d" (the first bending mode of the 3D model) or "auto" (= stated
-    where given, else closed_form).
-    """
-
-    tip_mass: float | None = param("Reduced tip mass m_r (kg)", None, gt=0, le=1e8, optional=True)
-    tip_stiffness: float | None = param("Tip stiffness c1 (N/m)", None, ge=1, le=1e14, optional=True)
-    source: str = param("Where absent values come from", "auto", choices=REDUCTION_SOURCES)
-
-
-@dataclass(frozen=True)
-class Drive:
-    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's Eq. 22)."""
-
-    torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0, le=1e9)
-    slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0, le=1e9)
-
-
-@dataclass(frozen=True)
-class Load:
-    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's Eq. 22)."""
-
-    coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0, le=1e9)
+__all__ = [
+    "FABRICATION_CLASSES",
+    "REDUCTION_SOURCES",
+    "Drive",
+    "Gondola",
+    "Load",
+    "Material",
+    "Pillar",
+    "Reduction",
+    "Rotor",
+    "Shaft",
+    "_range_text",
+    "param",
+]
 
 
 @dataclass(frozen=True)
@@ -342,6 +195,28 @@ class Excitation:
     )
     record_units: str = param("Units of the acceleration column of a two-column file", "g", choices=RECORD_UNITS)
     record_scale: float = param("Factor on the record's acceleration (-)", 1.0, gt=0, le=1e3)
+    components: int = param(
+        "Components of the ground motion: 1 = horizontal in the rotor's plane only (the paper's q5), "
+        "2 = both horizontal directions, 3 = both and the vertical (-)",
+        1,
+        choices=(1, 2, 3),
+    )
+    angle: float = param(
+        "Angle of the record's first horizontal component from the rotor's plane, turning towards the "
+        "spin axis (deg): the horizontal pair rotated about the vertical",
+        0.0,
+        ge=-360,
+        le=360,
+    )
+    second_record: str = param(
+        "The second horizontal component (components >= 2), normal to the first: a file as `record`, "
+        "or elcentro (El Centro 1940's 270 component; the first, `record`, is its 180)",
+        "elcentro",
+    )
+    vertical_record: str = param(
+        "The vertical component (components = 3): a file as `record`, or elcentro (El Centro 1940's vertical, UP)",
+        "elcentro",
+    )
 
 
 @dataclass(frozen=True)
@@ -357,6 +232,7 @@ class Sweep:
 
 
 MODAL_SOURCES = ("auto", "beam", "fem3d")
+PLANES = ("auto", "planar", "spatial")
 
 
 @dataclass(frozen=True)
@@ -380,6 +256,14 @@ class ModalModel:
     elements: int = param("Elements of the 1D beam (-)", 40, ge=2, le=2000)
     gondola_inertia: float = param(
         "Rotary inertia of the gondola about the pillar tip (kg*m**2); the paper neglects it", 0.0, ge=0
+    )
+    planes: str = param(
+        "Directions of the modal model: planar = the rotor's plane only (the paper's), spatial = both "
+        "horizontal directions, vertical, torsion, the rotor's tilt and gyroscopic whirl, auto = "
+        "planar where the scene's excitation and band leave the other directions unexcited (the "
+        "result says which and why)",
+        "auto",
+        choices=PLANES,
     )
 
 
@@ -494,7 +378,7 @@ class Scene:
     description: str = ""
 
     def to_dict(self) -> dict[str, Any]:
-        """The resolved scene, as it would be written back to TOML (an array of tables as a list)."""
+        """The resolved scene, as it would be written back to TOML."""
         out = dataclasses.asdict(self)
         out["pillar"]["cans"] = list(out["pillar"]["cans"])
         return out
