@@ -87,8 +87,15 @@ def modes_key(scene: Scene, mesh: dict) -> str:
             for k in ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density")
         },
         "gondola": scene.gondola.mass,
+        # the gondola as a rigid body (issue 26's keys; absent in an older scene: 0, as today)
+        "gondola_body": [
+            getattr(scene.gondola, k, 0.0) for k in ("pitch_inertia", "roll_inertia", "yaw_inertia", "height")
+        ],
         "top_model": md.top_model,
         "top_mass": md.top_mass,
+        "rotor_body": [scene.rotor.mass, getattr(scene.rotor, "diametral_inertia", 0.0), getattr(scene.rotor, "height", 0.0)]
+        if md.top_mass == "gondola_and_rotor"
+        else None,
         "tolerance": md.tolerance,
     }
     return cache_key(args, version=CACHE_VERSION, code=_code_hash())
