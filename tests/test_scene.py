@@ -42,7 +42,33 @@ BAD = [
     (["shaftstiffness"], "shaftstiffness", "KEY=VALUE"),
     (["stiffness=1"], "stiffness=1", "section.key"),
     (['reduction.source="guess"'], "reduction.source", "one of"),
+    # issue 26's keys of the spatial model
+    (["rotor.diametral_inertia=0"], "rotor.diametral_inertia", "> 0"),
+    (["rotor.height=-1"], "rotor.height", ">= 0"),
+    (["rotor.couple_unbalance=-0.1"], "rotor.couple_unbalance", ">= 0"),
+    (["shaft.axial_stiffness=0"], "shaft.axial_stiffness", ">= 1"),
+    (["shaft.tilt_stiffness=0.5"], "shaft.tilt_stiffness", ">= 1"),
+    (["shaft.tilt_damping=-1"], "shaft.tilt_damping", ">= 0"),
+    (["gondola.yaw_inertia=-1"], "gondola.yaw_inertia", ">= 0"),
+    (["gondola.height=-1"], "gondola.height", ">= 0"),
+    (["pillar.damping_ratio=1"], "pillar.damping_ratio", "< 1"),
+    (['modal_model.planes="3d"'], "modal_model.planes", "one of 'auto', 'planar', 'spatial'"),
+    (["excitation.components=4"], "excitation.components", "one of 1, 2, 3"),
+    (["excitation.angle=400"], "excitation.angle", "<= 360"),
 ]
+
+
+def test_spatial_keys_default_to_todays_model():
+    """Issue 26: a scene that states none of the spatial keys keeps today's plane model:
+    the rotor and the gondola at the top, no couple unbalance, no tilt spring (the rotor
+    tilts with the gondola), one horizontal ground-motion component along the rotor's
+    plane; the structural damping ratio's default is EN 1991-1-4 Table F.2's log
+    decrement 0.012 for a welded steel stack, over 2 pi."""
+    s = load_scene("sommerfeld")
+    assert (s.rotor.height, s.gondola.height, s.rotor.couple_unbalance) == (0.0, 0.0, 0.0)
+    assert s.rotor.diametral_inertia is None and s.shaft.tilt_stiffness is None and s.shaft.axial_stiffness is None
+    assert (s.excitation.components, s.excitation.angle, s.modal_model.planes) == (1, 0.0, "auto")
+    assert s.pillar.damping_ratio == pytest.approx(0.012 / (2 * 3.141592653589793), rel=1e-12)
 
 
 @pytest.mark.parametrize("sets, key, rng", BAD, ids=[b[1] + ":" + b[2] for b in BAD])

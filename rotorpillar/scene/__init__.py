@@ -1,7 +1,8 @@
 """The scene: one structure and what to run on it, read from TOML.
 
 Rooms: :mod:`.words` (the project's word lists), :mod:`.sections` (the
-sections as frozen dataclasses), :mod:`.validation` (checks, building),
+sections as frozen dataclasses; the machine's in :mod:`.machine`, a field's
+declaration in :mod:`.fields`), :mod:`.validation` (checks, building),
 :mod:`.files` (TOML files, embedded scenes, ``--set``); every public name is
 re-exported here.
 
@@ -31,6 +32,7 @@ from .sections import (
     FABRICATION_CLASSES,
     MODAL_SOURCES,
     OPTIONAL_SECTIONS,
+    PLANES,
     RECORD_UNITS,
     REDUCTION_SOURCES,
     SECTIONS,
@@ -93,6 +95,7 @@ __all__ = [
     "Modal",
     "ModalModel",
     "OPTIONAL_SECTIONS",
+    "PLANES",
     "Pillar",
     "RECORD_UNITS",
     "REDUCTION_SOURCES",

@@ -1,164 +1,51 @@
-"""The scene's sections: frozen dataclasses, SI units and the allowed range in each field."""
+"""The scene's sections: frozen dataclasses, SI units and the allowed range in each field.
+
+The machine's sections (pillar, gondola, rotor, shaft, material, reduction, drive,
+load) live in :mod:`.machine`, the field declaration in :mod:`.fields`; both are
+re-exported here.
+"""
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from ..errors import InputError
+from .fields import _range_text, param
+from .machine import (
+    FABRICATION_CLASSES,
+    REDUCTION_SOURCES,
+    Drive,
+    Gondola,
+    Load,
+    Material,
+    Pillar,
+    Reduction,
+    Rotor,
+    Shaft,
+)
 from .words import CASES, CELL_TYPES, FIXED_STEP_INTEGRATORS, INTEGRATORS, MODELS
+
+__all__ = [
+    "FABRICATION_CLASSES",
+    "REDUCTION_SOURCES",
+    "Drive",
+    "Gondola",
+    "Load",
+    "Material",
+    "Pillar",
+    "Reduction",
+    "Rotor",
+    "Shaft",
+    "_range_text",
+    "param",
+]
 
 
 class SceneError(InputError):
     """Bad scene input; the message is one line naming the key and the range."""
-
-
-def param(
-    doc: str,
-    default: Any = dataclasses.MISSING,
-    *,
-    gt: float | None = None,
-    ge: float | None = None,
-    lt: float | None = None,
-    le: float | None = None,
-    choices: Sequence[Any] | None = None,
-    optional: bool = False,
-) -> Any:
-    """A scene field: its docstring (with unit) and its allowed range."""
-    meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices, optional=optional)
-    return field(default=default, metadata=meta)
-
-
-def _range_text(meta: Mapping[str, Any]) -> str:
-    if meta["choices"] is not None:
-        return "one of " + ", ".join(repr(c) for c in meta["choices"])
-    lo = f"> {meta['gt']:g}" if meta["gt"] is not None else f">= {meta['ge']:g}" if meta["ge"] is not None else None
-    hi = f"< {meta['lt']:g}" if meta["lt"] is not None else f"<= {meta['le']:g}" if meta["le"] is not None else None
-    parts = [p for p in (lo, hi) if p]
-    return " and ".join(parts) if parts else "any finite value"
-
-
-# --------------------------------------------------------------------------
-# Sections.  Defaults exist only where a scene may reasonably leave a key out
-# (numerical settings); physical data must be stated.
-
-
-@dataclass(frozen=True)
-class Pillar:
-    """The steel tube: a cantilever clamped at its base.
-
-    The ranges of this section and of [gondola], [rotor], [shaft], [drive]
-    and [load] span the machines the tool is for (a fan on a 0.1 m post to a
-    100,000 t machine on a 1 km tower, rubber to diamond): far past any real
-    design, yet short of where the formulas overflow (1e300).
-    """
-
-    height: float = param("Height H (m)", gt=0, le=1000)
-    outer_diameter: float = param("Outer diameter D0 (m)", gt=0, le=100)
-    inner_diameter: float = param("Inner diameter D1 (m), < outer_diameter", ge=0)
-    youngs_modulus: float = param("Young's modulus E (Pa)", ge=1e6, le=1e13)
-    poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
-    density: float = param("Density rho (kg/m**3)", ge=1, le=1e5)
-    damping: float = param("Damping b1 at the tip (N*s/m)", ge=0, le=1e12)
-
-
-@dataclass(frozen=True)
-class Gondola:
-    """The stator housing on top of the pillar, moving with its tip."""
-
-    mass: float = param("Mass m* (kg)", gt=0, le=1e8)
-
-
-@dataclass(frozen=True)
-class Rotor:
-    """The rotor on its elastic shaft."""
-
-    mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
-    inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
-    eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
-    clearance: float | None = param(
-        "Shaft deflection allowed before the rotor touches its stator: the air gap or seal "
-        "clearance (m); unset = the clearance check is not assessed",
-        None,
-        gt=0,
-        le=1,
-        optional=True,
-    )
-
-
-@dataclass(frozen=True)
-class Shaft:
-    """Shaft and bearings, the same in X and Y (c2 = c3, b2 = b3)."""
-
-    stiffness: float = param("Stiffness c2 = c3 (N/m)", ge=1, le=1e14)
-    damping: float = param("Damping b2 = b3 (N*s/m)", ge=0, le=1e12)
-    force_limit: float | None = param(
-        "Force the shaft and its bearings may carry (N), against the peak of the shaft's force "
-        "on the rotor; unset = the force check is not assessed",
-        None,
-        gt=0,
-        le=1e12,
-        optional=True,
-    )
-
-
-FABRICATION_CLASSES = ("A", "B", "C")
-
-
-@dataclass(frozen=True)
-class Material:
-    """The tube's steel as the checks need it (its stiffness and density are in [pillar])."""
-
-    yield_strength: float = param(
-        "Characteristic yield strength f_yk (Pa); S355 by default, the usual grade of welded steel towers (EN 10025-2)",
-        355e6,
-        gt=0,
-        le=1e10,
-    )
-    fabrication_class: str = param(
-        "Fabrication tolerance quality class of the thin-walled tube for shell buckling "
-        "(EN 1993-1-6 Table 8.1: A excellent, B high, C normal; Q = 40, 25, 16 in D.1.2.2). "
-        "Default C: the lowest class, whose tolerances any fabricator must meet, so an "
-        "unstated class never overstates the buckling resistance",
-        "C",
-        choices=FABRICATION_CLASSES,
-    )
-
-
-REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
-
-
-@dataclass(frozen=True)
-class Reduction:
-    """The pillar reduced to one mass and one spring at its tip (the paper's Eq. 2).
-
-    Stated values are used as given; absent ones are computed, by
-    ``source``: "closed_form" (the continuous first Euler-Bernoulli mode),
-    "fem3d" (the first bending mode of the 3D model) or "auto" (= stated
-    where given, else closed_form).
-    """
-
-    tip_mass: float | None = param("Reduced tip mass m_r (kg)", None, gt=0, le=1e8, optional=True)
-    tip_stiffness: float | None = param("Tip stiffness c1 (N/m)", None, ge=1, le=1e14, optional=True)
-    source: str = param("Where absent values come from", "auto", choices=REDUCTION_SOURCES)
-
-
-@dataclass(frozen=True)
-class Drive:
-    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's Eq. 22)."""
-
-    torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0, le=1e9)
-    slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0, le=1e9)
-
-
-@dataclass(frozen=True)
-class Load:
-    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's Eq. 22)."""
-
-    coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0, le=1e9)
 
 
 @dataclass(frozen=True)
@@ -311,6 +198,28 @@ class Excitation:
     )
     record_units: str = param("Units of the acceleration column of a two-column file", "g", choices=RECORD_UNITS)
     record_scale: float = param("Factor on the record's acceleration (-)", 1.0, gt=0, le=1e3)
+    components: int = param(
+        "Components of the ground motion: 1 = horizontal in the rotor's plane only (the paper's q5), "
+        "2 = both horizontal directions, 3 = both and the vertical (-)",
+        1,
+        choices=(1, 2, 3),
+    )
+    angle: float = param(
+        "Angle of the record's first horizontal component from the rotor's plane, turning towards the "
+        "spin axis (deg): the horizontal pair rotated about the vertical",
+        0.0,
+        ge=-360,
+        le=360,
+    )
+    second_record: str = param(
+        "The second horizontal component (components >= 2), normal to the first: a file as `record`, "
+        "or elcentro (El Centro 1940's 270 component; the first, `record`, is its 180)",
+        "elcentro",
+    )
+    vertical_record: str = param(
+        "The vertical component (components = 3): a file as `record`, or elcentro (El Centro 1940's vertical, UP)",
+        "elcentro",
+    )
 
 
 @dataclass(frozen=True)
@@ -326,6 +235,7 @@ class Sweep:
 
 
 MODAL_SOURCES = ("auto", "beam", "fem3d")
+PLANES = ("auto", "planar", "spatial")
 
 
 @dataclass(frozen=True)
@@ -349,6 +259,14 @@ class ModalModel:
     elements: int = param("Elements of the 1D beam (-)", 40, ge=2, le=2000)
     gondola_inertia: float = param(
         "Rotary inertia of the gondola about the pillar tip (kg*m**2); the paper neglects it", 0.0, ge=0
+    )
+    planes: str = param(
+        "Directions of the modal model: planar = the rotor's plane only (the paper's), spatial = both "
+        "horizontal directions, vertical, torsion, the rotor's tilt and gyroscopic whirl, auto = "
+        "planar where the scene's excitation and band leave the other directions unexcited (the "
+        "result says which and why)",
+        "auto",
+        choices=PLANES,
     )
 
 

@@ -1,0 +1,204 @@
+"""The machine's sections: the pillar, the gondola, the rotor and its shaft, the steel,
+the tip reduction, the drive and the load (frozen dataclasses, SI units and the allowed
+range in each field; rotorpillar.scene.sections re-exports them)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .fields import param
+
+# --------------------------------------------------------------------------
+# Sections.  Defaults exist only where a scene may reasonably leave a key out
+# (numerical settings); physical data must be stated.
+
+
+@dataclass(frozen=True)
+class Pillar:
+    """The steel tube: a cantilever clamped at its base.
+
+    The ranges of this section and of [gondola], [rotor], [shaft], [drive]
+    and [load] span the machines the tool is for (a fan on a 0.1 m post to a
+    100,000 t machine on a 1 km tower, rubber to diamond): far past any real
+    design, yet short of where the formulas overflow (1e300).
+    """
+
+    height: float = param("Height H (m)", gt=0, le=1000)
+    outer_diameter: float = param("Outer diameter D0 (m)", gt=0, le=100)
+    inner_diameter: float = param("Inner diameter D1 (m), < outer_diameter", ge=0)
+    youngs_modulus: float = param("Young's modulus E (Pa)", ge=1e6, le=1e13)
+    poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
+    density: float = param("Density rho (kg/m**3)", ge=1, le=1e5)
+    damping: float = param("Damping b1 at the tip (N*s/m)", ge=0, le=1e12)
+    damping_ratio: float = param(
+        "Structural damping ratio zeta of every pillar mode of the spatial model (bending in both "
+        "planes, torsion, axial, ovalling), on top of the tip dashpot b1 (-); default 0.0019 = the "
+        "logarithmic decrement 0.012 / (2 pi) that EN 1991-1-4 Annex F Table F.2 gives for an unlined "
+        "welded steel stack; the planar ROM and the paper's Eq. 4 leave it out, as today",
+        0.012 / (2 * math.pi),
+        ge=0,
+        lt=1,
+    )
+
+
+@dataclass(frozen=True)
+class Gondola:
+    """The stator housing on top of the pillar, moving with its tip."""
+
+    mass: float = param("Mass m* (kg)", gt=0, le=1e8)
+    roll_inertia: float = param(
+        "Moment of inertia about its own centre, about the horizontal axis along the spin axis "
+        "(roll: the rotor's plane's rotation) (kg*m**2); the paper neglects it",
+        0.0,
+        ge=0,
+        le=1e10,
+    )
+    pitch_inertia: float = param(
+        "Moment of inertia about its own centre, about the horizontal axis in the rotor's plane (pitch) "
+        "(kg*m**2); the paper neglects it",
+        0.0,
+        ge=0,
+        le=1e10,
+    )
+    yaw_inertia: float = param(
+        "Moment of inertia about its own centre, about the vertical (yaw: the pillar's torsion) "
+        "(kg*m**2); the paper neglects it",
+        0.0,
+        ge=0,
+        le=1e10,
+    )
+    height: float = param(
+        "Height of its centre above the pillar's top (m); 0 = at the top, as the paper has it", 0.0, ge=0, le=1000
+    )
+
+
+@dataclass(frozen=True)
+class Rotor:
+    """The rotor on its elastic shaft."""
+
+    mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
+    inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
+    eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
+    diametral_inertia: float | None = param(
+        "Moment of inertia I_d about a diameter through its centre (kg*m**2); unset = J_C / 2, a thin disc's",
+        None,
+        gt=0,
+        le=1e10,
+        optional=True,
+    )
+    height: float = param(
+        "Height of its centre (and of the shaft's bearing point) above the pillar's top (m); 0 = at the "
+        "top, as the paper has it",
+        0.0,
+        ge=0,
+        le=1000,
+    )
+    couple_unbalance: float = param(
+        "Couple unbalance U_c (kg*m**2): the product of inertia that tilts the principal axis off the "
+        "spin axis, a moment U_c Omega**2 turning with the rotor about the lateral axes; 0 = none",
+        0.0,
+        ge=0,
+        le=1e6,
+    )
+    clearance: float | None = param(
+        "Shaft deflection allowed before the rotor touches its stator: the air gap or seal "
+        "clearance (m); unset = the clearance check is not assessed",
+        None,
+        gt=0,
+        le=1,
+        optional=True,
+    )
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """Shaft and bearings, the same in X and Y (c2 = c3, b2 = b3)."""
+
+    stiffness: float = param("Stiffness c2 = c3 (N/m)", ge=1, le=1e14)
+    damping: float = param("Damping b2 = b3 (N*s/m)", ge=0, le=1e12)
+    axial_stiffness: float | None = param(
+        "Stiffness along the spin axis between the rotor and the gondola (N/m); unset = c2",
+        None,
+        ge=1,
+        le=1e14,
+        optional=True,
+    )
+    tilt_stiffness: float | None = param(
+        "Stiffness against the rotor's tilt (pitch and yaw) relative to the gondola (N*m/rad); unset = "
+        "rigid: the rotor tilts with the gondola (the paper models no tilt)",
+        None,
+        ge=1,
+        le=1e14,
+        optional=True,
+    )
+    tilt_damping: float = param(
+        "Damping of the rotor's tilt relative to the gondola (N*m*s/rad); used with tilt_stiffness",
+        0.0,
+        ge=0,
+        le=1e12,
+    )
+    force_limit: float | None = param(
+        "Force the shaft and its bearings may carry (N), against the peak of the shaft's force "
+        "on the rotor; unset = the force check is not assessed",
+        None,
+        gt=0,
+        le=1e12,
+        optional=True,
+    )
+
+
+FABRICATION_CLASSES = ("A", "B", "C")
+
+
+@dataclass(frozen=True)
+class Material:
+    """The tube's steel as the checks need it (its stiffness and density are in [pillar])."""
+
+    yield_strength: float = param(
+        "Characteristic yield strength f_yk (Pa); S355 by default, the usual grade of welded steel towers (EN 10025-2)",
+        355e6,
+        gt=0,
+        le=1e10,
+    )
+    fabrication_class: str = param(
+        "Fabrication tolerance quality class of the thin-walled tube for shell buckling "
+        "(EN 1993-1-6 Table 8.1: A excellent, B high, C normal; Q = 40, 25, 16 in D.1.2.2). "
+        "Default C: the lowest class, whose tolerances any fabricator must meet, so an "
+        "unstated class never overstates the buckling resistance",
+        "C",
+        choices=FABRICATION_CLASSES,
+    )
+
+
+REDUCTION_SOURCES = ("auto", "stated", "closed_form", "fem3d")
+
+
+@dataclass(frozen=True)
+class Reduction:
+    """The pillar reduced to one mass and one spring at its tip (the paper's Eq. 2).
+
+    Stated values are used as given; absent ones are computed, by
+    ``source``: "closed_form" (the continuous first Euler-Bernoulli mode),
+    "fem3d" (the first bending mode of the 3D model) or "auto" (= stated
+    where given, else closed_form).
+    """
+
+    tip_mass: float | None = param("Reduced tip mass m_r (kg)", None, gt=0, le=1e8, optional=True)
+    tip_stiffness: float | None = param("Tip stiffness c1 (N/m)", None, ge=1, le=1e14, optional=True)
+    source: str = param("Where absent values come from", "auto", choices=REDUCTION_SOURCES)
+
+
+@dataclass(frozen=True)
+class Drive:
+    """Motor characteristic Md(Omega) = torque_at_zero - slope*Omega (the paper's Eq. 22)."""
+
+    torque_at_zero: float = param("Stall torque M0 (N*m)", ge=0, le=1e9)
+    slope: float = param("Slope of the characteristic (N*m*s/rad)", ge=0, le=1e9)
+
+
+@dataclass(frozen=True)
+class Load:
+    """Resistance of the driven machine, Mc(Omega) = coefficient*Omega**2 (the paper's Eq. 22)."""
+
+    coefficient: float = param("Quadratic load coefficient k (N*m*s**2/rad**2)", ge=0, le=1e9)
