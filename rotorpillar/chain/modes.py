@@ -93,7 +93,11 @@ def modes_key(scene: Scene, mesh: dict) -> str:
         ],
         "top_model": md.top_model,
         "top_mass": md.top_mass,
-        "rotor_body": [scene.rotor.mass, getattr(scene.rotor, "diametral_inertia", 0.0), getattr(scene.rotor, "height", 0.0)]
+        "rotor_body": [
+            scene.rotor.mass,
+            getattr(scene.rotor, "diametral_inertia", 0.0),
+            getattr(scene.rotor, "height", 0.0),
+        ]
         if md.top_mass == "gondola_and_rotor"
         else None,
         "tolerance": md.tolerance,

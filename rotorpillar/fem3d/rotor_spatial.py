@@ -10,7 +10,10 @@ the top section's centre (0, 0, H).  The rotor adds 5:
 
 its centre's displacement and the tilt of its spin axis, the centre at
 ``height`` h above the top.  Its spin (roll about the spin axis) is the
-prescribed speed Omega, not a dof.
+prescribed speed Omega, not a dof.  With no ``tilt_stiffness`` (None: the
+scene's default, the paper models no tilt) the rotor tilts with the
+gondola: r = (x_r, y_r, z_r) only, its I_d and its gyroscopic moment act on
+the plate's pitch and yaw (exactly, no penalty spring).
 
 The shaft acts between the rotor and the gondola's point at the rotor's
 centre, which moves with the plate: u_b = U + Theta x (0, 0, h) = (U_x +
@@ -37,33 +40,34 @@ I_d times the tilt rates).  d/dt of it equals the moment: for the tilts
     I_d phi_x'' + J_C Omega phi_z' = M_x,    I_d phi_z'' - J_C Omega phi_x' = M_z,
 
 the gyroscopic matrix Omega G with G = J_C [[0, 1], [-1, 0]] on (phi_x,
-phi_z) (skew: it does no work).  A steady moment M_x precesses the spin axis
+phi_z) (skew: it does no work), or on the plate's (Theta_x, Theta_z) when the
+rotor tilts with the gondola.  A steady moment M_x precesses the spin axis
 at phi_z' = M_x / (J_C Omega): the angular momentum -J_C Omega e_y grows
 along +x, the axis' far end (at -y) tips towards +x (``precession_rate``).
 Forward whirl is an orbit that turns as the unbalance does: from +x towards
 +z in the (x, z) plane (``whirl_direction``).
 
 >>> rotor = rotor_example()
->>> D = shaft_links(rotor.height)
+>>> D = shaft_links(rotor.height, tilt=True)
 >>> D.shape, float(D[0, 4])
 ((5, 11), -0.5)
->>> K = shaft_block(rotor, "stiffness")
+>>> K, C, M, G = rotor_blocks(rotor)
 >>> bool(np.allclose(K @ np.r_[1, 2, 3, 0, 0, 0, 1, 2, 3, 0, 0], 0))  # a common translation stretches nothing
 True
+>>> [b.shape for b in rotor_blocks(replace(rotor, tilt_stiffness=None))]
+[(9, 9), (9, 9), (9, 9), (9, 9)]
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace  # noqa: F401  (replace: the doctest's)
 
 import numpy as np
 
-#: the rotor's dofs after the plate's, in this order
+#: the rotor's dofs after the plate's, in this order (the first three when it tilts with the gondola)
 ROTOR_DOFS = ("in_plane", "along_spin_axis", "vertical", "pitch", "yaw")
 #: the plate's 6 dofs (rotorpillar.fem3d.model), in this order
 PLATE_DOFS = ("in_plane", "along_spin_axis", "vertical", "pitch", "roll", "yaw")
-#: the rotor's dofs
-N_ROTOR = 5
 #: the two laws of the shaft's damping b2
 DAMPING_LAWS = ("gondola", "ground")
 
@@ -90,88 +94,90 @@ class SpatialRotor:
     """b2 = b3 (N*s/m)"""
     axial_stiffness: float
     """the shaft along the spin axis (N/m)"""
-    tilt_stiffness: float
-    """the shaft against the rotor's tilt relative to the gondola (N*m/rad)"""
+    tilt_stiffness: float | None
+    """the shaft against the rotor's tilt relative to the gondola (N*m/rad); None: rigid,
+    the rotor tilts with the gondola"""
     tilt_damping: float
     """(N*m*s/rad)"""
 
     @classmethod
     def from_scene(cls, scene) -> SpatialRotor:
-        """The scene's rotor and shaft; keys of issue 26 an older scene lacks take the
-        defaults ``scene_defaults`` states."""
+        """The scene's rotor and shaft, with the scene's defaults: I_d = J_C / 2 (a thin
+        disc), the axial stiffness c2, the tilt rigid."""
         r, s = scene.rotor, scene.shaft
-        d = scene_defaults(scene)
+        Id = r.diametral_inertia
+        ka = s.axial_stiffness
         return cls(
             r.mass,
             r.inertia,
-            getattr(r, "diametral_inertia", d["diametral_inertia"]),
-            getattr(r, "height", 0.0),
+            0.5 * r.inertia if Id is None else Id,
+            r.height,
             r.eccentricity,
-            getattr(r, "couple_unbalance", 0.0),
+            r.couple_unbalance,
             s.stiffness,
             s.damping,
-            getattr(s, "axial_stiffness", d["axial_stiffness"]),
-            getattr(s, "tilt_stiffness", d["tilt_stiffness"]),
-            getattr(s, "tilt_damping", 0.0),
+            s.stiffness if ka is None else ka,
+            s.tilt_stiffness,
+            s.tilt_damping,
         )
 
-    def mass_block(self) -> np.ndarray:
-        """diag(m_C, m_C, m_C, I_d, I_d) on the rotor's dofs (kg, kg*m**2)."""
-        m, Id = self.mass, self.diametral_inertia
-        return np.diag([m, m, m, Id, Id])
+    @property
+    def tilts(self) -> bool:
+        """Whether the rotor tilts on its own shaft (pitch and yaw dofs of its own)."""
+        return self.tilt_stiffness is not None
 
-    def gyroscopic_block(self) -> np.ndarray:
-        """G on the rotor's dofs, the gyroscopic moment being -Omega G r' (N*m*s/rad per rad/s):
-        J_C [[0, 1], [-1, 0]] on (pitch, yaw) (module text)."""
-        G = np.zeros((N_ROTOR, N_ROTOR))
-        G[3, 4], G[4, 3] = self.polar_inertia, -self.polar_inertia
-        return G
+    @property
+    def dofs(self) -> int:
+        """the rotor's own dofs: 5, or 3 when it tilts with the gondola"""
+        return 5 if self.tilts else 3
 
 
-def scene_defaults(scene) -> dict:
-    """What the keys of issue 26 default to while the scene has none (stated in the report):
-    a thin disc's I_d = J_C / 2, an axial shaft as stiff as the lateral one, and a tilt
-    stiffness c2 (1 m)**2 (two bearings 2 m apart: c2 / 2 each, arm 1 m)."""
-    return {
-        "diametral_inertia": 0.5 * scene.rotor.inertia,
-        "axial_stiffness": scene.shaft.stiffness,
-        "tilt_stiffness": scene.shaft.stiffness * 1.0,
-    }
-
-
-def shaft_links(height: float) -> np.ndarray:
-    """D (5, 11): the shaft's relative motions (in-plane, vertical, axial, pitch, yaw) of the
-    rotor against the gondola's point at ``height`` (m), from (q plate, r rotor)."""
-    D = np.zeros((5, 11))
-    r = 6 + np.arange(N_ROTOR)
+def shaft_links(height: float, tilt: bool) -> np.ndarray:
+    """D (5 or 3, 6 + 5 or 3): the shaft's relative motions (in-plane, vertical, axial[, pitch,
+    yaw]) of the rotor against the gondola's point at ``height`` (m), from (q plate, r rotor)."""
+    n = 5 if tilt else 3
+    D = np.zeros((n, 6 + n))
+    r = 6 + np.arange(n)
     D[0, [0, 4, r[0]]] = -1.0, -height, 1.0  # x_r - (U_x + h Theta_y)
     D[1, [2, r[2]]] = -1.0, 1.0  # z_r - U_z
     D[2, [1, 3, r[1]]] = -1.0, height, 1.0  # y_r - (U_y - h Theta_x)
-    D[3, [3, r[3]]] = -1.0, 1.0  # phi_x - Theta_x
-    D[4, [5, r[4]]] = -1.0, 1.0  # phi_z - Theta_z
+    if tilt:
+        D[3, [3, r[3]]] = -1.0, 1.0  # phi_x - Theta_x
+        D[4, [5, r[4]]] = -1.0, 1.0  # phi_z - Theta_z
     return D
 
 
-def shaft_block(rotor: SpatialRotor, which: str, damping_law: str = "gondola") -> np.ndarray:
-    """The shaft's 11 x 11 stiffness (``which`` "stiffness") or damping ("damping") on
-    (q plate, r rotor); the damping by ``damping_law`` (module text)."""
-    D = shaft_links(rotor.height)
-    if which == "stiffness":
-        k = [rotor.lateral_stiffness, rotor.lateral_stiffness, rotor.axial_stiffness]
-        k += [rotor.tilt_stiffness, rotor.tilt_stiffness]
-        return D.T @ np.diag(k) @ D
-    if which != "damping":
-        raise ValueError("which must be 'stiffness' or 'damping'")
+def rotor_blocks(rotor: SpatialRotor, damping_law: str = "gondola"):
+    """(K, C, M, G): the rotor's and its shaft's blocks on (q plate, r rotor), 6 + rotor.dofs
+    square (SI); C by ``damping_law`` (module text), G per unit speed."""
     if damping_law not in DAMPING_LAWS:
         raise ValueError(f"damping_law must be one of {DAMPING_LAWS}")
-    b = np.array([rotor.lateral_damping, rotor.lateral_damping, 0.0, rotor.tilt_damping, rotor.tilt_damping])
+    tilt, n = rotor.tilts, rotor.dofs
+    D = shaft_links(rotor.height, tilt)
+    c2 = rotor.lateral_stiffness
+    k = [c2, c2, rotor.axial_stiffness] + ([rotor.tilt_stiffness] * 2 if tilt else [])
+    K = D.T @ np.diag(k) @ D
+    b = np.array([rotor.lateral_damping, rotor.lateral_damping, 0.0] + ([rotor.tilt_damping] * 2 if tilt else []))
     if damping_law == "gondola":
-        return D.T @ np.diag(b) @ D
-    # b2 on the rotor centre's absolute in-plane and vertical velocity (Eq. 4)
-    A = np.zeros((2, 11))
-    A[0, 6], A[1, 8] = 1.0, 1.0
-    Dt = D[3:]
-    return A.T @ np.diag(b[:2]) @ A + Dt.T @ np.diag(b[3:]) @ Dt
+        C = D.T @ np.diag(b) @ D
+    else:  # b2 on the rotor centre's absolute in-plane and vertical velocity (Eq. 4)
+        A = np.zeros((2, 6 + n))
+        A[0, 6], A[1, 8] = 1.0, 1.0
+        C = A.T @ np.diag(b[:2]) @ A + D[3:].T @ np.diag(b[3:]) @ D[3:]
+    M = np.zeros((6 + n, 6 + n))
+    M[6:9, 6:9] = rotor.mass * np.eye(3)
+    pitch, yaw = (9, 10) if tilt else (3, 5)  # the tilts: the rotor's own, or the plate's
+    M[pitch, pitch] += rotor.diametral_inertia
+    M[yaw, yaw] += rotor.diametral_inertia
+    G = np.zeros((6 + n, 6 + n))
+    G[pitch, yaw], G[yaw, pitch] = rotor.polar_inertia, -rotor.polar_inertia
+    return K, C, M, G
+
+
+def tilt_rows(rotor: SpatialRotor) -> tuple[int, int]:
+    """The (pitch, yaw) of the rotor's spin axis among (q plate, r rotor): its own, or the
+    plate's when it tilts with the gondola."""
+    return (9, 10) if rotor.tilts else (3, 5)
 
 
 def precession_rate(rotor: SpatialRotor, moment_pitch: float, speed: float) -> float:
@@ -184,13 +190,15 @@ def tilt_whirl_frequencies(rotor: SpatialRotor, speed: float) -> tuple[float, fl
     """(backward, forward) tilt whirl frequencies of the rotor on a rigid support (rad/s):
     the roots of I_d w**2 -+ J_C Omega w - k_t = 0,
     w = -+J_C Omega / (2 I_d) + sqrt((J_C Omega / (2 I_d))**2 + k_t / I_d)."""
+    if rotor.tilt_stiffness is None:
+        raise ValueError("the rotor tilts with the gondola: no tilt whirl of its own")
     a = rotor.polar_inertia * speed / (2 * rotor.diametral_inertia)
     root = np.sqrt(a * a + rotor.tilt_stiffness / rotor.diametral_inertia)
     return float(root - a), float(root + a)
 
 
 def whirl_direction(orbit_x: complex, orbit_z: complex, tolerance: float = 1e-3) -> str:
-    """"forward", "backward" or "none" for a complex amplitude (x, z) = (X, Z) e^{i w t}, w > 0.
+    """ "forward", "backward" or "none" for a complex amplitude (x, z) = (X, Z) e^{i w t}, w > 0.
 
     The orbit turns from +x to +z (with the unbalance: forward) when Im(conj(X) Z) < 0
     (X = 1, Z = -i: x = cos w t, z = sin w t); "none" when |Im(conj(X) Z)| is below

@@ -3,13 +3,14 @@
 M x'' + (C + Omega G) x' + K x = f over the unknowns of the loaded tube
 (rotorpillar.fem3d.model, the rigid top: the tube's dofs, then the plate's
 6) followed by the rotor's 5 (rotorpillar.fem3d.rotor_spatial: in-plane,
-along the spin axis, vertical, pitch, yaw), all owned by the last rank as
-the plate's are.
+along the spin axis, vertical, pitch, yaw; 3 when it tilts with the
+gondola), all owned by the last rank as the plate's are.
 
 - K: the tube's and the shaft's (lateral c2, axial, tilt; between the rotor
   and the gondola's point at the rotor's height);
 - M: the tube's, the bodies' 6 x 6 block on the plate, the rotor's
-  diag(m_C, m_C, m_C, I_d, I_d);
+  diag(m_C, m_C, m_C, I_d, I_d) (I_d on the plate's pitch and yaw when it
+  tilts with the gondola);
 - C = C_sparse + C_modal: C_sparse the paper's b1 as a dashpot on the
   plate's two horizontal translations (the tube is axisymmetric: the tip
   damper acts in both directions), and the shaft's b2 and tilt damping
@@ -24,7 +25,8 @@ the plate's are.
   two frequencies (across the band's 25-160 rad/s it is off by +40 % between
   them); a modal C is the one that is "the same".  It is of rank k and kept
   as the dense (n, k) W = M Phi, never as a matrix: applied as W (d * W^T x);
-- G: the gyroscopic matrix, J_C [[0, 1], [-1, 0]] on the rotor's (pitch, yaw).
+- G: the gyroscopic matrix, J_C [[0, 1], [-1, 0]] on the rotor's (pitch,
+  yaw), or the plate's.
 """
 
 from __future__ import annotations
@@ -35,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from .model import RIGID_DOFS, AssembledPillar
-from .rotor_spatial import N_ROTOR, SpatialRotor, shaft_block
+from .rotor_spatial import SpatialRotor, rotor_blocks, tilt_rows
 
 
 @dataclass
@@ -75,7 +77,12 @@ class RotorPillarSystem:
 
     @property
     def size(self) -> int:
-        return self.model.size + N_ROTOR
+        return self.model.size + self.rotor.dofs
+
+    @property
+    def tilt_rows(self) -> tuple[int, int]:
+        """global rows of the spin axis' pitch and yaw (the rotor's, or the plate's)"""
+        return tuple(self.plate + i for i in tilt_rows(self.rotor))  # type: ignore[return-value]
 
     def modal_damping(self, x, y, scale: float = 1.0) -> None:
         """y += scale C_modal x (PETSc Vecs; collective)."""
@@ -169,35 +176,28 @@ def assemble_system(
     """
     if model.extra_dofs != RIGID_DOFS:
         raise ValueError("the rotor hangs on the rigid top plate (modal.top_model = 'rigid')")
-    N = model.tube_dofs
-    at = N  # the plate's and the rotor's 11 dofs
-    Ks = shaft_block(rotor, "stiffness")
-    Cs = shaft_block(rotor, "damping", damping_law)
-    Cs[0, 0] += tip_damping
-    Cs[1, 1] += tip_damping
-    Mr = np.zeros((11, 11))
-    Mr[6:, 6:] = rotor.mass_block()
-    Gr = np.zeros((11, 11))
-    Gr[6:, 6:] = rotor.gyroscopic_block()
-    K = _extended(model.K, Ks, at, N_ROTOR)
-    # the rotor's tilt rows carry no mass when I_d = 0: then they are statically tied, as the plate's
-    M = _extended(model.M, Mr, at, N_ROTOR)
+    at, n = model.tube_dofs, rotor.dofs  # the plate's and the rotor's dofs follow the tube's
+    Kr, Cr, Mr, Gr = rotor_blocks(rotor, damping_law)
+    Cr[0, 0] += tip_damping
+    Cr[1, 1] += tip_damping
+    K = _extended(model.K, Kr, at, n)
+    M = _extended(model.M, Mr, at, n)
     zero = _zero_like(model.K)
-    C = _extended(zero, Cs, at, N_ROTOR)
-    G = _extended(zero, Gr, at, N_ROTOR)
+    C = _extended(zero, Cr, at, n)
+    G = _extended(zero, Gr, at, n)
     zero.destroy()
-    W, d, w = _modal_damping(model, damping_ratio, damped_up_to, tol)
+    W, d, w = _modal_damping(model, damping_ratio, damped_up_to, tol, n)
     return RotorPillarSystem(model, rotor, K, M, C, G, W, d, w, damping_law)
 
 
-def _modal_damping(model: AssembledPillar, zeta: float, up_to: float, tol: float):
+def _modal_damping(model: AssembledPillar, zeta: float, up_to: float, tol: float, extra: int):
     """(W, d, omega) of C_modal (module text): the loaded tube's modes below ``up_to``,
     in blocks of 8 until one passes it."""
     from .eigensolver import solve_gep_shift_invert
 
     comm = model.comm
     last = comm.rank == comm.size - 1
-    n_local = model.K.getLocalSize()[0] + (N_ROTOR if last else 0)
+    n_local = model.K.getLocalSize()[0] + (extra if last else 0)
     if zeta <= 0 or up_to <= 0:
         return np.zeros((n_local, 0)), np.zeros(0), np.zeros(0)
     k = 8
