@@ -138,6 +138,7 @@ def modal_analysis(
             tol=scene.modal.tolerance,
             mesh_section=mesh,
             material=(scene.pillar.youngs_modulus, scene.pillar.poisson_ratio) if top else None,
+            spatial=top,
         )
     finally:
         model.K.destroy()

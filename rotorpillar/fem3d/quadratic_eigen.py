@@ -30,7 +30,8 @@ Two methods, the same eigenpairs:
 Convergence (both): the Ritz pair's residual in Op, ||Op z - mu z|| / |mu|
 <= tol, for every eigenvalue with |s| <= ``radius`` and at least one
 beyond it (so that none inside is missed for want of a Krylov direction: a
-shift-invert Krylov space finds the eigenvalues nearest the shift first).
+shift-invert Krylov space finds the eigenvalues nearest the shift first;
+the one beyond to sqrt(tol): it has to be there, its value is not used).
 The result states each pair's backward error in the quadratic problem
 itself, ||P(s) x|| / ((|s|**2 ||M|| + |s| ||C|| + ||K||) ||x||) (the norms
 1-norms), computed from the products, independent of the method.
@@ -38,6 +39,7 @@ itself, ||P(s) x|| / ((|s|**2 ||M|| + |s| ||C|| + ||K||) ||x||) (the norms
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -249,7 +251,7 @@ def solve_quadratic(
     order = keep[np.argsort(np.abs(s[keep]))]
     # the next speed starts from these and from the converged pairs just beyond the radius,
     # the first to come in if the speed moves one inside
-    beyond = np.flatnonzero((np.abs(s) > radius) & upper & (res <= tol))
+    beyond = np.flatnonzero((np.abs(s) > radius) & upper & (res <= math.sqrt(tol)))
     beyond = beyond[np.argsort(np.abs(s[beyond]))][:SEED_BEYOND]
     Zs = Q @ Yr[:, np.r_[order, beyond]]
     Z = Zs[:, : len(order)]
@@ -287,11 +289,12 @@ def _sum(comm, a):
 
 
 def _converged(s, res, radius: float, tol: float) -> bool:
-    """Every Ritz value with |s| <= radius converged, and one beyond it."""
+    """Every Ritz value with |s| <= radius converged, and one beyond it to sqrt(tol) (it
+    only has to be there: an eigenvalue the Krylov space has found past the radius)."""
     inside = np.abs(s) <= radius
     if not np.any(inside):
         return False
-    beyond = (~inside) & (res <= tol)
+    beyond = (~inside) & (res <= math.sqrt(tol))
     return bool(np.all(res[inside] <= tol) and np.any(beyond))
 
 
@@ -331,14 +334,24 @@ def backward_errors(ops, s: np.ndarray, X: np.ndarray) -> np.ndarray:
 
 
 def solve_quadratic_toar(
-    system, speed: float, radius: float, *, n_wanted: int, tol: float = 1e-8, ksp_factor=None
+    system, speed: float, radius: float, *, n_wanted: int = 16, tol: float = 1e-8
 ) -> QuadraticModes:
-    """The same eigenpairs by SLEPc's PEP (TOAR, shift-and-invert at 0, real arithmetic):
-    the ``n_wanted`` nearest 0, those with |s| <= ``radius`` returned (module text)."""
+    """The same eigenpairs by SLEPc's PEP (TOAR, shift-and-invert at 0, real arithmetic): the
+    ``n_wanted`` nearest 0 (each of a conjugate pair counts), doubled until one lies past
+    ``radius``; those with |s| <= ``radius`` returned (module text)."""
+    while True:
+        out, beyond = _toar(system, speed, radius, n_wanted, tol)
+        if beyond or n_wanted >= system.size // 2:
+            return out
+        n_wanted *= 2
+
+
+def _toar(system, speed: float, radius: float, n_wanted: int, tol: float) -> tuple[QuadraticModes, bool]:
     from petsc4py import PETSc
     from slepc4py import SLEPc
 
     comm = system.model.comm
+    beyond = False
 
     class _Damping:
         def mult(self, A, x, y):
@@ -368,6 +381,7 @@ def solve_quadratic_toar(
         xr, xi = system.K.createVecRight(), system.K.createVecRight()
         for i in range(nconv):
             z = pep.getEigenpair(i, xr, xi)
+            beyond = beyond or abs(z) > radius
             if z.imag < 0 or abs(z) > radius:
                 continue
             s.append(z)
@@ -383,4 +397,4 @@ def solve_quadratic_toar(
     Xa = np.column_stack(X)[:, order] if X else np.zeros((system.K.getLocalSize()[0], 0), complex)
     Xa = Xa / np.sqrt(_sum(comm, np.sum(np.abs(Xa) ** 2, axis=0)))
     ops = _Products(system, speed, None, comm)
-    return QuadraticModes(s_arr[order], Xa, backward_errors(ops, s_arr[order], Xa), steps, 0)
+    return QuadraticModes(s_arr[order], Xa, backward_errors(ops, s_arr[order], Xa), steps, 0), beyond
