@@ -163,8 +163,9 @@ def test_free_free_rigid_body_inertia_with_the_gondola():
 
 @pytest.mark.slow
 def test_torsion_with_a_top_inertia():
-    from rotorpillar.fem3d import modal_analysis
     from scipy.optimize import brentq
+
+    from rotorpillar.fem3d import modal_analysis
 
     s = load_scene("paper")
     p = s.pillar
