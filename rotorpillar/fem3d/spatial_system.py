@@ -64,6 +64,8 @@ class RotorPillarSystem:
     """(k,) their angular frequencies (rad/s)"""
     damping_law: str
     """"gondola" or "ground": what b2 acts against"""
+    tip_damping: float = 0.0
+    """b1 on the plate's two horizontal translations (N*s/m)"""
 
     @property
     def plate(self) -> int:
@@ -187,7 +189,7 @@ def assemble_system(
     G = _extended(zero, Gr, at, n)
     zero.destroy()
     W, d, w = _modal_damping(model, damping_ratio, damped_up_to, tol, n)
-    return RotorPillarSystem(model, rotor, K, M, C, G, W, d, w, damping_law)
+    return RotorPillarSystem(model, rotor, K, M, C, G, W, d, w, damping_law, float(tip_damping))
 
 
 def _modal_damping(model: AssembledPillar, zeta: float, up_to: float, tol: float, extra: int):
