@@ -39,13 +39,14 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from rotorpillar.reduced.batch import batch_threads, simulate_batch
+from rotorpillar.reduced.beam_model import beam_model
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import load_record, no_motion
 from rotorpillar.reduced.integration import Settings, simulate, tolerances
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.pillar_modes import beam_pillar_modes
 from rotorpillar.reduced.rhs import eq4_rhs
-from rotorpillar.reduced.rotor_models import beam_model, modal_model
+from rotorpillar.reduced.rotor_models import modal_model
 from rotorpillar.reduced.stationary import operating_speed
 from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.cases import run_case

@@ -20,6 +20,7 @@ import typing
 from importlib import metadata
 from pathlib import Path
 
+import msgspec
 import numpy as np
 
 #: Distributions whose versions a result records, when installed.
@@ -337,6 +338,10 @@ def write_text(path: str | Path, text: str) -> Path:
 def _record_json(value):
     if isinstance(value, JsonRecord):
         return value.to_json()
+    if isinstance(value, msgspec.Struct):  # a records.Record inside a JsonRecord (the move to msgspec)
+        from . import records
+
+        return records.to_builtins(value)
     if isinstance(value, dict):
         return {k: _record_json(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -353,6 +358,10 @@ def _record_from(hint, value):
         return None
     if isinstance(hint, type) and issubclass(hint, JsonRecord):
         return hint.from_json(value)
+    if isinstance(hint, type) and issubclass(hint, msgspec.Struct):
+        from . import records
+
+        return records.convert(value, hint)
     origin, args = typing.get_origin(hint), typing.get_args(hint)
     if origin in (typing.Union, types.UnionType):
         inner = [a for a in args if a is not type(None)]

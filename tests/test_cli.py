@@ -30,6 +30,14 @@ def test_analyze_json_round_trip(tmp_path):
     assert len(x) == doc["system"]["modes"] + 1  # k pillar modes + the rotor
     assert [r["omega"] for r in x] == doc["system"]["omega"]
     assert all(r["uncertainty"]["omega"]["value"] == r["omega"] for r in doc["resonances"])
+    # issue 26: system.omega stays the rotor plane's resonances (the contract above); the
+    # spatial model stands beside it, and the drive's reaction is the stall torque's
+    sp, dr = doc["spatial"], doc["drive_reaction"]
+    assert sp["planar_error"]["planar_omega"] == pytest.approx(doc["system"]["omega"], rel=1e-12)
+    assert sp["planes"]["requested"] == "auto" and sp["planes"]["planes"] in ("planar", "spatial")
+    assert {"bending in the rotor's plane", "bending along the spin axis"} <= {r["kind"] for r in sp["resonances"]}
+    assert dr["torque"] == dr["base_moment"] == s["drive"]["torque_at_zero"]
+    assert dr["runup"]["final_speed"] > 0
     for row in doc["paper_comparison"]:
         assert row["flag"] == (abs(row["rel_diff"]) > 0.02)
         assert row["rel_diff"] == pytest.approx((row["computed"] - row["paper"]) / row["paper"])

@@ -45,3 +45,21 @@ def test_rows_pass_and_fail():
     assert row.status == "pass"
     table = m.separation_table([89.7], [ovalling, bending, m.ModeEntry(400.0, 0.0, "x", "fem3d")], band_top=200.0)
     assert len(table) == 2
+
+
+def test_af_from_the_response_peak():
+    """API 684 as API 684 does it (issue 26): the AF read off the unbalance response's peak; a
+    mode the response shows no peak at needs no margin, undamped or not, and the row says so;
+    with a peak, the margins are the formulas' of that AF, measured from the peak's speed."""
+    ovalling = m.ModeEntry(105.3, 0.0, "ovalling n=2", "fem3d")
+    row = m.separation_from_response(89.7, ovalling, None, None, "")
+    assert (row.required, row.status, row.amplification_factor) == (0.0, "pass", None)
+    assert "no peak" in row.af_source and row.peak_speed is None
+    assert row.actual == pytest.approx((105.3 - 89.7) / 89.7, rel=1e-12)
+    bending = m.ModeEntry(27.13, 0.0779, "bending in the rotor's plane", "modal")
+    row = m.separation_from_response(89.7, bending, 3.95, 26.9, "tip_x")
+    assert row.required == pytest.approx(m.required_margin(3.95, below=True), rel=1e-12)
+    assert row.actual == pytest.approx((89.7 - 26.9) / 89.7, rel=1e-12)
+    assert row.peak_speed == 26.9 and "half-power" in row.af_source
+    low = m.separation_from_response(89.7, bending, 2.0, 80.0, "tip_x")  # AF < 2.5: critically damped
+    assert low.required == 0.0 and low.status == "pass"

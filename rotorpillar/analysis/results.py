@@ -23,6 +23,7 @@ from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
     RayleighEstimate,
     TipReductionUsed,
 )
+from ..reduced.spatial_records import DriveReactionAnalysis, SpatialAnalysis
 from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json too)
 
 
@@ -213,3 +214,10 @@ class AnalysisResult(JsonRecord):
     drive: DriveRegimes
     paper_model: PaperModel
     paper_comparison: tuple[PaperRow, ...] = ()
+    spatial: SpatialAnalysis | None = None
+    """the machine in three dimensions beside the planar ROM (issue 26): every direction's
+    resonances under their own names, the critical speeds, which planes the scene needs and
+    the planar model's error; ``system.omega`` stays the resonances in the rotor's plane"""
+    drive_reaction: DriveReactionAnalysis | None = None
+    """the motor's stall torque reacting on the gondola: static tip displacement and rotation,
+    base moment, and the run-up's transient with the reaction acting"""

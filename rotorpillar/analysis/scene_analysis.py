@@ -214,7 +214,27 @@ def headline_analysis(scene: Scene, chain: ChainModes, ch: av.Characteristic, c2
         frequency_error=v.frequency_error,
         error_note=ERROR_NOTE,
     )
-    return system, resonances, drive
+    return system, resonances, drive, v.base
+
+
+def running_speed(model, scene: Scene) -> float | None:
+    """The highest stable stationary speed of the planar ROM with the scene's drive (rad/s), or None."""
+    from ..reduced.stationary import stationary_exact
+
+    d, L = scene.drive, scene.load
+    stable = [s.omega for s in stationary_exact(model, d.torque_at_zero, d.slope, L.coefficient) if s.stable]
+    return max(stable) if stable else None
+
+
+def spatial_blocks(scene: Scene, chain: ChainModes, planar) -> tuple:
+    """analyze.json's ``spatial`` and ``drive_reaction`` (issue 26), on the chain's modes in every
+    direction when it has them (3D), else the beam's."""
+    from ..reduced.spatial_scene import drive_reaction_analysis, scene_spatial_modes, spatial_analysis
+
+    top = rom_band_top(scene)
+    modes = scene_spatial_modes(scene, getattr(chain, "spatial", None))
+    spatial = spatial_analysis(scene, planar, top, running_speed(planar, scene), modes)
+    return spatial, drive_reaction_analysis(scene, top, modes)
 
 
 def paper_model_analysis(
@@ -282,7 +302,8 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
     closed = pillar_closed_forms(scene.pillar)
     ch = av.Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
     c2e = scene.shaft.stiffness * scene.rotor.eccentricity
-    system, resonances, drive = headline_analysis(scene, chain, ch, c2e)
+    system, resonances, drive, planar = headline_analysis(scene, chain, ch, c2e)
+    spatial, reaction = spatial_blocks(scene, chain, planar)
     paper = paper_model_analysis(scene, closed, ch, c2e, fem3d_reduction)
     rows = compare_with_paper(scene, _PaperView(closed, paper.reduction, paper.system, paper.resonances, paper.drive))
     return AnalysisResult(
@@ -293,4 +314,6 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         drive=drive,
         paper_model=paper,
         paper_comparison=rows,
+        spatial=spatial,
+        drive_reaction=reaction,
     )

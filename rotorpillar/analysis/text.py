@@ -58,6 +58,7 @@ def summary(result: AnalysisResult) -> str:
     )
     for r in result.resonances:
         lines.append("  " + r.statement)
+    lines += _spatial_lines(result)
     lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")
     lines.append(f"  {'quantity':<34} {'paper':>11} {'computed':>11} {'diff':>8}")
     for row in result.paper_comparison:
@@ -69,6 +70,37 @@ def summary(result: AnalysisResult) -> str:
         for row in notes:
             lines.append(f"  {row.quantity}: {row.note}")
     return "\n".join(lines)
+
+
+def _spatial_lines(result: AnalysisResult) -> list[str]:
+    """The machine in three dimensions (issue 26): planes, the other directions, the drive's reaction."""
+    sp, dr = result.spatial, result.drive_reaction
+    out = []
+    if sp is not None:
+        out.append(f"In three dimensions ({sp.mode_source}): {sp.planes.reason}")
+        out.append(
+            "  resonances at rest: "
+            + ", ".join(
+                f"{r.label} {r.omega:.4g}" for r in sp.resonances if r.omega <= 1.2 * max(result.system.band_top, 1)
+            )
+        )
+        e = sp.planar_error
+        out.append(
+            f"  the planar model against it: resonances {', '.join(f'{100 * d:+.3g} %' for d in e.relative_difference)}; "
+            f"largest tip response {100 * e.peak_tip_difference:+.3g} %"
+        )
+    if dr is not None:
+        out.append(
+            f"The drive's reaction: the stall torque {dr.torque:.4g} N*m on the gondola moves the top "
+            f"{dr.tip_displacement * 1e3:.3g} mm in the rotor's plane and rolls it {dr.tip_rotation:.3g} rad "
+            f"(base moment {dr.base_moment:.4g} N*m)"
+            + (
+                ""
+                if dr.runup is None
+                else f"; in the run-up it adds up to {dr.runup.peak_reaction_part * 1e3:.3g} mm to the top's motion"
+            )
+        )
+    return out
 
 
 def _numbered(resonances):

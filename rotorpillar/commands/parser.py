@@ -64,6 +64,11 @@ COMMANDS = {
         "harmonic_command",
         "unbalance response against speed (Bode: ROM, 3D, Eq. 19) and separation margins (API 684)",
     ),
+    "campbell": (
+        "rotorpillar.commands.campbell",
+        "campbell_command",
+        "Campbell diagram: every mode's frequency, whirl and log decrement against speed, the critical speeds",
+    ),
 }
 
 
@@ -84,6 +89,7 @@ EXTRA_ARGUMENTS = {
     "compare": _arguments("compare"),
     "study": _arguments("study"),
     "harmonic": _arguments("harmonic"),
+    "campbell": _arguments("campbell"),
 }
 
 

@@ -306,7 +306,7 @@ def dp5_batch(
     (runs, n_out, N), out_peak: (runs, n_out, n + 1), stats: (runs, 5) with
     status, nfev, accepted, rejected steps, smallest step.
     """
-    Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
+    Minv, Kz, C, G, shaft, base, scal, sched, gpar, gtab = P
     runs = torque_scale.shape[0]
     for r in range(runs):
         sc = scal.copy()
@@ -321,7 +321,7 @@ def dp5_batch(
             sc[1] = eccentricity[r]
         if not math.isnan(shaft_stiffness[r]):
             sc[0] = shaft_stiffness[r]
-        Pr = (Minv, Ks, C, d, base, sc, sh, gpar, gtab)
+        Pr = (Minv, Kz, C, G, shaft, base, sc, sh, gpar, gtab)
         y = y0.copy()
         res = dp5_solve(Pr, y, t0, t1, breaks, rtol, atol, t_out, wrap, max_steps, out_y[r], out_peak[r], h_max)
         stats[r, 0] = res[0]

@@ -33,7 +33,7 @@ import math
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Generic
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -43,10 +43,9 @@ from ..provenance import JsonRecord
 from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
 from .drive import DriveSchedule
-from .excitation import GroundMotion
 from .excitation_records import NoMotionSizes
 from .rhs import Floats, Packed
-from .rotor_models import RotorStructure
+from .transient_model import G, M, Motion, TransientModel
 
 #: What one integrator gives: t, q, v, work, peak, stats (Transient's fields).
 #: An optional array argument (one value or one per run).
@@ -114,10 +113,10 @@ class Settings:
 
 
 @dataclass(frozen=True, eq=False)
-class Transient:
+class Transient(Generic[M, G]):
     """A transient run: states on the output grid and what the integrator did."""
 
-    model: RotorStructure
+    model: M
     t: NDArray[np.float64]
     """(n_t,) output times (s)"""
     q: NDArray[np.float64]
@@ -132,7 +131,7 @@ class Transient:
     stats: dict[str, Any]
     prescribed_speed: bool = False
     drive: DriveSchedule | None = None
-    motion: GroundMotion | None = None
+    motion: G | None = None
 
     @property
     def ok(self) -> bool:
@@ -179,7 +178,7 @@ class Transient:
         )
 
 
-def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, rtol: float) -> NDArray[np.float64]:
+def tolerances(model: TransientModel, motion: Motion, speed_scale: float, rtol: float) -> NDArray[np.float64]:
     """Absolute tolerances of (q, v, work): rtol times each component's scale."""
     n = model.n
     om = model.undamped_modes_x()[0]
@@ -202,11 +201,11 @@ def tolerances(model: RotorStructure, motion: GroundMotion, speed_scale: float, 
     return atol
 
 
-def _breaks(drive: DriveSchedule, motion: GroundMotion) -> NDArray[np.float64]:
+def _breaks(drive: DriveSchedule, motion: Motion) -> NDArray[np.float64]:
     return np.array(sorted(set(drive.breakpoints()) | set(motion.breakpoints())), dtype=float)
 
 
-def auto_time_step(model: RotorStructure, speed_scale: float, settings: Settings, motion: GroundMotion) -> float:
+def auto_time_step(model: TransientModel, speed_scale: float, settings: Settings, motion: Motion) -> float:
     """Fixed step resolving the fastest of the rotor and the structure's modes
     below the band (steps_per_period each), and the record's sampling."""
     fast = max(speed_scale, model.stiffest_frequency(), motion.band(), 1e-3)
@@ -217,9 +216,9 @@ def auto_time_step(model: RotorStructure, speed_scale: float, settings: Settings
 
 
 def simulate(
-    model: RotorStructure,
+    model: M,
     drive: DriveSchedule,
-    motion: GroundMotion,
+    motion: G,
     t_end: float,
     q0: Arr = None,
     v0: Arr = None,
@@ -227,7 +226,7 @@ def simulate(
     t_start: float = 0.0,
     prescribed_speed: bool = False,
     speed_scale: float | None = None,
-) -> Transient:
+) -> Transient[M, G]:
     """Integrate the model from (q0, v0) at t_start to t_end."""
     if not (math.isfinite(t_end) and t_end > t_start):
         raise ValueError(f"t_end = {t_end!r} must be finite and > t_start = {t_start!r}")
@@ -266,7 +265,7 @@ STEPS_PER_REVOLUTION = 10.0
 
 
 def estimated_step_count(
-    model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings, speed_scale: float
+    model: TransientModel, motion: Motion, duration: float, settings: Settings, speed_scale: float
 ) -> float:
     """Integration steps a run will take, from its settings, before it starts (-).
 
@@ -283,7 +282,7 @@ def estimated_step_count(
 
 
 def check_step_budget(
-    model: RotorStructure, motion: GroundMotion, duration: float, settings: Settings, speed_scale: float
+    model: TransientModel, motion: Motion, duration: float, settings: Settings, speed_scale: float
 ) -> None:
     """Refuse (one line, InputError) a run estimated above ``settings.max_steps``."""
     n = estimated_step_count(model, motion, duration, settings, speed_scale)
@@ -320,13 +319,13 @@ def _output_grid(t0: float, t1: float, samples: int) -> NDArray[np.float64]:
 
 def _run_dp5(
     P: Packed,
-    model: RotorStructure,
+    model: TransientModel,
     q0: Floats,
     v0: Floats,
     t0: float,
     t1: float,
     drive: DriveSchedule,
-    motion: GroundMotion,
+    motion: Motion,
     settings: Settings,
     speed_scale: float,
 ) -> _Run:
@@ -365,13 +364,13 @@ def _run_dp5(
 
 def _run_scipy(
     P: Packed,
-    model: RotorStructure,
+    model: TransientModel,
     q0: Floats,
     v0: Floats,
     t0: float,
     t1: float,
     drive: DriveSchedule,
-    motion: GroundMotion,
+    motion: Motion,
     settings: Settings,
     speed_scale: float,
 ) -> _Run:
@@ -418,13 +417,13 @@ def _run_scipy(
 
 def _run_fixed(
     P: Packed,
-    model: RotorStructure,
+    model: TransientModel,
     q0: Floats,
     v0: Floats,
     t0: float,
     t1: float,
     drive: DriveSchedule,
-    motion: GroundMotion,
+    motion: Motion,
     settings: Settings,
     speed_scale: float,
 ) -> _Run:

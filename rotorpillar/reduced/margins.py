@@ -12,11 +12,15 @@ Paragraphs Covering Rotor Dynamics, 2nd ed., 2005), as API 617 (7th ed.,
   above it:  SM = 10 + 17 (1 - 1 / (AF - 1.5));
 - the actual margin is |N_mode - N_run| / N_run.
 
-An undamped mode (zeta = 0, as the 3D model leaves the modes its
-dashpot does not move: ovalling, torsion, the bending normal to the rotor's
-plane) has AF infinite: the full 17 % below and 27 % above apply, the
-most a mode can require.  Steel's own damping (zeta ~ 0.2-0.5 %) gives AF >
-100 and the same margins to within 0.2 %: leaving it out costs nothing here.
+API 684 reads the AF off the unbalance response: N_c / (N_2 - N_1), the
+half-power bandwidth of the response's peak at the critical speed N_c
+(``separation_from_response``, the peaks from
+rotorpillar.reduced.spatial_response).  A mode that shows no peak in the
+response (the unbalance does not drive it: an ovalling mode the rigid top
+plate hardly moves, a backward whirl) is, in API 684's terms, critically
+damped: no margin is required, and the table says so.  ``separation``
+keeps the modal estimate AF = 1 / (2 zeta) for a mode without a response
+to read (zeta = 0 gives AF infinite: 17 % below and 27 % above).
 
 >>> round(required_margin(amplification_factor(0.05), below=True), 4)
 0.15
@@ -93,6 +97,11 @@ class SeparationRow(JsonRecord):
     """actual margin, a fraction of the running speed (-)"""
     status: str
     """"pass" (actual >= required) or "fail\""""
+    af_source: str = ""
+    """where the AF comes from: the half-power bandwidth of a response peak (which curve,
+    where), 1 / (2 zeta) of the mode, or no peak in the response (no margin required)"""
+    peak_speed: float | None = None
+    """the speed of the response peak the AF was read from (rad/s); None: no peak"""
 
 
 def separation(running_speed: float, mode: ModeEntry) -> SeparationRow:
@@ -109,6 +118,41 @@ def separation(running_speed: float, mode: ModeEntry) -> SeparationRow:
         float(req),
         float(act),
         "pass" if act >= req else "fail",
+        "1 / (2 zeta) of the mode's damping ratio",
+    )
+
+
+def separation_from_response(
+    running_speed: float, mode: ModeEntry, af: float | None, peak_speed: float | None, where: str
+) -> SeparationRow:
+    """One running speed against one mode, the AF read off the unbalance response's peak near
+    the mode (``af`` at ``peak_speed``, rad/s, on the curve ``where``); ``af`` None: the response
+    shows no peak there, so no margin is required (API 684).  The actual margin is measured from
+    the peak's speed where there is one, else from the mode's frequency.
+
+    >>> r = separation_from_response(100.0, ModeEntry(105.3, 0.0, "ovalling n=2", "fem3d"), None, None, "")
+    >>> r.required, r.status, r.af_source
+    (0.0, 'pass', 'no peak in the unbalance response near the mode: no margin required (API 684)')
+    """
+    at = mode.omega if peak_speed is None else peak_speed
+    below = at < running_speed
+    req = 0.0 if af is None else required_margin(af, below)
+    act = actual_margin(running_speed, at)
+    source = (
+        "no peak in the unbalance response near the mode: no margin required (API 684)"
+        if af is None
+        else f"half-power bandwidth of the unbalance response's peak at {peak_speed:.4g} rad/s ({where})"
+    )
+    return SeparationRow(
+        float(running_speed),
+        mode,
+        None if af is None or math.isinf(af) else float(af),
+        "below" if below else "above",
+        float(req),
+        float(act),
+        "pass" if act >= req else "fail",
+        source,
+        None if peak_speed is None else float(peak_speed),
     )
 
 

@@ -15,10 +15,11 @@ from dataclasses import dataclass
 from ..errors import InputError
 from ..provenance import JsonRecord
 from ..scene import Scene
+from .beam_model import beam_model
 from .excitation import GroundMotion, load_record, paper_pulse
 from .pillar_modes import PillarModes, beam_pillar_modes, modes_in_band
 from .reduction import TipReductionUsed, pillar_closed_forms, resolve_reduction
-from .rotor_models import RotorStructure, beam_model, modal_model, paper_model
+from .rotor_models import RotorStructure, modal_model, paper_model
 from .system import ReducedSystem, reduced_system
 
 #: the most pillar modes a modal model picks from

@@ -1,35 +1,48 @@
 """The rotor-structure model's right-hand side: compiled (numba) for the
 integrators, and the paper's Eq. 4 as published in plain numpy.
 
-One generic model covers the paper's Eq. 4 and the modal model
-(rotorpillar.reduced.rotor_models): nx structural X coordinates z (pillar
-and rotor centre), the rotor centre's Y coordinate y, and the rotor angle
-theta.  With M the mass matrix (its inverse Minv given; a zero row for theta
-prescribes a constant speed), the forces are
+One generic model covers the paper's Eq. 4, the planar modal model
+(rotorpillar.reduced.rotor_models) and the spatial model
+(rotorpillar.reduced.spatial_model): nz structural coordinates Z (the
+pillar's, the rotor centre's; the last one, y, is the planar models' rotor
+centre in Y, the paper's q3) and the rotor angle theta.  With M the mass
+matrix (its inverse Minv given; a zero row for theta prescribes a constant
+speed), the forces are
 
-    F_z     = -Ks z - C z' - c2 d (d.z - e cos theta) + kb u_g + cb v_g + mb a_g
-    F_y     = -c2 (y - e sin theta) - b2y y'
-    F_theta = Md(t, W) - Mc(W) - c2 e (d.z) sin theta + c2 e y cos theta
+    F_Z     = -K Z - (C + W G) Z' - c2 d_x (d_x.Z - e cos theta) - c2 d_v (d_v.Z - e sin theta)
+              + sum_c (kb_c u_c + cb_c v_c + mb_c a_c) + Md r + U_c W**2 b(theta)
+    F_theta = Md(t, W) - Mc(W) + c2 e (-(d_x.Z) sin theta + (d_v.Z) cos theta) - U_c W (b(theta).Z')
 
-with W = theta', Md = M0(t) - s(t) W (a piecewise-linear schedule),
-Mc = k W |W|, d the shaft-deflection vector (rotor X minus tip X) and
-(u_g, v_g, a_g) the ground displacement, velocity and acceleration.
+with W = theta', Md = M0(t) - s(t) W (a piecewise-linear schedule), Mc = k W |W|,
+d_x and d_v the shaft-deflection vectors in the rotor's plane and in the vertical
+(rotor centre minus bearing), G the gyroscopic matrix per unit speed (J_C on the
+tilts), r the generalised force of the motor's reaction per unit torque,
+b(theta) = b_c cos theta + b_s sin theta the couple unbalance's direction and
+(u_c, v_c, a_c) ground component c's displacement, velocity and acceleration.
+The planar models have Z = (z, y), K = diag(Ks, 0), C = diag(C, b2), G = 0,
+d_x = (d, 0), d_v = (0, 1), r = b = 0 and one ground component: Eq. 4 as the
+paper writes it (q3's equation apart).  The couple unbalance's torque on theta
+closes the energy balance; the terms in W' it also brings are left out (they
+act only where the speed changes within a revolution).
 
-The arrays travel as one tuple P = (Minv, Ks, C, d, base, scal, sched, gpar,
-gtab), built by ``rotor_models.pack``:
+The arrays travel as one tuple P = (Minv, K, C, G, shaft, base, scal, sched,
+gpar, gtab), built by the models' ``pack``:
 
-- base  (4, nx): rows kb, cb, mb, and the tip vector (tip X = tip.z, for the peaks)
-- scal  (4,):    c2, e, b2y, k
+- shaft (2, nz):      d_x, d_v
+- base  (3 nc + 4, nz): per ground component c rows kb_c, cb_c, mb_c; then
+  the tip vector (tip X = tip.Z, for the peaks), r, b_c, b_s
+- scal  (4,):    c2, e, U_c, k
 - sched (3, m):  knot times, M0, s
-- gpar  (6,):    kind (0 none, 1 harmonic pulse, 2 table), A, omega, t0, t1, dt
-- gtab  (3, ng): tabulated u_g, v_g, a_g on t0 + i dt (kind 2)
+- gpar  (6,):    kind (0 none, 1 harmonic pulse on component 0, 2 table), A, omega, t0, t1, dt
+- gtab  (3 nc, ng): per component tabulated u_g, v_g, a_g on t0 + i dt (kind 2)
 
 The integrators' loops see P flattened once per run into one vector
 (``flatten``, offsets by ``layout``) and call ``deriv_flat``.
 
 Four work integrals ride along with the state (not error-controlled):
-drive minus load (Md - Mc) W, work done by the shaft torque on the
-structure, dissipation, and base-force work; they close the energy balance.
+drive minus load (Md - Mc) W with the motor reaction's work on the gondola,
+work done by the rotor (shaft torque, couple, reaction) on the structure,
+dissipation, and base-force work; they close the energy balance.
 """
 
 from __future__ import annotations
@@ -42,8 +55,8 @@ from numpy.typing import NDArray
 
 #: A float64 array: every array the kernels take.
 Floats = NDArray[np.float64]
-#: The model's arrays as one tuple (Minv, Ks, C, d, base, scal, sched, gpar, gtab): above.
-Packed = tuple[Floats, Floats, Floats, Floats, Floats, Floats, Floats, Floats, Floats]
+#: The model's arrays as one tuple (Minv, K, C, G, shaft, base, scal, sched, gpar, gtab): above.
+Packed = tuple[Floats, Floats, Floats, Floats, Floats, Floats, Floats, Floats, Floats, Floats]
 
 N_WORK = 4
 #: status codes of the integrators
@@ -102,16 +115,20 @@ def eq4_rhs(
 
 
 @njit(cache=True)
-def ground_flat(t: float, a: Floats, o_gpar: int, o_gtab: int, ng: int) -> tuple[float, float, float]:
-    """Ground displacement, velocity, acceleration at t (m, m/s, m/s**2), from
-    gpar at a[o_gpar:] and the table gtab (3, ng) at a[o_gtab:] (``layout``)."""
+def ground_flat(t: float, a: Floats, o_gpar: int, o_gtab: int, ng: int, c: int = 0) -> tuple[float, float, float]:
+    """Component c's ground displacement, velocity, acceleration at t (m, m/s, m/s**2),
+    from gpar at a[o_gpar:] and the table gtab (3 nc, ng) at a[o_gtab:] (``layout``): rows
+    3c, 3c + 1, 3c + 2 are component c's u_g, v_g, a_g.  The pulse (kind 1) is component
+    0's only."""
     kind = int(a[o_gpar])
     if kind == 1:
+        if c > 0:
+            return 0.0, 0.0, 0.0
         A, w, t0, t1 = a[o_gpar + 1], a[o_gpar + 2], a[o_gpar + 3], a[o_gpar + 4]
         if t >= t0 and t < t1:
-            c = math.cos(w * t)
-            s = math.sin(w * t)
-            return A * (c - 1.0), -A * w * s, -A * w * w * c
+            cw = math.cos(w * t)
+            sw = math.sin(w * t)
+            return A * (cw - 1.0), -A * w * sw, -A * w * w * cw
         return 0.0, 0.0, 0.0
     if kind == 2:
         t0, dt = a[o_gpar + 3], a[o_gpar + 5]
@@ -122,7 +139,8 @@ def ground_flat(t: float, a: Floats, o_gpar: int, o_gtab: int, ng: int) -> tuple
         if i >= ng - 1:
             i = ng - 2
         f = x - i
-        u, v, w = o_gtab + i, o_gtab + ng + i, o_gtab + 2 * ng + i
+        o = o_gtab + 3 * c * ng
+        u, v, w = o + i, o + ng + i, o + 2 * ng + i
         return ((1.0 - f) * a[u] + f * a[u + 1], (1.0 - f) * a[v] + f * a[v + 1], (1.0 - f) * a[w] + f * a[w + 1])
     return 0.0, 0.0, 0.0
 
@@ -160,26 +178,34 @@ def drive_at(t: float, sched: Floats) -> tuple[float, float]:
 # reference count on every call, an atomic operation on memory the threads
 # of a batch share; with the nine arrays of P (and views of the stage array)
 # that was 70 % of a run-up batch's time (perf).  One vector: one count.
-HEADER = 3
-"""par[0:3] = nx, m (drive knots), ng (ground table length)"""
+HEADER = 5
+"""par[0:5] = nx, m (drive knots), ng (ground table length), nc (ground components),
+gyro (1 when G is not zero)"""
+#: rows of ``base`` after the ground components' (kb, cb, mb) triples
+TIP_ROW, REACTION_ROW, COUPLE_COS_ROW, COUPLE_SIN_ROW = 0, 1, 2, 3
+EXTRA_ROWS = 4
 
 
 @njit(cache=True, inline="always")
-def layout(nx: int, m: int, ng: int) -> tuple[int, int, int, int, int, int, int, int, int, int, int]:
-    """Offsets in par of Minv (n, n), Ks, C (nx, nx), d (nx), base (4, nx), scal (4),
-    sched (3, m), gpar (6), gtab (3, ng) and the force scratch F (n); then the size."""
+def layout(nx: int, m: int, ng: int, nc: int) -> tuple[int, int, int, int, int, int, int, int, int, int, int, int, int]:
+    """Offsets in par of Minv (n, n), K, C, G (nz, nz), shaft (2, nz), base (3 nc + 4, nz),
+    scal (4), sched (3, m), gpar (6), gtab (3 nc, ng) and the force scratch F (n); then
+    the offset of base's tip row and the size (n = nx + 2, nz = nx + 1)."""
     n = nx + 2
+    nz = nx + 1
     o_minv = HEADER
-    o_ks = o_minv + n * n
-    o_c = o_ks + nx * nx
-    o_d = o_c + nx * nx
-    o_base = o_d + nx
-    o_scal = o_base + 4 * nx
+    o_k = o_minv + n * n
+    o_c = o_k + nz * nz
+    o_g = o_c + nz * nz
+    o_d = o_g + nz * nz
+    o_base = o_d + 2 * nz
+    o_scal = o_base + (3 * nc + EXTRA_ROWS) * nz
     o_sched = o_scal + 4
     o_gpar = o_sched + 3 * m
     o_gtab = o_gpar + 6
-    o_f = o_gtab + 3 * ng
-    return o_minv, o_ks, o_c, o_d, o_base, o_scal, o_sched, o_gpar, o_gtab, o_f, o_f + n
+    o_f = o_gtab + 3 * nc * ng
+    o_tip = o_base + 3 * nc * nz
+    return o_minv, o_k, o_c, o_g, o_d, o_base, o_scal, o_sched, o_gpar, o_gtab, o_f, o_tip, o_f + n
 
 
 @njit(cache=True)
@@ -193,22 +219,32 @@ def _put(par: Floats, k: int, a: Floats) -> None:
 @njit(cache=True)
 def flatten(P: Packed) -> Floats:
     """The tuple P as one vector (``layout``), with room for the forces."""
-    Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
+    Minv, Kz, C, G, shaft, base, scal, sched, gpar, gtab = P
     if gpar.shape[0] != 6:
         raise ValueError("gpar must have 6 entries")
-    nx, m, ng = Ks.shape[0], sched.shape[1], gtab.shape[1]
-    o = layout(nx, m, ng)
-    par = np.zeros(o[10])
-    par[0], par[1], par[2] = nx, m, ng
+    nz, m, ng = Kz.shape[0], sched.shape[1], gtab.shape[1]
+    nx = nz - 1
+    nc = (base.shape[0] - EXTRA_ROWS) // 3
+    if gtab.shape[0] != 3 * nc or base.shape[0] != 3 * nc + EXTRA_ROWS:
+        raise ValueError("base must have 3 nc + 4 rows and gtab 3 nc")
+    gyro = 0.0
+    for i in range(nz):
+        for j in range(nz):
+            if G[i, j] != 0.0:
+                gyro = 1.0
+    o = layout(nx, m, ng, nc)
+    par = np.zeros(o[12])
+    par[0], par[1], par[2], par[3], par[4] = nx, m, ng, nc, gyro
     _put(par, o[0], Minv)
-    _put(par, o[1], Ks)
+    _put(par, o[1], Kz)
     _put(par, o[2], C)
-    _put(par, o[3], d.reshape((1, nx)))
-    _put(par, o[4], base)
-    _put(par, o[5], scal.reshape((1, 4)))
-    _put(par, o[6], sched)
-    _put(par, o[7], gpar.reshape((1, gpar.shape[0])))
-    _put(par, o[8], gtab)
+    _put(par, o[3], G)
+    _put(par, o[4], shaft)
+    _put(par, o[5], base)
+    _put(par, o[6], scal.reshape((1, 4)))
+    _put(par, o[7], sched)
+    _put(par, o[8], gpar.reshape((1, gpar.shape[0])))
+    _put(par, o[9], gtab)
     return par
 
 
@@ -218,58 +254,80 @@ def deriv_flat(t: float, y: Floats, par: Floats, out: Floats, o: int) -> None:
 
     Written into out[o:o + 2n + 4].
 
-    y = (q, v, ...) with n = len(q); writes out[o:o + n] = v, the next n
-    Minv F, then the powers (drive - load, shaft on structure, dissipation,
+    y = (q, v, ...) with q = (Z, theta), Z = (z, y_r) the nz = n - 1 structural
+    coordinates; writes out[o:o + n] = v, the next n Minv F, then the powers
+    (drive - load with the motor's reaction, rotor on structure, dissipation,
     base); the forces F are left in par's scratch.  One flat body: no nested
     calls that pass arrays in the common case (no ground motion, a constant
-    drive).
+    drive, no gyroscopic term).
     """
-    nx, m, ng = int(par[0]), int(par[1]), int(par[2])
+    nx, m, ng, nc = int(par[0]), int(par[1]), int(par[2]), int(par[3])
+    gyro = par[4] != 0.0
     n = nx + 2
-    o_minv, o_ks, o_c, o_d, o_base, o_scal, o_sched, o_gpar, o_gtab, o_f, _ = layout(nx, m, ng)
-    c2, e, b2y, kload = par[o_scal], par[o_scal + 1], par[o_scal + 2], par[o_scal + 3]
-    th = y[nx + 1]
-    W = y[n + nx + 1]
+    nz = nx + 1
+    o_minv, o_k, o_c, o_g, o_d, o_base, o_scal, o_sched, o_gpar, o_gtab, o_f, o_tip, _ = layout(nx, m, ng, nc)
+    c2, e, uc, kload = par[o_scal], par[o_scal + 1], par[o_scal + 2], par[o_scal + 3]
+    th = y[nz]
+    W = y[n + nz]
     ct = math.cos(th)
     st = math.sin(th)
-    if par[o_gpar] == 0.0:
-        ug, vg, ag = 0.0, 0.0, 0.0
-    else:
-        ug, vg, ag = ground_flat(t, par, o_gpar, o_gtab, ng)
+    ground = par[o_gpar] != 0.0
     if m == 1:
         M0, s = par[o_sched + 1], par[o_sched + 2]
     else:
         M0, s = drive_flat(t, par, o_sched, m)
-    dz = 0.0
-    for i in range(nx):
-        dz += par[o_d + i] * y[i]
-    sx = dz - e * ct
+    motor = M0 - s * W
+    dxz = 0.0
+    dvz = 0.0
+    for i in range(nz):
+        dxz += par[o_d + i] * y[i]
+        dvz += par[o_d + nz + i] * y[i]
+    sx = dxz - e * ct
+    sv = dvz - e * st
+    mc = uc * W * W
     p_diss = 0.0
     p_base = 0.0
-    for i in range(nx):
-        fb = par[o_base + i] * ug + par[o_base + nx + i] * vg + par[o_base + 2 * nx + i] * ag
-        acc = -c2 * par[o_d + i] * sx + fb
-        for j in range(nx):
-            cij = par[o_c + i * nx + j]
-            acc -= par[o_ks + i * nx + j] * y[j] + cij * y[n + j]
-            p_diss += y[n + i] * cij * y[n + j]
+    p_react = 0.0
+    bv = 0.0  # the couple unbalance's direction b(theta) on the velocities
+    o_r, o_cc, o_cs = o_tip + nz, o_tip + 2 * nz, o_tip + 3 * nz
+    for i in range(nz):
+        vi = y[n + i]
+        acc = -c2 * par[o_d + i] * sx - c2 * par[o_d + nz + i] * sv
+        if ground:
+            fb = 0.0
+            for c in range(nc):
+                ug, vg, ag = ground_flat(t, par, o_gpar, o_gtab, ng, c)
+                ob = o_base + 3 * c * nz + i
+                fb += par[ob] * ug + par[ob + nz] * vg + par[ob + 2 * nz] * ag
+            acc += fb
+            p_base += fb * vi
+        r = par[o_r + i]
+        if r != 0.0:
+            acc += motor * r
+            p_react += motor * r * vi
+        b = par[o_cc + i] * ct + par[o_cs + i] * st
+        if b != 0.0:
+            acc += mc * b
+            bv += b * vi
+        for j in range(nz):
+            cij = par[o_c + i * nz + j]
+            acc -= par[o_k + i * nz + j] * y[j] + cij * y[n + j]
+            p_diss += vi * cij * y[n + j]
+        if gyro:
+            for j in range(nz):
+                acc -= W * par[o_g + i * nz + j] * y[n + j]
         par[o_f + i] = acc
-        p_base += fb * y[n + i]
-    yy = y[nx]
-    vy = y[n + nx]
-    par[o_f + nx] = -c2 * (yy - e * st) - b2y * vy
-    p_diss += b2y * vy * vy
-    drive = M0 - s * W - kload * W * abs(W)
-    shaft = -c2 * e * dz * st + c2 * e * yy * ct
-    par[o_f + nx + 1] = drive + shaft
+    drive = motor - kload * W * abs(W)
+    shaft = c2 * e * (-dxz * st + dvz * ct) - uc * W * bv
+    par[o_f + nz] = drive + shaft
     for i in range(n):
         acc = 0.0
         for j in range(n):
             acc += par[o_minv + i * n + j] * par[o_f + j]
         out[o + n + i] = acc
         out[o + i] = y[n + i]
-    out[o + 2 * n] = drive * W
-    out[o + 2 * n + 1] = -shaft * W
+    out[o + 2 * n] = drive * W + p_react
+    out[o + 2 * n + 1] = -shaft * W + p_react
     out[o + 2 * n + 2] = p_diss
     out[o + 2 * n + 3] = p_base
 
@@ -277,45 +335,56 @@ def deriv_flat(t: float, y: Floats, par: Floats, out: Floats, o: int) -> None:
 @njit(cache=True)
 def jacobians(t: float, q: Floats, v: Floats, P: Packed, Jq: Floats, Jv: Floats) -> None:
     """dF/dq and dF/dv of the forces of ``deriv_flat`` into Jq, Jv."""
-    Minv, Ks, C, d, base, scal, sched, gpar, gtab = P
-    nx = Ks.shape[0]
-    n = nx + 2
-    c2, e, b2y, kload = scal[0], scal[1], scal[2], scal[3]
-    th = q[nx + 1]
-    W = v[nx + 1]
+    Minv, Kz, C, G, shaft, base, scal, sched, gpar, gtab = P
+    nz = Kz.shape[0]
+    n = nz + 1
+    nc = (base.shape[0] - EXTRA_ROWS) // 3
+    tip = 3 * nc
+    c2, e, uc, kload = scal[0], scal[1], scal[2], scal[3]
+    th = q[nz]
+    W = v[nz]
     ct = math.cos(th)
     st = math.sin(th)
-    dz = 0.0
-    for i in range(nx):
-        dz += d[i] * q[i]
+    M0, s = drive_at(t, sched)
+    dxz = 0.0
+    dvz = 0.0
+    bv = 0.0
+    bpv = 0.0  # d(b)/d(theta) on the velocities
+    for i in range(nz):
+        dxz += shaft[0, i] * q[i]
+        dvz += shaft[1, i] * q[i]
+        bv += (base[tip + 2, i] * ct + base[tip + 3, i] * st) * v[i]
+        bpv += (-base[tip + 2, i] * st + base[tip + 3, i] * ct) * v[i]
     for i in range(n):
         for j in range(n):
             Jq[i, j] = 0.0
             Jv[i, j] = 0.0
-    for i in range(nx):
-        for j in range(nx):
-            Jq[i, j] = -Ks[i, j] - c2 * d[i] * d[j]
-            Jv[i, j] = -C[i, j]
-        Jq[i, nx + 1] = -c2 * d[i] * e * st
-        Jq[nx + 1, i] = -c2 * e * d[i] * st
-    y = q[nx]
-    Jq[nx, nx] = -c2
-    Jq[nx, nx + 1] = c2 * e * ct
-    Jv[nx, nx] = -b2y
-    M0, s = drive_at(t, sched)
-    Jq[nx + 1, nx] = c2 * e * ct
-    Jq[nx + 1, nx + 1] = -c2 * e * dz * ct - c2 * e * y * st
-    Jv[nx + 1, nx + 1] = -s - 2.0 * kload * abs(W)
+    mc = uc * W * W
+    for i in range(nz):
+        dx, dv = shaft[0, i], shaft[1, i]
+        b = base[tip + 2, i] * ct + base[tip + 3, i] * st
+        bp = -base[tip + 2, i] * st + base[tip + 3, i] * ct
+        gv = 0.0
+        for j in range(nz):
+            Jq[i, j] = -Kz[i, j] - c2 * (dx * shaft[0, j] + dv * shaft[1, j])
+            Jv[i, j] = -C[i, j] - W * G[i, j]
+            gv += G[i, j] * v[j]
+        Jq[i, nz] = -c2 * e * (dx * st - dv * ct) + mc * bp
+        Jv[i, nz] = -s * base[tip + 1, i] - gv + 2.0 * uc * W * b
+        Jq[nz, i] = c2 * e * (-dx * st + dv * ct)
+        Jv[nz, i] = -uc * W * b
+    Jq[nz, nz] = -c2 * e * (dxz * ct + dvz * st) - uc * W * bpv
+    Jv[nz, nz] = -s - 2.0 * kload * abs(W) - uc * bv
 
 
 @njit(cache=True)
 def record_peak(q: Floats, n: int, par: Floats, peak: Floats, k: int) -> None:
-    """peak[k, i] = max(peak[k, i], |q_i|) for i < n; peak[k, n] tracks |tip.z|
-    (tip = row 3 of base in par)."""
+    """peak[k, i] = max(peak[k, i], |q_i|) for i < n; peak[k, n] tracks |tip.Z|
+    (tip = base's row after the ground components', in par)."""
     nx = n - 2
-    o_tip = layout(nx, int(par[1]), int(par[2]))[4] + 3 * nx
+    o_tip = layout(nx, int(par[1]), int(par[2]), int(par[3]))[11]
     tipz = 0.0
-    for i in range(nx):
+    for i in range(nx + 1):
         tipz += par[o_tip + i] * q[i]
     for i in range(n):
         if abs(q[i]) > peak[k, i]:

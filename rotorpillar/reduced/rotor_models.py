@@ -47,9 +47,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eig, eigh
 
-from ..scene import Pillar, Rotor, Shaft
 from .drive import DriveSchedule
 from .excitation import GroundMotion
+from .ground3d import SpatialGroundMotion
 from .pillar_modes import PillarModes
 from .rhs import Packed
 from .system import DampedMode, ReducedSystem, Resonance
@@ -135,9 +135,16 @@ class RotorStructure:
 
     # ------------------------------------------------------------ kernels
     def pack(
-        self, drive: DriveSchedule, motion: GroundMotion, prescribed_speed: bool = False, **overrides: float
+        self,
+        drive: DriveSchedule,
+        motion: GroundMotion | SpatialGroundMotion,
+        prescribed_speed: bool = False,
+        **overrides: float,
     ) -> Packed:
-        """The tuple P of rotorpillar.reduced.rhs."""
+        """The tuple P of rotorpillar.reduced.rhs; a SpatialGroundMotion only with one
+        component in the rotor's plane (the planar model has no other direction)."""
+        if isinstance(motion, SpatialGroundMotion) and (motion.count != 1 or motion.directions[0] != (1.0, 0.0, 0.0)):
+            raise ValueError("the planar model takes one ground-motion component, in the rotor's plane")
         gpar, gtab = motion.pack()
 
         def c(a: ArrayLike) -> NDArray[np.float64]:
@@ -147,17 +154,14 @@ class RotorStructure:
             [
                 overrides.get("shaft_stiffness", self.shaft_stiffness),
                 overrides.get("eccentricity", self.eccentricity),
-                self.shaft_damping,
+                0.0,
                 drive.load_coefficient,
             ],
             dtype=float,
         )
         return (
             c(self.mass_inverse(prescribed_speed)),
-            c(self.stiffness),
-            c(self.damping),
-            c(self.shaft),
-            c(np.vstack([self.base_displacement, self.base_velocity, self.base_acceleration, self.tip])),
+            *generic_arrays(self),
             scal,
             c(drive.table()),
             c(gpar),
@@ -332,6 +336,32 @@ class RotorStructure:
         }
 
 
+def generic_arrays(
+    m: RotorStructure,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """(K, C, G, shaft, base) of rotorpillar.reduced.rhs for a planar model: Z = (z, y),
+    K = diag(Ks, 0), C = diag(C, b2), no gyroscopic term, d_x = (d, 0), d_v = (0, 1),
+    one ground component (kb, cb, mb), the tip, no motor reaction, no couple unbalance."""
+    nx = m.nx
+    nz = nx + 1
+    K = np.zeros((nz, nz))
+    K[:nx, :nx] = m.stiffness
+    C = np.zeros((nz, nz))
+    C[:nx, :nx] = m.damping
+    C[nx, nx] = m.shaft_damping
+    shaft = np.zeros((2, nz))
+    shaft[0, :nx] = m.shaft
+    shaft[1, nx] = 1.0
+    base = np.zeros((7, nz))
+    base[0, :nx], base[1, :nx], base[2, :nx], base[3, :nx] = (
+        m.base_displacement,
+        m.base_velocity,
+        m.base_acceleration,
+        m.tip,
+    )
+    return K, C, np.zeros((nz, nz)), shaft, base
+
+
 # --------------------------------------------------------------------------
 # Builders
 
@@ -422,69 +452,5 @@ def modal_model(
             "equations": "pillar modes + rotor, relative to the ground; base forcing -M r a_g",
             "damping_law": damping_law + "; b2 on the rotor centre's velocity relative to the ground",
             "modes": k,
-        },
-    )
-
-
-def beam_model(
-    pillar: Pillar,
-    gondola_mass: float,
-    rotor: Rotor,
-    shaft: Shaft,
-    elements: int = 10,
-    theory: str = "timoshenko",
-    gondola_inertia: float = 0.0,
-) -> RotorStructure:
-    """Full order: every degree of freedom of the 1D beam (deflection and
-    rotation per node, the gondola on top) and the rotor centre in X,
-    relative to the ground, with the same physics as ``modal_model`` (b1 as
-    a dashpot at the tip, -M r a_g).  The modal model with all the beam's
-    modes is this model in other coordinates; with fewer it is its reduction."""
-    from .beam_fe import assemble
-    from .pillar_modes import beam_properties
-
-    bp = beam_properties(pillar, theory)
-    K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
-    nb = K.shape[0]
-    nx = nb + 1
-    tip_dof = nb - 2  # (w, psi) per node: the top node's w
-    Mx = np.zeros((nx, nx))
-    Mx[:nb, :nb] = M
-    Mx[nb, nb] = rotor.mass
-    Ks = np.zeros((nx, nx))
-    Ks[:nb, :nb] = K
-    C = np.zeros((nx, nx))
-    C[tip_dof, tip_dof] = pillar.damping
-    C[nb, nb] = shaft.damping
-    d = np.zeros(nx)
-    d[tip_dof], d[nb] = -1.0, 1.0
-    tip = np.zeros(nx)
-    tip[tip_dof] = 1.0
-    r = np.zeros(nx)
-    r[0:nb:2] = 1.0
-    r[nb] = 1.0
-    names = tuple(f"{'w' if i % 2 == 0 else 'psi'}{i // 2 + 1}" for i in range(nb)) + ("rotor_x",)
-    return RotorStructure(
-        name="beam",
-        coordinates=names,
-        mass=Mx,
-        stiffness=Ks,
-        damping=C,
-        shaft=d,
-        tip=tip,
-        rotor_x=nb,
-        shaft_stiffness=shaft.stiffness,
-        shaft_damping=shaft.damping,
-        eccentricity=rotor.eccentricity,
-        rotor_mass=rotor.mass,
-        rotor_inertia=rotor.inertia,
-        base_displacement=np.zeros(nx),
-        base_velocity=np.zeros(nx),
-        base_acceleration=-(Mx @ r),
-        frame="relative_to_ground",
-        notes={
-            "equations": f"full-order 1D {theory} beam, {elements} elements, rotor on its shaft",
-            "dofs": nx + 2,
-            "full_order": True,
         },
     )

@@ -47,10 +47,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..records import ArrayMarker, Record
+from .pillar_modes import PillarModes
 
 #: A float ndarray field of a record (``records.Array``, typed for mypy's strict mode).
 Array = Annotated[NDArray[np.float64], ArrayMarker]
-from .pillar_modes import PillarModes
 
 #: The top plate's six components, in the order of ``SpatialPillarModes.top``: word, symbol.
 TOP_COMPONENTS = (
@@ -120,6 +120,10 @@ class SpatialPillarModes(Record, frozen=True, eq=False):
     shapes: Array | None = None
     """(n_nodes, k, 6) the section's rigid-body motion along the height, the top's order (m, rad
     per unit)"""
+    top_compliance: Array | None = None
+    """(6, 6) the pillar's static flexibility at the top: the top plate's (u, theta) per unit
+    force and moment on it, in the top's order (m/N, m/(N*m), rad/N, rad/(N*m)); exact where the
+    modes are not (a load at the top excites modes above any band)"""
     notes: tuple[str, ...] = ()
     """how the modes were made, in words"""
 
@@ -156,6 +160,8 @@ class SpatialPillarModes(Record, frozen=True, eq=False):
             a = getattr(self, name)
             if a is not None and (self.section_heights is None or np.shape(a) != (len(self.section_heights), k)):
                 raise ValueError(f"{name} must be (len(section_heights), {k})")
+        if self.top_compliance is not None and np.shape(self.top_compliance) != (6, 6):
+            raise ValueError("top_compliance must be (6, 6)")
         if self.shapes is not None and (self.heights is None or np.shape(self.shapes) != (len(self.heights), k, 6)):
             raise ValueError(f"shapes must be (len(heights), {k}, 6)")
 
@@ -216,6 +222,7 @@ class SpatialPillarModes(Record, frozen=True, eq=False):
             torque=cut(self.torque, 1),
             heights=self.heights,
             shapes=cut(self.shapes, 1),
+            top_compliance=self.top_compliance,
             notes=self.notes,
         )
 

@@ -7,12 +7,17 @@
 - the 3D model's harmonic response (rotorpillar.fem3d.harmonic) on the 3D
   full order's mesh ([full_order], as the 3D transients): fewer speeds,
   concentrated at the resonances, each one real-block LU;
+- the spatial ROM's unbalance response in every direction (issue 26:
+  rotorpillar.reduced.spatial_response, Bode curves and orbits of the shaft,
+  the rotor and the top), on the chain's pillar modes in every direction;
 - the running speeds (the ROM's stable stationary speeds with the scene's
-  drive) against every structural mode in the band: the coupled system's
-  (the ROM's damped modes, their damping ratios from its state-space
-  eigenvalues) and the loaded tube's 3D modes from modal.json, ovalling and
-  torsion included (damping: the tip dashpot b1's share for the modes in
-  X, zero for those it does not move).
+  drive) against every critical speed of the spatial ROM (where the 1x line
+  crosses a mode) and every mode of the loaded tube in the band from
+  modal.json, ovalling and torsion included.  API 684 as API 684 does it:
+  each one's AF is the half-power AF of the unbalance response's peak near
+  it (the spatial ROM's response, and for the 3D modes the 3D response's
+  too: the larger AF); a mode the response shows no peak at needs no margin,
+  and its row says so (rotorpillar.reduced.margins.separation_from_response).
 """
 
 from __future__ import annotations
@@ -27,8 +32,11 @@ import time
 from pathlib import Path
 
 from ..reduced import bode
-from ..reduced.margins import ModeEntry, separation_table
+from ..reduced.margins import ModeEntry, separation_from_response
 from .records import HarmonicResult, PeakComparison
+
+#: a response peak counts for a mode within this share of the mode's frequency (-)
+PEAK_WIDTH = 0.15
 
 
 def running_speeds(model, scene: Scene) -> list[float]:
@@ -148,7 +156,13 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
         fem_curve, fem_cost, fem_text = _fem3d_curve(scene, model, top, say)
     else:
         notes.append("the 3D harmonic response was not asked for (--no-fem3d)")
-    modes = rom_modes(model)
+    from ..reduced.spatial_scene import resolve_planes, scene_spatial_model, scene_spatial_modes
+
+    say("harmonic: the spatial ROM's unbalance response in every direction")
+    spatial_modes = scene_spatial_modes(scene, getattr(chain, "spatial", None))
+    spatial = scene_spatial_model(scene, top, spatial_modes)
+    planes = resolve_planes(scene, top, spatial_modes)
+    modes, spatial_response, sampled, moved = spatial_modes_and_response(spatial, grid, fem_curve)
     modal_path = Path(out) / "modal.json"
     if modal_path.is_file():
         doc = ModalSummary.read(modal_path)
@@ -167,7 +181,13 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
             "checked; run `rotorpillar modal` first"
         )
     modes = [m for m in modes if m.omega <= top]
-    rows = separation_table(speeds, modes)
+    rows = separation_rows(speeds, modes, spatial_response, sampled, moved)
+    notes.append(
+        "API 684's AF of each mode from the half-power bandwidth of the unbalance response's peak within "
+        f"{100 * PEAK_WIDTH:.0f} % of it, on the curves the mode moves (the spatial ROM's response; for the 3D "
+        "modes also the 3D response's, the larger AF); no peak: no margin required. The modes' damping ratios "
+        "are listed beside"
+    )
     pm = model.pillar_modes
     assert pm is not None  # the modal model carries its pillar modes
     return HarmonicResult(
@@ -187,7 +207,95 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
         fem3d_seconds_per_speed=None if fem_cost is None else float(fem_cost),
         notes=tuple(notes),
         pillar_model=chain.pillar_model,
+        spatial=spatial_response,
+        planes=planes,
     )
+
+
+def spatial_modes_and_response(spatial, grid, fem_curve):
+    """(ModeEntry per critical speed of the spatial ROM, its unbalance response, the sampled
+    peaks of the 3D response) on ``grid`` (rad/s) refined near the critical speeds."""
+    import numpy as np
+
+    from ..reduced.spatial_linear import critical_speed_modes, critical_speeds, damped_modes
+    from ..reduced.spatial_response import curves_moved, peaks_from_samples, unbalance_response
+
+    shapes = critical_speed_modes(spatial)[1].T
+    pairs = [(c, v) for c, v in zip(critical_speeds(spatial), shapes) if c.speed <= grid[-1]]
+    crit = [c for c, _ in pairs]
+    fine = [np.linspace(0.9 * c.speed, min(1.1 * c.speed, grid[-1]), 41) for c in crit]
+    response = unbalance_response(spatial, np.unique(np.concatenate([np.asarray(grid)] + fine)))
+    modes = []
+    curves = {}
+    for c, v in pairs:
+        dm = damped_modes(spatial, c.speed)
+        zeta = float(dm.damping_ratio[int(np.argmin(np.abs(dm.frequency - c.speed)))])
+        modes.append(
+            ModeEntry(
+                float(c.speed),
+                zeta,
+                c.label,
+                "modal",
+                f"critical speed of the spatial ROM ({c.whirl} whirl, excited by {c.excited_by}); zeta of its damped mode",
+            )
+        )
+        curves[round(float(c.speed), 9)] = curves_moved(spatial, v)
+    sampled = ()
+    if fem_curve is not None:
+        sampled = peaks_from_samples("3D tip X", np.asarray(fem_curve.speeds), np.asarray(fem_curve.tip_amplitude))
+        sampled += peaks_from_samples(
+            "3D shaft deflection X", np.asarray(fem_curve.speeds), np.asarray(fem_curve.shaft_amplitude)
+        )
+    return modes, response, sampled, curves
+
+
+#: the spatial ROM's curves a 3D mode of each kind moves (modal.json's kinds)
+FEM3D_CURVES = {
+    "bending_x": ("tip_x", "rotor_x", "shaft_x"),
+    "bending_y": ("tip_y", "top_pitch"),
+    "torsion": ("top_yaw",),
+    "axial": ("tip_z", "rotor_z", "shaft_z"),
+}
+
+
+def separation_rows(running, modes, response, sampled, curves) -> tuple:
+    """Every running speed against every mode, the AF read off the response's peak near the mode
+    on the curves the mode moves (a critical speed of the spatial ROM: its shape's; a 3D mode: by
+    its kind, and the 3D response's curves)."""
+    from ..reduced.spatial_response import peak_near
+
+    rows = []
+    for m in modes:
+        if m.model == "modal":
+            moved = curves.get(round(float(m.omega), 9), ())
+        else:
+            moved = FEM3D_CURVES.get(m.kind.split(" ")[0], ())
+        best = peak_near(response, m.omega, PEAK_WIDTH, moved) if moved else None
+        # the 3D response is the tip's and the shaft's in the rotor's plane: the modes it can show
+        if m.model == "fem3d" and m.kind.split(" ")[0] not in ("bending_y", "torsion", "axial"):
+            near = [
+                p
+                for p in sampled
+                if p.amplification_factor is not None and abs(p.speed - m.omega) <= PEAK_WIDTH * m.omega
+            ]
+            if near:
+                top = max(near, key=lambda p: p.amplification_factor or 0.0)
+                if best is None or (top.amplification_factor or 0.0) > (best.amplification_factor or 0.0):
+                    best = top
+        where = (
+            "" if best is None else f"{best.curve}, the spatial ROM" if not best.curve.startswith("3D") else best.curve
+        )
+        for w in running:
+            rows.append(
+                separation_from_response(
+                    w,
+                    m,
+                    None if best is None else best.amplification_factor,
+                    None if best is None else best.speed,
+                    where,
+                )
+            )
+    return tuple(rows)
 
 
 def _fem3d_curve(scene: Scene, model, top: float, say):
@@ -241,7 +349,7 @@ def summary_text(r: HarmonicResult) -> str:
         "separation margins (API 684), running speeds " + ", ".join(f"{w:.3f}" for w in r.running_speeds) + " rad/s:"
     )
     for row in r.separation:
-        af = "inf" if row.amplification_factor is None else f"{row.amplification_factor:.3g}"
+        af = "no peak" if row.amplification_factor is None else f"{row.amplification_factor:.3g}"
         lines.append(
             f"  {row.mode.model:>5} {row.mode.kind:<22} {row.mode.omega:9.3f} rad/s  AF {af:>6}  "
             f"{row.position:<5} required {100 * row.required:5.1f} %  actual "

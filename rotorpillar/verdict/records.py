@@ -13,6 +13,8 @@ from ..provenance import JsonRecord
 from ..reduced.bode import AveragingCurve, BodeCurve
 from ..reduced.capacity import Check, MeridionalBuckling
 from ..reduced.margins import ModeEntry, SeparationRow
+from ..reduced.spatial_records import PlanesChoice
+from ..reduced.spatial_response import SpatialResponse
 
 
 @dataclass(frozen=True)
@@ -64,6 +66,11 @@ class HarmonicResult(JsonRecord):
     notes: tuple[str, ...]
     pillar_model: PillarModel | None = field(default=None, metadata={"omit_if_none": True})
     """the chain's pillar model the ROM's modes come from (rotorpillar.chain)"""
+    spatial: SpatialResponse | None = field(default=None, metadata={"omit_if_none": True})
+    """the spatial ROM's unbalance response in every direction: Bode curves, their peaks and
+    half-power AFs, the orbits of the shaft, the rotor and the top (issue 26)"""
+    planes: PlanesChoice | None = field(default=None, metadata={"omit_if_none": True})
+    """modal_model.planes resolved, with its reason"""
 
 
 @dataclass(frozen=True)

@@ -183,7 +183,7 @@ def _margin_checks(h: HarmonicResult) -> list[Check]:
         else:
             util = req / act if act > 0 else math.inf
             status = PASS if act >= req else FAIL
-        af = "infinite (undamped)" if row.amplification_factor is None else f"{row.amplification_factor:.3g}"
+        af = _af_text(row)
         out.append(
             Check(
                 "separation margin (API 684)",
@@ -195,12 +195,21 @@ def _margin_checks(h: HarmonicResult) -> list[Check]:
                 status,
                 row.mode.model,
                 f"running at {row.running_speed:.4g} rad/s",
-                f"harmonic.json: {row.mode.kind} at {row.mode.omega:.4g} rad/s, AF {af}, "
+                f"harmonic.json: {row.mode.kind} at {row.mode.omega:.4g} rad/s, {af}, "
                 f"{row.position} the running speed; demand = the margin required, "
                 "capacity = the margin there is",
             )
         )
     return out
+
+
+def _af_text(row) -> str:
+    """The row's AF in words: from its response peak, none (no peak: no margin), or 1/(2 zeta)."""
+    if row.amplification_factor is not None:
+        return f"AF {row.amplification_factor:.3g}"
+    if "no peak" in getattr(row, "af_source", ""):
+        return "no peak in the unbalance response (no margin required)"
+    return "AF infinite (undamped)"
 
 
 def _governing(rows: list[Check]) -> list[Check]:
@@ -252,7 +261,7 @@ def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal: 
             )
     if h is not None and h.separation:
         row = min(h.separation, key=lambda r: r.actual)
-        af = "undamped" if row.amplification_factor is None else f"AF {row.amplification_factor:.3g}"
+        af = _af_text(row)
         out.append(
             Headline(
                 "running_speed_margin",

@@ -433,7 +433,9 @@ def section_unbalance(build: Build) -> str:
             x.mode.kind,
             h.num(x.mode.omega, 5),
             h.num(x.mode.damping_ratio, 3),
-            "inf" if x.amplification_factor is None else h.num(x.amplification_factor, 3),
+            ("no peak" if "no peak" in getattr(x, "af_source", "") else "inf")
+            if x.amplification_factor is None
+            else h.num(x.amplification_factor, 3),
             x.position,
             h.pct(x.required).lstrip("+"),
             h.pct(x.actual).lstrip("+"),
@@ -451,12 +453,13 @@ def section_unbalance(build: Build) -> str:
     parts.append(
         h.tag(
             "p",
-            "AF = 1/(2 zeta); API 684 asks 17 (1 - 1/(AF - 1.5)) % below the running "
-            "speed and 10 % more above it, nothing when AF < 2.5. The 3D model leaves "
-            "ovalling, torsion and the bending normal to the rotor's plane undamped "
-            "(the tip dashpot does not move them): AF is infinite and the full 17 % "
-            "/ 27 % apply; steel's own damping (0.2-0.5 %) would change that by "
-            "less than 0.2 %.",
+            "AF: the half-power AF N_c / (N_2 - N_1) of the unbalance response's peak near the "
+            "mode, as API 684 reads it (the spatial ROM's response on the curves the mode moves; "
+            "for the loaded tube's 3D modes also the 3D response's, the larger); API 684 asks "
+            "17 (1 - 1/(AF - 1.5)) % below the running speed and 10 % more above it, nothing "
+            "when AF < 2.5, and nothing of a mode the response shows no peak at (no peak). "
+            "zeta: the mode's damping ratio (b1 at the tip both ways, pillar.damping_ratio on "
+            "every pillar mode, b2 on the rotor relative to the gondola).",
         )
     )
     for n in r.notes:

@@ -1,0 +1,131 @@
+"""`rotorpillar campbell`: the Campbell diagram (campbell.json, campbell.png).
+
+``rotorpillar campbell [SCENE] [--model modal|fem3d] [--speeds START:STOP:N]``
+
+- ``--model modal`` (default): the spatial reduced model
+  (rotorpillar.reduced.spatial_scene.scene_campbell) on the chain's pillar modes
+  in every direction (the 3D ones where the chain has them, else the 1D beams);
+- ``--model fem3d``: the 3D model with the rotor on its top
+  (rotorpillar.fem3d.campbell.campbell_fem3d).
+
+Speeds: START:STOP:N rad/s, default 0 to the band's top (modal_model.band_factor x
+the drive's free speed), 151 speeds.  The running speed is the planar ROM's stable
+stationary speed with the scene's drive.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..scene import Scene
+
+import numpy as np
+
+from ..errors import InputError
+from . import is_root_rank, out_dir, progress
+
+MODELS = ("modal", "fem3d")
+DEFAULT_SPEEDS = 151
+
+
+def add_arguments(p) -> None:
+    p.add_argument(
+        "--model", choices=MODELS, default="modal", help="modal: the spatial ROM (default); fem3d: the 3D model"
+    )
+    p.add_argument(
+        "--speeds",
+        default=None,
+        metavar="START:STOP:N",
+        help=f"rotor speeds (rad/s): N from START to STOP (default 0 to the band's top, {DEFAULT_SPEEDS})",
+    )
+
+
+def parse_speeds(text: str | None, top: float) -> np.ndarray:
+    """START:STOP:N as N ascending speeds (rad/s); None: 0 to ``top``, DEFAULT_SPEEDS of them."""
+    if text is None:
+        return np.linspace(0.0, top, DEFAULT_SPEEDS)
+    parts = text.split(":")
+    try:
+        if len(parts) != 3:
+            raise ValueError
+        start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError:
+        raise InputError(f"--speeds {text!r}: must be START:STOP:N, e.g. 0:150:151 (rad/s, N an integer)") from None
+    if not (np.isfinite(start) and np.isfinite(stop) and 0 <= start < stop <= 1e6 and 2 <= n <= 100_000):
+        raise InputError(f"--speeds {text!r}: must have 0 <= START < STOP <= 1e6 rad/s and 2 <= N <= 100000")
+    return np.linspace(start, stop, n)
+
+
+def campbell_command(scene: Scene, args, timings):
+    from ..chain import resolve
+    from ..reduced.band import forcing_top
+    from ..reduced.models import build_model
+    from ..verdict.harmonic import running_speeds
+
+    top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "runup", None)
+    speeds = parse_speeds(getattr(args, "speeds", None), top)
+    model = getattr(args, "model", "modal")
+    if model == "fem3d":
+        _fem3d_function()  # refused now, before any work, when the 3D side is absent
+    out = out_dir(scene, args)
+    with timings("pillar_modes"):
+        chain = resolve(scene, out, progress=progress)
+    planar, _ = build_model(scene, "modal", top, pillar_modes=chain.modes)
+    running = running_speeds(planar, scene)
+    run = running[-1] if running else None
+    progress(f"campbell {scene.name}: {len(speeds)} speeds, {speeds[0]:g} ... {speeds[-1]:g} rad/s, model {model}")
+    with timings("campbell"):
+        if model == "modal":
+            from ..reduced.spatial_scene import scene_campbell, scene_spatial_modes
+
+            diagram = scene_campbell(
+                scene, speeds, float(speeds[-1]), run, scene_spatial_modes(scene, getattr(chain, "spatial", None))
+            )
+        else:
+            diagram = _fem3d(scene, speeds, run)
+    if is_root_rank():
+        from ..postprocess.campbell_chart import campbell_diagram_chart
+
+        with timings("chart"):
+            campbell_diagram_chart(out / "campbell.png", diagram, f"{scene.name}: Campbell diagram ({model})")
+    from ..records import to_builtins
+
+    return to_builtins(diagram), summary_text(diagram)
+
+
+def _fem3d_function():
+    import importlib
+
+    try:
+        campbell_fem3d = importlib.import_module("rotorpillar.fem3d.campbell").campbell_fem3d
+    except (ImportError, AttributeError):
+        raise InputError(
+            "campbell --model fem3d: the 3D Campbell diagram is not in this build yet (rotorpillar.fem3d.campbell); "
+            "use --model modal"
+        ) from None
+    return campbell_fem3d
+
+
+def _fem3d(scene: Scene, speeds, running):
+    campbell_fem3d = _fem3d_function()
+    return campbell_fem3d(scene, speeds, band_top=float(speeds[-1]), running_speed=running, progress=progress)
+
+
+def summary_text(d) -> str:
+    lines = [f"Campbell diagram ({d.model}): {len(d.speeds)} speeds, {d.speeds[0]:g} ... {d.speeds[-1]:g} rad/s"]
+    if d.running_speed is not None:
+        lines.append(f"  running speed {d.running_speed:.4g} rad/s")
+    for b in d.modes:
+        if b.frequency[0] <= 1.5 * d.speeds[-1]:
+            lines.append(
+                f"  {b.label:<45} {b.frequency[0]:9.3f} -> {b.frequency[-1]:9.3f} rad/s, "
+                f"log decrement {b.log_decrement[0]:.3g}"
+            )
+    lines.append("critical speeds (the 1x line crossing a mode):")
+    for c in d.critical_speeds:
+        af = "no peak" if c.amplification_factor is None else f"AF {c.amplification_factor:.3g}"
+        lines.append(f"  {c.speed:9.3f} rad/s  {c.label:<40} {c.whirl:<9} excited by {c.excited_by}; {af}")
+    for w in d.warnings:
+        lines.append("  warning: " + w)
+    return "\n".join(lines)

@@ -1,0 +1,276 @@
+"""A scene's spatial model: its modes, which planes it needs, what it adds to the planar ROM.
+
+- ``scene_spatial_modes``: the pillar's modes in every direction from the
+  chain's source (the 3D modes it passes in: rotorpillar.chain's
+  ``ChainModes.spatial``), else the 1D beams of rotorpillar.reduced.spatial_beam
+  on the scene's [modal_model] settings, with ``pillar.damping_ratio``;
+- ``scene_spatial_model``: the spatial model on the modes below the band;
+- ``resolve_planes``: ``modal_model.planes``; "auto" keeps the rotor's plane
+  where nothing the scene does reaches the other directions: the ground
+  moves in the rotor's plane only, no couple unbalance, the rotor at the top
+  (its shaft's force has no lever), and the first mode out of the plane
+  (axial, torsion, bending along the spin axis) lies above the band, where
+  the rotor's vertical pull moves it only quasi-statically.  The reason is
+  written into the result;
+- ``spatial_analysis``: analyze.json's ``spatial`` block: every direction's
+  resonances under their own names, the critical speeds, and the planar
+  model's error against the spatial one on the resonances in the rotor's plane
+  and on the unbalance response's peaks;
+- ``drive_reaction_analysis``: analyze.json's ``drive_reaction``: the stall
+  torque's static effect and the run-up's transient with the reaction acting
+  (and without it, for the difference).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..scene import Scene
+from .campbell import CampbellDiagram
+from .drive import DriveSchedule
+from .excitation import no_motion
+from .rotor_models import RotorStructure
+from .spatial_beam import beam_spatial_modes
+from .spatial_linear import campbell, critical_speeds, damped_modes, mode_kind, mode_whirl
+from .spatial_model import SpatialStructure, spatial_model
+from .spatial_modes import AXIAL, SpatialPillarModes
+from .spatial_records import (
+    DriveReactionAnalysis,
+    PlanarError,
+    PlanesChoice,
+    ReactionRunup,
+    SpatialAnalysis,
+    SpatialResonance,
+)
+from .spatial_response import peak_near, unbalance_response
+from .spatial_statics import drive_reaction
+
+#: modes per line the beam source computes (its four lines; the band keeps fewer)
+BEAM_MODES_PER_LINE = 8
+
+
+def scene_spatial_modes(scene: Scene, chain_spatial: SpatialPillarModes | None = None) -> SpatialPillarModes:
+    """The pillar's modes in every direction: the chain's 3D ones when given, else the beam's,
+    each with the scene's structural damping ratio."""
+    zeta = scene.pillar.damping_ratio
+    if chain_spatial is not None:
+        return chain_spatial.with_damping_ratio(zeta)
+    mm = scene.modal_model
+    return beam_spatial_modes(
+        scene.pillar,
+        scene.gondola,
+        BEAM_MODES_PER_LINE,
+        mm.theory,
+        mm.elements,
+        extra_roll_inertia=mm.gondola_inertia,
+        damping_ratio=zeta,
+    )
+
+
+def scene_spatial_model(
+    scene: Scene,
+    band_top: float,
+    modes: SpatialPillarModes | None = None,
+    *,
+    planes: str = "spatial",
+    damping_law: str = "gondola",
+) -> SpatialStructure:
+    """The spatial model of the scene on the pillar modes below ``band_top`` (rad/s)."""
+    modes = scene_spatial_modes(scene) if modes is None else modes
+    return spatial_model(
+        modes.below(band_top),
+        scene.rotor,
+        scene.shaft,
+        scene.pillar.damping,
+        damping_law=damping_law,
+        planes=planes,
+    )
+
+
+def out_of_plane_share(m: SpatialStructure, band_top: float, samples: int = 60) -> float:
+    """The largest response out of the rotor's plane (the top along the spin axis, its pitch and
+    yaw times the pillar's height, the rotor along the spin axis) over the one in it (the top and
+    the rotor in x), of the unbalance response up to ``band_top`` (rad/s) (-)."""
+    H = float(m.modes.section_heights[-1]) if m.modes.section_heights is not None else 1.0
+    speeds = np.linspace(band_top / samples, band_top, samples)
+    r = unbalance_response(m, speeds)
+    out = max(
+        float(np.max(r.curve("tip_y").amplitude)),
+        H * float(np.max(r.curve("top_pitch").amplitude)),
+        H * float(np.max(r.curve("top_yaw").amplitude)),
+        float(np.max(r.curve("rotor_y").amplitude)),
+    )
+    inside = max(float(np.max(r.curve("tip_x").amplitude)), float(np.max(r.curve("rotor_x").amplitude)))
+    return out / inside if inside > 0 else math.inf
+
+
+#: out-of-plane response below this share of the in-plane one: the other directions are not excited (-)
+OUT_OF_PLANE_SHARE = 1e-6
+
+
+def resolve_planes(scene: Scene, band_top: float, modes: SpatialPillarModes) -> PlanesChoice:
+    """``modal_model.planes`` resolved (see the module text)."""
+    asked = scene.modal_model.planes
+    if asked != "auto":
+        return PlanesChoice(asked, asked, f"modal_model.planes = {asked!r} as the scene states")
+    x, r = scene.excitation, scene.rotor
+    why = []
+    if x.components > 1 or abs(math.sin(math.radians(x.angle))) > 1e-12:
+        why.append(
+            f"the ground moves out of the rotor's plane (excitation.components = {x.components}, angle {x.angle:g} deg)"
+        )
+    if r.couple_unbalance > 0:
+        why.append(f"the couple unbalance {r.couple_unbalance:g} kg*m**2 tilts the rotor")
+    if r.height > 0:
+        why.append(f"the rotor's centre {r.height:g} m above the top gives its shaft's force a lever")
+    axial = min((float(w) for w, k in zip(modes.omega, modes.kind) if k == AXIAL), default=math.inf)
+    if axial <= band_top:
+        why.append(
+            f"the first axial mode ({axial:.4g} rad/s), which the rotor's vertical pull drives, lies in the band"
+        )
+    share = out_of_plane_share(scene_spatial_model(scene, band_top, modes), band_top)
+    if share > OUT_OF_PLANE_SHARE:
+        why.append(f"the unbalance response out of the rotor's plane reaches {share:.3g} of the one in it")
+    if why:
+        return PlanesChoice("auto", "spatial", "spatial: " + "; ".join(why))
+    return PlanesChoice(
+        "auto",
+        "planar",
+        "planar: the ground moves in the rotor's plane only, no couple unbalance, the rotor at the top, the "
+        f"unbalance response out of the plane {share:.2g} of the one in it, and the first axial mode "
+        f"({axial:.4g} rad/s) above the band ({band_top:.4g} rad/s): the other directions are not excited "
+        "(what the planar model still misses, the gondola's inertia, b2 relative to the gondola and the "
+        "structural damping: spatial.planar_error)",
+    )
+
+
+def _planar_error(planar: RotorStructure, m: SpatialStructure, band_top: float) -> PlanarError:
+    from .bode import unbalance_response as planar_response
+
+    speeds = np.linspace(band_top / 400, band_top, 400)
+    x_planar = [float(w) for w in planar.undamped_modes_x()[0]]
+    w_sp, U = m.undamped_modes_x()
+    in_plane = [
+        float(w)
+        for w, u in zip(w_sp, U.T)
+        if abs(u @ m.outputs["rotor_x"]) + abs(u @ m.outputs["tip_x"])
+        > 0.5 * (abs(u @ m.outputs["rotor_z"]) + abs(u @ m.outputs["tip_y"]) + abs(u @ m.outputs["rotor_y"]))
+    ]
+    near = [min(in_plane, key=lambda w: abs(w - x)) if in_plane else math.nan for x in x_planar]
+    tip_planar = float(np.max(planar_response(planar, speeds).tip_amplitude))
+    tip_spatial = float(np.max(unbalance_response(m, speeds).curve("tip_x").amplitude))
+    return PlanarError(
+        tuple(x_planar),
+        tuple(near),
+        tuple(a / b - 1 for a, b in zip(x_planar, near)),
+        tip_planar,
+        tip_spatial,
+        tip_planar / tip_spatial - 1 if tip_spatial else math.nan,
+        "planar: today's ROM (b2 to the ground, b1 at the tip, no structural ratio, no gondola inertia "
+        "but modal_model.gondola_inertia); spatial: this block's model; undamped frequencies and the "
+        f"largest unbalance response of the top in the rotor's plane up to {band_top:.4g} rad/s",
+    )
+
+
+def spatial_analysis(
+    scene: Scene,
+    planar: RotorStructure,
+    band_top: float,
+    running_speed: float | None,
+    modes: SpatialPillarModes | None = None,
+) -> SpatialAnalysis:
+    """analyze.json's ``spatial`` block (see the module text)."""
+    modes = scene_spatial_modes(scene) if modes is None else modes
+    m = scene_spatial_model(scene, band_top, modes)
+    at_rest = damped_modes(m, 0.0)
+    at_speed = damped_modes(m, running_speed or 0.0)
+    counts: dict[str, int] = {}
+    rows = []
+    for j, (s, v) in enumerate(zip(at_rest.eigenvalues, at_rest.shapes.T)):
+        kind = mode_kind(m, v)
+        counts[kind] = counts.get(kind, 0) + 1
+        whirl = mode_whirl(m, at_speed.shapes[:, j])[1] if running_speed else "none"
+        rows.append(
+            SpatialResonance(f"{kind} {counts[kind]}", kind, float(s.imag), float(at_rest.damping_ratio[j]), whirl)
+        )
+    return SpatialAnalysis(
+        planes=resolve_planes(scene, band_top, modes),
+        model="; ".join(m.notes),
+        mode_source=modes.source,
+        running_speed=running_speed,
+        resonances=tuple(rows),
+        critical_speeds=tuple(c for c in critical_speeds(m) if c.speed <= band_top),
+        planar_error=_planar_error(planar, m, band_top),
+    )
+
+
+def drive_reaction_analysis(
+    scene: Scene, band_top: float, modes: SpatialPillarModes | None = None
+) -> DriveReactionAnalysis:
+    """analyze.json's ``drive_reaction`` (see the module text)."""
+    from .integration import Settings, simulate
+
+    modes = scene_spatial_modes(scene) if modes is None else modes
+    st = drive_reaction(modes, scene.drive.torque_at_zero, scene.pillar)
+    m = scene_spatial_model(scene, band_top, modes)
+    d = scene.drive
+    run = None
+    if d.torque_at_zero > 0:
+        sched = DriveSchedule.constant(d.torque_at_zero, d.slope, scene.load.coefficient)
+        sim = scene.simulate
+        settings = Settings("dp5", rtol=sim.rtol, samples=sim.samples, max_steps=sim.max_steps)
+        with_r = simulate(m, sched, no_motion(), sim.duration, settings=settings)
+        without = simulate(replace(m, reaction=0 * m.reaction), sched, no_motion(), sim.duration, settings=settings)
+        tip = with_r.q[:, : m.nz] @ m.outputs["tip_x"]
+        tip0 = without.q[:, : m.nz] @ m.outputs["tip_x"]
+        roll = with_r.q[:, : m.nz] @ m.outputs["top_roll"]
+        run = ReactionRunup(
+            sim.duration,
+            float(with_r.Omega[-1]),
+            float(np.max(np.abs(tip))),
+            float(np.max(np.abs(tip0))),
+            float(np.max(np.abs(tip - tip0))),
+            float(np.max(np.abs(roll))),
+        )
+    return DriveReactionAnalysis(st.torque, st.tip_displacement, st.tip_rotation, st.base_moment, st, run)
+
+
+def scene_campbell(
+    scene: Scene,
+    speeds: NDArray[np.float64],
+    band_top: float,
+    running_speed: float | None,
+    modes: SpatialPillarModes | None = None,
+) -> CampbellDiagram:
+    """The Campbell diagram of the scene's spatial model over ``speeds`` (rad/s), each critical
+    speed with the AF of the unbalance response's peak near it (None: no peak there)."""
+    from ..records import replace as record_replace
+
+    m = scene_spatial_model(scene, band_top, modes)
+    diagram = campbell(m, speeds, running_speed)
+    top = max(float(speeds[-1]), 1e-9)
+    grid = np.unique(
+        np.concatenate(
+            [np.linspace(top / 600, top, 600)]
+            + [np.linspace(0.9 * c.speed, min(1.1 * c.speed, top), 41) for c in diagram.critical_speeds]
+        )
+    )
+    response = unbalance_response(m, grid)
+    crit = tuple(
+        record_replace(c, amplification_factor=None if p is None else p.amplification_factor)
+        for c in diagram.critical_speeds
+        for p in [peak_near(response, c.speed, 0.1)]
+    )
+    result: CampbellDiagram = record_replace(
+        diagram,
+        critical_speeds=crit,
+        notes=diagram.notes
+        + (
+            "amplification_factor: API 684's half-power AF of the unbalance response's peak within 10 % of the critical speed",
+        ),
+    )
+    return result

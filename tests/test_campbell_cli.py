@@ -1,0 +1,47 @@
+"""`rotorpillar campbell` (issue 26): campbell.json with the issue's field names, campbell.png a
+real image, and bad --speeds refused on one line with nothing written.
+
+The diagram's numbers are checked against independent references in tests/test_spatial.py (the
+tilt pair on a rigid support) and tests/test_spatial_scene.py (the crossings of the tracked
+branches against the Hermitian pencil's critical speeds); here: that the command writes them as
+the contract names them, on the scene's beam modes (modal_model.source = beam: no 3D solve).
+"""
+
+import importlib.util
+import json
+
+import pytest
+from conftest import cli
+from imagecheck import assert_real_png
+
+pytestmark = pytest.mark.slow  # a whole command in a child process
+
+
+def test_campbell_writes_json_and_png(tmp_path):
+    p = cli("campbell", "paper", "--set", "modal_model.source=beam", "--speeds", "0:150:51", "--out", tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "campbell.json").read_text())
+    assert doc["model"] == "modal" and len(doc["speeds"]) == 51 and doc["speeds"][-1] == 150.0
+    for b in doc["modes"]:
+        assert {"label", "kind", "frequency", "whirl", "log_decrement"} <= b.keys()
+        assert len(b["frequency"]) == len(b["whirl"]) == len(b["log_decrement"]) == 51
+        assert set(b["whirl"]) <= {"forward", "backward", "none"}
+    assert doc["critical_speeds"] and all(
+        {"speed", "label", "whirl", "excited_by"} <= c.keys() for c in doc["critical_speeds"]
+    )
+    assert 80 < doc["running_speed"] < 100  # the paper's drive: 5100 - 12 W = 0.5 W**2 at ~89.7 rad/s
+    assert_real_png(tmp_path / "campbell.png")
+
+
+@pytest.mark.parametrize("speeds", ["5:1:3", "0:100", "a:b:c", "0:100:1"])
+def test_bad_speeds_exit_2_on_one_line(tmp_path, speeds):
+    out = tmp_path / "out"
+    p = cli("campbell", "paper", "--speeds", speeds, "--out", out)
+    assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1 and "--speeds" in p.stderr
+    assert not out.exists()
+
+
+@pytest.mark.skipif(importlib.util.find_spec("rotorpillar.fem3d.campbell") is not None, reason="the 3D side is here")
+def test_fem3d_refused_while_absent(tmp_path):
+    p = cli("campbell", "paper", "--model", "fem3d", "--set", "modal_model.source=beam", "--out", tmp_path)
+    assert p.returncode == 2 and "not in this build yet" in p.stderr
