@@ -40,38 +40,11 @@ import numpy as np
 
 from ..errors import InputError
 from ..records import Record
-from ..reduced.campbell import CampbellBranch, CampbellDiagram, CriticalSpeed, log_decrement
-from ..reduced.spatial_modes import (
-    AXIAL,
-    BENDING_ACROSS,
-    BENDING_IN_PLANE,
-    BREATHING,
-    OTHER,
-    OVALLING,
-    TORSION,
-)
+from ..reduced.campbell import CampbellDiagram
 from ..scene import Scene
-from . import campbell_tracking as tr
+from .campbell_branches import ROTOR_AXIAL, ROTOR_ON_SHAFT, ROTOR_TILT, BranchTracker  # noqa: F401
 from .rotor_spatial import SpatialRotor
 
-#: identify.py's kinds in the words of the spatial side (rotorpillar.reduced.spatial_modes.KINDS)
-KIND_WORDS = {
-    "bending_x": BENDING_IN_PLANE,
-    "bending_y": BENDING_ACROSS,
-    "torsion": TORSION,
-    "axial": AXIAL,
-    "ovalling": OVALLING,
-    "breathing": BREATHING,
-    "other": OTHER,
-}
-ROTOR_ON_SHAFT = "rotor on its shaft"
-ROTOR_TILT = "rotor tilt"
-#: a mode is the rotor's when the rotor holds more than this share of its kinetic energy
-ROTOR_MODE = 0.5
-#: the forward share of the mode's kinetic energy in the rotor's motion past which the unbalance
-#: drives it: ~1e-2 for a bending mode that carries the rotor, ~1e-8 for an ovalling mode of the
-#: rigid top
-EXCITED = 1e-4
 #: the time a 3D Campbell may take before it is refused (s)
 MAX_SECONDS = 3600.0
 #: seconds per speed per dof**1.5 (measured: 0.6-0.8 s a speed at 24,200 dofs, 2-core machine,
@@ -137,6 +110,7 @@ def campbell_fem3d(
     from mpi4py import MPI
 
     from . import assemble_pillar
+    from .critical_speeds import critical_speeds
     from .quadratic_eigen import METHODS, solve_quadratic, solve_quadratic_toar, stiffness_factor
     from .spatial_system import assemble_system
 
@@ -174,10 +148,10 @@ def campbell_fem3d(
     ksp = None
     try:
         t0 = time.perf_counter()
-        ksp, factor = stiffness_factor(system.K) if method == "block" else (None, None)
+        ksp, factor = stiffness_factor(system.K)
         timings["factorisation"] = time.perf_counter() - t0
         t0 = time.perf_counter()
-        tracker = _Tracker(system, comm)
+        tracker = BranchTracker(system, comm)
         seeds, solves, worst = None, 0, 0.0
         for i, w in enumerate(speeds):
             if method == "block":
@@ -188,18 +162,23 @@ def campbell_fem3d(
                 q = solve_quadratic_toar(system, float(w), radius, n_wanted=n_want, tol=scene.modal.tolerance)
             solves += q.solves
             worst = max(worst, float(np.max(q.backward_error, initial=0.0)))
-            tracker.add(i, q.s, q.X)
+            tracker.add(i, float(w), q.s, q.X)
             if progress and (i + 1) % max(1, len(speeds) // 10) == 0:
                 say(f"campbell (3D): speed {i + 1} of {len(speeds)} ({w:.4g} rad/s)")
         timings["speeds"] = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        branches = tracker.branches(len(speeds))
+        criticals = critical_speeds(system, radius, speeds, branches, factor)
+        timings["critical_speeds"] = time.perf_counter() - t0
     finally:
         if ksp is not None:
             ksp.destroy()
         system.destroy()
         model.K.destroy()
         model.M.destroy()
-    branches = tracker.branches(len(speeds))
-    criticals = _critical_speeds(speeds, branches, tracker)
+    warnings = []
+    if worst > 1e-6:
+        warnings.append(f"the eigenpairs' largest backward error is {worst:.2g}: the frequencies may be off")
     p = model.params
     cells = f"{p.elements_around} x {p.elements_along} x {p.elements_through}"
     description = (
@@ -217,8 +196,8 @@ def campbell_fem3d(
         f"timings: assembly {timings['assembly']:.3g} s, factorisation {timings['factorisation']:.3g} s, "
         f"{len(speeds)} speeds {timings['speeds']:.3g} s ({timings['speeds'] / len(speeds):.3g} s a speed, "
         f"{solves / len(speeds):.0f} right-hand sides a speed); largest backward error {worst:.2g}",
-        "critical speeds: the root of the tracked damped branch's frequency minus Omega, linear "
-        "between two of the diagram's speeds",
+        "critical speeds: the undamped gyroscopic pencil K v = Omega**2 (M - i G) v (s = i Omega), "
+        f"each named after the branch whose frequency is nearest Omega there ({timings['critical_speeds']:.3g} s)",
     )
     return CampbellDiagram(
         model="fem3d",
@@ -228,192 +207,5 @@ def campbell_fem3d(
         running_speed=running_speed,
         description=description,
         notes=notes,
-        warnings=tuple(tracker.warnings),
+        warnings=tuple(warnings),
     )
-
-
-class _Tracker:
-    """The branches across the speeds: values, vectors, names (module text)."""
-
-    def __init__(self, system, comm):
-        self.sys, self.comm = system, comm
-        self.items: list[dict] = []
-        self.warnings: list[str] = []
-        self.rotor = system.rotor
-        lo, hi = system.K.getOwnershipRange()
-        self.lo, self.hi = lo, hi
-        self.top_mass = float(system.model.top_block[0, 0])
-        self.top_tilt = float(max(system.model.top_block[3, 3], system.model.top_block[5, 5]))
-
-    @property
-    def alive(self) -> int:
-        return sum(1 for b in self.items if b["vec"] is not None)
-
-    def gram(self, A, B):
-        g = A.conj().T @ B
-        return g if self.comm.size == 1 else self.comm.allreduce(g)
-
-    def rows(self, X: np.ndarray) -> np.ndarray:
-        """The plate's and the rotor's rows of X (6 + rotor dofs, k), on every rank."""
-        first = self.sys.plate
-        n = 6 + self.rotor.dofs
-        out = np.zeros((n, X.shape[1]), complex)
-        if self.lo <= first < self.hi:
-            out = X[first - self.lo : first - self.lo + n].copy()
-        return out if self.comm.size == 1 else self.comm.allreduce(out)
-
-    def add(self, i: int, s: np.ndarray, X: np.ndarray) -> None:
-        alive = [b for b in self.items if b["vec"] is not None]
-        if alive:
-            P = np.column_stack([b["vec"] for b in alive])
-            for members in tr.clusters(s):
-                X = tr.align_degenerate(P, X, members, self.gram)
-            mac = np.abs(self.gram(P, X)) ** 2
-            pairs = tr.assign(mac)
-        else:
-            pairs = []
-        taken = set()
-        for r, c in pairs:
-            alive[r]["at"][i] = c
-            taken.add(c)
-        for b in alive:
-            if i not in b["at"]:
-                b["vec"] = None  # it left the band
-        R = self.rows(X)
-        energy = self._energies(X)
-        new = [c for c in range(len(s)) if c not in taken]
-        kinds = self._kinds(X, R, new, energy) if new else {}
-        for c in new:
-            self.items.append({"at": {i: c}, "vec": None, "kind": kinds[c][0], "dir": kinds[c][1], "vals": {}})
-        for b in self.items:
-            c = b["at"].get(i)
-            if c is None:
-                continue
-            b["vec"] = X[:, c].copy()
-            shares = self._shares(R[:, c])
-            b["vals"][i] = (s[c], self._whirl(R[:, c]), (shares[0] / energy[c], shares[1] / energy[c]))
-
-    def _energies(self, X: np.ndarray) -> np.ndarray:
-        """x^H M x of each column (kg per unit**2): twice the mode's kinetic energy over w**2."""
-        M = self.sys.M
-        x, y = M.createVecRight(), M.createVecLeft()
-        out = np.zeros(X.shape[1])
-        for c in range(X.shape[1]):
-            for part in (X[:, c].real, X[:, c].imag):
-                x.setArray(np.ascontiguousarray(part))
-                M.mult(x, y)
-                out[c] += x.dot(y)
-        x.destroy()
-        y.destroy()
-        return out
-
-    def _whirl(self, r: np.ndarray) -> str:
-        rot = self.rotor
-        pitch, yaw = (9, 10) if rot.tilts else (3, 5)
-        centre, axis = r[[6, 8]], np.array([-r[yaw], r[pitch]])
-        t = tr.whirl(centre, axis, rot.mass, rot.diametral_inertia)
-        size = rot.mass * np.sum(np.abs(centre) ** 2) + rot.diametral_inertia * np.sum(np.abs(axis) ** 2)
-        plate = self.top_mass * np.sum(np.abs(r[[0, 2]]) ** 2) + self.top_tilt * (abs(r[3]) ** 2 + abs(r[5]) ** 2)
-        if size <= tr.ROTOR_SHARE * (size + plate):
-            return tr.whirl(r[[0, 2]], np.array([-r[5], r[3]]), self.top_mass, self.top_tilt)
-        return t
-
-    def _shares(self, r: np.ndarray) -> tuple[float, float]:
-        """(m_C |a_f|**2 of the rotor centre's orbit, I_d |a_f|**2 of its spin axis') (kg, kg*m**2
-        per unit**2): over x^H M x, the mode's share of forward rotor motion."""
-        rot = self.rotor
-        pitch, yaw = (9, 10) if rot.tilts else (3, 5)
-        return rot.mass * tr.forward_share(r[6], r[8]), rot.diametral_inertia * tr.forward_share(-r[yaw], r[pitch])
-
-    def _kinds(self, X: np.ndarray, R: np.ndarray, cols: list[int], energy: np.ndarray) -> dict[int, tuple[str, str]]:
-        """(kind, direction words) of the new modes: the rotor's when it holds most of the kinetic
-        energy, else the tube's shape (identify.describe_mode on rank 0)."""
-        from . import identify
-
-        model = self.sys.model
-        out: dict[int, tuple[str, str]] = {}
-        coords = model.gather_coordinates()
-        rings = identify.rings_of(coords, model.params.height) if coords is not None else None
-        for c in cols:
-            phase = np.exp(-0.5j * np.angle(self._sum(np.sum(X[:, c] * X[:, c]))))  # the most real
-            v, r = X[:, c] * phase, R[:, c] * phase
-            m, Id = self.rotor.mass, self.rotor.diametral_inertia
-            rotor_t = m * np.abs(r[6:9]) ** 2
-            rotor_r = Id * np.abs(r[9:11]) ** 2 if self.rotor.tilts else np.zeros(2)
-            if (rotor_t.sum() + rotor_r.sum()) > ROTOR_MODE * energy[c]:
-                if rotor_r.sum() > rotor_t.sum():
-                    out[c] = (ROTOR_TILT, "")
-                else:
-                    out[c] = (
-                        ROTOR_ON_SHAFT,
-                        ("in the rotor's plane", "along the spin axis", "vertical")[int(np.argmax(rotor_t))],
-                    )
-                continue
-            u = self._tube_shape(v.real)
-            desc = identify.describe_mode(None, u, rings) if u is not None else None
-            desc = self.comm.bcast(desc, root=0)
-            word = KIND_WORDS[desc.kind]
-            if desc.kind == "ovalling":
-                word = f"{OVALLING} n={desc.n_circumferential}"
-            out[c] = (word, "")
-        return out
-
-    def _sum(self, a):
-        return a if self.comm.size == 1 else self.comm.allreduce(a)
-
-    def _tube_shape(self, part: np.ndarray) -> np.ndarray | None:
-        """The tube's nodal displacement (nodes, 3) of a real system vector, on rank 0."""
-        model = self.sys.model
-        v = model.K.createVecRight()
-        n_model = model.K.getLocalSize()[0]
-        v.setArray(part[:n_model])
-        g = model.gather_vector(model.tube_displacement(v))
-        v.destroy()
-        return None if g is None else g.reshape(-1, 3)
-
-    def branches(self, n: int) -> list[CampbellBranch]:
-        """The records, ascending by frequency where each branch appears, labelled."""
-        items = sorted(self.items, key=lambda b: (min(b["at"]), abs(b["vals"][min(b["at"])][0])))
-        counts: dict[str, int] = {}
-        out = []
-        for b in items:
-            freq, zeta = np.full(n, np.nan), np.full(n, np.nan)
-            whirl = ["none"] * n
-            for i, (s, w, _) in b["vals"].items():
-                freq[i], zeta[i], whirl[i] = s.imag, -s.real / abs(s), w
-            key = b["kind"] + (f", {b['dir']}" if b["dir"] else "")
-            counts[key] = counts.get(key, 0) + 1
-            b["label"] = f"{key} {counts[key]}"
-            out.append(
-                CampbellBranch(
-                    label=b["label"],
-                    kind=b["kind"],
-                    frequency=freq,
-                    whirl=tuple(whirl),
-                    log_decrement=log_decrement(zeta),
-                    damping_ratio=zeta,
-                )
-            )
-        self.items = items
-        return out
-
-
-def _critical_speeds(speeds: np.ndarray, branches: list[CampbellBranch], tracker: _Tracker) -> list[CriticalSpeed]:
-    out = []
-    for br, b in zip(branches, tracker.items):
-        for speed, i in tr.crossings(speeds, br.frequency):
-            j = i if i in b["vals"] else min(b["vals"], key=lambda k: abs(k - i))
-            static, couple = b["vals"][j][2]
-            excited = (
-                "static unbalance" if static >= EXCITED else "couple unbalance" if couple >= EXCITED else "neither"
-            )
-            out.append(
-                CriticalSpeed(
-                    speed=float(speed),
-                    label=br.label,
-                    whirl=br.whirl[j],
-                    excited_by=excited,
-                    method="the tracked damped branch's frequency = Omega, linear between two speeds of the diagram",
-                )
-            )
-    return sorted(out, key=lambda c: c.speed)

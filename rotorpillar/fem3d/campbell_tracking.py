@@ -14,10 +14,11 @@
   its centre's orbit (in-plane x, vertical z) and its spin axis' (-phi_z,
   phi_x), weighted by m_C and I_d: the sign of the whirl's angular momentum
   about the spin axis, forward when it turns as the unbalance does (from +x
-  towards +z, rotorpillar.fem3d.rotor_spatial.whirl_direction); where the
-  rotor hardly moves, the top plate's (its translation and tilt, weighted
-  by the bodies' masses); "none" when the orbit is a line within
-  ``FLAT`` (|turn| / size; 1/2 for a circle);
+  towards +z, rotorpillar.fem3d.rotor_spatial.whirl_direction); "none" when
+  the orbit is a line, the ratio 2 |turn| / size below ``WHIRL_TOLERANCE``
+  (1 for a circle; the spatial ROM's rotorpillar.reduced.spatial_linear, the
+  same rule), or when the rotor hardly moves (``ROTOR_SHARE`` of the mode's
+  x^H M x);
 - ``crossings``: where Omega equals a branch's frequency, the root of
   f(Omega) - Omega by linear interpolation between two speeds of the
   diagram (the branch tracked, damped: Im(s)).
@@ -35,18 +36,22 @@ import numpy as np
 
 #: below this MAC a branch is not followed to a mode (it left the band; the mode is new)
 MIN_MAC = 0.3
-#: |turn| / size below which an orbit is a line: an ellipse of axis ratio ~1 %
-FLAT = 1e-2
-#: the rotor's share of a mode's whirl measure below which the top plate's is read instead
-ROTOR_SHARE = 1e-6
-#: relative distance of two eigenvalues of one degenerate cluster
-CLUSTER = 1e-6
+#: 2 |turn| / size below which an orbit is a line: an ellipse flatter than 1 : 2000 (the
+#: spatial ROM's rotorpillar.reduced.spatial_linear.WHIRL_TOLERANCE)
+WHIRL_TOLERANCE = 1e-3
+#: the rotor's whirl measure below this share of the mode's x^H M x: the rotor does not move
+ROTOR_SHARE = 1e-12
+#: relative distance of two eigenvalues of one (nearly) degenerate cluster: the two bending
+#: planes with the gondola's different roll and pitch inertias are ~1e-5 apart, within the
+#: eigenvectors' accuracy (the residual over the gap), so they are told apart by their kinds
+#: and each gets back its own eigenvalue by its Rayleigh quotient
+CLUSTER = 1e-4
 
 
 def clusters(s: np.ndarray, tol: float = CLUSTER) -> list[list[int]]:
     """Groups of indices of (nearly) equal eigenvalues, each of two or more.
 
-    >>> clusters(np.array([1.0, 1.0 + 1e-9, 2.0]))
+    >>> clusters(np.array([1.0, 1.0 + 1e-6, 2.0]))
     [[0, 1]]
     """
     out, i = [], 0
@@ -81,6 +86,28 @@ def align_degenerate(prev: np.ndarray, new: np.ndarray, members: list[int], gram
     return out
 
 
+def untangle(X: np.ndarray, members: list[int], rows, gram) -> np.ndarray:
+    """The cluster's columns of ``X`` turned, within their span, so each lies as much as it can
+    in one of the plate's and the rotor's dofs: where no previous speed tells them apart (the
+    first speed; the critical speeds' pencil), a degenerate cluster's arbitrary basis is made
+    the one of its kinds (the rotor in-plane against the rotor along the spin axis, bending in
+    one plane against the other), as the spatial ROM's ``_untangle`` does on its coordinates.
+
+    ``rows(V)`` = the plate's and the rotor's rows of V on every rank; ``gram(A, B)`` = A^H B
+    summed over the ranks."""
+    V = X[:, members]
+    G = gram(V, V)
+    d, U = np.linalg.eigh((G + G.conj().T) / 2)
+    Q = V @ (U / np.sqrt(np.maximum(d, 1e-300)))
+    R = rows(Q)
+    code = np.arange(1.0, R.shape[0] + 1.0)  # a distinct weight per plate and rotor dof
+    op = R.conj().T @ (code[:, None] * R)
+    _, T = np.linalg.eigh((op + op.conj().T) / 2)
+    out = X.copy()
+    out[:, members] = Q @ T
+    return out
+
+
 def assign(mac: np.ndarray) -> list[tuple[int, int]]:
     """(branch, mode) pairs of largest total MAC, each above MIN_MAC."""
     from scipy.optimize import linear_sum_assignment
@@ -97,14 +124,16 @@ def orbit_turn(x: complex, z: complex) -> tuple[float, float]:
     return -float(np.imag(np.conj(x) * z)), float(abs(x) ** 2 + abs(z) ** 2)
 
 
-def whirl(centre: np.ndarray, axis: np.ndarray, mass: float, inertia: float, flat: float = FLAT) -> str:
-    """ "forward", "backward" or "none" of a body's motion in the plane normal to the spin axis:
-    ``centre`` (x, z) and ``axis`` (-phi_z, phi_x) complex amplitudes, weighted by ``mass``
-    and ``inertia`` (module text)."""
+def whirl(centre: np.ndarray, axis: np.ndarray, mass: float, inertia: float, energy: float | None = None) -> str:
+    """The whirl, "forward", "backward" or "none", of a body's motion in the plane normal to
+    the spin axis: ``centre`` (x, z) and ``axis`` (-phi_z, phi_x) complex amplitudes, weighted
+    by ``mass`` and ``inertia``; ``energy`` the mode's x^H M x (module text)."""
     t1, s1 = orbit_turn(*centre)
     t2, s2 = orbit_turn(*axis)
     turn, size = mass * t1 + inertia * t2, mass * s1 + inertia * s2
-    if size <= 0 or abs(turn) <= flat * size:
+    if size <= 0 or (energy is not None and size <= ROTOR_SHARE * energy):
+        return "none"
+    if 2 * abs(turn) < WHIRL_TOLERANCE * size:
         return "none"
     return "forward" if turn > 0 else "backward"
 

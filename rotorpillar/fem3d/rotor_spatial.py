@@ -21,12 +21,12 @@ h Theta_y, U_y - h Theta_x, U_z), its tilt (Theta_x, Theta_z).  The
 relative motions d = D (q, r) (``shaft_links``): in-plane x_r - U_x - h
 Theta_y and vertical z_r - U_z (the lateral stiffness c2 and damping b2
 across the spin axis, the paper's c2 = c3 and b2 = b3), along the axis
-y_r - U_y + h Theta_x (``axial_stiffness``, no damping stated), and the
-tilts phi_x - Theta_x, phi_z - Theta_z (``tilt_stiffness``,
-``tilt_damping``).  Stiffness and damping on (q, r) are D^T diag(k) D and
+y_r - U_y + h Theta_x (``axial_stiffness``, and b2: the same bearings, as
+the spatial ROM has it), and the tilts phi_x - Theta_x, phi_z - Theta_z
+(``tilt_stiffness``, ``tilt_damping``).  Stiffness and damping on (q, r) are D^T diag(k) D and
 D^T diag(b) D: every force acts between rotor and gondola, so the pair
 carries no net force from the shaft.  ``damping_law = "ground"`` puts b2 on
-the rotor centre's absolute velocity instead (the paper's Eq. 4, which
+the rotor centre's absolute velocity instead (all three directions) (the paper's Eq. 4, which
 anchors the shaft's dashpot to the ground: in an earthquake a skyhook),
 kept for the comparison with Eq. 4 and the planar runs.
 
@@ -157,13 +157,15 @@ def rotor_blocks(rotor: SpatialRotor, damping_law: str = "gondola"):
     c2 = rotor.lateral_stiffness
     k = [c2, c2, rotor.axial_stiffness] + ([rotor.tilt_stiffness] * 2 if tilt else [])
     K = D.T @ np.diag(k) @ D
-    b = np.array([rotor.lateral_damping, rotor.lateral_damping, 0.0] + ([rotor.tilt_damping] * 2 if tilt else []))
+    # b2 across the spin axis and along it (the same bearings, as the spatial ROM has it)
+    b2 = rotor.lateral_damping
+    b = np.array([b2, b2, b2] + ([rotor.tilt_damping] * 2 if tilt else []))
     if damping_law == "gondola":
         C = D.T @ np.diag(b) @ D
-    else:  # b2 on the rotor centre's absolute in-plane and vertical velocity (Eq. 4)
-        A = np.zeros((2, 6 + n))
-        A[0, 6], A[1, 8] = 1.0, 1.0
-        C = A.T @ np.diag(b[:2]) @ A + D[3:].T @ np.diag(b[3:]) @ D[3:]
+    else:  # b2 on the rotor centre's absolute velocity (Eq. 4), the tilt's still relative
+        A = np.zeros((3, 6 + n))
+        A[0, 6], A[1, 8], A[2, 7] = 1.0, 1.0, 1.0
+        C = A.T @ np.diag(b[:3]) @ A + D[3:].T @ np.diag(b[3:]) @ D[3:]
     M = np.zeros((6 + n, 6 + n))
     M[6:9, 6:9] = rotor.mass * np.eye(3)
     pitch, yaw = (9, 10) if tilt else (3, 5)  # the tilts: the rotor's own, or the plate's
