@@ -144,9 +144,10 @@ def relative_error(a, b) -> float:
 # The spatial model's unbalance response (issue 26): both lateral directions,
 # static and couple unbalance, on rotorpillar.fem3d.spatial_system.
 
-#: the unbalance cases: the rotating force m_C e Omega**2 at the rotor's centre, or the
-#: rotating moment U_c Omega**2 about its lateral axes
-UNBALANCE_CASES = ("static", "couple")
+#: the unbalance cases: the shaft stretched by the eccentricity, c2 e (cos, sin) (the paper's
+#: form: the rotor's coordinates are its mass centre's), the rotating moment U_c Omega**2 about
+#: its lateral axes, or both at once (the spatial ROM's rotorpillar.reduced.spatial_response)
+UNBALANCE_CASES = ("static", "couple", "both")
 
 
 @dataclass(frozen=True)
@@ -164,7 +165,7 @@ class SpatialResponse:
     """(n, 5 or 3) the rotor's (x, y, z[, pitch, yaw]) (m, rad)"""
     shaft: np.ndarray
     """(n, 2) the shaft's deflection across the spin axis, in-plane and vertical: the rotor
-    centre less the gondola's point at the rotor's height (m)"""
+    centre less the gondola's point at the rotor's height less e (cos, sin) (m)"""
     dofs: int
     """unknowns of the system (-)"""
     seconds_per_speed: float
@@ -174,9 +175,10 @@ class SpatialResponse:
 def spatial_response(system, speeds, case: str = "static") -> SpatialResponse:
     """The steady unbalance response of a RotorPillarSystem (collective).
 
-    (K - Omega**2 M + i Omega (C + Omega G)) X = F with F = m_C e Omega**2 (1, -i) on the
-    rotor centre's (in-plane, vertical) ("static") or U_c Omega**2 (1, -i) on its spin axis'
-    (pitch, yaw) ("couple"): both turn from +x towards +z with the rotor.  Every damping and
+    (K - Omega**2 M + i Omega (C + Omega G)) X = F with F = c2 e (d_x - i d_z) ("static":
+    the shaft's in-plane and vertical links d stretched by the eccentricity, pulling the rotor
+    and, opposite, the gondola's point) or U_c Omega**2 (1, -i) on the spin axis' (pitch, yaw)
+    ("couple"), or their sum ("both"): each turns from +x towards +z with the rotor.  Every damping and
     the gyroscopic term act on few dofs or have a low rank (b1, the shaft and the gyroscopic
     matrix on the plate's and the rotor's 6 + 5 dofs, the modal damping W D W^T of rank k),
     so per speed one real symmetric LDL^T factorisation of A = K - Omega**2 M (MUMPS; one
@@ -190,7 +192,7 @@ def spatial_response(system, speeds, case: str = "static") -> SpatialResponse:
 
     from ..errors import ComputationError
     from .block_lanczos import modal_solve_failure, shifted_cholesky
-    from .rotor_spatial import rotor_blocks
+    from .rotor_spatial import rotor_blocks, shaft_links
 
     if case not in UNBALANCE_CASES:
         raise ValueError(f"case must be one of {UNBALANCE_CASES}")
@@ -209,13 +211,11 @@ def spatial_response(system, speeds, case: str = "static") -> SpatialResponse:
         E[first - lo : first - lo + nr] = np.eye(nr)
     L = np.hstack([E, system.W])
     pitch, yaw = (9, 10) if rotor.tilts else (3, 5)
-    unit = np.zeros(nr, complex)
-    if case == "static":
-        unit[6], unit[8] = 1.0, -1j
-        size = rotor.mass * rotor.eccentricity
-    else:
-        unit[pitch], unit[yaw] = 1.0, -1j
-        size = rotor.couple_unbalance
+    D = shaft_links(rotor.height, rotor.tilts)
+    static = rotor.lateral_stiffness * rotor.eccentricity * (D[0] - 1j * D[1]) if case != "couple" else 0.0
+    couple = np.zeros(nr, complex)
+    if case != "static":
+        couple[pitch], couple[yaw] = rotor.couple_unbalance, -1j * rotor.couple_unbalance
     top, rot = np.zeros((len(speeds), 6), complex), np.zeros((len(speeds), rotor.dofs), complex)
     A = system.K.copy()
     ksp, _ = shifted_cholesky(A, A, 0.0)
@@ -231,7 +231,7 @@ def spatial_response(system, speeds, case: str = "static") -> SpatialResponse:
                 ksp.setUp()
             except PETSc.Error as exc:
                 raise modal_solve_failure("MUMPS", exc) from None
-            F = size * w * w * unit
+            F = static + w * w * couple
             if mine:
                 rhs[first - lo : first - lo + nr, 0] = F.real
                 rhs[first - lo : first - lo + nr, 1] = F.imag
@@ -262,8 +262,8 @@ def spatial_response(system, speeds, case: str = "static") -> SpatialResponse:
         ksp.destroy()
         A.destroy()
     per = (time.perf_counter() - start) / max(len(speeds), 1)
-    h = rotor.height
-    shaft = np.column_stack([rot[:, 0] - top[:, 0] - h * top[:, 4], rot[:, 2] - top[:, 2]])
+    h, e = rotor.height, rotor.eccentricity if case != "couple" else 0.0
+    shaft = np.column_stack([rot[:, 0] - top[:, 0] - h * top[:, 4] - e, rot[:, 2] - top[:, 2] + 1j * e])
     return SpatialResponse(case, speeds, top, rot, shaft, system.size, per)
 
 
