@@ -61,7 +61,8 @@ def check_same_modes(K, M, n, sigma=0.0):
 
 @pytest.mark.parametrize("top", [False, True])
 def test_block_lanczos_gives_krylov_schurs_modes(top):
-    s = load_scene("paper")
+    # equal roll and pitch inertias of the gondola: the bending pair exactly degenerate
+    s = override(load_scene("paper"), ["gondola.roll_inertia=850"])
     model = assemble_pillar(s, top=top, mesh=MESH)
     lam = check_same_modes(model.K, model.M, 9)
     # the first bending pair (x and y) is found twice

@@ -3,7 +3,10 @@
 For a 3D choice: the SLEPc modes of that mesh with the gondola on the rigid
 top (every X bending mode among them, enough to pass the ROM's band and one
 more, for its truncation check), and the paper's Eq. 2 on the bare tube's
-first bending mode of the same mesh.  For a beam: the beam's modes and its
+first bending mode of the same mesh; from the same solve, every mode in
+every direction as the spatial model's SpatialPillarModes (``spatial``:
+bending both ways, torsion, axial, ovalling, each with the top plate's six
+components, rotorpillar.fem3d.spatial_modes).  For a beam: the beam's modes and its
 Eq. 2.  A 3D result is cached as one JSON file under the user's cache
 (``$ROTORPILLAR_CACHE``, else ``~/.cache/rotorpillar``), keyed by a hash of the
 tube, the gondola, the top model, the mesh, the eigen-solver's tolerance and
@@ -22,13 +25,15 @@ import numpy as np
 
 from ..cache import DiskCache, cache_key, source_hash, user_cache_root
 from ..provenance import JsonRecord
+from ..records import convert, to_builtins
 from ..reduced.pillar_modes import PillarModes
+from ..reduced.spatial_modes import SpatialPillarModes
 from ..scene import Scene
 from ..scene.tower import foundation_key, pillar_key
 from .choice import Choice, solid_mesh_section
 from .record import PillarModel
 
-CACHE_VERSION = 1
+CACHE_VERSION = 2
 #: the most X bending modes the ROM picks from
 MAX_CANDIDATES = 12
 #: modes first asked of the loaded tube (doubled until enough X bending modes are found)
@@ -64,6 +69,9 @@ class ChainModes:
     loaded_modes: int = 0
     """how many modes of the loaded tube the 3D solve asked for (0: not a 3D source), so
     that `modal` reuses that very solve"""
+    spatial: SpatialPillarModes | None = None
+    """every mode of the loaded tube in every direction from the same 3D solve (None for a
+    beam: the spatial model takes its beam modes itself)"""
 
     def count_below(self, band_top: float) -> int:
         """How many candidate modes lie at or below ``band_top`` (rad/s), at least one."""
@@ -86,8 +94,20 @@ def modes_key(scene: Scene, mesh: dict) -> str:
         "pillar": pillar_key(p),
         **foundation_key(scene.foundation),
         "gondola": scene.gondola.mass,
+        "damping_ratio": scene.pillar.damping_ratio,
+        # the gondola as a rigid body (issue 26's keys; absent in an older scene: 0, as today)
+        "gondola_body": [
+            getattr(scene.gondola, k, 0.0) for k in ("pitch_inertia", "roll_inertia", "yaw_inertia", "height")
+        ],
         "top_model": md.top_model,
         "top_mass": md.top_mass,
+        "rotor_body": [
+            scene.rotor.mass,
+            getattr(scene.rotor, "diametral_inertia", 0.0),
+            getattr(scene.rotor, "height", 0.0),
+        ]
+        if md.top_mass == "gondola_and_rotor"
+        else None,
         "tolerance": md.tolerance,
     }
     return cache_key(args, version=CACHE_VERSION, code=_code_hash())
@@ -99,10 +119,14 @@ def _enough(omega, band_top: float) -> bool:
     return len(omega) >= MAX_CANDIDATES or len(omega) > int(np.sum(omega <= band_top))
 
 
-def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[PillarModes, TipReductionOf, int]:
-    """The loaded tube's X bending modes and the bare tube's Eq. 2 on the chain's mesh."""
+def _solid(
+    scene: Scene, pm: PillarModel, band_top: float, comm
+) -> tuple[PillarModes, TipReductionOf, int, SpatialPillarModes]:
+    """The loaded tube's X bending modes, all its modes, and the bare tube's Eq. 2 on the
+    chain's mesh."""
     from ..fem3d import modal_analysis, tip_reduction
     from ..fem3d.pillar_modes import pillar_modes_from_fem3d
+    from ..fem3d.spatial_modes import spatial_modes_from_fem3d
 
     mesh = solid_mesh_section(pm.mesh)
     n = FIRST_SOLVE
@@ -113,18 +137,19 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
             break
         n *= 2
     bare = modal_analysis(scene, top=False, n_modes=8, mesh=mesh, comm=comm)
-    modes = red = None
+    modes = red = spatial = None
     if comm is None or comm.rank == 0:
         modes = pillar_modes_from_fem3d(loaded, scene.pillar, min(len(bx), MAX_CANDIDATES))
         modes = replace(modes, source=f"fem3d:{pm.label}")
+        spatial = spatial_modes_from_fem3d(loaded, scene.pillar.damping_ratio, f"fem3d:{pm.label}")
         t = tip_reduction(bare, scene.pillar)
         red = TipReductionOf(
             t.m_reduced, t.tip_stiffness, t.omega_bending, f"Eq. 2 on the bare tube's first bending mode, {pm.label}"
         )
     if comm is not None and comm.size > 1:
-        modes, red = comm.bcast((modes, red), root=0)
-    assert modes is not None and red is not None, "rank 0 computes them, then broadcasts"
-    return modes, red, n
+        modes, red, spatial = comm.bcast((modes, red, spatial), root=0)
+    assert modes is not None and red is not None and spatial is not None, "rank 0 computes them, then broadcasts"
+    return modes, red, n, spatial
 
 
 def _beam(scene: Scene, pm: PillarModel) -> tuple[PillarModes, TipReductionOf]:
@@ -162,11 +187,12 @@ def chain_modes(
             str(path),
             0.0,
             int(doc.get("loaded_modes", FIRST_SOLVE)),
+            convert(doc["spatial"], SpatialPillarModes),
         )
     if progress:
         progress(f"chain: the 3D modes of {pm.label} for the ROM (cached after this)")
     start = time.perf_counter()
-    modes, red, asked = _solid(scene, pm, band_top, comm)
+    modes, red, asked, spatial = _solid(scene, pm, band_top, comm)
     seconds = time.perf_counter() - start
     if comm is None or comm.rank == 0:
         try:
@@ -179,11 +205,12 @@ def chain_modes(
                     "reduction": red.to_json(),
                     "seconds": seconds,
                     "loaded_modes": asked,
+                    "spatial": to_builtins(spatial),
                 },
             )
         except OSError:
             pass  # a read-only cache costs the next stage a solve, nothing else
-    return ChainModes(pm, modes, red, str(path), seconds, asked)
+    return ChainModes(pm, modes, red, str(path), seconds, asked, spatial)
 
 
 def rom_band_top(scene: Scene, motion=None) -> float:

@@ -42,11 +42,40 @@ _CACHE: OrderedDict = OrderedDict()
 CACHE_SIZE = 4
 
 
+def top_bodies(scene: Scene) -> tuple:
+    """The rigid bodies on the loaded tube's top (rotorpillar.fem3d.model.TopBody).
+
+    The gondola with its rotary inertias and its centre ``gondola.height``
+    above the top; with ``modal.top_mass = "gondola_and_rotor"`` the rotor
+    too, welded on at ``rotor.height`` with its diametral inertia on pitch
+    and yaw and none on roll (about its spin axis it spins freely: its polar
+    inertia is not carried by the structure).
+    """
+    from .model import TopBody
+
+    g, r = scene.gondola, scene.rotor
+    # the keys of issue 26 (scene/sections.py): absent in an older scene, 0 as today
+    bodies = [
+        TopBody(
+            g.mass,
+            getattr(g, "pitch_inertia", 0.0),
+            getattr(g, "roll_inertia", 0.0),
+            getattr(g, "yaw_inertia", 0.0),
+            getattr(g, "height", 0.0),
+        )
+    ]
+    if scene.modal.top_mass == "gondola_and_rotor":
+        Id = getattr(r, "diametral_inertia", 0.0)
+        bodies.append(TopBody(r.mass, Id, 0.0, Id, getattr(r, "height", 0.0)))
+    return tuple(bodies)
+
+
 def _top_settings(scene: Scene, top: bool):
+    """(top model, mass on top (kg), its bodies) of the bare (top False) or loaded tube."""
     if not top:
-        return None, 0.0
-    m = scene.gondola.mass + (scene.rotor.mass if scene.modal.top_mass == "gondola_and_rotor" else 0.0)
-    return scene.modal.top_model, m
+        return None, 0.0, ()
+    bodies = top_bodies(scene)
+    return scene.modal.top_model, sum(b.mass for b in bodies), bodies
 
 
 def assemble_pillar(scene: Scene, *, top: bool, mesh=None, comm=None, isolated: bool = True):
@@ -57,12 +86,13 @@ def assemble_pillar(scene: Scene, *, top: bool, mesh=None, comm=None, isolated: 
     """
     from .model import assemble_model
 
-    top_model, top_mass = _top_settings(scene, top)
+    top_model, top_mass, bodies = _top_settings(scene, top)
     return assemble_model(
         scene.pillar,
         scene.mesh if mesh is None else mesh,
         top_model=top_model,
         top_mass=top_mass,
+        top_bodies=bodies or None,
         comm=comm,
         isolated=isolated,
     )
@@ -95,8 +125,8 @@ def modal_analysis(
     n_modes = scene.modal.n_modes if n_modes is None else n_modes
     if n_modes == 0:
         return _band_modes(scene, top=top, mesh=mesh, comm=comm, isolated=isolated, use_cache=use_cache)
-    top_model, top_mass = _top_settings(scene, top)
-    key = (scene.pillar, mesh, top_model, top_mass, n_modes, scene.modal.tolerance, comm.size)
+    top_model, top_mass, bodies = _top_settings(scene, top)
+    key = (scene.pillar, mesh, top_model, bodies, n_modes, scene.modal.tolerance, comm.size)
     if use_cache and comm is MPI.COMM_WORLD and key in _CACHE:
         _CACHE.move_to_end(key)
         return _CACHE[key]
@@ -108,6 +138,7 @@ def modal_analysis(
             tol=scene.modal.tolerance,
             mesh_section=mesh,
             material=(scene.pillar.youngs_modulus, scene.pillar.poisson_ratio) if top else None,
+            spatial=top,
         )
     finally:
         model.K.destroy()

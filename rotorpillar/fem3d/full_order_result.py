@@ -115,8 +115,10 @@ class Fem3dTransient:
 def transient_result(case, out, stats, dofs, wall, info, motion, drive, prescribed, failed) -> Fem3dTransient:
     """The run's record from the loop's outputs: the ground's motion, the energy
     balance against the work done, and every failed check."""
+    from .full_order_loop import ground_accelerations, ground_x_displacement
+
     t = out["t"]
-    ground = motion.inertial_displacement(t)
+    ground = ground_x_displacement(motion, t)
     W = out["Omega"]
     tail = t >= t[-1] - max(0.05 * (t[-1] - t[0]), 1e-9)
     E, work = out["energy"], out["work"]
@@ -152,7 +154,7 @@ def transient_result(case, out, stats, dofs, wall, info, motion, drive, prescrib
         tip_x=out["tip_x"],
         tip_x_absolute=out["tip_x"] + ground,
         ground_x=ground,
-        ground_acceleration=motion.evaluate(t)[2],
+        ground_acceleration=ground_accelerations(motion, t)[0],
         rotor_x=out["rotor_x"],
         rotor_y=out["rotor_y"],
         plate_z=out["plate_z"],

@@ -138,3 +138,196 @@ def relative_error(a, b) -> float:
     """max |a - b| / max |b| (-)."""
     b = np.asarray(b)
     return float(np.max(np.abs(np.asarray(a) - b)) / max(np.max(np.abs(b)), 1e-300))
+
+
+# --------------------------------------------------------------------------
+# The spatial model's unbalance response (issue 26): both lateral directions,
+# static and couple unbalance, on rotorpillar.fem3d.spatial_system.
+
+#: the unbalance cases: the shaft stretched by the eccentricity, c2 e (cos, sin) (the paper's
+#: form: the rotor's coordinates are its mass centre's), the rotating moment U_c Omega**2 about
+#: its lateral axes, or both at once (the spatial ROM's rotorpillar.reduced.spatial_response)
+UNBALANCE_CASES = ("static", "couple", "both")
+
+
+@dataclass(frozen=True)
+class SpatialResponse:
+    """Complex amplitudes x(t) = Re(X e^{i Omega t}) of the rotor-pillar system's steady
+    response to one unbalance case, at the top plate and the rotor."""
+
+    case: str
+    """"static" or "couple\""""
+    speeds: np.ndarray
+    """Omega (rad/s)"""
+    top: np.ndarray
+    """(n, 6) the plate's (u_x, u_y, u_z, theta_x, theta_y, theta_z) (m, rad)"""
+    rotor: np.ndarray
+    """(n, 5 or 3) the rotor's (x, y, z[, pitch, yaw]) (m, rad)"""
+    shaft: np.ndarray
+    """(n, 2) the shaft's deflection across the spin axis, in-plane and vertical: the rotor
+    centre less the gondola's point at the rotor's height less e (cos, sin) (m)"""
+    dofs: int
+    """unknowns of the system (-)"""
+    seconds_per_speed: float
+    """wall time of one speed: the factorisation and the solves (s)"""
+
+
+def spatial_response(system, speeds, case: str = "static") -> SpatialResponse:
+    """The steady unbalance response of a RotorPillarSystem (collective).
+
+    (K - Omega**2 M + i Omega (C + Omega G)) X = F with F = c2 e (d_x - i d_z) ("static":
+    the shaft's in-plane and vertical links d stretched by the eccentricity, pulling the rotor
+    and, opposite, the gondola's point) or U_c Omega**2 (1, -i) on the spin axis' (pitch, yaw)
+    ("couple"), or their sum ("both"): each turns from +x towards +z with the rotor.  Every damping and
+    the gyroscopic term act on few dofs or have a low rank (b1, the shaft and the gyroscopic
+    matrix on the plate's and the rotor's 6 + 5 dofs, the modal damping W D W^T of rank k),
+    so per speed one real symmetric LDL^T factorisation of A = K - Omega**2 M (MUMPS; one
+    symbolic analysis for all speeds) and Woodbury's identity with the (11 + k)-square complex
+    capacitance matrix give the exact complex response:
+    X = A^-1 F - A^-1 L (I + i Omega S L^T A^-1 L)^-1 i Omega S L^T A^-1 F, L = [E, W],
+    S = diag(the 11 x 11 block, D).  Exactly at an undamped mode A is singular: a speed there
+    is refused with the mode's name left to the caller (a ComputationError).
+    """
+    from petsc4py import PETSc
+
+    from ..errors import ComputationError
+    from .block_lanczos import modal_solve_failure, shifted_cholesky
+    from .rotor_spatial import rotor_blocks, shaft_links
+
+    if case not in UNBALANCE_CASES:
+        raise ValueError(f"case must be one of {UNBALANCE_CASES}")
+    rotor, comm = system.rotor, system.model.comm
+    speeds = np.asarray(speeds, dtype=float)
+    first, nr = system.plate, 6 + rotor.dofs
+    lo, hi = system.K.getOwnershipRange()
+    n_local = hi - lo
+    mine = lo <= first < hi  # the plate's and the rotor's rows live on one rank (the last)
+    Kr, Cr, Mr, Gr = rotor_blocks(rotor, system.damping_law)
+    Cr[0, 0] += _tip_damping(system)
+    Cr[1, 1] += _tip_damping(system)
+    k = len(system.d)
+    E = np.zeros((n_local, nr))
+    if mine:
+        E[first - lo : first - lo + nr] = np.eye(nr)
+    L = np.hstack([E, system.W])
+    pitch, yaw = (9, 10) if rotor.tilts else (3, 5)
+    D = shaft_links(rotor.height, rotor.tilts)
+    static = rotor.lateral_stiffness * rotor.eccentricity * (D[0] - 1j * D[1]) if case != "couple" else 0.0
+    couple = np.zeros(nr, complex)
+    if case != "static":
+        couple[pitch], couple[yaw] = rotor.couple_unbalance, -1j * rotor.couple_unbalance
+    top, rot = np.zeros((len(speeds), 6), complex), np.zeros((len(speeds), rotor.dofs), complex)
+    A = system.K.copy()
+    ksp, _ = shifted_cholesky(A, A, 0.0)
+    start = time.perf_counter()
+    rhs = np.zeros((n_local, 2 + L.shape[1]))
+    rhs[:, 2:] = L
+    try:
+        for i, w in enumerate(speeds):
+            system.K.copy(A, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
+            A.axpy(-(w**2), system.M, structure=PETSc.Mat.Structure.SUBSET_NONZERO_PATTERN)
+            ksp.setOperators(A)
+            try:
+                ksp.setUp()
+            except PETSc.Error as exc:
+                raise modal_solve_failure("MUMPS", exc) from None
+            F = static + w * w * couple
+            if mine:
+                rhs[first - lo : first - lo + nr, 0] = F.real
+                rhs[first - lo : first - lo + nr, 1] = F.imag
+            Y = _block_solve(ksp, A, rhs)
+            Af = Y[:, 0] + 1j * Y[:, 1]
+            AL = Y[:, 2:]
+            LtAL = L.T @ AL
+            LtAf = L.T @ Af
+            if comm.size > 1:
+                LtAL, LtAf = comm.allreduce(LtAL), comm.allreduce(LtAf)
+            S = np.zeros((nr + k, nr + k), complex)
+            S[:nr, :nr] = Cr + w * Gr
+            S[nr:, nr:] = np.diag(system.d)
+            iwS = 1j * w * S
+            cap = np.eye(nr + k) + iwS @ LtAL
+            try:
+                c = np.linalg.solve(cap, iwS @ LtAf)
+            except np.linalg.LinAlgError:
+                raise ComputationError(f"the unbalance response at {w:.6g} rad/s: an undamped mode there") from None
+            X = Af - AL @ c
+            r = np.zeros(nr, complex)
+            if mine:
+                r = X[first - lo : first - lo + nr].copy()
+            if comm.size > 1:
+                r = comm.allreduce(r)
+            top[i], rot[i] = r[:6], r[6:]
+    finally:
+        ksp.destroy()
+        A.destroy()
+    per = (time.perf_counter() - start) / max(len(speeds), 1)
+    h, e = rotor.height, rotor.eccentricity if case != "couple" else 0.0
+    shaft = np.column_stack([rot[:, 0] - top[:, 0] - h * top[:, 4] - e, rot[:, 2] - top[:, 2] + 1j * e])
+    return SpatialResponse(case, speeds, top, rot, shaft, system.size, per)
+
+
+def _tip_damping(system) -> float:
+    """b1 as the system carries it: the plate's U_x entry of C less the shaft's there (N*s/m)."""
+    return float(system.tip_damping)
+
+
+def _block_solve(ksp, A, rhs: np.ndarray) -> np.ndarray:
+    """A^-1 rhs for a block of right-hand sides with the factors (MatMatSolve)."""
+    from petsc4py import PETSc
+
+    F = ksp.getPC().getFactorMatrix()
+    n_local, n = A.getLocalSize()[0], A.getSize()[0]
+    out = np.empty(rhs.shape, order="F")
+    B = PETSc.Mat().createDense(((n_local, n), (None, rhs.shape[1])), array=np.asfortranarray(rhs), comm=A.getComm())
+    X = PETSc.Mat().createDense(((n_local, n), (None, rhs.shape[1])), array=out, comm=A.getComm())
+    try:
+        F.matSolve(B, X)
+    finally:
+        B.destroy()
+        X.destroy()
+    return out
+
+
+def half_power_peaks(
+    speeds, amplitude, min_prominence: float = 2.0**0.5, floor: float = 0.0
+) -> list[tuple[float, float, float | None]]:
+    """(speed, amplitude, amplification factor) of each peak of a Bode curve (rad/s, m, -).
+
+    The AF is API 684's: the peak's speed over the half-power bandwidth, the width between
+    the speeds either side where the amplitude falls to 1/sqrt(2) of the peak (linearly
+    interpolated on the curve); None where the curve does not fall that far on both sides
+    before it rises again (no distinct peak: a shoulder).  A local maximum that does not
+    stand ``min_prominence`` times above the lower of its neighbouring minima is no peak,
+    nor one below ``floor`` (m: round-off in a direction the unbalance does not drive).
+
+    >>> w = np.linspace(0.5, 1.5, 2001)
+    >>> [round(af, 1) for _, _, af in half_power_peaks(w, 1 / np.abs(1 - w**2 + 0.02j * w))]
+    [50.0]
+    """
+    W, a = np.asarray(speeds, float), np.asarray(amplitude, float)
+    out = []
+    for i in range(1, len(W) - 1):
+        if not (a[i] >= a[i - 1] and a[i] > a[i + 1]) or a[i] < floor:
+            continue
+        level = a[i] / 2.0**0.5
+        left = right = None
+        j = i
+        while j > 0 and a[j - 1] <= a[j]:
+            j -= 1
+            if a[j] <= level:
+                left = W[j] + (level - a[j]) / (a[j + 1] - a[j]) * (W[j + 1] - W[j])
+                break
+        low_left = a[j]
+        j = i
+        while j < len(W) - 1 and a[j + 1] <= a[j]:
+            j += 1
+            if a[j] <= level:
+                right = W[j - 1] + (a[j - 1] - level) / (a[j - 1] - a[j]) * (W[j] - W[j - 1])
+                break
+        low_right = a[j]
+        if a[i] < min_prominence * max(min(low_left, low_right), 1e-300) and (left is None or right is None):
+            continue
+        af = None if left is None or right is None or right <= left else float(W[i] / (right - left))
+        out.append((float(W[i]), float(a[i]), af))
+    return out

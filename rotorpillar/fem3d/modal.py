@@ -25,6 +25,9 @@ from .model import AssembledPillar
 
 #: Two eigenvalues closer than this (relative) form a degenerate pair.
 PAIR_TOLERANCE = 1e-5
+#: An aligned pair whose Rayleigh quotients differ by less than this (relative) is one
+#: eigenvalue split by the solve's round-off (~1e-8 at modal.tolerance 1e-8): it shares their mean.
+ROUND_OFF_SPLIT = 1e-7
 
 #: The axes of the 3D model (written to modal.json as ``axes``).
 AXES = {
@@ -136,8 +139,12 @@ class ModalResult:
     section_heights: np.ndarray | None = None
     """(n_z,) heights of the element-layer cuts, base first (m); with ``material`` only"""
     section_resultants: np.ndarray | None = None
-    """(modes, n_z, 3) per normalised mode: shear V (N), bending moment M (N*m) and
-    axial force N (N, compression positive) at each cut (rotorpillar.fem3d.sections)"""
+    """(modes, n_z, 3 or 6) per normalised mode: shear V (N), bending moment M (N*m) and
+    axial force N (N, compression positive) at each cut, then (``spatial``) the shear in y
+    (N), the moment about x (N*m) and the torque (N*m) (rotorpillar.fem3d.sections)"""
+    rigid_mass: np.ndarray | None = None
+    """(3,) r_d^T M r_d along x, y, z: everything the model carries that moves with the
+    ground (the clamped nodes excluded) (kg)"""
     participation: np.ndarray | None = None
     """(modes, 3) L_j = phi_j^T M r_d for the rigid translations r_d along x, y, z of
     everything the model carries (tube and top), normalised shape (kg): a ground
@@ -302,11 +309,13 @@ def run_modal(
     sigma: float = 0.0,
     mesh_section=None,
     material: tuple[float, float] | None = None,
+    spatial: bool = False,
 ) -> ModalResult:
     """Solve, gather, name, align and normalise the modes of an assembled model.
 
     ``material`` (E in Pa, nu) adds each mode's section resultants at the
-    element-layer cuts (rotorpillar.fem3d.sections), on every rank.
+    element-layer cuts (rotorpillar.fem3d.sections), on every rank; ``spatial``
+    all six of them (else the three of the rotor's plane).
 
     One eigenpair more than asked is computed, so that a degenerate pair cut
     by ``n_modes`` is still aligned (the last mode returned is then the
@@ -350,6 +359,11 @@ def run_modal(
         Mr.append(model.M.createVecLeft())
         model.M.mult(r, Mr[-1])
         r.destroy()
+    rigid_mass = np.empty(3)
+    for d in range(3):
+        r = model.influence(d)
+        rigid_mass[d] = r.dot(Mr[d])
+        r.destroy()
     part = np.empty((n_modes, 3))
     for k in range(n_modes):
         phi.setArray(local[:, k])
@@ -362,16 +376,26 @@ def run_modal(
         v.destroy()
     for x in sol.vectors:
         x.destroy()
-    cuts = None if material is None else mode_resultants(model, local, *material)
+    cuts = None if material is None else mode_resultants(model, local, *material, spatial=spatial)
     # The Rayleigh quotient of each final vector: its Ritz value for a simple
     # mode; a degenerate pair (equal by symmetry, split ~1e-8 by round-off)
-    # gets the mean of its two.
+    # gets the mean of its two.  A pair split by the physics more than that
+    # (the gondola's roll and pitch inertias differ: the two bending planes
+    # ~1e-5 apart) keeps each its own: aligned with x and y, each is exact.
     lam = np.maximum(kk / mm, 0.0)
     for i in pairs:
-        lam[i] = lam[i + 1] = (lam[i] + lam[i + 1]) / 2
-    omega = np.sqrt(lam)
+        if abs(lam[i] - lam[i + 1]) <= ROUND_OFF_SPLIT * max(lam[i], lam[i + 1]):
+            lam[i] = lam[i + 1] = (lam[i] + lam[i + 1]) / 2
     desc = comm.bcast(desc, root=0)
     norm = comm.bcast(norm, root=0)
+    # a split pair may come out in descending order: ascending, every per-mode quantity along
+    perm = np.argsort(lam, kind="stable")
+    if np.any(perm != np.arange(n_modes)):
+        lam, mm, kk, part, T, local = lam[perm], mm[perm], kk[perm], part[perm], T[:, perm], local[:, perm]
+        desc, norm = [desc[i] for i in perm], [norm[i] for i in perm]
+        if cuts is not None:
+            cuts = (cuts[0], cuts[1][perm])
+    omega = np.sqrt(lam)
     points = vtu_cells = shapes_out = beam_line = rigid = None
     if comm.rank == 0:
         assert coords is not None
@@ -422,21 +446,23 @@ def run_modal(
         beam_line=beam_line,
         rigid_top=rigid,
         participation=part,
+        rigid_mass=rigid_mass,
         section_heights=None if cuts is None else cuts[0],
         section_resultants=None if cuts is None else cuts[1],
     )
 
 
 def mode_resultants(
-    model: AssembledPillar, local: np.ndarray, youngs_modulus: float, poisson_ratio: float
+    model: AssembledPillar, local: np.ndarray, youngs_modulus: float, poisson_ratio: float, spatial: bool = False
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(heights, (modes, n_z, 3) resultants) of the distributed mode vectors ``local``
-    (this rank's rows of the unknowns, one column per mode); collective."""
+    """(heights, (modes, n_z, 3 or 6) resultants) of the distributed mode vectors ``local``
+    (this rank's rows of the unknowns, one column per mode); collective (``spatial``: the six
+    components of rotorpillar.fem3d.sections.SPATIAL_COMPONENTS)."""
     from .sections import section_functionals
 
-    sf = section_functionals(model, youngs_modulus, poisson_ratio)
+    sf = section_functionals(model, youngs_modulus, poisson_ratio, spatial)
     part = sf.rows.T @ local
     full = model.comm.allreduce(part) if model.comm.size > 1 else part
-    out = full.reshape(len(sf.heights), 3, -1).transpose(2, 0, 1).copy()
+    out = full.reshape(len(sf.heights), sf.components, -1).transpose(2, 0, 1).copy()
     out[:, :, 2] *= -1.0
     return sf.heights, out

@@ -3,14 +3,20 @@
 The base (z = 0) is clamped.  The top (z = H) is free for the bare tube;
 with the masses on top it is one of:
 
-- ``rigid``: a rigid top plate glued to the whole top face carries the top
-  mass at the centre of the top section (0, 0, H).  The plate is 6 extra
+- ``rigid``: a rigid top plate glued to the whole top face carries the
+  bodies on top (:class:`TopBody`: the gondola, and the rotor welded on in
+  the stiff-shaft limit) as rigid bodies: each its mass, its three
+  rotary inertias about its own centre and that centre's height above the
+  top section's centre (0, 0, H), one 6 x 6 mass block on the plate's dofs
+  (with no inertia and no height: a point mass at (0, 0, H), as the
+  paper's tip mass).  The plate is 6 extra
   degrees of freedom q = (U_x, U_y, U_z, Theta_x, Theta_y, Theta_z), appended
   after the tube's dofs and owned by the last rank; every top-face node
   follows it exactly, u_i = U + Theta x (x_i - (0, 0, H)) (the top-face dofs
   are eliminated, K~ = T^T K T, and stay as inert placeholder rows).
 - ``ring_mass``: the top mass spread uniformly over the top face, no
-  stiffening (a lower bound: the top section may ovalise under the mass).
+  stiffening (a lower bound: the top section may ovalise under the mass);
+  the bodies' rotary inertias and heights are not represented.
 
 Dirichlet rows of K carry 1 on the diagonal and of M 0, so they are infinite
 eigenvalues, never returned by the shift-invert solve.
@@ -30,6 +36,54 @@ from .forms import mass_form, stiffness_form
 
 #: Extra dofs of the rigid top plate.
 RIGID_DOFS = 6
+
+
+@dataclass(frozen=True)
+class TopBody:
+    """A rigid body fixed to the top plate (SI), its axes the model's.
+
+    The plate's 6 dofs are (in the rotor's plane, along the spin axis,
+    vertical, pitch, roll, yaw) = (U_x, U_y, U_z, Theta_x, Theta_y, Theta_z).
+    """
+
+    mass: float
+    """its mass (kg)"""
+    pitch_inertia: float = 0.0
+    """about the horizontal axis in the rotor's plane (x) through its own centre (kg*m**2)"""
+    roll_inertia: float = 0.0
+    """about the spin axis (y) through its own centre (kg*m**2)"""
+    yaw_inertia: float = 0.0
+    """about the vertical (z) through its own centre (kg*m**2)"""
+    height: float = 0.0
+    """its centre above the top section's centre (0, 0, H) (m)"""
+
+    def mass_block(self) -> np.ndarray:
+        """The 6 x 6 mass matrix of the body on the plate's dofs (kg, kg*m, kg*m**2).
+
+        Its centre moves with U + Theta x (0, 0, h) = (U_x + h Theta_y,
+        U_y - h Theta_x, U_z); kinetic energy 1/2 m |that|**2 + 1/2 the
+        rotations' inertia about the centre, so the block is R^T m R +
+        diag(0, 0, 0, I_x, I_y, I_z) with R = [1, -[d]x], d = (0, 0, h):
+        the parallel-axis terms m h**2 on pitch and roll, m h between the
+        translation and the rotation that carries the centre along it.
+
+        >>> TopBody(2.0, 1.0, 3.0, 5.0, height=0.5).mass_block()[[0, 1, 3, 4], [4, 3, 3, 4]]
+        array([ 1. , -1. ,  1.5,  3.5])
+        """
+        m, h = self.mass, self.height
+        B = np.zeros((6, 6))
+        B[0, 0] = B[1, 1] = B[2, 2] = m
+        B[0, 4] = B[4, 0] = m * h
+        B[1, 3] = B[3, 1] = -m * h
+        B[3, 3] = self.pitch_inertia + m * h * h
+        B[4, 4] = self.roll_inertia + m * h * h
+        B[5, 5] = self.yaw_inertia
+        return B
+
+
+def top_mass_block(bodies) -> np.ndarray:
+    """The sum of the bodies' 6 x 6 mass blocks on the plate (see TopBody.mass_block)."""
+    return sum((b.mass_block() for b in bodies), np.zeros((6, 6)))
 
 
 @dataclass
@@ -71,6 +125,8 @@ class AssembledPillar:
     """local indices of the owned nodes on the top face"""
     T: Any = None
     """rigid top only: the tube's dofs u = T x from the unknowns x of K and M"""
+    top_block: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
+    """rigid top: the bodies' 6 x 6 mass block on the plate's dofs (kg, kg*m, kg*m**2)"""
     timings: dict = field(default_factory=dict)
 
     @property
@@ -177,12 +233,17 @@ def assemble_model(
     *,
     top_model: str | None = None,
     top_mass: float = 0.0,
+    top_bodies: tuple[TopBody, ...] | None = None,
     comm=None,
     isolated: bool = True,
     mesh_data: MeshData | None = None,
     clamped: bool = True,
 ) -> AssembledPillar:
     """Mesh (Gmsh), assemble K and M (dolfinx) and add the top; see the module docstring.
+
+    ``top_bodies``: the rigid bodies on a rigid top (None: one point mass
+    ``top_mass`` at the top section's centre); their masses must sum to
+    ``top_mass``.
 
     ``clamped`` False leaves the base free too (a free-free tube, for tests
     against ring theory): K is then singular and a solve needs sigma < 0.
@@ -244,8 +305,12 @@ def assemble_model(
     tube_dofs = 3 * V.dofmap.index_map.size_global
     extra = 0
     T = None
+    bodies = (TopBody(top_mass),) if top_bodies is None else tuple(top_bodies)
+    if top_model == "rigid" and abs(sum(b.mass for b in bodies) - top_mass) > 1e-12 * max(top_mass, 1.0):
+        raise ValueError("the top bodies' masses must sum to top_mass")
+    block = top_mass_block(bodies)
     if top_model == "rigid":
-        K, M, T = _rigid_top(K, M, V, comm, top_nodes, params.height, top_mass, tube_dofs)
+        K, M, T = _rigid_top(K, M, V, comm, top_nodes, params.height, block, tube_dofs)
         extra = RIGID_DOFS
     elif top_model not in (None, "ring_mass"):
         raise ValueError(f"unknown top model {top_model!r}")
@@ -267,6 +332,7 @@ def assemble_model(
         base_dofs,
         top_nodes,
         T,
+        block if top_model == "rigid" else np.zeros((6, 6)),
         timings,
     )
 
@@ -280,8 +346,8 @@ def _congruence(A, T):
         AT.destroy()
 
 
-def _rigid_top(K, M, V, comm, top_nodes, height, top_mass, tube_dofs):
-    """K~ = T^T K T and M~ = T^T M T + plate mass: the tube with its rigid top plate.
+def _rigid_top(K, M, V, comm, top_nodes, height, block, tube_dofs):
+    """K~ = T^T K T and M~ = T^T M T + the bodies' 6 x 6 ``block``: the tube with its rigid top plate.
 
     T maps the reduced unknowns (every tube dof but the top face's, which stay
     as inert placeholders, then the plate's q) to the tube's dofs: identity
@@ -321,8 +387,8 @@ def _rigid_top(K, M, V, comm, top_nodes, height, top_mass, tube_dofs):
     for i in top_rows:
         Kt.setValue(start + i, start + i, 1.0, addv=PETSc.InsertMode.INSERT_VALUES)
     if last:
-        for j in range(3):
-            Mt.setValue(N + j, N + j, top_mass, addv=PETSc.InsertMode.ADD_VALUES)
+        for i, j in zip(*np.nonzero(block)):
+            Mt.setValue(N + i, N + j, block[i, j], addv=PETSc.InsertMode.ADD_VALUES)
     Kt.assemble()
     Mt.assemble()
     K.destroy()

@@ -163,6 +163,7 @@ def plate_and_rotor(
     gamma: float,
     g: tuple[float, float, float, float],
     weight: float = 1.0,
+    coupling: float | None = None,
 ):
     """(U_x, U_z, x_r, y_r) at the new time as Affine functions of the new theta.
 
@@ -172,13 +173,15 @@ def plate_and_rotor(
     factorised operator; ``gamma`` = -w c2 e (1 - w c2 / k_r), the condensed
     unbalance load on the plate per unit cos/sin (N); ``rho_x``, ``rho_y``
     the rotor centre's history terms (N) (``Step.history``); ``weight`` w =
-    1 - alpha_f, the new time's share of the shaft force.
+    1 - alpha_f, the new time's share of the shaft force; ``coupling`` kappa, the step's
+    stiffness between the rotor centre and the plate (default w c2; w c2 + the dashpot's
+    share when b2 acts on the motion relative to the plate).
     """
     c2e = weight * rotor.shaft_stiffness * rotor.eccentricity
     gNN, gZN, gNZ, gZZ = g
     Ux = Affine(ux_hat, gamma * gNN, gamma * gZN)
     Uz = Affine(uz_hat, gamma * gNZ, gamma * gZZ)
-    c2 = weight * rotor.shaft_stiffness
+    c2 = weight * rotor.shaft_stiffness if coupling is None else coupling
     xr = Affine((rho_x + c2 * Ux.a0) / kr, (c2e + c2 * Ux.ac) / kr, c2 * Ux.as_ / kr)
     yr = Affine((rho_y + c2 * Uz.a0) / kr, c2 * Uz.ac / kr, (c2e + c2 * Uz.as_) / kr)
     return Ux, Uz, xr, yr

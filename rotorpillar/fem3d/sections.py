@@ -36,8 +36,11 @@ from typing import Any
 
 import numpy as np
 
-#: the components of a cut's resultant, in this order
+#: the components of a cut's resultant, in this order: the planar three, then (``spatial``) the
+#: shear along y, the moment about x through the section's centre (w = e_x x (x, y, 0) = (0, 0, y))
+#: and the torque about z (w = (-y, x, 0)), the same rule: the part above on the part below
 COMPONENTS = ("shear", "moment", "axial")
+SPATIAL_COMPONENTS = COMPONENTS + ("shear_y", "moment_x", "torque")
 
 
 def cut_heights(params) -> np.ndarray:
@@ -59,11 +62,15 @@ class SectionFunctionals:
     comm: Any
     """the MPI communicator (mpi4py)"""
 
+    components: int = 3
+    """3 (shear in x, moment about y, axial) or 6 (and shear in y, moment about x, torque)"""
+
     def resultants(self, x) -> np.ndarray:
-        """(n_z, 3) shear V (N), moment M (N*m) and axial force N (N, compression
-        positive) at each cut for the model's unknowns ``x`` (a PETSc Vec; collective)."""
+        """(n_z, 3 or 6) shear V (N), moment M (N*m) and axial force N (N, compression
+        positive) at each cut for the model's unknowns ``x`` (a PETSc Vec; collective),
+        then (6) the shear in y (N), the moment about x (N*m) and the torque (N*m)."""
         local = self.rows.T @ x.getArray(readonly=True)
-        out = (self.comm.allreduce(local) if self.comm.size > 1 else local).reshape(-1, 3)
+        out = (self.comm.allreduce(local) if self.comm.size > 1 else local).reshape(-1, self.components)
         out[:, 2] *= -1.0
         return out
 
@@ -71,8 +78,11 @@ class SectionFunctionals:
         self.rows = np.zeros((0, 0))
 
 
-def section_functionals(model, youngs_modulus: float, poisson_ratio: float) -> SectionFunctionals:
-    """The functionals L_q of every cut of an AssembledPillar (collective).
+def section_functionals(
+    model, youngs_modulus: float, poisson_ratio: float, spatial: bool = False
+) -> SectionFunctionals:
+    """The functionals L_q of every cut of an AssembledPillar (collective); ``spatial``: the
+    six components (SPATIAL_COMPONENTS), else the planar three.
 
     One compiled vector form, its two coefficients (the layer weight chi,
     piecewise constant, and the cut's rigid field w) set per cut and component.
@@ -114,19 +124,26 @@ def section_functionals(model, youngs_modulus: float, poisson_ratio: float) -> S
         dofmap_cells = Q.dofmap.list.array
         chi.x.array[dofmap_cells] = weights
         on_cut = np.abs(coords[:, 2] - zk) <= tol
-        for q in range(3):
+        for q in range(6 if spatial else 3):
             field = np.zeros((n_nodes, 3))
             if q == 0:
                 field[on_cut, 0] = 1.0
             elif q == 1:
                 field[on_cut, 2] = -coords[on_cut, 0]
-            else:
+            elif q == 2:
                 field[on_cut, 2] = 1.0
+            elif q == 3:
+                field[on_cut, 1] = 1.0
+            elif q == 4:
+                field[on_cut, 2] = coords[on_cut, 1]
+            else:
+                field[on_cut, 0] = -coords[on_cut, 1]
+                field[on_cut, 1] = coords[on_cut, 0]
             w.x.array[:] = field.ravel()
             vec = fem.petsc.assemble_vector(form)
             vec.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
             columns.append(_to_unknowns(model, vec))
-    return SectionFunctionals(heights, np.column_stack(columns), model.comm)
+    return SectionFunctionals(heights, np.column_stack(columns), model.comm, 6 if spatial else 3)
 
 
 def _to_unknowns(model, vec) -> np.ndarray:

@@ -3,7 +3,7 @@
 - ``step_operator``: Keff = wf K + cm M + the plate's rows (its dashpot and the
   rotor centre condensed onto it), factorised once (MUMPS Cholesky: K and M are
   symmetric, the plate's terms positive);
-- ``Plate``: reads and adds the plate's U_x and U_z rows on any rank count;
+- ``Plate``: reads and adds the plate's rows (U_x, U_y, U_z) on any rank count;
 - ``add_shaft_acceleration``: the consistent initial acceleration.
 """
 
@@ -12,16 +12,16 @@ from __future__ import annotations
 import numpy as np
 
 
-def step_operator(K, M, N: int, plate_x: float, plate_z: float, wf: float, cm: float, comm):
-    """(ksp, Keff, (plate_x, plate_z)): Keff = wf K + cm M + plate_x on row N (the plate's
-    U_x) + plate_z on row N + 2 (its U_z), factorised."""
+def step_operator(K, M, plate_rows: dict, wf: float, cm: float, comm):
+    """(ksp, Keff, the values added): Keff = wf K + cm M + ``plate_rows[row]`` on each of the
+    plate's diagonal rows given (global row: N/m), factorised."""
     from petsc4py import PETSc
 
     Keff = K.copy()
     Keff.scale(wf)
     Keff.axpy(cm, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
     lo, hi = Keff.getOwnershipRange()
-    for row, value in ((N, plate_x), (N + 2, plate_z)):
+    for row, value in plate_rows.items():
         if lo <= row < hi:
             Keff.setValue(row, row, value, addv=PETSc.InsertMode.ADD_VALUES)
     Keff.assemble()
@@ -32,7 +32,7 @@ def step_operator(K, M, N: int, plate_x: float, plate_z: float, wf: float, cm: f
     ksp.getPC().setType("cholesky")
     ksp.getPC().setFactorSolverType("mumps")
     ksp.setUp()
-    return ksp, Keff, (plate_x, plate_z)
+    return ksp, Keff, tuple(plate_rows.values())
 
 
 class Plate:
