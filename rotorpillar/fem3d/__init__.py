@@ -84,6 +84,7 @@ def assemble_pillar(scene: Scene, *, top: bool, mesh=None, comm=None, isolated: 
     ``mesh`` (a scene ``Mesh`` section) replaces ``scene.mesh``; ``top`` adds
     the masses on top as ``scene.modal`` says (rigid plate or ring mass).
     """
+    from ..reduced.foundation import foundation_stiffness
     from .model import assemble_model
 
     top_model, top_mass, bodies = _top_settings(scene, top)
@@ -95,6 +96,7 @@ def assemble_pillar(scene: Scene, *, top: bool, mesh=None, comm=None, isolated: 
         top_bodies=bodies or None,
         comm=comm,
         isolated=isolated,
+        foundation=foundation_stiffness(scene.foundation),
     )
 
 
@@ -126,7 +128,7 @@ def modal_analysis(
     if n_modes == 0:
         return _band_modes(scene, top=top, mesh=mesh, comm=comm, isolated=isolated, use_cache=use_cache)
     top_model, top_mass, bodies = _top_settings(scene, top)
-    key = (scene.pillar, mesh, top_model, bodies, n_modes, scene.modal.tolerance, comm.size)
+    key = (scene.pillar, scene.foundation, mesh, top_model, bodies, n_modes, scene.modal.tolerance, comm.size)
     if use_cache and comm is MPI.COMM_WORLD and key in _CACHE:
         _CACHE.move_to_end(key)
         return _CACHE[key]

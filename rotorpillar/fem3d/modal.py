@@ -136,6 +136,8 @@ class ModalResult:
     """per bending_x mode index: (z levels, mean u_x per level), rank 0"""
     rigid_top: np.ndarray | None = None
     """(modes, 6) the rigid plate's q = (U, Theta) per normalised mode, rank 0"""
+    base_plate: np.ndarray | None = None
+    """on a flexible foundation: (modes, 6) the base plate's q per normalised mode, rank 0"""
     section_heights: np.ndarray | None = None
     """(n_z,) heights of the element-layer cuts, base first (m); with ``material`` only"""
     section_resultants: np.ndarray | None = None
@@ -169,6 +171,7 @@ class ModalResult:
             tip=self.tip[:n],
             shapes=cut(self.shapes),
             rigid_top=cut(self.rigid_top),
+            base_plate=cut(self.base_plate),
             participation=cut(self.participation),
             section_resultants=cut(self.section_resultants),
             beam_line=None if self.beam_line is None else {i: v for i, v in self.beam_line.items() if i < n},
@@ -335,7 +338,7 @@ def run_modal(
     coords = model.gather_coordinates()
     n_nodes = model.tube_dofs // 3
     raw = [model.gather_vector(model.tube_displacement(x)) for x in sol.vectors]
-    raw_q = [model.gather_vector(x) for x in sol.vectors] if model.extra_dofs else None
+    raw_q = [model.gather_vector(x) for x in sol.vectors] if model.extra_dofs or model.base_plate is not None else None
     desc = T = norm = pairs = None
     if comm.rank == 0:
         # rank 0 holds the gathered arrays (None elsewhere)
@@ -396,7 +399,7 @@ def run_modal(
         if cuts is not None:
             cuts = (cuts[0], cuts[1][perm])
     omega = np.sqrt(lam)
-    points = vtu_cells = shapes_out = beam_line = rigid = None
+    points = vtu_cells = shapes_out = beam_line = rigid = base_plate = None
     if comm.rank == 0:
         assert coords is not None
         shapes_n = (np.stack([r for r in raw if r is not None], axis=1) @ T).T.reshape(n_modes, n_nodes, 3)
@@ -406,8 +409,12 @@ def run_modal(
         for k, d in enumerate(desc):
             if d.kind == "bending_x":
                 beam_line[k] = (rings.levels.copy(), identify.level_mean(rings, shapes_n[k][:, 0]))
-        if raw_q is not None:
+        if raw_q is not None and model.extra_dofs:
             rigid = (np.stack([q[model.tube_dofs :] for q in raw_q if q is not None], axis=1) @ T).T.copy()
+        if raw_q is not None and model.base_plate is not None:
+            at = np.asarray(model.base_plate)
+            q0 = np.stack([np.where(at >= 0, q[np.maximum(at, 0)], 0.0) for q in raw_q if q is not None], axis=1)
+            base_plate = (q0 @ T).T.copy()
     timings["postprocess"] = time.perf_counter() - t0
     ms = mesh_section
     cell_type = model.params.cell_type if ms is None else ms.cell_type
@@ -445,6 +452,7 @@ def run_modal(
         shapes=shapes_out,
         beam_line=beam_line,
         rigid_top=rigid,
+        base_plate=base_plate,
         participation=part,
         rigid_mass=rigid_mass,
         section_heights=None if cuts is None else cuts[0],

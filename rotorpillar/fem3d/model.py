@@ -1,7 +1,10 @@
 """The tube as a dolfinx model: mesh, function space, K and M in PETSc.
 
-The base (z = 0) is clamped.  The top (z = H) is free for the bare tube;
-with the masses on top it is one of:
+The base (z = 0) is clamped, or, on a flexible foundation, tied to a rigid
+base plate that stands on the foundation's springs (rotorpillar.fem3d.
+rigid_faces: its 6 dofs take the rows of six of the base face's own, so the
+model keeps its size and its top plate's place).  The top (z = H) is free
+for the bare tube; with the masses on top it is one of:
 
 - ``rigid``: a rigid top plate glued to the whole top face carries the
   bodies on top (:class:`TopBody`: the gondola, and the rotor welded on in
@@ -33,6 +36,7 @@ import numpy as np
 from ..errors import ComputationError
 from ..mesh import BASE, TOP, MeshData, TubeMeshParams, tube_mesh_data
 from .forms import mass_form, stiffness_form
+from .rigid_faces import RigidFace, base_carriers, foundation_block, tie_faces
 
 #: Extra dofs of the rigid top plate.
 RIGID_DOFS = 6
@@ -124,10 +128,15 @@ class AssembledPillar:
     top_nodes: np.ndarray
     """local indices of the owned nodes on the top face"""
     T: Any = None
-    """rigid top only: the tube's dofs u = T x from the unknowns x of K and M"""
+    """rigid top or base on springs: the tube's dofs u = T x from the unknowns x of K and M"""
     top_block: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     """rigid top: the bodies' 6 x 6 mass block on the plate's dofs (kg, kg*m, kg*m**2)"""
     timings: dict = field(default_factory=dict)
+    base_plate: np.ndarray | None = None
+    """on a flexible foundation: (6,) the global rows holding the base plate's q = (U_x, U_y,
+    U_z, Theta_x, Theta_y, Theta_z), -1 where the foundation holds that motion; None: clamped"""
+    rotation_rows: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64))
+    """this rank's local rows holding the base plate's rotations (a translation's influence is 0 there)"""
 
     @property
     def size(self) -> int:
@@ -154,6 +163,7 @@ class AssembledPillar:
         arr = r.getArray()
         arr[:] = 0.0
         arr[direction : 3 * n_local : 3] = 1.0
+        arr[self.rotation_rows] = 0.0  # the base plate's rotations, on a flexible foundation
         if self.extra_dofs and self.comm.rank == self.comm.size - 1:
             arr[3 * n_local + direction] = 1.0
         r.setArray(arr)
@@ -215,18 +225,6 @@ def dolfinx_mesh(data: MeshData | None, comm):
     return mesh, tags
 
 
-def _rigid_links(coords: np.ndarray, height: float) -> np.ndarray:
-    """R (3 n, 6): nodal displacements of a rigid motion q of the plane z = H about (0, 0, H)."""
-    d = coords - np.array([0.0, 0.0, height])
-    R = np.zeros((len(d), 3, 6))
-    R[:, 0, 0] = R[:, 1, 1] = R[:, 2, 2] = 1.0
-    # Theta x d = -[d]x Theta
-    R[:, 0, 4], R[:, 0, 5] = d[:, 2], -d[:, 1]
-    R[:, 1, 3], R[:, 1, 5] = -d[:, 2], d[:, 0]
-    R[:, 2, 3], R[:, 2, 4] = d[:, 1], -d[:, 0]
-    return R.reshape(-1, 6)
-
-
 def assemble_model(
     pillar,
     mesh_section,
@@ -238,6 +236,7 @@ def assemble_model(
     isolated: bool = True,
     mesh_data: MeshData | None = None,
     clamped: bool = True,
+    foundation=None,
 ) -> AssembledPillar:
     """Mesh (Gmsh), assemble K and M (dolfinx) and add the top; see the module docstring.
 
@@ -247,6 +246,8 @@ def assemble_model(
 
     ``clamped`` False leaves the base free too (a free-free tube, for tests
     against ring theory): K is then singular and a solve needs sigma < 0.
+    ``foundation`` (rotorpillar.reduced.foundation.FoundationStiffness): the base
+    tied to a rigid plate on its springs instead of the clamp.
     """
     from .dolfinx_import import import_dolfinx
 
@@ -292,8 +293,10 @@ def assemble_model(
         area = comm.allreduce(fem.assemble_scalar(fem.form(one * ds(TOP))))
         m = m + mass_form(u, v, top_mass / area, ds(TOP))
     base = fem.locate_dofs_topological(V, 2, tags.find(BASE))
-    if not clamped:
+    base_nodes = np.sort(base[base < V.dofmap.index_map.size_local])
+    if not clamped or foundation is not None:
         base = base[:0]
+    clamped = clamped and foundation is None
     bcs = [fem.dirichletbc(np.zeros(3, dtype=PETSc.ScalarType), base, V)] if clamped else []
     K = fem.petsc.assemble_matrix(fem.form(a), bcs=bcs, diagonal=1.0)
     K.assemble()
@@ -309,11 +312,19 @@ def assemble_model(
     if top_model == "rigid" and abs(sum(b.mass for b in bodies) - top_mass) > 1e-12 * max(top_mass, 1.0):
         raise ValueError("the top bodies' masses must sum to top_mass")
     block = top_mass_block(bodies)
-    if top_model == "rigid":
-        K, M, T = _rigid_top(K, M, V, comm, top_nodes, params.height, block, tube_dofs)
-        extra = RIGID_DOFS
-    elif top_model not in (None, "ring_mass"):
+    if top_model not in (None, "rigid", "ring_mass"):
         raise ValueError(f"unknown top model {top_model!r}")
+    faces = []
+    if top_model == "rigid":
+        extra = RIGID_DOFS
+        faces.append(RigidFace(top_nodes, params.height, tube_dofs + np.arange(RIGID_DOFS), block, np.zeros((6, 6))))
+    plate, rotation_rows = None, np.empty(0, dtype=np.int64)
+    if foundation is not None:
+        springs, free = foundation_block(foundation)
+        plate, rotation_rows = base_carriers(V, comm, base_nodes, free)
+        faces.append(RigidFace(base_nodes, 0.0, plate, np.zeros((6, 6)), springs))
+    if faces:
+        K, M, T = tie_faces(K, M, V, comm, faces, tube_dofs, extra)
     timings["assembly"] = time.perf_counter() - t0
     base_dofs = np.sort(np.concatenate([3 * base + c for c in range(3)]))
     return AssembledPillar(
@@ -334,66 +345,9 @@ def assemble_model(
         T,
         block if top_model == "rigid" else np.zeros((6, 6)),
         timings,
+        plate,
+        rotation_rows,
     )
-
-
-def _congruence(A, T):
-    """T^T A T, as T^T (A T): PETSc's PtAP for AIJ is ~6x slower on these matrices."""
-    AT = A.matMult(T)
-    try:
-        return T.transposeMatMult(AT)
-    finally:
-        AT.destroy()
-
-
-def _rigid_top(K, M, V, comm, top_nodes, height, block, tube_dofs):
-    """K~ = T^T K T and M~ = T^T M T + the bodies' 6 x 6 ``block``: the tube with its rigid top plate.
-
-    T maps the reduced unknowns (every tube dof but the top face's, which stay
-    as inert placeholders, then the plate's q) to the tube's dofs: identity
-    off the top face, u_i = R_i q on it.  An exact constraint, no penalty.
-    """
-    from petsc4py import PETSc
-
-    n_local = 3 * V.dofmap.index_map.size_local
-    start = 3 * V.dofmap.index_map.local_range[0]
-    last = comm.rank == comm.size - 1
-    n_extra_local = RIGID_DOFS if last else 0
-    N = tube_dofs
-    R = _rigid_links(V.tabulate_dof_coordinates()[top_nodes], height)  # (3 n_top, 6)
-    top_rows = (3 * top_nodes[:, None] + np.arange(3)).ravel()  # local rows
-    is_top = np.zeros(n_local, dtype=bool)
-    is_top[top_rows] = True
-    # A top row holds an explicit 0 on its own column, so that K~ keeps a
-    # diagonal slot for the placeholder (inserting new nonzeros is slow).
-    counts = np.where(is_top, RIGID_DOFS + 1, 1)
-    indptr = np.zeros(n_local + 1, dtype=PETSc.IntType)
-    np.cumsum(counts, out=indptr[1:])
-    indices = np.empty(indptr[-1], dtype=PETSc.IntType)
-    values = np.empty(indptr[-1], dtype=PETSc.ScalarType)
-    indices[indptr[:-1]] = start + np.arange(n_local)
-    values[indptr[:-1]] = np.where(is_top, 0.0, 1.0)
-    slots = indptr[top_rows][:, None] + 1 + np.arange(RIGID_DOFS)
-    indices[slots] = N + np.arange(RIGID_DOFS)
-    values[slots] = R
-    T = PETSc.Mat().createAIJ(
-        ((n_local, N), (n_local + n_extra_local, N + RIGID_DOFS)), csr=(indptr, indices, values), comm=comm
-    )
-    T.assemble()
-    Kt, Mt = _congruence(K, T), _congruence(M, T)
-    for A in (Kt, Mt):
-        A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
-    # Placeholders: K_ii = 1, M_ii = 0, like Dirichlet rows (infinite eigenvalues).
-    for i in top_rows:
-        Kt.setValue(start + i, start + i, 1.0, addv=PETSc.InsertMode.INSERT_VALUES)
-    if last:
-        for i, j in zip(*np.nonzero(block)):
-            Mt.setValue(N + i, N + j, block[i, j], addv=PETSc.InsertMode.ADD_VALUES)
-    Kt.assemble()
-    Mt.assemble()
-    K.destroy()
-    M.destroy()
-    return Kt, Mt, T
 
 
 def check_finite(A, name: str) -> None:

@@ -59,10 +59,13 @@ def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:
     idx = idx[:count]
     if result.beam_line is None:
         raise InputError("the 3D modes carry no beam line (not on MPI rank 0?)")
-    L, shapes, heights = [], [], None
+    L, shapes, heights, rotation = [], [], None, []
+    plate = getattr(result, "base_plate", None)
     for i in idx:
         z, phi = result.beam_line[i]
         z, phi = np.asarray(z, float), np.asarray(phi, float)
+        if plate is not None:
+            rotation.append(plate[i, 4] / phi[-1])  # Theta_y turns the tube's upper part along +x
         phi = phi / phi[-1]  # unit tip, as the result normalises
         if pillar.is_uniform:
             L.append(section_of(pillar).mass_per_length * integrate_levels(z, phi) + result.top_mass * phi[-1])
@@ -100,6 +103,7 @@ def pillar_modes_from_fem3d(result, pillar, count: int) -> PillarModes:
             "participation_by": "Simpson along the section-mean deflection",
         },
         **resultants,
+        base_rotation=None if plate is None else np.array(rotation),
     )
 
 
