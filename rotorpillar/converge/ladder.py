@@ -19,6 +19,18 @@
 
 Each rung is a :class:`Case`; :func:`ladder` lists them for a scene, and
 :func:`estimated_seconds` guesses their cost for the progress bar.
+
+The counts along the height were set on the paper's tube (20 m, 2 m
+across: 10 diameters tall).  A taller, more slender tower needs as many
+more cells along for the same cell shape and the same resolution of its
+bending mode: the shell's and the bending-only family's elements along
+scale by the tower's height over its mean diameter, over the paper's 10
+(``along_scale``; 1 for the paper's scenes; the 3D families follow the
+scene's own [mesh] in proportion).  On a flexible foundation the shell
+families leave the ladder: the shell model has no base springs (the 3D
+model's base plate carries them, rotorpillar.fem3d.rigid_faces); a tower
+of several cans needs a beam element per can at least, and its lower
+rungs are left out.
 """
 
 from __future__ import annotations
@@ -172,8 +184,21 @@ def _case(family: str, level: int, **params) -> Case:
     return Case(family, level, tuple(sorted(params.items())))
 
 
-def _along(around: int) -> int:
-    return max(1, int(round(ALONG_PER_AROUND * around)))
+#: the paper's tube: height over diameter, the slenderness the counts along were set on
+PAPER_SLENDERNESS = 10.0
+
+
+def along_scale(scene: Scene) -> float:
+    """How many times the paper's counts along a tower needs: its height over its mean
+    outer diameter over the paper's 10, at least 1 (-)."""
+    p = scene.pillar
+    segs = p.segments()
+    mean_d = sum(s.length * (s.outer_bottom + s.outer_top) / 2 for s in segs) / p.height
+    return max(1.0, p.height / mean_d / PAPER_SLENDERNESS)
+
+
+def _along(around: int, scale: float = 1.0) -> int:
+    return max(1, int(round(ALONG_PER_AROUND * around * scale)))
 
 
 def ladder(scene: Scene) -> list[Case]:
@@ -184,19 +209,23 @@ def ladder(scene: Scene) -> list[Case]:
     so that Richardson sees one family of similar meshes.
     """
     cv, ms = scene.converge, scene.mesh
+    scale, cans = along_scale(scene), len(scene.pillar.segments())
     cases = [_case("closed_form", 0)]
-    cases += [_case("beam_euler", n, theory="euler", elements=n) for n in EULER_LEVELS]
-    cases += [_case("beam_timoshenko", n, theory="timoshenko", elements=n) for n in TIMOSHENKO_LEVELS]
+    cases += [_case("beam_euler", n, theory="euler", elements=n) for n in EULER_LEVELS if n >= cans]
+    cases += [_case("beam_timoshenko", n, theory="timoshenko", elements=n) for n in TIMOSHENKO_LEVELS if n >= cans]
+    shells = scene.foundation.kind == "clamped"
     for name, cell in (("shell_quad", QUADRILATERAL), ("shell_tri", TRIANGLE)):
         top = cv.shell_max_around if cell == QUADRILATERAL else cv.shell_tri_max_around
         cases += [
-            _case(name, n, elements_around=n, elements_along=_along(n), cell_type=cell, degree=2)
+            _case(name, n, elements_around=n, elements_along=_along(n, scale), cell_type=cell, degree=2)
             for n in AROUND_LEVELS
-            if n <= top
+            if n <= top and shells
         ]
+    sweep_along = max(SWEEP_ALONG, int(round(SWEEP_ALONG * scale)))
     cases += [
-        _case("shell_quad_around", n, elements_around=n, elements_along=SWEEP_ALONG, cell_type=QUADRILATERAL, degree=2)
+        _case("shell_quad_around", n, elements_around=n, elements_along=sweep_along, cell_type=QUADRILATERAL, degree=2)
         for n in SWEEP_AROUND
+        if shells
     ]
     if cv.solid:
         ratio = ms.elements_along / ms.elements_around
@@ -242,13 +271,14 @@ def ladder(scene: Scene) -> list[Case]:
                 "solid_hex_p2_along",
                 n,
                 elements_around=ALONG_FAMILY_AROUND,
-                elements_along=n,
+                elements_along=max(n, int(round(n * scale))),
                 elements_through=ms.elements_through,
                 cell_type=HEXAHEDRON,
                 degree=2,
                 grading=ms.grading,
             )
             for n in ALONG_LEVELS
+            if n * scale >= cans
         ]
     return cases
 

@@ -51,6 +51,7 @@ from .runs import section_averaging, section_runs
 from .state import Build, Product, ReportOptions, attempt, debugging, say
 from .study import section_study
 from .summary import section_summary
+from .tower import section_tower
 
 if TYPE_CHECKING:
     from ...scene import Scene
@@ -67,6 +68,7 @@ SECTIONS = [
     ("summary", "Summary", section_summary),
     ("scene", "The scene", section_scene),
     ("modal", "Modal validation", section_modal),
+    ("tower", "The tower", section_tower),
     ("paper", "The paper's numbers against ours", section_paper),
     ("averaging", "Passage through resonance", section_averaging),
     ("unbalance", "Unbalance response (Bode) and separation margins", section_unbalance),
