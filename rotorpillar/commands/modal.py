@@ -107,6 +107,7 @@ def modal_command(scene: Scene, args, timings):
     from ..fem3d import modal_analysis
     from ..fem3d.modal_summary import modal_summary, summary
     from ..fem3d.output import write_modes_vtu
+    from ..reduced.foundation import base_springs
     from ..reduced.reduction import pillar_closed_forms
 
     quiet_jit_logging()
@@ -173,7 +174,7 @@ def modal_command(scene: Scene, args, timings):
         timings[key] = bare.timings.get(key, 0.0) + loaded.timings.get(key, 0.0)
         timings[f"bare.{key}"] = bare.timings.get(key, 0.0)
         timings[f"with_top.{key}"] = loaded.timings.get(key, 0.0)
-    found = modal_summary(scene, bare, loaded, pillar_closed_forms(scene.pillar))
+    found = modal_summary(scene, bare, loaded, pillar_closed_forms(scene.pillar, base_springs(scene.foundation)))
     doc = found.to_json()
     files = {}
     if _rank0():

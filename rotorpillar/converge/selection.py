@@ -108,6 +108,12 @@ def reference_uncertainty(reference: Reference) -> dict[str, float]:
     return {q: r.error_estimate / abs(r.value) for q, r in reference.items()}
 
 
+#: fewest elements around of a chosen 3D or shell model: the chain names its modes (bending in x,
+#: ovalling ...) from their harmonics around, and with fewer than 16 nodes around (8 quadratic
+#: cells) the bending pair's harmonic aliases higher ones (the around-only sweep's 4 and 6 show it)
+MIN_AROUND = 8
+
+
 def needed_quantities(reference: Reference, band: ExcitationBand) -> list[str]:
     """The quantities whose reference frequency lies inside the band."""
     return [q for q in QUANTITIES if q in reference and reference[q].value <= band.omega_max]
@@ -173,6 +179,11 @@ def select_model(
     meets: list[ConvergenceRun] = []
     rejected: list[tuple[ConvergenceRun, float, str]] = []
     for r in ok_runs:
+        around = r.params.get("elements_around")
+        if isinstance(around, int) and around < MIN_AROUND:
+            # the chain names this model's modes (bending in x, ...): too few nodes around alias them
+            rejected.append((r, math.inf, f"{around} elements around: too few to name its modes"))
+            continue
         missing = [q for q in needed if r.frequency(q) is None]
         if missing:
             rejected.append((r, math.inf, "no " + " and no ".join(missing) + " mode"))

@@ -71,6 +71,8 @@ class StressRecovery:
     frames: int = FRAMES
     times: list = field(default_factory=list)
     resultants: list = field(default_factory=list)
+    base_motion: list = field(default_factory=list)
+    """on a flexible foundation: the base plate's (U_x, Theta_y) at each output time (m, rad)"""
 
     def attach(self, model) -> None:
         """Build the functionals and the projection on the assembled model."""
@@ -99,6 +101,13 @@ class StressRecovery:
         r = self._sections.resultants(x)
         self.times.append(float(t))
         self.resultants.append(r)
+        plate = self._model.base_plate
+        if plate is not None:
+            # the plate's U_x and Theta_y live in two rows of one rank (rotorpillar.fem3d.rigid_faces)
+            lo, hi = x.getOwnershipRange()
+            arr = x.getArray(readonly=True)
+            mine = [arr[c - lo] if c >= 0 and lo <= c < hi else 0.0 for c in (plate[0], plate[4])]
+            self.base_motion.append(self._model.comm.allreduce(np.array(mine)))
         for key, col in (("moment", 1), ("shear", 0)):
             if abs(r[0, col]) > self._peaks[key][0]:
                 old = self._peaks[key][2]

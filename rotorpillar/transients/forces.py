@@ -402,12 +402,14 @@ def stress_observer(scene: Scene, duration: float, field_dir, stem: str):
     return StressRecovery(scene.pillar, top_mass(scene), float(duration), path)
 
 
-def with_fem3d_forces(scene: Scene, run, recovered, heights):
+def with_fem3d_forces(scene: Scene, run, recovered, heights, plate=None):
     """fem3d: ``recovered`` = StressRecovery.finish()'s (t, resultants, von Mises, xdmf path),
-    ``heights`` its cuts' (m)."""
+    ``heights`` its cuts' (m), ``plate`` its base plate's (U_x, Theta_y) per output time on a
+    flexible foundation (StressRecovery.base_motion)."""
     from pathlib import Path
 
     t, res, vm, path = recovered
+    base_motion = None if not plate else (np.asarray(plate)[:, 0], np.asarray(plate)[:, 1])
     shaft, force = _shaft_of_series(scene, run.data)
     heights = np.asarray(heights, dtype=float)
     summary, series = _summarise(
@@ -423,6 +425,7 @@ def with_fem3d_forces(scene: Scene, run, recovered, heights):
         res[:, :, 2],
         None,
         shaft,
+        base_motion,
         von_mises=vm,
         stress_field=None if path is None else Path(path).name,
     )

@@ -378,7 +378,11 @@ def _run_fem3d(
         excitation_in_model=r.model.get("forcing") if case == "earthquake" else None,
     )
     return with_fem3d_forces(
-        scene, ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None), recovered, observer.heights
+        scene,
+        ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None),
+        recovered,
+        observer.heights,
+        observer.base_motion,
     )
 
 
