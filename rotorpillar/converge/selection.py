@@ -389,6 +389,9 @@ def select_reference(
     unc = reference_uncertainty(reference)
     err: dict[int, float] = {}
     for r in runs:
+        around = r.params.get("elements_around")
+        if isinstance(around, int) and around < MIN_AROUND:
+            continue  # its loaded modes cannot be named (see MIN_AROUND)
         if r.status == "ok" and FAMILIES[r.family].model == "solid" and (max_dofs is None or _cost(r.dofs) <= max_dofs):
             e = band_error(r, wanted, unc)
             if e is not None:

@@ -36,6 +36,7 @@ from ..scene import Pillar
 from ..scene.tower import Segment, segment_index
 from .beam_fe import GAUSS_POINTS as BEAM_GAUSS
 from .beam_fe import BaseSprings, BeamLine
+from .foundation import FoundationStiffness
 from .pillar import (
     TubeSection,
     cantilever_curvature,
@@ -195,6 +196,30 @@ def element_nodes(pillar: Pillar, n_elements: int) -> NDArray[np.float64]:
         return np.asarray(np.linspace(0.0, H, n_elements + 1), dtype=float)
     parts = [np.linspace(s.bottom, s.top, c + 1)[:-1] for s, c in zip(segs, counts)]
     return np.asarray(np.r_[np.concatenate(parts), H], dtype=float)
+
+
+def top_compliances(
+    pillar: Pillar, springs: FoundationStiffness | None = None, elements: int = 64
+) -> tuple[float, float]:
+    """(horizontal, axial) static compliance of the tube's top (m/N): a horizontal top force on
+    the Euler-Bernoulli beam (``elements``, each with its own section; on the foundation's
+    rocking and horizontal springs), an axial one through int dz / (E A) (and the vertical
+    spring); the uniform clamped tube's H**3 / (3 E I) and H / (E A) to the beam's accuracy."""
+    from .beam_fe import assemble
+
+    base = None if springs is None else springs.base_springs()
+    K, _ = assemble(tower_line(pillar, elements), elements, "euler", 0.0, 0.0, base)
+    f = np.zeros(K.shape[0])
+    f[-2] = 1.0
+    horizontal = float(np.linalg.solve(K, f)[-2])
+    axial = 0.0
+    for s in pillar.segments():
+        zq = s.bottom + GAUSS_POINTS * s.length
+        area = math.pi / 4 * (s.outer_diameter(zq) ** 2 - s.inner_diameter(zq) ** 2)
+        axial += float(np.sum(GAUSS_WEIGHTS / area) * s.length) / pillar.youngs_modulus
+    if springs is not None and springs.vertical is not None:
+        axial += 1.0 / springs.vertical
+    return horizontal, axial
 
 
 def tower_line(pillar: Pillar, n_elements: int) -> BeamLine:

@@ -240,12 +240,23 @@ def case_band_top(scene: Scene, case: str, motion=None) -> float:
 
 def load_participation(scene: Scene, case: str, study_dir: Path | None = None, motion=None) -> ParticipationTable:
     """The participation of the loaded tube's modes in ``case``."""
+    from ..reduced.foundation import foundation_stiffness
     from ..reduced.pillar import section_of
+    from ..reduced.tower import top_compliances, tower_mass
 
     rows, source, mesh = loaded_mode_rows(scene, study_dir)
-    p, sec = scene.pillar, section_of(scene.pillar)
-    total = sec.mass_per_length * p.height + scene.gondola.mass
-    compliance = (p.height**3 / (3 * p.youngs_modulus * sec.second_moment), p.height / (p.youngs_modulus * sec.area))
+    p = scene.pillar
+    springs = foundation_stiffness(scene.foundation)
+    if p.is_uniform and springs is None:
+        sec = section_of(p)
+        total = sec.mass_per_length * p.height + scene.gondola.mass
+        compliance = (
+            p.height**3 / (3 * p.youngs_modulus * sec.second_moment),
+            p.height / (p.youngs_modulus * sec.area),
+        )
+    else:
+        total = tower_mass(p) + scene.gondola.mass
+        compliance = top_compliances(p, springs)
     return participation_table(
         rows, case, case_band_top(scene, case, motion), total, compliance, source=source, mesh=mesh
     )

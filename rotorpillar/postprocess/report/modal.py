@@ -114,8 +114,10 @@ def timoshenko_orders(scene: Scene, count: int) -> list[float | None]:
     from ...reduced.pillar import cowper_shear_coefficient, omega_timoshenko, section_of
 
     p = scene.pillar
+    if not p.is_uniform or scene.foundation.kind != "clamped":
+        return [None] * count  # a uniform tube's on a clamp (analyze.json's closed forms say what stands instead)
     sec = section_of(p)
-    kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
+    kappa = cowper_shear_coefficient(sec.outer_diameter, sec.inner_diameter, p.poisson_ratio)
     out: list[float | None] = []
     for k in range(1, count + 1):
         try:

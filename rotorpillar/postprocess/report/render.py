@@ -318,8 +318,8 @@ def render_animations(build: Build, sets: dict) -> None:
     top = sets.get("top")
     for name, sim, title, opts in animated_runs(build):
         if top is None and "fallback_tube" not in build.products:
-            p = build.scene.pillar
-            build.products["fallback_tube"] = cantilever_tube(p.height, p.outer_diameter, p.inner_diameter)
+            p, base = build.scene.pillar, build.scene.pillar.segments()[0]
+            build.products["fallback_tube"] = cantilever_tube(p.height, base.outer_bottom, base.inner_bottom)
         ms = top if top is not None else build.products["fallback_tube"]
         say(f"animation of the {name} ({build.options.max_frames} frames at most)")
         r = attempt(
