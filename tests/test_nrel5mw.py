@@ -17,11 +17,14 @@ Tolerances:
   (347,374 kg), within 5e-4.
 - The rotor-nacelle assembly: 110,000 kg rotor and 240,000 kg nacelle
   (Tables 1-1 and 4-1), rated speed 12.1 rpm (Table 1-1), three blades.
-- The published first tower frequencies (Table 9-1, FAST: fore-aft 0.3240 Hz,
-  side-side 0.3120 Hz) belong to the whole turbine with flexible blades;
-  ours take the assembly rigid, and adding flexibility lowers every
-  frequency (Rayleigh's principle): ours on the published clamp must lie
-  above both, by less than 10 % (the blades' coupling is a few per cent).
+- The published first tower frequencies (Table 9-1: FAST 0.3240 Hz fore-aft,
+  0.3120 Hz side-side; ADAMS, a finite-element tower, 0.3195 and 0.3164 Hz)
+  belong to the whole turbine with flexible blades; ours take the assembly
+  as one rigid body, and stiffening the blades only raises frequencies
+  (Rayleigh's principle): ours on the published clamp must lie above
+  ADAMS's, by less than 5 % (the blades' coupling is a few per cent).
+  FAST's tower is itself two assumed shapes per direction (an upper bound
+  of its own): ours within 5 % of its values either way.
 - The footing on soil only softens: its first frequency lies below the
   clamped one, by less than the clamped tower's own first frequency falls
   with the rotation of a rigid base under a moment (a bound: 5 %).
@@ -70,13 +73,22 @@ def test_tower_mass_and_the_assembly(scene):
     assert d.torque_at_zero - d.slope * rated == pytest.approx(L.coefficient * rated**2, rel=1e-3)
 
 
-def test_ours_lie_above_the_published_full_system_frequencies(scene):
-    p = scene.pillar
-    top = scene.gondola.mass + scene.rotor.mass
-    ours = beam_pillar_modes(p, top, 1, "timoshenko", 200).omega[0] / (2 * math.pi)
-    for published in (scene.reference.first_fore_aft_frequency, scene.reference.first_side_side_frequency):
-        assert published is not None
-        assert published < ours < 1.10 * published
+ADAMS = {"fore-aft": 0.3195, "side-side": 0.3164}  # Table 9-1, the ADAMS column (Hz)
+
+
+def test_ours_bound_the_published_full_system_frequencies_from_above(scene):
+    from rotorpillar.analysis.tower import tower_findings
+
+    t = tower_findings(scene, 1.0, "-")
+    ours = {"fore-aft": t.frequencies[0].clamped, "side-side": t.frequencies[1].clamped}
+    for k, adams in ADAMS.items():
+        assert adams < ours[k] < 1.05 * adams
+    fast = {
+        "fore-aft": scene.reference.first_fore_aft_frequency,
+        "side-side": scene.reference.first_side_side_frequency,
+    }
+    for k, value in fast.items():
+        assert value is not None and ours[k] == pytest.approx(value, rel=0.05)
 
 
 def test_the_footing_softens_the_tower_by_a_few_per_cent(scene):

@@ -78,7 +78,7 @@ def summary(result: AnalysisResult) -> str:
 
 def tower_lines(t) -> list[str]:
     """The tower's block: first frequencies clamped and on the foundation, the published beside ours."""
-    out = [f"Tower: {t.cans} can(s), {t.tower_mass:.6g} kg, {t.top_mass:.6g} kg on top"]
+    out = [f"Tower: {t.cans} can{'s' if t.cans > 1 else ''}, {t.tower_mass:.6g} kg, {t.top_mass:.6g} kg on top"]
     for f in t.frequencies:
         on = "" if f.on_foundation is None else f", on the foundation {f.on_foundation:.4f} Hz ({100 * f.shift:+.2f} %)"
         out.append(f"  first bending: {f.clamped:.4f} Hz clamped{on}: {f.model}")

@@ -213,7 +213,8 @@ def _tower_closed_forms(p: Pillar, base: BaseSprings | None) -> PillarClosedForm
     w_timo = float(beam_modes(beam_line(p, n), n, "timoshenko", 1, base=base).omega[0])
     where = []
     if not p.is_uniform:
-        where.append(f"a tower of {len(p.segments())} can(s), tapered or stepped")
+        n = len(p.segments())
+        where.append("a tapered tube (one can)" if n == 1 else f"a tower of {n} cans, tapered or stepped")
     if base is not None:
         where.append("on the foundation's springs")
     statement = (

@@ -30,7 +30,7 @@ def section_tower(build: Build) -> str | None:
     parts = [
         h.tag(
             "p",
-            f"{t.cans} can(s), {h.num(t.tower_mass)} kg of steel, {h.num(t.top_mass)} kg on top (gondola and "
+            f"{t.cans} can{'s' if t.cans > 1 else ''}, {h.num(t.tower_mass)} kg of steel, {h.num(t.top_mass)} kg on top (gondola and "
             "rotor). First bending frequencies, each model on a clamp and on the scene's foundation:",
         )
     ]
