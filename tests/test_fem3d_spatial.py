@@ -349,3 +349,45 @@ def test_spatial_unbalance_response_against_the_planar_3d_response():
     assert np.allclose(r.top[:, 0], planar.tip, rtol=1e-6, atol=0.0)
     assert np.allclose(r.shaft[:, 0], planar.shaft, rtol=1e-6, atol=0.0)
     assert np.max(np.abs(r.top[:, 1])) < 1e-8 * np.max(np.abs(r.top[:, 0]))  # nothing along the spin axis
+
+
+@pytest.mark.slow
+def test_the_six_section_resultants_in_statics():
+    """Source 10: loads on the rigid top plate, P along x, S along the spin axis (y), Q along
+    the axis and a torque T about it: at every element-layer cut, by equilibrium, V_x = P,
+    M_y = P (H - z), N = -Q (compression positive), V_y = S, M_x = -S (H - z) (the moment
+    about +x of a force along +y above the cut), T; the cuts' functionals read the nodal
+    forces of the elements beside the cut, so to round-off: 1e-7 (as tests/test_fem3d_engineering.py
+    for the planar three).  The base's peaks as base_reactions_six reads them."""
+    from petsc4py import PETSc
+
+    from rotorpillar.fem3d import assemble_pillar
+    from rotorpillar.fem3d.sections import section_functionals
+    from rotorpillar.fem3d.stress_records import base_reactions_six
+
+    s = load_scene("paper")
+    model = assemble_pillar(s, top=True, mesh=SMALL)
+    ksp = PETSc.KSP().create(model.comm)
+    ksp.setOperators(model.K)
+    ksp.setType("preonly")
+    ksp.getPC().setType("lu")
+    ksp.getPC().setFactorSolverType("mumps")
+    b, x = model.K.createVecLeft(), model.K.createVecRight()
+    b.set(0.0)
+    P, S, Q, T = 1.0e5, -4.0e4, -3.0e4, 2.0e5
+    for i, value in enumerate((P, S, Q, 0.0, 0.0, T)):
+        b.setValue(model.tube_dofs + i, value)
+    b.assemble()
+    ksp.solve(b, x)
+    sf = section_functionals(model, s.pillar.youngs_modulus, s.pillar.poisson_ratio, spatial=True)
+    R = sf.resultants(x)
+    H, z = s.pillar.height, sf.heights
+    n = len(z)
+    expected = np.column_stack([np.full(n, P), P * (H - z), np.full(n, -Q), np.full(n, S), -S * (H - z), np.full(n, T)])
+    scale = np.max(np.abs(expected), axis=0)
+    assert np.max(np.abs(R - expected) / scale) < 1e-7
+    six = base_reactions_six(np.zeros(1), R[None])
+    assert [c.peak for c in six.components] == pytest.approx(list(np.abs(expected[0])), rel=1e-7)
+    assert six.overturning_moment == pytest.approx(H * math.hypot(P, S), rel=1e-7)
+    for obj in (ksp, b, x, model.K, model.M):
+        obj.destroy()
