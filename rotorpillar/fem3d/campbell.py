@@ -111,7 +111,7 @@ def campbell_fem3d(
 
     from . import assemble_pillar
     from .critical_speeds import critical_speeds
-    from .quadratic_eigen import METHODS, solve_quadratic, solve_quadratic_toar, stiffness_factor
+    from .quadratic_eigen import METHODS, Products, solve_quadratic, solve_quadratic_toar, stiffness_factor
     from .spatial_system import assemble_system
 
     speeds = np.asarray(speeds, dtype=float)
@@ -151,11 +151,12 @@ def campbell_fem3d(
         ksp, factor = stiffness_factor(system.K)
         timings["factorisation"] = time.perf_counter() - t0
         t0 = time.perf_counter()
-        tracker = BranchTracker(system, comm)
+        ops = Products(system, 0.0, factor, comm)
+        tracker = BranchTracker(system, comm, ops)
         seeds, solves, worst = None, 0, 0.0
         for i, w in enumerate(speeds):
             if method == "block":
-                q = solve_quadratic(system, float(w), radius, factor, tol=scene.modal.tolerance, seeds=seeds)
+                q = solve_quadratic(system, float(w), radius, factor, tol=scene.modal.tolerance, seeds=seeds, ops=ops)
                 seeds = q.seeds
             else:
                 n_want = max(8, 2 * tracker.alive + 4)
@@ -168,7 +169,7 @@ def campbell_fem3d(
         timings["speeds"] = time.perf_counter() - t0
         t0 = time.perf_counter()
         branches = tracker.branches(len(speeds))
-        criticals = critical_speeds(system, radius, speeds, branches, factor)
+        criticals = critical_speeds(system, radius, speeds, branches, factor, ops)
         timings["critical_speeds"] = time.perf_counter() - t0
     finally:
         if ksp is not None:

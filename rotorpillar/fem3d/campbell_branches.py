@@ -39,8 +39,11 @@ ROTOR_MODE = 0.5
 class BranchTracker:
     """The branches across the speeds: values, vectors, names (module text)."""
 
-    def __init__(self, system, comm):
+    def __init__(self, system, comm, ops=None):
+        from .quadratic_eigen import Products
+
         self.sys, self.comm = system, comm
+        self.ops = Products(system, 0.0, None, comm) if ops is None else ops
         self.items: list[dict] = []
         self.rotor = system.rotor
         lo, hi = system.K.getOwnershipRange()
@@ -65,42 +68,19 @@ class BranchTracker:
 
     def energies(self, X: np.ndarray) -> np.ndarray:
         """x^H M x of each column (kg per unit**2)."""
-        M = self.sys.M
-        x, y = M.createVecRight(), M.createVecLeft()
-        out = np.zeros(X.shape[1])
-        for c in range(X.shape[1]):
-            for part in (X[:, c].real, X[:, c].imag):
-                x.setArray(np.ascontiguousarray(part))
-                M.mult(x, y)
-                out[c] += x.dot(y)
-        x.destroy()
-        y.destroy()
-        return out
+        if not X.shape[1]:
+            return np.zeros(0)
+        MX = self.ops.mass(X.real.copy(order="F")) + 1j * self.ops.mass(X.imag.copy(order="F"))
+        return np.real(self.ops._sum_cols(np.conj(X) * MX))
 
     def quadratic_forms(self, speed: float, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(q^H M q, q^H (C + speed G) q, q^H K q) of each column (complex)."""
-        sysm = self.sys
-        x, y = sysm.M.createVecRight(), sysm.M.createVecLeft()
-        out = np.zeros((3, Q.shape[1]), complex)
-        for c in range(Q.shape[1]):
-            q = Q[:, c]
-            for k, apply in enumerate(
-                (
-                    lambda a, b: sysm.M.mult(a, b),
-                    lambda a, b: sysm.damping_mult(speed, a, b),
-                    lambda a, b: sysm.K.mult(a, b),
-                )
-            ):
-                parts = []
-                for part in (q.real, q.imag):
-                    x.setArray(np.ascontiguousarray(part))
-                    apply(x, y)
-                    parts.append(y.getArray(readonly=True).copy())
-                Aq = parts[0] + 1j * parts[1]
-                out[k, c] = self._sum(np.vdot(q, Aq))
-        x.destroy()
-        y.destroy()
-        return out[0], out[1], out[2]
+        keep = self.ops.speed
+        self.ops.speed = speed
+        try:
+            return self.ops.forms(Q)
+        finally:
+            self.ops.speed = keep
 
     def rayleigh(self, speed: float, Q: np.ndarray, guess: np.ndarray) -> np.ndarray:
         """Each column's eigenvalue by the quadratic Rayleigh quotient: the root of
