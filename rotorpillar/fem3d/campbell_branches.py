@@ -124,9 +124,9 @@ class BranchTracker:
         R = self.rows(X)
         energy = self.energies(X)
         new = [c for c in range(len(s)) if c not in taken]
-        kinds = self.kinds(X, R, new, energy) if new else {}
-        for c in new:
-            self.items.append({"at": {i: c}, "vec": None, "kind": kinds[c], "vals": {}})
+        kinds = self.kinds(X, R, new, energy) if new else []
+        for c, kind in zip(new, kinds):
+            self.items.append({"at": {i: c}, "vec": None, "kind": kind, "vals": {}})
         for b in self.items:
             c = b["at"].get(i)
             if c is None:
@@ -134,12 +134,12 @@ class BranchTracker:
             b["vec"] = X[:, c].copy()
             b["vals"][i] = (s[c], self.whirl(R[:, c], energy[c]))
 
-    def kinds(self, X: np.ndarray, R: np.ndarray, cols: list[int], energy: np.ndarray) -> dict[int, str]:
-        """The kinds of the new modes (module text)."""
+    def kinds(self, X: np.ndarray, R: np.ndarray, cols: list[int], energy: np.ndarray) -> list[str]:
+        """The kinds of the modes ``cols``, in their order (module text)."""
         from . import identify
 
         model = self.sys.model
-        out: dict[int, str] = {}
+        out: list[str] = []
         coords = model.gather_coordinates()
         rings = identify.rings_of(coords, model.params.height) if coords is not None else None
         m, Id = self.rotor.mass, self.rotor.diametral_inertia
@@ -151,13 +151,13 @@ class BranchTracker:
                 ROTOR_TILT: Id * (abs(r[9]) ** 2 + abs(r[10]) ** 2) if self.rotor.tilts else 0.0,
             }
             if sum(shares.values()) > ROTOR_MODE * energy[c]:
-                out[c] = max(shares, key=lambda k: shares[k])
+                out.append(max(shares, key=lambda k: shares[k]))
                 continue
             v = X[:, c] * np.exp(-0.5j * np.angle(self._sum(np.sum(X[:, c] * X[:, c]))))  # the most real
             u = self._tube_shape(v.real)
             desc = identify.describe_mode(None, u, rings) if u is not None else None
             desc = self.comm.bcast(desc, root=0)
-            out[c] = kind_words(desc.kind, desc.n_circumferential)
+            out.append(kind_words(desc.kind, desc.n_circumferential))
         return out
 
     def _sum(self, a):

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..scene import Scene
+
 
 @dataclass(frozen=True)
 class HarmonicResponse:
@@ -334,7 +336,7 @@ def half_power_peaks(
 
 
 def scene_spatial_response(
-    scene, speeds, *, mesh=None, case: str = "both", damping_law: str = "gondola", comm=None
+    scene: Scene, speeds, *, mesh=None, case: str = "both", damping_law: str = "gondola", comm=None
 ) -> SpatialResponse:
     """The scene's 3D unbalance response (``spatial_response``) on ``mesh`` (a scene Mesh
     section; default ``scene.mesh``): the tube with the gondola on its rigid top, the rotor on
