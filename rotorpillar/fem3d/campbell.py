@@ -55,6 +55,12 @@ FIRST_SPEED = 4.0
 BASIS_COLUMNS = 200
 
 
+#: speeds of the 3D unbalance response around each critical speed for its AF (with_af)
+AF_POINTS = 25
+#: the curves whose peak gives a critical speed's AF: the shaft, the rotor and the top
+AF_CURVES = ("shaft x", "shaft z", "rotor x", "rotor z", "top x", "top y", "top z")
+
+
 class CampbellEstimate(Record, frozen=True):
     """The size of a 3D Campbell diagram before it starts."""
 
@@ -102,11 +108,14 @@ def campbell_fem3d(
     method: str = "block",
     running_speed: float | None = None,
     max_seconds: float = MAX_SECONDS,
+    with_af: bool = False,
     comm=None,
     progress=None,
 ) -> CampbellDiagram:
     """The 3D Campbell diagram at ``speeds`` (rad/s) of the modes up to ``band_top`` (rad/s) on
-    ``mesh`` (a scene Mesh section; default ``scene.mesh``); see the module text.  Collective."""
+    ``mesh`` (a scene Mesh section; default ``scene.mesh``); see the module text.  ``with_af``:
+    each critical speed the unbalance drives gets the AF of the 3D unbalance response's peak
+    near it (``amplification_factors``: AF_POINTS speeds of the response each).  Collective."""
     from mpi4py import MPI
 
     from . import assemble_pillar
@@ -171,6 +180,10 @@ def campbell_fem3d(
         branches = tracker.branches(len(speeds))
         criticals = critical_speeds(system, radius, speeds, branches, factor, ops)
         timings["critical_speeds"] = time.perf_counter() - t0
+        if with_af:
+            t0 = time.perf_counter()
+            criticals = amplification_factors(system, criticals, branches, speeds)
+            timings["af"] = time.perf_counter() - t0
     finally:
         if ksp is not None:
             ksp.destroy()
@@ -210,3 +223,71 @@ def campbell_fem3d(
         notes=notes,
         warnings=tuple(warnings),
     )
+
+
+def amplification_factors(system, criticals, branches, speeds) -> list:
+    """The critical speeds with the AF of the 3D unbalance response's peak near each one the
+    unbalance drives, read as the spatial ROM reads its own (rotorpillar.reduced.spatial_response:
+    ``peaks_from_samples`` on each of its PEAK_CURVES, the half-power points on the sampled
+    curve, then ``peak_near``: of the peaks within 15 % the one with the largest AF): the 3D
+    response (static and couple at once) at AF_POINTS speeds over +-45 % of it and as many over
+    +-4 zeta (zeta of its branch there); None where no curve shows a peak near it."""
+    from ..records import replace
+    from ..reduced.spatial_response import (
+        PEAK_CURVES,
+        ROTATIONS,
+        ResponseCurve,
+        SpatialResponse,
+        peak_near,
+        peaks_from_samples,
+    )
+    from .harmonic import spatial_response
+
+    out = []
+    for c in criticals:
+        if c.excited_by == "neither":
+            out.append(c)
+            continue
+        zeta = 0.01
+        for b in branches:
+            if b.label == c.label and b.damping_ratio is not None:
+                z = np.asarray(b.damping_ratio, float)
+                ok = np.isfinite(z)
+                if np.any(ok):
+                    zeta = float(np.interp(c.speed, speeds[ok], z[ok]))
+        u = np.linspace(-1.0, 1.0, AF_POINTS)
+        grid = np.unique(c.speed * np.r_[1 + 0.45 * u, 1 + min(max(4 * zeta, 1e-3), 0.45) * u])
+        r = spatial_response(system, grid, "both")
+        samples = {
+            "shaft_x": r.shaft[:, 0],
+            "shaft_z": r.shaft[:, 1],
+            "rotor_x": r.rotor[:, 0],
+            "rotor_y": r.rotor[:, 1],
+            "rotor_z": r.rotor[:, 2],
+            "tip_x": r.top[:, 0],
+            "tip_y": r.top[:, 1],
+            "tip_z": r.top[:, 2],
+            "top_pitch": r.top[:, 3],
+            "top_yaw": r.top[:, 5],
+        }
+        # each peak's share of the largest response in the window, rotations times the height
+        # (the ROM's share is of the whole curve's largest: over +-45 % the same for these peaks)
+        H = system.model.params.height
+        amp = {name: np.abs(samples[name]) * (H if name in ROTATIONS else 1.0) for name in PEAK_CURVES}
+        largest = max(float(np.max(a)) for a in amp.values()) or 1.0
+        curves = tuple(
+            ResponseCurve(
+                name,
+                name,
+                np.abs(samples[name]),
+                np.zeros(len(grid)),
+                tuple(
+                    replace(p, share=p.amplitude * (H if name in ROTATIONS else 1.0) / largest)
+                    for p in peaks_from_samples(name, grid, np.abs(samples[name]))
+                ),
+            )
+            for name in PEAK_CURVES
+        )
+        peak = peak_near(SpatialResponse(grid, 0.0, 0.0, curves, ()), c.speed)
+        out.append(replace(c, amplification_factor=None if peak is None else peak.amplification_factor))
+    return out
