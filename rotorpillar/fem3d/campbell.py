@@ -47,10 +47,14 @@ from .rotor_spatial import SpatialRotor
 
 #: the time a 3D Campbell may take before it is refused (s)
 MAX_SECONDS = 3600.0
-#: seconds per speed per dof**1.5 (measured: 0.6-0.8 s a speed at 24,200 dofs, 2-core machine,
-#: shared), and the first speed's extra (no start from a previous one), in speeds
-SECONDS_PER_DOF15 = 2.0e-7
-FIRST_SPEED = 4.0
+#: seconds per speed per dof**1.5: 2.4-2.7 s a speed at 24,200 dofs measured on the 2-core
+#: machine shared with other jobs (bench/bench_campbell_fem3d.py; ~1 s when it is quiet); the
+#: assembly, the modes for the damping and the critical speeds' pencil cost ~15 speeds more; with
+#: the AFs, ~2 x AF_POINTS speeds of the unbalance response (~0.4 of a Campbell speed each) per
+#: critical speed, ~8 of them.  An estimate, stated as one.
+SECONDS_PER_DOF15 = 6.5e-7
+FIRST_SPEED = 15.0
+AF_SPEEDS = 8 * 2 * 25 * 0.4
 #: basis columns of a speed, for the memory estimate (block method: ~60-200 columns, 2 n each)
 BASIS_COLUMNS = 200
 
@@ -74,13 +78,13 @@ class CampbellEstimate(Record, frozen=True):
     """estimated peak memory (bytes)"""
 
 
-def estimate(scene: Scene, n_speeds: int, mesh=None) -> CampbellEstimate:
+def estimate(scene: Scene, n_speeds: int, mesh=None, with_af: bool = False) -> CampbellEstimate:
     """The run's size from the scene alone (no mesh built)."""
     from ..mesh import tube_params
 
     p = tube_params(scene.pillar, scene.mesh if mesh is None else mesh)
     dofs = int(p.estimated_dofs + 11)
-    seconds = SECONDS_PER_DOF15 * dofs**1.5 * (n_speeds + FIRST_SPEED)
+    seconds = SECONDS_PER_DOF15 * dofs**1.5 * (n_speeds + FIRST_SPEED + (AF_SPEEDS if with_af else 0.0))
     need = p.estimated_bytes + 8.0 * 2 * dofs * BASIS_COLUMNS
     return CampbellEstimate(dofs, int(n_speeds), float(seconds), float(need))
 
@@ -136,7 +140,7 @@ def campbell_fem3d(
         raise InputError('the 3D Campbell hangs the rotor on its shaft: modal.top_mass must be "gondola"')
     comm = MPI.COMM_WORLD if comm is None else comm
     say = progress or (lambda m: None)
-    est = estimate(scene, len(speeds), mesh)
+    est = estimate(scene, len(speeds), mesh, with_af)
     check_budget(est, max_seconds)
     say(f"campbell (3D): {len(speeds)} speeds on ~{est.dofs:,} DOFs, about {est.seconds:.0f} s (estimate)")
     timings: dict[str, float] = {}
