@@ -162,7 +162,7 @@ def test_transient_observer_resultants_and_xdmf(tmp_path):
     heights = obs.heights
     N0 = axial_force(heights, section_of(s.pillar).mass_per_length, s.pillar.height, top)
     assert res[0, :, 2] == pytest.approx(N0, rel=1e-9)
-    assert res.shape == (len(t), 11, 3)
+    assert res.shape == (len(t), 11, 6)  # all six components (issue 26): the planar three first
     text = (tmp_path / "run.xdmf").read_text()
     assert "von_mises" in text and "displacement" in text and (tmp_path / "run.h5").exists()
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".xdmf-")]

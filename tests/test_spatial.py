@@ -26,6 +26,10 @@
   rotor moves its axis towards +x (dH/dt = M with H = J Omega (a_z, -1, -a_x)): after
   time T, J Omega a_z + I_d a_x' = M T - k int(a_x) (the angular-momentum balance about
   x), checked at 1e-4 of M T (the integrator's rtol 1e-10 on the states).
+- **Base reactions by equilibrium**: with every mode of a 6-element beam (the mode
+  displacement method is then exact), static loads at the top (a moment M about y, a
+  force F along y, a torque T) give the base M_y = M, V_y = F, M_x = -F H, torsion T,
+  and the axial force the weights: the round-off of the modal sums, 1e-8.
 - **Half-power AF**: the rotor on its shaft on a rigid support, damping ratio zeta,
   forced by c2 e (a constant force: the mass-centre form): r_peak = sqrt(1 - 2 zeta**2)
   and r_{1,2}**2 = 1 - 2 zeta**2 -+ 2 zeta sqrt(1 - zeta**2) exactly, so
@@ -46,6 +50,7 @@ from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.pillar_modes import beam_pillar_modes
 from rotorpillar.reduced.rotor_models import modal_model
 from rotorpillar.reduced.spatial_beam import beam_spatial_modes
+from rotorpillar.reduced.spatial_forces import base_reactions
 from rotorpillar.reduced.spatial_linear import critical_speeds, damped_modes, mode_kind, mode_whirl
 from rotorpillar.reduced.spatial_model import spatial_model, tilt_example
 from rotorpillar.reduced.spatial_modes import BENDING_IN_PLANE, TORSION
@@ -208,3 +213,23 @@ def test_half_power_af_of_a_single_mode():
     u1, u2 = (1 - 2 * zeta**2 + s * 2 * zeta * math.sqrt(1 - zeta**2) for s in (-1, 1))
     assert peaks[0].speed == pytest.approx(r_peak * wn, rel=1e-7)
     assert peaks[0].amplification_factor == pytest.approx(r_peak / (math.sqrt(u2) - math.sqrt(u1)), rel=1e-7)
+
+
+def test_base_reactions_by_equilibrium():
+    s = load_scene("paper")
+    modes = beam_spatial_modes(s.pillar, s.gondola, 100, "timoshenko", 6)  # every mode of each line
+    m = spatial_model(modes, s.rotor, s.shaft, 0.0)
+    pm = m.modes
+    M, F, T, H = 5100.0, 2e3, 700.0, s.pillar.height
+    load = np.array([0.0, F, 0.0, 0.0, M, T])
+    q = np.zeros((1, m.n))
+    q[0, : pm.count] = (pm.top @ load) / pm.modal_stiffness  # the static modal coordinates
+    r = base_reactions(m, np.zeros(1), q, s.pillar, s.gondola.mass)
+    assert float(r.moment_y[0]) == pytest.approx(M, rel=1e-8)
+    assert float(r.shear_y[0]) == pytest.approx(F, rel=1e-8)
+    assert float(r.moment_x[0]) == pytest.approx(-F * H, rel=1e-8)
+    assert float(r.torque[0]) == pytest.approx(T, rel=1e-8)
+    assert abs(float(r.shear_x[0])) < 1e-8 * F
+    weight = 9.80665 * (s.pillar.density * math.pi / 4 * (2.0**2 - 1.96**2) * H + s.gondola.mass + s.rotor.mass)
+    assert float(r.axial_force[0]) == pytest.approx(weight, rel=1e-12)
+    assert float(r.moment[0]) == pytest.approx(math.hypot(M, F * H), rel=1e-8)

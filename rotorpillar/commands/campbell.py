@@ -124,7 +124,8 @@ def summary_text(d) -> str:
             )
     lines.append("critical speeds (the 1x line crossing a mode):")
     for c in d.critical_speeds:
-        af = "no peak" if c.amplification_factor is None else f"AF {c.amplification_factor:.3g}"
+        none = "no peak" if d.model == "modal" else "AF not read (the unbalance response is `rotorpillar harmonic`'s)"
+        af = none if c.amplification_factor is None else f"AF {c.amplification_factor:.3g}"
         lines.append(f"  {c.speed:9.3f} rad/s  {c.label:<40} {c.whirl:<9} excited by {c.excited_by}; {af}")
     for w in d.warnings:
         lines.append("  warning: " + w)

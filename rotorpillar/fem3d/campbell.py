@@ -47,12 +47,22 @@ from .rotor_spatial import SpatialRotor
 
 #: the time a 3D Campbell may take before it is refused (s)
 MAX_SECONDS = 3600.0
-#: seconds per speed per dof**1.5 (measured: 0.6-0.8 s a speed at 24,200 dofs, 2-core machine,
-#: shared), and the first speed's extra (no start from a previous one), in speeds
-SECONDS_PER_DOF15 = 2.0e-7
-FIRST_SPEED = 4.0
+#: seconds per speed per dof**1.5: 2.4-2.7 s a speed at 24,200 dofs measured on the 2-core
+#: machine shared with other jobs (bench/bench_campbell_fem3d.py; ~1 s when it is quiet); the
+#: assembly, the modes for the damping and the critical speeds' pencil cost ~15 speeds more; with
+#: the AFs, ~2 x AF_POINTS speeds of the unbalance response (~0.4 of a Campbell speed each) per
+#: critical speed, ~8 of them.  An estimate, stated as one.
+SECONDS_PER_DOF15 = 6.5e-7
+FIRST_SPEED = 15.0
+AF_SPEEDS = 8 * 2 * 25 * 0.4
 #: basis columns of a speed, for the memory estimate (block method: ~60-200 columns, 2 n each)
 BASIS_COLUMNS = 200
+
+
+#: speeds of the 3D unbalance response around each critical speed for its AF (with_af)
+AF_POINTS = 25
+#: the curves whose peak gives a critical speed's AF: the shaft, the rotor and the top
+AF_CURVES = ("shaft x", "shaft z", "rotor x", "rotor z", "top x", "top y", "top z")
 
 
 class CampbellEstimate(Record, frozen=True):
@@ -68,13 +78,13 @@ class CampbellEstimate(Record, frozen=True):
     """estimated peak memory (bytes)"""
 
 
-def estimate(scene: Scene, n_speeds: int, mesh=None) -> CampbellEstimate:
+def estimate(scene: Scene, n_speeds: int, mesh=None, with_af: bool = False) -> CampbellEstimate:
     """The run's size from the scene alone (no mesh built)."""
     from ..mesh import tube_params
 
     p = tube_params(scene.pillar, scene.mesh if mesh is None else mesh)
     dofs = int(p.estimated_dofs + 11)
-    seconds = SECONDS_PER_DOF15 * dofs**1.5 * (n_speeds + FIRST_SPEED)
+    seconds = SECONDS_PER_DOF15 * dofs**1.5 * (n_speeds + FIRST_SPEED + (AF_SPEEDS if with_af else 0.0))
     need = p.estimated_bytes + 8.0 * 2 * dofs * BASIS_COLUMNS
     return CampbellEstimate(dofs, int(n_speeds), float(seconds), float(need))
 
@@ -102,16 +112,19 @@ def campbell_fem3d(
     method: str = "block",
     running_speed: float | None = None,
     max_seconds: float = MAX_SECONDS,
+    with_af: bool = False,
     comm=None,
     progress=None,
 ) -> CampbellDiagram:
     """The 3D Campbell diagram at ``speeds`` (rad/s) of the modes up to ``band_top`` (rad/s) on
-    ``mesh`` (a scene Mesh section; default ``scene.mesh``); see the module text.  Collective."""
+    ``mesh`` (a scene Mesh section; default ``scene.mesh``); see the module text.  ``with_af``:
+    each critical speed the unbalance drives gets the AF of the 3D unbalance response's peak
+    near it (``amplification_factors``: AF_POINTS speeds of the response each).  Collective."""
     from mpi4py import MPI
 
     from . import assemble_pillar
     from .critical_speeds import critical_speeds
-    from .quadratic_eigen import METHODS, solve_quadratic, solve_quadratic_toar, stiffness_factor
+    from .quadratic_eigen import METHODS, Products, solve_quadratic, solve_quadratic_toar, stiffness_factor
     from .spatial_system import assemble_system
 
     speeds = np.asarray(speeds, dtype=float)
@@ -127,7 +140,7 @@ def campbell_fem3d(
         raise InputError('the 3D Campbell hangs the rotor on its shaft: modal.top_mass must be "gondola"')
     comm = MPI.COMM_WORLD if comm is None else comm
     say = progress or (lambda m: None)
-    est = estimate(scene, len(speeds), mesh)
+    est = estimate(scene, len(speeds), mesh, with_af)
     check_budget(est, max_seconds)
     say(f"campbell (3D): {len(speeds)} speeds on ~{est.dofs:,} DOFs, about {est.seconds:.0f} s (estimate)")
     timings: dict[str, float] = {}
@@ -151,11 +164,12 @@ def campbell_fem3d(
         ksp, factor = stiffness_factor(system.K)
         timings["factorisation"] = time.perf_counter() - t0
         t0 = time.perf_counter()
-        tracker = BranchTracker(system, comm)
+        ops = Products(system, 0.0, factor, comm)
+        tracker = BranchTracker(system, comm, ops)
         seeds, solves, worst = None, 0, 0.0
         for i, w in enumerate(speeds):
             if method == "block":
-                q = solve_quadratic(system, float(w), radius, factor, tol=scene.modal.tolerance, seeds=seeds)
+                q = solve_quadratic(system, float(w), radius, factor, tol=scene.modal.tolerance, seeds=seeds, ops=ops)
                 seeds = q.seeds
             else:
                 n_want = max(8, 2 * tracker.alive + 4)
@@ -168,8 +182,12 @@ def campbell_fem3d(
         timings["speeds"] = time.perf_counter() - t0
         t0 = time.perf_counter()
         branches = tracker.branches(len(speeds))
-        criticals = critical_speeds(system, radius, speeds, branches, factor)
+        criticals = critical_speeds(system, radius, speeds, branches, factor, ops)
         timings["critical_speeds"] = time.perf_counter() - t0
+        if with_af:
+            t0 = time.perf_counter()
+            criticals = amplification_factors(system, criticals, branches, speeds)
+            timings["af"] = time.perf_counter() - t0
     finally:
         if ksp is not None:
             ksp.destroy()
@@ -209,3 +227,71 @@ def campbell_fem3d(
         notes=notes,
         warnings=tuple(warnings),
     )
+
+
+def amplification_factors(system, criticals, branches, speeds) -> list:
+    """The critical speeds with the AF of the 3D unbalance response's peak near each one the
+    unbalance drives, read as the spatial ROM reads its own (rotorpillar.reduced.spatial_response:
+    ``peaks_from_samples`` on each of its PEAK_CURVES, the half-power points on the sampled
+    curve, then ``peak_near``: of the peaks within 15 % the one with the largest AF): the 3D
+    response (static and couple at once) at AF_POINTS speeds over +-45 % of it and as many over
+    +-4 zeta (zeta of its branch there); None where no curve shows a peak near it."""
+    from ..records import replace
+    from ..reduced.spatial_response import (
+        PEAK_CURVES,
+        ROTATIONS,
+        ResponseCurve,
+        SpatialResponse,
+        peak_near,
+        peaks_from_samples,
+    )
+    from .harmonic import spatial_response
+
+    out = []
+    for c in criticals:
+        if c.excited_by == "neither":
+            out.append(c)
+            continue
+        zeta = 0.01
+        for b in branches:
+            if b.label == c.label and b.damping_ratio is not None:
+                z = np.asarray(b.damping_ratio, float)
+                ok = np.isfinite(z)
+                if np.any(ok):
+                    zeta = float(np.interp(c.speed, speeds[ok], z[ok]))
+        u = np.linspace(-1.0, 1.0, AF_POINTS)
+        grid = np.unique(c.speed * np.r_[1 + 0.45 * u, 1 + min(max(4 * zeta, 1e-3), 0.45) * u])
+        r = spatial_response(system, grid, "both")
+        samples = {
+            "shaft_x": r.shaft[:, 0],
+            "shaft_z": r.shaft[:, 1],
+            "rotor_x": r.rotor[:, 0],
+            "rotor_y": r.rotor[:, 1],
+            "rotor_z": r.rotor[:, 2],
+            "tip_x": r.top[:, 0],
+            "tip_y": r.top[:, 1],
+            "tip_z": r.top[:, 2],
+            "top_pitch": r.top[:, 3],
+            "top_yaw": r.top[:, 5],
+        }
+        # each peak's share of the largest response in the window, rotations times the height
+        # (the ROM's share is of the whole curve's largest: over +-45 % the same for these peaks)
+        H = system.model.params.height
+        amp = {name: np.abs(samples[name]) * (H if name in ROTATIONS else 1.0) for name in PEAK_CURVES}
+        largest = max(float(np.max(a)) for a in amp.values()) or 1.0
+        curves = tuple(
+            ResponseCurve(
+                name,
+                name,
+                np.abs(samples[name]),
+                np.zeros(len(grid)),
+                tuple(
+                    replace(p, share=p.amplitude * (H if name in ROTATIONS else 1.0) / largest)
+                    for p in peaks_from_samples(name, grid, np.abs(samples[name]))
+                ),
+            )
+            for name in PEAK_CURVES
+        )
+        peak = peak_near(SpatialResponse(grid, 0.0, 0.0, curves, ()), c.speed)
+        out.append(replace(c, amplification_factor=None if peak is None else peak.amplification_factor))
+    return out

@@ -39,8 +39,11 @@ ROTOR_MODE = 0.5
 class BranchTracker:
     """The branches across the speeds: values, vectors, names (module text)."""
 
-    def __init__(self, system, comm):
+    def __init__(self, system, comm, ops=None):
+        from .quadratic_eigen import Products
+
         self.sys, self.comm = system, comm
+        self.ops = Products(system, 0.0, None, comm) if ops is None else ops
         self.items: list[dict] = []
         self.rotor = system.rotor
         lo, hi = system.K.getOwnershipRange()
@@ -65,42 +68,19 @@ class BranchTracker:
 
     def energies(self, X: np.ndarray) -> np.ndarray:
         """x^H M x of each column (kg per unit**2)."""
-        M = self.sys.M
-        x, y = M.createVecRight(), M.createVecLeft()
-        out = np.zeros(X.shape[1])
-        for c in range(X.shape[1]):
-            for part in (X[:, c].real, X[:, c].imag):
-                x.setArray(np.ascontiguousarray(part))
-                M.mult(x, y)
-                out[c] += x.dot(y)
-        x.destroy()
-        y.destroy()
-        return out
+        if not X.shape[1]:
+            return np.zeros(0)
+        MX = self.ops.mass(X.real.copy(order="F")) + 1j * self.ops.mass(X.imag.copy(order="F"))
+        return np.real(self.ops._sum_cols(np.conj(X) * MX))
 
     def quadratic_forms(self, speed: float, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(q^H M q, q^H (C + speed G) q, q^H K q) of each column (complex)."""
-        sysm = self.sys
-        x, y = sysm.M.createVecRight(), sysm.M.createVecLeft()
-        out = np.zeros((3, Q.shape[1]), complex)
-        for c in range(Q.shape[1]):
-            q = Q[:, c]
-            for k, apply in enumerate(
-                (
-                    lambda a, b: sysm.M.mult(a, b),
-                    lambda a, b: sysm.damping_mult(speed, a, b),
-                    lambda a, b: sysm.K.mult(a, b),
-                )
-            ):
-                parts = []
-                for part in (q.real, q.imag):
-                    x.setArray(np.ascontiguousarray(part))
-                    apply(x, y)
-                    parts.append(y.getArray(readonly=True).copy())
-                Aq = parts[0] + 1j * parts[1]
-                out[k, c] = self._sum(np.vdot(q, Aq))
-        x.destroy()
-        y.destroy()
-        return out[0], out[1], out[2]
+        keep = self.ops.speed
+        self.ops.speed = speed
+        try:
+            return self.ops.forms(Q)
+        finally:
+            self.ops.speed = keep
 
     def rayleigh(self, speed: float, Q: np.ndarray, guess: np.ndarray) -> np.ndarray:
         """Each column's eigenvalue by the quadratic Rayleigh quotient: the root of
@@ -144,9 +124,9 @@ class BranchTracker:
         R = self.rows(X)
         energy = self.energies(X)
         new = [c for c in range(len(s)) if c not in taken]
-        kinds = self.kinds(X, R, new, energy) if new else {}
-        for c in new:
-            self.items.append({"at": {i: c}, "vec": None, "kind": kinds[c], "vals": {}})
+        kinds = self.kinds(X, R, new, energy) if new else []
+        for c, kind in zip(new, kinds):
+            self.items.append({"at": {i: c}, "vec": None, "kind": kind, "vals": {}})
         for b in self.items:
             c = b["at"].get(i)
             if c is None:
@@ -154,12 +134,12 @@ class BranchTracker:
             b["vec"] = X[:, c].copy()
             b["vals"][i] = (s[c], self.whirl(R[:, c], energy[c]))
 
-    def kinds(self, X: np.ndarray, R: np.ndarray, cols: list[int], energy: np.ndarray) -> dict[int, str]:
-        """The kinds of the new modes (module text)."""
+    def kinds(self, X: np.ndarray, R: np.ndarray, cols: list[int], energy: np.ndarray) -> list[str]:
+        """The kinds of the modes ``cols``, in their order (module text)."""
         from . import identify
 
         model = self.sys.model
-        out: dict[int, str] = {}
+        out: list[str] = []
         coords = model.gather_coordinates()
         rings = identify.rings_of(coords, model.params.height) if coords is not None else None
         m, Id = self.rotor.mass, self.rotor.diametral_inertia
@@ -171,13 +151,13 @@ class BranchTracker:
                 ROTOR_TILT: Id * (abs(r[9]) ** 2 + abs(r[10]) ** 2) if self.rotor.tilts else 0.0,
             }
             if sum(shares.values()) > ROTOR_MODE * energy[c]:
-                out[c] = max(shares, key=lambda k: shares[k])
+                out.append(max(shares, key=lambda k: shares[k]))
                 continue
             v = X[:, c] * np.exp(-0.5j * np.angle(self._sum(np.sum(X[:, c] * X[:, c]))))  # the most real
             u = self._tube_shape(v.real)
             desc = identify.describe_mode(None, u, rings) if u is not None else None
             desc = self.comm.bcast(desc, root=0)
-            out[c] = kind_words(desc.kind, desc.n_circumferential)
+            out.append(kind_words(desc.kind, desc.n_circumferential))
         return out
 
     def _sum(self, a):

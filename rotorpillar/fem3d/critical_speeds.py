@@ -51,7 +51,7 @@ def _block(A, B, C, D, comm):
     return PETSc.Mat().createNest([[A, B], [C, D]], comm=comm).convert("aij")
 
 
-def undamped_pencil(system, top: float, tol: float = 1e-10) -> tuple[np.ndarray, np.ndarray]:
+def undamped_pencil(system, top: float, tol: float = 1e-10, ops=None) -> tuple[np.ndarray, np.ndarray]:
     """(Omega ascending up to ``top`` (rad/s), V (n_local, k) complex): the critical speeds and
     their modes (module text), each degenerate cluster untangled into its kinds
     (campbell_tracking.untangle); collective."""
@@ -60,7 +60,7 @@ def undamped_pencil(system, top: float, tol: float = 1e-10) -> tuple[np.ndarray,
 
     from .campbell_branches import BranchTracker
 
-    tracker = BranchTracker(system, system.model.comm)
+    tracker = BranchTracker(system, system.model.comm, ops)
     rows, gram = tracker.rows, tracker.gram
 
     comm = system.model.comm
@@ -126,8 +126,8 @@ def undamped_pencil(system, top: float, tol: float = 1e-10) -> tuple[np.ndarray,
         Q = _complex_basis(V[:, i:j], comm, (j - i + 1) // 2)
         if Q.shape[1] > 1:
             Q = tr.untangle(Q, list(range(Q.shape[1])), rows, gram)
-            m, _, k = tracker.quadratic_forms(0.0, Q)
-            g = tracker.quadratic_forms(1.0, Q)[1] - tracker.quadratic_forms(0.0, Q)[1]
+            m, c0, k = tracker.quadratic_forms(0.0, Q)
+            g = tracker.quadratic_forms(1.0, Q)[1] - c0
             nus = np.real(m - 1j * g) / np.real(k)  # q^H (M - i G) q / q^H K q
         else:
             nus = nu_arr[i : i + 1]
@@ -151,15 +151,15 @@ def _complex_basis(V: np.ndarray, comm, k: int) -> np.ndarray:
 
 
 def critical_speeds(
-    system, top: float, speeds: np.ndarray, branches: list[CampbellBranch], factor
+    system, top: float, speeds: np.ndarray, branches: list[CampbellBranch], factor, ops=None
 ) -> list[CriticalSpeed]:
     """The critical speeds up to ``top`` (rad/s) with their whirl, exciter and branch (module
     text); ``factor`` the factors of system.K (rotorpillar.fem3d.quadratic_eigen.stiffness_factor)."""
     from .campbell_branches import BranchTracker
 
     top = min(top, float(speeds[-1]))
-    W, V = undamped_pencil(system, top)
-    tracker = BranchTracker(system, system.model.comm)
+    tracker = BranchTracker(system, system.model.comm, ops)
+    W, V = undamped_pencil(system, top, ops=tracker.ops)
     R = tracker.rows(V)
     energy = tracker.energies(V)
     kinds = tracker.kinds(V, R, list(range(V.shape[1])), energy)

@@ -236,7 +236,7 @@ def integrate(
     def relative_history(xr, vr, ar, U):
         """b2's history on the rotor's motion relative to the plate (N)."""
         xt, vt = step.predict(xr, vr, ar)
-        Ut, Vt = step.predict(*U)
+        Ut, Vt = step.predict(U[0], U[1], U[2])
         return b2 * (cc * (xt - Ut) - wf * (vt - Vt) - af * (vr - U[1]))
 
     record(0, 0.0)
@@ -276,7 +276,7 @@ def integrate(
             rho_x = step.history(mC, b2, x, vx, ax, -c2 * sx0) - mC * agw[0]
             rho_y = step.history(mC, b2, y, vy, ay, -c2 * sy0) - mC * agw[2]
             back = (0.0, 0.0)
-        dash = [step.history(0.0, b1, *P[i], 0.0) for i in (0, 1)]
+        dash = [step.history(0.0, b1, P[i, 0], P[i, 1], P[i, 2], 0.0) for i in (0, 1)]
         plate.add(
             R,
             (
@@ -339,7 +339,7 @@ def integrate(
         P1 = np.zeros((3, 3))
         for i, U1 in enumerate((Ux1, Uy1, Uz1)):
             P1[i, 0] = U1
-            P1[i, 1], P1[i, 2] = step.update(U1, *step.predict(*P[i]))
+            P1[i, 1], P1[i, 2] = step.update(U1, *step.predict(P[i, 0], P[i, 1], P[i, 2]))
         vx1, ax1 = step.update(x1, *step.predict(x, vx, ax))
         vy1, ay1 = step.update(y1, *step.predict(y, vy, ay))
         Wv1 = dots(v.getArray(readonly=True))

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..scene import Scene
+
 
 @dataclass(frozen=True)
 class HarmonicResponse:
@@ -331,3 +333,32 @@ def half_power_peaks(
         af = None if left is None or right is None or right <= left else float(W[i] / (right - left))
         out.append((float(W[i]), float(a[i]), af))
     return out
+
+
+def scene_spatial_response(
+    scene: Scene, speeds, *, mesh=None, case: str = "both", damping_law: str = "gondola", comm=None
+) -> SpatialResponse:
+    """The scene's 3D unbalance response (``spatial_response``) on ``mesh`` (a scene Mesh
+    section; default ``scene.mesh``): the tube with the gondola on its rigid top, the rotor on
+    its shaft, b1 both ways, ``pillar.damping_ratio`` on every loaded-tube mode up to twice the
+    highest speed asked, b2 by ``damping_law`` (collective)."""
+    from . import assemble_pillar
+    from .rotor_spatial import SpatialRotor
+    from .spatial_system import assemble_system
+
+    model = assemble_pillar(scene, top=True, mesh=mesh, comm=comm)
+    system = assemble_system(
+        model,
+        SpatialRotor.from_scene(scene),
+        tip_damping=scene.pillar.damping,
+        damping_ratio=scene.pillar.damping_ratio,
+        damped_up_to=2.0 * float(np.max(speeds)),
+        damping_law=damping_law,
+        tol=scene.modal.tolerance,
+    )
+    try:
+        return spatial_response(system, speeds, case)
+    finally:
+        system.destroy()
+        model.K.destroy()
+        model.M.destroy()

@@ -77,8 +77,9 @@ class QuadraticModes:
     """(2 n_local, c) real start columns for the next speed (block method)"""
 
 
-class _Products:
-    """Block products with M, C + speed G and the solves with K's factors (one rank's rows)."""
+class Products:
+    """Block products with M, C + speed G, K and the solves with K's factors (one rank's rows);
+    made once per system (the CSR copies, serial), its ``speed`` set per speed."""
 
     def __init__(self, system, speed: float, factor, comm):
         from .block_lanczos import seq_csr
@@ -145,6 +146,19 @@ class _Products:
         g = X.T @ Y
         return g if self.serial else self.comm.allreduce(g)
 
+    def _sum_cols(self, A: np.ndarray) -> np.ndarray:
+        """Column sums over the rows of every rank."""
+        return _sum(self.comm, np.sum(A, axis=0))
+
+    def forms(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(x^H M x, x^H (C + speed G) x, x^H K x) of each complex column, summed over the ranks."""
+        Xr, Xi = X.real.copy(order="F"), X.imag.copy(order="F")
+        out = []
+        for apply in (self.mass, self.damping, self.stiffness):
+            AX = apply(Xr) + 1j * apply(Xi)
+            out.append(_sum(self.comm, np.sum(np.conj(X) * AX, axis=0)))
+        return out[0], out[1], out[2]
+
     def norms_of_products(self):
         """(||M||, ||C + speed G + C_modal||, ||K||) in the 1-norm (the modal part bounded by
         ||W||_1 d ||W||_inf summed)."""
@@ -195,12 +209,15 @@ def solve_quadratic(
     tol: float = 1e-8,
     seeds: np.ndarray | None = None,
     rng_seed: int = 20261127,
+    ops: Products | None = None,
 ) -> QuadraticModes:
     """The eigenpairs with |s| <= ``radius`` (rad/s) at ``speed`` (rad/s) by the block method
     (module text), with ``factor`` the factors of system.K (``stiffness_factor``); ``seeds``
-    the previous speed's ``QuadraticModes.seeds``."""
+    the previous speed's ``QuadraticModes.seeds``; ``ops`` the system's Products (made here
+    when None)."""
     comm = system.model.comm
-    ops = _Products(system, speed, factor, comm)
+    ops = Products(system, speed, factor, comm) if ops is None else ops
+    ops.speed, ops.solves = speed, 0
     w0 = float(radius if scale is None else scale)
     n = ops.n_local
 
@@ -210,12 +227,14 @@ def solve_quadratic(
         return np.vstack([ops.solve(rhs), X])
 
     rng = np.random.default_rng(rng_seed + comm.rank)
+    # the start inside Op's range, so that the massless rows are consistent from the first vector
+    # on: random columns through Op; the last speed's Ritz vectors are combinations of Op's images
     if seeds is not None and seeds.shape[1]:
-        start = np.hstack([seeds, rng.standard_normal((2 * n, FRESH_COLUMNS))])
+        start = np.hstack([seeds, op(rng.standard_normal((2 * n, FRESH_COLUMNS)))])
     else:
-        start = rng.standard_normal((2 * n, FIRST_BLOCK))
+        start = op(rng.standard_normal((2 * n, FIRST_BLOCK)))
     basis = _Basis(2 * n, 8 * start.shape[1])
-    Q0, _, _ = _orthonormalise(ops, op(start), basis.Q)  # inside Op's range from the start
+    Q0, _, _ = _orthonormalise(ops, start, basis.Q)
     basis.append(Q0)
     last = Q0
     H = np.zeros((Q0.shape[1], Q0.shape[1]))
@@ -396,5 +415,5 @@ def _toar(system, speed: float, radius: float, n_wanted: int, tol: float) -> tup
     order = np.argsort(np.abs(s_arr))
     Xa = np.column_stack(X)[:, order] if X else np.zeros((system.K.getLocalSize()[0], 0), complex)
     Xa = Xa / np.sqrt(_sum(comm, np.sum(np.abs(Xa) ** 2, axis=0)))
-    ops = _Products(system, speed, None, comm)
+    ops = Products(system, speed, None, comm)
     return QuadraticModes(s_arr[order], Xa, backward_errors(ops, s_arr[order], Xa), steps, 0), beyond

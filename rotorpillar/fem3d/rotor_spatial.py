@@ -64,6 +64,8 @@ from dataclasses import dataclass, replace  # noqa: F401  (replace: the doctest'
 
 import numpy as np
 
+from ..scene import Scene
+
 #: the rotor's dofs after the plate's, in this order (the first three when it tilts with the gondola)
 ROTOR_DOFS = ("in_plane", "along_spin_axis", "vertical", "pitch", "yaw")
 #: the plate's 6 dofs (rotorpillar.fem3d.model), in this order
@@ -101,7 +103,7 @@ class SpatialRotor:
     """(N*m*s/rad)"""
 
     @classmethod
-    def from_scene(cls, scene) -> SpatialRotor:
+    def from_scene(cls, scene: Scene) -> SpatialRotor:
         """The scene's rotor and shaft, with the scene's defaults: I_d = J_C / 2 (a thin
         disc), the axial stiffness c2, the tilt rigid."""
         r, s = scene.rotor, scene.shaft
@@ -155,7 +157,9 @@ def rotor_blocks(rotor: SpatialRotor, damping_law: str = "gondola"):
     tilt, n = rotor.tilts, rotor.dofs
     D = shaft_links(rotor.height, tilt)
     c2 = rotor.lateral_stiffness
-    k = [c2, c2, rotor.axial_stiffness] + ([rotor.tilt_stiffness] * 2 if tilt else [])
+    k = [c2, c2, rotor.axial_stiffness]
+    if rotor.tilt_stiffness is not None:
+        k += [rotor.tilt_stiffness] * 2
     K = D.T @ np.diag(k) @ D
     # b2 across the spin axis and along it (the same bearings, as the spatial ROM has it)
     b2 = rotor.lateral_damping

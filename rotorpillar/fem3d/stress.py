@@ -79,7 +79,8 @@ class StressRecovery:
         from .sections import section_functionals
 
         self._model = model
-        self._sections = section_functionals(model, self.pillar.youngs_modulus, self.pillar.poisson_ratio)
+        # all six components (issue 26): the base reactions in every direction
+        self._sections = section_functionals(model, self.pillar.youngs_modulus, self.pillar.poisson_ratio, spatial=True)
         self._heights = self._sections.heights
         self._vm = VonMisesProjection(model, self.pillar, self.top_mass)
         self._next_frame = 0.0
@@ -125,8 +126,10 @@ class StressRecovery:
         return (float(t), vm)
 
     def finish(self) -> tuple[np.ndarray, np.ndarray, VonMisesSummary, str | None]:
-        """(t, resultants (n_t, n_z, 3) with N static included, the von Mises summary,
-        the XDMF file or None); frees the PETSc objects."""
+        """(t, resultants (n_t, n_z, 6) with N static included, the von Mises summary,
+        the XDMF file or None); frees the PETSc objects.  The resultants' six components:
+        rotorpillar.fem3d.sections.SPATIAL_COMPONENTS (the planar three first);
+        stress_records.base_reactions_six reads the base's peaks."""
         for _, t, x in self._peaks.values():
             if x is not None and t is not None:
                 self._frame_values.append(self._evaluate(t, x, write=False))

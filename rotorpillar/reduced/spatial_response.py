@@ -23,6 +23,9 @@ peak whose amplitude does not fall to that level on either side within
 HALF_POWER_SPAN of it is not a resonance peak (a bump on another mode's
 flank): it gets no AF, and API 684 asks no margin of a mode that shows none.
 Where only one side falls, N_2 - N_1 is twice that side's distance (noted).
+A peak below SIGNIFICANT_SHARE of the machine's largest unbalance response
+(a mode out of the rotor's plane that a 3D mode's round-off couples to it at
+1e-11) is no response a probe would read: ``peak_near`` passes it by.
 
 >>> from rotorpillar.reduced.spatial_model import tilt_example
 >>> m = tilt_example()
@@ -39,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq, minimize_scalar
 
-from ..records import Record
+from ..records import Record, replace
 from .spatial_model import OUTPUTS, SpatialStructure
 from .spatial_modes import Array
 
@@ -51,6 +54,9 @@ PEAK_CURVES = ("shaft_x", "shaft_z", "rotor_x", "rotor_z", "rotor_y", "tip_x", "
 ROTATIONS = ("top_pitch", "top_yaw", "top_roll", "rotor_pitch", "rotor_yaw")
 #: a mode moves a curve's output when that output's share of its largest is at least this (-)
 CURVE_SHARE = 0.1
+#: a peak below this share of the machine's largest unbalance response is no response: an
+#: instrument beside the largest would not read it, and API 684 reads the response (-)
+SIGNIFICANT_SHARE = 1e-3
 #: the orbits drawn: name, the two outputs, what the plane is
 ORBITS = (
     ("shaft", "shaft_x", "shaft_z", "the shaft's deflection in the plane normal to the spin axis (x, vertical)"),
@@ -75,6 +81,9 @@ class ResponsePeak(Record, frozen=True):
     amplification_factor: float | None
     """AF = N_c / (N_2 - N_1) (-); None: no half-power point on either side (not a resonance peak)"""
     note: str = ""
+    share: float | None = None
+    """its amplitude over the largest unbalance response of the machine's peak curves, a rotation
+    counted times the pillar's height (-); None where not compared"""
 
 
 class ResponseCurve(Record, frozen=True, eq=False):
@@ -169,10 +178,14 @@ def unbalance_response(m: SpatialStructure, speeds: NDArray[np.float64]) -> Spat
     speeds = np.asarray(speeds, dtype=float)
     Z = np.array([steady_state(m, float(w)) for w in speeds])
     amp = {name: output_amplitude(m, name, Z) for name in OUTPUTS}
+    H = float(m.modes.section_heights[-1]) if m.modes.section_heights is not None else 1.0
+    largest = max(float(np.max(np.abs(amp[n]))) * (H if n in ROTATIONS else 1.0) for n in PEAK_CURVES)
     curves = []
     for name, desc in OUTPUTS.items():
         size = np.abs(amp[name])
         peaks = find_peaks(m, name, speeds, size) if name in PEAK_CURVES else ()
+        scale = (H if name in ROTATIONS else 1.0) / largest if largest > 0 else 0.0
+        peaks = tuple(replace(p, share=p.amplitude * scale) for p in peaks)
         curves.append(ResponseCurve(name, desc, size, _lag(name, amp[name]), peaks))
     orbits = []
     for name, first, second, plane in ORBITS:
@@ -269,7 +282,9 @@ def peak_near(
         for c in response.curves
         if curves is None or c.name in curves
         for p in c.peaks
-        if p.amplification_factor is not None and abs(p.speed - omega) <= width * omega
+        if p.amplification_factor is not None
+        and abs(p.speed - omega) <= width * omega
+        and (p.share is None or p.share >= SIGNIFICANT_SHARE)
     ]
     return max(near, key=lambda p: p.amplification_factor or 0.0) if near else None
 
