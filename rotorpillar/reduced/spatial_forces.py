@@ -32,8 +32,6 @@ from the resultant of the two moments:
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numpy.typing import NDArray
 
@@ -42,6 +40,7 @@ from ..scene import Pillar
 from .internal_forces import STANDARD_GRAVITY
 from .spatial_model import SpatialStructure
 from .spatial_modes import Array
+from .tower import section_at, tower_mass
 
 
 class BaseReactions(Record, frozen=True, eq=False):
@@ -89,9 +88,9 @@ def base_reactions(
     Z, theta = np.asarray(q)[:, : m.nz], np.asarray(q)[:, m.nz]
     pull = m.shaft_stiffness * (Z @ m.shaft[1] - m.eccentricity * np.sin(theta))
     p = pillar
-    area = math.pi / 4 * (p.outer_diameter**2 - p.inner_diameter**2)
-    second = math.pi / 64 * (p.outer_diameter**4 - p.inner_diameter**4)
-    weight = g * (p.density * area * p.height + gondola_mass + m.rotor_mass)
+    sec = section_at(p, 0.0)  # the base's section (a tower's varies along it)
+    area, second, outer = sec.area, sec.second_moment, sec.outer_diameter
+    weight = g * (tower_mass(p) + gondola_mass + m.rotor_mass)
     axial = weight - base["axial_force"] - pull
     moment = np.hypot(base["moment_x"], base["moment_y"])
     return BaseReactions(
@@ -103,6 +102,6 @@ def base_reactions(
         moment_y=base["moment_y"],
         torque=base["torque"],
         moment=moment,
-        stress=moment * (p.outer_diameter / 2) / second + axial / area,
+        stress=moment * (outer / 2) / second + axial / area,
         modes=k,
     )

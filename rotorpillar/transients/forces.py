@@ -46,6 +46,7 @@ import numpy as np
 from ..reduced.foundation import foundation_stiffness
 from ..reduced.internal_forces import (
     STANDARD_GRAVITY,
+    UnitLoads,
     can_stresses,
     cantilever_tip_statics,
     extreme_fibre_stress,
@@ -294,6 +295,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     sec = base_section(scene.pillar)
     base = base_springs(scene.foundation)
     base_statics = None
+    statics: dict[str, float] | UnitLoads
     if scene.pillar.is_uniform and base is None:
         from ..reduced.pillar_modes import beam_properties
 

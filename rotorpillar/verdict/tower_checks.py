@@ -84,8 +84,11 @@ def foundation_checks(scene: Scene, found: dict | None, model, case, src: str) -
 
 def order_checks(h: HarmonicResult) -> list[Check]:
     """The first tower mode's separation from each excitation order at each running speed."""
-    out = []
-    for o in h.orders.rows if h.orders is not None else ():
+    out: list[Check] = []
+    orders = h.orders
+    if orders is None:
+        return out
+    for o in orders.rows:
         out.append(
             Check(
                 f"tower mode vs {o.order}P (soft-stiff)",
@@ -98,7 +101,7 @@ def order_checks(h: HarmonicResult) -> list[Check]:
                 o.mode.model,
                 f"running at {o.running_speed:.4g} rad/s",
                 f"harmonic.json orders: {o.mode.kind} at {o.mode.omega:.4g} rad/s {o.position} "
-                f"{o.order}P = {o.excitation:.4g} rad/s ({h.orders.regime}); demand = rotor.order_margin, "
+                f"{o.order}P = {o.excitation:.4g} rad/s ({orders.regime}); demand = rotor.order_margin, "
                 "capacity = the margin there is",
             )
         )
