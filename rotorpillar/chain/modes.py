@@ -15,27 +15,27 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
+import msgspec
 import numpy as np
 
 from ..cache import DiskCache, cache_key, source_hash, user_cache_root
-from ..provenance import JsonRecord
+from ..records import Record
 from ..reduced.pillar_modes import PillarModes
 from ..scene import Scene
 from .choice import Choice, solid_mesh_section
-from .record import PillarModel
+from .record import MeshValue, PillarModel
 
-CACHE_VERSION = 1
+CACHE_VERSION = 2  # 2: an Entry of a ModesEntry record (msgspec)
 #: the most X bending modes the ROM picks from
 MAX_CANDIDATES = 12
 #: modes first asked of the loaded tube (doubled until enough X bending modes are found)
 FIRST_SOLVE = 32
 
 
-@dataclass(frozen=True)
-class TipReductionOf(JsonRecord):
+class TipReductionOf(Record):
     """Eq. 2 on the chain model's bare first bending mode."""
 
     m_reduced: float
@@ -46,6 +46,21 @@ class TipReductionOf(JsonRecord):
     """the bare tube's first bending frequency on this model (rad/s)"""
     source: str
     """the model it was computed on"""
+
+
+class ModesEntry(Record, eq=False):
+    """A 3D result as the modes cache stores it."""
+
+    label: str
+    """the pillar model's label"""
+    mesh: dict[str, MeshValue]
+    """its discretisation"""
+    modes: PillarModes
+    reduction: TipReductionOf
+    seconds: float
+    """time the solve took (s)"""
+    loaded_modes: int
+    """modes of the loaded tube the 3D solve asked for (-)"""
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,7 +132,7 @@ def _solid(scene: Scene, pm: PillarModel, band_top: float, comm) -> tuple[Pillar
     modes = red = None
     if comm is None or comm.rank == 0:
         modes = pillar_modes_from_fem3d(loaded, scene.pillar, min(len(bx), MAX_CANDIDATES))
-        modes = replace(modes, source=f"fem3d:{pm.label}")
+        modes = msgspec.structs.replace(modes, source=f"fem3d:{pm.label}")
         t = tip_reduction(bare, scene.pillar)
         red = TipReductionOf(
             t.m_reduced, t.tip_stiffness, t.omega_bending, f"Eq. 2 on the bare tube's first bending mode, {pm.label}"
@@ -152,16 +167,9 @@ def chain_modes(
     key = modes_key(scene, pm.mesh)
     cache = DiskCache((user_cache_root() if root is None else Path(root)) / "modes")
     path = cache.path(key)
-    doc = cache.read(key)
-    if doc is not None and _enough(doc["modes"]["omega"], band_top):
-        return ChainModes(
-            pm,
-            PillarModes.from_json(doc["modes"]),
-            TipReductionOf.from_json(doc["reduction"]),
-            str(path),
-            0.0,
-            int(doc.get("loaded_modes", FIRST_SOLVE)),
-        )
+    got = cache.read(key, ModesEntry)
+    if got is not None and _enough(got.modes.omega, band_top):
+        return ChainModes(pm, got.modes, got.reduction, str(path), 0.0, got.loaded_modes)
     if progress:
         progress(f"chain: the 3D modes of {pm.label} for the ROM (cached after this)")
     start = time.perf_counter()
@@ -169,17 +177,7 @@ def chain_modes(
     seconds = time.perf_counter() - start
     if comm is None or comm.rank == 0:
         try:
-            cache.write(
-                key,
-                {
-                    "label": pm.label,
-                    "mesh": pm.mesh,
-                    "modes": modes.to_json(),
-                    "reduction": red.to_json(),
-                    "seconds": seconds,
-                    "loaded_modes": asked,
-                },
-            )
+            cache.write(key, ModesEntry(pm.label, pm.mesh, modes, red, seconds, asked))
         except OSError:
             pass  # a read-only cache costs the next stage a solve, nothing else
     return ChainModes(pm, modes, red, str(path), seconds, asked)

@@ -2,13 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-from ..provenance import JsonRecord
+from ..records import Record
 
 
-@dataclass(frozen=True)
-class StressPeak(JsonRecord):
+class StressPeak(Record):
     """A peak of the von Mises field: its value, where and when."""
 
     value: float
@@ -23,8 +20,7 @@ class StressPeak(JsonRecord):
     """value / nominal (-)"""
 
 
-@dataclass(frozen=True)
-class VonMisesSummary(JsonRecord):
+class VonMisesSummary(Record):
     """What the von Mises recovery found over the frames and the peak instants."""
 
     peak: StressPeak

@@ -15,6 +15,7 @@ from ..transients.records import CompareResult
 from .readers import read_npz, read_record, read_run
 
 if TYPE_CHECKING:
+    from ..provenance import Provenance
     from ..transients.run_records import RunRecord
 
 
@@ -46,8 +47,8 @@ class Comparison:
 
     case: str
     record: CompareResult
-    doc: dict[str, Any]
-    """the whole JSON document (the record's fields, and the scene and notes beside them)"""
+    provenance: Provenance | None
+    """what compare wrote beside the record (the scene, versions, timings)"""
     runs: dict[str, RunRecord] = field(default_factory=dict)
     """model -> the record of its simulate_<case>_<model>.json (missing: absent)"""
     arrays: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
@@ -86,7 +87,7 @@ def read_comparison(out: str | Path, case: str) -> Comparison | None:
     got = read_record(out / f"compare_{case}.json", CompareResult)
     if got is None:
         return None
-    c = Comparison(case, got.record, got.doc)
+    c = Comparison(case, got.record, got.provenance)
     per = got.record.per_model
     for m in c.models:
         row = per.get(m)

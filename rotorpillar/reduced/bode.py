@@ -20,12 +20,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..provenance import JsonRecord
+from ..records import Record
 from . import averaging as av
 from .rotor_models import RotorStructure
 from .system import Resonance
@@ -37,8 +36,7 @@ def phase_lag(Z: ArrayLike) -> NDArray[np.float64]:
     return lag
 
 
-@dataclass(frozen=True)
-class BodeCurve(JsonRecord):
+class BodeCurve(Record):
     """Steady unbalance response of one model against speed."""
 
     model: str
@@ -112,8 +110,7 @@ def speed_grid(resonances: Iterable[Resonance], top: float, n: int = 600, dense:
     return speeds
 
 
-@dataclass(frozen=True)
-class AveragingCurve(JsonRecord):
+class AveragingCurve(Record):
     """Eq. 19's amplitude of one resonance, over the speeds near it."""
 
     index: int

@@ -34,12 +34,10 @@ the reduced models carries to the base unchanged.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..provenance import JsonRecord
+from ..records import Record
 from .pillar import TubeSection
 from .pillar_modes import PillarModes
 
@@ -150,8 +148,7 @@ def hermite_peak(t: ArrayLike, f: ArrayLike, dfdt: ArrayLike) -> tuple[float, fl
 # Truncation: how many modes the section forces need
 
 
-@dataclass(frozen=True)
-class TruncationRow(JsonRecord):
+class TruncationRow(Record):
     """The k-mode superposition's error over the band, the worse of the two loads."""
 
     modes: int
@@ -164,8 +161,7 @@ class TruncationRow(JsonRecord):
     """base shear's largest relative error over the band (-)"""
 
 
-@dataclass(frozen=True)
-class ForceTruncation(JsonRecord):
+class ForceTruncation(Record):
     """How many modes the section forces need (the mode displacement method)."""
 
     band_top: float

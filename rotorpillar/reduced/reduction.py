@@ -10,9 +10,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
-from ..provenance import JsonRecord
+from ..records import Record
 from ..scene import Pillar, Scene, SceneError
 from .pillar import (
     cantilever_root,
@@ -28,8 +27,7 @@ from .pillar import (
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
 
-@dataclass(frozen=True)
-class Lumping(JsonRecord):
+class Lumping(Record):
     """The paper's Eq. 2 with the tube lumped into ``n`` equal masses."""
 
     n: int
@@ -39,8 +37,7 @@ class Lumping(JsonRecord):
     """c1 = m_r omega_col1**2 (N/m)"""
 
 
-@dataclass(frozen=True)
-class RayleighEstimate(JsonRecord):
+class RayleighEstimate(Record):
     """Rayleigh's quotient on a static deflection shape."""
 
     shape: str
@@ -55,8 +52,7 @@ class RayleighEstimate(JsonRecord):
     """omega / omega_col1 - 1 (-)"""
 
 
-@dataclass(frozen=True)
-class PillarClosedForms(JsonRecord):
+class PillarClosedForms(Record):
     """The bare tube: its section, Eq. 1, Timoshenko's correction, Eq. 2's reductions."""
 
     area: float
@@ -95,8 +91,7 @@ class PillarClosedForms(JsonRecord):
     rayleigh: tuple[RayleighEstimate, ...]
 
 
-@dataclass(frozen=True)
-class TipReductionUsed(JsonRecord):
+class TipReductionUsed(Record):
     """The tip mass and stiffness the reduced model uses, and where each came from."""
 
     source: str

@@ -7,19 +7,15 @@
   displacement relative to the ground beside the response-spectrum estimate
   (:class:`SpectrumCheck`), or why there is none (:class:`NoSpectrumCheck`).
 
-Built by rotorpillar.transients.cases; each ``to_json()`` is the section as the
-summary writes it (keys in this order).
+Built by rotorpillar.transients.cases; each pair is a union tagged by ``kind``.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-from ..provenance import JsonRecord
+from ..records import Record
 
 
-@dataclass(frozen=True)
-class SpectralMode(JsonRecord):
+class SpectralMode(Record):
     """One pillar mode's part in the response-spectrum estimate of the tip."""
 
     mode: int
@@ -36,8 +32,7 @@ class SpectralMode(JsonRecord):
     """|Gamma_j| S_d(T_j) (m)"""
 
 
-@dataclass(frozen=True)
-class TruncationEstimate(JsonRecord):
+class TruncationEstimate(Record, tag_field="kind", tag="estimate"):
     """How much the (k+1)-th pillar mode changes a modal run's answers: the
     truncation error estimate (relative differences: the run with k + 1 modes
     over the run with k, minus 1)."""
@@ -64,8 +59,7 @@ class TruncationEstimate(JsonRecord):
     """of the largest |rotor Y| (-); None when the run's is zero"""
 
 
-@dataclass(frozen=True)
-class NoTruncationEstimate(JsonRecord):
+class NoTruncationEstimate(Record, tag_field="kind", tag="unavailable"):
     """A modal run without its truncation estimate: the mode source offers no more modes."""
 
     modes: int
@@ -76,15 +70,11 @@ class NoTruncationEstimate(JsonRecord):
     """why, in words"""
 
 
-def truncation_from_json(doc: dict) -> TruncationEstimate | NoTruncationEstimate:
-    """The ``truncation`` section back from its JSON (either shape)."""
-    if "statement" in doc:
-        return NoTruncationEstimate.from_json(doc)
-    return TruncationEstimate.from_json(doc)
+#: The truncation estimate, or why there is none.
+Truncation = TruncationEstimate | NoTruncationEstimate
 
 
-@dataclass(frozen=True)
-class SpectralEstimate(JsonRecord):
+class SpectralEstimate(Record):
     """The response-spectrum estimate of the tip's largest displacement relative to the
     ground: per pillar mode j, Gamma_j S_d(T_j, zeta_j), combined by SRSS."""
 
@@ -94,8 +84,7 @@ class SpectralEstimate(JsonRecord):
     """the square root of the sum of the contributions' squares (m)"""
 
 
-@dataclass(frozen=True)
-class SpectrumCheck(JsonRecord):
+class SpectrumCheck(Record, tag_field="kind", tag="check"):
     """The tip's largest displacement relative to the ground beside the response-spectrum
     estimate of the first pillar mode alone (Gamma_1 S_d(T_1, zeta_1)), and of all the
     modes kept (SRSS)."""
@@ -122,16 +111,12 @@ class SpectrumCheck(JsonRecord):
     """what the estimate is, in words"""
 
 
-@dataclass(frozen=True)
-class NoSpectrumCheck(JsonRecord):
+class NoSpectrumCheck(Record, tag_field="kind", tag="unavailable"):
     """No response-spectrum check: the model has no pillar modes."""
 
     note: str
     """why, in words"""
 
 
-def spectrum_check_from_json(doc: dict) -> SpectrumCheck | NoSpectrumCheck:
-    """The ``response_spectrum_check`` section back from its JSON (either shape)."""
-    if "period" not in doc:
-        return NoSpectrumCheck.from_json(doc)
-    return SpectrumCheck.from_json(doc)
+#: The response-spectrum check, or why there is none.
+SpectrumCheckResult = SpectrumCheck | NoSpectrumCheck

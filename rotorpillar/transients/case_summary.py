@@ -7,33 +7,27 @@
   (Md = Mc);
 - ``passages``: when the speed first crosses each resonance;
 - ``series``: the arrays written to the NPZ/CSV;
-- ``CaseSummary``: what ``simulate_<case>.json`` carries about a case.
+- ``RunOutcome``: what every model's run reached; ``CaseSummary``: a case on a
+  reduced model, what ``simulate_<case>.json`` carries about it.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass
+from dataclasses import replace as replace_run
 from typing import Any
 
 import numpy as np
 
-from ..provenance import JsonRecord
+from ..records import Record, replace
 from ..reduced.accuracy import AccuracyCheck, check_step, forcing_frequencies
 from ..reduced.batch import shaft_deflection
-from ..reduced.excitation import GroundMotion, no_motion
-from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
-from ..reduced.integration import EnergyBalance, Transient
+from ..reduced.excitation import ExcitationSizes, GroundMotion, no_motion
+from ..reduced.integration import EnergyBalance, IntegratorStats, Transient
 from ..reduced.rotor_models import RotorStructure
-from ..reduced.stationary import AveragingPrediction, NoPassingFold, PassingTorqueStudy, passing_torque_from_json
-from .case_checks import (
-    NoSpectrumCheck,
-    NoTruncationEstimate,
-    SpectrumCheck,
-    TruncationEstimate,
-    spectrum_check_from_json,
-    truncation_from_json,
-)
+from ..reduced.stationary import AveragingPrediction, PassingTorque
+from .case_checks import SpectrumCheckResult, Truncation
 from .sweep_records import NumericJump, SweepFindings
 
 CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
@@ -98,8 +92,7 @@ def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> C
     return CaptureState(None, None, None, state)
 
 
-@dataclass(frozen=True)
-class Passage(JsonRecord):
+class Passage(Record):
     """When a run's speed first crosses one resonance, and the peaks near it."""
 
     index: int
@@ -141,12 +134,12 @@ def passages(run: Transient) -> tuple[Passage, ...]:
     return tuple(out)
 
 
-def max_abs(run: Transient) -> dict[str, float]:
+def max_abs(run: Transient) -> dict[str, float | None]:
     """Largest |value| over the run, from the integrator's per-step peaks (m); a mapping by
     coordinate name, not a record: its keys are the model's coordinates (the JSON's max_abs)."""
     m = run.model
     pk = np.nanmax(run.peak, axis=0)
-    out = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
+    out: dict[str, float | None] = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
     if not m.notes.get("full_order"):  # a full-order model's nodes: not worth a key each
         for i, name in enumerate(m.coordinates):
             out[name] = float(pk[i])
@@ -176,7 +169,7 @@ def decimate(run: Transient, max_samples: int) -> Transient:
     starts = np.r_[0, idx[:-1] + 1]
     peak = np.maximum.reduceat(run.peak, starts, axis=0)
     peak[0] = run.peak[0]
-    return replace(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
+    return replace_run(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
 
 
 def series(run: Transient, max_samples: int | None = None) -> dict[str, np.ndarray]:
@@ -223,107 +216,57 @@ def series(run: Transient, max_samples: int | None = None) -> dict[str, np.ndarr
 # The summary of a case
 
 
-@dataclass(frozen=True)
-class CaseSummary:
-    """A case condensed for ``simulate_<case>.json``; values are JSON-ready
-    (numpy arrays allowed: the writer converts them).  Optional sections are
-    None when the case has none, and then absent from ``to_json()``."""
+class RunOutcome(Record, kw_only=True, omit_defaults=True):
+    """What every model's run of a case reached (``simulate_<case>.json``; SI units)."""
 
     ok: bool
+    """the run passed its own checks (``run_checks``)"""
+    failed_checks: tuple[str, ...] | None = None
+    """why ``ok`` is false, one named line each (absent when no check failed)"""
     duration: float
     """length of the run (s)"""
     omega_final: float
     """rotor speed at the end (rad/s)"""
     omega_final_mean: float
     """mean speed over the last 5 % of the run (rad/s)"""
-    max_abs: dict
-    """largest |value| per coordinate (m)"""
+    max_abs: dict[str, float | None]
+    """largest |value| per coordinate (m), and the forces' (N, N m, Pa); a mapping by
+    name: its keys are the model's coordinates"""
     captured_at: float | None
     """the speed the rotor settled at below a resonance (rad/s), or None"""
-    passages: tuple[Passage, ...]
-    """when the speed first crossed each resonance"""
+    captured_resonance: float | None
+    """omega_i of the resonance that holds the rotor (rad/s), or None"""
+    captured_index: int | None
+    """that resonance's index among the model's resonances (-), or None"""
+    speed_state: str
+    """"captured", "escaping", "accelerating" or "at_speed" (see capture_state)"""
     energy_balance: EnergyBalance
     """the run's energy against the work done (J)"""
-    integrator: dict
-    """the integrator's statistics"""
+    integrator: IntegratorStats
+    """what the integrator did"""
+    excitation: ExcitationSizes | None = None
+    """earthquake: the ground motion's sizes"""
+
+
+class CaseSummary(RunOutcome, kw_only=True, omit_defaults=True):
+    """A case on a reduced model condensed (paper, modal, beam): the outcome, the passages,
+    the theory's prediction and the case's own checks."""
+
+    passages: tuple[Passage, ...]
+    """when the speed first crossed each resonance"""
     prediction: AveragingPrediction
     """what the averaging theory predicts for the drive"""
     jumps: tuple[NumericJump, ...]
     """the sweep's numeric jumps (empty for the other cases)"""
-    passing_torque: PassingTorqueStudy | NoPassingFold | None = None
+    passing_torque: PassingTorque | None = None
     """run-up: the torque needed to pass the first capturing resonance"""
     sweep: SweepFindings | None = None
-    excitation: ExcitationSizes | None = None
-    """earthquake: the ground motion's sizes"""
-    response_spectrum_check: SpectrumCheck | NoSpectrumCheck | None = None
+    """sweep: the jumps and amplitudes against the averaging theory"""
+    response_spectrum_check: SpectrumCheckResult | None = None
     """earthquake on a record: the tip against the response-spectrum estimate"""
-    truncation: TruncationEstimate | NoTruncationEstimate | None = None
+    truncation: Truncation | None = None
     """modal model: the same case with one mode more"""
-    captured_resonance: float | None = None
-    """omega_i of the resonance that holds the rotor (rad/s), or None"""
-    captured_index: int | None = None
-    """that resonance's index among the model's resonances (-), or None"""
-    speed_state: str | None = None
-    """"captured", "escaping", "accelerating" or "at_speed" (see capture_state)"""
-    failed_checks: list | None = None
-    """why ``ok`` is false: the run's own checks that failed (absent when none did)"""
 
-    def to_json(self) -> dict:
-        """The summary as ``simulate_<case>.json`` writes it (key order included)."""
-        out = {}
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if f.name in BESIDE_CAPTURE:
-                continue
-            if f.name == "captured_at":
-                out[f.name] = v
-                out.update({k: getattr(self, k) for k in BESIDE_CAPTURE if getattr(self, k) is not None})
-            elif f.name == "sweep":
-                if v is not None:
-                    out.update(v.to_json())
-            elif f.name in ("prediction", "passing_torque"):
-                if v is not None:
-                    out[f.name] = v.to_json()
-            elif f.name in ("passages", "jumps"):
-                out[f.name] = [p.to_json() for p in v]
-            elif f.name in ("energy_balance", "excitation", "response_spectrum_check", "truncation") and v is not None:
-                out[f.name] = v.to_json()
-            elif f.name not in _OPTIONAL or v is not None:
-                out[f.name] = v
-        return out
-
-    @classmethod
-    def from_json(cls, d: dict) -> CaseSummary:
-        kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
-        kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
-        kw["prediction"] = AveragingPrediction.from_json(d["prediction"])
-        if d.get("passing_torque") is not None:
-            kw["passing_torque"] = passing_torque_from_json(d["passing_torque"])
-        kw["jumps"] = tuple(NumericJump.from_json(j) for j in d.get("jumps") or ())
-        kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
-        if d.get("excitation") is not None:
-            kw["excitation"] = excitation_sizes_from_json(d["excitation"])
-        if d.get("truncation") is not None:
-            kw["truncation"] = truncation_from_json(d["truncation"])
-        if d.get("response_spectrum_check") is not None:
-            kw["response_spectrum_check"] = spectrum_check_from_json(d["response_spectrum_check"])
-        if "predicted_jumps" in d:
-            kw["sweep"] = SweepFindings.from_json(d)
-        return cls(**kw)
-
-
-#: Written right after captured_at, where they are read together (when not None).
-BESIDE_CAPTURE = ("captured_resonance", "captured_index", "speed_state")
-_OPTIONAL = (
-    "passing_torque",
-    "excitation",
-    "response_spectrum_check",
-    "truncation",
-    "captured_resonance",
-    "captured_index",
-    "speed_state",
-    "failed_checks",
-)
 
 #: A run whose energy balance misses by more than this share of the energy
 #: exchanged is no solution of its equations (dp5 at rtol 1e-7 closes to ~1e-6,
@@ -341,7 +284,7 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     schemes: their step; adaptive ones: the steps they took against the periods
     they went through at each moment's fastest frequency, and their rtol."""
     st, m = run.stats, run.model
-    method = st.get("method", "dp5")
+    method = st.method
     motion = run.motion or no_motion()
     W = np.abs(np.asarray(run.Omega, dtype=float))
     finite = W[np.isfinite(W)]
@@ -361,16 +304,17 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     window = None
     if motion.kind != "none":
         window = (motion.start - t[0], motion.end - t[0])
-    h = st.get("time_step")
+    h = st.time_step
     if h:
-        return check_step(method, dict(st.get("scheme") or {}), float(h), freq, duration, window=window)
+        scheme = st.scheme if isinstance(st.scheme, dict) else {}
+        return check_step(method, dict(scheme), float(h), freq, duration, window=window)
     # adaptive: the periods gone through at each moment's fastest frequency
     fast = W if m.eccentricity > 0 else np.zeros_like(t)
     if "ground_motion_band" in freq:
         on = (t >= motion.start) & (t < motion.end)
         fast = np.where(on, np.maximum(fast, freq["ground_motion_band"]), fast)
     periods = float(np.sum(0.5 * (fast[1:] + fast[:-1]) * np.diff(t)) / (2 * math.pi))
-    steps = st.get("steps")
+    steps = st.steps
     mean = duration / steps if steps else 0.0
     return check_step(
         method,
@@ -382,7 +326,7 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
         periods=periods,
         steps=steps,
         window=window,
-        rtol=st.get("rtol"),
+        rtol=st.rtol,
     )
 
 
@@ -396,15 +340,15 @@ def run_checks(run: Transient, drive_free_speed: float, accuracy: AccuracyCheck 
     outrun its drive.
     """
     failed = []
-    status = run.stats.get("status", "ok")
+    status = run.stats.status
     if status != "ok":
         failed.append(f"integrator_stopped: {status}")
-    if run.stats.get("steps", 1) == 0:
+    if run.stats.steps == 0:
         failed.append("no_steps: the integrator took no step (tolerance or step below what it can resolve)")
     if not (np.all(np.isfinite(run.q)) and np.all(np.isfinite(run.v))):
         failed.append("not_finite: the solution holds non-finite values")
-    h = run.stats.get("time_step")
-    if run.stats.get("method") == "central_difference" and h:
+    h = run.stats.time_step
+    if run.stats.method == "central_difference" and h:
         w_max = run.model.stiffest_frequency()
         if h * w_max > 2.0:
             failed.append(
@@ -442,6 +386,7 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: AveragingPr
     state = capture_state(run.model, run.t, run.Omega, drive_free_speed)
     base: dict[str, Any] = dict(
         ok=not failed,
+        failed_checks=tuple(failed) or None,
         duration=float(run.t[-1] - run.t[0]),
         omega_final=float(run.Omega[-1]),
         omega_final_mean=om_mean,
@@ -452,11 +397,9 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: AveragingPr
         speed_state=state.speed_state,
         passages=passages(run),
         energy_balance=run.energy_balance(),
-        integrator={**run.stats, "accuracy": acc.to_json()},
+        integrator=replace(run.stats, accuracy=acc),
         prediction=prediction,
         jumps=(),
     )
     base.update(sections)
-    if failed:
-        base["failed_checks"] = failed
     return CaseSummary(**base)

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -44,7 +45,7 @@ from .records import (
 )
 from .references import FullOrderReference
 from .run_plan import fem3d_plan, own_duration
-from .run_records import Fem3dRun, RunRecord
+from .run_records import Fem3dRun, ReducedRun
 
 COMPARE_CASES = ("earthquake", "runup")
 DEFAULT_MODELS = {"earthquake": ("modal", "fem3d"), "runup": ("modal", "beam")}
@@ -270,13 +271,13 @@ def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain
 
 def _finish_pareto(scene: Scene, pending, out: Path, write: bool, chart) -> ParetoStudy:
     """The study, its chart drawn."""
-    from dataclasses import replace
+    from ..records import replace
 
     study, _ = pending.finish()
     if write and chart is not None:
         name = "compare_earthquake_pareto.png"
         chart(
-            study.to_json(),
+            study,
             Path(out) / name,
             f"{scene.name}: El Centro, speed against accuracy (errors against {study.reference.label})",
         )
@@ -292,13 +293,18 @@ def _full_order_reference(runs: dict[str, ModelRun]) -> FullOrderReference | Non
     return record.full_order.reference if isinstance(record, Fem3dRun) else None
 
 
-def _per_model(case: str, m: str, r: RunRecord) -> ComparedModel:
-    ma = r.max_abs
+def _peak(r: ReducedRun | Fem3dRun, key: str) -> float:
+    """A run's peak (m); NaN where the run has none (written null, as a non-finite peak)."""
+    value = r.max_abs.get(key)
+    return math.nan if value is None else value
+
+
+def _per_model(case: str, m: str, r: ReducedRun | Fem3dRun) -> ComparedModel:
     stem = compare_stem(case, m)
     return ComparedModel(
-        peak_tip_relative=ma["tip_x_relative"],
-        peak_tip_absolute=ma["tip_x_absolute"],
-        peak_shaft_deflection=ma["shaft_deflection_x"],
+        peak_tip_relative=_peak(r, "tip_x_relative"),
+        peak_tip_absolute=_peak(r, "tip_x_absolute"),
+        peak_shaft_deflection=_peak(r, "shaft_deflection_x"),
         omega_final=r.omega_final,
         wall_seconds=r.wall_seconds,
         compile_seconds=r.compile_seconds,

@@ -10,15 +10,12 @@ report reads it).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from ..fem3d.stress_records import VonMisesSummary
-from ..provenance import JsonRecord
+from ..records import Record
 from ..reduced.internal_forces import ForceTruncation
 
 
-@dataclass(frozen=True)
-class BaseReactions(JsonRecord):
+class BaseReactions(Record):
     """What the clamp carries, peaks over the run (the foundation designer's loads)."""
 
     moment: float
@@ -41,8 +38,7 @@ class BaseReactions(JsonRecord):
     """N / A over that stress at that instant: the share of the axial force (EN 1993-1-6's C_x) (-)"""
 
 
-@dataclass(frozen=True)
-class ShaftDemand(JsonRecord):
+class ShaftDemand(Record):
     """The shaft's deflection and force, peaks over the run."""
 
     deflection: float
@@ -62,8 +58,7 @@ class ShaftDemand(JsonRecord):
     the model gives none); False: from the model's own rates"""
 
 
-@dataclass(frozen=True)
-class InternalForcesSummary(JsonRecord):
+class InternalForcesSummary(Record, omit_defaults=True):
     """The ``internal_forces`` block of a transient's JSON (SI units)."""
 
     model: str
@@ -84,9 +79,9 @@ class InternalForcesSummary(JsonRecord):
     """the modal ROM: modes the forces superpose"""
     modes_in_run: int | None = None
     """the modal ROM: modes of the case's run (its band)"""
-    truncation: ForceTruncation | None = field(default=None, metadata={"omit_if_none": True})
+    truncation: ForceTruncation | None = None
     """the modal ROM: the modes the section forces need (rotorpillar.reduced.internal_forces)"""
-    von_mises: VonMisesSummary | None = field(default=None, metadata={"omit_if_none": True})
+    von_mises: VonMisesSummary | None = None
     """the 3D model: its von Mises field's peaks"""
     stress_field: str | None = None
     """the 3D model: the XDMF time series (file name, beside the JSON), or None"""

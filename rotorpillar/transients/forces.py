@@ -39,10 +39,9 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
-from dataclasses import replace
-
 import numpy as np
 
+from ..records import replace
 from ..reduced.internal_forces import (
     STANDARD_GRAVITY,
     axial_force,
@@ -149,7 +148,7 @@ def _attach(run, summary: InternalForcesSummary | None, series: dict, force, ext
         base_stress=None if base is None else base.stress,
         **extra_max,
     )
-    record = replace(run.record.with_max_abs(ma), internal_forces=summary)
+    record = replace(run.record, max_abs=ma, internal_forces=summary)
     t = np.asarray(data["t"], dtype=float)
     for key, values in series.items():
         data[key] = values

@@ -11,19 +11,16 @@ where the study held inf.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import msgspec
 
 from ..chain.record import PillarModel
-from ..provenance import JsonRecord
+from ..records import Figure, Record
 
 #: Fixed-step runs' and adaptive runs' ``family``.
 FAMILIES = ("adaptive", "fixed")
 
-_OPTIONAL = {"omit_if_none": True}
 
-
-@dataclass(frozen=True, kw_only=True)
-class AccuracyRow(JsonRecord):
+class AccuracyRow(Record, kw_only=True, omit_defaults=True):
     """One run of the accuracy ladder: an integrator at one setting on the run-up."""
 
     method: str
@@ -34,11 +31,11 @@ class AccuracyRow(JsonRecord):
     """the rung: the relative tolerance (-) or the time step (s), as ``setting_name`` says"""
     setting_name: str
     """"rtol" or "time_step\""""
-    steps_per_rotor_period: float | None = field(default=None, metadata=_OPTIONAL)
+    steps_per_rotor_period: float | None = None
     """time steps per rotor period at the run's top speed (-); fixed-step runs only"""
-    error: float
+    error: float | None
     """largest |tip X - reference| over the largest |tip X| on the output grid (-); inf
-    (JSON null) when the run failed"""
+    when the run failed (null in the JSON, None read back)"""
     wall_seconds: float
     """wall time of the run (s; noisy on a shared machine)"""
     nfev: int
@@ -47,8 +44,7 @@ class AccuracyRow(JsonRecord):
     """the integrator's status ("ok" or why it stopped)"""
 
 
-@dataclass(frozen=True)
-class Reference(JsonRecord):
+class Reference(Record):
     """The accuracy study's reference run, and its check against another method."""
 
     method: str
@@ -59,12 +55,11 @@ class Reference(JsonRecord):
     """its force evaluations (-)"""
     wall_seconds: float
     """its wall time (s)"""
-    agreement_with_dop853: float = field(metadata={"json": "agreement_with_DOP853_1e-12"})
+    agreement_with_dop853: float = msgspec.field(name="agreement_with_DOP853_1e-12")
     """the error measure of scipy's DOP853 at rtol 1e-12 against the reference (-)"""
 
 
-@dataclass(frozen=True)
-class MethodSummary(JsonRecord):
+class MethodSummary(Record):
     """One integrator over its ladder: where it fails, its best error, its cost to reach
     an error of 1e-3 and 1e-6 (log-interpolated along the ladder; None when never reached)."""
 
@@ -73,20 +68,20 @@ class MethodSummary(JsonRecord):
     coarsest_ok_steps_per_period: float | None
     """fewest steps per rotor period with an error under 10 % (-); None for adaptive methods
     or when every rung fails"""
-    best_error: float
-    """the smallest error over the ladder (-)"""
-    wall_seconds_at_1e_3: float | None = field(metadata={"json": "wall_seconds_at_0.001"})
+    best_error: float | None
+    """the smallest error over the ladder (-); inf when every rung failed (null in the
+    JSON, None read back)"""
+    wall_seconds_at_1e_3: float | None = msgspec.field(name="wall_seconds_at_0.001")
     """wall time to an error of 1e-3 (s)"""
-    nfev_at_1e_3: float | None = field(metadata={"json": "nfev_at_0.001"})
+    nfev_at_1e_3: float | None = msgspec.field(name="nfev_at_0.001")
     """force evaluations to an error of 1e-3 (-, interpolated)"""
-    wall_seconds_at_1e_6: float | None = field(metadata={"json": "wall_seconds_at_1e-06"})
+    wall_seconds_at_1e_6: float | None = msgspec.field(name="wall_seconds_at_1e-06")
     """wall time to an error of 1e-6 (s)"""
-    nfev_at_1e_6: float | None = field(metadata={"json": "nfev_at_1e-06"})
+    nfev_at_1e_6: float | None = msgspec.field(name="nfev_at_1e-06")
     """force evaluations to an error of 1e-6 (-, interpolated)"""
 
 
-@dataclass(frozen=True, kw_only=True)
-class AccuracyStudy(JsonRecord):
+class AccuracyStudy(Record, kw_only=True, omit_defaults=True):
     """Experiment 1: error against cost on a run-up from rest."""
 
     duration: float
@@ -99,12 +94,11 @@ class AccuracyStudy(JsonRecord):
     rows: tuple[AccuracyRow, ...]
     per_method: dict[str, MethodSummary]
     """method -> its summary, methods in sorted order"""
-    model: str | None = field(default=None, metadata=_OPTIONAL)
+    model: str | None = None
     """the model integrated (its name); set by ``run_integrator_study``"""
 
 
-@dataclass(frozen=True)
-class StabilityRow(JsonRecord):
+class StabilityRow(Record):
     """One run of the stiffness study: an integrator on the modal model with ``modes``."""
 
     method: str
@@ -127,8 +121,7 @@ class StabilityRow(JsonRecord):
     """2 / omega_max: the largest stable step of central difference, undamped (s)"""
 
 
-@dataclass(frozen=True)
-class FirstFailure(JsonRecord):
+class FirstFailure(Record):
     """The fewest pillar modes at which an integrator failed."""
 
     modes: int
@@ -139,8 +132,7 @@ class FirstFailure(JsonRecord):
     """the study's time step times omega_max (-)"""
 
 
-@dataclass(frozen=True)
-class CostGrowth(JsonRecord):
+class CostGrowth(Record):
     """An integrator's force evaluations from the fewest to the most modes it survived."""
 
     modes: tuple[int, ...]
@@ -151,8 +143,7 @@ class CostGrowth(JsonRecord):
     """the ratio of the two (-)"""
 
 
-@dataclass(frozen=True)
-class StabilityStudy(JsonRecord):
+class StabilityStudy(Record):
     """Experiment 2: the modal model with more and more pillar modes."""
 
     duration: float
@@ -170,8 +161,7 @@ class StabilityStudy(JsonRecord):
     """what the study shows, in words"""
 
 
-@dataclass(frozen=True)
-class DriftRow(JsonRecord):
+class DriftRow(Record):
     """One integrator's energy drift on the undamped, unforced system."""
 
     method: str
@@ -188,8 +178,7 @@ class DriftRow(JsonRecord):
     """the relative tolerance (-) of an adaptive method, the time step (s) of a fixed-step one"""
 
 
-@dataclass(frozen=True)
-class DriftStudy(JsonRecord):
+class DriftStudy(Record):
     """Experiment 3: energy drift without damping, motor or load."""
 
     duration: float
@@ -203,17 +192,16 @@ class DriftStudy(JsonRecord):
     rows: tuple[DriftRow, ...]
 
 
-@dataclass(frozen=True)
-class IntegratorStudy(JsonRecord):
+class IntegratorStudy(Record, omit_defaults=True):
     """The integrator study: integrators.json's result (the command adds the pillar
     model, the probe's words and the figures to the study's three experiments)."""
 
     accuracy: AccuracyStudy
     stability: StabilityStudy
     energy_drift: DriftStudy
-    pillar_model: PillarModel | None = field(default=None, metadata=_OPTIONAL)
+    pillar_model: PillarModel | None = None
     """the pillar model of the accuracy and drift studies' ROM"""
-    stiffness_probe: str | None = field(default=None, metadata=_OPTIONAL)
+    stiffness_probe: str | None = None
     """what the stiffness study's pillar modes are, in words"""
-    figures: tuple[dict[str, str], ...] | None = field(default=None, metadata=_OPTIONAL)
-    """the charts: {file, caption}"""
+    figures: tuple[Figure, ...] = ()
+    """the charts"""

@@ -25,10 +25,10 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
 
 import numpy as np
 
+from ..records import replace
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.integration import FIXED_STEP, Settings, simulate
@@ -85,9 +85,9 @@ def accuracy_study(
                     setting=rtol,
                     setting_name="rtol",
                     error=_error(run, ref),
-                    wall_seconds=run.stats["wall_seconds"],
-                    nfev=run.stats["nfev"],
-                    status=run.stats["status"],
+                    wall_seconds=run.stats.wall_seconds,
+                    nfev=run.stats.nfev,
+                    status=run.stats.status,
                 )
             )
     spacing = duration / (samples - 1)
@@ -105,25 +105,30 @@ def accuracy_study(
                     setting_name="time_step",
                     steps_per_rotor_period=2 * math.pi / (W_max * h),
                     error=_error(run, ref),
-                    wall_seconds=run.stats["wall_seconds"],
-                    nfev=run.stats["nfev"],
-                    status=run.stats["status"],
+                    wall_seconds=run.stats.wall_seconds,
+                    nfev=run.stats.nfev,
+                    status=run.stats.status,
                 )
             )
     return AccuracyStudy(
         duration=duration,
         samples=samples,
         omega_max=W_max,
-        reference=Reference("dp5", 1e-12, ref.stats["nfev"], ref.stats["wall_seconds"], ref_agreement),
+        reference=Reference("dp5", 1e-12, ref.stats.nfev, ref.stats.wall_seconds, ref_agreement),
         rows=tuple(rows),
         per_method=_per_method(rows),
     )
 
 
+def _error_of(r: AccuracyRow) -> float:
+    """A row's error; inf where the run failed (None once read back from JSON's null)."""
+    return math.inf if r.error is None else r.error
+
+
 def _cost_at(rows: list[AccuracyRow], target: float) -> tuple[float | None, float | None]:
     """Wall time and evaluations to reach ``target`` error, log-interpolated along the ladder."""
     pts = sorted(
-        ((r.wall_seconds, r.error, r.nfev) for r in rows if math.isfinite(r.error) and r.error > 0),
+        ((r.wall_seconds, _error_of(r), r.nfev) for r in rows if math.isfinite(_error_of(r)) and _error_of(r) > 0),
         key=lambda p: p[0],
     )
     for (w0, e0, n0), (w1, e1, n1) in zip(pts, pts[1:]):
@@ -145,7 +150,7 @@ def _per_method(rows: list[AccuracyRow]) -> dict[str, MethodSummary]:
     out = {}
     for m in sorted({r.method for r in rows}):
         mine = [r for r in rows if r.method == m]
-        bad = [r for r in mine if not math.isfinite(r.error) or r.error > FAIL]
+        bad = [r for r in mine if not math.isfinite(_error_of(r)) or _error_of(r) > FAIL]
         worst_ok: float | None
         if mine[0].family == "fixed":
             worst_ok = min((_steps(r) for r in mine if r not in bad), default=None)
@@ -164,7 +169,7 @@ def _per_method(rows: list[AccuracyRow]) -> dict[str, MethodSummary]:
             )
         w3, n3 = _cost_at(mine, 1e-3)
         w6, n6 = _cost_at(mine, 1e-6)
-        out[m] = MethodSummary(fails, worst_ok, min(r.error for r in mine), w3, n3, w6, n6)
+        out[m] = MethodSummary(fails, worst_ok, min(_error_of(r) for r in mine), w3, n3, w6, n6)
     return out
 
 
@@ -198,9 +203,9 @@ def stability_study(
                     modes=k,
                     omega_max=w_max,
                     ok=ok,
-                    nfev=run.stats["nfev"],
+                    nfev=run.stats.nfev,
                     wall_seconds=wall,
-                    status=run.stats["status"],
+                    status=run.stats.status,
                     time_step=time_step if m in FIXED_STEP else None,
                     stability_limit_central_difference=2.0 / w_max,
                 )
@@ -256,9 +261,9 @@ def drift_study(
                 method=m,
                 drift=float((E[-1] - E[0]) / E[0]) if ok else None,
                 max_deviation=float(np.max(np.abs(E - E[0])) / E[0]) if ok else None,
-                nfev=run.stats["nfev"],
-                status=run.stats["status"],
-                setting=rtol if m not in FIXED_STEP else run.stats.get("time_step"),
+                nfev=run.stats.nfev,
+                status=run.stats.status,
+                setting=rtol if m not in FIXED_STEP else run.stats.time_step,
             )
         )
     return DriftStudy(duration, speed, rtol, steps_per_period, tuple(rows))

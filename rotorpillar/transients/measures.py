@@ -29,11 +29,10 @@ the same time, so the history error is the model's), else the envelope.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from ..provenance import JsonRecord
+from ..records import Record
 
 #: Rotor angles within this of each other (rad) keep the whirls in phase.
 PHASE_LOCKED = 0.1
@@ -50,8 +49,7 @@ def running_peak(t: np.ndarray, x: np.ndarray, window: float) -> np.ndarray:
     return out
 
 
-@dataclass(frozen=True)
-class SeriesErrors(JsonRecord):
+class SeriesErrors(Record):
     """One model's tip history against the reference's, on the reference's times."""
 
     history_error: float

@@ -35,17 +35,19 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
+import msgspec
 import numpy as np
 
 from ..chain import ChainModes
 from ..errors import InputError
+from ..records import replace
 from ..reduced.models import BeamModelInfo, PaperModelInfo
 from ..scene import MODELS, override
 from .pillar_models import reduced_pillar_model, solid_pillar_model
-from .run_plan import fem3d_plan, with_duration
-from .run_records import BeamFullOrder, Fem3dRun, ReducedRun, RunRecord
+from .run_plan import BeamFullOrder, fem3d_plan, with_duration
+from .run_records import REDUCED_RUNS, Fem3dRun, ReducedRun
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,7 +56,7 @@ class ModelRun:
 
     case: str
     model: str
-    record: RunRecord
+    record: ReducedRun | Fem3dRun
     """the run's record: the JSON fields of simulate_<case>_<model>.json (less files and
     provenance)"""
     data: dict
@@ -172,7 +174,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     else:
         data["tip_x_relative"] = data["tip_x"]
     data["shaft_deflection_x"] = data["q"][:, : m.nx] @ m.shaft - m.eccentricity * np.cos(data["theta"])
-    ma = dict(res.summary.max_abs)
+    ma: dict[str, float | None] = dict(res.summary.max_abs)
     full_tip, full_ground = run.tip(), ground_displacement(m, run.motion or no_motion(), run.t)
     if m.frame == "absolute":
         ma["tip_x_absolute"] = ma["tip_x"]
@@ -189,7 +191,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
             elements=info.elements,
             theory=info.theory,
             duration=res.summary.duration,
-            time_step=run.stats.get("time_step"),
+            time_step=run.stats.time_step,
             note=(
                 f"the 1D {info.theory} beam with every degree of freedom ({info.elements} "
                 f"elements, {info.element_source}), the case's full duration; implicit fixed "
@@ -198,10 +200,9 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
                 "scheme, not resolved"
             ),
         )
-    record = ReducedRun(
+    record = REDUCED_RUNS[which](
+        **msgspec.structs.asdict(replace(res.summary, max_abs=ma)),
         case=case,
-        model=which,
-        summary=replace(res.summary, max_abs=ma),
         warnings=tuple(_warnings(case, m, res)),
         pillar_model=reduced_pillar_model(which, chain, info),
         uncertainty=bars,
@@ -229,7 +230,7 @@ def _warnings(case: str, model, res) -> list[str]:
     any earthquake: a record whose sizes no recorded earthquake has (the commands print
     them on stderr)."""
     out = []
-    from ..reduced.excitation_records import RecordSizes
+    from ..reduced.excitation import RecordSizes
 
     quake = res.excitation  # the ground motion's sizes, for the earthquake only
     if case == "earthquake" and isinstance(quake, RecordSizes) and not quake.realistic:
@@ -314,14 +315,15 @@ def _run_fem3d(
         recovered = observer.finish()
     finally:
         observer.close()
-    plan = replace(plan, time_step=r.integrator["time_step"])
+    plan = replace(plan, time_step=r.integrator.time_step)
     drive_free = _free_speed(scene)
     state = capture_state(ref, r.t, r.Omega, drive_free)
     captured, settled = state.captured_at, state.speed_state != "escaping"
-    ma = dict(r.max_abs)
+    ma: dict[str, float | None] = dict(r.max_abs)
     ma["tip_x_relative"] = ma["tip_x"]
-    integ = dict(r.integrator)
-    integ.setdefault("wall_seconds", integ.get("integration_seconds"))
+    integ = r.integrator
+    if not integ.wall_seconds:  # the step loop times its integration apart
+        integ = replace(integ, wall_seconds=integ.integration_seconds)
     ground = r.ground_x
     data = {
         "t": r.t,
@@ -343,11 +345,14 @@ def _run_fem3d(
         "work": r.work,
         "peak": np.abs(r.tip_x)[:, None],
     }
+    description = r.model
     if case == "earthquake":
-        r.model["initial_speed_source"] = "the operating speed of the chain's ROM (the fastest stable stationary speed)"
+        description = replace(
+            description,
+            initial_speed_source="the operating speed of the chain's ROM (the fastest stable stationary speed)",
+        )
     record = Fem3dRun(
         case=case,
-        model="fem3d",
         ok=r.ok,
         duration=float(r.t[-1] - r.t[0]),
         omega_final=r.omega_final,
@@ -367,15 +372,14 @@ def _run_fem3d(
         + ("" if settled else "; the run ended before the speed settled, so no capture is claimed"),
         pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference, plan.note),
         compile_seconds=compile_seconds,
-        model_description=r.model,
-        model_info={"dofs": r.dofs, "mesh": dict(vars(mesh))},
+        model_description=description,
         resonances=tuple(ref.quasi_normal()),
         damped_frequencies=tuple(ref.damped_frequencies()),
         tip_x_frame="relative_to_ground",
         full_order=plan,
-        initial_speed=r.model.get("initial_speed"),
+        initial_speed=description.initial_speed,
         excitation=motion.sizes() if case == "earthquake" else None,
-        excitation_in_model=r.model.get("forcing") if case == "earthquake" else None,
+        excitation_in_model=description.forcing if case == "earthquake" else None,
     )
     return with_fem3d_forces(
         scene, ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None), recovered, observer.heights

@@ -24,20 +24,19 @@ chooses the 3D reference mesh from these.
 
 from __future__ import annotations
 
-import json
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..provenance import JsonRecord
+from .. import records
+from ..fem3d.modal import ModeRow  # numpy-only: the 3D model's table of modes
+from ..records import Record
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from ..fem3d.modal import ModeRow
     from ..scene import Scene
 
 PARTICIPATION_FLOOR = 1e-6
@@ -50,8 +49,7 @@ QUANTITY_OF: dict[tuple[str, int | None], str] = {("bending_x", 0): "bending", (
 (the study measures the first bending and the first n = 2 ovalling of the bare tube)."""
 
 
-@dataclass(frozen=True)
-class ModeParticipation(JsonRecord):
+class ModeParticipation(Record):
     """One mode of the loaded tube and its part in a case's loads."""
 
     index: int
@@ -72,8 +70,7 @@ class ModeParticipation(JsonRecord):
     participates: bool
 
 
-@dataclass(frozen=True)
-class ParticipationTable(JsonRecord):
+class ParticipationTable(Record):
     """The loaded tube's modes and which of them a case's loads excite."""
 
     case: str
@@ -207,18 +204,34 @@ def _participation_statement(case, modes, part, left, band_top, floor, uncovered
     return text + "."
 
 
+class LoadedModes(Record):
+    """modal.json as far as the participation reads it: the loaded tube's modes."""
+
+    modes_with_top: tuple[ModeRow, ...]
+    """the modes of the tube with its top mass, lowest first"""
+
+
 def loaded_mode_rows(scene: Scene, study_dir: Path | None) -> tuple[list[ModeRow], str, dict]:
     """The loaded tube's mode table: from modal.json when it is this scene's modes
     and carries the participation, else computed on the scene's [mesh]."""
-    doc = read_document(Path(study_dir) / "modal.json") if study_dir is not None else None
-    mine = scene.to_dict()
-    if doc is not None and all(
-        doc.get("scene", {}).get(k) == mine[k]
-        for k in ("pillar", "gondola", "mesh", "modal", "converge", "drive", "load")
-    ):
-        from ..fem3d.modal import ModeRow
+    from ..provenance import Provenance
 
-        rows = [ModeRow.from_json(r) for r in doc.get("modes_with_top") or []]
+    mine = scene.to_dict()
+    found = None
+    if study_dir is not None:
+        path = Path(study_dir) / "modal.json"
+        try:
+            found, written = records.read(path, LoadedModes), records.read(path, Provenance)
+        except (OSError, ValueError):  # missing or damaged: computed below
+            found = None
+    if (
+        found is not None
+        and isinstance(written.scene, dict)
+        and all(
+            written.scene.get(k) == mine[k] for k in ("pillar", "gondola", "mesh", "modal", "converge", "drive", "load")
+        )
+    ):
+        rows = list(found.modes_with_top)
         if rows and all(r.participation is not None for r in rows):
             return rows, "modal.json", dict(mine["mesh"])
     from ..fem3d import modal_analysis
@@ -249,12 +262,3 @@ def load_participation(scene: Scene, case: str, study_dir: Path | None = None, m
     return participation_table(
         rows, case, case_band_top(scene, case, motion), total, compliance, source=source, mesh=mesh
     )
-
-
-def read_document(path: Path) -> dict | None:
-    """The JSON object in ``path``, or None when it is missing or not a JSON object."""
-    try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    return doc if isinstance(doc, dict) else None

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from ..chain.record import PillarModel
-from ..provenance import JsonRecord
-from ..reduced.excitation_records import ExcitationSizes
+from ..records import Record
+from ..reduced.excitation import ExcitationSizes
 from .case_checks import SpectralMode
 from .pareto import ParetoStudy
 from .references import FullOrderReference
@@ -16,8 +14,7 @@ from .window import RunupWindow
 REFERENCE_ORDER = ("fem3d", "beam", "modal", "paper")
 
 
-@dataclass(frozen=True)
-class ComparedModel(JsonRecord):
+class ComparedModel(Record):
     """One model's run in a comparison: its answers, its cost and its files."""
 
     peak_tip_relative: float
@@ -46,8 +43,7 @@ class ComparedModel(JsonRecord):
     """its compare_<case>_<model>.npz"""
 
 
-@dataclass(frozen=True)
-class ModelErrors(JsonRecord):
+class ModelErrors(Record):
     """One model against the reference (rotorpillar.transients.measures)."""
 
     tip_history_error: float
@@ -71,8 +67,7 @@ class ModelErrors(JsonRecord):
     """why that measure, in words"""
 
 
-@dataclass(frozen=True)
-class CompareWindow(JsonRecord):
+class CompareWindow(Record, omit_defaults=True):
     """The span every model's history is compared over."""
 
     start: float
@@ -83,12 +78,11 @@ class CompareWindow(JsonRecord):
     """the one duration every model runs (s)"""
     why: str
     """why that duration, in words"""
-    runup: RunupWindow | None = field(default=None, metadata={"omit_if_none": True})
+    runup: RunupWindow | None = None
     """the run-up's window through the resonances (runup against fem3d), else absent"""
 
 
-@dataclass(frozen=True)
-class ResponseSpectrum(JsonRecord):
+class ResponseSpectrum(Record):
     """The earthquake's pseudo-acceleration spectrum and the ROM's spectral peak tip."""
 
     period: tuple[float, ...]
@@ -107,8 +101,7 @@ class ResponseSpectrum(JsonRecord):
     note: str
 
 
-@dataclass(frozen=True)
-class CompareResult(JsonRecord):
+class CompareResult(Record, omit_defaults=True):
     """Several models on one case (SI: m, rad/s, s).  ``errors`` and ``cost_ratio`` are
     against ``reference``; the histories are compared over ``window`` (every model is
     run over the same duration)."""
@@ -132,12 +125,12 @@ class CompareResult(JsonRecord):
     """compare_<case>.png: tip histories relative to the ground overlaid, difference below"""
     window: CompareWindow
     """the span of the comparison and why"""
-    spectrum: ResponseSpectrum | None = field(default=None, metadata={"omit_if_none": True})
+    spectrum: ResponseSpectrum | None = None
     """earthquake: the record's spectrum and the ROM's spectral estimate of the peak tip"""
-    full_order_reference: FullOrderReference | None = field(default=None, metadata={"omit_if_none": True})
+    full_order_reference: FullOrderReference | None = None
     """fem3d run: its mesh, where it comes from (the convergence study, or the scene), its own
     error on the frequencies the load excites, and the participation of the loaded modes"""
-    pareto: ParetoStudy | None = field(default=None, metadata={"omit_if_none": True})
+    pareto: ParetoStudy | None = None
     """earthquake against the 3D full order: speed against accuracy of every model of the
     ladder on El Centro"""
 

@@ -15,14 +15,14 @@ keys give the mesh, unverified; ``full_order.elements_around/along`` set
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from .. import records
 from ..converge.result import ModeSourceFloor, QuantityErrors
-from ..provenance import JsonRecord
+from ..records import Record, replace
 from ..scene.sections import Mesh
-from .participation import ParticipationTable, load_participation, read_document
+from .participation import ParticipationTable, load_participation
 
 if TYPE_CHECKING:
     from ..converge.result import ConvergenceRun, ConvergenceStudy, RunBrief
@@ -41,8 +41,7 @@ FALLBACK_AROUND = 8
 """Elements around without a study and without full_order.elements_around (-)."""
 
 
-@dataclass(frozen=True)
-class FullOrderReference(JsonRecord):
+class FullOrderReference(Record):
     """The 3D full order's mesh for one case, where it comes from, and its own error."""
 
     case: str
@@ -107,22 +106,20 @@ def read_study(scene: Scene, study_dir: Path | None):
     [converge] differ: what the study's runs and tolerance depend on)."""
     if study_dir is None:
         return None
+    from ..converge.result import ConvergenceStudy
+
     path = Path(study_dir) / "convergence.json"
-    doc = read_document(path)
-    if doc is None:
+    try:
+        study = records.read(path, ConvergenceStudy)
+    except (OSError, ValueError):  # missing or damaged: no study
         return None
-    mine, theirs = scene.to_dict(), doc.get("scene", {})
+    mine, theirs = scene.to_dict(), study.scene
     tube = lambda d: {k: v for k, v in (d or {}).items() if k != "damping"}  # noqa: E731
     if tube(theirs.get("pillar")) != tube(mine["pillar"]) or any(
         theirs.get(k) != mine[k] for k in ("mesh", "converge")
     ):
         return None
-    from ..converge.result import ConvergenceStudy
-
-    try:
-        return ConvergenceStudy.from_json({**doc, "json": str(path)})
-    except (KeyError, TypeError, ValueError):
-        return None
+    return replace(study, json_file=str(path))
 
 
 def rom_source_record(scene: Scene, study: ConvergenceStudy) -> ConvergenceRun | RunBrief | None:

@@ -16,8 +16,42 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 from ..errors import InputError
-from ..scene import override
-from .run_records import Fem3dPlan
+from ..records import Record
+from ..scene import Mesh, override
+from .references import FullOrderReference
+
+
+class BeamFullOrder(Record):
+    """The full-order 1D beam's discretisation and step (the beam's ``full_order`` block)."""
+
+    elements: int
+    """elements along the pillar (-)"""
+    theory: str
+    """the beam theory (euler or timoshenko)"""
+    duration: float
+    """the run's length: the case's full duration (s)"""
+    time_step: float | None
+    """the fixed step taken (s)"""
+    note: str
+    """the beam's degrees of freedom and step, in words"""
+
+
+class Fem3dPlan(Record):
+    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
+    (the ``full_order`` block of a fem3d run's JSON)."""
+
+    mesh: Mesh
+    """the scene [mesh] section the 3D run uses"""
+    duration: float
+    """the run's length (s)"""
+    case_duration: float
+    """the case's own length, as the reduced models run it (s)"""
+    time_step: float | None
+    """[full_order] time_step, None: the band's step; after the run, the step taken (s)"""
+    note: str
+    """what was coarsened or shortened, and why"""
+    reference: FullOrderReference
+    """where the mesh comes from and its own error"""
 
 
 def own_duration(scene: Scene, case: str, motion=None) -> float:

@@ -1,103 +1,52 @@
 """The typed records of one model's run of a case: the JSON fields of
-``simulate_<case>_<model>.json`` (less the files and the provenance the writer adds).
+``simulate_<case>_<model>.json`` (the provenance is written beside them).
 
-- ``ReducedRun``: paper, modal, beam (rotorpillar.transients.cases): the case's
-  ``CaseSummary`` flattened first, then what the model adds;
+- ``PaperRun``, ``ModalRun``, ``BeamRun`` (a ``ReducedRun``: rotorpillar.transients.cases):
+  the case's ``CaseSummary``, then what the model adds;
 - ``Fem3dRun``: the 3D full order (rotorpillar.fem3d.full_order): its own outcome,
   the capture read through the chain's ROM, and its plan (``Fem3dPlan``).
 
-Both end with ``internal_forces`` (rotorpillar.transients.forces), and both keep
-the key order the JSON had when they were hand-built dicts.
+A ``RunRecord`` is any of them, told apart by its ``model`` (the union's tag).
+Both kinds end with ``internal_forces`` (rotorpillar.transients.forces) and the
+files the writer adds (rotorpillar.transients.files).
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, replace
-
 from ..chain.record import PillarModel, Uncertain
-from ..provenance import JsonRecord
-from ..reduced.excitation_records import ExcitationSizes
-from ..reduced.integration import EnergyBalance
+from ..fem3d.full_order_result import Fem3dDescription, Fem3dStats
+from ..records import Figure, Record, tag
 from ..reduced.models import ModelInfo
+from ..reduced.rotor_models import StructureDescription
 from ..reduced.system import DampedMode, Resonance
-from ..scene.sections import Mesh
-from .case_summary import CaseSummary
+from .case_summary import CaseSummary, RunOutcome
 from .force_records import InternalForcesSummary
-from .references import FullOrderReference
+from .run_plan import BeamFullOrder, Fem3dPlan
 
 
-def _resonance(doc: dict) -> Resonance:
-    return Resonance(**{**doc, "shape": tuple(doc["shape"])})
+class RunFiles(Record):
+    """The series written beside a run's JSON (paths)."""
+
+    npz: str
+    """every series and the scalars tip_x_frame, model, case"""
+    csv: str
+    """the plain columns (rotorpillar.transients.files.CSV_COLUMNS)"""
 
 
-def _resonance_json(r: Resonance) -> dict:
-    return {**asdict(r), "shape": list(r.shape)}
+class ModelFiles(Record):
+    """The names of a model's own files (``simulate_<case>_<model>.*``), which the generic
+    ``simulate_<case>.*`` copy."""
+
+    npz: str
+    csv: str
+    json: str
+    figures: tuple[str, ...]
 
 
-@dataclass(frozen=True)
-class BeamFullOrder(JsonRecord):
-    """The full-order 1D beam's discretisation and step (the beam's ``full_order`` block)."""
-
-    elements: int
-    """elements along the pillar (-)"""
-    theory: str
-    """the beam theory (euler or timoshenko)"""
-    duration: float
-    """the run's length: the case's full duration (s)"""
-    time_step: float | None
-    """the fixed step taken (s)"""
-    note: str
-    """the beam's degrees of freedom and step, in words"""
-
-
-@dataclass(frozen=True)
-class Fem3dPlan(JsonRecord):
-    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
-    (the ``full_order`` block of a fem3d run's JSON)."""
-
-    mesh: Mesh
-    """the scene [mesh] section the 3D run uses"""
-    duration: float
-    """the run's length (s)"""
-    case_duration: float
-    """the case's own length, as the reduced models run it (s)"""
-    time_step: float | None
-    """[full_order] time_step, None: the band's step; after the run, the step taken (s)"""
-    note: str
-    """what was coarsened or shortened, and why"""
-    reference: FullOrderReference
-    """where the mesh comes from and its own error"""
-
-    def to_json(self) -> dict:
-        return {
-            "mesh": dict(vars(self.mesh)),
-            "duration": self.duration,
-            "case_duration": self.case_duration,
-            "time_step": self.time_step,
-            "note": self.note,
-            "reference": self.reference.to_json(),
-        }
-
-    @classmethod
-    def from_json(cls, doc: dict) -> Fem3dPlan:
-        return cls(
-            Mesh(**doc["mesh"]),
-            doc["duration"],
-            doc["case_duration"],
-            doc["time_step"],
-            doc["note"],
-            FullOrderReference.from_json(doc["reference"]),
-        )
-
-
-@dataclass(frozen=True)
-class ReducedRun(JsonRecord):
-    """paper, modal or beam on one case (SI: m, rad/s, s)."""
+class ReducedRun(CaseSummary, kw_only=True, omit_defaults=True, tag_field="model"):
+    """paper, modal or beam on one case (SI: m, rad/s, s): the case's summary, then the run."""
 
     case: str
-    model: str
-    summary: CaseSummary
-    """the case condensed (its fields lead the JSON, ``max_abs`` the run's own)"""
     warnings: tuple[str, ...]
     """what makes the answer doubtful, in words (also on the commands' stderr)"""
     pillar_model: PillarModel
@@ -111,8 +60,8 @@ class ReducedRun(JsonRecord):
     """the run's wall time, warm (s)"""
     compile_seconds: float
     """the warm-up's wall time: what the run compiled (s)"""
-    model_description: dict
-    """the model's matrices and coordinates (RotorStructure.describe; keys by model)"""
+    model_description: StructureDescription
+    """the model's matrices and coordinates (RotorStructure.describe)"""
     model_info: ModelInfo | None
     """how the model was built: the reduction (paper), the modes chosen (modal), the
     elements (beam)"""
@@ -124,95 +73,62 @@ class ReducedRun(JsonRecord):
     """the frame of ``tip_x``: "absolute" or "relative_to_ground\""""
     max_abs_sampled: tuple[str, ...]
     """the ``max_abs`` keys read from the decimated output, not from every step"""
-    initial_speed: float | None = field(default=None, metadata={"omit_if_none": True})
+    initial_speed: float | None = None
     """the speed the run starts at, where the case sets one (rad/s)"""
-    excitation_in_model: str | None = field(default=None, metadata={"omit_if_none": True})
+    excitation_in_model: str | None = None
     """earthquake: how the model applies the ground motion, in words"""
-    full_order: BeamFullOrder | None = field(default=None, metadata={"omit_if_none": True})
+    full_order: BeamFullOrder | None = None
     """beam: its discretisation and step"""
     internal_forces: InternalForcesSummary | None = None
     """section forces, base reactions, the shaft's demand (None: paper's Eq. 4 has no sections)"""
+    files: RunFiles | None = None
+    """the series written beside the JSON"""
+    figures: tuple[Figure, ...] = ()
+    """the run's charts"""
+    model_files: ModelFiles | None = None
+    """the model's own files"""
 
     @property
-    def max_abs(self) -> dict:
-        """largest |value| per coordinate (m), and the forces' (N, N m, Pa)"""
-        return self.summary.max_abs
-
-    @property
-    def ok(self) -> bool:
-        """whether the run passed its own checks (as Fem3dRun.ok)"""
-        return self.summary.ok
-
-    @property
-    def omega_final(self) -> float:
-        """rotor speed at the end (rad/s; as Fem3dRun.omega_final)"""
-        return self.summary.omega_final
-
-    def with_max_abs(self, max_abs: dict) -> ReducedRun:
-        return replace(self, summary=replace(self.summary, max_abs=max_abs))
-
-    def to_json(self) -> dict:
-        out = {"case": self.case, "model": self.model, **self.summary.to_json()}
-        for key, value in super().to_json().items():
-            if key not in ("case", "model", "summary"):
-                out[key] = value
-        out["resonances"] = [_resonance_json(r) for r in self.resonances]
-        return out
-
-    @classmethod
-    def from_json(cls, doc: dict) -> ReducedRun:
-        rest = {k: v for k, v in doc.items() if k not in ("summary", "resonances")}
-        base = super().from_json({**rest, "summary": None, "resonances": []})
-        return replace(
-            base, summary=CaseSummary.from_json(doc), resonances=tuple(_resonance(r) for r in doc["resonances"])
-        )
+    def model(self) -> str:
+        """ "paper", "modal" or "beam\""""
+        return tag(self)
 
 
-@dataclass(frozen=True)
-class Fem3dRun(JsonRecord):
+class PaperRun(ReducedRun, tag="paper"):
+    """The paper's Eq. 4 on one case."""
+
+
+class ModalRun(ReducedRun, tag="modal"):
+    """The ROM (the pillar by its modes) on one case."""
+
+
+class BeamRun(ReducedRun, tag="beam"):
+    """The 1D beam at full order on one case."""
+
+
+#: the reduced runs' records by model
+REDUCED_RUNS: dict[str, type[ReducedRun]] = {"paper": PaperRun, "modal": ModalRun, "beam": BeamRun}
+
+
+class Fem3dRun(RunOutcome, kw_only=True, omit_defaults=True, tag_field="model", tag="fem3d"):
     """The 3D full order on one case (SI: m, rad/s, s)."""
 
     case: str
-    model: str
-    ok: bool
-    """the run's own checks held"""
-    duration: float
-    """the run's length (s)"""
-    omega_final: float
-    """rotor speed at the end (rad/s)"""
-    omega_final_mean: float
-    """mean speed over the last 5 % of the run (rad/s)"""
-    max_abs: dict
-    """largest |value| per output (m), and the forces' (N, N m, Pa)"""
-    energy_balance: EnergyBalance
-    """the energy balance of the run (J) and its relative error (-)"""
-    integrator: dict
-    """the scheme, its step (s), steps and wall times (s)"""
-    dofs: int
-    """unknowns of the 3D model (-)"""
-    wall_seconds: float
-    """the run's wall time, warm (s)"""
-    failed_checks: tuple[str, ...] | None = field(metadata={"omit_if_none": True})
-    """why ``ok`` is false (absent when no check failed)"""
-    captured_at: float | None
-    """the speed the rotor settled at below a resonance (rad/s), or None"""
-    captured_resonance: float | None
-    """that resonance's omega_i, from the chain's ROM (rad/s), or None"""
-    captured_index: int | None
-    """its index among the ROM's resonances (-), or None"""
-    speed_state: str
-    """"captured", "escaping", "accelerating" or "at_speed\""""
+    integrator: Fem3dStats
+    """the scheme, its step, steps, solves and wall times"""
     warnings: tuple[str, ...]
     captured_at_source: str
     """where the resonances come from (the chain's ROM), and whether the speed settled"""
     pillar_model: PillarModel
     """the 3D mesh as a pillar model, its source and error the reference's"""
+    dofs: int
+    """unknowns of the 3D model (-)"""
+    wall_seconds: float
+    """the run's wall time, warm (s)"""
     compile_seconds: float
     """the warm-up's wall time: FFCx's forms (s)"""
-    model_description: dict
-    """the 3D model's description (fem3d.full_order)"""
-    model_info: dict
-    """dofs and the mesh"""
+    model_description: Fem3dDescription
+    """what was run: mesh, top, damping law, frame, forcing, start (fem3d.full_order)"""
     resonances: tuple[Resonance, ...]
     """the chain's ROM's quasi-normal resonances (Eq. 7)"""
     damped_frequencies: tuple[DampedMode, ...]
@@ -223,29 +139,18 @@ class Fem3dRun(JsonRecord):
     """the mesh, duration and step, and why"""
     initial_speed: float | None
     """the speed the run starts at (rad/s), None: from rest"""
-    excitation: ExcitationSizes | None = field(default=None, metadata={"omit_if_none": True})
-    """earthquake: the ground motion's sizes"""
     excitation_in_model: str | None = None
-    """earthquake: how the 3D model applies the ground motion, in words (absent for the
-    other cases)"""
+    """earthquake: how the 3D model applies the ground motion, in words"""
     internal_forces: InternalForcesSummary | None = None
     """section resultants, base reactions, the shaft's demand and the von Mises peaks"""
+    files: RunFiles | None = None
+    figures: tuple[Figure, ...] = ()
+    model_files: ModelFiles | None = None
 
-    def with_max_abs(self, max_abs: dict) -> Fem3dRun:
-        return replace(self, max_abs=max_abs)
-
-    def to_json(self) -> dict:
-        out = super().to_json()
-        if self.excitation is None:  # written for the earthquake only, null or not
-            out.pop("excitation_in_model")
-        out["resonances"] = [_resonance_json(r) for r in self.resonances]
-        return out
-
-    @classmethod
-    def from_json(cls, doc: dict) -> Fem3dRun:
-        base = super().from_json({**doc, "failed_checks": doc.get("failed_checks"), "resonances": []})
-        return replace(base, resonances=tuple(_resonance(r) for r in doc["resonances"]))
+    @property
+    def model(self) -> str:
+        return "fem3d"
 
 
-#: one model's run, as ``ModelRun.record`` holds it
-RunRecord = ReducedRun | Fem3dRun
+#: one model's run, as ``ModelRun.record`` holds it (tagged by ``model``)
+RunRecord = PaperRun | ModalRun | BeamRun | Fem3dRun

@@ -12,10 +12,10 @@ finite sweep rate is extrapolated to a zero rate (``rate_convergence``).
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 
 import numpy as np
 
+from ..records import replace
 from ..reduced import averaging as av
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion

@@ -5,17 +5,15 @@ record's ``to_json()`` a row or section as that file writes it)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..provenance import JsonRecord
+from ..records import Record
 from ..reduced.averaging import Jump
 
 
-@dataclass(frozen=True, eq=False)  # arrays: no elementwise ==
-class SweepBins(JsonRecord):
+class SweepBins(Record, eq=False, omit_defaults=True):
     """Stationary speed and amplitudes per M0 bin over one ramp of a sweep, the bins in
     the ramp's order (M0 rising for "up", falling for "down"); empty bins left out."""
 
@@ -33,7 +31,7 @@ class SweepBins(JsonRecord):
     """M0 - J dOmega/dt: the torque the stationary balance sees (N*m)"""
     direction: str
     """up or down"""
-    in_jump: np.ndarray | None = field(default=None, metadata={"omit_if_none": True})
+    in_jump: np.ndarray | None = None
     """per bin: inside a jump, not stationary (``detect_jumps``); None before the scan"""
 
     def column(self, name: str) -> np.ndarray:
@@ -42,8 +40,7 @@ class SweepBins(JsonRecord):
         return value
 
 
-@dataclass(frozen=True, eq=False)
-class JumpScan(JsonRecord):
+class JumpScan(Record, eq=False):
     """One ramp's jumps (``detect_jumps``)."""
 
     jumps: list[NumericJump]
@@ -54,8 +51,7 @@ class JumpScan(JsonRecord):
     """per bin: inside a jump (not stationary)"""
 
 
-@dataclass(frozen=True)
-class NumericJump(JsonRecord):
+class NumericJump(Record):
     """A jump the sweep made: consecutive bins whose speed moved more than JUMP_FACTOR
     times what the motor and load alone allow."""
 
@@ -71,24 +67,22 @@ class NumericJump(JsonRecord):
     """consecutive flagged bin steps it spans (-)"""
 
 
-@dataclass(frozen=True)
-class JumpMatch(JsonRecord):
+class JumpMatch(Record, omit_defaults=True):
     """A predicted jump beside the numeric one it is matched to, or beside none."""
 
     predicted: Jump
     """the averaging theory's jump"""
     numeric: NumericJump | None
     """the numeric jump of the same direction nearest to it (and it nearest to that), or None"""
-    rel_error_omega_from: float | None = field(default=None, metadata={"omit_if_none": True})
+    rel_error_omega_from: float | None = None
     """numeric / predicted - 1 of the speed left (-); absent without a match"""
-    rel_error_omega_to: float | None = field(default=None, metadata={"omit_if_none": True})
+    rel_error_omega_to: float | None = None
     """numeric / predicted - 1 of the speed reached (-); absent without a match"""
-    rel_error_torque: float | None = field(default=None, metadata={"omit_if_none": True})
+    rel_error_torque: float | None = None
     """numeric / predicted - 1 of M0 at the jump (-); absent without a match"""
 
 
-@dataclass(frozen=True)
-class AmplitudeCheck(JsonRecord):
+class AmplitudeCheck(Record):
     """The sweep's stationary amplitudes near one resonance against the paper's Eq. 19 and
     the exact linear steady state (relative errors: model / numeric - 1)."""
 
@@ -128,8 +122,7 @@ class AmplitudeCheck(JsonRecord):
     """the exact linear amplitude's error at the numeric peak (-)"""
 
 
-@dataclass(frozen=True)
-class RateCheck(JsonRecord):
+class RateCheck(Record):
     """Whether the sweep is slow enough at one resonance it crosses: the speed's rate over
     n_i**2 (quasi-static when < 0.1)."""
 
@@ -147,8 +140,7 @@ class RateCheck(JsonRecord):
     """ratio < 0.1"""
 
 
-@dataclass(frozen=True)
-class RateRow(JsonRecord):
+class RateRow(Record, omit_defaults=True):
     """One numeric jump at the sweep rates r, r/2, r/4, and its limit at zero rate: per
     quantity the limit and the fitted exponent p of the delay ~ rate**p (None where the
     three do not converge monotonically, or a rate found no such jump)."""
@@ -175,14 +167,13 @@ class RateRow(JsonRecord):
     """the speed reached, extrapolated to zero rate (rad/s)"""
     omega_to_exponent: float | None
     """p of its delay (-)"""
-    predicted_torque_at_zero: float | None = field(default=None, metadata={"omit_if_none": True})
+    predicted_torque_at_zero: float | None = None
     """the averaging theory's M0 of the nearest predicted jump (N*m); absent without one or without a limit"""
-    rel_error_limit_vs_predicted: float | None = field(default=None, metadata={"omit_if_none": True})
+    rel_error_limit_vs_predicted: float | None = None
     """torque_at_zero_limit / predicted_torque_at_zero - 1 (-); absent with it"""
 
 
-@dataclass(frozen=True)
-class RateConvergence(JsonRecord):
+class RateConvergence(Record):
     """The sweep's jumps at decreasing rates, extrapolated to a quasi-static sweep
     (``rate_convergence`` in ``simulate_sweep.json``)."""
 
@@ -192,8 +183,7 @@ class RateConvergence(JsonRecord):
     """what the rows are, in words"""
 
 
-@dataclass(frozen=True, eq=False)
-class SweepAnalysis(JsonRecord):
+class SweepAnalysis(Record, eq=False):
     """A quasi-static sweep against the averaging theory (``sweep_analysis``); its parts
     that ``simulate_sweep.json`` writes are rows as the JSON has them."""
 
@@ -228,8 +218,7 @@ class SweepAnalysis(JsonRecord):
     (N*m), exact (m, by coordinate) and eq19 (m, by resonance label)"""
 
 
-@dataclass(frozen=True)
-class SweepFindings(JsonRecord):
+class SweepFindings(Record):
     """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep):
     ``to_json()`` the keys ``simulate_sweep.json`` writes after ``jumps``, in this order."""
 

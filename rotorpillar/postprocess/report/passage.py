@@ -102,7 +102,7 @@ def passage_block(build: Build) -> list[str]:
         row
         for m, run, arrays in runs
         if isinstance(run, ReducedRun)  # the 3D run records no passages
-        for row in passage_rows(m, run.summary.passages, run.summary.prediction, arrays)
+        for row in passage_rows(m, run.passages, run.prediction, arrays)
     ]
     if not rows:
         return []
