@@ -61,7 +61,7 @@ def test_beam_static_limit_against_the_cantilever_closed_form():
         settings=Settings("dp5", rtol=1e-8, samples=1201),
         prescribed_speed=True,
     )
-    bp = beam_properties(scene.pillar, "timoshenko")
+    bp = beam_properties(scene.pillar)
     L, EI, kGA = bp.length, bp.youngs_modulus * bp.second_moment, bp.shear_coefficient * bp.shear_modulus * bp.area
     w, P = -bp.density * bp.area * a0, -(scene.gondola.mass + scene.rotor.mass) * a0
     ref = w * L**4 / (8 * EI) + w * L**2 / (2 * kGA) + P * L**3 / (3 * EI) + P * L / kGA

@@ -18,7 +18,6 @@ import numpy as np
 
 from ..errors import ComputationError
 from ..records import Record, replace
-from ..scene import Scene
 from . import identify
 from .eigensolver import solve_gep_shift_invert
 from .model import AssembledPillar
@@ -214,13 +213,6 @@ class ModalResult:
                 )
             )
         return out
-
-
-def _scene_top_mass(scene: Scene) -> float:
-    m = scene.gondola.mass
-    if scene.modal.top_mass == "gondola_and_rotor":
-        m += scene.rotor.mass
-    return m
 
 
 def _vtu_map(model: AssembledPillar, coords: np.ndarray):

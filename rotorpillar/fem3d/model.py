@@ -24,7 +24,6 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ComputationError
 from ..mesh import BASE, TOP, MeshData, TubeMeshParams, tube_mesh_data
 from .forms import mass_form, stiffness_form
 
@@ -328,10 +327,3 @@ def _rigid_top(K, M, V, comm, top_nodes, height, top_mass, tube_dofs):
     K.destroy()
     M.destroy()
     return Kt, Mt, T
-
-
-def check_finite(A, name: str) -> None:
-    """Refuse a matrix with NaN or inf (a degenerate cell gives them)."""
-    norm = A.norm()
-    if not np.isfinite(norm):
-        raise ComputationError(f"assembly produced a non-finite {name} (degenerate cells?)")

@@ -18,7 +18,6 @@ is the first-order expansion of the tip's curve about omega_i.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable
 
 import numpy as np
@@ -151,8 +150,3 @@ def peak_near(curve_: BodeCurve, omega: float, width: float = 0.2) -> tuple[floa
     """The curve's highest local peak within +-``width`` of ``omega`` (speed, amplitude), or None."""
     near = [p for p in curve_.peaks if abs(p[0] - omega) <= width * omega]
     return max(near, key=lambda p: p[1]) if near else None
-
-
-def relative_difference(a: float, b: float) -> float:
-    """a / b - 1 (-); nan when b is 0."""
-    return a / b - 1 if b else math.nan

@@ -274,14 +274,3 @@ def modal_damping(pm: PillarModes, tip_damping: float) -> NDArray[np.float64]:
     if pm.damping_ratio is not None:
         return np.diag(2 * np.asarray(pm.damping_ratio) * pm.omega * pm.modal_mass)
     return tip_dashpot(pm.count, tip_damping)
-
-
-def section_modulus(section: TubeSection) -> float:
-    """W = I / c, c = D0 / 2 (m**3)."""
-    return section.second_moment / (section.outer_diameter / 2)
-
-
-def thin_tube_shear_stress(shear: ArrayLike, section: TubeSection) -> NDArray[np.float64]:
-    """Largest shear stress of a thin circular tube, 2 V / A at the neutral axis (Pa)."""
-    stress: NDArray[np.float64] = 2 * np.abs(np.asarray(shear, dtype=float)) / section.area
-    return stress

@@ -183,8 +183,10 @@ class ModesDescription(Record):
     """what the source adds (the gondola's mass and inertia, a frequency scale)"""
 
 
-def beam_properties(pillar: Pillar, theory: str = "timoshenko") -> BeamProperties:
-    """The ``[pillar]`` tube as a 1D beam (Cowper's shear coefficient for Timoshenko)."""
+def beam_properties(pillar: Pillar) -> BeamProperties:
+    """The ``[pillar]`` tube as a 1D beam, with Cowper's shear coefficient: the same
+    properties for either theory (the Euler-Bernoulli element takes no shear term, so the
+    theory is the element's choice: ``beam_fe.assemble(..., theory)``)."""
     p = pillar
     sec = section_of(p)
     kappa = cowper_shear_coefficient(p.outer_diameter, p.inner_diameter, p.poisson_ratio)
@@ -207,7 +209,7 @@ def beam_pillar_modes(
     """
     if theory not in THEORIES:
         raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
-    bp = beam_properties(pillar, theory)
+    bp = beam_properties(pillar)
     K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
     n = K.shape[0]
     k = min(n_modes, n)
@@ -265,7 +267,7 @@ def beam_tip_reduction(pillar: Pillar, theory: str = "timoshenko", elements: int
     """
     if theory not in THEORIES:
         raise InputError(f"modal_model.theory = {theory!r}: must be one of {', '.join(THEORIES)}")
-    K, M = assemble(beam_properties(pillar, theory), elements, theory, 0.0, 0.0)
+    K, M = assemble(beam_properties(pillar), elements, theory, 0.0, 0.0)
     n = K.shape[0]
     mu, vec = eigh(M, K, subset_by_index=[n - 1, n - 1])
     omega = 1.0 / math.sqrt(mu[0])

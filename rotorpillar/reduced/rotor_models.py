@@ -162,14 +162,6 @@ class RotorStructure:
         """Ks + c2 d d^T: the X stiffness with the shaft (N/m)."""
         return self.stiffness + self.shaft_stiffness * np.outer(self.shaft, self.shaft)
 
-    def full_mass(self) -> NDArray[np.float64]:
-        n = self.n
-        M = np.zeros((n, n))
-        M[: self.nx, : self.nx] = self.mass
-        M[self.nx, self.nx] = self.rotor_mass
-        M[-1, -1] = self.rotor_inertia
-        return M
-
     def mass_inverse(self, prescribed_speed: bool = False) -> NDArray[np.float64]:
         """Minv; with a prescribed speed theta's row is zero (theta'' = 0)."""
         Minv = np.zeros((self.n, self.n))
@@ -490,7 +482,7 @@ def beam_model(
     from .beam_fe import assemble
     from .pillar_modes import beam_properties
 
-    bp = beam_properties(pillar, theory)
+    bp = beam_properties(pillar)
     K, M = assemble(bp, elements, theory, gondola_mass, gondola_inertia)
     nb = K.shape[0]
     nx = nb + 1

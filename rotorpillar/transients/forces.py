@@ -208,7 +208,7 @@ def _beam_forces(scene: Scene, run, res, shaft):
     info = res.model_info
     assert isinstance(info, BeamModelInfo)  # the beam's forces are of a beam's run
     n, theory = info.elements, info.theory
-    bp = beam_properties(scene.pillar, theory)
+    bp = beam_properties(scene.pillar)
     nb = 2 * n
     q, v = np.asarray(run.data["q"], dtype=float), np.asarray(run.data["v"], dtype=float)
     pad = lambda a: np.vstack([np.zeros((2, a.shape[0])), a[:, :nb].T])
@@ -242,7 +242,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     if not candidates.has_resultants:
         return None, {}
     sec = section_of(scene.pillar)
-    bp = beam_properties(scene.pillar, scene.modal_model.theory)
+    bp = beam_properties(scene.pillar)
     statics = cantilever_tip_statics(
         bp.youngs_modulus,
         bp.second_moment,
