@@ -17,9 +17,9 @@ from rotorpillar import records
 from rotorpillar.provenance import atomic_path, write_json
 from rotorpillar.reduced.excitation import ExcitationSizes
 from rotorpillar.reduced.pillar import cantilever_mode, omega_euler_bernoulli, tube_section
-from rotorpillar.transients.measures import compare_series, envelope_window
+from rotorpillar.transients.compare import compare_series, envelope_window
+from rotorpillar.transients.model_run import REDUCED_RUNS, Fem3dRun, ReducedRun
 from rotorpillar.transients.run_plan import BeamFullOrder
-from rotorpillar.transients.run_records import REDUCED_RUNS, Fem3dRun, ReducedRun
 
 _G = 9.81
 
@@ -602,8 +602,8 @@ def write_comparison_fixture(
     warnings = warnings or {}
     per, errors = {}, {}
     from rotorpillar.reduced.excitation import NoMotionSizes
-    from rotorpillar.transients.case_checks import SpectralMode
-    from rotorpillar.transients.records import (
+    from rotorpillar.transients.case_summary import SpectralMode
+    from rotorpillar.transients.compare import (
         ComparedModel,
         CompareResult,
         CompareWindow,

@@ -243,7 +243,7 @@ def test_frame_times_are_bounded():
 def test_the_simulation_fixture_is_a_run_record_document(tmp_path, case, modal):
     # the report reads simulate_<case>.json through ReducedRun: the fixture is one, written
     # by the records' constructors, and reads back to the record it was written from
-    from rotorpillar.transients.run_records import ReducedRun
+    from rotorpillar.transients.model_run import ReducedRun
 
     doc = fixtures.write_simulation_fixture(tmp_path, case, modal=modal, n=400, warnings=["w"])
     sim = read_simulation(tmp_path, case)
@@ -258,7 +258,7 @@ def test_the_comparison_fixture_runs_are_run_record_documents(tmp_path, case, mo
     # each model's simulate_<case>_<model>.json is its record's JSON (Fem3dRun for the 3D
     # full order, else ReducedRun), read by the comparison's reader to that record
     from rotorpillar.postprocess.compare_reader import read_comparison
-    from rotorpillar.transients.run_records import Fem3dRun, ReducedRun
+    from rotorpillar.transients.model_run import Fem3dRun, ReducedRun
 
     fixtures.write_comparison_fixture(tmp_path, case, models, n=200)
     c = read_comparison(tmp_path, case)

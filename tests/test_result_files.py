@@ -22,7 +22,7 @@ from rotorpillar import converge as cv
 from rotorpillar.analysis import AnalysisResult
 from rotorpillar.reduced.excitation import NoMotionSizes, PulseSizes, RecordSizes, paper_pulse
 from rotorpillar.reduced.stationary import NoPassingFold, PassingTorqueStudy
-from rotorpillar.transients.case_checks import NoSpectrumCheck, NoTruncationEstimate, SpectrumCheck, TruncationEstimate
+from rotorpillar.transients.case_summary import NoSpectrumCheck, NoTruncationEstimate, SpectrumCheck, TruncationEstimate
 from rotorpillar.transients.cases import run_case, spectral_estimate
 
 
@@ -111,7 +111,7 @@ def test_the_spectral_check_is_the_estimate_of_its_modes(earthquake):
 
 
 def test_the_checks_that_were_not_run_say_why_under_their_tag():
-    from rotorpillar.transients.case_checks import SpectrumCheckResult, Truncation
+    from rotorpillar.transients.case_summary import SpectrumCheckResult, Truncation
 
     no_trunc = NoTruncationEstimate(2, None, "no truncation estimate: only 2 modes")
     assert round_trip(no_trunc, Truncation) == no_trunc
@@ -189,7 +189,7 @@ def test_the_integrator_study_round_trips_with_its_failed_runs():
 
 @pytest.mark.slow  # two commands, a few seconds each
 def test_simulate_files_read_back_as_their_model_run(tmp_path):
-    from rotorpillar.transients.run_records import PaperRun, RunRecord
+    from rotorpillar.transients.model_run import PaperRun, RunRecord
 
     p = cli("simulate", "paper", "--case", "earthquake", "--model", "paper", "--out", tmp_path)
     assert p.returncode == 0, p.stderr

@@ -141,7 +141,7 @@ def test_integrators_command(tmp_path):
     assert (tmp_path / "integrators.png").exists()
     # the file, through its record: the result part gives itself back, beside its provenance
     from rotorpillar.provenance import PROVENANCE_KEYS
-    from rotorpillar.transients.integrator_records import IntegratorStudy
+    from rotorpillar.transients.integrator_study import IntegratorStudy
 
     written = json.loads((tmp_path / "integrators.json").read_text())
     assert set(PROVENANCE_KEYS) <= set(written)

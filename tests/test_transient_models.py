@@ -107,7 +107,7 @@ def test_published_forcing_warning_threshold():
 
 def test_compare_result_round_trip():
     from rotorpillar.reduced.excitation import paper_pulse
-    from rotorpillar.transients.records import (
+    from rotorpillar.transients.compare import (
         ComparedModel,
         CompareResult,
         CompareWindow,

@@ -206,7 +206,7 @@ def test_sommerfeld_sweep_finds_the_predicted_jumps(sommerfeld):
         assert abs(row["rel_error_limit_vs_predicted"]) < 0.02
     # the sweep's findings read back whole, nested rows and all (the document as written)
     from rotorpillar.transients.case_summary import CaseSummary
-    from rotorpillar.transients.sweep_records import RateConvergence
+    from rotorpillar.transients.sweep import RateConvergence
 
     doc = json.loads(records.encode(r.summary))
     assert isinstance(r.summary.sweep.rate_convergence, RateConvergence)
@@ -232,8 +232,7 @@ def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
     first: the second stays unmatched (it used to be measured against the
     first resonance's jump, a -70 % 'error'); each numeric jump pairs with
     one prediction at most."""
-    from rotorpillar.transients.sweep import match_jumps
-    from rotorpillar.transients.sweep_records import NumericJump
+    from rotorpillar.transients.sweep import NumericJump, match_jumps
 
     def up(w0, w1, m, direction="up"):
         return NumericJump(direction, w0, w1, m, 1)
@@ -256,8 +255,7 @@ def test_a_speed_step_beyond_the_motor_and_load_is_one_jump_and_its_bins_are_mar
     dM0 / (s + 2 k Omega)) but for one step of 10 rad/s between bins 4 and 5: one jump
     from bin 4's speed to bin 5's, the two bins marked as not stationary, and the
     largest step ratio far above JUMP_FACTOR (the smooth steps have ratio 1)."""
-    from rotorpillar.transients.sweep import JUMP_FACTOR, detect_jumps
-    from rotorpillar.transients.sweep_records import SweepBins
+    from rotorpillar.transients.sweep import JUMP_FACTOR, SweepBins, detect_jumps
 
     s, k = 10.0, 0.0  # no load: dOmega = dM0 / s exactly
     M0 = np.linspace(100.0, 200.0, 11)

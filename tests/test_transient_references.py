@@ -31,8 +31,7 @@ from rotorpillar.converge.selection import select_reference
 from rotorpillar.fem3d.modal import ModeRow
 from rotorpillar.records import replace
 from rotorpillar.scene import load_scene, override
-from rotorpillar.transients.participation import PARTICIPATION_FLOOR, participation_table
-from rotorpillar.transients.references import choose_reference, read_study
+from rotorpillar.transients.references import PARTICIPATION_FLOOR, choose_reference, participation_table, read_study
 from rotorpillar.transients.window import START_FRACTION, runup_window, window_overrides
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")

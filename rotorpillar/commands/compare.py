@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from ..scene import MODELS, Scene
 
 if TYPE_CHECKING:
-    from ..transients.records import CompareResult
+    from ..transients.compare import CompareResult
 
 
 def add_arguments(p) -> None:

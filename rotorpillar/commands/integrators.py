@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..scene import Scene
-    from ..transients.integrator_records import IntegratorStudy
+    from ..transients.integrator_study import IntegratorStudy
 
 import math
 

@@ -30,7 +30,7 @@ from .. import records
 from ..errors import StageError
 from ..provenance import Provenance
 from ..records import Record
-from ..transients.run_comparisons import COMPARISONS
+from ..transients.compare import COMPARISONS
 from . import Done, progress
 
 

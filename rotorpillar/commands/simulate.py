@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..scene import Scene
-    from ..transients.run_records import Fem3dRun, ReducedRun
+    from ..transients.model_run import Fem3dRun, ReducedRun
 
 from ..scene import CASES, INTEGRATORS, MODELS
-from ..transients.case_checks import NoTruncationEstimate
+from ..transients.case_summary import NoTruncationEstimate
 from . import EXIT_CHECKS, Done
 
 
@@ -200,7 +200,7 @@ def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None =
 
 
 def _summary(scene: Scene, r: ReducedRun | Fem3dRun) -> str:
-    from ..transients.run_records import ReducedRun
+    from ..transients.model_run import ReducedRun
 
     lines = [
         f"rotorpillar simulate {scene.name}: case {r.case}, {r.model} model "

@@ -1,5 +1,5 @@
 """The models of one case compared: ``compare_<case>.json`` (`rotorpillar
-compare`, a :class:`~rotorpillar.transients.records.CompareResult`) and the
+compare`, a :class:`~rotorpillar.transients.compare.CompareResult`) and the
 per-model runs it names, as the report reads them; a run's X displacements
 relative to the ground.  Contracts in :mod:`.readers`."""
 
@@ -11,12 +11,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..transients.records import CompareResult
+from ..transients.compare import CompareResult
 from .readers import read_npz, read_record, read_run
 
 if TYPE_CHECKING:
     from ..provenance import Provenance
-    from ..transients.run_records import RunRecord
+    from ..transients.model_run import RunRecord
 
 
 def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x", frame: str | None = None) -> np.ndarray | None:

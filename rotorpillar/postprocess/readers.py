@@ -8,11 +8,11 @@ shapes in ``modes_bare.vtu`` and ``modes_top.vtu``, point arrays ``mode_000``,
 ``mode_001``, ... in the order of its lists: :mod:`rotorpillar.postprocess.geometry`),
 ``convergence.json`` a :class:`~rotorpillar.converge.result.ConvergenceStudy`,
 ``study.json`` a :class:`~rotorpillar.studies.result.StudyResult`,
-``integrators.json`` an :class:`~rotorpillar.transients.integrator_records.IntegratorStudy`,
+``integrators.json`` an :class:`~rotorpillar.transients.integrator_study.IntegratorStudy`,
 ``simulate_<case>[_<model>].json`` a
-:data:`~rotorpillar.transients.run_records.RunRecord` (the run's model is its tag) with
+:data:`~rotorpillar.transients.model_run.RunRecord` (the run's model is its tag) with
 its arrays in the ``.npz`` beside it, ``compare_<case>.json`` a
-:class:`~rotorpillar.transients.records.CompareResult`
+:class:`~rotorpillar.transients.compare.CompareResult`
 (:func:`rotorpillar.postprocess.compare_reader.read_comparison` reads the runs it names).
 Beside every record: its :class:`~rotorpillar.provenance.Provenance`.
 
@@ -36,7 +36,7 @@ from ..scene import CASES as CASES  # re-exported: the cases, in the order the r
 
 if TYPE_CHECKING:
     from ..reduced.excitation import ExcitationSizes
-    from ..transients.run_records import RunRecord
+    from ..transients.model_run import RunRecord
 
 #: Input name -> (file in out/<scene>/, the command that writes it).
 INPUTS = {
@@ -89,7 +89,7 @@ def read_record(path: str | Path, record_type: Any) -> Read[Any] | None:
 
 def read_run(path: str | Path) -> Read[RunRecord] | None:
     """``simulate_<case>.json`` (or ``simulate_<case>_<model>.json``): its model's run."""
-    from ..transients.run_records import RunRecord
+    from ..transients.model_run import RunRecord
 
     return read_record(path, RunRecord)
 

@@ -32,8 +32,8 @@ from .style import COLOURS, CYCLE, figure, save
 
 if TYPE_CHECKING:
     from ..scene import Scene
-    from ..transients.integrator_records import AccuracyRow, DriftRow, StabilityRow
-    from ..transients.sweep_records import SweepAnalysis
+    from ..transients.integrator_study import AccuracyRow, DriftRow, StabilityRow
+    from ..transients.sweep import SweepAnalysis
 
 #: Standard gravity, to show the ground acceleration in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
@@ -339,7 +339,7 @@ def integrators_chart(
     title: str = "",
 ) -> Path:
     """The rows of the integrator study's three experiments
-    (``rotorpillar.transients.integrator_records``).
+    (``rotorpillar.transients.integrator_study``).
     Three panels stacked: error against force evaluations, cost and
     failure as modes are added, energy drift; one colour and marker per
     method throughout, one legend for all."""
@@ -420,7 +420,7 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[Figur
         if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)
     ]
     from ..reduced.stationary import PassingTorqueStudy
-    from ..transients.run_records import ReducedRun
+    from ..transients.model_run import ReducedRun
 
     extra = []
     pt = run.record.passing_torque if isinstance(run.record, ReducedRun) else None

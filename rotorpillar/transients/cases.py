@@ -31,17 +31,17 @@ from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
 from ..scene import CASES, Scene
-from .case_checks import (
+from .case_summary import (
+    CaseSummary,
     NoSpectrumCheck,
     NoTruncationEstimate,
     SpectralEstimate,
     SpectralMode,
     SpectrumCheck,
     TruncationEstimate,
+    run_summary,
 )
-from .case_summary import CaseSummary, run_summary
-from .sweep import rate_convergence, sweep_analysis
-from .sweep_records import SweepAnalysis, SweepFindings
+from .sweep import SweepAnalysis, SweepFindings, rate_convergence, sweep_analysis
 
 
 @dataclass(frozen=True)

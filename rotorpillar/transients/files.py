@@ -26,8 +26,7 @@ import numpy as np
 from ..provenance import atomic_path, write_result, write_text
 from ..records import Figure, replace
 from ..reduced.rotor_models import StructureDescription
-from .model_run import ModelRun
-from .run_records import Fem3dRun, ModelFiles, ReducedRun, RunFiles
+from .model_run import Fem3dRun, ModelFiles, ModelRun, ReducedRun, RunFiles
 
 CSV_COLUMNS = (
     "t",

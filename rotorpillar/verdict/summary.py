@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from ..fem3d.modal_summary import ModalSummary
     from ..reduced.excitation import ExcitationSizes
     from ..scene import Scene
-    from ..transients.run_records import RunRecord
+    from ..transients.model_run import RunRecord
 
 import math
 import re
@@ -115,7 +115,7 @@ def case_name(case: str, excitation: ExcitationSizes | None) -> str:
 def model_runs(out: Path) -> list[RunFile]:
     """The runs of ``out``, one per (case as a reader names it, model): the newest file
     where simulate and compare both ran it; a file that is no run is left out."""
-    from ..transients.run_records import RunRecord
+    from ..transients.model_run import RunRecord
 
     found: dict[tuple, tuple[float, RunFile]] = {}
     for path in sorted(Path(out).glob("*_*_*.json")):

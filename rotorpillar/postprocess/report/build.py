@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 from ...provenance import write_text
 from ...records import Record
-from ...transients.run_comparisons import COMPARISONS
+from ...transients.compare import COMPARISONS
 from .. import html as h
 from ..animation import AnimationResult
 from ..compare_reader import read_comparison
@@ -135,7 +135,7 @@ def load_inputs(build: Build) -> None:
     from ...converge.result import ConvergenceStudy
     from ...fem3d.modal_summary import ModalSummary
     from ...studies.result import StudyResult
-    from ...transients.integrator_records import IntegratorStudy
+    from ...transients.integrator_study import IntegratorStudy
 
     out = build.out
     build.analysis = _record(build, "analyze", AnalysisResult)

@@ -10,15 +10,15 @@ from typing import TYPE_CHECKING, Any
 
 from ... import records
 from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
-from ...transients.run_comparisons import comparison_command, comparison_overrides
+from ...transients.compare import comparison_command, comparison_overrides
 from .. import html as h
 from .parts import failure, product_image, scene_differs
 from .references import reference_block
 from .state import Build
 
 if TYPE_CHECKING:
-    from ...transients.records import CompareResult
-    from ...transients.run_records import RunRecord
+    from ...transients.compare import CompareResult
+    from ...transients.model_run import RunRecord
     from ..compare_reader import Comparison
 
 #: The headers of the speed-accuracy table (the reference's name goes in the errors).
@@ -149,7 +149,7 @@ FULL_ORDER_UNITS = {"duration": "s", "time_step": "s"}
 
 def _full_order(run: RunRecord | None) -> str | None:
     """What a full-order run was (mesh or elements, duration, step) and its note."""
-    from ...transients.run_records import BeamFullOrder, Fem3dPlan
+    from ...transients.model_run import BeamFullOrder, Fem3dPlan
 
     fo = run.full_order if run is not None else None
     items: list[tuple[str, Any]]

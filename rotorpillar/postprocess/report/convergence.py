@@ -15,7 +15,7 @@ from .state import Build
 if TYPE_CHECKING:
     from ...converge.result import ConvergenceStudy
     from ...records import Record
-    from ...transients.integrator_records import IntegratorStudy, MethodSummary
+    from ...transients.integrator_study import IntegratorStudy, MethodSummary
 
 
 def chosen(study: ConvergenceStudy) -> tuple[str, str] | None:

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...reduced.excitation import PulseSizes, RecordSizes
-from ...transients.run_comparisons import comparison_models
+from ...transients.compare import comparison_models
 from .. import html as h
 from ..compare_reader import relative_to_ground
 from ..directions import direction
@@ -21,7 +21,7 @@ from .references import pareto_block
 from .state import Build
 
 if TYPE_CHECKING:
-    from ...transients.run_records import RunRecord
+    from ...transients.model_run import RunRecord
 
 #: Standard gravity, to state accelerations in g (m/s**2).
 STANDARD_GRAVITY = 9.80665

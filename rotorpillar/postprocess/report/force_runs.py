@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...transients.force_records import InternalForcesSummary
+from ...transients.forces import InternalForcesSummary
 from .state import Build
 
 

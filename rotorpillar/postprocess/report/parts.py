@@ -12,7 +12,7 @@ from .state import Build
 
 if TYPE_CHECKING:
     from ...provenance import Provenance
-    from ...transients.run_records import RunRecord
+    from ...transients.model_run import RunRecord
 
 
 def product_image(build: Build, key: str) -> str:

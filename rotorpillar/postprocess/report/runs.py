@@ -4,7 +4,7 @@ against a full-order model; run-down, sweep)."""
 
 from __future__ import annotations
 
-from ...transients.run_comparisons import COMPARISONS
+from ...transients.compare import COMPARISONS
 from .. import html as h
 from ..directions import direction
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND

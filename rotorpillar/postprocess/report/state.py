@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from ...fem3d.modal_summary import ModalSummary
     from ...scene import Scene
     from ...studies.result import StudyResult
-    from ...transients.integrator_records import IntegratorStudy
+    from ...transients.integrator_study import IntegratorStudy
     from ..compare_reader import Comparison
 
 T = TypeVar("T")

@@ -7,7 +7,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from ...reduced.excitation import PulseSizes, RecordSizes
-from ...transients.run_comparisons import COMPARISONS, comparison_command
+from ...transients.compare import COMPARISONS, comparison_command
 from .. import html as h
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND
 from .compare_section import speed_accuracy
@@ -130,7 +130,7 @@ def _bar(bars: dict[str, Uncertain] | None, key: str, value: Any, scale: float, 
 
 
 def _runs(build: Build) -> list[str | h.Raw]:
-    from ...transients.run_records import ReducedRun
+    from ...transients.model_run import ReducedRun
 
     items: list[str | h.Raw] = []
     for case in CASES:
