@@ -1,17 +1,23 @@
 """The package's lines by kind (docs/architecture.md, "Size by kind").
 
-``python tools/line_kinds.py [ROOT]``: every line of ``rotorpillar/**/*.py``
+``python tools/line_kinds.py [ROOT]``: every line of ``ROOT/rotorpillar/**/*.py``
 (physical lines, docstrings and comments included, as ``wc -l`` counts them)
-in one of six kinds, printed as a table.  How a line is classified, in order:
+in one of six kinds, printed as a table, *records and serialisation* split
+into its two parts.  How a line is classified, in order:
 
-1. *records and serialisation*: the whole of a module whose name says it
-   holds or reads records (``records.py``, ``*_records.py``, ``record.py``,
-   ``result.py``, ``results.py``, ``*_result.py``, ``modal_summary.py``,
-   ``readers.py``, ``shapes.py``, ``compare_reader.py``); elsewhere, a
-   top-level class that is a record (a subclass of ``Record``, ``JsonRecord``
-   or ``msgspec.Struct``, or of another such class of the package) and a
-   top-level function or method whose name says it serialises (``json`` in
-   it, ``to_dict``, ``to_builtins``, ``_record_*``);
+1. *records and serialisation*:
+   - serialisation: the whole of a module that only encodes, decodes or
+     checks records (``records.py``, ``postprocess/readers.py``,
+     ``postprocess/shapes.py``, ``postprocess/compare_reader.py``), the
+     home-made layer's class (``JsonRecord``), and every top-level function or
+     method whose name says it serialises (``json`` in it, ``to_dict``,
+     ``to_builtins``, ``_record_*``: ``to_json``, ``from_json``,
+     ``excitation_sizes_from_json`` ...);
+   - record declarations: a top-level class that is a record (a subclass of
+     ``Record``, ``JsonRecord`` or ``msgspec.Struct``, or of another such class
+     of the package): its header, docstring, fields and their docstrings; its
+     other methods (a record's physics: ``PillarModes.truncate``) count with
+     the module's kind;
 2. the rest of a module by its path: ``cli.py``, ``commands/`` and the
    ``__main__`` modules: *CLI*; ``postprocess/``: *plotting and the page*;
    ``scene/`` and ``errors.py`` (the scene's fields, ranges and checks):
@@ -39,13 +45,14 @@ KINDS = (
     "CLI",
     "provenance and caching",
 )
+DECLARATIONS, SERIALISATION = "  record declarations", "  serialisation"
 RECORD_BASES = {"Record", "JsonRecord", "Struct"}
-#: Modules whose name says they hold records or read them (whole).
-RECORD_MODULES = re.compile(r"(^|/)(\w*records?|\w*results?|readers|shapes|compare_reader|modal_summary)\.py$")
+#: Modules that only encode, decode or check records (counted whole).
+SERIAL_MODULES = re.compile(r"^(records|postprocess/readers|postprocess/shapes|postprocess/compare_reader)\.py$")
 
 
 def serialiser(name: str) -> bool:
-    return "json" in name.lower() or name in ("to_dict", "to_builtins") or name.startswith("_record_")
+    return "json" in name.lower() or name in ("to_dict", "to_builtins", "JsonRecord") or name.startswith("_record_")
 
 
 def base_names(node: ast.ClassDef) -> list[str]:
@@ -77,7 +84,7 @@ def span(node: ast.AST) -> range:
 
 
 def classify(root: Path) -> dict[str, Counter[str]]:
-    """Lines per kind, per module (relative to the package)."""
+    """Lines per kind (and per part of records and serialisation), per module."""
     trees = {}
     for path in sorted((root / PACKAGE).rglob("*.py")):
         rel = path.relative_to(root / PACKAGE).as_posix()
@@ -97,23 +104,31 @@ def classify(root: Path) -> dict[str, Counter[str]]:
     out: dict[str, Counter[str]] = {}
     for rel, (lines, tree) in trees.items():
         count: Counter[str] = Counter()
-        if RECORD_MODULES.search(rel):
-            count["records and serialisation"] = lines
+        if SERIAL_MODULES.search(rel):
+            count[SERIALISATION] = lines
             out[rel] = count
             continue
         serial: set[int] = set()
+        declared: set[int] = set()
         for n in tree.body:
-            if isinstance(n, ast.ClassDef):
-                if set(base_names(n)) & records:
-                    serial.update(span(n))
-                else:
-                    for m in n.body:
-                        if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef)) and serialiser(m.name):
+            if isinstance(n, ast.ClassDef) and serialiser(n.name):
+                serial.update(span(n))
+            elif isinstance(n, ast.ClassDef):
+                is_record = bool(set(base_names(n)) & records)
+                methods: set[int] = set()
+                for m in n.body:
+                    if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                        if serialiser(m.name):
                             serial.update(span(m))
+                        methods.update(span(m))
+                if is_record:
+                    declared.update(set(span(n)) - methods)
             elif isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and serialiser(n.name):
                 serial.update(span(n))
-        count["records and serialisation"] = len(serial)
-        count[module_kind(rel)] += lines - len(serial)
+        declared -= serial
+        count[SERIALISATION] = len(serial)
+        count[DECLARATIONS] = len(declared)
+        count[module_kind(rel)] += lines - len(serial) - len(declared)
         out[rel] = count
     return out
 
@@ -126,7 +141,12 @@ def main(argv: list[str]) -> int:
         total.update(c)
     width = max(map(len, KINDS))
     for kind in KINDS:
-        print(f"{kind:{width}s} {total[kind]:7d}")
+        if kind == "records and serialisation":
+            print(f"{kind:{width}s} {total[DECLARATIONS] + total[SERIALISATION]:7d}")
+            for part in (DECLARATIONS, SERIALISATION):
+                print(f"{part:{width}s} {total[part]:7d}")
+        else:
+            print(f"{kind:{width}s} {total[kind]:7d}")
     print(f"{'all':{width}s} {sum(total.values()):7d}  ({len(per_module)} modules)")
     return 0
 
