@@ -43,11 +43,12 @@ from imagecheck import assert_real_png, labels_overlap, pixels, png_size
 
 from rotorpillar import records
 from rotorpillar.analysis import analyze
+from rotorpillar.fem3d.modal_summary import ModalSummary
 from rotorpillar.postprocess import charts, transient_charts
 from rotorpillar.postprocess import html as h
 from rotorpillar.postprocess.animation import animate
 from rotorpillar.postprocess.animation_frames import elastic_field, frame_times, pillar_motion
-from rotorpillar.postprocess.geometry import bending_columns, cantilever_tube, load_modes, tube_axes
+from rotorpillar.postprocess.geometry import ModeLabel, bending_columns, cantilever_tube, load_modes, tube_axes
 from rotorpillar.postprocess.modeshapes import (
     BEAM_TARGET,
     MODE_SIZE,
@@ -77,8 +78,8 @@ def modal_dir(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def modes_top(modal_dir):
-    doc = json.loads((modal_dir / "modal.json").read_text())
-    return load_modes(modal_dir / "modes_top.vtu", doc["modes_with_top"], doc["axes"])
+    m = records.read(modal_dir / "modal.json", ModalSummary)
+    return load_modes(modal_dir / "modes_top.vtu", m.modes_with_top, m.axes)
 
 
 def _without_triad(px):
@@ -136,7 +137,7 @@ def test_deformation_and_scale(modes_top):
 
 
 def test_mode_pictures_are_real_and_show_the_mode(modes_top, tmp_path):
-    kinds = [m["kind"] for m in modes_top.modes]
+    kinds = [m.kind for m in modes_top.modes]
     bend, tors = kinds.index("bending_x"), kinds.index("torsion")
     p_bend = render_mode(modes_top, bend, tmp_path / "bend.png")
     p_tors = render_mode(modes_top, tors, tmp_path / "tors.png")
@@ -154,7 +155,7 @@ def test_mode_pictures_are_real_and_show_the_mode(modes_top, tmp_path):
 
 
 def test_ovalling_mode_is_drawn_with_its_cross_sections(modes_top, tmp_path):
-    kinds = [m["kind"] for m in modes_top.modes]
+    kinds = [m.kind for m in modes_top.modes]
     oval, bend = kinds.index("ovalling"), kinds.index("bending_x")
     assert has_sections(modes_top.modes[oval]) and not has_sections(modes_top.modes[bend])
     levels = section_levels(modes_top, modes_top.shape(oval))
@@ -187,7 +188,7 @@ def test_quadratic_cells_are_drawn_through_their_shape_functions(tmp_path):
         tmp_path / "q.vtu",
         meshio.Mesh(pts, [("hexahedron27", vtk_cells(d.cells, d.gmsh_cell))], point_data={"mode_000": u}),
     )
-    ms = load_modes(tmp_path / "q.vtu", [{"kind": "bending_x"}], {"tube": "z", "paper_x": "x"})
+    ms = load_modes(tmp_path / "q.vtu", [ModeLabel("bending_x")], {"tube": "z", "paper_x": "x"})
     s = np.asarray(ms.surface.points)
     # VTK's surface filter gives float32 points: z**2 to 2 x 6e-8 relative
     assert ms.shape(0)[:, 0] == pytest.approx(s[:, 2].astype(float) ** 2, rel=1e-6, abs=1e-6 * H**2)

@@ -6,7 +6,6 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ... import records
 from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
 from ..compare_reader import relative_to_ground
 from ..directions import direction
@@ -199,8 +198,8 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
     for name, key in (("bare", "modes"), ("top", "modes_with_top")):
         vtu = build.out / INPUTS[f"modes_{name}"][0]
         if m is not None and vtu.is_file():
-            modes = [records.to_builtins(row) for row in getattr(m, key)]
-            axes = records.to_builtins(m.axes)
+            modes = list(getattr(m, key))
+            axes = m.axes
             sets[name] = attempt(
                 build, f"load_modes_{name}", lambda vtu=vtu, modes=modes, axes=axes: load_modes(vtu, modes, axes)
             )
