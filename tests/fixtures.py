@@ -382,6 +382,7 @@ def reduced_run(
         tip_x_frame=tip_x_frame,
         max_abs_sampled=(),
         full_order=full_order,
+        internal_forces=None,
     )
 
 
@@ -494,6 +495,7 @@ def fem3d_run(
         initial_speed=None,
         excitation=excitation,
         excitation_in_model="-M r a_g (synthetic fixture)" if case == "earthquake" else None,
+        internal_forces=None,
     )
 
 

@@ -154,6 +154,7 @@ def _records(**runs):
             level=0,
             params={},
             status="ok",
+            cached=False,
             wall_time=t,
             dofs=dofs,
         )
@@ -239,6 +240,7 @@ def test_errors_split_into_model_and_discretisation():
             level=0,
             params={},
             status="ok",
+            cached=False,
             bending=bending,
             ovalling=ovalling,
         )

@@ -339,6 +339,7 @@ def test_the_ladder_has_the_bending_only_family():
         level=case.level,
         params=case.settings,
         status="ok",
+        cached=False,
         bending=30.86,
         ovalling=696.0,
         ovalling_n=2,

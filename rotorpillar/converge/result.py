@@ -117,7 +117,7 @@ class RunResult(Record, omit_defaults=True):
     """the run's time as the study waited for it, serving process included (s)"""
 
 
-class ConvergenceRun(Record, RunErrors, omit_defaults=True):
+class ConvergenceRun(Record, RunErrors, kw_only=True, omit_defaults=True):
     """One run of the ladder: its case, its frequencies, cost and errors against the reference.
 
     A failed or unavailable run has no result (``bending`` ... ``peak_memory`` absent) but
@@ -164,8 +164,8 @@ class ConvergenceRun(Record, RunErrors, omit_defaults=True):
     """the run's time as the study waited for it, serving process included (s)"""
     error: str | None = None
     """why the run failed or did not run"""
-    cached: bool = False
-    """loaded from the run cache (not computed by this study)"""
+    cached: bool
+    """loaded from the run cache (not computed by this study); always written"""
     ovalling_alias: OvallingAlias | None = None
     """the aliased "ovalling" mode dropped (rotorpillar.converge.failures.drop_aliases)"""
     bending_error: float | None = None

@@ -283,6 +283,7 @@ def run_record(
         params=case.settings,
         status=status,
         error=error,
+        cached=False,
         **(msgspec.structs.asdict(result) if result is not None else {}),
     )
 

@@ -101,7 +101,7 @@ class ShaftDemand(Record):
     the model gives none); False: from the model's own rates"""
 
 
-class InternalForcesSummary(Record, omit_defaults=True):
+class InternalForcesSummary(Record):
     """The ``internal_forces`` block of a transient's JSON (SI units)."""
 
     model: str

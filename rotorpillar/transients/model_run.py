@@ -112,7 +112,7 @@ class ReducedRun(CaseSummary, kw_only=True, omit_defaults=True, tag_field="model
     """earthquake: how the model applies the ground motion, in words"""
     full_order: BeamFullOrder | None = None
     """beam: its discretisation and step"""
-    internal_forces: InternalForcesSummary | None = None
+    internal_forces: InternalForcesSummary | None
     """section forces, base reactions, the shaft's demand (None: paper's Eq. 4 has no sections)"""
     files: RunFiles | None = None
     """the series written beside the JSON"""
@@ -174,7 +174,7 @@ class Fem3dRun(RunOutcome, kw_only=True, omit_defaults=True, tag_field="model", 
     """the speed the run starts at (rad/s), None: from rest"""
     excitation_in_model: str | None = None
     """earthquake: how the 3D model applies the ground motion, in words"""
-    internal_forces: InternalForcesSummary | None = None
+    internal_forces: InternalForcesSummary | None
     """section resultants, base reactions, the shaft's demand and the von Mises peaks"""
     files: RunFiles | None = None
     figures: tuple[Figure, ...] = ()
@@ -357,6 +357,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         initial_speed=res.initial_speed,
         excitation_in_model=res.excitation_in_model,
         full_order=full_order,
+        internal_forces=None,  # the forces, below
     )
     model_run = ModelRun(case, which, record, data, m.quasi_normal(), res)
     from .forces import with_reduced_forces
@@ -519,6 +520,7 @@ def _run_fem3d(
         initial_speed=description.initial_speed,
         excitation=motion.sizes() if case == "earthquake" else None,
         excitation_in_model=description.forcing if case == "earthquake" else None,
+        internal_forces=None,  # the forces, below
     )
     return with_fem3d_forces(
         scene, ModelRun(case, "fem3d", record, data, ref.quasi_normal(), None), recovered, observer.heights

@@ -37,6 +37,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import records
+from ..chain.record import MeshValue
 from ..converge.result import ModeSourceFloor, QuantityErrors
 from ..records import Record, replace
 from ..scene.sections import Mesh
@@ -81,7 +82,7 @@ class ModeParticipation(Record):
     """phi^T M phi of the normalised shape (kg)"""
     effective_mass_x: float | None
     """L_x**2 / m_j for a base acceleration along x (kg)"""
-    shares: dict
+    shares: dict[str, float]
     """load -> share (-): base_x of the base's mass, plate_x / plate_z of the plate's
     static compliance (closed form: H**3 / (3 E I) along x, H / (E A) along z)"""
     in_band: bool
@@ -101,7 +102,7 @@ class ParticipationTable(Record):
     """the mass a base acceleration moves: tube and top (kg)"""
     source: str
     """modal.json (its loaded modes) or computed (modal_analysis on the scene's mesh)"""
-    mesh: dict
+    mesh: dict[str, MeshValue]
     """the mesh the modes were computed on"""
     modes: tuple[ModeParticipation, ...]
     participating: tuple[int, ...]
@@ -299,7 +300,7 @@ class FullOrderReference(Record):
     """The 3D full order's mesh for one case, where it comes from, and its own error."""
 
     case: str
-    mesh: dict
+    mesh: dict[str, MeshValue]
     """the scene [mesh] section the 3D run uses"""
     label: str
     source: str
