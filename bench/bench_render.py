@@ -22,14 +22,17 @@ from pathlib import Path
 sys.path.insert(0, sys.argv[2])   # tests/, for the synthetic inputs
 import fixtures
 from rotorpillar.postprocess.geometry import load_modes
-from rotorpillar.postprocess.readers import read_json, read_simulation
+from rotorpillar import records
+from rotorpillar.fem3d.modal_summary import ModalSummary
+from rotorpillar.postprocess.readers import read_simulation
 from rotorpillar.postprocess.modeshapes import render_mode, render_contact_sheet
 from rotorpillar.postprocess.animation import animate
 from rotorpillar.postprocess.offscreen import render_window_class
 out = Path(sys.argv[1])
-doc = fixtures.write_modal_fixture(out, around=32, along=40)
+fixtures.write_modal_fixture(out, around=32, along=40)
 fixtures.write_simulation_fixture(out, "runup", n=20000)
-ms = load_modes(out / "modes_top.vtu", doc["modes_with_top"], doc["axes"])
+modal = records.read(out / "modal.json", ModalSummary)
+ms = load_modes(out / "modes_top.vtu", modal.modes_with_top, modal.axes)
 render_mode(ms, 0, out / "warm.png")
 t0 = time.perf_counter()
 for i in range(len(ms.arrays)):

@@ -10,7 +10,7 @@ estimate of the peak tip (SRSS of the modes).
 
 from rotorpillar import load_scene
 from rotorpillar.chain import resolve
-from rotorpillar.transients.case_checks import SpectrumCheck
+from rotorpillar.transients.case_summary import SpectrumCheck
 from rotorpillar.transients.cases import run_case
 
 scene = load_scene("paper", ["excitation.kind=record", "excitation.record=elcentro", "simulate.earthquake_duration=20"])

@@ -40,7 +40,7 @@ _EXPORTS = {
     "run_case": "rotorpillar.transients.cases",
     "CaseSummary": "rotorpillar.transients.case_summary",
     "ConvergenceStudy": "rotorpillar.converge.result",
-    "CompareResult": "rotorpillar.transients.records",
+    "CompareResult": "rotorpillar.transients.compare",
     "compare_models": "rotorpillar.transients.compare",
     "StudyResult": "rotorpillar.studies.result",
     "design_study": "rotorpillar.studies.study",

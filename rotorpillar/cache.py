@@ -1,9 +1,10 @@
 """The one on-disk cache of computed results: key, path, atomic write, tolerant read.
 
 The convergence study's runs (rotorpillar.converge.runner), a design study's
-batches (rotorpillar.studies.study) and the chain's 3D modes
-(rotorpillar.chain.modes) are each cached as one small JSON file a result,
-``<root>/<key>.json``:
+batches (rotorpillar.studies.study), the chain's 3D modes
+(rotorpillar.chain.modes) and the speed-against-accuracy study's runs
+(rotorpillar.transients.pareto) are each cached as one small JSON file a
+result, ``<root>/<key>.json``: an :class:`Entry`, the key beside the record.
 
 - the key hashes the arguments' JSON (sorted keys) with a version and the
   hash of the source files the result depends on, so a changed argument or
@@ -12,17 +13,20 @@ batches (rotorpillar.studies.study) and the chain's 3D modes
   a temporary file renamed over the target), so an interrupted run leaves the
   finished entries whole and no partial one: the next run resumes;
 - a read is tolerant: a missing, unreadable, cut-short or foreign file
-  (another key, not an object, or one the caller's ``accept`` refuses) is a
-  miss, and the result is computed again.
+  (another key, another record's shape: an entry of an older layout, or one
+  the caller's ``accept`` refuses) is a miss, and the result is computed again.
 
 >>> import tempfile
+>>> from rotorpillar.records import Record
+>>> class Peak(Record):
+...     omega: float
 >>> c = DiskCache(Path(tempfile.mkdtemp()))
 >>> k = cache_key({"elements": 8}, version=1, code="abc")
->>> c.read(k) is None
+>>> c.read(k, Peak) is None
 True
->>> _ = c.write(k, {"omega": 2.5})
->>> c.read(k)["omega"]
-2.5
+>>> _ = c.write(k, Peak(2.5))
+>>> c.read(k, Peak)
+Peak(omega=2.5)
 """
 
 from __future__ import annotations
@@ -33,9 +37,14 @@ import os
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Generic, TypeVar
 
+import msgspec
+
+from . import records
 from .provenance import write_json
+
+T = TypeVar("T")
 
 KEY_LENGTH = 24
 """hex digits of a key (96 bits)"""
@@ -62,6 +71,13 @@ def cache_key(args: Mapping[str, Any], *, version: int, code: str) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:KEY_LENGTH]
 
 
+class Entry(records.Record, Generic[T]):
+    """One cached result: its key (the read checks it) and its record."""
+
+    key: str
+    value: T
+
+
 @dataclass(frozen=True)
 class DiskCache:
     """A folder of cached results, one ``<prefix><key>.json`` file each."""
@@ -74,21 +90,21 @@ class DiskCache:
     def path(self, key: str) -> Path:
         return Path(self.root) / f"{self.prefix}{key}.json"
 
-    def read(self, key: str, accept: Callable[[dict], bool] | None = None) -> dict | None:
-        """The entry stored under ``key``, or None (a miss) when there is none, it cannot
-        be read or parsed, it is not a JSON object holding this ``key``, or ``accept``
-        refuses it."""
+    def read(self, key: str, type_: type[T], accept: Callable[[T], bool] | None = None) -> T | None:
+        """The ``type_`` record stored under ``key``, or None (a miss) when there is none, it
+        cannot be read or decoded as one, it holds another key, or ``accept`` refuses it."""
         try:
-            doc = json.loads(self.path(key).read_text(encoding="utf-8"))
-        except (OSError, ValueError):
+            entry = records.decode(self.path(key).read_bytes(), Entry[type_])  # type: ignore[valid-type]
+        except (OSError, msgspec.DecodeError, msgspec.ValidationError):
             return None
-        if not isinstance(doc, dict) or doc.get("key") != key:
+        if entry.key != key:
             return None
-        return doc if accept is None or accept(doc) else None
+        value: T = entry.value
+        return value if accept is None or accept(value) else None
 
-    def write(self, key: str, doc: Mapping[str, Any]) -> Path:
-        """Store ``doc`` atomically, its ``key`` first (the read checks it)."""
-        return write_json(self.path(key), {"key": key, **{k: v for k, v in doc.items() if k != "key"}})
+    def write(self, key: str, value: Any) -> Path:
+        """Store ``value`` (a record) atomically beside its ``key``."""
+        return write_json(self.path(key), Entry(key, value))
 
 
 def user_cache_root() -> Path:

@@ -16,35 +16,47 @@ import os
 import signal
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
-from .commands import is_root_rank, out_dir
+from . import records
+from .commands import Done, is_root_rank, out_dir
 from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
 from .errors import ComputationError, InputError, StageError
-from .provenance import Timings, to_json, with_provenance, write_result
+from .provenance import Timings, with_provenance, write_result
 from .scene import Scene, load_scene
 
 
-def execute(name: str, scene: Scene, args) -> dict:
-    """Run one command on a scene, write ``<out>/<name>.json``, return the result."""
+@dataclass(frozen=True)
+class Executed:
+    """A command run: its result as written, where, and its summary."""
+
+    done: Done
+    """the command's record, summary and exit status"""
+    document: dict[str, Any]
+    """the result file's document (the record with its provenance), as --json prints it"""
+    path: Path | None
+    """the file written (None off MPI rank 0)"""
+
+
+def execute(name: str, scene: Scene, args) -> Executed:
+    """Run one command on a scene, write ``<out>/<name>.json``, return what it did."""
     module, func, _ = COMMANDS[name]
     fn = getattr(importlib.import_module(module), func)
     timings = Timings()
     start = time.perf_counter()
-    result, text = fn(scene, args, timings)
-    status = result.pop("exit_status", EXIT_OK)  # a command's own verdict (report --strict)
+    done = Done(*fn(scene, args, timings))
     timings["total"] = time.perf_counter() - start
-    doc = with_provenance(
-        result,
-        {"command": name, "scene_source": str(args.scene), "overrides": list(args.overrides), "scene": scene.to_dict()},
-        dict(timings),
-    )
-    if is_root_rank():
-        path = write_result(out_dir(scene, args) / f"{name}.json", doc)
-        doc["_path"] = str(path)
-        doc["_summary"] = text
-    doc["exit_status"] = status
-    return doc
+    head = {
+        "command": name,
+        "scene_source": str(args.scene),
+        "overrides": list(args.overrides),
+        "scene": scene.to_dict(),
+    }
+    doc = with_provenance(done.result, head, dict(timings))
+    path = write_result(out_dir(scene, args) / f"{name}.json", doc) if is_root_rank() else None
+    return Executed(done, doc, path)
 
 
 #: Exit codes (README, "Exit codes"): the class of a failure, for scripts.
@@ -133,7 +145,7 @@ def main(argv: list[str] | None = None) -> int:
 
             check_record(scene.excitation.record)  # a missing record: now, not at a late stage
         check_output_dir(out_dir(scene, args))
-        doc = execute(args.command, scene, args)
+        ran = execute(args.command, scene, args)
     except InputError as exc:
         say("error", exc)
         return EXIT_INPUT
@@ -171,18 +183,16 @@ def main(argv: list[str] | None = None) -> int:
             f"{type(exc).__name__}: {exc} (run again with --debug for the traceback, and please report it)",
         )
         return EXIT_INTERNAL
-    status = doc.pop("exit_status", EXIT_OK)
     if is_root_rank():
-        path, text = doc.pop("_path"), doc.pop("_summary")
         if args.json:
-            print(to_json(doc))
+            print(records.encode_pretty(ran.document).decode())
         else:
-            print(text)
-            print(f"\nwrote {path}")
-            report = doc.get("report")
+            print(ran.done.summary)
+            print(f"\nwrote {ran.path}")
+            report = getattr(ran.done.result, "report", None)
             if isinstance(report, str):  # the last line: the page to open
                 print(f"report: {Path(report).resolve()}")
-    return status
+    return ran.done.exit_status
 
 
 if __name__ == "__main__":

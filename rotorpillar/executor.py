@@ -42,6 +42,7 @@ from typing import Any, TypeVar
 
 from .errors import ComputationError, InputError
 from .provenance import usable_cores
+from .records import Record
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -168,6 +169,19 @@ def describe_workers(info: dict) -> tuple[int, int]:
     return len(ws), sum(int(w.get("nthreads", 1)) for w in ws.values())
 
 
+class ExecutorInfo(Record):
+    """Where a study's batches ran (``Executor.describe``)."""
+
+    kind: str
+    """LocalCluster, scheduler, in-process, or none (every batch on disk)"""
+    scheduler: str | None
+    """the scheduler's address"""
+    workers: int
+    """worker processes (-)"""
+    threads: int
+    """threads over the workers (-)"""
+
+
 class Executor:
     """A Dask client on a local cluster (default) or on ``scheduler``."""
 
@@ -248,11 +262,11 @@ class Executor:
         self.client = self.cluster = None
 
     # ------------------------------------------------------------ what it is
-    def describe(self) -> dict:
+    def describe(self) -> ExecutorInfo:
         """The scheduler and the workers used (for the results' provenance)."""
         workers, threads = describe_workers(self.client.scheduler_info())
         kind = "scheduler" if self.scheduler else "LocalCluster" if self.processes else "in-process"
-        return {"kind": kind, "scheduler": self.client.scheduler.address, "workers": workers, "threads": threads}
+        return ExecutorInfo(kind, self.client.scheduler.address, workers, threads)
 
     # ------------------------------------------------------------ work
     def map(self, fn: Callable[[T], R], items: Iterable[T], *, pure: bool = False) -> Iterator[tuple[int, R]]:

@@ -9,19 +9,32 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
-import json
-import math
 import os
 import platform
 import tempfile
 import time
-import types
-import typing
 from importlib import metadata
 from pathlib import Path
+from typing import Any
 
-import msgspec
-import numpy as np
+from . import records
+
+# The record layer, re-exported: reduced/ imports nothing of the package but
+# reduced, scene, errors and provenance (tools/house_check.py), and takes its
+# records from here.  records itself imports nothing of the package (no circle).
+from .records import (
+    Array as Array,
+    ArrayMarker as ArrayMarker,
+    Figure as Figure,
+    Record as Record,
+    convert as convert,
+    decode as decode,
+    encode as encode,
+    read as read,
+    replace as replace,
+    tag as tag,
+    to_builtins as to_builtins,
+)
 
 #: Distributions whose versions a result records, when installed.
 DISTRIBUTIONS = (
@@ -58,7 +71,7 @@ def versions() -> dict[str, str]:
     return out
 
 
-def machine() -> dict:
+def machine() -> Machine:
     """The machine a result or benchmark ran on."""
     cpu = platform.processor() or ""
     try:
@@ -74,13 +87,7 @@ def machine() -> dict:
         mem = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     except (ValueError, OSError, AttributeError):
         pass
-    return {
-        "platform": platform.platform(),
-        "cpu": cpu,
-        "cores": os.cpu_count(),
-        "memory_bytes": mem,
-        "hostname": platform.node(),
-    }
+    return Machine(platform.platform(), cpu, os.cpu_count(), mem, platform.node())
 
 
 #: Share of the process's memory limit a model may plan to use: the rest is
@@ -215,32 +222,6 @@ class Timings(dict):
             self[name] = self.get(name, 0.0) + time.perf_counter() - start
 
 
-def _jsonable(obj):
-    if isinstance(obj, JsonRecord):
-        return _jsonable(obj.to_json())
-    if isinstance(obj, dict):
-        return {str(k): _jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return _jsonable(obj.tolist())
-    if isinstance(obj, (np.floating, float)):
-        x = float(obj)
-        return x if math.isfinite(x) else None  # JSON has no inf/nan
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    if isinstance(obj, Path):
-        return str(obj)
-    return obj
-
-
-def to_json(obj) -> str:
-    """Strict JSON (non-finite numbers become null)."""
-    return json.dumps(_jsonable(obj), indent=2, allow_nan=False)
-
-
 _UMASK = os.umask(0)
 os.umask(_UMASK)
 
@@ -291,11 +272,11 @@ def atomic_path(path: str | Path):
         raise
 
 
-def write_json(path: str | Path, obj) -> Path:
-    """Write ``obj`` as JSON atomically."""
-    text = to_json(obj)
+def write_json(path: str | Path, obj: Any) -> Path:
+    """Write ``obj`` (a record, or builtins holding records) as indented JSON, atomically."""
+    data = records.encode_pretty(obj)
     with atomic_path(path) as tmp:
-        tmp.write_text(text + "\n", encoding="utf-8")
+        tmp.write_bytes(data + b"\n")
     return Path(path)
 
 
@@ -304,22 +285,58 @@ def write_json(path: str | Path, obj) -> Path:
 PROVENANCE_KEYS = ("scene", "versions", "machine", "timings")
 
 
-def with_provenance(result, head: dict | None = None, timings: dict | None = None) -> dict:
+class Machine(records.Record):
+    """The machine a result or benchmark ran on."""
+
+    platform: str
+    """the operating system, as Python's platform module names it"""
+    cpu: str
+    """the processor's model name"""
+    cores: int | None
+    """logical cores (-)"""
+    memory_bytes: int | None
+    """physical memory (bytes)"""
+    hostname: str
+
+
+class Provenance(records.Record):
+    """What a command writes beside its result in every result file (``with_provenance``);
+    read back from that file by ``records.read(path, Provenance)`` (a field the file lacks
+    is its default: a reader takes what there is)."""
+
+    scene: dict[str, Any] | str | None = None
+    """the resolved scene (``Scene.to_dict()``); summary.json: the scene's name"""
+    versions: dict[str, str] = {}
+    """Python's and the libraries' versions"""
+    machine: Machine | None = None
+    timings: dict[str, float] = {}
+    """the command's stages: wall time (s)"""
+    command: str | None = None
+    """the command that wrote the file"""
+    scene_source: str | None = None
+    """the scene as given on the command line (a file or an embedded scene's name)"""
+    overrides: tuple[str, ...] = ()
+    """the command line's ``--set`` overrides"""
+
+
+def with_provenance(result: Any, head: dict[str, Any] | None = None, timings: dict[str, float] | None = None) -> dict:
     """The document of a result file: ``head`` first (command, scene_source, overrides,
-    scene: what the caller knows), then the result's fields (a JsonRecord or a dict), then
+    scene: what the caller knows), then the result's fields (a record, or a dict), then
     ``versions``, ``machine`` and ``timings`` (s) where the result does not carry its own."""
-    body = result.to_json() if isinstance(result, JsonRecord) else dict(result)
-    doc = {**(head or {}), **body}
+    body = records.to_builtins(result)
+    doc = {**records.to_builtins(head or {}), **body}
     if "versions" not in doc:
         doc["versions"] = versions()
     if "machine" not in doc:
-        doc["machine"] = machine()
+        doc["machine"] = records.to_builtins(machine())
     if "timings" not in doc:
         doc["timings"] = dict(timings or {})
     return doc
 
 
-def write_result(path: str | Path, result, head: dict | None = None, timings: dict | None = None) -> Path:
+def write_result(
+    path: str | Path, result: Any, head: dict[str, Any] | None = None, timings: dict | None = None
+) -> Path:
     """Write a result file (atomically) with its provenance (``with_provenance``): the one
     writer of every JSON a command writes; a document without its scene is refused."""
     doc = with_provenance(result, head, timings)
@@ -333,102 +350,3 @@ def write_text(path: str | Path, text: str) -> Path:
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return Path(path)
-
-
-def _record_json(value):
-    if isinstance(value, JsonRecord):
-        return value.to_json()
-    if isinstance(value, msgspec.Struct):  # a records.Record inside a JsonRecord (the move to msgspec)
-        from . import records
-
-        return records.to_builtins(value)
-    if isinstance(value, dict):
-        return {k: _record_json(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_record_json(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
-def _record_from(hint, value):
-    if value is None:
-        return None
-    if isinstance(hint, type) and issubclass(hint, JsonRecord):
-        return hint.from_json(value)
-    if isinstance(hint, type) and issubclass(hint, msgspec.Struct):
-        from . import records
-
-        return records.convert(value, hint)
-    origin, args = typing.get_origin(hint), typing.get_args(hint)
-    if origin in (typing.Union, types.UnionType):
-        inner = [a for a in args if a is not type(None)]
-        if len(inner) == 1:
-            return _record_from(inner[0], value)
-        records = [a for a in inner if isinstance(a, type) and issubclass(a, JsonRecord)]
-        if records and isinstance(value, dict):
-            # a union of records is told apart by its keys: exactly one may fit
-            fits = [r for r in records if r.fits(value)]
-            if len(fits) != 1:
-                names = ", ".join(r.__name__ for r in records)
-                raise KeyError(f"keys {sorted(value)} fit {len(fits)} of {names}, not one")
-            return fits[0].from_json(value)
-        return value
-    if origin is dict and isinstance(value, dict) and len(args) == 2:
-        return {k: _record_from(args[1], v) for k, v in value.items()}
-    if origin is tuple and isinstance(value, (list, tuple)):
-        if len(args) == 2 and args[1] is Ellipsis:
-            return tuple(_record_from(args[0], v) for v in value)
-        return tuple(value)
-    return value
-
-
-class JsonRecord:
-    """Mixin of the frozen result dataclasses that cross a layer.
-
-    ``to_json()`` gives the JSON-ready dict the command writes (fields in
-    declaration order, nested records as dicts, tuples and arrays as lists);
-    ``from_json(doc)`` builds the record back from such a dict, typed by the
-    fields' annotations, so ``from_json(d).to_json() == d``.  A field with
-    ``metadata={"omit_if_none": True}`` is left out of the JSON while None
-    (an optional detail most records lack); one with ``metadata={"json": key}``
-    is written and read under ``key`` (a JSON name that is no Python name, e.g.
-    ``"nfev_at_1e-06"``).  Keys of ``doc``
-    that are not fields (the scene, versions and timings a command writes
-    beside a result) are left out.
-    """
-
-    def to_json(self) -> dict:
-        return {
-            f.metadata.get("json", f.name): _record_json(getattr(self, f.name))
-            for f in dataclasses.fields(typing.cast(typing.Any, self))
-            if not (f.metadata.get("omit_if_none") and getattr(self, f.name) is None)
-        }
-
-    @classmethod
-    def from_json(cls, doc: dict):
-        hints = typing.get_type_hints(cls)
-        kwargs = {}
-        for f in dataclasses.fields(typing.cast(typing.Any, cls)):
-            key = f.metadata.get("json", f.name)
-            if key in doc:
-                kwargs[f.name] = _record_from(hints.get(f.name), doc[key])
-            elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
-                raise KeyError(key)  # as a dict would: the report names the key
-        return cls(**kwargs)
-
-    @classmethod
-    def fits(cls, doc: dict) -> bool:
-        """Whether ``doc`` has every required key of this record and no key it lacks."""
-        keys = {f.metadata.get("json", f.name): f for f in dataclasses.fields(typing.cast(typing.Any, cls))}
-        required = {
-            k for k, f in keys.items() if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
-        }
-        return required <= doc.keys() <= keys.keys()
-
-    @classmethod
-    def read(cls, path: str | Path):
-        """The record in the JSON file at ``path`` (a command's output)."""
-        return cls.from_json(json.loads(Path(path).read_text(encoding="utf-8")))

@@ -33,6 +33,7 @@ msgspec.ValidationError: Expected `float`, got `str` - at `$.amplitude`
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import typing
 from pathlib import Path
@@ -42,8 +43,10 @@ import msgspec
 import numpy as np
 
 
+@typing.dataclass_transform(field_specifiers=(msgspec.field,), frozen_default=True)
 class Record(msgspec.Struct, frozen=True):
-    """A typed, immutable result (a frozen msgspec Struct)."""
+    """A typed, immutable result (a frozen msgspec Struct; its subclasses are frozen too,
+    which ``frozen_default`` tells the type checker)."""
 
 
 R = TypeVar("R")
@@ -127,4 +130,28 @@ def read(path: str | Path, type_: type[R]) -> R:
         raise ValueError(f"{path.name}: not JSON ({err})") from None
 
 
-replace = msgspec.structs.replace
+S = TypeVar("S")
+
+
+def replace(obj: S, /, **changes: Any) -> S:
+    """A copy of a record (or of a frozen dataclass) with the given fields changed."""
+    if isinstance(obj, msgspec.Struct):
+        return msgspec.structs.replace(obj, **changes)
+    return dataclasses.replace(obj, **changes)  # type: ignore[type-var]
+
+
+def tag(record: msgspec.Struct) -> str:
+    """The tag of a record of a tagged union (its ``kind``, or the union's other tag field)."""
+    value = type(record).__struct_config__.tag
+    if not isinstance(value, str):
+        raise TypeError(f"{type(record).__name__} is no tagged record")
+    return value
+
+
+class Figure(Record):
+    """A chart a command drew: its file and what it shows."""
+
+    file: str
+    """the PNG's name, in the command's output folder"""
+    caption: str
+    """what it shows, in a sentence or two"""

@@ -13,11 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorpillar import records
 from rotorpillar.provenance import atomic_path, write_json
-from rotorpillar.reduced.excitation_records import ExcitationSizes
+from rotorpillar.reduced.excitation import ExcitationSizes
 from rotorpillar.reduced.pillar import cantilever_mode, omega_euler_bernoulli, tube_section
-from rotorpillar.transients.measures import compare_series, envelope_window
-from rotorpillar.transients.run_records import BeamFullOrder, Fem3dRun, ReducedRun
+from rotorpillar.transients.compare import compare_series, envelope_window
+from rotorpillar.transients.model_run import REDUCED_RUNS, Fem3dRun, ReducedRun
+from rotorpillar.transients.run_plan import BeamFullOrder
 
 _G = 9.81
 
@@ -222,9 +224,7 @@ def write_modal_fixture(
         ),
         configurations=ModalConfigurations(bare=config, with_top=config),
     )
-    doc = summary.to_json()
-    doc["timings"] = {"mesh": 0.1, "solve": 0.2}
-    doc["note"] = "synthetic fixture: analytic shapes, not a finite-element result"
+    doc = {**records.to_builtins(summary), "timings": {"mesh": 0.1, "solve": 0.2}}
     write_json(out / "modal.json", doc)
     return doc
 
@@ -280,10 +280,9 @@ def _pulse():
 
 def burst_sizes():
     """The excitation block of a synthetic record (no accelerogram behind it)."""
-    from rotorpillar.reduced.excitation_records import RecordSizes
+    from rotorpillar.reduced.excitation import RecordSizes
 
     return RecordSizes(
-        kind="record",
         name="synthetic burst",
         source="tests/fixtures.py",
         time_step=0.01,
@@ -332,16 +331,20 @@ def reduced_run(
     """A ``ReducedRun`` (``simulate_<case>_<model>.json`` of paper, modal or beam) built by
     its records' constructors: its final speed and length from ``t`` and ``Omega``, the
     peaks given; no resonance, passage or jump; an energy balance closed to 1.2e-5."""
+    from rotorpillar.reduced.integration import EnergyBalance, IntegratorStats
     from rotorpillar.reduced.stationary import AveragingPrediction
-    from rotorpillar.transients.case_summary import CaseSummary, EnergyBalance
 
-    summary = CaseSummary(
+    return REDUCED_RUNS[model](
+        case=case,
         ok=True,
         duration=float(t[-1] - t[0]),
         omega_final=float(Omega[-1]),
         omega_final_mean=float(np.mean(Omega[int(0.95 * len(Omega)) :])),
         max_abs=dict(max_abs),
         captured_at=None,
+        captured_resonance=None,
+        captured_index=None,
+        speed_state="at_speed",
         passages=(),
         energy_balance=EnergyBalance(
             energy_change=1.0,  # the drive's work less the residual below
@@ -353,7 +356,7 @@ def reduced_run(
             scale=1.0,
             relative_error=1.2e-5,
         ),
-        integrator={"method": "synthetic", "steps": int(len(t))},
+        integrator=IntegratorStats(method="synthetic", status="ok", steps=int(len(t))),
         prediction=AveragingPrediction(
             stationary=(),
             jumps=(),
@@ -364,26 +367,51 @@ def reduced_run(
             captured_at=None,
             resonances=(),
         ),
-        jumps=[],
+        jumps=(),
         excitation=excitation,
-    )
-    return ReducedRun(
-        case=case,
-        model=model,
-        summary=summary,
         warnings=tuple(warnings),
         pillar_model=_synthetic_pillar(),
         uncertainty=None,
         dofs=dofs,
         wall_seconds=wall_seconds,
         compile_seconds=0.0,
-        model_description={},
+        model_description=_synthetic_structure(model),
         model_info=None,
         resonances=(),
         damped_frequencies=(),
         tip_x_frame=tip_x_frame,
         max_abs_sampled=(),
         full_order=full_order,
+        internal_forces=None,
+    )
+
+
+def _synthetic_structure(model: str):
+    """A one-coordinate model's description (the fixtures' runs have no matrices of note)."""
+    from rotorpillar.reduced.rotor_models import StructureDescription
+
+    one = np.ones((1, 1))
+    return StructureDescription(
+        name=model,
+        coordinates=("tip_x", "rotor_y", "theta"),
+        frame="relative_to_ground",
+        nx=1,
+        mass=one,
+        stiffness=one,
+        stiffness_with_shaft=one,
+        damping=one,
+        shaft=np.ones(1),
+        tip=np.ones(1),
+        base_displacement=np.zeros(1),
+        base_velocity=np.zeros(1),
+        base_acceleration=np.zeros(1),
+        rotor_mass=1.0,
+        rotor_inertia=1.0,
+        eccentricity=0.0,
+        shaft_stiffness=1.0,
+        shaft_damping=0.0,
+        pillar_modes=None,
+        notes={"equations": "synthetic fixture"},
     )
 
 
@@ -401,17 +429,17 @@ def fem3d_run(
 ):
     """A ``Fem3dRun`` (``simulate_<case>_fem3d.json``) built by its records' constructors: a
     12 x 24 x 1 quadratic hexahedral mesh from the scene (unverified), the step 2 ms."""
+    from rotorpillar.fem3d.full_order_result import Fem3dDescription, Fem3dStats
     from rotorpillar.reduced.integration import EnergyBalance
     from rotorpillar.scene.sections import Mesh
     from rotorpillar.transients.references import FullOrderReference
-    from rotorpillar.transients.run_records import Fem3dPlan
+    from rotorpillar.transients.run_plan import Fem3dPlan
 
     mesh = Mesh(elements_around=12, elements_along=24, elements_through=1, degree=2, grading=1.0)
     duration = float(t[-1] - t[0])
     reference = FullOrderReference.unverified(case, mesh, "synthetic fixture: no study")
     return Fem3dRun(
         case=case,
-        model="fem3d",
         ok=True,
         duration=duration,
         omega_final=float(Omega[-1]),
@@ -427,10 +455,20 @@ def fem3d_run(
             scale=1.0,
             relative_error=2e-5,
         ),
-        integrator={"method": "synthetic"},
+        integrator=Fem3dStats(
+            method="synthetic",
+            status="ok",
+            steps=int(len(t)),
+            factorisations=1,
+            solves=int(len(t)),
+            newton_max=0,
+            factorisation_seconds=0.0,
+            integration_seconds=wall_seconds,
+            seconds_per_step=wall_seconds / len(t),
+            output_stride=1,
+        ),
         dofs=dofs,
         wall_seconds=wall_seconds,
-        failed_checks=None,
         captured_at=None,
         captured_resonance=None,
         captured_index=None,
@@ -439,8 +477,17 @@ def fem3d_run(
         captured_at_source="synthetic fixture",
         pillar_model=_synthetic_pillar(),
         compile_seconds=0.0,
-        model_description={},
-        model_info={"dofs": dofs},
+        model_description=Fem3dDescription(
+            mesh=mesh,
+            top="synthetic",
+            damping_law="synthetic",
+            frame="relative_to_ground",
+            forcing="-M r a_g (synthetic fixture)",
+            start="synthetic",
+            initial_speed=float(Omega[0]),
+            initial_angle=0.0,
+            prescribed_speed=False,
+        ),
         resonances=(),
         damped_frequencies=(),
         tip_x_frame="relative_to_ground",
@@ -448,6 +495,7 @@ def fem3d_run(
         initial_speed=None,
         excitation=excitation,
         excitation_in_model="-M r a_g (synthetic fixture)" if case == "earthquake" else None,
+        internal_forces=None,
     )
 
 
@@ -484,8 +532,7 @@ def write_simulation_fixture(
     model = "modal" if modal else "paper"
     stem = f"simulate_{case}" + (f"_{model}" if per_model else "")
     _save_npz(out / f"{stem}.npz", arrays)
-    doc = simulation_run(case, arrays, model, warnings).to_json()
-    doc["note"] = "synthetic fixture, not a simulation"
+    doc = records.to_builtins(simulation_run(case, arrays, model, warnings))
     write_json(out / f"{stem}.json", doc)
     return doc
 
@@ -556,7 +603,15 @@ def write_comparison_fixture(
     wall = {"modal": 0.8, "fem3d": 41.5, "beam": 3.2, "paper": 0.4}
     warnings = warnings or {}
     per, errors = {}, {}
-    from rotorpillar.reduced.excitation_records import NoMotionSizes
+    from rotorpillar.reduced.excitation import NoMotionSizes
+    from rotorpillar.transients.case_summary import SpectralMode
+    from rotorpillar.transients.compare import (
+        ComparedModel,
+        CompareResult,
+        CompareWindow,
+        ModelErrors,
+        ResponseSpectrum,
+    )
 
     excitation = burst_sizes() if case == "earthquake" else NoMotionSizes()
     for m in models:
@@ -574,23 +629,21 @@ def write_comparison_fixture(
             beam = BeamFullOrder(40, "timoshenko", float(a["t"][-1]), 2e-3, note) if m == "beam" else None
             frame = "absolute" if m == "paper" else "relative_to_ground"
             run = reduced_run(case, m, a["t"], a["Omega"], max_abs, tip_x_frame=frame, full_order=beam, **said)
-        meta = run.to_json()
-        meta["note"] = "synthetic fixture, not a simulation"
-        write_json(out / f"simulate_{case}_{m}.json", meta)
-        per[m] = {
-            "peak_tip_relative": meta["max_abs"]["tip_x_relative"],
-            "peak_tip_absolute": meta["max_abs"]["tip_x_absolute"],
-            "peak_shaft_deflection": float(np.max(np.abs(a["shaft_deflection_x"]))),
-            "omega_final": meta["omega_final"],
-            "wall_seconds": wall[m],
-            "compile_seconds": 0.0,
-            "dofs": dofs[m],
-            "ok": True,
-            "warnings": meta["warnings"],
-            "pillar_model": None,
-            "json": f"simulate_{case}_{m}.json",
-            "npz": f"simulate_{case}_{m}.npz",
-        }
+        write_json(out / f"simulate_{case}_{m}.json", run)
+        per[m] = ComparedModel(
+            peak_tip_relative=max_abs["tip_x_relative"],
+            peak_tip_absolute=max_abs["tip_x_absolute"],
+            peak_shaft_deflection=float(np.max(np.abs(a["shaft_deflection_x"]))),
+            omega_final=run.omega_final,
+            wall_seconds=wall[m],
+            compile_seconds=0.0,
+            dofs=dofs[m],
+            ok=True,
+            warnings=run.warnings,
+            pillar_model=None,
+            json=f"simulate_{case}_{m}.json",
+            npz=f"simulate_{case}_{m}.npz",
+        )
     r = arrays[reference]
     for m in models:
         if m == reference:
@@ -606,56 +659,55 @@ def write_comparison_fixture(
             theta=arrays[m].get("theta"),
             theta_ref=r.get("theta"),
         )
-        errors[m] = {
-            "tip_envelope_error": series.envelope_error,
-            "envelope_window": series.window,
-            "angle_drift": series.angle_drift,
-            "angle_drift_final": series.angle_drift_final,
-            "lead": series.lead,
-            "lead_why": series.why,
-            "tip_history_error": float(np.max(np.abs(y - r["tip_x_relative"])) / np.max(np.abs(r["tip_x_relative"]))),
-            "peak_tip_difference": per[m]["peak_tip_relative"] / per[reference]["peak_tip_relative"] - 1,
-            "omega_final_difference": per[m]["omega_final"] / per[reference]["omega_final"] - 1,
-        }
-    doc = {
-        "case": case,
-        "models_run": list(models),
-        "reference": reference,
-        "excitation": excitation.to_json(),
-        "per_model": per,
-        "errors": errors,
-        "cost_ratio": {m: wall[m] / wall[reference] for m in models},
-        "chart": f"compare_{case}.png",
-        "note": "synthetic fixture, not a comparison",
-        "window": {
-            "start": 0.0,
-            "end": float(r["t"][-1]),
-            "duration": float(r["t"][-1]),
-            "why": "the case's own duration",
-        },
-    }
+        errors[m] = ModelErrors(
+            tip_envelope_error=series.envelope_error,
+            envelope_window=series.window,
+            angle_drift=series.angle_drift,
+            angle_drift_final=series.angle_drift_final,
+            lead=series.lead,
+            lead_why=series.why,
+            tip_history_error=float(np.max(np.abs(y - r["tip_x_relative"])) / np.max(np.abs(r["tip_x_relative"]))),
+            peak_tip_difference=per[m].peak_tip_relative / per[reference].peak_tip_relative - 1,
+            omega_final_difference=per[m].omega_final / per[reference].omega_final - 1,
+        )
+    spec = None
     if case == "earthquake" and spectrum:
         T = np.logspace(-1.5, 1.0, 80)
-        doc["spectrum"] = {
-            "period": T.tolist(),
-            "psa": (9.80665 * 0.3 * (1 + 1.5 * np.exp(-(np.log(T / 0.4) ** 2)))).tolist(),
-            "damping": 0.05,
-            "mode_periods": [2 * math.pi / 15.36, 2 * math.pi / 96.0],
-            "spectral_peak_tip": 0.0042,
-            "computed_peak_tip": per.get("modal", per[reference])["peak_tip_relative"],
-            "modes": [
-                {
-                    "mode": i + 1,
-                    "period": 2 * math.pi / w,
-                    "damping_ratio": 0.02,
-                    "participation_factor": 1.0 / (i + 1),
-                    "s_d": 0.004 / (i + 1),
-                    "contribution": 0.004 / (i + 1) ** 2,
-                }
+        spec = ResponseSpectrum(
+            period=tuple(T.tolist()),
+            psa=tuple((9.80665 * 0.3 * (1 + 1.5 * np.exp(-(np.log(T / 0.4) ** 2)))).tolist()),
+            damping=0.05,
+            mode_periods=(2 * math.pi / 15.36, 2 * math.pi / 96.0),
+            spectral_peak_tip=0.0042,
+            computed_peak_tip=per.get("modal", per[reference]).peak_tip_relative,
+            modes=tuple(
+                SpectralMode(
+                    mode=i + 1,
+                    period=2 * math.pi / w,
+                    damping_ratio=0.02,
+                    participation_factor=1.0 / (i + 1),
+                    s_d=0.004 / (i + 1),
+                    contribution=0.004 / (i + 1) ** 2,
+                )
                 for i, w in enumerate((15.36, 96.0))
-            ],
-            "note": "synthetic spectrum: an estimate, not a bound",
-        }
+            ),
+            note="synthetic spectrum: an estimate, not a bound",
+        )
+    result = CompareResult(
+        case=case,
+        models_run=tuple(models),
+        reference=reference,
+        excitation=excitation,
+        per_model=per,
+        errors=errors,
+        cost_ratio={m: wall[m] / wall[reference] for m in models},
+        chart=f"compare_{case}.png",
+        window=CompareWindow(
+            start=0.0, end=float(r["t"][-1]), duration=float(r["t"][-1]), why="the case's own duration"
+        ),
+        spectrum=spec,
+    )
+    doc = records.to_builtins(result)
     write_json(out / f"compare_{case}.json", doc)
     return doc
 

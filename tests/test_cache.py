@@ -15,15 +15,24 @@ import json
 import pytest
 
 from rotorpillar.cache import DiskCache, cache_key, source_hash, user_cache_root
+from rotorpillar.records import Record
+
+
+class Run(Record):
+    """A cached result as the tests store it."""
+
+    omega: float
+    modes: tuple[float, ...] = ()
+    status: str = "ok"
 
 
 def test_hit_after_write_and_miss_before(tmp_path):
     cache = DiskCache(tmp_path / "runs")
     key = cache_key({"elements": 8, "theory": "euler"}, version=1, code="c0")
-    assert cache.read(key) is None  # nothing on disk yet
-    path = cache.write(key, {"omega": 2.5, "modes": [1.0, 2.0]})
+    assert cache.read(key, Run) is None  # nothing on disk yet
+    path = cache.write(key, Run(2.5, (1.0, 2.0)))
     assert path == cache.path(key) and path.parent == tmp_path / "runs"
-    assert cache.read(key) == {"key": key, "omega": 2.5, "modes": [1.0, 2.0]}
+    assert cache.read(key, Run) == Run(2.5, (1.0, 2.0))
     assert next(iter(json.loads(path.read_text()))) == "key"  # the key first
 
 
@@ -46,29 +55,41 @@ def test_source_hash_follows_the_files(tmp_path):
     assert source_hash([a, b]) != h
 
 
-@pytest.mark.parametrize("damage", ['{"key": "', "not json", "[1, 2]", "null", '{"key": "another", "omega": 1.0}', ""])
+@pytest.mark.parametrize(
+    "damage",
+    [
+        '{"key": "',
+        "not json",
+        "[1, 2]",
+        "null",
+        '{"key": "another", "value": {"omega": 1.0}}',  # another key's entry
+        '{"key": "KEY", "omega": 1.0}',  # an older layout (before records): recomputed once
+        '{"key": "KEY", "value": {"omega": "fast"}}',  # a field of the wrong type
+        "",
+    ],
+)
 def test_a_damaged_entry_is_a_miss_and_is_rewritten(tmp_path, damage):
     cache = DiskCache(tmp_path)
     key = cache_key({"n": 1}, version=1, code="c")
-    cache.path(key).write_text(damage)
-    assert cache.read(key) is None
-    cache.write(key, {"omega": 1.0})
-    assert cache.read(key)["omega"] == 1.0
+    cache.path(key).write_text(damage.replace("KEY", key))
+    assert cache.read(key, Run) is None
+    cache.write(key, Run(1.0))
+    assert cache.read(key, Run) == Run(1.0)
 
 
 def test_accept_refuses_an_entry_the_caller_cannot_use(tmp_path):
     cache = DiskCache(tmp_path)
-    cache.write("k", {"status": "failed"})
-    assert cache.read("k") is not None
-    assert cache.read("k", accept=lambda d: d["status"] == "ok") is None
+    cache.write("k", Run(1.0, status="failed"))
+    assert cache.read("k", Run) is not None
+    assert cache.read("k", Run, accept=lambda r: r.status == "ok") is None
 
 
 def test_a_failed_write_keeps_the_previous_entry(tmp_path):
     cache = DiskCache(tmp_path)
-    cache.write("k", {"omega": 1.0})
-    with pytest.raises(TypeError):
+    cache.write("k", Run(1.0))
+    with pytest.raises(NotImplementedError):
         cache.write("k", {"omega": object()})  # not serialisable
-    assert cache.read("k") == {"key": "k", "omega": 1.0}
+    assert cache.read("k", Run) == Run(1.0)
     assert [p.name for p in tmp_path.iterdir()] == ["k.json"]  # no partial file
 
 
@@ -100,16 +121,18 @@ def test_converge_recomputes_exactly_a_damaged_run(tmp_path):
     assert ran == [cases[1].label]
     assert [r.cached for r in again] == [True, False, True, True]
     assert again[1].bending == first[1].bending  # the same run, recomputed
-    assert json.loads(path.read_text())["status"] == "ok"  # and cached again
+    assert json.loads(path.read_text())["value"]["status"] == "ok"  # and cached again
 
 
 def test_study_batch_key_follows_spec_and_code():
+    from rotorpillar.records import replace
+    from rotorpillar.studies.batch import BatchSpec, PlannedRun
     from rotorpillar.studies.study import batch_key
 
-    spec = {"case": "runup", "model": "paper", "runs": [{"index": 0, "params": {"a": 1}}]}
+    spec = BatchSpec({"name": "paper"}, "runup", "paper", {}, (PlannedRun(0, {"a": 1}),))
     k = batch_key(spec, "src")
-    assert k == batch_key(json.loads(json.dumps(spec)), "src")
-    assert k != batch_key({**spec, "case": "sweep"}, "src")
+    assert k == batch_key(replace(spec), "src")
+    assert k != batch_key(replace(spec, case="sweep"), "src")
     assert k != batch_key(spec, "src2")
 
 

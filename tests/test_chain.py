@@ -29,6 +29,7 @@ import numpy as np
 import pytest
 from convergence_doc import convergence_doc
 
+from rotorpillar import records
 from rotorpillar.analysis import AnalysisResult, analyze
 from rotorpillar.analysis.rom import rom_of
 from rotorpillar.chain import ChainModes, PillarModel, TipReductionOf, Uncertain, choose
@@ -158,7 +159,7 @@ def test_a_study_of_another_tube_is_not_used(tmp_path):
 def test_pillar_modes_round_trip_and_scale():
     paper = load_scene("paper")
     pm = beam_pillar_modes(paper.pillar, paper.gondola.mass, 3, elements=10)
-    back = PillarModes.from_json(json.loads(json.dumps(pm.to_json())))
+    back = records.convert(json.loads(json.dumps(records.to_builtins(pm))), PillarModes)
     for name in ("omega", "modal_mass", "participation", "shapes", "heights"):
         np.testing.assert_array_equal(getattr(back, name), getattr(pm, name))
     up = pm.scaled(1.01)
@@ -198,8 +199,8 @@ def test_error_bars_are_bounded_by_the_pillar_frequency_error():
             assert 0 < bar.sources["discretisation"] <= delta * r.omega * (1 + 1e-9)
         assert "truncation" in bar.unassessed  # one mode: no more to add
     assert a.paper_model.system.omega == pytest.approx(omega_pair(p), rel=1e-12)
-    doc = json.loads(json.dumps(a.to_json()))
-    assert AnalysisResult.from_json(doc).to_json() == doc
+    doc = json.loads(json.dumps(records.to_builtins(a)))
+    assert records.to_builtins(records.convert(doc, AnalysisResult)) == doc
 
 
 def test_uncertain_sums_the_magnitudes_and_names_what_was_not_assessed():

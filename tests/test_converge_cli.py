@@ -18,6 +18,7 @@ import time
 import pytest
 from conftest import cli, sigint_as_in_the_foreground
 
+from rotorpillar import records
 from rotorpillar.converge import ModalModelSelection
 
 SMALL = [
@@ -117,7 +118,7 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
     assert any("no shell modes" in f for f in study["failures"])
     from rotorpillar.converge import ConvergenceStudy
 
-    assert ConvergenceStudy.read(out / "convergence.json").to_json() == study
+    assert records.to_builtins(records.read(out / "convergence.json", ConvergenceStudy)) == study
     # a finished study run again computes nothing: test_converge_records checks it in-process
 
 
@@ -152,7 +153,7 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     sel = doc["model_selection"]
-    assert ModalModelSelection.from_json(sel).to_json() == sel  # read through its record, unchanged
+    assert records.to_builtins(records.convert(sel, ModalModelSelection)) == sel  # read through its record, unchanged
     chosen = sel["chosen"]
     assert chosen["model"] == "solid" and "Model chosen for tolerance 0.03" in sel["text"]
     # modal ran on the chosen mesh
@@ -177,6 +178,6 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
     assert bad.returncode == 4, bad.stderr
     d = json.loads((tmp_path / "x" / "modal.json").read_text())
     assert d["ok"] is False and d["model_selection"]["met"] is False
-    assert ModalModelSelection.from_json(d["model_selection"]).to_json() == d["model_selection"]
+    assert records.to_builtins(records.convert(d["model_selection"], ModalModelSelection)) == d["model_selection"]
     assert "not met" in d["failed_checks"][0] and "not met" in bad.stderr
     assert len(bad.stderr.strip().splitlines()) <= 8, bad.stderr  # a few lines, no traceback

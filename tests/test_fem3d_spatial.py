@@ -369,7 +369,7 @@ def test_the_six_section_resultants_in_statics():
 
     from rotorpillar.fem3d import assemble_pillar
     from rotorpillar.fem3d.sections import section_functionals
-    from rotorpillar.fem3d.stress_records import base_reactions_six
+    from rotorpillar.fem3d.stress import base_reactions_six
 
     s = load_scene("paper")
     model = assemble_pillar(s, top=True, mesh=SMALL)

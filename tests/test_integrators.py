@@ -139,7 +139,7 @@ def test_dp5_reproduces_scipy_rk45():
     ref = simulate(model, drive, no_motion(), 10.0, settings=Settings("RK45", **st))
     tight = simulate(model, drive, no_motion(), 10.0, settings=Settings("dp5", rtol=1e-12, samples=401))
     # scipy counts 6 evaluations per step, plus the start
-    assert ours.stats["nfev"] == pytest.approx(ref.stats["nfev"], rel=0.02)
+    assert ours.stats.nfev == pytest.approx(ref.stats.nfev, rel=0.02)
     e_ours = np.max(np.abs(ours.tip() - tight.tip()))
     e_ref = np.max(np.abs(ref.tip() - tight.tip()))
     assert e_ours <= 3 * e_ref and e_ref <= 3 * e_ours

@@ -41,7 +41,7 @@ def scene():
 
 @pytest.mark.parametrize("theory", THEORIES)
 def test_static_tip_load_gives_PL_and_constant_shear(scene, theory):
-    bp = beam_properties(scene.pillar, theory)
+    bp = beam_properties(scene.pillar)
     n, P = 40, 1.0e4
     K, _ = assemble(bp, n, theory, scene.gondola.mass)
     load = np.zeros(K.shape[0])
@@ -60,7 +60,7 @@ def test_all_modes_superposed_are_the_beam(scene, theory):
     with every mode against the element end forces of the full-order solution."""
     n = 20
     pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 2 * n, theory, n)
-    bp = beam_properties(scene.pillar, theory)
+    bp = beam_properties(scene.pillar)
     K, M = assemble(bp, n, theory, scene.gondola.mass)
     w = 60.0
     load = np.zeros(K.shape[0])
@@ -77,7 +77,7 @@ def test_truncation_reference_is_the_full_order_beam(scene):
     """The truncation check's reference base moment against the beam's own harmonic solution."""
     n, theory = 40, "timoshenko"
     pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, 12, theory, n)
-    bp = beam_properties(scene.pillar, theory)
+    bp = beam_properties(scene.pillar)
     sec = section_of(scene.pillar)
     K, M = assemble(bp, n, theory, scene.gondola.mass)
     C = np.zeros_like(K)

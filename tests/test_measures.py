@@ -1,4 +1,4 @@
-"""Errors that measure the model (rotorpillar.transients.measures).
+"""Errors that measure the model (rotorpillar.transients.compare).
 
 References: closed forms and an inequality that holds for any two signals.
 - The running peak is a max over a window, so |env(x) - env(y)| <= max |x - y|
@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from rotorpillar.transients.measures import PHASE_LOCKED, compare_series, running_peak
+from rotorpillar.transients.compare import PHASE_LOCKED, compare_series, running_peak
 
 
 def test_envelope_error_never_exceeds_history_error():

@@ -24,7 +24,7 @@ import pytest
 from imagecheck import assert_real_png
 
 from rotorpillar import cli
-from rotorpillar.transients.run_comparisons import COMPARISONS, comparison_command
+from rotorpillar.transients.compare import COMPARISONS, comparison_command
 
 # seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
 pytestmark = pytest.mark.slow

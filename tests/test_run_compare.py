@@ -11,7 +11,7 @@ import pytest
 from conftest import cli
 
 from rotorpillar.cli import COMMANDS
-from rotorpillar.transients.run_comparisons import COMPARISONS, comparison_models
+from rotorpillar.transients.compare import COMPARISONS, comparison_models
 
 
 @pytest.mark.slow

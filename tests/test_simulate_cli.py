@@ -20,6 +20,7 @@ import pytest
 from conftest import cli
 from scipy.integrate import solve_ivp
 
+from rotorpillar import records
 from rotorpillar.reduced.excitation import STANDARD_GRAVITY
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import stationary_exact
@@ -140,11 +141,11 @@ def test_integrators_command(tmp_path):
     assert (tmp_path / "integrators.png").exists()
     # the file, through its record: the result part gives itself back, beside its provenance
     from rotorpillar.provenance import PROVENANCE_KEYS
-    from rotorpillar.transients.integrator_records import IntegratorStudy
+    from rotorpillar.transients.integrator_study import IntegratorStudy
 
     written = json.loads((tmp_path / "integrators.json").read_text())
     assert set(PROVENANCE_KEYS) <= set(written)
-    result = IntegratorStudy.from_json(written).to_json()
+    result = records.to_builtins(records.convert(written, IntegratorStudy))
     assert result == {k: v for k, v in written.items() if k in result}
     assert set(result) == {"accuracy", "stability", "energy_drift", "pillar_model", "stiffness_probe", "figures"}
 

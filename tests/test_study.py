@@ -6,14 +6,15 @@ simulated passing torque of ``passing_torque`` (its own bisection of
 run-ups).  Executors: a Dask LocalCluster against the in-process scheduler.
 """
 
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from rotorpillar import records
 from rotorpillar.executor import Executor
 from rotorpillar.postprocess.study_charts import study_charts
+from rotorpillar.records import replace
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.integration import Settings, simulate
@@ -66,7 +67,7 @@ def test_each_run_of_a_study_is_the_single_run(small_study):
         )
         assert r.ok and run.ok
         assert r.final_speed == pytest.approx(run.Omega[-1], rel=1e-5)
-        h = sc.simulate.duration / run.stats["steps"]
+        h = sc.simulate.duration / run.stats.steps
         crest = 2 * (float(np.max(run.Omega)) * h) ** 2 / 8
         assert r.peak_tip == pytest.approx(float(np.max(run.peak[:, -1])), rel=crest)
         m = model
@@ -90,19 +91,19 @@ def test_local_cluster_and_in_process_scheduler_agree(small_study, tmp_path):
     """The same batches on two worker processes: the same code on the same
     inputs, so the same numbers (bitwise: the integrator is deterministic)."""
     with Executor(workers=2) as ex:
-        assert ex.describe()["workers"] == 2
+        assert ex.describe().workers == 2
         other = design_study(
             load_scene("sommerfeld"), "runup", "paper", SMALL, out_dir=tmp_path, executor=ex, show_progress=False
         )
-    assert other.executor["kind"] == "LocalCluster" and small_study.executor["kind"] == "in-process"
-    strip = lambda r: {k: v for k, v in r.to_json().items() if k != "batch"}
+    assert other.executor.kind == "LocalCluster" and small_study.executor.kind == "in-process"
+    strip = lambda r: {k: v for k, v in records.to_builtins(r).items() if k != "batch"}
     assert [strip(a) for a in other.runs] == [strip(b) for b in small_study.runs]
 
 
 def test_study_round_trips_and_writes_one_csv_row_per_run(small_study):
-    doc = small_study.to_json()
-    assert StudyResult.from_json(doc).to_json() == doc
-    lines = Path(small_study.files["csv"]).read_text().splitlines()
+    doc = records.to_builtins(small_study)
+    assert records.to_builtins(records.convert(doc, StudyResult)) == doc
+    lines = Path(small_study.files.csv).read_text().splitlines()
     assert lines[0].startswith("index,drive.torque_at_zero,rotor.eccentricity,final_speed")
     assert len(lines) == 1 + 9
 
@@ -117,7 +118,7 @@ def test_runs_sharing_a_model_go_to_one_batch_loop():
     assert len(plan(pts, "runup", batch_runs=8)) == 1
     pts = [{"rotor.mass": m, "drive.torque_at_zero": t} for m in (1, 2) for t in (1, 2, 3)]
     batches = plan(pts, "runup", batch_runs=3)
-    assert [len({group_key(r["params"], "runup") for r in b}) for b in batches] == [1, 1]
+    assert [len({group_key(r.params, "runup") for r in b}) for b in batches] == [1, 1]
 
 
 def test_the_study_boundary_brackets_the_simulated_passing_torque(tmp_path):
@@ -136,8 +137,8 @@ def test_the_study_boundary_brackets_the_simulated_passing_torque(tmp_path):
             show_progress=False,
             charts=study_charts,
         )
-    (row,) = st.boundary["found"]
-    lo, hi = row["captured_max"], row["passed_min"]
+    (row,) = st.boundary.found
+    lo, hi = row.captured_max, row.passed_min
     assert hi - lo == pytest.approx(10.0)
     model, _ = build_model(sc, "paper")
     d = sc.drive
@@ -149,7 +150,7 @@ def test_the_study_boundary_brackets_the_simulated_passing_torque(tmp_path):
     )
     assert lo - 10.0 <= pt.simulated <= hi + 10.0
     assert abs(0.5 * (lo + hi) - pt.simulated) <= 10.0
-    assert st.boundary["averaging"][0] == pytest.approx(pt.predicted, rel=1e-9)
+    assert st.boundary.predicted.averaging[0] == pytest.approx(pt.predicted, rel=1e-9)
     print(f"study boundary {lo}..{hi}, simulate {pt.simulated:.2f}, averaging {pt.predicted:.2f}")
     assert (Path(tmp_path) / "study_final.png").is_file()
 

@@ -15,6 +15,7 @@ import time
 import pytest
 from conftest import cli, sigint_as_in_the_foreground
 
+from rotorpillar import records
 from rotorpillar.cli import main
 
 BAD = [
@@ -108,12 +109,12 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     from rotorpillar.studies import StudyResult
 
     on_disk = json.loads((out / "study.json").read_text())
-    rec = StudyResult.read(out / "study.json")
-    assert rec.to_json() == {k: on_disk[k] for k in rec.to_json()}
+    rec = records.read(out / "study.json", StudyResult)
+    assert records.to_builtins(rec) == {k: on_disk[k] for k in records.to_builtins(rec)}
     assert len((out / "study.csv").read_text().splitlines()) == 1 + 48
     w, h = _png_size(out / "study_capture_map.png")
     assert w >= 1000 and h >= 700
-    assert doc["boundary"]["kind"] == "torque" and len(doc["boundary"]["found"]) == 6
+    assert doc["boundary"]["predicted"]["kind"] == "torque" and len(doc["boundary"]["found"]) == 6
 
     again = json.loads(
         cli("study", "sommerfeld", "--case", "runup", *AXES, "--out", out, "--no-progress", "--json").stdout
@@ -121,15 +122,15 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert again["batches"]["computed"] == 0 and again["executor"]["workers"] == 0
 
     # the report's study section: the map embedded once, the boundary table
-    from rotorpillar.postprocess.readers import read_study
+    from rotorpillar.postprocess.readers import read_record
     from rotorpillar.postprocess.report.figures import external_figures
     from rotorpillar.postprocess.report.state import Build, Product, ReportOptions
     from rotorpillar.postprocess.report.study import section_study
     from rotorpillar.scene import load_scene
 
     build = Build(load_scene("sommerfeld"), out, "sommerfeld", ReportOptions())
-    read = read_study(out / "study.json")
-    build.study, build.docs["study"] = read.record, read.doc
+    read = read_record(out / "study.json", StudyResult)
+    build.study, build.provenance["study"] = read.record, read.provenance
     build.products["external"] = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(out)]
     html = section_study(build)
     assert "Design study" in html and "found against predicted" in html

@@ -30,12 +30,13 @@ from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import (
     STANDARD_GRAVITY,
     GroundMotion,
+    PulseSizes,
+    RecordSizes,
     load_record,
     paper_pulse,
     read_two_columns,
     record_from_arrays,
 )
-from rotorpillar.reduced.excitation_records import PulseSizes, RecordSizes
 from rotorpillar.reduced.integration import Settings, simulate
 from rotorpillar.reduced.pillar_modes import PillarModes
 from rotorpillar.reduced.rotor_models import modal_model

@@ -30,6 +30,7 @@ import math
 import numpy as np
 import pytest
 
+from rotorpillar import records
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import GroundMotion
 from rotorpillar.reduced.integration import Settings, simulate
@@ -60,7 +61,7 @@ def test_beam_static_limit_against_the_cantilever_closed_form():
         settings=Settings("dp5", rtol=1e-8, samples=1201),
         prescribed_speed=True,
     )
-    bp = beam_properties(scene.pillar, "timoshenko")
+    bp = beam_properties(scene.pillar)
     L, EI, kGA = bp.length, bp.youngs_modulus * bp.second_moment, bp.shear_coefficient * bp.shear_modulus * bp.area
     w, P = -bp.density * bp.area * a0, -(scene.gondola.mass + scene.rotor.mass) * a0
     ref = w * L**4 / (8 * EI) + w * L**2 / (2 * kGA) + P * L**3 / (3 * EI) + P * L / kGA
@@ -85,7 +86,7 @@ def test_beam_case_energy_and_against_the_rom(case):
     )
     beam = run_case(scene, case, "beam")
     rom = run_case(scene, case, "modal", truncation=False)
-    assert beam.run.stats["method"] == scene.full_order.beam_integrator
+    assert beam.run.stats.method == scene.full_order.beam_integrator
     assert beam.summary.ok and beam.summary.energy_balance.relative_error < 3e-4
     assert rom.summary.energy_balance.relative_error < 1e-4
     tip = np.interp(rom.run.t, beam.run.t, beam.run.tip())
@@ -106,7 +107,7 @@ def test_published_forcing_warning_threshold():
 
 def test_compare_result_round_trip():
     from rotorpillar.reduced.excitation import paper_pulse
-    from rotorpillar.transients.records import (
+    from rotorpillar.transients.compare import (
         ComparedModel,
         CompareResult,
         CompareWindow,
@@ -133,8 +134,8 @@ def test_compare_result_round_trip():
             (0.1, 1.0), (1.0, 2.0), 0.05, (0.25,), 0.1, None, (SpectralMode(1, 0.25, 0.08, 1.39, 0.08, 0.11),), ""
         ),
     )
-    doc = json.loads(json.dumps(r.to_json()))
-    assert CompareResult.from_json(doc) == r and CompareResult.from_json(doc).to_json() == doc
+    doc = json.loads(json.dumps(records.to_builtins(r)))
+    assert records.convert(doc, CompareResult) == r and records.to_builtins(records.convert(doc, CompareResult)) == doc
     assert r.reference == "fem3d" and reference_of(("paper", "beam", "modal")) == "beam"
-    no_spec = CompareResult.from_json({**doc, "spectrum": None})
-    assert "spectrum" not in no_spec.to_json()
+    no_spec = records.convert({**doc, "spectrum": None}, CompareResult)
+    assert "spectrum" not in records.to_builtins(no_spec)

@@ -14,12 +14,13 @@
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from rotorpillar.transients.pareto import analyse_pareto
+from rotorpillar import records
+from rotorpillar.records import replace
+from rotorpillar.transients.pareto import ParetoChoice, analyse_pareto
 from rotorpillar.transients.pareto_runs import StoredRun, pareto_along, run_specs
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
@@ -50,7 +51,7 @@ def test_reference_error_by_richardson():
     L, C = 0.0103, -0.5
     docs = [_solid(n, L + C * (1.0 / n) ** 3) for n in (10, 15, 20)]
     docs.append(_doc("rom", "ROM, 1 mode", 0.01, 0.0102, 0.0102 * np.sin(6 * GRID), modes=1))
-    study, _ = analyse_pareto(docs, {"rom": "ROM, 1 mode", "fem3d": "3D, 8x15"})
+    study, _ = analyse_pareto(docs, ParetoChoice("ROM, 1 mode", "3D, 8x15"))
     ref = study.reference
     assert ref.method == "richardson" and math.isclose(ref.order, 3.0, rel_tol=1e-6)
     assert math.isclose(ref.limit, L, rel_tol=1e-9)
@@ -58,13 +59,13 @@ def test_reference_error_by_richardson():
     by = {r.label: r for r in study.runs}
     assert math.isclose(by["ROM, 1 mode"].peak_tip_error, 0.0102 / docs[2].peak_tip - 1)
     assert by["3D, 8x20"].peak_tip_error == ref.peak_error  # the reference: its own error
-    assert "ROM, 1 mode" in study.fronts["peak_tip"]  # cheapest: on every front
-    assert "3D, 8x10" not in study.fronts["peak_tip"]  # dearer and worse than the ROM
+    assert "ROM, 1 mode" in study.fronts.peak_tip  # cheapest: on every front
+    assert "3D, 8x10" not in study.fronts.peak_tip  # dearer and worse than the ROM
 
 
 def test_reference_error_without_monotone_convergence():
     docs = [_solid(10, 0.0100), _solid(15, 0.0103), _solid(20, 0.0102)]
-    study, _ = analyse_pareto(docs, {})
+    study, _ = analyse_pareto(docs, ParetoChoice(None, None))
     ref = study.reference
     assert ref.method == "next_coarser" and ref.order is None
     assert math.isclose(ref.peak_error, abs(0.0102 / 0.0103 - 1))
@@ -92,7 +93,6 @@ def test_run_specs():
 def test_pareto_runs_cache_and_resume(tmp_path):
     import json
 
-    from rotorpillar.provenance import to_json
     from rotorpillar.scene import load_scene
     from rotorpillar.transients.pareto import ParetoStudy, plan_pareto, transient_pareto
     from rotorpillar.transients.pareto_runs import compute_3d
@@ -103,10 +103,10 @@ def test_pareto_runs_cache_and_resume(tmp_path):
     study, tips = transient_pareto(scene, cache_dir=tmp_path, rom_modes=2, chosen_mesh=mesh, workers=1, **short)
     assert all(r.ok for r in study.runs) and study.cost.computed == len(study.runs)
     assert study.cost.workers == 1 and "fem3d" in study.compile_seconds
-    assert study.reference.label == "3D, 8x4" and study.chosen["fem3d"] == "3D, 8x3"
+    assert study.reference.label == "3D, 8x4" and study.chosen.fem3d == "3D, 8x3"
     # the study is a record writing the JSON it reads back (compare_earthquake.json's pareto)
-    doc = json.loads(to_json(study.to_json()))
-    assert ParetoStudy.from_json(doc).to_json() == doc
+    doc = json.loads(records.encode(study))
+    assert records.to_builtins(records.convert(doc, ParetoStudy)) == doc
     assert list(doc["cost"]) == [
         "runs",
         "computed",
@@ -155,24 +155,26 @@ def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_pa
         ParetoRunning(plan, workers=0).finish()
     files = sorted(tmp_path.glob("pareto-*.json"))
     assert len(files) == len(plan.specs)
-    computed = {i: run.to_json() for i, run in plan.results.items()}
-    # the record is the file: its JSON is the document on disk, read back whole
+    computed = {i: records.to_builtins(run) for i, run in plan.results.items()}
+    # the record is the cache entry's value: its JSON, beside the key, read back whole
     assert all(
-        json.loads((tmp_path / f"pareto-{r.key}.json").read_text()) == r.to_json() for r in plan.results.values()
+        json.loads((tmp_path / f"pareto-{r.key}.json").read_text()) == {"key": r.key, "value": records.to_builtins(r)}
+        for r in plan.results.values()
     )
     assert not any(r.cached for r in plan.results.values())
 
     again = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
     assert again.keys == plan.keys and sorted(again.results) == list(range(len(plan.specs)))
     assert all(r.cached for r in again.results.values())
-    assert {i: r.to_json() for i, r in again.results.items()} == computed
+    assert {i: records.to_builtins(replace(r, cached=False)) for i, r in again.results.items()} == computed
 
     path = {i: tmp_path / f"pareto-{key}.json" for i, key in enumerate(plan.keys)}
     path[0].write_text(path[0].read_text()[:40])  # cut short
     doc = json.loads(path[1].read_text())
     path[1].write_text(json.dumps({**doc, "key": "another"}))  # another run's
     doc = json.loads(path[2].read_text())
-    path[2].write_text(json.dumps({k: v for k, v in doc.items() if k != "ok"}))  # no verdict
+    doc["value"].pop("ok")
+    path[2].write_text(json.dumps(doc))  # no verdict
     damaged = {0, 1, 2}
     third = plan_pareto(scene, cache_dir=tmp_path, rom_modes=1, **choices)
     assert set(third.results) == set(range(len(plan.specs))) - damaged
@@ -203,11 +205,11 @@ def test_the_reference_writes_the_keys_it_wrote_as_a_dict(peaks, method):
     from rotorpillar.transients.pareto import ParetoStudy
 
     docs = [_solid(n, p) for n, p in zip((10, 15, 20), peaks)]
-    study, _ = analyse_pareto(docs, {})
-    doc = json.loads(json.dumps(study.to_json()))
+    study, _ = analyse_pareto(docs, ParetoChoice(None, None))
+    doc = json.loads(json.dumps(records.to_builtins(study)))
     ref = doc["reference"]
     assert ref["method"] == method
     keys = ["label", "peak_tip", "peak_error", "history_error", "method", "order"]
     assert list(ref) == keys + (["limit"] if method == "richardson" else []) + ["note"]
-    again = ParetoStudy.from_json(doc)
-    assert again.reference == study.reference and again.to_json() == doc
+    again = records.convert(doc, ParetoStudy)
+    assert again.reference == study.reference and records.to_builtins(again) == doc

@@ -36,6 +36,7 @@ import numpy as np
 import pytest
 from scipy.integrate import trapezoid  # np.trapz is gone in NumPy 2
 
+from rotorpillar import records
 from rotorpillar.reduced import averaging as av
 from rotorpillar.reduced.drive import DriveSchedule
 from rotorpillar.reduced.excitation import no_motion
@@ -193,28 +194,25 @@ def test_passing_torque_matches_the_fold(sommerfeld):
 @pytest.mark.slow
 def test_sommerfeld_sweep_finds_the_predicted_jumps(sommerfeld):
     r = run_case(sommerfeld, "sweep", "paper")
-    s = r.summary.to_json()
+    s = records.to_builtins(r.summary)
+    sweep = s["sweep"]
     assert {j["direction"] for j in s["jumps"]} == {"up", "down"}
-    pred = {j["direction"]: j for j in s["predicted_jumps"] if j["resonance"] == 1}
+    pred = {j["direction"]: j for j in sweep["predicted_jumps"] if j["resonance"] == 1}
     num = {j["direction"]: j for j in s["jumps"]}
     # delayed by the finite rate: later on the way up, lower on the way down
     assert 0 <= num["up"]["torque_at_zero"] / pred["up"]["torque_at_zero"] - 1 < 0.05
     assert -0.15 < num["down"]["torque_at_zero"] / pred["down"]["torque_at_zero"] - 1 <= 0
-    for row in s["rate_convergence"]["rows"]:
+    for row in sweep["rate_convergence"]["rows"]:
         assert abs(row["rel_error_limit_vs_predicted"]) < 0.02
-    # the rate study is a record writing the JSON it reads back (the document as written)
-    from rotorpillar.provenance import to_json
+    # the sweep's findings read back whole, nested rows and all (the document as written)
     from rotorpillar.transients.case_summary import CaseSummary
-    from rotorpillar.transients.sweep_records import RateConvergence, SweepFindings
+    from rotorpillar.transients.sweep import RateConvergence
 
-    doc = json.loads(to_json(s))
+    doc = json.loads(records.encode(r.summary))
     assert isinstance(r.summary.sweep.rate_convergence, RateConvergence)
-    assert RateConvergence.from_json(doc["rate_convergence"]).to_json() == doc["rate_convergence"]
-    assert "predicted_torque_at_zero" in doc["rate_convergence"]["rows"][0]
-    found = SweepFindings.from_json(doc).to_json()  # the sweep's part of the document, read back whole
-    assert list(found)[0] == "predicted_jumps" and found == {k: doc[k] for k in found}
-    assert doc["jump_comparison"][0]["numeric"] is not None  # the nested rows too
-    assert CaseSummary.from_json(doc).to_json() == doc
+    assert "predicted_torque_at_zero" in doc["sweep"]["rate_convergence"]["rows"][0]
+    assert doc["sweep"]["jump_comparison"][0]["numeric"] is not None  # the nested rows too
+    assert records.to_builtins(records.convert(doc, CaseSummary)) == doc
     # the up-sweep was held below omega_1 until its fold, and jumped from there
     assert s["captured_resonance"] == pytest.approx(r.model.quasi_normal()[0].omega)
     assert s["captured_index"] == r.model.quasi_normal()[0].index
@@ -223,10 +221,10 @@ def test_sommerfeld_sweep_finds_the_predicted_jumps(sommerfeld):
 
 def test_paper_sweep_rules_out_the_jumps():
     r = run_case(load_scene("paper"), "sweep", "paper")
-    s = r.summary.to_json()
-    assert s["jumps"] == [] and s["predicted_jumps"] == []
-    assert max(s["largest_speed_step_ratio"].values()) < 2.0
-    assert "No jumps" in s["no_jump_reason"]
+    s = r.summary
+    assert s.jumps == () and s.sweep.predicted_jumps == ()
+    assert max(s.sweep.largest_speed_step_ratio.values()) < 2.0
+    assert "No jumps" in s.sweep.no_jump_reason
 
 
 def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
@@ -234,8 +232,7 @@ def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
     first: the second stays unmatched (it used to be measured against the
     first resonance's jump, a -70 % 'error'); each numeric jump pairs with
     one prediction at most."""
-    from rotorpillar.transients.sweep import match_jumps
-    from rotorpillar.transients.sweep_records import NumericJump
+    from rotorpillar.transients.sweep import NumericJump, match_jumps
 
     def up(w0, w1, m, direction="up"):
         return NumericJump(direction, w0, w1, m, 1)
@@ -244,7 +241,8 @@ def test_a_jump_the_sweep_did_not_make_is_not_matched_to_another_resonances():
     rows = match_jumps([up(25.5, 30.0, 610.0)], predicted)
     assert rows[0].numeric is not None
     assert rows[0].rel_error_omega_from == pytest.approx(25.5 / 25.0 - 1)
-    assert rows[1].numeric is None and list(rows[1].to_json()) == ["predicted", "numeric"]
+    assert rows[1].numeric is None and rows[1].rel_error_omega_from is None
+    assert list(records.to_builtins(rows[1])) == ["predicted", "numeric"]  # no error without a match
     # two numeric jumps near two predictions: each with its own
     rows = match_jumps([up(151.0, 168.0, 1990.0), up(24.0, 32.0, 590.0)], predicted)
     assert [r.numeric.omega_from for r in rows] == [24.0, 151.0]
@@ -257,8 +255,7 @@ def test_a_speed_step_beyond_the_motor_and_load_is_one_jump_and_its_bins_are_mar
     dM0 / (s + 2 k Omega)) but for one step of 10 rad/s between bins 4 and 5: one jump
     from bin 4's speed to bin 5's, the two bins marked as not stationary, and the
     largest step ratio far above JUMP_FACTOR (the smooth steps have ratio 1)."""
-    from rotorpillar.transients.sweep import JUMP_FACTOR, detect_jumps
-    from rotorpillar.transients.sweep_records import SweepBins
+    from rotorpillar.transients.sweep import JUMP_FACTOR, SweepBins, detect_jumps
 
     s, k = 10.0, 0.0  # no load: dOmega = dM0 / s exactly
     M0 = np.linspace(100.0, 200.0, 11)

@@ -19,19 +19,19 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import replace
 
 import numpy as np
 import pytest
 from conftest import cli
 from convergence_doc import convergence_doc
 
+from rotorpillar import records
 from rotorpillar.converge.result import ERROR_KINDS, ConvergenceStudy, ModeSourceFloor
 from rotorpillar.converge.selection import select_reference
 from rotorpillar.fem3d.modal import ModeRow
+from rotorpillar.records import replace
 from rotorpillar.scene import load_scene, override
-from rotorpillar.transients.participation import PARTICIPATION_FLOOR, participation_table
-from rotorpillar.transients.references import choose_reference, read_study
+from rotorpillar.transients.references import PARTICIPATION_FLOOR, choose_reference, participation_table, read_study
 from rotorpillar.transients.window import START_FRACTION, runup_window, window_overrides
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
@@ -118,7 +118,7 @@ REFERENCE = {"bending": {"value": 30.818, "error_estimate": 30.818 * 1.4e-4}}
 
 def _study():
     """RUNS and REFERENCE as a study on disk reads (its runs and reference records)."""
-    return ConvergenceStudy.from_json(convergence_doc(load_scene("paper"), RUNS, REFERENCE))
+    return records.convert(convergence_doc(load_scene("paper"), RUNS, REFERENCE), ConvergenceStudy)
 
 
 def test_select_reference_coarsest_meeting_the_bound():
@@ -159,7 +159,7 @@ def _study_on_disk(tmp_path, scene, runs=RUNS):
         selection={"reason": "none meets it"},
     )
     (tmp_path / "convergence.json").write_text(json.dumps(doc))
-    modes = [r.to_json() for r in ROWS]
+    modes = [records.to_builtins(r) for r in ROWS]
     (tmp_path / "modal.json").write_text(json.dumps({"scene": scene.to_dict(), "modes_with_top": modes}))
 
 
@@ -178,13 +178,13 @@ def test_choose_reference_from_the_study_on_disk(tmp_path):
     assert mesh.elements_along == 40 and ref.meets is False
     # errors and floor serialise as the dicts they were (compare_<case>.json's full_order_reference)
     run = next(r for r in _study().runs if r.label == ref.label)
-    doc = ref.to_json()
+    doc = records.to_builtins(ref)
     assert doc["floor"] == {"label": ref.floor.label, "band_error": ref.floor.band_error}
     assert doc["errors"] == {
         q: {"value": run.frequency(q), **{k: run.relative_error(q, k) for k in ERROR_KINDS}} for q in ref.quantities
     }
     assert list(doc["errors"]["bending"]) == ["value", *ERROR_KINDS]
-    assert type(ref).from_json(json.loads(json.dumps(doc))) == ref
+    assert records.convert(json.loads(json.dumps(doc)), type(ref)) == ref
     # a long run-up (5,000 steps) affords 8,000 DOFs (REFERENCE_DOF_STEPS): 8 x 20, said so
     mesh, ref = choose_reference(scene, "runup", tmp_path, steps=5_000)
     assert mesh.elements_along == 20 and ref.meets is False and "afford" in ref.reason
@@ -340,6 +340,7 @@ def test_the_ladder_has_the_bending_only_family():
         level=case.level,
         params=case.settings,
         status="ok",
+        cached=False,
         bending=30.86,
         ovalling=696.0,
         ovalling_n=2,

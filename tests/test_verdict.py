@@ -19,14 +19,15 @@ import json
 import pytest
 from conftest import cli
 
+from rotorpillar import records
 from rotorpillar.reduced.margins import required_margin
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import operating_speed
 from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.files import write_model_files
 from rotorpillar.transients.model_run import run_model
-from rotorpillar.verdict.records import EngineeringSummary, HarmonicResult
-from rotorpillar.verdict.summary import engineering_summary
+from rotorpillar.verdict.harmonic import HarmonicResult
+from rotorpillar.verdict.summary import EngineeringSummary, engineering_summary
 
 # seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
 pytestmark = pytest.mark.slow
@@ -48,7 +49,7 @@ def out(tmp_path_factory):
 def test_harmonic_rom_only(out):
     from rotorpillar.chain import resolve
 
-    r = HarmonicResult.read(out / "harmonic.json")
+    r = records.read(out / "harmonic.json", HarmonicResult)
     scene = load_scene("paper")
     # the harmonic stage's ROM is the chain's, as every stage's: the same modes here
     chain = resolve(scene, out)
@@ -92,7 +93,7 @@ def test_checks_against_capacities(out):
 def test_report_writes_summary_and_opens_with_the_verdict(out):
     p = cli("report", "paper", "--out", out, "--no-animations")
     assert p.returncode == 0, p.stderr
-    s = EngineeringSummary.read(out / "summary.json")
+    s = records.read(out / "summary.json", EngineeringSummary)
     assert s.scene == "paper" and s.checks
     html = (out / "report.html").read_text()
     summary = html[html.index('<section id="summary">') :]

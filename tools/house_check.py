@@ -7,8 +7,8 @@ Rules that hold for the whole package:
 
 - no import circle between the package's modules (a package's ``__init__``
   re-exporting its own submodules is not a circle);
-- no module over 500 lines;
-- ``reduced/`` imports only ``reduced/``, ``scene``, ``errors``, ``provenance``, ``records``
+- no module over 800 lines;
+- ``reduced/`` imports only ``reduced/``, ``scene``, ``errors``, ``provenance``
   (and the package root), and none of the dolfinx world (dolfinx, ufl,
   basix, ffcx, petsc4py, slepc4py, mpi4py, gmsh, meshio): not at the top of a
   module, not inside a function, not by ``importlib.import_module("...")``;
@@ -25,7 +25,7 @@ starts at zero):
 
 - ``dict_results``: functions whose result is a dict (annotated ``-> dict``,
   ``-> dict[...]``, ``Dict``, ``Mapping``, or returning a dict literal):
-  results are frozen dataclasses.  Serialisers (``to_json``, ``to_dict``, ...)
+  results are records (rotorpillar.records).  Serialisers (``to_json``, ``to_dict``, ...)
   are not counted: a dict is their job;
 - ``untyped_scene``: parameters named ``scene`` without an annotation
   (``scene: Scene``).
@@ -49,10 +49,10 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = "rotorpillar"
 BASELINE = Path(__file__).with_name("house_baseline.json")
 
-MAX_LINES = 500
+MAX_LINES = 800
 REDUCED = f"{PACKAGE}.reduced"
 #: What reduced/ may import from the package (besides itself).
-REDUCED_MAY_IMPORT = (f"{PACKAGE}.scene", f"{PACKAGE}.errors", f"{PACKAGE}.provenance", f"{PACKAGE}.records")
+REDUCED_MAY_IMPORT = (f"{PACKAGE}.scene", f"{PACKAGE}.errors", f"{PACKAGE}.provenance")
 #: Third-party packages of the finite-element side, which reduced/ never imports.
 DOLFINX_WORLD = ("dolfinx", "ufl", "basix", "ffcx", "petsc4py", "slepc4py", "mpi4py", "gmsh", "meshio")
 PLOTTING = ("pyvista", "matplotlib", "vtk", "vtkmodules")
@@ -286,7 +286,7 @@ def check_reduced(mods: dict[str, Module]) -> Verdict:
                 bad.append(where)
     return Verdict(
         not bad,
-        "reduced/ imports only reduced/, scene, errors, provenance, records and no "
+        "reduced/ imports only reduced/, scene, errors, provenance and no "
         f"dolfinx-world package: {len(bad)}" + (f" {bad[:8]}" if bad else ""),
     )
 
@@ -409,7 +409,7 @@ def check_ratchet(mods: dict[str, Module], baseline: dict[str, dict[str, int]]) 
     counts = all_counts(mods)
     verdicts = []
     for key, what in (
-        ("dict_results", "functions returning a dict (results are dataclasses)"),
+        ("dict_results", "functions returning a dict (results are records)"),
         ("untyped_scene", "`scene` parameters without `: Scene`"),
     ):
         grew, fell = [], []

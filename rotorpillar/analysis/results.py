@@ -1,19 +1,15 @@
 """The typed result of `rotorpillar analyze`: what the closed forms say about a scene.
 
-Frozen records whose fields are the keys of ``analyze.json``, in the order
-written there; :meth:`~rotorpillar.provenance.JsonRecord.to_json` gives that
-JSON, :meth:`~rotorpillar.provenance.JsonRecord.from_json` reads it back (the
-report reads ``analyze.json`` through :meth:`AnalysisResult.read`).  SI
-units: rad/s, kg, N/m, N*m, m.
+Records (rotorpillar.records) whose fields are the keys of ``analyze.json``, in
+the order written there; the report reads the file back with
+``records.read(path, AnalysisResult)``.  SI units: rad/s, kg, N/m, N*m, m.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from ..chain.modes import TipReductionOf
 from ..chain.record import PillarModel, Uncertain
-from ..provenance import JsonRecord
+from ..records import Record
 from ..reduced.averaging import Jump  # noqa: F401  (records of analyze.json too)
 from ..reduced.averaging import Stationary as StationarySpeed
 from ..reduced.base_forcing import BaseForcingFinding
@@ -28,8 +24,7 @@ from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json
 from .tower import TowerFindings
 
 
-@dataclass(frozen=True)
-class CoupledModes(JsonRecord):
+class CoupledModes(Record):
     """The reduced rotor-pillar system: its modes and quasi-normal coefficients."""
 
     tip_mass_total: float
@@ -50,8 +45,7 @@ class CoupledModes(JsonRecord):
     """c2 e, the paper's torque coupling (N)"""
 
 
-@dataclass(frozen=True)
-class ResonanceCurves(JsonRecord):
+class ResonanceCurves(Record):
     """The averaging curves around one resonance, on z = Omega / omega_i."""
 
     z: tuple[float, ...]
@@ -64,8 +58,7 @@ class ResonanceCurves(JsonRecord):
     Md: tuple[float, ...]
 
 
-@dataclass(frozen=True)
-class ResonanceAnalysis(JsonRecord):
+class ResonanceAnalysis(Record, omit_defaults=True):
     """One resonance by the averaging theory: amplitude, extra torque, jumps."""
 
     index: int
@@ -90,12 +83,11 @@ class ResonanceAnalysis(JsonRecord):
     critical_eccentricity: float
     statement: str
     curves: ResonanceCurves
-    uncertainty: ResonanceBars | None = field(default=None, metadata={"omit_if_none": True})
+    uncertainty: ResonanceBars | None = None
     """error bars of omega, a_max and dL_max (the headline model's; absent on the paper's)"""
 
 
-@dataclass(frozen=True)
-class ResonanceBars(JsonRecord):
+class ResonanceBars(Record):
     """A resonance's headline numbers with their error bars (rotorpillar.analysis.rom)."""
 
     omega: Uncertain
@@ -106,8 +98,7 @@ class ResonanceBars(JsonRecord):
     """N*m"""
 
 
-@dataclass(frozen=True)
-class DriveBars(JsonRecord):
+class DriveBars(Record):
     """The drive's stationary speeds with their error bars."""
 
     runup_speed: Uncertain | None
@@ -116,8 +107,7 @@ class DriveBars(JsonRecord):
     """rad/s"""
 
 
-@dataclass(frozen=True)
-class DriveRegimes(JsonRecord):
+class DriveRegimes(Record, omit_defaults=True):
     """The motor on the whole machine: stationary speeds, jumps, capture."""
 
     torque_at_zero: float
@@ -137,11 +127,10 @@ class DriveRegimes(JsonRecord):
     """that resonance's omega_i (rad/s)"""
     captured_at: float | None
     """the speed the rotor settles at when captured (rad/s)"""
-    uncertainty: DriveBars | None = field(default=None, metadata={"omit_if_none": True})
+    uncertainty: DriveBars | None = None
 
 
-@dataclass(frozen=True)
-class PaperRow(JsonRecord):
+class PaperRow(Record, omit_defaults=True):
     """One number the paper prints, beside ours."""
 
     key: str
@@ -152,12 +141,11 @@ class PaperRow(JsonRecord):
     flag: bool
     where: str
     note: str
-    details: BaseForcingFinding | None = field(default=None, metadata={"omit_if_none": True})
+    details: BaseForcingFinding | None = None
     """what a finding (not a printed number) states: eq4_base_forcing's"""
 
 
-@dataclass(frozen=True)
-class RomSystem(JsonRecord):
+class RomSystem(Record):
     """The headline model: the chain's pillar modes with the rotor on its shaft."""
 
     modes: int
@@ -187,8 +175,7 @@ class RomSystem(JsonRecord):
     """how the error bars were made"""
 
 
-@dataclass(frozen=True)
-class PaperModel(JsonRecord):
+class PaperModel(Record):
     """The paper's Eq. 4 with its stated tip reduction, analysed as the paper does."""
 
     reduction: TipReductionUsed
@@ -198,8 +185,7 @@ class PaperModel(JsonRecord):
     note: str
 
 
-@dataclass(frozen=True)
-class AnalysisResult(JsonRecord):
+class AnalysisResult(Record):
     """Everything `rotorpillar analyze` computes for a scene (``analyze.json``).
 
     ``system``, ``resonances`` and ``drive`` are the headline model's (the

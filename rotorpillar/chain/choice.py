@@ -20,13 +20,12 @@ the ladder for a reference, else ``verified: false``.
 
 from __future__ import annotations
 
-import dataclasses
-import json
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .. import records
 from ..scene import Mesh, Scene
 from ..scene.tower import Foundation
 from .record import PillarModel
@@ -96,13 +95,10 @@ def study_on_disk(scene: Scene, out_dir: Path):
     if not path.is_file():
         return None, f"no convergence study in {out_dir} (rotorpillar converge {scene.name})"
     try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-        study = ConvergenceStudy.from_json(
-            {k: v for k, v in doc.items() if k not in ("command", "scene_source", "overrides")}
-        )
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        return None, f"{path} is unreadable ({type(exc).__name__}); run rotorpillar converge again"
-    study = dataclasses.replace(study, json_file=str(path))
+        study = records.read(path, ConvergenceStudy)
+    except (OSError, ValueError) as exc:
+        return None, f"{path} is unreadable ({exc}); run rotorpillar converge again"
+    study = records.replace(study, json_file=str(path))
     key = _mismatch(scene, study.scene or {})
     if key is not None:
         return None, (

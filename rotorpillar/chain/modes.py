@@ -18,30 +18,29 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
+import msgspec
 import numpy as np
 
 from ..cache import DiskCache, cache_key, source_hash, user_cache_root
-from ..provenance import JsonRecord
-from ..records import convert, to_builtins
+from ..records import Record
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.spatial_modes import SpatialPillarModes
 from ..scene import Scene
 from ..scene.tower import foundation_key, pillar_key
 from .choice import Choice, solid_mesh_section
-from .record import PillarModel
+from .record import MeshValue, PillarModel
 
-CACHE_VERSION = 2
+CACHE_VERSION = 3  # 2: an Entry of a ModesEntry record (msgspec); 3: with the spatial modes
 #: the most X bending modes the ROM picks from
 MAX_CANDIDATES = 12
 #: modes first asked of the loaded tube (doubled until enough X bending modes are found)
 FIRST_SOLVE = 32
 
 
-@dataclass(frozen=True)
-class TipReductionOf(JsonRecord):
+class TipReductionOf(Record):
     """Eq. 2 on the chain model's bare first bending mode."""
 
     m_reduced: float
@@ -52,6 +51,23 @@ class TipReductionOf(JsonRecord):
     """the bare tube's first bending frequency on this model (rad/s)"""
     source: str
     """the model it was computed on"""
+
+
+class ModesEntry(Record, eq=False):
+    """A 3D result as the modes cache stores it."""
+
+    label: str
+    """the pillar model's label"""
+    mesh: dict[str, MeshValue]
+    """its discretisation"""
+    modes: PillarModes
+    reduction: TipReductionOf
+    seconds: float
+    """time the solve took (s)"""
+    loaded_modes: int
+    """modes of the loaded tube the 3D solve asked for (-)"""
+    spatial: SpatialPillarModes
+    """every mode of the loaded tube in every direction (the spatial model's)"""
 
 
 @dataclass(frozen=True, eq=False)
@@ -140,7 +156,7 @@ def _solid(
     modes = red = spatial = None
     if comm is None or comm.rank == 0:
         modes = pillar_modes_from_fem3d(loaded, scene.pillar, min(len(bx), MAX_CANDIDATES))
-        modes = replace(modes, source=f"fem3d:{pm.label}")
+        modes = msgspec.structs.replace(modes, source=f"fem3d:{pm.label}")
         spatial = spatial_modes_from_fem3d(loaded, scene.pillar.damping_ratio, f"fem3d:{pm.label}")
         t = tip_reduction(bare, scene.pillar)
         red = TipReductionOf(
@@ -178,17 +194,9 @@ def chain_modes(
     key = modes_key(scene, pm.mesh)
     cache = DiskCache((user_cache_root() if root is None else Path(root)) / "modes")
     path = cache.path(key)
-    doc = cache.read(key)
-    if doc is not None and _enough(doc["modes"]["omega"], band_top):
-        return ChainModes(
-            pm,
-            PillarModes.from_json(doc["modes"]),
-            TipReductionOf.from_json(doc["reduction"]),
-            str(path),
-            0.0,
-            int(doc.get("loaded_modes", FIRST_SOLVE)),
-            convert(doc["spatial"], SpatialPillarModes),
-        )
+    got = cache.read(key, ModesEntry)
+    if got is not None and _enough(got.modes.omega, band_top):
+        return ChainModes(pm, got.modes, got.reduction, str(path), 0.0, got.loaded_modes, got.spatial)
     if progress:
         progress(f"chain: the 3D modes of {pm.label} for the ROM (cached after this)")
     start = time.perf_counter()
@@ -196,18 +204,7 @@ def chain_modes(
     seconds = time.perf_counter() - start
     if comm is None or comm.rank == 0:
         try:
-            cache.write(
-                key,
-                {
-                    "label": pm.label,
-                    "mesh": pm.mesh,
-                    "modes": modes.to_json(),
-                    "reduction": red.to_json(),
-                    "seconds": seconds,
-                    "loaded_modes": asked,
-                    "spatial": to_builtins(spatial),
-                },
-            )
+            cache.write(key, ModesEntry(pm.label, pm.mesh, modes, red, seconds, asked, spatial))
         except OSError:
             pass  # a read-only cache costs the next stage a solve, nothing else
     return ChainModes(pm, modes, red, str(path), seconds, asked, spatial)

@@ -9,9 +9,10 @@ reads them).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
-from ..provenance import JsonRecord
+import msgspec
+
+from ..records import Record
 
 PILLAR_KINDS = ("solid", "shell", "beam", "closed_form")
 CHOICE_SOURCES = ("converge", "scene")
@@ -22,8 +23,7 @@ the paper's reduction: tip mass and stiffness): a run's ``params`` in the conver
 study (rotorpillar.converge.result.Param), here without importing the study."""
 
 
-@dataclass(frozen=True)
-class PillarModel(JsonRecord):
+class PillarModel(Record):
     """The pillar model a stage used, where the choice came from and its error."""
 
     kind: str
@@ -68,8 +68,7 @@ class PillarModel(JsonRecord):
         return f"{self.label} ({self.dofs:,} DOFs; {self.source}; {err})"
 
 
-@dataclass(frozen=True)
-class Uncertain(JsonRecord):
+class Uncertain(Record):
     """A headline number with its error bar: the sum of the sources' magnitudes.
 
     Sources (same unit as the value): ``discretisation`` (the value's change when
@@ -80,10 +79,15 @@ class Uncertain(JsonRecord):
     """
 
     value: float
+    """the number (``unit``)"""
     error: float
-    sources: dict = field(default_factory=dict)
+    """its error bar: the sum of the sources' magnitudes (``unit``)"""
+    sources: dict[str, float] = msgspec.field(default_factory=dict)
+    """each source's magnitude (``unit``)"""
     unassessed: tuple[str, ...] = ()
+    """the sources not assessed"""
     unit: str = ""
+    """the value's unit"""
 
     @classmethod
     def of(cls, value: float, unit: str = "", **sources) -> Uncertain:

@@ -1,8 +1,8 @@
 """The commands behind the CLI, one module each.
 
-A command is a function ``(scene, args, timings) -> (result, summary)``:
-``result`` a JSON-ready dict written to ``<out>/<command>.json``, ``summary``
-the readable text printed instead of the JSON.  The stages of ``rotorpillar
+A command is a function ``(scene, args, timings) -> Done``: its ``result`` a
+record (rotorpillar.records) written to ``<out>/<command>.json``, its
+``summary`` the readable text printed instead of the JSON, its exit status.  The stages of ``rotorpillar
 run`` hand results over through the files they write.  Commands stay thin: the physics
 lives in the library modules they call.
 """
@@ -17,12 +17,24 @@ if TYPE_CHECKING:
 import os
 import sys
 from pathlib import Path
+from typing import Any, NamedTuple
 
 #: Exit code of a command whose computation ran to its end but failed its own
 #: checks (an integrator past its stability limit, an energy balance that does
 #: not close, ...): the results are written, marked ``ok: false`` with the
 #: reasons.  The CLI's other codes: cli.EXIT_*.
 EXIT_CHECKS = 4
+
+
+class Done(NamedTuple):
+    """What a command returns."""
+
+    result: Any
+    """its record: the fields of ``<out>/<command>.json`` (the provenance is added beside)"""
+    summary: str
+    """the readable text printed instead of the JSON"""
+    exit_status: int = 0
+    """0, or EXIT_CHECKS when the computation failed its own checks (1: report --strict)"""
 
 
 def out_dir(scene: Scene, args) -> Path:

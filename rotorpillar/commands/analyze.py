@@ -8,7 +8,7 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 from ..analysis import analyze, summary
-from . import out_dir, progress
+from . import Done, out_dir, progress
 
 
 def analyze_command(scene: Scene, args, timings):
@@ -23,4 +23,4 @@ def analyze_command(scene: Scene, args, timings):
         fem3d = reduction_from_scene
     with timings("analyze"):
         result = analyze(scene, chain, fem3d_reduction=fem3d)
-    return result.to_json(), summary(result)
+    return Done(result, summary(result))

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from ..scene import MODELS, Scene
 
 if TYPE_CHECKING:
-    from ..transients.records import CompareResult
+    from ..transients.compare import CompareResult
 
 
 def add_arguments(p) -> None:
@@ -71,7 +71,7 @@ def preflight(scene: Scene, args) -> None:
 
 def compare_command(scene: Scene, args, timings):
     from ..transients.compare import compare_models, parse_models
-    from . import EXIT_CHECKS, is_root_rank, launched_ranks, mpi_progress, out_dir
+    from . import EXIT_CHECKS, Done, is_root_rank, launched_ranks, mpi_progress, out_dir
 
     preflight(scene, args)
     case = args.case
@@ -120,10 +120,8 @@ def compare_command(scene: Scene, args, timings):
     for run in res.per_model.values():
         for warning in run.warnings:
             progress(f"warning: {warning}")
-    doc = res.to_json()
-    if any(p.ok is False for p in res.per_model.values()):
-        doc["exit_status"] = EXIT_CHECKS
-    return doc, _summary(scene, res)
+    status = EXIT_CHECKS if any(not p.ok for p in res.per_model.values()) else 0
+    return Done(res, _summary(scene, res), status)
 
 
 def _summary(scene: Scene, r: CompareResult) -> str:
@@ -163,7 +161,7 @@ def _summary(scene: Scene, r: CompareResult) -> str:
             f"  speed against accuracy ({cost.runs} runs, {cost.computed} "
             f"computed in {cost.wall_seconds:.3g} s): errors against "
             f"{pa.reference.label} (own peak error {_pct(pa.reference.peak_error)}, "
-            f"{pa.reference.method}); {pa.chosen['why']}"
+            f"{pa.reference.method}); {pa.chosen.why}"
         )
     if r.full_order_reference:
         lines.append(f"  3D reference: {r.full_order_reference.statement}")

@@ -19,8 +19,10 @@ if TYPE_CHECKING:
 
 from pathlib import Path
 
+from ..converge.result import ModelSelection, ReferenceValue, StudyCounts
 from ..errors import InputError
-from . import progress
+from ..records import Record
+from . import Done, progress
 
 
 def add_arguments(p) -> None:
@@ -157,13 +159,33 @@ def converge_command(scene: Scene, args, timings):
         log=progress,
         workers=workers,
     )
-    result = {
-        "convergence_json": st.json_file,
-        "charts": st.charts or {},
-        "tolerance": st.tolerance,
-        "reference": st.reference,
-        "selection": st.selection,
-        "failures": list(st.failures),
-        "study": st.study,
-    }
-    return result, _summary(st)
+    result = ConvergeRun(
+        convergence_json=st.json_file,
+        charts=st.charts or {},
+        tolerance=st.tolerance,
+        reference=st.reference,
+        selection=st.selection,
+        failures=st.failures,
+        study=st.study,
+    )
+    return Done(result, _summary(st))
+
+
+class ConvergeRun(Record):
+    """converge.json: where the study was written and its headline (the whole study is
+    convergence.json's ``ConvergenceStudy``)."""
+
+    convergence_json: str | None
+    """the convergence.json written"""
+    charts: dict[str, str]
+    """chart name -> path"""
+    tolerance: float
+    """relative frequency tolerance of the choice (-)"""
+    reference: dict[str, ReferenceValue]
+    """per quantity: Richardson on the finest runs of the best family"""
+    selection: ModelSelection
+    """the model chosen for the scene's band"""
+    failures: tuple[str, ...]
+    """where methods fail, one sentence each"""
+    study: StudyCounts
+    """the runs and their time"""

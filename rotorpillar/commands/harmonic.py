@@ -1,7 +1,7 @@
 """`rotorpillar harmonic`: the unbalance response against speed and the separation margins.
 
 ``rotorpillar harmonic [SCENE] [--no-fem3d]`` writes harmonic.json
-(rotorpillar.verdict.records.HarmonicResult): the steady unbalance response
+(rotorpillar.verdict.harmonic.HarmonicResult): the steady unbalance response
 (amplitude and phase of the tip and of the shaft deflection) of the ROM and
 of the 3D model on the [full_order] mesh, the averaging's Eq. 19 beside them,
 and every running speed against every structural mode in the band (API 684),
@@ -44,7 +44,7 @@ def preflight(scene: Scene, args) -> None:
 
 def harmonic_command(scene: Scene, args, timings):
     from ..verdict.harmonic import harmonic_analysis, summary_text
-    from . import out_dir
+    from . import Done, out_dir
 
     preflight(scene, args)
     progress(f"harmonic {scene.name}: unbalance response and separation margins")
@@ -52,4 +52,4 @@ def harmonic_command(scene: Scene, args, timings):
         result = harmonic_analysis(
             scene, out_dir(scene, args), progress, with_fem3d=not getattr(args, "no_fem3d", False)
         )
-    return result.to_json(), summary_text(result)
+    return Done(result, summary_text(result))

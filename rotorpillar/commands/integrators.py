@@ -8,12 +8,12 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..scene import Scene
-    from ..transients.integrator_records import IntegratorStudy
+    from ..transients.integrator_study import IntegratorStudy
 
 import math
-from dataclasses import replace
 
-from . import progress
+from ..records import Figure, replace
+from . import Done, progress
 
 #: Longest run-up the integrator study takes (s): about 5 minutes of work on 2 cores.
 MAX_DURATION = 60.0
@@ -43,7 +43,7 @@ def preflight(scene: Scene, args) -> None:
         )
 
 
-def integrators_command(scene: Scene, args, timings) -> tuple[dict, str]:
+def integrators_command(scene: Scene, args, timings) -> Done:
     from ..chain import resolve
     from ..reduced.models import beam_candidates
     from ..transients.integrator_study import run_integrator_study
@@ -82,15 +82,15 @@ def integrators_command(scene: Scene, args, timings) -> tuple[dict, str]:
                 f"{scene.name}: time integrators (run-up {duration:g} s, the ROM; stiffness: the beam's modes added)",
             )
         figures.append(
-            {
-                "file": path.name,
-                "caption": "Time integrators: error against wall time on a "
+            Figure(
+                file=path.name,
+                caption="Time integrators: error against wall time on a "
                 "run-up (left), cost and failure as pillar modes are added (middle), energy "
                 "drift of the undamped, unforced system (right).",
-            }
+            )
         )
     result = replace(result, pillar_model=chain.pillar_model, stiffness_probe=probe, figures=tuple(figures))
-    return result.to_json(), _summary(scene, result)
+    return Done(result, _summary(scene, result))
 
 
 def _summary(scene: Scene, r: IntegratorStudy) -> str:

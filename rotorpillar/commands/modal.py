@@ -17,10 +17,14 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from ..converge.result import ModalModelSelection
     from ..scene import Scene
 
-from . import progress
+import msgspec
+
+from ..converge.result import ModalModelSelection
+from ..fem3d.modal_summary import ModalSummary
+from ..records import Record, replace
+from . import Done, progress
 
 #: Mode-shape files, in the output directory.
 SHAPE_FILES = {"bare": "modes_bare.vtu", "top": "modes_top.vtu"}
@@ -112,7 +116,6 @@ def modal_command(scene: Scene, args, timings):
 
     quiet_jit_logging()
     say = progress if _rank0() else (lambda message: None)
-    from dataclasses import replace
 
     from mpi4py import MPI
 
@@ -175,21 +178,50 @@ def modal_command(scene: Scene, args, timings):
         timings[f"bare.{key}"] = bare.timings.get(key, 0.0)
         timings[f"with_top.{key}"] = loaded.timings.get(key, 0.0)
     found = modal_summary(scene, bare, loaded, pillar_closed_forms(scene.pillar, base_springs(scene.foundation)))
-    doc = found.to_json()
-    files = {}
+    files = None
     if _rank0():
         with timings("write_shapes"):
             d = out_dir(scene, args)
-            files["modes_bare"] = str(write_modes_vtu(d / SHAPE_FILES["bare"], bare))
-            files["modes_top"] = str(write_modes_vtu(d / SHAPE_FILES["top"], loaded))
-    doc["files"] = files
-    doc["pillar_model"] = choice.solid.to_json()  # after files, as modal.json has always had it
+            files = ShapeFiles(
+                modes_bare=str(write_modes_vtu(d / SHAPE_FILES["bare"], bare)),
+                modes_top=str(write_modes_vtu(d / SHAPE_FILES["top"], loaded)),
+            )
     text = summary(found, bare, loaded)
     text = f"Pillar model: {choice.solid.describe()}\n  {choice.solid.note}\n\n" + text
+    status, failed = 0, None
     if selection is not None:
-        doc["model_selection"] = selection.to_json()
         text = selection.text + "\n\n" + text
         if not selection.met:  # written, and marked: the exit code says so too
-            doc.update(ok=False, failed_checks=[selection.reason], exit_status=EXIT_CHECKS)
+            status, failed = EXIT_CHECKS, (selection.reason,)
             say(f"modal: check failed: {selection.reason}")
-    return doc, text
+    record = ModalRun(
+        **msgspec.structs.asdict(found),
+        files=files,
+        model_selection=selection,
+        ok=failed is None,
+        failed_checks=failed,
+    )
+    return Done(replace(record, pillar_model=choice.solid), text, status)
+
+
+class ShapeFiles(Record):
+    """The mode shapes written beside modal.json (VTU: ParaView, pyvista, meshio)."""
+
+    modes_bare: str
+    """the bare tube's modes, one point array ``mode_000``, ``mode_001``, ... a mode"""
+    modes_top: str
+    """the modes of the tube with its top mass"""
+
+
+class ModalRun(ModalSummary, kw_only=True, omit_defaults=True):
+    """modal.json: what the modal analysis found, the files written and, with
+    ``--tolerance``, the mesh chosen and whether it meets the tolerance."""
+
+    files: ShapeFiles | None = None
+    """the mode shapes (None off MPI rank 0)"""
+    model_selection: ModalModelSelection | None = None
+    """``--tolerance``: the 3D mesh run and why"""
+    ok: bool = True
+    """False when no 3D run of the study meets ``--tolerance`` (exit 4)"""
+    failed_checks: tuple[str, ...] | None = None
+    """why ``ok`` is false"""

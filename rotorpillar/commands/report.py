@@ -9,7 +9,8 @@ if TYPE_CHECKING:
 
 import shlex
 
-from . import progress
+from ..records import replace
+from . import Done, progress
 
 
 def scene_cli(args) -> str:
@@ -57,7 +58,9 @@ def report_command(scene: Scene, args, timings):
 
     frames = checked_frames(args)
     if not is_root_rank():
-        return {"report": None}, ""
+        from ..postprocess.report import ReportResult
+
+        return Done(ReportResult(report=None), "")
     options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
     progress(f"report: rendering into {out_dir(scene, args)}")
     from ..verdict.summary import write_summary
@@ -71,9 +74,7 @@ def report_command(scene: Scene, args, timings):
             written, failed = None, f"{type(exc).__name__}: {exc}"
             progress(f"report: summary.json not written: {failed}")
     result = build_report(scene, out_dir(scene, args), scene_cli(args), options, timings)
-    result["summary"] = written
-    if failed:
-        result["failures"]["summary.json"] = failed
-    if getattr(args, "strict", False) and (result["failures"] or result["damaged"]):
-        result["exit_status"] = 1
-    return result, report_text(result)
+    failures = {**result.failures, **({"summary.json": failed} if failed else {})}
+    result = replace(result, summary=written, failures=failures)
+    status = 1 if getattr(args, "strict", False) and (result.failures or result.damaged) else 0
+    return Done(result, report_text(result), status)

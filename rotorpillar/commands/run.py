@@ -21,15 +21,17 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
-import json
 import os
 import subprocess
 import sys
 import time
 
+from .. import records
 from ..errors import StageError
-from ..transients.run_comparisons import COMPARISONS
-from . import progress
+from ..provenance import Provenance
+from ..records import Record
+from ..transients.compare import COMPARISONS
+from . import Done, progress
 
 
 def _report_flags(args) -> list[str]:
@@ -229,18 +231,46 @@ def run_command(scene: Scene, args, timings):
             timings[command] = seconds[command]
             stem = stage_stem(command)
             path = out_dir(scene, args) / f"{stem}.json"
-            doc = json.loads(path.read_text(encoding="utf-8"))
-            stages[stem] = {
-                "json": str(path),
-                "seconds": timings[command],
-                "command": command,
-                "arguments": list(own),
-                "wave": wave,
-                "stage_seconds": doc.get("timings", {}).get("total"),
-            }
+            written = records.read(path, Provenance)
+            stages[stem] = Stage(
+                json=str(path),
+                seconds=timings[command],
+                command=command,
+                arguments=tuple(own),
+                wave=wave,
+                stage_seconds=written.timings.get("total"),
+            )
             lines.append(f"{command:>26}: {timings[command]:8.2f} s  -> {path}")
             if command.split()[0] == "report":
-                report = doc.get("report")
+                from ..postprocess.report import ReportResult
+
+                report = records.read(path, ReportResult).report
     if report:
         lines.append(f"{'page':>26}: {report}")
-    return ({"stages": stages, "report": report}, f"rotorpillar run {scene.name}\n" + "\n".join(lines))
+    return Done(RunResult(stages, report), f"rotorpillar run {scene.name}\n" + "\n".join(lines))
+
+
+class Stage(Record):
+    """One stage of `rotorpillar run`: its command, where it wrote, its time."""
+
+    json: str
+    """the JSON the stage left"""
+    seconds: float
+    """the stage's wall time, as run saw it (s)"""
+    command: str
+    """the stage's command"""
+    arguments: tuple[str, ...]
+    """its own arguments"""
+    wave: int
+    """the wave it ran in (stages of a wave run side by side)"""
+    stage_seconds: float | None
+    """the stage's own total, from its JSON's timings (s)"""
+
+
+class RunResult(Record):
+    """run.json: the stages run and the report's page."""
+
+    stages: dict[str, Stage]
+    """the stage's JSON stem -> the stage"""
+    report: str | None
+    """report.html, when the report ran"""

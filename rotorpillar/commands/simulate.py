@@ -28,10 +28,11 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..scene import Scene
-    from ..transients.run_records import RunRecord
+    from ..transients.model_run import Fem3dRun, ReducedRun
 
 from ..scene import CASES, INTEGRATORS, MODELS
-from . import EXIT_CHECKS
+from ..transients.case_summary import NoTruncationEstimate
+from . import EXIT_CHECKS, Done
 
 
 def add_arguments(p) -> None:
@@ -168,20 +169,21 @@ def simulate_command(scene: Scene, args, timings):
             field_dir=out_dir(scene, args),
             study_dir=out_dir(scene, args),
         )
-    result = run.record.to_json()
-    for warning in result.get("warnings") or ():
+    record = run.record
+    for warning in record.warnings:
         progress(f"warning: {warning}")
     if is_root_rank():
         with timings("write"):
             provenance = {"scene_source": str(args.scene), "overrides": list(args.overrides)}
-            result = write_model_files(
+            record = write_model_files(
                 out_dir(scene, args), scene, run, provenance, dict(timings), charts=model_run_charts
             )
-    if result.get("ok") is False:  # written, and marked: the exit code says so too
-        result["exit_status"] = EXIT_CHECKS
-        for line in result.get("failed_checks") or []:
+    status = 0
+    if not record.ok:  # written, and marked: the exit code says so too
+        status = EXIT_CHECKS
+        for line in record.failed_checks or ():
             progress(f"simulate: check failed: {line}")
-    return result, _summary(scene, result, run.record)
+    return Done(record, _summary(scene, record), status)
 
 
 def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None = None) -> None:
@@ -197,81 +199,87 @@ def check_fem3d_budget(scene: Scene, case: str, motion, duration: float | None =
     check_budget(scene, case, estimate(scene, length, step_rule(scene, drive, motion, 0.0, plan.time_step), plan.mesh))
 
 
-def _summary(scene: Scene, r: dict, record: RunRecord) -> str:
-    from ..transients.run_records import ReducedRun
+def _summary(scene: Scene, r: ReducedRun | Fem3dRun) -> str:
+    from ..transients.model_run import ReducedRun
 
     lines = [
-        f"rotorpillar simulate {scene.name}: case {r['case']}, {r['model']} model "
-        f"({r['tip_x_frame'].replace('_', ' ')} coordinates)"
+        f"rotorpillar simulate {scene.name}: case {r.case}, {r.model} model "
+        f"({r.tip_x_frame.replace('_', ' ')} coordinates)"
     ]
-    it = r["integrator"]
+    it = r.integrator
     lines.append(
-        f"  integrator {it['method']}: {it['status']}, {it.get('steps')} steps, "
-        + (f"{it['nfev']} force evaluations, " if "nfev" in it else "")
-        + f"{it.get('wall_seconds') or 0.0:.3f} s; {r['dofs']} dofs, {r['wall_seconds']:.3f} s in all"
+        f"  integrator {it.method}: {it.status}, {it.steps} steps, "
+        + (f"{it.nfev} force evaluations, " if it.nfev else "")
+        + f"{it.wall_seconds:.3f} s; {r.dofs} dofs, {r.wall_seconds:.3f} s in all"
     )
-    if r.get("full_order"):
-        lines.append(f"  full order: {r['full_order']['note']}")
-    for w in r.get("warnings") or []:
+    if r.full_order is not None:
+        lines.append(f"  full order: {r.full_order.note}")
+    for w in r.warnings:
         lines.append(f"  WARNING: {w}")
     lines.append(
-        f"  final speed {r['omega_final']:.4f} rad/s; captured at "
-        + (f"{r['captured_at']:.3f} rad/s" if r["captured_at"] else "no resonance")
+        f"  final speed {r.omega_final:.4f} rad/s; captured at "
+        + (f"{r.captured_at:.3f} rad/s" if r.captured_at else "no resonance")
     )
-    ma = r["max_abs"]
+    ma = r.max_abs
     lines.append(
-        f"  max |tip X| {ma['tip_x_relative']:.4g} m relative to the ground, "
-        f"{ma['tip_x_absolute']:.4g} m absolute; |rotor X| {ma['rotor_x']:.4g} m, "
-        f"|rotor Y| {ma['rotor_y']:.4g} m"
+        f"  max |tip X| {_g(ma.get('tip_x_relative'))} m relative to the ground, "
+        f"{_g(ma.get('tip_x_absolute'))} m absolute; |rotor X| {_g(ma.get('rotor_x'))} m, "
+        f"|rotor Y| {_g(ma.get('rotor_y'))} m"
     )
     if ma.get("base_moment") is not None:
         lines.append(
-            f"  base: |M| {ma['base_moment']:.4g} N m, |V| {ma['base_shear']:.4g} N, stress "
-            f"{ma['base_stress'] / 1e6:.4g} MPa (|M| c/I + N/A)"
-            + (f"; von Mises {ma['von_mises'] / 1e6:.4g} MPa" if ma.get("von_mises") else "")
-            + f"; shaft {ma['shaft_deflection']:.4g} m, bearing force {ma['bearing_force']:.4g} N"
+            f"  base: |M| {_g(ma.get('base_moment'))} N m, |V| {_g(ma.get('base_shear'))} N, stress "
+            f"{_g((ma.get('base_stress') or 0.0) / 1e6)} MPa (|M| c/I + N/A)"
+            + (f"; von Mises {_g((ma.get('von_mises') or 0.0) / 1e6)} MPa" if ma.get("von_mises") else "")
+            + f"; shaft {_g(ma.get('shaft_deflection'))} m, bearing force {_g(ma.get('bearing_force'))} N"
         )
-    eb = r["energy_balance"]
-    lines.append(f"  energy balance: relative error {eb['relative_error']:.2e}")
-    if r.get("truncation") and r["truncation"].get("modes_check") is None:
-        lines.append("  " + r["truncation"]["statement"])
-    elif r.get("truncation"):
-        t = r["truncation"]
+    lines.append(f"  energy balance: relative error {r.energy_balance.relative_error:.2e}")
+    if not isinstance(r, ReducedRun):
+        return "\n".join(lines)
+    t = r.truncation
+    if isinstance(t, NoTruncationEstimate):
+        lines.append("  " + t.statement)
+    elif t is not None:
         lines.append(
-            f"  modes: {t['modes']} (effective mass {100 * t['effective_mass_fraction']:.1f} %); "
-            f"with {t['modes_check']}: tip max changes {100 * (t['tip_x_max_rel_diff'] or 0):+.3f} %, "
-            f"tip series {100 * t['tip_series_max_rel_diff']:.3f} %"
+            f"  modes: {t.modes} (effective mass {100 * t.effective_mass_fraction:.1f} %); "
+            f"with {t.modes_check}: tip max changes {100 * (t.tip_x_max_rel_diff or 0):+.3f} %, "
+            f"tip series {100 * t.tip_series_max_rel_diff:.3f} %"
         )
-    pt = record.summary.passing_torque if isinstance(record, ReducedRun) else None
-    if pt is not None:
-        lines.append("  " + pt.statement)
-    if r["case"] == "sweep":
-        if r["jumps"]:
-            for j in r["jumps"]:
+    if r.passing_torque is not None:
+        lines.append("  " + r.passing_torque.statement)
+    if r.case == "sweep" and r.sweep is not None:
+        if r.jumps:
+            for j in r.jumps:
                 lines.append(
-                    f"  jump {j['direction']}: {j['omega_from']:.3f} -> {j['omega_to']:.3f} rad/s "
-                    f"at M0 = {j['torque_at_zero']:.1f} N*m"
+                    f"  jump {j.direction}: {j.omega_from:.3f} -> {j.omega_to:.3f} rad/s "
+                    f"at M0 = {j.torque_at_zero:.1f} N*m"
                 )
-            for row in (r.get("rate_convergence") or {}).get("rows", []):
-                lim = row.get("torque_at_zero_limit")
-                if lim is not None and row.get("predicted_torque_at_zero"):
+            rows = r.sweep.rate_convergence.rows if r.sweep.rate_convergence is not None else ()
+            for row in rows:
+                lim = row.torque_at_zero_limit
+                if lim is not None and row.predicted_torque_at_zero:
                     lines.append(
-                        f"    {row['direction']}: M0 at rates {', '.join(f'{x:g}' for x in row['rates'])} "
-                        f"N*m/s -> {', '.join(f'{x:.1f}' for x in row['torque_at_zero'] if x)}; "
-                        f"limit {lim:.1f} vs Eq. 19-23 {row['predicted_torque_at_zero']:.1f} "
-                        f"({100 * row['rel_error_limit_vs_predicted']:+.2f} %)"
+                        f"    {row.direction}: M0 at rates {', '.join(f'{x:g}' for x in row.rates)} "
+                        f"N*m/s -> {', '.join(f'{x:.1f}' for x in row.torque_at_zero if x)}; "
+                        f"limit {lim:.1f} vs Eq. 19-23 {row.predicted_torque_at_zero:.1f} "
+                        f"({100 * (row.rel_error_limit_vs_predicted or 0.0):+.2f} %)"
                     )
         else:
-            lines.append("  " + (r.get("no_jump_reason") or "no jumps"))
-        for a in r.get("amplitudes") or []:
+            lines.append("  " + (r.sweep.no_jump_reason or "no jumps"))
+        for a in r.sweep.amplitudes:
             lines.append(
-                f"  amplitude near omega_{a['index']} ({a['sweep']}): numeric peak "
-                f"{a['numeric_peak']:.4g} m; Eq. 19 median error {100 * a['rel_error_eq19_median']:.1f} %, "
-                f"exact linear {100 * a['rel_error_exact_median']:.2f} %"
+                f"  amplitude near omega_{a.index} ({a.sweep}): numeric peak "
+                f"{a.numeric_peak:.4g} m; Eq. 19 median error {100 * a.rel_error_eq19_median:.1f} %, "
+                f"exact linear {100 * a.rel_error_exact_median:.2f} %"
             )
-    if r["case"] == "earthquake":
-        ex = r["excitation"]
-        if ex.get("statement"):
-            lines.append("  " + ex["statement"])
-        lines.append(f"  ground motion applied: {r.get('excitation_in_model') or ''}")
+    if r.case == "earthquake" and r.excitation is not None:
+        statement = getattr(r.excitation, "statement", None)
+        if statement:
+            lines.append("  " + statement)
+        lines.append(f"  ground motion applied: {r.excitation_in_model or ''}")
     return "\n".join(lines)
+
+
+def _g(x: float | None) -> str:
+    """A number of a run's ``max_abs`` (None: not finite, or not computed)."""
+    return "-" if x is None else f"{x:.4g}"

@@ -17,9 +17,10 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..scene import Scene
+    from ..studies.result import StudyResult
 
 from ..scene import STUDY_CASES, STUDY_MODELS
-from . import progress
+from . import Done, progress
 
 
 def add_arguments(p) -> None:
@@ -79,21 +80,21 @@ def study_command(scene: Scene, args, timings):
             charts=study_charts,
             log=progress,
         )
-    for k in ("cluster_start_seconds", "compute_wall_seconds"):
-        timings[k.replace("_seconds", "")] = res.performance[k]
-    return res.to_json(), _summary(res)
+    timings["cluster_start"] = res.performance.cluster_start_seconds
+    timings["compute_wall"] = res.performance.compute_wall_seconds
+    return Done(res, _summary(res))
 
 
-def _summary(r) -> str:
+def _summary(r: StudyResult) -> str:
     p, b, ex = r.performance, r.batches, r.executor
     axes = " x ".join(f"{a.key} ({len(a.values)})" for a in r.axes)
     lines = [
         f"rotorpillar study {r.scene_name}: {r.case}, {r.model} model, {len(r.runs)} runs over {axes}",
-        f"  batches: {b['total']} ({b['cached']} on disk, {b['computed']} computed); "
-        f"executor: {ex['kind']}" + (f" at {ex['scheduler']}, {ex['workers']} workers" if ex.get("scheduler") else ""),
-        f"  {p['runs_computed']} runs computed in {p['compute_wall_seconds']:.2f} s"
-        + (f" ({p['runs_per_second']:.1f} runs/s)" if p.get("runs_per_second") else "")
-        + f"; wall {p['wall_seconds']:.1f} s",
+        f"  batches: {b.total} ({b.cached} on disk, {b.computed} computed); "
+        f"executor: {ex.kind}" + (f" at {ex.scheduler}, {ex.workers} workers" if ex.scheduler else ""),
+        f"  {p.runs_computed} runs computed in {p.compute_wall_seconds:.2f} s"
+        + (f" ({p.runs_per_second:.1f} runs/s)" if p.runs_per_second else "")
+        + f"; wall {p.wall_seconds:.1f} s",
     ]
     if r.case != "earthquake":
         passed = sum(bool(x.passed) for x in r.runs)
@@ -103,15 +104,17 @@ def _summary(r) -> str:
             f"  peak tip {max(r.values('peak_tip')):.4g} m, peak shaft deflection "
             f"{max(r.values('peak_shaft_deflection')):.4g} m (largest over the runs)"
         )
-    bd = r.boundary or {}
-    for row in bd.get("found") or []:
-        x = "" if row["other"] is None else f"{bd.get('other_key')} = {row['other']:g}: "
-        lo, hi = row["captured_max"], row["passed_min"]
+    found = r.boundary.found if r.boundary is not None else None
+    other_key = getattr(r.boundary.predicted, "other_key", None) if r.boundary is not None else None
+    for row in found or ():
+        x = "" if row.other is None else f"{other_key} = {row.other:g}: "
+        lo, hi = row.captured_max, row.passed_min
         lines.append(
             f"  {x}captured up to {'-' if lo is None else format(lo, '.1f')}, passes from "
             f"{'-' if hi is None else format(hi, '.1f')} N*m"
         )
     for f in r.figures:
-        lines.append(f"  chart: {f['file']}")
-    lines.append(f"  table: {r.files.get('csv')}")
+        lines.append(f"  chart: {f.file}")
+    if r.files is not None:
+        lines.append(f"  table: {r.files.csv}")
     return "\n".join(lines)

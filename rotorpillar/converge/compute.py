@@ -8,9 +8,9 @@ dolfinx and run in a fresh subprocess (:func:`compute_fe`, called by
 
 from __future__ import annotations
 
-import dataclasses
 from typing import TYPE_CHECKING
 
+import msgspec
 import numpy as np
 
 from ..reduced.beam_fe import beam_modes
@@ -97,7 +97,7 @@ def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> RunResult:
     if out.ovalling is None:
         first = out.timings or {}
         out = _compute_fe(case, scene, N_MODES, fresh)
-        out = dataclasses.replace(out, timings={k: v + first.get(k, 0.0) for k, v in (out.timings or {}).items()})
+        out = msgspec.structs.replace(out, timings={k: v + first.get(k, 0.0) for k, v in (out.timings or {}).items()})
     return out
 
 
@@ -122,4 +122,4 @@ def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> RunResul
         )
         r = fem3d.modal_analysis(scene, top=False, n_modes=n_modes, mesh=solid_mesh(case), **extra)
     out = _modal_summary(np.asarray(r.omega), list(r.kind), list(r.n_circumferential), int(r.dofs))
-    return dataclasses.replace(out, cells=int(r.cells), timings=dict(r.timings), modes_asked=n_modes)
+    return msgspec.structs.replace(out, cells=int(r.cells), timings=dict(r.timings), modes_asked=n_modes)

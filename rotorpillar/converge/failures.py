@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import replace
+
+from msgspec.structs import replace
 
 from .ladder import FAMILIES, N_MODES, ORDER_NOTES, Family
 from .result import ConvergenceRun, Extrapolation, OvallingAlias, Param, ReferenceValue

@@ -35,9 +35,10 @@ rungs are left out.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from typing import Any
+
+import msgspec
 
 from ..scene import CELL_TYPES, SHELL_CELL_TYPES, Mesh, Scene
 from .result import ConvergenceRun
@@ -292,7 +293,7 @@ def resolved_only(family: str, run: ConvergenceRun) -> ConvergenceRun:
     quantity of this family."""
     fam = FAMILIES[family]
     drop: dict[str, Any] = {q: None for q in QUANTITIES if q not in fam.quantities and run.frequency(q) is not None}
-    return dataclasses.replace(run, **drop) if drop else run
+    return msgspec.structs.replace(run, **drop) if drop else run
 
 
 def estimated_dofs(case: Case) -> int:

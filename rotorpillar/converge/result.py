@@ -1,8 +1,7 @@
 """The convergence study as a typed result: what ``convergence.json`` holds.
 
 :class:`ConvergenceStudy` is the study the command writes and the report
-reads; ``to_json()`` is exactly the document on disk and ``from_json`` its
-inverse (``rotorpillar.provenance.JsonRecord``).  Inside it, typed to the
+reads (``records.read(path, ConvergenceStudy)``).  Inside it, typed to the
 leaves: each run of the ladder (:class:`ConvergenceRun`), the Richardson
 extrapolations and references (:class:`Extrapolation`,
 :class:`ReferenceValue`), the band (:class:`ExcitationBand`), the choice
@@ -14,17 +13,12 @@ are circular (rad/s); errors are relative (-).
 
 from __future__ import annotations
 
-import json
-from dataclasses import dataclass, field, fields
-from pathlib import Path
 from typing import Any
 
-from ..provenance import JsonRecord
-from ..reduced.band import ExcitationBand  # noqa: F401  (defined where the band is computed; read here)
+import msgspec
 
-_OMIT: dict[str, Any] = {"omit_if_none": True}
-_OK_ONLY: dict[str, Any] = {"omit_if_none": True, "ok_only": True}
-"""A run's result: in the document (None or not) exactly when the run is ok."""
+from ..records import Record
+from ..reduced.band import ExcitationBand  # noqa: F401  (defined where the band is computed; read here)
 
 Param = int | float | str
 """A value of a run's discretisation (elements, degree, cell type, grading...)."""
@@ -36,6 +30,8 @@ ERROR_KINDS = ("error", "model_error", "discretisation_error", "error_bound")
 class RunErrors:
     """A run's frequencies and their errors read by quantity name ("bending", "ovalling"):
     the fields ``{q}`` and ``{q}_{kind}`` of :class:`ConvergenceRun` and :class:`RunBrief`."""
+
+    __slots__ = ()  # a mixin of msgspec Structs
 
     def frequency(self, quantity: str) -> float | None:
         """The run's first ``quantity`` frequency (rad/s), None where not resolved."""
@@ -52,8 +48,7 @@ class RunErrors:
         return self.relative_error(quantity, "error_bound")
 
 
-@dataclass(frozen=True)
-class FamilyInfo(JsonRecord):
+class FamilyInfo(Record):
     """A family of the ladder as the study records it (rotorpillar.converge.ladder.Family)."""
 
     label: str
@@ -67,8 +62,7 @@ class FamilyInfo(JsonRecord):
     """refined around the circumference only"""
 
 
-@dataclass(frozen=True)
-class Mode(JsonRecord):
+class Mode(Record):
     """One mode of a run's solve."""
 
     omega: float
@@ -79,8 +73,7 @@ class Mode(JsonRecord):
     """circumferential wave number (None: not a shell mode)"""
 
 
-@dataclass(frozen=True)
-class OvallingAlias(JsonRecord):
+class OvallingAlias(Record):
     """An "ovalling" mode with more waves than the nodes around carry: an alias."""
 
     omega: float | None
@@ -90,8 +83,7 @@ class OvallingAlias(JsonRecord):
     """the wave number it was read with (-)"""
 
 
-@dataclass(frozen=True)
-class RunResult(JsonRecord):
+class RunResult(Record, omit_defaults=True):
     """What one run of the ladder computes (rotorpillar.converge.compute) and what it cost
     (rotorpillar.converge.runner): the fields of :class:`ConvergenceRun` after its case, as
     the serving process sends it back and the run cache stores it."""
@@ -106,31 +98,30 @@ class RunResult(JsonRecord):
     """degrees of freedom of the bare tube's model (-)"""
     modes: tuple[Mode, ...]
     """the modes the solve found, lowest first"""
-    cells: int | None = field(default=None, metadata=_OMIT)
+    cells: int | None = None
     """cells of the finite-element mesh (-)"""
-    timings: dict[str, float] | None = field(default=None, metadata=_OMIT)
+    timings: dict[str, float] | None = None
     """the model's stages (mesh, assembly, solve, ...): wall time (s)"""
-    modes_asked: int | None = field(default=None, metadata=_OMIT)
+    modes_asked: int | None = None
     """modes the eigen-solve was asked for (-)"""
-    first_run_with_compilation: float | None = field(default=None, metadata=_OMIT)
+    first_run_with_compilation: float | None = None
     """wall time of the first run, which compiled forms (s)"""
-    wall_time: float | None = field(default=None, metadata=_OMIT)
+    wall_time: float | None = None
     """the model's whole time, warm (s)"""
-    peak_memory: float | None = field(default=None, metadata=_OMIT)
+    peak_memory: float | None = None
     """peak memory of the run (bytes; how: ``memory_method``)"""
-    baseline_memory: float | None = field(default=None, metadata=_OMIT)
+    baseline_memory: float | None = None
     """resident memory of the worker's imports (bytes)"""
-    memory_method: str | None = field(default=None, metadata=_OMIT)
-    process_time: float | None = field(default=None, metadata=_OMIT)
+    memory_method: str | None = None
+    process_time: float | None = None
     """the run's time as the study waited for it, serving process included (s)"""
 
 
-@dataclass(frozen=True)
-class ConvergenceRun(JsonRecord, RunErrors):
+class ConvergenceRun(Record, RunErrors, kw_only=True, omit_defaults=True):
     """One run of the ladder: its case, its frequencies, cost and errors against the reference.
 
     A failed or unavailable run has no result (``bending`` ... ``peak_memory`` absent) but
-    ``error``; old cached runs may lack the details added since (``cells``, ``modes_asked``...).
+    ``error``; a frequency not resolved is absent too (None).
     """
 
     key: str
@@ -144,38 +135,38 @@ class ConvergenceRun(JsonRecord, RunErrors):
     """the discretisation (elements_around, elements_along, degree, cell_type...; beams: theory, elements)"""
     status: str
     """"ok", "failed" or "unavailable" """
-    bending: float | None = field(default=None, metadata=_OK_ONLY)
+    bending: float | None = None
     """first bending frequency (rad/s; None: no bending mode resolved)"""
-    ovalling: float | None = field(default=None, metadata=_OK_ONLY)
+    ovalling: float | None = None
     """first ovalling (n = 2) frequency (rad/s; None: none resolved)"""
-    ovalling_n: int | None = field(default=None, metadata=_OK_ONLY)
+    ovalling_n: int | None = None
     """the ovalling mode's wave number (-)"""
-    dofs: int | None = field(default=None, metadata=_OMIT)
+    dofs: int | None = None
     """degrees of freedom of the bare tube's model (-)"""
-    cells: int | None = field(default=None, metadata=_OMIT)
+    cells: int | None = None
     """cells of the finite-element mesh (-)"""
-    modes: tuple[Mode, ...] | None = field(default=None, metadata=_OMIT)
+    modes: tuple[Mode, ...] | None = None
     """the modes the solve found, lowest first"""
-    timings: dict[str, float] | None = field(default=None, metadata=_OMIT)
+    timings: dict[str, float] | None = None
     """the model's stages (mesh, assembly, solve, ...): wall time (s)"""
-    modes_asked: int | None = field(default=None, metadata=_OMIT)
+    modes_asked: int | None = None
     """modes the eigen-solve was asked for (-)"""
-    first_run_with_compilation: float | None = field(default=None, metadata=_OMIT)
+    first_run_with_compilation: float | None = None
     """wall time of the first run, which compiled forms (s)"""
-    wall_time: float | None = field(default=None, metadata=_OMIT)
+    wall_time: float | None = None
     """the model's whole time, warm (s)"""
-    peak_memory: float | None = field(default=None, metadata=_OMIT)
+    peak_memory: float | None = None
     """peak memory of the run (bytes; how: ``memory_method``)"""
-    baseline_memory: float | None = field(default=None, metadata=_OMIT)
+    baseline_memory: float | None = None
     """resident memory of the worker's imports (bytes)"""
-    memory_method: str | None = field(default=None, metadata=_OMIT)
-    process_time: float | None = field(default=None, metadata=_OMIT)
+    memory_method: str | None = None
+    process_time: float | None = None
     """the run's time as the study waited for it, serving process included (s)"""
-    error: str | None = field(default=None, metadata=_OMIT)
+    error: str | None = None
     """why the run failed or did not run"""
-    cached: bool = False
-    """loaded from the run cache (not computed by this study)"""
-    ovalling_alias: OvallingAlias | None = field(default=None, metadata=_OMIT)
+    cached: bool
+    """loaded from the run cache (not computed by this study); always written"""
+    ovalling_alias: OvallingAlias | None = None
     """the aliased "ovalling" mode dropped (rotorpillar.converge.failures.drop_aliases)"""
     bending_error: float | None = None
     """(f - f_ref)/f_ref on the first bending frequency (-)"""
@@ -191,17 +182,8 @@ class ConvergenceRun(JsonRecord, RunErrors):
     ovalling_discretisation_error: float | None = None
     ovalling_error_bound: float | None = None
 
-    def to_json(self) -> dict:
-        doc = super().to_json()
-        if self.status == "ok":  # an ok run states its frequencies, None where not resolved
-            for f in fields(self):
-                if f.metadata.get("ok_only") and f.name not in doc:
-                    doc[f.name] = None
-        return doc
 
-
-@dataclass(frozen=True)
-class Extrapolation(JsonRecord):
+class Extrapolation(Record):
     """Richardson extrapolation of three runs at sizes h1 > h2 > h3
     (rotorpillar.converge.richardson.richardson)."""
 
@@ -220,7 +202,6 @@ class Extrapolation(JsonRecord):
     """the runs' frequencies (rad/s)"""
 
 
-@dataclass(frozen=True)
 class FamilyExtrapolation(Extrapolation):
     """A family's extrapolation on its three finest runs."""
 
@@ -228,7 +209,6 @@ class FamilyExtrapolation(Extrapolation):
     """the runs' labels, coarse to fine"""
 
 
-@dataclass(frozen=True)
 class RichardsonCheck(Extrapolation):
     """The extrapolation from the three runs before the finest, against the finest."""
 
@@ -240,17 +220,15 @@ class RichardsonCheck(Extrapolation):
     within_estimate: bool
 
 
-@dataclass(frozen=True)
-class ReferenceValue(FamilyExtrapolation):
+class ReferenceValue(FamilyExtrapolation, omit_defaults=True):
     """A quantity's reference: the extrapolation of the highest-fidelity family that has one."""
 
     family: str
-    check: RichardsonCheck | None = field(default=None, metadata=_OMIT)
+    check: RichardsonCheck | None = None
     """absent when the family has fewer than four runs"""
 
 
-@dataclass(frozen=True)
-class RunBrief(JsonRecord, RunErrors):
+class RunBrief(Record, RunErrors):
     """A run as the choice names it: its case, cost, frequencies and errors."""
 
     label: str
@@ -278,15 +256,13 @@ class RunBrief(JsonRecord, RunErrors):
     ovalling_error_bound: float | None
 
 
-@dataclass(frozen=True)
 class RejectedRun(RunBrief):
     """A run cheaper than the choice that does not meet the tolerance, and why."""
 
     why: str
 
 
-@dataclass(frozen=True)
-class ModelSelection(JsonRecord):
+class ModelSelection(Record):
     """The choice: the cheapest run whose error bound meets the tolerance over the band."""
 
     tolerance: float
@@ -308,8 +284,7 @@ class ModelSelection(JsonRecord):
     reason: str
 
 
-@dataclass(frozen=True)
-class ModalModelSelection(JsonRecord):
+class ModalModelSelection(Record):
     """The 3D mesh `rotorpillar modal --tolerance` runs, and why: modal.json's
     ``model_selection`` (rotorpillar.converge.study.model_for_modal)."""
 
@@ -337,8 +312,7 @@ class ModalModelSelection(JsonRecord):
     """the choice in a few lines, as `modal` prints it"""
 
 
-@dataclass(frozen=True)
-class Fronts(JsonRecord):
+class Fronts(Record):
     """Per error (each frequency's, and the band's), the labels of the runs on the front."""
 
     bending: tuple[str, ...]
@@ -346,8 +320,7 @@ class Fronts(JsonRecord):
     band: tuple[str, ...]
 
 
-@dataclass(frozen=True)
-class ParetoFronts(JsonRecord):
+class ParetoFronts(Record):
     """The Pareto fronts of error against each cost."""
 
     dofs: Fronts
@@ -356,8 +329,7 @@ class ParetoFronts(JsonRecord):
     """against wall time (s)"""
 
 
-@dataclass(frozen=True)
-class StudyCounts(JsonRecord):
+class StudyCounts(Record, omit_defaults=True):
     """How the study went: its runs and its time."""
 
     runs: int
@@ -368,16 +340,11 @@ class StudyCounts(JsonRecord):
     unavailable: int
     compute_seconds: float
     """the computed runs' time (s)"""
-    wall_time: float | None = field(default=None, metadata=_OMIT)
+    wall_time: float | None = None
     """the whole study's wall time (s)"""
 
 
-_KEYS = {"json_file": "json"}
-"""Attributes whose key in the document differs from their name."""
-
-
-@dataclass(frozen=True)
-class ConvergenceStudy(JsonRecord):
+class ConvergenceStudy(Record, omit_defaults=True):
     """Every run of the ladder, the reference values, the fronts, the choice and the failures."""
 
     scene_name: str
@@ -399,13 +366,9 @@ class ConvergenceStudy(JsonRecord):
     failures: tuple[str, ...]
     """where methods fail, one sentence each"""
     study: StudyCounts
-    charts: dict[str, str] | None = field(default=None, metadata=_OMIT)
+    charts: dict[str, str] | None = None
     """chart name -> path (absent when no charts were drawn)"""
-    versions: dict[str, str] | None = field(default=None, metadata=_OMIT)
-    machine: dict[str, Any] | None = field(default=None, metadata=_OMIT)
-    timings: dict[str, float] | None = field(default=None, metadata=_OMIT)
-    """the command's stages (s)"""
-    json_file: str | None = field(default=None, metadata=_OMIT)
+    json_file: str | None = msgspec.field(default=None, name="json")
     """where the study was written (key ``json``; never in the file itself)"""
 
     @property
@@ -413,27 +376,8 @@ class ConvergenceStudy(JsonRecord):
         """The chosen run's brief (label, family, params, dofs, errors...), or None."""
         return self.selection.chosen
 
-    def to_json(self) -> dict:
-        """The document as written to convergence.json (optional parts left out when None)."""
-        return {_KEYS.get(k, k): v for k, v in super().to_json().items()}
 
-    @classmethod
-    def from_json(cls, doc: dict) -> ConvergenceStudy:
-        names = {_KEYS.get(f.name, f.name): f.name for f in fields(cls)}
-        unknown = set(doc) - set(names)
-        if unknown:
-            raise ValueError(f"convergence study: unknown keys {sorted(unknown)}")
-        study: ConvergenceStudy = super().from_json({names[k]: v for k, v in doc.items()})
-        return study
-
-    @classmethod
-    def read(cls, path: str | Path) -> ConvergenceStudy:
-        """The study in a ``convergence.json``."""
-        return cls.from_json(json.loads(Path(path).read_text(encoding="utf-8")))
-
-
-@dataclass(frozen=True)
-class QuantityErrors(JsonRecord):
+class QuantityErrors(Record):
     """A run's first frequency of one quantity and its errors against the study's reference
     (rotorpillar.converge.selection.attach_errors): a reference mesh's ``errors`` per quantity."""
 
@@ -455,8 +399,18 @@ class QuantityErrors(JsonRecord):
         return cls(value=run.frequency(quantity), **kinds)
 
 
-@dataclass(frozen=True)
-class ModeSourceFloor(JsonRecord):
+class CaseFile(Record):
+    """A run of the ladder as the parent hands it to the serving process (a file)."""
+
+    family: str
+    level: int
+    params: tuple[tuple[str, Param], ...]
+    """the discretisation, as (key, value) pairs"""
+    scene: dict[str, Any]
+    """the scene (``Scene.to_dict()``)"""
+
+
+class ModeSourceFloor(Record):
     """The ROM's mode source as the run-up's full-order reference must match it: at least as fine."""
 
     label: str

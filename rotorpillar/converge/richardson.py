@@ -15,6 +15,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
+from msgspec.structs import asdict
 from scipy.optimize import brentq
 
 from .ladder import FAMILIES, QUANTITIES
@@ -86,7 +87,7 @@ def family_extrapolations(runs: Sequence[ConvergenceRun]) -> dict[str, dict[str,
                 continue
             last = rows[-3:]
             ex = _richardson_on(last, q, fam.order)
-            out.setdefault(name, {})[q] = FamilyExtrapolation(**vars(ex), runs=tuple(x.label for x in last))
+            out.setdefault(name, {})[q] = FamilyExtrapolation(**asdict(ex), runs=tuple(x.label for x in last))
     return out
 
 
@@ -112,12 +113,12 @@ def reference_values(
                 finest = rows[-1].frequency(q)
                 assert finest is not None  # family_series keeps the runs that have it
                 check = RichardsonCheck(
-                    **vars(chk),
+                    **asdict(chk),
                     finer_run=rows[-1].label,
                     finer_value=finest,
                     difference=finest - chk.value,
                     within_estimate=bool(abs(finest - chk.value) <= chk.error_estimate),
                 )
-            out[q] = ReferenceValue(**vars(extrapolations[fam.name][q]), family=fam.name, check=check)
+            out[q] = ReferenceValue(**asdict(extrapolations[fam.name][q]), family=fam.name, check=check)
             break
     return out

@@ -12,8 +12,6 @@ pure-Python models run in-process and report tracemalloc's peak.
 
 from __future__ import annotations
 
-import dataclasses
-import json
 import resource
 import sys
 import tempfile
@@ -23,12 +21,15 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import msgspec
+
+from .. import records
 from ..cache import DiskCache, cache_key, source_hash
 from ..provenance import write_json
 from ..scene.tower import Foundation, foundation_key, pillar_key
 from .compute import compute_fe, compute_in_process
 from .ladder import FAMILIES, N_MODES, QUANTITIES, Case, estimated_dofs, estimated_seconds, resolved_only
-from .result import ERROR_KINDS, ConvergenceRun, RunResult
+from .result import ERROR_KINDS, CaseFile, ConvergenceRun, RunResult
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -42,7 +43,7 @@ SHELL_SOLVER = ("fem3d.eigensolver", "fem3d.block_lanczos", "fem3d.identify")
 SOLID_CONSUMERS = ("modal_summary", "pillar_modes", "full_order", "full_order_result", "output")
 """fem3d modules that use the 3D modes but do not compute them."""
 
-CACHE_VERSION = 2
+CACHE_VERSION = 3  # 3: an Entry of a ConvergenceRun record (msgspec)
 """Bump to invalidate every cached run (the layout of a cached result changed)."""
 
 
@@ -90,7 +91,7 @@ def _run_in_process(case: Case, pillar, foundation: Foundation | None = None) ->
         _, peak = tracemalloc.get_traced_memory()
     finally:
         tracemalloc.stop()
-    return dataclasses.replace(
+    return msgspec.structs.replace(
         out, wall_time=wall, peak_memory=peak, memory_method="tracemalloc (Python heap peak)", timings={"total": wall}
     )
 
@@ -145,9 +146,9 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
     from ..scene import scene_from_dict
     from .service import peak_memory, reset_peak_memory, resident_memory
 
-    doc = json.loads(Path(case_file).read_text())
-    case = Case(doc["family"], doc["level"], tuple((k, v) for k, v in doc["params"]))
-    scene_doc = dict(doc["scene"])
+    job = records.read(case_file, CaseFile)
+    case = Case(job.family, job.level, tuple(job.params))
+    scene_doc = dict(job.scene)
     scene = scene_from_dict(scene_doc, name=scene_doc.pop("name"))
     import importlib
 
@@ -176,7 +177,7 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
         t0 = time.perf_counter()
         out = compute_fe(case, scene, fresh=True)
         total = time.perf_counter() - t0
-        out = dataclasses.replace(out, first_run_with_compilation=first)
+        out = msgspec.structs.replace(out, first_run_with_compilation=first)
     # the model's whole time: mesh, forms, assembly, solve and naming the modes
     if per_run_peak:
         peak, method = (
@@ -191,8 +192,10 @@ def run_one(case_file: str, out_file: str, baseline: int, *, per_run_peak: bool)
             resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
             "ru_maxrss of a fresh subprocess (includes ~baseline_memory of imports)",
         )
-    out = dataclasses.replace(out, wall_time=total, peak_memory=peak, baseline_memory=baseline, memory_method=method)
-    write_json(out_file, out.to_json())
+    out = msgspec.structs.replace(
+        out, wall_time=total, peak_memory=peak, baseline_memory=baseline, memory_method=method
+    )
+    write_json(out_file, out)
 
 
 def serve(stdin=sys.stdin, replies=None) -> int:
@@ -203,7 +206,7 @@ def serve(stdin=sys.stdin, replies=None) -> int:
     in the log, never in the middle of the protocol."""
     import os
 
-    from .service import RETAINED_LIMIT, ServiceReply, reset_peak_memory, resident_memory
+    from .service import RETAINED_LIMIT, ServiceJob, ServiceReply, reset_peak_memory, resident_memory
 
     if replies is None:
         sys.stdout.flush()
@@ -215,16 +218,16 @@ def serve(stdin=sys.stdin, replies=None) -> int:
     for line in stdin:
         if not line.strip():
             continue
-        job = json.loads(line)
+        job = records.decode(line, ServiceJob)
         status, error = "ok", None
         try:
-            run_one(job["case"], job["out"], baseline, per_run_peak=reusable)
+            run_one(job.case, job.out, baseline, per_run_peak=reusable)
         except ModelUnavailable as exc:
             status, error = "unavailable", str(exc)
         except Exception as exc:  # the parent records the run as failed and goes on
             status, error = "error", f"{type(exc).__name__}: {exc}"
         last = not reusable or (resident_memory() or 0) - imported > RETAINED_LIMIT
-        replies.write(json.dumps(ServiceReply(status=status, error=error, last=last).to_json()) + "\n")
+        replies.write(records.encode(ServiceReply(status=status, error=error, last=last)).decode() + "\n")
         replies.flush()
         if last:
             return 0
@@ -246,11 +249,7 @@ def _run_in_service(case: Case, scene: Scene) -> RunResult:
 
     with tempfile.TemporaryDirectory(prefix="rotorpillar-converge-") as tmp:
         case_file, out_file = Path(tmp) / "case.json", Path(tmp) / "result.json"
-        case_file.write_text(
-            json.dumps(
-                {"family": case.family, "level": case.level, "params": list(case.params), "scene": scene.to_dict()}
-            )
-        )
+        write_json(case_file, CaseFile(case.family, case.level, tuple(case.params), scene.to_dict()))
         t0 = time.perf_counter()
         reply = service().run(case_file, out_file)
         elapsed = time.perf_counter() - t0
@@ -258,8 +257,8 @@ def _run_in_service(case: Case, scene: Scene) -> RunResult:
             raise ModelUnavailable(reply.error)
         if reply.status != "ok" or not out_file.exists():
             raise RuntimeError(f"{case.label}: worker failed: {reply.error}")
-        out = RunResult.read(out_file)
-    return dataclasses.replace(out, process_time=elapsed)
+        out = records.read(out_file, RunResult)
+    return msgspec.structs.replace(out, process_time=elapsed)
 
 
 def run_point(case: Case, scene: Scene) -> RunResult:
@@ -284,19 +283,17 @@ def run_record(
         params=case.settings,
         status=status,
         error=error,
-        **(vars(result) if result is not None else {}),
+        cached=False,
+        **(msgspec.structs.asdict(result) if result is not None else {}),
     )
 
 
-_NOT_CACHED = {"cached", "ovalling_alias"} | {f"{q}_{kind}" for q in QUANTITIES for kind in ERROR_KINDS}
-"""A run's fields the cache does not hold: how this study got it, and what the study makes of it."""
-
-
-def cache_doc(run: ConvergenceRun) -> dict:
-    """The run as its cache file holds it: its case and its result, in the record's
-    field order (the keys and values of CACHE_VERSION 2, read back by ConvergenceRun.from_json)."""
-    doc = run.to_json()
-    return {f.name: doc[f.name] for f in dataclasses.fields(run) if f.name in doc and f.name not in _NOT_CACHED}
+def cache_entry(run: ConvergenceRun) -> ConvergenceRun:
+    """The run as its cache file holds it: its case and its result, without what this
+    study made of it (its errors against the reference, the alias dropped) and whether
+    it came from the cache."""
+    errors = {f"{q}_{kind}": None for q in QUANTITIES for kind in ERROR_KINDS}
+    return msgspec.structs.replace(run, cached=False, ovalling_alias=None, **errors)  # type: ignore[arg-type]
 
 
 #: The [converge] key that bounds each finite-element family's finest run.
@@ -383,13 +380,13 @@ def run_study(
 
     cache = DiskCache(Path(cache_dir))
     keys = [case_key(c, scene.pillar, scene.modal.tolerance, scene.foundation) for c in cases]
-    records: list[ConvergenceRun | None] = [None] * len(cases)
+    runs: list[ConvergenceRun | None] = [None] * len(cases)
     todo = []
     for i, (c, key) in enumerate(zip(cases, keys)):
         cached = _load_cached(cache, key)
         if cached is not None:
             # names follow the code, not the cache (they are not part of the key)
-            records[i] = dataclasses.replace(
+            runs[i] = msgspec.structs.replace(
                 resolved_only(c.family, cached),
                 label=c.label,
                 family=c.family,
@@ -422,15 +419,15 @@ def run_study(
                 unavailable[model] = str(exc)
                 if log:
                     log(f"converge: skipping the {model} runs: {exc}")
-            records[i] = run_record(case, key, None, "unavailable", unavailable[model])
+            runs[i] = run_record(case, key, None, "unavailable", unavailable[model])
         elif isinstance(exc, (RuntimeError, ValueError, ArithmeticError)):
-            records[i] = run_record(case, key, None, "failed", str(exc))
+            runs[i] = run_record(case, key, None, "failed", str(exc))
         elif exc is not None:
             raise exc
         else:
             rec = run_record(case, key, result)
-            cache.write(key, cache_doc(rec))
-            records[i] = resolved_only(case.family, rec)
+            cache.write(key, cache_entry(rec))
+            runs[i] = resolved_only(case.family, rec)
         bar.set_postfix_str(case.label)
         bar.update(weights[i])
 
@@ -454,7 +451,7 @@ def run_study(
         from .service import close_services
 
         close_services()
-    return [r for r in records if r is not None]  # finish() filled every one
+    return [r for r in runs if r is not None]  # finish() filled every one
 
 
 def _guarded(job):
@@ -484,11 +481,6 @@ def _run_parallel(todo, cases, scene: Scene, runner, workers, executor, finish, 
 
 
 def _load_cached(cache: DiskCache, key: str) -> ConvergenceRun | None:
-    # a damaged file or a failed run is no cached run: recompute it
-    doc = cache.read(key, accept=lambda doc: doc.get("status") == "ok")
-    if doc is None:
-        return None
-    try:
-        return ConvergenceRun.from_json(doc)
-    except (KeyError, TypeError, ValueError):  # not a run of this layout: recompute it
-        return None
+    """The run cached under ``key``; a damaged file or a failed run is no cached run (None:
+    recompute it)."""
+    return cache.read(key, ConvergenceRun, accept=lambda run: run.status == "ok")

@@ -10,12 +10,12 @@ reference: the coarsest 3D run for the frequencies the load excites.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
 
-from ..provenance import JsonRecord
+import msgspec
+
+from ..records import Record
 from ..reduced.band import excitation_band  # noqa: F401  (the study's band, re-exported)
 from .ladder import FAMILIES, QUANTITIES
 from .result import (
@@ -57,7 +57,7 @@ def _with_errors(
 ) -> ConvergenceRun:
     b = _split(r, "bending", reference, extrapolations)
     o = _split(r, "ovalling", reference, extrapolations)
-    return dataclasses.replace(
+    return msgspec.structs.replace(
         r,
         bending_error=b[0],
         bending_model_error=b[1],
@@ -274,7 +274,7 @@ def brief(r: ConvergenceRun) -> RunBrief:
 
 def rejected_run(b: RunBrief, why: str) -> RejectedRun:
     """A run's brief with why it does not meet the tolerance."""
-    return RejectedRun(**{f.name: getattr(b, f.name) for f in dataclasses.fields(b)}, why=why)
+    return RejectedRun(**msgspec.structs.asdict(b), why=why)
 
 
 def _reason(
@@ -324,8 +324,7 @@ def _reason(
 # The transients' full-order reference: the coarsest 3D mesh for what the load excites
 
 
-@dataclass(frozen=True)
-class ReferenceChoice(JsonRecord):
+class ReferenceChoice(Record):
     """The 3D mesh a transient's full-order reference runs on, chosen from the study
     for the frequencies the load excites (relative errors, -)."""
 

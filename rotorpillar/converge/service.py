@@ -26,16 +26,15 @@ out ("last": the process ends after this run).  End of input ends it too.
 from __future__ import annotations
 
 import atexit
-import json
 import os
 import subprocess
 import sys
 import tempfile
 import threading
-from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..provenance import JsonRecord
+from .. import records
+from ..records import Record
 
 MODULE = "rotorpillar.converge"
 """What ``python -m`` runs (its ``__main__``: ``--serve``, or one CASE RESULT pair)."""
@@ -85,15 +84,23 @@ def resident_memory() -> int | None:
     return None if kib is None else 1024 * kib
 
 
-@dataclass(frozen=True)
-class ServiceReply(JsonRecord):
+class ServiceJob(Record):
+    """One run sent to the serving process: a line of the protocol."""
+
+    case: str
+    """the run's case file (a ``CaseFile``)"""
+    out: str
+    """where to write its ``RunResult``"""
+
+
+class ServiceReply(Record, omit_defaults=True):
     """The serving process's answer to one run: a line of the protocol."""
 
     status: str
     """"ok", "unavailable" (the model cannot be imported here) or "error" """
-    error: str | None = field(default=None, metadata={"omit_if_none": True})
+    error: str | None = None
     """why the run did not give a result"""
-    exit: int | None = field(default=None, metadata={"omit_if_none": True})
+    exit: int | None = None
     """the exit code of a serving process that ended without a reply"""
     last: bool = False
     """the process ends after this run: the next run gets a new one"""
@@ -113,7 +120,7 @@ class Service:
         if self.proc is None or self.proc.poll() is not None:
             self._start()
         try:
-            self.proc.stdin.write(json.dumps({"case": str(case_file), "out": str(out_file)}) + "\n")
+            self.proc.stdin.write(records.encode(ServiceJob(str(case_file), str(out_file))).decode() + "\n")
             self.proc.stdin.flush()
             line = self.proc.stdout.readline()
         except (BrokenPipeError, OSError):
@@ -123,7 +130,7 @@ class Service:
             code = self.proc.returncode
             self.proc = None
             return ServiceReply(status="error", exit=code, error=f"worker ended ({code}): " + self._tail())
-        reply = ServiceReply.from_json(json.loads(line))
+        reply = records.decode(line, ServiceReply)
         if reply.last:  # it ends after this run: the next gets a new one
             self.proc.wait()
             self.proc = None

@@ -19,11 +19,11 @@ if TYPE_CHECKING:
 import dataclasses
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
-from ..provenance import JsonRecord, Timings, with_provenance, write_result
+from ..provenance import Timings, write_result
+from ..records import Record, replace
 from .failures import drop_aliases, failures
 from .ladder import FAMILIES, QUANTITIES, study_cases
 from .result import (
@@ -57,8 +57,7 @@ Charts = Callable[[ConvergenceStudy, Path], dict]
 """Draws the study's charts into a directory: (the study, out_dir) -> name: path."""
 
 
-@dataclass(frozen=True)
-class StudyAnalysis(JsonRecord):
+class StudyAnalysis(Record):
     """What the study makes of its runs (the parts of convergence.json after the runs' own)."""
 
     runs: tuple[ConvergenceRun, ...]
@@ -185,13 +184,10 @@ def study(
     if charts is not None:
         with timings("charts"):
             drawn = charts(result, out_dir)
-        result = dataclasses.replace(result, charts={k: str(v) for k, v in drawn.items()})
-    result = dataclasses.replace(result, study=dataclasses.replace(counts, wall_time=time.perf_counter() - start))
-    doc = with_provenance(result.to_json(), timings=dict(timings))
-    path = write_result(Path(out_dir) / "convergence.json", doc)
-    return dataclasses.replace(
-        result, versions=doc["versions"], machine=doc["machine"], timings=doc["timings"], json_file=str(path)
-    )
+        result = replace(result, charts={k: str(v) for k, v in drawn.items()})
+    result = replace(result, study=replace(counts, wall_time=time.perf_counter() - start))
+    path = write_result(Path(out_dir) / "convergence.json", result, timings=dict(timings))
+    return replace(result, json_file=str(path))
 
 
 def _cached_study(scene: Scene, tolerance: float, cache_dir: Path) -> StudyAnalysis:

@@ -74,7 +74,7 @@ from .full_order_plan import (  # noqa: F401
     step_rule,
     top_speed,
 )
-from .full_order_result import Fem3dTransient, transient_result
+from .full_order_result import Fem3dDescription, Fem3dStats, Fem3dTransient, transient_result
 from .rotor_top import RotorOnTop, Step
 
 
@@ -143,7 +143,7 @@ def simulate_fem3d(
         _rotor_along_the_spin_axis(model, rotor.mass)
         if observer is not None:
             observer.attach(model)
-        out, stats = integrate(
+        out, counts = integrate(
             model,
             rotor,
             scene.pillar.damping,
@@ -166,20 +166,21 @@ def simulate_fem3d(
     wall = time.perf_counter() - start
     reached = W0 if prescribed_speed else float(np.max(np.abs(out["Omega"])))
     check = accuracy(scene, h, duration, max(reached, abs(W0)), motion)
-    stats.update(
+    stats = Fem3dStats(
         method=fo.integrator,
         scheme=_scheme_words(fo.integrator, step, rule),
         time_step=h,
-        step_rule=rule.to_json(),
-        accuracy=check.to_json(),
-        estimate=est.to_json(),
+        step_rule=rule,
+        accuracy=check,
+        estimate=est,
         assembly_seconds=sum(model.timings.values()),
+        **counts,
     )
     mesh_section = scene.mesh if mesh is None else mesh
-    info = {
-        "mesh": dict(vars(mesh_section)),
-        "top": "rigid plate with the gondola",
-        "damping_law": "pillar: b1 as a dashpot on the plate's x and y; b2 on the rotor centre's "
+    info = Fem3dDescription(
+        mesh=mesh_section,
+        top="rigid plate with the gondola",
+        damping_law="pillar: b1 as a dashpot on the plate's x and y; b2 on the rotor centre's "
         + ("velocity relative to the ground" if damping_law == "ground" else "motion relative to the plate")
         + " in x and vertical; "
         + (
@@ -188,15 +189,15 @@ def simulate_fem3d(
             else "no structural ratio"
         )
         + "; no Rayleigh term",
-        "frame": "relative_to_ground",
-        "forcing": "-M r_d a_d along each direction the ground moves, on tube, plate and rotor "
+        frame="relative_to_ground",
+        forcing="-M r_d a_d along each direction the ground moves, on tube, plate and rotor "
         "(along the spin axis the rotor rides on the plate)",
-        "start": "tube at rest, rotor in its steady whirl on a held plate",
-        "initial_speed": W0,
-        "initial_angle": initial_angle,
-        "prescribed_speed": bool(prescribed_speed),
+        start="tube at rest, rotor in its steady whirl on a held plate",
+        initial_speed=W0,
+        initial_angle=initial_angle,
+        prescribed_speed=bool(prescribed_speed),
         **notes,
-    }
+    )
     return transient_result(case, out, stats, model.size + 3, wall, info, motion, drive, prescribed_speed, check.failed)
 
 

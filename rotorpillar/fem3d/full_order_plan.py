@@ -14,10 +14,9 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from ..errors import InputError
-from ..provenance import JsonRecord
+from ..records import Record
 from ..reduced.accuracy import (
     AccuracyCheck,
     StepRule,
@@ -144,8 +143,7 @@ def step_rule(
 SECONDS_PER_STEP = (3.0e-4, 6.0e-9)
 
 
-@dataclass(frozen=True)
-class RunEstimate(JsonRecord):
+class RunEstimate(Record):
     """A 3D run's size before it starts."""
 
     steps: float

@@ -9,107 +9,119 @@ JSON without the solver.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
-from typing import Any
-
+import msgspec
 import numpy as np
 
-from ..reduced.integration import EnergyBalance
+from ..records import Array, Record
+from ..reduced.integration import EnergyBalance, IntegratorStats
+from ..scene import Mesh
+from .full_order_plan import RunEstimate
 
 WORK_COLUMNS = ("drive_minus_load", "shaft_on_structure", "dissipated", "base")
 #: the share of the energy exchanged the balance may miss (as transients.case_summary.ENERGY_CHECK)
 ENERGY_CHECK = 0.05
 
 
-@dataclass(frozen=True, eq=False)
-class Fem3dTransient:
+class Fem3dStats(IntegratorStats, kw_only=True, omit_defaults=True):
+    """What the 3D step loop did (the ``integrator`` of a fem3d run)."""
+
+    factorisations: int
+    """factorisations of the step operator (-)"""
+    solves: int
+    """linear solves (-)"""
+    newton_max: int
+    """the most Newton iterations of the rotor's scalar step in one step (-)"""
+    factorisation_seconds: float
+    """(s)"""
+    integration_seconds: float
+    """the step loop (s)"""
+    seconds_per_step: float
+    """(s)"""
+    output_stride: int
+    """steps between outputs (-)"""
+    estimate: RunEstimate | None = None
+    """the run's size as estimated before it started"""
+    assembly_seconds: float | None = None
+    """assembling the 3D model (s)"""
+
+
+class Fem3dDescription(Record, omit_defaults=True):
+    """What a 3D full-order run ran: its mesh, top, damping, frame, forcing and start."""
+
+    mesh: Mesh
+    """the [mesh] section"""
+    top: str
+    damping_law: str
+    frame: str
+    """the frame of the tube's displacements: "relative_to_ground\""""
+    forcing: str
+    """how the ground motion enters, in words"""
+    start: str
+    """the initial state, in words"""
+    initial_speed: float
+    """(rad/s)"""
+    initial_angle: float
+    """the rotor's angle at the start (rad)"""
+    prescribed_speed: bool
+    """the rotor's speed held, not integrated"""
+    initial_speed_source: str | None = None
+    """where the initial speed comes from, in words"""
+
+
+class Fem3dTransient(Record, eq=False):  # arrays: no elementwise ==
     """A 3D full-order run on its output grid, with its summary (SI)."""
 
     case: str
-    t: np.ndarray
+    t: Array
     """(n,) output times (s)"""
-    Omega: np.ndarray
+    Omega: Array
     """rotor speed (rad/s)"""
-    theta: np.ndarray
+    theta: Array
     """rotor angle (rad)"""
-    tip_x: np.ndarray
+    tip_x: Array
     """plate X relative to the ground = the top section's mean X (m)"""
-    tip_x_absolute: np.ndarray
+    tip_x_absolute: Array
     """tip_x + ground_x (m)"""
-    ground_x: np.ndarray
+    ground_x: Array
     """ground displacement, the double integral of the applied acceleration (m)"""
-    ground_acceleration: np.ndarray
+    ground_acceleration: Array
     """(m/s**2)"""
-    rotor_x: np.ndarray
+    rotor_x: Array
     """rotor mass centre X relative to the ground (m)"""
-    rotor_y: np.ndarray
+    rotor_y: Array
     """rotor mass centre along the tube axis (the paper's Y) (m)"""
-    plate_z: np.ndarray
+    plate_z: Array
     """the plate's axial displacement (m)"""
-    shaft_x: np.ndarray
+    shaft_x: Array
     """shaft deflection in X, x_r - U_x - e cos(theta) (m)"""
-    shaft_y: np.ndarray
+    shaft_y: Array
     """shaft deflection in Y, y_r - U_z - e sin(theta) (m)"""
-    drive_torque: np.ndarray
+    drive_torque: Array
     """Md - Mc (N*m)"""
-    energy: np.ndarray
+    energy: Array
     """kinetic + potential energy (J); without J Omega**2 / 2 at a prescribed speed"""
-    work: np.ndarray
+    work: Array
     """(n, 4) work since the start: drive - load, shaft on structure, dissipated, base (J)"""
-    max_abs: dict
+    max_abs: dict[str, float]
     """largest |value| over every step (m)"""
     omega_final: float
+    """rotor speed at the end (rad/s)"""
     omega_final_mean: float
     """mean speed over the last 5 % of the run (rad/s)"""
     energy_balance: EnergyBalance
     """E(t) - E(0) against the work done (J), as the reduced models' runs state it"""
-    integrator: dict
+    integrator: Fem3dStats
+    """what the step loop did"""
     dofs: int
     """unknowns: the tube's (with inert constrained rows), the plate's 6, the rotor's 3"""
     wall_seconds: float
     """assembly, factorisation and integration (s)"""
-    model: dict
+    model: Fem3dDescription
     """mesh, damping law, start, forcing: what was run"""
     ok: bool
-    failed_checks: list = field(default_factory=list)
+    """every check held"""
+    failed_checks: list[str] = msgspec.field(default_factory=list)
     """why ``ok`` is false, one named line each (empty when every check holds)"""
-
-    def summary(self) -> dict:
-        """The JSON fields the reduced models' runs report, plus dofs and wall time."""
-        out = {
-            "ok": self.ok,
-            "duration": float(self.t[-1] - self.t[0]),
-            "omega_final": self.omega_final,
-            "omega_final_mean": self.omega_final_mean,
-            "max_abs": self.max_abs,
-            "energy_balance": self.energy_balance,
-            "integrator": self.integrator,
-            "dofs": self.dofs,
-            "wall_seconds": self.wall_seconds,
-            "model": self.model,
-        }
-        if self.failed_checks:
-            out["failed_checks"] = list(self.failed_checks)
-        return out
-
-    def series(self) -> dict:
-        """The arrays, by name (for NPZ/CSV)."""
-        return {f.name: getattr(self, f.name) for f in fields(self) if isinstance(getattr(self, f.name), np.ndarray)}
-
-    def to_json(self) -> dict:
-        """JSON-ready; ``from_json`` rebuilds it exactly."""
-        return {
-            f.name: (v.tolist() if isinstance(v, np.ndarray) else v.to_json() if isinstance(v, EnergyBalance) else v)
-            for f in fields(self)
-            for v in (getattr(self, f.name),)
-        }
-
-    @classmethod
-    def from_json(cls, data: dict) -> Fem3dTransient:
-        arrays = {f.name for f in fields(cls) if f.type == "np.ndarray"}
-        kwargs: dict[str, Any] = {k: (np.asarray(v, dtype=float) if k in arrays else v) for k, v in data.items()}
-        kwargs["energy_balance"] = EnergyBalance.from_json(data["energy_balance"])
-        return cls(**kwargs)
 
 
 def transient_result(case, out, stats, dofs, wall, info, motion, drive, prescribed, failed) -> Fem3dTransient:
@@ -138,8 +150,8 @@ def transient_result(case, out, stats, dofs, wall, info, motion, drive, prescrib
         relative_error=float(np.max(np.abs(resid)) / scale),
     )
     failed = list(failed)
-    if stats["status"] != "ok":
-        failed.insert(0, f"integrator_stopped: {stats['status']}")
+    if stats.status != "ok":
+        failed.insert(0, f"integrator_stopped: {stats.status}")
     e = balance.relative_error
     if not np.isfinite(e) or e > ENERGY_CHECK:
         failed.append(

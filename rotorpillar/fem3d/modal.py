@@ -12,13 +12,12 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..errors import ComputationError
-from ..provenance import JsonRecord
-from ..scene import Scene
+from ..records import Record, replace
 from . import identify
 from .eigensolver import solve_gep_shift_invert
 from .model import AssembledPillar
@@ -39,11 +38,7 @@ AXES = {
 }
 
 
-_OPTIONAL = {"omit_if_none": True}
-
-
-@dataclass(frozen=True)
-class ModeRow(JsonRecord):
+class ModeRow(Record, omit_defaults=True):
     """One mode of the tube as modal.json lists it (``modes``, ``modes_with_top``)."""
 
     index: int
@@ -68,17 +63,17 @@ class ModeRow(JsonRecord):
     """phi^T K phi for the normalised shape (N/m)"""
     tip_displacement: tuple[float, ...]
     """mean (u_x, u_y) of the top section, normalised shape (m per unit modal coordinate)"""
-    tip_modal_mass: float | None = field(default=None, metadata=_OPTIONAL)
+    tip_modal_mass: float | None = None
     """bending only: the modal mass referred to the tip displacement (kg)"""
-    tip_stiffness: float | None = field(default=None, metadata=_OPTIONAL)
+    tip_stiffness: float | None = None
     """bending only: the modal stiffness referred to the tip displacement (N/m)"""
-    pillar_modal_mass: float | None = field(default=None, metadata=_OPTIONAL)
+    pillar_modal_mass: float | None = None
     """bending with the top mass only: the tip modal mass less the top's (kg)"""
-    top_plate_motion: tuple[float, ...] | None = field(default=None, metadata=_OPTIONAL)
+    top_plate_motion: tuple[float, ...] | None = None
     """rigid top only: the plate's (U, Theta) per normalised mode (m, rad)"""
-    participation: tuple[float, ...] | None = field(default=None, metadata=_OPTIONAL)
+    participation: tuple[float, ...] | None = None
     """L_j = phi_j^T M r_d along x, y, z for the normalised shape (kg)"""
-    effective_mass: tuple[float, ...] | None = field(default=None, metadata=_OPTIONAL)
+    effective_mass: tuple[float, ...] | None = None
     """L_j**2 / m_j along x, y, z (kg)"""
 
 
@@ -228,13 +223,6 @@ class ModalResult:
                 )
             )
         return out
-
-
-def _scene_top_mass(scene: Scene) -> float:
-    m = scene.gondola.mass
-    if scene.modal.top_mass == "gondola_and_rotor":
-        m += scene.rotor.mass
-    return m
 
 
 def _vtu_map(model: AssembledPillar, coords: np.ndarray):

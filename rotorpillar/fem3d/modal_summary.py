@@ -16,17 +16,15 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 import math
-from dataclasses import dataclass, field
 
 from ..chain.record import PillarModel
-from ..provenance import JsonRecord
+from ..records import Record
 from ..reduced.reduction import PillarClosedForms
 from .modal import AXES, ModeRow
 from .reduction import tip_reduction
 
 
-@dataclass(frozen=True)
-class ModalMesh(JsonRecord):
+class ModalMesh(Record):
     """The 3D mesh the modes were computed on (modal.json's ``mesh``)."""
 
     cells: int
@@ -49,8 +47,7 @@ class ModalMesh(JsonRecord):
     """the ratio of the axial element sizes, base over top (-)"""
 
 
-@dataclass(frozen=True)
-class ModalComparison(JsonRecord):
+class ModalComparison(Record):
     """The 3D first bending mode against the closed forms, as relative differences (-)."""
 
     omega_bending_over_euler_bernoulli: float
@@ -61,8 +58,7 @@ class ModalComparison(JsonRecord):
     """Eq. 2's reduced mass on the 3D mode over the closed form m_col/4, minus 1 (-)"""
 
 
-@dataclass(frozen=True)
-class ModalAxes(JsonRecord):
+class ModalAxes(Record):
     """The axes of the 3D model, in words (modal.json's ``axes``: fem3d.modal.AXES)."""
 
     tube_axis: str
@@ -77,8 +73,7 @@ class ModalAxes(JsonRecord):
     """where the origin is"""
 
 
-@dataclass(frozen=True)
-class ModalTop(JsonRecord):
+class ModalTop(Record):
     """What the tube carries on top in the loaded configuration (modal.json's ``top``)."""
 
     model: str | None
@@ -97,8 +92,7 @@ class ModalTop(JsonRecord):
     """the top's models, in words"""
 
 
-@dataclass(frozen=True)
-class ClosedFormReduction(JsonRecord):
+class ClosedFormReduction(Record):
     """The pillar's closed forms beside the 3D tip reduction."""
 
     m_reduced: float
@@ -111,8 +105,7 @@ class ClosedFormReduction(JsonRecord):
     """the Timoshenko beam's first bending frequency (rad/s)"""
 
 
-@dataclass(frozen=True)
-class StatedReduction(JsonRecord):
+class StatedReduction(Record):
     """The tip mass and stiffness the scene states (``[reduction]``), None where it states none."""
 
     m_reduced: float | None
@@ -121,8 +114,7 @@ class StatedReduction(JsonRecord):
     """the scene's ``reduction.tip_stiffness`` (N/m)"""
 
 
-@dataclass(frozen=True)
-class ModalReduction(JsonRecord):
+class ModalReduction(Record):
     """Eq. 2 on the 3D first bending mode of the bare tube (modal.json's ``reduction``)."""
 
     m_reduced: float
@@ -141,8 +133,7 @@ class ModalReduction(JsonRecord):
     """what the scene states"""
 
 
-@dataclass(frozen=True)
-class ShellModes(JsonRecord):
+class ShellModes(Record):
     """The non-bending modes below the second bending mode of one configuration."""
 
     omega_second_bending: float | None
@@ -151,16 +142,14 @@ class ShellModes(JsonRecord):
     """the non-bending modes below it (all of them without a second bending)"""
 
 
-@dataclass(frozen=True)
-class ShellModesBelow(JsonRecord):
+class ShellModesBelow(Record):
     """modal.json's ``shell_modes_below_second_bending``, per configuration."""
 
     bare: ShellModes
     with_top: ShellModes
 
 
-@dataclass(frozen=True)
-class ModalSolver(JsonRecord):
+class ModalSolver(Record):
     """How SLEPc (or the block solver) found one configuration's modes."""
 
     iterations: int
@@ -181,8 +170,7 @@ class ModalSolver(JsonRecord):
     """MPI ranks (-)"""
 
 
-@dataclass(frozen=True)
-class ModalConfiguration(JsonRecord):
+class ModalConfiguration(Record):
     """The size, the solver and the timings of one configuration's modal run."""
 
     dofs: int
@@ -194,16 +182,14 @@ class ModalConfiguration(JsonRecord):
     """wall-clock seconds per stage: mesh, assembly, solve, postprocess (s)"""
 
 
-@dataclass(frozen=True)
-class ModalConfigurations(JsonRecord):
+class ModalConfigurations(Record):
     """modal.json's ``configurations``: the bare tube and the tube with its top."""
 
     bare: ModalConfiguration
     with_top: ModalConfiguration
 
 
-@dataclass(frozen=True)
-class ModalSummary(JsonRecord):
+class ModalSummary(Record, omit_defaults=True):
     """The content of modal.json (SI units: rad/s, Hz, kg, N/m)."""
 
     axes: ModalAxes
@@ -224,7 +210,7 @@ class ModalSummary(JsonRecord):
     """the mesh the modes were computed on"""
     configurations: ModalConfigurations
     """per configuration: size, solver, timings"""
-    pillar_model: PillarModel | None = field(default=None, metadata={"omit_if_none": True})
+    pillar_model: PillarModel | None = None
     """the chain's 3D mesh the modes were computed on, where it came from and its error
     (`modal` adds it after ``files``)"""
 

@@ -33,7 +33,6 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ComputationError
 from ..mesh import BASE, TOP, MeshData, TubeMeshParams, tube_mesh_data
 from .forms import mass_form, stiffness_form
 from .rigid_faces import RigidFace, base_carriers, foundation_block, tie_faces
@@ -348,10 +347,3 @@ def assemble_model(
         plate,
         rotation_rows,
     )
-
-
-def check_finite(A, name: str) -> None:
-    """Refuse a matrix with NaN or inf (a degenerate cell gives them)."""
-    norm = A.norm()
-    if not np.isfinite(norm):
-        raise ComputationError(f"assembly produced a non-finite {name} (degenerate cells?)")

@@ -122,12 +122,6 @@ class Step:
         )
 
 
-def newmark_rotor_stiffness(rotor: RotorOnTop, h: float) -> float:
-    """k_r = c2 + 2 b2 / h + 4 m / h**2: the rotor centre's effective stiffness in a
-    Newmark step (N/m)."""
-    return rotor_step_stiffness(rotor, Step(h))
-
-
 def rotor_step_stiffness(rotor: RotorOnTop, step: Step) -> float:
     """The rotor centre's effective stiffness in a step (N/m):
     (1 - af) c2 + (1 - af) gamma / (beta h) b2 + (1 - am) / (beta h**2) m."""

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..provenance import check_memory, memory_limit
+from ..provenance import check_memory
 from ..scene import CELL_TYPES
 
 #: Physical group tags (dimension 3 for the volume, 2 for the surfaces).
@@ -45,12 +45,6 @@ GMSH_CELLS = {
 BYTES_PER_DOF = 12e3
 #: Smallest tube Gmsh meshes reliably (m): its geometric tolerance is ~1e-8 of the model.
 MIN_SIZE = 1e-3
-
-
-def memory_budget() -> float:
-    """Bytes a model may use in this process: provenance.MEMORY_SHARE of the smallest
-    of the machine's memory, ``ulimit -v`` and the cgroup's limit (provenance.memory_limit)."""
-    return memory_limit().budget
 
 
 @dataclass(frozen=True)

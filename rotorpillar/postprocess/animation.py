@@ -28,13 +28,13 @@ from __future__ import annotations
 import math
 import sys
 import time
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..provenance import atomic_path
+from ..records import Record
 from .animation_frames import (
     MAX_FRAMES,
     PillarMotion,
@@ -57,8 +57,7 @@ VIEW_SIZE = (400, 560)  # 3D view, width x height (px)
 PANEL_SIZE = (480, 560)  # chart panel; 880 x 560 together, multiples of 16
 
 
-@dataclass(frozen=True)
-class AnimationResult:
+class AnimationResult(Record):
     """What an animation shows and what it cost."""
 
     path: Path
@@ -77,11 +76,11 @@ class AnimationResult:
     """the encoder used"""
     seconds: float
     """wall-clock time to render and encode (s)"""
-    notes: tuple = ()
+    notes: tuple[str, ...] = ()
     """the notes shown on screen"""
     orbit_factor: float = 1.0
     """exaggeration of the rotor's motion about the pillar top (-)"""
-    focus: tuple | None = None
+    focus: tuple[float, float] | None = None
     """the window the frames were time-warped into (s), or None (uniform)"""
     frames_in_focus: int = 0
     """frames inside that window (-)"""

@@ -1,5 +1,5 @@
 """The models of one case compared: ``compare_<case>.json`` (`rotorpillar
-compare`, a :class:`~rotorpillar.transients.records.CompareResult`) and the
+compare`, a :class:`~rotorpillar.transients.compare.CompareResult`) and the
 per-model runs it names, as the report reads them; a run's X displacements
 relative to the ground.  Contracts in :mod:`.readers`."""
 
@@ -11,11 +11,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..transients.records import CompareResult
+from ..transients.compare import CompareResult
 from .readers import read_npz, read_record, read_run
 
 if TYPE_CHECKING:
-    from ..transients.run_records import RunRecord
+    from ..provenance import Provenance
+    from ..transients.model_run import RunRecord
 
 
 def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x", frame: str | None = None) -> np.ndarray | None:
@@ -46,8 +47,8 @@ class Comparison:
 
     case: str
     record: CompareResult
-    doc: dict[str, Any]
-    """the whole JSON document (the record's fields, and the scene and notes beside them)"""
+    provenance: Provenance | None
+    """what compare wrote beside the record (the scene, versions, timings)"""
     runs: dict[str, RunRecord] = field(default_factory=dict)
     """model -> the record of its simulate_<case>_<model>.json (missing: absent)"""
     arrays: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
@@ -86,7 +87,7 @@ def read_comparison(out: str | Path, case: str) -> Comparison | None:
     got = read_record(out / f"compare_{case}.json", CompareResult)
     if got is None:
         return None
-    c = Comparison(case, got.record, got.doc)
+    c = Comparison(case, got.record, got.provenance)
     per = got.record.per_model
     for m in c.models:
         row = per.get(m)

@@ -16,7 +16,10 @@ paper's Y.  Every page, table and chart of the report names a direction by
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .geometry import Mode
 
 #: The paper's symbol -> the direction in words.
 WORDS = {
@@ -88,23 +91,24 @@ def axes_legend() -> str:
     return "3D model axes: x = " + direction("X") + ", y = " + direction("Z") + ", z = " + direction("Y") + "."
 
 
-def mode_label(mode: dict[str, Any], i: int, lines: bool = False) -> str:
+def mode_label(mode: Mode, i: int, lines: bool = False) -> str:
     """The mode in words: number, family and order along the height, its
     direction or waves around (:func:`mode_name`),
     frequency; with ``lines``, short and on three lines (for a picture).
 
-    >>> mode_label({"kind": "ovalling", "n_circumferential": 2, "n_axial": 0, "frequency_hz": 7.25}, 3)
+    >>> from rotorpillar.postprocess.geometry import ModeLabel
+    >>> mode_label(ModeLabel("ovalling", n_circumferential=2, n_axial=0, frequency_hz=7.25), 3)
     'mode 4: 1st ovalling, n = 2 waves around, no node along the height, 7.250 Hz'
-    >>> print(mode_label({"kind": "bending_x", "n_axial": 1, "frequency_hz": 28.4}, 6, lines=True))
+    >>> print(mode_label(ModeLabel("bending_x", n_axial=1, frequency_hz=28.4), 6, lines=True))
     mode 7: 2nd bending
     horizontal (X)
     28.400 Hz
     """
-    kind = str(mode.get("kind", "?"))
-    f = mode.get("frequency_hz")
-    if f is None and mode.get("omega") is not None:
-        f = mode["omega"] / (2 * math.pi)
-    n_axial, n = mode.get("n_axial"), mode.get("n_circumferential")
+    kind = mode.kind
+    f = mode.frequency_hz
+    if f is None and mode.omega is not None:
+        f = mode.omega / (2 * math.pi)
+    n_axial, n = mode.n_axial, mode.n_circumferential
     if lines:
         name = mode_name(kind, n_axial, n, short_form=True)
         first, _, second = name.partition(", ")

@@ -6,11 +6,17 @@ simulation's modal coordinates refer to.  pyvista is imported lazily."""
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import msgspec
 import numpy as np
+
+from ..fem3d.modal import ModeRow
+from ..fem3d.modal_summary import ModalAxes
+from ..records import Record
 
 # --------------------------------------------------------------------------
 # Axes of the 3D model
@@ -51,7 +57,7 @@ def _axis_index(value) -> int | None:
     return None
 
 
-def tube_axes(meta, bounds=None) -> TubeAxes:
+def tube_axes(meta: Mapping[str, Any] | ModalAxes | None, bounds=None) -> TubeAxes:
     """Read ``modal.json``'s ``axes`` (strings "x"/"y"/"z", indices or unit
     vectors, under keys naming the tube axis and the paper's X), falling back
     to the longest extent of ``bounds`` (xmin, xmax, ymin, ymax, zmin, zmax)
@@ -65,7 +71,9 @@ def tube_axes(meta, bounds=None) -> TubeAxes:
     TubeAxes(axial=2, x=0)
     """
     axial = x = None
-    if isinstance(meta, dict):
+    if isinstance(meta, ModalAxes):
+        meta = msgspec.structs.asdict(meta)
+    if isinstance(meta, Mapping):
         for key, value in meta.items():
             k = key.lower()
             if axial is None and any(w in k for w in ("tube", "axial", "along", "height", "vertical")):
@@ -90,14 +98,38 @@ def tube_axes(meta, bounds=None) -> TubeAxes:
 # Mode shapes
 
 
+class ModeLabel(Record):
+    """What a picture says of a mode that has no row of modal.json (an analytic shape,
+    a placeholder): its kind and wave numbers, as a ``ModeRow`` names them."""
+
+    kind: str = "?"
+    """bending_x, bending_y, ovalling, torsion, axial, or "?" """
+    n_circumferential: int | None = None
+    """waves around (-)"""
+    n_axial: int | None = None
+    """nodes along the height (-)"""
+    frequency_hz: float | None = None
+    """(Hz)"""
+    omega: float | None = None
+    """(rad/s)"""
+    normalisation: str = ""
+    """how the shape is scaled (unit_tip, unit_max)"""
+    note: str = ""
+    """where the shape comes from"""
+
+
+#: A mode's label on a picture: a row of modal.json, or a ModeLabel.
+Mode = ModeRow | ModeLabel
+
+
 @dataclass
 class ModeSet:
     """Mode shapes on the tube's outer surface (a pyvista PolyData)."""
 
     surface: Any
     """pyvista.PolyData with point arrays ``arrays[i]`` (3-vectors)"""
-    modes: list[dict[str, Any]]
-    """metadata of each mode, from modal.json (kind, frequency_hz, ...)"""
+    modes: list[Mode]
+    """each mode's row of modal.json (kind, frequency_hz, ...), or its label"""
     arrays: list[str]
     axes: TubeAxes
     source: str
@@ -145,7 +177,9 @@ def tube_surface(grid, subdivision: int = SUBDIVISION):
     return grid.extract_surface(nonlinear_subdivision=subdivision, algorithm="dataset_surface")
 
 
-def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | None:
+def load_modes(
+    vtu: str | Path, modes: Sequence[Mode], axes_meta: Mapping[str, Any] | ModalAxes | None = None
+) -> ModeSet | None:
     """The mode shapes of a ``modes_*.vtu`` on its outer surface, with their metadata.
 
     Point arrays ``mode_000``, ``mode_001``, ... in the order of ``modes``;
@@ -170,7 +204,7 @@ def load_modes(vtu: str | Path, modes: list[dict], axes_meta=None) -> ModeSet | 
             f"({grid.n_points} points, arrays {list(grid.point_data.keys())})"
         )
     surface = tube_surface(grid)
-    meta = [modes[i] if i < len(modes) else {"kind": "?"} for i in range(len(names))]
+    meta: list[Mode] = [modes[i] if i < len(modes) else ModeLabel() for i in range(len(names))]
     return ModeSet(surface, meta, names, tube_axes(axes_meta, surface.bounds), str(vtu), grid=grid)
 
 
@@ -198,7 +232,7 @@ def cantilever_tube(
     u = np.zeros((surface.n_points, 3))
     u[:, 0] = cantilever_mode(xi) / cantilever_mode(1.0)
     surface.point_data["mode_000"] = u
-    meta = [{"kind": "bending_x", "normalisation": "unit_tip", "note": "Euler-Bernoulli cantilever, Eq. 1"}]
+    meta: list[Mode] = [ModeLabel("bending_x", normalisation="unit_tip", note="Euler-Bernoulli cantilever, Eq. 1")]
     return ModeSet(
         surface,
         meta,
@@ -208,13 +242,13 @@ def cantilever_tube(
     )
 
 
-def bending_columns(modes: list[dict], k: int, explicit=None) -> list[int]:
+def bending_columns(modes: Sequence[Mode], k: int, explicit=None) -> list[int]:
     """Indices into ``modes`` of the k modes a simulation's ``modal_coordinates``
     columns refer to: ``explicit`` if the simulation names them, else the
     first k modes of kind "bending_x" (the paper's X), else the first k
     bending modes of any direction.
 
-    >>> ms = [{"kind": "bending_x"}, {"kind": "bending_y"}, {"kind": "ovalling"}, {"kind": "bending_x"}]
+    >>> ms = [ModeLabel(k) for k in ("bending_x", "bending_y", "ovalling", "bending_x")]
     >>> bending_columns(ms, 2), bending_columns(ms, 1, explicit=[3])
     ([0, 3], [3])
     """
@@ -222,8 +256,8 @@ def bending_columns(modes: list[dict], k: int, explicit=None) -> list[int]:
         idx = [int(i) for i in explicit][:k]
         if len(idx) == k and all(0 <= i < len(modes) for i in idx):
             return idx
-    x = [i for i, m in enumerate(modes) if str(m.get("kind", "")) == "bending_x"]
+    x = [i for i, m in enumerate(modes) if m.kind == "bending_x"]
     if len(x) >= k:
         return x[:k]
-    anyb = [i for i, m in enumerate(modes) if str(m.get("kind", "")).startswith("bending")]
+    anyb = [i for i, m in enumerate(modes) if m.kind.startswith("bending")]
     return anyb[:k]

@@ -188,12 +188,6 @@ def slug(text: str) -> str:
     return re.sub(r"[^a-z0-9]+", "-", str(text).lower()).strip("-")[:60] or "part"
 
 
-def subsection(section_id: str, title: str) -> str:
-    """A subsection heading with its id (``<section>-<slug of the title>``):
-    the contents list links it (:func:`page` lists every <h3>)."""
-    return tag("h3", title, id=f"{section_id}-{slug(title)}")
-
-
 def section(ident: str, title: str, parts) -> str:
     return tag("section", [tag("h2", title)] + [Raw(p) for p in parts], id=ident)
 

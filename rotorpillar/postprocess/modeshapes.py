@@ -22,7 +22,7 @@ import numpy as np
 
 from ..provenance import atomic_path
 from .directions import MODEL_AXIS, mode_label
-from .geometry import ModeSet
+from .geometry import Mode, ModeSet
 from .offscreen import pyvista
 from .style import tag_png
 
@@ -83,7 +83,7 @@ def is_beam_mode(kind: str) -> bool:
 def mode_scale(modeset: ModeSet, i: int) -> float:
     """The factor that brings mode i's largest displacement to its target size."""
     u = np.linalg.norm(modeset.shape(i), axis=1).max()
-    kind = str(modeset.modes[i].get("kind", ""))
+    kind = modeset.modes[i].kind
     target = BEAM_TARGET * modeset.height if is_beam_mode(kind) else SHELL_TARGET * radius_of(modeset)
     return nice_factor(target / u) if u > 0 else 1.0
 
@@ -135,14 +135,15 @@ def frame(
     return float(half)
 
 
-def has_sections(mode: dict) -> bool:
+def has_sections(mode: Mode) -> bool:
     """Does this mode change the shape of the cross-section (n >= 2 waves around)?
 
-    >>> has_sections({"kind": "ovalling", "n_circumferential": 3}), has_sections({"kind": "bending_x"})
+    >>> from rotorpillar.postprocess.geometry import ModeLabel
+    >>> has_sections(ModeLabel("ovalling", 3)), has_sections(ModeLabel("bending_x"))
     (True, False)
     """
-    kind = str(mode.get("kind", ""))
-    n = mode.get("n_circumferential")
+    kind = mode.kind
+    n = mode.n_circumferential
     return kind == "ovalling" or (not is_beam_mode(kind) and isinstance(n, int) and n >= 2)
 
 
@@ -259,7 +260,7 @@ def _add_mode(
     if triad:
         _triad(plotter, modeset, font)
     _label(plotter, f"{label}\ndeformation x{factor:g}", font, view_height)
-    beam = is_beam_mode(modeset.modes[i].get("kind", ""))
+    beam = is_beam_mode(modeset.modes[i].kind)
     d = view_direction(modeset, u, elevation_deg=12.0 if beam else 20.0)
     pts = np.concatenate([np.asarray(mesh.points), np.asarray(modeset.surface.points)])
     # the renderer's camera, not plotter.camera: that getter first places a default view
@@ -395,10 +396,11 @@ def render_mode(modeset: ModeSet, i: int, path: str | Path, size=MODE_SIZE) -> P
     return Path(path)
 
 
-def _sheet_label(m: dict, i: int) -> str:
+def _sheet_label(m: Mode, i: int) -> str:
     r"""A tile's label: number and family, direction or waves around, frequency.
 
-    >>> _sheet_label({"kind": "bending_y", "n_axial": 0, "frequency_hz": 4.0769}, 1)
+    >>> from rotorpillar.postprocess.geometry import ModeLabel
+    >>> _sheet_label(ModeLabel("bending_y", n_axial=0, frequency_hz=4.0769), 1)
     '2: 1st bending\nalong the shaft (Z)\n4.077 Hz'
     """
     return mode_label(m, i, lines=True).removeprefix("mode ")

@@ -11,8 +11,12 @@ it is not resolved).  Figure and atomic PNG from :mod:`.style`.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .style import COLOURS, figure, save
+
+if TYPE_CHECKING:
+    from ..transients.pareto import ParetoStudy
 
 FAMILY_STYLE = {
     "rom": dict(color="#0072B2", marker="o", label="ROM (1, 2, ... pillar modes)"),
@@ -32,22 +36,27 @@ def _short(label: str) -> str:
     )
 
 
-def pareto_chart(pareto: dict, path: str | Path, title: str = "") -> Path:
-    """Write the chart of a ParetoStudy's JSON to ``path`` (PNG)."""
+def pareto_chart(pareto: ParetoStudy, path: str | Path, title: str = "") -> Path:
+    """Write the chart of a ParetoStudy to ``path`` (PNG)."""
     fig, axes = figure(1400, 560, ncols=2, sharey=True)
-    runs = [r for r in pareto["runs"] if r.get("ok")]
-    ref = pareto.get("reference") or {}
-    chosen = {pareto.get("chosen", {}).get(k) for k in ("rom", "fem3d")} - {None}
-    errs = [abs(r[f]) for r in runs for f, _, _ in PANELS if r.get(f)]
-    errs += [e for e in (ref.get("peak_error"), ref.get("history_error")) if e]
+    runs = [r for r in pareto.runs if r.ok]
+    ref = pareto.reference
+    chosen = {c for c in (pareto.chosen.rom, pareto.chosen.fem3d) if c is not None}
+
+    def error(r, field: str) -> float | None:
+        value: float | None = getattr(r, field)
+        return value
+
+    errs = [abs(e) for r in runs for f, _, _ in PANELS if (e := error(r, f))]
+    errs += [e for e in (ref.peak_error, ref.history_error) if e]
     bottom = max(FLOOR, 0.3 * min(errs)) if errs else FLOOR
     for ax, (field, front_key, panel_title) in zip(axes, PANELS):
         for fam, style in FAMILY_STYLE.items():
             pts = sorted(
                 (
-                    (r["wall_seconds"], abs(r[field]), r["label"])
+                    (r.wall_seconds, abs(e), r.label)
                     for r in runs
-                    if r["family"] == fam and r.get(field) is not None
+                    if r.family == fam and (e := error(r, field)) is not None
                 ),
                 key=lambda p: p[0],
             )
@@ -65,35 +74,40 @@ def pareto_chart(pareto: dict, path: str | Path, title: str = "") -> Path:
                     textcoords="offset points",
                     color=style["color"],
                 )
-        front = [r for r in runs if r["label"] in set(pareto["fronts"].get(front_key, []))]
-        fr = sorted((r["wall_seconds"], max(abs(r[field]), FLOOR)) for r in front if r.get(field) is not None)
+        on_front = set(getattr(pareto.fronts, front_key))
+        fr = sorted(
+            (r.wall_seconds, max(abs(e), FLOOR))
+            for r in runs
+            if r.label in on_front and (e := error(r, field)) is not None
+        )
         if fr:
             xs, ys = zip(*fr)
             ax.step(xs, ys, where="post", color="0.3", lw=2.5, alpha=0.35, zorder=0, label="Pareto front")
             ax.plot(xs, ys, ls="none", marker="o", ms=12, mfc="none", mec="0.3", zorder=0)
         for r in runs:
-            if r["label"] in chosen and r.get(field) is not None:
+            e = error(r, field)
+            if r.label in chosen and e is not None:
                 ax.plot(
-                    [r["wall_seconds"]],
-                    [max(abs(r[field]), FLOOR)],
+                    [r.wall_seconds],
+                    [max(abs(e), FLOOR)],
                     marker="*",
                     ms=17,
                     color=COLOURS["numeric"],
                     mec="k",
                     ls="none",
                     zorder=5,
-                    label="compare's models" if r["label"] == min(chosen) else None,
+                    label="compare's models" if r.label == min(chosen) else None,
                 )
-        own = ref.get("peak_error" if front_key == "peak_tip" else "history_error")
+        own = ref.peak_error if front_key == "peak_tip" else ref.history_error
         if own:
-            ax.axhspan(bottom, own, color="0.85", zorder=-1, label=f"the reference's own error ({ref.get('method')})")
+            ax.axhspan(bottom, own, color="0.85", zorder=-1, label=f"the reference's own error ({ref.method})")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_ylim(bottom=bottom)
         ax.set_xlabel("wall time, warm (s)")
         ax.set_title(panel_title, fontsize=10)
         ax.grid(True, which="major", alpha=0.3)
-    axes[0].set_ylabel(f"relative error against {ref.get('label', 'the finest 3D run')}")
+    axes[0].set_ylabel(f"relative error against {ref.label}")
     axes[0].legend(loc="best", fontsize=7)
     if title:
         fig.suptitle(title, fontsize=10)

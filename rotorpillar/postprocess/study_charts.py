@@ -22,6 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..records import Figure
+from ..studies.boundary import ThresholdBoundary, TorqueBoundary
 from .style import COLOURS, CYCLE, figure, save
 
 STANDARD_GRAVITY = 9.80665
@@ -68,13 +70,13 @@ def outcome(run, resonances) -> int:
     (the drive's free speed lies below it), 2 above every resonance.
 
     >>> from types import SimpleNamespace as S
-    >>> [outcome(S(passed=p, final_speed=w), [{"omega": 20.0}, {"omega": 60.0}])
+    >>> [outcome(S(passed=p, final_speed=w), [S(omega=20.0), S(omega=60.0)])
     ...  for p, w in ((False, 19.0), (True, 30.0), (True, 70.0))]
     [0, 1, 2]
     """
     if not run.passed:
         return 0
-    top = max((float(r["omega"]) for r in resonances or []), default=0.0)
+    top = max((float(r.omega) for r in resonances or ()), default=0.0)
     return 2 if run.final_speed > top else 1
 
 
@@ -109,8 +111,8 @@ def capture_map(path, result) -> Path:
         xkey, ykey = keys
     xs = list(next(a for a in axes if a.key == xkey).values)
     ys = list(next(a for a in axes if a.key == ykey).values)
-    b = result.boundary or {}
-    res = b.get("resonances") or []
+    b = result.boundary.predicted if result.boundary is not None else None
+    res = b.resonances if isinstance(b, TorqueBoundary) else ()
     grid = np.full((len(ys), len(xs)), np.nan)
     for r in result.runs:
         i, j = ys.index(r.params[ykey]), xs.index(r.params[xkey])
@@ -136,15 +138,15 @@ def capture_map(path, result) -> Path:
         handles.append(h)
     y_lo, y_hi = _edges(ys)[0], _edges(ys)[-1]
     labels = []
-    if b.get("kind") == "torque" and b.get("other_key") == xkey:
-        bx = list(np.asarray(b["other_values"], dtype=float))
-        which = list(b.get("resonance") or [None] * len(bx))
-        omega = {r["index"]: r["omega"] for r in res}
+    if isinstance(b, TorqueBoundary) and b.other_key == xkey:
+        bx = list(np.asarray(b.other_values, dtype=float))
+        which = list(b.resonance or [None] * len(bx))
+        omega = {r.index: r.omega for r in res}
         for name, style, lab in (
             ("averaging", "-", "needed to pass: averaging (Eq. 19-23), A fold"),
             ("exact_linear", "--", "needed to pass: exact linear balance"),
         ):
-            by = [np.nan if v is None else v for v in b[name]]
+            by = [np.nan if v is None else v for v in getattr(b, name)]
             first = True
             for idx, sx, sy in _segments(bx, by, which):
                 (h,) = ax.plot(sx, sy, style, color=COLOURS["analytic"], lw=1.8, label=lab if first else None)
@@ -208,14 +210,14 @@ def final_speed_chart(path, result) -> Path:
     ax.plot(x, W, "-", color=COLOURS["reference"], lw=0.8)
     ax.plot(x[~cap], W[~cap], "o", color=COLOURS["stable"], label="passed")
     ax.plot(x[cap], W[cap], "s", color=COLOURS["unstable"], label="captured at a resonance")
-    b = result.boundary or {}
-    marks = []
-    if b.get("kind") == "torque" and key == TORQUE:
-        marks = [(b["averaging"][0], "-", "averaging theory (Eq. 19-23)"), (b["exact_linear"][0], "--", "exact linear")]
-    elif b.get("kind") == "threshold":
+    b = result.boundary.predicted if result.boundary is not None else None
+    marks: list[tuple[float | None, str, str]] = []
+    if isinstance(b, TorqueBoundary) and key == TORQUE:
+        marks = [(b.averaging[0], "-", "averaging theory (Eq. 19-23)"), (b.exact_linear[0], "--", "exact linear")]
+    elif isinstance(b, ThresholdBoundary):
         marks = [
-            (b.get("threshold_averaging"), "-", "averaging theory (Eq. 19-23)"),
-            (b.get("threshold_exact_linear"), "--", "exact linear"),
+            (b.threshold_averaging, "-", "averaging theory (Eq. 19-23)"),
+            (b.threshold_exact_linear, "--", "exact linear"),
         ]
     for v, style, lab in marks:
         if v is not None:
@@ -254,27 +256,27 @@ def ida_chart(path, result) -> Path:
     return save(fig, path)
 
 
-def study_charts(result, out_dir) -> list[dict]:
-    """Every chart the study allows, into ``out_dir``: [{file, caption}]."""
+def study_charts(result, out_dir) -> list[Figure]:
+    """Every chart the study allows, into ``out_dir``."""
     out = Path(out_dir)
     figs = []
     keys = [a.key for a in result.axes]
     if result.case == "earthquake":
         ida_chart(out / IDA, result)
         figs.append(
-            {
-                "file": IDA,
-                "caption": "Incremental dynamic analysis: peak tip displacement "
+            Figure(
+                file=IDA,
+                caption="Incremental dynamic analysis: peak tip displacement "
                 "relative to the ground and peak shaft deflection against the peak ground "
                 "acceleration, one line per record.",
-            }
+            )
         )
     elif len(keys) == 2 and all(_numeric(a.values) for a in result.axes):
         capture_map(out / CAPTURE_MAP, result)
         figs.append(
-            {
-                "file": CAPTURE_MAP,
-                "caption": "Capture map of run-ups from rest, per run: "
+            Figure(
+                file=CAPTURE_MAP,
+                caption="Capture map of run-ups from rest, per run: "
                 "captured at a resonance (red), passed the resonances it reached but settled "
                 "at a free speed below the next one (blue), or passed every resonance "
                 "(green); the lines are the torque needed to pass by the averaging theory "
@@ -282,16 +284,16 @@ def study_charts(result, out_dir) -> list[dict]:
                 "pieces, each labelled with the resonance it belongs to."
                 if result.case == "runup"
                 else "Run-downs: settled at no resonance (green) or caught at one (red).",
-            }
+            )
         )
     elif len(keys) == 1 and _numeric(result.axes[0].values):
         final_speed_chart(out / FINAL, result)
         figs.append(
-            {
-                "file": FINAL,
-                "caption": "Final speed of each run against the study's axis; "
+            Figure(
+                file=FINAL,
+                caption="Final speed of each run against the study's axis; "
                 "squares: captured at a resonance; vertical lines: the threshold the "
                 "averaging theory and the exact linear balance predict.",
-            }
+            )
         )
     return figs

@@ -27,12 +27,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..records import Figure
 from .style import COLOURS, CYCLE, figure, save
 
 if TYPE_CHECKING:
     from ..scene import Scene
-    from ..transients.integrator_records import AccuracyRow, DriftRow, StabilityRow
-    from ..transients.sweep_records import SweepAnalysis
+    from ..transients.integrator_study import AccuracyRow, DriftRow, StabilityRow
+    from ..transients.sweep import SweepAnalysis
 
 #: Standard gravity, to show the ground acceleration in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
@@ -338,7 +339,7 @@ def integrators_chart(
     title: str = "",
 ) -> Path:
     """The rows of the integrator study's three experiments
-    (``rotorpillar.transients.integrator_records``).
+    (``rotorpillar.transients.integrator_study``).
     Three panels stacked: error against force evaluations, cost and
     failure as modes are added, energy drift; one colour and marker per
     method throughout, one legend for all."""
@@ -356,7 +357,8 @@ def integrators_chart(
         )
         if rows:
             ls = "--" if rows[0].family == "fixed" else "-"
-            ax[0].loglog([r.nfev for r in rows], [max(r.error, 1e-16) for r in rows], ls=ls, lw=1, label=m, **style[m])
+            errors = [max(r.error or 0.0, 1e-16) for r in rows]  # the rows kept have one
+            ax[0].loglog([r.nfev for r in rows], errors, ls=ls, lw=1, label=m, **style[m])
     ax[0].axhline(0.1, color=COLOURS["reference"], lw=0.7, ls=":")
     ax[0].set_xlabel("force evaluations (dashed lines: fixed step)")
     ax[0].set_ylabel("max tip error / max tip")
@@ -387,7 +389,7 @@ def integrators_chart(
     return save(fig, path)
 
 
-def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[str, str]]:
+def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[Figure]:
     """A transient run's charts (a ``rotorpillar.transients.model_run.ModelRun``): the
     earthquake's histories, the run-up's or run-down's speed and tip envelope,
     the sweep's curves; returns [{file, caption}]."""
@@ -407,11 +409,10 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
             frame=frame,
         )
         return [
-            {
-                "file": path.name,
-                "caption": f"Earthquake on the {name} model: ground acceleration, "
-                f"tip and rotor X ({frame}), rotor speed.",
-            }
+            Figure(
+                file=path.name,
+                caption=f"Earthquake on the {name} model: ground acceleration, tip and rotor X ({frame}), rotor speed.",
+            )
         ]
     resonances = [
         (f"omega_{r.index} ({r.direction})", r.omega)
@@ -419,10 +420,10 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
         if r.omega <= 1.2 * max(np.max(data["Omega"]), 1.0)
     ]
     from ..reduced.stationary import PassingTorqueStudy
-    from ..transients.run_records import ReducedRun
+    from ..transients.model_run import ReducedRun
 
     extra = []
-    pt = run.record.summary.passing_torque if isinstance(run.record, ReducedRun) else None
+    pt = run.record.passing_torque if isinstance(run.record, ReducedRun) else None
     if isinstance(pt, PassingTorqueStudy):
         bs = pt.bracket_series
         for row, W, pk, f in zip(pt.bracket_runs, bs.Omega, bs.tip_peak, (0.95, 1.05)):
@@ -466,7 +467,7 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
         "rundown": "Run-down from the operating speed: rotor speed and tip envelope." + zoom,
         "sweep": "Quasi-static sweep of M0 up and down: rotor speed and tip envelope.",
     }[case]
-    figs = [{"file": path.name, "caption": caption}]
+    figs = [Figure(file=path.name, caption=caption)]
     if case == "sweep" and run.case_result is not None:
         sweep = run.case_result.sweep
         labels = [(f"{r.direction}{r.index}", r.omega, r.direction) for r in run.resonances]
@@ -478,11 +479,11 @@ def model_run_charts(out: Path, scene: Scene, run: Any, stem: str) -> list[dict[
         p2 = out / f"{stem}_az.png".replace(f"_{name}_az", f"_az_{name}")
         sweep_chart(p2, sweep, labels, f"{scene.name}: quasi-static sweep against Eq. 19-23")
         figs.append(
-            {
-                "file": p2.name,
-                "caption": "Quasi-static sweep against the averaging theory: "
+            Figure(
+                file=p2.name,
+                caption="Quasi-static sweep against the averaging theory: "
                 "stationary curve M0(Omega) with the jumps (left), "
                 "amplitude against z = Omega/omega_i (right).",
-            }
+            )
         )
     return figs

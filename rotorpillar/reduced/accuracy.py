@@ -31,12 +31,11 @@ from __future__ import annotations
 
 import cmath
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..provenance import JsonRecord
+from ..records import Record
 from .excitation import GroundMotion
 
 #: A run whose scheme moves the fastest frequency it must resolve by more than
@@ -58,8 +57,7 @@ EXPLICIT_RK = ("dp5", "RK45", "DOP853")
 VARIABLE_ORDER = ("BDF", "LSODA")
 
 
-@dataclass(frozen=True)
-class SchemeError(JsonRecord):
+class SchemeError(Record):
     """A scheme's error on an undamped oscillator at one step."""
 
     steps_per_period: float
@@ -265,8 +263,7 @@ def full_order_parameters(method: str, rho_inf: float) -> dict[str, float]:
 FULL_ORDER_ERROR = 2e-3
 
 
-@dataclass(frozen=True)
-class StepRule(JsonRecord):
+class StepRule(Record):
     """How a full-order run's step was chosen and what it resolves (the JSON's ``integrator``)."""
 
     scheme: str
@@ -353,8 +350,7 @@ def full_order_step(
 # The check a run passes
 
 
-@dataclass(frozen=True)
-class AccuracyCheck(JsonRecord):
+class AccuracyCheck(Record):
     """The step a run took against the periods it had to resolve and its duration."""
 
     method: str

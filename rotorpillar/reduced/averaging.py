@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from ..provenance import JsonRecord
+from ..records import Record
 
 #: A speed or an array of speeds (rad/s), and what the closed forms give for it.
 Speeds = float | NDArray[np.float64]
@@ -236,8 +236,7 @@ def _roots(fun: Callable[[Speeds], Speeds], grid: NDArray[np.float64]) -> list[f
 # Stationary regimes, stability, jumps
 
 
-@dataclass(frozen=True)
-class Stationary(JsonRecord):
+class Stationary(Record):
     """A stationary regime of the averaged equations (Md = L, Eq. 21-23)."""
 
     omega: float
@@ -248,8 +247,7 @@ class Stationary(JsonRecord):
     """d(Md - L)/dOmega (N*m*s): negative when stable"""
 
 
-@dataclass(frozen=True)
-class Jump(JsonRecord):
+class Jump(Record):
     """Where a quasi-static run-up or run-down leaves its branch, and where it lands."""
 
     direction: str

@@ -2,17 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-from ..provenance import JsonRecord
+from ..records import Record
 from ..scene import Converge, Drive, Load, Sweep
 from .averaging import Characteristic
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 
 
-@dataclass(frozen=True)
-class ExcitationBand(JsonRecord):
+class ExcitationBand(Record):
     """The frequencies the scene excites, and the band a model must resolve
     (``excitation_band``)."""
 

@@ -14,9 +14,7 @@ does not have.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
-from ..provenance import JsonRecord
+from ..records import Record
 
 #: Above this ratio of the published static gain over the consistent one (1),
 #: the paper model's earthquake is flagged: the published forcing then
@@ -35,8 +33,7 @@ def published_static_gain(tip_stiffness: float, shaft_stiffness: float) -> float
     return (tip_stiffness + 2 * shaft_stiffness) / tip_stiffness
 
 
-@dataclass(frozen=True)
-class ForcingTerms(JsonRecord):
+class ForcingTerms(Record, omit_defaults=True):
     """Eq. 4's base forcing on q1 and q2, in words with this scene's numbers
     (stiffness N/m on q5, damping N*s/m on q5')."""
 
@@ -44,12 +41,11 @@ class ForcingTerms(JsonRecord):
     """the forcing on the tip q1"""
     q2: str
     """the forcing on the rotor centre q2"""
-    relative_coordinates: str | None = field(default=None, metadata={"omit_if_none": True})
+    relative_coordinates: str | None = None
     """the same forcing in coordinates relative to the ground (absent for the published one)"""
 
 
-@dataclass(frozen=True)
-class BaseForcingFinding(JsonRecord):
+class BaseForcingFinding(Record):
     """Eq. 4's published base forcing against the consistent one, for a scene."""
 
     published: ForcingTerms

@@ -18,14 +18,12 @@ is the first-order expansion of the tip's curve about omega_i.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..provenance import JsonRecord
+from ..records import Record
 from . import averaging as av
 from .rotor_models import RotorStructure
 from .system import Resonance
@@ -37,8 +35,7 @@ def phase_lag(Z: ArrayLike) -> NDArray[np.float64]:
     return lag
 
 
-@dataclass(frozen=True)
-class BodeCurve(JsonRecord):
+class BodeCurve(Record):
     """Steady unbalance response of one model against speed."""
 
     model: str
@@ -112,8 +109,7 @@ def speed_grid(resonances: Iterable[Resonance], top: float, n: int = 600, dense:
     return speeds
 
 
-@dataclass(frozen=True)
-class AveragingCurve(JsonRecord):
+class AveragingCurve(Record):
     """Eq. 19's amplitude of one resonance, over the speeds near it."""
 
     index: int
@@ -154,8 +150,3 @@ def peak_near(curve_: BodeCurve, omega: float, width: float = 0.2) -> tuple[floa
     """The curve's highest local peak within +-``width`` of ``omega`` (speed, amplitude), or None."""
     near = [p for p in curve_.peaks if abs(p[0] - omega) <= width * omega]
     return max(near, key=lambda p: p[1]) if near else None
-
-
-def relative_difference(a: float, b: float) -> float:
-    """a / b - 1 (-); nan when b is 0."""
-    return a / b - 1 if b else math.nan

@@ -41,9 +41,8 @@ partial factors on the actions are the designer's to apply.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
-from ..provenance import JsonRecord
+from ..records import Record
 
 #: the fabrication quality classes of EN 1993-1-6 (D.1.2.2): Q, meridional compression
 QUALITY_PARAMETER = {"A": 40.0, "B": 25.0, "C": 16.0}
@@ -107,8 +106,7 @@ def buckling_reduction(
     return alpha / slenderness**2
 
 
-@dataclass(frozen=True)
-class MeridionalBuckling(JsonRecord):
+class MeridionalBuckling(Record):
     """The tube's design buckling stress under meridional compression and bending."""
 
     quality_class: str
@@ -201,8 +199,7 @@ def meridional_buckling(
 PASS, FAIL, NOT_ASSESSED = "pass", "fail", "not assessed"
 
 
-@dataclass(frozen=True)
-class Check(JsonRecord):
+class Check(Record):
     """One demand against one capacity."""
 
     name: str

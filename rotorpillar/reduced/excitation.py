@@ -46,8 +46,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import Record
 from ..scene import read_text_file
-from .excitation_records import ExcitationSizes, NoMotionSizes, PulseSizes, RecordSizes, SpectralOrdinates
 
 STANDARD_GRAVITY = 9.80665  # m/s**2
 UNITS = {"g": STANDARD_GRAVITY, "m/s2": 1.0, "cm/s2": 0.01}
@@ -59,6 +59,105 @@ BUILTIN_RECORDS = {
     ),
 }
 KINDS = ("none", "pulse", "record")
+
+
+# -- what the functions return: the motion's sizes (a union tagged by ``kind``) and spectrum
+
+
+class NoMotionSizes(Record, tag_field="kind", tag="none"):
+    """No ground motion."""
+
+    @property
+    def kind(self) -> str:
+        return "none"
+
+
+class PulseSizes(Record, tag_field="kind", tag="pulse"):
+    """The sizes of the paper's harmonic pulse q5 = A (cos(omega t) - 1) on its window."""
+
+    law: str
+    """the pulse's law, in words"""
+    amplitude: float
+    """A (m)"""
+    frequency: float
+    """omega (rad/s)"""
+    start: float
+    """start of the window (s)"""
+    end: float
+    """end of the window (s)"""
+    displacement_step_at_start: float
+    """the ground's jump at the window's start, A (cos(omega start) - 1) (m)"""
+    peak_displacement: float
+    """largest |q5| (m)"""
+    peak_velocity: float
+    """A omega (m/s)"""
+    peak_acceleration: float
+    """A omega**2 (m/s**2)"""
+    peak_acceleration_g: float
+    """the peak acceleration in standard gravities (g)"""
+    inertial_final_displacement: float
+    """the ground displacement at the window's end whose second derivative is the
+    applied acceleration (what the modal model's ground does) (m)"""
+    realistic: bool
+    """False: the pulse is no realistic earthquake"""
+    statement: str
+    """why, in words"""
+
+    @property
+    def kind(self) -> str:
+        return "pulse"
+
+
+class RecordSizes(Record, tag_field="kind", tag="record", omit_defaults=True):
+    """The sizes of an accelerogram on its uniform grid."""
+
+    name: str
+    """the record's name (a built-in's, or the file's stem)"""
+    source: str
+    """where it comes from"""
+    time_step: float
+    """uniform sampling step (s)"""
+    start: float
+    """time of the first sample (s)"""
+    end: float
+    """time of the last sample (s)"""
+    samples: int
+    """samples on the uniform grid (-)"""
+    peak_acceleration: float
+    """PGA (m/s**2)"""
+    peak_acceleration_g: float
+    """PGA in standard gravities (g)"""
+    peak_velocity: float
+    """PGV (m/s)"""
+    peak_displacement: float
+    """PGD (m)"""
+    band: float
+    """angular frequency below which 99 % of the record's Fourier energy lies (rad/s)"""
+    realistic: bool
+    """the sizes lie within those of recorded earthquakes"""
+    statement: str | None = None
+    """why the record is not realistic (absent when it is)"""
+
+    @property
+    def kind(self) -> str:
+        return "record"
+
+
+#: The sizes of any ground motion (its ``kind`` says which).
+ExcitationSizes = NoMotionSizes | PulseSizes | RecordSizes
+
+
+class SpectralOrdinates(Record, eq=False):  # arrays: no elementwise ==
+    """Response-spectrum ordinates of a ground motion at given periods (eqsig)."""
+
+    periods: NDArray[np.float64]
+    """the oscillators' periods (s)"""
+    damping: float
+    """their damping ratio (-)"""
+    s_a: NDArray[np.float64]
+    """pseudo-acceleration at each period (m/s**2)"""
+    s_d: NDArray[np.float64]
+    """relative displacement at each period (m)"""
 
 
 @dataclass(frozen=True, eq=False)
@@ -152,7 +251,6 @@ class GroundMotion:
             A, w = self.amplitude, self.frequency
             u0 = A * (math.cos(w * self.start) - 1)
             return PulseSizes(
-                kind="pulse",
                 law="q5 = A*(cos(omega*t) - 1) for start <= t < end, 0 outside",
                 amplitude=A,
                 frequency=w,
@@ -182,7 +280,6 @@ class GroundMotion:
         why = "; ".join(unrealistic_record({**peaks, "time_step": self.time_step}))
         unit = "check its time column's unit and its acceleration unit"
         return RecordSizes(
-            kind="record",
             name=self.name,
             source=self.source,
             time_step=self.time_step,

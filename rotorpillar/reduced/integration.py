@@ -39,11 +39,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..provenance import JsonRecord
+from ..records import Record
 from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
+from .accuracy import AccuracyCheck, StepRule
 from .drive import DriveSchedule
-from .excitation_records import NoMotionSizes
+from .excitation import NoMotionSizes
 from .rhs import Floats, Packed
 from .transient_model import G, M, Motion, TransientModel
 
@@ -63,8 +64,7 @@ STATUS = {
 }
 
 
-@dataclass(frozen=True)
-class EnergyBalance(JsonRecord):
+class EnergyBalance(Record):
     """E(t) - E(0) against the work done over the run (J), and how well it closes."""
 
     energy_change: float
@@ -83,6 +83,42 @@ class EnergyBalance(JsonRecord):
     """the energy exchanged the residual is measured against (J)"""
     relative_error: float
     """max_abs_residual / scale (-)"""
+
+
+class IntegratorStats(Record, kw_only=True, omit_defaults=True):
+    """What the integrator did on a run (a run's ``integrator``); a field a method does not
+    report is absent."""
+
+    method: str
+    """one of INTEGRATORS"""
+    status: str
+    """"ok", or why it stopped"""
+    steps: int
+    """integration steps taken (-)"""
+    nfev: int = 0
+    """right-hand side evaluations (-; 0 and absent: not counted, the 3D step loop)"""
+    njev: int | None = None
+    """Jacobian evaluations, scipy's implicit methods (-)"""
+    rejected: int | None = None
+    """steps rejected by the error control, dp5 (-)"""
+    smallest_step: float | None = None
+    """the smallest step taken, dp5 (s)"""
+    rtol: float | None = None
+    """relative tolerance, adaptive methods (-)"""
+    time_step: float | None = None
+    """the step, fixed-step methods (s)"""
+    newton_iterations: int | None = None
+    """Newton iterations over the run, implicit fixed-step methods (-)"""
+    scheme: dict[str, float] | str | None = None
+    """the fixed-step scheme's parameters (alpha_m, alpha_f, beta, gamma), or in words"""
+    wall_seconds: float = 0.0
+    """the integration's wall time (s)"""
+    implicit: bool | None = None
+    """the method is implicit"""
+    accuracy: AccuracyCheck | None = None
+    """the step against what the run had to resolve"""
+    step_rule: StepRule | None = None
+    """the full order's step rule (beam, 3D)"""
 
 
 @dataclass(frozen=True)
@@ -128,14 +164,15 @@ class Transient(Generic[M, G]):
     peak: NDArray[np.float64]
     """(n_t, n + 1) largest |q_i| (and, last, |tip X|) in the interval ending
     at each output, over every step (m); scipy methods: at the outputs only"""
-    stats: dict[str, Any]
+    stats: IntegratorStats
+    """what the integrator did"""
     prescribed_speed: bool = False
     drive: DriveSchedule | None = None
     motion: G | None = None
 
     @property
     def ok(self) -> bool:
-        return bool(self.stats["status"] == "ok")
+        return self.stats.status == "ok"
 
     @property
     def Omega(self) -> NDArray[np.float64]:
@@ -252,10 +289,13 @@ def simulate(
         out = _run_scipy(P, model, q0, v0, t_start, t_end, drive, motion, settings, speed_scale)
     else:
         out = _run_fixed(P, model, q0, v0, t_start, t_end, drive, motion, settings, speed_scale)
-    t, q, v, w, peak, stats = out
-    stats["wall_seconds"] = time.perf_counter() - start
-    stats["method"] = settings.method
-    stats["implicit"] = settings.method in IMPLICIT
+    t, q, v, w, peak, counts = out
+    stats = IntegratorStats(
+        method=settings.method,
+        wall_seconds=time.perf_counter() - start,
+        implicit=settings.method in IMPLICIT,
+        **counts,
+    )
     return Transient(model, t, q, v, w, peak, stats, prescribed_speed, drive, motion)
 
 

@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..provenance import JsonRecord
+from ..provenance import Record
 from ..scene import Pillar
 from .beam_fe import BaseSprings
 from .pillar import TubeSection
@@ -154,8 +154,7 @@ def hermite_peak(t: ArrayLike, f: ArrayLike, dfdt: ArrayLike) -> tuple[float, fl
 # Truncation: how many modes the section forces need
 
 
-@dataclass(frozen=True)
-class TruncationRow(JsonRecord):
+class TruncationRow(Record):
     """The k-mode superposition's error over the band, the worse of the two loads."""
 
     modes: int
@@ -168,8 +167,7 @@ class TruncationRow(JsonRecord):
     """base shear's largest relative error over the band (-)"""
 
 
-@dataclass(frozen=True)
-class ForceTruncation(JsonRecord):
+class ForceTruncation(Record):
     """How many modes the section forces need (the mode displacement method)."""
 
     band_top: float
@@ -289,17 +287,6 @@ def modal_damping(pm: PillarModes, tip_damping: float) -> NDArray[np.float64]:
     return tip_dashpot(pm.count, tip_damping)
 
 
-def section_modulus(section: TubeSection) -> float:
-    """W = I / c, c = D0 / 2 (m**3)."""
-    return section.second_moment / (section.outer_diameter / 2)
-
-
-def thin_tube_shear_stress(shear: ArrayLike, section: TubeSection) -> NDArray[np.float64]:
-    """Largest shear stress of a thin circular tube, 2 V / A at the neutral axis (Pa)."""
-    stress: NDArray[np.float64] = 2 * np.abs(np.asarray(shear, dtype=float)) / section.area
-    return stress
-
-
 # --------------------------------------------------------------------------
 # A tower of cans: the same quantities with the section of each height
 
@@ -356,8 +343,7 @@ def tip_statics_of_beam(
     return UnitLoads(float(tip[0]), float(tip[1]))
 
 
-@dataclass(frozen=True)
-class CanStress(JsonRecord):
+class CanStress(Record):
     """The largest meridional stress of one can over a run, where and when it occurred."""
 
     can: int

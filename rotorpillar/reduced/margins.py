@@ -34,9 +34,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
 
-from ..provenance import JsonRecord
+from ..records import Record
 
 #: AF below which a mode is critically damped and needs no margin (API 684)
 AF_CRITICALLY_DAMPED = 2.5
@@ -64,8 +63,7 @@ def actual_margin(running_speed: float, mode_frequency: float) -> float:
     return abs(mode_frequency - running_speed) / running_speed
 
 
-@dataclass(frozen=True)
-class ModeEntry(JsonRecord):
+class ModeEntry(Record):
     """One structural mode a running speed is checked against."""
 
     omega: float
@@ -80,8 +78,7 @@ class ModeEntry(JsonRecord):
     """where the damping comes from"""
 
 
-@dataclass(frozen=True)
-class SeparationRow(JsonRecord):
+class SeparationRow(Record):
     """A running speed against one mode (API 684)."""
 
     running_speed: float

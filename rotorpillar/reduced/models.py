@@ -10,10 +10,8 @@ computed here.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from ..errors import InputError
-from ..provenance import JsonRecord
+from ..records import Record
 from ..scene import Scene
 from .beam_model import beam_model
 from .excitation import GroundMotion, load_record, paper_pulse
@@ -27,15 +25,13 @@ from .system import ReducedSystem, reduced_system
 MAX_CANDIDATE_MODES = 12
 
 
-@dataclass(frozen=True)
-class PaperModelInfo(JsonRecord):
+class PaperModelInfo(Record, tag_field="kind", tag="paper"):
     """How the paper's Eq. 4 model was built: its tip reduction."""
 
     reduction: TipReductionUsed
 
 
-@dataclass(frozen=True)
-class BeamModelInfo(JsonRecord):
+class BeamModelInfo(Record, tag_field="kind", tag="beam"):
     """How the full-order 1D beam was built."""
 
     elements: int
@@ -48,8 +44,7 @@ class BeamModelInfo(JsonRecord):
     """the scene key that set ``elements``"""
 
 
-@dataclass(frozen=True)
-class ModalModelInfo(JsonRecord):
+class ModalModelInfo(Record, tag_field="kind", tag="modal"):
     """How the modal model chose its pillar modes."""
 
     modes: int
@@ -62,7 +57,7 @@ class ModalModelInfo(JsonRecord):
     """why that many, in words"""
 
 
-#: How a reduced model was built, by model (``build_model``).
+#: How a reduced model was built, by model (``build_model``; tagged by ``kind``).
 ModelInfo = PaperModelInfo | BeamModelInfo | ModalModelInfo
 
 

@@ -14,8 +14,7 @@ displacement (m).  With phi_j the mode and M the pillar's mass matrix
 
 Any solver can fill it: the 1D beam here (``beam_pillar_modes``: Euler-Bernoulli
 or Timoshenko with the gondola as a tip mass and rotary inertia), or the 3D
-model (rotorpillar.fem3d) through ``pillar_modes_from_arrays``.  Nothing here
-imports dolfinx.
+model (rotorpillar.fem3d.pillar_modes).  Nothing here imports dolfinx.
 
 >>> from rotorpillar.scene import load_scene
 >>> paper = load_scene("paper")
@@ -28,16 +27,16 @@ imports dolfinx.
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from dataclasses import dataclass, field
 from typing import Any
 
+import msgspec
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
 from ..errors import InputError
+from ..records import Record
 from ..scene import Pillar
 from .beam_fe import (
     THEORIES,
@@ -53,8 +52,7 @@ from .pillar import cowper_shear_coefficient
 from .tower import section_at, tower_line
 
 
-@dataclass(frozen=True, eq=False)
-class PillarModes:
+class PillarModes(Record, eq=False):  # arrays: no elementwise ==
     """Bending modes of the pillar with the gondola on top, unit tip deflection."""
 
     omega: NDArray[np.float64]
@@ -73,7 +71,8 @@ class PillarModes:
     """(n_nodes,) node heights of the shapes (m)"""
     shapes: NDArray[np.float64] | None = None
     """(n_nodes, k) lateral deflection along the height, 1 at the tip (m/m)"""
-    notes: dict[str, Any] = field(default_factory=dict)
+    notes: dict[str, Any] = msgspec.field(default_factory=dict)
+    """what the source adds (the gondola's mass and inertia, a frequency scale)"""
     section_heights: NDArray[np.float64] | None = None
     """(n_z,) heights of the sections whose resultants each mode carries, base
     (0) first (m)"""
@@ -150,49 +149,59 @@ class PillarModes:
         """The same modes with every frequency times ``factor`` (the shapes and
         modal masses kept, so the modal stiffnesses scale by factor**2): how a
         frequency error of the mode source propagates into what the ROM gives."""
-        return dataclasses.replace(
+        return msgspec.structs.replace(
             self, omega=np.asarray(self.omega) * factor, notes={**self.notes, "frequency_scale": float(factor)}
         )
 
-    def to_json(self) -> dict[str, Any]:
-        """Every field, arrays as lists: :meth:`from_json` rebuilds it exactly."""
-        out = {}
-        for f in dataclasses.fields(self):
-            v = getattr(self, f.name)
-            out[f.name] = v.tolist() if isinstance(v, np.ndarray) else v
-        return out
-
-    @classmethod
-    def from_json(cls, doc: dict[str, Any]) -> PillarModes:
-        arrays = {f.name for f in dataclasses.fields(cls) if "ndarray" in str(f.type) or "NDArray" in str(f.type)}
-        known = {f.name for f in dataclasses.fields(cls)}
-        return cls(
-            **{
-                k: (None if v is None else np.asarray(v, dtype=float)) if k in arrays else v  # type: ignore[arg-type]  # one dict for every field: each value's type is the field's, which mypy cannot see per key
-                for k, v in doc.items()
-                if k in known
-            }
+    def describe(self) -> ModesDescription:
+        """The modes' numbers as a run's JSON states them."""
+        return ModesDescription(
+            source=self.source,
+            count=self.count,
+            omega=tuple(map(float, self.omega)),
+            frequency_hz=tuple(float(w) / (2 * math.pi) for w in self.omega),
+            modal_mass=tuple(map(float, self.modal_mass)),
+            modal_stiffness=tuple(map(float, self.modal_stiffness)),
+            participation=tuple(map(float, self.participation)),
+            total_mass=self.total_mass,
+            effective_mass_fraction=self.effective_mass_fraction(),
+            damping_ratio=None if self.damping_ratio is None else tuple(map(float, self.damping_ratio)),
+            notes=dict(self.notes),
         )
 
-    def describe(self) -> dict[str, Any]:
-        return {
-            "source": self.source,
-            "count": self.count,
-            "omega": list(map(float, self.omega)),
-            "frequency_hz": [float(w) / (2 * math.pi) for w in self.omega],
-            "modal_mass": list(map(float, self.modal_mass)),
-            "modal_stiffness": list(map(float, self.modal_stiffness)),
-            "participation": list(map(float, self.participation)),
-            "total_mass": self.total_mass,
-            "effective_mass_fraction": self.effective_mass_fraction(),
-            "damping_ratio": None if self.damping_ratio is None else list(map(float, self.damping_ratio)),
-            **self.notes,
-        }
+
+class ModesDescription(Record):
+    """Pillar modes as a run's JSON states them (``PillarModes.describe``)."""
+
+    source: str
+    """where the modes come from"""
+    count: int
+    """modes (-)"""
+    omega: tuple[float, ...]
+    """natural angular frequencies (rad/s)"""
+    frequency_hz: tuple[float, ...]
+    """(Hz)"""
+    modal_mass: tuple[float, ...]
+    """m_j, unit tip deflection (kg)"""
+    modal_stiffness: tuple[float, ...]
+    """k_j (N/m)"""
+    participation: tuple[float, ...]
+    """L_j (kg)"""
+    total_mass: float
+    """(kg)"""
+    effective_mass_fraction: float
+    """the share of the base-excited mass the modes carry (-)"""
+    damping_ratio: tuple[float, ...] | None
+    """modal damping ratios (-), if the source gives them"""
+    notes: dict[str, Any]
+    """what the source adds (the gondola's mass and inertia, a frequency scale)"""
 
 
-def beam_properties(pillar: Pillar, theory: str = "timoshenko") -> BeamProperties:
-    """The uniform ``[pillar]`` tube as a 1D beam (Cowper's shear coefficient for Timoshenko);
-    a tower of cans has no single section: ``beam_line`` takes it element by element."""
+def beam_properties(pillar: Pillar) -> BeamProperties:
+    """The uniform ``[pillar]`` tube as a 1D beam, with Cowper's shear coefficient: the same
+    properties for either theory (the Euler-Bernoulli element takes no shear term, so the
+    theory is the element's choice: ``beam_fe.assemble(..., theory)``).  A tower of cans has
+    no single section: ``beam_line`` takes it element by element."""
     p = pillar
     if not p.is_uniform:
         raise ValueError("a tower of cans has no single beam section: use rotorpillar.reduced.pillar_modes.beam_line")
@@ -269,46 +278,6 @@ def beam_pillar_modes(
         shear,
         None if base is None else full[1],
     )
-
-
-def pillar_modes_from_arrays(
-    omega: ArrayLike,
-    modal_mass: ArrayLike,
-    participation: ArrayLike,
-    total_mass: float,
-    source: str = "fem3d",
-    damping_ratio: ArrayLike | None = None,
-    heights: ArrayLike | None = None,
-    shapes: ArrayLike | None = None,
-    section_heights: ArrayLike | None = None,
-    moment_shapes: ArrayLike | None = None,
-    shear_shapes: ArrayLike | None = None,
-) -> PillarModes:
-    """Modes from another solver (e.g. rotorpillar.fem3d's modal.json), tip-scaled.
-
-    Arrays as documented on PillarModes; bad data raise InputError.
-    """
-
-    def arr(a: ArrayLike | None) -> NDArray[np.float64] | None:
-        return None if a is None else np.asarray(a, float)
-
-    try:
-        return PillarModes(
-            np.asarray(omega, float),
-            np.asarray(modal_mass, float),
-            np.asarray(participation, float),
-            float(total_mass),
-            source,
-            arr(damping_ratio),
-            arr(heights),
-            arr(shapes),
-            {},
-            arr(section_heights),
-            arr(moment_shapes),
-            arr(shear_shapes),
-        )
-    except ValueError as exc:
-        raise InputError(f"pillar modes from {source}: {exc}") from None
 
 
 def modes_in_band(omega: ArrayLike, band_top: float, minimum: int = 1) -> int:

@@ -10,9 +10,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
-from ..provenance import JsonRecord
+from ..provenance import Record
 from ..scene import Pillar, Scene, SceneError
 from .beam_fe import BaseSprings
 from .pillar import (
@@ -30,8 +29,7 @@ from .tower import rayleigh_ritz, section_at, tower_mass
 LUMPINGS = (1, 2, 3, 5, 10, 20, 50, 100)
 
 
-@dataclass(frozen=True)
-class Lumping(JsonRecord):
+class Lumping(Record):
     """The paper's Eq. 2 with the tube lumped into ``n`` equal masses."""
 
     n: int
@@ -41,8 +39,7 @@ class Lumping(JsonRecord):
     """c1 = m_r omega_col1**2 (N/m)"""
 
 
-@dataclass(frozen=True)
-class RayleighEstimate(JsonRecord):
+class RayleighEstimate(Record):
     """Rayleigh's quotient on a static deflection shape."""
 
     shape: str
@@ -57,8 +54,7 @@ class RayleighEstimate(JsonRecord):
     """omega / omega_col1 - 1 (-)"""
 
 
-@dataclass(frozen=True)
-class RitzEstimate(JsonRecord):
+class RitzEstimate(Record):
     """The bare tube's bending modes by Rayleigh-Ritz (rotorpillar.reduced.tower.rayleigh_ritz)."""
 
     omega: tuple[float, ...]
@@ -73,8 +69,7 @@ class RitzEstimate(JsonRecord):
     """with the foundation's springs (else clamped)"""
 
 
-@dataclass(frozen=True)
-class PillarClosedForms(JsonRecord):
+class PillarClosedForms(Record, omit_defaults=True):
     """The bare tube: its section, Eq. 1, Timoshenko's correction, Eq. 2's reductions."""
 
     area: float
@@ -111,11 +106,11 @@ class PillarClosedForms(JsonRecord):
     tip_stiffness_limit: float
     """m_r omega_col1**2 (N/m)"""
     rayleigh: tuple[RayleighEstimate, ...]
-    rayleigh_ritz: RitzEstimate | None = field(default=None, metadata={"omit_if_none": True})
+    rayleigh_ritz: RitzEstimate | None = None
     """the bending modes by Rayleigh-Ritz (upper bounds), in Eq. 1's place for a tapered or
     stepped tower or on a flexible foundation; None (left out) for the uniform tube on a
     clamp, where the closed forms hold"""
-    statement: str | None = field(default=None, metadata={"omit_if_none": True})
+    statement: str | None = None
     """what the numbers above are where the closed forms do not hold; None where they do"""
 
     @property
@@ -124,8 +119,7 @@ class PillarClosedForms(JsonRecord):
         return self.statement is None
 
 
-@dataclass(frozen=True)
-class TipReductionUsed(JsonRecord):
+class TipReductionUsed(Record):
     """The tip mass and stiffness the reduced model uses, and where each came from."""
 
     source: str

@@ -47,14 +47,60 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eig, eigh
 
+from ..provenance import Record
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 from .ground3d import SpatialGroundMotion
-from .pillar_modes import PillarModes
+from .pillar_modes import ModesDescription, PillarModes
 from .rhs import Packed
 from .system import DampedMode, ReducedSystem, Resonance
 
 FRAMES = ("absolute", "relative_to_ground")
+
+
+class StructureDescription(Record, eq=False):  # arrays: no elementwise ==
+    """A rotor-structure model as a run's JSON describes it (SI units, by coordinate)."""
+
+    name: str
+    """paper, modal or beam"""
+    coordinates: tuple[str, ...]
+    """the coordinates' names, structure (X) first, then the rotor's y and theta"""
+    frame: str
+    """"absolute" or "relative_to_ground\""""
+    nx: int
+    """X coordinates (-)"""
+    mass: NDArray[np.float64]
+    """(nx, nx) mass matrix (kg)"""
+    stiffness: NDArray[np.float64]
+    """(nx, nx) stiffness without the shaft (N/m)"""
+    stiffness_with_shaft: NDArray[np.float64]
+    """(nx, nx) with the shaft's c2 (N/m)"""
+    damping: NDArray[np.float64]
+    """(nx, nx) damping matrix (N*s/m)"""
+    shaft: NDArray[np.float64]
+    """(nx,) the shaft's deflection per coordinate (-)"""
+    tip: NDArray[np.float64]
+    """(nx,) the tip's X per coordinate (-)"""
+    base_displacement: NDArray[np.float64]
+    """(nx,) the ground displacement's force per metre (N/m)"""
+    base_velocity: NDArray[np.float64]
+    """(nx,) the ground velocity's force (N*s/m)"""
+    base_acceleration: NDArray[np.float64]
+    """(nx,) the ground acceleration's force (kg)"""
+    rotor_mass: float
+    """m_C (kg)"""
+    rotor_inertia: float
+    """J_C (kg*m**2)"""
+    eccentricity: float
+    """e (m)"""
+    shaft_stiffness: float
+    """c2 (N/m)"""
+    shaft_damping: float
+    """b2 (N*s/m)"""
+    pillar_modes: ModesDescription | None
+    """the modal model's pillar modes"""
+    notes: dict[str, Any]
+    """the model's equations and what its builder states, in words and numbers"""
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,14 +161,6 @@ class RotorStructure:
     def stiffness_full(self) -> NDArray[np.float64]:
         """Ks + c2 d d^T: the X stiffness with the shaft (N/m)."""
         return self.stiffness + self.shaft_stiffness * np.outer(self.shaft, self.shaft)
-
-    def full_mass(self) -> NDArray[np.float64]:
-        n = self.n
-        M = np.zeros((n, n))
-        M[: self.nx, : self.nx] = self.mass
-        M[self.nx, self.nx] = self.rotor_mass
-        M[-1, -1] = self.rotor_inertia
-        return M
 
     def mass_inverse(self, prescribed_speed: bool = False) -> NDArray[np.float64]:
         """Minv; with a prescribed speed theta's row is zero (theta'' = 0)."""
@@ -311,29 +349,30 @@ class RotorStructure:
         """The highest undamped natural frequency of the structure and shaft (rad/s)."""
         return float(max(self.undamped_modes_x()[0].max(), math.sqrt(self.shaft_stiffness / self.rotor_mass)))
 
-    def describe(self) -> dict[str, Any]:
-        return {
-            "name": self.name,
-            "coordinates": self.names,
-            "frame": self.frame,
-            "nx": self.nx,
-            "mass": self.mass,
-            "stiffness": self.stiffness,
-            "stiffness_with_shaft": self.stiffness_full(),
-            "damping": self.damping,
-            "shaft": self.shaft,
-            "tip": self.tip,
-            "base_displacement": self.base_displacement,
-            "base_velocity": self.base_velocity,
-            "base_acceleration": self.base_acceleration,
-            "rotor_mass": self.rotor_mass,
-            "rotor_inertia": self.rotor_inertia,
-            "eccentricity": self.eccentricity,
-            "shaft_stiffness": self.shaft_stiffness,
-            "shaft_damping": self.shaft_damping,
-            "pillar_modes": None if self.pillar_modes is None else self.pillar_modes.describe(),
-            **self.notes,
-        }
+    def describe(self) -> StructureDescription:
+        """The model's matrices and coordinates (a run's ``model_description``)."""
+        return StructureDescription(
+            name=self.name,
+            coordinates=tuple(self.names),
+            frame=self.frame,
+            nx=self.nx,
+            mass=self.mass,
+            stiffness=self.stiffness,
+            stiffness_with_shaft=self.stiffness_full(),
+            damping=self.damping,
+            shaft=self.shaft,
+            tip=self.tip,
+            base_displacement=self.base_displacement,
+            base_velocity=self.base_velocity,
+            base_acceleration=self.base_acceleration,
+            rotor_mass=self.rotor_mass,
+            rotor_inertia=self.rotor_inertia,
+            eccentricity=self.eccentricity,
+            shaft_stiffness=self.shaft_stiffness,
+            shaft_damping=self.shaft_damping,
+            pillar_modes=None if self.pillar_modes is None else self.pillar_modes.describe(),
+            notes=dict(self.notes),
+        )
 
 
 def generic_arrays(

@@ -7,32 +7,25 @@ needed to run up through the first resonance that can capture the rotor,
 predicted and simulated (``passing_torque``).
 
 Each returns its records (``StationarySpeed``, ``Fold``, ``AveragingPrediction``,
-``PassingTorqueStudy`` or ``NoPassingFold``), which ``simulate_<case>.json`` writes as
+``PassingTorqueStudy`` or ``NoPassingFold``: a ``PassingTorque``), which ``simulate_<case>.json`` writes as
 its ``prediction`` and ``passing_torque``.
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
 from ..errors import InputError
-from ..provenance import JsonRecord
+from ..records import Record
 from . import averaging as av
 from .batch import Batch, simulate_batch
 from .drive import DriveSchedule
 from .rotor_models import RotorStructure
 
-#: A field left out of the JSON while None.
-_OMIT = {"omit_if_none": True}
 
-
-@dataclass(frozen=True)
-class StationarySpeed(JsonRecord):
+class StationarySpeed(Record):
     """A stationary speed of the exact linear torque balance (``stationary_exact``)."""
 
     omega: float
@@ -41,8 +34,7 @@ class StationarySpeed(JsonRecord):
     """the balance falls through it (its slope in W is negative): a disturbed run returns"""
 
 
-@dataclass(frozen=True)
-class Fold(JsonRecord):
+class Fold(Record):
     """A fold of the exact linear F(W) = k W**2 + s W - <shaft torque>(W) (``exact_folds``)."""
 
     kind: str
@@ -53,8 +45,7 @@ class Fold(JsonRecord):
     """F there: the motor's M0 at which a quasi-static run jumps (N*m)"""
 
 
-@dataclass(frozen=True)
-class ResonancePeak(JsonRecord):
+class ResonancePeak(Record):
     """One resonance and the averaging's response at its peak (Eq. 19-20 at Omega = omega_i)."""
 
     index: int
@@ -71,8 +62,7 @@ class ResonancePeak(JsonRecord):
     """Eq. 20 at Omega = omega_i (N*m)"""
 
 
-@dataclass(frozen=True)
-class AveragingPrediction(JsonRecord):
+class AveragingPrediction(Record):
     """What the paper's Eq. 19-23 predict for one drive on a model (``averaging_prediction``):
     the ``prediction`` of ``simulate_<case>.json``."""
 
@@ -94,8 +84,7 @@ class AveragingPrediction(JsonRecord):
     """every resonance of the model with its peak amplitude and torque"""
 
 
-@dataclass(frozen=True)
-class PassingResonance(JsonRecord):
+class PassingResonance(Record):
     """The resonance whose fold sets the passing torque."""
 
     index: int
@@ -108,8 +97,7 @@ class PassingResonance(JsonRecord):
     """n_i / omega_i (-)"""
 
 
-@dataclass(frozen=True)
-class BracketRun(JsonRecord):
+class BracketRun(Record):
     """A simulated run-up from rest just below or above the predicted passing torque."""
 
     torque_at_zero: float
@@ -120,8 +108,7 @@ class BracketRun(JsonRecord):
     """the final speed lies above the pass threshold (the predicted jump's midpoint)"""
 
 
-@dataclass(frozen=True)
-class BracketSeries(JsonRecord):
+class BracketSeries(Record):
     """The two bracket runs' histories, for the run-up chart: rows in ``bracket_runs``' order."""
 
     t: tuple[float, ...]
@@ -132,8 +119,7 @@ class BracketSeries(JsonRecord):
     """(2, n_t) largest |tip X| per output interval (m)"""
 
 
-@dataclass(frozen=True, kw_only=True)
-class NoPassingFold(JsonRecord):
+class NoPassingFold(Record, kw_only=True, tag_field="kind", tag="no_fold"):
     """The passing-torque study when the analysis finds no run-up fold: nothing to test."""
 
     predicted: None = None
@@ -142,8 +128,7 @@ class NoPassingFold(JsonRecord):
     """why, in words"""
 
 
-@dataclass(frozen=True, kw_only=True)
-class PassingTorqueStudy(JsonRecord):
+class PassingTorqueStudy(Record, kw_only=True, omit_defaults=True, tag_field="kind", tag="passing"):
     """The motor torque M0 needed to run up through the first resonance that can capture
     the rotor, predicted and simulated (``passing_torque``): ``passing_torque`` of
     ``simulate_runup.json``."""
@@ -166,14 +151,14 @@ class PassingTorqueStudy(JsonRecord):
     """their final speeds (rad/s)"""
     grid_passed: tuple[bool, ...]
     """whether each passed"""
-    non_monotonic: bool | None = field(default=None, metadata=_OMIT)
+    non_monotonic: bool | None = None
     """True when a run above the first that passed was captured (absent otherwise)"""
     simulated: float | None
     """the smallest M0 that passes, refined between two grid points (N*m); None when every
     run passed or none did"""
-    simulated_bracket: tuple[float, float] | None = field(default=None, metadata=_OMIT)
+    simulated_bracket: tuple[float, float] | None = None
     """the refined M0 captured and passed around it (N*m) (absent without ``simulated``)"""
-    rel_error_predicted: float | None = field(default=None, metadata=_OMIT)
+    rel_error_predicted: float | None = None
     """predicted / simulated - 1 (-) (absent without ``simulated``)"""
     rel_error_exact_linear: float | None = None
     """predicted_exact_linear / simulated - 1 (-), None without the exact fold (absent
@@ -189,18 +174,9 @@ class PassingTorqueStudy(JsonRecord):
     batch_wall_seconds: float
     """wall time of the batches (s)"""
 
-    def to_json(self) -> dict[str, Any]:
-        out: dict[str, Any] = super().to_json()
-        if self.simulated_bracket is None:  # no simulated torque, nothing to compare: absent, not null
-            del out["rel_error_exact_linear"]
-        return out
 
-
-def passing_torque_from_json(doc: dict[str, Any]) -> PassingTorqueStudy | NoPassingFold:
-    """The ``passing_torque`` section back from its JSON (either shape)."""
-    shape = NoPassingFold if doc.get("predicted") is None else PassingTorqueStudy
-    record: PassingTorqueStudy | NoPassingFold = shape.from_json(doc)
-    return record
+#: The passing-torque study, or why there is none (tagged by ``kind``).
+PassingTorque = PassingTorqueStudy | NoPassingFold
 
 
 def stationary_exact(

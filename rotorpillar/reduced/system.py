@@ -36,12 +36,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..provenance import JsonRecord
+from ..records import Record
 from ..scene import Rotor, Shaft
 
 
-@dataclass(frozen=True)
-class DampedMode(JsonRecord):
+class DampedMode(Record):
     """A damped natural frequency of the linear structure."""
 
     direction: str
@@ -147,11 +146,11 @@ def omega_y(s: ReducedSystem) -> float:
     return math.sqrt(s.shaft_stiffness / s.rotor_mass)
 
 
-@dataclass(frozen=True)
-class Resonance:
+class Resonance(Record):
     """Quasi-normal data of one resonance (the paper's Eq. 7)."""
 
     index: int
+    """i, from 1 (-)"""
     direction: str
     """"X" (pillar and rotor) or "Y" (rotor on its shaft)"""
     omega: float

@@ -25,11 +25,10 @@ import dataclasses
 import itertools
 import math
 import tomllib
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
-from ..provenance import JsonRecord
+from ..records import Record
 from ..scene import CASES, SECTIONS, Scene, SceneError, check_combinations, check_field, override
 
 #: keys a study sets itself (by --case and --model) or does not use: the
@@ -47,13 +46,16 @@ NOT_VARIED = {
 MAX_RUNS = 100_000
 
 
-@dataclass(frozen=True)
-class Axis(JsonRecord):
+Param = bool | int | float | str
+"""A value of a scene key a study varies (a number, a word, a record's file)."""
+
+
+class Axis(Record):
     """One axis of a study: a scene key and its values."""
 
     key: str
     """section.key of the scene"""
-    values: tuple
+    values: tuple[Param, ...]
     """the values run, in order (numbers, or strings such as record files)"""
     spec: str
     """the --vary text it came from"""

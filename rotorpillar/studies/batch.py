@@ -11,8 +11,8 @@ right-hand side).  So for a run-up these five keys vary inside a batch loop
 run-down and an earthquake start from the steady state at the operating
 speed, which depends on all of them: there every run is its own group.
 
-``run_batch(spec)`` is what the executor sends to a worker; it returns plain
-dicts (one per run) that the study assembles into ``StudyRun`` records.
+``run_batch(spec)`` is what the executor sends to a worker (a ``BatchSpec``); it
+returns a ``BatchResult``: one ``StudyRun`` a run.
 Each run condenses as ``simulate`` condenses a case
 (rotorpillar.transients.case_summary): the final speed and its mean over the last
 5 %, the resonance it settled at (``capture``), the peak tip displacement
@@ -29,22 +29,60 @@ from __future__ import annotations
 import os
 import socket
 import time
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
+from ..records import Record, replace
 from ..reduced.band import forcing_top
 from ..reduced.batch import simulate_batch
 from ..reduced.drive import DriveSchedule
-from ..reduced.excitation import no_motion
-from ..reduced.excitation_records import NoMotionSizes
+from ..reduced.excitation import NoMotionSizes, no_motion
 from ..reduced.models import build_model, scene_motion
+from ..reduced.pillar_modes import PillarModes
 from ..reduced.stationary import operating_speed
 from ..scene import Scene, scene_from_dict
 from ..transients.case_summary import capture_state, ground_displacement
-from .axes import run_scene
-from .modes import modes_of
+from .axes import Param, run_scene
+from .modes import mode_key
+from .result import StudyRun
+
+
+class PlannedRun(Record):
+    """A run of a batch before it runs: its place in the study and its scene keys."""
+
+    index: int
+    """position in the product of the axes"""
+    params: dict[str, Param]
+    """{scene key: value} of this run"""
+
+
+class BatchSpec(Record, omit_defaults=True):
+    """One batch as the executor sends it to a worker (and as its cache key hashes it)."""
+
+    scene: dict[str, Any]
+    """the study's scene (``Scene.to_dict()``)"""
+    case: str
+    model: str
+    implied: dict[str, Param]
+    """scene keys the axes imply"""
+    runs: tuple[PlannedRun, ...]
+    pillar_modes: dict[str, PillarModes] | None = None
+    """the ROM's pillar modes by ``studies.modes.mode_key`` (None: not the ROM)"""
+
+
+class BatchResult(Record):
+    """One batch computed (a cache entry of the study)."""
+
+    runs: tuple[StudyRun, ...]
+    """one a run, by index"""
+    groups: int
+    """batch-loop calls (-)"""
+    wall_seconds: float
+    """the batch's wall time on its worker (s)"""
+    worker: str
+    """host:pid of the worker"""
+
 
 #: scene key -> simulate_batch keyword, per case: what the batch loop takes per run
 PER_RUN = {
@@ -63,7 +101,7 @@ SAMPLE_SPACING = {"runup": 0.02, "rundown": 0.02, "earthquake": 0.005}
 MIN_SAMPLES, MAX_SAMPLES = 2001, 40001
 
 
-def group_key(params: dict, case: str) -> tuple:
+def group_key(params: dict[str, Param], case: str) -> tuple:
     """What runs must share to go to one batch loop: the values of the other keys."""
     per = PER_RUN[case]
     return tuple((k, v) for k, v in params.items() if k not in per)
@@ -86,15 +124,15 @@ def _tail_mean(t, W) -> float:
     return float(np.mean(W[tail]))
 
 
-def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_modes=None) -> list[dict]:
+def _run_group(scene: Scene, case: str, which: str, runs: list[PlannedRun], pillar_modes=None) -> list[StudyRun]:
     sim, d, L, r, sh = scene.simulate, scene.drive, scene.load, scene.rotor, scene.shaft
     per: dict[str, list[float]] = {"M0": [], "s": [], "k": [], "e": [], "c2": []}
     for p in runs:
-        per["M0"].append(float(p["params"].get("drive.torque_at_zero", d.torque_at_zero)))
-        per["s"].append(float(p["params"].get("drive.slope", d.slope)))
-        per["k"].append(float(p["params"].get("load.coefficient", L.coefficient)))
-        per["e"].append(float(p["params"].get("rotor.eccentricity", r.eccentricity)))
-        per["c2"].append(float(p["params"].get("shaft.stiffness", sh.stiffness)))
+        per["M0"].append(float(p.params.get("drive.torque_at_zero", d.torque_at_zero)))
+        per["s"].append(float(p.params.get("drive.slope", d.slope)))
+        per["k"].append(float(p.params.get("load.coefficient", L.coefficient)))
+        per["e"].append(float(p.params.get("rotor.eccentricity", r.eccentricity)))
+        per["c2"].append(float(p.params.get("shaft.stiffness", sh.stiffness)))
     M0 = np.array(per["M0"])
     M_ref = float(M0.max()) if M0.max() > 0 else 1.0
     # the model (its modal band: the group's fastest motor) with the largest e
@@ -111,7 +149,7 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
         shaft_stiffness=per["c2"],
         rtol=sim.rtol,
     )
-    extra = {}
+    extra: dict[str, float] = {}
     if case == "runup":
         drive = DriveSchedule.ramp(M_ref, d.slope, L.coefficient, sim.runup_ramp)
         t_end = sim.duration
@@ -162,21 +200,22 @@ def _run_group(scene: Scene, case: str, which: str, runs: list[dict], pillar_mod
         else:
             tip = float(np.max(b.tip_peak[i]))
         out.append(
-            {
-                "index": p["index"],
-                "params": p["params"],
-                "ok": bool(b.ok[i]),
-                "final_speed": float(b.Omega[i, -1]),
-                "final_speed_mean": mean,
-                "captured_at": captured,
-                "speed_state": state.speed_state,
-                "passed": None if case == "earthquake" else state.speed_state not in ("captured", "escaping"),
-                "peak_tip": tip,
-                "peak_shaft_deflection": float(np.max(shaft[i, since])),
-                "free_speed": float(frees[i]),
-                "nfev": int(b.nfev[i]),
-                **extra,
-            }
+            StudyRun(
+                index=p.index,
+                params=p.params,
+                ok=bool(b.ok[i]),
+                final_speed=float(b.Omega[i, -1]),
+                final_speed_mean=mean,
+                captured_at=captured,
+                speed_state=state.speed_state,
+                passed=None if case == "earthquake" else state.speed_state not in ("captured", "escaping"),
+                peak_tip=tip,
+                peak_shaft_deflection=float(np.max(shaft[i, since])),
+                free_speed=float(frees[i]),
+                nfev=int(b.nfev[i]),
+                pga=extra.get("pga"),
+                initial_speed=extra.get("initial_speed"),
+            )
         )
     return out
 
@@ -190,26 +229,27 @@ def warm_kernels() -> None:
     simulate_batch(model, DriveSchedule.constant(600.0, 2.0, 0.5), 0.1)
 
 
-def run_batch(spec: dict) -> dict:
-    """Compute one batch: ``spec`` = {scene, case, model, implied, runs: [{index, params}],
-    pillar_modes: {mode_key: PillarModes JSON} for the ROM (rotorpillar.studies.modes)}."""
+def run_batch(spec: BatchSpec) -> BatchResult:
+    """Compute one batch: its runs grouped by what they must share (``group_key``), each
+    group in one call of the batch loop; the ROM's pillar modes from the spec."""
     start = time.perf_counter()
-    doc = dict(spec["scene"])
+    doc = dict(spec.scene)
     base = scene_from_dict(doc, name=doc.pop("name"))
-    groups: dict[tuple, list] = {}
-    for p in spec["runs"]:
-        key = group_key(p["params"], spec["case"])
-        if not PER_RUN[spec["case"]]:
-            key = key + (("_index", p["index"]),)
+    groups: dict[tuple, list[PlannedRun]] = {}
+    for p in spec.runs:
+        key = group_key(p.params, spec.case)
+        if not PER_RUN[spec.case]:
+            key = key + (("_index", p.index),)
         groups.setdefault(key, []).append(p)
-    results = []
+    results: list[StudyRun] = []
     for key, runs in groups.items():
         group_params = {k: v for k, v in key if k != "_index"}
-        scene = run_scene(base, group_params, spec.get("implied"))
-        results += _run_group(scene, spec["case"], spec["model"], runs, modes_of(spec, base, scene))
-    return {
-        "runs": sorted(results, key=lambda r: r["index"]),
-        "groups": len(groups),
-        "wall_seconds": time.perf_counter() - start,
-        "worker": f"{socket.gethostname()}:{os.getpid()}",
-    }
+        scene = run_scene(base, group_params, spec.implied)
+        modes = None if spec.pillar_modes is None else spec.pillar_modes[mode_key(base, scene)]
+        results += _run_group(scene, spec.case, spec.model, runs, modes)
+    return BatchResult(
+        runs=tuple(sorted(results, key=lambda r: r.index)),
+        groups=len(groups),
+        wall_seconds=time.perf_counter() - start,
+        worker=f"{socket.gethostname()}:{os.getpid()}",
+    )

@@ -18,19 +18,95 @@ that key is where the predicted torque crosses the scene's M0.
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
+from ..records import Record, replace
 from ..reduced.band import forcing_top
 from ..reduced.models import build_model
 from ..reduced.stationary import predicted_passing_torque
 from ..scene import Scene
-from .axes import Axis, run_scene
+from .axes import Axis, Param, run_scene
 
 TORQUE = "drive.torque_at_zero"
 #: points of the predicted curve along the other axis
 CURVE_POINTS = 61
+
+
+class ResonanceMark(Record):
+    """A resonance of the model, as the charts label the boundary's pieces."""
+
+    index: int
+    """i, from 1 (-)"""
+    direction: str
+    """"X" or "Y\""""
+    omega: float
+    """omega_i (rad/s)"""
+
+
+class TorqueBoundary(Record, tag_field="kind", tag="torque"):
+    """The torque M0 a run-up needs to pass, along the study's other axis (predicted)."""
+
+    torque_key: str
+    """the torque's scene key"""
+    other_key: str | None
+    """the other axis's key (None: the torque is the only axis)"""
+    other_values: tuple[float, ...]
+    """the other axis's values, on a grid finer than the study's (its unit)"""
+    averaging: tuple[float | None, ...]
+    """M0 at the A fold of Eq. 19-23 per value (N*m; None: no fold)"""
+    exact_linear: tuple[float | None, ...]
+    """M0 at the exact linear torque balance's A fold (N*m; None: no fold)"""
+    resonance: tuple[int | None, ...]
+    """the resonance each fold belongs to (its index)"""
+    resonances: tuple[ResonanceMark, ...]
+    """the model's resonances"""
+    statement: str
+    """what the curves are, in words"""
+
+
+class ThresholdBoundary(Record, tag_field="kind", tag="threshold"):
+    """Where the torque needed to pass equals the scene's M0, along the study's one axis."""
+
+    torque_key: str
+    """the torque's scene key"""
+    other_key: str
+    """the axis's key"""
+    other_values: tuple[float, ...]
+    """its values, on a finer grid (its unit)"""
+    averaging: tuple[float | None, ...]
+    """M0 needed by Eq. 19-23 per value (N*m)"""
+    exact_linear: tuple[float | None, ...]
+    """M0 needed by the exact linear torque balance (N*m)"""
+    scene_torque: float
+    """the scene's M0 (N*m)"""
+    threshold_averaging: float | None
+    """the axis's value where Eq. 19-23's M0 crosses the scene's (None: no crossing)"""
+    threshold_exact_linear: float | None
+    """the same for the exact linear balance"""
+    statement: str
+    """what the threshold is, in words"""
+
+
+class FoundRow(Record):
+    """The boundary as the study found it at one value of the other axis."""
+
+    other: Param | None
+    """the other axis's value (None: the torque is the only axis)"""
+    captured_max: float | None
+    """the largest M0 captured below the smallest that passed (N*m)"""
+    passed_min: float | None
+    """the smallest M0 that passed (N*m)"""
+    monotonic: bool
+    """every M0 above ``passed_min`` passed and none above it was captured"""
+
+
+class StudyBoundary(Record):
+    """A run-up study's capture boundary: predicted and found."""
+
+    predicted: TorqueBoundary | ThresholdBoundary | None
+    """the theory's (tagged by ``kind``), None where it does not apply"""
+    found: tuple[FoundRow, ...] | None
+    """per value of the other axis, None where the torque is no axis"""
 
 
 def _numeric(axis: Axis) -> bool:
@@ -39,15 +115,13 @@ def _numeric(axis: Axis) -> bool:
 
 def _fold(scene: Scene, which: str, M_top: float, modes_of=None) -> tuple:
     """(averaging's and exact linear passing torque, the index of the resonance
-    that fold belongs to, the model's resonances [{index, direction, omega}])."""
+    that fold belongs to, the model's resonances)."""
     top_scene = replace(scene, drive=replace(scene.drive, torque_at_zero=M_top))
     top = scene.modal_model.band_factor * forcing_top(top_scene.drive, top_scene.load, top_scene.sweep, "runup", None)
     model, _ = build_model(top_scene, which, top, pillar_modes=modes_of(scene) if modes_of is not None else None)
     d, L = scene.drive, scene.load
     j, exact = predicted_passing_torque(model, M_top, d.slope, L.coefficient)
-    res = [
-        {"index": int(r.index), "direction": str(r.direction), "omega": float(r.omega)} for r in model.quasi_normal()
-    ]
+    res = tuple(ResonanceMark(int(r.index), str(r.direction), float(r.omega)) for r in model.quasi_normal())
     return (
         None if j is None else float(j.torque_at_zero),
         None if exact is None else float(exact.torque_at_zero),
@@ -61,15 +135,16 @@ def _grid(axis: Axis) -> list:
 
     if affects_modes(axis.key):
         return sorted(axis.values)  # each value a pillar of its own: its own modes, no finer grid
-    lo, hi = min(axis.values), max(axis.values)
-    if len(axis.values) == 1 or lo == hi:
+    values = [float(v) for v in axis.values]  # a numeric axis (``_numeric``)
+    lo, hi = min(values), max(values)
+    if len(values) == 1 or lo == hi:
         return [lo]
     return list(np.linspace(lo, hi, CURVE_POINTS))
 
 
 def predicted_boundary(
     scene: Scene, case: str, which: str, axes: tuple[Axis, ...], implied: dict, modes_of=None
-) -> dict | None:
+) -> TorqueBoundary | ThresholdBoundary | None:
     """The predicted passing torque along the other axis (run-ups), or None;
     ``modes_of(scene)``: the ROM's pillar modes for a point's scene."""
     if case != "runup":
@@ -82,25 +157,24 @@ def predicted_boundary(
         if other is not None and not _numeric(other):
             return None
         xs = _grid(other) if other is not None else [None]
-        avg, lin, which_res, res = [], [], [], []
+        avg, lin, which_res, res = [], [], [], ()
         for x in xs:
             sc = run_scene(scene, {other.key: x} if other is not None else {}, implied)
             a, e, i, res = _fold(sc, which, M_top, modes_of)
             avg.append(a)
             lin.append(e)
             which_res.append(i)
-        return {
-            "kind": "torque",
-            "torque_key": TORQUE,
-            "other_key": other.key if other else None,
-            "other_values": xs if other is not None else [],
-            "averaging": avg,
-            "exact_linear": lin,
-            "resonance": which_res,
-            "resonances": res,
-            "statement": "M0 needed to pass the first capturing resonance on run-up: the A fold "
+        return TorqueBoundary(
+            torque_key=TORQUE,
+            other_key=other.key if other else None,
+            other_values=tuple(map(float, xs)) if other is not None else (),
+            averaging=tuple(avg),
+            exact_linear=tuple(lin),
+            resonance=tuple(which_res),
+            resonances=res,
+            statement="M0 needed to pass the first capturing resonance on run-up: the A fold "
             "of Eq. 19-23 (averaging) and of the exact linear torque balance",
-        }
+        )
     if len(axes) == 1 and _numeric(axes[0]):
         ax = axes[0]
         xs = _grid(ax)
@@ -110,18 +184,17 @@ def predicted_boundary(
             a, e, _, _ = _fold(run_scene(scene, {ax.key: x}, implied), which, M0, modes_of)
             avg.append(a)
             lin.append(e)
-        return {
-            "kind": "threshold",
-            "torque_key": TORQUE,
-            "other_key": ax.key,
-            "other_values": xs,
-            "averaging": avg,
-            "exact_linear": lin,
-            "scene_torque": M0,
-            "threshold_averaging": crossing(xs, avg, M0),
-            "threshold_exact_linear": crossing(xs, lin, M0),
-            "statement": f"where the torque needed to pass equals the scene's M0 = {M0:g} N*m",
-        }
+        return ThresholdBoundary(
+            torque_key=TORQUE,
+            other_key=ax.key,
+            other_values=tuple(map(float, xs)),
+            averaging=tuple(avg),
+            exact_linear=tuple(lin),
+            scene_torque=M0,
+            threshold_averaging=crossing(xs, avg, M0),
+            threshold_exact_linear=crossing(xs, lin, M0),
+            statement=f"where the torque needed to pass equals the scene's M0 = {M0:g} N*m",
+        )
     return None
 
 
@@ -134,7 +207,7 @@ def crossing(xs, ys, level) -> float | None:
     return None
 
 
-def found_boundary(axes: tuple[Axis, ...], runs) -> list[dict] | None:
+def found_boundary(axes: tuple[Axis, ...], runs) -> tuple[FoundRow, ...] | None:
     """Per value of the other axis: the largest M0 captured and the smallest
     that passed (the study's boundary lies between them)."""
     keys = [a.key for a in axes]
@@ -153,11 +226,11 @@ def found_boundary(axes: tuple[Axis, ...], runs) -> list[dict] | None:
         lo = max((m for m in captured if not passed or m < min(passed)), default=None)
         hi = min(passed) if passed else None
         out.append(
-            {
-                "other": x,
-                "captured_max": lo,
-                "passed_min": hi,
-                "monotonic": not passed or all(m >= hi for m in passed) and not any(m > hi for m in captured),
-            }
+            FoundRow(
+                other=x,
+                captured_max=lo,
+                passed_min=hi,
+                monotonic=not passed or all(m >= hi for m in passed) and not any(m > hi for m in captured),
+            )
         )
-    return out
+    return tuple(out)

@@ -14,6 +14,8 @@ import json
 from dataclasses import asdict
 from pathlib import Path
 
+from ..chain.record import PillarModel
+from ..records import replace
 from ..reduced.pillar_modes import PillarModes
 from ..scene import Scene
 
@@ -70,8 +72,8 @@ class StudyModes:
 
     def __init__(self, base: Scene, out_dir: Path | None, log=None):
         self.base, self.out_dir, self.log = base, out_dir, log
-        self.table: dict[str, dict] = {}
-        self.pillar_model: dict = {}
+        self.table: dict[str, PillarModes] = {}
+        self.pillar_model: PillarModel | None = None
 
     def key(self, scene: Scene) -> str:
         return mode_key(self.base, scene)
@@ -85,20 +87,14 @@ class StudyModes:
             varied = key != "[]"
             # the base pillar may use the study on disk; a varied pillar has none of its own
             chain = resolve(scene, None if varied else self.out_dir, progress=self.log)
-            self.table[key] = chain.modes.to_json()
-            if not varied or not self.pillar_model:
-                pm = chain.pillar_model.to_json()
+            self.table[key] = chain.modes
+            if not varied or self.pillar_model is None:
+                pm = chain.pillar_model
                 if varied:
-                    pm["note"] = (
-                        "the pillar varies across the study: each value's own model (the scene's [mesh]); " + pm["note"]
+                    pm = replace(
+                        pm,
+                        note="the pillar varies across the study: each value's own model (the scene's [mesh]); "
+                        + pm.note,
                     )
                 self.pillar_model = pm
-        return PillarModes.from_json(self.table[key])
-
-
-def modes_of(spec: dict, base: Scene, scene: Scene) -> PillarModes | None:
-    """A batch's pillar modes for a group's ``scene`` (None: not the ROM)."""
-    table = spec.get("pillar_modes")
-    if not table:
-        return None
-    return PillarModes.from_json(table[mode_key(base, scene)])
+        return self.table[key]

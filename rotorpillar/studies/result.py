@@ -2,19 +2,19 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..chain.record import PillarModel
+from ..executor import ExecutorInfo
+from ..records import Figure, Record
+from .axes import Axis, Param
+from .boundary import StudyBoundary
 
-from ..provenance import JsonRecord
-from .axes import Axis
 
-
-@dataclass(frozen=True)
-class StudyRun(JsonRecord):
+class StudyRun(Record, omit_defaults=True):
     """One run of the study: its parameters and what it reached."""
 
     index: int
     """position in the product of the axes (last axis fastest)"""
-    params: dict
+    params: dict[str, Param]
     """{scene key: value} of this run"""
     ok: bool
     """the integrator finished"""
@@ -38,14 +38,53 @@ class StudyRun(JsonRecord):
     """the batch (cache file) that computed it"""
     speed_state: str = ""
     """"captured", "escaping", "accelerating" or "at_speed" (transients.case_summary.capture_state)"""
-    pga: float | None = field(default=None, metadata={"omit_if_none": True})
+    pga: float | None = None
     """earthquake: peak ground acceleration (m/s**2)"""
-    initial_speed: float | None = field(default=None, metadata={"omit_if_none": True})
+    initial_speed: float | None = None
     """run-down and earthquake: the operating speed it started at (rad/s)"""
 
 
-@dataclass(frozen=True)
-class StudyResult(JsonRecord):
+class BatchCounts(Record):
+    """The study's batches: how many, from disk or computed."""
+
+    total: int
+    cached: int
+    """read from the batch cache (-)"""
+    computed: int
+    runs_per_batch_max: int
+    groups: int
+    """batch-loop calls over the batches (-)"""
+    cache_dir: str
+    """the batch cache's folder"""
+
+
+class StudyPerformance(Record):
+    """How fast the study ran."""
+
+    runs: int
+    runs_computed: int
+    cluster_start_seconds: float
+    """starting the executor (s)"""
+    compute_wall_seconds: float
+    """the computing phase (s)"""
+    batch_seconds: float
+    """summed over the batches computed (s)"""
+    runs_per_second: float | None
+    """computed runs over the computing phase (1/s); None when none was computed"""
+    wall_seconds: float
+    """the whole study (s)"""
+
+
+class StudyFiles(Record):
+    """The study's files beside study.json."""
+
+    csv: str
+    """study.csv: one row a run"""
+    cache_dir: str
+    """the batch cache's folder"""
+
+
+class StudyResult(Record, omit_defaults=True):
     """A design study (study.json): the axes, every run, the analytic boundary, where it
     ran and how fast."""
 
@@ -55,27 +94,22 @@ class StudyResult(JsonRecord):
     model: str
     """paper or modal"""
     axes: tuple[Axis, ...]
-    implied: dict
+    implied: dict[str, Param]
     """scene keys set because of the axes (e.g. excitation.kind = record)"""
     runs: tuple[StudyRun, ...]
-    boundary: dict | None
+    boundary: StudyBoundary | None
     """run-ups: the torque needed to pass, by the averaging theory (equations
-    19-23) and by the exact linear torque balance, along the other axis; None
-    where it does not apply"""
-    executor: dict
-    """kind (LocalCluster, scheduler, in-process), scheduler address, workers, threads"""
-    batches: dict
-    """total, cached, computed, runs per batch, groups (batch-loop calls), cache_dir"""
-    performance: dict
-    """runs, runs_computed, cluster_start_seconds, compute_wall_seconds (the
-    computing phase), batch_seconds (summed over the batches computed),
-    runs_per_second (computed runs over the computing phase), wall_seconds"""
-    figures: tuple[dict, ...] = ()
-    """the charts: {file, caption}"""
-    files: dict = field(default_factory=dict)
+    19-23) and by the exact linear torque balance, along the other axis, beside the
+    one found; None where it does not apply"""
+    executor: ExecutorInfo
+    batches: BatchCounts
+    performance: StudyPerformance
+    figures: tuple[Figure, ...] = ()
+    """the charts"""
+    files: StudyFiles | None = None
     """study.csv and the cache folder"""
-    pillar_model: dict | None = field(default=None, metadata={"omit_if_none": True})
-    """the modal model's pillar (rotorpillar.chain.PillarModel as JSON); None for the paper model"""
+    pillar_model: PillarModel | None = None
+    """the modal model's pillar; None for the paper model"""
 
     def values(self, name: str):
         """One result over the runs, in run order (e.g. ``values("final_speed")``)."""

@@ -23,24 +23,25 @@ import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
+from .. import records
 from ..cache import DiskCache, cache_key, source_hash
 from ..errors import InputError
 from ..executor import Executor
 from ..provenance import write_text
+from ..records import Figure, replace
 from ..scene import STUDY_CASES, STUDY_MODELS, Scene
-from .axes import check_points, implied_settings, parse_axes, run_scene
-from .batch import group_key, run_batch
-from .boundary import found_boundary, predicted_boundary
+from .axes import Param, check_points, implied_settings, parse_axes, run_scene
+from .batch import BatchResult, BatchSpec, PlannedRun, group_key, run_batch
+from .boundary import StudyBoundary, found_boundary, predicted_boundary
 from .modes import StudyModes
-from .result import StudyResult, StudyRun
+from .result import BatchCounts, ExecutorInfo, StudyFiles, StudyPerformance, StudyResult
 
 #: the most runs in one batch: small enough to spread a study over the
 #: workers and to lose little to a Ctrl-C, large enough that the batch loop's
 #: speed is not lost to the per-batch overhead (~10 ms against ~60 ms a run)
 BATCH_RUNS = 8
-CACHE_VERSION = 1
+CACHE_VERSION = 2  # 2: an Entry of a BatchResult record (msgspec)
 CSV_RESULTS = (
     "final_speed",
     "final_speed_mean",
@@ -55,8 +56,8 @@ CSV_RESULTS = (
     "nfev",
 )
 
-Charts = Callable[[StudyResult, Path], list]
-"""Draws a study's charts: (result, out_dir) -> [{file, caption}]."""
+Charts = Callable[[StudyResult, Path], list[Figure]]
+"""Draws a study's charts: (result, out_dir) -> figures."""
 
 
 def _source_hash() -> str:
@@ -64,10 +65,10 @@ def _source_hash() -> str:
     return source_hash(sorted((root / "reduced").glob("*.py")) + sorted((root / "studies").glob("*.py")))
 
 
-def plan(points: list[dict], case: str, batch_runs: int = BATCH_RUNS) -> list[list[dict]]:
+def plan(points: list[dict[str, Param]], case: str, batch_runs: int = BATCH_RUNS) -> list[list[PlannedRun]]:
     """The batches: runs sorted by what they must share, cut into near-equal chunks."""
-    runs: list[dict[str, Any]] = [{"index": i, "params": p} for i, p in enumerate(points)]
-    runs.sort(key=lambda r: (repr(group_key(r["params"], case)), r["index"]))
+    runs = [PlannedRun(i, p) for i, p in enumerate(points)]
+    runs.sort(key=lambda r: (repr(group_key(r.params, case)), r.index))
     if not runs:
         return []
     nb = math.ceil(len(runs) / batch_runs)
@@ -75,9 +76,9 @@ def plan(points: list[dict], case: str, batch_runs: int = BATCH_RUNS) -> list[li
     return [runs[a:b] for a, b in zip(cuts, cuts[1:])]
 
 
-def batch_key(spec: dict, source: str) -> str:
+def batch_key(spec: BatchSpec, source: str) -> str:
     """The batch's key in the cache: its spec and the code (``source``) that computes it."""
-    return cache_key(spec, version=CACHE_VERSION, code=source)
+    return cache_key(records.to_builtins(spec), version=CACHE_VERSION, code=source)
 
 
 def _check_inputs(scene: Scene, case: str, model: str, vary: list[str]):
@@ -134,19 +135,20 @@ def design_study(
     modes = StudyModes(scene, out_dir, log) if model == "modal" else None
     specs, keys = [], []
     for b in batches:
-        spec = {"scene": scene_doc, "case": case, "model": model, "implied": implied, "runs": b}
+        table = None
         if modes is not None:
-            scenes = [run_scene(scene, p["params"], implied) for p in b]
+            scenes = [run_scene(scene, p.params, implied) for p in b]
             for sc in scenes:
                 modes(sc)
-            spec["pillar_modes"] = {modes.key(sc): modes.table[modes.key(sc)] for sc in scenes}
+            table = {modes.key(sc): modes.table[modes.key(sc)] for sc in scenes}
+        spec = BatchSpec(scene_doc, case, model, implied, tuple(b), table)
         specs.append(spec)
         keys.append(batch_key(spec, source))
-    done: dict[int, dict] = {}
+    done: dict[int, BatchResult] = {}
     for i, k in enumerate(keys):
-        doc = cache.read(k)  # a damaged file is no finished batch: recomputed
-        if doc is not None:
-            done[i] = doc
+        got = cache.read(k, BatchResult)  # a damaged file is no finished batch: recomputed
+        if got is not None:
+            done[i] = got
     todo = [i for i in range(len(batches)) if i not in done]
     n_cached = sum(len(batches[i]) for i in done)
     if log:
@@ -154,7 +156,7 @@ def design_study(
             f"study {scene.name}: {case}, {len(points)} runs in {len(batches)} batches "
             f"({len(done)} on disk, {len(todo)} to compute)"
         )
-    info = {"kind": "none (every batch on disk)", "scheduler": None, "workers": 0, "threads": 0}
+    info = ExecutorInfo("none (every batch on disk)", None, 0, 0)
     t_cluster = t_compute = compute = 0.0
     if todo:
         t0 = time.perf_counter()
@@ -166,7 +168,7 @@ def design_study(
             info = ex.describe()
             t_cluster = time.perf_counter() - t0
             if log:
-                log(f"study: {info['kind']} at {info['scheduler']}, {info['workers']} workers")
+                log(f"study: {info.kind} at {info.scheduler}, {info.workers} workers")
             bar = tqdm(
                 total=len(points),
                 initial=n_cached,
@@ -179,26 +181,21 @@ def design_study(
             try:
                 for j, res in ex.map(run_batch, [specs[i] for i in todo]):
                     i = todo[j]
-                    doc = {"key": keys[i], **res}
-                    cache.write(keys[i], doc)
-                    done[i] = {**doc, "computed": True}
-                    compute += res["wall_seconds"]
-                    bar.update(len(res["runs"]))
+                    cache.write(keys[i], res)
+                    done[i] = res
+                    compute += res.wall_seconds
+                    bar.update(len(res.runs))
             finally:
                 bar.close()
             t_compute = time.perf_counter() - t1
         finally:
             if own:
                 ex.__exit__(None, None, None)
-    runs = []
-    for i, k in enumerate(keys):
-        for r in done[i]["runs"]:
-            runs.append(StudyRun.from_json({**r, "batch": k}))
+    runs = [replace(r, batch=k) for i, k in enumerate(keys) for r in done[i].runs]
     runs.sort(key=lambda r: r.index)
-    boundary = predicted_boundary(scene, case, model, axes, implied, modes)
+    predicted = predicted_boundary(scene, case, model, axes, implied, modes)
     found = found_boundary(axes, runs) if case == "runup" else None
-    if boundary is not None or found:
-        boundary = {**(boundary or {}), "found": found}
+    boundary = StudyBoundary(predicted, found) if predicted is not None or found else None
     n_computed = len(points) - n_cached
     result = StudyResult(
         scene_name=scene.name,
@@ -209,35 +206,32 @@ def design_study(
         runs=tuple(runs),
         boundary=boundary,
         executor=info,
-        batches={
-            "total": len(batches),
-            "cached": len(done) - len(todo),
-            "computed": len(todo),
-            "runs_per_batch_max": BATCH_RUNS,
-            "groups": sum(done[i].get("groups", 0) for i in done),
-            "cache_dir": str(cache_dir),
-        },
-        performance={
-            "runs": len(points),
-            "runs_computed": n_computed,
-            "cluster_start_seconds": t_cluster,
-            "compute_wall_seconds": t_compute,
-            "batch_seconds": compute,
-            "runs_per_second": n_computed / t_compute if t_compute > 0 else None,
-            "wall_seconds": 0.0,
-        },
+        batches=BatchCounts(
+            total=len(batches),
+            cached=len(done) - len(todo),
+            computed=len(todo),
+            runs_per_batch_max=BATCH_RUNS,
+            groups=sum(d.groups for d in done.values()),
+            cache_dir=str(cache_dir),
+        ),
+        performance=StudyPerformance(
+            runs=len(points),
+            runs_computed=n_computed,
+            cluster_start_seconds=t_cluster,
+            compute_wall_seconds=t_compute,
+            batch_seconds=compute,
+            runs_per_second=n_computed / t_compute if t_compute > 0 else None,
+            wall_seconds=0.0,
+        ),
     )
     csv = write_text(out_dir / "study.csv", study_csv(result))
     figures = charts(result, out_dir) if charts is not None else []
-    perf = {**result.performance, "wall_seconds": time.perf_counter() - start}
-    from dataclasses import replace
-
     return replace(
         result,
         figures=tuple(figures),
-        performance=perf,
+        performance=replace(result.performance, wall_seconds=time.perf_counter() - start),
         pillar_model=modes.pillar_model if modes is not None else None,
-        files={"csv": str(csv), "cache_dir": str(cache_dir)},
+        files=StudyFiles(csv=str(csv), cache_dir=str(cache_dir)),
     )
 
 

@@ -7,34 +7,142 @@
   (Md = Mc);
 - ``passages``: when the speed first crosses each resonance;
 - ``series``: the arrays written to the NPZ/CSV;
-- ``CaseSummary``: what ``simulate_<case>.json`` carries about a case.
+- ``RunOutcome``: what every model's run reached; ``CaseSummary``: a case on a
+  reduced model, what ``simulate_<case>.json`` carries about it;
+- the checks a case's summary carries beside its numbers, built by
+  rotorpillar.transients.cases: ``truncation``, the modal model's answers against
+  the same case with one more pillar mode (``TruncationEstimate``, or why there is
+  none: ``NoTruncationEstimate``); ``response_spectrum_check``, an earthquake on a
+  record, the tip's largest displacement relative to the ground beside the
+  response-spectrum estimate (``SpectrumCheck``, or ``NoSpectrumCheck``), each
+  pair a union tagged by ``kind``.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass
+from dataclasses import replace as replace_run
 from typing import Any
 
 import numpy as np
 
-from ..provenance import JsonRecord
+from ..records import Record, replace
 from ..reduced.accuracy import AccuracyCheck, check_step, forcing_frequencies
 from ..reduced.batch import shaft_deflection
-from ..reduced.excitation import GroundMotion, no_motion
-from ..reduced.excitation_records import ExcitationSizes, excitation_sizes_from_json
-from ..reduced.integration import EnergyBalance, Transient
+from ..reduced.excitation import ExcitationSizes, GroundMotion, no_motion
+from ..reduced.integration import EnergyBalance, IntegratorStats, Transient
 from ..reduced.rotor_models import RotorStructure
-from ..reduced.stationary import AveragingPrediction, NoPassingFold, PassingTorqueStudy, passing_torque_from_json
-from .case_checks import (
-    NoSpectrumCheck,
-    NoTruncationEstimate,
-    SpectrumCheck,
-    TruncationEstimate,
-    spectrum_check_from_json,
-    truncation_from_json,
-)
-from .sweep_records import NumericJump, SweepFindings
+from ..reduced.stationary import AveragingPrediction, PassingTorque
+from .sweep import NumericJump, SweepFindings
+
+
+class SpectralMode(Record):
+    """One pillar mode's part in the response-spectrum estimate of the tip."""
+
+    mode: int
+    """its number, from 1 (-)"""
+    period: float
+    """(s)"""
+    damping_ratio: float
+    """its own damping ratio (-)"""
+    participation_factor: float
+    """Gamma_j for a base acceleration (-)"""
+    s_d: float
+    """the record's spectral displacement at its period and damping (m)"""
+    contribution: float
+    """|Gamma_j| S_d(T_j) (m)"""
+
+
+class TruncationEstimate(Record, tag_field="kind", tag="estimate"):
+    """How much the (k+1)-th pillar mode changes a modal run's answers: the
+    truncation error estimate (relative differences: the run with k + 1 modes
+    over the run with k, minus 1)."""
+
+    modes: int
+    """k: the pillar modes of the run (-)"""
+    modes_check: int
+    """k + 1: the pillar modes of the check (-)"""
+    omega_added: float
+    """circular frequency of the mode the check adds (rad/s)"""
+    effective_mass_fraction: float
+    """share of the base-excited mass the k modes carry (-)"""
+    effective_mass_fraction_check: float
+    """the same for the k + 1 modes (-)"""
+    omega_final_rel_diff: float | None
+    """of the final speed (-); None when the run ends at rest"""
+    tip_series_max_rel_diff: float
+    """max_t |tip_k - tip_k+1| over max_t |tip_k+1| (-)"""
+    tip_x_max_rel_diff: float | None
+    """of the largest |tip X| (-); None when the run's is zero"""
+    rotor_x_max_rel_diff: float | None
+    """of the largest |rotor X| (-); None when the run's is zero"""
+    rotor_y_max_rel_diff: float | None
+    """of the largest |rotor Y| (-); None when the run's is zero"""
+
+
+class NoTruncationEstimate(Record, tag_field="kind", tag="unavailable"):
+    """A modal run without its truncation estimate: the mode source offers no more modes."""
+
+    modes: int
+    """the pillar modes of the run (-)"""
+    modes_check: None
+    """no check run (always None)"""
+    statement: str
+    """why, in words"""
+
+
+#: The truncation estimate, or why there is none.
+Truncation = TruncationEstimate | NoTruncationEstimate
+
+
+class SpectralEstimate(Record):
+    """The response-spectrum estimate of the tip's largest displacement relative to the
+    ground: per pillar mode j, Gamma_j S_d(T_j, zeta_j), combined by SRSS."""
+
+    modes: tuple[SpectralMode, ...]
+    """each pillar mode's part, in the modal model's order"""
+    srss_tip_estimate: float
+    """the square root of the sum of the contributions' squares (m)"""
+
+
+class SpectrumCheck(Record, tag_field="kind", tag="check"):
+    """The tip's largest displacement relative to the ground beside the response-spectrum
+    estimate of the first pillar mode alone (Gamma_1 S_d(T_1, zeta_1)), and of all the
+    modes kept (SRSS)."""
+
+    period: float
+    """T_1: the first pillar mode's period (s)"""
+    damping_ratio: float
+    """zeta_1: its own damping ratio (-)"""
+    participation_factor: float
+    """Gamma_1 for a base acceleration (-)"""
+    s_d: float
+    """the record's spectral displacement at T_1, zeta_1 (m)"""
+    tip_estimate: float
+    """|Gamma_1| S_d(T_1, zeta_1) (m)"""
+    tip_numeric: float
+    """the run's largest |tip X| relative to the ground after the motion starts (m)"""
+    ratio: float | None
+    """tip_numeric / tip_estimate (-); None when the estimate is zero"""
+    srss_tip_estimate: float
+    """every mode kept, SRSS (m)"""
+    modes: tuple[SpectralMode, ...]
+    """each pillar mode's part"""
+    note: str
+    """what the estimate is, in words"""
+
+
+class NoSpectrumCheck(Record, tag_field="kind", tag="unavailable"):
+    """No response-spectrum check: the model has no pillar modes."""
+
+    note: str
+    """why, in words"""
+
+
+#: The response-spectrum check, or why there is none.
+SpectrumCheckResult = SpectrumCheck | NoSpectrumCheck
+
 
 CAPTURE_WIDTH = 3.0  # in n_i = nu_i omega_i
 CAPTURE_MIN_WIDTH = 0.03  # relative
@@ -98,8 +206,7 @@ def capture_state(model: RotorStructure, t, Omega, drive_free_speed: float) -> C
     return CaptureState(None, None, None, state)
 
 
-@dataclass(frozen=True)
-class Passage(JsonRecord):
+class Passage(Record):
     """When a run's speed first crosses one resonance, and the peaks near it."""
 
     index: int
@@ -141,12 +248,12 @@ def passages(run: Transient) -> tuple[Passage, ...]:
     return tuple(out)
 
 
-def max_abs(run: Transient) -> dict[str, float]:
+def max_abs(run: Transient) -> dict[str, float | None]:
     """Largest |value| over the run, from the integrator's per-step peaks (m); a mapping by
     coordinate name, not a record: its keys are the model's coordinates (the JSON's max_abs)."""
     m = run.model
     pk = np.nanmax(run.peak, axis=0)
-    out = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
+    out: dict[str, float | None] = {"tip_x": float(pk[-1]), "rotor_x": float(pk[m.rotor_x]), "rotor_y": float(pk[m.nx])}
     if not m.notes.get("full_order"):  # a full-order model's nodes: not worth a key each
         for i, name in enumerate(m.coordinates):
             out[name] = float(pk[i])
@@ -176,7 +283,7 @@ def decimate(run: Transient, max_samples: int) -> Transient:
     starts = np.r_[0, idx[:-1] + 1]
     peak = np.maximum.reduceat(run.peak, starts, axis=0)
     peak[0] = run.peak[0]
-    return replace(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
+    return replace_run(run, t=run.t[idx], q=run.q[idx], v=run.v[idx], work=run.work[idx], peak=peak)
 
 
 def series(run: Transient, max_samples: int | None = None) -> dict[str, np.ndarray]:
@@ -223,107 +330,57 @@ def series(run: Transient, max_samples: int | None = None) -> dict[str, np.ndarr
 # The summary of a case
 
 
-@dataclass(frozen=True)
-class CaseSummary:
-    """A case condensed for ``simulate_<case>.json``; values are JSON-ready
-    (numpy arrays allowed: the writer converts them).  Optional sections are
-    None when the case has none, and then absent from ``to_json()``."""
+class RunOutcome(Record, kw_only=True, omit_defaults=True):
+    """What every model's run of a case reached (``simulate_<case>.json``; SI units)."""
 
     ok: bool
+    """the run passed its own checks (``run_checks``)"""
+    failed_checks: tuple[str, ...] | None = None
+    """why ``ok`` is false, one named line each (absent when no check failed)"""
     duration: float
     """length of the run (s)"""
     omega_final: float
     """rotor speed at the end (rad/s)"""
     omega_final_mean: float
     """mean speed over the last 5 % of the run (rad/s)"""
-    max_abs: dict
-    """largest |value| per coordinate (m)"""
+    max_abs: dict[str, float | None]
+    """largest |value| per coordinate (m), and the forces' (N, N m, Pa); a mapping by
+    name: its keys are the model's coordinates"""
     captured_at: float | None
     """the speed the rotor settled at below a resonance (rad/s), or None"""
-    passages: tuple[Passage, ...]
-    """when the speed first crossed each resonance"""
+    captured_resonance: float | None
+    """omega_i of the resonance that holds the rotor (rad/s), or None"""
+    captured_index: int | None
+    """that resonance's index among the model's resonances (-), or None"""
+    speed_state: str
+    """"captured", "escaping", "accelerating" or "at_speed" (see capture_state)"""
     energy_balance: EnergyBalance
     """the run's energy against the work done (J)"""
-    integrator: dict
-    """the integrator's statistics"""
+    integrator: IntegratorStats
+    """what the integrator did"""
+    excitation: ExcitationSizes | None = None
+    """earthquake: the ground motion's sizes"""
+
+
+class CaseSummary(RunOutcome, kw_only=True, omit_defaults=True):
+    """A case on a reduced model condensed (paper, modal, beam): the outcome, the passages,
+    the theory's prediction and the case's own checks."""
+
+    passages: tuple[Passage, ...]
+    """when the speed first crossed each resonance"""
     prediction: AveragingPrediction
     """what the averaging theory predicts for the drive"""
     jumps: tuple[NumericJump, ...]
     """the sweep's numeric jumps (empty for the other cases)"""
-    passing_torque: PassingTorqueStudy | NoPassingFold | None = None
+    passing_torque: PassingTorque | None = None
     """run-up: the torque needed to pass the first capturing resonance"""
     sweep: SweepFindings | None = None
-    excitation: ExcitationSizes | None = None
-    """earthquake: the ground motion's sizes"""
-    response_spectrum_check: SpectrumCheck | NoSpectrumCheck | None = None
+    """sweep: the jumps and amplitudes against the averaging theory"""
+    response_spectrum_check: SpectrumCheckResult | None = None
     """earthquake on a record: the tip against the response-spectrum estimate"""
-    truncation: TruncationEstimate | NoTruncationEstimate | None = None
+    truncation: Truncation | None = None
     """modal model: the same case with one mode more"""
-    captured_resonance: float | None = None
-    """omega_i of the resonance that holds the rotor (rad/s), or None"""
-    captured_index: int | None = None
-    """that resonance's index among the model's resonances (-), or None"""
-    speed_state: str | None = None
-    """"captured", "escaping", "accelerating" or "at_speed" (see capture_state)"""
-    failed_checks: list | None = None
-    """why ``ok`` is false: the run's own checks that failed (absent when none did)"""
 
-    def to_json(self) -> dict:
-        """The summary as ``simulate_<case>.json`` writes it (key order included)."""
-        out = {}
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if f.name in BESIDE_CAPTURE:
-                continue
-            if f.name == "captured_at":
-                out[f.name] = v
-                out.update({k: getattr(self, k) for k in BESIDE_CAPTURE if getattr(self, k) is not None})
-            elif f.name == "sweep":
-                if v is not None:
-                    out.update(v.to_json())
-            elif f.name in ("prediction", "passing_torque"):
-                if v is not None:
-                    out[f.name] = v.to_json()
-            elif f.name in ("passages", "jumps"):
-                out[f.name] = [p.to_json() for p in v]
-            elif f.name in ("energy_balance", "excitation", "response_spectrum_check", "truncation") and v is not None:
-                out[f.name] = v.to_json()
-            elif f.name not in _OPTIONAL or v is not None:
-                out[f.name] = v
-        return out
-
-    @classmethod
-    def from_json(cls, d: dict) -> CaseSummary:
-        kw: dict[str, Any] = {f.name: d.get(f.name) for f in fields(cls) if f.name != "sweep"}
-        kw["passages"] = tuple(Passage.from_json(p) for p in d.get("passages") or ())
-        kw["prediction"] = AveragingPrediction.from_json(d["prediction"])
-        if d.get("passing_torque") is not None:
-            kw["passing_torque"] = passing_torque_from_json(d["passing_torque"])
-        kw["jumps"] = tuple(NumericJump.from_json(j) for j in d.get("jumps") or ())
-        kw["energy_balance"] = EnergyBalance.from_json(d["energy_balance"])
-        if d.get("excitation") is not None:
-            kw["excitation"] = excitation_sizes_from_json(d["excitation"])
-        if d.get("truncation") is not None:
-            kw["truncation"] = truncation_from_json(d["truncation"])
-        if d.get("response_spectrum_check") is not None:
-            kw["response_spectrum_check"] = spectrum_check_from_json(d["response_spectrum_check"])
-        if "predicted_jumps" in d:
-            kw["sweep"] = SweepFindings.from_json(d)
-        return cls(**kw)
-
-
-#: Written right after captured_at, where they are read together (when not None).
-BESIDE_CAPTURE = ("captured_resonance", "captured_index", "speed_state")
-_OPTIONAL = (
-    "passing_torque",
-    "excitation",
-    "response_spectrum_check",
-    "truncation",
-    "captured_resonance",
-    "captured_index",
-    "speed_state",
-    "failed_checks",
-)
 
 #: A run whose energy balance misses by more than this share of the energy
 #: exchanged is no solution of its equations (dp5 at rtol 1e-7 closes to ~1e-6,
@@ -341,7 +398,7 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     schemes: their step; adaptive ones: the steps they took against the periods
     they went through at each moment's fastest frequency, and their rtol."""
     st, m = run.stats, run.model
-    method = st.get("method", "dp5")
+    method = st.method
     motion = run.motion or no_motion()
     W = np.abs(np.asarray(run.Omega, dtype=float))
     finite = W[np.isfinite(W)]
@@ -361,16 +418,17 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
     window = None
     if motion.kind != "none":
         window = (motion.start - t[0], motion.end - t[0])
-    h = st.get("time_step")
+    h = st.time_step
     if h:
-        return check_step(method, dict(st.get("scheme") or {}), float(h), freq, duration, window=window)
+        scheme = st.scheme if isinstance(st.scheme, dict) else {}
+        return check_step(method, dict(scheme), float(h), freq, duration, window=window)
     # adaptive: the periods gone through at each moment's fastest frequency
     fast = W if m.eccentricity > 0 else np.zeros_like(t)
     if "ground_motion_band" in freq:
         on = (t >= motion.start) & (t < motion.end)
         fast = np.where(on, np.maximum(fast, freq["ground_motion_band"]), fast)
     periods = float(np.sum(0.5 * (fast[1:] + fast[:-1]) * np.diff(t)) / (2 * math.pi))
-    steps = st.get("steps")
+    steps = st.steps
     mean = duration / steps if steps else 0.0
     return check_step(
         method,
@@ -382,7 +440,7 @@ def accuracy_check(run: Transient) -> AccuracyCheck:
         periods=periods,
         steps=steps,
         window=window,
-        rtol=st.get("rtol"),
+        rtol=st.rtol,
     )
 
 
@@ -396,15 +454,15 @@ def run_checks(run: Transient, drive_free_speed: float, accuracy: AccuracyCheck 
     outrun its drive.
     """
     failed = []
-    status = run.stats.get("status", "ok")
+    status = run.stats.status
     if status != "ok":
         failed.append(f"integrator_stopped: {status}")
-    if run.stats.get("steps", 1) == 0:
+    if run.stats.steps == 0:
         failed.append("no_steps: the integrator took no step (tolerance or step below what it can resolve)")
     if not (np.all(np.isfinite(run.q)) and np.all(np.isfinite(run.v))):
         failed.append("not_finite: the solution holds non-finite values")
-    h = run.stats.get("time_step")
-    if run.stats.get("method") == "central_difference" and h:
+    h = run.stats.time_step
+    if run.stats.method == "central_difference" and h:
         w_max = run.model.stiffest_frequency()
         if h * w_max > 2.0:
             failed.append(
@@ -442,6 +500,7 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: AveragingPr
     state = capture_state(run.model, run.t, run.Omega, drive_free_speed)
     base: dict[str, Any] = dict(
         ok=not failed,
+        failed_checks=tuple(failed) or None,
         duration=float(run.t[-1] - run.t[0]),
         omega_final=float(run.Omega[-1]),
         omega_final_mean=om_mean,
@@ -452,11 +511,9 @@ def run_summary(run: Transient, drive_free_speed: float, prediction: AveragingPr
         speed_state=state.speed_state,
         passages=passages(run),
         energy_balance=run.energy_balance(),
-        integrator={**run.stats, "accuracy": acc.to_json()},
+        integrator=replace(run.stats, accuracy=acc),
         prediction=prediction,
         jumps=(),
     )
     base.update(sections)
-    if failed:
-        base["failed_checks"] = failed
     return CaseSummary(**base)

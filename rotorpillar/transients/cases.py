@@ -14,34 +14,34 @@ The 3D model's pillar modes (``modal_model.source = "fem3d"``) come in as
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..errors import InputError
+from ..records import replace
 from ..reduced.accuracy import FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters, full_order_step
 from ..reduced.band import forcing_top
 from ..reduced.drive import DriveSchedule
-from ..reduced.excitation import GroundMotion, no_motion, response_spectrum
-from ..reduced.excitation_records import ExcitationSizes
+from ..reduced.excitation import ExcitationSizes, GroundMotion, no_motion, response_spectrum
 from ..reduced.integration import Settings, Transient, simulate
 from ..reduced.models import ModelInfo, build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
 from ..scene import CASES, Scene
-from .case_checks import (
+from .case_summary import (
+    CaseSummary,
     NoSpectrumCheck,
     NoTruncationEstimate,
     SpectralEstimate,
     SpectralMode,
     SpectrumCheck,
     TruncationEstimate,
+    run_summary,
 )
-from .case_summary import CaseSummary, run_summary
-from .sweep import rate_convergence, sweep_analysis
-from .sweep_records import SweepAnalysis, SweepFindings
+from .sweep import SweepAnalysis, SweepFindings, rate_convergence, sweep_analysis
 
 
 @dataclass(frozen=True)
@@ -197,8 +197,11 @@ def run_case(
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" else (None, None)
     result = _run_on(scene, case, model, motion, integrator, info, settings)
     if rule is not None:
-        result.run.stats["step_rule"] = rule.to_json()
-        result.summary.integrator["step_rule"] = rule.to_json()
+        result = replace(
+            result,
+            run=replace(result.run, stats=replace(result.run.stats, step_rule=rule)),
+            summary=replace(result.summary, integrator=replace(result.summary.integrator, step_rule=rule)),
+        )
     if which == "modal" and truncation:
         result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
     return result
@@ -242,7 +245,8 @@ def truncation_estimate(a: CaseResult, b: CaseResult) -> TruncationEstimate:
     assert pa is not None and pb is not None  # modal models' results
 
     def rel(key: str) -> float | None:
-        return mb[key] / ma[key] - 1 if ma[key] > 0 else None
+        x, y = ma.get(key), mb.get(key)
+        return y / x - 1 if x and y is not None and x > 0 else None
 
     return TruncationEstimate(
         modes=pa.count,

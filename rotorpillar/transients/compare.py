@@ -5,16 +5,34 @@ same path as `simulate` (``run.run_model`` on the chain's pillar model,
 ``files.write_model_files``: ``compare_<case>_<model>.*``, apart from the
 scene's own ``simulate_<case>_<model>.*``), over one common duration (the
 shortest of the models' own: the 3D full order's is [full_order]'s), and
-writes ``compare_<case>.json`` (``records.CompareResult``) and the chart
-``compare_<case>.png``.  Errors are of the tip's X relative to the ground,
-against the reference (fem3d > beam > modal > paper) on its output times:
-the history error, and apart the envelope error, the peak and the rotor
-angle's drift (rotorpillar.transients.measures), with the one that fits the
-case leading.  Costs are warm (compilation apart, ``compile_seconds``).
+writes ``compare_<case>.json`` (its record, ``CompareResult``, typed to the
+leaves here) and the chart ``compare_<case>.png``.  Errors are of the tip's X
+relative to the ground, against the reference (fem3d > beam > modal > paper)
+on its output times (``compare_series``, below): the history error, and apart
+the envelope error, the peak and the rotor angle's drift, with the one that
+fits the case leading.  Costs are warm (compilation apart, ``compile_seconds``).
 For the earthquake, ``spectrum``: the record's pseudo-acceleration spectrum
 (eqsig, 5 %), the modal model's mode periods and its spectral estimate of
 the peak tip (SRSS of Gamma_j S_d(T_j), rotorpillar.transients.cases.spectral_estimate)
 beside the modal model's computed peak.
+
+How far one model's run is from a reference run, by errors that measure the
+model: with a whirling unbalance the tip history of two good models drifts
+apart in phase: a rotor angle that lags by a fraction of a radian after a
+minute shifts the whirl by as much, and the pointwise history error then
+reads tens of per cent while the amplitudes agree to a fraction of one.  So
+beside the history error three measures are taken separately: the envelope
+error (the running peak |x| over a window of one period of the slowest
+resonance, compared pointwise: phase-blind within the window), the peak
+difference, and the rotor angle's drift theta - theta_ref (rad), which is the
+phase error.  ``lead`` says which measure fits the case: the history while the
+rotors stay in phase (drift < ``PHASE_LOCKED`` rad: both models see the same
+forcing at the same time, so the history error is the model's), else the
+envelope.
+
+The comparisons `rotorpillar run` makes and the report shows are
+:data:`COMPARISONS`, as `rotorpillar compare` arguments (``commands/run.py``
+builds its stages from them, the report's hints repeat them).
 """
 
 from __future__ import annotations
@@ -24,27 +42,153 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
+import math
 from pathlib import Path
 
 import numpy as np
 
+from ..chain.record import PillarModel
 from ..errors import InputError
 from ..provenance import write_result
+from ..records import Record
+from ..reduced.excitation import ExcitationSizes
 from ..scene import MODELS
-from .measures import compare_series, envelope_window
-from .model_run import ModelRun, run_model
+from .case_summary import SpectralMode
+from .model_run import Fem3dRun, ModelRun, ReducedRun, run_model
 from .pareto import ParetoStudy
-from .records import (
-    ComparedModel,
-    CompareResult,
-    CompareWindow,
-    ModelErrors,
-    ResponseSpectrum,
-    reference_of,
-)
 from .references import FullOrderReference
 from .run_plan import fem3d_plan, own_duration
-from .run_records import Fem3dRun, RunRecord
+from .window import RunupWindow
+
+#: the reference of a comparison: the most complete model run
+REFERENCE_ORDER = ("fem3d", "beam", "modal", "paper")
+
+
+class ComparedModel(Record):
+    """One model's run in a comparison: its answers, its cost and its files."""
+
+    peak_tip_relative: float
+    """largest |tip X relative to the ground| (m)"""
+    peak_tip_absolute: float
+    """largest |absolute tip X| (m)"""
+    peak_shaft_deflection: float
+    """largest |shaft deflection along X| (m)"""
+    omega_final: float
+    """rotor speed at the end (rad/s)"""
+    wall_seconds: float
+    """the run's wall time, warm (s)"""
+    compile_seconds: float | None
+    """the warm-up's wall time: what the run compiled (s)"""
+    dofs: int
+    """unknowns of the model (-)"""
+    ok: bool
+    """the run's own checks held"""
+    warnings: tuple[str, ...]
+    """the run's warnings, in words"""
+    pillar_model: PillarModel | None
+    """the pillar model it ran on"""
+    json: str
+    """its compare_<case>_<model>.json"""
+    npz: str
+    """its compare_<case>_<model>.npz"""
+
+
+class ModelErrors(Record):
+    """One model against the reference (rotorpillar.transients.compare)."""
+
+    tip_history_error: float
+    """max_t |tip_m - tip_ref| / max_t |tip_ref|, tips relative to the ground on the
+    reference's times (-)"""
+    peak_tip_difference: float | None
+    """peak_m / peak_ref - 1 (-); None when the reference's peak is zero"""
+    omega_final_difference: float | None
+    """omega_final_m / omega_final_ref - 1 (-); None when the reference's is zero"""
+    tip_envelope_error: float
+    """the running peak over envelope_window compared as the history (-)"""
+    envelope_window: float
+    """the envelope's window: one period of the slowest resonance (s)"""
+    angle_drift: float | None
+    """largest |theta_m - theta_ref| (rad)"""
+    angle_drift_final: float | None
+    """theta_m - theta_ref at the end (rad)"""
+    lead: str
+    """"history" or "envelope": the measure that fits the case"""
+    lead_why: str
+    """why that measure, in words"""
+
+
+class CompareWindow(Record, omit_defaults=True):
+    """The span every model's history is compared over."""
+
+    start: float
+    """(s)"""
+    end: float
+    """(s)"""
+    duration: float
+    """the one duration every model runs (s)"""
+    why: str
+    """why that duration, in words"""
+    runup: RunupWindow | None = None
+    """the run-up's window through the resonances (runup against fem3d), else absent"""
+
+
+class ResponseSpectrum(Record):
+    """The earthquake's pseudo-acceleration spectrum and the ROM's spectral peak tip."""
+
+    period: tuple[float, ...]
+    """(s)"""
+    psa: tuple[float, ...]
+    """pseudo-acceleration at each period, 5 % damping (eqsig) (m/s**2)"""
+    damping: float
+    """the spectrum's damping ratio (-)"""
+    mode_periods: tuple[float, ...]
+    """the modal model's mode periods (s)"""
+    spectral_peak_tip: float
+    """SRSS of the modes' contributions (m)"""
+    computed_peak_tip: float | None
+    """the modal model's computed peak tip relative to the ground (m); None without it"""
+    modes: tuple[SpectralMode, ...]
+    note: str
+
+
+class CompareResult(Record, omit_defaults=True):
+    """Several models on one case (SI: m, rad/s, s).  ``errors`` and ``cost_ratio`` are
+    against ``reference``; the histories are compared over ``window`` (every model is
+    run over the same duration)."""
+
+    case: str
+    models_run: tuple[str, ...]
+    """in the order given"""
+    reference: str
+    """the most complete model run: fem3d > beam > modal > paper"""
+    excitation: ExcitationSizes | None
+    """the ground motion's sizes (earthquake), as in simulate's JSON (their fields depend
+    on the excitation's kind: rotorpillar.reduced.excitation)"""
+    per_model: dict[str, ComparedModel]
+    """model -> its answers, cost and files"""
+    errors: dict[str, ModelErrors]
+    """model (not the reference) -> its errors against the reference"""
+    cost_ratio: dict[str, float | None]
+    """model -> wall_seconds_m / wall_seconds_ref, both warm (compilation apart:
+    per_model's compile_seconds) (-)"""
+    chart: str
+    """compare_<case>.png: tip histories relative to the ground overlaid, difference below"""
+    window: CompareWindow
+    """the span of the comparison and why"""
+    spectrum: ResponseSpectrum | None = None
+    """earthquake: the record's spectrum and the ROM's spectral estimate of the peak tip"""
+    full_order_reference: FullOrderReference | None = None
+    """fem3d run: its mesh, where it comes from (the convergence study, or the scene), its own
+    error on the frequencies the load excites, and the participation of the loaded modes"""
+    pareto: ParetoStudy | None = None
+    """earthquake against the 3D full order: speed against accuracy of every model of the
+    ladder on El Centro"""
+
+
+def reference_of(models) -> str:
+    """The most complete model among ``models``."""
+    return next(m for m in REFERENCE_ORDER if m in models)
+
 
 COMPARE_CASES = ("earthquake", "runup")
 DEFAULT_MODELS = {"earthquake": ("modal", "fem3d"), "runup": ("modal", "beam")}
@@ -270,13 +414,13 @@ def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain
 
 def _finish_pareto(scene: Scene, pending, out: Path, write: bool, chart) -> ParetoStudy:
     """The study, its chart drawn."""
-    from dataclasses import replace
+    from ..records import replace
 
     study, _ = pending.finish()
     if write and chart is not None:
         name = "compare_earthquake_pareto.png"
         chart(
-            study.to_json(),
+            study,
             Path(out) / name,
             f"{scene.name}: El Centro, speed against accuracy (errors against {study.reference.label})",
         )
@@ -292,13 +436,18 @@ def _full_order_reference(runs: dict[str, ModelRun]) -> FullOrderReference | Non
     return record.full_order.reference if isinstance(record, Fem3dRun) else None
 
 
-def _per_model(case: str, m: str, r: RunRecord) -> ComparedModel:
-    ma = r.max_abs
+def _peak(r: ReducedRun | Fem3dRun, key: str) -> float:
+    """A run's peak (m); NaN where the run has none (written null, as a non-finite peak)."""
+    value = r.max_abs.get(key)
+    return math.nan if value is None else value
+
+
+def _per_model(case: str, m: str, r: ReducedRun | Fem3dRun) -> ComparedModel:
     stem = compare_stem(case, m)
     return ComparedModel(
-        peak_tip_relative=ma["tip_x_relative"],
-        peak_tip_absolute=ma["tip_x_absolute"],
-        peak_shaft_deflection=ma["shaft_deflection_x"],
+        peak_tip_relative=_peak(r, "tip_x_relative"),
+        peak_tip_absolute=_peak(r, "tip_x_absolute"),
+        peak_shaft_deflection=_peak(r, "shaft_deflection_x"),
         omega_final=r.omega_final,
         wall_seconds=r.wall_seconds,
         compile_seconds=r.compile_seconds,
@@ -347,3 +496,152 @@ def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
         "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
         "as a separate mass: an estimate, not a bound",
     )
+
+
+#: Rotor angles within this of each other (rad) keep the whirls in phase.
+PHASE_LOCKED = 0.1
+
+
+def running_peak(t: np.ndarray, x: np.ndarray, window: float) -> np.ndarray:
+    """max |x| over [t - window/2, t + window/2] at each t (m): the peak envelope."""
+    t, a = np.asarray(t, dtype=float), np.abs(np.asarray(x, dtype=float))
+    lo = np.searchsorted(t, t - window / 2, side="left")
+    hi = np.searchsorted(t, t + window / 2, side="right")
+    out = np.empty_like(a)
+    for i, (j, k) in enumerate(zip(lo, hi)):
+        out[i] = a[j : max(k, j + 1)].max()
+    return out
+
+
+class SeriesErrors(Record):
+    """One model's tip history against the reference's, on the reference's times."""
+
+    history_error: float
+    """max |x - x_ref| / max |x_ref| (-)"""
+    envelope_error: float
+    """max |env - env_ref| / max env_ref, env the running peak over ``window`` (-)"""
+    window: float
+    """the envelope's window: one period of the slowest resonance (s)"""
+    peak_difference: float | None
+    """max |x| / max |x_ref| - 1 (-)"""
+    angle_drift: float | None
+    """largest |theta - theta_ref| over the run (rad); None without rotor angles"""
+    angle_drift_final: float | None
+    """theta - theta_ref at the end (rad)"""
+    lead: str
+    """"history" or "envelope": the measure that fits the case"""
+    why: str
+    """why that measure leads, in words"""
+
+
+def compare_series(t, x, t_ref, x_ref, *, window: float, theta=None, theta_ref=None) -> SeriesErrors:
+    """The errors of ``x(t)`` against ``x_ref(t_ref)`` (see the module text).
+
+    >>> import math
+    >>> t = np.linspace(0.0, 10.0, 2001)
+    >>> ref = np.sin(2 * np.pi * t)
+    >>> late = np.sin(2 * np.pi * t - 0.5)          # the same whirl, half a radian behind
+    >>> m = compare_series(t, late, t, ref, window=1.0, theta=0.5 + t, theta_ref=t)
+    >>> round(m.history_error, 3), round(2 * math.sin(0.25), 3)   # the closed form: 2 sin(0.5 / 2)
+    (0.495, 0.495)
+    >>> round(m.envelope_error, 3), m.lead
+    (0.0, 'envelope')
+    """
+    t_ref, x_ref = np.asarray(t_ref, dtype=float), np.asarray(x_ref, dtype=float)
+    xi = np.interp(t_ref, np.asarray(t, dtype=float), np.asarray(x, dtype=float))
+    scale = max(float(np.max(np.abs(x_ref))), 1e-300)
+    hist = float(np.max(np.abs(xi - x_ref)) / scale)
+    env, env_ref = running_peak(t_ref, xi, window), running_peak(t_ref, x_ref, window)
+    envelope = float(np.max(np.abs(env - env_ref)) / max(float(np.max(env_ref)), 1e-300))
+    peak_ref = float(np.max(np.abs(x_ref)))
+    peak = float(np.max(np.abs(np.asarray(x, dtype=float))))
+    drift = final = None
+    if theta is not None and theta_ref is not None:
+        th = np.interp(t_ref, np.asarray(t, dtype=float), np.asarray(theta, dtype=float))
+        d = th - np.asarray(theta_ref, dtype=float)
+        drift, final = float(np.max(np.abs(d))), float(d[-1])
+    if drift is not None and drift >= PHASE_LOCKED:
+        lead = "envelope"
+        why = (
+            f"the rotor angles drift apart by up to {drift:.3g} rad: the whirl's history error "
+            "measures that phase drift, not the model; the envelope (the running peak over "
+            f"{window:.3g} s) and the peak measure the model"
+        )
+    else:
+        lead = "history"
+        why = (
+            "the rotors stay in phase (angle drift "
+            + ("not measured" if drift is None else f"{drift:.2g} rad")
+            + "): both models see the same forcing at the same time, so the history error "
+            "measures the model"
+        )
+    return SeriesErrors(
+        hist, envelope, float(window), peak / peak_ref - 1 if peak_ref > 0 else None, drift, final, lead, why
+    )
+
+
+def envelope_window(omegas) -> float:
+    """One period of the slowest resonance (s), the envelope's window."""
+    w = [float(o) for o in omegas if o and math.isfinite(o) and o > 0]
+    return 2 * math.pi / min(w) if w else 1.0
+
+
+COMPARE_COMMAND = "compare"
+
+#: The comparisons `rotorpillar run` makes and the report shows: case -> the
+#: arguments of `rotorpillar compare --case <case>` (``commands/run.py`` builds its stages
+#: from these, the report's hints repeat them).  compare runs the scene's
+#: excitation, so the earthquake sets the record: El Centro on the
+#: physically consistent models (the modal ROM and the 3D full order), with
+#: the speed-against-accuracy study of every model of the ladder; the run-up
+#: puts the ROM beside the 3D full order too, over the window through its
+#: resonances (rotorpillar.transients.window).
+COMPARISONS = {
+    # El Centro from 1 s after the start (the rotor whirling steadily before) over 9 s: its
+    # strong motion and the tip's peak (2.6 s into the record on the paper's ROM) inside,
+    # at 60 % of the 15 s the 3D run took with the record starting at 5 s
+    "earthquake": (
+        "--models",
+        "modal,fem3d",
+        "--pareto",
+        "--set",
+        "excitation.kind=record",
+        "--set",
+        "excitation.record=elcentro",
+        "--set",
+        "excitation.start=1",
+        "--set",
+        "full_order.earthquake_duration=9",
+    ),
+    "runup": ("--models", "modal,fem3d"),
+}
+
+
+def comparison_command(case: str) -> str:
+    """The compare command line (without the scene) for one of :data:`COMPARISONS`.
+
+    >>> comparison_command("runup")
+    'compare --case runup --models modal,fem3d'
+    """
+    return " ".join((COMPARE_COMMAND, "--case", case, *COMPARISONS[case]))
+
+
+def comparison_models(case: str) -> list[str]:
+    """The models a comparison runs.
+
+    >>> comparison_models("earthquake")
+    ['modal', 'fem3d']
+    """
+    a = COMPARISONS[case]
+    return a[a.index("--models") + 1].split(",")
+
+
+def comparison_overrides(case: str) -> tuple[str, ...]:
+    """The scene keys a comparison sets itself (its inputs differ from the
+    scene there on purpose).
+
+    >>> comparison_overrides("earthquake")
+    ('excitation.kind', 'excitation.record', 'excitation.start', 'full_order.earthquake_duration')
+    """
+    a = COMPARISONS[case]
+    return tuple(a[i + 1].split("=", 1)[0] for i, x in enumerate(a) if x == "--set")

@@ -7,7 +7,7 @@ and returns it with
   ``max_abs.base_stress`` (Pa: |M| c / I + N / A at the base, compression),
   ``max_abs.shaft_deflection`` (m, radial) and ``max_abs.bearing_force``
   (N), for the 3D model ``max_abs.von_mises`` (Pa); and the block
-  ``internal_forces`` (``force_records.InternalForcesSummary``: envelopes
+  ``internal_forces`` (``InternalForcesSummary``, below: envelopes
   along the height, base reactions, the shaft's demand, the ROM's modes and
   truncation check, the 3D von Mises peaks and its XDMF file);
 - in its series (NPZ, CSV): ``base_moment``, ``base_shear``, ``base_axial``,
@@ -39,13 +39,15 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
-from dataclasses import replace
-
 import numpy as np
 
-from ..reduced.foundation import foundation_stiffness
+from ..fem3d.stress import VonMisesSummary
+from ..records import Record, replace
+from ..reduced.foundation import FoundationStiffness, foundation_stiffness
 from ..reduced.internal_forces import (
     STANDARD_GRAVITY,
+    CanStress,
+    ForceTruncation,
     UnitLoads,
     can_stresses,
     cantilever_tip_statics,
@@ -60,7 +62,109 @@ from ..reduced.internal_forces import (
 )
 from ..reduced.models import BeamModelInfo
 from ..reduced.tower import base_section
-from .force_records import BaseReactions, FoundationResponse, InternalForcesSummary, ShaftDemand
+
+
+class BaseReactions(Record):
+    """What the clamp carries, peaks over the run (the foundation designer's loads)."""
+
+    moment: float
+    """largest |M(0, t)| (N*m)"""
+    moment_time: float
+    """when (s)"""
+    shear: float
+    """largest |V(0, t)| (N)"""
+    shear_time: float
+    """when (s)"""
+    axial_min: float
+    """smallest N(0, t), compression positive (N)"""
+    axial_max: float
+    """largest N(0, t) (N)"""
+    stress: float
+    """largest extreme-fibre meridional stress |M| c / I + N / A at the base, compression (Pa)"""
+    stress_time: float
+    """when (s)"""
+    axial_share: float
+    """N / A over that stress at that instant: the share of the axial force (EN 1993-1-6's C_x) (-)"""
+
+
+class ShaftDemand(Record):
+    """The shaft's deflection and force, peaks over the run."""
+
+    deflection: float
+    """largest radial shaft deflection sqrt(d_x**2 + d_y**2) (m)"""
+    deflection_time: float
+    """when (s)"""
+    spring_force: float
+    """largest c2 |d| (N): what the shaft spring carries"""
+    bearing_force: float
+    """largest |c2 d + b2 v_r| (N): the spring and the damper b2 together, v_r the
+    rotor centre's velocity the model's damper acts on (relative to the ground);
+    the demand of the force check (the larger: b2 Omega matters beside c2 here)"""
+    bearing_force_time: float
+    """when (s)"""
+    sampled: bool
+    """True: peaks over the output samples (velocities by central differences where
+    the model gives none); False: from the model's own rates"""
+
+
+class FoundationResponse(Record):
+    """What the foundation's springs carry over a run, and how far the base turns."""
+
+    kind: str
+    """the foundation's kind: springs or footing"""
+    horizontal_force: float
+    """largest |K_H u + K_HR theta| (N)"""
+    horizontal_force_time: float
+    """when (s)"""
+    moment: float
+    """largest |K_HR u + K_R theta| (N*m)"""
+    moment_time: float
+    """when (s)"""
+    rotation: float
+    """largest |theta|, the base's rotation (rad); against foundation.rotation_limit"""
+    rotation_time: float
+    """when (s)"""
+    displacement: float
+    """largest |u|, the base's horizontal displacement relative to the ground (m)"""
+    rotation_limit: float | None
+    """the scene's serviceability limit on the rotation (rad); None: not stated"""
+    springs: FoundationStiffness
+    """the springs (at the tube's base)"""
+
+
+class InternalForcesSummary(Record):
+    """The ``internal_forces`` block of a transient's JSON (SI units)."""
+
+    model: str
+    """"modal", "beam", "fem3d\""""
+    method: str
+    """how the section forces were obtained, in words"""
+    heights: tuple[float, ...]
+    """section heights, base first (m)"""
+    moment_envelope: tuple[float, ...]
+    """max_t |M(z, t)| at each height (N*m)"""
+    shear_envelope: tuple[float, ...]
+    """max_t |V(z, t)| at each height (N)"""
+    axial_static: tuple[float, ...]
+    """N(z) of self-weight, gondola and rotor, compression positive (N)"""
+    base: BaseReactions
+    shaft: ShaftDemand
+    modes: int | None = None
+    """the modal ROM: modes the forces superpose"""
+    modes_in_run: int | None = None
+    """the modal ROM: modes of the case's run (its band)"""
+    truncation: ForceTruncation | None = None
+    """the modal ROM: the modes the section forces need (rotorpillar.reduced.internal_forces)"""
+    von_mises: VonMisesSummary | None = None
+    """the 3D model: its von Mises field's peaks"""
+    stress_field: str | None = None
+    """the 3D model: the XDMF time series (file name, beside the JSON), or None"""
+    note: str = ""
+    cans: tuple[CanStress, ...] | None = None
+    """a tower of cans: each can's largest meridional stress, where and when (EN 1993-1-6 per can)"""
+    foundation: FoundationResponse | None = None
+    """on a flexible foundation: the springs' forces and the base's rotation"""
+
 
 #: the series each run gains (CSV and NPZ)
 FORCE_SERIES = ("base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
@@ -196,7 +300,7 @@ def _attach(run, summary: InternalForcesSummary | None, series: dict, force, ext
         base_stress=None if base is None else base.stress,
         **extra_max,
     )
-    record = replace(run.record.with_max_abs(ma), internal_forces=summary)
+    record = replace(run.record, max_abs=ma, internal_forces=summary)
     t = np.asarray(data["t"], dtype=float)
     for key, values in series.items():
         data[key] = values
@@ -299,7 +403,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     if scene.pillar.is_uniform and base is None:
         from ..reduced.pillar_modes import beam_properties
 
-        bp = beam_properties(scene.pillar, scene.modal_model.theory)
+        bp = beam_properties(scene.pillar)
         statics = cantilever_tip_statics(
             bp.youngs_modulus,
             bp.second_moment,

@@ -19,34 +19,217 @@ Three experiments on a scene (`rotorpillar integrators`):
    no load, the rotor spinning freely through its coupling): (E(T) - E(0))
    over E(0) after 200 s at a loose setting (rtol 1e-4; 20 steps per period
    of the fastest motion), where the schemes' characters show.
+
+Its record, ``IntegratorStudy`` (integrators.json), comes first, typed to the
+rows; a run that failed holds an error of inf (null in the JSON, None read back).
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
 
+import msgspec
 import numpy as np
 
+from ..chain.record import PillarModel
+from ..records import Figure, Record, replace
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.integration import FIXED_STEP, Settings, simulate
 from ..reduced.models import build_model
 from ..scene import SCIPY_METHODS, Scene
-from .integrator_records import (
-    AccuracyRow,
-    AccuracyStudy,
-    CostGrowth,
-    DriftRow,
-    DriftStudy,
-    FirstFailure,
-    IntegratorStudy,
-    MethodSummary,
-    Reference,
-    StabilityRow,
-    StabilityStudy,
-)
+
+#: Fixed-step runs' and adaptive runs' ``family``.
+FAMILIES = ("adaptive", "fixed")
+
+
+class AccuracyRow(Record, kw_only=True, omit_defaults=True):
+    """One run of the accuracy ladder: an integrator at one setting on the run-up."""
+
+    method: str
+    """the integrator (dp5, a scipy method, or a fixed-step scheme)"""
+    family: str
+    """"adaptive" (a tolerance ladder) or "fixed" (a step ladder)"""
+    setting: float
+    """the rung: the relative tolerance (-) or the time step (s), as ``setting_name`` says"""
+    setting_name: str
+    """"rtol" or "time_step\""""
+    steps_per_rotor_period: float | None = None
+    """time steps per rotor period at the run's top speed (-); fixed-step runs only"""
+    error: float | None
+    """largest |tip X - reference| over the largest |tip X| on the output grid (-); inf
+    when the run failed (null in the JSON, None read back)"""
+    wall_seconds: float
+    """wall time of the run (s; noisy on a shared machine)"""
+    nfev: int
+    """force evaluations (-)"""
+    status: str
+    """the integrator's status ("ok" or why it stopped)"""
+
+
+class Reference(Record):
+    """The accuracy study's reference run, and its check against another method."""
+
+    method: str
+    """the reference integrator (dp5)"""
+    rtol: float
+    """its relative tolerance (-)"""
+    nfev: int
+    """its force evaluations (-)"""
+    wall_seconds: float
+    """its wall time (s)"""
+    agreement_with_dop853: float = msgspec.field(name="agreement_with_DOP853_1e-12")
+    """the error measure of scipy's DOP853 at rtol 1e-12 against the reference (-)"""
+
+
+class MethodSummary(Record):
+    """One integrator over its ladder: where it fails, its best error, its cost to reach
+    an error of 1e-3 and 1e-6 (log-interpolated along the ladder; None when never reached)."""
+
+    fails: str
+    """where the error passes 10 %, in words (or "no failure ...")"""
+    coarsest_ok_steps_per_period: float | None
+    """fewest steps per rotor period with an error under 10 % (-); None for adaptive methods
+    or when every rung fails"""
+    best_error: float | None
+    """the smallest error over the ladder (-); inf when every rung failed (null in the
+    JSON, None read back)"""
+    wall_seconds_at_1e_3: float | None = msgspec.field(name="wall_seconds_at_0.001")
+    """wall time to an error of 1e-3 (s)"""
+    nfev_at_1e_3: float | None = msgspec.field(name="nfev_at_0.001")
+    """force evaluations to an error of 1e-3 (-, interpolated)"""
+    wall_seconds_at_1e_6: float | None = msgspec.field(name="wall_seconds_at_1e-06")
+    """wall time to an error of 1e-6 (s)"""
+    nfev_at_1e_6: float | None = msgspec.field(name="nfev_at_1e-06")
+    """force evaluations to an error of 1e-6 (-, interpolated)"""
+
+
+class AccuracyStudy(Record, kw_only=True, omit_defaults=True):
+    """Experiment 1: error against cost on a run-up from rest."""
+
+    duration: float
+    """length of the run-up (s)"""
+    samples: int
+    """points of the common output grid (-)"""
+    omega_max: float
+    """the reference run's top rotor speed (rad/s)"""
+    reference: Reference
+    rows: tuple[AccuracyRow, ...]
+    per_method: dict[str, MethodSummary]
+    """method -> its summary, methods in sorted order"""
+    model: str | None = None
+    """the model integrated (its name); set by ``run_integrator_study``"""
+
+
+class StabilityRow(Record):
+    """One run of the stiffness study: an integrator on the modal model with ``modes``."""
+
+    method: str
+    """the integrator"""
+    modes: int
+    """pillar modes in the model (-)"""
+    omega_max: float
+    """the model's highest frequency (rad/s)"""
+    ok: bool
+    """the run finished, finite, with a tip under 1 m"""
+    nfev: int
+    """force evaluations (-)"""
+    wall_seconds: float
+    """wall time of the run (s; noisy on a shared machine)"""
+    status: str
+    """the integrator's status"""
+    time_step: float | None
+    """the fixed step (s); None for adaptive methods"""
+    stability_limit_central_difference: float
+    """2 / omega_max: the largest stable step of central difference, undamped (s)"""
+
+
+class FirstFailure(Record):
+    """The fewest pillar modes at which an integrator failed."""
+
+    modes: int
+    """pillar modes (-)"""
+    omega_max: float
+    """the model's highest frequency (rad/s)"""
+    h_times_omega_max: float
+    """the study's time step times omega_max (-)"""
+
+
+class CostGrowth(Record):
+    """An integrator's force evaluations from the fewest to the most modes it survived."""
+
+    modes: tuple[int, ...]
+    """[fewest, most] pillar modes (-)"""
+    nfev: tuple[int, ...]
+    """force evaluations at each (-)"""
+    factor: float
+    """the ratio of the two (-)"""
+
+
+class StabilityStudy(Record):
+    """Experiment 2: the modal model with more and more pillar modes."""
+
+    duration: float
+    """length of each run (s)"""
+    time_step: float
+    """the fixed-step schemes' step (s)"""
+    rtol: float
+    """the adaptive methods' relative tolerance (-)"""
+    rows: tuple[StabilityRow, ...]
+    first_failure: dict[str, FirstFailure | None]
+    """method -> its first failure, None if it never failed"""
+    cost_growth: dict[str, CostGrowth]
+    """method -> its cost growth (methods that survived more than one model)"""
+    note: str
+    """what the study shows, in words"""
+
+
+class DriftRow(Record):
+    """One integrator's energy drift on the undamped, unforced system."""
+
+    method: str
+    """the integrator"""
+    drift: float | None
+    """(E(T) - E(0)) / E(0) (-); None when the run failed"""
+    max_deviation: float | None
+    """max |E - E(0)| / E(0) over the run (-); None when the run failed"""
+    nfev: int
+    """force evaluations (-)"""
+    status: str
+    """the integrator's status"""
+    setting: float | None
+    """the relative tolerance (-) of an adaptive method, the time step (s) of a fixed-step one"""
+
+
+class DriftStudy(Record):
+    """Experiment 3: energy drift without damping, motor or load."""
+
+    duration: float
+    """length of each run (s)"""
+    speed: float
+    """the rotor's initial speed (rad/s)"""
+    rtol: float
+    """the adaptive methods' relative tolerance (-)"""
+    steps_per_period: float
+    """the fixed-step schemes' steps per period of the fastest motion (-)"""
+    rows: tuple[DriftRow, ...]
+
+
+class IntegratorStudy(Record, omit_defaults=True):
+    """The integrator study: integrators.json's result (the command adds the pillar
+    model, the probe's words and the figures to the study's three experiments)."""
+
+    accuracy: AccuracyStudy
+    stability: StabilityStudy
+    energy_drift: DriftStudy
+    pillar_model: PillarModel | None = None
+    """the pillar model of the accuracy and drift studies' ROM"""
+    stiffness_probe: str | None = None
+    """what the stiffness study's pillar modes are, in words"""
+    figures: tuple[Figure, ...] = ()
+    """the charts"""
+
 
 ADAPTIVE = ("dp5",) + SCIPY_METHODS
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
@@ -85,9 +268,9 @@ def accuracy_study(
                     setting=rtol,
                     setting_name="rtol",
                     error=_error(run, ref),
-                    wall_seconds=run.stats["wall_seconds"],
-                    nfev=run.stats["nfev"],
-                    status=run.stats["status"],
+                    wall_seconds=run.stats.wall_seconds,
+                    nfev=run.stats.nfev,
+                    status=run.stats.status,
                 )
             )
     spacing = duration / (samples - 1)
@@ -105,25 +288,30 @@ def accuracy_study(
                     setting_name="time_step",
                     steps_per_rotor_period=2 * math.pi / (W_max * h),
                     error=_error(run, ref),
-                    wall_seconds=run.stats["wall_seconds"],
-                    nfev=run.stats["nfev"],
-                    status=run.stats["status"],
+                    wall_seconds=run.stats.wall_seconds,
+                    nfev=run.stats.nfev,
+                    status=run.stats.status,
                 )
             )
     return AccuracyStudy(
         duration=duration,
         samples=samples,
         omega_max=W_max,
-        reference=Reference("dp5", 1e-12, ref.stats["nfev"], ref.stats["wall_seconds"], ref_agreement),
+        reference=Reference("dp5", 1e-12, ref.stats.nfev, ref.stats.wall_seconds, ref_agreement),
         rows=tuple(rows),
         per_method=_per_method(rows),
     )
 
 
+def _error_of(r: AccuracyRow) -> float:
+    """A row's error; inf where the run failed (None once read back from JSON's null)."""
+    return math.inf if r.error is None else r.error
+
+
 def _cost_at(rows: list[AccuracyRow], target: float) -> tuple[float | None, float | None]:
     """Wall time and evaluations to reach ``target`` error, log-interpolated along the ladder."""
     pts = sorted(
-        ((r.wall_seconds, r.error, r.nfev) for r in rows if math.isfinite(r.error) and r.error > 0),
+        ((r.wall_seconds, _error_of(r), r.nfev) for r in rows if math.isfinite(_error_of(r)) and _error_of(r) > 0),
         key=lambda p: p[0],
     )
     for (w0, e0, n0), (w1, e1, n1) in zip(pts, pts[1:]):
@@ -145,7 +333,7 @@ def _per_method(rows: list[AccuracyRow]) -> dict[str, MethodSummary]:
     out = {}
     for m in sorted({r.method for r in rows}):
         mine = [r for r in rows if r.method == m]
-        bad = [r for r in mine if not math.isfinite(r.error) or r.error > FAIL]
+        bad = [r for r in mine if not math.isfinite(_error_of(r)) or _error_of(r) > FAIL]
         worst_ok: float | None
         if mine[0].family == "fixed":
             worst_ok = min((_steps(r) for r in mine if r not in bad), default=None)
@@ -164,7 +352,7 @@ def _per_method(rows: list[AccuracyRow]) -> dict[str, MethodSummary]:
             )
         w3, n3 = _cost_at(mine, 1e-3)
         w6, n6 = _cost_at(mine, 1e-6)
-        out[m] = MethodSummary(fails, worst_ok, min(r.error for r in mine), w3, n3, w6, n6)
+        out[m] = MethodSummary(fails, worst_ok, min(_error_of(r) for r in mine), w3, n3, w6, n6)
     return out
 
 
@@ -198,9 +386,9 @@ def stability_study(
                     modes=k,
                     omega_max=w_max,
                     ok=ok,
-                    nfev=run.stats["nfev"],
+                    nfev=run.stats.nfev,
                     wall_seconds=wall,
-                    status=run.stats["status"],
+                    status=run.stats.status,
                     time_step=time_step if m in FIXED_STEP else None,
                     stability_limit_central_difference=2.0 / w_max,
                 )
@@ -256,9 +444,9 @@ def drift_study(
                 method=m,
                 drift=float((E[-1] - E[0]) / E[0]) if ok else None,
                 max_deviation=float(np.max(np.abs(E - E[0])) / E[0]) if ok else None,
-                nfev=run.stats["nfev"],
-                status=run.stats["status"],
-                setting=rtol if m not in FIXED_STEP else run.stats.get("time_step"),
+                nfev=run.stats.nfev,
+                status=run.stats.status,
+                setting=rtol if m not in FIXED_STEP else run.stats.time_step,
             )
         )
     return DriftStudy(duration, speed, rtol, steps_per_period, tuple(rows))

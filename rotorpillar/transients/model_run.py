@@ -1,7 +1,10 @@
 """One model of one transient case, run the same way for `simulate` and `compare`.
 
-``run_model(scene, case, model)`` -> ``ModelRun``: the JSON fields every
-model reports (``model``, ``case``, ``ok``, ``warnings``, ``max_abs`` with
+``run_model(scene, case, model)`` -> ``ModelRun``: its record (the JSON fields
+of ``simulate_<case>_<model>.json``: a ``ReducedRun``, one of ``PaperRun``,
+``ModalRun``, ``BeamRun``, the case's ``CaseSummary`` and what the model adds;
+or the 3D full order's ``Fem3dRun``; ``RunRecord`` is any of them, told apart
+by their ``model``), the fields every model reports (``model``, ``case``, ``ok``, ``warnings``, ``max_abs`` with
 ``tip_x_relative`` and ``tip_x_absolute``, ``omega_final``, ``captured_at``,
 ``energy_balance``, ``integrator``, ``dofs``, ``wall_seconds``, and for the
 full-order models ``full_order``) and the series of the NPZ/CSV (``t``,
@@ -21,7 +24,7 @@ beside the existing columns).
   wider than the ROM's frequency error).
 
 Every result names the pillar model it ran on (``pillar_model``, a
-rotorpillar.chain.PillarModel from rotorpillar.transients.pillar_models) and
+rotorpillar.chain.PillarModel from rotorpillar.transients.run_plan) and
 its costs measured warm: what a run compiles (numba's kernels, FFCx's forms)
 is compiled by a short warm-up before the timed run, and its time recorded
 apart as ``compile_seconds``.
@@ -35,17 +38,155 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
+import msgspec
 import numpy as np
 
 from ..chain import ChainModes
+from ..chain.record import PillarModel, Uncertain
 from ..errors import InputError
-from ..reduced.models import BeamModelInfo, PaperModelInfo
+from ..fem3d.full_order_result import Fem3dDescription, Fem3dStats
+from ..records import Figure, Record, replace, tag
+from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
+from ..reduced.rotor_models import StructureDescription
+from ..reduced.system import DampedMode, Resonance
 from ..scene import MODELS, override
-from .pillar_models import reduced_pillar_model, solid_pillar_model
-from .run_plan import fem3d_plan, with_duration
-from .run_records import BeamFullOrder, Fem3dRun, ReducedRun, RunRecord
+from .case_summary import CaseSummary, RunOutcome
+from .forces import InternalForcesSummary
+from .run_plan import BeamFullOrder, Fem3dPlan, fem3d_plan, reduced_pillar_model, solid_pillar_model, with_duration
+
+
+class RunFiles(Record):
+    """The series written beside a run's JSON (paths)."""
+
+    npz: str
+    """every series and the scalars tip_x_frame, model, case"""
+    csv: str
+    """the plain columns (rotorpillar.transients.files.CSV_COLUMNS)"""
+
+
+class ModelFiles(Record):
+    """The names of a model's own files (``simulate_<case>_<model>.*``), which the generic
+    ``simulate_<case>.*`` copy."""
+
+    npz: str
+    csv: str
+    json: str
+    figures: tuple[str, ...]
+
+
+class ReducedRun(CaseSummary, kw_only=True, omit_defaults=True, tag_field="model"):
+    """paper, modal or beam on one case (SI: m, rad/s, s): the case's summary, then the run."""
+
+    case: str
+    warnings: tuple[str, ...]
+    """what makes the answer doubtful, in words (also on the commands' stderr)"""
+    pillar_model: PillarModel
+    """the pillar model the run used"""
+    uncertainty: dict[str, Uncertain] | None
+    """modal: peak_tip_relative (m), peak_shaft_deflection (m), omega_final (rad/s) with
+    their error bars; None for the other models"""
+    dofs: int
+    """unknowns of the model (-)"""
+    wall_seconds: float
+    """the run's wall time, warm (s)"""
+    compile_seconds: float
+    """the warm-up's wall time: what the run compiled (s)"""
+    model_description: StructureDescription
+    """the model's matrices and coordinates (RotorStructure.describe)"""
+    model_info: ModelInfo | None
+    """how the model was built: the reduction (paper), the modes chosen (modal), the
+    elements (beam)"""
+    resonances: tuple[Resonance, ...]
+    """the model's quasi-normal resonances (Eq. 7)"""
+    damped_frequencies: tuple[DampedMode, ...]
+    """damped natural frequencies (rad/s) and damping ratios (-) of the linear structure"""
+    tip_x_frame: str
+    """the frame of ``tip_x``: "absolute" or "relative_to_ground\""""
+    max_abs_sampled: tuple[str, ...]
+    """the ``max_abs`` keys read from the decimated output, not from every step"""
+    initial_speed: float | None = None
+    """the speed the run starts at, where the case sets one (rad/s)"""
+    excitation_in_model: str | None = None
+    """earthquake: how the model applies the ground motion, in words"""
+    full_order: BeamFullOrder | None = None
+    """beam: its discretisation and step"""
+    internal_forces: InternalForcesSummary | None
+    """section forces, base reactions, the shaft's demand (None: paper's Eq. 4 has no sections)"""
+    files: RunFiles | None = None
+    """the series written beside the JSON"""
+    figures: tuple[Figure, ...] = ()
+    """the run's charts"""
+    model_files: ModelFiles | None = None
+    """the model's own files"""
+
+    @property
+    def model(self) -> str:
+        """ "paper", "modal" or "beam\""""
+        return tag(self)
+
+
+class PaperRun(ReducedRun, tag="paper"):
+    """The paper's Eq. 4 on one case."""
+
+
+class ModalRun(ReducedRun, tag="modal"):
+    """The ROM (the pillar by its modes) on one case."""
+
+
+class BeamRun(ReducedRun, tag="beam"):
+    """The 1D beam at full order on one case."""
+
+
+#: the reduced runs' records by model
+REDUCED_RUNS: dict[str, type[ReducedRun]] = {"paper": PaperRun, "modal": ModalRun, "beam": BeamRun}
+
+
+class Fem3dRun(RunOutcome, kw_only=True, omit_defaults=True, tag_field="model", tag="fem3d"):
+    """The 3D full order on one case (SI: m, rad/s, s)."""
+
+    case: str
+    integrator: Fem3dStats
+    """the scheme, its step, steps, solves and wall times"""
+    warnings: tuple[str, ...]
+    captured_at_source: str
+    """where the resonances come from (the chain's ROM), and whether the speed settled"""
+    pillar_model: PillarModel
+    """the 3D mesh as a pillar model, its source and error the reference's"""
+    dofs: int
+    """unknowns of the 3D model (-)"""
+    wall_seconds: float
+    """the run's wall time, warm (s)"""
+    compile_seconds: float
+    """the warm-up's wall time: FFCx's forms (s)"""
+    model_description: Fem3dDescription
+    """what was run: mesh, top, damping law, frame, forcing, start (fem3d.full_order)"""
+    resonances: tuple[Resonance, ...]
+    """the chain's ROM's quasi-normal resonances (Eq. 7)"""
+    damped_frequencies: tuple[DampedMode, ...]
+    """the ROM's damped natural frequencies (rad/s) and damping ratios (-)"""
+    tip_x_frame: str
+    """"relative_to_ground\""""
+    full_order: Fem3dPlan
+    """the mesh, duration and step, and why"""
+    initial_speed: float | None
+    """the speed the run starts at (rad/s), None: from rest"""
+    excitation_in_model: str | None = None
+    """earthquake: how the 3D model applies the ground motion, in words"""
+    internal_forces: InternalForcesSummary | None
+    """section resultants, base reactions, the shaft's demand and the von Mises peaks"""
+    files: RunFiles | None = None
+    figures: tuple[Figure, ...] = ()
+    model_files: ModelFiles | None = None
+
+    @property
+    def model(self) -> str:
+        return "fem3d"
+
+
+#: one model's run, as ``ModelRun.record`` holds it (tagged by ``model``)
+RunRecord = PaperRun | ModalRun | BeamRun | Fem3dRun
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,7 +195,7 @@ class ModelRun:
 
     case: str
     model: str
-    record: RunRecord
+    record: ReducedRun | Fem3dRun
     """the run's record: the JSON fields of simulate_<case>_<model>.json (less files and
     provenance)"""
     data: dict
@@ -172,7 +313,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     else:
         data["tip_x_relative"] = data["tip_x"]
     data["shaft_deflection_x"] = data["q"][:, : m.nx] @ m.shaft - m.eccentricity * np.cos(data["theta"])
-    ma = dict(res.summary.max_abs)
+    ma: dict[str, float | None] = dict(res.summary.max_abs)
     full_tip, full_ground = run.tip(), ground_displacement(m, run.motion or no_motion(), run.t)
     if m.frame == "absolute":
         ma["tip_x_absolute"] = ma["tip_x"]
@@ -189,7 +330,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
             elements=info.elements,
             theory=info.theory,
             duration=res.summary.duration,
-            time_step=run.stats.get("time_step"),
+            time_step=run.stats.time_step,
             note=(
                 f"the 1D {info.theory} beam with every degree of freedom ({info.elements} "
                 f"elements, {info.element_source}), the case's full duration; implicit fixed "
@@ -198,10 +339,9 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
                 "scheme, not resolved"
             ),
         )
-    record = ReducedRun(
+    record = REDUCED_RUNS[which](
+        **msgspec.structs.asdict(replace(res.summary, max_abs=ma)),
         case=case,
-        model=which,
-        summary=replace(res.summary, max_abs=ma),
         warnings=tuple(_warnings(case, m, res)),
         pillar_model=reduced_pillar_model(which, chain, info),
         uncertainty=bars,
@@ -217,6 +357,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         initial_speed=res.initial_speed,
         excitation_in_model=res.excitation_in_model,
         full_order=full_order,
+        internal_forces=None,  # the forces, below
     )
     model_run = ModelRun(case, which, record, data, m.quasi_normal(), res)
     from .forces import with_reduced_forces
@@ -229,7 +370,7 @@ def _warnings(case: str, model, res) -> list[str]:
     any earthquake: a record whose sizes no recorded earthquake has (the commands print
     them on stderr)."""
     out = []
-    from ..reduced.excitation_records import RecordSizes
+    from ..reduced.excitation import RecordSizes
 
     quake = res.excitation  # the ground motion's sizes, for the earthquake only
     if case == "earthquake" and isinstance(quake, RecordSizes) and not quake.realistic:
@@ -314,14 +455,15 @@ def _run_fem3d(
         recovered = observer.finish()
     finally:
         observer.close()
-    plan = replace(plan, time_step=r.integrator["time_step"])
+    plan = replace(plan, time_step=r.integrator.time_step)
     drive_free = _free_speed(scene)
     state = capture_state(ref, r.t, r.Omega, drive_free)
     captured, settled = state.captured_at, state.speed_state != "escaping"
-    ma = dict(r.max_abs)
+    ma: dict[str, float | None] = dict(r.max_abs)
     ma["tip_x_relative"] = ma["tip_x"]
-    integ = dict(r.integrator)
-    integ.setdefault("wall_seconds", integ.get("integration_seconds"))
+    integ = r.integrator
+    if not integ.wall_seconds:  # the step loop times its integration apart
+        integ = replace(integ, wall_seconds=integ.integration_seconds)
     ground = r.ground_x
     data = {
         "t": r.t,
@@ -343,11 +485,14 @@ def _run_fem3d(
         "work": r.work,
         "peak": np.abs(r.tip_x)[:, None],
     }
+    description = r.model
     if case == "earthquake":
-        r.model["initial_speed_source"] = "the operating speed of the chain's ROM (the fastest stable stationary speed)"
+        description = replace(
+            description,
+            initial_speed_source="the operating speed of the chain's ROM (the fastest stable stationary speed)",
+        )
     record = Fem3dRun(
         case=case,
-        model="fem3d",
         ok=r.ok,
         duration=float(r.t[-1] - r.t[0]),
         omega_final=r.omega_final,
@@ -367,15 +512,15 @@ def _run_fem3d(
         + ("" if settled else "; the run ended before the speed settled, so no capture is claimed"),
         pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference, plan.note),
         compile_seconds=compile_seconds,
-        model_description=r.model,
-        model_info={"dofs": r.dofs, "mesh": dict(vars(mesh))},
+        model_description=description,
         resonances=tuple(ref.quasi_normal()),
         damped_frequencies=tuple(ref.damped_frequencies()),
         tip_x_frame="relative_to_ground",
         full_order=plan,
-        initial_speed=r.model.get("initial_speed"),
+        initial_speed=description.initial_speed,
         excitation=motion.sizes() if case == "earthquake" else None,
-        excitation_in_model=r.model.get("forcing") if case == "earthquake" else None,
+        excitation_in_model=description.forcing if case == "earthquake" else None,
+        internal_forces=None,  # the forces, below
     )
     return with_fem3d_forces(
         scene,

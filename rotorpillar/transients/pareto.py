@@ -40,20 +40,20 @@ from __future__ import annotations
 import hashlib
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..provenance import JsonRecord
+from ..records import Record, replace
 from ..scene import Mesh, Scene
 from .pareto_runs import (
     BEAM_ELEMENTS,
     PARETO_DURATION,
     PARETO_RECORD_START,
     PARETO_SAMPLES,
+    ParetoOutcome,
     ParetoRun,
-    RunOutcome,
     StoredRun,
     compute_3d,
     load_run,
@@ -67,8 +67,7 @@ from .pareto_runs import (
 )
 
 
-@dataclass(frozen=True)
-class ParetoReference(JsonRecord):
+class ParetoReference(Record, omit_defaults=True):
     """The finest 3D run, every error's reference, and its own error."""
 
     label: str
@@ -83,14 +82,13 @@ class ParetoReference(JsonRecord):
     """how the error was estimated ("richardson", "next_coarser" or "none")"""
     order: float | None
     """the observed order of convergence (-); Richardson only"""
-    limit: float | None = field(default=None, metadata={"omit_if_none": True})
+    limit: float | None = None
     """the extrapolated peak (m); Richardson only"""
     note: str = ""
     """how the error was estimated, in words"""
 
 
-@dataclass(frozen=True)
-class ParetoCase(JsonRecord):
+class ParetoCase(Record):
     """The case every model of the study runs."""
 
     record: str
@@ -107,8 +105,7 @@ class ParetoCase(JsonRecord):
     """the initial state, in words"""
 
 
-@dataclass(frozen=True)
-class ParetoCost(JsonRecord):
+class ParetoCost(Record):
     """What the study cost (wall times on a shared machine: noisy)."""
 
     runs: int
@@ -127,19 +124,36 @@ class ParetoCost(JsonRecord):
     """the computed runs' times, summed (s)"""
 
 
-@dataclass(frozen=True)
-class ParetoStudy(JsonRecord):
+class TipFronts(Record):
+    """Per error measure, the labels on the Pareto front of |error| against wall time,
+    cheapest first."""
+
+    peak_tip: tuple[str, ...]
+    history: tuple[str, ...]
+
+
+class ParetoChoice(Record):
+    """The comparison's models among the study's runs, and why they sit where they do."""
+
+    rom: str | None
+    """the ROM compare runs (its label)"""
+    fem3d: str | None
+    """the 3D reference compare runs (its label; None without one)"""
+    why: str = ""
+    """where each stands against the fronts, in words"""
+
+
+class ParetoStudy(Record):
     """Speed against accuracy on El Centro (``pareto`` in compare_earthquake.json)."""
 
     case: ParetoCase | None
     """the case every model runs (None until the runs are done: ``analyse_pareto`` alone)"""
     runs: tuple[ParetoRun, ...]
     reference: ParetoReference
-    fronts: dict
-    """error measure (peak_tip, history) -> labels on the Pareto front of |error| against
-    wall time, cheapest first"""
-    chosen: dict
-    """rom, fem3d: the labels of the comparison's models, and why"""
+    fronts: TipFronts
+    """the labels on the Pareto front of each error against wall time"""
+    chosen: ParetoChoice
+    """the labels of the comparison's models, and why"""
     compile_seconds: dict[str, float]
     """family -> seconds of the warm-up run in this process (numba, FFCx), outside every timing
     (a mapping: the families that ran)"""
@@ -274,12 +288,12 @@ class ParetoRunning:
             self.thread = threading.Thread(target=self._pool, daemon=True)
             self.thread.start()
 
-    def keep(self, i: int, out: RunOutcome) -> None:
+    def keep(self, i: int, out: ParetoOutcome) -> None:
         plan = self.plan
         fam, label, params = plan.specs[i]
         run = StoredRun.of(plan.keys[i], fam, label, params, out)
         if _mpi_rank_size()[0] == 0:
-            run_cache(plan.cache_dir).write(plan.keys[i], run.to_json())
+            run_cache(plan.cache_dir).write(plan.keys[i], run)
         plan.results[i] = run
         if self.progress:
             self.progress(f"speed against accuracy: {label} in {out.wall_seconds:.3g} s")
@@ -333,10 +347,10 @@ class ParetoRunning:
         k, mesh = plan.rom_modes, plan.chosen_mesh
         study, series = analyse_pareto(
             docs,
-            chosen={
-                "rom": f"ROM, {k} mode{'s' if k > 1 else ''}",
-                "fem3d": None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}",
-            },
+            chosen=ParetoChoice(
+                rom=f"ROM, {k} mode{'s' if k > 1 else ''}",
+                fem3d=None if mesh is None else f"3D, {mesh.elements_around}x{mesh.elements_along}",
+            ),
         )
         case = ParetoCase(
             record=plan.scene.excitation.record,
@@ -414,7 +428,7 @@ def _reference_error(fine: list[StoredRun], grid_tips: dict) -> ParetoReference:
     )
 
 
-def analyse_pareto(docs: list[StoredRun], chosen: dict) -> tuple[ParetoStudy, dict]:
+def analyse_pareto(docs: list[StoredRun], chosen: ParetoChoice) -> tuple[ParetoStudy, dict]:
     """Errors against the finest 3D run, its own error, the fronts (the study, the histories)."""
     from ..converge.selection import pareto_front
 
@@ -454,16 +468,16 @@ def analyse_pareto(docs: list[StoredRun], chosen: dict) -> tuple[ParetoStudy, di
             )
         )
     wall = [r.wall_seconds for r in runs]
-    fronts = {
-        "peak_tip": [runs[i].label for i in pareto_front(wall, [r.peak_tip_error for r in runs])],
-        "history": [runs[i].label for i in pareto_front(wall, [r.history_error for r in runs])],
-    }
+    fronts = TipFronts(
+        peak_tip=tuple(runs[i].label for i in pareto_front(wall, [r.peak_tip_error for r in runs])),
+        history=tuple(runs[i].label for i in pareto_front(wall, [r.history_error for r in runs])),
+    )
     by = {r.label: r for r in runs}
     why = []
-    for role in ("rom", "fem3d"):
-        r = by.get(chosen.get(role) or "")  # no label is empty: None finds nothing
+    for role, label in (("rom", chosen.rom), ("fem3d", chosen.fem3d)):
+        r = by.get(label or "")  # no label is empty: None finds nothing
         if r is not None:
-            on = [m for m, f in fronts.items() if r.label in f]
+            on = [m for m in ("peak_tip", "history") if r.label in getattr(fronts, m)]
             why.append(
                 f"{r.label} ({'the ROM compare runs' if role == 'rom' else 'the 3D reference compare runs'}): "
                 f"peak {_pct(r.peak_tip_error)}, history {_pct(r.history_error)} in "
@@ -474,7 +488,7 @@ def analyse_pareto(docs: list[StoredRun], chosen: dict) -> tuple[ParetoStudy, di
         runs=tuple(runs),
         reference=ref_err,
         fronts=fronts,
-        chosen={**chosen, "why": "; ".join(why)},
+        chosen=replace(chosen, why="; ".join(why)),
         compile_seconds={},
         cost=None,
         note="errors of the tip relative to the ground against the finest 3D run; "

@@ -13,14 +13,13 @@ from __future__ import annotations
 
 import hashlib
 import time
-from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..cache import DiskCache, cache_key, source_hash
-from ..provenance import JsonRecord
+from ..records import Record, replace
 from ..scene import Scene
 
 PARETO_RECORD_START = 0.5
@@ -44,17 +43,16 @@ def pareto_along(finest: int) -> tuple[int, ...]:
     return tuple(sorted({max(1, round(finest * k / 4)) for k in (1, 2, 3, 4)}))
 
 
-CACHE_VERSION = 1
+CACHE_VERSION = 2  # 2: an Entry of a StoredRun record (msgspec)
 
 
-@dataclass(frozen=True)
-class ParetoRun(JsonRecord):
+class ParetoRun(Record):
     """One model's run of the Pareto case (SI)."""
 
     family: str
     """rom, beam or fem3d"""
     label: str
-    params: dict
+    params: dict[str, Any]
     """modes (rom), elements (beam), the mesh (fem3d)"""
     dofs: int
     wall_seconds: float
@@ -71,8 +69,7 @@ class ParetoRun(JsonRecord):
     key: str
 
 
-@dataclass(frozen=True)
-class RunOutcome(JsonRecord):
+class ParetoOutcome(Record):
     """How one model's run of the Pareto case ended: its size, cost and tip (SI)."""
 
     dofs: int
@@ -87,8 +84,7 @@ class RunOutcome(JsonRecord):
     """tip X relative to the ground on the common grid: PARETO_SAMPLES points over the run (m)"""
 
 
-@dataclass(frozen=True)
-class StoredRun(JsonRecord):
+class StoredRun(Record, omit_defaults=True):
     """One run as the cache stores it: ``to_json()`` is ``pareto-<key>.json``'s document
     (these keys in this order; ``cached`` is not stored), ``from_json`` reads it back."""
 
@@ -110,18 +106,14 @@ class StoredRun(JsonRecord):
     tip: tuple[float, ...]
     """tip X relative to the ground on the common grid: PARETO_SAMPLES points over the run (m)"""
     cached: bool = False
-    """read from the cache rather than computed by this process (in memory only)"""
+    """read from the cache rather than computed by this process (a property of this
+    process's plan: never written, the cache stores it False)"""
 
     @classmethod
-    def of(cls, key: str, family: str, label: str, params: dict[str, Any], outcome: RunOutcome) -> StoredRun:
+    def of(cls, key: str, family: str, label: str, params: dict[str, Any], outcome: ParetoOutcome) -> StoredRun:
         """The run ``(family, label, params)`` under ``key`` that ended as ``outcome``, computed here."""
         o = outcome
         return cls(key, family, label, params, o.dofs, o.wall_seconds, o.ok, o.peak_tip, o.tip)
-
-    def to_json(self) -> dict:
-        doc = super().to_json()
-        del doc["cached"]  # a property of this process's plan, not of the run
-        return doc
 
 
 def pareto_scene(scene: Scene, duration: float = PARETO_DURATION):
@@ -197,7 +189,7 @@ def _grid(duration: float) -> np.ndarray:
 
 def reduced_run(
     scene: Scene, family: str, params: dict, motion, speed: float, pillar_modes, duration: float
-) -> RunOutcome:
+) -> ParetoOutcome:
     from ..reduced.drive import DriveSchedule
     from ..reduced.integration import simulate
     from ..reduced.models import build_model
@@ -218,7 +210,7 @@ def reduced_run(
     run = simulate(model, drive, motion, duration, q0, v0, settings=st, speed_scale=speed)
     wall = time.perf_counter() - t0
     grid = _grid(duration)
-    return RunOutcome(
+    return ParetoOutcome(
         dofs=int(model.n),
         wall_seconds=wall,
         ok=bool(run.ok),
@@ -249,7 +241,7 @@ def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes
     return _WARM[family]
 
 
-def compute_3d(job) -> tuple[RunOutcome, float]:
+def compute_3d(job) -> tuple[ParetoOutcome, float]:
     """One 3D run (a worker's job: picklable arguments); its outcome and this process's
     warm-up seconds (s)."""
     from ..fem3d.full_order import simulate_fem3d
@@ -261,7 +253,7 @@ def compute_3d(job) -> tuple[RunOutcome, float]:
         scene, "earthquake", motion=motion, duration=duration, mesh=mesh, samples=PARETO_SAMPLES, initial_speed=speed
     )
     grid = _grid(duration)
-    outcome = RunOutcome(
+    outcome = ParetoOutcome(
         dofs=int(r.dofs),
         wall_seconds=float(r.wall_seconds),
         ok=bool(r.ok),
@@ -275,13 +267,8 @@ def load_run(cache: DiskCache, key: str) -> StoredRun | None:
     """The run cached under ``key`` (``cached``), or None: a missing, damaged or foreign
     entry, one without its verdict (``ok``) or without a field of the run, is no cached
     run (computed again)."""
-    doc = cache.read(key, accept=lambda doc: doc.get("ok") is not None)
-    if doc is None:
-        return None
-    try:
-        return replace(StoredRun.from_json(doc), cached=True)
-    except (KeyError, TypeError, ValueError):
-        return None
+    run = cache.read(key, StoredRun)
+    return None if run is None else replace(run, cached=True)
 
 
 # --------------------------------------------------------------------------

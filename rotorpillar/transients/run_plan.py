@@ -4,8 +4,12 @@
 ``with_duration`` the scene with it set (compare: one window for every model);
 ``fem3d_plan`` the 3D run's mesh, duration and step from [full_order] and the
 convergence study's reference (rotorpillar.transients.references), what was
-chosen, shortened and why (the ``full_order`` block of the JSON).  Moved out of
-rotorpillar.transients.model_run, which runs the models on them.
+chosen, shortened and why (the ``full_order`` block of the JSON: ``Fem3dPlan``,
+the beam's ``BeamFullOrder``).  The pillar model each run names (a
+rotorpillar.chain.PillarModel): ``reduced_pillar_model``, the chain's (modal),
+the scene's beam at full order (beam) or the paper's tip reduction (paper);
+``solid_pillar_model``, the 3D full order's mesh, its source and error the
+reference's.  rotorpillar.transients.model_run runs the models on them.
 """
 
 from __future__ import annotations
@@ -15,9 +19,45 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..scene import Scene
 
+from ..chain import ChainModes, PillarModel
 from ..errors import InputError
-from ..scene import override
-from .run_records import Fem3dPlan
+from ..records import Record
+from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
+from ..scene import Mesh, override
+from .references import FullOrderReference
+
+
+class BeamFullOrder(Record):
+    """The full-order 1D beam's discretisation and step (the beam's ``full_order`` block)."""
+
+    elements: int
+    """elements along the pillar (-)"""
+    theory: str
+    """the beam theory (euler or timoshenko)"""
+    duration: float
+    """the run's length: the case's full duration (s)"""
+    time_step: float | None
+    """the fixed step taken (s)"""
+    note: str
+    """the beam's degrees of freedom and step, in words"""
+
+
+class Fem3dPlan(Record):
+    """The 3D run's mesh, duration and step, and what was chosen, shortened and why
+    (the ``full_order`` block of a fem3d run's JSON)."""
+
+    mesh: Mesh
+    """the scene [mesh] section the 3D run uses"""
+    duration: float
+    """the run's length (s)"""
+    case_duration: float
+    """the case's own length, as the reduced models run it (s)"""
+    time_step: float | None
+    """[full_order] time_step, None: the band's step; after the run, the step taken (s)"""
+    note: str
+    """what was coarsened or shortened, and why"""
+    reference: FullOrderReference
+    """where the mesh comes from and its own error"""
 
 
 def own_duration(scene: Scene, case: str, motion=None) -> float:
@@ -89,4 +129,63 @@ def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = No
         fo.time_step or None,
         "; ".join(notes) + (f": {why}" if length < own else ""),
         reference,
+    )
+
+
+def reduced_pillar_model(which: str, chain: ChainModes | None, info: ModelInfo | None) -> PillarModel:
+    """The pillar model a reduced model ran on: the chain's (modal), the scene's beam at
+    full order (beam), or the paper's stated tip reduction (paper: not the validated chain)."""
+    if which == "modal":
+        if chain is None:
+            raise ValueError("the modal model's pillar model is the chain's: none handed in")
+        return chain.pillar_model
+    if which == "beam":
+        assert isinstance(info, BeamModelInfo)  # build_model's for "beam"
+        n, theory = info.elements, info.theory
+        return PillarModel(
+            "beam",
+            f"beam {theory}, {n} el. (full order)",
+            {"theory": theory, "elements": n},
+            2 * n,
+            "scene",
+            False,
+            None,
+            {},
+            f"the full-order 1D {theory} beam of {info.element_source}",
+            None,
+        )
+    assert isinstance(info, PaperModelInfo)  # build_model's for "paper"
+    red = info.reduction
+    return PillarModel(
+        "reduction",
+        "Eq. 4: one tip mass and spring",
+        {"tip_mass": red.tip_mass, "tip_stiffness": red.tip_stiffness},
+        1,
+        "scene",
+        False,
+        None,
+        {},
+        f"the paper's model: m_r ({red.tip_mass_source}) and c1 "
+        f"({red.tip_stiffness_source}) at the tip; not the validated chain",
+        None,
+    )
+
+
+def solid_pillar_model(mesh: Mesh, dofs: int, reference: FullOrderReference, note: str) -> PillarModel:
+    """The 3D full order's mesh as a PillarModel, its source and error the reference's."""
+    from ..chain.choice import solid_run_of
+
+    run = solid_run_of(mesh)
+    errors = {q: e.error_bound for q, e in reference.errors.items() if e.error_bound is not None}
+    return PillarModel(
+        "solid",
+        run.label + " (full order)",
+        run.params,
+        int(dofs),
+        reference.source,
+        reference.verified,
+        reference.tolerance,
+        errors,
+        note + ("; " + reference.statement if reference.statement else ""),
+        reference.study,
     )

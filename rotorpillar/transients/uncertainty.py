@@ -16,18 +16,16 @@ Each number's error is the sum of the sources' magnitudes
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from ..chain import ChainModes, Uncertain
-from ..provenance import JsonRecord
+from ..records import Record
 from ..scene import ADAPTIVE_INTEGRATORS, SCIPY_METHODS, Scene, override
 
 #: the numbers that get error bars, and their units
 HEADLINE = {"peak_tip_relative": "m", "peak_shaft_deflection": "m", "omega_final": "rad/s", "captured_at": "rad/s"}
 
 
-@dataclass(frozen=True)
-class HeadlineNumbers(JsonRecord):
+class HeadlineNumbers(Record):
     """A ROM run's numbers that get error bars (the names and units of ``HEADLINE``)."""
 
     peak_tip_relative: float

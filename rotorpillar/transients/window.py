@@ -22,12 +22,11 @@ if TYPE_CHECKING:
     from ..scene import Scene
 
 import math
-from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
 
-from ..provenance import JsonRecord
+from ..records import Record
 
 START_FRACTION = 0.7
 """Window start: this share of the lowest resonance, where the pillar barely moves
@@ -39,8 +38,7 @@ SETTLE_PERIODS = 10
 """Window end after a capture: periods of the captured resonance after the tip's peak."""
 
 
-@dataclass(frozen=True)
-class RunupWindow(JsonRecord):
+class RunupWindow(Record):
     """Where the compared run-up starts and ends, from the ROM's run-up from rest (SI)."""
 
     initial_speed: float

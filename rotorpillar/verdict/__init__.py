@@ -6,5 +6,6 @@
 - :mod:`.summary`: the checks (stresses, buckling, clearance, bearing force,
   margins) against the scene's capacities and the numbers a reader came
   for, each naming its model and case -> summary.json (`rotorpillar report`);
-- :mod:`.records`: their typed records (the report reads them).
+
+each beside its records (``HarmonicResult``, ``EngineeringSummary``).
 """

@@ -31,9 +31,71 @@ if TYPE_CHECKING:
 import time
 from pathlib import Path
 
+from .. import records
+from ..chain.record import PillarModel
+from ..records import Record
 from ..reduced import bode
-from ..reduced.margins import ModeEntry, order_margins, separation_from_response
-from .records import HarmonicResult, PeakComparison
+from ..reduced.bode import AveragingCurve, BodeCurve
+from ..reduced.margins import ExcitationOrders, ModeEntry, SeparationRow, order_margins, separation_from_response
+from ..reduced.spatial_records import PlanesChoice
+from ..reduced.spatial_response import SpatialResponse
+
+
+class PeakComparison(Record):
+    """One resonance's Bode peak on the ROM, on the 3D model and by Eq. 19."""
+
+    omega: float
+    """the ROM's omega_i (rad/s)"""
+    rom_speed: float | None
+    """speed of the ROM's tip peak near omega_i (rad/s); None: no peak (heavily damped)"""
+    rom_amplitude: float | None
+    """its tip amplitude (m)"""
+    fem3d_speed: float | None
+    """the 3D curve's peak near omega_i (rad/s), or None"""
+    fem3d_amplitude: float | None
+    """(m)"""
+    averaging_amplitude: float
+    """Eq. 19 at omega_i: |f_i| / (2 omega_i**2 nu_i) (m)"""
+    amplitude_difference: float | None
+    """fem3d / ROM - 1 at the peaks (-)"""
+
+
+class HarmonicResult(Record, omit_defaults=True):
+    """What `rotorpillar harmonic` found (harmonic.json)."""
+
+    running_speeds: tuple[float, ...]
+    """the stable stationary speeds of the ROM with the scene's drive (rad/s)"""
+    running_speed_source: str
+    band_top: float
+    """the band checked: converge.margin x the highest excitation (rad/s)"""
+    rom: BodeCurve
+    fem3d: BodeCurve | None
+    """the 3D model's harmonic response (None when dolfinx is missing)"""
+    averaging: tuple[AveragingCurve, ...]
+    peaks: tuple[PeakComparison, ...]
+    modes: tuple[ModeEntry, ...]
+    """the structural modes in the band: the ROM's coupled system and the 3D loaded tube"""
+    separation: tuple[SeparationRow, ...]
+    """every running speed against every mode (API 684)"""
+    rom_model: str
+    """the ROM's pillar modes (source, count)"""
+    fem3d_model: str
+    """the 3D harmonic response's mesh and dofs, or why there is none"""
+    rom_seconds_per_speed: float
+    """(s)"""
+    fem3d_seconds_per_speed: float | None
+    """one real-block assembly, LU and solve (s)"""
+    notes: tuple[str, ...]
+    pillar_model: PillarModel | None = None
+    """the chain's pillar model the ROM's modes come from (rotorpillar.chain)"""
+    spatial: SpatialResponse | None = None
+    """the spatial ROM's unbalance response in every direction: Bode curves, their peaks and
+    half-power AFs, the orbits of the shaft, the rotor and the top (issue 26)"""
+    planes: PlanesChoice | None = None
+    """modal_model.planes resolved, with its reason"""
+    orders: ExcitationOrders | None = None
+    """a bladed rotor (rotor.blades > 0): the first tower mode against 1P and the
+    blade-passing order (soft-stiff), the lines a Campbell diagram draws"""
 
 #: a response peak counts for a mode within this share of the mode's frequency (-)
 PEAK_WIDTH = 0.15
@@ -165,7 +227,7 @@ def harmonic_analysis(scene: Scene, out: Path, progress=None, with_fem3d: bool =
     modes, spatial_response, sampled, moved = spatial_modes_and_response(spatial, grid, fem_curve)
     modal_path = Path(out) / "modal.json"
     if modal_path.is_file():
-        doc = ModalSummary.read(modal_path)
+        doc = records.read(modal_path, ModalSummary)
         loaded = fem3d_modes(doc, scene.pillar.damping)
         modes += loaded
         highest = max((m.omega for m in loaded), default=0.0)

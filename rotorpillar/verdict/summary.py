@@ -27,18 +27,61 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ..fem3d.modal_summary import ModalSummary
+    from ..reduced.excitation import ExcitationSizes
     from ..scene import Scene
+    from ..transients.model_run import RunRecord
 
-import json
 import math
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
-from ..reduced.capacity import FAIL, GAMMA_M0, NOT_ASSESSED, PASS, Check, check, meridional_buckling
+from .. import records
+from ..records import Record
+from ..reduced.capacity import FAIL, GAMMA_M0, NOT_ASSESSED, PASS, Check, MeridionalBuckling, check, meridional_buckling
 from ..reduced.tower import base_section
 from ..scene import CASES, MODELS
-from .records import EngineeringSummary, HarmonicResult, Headline
+from .harmonic import HarmonicResult
 from .tower_checks import can_checks, foundation_checks, order_checks
+
+
+class Headline(Record, omit_defaults=True):
+    """A number a reader came for, with the model and the case it came from."""
+
+    key: str
+    """e.g. "loaded_first_frequency\""""
+    label: str
+    """what it is, in words"""
+    value: float | None
+    unit: str
+    model: str | None
+    case: str | None
+    source: str
+    """the file (and field) it was read from"""
+    text: str
+    """the sentence the report prints"""
+    error: float | None = None
+    """its error bar, in ``unit`` (rotorpillar.chain.Uncertain's error), where one was made"""
+
+
+class EngineeringSummary(Record):
+    """summary.json: the verdict first, then the numbers a reader came for."""
+
+    scene: str
+    verdict: str
+    """"pass" (every assessed check passes), "fail" (one fails) or "incomplete" (none assessed)"""
+    checks: tuple[Check, ...]
+    """per check, its governing model and case (the largest utilisation)"""
+    check_details: tuple[Check, ...]
+    """every model and case each check was evaluated on"""
+    headlines: tuple[Headline, ...]
+    buckling: MeridionalBuckling | None
+    """the tube's design buckling stress at the governing demand"""
+    not_assessed: tuple[str, ...]
+    """the checks without a capacity or a demand, and what to state or run"""
+    inputs: tuple[str, ...]
+    """the files read"""
+
 
 #: the models whose runs the checks read (the paper's Eq. 4 has no sections)
 CHECKED_MODELS = ("modal", "beam", "fem3d")
@@ -48,51 +91,58 @@ MODE_SOURCES = {"modal": "the ROM's coupled system", "fem3d": "the loaded tube's
 _RUN_FILE = re.compile(rf"(simulate|compare)_({'|'.join(CASES)})_({'|'.join(MODELS)})\.json")
 
 
-def case_label(doc: dict) -> str:
-    """The case of a run's JSON document as a reader names it (:func:`case_name`)."""
-    return case_name(doc.get("case", "?"), doc.get("excitation"))
+@dataclass(frozen=True)
+class RunFile:
+    """A model's run of a case as a file in the out folder holds it."""
+
+    file: str
+    """the JSON's name"""
+    run: RunRecord
+
+    @property
+    def label(self) -> str:
+        """The case as a reader names it (:func:`case_name`)."""
+        return case_name(self.run.case, self.run.excitation)
 
 
-def case_name(case: str, excitation: dict | None) -> str:
+def case_name(case: str, excitation: ExcitationSizes | None) -> str:
     """The case as a reader names it: "earthquake (elcentro)", "runup"."""
-    ex = excitation or {}
-    if case == "earthquake" and ex.get("name"):
-        return f"earthquake ({ex['name']})"
-    if case == "earthquake" and ex.get("kind") == "paper":
-        return "earthquake (the paper's pulse)"
+    name = getattr(excitation, "name", None)
+    if case == "earthquake" and name:
+        return f"earthquake ({name})"
     return case
 
 
-def model_runs(out: Path) -> list[dict]:
-    """The runs' JSON documents of ``out``, one per (case as named by ``case_label``,
-    model): the newest file where simulate and compare both ran it."""
-    found: dict[tuple, tuple] = {}
+def model_runs(out: Path) -> list[RunFile]:
+    """The runs of ``out``, one per (case as a reader names it, model): the newest file
+    where simulate and compare both ran it; a file that is no run is left out."""
+    from ..transients.model_run import RunRecord
+
+    found: dict[tuple, tuple[float, RunFile]] = {}
     for path in sorted(Path(out).glob("*_*_*.json")):
         if not _RUN_FILE.fullmatch(path.name):
             continue
         try:
-            doc = json.loads(path.read_text(encoding="utf-8"))
+            got = RunFile(path.name, records.read(path, RunRecord))  # type: ignore[arg-type]  # a union
             when = path.stat().st_mtime
         except (OSError, ValueError):
             continue
-        if not isinstance(doc, dict) or "model" not in doc:
-            continue
-        doc["_file"] = path.name
-        key = (case_label(doc), doc["model"])
+        key = (got.label, got.run.model)
         if key not in found or when > found[key][0]:
-            found[key] = (when, doc)
-    return [doc for _, doc in sorted(found.values(), key=lambda x: x[1]["_file"])]
+            found[key] = (when, got)
+    return [got for _, got in sorted(found.values(), key=lambda x: x[1].file)]
 
 
-def _run_checks(scene: Scene, doc: dict) -> list[Check]:
+def _run_checks(scene: Scene, rf: RunFile) -> list[Check]:
     """The checks of one run's peaks."""
-    model, case = doc.get("model"), case_label(doc)
-    src = doc["_file"]
-    ma = doc.get("max_abs") or {}
-    forces = doc.get("internal_forces") or {}
+    run = rf.run
+    model, case, src = run.model, rf.label, rf.file
+    ma = run.max_abs
+    forces = run.internal_forces
     mat = scene.material
     out = []
     stress = ma.get("base_stress")
+
     out.append(
         check(
             "base stress vs yield",
@@ -105,7 +155,7 @@ def _run_checks(scene: Scene, doc: dict) -> list[Check]:
             f"{src}: max_abs.base_stress; f_yk = material.yield_strength, gamma_M0 = {GAMMA_M0:g}",
         )
     )
-    share = (forces.get("base") or {}).get("axial_share", 1.0)
+    share = forces.base.axial_share if forces is not None else 1.0
     b = _buckling(scene, share)
     out.append(
         check(
@@ -121,8 +171,9 @@ def _run_checks(scene: Scene, doc: dict) -> list[Check]:
             f"{share:.3g})",
         )
     )
-    out += can_checks(scene, forces.get("cans") or [], model, case, src)
-    out += foundation_checks(scene, forces.get("foundation"), model, case, src)
+    if forces is not None:
+        out += can_checks(scene, forces.cans or (), model, case, src)
+        out += foundation_checks(scene, forces.foundation, model, case, src)
     if model == "fem3d":
         out.append(
             check(
@@ -148,9 +199,17 @@ def _run_checks(scene: Scene, doc: dict) -> list[Check]:
             f"{src}: max_abs.shaft_deflection (radial); rotor.clearance",
         )
     )
-    shaft = forces.get("shaft") or {}
+    shaft = forces.shaft if forces is not None else None
     force = max(
-        [x for x in (shaft.get("spring_force"), shaft.get("bearing_force"), ma.get("bearing_force")) if x is not None],
+        [
+            x
+            for x in (
+                None if shaft is None else shaft.spring_force,
+                None if shaft is None else shaft.bearing_force,
+                ma.get("bearing_force"),
+            )
+            if x is not None
+        ],
         default=None,
     )
     out.append(
@@ -231,7 +290,9 @@ def _governing(rows: list[Check]) -> list[Check]:
 _BARRED = {"tip_x_relative": "peak_tip_relative"}
 
 
-def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal: ModalSummary | None) -> list[Headline]:
+def _headlines(
+    scene: Scene, runs: list[RunFile], h: HarmonicResult | None, modal: ModalSummary | None
+) -> list[Headline]:
     out = []
     if modal is not None:
         rows = [r for r in modal.modes_with_top if r.kind == "bending_x"]
@@ -282,11 +343,12 @@ def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal: 
                 f"{100 * row.required:.1f} % ({af}): {row.status}.",
             )
         )
-    for doc in docs:
-        if doc.get("case") != "earthquake" or (doc.get("excitation") or {}).get("kind") != "record":
+    for rf in runs:
+        run = rf.run
+        if run.case != "earthquake" or getattr(run.excitation, "kind", None) != "record":
             continue
-        model, case = doc["model"], case_label(doc)
-        ma = doc.get("max_abs") or {}
+        model, case = run.model, rf.label
+        ma = run.max_abs
         name = MODEL_NAMES.get(model, model)
         for key, label, unit, scale, fmt in (
             ("tip_x_relative", "peak tip displacement", "m", 1e3, "{:.2f} mm"),
@@ -296,8 +358,9 @@ def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal: 
             v = ma.get(key)
             if v is None:
                 continue
-            u = (doc.get("uncertainty") or {}).get(_BARRED.get(key, "")) or {}
-            err = u.get("error") if isinstance(u, dict) else None
+            bars = getattr(run, "uncertainty", None) or {}
+            u = bars.get(_BARRED.get(key, ""))
+            err = None if u is None else u.error
             bar = "" if err is None else f" ± {err * scale:.2g}"
             out.append(
                 Headline(
@@ -307,43 +370,43 @@ def _headlines(scene: Scene, docs: list[dict], h: HarmonicResult | None, modal: 
                     unit,
                     model,
                     case,
-                    f"{doc['_file']}: max_abs.{key}",
+                    f"{rf.file}: max_abs.{key}",
                     f"{case.capitalize()}, {label}: {fmt.format(v * scale)}{bar} ({name}).",
                     err,
                 )
             )
-    runup = _runup(docs)
-    if runup is not None:
-        model = runup["model"]
-        state = runup.get("speed_state")
-        if runup.get("captured_at") is not None:
+    found = _runup(runs)
+    if found is not None:
+        runup = found.run
+        model = runup.model
+        if runup.captured_at is not None:
             text = (
-                f"captured at {runup['captured_at']:.2f} rad/s below the resonance at "
-                f"{runup.get('captured_resonance') or float('nan'):.2f} rad/s"
+                f"captured at {runup.captured_at:.2f} rad/s below the resonance at "
+                f"{runup.captured_resonance or float('nan'):.2f} rad/s"
             )
         else:
-            text = f"passes its resonances, {runup['omega_final']:.2f} rad/s at the end ({state})"
+            text = f"passes its resonances, {runup.omega_final:.2f} rad/s at the end ({runup.speed_state})"
         out.append(
             Headline(
                 "runup_passage",
                 "run-up through the resonances",
-                runup.get("captured_at") or runup.get("omega_final"),
+                runup.captured_at or runup.omega_final,
                 "rad/s",
                 model,
                 "runup",
-                f"{runup['_file']}: captured_at, omega_final",
-                f"Run-up from rest ({MODEL_NAMES.get(model, model)}, {runup.get('duration', 0):.0f} s): {text}.",
+                f"{found.file}: captured_at, omega_final",
+                f"Run-up from rest ({MODEL_NAMES.get(model, model)}, {runup.duration:.0f} s): {text}.",
             )
         )
     return out
 
 
-def _runup(docs: list[dict]) -> dict | None:
+def _runup(runs: list[RunFile]) -> RunFile | None:
     """The run-up a reader reads: the ROM's, else the beam's, else any."""
-    runs = {d["model"]: d for d in docs if d.get("case") == "runup"}
+    by_model = {rf.run.model: rf for rf in runs if rf.run.case == "runup"}
     for m in ("modal", "beam", "fem3d", "paper"):
-        if m in runs:
-            return runs[m]
+        if m in by_model:
+            return by_model[m]
     return None
 
 
@@ -352,28 +415,28 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     from ..fem3d.modal_summary import ModalSummary
 
     out = Path(out)
-    docs = model_runs(out)
-    inputs = [d["_file"] for d in docs]
+    runs = model_runs(out)
+    inputs = [rf.file for rf in runs]
     rows = []
-    for doc in docs:
-        if doc.get("model") in CHECKED_MODELS:
-            rows += _run_checks(scene, doc)
+    for rf in runs:
+        if rf.run.model in CHECKED_MODELS:
+            rows += _run_checks(scene, rf)
     harmonic = modal = None
     if (out / "harmonic.json").is_file():
         try:
-            harmonic = HarmonicResult.read(out / "harmonic.json")
+            harmonic = records.read(out / "harmonic.json", HarmonicResult)
             inputs.append("harmonic.json")
             rows += _margin_checks(harmonic)
-        except (KeyError, TypeError, ValueError, OSError):
+        except (ValueError, OSError):  # damaged: its checks are not assessed
             harmonic = None
     if (out / "modal.json").is_file():
         try:
-            modal = ModalSummary.read(out / "modal.json")
+            modal = records.read(out / "modal.json", ModalSummary)
             inputs.append("modal.json")
-        except (KeyError, TypeError, ValueError, OSError):
+        except (ValueError, OSError):
             modal = None
     governing = _governing(rows)
-    missing = _not_assessed(scene, governing, harmonic is not None, bool(docs))
+    missing = _not_assessed(scene, governing, harmonic is not None, bool(runs))
     assessed = [c for c in governing if c.status != NOT_ASSESSED]
     verdict = "fail" if any(c.status == FAIL for c in assessed) else "pass" if assessed else "incomplete"
     share = max(
@@ -383,14 +446,15 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     )
     buckling = None
     if share is not None:
-        doc = next((d for d in docs if d.get("model") == share.model and case_label(d) == share.case), {})
-        buckling = _buckling(scene, ((doc.get("internal_forces") or {}).get("base") or {}).get("axial_share", 1.0))
+        source = next((r for r in runs if r.run.model == share.model and r.label == share.case), None)
+        forces = None if source is None else source.run.internal_forces
+        buckling = _buckling(scene, forces.base.axial_share if forces is not None else 1.0)
     return EngineeringSummary(
         scene.name,
         verdict,
         tuple(governing),
         tuple(rows),
-        tuple(_headlines(scene, docs, harmonic, modal)),
+        tuple(_headlines(scene, runs, harmonic, modal)),
         buckling,
         tuple(missing),
         tuple(inputs),
@@ -426,13 +490,3 @@ def write_summary(scene: Scene, out: Path) -> Path | None:
         return None
     # its ``scene`` is the scene's name (the record's field); the resolved scene is report.json's
     return write_result(Path(out) / "summary.json", record, timings={"summary": time.perf_counter() - start})
-
-
-def summary_lines(s: EngineeringSummary) -> list[str]:
-    """The verdict in a few lines of text."""
-    lines = [f"verdict: {s.verdict}"]
-    for c in s.checks:
-        u = "-" if c.utilisation is None else f"{c.utilisation:.3f}"
-        lines.append(f"  {c.name:<32} {c.status:<13} utilisation {u:>7}  ({c.model}, {c.case})")
-    lines += ["  " + x for x in s.not_assessed]
-    return lines

@@ -13,11 +13,13 @@ from typing import TYPE_CHECKING
 from ..reduced.capacity import FAIL, GAMMA_M0, PASS, Check, check, meridional_buckling
 
 if TYPE_CHECKING:
+    from ..reduced.internal_forces import CanStress
     from ..scene import Scene
-    from .records import HarmonicResult
+    from ..transients.forces import FoundationResponse
+    from .harmonic import HarmonicResult
 
 
-def can_checks(scene: Scene, cans: list, model, case, src: str) -> list[Check]:
+def can_checks(scene: Scene, cans: tuple[CanStress, ...], model: str, case: str, src: str) -> list[Check]:
     """Each can's largest stress (where along it, when) against yield and against its own
     shell buckling resistance: EN 1993-1-6 with the can's D/t there, a cone as its
     equivalent cylinder (Annex D.2: r / cos beta), the length the tower's height (its
@@ -25,15 +27,15 @@ def can_checks(scene: Scene, cans: list, model, case, src: str) -> list[Check]:
     p, mat = scene.pillar, scene.material
     out = []
     for c in cans:
-        t = c["wall_thickness"]
-        cos_b = math.cos(c["cone_angle"])
-        r = (c["outer_diameter"] - t) / 2 / cos_b
+        t = c.wall_thickness
+        cos_b = math.cos(c.cone_angle)
+        r = (c.outer_diameter - t) / 2 / cos_b
         b = meridional_buckling(
-            p.youngs_modulus, r, t, p.height / cos_b, mat.yield_strength, mat.fabrication_class, c["axial_share"]
+            p.youngs_modulus, r, t, p.height / cos_b, mat.yield_strength, mat.fabrication_class, c.axial_share
         )
-        where = f"can {c['can']} ({c['bottom']:.4g}-{c['top']:.4g} m)"
-        stress = c["stress"]
-        at = f"at z = {c['height']:.4g} m, t = {c['time']:.4g} s, D/t = {c['outer_diameter'] / t:.0f}"
+        where = f"can {c.can} ({c.bottom:.4g}-{c.top:.4g} m)"
+        stress = c.stress
+        at = f"at z = {c.height:.4g} m, t = {c.time:.4g} s, D/t = {c.outer_diameter / t:.0f}"
         out.append(
             check(
                 f"{where} stress vs yield",
@@ -43,7 +45,7 @@ def can_checks(scene: Scene, cans: list, model, case, src: str) -> list[Check]:
                 mat.yield_strength / GAMMA_M0,
                 model,
                 case,
-                f"{src}: internal_forces.cans[{c['can']}].stress {at}; f_yk, gamma_M0 = {GAMMA_M0:g}",
+                f"{src}: internal_forces.cans[{c.can}].stress {at}; f_yk, gamma_M0 = {GAMMA_M0:g}",
             )
         )
         out.append(
@@ -55,28 +57,28 @@ def can_checks(scene: Scene, cans: list, model, case, src: str) -> list[Check]:
                 b.design_stress,
                 model,
                 case,
-                f"{src}: internal_forces.cans[{c['can']}].stress {at}; sigma_x,Rd of EN 1993-1-6 with "
+                f"{src}: internal_forces.cans[{c.can}].stress {at}; sigma_x,Rd of EN 1993-1-6 with "
                 f"the can's r = {r:.4g} m and t = {t:.4g} m there (class {mat.fabrication_class}, C_x "
-                f"{b.cx:.3g} at the demand's axial share {c['axial_share']:.3g})",
+                f"{b.cx:.3g} at the demand's axial share {c.axial_share:.3g})",
             )
         )
     return out
 
 
-def foundation_checks(scene: Scene, found: dict | None, model, case, src: str) -> list[Check]:
+def foundation_checks(scene: Scene, found: FoundationResponse | None, model: str, case: str, src: str) -> list[Check]:
     """The base's peak rotation on a flexible foundation against foundation.rotation_limit."""
-    if not found:
+    if found is None:
         return []
     return [
         check(
             "foundation rotation vs limit",
             "foundation_rotation",
             "rad",
-            found["rotation"],
+            found.rotation,
             scene.foundation.rotation_limit,
             model,
             case,
-            f"{src}: internal_forces.foundation.rotation (the base's, on the {found['kind']} springs); "
+            f"{src}: internal_forces.foundation.rotation (the base's, on the {found.kind} springs); "
             "foundation.rotation_limit (serviceability)",
         )
     ]

@@ -30,6 +30,6 @@ Every image needs a caption; each picture appears once.
 tests/test_report_reader.py checks all of that in a browser.
 """
 
-from .build import ReportOptions, build_report, report_text
+from .build import ReportOptions, ReportResult, build_report, report_text
 
-__all__ = ["ReportOptions", "build_report", "report_text"]
+__all__ = ["ReportOptions", "ReportResult", "build_report", "report_text"]

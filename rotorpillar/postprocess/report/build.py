@@ -20,26 +20,16 @@ from __future__ import annotations
 import sys
 import traceback
 import zipfile
-from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from ...provenance import write_text
-from ...transients.run_comparisons import COMPARISONS
+from ...records import Record
+from ...transients.compare import COMPARISONS
 from .. import html as h
+from ..animation import AnimationResult
 from ..compare_reader import read_comparison
-from ..readers import (
-    CASES,
-    INPUTS,
-    SIMULATE_COMMAND,
-    Read,
-    read_analysis,
-    read_convergence,
-    read_integrators,
-    read_modal,
-    read_simulation,
-    read_study,
-)
+from ..readers import CASES, INPUTS, SIMULATE_COMMAND, read_record, read_simulation
 from .convergence import section_convergence, section_integrators
 from .earthquake import section_earthquake
 from .engineering import section_internal_forces, section_unbalance
@@ -56,7 +46,7 @@ from .tower import section_tower
 if TYPE_CHECKING:
     from ...scene import Scene
 
-__all__ = ["ReportOptions", "build_report", "report_text"]
+__all__ = ["ReportOptions", "ReportResult", "build_report", "report_text"]
 
 R = TypeVar("R")
 
@@ -132,22 +122,28 @@ def _read(build: Build, command: str, what: str, read):
         return None
 
 
-def _record(build: Build, name: str, read: Callable[[Path], Read[R] | None]) -> R | None:
-    """The record of input ``name`` (its document kept in ``build.docs``), or None."""
+def _record(build: Build, name: str, record_type: Any) -> Any:
+    """The record of input ``name`` (its provenance kept in ``build.provenance``), or None."""
     file, command = INPUTS[name]
-    got = _read(build, command, file, lambda: read(build.out / file))
+    got = _read(build, command, file, lambda: read_record(build.out / file, record_type))
     if got is None:
         return None
-    build.docs[name] = got.doc
+    build.provenance[name] = got.provenance
     return got.record
 
 
 def load_inputs(build: Build) -> None:
+    from ...analysis.results import AnalysisResult
+    from ...converge.result import ConvergenceStudy
+    from ...fem3d.modal_summary import ModalSummary
+    from ...studies.result import StudyResult
+    from ...transients.integrator_study import IntegratorStudy
+
     out = build.out
-    build.analysis = _record(build, "analyze", read_analysis)
-    build.modal = _record(build, "modal", read_modal)
-    build.convergence = _record(build, "convergence", read_convergence)
-    build.integrators = _record(build, "integrators", read_integrators)
+    build.analysis = _record(build, "analyze", AnalysisResult)
+    build.modal = _record(build, "modal", ModalSummary)
+    build.convergence = _record(build, "convergence", ConvergenceStudy)
+    build.integrators = _record(build, "integrators", IntegratorStudy)
     for case in CASES:
         sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz", lambda case=case: read_simulation(out, case))
         if sim is not None:
@@ -164,14 +160,39 @@ def load_inputs(build: Build) -> None:
         if c is not None:
             build.comparisons[case] = c
     # study.json is read by its section; a damaged one is named here as a failed input
-    study = _read(build, "study", "study.json", lambda: read_study(out / "study.json"))
+    study = _read(build, "study", "study.json", lambda: read_record(out / "study.json", StudyResult))
     if study is not None:
-        build.study, build.docs["study"] = study.record, study.doc
+        build.study, build.provenance["study"] = study.record, study.provenance
+
+
+class ReportResult(Record):
+    """report.json: what the report found and rendered, what failed, and the timings."""
+
+    report: str | None
+    """the page written (None off MPI rank 0)"""
+    inputs: dict[str, bool] = {}
+    """input -> whether it was there"""
+    figures: tuple[str, ...] = ()
+    """the figures on the page (paths)"""
+    animations: dict[str, AnimationResult] = {}
+    """name -> the animation rendered"""
+    failures: dict[str, str] = {}
+    """what could not be rendered or read, and why"""
+    damaged: dict[str, str] = {}
+    """command -> what is wrong with its file"""
+    render_seconds: dict[str, float] = {}
+    """step -> wall time (s)"""
+    render_window: str = ""
+    """VTK's render window class (off screen)"""
+    bytes: int = 0
+    """the page's size (bytes)"""
+    summary: str | None = None
+    """the summary.json written beside (None: not written)"""
 
 
 def build_report(
     scene: Scene, out: str | Path, scene_cli: str, options: ReportOptions | None = None, timings=None
-) -> dict:
+) -> ReportResult:
     """Render every figure the inputs in ``out`` allow and write ``out/report.html``."""
     from ...provenance import Timings
 
@@ -221,7 +242,7 @@ def build_report(
         str(x.path) for k, v in build.products.items() if isinstance(v, list) for x in v if isinstance(x, Product)
     ]
     animations = {
-        k[len("animation_") : -len("_info")]: {kk: (str(vv) if isinstance(vv, Path) else vv) for kk, vv in v.items()}
+        k[len("animation_") : -len("_info")]: v
         for k, v in build.products.items()
         if k.startswith("animation_") and k.endswith("_info")
     }
@@ -229,31 +250,30 @@ def build_report(
     present.update({f"simulate_{c}": c in build.simulations for c in CASES})
     present["simulate_earthquake_paper"] = (build.out / "simulate_earthquake_paper.json").is_file()
     present.update({f"compare_{c}": c in build.comparisons for c in COMPARISONS})
-    return {
-        "report": str(path),
-        "inputs": present,
-        "figures": sorted(figures),
-        "animations": animations,
-        "failures": build.failures,
-        "damaged": build.damaged,
-        "render_seconds": build.render_seconds,
-        "render_window": build.render_window,
-        "bytes": path.stat().st_size,
-    }
+    return ReportResult(
+        report=str(path),
+        inputs=present,
+        figures=tuple(sorted(figures)),
+        animations=animations,
+        failures=dict(build.failures),
+        damaged=dict(build.damaged),
+        render_seconds=dict(build.render_seconds),
+        render_window=build.render_window,
+        bytes=path.stat().st_size,
+    )
 
 
-def report_text(result: dict) -> str:
-    have = [k for k, v in result["inputs"].items() if v]
-    lacking = [k for k, v in result["inputs"].items() if not v]
+def report_text(result: ReportResult) -> str:
+    have = [k for k, v in result.inputs.items() if v]
+    lacking = [k for k, v in result.inputs.items() if not v]
     lines = [
-        f"report: {len(result['figures'])} figures, {len(result['animations'])} animation(s), "
-        f"{result['bytes'] / 2**20:.1f} MB",
+        f"report: {len(result.figures)} figures, {len(result.animations)} animation(s), {result.bytes / 2**20:.1f} MB",
         "  inputs found: " + (", ".join(have) or "none"),
         "  not computed: " + (", ".join(lacking) or "nothing"),
     ]
-    for k, v in result["animations"].items():
-        lines.append(f"  animation {k}: {v['frames']} frames, x{v['factor']:g}, {v['seconds']:.1f} s -> {v['path']}")
-    for k, v in result["failures"].items():
-        lines.append(f"  FAILED {k}: {v}")
-    lines.append("  render seconds: " + ", ".join(f"{k} {v:.1f}" for k, v in result["render_seconds"].items()))
+    for k, v in result.animations.items():
+        lines.append(f"  animation {k}: {v.frames} frames, x{v.factor:g}, {v.seconds:.1f} s -> {v.path}")
+    for k, w in result.failures.items():
+        lines.append(f"  FAILED {k}: {w}")
+    lines.append("  render seconds: " + ", ".join(f"{k} {t:.1f}" for k, t in result.render_seconds.items()))
     return "\n".join(lines)

@@ -8,15 +8,17 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from ...reduced.excitation_records import ExcitationSizes, PulseSizes, RecordSizes
-from ...transients.run_comparisons import comparison_command, comparison_overrides
+from ... import records
+from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
+from ...transients.compare import comparison_command, comparison_overrides
 from .. import html as h
 from .parts import failure, product_image, scene_differs
 from .references import reference_block
 from .state import Build
 
 if TYPE_CHECKING:
-    from ...transients.run_records import RunRecord
+    from ...transients.compare import CompareResult
+    from ...transients.model_run import RunRecord
     from ..compare_reader import Comparison
 
 #: The headers of the speed-accuracy table (the reference's name goes in the errors).
@@ -76,52 +78,50 @@ def excitation_text(ex: ExcitationSizes | None) -> str | None:
     )
 
 
-def cost_table(doc: dict, models: list[str]) -> str:
+def cost_table(result: CompareResult, models: list[str]) -> str:
     """Per model: DOFs, wall time, peaks, the errors against the reference and the cost ratio."""
-    ref = doc.get("reference")
-    per, errors, ratio = doc.get("per_model") or {}, doc.get("errors") or {}, doc.get("cost_ratio") or {}
+    ref, ratio = result.reference, result.cost_ratio
     rows, classes = [], []
     for m in models:
-        p, e = per.get(m) or {}, errors.get(m) or {}
+        p, e = result.per_model.get(m), result.errors.get(m)
         is_ref = m == ref
         r = 1.0 if is_ref and m not in ratio else ratio.get(m)
-        lead = e.get("lead")
+        lead = e.lead if e is not None else None
         mark = lambda name, text, lead=lead: f"{text} (leads)" if lead == name else text
         rows.append(
             [
                 m + (" (reference)" if is_ref else ""),
-                h.num(p.get("dofs")),
-                h.num(p.get("wall_seconds"), 4),
-                h.num(p.get("compile_seconds"), 3),
-                h.num(p.get("peak_tip_relative")),
-                h.num(p.get("peak_shaft_deflection")),
-                h.num(p.get("omega_final")),
-                "reference" if is_ref else mark("history", share(e.get("tip_history_error"))),
-                "reference" if is_ref else mark("envelope", share(e.get("tip_envelope_error"))),
-                "reference" if is_ref else h.pct(e.get("peak_tip_difference")),
-                "reference" if is_ref else h.num(e.get("angle_drift"), 3),
+                h.num(p.dofs if p else None),
+                h.num(p.wall_seconds if p else None, 4),
+                h.num(p.compile_seconds if p else None, 3),
+                h.num(p.peak_tip_relative if p else None),
+                h.num(p.peak_shaft_deflection if p else None),
+                h.num(p.omega_final if p else None),
+                "reference" if is_ref else "-" if e is None else mark("history", share(e.tip_history_error)),
+                "reference" if is_ref else "-" if e is None else mark("envelope", share(e.tip_envelope_error)),
+                "reference" if is_ref else h.pct(None if e is None else e.peak_tip_difference),
+                "reference" if is_ref else h.num(None if e is None else e.angle_drift, 3),
                 h.num(r, 4),
             ]
         )
-        classes.append("flag" if p.get("ok") is False else "ok")
+        classes.append("flag" if p is not None and not p.ok else "ok")
     return h.table([c.format(ref=ref) for c in COST_HEADERS], rows, row_classes=classes)
 
 
-def speed_accuracy(doc: dict, models: list[str]) -> list[str]:
+def speed_accuracy(result: CompareResult, models: list[str]) -> list[str]:
     """The sentence per model: its error against the reference, led by the measure that
     fits the case (compare's ``lead``: the history while the rotors stay in phase, else
     the envelope, with the peak and the rotor angle's drift beside), at what share of the
     (warm) cost."""
-    ref = doc.get("reference")
-    errors, ratio = doc.get("errors") or {}, doc.get("cost_ratio") or {}
+    ref, ratio = result.reference, result.cost_ratio
     out = []
     for m in models:
-        em = errors.get(m) or {}
-        e, r = em.get("tip_history_error"), ratio.get(m)
-        if m == ref or e is None:
+        em = result.errors.get(m)
+        if m == ref or em is None:
             continue
-        env, peak, drift = (em.get("tip_envelope_error"), em.get("peak_tip_difference"), em.get("angle_drift"))
-        if em.get("lead") == "envelope" and env is not None:
+        e, r = em.tip_history_error, ratio.get(m)
+        env, peak, drift = em.tip_envelope_error, em.peak_tip_difference, em.angle_drift
+        if em.lead == "envelope" and env is not None:
             text = (
                 f"{m} follows {ref}'s tip envelope within {share(env)} of its largest value "
                 f"(peak {h.pct(peak) if peak is not None else '-'}); its history differs by "
@@ -149,12 +149,12 @@ FULL_ORDER_UNITS = {"duration": "s", "time_step": "s"}
 
 def _full_order(run: RunRecord | None) -> str | None:
     """What a full-order run was (mesh or elements, duration, step) and its note."""
-    from ...transients.run_records import BeamFullOrder, Fem3dPlan
+    from ...transients.model_run import BeamFullOrder, Fem3dPlan
 
     fo = run.full_order if run is not None else None
     items: list[tuple[str, Any]]
     if isinstance(fo, Fem3dPlan):  # its reference: references.reference_block
-        mesh = ", ".join(f"{a} {h.num(b)}" for a, b in vars(fo.mesh).items())
+        mesh = ", ".join(f"{a} {h.num(b)}" for a, b in records.to_builtins(fo.mesh).items())
         items = [("mesh", mesh), ("duration", fo.duration), ("case_duration", fo.case_duration)]
     elif isinstance(fo, BeamFullOrder):
         items = [("elements", fo.elements), ("theory", fo.theory), ("duration", fo.duration)]
@@ -189,30 +189,30 @@ def comparison_block(build: Build, case: str) -> list[str]:
     c = build.comparisons.get(case)
     if c is None:
         return missing_comparison(build, case)
-    doc, models = c.doc, c.models
-    parts = scene_differs(build, doc, ignore=comparison_overrides(case))
+    models = c.models
+    parts = scene_differs(build, c.provenance, ignore=comparison_overrides(case))
     ex = excitation_text(c.record.excitation)
     if ex:
         parts.append(h.tag("p", ex))
-    w = doc.get("window")
-    if isinstance(w, dict) and w.get("end") is not None:
-        parts.append(
-            h.tag(
-                "p",
-                f"Every model ran over t = {h.num(w.get('start'), 4)} .. "
-                f"{h.num(w['end'], 4)} s" + (f" ({w['why']})" if w.get("why") else "") + ".",
-                class_="meta",
-            )
+    w = c.record.window
+    parts.append(
+        h.tag(
+            "p",
+            f"Every model ran over t = {h.num(w.start, 4)} .. {h.num(w.end, 4)} s"
+            + (f" ({w.why})" if w.why else "")
+            + ".",
+            class_="meta",
         )
+    )
     theirs = _claim_figures(build, case, models)
     parts += failure(build, f"comparison_{case}")
     if f"comparison_{case}" in build.products:
         parts.append(product_image(build, f"comparison_{case}"))
     else:  # no arrays to draw from: compare's own chart, if it left one
         parts += [h.image(p.path, p.caption) for p in theirs if p.path.name == f"compare_{case}.png"]
-    parts.append(cost_table(doc, models))
-    parts += reference_block(doc)
-    said = speed_accuracy(doc, models)
+    parts.append(cost_table(c.record, models))
+    parts += reference_block(c.record.full_order_reference)
+    said = speed_accuracy(c.record, models)
     if said:
         parts.append(h.tag("p", " ".join(said)))
     full = [(m, _full_order(c.runs.get(m))) for m in models]
@@ -220,8 +220,8 @@ def comparison_block(build: Build, case: str) -> list[str]:
     if notes:
         parts.append(h.tag("p", "Full-order models, as run here:", class_="meta"))
         parts.append(h.tag("ul", notes, class_="meta"))
-    per = doc.get("per_model") or {}
-    warns = [h.tag("li", f"{m}: {w}") for m in models for w in (per.get(m) or {}).get("warnings") or []]
+    per = c.record.per_model
+    warns = [h.tag("li", f"{m}: {w}") for m in models if m in per for w in per[m].warnings]
     if warns:
         parts.append(h.tag("ul", warns, class_="warn"))
     own = [(m, p) for m in models for p in theirs if p.path.name == f"{_stem(case, m)}.png"]
@@ -276,13 +276,6 @@ RECORD_DIRECTION = (
 )
 
 
-def spectrum_damping(spec: dict[str, Any]) -> float:
-    """The damping ratio a response spectrum was computed at (-): its ``damping``,
-    else ``damping_ratio``, else 5 %."""
-    value: Any = spec.get("damping", spec.get("damping_ratio", 0.05))
-    return float(value)
-
-
 def spectrum_block(build: Build) -> list[str]:
     """The record's response spectrum with the system's modes marked, and the
     ROM's spectral estimate of the peak tip beside the computed one."""
@@ -292,8 +285,8 @@ def spectrum_block(build: Build) -> list[str]:
     c = build.comparisons.get("earthquake")
     if c is None:
         return missing_comparison(build, "earthquake")
-    spec = c.doc.get("spectrum")
-    if not isinstance(spec, dict):
+    spec = c.record.spectrum
+    if spec is None:
         return [
             h.tag(
                 "p",
@@ -307,12 +300,12 @@ def spectrum_block(build: Build) -> list[str]:
     if "response_spectrum" in build.products:
         parts.append(product_image(build, "response_spectrum"))
     model, modes = system_modes(c)
-    damping = spectrum_damping(spec)
+    damping = spec.damping
     if modes:
         rows = []
         for m in modes:
             horizontal = str(m["direction"]).upper() == "X"
-            S = spectral_value(spec.get("period") or [], spec.get("psa") or [], m["period"])
+            S = spectral_value(spec.period, spec.psa, m["period"])
             rows.append(
                 [
                     m["index"],
@@ -350,7 +343,7 @@ def spectrum_block(build: Build) -> list[str]:
                 rows,
             )
         )
-    est, num = spec.get("spectral_peak_tip"), spec.get("computed_peak_tip")
+    est, num = spec.spectral_peak_tip, spec.computed_peak_tip
     text = (
         f"Spectral estimate of the peak tip: {h.num(est, 4)} m, the square root of the sum "
         f"of the squares (SRSS) of each pillar mode's peak Gamma_j S_d(T_j, zeta_j) at its "
@@ -364,20 +357,20 @@ def spectrum_block(build: Build) -> list[str]:
         "ratio below 1 says the modes' peaks did not meet in time, above 1 that they added."
     )
     parts.append(h.tag("p", text))
-    if isinstance(spec.get("note"), str):
-        parts.append(h.tag("p", spec["note"], class_="meta"))
-    terms = spec.get("modes")
-    periods = spec.get("mode_periods") or []
-    if isinstance(terms, list) and terms and all(isinstance(t, dict) for t in terms):
+    if spec.note:
+        parts.append(h.tag("p", spec.note, class_="meta"))
+    terms = spec.modes
+    periods = spec.mode_periods
+    if terms:
         rows = [
             [
-                t.get("mode"),
-                h.num(t.get("period"), 4),
-                h.num(1 / t["period"], 4) if t.get("period") else "-",
-                share(t.get("damping_ratio")),
-                h.num(t.get("participation_factor"), 4),
-                h.num(t.get("s_d"), 4),
-                h.num(t.get("contribution"), 4),
+                t.mode,
+                h.num(t.period, 4),
+                h.num(1 / t.period, 4) if t.period else "-",
+                share(t.damping_ratio),
+                h.num(t.participation_factor, 4),
+                h.num(t.s_d, 4),
+                h.num(t.contribution, 4),
             ]
             for t in terms
         ]

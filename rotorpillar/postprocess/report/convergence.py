@@ -4,8 +4,9 @@ reference frequencies and failures, and the integrator study."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from ... import records
 from .. import html as h
 from ..readers import INPUTS
 from .parts import figures_of, run_table, scene_differs
@@ -13,8 +14,8 @@ from .state import Build
 
 if TYPE_CHECKING:
     from ...converge.result import ConvergenceStudy
-    from ...provenance import JsonRecord
-    from ...transients.integrator_records import IntegratorStudy, MethodSummary
+    from ...records import Record
+    from ...transients.integrator_study import IntegratorStudy, MethodSummary
 
 
 def chosen(study: ConvergenceStudy) -> tuple[str, str] | None:
@@ -119,7 +120,7 @@ def cancellation(study: ConvergenceStudy) -> str | None:
     return None
 
 
-def _convergence_parts(study: ConvergenceStudy, doc: dict[str, Any]) -> list[str]:
+def _convergence_parts(study: ConvergenceStudy) -> list[str]:
     parts = _choice(study)
     said = cancellation(study)
     if said:
@@ -131,7 +132,7 @@ def _convergence_parts(study: ConvergenceStudy, doc: dict[str, Any]) -> list[str
         parts.append(h.tag("ul", [h.tag("li", f) for f in failures]))
     slim = {
         k: v
-        for k, v in doc.items()
+        for k, v in records.to_builtins(study).items()
         if k not in ("runs", "families", "selection", "reference", "failures", "extrapolations")
     }
     parts.append(h.details("convergence.json (less its runs)", run_table(slim)))
@@ -153,9 +154,8 @@ def section_convergence(build: Build) -> str:
                 )
             )
     else:
-        doc = build.docs.get("convergence", {})
-        parts += scene_differs(build, doc)
-        parts += _convergence_parts(c, doc)
+        parts += scene_differs(build, build.provenance.get("convergence"))
+        parts += _convergence_parts(c)
     parts += figures_of(build, "convergence")
     return h.section("convergence", "Convergence and the model chosen", parts)
 
@@ -216,7 +216,7 @@ def integrators_conclusion(study: IntegratorStudy) -> str:
     return " ".join(said)
 
 
-def _rows_table(rows: Sequence[JsonRecord], keys: list[str]) -> str:
+def _rows_table(rows: Sequence[Record], keys: list[str]) -> str:
     return h.table(keys, [[h.num(getattr(r, k, None), 4) for k in keys] for r in rows])
 
 
@@ -226,7 +226,7 @@ def section_integrators(build: Build) -> str:
     if study is None:
         parts.append(h.missing(build.hint(INPUTS["integrators"][1])))
     else:
-        parts += scene_differs(build, build.docs.get("integrators", {}))
+        parts += scene_differs(build, build.provenance.get("integrators"))
         said = integrators_conclusion(study)
         if said:
             parts.append(h.tag("p", said))
@@ -258,7 +258,7 @@ def section_integrators(build: Build) -> str:
                 )
             )
         slim = {
-            name: {k: v for k, v in block.to_json().items() if k != "rows"}
+            name: {k: v for k, v in records.to_builtins(block).items() if k != "rows"}
             for name, block in (("accuracy", acc), ("stability", stab), ("energy_drift", drift))
         }
         parts.append(h.details("integrators.json: the rest (per method, settings)", run_table(slim)))

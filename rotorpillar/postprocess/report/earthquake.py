@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...reduced.excitation_records import PulseSizes, RecordSizes
-from ...transients.run_comparisons import comparison_models
+from ...reduced.excitation import PulseSizes, RecordSizes
+from ...transients.compare import comparison_models
 from .. import html as h
 from ..compare_reader import relative_to_ground
 from ..directions import direction
@@ -21,7 +21,7 @@ from .references import pareto_block
 from .state import Build
 
 if TYPE_CHECKING:
-    from ...transients.run_records import RunRecord
+    from ...transients.model_run import RunRecord
 
 #: Standard gravity, to state accelerations in g (m/s**2).
 STANDARD_GRAVITY = 9.80665
@@ -140,7 +140,7 @@ def paper_case(build: Build) -> list[str]:
         if model == "paper" and kind == "pulse"
         else f"The scene's earthquake run ({model} model, {kind})"
     )
-    parts = scene_differs(build, sim.doc)
+    parts = scene_differs(build, sim.provenance)
     parts.append(h.tag("p", what + ". " + _size(sim) + _tip(sim)))
     if isinstance(ex, (PulseSizes, RecordSizes)) and ex.statement is not None:
         parts.append(h.tag("p", ex.statement, class_="warn" if not ex.realistic else None))
@@ -160,7 +160,7 @@ def paper_case(build: Build) -> list[str]:
     parts += animation_video(build, mine)
     if run is not None:
         parts.append(key_results(run))
-        parts.append(h.details(name, run_table(sim.doc)))
+        parts.append(h.details(name, run_table(run)))
     return parts
 
 

@@ -2,7 +2,7 @@
 forces and stresses, the unbalance response (Bode), the Campbell diagram and
 the separation margins.
 
-Read through their records: summary.json (``verdict.records.EngineeringSummary``,
+Read through their records: summary.json (``verdict.summary.EngineeringSummary``,
 written by `rotorpillar report` before the page), harmonic.json
 (``HarmonicResult``) and each run's ``internal_forces``
 (``transients.force_records.InternalForcesSummary``, read with its run's record) with
@@ -12,7 +12,9 @@ Charts by :mod:`rotorpillar.postprocess.engineering_charts`.
 
 from __future__ import annotations
 
-from ...verdict.records import EngineeringSummary, HarmonicResult
+from ... import records
+from ...verdict.harmonic import HarmonicResult
+from ...verdict.summary import EngineeringSummary
 from .. import html as h
 from .force_runs import ForcesRun, forces_runs, history
 from .state import FIGURES_DIR, Build, attempt
@@ -28,8 +30,8 @@ def _read(build: Build, name: str, record):
     if not path.is_file():
         return None
     try:
-        return record.read(path)
-    except (KeyError, TypeError, ValueError, OSError, AttributeError) as exc:
+        return records.read(path, record)
+    except (ValueError, OSError) as exc:
         build.failures[f"input {name}"] = f"{type(exc).__name__}: {exc}"
         return None
 

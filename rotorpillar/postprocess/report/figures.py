@@ -5,11 +5,11 @@ word in the file's name)."""
 from __future__ import annotations
 
 import hashlib
-import json
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
+from ... import records
+from ...records import Figure, Record
 from .state import OWN_DIRS
 
 
@@ -33,30 +33,32 @@ COMMAND_GROUPS = {"converge": "convergence", "integrators": "integrators", "moda
 INPUT_COMMANDS = {"convergence.json": "converge", "integrators.json": "integrators", "study.json": "study"}
 
 
-def _charts_named(doc: dict[str, Any]) -> list[tuple[str, str | None]]:
-    """(file name, caption or None) of every chart a result's JSON names: its
-    ``figures`` (a list of {"file" or "path", "caption"}, or a mapping), its ``charts``
-    (name -> path), its ``chart`` and its ``pareto.chart``."""
-    out: list[tuple[str, str | None]] = []
-    figs = doc.get("figures")
-    if isinstance(figs, list):
-        for f in figs:
-            if isinstance(f, dict) and (f.get("file") or f.get("path")):
-                out.append((Path(str(f.get("file") or f.get("path"))).name, str(f.get("caption", ""))))
-    elif isinstance(figs, dict):
-        for k, v in figs.items():
-            if isinstance(v, dict):
-                out.append((Path(str(v.get("file") or v.get("path") or k)).name, str(v.get("caption", ""))))
-            elif isinstance(v, str):
-                out.append((Path(v).name, str(k).replace("_", " ")))
-    charts = doc.get("charts")
-    if isinstance(charts, dict):
-        out += [(Path(v).name, None) for v in charts.values() if isinstance(v, str)]
-    pareto = doc.get("pareto")
-    for chart in (doc.get("chart"), pareto.get("chart") if isinstance(pareto, dict) else None):
-        if isinstance(chart, str) and chart:
-            out.append((Path(chart).name, None))
-    return out
+class _Chart(Record):
+    """A result's ``pareto`` as far as its chart goes."""
+
+    chart: str | None = None
+
+
+class Charted(Record):
+    """What any result file says of the charts it names (every other field left out):
+    its ``figures``, its ``charts`` (name -> path), its ``chart`` and its ``pareto.chart``;
+    the command that wrote it and the case it ran."""
+
+    command: str | None = None
+    case: str | None = None
+    figures: tuple[Figure, ...] = ()
+    charts: dict[str, str] = {}
+    chart: str | None = None
+    pareto: _Chart | None = None
+
+    def named(self) -> list[tuple[str, str | None]]:
+        """(file name, caption or None) of every chart named."""
+        out: list[tuple[str, str | None]] = [(Path(f.file).name, f.caption) for f in self.figures]
+        out += [(Path(v).name, None) for v in self.charts.values()]
+        for chart in (self.chart, self.pareto.chart if self.pareto is not None else None):
+            if chart:
+                out.append((Path(chart).name, None))
+        return out
 
 
 def writers(out: Path) -> dict[str, Written]:
@@ -66,19 +68,16 @@ def writers(out: Path) -> dict[str, Written]:
     found: dict[str, Written] = {}
     for js in sorted(out.glob("*.json")):
         try:
-            doc = json.loads(js.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
+            doc = records.read(js, Charted)
+        except (OSError, ValueError):  # not a result (or a damaged one): names no chart
             continue
-        if not isinstance(doc, dict):
-            continue
-        said = doc.get("command")
-        command = said if isinstance(said, str) else INPUT_COMMANDS.get(js.name, "")
-        case = doc["case"] if isinstance(doc.get("case"), str) else ""
+        command = doc.command or INPUT_COMMANDS.get(js.name, "")
+        case = doc.case or ""
         if command in COMMAND_GROUPS:
             group, case = COMMAND_GROUPS[command], ""
         else:
             group = CASE_GROUPS.get(case, "other")
-        for name, caption in _charts_named(doc):
+        for name, caption in doc.named():
             was = found.get(name)
             found[name] = Written(caption if caption is not None else (was.caption if was else None), group, case)
     return found

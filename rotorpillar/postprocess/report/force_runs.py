@@ -8,8 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...transients.force_records import InternalForcesSummary
-from ..readers import outcome, read_run
+from ...transients.forces import InternalForcesSummary
 from .state import Build
 
 
@@ -26,20 +25,16 @@ class ForcesRun:
 
 
 def forces_runs(build: Build) -> list[ForcesRun]:
-    """Every run with internal forces, each read through its record (``readers.read_run``:
-    a damaged one raises, naming the file); ``verdict.summary.model_runs`` picks the
-    file of each case and model (the newest of simulate's and compare's)."""
-    from ...verdict.summary import case_name, model_runs
+    """Every run with internal forces, each read through its record;
+    ``verdict.summary.model_runs`` picks the file of each case and model (the newest of
+    simulate's and compare's)."""
+    from ...verdict.summary import model_runs
 
-    out = []
-    for doc in model_runs(build.out):
-        got = read_run(build.out / doc["_file"])
-        run = got.record if got is not None else None
-        if run is not None and run.internal_forces is not None:
-            ex = outcome(run).excitation
-            label = case_name(run.case, None if ex is None else ex.to_json())  # verdict reads documents
-            out.append(ForcesRun(label, doc["_file"], run.internal_forces))
-    return out
+    return [
+        ForcesRun(rf.label, rf.file, rf.run.internal_forces)
+        for rf in model_runs(build.out)
+        if rf.run.internal_forces is not None
+    ]
 
 
 def history(build: Build, run: ForcesRun, key: str) -> tuple[np.ndarray, np.ndarray] | None:

@@ -8,6 +8,7 @@ import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from ... import records
 from .. import html as h
 from ..directions import axes_legend, direction, mode_name, ordinal
 from ..readers import INPUTS
@@ -264,10 +265,13 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
                     f"(no {INPUTS[f'modes_{name}'][0]})"
                 )
             )
-    doc = build.docs.get("modal", {})
+    written = build.provenance.get("modal")
+    timings = written.timings if written is not None else None
     extra = [
         (k, v)
-        for k, v in h.flat_items({"mesh": m.mesh.to_json(), "axes": m.axes.to_json(), "timings": doc.get("timings")})
+        for k, v in h.flat_items(
+            {"mesh": records.to_builtins(m.mesh), "axes": records.to_builtins(m.axes), "timings": timings}
+        )
         if v is not None
     ]
     parts.append(
@@ -290,7 +294,7 @@ def section_modal(build: Build) -> str:
     parts = []
     if m is None:
         parts.append(h.missing(build.hint(INPUTS["modal"][1])))
-    parts += scene_differs(build, build.docs.get("modal"))
+    parts += scene_differs(build, build.provenance.get("modal"))
     parts.append(h.tag("h3", "Eq. 1 against the 3D model (bare tube)"))
     if a is None:
         parts.append(h.missing(build.hint(INPUTS["analyze"][1])))
@@ -362,7 +366,7 @@ def section_paper(build: Build) -> str:
         )
         cls.append("flag" if r.flag else "ok")
     n = sum(1 for r in printed if r.flag)
-    parts = scene_differs(build, build.docs.get("analyze")) + [
+    parts = scene_differs(build, build.provenance.get("analyze")) + [
         h.tag(
             "p",
             f"Every number the paper prints that we compute, ours from first principles "

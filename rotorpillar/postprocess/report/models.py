@@ -17,10 +17,10 @@ from typing import TYPE_CHECKING, Any
 
 from .. import html as h
 from ..directions import direction
-from ..readers import plain
 
 if TYPE_CHECKING:
     from ...analysis.results import AnalysisResult, DriveRegimes, ResonanceAnalysis
+    from ...chain.record import PillarModel
 
 
 @dataclass(frozen=True)
@@ -35,26 +35,23 @@ class ModelView:
     headline: bool
 
 
-def pillar_model_text(pillar_model: Any) -> str:
-    """A ``pillar_model`` (a record, or its JSON) in words ("" without one).
+def pillar_model_text(pm: PillarModel | None) -> str:
+    """A ``pillar_model`` in words ("" without one).
 
-    >>> pillar_model_text({"kind": "solid", "mesh": "128x20x1", "dofs": 94464,
-    ...                    "source": "converge", "verified": True})
-    'pillar modes: solid 128x20x1 (94464 DOFs), chosen by the convergence study'
-    >>> pillar_model_text({"kind": "beam", "source": "scene", "verified": False})
+    >>> from rotorpillar.chain.record import PillarModel
+    >>> pillar_model_text(PillarModel("solid", "3D P2 hexahedra, 128x20x1", {}, 94464, "converge", True, None, {}, ""))
+    'pillar modes: 3D P2 hexahedra, 128x20x1 (94464 DOFs), chosen by the convergence study'
+    >>> pillar_model_text(PillarModel("beam", "", {}, 0, "scene", False, None, {}, ""))
     "pillar modes: beam, the scene's own, unverified"
     """
-    pm = plain(pillar_model)
-    if not isinstance(pm, dict) or not pm:
+    if pm is None:
         return ""
-    what = pm.get("label") or " ".join(str(pm[k]) for k in ("kind", "mesh") if pm.get(k))
-    if pm.get("dofs"):
-        what += f" ({pm['dofs']} DOFs)"
-    src = {"converge": "chosen by the convergence study", "scene": "the scene's own"}.get(
-        str(pm.get("source")), str(pm.get("source") or "")
-    )
+    what = pm.label or pm.kind
+    if pm.dofs:
+        what += f" ({pm.dofs} DOFs)"
+    src = {"converge": "chosen by the convergence study", "scene": "the scene's own"}.get(pm.source, pm.source)
     text = f"pillar modes: {what}" + (f", {src}" if src else "")
-    if pm.get("verified") is False:
+    if not pm.verified:
         text += ", unverified"
     return text
 

@@ -4,16 +4,15 @@ the tables of a run's JSON."""
 
 from __future__ import annotations
 
-import json
 from typing import TYPE_CHECKING, Any
 
-from ...provenance import to_json
+from ... import records
 from .. import html as h
-from ..readers import outcome, plain
 from .state import Build
 
 if TYPE_CHECKING:
-    from ...transients.run_records import RunRecord
+    from ...provenance import Provenance
+    from ...transients.model_run import RunRecord
 
 
 def product_image(build: Build, key: str) -> str:
@@ -37,22 +36,14 @@ def animation_video(build: Build, key: str) -> list[str]:
     return [h.video(v.path, build.out, v.caption, v.poster)] if v else []
 
 
-def _note(doc: dict | None) -> list[str]:
-    """An input's own top-level ``note`` (e.g. "synthetic fixture"), shown as is."""
-    if isinstance(doc, dict) and isinstance(doc.get("note"), str) and doc["note"]:
-        return [h.tag("p", f"Note from the input: {doc['note']}", class_="warn")]
-    return []
-
-
-def scene_differs(build: Build, doc: dict[str, Any] | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
-    """A warning when an input was computed for another version of the scene
-    (and the input's own note, if it has one).  ``doc``: the input's whole JSON
-    document, or None; ``ignore``: dotted keys its command set on purpose (the
-    comparisons' record)."""
-    if not doc or "scene" not in doc:
-        return _note(doc)
-    now = json.loads(to_json(build.scene.to_dict()))
-    then = doc["scene"]
+def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
+    """A warning when an input was computed for another version of the scene.
+    ``provenance``: what its command wrote beside the record, or None; ``ignore``: dotted
+    keys its command set on purpose (the comparisons' record)."""
+    if provenance is None or not isinstance(provenance.scene, dict):
+        return []
+    now = records.to_builtins(build.scene.to_dict())
+    then = provenance.scene
     diffs = [
         f"{k}.{kk}"
         for k, v in now.items()
@@ -61,14 +52,14 @@ def scene_differs(build: Build, doc: dict[str, Any] | None, ignore: tuple[str, .
         if (not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk]) and f"{k}.{kk}" not in ignore
     ]
     if not diffs:
-        return _note(doc)
-    return _note(doc) + [
+        return []
+    return [
         h.tag(
             "p",
             "Warning: this input was computed for a different scene ("
             + ", ".join(diffs[:8])
             + (" ..." if len(diffs) > 8 else "")
-            + f" differ); re-run {doc.get('command', 'its command')} on this scene.",
+            + f" differ); re-run {provenance.command or 'its command'} on this scene.",
             class_="warn",
         )
     ]
@@ -86,7 +77,7 @@ PEAK_WORDS = {
 }
 
 
-def _peaks(mx: dict) -> list[list]:
+def _peaks(mx: dict[str, float | None]) -> list[list]:
     """Rows of a run's largest displacements, each value once: names with
     the same value are one row (the words of the first, the others beside)."""
     items = [(k, float(v)) for k, v in mx.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
@@ -111,7 +102,7 @@ def key_results(run: RunRecord) -> str:
     failed its own checks says so first."""
     from ...transients.case_summary import CaseSummary
 
-    got = outcome(run)
+    got = run
     rows = []
     if got.ok is False:
         rows.append(["FAILED: not a solution", "; ".join(got.failed_checks or ["the run reports ok: false"])])
@@ -134,8 +125,8 @@ def key_results(run: RunRecord) -> str:
 
 
 def run_table(result: Any) -> str:
-    """Every field of a result (its JSON document, or a record) but its provenance, as a table."""
-    meta = plain(result)
+    """Every field of a record (or of its builtins) but the figures, as a table."""
+    meta = records.to_builtins(result)
     keep = [
         (k, v)
         for k, v in h.flat_items(

@@ -25,7 +25,7 @@ from .state import Build
 if TYPE_CHECKING:
     from ...reduced.stationary import AveragingPrediction
     from ...transients.case_summary import Passage
-    from ...transients.run_records import RunRecord
+    from ...transients.model_run import RunRecord
 
 
 def _acceleration(arrays: dict, at: float) -> float | None:
@@ -89,7 +89,7 @@ HEADERS = [
 def passage_block(build: Build) -> list[str]:
     """The table over every run-up the page has (the comparison's models, the
     scene's own run), and what it says."""
-    from ...transients.run_records import ReducedRun
+    from ...transients.model_run import ReducedRun
 
     runs: list[tuple[str, RunRecord | None, dict]] = []
     c = build.comparisons.get("runup")
@@ -102,7 +102,7 @@ def passage_block(build: Build) -> list[str]:
         row
         for m, run, arrays in runs
         if isinstance(run, ReducedRun)  # the 3D run records no passages
-        for row in passage_rows(m, run.summary.passages, run.summary.prediction, arrays)
+        for row in passage_rows(m, run.passages, run.prediction, arrays)
     ]
     if not rows:
         return []

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import json
 from datetime import UTC, datetime
 
-from ... import __version__
+from ... import __version__, records
 from ...provenance import machine, versions
+from ...records import Record
 from .. import html as h
 from .parts import figures_of
 from .state import Build
@@ -17,24 +17,42 @@ def section_other(build: Build) -> str | None:
     return h.section("other", "Other figures", figs) if figs else None
 
 
-def _stages_of(doc: dict) -> tuple[float | None, str]:
-    """(total, "stage s, ...") of a result's timings; a comparison without
-    its own total counts its models' wall times."""
-    t = doc.get("timings", {}) if isinstance(doc.get("timings"), dict) else {}
-    stages = {k: v for k, v in t.items() if k != "total" and isinstance(v, (int, float))}
-    total = t.get("total")
-    per = doc.get("per_model") if isinstance(doc.get("per_model"), dict) else None
-    if not stages and per:
-        stages = {
-            f"{m} (wall time)": r["wall_seconds"]
-            for m, r in per.items()
-            if isinstance(r, dict) and isinstance(r.get("wall_seconds"), (int, float))
-        }
-    if total is None and stages:
-        total = sum(stages.values())
-    if total is None and isinstance(doc.get("wall_seconds"), (int, float)):
-        total, stages = doc["wall_seconds"], {"the run (wall time)": doc["wall_seconds"]}
-    return total, ", ".join(f"{k} {v:.2f}" for k, v in stages.items())
+class _Wall(Record):
+    wall_seconds: float | None = None
+
+
+class Timed(Record):
+    """What any result file says of its time (every other field left out): its
+    provenance's ``timings``, a comparison's models' wall times, a run's own."""
+
+    timings: dict[str, float] = {}
+    per_model: dict[str, _Wall] = {}
+    wall_seconds: float | None = None
+
+    def stages(self) -> tuple[float | None, str]:
+        """(total, "stage s, ...") of the timings; a comparison without its own total
+        counts its models' wall times."""
+        stages = {k: v for k, v in self.timings.items() if k != "total"}
+        total = self.timings.get("total")
+        if not stages and self.per_model:
+            stages = {
+                f"{m} (wall time)": r.wall_seconds for m, r in self.per_model.items() if r.wall_seconds is not None
+            }
+        if total is None and stages:
+            total = sum(stages.values())
+        if total is None and self.wall_seconds is not None:
+            total, stages = self.wall_seconds, {"the run (wall time)": self.wall_seconds}
+        return total, ", ".join(f"{k} {v:.2f}" for k, v in stages.items())
+
+
+class _StageSeconds(Record):
+    seconds: float | None = None
+
+
+class _Stages(Record):
+    """run.json as far as its stages' times go."""
+
+    stages: dict[str, _StageSeconds] = {}
 
 
 def _timing_rows(build: Build) -> list:
@@ -46,28 +64,20 @@ def _timing_rows(build: Build) -> list:
         if js.name in ("report.json", "run.json"):  # written after this page: stale here
             continue
         try:
-            doc = json.loads(js.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
+            total, stages = records.read(js, Timed).stages()
+        except (OSError, ValueError):  # not a result with its time
             continue
-        if not isinstance(doc, dict):
-            continue
-        total, stages = _stages_of(doc)
         link = h.tag("a", js.name, href=h.relative(js, build.out))
         rows.append(
             [link, h.num(total, 4), stages, datetime.fromtimestamp(js.stat().st_mtime).strftime("%Y-%m-%d %H:%M:%S")]
         )
     run = build.out / "run.json"
     try:
-        doc = json.loads(run.read_text(encoding="utf-8")) if run.is_file() else None
+        st = records.read(run, _Stages).stages if run.is_file() else {}
     except (OSError, ValueError):
-        doc = None
-    st = doc.get("stages") if isinstance(doc, dict) else None
-    if isinstance(st, dict) and st:
-        secs = {
-            k: v.get("seconds")
-            for k, v in st.items()
-            if isinstance(v, dict) and isinstance(v.get("seconds"), (int, float))
-        }
+        st = {}
+    secs = {k: v.seconds for k, v in st.items() if v.seconds is not None}
+    if secs:
         when = datetime.fromtimestamp(run.stat().st_mtime).strftime("%Y-%m-%d %H:%M:%S")
         rows.append(
             [
@@ -100,5 +110,5 @@ def section_provenance(build: Build) -> str:
     parts.append(h.tag("h3", "Versions"))
     parts.append(h.table(["package", "version"], [[k, val] for k, val in versions().items()]))
     parts.append(h.tag("h3", "Machine"))
-    parts.append(h.table(["", ""], [[k, h.num(val)] for k, val in machine().items()]))
+    parts.append(h.table(["", ""], [[k, h.num(val)] for k, val in records.to_builtins(machine()).items()]))
     return h.section("provenance", "Versions, machine and timings", parts)

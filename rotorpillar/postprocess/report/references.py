@@ -7,39 +7,41 @@ blocks of the runs and earthquake sections use."""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from .. import html as h
 from .state import Build
+
+if TYPE_CHECKING:
+    from ...transients.references import FullOrderReference
 
 
 def _pct(x) -> str:
     return "-" if not isinstance(x, (int, float)) or not math.isfinite(x) else f"{100 * abs(x):.2g} %"
 
 
-def reference_block(doc: dict) -> list[str]:
+def reference_block(ref: FullOrderReference | None) -> list[str]:
     """What the 3D reference is, its own error, and the participation of the loaded modes."""
-    ref = doc.get("full_order_reference")
-    if not isinstance(ref, dict):
+    if ref is None:
         return []
-    parts = [h.tag("p", ref.get("statement", ""), class_=None if ref.get("verified") else "warn")]
-    part = ref.get("participation")
-    if isinstance(part, dict) and part.get("modes"):
-        loads = list(part.get("loads") or [])
+    parts = [h.tag("p", ref.statement, class_=None if ref.verified else "warn")]
+    part = ref.participation
+    if part is not None and part.modes:
+        loads = list(part.loads)
         rows = [
             [
-                m["index"],
-                m["kind"] + (f" n = {m['n_circumferential']}" if m["kind"] == "ovalling" else ""),
-                h.num(m["omega"], 5),
-                "yes" if m["in_band"] else "no",
-                *[h.num(m["shares"].get(k), 2) for k in loads],
-                "yes" if m["participates"] else "no",
+                m.index,
+                m.kind + (f" n = {m.n_circumferential}" if m.kind == "ovalling" else ""),
+                h.num(m.omega, 5),
+                "yes" if m.in_band else "no",
+                *[h.num(m.shares.get(k), 2) for k in loads],
+                "yes" if m.participates else "no",
             ]
-            for m in part["modes"]
+            for m in part.modes
         ]
         parts.append(
             h.details(
-                f"participation of the loaded tube's modes ({part.get('source')}, band up to "
-                f"{h.num(part.get('band_top'), 4)} rad/s)",
+                f"participation of the loaded tube's modes ({part.source}, band up to {h.num(part.band_top, 4)} rad/s)",
                 h.table(
                     ["mode", "kind", "omega (rad/s)", "in band", *[f"share: {k}" for k in loads], "takes part"], rows
                 ),
@@ -51,8 +53,8 @@ def reference_block(doc: dict) -> list[str]:
 def pareto_block(build: Build) -> list[str]:
     """compare_earthquake.json's speed against accuracy: the chart and what it says."""
     c = build.comparisons.get("earthquake")
-    pa = c.doc.get("pareto") if c is not None else None
-    if not isinstance(pa, dict):
+    pa = c.record.pareto if c is not None else None
+    if pa is None:
         return [
             h.tag(
                 "p",
@@ -62,42 +64,49 @@ def pareto_block(build: Build) -> list[str]:
             )
         ]
     parts = []
-    name = pa.get("chart")
+    name = pa.chart
     for p in build.products.get("external", []):
         if name and p.path.name == name:
             p.group = "used"
             parts.append(h.image(p.path, p.caption))
-    case, ref, cost = pa.get("case") or {}, pa.get("reference") or {}, pa.get("cost") or {}
+    case, ref, cost = pa.case, pa.reference, pa.cost
     parts.append(
         h.tag(
             "p",
             (
-                f"El Centro ({case.get('record')}) from t = {h.num(case.get('record_start'), 3)} s, "
-                f"{h.num(case.get('duration'), 3)} s, {case.get('start', 'every model from the same state')}. "
-                f"The errors are against {ref.get('label')}, whose own error is estimated at "
-                f"{_pct(ref.get('peak_error'))} on the peak and {_pct(ref.get('history_error'))} on the "
-                f"history ({ref.get('note', ref.get('method'))}): an error below that is not resolved. "
-                + (pa.get("chosen") or {}).get("why", "")
-                + "."
+                (
+                    f"El Centro ({case.record}) from t = {h.num(case.record_start, 3)} s, "
+                    f"{h.num(case.duration, 3)} s, {case.start}. "
+                    if case is not None
+                    else ""
+                )
+                + f"The errors are against {ref.label}, whose own error is estimated at "
+                f"{_pct(ref.peak_error)} on the peak and {_pct(ref.history_error)} on the "
+                f"history ({ref.note or ref.method}): an error below that is not resolved. " + pa.chosen.why + "."
             ),
         )
     )
     rows = [
         [
-            r["label"],
-            h.num(r["dofs"]),
-            h.num(r["wall_seconds"], 3),
-            h.num(r["peak_tip"], 5),
-            _pct(r.get("peak_tip_error")),
-            _pct(r.get("history_error")),
-            ", ".join(k for k, f in (pa.get("fronts") or {}).items() if r["label"] in f) or "-",
+            r.label,
+            h.num(r.dofs),
+            h.num(r.wall_seconds, 3),
+            h.num(r.peak_tip, 5),
+            _pct(r.peak_tip_error),
+            _pct(r.history_error),
+            ", ".join(k for k in ("peak_tip", "history") if r.label in getattr(pa.fronts, k)) or "-",
         ]
-        for r in pa.get("runs", [])
+        for r in pa.runs
     ]
+    said = (
+        f"every run ({cost.runs}: {cost.computed} computed, {cost.cached} from the cache, "
+        f"{h.num(cost.wall_seconds, 3)} s)"
+        if cost is not None
+        else f"every run ({len(pa.runs)})"
+    )
     parts.append(
         h.details(
-            f"every run ({cost.get('runs')}: {cost.get('computed')} computed, "
-            f"{cost.get('cached')} from the cache, {h.num(cost.get('wall_seconds'), 3)} s)",
+            said,
             h.table(
                 [
                     "model",
@@ -112,13 +121,12 @@ def pareto_block(build: Build) -> list[str]:
             ),
         )
     )
-    comp = pa.get("compile_seconds") or {}
-    if comp:
+    if pa.compile_seconds:
         parts.append(
             h.tag(
                 "p",
                 "Compilation before the timed runs (not in their times): "
-                + ", ".join(f"{k} {h.num(v, 3)} s" for k, v in comp.items())
+                + ", ".join(f"{k} {h.num(v, 3)} s" for k, v in pa.compile_seconds.items())
                 + ".",
                 class_="meta",
             )

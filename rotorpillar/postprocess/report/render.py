@@ -3,11 +3,10 @@ mode shapes and the animations, each step recorded and allowed to fail."""
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 from typing import Any
 
-from ...reduced.excitation_records import ExcitationSizes, PulseSizes, RecordSizes
+from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
 from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..geometry import ModeSet
@@ -119,7 +118,7 @@ def render_comparisons(build: Build) -> None:
                     f"{ref}, solid); below, each model minus {ref}."
                     + (
                         f" Right: zoomed on the passage through the resonances, {zoom[0]:.3g} .. "
-                        f"{zoom[1]:.3g} s of the {c.doc.get('window', {}).get('end', '')} s run."
+                        f"{zoom[1]:.3g} s of the {c.record.window.end:g} s run."
                         if zoom
                         else ""
                     )
@@ -127,17 +126,17 @@ def render_comparisons(build: Build) -> None:
                 ),
             )
     quake = build.comparisons.get("earthquake")
-    spec = quake.doc.get("spectrum") if quake is not None else None
-    if quake is not None and isinstance(spec, dict) and spec.get("period") is not None and spec.get("psa") is not None:
+    spec = quake.record.spectrum if quake is not None else None
+    if quake is not None and spec is not None:
         c = quake
-        from .compare_section import spectrum_damping, system_modes
+        from .compare_section import system_modes
 
-        damping = spectrum_damping(spec)
+        damping = spec.damping
         model, modes = system_modes(c)
         # the modes the horizontal record excites: the coupled system's, in X
-        marks = [(f"mode {m['index']}", m["period"]) for m in modes if str(m["direction"]).upper() == "X"] or list(
-            spec.get("mode_periods") or ()
-        )
+        marks: list = [
+            (f"mode {m['index']}", m["period"]) for m in modes if str(m["direction"]).upper() == "X"
+        ] or list(spec.mode_periods)
         what = (
             f"the coupled rotor-pillar modes of the {model} model in the record's direction "
             "(horizontal, in the rotor's plane)"
@@ -149,8 +148,8 @@ def render_comparisons(build: Build) -> None:
             "response_spectrum",
             lambda: cc.spectrum_chart(
                 fig / "response_spectrum.png",
-                spec["period"],
-                spec["psa"],
+                spec.period,
+                spec.psa,
                 marks,
                 damping,
                 title=f"Response spectrum of the record ({_record_name(c.record.excitation)})",
@@ -199,8 +198,8 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
     for name, key in (("bare", "modes"), ("top", "modes_with_top")):
         vtu = build.out / INPUTS[f"modes_{name}"][0]
         if m is not None and vtu.is_file():
-            modes = [row.to_json() for row in getattr(m, key)]
-            axes = m.axes.to_json()
+            modes = list(getattr(m, key))
+            axes = m.axes
             sets[name] = attempt(
                 build, f"load_modes_{name}", lambda vtu=vtu, modes=modes, axes=axes: load_modes(vtu, modes, axes)
             )
@@ -357,4 +356,4 @@ def render_animations(build: Build, sets: dict) -> None:
                 kind="video",
                 poster=r.poster,
             )
-            build.products[f"animation_{name}_info"] = dataclasses.asdict(r)
+            build.products[f"animation_{name}_info"] = r

@@ -4,7 +4,7 @@ against a full-order model; run-down, sweep)."""
 
 from __future__ import annotations
 
-from ...transients.run_comparisons import COMPARISONS
+from ...transients.compare import COMPARISONS
 from .. import html as h
 from ..directions import direction
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND
@@ -112,7 +112,7 @@ def section_averaging(build: Build) -> str:
         return h.section(
             "averaging", "Passage through resonance (averaging)", [h.missing(build.hint(INPUTS["analyze"][1]))]
         )
-    parts = scene_differs(build, build.docs.get("analyze"))
+    parts = scene_differs(build, build.provenance.get("analyze"))
     views = model_views(a)
     d = a.drive
     parts.append(
@@ -179,15 +179,15 @@ def section_runs(build: Build) -> str:
             continue
         model = sim.run.model if sim.run is not None else "?"
         parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the scene's own run ({model} model, simulate_{case}.json)"))
-        parts += scene_differs(build, sim.doc)
+        parts += scene_differs(build, sim.provenance)
         if sim.run is not None:
             parts.append(key_results(sim.run))
         parts += _own_charts(build, case)
         parts += failure(build, f"animation_{case}")
         parts += animation_video(build, f"animation_{case}")
         parts.append(
-            h.details(f"simulate_{case}.json: every field", run_table(sim.doc))
-            if sim.doc
+            h.details(f"simulate_{case}.json: every field", run_table(sim.run))
+            if sim.run is not None
             else h.tag("p", "no JSON summary", class_="meta")
         )
     if not_run and build.simulations:

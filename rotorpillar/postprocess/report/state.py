@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
+from ...provenance import Provenance
 from ..readers import Simulation, not_computed
 
 if TYPE_CHECKING:
@@ -24,7 +25,7 @@ if TYPE_CHECKING:
     from ...fem3d.modal_summary import ModalSummary
     from ...scene import Scene
     from ...studies.result import StudyResult
-    from ...transients.integrator_records import IntegratorStudy
+    from ...transients.integrator_study import IntegratorStudy
     from ..compare_reader import Comparison
 
 T = TypeVar("T")
@@ -70,18 +71,18 @@ class Build:
     scene_cli: str
     options: ReportOptions
     analysis: AnalysisResult | None = None
-    """analyze.json's record (``readers.read_analysis``), or None"""
+    """analyze.json's record, or None"""
     modal: ModalSummary | None = None
-    """modal.json's record (``readers.read_modal``), or None"""
+    """modal.json's record, or None"""
     convergence: ConvergenceStudy | None = None
-    """convergence.json's record (``readers.read_convergence``), or None"""
+    """convergence.json's record, or None"""
     study: StudyResult | None = None
-    """study.json's record (``readers.read_study``), or None"""
-    docs: dict[str, dict[str, Any]] = field(default_factory=dict)
-    """input name (``readers.INPUTS``, "study") -> the whole JSON document its record was
-    read from: what the command wrote beside the record (scene, versions, timings, a note)"""
+    """study.json's record, or None"""
+    provenance: dict[str, Provenance | None] = field(default_factory=dict)
+    """input name (``readers.INPUTS``, "study") -> what the command wrote beside its record
+    (scene, versions, machine, timings)"""
     integrators: IntegratorStudy | None = None
-    """integrators.json's record (``readers.read_integrators``), or None"""
+    """integrators.json's record, or None"""
     simulations: dict[str, Simulation] = field(default_factory=dict)
     """case -> ``readers.Simulation`` of simulate_<case>.* (the last run of the case)"""
     quake_case: Simulation | None = None

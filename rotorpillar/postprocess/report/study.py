@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...studies.boundary import TorqueBoundary
 from ...studies.result import StudyResult
 from .. import html as h
 from .parts import scene_differs
@@ -14,9 +15,9 @@ from .state import Build
 STUDY_JSON = "study.json"
 
 
-def _predicted_at(b: dict, x, name: str):
-    xs = b.get("other_values") or []
-    ys = b.get(name) or []
+def _predicted_at(b: TorqueBoundary, x, name: str):
+    xs = b.other_values
+    ys = getattr(b, name)
     pts = [(u, v) for u, v in zip(xs, ys) if v is not None]
     if not pts:
         return None
@@ -27,22 +28,21 @@ def _predicted_at(b: dict, x, name: str):
 
 
 def _boundary_table(r: StudyResult) -> list[str]:
-    b = r.boundary or {}
-    found = b.get("found") or []
-    if not found or b.get("kind") != "torque":
+    b = r.boundary
+    if b is None or not b.found or not isinstance(b.predicted, TorqueBoundary):
         return []
-    other = b.get("other_key")
+    other = b.predicted.other_key
     rows = []
-    for row in found:
-        x = row["other"]
+    for row in b.found:
+        x = row.other
         rows.append(
             [
                 h.num(x, 4) if x is not None else "-",
-                h.num(row["captured_max"], 5),
-                h.num(row["passed_min"], 5),
-                h.num(_predicted_at(b, x, "averaging"), 5),
-                h.num(_predicted_at(b, x, "exact_linear"), 5),
-                "yes" if row.get("monotonic", True) else "no",
+                h.num(row.captured_max, 5),
+                h.num(row.passed_min, 5),
+                h.num(_predicted_at(b.predicted, x, "averaging"), 5),
+                h.num(_predicted_at(b.predicted, x, "exact_linear"), 5),
+                "yes" if row.monotonic else "no",
             ]
         )
     return [
@@ -73,25 +73,24 @@ def section_study(build: Build) -> str | None:
         if not (build.out / STUDY_JSON).is_file():
             return None
         return h.section("study", "Design study", [h.missing(build.hint("study"))])
-    meta = build.docs["study"]
     p, ex, bt = r.performance, r.executor, r.batches
     axes = "; ".join(f"{a.key}: {len(a.values)} values from {a.values[0]} to {a.values[-1]}" for a in r.axes)
-    parts = scene_differs(build, meta)
+    parts = scene_differs(build, build.provenance.get("study"))
     parts.append(
         h.tag(
             "p",
             f"{len(r.runs)} {r.case} runs of the {r.model} model over {axes}. "
-            f"Ran on {ex.get('kind')} ({ex.get('workers')} workers) in "
-            f"{bt.get('total')} batches ({bt.get('cached')} from disk); "
-            f"{p.get('runs_computed')} runs computed at "
-            f"{h.num(p.get('runs_per_second'), 3)} runs/s.",
+            f"Ran on {ex.kind} ({ex.workers} workers) in "
+            f"{bt.total} batches ({bt.cached} from disk); "
+            f"{p.runs_computed} runs computed at "
+            f"{h.num(p.runs_per_second, 3)} runs/s.",
         )
     )
     if r.case != "earthquake":
         passed = sum(bool(x.passed) for x in r.runs)
         parts.append(h.tag("p", f"Passed: {passed}; captured at a resonance: {len(r.runs) - passed}."))
     parts += _boundary_table(r)
-    names = {f["file"] for f in r.figures}
+    names = {f.file for f in r.figures}
     external = build.products.get("external", [])
     for prod in [x for x in external if x.path.name in names]:
         parts.append(h.image(prod.path, prod.caption))

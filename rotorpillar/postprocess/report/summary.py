@@ -6,10 +6,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from ...reduced.excitation_records import PulseSizes, RecordSizes
-from ...transients.run_comparisons import COMPARISONS, comparison_command
+from ...reduced.excitation import PulseSizes, RecordSizes
+from ...transients.compare import COMPARISONS, comparison_command
 from .. import html as h
-from ..readers import CASES, INPUTS, SIMULATE_COMMAND, outcome
+from ..readers import CASES, INPUTS, SIMULATE_COMMAND
 from .compare_section import speed_accuracy
 from .convergence import chosen
 from .engineering import verdict_block
@@ -130,7 +130,7 @@ def _bar(bars: dict[str, Uncertain] | None, key: str, value: Any, scale: float, 
 
 
 def _runs(build: Build) -> list[str | h.Raw]:
-    from ...transients.run_records import ReducedRun
+    from ...transients.model_run import ReducedRun
 
     items: list[str | h.Raw] = []
     for case in CASES:
@@ -138,7 +138,7 @@ def _runs(build: Build) -> list[str | h.Raw]:
         if sim is None or sim.run is None:
             continue
         run = sim.run
-        got = outcome(run)
+        got = run
         model = run.model
         if case == "earthquake":
             ex = got.excitation
@@ -196,7 +196,7 @@ def section_summary(build: Build) -> str:
                 f"run `rotorpillar {comparison_command(case)} {build.scene_cli}`."
             )
         else:
-            said = speed_accuracy(c.doc, c.models)
+            said = speed_accuracy(c.record, c.models)
             items.append(
                 f"The {name}, models compared ({', '.join(c.models)}): "
                 + (" ".join(said) if said else "no error against a reference recorded.")

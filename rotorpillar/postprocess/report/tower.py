@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 
-from ...verdict.records import EngineeringSummary, HarmonicResult
+from ...verdict.harmonic import HarmonicResult
+from ...verdict.summary import EngineeringSummary
 from .. import html as h
 from .engineering import _read
 from .state import Build
