@@ -24,15 +24,35 @@ from . import records
 # records from here.  records itself imports nothing of the package (no circle).
 from .records import (
     Array as Array,
+)
+from .records import (
     ArrayMarker as ArrayMarker,
+)
+from .records import (
     Figure as Figure,
+)
+from .records import (
     Record as Record,
+)
+from .records import (
     convert as convert,
+)
+from .records import (
     decode as decode,
+)
+from .records import (
     encode as encode,
+)
+from .records import (
     read as read,
+)
+from .records import (
     replace as replace,
+)
+from .records import (
     tag as tag,
+)
+from .records import (
     to_builtins as to_builtins,
 )
 

@@ -208,6 +208,6 @@ class AnalysisResult(Record):
     drive_reaction: DriveReactionAnalysis | None = None
     """the motor's stall torque reacting on the gondola: static tip displacement and rotation,
     base moment, and the run-up's transient with the reaction acting"""
-    tower: TowerFindings | None = field(default=None, metadata={"omit_if_none": True})
+    tower: TowerFindings | None = None
     """a tower (cans, a flexible foundation, or published numbers of its own): its first
     frequencies clamped and on its foundation, the published ones beside ours"""

@@ -30,9 +30,8 @@ sits on its axis.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
-from ..provenance import JsonRecord
+from ..records import Record
 from ..reduced.foundation import FoundationStiffness, foundation_stiffness
 from ..reduced.spatial_beam import beam_spatial_modes
 from ..reduced.spatial_modes import BENDING_ACROSS, BENDING_IN_PLANE
@@ -43,8 +42,7 @@ from ..scene import Gondola, Scene
 BEAM_ELEMENTS = 200
 
 
-@dataclass(frozen=True)
-class FirstFrequency(JsonRecord):
+class FirstFrequency(Record):
     """One model's first bending frequency, clamped and on the scene's foundation."""
 
     model: str
@@ -60,8 +58,7 @@ class FirstFrequency(JsonRecord):
         return None if self.on_foundation is None else self.on_foundation / self.clamped - 1
 
 
-@dataclass(frozen=True)
-class PublishedRow(JsonRecord):
+class PublishedRow(Record):
     """A published frequency beside ours."""
 
     quantity: str
@@ -76,8 +73,7 @@ class PublishedRow(JsonRecord):
     """computed / published - 1 (-)"""
 
 
-@dataclass(frozen=True)
-class TowerFindings(JsonRecord):
+class TowerFindings(Record):
     """`analyze`'s block on a tower: frequencies, foundation, published numbers."""
 
     cans: int
@@ -90,9 +86,9 @@ class TowerFindings(JsonRecord):
     """the beam's and Rayleigh-Ritz's first bending frequency, clamped and on the foundation"""
     rom_first: float
     """the headline ROM's first coupled mode in the rotor's plane, on the chain's model (Hz)"""
-    foundation: FoundationStiffness | None = field(default=None, metadata={"omit_if_none": True})
+    foundation: FoundationStiffness | None = None
     """the foundation's springs (None: a clamp)"""
-    foundation_shift: float | None = field(default=None, metadata={"omit_if_none": True})
+    foundation_shift: float | None = None
     """the beam's first frequency on the foundation over clamped, less 1 (-)"""
     published: tuple[PublishedRow, ...] = ()
     """the scene's [reference] beside ours"""

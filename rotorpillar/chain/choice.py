@@ -84,7 +84,7 @@ def _mismatch(scene: Scene, study_scene: dict) -> str | None:
 
 def _plain(v: Any) -> Any:
     """A scene value as JSON reads it back (tuples as lists)."""
-    return json.loads(json.dumps(v))
+    return records.to_builtins(v)
 
 
 def study_on_disk(scene: Scene, out_dir: Path):

@@ -18,12 +18,13 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ..reduced.campbell import CampbellDiagram
     from ..scene import Scene
 
 import numpy as np
 
 from ..errors import InputError
-from . import is_root_rank, out_dir, progress
+from . import Done, is_root_rank, out_dir, progress
 
 MODELS = ("modal", "fem3d")
 DEFAULT_SPEEDS = 151
@@ -57,7 +58,7 @@ def parse_speeds(text: str | None, top: float) -> np.ndarray:
     return np.linspace(start, stop, n)
 
 
-def campbell_command(scene: Scene, args, timings):
+def campbell_command(scene: Scene, args, timings) -> Done:
     from ..chain import resolve
     from ..reduced.band import forcing_top
     from ..reduced.models import build_model
@@ -89,9 +90,7 @@ def campbell_command(scene: Scene, args, timings):
 
         with timings("chart"):
             campbell_diagram_chart(out / "campbell.png", diagram, f"{scene.name}: Campbell diagram ({model})")
-    from ..records import to_builtins
-
-    return to_builtins(diagram), summary_text(diagram)
+    return Done(diagram, summary_text(diagram))
 
 
 def _fem3d_function():
@@ -112,7 +111,7 @@ def _fem3d(scene: Scene, speeds, running):
     return campbell_fem3d(scene, speeds, band_top=float(speeds[-1]), running_speed=running, progress=progress)
 
 
-def summary_text(d) -> str:
+def summary_text(d: CampbellDiagram) -> str:
     lines = [f"Campbell diagram ({d.model}): {len(d.speeds)} speeds, {d.speeds[0]:g} ... {d.speeds[-1]:g} rad/s"]
     if d.running_speed is not None:
         lines.append(f"  running speed {d.running_speed:.4g} rad/s")

@@ -65,7 +65,7 @@ AF_POINTS = 25
 AF_CURVES = ("shaft x", "shaft z", "rotor x", "rotor z", "top x", "top y", "top z")
 
 
-class CampbellEstimate(Record, frozen=True):
+class CampbellEstimate(Record):
     """The size of a 3D Campbell diagram before it starts."""
 
     dofs: int

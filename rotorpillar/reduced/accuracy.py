@@ -35,7 +35,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..records import Record
+from ..provenance import Record
 from .excitation import GroundMotion
 
 #: A run whose scheme moves the fastest frequency it must resolve by more than

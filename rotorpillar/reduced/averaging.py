@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from ..records import Record
+from ..provenance import Record
 
 #: A speed or an array of speeds (rad/s), and what the closed forms give for it.
 Speeds = float | NDArray[np.float64]

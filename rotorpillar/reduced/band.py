@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..records import Record
+from ..provenance import Record
 from ..scene import Converge, Drive, Load, Sweep
 from .averaging import Characteristic
 from .drive import DriveSchedule

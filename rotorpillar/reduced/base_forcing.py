@@ -14,7 +14,7 @@ does not have.
 
 from __future__ import annotations
 
-from ..records import Record
+from ..provenance import Record
 
 #: Above this ratio of the published static gain over the consistent one (1),
 #: the paper model's earthquake is flagged: the published forcing then

@@ -23,7 +23,7 @@ from collections.abc import Iterable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..records import Record
+from ..provenance import Record
 from . import averaging as av
 from .rotor_models import RotorStructure
 from .system import Resonance

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..records import Record
+from ..provenance import Record
 from .spatial_modes import Array
 
 #: Whirl directions.
@@ -38,7 +38,7 @@ EXCITERS = ("static unbalance", "couple unbalance", "neither")
 CAMPBELL_MODELS = ("modal", "fem3d")
 
 
-class CampbellBranch(Record, frozen=True, eq=False):
+class CampbellBranch(Record, eq=False):
     """One mode tracked across the speeds."""
 
     label: str
@@ -56,7 +56,7 @@ class CampbellBranch(Record, frozen=True, eq=False):
     """(n,) zeta = -Re(s) / |s| at each speed (-)"""
 
 
-class CriticalSpeed(Record, frozen=True):
+class CriticalSpeed(Record):
     """A speed where the 1x line crosses a branch: Omega = the branch's frequency."""
 
     speed: float
@@ -77,7 +77,7 @@ class CriticalSpeed(Record, frozen=True):
     """how the crossing was found, in words"""
 
 
-class CampbellDiagram(Record, frozen=True, eq=False):
+class CampbellDiagram(Record, eq=False):
     """campbell.json: the modes' frequencies against speed and the critical speeds."""
 
     model: str

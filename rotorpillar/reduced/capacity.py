@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 
-from ..records import Record
+from ..provenance import Record
 
 #: the fabrication quality classes of EN 1993-1-6 (D.1.2.2): Q, meridional compression
 QUALITY_PARAMETER = {"A": 40.0, "B": 25.0, "C": 16.0}

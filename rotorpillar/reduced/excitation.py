@@ -46,7 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..records import Record
+from ..provenance import Record
 from ..scene import read_text_file
 
 STANDARD_GRAVITY = 9.80665  # m/s**2

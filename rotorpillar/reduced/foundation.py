@@ -54,8 +54,8 @@ from __future__ import annotations
 
 import math
 
-from ..records import Record
-from ..scene.tower import Foundation
+from ..provenance import Record
+from ..scene import Foundation
 from .beam_fe import BaseSprings
 
 GAZETAS_1991 = (
@@ -65,7 +65,7 @@ GAZETAS_1991 = (
 )
 
 
-class FoundationStiffness(Record, frozen=True):
+class FoundationStiffness(Record):
     """The springs under the tube's base, at the base (z = 0)."""
 
     kind: str

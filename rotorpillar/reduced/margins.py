@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
-from ..records import Record
+from ..provenance import Record
 
 #: AF below which a mode is critically damped and needs no margin (API 684)
 AF_CRITICALLY_DAMPED = 2.5
@@ -167,8 +167,7 @@ def separation_table(
 REGIMES = ("stiff-stiff", "soft-stiff", "soft-soft", "resonant")
 
 
-@dataclass(frozen=True)
-class OrderMargin(JsonRecord):
+class OrderMargin(Record):
     """A tower mode against one excitation order at one running speed."""
 
     running_speed: float
@@ -188,8 +187,7 @@ class OrderMargin(JsonRecord):
     """"pass" (actual >= required) or "fail\""""
 
 
-@dataclass(frozen=True)
-class ExcitationOrders(JsonRecord):
+class ExcitationOrders(Record):
     """The first tower mode against 1P and the blade-passing order, the Campbell diagram's data."""
 
     orders: tuple[int, ...]

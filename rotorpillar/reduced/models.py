@@ -11,7 +11,7 @@ computed here.
 from __future__ import annotations
 
 from ..errors import InputError
-from ..records import Record
+from ..provenance import Record
 from ..scene import Scene
 from .beam_model import beam_model
 from .excitation import GroundMotion, load_record, paper_pulse

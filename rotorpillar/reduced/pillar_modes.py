@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
 from ..errors import InputError
-from ..records import Record
+from ..provenance import Record
 from ..scene import Pillar
 from .beam_fe import (
     THEORIES,

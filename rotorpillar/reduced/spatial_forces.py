@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..records import Record
+from ..provenance import Record
 from ..scene import Pillar
 from .internal_forces import STANDARD_GRAVITY
 from .spatial_model import SpatialStructure
@@ -43,7 +43,7 @@ from .spatial_modes import Array
 from .tower import section_at, tower_mass
 
 
-class BaseReactions(Record, frozen=True, eq=False):
+class BaseReactions(Record, eq=False):
     """The pillar's base reactions over a run (what the pillar exerts on its foundation's top)."""
 
     t: Array

@@ -243,7 +243,7 @@ class SpatialStructure:
 def _bending_in_plane_tip_scaled(modes: SpatialPillarModes) -> SpatialPillarModes:
     """The bending modes in the rotor's plane, each scaled to a unit tip deflection (as the
     planar ROM's PillarModes), the others as they are."""
-    from ..records import replace
+    from ..provenance import replace
 
     s = np.ones(modes.count)
     idx = modes.of_kind(BENDING_IN_PLANE)

@@ -46,7 +46,7 @@ from typing import Annotated
 import numpy as np
 from numpy.typing import NDArray
 
-from ..records import ArrayMarker, Record
+from ..provenance import ArrayMarker, Record
 from .pillar_modes import PillarModes
 
 #: A float ndarray field of a record (``records.Array``, typed for mypy's strict mode).
@@ -76,7 +76,7 @@ OTHER = "other"
 KINDS = (BENDING_IN_PLANE, BENDING_ACROSS, TORSION, AXIAL, OVALLING, BREATHING, OTHER)
 
 
-class SpatialPillarModes(Record, frozen=True, eq=False):
+class SpatialPillarModes(Record, eq=False):
     """The pillar's modes with the gondola on top, in every direction (see the module text)."""
 
     omega: Array
@@ -233,7 +233,7 @@ class SpatialPillarModes(Record, frozen=True, eq=False):
 
     def with_damping_ratio(self, zeta: float) -> SpatialPillarModes:
         """The same modes, each with the structural damping ratio ``zeta`` (-)."""
-        from ..records import replace
+        from ..provenance import replace
 
         out: SpatialPillarModes = replace(self, damping_ratio=np.full(self.count, float(zeta)))
         return out

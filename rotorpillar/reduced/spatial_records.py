@@ -4,12 +4,12 @@ computes them; numpy-free to read)."""
 
 from __future__ import annotations
 
-from ..records import Record
+from ..provenance import Record
 from .campbell import CriticalSpeed
 from .spatial_statics import DriveReaction
 
 
-class PlanesChoice(Record, frozen=True):
+class PlanesChoice(Record):
     """Which directions the modal model keeps, and why."""
 
     requested: str
@@ -20,7 +20,7 @@ class PlanesChoice(Record, frozen=True):
     """why, in words"""
 
 
-class SpatialResonance(Record, frozen=True):
+class SpatialResonance(Record):
     """A damped mode of the spatial model at rest, named."""
 
     label: str
@@ -35,7 +35,7 @@ class SpatialResonance(Record, frozen=True):
     """its whirl at the running speed: forward, backward or none (a line)"""
 
 
-class PlanarError(Record, frozen=True):
+class PlanarError(Record):
     """What the planar model misses: the spatial model's numbers against it."""
 
     planar_omega: tuple[float, ...]
@@ -53,7 +53,7 @@ class PlanarError(Record, frozen=True):
     note: str
 
 
-class SpatialAnalysis(Record, frozen=True):
+class SpatialAnalysis(Record):
     """analyze.json's ``spatial``: the machine in three dimensions, beside the planar ROM."""
 
     planes: PlanesChoice
@@ -70,7 +70,7 @@ class SpatialAnalysis(Record, frozen=True):
     planar_error: PlanarError
 
 
-class ReactionRunup(Record, frozen=True):
+class ReactionRunup(Record):
     """The run-up from rest on the spatial model, with the motor's reaction on the gondola and without."""
 
     duration: float
@@ -87,7 +87,7 @@ class ReactionRunup(Record, frozen=True):
     """the largest |roll of the top| with the reaction (rad)"""
 
 
-class DriveReactionAnalysis(Record, frozen=True):
+class DriveReactionAnalysis(Record):
     """analyze.json's ``drive_reaction``: the stall torque on the gondola, statically and in the run-up."""
 
     torque: float

@@ -42,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq, minimize_scalar
 
-from ..records import Record, replace
+from ..provenance import Record, replace
 from .spatial_model import OUTPUTS, SpatialStructure
 from .spatial_modes import Array
 
@@ -65,7 +65,7 @@ ORBITS = (
 )
 
 
-class ResponsePeak(Record, frozen=True):
+class ResponsePeak(Record):
     """A peak of one response curve and its half-power bandwidth."""
 
     curve: str
@@ -86,7 +86,7 @@ class ResponsePeak(Record, frozen=True):
     counted times the pillar's height (-); None where not compared"""
 
 
-class ResponseCurve(Record, frozen=True, eq=False):
+class ResponseCurve(Record, eq=False):
     """One output's steady unbalance response against speed."""
 
     name: str
@@ -99,7 +99,7 @@ class ResponseCurve(Record, frozen=True, eq=False):
     peaks: tuple[ResponsePeak, ...]
 
 
-class Orbit(Record, frozen=True, eq=False):
+class Orbit(Record, eq=False):
     """The ellipse a point draws at each speed."""
 
     name: str
@@ -114,7 +114,7 @@ class Orbit(Record, frozen=True, eq=False):
     """(n,) "forward" (turning from the plane's first axis towards its second), "backward" or "none" (a line)"""
 
 
-class SpatialResponse(Record, frozen=True, eq=False):
+class SpatialResponse(Record, eq=False):
     """The spatial model's unbalance response (the Bode curves and the orbits)."""
 
     speeds: Array

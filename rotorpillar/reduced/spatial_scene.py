@@ -250,7 +250,7 @@ def scene_campbell(
 ) -> CampbellDiagram:
     """The Campbell diagram of the scene's spatial model over ``speeds`` (rad/s), each critical
     speed with the AF of the unbalance response's peak near it (None: no peak there)."""
-    from ..records import replace as record_replace
+    from ..provenance import replace as record_replace
 
     m = scene_spatial_model(scene, band_top, modes)
     diagram = campbell(m, speeds, running_speed)

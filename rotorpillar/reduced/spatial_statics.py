@@ -29,13 +29,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..records import Record
+from ..provenance import Record
 from ..scene import Pillar
 from .spatial_modes import SpatialPillarModes
 from .tower import section_at
 
 
-class DriveReaction(Record, frozen=True):
+class DriveReaction(Record):
     """analyze.json's ``drive_reaction``: the motor's stall torque reacting on the gondola."""
 
     torque: float

@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
 from ..errors import InputError
-from ..records import Record
+from ..provenance import Record
 from . import averaging as av
 from .batch import Batch, simulate_batch
 from .drive import DriveSchedule

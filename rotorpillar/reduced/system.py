@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..records import Record
+from ..provenance import Record
 from ..scene import Rotor, Shaft
 
 

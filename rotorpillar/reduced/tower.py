@@ -32,8 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
-from ..scene import Pillar
-from ..scene.tower import Segment, segment_index
+from ..scene import Pillar, Segment, segment_index
 from .beam_fe import GAUSS_POINTS as BEAM_GAUSS
 from .beam_fe import BaseSprings, BeamLine
 from .foundation import FoundationStiffness

@@ -58,6 +58,7 @@ from .sections import (
     Simulate,
     Sweep,
 )
+from .tower import FOUNDATION_KINDS, Can, Foundation, Reference, Segment, segment_index
 from .validation import SCENE_NAME, check_combinations, check_field, scene_from_dict
 from .words import (
     ADAPTIVE_INTEGRATORS,
@@ -77,13 +78,16 @@ __all__ = [
     "ADAPTIVE_INTEGRATORS",
     "CASES",
     "CELL_TYPES",
+    "Can",
     "Converge",
     "Drive",
     "EXCITATION_KINDS",
     "Excitation",
     "FABRICATION_CLASSES",
+    "FOUNDATION_KINDS",
     "FIXED_STEP_INTEGRATORS",
     "FULL_ORDER_MODELS",
+    "Foundation",
     "FullOrder",
     "Gondola",
     "INTEGRATORS",
@@ -99,6 +103,7 @@ __all__ = [
     "Pillar",
     "RECORD_UNITS",
     "REDUCTION_SOURCES",
+    "Reference",
     "Reduction",
     "Rotor",
     "SCENE_NAME",
@@ -108,6 +113,7 @@ __all__ = [
     "STUDY_CASES",
     "STUDY_MODELS",
     "Scene",
+    "Segment",
     "SceneError",
     "check_combinations",
     "check_field",
@@ -125,4 +131,5 @@ __all__ = [
     "read_scene_toml",
     "read_text_file",
     "scene_from_dict",
+    "segment_index",
 ]

@@ -97,6 +97,7 @@ class HarmonicResult(Record, omit_defaults=True):
     """a bladed rotor (rotor.blades > 0): the first tower mode against 1P and the
     blade-passing order (soft-stiff), the lines a Campbell diagram draws"""
 
+
 #: a response peak counts for a mode within this share of the mode's frequency (-)
 PEAK_WIDTH = 0.15
 
