@@ -35,6 +35,7 @@ FILES = (
     ("compare_<case>.json", "rotorpillar.transients.compare", "CompareResult"),
     ("integrators.json", "rotorpillar.transients.integrator_study", "IntegratorStudy"),
     ("harmonic.json", "rotorpillar.verdict.harmonic", "HarmonicResult"),
+    ("campbell.json", "rotorpillar.reduced.campbell", "CampbellDiagram"),
     ("summary.json", "rotorpillar.verdict.summary", "EngineeringSummary"),
     ("study.json", "rotorpillar.studies.result", "StudyResult"),
     ("report.json", "rotorpillar.postprocess.report.build", "ReportResult"),
