@@ -4,7 +4,7 @@ Above ``reduced/`` (whose formulas it calls) and beside ``fem3d/`` (whose tip
 reduction it receives as a callable when a scene asks for it):
 
 - :mod:`.scene_analysis`  :func:`analyze` (scene) -> :class:`AnalysisResult`
-- :mod:`.results`         the typed result, with ``to_json``/``from_json``
+- :mod:`.results`         the typed result (records, read back by ``records.read``)
 - :mod:`.paper`           every number the paper prints, beside ours
 - :mod:`.summary`         the readable text
 """

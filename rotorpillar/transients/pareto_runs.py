@@ -85,8 +85,8 @@ class ParetoOutcome(Record):
 
 
 class StoredRun(Record, omit_defaults=True):
-    """One run as the cache stores it: ``to_json()`` is ``pareto-<key>.json``'s document
-    (these keys in this order; ``cached`` is not stored), ``from_json`` reads it back."""
+    """One run as the cache stores it: its encoding is ``pareto-<key>.json``'s document
+    (``cached`` is not stored), read back by ``DiskCache.read(key, StoredRun)``."""
 
     key: str
     """the run's cache key (``run_key``)"""

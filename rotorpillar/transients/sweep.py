@@ -235,8 +235,8 @@ class SweepAnalysis(Record, eq=False):
 
 
 class SweepFindings(Record):
-    """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep):
-    ``to_json()`` the keys ``simulate_sweep.json`` writes after ``jumps``, in this order."""
+    """What a quasi-static sweep adds to its summary (rotorpillar.transients.sweep): the
+    keys ``simulate_sweep.json`` writes after ``jumps``, in this order."""
 
     predicted_jumps: tuple[Jump, ...]
     """the averaging theory's jumps inside the swept torque range"""

@@ -5,7 +5,7 @@ the separation margins.
 Read through their records: summary.json (``verdict.summary.EngineeringSummary``,
 written by `rotorpillar report` before the page), harmonic.json
 (``HarmonicResult``) and each run's ``internal_forces``
-(``transients.force_records.InternalForcesSummary``, read with its run's record) with
+(``transients.forces.InternalForcesSummary``, read with its run's record) with
 its NPZ histories.
 Charts by :mod:`rotorpillar.postprocess.engineering_charts`.
 """

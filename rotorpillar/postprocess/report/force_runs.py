@@ -1,5 +1,5 @@
 """The runs the forces section shows: each run's ``internal_forces``
-(``transients.force_records.InternalForcesSummary``) read with its run's record, the
+(``transients.forces.InternalForcesSummary``) read with its run's record, the
 case it names, and its NPZ histories."""
 
 from __future__ import annotations
