@@ -160,9 +160,10 @@ def video(
 
 
 def missing(text: str) -> str:
-    """The "not computed: run `rotorpillar X`" notice, the command in <code>."""
-    if "`" in text:
-        before, cmd, after = (text.split("`", 2) + ["", ""])[:3]
+    """The "not computed: run `rotorpillar X`" notice, the command (the last quoted span) in
+    <code>: a reason before it may quote a name too (msgspec's "missing required field `drive`")."""
+    if text.count("`") >= 2:
+        before, cmd, after = text.rsplit("`", 2)
         return tag("p", [before, tag("code", cmd), after], class_="missing")
     return tag("p", text, class_="missing")
 
