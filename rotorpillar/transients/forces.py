@@ -56,6 +56,7 @@ from ..reduced.internal_forces import (
 )
 from ..reduced.models import BeamModelInfo
 from ..reduced.pillar import section_of
+from ..reduced.reactions import NOT_COMPUTED, DesignReactions, design_reactions
 
 
 class BaseReactions(Record):
@@ -129,7 +130,16 @@ class InternalForcesSummary(Record):
     stress_field: str | None = None
     """the 3D model: the XDMF time series (file name, beside the JSON), or None"""
     note: str = ""
+    design: DesignReactions | None = None
+    """the foundation's design reactions: each base extreme with the others at its instant"""
 
+
+#: the design reactions a model does not compute, where not the planar models' (reduced.reactions)
+_NOT_COMPUTED = {
+    "fem3d": "torsion about the pillar's axis, the shear across the rotor's plane and the moment "
+    "about X: not computed (the section recovery, rotorpillar.fem3d.sections, takes the shear along X, "
+    "the moment about Y and the axial force only)"
+}
 
 #: the series each run gains (CSV and NPZ)
 FORCE_SERIES = ("base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
@@ -198,6 +208,7 @@ def _summarise(
         axial_static=tuple(map(float, static)),
         base=base,
         shaft=shaft,
+        design=design_reactions(t, M0, V0, N0, (float(m_peak), float(m_time)), _NOT_COMPUTED.get(model, NOT_COMPUTED)),
         **extra,
     )
     series = {
