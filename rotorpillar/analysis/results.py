@@ -20,6 +20,7 @@ from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
     TipReductionUsed,
 )
 from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json too)
+from .machine import MachineChecks
 
 
 class CoupledModes(Record):
@@ -199,3 +200,5 @@ class AnalysisResult(Record):
     drive: DriveRegimes
     paper_model: PaperModel
     paper_comparison: tuple[PaperRow, ...] = ()
+    machine: MachineChecks | None = None
+    """the machine's checks on the headline ROM: balance grade, vibration, modal mass (.machine)"""

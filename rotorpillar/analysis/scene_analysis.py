@@ -23,6 +23,7 @@ from ..reduced import averaging as av
 from ..reduced.reduction import pillar_closed_forms, resolve_reduction
 from ..reduced.system import linear_modes, reduced_system
 from ..scene import Scene
+from .machine import machine_checks
 from .paper import compare_with_paper
 from .results import (
     AnalysisResult,
@@ -37,7 +38,7 @@ from .results import (
     RomSystem,
     TipReductionUsed,
 )
-from .rom import RomVariants, bars, drive_quantity, resonance_quantity, rom_variants
+from .rom import RomVariants, bars, drive_quantity, resonance_quantity, rom_of, rom_variants
 
 CURVE_POINTS = 201
 CURVE_SPAN = 0.5  # z from 1 - span to 1 + span
@@ -293,4 +294,5 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         drive=drive,
         paper_model=paper,
         paper_comparison=rows,
+        machine=machine_checks(scene, rom_of(scene, chain, system.modes), chain.modes, drive.runup_speed),
     )

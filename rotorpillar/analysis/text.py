@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .machine import machine_text
 from .results import AnalysisResult
 
 
@@ -58,6 +59,7 @@ def summary(result: AnalysisResult) -> str:
     )
     for r in result.resonances:
         lines.append("  " + r.statement)
+    lines += machine_text(result.machine)
     lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")
     lines.append(f"  {'quantity':<34} {'paper':>11} {'computed':>11} {'diff':>8}")
     for row in result.paper_comparison:
