@@ -21,6 +21,7 @@ from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
 )
 from ..reduced.spatial_records import DriveReactionAnalysis, SpatialAnalysis
 from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json too)
+from .machine import MachineChecks
 from .tower import TowerFindings
 
 
@@ -211,3 +212,5 @@ class AnalysisResult(Record):
     tower: TowerFindings | None = None
     """a tower (cans, a flexible foundation, or published numbers of its own): its first
     frequencies clamped and on its foundation, the published ones beside ours"""
+    machine: MachineChecks | None = None
+    """the machine's checks on the headline ROM: balance grade, vibration, modal mass (.machine)"""

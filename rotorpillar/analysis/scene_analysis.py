@@ -24,6 +24,7 @@ from ..reduced.foundation import base_springs
 from ..reduced.reduction import pillar_closed_forms, resolve_reduction
 from ..reduced.system import linear_modes, reduced_system
 from ..scene import Scene
+from .machine import machine_checks
 from .paper import compare_with_paper
 from .results import (
     AnalysisResult,
@@ -38,7 +39,7 @@ from .results import (
     RomSystem,
     TipReductionUsed,
 )
-from .rom import RomVariants, bars, drive_quantity, resonance_quantity, rom_variants
+from .rom import RomVariants, bars, drive_quantity, resonance_quantity, rom_of, rom_variants
 from .tower import tower_findings
 
 CURVE_POINTS = 201
@@ -326,4 +327,5 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         spatial=spatial,
         drive_reaction=reaction,
         tower=tower,
+        machine=machine_checks(scene, rom_of(scene, chain, system.modes), chain.modes, drive.runup_speed),
     )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .machine import machine_text
 from .results import AnalysisResult
 
 
@@ -58,6 +59,7 @@ def summary(result: AnalysisResult) -> str:
     )
     for r in result.resonances:
         lines.append("  " + r.statement)
+    lines += machine_text(result.machine)
     lines += _spatial_lines(result)
     if result.tower is not None:
         lines += tower_lines(result.tower)

@@ -156,6 +156,14 @@ class Rotor:
         le=1,
         optional=True,
     )
+    balance_grade: float = param(
+        "Balance quality grade G = e Omega required of the machine type (mm/s), the capacity of "
+        "the balance check (ISO 21940-11 Table 1: 2.5 for gas and steam turbines, turbo-generators "
+        "and compressors, 6.3 for pumps, fans and general machinery)",
+        2.5,
+        gt=0,
+        le=4000,
+    )
     blades: int = param(
         "Blades (-): the blade-passing order (blades x the rotor speed, 3P on a three-bladed "
         "turbine) forces the tower beside 1P; 0 = none",

@@ -61,6 +61,7 @@ from ..reduced.internal_forces import (
     tower_static_resultants,
 )
 from ..reduced.models import BeamModelInfo
+from ..reduced.reactions import NOT_COMPUTED, DesignReactions, design_reactions
 from ..reduced.tower import base_section
 
 
@@ -164,7 +165,16 @@ class InternalForcesSummary(Record):
     """a tower of cans: each can's largest meridional stress, where and when (EN 1993-1-6 per can)"""
     foundation: FoundationResponse | None = None
     """on a flexible foundation: the springs' forces and the base's rotation"""
+    design: DesignReactions | None = None
+    """the foundation's design reactions: each base extreme with the others at its instant"""
 
+
+#: the design reactions a model does not compute, where not the planar models' (reduced.reactions)
+_NOT_COMPUTED = {
+    "fem3d": "torsion about the pillar's axis, the shear across the rotor's plane and the moment "
+    "about X: not computed (the section recovery, rotorpillar.fem3d.sections, takes the shear along X, "
+    "the moment about Y and the axial force only)"
+}
 
 #: the series each run gains (CSV and NPZ)
 FORCE_SERIES = ("base_moment", "base_shear", "base_axial", "base_stress", "bearing_force")
@@ -250,6 +260,7 @@ def _summarise(
         axial_static=tuple(map(float, static)),
         base=base,
         shaft=shaft,
+        design=design_reactions(t, M0, V0, N0, (float(m_peak), float(m_time)), _NOT_COMPUTED.get(model, NOT_COMPUTED)),
         **extra,
     )
     series = {

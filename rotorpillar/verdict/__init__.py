@@ -6,6 +6,9 @@
 - :mod:`.summary`: the checks (stresses, buckling, clearance, bearing force,
   margins) against the scene's capacities and the numbers a reader came
   for, each naming its model and case -> summary.json (`rotorpillar report`);
+- :mod:`.machine`: the machine's checks in summary.json (balance grade,
+  vibration at speed, modal mass, from analyze.json) and the foundation's
+  design reactions of each run;
 
 each beside its records (``HarmonicResult``, ``EngineeringSummary``).
 """

@@ -37,11 +37,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import records
+from ..analysis.machine import MachineChecks
 from ..records import Record
 from ..reduced.capacity import FAIL, GAMMA_M0, NOT_ASSESSED, PASS, Check, MeridionalBuckling, check, meridional_buckling
+from ..reduced.participation import EffectiveMassTable
 from ..reduced.tower import base_section
 from ..scene import CASES, MODELS
 from .harmonic import HarmonicResult
+from .machine import FoundationLoads
 from .tower_checks import can_checks, foundation_checks, order_checks
 
 
@@ -81,6 +84,12 @@ class EngineeringSummary(Record):
     """the checks without a capacity or a demand, and what to state or run"""
     inputs: tuple[str, ...]
     """the files read"""
+    machine: MachineChecks | None = None
+    """analyze.json's machine checks: balance grade, vibration at speed, modal mass (verdict.machine)"""
+    effective_masses: tuple[EffectiveMassTable, ...] = ()
+    """the loaded tube's 3D modes' effective masses along x, y, z (modal.json)"""
+    foundation: tuple[FoundationLoads, ...] = ()
+    """each run's design reactions at the base: each extreme with the others at its instant"""
 
 
 #: the models whose runs the checks read (the paper's Eq. 4 has no sections)
@@ -413,6 +422,7 @@ def _runup(runs: list[RunFile]) -> RunFile | None:
 def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     """The verdict of the files in ``out`` (see the module text)."""
     from ..fem3d.modal_summary import ModalSummary
+    from .machine import foundation_loads, machine_check_rows, run_mass_rows, tube_effective_masses
 
     out = Path(out)
     runs = model_runs(out)
@@ -435,8 +445,14 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
             inputs.append("modal.json")
         except (ValueError, OSError):
             modal = None
+    machine = _read_machine(out)
+    if machine is not None:
+        inputs.append("analyze.json")
+        rows += machine_check_rows(machine) + run_mass_rows(machine, runs)
     governing = _governing(rows)
     missing = _not_assessed(scene, governing, harmonic is not None, bool(runs))
+    if machine is None:
+        missing.append("balance, vibration at speed, modal mass: analyze.json not found (run `rotorpillar analyze`)")
     assessed = [c for c in governing if c.status != NOT_ASSESSED]
     verdict = "fail" if any(c.status == FAIL for c in assessed) else "pass" if assessed else "incomplete"
     share = max(
@@ -458,7 +474,20 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         buckling,
         tuple(missing),
         tuple(inputs),
+        machine,
+        () if modal is None else tube_effective_masses(scene, modal),
+        tuple(foundation_loads(runs)),
     )
+
+
+def _read_machine(out: Path) -> MachineChecks | None:
+    """analyze.json's machine block (None: no file, a damaged one, or one from before it)."""
+    from ..analysis.results import AnalysisResult
+
+    try:
+        return records.read(out / "analyze.json", AnalysisResult).machine if (out / "analyze.json").is_file() else None
+    except (ValueError, OSError):  # damaged: its checks are not assessed
+        return None
 
 
 def _not_assessed(scene: Scene, governing: list[Check], have_harmonic: bool, have_runs: bool) -> list[str]:
