@@ -68,59 +68,6 @@ def _check_rows(checks) -> list[list]:
     return rows
 
 
-def verdict_block(build: Build) -> list[str]:
-    """The Summary's opening: the checks table, then the numbers a reader came for."""
-    s = _read(build, "summary.json", EngineeringSummary)
-    if s is None:
-        return [
-            h.missing(
-                "The verdict: nothing to check yet (no run, no harmonic.json, no modal.json "
-                f"here): run `rotorpillar run {build.scene_cli}`"
-            )
-        ]
-    word = {"pass": "every assessed check passes", "fail": "a check fails", "incomplete": "no check could be assessed"}[
-        s.verdict
-    ]
-    parts = [
-        h.tag(
-            "p",
-            [
-                h.tag("strong", f"Verdict: {s.verdict}"),
-                f" ({word}; each row names the model "
-                "and the case its demand came from, the largest utilisation over them).",
-            ],
-        ),
-        h.table(
-            ["check", "demand", "capacity", "utilisation", "status", "model", "case"],
-            _check_rows(s.checks),
-            row_classes=["failed" if c.status == "fail" else "" for c in s.checks],
-        ),
-    ]
-    if s.not_assessed:
-        parts.append(h.tag("p", "Not assessed: " + "; ".join(s.not_assessed) + ".", class_="warn"))
-    if s.headlines:
-        parts.append(h.tag("ul", [h.tag("li", t) for t in _headline_texts(s.headlines)], class_="findings"))
-    return parts
-
-
-def _headline_texts(headlines) -> list[str]:
-    """One line per headline; the same quantity on several models in one line."""
-    groups: dict[str, list] = {}
-    for x in headlines:
-        groups.setdefault(x.label, []).append(x)
-    out = []
-    for label, xs in groups.items():
-        if len(xs) == 1:
-            out.append(xs[0].text)
-        else:
-            out.append(
-                f"{label[0].upper()}{label[1:]}: "
-                + ", ".join(f"{_value(x.value, x.unit)} ({NAMES.get(x.model, x.model)})" for x in xs)
-                + "."
-            )
-    return out
-
-
 # --------------------------------------------------------------------------
 # Forces and stresses
 
