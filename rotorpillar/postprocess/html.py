@@ -33,7 +33,10 @@ _MIME = {
 
 
 class Raw(str):
-    """HTML that is already safe: not escaped again."""
+    """HTML that is already safe: not escaped again (here, nor by a template)."""
+
+    def __html__(self) -> str:
+        return str(self)
 
 
 def esc(value) -> str:
@@ -42,8 +45,8 @@ def esc(value) -> str:
     >>> esc('<b> & "q"'), esc(Raw("<b>"))
     ('&lt;b&gt; &amp; &quot;q&quot;', '<b>')
     """
-    if isinstance(value, Raw):
-        return str(value)
+    if hasattr(value, "__html__"):  # Raw, or a rendered template (markupsafe.Markup)
+        return str(value.__html__())
     return html.escape(str(value), quote=True)
 
 

@@ -20,6 +20,7 @@ from jinja2 import Environment, PackageLoader, StrictUndefined
 from markupsafe import Markup
 
 from .. import html as h
+from ..directions import direction
 
 #: How the page shows a quantity stated in SI: unit -> (factor, unit shown).
 SHOWN = {"Pa": (1e-6, "MPa"), "m": (1e3, "mm"), "N": (1e-3, "kN"), "N*m": (1e-6, "MN m"), "-": (100.0, "%")}
@@ -52,6 +53,18 @@ def value(x: float | None, unit: str, digits: int = 4) -> str:
         return "-"
     scale, unit_shown = SHOWN.get(unit, (1.0, unit))
     return f"{h.num(scale * x, digits)} {unit_shown}"
+
+
+def bare(x: float | None, unit: str, digits: int = 4) -> str:
+    """The number of a quantity stated in SI ``unit``, in the unit the page shows it in
+    (a column's header states that unit: :func:`shown_unit`).
+
+    >>> bare(0.0102881, "m"), bare(None, "m"), bare(0.00158, "-", 3)
+    ('10.29', '-', '0.158')
+    """
+    if x is None or not math.isfinite(x):
+        return "-"
+    return h.num(SHOWN.get(unit, (1.0, unit))[0] * x, digits)
 
 
 def model_name(model: str | None) -> str:
@@ -112,11 +125,13 @@ def environment() -> Environment:
         pct=h.pct,
         share=share,
         value=value,
+        bare=bare,
         unit=shown_unit,
         model=model_name,
         case=case_name,
         words=words,
         data_uri=h.data_uri,
+        direction=direction,
     )
     return env
 

@@ -36,22 +36,29 @@ def animation_video(build: Build, key: str) -> list[str]:
     return [h.video(v.path, build.out, v.caption, v.poster)] if v else []
 
 
-def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
-    """A warning when an input was computed for another version of the scene.
+def differing_keys(
+    build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()
+) -> tuple[str, ...]:
+    """The scene keys (``section.key``) an input was computed with other values of.
     ``provenance``: what its command wrote beside the record, or None; ``ignore``: dotted
     keys its command set on purpose (the comparisons' record)."""
     if provenance is None or not isinstance(provenance.scene, dict):
-        return []
+        return ()
     now = records.to_builtins(build.scene.to_dict())
     then = provenance.scene
-    diffs = [
+    return tuple(
         f"{k}.{kk}"
         for k, v in now.items()
         if isinstance(v, dict)
         for kk in v
         if (not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk]) and f"{k}.{kk}" not in ignore
-    ]
-    if not diffs:
+    )
+
+
+def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
+    """A warning when an input was computed for another version of the scene."""
+    diffs = differing_keys(build, provenance, ignore)
+    if not diffs or provenance is None:
         return []
     return [
         h.tag(
