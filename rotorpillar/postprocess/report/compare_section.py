@@ -172,6 +172,7 @@ def comparison_view(build: Build, case: str) -> ComparisonView:
     result = c.record
     theirs = _claim_figures(build, case, c.models)
     key = f"comparison_{case}"
+    figure: Picture | None
     if key in build.products:
         figure = Picture(str(build.products[key].path), build.products[key].caption)
     else:  # no arrays to draw from: compare's own chart, if it left one

@@ -17,7 +17,7 @@ from ..directions import direction
 from ..readers import INPUTS, SIMULATE_COMMAND, Simulation
 from .compare_section import comparison_block, spectrum_block
 from .page import model_name
-from .parts import animation_video, failure, figures_of, key_results, product_image, run_table, scene_differs
+from .parts import animation_video, failure, figures_of, key_results, product_image, scene_differs
 from .references import pareto_block
 from .state import Build
 
@@ -161,7 +161,6 @@ def paper_case(build: Build) -> list[str]:
     parts += animation_video(build, mine)
     if run is not None:
         parts.append(key_results(run))
-        parts.append(h.details(name, run_table(run)))
     return parts
 
 

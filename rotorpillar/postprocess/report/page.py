@@ -89,6 +89,21 @@ def case_name(case: str | None) -> str:
     return "-" if case is None else CASE_NAMES.get(case, case)
 
 
+_BEAM_LABEL = re.compile(r"beam:(\w+):(\d+)")
+
+
+def plain(text: str) -> str:
+    """A record's sentence with the model labels it carries in words.
+
+    >>> plain("atop beam:timoshenko:40 pillar modes")
+    "atop a 40-element Timoshenko beam's pillar modes"
+    >>> plain("3 modes (fem3d:3D P2 hexahedra)")
+    '3 modes (3D P2 hexahedra)'
+    """
+    text = _BEAM_LABEL.sub(lambda m: f"a {m.group(2)}-element {m.group(1).capitalize()} beam's", str(text))
+    return text.replace("fem3d:", "").replace("fem3d", "3D full order")
+
+
 def share(x: float | None) -> str:
     """A non-negative fraction in percent, 3 significant digits.
 
@@ -130,6 +145,7 @@ def environment() -> Environment:
         model=model_name,
         case=case_name,
         words=words,
+        plain=plain,
         data_uri=h.data_uri,
         direction=direction,
     )
