@@ -318,14 +318,15 @@ def unitless_number_columns(tables: list[dict]) -> list[str]:
     return out
 
 
-def designer_problems(page: Path, tmp: Path, governing_name: str, utilisation: float) -> list[str]:
-    """What keeps a designer from signing the page, as sentences (empty: none)."""
+def designer_problems(page: Path, tmp: Path, governing_name: str | None, utilisation: float | None) -> list[str]:
+    """What keeps a designer from signing the page, as sentences (empty: none).
+    ``governing_name`` None: no check assessed, the verdict alone must be on top."""
     v = read_first_screen(page, tmp)
     assert v["width"] == SCREEN[0] and v["height"] >= SCREEN[1], (v["width"], v["height"])
     first = " ".join(v["first_screen"].split())
     problems = [
         f"not on the first screen: {what}"
-        for what in ("Verdict:", governing_name, f"{utilisation:.2f}")
+        for what in ("Verdict:", *(() if governing_name is None else (governing_name, f"{utilisation:.2f}")))
         if what not in first
     ]
     seen: set[str] = set()
@@ -342,10 +343,14 @@ def designer_problems(page: Path, tmp: Path, governing_name: str, utilisation: f
     return problems
 
 
-def governing_check(out: Path) -> tuple[str, float]:
-    """The check with the largest utilisation in summary.json (read here, not by the page's code)."""
+def governing_check(out: Path) -> tuple[str | None, float | None]:
+    """The check with the largest utilisation in summary.json (read here, not by the
+    page's code), or (None, None) when no check is assessed."""
     doc = json.loads((out / "summary.json").read_text(encoding="utf-8"))
-    top = max((c for c in doc["checks"] if c["utilisation"] is not None), key=lambda c: c["utilisation"])
+    assessed = [c for c in doc["checks"] if c["utilisation"] is not None]
+    if not assessed:
+        return None, None
+    top = max(assessed, key=lambda c: c["utilisation"])
     return top["name"], top["utilisation"]
 
 

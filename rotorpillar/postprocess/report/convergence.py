@@ -77,9 +77,9 @@ def _references(study: ConvergenceStudy) -> list[str]:
             [
                 "mode",
                 "reference (rad/s)",
-                "+- estimate",
-                "observed order",
-                "theory",
+                "+- estimate (rad/s)",
+                "observed order (-)",
+                "order in theory (-)",
                 "from",
                 "three coarser runs predict the finest",
             ],
