@@ -15,7 +15,7 @@ import json
 
 import pytest
 from test_csv_files import check_run_csv
-from test_report_reader import needs_chromium, reader_problems
+from test_report_reader import designer_problems, governing_check, needs_chromium, reader_problems
 
 pytestmark = pytest.mark.slow  # the whole main job (conftest marks run_paper's users too)
 
@@ -55,3 +55,12 @@ def test_every_csv_of_the_main_job_is_plain(run_paper):
 @needs_chromium
 def test_the_main_jobs_page_reads_well(run_paper, tmp_path):
     assert reader_problems(run_paper.out / "report.html", tmp_path) == []
+
+
+@needs_chromium
+def test_the_page_a_designer_signs(run_paper, tmp_path):
+    """The first 1400 x 900 screen holds the verdict, the governing check and its
+    utilisation (from summary.json); no heading repeats; every number column has a
+    unit; no internal id in the text (test_report_reader.designer_problems)."""
+    name, utilisation = governing_check(run_paper.out)
+    assert designer_problems(run_paper.out / "report.html", tmp_path, name, utilisation) == []

@@ -214,3 +214,167 @@ def test_the_reader_check_finds_what_it_looks_for(synthetic_page, tmp_path):
     assert "not in the contents: stray" in found and "not in the contents: stray-part" in found
     assert "off the figure: 'a title" in found and "overlap: 'one' / 'two'" in found
     assert re.search(r"'wide': smallest text [\d.]+ px as shown", found)
+
+
+# --------------------------------------------------------------------------
+# The page a designer signs (issue 29): the answer on the first screen, each
+# heading once, a unit on every number column, no internal id in the text.
+
+#: The designer's screen (px): what "the first screen" means.
+SCREEN = (1400, 900)
+
+#: Words of the code, not of the reader: record keys, mode normalisations,
+#: speed states, model labels, the names of the machinery (issue 29's list,
+#: and the keys that stood beside them on the page).
+INTERNAL_IDS = (
+    "beam:timoshenko:",
+    "unit_tip",
+    "plate_x",
+    "plate_z",
+    "base_x",
+    "eta1",
+    "eta2",
+    "at_speed",
+    "the chain",
+    "the ladder",
+    "run 2",
+    "max_abs.",
+)
+
+FIRST_SCREEN = """<pre id="__screen">pending</pre><script>
+window.addEventListener('load', function () {
+  var H = __HEIGHT__, seen = [];
+  var walk = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+  for (var n = walk.nextNode(); n; n = walk.nextNode()) {
+    var r = document.createRange(); r.selectNodeContents(n);
+    var b = r.getBoundingClientRect();
+    if (b.width > 0 && b.height > 0 && b.top < H && b.bottom > 0) seen.push(n.textContent);
+  }
+  document.querySelectorAll('details').forEach(function (d) { d.open = true; });
+  var tables = Array.prototype.slice.call(document.querySelectorAll('table')).map(function (t) {
+    return {head: Array.prototype.slice.call(t.querySelectorAll('thead th')).map(function (c) { return c.innerText.trim(); }),
+            rows: Array.prototype.slice.call(t.querySelectorAll('tbody tr')).map(function (tr) {
+              return Array.prototype.slice.call(tr.children).map(function (c) { return c.innerText.trim(); }); })};
+  });
+  var heads = Array.prototype.slice.call(document.querySelectorAll('h1, h2, h3, h4')).map(function (x) {
+    return x.innerText.trim(); });
+  document.getElementById('__screen').textContent = JSON.stringify({
+    width: window.innerWidth, height: window.innerHeight, first_screen: seen.join(' '), headings: heads, tables: tables,
+    text: document.body.innerText});
+});
+</script></body>"""
+
+_NUMBER = re.compile(r"[+\-\u2212]?(\d+\.?\d*|\.\d+)(e[+\-]?\d+)?")
+_UNIT = re.compile(r"\([^()]+\)\s*$|\[[^\]]+\]\s*$")
+
+
+def read_first_screen(page: Path, tmp: Path) -> dict:
+    """What Chromium lays out 1400 px wide: the text of the first 900 px, then
+    (every <details> opened) the headings, the tables and the page's text."""
+    probe = tmp / f"screen_{page.stem}.html"
+    script = FIRST_SCREEN.replace("__HEIGHT__", str(SCREEN[1]))
+    probe.write_text(page.read_text(encoding="utf-8").replace("</body>", script, 1), encoding="utf-8")
+    p = subprocess.run(
+        [
+            CHROMIUM,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--hide-scrollbars",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            f"--user-data-dir={tmp / 'chromium-screen'}",
+            # taller than the screen: headless Chromium takes its own toolbar's
+            # height off the window; the probe counts the first SCREEN[1] px itself
+            f"--window-size={SCREEN[0]},{SCREEN[1] + 300}",
+            "--virtual-time-budget=20000",
+            "--dump-dom",
+            probe.resolve().as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    m = re.search(r'<pre id="__screen">(.*?)</pre>', p.stdout, re.S)
+    assert m and m.group(1) not in ("", "pending"), f"no verdict from chromium: {p.stderr[-2000:]}"
+    return json.loads(html.unescape(m.group(1)))
+
+
+def unitless_number_columns(tables: list[dict]) -> list[str]:
+    """The headers of table columns that hold numbers but name no unit.  A
+    column holds numbers when most of its filled cells are bare numbers and
+    not all of them whole: counts and indices (whole numbers) have no unit.
+    A unit is a parenthesis or bracket closing the header: "(mm)", "(-)"."""
+    out = []
+    for t in tables:
+        for k, head in enumerate(t["head"]):
+            cells = [r[k] for r in t["rows"] if k < len(r) and r[k] not in ("", "-")]
+            bare = [c for c in cells if _NUMBER.fullmatch(c.replace(",", ""))]
+            if not bare or 2 * len(bare) < len(cells) or all(re.fullmatch(r"\d+", c) for c in bare):
+                continue
+            if not _UNIT.search(head):
+                out.append(f"{head!r} (e.g. {bare[0]})")
+    return out
+
+
+def designer_problems(page: Path, tmp: Path, governing_name: str | None, utilisation: float | None) -> list[str]:
+    """What keeps a designer from signing the page, as sentences (empty: none).
+    ``governing_name`` None: no check assessed, the verdict alone must be on top."""
+    v = read_first_screen(page, tmp)
+    assert v["width"] == SCREEN[0] and v["height"] >= SCREEN[1], (v["width"], v["height"])
+    first = " ".join(v["first_screen"].split())
+    problems = [
+        f"not on the first screen: {what}"
+        for what in ("Verdict:", *(() if governing_name is None else (governing_name, f"{utilisation:.2f}")))
+        if what not in first
+    ]
+    seen: set[str] = set()
+    for head in v["headings"]:
+        if head in seen:
+            problems.append(f"heading repeats: {head!r}")
+        seen.add(head)
+    problems += [f"number column without a unit: {x}" for x in unitless_number_columns(v["tables"])]
+    text = v["text"]
+    for word in INTERNAL_IDS:
+        at = text.find(word)
+        if at >= 0:
+            problems.append(f"internal id {word!r} in the text: ...{text[max(0, at - 60) : at + 40]!r}...")
+    return problems
+
+
+def governing_check(out: Path) -> tuple[str | None, float | None]:
+    """The check with the largest utilisation in summary.json (read here, not by the
+    page's code), or (None, None) when no check is assessed."""
+    doc = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assessed = [c for c in doc["checks"] if c["utilisation"] is not None]
+    if not assessed:
+        return None, None
+    top = max(assessed, key=lambda c: c["utilisation"])
+    return top["name"], top["utilisation"]
+
+
+@needs_chromium
+def test_a_designer_finds_the_answer_first(synthetic_page, tmp_path):
+    name, utilisation = governing_check(synthetic_page.parent)
+    assert designer_problems(synthetic_page, tmp_path, name, utilisation) == []
+
+
+@needs_chromium
+def test_the_screen_check_finds_what_it_looks_for(tmp_path):
+    """The check fails on a page without the answer on top, with a repeated heading,
+    a number column without a unit and an internal id in its text."""
+    page = tmp_path / "bad.html"
+    filler = "<p>filler</p>" * 80
+    page.write_text(
+        "<!DOCTYPE html><html><body><h2>Runs</h2><h2>Runs</h2>"
+        "<table><thead><tr><th>peak tip</th><th>#</th></tr></thead><tbody>"
+        "<tr><td>10.29</td><td>1</td></tr></tbody></table><p>speed state at_speed</p>"
+        f"{filler}<p>Verdict: fail, base stress 0.06</p></body></html>",
+        encoding="utf-8",
+    )
+    found = "\n".join(designer_problems(page, tmp_path, "base stress", 0.06))
+    assert "not on the first screen: Verdict:" in found and "not on the first screen: base stress" in found
+    assert "heading repeats: 'Runs'" in found
+    assert "number column without a unit: 'peak tip'" in found and "'#'" not in found
+    assert "internal id 'at_speed'" in found

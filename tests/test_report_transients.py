@@ -24,6 +24,7 @@ import pytest
 from imagecheck import assert_real_png
 
 from rotorpillar import cli
+from rotorpillar.postprocess.report.page import model_name
 from rotorpillar.transients.compare import COMPARISONS, comparison_command
 
 # seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
@@ -72,7 +73,7 @@ class _Tables(HTMLParser):
 
 
 def section(text: str, ident: str) -> str:
-    m = re.search(rf'<section id="{ident}">(.*?)</section>', text, re.S)
+    m = re.search(rf'<section id="{ident}"[^>]*>(.*?)</section>', text, re.S)
     assert m, f"no section {ident}"
     return m.group(1)
 
@@ -96,7 +97,7 @@ def tables(fragment: str) -> list:
 
 def cost_table(fragment: str) -> dict:
     """The speed-accuracy table of a comparison, as {model: {header: cell}}."""
-    found = [(h_, rows) for h_, rows in tables(fragment) if h_[:2] == ["model", "DOFs"]]
+    found = [(h_, rows) for h_, rows in tables(fragment) if h_[:2] == ["model", "degrees of freedom"]]
     assert len(found) == 1, f"{len(found)} cost tables"
     head, rows = found[0]
     return {r[0].replace(" (reference)", ""): dict(zip(head, r)) for r in rows}
@@ -138,16 +139,12 @@ def page(tmp_path_factory):
 
 def test_the_record_comes_first_then_the_paper_case(page):
     eq = section(page["text"], "earthquake")
-    heads = [
-        "A recorded earthquake on the physically consistent models",
-        "Response spectrum of the record",
-        "The paper&#x27;s case",
-    ]
-    at = [h3(eq, x) for x in heads]
-    assert all(i >= 0 for i in at) and at == sorted(at), at
-    # the overlay is the first picture of the section
+    spectrum = h3(eq, "Response spectrum of the record")
+    assert spectrum >= 0
+    # the overlay is the first picture of the section; the paper's case is an appendix, after it
     first_img = eq.find("<img")
-    assert 0 < first_img < at[1] and "overlaid" in eq[first_img : at[1]]
+    assert 0 < first_img < spectrum and "overlaid" in eq[first_img:spectrum]
+    assert page["text"].index('<section id="earthquake"') < page["text"].index('<section id="paper-earthquake"')
     assert page["report"]["failures"] == {}
     assert page["report"]["inputs"]["compare_earthquake"] and page["report"]["inputs"]["compare_runup"]
 
@@ -157,35 +154,38 @@ def test_the_cost_table_shows_the_comparison_as_written(page, case, where):
     doc = page["compare"][case]
     rows = cost_table(section(page["text"], where))
     ref = doc["reference"]
-    assert list(rows) == doc["models_run"]
+    assert list(rows) == [model_name(m) for m in doc["models_run"]]
     for m in doc["models_run"]:
-        r, p = rows[m], doc["per_model"][m]
-        assert int(r["DOFs"]) == p["dofs"]
+        r, p = rows[model_name(m)], doc["per_model"][m]
+        assert int(r["degrees of freedom"]) == p["dofs"]
         assert number(r["wall time, warm (s)"]) == pytest.approx(p["wall_seconds"], rel=FOUR_DIGITS)
-        assert number(r["peak tip relative to the ground (m)"]) == pytest.approx(
-            p["peak_tip_relative"], rel=FIVE_DIGITS
+        # in mm, 4 significant digits
+        assert 1e-3 * number(r["peak tip, relative to the ground (mm)"]) == pytest.approx(
+            p["peak_tip_relative"], rel=FOUR_DIGITS
         )
-        assert number(r["peak shaft deflection (m)"]) == pytest.approx(p["peak_shaft_deflection"], rel=FIVE_DIGITS)
-        assert number(r[f"cost ratio (warm wall time / {ref}'s)"]) == pytest.approx(
+        assert 1e-3 * number(r["peak shaft deflection (mm)"]) == pytest.approx(
+            p["peak_shaft_deflection"], rel=FOUR_DIGITS
+        )
+        assert number(r[f"wall time / the {model_name(ref)}'s (-)"]) == pytest.approx(
             doc["cost_ratio"][m], rel=FOUR_DIGITS
         )
-        err = r[f"tip history error against {ref}"]
+        err = r["tip history error (%)"]
         if m == ref:
             assert err == "reference"
         else:  # shown in percent ("(leads)" beside the measure that fits the case)
             assert number(err.replace("(leads)", "")) / 100 == pytest.approx(
                 doc["errors"][m]["tip_history_error"], rel=THREE_DIGITS
             )
-            # html.pct: 2 decimals of a percent, i.e. +-5e-5 absolute
-            assert number(r[f"peak difference against {ref}"]) / 100 == pytest.approx(
-                doc["errors"][m]["peak_tip_difference"], abs=5e-5
+            # 3 significant digits of a percent
+            assert number(r["peak tip difference (%)"]) / 100 == pytest.approx(
+                doc["errors"][m]["peak_tip_difference"], rel=THREE_DIGITS
             )
 
 
 def test_the_full_order_runs_and_their_warnings_are_stated(page):
     eq = section(page["text"], "earthquake")
     assert "synthetic fem3d: coarsened for the fixture" in eq
-    assert "fem3d: synthetic warning &lt;one line&gt;" in eq
+    assert "3D full order: synthetic warning &lt;one line&gt;" in eq
     w = page["compare"]["earthquake"]["window"]
     assert f"Every model ran over t = {w['start']:g} .. {w['end']:g} s ({w['why']})." in plain_text(eq)
     runs = section(page["text"], "runs")
@@ -196,28 +196,28 @@ def test_the_full_order_runs_and_their_warnings_are_stated(page):
 def test_the_spectrum_shows_the_modes_and_the_rom_estimate(page):
     eq = section(page["text"], "earthquake")
     spec = page["compare"]["earthquake"]["spectrum"]
-    part = eq[h3(eq, "Response spectrum of the record") : h3(eq, "The paper&#x27;s case")]
+    part = eq[h3(eq, "Response spectrum of the record") :]
     m = re.search(
-        r"Spectral estimate of the peak tip: ([\d.e+-]+) m, .*?the time history's peak "
-        r"on the same model: ([\d.e+-]+) m",
-        plain_text(part),
+        r"Spectral estimate of the peak tip: ([\d.e+-]+) mm, .*?the time history's peak "
+        r"on the same model: ([\d.e+-]+) mm",
+        " ".join(plain_text(part).split()),  # the template's line breaks are spaces
         re.S,
     )
     assert m, part[:2000]
-    # 4 significant digits
-    assert float(m.group(1)) == pytest.approx(spec["spectral_peak_tip"], rel=FOUR_DIGITS)
-    assert float(m.group(2)) == pytest.approx(spec["computed_peak_tip"], rel=FOUR_DIGITS)
+    # in mm, 4 significant digits
+    assert 1e-3 * float(m.group(1)) == pytest.approx(spec["spectral_peak_tip"], rel=FOUR_DIGITS)
+    assert 1e-3 * float(m.group(2)) == pytest.approx(spec["computed_peak_tip"], rel=FOUR_DIGITS)
     # what the ratio means, and where the record acts
     assert "SRSS is an estimate, not a bound" in plain_text(part)
     assert "horizontal, in the rotor's plane (the paper's X)" in plain_text(part)
     assert "synthetic spectrum: an estimate, not a bound" in part
-    periods = [t for h_, rows in tables(part) if h_[:2] == ["pillar mode", "period T_j (s)"] for t in rows]
+    periods = [t for h_, rows in tables(part) if h_[:2] == ["pillar mode", "period (s)"] for t in rows]
     assert [float(r[1]) for r in periods] == pytest.approx(spec["mode_periods"], rel=FOUR_DIGITS)
 
 
 def test_the_paper_case_states_its_size_the_flaw_and_the_warnings(page):
-    eq = section(page["text"], "earthquake")
-    part = plain_text(eq[h3(eq, "The paper&#x27;s case") :])
+    eq = section(page["text"], "paper-earthquake")
+    part = plain_text(eq)
     ex = page["paper"]["excitation"]
     assert "The paper's pulse on Eq. 4 as published." in part
     assert f"the ground steps {abs(ex['displacement_step_at_start']):.3g} m" in part
@@ -242,17 +242,17 @@ def test_the_paper_case_states_its_size_the_flaw_and_the_warnings(page):
 
 def test_the_findings_list_eq4_base_forcing(page):
     row = next(r for r in page["analyze"]["paper_comparison"] if r["key"] == "eq4_base_forcing")
-    summary = plain_text(section(page["text"], "summary"))
-    # the Summary names the finding in words and links it: no internal id, no formula
-    assert "eq4_base_forcing" not in summary and row["note"] not in summary
-    assert "forces the rotor's shaft from the ground" in summary
+    case = plain_text(section(page["text"], "paper-earthquake"))
+    # the paper's earthquake names the finding in words and links it: no internal id, no formula
+    assert "eq4_base_forcing" not in case and row["note"] not in case
+    assert "forces the rotor's shaft from the ground" in case
     paper = plain_text(section(page["text"], "paper"))
     assert "Findings on the paper's formulation" in paper and f"{row['quantity']} (Eq. 4): " in paper
     assert page["text"].count(html.escape(row["note"])) == 1  # stated once in the page
     printed = [r for r in page["analyze"]["paper_comparison"] if not r.get("details")]
     assert f"({sum(r['flag'] for r in printed)} of {len(printed)} printed numbers)" in paper
-    # the speed-accuracy point in the summary
-    assert "modal follows fem3d&#x27;s tip history within" in section(page["text"], "summary")
+    # the speed-accuracy point beside the comparison's table
+    assert "The ROM against the 3D full order: judged on the tip's history" in section(page["text"], "earthquake")
 
 
 @pytest.mark.parametrize(
@@ -276,9 +276,9 @@ def test_missing_comparisons_name_the_commands(tmp_path):
     text = (tmp_path / "report.html").read_text(encoding="utf-8")
     for case, where in (("earthquake", "earthquake"), ("runup", "runs")):
         cmd = f"rotorpillar {comparison_command(case)} paper --out {tmp_path}"
-        assert f"not computed: run <code>{cmd}</code> (no compare_{case}.json)" in section(text, where)
+        assert f"not computed: run <code>{cmd}</code>." in section(text, where)
     assert "--set excitation.kind=record" in comparison_command("earthquake")
-    eq = section(text, "earthquake")
+    eq = section(text, "paper-earthquake")
     assert f"<code>rotorpillar simulate --case earthquake --model paper paper --out {tmp_path}" in eq
     assert "The base-forcing flaw: " in plain_text(eq)  # from analyze.json alone
     assert json.loads((tmp_path / "report.json").read_text())["failures"] == {}
@@ -290,7 +290,7 @@ def test_a_comparison_without_arrays_keeps_its_table(tmp_path):
         (tmp_path / f"simulate_earthquake_{m}.npz").unlink()
     run_cli("report", "paper", "--out", tmp_path, "--no-animations")
     text = (tmp_path / "report.html").read_text(encoding="utf-8")
-    assert set(cost_table(section(text, "earthquake"))) == {"modal", "fem3d"}
+    assert set(cost_table(section(text, "earthquake"))) == {"ROM", "3D full order"}
     assert not (tmp_path / "figures" / "comparison_earthquake.png").exists()
     assert json.loads((tmp_path / "report.json").read_text())["failures"] == {}
 

@@ -96,7 +96,7 @@ def test_report_writes_summary_and_opens_with_the_verdict(out):
     s = records.read(out / "summary.json", EngineeringSummary)
     assert s.scene == "paper" and s.checks
     html = (out / "report.html").read_text()
-    summary = html[html.index('<section id="summary">') :]
+    summary = html[html.index('<section id="answer">') :]
     assert summary.index("Verdict:") < summary.index("</section>")
     assert "base stress vs shell buckling" in summary and "earthquake (elcentro)" in summary
     assert '<section id="forces">' in html and '<section id="unbalance">' in html

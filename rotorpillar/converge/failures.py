@@ -52,7 +52,7 @@ def _why(
         gap = (ex.value - ref.value) / ref.value
         if abs(gap) > 0.5 * (ex.error_estimate + ref.error_estimate) / abs(ref.value) and abs(gap) > 1e-4:
             return f"its limit differs from the reference by {gap:+.1e} (model error)"
-    return "the meshes of the ladder are too coarse for it"
+    return "the meshes of the convergence study are too coarse for it"
 
 
 def nyquist(params: Mapping[str, Param]) -> int:

@@ -33,7 +33,10 @@ _MIME = {
 
 
 class Raw(str):
-    """HTML that is already safe: not escaped again."""
+    """HTML that is already safe: not escaped again (here, nor by a template)."""
+
+    def __html__(self) -> str:
+        return str(self)
 
 
 def esc(value) -> str:
@@ -42,8 +45,8 @@ def esc(value) -> str:
     >>> esc('<b> & "q"'), esc(Raw("<b>"))
     ('&lt;b&gt; &amp; &quot;q&quot;', '<b>')
     """
-    if isinstance(value, Raw):
-        return str(value)
+    if hasattr(value, "__html__"):  # Raw, or a rendered template (markupsafe.Markup)
+        return str(value.__html__())
     return html.escape(str(value), quote=True)
 
 
@@ -220,83 +223,3 @@ def flat_items(obj, prefix: str = "", limit: int = 200) -> list[tuple[str, objec
 
     walk(obj, prefix)
     return out
-
-
-STYLE = """
-body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif;
- max-width:1100px;margin:0 auto;padding:0 1.2em 3em;color:#1a1a1a;line-height:1.45}
-h1{font-size:1.6em;margin:1em 0 .2em}h2{border-bottom:2px solid #0072B2;padding-bottom:.15em;
- margin-top:2em}h3{margin-top:1.4em}
-table{border-collapse:collapse;margin:.6em 0;font-size:.88em}
-th,td{border:1px solid #d0d0d0;padding:.25em .5em;text-align:left;vertical-align:top}
-th{background:#f0f4f8}td.n{text-align:right;font-variant-numeric:tabular-nums}
-tr.flag td{background:#fff1ea}tr.ok td:first-child{border-left:3px solid #009E73}
-tr.flag td:first-child{border-left:3px solid #D55E00}
-figure{margin:1em 0}figure img,figure video{max-width:100%;height:auto;border:1px solid #e0e0e0}
-figcaption{font-size:.88em;color:#444;margin-top:.3em}
-p.missing{background:#fff8e1;border-left:4px solid #E69F00;padding:.4em .7em}
-p.failed{background:#fdecea;border-left:4px solid #D55E00;padding:.4em .7em}
-p.warn{background:#fdecea;padding:.4em .7em}
-code{background:#f3f3f3;padding:0 .25em;border-radius:3px}
-nav>ol{columns:2;column-gap:2em}nav ol ol{font-size:.88em;margin:.1em 0 .3em;padding-left:1.2em}
-nav li{break-inside:avoid}.meta{color:#555;font-size:.9em}
-table.kv td:first-child{color:#333;background:#f7f9fb}
-ul.findings li{margin:.25em 0}
-details{margin:.5em 0}summary{cursor:pointer;font-weight:600}
-.gallery{display:flex;flex-wrap:wrap;gap:.6em}.gallery figure{margin:0;width:340px}
-"""
-
-
-_H3 = None
-
-
-def subsections(section_html: str, section_id: str) -> tuple[str, list[tuple[str, str]]]:
-    """The section with an id on every <h3> that has none, and its
-    subsections' (id, title) in order: what the contents list shows.
-
-    >>> subsections('<h3>A b</h3><h3 id="x">C</h3><h3>A b</h3>', "s")
-    ('<h3 id="s-a-b">A b</h3><h3 id="x">C</h3><h3 id="s-a-b-2">A b</h3>', [('s-a-b', 'A b'), ('x', 'C'), ('s-a-b-2', 'A b')])
-    """
-    import re
-
-    global _H3
-    _H3 = _H3 or re.compile(r"<h3(\s+id=\"([^\"]*)\")?>(.*?)</h3>", re.S)
-    found, seen = [], set()
-
-    def one(m):
-        title = html.unescape(re.sub(r"<[^>]+>", "", m.group(3)))
-        ident = m.group(2)
-        if not ident:
-            base = f"{section_id}-{slug(title)}"
-            ident, n = base, 2
-            while ident in seen:
-                ident, n = f"{base}-{n}", n + 1
-        seen.add(ident)
-        found.append((ident, title))
-        return f'<h3 id="{esc(ident)}">{m.group(3)}</h3>'
-
-    return _H3.sub(one, str(section_html)), found
-
-
-def page(title: str, header_parts, nav: list[tuple[str, str]], sections) -> str:
-    """The whole document: the contents list the sections (``nav``: their id
-    and title, in the order of ``sections``) and each one's subsections (its <h3>)."""
-    items, done = [], []
-    for (ident, name), s in zip(nav, sections):
-        s, subs = subsections(s, ident)
-        done.append(s)
-        inner = [tag("a", name, href=f"#{ident}")]
-        if subs:
-            inner.append(tag("ol", [tag("li", [tag("a", t, href=f"#{i}")]) for i, t in subs]))
-        items.append(tag("li", inner))
-    sections = done
-    nav_html = tag("nav", [tag("h2", "Contents"), tag("ol", items)])
-    return (
-        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-        '<meta name="viewport" content="width=device-width, initial-scale=1">'
-        f"<title>{esc(title)}</title><style>{STYLE}</style></head><body>"
-        + "".join(str(h) for h in header_parts)
-        + nav_html
-        + "".join(str(s) for s in sections)
-        + "</body></html>\n"
-    )

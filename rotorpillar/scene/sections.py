@@ -119,7 +119,7 @@ class Converge:
     )
     shell_max_around: int = param("Finest shell Q2 mesh: elements around (-)", 64, ge=8)
     shell_tri_max_around: int = param("Finest shell P2-triangle mesh: elements around (-)", 48, ge=8)
-    solid: bool = param("Include the 3D solid model in the ladder", True)
+    solid: bool = param("Include the 3D solid model in the convergence study", True)
     solid_p1_max_around: int = param("Finest 3D P1 mesh: elements around (-)", 256, ge=32)
     solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 224, ge=32)
     solid_tet_p2_max_around: int = param("Finest 3D P2 tetrahedral mesh: elements around (-)", 160, ge=32)
@@ -131,7 +131,7 @@ class Simulate:
 
     case: str = param("Case run when --case is not given", "runup", choices=CASES)
     model: str = param(
-        "Model: the pillar's modes from the chain (modal: the validated ROM, the "
+        "Model: the pillar's modes from the validated 3D model (modal: the ROM, the "
         "headline model), Eq. 4 as published (paper), the 3D tube or the 1D "
         "beam at full order",
         "modal",

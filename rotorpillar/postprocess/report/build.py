@@ -17,6 +17,7 @@ render says why, and the rest of the report is still written.  Returns what
 
 from __future__ import annotations
 
+import re
 import sys
 import traceback
 import zipfile
@@ -30,17 +31,18 @@ from .. import html as h
 from ..animation import AnimationResult
 from ..compare_reader import read_comparison
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND, read_record, read_simulation
+from .answer import section_answer
 from .convergence import section_convergence, section_integrators
-from .earthquake import section_earthquake
+from .earthquake import section_earthquake, section_fronts, section_paper_earthquake
 from .engineering import section_internal_forces, section_unbalance
 from .figures import external_figures
 from .modal import section_modal, section_paper, section_scene
+from .page import Section, page, with_subsections
 from .provenance import section_other, section_provenance
 from .render import mode_sets, render_animations, render_charts, render_comparisons, render_mode_shapes
 from .runs import section_averaging, section_runs
 from .state import Build, Product, ReportOptions, attempt, debugging, say
 from .study import section_study
-from .summary import section_summary
 from .tower import section_tower
 
 if TYPE_CHECKING:
@@ -50,27 +52,43 @@ __all__ = ["ReportOptions", "ReportResult", "build_report", "report_text"]
 
 R = TypeVar("R")
 
-#: The page, in order: (anchor, title, builder).  A builder takes the Build
-#: and returns the section's HTML (``html.section(anchor, title, parts)``) or
-#: None to leave it out; its <h3> subsections go into the contents by
-#: themselves (``html.page``).  A new section is one entry here.
+#: The page, in order: (anchor, title, builder, appendix).  A builder takes the
+#: Build and returns its section (a ``page.Section`` from its template, or the
+#: HTML of ``html.section`` where the section is not templated yet) or None to
+#: leave it out.  The answers come first; the paper's validation, the
+#: convergence study, the integrators and the speed-accuracy fronts follow as
+#: appendices, collapsed.  A new section is one entry here.
 SECTIONS = [
-    ("summary", "Summary", section_summary),
-    ("scene", "The scene", section_scene),
-    ("modal", "Modal validation", section_modal),
-    ("tower", "The tower", section_tower),
-    ("paper", "The paper's numbers against ours", section_paper),
-    ("averaging", "Passage through resonance", section_averaging),
-    ("unbalance", "Unbalance response (Bode) and separation margins", section_unbalance),
-    ("runs", "The runs", section_runs),
-    ("earthquake", "The earthquake", section_earthquake),
-    ("forces", "Internal forces and stresses", section_internal_forces),
-    ("study", "Design study", section_study),
-    ("convergence", "Convergence and the model chosen", section_convergence),
-    ("integrators", "Time integrators", section_integrators),
-    ("other", "Other figures", section_other),
-    ("provenance", "Versions, machine and timings", section_provenance),
+    ("answer", "The answer", section_answer, False),
+    ("forces", "Internal forces and stresses", section_internal_forces, False),
+    ("unbalance", "Unbalance response and separation margins", section_unbalance, False),
+    ("earthquake", "The recorded earthquake", section_earthquake, False),
+    ("runs", "The runs", section_runs, False),
+    ("tower", "The tower and its foundation", section_tower, False),
+    ("study", "Design study", section_study, False),
+    ("scene", "Appendix A: the scene", section_scene, True),
+    ("modal", "Appendix B: modal validation", section_modal, True),
+    ("paper", "Appendix C: the paper's numbers against ours", section_paper, True),
+    ("averaging", "Appendix D: passage through resonance (the paper's averaging)", section_averaging, True),
+    # the fronts before the paper's case: their chart is the record's, not one of the pulse's figures
+    ("fronts", "Appendix E: speed against accuracy on the record", section_fronts, True),
+    ("paper-earthquake", "Appendix F: the paper's earthquake case", section_paper_earthquake, True),
+    ("convergence", "Appendix G: convergence study and the model chosen", section_convergence, True),
+    ("integrators", "Appendix H: time integrators", section_integrators, True),
+    ("other", "Appendix I: other figures", section_other, True),
+    ("provenance", "Appendix J: versions, machine and timings", section_provenance, True),
 ]
+
+_LEGACY = re.compile(r'<section id="[^"]*"><h2>.*?</h2>(.*)</section>', re.S)
+
+
+def _as_section(ident: str, title: str, got: Section | str, appendix: bool) -> Section:
+    """A section built by a template as it is; one built by ``html.section``
+    (not templated yet) unwrapped from its <section> and titled as listed."""
+    if isinstance(got, Section):
+        return Section(got.ident, title, got.body, appendix, got.subsections)
+    m = _LEGACY.fullmatch(str(got))
+    return with_subsections(ident, title, m.group(1) if m else str(got), appendix)
 
 
 def _why(exc: Exception) -> str:
@@ -78,7 +96,7 @@ def _why(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc}"
 
 
-def _guarded_section(build: Build, ident: str, title: str, fn) -> str | None:
+def _guarded_section(build: Build, ident: str, title: str, fn) -> Section | str | None:
     """A section, or, if its input does not have the shape it expects (an
     older or newer writer), a notice saying so: one section lost, not the page."""
     try:
@@ -216,26 +234,12 @@ def build_report(
         build.render_window = attempt(build, "render_window", render_window_class) or ""
     build.products["external"] = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(build.out)]
     with timings("html"):
-        nav, sections = [], []
-        for ident, title, fn in SECTIONS:
-            html_ = _guarded_section(build, ident, title, fn)
-            if html_:
-                nav.append((ident, title))
-                sections.append(html_)
-        title = f"rotorpillar report: {scene.name}"
-        header = [
-            h.tag("h1", title),
-            h.tag("p", scene.description or "", class_="meta"),
-            h.tag(
-                "p",
-                "Validation report of the rotor on its pillar: the 3D modes against the "
-                "paper's closed forms, the paper's printed numbers against ours, the "
-                "passage through resonance, the transients, and how far to trust each "
-                "number.",
-                class_="meta",
-            ),
-        ]
-        document = h.page(title, header, nav, sections)
+        sections = []
+        for ident, title, fn, appendix in SECTIONS:
+            got = _guarded_section(build, ident, title, fn)
+            if got:
+                sections.append(_as_section(ident, title, got, appendix))
+        document = page(f"rotorpillar report: {scene.name}", scene.description or "", sections)
         path = write_text(build.out / "report.html", document)
     figures = [str(p.path) for k, p in build.products.items() if isinstance(p, Product) and p.kind == "figure"]
     figures += [

@@ -1,404 +1,285 @@
 """The models of one case side by side (``compare_<case>.json``): the
 overlay, the table of error and cost, each model's notes and warnings; and
-the record's response spectrum beside the ROM's peak.  Pieces the
-earthquake and the runs sections both use."""
+the record's response spectrum with the coupled modes marked.
+
+The builders read the comparison's records (``transients.compare.CompareResult``
+and each model's run) and make the view records the partials
+``templates/sections/comparison.html.j2`` and ``spectrum.html.j2`` print.
+"""
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ... import records
-from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
+from ...records import Record
+from ...reduced.excitation import PulseSizes, RecordSizes
 from ...transients.compare import comparison_command, comparison_overrides
-from .. import html as h
-from .parts import failure, product_image, scene_differs
-from .references import reference_block
+from .page import model_name, render
+from .parts import differing_keys
 from .state import Build
 
 if TYPE_CHECKING:
     from ...transients.compare import CompareResult
-    from ...transients.model_run import RunRecord
     from ..compare_reader import Comparison
 
-#: The headers of the speed-accuracy table (the reference's name goes in the errors).
-COST_HEADERS = (
-    "model",
-    "DOFs",
-    "wall time, warm (s)",
-    "compilation, apart (s)",
-    "peak tip relative to the ground (m)",
-    "peak shaft deflection (m)",
-    "final speed (rad/s)",
-    "tip history error against {ref}",
-    "tip envelope error against {ref}",
-    "peak difference against {ref}",
-    "rotor angle drift (rad)",
-    "cost ratio (warm wall time / {ref}'s)",
-)
+
+class Picture(Record):
+    """A picture on the page and its caption."""
+
+    path: str
+    caption: str
 
 
-def share(x) -> str:
-    """A non-negative fraction in percent, 3 significant digits.
+class CostRow(Record):
+    """One model of a comparison: its size, cost, peaks and errors against the reference."""
 
-    >>> share(0.002134), share(None)
-    ('0.213 %', '-')
-    """
-    if not isinstance(x, (int, float)) or isinstance(x, bool) or not math.isfinite(x):
-        return "-"
-    return f"{100 * x:.3g} %"
+    model: str
+    reference: bool
+    dofs: int | None
+    wall_seconds: float | None
+    """warm wall time (s)"""
+    compile_seconds: float | None
+    """compilation, apart (s)"""
+    peak_tip: float | None
+    """peak tip displacement relative to the ground (m)"""
+    peak_shaft: float | None
+    """peak shaft deflection (m)"""
+    omega_final: float | None
+    """final rotor speed (rad/s)"""
+    history_error: float | None
+    """tip history error against the reference (-)"""
+    envelope_error: float | None
+    """tip envelope error against the reference (-)"""
+    peak_difference: float | None
+    """peak tip difference against the reference (-)"""
+    angle_drift: float | None
+    """largest rotor angle drift from the reference (rad)"""
+    cost_ratio: float | None
+    """warm wall time over the reference's (-)"""
+    lead: str | None
+    """the error measure that fits the case: "history" or "envelope\""""
+    lead_why: str
+    """why that measure"""
+    ok: bool
+    warnings: tuple[str, ...]
+    full_order: str | None
+    """what the full-order model was, as run (mesh or elements, duration, step)"""
 
 
-def missing_comparison(build: Build, case: str) -> list[str]:
-    """The notice naming the command that makes ``compare_<case>.json``."""
-    return [
-        h.missing(
-            f"not computed: run `rotorpillar {comparison_command(case)} {build.scene_cli}` (no compare_{case}.json)"
-        )
-    ]
+class ComparisonView(Record):
+    """What the page shows of one comparison."""
+
+    case: str
+    command: str
+    """the command that makes it"""
+    found: bool
+    differs: tuple[str, ...] = ()
+    """scene keys it was computed with other values of"""
+    excitation: str | None = None
+    """a sentence on the ground motion"""
+    window: tuple[float, float] = (0.0, 0.0)
+    """the interval every model ran over (s)"""
+    window_why: str = ""
+    figure: Picture | None = None
+    figure_failed: str | None = None
+    reference: str = ""
+    rows: tuple[CostRow, ...] = ()
+    own_charts: tuple[Picture, ...] = ()
 
 
-def excitation_text(ex: ExcitationSizes | None) -> str | None:
+def excitation_text(ex) -> str | None:
     """One sentence on the ground motion a run used (its excitation block)."""
     if isinstance(ex, (PulseSizes, RecordSizes)) and ex.statement is not None:
         return ex.statement
     if not isinstance(ex, RecordSizes):
         return None
-    what = [
-        f"peak acceleration {h.num(ex.peak_acceleration_g, 3)} g",
-        f"peak velocity {h.num(ex.peak_velocity, 3)} m/s",
-        f"peak displacement {h.num(ex.peak_displacement, 3)} m",
-    ]
     return (
-        f"Ground motion: the record {ex.name}"
-        + (f" ({ex.source})" if ex.source else "")
-        + ": "
-        + ", ".join(what)
-        + f", from t = {h.num(ex.start, 4)} s."
+        f"Ground motion: the record {ex.name}" + (f" ({ex.source})" if ex.source else "") + f": peak acceleration "
+        f"{ex.peak_acceleration_g:.3g} g, peak velocity {ex.peak_velocity:.3g} m/s, peak displacement "
+        f"{ex.peak_displacement:.3g} m, from t = {ex.start:.4g} s."
     )
 
 
-def cost_table(result: CompareResult, models: list[str]) -> str:
-    """Per model: DOFs, wall time, peaks, the errors against the reference and the cost ratio."""
-    ref, ratio = result.reference, result.cost_ratio
-    rows, classes = [], []
-    for m in models:
-        p, e = result.per_model.get(m), result.errors.get(m)
-        is_ref = m == ref
-        r = 1.0 if is_ref and m not in ratio else ratio.get(m)
-        lead = e.lead if e is not None else None
-        mark = lambda name, text, lead=lead: f"{text} (leads)" if lead == name else text
-        rows.append(
-            [
-                m + (" (reference)" if is_ref else ""),
-                h.num(p.dofs if p else None),
-                h.num(p.wall_seconds if p else None, 4),
-                h.num(p.compile_seconds if p else None, 3),
-                h.num(p.peak_tip_relative if p else None),
-                h.num(p.peak_shaft_deflection if p else None),
-                h.num(p.omega_final if p else None),
-                "reference" if is_ref else "-" if e is None else mark("history", share(e.tip_history_error)),
-                "reference" if is_ref else "-" if e is None else mark("envelope", share(e.tip_envelope_error)),
-                "reference" if is_ref else h.pct(None if e is None else e.peak_tip_difference),
-                "reference" if is_ref else h.num(None if e is None else e.angle_drift, 3),
-                h.num(r, 4),
-            ]
-        )
-        classes.append("flag" if p is not None and not p.ok else "ok")
-    return h.table([c.format(ref=ref) for c in COST_HEADERS], rows, row_classes=classes)
-
-
-def speed_accuracy(result: CompareResult, models: list[str]) -> list[str]:
-    """The sentence per model: its error against the reference, led by the measure that
-    fits the case (compare's ``lead``: the history while the rotors stay in phase, else
-    the envelope, with the peak and the rotor angle's drift beside), at what share of the
-    (warm) cost."""
-    ref, ratio = result.reference, result.cost_ratio
-    out = []
-    for m in models:
-        em = result.errors.get(m)
-        if m == ref or em is None:
-            continue
-        e, r = em.tip_history_error, ratio.get(m)
-        env, peak, drift = em.tip_envelope_error, em.peak_tip_difference, em.angle_drift
-        if em.lead == "envelope" and env is not None:
-            text = (
-                f"{m} follows {ref}'s tip envelope within {share(env)} of its largest value "
-                f"(peak {h.pct(peak) if peak is not None else '-'}); its history differs by "
-                f"{share(e)} because the rotor angles drift apart by up to {h.num(drift, 3)} rad, "
-                "a phase error of the whirl, not of the amplitudes"
-            )
-        else:
-            text = f"{m} follows {ref}'s tip history within {share(e)} of its largest value"
-            if peak is not None:
-                text += f" (peak {h.pct(peak)}"
-                text += f"; the rotors stay within {h.num(drift, 2)} rad of each other)" if drift is not None else ")"
-        if isinstance(r, (int, float)) and r > 0:
-            text += (
-                f", at {h.num(r, 3)} of its wall time ({h.num(1 / r, 3)} times faster)"
-                if r < 1
-                else f", at {h.num(r, 3)} times its wall time"
-            )
-        out.append(text + ".")
-    return out
-
-
-#: Units of the fields of a full-order run's ``full_order`` block.
-FULL_ORDER_UNITS = {"duration": "s", "time_step": "s"}
-
-
-def _full_order(run: RunRecord | None) -> str | None:
+def full_order_text(run) -> str | None:
     """What a full-order run was (mesh or elements, duration, step) and its note."""
     from ...transients.model_run import BeamFullOrder, Fem3dPlan
 
     fo = run.full_order if run is not None else None
-    items: list[tuple[str, Any]]
-    if isinstance(fo, Fem3dPlan):  # its reference: references.reference_block
-        mesh = ", ".join(f"{a} {h.num(b)}" for a, b in records.to_builtins(fo.mesh).items())
-        items = [("mesh", mesh), ("duration", fo.duration), ("case_duration", fo.case_duration)]
+    if isinstance(fo, Fem3dPlan):
+        mesh = ", ".join(f"{k.replace('_', ' ')} {v}" for k, v in records.to_builtins(fo.mesh).items())
+        said = [f"mesh {mesh}", f"duration {fo.duration:.4g} s"]
     elif isinstance(fo, BeamFullOrder):
-        items = [("elements", fo.elements), ("theory", fo.theory), ("duration", fo.duration)]
+        said = [f"{fo.elements} {fo.theory} beam elements", f"duration {fo.duration:.4g} s"]
     else:
         return None
-    items.append(("time_step", fo.time_step))
-    what = [
-        f"{k.replace('_', ' ')} {h.num(v)}" + (f" {FULL_ORDER_UNITS[k]}" if k in FULL_ORDER_UNITS else "")
-        for k, v in items
-        if v is not None
-    ]
-    return "; ".join(what) + (f". {fo.note}" if fo.note else "")
+    said.append(f"time step {fo.time_step:.3g} s")
+    return "; ".join(said) + (f". {fo.note}" if fo.note else "")
 
 
-def _stem(case: str, model: str) -> str:
-    """A comparison's per-model files (rotorpillar.transients.compare.compare_stem)."""
-    return f"compare_{case}_{model}"
+def cost_rows(result: CompareResult, c: Comparison) -> tuple[CostRow, ...]:
+    """Per model run: its size, cost, peaks and errors against the reference."""
+    out = []
+    for m in c.models:
+        if m not in result.per_model:
+            continue
+        p = result.per_model[m]
+        e = result.errors[m] if m in result.errors else None
+        is_ref = m == result.reference
+        ratio = result.cost_ratio[m] if m in result.cost_ratio else (1.0 if is_ref else None)
+        out.append(
+            CostRow(
+                model=m,
+                reference=is_ref,
+                dofs=p.dofs,
+                wall_seconds=p.wall_seconds,
+                compile_seconds=p.compile_seconds,
+                peak_tip=p.peak_tip_relative,
+                peak_shaft=p.peak_shaft_deflection,
+                omega_final=p.omega_final,
+                history_error=None if e is None else e.tip_history_error,
+                envelope_error=None if e is None else e.tip_envelope_error,
+                peak_difference=None if e is None else e.peak_tip_difference,
+                angle_drift=None if e is None else e.angle_drift,
+                cost_ratio=ratio,
+                lead=None if e is None else e.lead,
+                lead_why="" if e is None else e.lead_why,
+                ok=p.ok,
+                warnings=p.warnings,
+                full_order=full_order_text(c.runs[m] if m in c.runs else None),
+            )
+        )
+    return tuple(out)
 
 
 def _claim_figures(build: Build, case: str, models: list[str]) -> list:
     """The other commands' PNGs of this comparison (compare_<case>.png and the
     models' own compare_<case>_<model>.png), taken out of their groups."""
-    names = {f"compare_{case}.png"} | {f"{_stem(case, m)}.png" for m in models}
-    found = [p for p in build.products.get("external", []) if p.path.name in names]
+    names = {f"compare_{case}.png"} | {f"compare_{case}_{m}.png" for m in models}
+    found = [p for p in build.products["external"] if p.path.name in names] if "external" in build.products else []
     for p in found:
         p.group = "used"
     return found
 
 
+def comparison_view(build: Build, case: str) -> ComparisonView:
+    """The comparison of the models on ``case`` as the page shows it."""
+    command = f"rotorpillar {comparison_command(case)} {build.scene_cli}"
+    if case not in build.comparisons:
+        return ComparisonView(case, command, found=False)
+    c = build.comparisons[case]
+    result = c.record
+    theirs = _claim_figures(build, case, c.models)
+    key = f"comparison_{case}"
+    figure: Picture | None
+    if key in build.products:
+        figure = Picture(str(build.products[key].path), build.products[key].caption)
+    else:  # no arrays to draw from: compare's own chart, if it left one
+        figure = next((Picture(str(p.path), p.caption) for p in theirs if p.path.name == f"compare_{case}.png"), None)
+    own = tuple(
+        Picture(str(p.path), f"{model_name(m)}: {p.caption}")
+        for m in c.models
+        for p in theirs
+        if p.path.name == f"compare_{case}_{m}.png"
+    )
+    return ComparisonView(
+        case,
+        command,
+        found=True,
+        differs=differing_keys(build, c.provenance, ignore=comparison_overrides(case)),
+        excitation=excitation_text(result.excitation),
+        window=(result.window.start, result.window.end),
+        window_why=result.window.why,
+        figure=figure,
+        figure_failed=build.failures[key] if key in build.failures else None,
+        reference=result.reference,
+        rows=cost_rows(result, c),
+        own_charts=own,
+    )
+
+
 def comparison_block(build: Build, case: str) -> list[str]:
     """The comparison of the models on ``case``, or the command that makes it."""
-    c = build.comparisons.get(case)
-    if c is None:
-        return missing_comparison(build, case)
-    models = c.models
-    parts = scene_differs(build, c.provenance, ignore=comparison_overrides(case))
-    ex = excitation_text(c.record.excitation)
-    if ex:
-        parts.append(h.tag("p", ex))
-    w = c.record.window
-    parts.append(
-        h.tag(
-            "p",
-            f"Every model ran over t = {h.num(w.start, 4)} .. {h.num(w.end, 4)} s"
-            + (f" ({w.why})" if w.why else "")
-            + ".",
-            class_="meta",
-        )
-    )
-    theirs = _claim_figures(build, case, models)
-    parts += failure(build, f"comparison_{case}")
-    if f"comparison_{case}" in build.products:
-        parts.append(product_image(build, f"comparison_{case}"))
-    else:  # no arrays to draw from: compare's own chart, if it left one
-        parts += [h.image(p.path, p.caption) for p in theirs if p.path.name == f"compare_{case}.png"]
-    parts.append(cost_table(c.record, models))
-    parts += reference_block(c.record.full_order_reference)
-    said = speed_accuracy(c.record, models)
-    if said:
-        parts.append(h.tag("p", " ".join(said)))
-    full = [(m, _full_order(c.runs.get(m))) for m in models]
-    notes = [h.tag("li", f"{m}: {n}") for m, n in full if n]
-    if notes:
-        parts.append(h.tag("p", "Full-order models, as run here:", class_="meta"))
-        parts.append(h.tag("ul", notes, class_="meta"))
-    per = c.record.per_model
-    warns = [h.tag("li", f"{m}: {w}") for m in models if m in per for w in per[m].warnings]
-    if warns:
-        parts.append(h.tag("ul", warns, class_="warn"))
-    own = [(m, p) for m in models for p in theirs if p.path.name == f"{_stem(case, m)}.png"]
-    if own:
-        parts.append(
-            h.details(
-                f"each model's own chart ({len(own)})", "".join(h.image(p.path, f"{m}: {p.caption}") for m, p in own)
-            )
-        )
-    return parts
+    from .references import reference_block
+
+    view = comparison_view(build, case)
+    ref = build.comparisons[case].record.full_order_reference if view.found else None
+    return [render("sections/comparison.html.j2", c=view, reference=reference_block(ref))]
 
 
-def system_modes(c: Comparison | None) -> tuple[str | None, list[dict]]:
+class CoupledMode(Record):
+    """A coupled rotor-pillar mode of the reduced model a comparison ran."""
+
+    index: int
+    direction: str
+    omega: float
+    """undamped natural frequency (rad/s)"""
+    damping_ratio: float | None
+    """of the damped mode nearest it in the same direction (-)"""
+    spectral_acceleration: float | None = None
+    """the record's pseudo-acceleration at its period (m/s**2), horizontal modes only"""
+
+    @property
+    def period(self) -> float:
+        """(s)"""
+        return 2 * math.pi / self.omega
+
+
+def system_modes(c: Comparison | None) -> tuple[str | None, list[CoupledMode]]:
     """The coupled rotor-pillar modes of the reduced model a comparison ran
-    (its JSON's ``resonances`` with their ``damped_frequencies``): (model,
-    [{index, direction, omega, period, damping_ratio}]), the ROM first."""
+    (its run's resonances with their damped frequencies), the ROM first."""
     if c is None:
         return None, []
-    order = sorted(c.models, key=lambda m: (m != "modal", m == c.reference))
-    for m in order:
-        run = c.runs.get(m)
+    for m in sorted(c.models, key=lambda m: (m != "modal", m == c.reference)):
+        run = c.runs[m] if m in c.runs else None
         if run is None or not run.resonances:
             continue
-        damped = run.damped_frequencies
         out = []
         for r in run.resonances:
-            w = r.omega
-            if w <= 0:
+            if r.omega <= 0:
                 continue
-            near = min((d for d in damped if d.direction == r.direction), key=lambda d: abs(d.omega - w), default=None)
-            out.append(
-                {
-                    "index": r.index,
-                    "direction": r.direction,
-                    "omega": float(w),
-                    "period": 2 * math.pi / w,
-                    "damping_ratio": None if near is None else near.damping_ratio,
-                }
-            )
+            same = [d for d in run.damped_frequencies if d.direction == r.direction]
+            near = min(same, key=lambda d: abs(d.omega - r.omega), default=None)
+            out.append(CoupledMode(r.index, r.direction, float(r.omega), None if near is None else near.damping_ratio))
         return m, out
     return None, []
-
-
-#: Why the record is applied where it is (the plane model's own direction).
-RECORD_DIRECTION = (
-    "The record is applied as a ground motion {where}: the direction of the paper's own "
-    "earthquake (its q5), and the one horizontal direction of the paper's plane model, in "
-    "which the rotor's unbalance and the pillar's bending couple. The modes it excites are "
-    "the coupled modes in that direction; the vertical mode (the rotor bouncing on its shaft) "
-    "takes no part in a horizontal motion, nor do the tube's ovalling modes (zero participation "
-    "by symmetry)."
-)
 
 
 def spectrum_block(build: Build) -> list[str]:
     """The record's response spectrum with the system's modes marked, and the
     ROM's spectral estimate of the peak tip beside the computed one."""
-    from ..compare_charts import STANDARD_GRAVITY, spectral_value
+    from ..compare_charts import spectral_value
     from ..directions import direction
 
-    c = build.comparisons.get("earthquake")
-    if c is None:
-        return missing_comparison(build, "earthquake")
-    spec = c.record.spectrum
-    if spec is None:
-        return [
-            h.tag(
-                "p",
-                "compare_earthquake.json holds no response spectrum (the excitation "
-                "is not a record, or the modal model was not run).",
-                class_="meta",
-            )
-        ]
-    parts = [h.tag("p", RECORD_DIRECTION.format(where=direction("X")))]
-    parts += failure(build, "response_spectrum")
-    if "response_spectrum" in build.products:
-        parts.append(product_image(build, "response_spectrum"))
+    c = build.comparisons["earthquake"] if "earthquake" in build.comparisons else None
+    spec = c.record.spectrum if c is not None else None
     model, modes = system_modes(c)
-    damping = spec.damping
-    if modes:
-        rows = []
-        for m in modes:
-            horizontal = str(m["direction"]).upper() == "X"
-            S = spectral_value(spec.period, spec.psa, m["period"])
-            rows.append(
-                [
-                    m["index"],
-                    direction(m["direction"]),
-                    h.num(m["omega"], 4),
-                    h.num(m["period"], 3),
-                    share(m["damping_ratio"]),
-                    h.num(S / STANDARD_GRAVITY, 3) if horizontal and math.isfinite(S) else "-",
-                    h.num(1e3 * S / m["omega"] ** 2, 3)
-                    if horizontal and math.isfinite(S)
-                    else ("not excited by a horizontal record" if not horizontal else "-"),
-                ]
+    if spec is not None:
+        modes = [
+            CoupledMode(
+                m.index,
+                m.direction,
+                m.omega,
+                m.damping_ratio,
+                spectral_value(spec.period, spec.psa, m.period) if m.direction.upper() == "X" else None,
             )
-        parts.append(
-            h.tag(
-                "p",
-                f"The coupled rotor-pillar modes of the reduced model the "
-                f"comparison ran ({model}), read off the curve above "
-                f"({100 * float(damping):g} % damping; each mode's own damping "
-                "ratio is beside it):",
-                class_="meta",
-            )
-        )
-        parts.append(
-            h.table(
-                [
-                    "mode",
-                    "direction",
-                    "omega (rad/s)",
-                    "period T (s)",
-                    "damping ratio",
-                    "PSA at T (g)",
-                    "S_d = PSA / omega^2 (mm)",
-                ],
-                rows,
-            )
-        )
-    est, num = spec.spectral_peak_tip, spec.computed_peak_tip
-    text = (
-        f"Spectral estimate of the peak tip: {h.num(est, 4)} m, the square root of the sum "
-        f"of the squares (SRSS) of each pillar mode's peak Gamma_j S_d(T_j, zeta_j) at its "
-        f"own damping; the time history's peak on the same model: {h.num(num, 4)} m"
-    )
-    if isinstance(est, (int, float)) and isinstance(num, (int, float)) and est > 0:
-        text += f" (computed / estimate = {h.num(num / est, 3)})"
-    text += (
-        ". SRSS is an estimate, not a bound: it combines the modes' peaks as if they were "
-        "independent random maxima, so the true peak may fall on either side of it; a "
-        "ratio below 1 says the modes' peaks did not meet in time, above 1 that they added."
-    )
-    parts.append(h.tag("p", text))
-    if spec.note:
-        parts.append(h.tag("p", spec.note, class_="meta"))
-    terms = spec.modes
-    periods = spec.mode_periods
-    if terms:
-        rows = [
-            [
-                t.mode,
-                h.num(t.period, 4),
-                h.num(1 / t.period, 4) if t.period else "-",
-                share(t.damping_ratio),
-                h.num(t.participation_factor, 4),
-                h.num(t.s_d, 4),
-                h.num(t.contribution, 4),
-            ]
-            for t in terms
+            for m in modes
         ]
-        parts.append(
-            h.details(
-                "the estimate's terms: the pillar's modes (rotor apart)",
-                h.table(
-                    [
-                        "pillar mode",
-                        "period T_j (s)",
-                        "frequency (Hz)",
-                        "damping ratio",
-                        "participation Gamma_j",
-                        "S_d (m)",
-                        "Gamma_j S_d (m)",
-                    ],
-                    rows,
-                ),
-            )
+    figure = None
+    if "response_spectrum" in build.products:
+        p = build.products["response_spectrum"]
+        figure = Picture(str(p.path), p.caption)
+    return [
+        render(
+            "sections/spectrum.html.j2",
+            found=c is not None,
+            command=f"rotorpillar {comparison_command('earthquake')} {build.scene_cli}",
+            spec=spec,
+            model=model,
+            modes=modes,
+            picture=figure,
+            failed=build.failures["response_spectrum"] if "response_spectrum" in build.failures else None,
+            horizontal=direction("X"),
         )
-    elif periods:
-        parts.append(
-            h.details(
-                "the estimate's terms: the pillar's modes (rotor apart)",
-                h.table(
-                    ["pillar mode", "period T_j (s)", "frequency (Hz)"],
-                    [[j, h.num(T, 4), h.num(1 / T, 4) if T else "-"] for j, T in enumerate(periods, start=1)],
-                ),
-            )
-        )
-    return parts
+    ]

@@ -6,10 +6,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from ... import records
 from .. import html as h
 from ..readers import INPUTS
-from .parts import figures_of, run_table, scene_differs
+from .parts import figures_of, scene_differs
 from .state import Build
 
 if TYPE_CHECKING:
@@ -78,9 +77,9 @@ def _references(study: ConvergenceStudy) -> list[str]:
             [
                 "mode",
                 "reference (rad/s)",
-                "+- estimate",
-                "observed order",
-                "theory",
+                "+- estimate (rad/s)",
+                "observed order (-)",
+                "order in theory (-)",
                 "from",
                 "three coarser runs predict the finest",
             ],
@@ -130,12 +129,6 @@ def _convergence_parts(study: ConvergenceStudy) -> list[str]:
     if failures:
         parts.append(h.tag("h3", "Where each method fails"))
         parts.append(h.tag("ul", [h.tag("li", f) for f in failures]))
-    slim = {
-        k: v
-        for k, v in records.to_builtins(study).items()
-        if k not in ("runs", "families", "selection", "reference", "failures", "extrapolations")
-    }
-    parts.append(h.details("convergence.json (less its runs)", run_table(slim)))
     return parts
 
 
@@ -216,8 +209,9 @@ def integrators_conclusion(study: IntegratorStudy) -> str:
     return " ".join(said)
 
 
-def _rows_table(rows: Sequence[Record], keys: list[str]) -> str:
-    return h.table(keys, [[h.num(getattr(r, k, None), 4) for k in keys] for r in rows])
+def _rows_table(rows: Sequence[Record], columns: list[tuple[str, str]]) -> str:
+    """The rows' fields (``columns``: field, header with its unit) as a table."""
+    return h.table([c for _, c in columns], [[h.num(getattr(r, k, None), 4) for k, _ in columns] for r in rows])
 
 
 def section_integrators(build: Build) -> str:
@@ -239,7 +233,16 @@ def section_integrators(build: Build) -> str:
                     f"accuracy runs ({len(acc.rows)})",
                     _rows_table(
                         acc.rows,
-                        ["method", "family", "setting_name", "setting", "error", "nfev", "wall_seconds", "status"],
+                        [
+                            ("method", "method"),
+                            ("family", "family"),
+                            ("setting_name", "setting"),
+                            ("setting", "its value (s or -)"),
+                            ("error", "tip history error (-)"),
+                            ("nfev", "force evaluations"),
+                            ("wall_seconds", "wall time (s)"),
+                            ("status", "status"),
+                        ],
                     ),
                 )
             )
@@ -247,19 +250,35 @@ def section_integrators(build: Build) -> str:
             parts.append(
                 h.details(
                     f"stiffness runs ({len(stab.rows)})",
-                    _rows_table(stab.rows, ["method", "modes", "omega_max", "ok", "nfev", "time_step", "status"]),
+                    _rows_table(
+                        stab.rows,
+                        [
+                            ("method", "method"),
+                            ("modes", "pillar modes"),
+                            ("omega_max", "highest frequency (rad/s)"),
+                            ("ok", "solved"),
+                            ("nfev", "force evaluations"),
+                            ("time_step", "time step (s)"),
+                            ("status", "status"),
+                        ],
+                    ),
                 )
             )
         if drift.rows:
             parts.append(
                 h.details(
                     f"energy drift runs ({len(drift.rows)})",
-                    _rows_table(drift.rows, ["method", "drift", "max_deviation", "nfev", "setting", "status"]),
+                    _rows_table(
+                        drift.rows,
+                        [
+                            ("method", "method"),
+                            ("drift", "energy drift (-)"),
+                            ("max_deviation", "largest energy deviation (-)"),
+                            ("nfev", "force evaluations"),
+                            ("setting", "setting (s or -)"),
+                            ("status", "status"),
+                        ],
+                    ),
                 )
             )
-        slim = {
-            name: {k: v for k, v in records.to_builtins(block).items() if k != "rows"}
-            for name, block in (("accuracy", acc), ("stability", stab), ("energy_drift", drift))
-        }
-        parts.append(h.details("integrators.json: the rest (per method, settings)", run_table(slim)))
     return h.section("integrators", "Time integrators", parts)

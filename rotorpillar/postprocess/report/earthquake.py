@@ -16,7 +16,8 @@ from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..readers import INPUTS, SIMULATE_COMMAND, Simulation
 from .compare_section import comparison_block, spectrum_block
-from .parts import animation_video, failure, figures_of, key_results, product_image, run_table, scene_differs
+from .page import model_name
+from .parts import animation_video, failure, figures_of, key_results, product_image, scene_differs
 from .references import pareto_block
 from .state import Build
 
@@ -160,18 +161,17 @@ def paper_case(build: Build) -> list[str]:
     parts += animation_video(build, mine)
     if run is not None:
         parts.append(key_results(run))
-        parts.append(h.details(name, run_table(run)))
     return parts
 
 
 def section_earthquake(build: Build) -> str:
+    """A recorded earthquake on the physically consistent models, and the record's spectrum."""
     c = build.comparisons.get("earthquake")
     models = c.models if c is not None else comparison_models("earthquake")
     parts = [
-        h.tag("h3", "A recorded earthquake on the physically consistent models"),
         h.tag(
             "p",
-            f"The models {' and '.join(models)} force the structure by the "
+            f"The models ({', '.join(model_name(m) for m in models)}) force the structure by the "
             "ground's inertia (-M r a_g), the ground moving "
             f"{direction('X')} (why: see the response spectrum below), and report "
             "the tip relative to the ground; the most complete one run is the "
@@ -183,10 +183,16 @@ def section_earthquake(build: Build) -> str:
     if build.products.get("quake_case_animation") != "animation_earthquake":
         parts += failure(build, "animation_earthquake")
         parts += animation_video(build, "animation_earthquake")
-    parts.append(h.tag("h3", "Speed against accuracy: every model of the ladder on El Centro"))
-    parts += pareto_block(build)
     parts.append(h.tag("h3", "Response spectrum of the record"))
     parts += spectrum_block(build)
-    parts.append(h.tag("h3", "The paper's case"))
-    parts += paper_case(build)
-    return h.section("earthquake", "The earthquake", parts)
+    return h.section("earthquake", "The recorded earthquake", parts)
+
+
+def section_fronts(build: Build) -> str:
+    """Every model on the record: wall time against the error."""
+    return h.section("fronts", "Speed against accuracy", pareto_block(build))
+
+
+def section_paper_earthquake(build: Build) -> str:
+    """The paper's own earthquake case, its warning first."""
+    return h.section("paper-earthquake", "The paper's earthquake case", paper_case(build))

@@ -17,6 +17,7 @@ from ...verdict.harmonic import HarmonicResult
 from ...verdict.summary import EngineeringSummary
 from .. import html as h
 from .force_runs import ForcesRun, forces_runs, history
+from .page import plain
 from .state import FIGURES_DIR, Build, attempt
 
 NAMES = {"modal": "ROM", "fem3d": "3D full order", "beam": "1D beam full order", "paper": "paper Eq. 4"}
@@ -68,59 +69,6 @@ def _check_rows(checks) -> list[list]:
     return rows
 
 
-def verdict_block(build: Build) -> list[str]:
-    """The Summary's opening: the checks table, then the numbers a reader came for."""
-    s = _read(build, "summary.json", EngineeringSummary)
-    if s is None:
-        return [
-            h.missing(
-                "The verdict: nothing to check yet (no run, no harmonic.json, no modal.json "
-                f"here): run `rotorpillar run {build.scene_cli}`"
-            )
-        ]
-    word = {"pass": "every assessed check passes", "fail": "a check fails", "incomplete": "no check could be assessed"}[
-        s.verdict
-    ]
-    parts = [
-        h.tag(
-            "p",
-            [
-                h.tag("strong", f"Verdict: {s.verdict}"),
-                f" ({word}; each row names the model "
-                "and the case its demand came from, the largest utilisation over them).",
-            ],
-        ),
-        h.table(
-            ["check", "demand", "capacity", "utilisation", "status", "model", "case"],
-            _check_rows(s.checks),
-            row_classes=["failed" if c.status == "fail" else "" for c in s.checks],
-        ),
-    ]
-    if s.not_assessed:
-        parts.append(h.tag("p", "Not assessed: " + "; ".join(s.not_assessed) + ".", class_="warn"))
-    if s.headlines:
-        parts.append(h.tag("ul", [h.tag("li", t) for t in _headline_texts(s.headlines)], class_="findings"))
-    return parts
-
-
-def _headline_texts(headlines) -> list[str]:
-    """One line per headline; the same quantity on several models in one line."""
-    groups: dict[str, list] = {}
-    for x in headlines:
-        groups.setdefault(x.label, []).append(x)
-    out = []
-    for label, xs in groups.items():
-        if len(xs) == 1:
-            out.append(xs[0].text)
-        else:
-            out.append(
-                f"{label[0].upper()}{label[1:]}: "
-                + ", ".join(f"{_value(x.value, x.unit)} ({NAMES.get(x.model, x.model)})" for x in xs)
-                + "."
-            )
-    return out
-
-
 # --------------------------------------------------------------------------
 # Forces and stresses
 
@@ -163,7 +111,7 @@ def section_internal_forces(build: Build) -> str:
                 h.num(b.moment_time, 4),
                 _value(f.shaft.deflection, "m"),
                 _value(max(f.shaft.spring_force, f.shaft.bearing_force), "N"),
-                "-" if f.modes is None else f"{f.modes} (run {f.modes_in_run})",
+                "-" if f.modes is None else f.modes,
             ]
         )
     parts.append(h.tag("h3", "Base reactions and shaft demand, side by side"))
@@ -277,7 +225,7 @@ def _truncation(runs) -> list[str]:
         h.tag("h3", "How many modes the forces need"),
         h.tag(
             "p",
-            f"{t.statement}. For {100 * t.tolerance:g} % the tip needs {need(t.modes_needed_tip)}, "
+            f"{plain(t.statement)}. For {100 * t.tolerance:g} % the tip needs {need(t.modes_needed_tip)}, "
             f"the base moment {need(t.modes_needed_base_moment)}, the base shear "
             f"{need(t.modes_needed_base_shear)} modes: the forces use {f.modes}, with which "
             f"the base shear's error is {h.pct(t.rows[f.modes - 1].base_shear, 1).lstrip('+')}"
@@ -311,7 +259,7 @@ def _von_mises(runs: list[ForcesRun]) -> list[str]:
                 ]
             )
         out += [
-            h.tag("h3", "Stresses in the 3D tube"),
+            h.tag("h3", f"Stresses in the 3D tube: {r.case}"),
             h.tag(
                 "p",
                 f"Von Mises stress of the 3D full order ({r.file}), {vm.space}; "
@@ -321,7 +269,7 @@ def _von_mises(runs: list[ForcesRun]) -> list[str]:
                 "linear elastic corner makes it mesh-dependent, the nominal stress is not."
                 + (f" ParaView: {f.stress_field} (displacement and von Mises)." if f.stress_field else ""),
             ),
-            h.table(["where", "von Mises", "position (x, y, z) m", "t (s)", "nominal", "ratio"], rows),
+            h.table(["where", "von Mises", "position (x, y, z) (m)", "t (s)", "nominal", "ratio (-)"], rows),
         ]
     return out
 
@@ -350,7 +298,8 @@ def _buckling_and_details(build: Build) -> list[str]:
         h.details(
             "every check on every model and case",
             h.table(
-                ["check", "demand", "capacity", "utilisation", "status", "model", "case"], _check_rows(s.check_details)
+                ["check", "demand", "capacity", "utilisation (-)", "status", "model", "case"],
+                _check_rows(s.check_details),
             ),
         )
     )
@@ -402,7 +351,15 @@ def section_unbalance(build: Build) -> str:
     ]
     parts.append(
         h.table(
-            ["omega_i (rad/s)", "ROM peak at", "ROM tip", "3D peak at", "3D tip", "Eq. 19 at omega_i", "3D / ROM - 1"],
+            [
+                "omega_i (rad/s)",
+                "ROM peak at (rad/s)",
+                "ROM tip",
+                "3D peak at (rad/s)",
+                "3D tip",
+                "Eq. 19 at omega_i",
+                "3D / ROM - 1",
+            ],
             rows,
         )
     )
@@ -447,7 +404,17 @@ def section_unbalance(build: Build) -> str:
     ]
     parts.append(
         h.table(
-            ["model", "mode", "omega (rad/s)", "zeta", "AF", "position", "required", "actual", "status"],
+            [
+                "model",
+                "mode",
+                "omega (rad/s)",
+                "damping ratio (-)",
+                "amplification factor (-)",
+                "position",
+                "required",
+                "actual",
+                "status",
+            ],
             rows,
             row_classes=["failed" if x.status == "fail" else "" for x in r.separation],
         )

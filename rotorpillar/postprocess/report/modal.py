@@ -12,6 +12,7 @@ from ... import records
 from .. import html as h
 from ..directions import axes_legend, direction, mode_name, ordinal
 from ..readers import INPUTS
+from .page import plain
 from .parts import failure, figures_of, scene_differs
 from .state import Build
 
@@ -37,7 +38,6 @@ def _mode_rows(modes: Sequence[ModeRow]) -> list[list[Any]]:
             h.num(m.frequency_hz),
             h.num(m.omega),
             h.num(m.modal_mass),
-            m.normalisation,
         ]
         for i, m in enumerate(modes)
     ]
@@ -51,7 +51,6 @@ MODE_HEADERS = [
     "f (Hz)",
     "omega (rad/s)",
     "modal mass (kg)",
-    "normalisation",
 ]
 
 
@@ -103,7 +102,7 @@ def section_scene(build: Build) -> str:
             ],
             class_="meta",
         ),
-        h.details(f"every key of the scene ({len(rows)})", h.table(["key", "value", "meaning (unit)"], rows)),
+        h.details(f"every key of the scene ({len(rows)})", h.table(["key", "value (SI)", "meaning (unit)"], rows)),
     ]
     return h.section("scene", "The scene", parts)
 
@@ -209,7 +208,7 @@ def _reduction(build: Build, a: AnalysisResult) -> list[str]:
         ("stated in the scene", stated.tip_mass, stated.tip_stiffness),
         ("Eq. 2, continuous first mode", p.tip_mass_limit, p.tip_stiffness_limit),
         ("3D model", None if red3 is None else red3.m_reduced, None if red3 is None else red3.tip_stiffness),
-        (f"the chain: {chain.source}", chain.m_reduced, chain.tip_stiffness),
+        (f"the ROM's reduction: {chain.source}", chain.m_reduced, chain.tip_stiffness),
         (
             f"the paper's model uses (m_r: {r.tip_mass_source}, c1: {r.tip_stiffness_source})",
             r.tip_mass,
@@ -284,7 +283,9 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
     )
     if extra:
         parts.append(
-            h.details("3D model: mesh, axes, timings", h.table(["field", "value"], [[k, h.num(v)] for k, v in extra]))
+            h.details(
+                "3D model: mesh, axes, timings", h.table(["field", "value (SI)"], [[k, h.num(v)] for k, v in extra])
+            )
         )
     return parts
 
@@ -346,12 +347,12 @@ def section_paper(build: Build) -> str:
     printed = [r for r in a.paper_comparison if not is_finding(r)]
     rows, cls = [], []
     for r in a.paper_comparison:
-        where, _, ours = str(r.where).partition(OURS)
+        where, _, ours = plain(r.where).partition(OURS)
         note = getattr(r, "note", "") or ""
         if is_finding(r):
             note = h.Raw(h.esc("a finding on the paper's formulation: ") + h.link("see below", "paper-findings"))
         else:
-            note = note + _fe_note(build, r)
+            note = plain(note + _fe_note(build, r))
         rows.append(
             [
                 "*" if r.flag else "",
@@ -376,7 +377,16 @@ def section_paper(build: Build) -> str:
             f"{len(printed)} printed numbers); the last column gives the likely cause.",
         ),
         h.table(
-            ["", "quantity", "paper", "ours", "difference", "printed in", "ours computed on", "likely cause"],
+            [
+                "",
+                "quantity",
+                "paper (its unit)",
+                "ours (same unit)",
+                "difference",
+                "printed in",
+                "ours computed on",
+                "likely cause",
+            ],
             rows,
             row_classes=cls,
         ),

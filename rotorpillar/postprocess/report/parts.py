@@ -4,10 +4,11 @@ the tables of a run's JSON."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ... import records
 from .. import html as h
+from .page import model_name, plain
 from .state import Build
 
 if TYPE_CHECKING:
@@ -36,22 +37,29 @@ def animation_video(build: Build, key: str) -> list[str]:
     return [h.video(v.path, build.out, v.caption, v.poster)] if v else []
 
 
-def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
-    """A warning when an input was computed for another version of the scene.
+def differing_keys(
+    build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()
+) -> tuple[str, ...]:
+    """The scene keys (``section.key``) an input was computed with other values of.
     ``provenance``: what its command wrote beside the record, or None; ``ignore``: dotted
     keys its command set on purpose (the comparisons' record)."""
     if provenance is None or not isinstance(provenance.scene, dict):
-        return []
+        return ()
     now = records.to_builtins(build.scene.to_dict())
     then = provenance.scene
-    diffs = [
+    return tuple(
         f"{k}.{kk}"
         for k, v in now.items()
         if isinstance(v, dict)
         for kk in v
         if (not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk]) and f"{k}.{kk}" not in ignore
-    ]
-    if not diffs:
+    )
+
+
+def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
+    """A warning when an input was computed for another version of the scene."""
+    diffs = differing_keys(build, provenance, ignore)
+    if not diffs or provenance is None:
         return []
     return [
         h.tag(
@@ -91,10 +99,7 @@ def _peaks(mx: dict[str, float | None]) -> list[list]:
                 break
         else:
             groups.append([k, v, []])
-    return [
-        [f"largest |{PEAK_WORDS.get(k, k)}| (m)" + (f" = {', '.join(same)}" if same else ""), h.num(v)]
-        for k, v, same in groups
-    ]
+    return [[f"largest |{PEAK_WORDS[k]}| (m)", h.num(v)] for k, v, _ in groups if k in PEAK_WORDS]
 
 
 def key_results(run: RunRecord) -> str:
@@ -106,12 +111,14 @@ def key_results(run: RunRecord) -> str:
     rows = []
     if got.ok is False:
         rows.append(["FAILED: not a solution", "; ".join(got.failed_checks or ["the run reports ok: false"])])
-    rows.append(["model", h.num(run.model)])
+    rows.append(["model", model_name(run.model)])
+    pm = run.pillar_model
+    rows.append(["pillar modes", plain(pm.describe() + (f"; {pm.note}" if pm.note else ""))])
     for value, label in (
         (got.omega_final, "final speed (rad/s)"),
         (got.captured_at, "captured at (rad/s)"),
         (got.captured_resonance, "held by the resonance at (rad/s)"),
-        (got.speed_state, "speed at the end"),
+        (None if got.speed_state is None else got.speed_state.replace("_", " "), "speed at the end"),
     ):
         if value is not None:
             rows.append([label, h.num(value)])
@@ -122,19 +129,3 @@ def key_results(run: RunRecord) -> str:
         rows.append(["energy balance: relative error (-)", h.num(error, 3)])
     rows += _peaks(run.max_abs)
     return h.table(["", ""], rows)
-
-
-def run_table(result: Any) -> str:
-    """Every field of a record (or of its builtins) but the figures, as a table."""
-    meta = records.to_builtins(result)
-    keep = [
-        (k, v)
-        for k, v in h.flat_items(
-            {
-                k: v
-                for k, v in meta.items()
-                if k not in ("scene", "versions", "machine", "figures", "command", "scene_source", "overrides")
-            }
-        )
-    ]
-    return h.table(["field", "value"], [[k, h.num(v)] for k, v in keep])

@@ -77,12 +77,12 @@ HEADERS = [
     "omega (rad/s)",
     "crossed at t (s)",
     "Omega-dot (rad/s^2)",
-    "Omega-dot / omega^2",
+    "Omega-dot / omega^2 (-)",
     "2 nu^2 (quasi-static needs Omega-dot / omega^2 far below it)",
-    "crossing / decay time",
+    "crossing / decay time (-)",
     "transient peak near it (mm)",
     "a_max, averaging (mm)",
-    "peak / a_max",
+    "peak / a_max (-)",
 ]
 
 

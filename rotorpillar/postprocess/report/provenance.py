@@ -106,7 +106,7 @@ def section_provenance(build: Build) -> str:
         )
     ]
     parts.append(h.tag("h3", "Timings (s)"))
-    parts.append(h.table(["result", "total", "stages", "written"], _timing_rows(build)))
+    parts.append(h.table(["result", "total (s)", "stages (s)", "written"], _timing_rows(build)))
     parts.append(h.tag("h3", "Versions"))
     parts.append(h.table(["package", "version"], [[k, val] for k, val in versions().items()]))
     parts.append(h.tag("h3", "Machine"))

@@ -20,6 +20,14 @@ def _pct(x) -> str:
     return "-" if not isinstance(x, (int, float)) or not math.isfinite(x) else f"{100 * abs(x):.2g} %"
 
 
+#: The loads of a participation table in words.
+LOAD_WORDS = {
+    "base_x": "the ground's acceleration",
+    "plate_x": "the shaft's force along X",
+    "plate_z": "the shaft's force along Z",
+}
+
+
 def reference_block(ref: FullOrderReference | None) -> list[str]:
     """What the 3D reference is, its own error, and the participation of the loaded modes."""
     if ref is None:
@@ -31,7 +39,7 @@ def reference_block(ref: FullOrderReference | None) -> list[str]:
         rows = [
             [
                 m.index,
-                m.kind + (f" n = {m.n_circumferential}" if m.kind == "ovalling" else ""),
+                m.kind.replace("_", " ") + (f" n = {m.n_circumferential}" if m.kind == "ovalling" else ""),
                 h.num(m.omega, 5),
                 "yes" if m.in_band else "no",
                 *[h.num(m.shares.get(k), 2) for k in loads],
@@ -43,7 +51,15 @@ def reference_block(ref: FullOrderReference | None) -> list[str]:
             h.details(
                 f"participation of the loaded tube's modes ({part.source}, band up to {h.num(part.band_top, 4)} rad/s)",
                 h.table(
-                    ["mode", "kind", "omega (rad/s)", "in band", *[f"share: {k}" for k in loads], "takes part"], rows
+                    [
+                        "mode",
+                        "kind",
+                        "omega (rad/s)",
+                        "in band",
+                        *[f"share of {LOAD_WORDS.get(k, k)} (-)" for k in loads],
+                        "takes part",
+                    ],
+                    rows,
                 ),
             )
         )

@@ -11,6 +11,7 @@ from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..geometry import ModeSet
 from ..readers import INPUTS, Simulation
+from .page import model_name
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, say
 
 #: The animations the report makes (:func:`animated_runs`).
@@ -134,11 +135,11 @@ def render_comparisons(build: Build) -> None:
         damping = spec.damping
         model, modes = system_modes(c)
         # the modes the horizontal record excites: the coupled system's, in X
-        marks: list = [
-            (f"mode {m['index']}", m["period"]) for m in modes if str(m["direction"]).upper() == "X"
-        ] or list(spec.mode_periods)
+        marks: list = [(f"mode {m.index}", m.period) for m in modes if m.direction.upper() == "X"] or list(
+            spec.mode_periods
+        )
         what = (
-            f"the coupled rotor-pillar modes of the {model} model in the record's direction "
+            f"the coupled rotor-pillar modes of the {model_name(model)} in the record's direction "
             "(horizontal, in the rotor's plane)"
             if modes
             else "the pillar's modal periods"

@@ -10,7 +10,7 @@ from ..directions import direction
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND
 from .compare_section import comparison_block
 from .models import model_views, resonance_table
-from .parts import animation_video, failure, figures_of, key_results, product_image, run_table, scene_differs
+from .parts import animation_video, failure, figures_of, key_results, product_image, scene_differs
 from .passage import passage_block
 from .state import Build
 
@@ -95,10 +95,10 @@ def _resonance_rows(resonances) -> str:
             "I_i (kg)",
             "f_i (m/s^2)",
             "2n_i (1/s)",
-            "nu_i",
+            "nu_i (-)",
             "a_max (m)",
             "dL_max (N*m)",
-            "dL_max/Mc",
+            "dL_max/Mc (-)",
             "critical slope (N*m*s)",
             "critical e (m)",
         ],
@@ -185,11 +185,6 @@ def section_runs(build: Build) -> str:
         parts += _own_charts(build, case)
         parts += failure(build, f"animation_{case}")
         parts += animation_video(build, f"animation_{case}")
-        parts.append(
-            h.details(f"simulate_{case}.json: every field", run_table(sim.run))
-            if sim.run is not None
-            else h.tag("p", "no JSON summary", class_="meta")
-        )
     if not_run and build.simulations:
         said = ["Not run by this job: "]
         for k, case in enumerate(not_run):
