@@ -263,7 +263,7 @@ def test_an_input_of_another_shape_is_named_damaged(tmp_path):
     # msgspec names the missing field (rotorpillar.records.read)
     assert "analyze.json is damaged (ValueError: analyze.json: Object missing required field `drive`)" in text
     assert "rebuild it with <code>rotorpillar analyze paper" in text
-    assert "Modal validation" in text and "Versions, machine and timings" in text
+    assert "Appendix B: modal validation" in text and "Appendix J: versions, machine and timings" in text
     assert "drive" in report["damaged"]["analyze"] and report["failures"]["input analyze.json"]
 
 

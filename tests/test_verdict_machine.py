@@ -43,10 +43,10 @@ def out(tmp_path_factory):
 def test_machine_checks_in_the_summary(out):
     scene = load_scene("paper")
     a = records.read(out / "analyze.json", AnalysisResult)
-    m = a.machine
+    m = a.machine_checks
     assert m is not None and m.running_speed == a.drive.runup_speed
     s = engineering_summary(scene, out)
-    assert s.machine == m and "analyze.json" in s.inputs
+    assert s.machine_checks == m and "analyze.json" in s.inputs
     by = {c.name: c for c in s.check_details if c.case and c.case.startswith("running at")}
     b = by["balance grade (ISO 21940-11)"]
     assert b.demand == pytest.approx(1e3 * scene.rotor.eccentricity * m.running_speed, rel=1e-12)

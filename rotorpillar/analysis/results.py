@@ -212,5 +212,5 @@ class AnalysisResult(Record):
     tower: TowerFindings | None = None
     """a tower (cans, a flexible foundation, or published numbers of its own): its first
     frequencies clamped and on its foundation, the published ones beside ours"""
-    machine: MachineChecks | None = None
-    """the machine's checks on the headline ROM: balance grade, vibration, modal mass (.machine)"""
+    machine_checks: MachineChecks | None = None
+    """the machine's checks on the headline ROM: balance grade, vibration, modal mass (analyze.json `machine_checks`; `machine` is the computer it ran on)"""

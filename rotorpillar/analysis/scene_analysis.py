@@ -327,5 +327,5 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         spatial=spatial,
         drive_reaction=reaction,
         tower=tower,
-        machine=machine_checks(scene, rom_of(scene, chain, system.modes), chain.modes, drive.runup_speed),
+        machine_checks=machine_checks(scene, rom_of(scene, chain, system.modes), chain.modes, drive.runup_speed),
     )

@@ -59,7 +59,7 @@ def summary(result: AnalysisResult) -> str:
     )
     for r in result.resonances:
         lines.append("  " + r.statement)
-    lines += machine_text(result.machine)
+    lines += machine_text(result.machine_checks)
     lines += _spatial_lines(result)
     if result.tower is not None:
         lines += tower_lines(result.tower)

@@ -2,7 +2,7 @@
 
 Read from what the stages wrote (``verdict.summary`` collects them):
 
-- analyze.json's ``machine`` block (rotorpillar.analysis.machine, on the
+- analyze.json's ``machine_checks`` block (rotorpillar.analysis.machine, on the
   headline ROM at the running speed): the balance grade against
   ``rotor.balance_grade`` (ISO 21940-11), the shaft's steady peak-to-peak
   against API 617, the top's r.m.s. velocity against ISO 20816-3's B/C
@@ -50,7 +50,7 @@ class FoundationLoads(Record):
 
 
 def machine_check_rows(m: MachineChecks) -> list[Check]:
-    """The checks of analyze.json's ``machine`` block."""
+    """The checks of analyze.json's ``machine_checks`` block."""
     out = []
     speed = None if m.running_speed is None else f"running at {m.running_speed:.4g} rad/s"
     b, s, h = m.balance, m.shaft, m.housing
@@ -63,7 +63,7 @@ def machine_check_rows(m: MachineChecks) -> list[Check]:
             None if b is None else b.required,
             "modal",
             speed,
-            "analyze.json: machine.balance; G = e Omega (rotor.eccentricity at the running speed) "
+            "analyze.json: machine_checks.balance; G = e Omega (rotor.eccentricity at the running speed) "
             "against rotor.balance_grade"
             + ("" if b is None else f" ({b.grade_class or 'beyond G 4000'} against G {b.required:g}; {b.clause})"),
         )
@@ -77,7 +77,7 @@ def machine_check_rows(m: MachineChecks) -> list[Check]:
             None if s is None else s.limit,
             "modal",
             speed,
-            "analyze.json: machine.shaft; the steady unbalance response's shaft orbit relative to the "
+            "analyze.json: machine_checks.shaft; the steady unbalance response's shaft orbit relative to the "
             "pillar's top, peak-to-peak along its major axis"
             + ("" if s is None else f", at {s.speed_rpm:.4g} rpm; {s.clause}"),
         )
@@ -91,7 +91,7 @@ def machine_check_rows(m: MachineChecks) -> list[Check]:
             None if h is None else h.limit,
             "modal",
             speed,
-            "analyze.json: machine.housing; the pillar top's steady r.m.s. velocity in the rotor's plane "
+            "analyze.json: machine_checks.housing; the pillar top's steady r.m.s. velocity in the rotor's plane "
             "against the zone B/C boundary" + ("" if h is None else f" (zone {h.zone or '-'}; {h.clause})"),
         )
     )
@@ -105,7 +105,7 @@ def machine_check_rows(m: MachineChecks) -> list[Check]:
             f.fraction_kept,
             "modal",
             "analyze: the headline ROM",
-            f"analyze.json: machine.force_rom; {f.modes_kept} pillar mode(s) and the rotor carry "
+            f"analyze.json: machine_checks.force_rom; {f.modes_kept} pillar mode(s) and the rotor carry "
             f"{100 * f.fraction_kept:.1f} % of {f.total_mass:.5g} kg along X; demand = the share "
             f"EN 1998-1 4.3.3.3.1 requires, capacity = the share there is; "
             + (f"{f.modes_needed} mode(s) reach it" if f.modes_needed else "the modes computed do not reach it"),
@@ -134,7 +134,7 @@ def run_mass_rows(m: MachineChecks, runs: list) -> list[Check]:
                 "modal",
                 rf.label,
                 f"{rf.file}: internal_forces.modes = {forces.modes}, their share of the mass from "
-                "analyze.json's machine.force_rom; demand = the share required, capacity = the share kept",
+                "analyze.json's machine_checks.force_rom; demand = the share required, capacity = the share kept",
             )
         )
     return out

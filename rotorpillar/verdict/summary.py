@@ -84,7 +84,7 @@ class EngineeringSummary(Record):
     """the checks without a capacity or a demand, and what to state or run"""
     inputs: tuple[str, ...]
     """the files read"""
-    machine: MachineChecks | None = None
+    machine_checks: MachineChecks | None = None
     """analyze.json's machine checks: balance grade, vibration at speed, modal mass (verdict.machine)"""
     effective_masses: tuple[EffectiveMassTable, ...] = ()
     """the loaded tube's 3D modes' effective masses along x, y, z (modal.json)"""
@@ -485,7 +485,11 @@ def _read_machine(out: Path) -> MachineChecks | None:
     from ..analysis.results import AnalysisResult
 
     try:
-        return records.read(out / "analyze.json", AnalysisResult).machine if (out / "analyze.json").is_file() else None
+        return (
+            records.read(out / "analyze.json", AnalysisResult).machine_checks
+            if (out / "analyze.json").is_file()
+            else None
+        )
     except (ValueError, OSError):  # damaged: its checks are not assessed
         return None
 
