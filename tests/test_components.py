@@ -72,3 +72,19 @@ def test_components_refusals(tmp_path, argv, words):
     p = cli("compare", "paper", *argv, "--out", out)
     assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1 and words in p.stderr
     assert not out.exists()
+
+
+def test_a_planar_transient_says_what_it_leaves_out():
+    """simulate and compare's transients apply one component on the planar ROM: a scene asking for
+    more components, or for the spatial model, is told so in the run's warnings (JSON and stderr)."""
+    from rotorpillar.transients.model_run import planar_transient_warnings
+
+    plain = load_scene("paper", QUAKE)
+    assert planar_transient_warnings(plain, "earthquake", "modal") == []
+    three = load_scene("paper", QUAKE + ["excitation.components=3", "excitation.angle=30"])
+    (w,) = planar_transient_warnings(three, "earthquake", "fem3d")
+    assert "first component alone" in w and "angle ignored" in w and "--components 3" in w
+    assert planar_transient_warnings(three, "runup", "modal") == []
+    spatial = load_scene("paper", ["modal_model.planes=spatial"])
+    (w,) = planar_transient_warnings(spatial, "runup", "modal")
+    assert "planar ROM" in w
