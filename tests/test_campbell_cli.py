@@ -45,3 +45,48 @@ def test_bad_speeds_exit_2_on_one_line(tmp_path, speeds):
 def test_fem3d_refused_while_absent(tmp_path):
     p = cli("campbell", "paper", "--model", "fem3d", "--set", "modal_model.source=beam", "--out", tmp_path)
     assert p.returncode == 2 and "not in this build yet" in p.stderr
+
+
+def test_both_puts_the_3d_diagram_beside_the_roms(tmp_path):
+    """--model both (the run's campbell stage): campbell.json is the ROM's diagram with the 3D
+    model's in ``fem3d`` and each ROM critical speed against the 3D's in ``differences``.  No
+    study on disk: the chain's mesh is the scene's, so no warning of a cheaper mesh.  The two models' first
+    bending critical speed in the rotor's plane agree within 2 %: the ROM here takes the Euler
+    beam's modes (modal_model.source = beam), the 3D tube on paper's [mesh] sits ~0.1 % above
+    the converged 3D (tests/test_fem3d_spatial.py) and the beam's shear-free stiffness of this
+    slender tube (H / D ~ 20) differs from the 3D by well under 1 %; 2 % leaves room for both."""
+    pytest.importorskip("dolfinx")
+    p = cli(
+        "campbell",
+        "paper",
+        "--model",
+        "both",
+        "--fem3d-mesh",
+        "scene",
+        "--fem3d-speeds",
+        "3",
+        "--set",
+        "modal_model.source=beam",
+        "--speeds",
+        "0:60:31",
+        "--out",
+        tmp_path,
+    )
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "campbell.json").read_text())
+    assert doc["model"] == "modal" and doc["fem3d"]["model"] == "fem3d"
+    assert len(doc["fem3d"]["speeds"]) == 3 and doc["fem3d"]["speeds"][-1] == 60.0
+    assert len(doc["differences"]) == len(doc["critical_speeds"])
+    assert not any("scene's [mesh]" in w for w in doc["warnings"]) and "scene's [mesh]" not in p.stderr
+    rom = next(c for c in doc["critical_speeds"] if c["label"].startswith("bending in the rotor's plane 1"))
+    d = next(x for x in doc["differences"] if x["label"] == rom["label"])
+    assert d["fem3d_label"].startswith("bending in the rotor's plane 1")
+    assert abs(d["relative"]) < 0.02 and d["modal"] == rom["speed"]
+    assert_real_png(tmp_path / "campbell.png")
+
+
+def test_bad_fem3d_speeds_exit_2_on_one_line(tmp_path):
+    out = tmp_path / "out"
+    p = cli("campbell", "paper", "--model", "both", "--fem3d-speeds", "1", "--out", out)
+    assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1 and "--fem3d-speeds" in p.stderr
+    assert not out.exists()

@@ -31,6 +31,9 @@ def test_the_stages_follow_the_chain():
     # the paper's own earthquake runs on the paper's model, the scene's run-up on the headline model
     quake = next(st for st in RUN_STAGES if st[0] == "simulate --case earthquake")
     assert tuple(quake[3]) == ("--model", "paper")
+    # the Campbell diagram reads the chain's modes (cached by modal) and puts the 3D beside the ROM
+    assert _wave("campbell") > _wave("modal")
+    assert "both" in next(st for st in RUN_STAGES if st[0] == "campbell")[3]
 
 
 def _job(tmp_path, name: str, seconds: float, code: int = 0):

@@ -100,3 +100,31 @@ def test_report_writes_summary_and_opens_with_the_verdict(out):
     assert summary.index("Verdict:") < summary.index("</section>")
     assert "base stress vs shell buckling" in summary and "earthquake (elcentro)" in summary
     assert '<section id="forces">' in html and '<section id="unbalance">' in html
+
+
+def test_campbell_headlines_pick_the_first_of_each_whirl_per_model(tmp_path):
+    """summary.json's Campbell headlines: the lowest critical speed of each whirl and the lowest
+    the static unbalance excites, for the ROM and the 3D model beside it; None where none."""
+    from rotorpillar.provenance import write_result
+    from rotorpillar.records import replace
+    from rotorpillar.reduced.campbell import CriticalSpeed, campbell_example
+
+    rom = campbell_example()
+    # a 3D diagram whose crossings are all lines (no whirl): its forward and backward are None
+    fem3d = replace(
+        rom,
+        model="fem3d",
+        critical_speeds=(CriticalSpeed(29.0, "bending 1", "none", "static unbalance"),),
+    )
+    head = {"command": "campbell", "scene_source": "paper", "overrides": [], "scene": {"name": "paper"}}
+    write_result(tmp_path / "campbell.json", replace(rom, fem3d=fem3d), head)
+    s = engineering_summary(load_scene("paper"), tmp_path)
+    h = {x.key: x for x in s.headlines}
+    assert "campbell.json" in s.inputs
+    # campbell_example: backward at 30 / 1.05, forward (static unbalance) at 30 / 0.95
+    assert h["first_backward_critical_speed_modal"].value == pytest.approx(30 / 1.05)
+    assert h["first_forward_critical_speed_modal"].value == pytest.approx(30 / 0.95)
+    assert h["first_unbalance_critical_speed_modal"].value == pytest.approx(30 / 0.95)
+    assert h["first_forward_critical_speed_fem3d"].value is None
+    assert "none up to 100.0 rad/s" in h["first_forward_critical_speed_fem3d"].text
+    assert h["first_unbalance_critical_speed_fem3d"].value == 29.0

@@ -33,6 +33,7 @@ FILES = (
     ("converge.json", "rotorpillar.commands.converge", "ConvergeRun"),
     ("simulate_<case>[_<model>].json", "rotorpillar.transients.model_run", "RunRecord"),
     ("compare_<case>.json", "rotorpillar.transients.compare", "CompareResult"),
+    ("compare_earthquake_components.json", "rotorpillar.transients.components", "ComponentsComparison"),
     ("integrators.json", "rotorpillar.transients.integrator_study", "IntegratorStudy"),
     ("harmonic.json", "rotorpillar.verdict.harmonic", "HarmonicResult"),
     ("campbell.json", "rotorpillar.reduced.campbell", "CampbellDiagram"),

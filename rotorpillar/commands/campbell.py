@@ -1,12 +1,18 @@
 """`rotorpillar campbell`: the Campbell diagram (campbell.json, campbell.png).
 
-``rotorpillar campbell [SCENE] [--model modal|fem3d] [--speeds START:STOP:N]``
+``rotorpillar campbell [SCENE] [--model modal|fem3d|both] [--speeds START:STOP:N]``
 
 - ``--model modal`` (default): the spatial reduced model
   (rotorpillar.reduced.spatial_scene.scene_campbell) on the chain's pillar modes
   in every direction (the 3D ones where the chain has them, else the 1D beams);
 - ``--model fem3d``: the 3D model with the rotor on its top
-  (rotorpillar.fem3d.campbell.campbell_fem3d).
+  (rotorpillar.fem3d.campbell.campbell_fem3d);
+- ``--model both`` (the run's campbell stage): the ROM's diagram with the 3D
+  model's beside it (campbell.json's ``fem3d`` and ``differences``; one chart),
+  the 3D at ``--fem3d-speeds`` speeds over the same range (its critical speeds
+  come from the gyroscopic pencil, exactly, whatever the speeds) on the chain's
+  chosen mesh, or the scene's [mesh] with ``--fem3d-mesh scene`` (said in the
+  JSON's warnings and on stderr when the two differ).
 
 Speeds: START:STOP:N rad/s, default 0 to the band's top (modal_model.band_factor x
 the drive's free speed), 151 speeds.  The running speed is the planar ROM's stable
@@ -26,8 +32,13 @@ import numpy as np
 from ..errors import InputError
 from . import Done, is_root_rank, out_dir, progress
 
-MODELS = ("modal", "fem3d")
+MODELS = ("modal", "fem3d", "both")
 DEFAULT_SPEEDS = 151
+#: the 3D model's speeds beside the ROM's (--model both): a branch's tracking needs a few, the
+#: critical speeds none (the pencil gives them exactly); each costs ~2-7 s on 24k-94k DOFs
+DEFAULT_FEM3D_SPEEDS = 5
+#: where the 3D model of --model both is meshed
+FEM3D_MESHES = ("chain", "scene")
 
 
 def add_arguments(p) -> None:
@@ -40,6 +51,26 @@ def add_arguments(p) -> None:
         metavar="START:STOP:N",
         help=f"rotor speeds (rad/s): N from START to STOP (default 0 to the band's top, {DEFAULT_SPEEDS})",
     )
+    p.add_argument(
+        "--fem3d-speeds",
+        type=int,
+        default=DEFAULT_FEM3D_SPEEDS,
+        metavar="N",
+        help=f"--model both: the 3D model's speeds over the same range (default {DEFAULT_FEM3D_SPEEDS}, at least 2)",
+    )
+    p.add_argument(
+        "--fem3d-mesh",
+        choices=FEM3D_MESHES,
+        default="chain",
+        help="--model both: the 3D model on the chain's chosen mesh (default) or the scene's [mesh] (cheaper)",
+    )
+
+
+def preflight(scene: Scene, args) -> None:
+    """--fem3d-speeds in range (one line, before any work)."""
+    n = getattr(args, "fem3d_speeds", DEFAULT_FEM3D_SPEEDS)
+    if not 2 <= n <= 100_000:
+        raise InputError(f"--fem3d-speeds {n}: must be an integer from 2 to 100000")
 
 
 def parse_speeds(text: str | None, top: float) -> np.ndarray:
@@ -67,7 +98,8 @@ def campbell_command(scene: Scene, args, timings) -> Done:
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "runup", None)
     speeds = parse_speeds(getattr(args, "speeds", None), top)
     model = getattr(args, "model", "modal")
-    if model == "fem3d":
+    preflight(scene, args)
+    if model in ("fem3d", "both"):
         _fem3d_function()  # refused now, before any work, when the 3D side is absent
     out = out_dir(scene, args)
     with timings("pillar_modes"):
@@ -77,7 +109,7 @@ def campbell_command(scene: Scene, args, timings) -> Done:
     run = running[-1] if running else None
     progress(f"campbell {scene.name}: {len(speeds)} speeds, {speeds[0]:g} ... {speeds[-1]:g} rad/s, model {model}")
     with timings("campbell"):
-        if model == "modal":
+        if model != "fem3d":
             from ..reduced.spatial_scene import scene_campbell, scene_spatial_modes
 
             diagram = scene_campbell(
@@ -85,12 +117,52 @@ def campbell_command(scene: Scene, args, timings) -> Done:
             )
         else:
             diagram = _fem3d(scene, speeds, run)
+    if model == "both":
+        with timings("campbell_fem3d"):
+            diagram = _beside(scene, diagram, speeds, run, out, args)
     if is_root_rank():
         from ..postprocess.campbell_chart import campbell_diagram_chart
 
+        what = "the ROM against the 3D model" if model == "both" else model
         with timings("chart"):
-            campbell_diagram_chart(out / "campbell.png", diagram, f"{scene.name}: Campbell diagram ({model})")
+            campbell_diagram_chart(out / "campbell.png", diagram, f"{scene.name}: Campbell diagram ({what})")
     return Done(diagram, summary_text(diagram))
+
+
+def _beside(scene: Scene, rom: CampbellDiagram, speeds, running, out, args) -> CampbellDiagram:
+    """The ROM's diagram with the 3D one beside it (--model both): the 3D at --fem3d-speeds
+    speeds over the ROM's range, on the chain's chosen mesh or the scene's [mesh]."""
+    from ..chain import choose
+    from ..fem3d.campbell import estimate
+    from ..records import replace
+    from ..reduced.campbell import critical_speed_differences
+
+    chosen = choose(scene, out).solid_mesh
+    which = getattr(args, "fem3d_mesh", "chain")
+    mesh = chosen if which == "chain" else scene.mesh
+    n = getattr(args, "fem3d_speeds", DEFAULT_FEM3D_SPEEDS)
+    speeds3 = np.linspace(float(speeds[0]), float(speeds[-1]), n)
+    warnings: tuple[str, ...] = ()
+    if mesh != chosen:
+        mine, theirs = estimate(scene, n, mesh), estimate(scene, n, chosen)
+        warnings = (
+            f"the 3D Campbell diagram is on the scene's [mesh] (~{mine.dofs:,} DOFs), not on the chain's chosen "
+            f"mesh (~{theirs.dofs:,} DOFs, {chosen.elements_around} x {chosen.elements_along} x "
+            f"{chosen.elements_through}) that the ROM's pillar modes come from: that one costs ~4x the time (the "
+            "run's budget); its frequencies may differ from the ROM's by that mesh's error as well (see "
+            "convergence.json); `rotorpillar campbell --model both --fem3d-mesh chain` computes it there",
+        )
+        for w in warnings:
+            progress("warning: " + w)
+    fem3d = _fem3d(scene, speeds3, running, mesh)
+    fem3d = replace(fem3d, warnings=fem3d.warnings + warnings)
+    return replace(
+        rom,
+        fem3d=fem3d,
+        differences=critical_speed_differences(rom, fem3d),
+        description=rom.description + "; beside it the 3D model's (fem3d): " + fem3d.description,
+        warnings=rom.warnings + warnings,
+    )
 
 
 def _fem3d_function():
@@ -106,9 +178,11 @@ def _fem3d_function():
     return campbell_fem3d
 
 
-def _fem3d(scene: Scene, speeds, running):
+def _fem3d(scene: Scene, speeds, running, mesh=None):
     campbell_fem3d = _fem3d_function()
-    return campbell_fem3d(scene, speeds, band_top=float(speeds[-1]), running_speed=running, progress=progress)
+    return campbell_fem3d(
+        scene, speeds, band_top=float(speeds[-1]), mesh=mesh, running_speed=running, progress=progress
+    )
 
 
 def summary_text(d: CampbellDiagram) -> str:
@@ -126,6 +200,23 @@ def summary_text(d: CampbellDiagram) -> str:
         none = "no peak" if d.model == "modal" else "AF not read (the unbalance response is `rotorpillar harmonic`'s)"
         af = none if c.amplification_factor is None else f"AF {c.amplification_factor:.3g}"
         lines.append(f"  {c.speed:9.3f} rad/s  {c.label:<40} {c.whirl:<9} excited by {c.excited_by}; {af}")
+    from ..reduced.campbell import first_critical
+
+    for name, dd in (("ROM", d), ("3D", d.fem3d)):
+        if dd is None:
+            continue
+        for whirl in ("forward", "backward"):
+            first = first_critical(dd, whirl)
+            lines.append(
+                f"first {whirl} critical speed ({name}): "
+                + ("none in the range" if first is None else f"{first.speed:.3f} rad/s ({first.label})")
+            )
+    if d.fem3d is not None:
+        lines.append(f"beside it, the 3D model's ({len(d.fem3d.speeds)} speeds): {d.fem3d.description}")
+        for x in d.differences:
+            theirs = "none" if x.fem3d is None else f"{x.fem3d:9.3f} rad/s ({x.fem3d_label})"
+            rel = "" if x.relative is None else f", {100 * x.relative:+.2f} %"
+            lines.append(f"  ROM {x.modal:9.3f} rad/s {x.label:<35} 3D {theirs}{rel}")
     for w in d.warnings:
         lines.append("  warning: " + w)
     return "\n".join(lines)

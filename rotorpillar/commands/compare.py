@@ -6,6 +6,13 @@ rotorpillar.transients.compare runs each model as `simulate` does, on the
 chain's pillar model (writing ``compare_<case>_<model>.{json,npz,csv,png}``)
 over one common duration, and writes ``compare_<case>.json`` and
 ``compare_<case>.png``.
+
+``--case earthquake --components 2|3``: the earthquake in that many components
+(the scene's record and its ``second_record``, ``vertical_record``) on the
+spatial ROM over the whole record against the 3D full order over
+``full_order.earthquake_duration`` from the start, the base reactions in six
+components (rotorpillar.transients.components); writes
+``compare_earthquake_components.json``.
 """
 
 from __future__ import annotations
@@ -38,6 +45,14 @@ def add_arguments(p) -> None:
         "run; each run cached under cache/): compare_earthquake.json's pareto",
     )
     p.add_argument(
+        "--components",
+        type=int,
+        choices=(2, 3),
+        default=None,
+        help="earthquake: the record in 2 or 3 components (sets excitation.components) on the spatial ROM "
+        "against the 3D full order, six base reactions: compare_earthquake_components.json",
+    )
+    p.add_argument(
         "--workers",
         type=int,
         default=None,
@@ -57,6 +72,14 @@ def preflight(scene: Scene, args) -> None:
     from . import launched_ranks
     from .simulate import check_run
 
+    if getattr(args, "components", None) is not None:
+        if args.case != "earthquake":
+            raise InputError(f"--components {args.components}: only with --case earthquake")
+        if scene.excitation.kind != "record":
+            raise InputError(
+                f'--components {args.components}: needs excitation.kind = "record" (the paper\'s pulse has one component)'
+            )
+        return
     models = parse_models(args.models, args.case)
     motion = scene_motion(scene) if args.case == "earthquake" else None
     duration, _ = common_duration(scene, args.case, models, motion)
@@ -74,6 +97,8 @@ def compare_command(scene: Scene, args, timings):
     from . import EXIT_CHECKS, Done, is_root_rank, launched_ranks, mpi_progress, out_dir
 
     preflight(scene, args)
+    if getattr(args, "components", None) is not None:
+        return _components(scene, args, timings)
     case = args.case
     models = parse_models(args.models, case)
     progress = mpi_progress()
@@ -122,6 +147,53 @@ def compare_command(scene: Scene, args, timings):
             progress(f"warning: {warning}")
     status = EXIT_CHECKS if any(not p.ok for p in res.per_model.values()) else 0
     return Done(res, _summary(scene, res), status)
+
+
+#: the multi-component comparison's JSON (stage_stem of `run`)
+COMPONENTS_STEM = "compare_earthquake_components"
+
+
+def _components(scene: Scene, args, timings):
+    """--components: the spatial ROM against the 3D full order under 2 or 3 components."""
+    from pathlib import Path
+
+    from ..chain import resolve
+    from ..provenance import write_result
+    from ..reduced.ground3d import scene_spatial_motion
+    from ..scene import override
+    from ..transients.components import compare_components
+    from . import Done, is_root_rank, mpi_progress, out_dir
+
+    scene = override(scene, [f"excitation.components={args.components}"])
+    progress = mpi_progress()
+    out = out_dir(scene, args)
+    with timings("pillar_modes"):
+        chain = resolve(scene, out, progress=progress, motion=scene_spatial_motion(scene.excitation).components[0])
+    with timings("compare"):
+        r = compare_components(scene, chain, progress=progress)
+    for w in r.warnings:
+        progress(f"warning: {w}")
+    if is_root_rank():
+        head = {
+            "command": "compare",
+            "scene_source": str(args.scene),
+            "overrides": list(args.overrides),
+            "scene": scene.to_dict(),
+        }
+        write_result(Path(out) / f"{COMPONENTS_STEM}.json", r, head, dict(timings))
+    lines = [
+        f"rotorpillar compare {scene.name}: earthquake in {len(r.components)} components "
+        f"({', '.join(r.components)}); the spatial ROM over {r.modal_duration:.3g} s ({r.modal_seconds:.3g} s), "
+        f"the 3D full order over {r.window:g} s ({r.fem3d_seconds or 0:.3g} s)",
+        f"  {'peak':<14} {'ROM (record)':>14} {'ROM (window)':>14} {'3D (window)':>14}",
+    ]
+    for p in (*r.peaks, r.sum_of_maxima, *r.peak_tip):
+        f3 = "-" if p.fem3d is None else f"{p.fem3d:14.5g}"
+        rel = "" if p.relative is None else f"  {100 * p.relative:+.1f} %"
+        lines.append(f"  {p.name:<14} {p.modal:14.5g} {p.modal_window:14.5g} {f3:>14} {p.unit}{rel}")
+    lines += [f"  WARNING: {w}" for w in r.warnings]
+    lines.append(f"  wrote {COMPONENTS_STEM}.json")
+    return Done(r, "\n".join(lines))
 
 
 def _summary(scene: Scene, r: CompareResult) -> str:

@@ -7,7 +7,10 @@ unbalance excites them; around the running speed, API 684's bands: the speeds a
 critical speed must keep clear of, N_run (1 - SM_below) to N_run (1 + SM_above),
 for the most demanding AF (infinite: 17 % below, 27 % above) and, darker, for
 each critical speed's own AF where the unbalance response shows its peak.  The
-labels sit off the lines (style.place_labels).
+labels sit off the lines (style.place_labels).  A diagram with the 3D model's
+beside it (its ``fem3d``): the 3D branches in grey, thin, a cross at each of
+its speeds (their whirl by the same line styles), its critical speeds as black
+crosses, the legend naming the ROM and the 3D model apart.
 """
 
 from __future__ import annotations
@@ -56,6 +59,17 @@ def campbell_diagram_chart(path, diagram, title: str = "", size=(1000, 680)) -> 
             near[0]["text"] += ", " + b.label
         else:
             labels.append(dict(xy=at, text=b.label, color=colour, fontsize=7, ha="right", offset=(-4, 3)))
+    ref = getattr(diagram, "fem3d", None)
+    if ref is not None:
+        rs = np.asarray(ref.speeds, dtype=float)
+        for b in ref.modes:
+            if float(np.min(b.frequency)) > 1.15 * top:
+                continue
+            for x, y, w in _segments(rs, np.asarray(b.frequency), b.whirl):
+                (ln,) = ax.plot(x, y, color="#7f7f7f", ls=WHIRL_STYLE.get(w, "-"), lw=0.8, marker="x", ms=4)
+                lines.append(ln)
+        for c in ref.critical_speeds:
+            ax.plot([c.speed], [c.speed], "x", ms=8, mew=1.5, color="k", zorder=6)
     (one,) = ax.plot([0.0, top], [0.0, top], color="k", lw=1.0, label="1x (the unbalance)")
     lines.append(one)
     run = diagram.running_speed
@@ -89,6 +103,10 @@ def campbell_diagram_chart(path, diagram, title: str = "", size=(1000, 680)) -> 
     ax.plot([], [], color="#444444", ls=":", label="no whirl (a line)")
     ax.plot([], [], "o", mfc="#d62728", mec="#d62728", label="critical speed, excited")
     ax.plot([], [], "o", mfc="white", mec="#d62728", label="critical speed, not excited")
+    if ref is not None:
+        ax.plot([], [], color="#444444", lw=1.3, label="ROM (colours, labelled)")
+        ax.plot([], [], color="#7f7f7f", lw=0.8, marker="x", ms=4, label=f"3D model ({len(ref.speeds)} speeds)")
+        ax.plot([], [], "x", ms=8, mew=1.5, color="k", label="3D critical speed (its gyroscopic pencil)")
     if run is not None:
         ax.fill_between([], [], color="#d62728", alpha=0.15, label="API 684: speeds to keep clear (AF infinite)")
     ax.set_xlim(0.0 if speeds[0] <= 0.05 * top else speeds[0], top)

@@ -94,6 +94,63 @@ class CampbellDiagram(Record, eq=False):
     """the model, in words"""
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
+    fem3d: CampbellDiagram | None = None
+    """the 3D model's diagram beside this one (``rotorpillar campbell --model both``, the run's
+    campbell stage); None otherwise"""
+    differences: tuple[CriticalSpeedDifference, ...] = ()
+    """each of this diagram's critical speeds against the 3D one's nearest of the same exciter
+    (with ``fem3d`` only)"""
+
+
+class CriticalSpeedDifference(Record):
+    """One critical speed of the ROM against the 3D model's nearest one excited the same way."""
+
+    label: str
+    """the ROM's branch"""
+    excited_by: str
+    """what excites both (CriticalSpeed.excited_by)"""
+    modal: float
+    """the ROM's critical speed (rad/s)"""
+    fem3d: float | None
+    """the 3D model's nearest critical speed of the same exciter (rad/s); None: it has none"""
+    fem3d_label: str | None
+    """its branch"""
+    relative: float | None
+    """(modal - fem3d) / fem3d (-)"""
+
+
+def critical_speed_differences(modal: CampbellDiagram, fem3d: CampbellDiagram) -> tuple[CriticalSpeedDifference, ...]:
+    """Each of ``modal``'s critical speeds against ``fem3d``'s nearest one with the same
+    ``excited_by`` (the labels differ between the models: the 3D names a branch's whirl).
+
+    >>> d = campbell_example()
+    >>> [round(x.relative, 3) for x in critical_speed_differences(d, d)]
+    [0.0, 0.0]
+    """
+    out = []
+    for c in modal.critical_speeds:
+        same = [r for r in fem3d.critical_speeds if r.excited_by == c.excited_by]
+        near = min(same, key=lambda r: abs(r.speed - c.speed), default=None)
+        out.append(
+            CriticalSpeedDifference(
+                c.label,
+                c.excited_by,
+                c.speed,
+                None if near is None else near.speed,
+                None if near is None else near.label,
+                None if near is None else (c.speed - near.speed) / near.speed,
+            )
+        )
+    return tuple(out)
+
+
+def first_critical(d: CampbellDiagram, whirl: str) -> CriticalSpeed | None:
+    """The lowest critical speed whirling ``whirl`` ("forward", "backward"), or None.
+
+    >>> first_critical(campbell_example(), "forward").speed.__round__(2)
+    31.58
+    """
+    return min((c for c in d.critical_speeds if c.whirl == whirl), key=lambda c: c.speed, default=None)
 
 
 def log_decrement(damping_ratio: Array) -> Array:

@@ -342,7 +342,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     record = REDUCED_RUNS[which](
         **msgspec.structs.asdict(replace(res.summary, max_abs=ma)),
         case=case,
-        warnings=tuple(_warnings(case, m, res)),
+        warnings=tuple(_warnings(case, m, res) + planar_transient_warnings(scene, case, which)),
         pillar_model=reduced_pillar_model(which, chain, info),
         uncertainty=bars,
         dofs=int(m.n),
@@ -363,6 +363,28 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     from .forces import with_reduced_forces
 
     return with_reduced_forces(scene, model_run, res, integrator, pillar_modes, motion, progress)
+
+
+def planar_transient_warnings(scene: Scene, case: str, model: str) -> list[str]:
+    """What a transient of ``model`` leaves out of what the scene asks: the transients of
+    simulate and compare (but `compare --components`) apply the record's first component in the
+    rotor's plane, on the planar ROM (modal_model.planes does not switch them yet)."""
+    out = []
+    x = scene.excitation
+    if case == "earthquake" and x.components > 1:
+        out.append(
+            f"excitation.components = {x.components}: this run applies the first component alone, "
+            f"in the rotor's plane{' (excitation.angle ignored)' if x.angle else ''}; "
+            f"`rotorpillar compare --case earthquake --components {x.components}` runs all of them on "
+            "the spatial ROM and the 3D full order"
+        )
+    if model == "modal" and scene.modal_model.planes == "spatial":
+        out.append(
+            'modal_model.planes = "spatial": the transient runs the planar ROM (the rotor\'s plane); the '
+            "spatial model's results are analyze.json's spatial and drive_reaction, campbell.json, "
+            "harmonic.json's spatial and compare_earthquake_components.json"
+        )
+    return out
 
 
 def _warnings(case: str, model, res) -> list[str]:
@@ -507,7 +529,7 @@ def _run_fem3d(
         captured_resonance=state.captured_resonance,
         captured_index=state.captured_index,
         speed_state=state.speed_state,
-        warnings=(),
+        warnings=tuple(planar_transient_warnings(scene, case, "fem3d")),
         captured_at_source="the chain's ROM: its resonances"
         + ("" if settled else "; the run ended before the speed settled, so no capture is claimed"),
         pillar_model=solid_pillar_model(mesh, r.dofs, plan.reference, plan.note),

@@ -15,6 +15,12 @@ came from.  The checks (rotorpillar.reduced.capacity):
 - each running speed's separation from every mode in the band (API 684):
   utilisation = the margin required / the margin there is.
 
+Headlines beside the checks: the loaded tube's first frequency, the running
+speed's margin, the earthquake's peaks, the run-up, and from campbell.json
+(the ROM's Campbell diagram and the 3D model's beside it) each model's first
+forward and first backward critical speed and the first one the static
+unbalance excites.
+
 Each check's governing row is its largest utilisation over the models and
 cases; a check without a capacity (or a demand) is "not assessed", and the
 verdict says so instead of passing it.  The paper model (Eq. 4 with the
@@ -410,6 +416,61 @@ def _headlines(
     return out
 
 
+#: the Campbell headlines: (key, what, the critical speeds it picks from)
+_CAMPBELL_FIRSTS = (
+    ("first_forward_critical_speed", "first forward critical speed", lambda c: c.whirl == "forward"),
+    ("first_backward_critical_speed", "first backward critical speed", lambda c: c.whirl == "backward"),
+    (
+        "first_unbalance_critical_speed",
+        "first critical speed the static unbalance excites",
+        lambda c: c.excited_by == "static unbalance",
+    ),
+)
+
+
+def _campbell_headlines(d) -> list[Headline]:
+    """campbell.json's first forward, first backward and first excited critical speed, per model
+    (the ROM's and, beside it, the 3D model's); value None where the range has none."""
+    if d is None:
+        return []
+    out = []
+    for diagram, field in ((d, "critical_speeds"), (d.fem3d, "fem3d.critical_speeds")):
+        if diagram is None:
+            continue
+        name = MODEL_NAMES.get(diagram.model, diagram.model) if diagram.model != "modal" else "ROM"
+        if diagram.model == "fem3d":
+            name = "3D model with the rotor on its top"
+        top = float(diagram.speeds[-1])
+        for key, what, pick in _CAMPBELL_FIRSTS:
+            c = min((c for c in diagram.critical_speeds if pick(c)), key=lambda c: c.speed, default=None)
+            if c is None:
+                text = f"{what.capitalize()} ({name}): none up to {top:.1f} rad/s"
+                if key != "first_unbalance_critical_speed":
+                    # e.g. paper: its gondola's roll and pitch inertias split the two bending
+                    # planes, so each crossing's orbit is a line
+                    text += " (the crossings there whirl the other way or in a line)"
+                text += "."
+            else:
+                whirl = "in a line (no whirl)" if c.whirl == "none" else f"{c.whirl} whirl"
+                text = (
+                    f"{what.capitalize()} ({name}): {c.speed:.2f} rad/s ({c.speed / (2 * math.pi):.3f} Hz), "
+                    f"{c.label}, {whirl}, excited by {c.excited_by}."
+                )
+            out.append(
+                Headline(
+                    f"{key}_{diagram.model}",
+                    what,
+                    None if c is None else c.speed,
+                    "rad/s",
+                    diagram.model,
+                    "campbell",
+                    f"campbell.json: {field}",
+                    text,
+                )
+            )
+    return out
+
+
 def _runup(runs: list[RunFile]) -> RunFile | None:
     """The run-up a reader reads: the ROM's, else the beam's, else any."""
     by_model = {rf.run.model: rf for rf in runs if rf.run.case == "runup"}
@@ -449,6 +510,15 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     if machine is not None:
         inputs.append("analyze.json")
         rows += machine_check_rows(machine) + run_mass_rows(machine, runs)
+    campbell = None
+    if (out / "campbell.json").is_file():
+        from ..reduced.campbell import CampbellDiagram
+
+        try:
+            campbell = records.read(out / "campbell.json", CampbellDiagram)
+            inputs.append("campbell.json")
+        except (ValueError, OSError):  # damaged: no Campbell headlines
+            campbell = None
     governing = _governing(rows)
     missing = _not_assessed(scene, governing, harmonic is not None, bool(runs))
     if machine is None:
@@ -470,7 +540,7 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         verdict,
         tuple(governing),
         tuple(rows),
-        tuple(_headlines(scene, runs, harmonic, modal)),
+        tuple(_headlines(scene, runs, harmonic, modal) + _campbell_headlines(campbell)),
         buckling,
         tuple(missing),
         tuple(inputs),
