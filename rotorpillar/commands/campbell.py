@@ -62,7 +62,7 @@ def add_arguments(p) -> None:
         "--fem3d-mesh",
         choices=FEM3D_MESHES,
         default="chain",
-        help="--model both: the 3D model on the chain's chosen mesh (default) or the scene's [mesh] (cheaper)",
+        help="--model both: the 3D model on the convergence study's chosen mesh (default) or the scene's [mesh] (cheaper)",
     )
 
 
@@ -146,7 +146,7 @@ def _beside(scene: Scene, rom: CampbellDiagram, speeds, running, out, args) -> C
     if mesh != chosen:
         mine, theirs = estimate(scene, n, mesh), estimate(scene, n, chosen)
         warnings = (
-            f"the 3D Campbell diagram is on the scene's [mesh] (~{mine.dofs:,} DOFs), not on the chain's chosen "
+            f"the 3D Campbell diagram is on the scene's [mesh] (~{mine.dofs:,} DOFs), not on the convergence study's chosen "
             f"mesh (~{theirs.dofs:,} DOFs, {chosen.elements_around} x {chosen.elements_along} x "
             f"{chosen.elements_through}) that the ROM's pillar modes come from: that one costs ~4x the time (the "
             "run's budget); its frequencies may differ from the ROM's by that mesh's error as well (see "

@@ -36,6 +36,7 @@ from .convergence import section_convergence, section_integrators
 from .earthquake import section_earthquake, section_fronts, section_paper_earthquake
 from .engineering import section_internal_forces, section_unbalance
 from .figures import external_figures
+from .machine3d import section_machine3d
 from .modal import section_modal, section_paper, section_scene
 from .page import Section, page, with_subsections
 from .provenance import section_other, section_provenance
@@ -63,6 +64,7 @@ SECTIONS = [
     ("forces", "Internal forces and stresses", section_internal_forces, False),
     ("unbalance", "Unbalance response and separation margins", section_unbalance, False),
     ("earthquake", "The recorded earthquake", section_earthquake, False),
+    ("machine3d", "The machine in three dimensions", section_machine3d, False),
     ("runs", "The runs", section_runs, False),
     ("tower", "The tower and its foundation", section_tower, False),
     ("study", "Design study", section_study, False),
