@@ -20,7 +20,11 @@ import typing
 from importlib import metadata
 from pathlib import Path
 
+import msgspec
 import numpy as np
+
+from .records import convert as convert_record
+from .records import to_builtins as record_builtins
 
 #: Distributions whose versions a result records, when installed.
 DISTRIBUTIONS = (
@@ -217,6 +221,8 @@ class Timings(dict):
 def _jsonable(obj):
     if isinstance(obj, JsonRecord):
         return _jsonable(obj.to_json())
+    if isinstance(obj, msgspec.Struct):
+        return _jsonable(record_builtins(obj))
     if isinstance(obj, dict):
         return {str(k): _jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -337,6 +343,8 @@ def write_text(path: str | Path, text: str) -> Path:
 def _record_json(value):
     if isinstance(value, JsonRecord):
         return value.to_json()
+    if isinstance(value, msgspec.Struct):  # a records.Record inside a JsonRecord
+        return record_builtins(value)
     if isinstance(value, dict):
         return {k: _record_json(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -353,6 +361,8 @@ def _record_from(hint, value):
         return None
     if isinstance(hint, type) and issubclass(hint, JsonRecord):
         return hint.from_json(value)
+    if isinstance(hint, type) and issubclass(hint, msgspec.Struct):
+        return convert_record(value, hint)
     origin, args = typing.get_origin(hint), typing.get_args(hint)
     if origin in (typing.Union, types.UnionType):
         inner = [a for a in args if a is not type(None)]

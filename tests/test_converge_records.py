@@ -63,12 +63,14 @@ def _expected(records, analysis) -> dict:
 
 def test_the_study_writes_what_its_dicts_wrote(tmp_path, monkeypatch, scene):
     """A real (small) study, computed then cached: convergence.json's parts equal the
-    analysis's dicts of the same runs, and the document round-trips through its type."""
+    analysis's dicts of the same runs, and the document round-trips through its type
+    (the whole ladder: every rung of the cheap one)."""
     monkeypatch.setattr(study_module, "study_cases", _cheap)
     tol = 1e-2
-    first = cv.study(scene, out_dir=tmp_path, tolerance=tol, show_progress=False)
+    first = cv.study(scene, out_dir=tmp_path, tolerance=tol, show_progress=False, full=True)
     assert first.study.computed == len(_cheap(scene)) and first.study.cached == 0
-    again = cv.study(scene, out_dir=tmp_path, tolerance=tol, show_progress=False)  # every run from the cache
+    # every run from the cache
+    again = cv.study(scene, out_dir=tmp_path, tolerance=tol, show_progress=False, full=True)
     doc = json.loads((tmp_path / "convergence.json").read_text())
     records = run_study(_cheap(scene), scene, tmp_path / "cache", progress=False)
     analysis = cv.analyse(records, scene, tol)
@@ -84,6 +86,7 @@ def test_the_study_writes_what_its_dicts_wrote(tmp_path, monkeypatch, scene):
         for k, f in cv.FAMILIES.items()
     }
     assert doc["study"]["cached"] == len(records) and doc["study"]["computed"] == 0
+    assert doc["refinement"]["full"] and doc["refinement"]["runs"] == doc["refinement"]["ladder_runs"] == len(records)
     assert cv.ConvergenceStudy.from_json(doc).to_json() == doc
     assert again.selection.chosen is not None and again.chosen == again.selection.chosen
     served = [r for r in again.runs if r.model == "shell"]

@@ -34,6 +34,11 @@ def add_arguments(p) -> None:
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument(
+        "--full-ladder",
+        action="store_true",
+        help="run every rung of every family (default: each refined only as far as the choice needs)",
+    )
+    p.add_argument(
         "--workers",
         type=int,
         default=None,
@@ -102,6 +107,10 @@ def _summary(st: ConvergenceStudy) -> str:
         f"Chosen at tolerance {sel.tolerance:g}: " + (sel.chosen.label if sel.chosen else "none"),
         "  " + sel.reason,
     ]
+    rf = st.refinement
+    if rf is not None and not rf.full:
+        lines += ["", f"Refined: {rf.runs} of the ladder's {rf.ladder_runs} runs, in {rf.rounds} rounds:"]
+        lines += [f"  {st.families[f.family].label:34s} {f.runs}/{f.rungs}: {f.stop} ({f.why})" for f in rf.families]
     if st.failures:
         lines += ["", "Where methods fail:"] + [f"  - {f}" for f in st.failures]
     if st.charts is not None:
@@ -156,6 +165,7 @@ def converge_command(scene: Scene, args, timings):
         timings=timings,
         log=progress,
         workers=workers,
+        full=getattr(args, "full_ladder", False),
     )
     result = {
         "convergence_json": st.json_file,
@@ -165,5 +175,6 @@ def converge_command(scene: Scene, args, timings):
         "selection": st.selection,
         "failures": list(st.failures),
         "study": st.study,
+        "refinement": st.refinement,
     }
     return result, _summary(st)

@@ -21,6 +21,7 @@ from typing import Any
 
 from ..provenance import JsonRecord
 from ..reduced.band import ExcitationBand  # noqa: F401  (defined where the band is computed; read here)
+from .refinement import LadderRefinement
 
 _OMIT: dict[str, Any] = {"omit_if_none": True}
 _OK_ONLY: dict[str, Any] = {"omit_if_none": True, "ok_only": True}
@@ -399,6 +400,8 @@ class ConvergenceStudy(JsonRecord):
     failures: tuple[str, ...]
     """where methods fail, one sentence each"""
     study: StudyCounts
+    refinement: LadderRefinement | None = field(default=None, metadata=_OMIT)
+    """how far each family was refined, and why no further (rotorpillar.converge.adaptive)"""
     charts: dict[str, str] | None = field(default=None, metadata=_OMIT)
     """chart name -> path (absent when no charts were drawn)"""
     versions: dict[str, str] | None = field(default=None, metadata=_OMIT)
