@@ -11,6 +11,7 @@ on stdout.  Bad input: one line on stderr, exit code 2, nothing written.
 from __future__ import annotations
 
 import importlib
+import io
 import logging
 import os
 import signal
@@ -22,7 +23,7 @@ from .commands import is_root_rank, out_dir
 from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
 from .errors import ComputationError, InputError, StageError
 from .provenance import Timings, to_json, with_provenance, write_result
-from .scene import Scene, load_scene
+from .scene import Scene, load_scene, what_is_there
 
 
 def execute(name: str, scene: Scene, args) -> dict:
@@ -65,13 +66,23 @@ def mpi_world_size() -> int:
     return 1
 
 
+def mpi_world_rank() -> int:
+    """This process's rank in its MPI job (0 outside mpirun), from the launcher's env."""
+    for key in ("OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"):
+        value = os.environ.get(key, "")
+        if value.isdigit():
+            return int(value)
+    return 0
+
+
 def check_output_dir(path: Path) -> None:
     """Refuse, before any work, an output directory that cannot take files.
 
     Nothing is created here: refused input leaves no trace.
     """
-    if path.exists() and not path.is_dir():
-        raise InputError(f"--out {str(path)!r}: exists and is not a directory")
+    if os.path.lexists(path) and not path.is_dir():
+        there = what_is_there(path) or "is a file"
+        raise InputError(f"--out {str(path)!r}: {there.removesuffix(', not a file')}, not a directory")
     probe = path
     while not probe.exists():
         if probe.parent == probe:
@@ -81,6 +92,19 @@ def check_output_dir(path: Path) -> None:
         raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not writable")
     if not probe.is_dir():
         raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not a directory")
+
+
+def open_file_of(exc: BaseException) -> str | None:
+    """The file an OSError without a name was raised on: the innermost frame of its
+    traceback that holds an open file object (a library's ``f.write`` on a full disk)."""
+    tb, found = exc.__traceback__, None
+    while tb is not None:
+        for value in tb.tb_frame.f_locals.values():
+            name = getattr(value, "name", None) if isinstance(value, io.IOBase) else None
+            if isinstance(name, str):
+                found = name
+        tb = tb.tb_next
+    return found
 
 
 def quiet_third_party_logs(debug: bool = False) -> None:
@@ -121,6 +145,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.debug:
         os.environ["ROTORPILLAR_DEBUG"] = "1"  # run's stages and the report see it too
     say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)
+    # what every rank meets alike (bad input, a signal): said once, by rank 0
+    say_once = say if mpi_world_rank() == 0 else lambda kind, text: None
     try:
         if mpi_world_size() > 1 and args.command not in MPI_COMMANDS:
             raise InputError(
@@ -135,7 +161,7 @@ def main(argv: list[str] | None = None) -> int:
         check_output_dir(out_dir(scene, args))
         doc = execute(args.command, scene, args)
     except InputError as exc:
-        say("error", exc)
+        say_once("error", exc)
         return EXIT_INPUT
     except StageError as exc:
         say("failed", exc)
@@ -146,12 +172,13 @@ def main(argv: list[str] | None = None) -> int:
         say("failed", f"{exc}; nothing was written")
         return EXIT_FAILED
     except KeyboardInterrupt as exc:
-        say("interrupted", "finished outputs are complete, none is half-written")
+        say_once("interrupted", "finished outputs are complete, none is half-written")
         return EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED
     except OSError as exc:
         if args.debug:
             raise
-        where = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
+        file = getattr(exc, "filename", None) or open_file_of(exc)
+        where = f" {file!r}" if file else ""
         say(
             "failed",
             f"the file system refused{where}: {exc.strerror or exc}; files written "

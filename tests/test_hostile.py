@@ -1035,3 +1035,134 @@ def test_simulate_under_mpirun_shares_only_the_3d_full_order(tmp_path):
         p = cli(args[0], "paper", *args[1:], "--out", out, env=env)
         assert p.returncode == 2 and "without mpirun" in one_line(p)
     assert not out.exists()
+
+
+# --------------------------------------------------------------------------
+# Issue 31 (hardening, third pass): paths, I/O errors, runs that cannot mean anything.
+
+
+def _fifo(tmp_path):
+    import os
+
+    path = tmp_path / "pipe.toml"
+    os.mkfifo(path)
+    return path
+
+
+def _loop(tmp_path):
+    path = tmp_path / "loop.toml"
+    path.symlink_to(path.name)
+    return path
+
+
+def _dangling(tmp_path):
+    path = tmp_path / "gone.toml"
+    path.symlink_to("nowhere.toml")
+    return path
+
+
+@pytest.mark.parametrize(
+    "make, words",
+    [
+        (lambda tmp: tmp, "is a directory, not a file"),
+        (_fifo, "is a FIFO (named pipe), not a file"),
+        (lambda tmp: "/dev/zero", "is a character device, not a file"),
+        (_loop, "is a loop of symbolic links"),
+        (_dangling, "is a symbolic link to 'nowhere.toml', which does not exist"),
+        (lambda tmp: tmp / "nope.toml", "not found"),
+    ],
+    ids=["directory", "fifo", "device", "symlink-loop", "dangling-link", "missing"],
+)
+def test_a_scene_path_that_is_no_file_says_what_it_is(tmp_path, make, words):
+    """Each named, never opened (a FIFO would block the read, a device never end it);
+    the accelerogram's path is read by the same check."""
+    path = make(tmp_path)
+    out = tmp_path / "out"
+    p = cli("analyze", path, "--out", out, timeout=60)
+    assert p.returncode == 2 and words in one_line(p) and str(path) in one_line(p)
+    sets = ["--set", "excitation.kind=record", "--set", f"excitation.record='{path}'"]
+    p = cli("simulate", "paper", "--case", "earthquake", *sets, "--out", out, timeout=60)
+    assert p.returncode == 2 and words in one_line(p) and "excitation.record" in one_line(p)
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["analyze", "simulate", "report", "run"])
+def test_an_empty_output_path_is_refused(tmp_path, command):
+    """``--out ""`` is Path(""): the working directory, which would take every file."""
+    p = cli(command, "paper", "--out", "", cwd=tmp_path)
+    assert p.returncode == 2 and "--out" in one_line(p) and "empty" in one_line(p)
+    assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("kind", ["fifo", "symlink-loop"])
+def test_an_output_path_that_is_no_directory_says_what_it_is(tmp_path, kind):
+    out = _fifo(tmp_path) if kind == "fifo" else _loop(tmp_path)
+    p = cli("analyze", "paper", "--out", out)
+    assert p.returncode == 2 and "--out" in one_line(p) and "not a directory" in one_line(p)
+    assert ("FIFO" if kind == "fifo" else "loop of symbolic links") in one_line(p)
+
+
+FULL_DISK = [
+    ["analyze"],
+    ["simulate", "--model", "paper", "--no-threshold", "--set", "simulate.duration=10"],
+    ["integrators", "--duration", "2"],
+    ["compare", "--case", "runup", "--models", "paper,beam", "--set", "simulate.duration=2"],
+]
+
+
+@pytest.mark.parametrize("args", FULL_DISK, ids=lambda a: a[0])
+def test_a_full_disk_is_one_line_naming_the_file(tmp_path, args):
+    """The file system refuses to grow a file (``ulimit -f``, SIGXFSZ ignored: write(2)
+    fails as on a full disk): exit 1, one line naming the file, and nothing after it (before:
+    no file named, then numpy's zip writer's "Exception ignored ... Traceback")."""
+    out = tmp_path / "out"
+    cmd = " ".join([sys.executable, "-m", "rotorpillar", args[0], "paper", *args[1:], "--out", str(out)])
+    # 8 KiB: more than a scene's JSON head, less than any command's results
+    p = subprocess.run(
+        ["bash", "-c", f"trap '' XFSZ; ulimit -f 8 && exec {cmd}"], capture_output=True, text=True, timeout=300
+    )
+    assert p.returncode == 1, p.stderr
+    line = one_line(p)
+    assert "the file system refused '/" in line, line
+    assert "Traceback" not in p.stderr and "Exception ignored" not in p.stderr
+    for f in out.glob("*.json"):
+        json.loads(f.read_text())  # what was written is whole
+
+
+@pytest.mark.parametrize(
+    "args, key",
+    [
+        (
+            ["simulate", "--model", "fem3d", "--set", "full_order.earthquake_duration=3"],
+            "full_order.earthquake_duration",
+        ),
+        (["compare", "--set", "full_order.earthquake_duration=3"], "full_order.earthquake_duration"),
+        (["compare", "--set", "simulate.earthquake_duration=5"], "simulate.earthquake_duration"),
+        (["simulate", "--model", "beam", "--set", "simulate.earthquake_duration=3"], "simulate.earthquake_duration"),
+        (["simulate", "--model", "paper", "--set", "simulate.earthquake_duration=4.9"], "simulate.earthquake_duration"),
+        (["study", "--model", "paper", "--vary", "simulate.earthquake_duration=3,4"], "simulate.earthquake_duration"),
+    ],
+    ids=["fem3d", "compare-fem3d", "compare", "beam", "paper", "study"],
+)
+def test_an_earthquake_run_that_ends_before_the_ground_moves_is_refused(tmp_path, args, key):
+    """The paper's pulse starts at 5 s: a run of 3 s sees no earthquake (it was ok: true).
+    Refused before any work, naming the key the user set."""
+    out = tmp_path / "out"
+    p = cli(args[0], "paper", "--case", "earthquake", *args[1:], "--out", out, timeout=120)
+    assert p.returncode == 2, p.stderr
+    assert f"{key} = " in one_line(p) and "before the ground motion starts" in one_line(p)
+    _nothing_written(out)
+
+
+def test_mpirun_says_a_refusal_once(tmp_path):
+    """Every rank refuses alike: rank 0 says it (it was said once per rank)."""
+    import os
+    import shutil
+
+    if shutil.which("mpirun") is None:
+        pytest.skip("mpirun not installed")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    sets = ("--set", "full_order.earthquake_duration=3")
+    p = cli("compare", "paper", *sets, "--out", tmp_path / "out", prefix=["mpirun", "-n", "2"], env=env, timeout=120)
+    said = [l for l in p.stderr.splitlines() if l.startswith("rotorpillar compare:")]
+    assert len(said) == 1 and "full_order.earthquake_duration = 3" in said[0], p.stderr

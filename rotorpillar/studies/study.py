@@ -96,12 +96,18 @@ def _check_inputs(scene: Scene, case: str, model: str, vary: list[str]):
     if case == "earthquake":
         from ..reduced.excitation import BUILTIN_RECORDS
         from ..reduced.models import scene_motion
+        from ..transients.run_plan import own_duration
 
-        motions = {tuple((k, v) for k, v in p.items() if k.startswith("excitation.")) for p in points}
+        windows = {
+            tuple((k, v) for k, v in p.items() if k.startswith("excitation.") or k == "simulate.earthquake_duration")
+            for p in points
+        }
         # every record readable before anything runs, each once; the user's files before
-        # the built-in records (whose library takes seconds to import): a bad file, at once
-        for m in sorted(motions, key=lambda m: (any(v in BUILTIN_RECORDS for _, v in m), repr(m))):
-            scene_motion(run_scene(scene, dict(m), implied))
+        # the built-in records (whose library takes seconds to import): a bad file, at once;
+        # and every run long enough to see its ground motion
+        for m in sorted(windows, key=lambda m: (any(v in BUILTIN_RECORDS for _, v in m), repr(m))):
+            sc = run_scene(scene, dict(m), implied)
+            own_duration(sc, "earthquake", scene_motion(sc))
     return axes, implied, points
 
 
