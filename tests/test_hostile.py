@@ -1166,3 +1166,59 @@ def test_mpirun_says_a_refusal_once(tmp_path):
     p = cli("compare", "paper", *sets, "--out", tmp_path / "out", prefix=["mpirun", "-n", "2"], env=env, timeout=120)
     said = [l for l in p.stderr.splitlines() if l.startswith("rotorpillar compare:")]
     assert len(said) == 1 and "full_order.earthquake_duration = 3" in said[0], p.stderr
+
+
+class _InProcess:
+    """A study's executor that runs its batches here, and says whether it was started."""
+
+    started = False
+
+    def describe(self) -> dict:
+        return {"kind": "in-process (test)", "scheduler": None, "workers": 1, "threads": 1}
+
+    def map(self, fn, items):
+        self.started = True
+        for i, item in enumerate(items):
+            yield i, fn(item)
+
+
+def _integer_study_axes():
+    """Every integer key a study may vary: two values from its range, as a list and as
+    START:STOP:N (the key's lower bound and the next integer; defaults where the bound
+    is open)."""
+    import dataclasses
+
+    from rotorpillar.scene import SECTIONS
+    from rotorpillar.studies.axes import NOT_VARIED
+
+    for section, cls in SECTIONS.items():
+        for f in dataclasses.fields(cls):
+            key = f"{section}.{f.name}"
+            if f.type != "int" or key in NOT_VARIED or f.metadata["choices"] is not None:
+                continue
+            lo = f.metadata["ge"] if f.metadata["ge"] is not None else f.default
+            yield key, f"{lo},{lo + 1}"
+            yield key, f"{lo}:{lo + 1}:2"
+
+
+@pytest.mark.parametrize("key, values", list(_integer_study_axes()), ids=lambda v: str(v))
+def test_an_integer_axis_runs_or_is_refused_before_the_cluster(tmp_path, key, values):
+    """Integer axes were refused as "must be an integer" after the cluster started (the
+    predicted boundary's grid made floats of them).  Each integer key either runs to the
+    end or is refused with the executor never started."""
+    from rotorpillar.errors import InputError
+    from rotorpillar.scene import load_scene
+    from rotorpillar.studies import design_study
+
+    base = load_scene("sommerfeld", ["simulate.duration=2", "modal_model.source=beam"])
+    ex = _InProcess()
+    try:
+        res = design_study(
+            base, "runup", "modal", [f"{key}={values}"], out_dir=tmp_path, executor=ex, show_progress=False
+        )
+    except InputError as exc:
+        assert not ex.started, f"refused after the cluster started: {exc}"
+        assert key in str(exc)
+        return
+    assert len(res.runs) == 2 and ex.started
+    assert sorted({type(v) for v in res.axes[0].values}, key=str) == [int]

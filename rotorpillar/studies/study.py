@@ -160,6 +160,8 @@ def design_study(
             f"study {scene.name}: {case}, {len(points)} runs in {len(batches)} batches "
             f"({len(done)} on disk, {len(todo)} to compute)"
         )
+    # before the cluster: the curve builds a scene per point, and its refusal must come first
+    boundary = predicted_boundary(scene, case, model, axes, implied, modes)
     info = {"kind": "none (every batch on disk)", "scheduler": None, "workers": 0, "threads": 0}
     t_cluster = t_compute = compute = 0.0
     if todo:
@@ -201,7 +203,6 @@ def design_study(
         for r in done[i]["runs"]:
             runs.append(StudyRun.from_json({**r, "batch": k}))
     runs.sort(key=lambda r: r.index)
-    boundary = predicted_boundary(scene, case, model, axes, implied, modes)
     found = found_boundary(axes, runs) if case == "runup" else None
     if boundary is not None or found:
         boundary = {**(boundary or {}), "found": found}
