@@ -19,7 +19,8 @@ import sys
 import time
 from pathlib import Path
 
-from .commands import is_root_rank, out_dir
+from .commands import is_root_rank, out_dir, progress
+from .commands.folder_lock import output_lock
 from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
 from .errors import ComputationError, InputError, StageError
 from .provenance import Timings, to_json, with_provenance, write_result
@@ -159,7 +160,8 @@ def main(argv: list[str] | None = None) -> int:
 
             check_record(scene.excitation.record)  # a missing record: now, not at a late stage
         check_output_dir(out_dir(scene, args))
-        doc = execute(args.command, scene, args)
+        with output_lock(out_dir(scene, args), args.command, progress):
+            doc = execute(args.command, scene, args)
     except InputError as exc:
         say_once("error", exc)
         return EXIT_INPUT

@@ -1222,3 +1222,84 @@ def test_an_integer_axis_runs_or_is_refused_before_the_cluster(tmp_path, key, va
         return
     assert len(res.runs) == 2 and ex.started
     assert sorted({type(v) for v in res.axes[0].values}, key=str) == [int]
+
+
+# -- one writer per output folder (issue 31.8)
+
+ALL_COMMANDS = [
+    "analyze",
+    "converge",
+    "modal",
+    "report",
+    "run",
+    "simulate",
+    "compare",
+    "integrators",
+    "study",
+    "harmonic",
+]
+
+
+@pytest.mark.parametrize("command", ALL_COMMANDS)
+def test_a_folder_in_use_is_refused_naming_its_holder(tmp_path, command):
+    """A live holder (this test, by the lock's own flock): exit 2 naming it, before any
+    work, the folder as it was."""
+    import fcntl
+    import os
+
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "mine.txt").write_text("keep")
+    with open(out / ".rotorpillar.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        lock.write(f"rotorpillar simulate (process {os.getpid()}, started 12:00:00)\n")
+        lock.flush()
+        p = cli(command, "paper", "--out", out, timeout=60)
+    assert p.returncode == 2, p.stderr
+    assert f"in use by rotorpillar simulate (process {os.getpid()}" in one_line(p)
+    assert sorted(f.name for f in out.iterdir()) == [".rotorpillar.lock", "mine.txt"]
+
+
+@pytest.mark.slow  # seconds: two whole commands
+def test_two_commands_into_one_folder_the_second_is_refused(tmp_path):
+    """Half a second apart (both exited 0, the folder a mix of both scenes' files)."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "out"
+    first = subprocess.Popen(
+        [sys.executable, "-m", "rotorpillar", "simulate", "paper", "--no-threshold", "--out", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    deadline = time.time() + 60
+    while not (out / ".rotorpillar.lock").exists() and time.time() < deadline:
+        time.sleep(0.05)
+    time.sleep(0.5)
+    p = cli("analyze", "sommerfeld", "--out", out, timeout=60)
+    _, err = first.communicate(timeout=300)
+    assert first.returncode == 0, err
+    assert p.returncode == 2 and f"(process {first.pid}," in one_line(p)
+    assert {json.loads(f.read_text())["scene"]["name"] for f in out.glob("*.json")} == {"paper"}
+    assert not (out / ".rotorpillar.lock").exists()
+
+
+def test_a_lock_left_by_a_killed_command_is_taken_over_and_said_so(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / ".rotorpillar.lock").write_text("rotorpillar run (process 999999999, started 03:14:15)\n")
+    p = cli("analyze", "paper", "--out", out, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert "took over the lock" in p.stderr and "process 999999999" in p.stderr
+    assert (out / "analyze.json").is_file() and not (out / ".rotorpillar.lock").exists()
+
+
+def test_the_lock_of_a_refused_command_leaves_no_trace(tmp_path):
+    """Refused after the lock was taken (the command's own checks): no lock file, and
+    the folders made for it removed (nothing written)."""
+    out = tmp_path / "a" / "b"
+    sets = ["--set", "simulate.integrator=newmark", "--set", "simulate.time_step=1e-9"]
+    p = cli("simulate", "paper", *sets, "--out", out, timeout=60)
+    assert p.returncode == 2 and "simulate.max_steps" in one_line(p)
+    assert not (tmp_path / "a").exists()
