@@ -1303,3 +1303,49 @@ def test_the_lock_of_a_refused_command_leaves_no_trace(tmp_path):
     p = cli("simulate", "paper", *sets, "--out", out, timeout=60)
     assert p.returncode == 2 and "simulate.max_steps" in one_line(p)
     assert not (tmp_path / "a").exists()
+
+
+# -- every expensive command estimates first (issue 31.10)
+
+
+@pytest.mark.slow  # seconds: the start of a compare, then its SIGTERM
+def test_the_pareto_study_estimates_its_3d_runs_before_any_work(tmp_path):
+    """compare --pareto with its finest 3D run at 8 x 400 (the key's upper end): the
+    estimate of its 3D runs (steps, dofs, time) is the first thing said, before compare's
+    own models start (it ran past 40 s without one); SIGTERM then stops it (143)."""
+    import signal
+
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "rotorpillar", "compare", "paper", "--pareto"]
+        + ["--set", "full_order.pareto_along=400", "--out", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    lines = []
+    for line in proc.stderr:  # blocks until the command says something
+        lines.append(line)
+        if "model 1 of" in line or "speed against accuracy:" in line:
+            break
+    proc.send_signal(signal.SIGTERM)
+    _, rest = proc.communicate(timeout=120)
+    estimate = lines[-1]
+    assert "speed against accuracy: 4 3D runs" in estimate and "8x400" in estimate, "".join(lines) + rest
+    assert "steps each" in estimate and "dofs" in estimate and "min of work" in estimate
+    assert proc.returncode == 143
+
+
+def test_the_pareto_study_refuses_a_3d_run_this_machine_cannot_hold(tmp_path):
+    """Under `ulimit -v` 1.5 GB (budget 1.14 GiB) the finest run, 8 x 400 (115 k dofs,
+    1.29 GiB), is refused before any work; compare's own 3D run (8 x 10) fits."""
+    out = tmp_path / "out"
+    cmd = " ".join(
+        [sys.executable, "-m", "rotorpillar", "compare", "paper", "--pareto"]
+        + ["--set", "full_order.pareto_along=400", "--out", str(out)]
+    )
+    p = subprocess.run(["bash", "-c", f"ulimit -v 1500000 && exec {cmd}"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 2, p.stderr
+    line = one_line(p)
+    assert "compare --pareto: the run 3D 8x400" in line and "RLIMIT_AS" in line and "GiB" in line
+    _nothing_written(out)

@@ -4,14 +4,19 @@ from __future__ import annotations
 
 import errno
 import os
+import re
 import stat
+import sys
 import tomllib
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from .sections import Scene, SceneError
-from .validation import scene_from_dict
+from .validation import range_of, scene_from_dict
+
+#: A run of digits longer than Python reads as an integer (4300 by default).
+LONG_NUMBER = re.compile(rf"\d{{{sys.get_int_max_str_digits() + 1}}}")
 
 
 def embedded_scenes() -> list[str]:
@@ -101,6 +106,12 @@ def read_scene_toml(spec: str | Path) -> tuple[dict[str, Any], str]:
         return tomllib.loads(text), name
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"scene {str(spec)!r} is not valid TOML: {exc}") from None
+    except ValueError:  # Python's limit on integer strings (sys.get_int_max_str_digits)
+        line = next((i for i, t in enumerate(text.splitlines(), 1) if LONG_NUMBER.search(t)), 0)
+        raise SceneError(
+            f"scene {str(spec)!r}, line {line}: an integer of more than {sys.get_int_max_str_digits()} "
+            "digits, past every key's range"
+        ) from None
 
 
 def parse_assignment(text: str) -> tuple[list[str], Any]:
@@ -116,6 +127,12 @@ def parse_assignment(text: str) -> tuple[list[str], Any]:
         value = tomllib.loads(f"v = {raw}")["v"]
     except tomllib.TOMLDecodeError:
         value = raw  # a bare word: a string such as cell_type=tetrahedron
+    except ValueError:  # Python's limit on integer strings (sys.get_int_max_str_digits)
+        key = ".".join(path)
+        raise SceneError(
+            f"--set {key}=: an integer of {len(raw)} characters is out of range"
+            + (f": must be {range_of(key)}" if range_of(key) else "")
+        ) from None
     return path, value
 
 
