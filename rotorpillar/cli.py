@@ -10,6 +10,7 @@ on stdout.  Bad input: one line on stderr, exit code 2, nothing written.
 
 from __future__ import annotations
 
+import atexit
 import importlib
 import io
 import logging
@@ -34,6 +35,7 @@ def execute(name: str, scene: Scene, args) -> dict:
     timings = Timings()
     start = time.perf_counter()
     result, text = fn(scene, args, timings)
+    stopped()  # a signal a library caught on the way: no result file, the signal's exit
     status = result.pop("exit_status", EXIT_OK)  # a command's own verdict (report --strict)
     timings["total"] = time.perf_counter() - start
     doc = with_provenance(
@@ -128,8 +130,39 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM: stop as on Ctrl-C (a running stage's process is killed with us)."""
 
 
+#: The signals received, in order: a library that calls back into Python (VTK's
+#: observers, a C loop) may catch the exception the handler raised and carry on;
+#: the command is stopped at its end all the same (``stopped``).
+RECEIVED: list[int] = []
+
+
 def _terminate(signum, frame):
-    raise Terminated()
+    RECEIVED.append(signum)
+    raise Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
+
+
+def stopped() -> None:
+    """Raise the interrupt a library swallowed (``RECEIVED``): the command's result is not
+    written, and the exit is 130 or 143 as if it had propagated."""
+    if RECEIVED:
+        raise Terminated() if RECEIVED[-1] == signal.SIGTERM else KeyboardInterrupt()
+
+
+#: The command under way in this process (``main``), for ``_exit_as_signalled``.
+_RUNNING: list[str] = []
+
+
+def _exit_as_signalled() -> None:
+    """At the interpreter's exit while a command is still under way after a signal: a
+    library ended the process from inside the command (VTK's observer calls exit(1) on a
+    KeyboardInterrupt): the exit is the signal's, with its one line."""
+    if _RUNNING and RECEIVED:
+        print(
+            f"rotorpillar {_RUNNING[-1]}: interrupted: finished outputs are complete, none is half-written",
+            file=sys.stderr,
+            flush=True,
+        )
+        os._exit(EXIT_TERMINATED if RECEIVED[-1] == signal.SIGTERM else EXIT_INTERRUPTED)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -137,12 +170,25 @@ def main(argv: list[str] | None = None) -> int:
 
     2: bad input (nothing written); 1: a solver, a tool or the machine failed
     (file system, memory; finished outputs stay complete); 70: a bug (one line;
-    ``--debug`` shows the traceback); 130: interrupted.
+    ``--debug`` shows the traceback); 130, 143: interrupted (Ctrl-C, SIGTERM), also
+    when a library caught the interrupt (``stopped``, ``_exit_as_signalled``).
     """
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    args = build_parser().parse_args(argv)
+    atexit.unregister(_exit_as_signalled)  # once per process, however many commands it runs
+    atexit.register(_exit_as_signalled)
+    _RUNNING.append(args.command)
+    try:
+        return _main(args)
+    finally:
+        _RUNNING.pop()
+
+
+def _main(args) -> int:
     quiet_third_party_logs(args.debug)
+    RECEIVED.clear()
     signal.signal(signal.SIGTERM, _terminate)
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:  # not when ignored (nohup, &)
+        signal.signal(signal.SIGINT, _terminate)
     if args.debug:
         os.environ["ROTORPILLAR_DEBUG"] = "1"  # run's stages and the report see it too
     say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)

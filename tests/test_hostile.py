@@ -13,7 +13,7 @@ import threading
 import time
 
 import pytest
-from conftest import cli
+from conftest import cli, sigint_as_in_the_foreground
 
 LATIN1 = "[pillar]\nheight = 20.0 # Höhe\n".encode("latin-1")
 
@@ -1349,3 +1349,67 @@ def test_the_pareto_study_refuses_a_3d_run_this_machine_cannot_hold(tmp_path):
     line = one_line(p)
     assert "compare --pareto: the run 3D 8x400" in line and "RLIMIT_AS" in line and "GiB" in line
     _nothing_written(out)
+
+
+# -- a signal stops the command wherever it lands (issue 31.3)
+
+SWALLOWING = """
+import os, signal, sys
+import rotorpillar.commands.analyze as analyze
+
+original = analyze.analyze_command
+
+
+class Finaliser:
+    def __del__(self):  # Python prints what a finaliser raises, and carries on
+        os.kill(os.getpid(), getattr(signal, SIG))
+        sum(range(1000))  # the handler runs here
+
+
+def vtk_observer():  # VTK's Python callbacks: it calls exit(1) on a KeyboardInterrupt
+    import vtkmodules.vtkCommonCore as vtk
+
+    obj = vtk.vtkObject()
+
+    def callback(caller, event):
+        os.kill(os.getpid(), getattr(signal, SIG))
+        sum(range(1000))
+
+    obj.AddObserver("ModifiedEvent", callback)
+    obj.Modified()
+
+
+def swallowing(scene, args, timings):
+    if WHERE == "finaliser":
+        Finaliser()
+    else:
+        vtk_observer()
+    return original(scene, args, timings)
+
+
+analyze.analyze_command = swallowing
+from rotorpillar.cli import main
+
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+@pytest.mark.parametrize("where", ["finaliser", "vtk-observer"])
+@pytest.mark.parametrize("sig, code", [("SIGTERM", 143), ("SIGINT", 130)])
+def test_a_signal_a_library_catches_still_stops_the_command(tmp_path, where, sig, code):
+    """The signal lands inside code that catches what it raises: a finaliser (Python prints
+    "Exception ignored" and carries on: the report's SIGTERM was swallowed so, exit 0 and a
+    full report, 2 of 6 tries) or a VTK observer (VTK ends the process with exit 1).  The
+    command still ends with the signal's exit, one line, and its result is not written."""
+    script = f"SIG, WHERE = {sig!r}, {where!r}\n" + SWALLOWING
+    out = tmp_path / "out"
+    p = subprocess.run(
+        [sys.executable, "-c", script, "analyze", "paper", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        preexec_fn=sigint_as_in_the_foreground,
+    )
+    assert p.returncode == code, p.stderr
+    assert "rotorpillar analyze: interrupted" in p.stderr
+    assert not (out / "analyze.json").exists()

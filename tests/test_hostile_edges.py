@@ -41,7 +41,7 @@ PAPER = ("simulate", ["--model", "paper", "--no-threshold", *SHORT])
 # 0.05 s: the beam's step costs ~dofs**3, seconds a step at 200 elements
 BEAM = ("simulate", ["--model", "beam", "--no-threshold", *SHORT, *_sets("simulate.duration=0.05")])
 RUNDOWN = ("simulate", ["--case", "rundown", "--model", "paper", *SHORT, *_sets("simulate.rundown_motor=weaker")])
-FIXED_STEP = ("simulate", ["--model", "paper", "--no-threshold", *SHORT, *_sets("simulate.integrator=newmark")])
+FIXED_STEP = ("simulate", ["--model", "modal", "--no-threshold", *SHORT, *_sets("simulate.integrator=newmark")])
 QUAKE = ("simulate", ["--case", "earthquake", "--model", "modal", *SHORT])
 RECORD = ("simulate", ["--case", "earthquake", "--model", "paper", *SHORT, *_sets("excitation.kind=record")])
 SWEEP = ("simulate", ["--case", "sweep", "--model", "paper", *SHORT, *_sets("sweep.rate=500", "sweep.settle=1")])
