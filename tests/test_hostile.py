@@ -1413,3 +1413,17 @@ def test_a_signal_a_library_catches_still_stops_the_command(tmp_path, where, sig
     assert p.returncode == code, p.stderr
     assert "rotorpillar analyze: interrupted" in p.stderr
     assert not (out / "analyze.json").exists()
+
+
+@pytest.mark.slow  # a study on a local cluster
+def test_a_study_over_the_ends_of_its_keys_is_quiet(tmp_path):
+    """Both axes over their keys' whole ranges (the capture map, the predicted boundary
+    beside it): exit 0 and nothing on stderr but the command's own lines (no numpy or
+    matplotlib warning, no Dask worker's farewell)."""
+    out = tmp_path / "out"
+    vary = ["--vary", "drive.torque_at_zero=0,1e9", "--vary", "shaft.stiffness=1,1e14"]
+    p = cli(
+        "study", "sommerfeld", *vary, "--model", "paper", "--no-progress", "--set", "simulate.duration=2", "--out", out
+    )
+    assert p.returncode == 0, p.stderr
+    assert [l for l in p.stderr.splitlines() if l.strip() and not l.startswith("[rotorpillar]")] == []
