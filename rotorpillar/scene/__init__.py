@@ -25,6 +25,7 @@ from .files import (
     parse_assignment,
     read_scene_toml,
     read_text_file,
+    what_is_there,
 )
 from .sections import (
     EXCITATION_KINDS,
@@ -122,4 +123,5 @@ __all__ = [
     "read_scene_toml",
     "read_text_file",
     "scene_from_dict",
+    "what_is_there",
 ]
