@@ -30,7 +30,7 @@ def _step_seconds(scene, around, along, repeat=REPEAT, window=WINDOW):
     runs = []
     for _ in range(repeat):
         r = simulate_fem3d(scene, "earthquake", duration=window, mesh=mesh, samples=10)
-        runs.append(r.wall_seconds / r.integrator["steps"])
+        runs.append(r.wall_seconds / r.integrator.steps)
     return statistics.median(runs), r.dofs
 
 
