@@ -243,6 +243,8 @@ def build_report(
     present.update({f"simulate_{c}": c in build.simulations for c in CASES})
     present["simulate_earthquake_paper"] = (build.out / "simulate_earthquake_paper.json").is_file()
     present.update({f"compare_{c}": c in build.comparisons for c in COMPARISONS})
+    # read by their sections (the unbalance response, the design study)
+    present.update({name: (build.out / f"{name}.json").is_file() for name in ("harmonic", "study")})
     return ReportResult(
         report=str(path),
         inputs=present,
