@@ -4,7 +4,7 @@ VENV := .venv
 PY   := $(VENV)/bin/python
 SCENE ?= paper
 
-.PHONY: run test test-fast check bench setup clean
+.PHONY: run test test-fast check bench bench-quick setup clean
 
 # The last line `rotorpillar run` prints is the report's path:
 # "report: /abs/path/out/<scene>/report.html".
@@ -33,8 +33,13 @@ check: setup
 bench: setup
 	$(PY) bench/run.py
 
+# Every benchmark once at a small size (CI, after make test): each still runs
+# and writes its entries (bench/results-quick.json); its numbers mean nothing.
+bench-quick: setup
+	$(PY) bench/run.py --quick
+
 setup:
 	@tools/setup.sh
 
 clean:
-	rm -rf out bench/results.json .pytest_cache
+	rm -rf out bench/results.json bench/results-quick.json .pytest_cache

@@ -17,7 +17,8 @@ P2 hexahedra) and the scene's modal mesh (64 x 10):
   the same speed (RotorStructure.steady_state), and against one fresh LU of
   the 3D model's real operator alone (the block form's price).
 
-Times are medians of REPEAT runs (the machine is shared).
+Times are medians of REPEAT runs (the machine is shared).  ``quick``: one
+run of each on 8 x 2 meshes (does it run).
 """
 
 import statistics
@@ -28,7 +29,8 @@ REPEAT = 5
 SPEEDS = 10
 
 
-def _median(fn, repeat=REPEAT):
+def _median(fn, repeat=None):
+    repeat = REPEAT if repeat is None else repeat
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
@@ -74,7 +76,7 @@ def _stress_entries(scene, mesh, label):
     t0 = time.perf_counter()
     vm = VonMisesProjection(model, p, scene.gondola.mass + scene.rotor.mass)
     t_vm_setup = time.perf_counter() - t0
-    per_state = _median(lambda: sf.resultants(x), repeat=50)
+    per_state = _median(lambda: sf.resultants(x), repeat=1 if REPEAT == 1 else 50)
     per_frame = _median(lambda: vm.project(x))
     vm.destroy()
     for obj in (ksp, A, b, x, model.K, model.M):
@@ -142,7 +144,7 @@ def _harmonic_entries(scene, mesh, label):
     t_lu = _median(real_lu)
     # the ROM's cost depends on its mode count only; the beam's modes spare a chain run here
     rom, _ = build_model(override(scene, ["modal_model.source=beam"]), "modal", 186.0)
-    t_rom = _median(lambda: rom.steady_state(W), repeat=200)
+    t_rom = _median(lambda: rom.steady_state(W), repeat=1 if REPEAT == 1 else 200)
     desc = f"{mesh.elements_around}x{mesh.elements_along} P{mesh.degree}, {model.size} dofs"
     size = model.size
     model.K.destroy()
@@ -170,7 +172,8 @@ def _harmonic_entries(scene, mesh, label):
     ]
 
 
-def run():
+def run(quick: bool = False) -> list[dict]:
+    global REPEAT
     from dataclasses import replace
 
     from rotorpillar.scene import load_scene
@@ -182,8 +185,12 @@ def run():
         elements_around=fo.elements_around or scene.mesh.elements_around,
         elements_along=fo.elements_along or scene.mesh.elements_along,
     )
+    meshes = [(full_order, "full_order_mesh"), (scene.mesh, "modal_mesh")]
+    if quick:
+        REPEAT = 1
+        meshes = [(replace(scene.mesh, elements_around=8, elements_along=2), "quick_mesh")]
     out = []
-    for mesh, label in ((full_order, "full_order_mesh"), (scene.mesh, "modal_mesh")):
+    for mesh, label in meshes:
         out += _stress_entries(scene, mesh, label) + _harmonic_entries(scene, mesh, label)
     return out
 

@@ -26,7 +26,8 @@ import numpy as np
 REPEAT = 5
 
 
-def _median_time(fn, repeat=REPEAT):
+def _median_time(fn, repeat=None):
+    repeat = REPEAT if repeat is None else repeat
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
@@ -145,12 +146,16 @@ def _case(scene, mesh, label):
     ]
 
 
-def run():
+def run(quick: bool = False) -> list[dict]:
+    global REPEAT
     from dataclasses import replace
 
     from rotorpillar.scene import load_scene
 
     scene = load_scene("paper")
     d = scene.mesh
+    if quick:
+        REPEAT = 1
+        d = replace(d, elements_around=16, elements_along=4)
     finer = replace(d, elements_along=2 * d.elements_along)
     return _case(scene, d, "default") + _case(scene, finer, "2x_along")

@@ -3,7 +3,8 @@
 Each backend runs in its own process (VTK picks its render window when the
 first one is created), rendering the same synthetic tube modes and a short
 animation; the numbers are side by side in one `make bench` run.  Values are
-wall-clock per item on this machine, not asserted anywhere.
+wall-clock per item on this machine, not asserted anywhere.  ``quick``: a
+coarse tube (16 x 10) and 4 animation frames (does it run).
 """
 
 import json
@@ -29,8 +30,9 @@ from rotorpillar.postprocess.modeshapes import render_mode, render_contact_sheet
 from rotorpillar.postprocess.animation import animate
 from rotorpillar.postprocess.offscreen import render_window_class
 out = Path(sys.argv[1])
-fixtures.write_modal_fixture(out, around=32, along=40)
-fixtures.write_simulation_fixture(out, "runup", n=20000)
+around, along, n, frames = (int(a) for a in sys.argv[3:7])
+fixtures.write_modal_fixture(out, around=around, along=along)
+fixtures.write_simulation_fixture(out, "runup", n=n)
 modal = records.read(out / "modal.json", ModalSummary)
 ms = load_modes(out / "modes_top.vtu", modal.modes_with_top, modal.axes)
 render_mode(ms, 0, out / "warm.png")
@@ -41,26 +43,31 @@ t_mode = (time.perf_counter() - t0) / len(ms.arrays)
 t0 = time.perf_counter()
 render_contact_sheet(ms, out / "sheet.png")
 t_sheet = time.perf_counter() - t0
-frames = 60
 r = animate(read_simulation(out, "runup"), ms, out / "a.mp4", max_frames=frames, progress=False)
 print(json.dumps({"window": render_window_class(), "mode": t_mode, "sheet": t_sheet,
                   "frame": r.seconds / frames, "points": int(ms.surface.n_points)}))
 """
 
 
-def _measure(window: str) -> dict:
+def _measure(window: str, sizes: tuple[int, ...]) -> dict:
     env = dict(os.environ, VTK_DEFAULT_OPENGL_WINDOW=window)
     env.pop("DISPLAY", None)
     with tempfile.TemporaryDirectory() as tmp:
         p = subprocess.run(
-            [sys.executable, "-c", WORKER, tmp, str(TESTS)], env=env, capture_output=True, text=True, check=True
+            [sys.executable, "-c", WORKER, tmp, str(TESTS), *map(str, sizes)],
+            env=env,
+            capture_output=True,
+            text=True,
+            check=True,
         )
     return json.loads(p.stdout.strip().splitlines()[-1])
 
 
-def run():
-    egl = _measure("vtkEGLRenderWindow")
-    osm = _measure("vtkOSOpenGLRenderWindow")
+def run(quick: bool = False) -> list[dict]:
+    # around, along, samples of the run-up, animation frames
+    sizes = (16, 10, 2000, 4) if quick else (32, 40, 20000, 60)
+    egl = _measure("vtkEGLRenderWindow", sizes)
+    osm = _measure("vtkOSOpenGLRenderWindow", sizes)
     out = []
     for key, what, unit in (
         ("mode", "one mode-shape PNG (480x720)", "s"),

@@ -14,7 +14,8 @@ Runs per second are over the computing phase (submitting the batches to the
 last result), on warm workers: a warm-up study first puts the compiled
 kernels in numba's disk cache, and every worker loads them (one tiny batch
 each) before the clock starts; the cluster's start with that load is
-reported beside it (``cluster_start_seconds``).
+reported beside it (``cluster_start_seconds``).  ``quick``: 6 run-ups of 5 s
+(does it run).
 """
 
 import os
@@ -31,6 +32,7 @@ from rotorpillar.studies import design_study
 from rotorpillar.studies.batch import warm_kernels
 
 VARY = ["drive.torque_at_zero=560:700:15", "rotor.eccentricity=0.010:0.020:6"]
+QUICK_VARY = ["drive.torque_at_zero=560:700:3", "rotor.eccentricity=0.010:0.020:2"]
 
 
 def _free_port() -> int:
@@ -39,15 +41,15 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-def _study(executor_kwargs: dict, scene):
+def _study(executor_kwargs: dict, scene, vary):
     with tempfile.TemporaryDirectory(prefix="bench-study-") as tmp:
         t0 = time.perf_counter()
         with Executor(**executor_kwargs) as ex:
             ex.client.run(warm_kernels)
             start = time.perf_counter() - t0
-            res = design_study(scene, "runup", "paper", VARY, out_dir=Path(tmp), executor=ex, show_progress=False)
+            res = design_study(scene, "runup", "paper", vary, out_dir=Path(tmp), executor=ex, show_progress=False)
         p = res.performance
-        return p["runs_per_second"], start, p["compute_wall_seconds"], res.executor
+        return p.runs_per_second, start, p.compute_wall_seconds, res.executor
 
 
 def _localhost_cluster(workers: int = 2):
@@ -56,9 +58,14 @@ def _localhost_cluster(workers: int = 2):
     port = _free_port()
     addr = f"tcp://127.0.0.1:{port}"
     env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parent.parent))
-    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    quiet = subprocess.DEVNULL
     procs = [
-        subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"], **quiet)
+        subprocess.Popen(
+            [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+            stdout=quiet,
+            stderr=quiet,
+            env=env,
+        )
     ]
     time.sleep(2.0)
     for _ in range(workers):
@@ -76,14 +83,17 @@ def _localhost_cluster(workers: int = 2):
                     "--memory-limit",
                     "0",
                 ],
-                **quiet,
+                stdout=quiet,
+                stderr=quiet,
+                env=env,
             )
         )
     return addr, procs
 
 
-def run():
-    scene = load_scene("sommerfeld")
+def run(quick: bool = False) -> list[dict]:
+    scene = load_scene("sommerfeld", ["simulate.duration=5"] if quick else [])
+    vary = QUICK_VARY if quick else VARY
     with tempfile.TemporaryDirectory() as tmp, Executor(processes=False) as ex:  # warm-up
         design_study(
             scene,
@@ -94,19 +104,23 @@ def run():
             executor=ex,
             show_progress=False,
         )
-    one = _study({"workers": 1}, scene)
-    two = _study({"workers": 2}, scene)
+    one = _study({"workers": 1}, scene, vary)
+    two = _study({"workers": 2}, scene, vary)
     addr, procs = _localhost_cluster(2)
     try:
         with Executor(scheduler=addr) as ex:
             ex.client.wait_for_workers(2, timeout=60)
-        sched = _study({"scheduler": addr}, scene)
+        sched = _study({"scheduler": addr}, scene, vary)
     finally:
         for p in reversed(procs):
             p.terminate()
         for p in procs:
             p.wait(timeout=30)
-    what = "90 run-ups of sommerfeld (the capture-map study), cold batch cache"
+    what = (
+        "6 run-ups of 5 s of sommerfeld (quick)"
+        if quick
+        else "90 run-ups of sommerfeld (the capture-map study), cold batch cache"
+    )
     out = []
     for name, (rate, start, wall, info) in (
         ("1 worker (LocalCluster)", one),

@@ -26,6 +26,9 @@
    the stiff shaft on the 16 x 20 mesh: steps, wall time, peak tip; beside
    them the steps the old rule (40 per period of the fastest of the rotor,
    sqrt(c2 / m_C) and the band) would take.
+
+``quick``: 20 runs of 2 s in the sweep, runs of 2 s, 3D windows of 0.2 s
+(does it run).
 """
 
 from __future__ import annotations
@@ -79,10 +82,10 @@ def _params(model, M0, s, k):
     )
 
 
-def plain_run(model, M0, s, k, rtol, atol, t_eval):
+def plain_run(model, M0, s, k, rtol, atol, t_eval, duration=DURATION):
     sol = solve_ivp(
         plain_rhs(_params(model, M0, s, k)),
-        (0.0, DURATION),
+        (0.0, duration),
         np.zeros(8),
         method="RK45",
         t_eval=t_eval,
@@ -92,23 +95,24 @@ def plain_run(model, M0, s, k, rtol, atol, t_eval):
     return sol.y[0], sol.nfev
 
 
-def bench_sweep(scene) -> list[dict]:
+def bench_sweep(scene, quick: bool = False) -> list[dict]:
+    runs, plain_sample, duration = (20, 2, 2.0) if quick else (RUNS, PLAIN_SAMPLE, DURATION)
     model, _ = build_model(scene, "paper")
     d, L = scene.drive, scene.load
     drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
-    tau = np.linspace(1.7, 17.0, RUNS)
+    tau = np.linspace(1.7, 17.0, runs)
     scale = 300.0 * tau / d.torque_at_zero
     rtol = 1e-7
     simulate_batch(model, drive, 1.0, torque_scale=scale[:2], rtol=rtol, samples=SAMPLES)  # compile
-    serial = simulate_batch(model, drive, DURATION, torque_scale=scale, rtol=rtol, samples=SAMPLES, threads=1)
-    b = simulate_batch(model, drive, DURATION, torque_scale=scale, rtol=rtol, samples=SAMPLES)
+    serial = simulate_batch(model, drive, duration, torque_scale=scale, rtol=rtol, samples=SAMPLES, threads=1)
+    b = simulate_batch(model, drive, duration, torque_scale=scale, rtol=rtol, samples=SAMPLES)
     threads = batch_threads()
     assert np.array_equal(b.tip, serial.tip)  # the same runs, whichever thread ran them
-    serial_rate = RUNS / serial.wall_seconds
-    batch_rate = RUNS / b.wall_seconds
+    serial_rate = runs / serial.wall_seconds
+    batch_rate = runs / b.wall_seconds
     # accuracy on a sample of the runs against a tight reference
-    pick = np.linspace(0, RUNS - 1, PLAIN_SAMPLE).astype(int)
-    ref = simulate_batch(model, drive, DURATION, torque_scale=scale[pick], rtol=1e-12, samples=SAMPLES)
+    pick = np.linspace(0, runs - 1, plain_sample).astype(int)
+    ref = simulate_batch(model, drive, duration, torque_scale=scale[pick], rtol=1e-12, samples=SAMPLES)
     ref_tip = ref.tip
     err = lambda tips: float(max(np.max(np.abs(a - r)) / np.max(np.abs(r)) for a, r in zip(tips, ref_tip)))
     batch_err = err(b.tip[pick])
@@ -120,7 +124,7 @@ def bench_sweep(scene) -> list[dict]:
         tips, nfev = [], 0
         for i in pick:
             M0 = d.torque_at_zero * scale[i]
-            tip, n = plain_run(model, M0, d.slope, L.coefficient, plain_rtol, atol8 * plain_rtol, t_eval)
+            tip, n = plain_run(model, M0, d.slope, L.coefficient, plain_rtol, atol8 * plain_rtol, t_eval, duration)
             tips.append(tip)
             nfev += n
         wall = time.perf_counter() - t0
@@ -130,7 +134,7 @@ def bench_sweep(scene) -> list[dict]:
         {
             "name": "sweep_batch_runs_per_second",
             "compares": f"compiled batch on every core ({threads} "
-            f"threads): {RUNS} run-ups of {DURATION:g} s (tau 1.7..17), rtol {rtol:g}",
+            f"threads): {runs} run-ups of {duration:g} s (tau 1.7..17), rtol {rtol:g}",
             "value": batch_rate,
             "unit": "runs/s",
             "wall_seconds": b.wall_seconds,
@@ -194,7 +198,11 @@ def bench_sweep(scene) -> list[dict]:
     return out
 
 
-def bench_cases(scene) -> list[dict]:
+def bench_cases(scene, quick: bool = False) -> list[dict]:
+    # the paper's pulse starts at 5 s: the earthquake runs past it
+    short = ["--set", "simulate.duration=2", "--set", "simulate.earthquake_duration=7"] if quick else []
+    if quick:
+        scene = override(scene, short[1::2])
     out = []
     for case in ("runup", "earthquake", "sweep"):
         run_case(scene, case, "paper")  # warm
@@ -208,14 +216,25 @@ def bench_cases(scene) -> list[dict]:
                 "library call, compiled code warm (model, integration, summary)",
                 "value": wall,
                 "unit": "s",
-                "integration_seconds": r.run.stats["wall_seconds"],
+                "integration_seconds": r.run.stats.wall_seconds,
                 "simulated_seconds": float(r.run.t[-1] - r.run.t[0]),
             }
         )
     for case in ("runup", "earthquake"):
         t0 = time.perf_counter()
         p = subprocess.run(
-            [sys.executable, "-m", "rotorpillar", "simulate", "paper", "--case", case, "--out", "bench/cache/simulate"],
+            [
+                sys.executable,
+                "-m",
+                "rotorpillar",
+                "simulate",
+                "paper",
+                "--case",
+                case,
+                "--out",
+                "bench/cache/simulate",
+                *short,
+            ],
             capture_output=True,
             text=True,
         )
@@ -233,11 +252,11 @@ def bench_cases(scene) -> list[dict]:
     return out
 
 
-def bench_rom_vs_full(scene) -> list[dict]:
+def bench_rom_vs_full(scene, quick: bool = False) -> list[dict]:
     d, L = scene.drive, scene.load
     drive = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient)
     motion = load_record("elcentro", start=2.0)
-    t_end = round(motion.end + 3.0, 1)
+    t_end = 2.0 if quick else round(motion.end + 3.0, 1)
     samples = int(round(t_end / 0.01)) + 1  # outputs every 10 steps of 1 ms: the grids match
     elements = 10
     full = beam_model(scene.pillar, scene.gondola.mass, scene.rotor, scene.shaft, elements, "timoshenko")
@@ -249,6 +268,7 @@ def bench_rom_vs_full(scene) -> list[dict]:
     top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
     # the mode count the band asks of the same beam (the ROM below is built on its modes)
     rom, info = build_model(override(scene, ["modal_model.source=beam"]), "modal", top)
+    assert rom.pillar_modes is not None, "a modal model has its pillar modes"
     k = rom.pillar_modes.count
     pm = beam_pillar_modes(scene.pillar, scene.gondola.mass, k, "timoshenko", elements)  # same beam
     rom = modal_model(
@@ -271,10 +291,10 @@ def bench_rom_vs_full(scene) -> list[dict]:
             "name": "earthquake_rom_over_full_order_time",
             "compares": f"modal ROM ({k} modes, dp5) "
             f"over full-order 1D Timoshenko beam ({full.nx} dofs, Newmark h = 1 ms), El Centro 1940",
-            "value": R.stats["wall_seconds"] / F.stats["wall_seconds"],
+            "value": R.stats.wall_seconds / F.stats.wall_seconds,
             "unit": "x",
-            "rom_seconds": R.stats["wall_seconds"],
-            "full_order_seconds": F.stats["wall_seconds"],
+            "rom_seconds": R.stats.wall_seconds,
+            "full_order_seconds": F.stats.wall_seconds,
             "full_order": "1D beam (rotorpillar.fem3d not installed)",
         },
         {
@@ -310,7 +330,7 @@ def newmark_3d(scene, motion, Omega: float, theta0: float, h: float, t_end: floa
     return r.t, r.tip_x, r.wall_seconds, r.dofs
 
 
-def bench_rom_vs_3d(scene) -> list[dict]:
+def bench_rom_vs_3d(scene, quick: bool = False) -> list[dict]:
     """The ROM built on the 3D modes against the 3D model itself (Newmark)."""
     import importlib.util
 
@@ -320,7 +340,7 @@ def bench_rom_vs_3d(scene) -> list[dict]:
 
     scene = override(scene, ["modal_model.source=fem3d"])
     motion = load_record("elcentro", start=1.0)
-    h, t_end = 2e-3, 11.0
+    h, t_end = 2e-3, (0.2 if quick else 11.0)
     d, L = scene.drive, scene.load
     from rotorpillar.fem3d.pillar_modes import candidate_pillar_modes
 
@@ -342,6 +362,7 @@ def bench_rom_vs_3d(scene) -> list[dict]:
     q0[model.rotor_x], q0[model.nx], q0[-1] = x, y, theta0
     v0[model.rotor_x], v0[model.nx], v0[-1] = vx, vy, Omega
     idle = DriveSchedule.constant(0.0, 0.0, 0.0)
+    assert model.pillar_modes is not None, "a modal model has its pillar modes"
     out = []
     for label, st in (
         ("dp5", Settings("dp5", rtol=1e-7, samples=len(t3))),
@@ -356,9 +377,9 @@ def bench_rom_vs_3d(scene) -> list[dict]:
                 "compares": f"modal ROM on the 3D modes ({model.pillar_modes.count} X bending modes, {label}) "
                 f"over the 3D model ({dofs} dofs, Newmark h = {h:g} s, one MUMPS factorisation), "
                 f"El Centro 1940, {t_end:g} s, rotor at {Omega:.1f} rad/s",
-                "value": R.stats["wall_seconds"] / wall3,
+                "value": R.stats.wall_seconds / wall3,
                 "unit": "x",
-                "rom_seconds": R.stats["wall_seconds"],
+                "rom_seconds": R.stats.wall_seconds,
                 "full_3d_seconds": wall3,
             }
         )
@@ -378,7 +399,7 @@ def bench_rom_vs_3d(scene) -> list[dict]:
 STIFF = ["shaft.stiffness=1e10", "rotor.eccentricity=0", "shaft.damping=0"]
 
 
-def bench_full_order_step() -> list[dict]:
+def bench_full_order_step(quick: bool = False) -> list[dict]:
     """The 3D full order's steps and wall time, default and stiff shaft, in one run."""
     import importlib.util
     import os
@@ -390,7 +411,7 @@ def bench_full_order_step() -> list[dict]:
     from rotorpillar.transients.run_plan import fem3d_plan
 
     out = []
-    cases = (
+    cases: tuple[tuple[str, list[str], list[str]], ...] = (
         ("default shaft", [], []),
         ("stiff shaft", STIFF, []),
         ("stiff shaft, 16 x 20 mesh", STIFF, ["full_order.elements_around=16", "full_order.elements_along=20"]),
@@ -398,46 +419,47 @@ def bench_full_order_step() -> list[dict]:
     for label, shaft, mesh in cases:
         scene = load_scene("paper", ["excitation.kind=record"] + shaft + mesh)
         plan = fem3d_plan(scene, "earthquake")
+        duration = min(plan.duration, 0.2) if quick else plan.duration
         load = os.getloadavg()[0]
-        r = simulate_fem3d(scene, "earthquake", duration=plan.duration, mesh=plan.mesh, samples=20000)
-        motion, drive, _, W0, _ = case_setup(scene, "earthquake", None, None, plan.duration, None)
+        r = simulate_fem3d(scene, "earthquake", duration=duration, mesh=plan.mesh, samples=20000)
+        motion, drive, _, W0, _ = case_setup(scene, "earthquake", None, None, duration, None)
         fast = max(top_speed(drive, W0), math.sqrt(scene.shaft.stiffness / scene.rotor.mass), motion.band())
-        old_steps = plan.duration / min(2 * math.pi / fast / 40, motion.time_step)
+        old_steps = duration / min(2 * math.pi / fast / 40, motion.time_step)
         it = r.integrator
         m = plan.mesh
         out.append(
             {
                 "name": f"full_order_3d_elcentro_{label.replace(', ', '_').replace(' ', '_')}_seconds",
-                "compares": f"3D full order, El Centro {plan.duration:g} s, {label} "
+                "compares": f"3D full order, El Centro {duration:g} s, {label} "
                 f"({m.elements_around} x {m.elements_along} elements, {r.dofs} dofs): wall time "
                 "of meshing, assembly, factorisation and integration",
                 "value": r.wall_seconds,
                 "unit": "s",
-                "steps": it["steps"],
-                "time_step": it["time_step"],
-                "integration_seconds": it["integration_seconds"],
-                "seconds_per_step": it["seconds_per_step"],
-                "scheme": it["method"],
-                "rule": it["step_rule"]["rule"],
+                "steps": it.steps,
+                "time_step": it.time_step,
+                "integration_seconds": it.integration_seconds,
+                "seconds_per_step": it.seconds_per_step,
+                "scheme": it.method,
+                "rule": it.step_rule.rule if it.step_rule else None,
                 "peak_tip": r.max_abs["tip_x"],
                 "ok": r.ok,
                 "old_rule_steps": old_steps,
-                "old_rule_seconds_extrapolated": old_steps * it["seconds_per_step"],
-                "estimated_seconds": it["estimate"]["seconds"],
+                "old_rule_seconds_extrapolated": old_steps * it.seconds_per_step,
+                "estimated_seconds": it.estimate.seconds if it.estimate else None,
                 "load_average": load,
             }
         )
     return out
 
 
-def run() -> list[dict]:
+def run(quick: bool = False) -> list[dict]:
     scene = load_scene("paper")
     return (
-        bench_sweep(scene)
-        + bench_cases(scene)
-        + bench_rom_vs_full(scene)
-        + bench_rom_vs_3d(scene)
-        + bench_full_order_step()
+        bench_sweep(scene, quick)
+        + bench_cases(scene, quick)
+        + bench_rom_vs_full(scene, quick)
+        + bench_rom_vs_3d(scene, quick)
+        + bench_full_order_step(quick)
     )
 
 

@@ -10,7 +10,9 @@ on stdout.  Bad input: one line on stderr, exit code 2, nothing written.
 
 from __future__ import annotations
 
+import atexit
 import importlib
+import io
 import logging
 import os
 import signal
@@ -21,11 +23,12 @@ from pathlib import Path
 from typing import Any
 
 from . import records
-from .commands import Done, is_root_rank, out_dir
+from .commands import Done, is_root_rank, out_dir, progress
+from .commands.folder_lock import output_lock
 from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
 from .errors import ComputationError, InputError, StageError
 from .provenance import Timings, with_provenance, write_result
-from .scene import Scene, load_scene
+from .scene import Scene, load_scene, what_is_there
 
 
 @dataclass(frozen=True)
@@ -47,6 +50,7 @@ def execute(name: str, scene: Scene, args) -> Executed:
     timings = Timings()
     start = time.perf_counter()
     done = Done(*fn(scene, args, timings))
+    stopped()  # a signal a library caught on the way: no result file, the signal's exit
     timings["total"] = time.perf_counter() - start
     head = {
         "command": name,
@@ -77,13 +81,23 @@ def mpi_world_size() -> int:
     return 1
 
 
+def mpi_world_rank() -> int:
+    """This process's rank in its MPI job (0 outside mpirun), from the launcher's env."""
+    for key in ("OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"):
+        value = os.environ.get(key, "")
+        if value.isdigit():
+            return int(value)
+    return 0
+
+
 def check_output_dir(path: Path) -> None:
     """Refuse, before any work, an output directory that cannot take files.
 
     Nothing is created here: refused input leaves no trace.
     """
-    if path.exists() and not path.is_dir():
-        raise InputError(f"--out {str(path)!r}: exists and is not a directory")
+    if os.path.lexists(path) and not path.is_dir():
+        there = what_is_there(path) or "is a file"
+        raise InputError(f"--out {str(path)!r}: {there.removesuffix(', not a file')}, not a directory")
     probe = path
     while not probe.exists():
         if probe.parent == probe:
@@ -93,6 +107,19 @@ def check_output_dir(path: Path) -> None:
         raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not writable")
     if not probe.is_dir():
         raise InputError(f"--out {str(path)!r}: {str(probe)!r} is not a directory")
+
+
+def open_file_of(exc: BaseException) -> str | None:
+    """The file an OSError without a name was raised on: the innermost frame of its
+    traceback that holds an open file object (a library's ``f.write`` on a full disk)."""
+    tb, found = exc.__traceback__, None
+    while tb is not None:
+        for value in tb.tb_frame.f_locals.values():
+            name = getattr(value, "name", None) if isinstance(value, io.IOBase) else None
+            if isinstance(name, str):
+                found = name
+        tb = tb.tb_next
+    return found
 
 
 def quiet_third_party_logs(debug: bool = False) -> None:
@@ -115,8 +142,39 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM: stop as on Ctrl-C (a running stage's process is killed with us)."""
 
 
+#: The signals received, in order: a library that calls back into Python (VTK's
+#: observers, a C loop) may catch the exception the handler raised and carry on;
+#: the command is stopped at its end all the same (``stopped``).
+RECEIVED: list[int] = []
+
+
 def _terminate(signum, frame):
-    raise Terminated()
+    RECEIVED.append(signum)
+    raise Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
+
+
+def stopped() -> None:
+    """Raise the interrupt a library swallowed (``RECEIVED``): the command's result is not
+    written, and the exit is 130 or 143 as if it had propagated."""
+    if RECEIVED:
+        raise Terminated() if RECEIVED[-1] == signal.SIGTERM else KeyboardInterrupt()
+
+
+#: The command under way in this process (``main``), for ``_exit_as_signalled``.
+_RUNNING: list[str] = []
+
+
+def _exit_as_signalled() -> None:
+    """At the interpreter's exit while a command is still under way after a signal: a
+    library ended the process from inside the command (VTK's observer calls exit(1) on a
+    KeyboardInterrupt): the exit is the signal's, with its one line."""
+    if _RUNNING and RECEIVED:
+        print(
+            f"rotorpillar {_RUNNING[-1]}: interrupted: finished outputs are complete, none is half-written",
+            file=sys.stderr,
+            flush=True,
+        )
+        os._exit(EXIT_TERMINATED if RECEIVED[-1] == signal.SIGTERM else EXIT_INTERRUPTED)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -124,15 +182,30 @@ def main(argv: list[str] | None = None) -> int:
 
     2: bad input (nothing written); 1: a solver, a tool or the machine failed
     (file system, memory; finished outputs stay complete); 70: a bug (one line;
-    ``--debug`` shows the traceback); 130: interrupted.
+    ``--debug`` shows the traceback); 130, 143: interrupted (Ctrl-C, SIGTERM), also
+    when a library caught the interrupt (``stopped``, ``_exit_as_signalled``).
     """
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    args = build_parser().parse_args(argv)
+    atexit.unregister(_exit_as_signalled)  # once per process, however many commands it runs
+    atexit.register(_exit_as_signalled)
+    _RUNNING.append(args.command)
+    try:
+        return _main(args)
+    finally:
+        _RUNNING.pop()
+
+
+def _main(args) -> int:
     quiet_third_party_logs(args.debug)
+    RECEIVED.clear()
     signal.signal(signal.SIGTERM, _terminate)
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:  # not when ignored (nohup, &)
+        signal.signal(signal.SIGINT, _terminate)
     if args.debug:
         os.environ["ROTORPILLAR_DEBUG"] = "1"  # run's stages and the report see it too
     say = lambda kind, text: print(f"rotorpillar {args.command}: {kind}: {text}", file=sys.stderr)
+    # what every rank meets alike (bad input, a signal): said once, by rank 0
+    say_once = say if mpi_world_rank() == 0 else lambda kind, text: None
     try:
         if mpi_world_size() > 1 and args.command not in MPI_COMMANDS:
             raise InputError(
@@ -145,9 +218,10 @@ def main(argv: list[str] | None = None) -> int:
 
             check_record(scene.excitation.record)  # a missing record: now, not at a late stage
         check_output_dir(out_dir(scene, args))
-        ran = execute(args.command, scene, args)
+        with output_lock(out_dir(scene, args), args.command, progress):
+            ran = execute(args.command, scene, args)
     except InputError as exc:
-        say("error", exc)
+        say_once("error", exc)
         return EXIT_INPUT
     except StageError as exc:
         say("failed", exc)
@@ -158,12 +232,13 @@ def main(argv: list[str] | None = None) -> int:
         say("failed", f"{exc}; nothing was written")
         return EXIT_FAILED
     except KeyboardInterrupt as exc:
-        say("interrupted", "finished outputs are complete, none is half-written")
+        say_once("interrupted", "finished outputs are complete, none is half-written")
         return EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED
     except OSError as exc:
         if args.debug:
             raise
-        where = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
+        file = getattr(exc, "filename", None) or open_file_of(exc)
+        where = f" {file!r}" if file else ""
         say(
             "failed",
             f"the file system refused{where}: {exc.strerror or exc}; files written "

@@ -253,12 +253,20 @@ class Executor:
         return self
 
     def __exit__(self, *exc) -> None:
-        for thing in (self.client, self.cluster):
-            if thing is not None:
-                try:
-                    thing.close()
-                except Exception:  # closing after Ctrl-C must not hide the Ctrl-C
-                    pass
+        # a worker slow to stop (a loaded machine) is killed after a few seconds, and the
+        # nanny says so at WARNING: the work is done and written, nothing for the user
+        nanny = logging.getLogger("distributed.nanny")
+        level = nanny.level
+        nanny.setLevel(logging.ERROR)
+        try:
+            for thing in (self.client, self.cluster):
+                if thing is not None:
+                    try:
+                        thing.close()
+                    except Exception:  # closing after Ctrl-C must not hide the Ctrl-C
+                        pass
+        finally:
+            nanny.setLevel(level)
         self.client = self.cluster = None
 
     # ------------------------------------------------------------ what it is

@@ -286,6 +286,13 @@ def atomic_path(path: str | Path):
         # mkstemp makes the file owner-only; results are shared, so honour the umask
         os.chmod(tmp, 0o666 & ~_UMASK)
         os.replace(tmp, path)
+    except OSError as exc:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        if exc.filename not in (None, tmp, str(tmp)):
+            raise
+        # a failed write(2) names no file, and the temporary's name is ours: name the result
+        raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from None
     except BaseException:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp)

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import typing
 from pathlib import Path
 from typing import Annotated, Any, TypeVar
@@ -122,12 +123,30 @@ def read(path: str | Path, type_: type[R]) -> R:
     """The record in the JSON file at ``path``; a damaged file raises
     ValueError naming the file and the path of the bad field."""
     path = Path(path)
+    data = path.read_bytes()
     try:
-        return decode(path.read_bytes(), type_)
+        return decode(data, type_)
     except msgspec.ValidationError as err:
         raise ValueError(f"{path.name}: {err}") from None
     except msgspec.DecodeError as err:
-        raise ValueError(f"{path.name}: not JSON ({err})") from None
+        raise ValueError(f"{path.name}: not JSON ({where_malformed(data, str(err))})") from None
+
+
+def where_malformed(data: bytes, message: str) -> str:
+    r"""msgspec's message on malformed JSON with the place in words: its line and column
+    and the text there (a NaN or Infinity a hand or another tool wrote, a stray comma).
+
+    >>> where_malformed(b'{"a": [1,\n NaN]}', "JSON is malformed: invalid character (byte 11)")
+    "JSON is malformed: invalid character at line 2, column 2: 'NaN]}'"
+    """
+    found = re.search(r" \(byte (\d+)\)$", message)
+    if found is None:
+        return message
+    at = int(found.group(1))
+    line = data.count(b"\n", 0, at) + 1
+    column = at - (data.rfind(b"\n", 0, at) + 1) + 1
+    text = data[at : at + 12].split(b"\n")[0].decode("utf-8", "replace")
+    return f"{message[: found.start()]} at line {line}, column {column}: {text!r}"
 
 
 S = TypeVar("S")

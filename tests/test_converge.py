@@ -294,9 +294,11 @@ def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
         if cv.FAMILIES[c.family].model in ("closed_form", "beam") or (c.family == "shell_quad" and c.level <= 16)
     ]
     monkeypatch.setattr(study_module, "study_cases", lambda sc: cheap)
-    st = cv.study(scene, out_dir=tmp_path, tolerance=1e-2, show_progress=False)
+    # the whole (cheap) ladder: every rung run, so the counts are the ladder's
+    st = cv.study(scene, out_dir=tmp_path, tolerance=1e-2, show_progress=False, full=True)
     path = tmp_path / "convergence.json"
     assert st.json_file == str(path) and st.chosen is not None and st.study.computed == len(cheap)
+    assert st.refinement is not None and st.refinement.full and st.refinement.runs == len(cheap)
     doc = json.loads(path.read_text())
     again = records.read(path, cv.ConvergenceStudy)
     mine = records.to_builtins(again)
@@ -304,7 +306,7 @@ def test_the_study_document_round_trips_through_its_type(tmp_path, monkeypatch):
     assert [records.to_builtins(r) for r in again.runs] == doc["runs"] and again.failures == tuple(doc["failures"])
     assert set(again.reference) == {"bending", "ovalling"} and again.charts is None
     assert "json" not in doc and again.json_file is None
-    cached = cv.study(scene, out_dir=tmp_path, tolerance=1e-2, show_progress=False)
+    cached = cv.study(scene, out_dir=tmp_path, tolerance=1e-2, show_progress=False, full=True)
     assert cached.study.cached == len(cheap) and [r.bending for r in cached.runs] == [r.bending for r in again.runs]
     doc["runs"][0]["bending"] = "fast"
     path.write_text(json.dumps(doc))

@@ -13,7 +13,7 @@ import threading
 import time
 
 import pytest
-from conftest import cli
+from conftest import cli, sigint_as_in_the_foreground
 
 LATIN1 = "[pillar]\nheight = 20.0 # Höhe\n".encode("latin-1")
 
@@ -90,13 +90,21 @@ def test_an_accelerogram_that_is_not_utf8_is_refused(tmp_path):
     assert not out.exists()
 
 
+# within every key's range (scene.sections), each mesh far past any machine's memory:
+# 2.3e7 DOFs (258 GiB) and more
 @pytest.mark.parametrize(
-    "key", ["mesh.elements_along=100000", "mesh.elements_through=1000", "mesh.elements_around=100000"]
+    "keys",
+    [
+        ["mesh.elements_along=10000"],
+        ["mesh.elements_through=100", "mesh.elements_along=1000"],
+        ["mesh.elements_around=4096", "mesh.elements_along=1000"],
+    ],
+    ids=["along", "through", "around"],
 )
 @pytest.mark.parametrize("command", ["modal", "run"])
-def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, key, command):
+def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, keys, command):
     out = tmp_path / "out"
-    p = cli(command, "paper", "--set", key, "--out", out)
+    p = cli(command, "paper", *(a for k in keys for a in ("--set", k)), "--out", out)
     assert p.returncode == 2
     line = one_line(p)
     assert "DOFs" in line and "GiB" in line  # the estimate and the limit, in one line
@@ -375,8 +383,10 @@ def test_captured_at_is_the_settled_speed_and_an_escaping_run_is_not_captured(tm
             ["simulate", "--set", "simulate.integrator=newmark", "--set", "simulate.time_step=1e-9"],
             "simulate.max_steps",
         ),
-        (["simulate", "--case", "sweep", "--set", "sweep.rate=1e-6"], "simulate.max_steps"),
-        (["simulate", "--case", "sweep", "--set", "sweep.settle=1e12"], "simulate.max_steps"),
+        # the slowest ramp and the longest settle the ranges allow (sweep.rate >= 1e-3,
+        # sweep.settle <= 1e5 s): each past the default step budget
+        (["simulate", "--case", "sweep", "--set", "sweep.rate=1e-3"], "simulate.max_steps"),
+        (["simulate", "--case", "sweep", "--set", "sweep.settle=1e5"], "simulate.max_steps"),
         (["simulate", "--case", "sweep", "--set", "sweep.bins=100000"], "sweep.bins"),
         (["simulate", "--set", "simulate.rtol=1e-300"], "simulate.rtol"),
         (["integrators", "--duration", "1000"], "--duration"),
@@ -981,13 +991,13 @@ FULL_ORDER_KEYS = ("full_order.time_step", "simulate.max_steps")
             FULL_ORDER_KEYS + ("full_order.runup_duration", "simulate.duration"),
         ),
         (
-            ["simulate", "--model", "fem3d", "--case", "earthquake", "--set", "full_order.time_step=1e-12"],
+            ["simulate", "--model", "fem3d", "--case", "earthquake", "--set", "full_order.time_step=1e-9"],
             FULL_ORDER_KEYS + ("full_order.earthquake_duration",),
         ),
-        (["compare", "--case", "earthquake", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
-        (["compare", "--case", "runup", "--set", "full_order.time_step=1e-12"], FULL_ORDER_KEYS),
+        (["compare", "--case", "earthquake", "--set", "full_order.time_step=1e-9"], FULL_ORDER_KEYS),
+        (["compare", "--case", "runup", "--set", "full_order.time_step=1e-9"], FULL_ORDER_KEYS),
         (
-            ["simulate", "--model", "beam", "--case", "runup", "--set", "full_order.time_step=1e-12"],
+            ["simulate", "--model", "beam", "--case", "runup", "--set", "full_order.time_step=1e-9"],
             FULL_ORDER_KEYS + ("simulate.duration",),
         ),
         (
@@ -1015,6 +1025,8 @@ FULL_ORDER_KEYS = ("full_order.time_step", "simulate.max_steps")
     ],
 )
 def test_a_full_order_too_long_is_refused_before_any_meshing(tmp_path, args, words):
+    # the tiny steps are full_order.time_step's floor (1e-9 s): within its range, yet
+    # 1e10 steps of the shortest case, past simulate.max_steps
     out = tmp_path / "out"
     p = cli(args[0], "paper", *args[1:], "--out", out, timeout=120)
     line = one_line(p)
@@ -1035,3 +1047,395 @@ def test_simulate_under_mpirun_shares_only_the_3d_full_order(tmp_path):
         p = cli(args[0], "paper", *args[1:], "--out", out, env=env)
         assert p.returncode == 2 and "without mpirun" in one_line(p)
     assert not out.exists()
+
+
+# --------------------------------------------------------------------------
+# Issue 31 (hardening, third pass): paths, I/O errors, runs that cannot mean anything.
+
+
+def _fifo(tmp_path):
+    import os
+
+    path = tmp_path / "pipe.toml"
+    os.mkfifo(path)
+    return path
+
+
+def _loop(tmp_path):
+    path = tmp_path / "loop.toml"
+    path.symlink_to(path.name)
+    return path
+
+
+def _dangling(tmp_path):
+    path = tmp_path / "gone.toml"
+    path.symlink_to("nowhere.toml")
+    return path
+
+
+@pytest.mark.parametrize(
+    "make, words",
+    [
+        (lambda tmp: tmp, "is a directory, not a file"),
+        (_fifo, "is a FIFO (named pipe), not a file"),
+        (lambda tmp: "/dev/zero", "is a character device, not a file"),
+        (_loop, "is a loop of symbolic links"),
+        (_dangling, "is a symbolic link to 'nowhere.toml', which does not exist"),
+        (lambda tmp: tmp / "nope.toml", "not found"),
+    ],
+    ids=["directory", "fifo", "device", "symlink-loop", "dangling-link", "missing"],
+)
+def test_a_scene_path_that_is_no_file_says_what_it_is(tmp_path, make, words):
+    """Each named, never opened (a FIFO would block the read, a device never end it);
+    the accelerogram's path is read by the same check."""
+    path = make(tmp_path)
+    out = tmp_path / "out"
+    p = cli("analyze", path, "--out", out, timeout=60)
+    assert p.returncode == 2 and words in one_line(p) and str(path) in one_line(p)
+    sets = ["--set", "excitation.kind=record", "--set", f"excitation.record='{path}'"]
+    p = cli("simulate", "paper", "--case", "earthquake", *sets, "--out", out, timeout=60)
+    assert p.returncode == 2 and words in one_line(p) and "excitation.record" in one_line(p)
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["analyze", "simulate", "report", "run"])
+def test_an_empty_output_path_is_refused(tmp_path, command):
+    """``--out ""`` is Path(""): the working directory, which would take every file."""
+    p = cli(command, "paper", "--out", "", cwd=tmp_path)
+    assert p.returncode == 2 and "--out" in one_line(p) and "empty" in one_line(p)
+    assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("kind", ["fifo", "symlink-loop"])
+def test_an_output_path_that_is_no_directory_says_what_it_is(tmp_path, kind):
+    out = _fifo(tmp_path) if kind == "fifo" else _loop(tmp_path)
+    p = cli("analyze", "paper", "--out", out)
+    assert p.returncode == 2 and "--out" in one_line(p) and "not a directory" in one_line(p)
+    assert ("FIFO" if kind == "fifo" else "loop of symbolic links") in one_line(p)
+
+
+FULL_DISK = [
+    ["analyze"],
+    ["simulate", "--model", "paper", "--no-threshold", "--set", "simulate.duration=10"],
+    ["integrators", "--duration", "2"],
+    ["compare", "--case", "runup", "--models", "paper,beam", "--set", "simulate.duration=2"],
+]
+
+
+@pytest.mark.parametrize("args", FULL_DISK, ids=lambda a: a[0])
+def test_a_full_disk_is_one_line_naming_the_file(tmp_path, args):
+    """The file system refuses to grow a file (``ulimit -f``, SIGXFSZ ignored: write(2)
+    fails as on a full disk): exit 1, one line naming the file, and nothing after it (before:
+    no file named, then numpy's zip writer's "Exception ignored ... Traceback")."""
+    out = tmp_path / "out"
+    cmd = " ".join([sys.executable, "-m", "rotorpillar", args[0], "paper", *args[1:], "--out", str(out)])
+    # 8 KiB: more than a scene's JSON head, less than any command's results
+    p = subprocess.run(
+        ["bash", "-c", f"trap '' XFSZ; ulimit -f 8 && exec {cmd}"], capture_output=True, text=True, timeout=300
+    )
+    assert p.returncode == 1, p.stderr
+    line = one_line(p)
+    assert "the file system refused '/" in line, line
+    assert "Traceback" not in p.stderr and "Exception ignored" not in p.stderr
+    for f in out.glob("*.json"):
+        json.loads(f.read_text())  # what was written is whole
+
+
+@pytest.mark.parametrize(
+    "args, key",
+    [
+        (
+            ["simulate", "--model", "fem3d", "--set", "full_order.earthquake_duration=3"],
+            "full_order.earthquake_duration",
+        ),
+        (["compare", "--set", "full_order.earthquake_duration=3"], "full_order.earthquake_duration"),
+        (["compare", "--set", "simulate.earthquake_duration=5"], "simulate.earthquake_duration"),
+        (["simulate", "--model", "beam", "--set", "simulate.earthquake_duration=3"], "simulate.earthquake_duration"),
+        (["simulate", "--model", "paper", "--set", "simulate.earthquake_duration=4.9"], "simulate.earthquake_duration"),
+        (["study", "--model", "paper", "--vary", "simulate.earthquake_duration=3,4"], "simulate.earthquake_duration"),
+    ],
+    ids=["fem3d", "compare-fem3d", "compare", "beam", "paper", "study"],
+)
+def test_an_earthquake_run_that_ends_before_the_ground_moves_is_refused(tmp_path, args, key):
+    """The paper's pulse starts at 5 s: a run of 3 s sees no earthquake (it was ok: true).
+    Refused before any work, naming the key the user set."""
+    out = tmp_path / "out"
+    p = cli(args[0], "paper", "--case", "earthquake", *args[1:], "--out", out, timeout=120)
+    assert p.returncode == 2, p.stderr
+    assert f"{key} = " in one_line(p) and "before the ground motion starts" in one_line(p)
+    _nothing_written(out)
+
+
+def test_mpirun_says_a_refusal_once(tmp_path):
+    """Every rank refuses alike: rank 0 says it (it was said once per rank)."""
+    import os
+    import shutil
+
+    if shutil.which("mpirun") is None:
+        pytest.skip("mpirun not installed")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    sets = ("--set", "full_order.earthquake_duration=3")
+    p = cli("compare", "paper", *sets, "--out", tmp_path / "out", prefix=["mpirun", "-n", "2"], env=env, timeout=120)
+    said = [l for l in p.stderr.splitlines() if l.startswith("rotorpillar compare:")]
+    assert len(said) == 1 and "full_order.earthquake_duration = 3" in said[0], p.stderr
+
+
+class _InProcess:
+    """A study's executor that runs its batches here, and says whether it was started."""
+
+    started = False
+
+    def describe(self) -> dict:
+        return {"kind": "in-process (test)", "scheduler": None, "workers": 1, "threads": 1}
+
+    def map(self, fn, items):
+        self.started = True
+        for i, item in enumerate(items):
+            yield i, fn(item)
+
+
+def _integer_study_axes():
+    """Every integer key a study may vary: two values from its range, as a list and as
+    START:STOP:N (the key's lower bound and the next integer; defaults where the bound
+    is open)."""
+    import dataclasses
+
+    from rotorpillar.scene import SECTIONS
+    from rotorpillar.studies.axes import NOT_VARIED
+
+    for section, cls in SECTIONS.items():
+        for f in dataclasses.fields(cls):
+            key = f"{section}.{f.name}"
+            if f.type != "int" or key in NOT_VARIED or f.metadata["choices"] is not None:
+                continue
+            lo = f.metadata["ge"] if f.metadata["ge"] is not None else f.default
+            yield key, f"{lo},{lo + 1}"
+            yield key, f"{lo}:{lo + 1}:2"
+
+
+@pytest.mark.parametrize("key, values", list(_integer_study_axes()), ids=lambda v: str(v))
+def test_an_integer_axis_runs_or_is_refused_before_the_cluster(tmp_path, key, values):
+    """Integer axes were refused as "must be an integer" after the cluster started (the
+    predicted boundary's grid made floats of them).  Each integer key either runs to the
+    end or is refused with the executor never started."""
+    from rotorpillar.errors import InputError
+    from rotorpillar.scene import load_scene
+    from rotorpillar.studies import design_study
+
+    base = load_scene("sommerfeld", ["simulate.duration=2", "modal_model.source=beam"])
+    ex = _InProcess()
+    try:
+        res = design_study(
+            base, "runup", "modal", [f"{key}={values}"], out_dir=tmp_path, executor=ex, show_progress=False
+        )
+    except InputError as exc:
+        assert not ex.started, f"refused after the cluster started: {exc}"
+        assert key in str(exc)
+        return
+    assert len(res.runs) == 2 and ex.started
+    assert sorted({type(v) for v in res.axes[0].values}, key=str) == [int]
+
+
+# -- one writer per output folder (issue 31.8)
+
+ALL_COMMANDS = [
+    "analyze",
+    "converge",
+    "modal",
+    "report",
+    "run",
+    "simulate",
+    "compare",
+    "integrators",
+    "study",
+    "harmonic",
+]
+
+
+@pytest.mark.parametrize("command", ALL_COMMANDS)
+def test_a_folder_in_use_is_refused_naming_its_holder(tmp_path, command):
+    """A live holder (this test, by the lock's own flock): exit 2 naming it, before any
+    work, the folder as it was."""
+    import fcntl
+    import os
+
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "mine.txt").write_text("keep")
+    with open(out / ".rotorpillar.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        lock.write(f"rotorpillar simulate (process {os.getpid()}, started 12:00:00)\n")
+        lock.flush()
+        p = cli(command, "paper", "--out", out, timeout=60)
+    assert p.returncode == 2, p.stderr
+    assert f"in use by rotorpillar simulate (process {os.getpid()}" in one_line(p)
+    assert sorted(f.name for f in out.iterdir()) == [".rotorpillar.lock", "mine.txt"]
+
+
+@pytest.mark.slow  # seconds: two whole commands
+def test_two_commands_into_one_folder_the_second_is_refused(tmp_path):
+    """Half a second apart (both exited 0, the folder a mix of both scenes' files)."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "out"
+    first = subprocess.Popen(
+        [sys.executable, "-m", "rotorpillar", "simulate", "paper", "--no-threshold", "--out", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    deadline = time.time() + 60
+    while not (out / ".rotorpillar.lock").exists() and time.time() < deadline:
+        time.sleep(0.05)
+    time.sleep(0.5)
+    p = cli("analyze", "sommerfeld", "--out", out, timeout=60)
+    _, err = first.communicate(timeout=300)
+    assert first.returncode == 0, err
+    assert p.returncode == 2 and f"(process {first.pid}," in one_line(p)
+    assert {json.loads(f.read_text())["scene"]["name"] for f in out.glob("*.json")} == {"paper"}
+    assert not (out / ".rotorpillar.lock").exists()
+
+
+def test_a_lock_left_by_a_killed_command_is_taken_over_and_said_so(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / ".rotorpillar.lock").write_text("rotorpillar run (process 999999999, started 03:14:15)\n")
+    p = cli("analyze", "paper", "--out", out, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert "took over the lock" in p.stderr and "process 999999999" in p.stderr
+    assert (out / "analyze.json").is_file() and not (out / ".rotorpillar.lock").exists()
+
+
+def test_the_lock_of_a_refused_command_leaves_no_trace(tmp_path):
+    """Refused after the lock was taken (the command's own checks): no lock file, and
+    the folders made for it removed (nothing written)."""
+    out = tmp_path / "a" / "b"
+    sets = ["--set", "simulate.integrator=newmark", "--set", "simulate.time_step=1e-9"]
+    p = cli("simulate", "paper", *sets, "--out", out, timeout=60)
+    assert p.returncode == 2 and "simulate.max_steps" in one_line(p)
+    assert not (tmp_path / "a").exists()
+
+
+# -- every expensive command estimates first (issue 31.10)
+
+
+@pytest.mark.slow  # seconds: the start of a compare, then its SIGTERM
+def test_the_pareto_study_estimates_its_3d_runs_before_any_work(tmp_path):
+    """compare --pareto with its finest 3D run at 8 x 400 (the key's upper end): the
+    estimate of its 3D runs (steps, dofs, time) is the first thing said, before compare's
+    own models start (it ran past 40 s without one); SIGTERM then stops it (143)."""
+    import signal
+
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "rotorpillar", "compare", "paper", "--pareto"]
+        + ["--set", "full_order.pareto_along=400", "--out", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    lines = []
+    for line in proc.stderr:  # blocks until the command says something
+        lines.append(line)
+        if "model 1 of" in line or "speed against accuracy:" in line:
+            break
+    proc.send_signal(signal.SIGTERM)
+    _, rest = proc.communicate(timeout=120)
+    estimate = lines[-1]
+    assert "speed against accuracy: 4 3D runs" in estimate and "8x400" in estimate, "".join(lines) + rest
+    assert "steps each" in estimate and "dofs" in estimate and "min of work" in estimate
+    assert proc.returncode == 143
+
+
+def test_the_pareto_study_refuses_a_3d_run_this_machine_cannot_hold(tmp_path):
+    """Under `ulimit -v` 1.5 GB (budget 1.14 GiB) the finest run, 8 x 400 (115 k dofs,
+    1.29 GiB), is refused before any work; compare's own 3D run (8 x 10) fits."""
+    out = tmp_path / "out"
+    cmd = " ".join(
+        [sys.executable, "-m", "rotorpillar", "compare", "paper", "--pareto"]
+        + ["--set", "full_order.pareto_along=400", "--out", str(out)]
+    )
+    p = subprocess.run(["bash", "-c", f"ulimit -v 1500000 && exec {cmd}"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 2, p.stderr
+    line = one_line(p)
+    assert "compare --pareto: the run 3D 8x400" in line and "RLIMIT_AS" in line and "GiB" in line
+    _nothing_written(out)
+
+
+# -- a signal stops the command wherever it lands (issue 31.3)
+
+SWALLOWING = """
+import os, signal, sys
+import rotorpillar.commands.analyze as analyze
+
+original = analyze.analyze_command
+
+
+class Finaliser:
+    def __del__(self):  # Python prints what a finaliser raises, and carries on
+        os.kill(os.getpid(), getattr(signal, SIG))
+        sum(range(1000))  # the handler runs here
+
+
+def vtk_observer():  # VTK's Python callbacks: it calls exit(1) on a KeyboardInterrupt
+    import vtkmodules.vtkCommonCore as vtk
+
+    obj = vtk.vtkObject()
+
+    def callback(caller, event):
+        os.kill(os.getpid(), getattr(signal, SIG))
+        sum(range(1000))
+
+    obj.AddObserver("ModifiedEvent", callback)
+    obj.Modified()
+
+
+def swallowing(scene, args, timings):
+    if WHERE == "finaliser":
+        Finaliser()
+    else:
+        vtk_observer()
+    return original(scene, args, timings)
+
+
+analyze.analyze_command = swallowing
+from rotorpillar.cli import main
+
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+@pytest.mark.parametrize("where", ["finaliser", "vtk-observer"])
+@pytest.mark.parametrize("sig, code", [("SIGTERM", 143), ("SIGINT", 130)])
+def test_a_signal_a_library_catches_still_stops_the_command(tmp_path, where, sig, code):
+    """The signal lands inside code that catches what it raises: a finaliser (Python prints
+    "Exception ignored" and carries on: the report's SIGTERM was swallowed so, exit 0 and a
+    full report, 2 of 6 tries) or a VTK observer (VTK ends the process with exit 1).  The
+    command still ends with the signal's exit, one line, and its result is not written."""
+    script = f"SIG, WHERE = {sig!r}, {where!r}\n" + SWALLOWING
+    out = tmp_path / "out"
+    p = subprocess.run(
+        [sys.executable, "-c", script, "analyze", "paper", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        preexec_fn=sigint_as_in_the_foreground,
+    )
+    assert p.returncode == code, p.stderr
+    assert "rotorpillar analyze: interrupted" in p.stderr
+    assert not (out / "analyze.json").exists()
+
+
+@pytest.mark.slow  # a study on a local cluster
+def test_a_study_over_the_ends_of_its_keys_is_quiet(tmp_path):
+    """Both axes over their keys' whole ranges (the capture map, the predicted boundary
+    beside it): exit 0 and nothing on stderr but the command's own lines (no numpy or
+    matplotlib warning, no Dask worker's farewell)."""
+    out = tmp_path / "out"
+    vary = ["--vary", "drive.torque_at_zero=0,1e9", "--vary", "shaft.stiffness=1,1e14"]
+    p = cli(
+        "study", "sommerfeld", *vary, "--model", "paper", "--no-progress", "--set", "simulate.duration=2", "--out", out
+    )
+    assert p.returncode == 0, p.stderr
+    assert [l for l in p.stderr.splitlines() if l.strip() and not l.startswith("[rotorpillar]")] == []

@@ -90,6 +90,11 @@ def preflight(scene: Scene, args) -> None:
         )
     for m in models:  # the full orders' budgets over the common duration
         check_run(scene, args.case, m, motion=motion, duration=duration)
+    if getattr(args, "pareto", False) and args.case == "earthquake" and "fem3d" in models:
+        from ..transients.pareto_runs import pareto_estimate
+        from . import mpi_progress
+
+        mpi_progress()(pareto_estimate(scene))  # its 3D runs: estimated, or refused, before any work
 
 
 def compare_command(scene: Scene, args, timings):

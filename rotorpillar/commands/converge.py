@@ -19,6 +19,7 @@ if TYPE_CHECKING:
 
 from pathlib import Path
 
+from ..converge.refinement import LadderRefinement
 from ..converge.result import ModelSelection, ReferenceValue, StudyCounts
 from ..errors import InputError
 from ..records import Record
@@ -35,6 +36,11 @@ def add_arguments(p) -> None:
         help="relative frequency tolerance of the chosen model (default: the scene's converge.tolerance)",
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--full-ladder",
+        action="store_true",
+        help="run every rung of every family (default: each refined only as far as the choice needs)",
+    )
     p.add_argument(
         "--workers",
         type=int,
@@ -104,6 +110,10 @@ def _summary(st: ConvergenceStudy) -> str:
         f"Chosen at tolerance {sel.tolerance:g}: " + (sel.chosen.label if sel.chosen else "none"),
         "  " + sel.reason,
     ]
+    rf = st.refinement
+    if rf is not None and not rf.full:
+        lines += ["", f"Refined: {rf.runs} of the ladder's {rf.ladder_runs} runs, in {rf.rounds} rounds:"]
+        lines += [f"  {st.families[f.family].label:34s} {f.runs}/{f.rungs}: {f.stop} ({f.why})" for f in rf.families]
     if st.failures:
         lines += ["", "Where methods fail:"] + [f"  - {f}" for f in st.failures]
     if st.charts is not None:
@@ -158,6 +168,7 @@ def converge_command(scene: Scene, args, timings):
         timings=timings,
         log=progress,
         workers=workers,
+        full=getattr(args, "full_ladder", False),
     )
     result = ConvergeRun(
         convergence_json=st.json_file,
@@ -167,6 +178,7 @@ def converge_command(scene: Scene, args, timings):
         selection=st.selection,
         failures=st.failures,
         study=st.study,
+        refinement=st.refinement,
     )
     return Done(result, _summary(st))
 
@@ -189,3 +201,5 @@ class ConvergeRun(Record):
     """where methods fail, one sentence each"""
     study: StudyCounts
     """the runs and their time"""
+    refinement: LadderRefinement | None
+    """how far each family was refined, and why no further"""

@@ -93,6 +93,14 @@ EXTRA_ARGUMENTS = {
 }
 
 
+def output_dir(text: str) -> Path:
+    """``--out``'s value: a path; an empty one is refused (``Path("")`` is the working
+    directory, which would take every file of the command)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"{text!r} is an empty path: give a directory, e.g. --out out/paper")
+    return Path(text)
+
+
 def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "scene",
@@ -108,7 +116,9 @@ def _common(p: argparse.ArgumentParser) -> None:
         metavar="KEY=VALUE",
         help="override a scene key, e.g. --set shaft.stiffness=5e6 (repeatable)",
     )
-    p.add_argument("--out", type=Path, default=None, metavar="DIR", help="output directory (default: out/<scene>/)")
+    p.add_argument(
+        "--out", type=output_dir, default=None, metavar="DIR", help="output directory (default: out/<scene>/)"
+    )
     p.add_argument("--json", action="store_true", help="print the result JSON on stdout and nothing else there")
     p.add_argument("--debug", action="store_true", help="show the Python traceback of a failure instead of one line")
 

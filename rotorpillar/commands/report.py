@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -77,4 +78,8 @@ def report_command(scene: Scene, args, timings):
     failures = {**result.failures, **({"summary.json": failed} if failed else {})}
     result = replace(result, summary=written, failures=failures)
     status = 1 if getattr(args, "strict", False) and (result.failures or result.damaged) else 0
+    if status:  # why --strict fails, on stderr (stdout may carry --json): each input or step at fault
+        # (a damaged input is among the failures too, as "input <file>")
+        for key, why in result.failures.items():
+            print(f"rotorpillar report: --strict: {key}: {why}", file=sys.stderr)
     return Done(result, report_text(result), status)

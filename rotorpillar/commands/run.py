@@ -159,8 +159,20 @@ def stage_stem(command: str) -> str:
 MAX_SIDE_BY_SIDE = 2
 
 
-def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
-    """Run the stage processes of one wave, ``slots`` at a time; each one's wall time (s).
+def _reap(proc: subprocess.Popen) -> tuple[int | None, float]:
+    """(exit code or None while it runs, its processor time: user + system of the stage
+    and of the processes it waited for, s)."""
+    pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+    if pid == 0:
+        return None, 0.0
+    proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here: Popen must not wait for it
+    return proc.returncode, usage.ru_utime + usage.ru_stime
+
+
+def run_wave(jobs: list[tuple[str, list[str]]], slots: int, cpu: dict[str, float] | None = None) -> dict[str, float]:
+    """Run the stage processes of one wave, ``slots`` at a time; each one's wall time (s),
+    and into ``cpu`` each one's processor time (s: on a shared machine the steadier
+    measure of its work).
 
     A stage that fails stops the wave once the stages already running have
     finished (their files stay whole); Ctrl-C or SIGTERM kills every stage
@@ -169,6 +181,7 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
     running: dict = {}
     failed: list = []
     pending, seconds = list(jobs), {}
+    cpu = {} if cpu is None else cpu
     try:
         while pending or running:
             while pending and len(running) < slots and not failed:
@@ -179,7 +192,7 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int) -> dict[str, float]:
                 break
             time.sleep(0.05)
             for command, (proc, start) in list(running.items()):
-                code = proc.poll()
+                code, cpu[command] = _reap(proc)
                 if code is None:
                     continue
                 seconds[command] = time.perf_counter() - start
@@ -261,7 +274,8 @@ def run_command(scene: Scene, args, timings):
         for command, what, *_ in group:
             n += 1
             progress(f"run {n}/{len(todo)}: {command} ({what})" + (" [side by side]" if len(group) > 1 else ""))
-        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in group], slots)
+        cpu: dict[str, float] = {}
+        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in group], slots, cpu)
         for command, _what, _extra, own, _ in group:
             timings[command] = seconds[command]
             stem = stage_stem(command)
@@ -270,12 +284,13 @@ def run_command(scene: Scene, args, timings):
             stages[stem] = Stage(
                 json=str(path),
                 seconds=timings[command],
+                cpu_seconds=cpu.get(command),
                 command=command,
                 arguments=tuple(own),
                 wave=wave,
                 stage_seconds=written.timings.get("total"),
             )
-            lines.append(f"{command:>26}: {timings[command]:8.2f} s  -> {path}")
+            lines.append(f"{command:>26}: {timings[command]:8.2f} s ({cpu.get(command, 0.0):7.2f} s cpu)  -> {path}")
             if command.split()[0] == "report":
                 from ..postprocess.report import ReportResult
 
@@ -292,6 +307,8 @@ class Stage(Record):
     """the JSON the stage left"""
     seconds: float
     """the stage's wall time, as run saw it (s)"""
+    cpu_seconds: float | None
+    """its processor time: user + system of the stage and of the processes it waited for (s)"""
     command: str
     """the stage's command"""
     arguments: tuple[str, ...]

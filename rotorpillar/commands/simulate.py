@@ -91,7 +91,7 @@ def check_run(
     from ..reduced.integration import Estimated, estimate_only
     from ..scene import override
     from ..transients.cases import check_full_order_budget, run_case
-    from ..transients.run_plan import fem3d_plan, with_duration
+    from ..transients.run_plan import fem3d_plan, own_duration, with_duration
 
     if which == "fem3d":
         from ..mesh import tube_params
@@ -101,6 +101,8 @@ def check_run(
         return
     if duration is not None:
         scene = with_duration(scene, case, duration)  # as run_model shortens a run
+    if case == "earthquake":
+        own_duration(scene, case, motion)  # a run that ends before the ground moves: refused
     if which == "beam":
         check_full_order_budget(scene, case, motion or no_motion(), integrator)
         return

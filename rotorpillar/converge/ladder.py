@@ -202,86 +202,91 @@ def _along(around: int, scale: float = 1.0) -> int:
     return max(1, int(round(ALONG_PER_AROUND * around * scale)))
 
 
-def ladder(scene: Scene) -> list[Case]:
-    """Every run of the study for a scene (its ``[converge]`` limits and ``[mesh]`` shape).
+def levels(scene: Scene, family: str) -> tuple[int, ...]:
+    """The rungs of a family on a scene's ladder (its refinement levels, coarse to
+    fine; within the scene's ``[converge]`` limits)."""
+    cv = scene.converge
+    # a tower of cans needs an element per can at least; the shells have no base springs,
+    # so they leave the ladder on a flexible foundation
+    cans, shells = len(scene.pillar.segments()), scene.foundation.kind == "clamped"
+    if family == "closed_form":
+        return (0,)
+    if family == "beam_euler":
+        return tuple(n for n in EULER_LEVELS if n >= cans)
+    if family == "beam_timoshenko":
+        return tuple(n for n in TIMOSHENKO_LEVELS if n >= cans)
+    if family in ("shell_quad", "shell_tri"):
+        top = cv.shell_max_around if family == "shell_quad" else cv.shell_tri_max_around
+        return tuple(n for n in AROUND_LEVELS if n <= top and shells)
+    if family == "shell_quad_around":
+        return SWEEP_AROUND if shells else ()
+    if not cv.solid:
+        return ()
+    if family == "solid_hex_p2_around":
+        return tuple(n for n in SOLID_SWEEP_AROUND if n <= cv.solid_p2_max_around)
+    if family == "solid_hex_p2_along":
+        return tuple(n for n in ALONG_LEVELS if n * along_scale(scene) >= cans)
+    top = {
+        "solid_hex_p1": cv.solid_p1_max_around,
+        "solid_tet_p1": cv.solid_p1_max_around,
+        "solid_hex_p2": cv.solid_p2_max_around,
+        "solid_tet_p2": cv.solid_tet_p2_max_around,
+    }[family]
+    return tuple(n for n in SOLID_AROUND_LEVELS if n <= top)
 
-    The bending-only 3D family's level is its number of elements along.  The 3D rungs refine the scene's own [mesh] in proportion: elements along
+
+def rung(scene: Scene, family: str, level: int) -> Case:
+    """A family's case at refinement ``level`` (elements, or elements around; the
+    bending-only 3D family's: elements along), on the ladder or past its finest.
+
+    The 3D rungs refine the scene's own [mesh] in proportion: elements along
     = around x along/around of [mesh], the same elements through and grading,
     so that Richardson sees one family of similar meshes.
     """
-    cv, ms = scene.converge, scene.mesh
-    scale, cans = along_scale(scene), len(scene.pillar.segments())
-    cases = [_case("closed_form", 0)]
-    cases += [_case("beam_euler", n, theory="euler", elements=n) for n in EULER_LEVELS if n >= cans]
-    cases += [_case("beam_timoshenko", n, theory="timoshenko", elements=n) for n in TIMOSHENKO_LEVELS if n >= cans]
-    shells = scene.foundation.kind == "clamped"
-    for name, cell in (("shell_quad", QUADRILATERAL), ("shell_tri", TRIANGLE)):
-        top = cv.shell_max_around if cell == QUADRILATERAL else cv.shell_tri_max_around
-        cases += [
-            _case(name, n, elements_around=n, elements_along=_along(n, scale), cell_type=cell, degree=2)
-            for n in AROUND_LEVELS
-            if n <= top and shells
-        ]
-    sweep_along = max(SWEEP_ALONG, int(round(SWEEP_ALONG * scale)))
-    cases += [
-        _case("shell_quad_around", n, elements_around=n, elements_along=sweep_along, cell_type=QUADRILATERAL, degree=2)
-        for n in SWEEP_AROUND
-        if shells
-    ]
-    if cv.solid:
-        ratio = ms.elements_along / ms.elements_around
-        limits = {
-            "solid_hex_p1": cv.solid_p1_max_around,
-            "solid_tet_p1": cv.solid_p1_max_around,
-            "solid_hex_p2": cv.solid_p2_max_around,
-            "solid_tet_p2": cv.solid_tet_p2_max_around,
-        }
-        for name, top in limits.items():
-            cell = HEXAHEDRON if "hex" in name else TETRAHEDRON
-            degree = 2 if name.endswith("p2") else 1
-            cases += [
-                _case(
-                    name,
-                    n,
-                    elements_around=n,
-                    elements_along=max(1, int(round(ratio * n))),
-                    elements_through=ms.elements_through,
-                    cell_type=cell,
-                    degree=degree,
-                    grading=ms.grading,
-                )
-                for n in SOLID_AROUND_LEVELS
-                if n <= top
-            ]
-        cases += [
-            _case(
-                "solid_hex_p2_around",
-                n,
-                elements_around=n,
-                elements_along=ms.elements_along,
-                elements_through=ms.elements_through,
-                cell_type=HEXAHEDRON,
-                degree=2,
-                grading=ms.grading,
-            )
-            for n in SOLID_SWEEP_AROUND
-            if n <= cv.solid_p2_max_around
-        ]
-        cases += [
-            _case(
-                "solid_hex_p2_along",
-                n,
-                elements_around=ALONG_FAMILY_AROUND,
-                elements_along=max(n, int(round(n * scale))),
-                elements_through=ms.elements_through,
-                cell_type=HEXAHEDRON,
-                degree=2,
-                grading=ms.grading,
-            )
-            for n in ALONG_LEVELS
-            if n * scale >= cans
-        ]
-    return cases
+    ms, n = scene.mesh, level
+    scale = along_scale(scene)
+    if family == "closed_form":
+        return _case("closed_form", 0)
+    if family in ("beam_euler", "beam_timoshenko"):
+        theory = family.split("_")[1]
+        return _case(family, n, theory=theory, elements=n)
+    if family in ("shell_quad", "shell_tri"):
+        cell = QUADRILATERAL if family == "shell_quad" else TRIANGLE
+        return _case(family, n, elements_around=n, elements_along=_along(n, scale), cell_type=cell, degree=2)
+    if family == "shell_quad_around":
+        sweep_along = max(SWEEP_ALONG, int(round(SWEEP_ALONG * scale)))
+        return _case(family, n, elements_around=n, elements_along=sweep_along, cell_type=QUADRILATERAL, degree=2)
+    solid = dict(elements_through=ms.elements_through, grading=ms.grading)
+    if family == "solid_hex_p2_around":
+        return _case(
+            family, n, elements_around=n, elements_along=ms.elements_along, cell_type=HEXAHEDRON, degree=2, **solid
+        )
+    if family == "solid_hex_p2_along":
+        return _case(
+            family,
+            n,
+            elements_around=ALONG_FAMILY_AROUND,
+            elements_along=max(n, int(round(n * scale))),
+            cell_type=HEXAHEDRON,
+            degree=2,
+            **solid,
+        )
+    ratio = ms.elements_along / ms.elements_around
+    return _case(
+        family,
+        n,
+        elements_around=n,
+        elements_along=max(1, int(round(ratio * n))),
+        cell_type=HEXAHEDRON if "hex" in family else TETRAHEDRON,
+        degree=2 if family.endswith("p2") else 1,
+        **solid,
+    )
+
+
+def ladder(scene: Scene) -> list[Case]:
+    """Every run of the study for a scene (its ``[converge]`` limits and ``[mesh]`` shape):
+    every rung of every family, in the families' order."""
+    return [rung(scene, name, n) for name in FAMILIES for n in levels(scene, name)]
 
 
 def resolved_only(family: str, run: ConvergenceRun) -> ConvergenceRun:

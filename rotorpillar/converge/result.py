@@ -19,6 +19,7 @@ import msgspec
 
 from ..records import Record
 from ..reduced.band import ExcitationBand  # noqa: F401  (defined where the band is computed; read here)
+from .refinement import LadderRefinement
 
 Param = int | float | str
 """A value of a run's discretisation (elements, degree, cell type, grading...)."""
@@ -366,6 +367,8 @@ class ConvergenceStudy(Record, omit_defaults=True):
     failures: tuple[str, ...]
     """where methods fail, one sentence each"""
     study: StudyCounts
+    refinement: LadderRefinement | None = None
+    """how far each family was refined, and why no further (rotorpillar.converge.adaptive)"""
     charts: dict[str, str] | None = None
     """chart name -> path (absent when no charts were drawn)"""
     json_file: str | None = msgspec.field(default=None, name="json")

@@ -362,6 +362,7 @@ def run_study(
     log: Callable[[str], None] | None = None,
     workers: int = 1,
     executor=None,
+    close: bool = True,
 ) -> list[ConvergenceRun]:
     """Every case, each loaded from ``cache_dir`` or computed and cached.
 
@@ -374,7 +375,8 @@ def run_study(
     runs go to a Dask LocalCluster of that many single-threaded workers, the
     longest (by estimate) first; each worker hands the run to its serving process, so
     that many finite-element runs run at once.  The results are the same;
-    a run's wall time is its own process's (measured inside it).
+    a run's wall time is its own process's (measured inside it).  ``close``: end this
+    process's serving processes when done (False: the next call reuses them).
     """
     from tqdm import tqdm
 
@@ -385,11 +387,12 @@ def run_study(
     for i, (c, key) in enumerate(zip(cases, keys)):
         cached = _load_cached(cache, key)
         if cached is not None:
-            # names follow the code, not the cache (they are not part of the key)
+            # names follow the code and the case, not the cache (they are not part of the key)
             runs[i] = msgspec.structs.replace(
                 resolved_only(c.family, cached),
                 label=c.label,
                 family=c.family,
+                level=c.level,  # a run shared by two families (one key) was cached by either
                 model=FAMILIES[c.family].model,
                 cached=True,
             )
@@ -448,9 +451,10 @@ def run_study(
                     finish(i, result)
     finally:
         bar.close()
-        from .service import close_services
+        if close:
+            from .service import close_services
 
-        close_services()
+            close_services()
     return [r for r in runs if r is not None]  # finish() filled every one
 
 

@@ -24,8 +24,10 @@ from pathlib import Path
 from ..errors import InputError
 from ..provenance import Timings, write_result
 from ..records import Record, replace
+from .adaptive import run_ladder
 from .failures import drop_aliases, failures
 from .ladder import FAMILIES, QUANTITIES, study_cases
+from .refinement import LadderRefinement
 from .result import (
     ConvergenceRun,
     ConvergenceStudy,
@@ -41,7 +43,7 @@ from .result import (
     StudyCounts,
 )
 from .richardson import family_extrapolations, reference_values
-from .runner import run_study
+from .runner import check_study_memory, run_study, todo_cases
 from .selection import (
     attach_errors,
     band_error,
@@ -135,13 +137,15 @@ def study(
     timings=None,
     log: Callable[[str], None] | None = None,
     workers: int = 1,
+    full: bool = False,
 ) -> ConvergenceStudy:
     """Run (or load) the study and analyse it; write convergence.json (and the charts).
 
-    ``workers`` > 1 runs that many at once (rotorpillar.executor: a Dask
-    LocalCluster); ``charts`` draws the charts (the caller passes
-    ``rotorpillar.postprocess.convergence_charts.convergence_charts``: plotting
-    lives above this package); ``log`` takes the stage lines.
+    The ladder is refined as far as the choice needs (rotorpillar.converge.adaptive;
+    ``full``: every rung).  ``workers`` > 1 runs that many at once
+    (rotorpillar.executor: a Dask LocalCluster); ``charts`` draws the charts (the
+    caller passes ``rotorpillar.postprocess.convergence_charts.convergence_charts``:
+    plotting lives above this package); ``log`` takes the stage lines.
     """
     timings = Timings() if timings is None else timings
     tol = scene.converge.tolerance if tolerance is None else tolerance
@@ -149,7 +153,9 @@ def study(
     cache_dir = Path(out_dir) / "cache" if cache_dir is None else Path(cache_dir)
     start = time.perf_counter()
     with timings("study"):
-        records = run_study(study_cases(scene), scene, cache_dir, progress=show_progress, log=log, workers=workers)
+        records, refinement = ladder_runs(
+            scene, tol, cache_dir, progress=show_progress, log=log, workers=workers, full=full
+        )
     with timings("analysis"):
         analysis = analyse(records, scene, tol)
     counts = StudyCounts(
@@ -180,6 +186,7 @@ def study(
         pareto=analysis.pareto,
         failures=analysis.failures,
         study=counts,
+        refinement=refinement,
     )
     if charts is not None:
         with timings("charts"):
@@ -188,6 +195,54 @@ def study(
     result = replace(result, study=replace(counts, wall_time=time.perf_counter() - start))
     path = write_result(Path(out_dir) / "convergence.json", result, timings=dict(timings))
     return replace(result, json_file=str(path))
+
+
+def ladder_runs(
+    scene: Scene,
+    tolerance: float,
+    cache_dir: Path,
+    *,
+    runner: Callable | None = None,
+    progress: bool = False,
+    log: Callable[[str], None] | None = None,
+    workers: int = 1,
+    full: bool = False,
+) -> tuple[list[ConvergenceRun], LadderRefinement]:
+    """The study's runs, each loaded from ``cache_dir`` or computed, refined round by
+    round as far as the choice at ``tolerance`` needs (``full``: every rung); one
+    Dask cluster (``workers`` > 1) and the serving processes last the whole study."""
+    from contextlib import ExitStack
+
+    from ..executor import Executor
+    from .service import close_services
+
+    # refused before any run, as the whole ladder could ask (the refinement is not known yet)
+    check_study_memory(todo_cases(study_cases(scene), scene, cache_dir), workers)
+    extra = {} if runner is None else {"runner": runner}
+    how = "every rung" if full else "each family then refined as far as the choice needs"
+    with ExitStack() as stack:
+        stack.callback(close_services)
+        pool: list[Executor] = []  # started for the first round with a run to compute
+
+        def run_round(cases, k):
+            # one line: the first round's (the later ones are few runs each; the study's
+            # summary says how many rounds it took)
+            say = None if log is None or k else (lambda line: log(f"{line} (the first round; {how})"))
+            if workers > 1 and not pool and todo_cases(cases, scene, cache_dir):
+                pool.append(stack.enter_context(Executor(workers)))
+            return run_study(
+                cases,
+                scene,
+                cache_dir,
+                progress=progress,
+                log=say,
+                workers=workers,
+                executor=pool[0] if pool else None,
+                close=False,
+                **extra,
+            )
+
+        return run_ladder(scene, tolerance, run_round, study_cases(scene), full=full)
 
 
 def _cached_study(scene: Scene, tolerance: float, cache_dir: Path) -> StudyAnalysis:
@@ -200,7 +255,7 @@ def _cached_study(scene: Scene, tolerance: float, cache_dir: Path) -> StudyAnaly
             "serially first"
         )
 
-    records = run_study(study_cases(scene), scene, cache_dir, runner=runner, progress=False)
+    records, _ = ladder_runs(scene, tolerance, cache_dir, runner=runner)
     return analyse(records, scene, tolerance)
 
 

@@ -179,13 +179,13 @@ def check_budget(scene: Scene, case: str, est: RunEstimate) -> None:
     own = "simulate.earthquake_duration" if case == "earthquake" else "simulate.duration"
     raise InputError(
         f"the 3D {case} of {est.duration:.4g} s at a step of {est.time_step:.3g} s would take about "
-        f"{est.steps:.3g} steps (~{_time(est.seconds)} on ~{est.dofs:,} dofs), more than "
+        f"{est.steps:.3g} steps (~{duration_text(est.seconds)} on ~{est.dofs:,} dofs), more than "
         f"simulate.max_steps = {limit:.3g}: raise full_order.time_step (0 = the band's step), "
         f"shorten {length} or {own}, or raise simulate.max_steps"
     )
 
 
-def _time(seconds: float) -> str:
+def duration_text(seconds: float) -> str:
     if not math.isfinite(seconds):
         return "forever"
     for unit, size in (("days", 86400), ("h", 3600), ("min", 60)):

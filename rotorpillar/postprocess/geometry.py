@@ -145,6 +145,14 @@ class ModeSet:
             return self
         return dataclasses.replace(self, surface=tube_surface(self.grid, subdivision))
 
+    def fewer_around(self, around: int) -> ModeSet:
+        """The same modes on the tube's walls at about ``around`` of its nodes around (at
+        least that many; every node along): what a picture a few dozen pixels wide shows
+        of a mesh of hundreds of nodes around, at a fraction of the triangles
+        (:func:`tube_walls`).  Unchanged where the surface's nodes are no grid."""
+        walls = tube_walls(self.surface, self.axes, around)
+        return self if walls is None else dataclasses.replace(self, surface=walls)
+
     def shape(self, i: int) -> np.ndarray:
         """Point displacements of mode i (n_points x 3)."""
         return np.asarray(self.surface.point_data[self.arrays[i]], dtype=float)
@@ -175,6 +183,89 @@ def tube_surface(grid, subdivision: int = SUBDIVISION):
     if set(np.unique(np.asarray(grid.celltypes)).tolist()) <= linear:
         return grid.extract_surface(algorithm=None)
     return grid.extract_surface(nonlinear_subdivision=subdivision, algorithm="dataset_surface")
+
+
+def _stride(n: int, at_least: int) -> int:
+    """The largest step that divides n and keeps at least ``at_least`` of n (1: all).
+
+    >>> _stride(256, 48), _stride(64, 48), _stride(30, 8)
+    (4, 1, 3)
+    """
+    return max(k for k in range(1, n + 1) if n % k == 0 and n // k >= min(at_least, n))
+
+
+def _ring_grid(r, theta, z, pick, around: int):
+    """Indices (nodes around x along) of the nodes ``pick`` (a mask) on a grid of angles
+    and heights, every k-th around (k as _stride); None where they are not a full grid."""
+    sel = np.flatnonzero(pick)
+    # nodes identified to a millionth of a radian and of the height (the mesh's own
+    # coordinates: far coarser than that)
+    ti = np.round(theta[sel] * 1e6).astype(np.int64) % round(2 * np.pi * 1e6)
+    zi = np.round((z[sel] - z.min()) / max(float(np.ptp(z)), 1e-300) * 1e6).astype(np.int64)
+    t_levels, t_of = np.unique(ti, return_inverse=True)
+    z_levels, z_of = np.unique(zi, return_inverse=True)
+    nt, nz = len(t_levels), len(z_levels)
+    if nt < 8 or nz < 2:
+        return None
+    index = np.full((nt, nz), -1, dtype=np.int64)
+    index[t_of, z_of] = sel
+    if (index < 0).any():  # not every (around, along) pair has a node: no grid
+        return None
+    return index[:: _stride(nt, around)]
+
+
+def tube_walls(surface, axes: TubeAxes, around: int):
+    """The tube's outer and inner walls and its two end rings as quadrilaterals through
+    its own nodes, every k-th node around (k the largest divisor of the nodes around that
+    keeps at least ``around``), every node along, the surface's point arrays on them:
+    the mode shapes exactly, at the nodes kept (the through-thickness nodes of the ends
+    left out).  Every face's normal points out of the wall.  None where the walls' nodes
+    are not a grid (around x along) of the same angles and heights."""
+    from .offscreen import pyvista
+
+    pts = np.asarray(surface.points, dtype=float)
+    lateral = [i for i in range(3) if i != axes.axial]
+    # the axis: every ring's nodes are evenly spaced around (a node repeated on a seam
+    # counted once)
+    scale = max(float(np.abs(pts).max()), 1e-300)
+    centre = np.unique(np.round(pts[:, lateral] / scale, 9), axis=0).mean(axis=0) * scale
+    d = pts[:, lateral] - centre
+    r = np.hypot(d[:, 0], d[:, 1])
+    wall = float(np.ptp(r)) if r.size else 0.0
+    if wall <= 0:
+        return None
+    theta = np.mod(np.arctan2(d[:, 1], d[:, 0]), 2 * np.pi)
+    z = pts[:, axes.axial]
+    # a wall's nodes: within a tenth of the wall's thickness of its radius (a face
+    # subdivided through its quadratic shape lies a hair inside the circle; the
+    # through-thickness nodes of the ends a quarter of the wall or more away)
+    outer = _ring_grid(r, theta, z, r >= r.max() - 0.1 * wall, around)
+    inner = _ring_grid(r, theta, z, r <= r.min() + 0.1 * wall, around)
+    if outer is None or inner is None or outer.shape != inner.shape:
+        return None
+    m, nz = outer.shape
+    ids = np.arange(2 * m * nz).reshape(2, m, nz)  # [outer, inner] x around x along
+    # theta turns about +axial when (lateral, axial) is a right-handed frame
+    if (lateral[1] - lateral[0]) * (1 if axes.axial != 1 else -1) < 0:
+        ids = ids[:, ::-1]
+    o, i = ids
+    quads = [
+        _quads(o[:, :-1], np.roll(o[:, :-1], -1, axis=0), np.roll(o[:, 1:], -1, axis=0), o[:, 1:]),  # out
+        _quads(i[:, :-1], i[:, 1:], np.roll(i[:, 1:], -1, axis=0), np.roll(i[:, :-1], -1, axis=0)),  # in
+        _quads(o[:, 0], i[:, 0], np.roll(i[:, 0], -1), np.roll(o[:, 0], -1)),  # base ring, down
+        _quads(o[:, -1], np.roll(o[:, -1], -1), np.roll(i[:, -1], -1), i[:, -1]),  # top ring, up
+    ]
+    flat = np.concatenate([outer.ravel(), inner.ravel()])
+    walls = pyvista().PolyData(pts[flat], np.concatenate(quads))
+    for name in surface.point_data.keys():
+        walls.point_data[name] = np.asarray(surface.point_data[name])[flat]
+    return walls
+
+
+def _quads(a, b, c, d) -> np.ndarray:
+    """VTK's face list of the quadrilaterals a-b-c-d (index arrays of one shape)."""
+    a = np.asarray(a).ravel()
+    return np.column_stack([np.full(a.size, 4), a, np.ravel(b), np.ravel(c), np.ravel(d)]).ravel()
 
 
 def load_modes(

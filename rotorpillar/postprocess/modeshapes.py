@@ -44,6 +44,11 @@ PX_PER_POINT = 2.0
 MODE_FONT, SHEET_FONT = 9, 7
 
 MODE_SIZE = (480, 720)  # width, height of one mode's PNG (px)
+#: Points around the tube a mode picture draws (at least; ModeSet.fewer_around): the tube
+#: is some 150 px wide in it, and an ovalling mode of n waves needs a few dozen points
+#: a wave; the paper's 128 x 20 mesh, its quadratic faces subdivided twice, has 512.
+#: A picture's render time grows with its triangles (172,000 on that mesh: 1 s a view).
+MODE_AROUND = 128
 SHEET_TILE = (300, 450)  # one tile of the contact sheet (px)
 SHEET_COLUMNS = 4
 SHEET_MODES = 8
@@ -485,6 +490,7 @@ def render_modes(modeset: ModeSet, directory: str | Path, prefix: str, count: in
     """
     directory = Path(directory)
     count = min(count, len(modeset.arrays))
+    modeset = modeset.fewer_around(MODE_AROUND)
     paths = []
     for i in range(count):
         paths.append(render_mode(modeset, i, directory / f"{prefix}_mode_{i + 1:02d}.png"))

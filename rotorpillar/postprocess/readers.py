@@ -24,6 +24,7 @@ fault: the report names it damaged, never renders a part of it.
 
 from __future__ import annotations
 
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
@@ -95,11 +96,16 @@ def read_run(path: str | Path) -> Read[RunRecord] | None:
 
 
 def read_npz(path: str | Path | None) -> dict[str, np.ndarray] | None:
-    """The arrays of an NPZ file, or None if there is none."""
+    """The arrays of an NPZ file, or None if there is none; a damaged one (truncated, not
+    a zip, an array that is not one) raises ValueError naming the file."""
     if path is None or not Path(path).is_file():
         return None
-    with np.load(Path(path), allow_pickle=False) as data:
-        return {k: np.asarray(data[k]) for k in data.files}
+    path = Path(path)
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            return {k: np.asarray(data[k]) for k in data.files}
+    except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile) as exc:
+        raise ValueError(f"{path.name}: not a readable NPZ ({type(exc).__name__}: {exc})") from None
 
 
 @dataclass

@@ -305,7 +305,8 @@ def sweep_chart(path, sweep: SweepAnalysis, resonances, title: str = "") -> Path
         break
     a2.set_xlabel("z = Omega / omega_i")
     a2.set_ylabel("amplitude [mm]")
-    a2.legend(fontsize=7, loc="upper right")
+    if a2.get_legend_handles_labels()[0]:  # no resonance in the sweep's range: nothing drawn
+        a2.legend(fontsize=7, loc="upper right")
     fig.suptitle(title)
     return save(fig, path)
 

@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..provenance import Record
-from ..scene import read_text_file
+from ..scene import read_text_file, what_is_there
 
 STANDARD_GRAVITY = 9.80665  # m/s**2
 UNITS = {"g": STANDARD_GRAVITY, "m/s2": 1.0, "cm/s2": 0.01}
@@ -497,9 +497,10 @@ def unrealistic_record(sizes: dict[str, Any]) -> list[str]:
 
 def check_record(spec: str) -> None:
     """Refuse (one line) a record that names neither a built-in record nor a file: before any work."""
-    if spec and spec not in BUILTIN_RECORDS and not Path(spec).is_file():
+    there = what_is_there(spec) if spec and spec not in BUILTIN_RECORDS else None
+    if there is not None:
         raise InputError(
-            f"excitation.record = {spec!r}: no such file (give a two-column text file, "
+            f"excitation.record = {spec!r}: {there} (give a two-column text file, "
             f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})"
         )
 
@@ -528,12 +529,8 @@ def load_record(
             max_samples=max_samples,
             where=f"excitation.record = {spec!r}",
         )
+    check_record(spec)
     path = Path(spec)
-    if not path.is_file():
-        raise InputError(
-            f"excitation.record = {spec!r}: no such file (give a two-column text file, "
-            f"a PEER .AT2 file, or one of: {', '.join(BUILTIN_RECORDS)})"
-        )
     if path.suffix.lower() == ".at2":
         from structdyn import GroundMotion as SDGroundMotion
 

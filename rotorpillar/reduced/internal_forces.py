@@ -241,7 +241,12 @@ def force_truncation(
     if not pm.has_resultants:
         raise ValueError("the pillar modes carry no section resultants")
     n = pm.count
-    omega = np.unique(np.r_[np.linspace(0.0, band_top, points), np.asarray(pm.omega)[np.asarray(pm.omega) <= band_top]])
+    natural = np.asarray(pm.omega)
+    omega = np.unique(np.r_[np.linspace(0.0, band_top, points), natural[natural <= band_top]])
+    if not np.any(np.asarray(damping, dtype=float)[:n, :n]):
+        # undamped (pillar.damping = 0): the response is infinite at a natural frequency,
+        # where every truncation's error is 0/0: measured beside them, not on them
+        omega = omega[np.min(np.abs(omega[:, None] - natural[None, :]), axis=1) > 1e-6 * max(band_top, 1.0)]
     i0 = int(np.argmin(np.abs(np.asarray(pm.section_heights))))
     M0, V0 = np.asarray(pm.moment_shapes)[i0], np.asarray(pm.shear_shapes)[i0]
     kk = np.asarray(pm.modal_stiffness)

@@ -251,8 +251,18 @@ def beam_pillar_modes(
     k = min(n_modes, K.shape[0])
     omega, vec = _solve_lowest(K, M, k)
     tip = vec[-2]  # (w, psi) per node: tip w
-    if np.any(np.abs(tip) < 1e-12 * np.max(np.abs(vec), axis=0)):
-        raise RuntimeError("a pillar mode with no tip deflection cannot be tip-scaled")
+    still = np.flatnonzero(np.abs(tip) < 1e-12 * np.max(np.abs(vec), axis=0))
+    if still.size:
+        # a gondola far heavier than the tube holds the tip still in the higher modes: they
+        # cannot be tip-scaled, and the rotor, at the tip, does not move them; the modes
+        # before the first of them are the candidates
+        if still[0] == 0:
+            raise InputError(
+                f"gondola.mass = {gondola_mass:g} kg holds the tip of the pillar still in its first "
+                "mode: no modal model can hang the rotor there (a lighter gondola, a stiffer pillar)"
+            )
+        k = int(still[0])
+        omega, vec, tip = omega[:k], vec[:, :k], tip[:k]
     phi = vec / tip
     r = np.zeros(K.shape[0])
     r[0::2] = 1.0

@@ -27,6 +27,7 @@ from .files import (
     parse_assignment,
     read_scene_toml,
     read_text_file,
+    what_is_there,
 )
 from .sections import (
     EXCITATION_KINDS,
@@ -132,4 +133,5 @@ __all__ = [
     "read_text_file",
     "scene_from_dict",
     "segment_index",
+    "what_is_there",
 ]

@@ -24,14 +24,16 @@ def param(
     le: float | None = None,
     choices: Sequence[Any] | None = None,
     optional: bool = False,
+    or_zero: bool = False,
     table: type | None = None,
 ) -> Any:
-    """A scene field: its docstring (with unit) and its allowed range.
+    """A scene field: its docstring (with unit) and its allowed range; ``or_zero``: 0 is
+    allowed besides the range (the docstring says what 0 means: chosen, off).
 
     ``table``: the field is an array of tables (``[[section.key]]`` in TOML), each
     built and checked as that section class; ``ge`` / ``le`` then bound their count.
     """
-    meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices, optional=optional, table=table)
+    meta = dict(doc=doc, gt=gt, ge=ge, lt=lt, le=le, choices=choices, optional=optional, or_zero=or_zero, table=table)
     return field(default=default, metadata=meta)
 
 
@@ -41,4 +43,5 @@ def _range_text(meta: Mapping[str, Any]) -> str:
     lo = f"> {meta['gt']:g}" if meta["gt"] is not None else f">= {meta['ge']:g}" if meta["ge"] is not None else None
     hi = f"< {meta['lt']:g}" if meta["lt"] is not None else f"<= {meta['le']:g}" if meta["le"] is not None else None
     parts = [p for p in (lo, hi) if p]
-    return " and ".join(parts) if parts else "any finite value"
+    text = " and ".join(parts) if parts else "any finite value"
+    return f"0 or {text}" if meta.get("or_zero") else text

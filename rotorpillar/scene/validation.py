@@ -22,6 +22,19 @@ def _check_table(key: str, value: Any, meta: Any) -> tuple[Any, ...]:
     return tuple(_build_section(f"{key}[{i}]", meta["table"], dict(v)) for i, v in enumerate(value))
 
 
+def shown(value: Any) -> str:
+    """A value as a message shows it: a long number shortened, a long text cut.
+
+    >>> shown(10**5000), shown(2.5), shown("x" * 100)[-12:]
+    ('an integer of 5001 digits', '2.5', "... (100 chars)")
+    """
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 60:
+        digits = len(str(abs(value))) if value.bit_length() < 10_000 else int(value.bit_length() * math.log10(2)) + 1
+        return f"an integer of {digits} digits"
+    text = repr(value)
+    return text if len(text) <= 80 else f"{text[:60]}... ({len(text)} chars)"
+
+
 def _check_value(key: str, value: Any, f: dataclasses.Field[Any]) -> Any:
     meta = f.metadata
     want = f.type if isinstance(f.type, str) else f.type.__name__
@@ -33,23 +46,30 @@ def _check_value(key: str, value: Any, f: dataclasses.Field[Any]) -> Any:
         raise SceneError(f"{key}: a value is required ({meta['doc']}; {_range_text(meta)})")
     if "float" in want:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise SceneError(f"{key} = {value!r}: must be a number ({meta['doc']}; {_range_text(meta)})")
-        value = float(value)
+            raise SceneError(f"{key} = {shown(value)}: must be a number ({meta['doc']}; {_range_text(meta)})")
+        try:
+            value = float(value)
+        except OverflowError:  # an integer past the largest double
+            raise SceneError(
+                f"{key} = {shown(value)} is out of range: must be {_range_text(meta)} ({meta['doc']})"
+            ) from None
         if not math.isfinite(value):
             raise SceneError(f"{key} = {value!r}: must be finite ({meta['doc']}; {_range_text(meta)})")
     elif "int" in want:
         if isinstance(value, bool) or not isinstance(value, int):
-            raise SceneError(f"{key} = {value!r}: must be an integer ({meta['doc']}; {_range_text(meta)})")
+            raise SceneError(f"{key} = {shown(value)}: must be an integer ({meta['doc']}; {_range_text(meta)})")
     elif "bool" in want:
         if not isinstance(value, bool):
-            raise SceneError(f"{key} = {value!r}: must be true or false ({meta['doc']})")
+            raise SceneError(f"{key} = {shown(value)}: must be true or false ({meta['doc']})")
         return value
     elif "str" in want:
         if not isinstance(value, str):
-            raise SceneError(f"{key} = {value!r}: must be a string ({meta['doc']}; {_range_text(meta)})")
+            raise SceneError(f"{key} = {shown(value)}: must be a string ({meta['doc']}; {_range_text(meta)})")
     if meta["choices"] is not None:
         if value not in meta["choices"]:
-            raise SceneError(f"{key} = {value!r}: must be {_range_text(meta)} ({meta['doc']})")
+            raise SceneError(f"{key} = {shown(value)}: must be {_range_text(meta)} ({meta['doc']})")
+        return value
+    if meta.get("or_zero") and value == 0:
         return value
     ok = (
         (meta["gt"] is None or value > meta["gt"])
@@ -58,7 +78,7 @@ def _check_value(key: str, value: Any, f: dataclasses.Field[Any]) -> Any:
         and (meta["le"] is None or value <= meta["le"])
     )
     if not ok:
-        raise SceneError(f"{key} = {value!r} is out of range: must be {_range_text(meta)} ({meta['doc']})")
+        raise SceneError(f"{key} = {shown(value)} is out of range: must be {_range_text(meta)} ({meta['doc']})")
     return value
 
 
@@ -102,6 +122,11 @@ def _pillar_checks(p: Pillar) -> None:
             f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: must be "
             f">= 0 and < pillar.outer_diameter = {p.outer_diameter:g} (m)"
         )
+    if (p.outer_diameter - p.inner_diameter) / 2 < p.outer_diameter / 2000:
+        raise SceneError(
+            f"pillar.inner_diameter = {p.inner_diameter:g} is out of range: the wall must be at "
+            f"least pillar.outer_diameter / 2000 = {p.outer_diameter / 2000:g} m thick (D0/t <= 1000)"
+        )
 
 
 def _cross_checks(scene: Scene) -> None:
@@ -112,10 +137,11 @@ def _cross_checks(scene: Scene) -> None:
             "drive.slope = 0 and load.coefficient = 0: nothing limits the speed "
             "(Md = Mc never holds); give drive.slope > 0 or load.coefficient > 0"
         )
-    if 0 < scene.full_order.elements_around < 4:
+    mm = scene.modal_model
+    if mm.gondola_inertia > 0 and mm.source != "beam":
         raise SceneError(
-            f"full_order.elements_around = {scene.full_order.elements_around} is out of "
-            "range: must be 0 (the scene's [mesh]) or >= 4 (-)"
+            f"modal_model.gondola_inertia = {mm.gondola_inertia:g}: only the 1D beam's modes carry it "
+            f'(the 3D model\'s top has its mass, no rotary inertia): set modal_model.source = "beam", or 0'
         )
     w = scene.sweep
     if w.torque_high <= w.torque_low:
@@ -133,6 +159,13 @@ def check_field(key: str, value: Any) -> Any:
     if name not in known:
         raise SceneError(f"{key}: unknown key")
     return _check_value(key, value, known[name])
+
+
+def range_of(key: str) -> str:
+    """The allowed range of ``section.key`` in words ("" for an unknown key)."""
+    section, _, name = key.partition(".")
+    known = {f.name: f for f in fields(SECTIONS[section])} if section in SECTIONS else {}
+    return _range_text(known[name].metadata) if name in known else ""
 
 
 def check_combinations(scene: Scene) -> None:

@@ -86,59 +86,70 @@ def _field(key: str):
     return fields[parts[1]]
 
 
+def _cut(text: str) -> str:
+    """The user's text as a message quotes it: at most 60 characters."""
+    return text if len(text) <= 60 else f"{text[:40]}... ({len(text)} characters)"
+
+
+def _count(n: int) -> str:
+    return f"{n:,}" if n < 10**15 else f"{float(n):.3g}" if n.bit_length() < 1000 else "more than 1e300"
+
+
 def _number(text: str, what: str, key: str) -> float:
     try:
         x = float(text)
     except ValueError:
-        raise InputError(f"--vary {key}: {what} {text!r} is not a number") from None
+        raise InputError(f"--vary {key}: {what} {_cut(text)!r} is not a number") from None
     if not math.isfinite(x):
-        raise InputError(f"--vary {key}: {what} {text!r} must be finite")
+        raise InputError(f"--vary {key}: {what} {_cut(text)!r} must be finite")
     return x
 
 
 def _range(key: str, body: str, is_int: bool) -> tuple:
     parts = body.split(":")
     if len(parts) != 3 or not all(p.strip() for p in parts):
-        raise InputError(f"--vary {key}={body}: expected START:STOP:N")
+        raise InputError(f"--vary {key}={_cut(body)}: expected START:STOP:N")
     a, b = _number(parts[0], "START", key), _number(parts[1], "STOP", key)
     try:
         n = int(parts[2])
     except ValueError:
-        raise InputError(f"--vary {key}={body}: N = {parts[2]!r} must be an integer >= 1") from None
+        raise InputError(f"--vary {key}={_cut(body)}: N = {_cut(parts[2])!r} must be an integer >= 1") from None
     if n < 1:
-        raise InputError(f"--vary {key}={body}: N = {n} must be >= 1")
+        raise InputError(f"--vary {key}={_cut(body)}: N = {n} must be >= 1")
     if n > 1 and a == b:
-        raise InputError(f"--vary {key}={body}: empty range (START = STOP with N = {n})")
+        raise InputError(f"--vary {key}={_cut(body)}: empty range (START = STOP with N = {n})")
     vals = [a] if n == 1 else [a + (b - a) * i / (n - 1) for i in range(n)]
     if is_int:
         if any(abs(v - round(v)) > 1e-9 * max(1.0, abs(v)) for v in vals):
             raise InputError(
-                f"--vary {key}={body}: {key} takes integers; START:STOP:N gives {', '.join(f'{v:g}' for v in vals)}"
+                f"--vary {key}={_cut(body)}: {key} takes integers; START:STOP:N gives {', '.join(f'{v:g}' for v in vals)}"
             )
         vals = [int(round(v)) for v in vals]
         if len(set(vals)) < len(vals):
-            raise InputError(f"--vary {key}={body}: repeated values")
+            raise InputError(f"--vary {key}={_cut(body)}: repeated values")
     return tuple(vals)
 
 
 def _list(key: str, body: str) -> tuple:
     items = [t.strip() for t in body.split(",")]
     if not body.strip() or not all(items):
-        raise InputError(f"--vary {key}={body}: empty value in the list v1,v2,...")
+        raise InputError(f"--vary {key}={_cut(body)}: empty value in the list v1,v2,...")
     vals = []
     for t in items:
         try:
             vals.append(tomllib.loads(f"v = {t}")["v"])
         except tomllib.TOMLDecodeError:
             vals.append(t)  # a bare word or a path
+        except ValueError:  # Python's limit on integer strings
+            raise InputError(f"--vary {key}: an integer of {len(t)} characters is out of range") from None
     if len(set(map(repr, vals))) < len(vals):
-        raise InputError(f"--vary {key}={body}: repeated values")
+        raise InputError(f"--vary {key}={_cut(body)}: repeated values")
     return tuple(vals)
 
 
 def _split(text: str) -> tuple[str, str]:
     if "=" not in text:
-        raise InputError(f"--vary {text!r}: expected KEY=START:STOP:N or KEY=v1,v2,...")
+        raise InputError(f"--vary {_cut(text)!r}: expected KEY=START:STOP:N or KEY=v1,v2,...")
     key, body = (s.strip() for s in text.split("=", 1))
     _field(key)  # an unknown key: InputError naming it
     if not body:
@@ -162,13 +173,13 @@ def axis_size(text: str) -> int:
         return len(body.split(","))
     parts = body.split(":")
     if len(parts) != 3 or not all(p.strip() for p in parts):
-        raise InputError(f"--vary {key}={body}: expected START:STOP:N")
+        raise InputError(f"--vary {key}={_cut(body)}: expected START:STOP:N")
     try:
         n = int(parts[2])
     except ValueError:
-        raise InputError(f"--vary {key}={body}: N = {parts[2]!r} must be an integer >= 1") from None
+        raise InputError(f"--vary {key}={_cut(body)}: N = {_cut(parts[2])!r} must be an integer >= 1") from None
     if n < 1:
-        raise InputError(f"--vary {key}={body}: N = {n} must be >= 1")
+        raise InputError(f"--vary {key}={_cut(body)}: N = {n} must be >= 1")
     return n
 
 
@@ -240,8 +251,8 @@ def parse_axes(texts: list[str], scene: Scene) -> tuple[Axis, ...]:
     n = math.prod(sizes)
     if n > MAX_RUNS:
         raise InputError(
-            f"--vary: {n:,} runs in the product ("
-            + " x ".join(f"{k} {m:,}" for k, m in zip(keys, sizes))
+            f"--vary: {_count(n)} runs in the product ("
+            + " x ".join(f"{k} {_count(m)}" for k, m in zip(keys, sizes))
             + f"); a study holds at most {MAX_RUNS:,}"
         )
     return tuple(parse_vary(t, scene) for t in texts)

@@ -139,6 +139,8 @@ def _grid(axis: Axis) -> list:
     lo, hi = min(values), max(values)
     if len(values) == 1 or lo == hi:
         return [lo]
+    if all(isinstance(v, int) for v in axis.values):  # an integer key: its integers, a scene each
+        return sorted({int(round(x)) for x in np.linspace(lo, hi, CURVE_POINTS)})
     return list(np.linspace(lo, hi, CURVE_POINTS))
 
 

@@ -97,12 +97,18 @@ def _check_inputs(scene: Scene, case: str, model: str, vary: list[str]):
     if case == "earthquake":
         from ..reduced.excitation import BUILTIN_RECORDS
         from ..reduced.models import scene_motion
+        from ..transients.run_plan import own_duration
 
-        motions = {tuple((k, v) for k, v in p.items() if k.startswith("excitation.")) for p in points}
+        windows = {
+            tuple((k, v) for k, v in p.items() if k.startswith("excitation.") or k == "simulate.earthquake_duration")
+            for p in points
+        }
         # every record readable before anything runs, each once; the user's files before
-        # the built-in records (whose library takes seconds to import): a bad file, at once
-        for m in sorted(motions, key=lambda m: (any(v in BUILTIN_RECORDS for _, v in m), repr(m))):
-            scene_motion(run_scene(scene, dict(m), implied))
+        # the built-in records (whose library takes seconds to import): a bad file, at once;
+        # and every run long enough to see its ground motion
+        for m in sorted(windows, key=lambda m: (any(v in BUILTIN_RECORDS for _, v in m), repr(m))):
+            sc = run_scene(scene, dict(m), implied)
+            own_duration(sc, "earthquake", scene_motion(sc))
     return axes, implied, points
 
 
@@ -156,6 +162,8 @@ def design_study(
             f"study {scene.name}: {case}, {len(points)} runs in {len(batches)} batches "
             f"({len(done)} on disk, {len(todo)} to compute)"
         )
+    # before the cluster: the curve builds a scene per point, and its refusal must come first
+    predicted = predicted_boundary(scene, case, model, axes, implied, modes)
     info = ExecutorInfo("none (every batch on disk)", None, 0, 0)
     t_cluster = t_compute = compute = 0.0
     if todo:
@@ -193,7 +201,6 @@ def design_study(
                 ex.__exit__(None, None, None)
     runs = [replace(r, batch=k) for i, k in enumerate(keys) for r in done[i].runs]
     runs.sort(key=lambda r: r.index)
-    predicted = predicted_boundary(scene, case, model, axes, implied, modes)
     found = found_boundary(axes, runs) if case == "runup" else None
     boundary = StudyBoundary(predicted, found) if predicted is not None or found else None
     n_computed = len(points) - n_cached

@@ -13,7 +13,10 @@ The 3D model's pillar modes (``modal_model.source = "fem3d"``) come in as
 
 from __future__ import annotations
 
+import contextlib
 import math
+import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -133,26 +136,36 @@ def case_duration(scene: Scene, case: str, motion: GroundMotion) -> float:
     return sim.duration
 
 
-#: The beam's seconds per step and dof**2 (Newton on its dense n x n Jacobian),
-#: measured: 16 us a step of CPU on 23 dofs, one Newton iteration a step; an
-#: estimate, stated as one.
-BEAM_SECONDS_PER_STEP_DOF2 = 3e-8
+#: The beam's seconds per step and dof**3: Newton on its dense n x n Jacobian, an LU
+#: factorisation per iteration, about three a step.  Measured on the 2-core machine,
+#: 0.3 s of run-up: 15 ms a step on 163 dofs, 160 ms on 323 (n**3.4 between them; the
+#: machine loaded 7-fold); an estimate, stated as one.
+BEAM_SECONDS_PER_STEP_DOF3 = 4e-9
+
+
+def beam_estimate(scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None):
+    """(steps, seconds, dofs, duration, step) of the beam's run of ``case``, from the scene
+    alone (before the beam is built); None for an adaptive integrator (simulate's own)."""
+    fo = scene.full_order
+    method = integrator or fo.beam_integrator
+    if method not in FULL_ORDER_SCHEMES:
+        return None
+    duration = case_duration(scene, case, motion)
+    h = full_order_step_rule(scene, case, motion, method).time_step
+    steps = duration / h
+    n = 2 * (fo.beam_elements or scene.modal_model.elements) + 3
+    return steps, steps * BEAM_SECONDS_PER_STEP_DOF3 * n**3, n, duration, h
 
 
 def check_full_order_budget(scene: Scene, case: str, motion: GroundMotion, integrator: str | None = None) -> None:
     """Refuse (InputError naming the keys) a beam run estimated above ``simulate.max_steps``,
     before the beam is built: steps = the case's duration over the rule's step."""
-    fo = scene.full_order
-    method = integrator or fo.beam_integrator
-    if method not in FULL_ORDER_SCHEMES:  # adaptive: simulate's own estimate
+    est = beam_estimate(scene, case, motion, integrator)
+    if est is None:  # adaptive: simulate's own estimate
         return
-    duration = case_duration(scene, case, motion)
-    h = full_order_step_rule(scene, case, motion, method).time_step
-    steps = duration / h
+    steps, seconds, n, duration, h = est
     if math.isfinite(steps) and steps <= scene.simulate.max_steps:
         return
-    n = 2 * (fo.beam_elements or scene.modal_model.elements) + 3
-    seconds = steps * BEAM_SECONDS_PER_STEP_DOF2 * n * n
     length = (
         "simulate.earthquake_duration"
         if case == "earthquake"
@@ -166,6 +179,22 @@ def check_full_order_budget(scene: Scene, case: str, motion: GroundMotion, integ
         f"{scene.simulate.max_steps:.3g}: raise full_order.time_step (0 = the band's step), shorten "
         f"{length}, or raise simulate.max_steps"
     )
+
+
+@contextlib.contextmanager
+def quiet_divergence() -> Iterator[None]:
+    """numpy's floating-point warnings off for a run's own arithmetic.
+
+    A run past its stability limit overflows on its way to infinity (the model's
+    forces, the drive's torque, the summary's maxima of an all-NaN tail); its checks
+    say so in the result, where a user reads it (not_finite, stability,
+    energy_balance: ``ok: false``, exit 4).  The warnings would only repeat them,
+    as tracebacks' lines on stderr.  An overflow that reaches the result is a
+    non-finite value, which not_finite fails on."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"), warnings.catch_warnings():
+        for text in ("All-NaN slice encountered", "Mean of empty slice", "invalid value encountered"):
+            warnings.filterwarnings("ignore", message=text, category=RuntimeWarning)
+        yield
 
 
 def run_case(
@@ -263,6 +292,21 @@ def truncation_estimate(a: CaseResult, b: CaseResult) -> TruncationEstimate:
 
 
 def _run_on(
+    scene: Scene,
+    case: str,
+    model: RotorStructure,
+    motion: GroundMotion,
+    integrator: str | None,
+    model_info: ModelInfo | None = None,
+    settings: Settings | None = None,
+) -> CaseResult:
+    """One case on one model, run and summarised; a diverging run's warnings are left to
+    its checks (``quiet_divergence``)."""
+    with quiet_divergence():
+        return _run_and_summarise(scene, case, model, motion, integrator, model_info, settings)
+
+
+def _run_and_summarise(
     scene: Scene,
     case: str,
     model: RotorStructure,

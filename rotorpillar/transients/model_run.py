@@ -252,7 +252,10 @@ def run_model(
             )
     if duration is not None:
         scene = with_duration(scene, case, duration)
-    return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
+    from .cases import quiet_divergence
+
+    with quiet_divergence():  # a diverging run: its checks say so (not_finite, stability)
+        return _run_reduced(scene, case, model, integrator, modes, progress, motion, chain)
 
 
 # --------------------------------------------------------------------------
@@ -293,6 +296,16 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     from .cases import run_case, with_truncation
 
     pillar_modes = pillar_modes_for(which, chain)
+    if which == "beam" and progress:
+        from ..fem3d.full_order_plan import duration_text
+        from .cases import beam_estimate
+
+        est = beam_estimate(scene, case, motion or no_motion(), integrator)
+        if est is not None:
+            progress(
+                f"beam full order: {est[0]:.3g} steps of {est[4]:.3g} s on {est[2]} dofs, about "
+                f"{duration_text(est[1])} (estimate; full_order.beam_elements sets the dofs)"
+            )
     compile_seconds = warm_up(scene, case, which, integrator, modes, motion, pillar_modes)
     start = time.perf_counter()
     res = run_case(scene, case, which, integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes)

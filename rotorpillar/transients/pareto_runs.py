@@ -273,3 +273,47 @@ def load_run(cache: DiskCache, key: str) -> StoredRun | None:
 
 # --------------------------------------------------------------------------
 # The study
+
+
+def pareto_estimate(scene: Scene, chosen_mesh=None) -> str:
+    """The study's 3D runs, estimated from the scene alone before any work, in a line;
+    InputError (as a single 3D run is refused: fem3d.full_order_plan) when one of them
+    would not fit in memory or would take more than ``simulate.max_steps`` steps."""
+    from ..converge.ladder import ALONG_FAMILY_AROUND
+    from ..errors import InputError
+    from ..fem3d.full_order_plan import case_setup, duration_text, estimate, step_rule
+    from ..mesh import tube_params
+    from ..reduced.models import scene_motion
+
+    sc = pareto_scene(scene)
+    motion = scene_motion(sc)
+    motion, drive, length, _, _ = case_setup(sc, "earthquake", motion, None, PARETO_DURATION, 0.0)
+    rule = step_rule(sc, drive, motion, 0.0)
+    meshes = [
+        replace(sc.mesh, elements_around=ALONG_FAMILY_AROUND, elements_along=n)
+        for n in pareto_along(scene.full_order.pareto_along)
+    ]
+    if chosen_mesh is not None:
+        meshes.append(replace(sc.mesh, **{k: getattr(chosen_mesh, k) for k in ("elements_around", "elements_along")}))
+    runs = []
+    for mesh in meshes:
+        label = f"3D {mesh.elements_around}x{mesh.elements_along}"
+        try:
+            tube_params(sc.pillar, mesh)  # its memory
+        except InputError as exc:
+            raise InputError(f"compare --pareto: the run {label} (full_order.pareto_along): {exc}") from None
+        est = estimate(sc, length, rule, mesh)
+        if est.steps > scene.simulate.max_steps:
+            raise InputError(
+                f"compare --pareto: the run {label} of {length:g} s at a step of {est.time_step:.3g} s would "
+                f"take about {est.steps:.3g} steps (~{duration_text(est.seconds)}), more than simulate.max_steps = "
+                f"{scene.simulate.max_steps:.3g}: raise full_order.time_step (0 = the band's step) or "
+                "simulate.max_steps"
+            )
+        runs.append((label, est))
+    total = sum(e.seconds for _, e in runs)
+    return (
+        f"speed against accuracy: {len(runs)} 3D runs ({', '.join(label for label, _ in runs)}) of "
+        f"{length:g} s, {runs[0][1].steps:.3g} steps each, up to ~{max(e.dofs for _, e in runs):,} dofs: "
+        f"about {duration_text(total)} of work, less what the cache holds (estimate; full_order.pareto_along sets the finest)"
+    )

@@ -66,10 +66,23 @@ def own_duration(scene: Scene, case: str, motion=None) -> float:
     if case == "earthquake":
         from ..reduced.models import scene_motion
 
-        return sim.earthquake_duration or (motion or scene_motion(scene)).end + 5.0
+        motion = motion or scene_motion(scene)
+        length = sim.earthquake_duration or motion.end + 5.0
+        if length <= motion.start:
+            raise InputError(
+                f"simulate.earthquake_duration = {length:g} s ends before the ground motion starts "
+                f"({motion.start:g} s, excitation.start): the run would see no earthquake; give a longer run"
+            )
+        return length
     if case in ("runup", "rundown"):
         return sim.duration
     raise InputError(f"case {case!r}: a common duration is defined for runup, rundown and earthquake")
+
+
+def _scene_motion(scene: Scene):
+    from ..reduced.models import scene_motion
+
+    return scene_motion(scene)
 
 
 def with_duration(scene: Scene, case: str, duration: float):
@@ -93,6 +106,14 @@ def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = No
     own = own_duration(scene, case, motion)
     stated = fo.earthquake_duration if case == "earthquake" else fo.runup_duration
     length = min(own, stated or own, duration or own)
+    if case == "earthquake":
+        start = (motion or _scene_motion(scene)).start
+        if length <= start:
+            key = "full_order.earthquake_duration" if stated and stated <= own else "simulate.earthquake_duration"
+            raise InputError(
+                f"{key} = {length:g} s ends before the ground motion starts ({start:g} s, "
+                "excitation.start): the run would see no earthquake; give a longer run"
+            )
     steps = estimated_steps(scene, case, motion, length) if study_dir is not None else None
     mesh, reference = choose_reference(scene, case, study_dir, motion, steps)
     source = (

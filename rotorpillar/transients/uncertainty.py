@@ -16,10 +16,12 @@ Each number's error is the sum of the sources' magnitudes
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 
 from ..chain import ChainModes, Uncertain
+from ..errors import InputError
 from ..records import Record
-from ..scene import ADAPTIVE_INTEGRATORS, SCIPY_METHODS, Scene, override
+from ..scene import ADAPTIVE_INTEGRATORS, SCIPY_METHODS, Scene, Simulate, override
 
 #: the numbers that get error bars, and their units
 HEADLINE = {"peak_tip_relative": "m", "peak_shaft_deflection": "m", "omega_final": "rad/s", "captured_at": "rad/s"}
@@ -55,11 +57,14 @@ def headline_numbers(res) -> HeadlineNumbers:
 
 
 def _finer(scene: Scene, integrator: str | None) -> Scene:
+    """The scene integrated finer (rtol / 100, or half the step), within the keys' ranges;
+    ``scene`` itself when it cannot be (an automatic step, a step at its floor)."""
     sim = scene.simulate
     method = integrator or sim.integrator
     if method in ADAPTIVE_INTEGRATORS + SCIPY_METHODS:
         return override(scene, [f"simulate.rtol={max(sim.rtol / 100, 1e-13)!r}"])
-    if sim.time_step > 0:
+    floor = next(f for f in fields(Simulate) if f.name == "time_step").metadata["ge"]
+    if sim.time_step / 2 >= floor:
         return override(scene, [f"simulate.time_step={sim.time_step / 2!r}"])
     return scene  # an automatic step: the integrator study measures it, not this check
 
@@ -76,9 +81,13 @@ def uncertainty(
     values = headline_numbers(base)
 
     def run(sc, modes, pillar_modes):
-        return headline_numbers(
-            run_case(sc, case, "modal", integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes)
-        )
+        try:
+            res = run_case(
+                sc, case, "modal", integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes
+            )
+        except InputError:  # the variant's run past simulate.max_steps: no estimate from it
+            return None
+        return headline_numbers(res)
 
     delta = chain.pillar_model.bending_error
     if progress:

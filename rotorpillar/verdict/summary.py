@@ -128,9 +128,10 @@ def case_name(case: str, excitation: ExcitationSizes | None) -> str:
     return case
 
 
-def model_runs(out: Path) -> list[RunFile]:
+def model_runs(out: Path, damaged: dict[str, str] | None = None) -> list[RunFile]:
     """The runs of ``out``, one per (case as a reader names it, model): the newest file
-    where simulate and compare both ran it; a file that is no run is left out."""
+    where simulate and compare both ran it; a file that cannot be read as a run is left
+    out, and named in ``damaged`` (file -> why)."""
     from ..transients.model_run import RunRecord
 
     found: dict[tuple, tuple[float, RunFile]] = {}
@@ -140,7 +141,9 @@ def model_runs(out: Path) -> list[RunFile]:
         try:
             got = RunFile(path.name, records.read(path, RunRecord))  # type: ignore[arg-type]  # a union
             when = path.stat().st_mtime
-        except (OSError, ValueError):
+        except (OSError, ValueError) as exc:
+            if damaged is not None:
+                damaged[path.name] = str(exc)
             continue
         key = (got.label, got.run.model)
         if key not in found or when > found[key][0]:
@@ -486,7 +489,8 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     from .machine import foundation_loads, machine_check_rows, run_mass_rows, tube_effective_masses
 
     out = Path(out)
-    runs = model_runs(out)
+    damaged: dict[str, str] = {}  # file -> why it cannot be read (records.read's line)
+    runs = model_runs(out, damaged)
     inputs = [rf.file for rf in runs]
     rows = []
     for rf in runs:
@@ -498,14 +502,14 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
             harmonic = records.read(out / "harmonic.json", HarmonicResult)
             inputs.append("harmonic.json")
             rows += _margin_checks(harmonic)
-        except (ValueError, OSError):  # damaged: its checks are not assessed
-            harmonic = None
+        except (ValueError, OSError) as exc:  # damaged: its checks are not assessed, and it is named
+            harmonic, damaged["harmonic.json"] = None, str(exc)
     if (out / "modal.json").is_file():
         try:
             modal = records.read(out / "modal.json", ModalSummary)
             inputs.append("modal.json")
-        except (ValueError, OSError):
-            modal = None
+        except (ValueError, OSError) as exc:
+            modal, damaged["modal.json"] = None, str(exc)
     machine = _read_machine(out)
     if machine is not None:
         inputs.append("analyze.json")
@@ -517,10 +521,11 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         try:
             campbell = records.read(out / "campbell.json", CampbellDiagram)
             inputs.append("campbell.json")
-        except (ValueError, OSError):  # damaged: no Campbell headlines
-            campbell = None
+        except (ValueError, OSError) as exc:  # damaged: no Campbell headlines, and it is named
+            campbell, damaged["campbell.json"] = None, str(exc)
     governing = _governing(rows)
     missing = _not_assessed(scene, governing, harmonic is not None, bool(runs))
+    missing += [f"{file} is damaged, not read ({why}): rebuild it" for file, why in damaged.items()]
     if machine is None:
         missing.append("balance, vibration at speed, modal mass: analyze.json not found (run `rotorpillar analyze`)")
     assessed = [c for c in governing if c.status != NOT_ASSESSED]
@@ -576,7 +581,7 @@ def _not_assessed(scene: Scene, governing: list[Check], have_harmonic: bool, hav
     if not have_runs:
         out.append("stresses, clearance, shaft force: no transient run found (run `rotorpillar compare`)")
     if not have_harmonic:
-        out.append("separation margins: harmonic.json not found (run `rotorpillar harmonic`)")
+        out.append("separation margins: no readable harmonic.json (run `rotorpillar harmonic`)")
     return out
 
 

@@ -40,9 +40,9 @@ from .machine3d import section_machine3d
 from .modal import section_modal, section_paper, section_scene
 from .page import Section, page, with_subsections
 from .provenance import section_other, section_provenance
-from .render import mode_sets, render_animations, render_charts, render_comparisons, render_mode_shapes
+from .render import render_3d, render_charts, render_comparisons
 from .runs import section_averaging, section_runs
-from .state import Build, Product, ReportOptions, attempt, debugging, say
+from .state import Build, Product, ReportOptions, debugging, say
 from .study import section_study
 from .tower import section_tower
 
@@ -220,20 +220,15 @@ def build_report(
     build = Build(scene, Path(out), scene_cli, options or ReportOptions())
     with timings("read_inputs"):
         load_inputs(build)
-    with timings("charts"):
-        render_charts(build)
-        render_comparisons(build)
-    sets = {}
-    with timings("mode_shapes"):
-        sets = mode_sets(build)
-        render_mode_shapes(build, sets)
-    if build.options.animations:
-        with timings("animations"):
-            render_animations(build, sets)
-    if any(s is not None for s in sets.values()) or any(k.startswith("animation_") for k in build.products):
-        from ..offscreen import render_window_class
 
-        build.render_window = attempt(build, "render_window", render_window_class) or ""
+    def charts() -> None:
+        with timings("charts"):
+            render_charts(build)
+            render_comparisons(build)
+
+    # the mode shapes and the animations in worker processes, the charts here meanwhile
+    with timings("renders"):
+        render_3d(build, during=charts)
     build.products["external"] = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(build.out)]
     with timings("html"):
         sections = []
@@ -256,6 +251,8 @@ def build_report(
     present.update({f"simulate_{c}": c in build.simulations for c in CASES})
     present["simulate_earthquake_paper"] = (build.out / "simulate_earthquake_paper.json").is_file()
     present.update({f"compare_{c}": c in build.comparisons for c in COMPARISONS})
+    # read by their sections (the unbalance response, the design study)
+    present.update({name: (build.out / f"{name}.json").is_file() for name in ("harmonic", "study")})
     return ReportResult(
         report=str(path),
         inputs=present,

@@ -26,7 +26,9 @@ MODE_SOURCES = {"modal": "ROM, coupled system", "fem3d": "3D, loaded tube"}
 UNITS = {"Pa": (1e-6, "MPa"), "m": (1e3, "mm"), "N": (1e-3, "kN"), "N*m": (1e-6, "MN m"), "-": (100, "%")}
 
 
-def _read(build: Build, name: str, record):
+def _read(build: Build, name: str, record, command: str | None = None):
+    """The record in ``name``, or None (missing, or damaged: named in the report's failures,
+    and under ``command``, the one that rebuilds it, in its ``damaged``)."""
     path = build.out / name
     if not path.is_file():
         return None
@@ -34,7 +36,18 @@ def _read(build: Build, name: str, record):
         return records.read(path, record)
     except (ValueError, OSError) as exc:
         build.failures[f"input {name}"] = f"{type(exc).__name__}: {exc}"
+        if command is not None:
+            build.damaged[command] = f"{name} is damaged ({str(exc).removeprefix(f'{name}: ')})"
         return None
+
+
+def _sentence(text: str) -> str:
+    """``text`` with its first letter a capital (the rest as it is: file names, keys).
+
+    >>> _sentence("not computed: run `rotorpillar harmonic paper`")
+    'Not computed: run `rotorpillar harmonic paper`'
+    """
+    return text[:1].upper() + text[1:]
 
 
 def _value(x, unit: str, digits: int = 4) -> str:
@@ -311,10 +324,10 @@ def _buckling_and_details(build: Build) -> list[str]:
 
 
 def section_unbalance(build: Build) -> str:
-    r = _read(build, "harmonic.json", HarmonicResult)
+    r = _read(build, "harmonic.json", HarmonicResult, "harmonic")
     title = "Unbalance response (Bode) and separation margins"
     if r is None:
-        return h.section("unbalance", title, [h.missing(f"Not computed: run `rotorpillar harmonic {build.scene_cli}`")])
+        return h.section("unbalance", title, [h.missing(_sentence(build.hint("harmonic")))])
     from .. import engineering_charts as ec
 
     fig = build.out / FIGURES_DIR

@@ -3,16 +3,16 @@ mode shapes and the animations, each step recorded and allowed to fail."""
 
 from __future__ import annotations
 
-from pathlib import Path
+from collections.abc import Callable
 from typing import Any
 
 from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
 from ..compare_reader import relative_to_ground
 from ..directions import direction
-from ..geometry import ModeSet
 from ..readers import INPUTS, Simulation
 from .page import model_name
-from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, say
+from .parallel import ModeFiles
+from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, debugging, say
 
 #: The animations the report makes (:func:`animated_runs`).
 ANIMATED = ("runup", "earthquake", "earthquake_paper", "earthquake_scene")
@@ -190,58 +190,48 @@ def _record_name(ex: ExcitationSizes | None) -> str:
     return ex.kind if ex is not None else "the scene's excitation"
 
 
-def mode_sets(build: Build) -> dict[str, ModeSet | None]:
-    """The bare and the topped tube's mode shapes, where modal.json and its VTU exist."""
-    from ..geometry import load_modes
-
-    sets = {}
+def mode_files(build: Build) -> list[tuple[str, ModeFiles]]:
+    """The bare ("bare") and the topped tube's ("top") mode shapes, where modal.json and
+    its VTU exist (read by the job that draws them: :mod:`.parallel`)."""
     m = build.modal
+    if m is None:
+        return []
+    out = []
     for name, key in (("bare", "modes"), ("top", "modes_with_top")):
         vtu = build.out / INPUTS[f"modes_{name}"][0]
-        if m is not None and vtu.is_file():
-            modes = list(getattr(m, key))
-            axes = m.axes
-            sets[name] = attempt(
-                build, f"load_modes_{name}", lambda vtu=vtu, modes=modes, axes=axes: load_modes(vtu, modes, axes)
-            )
-        else:
-            sets[name] = None
-    return sets
+        if vtu.is_file():
+            out.append((name, ModeFiles(vtu, list(getattr(m, key)), m.axes)))
+    return out
 
 
-def render_mode_shapes(build: Build, sets: dict) -> None:
-    from ..directions import mode_label
-    from ..modeshapes import render_modes as render
+def _mode_captions(build: Build) -> dict[str, str]:
     from .modal import top_words
 
-    captions = {
+    return {
         "bare": "the bare tube (clamped base, free top)",
         "top": f"the tube carrying {top_words(build.modal.top if build.modal else None)[0]}",
     }
-    for name, ms in sets.items():
-        if ms is None:
-            continue
-        say(f"mode shapes of {captions[name]}")
-        r = attempt(
-            build,
-            f"modes_{name}",
-            lambda ms=ms, name=name: render(ms, build.out / MODES_DIR, name, build.options.modes),
-        )
-        if r:
-            build.products[f"modes_{name}"] = [
-                Product(p, mode_label(ms.modes[i], i), group=name) for i, p in enumerate(r["modes"])
-            ]
-            build.products[f"sheet_{name}"] = Product(
-                r["sheet"],
-                (
-                    f"The first {len(r['modes'])} modes of {captions[name]} (3D model, {Path(ms.source).name}): "
-                    "deformed shape coloured by |u| / max |u| over the undeformed outline; the scale "
-                    "factor is on each view; the triad names the axes as the paper does (X horizontal, "
-                    "in the rotor's plane; Z horizontal, along the shaft; Y vertical); an ovalling "
-                    "mode's cross-sections beside it, seen from above."
-                ),
-                group=name,
-            )
+
+
+def _mode_products(build: Build, files: ModeFiles, name: str, r: dict) -> None:
+    """The pictures of one set of modes on the page, each captioned from modal.json."""
+    from ..directions import mode_label
+    from ..geometry import ModeLabel
+
+    meta = lambda i: files.modes[i] if i < len(files.modes) else ModeLabel()  # noqa: E731  (as load_modes names them)
+    caption = _mode_captions(build)[name]
+    build.products[f"modes_{name}"] = [Product(p, mode_label(meta(i), i), group=name) for i, p in enumerate(r["modes"])]
+    build.products[f"sheet_{name}"] = Product(
+        r["sheet"],
+        (
+            f"The first {len(r['modes'])} modes of {caption} (3D model, {files.vtu.name}): "
+            "deformed shape coloured by |u| / max |u| over the undeformed outline; the scale "
+            "factor is on each view; the triad names the axes as the paper does (X horizontal, "
+            "in the rotor's plane; Z horizontal, along the shaft; Y vertical); an ovalling "
+            "mode's cross-sections beside it, seen from above."
+        ),
+        group=name,
+    )
 
 
 def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, Any]]]:
@@ -311,50 +301,74 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
     return out
 
 
-def render_animations(build: Build, sets: dict) -> None:
-    from ..animation import animate
-    from ..geometry import cantilever_tube
+def render_3d(build: Build, during: Callable[[], None] | None = None) -> None:
+    """The mode shapes and the animations, drawn in worker processes (:mod:`.parallel`)
+    while ``during`` (the charts) runs here; each picture on the page as it comes."""
+    from .parallel import AnimationJob, ModesJob, debug_detail, run_jobs
 
-    top = sets.get("top")
-    for name, sim, title, opts in animated_runs(build):
-        if top is None and "fallback_tube" not in build.products:
-            p, base = build.scene.pillar, build.scene.pillar.segments()[0]
-            build.products["fallback_tube"] = cantilever_tube(p.height, base.outer_bottom, base.inner_bottom)
-        ms = top if top is not None else build.products["fallback_tube"]
-        say(f"animation of the {name} ({build.options.max_frames} frames at most)")
-        r = attempt(
-            build,
-            f"animation_{name}",
-            lambda sim=sim, ms=ms, title=title, name=name, opts=opts: animate(
-                sim,
-                ms,
-                build.out / ANIMATIONS_DIR / f"{name}.mp4",
-                title=f"{title} (scene {build.scene.name})",
-                max_frames=build.options.max_frames,
-                poster=build.out / ANIMATIONS_DIR / f"{name}_poster.png",
-                **opts,
-            ),
-        )
-        if r:
-            timing = (
-                f"time-warped: {r.frames_in_focus} of its {r.frames} frames in the passage "
-                f"through the resonances, {r.focus[0]:.3g} .. {r.focus[1]:.3g} s (slow motion "
-                "there, said on the frame), the rest over the remaining run"
-                if r.focus
-                else "sampling the run uniformly"
+    files = dict(mode_files(build))
+    jobs: list[ModesJob | AnimationJob] = []
+    captions = _mode_captions(build)
+    for name, f in files.items():
+        say(f"mode shapes of {captions[name]}")
+        jobs.append(ModesJob(name, f, build.out / MODES_DIR, build.options.modes))
+    titles = {}
+    if build.options.animations:
+        p = build.scene.pillar
+        base = p.segments()[0]  # the tube's base section (a tower's bottom can)
+        for name, sim, title, opts in animated_runs(build):
+            say(f"animation of the {name} ({build.options.max_frames} frames at most)")
+            titles[name] = title
+            jobs.append(
+                AnimationJob(
+                    name,
+                    sim,
+                    f"{title} (scene {build.scene.name})",
+                    opts,
+                    files.get("top"),
+                    (p.height, base.outer_bottom, base.inner_bottom),
+                    build.out / ANIMATIONS_DIR / f"{name}.mp4",
+                    build.out / ANIMATIONS_DIR / f"{name}_poster.png",
+                    build.options.max_frames,
+                )
             )
-            build.products[f"animation_{name}"] = Product(
-                r.path,
-                (
-                    f"{title}: the pillar deformed by {r.source}; the pillar's elastic deflection "
-                    f"exaggerated x{r.factor:g}, the rotor's motion about the pillar top (drawn on its "
-                    f"shaft) x{r.orbit_factor:g}"
-                    + ("; ground motion at true scale" if name.startswith("earthquake") else "")
-                    + f". {r.frames} frames at {r.fps} frames/s, {timing} (stroboscopic: the pillar's "
-                    "vibration at the rotor speed aliases; the orbit trail uses every stored sample). "
-                    f"{r.writer}."
-                ),
-                kind="video",
-                poster=r.poster,
-            )
-            build.products[f"animation_{name}_info"] = r
+    for o in run_jobs(jobs, during):
+        build.render_seconds[o.key] = build.render_seconds.get(o.key, 0.0) + o.seconds
+        build.render_window = build.render_window or o.window
+        if o.error is not None:
+            build.failures[o.key] = o.error
+            say(f"{o.key} failed: {o.error}")
+            if debugging():
+                debug_detail(o)
+        elif o.key.startswith("modes_"):
+            name = o.key.removeprefix("modes_")
+            _mode_products(build, files[name], name, o.result)
+        elif o.key.startswith("animation_"):
+            name = o.key.removeprefix("animation_")
+            _animation_products(build, name, titles[name], o.result)
+
+
+def _animation_products(build: Build, name: str, title: str, r) -> None:
+    """An animation on the page, its caption from what it shows."""
+    timing = (
+        f"time-warped: {r.frames_in_focus} of its {r.frames} frames in the passage "
+        f"through the resonances, {r.focus[0]:.3g} .. {r.focus[1]:.3g} s (slow motion "
+        "there, said on the frame), the rest over the remaining run"
+        if r.focus
+        else "sampling the run uniformly"
+    )
+    build.products[f"animation_{name}"] = Product(
+        r.path,
+        (
+            f"{title}: the pillar deformed by {r.source}; the pillar's elastic deflection "
+            f"exaggerated x{r.factor:g}, the rotor's motion about the pillar top (drawn on its "
+            f"shaft) x{r.orbit_factor:g}"
+            + ("; ground motion at true scale" if name.startswith("earthquake") else "")
+            + f". {r.frames} frames at {r.fps} frames/s, {timing} (stroboscopic: the pillar's "
+            "vibration at the rotor speed aliases; the orbit trail uses every stored sample). "
+            f"{r.writer}."
+        ),
+        kind="video",
+        poster=r.poster,
+    )
+    build.products[f"animation_{name}_info"] = r

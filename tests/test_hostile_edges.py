@@ -1,0 +1,236 @@
+"""Every accepted value runs, or it is refused (issue 31.1): each numeric key of the scene
+at both ends of its range, through the commands that consume it.
+
+The walk is over ``scene.SECTIONS``: a key added later is covered when it lands (its
+section's consumers below, or its own in ``KEY_CONSUMERS``; a section without
+consumers fails ``test_every_numeric_key_has_a_consumer``).  Each case runs the
+command in this process (``cli.main``: the CLI's one error boundary, without a
+Python start-up per case) and holds it to what a user may see:
+
+- exit 0, or 4 with ``ok: false`` and its failed checks in the JSON (a run that means
+  nothing says so), or 2 with one line and nothing written (refused before any work);
+  never 1 (a tool or the machine failed) nor 70 (a bug);
+- nothing else on stderr than the command's own ``[rotorpillar]`` lines: no Python
+  warning (numpy's overflow, matplotlib's), no library's message.
+
+A case sets every key of one section at the same end of its range at once (the
+smallest tube, the stiffest shaft, ...): one run consumes them all.  When that
+combination is refused (exit 2: one of its cross-checks, a run's estimate), each
+key is run at that end alone, so that every key is seen to run or to be refused by
+itself.  The other keys keep the scene's values; the runs are short
+(``simulate.duration`` 2 s, the ROM on the beam's modes) and ``simulate.max_steps``
+is 2e5, so that the long end of a duration is refused by its estimate at once
+instead of running for minutes: the refusal is what that end must meet on this
+budget.  Each case but analyze's takes seconds (a whole command, its charts): marked slow.
+Not run here: the lower ends of the convergence ladder's keys and
+``converge.tolerance`` (they only shorten or loosen the ladder that
+tests/test_converge*.py run whole, minutes each); ``full_order.pareto_along`` (compare
+--pareto: its estimate and refusal, tests/test_hostile.py).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import warnings
+
+import pytest
+
+from rotorpillar.scene import SECTIONS
+
+
+def _sets(*assignments: str) -> list[str]:
+    return [a for s in assignments for a in ("--set", s)]
+
+
+SHORT = _sets("simulate.duration=2", "simulate.max_steps=200000", "simulate.samples=500", "modal_model.source=beam")
+FEM3D = _sets("full_order.elements_around=8", "full_order.elements_along=2", "simulate.max_steps=200000")
+#: name -> (command, its arguments, slow): the commands that consume keys, as cheap as they come
+CONSUMERS = {
+    "analyze": ("analyze", [], False),
+    "rom": ("simulate", ["--model", "modal", "--no-threshold", *SHORT], True),
+    "paper": ("simulate", ["--model", "paper", "--no-threshold", *SHORT], True),
+    # the budget itself, alone: at its top the others' long ends would run for minutes
+    "budget": ("simulate", ["--model", "paper", "--no-threshold", *SHORT], True),
+    # 0.05 s: the beam's step costs ~dofs**3, seconds a step at 200 elements
+    "beam": ("simulate", ["--model", "beam", "--no-threshold", *SHORT, *_sets("simulate.duration=0.05")], True),
+    "rundown": (
+        "simulate",
+        ["--case", "rundown", "--model", "paper", *SHORT, *_sets("simulate.rundown_motor=weaker")],
+        True,
+    ),
+    "fixed-step": (
+        "simulate",
+        ["--model", "modal", "--no-threshold", *SHORT, *_sets("simulate.integrator=newmark")],
+        True,
+    ),
+    "quake": ("simulate", ["--case", "earthquake", "--model", "modal", *SHORT], True),
+    "record": (
+        "simulate",
+        ["--case", "earthquake", "--model", "paper", *SHORT, *_sets("excitation.kind=record")],
+        True,
+    ),
+    "sweep": (
+        "simulate",
+        ["--case", "sweep", "--model", "paper", *SHORT, *_sets("sweep.rate=500", "sweep.settle=1")],
+        True,
+    ),
+    "modal": ("modal", _sets("mesh.elements_around=8", "mesh.elements_along=4"), True),
+    "fem3d-runup": (
+        "simulate",
+        ["--model", "fem3d", "--case", "runup", *FEM3D, *_sets("full_order.runup_duration=0.1")],
+        True,
+    ),
+    "fem3d-quake": (
+        "simulate",
+        ["--model", "fem3d", "--case", "earthquake", *FEM3D, *_sets("full_order.earthquake_duration=5.1")],
+        True,
+    ),
+    "report": ("report", ["--no-animations"], True),
+    "converge": ("converge", ["--no-progress"], True),
+}
+#: The consumers of a section's keys.
+SECTION_CONSUMERS = {
+    "pillar": ["analyze", "rom", "modal"],
+    "gondola": ["analyze", "paper", "rom"],
+    "rotor": ["analyze", "paper"],
+    "shaft": ["analyze", "paper"],
+    "reduction": ["analyze", "paper"],
+    "drive": ["analyze", "paper"],
+    "load": ["analyze", "paper"],
+    "material": ["report"],
+    "mesh": ["modal"],
+    "modal": ["modal"],
+    "converge": ["converge"],
+    "simulate": ["paper"],
+    "excitation": ["quake"],
+    "sweep": ["sweep"],
+    "modal_model": ["rom"],
+    "full_order": ["beam", "fem3d-runup"],
+}
+#: Keys whose consumers differ from their section's.
+KEY_CONSUMERS = {
+    "rotor.clearance": ["report"],
+    "shaft.force_limit": ["report"],
+    "converge.margin": ["modal"],
+    "converge.earthquake_frequency": ["modal"],
+    "simulate.time_step": ["fixed-step", "fem3d-runup"],
+    "simulate.max_steps": ["budget"],
+    "simulate.rundown_torque_at_zero": ["rundown"],
+    "simulate.earthquake_duration": ["quake"],
+    "excitation.record_scale": ["record"],
+    "modal_model.gondola_inertia": ["rom", "beam"],
+    "full_order.elements_around": ["fem3d-runup"],
+    "full_order.elements_along": ["fem3d-runup"],
+    "full_order.earthquake_duration": ["fem3d-quake"],
+    "full_order.runup_duration": ["fem3d-runup"],
+    "full_order.pareto_along": [],
+    "converge.tolerance": [],
+}
+#: The ends a key is run at, where not all of them (see the module text).
+KEY_ENDS = {f"converge.{k}": ("high",) for k in ("shell_max_around", "shell_tri_max_around")} | {
+    f"converge.{k}": ("high",) for k in ("solid_p1_max_around", "solid_p2_max_around", "solid_tet_p2_max_around")
+}
+
+
+def numeric_fields():
+    """(key, field) of every numeric key (a number without a list of choices)."""
+    for section, cls in SECTIONS.items():
+        for f in dataclasses.fields(cls):
+            kind = f.type if isinstance(f.type, str) else f.type.__name__
+            if f.metadata.get("choices") is None and ("float" in kind or kind == "int"):
+                yield f"{section}.{f.name}", f
+
+
+def ends(f) -> dict[str, object]:
+    """The ends of a field's range by name: low, high, and zero where 0 means chosen or off."""
+    m = f.metadata
+    out = {"low": m["ge"], "high": m["le"]}
+    if m.get("or_zero"):
+        out["zero"] = 0
+    return out
+
+
+def test_every_numeric_key_has_a_closed_range():
+    """Both ends stated and reachable (>=, <=): an open end (> 0) lets 1e-300 in, where
+    the formulas stopped meaning anything (a run of 1e-200 s divided by zero)."""
+    open_ends = [k for k, f in numeric_fields() if f.metadata["ge"] is None or f.metadata["le"] is None]
+    assert not open_ends
+
+
+def test_every_numeric_key_has_a_consumer():
+    """A new section needs its consumers here (a key of it would go unwalked)."""
+    for key, _ in numeric_fields():
+        assert key in KEY_CONSUMERS or key.split(".")[0] in SECTION_CONSUMERS, key
+
+
+def groups() -> dict[tuple[str, str, str], dict[str, object]]:
+    """(consumer, section, end) -> {key: value}: the keys one run sets at one end."""
+    out: dict[tuple[str, str, str], dict[str, object]] = {}
+    for key, f in numeric_fields():
+        section = key.split(".")[0]
+        for consumer in KEY_CONSUMERS.get(key, SECTION_CONSUMERS.get(section, [])):
+            for end, value in ends(f).items():
+                if end in KEY_ENDS.get(key, ("low", "high", "zero")):
+                    out.setdefault((consumer, section, end), {})[key] = value
+    return out
+
+
+def cases():
+    for (consumer, section, end), values in groups().items():
+        marks = [pytest.mark.slow] if CONSUMERS[consumer][2] else []
+        yield pytest.param(consumer, values, marks=marks, id=f"{section}-{end}-{consumer}")
+
+
+@pytest.fixture(scope="module")
+def report_inputs(tmp_path_factory):
+    """What the report reads for the verdict: analyze and a short run-up."""
+    from rotorpillar.cli import main
+
+    out = tmp_path_factory.mktemp("report_inputs")
+    for args in (["analyze"], ["simulate", "--model", "paper", "--no-threshold", *SHORT]):
+        assert main([args[0], "paper", *args[1:], "--out", str(out)]) == 0
+    return out
+
+
+def run_at(tmp_path, capfd, request, consumer: str, values: dict) -> int:
+    """One run of ``consumer`` with ``values`` set, held to the module's rules; its exit code."""
+    import shutil
+
+    from rotorpillar.cli import main
+
+    command, extra, _ = CONSUMERS[consumer]
+    out = tmp_path / "-".join(values)[:100]
+    if command == "report":
+        shutil.copytree(request.getfixturevalue("report_inputs"), out)
+    argv = [command, "paper", *extra, *_sets(*(f"{k}={v!r}" for k, v in values.items())), "--out", str(out)]
+    where = f"{command} with {values}"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        code = main(argv)
+    _, err = capfd.readouterr()
+    said = [line for line in err.splitlines() if line.strip() and not line.startswith("[rotorpillar]")]
+    seen = [
+        f"{w.category.__name__}: {w.message} ({w.filename}:{w.lineno})"
+        for w in caught
+        if not issubclass(w.category, (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning))
+    ]
+    assert not seen, f"{where}: Python warnings would reach the user: {seen}"
+    assert code in (0, 2, 4), f"{where}: exit {code}: {err}"
+    if code == 2:
+        assert len(said) == 1 and ": error: " in said[0], f"{where}: {err}"
+        if command != "report":
+            assert not out.exists() or not any(out.iterdir()), f"{where}: refused, yet written"
+        return code
+    assert not said, f"{where}: stderr beyond the command's own lines: {said}"
+    if code == 4:
+        doc = json.loads((out / f"{command}.json").read_text())
+        assert doc["ok"] is False and doc["failed_checks"], where
+    return code
+
+
+@pytest.mark.parametrize("consumer, values", list(cases()))
+def test_keys_at_the_ends_of_their_ranges_run_or_are_refused(tmp_path, capfd, request, consumer, values):
+    if run_at(tmp_path, capfd, request, consumer, values) == 2 and len(values) > 1:
+        for key, value in values.items():  # refused together: each alone
+            run_at(tmp_path, capfd, request, consumer, {key: value})
