@@ -87,4 +87,4 @@ def test_a_studys_csv_is_plain(tmp_path):
                 assert math.isclose(float(got), want, rel_tol=1e-9), name  # 10 digits written
             else:
                 assert got == str(want), name
-    assert result.files["csv"] == str(tmp_path / "study.csv")
+    assert result.files.csv == str(tmp_path / "study.csv")

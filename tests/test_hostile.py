@@ -945,8 +945,9 @@ def test_the_report_reads_every_damaged_input_as_damaged(tmp_path, computed, nam
 @pytest.mark.parametrize(
     "name, damage, words",
     [
-        ("analyze.json", "null", "holds a JSON null"),
-        ("modal.json", "empty-object", "modal.json has no key '"),
+        # records.read's words (msgspec's, with the file's name and the field's path)
+        ("analyze.json", "null", "analyze.json: Expected `object`, got `null`"),
+        ("modal.json", "empty-object", "modal.json: Object missing required field `"),
     ],
 )
 def test_the_report_page_says_which_input_is_damaged(tmp_path, computed, name, damage, words):

@@ -78,14 +78,14 @@ def test_modal_json_round_trips_through_its_record(small_run):
     # modal.json as `modal` wrote it, read through ModalSummary and written back: the
     # same document, key for key and in the same order (the record loses nothing and adds
     # nothing); what the command writes beside the record (scene, files, versions) is left out
-    import dataclasses
+    import msgspec
 
     from rotorpillar.chain import PillarModel
     from rotorpillar.fem3d.modal import ModeRow
     from rotorpillar.fem3d.modal_summary import ModalSummary, ModalTop, ShellModes
 
     _, doc, _ = small_run
-    names = {f.name for f in dataclasses.fields(ModalSummary)}
+    names = {f.encode_name for f in msgspec.structs.fields(ModalSummary)}
     mine = {k: v for k, v in doc.items() if k in names}
     back = records.convert(doc, ModalSummary)
     assert json.dumps(records.to_builtins(back)) == json.dumps(mine)

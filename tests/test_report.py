@@ -258,7 +258,7 @@ def test_an_input_of_another_shape_is_named_damaged(tmp_path):
     """A result its record cannot be read from is damaged, by name, with the command
     that rebuilds it; the page is still written, the other inputs' sections whole."""
     text, report = _analyze_without(tmp_path, "drive")
-    assert "analyze.json is damaged (KeyError: analyze.json has no key &#x27;drive&#x27;)" in text
+    assert "analyze.json is damaged (ValueError: analyze.json: Object missing required field `drive`)" in text
     assert "rebuild it with <code>rotorpillar analyze paper" in text
     assert "Modal validation" in text and "Versions, machine and timings" in text
     assert "drive" in report["damaged"]["analyze"] and report["failures"]["input analyze.json"]
