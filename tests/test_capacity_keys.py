@@ -12,11 +12,12 @@ from rotorpillar.scene import FABRICATION_CLASSES, load_scene
 @pytest.mark.parametrize(
     "assignment, key, range_text",
     [
-        ("material.yield_strength=-355e6", "material.yield_strength", "> 0"),
-        ("material.yield_strength=0", "material.yield_strength", "> 0"),
-        ("rotor.clearance=0", "rotor.clearance", "> 0"),
-        ("rotor.clearance=-0.01", "rotor.clearance", "> 0"),
-        ("shaft.force_limit=0", "shaft.force_limit", "> 0"),
+        # each key's closed range (scene.sections: where the checks still mean something)
+        ("material.yield_strength=-355e6", "material.yield_strength", ">= 1e+06 and <= 1e+10"),
+        ("material.yield_strength=0", "material.yield_strength", ">= 1e+06 and <= 1e+10"),
+        ("rotor.clearance=0", "rotor.clearance", ">= 1e-06 and <= 1"),
+        ("rotor.clearance=-0.01", "rotor.clearance", ">= 1e-06 and <= 1"),
+        ("shaft.force_limit=0", "shaft.force_limit", ">= 1 and <= 1e+12"),
         ("material.fabrication_class=D", "material.fabrication_class", "'A', 'B', 'C'"),
         ("material.grade=1", "material.grade", "yield_strength"),
     ],

@@ -173,7 +173,7 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
     for r in study["runs"]:
         if r["model"] != "solid" or r["status"] != "ok":
             continue
-        bounds = [r.get(f"{q}_error_bound") for q in needed]  # absent: no bound (ConvergenceRun)
+        bounds = [r.get(f"{q}_error_bound") for q in needed]  # absent while None (omit_defaults)
         if None not in bounds and max(b + unc[q] for b, q in zip(bounds, needed)) <= 3e-2:
             assert r["wall_time"] >= chosen["wall_time"]
     # a tolerance no 3D run meets: known only from the runs, so a result, not bad input

@@ -131,14 +131,8 @@ def test_result_json_round_trip(static_run):
     back = records.convert(json.loads(json.dumps(records.to_builtins(r))), Fem3dTransient)
     assert json.dumps(records.to_builtins(back)) == json.dumps(records.to_builtins(r))
     assert isinstance(back.t, np.ndarray) and np.array_equal(back.work, r.work)
-    assert set(records.to_builtins(r)) >= {
-        "max_abs",
-        "omega_final",
-        "energy_balance",
-        "integrator",
-        "dofs",
-        "wall_seconds",
-    }
+    doc = records.to_builtins(r)  # the fields the reduced runs report, plus dofs and wall time
+    assert set(doc) >= {"max_abs", "omega_final", "energy_balance", "integrator", "dofs", "wall_seconds"}
 
 
 def rom_start(rom, scene, theta0: float, W0: float):

@@ -945,7 +945,8 @@ def test_the_report_reads_every_damaged_input_as_damaged(tmp_path, computed, nam
 @pytest.mark.parametrize(
     "name, damage, words",
     [
-        ("analyze.json", "null", "Expected `object`, got `null`"),
+        # records.read's words (msgspec's, with the file's name and the field's path)
+        ("analyze.json", "null", "analyze.json: Expected `object`, got `null`"),
         ("modal.json", "empty-object", "modal.json: Object missing required field `"),
     ],
 )

@@ -260,7 +260,6 @@ def test_an_input_of_another_shape_is_named_damaged(tmp_path):
     """A result its record cannot be read from is damaged, by name, with the command
     that rebuilds it; the page is still written, the other inputs' sections whole."""
     text, report = _analyze_without(tmp_path, "drive")
-    # msgspec names the missing field (rotorpillar.records.read)
     assert "analyze.json is damaged (ValueError: analyze.json: Object missing required field `drive`)" in text
     assert "rebuild it with <code>rotorpillar analyze paper" in text
     assert "Appendix B: modal validation" in text and "Appendix J: versions, machine and timings" in text

@@ -53,9 +53,12 @@ def test_a_step_that_cannot_resolve_the_rotation_is_not_a_success(tmp_path, inte
 
 
 def test_a_loose_tolerance_is_not_a_success(tmp_path):
-    p, doc = run_json(tmp_path, "--case", "runup", "--no-threshold", "--set", "simulate.rtol=0.5")
-    assert p.returncode == 4 and doc["ok"] is False
-    assert any(c.startswith("tolerance:") for c in doc["failed_checks"])
+    # simulate.rtol's range ends at 0.1 (scene.sections): a looser one is refused before
+    # the run; the loosest accepted one runs to a result that fails its own checks
+    p, doc = run_json(tmp_path, "--case", "runup", "--no-threshold", "--set", "simulate.rtol=0.1")
+    assert p.returncode == 4 and doc["ok"] is False and doc["failed_checks"]
+    refused = cli("simulate", "paper", "--set", "simulate.rtol=0.5", "--out", tmp_path / "loose")
+    assert refused.returncode == 2 and "simulate.rtol" in refused.stderr
 
 
 @pytest.mark.parametrize(

@@ -16,6 +16,7 @@ import base64
 import html
 import math
 import os
+import re
 from pathlib import Path
 
 #: Videos up to this size are embedded in the page as well as linked.
@@ -163,10 +164,15 @@ def video(
 
 
 def missing(text: str) -> str:
-    """The "not computed: run `rotorpillar X`" notice, the command (the last quoted span) in
-    <code>: a reason before it may quote a name too (msgspec's "missing required field `drive`")."""
-    if text.count("`") >= 2:
-        before, cmd, after = text.rsplit("`", 2)
+    """The "not computed: run `rotorpillar X`" notice, the command in <code>; other
+    backquotes (a damaged file's field path, as msgspec quotes it) stay as written.
+
+    >>> missing("x.json is damaged (at `$.a`): rebuild it with `rotorpillar x paper`")
+    '<p class="missing">x.json is damaged (at `$.a`): rebuild it with <code>rotorpillar x paper</code></p>'
+    """
+    found = re.search(r"`(rotorpillar [^`]*)`", text)
+    if found is not None:
+        before, cmd, after = text[: found.start()], found.group(1), text[found.end() :]
         return tag("p", [before, tag("code", cmd), after], class_="missing")
     return tag("p", text, class_="missing")
 
