@@ -391,3 +391,18 @@ def test_the_towers_general_paths_reproduce_the_uniform_tubes_closed_forms():
     assert forced.omega_col1 == pytest.approx(today.omega_col1, rel=1e-9)
     assert forced.tip_mass_limit == pytest.approx(today.tip_mass_limit, rel=1e-9)
     assert forced.omega_col1_timoshenko == pytest.approx(today.omega_col1_timoshenko, rel=1e-5)
+
+
+def test_the_blade_passing_order_is_drawn_at_k_times_the_speed():
+    """Issue 27.3: a rotor of k blades excites its tower at k x its speed; the Campbell charts draw
+    that order as the line omega = k Omega (1x is each chart's own line, so only 3x here)."""
+    from matplotlib.figure import Figure
+
+    from rotorpillar.postprocess.engineering_charts import order_lines
+
+    ax = Figure().add_subplot()
+    order_lines(ax, (1, 3), 12.0)
+    (line,) = ax.lines
+    x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+    assert x[0] == y[0] == 0.0 and y[-1] == 12.0 and y[-1] / x[-1] == pytest.approx(3.0, rel=1e-15)
+    assert line.get_label().startswith("3x")
