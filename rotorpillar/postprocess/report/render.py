@@ -212,10 +212,10 @@ def mode_sets(build: Build) -> dict[str, ModeSet | None]:
 def render_mode_shapes(build: Build, sets: dict) -> None:
     from ..directions import mode_label
     from ..modeshapes import render_modes as render
-    from .modal import top_words
+    from .modal import base_words, top_words
 
     captions = {
-        "bare": "the bare tube (clamped base, free top)",
+        "bare": f"the bare tube ({base_words(build.scene.foundation)}, free top)",
         "top": f"the tube carrying {top_words(build.modal.top if build.modal else None)[0]}",
     }
     for name, ms in sets.items():
