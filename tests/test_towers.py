@@ -319,3 +319,90 @@ def test_the_uniform_scenes_have_no_cans_and_stand_on_a_clamp():
     for name in ("paper", "paper-stiff", "sommerfeld"):
         s = load_scene(name)
         assert s.pillar.is_uniform and s.pillar.cans == () and s.foundation.kind == "clamped"
+
+
+# The paper's uniform tube must give today's numbers whichever way a scene states it and
+# whichever of the tower's general paths computes it.  References and tolerances:
+# - the tube as one cylindrical can: the same segment (D1 = D0 - 2 t to round-off), so every
+#   number of the closed forms and of the beam agrees to 1e-12;
+# - the beam of per-element sections (tower_line: each element's section sampled at its Gauss
+#   points) against the uniform beam (uniform_line: one section): the same matrices up to
+#   round-off (a constant section integrates exactly), 1e-10 on the frequencies (eigh's
+#   round-off on K's condition number ~ n**4 ~ 1e6 times 1e-16);
+# - Rayleigh-Ritz on the uniform tube: its shapes are the uniform cantilever's exact modes, so
+#   it returns Eq. 1's frequencies (the first three, from Blevins' roots) and Eq. 2's continuous
+#   tip mass m_col / 4 up to its 40-point quadrature's round-off (1e-9);
+# - the tower's route of the closed forms forced on the uniform tube: its Timoshenko value is the
+#   200-element beam's, against the Timoshenko frequency equation's root within 1e-5: the
+#   Timoshenko element converges as (H / n)**2 (measured 1.2e-5, 3.0e-6, 7.5e-7 at 100, 200,
+#   400 elements: a factor 4 per halving), so 3e-6 at 200.
+def test_the_uniform_tube_as_one_can_gives_todays_numbers():
+    from rotorpillar.reduced.pillar_modes import beam_pillar_modes
+    from rotorpillar.reduced.reduction import pillar_closed_forms
+
+    today = load_scene("paper")
+    p = today.pillar
+    wall = (p.outer_diameter - p.inner_diameter) / 2
+    one_can = tower(
+        [
+            dict(
+                height=p.height,
+                outer_diameter_bottom=p.outer_diameter,
+                outer_diameter_top=p.outer_diameter,
+                wall_thickness=wall,
+            )
+        ]
+    )
+    q = one_can.pillar
+    assert q.is_uniform and q.cans and q.height == p.height
+    a, b = pillar_closed_forms(p), pillar_closed_forms(q)
+    assert b.statement == a.statement and b.rayleigh_ritz is None
+    for name in ("area", "second_moment", "mass", "omega_col1", "omega_col1_timoshenko", "tip_mass_limit"):
+        assert getattr(b, name) == pytest.approx(getattr(a, name), rel=1e-12), name
+    assert np.allclose(b.omega_euler_bernoulli, a.omega_euler_bernoulli, rtol=1e-12, atol=0)
+    top = today.gondola.mass
+    for theory in ("euler", "timoshenko"):
+        wa = beam_pillar_modes(p, top, 3, theory, 40).omega
+        wb = beam_pillar_modes(q, top, 3, theory, 40).omega
+        assert np.allclose(wb, wa, rtol=1e-12, atol=0), theory
+
+
+def test_the_towers_general_paths_reproduce_the_uniform_tubes_closed_forms():
+    from rotorpillar.reduced.beam_fe import uniform_line
+    from rotorpillar.reduced.pillar import omega_euler_bernoulli, section_of, tip_mass_continuous
+    from rotorpillar.reduced.pillar_modes import beam_properties
+    from rotorpillar.reduced.reduction import _tower_closed_forms, pillar_closed_forms
+    from rotorpillar.reduced.tower import tower_line
+
+    scene = load_scene("paper")
+    p, top = scene.pillar, scene.gondola.mass
+    for theory in ("euler", "timoshenko"):
+        uniform = beam_modes(uniform_line(beam_properties(p), 40), 40, theory, 4, tip_mass=top).omega
+        general = beam_modes(tower_line(p, 40), 40, theory, 4, tip_mass=top).omega
+        assert np.allclose(general, uniform, rtol=1e-10, atol=0), theory
+    sec = section_of(p)
+    eq1 = [
+        omega_euler_bernoulli(p.youngs_modulus, sec.second_moment, sec.mass_per_length, p.height, k) for k in (1, 2, 3)
+    ]
+    ritz = rayleigh_ritz(p, terms=10)
+    assert np.allclose(ritz.omega[:3], eq1, rtol=1e-9, atol=0)
+    assert ritz.tip_mass == pytest.approx(tip_mass_continuous(sec.mass_per_length * p.height), rel=1e-9)
+    today, forced = pillar_closed_forms(p), _tower_closed_forms(p, None)
+    assert forced.omega_col1 == pytest.approx(today.omega_col1, rel=1e-9)
+    assert forced.tip_mass_limit == pytest.approx(today.tip_mass_limit, rel=1e-9)
+    assert forced.omega_col1_timoshenko == pytest.approx(today.omega_col1_timoshenko, rel=1e-5)
+
+
+def test_the_blade_passing_order_is_drawn_at_k_times_the_speed():
+    """Issue 27.3: a rotor of k blades excites its tower at k x its speed; the Campbell charts draw
+    that order as the line omega = k Omega (1x is each chart's own line, so only 3x here)."""
+    from matplotlib.figure import Figure
+
+    from rotorpillar.postprocess.engineering_charts import order_lines
+
+    ax = Figure().add_subplot()
+    order_lines(ax, (1, 3), 12.0)
+    (line,) = ax.lines
+    x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+    assert x[0] == y[0] == 0.0 and y[-1] == 12.0 and y[-1] / x[-1] == pytest.approx(3.0, rel=1e-15)
+    assert line.get_label().startswith("3x")

@@ -34,9 +34,9 @@ from ..reduced.participation import (
     mode_effective_masses,
     modes_for_fraction,
 )
-from ..reduced.pillar import section_of
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
+from ..reduced.tower import tower_mass
 from ..reduced.vibration_limits import (
     BalanceQuality,
     HousingVibration,
@@ -106,11 +106,12 @@ def coupled_effective_masses(model: RotorStructure) -> tuple[np.ndarray, np.ndar
 
 
 def machine_mass(scene: Scene) -> float:
-    """What the base carries along X: the tube (its section times its height), the gondola
-    and the rotor (kg).  Not a 1D beam's r^T M r (``PillarModes.total_mass`` there), which
+    """What the base carries along X: the tube (the integral of its mass per length: a
+    uniform tube's section times its height, a tower's cans each), the gondola and the
+    rotor (kg).  Not a 1D beam's r^T M r (``PillarModes.total_mass`` there), which
     leaves out the clamped node's share, the mass no mode moves (1.6 % on 40 elements)."""
     p = scene.pillar
-    return section_of(p).mass_per_length * p.height + scene.gondola.mass + scene.rotor.mass
+    return tower_mass(p) + scene.gondola.mass + scene.rotor.mass
 
 
 def force_rom_modes(candidates: PillarModes, rotor_mass: float, kept: int, total: float) -> ForceRomModes:

@@ -125,7 +125,12 @@ def campbell_command(scene: Scene, args, timings) -> Done:
 
         what = "the ROM against the 3D model" if model == "both" else model
         with timings("chart"):
-            campbell_diagram_chart(out / "campbell.png", diagram, f"{scene.name}: Campbell diagram ({what})")
+            campbell_diagram_chart(
+                out / "campbell.png",
+                diagram,
+                f"{scene.name}: Campbell diagram ({what})",
+                orders=(scene.rotor.blades,) if scene.rotor.blades else (),
+            )
     return Done(diagram, summary_text(diagram))
 
 

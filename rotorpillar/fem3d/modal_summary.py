@@ -339,7 +339,9 @@ def summary(doc: ModalSummary, bare, loaded) -> str:
     lines.append(
         "(n: waves around the circumference; m: sign changes along the height; x is the rotor's plane, z the tube axis)"
     )
-    lines += _table("Bare tube (clamped base, free top)", bare)
+    # on a flexible foundation the 3D base stands on a rigid plate on its springs (fem3d.model)
+    base = "clamped base" if getattr(bare, "base_plate", None) is None else "base on the foundation's springs"
+    lines += _table(f"Bare tube ({base}, free top)", bare)
     lines += _table(f"With {top.carries.replace('_', ' ')} on top ({top.mass:g} kg, {top.model} top)", loaded)
     lines.append(
         f"First bending, bare: {red.omega_bending:.4f} rad/s; Eq. 1 "

@@ -15,6 +15,7 @@ crosses, the legend naming the ROM and the 3D model apart.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -36,9 +37,11 @@ def _segments(x, y, whirl):
     return out
 
 
-def campbell_diagram_chart(path, diagram, title: str = "", size=(1000, 680)) -> Path:
-    """``diagram``: a rotorpillar.reduced.campbell.CampbellDiagram."""
+def campbell_diagram_chart(path, diagram, title: str = "", size=(1000, 680), orders: Sequence[int] = ()) -> Path:
+    """``diagram``: a rotorpillar.reduced.campbell.CampbellDiagram; ``orders``: the excitation
+    orders past 1x to draw (a rotor's blade count: the blade passing)."""
     from ..reduced.margins import SM_ABOVE_EXTRA, SM_BELOW, required_margin
+    from .engineering_charts import order_lines
     from .style import place_labels
 
     speeds = np.asarray(diagram.speeds, dtype=float)
@@ -72,6 +75,7 @@ def campbell_diagram_chart(path, diagram, title: str = "", size=(1000, 680)) -> 
             ax.plot([c.speed], [c.speed], "x", ms=8, mew=1.5, color="k", zorder=6)
     (one,) = ax.plot([0.0, top], [0.0, top], color="k", lw=1.0, label="1x (the unbalance)")
     lines.append(one)
+    order_lines(ax, orders, 1.15 * top)
     run = diagram.running_speed
     if run is not None:
         ax.axvspan(run * (1 - SM_BELOW), run * (1 + SM_BELOW + SM_ABOVE_EXTRA), color="#d62728", alpha=0.07, lw=0)

@@ -4,13 +4,15 @@
   (log) and phase of the tip and of the shaft deflection, the ROM and the
   3D model overlaid, Eq. 19's curves near the resonances, the running speeds;
 - ``campbell_chart``: the structural modes against the rotor speed with the
-  1x line, the running speeds and API 684's required margins as bands;
+  1x line (and a wind turbine's blade-passing order), the running speeds and
+  API 684's required margins as bands;
 - ``envelope_chart``: max |M(z)| and max |V(z)| along the height, per model;
 - ``history_chart``: a base quantity's history, per model overlaid.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -75,10 +77,13 @@ def bode_chart(path, curves, averaging=(), running_speeds=(), title: str = "", s
     return save(fig, path)
 
 
-def campbell_chart(path, modes, running_speeds, top: float, title: str = "", size=(1000, 640)) -> Path:
+def campbell_chart(
+    path, modes, running_speeds, top: float, title: str = "", size=(1000, 640), orders: Sequence[int] = ()
+) -> Path:
     """Modes (ModeEntry: omega, damping_ratio, kind, model) as horizontal lines (the
     model has no gyroscopic terms: its modes do not move with the speed), the 1x
-    line, the running speeds, and per mode the speeds API 684 keeps clear,
+    line and each further excitation order k of ``orders`` (a rotor of k blades:
+    the blade passing, k x its speed), the running speeds, and per mode the speeds API 684 keeps clear,
     (omega / (1 + SM_above), omega / (1 - SM_below)), as a band: red where a
     running speed falls inside."""
     from ..reduced.margins import amplification_factor, required_margin
@@ -86,6 +91,7 @@ def campbell_chart(path, modes, running_speeds, top: float, title: str = "", siz
 
     fig, ax = figure(*size)
     ax.plot([0.0, top], [0.0, top], color="k", lw=1.0, label="1x (synchronous unbalance)")
+    order_lines(ax, orders, top)
     for w in running_speeds:
         ax.axvline(w, color="#555555", lw=1.0, ls="-.")
         ax.text(w, 0.02 * top, f" running {w:.1f}", rotation=90, va="bottom", fontsize=8)
@@ -132,6 +138,13 @@ def campbell_chart(path, modes, running_speeds, top: float, title: str = "", siz
     ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title or "Campbell diagram: modes, the 1x line and API 684's separation margins")
     return save(fig, path)
+
+
+def order_lines(ax, orders: Sequence[int], top: float) -> None:
+    """The excitation orders past 1x (k x the rotor speed: a rotor of k blades' blade passing)
+    as straight lines from the origin, to the chart's ``top`` (rad/s) on the frequency axis."""
+    for k in sorted({int(k) for k in orders} - {0, 1}):
+        ax.plot([0.0, top / k], [0.0, top], color="#8c564b", lw=1.0, ls=(0, (6, 2)), label=f"{k}x (the blade passing)")
 
 
 def envelope_chart(path, runs, title: str = "", size=(1000, 560)) -> Path:

@@ -31,8 +31,8 @@ import numpy as np
 from ..records import Record
 from ..reduced.capacity import Check, check
 from ..reduced.participation import EffectiveMassTable, effective_mass_table
-from ..reduced.pillar import section_of
 from ..reduced.reactions import DesignReactions
+from ..reduced.tower import tower_mass
 
 MASS_CHECK = "effective modal mass (EN 1998-1)"
 
@@ -155,7 +155,7 @@ def tube_effective_masses(scene: Scene, modal: ModalSummary) -> tuple[EffectiveM
     if not rows:
         return ()
     p = scene.pillar
-    total = section_of(p).mass_per_length * p.height + modal.top.mass
+    total = tower_mass(p) + modal.top.mass  # a tower's cans integrated, a uniform tube's rho A H
     omega = np.array([r.omega for r in rows])
     me = np.array([r.effective_mass for r in rows], dtype=float)
     note = (

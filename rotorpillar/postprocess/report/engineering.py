@@ -387,7 +387,15 @@ def section_unbalance(build: Build) -> str:
     )
     parts.append(h.tag("p", cost))
     p = attempt(
-        build, "campbell", lambda: ec.campbell_chart(fig / "campbell.png", r.modes, r.running_speeds, r.band_top)
+        build,
+        "campbell",
+        lambda: ec.campbell_chart(
+            fig / "campbell.png",
+            r.modes,
+            r.running_speeds,
+            r.band_top,
+            orders=() if r.orders is None else r.orders.orders,
+        ),
     )
     parts.append(h.tag("h3", "Separation margins (API 684)"))
     if p:

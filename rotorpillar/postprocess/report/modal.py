@@ -54,6 +54,17 @@ MODE_HEADERS = [
 ]
 
 
+def base_words(foundation) -> str:
+    """How the 3D tube's base stands (the scene's ``[foundation]``): "clamped base", or the
+    base on the foundation's springs (the 3D model ties it to a rigid plate on them).
+
+    >>> from rotorpillar.scene import load_scene
+    >>> base_words(load_scene("paper").foundation), base_words(load_scene("nrel5mw").foundation)
+    ('clamped base', "base on the footing's springs")
+    """
+    return "clamped base" if foundation.kind == "clamped" else f"base on the {foundation.kind}'s springs"
+
+
 def top_words(top: ModalTop | None) -> tuple[str, str]:
     """(what the tube's top carries, why), from modal.json's ``top`` block (None: unknown).
 
@@ -236,7 +247,7 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
     parts = []
     carries, why = top_words(m.top)
     for key, title, name in (
-        ("modes", "Modes of the bare tube (3D), clamped base, free top", "bare"),
+        ("modes", f"Modes of the bare tube (3D), {base_words(build.scene.foundation)}, free top", "bare"),
         ("modes_with_top", f"Modes of the tube carrying {carries} (3D)", "top"),
     ):
         parts.append(h.tag("h3", title))

@@ -205,10 +205,10 @@ def mode_files(build: Build) -> list[tuple[str, ModeFiles]]:
 
 
 def _mode_captions(build: Build) -> dict[str, str]:
-    from .modal import top_words
+    from .modal import base_words, top_words
 
     return {
-        "bare": "the bare tube (clamped base, free top)",
+        "bare": f"the bare tube ({base_words(build.scene.foundation)}, free top)",
         "top": f"the tube carrying {top_words(build.modal.top if build.modal else None)[0]}",
     }
 
