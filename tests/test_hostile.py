@@ -520,7 +520,7 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     assert study["cached"] >= len(done) - len(damaged) - 1
     assert study["computed"] == study["runs"] - study["cached"]
     for f in damaged:
-        assert json.loads(f.read_text())["status"] == "ok"  # recomputed and rewritten
+        assert json.loads(f.read_text())["value"]["status"] == "ok"  # recomputed and rewritten (a cache Entry)
     assert not list(cache.glob(".*.part*"))  # a killed writer's part is gone
 
 

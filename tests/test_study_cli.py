@@ -95,7 +95,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert 1 <= len(done) < 6  # 48 runs: 6 batches of 8
     assert not list(batches.glob(".*"))  # no half-written batch
     for f in done:
-        assert len(json.loads(f.read_text())["runs"]) == 8
+        assert len(json.loads(f.read_text())["value"]["runs"]) == 8  # a cache Entry: key and value
     assert not (out / "study.json").exists()
 
     p = cli("study", "sommerfeld", "--case", "runup", *AXES, "--workers", "1", "--out", out, "--no-progress", "--json")
