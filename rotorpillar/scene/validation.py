@@ -25,8 +25,8 @@ def _check_table(key: str, value: Any, meta: Any) -> tuple[Any, ...]:
 def shown(value: Any) -> str:
     """A value as a message shows it: a long number shortened, a long text cut.
 
-    >>> shown(10**5000), shown(2.5), shown("x" * 100)[-12:]
-    ('an integer of 5001 digits', '2.5', "... (100 chars)")
+    >>> shown(10**5000), shown(2.5), shown("x" * 100)[-15:]
+    ('an integer of 5001 digits', '2.5', '... (102 chars)')
     """
     if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 60:
         digits = len(str(abs(value))) if value.bit_length() < 10_000 else int(value.bit_length() * math.log10(2)) + 1
