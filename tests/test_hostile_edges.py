@@ -107,6 +107,12 @@ SECTION_CONSUMERS = {
     "sweep": ["sweep"],
     "modal_model": ["rom"],
     "full_order": ["beam", "fem3d-runup"],
+    # Not walked yet (a known gap, in the session's closing note): the foundation's keys act
+    # only with kind = springs or footing, and the reference's only on a scene with published
+    # numbers; their walk needs a tower scene as its base, not paper.  Their ranges are closed
+    # (test_every_numeric_key_has_a_closed_range) and the scene loader refuses past them.
+    "foundation": [],
+    "reference": [],
 }
 #: Keys whose consumers differ from their section's.
 KEY_CONSUMERS = {

@@ -253,7 +253,11 @@ BAD = [
     ({"pillar.cans": [dict(CONE[0], colour=1)]}, "pillar.cans[0].colour", "unknown key"),
     ({"pillar.cans": CONE, "pillar.height": 41.0}, "pillar.height", "sum of the cans"),
     ({"pillar.cans": CONE, "pillar.outer_diameter": 4.0}, "pillar.outer_diameter", "not both"),
-    ({"foundation.kind": "springs", "foundation.horizontal_stiffness": -1e9}, "foundation.horizontal_stiffness", "> 0"),
+    (
+        {"foundation.kind": "springs", "foundation.horizontal_stiffness": -1e9},
+        "foundation.horizontal_stiffness",
+        ">= 1",
+    ),
     (
         {"foundation.kind": "springs", "foundation.horizontal_stiffness": 1e9},
         "foundation.rocking_stiffness",
@@ -274,7 +278,7 @@ BAD = [
         "foundation.radius",
         "required",
     ),
-    ({"foundation.kind": "footing", "foundation.radius": 0.0}, "foundation.radius", "> 0"),
+    ({"foundation.kind": "footing", "foundation.radius": 0.0}, "foundation.radius", ">= 0.01"),
     ({"foundation.radius": 10.0}, "foundation.radius", "only with foundation.kind = 'footing'"),
     ({"foundation.kind": "rock"}, "foundation.kind", "one of 'clamped', 'springs', 'footing'"),
 ]

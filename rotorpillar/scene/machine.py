@@ -53,7 +53,7 @@ class Pillar:
         "welded steel stack; the planar ROM and the paper's Eq. 4 leave it out, as today",
         0.012 / (2 * math.pi),
         ge=0,
-        lt=1,
+        le=0.5,
     )
     cans: tuple[Can, ...] = param(
         "The tower's cans from the base up ([[pillar.cans]]), instead of the uniform tube's diameters",
@@ -136,7 +136,7 @@ class Rotor:
     diametral_inertia: float | None = param(
         "Moment of inertia I_d about a diameter through its centre (kg*m**2); unset = J_C / 2, a thin disc's",
         None,
-        gt=0,
+        ge=1e-6,
         le=1e10,
         optional=True,
     )
@@ -167,7 +167,7 @@ class Rotor:
         "the balance check (ISO 21940-11 Table 1: 2.5 for gas and steam turbines, turbo-generators "
         "and compressors, 6.3 for pumps, fans and general machinery)",
         2.5,
-        gt=0,
+        ge=0.1,
         le=4000,
     )
     blades: int = param(
@@ -183,7 +183,7 @@ class Rotor:
         "below the blade-passing frequency by this much",
         0.10,
         ge=0,
-        lt=1,
+        le=0.9,
     )
 
 

@@ -191,18 +191,18 @@ class Foundation:
         choices=FOUNDATION_KINDS,
     )
     horizontal_stiffness: float | None = param(
-        "springs: horizontal stiffness K_H at the base, each direction (N/m)", None, gt=0, le=1e16, optional=True
+        "springs: horizontal stiffness K_H at the base, each direction (N/m)", None, ge=1, le=1e16, optional=True
     )
     rocking_stiffness: float | None = param(
-        "springs: rocking stiffness K_R about each horizontal axis (N*m/rad)", None, gt=0, le=1e18, optional=True
+        "springs: rocking stiffness K_R about each horizontal axis (N*m/rad)", None, ge=1, le=1e18, optional=True
     )
     vertical_stiffness: float | None = param(
-        "springs: vertical stiffness K_V (N/m); unset = rigid vertically", None, gt=0, le=1e16, optional=True
+        "springs: vertical stiffness K_V (N/m); unset = rigid vertically", None, ge=1, le=1e16, optional=True
     )
     torsional_stiffness: float | None = param(
         "springs: torsional stiffness K_T about the tube's axis (N*m/rad); unset = rigid in torsion",
         None,
-        gt=0,
+        ge=1,
         le=1e18,
         optional=True,
     )
@@ -213,12 +213,12 @@ class Foundation:
         le=1e17,
     )
     soil_shear_modulus: float | None = param(
-        "footing: the soil's small-strain shear modulus G (Pa)", None, gt=0, le=1e11, optional=True
+        "footing: the soil's small-strain shear modulus G (Pa)", None, ge=1e3, le=1e11, optional=True
     )
     soil_poisson_ratio: float | None = param(
         "footing: the soil's Poisson's ratio (-)", None, ge=0, le=0.5, optional=True
     )
-    radius: float | None = param("footing: radius R of the circular footing (m)", None, gt=0, le=1000, optional=True)
+    radius: float | None = param("footing: radius R of the circular footing (m)", None, ge=0.01, le=1000, optional=True)
     embedment: float = param(
         "footing: depth D of the footing's base below the ground, its sidewall in contact over "
         "the whole depth (m); 0 = on the surface",
@@ -229,7 +229,7 @@ class Foundation:
     rotation_limit: float | None = param(
         "Serviceability limit of the foundation's rotation (rad), against the peak base rotation; unset = not assessed",
         None,
-        gt=0,
+        ge=1e-9,
         le=1,
         optional=True,
     )
@@ -282,14 +282,14 @@ class Reference:
     first_fore_aft_frequency: float | None = param(
         "The published first fore-aft (along the rotor's axis, Y) tower frequency (Hz)",
         None,
-        gt=0,
+        ge=1e-4,
         le=1e4,
         optional=True,
     )
     first_side_side_frequency: float | None = param(
         "The published first side-side (in the rotor's plane, X) tower frequency (Hz)",
         None,
-        gt=0,
+        ge=1e-4,
         le=1e4,
         optional=True,
     )
