@@ -32,6 +32,12 @@ def test_campbell_writes_json_and_png(tmp_path):
     assert 80 < doc["running_speed"] < 100  # the paper's drive: 5100 - 12 W = 0.5 W**2 at ~89.7 rad/s
     assert_real_png(tmp_path / "campbell.png")
 
+    # the report: campbell.png belongs to "The machine in three dimensions", which shows it;
+    # "Other figures" must not show it a second time (the reader's check: a picture repeated)
+    from rotorpillar.postprocess.report.figures import external_figures
+
+    assert [w.group for p, _, w in external_figures(tmp_path) if p.name == "campbell.png"] == ["machine3d"]
+
 
 @pytest.mark.parametrize("speeds", ["5:1:3", "0:100", "a:b:c", "0:100:1"])
 def test_bad_speeds_exit_2_on_one_line(tmp_path, speeds):

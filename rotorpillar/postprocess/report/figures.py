@@ -28,7 +28,16 @@ class Written:
 #: A run's figure (simulate's, compare's) -> the section of its case.
 CASE_GROUPS = {"runup": "runs", "rundown": "runs", "sweep": "runs", "earthquake": "earthquake"}
 #: The figure of a result that is not one run's -> the section of the command that wrote it.
-COMMAND_GROUPS = {"converge": "convergence", "integrators": "integrators", "modal": "modal", "study": "study"}
+COMMAND_GROUPS = {
+    "converge": "convergence",
+    "integrators": "integrators",
+    "modal": "modal",
+    "study": "study",
+    "campbell": "machine3d",
+}
+#: The charts a command writes beside its JSON without naming them there (campbell.json's
+#: record is the diagram alone); its section shows them, "Other figures" must not again.
+COMMAND_CHARTS = {"campbell": ("campbell.png",)}
 #: The results that name no command in their JSON -> that command (convergence.json).
 INPUT_COMMANDS = {"convergence.json": "converge", "integrators.json": "integrators", "study.json": "study"}
 
@@ -77,7 +86,7 @@ def writers(out: Path) -> dict[str, Written]:
             group, case = COMMAND_GROUPS[command], ""
         else:
             group = CASE_GROUPS.get(case, "other")
-        for name, caption in doc.named():
+        for name, caption in [*doc.named(), *((c, None) for c in COMMAND_CHARTS.get(command, ()))]:
             was = found.get(name)
             found[name] = Written(caption if caption is not None else (was.caption if was else None), group, case)
     return found
