@@ -217,6 +217,10 @@ def _main(args) -> int:
             from .reduced.excitation import check_record
 
             check_record(scene.excitation.record)  # a missing record: now, not at a late stage
+        if scene.foundation.kind != "clamped":
+            from .reduced.foundation import check_foundation_holds
+
+            check_foundation_holds(scene)  # a base that cannot hold the machine up: before any work
         check_output_dir(out_dir(scene, args))
         with output_lock(out_dir(scene, args), args.command, progress):
             ran = execute(args.command, scene, args)

@@ -410,3 +410,58 @@ def test_the_blade_passing_order_is_drawn_at_k_times_the_speed():
     x, y = (np.asarray(v, dtype=float) for v in line.get_data())
     assert x[0] == y[0] == 0.0 and y[-1] == 12.0 and y[-1] / x[-1] == pytest.approx(3.0, rel=1e-15)
     assert line.get_label().startswith("3x")
+
+
+def test_the_overturning_stiffness_against_the_closed_form_and_a_quadrature():
+    """sum(m g z): a uniform tube's m_t g H / 2 plus the tops' m g (H + h) (closed form), and a
+    cone's against the trapezoidal rule on 20001 points (another method; its error ~ (H/n)**2
+    relative, 1e-8 here, so 1e-6 holds)."""
+    from rotorpillar.reduced.excitation import STANDARD_GRAVITY as g
+    from rotorpillar.reduced.foundation import overturning_stiffness
+
+    s = load_scene("paper")
+    p, H = s.pillar, s.pillar.height
+    m_tube = p.density * math.pi / 4 * (p.outer_diameter**2 - p.inner_diameter**2) * H
+    expected = g * (m_tube * H / 2 + (s.gondola.mass + s.rotor.mass) * H)  # paper: both tops at the top
+    assert overturning_stiffness(s) == pytest.approx(expected, rel=1e-12)
+    cone = tower(CONE)
+    z = np.linspace(0.0, cone.pillar.height, 20001)
+    sec = sections_along(cone.pillar, z, "above")
+    tube = np.trapz(sec.mass_per_length * z, z)
+    tops = (cone.gondola.mass + cone.rotor.mass) * cone.pillar.height
+    assert overturning_stiffness(cone) == pytest.approx(g * (tube + tops), rel=1e-6)
+
+
+@pytest.mark.parametrize(
+    "sets, words",
+    [
+        # a rocking spring below sum(m g z) = 2.74e6 N m/rad on paper: the machine topples
+        (
+            ["foundation.kind=springs", "foundation.horizontal_stiffness=1e9", "foundation.rocking_stiffness=1e6"],
+            "foundation.rocking_stiffness = 1e+06 is out of range: must be > the machine's overturning stiffness",
+        ),
+        # a 1 cm footing on paper's soil: K_R = 8 G R**3 / (3 (1 - nu)) = 190 N m/rad
+        (
+            ["foundation.kind=footing", "foundation.soil_shear_modulus=5e7", "foundation.soil_poisson_ratio=0.3"]
+            + ["foundation.radius=0.01"],
+            "foundation.radius = 0.01 with foundation.soil_shear_modulus = 5e+07",
+        ),
+        # deeper than wide: a caisson (and Gazetas' coupling would make the springs give energy)
+        (
+            ["foundation.kind=footing", "foundation.soil_shear_modulus=5e7", "foundation.soil_poisson_ratio=0.3"]
+            + ["foundation.radius=3", "foundation.embedment=100"],
+            "foundation.embedment = 100 is out of range: must be >= 0 and <= the footing's width",
+        ),
+    ],
+    ids=["rocking", "small-footing", "deep-footing"],
+)
+def test_a_foundation_that_cannot_hold_the_machine_is_refused(tmp_path, capsys, sets, words):
+    """Each case once crashed or ran on: a rocking spring of 1 N m/rad made the 3D modal solve
+    fail (exit 1), an embedment of 1000 m an internal error (exit 70), a 1 cm footing ran."""
+    from rotorpillar.cli import main
+
+    out = tmp_path / "out"
+    code = main(["analyze", "paper", *[a for s in sets for a in ("--set", s)], "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and words in err[0], err
+    assert not out.exists() or not any(out.iterdir())
