@@ -218,7 +218,7 @@ def _main(args) -> int:
 
             check_record(scene.excitation.record)  # a missing record: now, not at a late stage
         if scene.foundation.kind != "clamped":
-            from .reduced.foundation import check_foundation_holds
+            from .reduced.tower import check_foundation_holds
 
             check_foundation_holds(scene)  # a base that cannot hold the machine up: before any work
         check_output_dir(out_dir(scene, args))

@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
+from scipy.integrate import solve_ivp, trapezoid
 from scipy.optimize import brentq
 
 from rotorpillar.reduced.beam_fe import BaseSprings, BeamProperties, beam_modes
@@ -417,7 +417,7 @@ def test_the_overturning_stiffness_against_the_closed_form_and_a_quadrature():
     cone's against the trapezoidal rule on 20001 points (another method; its error ~ (H/n)**2
     relative, 1e-8 here, so 1e-6 holds)."""
     from rotorpillar.reduced.excitation import STANDARD_GRAVITY as g
-    from rotorpillar.reduced.foundation import overturning_stiffness
+    from rotorpillar.reduced.tower import overturning_stiffness
 
     s = load_scene("paper")
     p, H = s.pillar, s.pillar.height
@@ -427,7 +427,7 @@ def test_the_overturning_stiffness_against_the_closed_form_and_a_quadrature():
     cone = tower(CONE)
     z = np.linspace(0.0, cone.pillar.height, 20001)
     sec = sections_along(cone.pillar, z, "above")
-    tube = np.trapz(sec.mass_per_length * z, z)
+    tube = trapezoid(sec.mass_per_length * z, z)
     tops = (cone.gondola.mass + cone.rotor.mass) * cone.pillar.height
     assert overturning_stiffness(cone) == pytest.approx(g * (tube + tops), rel=1e-6)
 

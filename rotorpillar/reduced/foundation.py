@@ -54,11 +54,9 @@ from __future__ import annotations
 
 import math
 
-from ..errors import InputError
 from ..provenance import Record
-from ..scene import Foundation, Scene
+from ..scene import Foundation
 from .beam_fe import BaseSprings
-from .excitation import STANDARD_GRAVITY
 
 GAZETAS_1991 = (
     'G. Gazetas, "Formulas and charts for impedances of surface and embedded foundations", '
@@ -153,61 +151,3 @@ def base_springs(f: Foundation) -> BaseSprings | None:
     """The beam's base springs of a scene's ``[foundation]`` (None: clamped)."""
     s = foundation_stiffness(f)
     return None if s is None else s.base_springs()
-
-
-#: A footing is shallow while its embedment does not exceed its width, D <= B = 2 R (the usual
-#: definition of a shallow foundation); deeper it is a caisson, outside what Gazetas' footing
-#: formulas describe (their coupling K_HR = D K_H / 3 then leaves the springs unable to store
-#: energy past D ~ 3 sqrt(K_R / K_H), e.g. D > 30 m under a 3 m footing).
-MAX_EMBEDMENT_OVER_WIDTH = 1.0
-
-
-def overturning_stiffness(scene: Scene) -> float:
-    """sum(m g z) of the machine standing on its base (N*m/rad): the tube's first moment of
-    mass about the base, the gondola's and the rotor's masses at their centres' heights, times
-    g.  Tilting the whole machine rigidly by a small angle phi about the base lowers its
-    weight's potential by sum(m g z) phi**2 / 2."""
-    from .tower import first_moment_above
-
-    H = float(scene.pillar.height)
-    tube = float(first_moment_above(scene.pillar, [0.0])[0])
-    tops = scene.gondola.mass * (H + scene.gondola.height) + scene.rotor.mass * (H + scene.rotor.height)
-    return STANDARD_GRAVITY * (tube + tops)
-
-
-def check_foundation_holds(scene: Scene) -> None:
-    """Refuse (InputError, one line naming the key) a foundation that cannot hold the machine up:
-    a footing deeper than it is wide, or base springs whose rocking stiffness, at the ground,
-    does not exceed the weight's overturning stiffness sum(m g z).  Below it the machine topples:
-    a rigid body on a rocking spring K_R has the potential (K_R - sum(m g z)) phi**2 / 2, and the
-    elastic tube only lowers that margin.  The models here carry no gravity stiffness, so they
-    would compute modes of a machine that cannot stand (or fail to compute any)."""
-    f = scene.foundation
-    if f.kind == "clamped":
-        return
-    if f.kind == "footing":
-        assert f.radius is not None
-        if f.embedment > MAX_EMBEDMENT_OVER_WIDTH * 2 * f.radius:
-            raise InputError(
-                f"foundation.embedment = {f.embedment:g} is out of range: must be >= 0 and <= the "
-                f"footing's width 2 x foundation.radius = {2 * f.radius:g} (m): deeper, it is a caisson, "
-                "not a shallow footing (Gazetas' formulas)"
-            )
-    springs = foundation_stiffness(f)
-    assert springs is not None
-    need = overturning_stiffness(scene)
-    # the rocking stiffness a rigid tilt about the base meets, with the coupling's share: the
-    # smallest of K_R - K_HR**2 / K_H (the base free to slide) would be stricter still; the base
-    # pinned against sliding by K_H is the case the tube's own bending sees
-    if not springs.rocking > need:
-        if f.kind == "springs":
-            said = f"foundation.rocking_stiffness = {springs.rocking:g} is out of range: must be"
-        else:
-            said = (
-                f"foundation.radius = {f.radius:g} with foundation.soil_shear_modulus = {f.soil_shear_modulus:g}: "
-                f"the footing's rocking stiffness K_R = {springs.rocking:.4g} N*m/rad must be"
-            )
-        raise InputError(
-            f"{said} > the machine's overturning stiffness sum(m g z) = {need:.4g} N*m/rad, or it topples"
-            + ("" if f.kind == "springs" else " (give a wider footing or a stiffer soil)")
-        )
