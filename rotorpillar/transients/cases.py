@@ -18,7 +18,7 @@ import math
 import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -32,6 +32,9 @@ from ..reduced.integration import Settings, Transient, simulate
 from ..reduced.models import ModelInfo, build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
+from ..reduced.spatial_modes import SpatialPillarModes
+from ..reduced.spatial_records import PlanesChoice
+from ..reduced.spatial_rotor import SpatialRotor, transient_model
 from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
 from ..scene import CASES, Scene
 from .case_summary import (
@@ -65,6 +68,8 @@ class CaseResult:
     """earthquake: how the model applies the ground motion, in words"""
     sweep: SweepAnalysis | None = None
     """sweep: the chart's bins and curves"""
+    planes: PlanesChoice | None = None
+    """the modal model: modal_model.planes resolved for this case, and why (None: other models)"""
 
 
 def settings_of(scene: Scene, integrator: str | None = None) -> Settings:
@@ -207,11 +212,16 @@ def run_case(
     progress=None,
     motion: GroundMotion | None = None,
     pillar_modes: PillarModes | None = None,
+    spatial_modes: SpatialPillarModes | None = None,
 ) -> CaseResult:
     """Run one case of the scene; for the modal model also with k + 1 modes.
     ``motion`` (earthquake) defaults to the scene's [excitation];
     ``pillar_modes``: the modal model's candidate modes (needed when
-    ``modal_model.source = "fem3d"``, see ``models.build_model``)."""
+    ``modal_model.source = "fem3d"``, see ``models.build_model``);
+    ``spatial_modes``: the chain's modes in every direction (None: the beam's), for a
+    modal model whose ``modal_model.planes`` resolves to "spatial"
+    (rotorpillar.reduced.spatial_rotor.transient_model): the case then runs on the
+    spatial ROM, the motor's reaction on the gondola and every ground component acting."""
     if case not in CASES:
         raise InputError(f"case {case!r}: must be one of {', '.join(CASES)}")
     which = which or scene.simulate.model
@@ -223,15 +233,28 @@ def run_case(
         check_full_order_budget(scene, case, motion, integrator)
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, case, motion)
     model, info = build_model(scene, which, top, modes, pillar_modes)
+    planes = None
+    if which == "modal":
+        planes, spatial = transient_model(scene, case, top, model, spatial_modes)
+        if spatial is not None:
+            # duck-typed: SpatialRotor offers the RotorStructure interface the case and its summary read
+            model = cast(RotorStructure, spatial)
+            x = scene.excitation
+            if case == "earthquake" and (x.components > 1 or math.sin(math.radians(x.angle)) != 0):
+                from ..reduced.ground3d import scene_spatial_motion
+
+                motion = scene_spatial_motion(x)  # type: ignore[assignment]
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" else (None, None)
     result = _run_on(scene, case, model, motion, integrator, info, settings)
+    if planes is not None:
+        result = replace(result, planes=planes)
     if rule is not None:
         result = replace(
             result,
             run=replace(result.run, stats=replace(result.run.stats, step_rule=rule)),
             summary=replace(result.summary, integrator=replace(result.summary.integrator, step_rule=rule)),
         )
-    if which == "modal" and truncation:
+    if which == "modal" and truncation and not isinstance(result.model, SpatialRotor):
         result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
     return result
 
@@ -334,7 +357,7 @@ def _run_and_summarise(
             sections["passing_torque"] = passing_torque(model, drive, sim.duration, st.rtol)
     elif case == "rundown":
         Wop = operating_speed(model, M0, s, k)
-        q0, v0 = model.steady_initial_state(Wop)
+        q0, v0 = on_reaction(model, *model.steady_initial_state(Wop), M0 - s * Wop)
         after = (0.0, 0.0) if sim.rundown_motor == "off" else (sim.rundown_torque_at_zero, s)
         drive = DriveSchedule.switched(M0, s, k, 0.0, *after)
         run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st, speed_scale=Wop)
@@ -343,7 +366,7 @@ def _run_and_summarise(
         pred = averaging_prediction(model, after[0], after[1], k)
     elif case == "earthquake":
         Wop = operating_speed(model, M0, s, k)
-        q0, v0 = model.steady_initial_state(Wop)
+        q0, v0 = on_reaction(model, *model.steady_initial_state(Wop), M0 - s * Wop)
         drive = DriveSchedule.constant(M0, s, k)
         t_end = sim.earthquake_duration or motion.end + 5.0
         if t_end <= motion.start:
@@ -360,7 +383,12 @@ def _run_and_summarise(
             else "relative to the ground, forced by -M r a_g (a_g = q5'' inside the window; the "
             "displacement step of the written q5 carries no finite acceleration and is not applied)"
         )
-        if motion.kind == "record":
+        if isinstance(model, SpatialRotor):
+            excitation_in_model, run = spatial_excitation(model, motion, run)
+            sections["response_spectrum_check"] = NoSpectrumCheck(
+                "the spatial ROM: the response-spectrum estimate is the planar ROM's (one component, its modes)"
+            )
+        elif motion.kind == "record":
             sections["response_spectrum_check"] = spectrum_check(model, motion, run)
     else:
         w = scene.sweep
@@ -395,6 +423,34 @@ def _run_and_summarise(
         )
     summary = run_summary(run, free, pred, **sections)
     return CaseResult(case, model, run, summary, model_info, initial_speed, excitation, excitation_in_model, sweep)
+
+
+def on_reaction(model, q0: np.ndarray, v0: np.ndarray, torque: float) -> tuple[np.ndarray, np.ndarray]:
+    """A start at speed on the spatial ROM starts on the static deflection under the motor's
+    ``torque`` (N*m) reacting on the gondola (SpatialRotor.reaction_deflection); the planar
+    models' start as it is."""
+    if isinstance(model, SpatialRotor):
+        return q0 + model.reaction_deflection(torque), v0
+    return q0, v0
+
+
+def spatial_excitation(model: SpatialRotor, motion, run: Transient) -> tuple[str, Transient]:
+    """How the spatial ROM applies the ground motion, in words, and the run as its summary reads
+    it: a multi-component motion's series (``ground_x``) are its first component's."""
+    from ..reduced.ground3d import SpatialGroundMotion
+
+    words = (
+        "the spatial ROM, relative to the ground, forced by -M r a_g in each direction; the motor's "
+        "reaction on the gondola acting"
+    )
+    if isinstance(motion, SpatialGroundMotion):
+        names = ", ".join(f"{n} along {tuple(round(c, 6) for c in d)}" for n, d in zip(motion.names, motion.directions))
+        words += (
+            f"; {motion.count} components ({names}; x in the rotor's plane, y along the spin axis, z "
+            "vertical); ground_x and ground_acceleration are the first component's"
+        )
+        run = replace(run, motion=motion.components[0])
+    return words, run
 
 
 def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> SpectralEstimate:
