@@ -447,10 +447,32 @@ def spatial_excitation(model: SpatialRotor, motion, run: Transient) -> tuple[str
         names = ", ".join(f"{n} along {tuple(round(c, 6) for c in d)}" for n, d in zip(motion.names, motion.directions))
         words += (
             f"; {motion.count} components ({names}; x in the rotor's plane, y along the spin axis, z "
-            "vertical); ground_x and ground_acceleration are the first component's"
+            "vertical); ground_x and ground_acceleration are the ground's motion in the rotor's plane"
         )
-        run = replace(run, motion=motion.components[0])
+        run = replace(run, motion=in_rotor_plane(motion))
     return words, run
+
+
+def in_rotor_plane(motion) -> GroundMotion:
+    """A SpatialGroundMotion's motion in the rotor's plane (x) as one GroundMotion: each
+    component times its direction's x (the components share one grid, or one pulse)."""
+    first = motion.components[0]
+    dx = [float(d[0]) for d in motion.directions]
+    if first.kind == "pulse" and motion.count == 1:
+        return replace(first, amplitude=first.amplitude * dx[0])
+    if first.kind != "record" or any(len(c.acceleration) != len(first.acceleration) for c in motion.components):
+        raise ValueError("the ground's components must be records on one grid")
+
+    def x_of(field: str) -> np.ndarray:
+        return sum((w * getattr(c, field) for w, c in zip(dx, motion.components)), np.zeros(len(first.acceleration)))
+
+    return replace(
+        first,
+        displacement=x_of("displacement"),
+        velocity=x_of("velocity"),
+        acceleration=x_of("acceleration"),
+        name=f"{first.name}: the {motion.count} components in the rotor's plane",
+    )
 
 
 def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> SpectralEstimate:
