@@ -244,15 +244,6 @@ class SpatialRotor:
         torque: NDArray[np.float64] = out.reshape(np.shape(Omega))
         return torque
 
-    def steady_amplitudes(self, Omega: ArrayLike) -> dict[str, NDArray[np.float64]]:
-        """Exact steady amplitudes at constant Omega: tip and rotor in the rotor's plane, rotor vertical (m)."""
-        W = np.atleast_1d(np.asarray(Omega, dtype=float))
-        tip, rx, ry = (np.empty_like(W) for _ in range(3))
-        for i, w in enumerate(W):
-            Z, Y = self.steady_state(float(w))
-            tip[i], rx[i], ry[i] = abs(self.tip @ Z), abs(Z[self.rotor_x]), abs(Y)
-        return {"tip_x": tip, "rotor_x": rx, "rotor_y": ry}
-
     def steady_initial_state(self, Omega: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(q0, v0) on the steady unbalance response at speed Omega with theta = 0."""
         Z = spatial_steady_state(self._s(), Omega)
