@@ -147,6 +147,10 @@ def test_cli_runup_on_the_spatial_rom(tmp_path):
     assert run["ok"] and run["max_abs"]["tip_x"] > 0
     assert "rotor_axial" in run["model_description"]["coordinates"]
     assert not any("runs the planar ROM" in w for w in run["warnings"])
+    # its truncation estimate: the same run-up with the next bending mode in the rotor's plane
+    t = run["truncation"]
+    assert t["kind"] == "estimate" and t["modes_check"] == t["modes"] + 1
+    assert t["omega_added"] > max(r["omega"] for r in run["resonances"] if r["direction"] == "X")
 
 
 def test_auto_weighs_the_drives_reaction():

@@ -239,11 +239,7 @@ def run_case(
         if spatial is not None:
             # duck-typed: SpatialRotor offers the RotorStructure interface the case and its summary read
             model = cast(RotorStructure, spatial)
-            x = scene.excitation
-            if case == "earthquake" and (x.components > 1 or math.sin(math.radians(x.angle)) != 0):
-                from ..reduced.ground3d import scene_spatial_motion
-
-                motion = scene_spatial_motion(x)  # type: ignore[assignment]
+            motion = spatial_motion(scene, case, motion)
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" else (None, None)
     result = _run_on(scene, case, model, motion, integrator, info, settings)
     if planes is not None:
@@ -254,9 +250,89 @@ def run_case(
             run=replace(result.run, stats=replace(result.run.stats, step_rule=rule)),
             summary=replace(result.summary, integrator=replace(result.summary.integrator, step_rule=rule)),
         )
-    if which == "modal" and truncation and not isinstance(result.model, SpatialRotor):
-        result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
+    if which == "modal" and truncation:
+        if isinstance(result.model, SpatialRotor):
+            result = with_spatial_truncation(scene, result, motion, integrator, spatial_modes, progress)
+        else:
+            result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
     return result
+
+
+def spatial_motion(scene: Scene, case: str, motion: GroundMotion):
+    """The ground motion the spatial ROM takes: the scene's components and angle
+    (rotorpillar.reduced.ground3d.scene_spatial_motion) where they leave the rotor's plane,
+    else ``motion`` as it is (one component in the plane)."""
+    x = scene.excitation
+    if case == "earthquake" and (x.components > 1 or math.sin(math.radians(x.angle)) != 0):
+        from ..reduced.ground3d import scene_spatial_motion
+
+        return scene_spatial_motion(x)
+    return motion
+
+
+def with_spatial_truncation(
+    scene: Scene,
+    result: CaseResult,
+    motion: GroundMotion | None,
+    integrator: str | None = None,
+    spatial_modes: SpatialPillarModes | None = None,
+    progress=None,
+) -> CaseResult:
+    """A spatial ROM's result with its truncation estimate: the same case with the next bending
+    mode in the rotor's plane above the band added (the planar ROM's k + 1 likewise adds its
+    next mode; the modes out of the plane above the band, torsion and axial first, leave the
+    tip in the rotor's plane unchanged but through the rotor's coupling)."""
+    from ..reduced.spatial_modes import BENDING_IN_PLANE
+    from ..reduced.spatial_scene import scene_spatial_model, scene_spatial_modes
+
+    m = result.model
+    assert isinstance(m, SpatialRotor)  # a spatial ROM's result
+    kept = m.structure.modes
+    k = kept.count
+    every = scene_spatial_modes(scene, spatial_modes)
+    after = [int(j) for j in every.of_kind(BENDING_IN_PLANE) if j >= k]
+    trunc: TruncationEstimate | NoTruncationEstimate
+    if not after:
+        trunc = NoTruncationEstimate(
+            modes=k,
+            modes_check=None,
+            statement=f"no truncation estimate: the mode source ({every.source}) offers no bending mode in the "
+            f"rotor's plane above the {k} kept (for fem3d: raise modal.n_modes)",
+        )
+        return replace(result, summary=replace(result.summary, truncation=trunc))
+    if progress:
+        progress(f"truncation check: the same case with the next bending mode ({every.omega[after[0]]:.4g} rad/s)")
+    more = every.select(list(range(k)) + after[:1])
+    m2 = SpatialRotor.of(scene_spatial_model(scene, math.inf, more), m.planes)
+    b = _run_on(
+        scene,
+        result.case,
+        cast(RotorStructure, m2),
+        spatial_motion(scene, result.case, motion or no_motion()),
+        integrator,
+    )
+    a = result
+    ma, mb = a.summary.max_abs, b.summary.max_abs
+    tip_b = np.interp(a.run.t, b.run.t, b.run.tip())
+    scale = max(np.max(np.abs(tip_b)), 1e-300)
+
+    def rel(key: str) -> float | None:
+        x, y = ma.get(key), mb.get(key)
+        return y / x - 1 if x and y is not None and x > 0 else None
+
+    trunc = TruncationEstimate(
+        modes=k,
+        modes_check=k + 1,
+        omega_added=float(every.omega[after[0]]),
+        effective_mass_fraction=kept.effective_mass_fraction(0),
+        effective_mass_fraction_check=more.effective_mass_fraction(0),
+        omega_final_rel_diff=b.summary.omega_final / a.summary.omega_final - 1 if a.summary.omega_final else None,
+        tip_series_max_rel_diff=float(np.max(np.abs(a.run.tip() - tip_b)) / scale),
+        tip_x_max_rel_diff=rel("tip_x"),
+        rotor_x_max_rel_diff=rel("rotor_x"),
+        rotor_y_max_rel_diff=rel("rotor_y"),
+    )
+    return replace(result, summary=replace(result.summary, truncation=trunc))
 
 
 def with_truncation(

@@ -344,10 +344,9 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     bars = None
     spatial = res.planes is not None and res.planes.planes == "spatial"
     if spatial:
-        from ..reduced.spatial_rotor import SpatialRotor
+        from .cases import with_spatial_truncation
 
-        assert isinstance(res.model, SpatialRotor)
-        res = replace(res, summary=replace(res.summary, truncation=spatial_truncation(res.model)))
+        res = with_spatial_truncation(scene, res, motion, integrator, spatial_modes, progress)
     elif which == "modal":
         res = with_truncation(scene, res, res.run.motion, integrator, pillar_modes, progress)
         if case != "sweep":
@@ -440,24 +439,11 @@ def planar_transient_warnings(scene: Scene, case: str, model: str, planes: Plane
         )
     if spatial:
         out.append(
-            "the spatial ROM's run: no truncation estimate (one mode more), no error bars and no "
-            "section forces along the pillar yet (the planar ROM's have them: modal_model.planes = "
-            '"planar"); compare --case earthquake --components gives the spatial base reactions'
+            "the spatial ROM's run: no error bars (uncertainty) and no section forces along the pillar "
+            'yet (the planar ROM\'s have them: modal_model.planes = "planar"); compare --case earthquake '
+            "--components gives the spatial base reactions"
         )
     return out
-
-
-def spatial_truncation(model):
-    """The spatial ROM's truncation entry: not estimated yet, said so."""
-    from .case_summary import NoTruncationEstimate
-
-    k = model.structure.modes.count
-    return NoTruncationEstimate(
-        modes=k,
-        modes_check=None,
-        statement=f"no truncation estimate: the spatial ROM ({k} pillar modes in every direction below the "
-        "band) is not yet run again with one mode more",
-    )
 
 
 def _warnings(case: str, model, res) -> list[str]:
