@@ -4,7 +4,8 @@ its case on the spatial model where modal_model.planes resolves to spatial.
 - **The planar restriction is today's run-up**: the spatial model restricted to the rotor's
   plane (planes="planar", b2 to the ground, no structural ratio, no motor reaction) on the
   planar ROM's own modes, run through the same case code (cases._run_on) as today's planar
-  ROM, gives the same summary: peak tip, final speed, passage times, the speed it sticks at.
+  ROM, gives the same summary: peak tip, final speed, passage times, the speed it sticks at;
+  and under El Centro from the operating speed, the same start and peaks.
   The two runs integrate the same packed arrays (tests/test_spatial.py checks them equal), so
   the states agree to round-off; the resonances come from two eigensolves (the planar X block,
   and the restriction's with the decoupled vertical beside it), equal to ~1e-13: every number
@@ -70,6 +71,22 @@ def _pair(scene, modes=3):
         drive_reaction=False,
     )
     return old, SpatialRotor.of(new)
+
+
+def test_planar_restriction_runs_todays_el_centro():
+    """The earthquake case too: the same operating speed (the exact torque balance on both), the
+    same start on the steady whirl, the same peaks under El Centro in the rotor's plane."""
+    from rotorpillar.reduced.models import scene_motion
+
+    s = load_scene("paper", BEAM + ["excitation.kind=record", "excitation.record=elcentro", "excitation.start=1"])
+    old, new = _pair(s)
+    motion = scene_motion(s)
+    a, b = (_run_on(s, "earthquake", m, motion, None) for m in (old, new))
+    assert a.summary.ok and b.summary.ok
+    assert b.initial_speed == pytest.approx(a.initial_speed, rel=SAME)
+    for key in ("tip_x", "rotor_x", "rotor_y"):
+        assert b.summary.max_abs[key] == pytest.approx(a.summary.max_abs[key], rel=SAME)
+    assert b.summary.omega_final == pytest.approx(a.summary.omega_final, rel=SAME)
 
 
 @pytest.mark.parametrize(
