@@ -448,7 +448,8 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
             progress(
                 f"section forces: the base moment needs {k} modes (the run kept {k_run}); the case again with them"
             )
-        quiet = override(scene, ["simulate.threshold=false"])
+        # the planar ROM's variants: only its runs get them (the spatial ROM's have neither)
+        quiet = override(scene, ["simulate.threshold=false", "modal_model.planes=planar"])
         from .case_summary import series
 
         again = run_case(
