@@ -9,6 +9,13 @@ the modal model adds its truncation estimate: the same case with k + 1 modes.
 
 The 3D model's pillar modes (``modal_model.source = "fem3d"``) come in as
 ``pillar_modes``: the caller computes them.
+
+Where ``modal_model.planes`` resolves to "spatial" for a run-up, run-down or
+earthquake (rotorpillar.reduced.spatial_rotor.transient_model: "auto" also
+weighs the drive's reaction), the modal model's case runs on the spatial ROM
+(``spatial_modes``: the chain's modes in every direction) with the motor's
+reaction on the gondola and every ground component; its truncation estimate
+adds the next bending mode in the rotor's plane (``with_spatial_truncation``).
 """
 
 from __future__ import annotations
