@@ -75,8 +75,10 @@ def test_components_refusals(tmp_path, argv, words):
 
 
 def test_a_planar_transient_says_what_it_leaves_out():
-    """simulate and compare's transients apply one component on the planar ROM: a scene asking for
-    more components, or for the spatial model, is told so in the run's warnings (JSON and stderr)."""
+    """simulate and compare's planar transients apply one component in the rotor's plane: a scene
+    asking for more components is told so in the run's warnings (JSON and stderr); the spatial ROM
+    runs them all, and a sweep asked for on the spatial model is told it ran the planar one."""
+    from rotorpillar.reduced.spatial_records import PlanesChoice
     from rotorpillar.transients.model_run import planar_transient_warnings
 
     plain = load_scene("paper", QUAKE)
@@ -85,6 +87,10 @@ def test_a_planar_transient_says_what_it_leaves_out():
     (w,) = planar_transient_warnings(three, "earthquake", "fem3d")
     assert "first component alone" in w and "angle ignored" in w and "--components 3" in w
     assert planar_transient_warnings(three, "runup", "modal") == []
+    ran_spatial = PlanesChoice("auto", "spatial", "spatial: the ground moves out of the rotor's plane")
+    (w,) = planar_transient_warnings(three, "earthquake", "modal", ran_spatial)
+    assert "first component alone" not in w and "no error bars" in w
     spatial = load_scene("paper", ["modal_model.planes=spatial"])
-    (w,) = planar_transient_warnings(spatial, "runup", "modal")
-    assert "planar ROM" in w
+    ran_planar = PlanesChoice("spatial", "planar", "planar: the sweep runs the planar ROM")
+    (w,) = planar_transient_warnings(spatial, "sweep", "modal", ran_planar)
+    assert "runs the planar ROM" in w

@@ -216,6 +216,8 @@ def _summary(scene: Scene, r: ReducedRun | Fem3dRun) -> str:
     )
     if r.full_order is not None:
         lines.append(f"  full order: {r.full_order.note}")
+    if isinstance(r, ReducedRun) and r.planes is not None and "spatial" in (r.planes.planes, r.planes.requested):
+        lines.append(f"  planes: {r.planes.planes} ({r.planes.reason})")
     for w in r.warnings:
         lines.append(f"  WARNING: {w}")
     lines.append(

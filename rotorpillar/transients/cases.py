@@ -9,6 +9,13 @@ the modal model adds its truncation estimate: the same case with k + 1 modes.
 
 The 3D model's pillar modes (``modal_model.source = "fem3d"``) come in as
 ``pillar_modes``: the caller computes them.
+
+Where ``modal_model.planes`` resolves to "spatial" for a run-up, run-down or
+earthquake (rotorpillar.reduced.spatial_rotor.transient_model: "auto" also
+weighs the drive's reaction), the modal model's case runs on the spatial ROM
+(``spatial_modes``: the chain's modes in every direction) with the motor's
+reaction on the gondola and every ground component; its truncation estimate
+adds the next bending mode in the rotor's plane (``with_spatial_truncation``).
 """
 
 from __future__ import annotations
@@ -18,7 +25,7 @@ import math
 import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -32,6 +39,9 @@ from ..reduced.integration import Settings, Transient, simulate
 from ..reduced.models import ModelInfo, build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
+from ..reduced.spatial_modes import SpatialPillarModes
+from ..reduced.spatial_records import PlanesChoice
+from ..reduced.spatial_rotor import SpatialRotor, transient_model
 from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
 from ..scene import CASES, Scene
 from .case_summary import (
@@ -65,6 +75,8 @@ class CaseResult:
     """earthquake: how the model applies the ground motion, in words"""
     sweep: SweepAnalysis | None = None
     """sweep: the chart's bins and curves"""
+    planes: PlanesChoice | None = None
+    """the modal model: modal_model.planes resolved for this case, and why (None: other models)"""
 
 
 def settings_of(scene: Scene, integrator: str | None = None) -> Settings:
@@ -207,11 +219,16 @@ def run_case(
     progress=None,
     motion: GroundMotion | None = None,
     pillar_modes: PillarModes | None = None,
+    spatial_modes: SpatialPillarModes | None = None,
 ) -> CaseResult:
     """Run one case of the scene; for the modal model also with k + 1 modes.
     ``motion`` (earthquake) defaults to the scene's [excitation];
     ``pillar_modes``: the modal model's candidate modes (needed when
-    ``modal_model.source = "fem3d"``, see ``models.build_model``)."""
+    ``modal_model.source = "fem3d"``, see ``models.build_model``);
+    ``spatial_modes``: the chain's modes in every direction (None: the beam's), for a
+    modal model whose ``modal_model.planes`` resolves to "spatial"
+    (rotorpillar.reduced.spatial_rotor.transient_model): the case then runs on the
+    spatial ROM, the motor's reaction on the gondola and every ground component acting."""
     if case not in CASES:
         raise InputError(f"case {case!r}: must be one of {', '.join(CASES)}")
     which = which or scene.simulate.model
@@ -223,8 +240,17 @@ def run_case(
         check_full_order_budget(scene, case, motion, integrator)
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, case, motion)
     model, info = build_model(scene, which, top, modes, pillar_modes)
+    planes = None
+    if which == "modal":
+        planes, spatial = transient_model(scene, case, top, model, spatial_modes)
+        if spatial is not None:
+            # duck-typed: SpatialRotor offers the RotorStructure interface the case and its summary read
+            model = cast(RotorStructure, spatial)
+            motion = spatial_motion(scene, case, motion)
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" else (None, None)
     result = _run_on(scene, case, model, motion, integrator, info, settings)
+    if planes is not None:
+        result = replace(result, planes=planes)
     if rule is not None:
         result = replace(
             result,
@@ -232,8 +258,88 @@ def run_case(
             summary=replace(result.summary, integrator=replace(result.summary.integrator, step_rule=rule)),
         )
     if which == "modal" and truncation:
-        result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
+        if isinstance(result.model, SpatialRotor):
+            result = with_spatial_truncation(scene, result, motion, integrator, spatial_modes, progress)
+        else:
+            result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
     return result
+
+
+def spatial_motion(scene: Scene, case: str, motion: GroundMotion):
+    """The ground motion the spatial ROM takes: the scene's components and angle
+    (rotorpillar.reduced.ground3d.scene_spatial_motion) where they leave the rotor's plane,
+    else ``motion`` as it is (one component in the plane)."""
+    x = scene.excitation
+    if case == "earthquake" and (x.components > 1 or math.sin(math.radians(x.angle)) != 0):
+        from ..reduced.ground3d import scene_spatial_motion
+
+        return scene_spatial_motion(x)
+    return motion
+
+
+def with_spatial_truncation(
+    scene: Scene,
+    result: CaseResult,
+    motion: GroundMotion | None,
+    integrator: str | None = None,
+    spatial_modes: SpatialPillarModes | None = None,
+    progress=None,
+) -> CaseResult:
+    """A spatial ROM's result with its truncation estimate: the same case with the next bending
+    mode in the rotor's plane above the band added (the planar ROM's k + 1 likewise adds its
+    next mode; the modes out of the plane above the band, torsion and axial first, leave the
+    tip in the rotor's plane unchanged but through the rotor's coupling)."""
+    from ..reduced.spatial_modes import BENDING_IN_PLANE
+    from ..reduced.spatial_scene import scene_spatial_model, scene_spatial_modes
+
+    m = result.model
+    assert isinstance(m, SpatialRotor)  # a spatial ROM's result
+    kept = m.structure.modes
+    k = kept.count
+    every = scene_spatial_modes(scene, spatial_modes)
+    after = [int(j) for j in every.of_kind(BENDING_IN_PLANE) if j >= k]
+    trunc: TruncationEstimate | NoTruncationEstimate
+    if not after:
+        trunc = NoTruncationEstimate(
+            modes=k,
+            modes_check=None,
+            statement=f"no truncation estimate: the mode source ({every.source}) offers no bending mode in the "
+            f"rotor's plane above the {k} kept (for fem3d: raise modal.n_modes)",
+        )
+        return replace(result, summary=replace(result.summary, truncation=trunc))
+    if progress:
+        progress(f"truncation check: the same case with the next bending mode ({every.omega[after[0]]:.4g} rad/s)")
+    more = every.select(list(range(k)) + after[:1])
+    m2 = SpatialRotor.of(scene_spatial_model(scene, math.inf, more), m.planes)
+    b = _run_on(
+        scene,
+        result.case,
+        cast(RotorStructure, m2),
+        spatial_motion(scene, result.case, motion or no_motion()),
+        integrator,
+    )
+    a = result
+    ma, mb = a.summary.max_abs, b.summary.max_abs
+    tip_b = np.interp(a.run.t, b.run.t, b.run.tip())
+    scale = max(np.max(np.abs(tip_b)), 1e-300)
+
+    def rel(key: str) -> float | None:
+        x, y = ma.get(key), mb.get(key)
+        return y / x - 1 if x and y is not None and x > 0 else None
+
+    trunc = TruncationEstimate(
+        modes=k,
+        modes_check=k + 1,
+        omega_added=float(every.omega[after[0]]),
+        effective_mass_fraction=kept.effective_mass_fraction(0),
+        effective_mass_fraction_check=more.effective_mass_fraction(0),
+        omega_final_rel_diff=b.summary.omega_final / a.summary.omega_final - 1 if a.summary.omega_final else None,
+        tip_series_max_rel_diff=float(np.max(np.abs(a.run.tip() - tip_b)) / scale),
+        tip_x_max_rel_diff=rel("tip_x"),
+        rotor_x_max_rel_diff=rel("rotor_x"),
+        rotor_y_max_rel_diff=rel("rotor_y"),
+    )
+    return replace(result, summary=replace(result.summary, truncation=trunc))
 
 
 def with_truncation(
@@ -334,7 +440,7 @@ def _run_and_summarise(
             sections["passing_torque"] = passing_torque(model, drive, sim.duration, st.rtol)
     elif case == "rundown":
         Wop = operating_speed(model, M0, s, k)
-        q0, v0 = model.steady_initial_state(Wop)
+        q0, v0 = on_reaction(model, *model.steady_initial_state(Wop), M0 - s * Wop)
         after = (0.0, 0.0) if sim.rundown_motor == "off" else (sim.rundown_torque_at_zero, s)
         drive = DriveSchedule.switched(M0, s, k, 0.0, *after)
         run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st, speed_scale=Wop)
@@ -343,7 +449,7 @@ def _run_and_summarise(
         pred = averaging_prediction(model, after[0], after[1], k)
     elif case == "earthquake":
         Wop = operating_speed(model, M0, s, k)
-        q0, v0 = model.steady_initial_state(Wop)
+        q0, v0 = on_reaction(model, *model.steady_initial_state(Wop), M0 - s * Wop)
         drive = DriveSchedule.constant(M0, s, k)
         t_end = sim.earthquake_duration or motion.end + 5.0
         if t_end <= motion.start:
@@ -360,7 +466,12 @@ def _run_and_summarise(
             else "relative to the ground, forced by -M r a_g (a_g = q5'' inside the window; the "
             "displacement step of the written q5 carries no finite acceleration and is not applied)"
         )
-        if motion.kind == "record":
+        if isinstance(model, SpatialRotor):
+            excitation_in_model, run = spatial_excitation(model, motion, run)
+            sections["response_spectrum_check"] = NoSpectrumCheck(
+                "the spatial ROM: the response-spectrum estimate is the planar ROM's (one component, its modes)"
+            )
+        elif motion.kind == "record":
             sections["response_spectrum_check"] = spectrum_check(model, motion, run)
     else:
         w = scene.sweep
@@ -395,6 +506,56 @@ def _run_and_summarise(
         )
     summary = run_summary(run, free, pred, **sections)
     return CaseResult(case, model, run, summary, model_info, initial_speed, excitation, excitation_in_model, sweep)
+
+
+def on_reaction(model, q0: np.ndarray, v0: np.ndarray, torque: float) -> tuple[np.ndarray, np.ndarray]:
+    """A start at speed on the spatial ROM starts on the static deflection under the motor's
+    ``torque`` (N*m) reacting on the gondola (SpatialRotor.reaction_deflection); the planar
+    models' start as it is."""
+    if isinstance(model, SpatialRotor):
+        return q0 + model.reaction_deflection(torque), v0
+    return q0, v0
+
+
+def spatial_excitation(model: SpatialRotor, motion, run: Transient) -> tuple[str, Transient]:
+    """How the spatial ROM applies the ground motion, in words, and the run as its summary reads
+    it: a multi-component motion's series (``ground_x``) are its first component's."""
+    from ..reduced.ground3d import SpatialGroundMotion
+
+    words = (
+        "the spatial ROM, relative to the ground, forced by -M r a_g in each direction; the motor's "
+        "reaction on the gondola acting"
+    )
+    if isinstance(motion, SpatialGroundMotion):
+        names = ", ".join(f"{n} along {tuple(round(c, 6) for c in d)}" for n, d in zip(motion.names, motion.directions))
+        words += (
+            f"; {motion.count} components ({names}; x in the rotor's plane, y along the spin axis, z "
+            "vertical); ground_x and ground_acceleration are the ground's motion in the rotor's plane"
+        )
+        run = replace(run, motion=in_rotor_plane(motion))
+    return words, run
+
+
+def in_rotor_plane(motion) -> GroundMotion:
+    """A SpatialGroundMotion's motion in the rotor's plane (x) as one GroundMotion: each
+    component times its direction's x (the components share one grid, or one pulse)."""
+    first = motion.components[0]
+    dx = [float(d[0]) for d in motion.directions]
+    if first.kind == "pulse" and motion.count == 1:
+        return replace(first, amplitude=first.amplitude * dx[0])
+    if first.kind != "record" or any(len(c.acceleration) != len(first.acceleration) for c in motion.components):
+        raise ValueError("the ground's components must be records on one grid")
+
+    def x_of(field: str) -> np.ndarray:
+        return sum((w * getattr(c, field) for w, c in zip(dx, motion.components)), np.zeros(len(first.acceleration)))
+
+    return replace(
+        first,
+        displacement=x_of("displacement"),
+        velocity=x_of("velocity"),
+        acceleration=x_of("acceleration"),
+        name=f"{first.name}: the {motion.count} components in the rotor's plane",
+    )
 
 
 def spectral_estimate(model: RotorStructure, motion: GroundMotion) -> SpectralEstimate:

@@ -348,7 +348,7 @@ def with_reduced_forces(scene: Scene, run, res, integrator, pillar_modes, motion
     extra_max = {"shaft_deflection": shaft.deflection, "bearing_force": shaft.bearing_force}
     if run.model == "beam":
         summary, series = _beam_forces(scene, run, res, shaft)
-    elif run.model == "modal":
+    elif run.model == "modal" and m.pillar_modes is not None:  # the spatial ROM's: not yet (its warning)
         summary, series = _modal_forces(scene, run, res, integrator, pillar_modes, motion, shaft, progress)
     else:
         summary, series = None, {}
@@ -448,7 +448,8 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
             progress(
                 f"section forces: the base moment needs {k} modes (the run kept {k_run}); the case again with them"
             )
-        quiet = override(scene, ["simulate.threshold=false"])
+        # the planar ROM's variants: only its runs get them (the spatial ROM's have neither)
+        quiet = override(scene, ["simulate.threshold=false", "modal_model.planes=planar"])
         from .case_summary import series
 
         again = run_case(

@@ -50,6 +50,7 @@ from ..fem3d.full_order_result import Fem3dDescription, Fem3dStats
 from ..records import Figure, Record, replace, tag
 from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
 from ..reduced.rotor_models import StructureDescription
+from ..reduced.spatial_records import PlanesChoice
 from ..reduced.system import DampedMode, Resonance
 from ..scene import MODELS, override
 from .case_summary import CaseSummary, RunOutcome
@@ -110,6 +111,10 @@ class ReducedRun(CaseSummary, kw_only=True, omit_defaults=True, tag_field="model
     """the speed the run starts at, where the case sets one (rad/s)"""
     excitation_in_model: str | None = None
     """earthquake: how the model applies the ground motion, in words"""
+    planes: PlanesChoice | None = None
+    """modal: the model that ran, "planar" (the rotor's plane, the tip-scaled ROM) or "spatial"
+    (rotorpillar.reduced.spatial_model: both planes, torsion, the motor's reaction on the gondola),
+    modal_model.planes as the scene asks it, and why"""
     full_order: BeamFullOrder | None = None
     """beam: its discretisation and step"""
     internal_forces: InternalForcesSummary | None
@@ -267,7 +272,12 @@ def pillar_modes_for(which: str, chain: ChainModes | None):
     return chain.modes if which == "modal" and chain is not None else None
 
 
-def warm_up(scene: Scene, case: str, which: str, integrator, modes, motion, pillar_modes) -> float:
+def spatial_modes_for(which: str, chain: ChainModes | None):
+    """The chain's modes in every direction for the modal model (None: the beam's or not modal)."""
+    return chain.spatial if which == "modal" and chain is not None else None
+
+
+def warm_up(scene: Scene, case: str, which: str, integrator, modes, motion, pillar_modes, spatial_modes=None) -> float:
     """Compile what the run will (numba's kernels, per integrator and case) on a run of a
     few milliseconds of the same case; its wall time (s), kept apart from the run's."""
     from .cases import run_case
@@ -284,7 +294,17 @@ def warm_up(scene: Scene, case: str, which: str, integrator, modes, motion, pill
         return 0.0  # a sweep's schedule has no short form; its kernels are dp5's
     start = time.perf_counter()
     try:
-        run_case(short, case, which, integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes)
+        run_case(
+            short,
+            case,
+            which,
+            integrator,
+            modes,
+            truncation=False,
+            motion=motion,
+            pillar_modes=pillar_modes,
+            spatial_modes=spatial_modes,
+        )
     except InputError:
         pass  # the real run refuses it the same way, with its own message
     return time.perf_counter() - start
@@ -306,12 +326,28 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
                 f"beam full order: {est[0]:.3g} steps of {est[4]:.3g} s on {est[2]} dofs, about "
                 f"{duration_text(est[1])} (estimate; full_order.beam_elements sets the dofs)"
             )
-    compile_seconds = warm_up(scene, case, which, integrator, modes, motion, pillar_modes)
+    spatial_modes = spatial_modes_for(which, chain)
+    compile_seconds = warm_up(scene, case, which, integrator, modes, motion, pillar_modes, spatial_modes)
     start = time.perf_counter()
-    res = run_case(scene, case, which, integrator, modes, truncation=False, motion=motion, pillar_modes=pillar_modes)
+    res = run_case(
+        scene,
+        case,
+        which,
+        integrator,
+        modes,
+        truncation=False,
+        motion=motion,
+        pillar_modes=pillar_modes,
+        spatial_modes=spatial_modes,
+    )
     wall = time.perf_counter() - start
     bars = None
-    if which == "modal":
+    spatial = res.planes is not None and res.planes.planes == "spatial"
+    if spatial:
+        from .cases import with_spatial_truncation
+
+        res = with_spatial_truncation(scene, res, motion, integrator, spatial_modes, progress)
+    elif which == "modal":
         res = with_truncation(scene, res, res.run.motion, integrator, pillar_modes, progress)
         if case != "sweep":
             from .uncertainty import uncertainty
@@ -355,7 +391,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     record = REDUCED_RUNS[which](
         **msgspec.structs.asdict(replace(res.summary, max_abs=ma)),
         case=case,
-        warnings=tuple(_warnings(case, m, res) + planar_transient_warnings(scene, case, which)),
+        warnings=tuple(_warnings(case, m, res) + planar_transient_warnings(scene, case, which, res.planes)),
         pillar_model=reduced_pillar_model(which, chain, info),
         uncertainty=bars,
         dofs=int(m.n),
@@ -369,6 +405,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
         max_abs_sampled=("tip_x_relative" if m.frame == "absolute" else "tip_x_absolute", "shaft_deflection_x"),
         initial_speed=res.initial_speed,
         excitation_in_model=res.excitation_in_model,
+        planes=res.planes,
         full_order=full_order,
         internal_forces=None,  # the forces, below
     )
@@ -378,24 +415,33 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
     return with_reduced_forces(scene, model_run, res, integrator, pillar_modes, motion, progress)
 
 
-def planar_transient_warnings(scene: Scene, case: str, model: str) -> list[str]:
-    """What a transient of ``model`` leaves out of what the scene asks: the transients of
-    simulate and compare (but `compare --components`) apply the record's first component in the
-    rotor's plane, on the planar ROM (modal_model.planes does not switch them yet)."""
+def planar_transient_warnings(scene: Scene, case: str, model: str, planes: PlanesChoice | None = None) -> list[str]:
+    """What a transient of ``model`` leaves out of what the scene asks (``planes``: the modal
+    model's, as rotorpillar.reduced.spatial_rotor.transient_planes resolved it).  The spatial ROM
+    runs every ground component and the motor's reaction; the planar models (paper, beam, the
+    planar ROM) and the 3D full order of simulate apply the record's first component in the
+    rotor's plane; a sweep runs the planar ROM whatever modal_model.planes says."""
     out = []
     x = scene.excitation
-    if case == "earthquake" and x.components > 1:
+    spatial = planes is not None and planes.planes == "spatial"
+    if case == "earthquake" and x.components > 1 and not spatial:
         out.append(
             f"excitation.components = {x.components}: this run applies the first component alone, "
             f"in the rotor's plane{' (excitation.angle ignored)' if x.angle else ''}; "
             f"`rotorpillar compare --case earthquake --components {x.components}` runs all of them on "
             "the spatial ROM and the 3D full order"
+            + ("" if model != "modal" else '; modal_model.planes = "spatial" (or "auto") runs them on the spatial ROM')
         )
-    if model == "modal" and scene.modal_model.planes == "spatial":
+    if model == "modal" and scene.modal_model.planes == "spatial" and not spatial:
         out.append(
-            'modal_model.planes = "spatial": the transient runs the planar ROM (the rotor\'s plane); the '
-            "spatial model's results are analyze.json's spatial and drive_reaction, campbell.json, "
-            "harmonic.json's spatial and compare_earthquake_components.json"
+            f'modal_model.planes = "spatial": the {case} runs the planar ROM (the rotor\'s plane): '
+            + (planes.reason if planes is not None else "its analysis is the planar averaging's")
+        )
+    if spatial:
+        out.append(
+            "the spatial ROM's run: no error bars (uncertainty) and no section forces along the pillar "
+            'yet (the planar ROM\'s have them: modal_model.planes = "planar"); compare --case earthquake '
+            "--components gives the spatial base reactions"
         )
     return out
 

@@ -76,7 +76,8 @@ def uncertainty(
     mapping by quantity name, not a record: a number without a finite value has no entry."""
     from .cases import run_case
 
-    quiet = override(scene, ["simulate.threshold=false"])
+    # the planar ROM's variants: only its runs get them (the spatial ROM's have neither)
+    quiet = override(scene, ["simulate.threshold=false", "modal_model.planes=planar"])
     k = base.model.pillar_modes.count
     values = headline_numbers(base)
 

@@ -74,7 +74,9 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
         from ..chain import resolve
 
         pillar_modes = resolve(scene, None).modes  # no study here: the scene's own model
-    rest = override(scene, ["simulate.threshold=false", "simulate.runup_initial_speed=0"])
+    # the planar ROM's run-up places the window (its resonances in the rotor's plane are the
+    # spatial ROM's to the gondola's inertia): as today, whatever modal_model.planes says
+    rest = override(scene, ["simulate.threshold=false", "simulate.runup_initial_speed=0", "modal_model.planes=planar"])
     res = run_case(rest, "runup", "modal", truncation=False, pillar_modes=pillar_modes)
     t, W, tip = res.run.t, res.run.Omega, np.abs(res.run.tip())
     qn = sorted(r.omega for r in res.model.quasi_normal())
