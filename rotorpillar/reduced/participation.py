@@ -148,16 +148,20 @@ def force_modes(
     k_mass = modes_for_fraction(c, required)
     needs = {"the case's run": modes_in_run, "the base moment": modes_for_moment, "the mass": k_mass or n}
     k = min(max(needs.values()), n)
-    governs = ", ".join(name for name, v in needs.items() if min(v, n) == k)
+    governs = " and ".join(name for name, v in needs.items() if min(v, n) == k)
     share = f"{100 * c[k - 1]:.1f} % of {total_mass:.5g} kg along {direction}"
     if k_mass is None:
         reason = (
-            f"all {n} candidate modes kept; they carry {share}, below the {100 * required:.0f} % "
+            f"all {n} candidate modes; they carry {share}, below the {100 * required:.0f} % "
             "EN 1998-1 4.3.3.3.1 asks of a modal analysis for forces: the base shear misses the rest "
             "(compute more modes: modal.n_modes)"
         )
     else:
-        reason = f"{k} modes ({governs}; {k_mass} carry the {100 * required:.0f} % EN 1998-1 4.3.3.3.1 asks): {share}"
+        reason = (
+            f"{k} modes, set by {governs} (the case's run keeps {modes_in_run}, the base moment needs "
+            f"{modes_for_moment}, {k_mass} carry the {100 * required:.0f} % EN 1998-1 4.3.3.3.1 asks): "
+            f"they carry {share}"
+        )
     return ForceModes(
         direction,
         float(required),

@@ -242,7 +242,9 @@ def _truncation(runs) -> list[str]:
             f"the base moment {need(t.modes_needed_base_moment)}, the base shear "
             f"{need(t.modes_needed_base_shear)} modes: the forces use {f.modes}, with which "
             f"the base shear's error is {h.pct(t.rows[f.modes - 1].base_shear, 1).lstrip('+')}"
-            f" (the modes left out carry mass the shear feels). {f.note}",
+            f" (the modes left out carry mass the shear feels). "
+            + ("" if f.mass is None else f"The ROM for forces keeps {plain(f.mass.reason)}. ")
+            + f.note,
         ),
         h.details("errors per number of modes", h.table(["modes", "tip", "base moment", "base shear"], rows)),
     ]
