@@ -96,7 +96,7 @@ class MachineChecks(Record):
     model: str
     """the ROM the numbers come from, in words"""
     warnings: tuple[str, ...]
-    """what the checks warn of (a ROM below 90 % of the mass)"""
+    """what the checks warn of (the ROM for forces below 90 % of the mass with every mode computed)"""
 
 
 def steady_orbit(model: RotorStructure, omega: float) -> tuple[complex, complex, complex]:
