@@ -154,7 +154,7 @@ def force_modes(
         reason = (
             f"all {n} candidate modes; they carry {share}, below the {100 * required:.0f} % "
             "EN 1998-1 4.3.3.3.1 asks of a modal analysis for forces: the base shear misses the rest "
-            "(compute more modes: modal.n_modes)"
+            "(more candidate modes: modal.n_modes for the 3D ones, modal_model.elements for the beam's)"
         )
     else:
         reason = (
