@@ -9,7 +9,8 @@ Read from what the stages wrote (``verdict.summary`` collects them):
   boundary, and the share of the machine's mass the ROM for forces' modes
   carry against EN 1998-1's 90 % (demand = the share required, capacity =
   the share there is, as the separation margins read);
-- each modal run's section forces: the share their modes carry (the
+- each modal run's section forces: the share their modes carry (its
+  internal_forces.mass, where the run records it; the
   transients' force ROM may keep more modes than the run: its
   ``internal_forces.modes``);
 - modal.json's loaded-tube modes (3D): the effective masses along x, y, z;
@@ -124,6 +125,7 @@ def run_mass_rows(m: MachineChecks, runs: list) -> list[Check]:
         forces = rf.run.internal_forces
         if rf.run.model != "modal" or forces is None or forces.modes is None:
             continue
+        own = forces.mass
         k = min(forces.modes, len(f.cumulative))
         out.append(
             check(
@@ -131,11 +133,12 @@ def run_mass_rows(m: MachineChecks, runs: list) -> list[Check]:
                 "effective_mass_fraction",
                 "-",
                 f.required,
-                f.cumulative[k - 1],
+                f.cumulative[k - 1] if own is None else own.fraction,
                 "modal",
                 rf.label,
                 f"{rf.file}: internal_forces.modes = {forces.modes}, their share of the mass from "
-                "analyze.json's machine_checks.force_rom; demand = the share required, capacity = the share kept",
+                + ("analyze.json's machine_checks.force_rom" if own is None else f"internal_forces.mass ({own.reason})")
+                + "; demand = the share required, capacity = the share kept",
             )
         )
     return out
