@@ -9,10 +9,9 @@ Read from what the stages wrote (``verdict.summary`` collects them):
   boundary, and the share of the machine's mass the ROM for forces' modes
   carry against EN 1998-1's 90 % (demand = the share required, capacity =
   the share there is, as the separation margins read);
-- each modal run's section forces: the share their modes carry (its
-  internal_forces.mass, where the run records it; the
+- each modal run's section forces: the share their modes carry (the
   transients' force ROM may keep more modes than the run: its
-  ``internal_forces.modes``);
+  ``internal_forces.modes``, the share its ``internal_forces.mass``);
 - modal.json's loaded-tube modes (3D): the effective masses along x, y, z;
 - each run's ``internal_forces.design``: the foundation's design reactions
   (no capacity: they are the foundation designer's loads, not a check).
