@@ -95,6 +95,88 @@ def modes_for_fraction(cumulative: ArrayLike, target: float = EC8_MASS_FRACTION)
     return int(hit[0]) + 1 if hit.size else None
 
 
+def pillar_mass_fractions(
+    participation: ArrayLike, modal_mass: ArrayLike, rotor_mass: float, total_mass: float
+) -> NDArray[np.float64]:
+    """The share of ``total_mass`` (kg) a modal ROM carries with its first k = 1, 2, ...
+    pillar modes (``participation`` L_j and ``modal_mass`` m_j, kg), the rotor (a
+    coordinate of its own, ``rotor_mass``, kg) always whole (-)."""
+    out: NDArray[np.float64] = (np.cumsum(effective_masses(participation, modal_mass)) + rotor_mass) / total_mass
+    return out
+
+
+class ForceModes(Record):
+    """How many pillar modes a ROM for forces keeps, and why (EN 1998-1 4.3.3.3.1(3))."""
+
+    direction: str
+    """the base's direction of motion the shares are taken along, e.g. "X" (the rotor's plane)"""
+    required: float
+    """the share of the mass the kept modes must carry, 0.90 (-)"""
+    total_mass: float
+    """the mass the base carries along it: tube, gondola and rotor (kg)"""
+    modes: int
+    """the pillar modes the forces superpose (-)"""
+    fraction: float
+    """the share of ``total_mass`` they carry, the rotor whole (-)"""
+    cumulative: tuple[float, ...]
+    """the share with the first k = 1, 2, ... candidate modes (-)"""
+    modes_in_run: int
+    """the pillar modes of the case's run (its band rule, the headline's) (-)"""
+    modes_for_mass: int | None
+    """the fewest that carry ``required`` (None: all the candidates do not)"""
+    modes_for_moment: int
+    """the fewest with the base moment within the truncation tolerance over the band (-)"""
+    modes_available: int
+    """the candidate modes there are (-)"""
+    reason: str
+    """why ``modes``, in words"""
+
+
+def force_modes(
+    cumulative: ArrayLike,
+    modes_in_run: int,
+    modes_for_moment: int,
+    total_mass: float,
+    direction: str = "X",
+    required: float = EC8_MASS_FRACTION,
+) -> ForceModes:
+    """The pillar modes a ROM for forces keeps: the most of the run's, the base moment's
+    need and the fewest carrying ``required`` of the mass (``cumulative`` per count), at
+    most every candidate; ``reason`` says which governed and whether the mass was reached."""
+    c = np.asarray(cumulative, dtype=float)
+    n = len(c)
+    k_mass = modes_for_fraction(c, required)
+    needs = {"the case's run": modes_in_run, "the base moment": modes_for_moment, "the mass": k_mass or n}
+    k = min(max(needs.values()), n)
+    governs = " and ".join(name for name, v in needs.items() if min(v, n) == k)
+    share = f"{100 * c[k - 1]:.1f} % of {total_mass:.5g} kg along {direction}"
+    if k_mass is None:
+        reason = (
+            f"all {n} candidate modes; they carry {share}, below the {100 * required:.0f} % "
+            "EN 1998-1 4.3.3.3.1 asks of a modal analysis for forces: the base shear misses the rest "
+            "(more candidate modes: modal.n_modes for the 3D ones, modal_model.elements for the beam's)"
+        )
+    else:
+        reason = (
+            f"{k} modes, set by {governs} (the case's run keeps {modes_in_run}, the base moment needs "
+            f"{modes_for_moment}, {k_mass} carry the {100 * required:.0f} % EN 1998-1 4.3.3.3.1 asks): "
+            f"they carry {share}"
+        )
+    return ForceModes(
+        direction,
+        float(required),
+        float(total_mass),
+        int(k),
+        float(c[k - 1]),
+        tuple(map(float, c)),
+        int(modes_in_run),
+        k_mass,
+        int(modes_for_moment),
+        n,
+        reason,
+    )
+
+
 def effective_mass_table(
     direction: str, omega: ArrayLike, effective_mass: ArrayLike, total_mass: float, note: str = ""
 ) -> EffectiveMassTable:

@@ -17,9 +17,13 @@ and returns it with
 Per model:
 - modal (the ROM): modal superposition of the modes' section resultants,
   with at least as many modes as the base moment needs for 1 % over the
-  run's band (``reduced.internal_forces.force_truncation``); when that is
-  more than the run kept, the forces come from a second run of the case
-  with that many modes (the tip's answers stay the first run's);
+  run's band (``reduced.internal_forces.force_truncation``) and as carry
+  90 % of the machine's mass along X (tube, gondola, the rotor whole: EN
+  1998-1 4.3.3.3.1(3), ``reduced.participation.force_modes``; all the
+  candidates, warned of, when they carry less), recorded in
+  ``internal_forces.mass``; when that is more than the run kept, the forces
+  come from a second run of the case with that many modes (the tip's
+  answers stay the first run's);
 - beam: the element end forces of every degree of freedom (exact for the
   full-order beam);
 - fem3d: the section resultants and the von Mises field the run's observer
@@ -61,8 +65,9 @@ from ..reduced.internal_forces import (
     tower_static_resultants,
 )
 from ..reduced.models import BeamModelInfo
+from ..reduced.participation import ForceModes, force_modes, pillar_mass_fractions
 from ..reduced.reactions import NOT_COMPUTED, DesignReactions, design_reactions
-from ..reduced.tower import base_section
+from ..reduced.tower import base_section, tower_mass
 
 
 class BaseReactions(Record):
@@ -156,6 +161,9 @@ class InternalForcesSummary(Record):
     """the modal ROM: modes of the case's run (its band)"""
     truncation: ForceTruncation | None = None
     """the modal ROM: the modes the section forces need (rotorpillar.reduced.internal_forces)"""
+    mass: ForceModes | None = None
+    """the modal ROM: the share of the mass its modes carry along the excitation, and why
+    ``modes`` (rotorpillar.reduced.participation: at least 90 %, EN 1998-1 4.3.3.3.1)"""
     von_mises: VonMisesSummary | None = None
     """the 3D model: its von Mises field's peaks"""
     stress_field: str | None = None
@@ -311,7 +319,10 @@ def _attach(run, summary: InternalForcesSummary | None, series: dict, force, ext
         base_stress=None if base is None else base.stress,
         **extra_max,
     )
-    record = replace(run.record, max_abs=ma, internal_forces=summary)
+    warnings = tuple(run.record.warnings)
+    if summary is not None and summary.mass is not None and summary.mass.modes_for_mass is None:
+        warnings += (f"section forces: {summary.mass.reason}",)
+    record = replace(run.record, max_abs=ma, internal_forces=summary, warnings=warnings)
     t = np.asarray(data["t"], dtype=float)
     for key, values in series.items():
         data[key] = values
@@ -441,7 +452,10 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
         base_statics=base_statics,
     )
     k_run = res.model.pillar_modes.count
-    k = min(max(k_run, trunc.modes_for_forces), candidates.count)
+    total = tower_mass(scene.pillar) + top_mass(scene)
+    fractions = pillar_mass_fractions(candidates.participation, candidates.modal_mass, scene.rotor.mass, total)
+    chosen = force_modes(fractions, k_run, trunc.modes_for_forces, total)
+    k = chosen.modes
     data = run.data
     if k > k_run:
         if progress:
@@ -503,6 +517,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
         modes_in_run=k_run,
         truncation=trunc,
         note=note,
+        mass=chosen,
     )
 
 

@@ -6,12 +6,12 @@ Read from what the stages wrote (``verdict.summary`` collects them):
   headline ROM at the running speed): the balance grade against
   ``rotor.balance_grade`` (ISO 21940-11), the shaft's steady peak-to-peak
   against API 617, the top's r.m.s. velocity against ISO 20816-3's B/C
-  boundary, and the share of the machine's mass the ROM's modes carry
-  against EN 1998-1's 90 % (demand = the share required, capacity = the
-  share there is, as the separation margins read);
+  boundary, and the share of the machine's mass the ROM for forces' modes
+  carry against EN 1998-1's 90 % (demand = the share required, capacity =
+  the share there is, as the separation margins read);
 - each modal run's section forces: the share their modes carry (the
   transients' force ROM may keep more modes than the run: its
-  ``internal_forces.modes``);
+  ``internal_forces.modes``, the share its ``internal_forces.mass``);
 - modal.json's loaded-tube modes (3D): the effective masses along x, y, z;
 - each run's ``internal_forces.design``: the foundation's design reactions
   (no capacity: they are the foundation designer's loads, not a check).
@@ -102,12 +102,13 @@ def machine_check_rows(m: MachineChecks) -> list[Check]:
             "effective_mass_fraction",
             "-",
             f.required,
-            f.fraction_kept,
+            f.fraction_for_forces,
             "modal",
-            "analyze: the headline ROM",
-            f"analyze.json: machine_checks.force_rom; {f.modes_kept} pillar mode(s) and the rotor carry "
-            f"{100 * f.fraction_kept:.1f} % of {f.total_mass:.5g} kg along X; demand = the share "
-            f"EN 1998-1 4.3.3.3.1 requires, capacity = the share there is; "
+            "analyze: the ROM for forces",
+            f"analyze.json: machine_checks.force_rom; {f.modes_for_forces} pillar mode(s) and the rotor carry "
+            f"{100 * f.fraction_for_forces:.1f} % of {f.total_mass:.5g} kg along X (the headline ROM's "
+            f"{f.modes_kept}: {100 * f.fraction_kept:.1f} %); demand = the share EN 1998-1 4.3.3.3.1 "
+            "requires, capacity = the share there is; "
             + (f"{f.modes_needed} mode(s) reach it" if f.modes_needed else "the modes computed do not reach it"),
         )
     )
@@ -123,6 +124,7 @@ def run_mass_rows(m: MachineChecks, runs: list) -> list[Check]:
         forces = rf.run.internal_forces
         if rf.run.model != "modal" or forces is None or forces.modes is None:
             continue
+        own = forces.mass
         k = min(forces.modes, len(f.cumulative))
         out.append(
             check(
@@ -130,11 +132,12 @@ def run_mass_rows(m: MachineChecks, runs: list) -> list[Check]:
                 "effective_mass_fraction",
                 "-",
                 f.required,
-                f.cumulative[k - 1],
+                f.cumulative[k - 1] if own is None else own.fraction,
                 "modal",
                 rf.label,
                 f"{rf.file}: internal_forces.modes = {forces.modes}, their share of the mass from "
-                "analyze.json's machine_checks.force_rom; demand = the share required, capacity = the share kept",
+                + ("analyze.json's machine_checks.force_rom" if own is None else f"internal_forces.mass ({own.reason})")
+                + "; demand = the share required, capacity = the share kept",
             )
         )
     return out

@@ -128,23 +128,31 @@ def case_name(case: str, excitation: ExcitationSizes | None) -> str:
     return case
 
 
-def model_runs(out: Path, damaged: dict[str, str] | None = None) -> list[RunFile]:
-    """The runs of ``out``, one per (case as a reader names it, model): the newest file
-    where simulate and compare both ran it; a file that cannot be read as a run is left
-    out, and named in ``damaged`` (file -> why)."""
+def every_run(out: Path, damaged: dict[str, str] | None = None) -> list[tuple[float, RunFile]]:
+    """Every run file of ``out`` (simulate's and compare's) with its modification time (s),
+    by name; a file that cannot be read as a run is left out, and named in ``damaged``
+    (file -> why)."""
     from ..transients.model_run import RunRecord
 
-    found: dict[tuple, tuple[float, RunFile]] = {}
+    runs = []
     for path in sorted(Path(out).glob("*_*_*.json")):
         if not _RUN_FILE.fullmatch(path.name):
             continue
         try:
             got = RunFile(path.name, records.read(path, RunRecord))  # type: ignore[arg-type]  # a union
-            when = path.stat().st_mtime
+            runs.append((path.stat().st_mtime, got))
         except (OSError, ValueError) as exc:
             if damaged is not None:
                 damaged[path.name] = str(exc)
-            continue
+    return runs
+
+
+def model_runs(out: Path, damaged: dict[str, str] | None = None) -> list[RunFile]:
+    """The runs of ``out``, one per (case as a reader names it, model): the newest file
+    where simulate and compare both ran it; a file that cannot be read as a run is left
+    out, and named in ``damaged`` (file -> why)."""
+    found: dict[tuple, tuple[float, RunFile]] = {}
+    for when, got in every_run(out, damaged):
         key = (got.label, got.run.model)
         if key not in found or when > found[key][0]:
             found[key] = (when, got)
