@@ -21,6 +21,12 @@ speed's margin, the earthquake's peaks, the run-up, and from campbell.json
 forward and first backward critical speed and the first one the static
 unbalance excites.
 
+The earthquake in two or three components (compare_earthquake_components.json:
+the spatial ROM over the whole record, the 3D full order over its window)
+adds its base stress checks and leads the earthquake headlines
+(rotorpillar.verdict.earthquake3d); the one-component runs stay beside it,
+the model comparison.
+
 Each check's governing row is its largest utilisation over the models and
 cases; a check without a capacity (or a demand) is "not assessed", and the
 verdict says so instead of passing it.  The paper model (Eq. 4 with the
@@ -45,32 +51,14 @@ from pathlib import Path
 from .. import records
 from ..analysis.machine import MachineChecks
 from ..records import Record
-from ..reduced.capacity import FAIL, GAMMA_M0, NOT_ASSESSED, PASS, Check, MeridionalBuckling, check, meridional_buckling
+from ..reduced.capacity import FAIL, GAMMA_M0, NOT_ASSESSED, PASS, Check, MeridionalBuckling, check
 from ..reduced.participation import EffectiveMassTable
-from ..reduced.tower import base_section
 from ..scene import CASES, MODELS
 from .harmonic import HarmonicResult
+from .headline import Headline
+from .headline import base_buckling as _buckling
 from .machine import FoundationLoads
 from .tower_checks import can_checks, foundation_checks, order_checks
-
-
-class Headline(Record, omit_defaults=True):
-    """A number a reader came for, with the model and the case it came from."""
-
-    key: str
-    """e.g. "loaded_first_frequency\""""
-    label: str
-    """what it is, in words"""
-    value: float | None
-    unit: str
-    model: str | None
-    case: str | None
-    source: str
-    """the file (and field) it was read from"""
-    text: str
-    """the sentence the report prints"""
-    error: float | None = None
-    """its error bar, in ``unit`` (rotorpillar.chain.Uncertain's error), where one was made"""
 
 
 class EngineeringSummary(Record):
@@ -253,15 +241,6 @@ def _run_checks(scene: Scene, rf: RunFile) -> list[Check]:
     return [c for c in out if c.demand is not None or c.capacity is not None]
 
 
-def _buckling(scene: Scene, axial_share: float = 1.0):
-    p, mat = scene.pillar, scene.material
-    sec = base_section(p)
-    r = (sec.outer_diameter + sec.inner_diameter) / 4
-    return meridional_buckling(
-        p.youngs_modulus, r, sec.wall_thickness, p.height, mat.yield_strength, mat.fabrication_class, axial_share
-    )
-
-
 def _margin_checks(h: HarmonicResult) -> list[Check]:
     out = []
     for row in h.separation:
@@ -317,8 +296,14 @@ _BARRED = {"tip_x_relative": "peak_tip_relative"}
 
 
 def _headlines(
-    scene: Scene, runs: list[RunFile], h: HarmonicResult | None, modal: ModalSummary | None
+    scene: Scene,
+    runs: list[RunFile],
+    h: HarmonicResult | None,
+    modal: ModalSummary | None,
+    quake: tuple[Headline, ...] = (),
 ) -> list[Headline]:
+    """The headlines; ``quake``: the multi-component earthquake's (verdict.earthquake3d), which
+    lead the earthquakes (the one-component runs after them are the model comparison)."""
     out = []
     if modal is not None:
         rows = [r for r in modal.modes_with_top if r.kind == "bending_x"]
@@ -369,6 +354,7 @@ def _headlines(
                 f"{100 * row.required:.1f} % ({af}): {row.status}.",
             )
         )
+    out += quake
     for rf in runs:
         run = rf.run
         if run.case != "earthquake" or getattr(run.excitation, "kind", None) != "record":
@@ -494,6 +480,7 @@ def _runup(runs: list[RunFile]) -> RunFile | None:
 def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     """The verdict of the files in ``out`` (see the module text)."""
     from ..fem3d.modal_summary import ModalSummary
+    from .earthquake3d import COMPONENTS_FILE, earthquake3d, read_components
     from .machine import foundation_loads, machine_check_rows, run_mass_rows, tube_effective_masses
 
     out = Path(out)
@@ -504,6 +491,12 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
     for rf in runs:
         if rf.run.model in CHECKED_MODELS:
             rows += _run_checks(scene, rf)
+    # the earthquake in two or three components (the one the page leads with), beside the runs'
+    components = read_components(out, damaged)
+    quake = None if components is None else earthquake3d(scene, components)
+    if quake is not None:
+        inputs.append(COMPONENTS_FILE)
+        rows += quake.checks
     harmonic = modal = None
     if (out / "harmonic.json").is_file():
         try:
@@ -532,7 +525,7 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         except (ValueError, OSError) as exc:  # damaged: no Campbell headlines, and it is named
             campbell, damaged["campbell.json"] = None, str(exc)
     governing = _governing(rows)
-    missing = _not_assessed(scene, governing, harmonic is not None, bool(runs))
+    missing = _not_assessed(scene, governing, harmonic is not None, bool(runs) or quake is not None)
     missing += [f"{file} is damaged, not read ({why}): rebuild it" for file, why in damaged.items()]
     if machine is None:
         missing.append("balance, vibration at speed, modal mass: analyze.json not found (run `rotorpillar analyze`)")
@@ -544,7 +537,9 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         default=None,
     )
     buckling = None
-    if share is not None:
+    if share is not None and quake is not None and (share.model, share.case) in quake.shares:
+        buckling = _buckling(scene, quake.shares[(str(share.model), str(share.case))])
+    elif share is not None:
         source = next((r for r in runs if r.run.model == share.model and r.label == share.case), None)
         forces = None if source is None else source.run.internal_forces
         buckling = _buckling(scene, forces.base.axial_share if forces is not None else 1.0)
@@ -553,7 +548,10 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         verdict,
         tuple(governing),
         tuple(rows),
-        tuple(_headlines(scene, runs, harmonic, modal) + _campbell_headlines(campbell)),
+        tuple(
+            _headlines(scene, runs, harmonic, modal, () if quake is None else quake.headlines)
+            + _campbell_headlines(campbell)
+        ),
         buckling,
         tuple(missing),
         tuple(inputs),

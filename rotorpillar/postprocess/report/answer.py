@@ -11,7 +11,8 @@ from __future__ import annotations
 from ... import records
 from ...records import Record
 from ...reduced.capacity import Check
-from ...verdict.summary import EngineeringSummary, Headline
+from ...verdict.headline import Headline
+from ...verdict.summary import EngineeringSummary
 from .page import Section, render, with_subsections
 from .state import Build
 
