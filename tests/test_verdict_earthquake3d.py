@@ -189,3 +189,29 @@ def test_a_damaged_components_file_is_named(tmp_path, text):
     assert any(m.startswith(f"{COMPONENTS_FILE} is damaged") for m in s.not_assessed)
     assert COMPONENTS_FILE not in s.inputs
     assert not any("3 components" in str(c.case) for c in s.check_details)
+
+
+def test_the_scene_table_shows_what_the_earthquake_stages_ran(tmp_path):
+    """The page's scene table: the scene's excitation.kind (paper) with what the components stage ran
+    with beside it (record), and that stage's own overrides in the table below it."""
+    from rotorpillar import records
+    from rotorpillar.postprocess.report.modal import section_scene
+    from rotorpillar.postprocess.report.state import Build
+    from rotorpillar.scene import override
+
+    scene = load_scene("paper")
+    sets = ["excitation.kind=record", "excitation.components=3", "full_order.earthquake_duration=4"]
+    head = {
+        "command": "compare",
+        "scene_source": "paper",
+        "overrides": sets,
+        "scene": records.to_builtins(override(scene, sets).to_dict()),
+    }
+    write_result(tmp_path / COMPONENTS_FILE, _comparison(), head)
+    html = section_scene(Build(scene, tmp_path, "paper", None))  # type: ignore[arg-type]  # no report options needed
+    assert scene.excitation.kind == "paper"
+    assert "<td>paper (the scene&#x27;s; the earthquake stages ran with record: see below)</td>" in html
+    table = html[html.index("The earthquake stages ran") :]
+    assert "El Centro in three components" in table
+    assert "excitation.kind = record; excitation.components = 3; full_order.earthquake_duration = 4" in table
+    assert ", ".join(sets) in table

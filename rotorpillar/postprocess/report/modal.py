@@ -92,15 +92,22 @@ def top_words(top: ModalTop | None) -> tuple[str, str]:
 
 def section_scene(build: Build) -> str:
     from ...scene import SECTIONS
+    from .scene_runs import earthquake_stages, ran_with, stages_table
 
     d = build.scene.to_dict()
+    stages = earthquake_stages(build)
+    beside = ran_with(stages)  # what the earthquake stages ran with instead, key by key
     rows = []
     for sec, cls in SECTIONS.items():
         values = d.get(sec)
         if not isinstance(values, dict):
             continue
         for f in dataclasses.fields(cls):
-            rows.append([f"{sec}.{f.name}", h.num(values.get(f.name)), f.metadata.get("doc", "")])
+            key = f"{sec}.{f.name}"
+            value = h.num(values.get(f.name))
+            if key in beside:
+                value += f" (the scene's; the earthquake stages ran with {beside[key]}: see below)"
+            rows.append([key, value, f.metadata.get("doc", "")])
     parts = [
         h.tag("p", [h.tag("strong", build.scene.name), ": ", build.scene.description or ""]),
         h.tag(
@@ -114,6 +121,7 @@ def section_scene(build: Build) -> str:
             class_="meta",
         ),
         h.details(f"every key of the scene ({len(rows)})", h.table(["key", "value (SI)", "meaning (unit)"], rows)),
+        *stages_table(stages),
     ]
     return h.section("scene", "The scene", parts)
 
