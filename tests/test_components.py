@@ -39,6 +39,10 @@ def test_resultant_moment_lies_between_the_larger_component_and_the_sum_of_maxim
     assert np.allclose(s.moment, np.hypot(s.moment_x, s.moment_y), rtol=1e-12, atol=1e-9 * np.max(s.moment))
     assert r.directions[2] == (0.0, 0.0, 1.0) and "vertical" in r.components[2]
     assert any("vertical component's inertia" in w for w in r.warnings)
+    # the 3D's window from the start: the JSON says where the ROM's peak falls and why it is not moved there
+    assert r.modal_peak_time is not None and 0 < r.modal_peak_time <= r.modal_duration
+    (note,) = [n for n in r.notes if n.startswith("the 3D full order runs the first")]
+    assert ("is inside it" if r.modal_peak_time <= r.window else "is past it") in note
 
 
 @pytest.mark.slow
