@@ -96,7 +96,7 @@ def section_scene(build: Build) -> str:
 
     d = build.scene.to_dict()
     stages = earthquake_stages(build)
-    beside = ran_with(stages)  # what the earthquake stages ran with instead, key by key
+    beside = dict(ran_with(stages))  # what the earthquake stages ran with instead, key by key
     rows = []
     for sec, cls in SECTIONS.items():
         values = d.get(sec)

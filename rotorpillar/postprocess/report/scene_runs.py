@@ -65,18 +65,18 @@ def earthquake_stages(build: Build) -> list[StageScene]:
     return out
 
 
-def ran_with(stages: list[StageScene]) -> dict[str, str]:
-    """Dotted key -> the values the earthquake stages ran with instead, each once, in words.
+def ran_with(stages: list[StageScene]) -> tuple[tuple[str, str], ...]:
+    """(dotted key, the values the earthquake stages ran with instead, each once, in words).
 
     >>> ran_with([StageScene("a", (), {"excitation.kind": "record"}), StageScene("b", (), {"excitation.kind": "record"})])
-    {'excitation.kind': 'record'}
+    (('excitation.kind', 'record'),)
     """
     cells: dict[str, list[str]] = {}
     for s in stages:
         for k, v in s.values.items():
             if h.num(v) not in cells.setdefault(k, []):
                 cells[k].append(h.num(v))
-    return {k: ", ".join(v) for k, v in cells.items()}
+    return tuple((k, ", ".join(v)) for k, v in cells.items())
 
 
 def stages_table(stages: list[StageScene]) -> list[str]:
