@@ -25,6 +25,8 @@ import os
 import subprocess
 import sys
 import time
+from collections.abc import Callable
+from pathlib import Path
 
 from .. import records
 from ..errors import StageError
@@ -169,10 +171,16 @@ def _reap(proc: subprocess.Popen) -> tuple[int | None, float]:
     return proc.returncode, usage.ru_utime + usage.ru_stime
 
 
-def run_wave(jobs: list[tuple[str, list[str]]], slots: int, cpu: dict[str, float] | None = None) -> dict[str, float]:
+def run_wave(
+    jobs: list[tuple[str, list[str]]],
+    slots: int,
+    cpu: dict[str, float] | None = None,
+    on_done: Callable[[str, float], None] | None = None,
+) -> dict[str, float]:
     """Run the stage processes of one wave, ``slots`` at a time; each one's wall time (s),
     and into ``cpu`` each one's processor time (s: on a shared machine the steadier
-    measure of its work).
+    measure of its work).  ``on_done(command, seconds)`` is called as each stage
+    succeeds (exit 0), at once: a later failure in the wave does not undo it.
 
     A stage that fails stops the wave once the stages already running have
     finished (their files stay whole); Ctrl-C or SIGTERM kills every stage
@@ -199,6 +207,8 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int, cpu: dict[str, float
                 del running[command]
                 if code != 0:
                     failed.append((command, code))
+                elif on_done is not None:
+                    on_done(command, seconds[command])
     except BaseException:
         for proc, _ in running.values():
             proc.kill()
@@ -211,11 +221,12 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int, cpu: dict[str, float
     return seconds
 
 
-def preflight(scene: Scene, stages, args) -> None:
+def preflight(scene: Scene, stages, args) -> dict[str, Scene]:
     """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
     module), on the scene and arguments that stage will see: its command line parsed by
     the CLI's parser, its own --set before the user's.  Called before the first stage,
-    so a stage that would refuse its input refuses `run`, with nothing written."""
+    so a stage that would refuse its input refuses `run`, with nothing written.
+    Returns each stage's scene (its command -> the scene it sees)."""
     import importlib
 
     from ..errors import InputError
@@ -239,6 +250,7 @@ def preflight(scene: Scene, stages, args) -> None:
                 check(stage_scene, stage_args)
         except InputError as exc:
             raise InputError(f"stage {command!r}: {exc}") from None
+    return {command: stage_scene for command, stage_scene, _ in checks}
 
 
 def add_arguments(parser) -> None:
@@ -251,46 +263,124 @@ def add_arguments(parser) -> None:
         metavar="STAGE",
         help=f"leave out a stage ({', '.join(names)}); repeatable",
     )
+    parser.add_argument(
+        "--force",
+        action="store_true",
+        help="run every stage, also those whose inputs and code are unchanged since they last ran here",
+    )
+
+
+def _inputs(stage, out: Path) -> list[Path]:
+    """The files a stage reads from the output folder, for its key: the JSON of every stage
+    of an earlier wave (conservative: modal reads convergence.json, analyze both, the
+    later waves read the chain's files, the report all of them)."""
+    return [out / f"{stage_stem(st[0])}.json" for st in RUN_STAGES if st[4] < stage[4]]
+
+
+def _page(report: str | None, out: Path) -> list[str]:
+    """The report's page as a name in ``out`` (kept with its key: a page removed since is
+    made again)."""
+    if not report:
+        return []
+    page = Path(report)
+    page = page if page.is_absolute() else Path.cwd() / page
+    try:
+        return [str(page.resolve().relative_to(out.resolve()))]
+    except ValueError:
+        return []
 
 
 def run_command(scene: Scene, args, timings):
-    """Every stage of RUN_STAGES, each writing its own JSON."""
+    """Every stage of RUN_STAGES, each writing its own JSON; a stage whose key
+    (commands.stage_keys) is the one kept from its last success here is not run again."""
     from ..errors import InputError
     from . import out_dir
+    from . import stage_keys as keys
 
     args._scene = scene
     skip = set(getattr(args, "skip", []))
+    force = bool(getattr(args, "force", False))
     known = {st[0].split()[0] for st in RUN_STAGES} - {"report"}
     if skip - known:
         raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
     todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
-    preflight(scene, todo, args)  # every stage's bad input: refused now, not late
+    scenes = preflight(scene, todo, args)  # every stage's bad input: refused now, not late
+    out = out_dir(scene, args)
     stages, lines, report = {}, [], None
     waves = sorted({st[4] for st in todo})
     slots = max(1, min(os.cpu_count() or 1, MAX_SIDE_BY_SIDE))
-    n = 0
+    n, ran = 0, False
     for wave in waves:
         group = [st for st in todo if st[4] == wave]
+        # each stage's key, once the waves before it have written what it reads
+        check_start = time.perf_counter()
+        key = {
+            st[0]: keys.stage_key(
+                st[0],
+                keys.command_words(st[0], st[3], st[2](args) if st[2] else ()),
+                scenes[st[0]].to_dict(),
+                _inputs(st, out),
+            )
+            for st in group
+        }
+        reused = {}
+        for st in group:
+            # the report shows every stage: it runs again whenever one of them did
+            if not force and not (st[0] == "report" and ran):
+                done = keys.recall(out, stage_stem(st[0]), key[st[0]])
+                if done is not None:
+                    reused[st[0]] = done
+        check = (time.perf_counter() - check_start) / len(group)
+        runs = [st for st in group if st[0] not in reused]
         for command, what, *_ in group:
             n += 1
-            progress(f"run {n}/{len(todo)}: {command} ({what})" + (" [side by side]" if len(group) > 1 else ""))
+            if command in reused:
+                done = reused[command]
+                progress(f"{command}: unchanged since {keys.since(done)}, {check:.1f} s (it took {done.seconds:.1f} s)")
+            else:
+                side = " [side by side]" if len(runs) > 1 else ""
+                progress(f"run {n}/{len(todo)}: {command} ({what})" + side)
+        for st in runs:
+            keys.forget(out, stage_stem(st[0]))  # only a success keeps a key
+
+        def done_now(command: str, seconds: float, key: dict[str, str] = key) -> None:
+            page = []
+            if command == "report":
+                from ..postprocess.report import ReportResult
+
+                page = _page(records.read(out / "report.json", ReportResult).report, out)
+            keys.remember(out, stage_stem(command), key[command], seconds, page)
+
         cpu: dict[str, float] = {}
-        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in group], slots, cpu)
+        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in runs], slots, cpu, done_now)
+        ran = ran or bool(runs)
         for command, _what, _extra, own, _ in group:
-            timings[command] = seconds[command]
             stem = stage_stem(command)
-            path = out_dir(scene, args) / f"{stem}.json"
+            path = out / f"{stem}.json"
             written = records.read(path, Provenance)
+            first = reused.get(command)
+            timings[command] = check if first else seconds[command]
             stages[stem] = Stage(
                 json=str(path),
                 seconds=timings[command],
-                cpu_seconds=cpu.get(command),
+                cpu_seconds=None if first else cpu.get(command),
                 command=command,
                 arguments=tuple(own),
                 wave=wave,
                 stage_seconds=written.timings.get("total"),
+                key=key[command],
+                reused=first is not None,
+                first_seconds=first.seconds if first else None,
+                finished=first.finished if first else None,
             )
-            lines.append(f"{command:>26}: {timings[command]:8.2f} s ({cpu.get(command, 0.0):7.2f} s cpu)  -> {path}")
+            if first:
+                lines.append(
+                    f"{command:>26}: unchanged since {keys.since(first)} ({first.seconds:.2f} s then)  -> {path}"
+                )
+            else:
+                lines.append(
+                    f"{command:>26}: {timings[command]:8.2f} s ({cpu.get(command, 0.0):7.2f} s cpu)  -> {path}"
+                )
             if command.split()[0] == "report":
                 from ..postprocess.report import ReportResult
 
@@ -317,6 +407,14 @@ class Stage(Record):
     """the wave it ran in (stages of a wave run side by side)"""
     stage_seconds: float | None
     """the stage's own total, from its JSON's timings (s)"""
+    key: str | None = None
+    """its key (commands.stage_keys): command line, scene sections read, input files, code"""
+    reused: bool = False
+    """true when it was not run again: its key and files were those of its last success here"""
+    first_seconds: float | None = None
+    """a reused stage's wall time when it last ran (s; ``seconds`` is then the check's)"""
+    finished: str | None = None
+    """when a reused stage last finished (UTC, ISO 8601)"""
 
 
 class RunResult(Record):
