@@ -16,7 +16,7 @@ other, run side by side on the machine's cores; the report comes last.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -221,26 +221,35 @@ def run_wave(
     return seconds
 
 
-def preflight(scene: Scene, stages, args) -> dict[str, Scene]:
-    """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
-    module), on the scene and arguments that stage will see: its command line parsed by
-    the CLI's parser, its own --set before the user's.  Called before the first stage,
-    so a stage that would refuse its input refuses `run`, with nothing written.
-    Returns each stage's scene (its command -> the scene it sees)."""
-    import importlib
-
+def stage_scenes(stages, args) -> list[tuple[str, Scene, Any]]:
+    """(command, the scene it sees, its parsed arguments) of each stage: its command line
+    parsed by the CLI's parser, its own --set before the user's."""
     from ..errors import InputError
     from ..scene import load_scene
-    from .parser import COMMANDS, build_parser
+    from .parser import build_parser
 
     parser = build_parser()
-    checks = []
+    out = []
     for command, _, extra, own, *_ in stages:
         stage_args = parser.parse_args(stage_argv(command, args, extra, own)[3:])
         try:
-            checks.append((command, load_scene(stage_args.scene, stage_args.overrides), stage_args))
+            out.append((command, load_scene(stage_args.scene, stage_args.overrides), stage_args))
         except InputError as exc:
             raise InputError(f"stage {command!r}: {exc}") from None
+    return out
+
+
+def preflight(scene: Scene, stages, args) -> dict[str, Scene]:
+    """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
+    module), on the scene and arguments that stage will see (:func:`stage_scenes`).
+    Called before the first stage, so a stage that would refuse its input refuses `run`,
+    with nothing written.  Returns each stage's scene (its command -> the scene it sees)."""
+    import importlib
+
+    from ..errors import InputError
+    from .parser import COMMANDS
+
+    checks = stage_scenes(stages, args)
     # every stage is checked; those that read a record (seconds: a library's imports) last,
     # so that what a cheaper stage also refuses is refused at once
     for command, stage_scene, stage_args in sorted(checks, key=lambda c: c[1].excitation.kind == "record"):
@@ -270,11 +279,30 @@ def add_arguments(parser) -> None:
     )
 
 
+#: What a stage writes beside ``<stem>.json`` that the stages after it read: the
+#: convergence study's record, which the chain reads (chain.choice.study_on_disk).
+READ_AFTER = {"converge": ("convergence.json",)}
+
+
 def _inputs(stage, out: Path) -> list[Path]:
     """The files a stage reads from the output folder, for its key: the JSON of every stage
-    of an earlier wave (conservative: modal reads convergence.json, analyze both, the
-    later waves read the chain's files, the report all of them)."""
-    return [out / f"{stage_stem(st[0])}.json" for st in RUN_STAGES if st[4] < stage[4]]
+    of an earlier wave and what READ_AFTER names of them (conservative: modal reads
+    convergence.json, analyze modal's too, the later waves the chain's files, the report
+    all of them)."""
+    earlier = [st[0] for st in RUN_STAGES if st[4] < stage[4]]
+    names = [f"{stage_stem(c)}.json" for c in earlier] + [n for c in earlier for n in READ_AFTER.get(c, ())]
+    return [out / name for name in names]
+
+
+def key_of(stage, args, stage_scene: Scene, out: Path) -> str:
+    """A stage's key (commands.stage_keys.stage_key): its command line, the sections of the
+    scene it sees that it reads, the earlier stages' JSON in ``out``, the code."""
+    from .stage_keys import command_words, stage_key
+
+    command, _, extra, own, _ = stage
+    return stage_key(
+        command, command_words(command, own, extra(args) if extra else ()), stage_scene.to_dict(), _inputs(stage, out)
+    )
 
 
 def _page(report: str | None, out: Path) -> list[str]:
@@ -314,15 +342,7 @@ def run_command(scene: Scene, args, timings):
         group = [st for st in todo if st[4] == wave]
         # each stage's key, once the waves before it have written what it reads
         check_start = time.perf_counter()
-        key = {
-            st[0]: keys.stage_key(
-                st[0],
-                keys.command_words(st[0], st[3], st[2](args) if st[2] else ()),
-                scenes[st[0]].to_dict(),
-                _inputs(st, out),
-            )
-            for st in group
-        }
+        key = {st[0]: key_of(st, args, scenes[st[0]], out) for st in group}
         reused = {}
         for st in group:
             # the report shows every stage: it runs again whenever one of them did
@@ -344,12 +364,12 @@ def run_command(scene: Scene, args, timings):
             keys.forget(out, stage_stem(st[0]))  # only a success keeps a key
 
         def done_now(command: str, seconds: float, key: dict[str, str] = key) -> None:
-            page = []
+            others = list(READ_AFTER.get(command, ()))
             if command == "report":
                 from ..postprocess.report import ReportResult
 
-                page = _page(records.read(out / "report.json", ReportResult).report, out)
-            keys.remember(out, stage_stem(command), key[command], seconds, page)
+                others += _page(records.read(out / "report.json", ReportResult).report, out)
+            keys.remember(out, stage_stem(command), key[command], seconds, others)
 
         cpu: dict[str, float] = {}
         seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in runs], slots, cpu, done_now)

@@ -73,8 +73,8 @@ class StageDone(Record):
     """when it finished (UTC, ISO 8601)"""
     seconds: float
     """its wall time then (s)"""
-    outputs: dict[str, str | None]
-    """the files it left, by name in the output folder -> their content hash (None: any content)"""
+    outputs: dict[str, str]
+    """the files it left, by name in the output folder -> their content hash"""
 
 
 def file_hash(path: Path) -> str | None:
@@ -153,12 +153,13 @@ def forget(out: Path, stem: str) -> None:
 
 
 def remember(out: Path, stem: str, key: str, seconds: float, others: Sequence[str] = ()) -> Path:
-    """Keep a stage that has just succeeded: its key, now, its time, the hash of its JSON
-    (``<stem>.json``) and that ``others`` (names in ``out``) exist."""
+    """Keep a stage that has just succeeded: its key, now, its time and the content hash of
+    the files it left: its ``<stem>.json`` and ``others`` (names in ``out``; one missing is
+    left out)."""
     now = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
-    outputs: dict[str, str | None] = {f"{stem}.json": file_hash(Path(out) / f"{stem}.json")}
-    outputs.update({name: None for name in others})
-    return write_json(_path(out, stem), Entry(key, StageDone(now, seconds, outputs)))
+    outputs = {name: file_hash(Path(out) / name) for name in [f"{stem}.json", *others]}
+    kept = {name: digest for name, digest in outputs.items() if digest is not None}
+    return write_json(_path(out, stem), Entry(key, StageDone(now, seconds, kept)))
 
 
 def recall(out: Path, stem: str, key: str) -> StageDone | None:
@@ -172,9 +173,10 @@ def recall(out: Path, stem: str, key: str) -> StageDone | None:
     done: StageDone = entry.value
     if entry.key != key:
         return None
+    if f"{stem}.json" not in done.outputs:  # it left no JSON: nothing to reuse
+        return None
     for name, digest in done.outputs.items():
-        path = Path(out) / name
-        if not path.is_file() or (digest is not None and file_hash(path) != digest):
+        if file_hash(Path(out) / name) != digest:
             return None
     return done
 
