@@ -239,17 +239,17 @@ def stage_scenes(stages, args) -> list[tuple[str, Scene, Any]]:
     return out
 
 
-def preflight(scene: Scene, stages, args) -> dict[str, Scene]:
+def preflight(scene: Scene, stages, args, checks: list[tuple[str, Scene, Any]] | None = None) -> None:
     """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
-    module), on the scene and arguments that stage will see (:func:`stage_scenes`).
-    Called before the first stage, so a stage that would refuse its input refuses `run`,
-    with nothing written.  Returns each stage's scene (its command -> the scene it sees)."""
+    module), on the scene and arguments that stage will see (``checks``: its
+    :func:`stage_scenes`, computed when not given).  Called before the first stage, so a
+    stage that would refuse its input refuses `run`, with nothing written."""
     import importlib
 
     from ..errors import InputError
     from .parser import COMMANDS
 
-    checks = stage_scenes(stages, args)
+    checks = stage_scenes(stages, args) if checks is None else checks
     # every stage is checked; those that read a record (seconds: a library's imports) last,
     # so that what a cheaper stage also refuses is refused at once
     for command, stage_scene, stage_args in sorted(checks, key=lambda c: c[1].excitation.kind == "record"):
@@ -259,7 +259,6 @@ def preflight(scene: Scene, stages, args) -> dict[str, Scene]:
                 check(stage_scene, stage_args)
         except InputError as exc:
             raise InputError(f"stage {command!r}: {exc}") from None
-    return {command: stage_scene for command, stage_scene, _ in checks}
 
 
 def add_arguments(parser) -> None:
@@ -332,7 +331,9 @@ def run_command(scene: Scene, args, timings):
     if skip - known:
         raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
     todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
-    scenes = preflight(scene, todo, args)  # every stage's bad input: refused now, not late
+    checks = stage_scenes(todo, args)
+    preflight(scene, todo, args, checks)  # every stage's bad input: refused now, not late
+    scenes = {command: stage_scene for command, stage_scene, _ in checks}
     out = out_dir(scene, args)
     stages, lines, report = {}, [], None
     waves = sorted({st[4] for st in todo})

@@ -120,12 +120,6 @@ def command_words(command: str, own: Sequence[str], extra: Sequence[str] = ()) -
     return words
 
 
-def scene_part(scene_dict: Mapping[str, Any], command: str) -> dict[str, Any]:
-    """The resolved scene (``Scene.to_dict()``) less the sections the stage does not read."""
-    skip = SECTIONS_NOT_READ.get(command.split()[0], frozenset())
-    return {k: v for k, v in scene_dict.items() if k not in skip}
-
-
 def stage_key(
     command: str,
     words: Sequence[str],
@@ -135,9 +129,10 @@ def stage_key(
 ) -> str:
     """The key of a stage: its command line (:func:`command_words`), the scene sections it
     reads, the content of the files it reads and the code (:func:`code_hash`)."""
+    not_read = SECTIONS_NOT_READ.get(command.split()[0], frozenset())
     doc = {
         "command": list(words),
-        "scene": scene_part(scene_dict, command),
+        "scene": {k: v for k, v in scene_dict.items() if k not in not_read},
         "inputs": {Path(p).name: file_hash(Path(p)) for p in sorted(inputs, key=lambda p: Path(p).name)},
     }
     return cache_key(doc, version=KEY_VERSION, code=code_hash() if code is None else code)
