@@ -16,7 +16,7 @@ other, run side by side on the machine's cores; the report comes last.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ..scene import Scene
@@ -25,6 +25,8 @@ import os
 import subprocess
 import sys
 import time
+from collections.abc import Callable
+from pathlib import Path
 
 from .. import records
 from ..errors import StageError
@@ -169,10 +171,16 @@ def _reap(proc: subprocess.Popen) -> tuple[int | None, float]:
     return proc.returncode, usage.ru_utime + usage.ru_stime
 
 
-def run_wave(jobs: list[tuple[str, list[str]]], slots: int, cpu: dict[str, float] | None = None) -> dict[str, float]:
+def run_wave(
+    jobs: list[tuple[str, list[str]]],
+    slots: int,
+    cpu: dict[str, float] | None = None,
+    on_done: Callable[[str, float], None] | None = None,
+) -> dict[str, float]:
     """Run the stage processes of one wave, ``slots`` at a time; each one's wall time (s),
     and into ``cpu`` each one's processor time (s: on a shared machine the steadier
-    measure of its work).
+    measure of its work).  ``on_done(command, seconds)`` is called as each stage
+    succeeds (exit 0), at once: a later failure in the wave does not undo it.
 
     A stage that fails stops the wave once the stages already running have
     finished (their files stay whole); Ctrl-C or SIGTERM kills every stage
@@ -199,6 +207,8 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int, cpu: dict[str, float
                 del running[command]
                 if code != 0:
                     failed.append((command, code))
+                elif on_done is not None:
+                    on_done(command, seconds[command])
     except BaseException:
         for proc, _ in running.values():
             proc.kill()
@@ -211,25 +221,35 @@ def run_wave(jobs: list[tuple[str, list[str]]], slots: int, cpu: dict[str, float
     return seconds
 
 
-def preflight(scene: Scene, stages, args) -> None:
-    """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
-    module), on the scene and arguments that stage will see: its command line parsed by
-    the CLI's parser, its own --set before the user's.  Called before the first stage,
-    so a stage that would refuse its input refuses `run`, with nothing written."""
-    import importlib
-
+def stage_scenes(stages, args) -> list[tuple[str, Scene, Any]]:
+    """(command, the scene it sees, its parsed arguments) of each stage: its command line
+    parsed by the CLI's parser, its own --set before the user's."""
     from ..errors import InputError
     from ..scene import load_scene
-    from .parser import COMMANDS, build_parser
+    from .parser import build_parser
 
     parser = build_parser()
-    checks = []
+    out = []
     for command, _, extra, own, *_ in stages:
         stage_args = parser.parse_args(stage_argv(command, args, extra, own)[3:])
         try:
-            checks.append((command, load_scene(stage_args.scene, stage_args.overrides), stage_args))
+            out.append((command, load_scene(stage_args.scene, stage_args.overrides), stage_args))
         except InputError as exc:
             raise InputError(f"stage {command!r}: {exc}") from None
+    return out
+
+
+def preflight(scene: Scene, stages, args, checks: list[tuple[str, Scene, Any]] | None = None) -> None:
+    """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
+    module), on the scene and arguments that stage will see (``checks``: its
+    :func:`stage_scenes`, computed when not given).  Called before the first stage, so a
+    stage that would refuse its input refuses `run`, with nothing written."""
+    import importlib
+
+    from ..errors import InputError
+    from .parser import COMMANDS
+
+    checks = stage_scenes(stages, args) if checks is None else checks
     # every stage is checked; those that read a record (seconds: a library's imports) last,
     # so that what a cheaper stage also refuses is refused at once
     for command, stage_scene, stage_args in sorted(checks, key=lambda c: c[1].excitation.kind == "record"):
@@ -251,46 +271,137 @@ def add_arguments(parser) -> None:
         metavar="STAGE",
         help=f"leave out a stage ({', '.join(names)}); repeatable",
     )
+    parser.add_argument(
+        "--force",
+        action="store_true",
+        help="run every stage, also those whose inputs and code are unchanged since they last ran here",
+    )
+
+
+#: What a stage writes beside ``<stem>.json`` that the stages after it read: the
+#: convergence study's record, which the chain reads (chain.choice.study_on_disk).
+READ_AFTER = {"converge": ("convergence.json",)}
+
+
+def _inputs(stage, out: Path) -> list[Path]:
+    """The files a stage reads from the output folder, for its key: the JSON of every stage
+    of an earlier wave and what READ_AFTER names of them (conservative: modal reads
+    convergence.json, analyze modal's too, the later waves the chain's files, the report
+    all of them)."""
+    earlier = [st[0] for st in RUN_STAGES if st[4] < stage[4]]
+    names = [f"{stage_stem(c)}.json" for c in earlier] + [n for c in earlier for n in READ_AFTER.get(c, ())]
+    return [out / name for name in names]
+
+
+def key_of(stage, args, stage_scene: Scene, out: Path) -> str:
+    """A stage's key (commands.stage_keys.stage_key): its command line, the sections of the
+    scene it sees that it reads, the earlier stages' JSON in ``out``, the code."""
+    from .stage_keys import command_words, stage_key
+
+    command, _, extra, own, _ = stage
+    return stage_key(
+        command, command_words(command, own, extra(args) if extra else ()), stage_scene.to_dict(), _inputs(stage, out)
+    )
+
+
+def _page(report: str | None, out: Path) -> list[str]:
+    """The report's page as a name in ``out`` (kept with its key: a page removed since is
+    made again)."""
+    if not report:
+        return []
+    page = Path(report)
+    page = page if page.is_absolute() else Path.cwd() / page
+    try:
+        return [str(page.resolve().relative_to(out.resolve()))]
+    except ValueError:
+        return []
 
 
 def run_command(scene: Scene, args, timings):
-    """Every stage of RUN_STAGES, each writing its own JSON."""
+    """Every stage of RUN_STAGES, each writing its own JSON; a stage whose key
+    (commands.stage_keys) is the one kept from its last success here is not run again."""
     from ..errors import InputError
     from . import out_dir
+    from . import stage_keys as keys
 
     args._scene = scene
     skip = set(getattr(args, "skip", []))
+    force = bool(getattr(args, "force", False))
     known = {st[0].split()[0] for st in RUN_STAGES} - {"report"}
     if skip - known:
         raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
     todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
-    preflight(scene, todo, args)  # every stage's bad input: refused now, not late
+    checks = stage_scenes(todo, args)
+    preflight(scene, todo, args, checks)  # every stage's bad input: refused now, not late
+    scenes = {command: stage_scene for command, stage_scene, _ in checks}
+    out = out_dir(scene, args)
     stages, lines, report = {}, [], None
     waves = sorted({st[4] for st in todo})
     slots = max(1, min(os.cpu_count() or 1, MAX_SIDE_BY_SIDE))
-    n = 0
+    n, ran = 0, False
     for wave in waves:
         group = [st for st in todo if st[4] == wave]
+        # each stage's key, once the waves before it have written what it reads
+        check_start = time.perf_counter()
+        key = {st[0]: key_of(st, args, scenes[st[0]], out) for st in group}
+        reused = {}
+        for st in group:
+            # the report shows every stage: it runs again whenever one of them did
+            if not force and not (st[0] == "report" and ran):
+                done = keys.recall(out, stage_stem(st[0]), key[st[0]])
+                if done is not None:
+                    reused[st[0]] = done
+        check = (time.perf_counter() - check_start) / len(group)
+        runs = [st for st in group if st[0] not in reused]
         for command, what, *_ in group:
             n += 1
-            progress(f"run {n}/{len(todo)}: {command} ({what})" + (" [side by side]" if len(group) > 1 else ""))
+            if command in reused:
+                done = reused[command]
+                progress(f"{command}: unchanged since {keys.since(done)}, {check:.1f} s (it took {done.seconds:.1f} s)")
+            else:
+                side = " [side by side]" if len(runs) > 1 else ""
+                progress(f"run {n}/{len(todo)}: {command} ({what})" + side)
+        for st in runs:
+            keys.forget(out, stage_stem(st[0]))  # only a success keeps a key
+
+        def done_now(command: str, seconds: float, key: dict[str, str] = key) -> None:
+            others = list(READ_AFTER.get(command, ()))
+            if command == "report":
+                from ..postprocess.report import ReportResult
+
+                others += _page(records.read(out / "report.json", ReportResult).report, out)
+            keys.remember(out, stage_stem(command), key[command], seconds, others)
+
         cpu: dict[str, float] = {}
-        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in group], slots, cpu)
+        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in runs], slots, cpu, done_now)
+        ran = ran or bool(runs)
         for command, _what, _extra, own, _ in group:
-            timings[command] = seconds[command]
             stem = stage_stem(command)
-            path = out_dir(scene, args) / f"{stem}.json"
+            path = out / f"{stem}.json"
             written = records.read(path, Provenance)
+            first = reused.get(command)
+            timings[command] = check if first else seconds[command]
             stages[stem] = Stage(
                 json=str(path),
                 seconds=timings[command],
-                cpu_seconds=cpu.get(command),
+                cpu_seconds=None if first else cpu.get(command),
                 command=command,
                 arguments=tuple(own),
                 wave=wave,
                 stage_seconds=written.timings.get("total"),
+                key=key[command],
+                reused=first is not None,
+                first_seconds=first.seconds if first else None,
+                finished=first.finished if first else None,
             )
-            lines.append(f"{command:>26}: {timings[command]:8.2f} s ({cpu.get(command, 0.0):7.2f} s cpu)  -> {path}")
+            if first:
+                lines.append(
+                    f"{command:>26}: unchanged since {keys.since(first)} ({first.seconds:.2f} s then)  -> {path}"
+                )
+            else:
+                lines.append(
+                    f"{command:>26}: {timings[command]:8.2f} s ({cpu.get(command, 0.0):7.2f} s cpu)  -> {path}"
+                )
             if command.split()[0] == "report":
                 from ..postprocess.report import ReportResult
 
@@ -317,6 +428,14 @@ class Stage(Record):
     """the wave it ran in (stages of a wave run side by side)"""
     stage_seconds: float | None
     """the stage's own total, from its JSON's timings (s)"""
+    key: str | None = None
+    """its key (commands.stage_keys): command line, scene sections read, input files, code"""
+    reused: bool = False
+    """true when it was not run again: its key and files were those of its last success here"""
+    first_seconds: float | None = None
+    """a reused stage's wall time when it last ran (s; ``seconds`` is then the check's)"""
+    finished: str | None = None
+    """when a reused stage last finished (UTC, ISO 8601)"""
 
 
 class RunResult(Record):

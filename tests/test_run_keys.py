@@ -1,0 +1,141 @@
+"""`rotorpillar run` runs a stage again only when its key changes (commands.stage_keys).
+
+- A stage's key follows the scene sections it reads: the drive's stall torque
+  changes the key of analyze, of every transient and of the report; the ground
+  motion's amplitude leaves the convergence study's and modal's keys alone
+  (they read the tube, the mesh and the band, not the excitation).  The
+  convergence study's and modal's keys DO follow the drive: both read the band,
+  whose top is the drive's free speed (reduced.band.excitation_band; the chain
+  refuses a study run for another drive, chain.choice.STUDY_INPUTS).
+- A changed input file (convergence.json) changes the keys of the stages after
+  the study, not the study's own.
+- The code hash follows every file of the package, not its compiled caches.
+- Only a stage that succeeded is kept: a failing one is not, and a kept stage
+  whose JSON was rewritten since (a command run by hand) is run again.
+- The slow test runs the main job (most stages left out, modal on a small mesh)
+  four times into one folder: everything again, nothing, everything (--force),
+  and, with the ground motion changed, every stage but modal.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import sys
+
+import pytest
+from conftest import cli
+
+from rotorpillar.commands import stage_keys
+from rotorpillar.commands.parser import build_parser
+from rotorpillar.commands.run import RUN_STAGES, key_of, run_wave, stage_scenes
+from rotorpillar.errors import StageError
+from rotorpillar.scene import load_scene
+
+
+def keys_for(out, *sets: str) -> dict[str, str]:
+    """Every stage's key for `run paper --out OUT --set ...`."""
+    args = build_parser().parse_args(["run", "paper", "--out", str(out), *[a for s in sets for a in ("--set", s)]])
+    args._scene = load_scene(args.scene, args.overrides)
+    scenes = {command: scene for command, scene, _ in stage_scenes(RUN_STAGES, args)}
+    return {st[0]: key_of(st, args, scenes[st[0]], out) for st in RUN_STAGES}
+
+
+def changed(a: dict[str, str], b: dict[str, str]) -> set[str]:
+    return {command for command in a if a[command] != b[command]}
+
+
+def test_the_same_job_has_the_same_keys(tmp_path):
+    assert keys_for(tmp_path) == keys_for(tmp_path)
+    assert keys_for(tmp_path, "drive.torque_at_zero=6000") == keys_for(tmp_path, "drive.torque_at_zero=6000")
+
+
+def test_the_drives_torque_changes_the_keys_of_the_stages_that_read_the_drive(tmp_path):
+    base = keys_for(tmp_path)
+    moved = changed(base, keys_for(tmp_path, f"drive.torque_at_zero={load_scene('paper').drive.torque_at_zero * 1.1}"))
+    transients = {st[0] for st in RUN_STAGES if st[0].split()[0] in ("simulate", "compare", "integrators")}
+    assert transients and transients <= moved
+    assert {"analyze", "harmonic", "campbell", "report"} <= moved
+    # the band's top is the drive's free speed: the study and modal's mode count read it
+    assert {"converge", "modal"} <= moved
+
+
+def test_the_ground_motion_leaves_the_study_and_modal_alone(tmp_path):
+    base = keys_for(tmp_path)
+    moved = changed(base, keys_for(tmp_path, "excitation.amplitude=2.5", "full_order.earthquake_duration=3"))
+    assert "converge" not in moved and "modal" not in moved
+    assert {"analyze", "simulate --case earthquake", "compare --case earthquake", "report"} <= moved
+
+
+def test_an_input_file_changes_the_keys_of_the_stages_after_it(tmp_path):
+    base = keys_for(tmp_path)
+    (tmp_path / "convergence.json").write_text('{"selection": "a"}')
+    first = keys_for(tmp_path)
+    (tmp_path / "convergence.json").write_text('{"selection": "b"}')
+    second = keys_for(tmp_path)
+    after = {st[0] for st in RUN_STAGES if st[0] != "converge"}
+    assert changed(base, first) == after and changed(first, second) == after
+    # modal.json is read by the stages after modal, not by modal itself
+    (tmp_path / "modal.json").write_text("{}")
+    assert changed(second, keys_for(tmp_path)) == after - {"modal"}
+
+
+def test_the_code_hash_follows_every_file_but_the_compiled_caches(tmp_path):
+    pkg = tmp_path / "pkg"
+    shutil.copytree(stage_keys.Path(stage_keys.__file__).parent, pkg, ignore=shutil.ignore_patterns("__pycache__"))
+    before = stage_keys.package_hash(pkg)
+    (pkg / "__pycache__").mkdir(exist_ok=True)
+    (pkg / "__pycache__" / "run.cpython-311.pyc").write_bytes(b"\0")
+    assert stage_keys.package_hash(pkg) == before
+    (pkg / "run.py").write_text((pkg / "run.py").read_text() + "\n# a comment\n")
+    assert stage_keys.package_hash(pkg) != before
+    assert len(stage_keys.code_hash()) == 16
+
+
+def test_only_a_stage_that_succeeded_is_kept(tmp_path):
+    def job(name, code):
+        script = f"import pathlib; pathlib.Path({str(tmp_path)!r}, '{name}.json').write_text('{{}}'); raise SystemExit({code})"
+        return name, [sys.executable, "-c", script]
+
+    kept = []
+
+    def keep(command, seconds):
+        stage_keys.remember(tmp_path, command, "k", seconds)
+        kept.append(command)
+
+    with pytest.raises(StageError, match="'bad' failed"):
+        run_wave([job("good", 0), job("bad", 1)], slots=2, on_done=keep)
+    assert kept == ["good"]
+    assert stage_keys.recall(tmp_path, "good", "k") is not None
+    assert stage_keys.recall(tmp_path, "bad", "k") is None
+    # forgotten before a stage runs again: an interrupted run leaves nothing to reuse
+    stage_keys.forget(tmp_path, "good")
+    assert stage_keys.recall(tmp_path, "good", "k") is None
+
+
+def _stages(out) -> dict[str, bool]:
+    """run.json's stages: stem -> reused."""
+    return {stem: st["reused"] for stem, st in json.loads((out / "run.json").read_text())["stages"].items()}
+
+
+@pytest.mark.slow
+def test_run_reuses_what_has_not_changed(tmp_path):
+    out = tmp_path / "out"
+    skips = [a for s in ("converge", "compare", "integrators", "harmonic", "campbell") for a in ("--skip", s)]
+    small = ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4", "--no-animations"]
+
+    def run(*more):
+        p = cli("run", "paper", "--out", out, *skips, *small, *more, timeout=600)
+        assert p.returncode == 0, p.stderr
+        return p, _stages(out)
+
+    _, first = run()
+    assert set(first) == {"modal", "analyze", "simulate_runup", "simulate_earthquake", "report"}
+    assert not any(first.values())
+    p, second = run()
+    assert all(second.values()), second
+    assert "modal: unchanged since " in p.stderr and "run 1/" not in p.stderr
+    _, forced = run("--force")
+    assert not any(forced.values())
+    _, quake = run("--set", "excitation.amplitude=2.5")
+    assert quake == {**{stem: False for stem in first}, "modal": True}
