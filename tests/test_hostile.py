@@ -111,6 +111,33 @@ def test_a_mesh_this_machine_cannot_hold_is_refused_before_any_work(tmp_path, ke
     assert not out.exists()
 
 
+@pytest.mark.slow  # seconds: the campbell command up to its 3D side
+def test_sigterm_stops_campbell_in_its_3d_side_and_writes_nothing(tmp_path):
+    """`campbell --model both` (issue 26's command, added after the hostile suite): SIGTERM once
+    its 3D side has started: exit 143, one line, and no campbell.json or campbell.png."""
+    import signal
+
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "rotorpillar", "campbell", "paper", "--model", "both", "--fem3d-mesh", "scene"]
+        + ["--set", "modal_model.source=beam", "--out", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    lines = []
+    assert proc.stderr is not None
+    for line in proc.stderr:  # blocks until the command says something
+        lines.append(line)
+        if "3D" in line:
+            break
+    proc.send_signal(signal.SIGTERM)
+    _, rest = proc.communicate(timeout=120)
+    assert proc.returncode == 143, "".join(lines) + rest
+    assert not (out / "campbell.json").exists() and not (out / "campbell.png").exists()
+    assert len([x for x in rest.splitlines() if not x.startswith("[rotorpillar]")]) <= 1, rest
+
+
 @pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
 def test_sigterm_stops_run_and_its_stage(tmp_path):
     import signal
@@ -1099,7 +1126,7 @@ def test_a_scene_path_that_is_no_file_says_what_it_is(tmp_path, make, words):
     assert not out.exists()
 
 
-@pytest.mark.parametrize("command", ["analyze", "simulate", "report", "run"])
+@pytest.mark.parametrize("command", ["analyze", "simulate", "report", "run", "campbell"])
 def test_an_empty_output_path_is_refused(tmp_path, command):
     """``--out ""`` is Path(""): the working directory, which would take every file."""
     p = cli(command, "paper", "--out", "", cwd=tmp_path)
@@ -1120,6 +1147,7 @@ FULL_DISK = [
     ["simulate", "--model", "paper", "--no-threshold", "--set", "simulate.duration=10"],
     ["integrators", "--duration", "2"],
     ["compare", "--case", "runup", "--models", "paper,beam", "--set", "simulate.duration=2"],
+    ["campbell", "--speeds", "0:150:51", "--set", "modal_model.source=beam"],
 ]
 
 
@@ -1239,18 +1267,15 @@ def test_an_integer_axis_runs_or_is_refused_before_the_cluster(tmp_path, key, va
 
 # -- one writer per output folder (issue 31.8)
 
-ALL_COMMANDS = [
-    "analyze",
-    "converge",
-    "modal",
-    "report",
-    "run",
-    "simulate",
-    "compare",
-    "integrators",
-    "study",
-    "harmonic",
-]
+
+def _all_commands() -> list[str]:
+    """Every command the CLI has (a command added later is covered when it lands)."""
+    from rotorpillar.commands.parser import COMMANDS
+
+    return sorted(COMMANDS)
+
+
+ALL_COMMANDS = _all_commands()
 
 
 @pytest.mark.parametrize("command", ALL_COMMANDS)

@@ -165,27 +165,34 @@ def _panel(ax: Any, study: ConvergenceStudy, cost: str, q: str, title: str, fami
                 label="chosen",
             )
     ax.axhline(missing_y, color="0.6", lw=0.6)
-    # at the right: the runs without the mode are marked on this line at the left
-    ax.text(
-        0.99,
-        missing_y,
-        "no such mode ",
-        transform=ax.get_yaxis_transform(),
-        va="bottom",
-        ha="right",
-        fontsize=8,
-        color="0.4",
+    # at the right: the runs without the mode are marked on this line at the left; the
+    # placed labels keep off this text and the box below (place_labels' obstacles)
+    fixed = []
+    fixed.append(
+        ax.text(
+            0.99,
+            missing_y,
+            "no such mode ",
+            transform=ax.get_yaxis_transform(),
+            va="bottom",
+            ha="right",
+            fontsize=8,
+            color="0.4",
+        )
     )
     if no_mode:
-        ax.text(
-            0.02,
-            0.02,
-            "no " + (q if q != "band" else "needed") + " mode:\n  " + "\n  ".join(no_mode),
-            transform=ax.transAxes,
-            fontsize=8,
-            va="bottom",
-            bbox=dict(fc="white", ec="0.7"),
+        fixed.append(
+            ax.text(
+                0.02,
+                0.02,
+                "no " + (q if q != "band" else "needed") + " mode:\n  " + "\n  ".join(no_mode),
+                transform=ax.transAxes,
+                fontsize=8,
+                va="bottom",
+                bbox=dict(fc="white", ec="0.7"),
+            )
         )
+    ax._fixed_texts = fixed
     labels = []
     for fam in ("solid_hex_p1", "solid_tet_p1"):
         rows = [r for r in runs if r.family == fam and err_of(r, q, needed) is not None]
@@ -255,7 +262,13 @@ def convergence_chart(study: ConvergenceStudy, cost: str, path: str | Path) -> P
     fig.canvas.draw()
     fig.set_layout_engine("none")
     for ax in axes:
-        place_labels(ax, getattr(ax, "_pending_labels", []), lines=list(ax.lines), drawn=True)
+        place_labels(
+            ax,
+            getattr(ax, "_pending_labels", []),
+            obstacles=getattr(ax, "_fixed_texts", []),
+            lines=list(ax.lines),
+            drawn=True,
+        )
     return save(fig, path)
 
 
