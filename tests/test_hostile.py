@@ -1250,6 +1250,7 @@ ALL_COMMANDS = [
     "integrators",
     "study",
     "harmonic",
+    "tornado",
 ]
 
 

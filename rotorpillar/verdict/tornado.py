@@ -285,6 +285,7 @@ def vary_input(text: str, scene: Scene) -> TornadoInput:
 
 def inputs_for(scene: Scene, vary: list[str], with_fem3d: bool) -> tuple[list[TornadoInput], list[str]]:
     """The default inputs with ``--vary``'s ranges in place (and added); every range checked."""
+    from ..errors import InputError
     from ..studies.axes import parse_vary
 
     given = [vary_input(t, scene) for t in vary]
@@ -292,8 +293,14 @@ def inputs_for(scene: Scene, vary: list[str], with_fem3d: bool) -> tuple[list[To
     keys = {g.key for g in given}
     out = [i for i in out if i.key not in keys] + given
     for i in out:
-        if isinstance(i.low, float) and isinstance(i.high, float):
-            parse_vary(f"{i.key}={i.low!r},{i.high!r}", scene)  # a default past a key's range: refused
+        if isinstance(i.low, float) and isinstance(i.high, float) and i.key not in keys:
+            try:
+                parse_vary(f"{i.key}={i.low!r},{i.high!r}", scene)
+            except InputError as exc:  # a default range past the key's own: refused, and how to give one
+                raise InputError(
+                    f"tornado: the default range of {i.key}, {i.low:g} to {i.high:g}, leaves the key's own "
+                    f"({str(exc).split(': ', 1)[-1]}); give one with --vary {i.key}=LO,HI"
+                ) from None
     return out, left
 
 
@@ -323,8 +330,9 @@ def machine_rows(scene: Scene, chain) -> list[Check]:
     return machine_check_rows(machine_checks(scene, planar, chain.modes, drive.runup_speed))
 
 
-def _end(scene: Scene, chain, runs: dict[str, StudyRun]) -> _End:
-    """The checks and responses of one end: the machine's, and the study runs' (``runs``: case -> StudyRun)."""
+def _end(scene: Scene, chain, runup: StudyRun, earthquake: StudyRun) -> _End:
+    """The checks and responses of one end: the machine's, and its two study runs'."""
+    runs = {"runup": runup, "earthquake": earthquake}
     rows = machine_rows(scene, chain)
     notes, responses = [], {}
     for name, case, field, _ in RESPONSES:
@@ -458,8 +466,10 @@ def verdict_sentence(verdict: str, inputs: list[TornadoInput], changes: list[Ver
 # The study
 
 
-def _study_runs(scene: Scene, case: str, key: str, values: tuple, out: Path, cache: Path, executor, log) -> dict:
-    """{value: StudyRun}: the ROM's ``case`` at each value of ``key``, one design study."""
+def _study_runs(
+    scene: Scene, case: str, key: str, values: tuple, out: Path, cache: Path, executor, log
+) -> tuple[StudyRun, ...]:
+    """The ROM's ``case`` at each value of ``key`` (in their order): one design study."""
     from ..studies import design_study
     from ..studies.axes import _value_text
 
@@ -475,7 +485,7 @@ def _study_runs(scene: Scene, case: str, key: str, values: tuple, out: Path, cac
         executor=executor,
         write_csv=False,
     )
-    return {r.params[key]: r for r in res.runs}
+    return tuple(sorted(res.runs, key=lambda r: r.index))  # the index is the axis's order
 
 
 def earthquake_scene(scene: Scene) -> Scene:
@@ -515,18 +525,16 @@ def tornado_study(
     n_runs = 0
     try:
 
-        def at(sc: Scene, key: str, values: tuple) -> dict:
+        def at(sc: Scene, key: str, values: tuple) -> list[tuple[StudyRun, StudyRun]]:
+            """(run-up, earthquake) at each of ``values``."""
             nonlocal n_runs
-            got = {}
-            for case in CASES:
-                s = earthquake_scene(sc) if case == "earthquake" else sc
-                got[case] = _study_runs(s, case, key, values, out, cache, ex, log)
-                n_runs += len(values)
-            return got
+            runup = _study_runs(sc, "runup", key, values, out, cache, ex, log)
+            quake = _study_runs(earthquake_scene(sc), "earthquake", key, values, out, cache, ex, log)
+            n_runs += 2 * len(values)
+            return list(zip(runup, quake))
 
         e = scene.rotor.eccentricity
-        base_runs = at(scene, "rotor.eccentricity", (e,))
-        base = _end(scene, base_chain, {c: base_runs[c][e] for c in CASES})
+        base = _end(scene, base_chain, *at(scene, "rotor.eccentricity", (e,))[0])
         ends: dict[str, tuple[_End, _End]] = {}
         for inp in inputs:
             say(f"tornado: {inp.key} at {inp.low} and {inp.high}")
@@ -534,16 +542,14 @@ def tornado_study(
                 pair = []
                 for src in (inp.low, inp.high):
                     sc = override(scene, [f'modal_model.source="{src}"'])
-                    runs = at(sc, "rotor.eccentricity", (e,))
-                    pair.append(_end(sc, resolve(sc, out, progress=log), {c: runs[c][e] for c in CASES}))
+                    pair.append(_end(sc, resolve(sc, out, progress=log), *at(sc, "rotor.eccentricity", (e,))[0]))
                 ends[inp.key] = (pair[0], pair[1])
                 continue
-            runs = at(scene, inp.key, (inp.low, inp.high))
             pair = []
-            for v in (inp.low, inp.high):
+            for v, runs in zip((inp.low, inp.high), at(scene, inp.key, (inp.low, inp.high))):
                 sc = override(scene, [f"{inp.key}={v!r}"])
                 chain = resolve(sc, None, progress=log) if affects_modes(inp.key) else base_chain
-                pair.append(_end(sc, chain, {c: runs[c][v] for c in CASES}))
+                pair.append(_end(sc, chain, *runs))
             ends[inp.key] = (pair[0], pair[1])
     finally:
         if own:
