@@ -47,7 +47,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..records import Figure, Record
+from ..records import Figure, Record, replace
 from ..reduced.capacity import FAIL, NOT_ASSESSED, PASS, Check, check
 from ..scene import Scene, override
 
@@ -446,13 +446,23 @@ def verdict_sentence(verdict: str, inputs: list[TornadoInput], changes: list[Ver
         )
         parts.append(f"the {i.label} {how} turns it to {c.verdict} ({', '.join(c.checks)})")
     if parts:
-        text = f"The verdict is {verdict}; within the inputs' ranges " + "; ".join(parts) + "."
+        text = (
+            f"Over the checks the tornado covers the verdict is {verdict}; within the inputs' ranges "
+            + "; ".join(parts)
+            + "."
+        )
     else:
-        text = f"The verdict is {verdict}, and no input within its range changes it."
+        text = f"Over the checks the tornado covers the verdict is {verdict}, and no input within its range changes it."
     for c in beyond:
         i = by_key[c.key]
         ratio = c.value / i.base if isinstance(c.value, float) and isinstance(i.base, float) and i.base else None
-        times = f", {ratio:.3g} times the scene's" if ratio is not None else ""
+        times = (
+            ""
+            if ratio is None
+            else f", 1/{1 / ratio:.3g} of the scene's"
+            if ratio < 1
+            else f", {ratio:.3g} times the scene's"
+        )
         text += (
             f" It would turn to {c.verdict} with the {i.label} at about {_fmt(c.value, i.unit)}{times} "
             f"({', '.join(c.checks)}; a linear extrapolation beyond the range computed, a hint only)."
@@ -518,6 +528,13 @@ def tornado_study(
     cache = out / "tornado"
     say = log or (lambda _m: None)
     base_chain = resolve(scene, out, progress=log)
+    # the top plate's model at the scene's values: what "auto" chose, in words
+    inputs = [
+        replace(i, base=f"{i.base} ({base_chain.pillar_model.label})")
+        if i.key == "modal_model.source" and i.base == "auto"
+        else i
+        for i in inputs
+    ]
     own = executor is None
     ex = Executor(processes=False) if own else executor
     if own:
