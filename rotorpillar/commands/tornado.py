@@ -57,8 +57,13 @@ def tornado_command(scene: Scene, args, timings):
 
 def _summary(r: TornadoResult) -> str:
     lines = [f"rotorpillar tornado {r.scene_name}: {r.runs} ROM runs in {r.wall_seconds:.1f} s; verdict {r.verdict}"]
+    from ..verdict.tornado import value_text
+
     for i in r.inputs:
-        lines.append(f"  {i.key}: {i.low} .. {i.high} (scene: {i.base})")
+        lines.append(
+            f"  {i.key}: {value_text(i.low, i.unit)} .. {value_text(i.high, i.unit)} "
+            f"(scene: {value_text(i.base, i.unit)})"
+        )
     for q in r.quantities:
         if q.kind != "check":
             continue

@@ -15,6 +15,7 @@ import math
 from pathlib import Path
 
 from ..records import Figure
+from ..verdict.tornado import value_text
 from .style import COLOURS, figure, save
 
 TORNADO_PNG = "tornado.png"
@@ -79,7 +80,7 @@ def tornado_chart(result, out_dir: str | Path) -> list[Figure]:
         _panel(ax, q, labels)
     for ax in list(axes.flat)[len(quantities) :]:
         ax.set_visible(False)
-    ends = "; ".join(f"{i.label} {i.low} to {i.high}" for i in result.inputs)
+    ends = "; ".join(f"{i.label} {value_text(i.low, i.unit)} to {value_text(i.high, i.unit)}" for i in result.inputs)
     from matplotlib.patches import Patch
 
     handles = [

@@ -422,7 +422,12 @@ def _change(inp: TornadoInput, verdict: str, checks: list[TornadoQuantity]) -> V
     return VerdictChange(inp.key, FAIL, first.value, first.kind, (name,))
 
 
-def _fmt(x: Param, unit: str) -> str:
+def value_text(x: Param, unit: str) -> str:
+    """An input's value as a reader reads it: three digits and its unit, or the word.
+
+    >>> value_text(15000.0, "N*s/m"), value_text("beam", "-")
+    ('1.5e+04 N*s/m', 'beam')
+    """
     if isinstance(x, float):
         return f"{x:.3g} {unit}".strip() if unit not in ("", "-") else f"{x:.3g}"
     return str(x)
@@ -441,7 +446,7 @@ def verdict_sentence(verdict: str, inputs: list[TornadoInput], changes: list[Ver
         how = (
             f"set to {c.value}"
             if c.kind == "computed"
-            else f"at about {_fmt(c.value, i.unit)} (the scene has {_fmt(i.base, i.unit)}; interpolated "
+            else f"at about {value_text(c.value, i.unit)} (the scene has {value_text(i.base, i.unit)}; interpolated "
             "linearly between the scene's value and the end of its range)"
         )
         parts.append(f"the {i.label} {how} turns it to {c.verdict} ({', '.join(c.checks)})")
@@ -464,7 +469,7 @@ def verdict_sentence(verdict: str, inputs: list[TornadoInput], changes: list[Ver
             else f", {ratio:.3g} times the scene's"
         )
         text += (
-            f" It would turn to {c.verdict} with the {i.label} at about {_fmt(c.value, i.unit)}{times} "
+            f" It would turn to {c.verdict} with the {i.label} at about {value_text(c.value, i.unit)}{times} "
             f"({', '.join(c.checks)}; a linear extrapolation beyond the range computed, a hint only)."
         )
     if not changes:

@@ -6,7 +6,7 @@ utilisation at the ends of each range, and what the sensitivity leaves out."""
 from __future__ import annotations
 
 from ... import records
-from ...verdict.tornado import TornadoInput, TornadoResult
+from ...verdict.tornado import TornadoInput, TornadoResult, value_text
 from .. import html as h
 from .state import Build
 
@@ -14,15 +14,10 @@ TORNADO_JSON = "tornado.json"
 TITLE = "How much the answer depends on what nobody knows"
 
 
-def _value(x, unit: str) -> str:
-    if isinstance(x, float):
-        return f"{h.num(x, 3)} {unit}".strip() if unit not in ("", "-") else h.num(x, 3)
-    return str(x)
-
-
 def _inputs_table(inputs: tuple[TornadoInput, ...]) -> str:
     rows = [
-        [i.label, i.key, _value(i.base, i.unit), _value(i.low, i.unit), _value(i.high, i.unit), i.why] for i in inputs
+        [i.label, i.key, value_text(i.base, i.unit), value_text(i.low, i.unit), value_text(i.high, i.unit), i.why]
+        for i in inputs
     ]
     return h.table(["input", "scene key", "the scene's", "low end", "high end", "why this range"], rows)
 
