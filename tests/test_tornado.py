@@ -161,3 +161,13 @@ def test_a_default_range_past_the_keys_own_is_refused(tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and "--vary rotor.eccentricity=LO,HI" in err, err
     assert not out.exists()
+
+
+def test_a_damaged_file_costs_its_section_only_and_is_named(tmp_path):
+    from rotorpillar.postprocess.report.state import Build, ReportOptions
+    from rotorpillar.postprocess.report.tornado import section_tornado
+
+    (tmp_path / "tornado.json").write_text('{"scene_name": "paper", "verdict": 3}')
+    html = section_tornado(Build(load_scene("paper"), tmp_path, "paper", ReportOptions()))
+    assert html is not None and "tornado.json" in html and "rotorpillar tornado paper" in html
+    assert section_tornado(Build(load_scene("paper"), tmp_path / "none", "paper", ReportOptions())) is None
