@@ -86,6 +86,12 @@ def test_inputs_and_the_sentence(doubled):
     assert keys == ["pillar.damping", "shaft.stiffness", "rotor.eccentricity"]  # --vary's range replaces e's
     damping = res.inputs[0]
     assert (damping.low, damping.high) == (scene.pillar.damping / 2, scene.pillar.damping * 2)
+    # the spatial model's damping ratio goes with b1 (its margins' AF), by the same factor
+    from rotorpillar.verdict.tornado import end_scene
+
+    high = end_scene(scene, damping, "high")
+    assert high.pillar.damping_ratio == pytest.approx(2 * scene.pillar.damping_ratio, rel=1e-12)
+    assert any(q.name == "separation margin (API 684)" for q in res.quantities)
     # the range's low end is the scene's e: no line runs below it, so no crossing is given
     # (the default range, a grade either way, gives one: test_the_command_...)
     q, b = _bar(res, BALANCE, "rotor.eccentricity")

@@ -25,10 +25,10 @@ SHOWN = {"m": ("mm", 1e3)}
 
 
 def _plain_ticks(ax, decades: float) -> None:
-    """Ticks at 1, 2, 5 (3 and 7 too within a decade) written as plain numbers, no minor labels."""
+    """Ticks at 1 and 3 (over two decades), 1, 2, 5, or more within a decade, as plain numbers."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-    subs = (1.0, 2.0, 5.0) if decades > 1 else (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)
+    subs = (1.0, 3.0) if decades > 2 else (1.0, 2.0, 5.0) if decades > 1 else (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)
     ax.xaxis.set_major_locator(LogLocator(subs=subs))
     ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _pos: f"{v:g}"))
     ax.xaxis.set_minor_formatter(NullFormatter())

@@ -9,20 +9,25 @@ the scene's value, and at each end
   the balance grade, the shaft's steady orbit against API 617, the top's
   velocity against ISO 20816-3, the modal mass against EN 1998-1), at the
   running speed the averaging theory gives for that end's drive and ROM;
+- the separation margins (API 684) and the excitation orders as `harmonic`
+  makes them on the ROM (rotorpillar.verdict.harmonic, without its 3D
+  response: ~0.2 s an end), modal.json's loaded-tube modes included when the
+  out folder holds one;
 - the ROM's run-up from rest and its earthquake (the scene's record, whole),
   through the design study's batch loop (rotorpillar.studies.design_study, one
-  study per input and case, the ends as its axis): their peak shaft deflection
+  study per end and case): their peak shaft deflection
   against ``rotor.clearance`` where the scene states one, and the peaks
   themselves as responses (no capacity).
 
 The default inputs and their ranges (``default_inputs``; ``--vary KEY=LO,HI``
 replaces one or adds another):
 
-- ``pillar.damping`` (b1), half to twice the scene's: the paper itself gives
-  b1 only as a range, 10e3 to 50e3 N s/m (Section 2.5), a third to five
-  thirds of its midpoint, and measured damping of welded steel towers
-  scatters by a factor of two about the one value codes tabulate per type
-  (EN 1991-1-4 Annex F gives one logarithmic decrement per structure type);
+- ``pillar.damping`` (b1), half to twice the scene's, and the spatial
+  model's ``pillar.damping_ratio`` by the same factor (``SCALED_WITH``): the
+  paper itself gives b1 only as a range, 10e3 to 50e3 N s/m (Section 2.5), a
+  third to five thirds of its midpoint, and measured damping of welded steel
+  towers scatters by a factor of two about the one value codes tabulate per
+  type (EN 1991-1-4 Annex F gives one logarithmic decrement per structure type);
 - ``rotor.eccentricity``, one balance grade either way: ISO 21940-11's
   grades step by a factor of 2.5 (G 1, 2.5, 6.3, 16, 40, ...), and a
   rotor balanced to a grade may sit anywhere within its step;
@@ -37,8 +42,8 @@ utilisation reaches 1, linear between the scene's value and the end on that
 side ("interpolated" when inside the range, "extrapolated" beyond it: a hint,
 not a computed point).  Left out: the stress and buckling checks (the batch
 loop records no section forces; on the paper's machine they use about 1 % of
-their capacity) and the separation margins (harmonic.json's spatial response),
-which the record's ``left_out`` names.
+their capacity) and the 3D harmonic response, which the record's ``left_out``
+names.
 """
 
 from __future__ import annotations
@@ -74,7 +79,8 @@ RESPONSES = (
 LEFT_OUT = (
     "the base stress against yield and shell buckling, the cans' and the foundation's checks: "
     "the design study's batch loop records no section forces",
-    "the separation margins (API 684): they come from harmonic.json's spatial unbalance response",
+    "the 3D model's harmonic response: the separation margins' amplification factors here are the "
+    "spatial ROM's alone (harmonic.json takes the larger of the two for the 3D modes)",
 )
 
 Param = bool | int | float | str
@@ -210,14 +216,15 @@ def default_inputs(scene: Scene, with_fem3d: bool = True) -> tuple[list[TornadoI
         out.append(
             _number(
                 "pillar.damping",
-                "pillar's damping b1",
+                "pillar's damping",
                 "N*s/m",
                 b1,
                 b1 / DAMPING_FACTOR,
                 b1 * DAMPING_FACTOR,
                 "half to twice the scene's: the paper gives b1 only as a range (10e3 to 50e3 N s/m, "
                 "Section 2.5), and measured damping of welded steel towers scatters by about a factor "
-                "of two about the one value EN 1991-1-4 Annex F tabulates per type",
+                "of two about the one value EN 1991-1-4 Annex F tabulates per type; the spatial "
+                "model's modal damping ratio (pillar.damping_ratio) scaled by the same factor",
             )
         )
     else:
@@ -226,7 +233,7 @@ def default_inputs(scene: Scene, with_fem3d: bool = True) -> tuple[list[TornadoI
         out.append(
             _number(
                 "rotor.eccentricity",
-                "rotor's eccentricity e",
+                "eccentricity",
                 "m",
                 e,
                 e / GRADE_STEP,
@@ -239,7 +246,7 @@ def default_inputs(scene: Scene, with_fem3d: bool = True) -> tuple[list[TornadoI
     out.append(
         _number(
             "shaft.stiffness",
-            "shaft's stiffness c2",
+            "shaft's stiffness",
             "N/m",
             c2,
             c2 * (1 - STIFFNESS_SPREAD),
@@ -330,10 +337,24 @@ def machine_rows(scene: Scene, chain) -> list[Check]:
     return machine_check_rows(machine_checks(scene, planar, chain.modes, drive.runup_speed))
 
 
-def _end(scene: Scene, chain, runup: StudyRun, earthquake: StudyRun) -> _End:
-    """The checks and responses of one end: the machine's, and its two study runs'."""
+def margin_rows(scene: Scene, chain, out: Path) -> list[Check]:
+    """The separation margins (API 684) and the excitation orders as `harmonic` makes them on the
+    ROM (its spatial response; modal.json's loaded-tube modes when ``out`` holds one), the 3D
+    harmonic response left out; one row per check, its largest utilisation."""
+    from .harmonic import harmonic_analysis
+    from .summary import _margin_checks  # summary.json's own rows of harmonic.json
+
+    rows: dict[str, Check] = {}
+    for c in _margin_checks(harmonic_analysis(scene, out, with_fem3d=False, chain=chain)):
+        if c.name not in rows or (c.utilisation or 0.0) > (rows[c.name].utilisation or 0.0):
+            rows[c.name] = c
+    return list(rows.values())
+
+
+def _end(scene: Scene, chain, out: Path, runup: StudyRun, earthquake: StudyRun) -> _End:
+    """The checks and responses of one end: the machine's, the margins, and its two study runs'."""
     runs = {"runup": runup, "earthquake": earthquake}
-    rows = machine_rows(scene, chain)
+    rows = machine_rows(scene, chain) + margin_rows(scene, chain, out)
     notes, responses = [], {}
     for name, case, field, _ in RESPONSES:
         responses[name] = float(getattr(runs[case], field))
@@ -503,6 +524,25 @@ def _study_runs(
     return tuple(sorted(res.runs, key=lambda r: r.index))  # the index is the axis's order
 
 
+#: keys scaled with an input by the same factor: the pillar's damping is b1 (the planar ROM's
+#: tip dashpot) and the modal damping ratio zeta of the spatial model (the separation margins'
+#: amplification factors) together
+SCALED_WITH = {"pillar.damping": ("pillar.damping_ratio",)}
+
+
+def end_scene(scene: Scene, inp: TornadoInput, side: str) -> Scene:
+    """The scene at one end (``side`` "low" or "high") of ``inp``'s range, every other key the scene's."""
+    from ..studies.axes import assignment
+
+    value = getattr(inp, side)
+    sets = [assignment(inp.key, value)]
+    if isinstance(value, float) and isinstance(inp.base, float) and inp.base != 0:
+        for key in SCALED_WITH.get(inp.key, ()):
+            section, name = key.split(".")
+            sets.append(assignment(key, getattr(getattr(scene, section), name) * value / inp.base))
+    return override(scene, sets)
+
+
 def earthquake_scene(scene: Scene) -> Scene:
     """The scene's earthquake as the tornado runs it: its record (``excitation.record``), whole."""
     return scene if scene.excitation.kind == "record" else override(scene, ['excitation.kind="record"'])
@@ -547,31 +587,29 @@ def tornado_study(
     n_runs = 0
     try:
 
-        def at(sc: Scene, key: str, values: tuple) -> list[tuple[StudyRun, StudyRun]]:
-            """(run-up, earthquake) at each of ``values``."""
+        def at(sc: Scene, chain) -> _End:
+            """One end: its scene's two study runs (the eccentricity its axis) and its checks."""
             nonlocal n_runs
-            runup = _study_runs(sc, "runup", key, values, out, cache, ex, log)
-            quake = _study_runs(earthquake_scene(sc), "earthquake", key, values, out, cache, ex, log)
-            n_runs += 2 * len(values)
-            return list(zip(runup, quake))
+            e = (sc.rotor.eccentricity,)
+            runup = _study_runs(sc, "runup", "rotor.eccentricity", e, out, cache, ex, log)
+            quake = _study_runs(earthquake_scene(sc), "earthquake", "rotor.eccentricity", e, out, cache, ex, log)
+            n_runs += 2
+            return _end(sc, chain, out, runup[0], quake[0])
 
-        e = scene.rotor.eccentricity
-        base = _end(scene, base_chain, *at(scene, "rotor.eccentricity", (e,))[0])
+        base = at(scene, base_chain)
         ends: dict[str, tuple[_End, _End]] = {}
         for inp in inputs:
             say(f"tornado: {inp.key} at {inp.low} and {inp.high}")
-            if inp.key == "modal_model.source":
-                pair = []
-                for src in (inp.low, inp.high):
-                    sc = override(scene, [f'modal_model.source="{src}"'])
-                    pair.append(_end(sc, resolve(sc, out, progress=log), *at(sc, "rotor.eccentricity", (e,))[0]))
-                ends[inp.key] = (pair[0], pair[1])
-                continue
             pair = []
-            for v, runs in zip((inp.low, inp.high), at(scene, inp.key, (inp.low, inp.high))):
-                sc = override(scene, [f"{inp.key}={v!r}"])
-                chain = resolve(sc, None, progress=log) if affects_modes(inp.key) else base_chain
-                pair.append(_end(sc, chain, *runs))
+            for side in ("low", "high"):
+                sc = end_scene(scene, inp, side)
+                if inp.key == "modal_model.source":
+                    chain = resolve(sc, out, progress=log)
+                elif affects_modes(inp.key):
+                    chain = resolve(sc, None, progress=log)  # a varied pillar has no study of its own
+                else:
+                    chain = base_chain
+                pair.append(at(sc, chain))
             ends[inp.key] = (pair[0], pair[1])
     finally:
         if own:
