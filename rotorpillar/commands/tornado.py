@@ -4,7 +4,8 @@
 uncertain input (the pillar's damping, the rotor's eccentricity, the shaft's
 stiffness, the top plate's model; ``--vary`` replaces a range or adds an input)
 at the two ends of its range, the others at the scene's, on the ROM: the
-machine's checks as `analyze` makes them and the run-up and the earthquake
+machine's checks as `analyze` makes them, the separation margins as `harmonic`
+makes them (without its 3D response), and the run-up and the earthquake
 through the design study's batch loop.  Writes ``out/<scene>/tornado.json``
 (this command's record, :class:`rotorpillar.verdict.tornado.TornadoResult`),
 the chart ``tornado.png`` and the study's batches under ``tornado/`` (a rerun

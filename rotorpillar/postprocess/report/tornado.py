@@ -68,7 +68,8 @@ def section_tornado(build: Build) -> str | None:
         h.tag(
             "p",
             f"Each uncertain input at the two ends of its range, every other at the scene's value, on the ROM: "
-            f"the machine's checks as the analysis makes them, and the run-up and the recorded earthquake through "
+            "the machine's checks as the analysis makes them, the separation margins on the ROM's unbalance "
+            "response, and the run-up and the recorded earthquake through "
             f"the design study ({r.runs} runs, {h.num(r.wall_seconds, 2)} s). Over these checks the verdict is "
             f"{r.verdict}.",
         ),
