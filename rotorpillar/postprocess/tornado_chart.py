@@ -85,7 +85,10 @@ def tornado_chart(result, out_dir: str | Path) -> list[Figure]:
 
     handles = [
         Patch(color=c, label=t)
-        for c, t in ((LOW, "low end of the range (beam for the top plate)"), (HIGH, "high end (fem3d)"))
+        for c, t in (
+            (LOW, "low end of the range (the top plate: the 1D beam's point mass)"),
+            (HIGH, "high end (the 3D model's rigid top plate)"),
+        )
     ]
     fig.legend(handles=handles, loc="outside lower center", ncols=2)
     fig.suptitle("How much each check moves over each uncertain input's range (the dashed line: the scene's value)")

@@ -68,6 +68,8 @@ STIFFNESS_SPREAD = 0.20
 #: the farthest an extrapolated crossing is reported, in lengths of the half-range it
 #: extends (beyond, a line through two points says nothing: the responses are not linear)
 MAX_REACH = 5.0
+#: the top plate's models in words (modal_model.source's words)
+SOURCE_WORDS = {"beam": "the 1D beam's point mass", "fem3d": "the 3D model's rigid top plate"}
 #: the transient cases each end runs, as the design study names them
 CASES = ("runup", "earthquake")
 #: the transients' responses: (name, case, StudyRun field, unit)
@@ -80,7 +82,7 @@ LEFT_OUT = (
     "the base stress against yield and shell buckling, the cans' and the foundation's checks: "
     "the design study's batch loop records no section forces",
     "the 3D model's harmonic response: the separation margins' amplification factors here are the "
-    "spatial ROM's alone (harmonic.json takes the larger of the two for the 3D modes)",
+    "spatial ROM's alone (the verdict's margins take the larger of the two for the 3D modes)",
 )
 
 Param = bool | int | float | str
@@ -224,7 +226,7 @@ def default_inputs(scene: Scene, with_fem3d: bool = True) -> tuple[list[TornadoI
                 "half to twice the scene's: the paper gives b1 only as a range (10e3 to 50e3 N s/m, "
                 "Section 2.5), and measured damping of welded steel towers scatters by about a factor "
                 "of two about the one value EN 1991-1-4 Annex F tabulates per type; the spatial "
-                "model's modal damping ratio (pillar.damping_ratio) scaled by the same factor",
+                "model's modal damping ratio scaled by the same factor",
             )
         )
     else:
@@ -264,7 +266,7 @@ def default_inputs(scene: Scene, with_fem3d: bool = True) -> tuple[list[TornadoI
                 scene.modal_model.source,
                 "beam",
                 "fem3d",
-                "the 1D beam's point mass at the tip (beam) against the 3D model's rigid top plate (fem3d)",
+                "the 1D beam's point mass at the tip against the 3D model's rigid top plate",
             )
         )
     else:
@@ -447,11 +449,11 @@ def value_text(x: Param, unit: str) -> str:
     """An input's value as a reader reads it: three digits and its unit, or the word.
 
     >>> value_text(15000.0, "N*s/m"), value_text("beam", "-")
-    ('1.5e+04 N*s/m', 'beam')
+    ('1.5e+04 N*s/m', "the 1D beam's point mass")
     """
     if isinstance(x, float):
         return f"{x:.3g} {unit}".strip() if unit not in ("", "-") else f"{x:.3g}"
-    return str(x)
+    return SOURCE_WORDS.get(str(x), str(x))
 
 
 def verdict_sentence(verdict: str, inputs: list[TornadoInput], changes: list[VerdictChange]) -> str:
@@ -465,7 +467,7 @@ def verdict_sentence(verdict: str, inputs: list[TornadoInput], changes: list[Ver
     for c in inside:
         i = by_key[c.key]
         how = (
-            f"set to {c.value}"
+            f"set to {value_text(c.value, i.unit)}"
             if c.kind == "computed"
             else f"at about {value_text(c.value, i.unit)} (the scene has {value_text(i.base, i.unit)}; interpolated "
             "linearly between the scene's value and the end of its range)"
