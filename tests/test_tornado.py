@@ -161,19 +161,9 @@ def test_bad_input_is_refused_on_one_line_with_nothing_written(tmp_path, capsys,
     assert not out.exists()
 
 
-def test_a_default_range_past_the_keys_own_is_refused(tmp_path, capsys):
-    out = tmp_path / "out"
-    rc = main(["tornado", "paper", "--set", "rotor.eccentricity=0.5", "--out", str(out)])
-    err = capsys.readouterr().err.strip()
-    assert rc == 2 and len(err.splitlines()) == 1 and "--vary rotor.eccentricity=LO,HI" in err, err
-    assert not out.exists()
+def test_a_default_range_past_the_keys_own_is_cut_at_its_limit_and_says_so():
+    from rotorpillar.verdict.tornado import default_inputs
 
-
-def test_a_damaged_file_costs_its_section_only_and_is_named(tmp_path):
-    from rotorpillar.postprocess.report.state import Build, ReportOptions
-    from rotorpillar.postprocess.report.tornado import section_tornado
-
-    (tmp_path / "tornado.json").write_text('{"scene_name": "paper", "verdict": 3}')
-    html = section_tornado(Build(load_scene("paper"), tmp_path, "paper", ReportOptions()))
-    assert html is not None and "tornado.json" in html and "rotorpillar tornado paper" in html
-    assert section_tornado(Build(load_scene("paper"), tmp_path / "none", "paper", ReportOptions())) is None
+    scene = override(load_scene("paper"), ["rotor.eccentricity=0.5"])  # 2.5 e = 1.25 > the key's 1 m
+    e = next(i for i in default_inputs(scene, with_fem3d=False)[0] if i.key == "rotor.eccentricity")
+    assert (e.low, e.high) == (0.2, 1.0) and "cut at the key's limit, 1" in e.why

@@ -206,8 +206,34 @@ class TornadoResult(Record):
 # The inputs
 
 
+def key_limits(key: str) -> tuple[float, float]:
+    """The range a scene key allows, (lowest, highest) (inclusive; a strict bound taken as the
+    bound: the ends here are a factor away from a valid scene value, never on it).
+
+    >>> key_limits("rotor.eccentricity")
+    (0.0, 1.0)
+    """
+    import dataclasses
+    import math
+
+    from ..scene import SECTIONS
+
+    section, name = key.split(".")
+    meta = next(f.metadata for f in dataclasses.fields(SECTIONS[section]) if f.name == name)
+    lo = next((meta[k] for k in ("ge", "gt") if meta.get(k) is not None), -math.inf)
+    hi = next((meta[k] for k in ("le", "lt") if meta.get(k) is not None), math.inf)
+    return float(lo), float(hi)
+
+
 def _number(key: str, label: str, unit: str, base: float, low: float, high: float, why: str) -> TornadoInput:
-    return TornadoInput(key, label, unit, float(base), float(low), float(high), why)
+    """A numeric input; an end past the key's own range is cut at its limit, and ``why`` says so."""
+    lo_limit, hi_limit = key_limits(key)
+    cut: list[str] = []
+    if low < lo_limit:
+        low, cut = lo_limit, cut + [f"the low end cut at the key's limit, {lo_limit:g}"]
+    if high > hi_limit:
+        high, cut = hi_limit, cut + [f"the high end cut at the key's limit, {hi_limit:g}"]
+    return TornadoInput(key, label, unit, float(base), float(low), float(high), why + "".join(f"; {c}" for c in cut))
 
 
 def default_inputs(scene: Scene, with_fem3d: bool = True) -> tuple[list[TornadoInput], list[str]]:
@@ -303,11 +329,11 @@ def inputs_for(scene: Scene, vary: list[str], with_fem3d: bool) -> tuple[list[To
     out = [i for i in out if i.key not in keys] + given
     for i in out:
         if isinstance(i.low, float) and isinstance(i.high, float) and i.key not in keys:
-            try:
+            try:  # the ends within the key's range (cut there), and the scene's cross-checks
                 parse_vary(f"{i.key}={i.low!r},{i.high!r}", scene)
-            except InputError as exc:  # a default range past the key's own: refused, and how to give one
+            except InputError as exc:
                 raise InputError(
-                    f"tornado: the default range of {i.key}, {i.low:g} to {i.high:g}, leaves the key's own "
+                    f"tornado: the default range of {i.key}, {i.low:g} to {i.high:g}, makes no valid scene "
                     f"({str(exc).split(': ', 1)[-1]}); give one with --vary {i.key}=LO,HI"
                 ) from None
     return out, left
@@ -541,7 +567,8 @@ def end_scene(scene: Scene, inp: TornadoInput, side: str) -> Scene:
     if isinstance(value, float) and isinstance(inp.base, float) and inp.base != 0:
         for key in SCALED_WITH.get(inp.key, ()):
             section, name = key.split(".")
-            sets.append(assignment(key, getattr(getattr(scene, section), name) * value / inp.base))
+            scaled = getattr(getattr(scene, section), name) * value / inp.base
+            sets.append(assignment(key, min(max(scaled, key_limits(key)[0]), key_limits(key)[1])))
     return override(scene, sets)
 
 
