@@ -167,3 +167,13 @@ def test_a_default_range_past_the_keys_own_is_cut_at_its_limit_and_says_so():
     scene = override(load_scene("paper"), ["rotor.eccentricity=0.5"])  # 2.5 e = 1.25 > the key's 1 m
     e = next(i for i in default_inputs(scene, with_fem3d=False)[0] if i.key == "rotor.eccentricity")
     assert (e.low, e.high) == (0.2, 1.0) and "cut at the key's limit, 1" in e.why
+
+
+def test_a_damaged_file_costs_its_section_only_and_is_named(tmp_path):
+    from rotorpillar.postprocess.report.state import Build, ReportOptions
+    from rotorpillar.postprocess.report.tornado import section_tornado
+
+    (tmp_path / "tornado.json").write_text('{"scene_name": "paper", "verdict": 3}')
+    html = section_tornado(Build(load_scene("paper"), tmp_path, "paper", ReportOptions()))
+    assert html is not None and "tornado.json" in html and "rotorpillar tornado paper" in html
+    assert section_tornado(Build(load_scene("paper"), tmp_path / "none", "paper", ReportOptions())) is None

@@ -23,19 +23,20 @@ def _inputs_table(inputs: tuple[TornadoInput, ...]) -> str:
 
 
 def _checks_table(r: TornadoResult) -> str:
-    labels = {i.key: i.label for i in r.inputs}
+    inputs = {i.key: i for i in r.inputs}
     rows = []
     for q in r.quantities:
         if q.kind != "check":
             continue
         for b in q.bars:
             c = b.crossing
-            where = "-" if c is None else f"{h.num(c.value, 3)} ({c.kind})"
+            i = inputs[b.key]
+            where = "-" if c is None else f"{value_text(c.value, i.unit)} ({c.kind})"
             rows.append(
                 [
                     q.name,
                     h.num(q.base, 4),
-                    labels.get(b.key, b.key),
+                    i.label,
                     f"{h.num(b.low, 4)} ({b.low_status or '-'})",
                     f"{h.num(b.high, 4)} ({b.high_status or '-'})",
                     where,
@@ -48,7 +49,7 @@ def _checks_table(r: TornadoResult) -> str:
             "input",
             "utilisation at the low end (-)",
             "utilisation at the high end (-)",
-            "input where it reaches 1 (input's unit)",
+            "the input where it reaches 1",
         ],
         rows,
     )
