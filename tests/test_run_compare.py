@@ -19,7 +19,7 @@ from rotorpillar.transients.compare import COMPARISONS, comparison_models
 def test_run_compare_stages_feed_the_report(tmp_path):
     skip = [
         a
-        for s in ("analyze", "simulate", "modal", "harmonic", "integrators", "converge", "campbell")
+        for s in ("analyze", "simulate", "modal", "harmonic", "integrators", "converge", "campbell", "tornado")
         for a in ("--skip", s)
     ]
     p = cli(

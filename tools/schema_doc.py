@@ -39,6 +39,7 @@ FILES = (
     ("campbell.json", "rotorpillar.reduced.campbell", "CampbellDiagram"),
     ("summary.json", "rotorpillar.verdict.summary", "EngineeringSummary"),
     ("study.json", "rotorpillar.studies.result", "StudyResult"),
+    ("tornado.json", "rotorpillar.verdict.tornado", "TornadoResult"),
     ("report.json", "rotorpillar.postprocess.report.build", "ReportResult"),
     ("run.json", "rotorpillar.commands.run", "RunResult"),
 )

@@ -59,6 +59,11 @@ COMMANDS = {
         "study_command",
         "design study on Dask: capture maps of run-ups, earthquake IDA curves",
     ),
+    "tornado": (
+        "rotorpillar.commands.tornado",
+        "tornado_command",
+        "how much the checks depend on the uncertain inputs: a one-at-a-time study on the ROM",
+    ),
     "harmonic": (
         "rotorpillar.commands.harmonic",
         "harmonic_command",
@@ -88,6 +93,7 @@ EXTRA_ARGUMENTS = {
     "integrators": _arguments("integrators"),
     "compare": _arguments("compare"),
     "study": _arguments("study"),
+    "tornado": _arguments("tornado"),
     "harmonic": _arguments("harmonic"),
     "campbell": _arguments("campbell"),
 }

@@ -113,6 +113,8 @@ RUN_STAGES = [
         ),
         3,
     ),
+    # each uncertain input at the ends of its range on the ROM (paper: 18 runs, ~7 s)
+    ("tornado", "how much the checks depend on the uncertain inputs: the tornado chart", None, (), 3),
     ("simulate --case runup", "run-up from rest on the headline model", None, (), 3),
     ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ("--model", "paper"), 3),
     ("report", "charts, mode shapes, animations, report.html", _report_flags, (), 4),

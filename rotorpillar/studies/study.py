@@ -126,8 +126,13 @@ def design_study(
     charts: Charts | None = None,
     log: Callable[[str], None] | None = None,
     executor: Executor | None = None,
+    write_csv: bool = True,
 ) -> StudyResult:
-    """Run (or load) every batch of the study and condense it (see the module text)."""
+    """Run (or load) every batch of the study and condense it (see the module text).
+
+    ``write_csv``: write study.csv in ``out_dir`` (False: a study inside another command,
+    such as `tornado`, which must not overwrite the scene's own study.csv).
+    """
     from tqdm import tqdm
 
     start = time.perf_counter()
@@ -231,14 +236,14 @@ def design_study(
             wall_seconds=0.0,
         ),
     )
-    csv = write_text(out_dir / "study.csv", study_csv(result))
+    csv = write_text(out_dir / "study.csv", study_csv(result)) if write_csv else None
     figures = charts(result, out_dir) if charts is not None else []
     return replace(
         result,
         figures=tuple(figures),
         performance=replace(result.performance, wall_seconds=time.perf_counter() - start),
         pillar_model=modes.pillar_model if modes is not None else None,
-        files=StudyFiles(csv=str(csv), cache_dir=str(cache_dir)),
+        files=None if csv is None else StudyFiles(csv=str(csv), cache_dir=str(cache_dir)),
     )
 
 

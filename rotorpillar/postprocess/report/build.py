@@ -44,6 +44,7 @@ from .render import render_3d, render_charts, render_comparisons
 from .runs import section_averaging, section_runs
 from .state import Build, Product, ReportOptions, debugging, say
 from .study import section_study
+from .tornado import section_tornado
 from .tower import section_tower
 
 if TYPE_CHECKING:
@@ -61,6 +62,7 @@ R = TypeVar("R")
 #: appendices, collapsed.  A new section is one entry here.
 SECTIONS = [
     ("answer", "The answer", section_answer, False),
+    ("tornado", "How much the answer depends on what nobody knows", section_tornado, False),
     ("forces", "Internal forces and stresses", section_internal_forces, False),
     ("unbalance", "Unbalance response and separation margins", section_unbalance, False),
     ("earthquake", "The recorded earthquake", section_earthquake, False),

@@ -33,6 +33,7 @@ COMMAND_GROUPS = {
     "integrators": "integrators",
     "modal": "modal",
     "study": "study",
+    "tornado": "tornado",
     "campbell": "machine3d",
 }
 #: The charts a command writes beside its JSON without naming them there (campbell.json's
