@@ -89,7 +89,7 @@ def check_run(
     run checks again on its own modes)."""
     from ..reduced.excitation import no_motion
     from ..reduced.integration import Estimated, estimate_only
-    from ..scene import override
+    from ..scene import with_values
     from ..transients.cases import check_full_order_budget, run_case
     from ..transients.run_plan import fem3d_plan, own_duration, with_duration
 
@@ -107,7 +107,7 @@ def check_run(
         check_full_order_budget(scene, case, motion or no_motion(), integrator)
         return
     if which == "modal" and scene.modal_model.source != "beam":
-        scene = override(scene, ["modal_model.source=beam"])
+        scene = with_values(scene, {"modal_model.source": "beam"})
     with estimate_only():
         try:
             run_case(scene, case, which, integrator, modes, truncation=False, motion=motion)
