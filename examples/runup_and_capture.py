@@ -7,10 +7,10 @@ and just above it, show the Sommerfeld effect.  The summary is a typed
 CaseSummary (the fields of simulate_runup.json).
 """
 
-from rotorpillar import load_scene, override
+from rotorpillar import load_scene, with_values
 from rotorpillar.transients.cases import run_case
 
-scene = load_scene("sommerfeld", ["simulate.threshold=false"])  # one run each, no batch
+scene = with_values(load_scene("sommerfeld"), {"simulate.threshold": False})  # one run each, no batch
 first = run_case(scene, "runup", "paper", truncation=False)
 # the averaging theory's fold: the quasi-static run-up jumps past resonance 1 above this M0
 fold = min(j.torque_at_zero for j in first.summary.prediction.jumps if j.direction == "up" and j.resonance == 1)
@@ -20,7 +20,7 @@ print(
 )
 
 for M0 in (600.0, 660.0):
-    s = run_case(override(scene, [f"drive.torque_at_zero={M0}"]), "runup", "paper", truncation=False).summary
+    s = run_case(with_values(scene, {"drive.torque_at_zero": M0}), "runup", "paper", truncation=False).summary
     where = (
         f"captured at {s.captured_at:.2f} rad/s below the resonance at {s.captured_resonance:.2f} rad/s"
         if s.captured_at is not None

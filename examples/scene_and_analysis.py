@@ -7,10 +7,10 @@ modes (no study here: the scene's own model); the paper's Eq. 4 with its
 stated reduction sits beside it in ``paper_model``.
 """
 
-from rotorpillar import analyze, load_scene, override
+from rotorpillar import analyze, load_scene, with_values
 
 paper = load_scene("paper")
-stiff = override(paper, ["shaft.stiffness=5e6"])  # the paper's stiff shaft
+stiff = with_values(paper, {"shaft.stiffness": 5e6})  # the paper's stiff shaft
 
 for name, scene in (("elastic shaft", paper), ("stiff shaft", stiff)):
     result = analyze(scene)

@@ -3,8 +3,8 @@
 The library as a notebook uses it (the CLI, :mod:`rotorpillar.cli`, is a thin
 layer over the same calls; ``examples/`` has short scripts)::
 
-    from rotorpillar import load_scene, override, analyze
-    scene = override(load_scene("paper"), ["shaft.stiffness=5e6"])
+    from rotorpillar import load_scene, with_values, analyze
+    scene = with_values(load_scene("paper"), {"shaft.stiffness": 5e6})
     result = analyze(scene)            # an AnalysisResult: result.system.omega, ...
 
 Layers, bottom up (docs/architecture.md draws them):
@@ -30,6 +30,7 @@ _EXPORTS = {
     "Scene": "rotorpillar.scene",
     "load_scene": "rotorpillar.scene",
     "override": "rotorpillar.scene",
+    "with_values": "rotorpillar.scene",
     "embedded_scenes": "rotorpillar.scene",
     "InputError": "rotorpillar.errors",
     "ComputationError": "rotorpillar.errors",

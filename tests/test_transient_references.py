@@ -32,7 +32,7 @@ from rotorpillar.fem3d.modal import ModeRow
 from rotorpillar.records import replace
 from rotorpillar.scene import load_scene, override
 from rotorpillar.transients.references import PARTICIPATION_FLOOR, choose_reference, participation_table, read_study
-from rotorpillar.transients.window import START_FRACTION, runup_window, window_overrides
+from rotorpillar.transients.window import START_FRACTION, runup_window, window_scene
 
 has_dolfinx = pytest.mark.skipif(__import__("importlib").util.find_spec("dolfinx") is None, reason="needs dolfinx")
 TOTAL, COMPLIANCE = 22_000.0, (1e-7, 1e-9)
@@ -218,8 +218,8 @@ def test_runup_window(name):
         assert w.end > w.peak_time
     else:  # passes 14.9, 15.8 and 27.1 rad/s within its first second
         assert w.captured_resonance is None and len(w.passed) == 3 and w.end < 1.0
-    keys = dict(k.split("=") for k in window_overrides(w))
-    assert float(keys["simulate.runup_initial_speed"]) == w.initial_speed
+    run = window_scene(scene, w).simulate
+    assert (run.runup_initial_speed, run.duration, run.threshold) == (w.initial_speed, w.duration, False)
 
 
 def test_held_whirl_is_steady_on_a_rigid_pillar():

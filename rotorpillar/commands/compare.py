@@ -165,11 +165,11 @@ def _components(scene: Scene, args, timings):
     from ..chain import resolve
     from ..provenance import write_result
     from ..reduced.ground3d import scene_spatial_motion
-    from ..scene import override
+    from ..scene import with_values
     from ..transients.components import compare_components
     from . import Done, is_root_rank, mpi_progress, out_dir
 
-    scene = override(scene, [f"excitation.components={args.components}"])
+    scene = with_values(scene, {"excitation.components": args.components})
     progress = mpi_progress()
     out = out_dir(scene, args)
     with timings("pillar_modes"):

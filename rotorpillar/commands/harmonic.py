@@ -27,7 +27,7 @@ def preflight(scene: Scene, args) -> None:
     this machine cannot hold, and a drive with no stable running speed."""
     from ..reduced.models import build_model
     from ..reduced.stationary import operating_speed
-    from ..scene import override
+    from ..scene import with_values
 
     if not getattr(args, "no_fem3d", False):
         import importlib.util
@@ -37,7 +37,7 @@ def preflight(scene: Scene, args) -> None:
 
             check_run(scene, "runup", "fem3d")
     # the running speed on the beam's modes: within the beam's error of the chain's ROM
-    model, _ = build_model(override(scene, ["modal_model.source=beam"]), "modal", modes=1)
+    model, _ = build_model(with_values(scene, {"modal_model.source": "beam"}), "modal", modes=1)
     d, L = scene.drive, scene.load
     operating_speed(model, d.torque_at_zero, d.slope, L.coefficient)
 

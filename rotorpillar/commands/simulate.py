@@ -81,16 +81,14 @@ def check_run(
     """Refuse (InputError) a run of one model that its own code would refuse, before any
     work: the 3D model's mesh memory and step budget (fem3d.full_order_plan, before
     meshing), the beam full order's step budget (transients.cases.check_full_order_budget),
-    or a reduced model's step budget (the case's own code, transients.cases.run_case, run up
-    to its first integration: rotorpillar.reduced.integration.estimate_only; the models
-    built, nothing integrated).  A modal model whose modes would come from the 3D model
+    or a reduced model's step budget (transients.cases.check_case: the case's model built
+    and its start found as run_case finds them, simulate's own checks; nothing integrated).  A modal model whose modes would come from the 3D model
     is estimated on the 1D beam's modes (the estimate's inputs from the modes, the
     operating speed and the fastest mode in the band, agree within the beam's error; the
     run checks again on its own modes)."""
     from ..reduced.excitation import no_motion
-    from ..reduced.integration import Estimated, estimate_only
-    from ..scene import override
-    from ..transients.cases import check_full_order_budget, run_case
+    from ..scene import with_values
+    from ..transients.cases import check_case, check_full_order_budget
     from ..transients.run_plan import fem3d_plan, own_duration, with_duration
 
     if which == "fem3d":
@@ -107,12 +105,8 @@ def check_run(
         check_full_order_budget(scene, case, motion or no_motion(), integrator)
         return
     if which == "modal" and scene.modal_model.source != "beam":
-        scene = override(scene, ["modal_model.source=beam"])
-    with estimate_only():
-        try:
-            run_case(scene, case, which, integrator, modes, truncation=False, motion=motion)
-        except Estimated:
-            pass
+        scene = with_values(scene, {"modal_model.source": "beam"})
+    check_case(scene, case, which, integrator, modes, motion)
 
 
 def preflight(scene: Scene, args):

@@ -73,9 +73,9 @@ def beam_operating_speed(scene: Scene, drive: DriveSchedule, motion: GroundMotio
     far from the resonances it differs from the 3D one by the beams' frequency error only."""
     from ..reduced.models import build_model
     from ..reduced.stationary import operating_speed
-    from ..scene import override
+    from ..scene import with_values
 
-    beam = override(scene, ["modal_model.source=beam"])
+    beam = with_values(scene, {"modal_model.source": "beam"})
     top = scene.modal_model.band_factor * max(drive.free_speed(), motion.band())
     model, _ = build_model(beam, "modal", top)
     return operating_speed(model, drive.torque_at_zero[-1], drive.slope[-1], drive.load_coefficient)

@@ -27,11 +27,9 @@ Many runs of one model in one compiled loop: rotorpillar.reduced.batch.
 
 from __future__ import annotations
 
-import contextlib
-import contextvars
 import math
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Generic
 
@@ -252,6 +250,36 @@ def auto_time_step(model: TransientModel, speed_scale: float, settings: Settings
     return h
 
 
+def check_simulation(
+    model: TransientModel,
+    drive: DriveSchedule,
+    motion: Motion,
+    t_end: float,
+    v0: Arr = None,
+    settings: Settings = Settings(),
+    t_start: float = 0.0,
+    speed_scale: float | None = None,
+) -> float:
+    """What :func:`simulate` refuses before it integrates, given the same arguments: a bad
+    interval or method (ValueError), a run over its step budget (InputError, one line).
+    Returns the speed scale the run integrates at (rad/s): ``speed_scale``, or from the
+    start's speed and the drive's free speed.  Nothing is integrated: a command calls it
+    to refuse a run before any work."""
+    if not (math.isfinite(t_end) and t_end > t_start):
+        raise ValueError(f"t_end = {t_end!r} must be finite and > t_start = {t_start!r}")
+    if settings.method not in INTEGRATORS:
+        raise ValueError(f"method must be one of {INTEGRATORS}")
+    v0 = np.zeros(model.n) if v0 is None else np.asarray(v0, dtype=float)
+    if speed_scale is None:
+        speed_scale = (
+            max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0))
+            if math.isfinite(drive.free_speed())
+            else max(abs(v0[-1]), 1.0)
+        )
+    check_step_budget(model, motion, t_end - t_start, settings, speed_scale)
+    return speed_scale
+
+
 def simulate(
     model: M,
     drive: DriveSchedule,
@@ -264,23 +292,12 @@ def simulate(
     prescribed_speed: bool = False,
     speed_scale: float | None = None,
 ) -> Transient[M, G]:
-    """Integrate the model from (q0, v0) at t_start to t_end."""
-    if not (math.isfinite(t_end) and t_end > t_start):
-        raise ValueError(f"t_end = {t_end!r} must be finite and > t_start = {t_start!r}")
-    if settings.method not in INTEGRATORS:
-        raise ValueError(f"method must be one of {INTEGRATORS}")
+    """Integrate the model from (q0, v0) at t_start to t_end; refused first as
+    :func:`check_simulation` refuses it."""
+    speed_scale = check_simulation(model, drive, motion, t_end, v0, settings, t_start, speed_scale)
     n = model.n
     q0 = np.zeros(n) if q0 is None else np.asarray(q0, dtype=float)
     v0 = np.zeros(n) if v0 is None else np.asarray(v0, dtype=float)
-    if speed_scale is None:
-        speed_scale = (
-            max(abs(v0[-1]), drive.free_speed(), drive.free_speed(0.0))
-            if math.isfinite(drive.free_speed())
-            else max(abs(v0[-1]), 1.0)
-        )
-    check_step_budget(model, motion, t_end - t_start, settings, speed_scale)
-    if _ESTIMATE_ONLY.get():
-        raise Estimated()
     P = model.pack(drive, motion, prescribed_speed)
     start = time.perf_counter()
     if settings.method == "dp5":
@@ -332,25 +349,6 @@ def check_step_budget(
             f"than simulate.max_steps = {settings.max_steps:.3g}: shorten it, coarsen the step, "
             "or raise simulate.max_steps"
         )
-
-
-class Estimated(Exception):
-    """simulate() inside ``estimate_only()``: the run passed its budget check and stopped."""
-
-
-_ESTIMATE_ONLY = contextvars.ContextVar("estimate_only", default=False)
-
-
-@contextlib.contextmanager
-def estimate_only() -> Iterator[None]:
-    """Inside, ``simulate`` checks its step budget and raises ``Estimated`` instead of
-    integrating: a caller learns whether a case would be refused by running the case's
-    own code up to its first integration (the models built, nothing integrated)."""
-    token = _ESTIMATE_ONLY.set(True)
-    try:
-        yield
-    finally:
-        _ESTIMATE_ONLY.reset(token)
 
 
 def _output_grid(t0: float, t1: float, samples: int) -> NDArray[np.float64]:

@@ -2,7 +2,7 @@
 
 Rooms: :mod:`.words` (the project's word lists), :mod:`.sections` (the
 sections as frozen dataclasses; the machine's in :mod:`.machine`, a field's
-declaration in :mod:`.fields`), :mod:`.validation` (checks, building),
+declaration in :mod:`.fields`), :mod:`.validation` (checks, building, new scenes from typed values),
 :mod:`.files` (TOML files, embedded scenes, ``--set``); every public name is
 re-exported here.
 
@@ -14,8 +14,12 @@ the documentation all come from the same place.
 >>> s = load_scene("paper")
 >>> s.pillar.height, s.shaft.stiffness
 (20.0, 400000.0)
->>> override(s, ["shaft.stiffness=5e6"]).shaft.stiffness
+>>> with_values(s, {"shaft.stiffness": 5e6}).shaft.stiffness
 5000000.0
+
+A scene is a value: :func:`with_values` derives a new one from typed values,
+each checked as a scene file's; :func:`override` takes ``--set`` text, for the
+command line.
 """
 
 from .fields import param
@@ -60,7 +64,7 @@ from .sections import (
     Sweep,
 )
 from .tower import FOUNDATION_KINDS, Can, Foundation, Reference, Segment, segment_index
-from .validation import SCENE_NAME, check_combinations, check_field, scene_from_dict
+from .validation import SCENE_NAME, check_combinations, check_field, scene_from_dict, with_values
 from .words import (
     ADAPTIVE_INTEGRATORS,
     CASES,
@@ -134,4 +138,5 @@ __all__ = [
     "scene_from_dict",
     "segment_index",
     "what_is_there",
+    "with_values",
 ]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import fields
 from typing import Any
 
@@ -166,6 +167,62 @@ def range_of(key: str) -> str:
     section, _, name = key.partition(".")
     known = {f.name: f for f in fields(SECTIONS[section])} if section in SECTIONS else {}
     return _range_text(known[name].metadata) if name in known else ""
+
+
+def _field_of(key: str) -> dataclasses.Field[Any]:
+    """The field of ``section.key``, or the scene file's one line about an unknown key."""
+    section, dot, name = key.partition(".")
+    if not (section and dot and name) or "." in name:
+        raise SceneError(f"{key!r}: a scene key is section.key, e.g. shaft.stiffness")
+    if section not in SECTIONS:
+        raise SceneError(f"[{section}]: unknown section; a scene has " + ", ".join(f"[{s}]" for s in SECTIONS))
+    known = {f.name: f for f in fields(SECTIONS[section])}
+    if name not in known:
+        raise SceneError(f"{key}: unknown key; [{section}] takes " + ", ".join(known))
+    return known[name]
+
+
+def _file_order(key: str) -> tuple[int, int]:
+    """Where a scene file's validation meets ``section.key``: sections, then fields, in order."""
+    section, _, name = key.partition(".")
+    names = [f.name for f in fields(SECTIONS[section])]
+    return list(SECTIONS).index(section), names.index(name)
+
+
+def with_values(scene: Scene, values: Mapping[str, Any]) -> Scene:
+    """A new scene: ``scene`` with each ``section.key`` of ``values`` set to its typed value.
+
+    Each value is checked as a scene file's (its type and range, then the checks
+    across keys), and a bad one is the same SceneError line that ``--set`` and
+    the file give.  Nothing is formatted as text or parsed: a float arrives as
+    the float it is.  An array of tables (``pillar.cans``) takes its section
+    objects (``Can``) or their tables.
+
+    >>> from rotorpillar.scene import load_scene
+    >>> s = with_values(load_scene("paper"), {"simulate.duration": 10, "modal_model.source": "beam"})
+    >>> s.simulate.duration, s.modal_model.source
+    (10.0, 'beam')
+    >>> with_values(s, {"simulate.duration": 0.0})
+    Traceback (most recent call last):
+    ...
+    rotorpillar.scene.fields.SceneError: simulate.duration = 0.0 is out of range: must be >= 0.001 and <= 100000 ...
+    """
+    known = {key: _field_of(key) for key in values}
+    changes: dict[str, dict[str, Any]] = {}
+    for key in sorted(values, key=_file_order):  # the first bad value is the one a scene file names
+        value = values[key]
+        if known[key].metadata.get("table") is not None and isinstance(value, (list, tuple)):
+            value = [
+                dataclasses.asdict(v) if dataclasses.is_dataclass(v) and not isinstance(v, type) else v for v in value
+            ]
+        section, _, name = key.partition(".")
+        changes.setdefault(section, {})[name] = _check_value(key, value, known[key])
+    if not changes:
+        return scene
+    sections = {sec: dataclasses.replace(getattr(scene, sec), **kv) for sec, kv in changes.items()}
+    new = dataclasses.replace(scene, **sections)
+    _cross_checks(new)
+    return new
 
 
 def check_combinations(scene: Scene) -> None:

@@ -29,7 +29,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..records import Record
-from ..scene import CASES, SECTIONS, Scene, SceneError, check_combinations, check_field, override
+from ..scene import CASES, SECTIONS, Scene, SceneError, check_combinations, check_field, with_values
 
 #: keys a study sets itself (by --case and --model) or does not use: the
 #: batch loop integrates with the compiled dp5 at the scene's rtol
@@ -59,19 +59,6 @@ class Axis(Record):
     """the values run, in order (numbers, or strings such as record files)"""
     spec: str
     """the --vary text it came from"""
-
-
-def _value_text(v) -> str:
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    return repr(v)
-
-
-def assignment(key: str, value) -> str:
-    """``--set`` text for one value (strings quoted for TOML)."""
-    return f"{key}={_value_text(value)}"
 
 
 def _field(key: str):
@@ -282,9 +269,7 @@ def points(axes: tuple[Axis, ...]) -> list[dict]:
 
 def run_scene(scene: Scene, params: dict, implied: dict | None = None) -> Scene:
     """The scene of one run (validated, cross-checks included)."""
-    sets = [assignment(k, v) for k, v in (implied or {}).items()]
-    sets += [assignment(k, v) for k, v in params.items()]
-    return override(scene, sets) if sets else scene
+    return with_values(scene, {**(implied or {}), **params})
 
 
 def check_points(scene: Scene, axes: tuple[Axis, ...], implied: dict) -> list[dict]:

@@ -30,19 +30,19 @@ from typing import Any, cast
 import numpy as np
 
 from ..errors import InputError
-from ..records import replace
+from ..records import Record, replace
 from ..reduced.accuracy import FULL_ORDER_SCHEMES, StepRule, forcing_frequencies, full_order_parameters, full_order_step
 from ..reduced.band import forcing_top
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import ExcitationSizes, GroundMotion, no_motion, response_spectrum
-from ..reduced.integration import Settings, Transient, simulate
+from ..reduced.integration import Settings, Transient, check_simulation, simulate
 from ..reduced.models import ModelInfo, build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.spatial_modes import SpatialPillarModes
 from ..reduced.spatial_records import PlanesChoice
 from ..reduced.spatial_rotor import SpatialRotor, transient_model
-from ..reduced.stationary import averaging_prediction, operating_speed, passing_torque
+from ..reduced.stationary import AveragingPrediction, averaging_prediction, operating_speed, passing_torque
 from ..scene import CASES, Scene
 from .case_summary import (
     CaseSummary,
@@ -229,6 +229,56 @@ def run_case(
     modal model whose ``modal_model.planes`` resolves to "spatial"
     (rotorpillar.reduced.spatial_rotor.transient_model): the case then runs on the
     spatial ROM, the motor's reaction on the gondola and every ground component acting."""
+    m = case_model(scene, case, which, integrator, modes, motion, pillar_modes, spatial_modes)
+    result = _run_on(scene, case, m.model, m.motion, integrator, m.info, m.settings)
+    if m.planes is not None:
+        result = replace(result, planes=m.planes)
+    if m.rule is not None:
+        rule = m.rule
+        result = replace(
+            result,
+            run=replace(result.run, stats=replace(result.run.stats, step_rule=rule)),
+            summary=replace(result.summary, integrator=replace(result.summary.integrator, step_rule=rule)),
+        )
+    if m.which == "modal" and truncation:
+        if isinstance(result.model, SpatialRotor):
+            result = with_spatial_truncation(scene, result, m.motion, integrator, spatial_modes, progress)
+        else:
+            result = with_truncation(scene, result, m.motion, integrator, pillar_modes, progress)
+    return result
+
+
+class CaseModel(Record):
+    """The model a case runs on and the ground motion it takes, built as ``run_case`` builds them."""
+
+    which: str
+    """the model asked for: paper, modal or beam"""
+    model: RotorStructure
+    """the model (the spatial ROM, duck-typed, where modal_model.planes resolves to spatial)"""
+    motion: GroundMotion
+    """the ground motion: none but for the earthquake; the spatial ROM's takes every component"""
+    info: ModelInfo | None
+    """how the model was built (build_model)"""
+    planes: PlanesChoice | None
+    """the modal model: modal_model.planes resolved for this case, and why (None: other models)"""
+    settings: Settings | None
+    """the beam's integration settings, from its step rule (None: the scene's [simulate])"""
+    rule: StepRule | None
+    """the beam's step rule (None: other models)"""
+
+
+def case_model(
+    scene: Scene,
+    case: str,
+    which: str | None = None,
+    integrator: str | None = None,
+    modes: int | None = None,
+    motion: GroundMotion | None = None,
+    pillar_modes: PillarModes | None = None,
+    spatial_modes: SpatialPillarModes | None = None,
+) -> CaseModel:
+    """The model of ``case`` and its ground motion (the arguments as ``run_case`` takes them);
+    a beam over its step budget is refused before it is built."""
     if case not in CASES:
         raise InputError(f"case {case!r}: must be one of {', '.join(CASES)}")
     which = which or scene.simulate.model
@@ -248,21 +298,86 @@ def run_case(
             model = cast(RotorStructure, spatial)
             motion = spatial_motion(scene, case, motion)
     settings, rule = full_order_settings(scene, case, motion, integrator, model) if which == "beam" else (None, None)
-    result = _run_on(scene, case, model, motion, integrator, info, settings)
-    if planes is not None:
-        result = replace(result, planes=planes)
-    if rule is not None:
-        result = replace(
-            result,
-            run=replace(result.run, stats=replace(result.run.stats, step_rule=rule)),
-            summary=replace(result.summary, integrator=replace(result.summary.integrator, step_rule=rule)),
+    return CaseModel(which, model, motion, info, planes, settings, rule)
+
+
+class CaseStart(Record):
+    """A case's first integration, as ``simulate`` takes it (rotorpillar.reduced.integration),
+    and the averaging theory's prediction, made before it."""
+
+    drive: DriveSchedule
+    """the motor's torque schedule"""
+    t_end: float
+    """the run's end (s); it starts at 0"""
+    q0: np.ndarray | None
+    """the start's displacements (m, rad); None: at rest"""
+    v0: np.ndarray | None
+    """the start's velocities (m/s, rad/s); None: at rest"""
+    speed_scale: float | None
+    """the speed the run integrates at (rad/s); None: simulate's own, from the drive"""
+    settings: Settings
+    """the integration settings of the run"""
+    initial_speed: float | None
+    """the speed the run starts at, where the case sets one (rad/s)"""
+    prediction: AveragingPrediction
+    """the paper's Eq. 19-23 for the scene's drive on the model"""
+
+
+def case_start(scene: Scene, case: str, model: RotorStructure, motion: GroundMotion, settings: Settings) -> CaseStart:
+    """Where ``case`` starts on ``model`` and how long it runs (see the module text); an
+    earthquake run that ends before the ground moves is refused (InputError)."""
+    d, L, sim = scene.drive, scene.load, scene.simulate
+    M0, s, k = d.torque_at_zero, d.slope, L.coefficient
+    pred = averaging_prediction(model, M0, s, k)
+    if case == "runup":
+        drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
+        if sim.runup_initial_speed > 0:
+            W0 = sim.runup_initial_speed
+            return CaseStart(drive, sim.duration, *model.held_whirl_state(W0), W0, settings, W0, pred)
+        return CaseStart(drive, sim.duration, None, None, None, settings, None, pred)
+    if case in ("rundown", "earthquake"):
+        Wop = operating_speed(model, M0, s, k)
+        q0, v0 = on_reaction(model, *model.steady_initial_state(Wop), M0 - s * Wop)
+        if case == "rundown":
+            drive = DriveSchedule.switched(M0, s, k, 0.0, *_rundown_motor(scene))
+            return CaseStart(drive, sim.duration, q0, v0, Wop, settings, Wop, pred)
+        t_end = sim.earthquake_duration or motion.end + 5.0
+        if t_end <= motion.start:
+            raise InputError(
+                f"simulate.earthquake_duration = {t_end:g} s ends before the ground motion starts ({motion.start:g} s)"
+            )
+        return CaseStart(DriveSchedule.constant(M0, s, k), t_end, q0, v0, Wop, settings, Wop, pred)
+    w = scene.sweep
+    drive = DriveSchedule.sweep(s, k, w.torque_low, w.torque_high, w.rate, w.settle)
+    sweep_settings = replace(settings, samples=max(settings.samples, 40 * w.bins))
+    return CaseStart(drive, drive.times[-1], None, None, drive.free_speed(drive.times[2]), sweep_settings, None, pred)
+
+
+def _rundown_motor(scene: Scene) -> tuple[float, float]:
+    """The motor of a run-down after the switch: (M0 (N*m), slope (N*m*s)); off: (0, 0)."""
+    sim = scene.simulate
+    return (0.0, 0.0) if sim.rundown_motor == "off" else (sim.rundown_torque_at_zero, scene.drive.slope)
+
+
+def check_case(
+    scene: Scene,
+    case: str,
+    which: str | None = None,
+    integrator: str | None = None,
+    modes: int | None = None,
+    motion: GroundMotion | None = None,
+) -> None:
+    """Refuse (InputError, one line) a run of ``case`` that ``run_case`` (without its
+    truncation check) would refuse, doing only the work before its first integration:
+    the model built (a beam over its budget refused first), the start found, and
+    ``simulate``'s own checks (rotorpillar.reduced.integration.check_simulation).
+    Nothing is integrated; a command calls it before any work."""
+    m = case_model(scene, case, which, integrator, modes, motion)
+    with quiet_divergence():
+        start = case_start(scene, case, m.model, m.motion, m.settings or settings_of(scene, integrator))
+        check_simulation(
+            m.model, start.drive, m.motion, start.t_end, start.v0, start.settings, speed_scale=start.speed_scale
         )
-    if which == "modal" and truncation:
-        if isinstance(result.model, SpatialRotor):
-            result = with_spatial_truncation(scene, result, motion, integrator, spatial_modes, progress)
-        else:
-            result = with_truncation(scene, result, motion, integrator, pillar_modes, progress)
-    return result
 
 
 def spatial_motion(scene: Scene, case: str, motion: GroundMotion):
@@ -421,44 +536,25 @@ def _run_and_summarise(
     model_info: ModelInfo | None = None,
     settings: Settings | None = None,
 ) -> CaseResult:
-    d, L, sim = scene.drive, scene.load, scene.simulate
+    sim = scene.simulate
     st = settings or settings_of(scene, integrator)
-    M0, s, k = d.torque_at_zero, d.slope, L.coefficient
-    pred = averaging_prediction(model, M0, s, k)
+    s, k = scene.drive.slope, scene.load.coefficient
+    start = case_start(scene, case, model, motion, st)
+    drive, pred, initial_speed = start.drive, start.prediction, start.initial_speed
+    run = simulate(
+        model, drive, motion, start.t_end, start.q0, start.v0, settings=start.settings, speed_scale=start.speed_scale
+    )
     sections: dict[str, Any] = {}
-    initial_speed, excitation, excitation_in_model, sweep = None, None, None, None
+    excitation, excitation_in_model, sweep = None, None, None
     if case == "runup":
-        drive = DriveSchedule.ramp(M0, s, k, sim.runup_ramp)
-        if sim.runup_initial_speed > 0:
-            q0, v0 = model.held_whirl_state(sim.runup_initial_speed)
-            run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st, speed_scale=sim.runup_initial_speed)
-            initial_speed = sim.runup_initial_speed
-        else:
-            run = simulate(model, drive, motion, sim.duration, settings=st)
         free = drive.free_speed()
         if sim.threshold:
             sections["passing_torque"] = passing_torque(model, drive, sim.duration, st.rtol)
     elif case == "rundown":
-        Wop = operating_speed(model, M0, s, k)
-        q0, v0 = on_reaction(model, *model.steady_initial_state(Wop), M0 - s * Wop)
-        after = (0.0, 0.0) if sim.rundown_motor == "off" else (sim.rundown_torque_at_zero, s)
-        drive = DriveSchedule.switched(M0, s, k, 0.0, *after)
-        run = simulate(model, drive, motion, sim.duration, q0, v0, settings=st, speed_scale=Wop)
         free = drive.free_speed() if sim.rundown_motor == "weaker" else 0.0
-        initial_speed = Wop
-        pred = averaging_prediction(model, after[0], after[1], k)
+        pred = averaging_prediction(model, *_rundown_motor(scene), k)
     elif case == "earthquake":
-        Wop = operating_speed(model, M0, s, k)
-        q0, v0 = on_reaction(model, *model.steady_initial_state(Wop), M0 - s * Wop)
-        drive = DriveSchedule.constant(M0, s, k)
-        t_end = sim.earthquake_duration or motion.end + 5.0
-        if t_end <= motion.start:
-            raise InputError(
-                f"simulate.earthquake_duration = {t_end:g} s ends before the ground motion starts ({motion.start:g} s)"
-            )
-        run = simulate(model, drive, motion, t_end, q0, v0, settings=st, speed_scale=Wop)
         free = drive.free_speed()
-        initial_speed = Wop
         excitation = sections["excitation"] = motion.sizes()
         excitation_in_model = (
             "Eq. 4 as published: c0 q5 + b0 q5' on q1, c2 q5 + b2 q5' on q2 (absolute coordinates)"
@@ -475,16 +571,6 @@ def _run_and_summarise(
             sections["response_spectrum_check"] = spectrum_check(model, motion, run)
     else:
         w = scene.sweep
-        drive = DriveSchedule.sweep(s, k, w.torque_low, w.torque_high, w.rate, w.settle)
-        t_end = drive.times[-1]
-        run = simulate(
-            model,
-            drive,
-            motion,
-            t_end,
-            settings=replace(st, samples=max(st.samples, 40 * w.bins)),
-            speed_scale=drive.free_speed(drive.times[2]),
-        )
         free = drive.free_speed()
         sw = sweep_analysis(w, s, k, model, run, drive)
         sweep = sw

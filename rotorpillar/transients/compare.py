@@ -261,12 +261,12 @@ def compare_models(
 
     start, given = time.perf_counter(), scene
     from ..reduced.models import scene_motion
-    from ..scene import override
+    from ..scene import with_values
 
     models = tuple(models)
     # each model runs the case only: the passing-torque batch belongs to the scene's own
     # run on the headline model (simulate), not to a comparison of models
-    scene = override(scene, ["simulate.threshold=false"])
+    scene = with_values(scene, {"simulate.threshold": False})
     if case not in COMPARE_CASES:
         raise InputError(f"--case {case!r}: compare runs {', '.join(COMPARE_CASES)}")
     motion = scene_motion(scene) if case == "earthquake" else None
@@ -277,12 +277,12 @@ def compare_models(
     window = None
     if case == "runup" and "fem3d" in models:
         # the 3D run-up through the resonances only; every model from the same state
-        from .window import runup_window, window_overrides
+        from .window import runup_window, window_scene
 
         if progress:
             progress("compare runup: the window through the resonances (the ROM's run-up from rest)")
         window = runup_window(scene, chain.modes)
-        scene = override(scene, window_overrides(window))
+        scene = window_scene(scene, window)
     duration, why = common_duration(scene, case, models, motion, out)  # bad input: before any output
     if window is not None:
         why = f"the run-up's window {window.reason}; {why}"
@@ -471,9 +471,9 @@ def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
         model = runs["modal"].case_result.model
         computed = runs["modal"].record.max_abs["tip_x_relative"]
     else:
-        from ..scene import override
+        from ..scene import with_values
 
-        beam = override(scene, ["modal_model.source=beam"])
+        beam = with_values(scene, {"modal_model.source": "beam"})
         model, _ = build_model(
             beam,
             "modal",

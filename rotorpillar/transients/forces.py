@@ -412,7 +412,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
     from ..reduced.band import forcing_top
     from ..reduced.foundation import base_springs
     from ..reduced.models import candidate_modes
-    from ..scene import override
+    from ..scene import with_values
     from .cases import run_case
 
     candidates = candidate_modes(scene, pillar_modes)
@@ -463,7 +463,7 @@ def _modal_forces(scene: Scene, run, res, integrator, pillar_modes, motion, shaf
                 f"section forces: the base moment needs {k} modes (the run kept {k_run}); the case again with them"
             )
         # the planar ROM's variants: only its runs get them (the spatial ROM's have neither)
-        quiet = override(scene, ["simulate.threshold=false", "modal_model.planes=planar"])
+        quiet = with_values(scene, {"simulate.threshold": False, "modal_model.planes": "planar"})
         from .case_summary import series
 
         again = run_case(

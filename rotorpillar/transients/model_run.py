@@ -52,7 +52,7 @@ from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
 from ..reduced.rotor_models import StructureDescription
 from ..reduced.spatial_records import PlanesChoice
 from ..reduced.system import DampedMode, Resonance
-from ..scene import MODELS, override
+from ..scene import MODELS, with_values
 from .case_summary import CaseSummary, RunOutcome
 from .forces import InternalForcesSummary
 from .run_plan import BeamFullOrder, Fem3dPlan, fem3d_plan, reduced_pillar_model, solid_pillar_model, with_duration
@@ -282,14 +282,9 @@ def warm_up(scene: Scene, case: str, which: str, integrator, modes, motion, pill
     few milliseconds of the same case; its wall time (s), kept apart from the run's."""
     from .cases import run_case
 
-    short = override(
-        scene,
-        [
-            "simulate.threshold=false",
-            f"simulate.{'earthquake_duration' if case == 'earthquake' else 'duration'}"
-            f"={(motion.start + 1e-2) if case == 'earthquake' else 1e-2!r}",
-        ],
-    )
+    key = "simulate.earthquake_duration" if case == "earthquake" else "simulate.duration"
+    length = motion.start + 1e-2 if case == "earthquake" else 1e-2  # s: 10 ms of the run
+    short = with_values(scene, {"simulate.threshold": False, key: length})
     if case == "sweep":
         return 0.0  # a sweep's schedule has no short form; its kernels are dp5's
     start = time.perf_counter()

@@ -118,15 +118,15 @@ class StoredRun(Record, omit_defaults=True):
 
 def pareto_scene(scene: Scene, duration: float = PARETO_DURATION):
     """The scene of the Pareto case: the scene's record from PARETO_RECORD_START, ``duration`` long."""
-    from ..scene import override
+    from ..scene import with_values
 
-    return override(
+    return with_values(
         scene,
-        [
-            "excitation.kind=record",
-            f"excitation.start={PARETO_RECORD_START!r}",
-            f"simulate.earthquake_duration={duration!r}",
-        ],
+        {
+            "excitation.kind": "record",
+            "excitation.start": PARETO_RECORD_START,
+            "simulate.earthquake_duration": duration,
+        },
     )
 
 
@@ -193,7 +193,7 @@ def reduced_run(
     from ..reduced.drive import DriveSchedule
     from ..reduced.integration import simulate
     from ..reduced.models import build_model
-    from ..scene import override
+    from ..scene import with_values
     from .cases import full_order_settings, settings_of
 
     d, L = scene.drive, scene.load
@@ -203,7 +203,7 @@ def reduced_run(
         model, _ = build_model(scene, "modal", modes=params["modes"], pillar_modes=pillar_modes)
         st = settings_of(scene)
     else:
-        beam = override(scene, [f"full_order.beam_elements={params['elements']}"])
+        beam = with_values(scene, {"full_order.beam_elements": params["elements"]})
         model, _ = build_model(beam, "beam")
         st, _ = full_order_settings(beam, "earthquake", motion)
     q0, v0 = model.held_whirl_state(speed)

@@ -23,7 +23,7 @@ from ..chain import ChainModes, PillarModel
 from ..errors import InputError
 from ..records import Record
 from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
-from ..scene import Mesh, override
+from ..scene import Mesh, with_values
 from .references import FullOrderReference
 
 
@@ -88,7 +88,7 @@ def _scene_motion(scene: Scene):
 def with_duration(scene: Scene, case: str, duration: float):
     """The scene with the case's run length set to ``duration`` (s)."""
     key = "earthquake_duration" if case == "earthquake" else "duration"
-    return override(scene, [f"simulate.{key}={float(duration)!r}"])
+    return with_values(scene, {f"simulate.{key}": float(duration)})
 
 
 def fem3d_plan(scene: Scene, case: str, motion=None, duration: float | None = None, study_dir=None) -> Fem3dPlan:

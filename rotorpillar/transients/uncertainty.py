@@ -21,7 +21,7 @@ from dataclasses import fields
 from ..chain import ChainModes, Uncertain
 from ..errors import InputError
 from ..records import Record
-from ..scene import ADAPTIVE_INTEGRATORS, SCIPY_METHODS, Scene, Simulate, override
+from ..scene import ADAPTIVE_INTEGRATORS, SCIPY_METHODS, Scene, Simulate, with_values
 
 #: the numbers that get error bars, and their units
 HEADLINE = {"peak_tip_relative": "m", "peak_shaft_deflection": "m", "omega_final": "rad/s", "captured_at": "rad/s"}
@@ -62,10 +62,10 @@ def _finer(scene: Scene, integrator: str | None) -> Scene:
     sim = scene.simulate
     method = integrator or sim.integrator
     if method in ADAPTIVE_INTEGRATORS + SCIPY_METHODS:
-        return override(scene, [f"simulate.rtol={max(sim.rtol / 100, 1e-13)!r}"])
+        return with_values(scene, {"simulate.rtol": max(sim.rtol / 100, 1e-13)})
     floor = next(f for f in fields(Simulate) if f.name == "time_step").metadata["ge"]
     if sim.time_step / 2 >= floor:
-        return override(scene, [f"simulate.time_step={sim.time_step / 2!r}"])
+        return with_values(scene, {"simulate.time_step": sim.time_step / 2})
     return scene  # an automatic step: the integrator study measures it, not this check
 
 
@@ -77,7 +77,7 @@ def uncertainty(
     from .cases import run_case
 
     # the planar ROM's variants: only its runs get them (the spatial ROM's have neither)
-    quiet = override(scene, ["simulate.threshold=false", "modal_model.planes=planar"])
+    quiet = with_values(scene, {"simulate.threshold": False, "modal_model.planes": "planar"})
     k = base.model.pillar_modes.count
     values = headline_numbers(base)
 

@@ -65,7 +65,7 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     modal ROM from rest, without the passing-torque batch and the truncation check;
     ``pillar_modes``: the ROM's (the chain's; None: resolved for the scene, no study)."""
     from ..reduced.drive import DriveSchedule
-    from ..scene import override
+    from ..scene import with_values
     from .case_summary import capture_state
     from .cases import run_case
 
@@ -76,7 +76,9 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
         pillar_modes = resolve(scene, None).modes  # no study here: the scene's own model
     # the planar ROM's run-up places the window (its resonances in the rotor's plane are the
     # spatial ROM's to the gondola's inertia): as today, whatever modal_model.planes says
-    rest = override(scene, ["simulate.threshold=false", "simulate.runup_initial_speed=0", "modal_model.planes=planar"])
+    rest = with_values(
+        scene, {"simulate.threshold": False, "simulate.runup_initial_speed": 0.0, "modal_model.planes": "planar"}
+    )
     res = run_case(rest, "runup", "modal", truncation=False, pillar_modes=pillar_modes)
     t, W, tip = res.run.t, res.run.Omega, np.abs(res.run.tip())
     qn = sorted(r.omega for r in res.model.quasi_normal())
@@ -144,10 +146,12 @@ def runup_window(scene: Scene, pillar_modes=None) -> RunupWindow:
     )
 
 
-def window_overrides(window: RunupWindow) -> list[str]:
-    """The scene keys that make a case's run-up the window's (without the passing-torque
-    batch: it answers for a run-up from rest over the whole case, which the window is not)."""
-    keys = [f"simulate.duration={window.duration!r}", "simulate.threshold=false"]
-    if window.initial_speed <= 0:
-        return keys
-    return keys + [f"simulate.runup_initial_speed={window.initial_speed!r}", "simulate.runup_ramp=0"]
+def window_scene(scene: Scene, window: RunupWindow) -> Scene:
+    """The scene whose run-up is the window's (without the passing-torque batch: it
+    answers for a run-up from rest over the whole case, which the window is not)."""
+    from ..scene import with_values
+
+    values: dict[str, float | bool] = {"simulate.duration": window.duration, "simulate.threshold": False}
+    if window.initial_speed > 0:
+        values |= {"simulate.runup_initial_speed": window.initial_speed, "simulate.runup_ramp": 0.0}
+    return with_values(scene, values)
