@@ -54,7 +54,7 @@ from typing import TYPE_CHECKING
 
 from ..records import Figure, Record, replace
 from ..reduced.capacity import FAIL, NOT_ASSESSED, PASS, Check, check
-from ..scene import Scene, override
+from ..scene import Scene, with_values
 
 if TYPE_CHECKING:
     from ..studies.result import StudyRun
@@ -535,9 +535,10 @@ def _study_runs(
 ) -> tuple[StudyRun, ...]:
     """The ROM's ``case`` at each value of ``key`` (in their order): one design study."""
     from ..studies import design_study
-    from ..studies.axes import _value_text
 
-    axis = f"{key}=" + ",".join(_value_text(v) for v in values)
+    # design_study takes its axes as `study --vary` takes them (its public interface): the
+    # values written as TOML values, strings quoted
+    axis = f"{key}=" + ",".join(_vary_text(v) for v in values)
     res = design_study(
         scene,
         case,
@@ -552,6 +553,15 @@ def _study_runs(
     return tuple(sorted(res.runs, key=lambda r: r.index))  # the index is the axis's order
 
 
+def _vary_text(v) -> str:
+    """One value of a ``--vary`` axis as TOML writes it."""
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return repr(v)
+
+
 #: keys scaled with an input by the same factor: the pillar's damping is b1 (the planar ROM's
 #: tip dashpot) and the modal damping ratio zeta of the spatial model (the separation margins'
 #: amplification factors) together
@@ -560,21 +570,19 @@ SCALED_WITH = {"pillar.damping": ("pillar.damping_ratio",)}
 
 def end_scene(scene: Scene, inp: TornadoInput, side: str) -> Scene:
     """The scene at one end (``side`` "low" or "high") of ``inp``'s range, every other key the scene's."""
-    from ..studies.axes import assignment
-
     value = getattr(inp, side)
-    sets = [assignment(inp.key, value)]
+    values = {inp.key: value}
     if isinstance(value, float) and isinstance(inp.base, float) and inp.base != 0:
         for key in SCALED_WITH.get(inp.key, ()):
             section, name = key.split(".")
             scaled = getattr(getattr(scene, section), name) * value / inp.base
-            sets.append(assignment(key, min(max(scaled, key_limits(key)[0]), key_limits(key)[1])))
-    return override(scene, sets)
+            values[key] = min(max(scaled, key_limits(key)[0]), key_limits(key)[1])
+    return with_values(scene, values)
 
 
 def earthquake_scene(scene: Scene) -> Scene:
     """The scene's earthquake as the tornado runs it: its record (``excitation.record``), whole."""
-    return scene if scene.excitation.kind == "record" else override(scene, ['excitation.kind="record"'])
+    return scene if scene.excitation.kind == "record" else with_values(scene, {"excitation.kind": "record"})
 
 
 def tornado_study(
