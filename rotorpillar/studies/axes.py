@@ -247,7 +247,11 @@ def parse_axes(texts: list[str], scene: Scene) -> tuple[Axis, ...]:
 
 def implied_settings(axes: tuple[Axis, ...], case: str, scene: Scene) -> dict:
     """Keys the study sets because of its axes: varying a record or its scale
-    makes the earthquake a record (``excitation.kind = "record"``)."""
+    makes the earthquake a record (``excitation.kind = "record"``); varying the ground's
+    direction or its components (``SPATIAL_AXES``) runs every point on the spatial ROM
+    (``modal_model.planes = "spatial"``), so that one model covers the whole axis (with
+    "auto" the point in the rotor's plane would run the planar ROM and the next one the
+    spatial, and the difference of the models would read as the angle's)."""
     if case not in CASES:
         raise InputError(f"--case {case!r}: must be one of {', '.join(CASES)}")
     keys = {a.key for a in axes}
@@ -259,7 +263,13 @@ def implied_settings(axes: tuple[Axis, ...], case: str, scene: Scene) -> dict:
         and scene.excitation.kind != "record"
     ):
         out["excitation.kind"] = "record"
+    if keys & SPATIAL_AXES and "modal_model.planes" not in keys and scene.modal_model.planes == "auto":
+        out["modal_model.planes"] = "spatial"
     return out
+
+
+#: axes whose values only the spatial ROM can tell apart
+SPATIAL_AXES = frozenset({"excitation.angle", "excitation.components", "excitation.record_y", "excitation.record_z"})
 
 
 def points(axes: tuple[Axis, ...]) -> list[dict]:

@@ -26,6 +26,7 @@ shaft deflection is taken from ``settle_time`` on, when it is below 1 % of e.
 
 from __future__ import annotations
 
+import math
 import os
 import socket
 import time
@@ -35,7 +36,7 @@ import numpy as np
 
 from ..records import Record, replace
 from ..reduced.band import forcing_top
-from ..reduced.batch import simulate_batch
+from ..reduced.batch import shaft_deflection, simulate_batch
 from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import NoMotionSizes, no_motion
 from ..reduced.models import build_model, scene_motion
@@ -124,7 +125,55 @@ def _tail_mean(t, W) -> float:
     return float(np.mean(W[tail]))
 
 
+def _spatial_runs(scene: Scene, case: str, runs: list[PlannedRun], pillar_modes=None) -> list[StudyRun] | None:
+    """The group's runs on the spatial ROM, one at a time as ``simulate`` runs them
+    (rotorpillar.transients.cases.run_case), where the scene's ``modal_model.planes`` resolves
+    to spatial for this case (a ground motion in several components or at an angle to the
+    rotor's plane, the drive's reaction, or the scene's own choice); None where it resolves to
+    planar, and the batch loop runs them.  The batch loop integrates the planar ROM alone: on
+    it, ``excitation.angle`` or a second component would change nothing, and a study over them
+    would report the same peak at every value."""
+    from ..transients.cases import case_model, run_case
+
+    m = case_model(scene, case, "modal", pillar_modes=pillar_modes)
+    if m.planes is None or m.planes.planes != "spatial":
+        return None
+    out = []
+    for p in runs:
+        own = run_scene(scene, {k: v for k, v in p.params.items() if k in PER_RUN[case]})
+        res = run_case(own, case, "modal", truncation=False, pillar_modes=pillar_modes)
+        run, sm = res.run, res.summary
+        size, _ = shaft_deflection(run.q, res.model.shaft, res.model.eccentricity)
+        since = run.t >= (settle_time(own, float(run.t[-1])) if case == "runup" else 0.0)
+        sizes = scene_motion(own).sizes() if case == "earthquake" else None
+        out.append(
+            StudyRun(
+                index=p.index,
+                params=p.params,
+                ok=bool(sm.ok),
+                final_speed=float(sm.omega_final),
+                final_speed_mean=float(sm.omega_final_mean),
+                captured_at=sm.captured_at,
+                speed_state=sm.speed_state,
+                passed=None if case == "earthquake" else sm.speed_state not in ("captured", "escaping"),
+                peak_tip=float(sm.max_abs["tip_x"] or 0.0),
+                peak_shaft_deflection=float(np.max(size[since])),
+                free_speed=float(run.drive.free_speed() if run.drive is not None else math.nan),
+                nfev=int(sm.integrator.nfev),
+                pga=None
+                if sizes is None
+                else (0.0 if isinstance(sizes, NoMotionSizes) else float(sizes.peak_acceleration)),
+                initial_speed=res.initial_speed,
+            )
+        )
+    return out
+
+
 def _run_group(scene: Scene, case: str, which: str, runs: list[PlannedRun], pillar_modes=None) -> list[StudyRun]:
+    if which == "modal":
+        spatial = _spatial_runs(scene, case, runs, pillar_modes)
+        if spatial is not None:
+            return spatial
     sim, d, L, r, sh = scene.simulate, scene.drive, scene.load, scene.rotor, scene.shaft
     per: dict[str, list[float]] = {"M0": [], "s": [], "k": [], "e": [], "c2": []}
     for p in runs:
