@@ -1,6 +1,8 @@
 """The machine in three dimensions on the page: the Campbell diagram of the ROM and the 3D
 model side by side (campbell.json, campbell.png) and El Centro in three components on the
-spatial ROM and the 3D full order (compare_earthquake_components.json).
+spatial ROM and the 3D full order (compare_earthquake_components.json); the spatial ROM's
+unbalance response in both lateral directions and its orbits (harmonic.json's ``spatial``,
+drawn here as orbits.png).
 
 Both files are read through their records (rotorpillar.reduced.campbell.CampbellDiagram,
 rotorpillar.transients.components.ComponentsComparison); the prose is the template's
@@ -14,9 +16,10 @@ from pathlib import Path
 from ... import records
 from ...reduced.campbell import CampbellDiagram
 from ...transients.components import ComponentsComparison
+from ...verdict.harmonic import HarmonicResult
 from .compare_section import Picture
 from .page import Section, render, with_subsections
-from .state import Build
+from .state import FIGURES_DIR, Build, attempt
 
 
 def _read(build: Build, file: str, record_type: type) -> tuple[object | None, str | None]:
@@ -37,6 +40,7 @@ def section_machine3d(build: Build) -> Section | None:
     quake, quake_damaged = _read(build, "compare_earthquake_components.json", ComponentsComparison)
     if campbell is None and quake is None and campbell_damaged is None and quake_damaged is None:
         return None
+    orbits = _orbits(build, campbell)
     chart = Path(build.out) / "campbell.png"
     picture = (
         Picture(
@@ -54,6 +58,34 @@ def section_machine3d(build: Build) -> Section | None:
         picture=picture,
         quake=quake,
         quake_damaged=quake_damaged,
+        orbits=orbits,
         scene=build.scene_cli,
     )
     return with_subsections("machine3d", "The machine in three dimensions", str(html))
+
+
+def _orbits(build: Build, campbell) -> Picture | None:
+    """orbits.png from harmonic.json's spatial response (None: no file, no spatial response, or
+    the chart failed: the failure is the build's)."""
+    from ..orbit_chart import orbit_chart
+
+    harmonic, _ = _read(build, "harmonic.json", HarmonicResult)
+    spatial = getattr(harmonic, "spatial", None)
+    if spatial is None:
+        return None
+    running = getattr(campbell, "running_speed", None)
+    path = attempt(
+        build,
+        "orbits",
+        lambda: orbit_chart(Path(build.out) / FIGURES_DIR / "orbits.png", spatial, running),
+    )
+    if path is None:
+        return None
+    return Picture(
+        str(path),
+        "The spatial ROM's steady unbalance response (harmonic.json: spatial). Left: the amplitudes of "
+        "the top and of the rotor centre in the rotor's plane and along the spin axis against the speed. "
+        "Right: the semi-axes of each orbit (the shaft's deflection and the rotor centre in the plane "
+        "normal to the spin axis, the top in the horizontal plane), the line style its whirl; the "
+        "dash-dotted line is the running speed",
+    )
