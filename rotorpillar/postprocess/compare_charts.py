@@ -129,7 +129,16 @@ def spectrum_chart(
         Sj = float(m[2]) / STANDARD_GRAVITY if len(m) > 2 else spectral_value(T[ok], S[ok], float(Tj))
         ax.axvline(Tj, color=COLOURS["unstable"], lw=0.8, ls="--", zorder=1)
         if np.isfinite(Sj):
-            ax.plot([Tj], [Sj], "o", color=COLOURS["unstable"], ms=6, zorder=3)
+            own = len(m) > 2 and not any(t.get_label().startswith("modes at their own") for t in ax.lines)
+            ax.plot(
+                [Tj],
+                [Sj],
+                "o",
+                color=COLOURS["unstable"],
+                ms=6,
+                zorder=3,
+                label="modes at their own damping" if own else "_nolegend_",
+            )
             labels.append(
                 {
                     "xy": (Tj, Sj),
