@@ -230,7 +230,7 @@ def _summary(scene: Scene, r: CompareResult) -> str:
         s = r.spectrum
         comp = f"{s.computed_peak_tip:.4g} m" if s.computed_peak_tip is not None else "not run"
         lines.append(
-            f"  response spectrum: spectral peak tip {s.spectral_peak_tip:.4g} m (SRSS), computed (modal) {comp}"
+            f"  response spectrum: spectral peak tip {s.spectral_peak_tip:.4g} m (SRSS over the coupled modes), computed (modal) {comp}"
         )
     if r.pareto and r.pareto.cost:  # a finished study: its runs done, their cost known
         pa, cost = r.pareto, r.pareto.cost

@@ -245,7 +245,7 @@ def _why(r: ConvergenceRun, needed: Sequence[str], ref_unc: Mapping[str, float],
     return (
         f"{q} error bound {bound[q]:.1e} > {tolerance:g}: "
         f"model {r.relative_error(q, 'model_error'):+.1e}, discretisation "
-        f"{r.relative_error(q, 'discretisation_error'):+.1e}, reference {ref_unc[q]:.0e}"
+        f"{r.relative_error(q, 'discretisation_error'):+.1e}, reference {ref_unc[q]:.1e}"
     )
 
 
@@ -285,10 +285,13 @@ def _reason(
     reference: Reference,
     rejected: Mapping[str, tuple[ConvergenceRun, str]],
 ) -> str:
+    ref_unc = reference_uncertainty(reference)
     parts = [f"{best.label} ({_cost(best.dofs):,} DOFs, {_cost(best.wall_time):.2f} s) is the cheapest run whose "]
     parts.append(
         " and ".join(
-            f"first {q} ({best.frequency(q):.3f} rad/s, error {best.relative_error(q):+.1e}, bound {best.error_bound(q):.1e})"
+            f"first {q} ({best.frequency(q):.3f} rad/s, error {best.relative_error(q):+.1e}, "
+            f"error bound {(best.error_bound(q) or 0.0) + ref_unc.get(q, 0.0):.1e} with the reference's "
+            f"uncertainty {ref_unc.get(q, 0.0):.1e})"
             for q in needed
         )
     )
@@ -415,7 +418,10 @@ def select_reference(
         best, ok = (reach[0], True) if reach else (min(pool, key=lambda r: (err[id(r)], _cost(r.dofs))), False)
     e = err[id(best)]
     dofs = _cost(best.dofs)
-    what = " and ".join(f"first {q} {best.frequency(q):.4f} rad/s (bound {best.error_bound(q):.1e})" for q in wanted)
+    what = " and ".join(
+        f"first {q} {best.frequency(q):.4f} rad/s (error bound {(best.error_bound(q) or 0.0) + unc.get(q, 0.0):.1e})"
+        for q in wanted
+    )
     if ok:
         reason = (
             f"{best.label} ({dofs:,} DOFs) is the coarsest 3D run of the study whose "

@@ -111,8 +111,9 @@ def spectrum_chart(
 ) -> Path:
     """The pseudo-acceleration ``psa`` (m/s**2) against ``period`` (s), shown
     in g on a logarithmic period axis; each mode of ``mode_periods`` (a
-    period, or (label, period)) marked on the curve at its spectral value,
-    its label placed off the curve."""
+    period, or (label, period), or (label, period, its own pseudo-acceleration
+    in m/s**2 at its own damping)) marked at that value, else on the curve at
+    its spectral value, its label placed off the curve."""
     from .style import place_labels
 
     fig, ax = figure(*size)
@@ -123,11 +124,21 @@ def spectrum_chart(
     top = float(np.max(S[ok])) if ok.any() else 1.0
     labels = []
     for j, m in enumerate(mode_periods, start=1):
-        name, Tj = m if isinstance(m, (tuple, list)) else (f"mode {j}", m)
-        Sj = spectral_value(T[ok], S[ok], float(Tj))
+        m = tuple(m) if isinstance(m, (tuple, list)) else (f"mode {j}", m)
+        name, Tj = m[0], m[1]
+        Sj = float(m[2]) / STANDARD_GRAVITY if len(m) > 2 else spectral_value(T[ok], S[ok], float(Tj))
         ax.axvline(Tj, color=COLOURS["unstable"], lw=0.8, ls="--", zorder=1)
         if np.isfinite(Sj):
-            ax.plot([Tj], [Sj], "o", color=COLOURS["unstable"], ms=6, zorder=3)
+            own = len(m) > 2 and not any(t.get_label().startswith("modes at their own") for t in ax.lines)
+            ax.plot(
+                [Tj],
+                [Sj],
+                "o",
+                color=COLOURS["unstable"],
+                ms=6,
+                zorder=3,
+                label="modes at their own damping" if own else "_nolegend_",
+            )
             labels.append(
                 {
                     "xy": (Tj, Sj),

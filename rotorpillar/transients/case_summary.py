@@ -38,20 +38,22 @@ from .sweep import NumericJump, SweepFindings
 
 
 class SpectralMode(Record):
-    """One pillar mode's part in the response-spectrum estimate of the tip."""
+    """One coupled rotor-pillar mode's part in the response-spectrum estimate of the tip
+    (rotorpillar.reduced.spectral)."""
 
     mode: int
     """its number, from 1 (-)"""
     period: float
-    """(s)"""
+    """T_j = 2 pi / omega_j, omega_j its undamped natural frequency (s)"""
     damping_ratio: float
-    """its own damping ratio (-)"""
+    """its own damping ratio zeta_j = u_j^T C u_j / (2 m_j omega_j) (-)"""
     participation_factor: float
-    """Gamma_j for a base acceleration (-)"""
+    """the tip's participation p_j = -(tip . u_j)(u_j . b) / m_j for a base acceleration,
+    independent of the shape's scale (-)"""
     s_d: float
     """the record's spectral displacement at its period and damping (m)"""
     contribution: float
-    """|Gamma_j| S_d(T_j) (m)"""
+    """|p_j| S_d(T_j, zeta_j): the tip's peak in this mode (m)"""
 
 
 class TruncationEstimate(Record, tag_field="kind", tag="estimate"):
@@ -98,37 +100,40 @@ Truncation = TruncationEstimate | NoTruncationEstimate
 
 class SpectralEstimate(Record):
     """The response-spectrum estimate of the tip's largest displacement relative to the
-    ground: per pillar mode j, Gamma_j S_d(T_j, zeta_j), combined by SRSS."""
+    ground: per coupled rotor-pillar mode j, |p_j| S_d(T_j, zeta_j), combined by SRSS."""
 
     modes: tuple[SpectralMode, ...]
-    """each pillar mode's part, in the modal model's order"""
+    """each coupled mode's part, in ascending frequency"""
     srss_tip_estimate: float
     """the square root of the sum of the contributions' squares (m)"""
+    pillar_modes_only: float
+    """the same SRSS over the pillar's own modes, the rotor apart (m): what the estimate
+    would read without the rotor's coupling"""
 
 
 class SpectrumCheck(Record, tag_field="kind", tag="check"):
     """The tip's largest displacement relative to the ground beside the response-spectrum
-    estimate of the first pillar mode alone (Gamma_1 S_d(T_1, zeta_1)), and of all the
-    modes kept (SRSS)."""
+    estimate over the coupled rotor-pillar modes: the mode of the largest contribution alone
+    (|p_k| S_d(T_k, zeta_k)), and every mode (SRSS)."""
 
     period: float
-    """T_1: the first pillar mode's period (s)"""
+    """T_k: the period of the mode of the largest contribution (s)"""
     damping_ratio: float
-    """zeta_1: its own damping ratio (-)"""
+    """zeta_k: its own damping ratio (-)"""
     participation_factor: float
-    """Gamma_1 for a base acceleration (-)"""
+    """p_k: the tip's participation in it for a base acceleration (-)"""
     s_d: float
-    """the record's spectral displacement at T_1, zeta_1 (m)"""
+    """the record's spectral displacement at T_k, zeta_k (m)"""
     tip_estimate: float
-    """|Gamma_1| S_d(T_1, zeta_1) (m)"""
+    """|p_k| S_d(T_k, zeta_k): that mode alone (m)"""
     tip_numeric: float
     """the run's largest |tip X| relative to the ground after the motion starts (m)"""
     ratio: float | None
-    """tip_numeric / tip_estimate (-); None when the estimate is zero"""
+    """tip_numeric / srss_tip_estimate (-); None when the estimate is zero"""
     srss_tip_estimate: float
-    """every mode kept, SRSS (m)"""
+    """every coupled mode, SRSS (m)"""
     modes: tuple[SpectralMode, ...]
-    """each pillar mode's part"""
+    """each coupled mode's part"""
     note: str
     """what the estimate is, in words"""
 

@@ -72,7 +72,8 @@ class ComparedModel(Record):
     peak_tip_absolute: float
     """largest |absolute tip X| (m)"""
     peak_shaft_deflection: float
-    """largest |shaft deflection along X| (m)"""
+    """largest radial shaft deflection sqrt(d_x**2 + d_y**2), the run's
+    max_abs.shaft_deflection: the clearance check's (m)"""
     omega_final: float
     """rotor speed at the end (rad/s)"""
     wall_seconds: float
@@ -133,22 +134,28 @@ class CompareWindow(Record, omit_defaults=True):
 
 
 class ResponseSpectrum(Record):
-    """The earthquake's pseudo-acceleration spectrum and the ROM's spectral peak tip."""
+    """The earthquake's pseudo-acceleration spectrum and the ROM's spectral peak tip over
+    its coupled rotor-pillar modes (rotorpillar.transients.cases.spectral_estimate)."""
 
     period: tuple[float, ...]
     """(s)"""
     psa: tuple[float, ...]
-    """pseudo-acceleration at each period, 5 % damping (eqsig) (m/s**2)"""
+    """pseudo-acceleration at each period, at ``damping`` (eqsig) (m/s**2)"""
     damping: float
-    """the spectrum's damping ratio (-)"""
+    """the drawn spectrum's damping ratio (-); each mode's estimate takes its own"""
     mode_periods: tuple[float, ...]
-    """the modal model's mode periods (s)"""
+    """the coupled rotor-pillar modes' periods in X, as in ``modes`` (s)"""
     spectral_peak_tip: float
-    """SRSS of the modes' contributions (m)"""
+    """SRSS of the coupled modes' contributions (m)"""
     computed_peak_tip: float | None
     """the modal model's computed peak tip relative to the ground (m); None without it"""
     modes: tuple[SpectralMode, ...]
+    """each coupled mode's part: period, own damping, participation, S_d, contribution"""
     note: str
+    """what the estimate is, in words"""
+    pillar_modes_only: float | None = None
+    """the same SRSS over the pillar's own modes with the rotor apart (m): the estimate
+    without the rotor's coupling; None from an older rotorpillar"""
 
 
 class CompareResult(Record, omit_defaults=True):
@@ -447,7 +454,7 @@ def _per_model(case: str, m: str, r: ReducedRun | Fem3dRun) -> ComparedModel:
     return ComparedModel(
         peak_tip_relative=_peak(r, "tip_x_relative"),
         peak_tip_absolute=_peak(r, "tip_x_absolute"),
-        peak_shaft_deflection=_peak(r, "shaft_deflection_x"),
+        peak_shaft_deflection=_peak(r, "shaft_deflection"),
         omega_final=r.omega_final,
         wall_seconds=r.wall_seconds,
         compile_seconds=r.compile_seconds,
@@ -461,7 +468,7 @@ def _per_model(case: str, m: str, r: ReducedRun | Fem3dRun) -> ComparedModel:
 
 
 def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
-    """The record's spectrum, the pillar's modal periods, the ROM's spectral peak tip."""
+    """The record's spectrum, the coupled modes' periods, the ROM's spectral peak tip."""
     from ..reduced.band import forcing_top
     from ..reduced.excitation import response_spectrum
     from ..reduced.models import build_model
@@ -492,9 +499,9 @@ def _spectrum(scene: Scene, motion, runs: dict) -> ResponseSpectrum:
         spectral_peak_tip=est.srss_tip_estimate,
         computed_peak_tip=computed,
         modes=est.modes,
-        note="psa at 5 % damping (eqsig); the spectral estimate takes each mode's own damping "
-        "ratio (the pillar's b1 at the tip), SRSS over the modal model's modes, the rotor "
-        "as a separate mass: an estimate, not a bound",
+        note="the curve at 5 % damping (eqsig); the estimate takes the coupled rotor-pillar modes "
+        "in X, each at its own damping ratio, combined by SRSS: an estimate, not a bound",
+        pillar_modes_only=est.pillar_modes_only,
     )
 
 

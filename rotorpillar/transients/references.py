@@ -541,10 +541,9 @@ def choose_reference(
     statement = (
         f"The 3D reference runs {label}"
         + (
-            f": its error on the frequencies the load excites is at most {band_err:.1e} "
-            f"(the study's bound on the bare tube, "
-            + ", ".join(f"first {q} {e.error:+.1e}" for q, e in errors.items())
-            + ")"
+            f": its error bound on the frequencies the load excites is {band_err:.1e} "
+            f"(the study's, on the bare tube, the reference's uncertainty included; its error against "
+            "the reference: " + ", ".join(f"first {q} {e.error:+.1e}" for q, e in errors.items()) + ")"
             if band_err is not None
             else ", its error unknown"
         )

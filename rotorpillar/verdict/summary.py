@@ -305,6 +305,25 @@ def _headlines(
     """The headlines; ``quake``: the multi-component earthquake's (verdict.earthquake3d), which
     lead the earthquakes (the one-component runs after them are the model comparison)."""
     out = []
+    # the machine's first mode in the rotor's plane, the rotor on its shaft included (the
+    # ROM's coupled system, undamped), first: the frequency the designer keeps clear of; the
+    # tube's with the gondola only (below) is a part of it, named by what it includes
+    plane = [] if h is None else [c for c in h.averaging if c.direction == "X" and c.omega > 0]
+    if plane:
+        w = min(c.omega for c in plane)
+        out.append(
+            Headline(
+                "machine_first_frequency",
+                "the machine's first natural frequency in the rotor's plane (tube, gondola and rotor)",
+                w / (2 * math.pi),
+                "Hz",
+                "modal",
+                "modal",
+                "harmonic.json: averaging (the ROM's coupled modes in X, undamped)",
+                f"The machine's first mode in the rotor's plane, the rotor on its shaft included: "
+                f"{w / (2 * math.pi):.3f} Hz ({w:.2f} rad/s), undamped, ROM.",
+            )
+        )
     if modal is not None:
         rows = [r for r in modal.modes_with_top if r.kind == "bending_x"]
         if rows:
@@ -322,13 +341,13 @@ def _headlines(
             out.append(
                 Headline(
                     "loaded_first_frequency",
-                    "first bending frequency, gondola on top",
+                    "first bending frequency of the tube with the gondola, rotor apart",
                     w / (2 * math.pi),
                     "Hz",
                     "fem3d",
                     "modal",
                     "modal.json: modes_with_top",
-                    f"The loaded tube's first bending mode: "
+                    f"The tube's first bending mode with the gondola on top, the rotor apart: "
                     f"{w / (2 * math.pi):.3f} Hz{bar} ({w:.2f} rad/s), 3D model "
                     f"({mesh.elements_around} x {mesh.elements_along} elements), "
                     "modal analysis.",

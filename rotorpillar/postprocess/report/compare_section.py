@@ -9,7 +9,6 @@ and each model's run) and make the view records the partials
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING
 
 from ... import records
@@ -208,64 +207,14 @@ def comparison_block(build: Build, case: str) -> list[str]:
     return [render("sections/comparison.html.j2", c=view, reference=reference_block(ref))]
 
 
-class CoupledMode(Record):
-    """A coupled rotor-pillar mode of the reduced model a comparison ran."""
-
-    index: int
-    direction: str
-    omega: float
-    """undamped natural frequency (rad/s)"""
-    damping_ratio: float | None
-    """of the damped mode nearest it in the same direction (-)"""
-    spectral_acceleration: float | None = None
-    """the record's pseudo-acceleration at its period (m/s**2), horizontal modes only"""
-
-    @property
-    def period(self) -> float:
-        """(s)"""
-        return 2 * math.pi / self.omega
-
-
-def system_modes(c: Comparison | None) -> tuple[str | None, list[CoupledMode]]:
-    """The coupled rotor-pillar modes of the reduced model a comparison ran
-    (its run's resonances with their damped frequencies), the ROM first."""
-    if c is None:
-        return None, []
-    for m in sorted(c.models, key=lambda m: (m != "modal", m == c.reference)):
-        run = c.runs[m] if m in c.runs else None
-        if run is None or not run.resonances:
-            continue
-        out = []
-        for r in run.resonances:
-            if r.omega <= 0:
-                continue
-            same = [d for d in run.damped_frequencies if d.direction == r.direction]
-            near = min(same, key=lambda d: abs(d.omega - r.omega), default=None)
-            out.append(CoupledMode(r.index, r.direction, float(r.omega), None if near is None else near.damping_ratio))
-        return m, out
-    return None, []
-
-
 def spectrum_block(build: Build) -> list[str]:
-    """The record's response spectrum with the system's modes marked, and the
-    ROM's spectral estimate of the peak tip beside the computed one."""
-    from ..compare_charts import spectral_value
+    """The record's response spectrum with the coupled modes of the ROM's estimate marked
+    at their own damping, the estimate beside the computed peak, and what the coupling
+    does to it (the same SRSS over the pillar's own modes, the rotor apart)."""
     from ..directions import direction
 
     c = build.comparisons["earthquake"] if "earthquake" in build.comparisons else None
     spec = c.record.spectrum if c is not None else None
-    model, modes = system_modes(c)
-    if spec is not None:
-        modes = [
-            CoupledMode(
-                m.index,
-                m.direction,
-                m.omega,
-                m.damping_ratio,
-                spectral_value(spec.period, spec.psa, m.period) if m.direction.upper() == "X" else None,
-            )
-            for m in modes
-        ]
     figure = None
     if "response_spectrum" in build.products:
         p = build.products["response_spectrum"]
@@ -276,8 +225,7 @@ def spectrum_block(build: Build) -> list[str]:
             found=c is not None,
             command=f"rotorpillar {comparison_command('earthquake')} {build.scene_cli}",
             spec=spec,
-            model=model,
-            modes=modes,
+            model="modal",
             picture=figure,
             failed=build.failures["response_spectrum"] if "response_spectrum" in build.failures else None,
             horizontal=direction("X"),

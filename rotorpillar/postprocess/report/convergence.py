@@ -24,7 +24,14 @@ def chosen(study: ConvergenceStudy) -> tuple[str, str] | None:
     if c is None:
         return None
     band, needed = sel.band, sel.needed
-    bounds = ", ".join(f"{q} {h.num(getattr(c, f'{q}_error_bound'), 2)}" for q in needed)
+    # the error bound as the rule defines it, the reference's uncertainty included: the
+    # same number as the pillar model's line and the rejected runs' (one definition)
+    unc = sel.reference_uncertainty
+    bounds = ", ".join(
+        f"{q} {(getattr(c, f'{q}_error_bound') or 0.0) + unc.get(q, 0.0):.1e}"
+        f" (|model| + |discretisation| {getattr(c, f'{q}_error_bound') or 0.0:.1e}, reference {unc.get(q, 0.0):.1e})"
+        for q in needed
+    )
     why = (
         f"the cheapest run whose error bound meets the tolerance {h.num(sel.tolerance)} "
         f"on every frequency the scene excites: the band up to "

@@ -108,7 +108,9 @@ def section_internal_forces(build: Build) -> str:
             "at least as many modes as the base moment needs for 1 % over its band and as "
             "carry 90 % of the machine's mass along X (EN 1998-1); the "
             "full orders read their own element forces. Self-weight, gondola and rotor "
-            "enter N(z) under g.",
+            "enter N(z) under g. The shaft: its radial deflection |d|, the force its spring "
+            "carries c2 |d| and the force on the bearing, spring and damper together "
+            "|c2 d + b2 v|; the shaft force check takes the larger of the two forces.",
         )
     ]
     rows = []
@@ -124,7 +126,8 @@ def section_internal_forces(build: Build) -> str:
                 _value(b.stress, "Pa"),
                 h.num(b.moment_time, 4),
                 _value(f.shaft.deflection, "m"),
-                _value(max(f.shaft.spring_force, f.shaft.bearing_force), "N"),
+                _value(f.shaft.spring_force, "N"),
+                _value(f.shaft.bearing_force, "N"),
                 "-" if f.modes is None else f.modes,
                 r.window,
             ]
@@ -140,8 +143,9 @@ def section_internal_forces(build: Build) -> str:
                 "N(0)",
                 "base stress",
                 "at t (s)",
-                "shaft deflection",
-                "shaft force",
+                "shaft deflection, radial |d|",
+                "shaft spring force c2 |d|",
+                "bearing force |c2 d + b2 v|",
                 "modes",
                 "run covers",
             ],
@@ -377,7 +381,7 @@ def section_unbalance(build: Build) -> str:
     parts.append(
         h.table(
             [
-                "omega_i (rad/s)",
+                "omega_i, undamped (rad/s)",
                 "ROM peak at (rad/s)",
                 "ROM tip",
                 "3D peak at (rad/s)",
@@ -440,7 +444,7 @@ def section_unbalance(build: Build) -> str:
             [
                 "model",
                 "mode",
-                "omega (rad/s)",
+                "natural frequency, undamped (rad/s)",
                 "damping ratio (-)",
                 "amplification factor (-)",
                 "position",

@@ -104,7 +104,7 @@ def resonance_table(views: list[ModelView]) -> str:
                 rs = g.get(d, [])
                 cells.append(f"{h.num(rs[k].omega, 4)} (#{rs[k].index})" if k < len(rs) else "-")
             rows.append([direction(d), k + 1, *cells])
-    return h.table(["direction", "order", *[f"omega (rad/s), {v.title}" for v in views]], rows)
+    return h.table(["direction", "order", *[f"omega, undamped (rad/s), {v.title}" for v in views]], rows)
 
 
 def resonance_words(resonances: Sequence[Any]) -> str:

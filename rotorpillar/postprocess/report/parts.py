@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 from ... import records
 from .. import html as h
-from .page import model_name, plain
+from .page import bare, model_name, plain, shown_unit
 from .state import Build
 
 if TYPE_CHECKING:
@@ -81,7 +81,7 @@ PEAK_WORDS = {
     "tip_x": "tip, horizontal (X), in the model's frame",
     "rotor_x": "rotor centre, horizontal (X)",
     "rotor_y": "rotor centre, vertical (Y)",
-    "shaft_deflection_x": "shaft deflection (rotor minus tip), horizontal (X)",
+    "shaft_deflection": "shaft deflection (rotor minus tip), radial",
 }
 
 
@@ -99,7 +99,8 @@ def _peaks(mx: dict[str, float | None]) -> list[list]:
                 break
         else:
             groups.append([k, v, []])
-    return [[f"largest |{PEAK_WORDS[k]}| (m)", h.num(v)] for k, v, _ in groups if k in PEAK_WORDS]
+    # in mm to 4 digits, as every other table of peaks on the page
+    return [[f"largest |{PEAK_WORDS[k]}| ({shown_unit('m')})", bare(v, "m")] for k, v, _ in groups if k in PEAK_WORDS]
 
 
 def key_results(run: RunRecord) -> str:

@@ -74,7 +74,7 @@ def passage_rows(model: str, passages: Sequence[Passage], prediction: AveragingP
 HEADERS = [
     "model",
     "resonance",
-    "omega (rad/s)",
+    "omega_i, undamped (rad/s)",
     "crossed at t (s)",
     "Omega-dot (rad/s^2)",
     "Omega-dot / omega^2 (-)",

@@ -10,6 +10,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .. import html as h
+from .page import bare, shown_unit
 from .state import Build
 
 if TYPE_CHECKING:
@@ -102,14 +103,17 @@ def pareto_block(build: Build) -> list[str]:
             ),
         )
     )
+    # the errors' window and reference in their headers: the comparison's table measures
+    # the ROM over another window against another mesh, and its digits differ
+    over = f", t = 0 .. {h.num(case.duration, 3)} s" if case is not None else ""
     rows = [
         [
             r.label,
             h.num(r.dofs),
             h.num(r.wall_seconds, 3),
-            h.num(r.peak_tip, 5),
-            _pct(r.peak_tip_error),
-            _pct(r.history_error),
+            bare(r.peak_tip, "m"),
+            _pct(r.peak_tip_error).removesuffix(" %"),
+            _pct(r.history_error).removesuffix(" %"),
             ", ".join(k for k in ("peak_tip", "history") if r.label in getattr(pa.fronts, k)) or "-",
         ]
         for r in pa.runs
@@ -128,9 +132,9 @@ def pareto_block(build: Build) -> list[str]:
                     "model",
                     "DOFs",
                     "wall time, warm (s)",
-                    "peak tip (m)",
-                    "peak error",
-                    "history error",
+                    f"peak tip, relative to the ground ({shown_unit('m')})",
+                    f"peak tip error against {ref.label}{over} (%)",
+                    f"tip history error against {ref.label}{over} (%)",
                     "on the front of",
                 ],
                 rows,

@@ -3,6 +3,7 @@ mode shapes and the animations, each step recorded and allowed to fail."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import Any
 
@@ -130,19 +131,16 @@ def render_comparisons(build: Build) -> None:
     spec = quake.record.spectrum if quake is not None else None
     if quake is not None and spec is not None:
         c = quake
-        from .compare_section import system_modes
-
         damping = spec.damping
-        model, modes = system_modes(c)
-        # the modes the horizontal record excites: the coupled system's, in X
-        marks: list = [(f"mode {m.index}", m.period) for m in modes if m.direction.upper() == "X"] or list(
-            spec.mode_periods
-        )
+        # the modes of the estimate (the coupled rotor-pillar modes in X), each marked at its
+        # own damping: its pseudo-acceleration omega**2 S_d(T, zeta), not the drawn curve's
+        marks: list = [
+            (f"mode {m.mode}, {100 * m.damping_ratio:.3g} % damping", m.period, m.s_d * (2 * math.pi / m.period) ** 2)
+            for m in spec.modes
+        ]
         what = (
-            f"the coupled rotor-pillar modes of the {model_name(model)} in the record's direction "
-            "(horizontal, in the rotor's plane)"
-            if modes
-            else "the pillar's modal periods"
+            f"the coupled rotor-pillar modes of the {model_name('modal')} in the record's direction "
+            "(horizontal, in the rotor's plane), each at its pseudo-acceleration for its own damping ratio"
         )
         p = attempt(
             build,
@@ -161,8 +159,8 @@ def render_comparisons(build: Build) -> None:
                 p,
                 (
                     f"Pseudo-acceleration response spectrum of the record ({_record_name(c.record.excitation)}, "
-                    f"{100 * float(damping):g} % damping, eqsig); marked on the curve, with the value "
-                    f"read off it: {what}."
+                    f"the curve at {100 * float(damping):g} % damping, eqsig); marked, with their values: {what} "
+                    "(a point off the curve where a mode's damping differs from the curve's)."
                 ),
             )
 

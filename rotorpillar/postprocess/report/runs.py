@@ -10,6 +10,7 @@ from ..directions import direction
 from ..readers import CASES, INPUTS, SIMULATE_COMMAND
 from .compare_section import comparison_block
 from .models import model_views, resonance_table
+from .page import model_name
 from .parts import animation_video, failure, figures_of, key_results, product_image, scene_differs
 from .passage import passage_block
 from .state import Build
@@ -91,7 +92,7 @@ def _resonance_rows(resonances) -> str:
         [
             "i",
             "direction",
-            "omega_i (rad/s)",
+            "omega_i, undamped (rad/s)",
             "I_i (kg)",
             "f_i (m/s^2)",
             "2n_i (1/s)",
@@ -178,7 +179,10 @@ def section_runs(build: Build) -> str:
         if sim is None:
             continue
         model = sim.run.model if sim.run is not None else "?"
-        parts.append(h.tag("h4", f"{RUN_TITLES[case]}: the scene's own run ({model} model, simulate_{case}.json)"))
+        run = sim.run
+        span = f", {h.num(run.duration, 3)} s" if run is not None and run.duration else ""
+        start = " from rest" if case == "runup" and run is not None and not run.initial_speed else ""
+        parts.append(h.tag("h4", f"{RUN_TITLES[case]}{start}{span}: the scene's own run ({model_name(model)})"))
         parts += scene_differs(build, sim.provenance)
         if sim.run is not None:
             parts.append(key_results(sim.run))
