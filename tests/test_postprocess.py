@@ -299,7 +299,12 @@ def test_the_scene_run_of_the_3d_full_order_reads_by_its_record(tmp_path):
         build.simulations[case] = Simulation(case, run, a)
     build.quake_case = build.simulations["earthquake"]
     runs = section_runs(build)
-    assert "the scene&#x27;s own run (fem3d model, simulate_runup.json)" in runs
+    from html import escape
+
+    from rotorpillar.postprocess.report.page import model_name
+
+    # the heading names the run by what it is (its case, start, length and model), no file name
+    assert escape(f"the scene's own run ({model_name('fem3d')})") in runs
     final = build.simulations["runup"].run.omega_final
     assert f"<td>final speed (rad/s)</td><td>{h.num(final)}</td>" in runs
     assert "<td>energy balance: relative error (-)</td><td>2e-05</td>" in runs and ">jumps<" not in runs

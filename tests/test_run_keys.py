@@ -121,7 +121,9 @@ def _stages(out) -> dict[str, bool]:
 @pytest.mark.slow
 def test_run_reuses_what_has_not_changed(tmp_path):
     out = tmp_path / "out"
-    skips = [a for s in ("converge", "compare", "integrators", "harmonic", "campbell") for a in ("--skip", s)]
+    skips = [
+        a for s in ("converge", "compare", "integrators", "harmonic", "campbell", "tornado") for a in ("--skip", s)
+    ]
     small = ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4", "--no-animations"]
 
     def run(*more):

@@ -12,6 +12,7 @@ Figures, colours and the atomic PNG write come from :mod:`.style`.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -122,7 +123,7 @@ def spectrum_chart(
     label = "PSA" + (f", {100 * damping:g} % damping" if damping is not None else "")
     (curve,) = ax.plot(T[ok], S[ok], color=COLOURS["drive"], lw=1.4, label=label)
     top = float(np.max(S[ok])) if ok.any() else 1.0
-    labels = []
+    labels: list[dict[str, Any]] = []
     for j, m in enumerate(mode_periods, start=1):
         m = tuple(m) if isinstance(m, (tuple, list)) else (f"mode {j}", m)
         name, Tj = m[0], m[1]
@@ -152,7 +153,13 @@ def spectrum_chart(
     ax.set_xscale("log")
     ax.set_xlabel("period T [s]")
     ax.set_ylabel("pseudo-acceleration [g]")
-    ax.set_ylim(0, 1.25 * top)  # room above the curve for the labels
+    # room above the curve and every mode's own point (at its own damping it may stand above
+    # the curve's damping) for the labels, and every mode's period inside the axis
+    top = max([top] + [lab["xy"][1] for lab in labels])
+    ax.set_ylim(0, 1.25 * top)
+    periods = [float(t) for t in T[ok]] + [lab["xy"][0] for lab in labels]
+    if periods:
+        ax.set_xlim(min(periods) / 1.5, max(periods) * 1.5)
     legend = ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title or "Response spectrum")
     fig.canvas.draw()
