@@ -18,8 +18,8 @@ in this process with short durations (argument types, not sizes, pick a
 kernel's signature), and one coarse run of each finite-element family of the
 convergence ladder through :func:`rotorpillar.converge.compute.compute_fe`
 (a form's code depends on the cell, the degree and the material, not on the
-mesh's size).  The compiled code lands in numba's cache (``__pycache__``
-beside the sources, or ``NUMBA_CACHE_DIR``) and dolfinx's
+mesh's size).  The compiled code lands in numba's cache (``~/.cache/rotorpillar/numba/<hash of the kernel sources>``:
+rotorpillar.reduced.rhs; or ``NUMBA_CACHE_DIR``) and dolfinx's
 (``~/.cache/fenics``, or ``XDG_CACHE_HOME``), where the main job finds it.
 
 Idempotent: the stamp ``.venv/.warm-caches.json`` records a key (the

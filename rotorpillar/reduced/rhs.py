@@ -47,11 +47,46 @@ dissipation, and base-force work; they close the energy balance.
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+from pathlib import Path
+from typing import Any
 
+import numba.core.config
 import numpy as np
 from numba import njit
 from numpy.typing import NDArray
+
+#: The modules whose kernels numba caches (``@njit(cache=True)``); dp5 and fixed_step inline
+#: this module's functions, and numba's own staleness stamp looks at a kernel's own file only.
+KERNEL_SOURCES = ("rhs.py", "dp5.py", "fixed_step.py")
+
+
+def kernel_cache_dir(sources: tuple[Path, ...], root: Path) -> Path:
+    """numba's cache directory under ``root`` for kernels compiled from ``sources``: named by a
+    hash of their contents, so that a change in one module invalidates the compiled code of
+    every kernel that inlined it (numba's stamp, a file's own time and size, misses that: a
+    fixed-step run-up once read a stale cache after rhs.py changed and stayed at 0 rad/s)."""
+    h = hashlib.sha256()
+    for p in sources:
+        h.update(p.name.encode() + b"\0" + p.read_bytes())
+    return root / h.hexdigest()[:16]
+
+
+def _use_kernel_cache() -> None:
+    """Point numba's cache at :func:`kernel_cache_dir` (``$XDG_CACHE_HOME`` or ``~/.cache``,
+    ``rotorpillar/numba``) unless the user set ``NUMBA_CACHE_DIR``; before the first
+    decorator below, which is when numba reads it."""
+    config: Any = numba.core.config  # untyped: numba ships no stubs
+    if config.CACHE_DIR:
+        return
+    here = Path(__file__).resolve().parent
+    base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "rotorpillar" / "numba"
+    config.CACHE_DIR = str(kernel_cache_dir(tuple(here / f for f in KERNEL_SOURCES), base))
+
+
+_use_kernel_cache()
 
 #: A float64 array: every array the kernels take.
 Floats = NDArray[np.float64]
