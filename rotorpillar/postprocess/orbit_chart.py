@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .campbell_chart import WHIRL_STYLE
 from .style import CYCLE, figure, save
 
 #: the Bode curves drawn, in the SpatialResponse's names, with their words
@@ -24,8 +25,6 @@ BODE_CURVES = (
     ("rotor_x", "rotor centre, in the rotor's plane"),
     ("rotor_y", "rotor centre, along the spin axis"),
 )
-#: line style per whirl (as the Campbell chart's)
-WHIRL_STYLE = {"forward": "-", "backward": "--", "none": ":"}
 #: amplitudes below this share of a panel's largest are not drawn (a log axis down to round-off
 #: would hide the curves that matter)
 FLOOR_SHARE = 1e-6
