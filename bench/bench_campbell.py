@@ -8,6 +8,7 @@ critical speeds (one Hermitian pencil); then the same with the AF of every
 critical speed from the unbalance response (``scene_campbell``), and one speed of
 the unbalance response alone.  Medians of REPEAT runs (the machine is shared).
 The 3D model's Campbell diagram is fem3d's own entry.
+``quick``: 21 speeds, one call each (does it run; its speed is make bench's).
 """
 
 import statistics
@@ -28,7 +29,8 @@ def _median(fn, repeat=REPEAT):
     return statistics.median(times)
 
 
-def run():
+def run(quick: bool = False) -> list[dict]:
+    repeat, speeds_n = (1, 21) if quick else (REPEAT, SPEEDS)
     from rotorpillar.reduced.band import forcing_top
     from rotorpillar.reduced.spatial_linear import campbell
     from rotorpillar.reduced.spatial_response import steady_state
@@ -39,15 +41,15 @@ def run():
     top = scene.modal_model.band_factor * forcing_top(scene.drive, scene.load, scene.sweep, "runup", None)
     modes = scene_spatial_modes(scene)
     model = scene_spatial_model(scene, top, modes)
-    speeds = np.linspace(0.0, top, SPEEDS)
-    t_campbell = _median(lambda: campbell(model, speeds, 89.7))
-    t_with_af = _median(lambda: scene_campbell(scene, speeds, top, 89.7, modes), repeat=3)
-    t_speed = _median(lambda: steady_state(model, 50.0), repeat=200)
+    speeds = np.linspace(0.0, top, speeds_n)
+    t_campbell = _median(lambda: campbell(model, speeds, 89.7), repeat)
+    t_with_af = _median(lambda: scene_campbell(scene, speeds, top, 89.7, modes), repeat=min(3, repeat))
+    t_speed = _median(lambda: steady_state(model, 50.0), repeat=1 if quick else 200)
     desc = f"paper, {model.nz} coordinates ({model.modes.count} pillar modes of {modes.source} below {top:.4g} rad/s)"
     return [
         {
             "name": "campbell_rom_151_speeds",
-            "compares": f"the spatial ROM's Campbell diagram, {SPEEDS} speeds: damped modes, tracking, critical speeds; {desc}",
+            "compares": f"the spatial ROM's Campbell diagram, {speeds_n} speeds: damped modes, tracking, critical speeds; {desc}",
             "value": t_campbell,
             "unit": "s",
         },
