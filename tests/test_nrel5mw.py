@@ -140,3 +140,18 @@ def test_the_machine_checks_carry_the_towers_own_mass(scene):
     m = machine_checks(scene, model, pm, 12.1 * 2 * math.pi / 60)
     kept = float(np.sum(effective_masses(pm.participation[:2], pm.modal_mass[:2])))
     assert m.force_rom.fraction_kept == pytest.approx((kept + r.mass) / total, rel=1e-12)
+
+
+def test_the_bare_tubes_lines_say_what_a_tower_lacks(scene):
+    """`analyze nrel5mw` printed "tip mass by Eq. 2: , limit ..." and an empty "Rayleigh: "
+    line, and called the 200-element Timoshenko beam a 1-element one: a tower has no lumped-mass
+    or assumed-shape study (they are the uniform tube's), and its lines say so instead of
+    printing nothing; the paper's uniform tube keeps its numbers."""
+    from rotorpillar.analysis.text import pillar_text
+    from rotorpillar.reduced.reduction import pillar_closed_forms
+
+    tower = pillar_text(pillar_closed_forms(scene.pillar, base_springs(scene.foundation)))
+    assert not any(line.rstrip().endswith(":") or ": ," in line for line in tower), tower
+    assert "1-element" not in tower[0] and "not made for this pillar" in tower[4]
+    paper = pillar_text(pillar_closed_forms(load_scene("paper").pillar))
+    assert "n=1: " in paper[3] and "m = " in paper[4]

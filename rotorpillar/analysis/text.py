@@ -3,24 +3,15 @@
 from __future__ import annotations
 
 from .machine import machine_text
+from ..reduced.reduction import PillarClosedForms
 from .results import AnalysisResult
 
 
 def summary(result: AnalysisResult) -> str:
     """A readable report of an analyze result."""
-    p, s = result.pillar, result.system
+    s = result.system
     lines = [
-        "Pillar (bare tube, closed forms)" if p.statement is None else f"Pillar (bare tube): {p.statement}",
-        f"  I = {p.second_moment:.5g} m^4, A = {p.area:.5g} m^2, "
-        f"m_rho = {p.mass_per_length:.5g} kg/m, mass = {p.mass:.5g} kg, D/t = "
-        f"{p.diameter_to_thickness:.0f}",
-        f"  omega_col1 = {p.omega_col1:.4f} rad/s ({p.frequency_col1_hz:.4f} Hz) Euler-Bernoulli, "
-        f"{p.omega_col1_timoshenko:.4f} Timoshenko ({100 * p.timoshenko_correction:+.2f} %)",
-        "  tip mass by Eq. 2: "
-        + ", ".join(f"n={d.n}: {d.tip_mass:.4g}" for d in p.tip_mass_lumped[:4])
-        + f", limit {p.tip_mass_limit:.4g} kg (c1 = {p.tip_stiffness_limit:.4g} N/m)",
-        "  Rayleigh: "
-        + ", ".join(f"{d.shape}: m = {d.tip_mass:.4g} kg, c = {d.tip_stiffness:.4g} N/m" for d in p.rayleigh),
+        *pillar_text(result.pillar),
         f"Pillar model (the chain): {result.pillar_model.describe()}",
         f"  {result.pillar_model.note}",
         f"  Eq. 2 on its first bending mode: m_r = {s.tip_reduction.m_reduced:.5g} kg, "
@@ -144,3 +135,25 @@ def _numbered(resonances):
 
 def _ratio(x) -> str:
     return "-" if x is None else f"{x:.3g}"
+
+
+def pillar_text(p: PillarClosedForms) -> list[str]:
+    """The bare tube's lines: its section, its first frequency, Eq. 2's tip mass and the
+    paper's assumed shapes (a uniform tube's: a tower says it has none)."""
+    return [
+        "Pillar (bare tube, closed forms)" if p.statement is None else f"Pillar (bare tube): {p.statement}",
+        f"  I = {p.second_moment:.5g} m^4, A = {p.area:.5g} m^2, "
+        f"m_rho = {p.mass_per_length:.5g} kg/m, mass = {p.mass:.5g} kg, D/t = "
+        f"{p.diameter_to_thickness:.0f}",
+        f"  omega_col1 = {p.omega_col1:.4f} rad/s ({p.frequency_col1_hz:.4f} Hz) Euler-Bernoulli, "
+        f"{p.omega_col1_timoshenko:.4f} Timoshenko ({100 * p.timoshenko_correction:+.2f} %)",
+        "  tip mass by Eq. 2: "
+        + "".join(f"n={d.n}: {d.tip_mass:.4g}, " for d in p.tip_mass_lumped[:4])
+        + f"limit {p.tip_mass_limit:.4g} kg (c1 = {p.tip_stiffness_limit:.4g} N/m)",
+        "  Rayleigh: "
+        + (
+            ", ".join(f"{d.shape}: m = {d.tip_mass:.4g} kg, c = {d.tip_stiffness:.4g} N/m" for d in p.rayleigh)
+            # the lumped-mass and assumed-shape studies are the uniform tube's (the paper's Sec. 2)
+            or "the paper's assumed shapes are a uniform tube's: not made for this pillar"
+        ),
+    ]

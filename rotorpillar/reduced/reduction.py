@@ -207,8 +207,8 @@ def _tower_closed_forms(p: Pillar, base: BaseSprings | None) -> PillarClosedForm
     w_timo = float(beam_modes(beam_line(p, n), n, "timoshenko", 1, base=base).omega[0])
     where = []
     if not p.is_uniform:
-        n = len(p.segments())
-        where.append("a tapered tube (one can)" if n == 1 else f"a tower of {n} cans, tapered or stepped")
+        cans = len(p.segments())
+        where.append("a tapered tube (one can)" if cans == 1 else f"a tower of {cans} cans, tapered or stepped")
     if base is not None:
         where.append("on the foundation's springs")
     statement = (
