@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from .machine import machine_text
 from ..reduced.reduction import PillarClosedForms
+from .machine import machine_text
 from .results import AnalysisResult
 
 
