@@ -96,6 +96,7 @@ def simulate_fem3d(
     observer=None,
     damping_law: str = "ground",
     damping_ratio: float = 0.0,
+    drive_reaction: bool = False,
 ) -> Fem3dTransient:
     """Run ``case`` ("earthquake" or "runup") on the 3D tube with the rotor at its top.
 
@@ -107,7 +108,10 @@ def simulate_fem3d(
     planar ROM: the default, today's runs) or "gondola" (relative to the
     plate, the spatial model's); ``damping_ratio`` zeta on every mode of the
     loaded tube up to twice the band (the spatial model's
-    ``pillar.damping_ratio``; 0: none, today's runs).
+    ``pillar.damping_ratio``; 0: none, today's runs); ``drive_reaction``: the
+    motor's reaction on the plate, as on the spatial ROM's gondola (a run that
+    starts at speed starts on its static deflection; a run-up does not, as the
+    spatial ROM's; False: today's planar runs).
     """
     from . import assemble_pillar
 
@@ -159,6 +163,8 @@ def simulate_fem3d(
             observer,
             damping_law=damping_law,
             modal=modal,
+            drive_reaction=drive_reaction,
+            reaction_start=drive_reaction and case != "runup",
         )
     finally:
         model.K.destroy()
@@ -191,8 +197,13 @@ def simulate_fem3d(
         + "; no Rayleigh term",
         frame="relative_to_ground",
         forcing="-M r_d a_d along each direction the ground moves, on tube, plate and rotor "
-        "(along the spin axis the rotor rides on the plate)",
-        start="tube at rest, rotor in its steady whirl on a held plate",
+        "(along the spin axis the rotor rides on the plate)"
+        + ("; the motor's reaction Md on the plate about the spin axis" if drive_reaction else ""),
+        start=(
+            "tube on its static deflection under the motor's reaction, rotor in its steady whirl on it"
+            if drive_reaction and case != "runup"
+            else "tube at rest, rotor in its steady whirl on a held plate"
+        ),
         initial_speed=W0,
         initial_angle=initial_angle,
         prescribed_speed=bool(prescribed_speed),

@@ -23,6 +23,18 @@ The ground moves along x, y and z (a SpatialGroundMotion; a GroundMotion is
 along x): -M r_d a_d on tube and plate, -m_C a_d on the rotor's x and
 vertical; along the spin axis the rotor rides on the plate (its mass on
 the plate's U_y: the axial shaft is not a dof of this model).
+
+With ``drive_reaction`` the motor's reaction acts on the plate, as on the
+spatial ROM's gondola (rotorpillar.reduced.spatial_model): the stator takes
+-Md about the spin vector -y, a moment +Md = M0 - s W about y on the plate's
+Theta_y (the load's torque is the air's or the generator's, not the
+stator's).  Md at the new time takes the speed predicted from the old
+step's acceleration (W + h W'): the moment lags the implicit spin solve by
+O(h**2 W''), against a moment that follows the slow drive.  ``reaction_start``
+starts the tube on the static deflection under the starting speed's Md
+(K u = Md e_Theta_y, one more factorisation), the rotor's whirl carried
+along with the plate, as the spatial ROM starts a run at speed
+(rotorpillar.transients.cases.on_reaction).
 """
 
 from __future__ import annotations
@@ -116,6 +128,8 @@ def integrate(
     observer=None,
     damping_law: str = "ground",
     modal: tuple[np.ndarray, np.ndarray] | None = None,
+    drive_reaction: bool = False,
+    reaction_start: bool = False,
 ):
     """The generalized-alpha ``step`` over ``steps`` steps; see the module text.
 
@@ -146,6 +160,7 @@ def integrate(
     vecs = [K.createVecRight() for _ in range(14)]
     u, v, a, w, R, u1, gN, gZ, tmp, pred, Ku, Mu, Mv, Ma = vecs
     plate = Plate(u, rows, model.comm)
+    roll = Plate(u, (N + 4,), model.comm)  # the plate's Theta_y, about the spin axis
     for x in vecs:
         x.set(0.0)
     for g, i in ((gN, 0), (gZ, 2)):  # the plate under a unit load on U_x, U_z
@@ -175,16 +190,31 @@ def integrate(
     x, y, vx, vy = rotor_start(rotor, theta0, W0)
     P = np.zeros((3, 3))  # the plate's U_x, U_y, U_z: displacement, velocity, acceleration (rows)
     th, W = theta0, W0
+
+    def motor(n_: int, W_: float) -> float:  # Md alone (N*m): its reaction is the stator's
+        return float(M0s[n_] - slopes[n_] * W_) if drive_reaction else 0.0
+
+    Md = motor(0, W0)
+    if reaction_start and Md:
+        t_static = time.perf_counter()
+        _static_deflection(K, roll, Md, u, tmp, model.comm)
+        K.mult(u, Ku)
+        M.mult(u, Mu)
+        P[:, 0] = plate.get(u)
+        x, y = x + P[0, 0], y + P[2, 0]  # the whirl rides on the displaced plate
+        setup += time.perf_counter() - t_static
+    Theta = float(roll.get(u)[0])
     a.set(0.0)
     for d in range(3):
         tmp.pointwiseMult(r_dirs[d], mask)
         a.axpy(-ag[d, 0], tmp)
     t_start = time.perf_counter()
-    add_shaft_acceleration(M, mask, plate, a, (c2 * (x - e * math.cos(th)), 0.0, c2 * (y - e * math.sin(th))))
+    sx0, sy0 = x - P[0, 0] - e * math.cos(th), y - P[2, 0] - e * math.sin(th)  # the shaft's stretch
+    add_shaft_acceleration(M, mask, plate, a, (c2 * sx0, 0.0, c2 * sy0))
     setup += time.perf_counter() - t_start
     P[:, 2] = plate.get(a)
-    ax = (-c2 * (x - e * math.cos(th)) - b2 * vx - mC * ag[0, 0]) / mC
-    ay = (-c2 * (y - e * math.sin(th)) - b2 * vy - mC * ag[2, 0]) / mC
+    ax = (-c2 * sx0 - b2 * vx - mC * ag[0, 0]) / mC
+    ay = (-c2 * sy0 - b2 * vy - mC * ag[2, 0]) / mC
     tau = drive_torque(M0s[0], slopes[0], kload, W0)
     Tc = coupling_torque(rotor, x - P[0, 0], y - P[2, 0], th)
     alpha = 0.0 if prescribed else (tau + Tc) / J
@@ -277,6 +307,9 @@ def integrate(
             rho_y = step.history(mC, b2, y, vy, ay, -c2 * sy0) - mC * agw[2]
             back = (0.0, 0.0)
         dash = [step.history(0.0, b1, P[i, 0], P[i, 1], P[i, 2], 0.0) for i in (0, 1)]
+        Md1 = motor(n, W + h * alpha)  # the new time's, on the predicted speed (module text)
+        if drive_reaction:
+            roll.add(R, (af * Md + wf * Md1,))
         plate.add(
             R,
             (
@@ -307,6 +340,7 @@ def integrate(
         u1.axpy(gamma * s, gZ)
         Ux1, Uz1, x1, y1 = UxA.at(c, s), UzA.at(c, s), xA.at(c, s), yA.at(c, s)
         Uy1 = float(plate.get(u1)[1])
+        Theta1 = float(roll.get(u1)[0])
         if not all(map(math.isfinite, (Ux1, x1, y1, th1, Uy1))):
             status = f"solution diverged (not finite) at t = {t:g} s"
             break
@@ -347,6 +381,8 @@ def integrate(
         Tc1 = coupling_torque(rotor, x1 - Ux1, y1 - Uz1, th1)
         # work increments by the trapezoidal rule (Newmark's energy identity for its linear part)
         work[0] += 0.5 * (tau + tau1) * (th1 - th)
+        Md1 = motor(n, W1)
+        work[0] += 0.5 * (Md + Md1) * (Theta1 - Theta)  # the motor's reaction on the plate
         work[1] -= 0.5 * (Tc + Tc1) * (th1 - th)
         work[2] += sum(b1 * (P1[i, 0] - P[i, 0]) * 0.5 * (P[i, 1] + P1[i, 1]) for i in (0, 1))
         if relative:
@@ -359,7 +395,7 @@ def integrate(
         work[3] += dbase
         Wu, Wv = Wu1, Wv1
         P, x, y, vx, vy, ax, ay = P1, x1, y1, vx1, vy1, ax1, ay1
-        th, W, alpha, tau, Tc = th1, W1, alpha1, tau1, Tc1
+        th, W, alpha, tau, Tc, Md, Theta = th1, W1, alpha1, tau1, Tc1, Md1, Theta1
         for k, val in (
             ("tip_x", P[0, 0]),
             ("tip_x_absolute", P[0, 0] + ug[n]),
@@ -394,3 +430,22 @@ def integrate(
         "output_stride": stride,
     }
     return out, stats
+
+
+def _static_deflection(K, roll: Plate, moment: float, u, rhs, comm) -> None:
+    """u = K^-1 (``moment`` on the plate's Theta_y): the tube's static state under the motor's
+    reaction (one Cholesky factorisation of K, MUMPS; ``rhs`` is scratch)."""
+    from petsc4py import PETSc
+
+    ksp = PETSc.KSP().create(comm)
+    try:
+        ksp.setOperators(K)
+        ksp.setType("preonly")
+        ksp.getPC().setType("cholesky")
+        ksp.getPC().setFactorSolverType("mumps")
+        rhs.set(0.0)
+        roll.add(rhs, (moment,))
+        ksp.solve(rhs, u)
+    finally:
+        ksp.destroy()
+        rhs.set(0.0)
