@@ -214,3 +214,6 @@ class AnalysisResult(Record):
     frequencies clamped and on its foundation, the published ones beside ours"""
     machine_checks: MachineChecks | None = None
     """the machine's checks on the headline ROM: balance grade, vibration, modal mass (analyze.json `machine_checks`; `machine` is the computer it ran on)"""
+    warnings: tuple[str, ...] = ()
+    """where a number above is the paper's formulation's rather than this machine's
+    (rotorpillar.analysis.damping_law), printed on stderr too"""

@@ -230,14 +230,16 @@ def running_speed(model, scene: Scene) -> float | None:
 
 
 def spatial_blocks(scene: Scene, chain: ChainModes, planar) -> tuple:
-    """analyze.json's ``spatial`` and ``drive_reaction`` (issue 26), on the chain's modes in every
-    direction when it has them (3D), else the beam's."""
+    """analyze.json's ``spatial``, ``drive_reaction`` (issue 26) and the damping law's warnings
+    (rotorpillar.analysis.damping_law), on the chain's modes in every direction when it has them
+    (3D), else the beam's."""
     from ..reduced.spatial_scene import drive_reaction_analysis, scene_spatial_modes, spatial_analysis
+    from .damping_law import ground_law_warnings
 
     top = rom_band_top(scene)
     modes = scene_spatial_modes(scene, getattr(chain, "spatial", None))
     spatial = spatial_analysis(scene, planar, top, running_speed(planar, scene), modes)
-    return spatial, drive_reaction_analysis(scene, top, modes)
+    return spatial, drive_reaction_analysis(scene, top, modes), ground_law_warnings(scene, top, modes)
 
 
 def paper_model_analysis(
@@ -306,7 +308,7 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
     ch = av.Characteristic(scene.drive.torque_at_zero, scene.drive.slope, scene.load.coefficient)
     c2e = scene.shaft.stiffness * scene.rotor.eccentricity
     system, resonances, drive, planar = headline_analysis(scene, chain, ch, c2e)
-    spatial, reaction = spatial_blocks(scene, chain, planar)
+    spatial, reaction, warnings = spatial_blocks(scene, chain, planar)
     paper = paper_model_analysis(scene, closed, ch, c2e, fem3d_reduction)
     # a scene of another machine, with published numbers of its own, is not set against the paper's
     own = scene.reference.stated
@@ -328,4 +330,5 @@ def analyze(scene: Scene, chain: ChainModes | None = None, fem3d_reduction=None)
         drive_reaction=reaction,
         tower=tower,
         machine_checks=machine_checks(scene, rom_of(scene, chain, system.modes), chain.modes, drive.runup_speed),
+        warnings=warnings,
     )

@@ -54,6 +54,7 @@ def summary(result: AnalysisResult) -> str:
     lines += _spatial_lines(result)
     if result.tower is not None:
         lines += tower_lines(result.tower)
+    lines += [f"warning: {w}" for w in result.warnings]
     if not result.paper_comparison:
         return "\n".join(lines)
     lines.append("Paper's printed numbers against ours (* = differs by more than 2 %)")

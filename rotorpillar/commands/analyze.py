@@ -23,6 +23,6 @@ def analyze_command(scene: Scene, args, timings):
         fem3d = reduction_from_scene
     with timings("analyze"):
         result = analyze(scene, chain, fem3d_reduction=fem3d)
-    for warning in () if result.machine_checks is None else result.machine_checks.warnings:
+    for warning in result.warnings + (() if result.machine_checks is None else result.machine_checks.warnings):
         progress(f"warning: {warning}")
     return Done(result, summary(result))

@@ -123,6 +123,8 @@ def section_averaging(build: Build) -> str:
             f"Omega, load Mc = {d.load_coefficient:g} Omega^2 (Eq. 22).",
         )
     )
+    # where the numbers below are the paper's formulation's rather than this machine's (analyze's warnings)
+    parts += [h.tag("p", f"Warning: {w}", class_="warn") for w in a.warnings]
     parts.append(resonance_table(views))
     parts += failure(build, "drive_chart")
     if "drive_chart" in build.products:
