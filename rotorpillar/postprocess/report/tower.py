@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 
+from ...reduced.spatial_modes import BENDING_ACROSS, BENDING_IN_PLANE
 from ...verdict.harmonic import HarmonicResult
 from ...verdict.summary import EngineeringSummary
 from .. import html as h
@@ -51,6 +52,24 @@ def section_tower(build: Build) -> str | None:
                         label,
                         _hz(w / (2 * math.pi)) if t.foundation is None else "-",
                         _hz(w / (2 * math.pi)) if t.foundation is not None else "-",
+                        "-",
+                    ]
+                )
+    sp = a.spatial if a is not None else None
+    if sp is not None:
+        # the 3D rows above carry the gondola alone; the spatial ROM on the same modes carries the
+        # rotor too (on its shaft, its diametral inertia riding on the top's tilt): the whole
+        # assembly's mass on the chain's model, beside the beam's rigid assembly and the published
+        for kind, name in ((BENDING_ACROSS, "fore-aft (Y)"), (BENDING_IN_PLANE, "side-side (X)")):
+            w = next((r.omega for r in sp.resonances if r.kind == kind), None)
+            if w is not None:
+                f = _hz(w / (2 * math.pi))
+                rows.append(
+                    [
+                        f"the spatial ROM's first mode, {name}, on {sp.mode_source} (gondola and rotor, the rotor "
+                        "on its shaft)",
+                        "-" if t.foundation is not None else f,
+                        f if t.foundation is not None else "-",
                         "-",
                     ]
                 )
