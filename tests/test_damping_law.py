@@ -48,3 +48,14 @@ def test_the_papers_machine_is_not_warned():
     assert ground_law_warnings(s, top, modes) == ()
     zg, zr = damped_ratios(laws["ground"])[1][0], damped_ratios(laws["gondola"])[1][0]
     assert zg < FACTOR * zr and not math.isclose(zg, zr, rel_tol=0.05)  # the laws differ, moderately
+
+
+def test_no_bending_mode_in_the_plane_no_check():
+    """Modes with no bending in the rotor's plane below the band (a stubby pillar whose first
+    mode is another kind): nothing for b2 to overdamp there, no warning (the check once stopped
+    analyze on `pillar.height = 0.1`: the planar model needs a bending mode)."""
+    from rotorpillar.reduced.spatial_modes import BENDING_ACROSS
+
+    s, top, modes, _ = _models("nrel5mw")
+    across = modes.select(list(modes.of_kind(BENDING_ACROSS)))
+    assert ground_law_warnings(s, top, across) == ()

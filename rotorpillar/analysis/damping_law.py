@@ -23,7 +23,7 @@ import numpy as np
 from scipy.linalg import eig
 
 from ..reduced.spatial_model import SpatialStructure
-from ..reduced.spatial_modes import SpatialPillarModes
+from ..reduced.spatial_modes import BENDING_IN_PLANE, SpatialPillarModes
 from ..reduced.spatial_scene import scene_spatial_model
 from ..scene import Scene
 
@@ -51,8 +51,8 @@ def damped_ratios(m: SpatialStructure) -> tuple[np.ndarray, np.ndarray]:
 
 def ground_law_warnings(scene: Scene, band_top: float, modes: SpatialPillarModes) -> tuple[str, ...]:
     """The warnings of the module text, one per mode the ground's b2 overdamps."""
-    if scene.shaft.damping == 0:
-        return ()
+    if scene.shaft.damping == 0 or not len(modes.below(band_top).of_kind(BENDING_IN_PLANE)):
+        return ()  # no b2, or no bending mode in the rotor's plane below the band for it to damp
     ground = damped_ratios(scene_spatial_model(scene, band_top, modes, planes="planar", damping_law="ground"))
     gondola = damped_ratios(scene_spatial_model(scene, band_top, modes, planes="planar", damping_law="gondola"))
     out = []
