@@ -5,6 +5,10 @@ compiled once per machine): the Timoshenko beam with 16 elements (the choice
 when a scene's band holds the bending mode only), the shell Q2 16 x 20 (the
 choice at 2e-3 and 3e-3) and, when the 3D model is available, the 3D P2
 hexahedra 128 x 20 x 1 (the choice at 1e-3).  Each value is a time ratio.
+And the per-run overhead of a small 3D run of the ladder (the along-only
+8 x 20 x 1, which widens from 6 to 12 modes) as the study's serving process
+runs it (Gmsh in-process, one mesh and assembly for both solves) against
+the 3D model's own entry with Gmsh in a child process, as before.
 ``quick``: one call each, the 3D model at 32 x 5 x 1 (does it run).
 """
 
@@ -65,6 +69,29 @@ def run(quick: bool = False) -> list[dict]:
     )
     extra = {"use_cache": False} if "use_cache" in inspect.signature(modal_analysis).parameters else {}
     t_solid = _best(lambda: modal_analysis(scene, top=False, n_modes=N_MODES, mesh=mesh, **extra), repeat)
+    from rotorpillar.converge.compute import _compute_fe, compute_fe
+    from rotorpillar.converge.ladder import N_MODES as WIDE
+    from rotorpillar.converge.ladder import rung
+
+    small = rung(scene, "solid_hex_p2_along", 20)
+
+    def before():  # what the study did: a meshing child, and the widened solve from scratch
+        _compute_fe(small, scene, N_MODES, True)
+        _compute_fe(small, scene, WIDE, True)
+
+    t_served = _best(lambda: compute_fe(small, scene, fresh=True, isolated=False), repeat)
+    t_before = _best(before, repeat)
+    out.append(
+        {
+            "name": "small_solid_run_served_vs_before",
+            "compares": f"{small.label}: as served (Gmsh in-process, meshed and assembled once for its "
+            "6- and 12-mode solves) / as before (a meshing child, everything twice)",
+            "value": t_served / t_before,
+            "unit": "x",
+            "served_s": t_served,
+            "before_s": t_before,
+        }
+    )
     out.append(
         {
             "name": f"solid_p2_hex_{around}x{along}_vs_shell_q2_16x20",

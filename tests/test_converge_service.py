@@ -50,7 +50,8 @@ def test_served_runs_equal_fresh_runs_and_failures_are_reported(tmp_path):
         bad.write_text(json.dumps({"family": "no_such_family", "level": 1, "params": [], "scene": scene.to_dict()}))
         reply = s.run(bad, tmp_path / "bad.out.json")
         assert reply.status == "error" and "no_such_family" in reply.error
-        assert (s.proc is not None) == reused  # the same process serves on
+        # the same process serves on; or, serving one run only, its successor is started at once
+        assert s.proc is not None and s.proc.poll() is None
         pid = s.proc.pid if reused else None
         for i, (c, ref) in enumerate(zip(small, fresh)):
             out = tmp_path / f"served{i}.out.json"

@@ -82,17 +82,22 @@ def compute_in_process(case: Case, pillar, foundation: Foundation | None = None)
     )
 
 
-def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> RunResult:
+def compute_fe(case: Case, scene: Scene, fresh: bool = False, *, isolated: bool = True) -> RunResult:
     """A shell or solid run, in this process (the subprocess worker calls this).
 
     The run asks for ``N_MODES_FIRST`` modes and for ``N_MODES`` only when
     the first ovalling mode is not among them (coarse or locking meshes,
     where it lies higher): the lowest modes are the same eigenpairs either
     way, so the quantities are too, and the fine meshes, whose ovalling pair
-    comes third and fourth, solve for half as many modes.
+    comes third and fourth, solve for half as many modes.  A 3D run meshes
+    and assembles once for both solves.
 
     ``fresh``: bypass the 3D model's in-process result cache (a second, timed call).
+    ``isolated``: Gmsh in a child process (rotorpillar.mesh.isolated); the serving
+    process, itself a child of the study, meshes in-process (False).
     """
+    if FAMILIES[case.family].model == "solid":
+        return _compute_solid(case, scene, isolated)
     out = _compute_fe(case, scene, N_MODES_FIRST, fresh)
     if out.ovalling is None:
         first = out.timings or {}
@@ -101,7 +106,42 @@ def compute_fe(case: Case, scene: Scene, fresh: bool = False) -> RunResult:
     return out
 
 
+def _summary(r: ShellModalResult | ModalResult, n_modes: int) -> RunResult:
+    out = _modal_summary(np.asarray(r.omega), list(r.kind), list(r.n_circumferential), int(r.dofs))
+    return msgspec.structs.replace(out, cells=int(r.cells), timings=dict(r.timings), modes_asked=n_modes)
+
+
+def _compute_solid(case: Case, scene: Scene, isolated: bool) -> RunResult:
+    """The bare tube's 3D modes, as ``fem3d.modal_analysis(scene, top=False)`` gives them,
+    meshed and assembled once: the N_MODES solve, where needed, reuses K and M (a
+    coarse mesh's second mesh and assembly cost as much as its solves)."""
+    from .. import fem3d
+    from ..fem3d.modal import run_modal
+
+    mesh = solid_mesh(case)
+    model = fem3d.assemble_pillar(scene, top=False, mesh=mesh, isolated=isolated)
+    try:
+        out = _summary(run_modal(model, N_MODES_FIRST, tol=scene.modal.tolerance, mesh_section=mesh), N_MODES_FIRST)
+        if out.ovalling is None:
+            first = out.timings or {}
+            out = _summary(run_modal(model, N_MODES, tol=scene.modal.tolerance, mesh_section=mesh), N_MODES)
+            # the mesh and the assembly were done once: only the solve and what follows add up
+            out = msgspec.structs.replace(
+                out,
+                timings={
+                    k: v + (first.get(k, 0.0) if k not in model.timings else 0.0)
+                    for k, v in (out.timings or {}).items()
+                },
+            )
+    finally:
+        model.K.destroy()
+        model.M.destroy()
+    return out
+
+
 def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> RunResult:
+    """One modal solve of ``n_modes`` through the models' own entries (``fresh``: no
+    in-process result cache)."""
     fam = FAMILIES[case.family]
     pillar = scene.pillar
     s = case.settings
@@ -121,5 +161,4 @@ def _compute_fe(case: Case, scene: Scene, n_modes: int, fresh: bool) -> RunResul
             {"use_cache": False} if fresh and "use_cache" in inspect.signature(fem3d.modal_analysis).parameters else {}
         )
         r = fem3d.modal_analysis(scene, top=False, n_modes=n_modes, mesh=solid_mesh(case), **extra)
-    out = _modal_summary(np.asarray(r.omega), list(r.kind), list(r.n_circumferential), int(r.dofs))
-    return msgspec.structs.replace(out, cells=int(r.cells), timings=dict(r.timings), modes_asked=n_modes)
+    return _summary(r, n_modes)

@@ -14,7 +14,8 @@ through ``/proc/self/clear_refs``, Linux 4.0+) over the resident set at its
 start (after ``gc`` and glibc's ``malloc_trim`` of the run before).  What a
 process keeps from its runs (compiled forms' libraries, a big run's heap)
 stays out of the next run's figure; once it passes ``RETAINED_LIMIT`` the
-process ends after its reply and the next run gets a fresh one.  Where the
+process ends after its reply and the next run gets a fresh one, started at
+once (its imports overlap the caller's wait for its next run: a round's end).  Where the
 reset is not possible the process serves one run only, as before.
 
 Protocol (the serving side is rotorpillar.converge.runner.serve): one JSON
@@ -113,12 +114,15 @@ class Service:
     def __init__(self):
         self.proc = None
         self.log = None
+        self.idle = False
+        """the process has been sent no run yet (a successor started ahead)"""
 
     def run(self, case_file: Path, out_file: Path) -> ServiceReply:
         """Send one run; its reply (a dead process: status "error" with the end of
         its stderr)."""
         if self.proc is None or self.proc.poll() is not None:
             self._start()
+        self.idle = False
         try:
             self.proc.stdin.write(records.encode(ServiceJob(str(case_file), str(out_file))).decode() + "\n")
             self.proc.stdin.flush()
@@ -131,9 +135,10 @@ class Service:
             self.proc = None
             return ServiceReply(status="error", exit=code, error=f"worker ended ({code}): " + self._tail())
         reply = records.decode(line, ServiceReply)
-        if reply.last:  # it ends after this run: the next gets a new one
-            self.proc.wait()
+        if reply.last:  # it ends after this run: the next gets a new one, started now so
+            self.proc.wait()  # that its imports (1-2 s) overlap the caller's wait for its next run
             self.proc = None
+            self._start()
         return reply
 
     def _start(self) -> None:
@@ -153,6 +158,7 @@ class Service:
             text=True,
             env=env,
         )
+        self.idle = True
 
     def _tail(self) -> str:
         self.log.flush()
@@ -162,6 +168,8 @@ class Service:
     def close(self) -> None:
         if self.proc is not None:
             try:
+                if self.idle:  # a successor that never ran: not worth waiting for its imports
+                    self.proc.kill()
                 self.proc.stdin.close()
                 self.proc.wait(timeout=30)
             except (OSError, subprocess.TimeoutExpired):
