@@ -61,6 +61,21 @@ def ramp_motion(a0: float, ramp: float, end: float, dt: float = 1e-3) -> GroundM
     return GroundMotion("record", 0.0, 0.0, 0.0, float(t[-1]), dt, d, v, a, name="ramp")
 
 
+def _plate_x_under(m, f) -> float:
+    """The plate's U_x of K u = f, by a direct solve with the tube's own K (no Newmark, no
+    condensation)."""
+    from petsc4py import PETSc
+
+    ksp = PETSc.KSP().create(m.comm)
+    ksp.setOperators(m.K)
+    ksp.setType("preonly")
+    ksp.getPC().setType("lu")
+    ksp.getPC().setFactorSolverType("mumps")
+    u = m.K.createVecRight()
+    ksp.solve(f, u)
+    return float(u.getValue(m.tube_dofs))
+
+
 def static_tip(scene, a0: float) -> float:
     """U_x of K u = -(M r + m_C e_x) a0, by a direct solve."""
     from petsc4py import PETSc
@@ -70,18 +85,10 @@ def static_tip(scene, a0: float) -> float:
     m = assemble_pillar(scene, top=True)
     f = m.M.createVecLeft()
     m.M.mult(m.influence(0), f)
-    N = m.tube_dofs
-    f.setValue(N, scene.rotor.mass, addv=PETSc.InsertMode.ADD_VALUES)
+    f.setValue(m.tube_dofs, scene.rotor.mass, addv=PETSc.InsertMode.ADD_VALUES)
     f.assemble()
     f.scale(-a0)
-    ksp = PETSc.KSP().create(m.comm)
-    ksp.setOperators(m.K)
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
-    u = m.K.createVecRight()
-    ksp.solve(f, u)
-    return float(u.getValue(N))
+    return _plate_x_under(m, f)
 
 
 @pytest.fixture(scope="module")
@@ -305,24 +312,14 @@ def test_three_components_superpose():
 
 def _moment_tip(scene, moment: float) -> float:
     """The plate's U_x of K u = ``moment`` on its Theta_y, by a direct solve (no Newmark)."""
-    from petsc4py import PETSc
-
     from rotorpillar.fem3d import assemble_pillar
 
     m = assemble_pillar(scene, top=True)
-    N = m.tube_dofs
     f = m.K.createVecLeft()
     f.set(0.0)
-    f.setValue(N + 4, moment)
+    f.setValue(m.tube_dofs + 4, moment)
     f.assemble()
-    ksp = PETSc.KSP().create(m.comm)
-    ksp.setOperators(m.K)
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
-    u = m.K.createVecRight()
-    ksp.solve(f, u)
-    return float(u.getValue(N))
+    return _plate_x_under(m, f)
 
 
 @pytest.mark.slow

@@ -153,6 +153,7 @@ def compare_components(scene: Scene, chain: ChainModes | None, *, progress=None,
     from ..reduced.integration import Settings, simulate
     from ..reduced.models import build_model
     from ..reduced.spatial_forces import base_reactions
+    from ..reduced.spatial_rotor import SpatialRotor
     from ..reduced.spatial_scene import scene_spatial_model, scene_spatial_modes
     from ..reduced.stationary import operating_speed
     from ..reduced.tower import section_at
@@ -179,9 +180,7 @@ def compare_components(scene: Scene, chain: ChainModes | None, *, progress=None,
     # at speed the motor's reaction Md holds the top rolled: both models start on its static
     # deflection (as simulate's spatial ROM does, rotorpillar.transients.cases.on_reaction), so
     # that neither rings from a moment switched on at t = 0
-    Md0 = d.torque_at_zero - d.slope * W0
-    if Md0 and np.any(m.reaction):
-        q0[:-1] += np.linalg.solve(m.stiffness_full(), m.reaction * Md0)
+    q0 = q0 + SpatialRotor.of(m).reaction_deflection(d.torque_at_zero - d.slope * W0)
     end = float(motion.end)
     sim = scene.simulate
     say(f"components: the spatial ROM ({m.n} dofs) under {motion.count} components over {end:.3g} s")

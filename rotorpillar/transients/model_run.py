@@ -622,15 +622,11 @@ def _run_fem3d(
 
 def _like_the_rom(scene: Scene, case: str, band_top: float, planar, chain: ChainModes) -> bool:
     """Whether the modal model's transient of ``case`` runs on the spatial ROM
-    (rotorpillar.reduced.spatial_rotor.transient_planes on the chain's modes): the 3D run
-    then carries what the spatial ROM does."""
-    if scene.modal_model.planes == "planar":
-        return False
-    from ..reduced.spatial_rotor import transient_planes
-    from ..reduced.spatial_scene import scene_spatial_modes
+    (rotorpillar.reduced.spatial_rotor.transient_model on the chain's modes, as run_case
+    resolves it): the 3D run then carries what the spatial ROM does."""
+    from ..reduced.spatial_rotor import transient_model
 
-    modes = scene_spatial_modes(scene, chain.spatial)
-    return transient_planes(scene, case, band_top, modes, planar).planes == "spatial"
+    return transient_model(scene, case, band_top, planar, chain.spatial)[0].planes == "spatial"
 
 
 def _free_speed(scene: Scene) -> float:
