@@ -118,7 +118,9 @@ def _spatial_lines(result: AnalysisResult) -> list[str]:
             f"{dr.tip_displacement * 1e3:.3g} mm in the rotor's plane and rolls it {dr.tip_rotation:.3g} rad "
             f"(base moment {dr.base_moment:.4g} N*m)"
             + (
-                ""
+                f"; its run-up is {dr.runup_skipped}"
+                if dr.runup_skipped
+                else ""
                 if dr.runup is None
                 else f"; in the run-up it adds up to {dr.runup.peak_reaction_part * 1e3:.3g} mm to the top's motion"
             )

@@ -43,6 +43,7 @@ from . import kernels as K
 from .accuracy import AccuracyCheck, StepRule
 from .drive import DriveSchedule
 from .excitation import NoMotionSizes
+from .explicit_limit import stability_step_count
 from .rhs import Floats, Packed
 from .transient_model import G, M, Motion, TransientModel
 
@@ -276,7 +277,7 @@ def check_simulation(
             if math.isfinite(drive.free_speed())
             else max(abs(v0[-1]), 1.0)
         )
-    check_step_budget(model, motion, t_end - t_start, settings, speed_scale)
+    check_step_budget(model, motion, t_end - t_start, settings, speed_scale, drive)
     return speed_scale
 
 
@@ -322,12 +323,19 @@ STEPS_PER_REVOLUTION = 10.0
 
 
 def estimated_step_count(
-    model: TransientModel, motion: Motion, duration: float, settings: Settings, speed_scale: float
+    model: TransientModel,
+    motion: Motion,
+    duration: float,
+    settings: Settings,
+    speed_scale: float,
+    drive: DriveSchedule | None = None,
 ) -> float:
     """Integration steps a run will take, from its settings, before it starts (-).
 
     Fixed step: duration / h.  Adaptive: at least STEPS_PER_REVOLUTION per
-    revolution at the speed scale, and one per sample of a record.
+    revolution at the speed scale, one per sample of a record, and for an
+    explicit method (STABILITY_RADIUS) the fastest rate of the model and the
+    drive's spin over the method's stability limit (stability_step_count).
     """
     if settings.method in FIXED_STEP:
         h = settings.time_step or auto_time_step(model, speed_scale, settings, motion)
@@ -335,17 +343,29 @@ def estimated_step_count(
     n = STEPS_PER_REVOLUTION * max(speed_scale, 0.0) / (2 * math.pi) * duration
     if motion.kind == "record":
         n = max(n, duration / motion.time_step)
-    return n
+    return max(n, stability_step_count(model, duration, settings.method, drive))
 
 
 def check_step_budget(
-    model: TransientModel, motion: Motion, duration: float, settings: Settings, speed_scale: float
+    model: TransientModel,
+    motion: Motion,
+    duration: float,
+    settings: Settings,
+    speed_scale: float,
+    drive: DriveSchedule | None = None,
 ) -> None:
     """Refuse (one line, InputError) a run estimated above ``settings.max_steps``."""
-    n = estimated_step_count(model, motion, duration, settings, speed_scale)
+    n = estimated_step_count(model, motion, duration, settings, speed_scale, drive)
     if not math.isfinite(n) or n > settings.max_steps:
+        stiff = stability_step_count(model, duration, settings.method, drive)
+        why = (
+            f" (the model's fastest rate over {settings.method}'s stability limit: an implicit "
+            "simulate.integrator is not bound by it)"
+            if stiff >= n
+            else ""
+        )
         raise InputError(
-            f"this run of {duration:.4g} s would take about {n:.3g} {settings.method} steps, more "
+            f"this run of {duration:.4g} s would take about {n:.3g} {settings.method} steps{why}, more "
             f"than simulate.max_steps = {settings.max_steps:.3g}: shorten it, coarsen the step, "
             "or raise simulate.max_steps"
         )

@@ -349,6 +349,15 @@ class RotorStructure:
         """The highest undamped natural frequency of the structure and shaft (rad/s)."""
         return float(max(self.undamped_modes_x()[0].max(), math.sqrt(self.shaft_stiffness / self.rotor_mass)))
 
+    def fastest_rate(self) -> float:
+        """The largest |eigenvalue| at rest of the structure and of the rotor's y on its
+        shaft (1/s): an explicit integrator's stability limit (reduced.explicit_limit)."""
+        from .explicit_limit import first_order_rate
+
+        m, c, k = self.rotor_mass, self.shaft_damping, self.shaft_stiffness
+        y = max(abs(r) for r in np.roots([m, c, k])) if m > 0 else 0.0
+        return max(first_order_rate(self.mass, self.stiffness_full(), self.damping), float(y))
+
     def describe(self) -> StructureDescription:
         """The model's matrices and coordinates (a run's ``model_description``)."""
         return StructureDescription(

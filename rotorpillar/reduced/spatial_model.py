@@ -235,6 +235,13 @@ class SpatialStructure:
         """The highest undamped natural frequency (rad/s)."""
         return float(self.undamped_modes_x()[0].max())
 
+    def fastest_rate(self) -> float:
+        """The largest |eigenvalue| at rest (1/s): an explicit integrator's stability limit
+        (reduced.explicit_limit)."""
+        from .explicit_limit import first_order_rate
+
+        return first_order_rate(self.mass, self.stiffness_full(), self.damping)
+
     def output(self, name: str, Z: NDArray[np.complex128] | NDArray[np.float64]) -> NDArray[np.complex128]:
         """An OUTPUTS quantity of states Z (..., nz)."""
         return np.asarray(np.asarray(Z) @ self.outputs[name], dtype=complex)

@@ -100,4 +100,7 @@ class DriveReactionAnalysis(Record):
     """the base's moment about the spin axis (N*m)"""
     statics: DriveReaction
     runup: ReactionRunup | None
-    """the run-up's transient with the reaction acting; None when the drive never starts"""
+    """the run-up's transient with the reaction acting; None when the drive never starts, or
+    when the model's stiffest mode would make it too long a run for analyze (``runup_skipped``)"""
+    runup_skipped: str | None = None
+    """why there is no run-up although the drive starts (None: it ran, or nothing to run)"""

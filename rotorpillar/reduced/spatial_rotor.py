@@ -171,6 +171,9 @@ class SpatialRotor:
     def stiffest_frequency(self) -> float:
         return self.structure.stiffest_frequency()
 
+    def fastest_rate(self) -> float:
+        return self.structure.fastest_rate()
+
     # ------------------------------------------------------------ linear analysis
     def quasi_normal(self) -> list[Resonance]:
         """Resonance records of the forced modes (see the module text): X ascending, then Y."""

@@ -220,9 +220,11 @@ def drive_reaction_analysis(
     st = drive_reaction(modes, scene.drive.torque_at_zero, scene.pillar)
     m = scene_spatial_model(scene, band_top, modes)
     d = scene.drive
-    run = None
+    run, skipped = None, None
+    sched = DriveSchedule.constant(d.torque_at_zero, d.slope, scene.load.coefficient)
     if d.torque_at_zero > 0:
-        sched = DriveSchedule.constant(d.torque_at_zero, d.slope, scene.load.coefficient)
+        skipped = stiff_runup(m, sched, scene.simulate.duration)
+    if d.torque_at_zero > 0 and skipped is None:
         sim = scene.simulate
         settings = Settings("dp5", rtol=sim.rtol, samples=sim.samples, max_steps=sim.max_steps)
         with_r = simulate(m, sched, no_motion(), sim.duration, settings=settings)
@@ -238,7 +240,36 @@ def drive_reaction_analysis(
             float(np.max(np.abs(tip - tip0))),
             float(np.max(np.abs(roll))),
         )
-    return DriveReactionAnalysis(st.torque, st.tip_displacement, st.tip_rotation, st.base_moment, st, run)
+    return DriveReactionAnalysis(st.torque, st.tip_displacement, st.tip_rotation, st.base_moment, st, run, skipped)
+
+
+#: How many times the steps the rotor's speed needs (STEPS_PER_REVOLUTION) dp5 may be
+#: made to take by the model's stiffest mode before analyze leaves the reaction's
+#: run-up out (-).  Within it the run costs seconds; a shaft or a rotor at the far
+#: end of its range (k/m of 1e12 and more) made it minutes of dp5 steps held at the
+#: stability limit, for a mode that has nothing to do with the reaction.
+STIFFNESS_ALLOWANCE = 20.0
+
+
+def stiff_runup(m: SpatialStructure, drive: DriveSchedule, duration: float) -> str | None:
+    """Why analyze does not run the reaction's run-up on ``m`` (None: it does): the
+    stiffest mode would hold dp5's step far below what the rotor's speed needs."""
+    from .explicit_limit import spin_rate, stability_step_count
+    from .integration import STEPS_PER_REVOLUTION
+
+    free = drive.free_speed()
+    speed = free if math.isfinite(free) else 1.0
+    by_speed = STEPS_PER_REVOLUTION * speed / (2 * math.pi) * duration
+    by_stiffness = stability_step_count(m, duration, "dp5", drive)
+    if by_stiffness <= STIFFNESS_ALLOWANCE * max(by_speed, 1.0):
+        return None
+    return (
+        f"not run: the model's fastest rate ({m.fastest_rate():.3g} 1/s) or the spin's rate under "
+        f"the drive ({spin_rate(m, drive):.3g} 1/s) would hold dp5 to "
+        f"about {by_stiffness:.3g} steps over {duration:.4g} s, {by_stiffness / max(by_speed, 1.0):.3g} times "
+        "what the rotor's speed needs; the static effect above stands (simulate --model modal with "
+        "modal_model.planes = spatial runs it, at that cost)"
+    )
 
 
 def scene_campbell(
