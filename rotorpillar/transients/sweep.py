@@ -15,9 +15,11 @@ amplitudes against Eq. 19, the rate checks and the rate study;
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..records import Record, replace
 from ..reduced import averaging as av
@@ -271,17 +273,17 @@ def sweep_bins(
     W = run.Omega[sel]
     tt = run.t[sel]
     tip, ry, rx = run.peak[sel, -1], run.peak[sel, m.nx], run.peak[sel, m.rotor_x]
-    cols = {k: np.full(bins, np.nan) for k in ("M0", "omega", "tip_x", "rotor_y", "rotor_x", "M0_inertia_corrected")}
-    for b in range(bins):
-        s = idx == b
-        if not s.any():
-            continue
-        cols["M0"][b] = 0.5 * (edges[b] + edges[b + 1])
-        cols["omega"][b] = W[s].mean()
+    st = binned_statistics(idx, bins, tt, W, tip, ry, rx)
+    M0_bins = np.where(np.isfinite(st.omega), 0.5 * (edges[:-1] + edges[1:]), np.nan)
+    cols = {
+        "M0": M0_bins,
+        "omega": st.omega,
+        "tip_x": st.tip_x,
+        "rotor_y": st.rotor_y,
+        "rotor_x": st.rotor_x,
         # the rotor's inertia: M0 - J dOmega/dt is what the stationary balance sees
-        acc = np.polyfit(tt[s], W[s], 1)[0] if s.sum() > 2 else 0.0
-        cols["M0_inertia_corrected"][b] = cols["M0"][b] - m.rotor_inertia * acc
-        cols["tip_x"][b], cols["rotor_y"][b], cols["rotor_x"][b] = tip[s].max(), ry[s].max(), rx[s].max()
+        "M0_inertia_corrected": M0_bins - m.rotor_inertia * st.acceleration,
+    }
     keep = np.isfinite(cols["M0"])
     step = -1 if direction == "down" else 1
     kept = {k: v[keep][::step] for k, v in cols.items()}
@@ -294,6 +296,54 @@ def sweep_bins(
         M0_inertia_corrected=kept["M0_inertia_corrected"],
         direction=direction,
     )
+
+
+def binned_statistics(
+    idx: NDArray[np.int_],
+    bins: int,
+    t: NDArray[np.float64],
+    omega: NDArray[np.float64],
+    tip: NDArray[np.float64],
+    rotor_y: NDArray[np.float64],
+    rotor_x: NDArray[np.float64],
+) -> BinStatistics:
+    """Per bin (samples with ``idx`` == b): the mean speed, the least-squares slope of the
+    speed over time (0 with fewer than three samples, as before), and the largest of each
+    peak; NaN in a bin without samples.  Sums by bin (np.bincount) in one pass each instead
+    of a loop over the bins: the sweep's 20000-bin end took 37 s in that loop."""
+    n = np.bincount(idx, minlength=bins).astype(float)
+    has = n > 0
+    safe = np.where(has, n, 1.0)
+    mean_t = np.bincount(idx, t, bins) / safe
+    mean_w = np.bincount(idx, omega, bins) / safe
+    # the slope from deviations about each bin's means: no cancellation of large sums
+    dt = t - mean_t[idx]
+    dw = omega - mean_w[idx]
+    var = np.bincount(idx, dt * dt, bins)
+    cov = np.bincount(idx, dt * dw, bins)
+    acc = np.where((n > 2) & (var > 0), cov / np.where(var > 0, var, 1.0), 0.0)
+    tops = []
+    for x in (tip, rotor_y, rotor_x):
+        top = np.full(bins, -np.inf)
+        np.maximum.at(top, idx, x)
+        tops.append(np.where(has, top, np.nan))
+    return BinStatistics(np.where(has, mean_w, np.nan), acc, *tops)
+
+
+@dataclass(frozen=True)
+class BinStatistics:
+    """What a ramp's samples give per M0 bin; NaN in a bin without samples."""
+
+    omega: NDArray[np.float64]
+    """mean speed (rad/s)"""
+    acceleration: NDArray[np.float64]
+    """least-squares dOmega/dt (rad/s**2)"""
+    tip_x: NDArray[np.float64]
+    """largest |top| (m)"""
+    rotor_y: NDArray[np.float64]
+    """largest |rotor y| (m)"""
+    rotor_x: NDArray[np.float64]
+    """largest |rotor x| (m)"""
 
 
 def detect_jumps(bins: SweepBins, slope: float, load: float) -> JumpScan:
