@@ -1145,7 +1145,7 @@ def test_an_output_path_that_is_no_directory_says_what_it_is(tmp_path, kind):
 FULL_DISK = [
     ["analyze"],
     ["simulate", "--model", "paper", "--no-threshold", "--set", "simulate.duration=10"],
-    ["integrators", "--duration", "2"],
+    ["integrators", "--duration", "2", "--quick"],  # the full study: 40 s for the same refusal
     ["compare", "--case", "runup", "--models", "paper,beam", "--set", "simulate.duration=2"],
     ["campbell", "--speeds", "0:150:51", "--set", "modal_model.source=beam"],
 ]
