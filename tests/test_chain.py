@@ -224,3 +224,30 @@ def test_3d_modes_of_the_scene_mesh_match_the_beam_and_are_cached(tmp_path, monk
     np.testing.assert_array_equal(again.modes.omega, first.modes.omega)
     np.testing.assert_array_equal(again.modes.participation, first.modes.participation)
     assert again.reduction == first.reduction
+
+
+def test_a_study_for_another_drive_stands_when_its_band_holds_the_same_modes(tmp_path):
+    """The ladder solves the bare tube's first bending and ovalling modes whatever the band;
+    the drive moves only the band's top (margin x free speed) and with it which of them the
+    choice asks.  paper's band (134.6 rad/s) holds bending (30.8) and ovalling (85.0): a
+    stall torque 10 % higher keeps both (the study stands and says so); one that puts the top
+    below 85 rad/s drops ovalling (the study is not used, and the line says why)."""
+    s = load_scene("paper")
+    from rotorpillar.reduced.band import excitation_band
+
+    chosen = _run("3D P2 hexahedra, 128x20x1", "solid_hex_p2", "solid", SOLID, 94464, 6.4, 3e-4, 6e-4)
+    doc = _study_doc(s, chosen, [chosen])
+    # what the study writes for its band: the reference's modes below its top
+    top = excitation_band(s.drive, s.load, s.converge).omega_max
+    doc["selection"]["needed"] = [q for q in ("bending", "ovalling") if doc["reference"][q]["value"] <= top]
+    assert doc["selection"]["needed"] == ["bending", "ovalling"]
+    _write(tmp_path, doc)
+    stronger = override(s, [f"drive.torque_at_zero={s.drive.torque_at_zero * 1.1}"])
+    study, why = study_on_disk(stronger, tmp_path)
+    assert study is not None and "another drive" in why and "same modes" in why
+    assert choose(stronger, tmp_path).rom.source == "converge"
+    # free speed ~ M0 / s on paper (its load is light): a top of 1.5 x 50 = 75 rad/s < 85
+    weaker = override(s, [f"drive.torque_at_zero={s.drive.slope * 50}"])
+    assert excitation_band(weaker.drive, weaker.load, weaker.converge).omega_max < 85.0
+    study, why = study_on_disk(weaker, tmp_path)
+    assert study is None and "bending, ovalling" in why and "holds bending;" in why

@@ -56,8 +56,29 @@ def test_the_drives_torque_changes_the_keys_of_the_stages_that_read_the_drive(tm
     transients = {st[0] for st in RUN_STAGES if st[0].split()[0] in ("simulate", "compare", "integrators")}
     assert transients and transients <= moved
     assert {"analyze", "harmonic", "campbell", "report"} <= moved
-    # the band's top is the drive's free speed: the study and modal's mode count read it
+    # the band's top is the drive's free speed: modal's mode count reads it, and the study
+    # without a study on disk to tell which modes the band holds
     assert {"converge", "modal"} <= moved
+
+
+def test_a_new_stall_torque_leaves_the_study_alone_when_its_band_holds_the_same_modes(tmp_path):
+    """With the study on disk (paper's band holds bending and ovalling), a stall torque 10 %
+    higher keeps both in the band: the study's key stays (its choice stands: chain.choice),
+    modal's and the transients' move.  A torque that drops ovalling from the band moves it."""
+    from test_chain import SOLID, _run, _study_doc
+
+    from rotorpillar.reduced.band import excitation_band
+
+    s = load_scene("paper")
+    chosen = _run("3D P2 hexahedra, 128x20x1", "solid_hex_p2", "solid", SOLID, 94464, 6.4, 3e-4, 6e-4)
+    doc = _study_doc(s, chosen, [chosen])
+    top = excitation_band(s.drive, s.load, s.converge).omega_max
+    doc["selection"]["needed"] = [q for q in ("bending", "ovalling") if doc["reference"][q]["value"] <= top]
+    (tmp_path / "convergence.json").write_text(json.dumps(doc))
+    base = keys_for(tmp_path)
+    moved = changed(base, keys_for(tmp_path, f"drive.torque_at_zero={s.drive.torque_at_zero * 1.1}"))
+    assert "converge" not in moved and {"modal", "analyze", "compare --case runup"} <= moved
+    assert "converge" in changed(base, keys_for(tmp_path, f"drive.torque_at_zero={s.drive.slope * 50}"))
 
 
 def test_the_ground_motion_leaves_the_study_and_modal_alone(tmp_path):
@@ -141,3 +162,32 @@ def test_run_reuses_what_has_not_changed(tmp_path):
     assert not any(forced.values())
     _, quake = run("--set", "excitation.amplitude=2.5")
     assert quake == {**{stem: False for stem in first}, "modal": True}
+
+
+@pytest.mark.slow
+def test_run_keeps_the_study_through_a_stall_torque_that_keeps_its_modes(tmp_path):
+    """The main job with only the study (a shell-only ladder up to 16 elements around: ~15 s)
+    and the report: run again with a stall torque 10 % higher, the study is not run again (its
+    band still holds bending and ovalling); with one that drops ovalling, it is."""
+    out = tmp_path / "out"
+    others = ("modal", "analyze", "compare", "integrators", "harmonic", "campbell", "tornado", "simulate")
+    skips = [a for s in others for a in ("--skip", s)]
+    small = [
+        *("--set", "converge.solid=false", "--set", "converge.shell_max_around=16"),
+        *("--set", "converge.shell_tri_max_around=16", "--no-animations"),
+    ]
+    torque = load_scene("paper").drive.torque_at_zero
+
+    def run(*more):
+        p = cli("run", "paper", "--out", out, *skips, *small, *more, timeout=600)
+        assert p.returncode == 0, p.stderr
+        return p, _stages(out)
+
+    _, first = run()
+    assert first["converge"] is False
+    p, stronger = run("--set", f"drive.torque_at_zero={torque * 1.1}")
+    assert stronger["converge"] is True and "converge: unchanged since " in p.stderr
+    _, again = run("--set", f"drive.torque_at_zero={torque * 1.1}")
+    assert again["converge"] is True
+    _, weaker = run("--set", f"drive.torque_at_zero={load_scene('paper').drive.slope * 50}")
+    assert weaker["converge"] is False

@@ -33,16 +33,22 @@ from .record import PillarModel
 if TYPE_CHECKING:
     from ..converge.result import ConvergenceRun, ConvergenceStudy, ReferenceValue, RunBrief, RunErrors
 
-#: Scene keys a convergence study's choice depends on: the tube, the ladder's
-#: shape (from [mesh]), the tolerance and limits, and the band (drive, load).
+#: Scene keys a convergence study's runs depend on: the tube, the ladder's shape
+#: (from [mesh]), the tolerance and limits (with the band's margin).  The band's top
+#: (the drive's free speed, [drive] and [load]) enters the choice only through the
+#: modes inside it (converge.selection.needed_quantities): the ladder solves the bare
+#: tube's first bending and ovalling modes whatever the band, and the choice asks the
+#: ones inside it.  A study run for another drive answers for this one when its band
+#: holds the same modes (:func:`band_mismatch`).
 STUDY_INPUTS = {
     "pillar": ("height", "outer_diameter", "inner_diameter", "youngs_modulus", "poisson_ratio", "density", "cans"),
     "foundation": None,
     "mesh": None,
     "converge": None,
-    "drive": None,
-    "load": None,
 }
+
+#: Sections the band's top reads (reduced.band.excitation_band).
+BAND_INPUTS = ("drive", "load")
 
 #: The closed form's own model, for the ROM's modes when the study chose Eq. 1.
 CLOSED_FORM_BEAM: dict[str, Any] = {"theory": "euler", "elements": 64}
@@ -68,7 +74,7 @@ def solid_mesh_section(mesh: dict) -> Mesh:
     return Mesh(**{k: v for k, v in mesh.items() if k in names})
 
 
-def _mismatch(scene: Scene, study_scene: dict) -> str | None:
+def study_mismatch(scene: Scene, study_scene: dict) -> str | None:
     """The first scene key the study was run with a different value of, or None."""
     mine = scene.to_dict()
     # a key the study's scene predates (the cans, the foundation) stands at its default there
@@ -80,6 +86,25 @@ def _mismatch(scene: Scene, study_scene: dict) -> str | None:
             if _plain(a.get(k, old.get(k))) != _plain(b.get(k, old.get(k))):
                 return f"{section}.{k}"
     return None
+
+
+def band_mismatch(scene: Scene, study: ConvergenceStudy) -> str | None:
+    """Why a study run for another drive or load does not answer for ``scene`` (None: it
+    does): the scene's band holds other modes than the study's did."""
+    from ..converge.selection import needed_quantities
+    from ..reduced.band import excitation_band
+
+    mine, theirs = scene.to_dict(), study.scene or {}
+    if all(_plain(mine.get(k)) == _plain(theirs.get(k)) for k in BAND_INPUTS):
+        return None
+    band = excitation_band(scene.drive, scene.load, scene.converge)
+    now, then = needed_quantities(study.reference, band), list(study.selection.needed)
+    if now == then:
+        return None
+    return (
+        f"its band ({study.band.omega_max:.4g} rad/s) held {', '.join(then) or 'no mode'}; this scene's "
+        f"({band.omega_max:.4g} rad/s) holds {', '.join(now) or 'no mode'}"
+    )
 
 
 def _plain(v: Any) -> Any:
@@ -99,11 +124,20 @@ def study_on_disk(scene: Scene, out_dir: Path):
     except (OSError, ValueError) as exc:
         return None, f"{path} is unreadable ({exc}); run rotorpillar converge again"
     study = records.replace(study, json_file=str(path))
-    key = _mismatch(scene, study.scene or {})
+    key = study_mismatch(scene, study.scene or {})
     if key is not None:
         return None, (
             f"{path} was run for another {key.split('.')[0]} ({key} differs): not used; "
             f"run rotorpillar converge for this scene"
+        )
+    band = band_mismatch(scene, study)
+    if band is not None:
+        return None, f"{path} was run for another drive: {band}; not used; run rotorpillar converge for this scene"
+    if any(_plain(scene.to_dict().get(k)) != _plain((study.scene or {}).get(k)) for k in BAND_INPUTS):
+        return study, (
+            f"the convergence study {path}, run for another drive: its band "
+            f"({study.band.omega_max:.4g} rad/s) holds the same modes as this scene's "
+            f"({', '.join(study.selection.needed) or 'none'}), so its choice stands"
         )
     return study, f"the convergence study {path}"
 

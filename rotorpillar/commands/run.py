@@ -301,9 +301,32 @@ def key_of(stage, args, stage_scene: Scene, out: Path) -> str:
     from .stage_keys import command_words, stage_key
 
     command, _, extra, own, _ = stage
+    scene_dict = stage_scene.to_dict()
+    if command == "converge":
+        scene_dict["band_modes"] = band_modes(stage_scene, out)
     return stage_key(
-        command, command_words(command, own, extra(args) if extra else ()), stage_scene.to_dict(), _inputs(stage, out)
+        command, command_words(command, own, extra(args) if extra else ()), scene_dict, _inputs(stage, out)
     )
+
+
+def band_modes(scene: Scene, out: Path) -> list[Any]:
+    """What the convergence study's key takes of the band (it does not read [drive] and
+    [load], commands.stage_keys.SECTIONS_NOT_READ): the modes inside it, by the study on
+    disk when it was run for this tube and ladder (chain.choice: its choice stands for any
+    band that holds the same modes); without one, the band's top itself (rad/s)."""
+    from ..chain.choice import study_mismatch
+    from ..converge.result import ConvergenceStudy
+    from ..converge.selection import needed_quantities
+    from ..reduced.band import excitation_band
+
+    band = excitation_band(scene.drive, scene.load, scene.converge)
+    try:
+        study = records.read(Path(out) / "convergence.json", ConvergenceStudy)
+    except (OSError, ValueError):
+        return ["band top", band.omega_max]
+    if study_mismatch(scene, study.scene or {}) is not None:
+        return ["band top", band.omega_max]
+    return ["modes", *needed_quantities(study.reference, band)]
 
 
 def _page(report: str | None, out: Path) -> list[str]:
@@ -366,7 +389,9 @@ def run_command(scene: Scene, args, timings):
         for st in runs:
             keys.forget(out, stage_stem(st[0]))  # only a success keeps a key
 
-        def done_now(command: str, seconds: float, key: dict[str, str] = key) -> None:
+        def done_now(command: str, seconds: float, key: dict[str, str] = key, group: list = group) -> None:
+            if command == "converge":  # its key by the study it has just written (band_modes)
+                key[command] = key_of(next(st for st in group if st[0] == command), args, scenes[command], out)
             others = list(READ_AFTER.get(command, ()))
             if command == "report":
                 from ..postprocess.report import ReportResult
