@@ -245,7 +245,8 @@ def test_a_study_for_another_drive_stands_when_its_band_holds_the_same_modes(tmp
     stronger = override(s, [f"drive.torque_at_zero={s.drive.torque_at_zero * 1.1}"])
     study, why = study_on_disk(stronger, tmp_path)
     assert study is not None and "another drive" in why and "same modes" in why
-    assert choose(stronger, tmp_path).rom.source == "converge"
+    rom = choose(stronger, tmp_path).rom
+    assert rom.source == "converge" and "run for another drive" in rom.note and "134.6" in rom.note
     # free speed ~ M0 / s on paper (its load is light): a top of 1.5 x 50 = 75 rad/s < 85
     weaker = override(s, [f"drive.torque_at_zero={s.drive.slope * 50}"])
     assert excitation_band(weaker.drive, weaker.load, weaker.converge).omega_max < 85.0

@@ -354,10 +354,17 @@ def from_study(scene: Scene, study: ConvergenceStudy) -> Choice:
         return Choice(pm, pm)
     chosen = sel.chosen
     kind = chosen.model
-    why = (
-        f"the model the convergence study chose for the scene's band (up to "
-        f"{study.band.omega_max:.1f} rad/s) at tolerance {tol:g}: {sel.reason}"
-    )
+    from ..reduced.band import excitation_band
+
+    top = excitation_band(scene.drive, scene.load, scene.converge).omega_max
+    if abs(top - study.band.omega_max) <= 1e-9 * top:
+        band = f"the scene's band (up to {top:.1f} rad/s)"
+    else:  # run for another drive (band_mismatch let it through: the same modes)
+        band = (
+            f"its band (up to {study.band.omega_max:.1f} rad/s, run for another drive; this scene's, "
+            f"up to {top:.1f} rad/s, holds the same modes: {', '.join(sel.needed) or 'none'})"
+        )
+    why = f"the model the convergence study chose for {band} at tolerance {tol:g}: {sel.reason}"
     if kind == "solid":
         pm = _model(chosen, "converge", True, tol, _errors(chosen, ref_unc), why, path)
         return Choice(pm, pm)
