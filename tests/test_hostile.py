@@ -1064,6 +1064,45 @@ def test_a_full_order_too_long_is_refused_before_any_meshing(tmp_path, args, wor
     assert not out.exists()
 
 
+# The 3D commands' wall-time budgets: a mesh whose run is estimated (from its DOFs alone)
+# past modal.max_seconds or simulate.max_seconds is refused in one line naming the key, its
+# estimate and the way under it.  4096 around (x 4 along for modal, x 2 for the 3D run)
+# is within mesh.elements_around's range and this process's memory, and is estimated at ~5 min for modal, ~2.5 min for the 3D run-up
+# (measured: 243 s and ~4 min): past a 60 s budget by a factor 2.5 at least.  The timeout
+# guards against the run starting instead (minutes); the cheap meshes under the budget
+# are run by tests/test_hostile_edges.py (each budget at both ends of its range).
+FINE_AROUND = [
+    "--set",
+    "mesh.elements_around=4096",
+    "--set",
+    "modal.max_seconds=60",
+    "--set",
+    "simulate.max_seconds=60",
+]
+
+
+@pytest.mark.parametrize(
+    "args, key",
+    [
+        (["modal", *FINE_AROUND, "--set", "mesh.elements_along=4"], "modal.max_seconds"),
+        (["run", *FINE_AROUND, "--set", "mesh.elements_along=4"], "modal.max_seconds"),
+        (
+            ["simulate", "--model", "fem3d", "--case", "runup", *FINE_AROUND]
+            + ["--set", "full_order.elements_around=4096", "--set", "full_order.elements_along=2"],
+            "simulate.max_seconds",
+        ),
+    ],
+    ids=["modal", "run", "fem3d"],
+)
+def test_a_3d_run_past_its_wall_time_budget_is_refused_before_any_meshing(tmp_path, args, key):
+    out = tmp_path / "out"
+    p = cli(args[0], "paper", *args[1:], "--out", out, timeout=120)
+    line = one_line(p)
+    assert p.returncode == 2, p.stderr
+    assert f"{key} = 60 s" in line and "estimate" in line and "fewer elements" in line, line
+    assert not out.exists()
+
+
 def test_simulate_under_mpirun_shares_only_the_3d_full_order(tmp_path):
     """simulate and compare run under mpirun for the 3D full order; the reduced models,
     which would only repeat their work on every rank, are refused with one line."""

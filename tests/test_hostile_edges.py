@@ -21,7 +21,10 @@ itself.  The other keys keep the scene's values; the runs are short
 (``simulate.duration`` 2 s, the ROM on the beam's modes) and ``simulate.max_steps``
 is 2e5, so that the long end of a duration is refused by its estimate at once
 instead of running for minutes: the refusal is what that end must meet on this
-budget.  Each case but analyze's takes seconds (a whole command, its charts): marked slow.
+budget.  The 3D commands' wall-time budgets (``modal.max_seconds``,
+``simulate.max_seconds``) are 10 s for the same reason: the finest end of a mesh key
+(4096 elements around, 100 through) or a 3D run-up of the case's 80 s is refused by
+its estimate before any meshing.  Each case but analyze's takes seconds (a whole command, its charts): marked slow.
 Not run here: the lower ends of the convergence ladder's keys and
 ``converge.tolerance`` (they only shorten or loosen the ladder that
 tests/test_converge*.py run whole, minutes each); ``full_order.pareto_along`` (compare
@@ -44,7 +47,14 @@ def _sets(*assignments: str) -> list[str]:
 
 
 SHORT = _sets("simulate.duration=2", "simulate.max_steps=200000", "simulate.samples=500", "modal_model.source=beam")
-FEM3D = _sets("full_order.elements_around=8", "full_order.elements_along=2", "simulate.max_steps=200000")
+# the 3D runs' wall-time budgets at 10 s: the cheap meshes below are estimated under a
+# second, a mesh or a run that would take minutes is refused by its estimate at once
+FEM3D = _sets(
+    "full_order.elements_around=8",
+    "full_order.elements_along=2",
+    "simulate.max_steps=200000",
+    "simulate.max_seconds=10",
+)
 #: name -> (command, its arguments, slow): the commands that consume keys, as cheap as they come
 CONSUMERS = {
     "analyze": ("analyze", [], False),
@@ -100,7 +110,7 @@ CONSUMERS = {
         ["--case", "sweep", "--model", "paper", *SHORT, *_sets("sweep.rate=500", "sweep.settle=1")],
         True,
     ),
-    "modal": ("modal", _sets("mesh.elements_around=8", "mesh.elements_along=4"), True),
+    "modal": ("modal", _sets("mesh.elements_around=8", "mesh.elements_along=4", "modal.max_seconds=10"), True),
     "fem3d-runup": (
         "simulate",
         ["--model", "fem3d", "--case", "runup", *FEM3D, *_sets("full_order.runup_duration=0.1")],
@@ -145,6 +155,7 @@ KEY_CONSUMERS = {
     "converge.earthquake_frequency": ["modal"],
     "simulate.time_step": ["fixed-step", "fem3d-runup"],
     "simulate.max_steps": ["budget"],
+    "simulate.max_seconds": ["fem3d-runup"],
     "simulate.rundown_torque_at_zero": ["rundown"],
     "simulate.earthquake_duration": ["quake"],
     "excitation.record_scale": ["record"],

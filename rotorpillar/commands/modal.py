@@ -74,7 +74,8 @@ SOLVES = 2
 
 def preflight(scene: Scene, args=None) -> None:
     """What `modal` refuses before any work (`run` calls it for its stage too): a mesh
-    this process cannot hold, more modes than the mesh has, a tolerance out of range."""
+    this process cannot hold or whose run is estimated above ``modal.max_seconds``, more
+    modes than the mesh has, a tolerance out of range."""
     from ..errors import InputError
     from ..mesh import tube_params
     from ..provenance import check_memory
@@ -86,6 +87,16 @@ def preflight(scene: Scene, args=None) -> None:
         f"{p.elements_through} through ({p.estimated_dofs:,} DOFs, two solves)",
         "use fewer elements",
     )
+    seconds, limit = p.estimated_seconds, scene.modal.max_seconds
+    if not seconds <= limit:
+        from ..fem3d.full_order_plan import duration_text
+
+        raise InputError(
+            f"modal: the mesh {p.elements_around} around x {p.elements_along} along x "
+            f"{p.elements_through} through ({p.estimated_dofs:,} DOFs) would take about "
+            f"{duration_text(seconds)} (an estimate), more than modal.max_seconds = {limit:.3g} s: "
+            "use fewer elements, or raise modal.max_seconds"
+        )
     n, rigid = scene.modal.n_modes, scene.modal.top_model == "rigid"
     dofs = min(p.solver_dofs(False), p.solver_dofs(rigid))
     if n and n + 1 > dofs:

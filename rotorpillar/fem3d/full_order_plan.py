@@ -7,7 +7,7 @@
   record's sampling; the modes far above the band damped by the scheme);
 - ``estimate`` / ``check_budget``: steps and wall time from the scene alone
   (the mesh's DOFs are estimated, not built), refused above
-  ``simulate.max_steps`` with the keys to change;
+  ``simulate.max_steps`` or ``simulate.max_seconds`` with the keys to change;
 - ``accuracy_failures``: the finished run's step against what it had to resolve.
 """
 
@@ -141,6 +141,14 @@ def step_rule(
 #: 2-core machine: 1.3 ms a step on 3,033 dofs (8 x 10), 8 ms on 11,817
 #: (16 x 20).  An estimate, stated as one (the machine's load multiplies it).
 SECONDS_PER_STEP = (3.0e-4, 6.0e-9)
+#: The wall time before the first step (meshing, assembly, factorisation) as a share of
+#: the estimate of a `modal` run on the same mesh (rotorpillar.mesh.tube.MODAL_SECONDS:
+#: two meshings and assemblies, and the eigen-solves).  Measured on the 2-core machine
+#: shared with two `modal` runs: 4096 x 2 elements (368,649 dofs), 31 s before the first
+#: step (14 s assembly, 7 s factorisation), 0.21 of modal's estimate there (145 s).  Its
+#: 59 steps took 5.0 s each against SECONDS_PER_STEP's 1.35 s: the load, and the estimate
+#: of a step is low this far above the meshes it was fitted on.
+SETUP_SHARE = 0.2
 
 
 class RunEstimate(Record):
@@ -156,6 +164,8 @@ class RunEstimate(Record):
     """estimated unknowns of the mesh (-)"""
     seconds: float
     """estimated wall time of the integration (s)"""
+    setup_seconds: float = 0.0
+    """estimated wall time before the first step: meshing, assembly, factorisation (s)"""
 
 
 def estimate(scene: Scene, duration: float, rule: StepRule, mesh=None) -> RunEstimate:
@@ -164,19 +174,37 @@ def estimate(scene: Scene, duration: float, rule: StepRule, mesh=None) -> RunEst
     from ..mesh import tube_params
 
     mesh = scene.mesh if mesh is None else mesh
-    dofs = tube_params(scene.pillar, mesh).estimated_dofs + 9
+    p = tube_params(scene.pillar, mesh)
+    dofs = p.estimated_dofs + 9
     steps = duration / rule.time_step if rule.time_step > 0 else math.inf
     a, b = SECONDS_PER_STEP
-    return RunEstimate(float(steps), rule.time_step, float(duration), int(dofs), float(steps * (a + b * dofs**1.5)))
+    return RunEstimate(
+        float(steps),
+        rule.time_step,
+        float(duration),
+        int(dofs),
+        float(steps * (a + b * dofs**1.5)),
+        SETUP_SHARE * p.estimated_seconds,
+    )
 
 
 def check_budget(scene: Scene, case: str, est: RunEstimate) -> None:
-    """Refuse (InputError, one line naming the keys) a run above ``simulate.max_steps``."""
+    """Refuse (InputError, one line naming the keys) a run above ``simulate.max_steps``
+    or estimated above ``simulate.max_seconds``."""
     limit = scene.simulate.max_steps
-    if math.isfinite(est.steps) and est.steps <= limit:
-        return
     length = "full_order.earthquake_duration" if case == "earthquake" else "full_order.runup_duration"
     own = "simulate.earthquake_duration" if case == "earthquake" else "simulate.duration"
+    if math.isfinite(est.steps) and est.steps <= limit:
+        total, budget = est.seconds + est.setup_seconds, scene.simulate.max_seconds
+        if total <= budget:
+            return
+        raise InputError(
+            f"the 3D {case} of {est.duration:.4g} s on ~{est.dofs:,} dofs would take about "
+            f"{duration_text(total)} (an estimate: ~{duration_text(est.setup_seconds)} meshing and "
+            f"factorising, {est.steps:.3g} steps of {est.time_step:.3g} s), more than "
+            f"simulate.max_seconds = {budget:.3g} s: use fewer elements (full_order.elements_around, "
+            f"full_order.elements_along), shorten {length} or {own}, or raise simulate.max_seconds"
+        )
     raise InputError(
         f"the 3D {case} of {est.duration:.4g} s at a step of {est.time_step:.3g} s would take about "
         f"{est.steps:.3g} steps (~{duration_text(est.seconds)} on ~{est.dofs:,} dofs), more than "

@@ -43,6 +43,18 @@ GMSH_CELLS = {
 #: process (bare, then with the top) and peaks at twice this (24 kB/DOF
 #: measured at 24 k, 70 k and 231 k DOFs): its check counts two solves.
 BYTES_PER_DOF = 12e3
+#: Wall time of one `modal` run on a mesh (s), an estimate: MODAL_SECONDS[0] * dofs +
+#: MODAL_SECONDS[1] * dofs * front, where ``front`` is the unknowns across the mesh's
+#: narrowest cross-section (``TubeMeshParams.front``): meshing, assembly and the Krylov
+#: solves grow with the DOFs, the sparse factors of K - sigma M with the DOFs times that
+#: front.  Fitted (least relative squares) to whole `modal` runs of the paper's scene
+#: (chain modes, two solves, the VTU files) on the 2-core machine shared with another
+#: run: 64 x 10 x 1 (around x along x through, 24,192 DOFs) 44 s, 256 x 10 x 1 (96,768)
+#: 63 s, 16 x 4 x 20 (35,424) 45 s, 8 x 4 x 100 (86,832) 72 s, 4096 x 4 x 1 (663,552)
+#: 243 s; the fit gives 0.3 (the scene's own mesh: its band asks many modes of the
+#: loaded tube), 0.9, 1.1, 1.0 and 1.2 of them.  Start-up and form compilation (~3 s: 8 x
+#: 4 x 1 runs in 4.7 s) are not counted; the machine's load multiplies the rest.
+MODAL_SECONDS = (3.4e-4, 1.2e-6)
 #: Smallest tube Gmsh meshes reliably (m): its geometric tolerance is ~1e-8 of the model.
 MIN_SIZE = 1e-3
 
@@ -159,6 +171,26 @@ class TubeMeshParams:
     def estimated_bytes(self) -> float:
         """Peak memory of meshing, assembling and factorising this mesh (bytes)."""
         return BYTES_PER_DOF * self.estimated_dofs
+
+    @property
+    def front(self) -> int:
+        """Unknowns across the mesh's narrowest cross-section (-): the nodes over the
+        longest of the node grid's three extents (around, through, along), three DOFs
+        each; the width of the sparse factors' separators, on which their cost grows.
+
+        >>> TubeMeshParams(20.0, 1.0, 0.98, 8, 2, 1, 2, "hexahedron").front
+        45
+        """
+        k = self.order
+        extents = (k * self.elements_around, k * self.elements_through + 1, k * self.elements_along + 1)
+        return 3 * math.prod(extents) // max(extents)
+
+    @property
+    def estimated_seconds(self) -> float:
+        """Wall time of one `modal` run on this mesh, an estimate (s; MODAL_SECONDS)."""
+        a, b = MODAL_SECONDS
+        dofs = self.estimated_dofs
+        return float(a * dofs + b * dofs * self.front)
 
     @property
     def sectors(self) -> int:

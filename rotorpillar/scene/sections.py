@@ -99,6 +99,13 @@ class Modal:
         ge=1e-14,
         le=1e-4,
     )
+    max_seconds: float = param(
+        "Budget of wall time of `modal`: a mesh whose run is estimated above it (from its DOFs, "
+        "rotorpillar.mesh.tube.MODAL_SECONDS) is refused before any meshing (s)",
+        3600.0,
+        ge=1,
+        le=1e6,
+    )
 
 
 @dataclass(frozen=True)
@@ -173,6 +180,13 @@ class Simulate:
         20_000_000,
         ge=1000,
         le=10**10,
+    )
+    max_seconds: float = param(
+        "Budget of wall time of a 3D full-order run: a run estimated above it (its meshing, "
+        "factorisation and steps; rotorpillar.fem3d.full_order_plan) is refused before it starts (s)",
+        3600.0,
+        ge=1,
+        le=1e6,
     )
     threshold: bool = param(
         "Run-up: also find, by a batch of run-ups, the torque needed to pass "

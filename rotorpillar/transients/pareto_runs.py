@@ -278,7 +278,8 @@ def load_run(cache: DiskCache, key: str) -> StoredRun | None:
 def pareto_estimate(scene: Scene, chosen_mesh=None) -> str:
     """The study's 3D runs, estimated from the scene alone before any work, in a line;
     InputError (as a single 3D run is refused: fem3d.full_order_plan) when one of them
-    would not fit in memory or would take more than ``simulate.max_steps`` steps."""
+    would not fit in memory, would take more than ``simulate.max_steps`` steps or is
+    estimated above ``simulate.max_seconds``."""
     from ..converge.ladder import ALONG_FAMILY_AROUND
     from ..errors import InputError
     from ..fem3d.full_order_plan import case_setup, duration_text, estimate, step_rule
@@ -309,6 +310,13 @@ def pareto_estimate(scene: Scene, chosen_mesh=None) -> str:
                 f"take about {est.steps:.3g} steps (~{duration_text(est.seconds)}), more than simulate.max_steps = "
                 f"{scene.simulate.max_steps:.3g}: raise full_order.time_step (0 = the band's step) or "
                 "simulate.max_steps"
+            )
+        seconds = est.seconds + est.setup_seconds
+        if not seconds <= sc.simulate.max_seconds:  # the run's own check_budget would refuse it mid-study
+            raise InputError(
+                f"compare --pareto: the run {label} of {length:g} s on ~{est.dofs:,} dofs would take about "
+                f"{duration_text(seconds)} (an estimate), more than simulate.max_seconds = "
+                f"{sc.simulate.max_seconds:.3g} s: lower full_order.pareto_along, or raise simulate.max_seconds"
             )
         runs.append((label, est))
     total = sum(e.seconds for _, e in runs)
