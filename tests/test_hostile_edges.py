@@ -218,7 +218,10 @@ def groups() -> dict[tuple[str, str, str], dict[str, object]]:
 
 def cases():
     for (consumer, section, end), values in groups().items():
-        marks = [pytest.mark.slow] if CONSUMERS[consumer][2] else []
+        # a new tube makes analyze solve the chain's 3D modes again (~10 s a key): slow, as the
+        # tiers define it (README), like every consumer marked slow above
+        slow = CONSUMERS[consumer][2] or (CONSUMERS[consumer][0] == "analyze" and section == "pillar")
+        marks = [pytest.mark.slow] if slow else []
         yield pytest.param(consumer, values, marks=marks, id=f"{section}-{end}-{consumer}")
 
 
