@@ -88,14 +88,19 @@ def study_mismatch(scene: Scene, study_scene: dict) -> str | None:
     return None
 
 
+def run_for_another_drive(scene: Scene, study: ConvergenceStudy) -> bool:
+    """The study's [drive] or [load] differs from the scene's (BAND_INPUTS)."""
+    mine, theirs = scene.to_dict(), study.scene or {}
+    return any(_plain(mine.get(k)) != _plain(theirs.get(k)) for k in BAND_INPUTS)
+
+
 def band_mismatch(scene: Scene, study: ConvergenceStudy) -> str | None:
     """Why a study run for another drive or load does not answer for ``scene`` (None: it
     does): the scene's band holds other modes than the study's did."""
     from ..converge.selection import needed_quantities
     from ..reduced.band import excitation_band
 
-    mine, theirs = scene.to_dict(), study.scene or {}
-    if all(_plain(mine.get(k)) == _plain(theirs.get(k)) for k in BAND_INPUTS):
+    if not run_for_another_drive(scene, study):
         return None
     band = excitation_band(scene.drive, scene.load, scene.converge)
     now, then = needed_quantities(study.reference, band), list(study.selection.needed)
@@ -133,7 +138,7 @@ def study_on_disk(scene: Scene, out_dir: Path):
     band = band_mismatch(scene, study)
     if band is not None:
         return None, f"{path} was run for another drive: {band}; not used; run rotorpillar converge for this scene"
-    if any(_plain(scene.to_dict().get(k)) != _plain((study.scene or {}).get(k)) for k in BAND_INPUTS):
+    if run_for_another_drive(scene, study):
         return study, (
             f"the convergence study {path}, run for another drive: its band "
             f"({study.band.omega_max:.4g} rad/s) holds the same modes as this scene's "
