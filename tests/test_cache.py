@@ -148,6 +148,9 @@ def test_chain_modes_key_follows_the_mesh_and_the_tolerance():
     assert k != modes_key(override(scene, ["modal.tolerance=1e-10"]), mesh)
     # the drive does not change the pillar's modes
     assert k == modes_key(override(scene, ["rotor.mass=2000"]), mesh)
+    # nor does the structural damping ratio: a label on each mode, set as they are read
+    assert k == modes_key(override(scene, ["pillar.damping_ratio=0.03"]), mesh)
+    assert k != modes_key(override(scene, ["pillar.density=7000"]), mesh)
 
 
 def test_the_run_cache_hashes_files_that_exist():

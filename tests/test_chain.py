@@ -224,6 +224,15 @@ def test_3d_modes_of_the_scene_mesh_match_the_beam_and_are_cached(tmp_path, monk
     np.testing.assert_array_equal(again.modes.omega, first.modes.omega)
     np.testing.assert_array_equal(again.modes.participation, first.modes.participation)
     assert again.reduction == first.reduction
+    # another structural damping ratio: the same solve read back, each spatial mode carrying
+    # the new ratio (it labels the modes; the eigenproblem is undamped)
+    damped = override(s, ["pillar.damping_ratio=0.02"])
+    other = chain_modes(damped, choose(damped, None), 180.0)
+    assert other.seconds == 0.0 and other.cache_file == first.cache_file
+    assert first.spatial is not None and other.spatial is not None
+    np.testing.assert_array_equal(other.spatial.omega, first.spatial.omega)
+    assert np.all(other.spatial.damping_ratio == 0.02)
+    assert np.all(first.spatial.damping_ratio == s.pillar.damping_ratio) and s.pillar.damping_ratio != 0.02
 
 
 def test_a_study_for_another_drive_stands_when_its_band_holds_the_same_modes(tmp_path):

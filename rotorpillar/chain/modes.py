@@ -33,7 +33,9 @@ from ..scene.tower import foundation_key, pillar_key
 from .choice import Choice, solid_mesh_section
 from .record import MeshValue, PillarModel
 
-CACHE_VERSION = 3  # 2: an Entry of a ModesEntry record (msgspec); 3: with the spatial modes
+#: 2: an Entry of a ModesEntry record (msgspec); 3: with the spatial modes; 4: keyed
+#: without the damping ratio (set on the modes as they are read)
+CACHE_VERSION = 4
 #: the most X bending modes the ROM picks from
 MAX_CANDIDATES = 12
 #: modes first asked of the loaded tube (doubled until enough X bending modes are found)
@@ -103,14 +105,15 @@ def _code_hash() -> str:
 
 
 def modes_key(scene: Scene, mesh: dict) -> str:
-    """Hash of what the loaded tube's 3D modes depend on."""
+    """Hash of what the loaded tube's 3D modes depend on.  Not the structural damping
+    ratio: it is a label on each spatial mode, not part of the solve, and is set on the
+    modes as they are read (a tornado that varies the pillar's damping solves once)."""
     p, md = scene.pillar, scene.modal
     args = {
         "mesh": mesh,
         "pillar": pillar_key(p),
         **foundation_key(scene.foundation),
         "gondola": scene.gondola.mass,
-        "damping_ratio": scene.pillar.damping_ratio,
         # the gondola as a rigid body (issue 26's keys; absent in an older scene: 0, as today)
         "gondola_body": [
             getattr(scene.gondola, k, 0.0) for k in ("pitch_inertia", "roll_inertia", "yaw_inertia", "height")
@@ -196,7 +199,8 @@ def chain_modes(
     path = cache.path(key)
     got = cache.read(key, ModesEntry)
     if got is not None and _enough(got.modes.omega, band_top):
-        return ChainModes(pm, got.modes, got.reduction, str(path), 0.0, got.loaded_modes, got.spatial)
+        spatial = got.spatial.with_damping_ratio(scene.pillar.damping_ratio)
+        return ChainModes(pm, got.modes, got.reduction, str(path), 0.0, got.loaded_modes, spatial)
     if progress:
         progress(f"chain: the 3D modes of {pm.label} for the ROM (cached after this)")
     start = time.perf_counter()
