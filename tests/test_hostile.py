@@ -694,8 +694,8 @@ def test_every_stage_of_run_has_the_preflight_its_command_calls():
     from rotorpillar.commands.parser import COMMANDS
     from rotorpillar.commands.run import RUN_STAGES
 
-    for command, *_ in RUN_STAGES:
-        name = command.split()[0]
+    for stage in RUN_STAGES:
+        name = stage.name
         if name == "analyze":  # nothing beyond the scene itself
             continue
         assert callable(getattr(importlib.import_module(COMMANDS[name][0]), "preflight", None)), name

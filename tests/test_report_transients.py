@@ -328,21 +328,17 @@ def test_run_compares_on_the_record_the_user_can_override(tmp_path):
     from types import SimpleNamespace
 
     from rotorpillar.commands.run import RUN_STAGES, stage_argv
-    from rotorpillar.scene import load_scene
 
-    stages = {st[0]: st for st in RUN_STAGES}
-    names = [st[0] for st in RUN_STAGES]
+    stages = {st.command: st for st in RUN_STAGES}
+    names = [st.command for st in RUN_STAGES]
     for case in COMPARISONS:
         assert f"compare --case {case}" in stages
     # the comparisons write compare_<case>_<model>.*, apart from the scene's own runs, so they
     # run side by side with them (one wave after analyze)
-    assert stages["compare --case earthquake"][4] == stages["simulate --case earthquake"][4]
+    assert stages["compare --case earthquake"].wave == stages["simulate --case earthquake"].wave
     assert names.index("analyze") < names.index("compare --case runup")
-    args = SimpleNamespace(
-        scene="paper", out=tmp_path, overrides=["excitation.record=my.AT2"], _scene=load_scene("paper")
-    )
-    command, _, extra, own, _ = stages["compare --case earthquake"]
-    argv = stage_argv(command, args, extra, own)
+    args = SimpleNamespace(scene="paper", overrides=["excitation.record=my.AT2"])
+    argv = stage_argv(stages["compare --case earthquake"], args, tmp_path)
     sets = [argv[i + 1] for i, a in enumerate(argv) if a == "--set"]
     assert sets == [
         "excitation.kind=record",

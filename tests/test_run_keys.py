@@ -28,7 +28,7 @@ from conftest import cli
 
 from rotorpillar.commands import stage_keys
 from rotorpillar.commands.parser import build_parser
-from rotorpillar.commands.run import RUN_STAGES, key_of, run_wave, stage_scenes
+from rotorpillar.commands.run import RUN_STAGES, key_of, plan_stages, run_wave
 from rotorpillar.errors import StageError
 from rotorpillar.scene import load_scene
 
@@ -36,9 +36,8 @@ from rotorpillar.scene import load_scene
 def keys_for(out, *sets: str) -> dict[str, str]:
     """Every stage's key for `run paper --out OUT --set ...`."""
     args = build_parser().parse_args(["run", "paper", "--out", str(out), *[a for s in sets for a in ("--set", s)]])
-    args._scene = load_scene(args.scene, args.overrides)
-    scenes = {command: scene for command, scene, _ in stage_scenes(RUN_STAGES, args)}
-    return {st[0]: key_of(st, args, scenes[st[0]], out) for st in RUN_STAGES}
+    plans = plan_stages(RUN_STAGES, load_scene(args.scene, args.overrides), args, out)
+    return {p.stage.command: key_of(p, out) for p in plans}
 
 
 def changed(a: dict[str, str], b: dict[str, str]) -> set[str]:
@@ -53,7 +52,7 @@ def test_the_same_job_has_the_same_keys(tmp_path):
 def test_the_drives_torque_changes_the_keys_of_the_stages_that_read_the_drive(tmp_path):
     base = keys_for(tmp_path)
     moved = changed(base, keys_for(tmp_path, f"drive.torque_at_zero={load_scene('paper').drive.torque_at_zero * 1.1}"))
-    transients = {st[0] for st in RUN_STAGES if st[0].split()[0] in ("simulate", "compare", "integrators")}
+    transients = {st.command for st in RUN_STAGES if st.name in ("simulate", "compare", "integrators")}
     assert transients and transients <= moved
     assert {"analyze", "harmonic", "campbell", "report"} <= moved
     # the band's top is the drive's free speed: modal's mode count reads it, and the study
@@ -94,7 +93,7 @@ def test_an_input_file_changes_the_keys_of_the_stages_after_it(tmp_path):
     first = keys_for(tmp_path)
     (tmp_path / "convergence.json").write_text('{"selection": "b"}')
     second = keys_for(tmp_path)
-    after = {st[0] for st in RUN_STAGES if st[0] != "converge"}
+    after = {st.command for st in RUN_STAGES if st.command != "converge"}
     assert changed(base, first) == after and changed(first, second) == after
     # modal.json is read by the stages after modal, not by modal itself
     (tmp_path / "modal.json").write_text("{}")

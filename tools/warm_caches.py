@@ -119,7 +119,7 @@ def warm_kernels(out: Path) -> tuple[int, int, list[Path]]:
     from rotorpillar.cli import main
     from rotorpillar.commands.run import RUN_STAGES
 
-    stages = [(st[0], st[3]) for st in RUN_STAGES if st[0] in SHORT_STAGES]
+    stages = [(st.command, st.arguments) for st in RUN_STAGES if st.command in SHORT_STAGES]
     missing = set(SHORT_STAGES) - {c for c, _ in stages}
     if missing:
         raise SystemExit(f"warm_caches: the main job has no stage {sorted(missing)}: update SHORT_STAGES")

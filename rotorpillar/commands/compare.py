@@ -154,7 +154,7 @@ def compare_command(scene: Scene, args, timings):
     return Done(res, _summary(scene, res), status)
 
 
-#: the multi-component comparison's JSON (stage_stem of `run`)
+#: the multi-component comparison's JSON (its stage's ``RunStage.stem`` in `run`)
 COMPONENTS_STEM = "compare_earthquake_components"
 
 

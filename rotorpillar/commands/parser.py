@@ -1,7 +1,8 @@
 """The command line's parser: the commands, their arguments, errors on one line.
 
 ``build_parser()`` is what `rotorpillar` parses with, and what `run` parses
-each of its stages' command lines with (``commands.run.preflight``).  The
+each of its stages' own arguments with, for their pre-flight checks
+(``commands.run.stage_arguments``).  The
 command modules are named, not imported, here: each adds its own arguments
 when the parser is built.
 """
@@ -79,7 +80,7 @@ COMMANDS = {
 
 def _arguments(*modules: str):
     """A command's extra arguments: each module's ``add_arguments`` (modules by name:
-    `run` parses its stages with this parser, so no command module is imported here)."""
+    `run` parses its stages' arguments with this parser, so no command module is imported here)."""
     return lambda p: [importlib.import_module(f"rotorpillar.commands.{m}").add_arguments(p) for m in modules]
 
 

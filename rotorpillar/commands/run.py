@@ -21,11 +21,13 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from ..scene import Scene
 
+import argparse
+import dataclasses
 import os
 import subprocess
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from .. import records
@@ -36,72 +38,135 @@ from ..transients.compare import COMPARISONS
 from . import Done, progress
 
 
-def _report_flags(args) -> list[str]:
-    flags = []
-    if getattr(args, "max_frames", None) is not None:
-        flags += ["--max-frames", str(args.max_frames)]
-    if getattr(args, "no_animations", False):
-        flags.append("--no-animations")
-    if getattr(args, "strict", False):
-        flags.append("--strict")
-    return flags
+class RunStage(Record):
+    """One stage of `rotorpillar run`: the command it launches and the wave it runs in."""
+
+    command: str
+    """the stage's command, its first word the CLI's command ("compare --case earthquake")"""
+    what: str
+    """what it does, in the progress line"""
+    wave: int
+    """its wave: the stages of one wave depend only on the waves before and run side by side"""
+    arguments: tuple[str, ...] = ()
+    """its own arguments, after the command; its own ``--set`` go before the user's, so the user's win"""
+    passes: tuple[str, ...] = ()
+    """run's own flags it takes, passed on as run got them (the report's ``--max-frames``, ...)"""
+
+    @property
+    def name(self) -> str:
+        """The CLI's command it runs, the name ``--skip`` takes: the command's first word."""
+        return self.command.split()[0]
+
+    @property
+    def stem(self) -> str:
+        """The JSON the stage leaves that run.json points to: <command>.json, or per case for
+        simulate and compare.
+
+        >>> [RunStage(c, "", 0).stem for c in ("simulate --case runup", "compare --case earthquake", "modal")]
+        ['simulate_runup', 'compare_earthquake', 'modal']
+        >>> RunStage("compare --case earthquake --components 3", "", 0).stem
+        'compare_earthquake_components'
+        """
+        words = self.command.split()
+        if words[0] == "compare" and "--components" in words:
+            return "compare_earthquake_components"
+        if words[0] in ("simulate", "compare") and "--case" in words:
+            return f"{words[0]}_{words[words.index('--case') + 1]}"
+        return words[0]
+
+    @property
+    def sets(self) -> list[str]:
+        """Its own ``--set`` assignments, in order.
+
+        >>> RunStage("compare", "", 0, ("--models", "modal", "--set", "excitation.start=1")).sets
+        ['excitation.start=1']
+        """
+        return [self.arguments[i + 1] for i, a in enumerate(self.arguments[:-1]) if a == "--set"]
+
+    @property
+    def flags(self) -> list[str]:
+        """Its own arguments but the ``--set`` assignments.
+
+        >>> RunStage("compare", "", 0, ("--models", "modal", "--set", "excitation.start=1", "--pareto")).flags
+        ['--models', 'modal', '--pareto']
+        """
+        words, i = [], 0
+        while i < len(self.arguments):
+            if self.arguments[i] == "--set":
+                i += 2
+                continue
+            words.append(self.arguments[i])
+            i += 1
+        return words
+
+    def passed_on(self, args) -> list[str]:
+        """Run's flags it takes (:attr:`passes`), as run got them: a switch when it is on, a
+        flag with its value when it has one.
+
+        >>> from types import SimpleNamespace
+        >>> st = RunStage("report", "", 4, passes=("--max-frames", "--no-animations", "--strict"))
+        >>> st.passed_on(SimpleNamespace(max_frames=3, no_animations=True, strict=False))
+        ['--max-frames', '3', '--no-animations']
+        """
+        words: list[str] = []
+        for flag in self.passes:
+            value = getattr(args, flag.lstrip("-").replace("-", "_"), None)
+            if value is True:
+                words.append(flag)
+            elif value is not None and value is not False:
+                words += [flag, str(value)]
+        return words
 
 
-# The stages of `rotorpillar run`, in order: (command, what it does, extra
-# arguments from run's own, the stage's own arguments, its wave).  A stage's
-# own arguments go before the user's --set, so the user's win.  Stages of one
-# wave depend only on the waves before and run side by side; each wave waits
-# for the one before.  The comparisons write compare_<case>_<model>.*, apart
-# from the scene's own runs (simulate_<case>_<model>.*).
-RUN_STAGES = [
+# The stages of `rotorpillar run`, in order.  Stages of one wave depend only on the waves
+# before and run side by side; each wave waits for the one before.  The comparisons write
+# compare_<case>_<model>.*, apart from the scene's own runs (simulate_<case>_<model>.*).
+RUN_STAGES: tuple[RunStage, ...] = (
     # minutes the first time, then read from its cache: it chooses the pillar model
-    ("converge", "mesh convergence, speed against accuracy: the pillar model the band needs", None, (), 0),
-    ("modal", "3D modes of the tube on the chosen mesh, bare and with its top mass", None, (), 1),
-    ("analyze", "the headline model (the ROM) and the paper's, averaging", None, (), 2),
+    RunStage("converge", "mesh convergence, speed against accuracy: the pillar model the band needs", wave=0),
+    RunStage("modal", "3D modes of the tube on the chosen mesh, bare and with its top mass", wave=1),
+    RunStage("analyze", "the headline model (the ROM) and the paper's, averaging", wave=2),
     # El Centro on the ROM and the 3D full order (the study's reference mesh for the modes
     # the load excites), with the speed-against-accuracy study
-    (
+    RunStage(
         "compare --case earthquake",
         "a recorded earthquake: the ROM against the 3D full order",
-        None,
-        COMPARISONS["earthquake"],
-        3,
+        wave=3,
+        arguments=COMPARISONS["earthquake"],
     ),
-    (
+    RunStage(
         "compare --case runup",
         "run-up through the resonances: the ROM against the 3D full order",
-        None,
-        COMPARISONS["runup"],
-        3,
+        wave=3,
+        arguments=COMPARISONS["runup"],
     ),
     # A wave's stages start in this order, two at a time: the longest first, so that
     # the two slots end together (paper, measured: integrators 16 s, harmonic 7 s, each
     # simulate 2-3 s; integrators after the two simulate runs left one slot idle 2.5 s
     # longer, and the whole wave waited for it).  The earthquake after the run-up, as
     # before: simulate.json is the last case run.
-    ("integrators", "time integrators: error against cost, where each fails", None, (), 3),
+    RunStage("integrators", "time integrators: error against cost, where each fails", wave=3),
     # the ROM's and the 3D model's unbalance response, the margins to the loaded tube's modes
-    ("harmonic", "unbalance response (Bode) and separation margins (API 684)", None, (), 3),
+    RunStage("harmonic", "unbalance response (Bode) and separation margins (API 684)", wave=3),
     # the Campbell diagram, the ROM's beside the 3D model's (~35 s; after harmonic, so that it
     # fills the slot integrators leaves: measured on paper, the wave ends ~18 s later, not ~35).
     # The 3D on the scene's [mesh]: the chain's chosen mesh (paper: 128 x 20, ~94k DOFs) costs
     # ~140 s (its assembly, the damping's modes, the pencil), past the run's budget; the JSON
     # and stderr say so
-    (
+    RunStage(
         "campbell",
         "Campbell diagram: the ROM against the 3D model, the critical speeds",
-        None,
-        ("--model", "both", "--fem3d-mesh", "scene"),
-        3,
+        wave=3,
+        arguments=("--model", "both", "--fem3d-mesh", "scene"),
     ),
     # El Centro in three components (180, 270, UP) on the spatial ROM over the whole record
     # and the 3D full order over 4 s from the start (paper: the ROM's largest base moment at
     # 3.3 s; the 3D run ~25 s), the six base reactions
-    (
+    RunStage(
         "compare --case earthquake --components 3",
         "El Centro in three components: the spatial ROM against the 3D full order, six base reactions",
-        None,
-        (
+        wave=3,
+        arguments=(
             "--set",
             "excitation.kind=record",
             "--set",
@@ -111,51 +176,35 @@ RUN_STAGES = [
             "--set",
             "full_order.earthquake_duration=4",
         ),
-        3,
     ),
     # each uncertain input at the ends of its range on the ROM (paper: 18 runs, ~7 s)
-    ("tornado", "how much the checks depend on the uncertain inputs: the tornado chart", None, (), 3),
-    ("simulate --case runup", "run-up from rest on the headline model", None, (), 3),
-    ("simulate --case earthquake", "the paper's case: its pulse on Eq. 4 as published", None, ("--model", "paper"), 3),
-    ("report", "charts, mode shapes, animations, report.html", _report_flags, (), 4),
-]
+    RunStage("tornado", "how much the checks depend on the uncertain inputs: the tornado chart", wave=3),
+    RunStage("simulate --case runup", "run-up from rest on the headline model", wave=3),
+    RunStage(
+        "simulate --case earthquake",
+        "the paper's case: its pulse on Eq. 4 as published",
+        wave=3,
+        arguments=("--model", "paper"),
+    ),
+    # the report's own flags that run takes (commands.report.add_arguments) go on to it
+    RunStage(
+        "report",
+        "charts, mode shapes, animations, report.html",
+        wave=4,
+        passes=("--max-frames", "--no-animations", "--strict"),
+    ),
+)
 
 
-def stage_argv(command: str, args, extra=None, own=()) -> list[str]:
-    """The command line of one stage: the command, its own arguments, run's
-    scene, --out and overrides (after the stage's own --set: the user's win)."""
-    from . import out_dir
-
-    argv = [
-        sys.executable,
-        "-m",
-        "rotorpillar",
-        *command.split(),
-        *own,
-        str(args.scene),
-        "--out",
-        str(out_dir(args._scene, args)),
-    ]
+def stage_argv(stage: RunStage, args, out: Path) -> list[str]:
+    """The command line that launches one stage (its own process, as a user would run it):
+    the command, its own arguments, run's scene, ``--out``, the user's overrides (after
+    the stage's own --set: the user's win) and run's flags it takes."""
+    argv = [sys.executable, "-m", "rotorpillar", *stage.command.split(), *stage.arguments, str(args.scene)]
+    argv += ["--out", str(out)]
     for o in args.overrides:
         argv += ["--set", o]
-    return argv + (extra(args) if extra else [])
-
-
-def stage_stem(command: str) -> str:
-    """The JSON a stage leaves that run.json points to: <command>.json, or
-    per case for simulate and compare.
-
-    >>> stage_stem("simulate --case runup"), stage_stem("compare --case earthquake"), stage_stem("modal")
-    ('simulate_runup', 'compare_earthquake', 'modal')
-    >>> stage_stem("compare --case earthquake --components 3")
-    'compare_earthquake_components'
-    """
-    words = command.split()
-    if words[0] == "compare" and "--components" in words:
-        return "compare_earthquake_components"
-    if words[0] in ("simulate", "compare") and "--case" in words:
-        return f"{words[0]}_{words[words.index('--case') + 1]}"
-    return words[0]
+    return argv + stage.passed_on(args)
 
 
 #: At most this many stages at once (each is single-threaded or nearly: more
@@ -223,49 +272,89 @@ def run_wave(
     return seconds
 
 
-def stage_scenes(stages, args) -> list[tuple[str, Scene, Any]]:
-    """(command, the scene it sees, its parsed arguments) of each stage: its command line
-    parsed by the CLI's parser, its own --set before the user's."""
+def stage_scene(stage: RunStage, scene: Scene, overrides: Sequence[str]) -> Scene:
+    """The scene a stage sees: run's scene (the user's overrides in it) with the stage's own
+    --set applied and then the user's again, as its command line puts them: the user's win."""
     from ..errors import InputError
-    from ..scene import load_scene
+    from ..scene import override
+
+    if not stage.sets:
+        return scene
+    try:
+        return override(scene, [*stage.sets, *overrides])
+    except InputError as exc:
+        raise InputError(f"stage {stage.command!r}: {exc}") from None
+
+
+def stage_arguments(
+    stage: RunStage, args, out: Path, parser: argparse.ArgumentParser | None = None
+) -> argparse.Namespace:
+    """A stage's own arguments as its command parses them (``parser``: the CLI's, built when
+    not given), for its pre-flight checks: its command, its own flags, run's flags it takes,
+    run's scene and ``--out`` (its scene, overrides in, is :func:`stage_scene`'s: the
+    namespace has no --set)."""
     from .parser import build_parser
 
-    parser = build_parser()
-    out = []
-    for command, _, extra, own, *_ in stages:
-        stage_args = parser.parse_args(stage_argv(command, args, extra, own)[3:])
-        try:
-            out.append((command, load_scene(stage_args.scene, stage_args.overrides), stage_args))
-        except InputError as exc:
-            raise InputError(f"stage {command!r}: {exc}") from None
-    return out
+    words = [*stage.command.split(), *stage.flags, *stage.passed_on(args), str(args.scene), "--out", str(out)]
+    return (parser or build_parser()).parse_args(words)
 
 
-def preflight(scene: Scene, stages, args, checks: list[tuple[str, Scene, Any]] | None = None) -> None:
+@dataclasses.dataclass(frozen=True)
+class StagePlan:
+    """One stage as run launches it: the scene it sees, its arguments, its command line."""
+
+    stage: RunStage
+    """the stage"""
+    scene: Scene
+    """the scene it sees (:func:`stage_scene`)"""
+    args: argparse.Namespace
+    """its arguments as its command parses them, for its pre-flight checks (:func:`stage_arguments`)"""
+    passed_on: tuple[str, ...]
+    """run's flags it takes, as run got them (:meth:`RunStage.passed_on`)"""
+    argv: tuple[str, ...]
+    """the command line that launches it (:func:`stage_argv`)"""
+
+
+def plan_stages(stages: Sequence[RunStage], scene: Scene, args, out: Path) -> list[StagePlan]:
+    """Each stage's :class:`StagePlan` for run's scene, flags and output folder."""
+    from .parser import build_parser
+
+    parser = build_parser()  # once: ~20 ms each
+    return [
+        StagePlan(
+            st,
+            stage_scene(st, scene, args.overrides),
+            stage_arguments(st, args, out, parser),
+            tuple(st.passed_on(args)),
+            tuple(stage_argv(st, args, out)),
+        )
+        for st in stages
+    ]
+
+
+def preflight(plans: Sequence[StagePlan]) -> None:
     """Every stage's own pre-flight checks (``preflight(scene, args)`` of its command's
-    module), on the scene and arguments that stage will see (``checks``: its
-    :func:`stage_scenes`, computed when not given).  Called before the first stage, so a
-    stage that would refuse its input refuses `run`, with nothing written."""
+    module), on the scene and arguments that stage will see.  Called before the first
+    stage, so a stage that would refuse its input refuses `run`, with nothing written."""
     import importlib
 
     from ..errors import InputError
     from .parser import COMMANDS
 
-    checks = stage_scenes(stages, args) if checks is None else checks
     # every stage is checked; those that read a record (seconds: a library's imports) last,
     # so that what a cheaper stage also refuses is refused at once
-    for command, stage_scene, stage_args in sorted(checks, key=lambda c: c[1].excitation.kind == "record"):
-        check = getattr(importlib.import_module(COMMANDS[stage_args.command][0]), "preflight", None)
+    for plan in sorted(plans, key=lambda p: p.scene.excitation.kind == "record"):
+        check = getattr(importlib.import_module(COMMANDS[plan.stage.name][0]), "preflight", None)
         try:
             if check is not None:
-                check(stage_scene, stage_args)
+                check(plan.scene, plan.args)
         except InputError as exc:
-            raise InputError(f"stage {command!r}: {exc}") from None
+            raise InputError(f"stage {plan.stage.command!r}: {exc}") from None
 
 
 def add_arguments(parser) -> None:
     """run's own flags, beside the report's (which it passes on)."""
-    names = sorted({st[0].split()[0] for st in RUN_STAGES} - {"report"})
+    names = sorted({st.name for st in RUN_STAGES} - {"report"})
     parser.add_argument(
         "--skip",
         action="append",
@@ -285,28 +374,27 @@ def add_arguments(parser) -> None:
 READ_AFTER = {"converge": ("convergence.json",)}
 
 
-def _inputs(stage, out: Path) -> list[Path]:
+def _inputs(stage: RunStage, out: Path) -> list[Path]:
     """The files a stage reads from the output folder, for its key: the JSON of every stage
     of an earlier wave and what READ_AFTER names of them (conservative: modal reads
     convergence.json, analyze modal's too, the later waves the chain's files, the report
     all of them)."""
-    earlier = [st[0] for st in RUN_STAGES if st[4] < stage[4]]
-    names = [f"{stage_stem(c)}.json" for c in earlier] + [n for c in earlier for n in READ_AFTER.get(c, ())]
+    earlier = [st for st in RUN_STAGES if st.wave < stage.wave]
+    names = [f"{st.stem}.json" for st in earlier] + [n for st in earlier for n in READ_AFTER.get(st.command, ())]
     return [out / name for name in names]
 
 
-def key_of(stage, args, stage_scene: Scene, out: Path) -> str:
+def key_of(plan: StagePlan, out: Path) -> str:
     """A stage's key (commands.stage_keys.stage_key): its command line, the sections of the
     scene it sees that it reads, the earlier stages' JSON in ``out``, the code."""
     from .stage_keys import command_words, stage_key
 
-    command, _, extra, own, _ = stage
-    scene_dict = stage_scene.to_dict()
-    if command == "converge":
-        scene_dict["band_modes"] = band_modes(stage_scene, out)
-    return stage_key(
-        command, command_words(command, own, extra(args) if extra else ()), scene_dict, _inputs(stage, out)
-    )
+    stage = plan.stage
+    scene_dict = plan.scene.to_dict()
+    if stage.command == "converge":
+        scene_dict["band_modes"] = band_modes(plan.scene, out)
+    words = command_words(stage.command, stage.arguments, plan.passed_on)
+    return stage_key(stage.command, words, scene_dict, _inputs(stage, out))
 
 
 def band_modes(scene: Scene, out: Path) -> list[Any]:
@@ -349,71 +437,69 @@ def run_command(scene: Scene, args, timings):
     from . import out_dir
     from . import stage_keys as keys
 
-    args._scene = scene
     skip = set(getattr(args, "skip", []))
     force = bool(getattr(args, "force", False))
-    known = {st[0].split()[0] for st in RUN_STAGES} - {"report"}
+    known = {st.name for st in RUN_STAGES} - {"report"}
     if skip - known:
         raise InputError(f"--skip {sorted(skip - known)[0]}: must be one of {', '.join(sorted(known))}")
-    todo = [st for st in RUN_STAGES if st[0].split()[0] not in skip]
-    checks = stage_scenes(todo, args)
-    preflight(scene, todo, args, checks)  # every stage's bad input: refused now, not late
-    scenes = {command: stage_scene for command, stage_scene, _ in checks}
     out = out_dir(scene, args)
+    todo = plan_stages([st for st in RUN_STAGES if st.name not in skip], scene, args, out)
+    preflight(todo)  # every stage's bad input: refused now, not late
     stages, lines, report = {}, [], None
-    waves = sorted({st[4] for st in todo})
+    waves = sorted({p.stage.wave for p in todo})
     slots = max(1, min(os.cpu_count() or 1, MAX_SIDE_BY_SIDE))
     n, ran = 0, False
     for wave in waves:
-        group = [st for st in todo if st[4] == wave]
+        group = {p.stage.command: p for p in todo if p.stage.wave == wave}
         # each stage's key, once the waves before it have written what it reads
         check_start = time.perf_counter()
-        key = {st[0]: key_of(st, args, scenes[st[0]], out) for st in group}
+        key = {command: key_of(p, out) for command, p in group.items()}
         reused = {}
-        for st in group:
+        for command, p in group.items():
             # the report shows every stage: it runs again whenever one of them did
-            if not force and not (st[0] == "report" and ran):
-                done = keys.recall(out, stage_stem(st[0]), key[st[0]])
+            if not force and not (command == "report" and ran):
+                done = keys.recall(out, p.stage.stem, key[command])
                 if done is not None:
-                    reused[st[0]] = done
+                    reused[command] = done
         check = (time.perf_counter() - check_start) / len(group)
-        runs = [st for st in group if st[0] not in reused]
-        for command, what, *_ in group:
+        runs = [p for command, p in group.items() if command not in reused]
+        for command, p in group.items():
             n += 1
             if command in reused:
                 done = reused[command]
                 progress(f"{command}: unchanged since {keys.since(done)}, {check:.1f} s (it took {done.seconds:.1f} s)")
             else:
                 side = " [side by side]" if len(runs) > 1 else ""
-                progress(f"run {n}/{len(todo)}: {command} ({what})" + side)
-        for st in runs:
-            keys.forget(out, stage_stem(st[0]))  # only a success keeps a key
+                progress(f"run {n}/{len(todo)}: {command} ({p.stage.what})" + side)
+        for p in runs:
+            keys.forget(out, p.stage.stem)  # only a success keeps a key
 
-        def done_now(command: str, seconds: float, key: dict[str, str] = key, group: list = group) -> None:
+        def done_now(
+            command: str, seconds: float, key: dict[str, str] = key, group: dict[str, StagePlan] = group
+        ) -> None:
             if command == "converge":  # its key by the study it has just written (band_modes)
-                key[command] = key_of(next(st for st in group if st[0] == command), args, scenes[command], out)
+                key[command] = key_of(group[command], out)
             others = list(READ_AFTER.get(command, ()))
             if command == "report":
                 from ..postprocess.report import ReportResult
 
                 others += _page(records.read(out / "report.json", ReportResult).report, out)
-            keys.remember(out, stage_stem(command), key[command], seconds, others)
+            keys.remember(out, group[command].stage.stem, key[command], seconds, others)
 
         cpu: dict[str, float] = {}
-        seconds = run_wave([(st[0], stage_argv(st[0], args, st[2], st[3])) for st in runs], slots, cpu, done_now)
+        seconds = run_wave([(p.stage.command, list(p.argv)) for p in runs], slots, cpu, done_now)
         ran = ran or bool(runs)
-        for command, _what, _extra, own, _ in group:
-            stem = stage_stem(command)
-            path = out / f"{stem}.json"
+        for command, p in group.items():
+            path = out / f"{p.stage.stem}.json"
             written = records.read(path, Provenance)
             first = reused.get(command)
             timings[command] = check if first else seconds[command]
-            stages[stem] = Stage(
+            stages[p.stage.stem] = Stage(
                 json=str(path),
                 seconds=timings[command],
                 cpu_seconds=None if first else cpu.get(command),
                 command=command,
-                arguments=tuple(own),
+                arguments=p.stage.arguments,
                 wave=wave,
                 stage_seconds=written.timings.get("total"),
                 key=key[command],
@@ -429,7 +515,7 @@ def run_command(scene: Scene, args, timings):
                 lines.append(
                     f"{command:>26}: {timings[command]:8.2f} s ({cpu.get(command, 0.0):7.2f} s cpu)  -> {path}"
                 )
-            if command.split()[0] == "report":
+            if p.stage.name == "report":
                 from ..postprocess.report import ReportResult
 
                 report = records.read(path, ReportResult).report
