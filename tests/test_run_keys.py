@@ -3,10 +3,11 @@
 - A stage's key follows the scene sections it reads: the drive's stall torque
   changes the key of analyze, of every transient and of the report; the ground
   motion's amplitude leaves the convergence study's and modal's keys alone
-  (they read the tube, the mesh and the band, not the excitation).  The
-  convergence study's and modal's keys DO follow the drive: both read the band,
-  whose top is the drive's free speed (reduced.band.excitation_band; the chain
-  refuses a study run for another drive, chain.choice.STUDY_INPUTS).
+  (they read the tube, the mesh and the band, not the excitation).  Both read
+  the band, whose top is the drive's free speed (reduced.band.excitation_band),
+  by what it does to them: the study by the modes inside it (chain.choice), modal
+  by where it cuts its modes (commands.run.modal_band).  Without their files on
+  disk any new torque moves both keys.
 - A changed input file (convergence.json) changes the keys of the stages after
   the study, not the study's own.
 - The code hash follows every file of the package, not its compiled caches.
@@ -30,7 +31,7 @@ from rotorpillar.commands import stage_keys
 from rotorpillar.commands.parser import build_parser
 from rotorpillar.commands.run import RUN_STAGES, key_of, plan_stages, run_wave
 from rotorpillar.errors import StageError
-from rotorpillar.scene import load_scene
+from rotorpillar.scene import load_scene, override
 
 
 def keys_for(out, *sets: str) -> dict[str, str]:
@@ -78,6 +79,42 @@ def test_a_new_stall_torque_leaves_the_study_alone_when_its_band_holds_the_same_
     moved = changed(base, keys_for(tmp_path, f"drive.torque_at_zero={s.drive.torque_at_zero * 1.1}"))
     assert "converge" not in moved and {"modal", "analyze", "compare --case runup"} <= moved
     assert "converge" in changed(base, keys_for(tmp_path, f"drive.torque_at_zero={s.drive.slope * 50}"))
+
+
+def test_a_new_stall_torque_leaves_modal_alone_while_its_cuts_stand(tmp_path):
+    """modal keeps 8 modes, doubled while the last kept lies inside the band's edge
+    (reduced.band.cut_count).  With modal.json on disk, a stall torque that moves the edge
+    but not past its last listed mode keeps modal's key (its modes would be the same); one
+    that moves the edge past it changes the key.  The ROM's modes from the beam here, so
+    that the key holds no 3D solve (chain.modes.cached_solve: -1)."""
+    from rotorpillar.reduced.band import excitation_band
+
+    s = load_scene("paper")
+    beam = "modal_model.source=beam"
+
+    def edge(factor: float) -> float:
+        d = override(s, [f"drive.torque_at_zero={s.drive.torque_at_zero * factor}"]).drive
+        return excitation_band(d, s.load, s.converge).omega_max
+
+    e0, e1, e2 = edge(1.0), edge(1.1), edge(1.5)
+    assert e0 < e1 < e2  # a stronger motor runs free faster: the band widens
+    last = 0.5 * (e1 + e2)  # past the edge at +10 %, inside it at +50 %
+    listed = [0.2 * e0] * 2 + [0.6 * e0] * 2 + [0.9 * e0] * 2 + [last] * 2
+
+    def rows(omegas):
+        return [{"omega": w} for w in omegas]
+
+    (tmp_path / "modal.json").write_text(json.dumps({"modes": rows(listed), "modes_with_top": rows(listed)}))
+    base = keys_for(tmp_path, beam)
+    torque = s.drive.torque_at_zero
+    stronger = changed(base, keys_for(tmp_path, beam, f"drive.torque_at_zero={torque * 1.1}"))
+    assert "modal" not in stronger and {"analyze", "compare --case runup"} <= stronger
+    assert "modal" in changed(base, keys_for(tmp_path, beam, f"drive.torque_at_zero={torque * 1.5}"))
+    # without modal.json the key takes the band's tops: any new torque moves it
+    (tmp_path / "modal.json").unlink()
+    assert "modal" in changed(
+        keys_for(tmp_path, beam), keys_for(tmp_path, beam, f"drive.torque_at_zero={torque * 1.1}")
+    )
 
 
 def test_the_ground_motion_leaves_the_study_and_modal_alone(tmp_path):

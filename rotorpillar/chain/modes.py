@@ -214,6 +214,19 @@ def chain_modes(
     return ChainModes(pm, modes, red, str(path), seconds, asked, spatial)
 
 
+def cached_solve(scene: Scene, choice: Choice, band_top: float, root: Path | None = None) -> int | None:
+    """How many modes of the loaded tube the cached 3D result of ``choice.rom`` was solved
+    with, when that result holds enough modes for ``band_top`` (rad/s; :func:`chain_modes`
+    then reads it, whatever the band); None when there is none or it falls short, or the
+    ROM's choice is no 3D model (-1: a beam's modes are no solve)."""
+    pm = choice.rom
+    if pm.kind != "solid":
+        return -1
+    cache = DiskCache((user_cache_root() if root is None else Path(root)) / "modes")
+    got = cache.read(modes_key(scene, pm.mesh), ModesEntry)
+    return got.loaded_modes if got is not None and _enough(got.modes.omega, band_top) else None
+
+
 def rom_band_top(scene: Scene, motion=None) -> float:
     """The band the ROM keeps modes below (rad/s): modal_model.band_factor x the highest
     forcing frequency of the scene's cases (the drive's free speed, the sweep's top, the

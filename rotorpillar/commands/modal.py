@@ -39,10 +39,9 @@ def band_edge(scene: Scene) -> float:
 def band_cut(result, edge: float, first: int = 8):
     """``result`` cut as ``modal.n_modes = 0`` would have solved it: 8 modes, doubled while
     the last lies at or below the band's ``edge`` (rad/s)."""
-    n = first
-    while n < len(result.omega) and result.omega[n - 1] <= edge:
-        n *= 2
-    return result.lowest(n)
+    from ..reduced.band import cut_count
+
+    return result.lowest(cut_count(result.omega, edge, first))
 
 
 def quiet_jit_logging() -> None:

@@ -393,6 +393,8 @@ def key_of(plan: StagePlan, out: Path) -> str:
     scene_dict = plan.scene.to_dict()
     if stage.command == "converge":
         scene_dict["band_modes"] = band_modes(plan.scene, out)
+    elif stage.command == "modal":
+        scene_dict["band_modes"] = modal_band(plan.scene, out)
     words = command_words(stage.command, stage.arguments, plan.passed_on)
     return stage_key(stage.command, words, scene_dict, _inputs(stage, out))
 
@@ -415,6 +417,48 @@ def band_modes(scene: Scene, out: Path) -> list[Any]:
     if study_mismatch(scene, study.scene or {}) is not None:
         return ["band top", band.omega_max]
     return ["modes", *needed_quantities(study.reference, band)]
+
+
+def modal_band(scene: Scene, out: Path) -> list[Any]:
+    """What modal's key takes of the band (it does not read [drive] and [load] otherwise,
+    commands.stage_keys.SECTIONS_NOT_READ).  modal cuts the bare and the loaded tube's modes
+    at the band's edge (reduced.band.cut_count: a step function of how many modes lie
+    below it) and takes the ROM's modes from the chain's cache, which serves any band its
+    modes pass.  So: the cuts of modal.json on disk where they stand at this band's edge
+    (reduced.band.cut_stands), and the cached solve the ROM's band reads.  Without
+    modal.json, or where a cut or the cached solve would change, the band's tops (rad/s)."""
+    from ..chain import choose, rom_band_top
+    from ..chain.modes import cached_solve
+    from ..reduced.band import cut_stands
+    from .modal import band_edge
+
+    edge, rom_top = band_edge(scene), rom_band_top(scene)
+    tops = ["band tops", edge, rom_top]
+    try:
+        done = records.read(Path(out) / "modal.json", ModalModes)
+        solve = cached_solve(scene, choose(scene, Path(out)), rom_top)
+    except (OSError, ValueError):
+        return tops
+    listed = [[m.omega for m in modes] for modes in (done.modes, done.modes_with_top)]
+    if solve is None or not all(cut_stands(omega, edge) for omega in listed):
+        return tops
+    return ["modes cut", *(len(omega) for omega in listed), "ROM solve", solve]
+
+
+class ModeFrequency(Record):
+    """One mode's angular frequency in modal.json."""
+
+    omega: float
+    """(rad/s)"""
+
+
+class ModalModes(Record):
+    """The part of modal.json that modal's key reads (:func:`modal_band`)."""
+
+    modes: tuple[ModeFrequency, ...]
+    """the bare tube's modes, ascending"""
+    modes_with_top: tuple[ModeFrequency, ...]
+    """the loaded tube's, ascending"""
 
 
 def _page(report: str | None, out: Path) -> list[str]:
@@ -477,7 +521,7 @@ def run_command(scene: Scene, args, timings):
         def done_now(
             command: str, seconds: float, key: dict[str, str] = key, group: dict[str, StagePlan] = group
         ) -> None:
-            if command == "converge":  # its key by the study it has just written (band_modes)
+            if command in ("converge", "modal"):  # its key by what it has just written (band_modes)
                 key[command] = key_of(group[command], out)
             others = list(READ_AFTER.get(command, ()))
             if command == "report":

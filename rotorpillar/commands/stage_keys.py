@@ -63,12 +63,13 @@ STAGES_FOLDER = "stages"
 #: ground motion, the 3D full order's or the published numbers.  The study takes the
 #: band by the modes inside it, not by [drive] and [load] (commands.run.band_modes,
 #: chain.choice.STUDY_INPUTS): a new stall torque whose band holds the same modes
-#: leaves it alone.
+#: leaves it alone.  modal takes it by how many of its modes lie inside it
+#: (commands.run.modal_band), the same way.
 SECTIONS_NOT_READ: Mapping[str, frozenset[str]] = {
     "converge": frozenset(
         {"simulate", "excitation", "sweep", "full_order", "reference", "description", "drive", "load"}
     ),
-    "modal": frozenset({"simulate", "excitation", "sweep", "full_order", "reference", "description"}),
+    "modal": frozenset({"simulate", "excitation", "sweep", "full_order", "reference", "description", "drive", "load"}),
 }
 
 

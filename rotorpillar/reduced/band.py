@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from ..provenance import Record
 from ..scene import Converge, Drive, Load, Sweep
 from .averaging import Characteristic
@@ -56,3 +58,30 @@ def forcing_top(drive: Drive, load: Load, sweep: Sweep, case: str, motion: Groun
     if case == "earthquake" and motion is not None:
         fast = max(fast, motion.band())
     return fast
+
+
+def cut_count(omega: Sequence[float], edge: float, first: int = 8) -> int:
+    """How many of the ascending angular frequencies ``omega`` (rad/s) `modal` keeps for a
+    band whose edge is ``edge`` (rad/s): ``first``, doubled while the last one kept lies at
+    or below the edge (at most all of them).
+
+    >>> cut_count([10.0] * 8 + [20.0] * 8 + [200.0] * 16, 100.0)
+    32
+    >>> cut_count([10.0] * 8 + [200.0] * 8, 100.0), cut_count([10.0] * 4, 100.0)
+    (16, 4)
+    """
+    n = first
+    while n < len(omega) and omega[n - 1] <= edge:
+        n *= 2
+    return min(n, len(omega))
+
+
+def cut_stands(listed: Sequence[float], edge: float, first: int = 8) -> bool:
+    """Whether ``listed`` (rad/s, ascending), the lowest modes of a solve cut at some
+    band's edge, is also that solve's cut at ``edge``: the doubling stops at its end,
+    and its last mode lies past the edge (else the cut would reach past the list).
+
+    >>> cut_stands([10.0] * 8 + [200.0] * 8, 100.0), cut_stands([10.0] * 8 + [200.0] * 8, 5.0)
+    (True, False)
+    """
+    return cut_count(listed, edge, first) >= len(listed) and (not listed or listed[-1] > edge)

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 from .. import html as h
 from ..readers import INPUTS
-from .parts import figures_of, scene_differs
+from .parts import band_keys, figures_of, scene_differs
 from .state import Build
 
 if TYPE_CHECKING:
@@ -154,7 +154,12 @@ def section_convergence(build: Build) -> str:
                 )
             )
     else:
-        parts += scene_differs(build, build.provenance.get("convergence"))
+        from ...chain.choice import band_mismatch
+
+        # a study run for another drive answers for this one when the band holds the same
+        # modes (the chain uses it, and the pillar model's note says so): no warning for that
+        same_modes = band_keys(build) if band_mismatch(build.scene, c) is None else ()
+        parts += scene_differs(build, build.provenance.get("convergence"), same_modes)
         parts += _convergence_parts(c)
     parts += figures_of(build, "convergence")
     return h.section("convergence", "Convergence and the model chosen", parts)

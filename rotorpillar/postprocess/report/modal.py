@@ -13,7 +13,7 @@ from .. import html as h
 from ..directions import axes_legend, direction, mode_name, ordinal
 from ..readers import INPUTS
 from .page import plain
-from .parts import failure, figures_of, scene_differs
+from .parts import band_keys, failure, figures_of, scene_differs
 from .state import Build
 
 if TYPE_CHECKING:
@@ -309,12 +309,26 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
     return parts
 
 
+def _same_cut(build: Build) -> tuple[str, ...]:
+    """[drive] and [load]'s keys when modal.json's modes are also the cut at this scene's
+    band edge (modal ran for another drive: `run` keeps it then, commands.run.modal_band);
+    none otherwise, so that the warning names them."""
+    from ...reduced.band import cut_stands, excitation_band
+
+    m = build.modal
+    if m is None:
+        return ()
+    edge = excitation_band(build.scene.drive, build.scene.load, build.scene.converge).omega_max
+    listed = [[row.omega for row in rows] for rows in (m.modes, m.modes_with_top)]
+    return band_keys(build) if all(cut_stands(omega, edge) for omega in listed) else ()
+
+
 def section_modal(build: Build) -> str:
     a, m = build.analysis, build.modal
     parts = []
     if m is None:
         parts.append(h.missing(build.hint(INPUTS["modal"][1])))
-    parts += scene_differs(build, build.provenance.get("modal"))
+    parts += scene_differs(build, build.provenance.get("modal"), _same_cut(build))
     parts.append(h.tag("h3", "Eq. 1 against the 3D model (bare tube)"))
     if a is None:
         parts.append(h.missing(build.hint(INPUTS["analyze"][1])))

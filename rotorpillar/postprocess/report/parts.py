@@ -56,6 +56,15 @@ def differing_keys(
     )
 
 
+def band_keys(build: Build) -> tuple[str, ...]:
+    """The scene's keys the band's top reads ([drive], [load]: chain.choice.BAND_INPUTS), dotted:
+    what a stage that reads the band only by the modes inside it may differ in."""
+    from ...chain.choice import BAND_INPUTS
+
+    now = records.to_builtins(build.scene.to_dict())
+    return tuple(f"{k}.{kk}" for k in BAND_INPUTS if isinstance(now.get(k), dict) for kk in now[k])
+
+
 def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
     """A warning when an input was computed for another version of the scene."""
     diffs = differing_keys(build, provenance, ignore)
