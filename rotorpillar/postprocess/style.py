@@ -94,11 +94,13 @@ def save(fig, path: str | Path) -> Path:
     plt = pyplot()
     path = Path(path)
     record = legibility(fig)  # draws the figure
+    if not _frozen(fig):
+        # the layout as drawn and measured, kept: savefig would lay it out and draw it twice more
+        fig.set_layout_engine("none")
     metadata = {LAYOUT_KEY: json.dumps(record, separators=(",", ":"))}
     with atomic_path(path) as tmp:
         if fig.dpi == DPI and not fig.stale and _frozen(fig):
-            # what savefig writes (Agg's print_png), without drawing it a second time;
-            # a layout engine would move the axes again on a second draw: savefig's
+            # what savefig writes (Agg's print_png), without drawing it a second time
             matplotlib.image.imsave(
                 tmp, fig.canvas.buffer_rgba(), format="png", origin="upper", dpi=DPI, metadata=metadata
             )
