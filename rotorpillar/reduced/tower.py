@@ -77,11 +77,6 @@ class SectionsAlong:
         return (self.outer_diameter - self.inner_diameter) / 2
 
     @property
-    def mid_radius(self) -> NDArray[np.float64]:
-        """r = (D0 + D1) / 4, the wall's mid-surface radius (m)"""
-        return (self.outer_diameter + self.inner_diameter) / 4
-
-    @property
     def area(self) -> NDArray[np.float64]:
         """A (m**2)"""
         return math.pi / 4 * (self.outer_diameter**2 - self.inner_diameter**2)
@@ -107,11 +102,6 @@ class SectionsAlong:
         # Cowper's formula is arithmetic: arrays pass through it
         kappa = cowper_shear_coefficient(self.outer_diameter, self.inner_diameter, self.poisson_ratio)  # type: ignore[arg-type]
         return np.asarray(kappa, dtype=float)
-
-    @property
-    def section_modulus(self) -> NDArray[np.float64]:
-        """W = I / (D0 / 2) (m**3)"""
-        return self.second_moment / (self.outer_diameter / 2)
 
 
 def sections_along(pillar: Pillar, z: ArrayLike, side: str = "above") -> SectionsAlong:

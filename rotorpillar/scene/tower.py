@@ -234,10 +234,6 @@ class Foundation:
         optional=True,
     )
 
-    @property
-    def is_clamped(self) -> bool:
-        return self.kind == "clamped"
-
     def json_fields(self) -> dict[str, Any]:
         """The foundation's part of a cache key: nothing for a clamp (so keys made before
         foundations existed stay valid), its springs' keys otherwise."""
