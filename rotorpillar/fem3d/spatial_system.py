@@ -73,11 +73,6 @@ class RotorPillarSystem:
         return self.model.tube_dofs
 
     @property
-    def rotor_row(self) -> int:
-        """global row of the rotor's first dof"""
-        return self.model.tube_dofs + RIGID_DOFS
-
-    @property
     def size(self) -> int:
         return self.model.size + self.rotor.dofs
 
