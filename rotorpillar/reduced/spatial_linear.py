@@ -255,11 +255,6 @@ def critical_speed_modes(m: SpatialStructure) -> tuple[NDArray[np.float64], NDAr
     return W[order], V[:, keep][:, order]
 
 
-def critical_speed_values(m: SpatialStructure) -> NDArray[np.float64]:
-    """The critical speeds (rad/s) of ``critical_speed_modes``."""
-    return critical_speed_modes(m)[0]
-
-
 def excitation(m: SpatialStructure, v: NDArray[np.complex128]) -> tuple[float, float]:
     """How much the static and the couple unbalance's rotating loads drive mode v: the
     cosine, in the stiffness's inner product, between the load and the mode (0 ... 1)."""

@@ -40,7 +40,6 @@ Nothing here imports dolfinx: the record is numpy arrays and words.
 
 from __future__ import annotations
 
-import math
 from typing import Annotated
 
 import numpy as np
@@ -267,13 +266,6 @@ class SpatialPillarModes(Record, eq=False):
             scaled(self.moment_y),
             scaled(self.shear_x),
         )
-
-    def describe_rows(self) -> list[str]:
-        """One line per mode: frequency, kind, damping (for logs and notes)."""
-        return [
-            f"{w:9.3f} rad/s ({w / (2 * math.pi):7.3f} Hz) {k}, zeta {z:.4g}"
-            for w, k, z in zip(self.omega, self.kind, self.damping_ratio)
-        ]
 
 
 def spatial_modes_example() -> SpatialPillarModes:
