@@ -138,12 +138,6 @@ def whirl(centre: np.ndarray, axis: np.ndarray, mass: float, inertia: float, ene
     return "forward" if turn > 0 else "backward"
 
 
-def forward_share(x: complex, z: complex) -> float:
-    """|a_f|**2 of the orbit (x, z) = a_f (1, -i) + a_b (1, i): the forward circular
-    component's amplitude squared (what a force turning with the unbalance works on)."""
-    return float(abs(x + 1j * z) ** 2 / 4)
-
-
 def crossings(speeds: np.ndarray, frequency: np.ndarray) -> list[tuple[float, int]]:
     """(speed, index of the speed at or after it) where frequency - speed changes sign,
     linearly interpolated (NaN gaps skipped)."""
