@@ -11,7 +11,7 @@ number of resonances: they are grouped by direction as the records hold them.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -105,26 +105,3 @@ def resonance_table(views: list[ModelView]) -> str:
                 cells.append(f"{h.num(rs[k].omega, 4)} (#{rs[k].index})" if k < len(rs) else "-")
             rows.append([direction(d), k + 1, *cells])
     return h.table(["direction", "order", *[f"omega, undamped (rad/s), {v.title}" for v in views]], rows)
-
-
-def resonance_words(resonances: Sequence[Any]) -> str:
-    """The resonances in one sentence, by direction.
-
-    >>> from types import SimpleNamespace as S
-    >>> resonance_words([S(direction="X", omega=14.89, index=1), S(direction="Y", omega=15.81, index=2)])
-    "horizontal, in the rotor's plane (the paper's X): 14.89 rad/s; vertical (the paper's Y): 15.81 rad/s"
-    """
-    return "; ".join(
-        f"{direction(d)}: " + ", ".join(_omega_text(r) for r in rs) + " rad/s"
-        for d, rs in by_direction(resonances).items()
-    )
-
-
-def _omega_text(r: Any) -> str:
-    """A resonance's frequency, with its error bar where the record carries one
-    (the headline model's: rotorpillar.chain.Uncertain)."""
-    bars = getattr(r, "uncertainty", None)
-    if bars is None:
-        return f"{r.omega:.2f}"
-    u = bars.omega
-    return f"{u.value:.2f} ± {u.error:.2g}"
