@@ -43,7 +43,7 @@ the gyroscopic matrix Omega G with G = J_C [[0, 1], [-1, 0]] on (phi_x,
 phi_z) (skew: it does no work), or on the plate's (Theta_x, Theta_z) when the
 rotor tilts with the gondola.  A steady moment M_x precesses the spin axis
 at phi_z' = M_x / (J_C Omega): the angular momentum -J_C Omega e_y grows
-along +x, the axis' far end (at -y) tips towards +x (``precession_rate``).
+along +x, the axis' far end (at -y) tips towards +x.
 Forward whirl is an orbit that turns as the unbalance does: from +x towards
 +z in the (x, z) plane (``whirl_direction``).
 
@@ -184,12 +184,6 @@ def tilt_rows(rotor: SpatialRotor) -> tuple[int, int]:
     """The (pitch, yaw) of the rotor's spin axis among (q plate, r rotor): its own, or the
     plate's when it tilts with the gondola."""
     return (9, 10) if rotor.tilts else (3, 5)
-
-
-def precession_rate(rotor: SpatialRotor, moment_pitch: float, speed: float) -> float:
-    """phi_z' = M_x / (J_C Omega): the steady precession of the spin axis about the vertical
-    under a moment about x (rad/s) (module text; dL/dt = M with L = -J_C Omega e_y)."""
-    return moment_pitch / (rotor.polar_inertia * speed)
 
 
 def tilt_whirl_frequencies(rotor: SpatialRotor, speed: float) -> tuple[float, float]:
