@@ -291,50 +291,6 @@ def _block_solve(ksp, A, rhs: np.ndarray) -> np.ndarray:
     return out
 
 
-def half_power_peaks(
-    speeds, amplitude, min_prominence: float = 2.0**0.5, floor: float = 0.0
-) -> list[tuple[float, float, float | None]]:
-    """(speed, amplitude, amplification factor) of each peak of a Bode curve (rad/s, m, -).
-
-    The AF is API 684's: the peak's speed over the half-power bandwidth, the width between
-    the speeds either side where the amplitude falls to 1/sqrt(2) of the peak (linearly
-    interpolated on the curve); None where the curve does not fall that far on both sides
-    before it rises again (no distinct peak: a shoulder).  A local maximum that does not
-    stand ``min_prominence`` times above the lower of its neighbouring minima is no peak,
-    nor one below ``floor`` (m: round-off in a direction the unbalance does not drive).
-
-    >>> w = np.linspace(0.5, 1.5, 2001)
-    >>> [round(af, 1) for _, _, af in half_power_peaks(w, 1 / np.abs(1 - w**2 + 0.02j * w))]
-    [50.0]
-    """
-    W, a = np.asarray(speeds, float), np.asarray(amplitude, float)
-    out = []
-    for i in range(1, len(W) - 1):
-        if not (a[i] >= a[i - 1] and a[i] > a[i + 1]) or a[i] < floor:
-            continue
-        level = a[i] / 2.0**0.5
-        left = right = None
-        j = i
-        while j > 0 and a[j - 1] <= a[j]:
-            j -= 1
-            if a[j] <= level:
-                left = W[j] + (level - a[j]) / (a[j + 1] - a[j]) * (W[j + 1] - W[j])
-                break
-        low_left = a[j]
-        j = i
-        while j < len(W) - 1 and a[j + 1] <= a[j]:
-            j += 1
-            if a[j] <= level:
-                right = W[j - 1] + (a[j - 1] - level) / (a[j - 1] - a[j]) * (W[j] - W[j - 1])
-                break
-        low_right = a[j]
-        if a[i] < min_prominence * max(min(low_left, low_right), 1e-300) and (left is None or right is None):
-            continue
-        af = None if left is None or right is None or right <= left else float(W[i] / (right - left))
-        out.append((float(W[i]), float(a[i]), af))
-    return out
-
-
 def scene_spatial_response(
     scene: Scene, speeds, *, mesh=None, case: str = "both", damping_law: str = "gondola", comm=None
 ) -> SpatialResponse:
