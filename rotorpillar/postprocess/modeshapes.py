@@ -205,7 +205,7 @@ def _bar_title(plotter, font: int, horizontal: bool = False) -> None:
         plotter.add_text(BAR_TITLE, position=(0.70, 0.49), viewport=True, font_size=font, color="black")
 
 
-def _triad(plotter, modeset: ModeSet, font: int) -> None:
+def _triad(plotter) -> None:
     """The axes, named as the paper names them: X horizontal in the rotor's
     plane, Z along the shaft, Y up (bending in X and in Z look alike without it)."""
     names = {i: MODEL_AXIS["xyz"[i]] for i in range(3)}
@@ -263,7 +263,7 @@ def _add_mode(
     if bar:
         _bar_title(plotter, font)
     if triad:
-        _triad(plotter, modeset, font)
+        _triad(plotter)
     _label(plotter, f"{label}\ndeformation x{factor:g}", font, view_height)
     beam = is_beam_mode(modeset.modes[i].kind)
     d = view_direction(modeset, u, elevation_deg=12.0 if beam else 20.0)
@@ -417,7 +417,6 @@ def render_contact_sheet(
     count: int = SHEET_MODES,
     columns: int = SHEET_COLUMNS,
     tile=SHEET_TILE,
-    title: str = "",
 ) -> Path:
     """The first ``count`` modes side by side, one render of a multi-view window;
     an ovalling mode's tile holds its side view and its cross-sections."""

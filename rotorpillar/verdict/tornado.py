@@ -531,7 +531,7 @@ def verdict_sentence(verdict: str, inputs: list[TornadoInput], changes: list[Ver
 
 
 def _study_runs(
-    scene: Scene, case: str, key: str, values: tuple, out: Path, cache: Path, executor, log
+    scene: Scene, case: str, key: str, values: tuple, out: Path, cache: Path, executor
 ) -> tuple[StudyRun, ...]:
     """The ROM's ``case`` at each value of ``key`` (in their order): one design study."""
     from ..studies import design_study
@@ -628,8 +628,8 @@ def tornado_study(
             """One end: its scene's two study runs (the eccentricity its axis) and its checks."""
             nonlocal n_runs
             e = (sc.rotor.eccentricity,)
-            runup = _study_runs(sc, "runup", "rotor.eccentricity", e, out, cache, ex, log)
-            quake = _study_runs(earthquake_scene(sc), "earthquake", "rotor.eccentricity", e, out, cache, ex, log)
+            runup = _study_runs(sc, "runup", "rotor.eccentricity", e, out, cache, ex)
+            quake = _study_runs(earthquake_scene(sc), "earthquake", "rotor.eccentricity", e, out, cache, ex)
             n_runs += 2
             return _end(sc, chain, out, runup[0], quake[0])
 
