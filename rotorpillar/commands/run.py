@@ -83,22 +83,6 @@ class RunStage(Record):
         """
         return [self.arguments[i + 1] for i, a in enumerate(self.arguments[:-1]) if a == "--set"]
 
-    @property
-    def flags(self) -> list[str]:
-        """Its own arguments but the ``--set`` assignments.
-
-        >>> RunStage("compare", "", 0, ("--models", "modal", "--set", "excitation.start=1", "--pareto")).flags
-        ['--models', 'modal', '--pareto']
-        """
-        words, i = [], 0
-        while i < len(self.arguments):
-            if self.arguments[i] == "--set":
-                i += 2
-                continue
-            words.append(self.arguments[i])
-            i += 1
-        return words
-
     def passed_on(self, args) -> list[str]:
         """Run's flags it takes (:attr:`passes`), as run got them: a switch when it is on, a
         flag with its value when it has one.
@@ -294,8 +278,9 @@ def stage_arguments(
     run's scene and ``--out`` (its scene, overrides in, is :func:`stage_scene`'s: the
     namespace has no --set)."""
     from .parser import build_parser
+    from .stage_keys import command_words
 
-    words = [*stage.command.split(), *stage.flags, *stage.passed_on(args), str(args.scene), "--out", str(out)]
+    words = [*command_words(stage.command, stage.arguments, stage.passed_on(args)), str(args.scene), "--out", str(out)]
     return (parser or build_parser()).parse_args(words)
 
 

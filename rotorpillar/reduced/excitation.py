@@ -613,15 +613,17 @@ def pseudo_spectra(
     w[~zero] = 2 * math.pi / T[~zero]
     s_d = np.zeros_like(T)
     g = np.append(f[1:], 0.0)  # f[i + 1] at step i (the last one reaches no output)
-    for k in np.flatnonzero(~zero):
-        # eqsig writes 2 pi as 6.2831853 in its own loop: the same, to keep its numbers
-        a, b = nj.compute_a_and_b(damping, np.array([6.2831853 / T[k]]), dt)
-        a11, a12, a21, a22 = (float(np.ravel(v)[0]) for v in (a[0][0], a[0][1], a[1][0], a[1][1]))
-        b11, b12, b21, b22 = (float(np.ravel(v)[0]) for v in (b[0][0], b[0][1], b[1][0], b[1][1]))
-        den = [1.0, -(a11 + a22), a11 * a22 - a12 * a21]
+    k = np.flatnonzero(~zero)
+    # eqsig writes 2 pi as 6.2831853 in its own loop: the same, to keep its numbers
+    a, b = nj.compute_a_and_b(damping, 6.2831853 / T[k], dt)  # each entry one per period
+    a11, a12, a21, a22 = (np.broadcast_to(v, k.shape) for v in (a[0][0], a[0][1], a[1][0], a[1][1]))
+    b11, b12, b21, b22 = (np.broadcast_to(v, k.shape) for v in (b[0][0], b[0][1], b[1][0], b[1][1]))
+    for j, kk in enumerate(k):
+        den = [1.0, -(a11[j] + a22[j]), a11[j] * a22[j] - a12[j] * a21[j]]
         # u = e1' (zI - A)^-1 (B0 F + B1 G): numerators over z**-1, z**-2
-        u = lfilter([0.0, b11, a12 * b21 - a22 * b11], den, f) + lfilter([0.0, b12, a12 * b22 - a22 * b12], den, g)
-        s_d[k] = float(np.max(np.abs(u)))
+        u = lfilter([0.0, b11[j], a12[j] * b21[j] - a22[j] * b11[j]], den, f)
+        u += lfilter([0.0, b12[j], a12[j] * b22[j] - a22[j] * b12[j]], den, g)
+        s_d[kk] = float(np.max(np.abs(u)))
     s_a = w**2 * s_d
     s_a = np.where(T < dt * 6, float(np.max(np.abs(f))), s_a)
     return s_a, s_d
