@@ -203,7 +203,7 @@ def _warm_linear_view(scene: Any) -> None:
     from rotorpillar.fem3d.xdmf_view import linear_view
     from rotorpillar.scene.sections import Mesh
 
-    model = assemble_pillar(scene, top=True, mesh=Mesh(**SMALL_SOLID))
+    model = assemble_pillar(scene, top=True, mesh=Mesh(elements_around=8, elements_along=2))
     linear_view(fem.Function(model.V), fem.Function(fem.FunctionSpace(model.mesh, ("Lagrange", 2))))
 
 
