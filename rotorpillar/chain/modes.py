@@ -17,7 +17,6 @@ the same modes on this machine solves them once.
 from __future__ import annotations
 
 import contextlib
-
 import math
 import time
 from dataclasses import dataclass
@@ -146,10 +145,9 @@ def _solid(
     """The loaded tube's X bending modes, all its modes, and the bare tube's Eq. 2 on the
     chain's mesh."""
     from ..fem3d import modal_analysis, tip_reduction
+    from ..fem3d.beside import Beside, cores
     from ..fem3d.pillar_modes import pillar_modes_from_fem3d
     from ..fem3d.spatial_modes import spatial_modes_from_fem3d
-
-    from ..fem3d.beside import Beside, cores
 
     mesh = solid_mesh_section(pm.mesh)
     with contextlib.ExitStack() as stack:
