@@ -82,7 +82,7 @@ def test_a_planar_transient_says_what_it_leaves_out():
     """simulate and compare's planar transients apply one component in the rotor's plane: a scene
     asking for more components is told so in the run's warnings (JSON and stderr); the spatial ROM
     runs them all, and a sweep asked for on the spatial model is told it ran the planar one."""
-    from rotorpillar.reduced.spatial_records import PlanesChoice
+    from rotorpillar.reduced.spatial_rotor import PlanesChoice
     from rotorpillar.transients.model_run import planar_transient_warnings
 
     plain = load_scene("paper", QUAKE)

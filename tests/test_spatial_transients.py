@@ -41,8 +41,8 @@ from rotorpillar.reduced.rotor_models import modal_model
 from rotorpillar.reduced.spatial_beam import beam_spatial_modes
 from rotorpillar.reduced.spatial_model import spatial_model
 from rotorpillar.reduced.spatial_modes import BENDING_IN_PLANE
-from rotorpillar.reduced.spatial_rotor import SpatialRotor, transient_model
-from rotorpillar.reduced.spatial_scene import scene_spatial_model, scene_spatial_modes
+from rotorpillar.reduced.spatial_rotor import SpatialRotor
+from rotorpillar.reduced.spatial_scene import scene_spatial_model, scene_spatial_modes, transient_model
 from rotorpillar.scene import load_scene
 from rotorpillar.transients.cases import _run_on, run_case
 
@@ -175,7 +175,7 @@ def test_auto_weighs_the_drives_reaction():
     most REACTION_SHARE) and says how large the reaction is; with a tenth of the eccentricity the
     unbalance response is a tenth (the model is linear in e), the share ten times: spatial."""
     from rotorpillar.reduced.band import forcing_top
-    from rotorpillar.reduced.spatial_rotor import REACTION_SHARE, reaction_share
+    from rotorpillar.reduced.spatial_scene import REACTION_SHARE, reaction_share
 
     shares = []
     e0 = load_scene("paper", BEAM).rotor.eccentricity

@@ -19,7 +19,7 @@ from ..reduced.reduction import (  # noqa: F401  (records of analyze.json too)
     RayleighEstimate,
     TipReductionUsed,
 )
-from ..reduced.spatial_records import DriveReactionAnalysis, SpatialAnalysis
+from ..reduced.spatial_scene import DriveReactionAnalysis, SpatialAnalysis
 from ..reduced.system import DampedMode  # noqa: F401  (a record of analyze.json too)
 from .machine import MachineChecks
 from .tower import TowerFindings

@@ -127,8 +127,7 @@ def modal_analysis(
     n_modes = scene.modal.n_modes if n_modes is None else n_modes
     if n_modes == 0:
         return _band_modes(scene, top=top, mesh=mesh, comm=comm, isolated=isolated, use_cache=use_cache)
-    top_model, top_mass, bodies = _top_settings(scene, top)
-    key = (scene.pillar, scene.foundation, mesh, top_model, bodies, n_modes, scene.modal.tolerance, comm.size)
+    key = _cache_key(scene, top, n_modes, mesh, comm.size)
     if use_cache and comm is MPI.COMM_WORLD and key in _CACHE:
         _CACHE.move_to_end(key)
         return _CACHE[key]
@@ -146,10 +145,28 @@ def modal_analysis(
         model.K.destroy()
         model.M.destroy()
     if use_cache and comm is MPI.COMM_WORLD:
-        _CACHE[key] = result
-        while len(_CACHE) > CACHE_SIZE:
-            _CACHE.popitem(last=False)
+        _keep(key, result)
     return result
+
+
+def _cache_key(scene: Scene, top: bool, n_modes: int, mesh, ranks: int) -> tuple:
+    """What a result depends on: the pillar, its foundation, the mesh, the top, the
+    modes asked, the solver's tolerance and the number of MPI ranks."""
+    top_model, _, bodies = _top_settings(scene, top)
+    return (scene.pillar, scene.foundation, mesh, top_model, bodies, n_modes, scene.modal.tolerance, ranks)
+
+
+def remember(scene: Scene, top: bool, n_modes: int, mesh, result: ModalResult) -> None:
+    """Keep ``result`` in this process's cache as :func:`modal_analysis` would have kept
+    it for these arguments on one rank (a solve done in a second process,
+    rotorpillar.fem3d.beside)."""
+    _keep(_cache_key(scene, top, n_modes, scene.mesh if mesh is None else mesh, 1), result)
+
+
+def _keep(key: tuple, result: ModalResult) -> None:
+    _CACHE[key] = result
+    while len(_CACHE) > CACHE_SIZE:
+        _CACHE.popitem(last=False)
 
 
 BAND_MODES = 8

@@ -292,6 +292,22 @@ def _align_and_normalise(omega, shapes, rings):
     return desc, T, norm, pairs
 
 
+def _generalised(A, local: np.ndarray, comm) -> np.ndarray:
+    """phi_k^T A phi_k of every column phi_k of ``local`` (this rank's rows of the modes):
+    one sparse-times-dense product (the matrix read once for all the modes, not once a
+    mode), then each column's dot product, summed over the ranks."""
+    from petsc4py import PETSc
+
+    Phi = PETSc.Mat().createDense(
+        ((local.shape[0], PETSc.DETERMINE), (PETSc.DECIDE, local.shape[1])), array=np.asfortranarray(local), comm=A.comm
+    )
+    APhi = A.matMult(Phi)
+    own = np.einsum("ik,ik->k", local, APhi.getDenseArray(readonly=True))
+    APhi.destroy()
+    Phi.destroy()
+    return comm.allreduce(own) if comm.size > 1 else own
+
+
 def run_modal(
     model: AssembledPillar,
     n_modes: int,
@@ -341,9 +357,7 @@ def run_modal(
     omega = omega[:n_modes]
     # The normalised modes as distributed vectors: generalised mass and stiffness.
     local = np.stack([x.getArray() for x in sol.vectors], axis=1) @ T
-    mm, kk = np.empty(n_modes), np.empty(n_modes)
-    y = model.K.createVecLeft()
-    phi = model.K.createVecRight()
+    mm, kk = _generalised(model.M, local, comm), _generalised(model.K, local, comm)
     Mr = []
     for d in range(3):
         r = model.influence(d)
@@ -355,15 +369,10 @@ def run_modal(
         r = model.influence(d)
         rigid_mass[d] = r.dot(Mr[d])
         r.destroy()
-    part = np.empty((n_modes, 3))
-    for k in range(n_modes):
-        phi.setArray(local[:, k])
-        model.M.mult(phi, y)
-        mm[k] = phi.dot(y)
-        model.K.mult(phi, y)
-        kk[k] = phi.dot(y)
-        part[k] = [phi.dot(v) for v in Mr]
-    for v in Mr + [y, phi]:
+    # L_j = phi_j^T M r_d: this rank's rows, then the sum over the ranks
+    part = local.T @ np.stack([v.getArray(readonly=True) for v in Mr], axis=1)
+    part = comm.allreduce(part) if comm.size > 1 else part
+    for v in Mr:
         v.destroy()
     for x in sol.vectors:
         x.destroy()

@@ -1,4 +1,4 @@
-"""The spatial model as the transients' rotor-structure model, and which model a transient runs.
+"""The spatial model as the transients' rotor-structure model.
 
 ``SpatialRotor`` wraps a SpatialStructure (rotorpillar.reduced.spatial_model)
 in the interface the transients read of the planar ROM (rotorpillar.reduced.
@@ -22,9 +22,10 @@ the shaft's deflection and the top in the rotor's plane on it, and
   torque Md on the gondola, K_f Z = r Md: a run that starts at speed starts
   on it.
 
-``transient_planes`` resolves ``modal_model.planes`` for a transient (see its
-text): "auto" also weighs the drive's reaction, which bends the pillar in the
-rotor's plane and which only the spatial model receives.
+Which model a transient runs (``transient_planes``, ``transient_model``) is
+rotorpillar.reduced.spatial_scene's: "auto" also weighs the drive's reaction
+there, which bends the pillar in the rotor's plane and which only the
+spatial model receives.
 """
 
 from __future__ import annotations
@@ -37,32 +38,31 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eig
 
-from ..scene import Scene
+from ..provenance import Record
 from .drive import DriveSchedule
 from .excitation import GroundMotion
 from .ground3d import SpatialGroundMotion
 from .rhs import Packed
-from .rotor_models import RotorStructure, StructureDescription
+from .rotor_models import StructureDescription
 from .spatial_model import SpatialStructure
-from .spatial_modes import SpatialPillarModes
-from .spatial_records import PlanesChoice
 from .spatial_response import steady_state as spatial_steady_state
 from .system import DampedMode, Resonance
+
+
+class PlanesChoice(Record):
+    """Which directions the modal model keeps, and why."""
+
+    requested: str
+    """modal_model.planes: "auto", "planar" or "spatial" """
+    planes: str
+    """what is used: "planar" (the rotor's plane, today's ROM) or "spatial" """
+    reason: str
+    """why, in words"""
+
 
 #: a mode whose unbalance forcing is below this share of the largest one's is not forced (the
 #: modes out of the rotor's plane on a 3D source: round-off couples them at ~1e-11) (-)
 FORCED_SHARE = 1e-6
-#: the drive's reaction: its static tip displacement at stall against the planar ROM's largest
-#: steady unbalance tip amplitude up to the drive's free speed; above this share "auto" runs the
-#: transients on the spatial model (-).  Why 0.1: the reaction is a moment that follows the
-#: motor's torque, slow against the pillar's first period, so it adds a quasi-static offset to
-#: the tip (the structure is linear) and, being steady within a revolution, no averaged torque on
-#: the rotor: the speed history is the same, and the planar run's peak tip misses at most that
-#: offset.  Up to a tenth of the response it stays below the spread of the scene's damping and
-#: eccentricity (the paper states neither to better than that); above it the tip is misstated.
-REACTION_SHARE = 0.1
-#: the cases the spatial model runs (the sweep's analysis reads the planar model's averaging)
-SPATIAL_CASES = ("runup", "rundown", "earthquake")
 
 
 @dataclass(frozen=True, eq=False)
@@ -328,82 +328,3 @@ def forced_basis(s: SpatialStructure, cluster: float = 1e-4) -> tuple[NDArray[np
             U[:, i:j] = U[:, i:j] @ A
         i = j
     return om, U
-
-
-def reaction_share(scene: Scene, planar: RotorStructure, modes: SpatialPillarModes) -> tuple[float, float, float]:
-    """(share, reaction tip, response tip): the drive's reaction's static tip displacement at stall
-    (rotorpillar.reduced.spatial_statics.drive_reaction: analyze.json's drive_reaction) over the
-    planar ROM's largest steady unbalance tip amplitude up to the drive's free speed (m)."""
-    from .spatial_statics import drive_reaction
-
-    d, L = scene.drive, scene.load
-    tip_r = abs(drive_reaction(modes, d.torque_at_zero, scene.pillar).tip_displacement) if d.torque_at_zero else 0.0
-    free = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()
-    top = free if math.isfinite(free) and free > 0 else max(r.omega for r in planar.quasi_normal())
-    # every resonance below the free speed on the grid, and the grid fine near each
-    speeds = np.linspace(top / 400, top, 400)
-    near = [r.omega * np.linspace(0.97, 1.03, 61) for r in planar.quasi_normal() if r.omega <= top]
-    speeds = np.unique(np.concatenate([speeds, *near]))
-    tip_u = float(np.max(planar.steady_amplitudes(speeds)["tip_x"]))
-    return (tip_r / tip_u if tip_u > 0 else math.inf), tip_r, tip_u
-
-
-def transient_planes(
-    scene: Scene, case: str, band_top: float, modes: SpatialPillarModes, planar: RotorStructure
-) -> PlanesChoice:
-    """``modal_model.planes`` for a transient ``case`` (rotorpillar.reduced.spatial_scene.
-    resolve_planes's choice, then): the sweep stays planar (its analysis is the planar averaging);
-    "auto" on a planar choice turns spatial where the drive's reaction is not negligible
-    (``reaction_share`` above REACTION_SHARE), and says how large it is either way."""
-    from .spatial_scene import resolve_planes
-
-    choice = resolve_planes(scene, band_top, modes)
-    if case not in SPATIAL_CASES:
-        if choice.planes == "spatial":
-            return PlanesChoice(
-                choice.requested,
-                "planar",
-                f"planar: the {case} runs the planar ROM (its analysis is the planar averaging's), "
-                f"modal_model.planes resolving to spatial ({choice.reason})",
-            )
-        return choice
-    if choice.requested != "auto" or choice.planes == "spatial":
-        return choice
-    share, tip_r, tip_u = reaction_share(scene, planar, modes)
-    words = (
-        f"the drive's reaction at stall ({scene.drive.torque_at_zero:g} N*m on the gondola) moves the top "
-        f"{tip_r:.3g} m statically, {share:.3g} of the planar ROM's largest steady unbalance tip "
-        f"amplitude {tip_u:.3g} m"
-    )
-    if share > REACTION_SHARE:
-        return PlanesChoice(
-            "auto", "spatial", f"spatial: {words}, above {REACTION_SHARE:g}: only the spatial ROM receives it"
-        )
-    return PlanesChoice(
-        "auto",
-        "planar",
-        f"{choice.reason}; {words}, at most {REACTION_SHARE:g}: the planar ROM leaves it out (a quasi-static "
-        'offset of the tip, no change of the speed\'s history; modal_model.planes = "spatial" runs it)',
-    )
-
-
-def transient_model(
-    scene: Scene,
-    case: str,
-    band_top: float,
-    planar: RotorStructure,
-    chain_spatial: SpatialPillarModes | None = None,
-) -> tuple[PlanesChoice, SpatialRotor | None]:
-    """The modal model's planes for a transient ``case`` (``transient_planes``) and, where they
-    resolve to "spatial", the spatial ROM on the chain's modes in every direction
-    (``chain_spatial``; None: the beam's) below ``band_top`` (rad/s), its shaft's b2 relative
-    to the gondola, the structural ratio and the motor's reaction acting."""
-    from .spatial_scene import scene_spatial_model, scene_spatial_modes
-
-    if scene.modal_model.planes == "planar":
-        return PlanesChoice("planar", "planar", "modal_model.planes = 'planar' as the scene states"), None
-    modes = scene_spatial_modes(scene, chain_spatial)
-    choice = transient_planes(scene, case, band_top, modes, planar)
-    if choice.planes != "spatial":
-        return choice, None
-    return choice, SpatialRotor.of(scene_spatial_model(scene, band_top, modes), choice)

@@ -18,7 +18,13 @@
   and on the unbalance response's peaks;
 - ``drive_reaction_analysis``: analyze.json's ``drive_reaction``: the stall
   torque's static effect and the run-up's transient with the reaction acting
-  (and without it, for the difference).
+  (and without it, for the difference);
+- ``transient_planes``, ``transient_model``: the planes and the model a
+  transient runs ("auto" also weighs the drive's reaction there).
+
+The records of these results (analyze.json's blocks) are defined beside the
+functions that compute them; ``PlanesChoice`` is rotorpillar.reduced.
+spatial_rotor's (the spatial ROM carries it).
 """
 
 from __future__ import annotations
@@ -29,8 +35,9 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
+from ..provenance import Record
 from ..scene import Scene
-from .campbell import CampbellDiagram
+from .campbell import CampbellDiagram, CriticalSpeed
 from .drive import DriveSchedule
 from .excitation import no_motion
 from .foundation import foundation_stiffness
@@ -39,17 +46,108 @@ from .spatial_beam import beam_spatial_modes
 from .spatial_linear import campbell, critical_speeds, damped_modes, mode_kind, mode_whirl
 from .spatial_model import SpatialStructure, spatial_model
 from .spatial_modes import AXIAL, SpatialPillarModes
-from .spatial_records import (
-    DriveReactionAnalysis,
-    PlanarError,
-    PlanesChoice,
-    ReactionRunup,
-    SpatialAnalysis,
-    SpatialResonance,
-)
 from .spatial_response import peak_near, unbalance_response
-from .spatial_statics import drive_reaction
+from .spatial_rotor import PlanesChoice, SpatialRotor
+from .spatial_statics import DriveReaction, drive_reaction
 
+
+class SpatialResonance(Record):
+    """A damped mode of the spatial model at rest, named."""
+
+    label: str
+    """its name: the kind that carries most of its kinetic energy and its rank among them"""
+    kind: str
+    """that kind (rotorpillar.reduced.spatial_modes.KINDS, "rotor on its shaft", ...)"""
+    omega: float
+    """damped natural frequency at rest (rad/s)"""
+    damping_ratio: float
+    """zeta (-)"""
+    whirl_at_running_speed: str
+    """its whirl at the running speed: forward, backward or none (a line)"""
+
+
+class PlanarError(Record):
+    """What the planar model misses: the spatial model's numbers against it."""
+
+    planar_omega: tuple[float, ...]
+    """the planar ROM's coupled resonances in the rotor's plane (rad/s)"""
+    spatial_omega: tuple[float, ...]
+    """the spatial model's nearest resonances moving the rotor's plane (rad/s)"""
+    relative_difference: tuple[float, ...]
+    """planar / spatial - 1 per resonance (-)"""
+    peak_tip_planar: float
+    """the planar model's largest unbalance response of the top in the rotor's plane over the band (m)"""
+    peak_tip_spatial: float
+    """the spatial model's (m)"""
+    peak_tip_difference: float
+    """planar / spatial - 1 (-)"""
+    note: str
+
+
+class SpatialAnalysis(Record):
+    """analyze.json's ``spatial``: the machine in three dimensions, beside the planar ROM."""
+
+    planes: PlanesChoice
+    model: str
+    """the spatial model, in words (modes, damping, tilt)"""
+    mode_source: str
+    """where its pillar modes come from"""
+    running_speed: float | None
+    """the speed the whirl is read at (rad/s)"""
+    resonances: tuple[SpatialResonance, ...]
+    """every direction's damped modes at rest, named"""
+    critical_speeds: tuple[CriticalSpeed, ...]
+    """where the 1x line crosses a mode (the undamped gyroscopic pencil)"""
+    planar_error: PlanarError
+
+
+class ReactionRunup(Record):
+    """The run-up from rest on the spatial model, with the motor's reaction on the gondola and without."""
+
+    duration: float
+    """(s)"""
+    final_speed: float
+    """Omega at the end (rad/s)"""
+    peak_tip_displacement: float
+    """the largest |top in the rotor's plane| with the reaction (m)"""
+    peak_tip_displacement_without: float
+    """the same without it (m)"""
+    peak_reaction_part: float
+    """the largest |difference| the reaction makes to the top in the rotor's plane (m)"""
+    peak_tip_rotation: float
+    """the largest |roll of the top| with the reaction (rad)"""
+
+
+class DriveReactionAnalysis(Record):
+    """analyze.json's ``drive_reaction``: the stall torque on the gondola, statically and in the run-up."""
+
+    torque: float
+    """M0, the drive's stall torque (N*m)"""
+    tip_displacement: float
+    """the top's static displacement in the rotor's plane under it (m)"""
+    tip_rotation: float
+    """the top's static roll (rad)"""
+    base_moment: float
+    """the base's moment about the spin axis (N*m)"""
+    statics: DriveReaction
+    runup: ReactionRunup | None
+    """the run-up's transient with the reaction acting; None when the drive never starts, or
+    when the model's stiffest mode would make it too long a run for analyze (``runup_skipped``)"""
+    runup_skipped: str | None = None
+    """why there is no run-up although the drive starts (None: it ran, or nothing to run)"""
+
+
+#: the drive's reaction: its static tip displacement at stall against the planar ROM's largest
+#: steady unbalance tip amplitude up to the drive's free speed; above this share "auto" runs the
+#: transients on the spatial model (-).  Why 0.1: the reaction is a moment that follows the
+#: motor's torque, slow against the pillar's first period, so it adds a quasi-static offset to
+#: the tip (the structure is linear) and, being steady within a revolution, no averaged torque on
+#: the rotor: the speed history is the same, and the planar run's peak tip misses at most that
+#: offset.  Up to a tenth of the response it stays below the spread of the scene's damping and
+#: eccentricity (the paper states neither to better than that); above it the tip is misstated.
+REACTION_SHARE = 0.1
+#: the cases the spatial model runs (the sweep's analysis reads the planar model's averaging)
+SPATIAL_CASES = ("runup", "rundown", "earthquake")
 #: modes per line the beam source computes (its four lines; the band keeps fewer)
 BEAM_MODES_PER_LINE = 8
 
@@ -307,3 +405,75 @@ def scene_campbell(
         ),
     )
     return result
+
+
+def reaction_share(scene: Scene, planar: RotorStructure, modes: SpatialPillarModes) -> tuple[float, float, float]:
+    """(share, reaction tip, response tip): the drive's reaction's static tip displacement at stall
+    (rotorpillar.reduced.spatial_statics.drive_reaction: analyze.json's drive_reaction) over the
+    planar ROM's largest steady unbalance tip amplitude up to the drive's free speed (m)."""
+    d, L = scene.drive, scene.load
+    tip_r = abs(drive_reaction(modes, d.torque_at_zero, scene.pillar).tip_displacement) if d.torque_at_zero else 0.0
+    free = DriveSchedule.constant(d.torque_at_zero, d.slope, L.coefficient).free_speed()
+    top = free if math.isfinite(free) and free > 0 else max(r.omega for r in planar.quasi_normal())
+    # every resonance below the free speed on the grid, and the grid fine near each
+    speeds = np.linspace(top / 400, top, 400)
+    near = [r.omega * np.linspace(0.97, 1.03, 61) for r in planar.quasi_normal() if r.omega <= top]
+    speeds = np.unique(np.concatenate([speeds, *near]))
+    tip_u = float(np.max(planar.steady_amplitudes(speeds)["tip_x"]))
+    return (tip_r / tip_u if tip_u > 0 else math.inf), tip_r, tip_u
+
+
+def transient_planes(
+    scene: Scene, case: str, band_top: float, modes: SpatialPillarModes, planar: RotorStructure
+) -> PlanesChoice:
+    """``modal_model.planes`` for a transient ``case`` (resolve_planes's choice, then): the
+    sweep stays planar (its analysis is the planar averaging); "auto" on a planar choice turns spatial where the drive's reaction is not negligible
+    (``reaction_share`` above REACTION_SHARE), and says how large it is either way."""
+    choice = resolve_planes(scene, band_top, modes)
+    if case not in SPATIAL_CASES:
+        if choice.planes == "spatial":
+            return PlanesChoice(
+                choice.requested,
+                "planar",
+                f"planar: the {case} runs the planar ROM (its analysis is the planar averaging's), "
+                f"modal_model.planes resolving to spatial ({choice.reason})",
+            )
+        return choice
+    if choice.requested != "auto" or choice.planes == "spatial":
+        return choice
+    share, tip_r, tip_u = reaction_share(scene, planar, modes)
+    words = (
+        f"the drive's reaction at stall ({scene.drive.torque_at_zero:g} N*m on the gondola) moves the top "
+        f"{tip_r:.3g} m statically, {share:.3g} of the planar ROM's largest steady unbalance tip "
+        f"amplitude {tip_u:.3g} m"
+    )
+    if share > REACTION_SHARE:
+        return PlanesChoice(
+            "auto", "spatial", f"spatial: {words}, above {REACTION_SHARE:g}: only the spatial ROM receives it"
+        )
+    return PlanesChoice(
+        "auto",
+        "planar",
+        f"{choice.reason}; {words}, at most {REACTION_SHARE:g}: the planar ROM leaves it out (a quasi-static "
+        'offset of the tip, no change of the speed\'s history; modal_model.planes = "spatial" runs it)',
+    )
+
+
+def transient_model(
+    scene: Scene,
+    case: str,
+    band_top: float,
+    planar: RotorStructure,
+    chain_spatial: SpatialPillarModes | None = None,
+) -> tuple[PlanesChoice, SpatialRotor | None]:
+    """The modal model's planes for a transient ``case`` (``transient_planes``) and, where they
+    resolve to "spatial", the spatial ROM on the chain's modes in every direction
+    (``chain_spatial``; None: the beam's) below ``band_top`` (rad/s), its shaft's b2 relative
+    to the gondola, the structural ratio and the motor's reaction acting."""
+    if scene.modal_model.planes == "planar":
+        return PlanesChoice("planar", "planar", "modal_model.planes = 'planar' as the scene states"), None
+    modes = scene_spatial_modes(scene, chain_spatial)
+    choice = transient_planes(scene, case, band_top, modes, planar)
+    if choice.planes != "spatial":
+        return choice, None
+    return choice, SpatialRotor.of(scene_spatial_model(scene, band_top, modes), choice)

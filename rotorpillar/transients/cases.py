@@ -11,7 +11,7 @@ The 3D model's pillar modes (``modal_model.source = "fem3d"``) come in as
 ``pillar_modes``: the caller computes them.
 
 Where ``modal_model.planes`` resolves to "spatial" for a run-up, run-down or
-earthquake (rotorpillar.reduced.spatial_rotor.transient_model: "auto" also
+earthquake (rotorpillar.reduced.spatial_scene.transient_model: "auto" also
 weighs the drive's reaction), the modal model's case runs on the spatial ROM
 (``spatial_modes``: the chain's modes in every direction) with the motor's
 reaction on the gondola and every ground component; its truncation estimate
@@ -40,8 +40,8 @@ from ..reduced.models import ModelInfo, build_model, scene_motion
 from ..reduced.pillar_modes import PillarModes
 from ..reduced.rotor_models import RotorStructure
 from ..reduced.spatial_modes import SpatialPillarModes
-from ..reduced.spatial_records import PlanesChoice
-from ..reduced.spatial_rotor import SpatialRotor, transient_model
+from ..reduced.spatial_rotor import PlanesChoice, SpatialRotor
+from ..reduced.spatial_scene import transient_model
 from ..reduced.spectral import spectral_terms, srss
 from ..reduced.stationary import AveragingPrediction, averaging_prediction, operating_speed, passing_torque
 from ..scene import CASES, Scene
@@ -228,7 +228,7 @@ def run_case(
     ``modal_model.source = "fem3d"``, see ``models.build_model``);
     ``spatial_modes``: the chain's modes in every direction (None: the beam's), for a
     modal model whose ``modal_model.planes`` resolves to "spatial"
-    (rotorpillar.reduced.spatial_rotor.transient_model): the case then runs on the
+    (rotorpillar.reduced.spatial_scene.transient_model): the case then runs on the
     spatial ROM, the motor's reaction on the gondola and every ground component acting."""
     m = case_model(scene, case, which, integrator, modes, motion, pillar_modes, spatial_modes)
     result = _run_on(scene, case, m.model, m.motion, integrator, m.info, m.settings)

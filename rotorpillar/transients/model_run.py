@@ -50,7 +50,7 @@ from ..fem3d.full_order_result import Fem3dDescription, Fem3dStats
 from ..records import Figure, Record, replace, tag
 from ..reduced.models import BeamModelInfo, ModelInfo, PaperModelInfo
 from ..reduced.rotor_models import StructureDescription
-from ..reduced.spatial_records import PlanesChoice
+from ..reduced.spatial_rotor import PlanesChoice
 from ..reduced.system import DampedMode, Resonance
 from ..scene import MODELS, with_values
 from .case_summary import CaseSummary, RunOutcome
@@ -412,7 +412,7 @@ def _run_reduced(scene: Scene, case, which, integrator, modes, progress, motion,
 
 def planar_transient_warnings(scene: Scene, case: str, model: str, planes: PlanesChoice | None = None) -> list[str]:
     """What a transient of ``model`` leaves out of what the scene asks (``planes``: the modal
-    model's, as rotorpillar.reduced.spatial_rotor.transient_planes resolved it).  The spatial ROM
+    model's, as rotorpillar.reduced.spatial_scene.transient_planes resolved it).  The spatial ROM
     runs every ground component and the motor's reaction; the planar models (paper, beam, the
     planar ROM) and the 3D full order of simulate apply the record's first component in the
     rotor's plane; a sweep runs the planar ROM whatever modal_model.planes says."""
@@ -622,9 +622,9 @@ def _run_fem3d(
 
 def _like_the_rom(scene: Scene, case: str, band_top: float, planar, chain: ChainModes) -> bool:
     """Whether the modal model's transient of ``case`` runs on the spatial ROM
-    (rotorpillar.reduced.spatial_rotor.transient_model on the chain's modes, as run_case
+    (rotorpillar.reduced.spatial_scene.transient_model on the chain's modes, as run_case
     resolves it): the 3D run then carries what the spatial ROM does."""
-    from ..reduced.spatial_rotor import transient_model
+    from ..reduced.spatial_scene import transient_model
 
     return transient_model(scene, case, band_top, planar, chain.spatial)[0].planes == "spatial"
 

@@ -37,8 +37,8 @@ from ..records import Record
 from ..reduced import bode
 from ..reduced.bode import AveragingCurve, BodeCurve
 from ..reduced.margins import ExcitationOrders, ModeEntry, SeparationRow, order_margins, separation_from_response
-from ..reduced.spatial_records import PlanesChoice
 from ..reduced.spatial_response import SpatialResponse
+from ..reduced.spatial_rotor import PlanesChoice
 
 
 class PeakComparison(Record):
