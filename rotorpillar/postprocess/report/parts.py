@@ -23,7 +23,7 @@ def product_image(build: Build, key: str) -> str:
 
 def figures_of(build: Build, group: str) -> list[str]:
     """The other commands' figures that belong to ``group``."""
-    return [h.image(p.path, p.caption) for p in build.products.get("external", []) if p.group == group]
+    return [h.image(p.path, p.caption) for p in build.external if p.group == group]
 
 
 def failure(build: Build, key: str) -> list[str]:
