@@ -4,6 +4,7 @@ the tables of a run's JSON."""
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -82,8 +83,7 @@ def band_keys(build: Build) -> tuple[str, ...]:
     what a stage that reads the band only by the modes inside it may differ in."""
     from ...chain.choice import BAND_INPUTS
 
-    now = records.to_builtins(build.scene.to_dict())
-    return tuple(f"{k}.{kk}" for k in BAND_INPUTS if isinstance(now.get(k), dict) for kk in now[k])
+    return tuple(f"{k}.{f.name}" for k in BAND_INPUTS for f in dataclasses.fields(getattr(build.scene, k)))
 
 
 def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:
