@@ -221,7 +221,7 @@ def test_the_machines_first_frequency_leads_and_says_what_it_includes():
 
     modes = [SimpleNamespace(direction="Y", omega=15.81), SimpleNamespace(direction="X", omega=27.14)]
     modes.append(SimpleNamespace(direction="X", omega=14.89))
-    first, *_ = _headlines(None, [], SimpleNamespace(averaging=modes, separation=()), None)
+    first, *_ = _headlines([], SimpleNamespace(averaging=modes, separation=()), None)
     assert first.key == "machine_first_frequency"
     assert first.value == pytest.approx(14.89 / (2 * math.pi), rel=1e-12)
     assert "tube, gondola and rotor" in first.label and first.unit == "Hz"

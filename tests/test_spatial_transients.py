@@ -89,6 +89,25 @@ def test_planar_restriction_runs_todays_el_centro():
     assert b.summary.omega_final == pytest.approx(a.summary.omega_final, rel=SAME)
 
 
+def test_earthquake_words_say_whether_the_motors_reaction_acts():
+    """The run's ``excitation_in_model`` says the motor's reaction acts on the gondola only on
+    a model that carries it (the planar restriction leaves it off: spatial_model's
+    ``drive_reaction=False``)."""
+    from rotorpillar.reduced.models import scene_motion
+    from rotorpillar.transients.cases import spatial_excitation
+
+    s = load_scene("paper", BEAM + ["excitation.kind=record", "excitation.record=elcentro"])
+    _, off = _pair(s)
+    on = SpatialRotor.of(dataclasses.replace(off.structure, reaction=np.ones_like(off.structure.reaction)))
+    run = object()  # one component: the run comes back as it went in
+    words_off, same = spatial_excitation(off, scene_motion(s), run)
+    words_on, _ = spatial_excitation(on, scene_motion(s), run)
+    assert same is run
+    assert "reaction on the gondola acting" in words_on
+    assert "reaction on the gondola acting" not in words_off
+    assert "no motor reaction on the gondola" in words_off
+
+
 @pytest.mark.parametrize(
     "name, expect",
     [("paper", "at_speed"), ("sommerfeld", "captured")],

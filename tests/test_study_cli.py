@@ -130,12 +130,12 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
 
     build = Build(load_scene("sommerfeld"), out, "sommerfeld", ReportOptions())
     read = read_record(out / "study.json", StudyResult)
-    build.study, build.provenance["study"] = read.record, read.provenance
-    build.products["external"] = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(out)]
+    build.study, build.provenance.study = read.record, read.provenance
+    build.external = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(out)]
     html = section_study(build)
     assert "Design study" in html and "found against predicted" in html
     assert html.count("<img") == 1
-    assert not [p for p in build.products["external"] if p.path.name.startswith("study_")]
+    assert not [p for p in build.external if p.path.name.startswith("study_")]
 
 
 @pytest.mark.slow  # a design study on a Dask cluster

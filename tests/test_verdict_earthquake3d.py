@@ -18,6 +18,7 @@ order (a handful of roundings of 1e-16 each); the random-series property is exac
 of the stress (the hypotenuse of two equal legs rounds).
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -215,3 +216,27 @@ def test_the_scene_table_shows_what_the_earthquake_stages_ran(tmp_path):
     assert "El Centro in three components" in table
     assert "excitation.kind = record; excitation.components = 3; full_order.earthquake_duration = 4" in table
     assert ", ".join(sets) in table
+
+
+def test_an_inputs_scene_from_another_version_is_compared_key_by_key(tmp_path):
+    """parts.scene_changes reads an input's scene as the JSON it is: a key it ran with another
+    value of comes with that value, a section it lacks (or holds as no table, as a damaged or
+    foreign writer may) makes each of the page's keys there differ, with no value (None)."""
+    from rotorpillar import records
+    from rotorpillar.postprocess.report.parts import scene_changes
+    from rotorpillar.postprocess.report.state import Build
+    from rotorpillar.provenance import Provenance
+
+    scene = load_scene("paper")
+    build = Build(scene, tmp_path, "paper", None)  # type: ignore[arg-type]  # no report options needed
+    theirs = records.to_builtins(scene.to_dict())
+    theirs["excitation"]["kind"] = "record"
+    theirs["load"] = "not a table"
+    del theirs["drive"]
+    changes = {c.key: c.then for c in scene_changes(build, Provenance(scene=theirs))}
+    drive = [f"drive.{f.name}" for f in dataclasses.fields(scene.drive)]
+    load = [f"load.{f.name}" for f in dataclasses.fields(scene.load)]
+    assert changes == {"excitation.kind": "record", **dict.fromkeys(drive + load)}
+    ignored = scene_changes(build, Provenance(scene=theirs), ignore=["excitation.kind"])
+    assert {c.key for c in ignored} == set(drive + load)
+    assert scene_changes(build, Provenance(scene="paper")) == ()

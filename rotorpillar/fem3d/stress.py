@@ -182,7 +182,7 @@ class StressRecovery:
             "shear": (-1.0, None, None),
         }
         self._frame_values: list[tuple[float, np.ndarray]] = []
-        self._writer = _Writer(self.xdmf_path, model, self._vm) if self.xdmf_path else None
+        self._writer = _Writer(self.xdmf_path, model) if self.xdmf_path else None
 
     @property
     def heights(self) -> np.ndarray:
@@ -380,7 +380,7 @@ class VonMisesProjection:
 class _Writer:
     """The XDMF time series, written in a scratch directory and moved into place at the end."""
 
-    def __init__(self, path: Path, model, vm: VonMisesProjection):
+    def __init__(self, path: Path, model):
         from dolfinx.io import XDMFFile
 
         from .xdmf_view import linear_view

@@ -194,7 +194,7 @@ def _stride(n: int, at_least: int) -> int:
     return max(k for k in range(1, n + 1) if n % k == 0 and n // k >= min(at_least, n))
 
 
-def _ring_grid(r, theta, z, pick, around: int):
+def _ring_grid(theta, z, pick, around: int):
     """Indices (nodes around x along) of the nodes ``pick`` (a mask) on a grid of angles
     and heights, every k-th around (k as _stride); None where they are not a full grid."""
     sel = np.flatnonzero(pick)
@@ -239,8 +239,8 @@ def tube_walls(surface, axes: TubeAxes, around: int):
     # a wall's nodes: within a tenth of the wall's thickness of its radius (a face
     # subdivided through its quadratic shape lies a hair inside the circle; the
     # through-thickness nodes of the ends a quarter of the wall or more away)
-    outer = _ring_grid(r, theta, z, r >= r.max() - 0.1 * wall, around)
-    inner = _ring_grid(r, theta, z, r <= r.min() + 0.1 * wall, around)
+    outer = _ring_grid(theta, z, r >= r.max() - 0.1 * wall, around)
+    inner = _ring_grid(theta, z, r <= r.min() + 0.1 * wall, around)
     if outer is None or inner is None or outer.shape != inner.shape:
         return None
     m, nz = outer.shape

@@ -606,13 +606,17 @@ def on_reaction(model, q0: np.ndarray, v0: np.ndarray, torque: float) -> tuple[n
 
 def spatial_excitation(model: SpatialRotor, motion, run: Transient) -> tuple[str, Transient]:
     """How the spatial ROM applies the ground motion, in words, and the run as its summary reads
-    it: a multi-component motion's series (``ground_x``) are its first component's."""
+    it: a multi-component motion's series (``ground_x``) are its first component's.  The words
+    name the motor's reaction on the gondola only where ``model`` carries it (a model built with
+    ``drive_reaction=False`` has a zero reaction vector)."""
     from ..reduced.ground3d import SpatialGroundMotion
 
-    words = (
-        "the spatial ROM, relative to the ground, forced by -M r a_g in each direction; the motor's "
-        "reaction on the gondola acting"
+    reaction = (
+        "the motor's reaction on the gondola acting"
+        if np.any(model.structure.reaction)
+        else "no motor reaction on the gondola (the model leaves it off)"
     )
+    words = f"the spatial ROM, relative to the ground, forced by -M r a_g in each direction; {reaction}"
     if isinstance(motion, SpatialGroundMotion):
         names = ", ".join(f"{n} along {tuple(round(c, 6) for c in d)}" for n, d in zip(motion.names, motion.directions))
         words += (

@@ -296,7 +296,6 @@ _BARRED = {"tip_x_relative": "peak_tip_relative"}
 
 
 def _headlines(
-    scene: Scene,
     runs: list[RunFile],
     h: HarmonicResult | None,
     modal: ModalSummary | None,
@@ -544,7 +543,7 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         except (ValueError, OSError) as exc:  # damaged: no Campbell headlines, and it is named
             campbell, damaged["campbell.json"] = None, str(exc)
     governing = _governing(rows)
-    missing = _not_assessed(scene, governing, harmonic is not None, bool(runs) or quake is not None)
+    missing = _not_assessed(governing, harmonic is not None, bool(runs) or quake is not None)
     missing += [f"{file} is damaged, not read ({why}): rebuild it" for file, why in damaged.items()]
     if machine is None:
         missing.append("balance, vibration at speed, modal mass: analyze.json not found (run `rotorpillar analyze`)")
@@ -568,8 +567,7 @@ def engineering_summary(scene: Scene, out: Path) -> EngineeringSummary:
         tuple(governing),
         tuple(rows),
         tuple(
-            _headlines(scene, runs, harmonic, modal, () if quake is None else quake.headlines)
-            + _campbell_headlines(campbell)
+            _headlines(runs, harmonic, modal, () if quake is None else quake.headlines) + _campbell_headlines(campbell)
         ),
         buckling,
         tuple(missing),
@@ -594,7 +592,7 @@ def _read_machine(out: Path) -> MachineChecks | None:
         return None
 
 
-def _not_assessed(scene: Scene, governing: list[Check], have_harmonic: bool, have_runs: bool) -> list[str]:
+def _not_assessed(governing: list[Check], have_harmonic: bool, have_runs: bool) -> list[str]:
     out = [
         f"{c.name}: "
         + ("no capacity stated" if c.capacity is None else "no demand computed")

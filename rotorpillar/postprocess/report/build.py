@@ -24,7 +24,7 @@ import zipfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
-from ...provenance import write_text
+from ...provenance import Provenance, write_text
 from ...records import Record
 from ...transients.compare import COMPARISONS
 from .. import html as h
@@ -144,14 +144,12 @@ def _read(build: Build, command: str, what: str, read):
         return None
 
 
-def _record(build: Build, name: str, record_type: Any) -> Any:
-    """The record of input ``name`` (its provenance kept in ``build.provenance``), or None."""
+def _record(build: Build, name: str, record_type: Any) -> tuple[Any, Provenance | None]:
+    """The record of input ``name`` and what its command wrote beside it; (None, None) where
+    the file is missing or damaged."""
     file, command = INPUTS[name]
     got = _read(build, command, file, lambda: read_record(build.out / file, record_type))
-    if got is None:
-        return None
-    build.provenance[name] = got.provenance
-    return got.record
+    return (None, None) if got is None else (got.record, got.provenance)
 
 
 def load_inputs(build: Build) -> None:
@@ -162,10 +160,11 @@ def load_inputs(build: Build) -> None:
     from ...transients.integrator_study import IntegratorStudy
 
     out = build.out
-    build.analysis = _record(build, "analyze", AnalysisResult)
-    build.modal = _record(build, "modal", ModalSummary)
-    build.convergence = _record(build, "convergence", ConvergenceStudy)
-    build.integrators = _record(build, "integrators", IntegratorStudy)
+    p = build.provenance
+    build.analysis, p.analyze = _record(build, "analyze", AnalysisResult)
+    build.modal, p.modal = _record(build, "modal", ModalSummary)
+    build.convergence, p.convergence = _record(build, "convergence", ConvergenceStudy)
+    build.integrators, p.integrators = _record(build, "integrators", IntegratorStudy)
     for case in CASES:
         sim = _read(build, SIMULATE_COMMAND, f"simulate_{case}.json/.npz", lambda case=case: read_simulation(out, case))
         if sim is not None:
@@ -184,7 +183,7 @@ def load_inputs(build: Build) -> None:
     # study.json is read by its section; a damaged one is named here as a failed input
     study = _read(build, "study", "study.json", lambda: read_record(out / "study.json", StudyResult))
     if study is not None:
-        build.study, build.provenance["study"] = study.record, study.provenance
+        build.study, p.study = study.record, study.provenance
 
 
 class ReportResult(Record):
@@ -231,7 +230,7 @@ def build_report(
     # the mode shapes and the animations in worker processes, the charts here meanwhile
     with timings("renders"):
         render_3d(build, during=charts)
-    build.products["external"] = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(build.out)]
+    build.external = [Product(p, c, group=w.group, case=w.case) for p, c, w in external_figures(build.out)]
     with timings("html"):
         sections = []
         for ident, title, fn, appendix in SECTIONS:
@@ -240,15 +239,9 @@ def build_report(
                 sections.append(_as_section(ident, title, got, appendix))
         document = page(f"rotorpillar report: {scene.name}", scene.description or "", sections)
         path = write_text(build.out / "report.html", document)
-    figures = [str(p.path) for k, p in build.products.items() if isinstance(p, Product) and p.kind == "figure"]
-    figures += [
-        str(x.path) for k, v in build.products.items() if isinstance(v, list) for x in v if isinstance(x, Product)
-    ]
-    animations = {
-        k[len("animation_") : -len("_info")]: v
-        for k, v in build.products.items()
-        if k.startswith("animation_") and k.endswith("_info")
-    }
+    figures = [str(p.path) for p in build.products.values() if p.kind == "figure"]
+    figures += [str(x.path) for pictures in build.mode_pictures.values() for x in pictures]
+    figures += [str(x.path) for x in build.external]
     present = {name: (build.out / f).is_file() for name, (f, _) in INPUTS.items()}
     present.update({f"simulate_{c}": c in build.simulations for c in CASES})
     present["simulate_earthquake_paper"] = (build.out / "simulate_earthquake_paper.json").is_file()
@@ -259,7 +252,7 @@ def build_report(
         report=str(path),
         inputs=present,
         figures=tuple(sorted(figures)),
-        animations=animations,
+        animations=dict(build.animations),
         failures=dict(build.failures),
         damaged=dict(build.damaged),
         render_seconds=dict(build.render_seconds),

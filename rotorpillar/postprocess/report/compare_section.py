@@ -156,7 +156,7 @@ def _claim_figures(build: Build, case: str, models: list[str]) -> list:
     """The other commands' PNGs of this comparison (compare_<case>.png and the
     models' own compare_<case>_<model>.png), taken out of their groups."""
     names = {f"compare_{case}.png"} | {f"compare_{case}_{m}.png" for m in models}
-    found = [p for p in build.products["external"] if p.path.name in names] if "external" in build.products else []
+    found = [p for p in build.external if p.path.name in names]
     for p in found:
         p.group = "used"
     return found

@@ -159,7 +159,7 @@ def section_convergence(build: Build) -> str:
         # a study run for another drive answers for this one when the band holds the same
         # modes (the chain uses it, and the pillar model's note says so): no warning for that
         same_modes = band_keys(build) if band_mismatch(build.scene, c) is None else ()
-        parts += scene_differs(build, build.provenance.get("convergence"), same_modes)
+        parts += scene_differs(build, build.provenance.convergence, same_modes)
         parts += _convergence_parts(c)
     parts += figures_of(build, "convergence")
     return h.section("convergence", "Convergence and the model chosen", parts)
@@ -232,7 +232,7 @@ def section_integrators(build: Build) -> str:
     if study is None:
         parts.append(h.missing(build.hint(INPUTS["integrators"][1])))
     else:
-        parts += scene_differs(build, build.provenance.get("integrators"))
+        parts += scene_differs(build, build.provenance.integrators)
         said = integrators_conclusion(study)
         if said:
             parts.append(h.tag("p", said))

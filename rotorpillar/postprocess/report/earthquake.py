@@ -115,7 +115,7 @@ def _simulate_charts(build: Build, model: str | None):
     else simulate_earthquake.png), taken out of the earthquake group with its
     copy: one picture of one run."""
     names = ["simulate_earthquake.png"] + ([f"simulate_earthquake_{model}.png"] if model else [])
-    found = {p.path.name: p for p in build.products.get("external", []) if p.path.name in names}
+    found = {p.path.name: p for p in build.external if p.path.name in names}
     for p in found.values():
         p.group = "used"
     return found.get(names[-1]) or found.get(names[0])
@@ -156,7 +156,7 @@ def paper_case(build: Build) -> list[str]:
     elif theirs:
         parts.append(h.image(theirs.path, theirs.caption))
     parts += figures_of(build, "earthquake")
-    mine = build.products.get("quake_case_animation", "animation_earthquake_paper")
+    mine = build.quake_case_animation or "animation_earthquake_paper"
     parts += failure(build, mine)
     parts += animation_video(build, mine)
     if run is not None:
@@ -180,7 +180,7 @@ def section_earthquake(build: Build) -> str:
         ),
     ]
     parts += comparison_block(build, "earthquake")
-    if build.products.get("quake_case_animation") != "animation_earthquake":
+    if build.quake_case_animation != "animation_earthquake":
         parts += failure(build, "animation_earthquake")
         parts += animation_video(build, "animation_earthquake")
     parts.append(h.tag("h3", "Response spectrum of the record"))

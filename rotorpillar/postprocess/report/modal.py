@@ -90,21 +90,26 @@ def top_words(top: ModalTop | None) -> tuple[str, str]:
     return what, why
 
 
+def _as_written(value: Any) -> Any:
+    """A scene field's value as the scene's TOML writes it: a tuple of sections (the tower's
+    cans) as a list of their keys and values, anything else as it is."""
+    if isinstance(value, tuple) and all(dataclasses.is_dataclass(v) for v in value):
+        return [dataclasses.asdict(v) for v in value]
+    return value
+
+
 def section_scene(build: Build) -> str:
     from ...scene import SECTIONS
     from .scene_runs import earthquake_stages, ran_with, stages_table
 
-    d = build.scene.to_dict()
     stages = earthquake_stages(build)
     beside = dict(ran_with(stages))  # what the earthquake stages ran with instead, key by key
     rows = []
     for sec, cls in SECTIONS.items():
-        values = d.get(sec)
-        if not isinstance(values, dict):
-            continue
+        section = getattr(build.scene, sec)
         for f in dataclasses.fields(cls):
             key = f"{sec}.{f.name}"
-            value = h.num(values.get(f.name))
+            value = h.num(_as_written(getattr(section, f.name)))
             if key in beside:
                 value += f" (the scene's; the earthquake stages ran with {beside[key]}: see below)"
             rows.append([key, value, f.metadata.get("doc", "")])
@@ -271,7 +276,7 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
         sheet = build.products.get(f"sheet_{name}")
         if sheet:
             parts.append(h.image(sheet.path, sheet.caption))
-            singles = build.products.get(f"modes_{name}", [])
+            singles = build.mode_pictures.get(name, [])
             gallery = "".join(h.image(x.path, x.caption) for x in singles)
             parts.append(
                 h.details(f"each mode separately ({len(singles)} pictures)", f'<div class="gallery">{gallery}</div>')
@@ -283,7 +288,7 @@ def _modes_3d(build: Build, m: ModalSummary) -> list[str]:
                     f"(no {INPUTS[f'modes_{name}'][0]})"
                 )
             )
-    written = build.provenance.get("modal")
+    written = build.provenance.modal
     timings = written.timings if written is not None else None
     extra = [
         (k, v)
@@ -328,7 +333,7 @@ def section_modal(build: Build) -> str:
     parts = []
     if m is None:
         parts.append(h.missing(build.hint(INPUTS["modal"][1])))
-    parts += scene_differs(build, build.provenance.get("modal"), _same_cut(build))
+    parts += scene_differs(build, build.provenance.modal, _same_cut(build))
     parts.append(h.tag("h3", "Eq. 1 against the 3D model (bare tube)"))
     if a is None:
         parts.append(h.missing(build.hint(INPUTS["analyze"][1])))
@@ -400,7 +405,7 @@ def section_paper(build: Build) -> str:
         )
         cls.append("flag" if r.flag else "ok")
     n = sum(1 for r in printed if r.flag)
-    parts = scene_differs(build, build.provenance.get("analyze")) + [
+    parts = scene_differs(build, build.provenance.analyze) + [
         h.tag(
             "p",
             f"Every number the paper prints that we compute, ours from first principles "

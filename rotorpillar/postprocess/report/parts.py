@@ -4,7 +4,9 @@ the tables of a run's JSON."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import dataclasses
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from ... import records
 from .. import html as h
@@ -23,7 +25,7 @@ def product_image(build: Build, key: str) -> str:
 
 def figures_of(build: Build, group: str) -> list[str]:
     """The other commands' figures that belong to ``group``."""
-    return [h.image(p.path, p.caption) for p in build.products.get("external", []) if p.group == group]
+    return [h.image(p.path, p.caption) for p in build.external if p.group == group]
 
 
 def failure(build: Build, key: str) -> list[str]:
@@ -37,23 +39,43 @@ def animation_video(build: Build, key: str) -> list[str]:
     return [h.video(v.path, build.out, v.caption, v.poster)] if v else []
 
 
-def differing_keys(
+@dataclass(frozen=True)
+class SceneChange:
+    """A scene key an input was computed with another value of."""
+
+    key: str
+    """the key, dotted: ``section.key``"""
+    then: Any
+    """the value the input's command ran with (None: its scene had no such key)"""
+
+
+def scene_changes(
     build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()
-) -> tuple[str, ...]:
-    """The scene keys (``section.key``) an input was computed with other values of.
+) -> tuple[SceneChange, ...]:
+    """The scene keys an input was computed with other values of, and those values.
     ``provenance``: what its command wrote beside the record, or None; ``ignore``: dotted
-    keys its command set on purpose (the comparisons' record)."""
+    keys its command set on purpose (the comparisons' record).  The input's scene is read
+    as the JSON it is (another version's scene may have other keys), key by key."""
     if provenance is None or not isinstance(provenance.scene, dict):
         return ()
     now = records.to_builtins(build.scene.to_dict())
-    then = provenance.scene
-    return tuple(
-        f"{k}.{kk}"
-        for k, v in now.items()
-        if isinstance(v, dict)
-        for kk in v
-        if (not isinstance(then.get(k), dict) or then[k].get(kk) != v[kk]) and f"{k}.{kk}" not in ignore
-    )
+    out = []
+    for k, v in now.items():
+        if not isinstance(v, dict):
+            continue
+        section = provenance.scene.get(k)
+        for kk in v:
+            then = section.get(kk) if isinstance(section, dict) else None
+            if (not isinstance(section, dict) or then != v[kk]) and f"{k}.{kk}" not in ignore:
+                out.append(SceneChange(f"{k}.{kk}", then))
+    return tuple(out)
+
+
+def differing_keys(
+    build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()
+) -> tuple[str, ...]:
+    """The dotted scene keys of :func:`scene_changes`."""
+    return tuple(c.key for c in scene_changes(build, provenance, ignore))
 
 
 def band_keys(build: Build) -> tuple[str, ...]:
@@ -61,8 +83,7 @@ def band_keys(build: Build) -> tuple[str, ...]:
     what a stage that reads the band only by the modes inside it may differ in."""
     from ...chain.choice import BAND_INPUTS
 
-    now = records.to_builtins(build.scene.to_dict())
-    return tuple(f"{k}.{kk}" for k in BAND_INPUTS if isinstance(now.get(k), dict) for kk in now[k])
+    return tuple(f"{k}.{f.name}" for k in BAND_INPUTS for f in dataclasses.fields(getattr(build.scene, k)))
 
 
 def scene_differs(build: Build, provenance: Provenance | None, ignore: tuple[str, ...] | list[str] = ()) -> list[str]:

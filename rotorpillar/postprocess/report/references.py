@@ -82,7 +82,7 @@ def pareto_block(build: Build) -> list[str]:
         ]
     parts = []
     name = pa.chart
-    for p in build.products.get("external", []):
+    for p in build.external:
         if name and p.path.name == name:
             p.group = "used"
             parts.append(h.image(p.path, p.caption))

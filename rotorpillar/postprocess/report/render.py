@@ -218,7 +218,7 @@ def _mode_products(build: Build, files: ModeFiles, name: str, r: dict) -> None:
 
     meta = lambda i: files.modes[i] if i < len(files.modes) else ModeLabel()  # noqa: E731  (as load_modes names them)
     caption = _mode_captions(build)[name]
-    build.products[f"modes_{name}"] = [Product(p, mode_label(meta(i), i), group=name) for i, p in enumerate(r["modes"])]
+    build.mode_pictures[name] = [Product(p, mode_label(meta(i), i), group=name) for i, p in enumerate(r["modes"])]
     build.products[f"sheet_{name}"] = Product(
         r["sheet"],
         (
@@ -292,7 +292,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
             if any(n == "earthquake" for n, *_ in out)
             else "earthquake"
         )
-        build.products["quake_case_animation"] = f"animation_{name}"
+        build.quake_case_animation = f"animation_{name}"
         what = "The paper's pulse" if pulse else "The scene's earthquake"
         model = quake.run.model if quake.run is not None else "?"
         out.append((name, quake, f"{what} on the {model} model", {"banner": banner}))
@@ -369,4 +369,4 @@ def _animation_products(build: Build, name: str, title: str, r) -> None:
         kind="video",
         poster=r.poster,
     )
-    build.products[f"animation_{name}_info"] = r
+    build.animations[name] = r

@@ -113,7 +113,7 @@ def section_averaging(build: Build) -> str:
         return h.section(
             "averaging", "Passage through resonance (averaging)", [h.missing(build.hint(INPUTS["analyze"][1]))]
         )
-    parts = scene_differs(build, build.provenance.get("analyze"))
+    parts = scene_differs(build, build.provenance.analyze)
     views = model_views(a)
     d = a.drive
     parts.append(
@@ -150,7 +150,7 @@ def _own_charts(build: Build, case: str) -> list[str]:
     once (the generic simulate_<case>.png is a copy of the model's:
     figures.external_figures dropped the copy)."""
     out = []
-    for p in build.products.get("external", []):
+    for p in build.external:
         if p.group == "runs" and p.case == case:
             out.append(h.image(p.path, p.caption))
             p.group = "used"

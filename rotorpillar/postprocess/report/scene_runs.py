@@ -19,7 +19,7 @@ from ... import records
 from ...provenance import Provenance
 from .. import html as h
 from .page import model_name
-from .parts import differing_keys
+from .parts import scene_changes
 from .state import Build
 
 #: an earthquake stage's file: simulate's and compare's per model, and the multi-component comparison
@@ -57,11 +57,9 @@ def earthquake_stages(build: Build) -> list[StageScene]:
             prov = records.read(path, Provenance)
         except (ValueError, OSError):  # damaged: its own section names it
             continue
-        keys = differing_keys(build, prov)
-        if not keys or not isinstance(prov.scene, dict):
-            continue
-        values = {k: prov.scene.get(k.split(".", 1)[0], {}).get(k.split(".", 1)[1]) for k in keys}
-        out.append(StageScene(words, tuple(prov.overrides), values))
+        changes = scene_changes(build, prov)
+        if changes:
+            out.append(StageScene(words, tuple(prov.overrides), {c.key: c.then for c in changes}))
     return out
 
 

@@ -14,7 +14,7 @@ import traceback
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from ...provenance import Provenance
 from ..readers import Simulation, not_computed
@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from ...scene import Scene
     from ...studies.result import StudyResult
     from ...transients.integrator_study import IntegratorStudy
+    from ..animation import AnimationResult
     from ..compare_reader import Comparison
 
 T = TypeVar("T")
@@ -63,6 +64,18 @@ class Product:
 
 
 @dataclass
+class InputProvenance:
+    """What each command wrote beside the record the report read from it (the scene,
+    versions, machine, timings): None where the input is missing, damaged or has none."""
+
+    analyze: Provenance | None = None
+    modal: Provenance | None = None
+    convergence: Provenance | None = None
+    integrators: Provenance | None = None
+    study: Provenance | None = None
+
+
+@dataclass
 class Build:
     """Everything the page is assembled from."""
 
@@ -78,9 +91,8 @@ class Build:
     """convergence.json's record, or None"""
     study: StudyResult | None = None
     """study.json's record, or None"""
-    provenance: dict[str, Provenance | None] = field(default_factory=dict)
-    """input name (``readers.INPUTS``, "study") -> what the command wrote beside its record
-    (scene, versions, machine, timings)"""
+    provenance: InputProvenance = field(default_factory=InputProvenance)
+    """what each input's command wrote beside its record"""
     integrators: IntegratorStudy | None = None
     """integrators.json's record, or None"""
     simulations: dict[str, Simulation] = field(default_factory=dict)
@@ -89,7 +101,17 @@ class Build:
     """the paper's earthquake case (simulate_earthquake_paper.*, else simulate_earthquake.*), or None"""
     comparisons: dict[str, Comparison] = field(default_factory=dict)
     """case -> ``compare_reader.Comparison`` of compare_<case>.json and its models' runs"""
-    products: dict[str, Any] = field(default_factory=dict)  # key -> Product, list of Products, or a value
+    products: dict[str, Product] = field(default_factory=dict)
+    """the figures and videos the report drew, by key (``drive_chart``, ``sheet_top``,
+    ``animation_runup``, ...)"""
+    mode_pictures: dict[str, list[Product]] = field(default_factory=dict)
+    """mode set ("bare", "top") -> its modes' pictures, one per mode"""
+    external: list[Product] = field(default_factory=list)
+    """the other commands' figures found in the output folder, not yet placed by a section"""
+    animations: dict[str, AnimationResult] = field(default_factory=dict)
+    """animation name -> what rendering it reported"""
+    quake_case_animation: str | None = None
+    """the product key of the paper's earthquake case's animation, where it was rendered"""
     failures: dict[str, str] = field(default_factory=dict)  # key -> message
     damaged: dict[str, str] = field(default_factory=dict)  # command -> what is wrong with its file
     render_seconds: dict[str, float] = field(default_factory=dict)

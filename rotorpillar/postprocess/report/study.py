@@ -75,7 +75,7 @@ def section_study(build: Build) -> str | None:
         return h.section("study", "Design study", [h.missing(build.hint("study"))])
     p, ex, bt = r.performance, r.executor, r.batches
     axes = "; ".join(f"{a.key}: {len(a.values)} values from {a.values[0]} to {a.values[-1]}" for a in r.axes)
-    parts = scene_differs(build, build.provenance.get("study"))
+    parts = scene_differs(build, build.provenance.study)
     parts.append(
         h.tag(
             "p",
@@ -91,10 +91,10 @@ def section_study(build: Build) -> str | None:
         parts.append(h.tag("p", f"Passed: {passed}; captured at a resonance: {len(r.runs) - passed}."))
     parts += _boundary_table(r)
     names = {f.file for f in r.figures}
-    external = build.products.get("external", [])
+    external = build.external
     for prod in [x for x in external if x.path.name in names]:
         parts.append(h.image(prod.path, prod.caption))
-    build.products["external"] = [x for x in external if x.path.name not in names]
+    build.external = [x for x in external if x.path.name not in names]
     rows = [
         [
             x.index,

@@ -77,10 +77,10 @@ def section_tornado(build: Build) -> str | None:
         h.tag("p", [h.tag("strong", "What would change the verdict: "), r.sentence]),
     ]
     names = {f.file for f in r.figures}
-    external = build.products.get("external", [])
+    external = build.external
     for prod in [x for x in external if x.path.name in names]:
         parts.append(h.image(prod.path, prod.caption))
-    build.products["external"] = [x for x in external if x.path.name not in names]
+    build.external = [x for x in external if x.path.name not in names]
     if not any(x.path.name in names for x in external):
         for f in r.figures:
             if (build.out / f.file).is_file():
