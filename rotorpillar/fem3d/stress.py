@@ -182,7 +182,7 @@ class StressRecovery:
             "shear": (-1.0, None, None),
         }
         self._frame_values: list[tuple[float, np.ndarray]] = []
-        self._writer = _Writer(self.xdmf_path, model) if self.xdmf_path else None
+        self._writer = _Writer(self.xdmf_path, model, self._vm) if self.xdmf_path else None
 
     @property
     def heights(self) -> np.ndarray:
@@ -380,7 +380,7 @@ class VonMisesProjection:
 class _Writer:
     """The XDMF time series, written in a scratch directory and moved into place at the end."""
 
-    def __init__(self, path: Path, model):
+    def __init__(self, path: Path, model, vm: VonMisesProjection):
         from dolfinx.io import XDMFFile
 
         from .xdmf_view import linear_view
@@ -391,8 +391,8 @@ class _Writer:
         scratch = tempfile.mkdtemp(prefix=".xdmf-", dir=self.path.parent) if self.comm.rank == 0 else None
         self.scratch = Path(self.comm.bcast(scratch, root=0))
         self.file: Any = XDMFFile(self.comm, str(self.scratch / self.path.name), "w")
-        # the quadratic fields as linear ones through their nodes: dolfinx's write of a
-        # quadratic field costs ~50x more (rotorpillar.fem3d.xdmf_view)
+        # the projection's quadratic fields as linear ones through their nodes: dolfinx's
+        # write of a quadratic field costs ~6x more (rotorpillar.fem3d.xdmf_view)
         self.view = linear_view(vm.u_out, vm.vm)
         self.file.write_mesh(model.mesh if self.view is None else self.view.mesh)
 
