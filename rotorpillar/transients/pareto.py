@@ -119,9 +119,11 @@ class ParetoCost(Record):
     cached: int
     """of them read from the cache (-)"""
     workers: int
-    """worker processes of the 3D runs (-; 0: in the caller's process)"""
+    """worker processes of the 3D runs (-; 0: all in the caller's process; with workers, the
+    caller too takes the cheapest runs still queued once its own work is done)"""
     wall_seconds: float
-    """what the caller waited for the study: planning, its own runs, waiting for the workers (s)"""
+    """what the caller waited for the study: planning, its own runs (the reduced ones, and the
+    3D runs it took from the workers' queue), waiting for the workers (s)"""
     pool_seconds: float
     """the workers' elapsed time, beside the caller's own work (s)"""
     compute_seconds: float
