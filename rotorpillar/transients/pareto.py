@@ -317,7 +317,7 @@ class ParetoRunning:
                 return None
             return self.queue.pop(0 if dearest else -1)
 
-    def keep(self, i: int, out: ParetoOutcome, warm: float = 0.0) -> None:
+    def keep(self, i: int, out: ParetoOutcome, warm: float = 0.0, where: str = "") -> None:
         plan = self.plan
         fam, label, params = plan.specs[i]
         run = StoredRun.of(plan.keys[i], fam, label, params, out)
@@ -327,7 +327,7 @@ class ParetoRunning:
             plan.results[i] = run
             self.compile[fam] = self.compile.get(fam, 0.0) + warm  # the families that ran, 0 when warm
         if self.progress:
-            self.progress(f"speed against accuracy: {label} in {out.wall_seconds:.3g} s")
+            self.progress(f"speed against accuracy: {label} in {out.wall_seconds:.3g} s{where}")
 
     def _job(self, i: int):
         p = self.plan
@@ -378,7 +378,7 @@ class ParetoRunning:
         while (taken := self.take(dearest=False)) is not None:
             self.here.append(taken)
             out, warm = compute_3d(self._job(taken))
-            self.keep(taken, out, warm)
+            self.keep(taken, out, warm, " (in this process)" if self.thread is not None else "")
         if self.thread is not None:
             self.thread.join()
         if self.error is not None:
