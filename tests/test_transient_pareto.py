@@ -8,8 +8,7 @@
   state, the second call computes nothing (the cache), a deleted run is the
   only one computed again (resumable), a 3D run on a worker process gives the
   run in this process to round-off, and a finer 3D mesh comes closer to the
-  finest (the ladder converges); a 3D run the caller takes from the workers'
-  queue is the run computed apart.
+  finest (the ladder converges).
 """
 
 from __future__ import annotations
@@ -135,38 +134,6 @@ def test_pareto_runs_cache_and_resume(tmp_path):
     i = next(i for i, s in enumerate(plan.specs) if s[1] == "3D, 8x2")
     here, _ = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
     assert math.isclose(here.peak_tip, victim.peak_tip, rel_tol=1e-9)
-
-
-@pytest.mark.slow  # 3D runs on 8 x 2, 3, 4 elements over 0.3 s, each twice; a Dask worker
-@has_dolfinx
-def test_a_3d_run_the_caller_takes_from_the_workers_is_the_run_computed_apart(tmp_path):
-    """The caller's process, its own work done, takes the cheapest 3D runs the workers have
-    not started (compare's earthquake stage: the worker's runs outlasted compare's models):
-    each 3D run of the study, wherever it ran, is the run computed apart in this process,
-    to round-off (1e-9 of the peak: a few hundred steps of round-off are ~1e-13, while a
-    run on another mesh, step or record start differs by 1e-4 and more)."""
-    from rotorpillar.scene import load_scene
-    from rotorpillar.transients.pareto import ParetoRunning, plan_pareto
-    from rotorpillar.transients.pareto_runs import compute_3d
-
-    scene = load_scene("paper", ["excitation.kind=record"])
-    mesh = replace(scene.mesh, elements_around=8, elements_along=3)
-    plan = plan_pareto(
-        scene, cache_dir=tmp_path, rom_modes=1, chosen_mesh=mesh, duration=0.3, along=(2, 3, 4), beams=(2,)
-    )
-    running = ParetoRunning(plan, workers=1)
-    # finish() at once: its reduced runs take a second, the worker's cluster starts in seconds,
-    # so the cheapest 3D run is still queued when the caller asks (the workers take the dearest)
-    study, tips = running.finish()
-    solid = [i for i, s in enumerate(plan.specs) if s[0] == "fem3d"]
-    assert running.here and running.here[0] == solid[0]  # the cheapest, taken by the caller
-    assert study.cost.workers == 1 and study.cost.computed == len(plan.specs)
-    for i in solid:
-        label = plan.specs[i][1]
-        apart, _ = compute_3d((plan.scene, plan.specs[i][2], plan.motion, plan.speed, plan.duration))
-        scale = max(abs(v) for v in apart.tip)
-        assert np.max(np.abs(tips[label] - np.asarray(apart.tip))) <= 1e-9 * scale, label
-        assert math.isclose(plan.results[i].peak_tip, apart.peak_tip, rel_tol=1e-9), label
 
 
 def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_path):

@@ -405,8 +405,7 @@ def compare_stem(case: str, model: str) -> str:
 
 def _start_pareto(scene: Scene, motion, out: Path, workers: int, progress, chain):
     """The speed-against-accuracy study planned and its 3D runs started on ``workers`` - 1
-    processes (this one runs compare's own models meanwhile, then takes the cheapest 3D
-    runs still queued; none: all of them after its models, here)."""
+    processes (this one runs compare's own models meanwhile; none: after them, here)."""
     from ..reduced.band import forcing_top
     from ..reduced.models import ModalModelInfo, build_model
     from .pareto import ParetoRunning, plan_pareto

@@ -32,11 +32,7 @@ model, the record's samples and the source of the code, written
 atomically: an interrupted study resumes and computes nothing twice.  The
 3D runs go to ``workers`` processes (rotorpillar.executor), started before
 the caller's own work (``plan_pareto``, ``ParetoRunning``, ``finish``) so that
-compare's own models and the study share the machine's cores; the workers
-take the dearest run left, and the caller, its own work done, the cheapest,
-so neither waits for the other while runs are left (compare's earthquake
-stage on paper: the worker's four runs, ~60 s, outlasted compare's own
-models, ~45 s, which then waited).
+compare's own models and the study share the machine's cores.
 """
 
 from __future__ import annotations
@@ -119,11 +115,9 @@ class ParetoCost(Record):
     cached: int
     """of them read from the cache (-)"""
     workers: int
-    """worker processes of the 3D runs (-; 0: all in the caller's process; with workers, the
-    caller too takes the cheapest runs still queued once its own work is done)"""
+    """worker processes of the 3D runs (-; 0: in the caller's process)"""
     wall_seconds: float
-    """what the caller waited for the study: planning, its own runs (the reduced ones, and the
-    3D runs it took from the workers' queue), waiting for the workers (s)"""
+    """what the caller waited for the study: planning, its own runs, waiting for the workers (s)"""
     pool_seconds: float
     """the workers' elapsed time, beside the caller's own work (s)"""
     compute_seconds: float
@@ -255,11 +249,6 @@ def plan_pareto(
     )
 
 
-def _cells(params: dict) -> int:
-    """A 3D run's cells, what its cost grows with (-)."""
-    return params["elements_around"] * params["elements_along"]
-
-
 def _mpi_rank_size() -> tuple[int, int]:
     """(rank, size) when running under MPI (mpi4py imported), else (0, 1)."""
     import sys
@@ -269,13 +258,8 @@ def _mpi_rank_size() -> tuple[int, int]:
 
 
 class ParetoRunning:
-    """The plan's missing 3D runs under way on worker processes (a thread feeds them),
-    so that the caller's own work (compare's models) runs meanwhile on the other core.
-    The 3D runs wait in one queue, dearest first: a worker takes the dearest left, and
-    ``finish``, the caller's own work done, the cheapest left, in this process
-    (``here``: their indices), so that the caller does not sit idle while the workers
-    still have runs queued.  A run is the same wherever it runs (the same code on one
-    core: tests/test_transient_pareto.py)."""
+    """The plan's missing 3D runs under way on worker processes (a thread waits for them),
+    so that the caller's own work (compare's models) runs meanwhile on the other core."""
 
     def __init__(self, plan: ParetoPlan, workers: int, progress=None):
         import threading
@@ -284,11 +268,6 @@ class ParetoRunning:
         self.compile: dict[str, float] = {}
         self.todo = [i for i in range(len(plan.specs)) if i not in plan.results]
         self.solid = [i for i in self.todo if plan.specs[i][0] == "fem3d"]
-        self.queue = sorted(self.solid, key=lambda i: -_cells(plan.specs[i][2]))
-        """the 3D runs no process has taken yet, dearest first"""
-        self.here: list[int] = []
-        """the 3D runs this process took from the queue"""
-        self.lock = threading.Lock()
         self.workers = 0
         self.error: BaseException | None = None
         self.thread, self.pool_seconds = None, 0.0
@@ -297,8 +276,7 @@ class ParetoRunning:
                 f"speed against accuracy: {len(plan.specs)} runs, "
                 f"{len(plan.specs) - len(self.todo)} cached, {len(self.todo)} to compute"
                 + (
-                    f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es), "
-                    "and on this one once its own work is done)"
+                    f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es))"
                     if self.solid and workers > 0
                     else ""
                 )
@@ -310,57 +288,36 @@ class ParetoRunning:
             self.thread = threading.Thread(target=self._pool, daemon=True)
             self.thread.start()
 
-    def take(self, dearest: bool) -> int | None:
-        """The dearest (a worker's) or the cheapest (the caller's) 3D run no one has taken, or None."""
-        with self.lock:
-            if not self.queue or self.error is not None:
-                return None
-            return self.queue.pop(0 if dearest else -1)
-
-    def keep(self, i: int, out: ParetoOutcome, warm: float = 0.0, where: str = "") -> None:
+    def keep(self, i: int, out: ParetoOutcome) -> None:
         plan = self.plan
         fam, label, params = plan.specs[i]
         run = StoredRun.of(plan.keys[i], fam, label, params, out)
         if _mpi_rank_size()[0] == 0:
             run_cache(plan.cache_dir).write(plan.keys[i], run)
-        with self.lock:  # the pool's thread and the caller's keep runs at once
-            plan.results[i] = run
-            self.compile[fam] = self.compile.get(fam, 0.0) + warm  # the families that ran, 0 when warm
+        plan.results[i] = run
         if self.progress:
-            self.progress(f"speed against accuracy: {label} in {out.wall_seconds:.3g} s{where}")
+            self.progress(f"speed against accuracy: {label} in {out.wall_seconds:.3g} s")
 
     def _job(self, i: int):
         p = self.plan
         return (p.scene, p.specs[i][2], p.motion, p.speed, p.duration)
 
     def _pool(self) -> None:
-        """Feed the workers from the queue, one run in flight per worker, dearest first."""
         import logging
 
-        from distributed import as_completed
-
-        from ..executor import Executor, _result
+        from ..executor import Executor
 
         logging.getLogger("distributed").setLevel(logging.ERROR)  # dolfinx leaves INFO on
+        order = sorted(
+            self.solid,
+            key=lambda i: -self.plan.specs[i][2]["elements_around"] * self.plan.specs[i][2]["elements_along"],
+        )
         t0 = time.perf_counter()
         try:
             with Executor(self.workers) as ex:
-                running: dict[str, int] = {}
-                flight = as_completed()
-
-                def submit() -> None:
-                    i = self.take(dearest=True)
-                    if i is not None:
-                        key = f"pareto-3d-{self.plan.keys[i]}-{id(self)}"  # one key per run
-                        flight.add(ex.client.submit(compute_3d, self._job(i), pure=False, key=key))
-                        running[key] = i
-
-                for _ in range(self.workers):
-                    submit()
-                for fut in flight:
-                    out, warm = _result(fut, None)  # a cluster gone: a ComputationError
-                    self.keep(running.pop(fut.key), out, warm)
-                    submit()
+                for j, (out, warm) in ex.map(compute_3d, [self._job(i) for i in order]):
+                    self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + warm
+                    self.keep(order[j], out)
         except BaseException as exc:  # re-raised in finish(), in the caller's thread
             self.error = exc
         self.pool_seconds = time.perf_counter() - t0
@@ -371,18 +328,21 @@ class ParetoRunning:
         t0 = time.perf_counter()
         for i in (i for i in self.todo if plan.specs[i][0] != "fem3d"):
             fam, _, params = plan.specs[i]
-            warm = warm_up_family(fam, plan.scene, plan.motion, plan.speed, plan.pillar_modes)
-            out = reduced_run(plan.scene, fam, params, plan.motion, plan.speed, plan.pillar_modes, plan.duration)
-            self.keep(i, out, warm)
-        # the 3D runs the workers have not taken, cheapest first (all of them without workers)
-        while (taken := self.take(dearest=False)) is not None:
-            self.here.append(taken)
-            out, warm = compute_3d(self._job(taken))
-            self.keep(taken, out, warm, " (in this process)" if self.thread is not None else "")
+            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up_family(
+                fam, plan.scene, plan.motion, plan.speed, plan.pillar_modes
+            )
+            self.keep(
+                i, reduced_run(plan.scene, fam, params, plan.motion, plan.speed, plan.pillar_modes, plan.duration)
+            )
         if self.thread is not None:
             self.thread.join()
-        if self.error is not None:
-            raise self.error
+            if self.error is not None:
+                raise self.error
+        else:
+            for i in self.solid:
+                out, warm = compute_3d(self._job(i))
+                self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + warm
+                self.keep(i, out)
         docs = [plan.results[i] for i in range(len(plan.specs))]
         k, mesh = plan.rom_modes, plan.chosen_mesh
         study, series = analyse_pareto(
