@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
 from ..compare_reader import relative_to_ground
@@ -14,6 +14,9 @@ from ..readers import INPUTS, Simulation
 from .page import model_name
 from .parallel import ModeFiles
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, debugging, say
+
+if TYPE_CHECKING:
+    from ..modeshapes import ModePictures
 
 #: The animations the report makes (:func:`animated_runs`).
 ANIMATED = ("runup", "earthquake", "earthquake_paper", "earthquake_scene")
@@ -211,18 +214,18 @@ def _mode_captions(build: Build) -> dict[str, str]:
     }
 
 
-def _mode_products(build: Build, files: ModeFiles, name: str, r: dict) -> None:
+def _mode_products(build: Build, files: ModeFiles, name: str, r: ModePictures) -> None:
     """The pictures of one set of modes on the page, each captioned from modal.json."""
     from ..directions import mode_label
     from ..geometry import ModeLabel
 
     meta = lambda i: files.modes[i] if i < len(files.modes) else ModeLabel()  # noqa: E731  (as load_modes names them)
     caption = _mode_captions(build)[name]
-    build.mode_pictures[name] = [Product(p, mode_label(meta(i), i), group=name) for i, p in enumerate(r["modes"])]
+    build.mode_pictures[name] = [Product(p, mode_label(meta(i), i), group=name) for i, p in enumerate(r.modes)]
     build.products[f"sheet_{name}"] = Product(
-        r["sheet"],
+        r.sheet,
         (
-            f"The first {len(r['modes'])} modes of {caption} (3D model, {files.vtu.name}): "
+            f"The first {len(r.modes)} modes of {caption} (3D model, {files.vtu.name}): "
             "deformed shape coloured by |u| / max |u| over the undeformed outline; the scale "
             "factor is on each view; the triad names the axes as the paper does (X horizontal, "
             "in the rotor's plane; Z horizontal, along the shaft; Y vertical); an ovalling "
