@@ -8,7 +8,6 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
-from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..readers import INPUTS, Simulation
 from .page import model_name
@@ -54,13 +53,13 @@ def render_charts(build: Build) -> None:
                 ),
             )
     quake = build.quake_case
-    if quake is not None and quake.arrays.get("t") is not None:
+    if quake is not None and quake.arrays.t is not None:
         # relative to the ground: under the paper's pulse the absolute tip is
         # the ground's 6 m step and hides the pillar's response
         run = quake.run
         frame = run.tip_x_frame if run is not None else ""
-        tip = relative_to_ground(quake.arrays, "tip_x", frame)
-        rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
+        tip = quake.arrays.tip_to_ground(frame)
+        rotor = quake.arrays.rotor_to_ground(frame)
         model = run.model if run is not None else "model not stated"
         ex = quake.excitation
         unreal = isinstance(ex, (PulseSizes, RecordSizes)) and not ex.realistic
@@ -70,11 +69,11 @@ def render_charts(build: Build) -> None:
             "earthquake_chart",
             lambda: transient_charts.earthquake_chart(
                 fig / "earthquake_response.png",
-                quake.get("t"),
-                quake.get("ground_acceleration"),
+                quake.arrays.t,
+                quake.arrays.ground_acceleration,
                 tip,
                 rotor,
-                quake.get("Omega"),
+                quake.arrays.Omega,
                 title=f"Earthquake response ({model} model){what}",
                 frame="relative to the ground",
             ),
@@ -177,11 +176,11 @@ def passage_of(c, model: str):
     run in comparison ``c`` (its speed and its JSON's resonances), or None."""
     from ..transient_charts import crossings, passage_window
 
-    a, run = c.arrays.get(model) or {}, c.runs.get(model)
-    if a.get("t") is None or a.get("Omega") is None:
+    a, run = c.arrays_of(model), c.runs.get(model)
+    if a.t is None or a.Omega is None:
         return None
     res = [(f"omega_{r.index}", float(r.omega)) for r in (run.resonances if run is not None else ())]
-    return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
+    return passage_window(a.t, crossings(a.t, a.Omega, res))
 
 
 def _record_name(ex: ExcitationSizes | None) -> str:
@@ -249,13 +248,10 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
 
     out: list[tuple[str, Simulation, str, dict[str, Any]]] = []
     sim = build.simulations.get("runup")
-    if sim is not None and sim.arrays.get("t") is not None:
+    if sim is not None and sim.arrays.t is not None:
         res = [(f"omega_{r.index}", float(r.omega)) for r in (sim.run.resonances if sim.run is not None else ())]
-        focus = (
-            passage_window(sim.get("t"), crossings(sim.get("t"), sim.get("Omega"), res))
-            if sim.get("Omega") is not None
-            else None
-        )
+        t, omega = sim.arrays.t, sim.arrays.Omega
+        focus = passage_window(t, crossings(t, omega, res)) if omega is not None else None
         out.append(("runup", sim, "Run-up", {"focus": focus}))
     c = build.comparisons.get("earthquake")
     if c is not None:
@@ -263,7 +259,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
             (
                 m
                 for m in sorted(c.models, key=lambda m: m != "modal")
-                if (c.arrays.get(m) or {}).get("t") is not None and m != c.reference
+                if c.arrays_of(m).t is not None and m != c.reference
             ),
             None,
         )
@@ -277,7 +273,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
                 )
             )
     quake = build.quake_case
-    if quake is not None and quake.arrays.get("t") is not None:
+    if quake is not None and quake.arrays.t is not None:
         ex = quake.excitation
         pulse = isinstance(ex, PulseSizes) or (isinstance(ex, RecordSizes) and not ex.realistic)
         banner = ""
