@@ -62,6 +62,7 @@ from rotorpillar.postprocess.modeshapes import (
     section_levels,
 )
 from rotorpillar.postprocess.readers import Simulation, read_simulation
+from rotorpillar.postprocess.run_arrays import RunArrays, read_npz
 from rotorpillar.reduced.pillar import cantilever_mode
 from rotorpillar.scene import load_scene, override
 
@@ -218,7 +219,9 @@ def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
     sim = Simulation(
         "runup",
         None,
-        {"t": np.linspace(0, 1, n), "modal_coordinates": q, "tip_x": q.sum(axis=1), "Omega": np.linspace(0, 10, n)},
+        RunArrays.of(
+            {"t": np.linspace(0, 1, n), "modal_coordinates": q, "tip_x": q.sum(axis=1), "Omega": np.linspace(0, 10, n)}
+        ),
     )
     motion = pillar_motion(sim, modes_top)
     assert motion.coefficients.shape == (n, 2) and "modal coordinates" in motion.source
@@ -228,7 +231,9 @@ def test_superposition_of_unit_tip_modes_gives_the_tip_sum(modes_top):
         U = elastic_field(motion.coefficients[j], motion.shapes)
         assert U[top, 0] == pytest.approx(q[j].sum(), abs=1e-12)
     # the paper's model: no modal coordinates, tip_x - ground_x drives mode 1
-    sim2 = Simulation("earthquake", None, {"t": sim.arrays["t"], "tip_x": 1.0 + q[:, 0], "ground_x": np.ones(n)})
+    sim2 = Simulation(
+        "earthquake", None, RunArrays.of({"t": sim.arrays.t, "tip_x": 1.0 + q[:, 0], "ground_x": np.ones(n)})
+    )
     m2 = pillar_motion(sim2, modes_top)
     assert m2.coefficients[:, 0] == pytest.approx(q[:, 0], abs=1e-12)
 
@@ -250,8 +255,32 @@ def test_the_simulation_fixture_is_a_run_record_document(tmp_path, case, modal):
     sim = read_simulation(tmp_path, case)
     assert isinstance(sim.run, ReducedRun) and records.to_builtins(sim.run) == doc
     assert sim.run.model == ("modal" if modal else "paper") and sim.run.warnings == ("w",)
-    assert sim.run.max_abs["tip_x"] == pytest.approx(np.abs(sim.arrays["tip_x"]).max(), rel=1e-15)
+    assert sim.run.max_abs["tip_x"] == pytest.approx(np.abs(sim.arrays.tip_x).max(), rel=1e-15)
     assert (sim.excitation is None) is (case != "earthquake")
+
+
+def test_run_arrays_keep_every_series_of_the_npz(tmp_path):
+    # the typed fields are the file's own columns (as floats); every other array, the
+    # writer's string scalars included, stays readable by its name
+    fixtures.write_simulation_fixture(tmp_path, "earthquake", modal=True, n=50)
+    a = read_npz(tmp_path / "simulate_earthquake.npz")
+    with np.load(tmp_path / "simulate_earthquake.npz") as z:
+        assert a.names == list(z.files)
+        for k in z.files:
+            assert np.array_equal(a.series(k), z[k])
+        assert a.t.dtype == float and np.array_equal(a.t, z["t"]) and np.array_equal(a.tip_x, z["tip_x"])
+    assert a.series("no such series") is None and RunArrays().tip_to_ground(None) is None
+    # relative to the ground: the written column first, else the frame decides
+    bare = RunArrays.of({"tip_x": np.array([6.0, 7.0]), "ground_x": np.array([6.0, 6.5])})
+    assert bare.tip_to_ground("absolute").tolist() == [0.0, 0.5]
+    assert bare.tip_to_ground("relative_to_ground").tolist() == [6.0, 7.0]
+    assert RunArrays.of({"tip_x": np.ones(2), "tip_x_relative": np.zeros(2)}).tip_to_ground("absolute").tolist() == [
+        0,
+        0,
+    ]
+    (tmp_path / "broken.npz").write_bytes(b"PK not a zip")
+    with pytest.raises(ValueError, match="broken.npz"):
+        read_npz(tmp_path / "broken.npz")
 
 
 @pytest.mark.parametrize("case, models", [("earthquake", ("modal", "fem3d")), ("runup", ("modal", "beam", "paper"))])
@@ -268,7 +297,7 @@ def test_the_comparison_fixture_runs_are_run_record_documents(tmp_path, case, mo
         doc = json.loads((tmp_path / f"simulate_{case}_{m}.json").read_text())
         kind = Fem3dRun if m == "fem3d" else ReducedRun
         assert isinstance(c.runs[m], kind) and records.to_builtins(c.runs[m]) == doc
-        assert c.runs[m].max_abs["tip_x_relative"] == pytest.approx(np.abs(c.arrays[m]["tip_x_relative"]).max())
+        assert c.runs[m].max_abs["tip_x_relative"] == pytest.approx(np.abs(c.arrays[m].tip_x_relative).max())
 
 
 def test_the_forces_section_reads_each_run_through_its_record(tmp_path):
@@ -296,7 +325,7 @@ def test_the_scene_run_of_the_3d_full_order_reads_by_its_record(tmp_path):
         peaks = {k: float(np.abs(a[k]).max()) for k in ("tip_x_relative", "tip_x", "rotor_x", "rotor_y")}
         ex = fixtures.burst_sizes() if case == "earthquake" else None
         run = fixtures.fem3d_run(case, a["t"], a["Omega"], peaks, dofs=9, wall_seconds=1.0, excitation=ex)
-        build.simulations[case] = Simulation(case, run, a)
+        build.simulations[case] = Simulation(case, run, RunArrays.of(a))
     build.quake_case = build.simulations["earthquake"]
     runs = section_runs(build)
     from html import escape

@@ -133,7 +133,7 @@ class _Panel:
         else:
             ax_o.text(0.5, 0.5, "no rotor_x / rotor_y in this run", ha="center", va="center", transform=ax_o.transAxes)
             ax_o.set_axis_off()
-        Om = sim.get("Omega")
+        Om = sim.arrays.Omega
         u = self.u(self.t)
         if Om is not None:
             ax_t.plot(u, Om, color=COLOURS["drive"], lw=1.0)
@@ -258,7 +258,7 @@ def animate(
     warped = focus is not None and len(tf) >= 10 and not np.allclose(np.diff(tf), tf[1] - tf[0])
     q = interpolate(motion.t, motion.coefficients, tf)
     g = interpolate(motion.t, motion.ground_x, tf)
-    omega = sim.get("Omega")
+    omega = sim.arrays.Omega
     Om = interpolate(motion.t, omega, tf) if omega is not None else None
     orbit = rotor_orbit(sim)
     base = np.asarray(modeset.surface.points, dtype=float)

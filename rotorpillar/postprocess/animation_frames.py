@@ -50,15 +50,15 @@ def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
     paper's X (no run's JSON names its modes otherwise); without them, the elastic tip displacement tip_x - ground_x drives the
     first such mode.
     """
-    t = sim.get("t")
+    t = sim.arrays.t
     if t is None:
         raise ValueError(f"simulate_{sim.case}.npz has no t")
     n = len(t)
-    ground = sim.get("ground_x")
+    ground = sim.arrays.ground_x
     ground = np.zeros(n) if ground is None else ground
-    q = sim.arrays.get("modal_coordinates")
+    q = sim.arrays.modal_coordinates
     if q is not None:
-        q = np.asarray(q, dtype=float).reshape(n, -1)
+        q = q.reshape(n, -1)
         cols = bending_columns(modeset.modes, q.shape[1])
         if len(cols) == q.shape[1]:
             return PillarMotion(
@@ -68,7 +68,7 @@ def pillar_motion(sim: Simulation, modeset: ModeSet) -> PillarMotion:
                 ground,
                 f"modal coordinates x {q.shape[1]} bending mode(s) of the 3D model",
             )
-    tip = sim.get("tip_x")
+    tip = sim.arrays.tip_x
     if tip is None:
         raise ValueError(f"simulate_{sim.case}.npz has neither modal_coordinates nor tip_x")
     cols = bending_columns(modeset.modes, 1)
@@ -138,7 +138,8 @@ def exaggeration(motion: PillarMotion, height: float) -> float:
 
 def rotor_orbit(sim: Simulation):
     """Rotor centre relative to the pillar top (m), or None."""
-    rx, ry, tip = sim.get("rotor_x"), sim.get("rotor_y"), sim.get("tip_x")
+    a = sim.arrays
+    rx, ry, tip = a.rotor_x, a.rotor_y, a.tip_x
     if rx is None or ry is None:
         return None
     return (rx - (tip if tip is not None else 0.0)), ry

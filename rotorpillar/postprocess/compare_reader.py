@@ -1,7 +1,7 @@
 """The models of one case compared: ``compare_<case>.json`` (`rotorpillar
 compare`, a :class:`~rotorpillar.transients.compare.CompareResult`) and the
-per-model runs it names, as the report reads them; a run's X displacements
-relative to the ground.  Contracts in :mod:`.readers`."""
+per-model runs it names, as the report reads them; each model's tip relative
+to the ground.  Contracts in :mod:`.readers`."""
 
 from __future__ import annotations
 
@@ -12,33 +12,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..transients.compare import CompareResult
-from .readers import read_npz, read_record, read_run
+from .readers import read_record, read_run
+from .run_arrays import RunArrays, read_npz
 
 if TYPE_CHECKING:
     from ..provenance import Provenance
     from ..transients.model_run import RunRecord
-
-
-def relative_to_ground(arrays: dict[str, Any], name: str = "tip_x", frame: str | None = None) -> np.ndarray | None:
-    """The X displacement ``name`` (tip_x or rotor_x) relative to the ground:
-    the ``<name>_relative`` column where the run wrote one, else the column
-    itself when ``frame`` says it is already relative, else the column minus
-    ``ground_x``; None if the arrays hold neither.
-
-    >>> a = {"tip_x": np.array([6.0, 7.0]), "ground_x": np.array([6.0, 6.5])}
-    >>> relative_to_ground(a).tolist(), relative_to_ground(a, frame="relative_to_ground").tolist()
-    ([0.0, 0.5], [6.0, 7.0])
-    """
-    if arrays.get(f"{name}_relative") is not None:
-        return np.asarray(arrays[f"{name}_relative"], dtype=float)
-    x = arrays.get(name)
-    if x is None:
-        return None
-    x = np.asarray(x, dtype=float)
-    if str(frame or "").startswith("relative"):
-        return x
-    g = arrays.get("ground_x")
-    return x if g is None else x - np.asarray(g, dtype=float)
 
 
 @dataclass
@@ -51,8 +30,8 @@ class Comparison:
     """what compare wrote beside the record (the scene, versions, timings)"""
     runs: dict[str, RunRecord] = field(default_factory=dict)
     """model -> the record of its simulate_<case>_<model>.json (missing: absent)"""
-    arrays: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
-    """model -> its simulate_<case>_<model>.npz arrays (missing: absent)"""
+    arrays: dict[str, RunArrays] = field(default_factory=dict)
+    """model -> the series of its simulate_<case>_<model>.npz (missing: absent)"""
 
     @property
     def models(self) -> list[str]:
@@ -63,14 +42,18 @@ class Comparison:
     def reference(self) -> str | None:
         return self.record.reference
 
+    def arrays_of(self, model: str) -> RunArrays:
+        """The series of one model's run (every field None without its ``.npz``)."""
+        return self.arrays.get(model) or RunArrays()
+
     def tip_relative(self, model: str) -> tuple[np.ndarray, np.ndarray] | None:
         """(t, tip X relative to the ground) of one model, or None."""
-        a = self.arrays.get(model)
-        if not a or a.get("t") is None:
+        a = self.arrays_of(model)
+        if a.t is None:
             return None
         run = self.runs.get(model)
-        y = relative_to_ground(a, "tip_x", run.tip_x_frame if run is not None else None)
-        return None if y is None else (np.asarray(a["t"], dtype=float), y)
+        y = a.tip_to_ground(run.tip_x_frame if run is not None else None)
+        return None if y is None else (a.t, y)
 
 
 def _beside(out: Path, name: Any) -> Path | None:

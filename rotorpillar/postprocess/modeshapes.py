@@ -16,6 +16,7 @@ undeformed circles, so that its n lobes can be counted.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -482,11 +483,20 @@ def render_contact_sheet(
     return Path(path)
 
 
-def render_modes(modeset: ModeSet, directory: str | Path, prefix: str, count: int = SHEET_MODES, progress=None) -> dict:
-    """PNG of each of the first ``count`` modes and the contact sheet.
+@dataclass(frozen=True)
+class ModePictures:
+    """The pictures :func:`render_modes` drew of one set of modes."""
 
-    Returns {"modes": [paths], "sheet": path}.
-    """
+    modes: list[Path]
+    """one PNG per mode, the first mode first"""
+    sheet: Path
+    """the contact sheet of all of them (PNG)"""
+
+
+def render_modes(
+    modeset: ModeSet, directory: str | Path, prefix: str, count: int = SHEET_MODES, progress=None
+) -> ModePictures:
+    """PNG of each of the first ``count`` modes and the contact sheet."""
     directory = Path(directory)
     count = min(count, len(modeset.arrays))
     modeset = modeset.fewer_around(MODE_AROUND)
@@ -496,4 +506,4 @@ def render_modes(modeset: ModeSet, directory: str | Path, prefix: str, count: in
         if progress:
             progress(i + 1, count)
     sheet = render_contact_sheet(modeset, directory / f"{prefix}_modes_sheet.png", count)
-    return {"modes": paths, "sheet": sheet}
+    return ModePictures(paths, sheet)

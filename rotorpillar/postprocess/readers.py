@@ -24,16 +24,14 @@ fault: the report names it damaged, never renders a part of it.
 
 from __future__ import annotations
 
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
-import numpy as np
-
 from .. import records
 from ..provenance import Provenance
 from ..scene import CASES as CASES  # re-exported: the cases, in the order the report shows them
+from .run_arrays import RunArrays, read_npz
 
 if TYPE_CHECKING:
     from ..reduced.excitation import ExcitationSizes
@@ -95,19 +93,6 @@ def read_run(path: str | Path) -> Read[RunRecord] | None:
     return read_record(path, RunRecord)
 
 
-def read_npz(path: str | Path | None) -> dict[str, np.ndarray] | None:
-    """The arrays of an NPZ file, or None if there is none; a damaged one (truncated, not
-    a zip, an array that is not one) raises ValueError naming the file."""
-    if path is None or not Path(path).is_file():
-        return None
-    path = Path(path)
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            return {k: np.asarray(data[k]) for k in data.files}
-    except (ValueError, OSError, EOFError, KeyError, zipfile.BadZipFile) as exc:
-        raise ValueError(f"{path.name}: not a readable NPZ ({type(exc).__name__}: {exc})") from None
-
-
 @dataclass
 class Simulation:
     """One case of `rotorpillar simulate`: its run's record, its arrays and its provenance."""
@@ -115,13 +100,10 @@ class Simulation:
     case: str
     run: RunRecord | None
     """the JSON's record (:func:`read_run`), None without a JSON"""
-    arrays: dict[str, np.ndarray]
+    arrays: RunArrays
+    """the series of its ``.npz`` (all None without one)"""
     provenance: Provenance | None = field(default=None)
     """what the writer put beside the record; None without a JSON"""
-
-    def get(self, name: str) -> np.ndarray | None:
-        a = self.arrays.get(name)
-        return None if a is None else np.asarray(a, dtype=float)
 
     @property
     def excitation(self) -> ExcitationSizes | None:
@@ -139,5 +121,5 @@ def read_simulation(out: str | Path, case: str, model: str | None = None) -> Sim
     if got is None and arrays is None:
         return None
     if got is None:
-        return Simulation(case, None, arrays or {})
-    return Simulation(case, got.record, arrays or {}, got.provenance)
+        return Simulation(case, None, arrays or RunArrays())
+    return Simulation(case, got.record, arrays or RunArrays(), got.provenance)

@@ -12,7 +12,6 @@ import numpy as np
 from ...reduced.excitation import PulseSizes, RecordSizes
 from ...transients.compare import comparison_models
 from .. import html as h
-from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..readers import INPUTS, SIMULATE_COMMAND, Simulation
 from .compare_section import comparison_block, spectrum_block
@@ -41,7 +40,7 @@ def base_forcing_finding(analysis):
 def _size(sim: Simulation) -> str:
     """How large the run's ground motion is: from its excitation block, else its arrays."""
     ex = sim.excitation
-    g, a = sim.get("ground_x"), sim.get("ground_acceleration")
+    g, a = sim.arrays.ground_x, sim.arrays.ground_acceleration
     said = []
     if isinstance(ex, PulseSizes):
         said.append(f"the ground steps {abs(ex.displacement_step_at_start):.3g} m at t = {h.num(ex.start, 4)} s")
@@ -57,13 +56,13 @@ def _size(sim: Simulation) -> str:
 def _tip(sim: Simulation) -> str:
     """The largest tip displacement relative to the ground, beside the absolute one."""
     frame = sim.run.tip_x_frame if sim.run is not None else None
-    rel = relative_to_ground(sim.arrays, "tip_x", frame)
+    rel = sim.arrays.tip_to_ground(frame)
     if rel is None or not len(rel):
         return ""
     text = f" Largest tip displacement relative to the ground: {h.num(float(np.abs(rel).max()), 4)} m"
-    absolute = sim.arrays.get("tip_x_absolute")
+    absolute = sim.arrays.tip_x_absolute
     if absolute is None and not str(frame or "").startswith("relative"):
-        absolute = sim.arrays.get("tip_x")
+        absolute = sim.arrays.tip_x
     if absolute is not None and len(absolute):
         text += f" (absolute, the ground's motion included: {h.num(float(np.abs(absolute).max()), 4)} m)"
     return text + "."

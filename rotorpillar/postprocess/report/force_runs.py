@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...transients.forces import InternalForcesSummary
+from ..run_arrays import read_npz
 from .state import Build
 
 
@@ -99,9 +100,9 @@ def like_pairs(runs: list[ForcesRun]) -> list[ForcePair]:
 
 def history(build: Build, run: ForcesRun, key: str) -> tuple[np.ndarray, np.ndarray] | None:
     """(t, ``key``) of a run's NPZ beside its JSON, or None."""
-    path = build.out / run.file.replace(".json", ".npz")
     try:
-        with np.load(path) as z:
-            return np.asarray(z["t"]), np.asarray(z[key])
-    except (OSError, KeyError, ValueError):
+        a = read_npz(build.out / run.file.replace(".json", ".npz"))
+    except ValueError:  # a damaged file: the section draws without this run
         return None
+    y = a.series(key) if a is not None else None
+    return None if a is None or a.t is None or y is None else (a.t, y)

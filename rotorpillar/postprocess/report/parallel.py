@@ -92,7 +92,7 @@ class Outcome:
     key: str
     """the report's name of the step (modes_top, load_modes_top, animation_runup, ...)"""
     result: Any
-    """render_modes' dict, an AnimationResult, or None (failed)"""
+    """a ModePictures (render_modes), a ModeSet (load_modes), an AnimationResult, or None (failed)"""
     error: str | None
     seconds: float
     """its wall time in the worker (s)"""

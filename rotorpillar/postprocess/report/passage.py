@@ -26,18 +26,20 @@ if TYPE_CHECKING:
     from ...reduced.stationary import AveragingPrediction
     from ...transients.case_summary import Passage
     from ...transients.model_run import RunRecord
+    from ..run_arrays import RunArrays
 
 
-def _acceleration(arrays: dict, at: float) -> float | None:
+def _acceleration(arrays: RunArrays, at: float) -> float | None:
     """dOmega/dt at time ``at`` from a run's stored speed (rad/s**2)."""
-    t, W = arrays.get("t"), arrays.get("Omega")
+    t, W = arrays.t, arrays.Omega
     if t is None or W is None or len(t) < 3:
         return None
-    t, W = np.asarray(t, dtype=float), np.asarray(W, dtype=float)
     return float(np.interp(at, t, np.gradient(W, t)))
 
 
-def passage_rows(model: str, passages: Sequence[Passage], prediction: AveragingPrediction, arrays: dict) -> list[list]:
+def passage_rows(
+    model: str, passages: Sequence[Passage], prediction: AveragingPrediction, arrays: RunArrays
+) -> list[list]:
     """One row per resonance the run crossed (``prediction``: the run's averaging
     prediction, its ``resonances`` carrying nu and a_max)."""
     pred = {r.index: r for r in prediction.resonances}
@@ -91,10 +93,10 @@ def passage_block(build: Build) -> list[str]:
     scene's own run), and what it says."""
     from ...transients.model_run import ReducedRun
 
-    runs: list[tuple[str, RunRecord | None, dict]] = []
+    runs: list[tuple[str, RunRecord | None, RunArrays]] = []
     c = build.comparisons.get("runup")
     if c is not None:
-        runs += [(m, c.runs.get(m), c.arrays.get(m) or {}) for m in c.models]
+        runs += [(m, c.runs.get(m), c.arrays_of(m)) for m in c.models]
     sim = build.simulations.get("runup")
     if sim is not None and sim.run is not None:
         runs.append((f"{sim.run.model} (the scene's run)", sim.run, sim.arrays))

@@ -5,15 +5,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
-from ..compare_reader import relative_to_ground
 from ..directions import direction
 from ..readers import INPUTS, Simulation
 from .page import model_name
 from .parallel import ModeFiles
 from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, debugging, say
+
+if TYPE_CHECKING:
+    from ..modeshapes import ModePictures
 
 #: The animations the report makes (:func:`animated_runs`).
 ANIMATED = ("runup", "earthquake", "earthquake_paper", "earthquake_scene")
@@ -51,13 +53,13 @@ def render_charts(build: Build) -> None:
                 ),
             )
     quake = build.quake_case
-    if quake is not None and quake.arrays.get("t") is not None:
+    if quake is not None and quake.arrays.t is not None:
         # relative to the ground: under the paper's pulse the absolute tip is
         # the ground's 6 m step and hides the pillar's response
         run = quake.run
         frame = run.tip_x_frame if run is not None else ""
-        tip = relative_to_ground(quake.arrays, "tip_x", frame)
-        rotor = relative_to_ground(quake.arrays, "rotor_x", frame)
+        tip = quake.arrays.tip_to_ground(frame)
+        rotor = quake.arrays.rotor_to_ground(frame)
         model = run.model if run is not None else "model not stated"
         ex = quake.excitation
         unreal = isinstance(ex, (PulseSizes, RecordSizes)) and not ex.realistic
@@ -67,11 +69,11 @@ def render_charts(build: Build) -> None:
             "earthquake_chart",
             lambda: transient_charts.earthquake_chart(
                 fig / "earthquake_response.png",
-                quake.get("t"),
-                quake.get("ground_acceleration"),
+                quake.arrays.t,
+                quake.arrays.ground_acceleration,
                 tip,
                 rotor,
-                quake.get("Omega"),
+                quake.arrays.Omega,
                 title=f"Earthquake response ({model} model){what}",
                 frame="relative to the ground",
             ),
@@ -174,11 +176,11 @@ def passage_of(c, model: str):
     run in comparison ``c`` (its speed and its JSON's resonances), or None."""
     from ..transient_charts import crossings, passage_window
 
-    a, run = c.arrays.get(model) or {}, c.runs.get(model)
-    if a.get("t") is None or a.get("Omega") is None:
+    a, run = c.arrays_of(model), c.runs.get(model)
+    if a.t is None or a.Omega is None:
         return None
     res = [(f"omega_{r.index}", float(r.omega)) for r in (run.resonances if run is not None else ())]
-    return passage_window(a["t"], crossings(a["t"], a["Omega"], res))
+    return passage_window(a.t, crossings(a.t, a.Omega, res))
 
 
 def _record_name(ex: ExcitationSizes | None) -> str:
@@ -211,18 +213,18 @@ def _mode_captions(build: Build) -> dict[str, str]:
     }
 
 
-def _mode_products(build: Build, files: ModeFiles, name: str, r: dict) -> None:
+def _mode_products(build: Build, files: ModeFiles, name: str, r: ModePictures) -> None:
     """The pictures of one set of modes on the page, each captioned from modal.json."""
     from ..directions import mode_label
     from ..geometry import ModeLabel
 
     meta = lambda i: files.modes[i] if i < len(files.modes) else ModeLabel()  # noqa: E731  (as load_modes names them)
     caption = _mode_captions(build)[name]
-    build.mode_pictures[name] = [Product(p, mode_label(meta(i), i), group=name) for i, p in enumerate(r["modes"])]
+    build.mode_pictures[name] = [Product(p, mode_label(meta(i), i), group=name) for i, p in enumerate(r.modes)]
     build.products[f"sheet_{name}"] = Product(
-        r["sheet"],
+        r.sheet,
         (
-            f"The first {len(r['modes'])} modes of {caption} (3D model, {files.vtu.name}): "
+            f"The first {len(r.modes)} modes of {caption} (3D model, {files.vtu.name}): "
             "deformed shape coloured by |u| / max |u| over the undeformed outline; the scale "
             "factor is on each view; the triad names the axes as the paper does (X horizontal, "
             "in the rotor's plane; Z horizontal, along the shaft; Y vertical); an ovalling "
@@ -246,13 +248,10 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
 
     out: list[tuple[str, Simulation, str, dict[str, Any]]] = []
     sim = build.simulations.get("runup")
-    if sim is not None and sim.arrays.get("t") is not None:
+    if sim is not None and sim.arrays.t is not None:
         res = [(f"omega_{r.index}", float(r.omega)) for r in (sim.run.resonances if sim.run is not None else ())]
-        focus = (
-            passage_window(sim.get("t"), crossings(sim.get("t"), sim.get("Omega"), res))
-            if sim.get("Omega") is not None
-            else None
-        )
+        t, omega = sim.arrays.t, sim.arrays.Omega
+        focus = passage_window(t, crossings(t, omega, res)) if omega is not None else None
         out.append(("runup", sim, "Run-up", {"focus": focus}))
     c = build.comparisons.get("earthquake")
     if c is not None:
@@ -260,7 +259,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
             (
                 m
                 for m in sorted(c.models, key=lambda m: m != "modal")
-                if (c.arrays.get(m) or {}).get("t") is not None and m != c.reference
+                if c.arrays_of(m).t is not None and m != c.reference
             ),
             None,
         )
@@ -274,7 +273,7 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
                 )
             )
     quake = build.quake_case
-    if quake is not None and quake.arrays.get("t") is not None:
+    if quake is not None and quake.arrays.t is not None:
         ex = quake.excitation
         pulse = isinstance(ex, PulseSizes) or (isinstance(ex, RecordSizes) and not ex.realistic)
         banner = ""
