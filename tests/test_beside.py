@@ -9,7 +9,9 @@ Sources and tolerances
 - The result lands in this process's cache: the caller's ``modal_analysis`` after it
   returns that very object (no second solve).
 - A second process that fails (here: a module that does not exist) leaves the
-  solve to this process, with the same answer.
+  solve to this process, with the same answer, and says so in one line on stderr.
+- ``start`` starts none for a result already in this process's cache (it would be
+  solved twice).
 """
 
 from __future__ import annotations
@@ -45,7 +47,7 @@ def test_the_second_process_solves_what_this_one_would(top):
     assert modal_analysis(scene, top=top, n_modes=8, mesh=SMALL) is there
 
 
-def test_a_failed_second_process_leaves_the_solve_here(monkeypatch):
+def test_a_failed_second_process_leaves_the_solve_here(monkeypatch, capsys):
     scene = load_scene("paper")
     here = modal_analysis(scene, top=False, n_modes=8, mesh=SMALL, use_cache=False)
     fem3d._CACHE.clear()
@@ -55,3 +57,14 @@ def test_a_failed_second_process_leaves_the_solve_here(monkeypatch):
         there = job.result()
     _same(there, here)
     assert not job.folder.exists()  # its folder removed
+    said = capsys.readouterr().err
+    assert "second process's solve failed" in said and "No module named" in said and "solving here" in said
+
+
+def test_no_second_process_for_a_result_this_one_holds():
+    scene = load_scene("paper")
+    fem3d._CACHE.clear()
+    assert not fem3d.in_cache(scene, False, 8, SMALL)
+    modal_analysis(scene, top=False, n_modes=8, mesh=SMALL)
+    assert fem3d.in_cache(scene, False, 8, SMALL)
+    assert beside_module.start(scene, top=False, n_modes=8, mesh=SMALL) is None

@@ -145,18 +145,15 @@ def _solid(
     """The loaded tube's X bending modes, all its modes, and the bare tube's Eq. 2 on the
     chain's mesh."""
     from ..fem3d import modal_analysis, tip_reduction
-    from ..fem3d.beside import Beside, cores
+    from ..fem3d.beside import start as start_beside
     from ..fem3d.pillar_modes import pillar_modes_from_fem3d
     from ..fem3d.spatial_modes import spatial_modes_from_fem3d
 
     mesh = solid_mesh_section(pm.mesh)
-    with contextlib.ExitStack() as stack:
-        # the bare tube in a second process while this one solves the loaded tube: the two
-        # are independent, and a serial run leaves the second core idle (fem3d.beside)
-        from mpi4py import MPI
-
-        serial = MPI.COMM_WORLD.size == 1 and (comm is None or comm.size == 1)
-        beside = stack.enter_context(Beside(scene, top=False, n_modes=8, mesh=mesh)) if serial and cores() > 1 else None
+    # the bare tube in a second process while this one solves the loaded tube: the two are
+    # independent, and a serial run leaves the second core idle (fem3d.beside)
+    beside = start_beside(scene, top=False, n_modes=8, mesh=mesh, comm=comm)
+    with beside or contextlib.nullcontext():
         n = FIRST_SOLVE
         while True:
             loaded = modal_analysis(scene, top=True, n_modes=n, mesh=mesh, comm=comm)

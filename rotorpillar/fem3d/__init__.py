@@ -163,6 +163,12 @@ def remember(scene: Scene, top: bool, n_modes: int, mesh, result: ModalResult) -
     _keep(_cache_key(scene, top, n_modes, scene.mesh if mesh is None else mesh, 1), result)
 
 
+def in_cache(scene: Scene, top: bool, n_modes: int, mesh) -> bool:
+    """Whether this process's cache holds :func:`modal_analysis`'s result for these
+    arguments on one rank."""
+    return _cache_key(scene, top, n_modes, scene.mesh if mesh is None else mesh, 1) in _CACHE
+
+
 def _keep(key: tuple, result: ModalResult) -> None:
     _CACHE[key] = result
     while len(_CACHE) > CACHE_SIZE:

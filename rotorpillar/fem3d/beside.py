@@ -15,7 +15,8 @@ callers after it read it as before.  The second process is a fresh
 interpreter (about 1 s of imports): it has its own MPI, its own PETSc and
 its own memory, and the same code on the same input gives the same numbers.
 
-Only a serial process on a machine with two or more cores starts one: under
+Only a serial process on a machine with two or more cores starts one
+(:func:`start`), and only for a result not already in its cache: under
 mpirun the ranks already share the cores.  Where the second process fails,
 the solve is done here instead: the same result, only later.
 """
@@ -58,18 +59,25 @@ class Beside:
             pickle.dump(self.request, f)
         # an MPI launcher's variables would make the child try to join the parent's job
         env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "PMI_"))}
-        self.proc: subprocess.Popen | None = subprocess.Popen(
-            [sys.executable, "-m", MODULE, str(self.folder)], env=env, stdout=subprocess.DEVNULL
-        )
+        with open(self.folder / "stderr.txt", "wb") as err:  # said in one line if it fails
+            self.proc: subprocess.Popen | None = subprocess.Popen(
+                [sys.executable, "-m", MODULE, str(self.folder)], env=env, stdout=subprocess.DEVNULL, stderr=err
+            )
 
     def result(self) -> ModalResult:
         """The result: the second process's when it succeeded, else solved here now."""
         from . import modal_analysis, remember
 
         scene, top, n_modes, mesh = self.request
-        if self.proc is not None and self.proc.wait() == 0:
+        code = self.proc.wait() if self.proc is not None else None
+        if code == 0:
             with open(self.folder / "result.pickle", "rb") as f:
                 remember(scene, top, n_modes, mesh, pickle.load(f))
+        else:
+            err = self.folder / "stderr.txt"
+            lines = err.read_text(errors="replace").strip().splitlines() if err.is_file() else []
+            why = lines[-1] if lines else "no message"
+            print(f"fem3d: the second process's solve failed (exit {code}: {why}); solving here", file=sys.stderr)
         self.close()
         return modal_analysis(scene, top=top, n_modes=n_modes, mesh=mesh)
 
@@ -86,6 +94,21 @@ class Beside:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+def start(scene: Scene, *, top: bool, n_modes: int, mesh, comm=None) -> Beside | None:
+    """A :class:`Beside` solving these arguments where it pays: one serial process on two
+    or more cores, the result not already in this process's cache; else None (the
+    caller solves it itself)."""
+    from mpi4py import MPI
+
+    from . import in_cache
+
+    if MPI.COMM_WORLD.size > 1 or (comm is not None and comm.size > 1) or cores() < 2:
+        return None
+    if in_cache(scene, top, n_modes, mesh):
+        return None
+    return Beside(scene, top=top, n_modes=n_modes, mesh=mesh)
 
 
 def solve(folder: Path) -> None:
