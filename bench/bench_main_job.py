@@ -64,21 +64,32 @@ RERUN_TARGETS = {"unchanged": 10.0, "torque_changed": 60.0}
 TORQUE_FACTOR = 1.1
 
 
-def _run(scene: str, out: Path, env: dict, more: list[str]) -> tuple[float, float, RunResult]:
-    """One `rotorpillar run`: (wall s, processor s of it and its stages, run.json)."""
+def _entry(scene: str, out: Path, env: dict, more: list[str], name: str, compares: str, target: float) -> dict:
+    """One `rotorpillar run` into ``out`` with the arguments ``more``, as a bench entry: its
+    wall and processor time (of it and its stages), each stage's, the stages it ran
+    again, the machine's load before and after."""
     argv = [sys.executable, "-m", "rotorpillar", "run", scene, "--out", str(out), *more]
+    load = os.getloadavg()
     cpu0, t0 = _children_cpu(), time.perf_counter()
     p = subprocess.run(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     wall, cpu = time.perf_counter() - t0, _children_cpu() - cpu0
     if p.returncode != 0:
         raise RuntimeError(f"rotorpillar run {scene} {' '.join(more)} exited {p.returncode}: {p.stderr[-2000:]}")
-    return wall, cpu, records.read(out / "run.json", RunResult)
-
-
-def _stages(done: RunResult) -> dict:
+    done = records.read(out / "run.json", RunResult)
     return {
-        k: {"seconds": v.seconds, "cpu_seconds": v.cpu_seconds, "wave": v.wave, "reused": v.reused}
-        for k, v in done.stages.items()
+        "name": name,
+        "compares": compares,
+        "value": wall,
+        "unit": "s",
+        "cpu_seconds": cpu,
+        "stages": {
+            k: {"seconds": v.seconds, "cpu_seconds": v.cpu_seconds, "wave": v.wave, "reused": v.reused}
+            for k, v in done.stages.items()
+        },
+        "rerun": sorted(k for k, v in done.stages.items() if not v.reused),
+        "load_average_before": load[0],
+        "load_average_after": os.getloadavg()[0],
+        "target_seconds": target,
     }
 
 
@@ -87,53 +98,41 @@ def main_job(scene: str, quick: bool = False, reruns: bool = False) -> list[dict
     with nothing changed, and with the stall torque changed; their entries too."""
     from rotorpillar.scene import load_scene
 
-    entries = []
+    what = "the run-up and the paper's earthquake on the ROM, quick" if quick else "every stage"
+    base = QUICK if quick else []
     with tempfile.TemporaryDirectory(prefix="bench-main-job-") as tmp:
         out = Path(tmp) / "out"
         env = dict(os.environ, ROTORPILLAR_CACHE=str(Path(tmp) / "cache"))
-        base = QUICK if quick else []
-        load = os.getloadavg()
-        wall, cpu, done = _run(scene, out, env, base)
-        what = "the run-up and the paper's earthquake on the ROM, quick" if quick else "every stage"
-        entries.append(
-            {
-                "name": f"main_job_{scene}_seconds",
-                "compares": f"`rotorpillar run {scene}` from an empty out/ and result cache, after set-up "
-                f"({what}): wall time of the whole command",
-                "value": wall,
-                "unit": "s",
-                "cpu_seconds": cpu,
-                "stages": _stages(done),
-                "load_average_before": load[0],
-                "load_average_after": os.getloadavg()[0],
-                "target_seconds": 180.0,
-            }
-        )
+        first = f"`rotorpillar run {scene}` from an empty out/ and result cache, after set-up ({what})"
+        entries = [
+            _entry(
+                scene, out, env, base, f"main_job_{scene}_seconds", f"{first}: wall time of the whole command", 180.0
+            )
+        ]
         if reruns:
             torque = load_scene(scene).drive.torque_at_zero * TORQUE_FACTOR
-            changes = {"unchanged": [], "torque_changed": ["--set", f"drive.torque_at_zero={torque:.6g}"]}
-            for name, more in changes.items():
-                load = os.getloadavg()
-                wall, cpu, done = _run(scene, out, env, [*base, *more])
+            changes = {
+                "unchanged": ([], "with nothing changed"),
+                "torque_changed": (
+                    ["--set", f"drive.torque_at_zero={torque:.6g}"],
+                    f"with drive.torque_at_zero x {TORQUE_FACTOR} ({torque:.6g} N*m)",
+                ),
+            }
+            for name, (more, how) in changes.items():
+                compares = (
+                    f"`rotorpillar run {scene}` again in the same out/ {how} ({what}): wall time of the "
+                    "whole command; which stages ran again"
+                )
                 entries.append(
-                    {
-                        "name": f"main_job_{scene}_rerun_{name}_seconds",
-                        "compares": f"`rotorpillar run {scene}` again in the same out/ "
-                        + (
-                            "with nothing changed"
-                            if not more
-                            else f"with drive.torque_at_zero x {TORQUE_FACTOR} ({torque:.6g} N*m)"
-                        )
-                        + f" ({what}): wall time of the whole command; which stages ran again",
-                        "value": wall,
-                        "unit": "s",
-                        "cpu_seconds": cpu,
-                        "stages": _stages(done),
-                        "rerun": sorted(k for k, v in done.stages.items() if not v.reused),
-                        "load_average_before": load[0],
-                        "load_average_after": os.getloadavg()[0],
-                        "target_seconds": RERUN_TARGETS[name],
-                    }
+                    _entry(
+                        scene,
+                        out,
+                        env,
+                        [*base, *more],
+                        f"main_job_{scene}_rerun_{name}_seconds",
+                        compares,
+                        RERUN_TARGETS[name],
+                    )
                 )
     return entries
 
