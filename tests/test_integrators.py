@@ -22,6 +22,7 @@ Sources: Hughes, *The Finite Element Method* (2000), ch. 9; Chung & Hulbert
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -201,3 +202,29 @@ def test_shaft_deflection_is_the_formula_and_does_not_depend_on_alignment():
     shifted = buf[1:].reshape(k, n)  # 8 bytes off the allocation's alignment
     shifted[:] = q
     assert np.array_equal(shaft_deflection(shifted, shaft, e)[0], size)
+
+
+def test_energy_drift_is_kept_and_read_back_for_the_same_model_only(tmp_path, monkeypatch):
+    """The drift study reads no drive: a second study of the same model and settings reads
+    the first one's rows back (bit for bit, without integrating), and says where from; a
+    model that differs in one number (the eccentricity) is integrated again."""
+    from rotorpillar.records import replace
+    from rotorpillar.transients import integrator_study as study
+
+    model = paper_model(paper_example())
+    first = study.drift_study(model, duration=2.0, cache_dir=tmp_path)
+    assert first.kept is None and len(first.rows) == len(study.ADAPTIVE + study.FIXED_STEP)
+
+    def no_integration(*args, **kwargs):
+        raise AssertionError("the kept study should have been read back")
+
+    with monkeypatch.context() as m:
+        m.setattr(study, "simulate", no_integration)
+        again = study.drift_study(model, duration=2.0, cache_dir=tmp_path)
+    assert again.rows == first.rows and again.kept is not None and Path(again.kept).exists()
+    other = replace(model, eccentricity=1.01 * model.eccentricity)
+    assert study.model_digest(other) != study.model_digest(model)
+    with monkeypatch.context() as m:
+        m.setattr(study, "simulate", no_integration)
+        with pytest.raises(AssertionError, match="read back"):
+            study.drift_study(other, duration=2.0, cache_dir=tmp_path)

@@ -61,6 +61,7 @@ def integrators_command(scene: Scene, args, timings) -> Done:
             progress=progress,
             pillar_modes=chain.modes,
             probe_modes=beam_candidates(scene),
+            cache_dir=out_dir(scene, args) / "cache",
         )
     probe = (
         "the stiffness study adds up to 8 pillar modes of the scene's 1D "

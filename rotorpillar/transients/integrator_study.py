@@ -26,12 +26,17 @@ rows; a run that failed holds an error of inf (null in the JSON, None read back)
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import math
 import time
+from pathlib import Path
 
 import msgspec
 import numpy as np
 
+from .. import records
+from ..cache import DiskCache, cache_key, source_hash
 from ..chain.record import PillarModel
 from ..records import Figure, Record, replace
 from ..reduced.drive import DriveSchedule
@@ -214,6 +219,9 @@ class DriftStudy(Record):
     steps_per_period: float
     """the fixed-step schemes' steps per period of the fastest motion (-)"""
     rows: tuple[DriftRow, ...]
+    kept: str | None = None
+    """the file the rows were read back from, when this model had been integrated with these
+    settings before (:func:`drift_study`); None when they were computed in this run"""
 
 
 class IntegratorStudy(Record, omit_defaults=True):
@@ -425,6 +433,36 @@ def stability_study(
     )
 
 
+#: Layout of a cached energy-drift study: a change here makes every kept one a miss.
+DRIFT_CACHE_VERSION = 1
+
+
+def model_digest(model) -> str:
+    """A hash of everything a run of ``model`` (a reduced.rotor_models.RotorStructure)
+    integrates: its arrays by their bytes, its numbers by their repr, its pillar modes by
+    their JSON.  Its notes (words) and its name do not enter the dynamics."""
+    h = hashlib.sha256()
+    for f in dataclasses.fields(model):
+        if f.name in ("notes", "name", "coordinates"):
+            continue
+        v = getattr(model, f.name)
+        h.update(f.name.encode() + b"\0")
+        if isinstance(v, np.ndarray):
+            h.update(str(v.shape).encode() + np.ascontiguousarray(v, dtype=float).tobytes())
+        elif isinstance(v, Record):
+            h.update(records.encode(v))
+        else:
+            h.update(repr(v).encode())
+        h.update(b"\0")
+    return h.hexdigest()[:24]
+
+
+def _drift_code() -> str:
+    """The code a drift study runs: this module and reduced/ (the models and the integrators)."""
+    here = Path(__file__).resolve()
+    return source_hash([here, *sorted((here.parent.parent / "reduced").glob("*.py"))])
+
+
 def drift_study(
     model,
     duration: float = 200.0,
@@ -432,9 +470,33 @@ def drift_study(
     rtol: float = 1e-4,
     steps_per_period: float = 20.0,
     progress=None,
+    cache_dir: Path | None = None,
 ) -> DriftStudy:
-    """Experiment 3: energy drift without damping, motor or load."""
+    """Experiment 3: energy drift without damping, motor or load.
+
+    The drift reads no drive, damping, ground motion or wall clock: the same model and
+    settings give the same rows.  With ``cache_dir`` the study is kept there
+    (``drift-<key>.json``, the key the model's digest, the settings and the code), so a
+    run that changed only the drive (the torque, the ramp) reads it back instead of
+    integrating 40 s of free whirl with every scheme again."""
     m0 = replace(model, damping=np.zeros_like(model.damping), shaft_damping=0.0)
+    cache = key = None
+    if cache_dir is not None:
+        cache = DiskCache(Path(cache_dir), prefix="drift-")
+        args = {
+            "model": model_digest(m0),
+            "duration": duration,
+            "speed": speed,
+            "rtol": rtol,
+            "steps_per_period": steps_per_period,
+            "methods": list(ADAPTIVE + FIXED_STEP),
+        }
+        key = cache_key(args, version=DRIFT_CACHE_VERSION, code=_drift_code())
+        kept = cache.read(key, DriftStudy)
+        if kept is not None:
+            if progress:
+                progress("integrators: energy drift unchanged (the same model and settings), read back")
+            return replace(kept, kept=str(cache.path(key)))
     drive = DriveSchedule.constant(0.0, 0.0, 0.0)
     q0, v0 = m0.steady_initial_state(speed)
     q0 = q0 + 0.5 * m0.eccentricity * np.r_[np.ones(m0.nx), 0.0, 0.0]
@@ -457,16 +519,29 @@ def drift_study(
                 setting=rtol if m not in FIXED_STEP else run.stats.time_step,
             )
         )
-    return DriftStudy(duration, speed, rtol, steps_per_period, tuple(rows))
+    study = DriftStudy(duration, speed, rtol, steps_per_period, tuple(rows))
+    if cache is not None and key is not None:
+        try:
+            cache.write(key, study)
+        except OSError:
+            pass  # a read-only folder costs the next run the study, nothing else
+    return study
 
 
 def run_integrator_study(
-    scene: Scene, duration: float = 10.0, quick: bool = False, progress=None, pillar_modes=None, probe_modes=None
+    scene: Scene,
+    duration: float = 10.0,
+    quick: bool = False,
+    progress=None,
+    pillar_modes=None,
+    probe_modes=None,
+    cache_dir: Path | None = None,
 ) -> IntegratorStudy:
     """All three experiments: accuracy (1) and energy drift (3) on the scene's headline
     model, the ROM on ``pillar_modes`` (the chain's; the paper model when None); the
     stiffness study (2) on ``probe_modes`` (many pillar modes: the 1D beam's, a probe of
-    the integrators' stiffness, not the scene's model; ``pillar_modes`` when None)."""
+    the integrators' stiffness, not the scene's model; ``pillar_modes`` when None).
+    ``cache_dir``: where the energy drift is kept (:func:`drift_study`)."""
     d, L = scene.drive, scene.load
     drive = DriveSchedule.ramp(d.torque_at_zero, d.slope, L.coefficient, scene.simulate.runup_ramp)
     if pillar_modes is None:
@@ -488,5 +563,5 @@ def run_integrator_study(
     # resonance (~156 rad/s on the paper's tube) makes the scipy methods take many times the
     # steps of the paper's two masses; the drifts grow with time, and the study compares
     # the integrators at one duration (measured: 6 s against 25 s for 200 s, quiet machine)
-    drift = drift_study(model, duration=20.0 if quick else 40.0, progress=progress)
+    drift = drift_study(model, duration=20.0 if quick else 40.0, progress=progress, cache_dir=cache_dir)
     return IntegratorStudy(acc, stab, drift)
