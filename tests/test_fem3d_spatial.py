@@ -334,7 +334,7 @@ def test_spatial_unbalance_response_against_the_planar_3d_response():
     """Source 9: with the paper's law (b2 to the ground), no structural ratio and the rotor at
     the top, the static unbalance moves only the rotor's plane and the vertical: the spatial
     response (one real LDL^T of K - Omega**2 M and Woodbury's identity on the damping) is the
-    planar 3D response (the rotor condensed onto the plate, the real 2 x 2 block LU;
+    planar 3D response (the rotor condensed onto the plate, its two rows solved in closed form;
     rotorpillar.fem3d.harmonic.harmonic_response), 1e-6: two direct solves of one system, whose
     round-off grows with the condition of K - Omega**2 M near a mode (26 rad/s is 2.6 % below
     the first bending mode; measured 4e-8 there, 1e-9 elsewhere)."""
