@@ -249,9 +249,10 @@ def _cached_study(scene: Scene, tolerance: float, cache_dir: Path) -> StudyAnaly
     """Under MPI: the runs from the cache only (a missing run is an input error)."""
 
     def runner(case, sc):
+        # the ladder's runner contract: a case and the scene it runs on (here: the one to name)
         raise InputError(
             f"modal --tolerance under MPI needs the convergence study cached "
-            f"({case.label} is not): run `rotorpillar converge {scene.name}` "
+            f"({case.label} is not): run `rotorpillar converge {sc.name}` "
             "serially first"
         )
 
