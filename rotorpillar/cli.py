@@ -25,7 +25,7 @@ from typing import Any
 from . import records
 from .commands import Done, is_root_rank, out_dir, progress
 from .commands.folder_lock import output_lock
-from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser  # noqa: F401
+from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser, command_named  # noqa: F401
 from .errors import ComputationError, InputError, StageError
 from .provenance import Timings, with_provenance, write_result
 from .scene import Scene, load_scene, what_is_there
@@ -185,7 +185,8 @@ def main(argv: list[str] | None = None) -> int:
     ``--debug`` shows the traceback); 130, 143: interrupted (Ctrl-C, SIGTERM), also
     when a library caught the interrupt (``stopped``, ``_exit_as_signalled``).
     """
-    args = build_parser().parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    args = build_parser(only=command_named(words) or "").parse_args(words)
     atexit.unregister(_exit_as_signalled)  # once per process, however many commands it runs
     atexit.register(_exit_as_signalled)
     _RUNNING.append(args.command)

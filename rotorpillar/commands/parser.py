@@ -149,7 +149,22 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")  # cli.EXIT_INPUT
 
 
-def build_parser() -> argparse.ArgumentParser:
+def command_named(argv: list[str]) -> str | None:
+    """The command an argument list runs: its first word that is no option (the top level's
+    options, --help and --version, take no value), or None.
+
+    >>> command_named(["simulate", "paper", "--case", "runup"]), command_named(["--version"])
+    ('simulate', None)
+    """
+    return next((a for a in argv if not a.startswith("-")), None)
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser.  ``only``: the command it will parse, whose own arguments
+    alone are added (each command's module is imported to add them: all twelve take ~0.6 s
+    of CPU, a quick command or a refused input most of its time); the other commands keep
+    their name and help, so the top level's --help and an unknown command read the same.
+    None: every command's arguments (`run`, which parses its stages' arguments with it)."""
     parser = OneLineParser(
         prog="rotorpillar", description="Dynamics of a heavy eccentric rotor on a tall flexible pillar."
     )
@@ -158,6 +173,6 @@ def build_parser() -> argparse.ArgumentParser:
     for name, (_, _, help_) in COMMANDS.items():
         p = sub.add_parser(name, help=help_, description=help_)
         _common(p)
-        if name in EXTRA_ARGUMENTS:
+        if name in EXTRA_ARGUMENTS and only in (None, name):
             EXTRA_ARGUMENTS[name](p)
     return parser

@@ -31,7 +31,6 @@ if TYPE_CHECKING:
     from ..transients.model_run import Fem3dRun, ReducedRun
 
 from ..scene import CASES, INTEGRATORS, MODELS
-from ..transients.case_summary import NoTruncationEstimate
 from . import EXIT_CHECKS, Done
 
 
@@ -234,6 +233,8 @@ def _summary(scene: Scene, r: ReducedRun | Fem3dRun) -> str:
     lines.append(f"  energy balance: relative error {r.energy_balance.relative_error:.2e}")
     if not isinstance(r, ReducedRun):
         return "\n".join(lines)
+    from ..transients.case_summary import NoTruncationEstimate  # here: it brings the integrators (numba)
+
     t = r.truncation
     if isinstance(t, NoTruncationEstimate):
         lines.append("  " + t.statement)
