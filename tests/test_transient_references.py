@@ -351,3 +351,33 @@ def test_the_ladder_has_the_bending_only_family():
     along = resolved_only("solid_hex_p2_along", run)
     assert (along.bending, along.ovalling, along.ovalling_n) == (30.86, None, 2)
     assert resolved_only("solid_hex_p2_around", run) is run
+
+
+def test_the_loaded_modes_computed_once_a_scene(monkeypatch, tmp_path):
+    """Where modal.json is not this scene's, the loaded tube's table is computed, once per
+    scene in a process (a comparison plans its 3D run three times): the second plan reads
+    the first's table, the same rows; another scene computes its own."""
+    import rotorpillar.fem3d as fem3d
+    from rotorpillar.transients import references
+
+    solved = []
+
+    class Table:
+        def __init__(self, scene):
+            self.scene = scene
+
+        def modes_table(self):
+            return [("bending_x", 25.0 + self.scene.drive.torque_at_zero * 1e-6)]  # a row: its numbers
+
+    def modal_analysis(scene, top):
+        solved.append(scene.drive.torque_at_zero)
+        return Table(scene)
+
+    monkeypatch.setattr(fem3d, "modal_analysis", modal_analysis)
+    monkeypatch.setattr(references, "_COMPUTED_ROWS", {})
+    scene = load_scene("paper")
+    first = references.loaded_mode_rows(scene, tmp_path)  # no modal.json there
+    again = references.loaded_mode_rows(load_scene("paper"), tmp_path)
+    assert first == again and first[1] == "computed" and solved == [scene.drive.torque_at_zero]
+    other = override(scene, ["drive.torque_at_zero=5610"])
+    assert references.loaded_mode_rows(other, tmp_path)[0] != first[0] and solved[-1] == 5610.0

@@ -64,18 +64,28 @@ class SectionFunctionals:
 
     components: int = 3
     """3 (shear in x, moment about y, axial) or 6 (and shear in y, moment about x, torque)"""
+    _sparse: Any = None
+    """``rows``' transpose without its zeros (scipy CSR), built at the first ``resultants``"""
 
     def resultants(self, x) -> np.ndarray:
         """(n_z, 3 or 6) shear V (N), moment M (N*m) and axial force N (N, compression
         positive) at each cut for the model's unknowns ``x`` (a PETSc Vec; collective),
         then (6) the shear in y (N), the moment about x (N*m) and the torque (N*m)."""
-        local = self.rows.T @ x.getArray(readonly=True)
+        if self._sparse is None:
+            # each cut's functional lives on its element layer: 15 % of the rows' entries on
+            # the 8 x 15 reference mesh, a third of the dense product's time (0.05 ms against
+            # 0.15), paid at every output time of a transient
+            from scipy.sparse import csr_matrix
+
+            self._sparse = csr_matrix(self.rows.T)
+        local = self._sparse @ x.getArray(readonly=True)
         out = (self.comm.allreduce(local) if self.comm.size > 1 else local).reshape(-1, self.components)
         out[:, 2] *= -1.0
         return out
 
     def destroy(self) -> None:
         self.rows = np.zeros((0, 0))
+        self._sparse = None
 
 
 def section_functionals(
