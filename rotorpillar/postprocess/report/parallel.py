@@ -103,9 +103,20 @@ class Outcome:
 
 
 def _load(files: ModeFiles):
-    from ..geometry import load_modes
+    """The mode shapes of ``files``, read once a worker while their VTU is the same file
+    (the loaded tube's, 1-2 s to read, under every animation a worker draws)."""
+    stat = files.vtu.stat()
+    key = (str(files.vtu), stat.st_mtime_ns, stat.st_size)
+    if _LOADED.get(key) is None or _LOADED[key][0] != files:
+        from ..geometry import load_modes
 
-    return load_modes(files.vtu, files.modes, files.axes)
+        _LOADED.clear()  # one set at a time: a worker's memory holds no stale tube
+        _LOADED[key] = (files, load_modes(files.vtu, files.modes, files.axes))
+    return _LOADED[key][1]
+
+
+#: (VTU path, mtime, size) -> (the files read, the ModeSet): the last set read in this process.
+_LOADED: dict[tuple[str, int, int], tuple[ModeFiles, Any]] = {}
 
 
 def _timed(key: str, fn: Callable[[], Any]) -> Outcome:
