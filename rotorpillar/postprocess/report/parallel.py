@@ -208,10 +208,13 @@ def run_jobs(jobs: Sequence[Job], during: Callable[[], None] | None = None) -> I
     order = sorted(jobs, key=lambda j: -j.cost)
     count = min(WORKERS, os.cpu_count() or 1, len(order))
     if count <= 1:
-        if during is not None:
-            during()
-        for job in order:
-            yield from run_job(job)
+        try:
+            if during is not None:
+                during()
+            for job in order:
+                yield from run_job(job)
+        finally:
+            _LOADED.clear()  # in the report's own process: no VTK object outlives the report
         return
     ctx = multiprocessing.get_context("spawn")
     workers = []
@@ -253,6 +256,7 @@ def run_jobs(jobs: Sequence[Job], during: Callable[[], None] | None = None) -> I
                 for job in todo:
                     yield from run_job(job)
                 todo = []
+                _LOADED.clear()
     except BaseException:  # Ctrl-C, SIGTERM, an error, or the caller stopped: at once
         for proc, _ in workers:
             proc.terminate()
