@@ -205,6 +205,9 @@ class ReportResult(Record):
     """step -> wall time (s)"""
     render_window: str = ""
     """VTK's render window class (off screen)"""
+    reused: dict[str, str] = {}
+    """pictures an earlier report drew, unchanged since (``modes_bare``, ...) -> when it
+    drew them (UTC, ISO 8601): postprocess.report.kept"""
     bytes: int = 0
     """the page's size (bytes)"""
     summary: str | None = None
@@ -257,6 +260,7 @@ def build_report(
         damaged=dict(build.damaged),
         render_seconds=dict(build.render_seconds),
         render_window=build.render_window,
+        reused=dict(build.reused),
         bytes=path.stat().st_size,
     )
 
@@ -271,6 +275,8 @@ def report_text(result: ReportResult) -> str:
     ]
     for k, v in result.animations.items():
         lines.append(f"  animation {k}: {v.frames} frames, x{v.factor:g}, {v.seconds:.1f} s -> {v.path}")
+    for k, when in result.reused.items():
+        lines.append(f"  {k}: unchanged since {when}, reused")
     for k, w in result.failures.items():
         lines.append(f"  FAILED {k}: {w}")
     lines.append("  render seconds: " + ", ".join(f"{k} {t:.1f}" for k, t in result.render_seconds.items()))

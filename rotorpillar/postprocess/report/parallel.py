@@ -103,9 +103,20 @@ class Outcome:
 
 
 def _load(files: ModeFiles):
-    from ..geometry import load_modes
+    """The mode shapes of ``files``, read once a worker while their VTU is the same file
+    (the loaded tube's, 1-2 s to read, under every animation a worker draws)."""
+    stat = files.vtu.stat()
+    key = (str(files.vtu), stat.st_mtime_ns, stat.st_size)
+    if _LOADED.get(key) is None or _LOADED[key][0] != files:
+        from ..geometry import load_modes
 
-    return load_modes(files.vtu, files.modes, files.axes)
+        _LOADED.clear()  # one set at a time: a worker's memory holds no stale tube
+        _LOADED[key] = (files, load_modes(files.vtu, files.modes, files.axes))
+    return _LOADED[key][1]
+
+
+#: (VTU path, mtime, size) -> (the files read, the ModeSet): the last set read in this process.
+_LOADED: dict[tuple[str, int, int], tuple[ModeFiles, Any]] = {}
 
 
 def _timed(key: str, fn: Callable[[], Any]) -> Outcome:
@@ -197,10 +208,13 @@ def run_jobs(jobs: Sequence[Job], during: Callable[[], None] | None = None) -> I
     order = sorted(jobs, key=lambda j: -j.cost)
     count = min(WORKERS, os.cpu_count() or 1, len(order))
     if count <= 1:
-        if during is not None:
-            during()
-        for job in order:
-            yield from run_job(job)
+        try:
+            if during is not None:
+                during()
+            for job in order:
+                yield from run_job(job)
+        finally:
+            _LOADED.clear()  # in the report's own process: no VTK object outlives the report
         return
     ctx = multiprocessing.get_context("spawn")
     workers = []
@@ -242,6 +256,7 @@ def run_jobs(jobs: Sequence[Job], during: Callable[[], None] | None = None) -> I
                 for job in todo:
                     yield from run_job(job)
                 todo = []
+                _LOADED.clear()
     except BaseException:  # Ctrl-C, SIGTERM, an error, or the caller stopped: at once
         for proc, _ in workers:
             proc.terminate()

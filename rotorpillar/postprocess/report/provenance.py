@@ -91,6 +91,8 @@ def _timing_rows(build: Build) -> list:
             ]
         )
     own = ", ".join(f"{k} {v:.2f}" for k, v in build.render_seconds.items())
+    if build.reused:
+        own += "; reused, unchanged: " + ", ".join(f"{k} (drawn {v})" for k, v in build.reused.items())
     rows.append(["this report", h.num(sum(build.render_seconds.values()), 4), own, "now"])
     return rows
 

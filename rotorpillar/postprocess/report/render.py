@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ...reduced.excitation import ExcitationSizes, PulseSizes, RecordSizes
@@ -213,7 +215,16 @@ def _mode_captions(build: Build) -> dict[str, str]:
     }
 
 
-def _mode_products(build: Build, files: ModeFiles, name: str, r: ModePictures) -> None:
+@dataclass(frozen=True)
+class ModePicturesKept:
+    """A set of mode pictures drawn by an earlier report (:mod:`.kept`), as
+    ``modeshapes.ModePictures`` gives a set just drawn."""
+
+    modes: list[Path]
+    sheet: Path
+
+
+def _mode_products(build: Build, files: ModeFiles, name: str, r: ModePictures | ModePicturesKept) -> None:
     """The pictures of one set of modes on the page, each captioned from modal.json."""
     from ..directions import mode_label
     from ..geometry import ModeLabel
@@ -301,14 +312,27 @@ def animated_runs(build: Build) -> list[tuple[str, Simulation, str, dict[str, An
 def render_3d(build: Build, during: Callable[[], None] | None = None) -> None:
     """The mode shapes and the animations, drawn in worker processes (:mod:`.parallel`)
     while ``during`` (the charts) runs here; each picture on the page as it comes."""
+    from . import kept
     from .parallel import AnimationJob, ModesJob, debug_detail, run_jobs
 
     files = dict(mode_files(build))
     jobs: list[ModesJob | AnimationJob] = []
     captions = _mode_captions(build)
+    pictures = build.out / MODES_DIR
+    keys = {}
     for name, f in files.items():
+        keys[name] = kept.modes_key(name, f, build.options.modes)
+        was = kept.recall(pictures, name, keys[name])
+        if was is not None:
+            say(f"mode shapes of {captions[name]}: unchanged since {kept.since(was)}, reused")
+            shown = ModePicturesKept([pictures / n for n in was.modes], pictures / was.sheet)
+            _mode_products(build, f, name, shown)
+            build.reused[f"modes_{name}"] = was.finished
+            build.render_window = build.render_window or was.window
+            continue
+        kept.forget(pictures, name)
         say(f"mode shapes of {captions[name]}")
-        jobs.append(ModesJob(name, f, build.out / MODES_DIR, build.options.modes))
+        jobs.append(ModesJob(name, f, pictures, build.options.modes))
     titles = {}
     if build.options.animations:
         p = build.scene.pillar
@@ -340,6 +364,7 @@ def render_3d(build: Build, during: Callable[[], None] | None = None) -> None:
         elif o.key.startswith("modes_"):
             name = o.key.removeprefix("modes_")
             _mode_products(build, files[name], name, o.result)
+            kept.keep(pictures, name, keys[name], o.result.modes, o.result.sheet, o.seconds, o.window)
         elif o.key.startswith("animation_"):
             name = o.key.removeprefix("animation_")
             _animation_products(build, name, titles[name], o.result)

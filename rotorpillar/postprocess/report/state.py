@@ -116,6 +116,8 @@ class Build:
     damaged: dict[str, str] = field(default_factory=dict)  # command -> what is wrong with its file
     render_seconds: dict[str, float] = field(default_factory=dict)
     render_window: str = ""
+    reused: dict[str, str] = field(default_factory=dict)
+    """pictures not drawn again (``modes_bare``, ...) -> when they were drawn (UTC, ISO 8601)"""
 
     def hint(self, command: str) -> str:
         """What the reader must run: the input is missing, or damaged and to be rebuilt."""
