@@ -52,6 +52,12 @@ def check_run_csv(path: Path) -> None:
         want = npz[name] if name in npz else npz["modal_coordinates"][:, int(name[3:]) - 1]
         # (numpy's check: pytest.approx compares 20,000 rows one Python object at a time)
         np.testing.assert_allclose(column, want, rtol=1e-9, atol=1e-300, err_msg=name)
+    # each value as Python's f"{x:.10g}" writes the NPZ's double (files._write_csv formats
+    # whole rows with "%.10g": the same formatter), here on every 97th row
+    lines = path.read_text().splitlines()[1:]
+    for i in range(0, len(lines), 97):
+        want = [npz[n][i] if n in npz else npz["modal_coordinates"][i, int(n[3:]) - 1] for n in fields]
+        assert lines[i] == ",".join(f"{x:.10g}" for x in want), (path.name, i)
 
 
 def test_a_runs_csv_is_plain(tmp_path):

@@ -47,7 +47,10 @@ def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
     motion = load_record("elcentro", start=0.5)
     stiff = load_scene("paper", COARSE + STIFF)
     soft = load_scene("paper", COARSE + STIFF[:1] + STIFF[2:])
-    r = simulate_fem3d(stiff, "earthquake", motion=motion, duration=5.0, samples=501)
+    # 4 s of the record from 0.5 s: the tip peaks at 3.12 s (over 5 s the same peak), and the
+    # fine reference takes 6 x 1640 steps instead of 6 x 2050; peak error measured -7.3e-4
+    # (-9.4e-4 over 5 s)
+    r = simulate_fem3d(stiff, "earthquake", motion=motion, duration=4.0, samples=401)
     assert r.ok, r.failed_checks
     h = r.integrator.time_step
     rule = r.integrator.step_rule
@@ -59,10 +62,10 @@ def test_a_stiff_shaft_takes_the_bands_step_and_keeps_the_peak():
     assert math.sqrt(1e10 / 1600.0) * h > 5  # the shaft's mode is not resolved
     from rotorpillar.fem3d.full_order_plan import case_setup, step_rule
 
-    mo, drive, _, W0, _ = case_setup(soft, "earthquake", motion, None, 5.0, None)
+    mo, drive, _, W0, _ = case_setup(soft, "earthquake", motion, None, 4.0, None)
     assert step_rule(soft, drive, mo, W0).time_step == pytest.approx(rule.time_step, rel=1e-12)
     fine = load_scene("paper", COARSE + STIFF + ["full_order.integrator=newmark"])
-    f = simulate_fem3d(fine, "earthquake", motion=motion, duration=5.0, time_step=h / 6, samples=501)
+    f = simulate_fem3d(fine, "earthquake", motion=motion, duration=4.0, time_step=h / 6, samples=401)
     assert r.max_abs["tip_x"] == pytest.approx(f.max_abs["tip_x"], rel=5e-3)
     assert r.integrator.factorisations == 1
 

@@ -233,3 +233,65 @@ def test_the_grounds_motion_in_the_rotors_plane():
     np.testing.assert_allclose(
         x.displacement, -second.displacement, rtol=0, atol=1e-15 * np.max(np.abs(second.displacement))
     )
+
+
+def test_steady_torque_over_a_grid_is_the_speed_by_speed_solve():
+    """SpatialRotor.steady_torque solves its speeds stacked (spatial_response.steady_states, in
+    chunks of 256): the same numbers as the operator built and solved at each speed alone, the
+    way the module text's equation reads (written out here, not the package's).  Both are the
+    same LAPACK solves on the same entries; only the dot products' summation order may differ,
+    so 1e-12 of the largest torque.  On the spatial model with the gyroscopic and the couple
+    unbalance on (a couple unbalance of 50 kg*m**2 set, paper has none), over a grid of 600
+    speeds across the first resonances (three chunks)."""
+    from rotorpillar.reduced.spatial_response import steady_state, unbalance_response
+
+    s = load_scene("paper", BEAM + ["rotor.couple_unbalance=50"])
+    model = SpatialRotor.of(scene_spatial_model(s, 1e9))
+    m = model.structure
+    assert m.couple_unbalance > 0 and np.any(m.gyroscopic)
+    W = np.linspace(1.0, 120.0, 600)
+    dx, dv = m.shaft
+    bc, bs = m.couple
+    by_speed = []
+    for w in W:
+        D = m.stiffness_full() - w**2 * m.mass + 1j * w * (m.damping + w * m.gyroscopic)
+        f = m.shaft_stiffness * m.eccentricity * (dx - 1j * dv) + m.couple_unbalance * w**2 * (bc - 1j * bs)
+        Z = np.linalg.solve(D, f)
+        torque = m.shaft_stiffness * m.eccentricity * ((dv @ Z).real + (dx @ Z).imag) / 2
+        by_speed.append(torque + m.couple_unbalance * w**2 * ((bc @ Z).imag + (bs @ Z).real) / 2)
+    stacked = model.steady_torque(W)
+    assert stacked.shape == W.shape
+    assert np.max(np.abs(stacked - by_speed)) <= 1e-12 * np.max(np.abs(by_speed))
+    assert float(model.steady_torque(W[300])) == pytest.approx(by_speed[300], rel=1e-12)
+    # the Bode curves read the same stacked states: each speed's is its own solve's
+    r = unbalance_response(m, W[::50])
+    tip = [abs(steady_state(m, w) @ m.outputs["tip_x"]) for w in W[::50]]
+    assert np.allclose(r.curve("tip_x").amplitude, tip, rtol=1e-12, atol=0)
+
+
+def test_operating_speed_is_solved_once_per_model_and_drive(monkeypatch):
+    """An earthquake run asks for its operating speed three times (preflight, warm-up, run), on
+    models built anew each time: stationary_exact gives an equal model's answer again
+    (stationary._MEMO) and solves any other.  The memo's answer is the solve's (the same
+    records); a model that differs in one field (the eccentricity) or another drive is solved."""
+    from rotorpillar.reduced import stationary
+    from rotorpillar.transients.cases import case_model
+
+    monkeypatch.setattr(stationary, "_MEMO", type(stationary._MEMO)())
+    solved = []
+    solve = stationary._stationary_exact
+    monkeypatch.setattr(stationary, "_stationary_exact", lambda *a: solved.append(a) or solve(*a))
+    s = load_scene("paper", BEAM)
+    d, k = s.drive, s.load.coefficient
+
+    def model(scene):
+        return case_model(scene, "earthquake", "modal").model
+
+    first = stationary.stationary_exact(model(s), d.torque_at_zero, d.slope, k)
+    again = stationary.operating_speed(model(s), d.torque_at_zero, d.slope, k)
+    assert len(solved) == 1 and first == solve(model(s), d.torque_at_zero, d.slope, k, None, 3000)
+    assert again == max(x.omega for x in first if x.stable)
+    other = load_scene("paper", BEAM + [f"rotor.eccentricity={2 * s.rotor.eccentricity!r}"])
+    assert stationary.stationary_exact(model(other), d.torque_at_zero, d.slope, k) != first
+    stationary.stationary_exact(model(s), 1.01 * d.torque_at_zero, d.slope, k)
+    assert len(solved) == 3

@@ -39,7 +39,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, minimize_scalar
 
 from ..provenance import Record, replace
@@ -135,12 +135,27 @@ class SpatialResponse(Record, eq=False):
 
 def steady_state(m: SpatialStructure, speed: float) -> NDArray[np.complex128]:
     """Z^ at a constant ``speed`` (rad/s), the static and the couple unbalance together."""
-    D = m.stiffness_full() - speed**2 * m.mass + 1j * speed * (m.damping + speed * m.gyroscopic)
+    out: NDArray[np.complex128] = steady_states(m, np.array([float(speed)]))[0]
+    return out
+
+
+def steady_states(m: SpatialStructure, speeds: ArrayLike) -> NDArray[np.complex128]:
+    """(n, nz) Z^ at every speed of ``speeds`` (rad/s, (n,)) in one stacked solve: each row is
+    :func:`steady_state`'s at that speed, by the same arithmetic (the operator built entry by
+    entry as one speed builds it, one LAPACK solve per speed), speed by speed it cost a Python
+    round trip and a new K_f per speed (an earthquake run's stationary speeds: ~10**4 of them)."""
+    W = np.atleast_1d(np.asarray(speeds, dtype=float))[:, None, None]
+    # K_f - W**2 M + i W (C + W G), its real and imaginary parts written apart: the same
+    # entries (i W times a real entry is exactly 0 + i W x), without complex temporaries
+    D = np.empty((W.shape[0], *m.mass.shape), dtype=complex)
+    D.real = m.stiffness_full() - W**2 * m.mass
+    D.imag = W * (m.damping + W * m.gyroscopic)
     dx, dv = m.shaft
-    f = m.shaft_stiffness * m.eccentricity * (dx - 1j * dv) + m.couple_unbalance * speed**2 * (
+    w = W[:, :, 0]
+    f = m.shaft_stiffness * m.eccentricity * (dx - 1j * dv) + m.couple_unbalance * w**2 * (
         m.couple[0] - 1j * m.couple[1]
     )
-    out: NDArray[np.complex128] = np.linalg.solve(D, f.astype(complex))
+    out: NDArray[np.complex128] = np.linalg.solve(D, f.astype(complex)[..., None])[..., 0]
     return out
 
 
@@ -176,7 +191,7 @@ def orbit_axes(X: NDArray[np.complex128], Y: NDArray[np.complex128]) -> tuple[ND
 def unbalance_response(m: SpatialStructure, speeds: NDArray[np.float64]) -> SpatialResponse:
     """The steady response at every speed (rad/s) of every output, its peaks and the orbits."""
     speeds = np.asarray(speeds, dtype=float)
-    Z = np.array([steady_state(m, float(w)) for w in speeds])
+    Z = steady_states(m, speeds)
     amp = {name: output_amplitude(m, name, Z) for name in OUTPUTS}
     H = float(m.modes.section_heights[-1]) if m.modes.section_heights is not None else 1.0
     largest = max(float(np.max(np.abs(amp[n]))) * (H if n in ROTATIONS else 1.0) for n in PEAK_CURVES)

@@ -13,6 +13,10 @@ its ``prediction`` and ``passing_torque``.
 
 from __future__ import annotations
 
+import hashlib
+import pickle
+from collections import OrderedDict
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
@@ -179,11 +183,46 @@ class PassingTorqueStudy(Record, kw_only=True, omit_defaults=True, tag_field="ki
 PassingTorque = PassingTorqueStudy | NoPassingFold
 
 
+#: stationary_exact's latest answers, by the model's pickle and the drive: an earthquake or a
+#: run-down run asks for its operating speed three times on equal models (the preflight, the
+#: kernels' warm-up, the run), each time ~10**4 steady solves (2-3 s on the paper's spatial
+#: ROM); a model equal in every field pickles to the same bytes, any other to other bytes.
+_MEMO: OrderedDict[bytes, tuple[StationarySpeed, ...]] = OrderedDict()
+MEMO_SIZE = 8
+"""Answers kept (a run asks on one or two models; each answer is a few speeds)."""
+
+
+def _memo_key(model: RotorStructure, *args: float | None) -> bytes | None:
+    """A digest of the model (every field, through its pickle) and the arguments; None where the
+    model does not pickle (it is then solved every time)."""
+    try:
+        blob = pickle.dumps((type(model).__module__, type(model).__qualname__, model, args), protocol=5)
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return None
+    return hashlib.sha256(blob).digest()
+
+
 def stationary_exact(
     model: RotorStructure, M0: float, slope: float, load: float, top: float | None = None, n: int = 3000
 ) -> list[StationarySpeed]:
     """Stationary speeds of the exact linear torque balance
-    M0 - s W - k W**2 + <shaft torque>(W) = 0 and their stability."""
+    M0 - s W - k W**2 + <shaft torque>(W) = 0 and their stability (an answer for an equal
+    model and drive is given again, not solved again: ``_MEMO``)."""
+    key = _memo_key(model, M0, slope, load, top, n)
+    if key is not None and key in _MEMO:
+        _MEMO.move_to_end(key)
+        return list(_MEMO[key])
+    out = _stationary_exact(model, M0, slope, load, top, n)
+    if key is not None:
+        _MEMO[key] = tuple(out)
+        while len(_MEMO) > MEMO_SIZE:
+            _MEMO.popitem(last=False)
+    return out
+
+
+def _stationary_exact(
+    model: RotorStructure, M0: float, slope: float, load: float, top: float | None, n: int
+) -> list[StationarySpeed]:
     free = DriveSchedule.constant(M0, slope, load).free_speed()
     res = model.quasi_normal()
     top = top or 1.2 * max(free, max(r.omega for r in res))

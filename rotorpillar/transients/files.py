@@ -131,6 +131,9 @@ def _write_csv(path: Path, run: ModelRun) -> Path:
     # No comment line before the header: csv.DictReader, spreadsheets and pandas would
     # take it for the header.  The columns' meaning is in the module docstring; the
     # run's provenance and tip_x_frame in its JSON.
-    rows = (",".join(f"{x:.10g}" for x in row) for row in np.column_stack(block))
+    # one %-format a row on Python floats: the same text as f"{x:.10g}" value by value (one
+    # formatter), in under half the time (a run of 10**6 samples: ~9 s of its 13)
+    line = ",".join(["%.10g"] * len(cols))
+    rows = (line % tuple(row) for row in np.column_stack(block).tolist())
     text = ",".join(cols) + "\n" + "\n".join(rows)
     return write_text(path, text + "\n")
