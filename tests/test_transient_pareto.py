@@ -243,15 +243,3 @@ def test_the_reference_writes_the_keys_it_wrote_as_a_dict(peaks, method):
     assert list(ref) == keys + (["limit"] if method == "richardson" else []) + ["note"]
     again = records.convert(doc, ParetoStudy)
     assert again.reference == study.reference and records.to_builtins(again) == doc
-
-
-def test_a_process_that_ran_a_3d_case_needs_no_warm_up_run(monkeypatch):
-    """compare's own 3D run warms the process (FFCx's forms, the step's code): the study's
-    3D runs it takes then run no tiny case first, and count 0 s of warm-up."""
-    from rotorpillar.transients import pareto_runs
-
-    monkeypatch.setattr(pareto_runs, "_WARM", {})
-    pareto_runs.warm_already("fem3d")
-    # no scene, no motion: a warm-up run would fail on them
-    assert pareto_runs.warm_up_family("fem3d", None, None, 0.0) == 0.0
-    assert pareto_runs._WARM == {"fem3d": 0.0}

@@ -329,10 +329,6 @@ def compare_models(
                 stem=compare_stem(case, m),
             )
         runs[m] = run
-        if m == "fem3d" and pending is not None:
-            from .pareto_runs import warm_already
-
-            warm_already("fem3d")  # the study's 3D runs this process takes need no warm-up run
         if progress:
             progress(f"compare {case}: {m} done in {run.record.wall_seconds:.3g} s ({run.record.dofs} dofs)")
     ref = reference_of(models)

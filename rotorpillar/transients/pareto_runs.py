@@ -245,12 +245,6 @@ def warm_up_family(family: str, scene: Scene, motion, speed: float, pillar_modes
     return _WARM[family]
 
 
-def warm_already(family: str) -> None:
-    """This process ran a real case of ``family`` (compare's own 3D run): its warm-up is
-    done, at no cost of its own (0 s in ``compile_seconds``)."""
-    _WARM.setdefault(family, 0.0)
-
-
 def compute_3d(job) -> tuple[ParetoOutcome, float]:
     """One 3D run (a worker's job: picklable arguments); its outcome and this process's
     warm-up seconds (s)."""
