@@ -136,36 +136,6 @@ def test_pareto_runs_cache_and_resume(tmp_path):
     assert math.isclose(here.peak_tip, victim.peak_tip, rel_tol=1e-9)
 
 
-@pytest.mark.slow  # 3D runs on 8 x 2, 3, 4 elements over 0.3 s, twice; a Dask worker
-@has_dolfinx
-def test_the_caller_takes_the_3d_runs_no_worker_has_begun(tmp_path):
-    """With a worker, the caller (its own work done) runs the 3D runs the worker has not
-    begun, the smallest first: every run computed once, the worker's and the caller's
-    together the numbers of the study run in this process alone (the same code on the same
-    serial solver: equal to the last digit; 1e-12 leaves room for nothing else)."""
-    from rotorpillar.scene import load_scene
-    from rotorpillar.transients.pareto import ParetoRunning, plan_pareto
-
-    scene = load_scene("paper", ["excitation.kind=record"])
-    short = dict(duration=0.3, along=(2, 3, 4), beams=(2,))
-    mesh = replace(scene.mesh, elements_around=8, elements_along=3)
-    plan = plan_pareto(scene, cache_dir=tmp_path / "shared", rom_modes=2, chosen_mesh=mesh, **short)
-    running = ParetoRunning(plan, workers=1)
-    solid = list(running.queue)
-    assert [plan.specs[i][2]["elements_along"] for i in solid] == [4, 3, 2]  # the largest first
-    shared, _ = running.finish()
-    assert running.queue == [] and len(set(running.here)) == len(running.here)
-    if running.here:
-        assert running.here[0] == solid[-1]  # the caller began with the smallest
-    assert len(list((tmp_path / "shared").glob("pareto-*.json"))) == len(plan.specs)  # each run once
-    alone, _ = ParetoRunning(
-        plan_pareto(scene, cache_dir=tmp_path / "alone", rom_modes=2, chosen_mesh=mesh, **short), workers=0
-    ).finish()
-    assert [r.label for r in shared.runs] == [r.label for r in alone.runs]
-    for a, b in zip(shared.runs, alone.runs):
-        assert a.peak_tip == pytest.approx(b.peak_tip, rel=1e-12), a.label
-
-
 def test_runs_are_served_from_the_cache_and_a_damaged_entry_is_recomputed(tmp_path):
     """The reduced runs of a short case (no 3D: no reference, so the analysis refuses,
     after the runs are kept): a second plan finds every run in the cache (rotorpillar.cache,

@@ -257,24 +257,9 @@ def _mpi_rank_size() -> tuple[int, int]:
     return (0, 1) if mpi is None else (mpi.COMM_WORLD.rank, mpi.COMM_WORLD.size)
 
 
-class _Run3d:
-    """compute_3d under the run's own name: the executor names a task by its function's
-    name and its index in one map, and the study maps one run at a time."""
-
-    def __init__(self, label: str):
-        self.__name__ = f"compute_3d[{label}]"
-
-    def __call__(self, job) -> tuple[ParetoOutcome, float]:
-        return compute_3d(job)
-
-
 class ParetoRunning:
-    """The plan's missing 3D runs under way on worker processes (a thread per worker feeds
-    it one run at a time, the largest first), so that the caller's own work (compare's
-    models) runs meanwhile on the other core; the caller, its own work done, takes the
-    runs no worker has begun, the smallest first (``finish``): the two cores end together
-    rather than the caller waiting for one worker's queue (paper: the worker's four runs
-    were twice the caller's 3D run)."""
+    """The plan's missing 3D runs under way on worker processes (a thread waits for them),
+    so that the caller's own work (compare's models) runs meanwhile on the other core."""
 
     def __init__(self, plan: ParetoPlan, workers: int, progress=None):
         import threading
@@ -285,22 +270,13 @@ class ParetoRunning:
         self.solid = [i for i in self.todo if plan.specs[i][0] == "fem3d"]
         self.workers = 0
         self.error: BaseException | None = None
-        self.thread: threading.Thread | None = None
-        self.pool_seconds = 0.0
-        self.lock = threading.Lock()
-        # largest first: a worker takes from the front, the caller from the back
-        self.queue = sorted(
-            self.solid,
-            key=lambda i: -self.plan.specs[i][2]["elements_around"] * self.plan.specs[i][2]["elements_along"],
-        )
-        self.here: list[int] = []
-        """the 3D runs the caller ran itself"""
+        self.thread, self.pool_seconds = None, 0.0
         if progress:
             progress(
                 f"speed against accuracy: {len(plan.specs)} runs, "
                 f"{len(plan.specs) - len(self.todo)} cached, {len(self.todo)} to compute"
                 + (
-                    f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es) and this one)"
+                    f" ({len(self.solid)} 3D on {min(workers, len(self.solid))} worker process(es))"
                     if self.solid and workers > 0
                     else ""
                 )
@@ -312,27 +288,15 @@ class ParetoRunning:
             self.thread = threading.Thread(target=self._pool, daemon=True)
             self.thread.start()
 
-    def _take(self, largest: bool) -> int | None:
-        """The next 3D run no one has begun (the largest or the smallest), or None."""
-        with self.lock:
-            if not self.queue:
-                return None
-            return self.queue.pop(0 if largest else -1)
-
     def keep(self, i: int, out: ParetoOutcome) -> None:
         plan = self.plan
         fam, label, params = plan.specs[i]
         run = StoredRun.of(plan.keys[i], fam, label, params, out)
         if _mpi_rank_size()[0] == 0:
             run_cache(plan.cache_dir).write(plan.keys[i], run)
-        with self.lock:
-            plan.results[i] = run
+        plan.results[i] = run
         if self.progress:
             self.progress(f"speed against accuracy: {label} in {out.wall_seconds:.3g} s")
-
-    def _warm(self, family: str, seconds: float) -> None:
-        with self.lock:
-            self.compile[family] = self.compile.get(family, 0.0) + seconds
 
     def _job(self, i: int):
         p = self.plan
@@ -340,53 +304,45 @@ class ParetoRunning:
 
     def _pool(self) -> None:
         import logging
-        import threading
 
         from ..executor import Executor
 
         logging.getLogger("distributed").setLevel(logging.ERROR)  # dolfinx leaves INFO on
+        order = sorted(
+            self.solid,
+            key=lambda i: -self.plan.specs[i][2]["elements_around"] * self.plan.specs[i][2]["elements_along"],
+        )
         t0 = time.perf_counter()
-
-        def feed(ex) -> None:  # one worker's runs, one at a time
-            try:
-                while self.error is None and (i := self._take(largest=True)) is not None:
-                    for _, (out, warm) in ex.map(_Run3d(self.plan.specs[i][1]), [self._job(i)]):
-                        self._warm("fem3d", warm)
-                        self.keep(i, out)
-            except BaseException as exc:  # re-raised in finish(), in the caller's thread
-                self.error = exc
-
         try:
             with Executor(self.workers) as ex:
-                feeders = [threading.Thread(target=feed, args=(ex,), daemon=True) for _ in range(self.workers)]
-                for f in feeders:
-                    f.start()
-                for f in feeders:
-                    f.join()
-        except BaseException as exc:
+                for j, (out, warm) in ex.map(compute_3d, [self._job(i) for i in order]):
+                    self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + warm
+                    self.keep(order[j], out)
+        except BaseException as exc:  # re-raised in finish(), in the caller's thread
             self.error = exc
         self.pool_seconds = time.perf_counter() - t0
 
     def finish(self) -> tuple[ParetoStudy, dict]:
-        """The reduced runs here, then the 3D runs no worker has begun (all of them without
-        workers), the smallest first, then the workers' runs; the study."""
+        """The reduced runs here, then the 3D runs (here too without workers); the study."""
         plan = self.plan
         t0 = time.perf_counter()
-        for k in (k for k in self.todo if plan.specs[k][0] != "fem3d"):
-            fam, _, params = plan.specs[k]
-            self._warm(fam, warm_up_family(fam, plan.scene, plan.motion, plan.speed, plan.pillar_modes))
-            self.keep(
-                k, reduced_run(plan.scene, fam, params, plan.motion, plan.speed, plan.pillar_modes, plan.duration)
+        for i in (i for i in self.todo if plan.specs[i][0] != "fem3d"):
+            fam, _, params = plan.specs[i]
+            self.compile[fam] = self.compile.get(fam, 0.0) + warm_up_family(
+                fam, plan.scene, plan.motion, plan.speed, plan.pillar_modes
             )
-        while self.error is None and (i := self._take(largest=False)) is not None:
-            out, warm = compute_3d(self._job(i))
-            self._warm("fem3d", warm)
-            self.here.append(i)
-            self.keep(i, out)
+            self.keep(
+                i, reduced_run(plan.scene, fam, params, plan.motion, plan.speed, plan.pillar_modes, plan.duration)
+            )
         if self.thread is not None:
             self.thread.join()
-        if self.error is not None:
-            raise self.error
+            if self.error is not None:
+                raise self.error
+        else:
+            for i in self.solid:
+                out, warm = compute_3d(self._job(i))
+                self.compile["fem3d"] = self.compile.get("fem3d", 0.0) + warm
+                self.keep(i, out)
         docs = [plan.results[i] for i in range(len(plan.specs))]
         k, mesh = plan.rom_modes, plan.chosen_mesh
         study, series = analyse_pareto(
