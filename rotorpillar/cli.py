@@ -256,6 +256,12 @@ def _main(args) -> int:
         say("failed", "out of memory; use a coarser mesh or a shorter run (README, Limits)")
         return EXIT_FAILED
     except Exception as exc:  # a bug: one line, the traceback on request
+        if RECEIVED and not args.debug:
+            # the signal's exception raised inside a C extension's initialisation comes out as
+            # that import's error (petsc4py: "ImportError: initialization failed"): the command
+            # was stopped by the signal, not by a bug
+            say_once("interrupted", "finished outputs are complete, none is half-written")
+            return EXIT_TERMINATED if RECEIVED[-1] == signal.SIGTERM else EXIT_INTERRUPTED
         if args.debug:
             raise
         say(

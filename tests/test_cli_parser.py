@@ -35,3 +35,27 @@ def test_the_top_level_help_does_not_need_the_commands_arguments():
         return text.getvalue()
 
     assert shown(build_parser(only="")) == shown(build_parser())
+
+
+def test_a_signal_turned_into_another_error_by_a_library_is_still_the_signals_exit(tmp_path, monkeypatch, capsys):
+    """SIGTERM while a C extension initialises (petsc4py, imported late since each command
+    imports only its own module) comes out of the import as "ImportError: initialization
+    failed": the command was stopped, so the exit is 143 with the interrupted line, not 70."""
+    import signal
+
+    from rotorpillar import cli
+
+    def stopped_inside_an_import(command, scene, args):
+        cli.RECEIVED.append(signal.SIGTERM)
+        raise ImportError("initialization failed")
+
+    monkeypatch.setattr(cli, "execute", stopped_inside_an_import)
+    assert cli.main(["analyze", "paper", "--out", str(tmp_path)]) == cli.EXIT_TERMINATED
+    assert "interrupted" in capsys.readouterr().err
+
+    def a_bug(command, scene, args):
+        cli.RECEIVED.clear()
+        raise ImportError("a real bug")
+
+    monkeypatch.setattr(cli, "execute", a_bug)
+    assert cli.main(["analyze", "paper", "--out", str(tmp_path)]) == 70
