@@ -62,6 +62,14 @@ def source_hash(files: Iterable[Path]) -> str:
     return h.hexdigest()[:16]
 
 
+def file_hash(path: Path) -> str | None:
+    """The content hash of a file (None when there is none)."""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:24]
+    except OSError:
+        return None
+
+
 def cache_key(args: Mapping[str, Any], *, version: int, code: str) -> str:
     """The key of a result: the hash of its arguments' JSON, the cache's layout ``version``
     and the ``code`` it was computed by (:func:`source_hash`).  Values JSON cannot hold

@@ -45,7 +45,7 @@ from typing import Any
 import msgspec
 
 from .. import records
-from ..cache import Entry, cache_key
+from ..cache import Entry, cache_key, file_hash
 from ..provenance import write_json
 from ..records import Record
 
@@ -82,14 +82,6 @@ class StageDone(Record):
     """its wall time then (s)"""
     outputs: dict[str, str]
     """the files it left, by name in the output folder -> their content hash"""
-
-
-def file_hash(path: Path) -> str | None:
-    """The content hash of a file (None when there is none)."""
-    try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:24]
-    except OSError:
-        return None
 
 
 def package_hash(root: Path) -> str:

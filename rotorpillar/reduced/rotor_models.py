@@ -39,7 +39,9 @@ rotorpillar.reduced.averaging applies to both.
 
 from __future__ import annotations
 
+import hashlib
 import math
+import pickle
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -502,3 +504,14 @@ def modal_model(
             "modes": k,
         },
     )
+
+
+def model_digest(model: object) -> str | None:
+    """A digest of a model in every field (its type and its pickle: arrays by their bytes,
+    numbers, modes, notes): equal models give equal digests, any other another.  None where
+    the model does not pickle (a caller then computes again rather than reuse)."""
+    try:
+        blob = pickle.dumps((type(model).__module__, type(model).__qualname__, model), protocol=5)
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return None
+    return hashlib.sha256(blob).hexdigest()[:24]

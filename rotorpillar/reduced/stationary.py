@@ -13,8 +13,6 @@ its ``prediction`` and ``passing_torque``.
 
 from __future__ import annotations
 
-import hashlib
-import pickle
 from collections import OrderedDict
 
 import numpy as np
@@ -26,7 +24,7 @@ from ..provenance import Record
 from . import averaging as av
 from .batch import Batch, simulate_batch
 from .drive import DriveSchedule
-from .rotor_models import RotorStructure
+from .rotor_models import RotorStructure, model_digest
 
 
 class StationarySpeed(Record):
@@ -187,19 +185,16 @@ PassingTorque = PassingTorqueStudy | NoPassingFold
 #: run-down run asks for its operating speed three times on equal models (the preflight, the
 #: kernels' warm-up, the run), each time ~10**4 steady solves (2-3 s on the paper's spatial
 #: ROM); a model equal in every field pickles to the same bytes, any other to other bytes.
-_MEMO: OrderedDict[bytes, tuple[StationarySpeed, ...]] = OrderedDict()
+_MEMO: OrderedDict[str, tuple[StationarySpeed, ...]] = OrderedDict()
 MEMO_SIZE = 8
 """Answers kept (a run asks on one or two models; each answer is a few speeds)."""
 
 
-def _memo_key(model: RotorStructure, *args: float | None) -> bytes | None:
-    """A digest of the model (every field, through its pickle) and the arguments; None where the
-    model does not pickle (it is then solved every time)."""
-    try:
-        blob = pickle.dumps((type(model).__module__, type(model).__qualname__, model, args), protocol=5)
-    except (pickle.PicklingError, TypeError, AttributeError):
-        return None
-    return hashlib.sha256(blob).digest()
+def _memo_key(model: RotorStructure, *args: float | None) -> str | None:
+    """The model's digest (rotor_models.model_digest) and the arguments; None where the model
+    does not pickle (it is then solved every time)."""
+    digest = model_digest(model)
+    return None if digest is None else f"{digest} {args!r}"
 
 
 def stationary_exact(

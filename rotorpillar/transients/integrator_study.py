@@ -26,8 +26,6 @@ rows; a run that failed holds an error of inf (null in the JSON, None read back)
 
 from __future__ import annotations
 
-import dataclasses
-import hashlib
 import math
 import time
 from pathlib import Path
@@ -35,7 +33,6 @@ from pathlib import Path
 import msgspec
 import numpy as np
 
-from .. import records
 from ..cache import DiskCache, cache_key, source_hash
 from ..chain.record import PillarModel
 from ..records import Figure, Record, replace
@@ -43,6 +40,7 @@ from ..reduced.drive import DriveSchedule
 from ..reduced.excitation import no_motion
 from ..reduced.integration import FIXED_STEP, Settings, simulate
 from ..reduced.models import build_model
+from ..reduced.rotor_models import model_digest
 from ..scene import SCIPY_METHODS, Scene
 
 #: Fixed-step runs' and adaptive runs' ``family``.
@@ -437,26 +435,6 @@ def stability_study(
 DRIFT_CACHE_VERSION = 1
 
 
-def model_digest(model) -> str:
-    """A hash of everything a run of ``model`` (a reduced.rotor_models.RotorStructure)
-    integrates: its arrays by their bytes, its numbers by their repr, its pillar modes by
-    their JSON.  Its notes (words) and its name do not enter the dynamics."""
-    h = hashlib.sha256()
-    for f in dataclasses.fields(model):
-        if f.name in ("notes", "name", "coordinates"):
-            continue
-        v = getattr(model, f.name)
-        h.update(f.name.encode() + b"\0")
-        if isinstance(v, np.ndarray):
-            h.update(str(v.shape).encode() + np.ascontiguousarray(v, dtype=float).tobytes())
-        elif isinstance(v, Record):
-            h.update(records.encode(v))
-        else:
-            h.update(repr(v).encode())
-        h.update(b"\0")
-    return h.hexdigest()[:24]
-
-
 def _drift_code() -> str:
     """The code a drift study runs: this module and reduced/ (the models and the integrators)."""
     here = Path(__file__).resolve()
@@ -481,10 +459,11 @@ def drift_study(
     integrating 40 s of free whirl with every scheme again."""
     m0 = replace(model, damping=np.zeros_like(model.damping), shaft_damping=0.0)
     cache = key = None
-    if cache_dir is not None:
+    digest = model_digest(m0) if cache_dir is not None else None
+    if cache_dir is not None and digest is not None:  # a model that does not pickle: no cache
         cache = DiskCache(Path(cache_dir), prefix="drift-")
         args = {
-            "model": model_digest(m0),
+            "model": digest,
             "duration": duration,
             "speed": speed,
             "rtol": rtol,

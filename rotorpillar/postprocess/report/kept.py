@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import datetime
 import functools
-import hashlib
 from collections.abc import Sequence
 from importlib import metadata
 from pathlib import Path
@@ -40,7 +39,7 @@ from pathlib import Path
 import msgspec
 
 from ... import records
-from ...cache import Entry, cache_key, source_hash
+from ...cache import Entry, cache_key, file_hash, source_hash
 from ...provenance import write_json
 from ...records import Record
 from .parallel import ModeFiles
@@ -81,14 +80,6 @@ class KeptPictures(Record):
     """the contact sheet (name in the folder)"""
     hashes: dict[str, str]
     """PNG name -> its content hash"""
-
-
-def file_hash(path: Path) -> str | None:
-    """The content hash of a file (None when there is none)."""
-    try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:24]
-    except OSError:
-        return None
 
 
 @functools.lru_cache(maxsize=1)
