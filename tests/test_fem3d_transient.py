@@ -333,7 +333,7 @@ def test_the_motors_reaction_on_the_top():
 
     A start at speed starts on the static deflection under Md = M0 - s W0: with no ground motion
     and no unbalance the tip starts at the direct solve's U_x (K u = Md on Theta_y, the test's own
-    solve: 1e-9, round-off) and stays there (1e-6 of it over 1 s: the start is consistent, nothing
+    solve: 1e-8, round-off) and stays there (1e-6 of it over 1 s: the start is consistent, nothing
     rings); the direct solve against the cantilever's closed form M H**2 / (2 E I) within this
     16 x 6 mesh's bending error (measured -0.7 %: 3 %).  Without the reaction nothing moves the
     top.  A run-up from rest, M0 ramped over 2 s against a slope that holds the speed near 50
@@ -353,7 +353,9 @@ def test_the_motors_reaction_on_the_top():
     p = scene.pillar
     EI = p.youngs_modulus * math.pi / 64 * (p.outer_diameter**4 - p.inner_diameter**4)
     assert unit == pytest.approx(p.height**2 / (2 * EI), rel=3e-2)
-    assert r.tip_x[0] == pytest.approx(unit * Md0, rel=1e-9)
+    # two direct solves of one system agree to its round-off, which the machine's kernels set:
+    # measured 1e-10 on one machine and 2.4e-9 on an AVX-512 one (K's diagonal spans 14 decades)
+    assert r.tip_x[0] == pytest.approx(unit * Md0, rel=1e-8)
     assert np.max(np.abs(r.tip_x - unit * Md0)) < 1e-6 * abs(unit * Md0)
     assert "reaction" in r.model.forcing and "static deflection" in r.model.start
     plain = simulate_fem3d(scene, "earthquake", drive=DriveSchedule.constant(M0, s, 0.0), **kw)

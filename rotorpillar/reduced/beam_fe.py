@@ -288,7 +288,7 @@ def section_forces(
     >>> K, _ = assemble(bp, 4, "timoshenko")
     >>> f = np.zeros(K.shape[0]); f[-2] = 1e3
     >>> V, M = section_forces(bp, 4, "timoshenko", np.r_[0.0, 0.0, np.linalg.solve(K, f)])
-    >>> np.round(V, 6).tolist(), np.round(M, 6).tolist()
+    >>> (np.round(V, 6) + 0.0).tolist(), (np.round(M, 6) + 0.0).tolist()  # + 0.0: no -0.0
     ([1000.0, 1000.0, 1000.0, 1000.0, 1000.0], [20000.0, 15000.0, 10000.0, 5000.0, 0.0])
     """
     u = np.asarray(u, dtype=float)
