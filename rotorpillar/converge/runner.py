@@ -12,6 +12,7 @@ pure-Python models run in-process and report tracemalloc's peak.
 
 from __future__ import annotations
 
+import functools
 import resource
 import sys
 import tempfile
@@ -47,8 +48,14 @@ CACHE_VERSION = 3  # 3: an Entry of a ConvergenceRun record (msgspec)
 """Bump to invalidate every cached run (the layout of a cached result changed)."""
 
 
-def _source_files(model: str) -> list[Path]:
-    """The source files a model's results depend on (their hash is in the cache key)."""
+@functools.cache
+def _source_files(model: str) -> tuple[Path, ...]:
+    """The source files a model's results depend on (their hash is in the cache key); the
+    package's files are listed once a process (the tornado asked 1,659 times)."""
+    return tuple(_list_source_files(model))
+
+
+def _list_source_files(model: str) -> list[Path]:
     root = Path(__file__).parent.parent
     tower = [root / "reduced" / "tower.py", root / "reduced" / "foundation.py", root / "scene" / "tower.py"]
     if model == "closed_form":
