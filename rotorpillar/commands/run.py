@@ -111,12 +111,15 @@ RUN_STAGES: tuple[RunStage, ...] = (
     RunStage("modal", "3D modes of the tube on the chosen mesh, bare and with its top mass", wave=1),
     RunStage("analyze", "the headline model (the ROM) and the paper's, averaging", wave=2),
     # El Centro on the ROM and the 3D full order (the study's reference mesh for the modes
-    # the load excites), with the speed-against-accuracy study
+    # the load excites), with the speed-against-accuracy study.  On one process: beside the
+    # wave's other slot a Dask worker for the study's 3D runs made three busy processes on
+    # two cores, and cost its start-up (measured, torque rerun of paper: the stage 33.6 ->
+    # 24-26 s of CPU, the wave's stages 96 -> 82-89 s summed, the rerun 64.6 -> 62.1 s)
     RunStage(
         "compare --case earthquake",
         "a recorded earthquake: the ROM against the 3D full order",
         wave=3,
-        arguments=COMPARISONS["earthquake"],
+        arguments=(*COMPARISONS["earthquake"], "--workers", "1"),
     ),
     RunStage(
         "compare --case runup",

@@ -117,7 +117,7 @@ def _extended(A, block: np.ndarray | None, at: int, extra: int):
     A None for A: a zero matrix of that size with an explicit zero diagonal (so that a later
     shift keeps its pattern)."""
     from petsc4py import PETSc
-    from scipy.sparse import coo_matrix, csr_matrix
+    from scipy.sparse import coo_matrix, csr_matrix, vstack
 
     comm = A.getComm().tompi4py()
     last = comm.rank == comm.size - 1
@@ -127,13 +127,17 @@ def _extended(A, block: np.ndarray | None, at: int, extra: int):
     ia, ja, va = A.getValuesCSR()
     local = csr_matrix((va, ja, np.r_[ia, np.full(rows - (hi - lo), ia[-1])]), shape=(rows, n))
     if block is not None and last:
-        # Summed as coordinates, not with scipy's `+`: that drops every sum that is exactly 0, and
-        # an explicit 0 that T^T K T stores where T^T M T stores round-off (2.5e-11 at one plate row
-        # on an AVX-512 machine) would leave M with a place K lacks: K - w^2 M on K's places fails.
+        # The block's rows summed as coordinates, not with scipy's `+`: that drops every sum that
+        # is exactly 0, and an explicit 0 that T^T K T stores where T^T M T stores round-off
+        # (2.5e-11 at one plate row on an AVX-512 machine) would leave M with a place K lacks:
+        # K - w^2 M on K's places fails.  The rows above the block are stacked as they are.
         i, j = np.nonzero(block)
-        c = local.tocoo()
-        rows_at, cols_at = np.r_[c.row, at + i - lo], np.r_[c.col, at + j]
-        local = coo_matrix((np.r_[c.data, block[i, j]], (rows_at, cols_at)), shape=(rows, n)).tocsr()
+        first = at - lo
+        c = local[first:].tocoo()
+        tail = coo_matrix(
+            (np.r_[c.data, block[i, j]], (np.r_[c.row, i], np.r_[c.col, at + j])), shape=(rows - first, n)
+        ).tocsr()
+        local = vstack([local[:first], tail], format="csr")
     local.sort_indices()
     B = PETSc.Mat().createAIJ(
         ((rows, n), (rows, n)),
