@@ -105,20 +105,21 @@ class KeptChart(Record):
     """its content hash"""
 
 
-def _libraries() -> dict[str, str]:
-    found = {}
+def _libraries() -> tuple[tuple[str, str], ...]:
+    """(library, its version or "absent") of each of :data:`DRAWING_LIBRARIES`."""
+    found = []
     for name in DRAWING_LIBRARIES:
         try:
-            found[name] = metadata.version(name)
+            found.append((name, metadata.version(name)))
         except metadata.PackageNotFoundError:
-            found[name] = "absent"
-    return found
+            found.append((name, "absent"))
+    return tuple(found)
 
 
 @functools.lru_cache(maxsize=1)
 def drawing_code() -> str:
     """The code part of a key: :data:`DRAWING_FILES` and the versions of :data:`DRAWING_LIBRARIES`."""
-    return cache_key(_libraries(), version=KEY_VERSION, code=source_hash(DRAWING_FILES))[:16]
+    return cache_key(dict(_libraries()), version=KEY_VERSION, code=source_hash(DRAWING_FILES))[:16]
 
 
 @functools.lru_cache(maxsize=1)
@@ -127,7 +128,7 @@ def chart_code() -> str:
     chart functions, the styles, the report's steps) and the versions of
     :data:`DRAWING_LIBRARIES`."""
     files = sorted(_POSTPROCESS.rglob("*.py"), key=lambda f: f.relative_to(_POSTPROCESS).as_posix())
-    return cache_key(_libraries(), version=KEY_VERSION, code=source_hash(files))[:16]
+    return cache_key(dict(_libraries()), version=KEY_VERSION, code=source_hash(files))[:16]
 
 
 def modes_key(name: str, files: ModeFiles, count: int) -> str:
