@@ -206,8 +206,9 @@ class ReportResult(Record):
     render_window: str = ""
     """VTK's render window class (off screen)"""
     reused: dict[str, str] = {}
-    """pictures an earlier report drew, unchanged since (``modes_bare``, ...) -> when it
-    drew them (UTC, ISO 8601): postprocess.report.kept"""
+    """pictures and charts an earlier report drew, unchanged since (``modes_bare``,
+    ``chart_response_spectrum``, ...) -> when it drew them (UTC, ISO 8601):
+    postprocess.report.kept"""
     bytes: int = 0
     """the page's size (bytes)"""
     summary: str | None = None

@@ -18,7 +18,7 @@ from ...verdict.summary import EngineeringSummary
 from .. import html as h
 from .force_runs import ForcePair, ForcesRun, every_forces_run, forces_runs, history, like_pairs
 from .page import plain
-from .state import FIGURES_DIR, Build, attempt
+from .state import FIGURES_DIR, Build
 
 NAMES = {"modal": "ROM", "fem3d": "3D full order", "beam": "1D beam full order", "paper": "paper Eq. 4"}
 #: where a mode of the separation table comes from
@@ -157,22 +157,23 @@ def section_internal_forces(build: Build) -> str:
     for r in runs:
         by_case.setdefault(r.case, []).append(r)
     from .. import engineering_charts as ec
+    from . import kept
 
     fig = build.out / FIGURES_DIR
     for case, items in by_case.items():
         stem = case.split(" ")[0]
         key = f"envelope_{stem}"
-        p = attempt(
+        p = kept.chart(
             build,
             key,
-            lambda items=items, case=case, stem=stem: ec.envelope_chart(
-                fig / f"forces_{stem}.png",
-                [
-                    (NAMES.get(f.model, f.model), f.model, f.heights, f.moment_envelope, f.shear_envelope)
-                    for f in (r.forces for r in items)
-                ],
-                title=f"{case}: envelopes along the height",
-            ),
+            fig / f"forces_{stem}.png",
+            ec.envelope_chart,
+            fig / f"forces_{stem}.png",
+            [
+                (NAMES.get(f.model, f.model), f.model, f.heights, f.moment_envelope, f.shear_envelope)
+                for f in (r.forces for r in items)
+            ],
+            title=f"{case}: envelopes along the height",
         )
         if p:
             parts.append(
@@ -185,16 +186,16 @@ def section_internal_forces(build: Build) -> str:
             if hist is not None
         ]
         if series:
-            p = attempt(
+            p = kept.chart(
                 build,
                 f"base_moment_{stem}",
-                lambda series=series, case=case, stem=stem: ec.history_chart(
-                    fig / f"base_moment_{stem}.png",
-                    series,
-                    "base moment [MN m]",
-                    1e-6,
-                    title=f"{case}: the base moment",
-                ),
+                fig / f"base_moment_{stem}.png",
+                ec.history_chart,
+                fig / f"base_moment_{stem}.png",
+                series,
+                "base moment [MN m]",
+                1e-6,
+                title=f"{case}: the base moment",
             )
             if p:
                 parts.append(h.image(p, f"{case}: the base moment M(0, t), per model overlaid."))
@@ -345,6 +346,7 @@ def section_unbalance(build: Build) -> str:
     if r is None:
         return h.section("unbalance", title, [h.missing(_sentence(build.hint("harmonic")))])
     from .. import engineering_charts as ec
+    from . import kept
 
     fig = build.out / FIGURES_DIR
     curves = [c for c in (r.rom, r.fem3d) if c is not None]
@@ -356,7 +358,9 @@ def section_unbalance(build: Build) -> str:
             "(dotted) is the first-order expansion of the ROM's curve about it.",
         )
     ]
-    p = attempt(build, "bode", lambda: ec.bode_chart(fig / "bode.png", curves, r.averaging, r.running_speeds))
+    p = kept.chart(
+        build, "bode", fig / "bode.png", ec.bode_chart, fig / "bode.png", curves, r.averaging, r.running_speeds
+    )
     if p:
         parts.append(
             h.image(
@@ -402,16 +406,16 @@ def section_unbalance(build: Build) -> str:
         + " (wall time on a shared machine; bench/ has ratios)."
     )
     parts.append(h.tag("p", cost))
-    p = attempt(
+    p = kept.chart(
         build,
         "campbell",
-        lambda: ec.campbell_chart(
-            fig / "campbell.png",
-            r.modes,
-            r.running_speeds,
-            r.band_top,
-            orders=() if r.orders is None else r.orders.orders,
-        ),
+        fig / "campbell.png",
+        ec.campbell_chart,
+        fig / "campbell.png",
+        r.modes,
+        r.running_speeds,
+        r.band_top,
+        orders=() if r.orders is None else r.orders.orders,
     )
     parts.append(h.tag("h3", "Separation margins (API 684)"))
     if p:

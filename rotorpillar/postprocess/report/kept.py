@@ -16,6 +16,13 @@ unreadable file: the set is drawn again.  The file is removed before a set is
 drawn (:func:`forget`), so a drawing that fails or is interrupted is never taken
 for done.
 
+The report's charts (matplotlib PNGs under figures/) are kept the same way, one
+``figures/<stem>_chart.json`` a chart (:func:`chart`): its key is the arguments
+the chart is drawn from (the records and arrays its function is called with,
+encoded as the records are), the function's name and the code of the whole
+postprocess package (:func:`chart_code`); a chart of the convergence study or of
+the modes is not drawn again when a new stall torque changes only the runs.
+
 >>> import tempfile
 >>> d = Path(tempfile.mkdtemp())
 >>> _ = (d / "bare_mode_01.png").write_bytes(b"png 1")
@@ -32,9 +39,11 @@ from __future__ import annotations
 
 import datetime
 import functools
-from collections.abc import Sequence
+import time
+from collections.abc import Callable, Sequence
 from importlib import metadata
 from pathlib import Path
+from typing import Any
 
 import msgspec
 
@@ -43,6 +52,7 @@ from ...cache import Entry, cache_key, file_hash, source_hash
 from ...provenance import write_json
 from ...records import Record
 from .parallel import ModeFiles
+from .state import Build, attempt, say
 
 #: Layout of a key: a change here makes every kept set a miss.
 KEY_VERSION = 1
@@ -82,16 +92,43 @@ class KeptPictures(Record):
     """PNG name -> its content hash"""
 
 
+class KeptChart(Record):
+    """A chart drawn and kept under its key."""
+
+    finished: str
+    """when it was drawn (UTC, ISO 8601)"""
+    seconds: float
+    """its drawing's wall time then (s)"""
+    chart: str
+    """the PNG (name in the folder)"""
+    hash: str
+    """its content hash"""
+
+
+def _libraries() -> tuple[tuple[str, str], ...]:
+    """(library, its version or "absent") of each of :data:`DRAWING_LIBRARIES`."""
+    found = []
+    for name in DRAWING_LIBRARIES:
+        try:
+            found.append((name, metadata.version(name)))
+        except metadata.PackageNotFoundError:
+            found.append((name, "absent"))
+    return tuple(found)
+
+
 @functools.lru_cache(maxsize=1)
 def drawing_code() -> str:
     """The code part of a key: :data:`DRAWING_FILES` and the versions of :data:`DRAWING_LIBRARIES`."""
-    found = {}
-    for name in DRAWING_LIBRARIES:
-        try:
-            found[name] = metadata.version(name)
-        except metadata.PackageNotFoundError:
-            found[name] = "absent"
-    return cache_key(found, version=KEY_VERSION, code=source_hash(DRAWING_FILES))[:16]
+    return cache_key(dict(_libraries()), version=KEY_VERSION, code=source_hash(DRAWING_FILES))[:16]
+
+
+@functools.lru_cache(maxsize=1)
+def chart_code() -> str:
+    """The code part of a chart's key: every module of the postprocess package (the
+    chart functions, the styles, the report's steps) and the versions of
+    :data:`DRAWING_LIBRARIES`."""
+    files = sorted(_POSTPROCESS.rglob("*.py"), key=lambda f: f.relative_to(_POSTPROCESS).as_posix())
+    return cache_key(dict(_libraries()), version=KEY_VERSION, code=source_hash(files))[:16]
 
 
 def modes_key(name: str, files: ModeFiles, count: int) -> str:
@@ -141,6 +178,69 @@ def recall(directory: Path, name: str, key: str) -> KeptPictures | None:
     return kept
 
 
-def since(kept: KeptPictures) -> str:
+def since(kept: KeptPictures | KeptChart) -> str:
     """When a kept set was drawn, in local time to the minute ("2026-11-27 19:02")."""
     return datetime.datetime.fromisoformat(kept.finished).astimezone().strftime("%Y-%m-%d %H:%M")
+
+
+def chart_key(draw: Callable, args: Sequence, kwargs: dict) -> str:
+    """The key of the chart ``draw(*args, **kwargs)`` draws: the function's name, its
+    arguments (records, arrays, paths, numbers, encoded as the records are: every
+    value of every array) and the code (:func:`chart_code`)."""
+    what = {"draw": f"{draw.__module__}.{draw.__qualname__}", "args": list(args), "kwargs": kwargs}
+    return cache_key({"draws": records.encode(what).decode()}, version=KEY_VERSION, code=chart_code())
+
+
+def _chart_path(png: Path) -> Path:
+    return Path(png).with_name(f"{Path(png).stem}_chart.json")
+
+
+def recall_chart(png: Path, key: str) -> KeptChart | None:
+    """The kept chart when its key is ``key`` and ``png`` is still the one drawn; None
+    (draw it) otherwise."""
+    try:
+        entry = records.decode(_chart_path(png).read_bytes(), Entry[KeptChart])
+    except (OSError, msgspec.DecodeError, msgspec.ValidationError):
+        return None
+    kept: KeptChart = entry.value
+    if entry.key != key or kept.chart != Path(png).name or file_hash(png) != kept.hash:
+        return None
+    return kept
+
+
+def keep_chart(png: Path, key: str, seconds: float) -> Path | None:
+    """Keep a chart just drawn: its key, now, its time and its PNG's hash."""
+    digest = file_hash(png)
+    if digest is None:
+        return None
+    now = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
+    return write_json(_chart_path(png), Entry(key, KeptChart(now, seconds, Path(png).name, digest)))
+
+
+def chart(
+    build: Build, key: str, png: Path, draw: Callable[..., Path], *args, reads: Any = None, **kwargs
+) -> Path | None:
+    """The chart ``draw(*args, **kwargs)`` writes to ``png`` (one of ``args``), drawn as
+    an :func:`.state.attempt` step named ``key``, or the one an earlier report drew from
+    the same arguments with the same code, unchanged since: then said (stderr,
+    ``build.reused["chart_<key>"]``) and not drawn.
+
+    ``reads``, when given, stands for ``args`` and ``kwargs`` in the key: what ``draw``
+    reads of a record it is given whole (analyze.json's resonance curves, not its drive
+    or its timings).  It must name every field the chart shows."""
+    try:
+        k: str | None = chart_key(draw, args, kwargs) if reads is None else chart_key(draw, (reads,), {})
+    except (TypeError, ValueError, NotImplementedError):  # an argument the records cannot encode: drawn
+        k = None
+    if k is not None:
+        was = recall_chart(png, k)
+        if was is not None:
+            say(f"{key}: unchanged since {since(was)}, reused")
+            build.reused[f"chart_{key}"] = was.finished
+            return Path(png)
+    _chart_path(png).unlink(missing_ok=True)
+    start = time.perf_counter()
+    p = attempt(build, key, lambda: draw(*args, **kwargs))
+    if p is not None and k is not None and Path(p) == Path(png):
+        keep_chart(png, k, time.perf_counter() - start)
+    return p

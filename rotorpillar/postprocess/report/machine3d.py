@@ -19,7 +19,7 @@ from ...transients.components import ComponentsComparison
 from ...verdict.harmonic import HarmonicResult
 from .compare_section import Picture
 from .page import Section, render, with_subsections
-from .state import FIGURES_DIR, Build, attempt
+from .state import FIGURES_DIR, Build
 
 
 def _read(build: Build, file: str, record_type: type) -> tuple[object | None, str | None]:
@@ -68,17 +68,15 @@ def _orbits(build: Build, campbell) -> Picture | None:
     """orbits.png from harmonic.json's spatial response (None: no file, no spatial response, or
     the chart failed: the failure is the build's)."""
     from ..orbit_chart import orbit_chart
+    from . import kept
 
     harmonic, _ = _read(build, "harmonic.json", HarmonicResult)
     spatial = getattr(harmonic, "spatial", None)
     if spatial is None:
         return None
     running = getattr(campbell, "running_speed", None)
-    path = attempt(
-        build,
-        "orbits",
-        lambda: orbit_chart(Path(build.out) / FIGURES_DIR / "orbits.png", spatial, running),
-    )
+    png = Path(build.out) / FIGURES_DIR / "orbits.png"
+    path = kept.chart(build, "orbits", png, orbit_chart, png, spatial, running)
     if path is None:
         return None
     return Picture(

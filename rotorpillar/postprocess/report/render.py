@@ -14,7 +14,7 @@ from ..directions import direction
 from ..readers import INPUTS, Simulation
 from .page import model_name
 from .parallel import ModeFiles
-from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, attempt, debugging, say
+from .state import ANIMATIONS_DIR, FIGURES_DIR, MODES_DIR, Build, Product, debugging, say
 
 if TYPE_CHECKING:
     from ..modeshapes import ModePictures
@@ -25,11 +25,13 @@ ANIMATED = ("runup", "earthquake", "earthquake_paper", "earthquake_scene")
 
 def render_charts(build: Build) -> None:
     from .. import charts, transient_charts
+    from . import kept
 
     fig = build.out / FIGURES_DIR
     analysis = build.analysis
     if analysis is not None:
-        p = attempt(build, "drive_chart", lambda: charts.drive_chart(analysis, fig / "drive_resistance.png"))
+        png = fig / "drive_resistance.png"
+        p = kept.chart(build, "drive_chart", png, charts.drive_chart, analysis, png)
         if p:
             build.products["drive_chart"] = Product(
                 p,
@@ -42,9 +44,14 @@ def render_charts(build: Build) -> None:
                     "curves stored in analyze.json."
                 ),
             )
-        p = attempt(
-            build, "amplitude_chart", lambda: charts.amplitude_chart(analysis, fig / "resonance_amplitudes.png")
-        )
+        png = fig / "resonance_amplitudes.png"
+        # the fields charts.amplitude_chart reads: the averaging's curves do not depend on the
+        # drive, the rest of analyze.json (the jumps, the stall torque, its timings) does
+        reads = [
+            (png.name, r.index, r.omega, r.direction, r.nu, r.a_max, r.curves.z, r.curves.a, r.curves.a_linear)
+            for r in analysis.resonances
+        ]
+        p = kept.chart(build, "amplitude_chart", png, charts.amplitude_chart, analysis, png, reads=reads)
         if p:
             build.products["amplitude_chart"] = Product(
                 p,
@@ -66,19 +73,19 @@ def render_charts(build: Build) -> None:
         ex = quake.excitation
         unreal = isinstance(ex, (PulseSizes, RecordSizes)) and not ex.realistic
         what = ": the paper's pulse as written, not a realistic earthquake" if unreal else ""
-        p = attempt(
+        p = kept.chart(
             build,
             "earthquake_chart",
-            lambda: transient_charts.earthquake_chart(
-                fig / "earthquake_response.png",
-                quake.arrays.t,
-                quake.arrays.ground_acceleration,
-                tip,
-                rotor,
-                quake.arrays.Omega,
-                title=f"Earthquake response ({model} model){what}",
-                frame="relative to the ground",
-            ),
+            fig / "earthquake_response.png",
+            transient_charts.earthquake_chart,
+            fig / "earthquake_response.png",
+            quake.arrays.t,
+            quake.arrays.ground_acceleration,
+            tip,
+            rotor,
+            quake.arrays.Omega,
+            title=f"Earthquake response ({model} model){what}",
+            frame="relative to the ground",
         )
         if p:
             build.products["earthquake_chart"] = Product(
@@ -95,6 +102,7 @@ def render_comparisons(build: Build) -> None:
     """Each comparison's tip histories overlaid with their differences, and
     the record's response spectrum."""
     from .. import compare_charts as cc
+    from . import kept
 
     fig = build.out / FIGURES_DIR
     for case, c in build.comparisons.items():
@@ -103,16 +111,16 @@ def render_comparisons(build: Build) -> None:
             continue
         ref = c.reference or series[0][0]
         zoom = passage_of(c, ref) if case != "earthquake" else None
-        p = attempt(
+        p = kept.chart(
             build,
             f"comparison_{case}",
-            lambda c=c, case=case, series=series, ref=ref, zoom=zoom: cc.comparison_chart(
-                fig / f"comparison_{case}.png",
-                series,
-                ref,
-                zoom=zoom,
-                title=f"{CASE_TITLES.get(case, case)}: {', '.join(m for m, _, _ in series)}",
-            ),
+            fig / f"comparison_{case}.png",
+            cc.comparison_chart,
+            fig / f"comparison_{case}.png",
+            series,
+            ref,
+            zoom=zoom,
+            title=f"{CASE_TITLES.get(case, case)}: {', '.join(m for m, _, _ in series)}",
         )
         if p:
             lacking = [m for m in c.models if m not in {s[0] for s in series}]
@@ -146,17 +154,17 @@ def render_comparisons(build: Build) -> None:
             f"the coupled rotor-pillar modes of the {model_name('modal')} in the record's direction "
             "(horizontal, in the rotor's plane), each at its pseudo-acceleration for its own damping ratio"
         )
-        p = attempt(
+        p = kept.chart(
             build,
             "response_spectrum",
-            lambda: cc.spectrum_chart(
-                fig / "response_spectrum.png",
-                spec.period,
-                spec.psa,
-                marks,
-                damping,
-                title=f"Response spectrum of the record ({_record_name(c.record.excitation)})",
-            ),
+            fig / "response_spectrum.png",
+            cc.spectrum_chart,
+            fig / "response_spectrum.png",
+            spec.period,
+            spec.psa,
+            marks,
+            damping,
+            title=f"Response spectrum of the record ({_record_name(c.record.excitation)})",
         )
         if p:
             build.products["response_spectrum"] = Product(
