@@ -43,7 +43,6 @@ import time
 from collections.abc import Callable, Sequence
 from importlib import metadata
 from pathlib import Path
-from typing import Any
 
 import msgspec
 
@@ -217,19 +216,17 @@ def keep_chart(png: Path, key: str, seconds: float) -> Path | None:
     return write_json(_chart_path(png), Entry(key, KeptChart(now, seconds, Path(png).name, digest)))
 
 
-def chart(
-    build: Build, key: str, png: Path, draw: Callable[..., Path], *args, reads: Any = None, **kwargs
-) -> Path | None:
+def chart(build: Build, key: str, png: Path, draw: Callable[..., Path], *args, **kwargs) -> Path | None:
     """The chart ``draw(*args, **kwargs)`` writes to ``png`` (one of ``args``), drawn as
     an :func:`.state.attempt` step named ``key``, or the one an earlier report drew from
     the same arguments with the same code, unchanged since: then said (stderr,
     ``build.reused["chart_<key>"]``) and not drawn.
 
-    ``reads``, when given, stands for ``args`` and ``kwargs`` in the key: what ``draw``
-    reads of a record it is given whole (analyze.json's resonance curves, not its drive
-    or its timings).  It must name every field the chart shows."""
+    The key is every argument whole, never a list of the fields a chart is thought to
+    read: a chart given a record with timings in it (analyze.json's) is drawn every time,
+    which costs a second; a field left out of such a list would show a stale chart."""
     try:
-        k: str | None = chart_key(draw, args, kwargs) if reads is None else chart_key(draw, (reads,), {})
+        k: str | None = chart_key(draw, args, kwargs)
     except (TypeError, ValueError, NotImplementedError):  # an argument the records cannot encode: drawn
         k = None
     if k is not None:

@@ -45,13 +45,7 @@ def render_charts(build: Build) -> None:
                 ),
             )
         png = fig / "resonance_amplitudes.png"
-        # the fields charts.amplitude_chart reads: the averaging's curves do not depend on the
-        # drive, the rest of analyze.json (the jumps, the stall torque, its timings) does
-        reads = [
-            (png.name, r.index, r.omega, r.direction, r.nu, r.a_max, r.curves.z, r.curves.a, r.curves.a_linear)
-            for r in analysis.resonances
-        ]
-        p = kept.chart(build, "amplitude_chart", png, charts.amplitude_chart, analysis, png, reads=reads)
+        p = kept.chart(build, "amplitude_chart", png, charts.amplitude_chart, analysis, png)
         if p:
             build.products["amplitude_chart"] = Product(
                 p,
