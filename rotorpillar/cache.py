@@ -52,31 +52,14 @@ KEY_LENGTH = 24
 
 def source_hash(files: Iterable[Path]) -> str:
     """Hash of source files (each one's name and bytes, in the order given; a missing
-    file is skipped): the code part of a key.
-
-    Remembered in this process while no file's path, size, inode or modification time
-    changes: the tornado's nine studies asked for the convergence runs' keys 1,695 times,
-    1.4 s of hashing the same files again."""
-    stamps = []
-    for f in map(Path, files):
-        try:
-            st = f.stat()
-        except OSError:
-            continue  # a missing file is skipped
-        stamps.append((f, st.st_size, st.st_ino, st.st_mtime_ns))
-    key = tuple(stamps)
-    known = _SOURCE_HASHES.get(key)
-    if known is None:
-        h = hashlib.sha256()
-        for f, *_ in stamps:
+    file is skipped): the code part of a key."""
+    h = hashlib.sha256()
+    for f in files:
+        f = Path(f)
+        if f.exists():
             h.update(f.name.encode())
             h.update(f.read_bytes())
-        known = _SOURCE_HASHES[key] = h.hexdigest()[:16]
-    return known
-
-
-#: source_hash's answers, by the files' paths and stamps.
-_SOURCE_HASHES: dict[tuple, str] = {}
+    return h.hexdigest()[:16]
 
 
 def file_hash(path: Path) -> str | None:
