@@ -381,3 +381,44 @@ def test_the_loaded_modes_computed_once_a_scene(monkeypatch, tmp_path):
     assert first == again and first[1] == "computed" and solved == [scene.drive.torque_at_zero]
     other = override(scene, ["drive.torque_at_zero=5610"])
     assert references.loaded_mode_rows(other, tmp_path)[0] != first[0] and solved[-1] == 5610.0
+
+
+def test_modal_json_serves_a_drive_whose_band_holds_the_same_modes(monkeypatch, tmp_path):
+    """modal.json's loaded modes, cut at the band's edge (modal.n_modes = 0), are read for a
+    scene with another stall torque when the cut at its edge is the same (reduced.band.
+    cut_stands, as `run`'s key for modal reuses modal.json), labelled with the mesh they were
+    computed on; a band that needs more modes, or another tube, computes its own."""
+    import rotorpillar.fem3d as fem3d
+    from rotorpillar.transients import references
+
+    solved = []
+
+    class Table:
+        def modes_table(self):
+            return [_row(0, "bending_x", 1.0, 1.0)]
+
+    def modal_analysis(scene, top):
+        solved.append(scene.drive.torque_at_zero)
+        return Table()
+
+    monkeypatch.setattr(fem3d, "modal_analysis", modal_analysis)
+    monkeypatch.setattr(references, "_COMPUTED_ROWS", {})
+    scene = load_scene("paper")  # band edge 134.6 rad/s; x 1.1: 141.9; x 3: 245.0
+    assert scene.modal.n_modes == 0
+    # eight modes, the last past 141.9 but not past 245: the cut stands at x 1.1, not at x 3
+    rows = [
+        records.to_builtins(_row(i, "bending_x", w, 7000.0))
+        for i, w in enumerate((25, 25, 105, 105, 155, 155, 188, 200))
+    ]
+    chosen = {"elements_around": 128, "elements_along": 20, "elements_through": 1, "degree": 2}
+    (tmp_path / "modal.json").write_text(json.dumps({"scene": scene.to_dict(), "modes_with_top": rows, "mesh": chosen}))
+    t0 = scene.drive.torque_at_zero
+    for factor, source in ((1.0, "modal.json"), (1.1, "modal.json"), (3.0, "computed")):
+        got, src, mesh = references.loaded_mode_rows(override(scene, [f"drive.torque_at_zero={t0 * factor}"]), tmp_path)
+        assert src == source, factor
+        if src == "modal.json":
+            assert [r.omega for r in got] == [r["omega"] for r in rows] and mesh == chosen
+    assert solved == [3 * t0]
+    # another top mass: modal.json is not this tube's modes
+    got, src, mesh = references.loaded_mode_rows(override(scene, ["gondola.mass=31000"]), tmp_path)
+    assert src == "computed" and mesh == dict(vars(scene.mesh))
