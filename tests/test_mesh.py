@@ -127,3 +127,35 @@ def test_a_gmsh_crash_is_an_error_not_a_dead_process(tmp_path, monkeypatch):
     msg = str(err.value)
     assert "Gmsh" in msg and "signal 11" in msg and "\n" not in msg
     assert os.getpid() > 0 and math.isfinite(1.0)  # we are still here
+
+
+def test_a_kept_mesh_is_the_arrays_gmsh_gives_and_a_damaged_one_is_meshed_again(tmp_path, monkeypatch):
+    """The kept tube (rotorpillar.mesh.cached_tube_mesh_data) is the very arrays a Gmsh run
+    gives (exactly: npz is lossless), read back without a Gmsh run; other parameters are
+    another file; a damaged file is meshed again and rewritten whole."""
+    from rotorpillar.mesh import isolated
+
+    monkeypatch.setenv("ROTORPILLAR_CACHE", str(tmp_path))
+    runs = []
+
+    def counted(p, *, isolated=True):
+        runs.append(p)
+        return tube_mesh_data(p, isolated=False)
+
+    monkeypatch.setattr(isolated, "tube_mesh_data", counted)
+    p = params(elements_along=3)
+    first = isolated.cached_tube_mesh_data(p)
+    again = isolated.cached_tube_mesh_data(p)
+    fresh = tube_mesh_data(p, isolated=False)
+    assert len(runs) == 1
+    for d in (first, again):
+        assert np.array_equal(d.points, fresh.points) and np.array_equal(d.cells, fresh.cells)
+        assert np.array_equal(d.facets, fresh.facets) and np.array_equal(d.facet_markers, fresh.facet_markers)
+        assert (d.gmsh_cell, d.gmsh_facet) == (fresh.gmsh_cell, fresh.gmsh_facet)
+    other = params(elements_along=4)
+    assert isolated.kept_mesh_path(other) != isolated.kept_mesh_path(p)
+    assert len(isolated.cached_tube_mesh_data(other).cells) == other.cells and len(runs) == 2
+    path = isolated.kept_mesh_path(p)
+    path.write_bytes(path.read_bytes()[:100])  # cut short
+    assert np.array_equal(isolated.cached_tube_mesh_data(p).cells, fresh.cells) and len(runs) == 3
+    assert np.array_equal(isolated.MeshData.from_bytes(path.read_bytes()).cells, fresh.cells)

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from ..mesh import BASE, TOP, MeshData, TubeMeshParams, tube_mesh_data
+from ..mesh import BASE, TOP, MeshData, TubeMeshParams, cached_tube_mesh_data
 from .forms import mass_form, stiffness_form
 from .rigid_faces import RigidFace, base_carriers, foundation_block, tie_faces
 
@@ -265,7 +265,7 @@ def assemble_model(
     t0 = time.perf_counter()
     if comm.rank == 0 and mesh_data is None:
         try:
-            mesh_data = tube_mesh_data(params, isolated=isolated)
+            mesh_data = cached_tube_mesh_data(params, isolated=isolated)
             failure = None
         except Exception as exc:  # every rank must learn of the failure, not hang
             failure = exc

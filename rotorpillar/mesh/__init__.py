@@ -29,7 +29,7 @@ rotorpillar.errors.InputError: mesh.elements_around = 0 is out of range: must be
 """
 
 from .arrays import MeshData, cylindrical_nodes, extract_mesh_data
-from .isolated import MESH_TIMEOUT, tube_mesh_data, worker_command
+from .isolated import MESH_TIMEOUT, cached_tube_mesh_data, tube_mesh_data, worker_command
 from .midsurface import MidSurface, gmsh_mid_surface, mid_surface_radius
 from .tube import (
     BASE,
@@ -58,6 +58,7 @@ __all__ = [
     "TubeMeshParams",
     "TubeTags",
     "build_tube",
+    "cached_tube_mesh_data",
     "cylindrical_nodes",
     "extract_mesh_data",
     "gmsh_mid_surface",
