@@ -198,7 +198,9 @@ def assemble_system(
 
 def _modal_damping(model: AssembledPillar, zeta: float, up_to: float, tol: float, extra: int):
     """(W, d, omega) of C_modal (module text): the loaded tube's modes below ``up_to``,
-    in blocks of 8 until one passes it."""
+    16 first, doubled until one passes it.  Sixteen, not eight: the solve's cost is
+    its factorisation, and 16 modes cost what 8 do (paper, 24k DOFs: 0.72 s against
+    0.68 s of CPU), while 8 fall short of twice the band's top on paper."""
     from .eigensolver import solve_gep_shift_invert
 
     comm = model.comm
@@ -206,7 +208,7 @@ def _modal_damping(model: AssembledPillar, zeta: float, up_to: float, tol: float
     n_local = model.K.getLocalSize()[0] + (extra if last else 0)
     if zeta <= 0 or up_to <= 0:
         return np.zeros((n_local, 0)), np.zeros(0), np.zeros(0)
-    k = 8
+    k = 16
     while True:
         sol = solve_gep_shift_invert(model.K, model.M, k, tol=tol)
         omega = np.sqrt(np.maximum(sol.eigenvalues, 0.0))
