@@ -233,3 +233,25 @@ def test_base_reactions_by_equilibrium():
     weight = 9.80665 * (s.pillar.density * math.pi / 4 * (2.0**2 - 1.96**2) * H + s.gondola.mass + s.rotor.mass)
     assert float(r.axial_force[0]) == pytest.approx(weight, rel=1e-12)
     assert float(r.moment[0]) == pytest.approx(math.hypot(M, F * H), rel=1e-8)
+
+
+def test_one_speeds_amplitude_is_steady_states_at_that_speed():
+    """The peak refinement's amplitude at one speed (spatial_response._amplitude_at_one_speed,
+    the speed-free parts built once) is steady_states' at that one speed, to the last bit:
+    the same operations in the same order, the same LAPACK solve.  (Against a stack of
+    speeds the output's product may differ in the last bit: BLAS sums a matrix-vector
+    product of several rows in another order.)"""
+    from rotorpillar.reduced.spatial_response import (
+        PEAK_CURVES,
+        _amplitude_at_one_speed,
+        output_amplitude,
+        steady_states,
+    )
+    from rotorpillar.reduced.spatial_scene import scene_spatial_model
+
+    m = scene_spatial_model(load_scene("paper"), 180.0)
+    speeds = [3.7, 14.9, 27.17, 108.8, 157.0]
+    for name in PEAK_CURVES:
+        amp = _amplitude_at_one_speed(m, name)
+        one_at_a_time = [float(abs(output_amplitude(m, name, steady_states(m, [w]))[0])) for w in speeds]
+        assert [amp(w) for w in speeds] == one_at_a_time, name
