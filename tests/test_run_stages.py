@@ -51,7 +51,10 @@ def test_the_stages_follow_the_chain():
         ("paper", ["--set", "excitation.start=2", "--set", "full_order.earthquake_duration=3"]),
         (
             "nrel5mw",
-            ["--set", "drive.torque_at_zero=6000", "--max-frames", "3", "--no-animations", "--strict", "--quick"],
+            [
+                *("--set", "drive.torque_at_zero=6000", "--max-frames", "3", "--modes", "3"),
+                *("--no-animations", "--strict", "--quick"),
+            ],
         ),
     ],
 )
@@ -72,9 +75,10 @@ def test_each_stage_sees_what_its_process_parses(tmp_path, scene, more):
     else:
         assert (quake.scene.excitation.start, quake.scene.full_order.earthquake_duration) == (1.0, 9.0)
     report = plans[-1]
-    # run's report flags go on to the report, as run got them (--max-frames has a default)
+    # run's report flags go on to the report, as run got them (--max-frames and --modes have defaults)
     switches = ("--no-animations", "--strict") if "--strict" in more else ()
-    assert report.passed_on == ("--max-frames", str(args.max_frames), *switches)
+    assert report.passed_on == ("--max-frames", str(args.max_frames), "--modes", str(args.modes), *switches)
+    assert report.args.modes == (3 if "--modes" in more else 8)
     # run --quick goes on to the integrator study as its own --quick, and to no other stage
     integrators = next(p for p in plans if p.stage.name == "integrators")
     assert integrators.args.quick is ("--quick" in more)
