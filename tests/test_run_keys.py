@@ -188,9 +188,17 @@ def test_run_reuses_what_has_not_changed(tmp_path):
     skips = [
         a for s in ("converge", "compare", "integrators", "harmonic", "campbell", "tornado") for a in ("--skip", s)
     ]
-    # one mode picture a set (--modes 1): this test reads the stages' keys, not the pictures
+    # one mode picture a set (--mode-pictures 1): this test reads the stages' keys, not the pictures
     # (the first report, drawing them: 12.4-13.4 -> 8.2-8.3 s of CPU, measured in pairs)
-    small = ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4", "--no-animations", "--modes", "1"]
+    small = [
+        "--set",
+        "mesh.elements_around=16",
+        "--set",
+        "mesh.elements_along=4",
+        "--no-animations",
+        "--mode-pictures",
+        "1",
+    ]
 
     def run(*more):
         p = cli("run", "paper", "--out", out, *skips, *small, *more, timeout=600)

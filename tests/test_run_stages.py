@@ -52,7 +52,7 @@ def test_the_stages_follow_the_chain():
         (
             "nrel5mw",
             [
-                *("--set", "drive.torque_at_zero=6000", "--max-frames", "3", "--modes", "3"),
+                *("--set", "drive.torque_at_zero=6000", "--max-frames", "3", "--mode-pictures", "3"),
                 *("--no-animations", "--strict", "--quick"),
             ],
         ),
@@ -75,10 +75,12 @@ def test_each_stage_sees_what_its_process_parses(tmp_path, scene, more):
     else:
         assert (quake.scene.excitation.start, quake.scene.full_order.earthquake_duration) == (1.0, 9.0)
     report = plans[-1]
-    # run's report flags go on to the report, as run got them (--max-frames and --modes have defaults)
+    # run's report flags go on to the report, as run got them (--max-frames and --mode-pictures
+    # have defaults)
     switches = ("--no-animations", "--strict") if "--strict" in more else ()
-    assert report.passed_on == ("--max-frames", str(args.max_frames), "--modes", str(args.modes), *switches)
-    assert report.args.modes == (3 if "--modes" in more else 8)
+    pictures = ("--mode-pictures", str(args.mode_pictures))
+    assert report.passed_on == ("--max-frames", str(args.max_frames), *pictures, *switches)
+    assert report.args.mode_pictures == (3 if "--mode-pictures" in more else 8)
     # run --quick goes on to the integrator study as its own --quick, and to no other stage
     integrators = next(p for p in plans if p.stage.name == "integrators")
     assert integrators.args.quick is ("--quick" in more)

@@ -27,11 +27,11 @@ def add_arguments(parser) -> None:
     parser.add_argument("--max-frames", type=int, default=180, metavar="N", help="frames per animation (default 180)")
     parser.add_argument("--no-animations", action="store_true", help="skip the run-up and earthquake animations")
     parser.add_argument(
-        "--modes",
+        "--mode-pictures",
         type=int,
         default=8,
         metavar="N",
-        help="mode-shape pictures per set of 3D modes, bare and loaded tube, and on each contact sheet (default 8)",
+        help="mode-shape pictures of each set of 3D modes (bare and loaded tube) and on its contact sheet (default 8)",
     )
     parser.add_argument(
         "--strict",
@@ -55,33 +55,33 @@ def checked_frames(args) -> int:
     return frames
 
 
-#: Mode-shape pictures a set may have: one at least; modal lists 8 (doubled while the last
-#: lies inside the band, reduced.band.cut_count), and no more are drawn than it lists.
-MODES_RANGE = (1, 64)
+#: Mode-shape pictures a set may have: one at least, 64 at most (a contact sheet of 64 is
+#: past reading); no more are drawn than modal lists (8, more where the band holds them).
+MODE_PICTURES_RANGE = (1, 64)
 
 
-def checked_modes(args) -> int:
-    """``--modes``, refused (one line) outside MODES_RANGE; `run` checks it first."""
+def checked_mode_pictures(args) -> int:
+    """``--mode-pictures``, refused (one line) outside MODE_PICTURES_RANGE; `run` checks it first."""
     from ..errors import InputError
 
-    modes = getattr(args, "modes", 8)
-    lo, hi = MODES_RANGE
-    if not lo <= modes <= hi:
-        raise InputError(f"--modes = {modes}: must be {lo} ... {hi}")
-    return modes
+    count = getattr(args, "mode_pictures", 8)
+    lo, hi = MODE_PICTURES_RANGE
+    if not lo <= count <= hi:
+        raise InputError(f"--mode-pictures = {count}: must be {lo} ... {hi}")
+    return count
 
 
 def preflight(scene: Scene, args) -> None:
     """What `report` refuses before any work (`run` calls it for its stage too)."""
     checked_frames(args)
-    checked_modes(args)
+    checked_mode_pictures(args)
 
 
 def report_command(scene: Scene, args, timings):
     from ..postprocess.report import ReportOptions, build_report, report_text
     from . import is_root_rank, out_dir
 
-    frames, modes = checked_frames(args), checked_modes(args)
+    frames, modes = checked_frames(args), checked_mode_pictures(args)
     if not is_root_rank():
         from ..postprocess.report import ReportResult
 

@@ -179,7 +179,7 @@ RUN_STAGES: tuple[RunStage, ...] = (
         "report",
         "charts, mode shapes, animations, report.html",
         wave=4,
-        passes=("--max-frames", "--modes", "--no-animations", "--strict"),
+        passes=("--max-frames", "--mode-pictures", "--no-animations", "--strict"),
     ),
 )
 
