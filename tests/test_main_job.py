@@ -43,6 +43,10 @@ def test_run_ends_with_the_report_path(run_paper):
     # every section written from the real commands' outputs, read through their records
     report = json.loads((out / "report.json").read_text())
     assert report["failures"] == {} and report["damaged"] == {}
+    # run's --mode-pictures 3 reached the report: three pictures of each set and its contact sheet
+    for name in ("bare", "top"):
+        assert len(list((out / "modes").glob(f"{name}_mode_*.png"))) == 3, name
+        assert (out / "modes" / f"{name}_modes_sheet.png").is_file()
 
 
 def test_every_csv_of_the_main_job_is_plain(run_paper):

@@ -194,6 +194,16 @@ def test_report_opens_in_headless_chromium(full, tmp_path):
     assert v["videos"] == 2 and v["bad_videos"] == []
 
 
+@pytest.mark.parametrize("count", ["0", "65"])
+def test_report_and_run_refuse_a_picture_count_outside_its_range(tmp_path, count, capsys):
+    # report.MODE_PICTURES_RANGE: 1 ... 64 pictures a set; refused before any work, run's too
+    assert cli.main(["report", "paper", "--out", str(tmp_path / "report"), "--mode-pictures", count]) == 2
+    assert f"--mode-pictures = {count}: must be 1 ... 64" in capsys.readouterr().err
+    assert cli.main(["run", "paper", "--out", str(tmp_path / "run"), "--mode-pictures", count]) == 2
+    assert f"stage 'report': --mode-pictures = {count}" in capsys.readouterr().err
+    assert not (tmp_path / "report").exists() and not (tmp_path / "run").exists()
+
+
 def test_report_without_inputs_says_what_to_run(tmp_path):
     run_cli("report", "paper", "--out", tmp_path)
     text = (tmp_path / "report.html").read_text(encoding="utf-8")

@@ -49,7 +49,13 @@ def test_the_stages_follow_the_chain():
         ("paper", []),
         # the user's --set of the keys the comparisons set themselves: the user's win
         ("paper", ["--set", "excitation.start=2", "--set", "full_order.earthquake_duration=3"]),
-        ("nrel5mw", ["--set", "drive.torque_at_zero=6000", "--max-frames", "3", "--no-animations", "--strict"]),
+        (
+            "nrel5mw",
+            [
+                *("--set", "drive.torque_at_zero=6000", "--max-frames", "3", "--mode-pictures", "3"),
+                *("--no-animations", "--strict", "--quick"),
+            ],
+        ),
     ],
 )
 def test_each_stage_sees_what_its_process_parses(tmp_path, scene, more):
@@ -69,10 +75,18 @@ def test_each_stage_sees_what_its_process_parses(tmp_path, scene, more):
     else:
         assert (quake.scene.excitation.start, quake.scene.full_order.earthquake_duration) == (1.0, 9.0)
     report = plans[-1]
-    # run's report flags go on to the report, as run got them (--max-frames has a default)
+    # run's report flags go on to the report, as run got them (--max-frames and --mode-pictures
+    # have defaults)
     switches = ("--no-animations", "--strict") if "--strict" in more else ()
-    assert report.passed_on == ("--max-frames", str(args.max_frames), *switches)
-    assert all(p.passed_on == () for p in plans[:-1])
+    pictures = ("--mode-pictures", str(args.mode_pictures))
+    assert report.passed_on == ("--max-frames", str(args.max_frames), *pictures, *switches)
+    assert report.args.mode_pictures == (3 if "--mode-pictures" in more else 8)
+    # run --quick goes on to the integrator study as its own --quick, and to no other stage
+    integrators = next(p for p in plans if p.stage.name == "integrators")
+    assert integrators.args.quick is ("--quick" in more)
+    assert integrators.passed_on == (("--quick",) if "--quick" in more else ())
+    assert ("--quick" in integrators.argv) is ("--quick" in more)
+    assert all(p.passed_on == () for p in plans[:-1] if p is not integrators)
 
 
 def _job(tmp_path, name: str, seconds: float, code: int = 0):

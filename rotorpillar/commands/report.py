@@ -27,6 +27,13 @@ def add_arguments(parser) -> None:
     parser.add_argument("--max-frames", type=int, default=180, metavar="N", help="frames per animation (default 180)")
     parser.add_argument("--no-animations", action="store_true", help="skip the run-up and earthquake animations")
     parser.add_argument(
+        "--mode-pictures",
+        type=int,
+        default=8,
+        metavar="N",
+        help="mode-shape pictures of each set of 3D modes (bare and loaded tube) and on its contact sheet (default 8)",
+    )
+    parser.add_argument(
         "--strict",
         action="store_true",
         help="exit 1 when an input is damaged or a section failed (the page is written all the same)",
@@ -48,21 +55,38 @@ def checked_frames(args) -> int:
     return frames
 
 
+#: Mode-shape pictures a set may have: one at least, 64 at most (a contact sheet of 64 is
+#: past reading); no more are drawn than modal lists (8, more where the band holds them).
+MODE_PICTURES_RANGE = (1, 64)
+
+
+def checked_mode_pictures(args) -> int:
+    """``--mode-pictures``, refused (one line) outside MODE_PICTURES_RANGE; `run` checks it first."""
+    from ..errors import InputError
+
+    count = getattr(args, "mode_pictures", 8)
+    lo, hi = MODE_PICTURES_RANGE
+    if not lo <= count <= hi:
+        raise InputError(f"--mode-pictures = {count}: must be {lo} ... {hi}")
+    return count
+
+
 def preflight(scene: Scene, args) -> None:
     """What `report` refuses before any work (`run` calls it for its stage too)."""
     checked_frames(args)
+    checked_mode_pictures(args)
 
 
 def report_command(scene: Scene, args, timings):
     from ..postprocess.report import ReportOptions, build_report, report_text
     from . import is_root_rank, out_dir
 
-    frames = checked_frames(args)
+    frames, modes = checked_frames(args), checked_mode_pictures(args)
     if not is_root_rank():
         from ..postprocess.report import ReportResult
 
         return Done(ReportResult(report=None), "")
-    options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames)
+    options = ReportOptions(animations=not getattr(args, "no_animations", False), max_frames=frames, modes=modes)
     progress(f"report: rendering into {out_dir(scene, args)}")
     from ..verdict.summary import write_summary
 

@@ -132,7 +132,8 @@ RUN_STAGES: tuple[RunStage, ...] = (
     # simulate 2-3 s; integrators after the two simulate runs left one slot idle 2.5 s
     # longer, and the whole wave waited for it).  The earthquake after the run-up, as
     # before: simulate.json is the last case run.
-    RunStage("integrators", "time integrators: error against cost, where each fails", wave=3),
+    # run --quick goes on to it as its own --quick (commands.integrators): its shorter ladders
+    RunStage("integrators", "time integrators: error against cost, where each fails", wave=3, passes=("--quick",)),
     # the ROM's and the 3D model's unbalance response, the margins to the loaded tube's modes
     RunStage("harmonic", "unbalance response (Bode) and separation margins (API 684)", wave=3),
     # the Campbell diagram, the ROM's beside the 3D model's (~35 s; after harmonic, so that it
@@ -178,7 +179,7 @@ RUN_STAGES: tuple[RunStage, ...] = (
         "report",
         "charts, mode shapes, animations, report.html",
         wave=4,
-        passes=("--max-frames", "--no-animations", "--strict"),
+        passes=("--max-frames", "--mode-pictures", "--no-animations", "--strict"),
     ),
 )
 
@@ -349,6 +350,13 @@ def add_arguments(parser) -> None:
         default=[],
         metavar="STAGE",
         help=f"leave out a stage ({', '.join(names)}); repeatable",
+    )
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="a first look: the integrator study's shorter ladders (integrators --quick: every other "
+        "tolerance and step, up to 5 pillar modes, 20 s of drift; about half its time); every other "
+        "stage as without it",
     )
     parser.add_argument(
         "--force",
