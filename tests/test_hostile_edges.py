@@ -139,9 +139,21 @@ CONSUMERS = {
         ["--model", "fem3d", "--case", "runup", *FEM3D, *_sets("full_order.runup_duration=0.1")],
         True,
     ),
+    # the pulse from 1 s for 1 s (the scene's from 5 s for 7 s): the zero end (the case's own
+    # length, 5 s past the pulse) and the top (1e5 s, held to that length) run 7 s of 3D steps,
+    # not 17 s (10106 -> 4161 steps); the low end (1 ms) still ends before the ground moves and
+    # is refused with the same line; exit codes as before (low 2, high 0, zero 0), the three
+    # cases' CPU 8.8 -> 5.3 s
     "fem3d-quake": (
         "simulate",
-        ["--model", "fem3d", "--case", "earthquake", *FEM3D, *_sets("full_order.earthquake_duration=5.1")],
+        [
+            "--model",
+            "fem3d",
+            "--case",
+            "earthquake",
+            *FEM3D,
+            *_sets("full_order.earthquake_duration=5.1", "excitation.start=1", "excitation.duration=1"),
+        ],
         True,
     ),
     "report": ("report", ["--no-animations"], True),
