@@ -98,7 +98,12 @@ def tip_reduction(result, pillar) -> TipReduction:
 
     i = result.index("bending_x", n_axial=0)
     if i is None:
-        raise ComputationError(f"no first bending mode in x among the computed modes ({', '.join(result.kind)})")
+        # a mesh too coarse to carry the section (4 x 2: its bending pair is told apart from
+        # ovalling by the section's shape, which four elements around barely have)
+        raise ComputationError(
+            f"no first bending mode in x among the computed modes ({', '.join(result.kind)}): "
+            "refine the mesh (mesh.elements_around, mesh.elements_along) or ask more modes (modal.n_modes)"
+        )
     if result.normalisation[i] != "unit_tip":
         raise ComputationError("the first bending mode is not normalised to its tip")
     omega = float(result.omega[i])
