@@ -174,6 +174,10 @@ def numbers(doc: dict) -> dict:
 def test_two_ranks_give_the_serial_numbers(tmp_path, command):
     prefix, env = mpirun_prefix()
     args = ["--model", "fem3d", "--case", "earthquake"] if command == "simulate" else ["--case", "earthquake"]
+    if command == "compare":  # the ROM's 3D modes on a 16 x 4 tube, not the scene's 64 x 10 (issue 30):
+        # two ranks give one rank's numbers on any mesh, and the serial run computes these modes
+        # (the ranks read them from the cache) in 1 s of CPU instead of 6
+        args += ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4"]
     p1 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "one", env=env)
     p2 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "two", env=env, prefix=prefix)
     assert p1.returncode == 0, p1.stderr
