@@ -199,7 +199,11 @@ def test_earthquake_against_rom_on_the_3d_modes(prescribed):
 
     motion = load_record("elcentro", start=1.0)
     drive = DriveSchedule.constant(5100.0, 12.0, 0.5)
-    scene, r, R = compare_with_rom("earthquake", motion, drive, 7.0, 89.0, 0.3, prescribed)
+    # 4 s of El Centro from 1 s, its strong motion (as the gondola test below): the largest
+    # difference and both peaks are at 3.59 s, so the history error (4.4e-3 both ways), the
+    # peaks (1.4e-3 and 6.9e-4) and the speed's difference are the 7-s run's to the digit;
+    # the energy balance measured 6.0e-5 spin locked, 9.2e-6 free (3.3e-5 and 9.1e-6 over 7 s)
+    scene, r, R = compare_with_rom("earthquake", motion, drive, 4.0, 89.0, 0.3, prescribed)
     err = np.max(np.abs(R.tip() - r.tip_x)) / np.max(np.abs(r.tip_x))
     assert err < 1e-2
     assert r.max_abs["tip_x"] == pytest.approx(float(np.max(np.abs(R.tip()))), rel=1e-2)
