@@ -1,4 +1,4 @@
-"""The 3D rungs of the convergence study (slow: 3D P2 models up to 147k DOFs).
+"""The 3D rungs of the convergence study (slow: 3D P2 models up to 95k DOFs).
 
 Sources and tolerances:
 
@@ -11,15 +11,21 @@ Sources and tolerances:
   over 64, 96, 128 around (measured 3.92) must lie in [3.3, 4.7]; with the scene's grading
   30 (smallest cell 11 cm) it is lower (measured 2.9 there, ~2 further up the
   ladder), which the study reports as "not asymptotic" and explains.
-- Richardson's reference from 64, 96, 128 around must predict an
-  independent finer run (160 around) within its own error estimate
-  (Roache's GCI, safety factor 1.25), for both frequencies.
+- Richardson's reference from 32, 64, 96 around must predict an
+  independent finer run (128 around) within its own error estimate
+  (Roache's GCI, safety factor 1.25), for both frequencies.  Measured
+  (issue 30): |error| / estimate 0.21 (bending) and 0.27 (ovalling); from
+  64, 96, 128 against 160 it was 0.36 and 0.34, the same check a rung finer
+  at 2.6 times the cost (the 160 run alone was half the study's time).
 - Another method: the shell model's converged limits against the 3D
   model's.  Bending: the shell's clamp leaves the wall's Poisson contraction
   free at the base, the 3D clamp does not: 3e-4.  Ovalling: the shell's
   first-order kinematics differ from 3D elasticity by O(t/R) = 2e-2 at
   most; measured 1.1e-3 (the study shows it as the shell's model error);
-  2e-3 here.
+  2e-3 here.  The limits: the 3D model's from 64, 96, 128 around (bending
+  measured -2.2e-4, ovalling -1.07e-3; from 96, 128, 160: -1.5e-4 and
+  -1.07e-3), the shell's from 16, 24, 32 (the same limits as from 24, 32, 48
+  to 1e-7: the shell's Q2 rungs are converged far below both tolerances).
 """
 
 import pytest
@@ -48,9 +54,14 @@ def runs(tmp_path_factory):
         scene = load_scene("paper")
         graded = override(scene, ["mesh.grading=200"])
         done = {
-            "g30": cv.run_study(_cases(scene, "solid_hex_p2", (64, 96, 128, 160)), scene, out, progress=False),
-            "g200": cv.run_study(_cases(graded, "solid_hex_p2", (64, 96, 128)), graded, out, progress=False),
-            "shell": cv.run_study(_cases(scene, "shell_quad", (24, 32, 48)), scene, out, progress=False),
+            # close=False: the next study reuses this one's serving process (its imports)
+            "g30": cv.run_study(
+                _cases(scene, "solid_hex_p2", (32, 64, 96, 128)), scene, out, progress=False, close=False
+            ),
+            "g200": cv.run_study(
+                _cases(graded, "solid_hex_p2", (64, 96, 128)), graded, out, progress=False, close=False
+            ),
+            "shell": cv.run_study(_cases(scene, "shell_quad", (16, 24, 32)), scene, out, progress=False),
         }
         return records.to_builtins(done)
 
@@ -66,7 +77,7 @@ def _order(recs, q):
 def test_p2_hexahedra_bending_order_is_theirs_once_the_clamp_layer_is_resolved(runs):
     assert all(r.status == "ok" for rs in runs.values() for r in rs)
     p200 = _order(runs["g200"], "bending").order
-    p30 = _order(runs["g30"][:3], "bending").order
+    p30 = _order(runs["g30"][1:], "bending").order  # 64, 96, 128 as g200's
     assert p200 is not None and 3.3 <= p200 <= 4.7, p200
     assert p30 is not None and p30 < p200
 
@@ -76,12 +87,12 @@ def test_p2_hexahedra_reference_predicts_a_finer_run(runs):
     ref = cv.reference_values(recs, cv.family_extrapolations(recs))
     for q in ("bending", "ovalling"):
         chk = ref[q].check
-        assert chk.finer_run.endswith("160x25x1")
+        assert chk.finer_run.endswith("128x20x1")
         assert abs(chk.finer_value - chk.value) <= chk.error_estimate, (q, chk)
 
 
 def test_shell_and_3d_limits_agree_within_the_shells_model_error(runs):
-    solid = cv.family_extrapolations(runs["g30"][1:])["solid_hex_p2"]
+    solid = cv.family_extrapolations(runs["g30"][1:])["solid_hex_p2"]  # 64, 96, 128
     shell = cv.family_extrapolations(runs["shell"])["shell_quad"]
     assert shell["bending"].value == pytest.approx(solid["bending"].value, rel=3e-4)
     assert shell["ovalling"].value == pytest.approx(solid["ovalling"].value, rel=2e-3)

@@ -11,8 +11,10 @@ References and tolerances:
   the step does not depend on c2 (the same as with the scene's soft shaft);
 - second order: the tip, the rotor and its speed at h, h/2, h/4 against h/16
   (a smooth pulse; the rotor free on its shaft), fitted log-log slope of the
-  error in [1.8, 2.2] (second order: 2; measured 1.95-2.02; the coarsest step
-  sits at 56 steps per period of the unbalance's rotation);
+  error in [1.8, 2.2] (second order: 2; measured 1.90-2.05; the coarsest step
+  sits at 28 steps per period of the unbalance's rotation).  Issue 30: the
+  ladder was 400, 800, 1600 steps against 6400 (slopes 1.91-2.05), twice the
+  steps for the same measure; 400, 800, 1600 against 3200 would bias it (2.06-2.21);
 - a step that swallows the record: ok false, exit 4, the named checks;
 - mpirun -n 2 against the serial run: the same numbers to 1e-7 (MUMPS on two
   ranks orders its sums differently; the run's own error is 1e-3).
@@ -91,14 +93,14 @@ def test_the_3d_generalized_alpha_is_second_order(eccentricity, start, T, keys):
     motion = paper_pulse(0.05, math.pi, start, 10.0)
     runs = {
         n: simulate_fem3d(
-            scene, "earthquake", motion=motion, duration=T, time_step=T / n, samples=401, initial_speed=89.0
+            scene, "earthquake", motion=motion, duration=T, time_step=T / n, samples=201, initial_speed=89.0
         )
-        for n in (400, 800, 1600, 6400)
+        for n in (200, 400, 800, 3200)
     }
-    assert runs[400].integrator.method == "generalized_alpha"
-    hs = [T / n for n in (400, 800, 1600)]
+    assert runs[200].integrator.method == "generalized_alpha"
+    hs = [T / n for n in (200, 400, 800)]
     for key in keys:
-        errs = [np.max(np.abs(getattr(runs[n], key) - getattr(runs[6400], key))) for n in (400, 800, 1600)]
+        errs = [np.max(np.abs(getattr(runs[n], key) - getattr(runs[3200], key))) for n in (200, 400, 800)]
         s = float(np.polyfit(np.log(hs), np.log(errs), 1)[0])
         assert 1.8 <= s <= 2.2, (key, errs, s)
 
@@ -174,6 +176,10 @@ def numbers(doc: dict) -> dict:
 def test_two_ranks_give_the_serial_numbers(tmp_path, command):
     prefix, env = mpirun_prefix()
     args = ["--model", "fem3d", "--case", "earthquake"] if command == "simulate" else ["--case", "earthquake"]
+    if command == "compare":  # the ROM's 3D modes on a 16 x 4 tube, not the scene's 64 x 10 (issue 30):
+        # two ranks give one rank's numbers on any mesh, and the serial run computes these modes
+        # (the ranks read them from the cache) in 1 s of CPU instead of 6
+        args += ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4"]
     p1 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "one", env=env)
     p2 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "two", env=env, prefix=prefix)
     assert p1.returncode == 0, p1.stderr
