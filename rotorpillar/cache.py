@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,6 +41,7 @@ from typing import Any, Generic, TypeVar
 import msgspec
 
 from . import records
+from .provenance import user_cache_root as user_cache_root  # re-exported: the callers of the cache find the root here
 from .provenance import write_json
 
 T = TypeVar("T")
@@ -113,13 +113,3 @@ class DiskCache:
     def write(self, key: str, value: Any) -> Path:
         """Store ``value`` (a record) atomically beside its ``key``."""
         return write_json(self.path(key), Entry(key, value))
-
-
-def user_cache_root() -> Path:
-    """The user's cache of results shared between runs (``$ROTORPILLAR_CACHE``, else
-    ``$XDG_CACHE_HOME/rotorpillar``, else ~/.cache/rotorpillar)."""
-    env = os.environ.get("ROTORPILLAR_CACHE")
-    if env:
-        return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "rotorpillar"

@@ -269,6 +269,16 @@ def remove_stale_parts(path: Path) -> None:
                 part.unlink()
 
 
+def user_cache_root() -> Path:
+    """The user's cache of results shared between runs (``$ROTORPILLAR_CACHE``, else
+    ``$XDG_CACHE_HOME/rotorpillar``, else ~/.cache/rotorpillar)."""
+    env = os.environ.get("ROTORPILLAR_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "rotorpillar"
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | Path):
     """Yield a temporary path beside ``path``; rename it over ``path`` on success.

