@@ -46,13 +46,19 @@ MAX_FRAMES_RANGE = (2, 3600)
 
 def checked_frames(args) -> int:
     """``--max-frames``, refused (one line) outside MAX_FRAMES_RANGE; `run` checks it first."""
+    return _in_range(args, "--max-frames", 180, MAX_FRAMES_RANGE)
+
+
+def _in_range(args, flag: str, default: int, bounds: tuple[int, int]) -> int:
+    """The value of ``flag`` on ``args`` (``default`` when absent), refused (one line, exit 2)
+    outside ``bounds``, both ends allowed."""
     from ..errors import InputError
 
-    frames = getattr(args, "max_frames", 180)
-    lo, hi = MAX_FRAMES_RANGE
-    if not lo <= frames <= hi:
-        raise InputError(f"--max-frames = {frames}: must be {lo} ... {hi}")
-    return frames
+    value = getattr(args, flag.lstrip("-").replace("-", "_"), default)
+    lo, hi = bounds
+    if not lo <= value <= hi:
+        raise InputError(f"{flag} = {value}: must be {lo} ... {hi}")
+    return value
 
 
 #: Mode-shape pictures a set may have: one at least, 64 at most (a contact sheet of 64 is
@@ -62,13 +68,7 @@ MODE_PICTURES_RANGE = (1, 64)
 
 def checked_mode_pictures(args) -> int:
     """``--mode-pictures``, refused (one line) outside MODE_PICTURES_RANGE; `run` checks it first."""
-    from ..errors import InputError
-
-    count = getattr(args, "mode_pictures", 8)
-    lo, hi = MODE_PICTURES_RANGE
-    if not lo <= count <= hi:
-        raise InputError(f"--mode-pictures = {count}: must be {lo} ... {hi}")
-    return count
+    return _in_range(args, "--mode-pictures", 8, MODE_PICTURES_RANGE)
 
 
 def preflight(scene: Scene, args) -> None:
