@@ -48,8 +48,8 @@ def here(capfd, monkeypatch):
     each warning the command raised (the child's default filters: deprecations and resource
     warnings left out) and each log record at WARNING or above (the child's
     ``quiet_third_party_logs`` threshold).  So ``one_line`` fails here as it did on a child's
-    stderr.  argparse's refusal (SystemExit 2) is its exit code.  ``timeout`` is the child's:
-    a command past it (a hang) is stopped by SIGALRM and the test fails.  ``env`` is what
+    stderr.  argparse's refusal (SystemExit 2) is its exit code.  ``timeout`` is the child's
+    (None: none): a command past it (a hang) is stopped by SIGALRM and the test fails.  ``env`` is what
     the child's environment adds (mpirun's), ``cwd`` its working directory; both are undone
     after the command."""
     import logging
@@ -68,7 +68,7 @@ def here(capfd, monkeypatch):
         def emit(self, record):
             self.lines.append(f"{record.levelname}:{record.name}:{record.getMessage()}\n")
 
-    def run(*args, env=None, cwd=None, timeout=120) -> subprocess.CompletedProcess:
+    def run(*args, env=None, cwd=None, timeout=None) -> subprocess.CompletedProcess:
         argv = [str(a) for a in args]
 
         def overtime(signum, frame):
@@ -82,7 +82,7 @@ def here(capfd, monkeypatch):
                 m.chdir(cwd)
             capfd.readouterr()
             previous = signal.signal(signal.SIGALRM, overtime)
-            signal.setitimer(signal.ITIMER_REAL, timeout)
+            signal.setitimer(signal.ITIMER_REAL, timeout or 0)  # 0: no limit, as cli's None
             root.addHandler(logged)
             try:
                 with warnings.catch_warnings(record=True) as caught:
