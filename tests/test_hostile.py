@@ -552,14 +552,16 @@ def test_a_record_timed_in_milliseconds_is_flagged_not_realistic(tmp_path, here)
 
 
 @pytest.mark.slow  # a convergence study (shell ladder in subprocesses)
-def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
+def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path, here):
     """No 3D model and an 8-around shell: no family converges, so there is no reference and
     no run has an error estimate; the study says so instead of choosing the closed forms.
     On one worker (--workers 1: the runs in one serving process, no Dask cluster): the choice
-    does not depend on where the 23 runs ran; CPU 9.3 -> 5.7 s."""
+    does not depend on where the 23 runs ran; CPU 9.3 -> 5.7 s.  The study in this process
+    (``here``: its serving process is a child all the same), as tests/test_hostile_edges.py
+    runs converge: no start-up and imports of the study's own process."""
     import json
 
-    p = cli(
+    p = here(
         "converge",
         "paper",
         "--set",
@@ -582,7 +584,7 @@ def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path):
 
 @pytest.mark.slow  # two convergence studies per case
 @pytest.mark.parametrize("sig", ["SIGTERM", "SIGKILL"])
-def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
+def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig, here):
     """Killed mid-study (SIGTERM: stops its runs; SIGKILL: no chance to clean up): every
     JSON on disk parses, and the rerun computes only what is missing.  After the SIGKILL,
     two cached runs are also damaged (they parse to another shape: null, a list): the
@@ -624,7 +626,7 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig):
     damaged = done[:2] if sig == "SIGKILL" else []
     for f, content in zip(damaged, ["null", "[1, 2]"]):
         f.write_text(content)
-    p = cli(*args, "--json", timeout=600)
+    p = here(*args, "--json", timeout=600)  # the rerun in this process: the kill was the child's
     assert p.returncode == 0, p.stderr
     study = json.loads(p.stdout)["study"]
     # a run killed while being written may be missing (-1); the damaged ones are recomputed
