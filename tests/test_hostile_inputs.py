@@ -15,7 +15,7 @@ import json
 
 import numpy as np
 import pytest
-from conftest import cli
+from test_hostile import here  # noqa: F401  (a fixture: the command in this process)
 
 from rotorpillar import records
 from rotorpillar.postprocess.readers import read_simulation
@@ -70,9 +70,10 @@ DAMAGE = {
 
 @pytest.fixture(scope="module")
 def harmonic_doc(tmp_path_factory):
+    from rotorpillar.cli import main
+
     d = tmp_path_factory.mktemp("harmonic")
-    p = cli("harmonic", "paper", "--no-fem3d", "--out", d)
-    assert p.returncode == 0, p.stderr
+    assert main(["harmonic", "paper", "--no-fem3d", "--out", str(d)]) == 0  # its failure on the captured stderr
     return json.loads((d / "harmonic.json").read_text())
 
 
@@ -90,11 +91,12 @@ def test_each_damage_of_harmonic_json_is_named_with_its_field(tmp_path, harmonic
 
 
 @pytest.mark.slow  # harmonic, then report
-def test_report_strict_says_on_stderr_which_input_is_damaged(tmp_path, harmonic_doc):
+def test_report_strict_says_on_stderr_which_input_is_damaged(tmp_path, harmonic_doc, here):  # noqa: F811 (the fixture)
+    """The two reports in this process (tests/test_hostile.py's ``here``: stderr as a child's)."""
     doc = json.loads(json.dumps(harmonic_doc))
     doc["rom"]["tip_amplitude"][3] = None
     (tmp_path / "harmonic.json").write_text(json.dumps(doc))
-    p = cli("report", "paper", "--out", tmp_path, "--no-animations", "--strict")
+    p = here("report", "paper", "--out", tmp_path, "--no-animations", "--strict")
     assert p.returncode == 1, p.stderr
     lines = [line for line in p.stderr.splitlines() if line.startswith("rotorpillar report: --strict:")]
     assert lines == [
@@ -109,4 +111,4 @@ def test_report_strict_says_on_stderr_which_input_is_damaged(tmp_path, harmonic_
     assert "Harmonic.json is damaged" in section and "tip_amplitude[3]" in section
     assert "rotorpillar harmonic paper" in section
     # without --strict the same page, exit 0
-    assert cli("report", "paper", "--out", tmp_path, "--no-animations").returncode == 0
+    assert here("report", "paper", "--out", tmp_path, "--no-animations").returncode == 0

@@ -132,8 +132,10 @@ def _write_csv(path: Path, run: ModelRun) -> Path:
     # take it for the header.  The columns' meaning is in the module docstring; the
     # run's provenance and tip_x_frame in its JSON.
     # one %-format a row on Python floats: the same text as f"{x:.10g}" value by value (one
-    # formatter), in under half the time (a run of 10**6 samples: ~9 s of its 13)
+    # formatter), in under half the time (a run of 10**6 samples: ~9 s of its 13); the rows
+    # zipped from each column's list, not a 2D array's rows made tuples: 10**6 rows of 13
+    # columns 5.4 -> 4.0 s of CPU, the same text
     line = ",".join(["%.10g"] * len(cols))
-    rows = (line % tuple(row) for row in np.column_stack(block).tolist())
+    rows = (line % row for row in zip(*(np.asarray(c, dtype=float).tolist() for c in block)))
     text = ",".join(cols) + "\n" + "\n".join(rows)
     return write_text(path, text + "\n")
