@@ -128,7 +128,13 @@ def test_the_ground_motion_leaves_the_study_and_modal_alone(tmp_path):
     base = keys_for(tmp_path)
     moved = changed(base, keys_for(tmp_path, "excitation.amplitude=2.5", "full_order.earthquake_duration=3"))
     assert "converge" not in moved and "modal" not in moved
-    assert {"analyze", "simulate --case earthquake", "compare --case earthquake", "report"} <= moved
+    assert {
+        "analyze",
+        "simulate --case earthquake",
+        "simulate --case runup",
+        "compare --case earthquake",
+        "report",
+    } <= moved
 
 
 def test_an_input_file_changes_the_keys_of_the_stages_after_it(tmp_path):
