@@ -2,8 +2,9 @@
 
 - :func:`cli` runs ``python -m rotorpillar ARGS...`` in a child process, as a
   user would, and returns the CompletedProcess (text stdout and stderr).
-- ``run_paper`` (session fixture): one ``rotorpillar run paper --skip
-  converge --skip compare --max-frames 12 --mode-pictures 3 --quick`` into a temporary directory, shared by the tests
+- ``run_paper`` (session fixture): one ``rotorpillar run paper`` with
+  :data:`RUN_PAPER_FLAGS` (converge and compare skipped, 12 frames per animation,
+  three mode pictures a set, --quick, a 16 x 4 mesh) into a temporary directory, shared by the tests
   of what the main job writes (all in tests/test_main_job.py, so that one xdist worker
   runs them and the other never idles on the fixture's lock), instead of one run each (the
   comparisons run the 3D full order: tests/test_run_compare.py runs that
@@ -68,7 +69,7 @@ def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.Comple
 
 
 class RunOutput:
-    """The finished ``run paper --skip converge --skip compare``: its directory and process."""
+    """The finished ``run paper`` with :data:`RUN_PAPER_FLAGS`: its directory and process."""
 
     def __init__(self, out: Path, process: subprocess.CompletedProcess):
         self.out, self.process = out, process
@@ -94,22 +95,32 @@ def once_per_session(name: str, tmp_path_factory, compute: Callable[[Path], dict
     return out, json.loads(record.read_text())
 
 
+#: ``run_paper``'s flags after ``run paper --out OUT`` (test_main_job's test of the stages'
+#: keys runs again into a copy of its folder with them).
+#: 12 frames per animation: the animations' wiring, not 180 frames of pyvista (a minute).
+#: --quick: the integrator study's shorter ladders (its stage, its record and its report
+#: section are the same kinds; the study's numbers are test_integrators'); measured on
+#: this fixture, the stage's CPU 16.0 -> 8.5 s (the run 64 -> 61 s of CPU, its wall 46 -> 44 s).
+#: --mode-pictures 3: three mode pictures a set, not eight (each set's pictures are drawn by
+#: the same code whatever the count; all eight of synthetic modes are test_report's and
+#: test_report_reader's); the report on this run's files 17.2-18.0 -> 11.5-12.9 s of CPU.
+#: Both, measured in pairs on a loaded machine: the run 73.2 and 70.1 -> 56.7 and 55.1 s
+#: of CPU (integrators 19.5, 18.6 -> 8.9, 9.3; report 18.2, 17.4 -> 12.6, 12.0).
+#: The 3D tube on a 16 x 4 mesh, not paper's 64 x 10 (the stages that use it, modal, the 3D
+#: Campbell diagram and the report's mode pictures, run the same code on fewer elements; the
+#: 3D numbers are test_fem3d's and test_campbell_cli's; with no convergence study the chain
+#: takes the scene's [mesh] either way): modal 4.3 -> 1.2 s of CPU, campbell 11.6 -> 2.5 s,
+#: harmonic 3.4 -> 2.0 s, the run 52.3 -> 38.0 s (caches warm, 2026-11-29).
+RUN_PAPER_FLAGS = (
+    *("--skip", "converge", "--skip", "compare", "--max-frames", "12", "--mode-pictures", "3", "--quick"),
+    *("--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4"),
+)
+
+
 @pytest.fixture(scope="session")
 def run_paper(tmp_path_factory) -> RunOutput:
     def run(out: Path) -> dict:
-        # 12 frames per animation: the animations' wiring, not 180 frames of pyvista (a minute).
-        # --quick: the integrator study's shorter ladders (its stage, its record and its report
-        # section are the same kinds; the study's numbers are test_integrators'); measured on
-        # this fixture, the stage's CPU 16.0 -> 8.5 s (the run 64 -> 61 s of CPU, its wall 46 -> 44 s).
-        # --mode-pictures 3: three mode pictures a set, not eight (each set's pictures are drawn by
-        # the same code whatever the count; all eight of synthetic modes are test_report's and
-        # test_report_reader's); the report on this run's files 17.2-18.0 -> 11.5-12.9 s of CPU.
-        # Both, measured in pairs on a loaded machine: the run 73.2 and 70.1 -> 56.7 and 55.1 s
-        # of CPU (integrators 19.5, 18.6 -> 8.9, 9.3; report 18.2, 17.4 -> 12.6, 12.0)
-        p = cli(
-            *("run", "paper", "--out", out, "--skip", "converge", "--skip", "compare"),
-            *("--max-frames", "12", "--mode-pictures", "3", "--quick"),
-        )
+        p = cli("run", "paper", "--out", out, *RUN_PAPER_FLAGS)
         return {"args": p.args, "returncode": p.returncode, "stdout": p.stdout, "stderr": p.stderr}
 
     out, done = once_per_session("run_paper", tmp_path_factory, run)
@@ -163,8 +174,17 @@ def vtk_leak_check(request) -> Iterator[None]:
     _close_plotters()  # one test's leak must not fail the next ones
     assert left_open <= 0, f"{left_open} pyvista plotter(s) left open: close them (Plotter.close)"
     if full:
-        gc.collect()
+        # a collection only when a new VTK object is there to be collected: it frees objects,
+        # never makes one, so with none new before it none is new after it (the same verdict).
+        # Most renders tests let theirs go at once; the collection in each teardown was
+        # 0.1-0.5 s in a worker holding the suite's objects (the durations of a full run: the
+        # renders modules' teardowns 19.5 s in all).  In test_postprocess.py, test_report_kept.py
+        # and test_report.py 4 of 47 tests leave a new VTK object to collect; the first two
+        # modules 25.6 -> 24.4 s of CPU alone (perf task-clock, 2026-11-29)
         leaked = {i: name for i, name in vtk_objects().items() if i not in before}
+        if leaked:
+            gc.collect()
+            leaked = {i: name for i, name in vtk_objects().items() if i not in before}
         names = sorted(set(leaked.values()))
         assert not leaked, (
             f"{len(leaked)} VTK objects outlive the test (not garbage-collected): "

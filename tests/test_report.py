@@ -67,6 +67,21 @@ def run_cli(*args):
     assert cli.main([str(a) for a in args]) == 0
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _pictures_in_this_process():
+    """Every report here draws its 3D pictures in this process (parallel.WORKERS = 1), not
+    in two worker interpreters started for each report (each imports pyvista and VTK
+    anew): the page, its links and its texts are what is checked here, and the workers
+    draw what one process draws (test_report_parallel; the main job's report, in
+    test_main_job, runs with them).  This module 32.3 -> 20.9 s of CPU (perf task-clock,
+    2026-11-29; test_a_broken_input_costs_one_figure_not_the_report alone 11.2 -> 5.6 s)."""
+    from rotorpillar.postprocess.report import parallel
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(parallel, "WORKERS", 1)
+        yield
+
+
 @pytest.fixture(scope="module")
 def full(tmp_path_factory):
     """A report on every kind of input, with short animations."""
