@@ -2,6 +2,10 @@
 
 - :func:`cli` runs ``python -m rotorpillar ARGS...`` in a child process, as a
   user would, and returns the CompletedProcess (text stdout and stderr).
+- ``here`` (fixture) runs the same command in the test's process (rotorpillar.cli.main)
+  and returns what ``cli`` would: for the cases where a child is not the point (no
+  signal, kill, ``ulimit``, mpirun, blocking device or cluster); a Python start-up and
+  the imports per command are what it saves.
 - ``run_paper`` (session fixture): one ``rotorpillar run paper`` with
   :data:`RUN_PAPER_FLAGS` (converge and compare skipped, 12 frames per animation,
   three mode pictures a set, --quick, a 16 x 4 mesh) into a temporary directory, shared by the tests
@@ -66,6 +70,83 @@ def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.Comple
         cwd=cwd,
         timeout=timeout,
     )
+
+
+class Overtime(BaseException):
+    """A command run by ``here`` past its time limit (not an Exception: the CLI's error
+    boundary lets it through, and the test fails naming the command)."""
+
+
+@pytest.fixture
+def here(capfd, monkeypatch):
+    """``cli`` in this process: ``rotorpillar.cli.main`` (the CLI's one error boundary, as
+    tests/test_hostile_edges.py runs its cases), for the cases where a child process is not
+    the point (no signal, no kill, no ``ulimit``, no mpirun, no blocking device, no cluster).
+    A child costs a Python start-up and the imports (0.15 s for a refusal, seconds for a
+    command that loads dolfinx) per case; here they are paid once per test process.
+
+    It returns what ``cli`` returns (a CompletedProcess: the exit code, stdout, stderr), and
+    stderr holds what a user would see on it: the file descriptor's text (``capfd``), and
+    what in a child would have reached stderr through Python, written as Python writes it:
+    each warning the command raised (the child's default filters: deprecations and resource
+    warnings left out) and each log record at WARNING or above (the child's
+    ``quiet_third_party_logs`` threshold).  So ``one_line`` fails here as it did on a child's
+    stderr.  argparse's refusal (SystemExit 2) is its exit code.  ``timeout`` is the child's
+    (None: none): a command past it (a hang) is stopped by SIGALRM and the test fails.  ``env`` is what
+    the child's environment adds (mpirun's), ``cwd`` its working directory; both are undone
+    after the command."""
+    import logging
+    import signal
+    import warnings
+
+    from rotorpillar.cli import main
+
+    quiet = (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning)
+
+    class Logged(logging.Handler):
+        def __init__(self):
+            super().__init__(logging.WARNING)
+            self.lines: list[str] = []
+
+        def emit(self, record):
+            self.lines.append(f"{record.levelname}:{record.name}:{record.getMessage()}\n")
+
+    def run(*args, env=None, cwd=None, timeout=None) -> subprocess.CompletedProcess:
+        argv = [str(a) for a in args]
+
+        def overtime(signum, frame):
+            raise Overtime(f"rotorpillar {' '.join(argv)}: still running after {timeout} s")
+
+        logged, root = Logged(), logging.getLogger()
+        with monkeypatch.context() as m:
+            for key, value in (env or {}).items():
+                m.setenv(key, value)
+            if cwd is not None:
+                m.chdir(cwd)
+            capfd.readouterr()
+            previous = signal.signal(signal.SIGALRM, overtime)
+            signal.setitimer(signal.ITIMER_REAL, timeout or 0)  # 0: no limit, as cli's None
+            root.addHandler(logged)
+            try:
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always")
+                    try:
+                        code = main(argv)
+                    except SystemExit as exc:  # argparse's refusal: its message is on stderr
+                        code = exc.code
+            finally:
+                root.removeHandler(logged)
+                signal.setitimer(signal.ITIMER_REAL, 0)
+                signal.signal(signal.SIGALRM, previous)
+            out, err = capfd.readouterr()
+        said = [
+            warnings.formatwarning(w.message, w.category, w.filename, w.lineno)
+            for w in caught
+            if not issubclass(w.category, quiet)
+        ]
+        return subprocess.CompletedProcess(argv, code, out, err + "".join(said + logged.lines))
+
+    return run
 
 
 class RunOutput:

@@ -15,7 +15,6 @@ import json
 
 import numpy as np
 import pytest
-from test_hostile import here  # noqa: F401  (a fixture: the command in this process)
 
 from rotorpillar import records
 from rotorpillar.postprocess.readers import read_simulation
@@ -91,8 +90,8 @@ def test_each_damage_of_harmonic_json_is_named_with_its_field(tmp_path, harmonic
 
 
 @pytest.mark.slow  # harmonic, then report
-def test_report_strict_says_on_stderr_which_input_is_damaged(tmp_path, harmonic_doc, here):  # noqa: F811 (the fixture)
-    """The two reports in this process (tests/test_hostile.py's ``here``: stderr as a child's)."""
+def test_report_strict_says_on_stderr_which_input_is_damaged(tmp_path, harmonic_doc, here):
+    """The two reports in this process (conftest's ``here``: stderr as a child's)."""
     doc = json.loads(json.dumps(harmonic_doc))
     doc["rom"]["tip_amplitude"][3] = None
     (tmp_path / "harmonic.json").write_text(json.dumps(doc))
