@@ -14,43 +14,31 @@ pass it by far (40-60 steps per period), so no default run turns into a failure.
 from __future__ import annotations
 
 import json
-import subprocess
 
 import pytest
+from cli_here import cli_here
 
-from rotorpillar.cli import main
 from rotorpillar.reduced.accuracy import check_step, steps_per_period_needed
 
-# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule)
+# seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule).
+# The commands run in this process (tests/cli_here.py): what these tests check is the run's
+# accuracy verdict (simulate.json, the exit code, the failed check's line), not a Python
+# start-up (issue 30: the file, 11 commands, 38.0 -> 17.9 s of CPU; 56.2 -> 22.7 s at a
+# busier moment)
 pytestmark = pytest.mark.slow
 
 
-def simulate(capsys, *args) -> subprocess.CompletedProcess:
-    """conftest's ``cli``, in this process (rotorpillar.cli.main, the CLI's one error boundary,
-    as tests/test_hostile.py runs its run-ups): its exit code and its stderr as the terminal
-    shows them.  What these tests check is the run's accuracy verdict (simulate.json, the exit
-    code, the failed check's line), not a Python start-up: no interpreter, imports and compiled
-    kernels to load per run (issue 30: the file, 11 commands, 38.0 -> 17.9 s of CPU, and
-    56.2 -> 22.7 s at a busier moment)."""
-    capsys.readouterr()
-    words = ["simulate", "paper", *map(str, args)]
-    code = main(words)
-    out, err = capsys.readouterr()
-    return subprocess.CompletedProcess(words, code, out, err)
-
-
-def run_json(tmp_path, capsys, *args):
-    p = simulate(capsys, *args, "--out", tmp_path)
+def run_json(tmp_path, *args):
+    p = cli_here("simulate", "paper", *args, "--out", tmp_path)
     f = tmp_path / "simulate.json"
     doc = json.loads(f.read_text()) if f.exists() else None
     return p, doc
 
 
 @pytest.mark.parametrize("integrator, step, spp", [("newmark", 0.5, 0.14), ("central_difference", 0.05, 1.4)])
-def test_a_step_that_cannot_resolve_the_rotation_is_not_a_success(tmp_path, capsys, integrator, step, spp):
+def test_a_step_that_cannot_resolve_the_rotation_is_not_a_success(tmp_path, integrator, step, spp):
     p, doc = run_json(
         tmp_path,
-        capsys,
         "--case",
         "runup",
         "--no-threshold",
@@ -68,12 +56,12 @@ def test_a_step_that_cannot_resolve_the_rotation_is_not_a_success(tmp_path, caps
     assert "check failed: step_accuracy" in p.stderr
 
 
-def test_a_loose_tolerance_is_not_a_success(tmp_path, capsys):
+def test_a_loose_tolerance_is_not_a_success(tmp_path):
     # simulate.rtol's range ends at 0.1 (scene.sections): a looser one is refused before
     # the run; the loosest accepted one runs to a result that fails its own checks
-    p, doc = run_json(tmp_path, capsys, "--case", "runup", "--no-threshold", "--set", "simulate.rtol=0.1")
+    p, doc = run_json(tmp_path, "--case", "runup", "--no-threshold", "--set", "simulate.rtol=0.1")
     assert p.returncode == 4 and doc["ok"] is False and doc["failed_checks"]
-    refused = simulate(capsys, "--set", "simulate.rtol=0.5", "--out", tmp_path / "loose")
+    refused = cli_here("simulate", "paper", "--set", "simulate.rtol=0.5", "--out", tmp_path / "loose")
     assert refused.returncode == 2 and "simulate.rtol" in refused.stderr
 
 
@@ -118,8 +106,8 @@ def test_a_loose_tolerance_is_not_a_success(tmp_path, capsys):
     ],
     ids=["dp5", "newmark", "central-difference", "radau", "modal-record", "beam-record", "sweep"],
 )
-def test_the_default_steps_pass_by_far(tmp_path, capsys, args):
-    p, doc = run_json(tmp_path, capsys, *args)
+def test_the_default_steps_pass_by_far(tmp_path, args):
+    p, doc = run_json(tmp_path, *args)
     assert p.returncode == 0, p.stderr
     acc = doc["integrator"]["accuracy"]
     assert doc["ok"] is True and "failed_checks" not in doc
