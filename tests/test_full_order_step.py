@@ -29,6 +29,7 @@ import shutil
 
 import numpy as np
 import pytest
+from cli_here import cli_here
 from conftest import cli
 
 from rotorpillar.scene import load_scene
@@ -106,7 +107,7 @@ def test_the_3d_generalized_alpha_is_second_order(eccentricity, start, T, keys):
 
 
 def test_a_step_that_swallows_the_record_is_not_a_success(tmp_path):
-    p = cli(
+    p = cli_here(
         "simulate",
         "paper",
         "--model",
@@ -180,7 +181,9 @@ def test_two_ranks_give_the_serial_numbers(tmp_path, command):
         # two ranks give one rank's numbers on any mesh, and the serial run computes these modes
         # (the ranks read them from the cache) in 1 s of CPU instead of 6
         args += ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4"]
-    p1 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "one", env=env)
+    # the serial run in this process (tests/cli_here.py: no second Python start-up), the two
+    # ranks under mpirun
+    p1 = cli_here(command, "paper", *args, *SHORT, "--out", tmp_path / "one")
     p2 = cli(command, "paper", *args, *SHORT, "--out", tmp_path / "two", env=env, prefix=prefix)
     assert p1.returncode == 0, p1.stderr
     assert p2.returncode == 0, p2.stderr
