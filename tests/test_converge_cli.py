@@ -99,7 +99,7 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
     # the resume on one worker, in this process (--workers 1): the interrupt above is the one of
     # a study with its Dask workers; what is resumed is the run cache, whoever computes the rest
     # (no Dask cluster and no second serving process: measured 5.6 s of CPU against 8.7 s for
-    # the whole small study)
+    # the whole small study), and since issue 30 in the test's own process (tests/cli_here.py)
     p = cli_here("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json", "--workers", "1")
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)

@@ -287,6 +287,7 @@ def test_participation_of_the_3d_modes():
 @pytest.mark.slow  # the 3D run-up over the window (0.7 s, 8 x 10): ~30 s
 @has_dolfinx
 def test_compare_runup_on_the_3d_full_order(tmp_path):
+    # in this process (tests/cli_here.py): the comparison's files are the checks
     p = cli_here(
         "compare",
         "paper",
