@@ -7,13 +7,15 @@ input (exit 2, one line, nothing written).  Cheap: the 3D runs on the
 1 s).  The modal ROM against the 3D tube: measured 0.7 % history error over
 15 s (docs/transients.md; the tube's height needs its 10 elements: 8 x 4
 gives 20 %); tolerance 2 %.
+
+The commands run in this process (tests/cli_here.py), as test_simulate_cli's do.
 """
 
 import json
 
 import numpy as np
 import pytest
-from conftest import cli
+from cli_here import cli_here
 
 SPEC_FIELDS = (
     "model",
@@ -65,7 +67,7 @@ def check_model_files(out, case, model, stem="simulate"):
 
 @pytest.mark.slow  # the full-order beam over 8 s of record
 def test_beam_earthquake_files(tmp_path):
-    p = cli(
+    p = cli_here(
         "simulate",
         "paper",
         "--case",
@@ -99,7 +101,7 @@ def test_beam_earthquake_files(tmp_path):
     ],
 )
 def test_paper_model_base_forcing_warning(tmp_path, scene, extra, warned):
-    p = cli(
+    p = cli_here(
         "simulate",
         scene,
         "--case",
@@ -123,7 +125,7 @@ def test_paper_model_base_forcing_warning(tmp_path, scene, extra, warned):
 @pytest.mark.slow  # ~30 s: the 3D run (the issue's modal-against-3D check)
 @has_dolfinx
 def test_compare_earthquake_modal_fem3d(tmp_path):
-    p = cli("compare", "paper", "--case", "earthquake", *RECORD, *COARSE_3D, "--json", "--out", tmp_path)
+    p = cli_here("compare", "paper", "--case", "earthquake", *RECORD, *COARSE_3D, "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "compare_earthquake.json").read_text())
     assert doc["models_run"] == ["modal", "fem3d"] and doc["reference"] == "fem3d"
@@ -167,7 +169,7 @@ def test_compare_earthquake_modal_fem3d(tmp_path):
 @pytest.mark.parametrize("models", ["modal,nosuch", "", "modal,modal", "modal,"])
 def test_compare_bad_models(tmp_path, models):
     out = tmp_path / "o"
-    p = cli("compare", "paper", "--case", "earthquake", "--models", models, "--out", out)
+    p = cli_here("compare", "paper", "--case", "earthquake", "--models", models, "--out", out)
     assert p.returncode == 2
     assert len(p.stderr.strip().splitlines()) == 1 and "--models" in p.stderr
     assert not out.exists()
@@ -188,7 +190,7 @@ def test_compare_on_the_spatial_rom_sets_like_against_like(tmp_path):
         *("--set", "rotor.eccentricity=0.0002", "--set", "full_order.elements_around=8"),
         *("--set", "full_order.runup_duration=4"),
     )
-    p = cli("compare", "paper", "--case", "runup", *args, "--json", "--out", tmp_path)
+    p = cli_here("compare", "paper", "--case", "runup", *args, "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "compare_runup.json").read_text())
     assert doc["errors"]["modal"]["tip_history_error"] < 3e-2
@@ -200,7 +202,7 @@ def test_compare_on_the_spatial_rom_sets_like_against_like(tmp_path):
     # is about the models, not the run's length: 4 s of the run-up (simulate.duration) instead
     # of the case's 80 s (4.8e4 beam steps and their charts: 3.4 s of CPU against 2.4 s)
     short = ("--set", "simulate.duration=4")
-    p = cli("compare", "paper", "--case", "runup", *args[2:], *short, "--json", "--out", tmp_path / "beam")
+    p = cli_here("compare", "paper", "--case", "runup", *args[2:], *short, "--json", "--out", tmp_path / "beam")
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "beam" / "compare_runup.json").read_text())
     assert any("spatial model" in w for w in doc["per_model"]["beam"]["warnings"])

@@ -16,7 +16,8 @@ import sys
 import time
 
 import pytest
-from conftest import cli, sigint_as_in_the_foreground
+from cli_here import cli_here
+from conftest import sigint_as_in_the_foreground
 
 from rotorpillar import records
 from rotorpillar.converge import ModalModelSelection
@@ -98,8 +99,8 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
     # the resume on one worker, in this process (--workers 1): the interrupt above is the one of
     # a study with its Dask workers; what is resumed is the run cache, whoever computes the rest
     # (no Dask cluster and no second serving process: measured 5.6 s of CPU against 8.7 s for
-    # the whole small study)
-    p = cli("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json", "--workers", "1")
+    # the whole small study), and since issue 30 in the test's own process (tests/cli_here.py)
+    p = cli_here("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json", "--workers", "1")
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     assert doc["study"]["cached"] == len(done)
@@ -133,11 +134,11 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
 
 
 def test_bad_tolerance_exits_2_and_writes_nothing(tmp_path):
-    p = cli("converge", "paper", "--tolerance", "2", "--out", tmp_path)
+    p = cli_here("converge", "paper", "--tolerance", "2", "--out", tmp_path)
     assert p.returncode == 2
     assert len(p.stderr.strip().splitlines()) == 1 and "tolerance" in p.stderr
     assert list(tmp_path.iterdir()) == []
-    p = cli("converge", "paper", "--set", "converge.margin=0.5", "--out", tmp_path)
+    p = cli_here("converge", "paper", "--set", "converge.margin=0.5", "--out", tmp_path)
     assert p.returncode == 2 and "converge.margin" in p.stderr
 
 
@@ -159,7 +160,8 @@ SMALL_3D = [
 
 @pytest.mark.slow
 def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
-    p = cli("modal", "paper", *SMALL_3D, "--tolerance", "3e-2", "--out", tmp_path, "--json")
+    # both commands in this process (tests/cli_here.py); the study's runs in its serving process
+    p = cli_here("modal", "paper", *SMALL_3D, "--tolerance", "3e-2", "--out", tmp_path, "--json")
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     sel = doc["model_selection"]
@@ -182,7 +184,7 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
             assert r["wall_time"] >= chosen["wall_time"]
     # a tolerance no 3D run meets: known only from the runs, so a result, not bad input
     # (issue 19): the most accurate 3D mesh is run and marked, exit 4
-    bad = cli(
+    bad = cli_here(
         "modal", "paper", *SMALL_3D, "--tolerance", "1e-9", "--out", tmp_path / "x", "--cache", tmp_path / "cache"
     )
     assert bad.returncode == 4, bad.stderr

@@ -13,7 +13,8 @@ import sys
 import time
 
 import pytest
-from conftest import cli, sigint_as_in_the_foreground
+from cli_here import cli_here
+from conftest import sigint_as_in_the_foreground
 
 from rotorpillar import records
 from rotorpillar.cli import main
@@ -98,7 +99,11 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
         assert len(json.loads(f.read_text())["value"]["runs"]) == 8  # a cache.Entry: the key beside the batch
     assert not (out / "study.json").exists()
 
-    p = cli("study", "sommerfeld", "--case", "runup", *AXES, "--workers", "1", "--out", out, "--no-progress", "--json")
+    # the resume, the rerun and the IDA study below in this process (tests/cli_here.py: their
+    # files, JSON and exit codes are the checks; the interrupt above needs its child)
+    p = cli_here(
+        "study", "sommerfeld", "--case", "runup", *AXES, "--workers", "1", "--out", out, "--no-progress", "--json"
+    )
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     assert doc["batches"]["cached"] == len(done)
@@ -117,7 +122,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert doc["boundary"]["predicted"]["kind"] == "torque" and len(doc["boundary"]["found"]) == 6
 
     again = json.loads(
-        cli("study", "sommerfeld", "--case", "runup", *AXES, "--out", out, "--no-progress", "--json").stdout
+        cli_here("study", "sommerfeld", "--case", "runup", *AXES, "--out", out, "--no-progress", "--json").stdout
     )
     assert again["batches"]["computed"] == 0 and again["executor"]["workers"] == 0
 
@@ -140,7 +145,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
 
 @pytest.mark.slow  # a design study on a Dask cluster
 def test_earthquake_study_draws_the_ida_curves(tmp_path):
-    p = cli(
+    p = cli_here(
         "study",
         "paper",
         "--case",
