@@ -8,14 +8,14 @@ input (exit 2, one line, nothing written).  Cheap: the 3D runs on the
 15 s (docs/transients.md; the tube's height needs its 10 elements: 8 x 4
 gives 20 %); tolerance 2 %.
 
-The commands run in this process (tests/cli_here.py), as test_simulate_cli's do.
+The commands run in this process (conftest.cli_here), as test_simulate_cli's do.
 """
 
 import json
 
 import numpy as np
 import pytest
-from cli_here import cli_here
+from conftest import cli_here
 
 SPEC_FIELDS = (
     "model",

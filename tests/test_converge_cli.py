@@ -16,8 +16,7 @@ import sys
 import time
 
 import pytest
-from cli_here import cli_here
-from conftest import sigint_as_in_the_foreground
+from conftest import cli_here, sigint_as_in_the_foreground
 
 from rotorpillar import records
 from rotorpillar.converge import ModalModelSelection
@@ -99,7 +98,7 @@ def test_converge_writes_study_charts_and_resumes_after_ctrl_c(tmp_path):
     # the resume on one worker, in this process (--workers 1): the interrupt above is the one of
     # a study with its Dask workers; what is resumed is the run cache, whoever computes the rest
     # (no Dask cluster and no second serving process: measured 5.6 s of CPU against 8.7 s for
-    # the whole small study), and since issue 30 in the test's own process (tests/cli_here.py)
+    # the whole small study), and since issue 30 in the test's own process (conftest.cli_here)
     p = cli_here("converge", "paper", *SMALL, "--out", out, "--no-progress", "--json", "--workers", "1")
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
@@ -160,7 +159,7 @@ SMALL_3D = [
 
 @pytest.mark.slow
 def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
-    # both commands in this process (tests/cli_here.py); the study's runs in its serving process
+    # both commands in this process (conftest.cli_here); the study's runs in its serving process
     p = cli_here("modal", "paper", *SMALL_3D, "--tolerance", "3e-2", "--out", tmp_path, "--json")
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)

@@ -29,8 +29,7 @@ import shutil
 
 import numpy as np
 import pytest
-from cli_here import cli_here
-from conftest import cli
+from conftest import cli, cli_here
 
 from rotorpillar.scene import load_scene
 
@@ -187,7 +186,7 @@ def test_two_ranks_give_the_serial_numbers(tmp_path, command):
         # the mesh, the warm-up and the charts of each rank
         args += ["--set", "full_order.earthquake_duration=0.5"]
     args = [*SHORT, *args]  # the command's own settings after SHORT's: the last --set of a key wins
-    # the serial run in this process (tests/cli_here.py: no second Python start-up), the two
+    # the serial run in this process (conftest.cli_here: no second Python start-up), the two
     # ranks under mpirun
     p1 = cli_here(command, "paper", *args, "--out", tmp_path / "one")
     p2 = cli(command, "paper", *args, "--out", tmp_path / "two", env=env, prefix=prefix)

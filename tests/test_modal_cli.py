@@ -30,8 +30,7 @@ import stat
 
 import numpy as np
 import pytest
-from cli_here import cli_here
-from conftest import cli
+from conftest import cli, cli_here
 
 from rotorpillar import records
 
@@ -171,7 +170,7 @@ def test_mpi_two_ranks_equal_serial(tmp_path, small_run):
 def test_bad_mesh_input_exits_2_and_writes_nothing(tmp_path, sets, key):
     out = tmp_path / "out"
     args = [a for s in sets for a in ("--set", s)]
-    p = cli_here("modal", "paper", *args, "--out", out)  # in this process (tests/cli_here.py)
+    p = cli_here("modal", "paper", *args, "--out", out)  # in this process (conftest.cli_here)
     assert p.returncode == 2
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and key in lines[0]
@@ -209,7 +208,7 @@ def test_gmsh_crash_exits_1_and_writes_nothing(tmp_path, monkeypatch, capsys):
 
 @pytest.mark.slow  # the 3D modal command
 def test_analyze_takes_the_3d_reduction(tmp_path, small_run):
-    # in this process (tests/cli_here.py); the modal run it is checked against is the fixture's
+    # in this process (conftest.cli_here); the modal run it is checked against is the fixture's
     # child process, so the two reductions are two solves, not one cached result
     p = cli_here("analyze", "paper", *SMALL, "--set", "reduction.source=fem3d", "--json", "--out", tmp_path)
     assert p.returncode == 0, p.stderr

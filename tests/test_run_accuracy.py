@@ -16,12 +16,12 @@ from __future__ import annotations
 import json
 
 import pytest
-from cli_here import cli_here
+from conftest import cli_here
 
 from rotorpillar.reduced.accuracy import check_step, steps_per_period_needed
 
 # seconds each: a whole command (or several) per test; the slow tier runs it (conftest's rule).
-# The commands run in this process (tests/cli_here.py): what these tests check is the run's
+# The commands run in this process (conftest.cli_here): what these tests check is the run's
 # accuracy verdict (simulate.json, the exit code, the failed check's line), not a Python
 # start-up (issue 30: the file, 11 commands, 38.0 -> 17.9 s of CPU; 56.2 -> 22.7 s at a
 # busier moment)

@@ -11,7 +11,7 @@ tip (1e-12), the paper model's ground is q5 as written, and a run-down with
 the motor off follows the quasi-static J W' = -k W**2 - dL(W) with the exact
 averaged torque dL of the linear structure (1e-3).
 
-The commands run in this process (tests/cli_here.py: rotorpillar.cli.main, what
+The commands run in this process (conftest.cli_here: rotorpillar.cli.main, what
 ``python -m rotorpillar`` calls, its stdout, stderr and exit code): the contract is the
 files, the JSON and the messages, not a Python start-up (issue 30: with test_compare_cli,
 50.8 -> 25.0 s of CPU).
@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 import pytest
-from cli_here import cli_here
+from conftest import cli_here
 from scipy.integrate import solve_ivp
 
 from rotorpillar import records

@@ -13,8 +13,7 @@ import sys
 import time
 
 import pytest
-from cli_here import cli_here
-from conftest import sigint_as_in_the_foreground
+from conftest import cli_here, sigint_as_in_the_foreground
 
 from rotorpillar import records
 from rotorpillar.cli import main
@@ -99,7 +98,7 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
         assert len(json.loads(f.read_text())["value"]["runs"]) == 8  # a cache.Entry: the key beside the batch
     assert not (out / "study.json").exists()
 
-    # the resume, the rerun and the IDA study below in this process (tests/cli_here.py: their
+    # the resume, the rerun and the IDA study below in this process (conftest.cli_here: their
     # files, JSON and exit codes are the checks; the interrupt above needs its child)
     p = cli_here(
         "study", "sommerfeld", "--case", "runup", *AXES, "--workers", "1", "--out", out, "--no-progress", "--json"

@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 import pytest
-from cli_here import cli_here
+from conftest import cli_here
 from convergence_doc import convergence_doc
 
 from rotorpillar import records
@@ -287,7 +287,7 @@ def test_participation_of_the_3d_modes():
 @pytest.mark.slow  # the 3D run-up over the window (0.7 s, 8 x 10): ~30 s
 @has_dolfinx
 def test_compare_runup_on_the_3d_full_order(tmp_path):
-    # in this process (tests/cli_here.py): the comparison's files are the checks
+    # in this process (conftest.cli_here): the comparison's files are the checks
     p = cli_here(
         "compare",
         "paper",
