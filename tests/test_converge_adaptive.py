@@ -26,7 +26,7 @@ from rotorpillar.converge.adaptive import SOLID_CLASS
 from rotorpillar.converge.ladder import estimated_dofs, estimated_seconds
 from rotorpillar.converge.refinement import STOPS
 from rotorpillar.converge.result import RunResult
-from rotorpillar.converge.study import ladder_runs
+from rotorpillar.converge.study import _closest, ladder_runs
 from rotorpillar.scene import load_scene, override
 
 REFERENCE = {"bending": 30.82, "ovalling": 85.06}
@@ -96,6 +96,10 @@ def _same_choice(early, full, scene, tol):
     b, chosen_full, solid_full = _choices(full, scene, tol)
     assert (chosen and chosen.label) == (chosen_full and chosen_full.label), tol
     assert (solid and solid.label) == (solid_full and solid_full.label), tol
+    if solid is None:
+        # `modal`'s choice where no 3D run meets the tolerance: the most accurate 3D run
+        most, most_full = (_closest(x.runs, x.reference, x.band, list(SOLID_CLASS), tol, "")[0] for x in (a, b))
+        assert (most and most.label) == (most_full and most_full.label), tol
     if chosen is None:
         return a
     for q in cv.QUANTITIES:
@@ -108,7 +112,8 @@ def _same_choice(early, full, scene, tol):
     return a
 
 
-@pytest.mark.parametrize("tol", [3e-4, 7e-4, 1e-3, 2e-3, 3e-3, 1e-2, 3e-2])
+# 1e-9: no run meets it, and `modal` takes the most accurate 3D run
+@pytest.mark.parametrize("tol", [1e-9, 3e-4, 7e-4, 1e-3, 2e-3, 3e-3, 1e-2, 3e-2])
 def test_the_early_study_chooses_what_the_full_ladder_chooses(tmp_path, tol):
     scene = load_scene("paper")
     full, whole = ladder_runs(scene, tol, tmp_path, runner=synthetic_runner, full=True)
@@ -165,6 +170,31 @@ def test_without_a_reference_every_rung_runs(tmp_path):
     )
     runs, refined = ladder_runs(scene, 1e-3, tmp_path, runner=synthetic_runner)
     assert refined.runs == refined.ladder_runs == len(cv.ladder(scene)) == len(runs)
+
+
+def test_a_tolerance_no_run_meets_takes_the_full_ladders_most_accurate_3d_run(tmp_path):
+    # A short 3D ladder (tests/test_converge_cli.py's): the P2 hexahedra have one rung, so
+    # the most accurate 3D run is the around-only family's finest, 48x10x1.  Its model error
+    # stopped it after three rungs, and `modal --tolerance 1e-9` took 32x5x1 (band error 0.12
+    # against 0.028) until the 3D families ran on where no 3D run meets the tolerance.
+    scene = override(
+        load_scene("paper"),
+        [
+            "converge.shell_max_around=16",
+            "converge.shell_tri_max_around=8",
+            "converge.solid_p1_max_around=32",
+            "converge.solid_p2_max_around=48",
+            "converge.solid_tet_p2_max_around=32",
+        ],
+    )
+    full, _ = ladder_runs(scene, 1e-9, tmp_path, runner=synthetic_runner, full=True)
+    early, refined = ladder_runs(scene, 1e-9, tmp_path, runner=synthetic_runner)
+    assert refined.runs < refined.ladder_runs  # the shells still stop early
+    a = _same_choice(early, full, scene, 1e-9)
+    most, _ = _closest(a.runs, a.reference, a.band, list(SOLID_CLASS), 1e-9, "")
+    assert most is not None and most.label == "3D P2 hexahedra, around only, 48x10x1"
+    stops = {f.family: f.stop for f in refined.families}
+    assert all(stops[f] == "ladder end" for f in SOLID_CLASS)
 
 
 @pytest.mark.slow  # beams and shells up to 32 around, computed (about 20 s)

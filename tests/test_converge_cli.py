@@ -8,6 +8,7 @@ pixels).  The resume is checked by counting cached and computed runs.
 """
 
 import json
+import math
 import os
 import shutil
 import signal
@@ -20,6 +21,7 @@ from conftest import cli_here, sigint_as_in_the_foreground
 
 from rotorpillar import records
 from rotorpillar.converge import ModalModelSelection
+from rotorpillar.converge.adaptive import SOLID_CLASS
 
 SMALL = [
     "--set",
@@ -191,4 +193,15 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path):
     assert d["ok"] is False and d["model_selection"]["met"] is False
     assert records.to_builtins(records.convert(d["model_selection"], ModalModelSelection)) == d["model_selection"]
     assert "not met" in d["failed_checks"][0] and "not met" in bad.stderr
+    # and the mesh run is the most accurate 3D run of the study, whose 3D families ran on
+    # to their ladders' ends (no 3D run meets: rotorpillar.converge.adaptive)
+    unmet = json.loads((tmp_path / "x" / "convergence.json").read_text())
+    unc, needed = unmet["selection"]["reference_uncertainty"], unmet["selection"]["needed"]
+
+    def band_error(r):
+        bounds = [r.get(f"{q}_error_bound") for q in needed]
+        return math.inf if None in bounds else max(b + unc[q] for b, q in zip(bounds, needed))
+
+    solid = [r for r in unmet["runs"] if r["family"] in SOLID_CLASS and r["status"] == "ok"]
+    assert d["model_selection"]["chosen"]["label"] == min(solid, key=band_error)["label"]
     assert len(bad.stderr.strip().splitlines()) <= 8, bad.stderr  # a few lines, no traceback
