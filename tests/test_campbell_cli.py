@@ -11,14 +11,18 @@ import importlib.util
 import json
 
 import pytest
-from conftest import cli
 from imagecheck import assert_real_png
 
-pytestmark = pytest.mark.slow  # a whole command in a child process
+pytestmark = pytest.mark.slow  # a whole command (the 3D one: a 3D solve)
+
+# Every command runs in the test's process (conftest's ``here``): what is checked is the
+# command's files, exit code and stderr, which ``here`` gives as a child's (argparse's exit
+# 2, the fd's text, each warning and WARNING log a child would print); no signal, mpirun or
+# environment is the point here, so a child's Python start-up and imports are not paid per case.
 
 
-def test_campbell_writes_json_and_png(tmp_path):
-    p = cli("campbell", "paper", "--set", "modal_model.source=beam", "--speeds", "0:150:51", "--out", tmp_path)
+def test_campbell_writes_json_and_png(tmp_path, here):
+    p = here("campbell", "paper", "--set", "modal_model.source=beam", "--speeds", "0:150:51", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
     doc = json.loads((tmp_path / "campbell.json").read_text())
     assert doc["model"] == "modal" and len(doc["speeds"]) == 51 and doc["speeds"][-1] == 150.0
@@ -40,20 +44,20 @@ def test_campbell_writes_json_and_png(tmp_path):
 
 
 @pytest.mark.parametrize("speeds", ["5:1:3", "0:100", "a:b:c", "0:100:1"])
-def test_bad_speeds_exit_2_on_one_line(tmp_path, speeds):
+def test_bad_speeds_exit_2_on_one_line(tmp_path, here, speeds):
     out = tmp_path / "out"
-    p = cli("campbell", "paper", "--speeds", speeds, "--out", out)
+    p = here("campbell", "paper", "--speeds", speeds, "--out", out)
     assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1 and "--speeds" in p.stderr
     assert not out.exists()
 
 
 @pytest.mark.skipif(importlib.util.find_spec("rotorpillar.fem3d.campbell") is not None, reason="the 3D side is here")
-def test_fem3d_refused_while_absent(tmp_path):
-    p = cli("campbell", "paper", "--model", "fem3d", "--set", "modal_model.source=beam", "--out", tmp_path)
+def test_fem3d_refused_while_absent(tmp_path, here):
+    p = here("campbell", "paper", "--model", "fem3d", "--set", "modal_model.source=beam", "--out", tmp_path)
     assert p.returncode == 2 and "not in this build yet" in p.stderr
 
 
-def test_both_puts_the_3d_diagram_beside_the_roms(tmp_path):
+def test_both_puts_the_3d_diagram_beside_the_roms(tmp_path, here):
     """--model both (the run's campbell stage): campbell.json is the ROM's diagram with the 3D
     model's in ``fem3d`` and each ROM critical speed against the 3D's in ``differences``.  No
     study on disk: the chain's mesh is the scene's, so no warning of a cheaper mesh.  The two
@@ -68,7 +72,7 @@ def test_both_puts_the_3d_diagram_beside_the_roms(tmp_path):
     to the ROM -0.1267 % on 64 around, -0.1254 % on 16), the command 10.1 -> 3.8 s of CPU; the
     shell modes, worse at 16 around, are not what is compared."""
     pytest.importorskip("dolfinx")
-    p = cli(
+    p = here(
         "campbell",
         "paper",
         "--model",
@@ -99,8 +103,8 @@ def test_both_puts_the_3d_diagram_beside_the_roms(tmp_path):
     assert_real_png(tmp_path / "campbell.png")
 
 
-def test_bad_fem3d_speeds_exit_2_on_one_line(tmp_path):
+def test_bad_fem3d_speeds_exit_2_on_one_line(tmp_path, here):
     out = tmp_path / "out"
-    p = cli("campbell", "paper", "--model", "both", "--fem3d-speeds", "1", "--out", out)
+    p = here("campbell", "paper", "--model", "both", "--fem3d-speeds", "1", "--out", out)
     assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1 and "--fem3d-speeds" in p.stderr
     assert not out.exists()

@@ -6,7 +6,6 @@ them and that the section shows it."""
 
 import numpy as np
 import pytest
-from conftest import cli
 from imagecheck import assert_real_png
 
 from rotorpillar.postprocess.orbit_chart import orbit_chart
@@ -29,8 +28,8 @@ def test_the_orbit_chart_is_a_legible_picture(tmp_path):
     assert layout is not None and layout["problems"] == []
 
 
-@pytest.mark.slow  # two commands in child processes, then the section
-def test_the_machine_in_3d_section_shows_the_orbits(tmp_path):
+@pytest.mark.slow  # two commands, then the section
+def test_the_machine_in_3d_section_shows_the_orbits(tmp_path, here):
     from rotorpillar.postprocess.report.machine3d import section_machine3d
     from rotorpillar.postprocess.report.state import Build, ReportOptions
     from rotorpillar.scene import load_scene
@@ -38,7 +37,8 @@ def test_the_machine_in_3d_section_shows_the_orbits(tmp_path):
     # the ROM's harmonic response only: the orbits are the spatial ROM's (the 3D curve is
     # test_harmonic_3d's)
     for command in (["harmonic", "--no-fem3d"], ["campbell", "--speeds", "0:180:61"]):
-        p = cli(command[0], "paper", *command[1:], "--set", "modal_model.source=beam", "--out", tmp_path)
+        # in this process (conftest's here): the files are what the section reads
+        p = here(command[0], "paper", *command[1:], "--set", "modal_model.source=beam", "--out", tmp_path)
         assert p.returncode == 0, p.stderr
     build = Build(load_scene("paper"), tmp_path, "paper", ReportOptions())
     html = str(section_machine3d(build))

@@ -16,7 +16,6 @@ import math
 
 import numpy as np
 import pytest
-from conftest import cli
 
 from rotorpillar import analyze, load_scene, override, records
 from rotorpillar import converge as cv
@@ -211,10 +210,11 @@ def test_the_integrator_study_round_trips_with_its_failed_runs():
 
 
 @pytest.mark.slow  # two commands, a few seconds each
-def test_simulate_files_read_back_as_their_model_run(tmp_path):
+def test_simulate_files_read_back_as_their_model_run(tmp_path, here):
     from rotorpillar.transients.model_run import PaperRun, RunRecord
 
-    p = cli("simulate", "paper", "--case", "earthquake", "--model", "paper", "--out", tmp_path)
+    # in this process (conftest's here): what is read back is the files the command writes
+    p = here("simulate", "paper", "--case", "earthquake", "--model", "paper", "--out", tmp_path)
     assert p.returncode == 0, p.stderr
     for name in ("simulate_earthquake_paper.json", "simulate_earthquake.json", "simulate.json"):
         run = records.read(tmp_path / name, RunRecord)

@@ -17,7 +17,7 @@ What is checked, and against what:
 import json
 
 import pytest
-from conftest import cli
+from conftest import cli_here
 
 from rotorpillar import records
 from rotorpillar.reduced.margins import required_margin
@@ -41,7 +41,7 @@ def out(tmp_path_factory):
     d = tmp_path_factory.mktemp("verdict")
     scene = override(load_scene("paper"), QUAKE)
     write_model_files(d, scene, run_model(scene, "earthquake", "modal"), {}, last_run=False)
-    p = cli("harmonic", "paper", "--no-fem3d", "--out", d)
+    p = cli_here("harmonic", "paper", "--no-fem3d", "--out", d)  # in this process: its files are what is read
     assert p.returncode == 0, p.stderr
     return d
 
@@ -90,8 +90,8 @@ def test_checks_against_capacities(out):
     assert any("rotor.clearance" in x for x in plain.not_assessed)
 
 
-def test_report_writes_summary_and_opens_with_the_verdict(out):
-    p = cli("report", "paper", "--out", out, "--no-animations")
+def test_report_writes_summary_and_opens_with_the_verdict(out, here):
+    p = here("report", "paper", "--out", out, "--no-animations")
     assert p.returncode == 0, p.stderr
     s = records.read(out / "summary.json", EngineeringSummary)
     assert s.scene == "paper" and s.checks
