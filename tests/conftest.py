@@ -73,6 +73,11 @@ def cli(*args, env=None, cwd=None, prefix=(), timeout=None) -> subprocess.Comple
     )
 
 
+#: The warnings a child Python's default filters keep off stderr: what ``here`` and
+#: tests/test_hostile_edges.py's in-process cases leave out of what a user would see.
+QUIET_WARNINGS = (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning)
+
+
 def main_exit_code(argv: list[str]) -> int:
     """``rotorpillar.cli.main(argv)`` in this process; argparse's refusal (SystemExit) is
     its exit code, as the child's would be."""
@@ -128,8 +133,6 @@ def here(capfd, monkeypatch):
     import signal
     import warnings
 
-    quiet = (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning)
-
     class Logged(logging.Handler):
         def __init__(self):
             super().__init__(logging.WARNING)
@@ -166,7 +169,7 @@ def here(capfd, monkeypatch):
         said = [
             warnings.formatwarning(w.message, w.category, w.filename, w.lineno)
             for w in caught
-            if not issubclass(w.category, quiet)
+            if not issubclass(w.category, QUIET_WARNINGS)
         ]
         return subprocess.CompletedProcess(argv, code, out, err + "".join(said + logged.lines))
 

@@ -39,6 +39,7 @@ import json
 import warnings
 
 import pytest
+from conftest import QUIET_WARNINGS
 
 from rotorpillar.scene import SECTIONS
 
@@ -312,7 +313,7 @@ def run_at(tmp_path, capfd, request, consumer: str, values: dict) -> int:
     seen = [
         f"{w.category.__name__}: {w.message} ({w.filename}:{w.lineno})"
         for w in caught
-        if not issubclass(w.category, (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning))
+        if not issubclass(w.category, QUIET_WARNINGS)
     ]
     assert not seen, f"{where}: Python warnings would reach the user: {seen}"
     assert code in (0, 2, 4), f"{where}: exit {code}: {err}"
