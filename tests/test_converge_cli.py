@@ -164,9 +164,11 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path, monk
     """Both commands in this process (conftest.cli_here), the study's runs in its serving
     process.  The unmet tolerance first: its study (every 3D family to its ladder's end, the
     shells' around-only sweep to 16) holds every run the met one's needs, so the second study
-    reads them all from the shared run cache and starts no serving process; the first study's
-    charts are not drawn (the second's are checked, and the charts' own content is
-    test_convergence_charts'): measured (issue 30, user+system CPU of the test on a loaded machine) 18.3 -> 16.1 s."""
+    reads them all from the shared run cache and starts no serving process.  The first study's
+    charts are not drawn: nothing reads them, and the charts of a study are checked on the
+    second call here (written and named in convergence.json) and as PNG images of their size
+    in the Ctrl-C test above.  Measured (issue 30, user+system CPU of the test on a loaded
+    machine): 18.3 -> 16.1 s."""
     import rotorpillar.postprocess.convergence_charts as charts
 
     cache = tmp_path / "cache"
