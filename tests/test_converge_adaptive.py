@@ -21,7 +21,7 @@ import math
 import shutil
 
 import pytest
-from test_converge import shell_quad_runs
+from test_converge import SHELL_LADDER, shell_runs
 
 from rotorpillar import converge as cv
 from rotorpillar.converge.adaptive import SOLID_CLASS
@@ -201,14 +201,11 @@ def test_a_tolerance_no_run_meets_takes_the_full_ladders_most_accurate_3d_run(tm
 
 @pytest.mark.slow  # beams and shells up to 32 around, computed (about 20 s)
 def test_a_real_small_ladder_chooses_what_its_full_ladder_chooses(tmp_path, tmp_path_factory):
-    # the shell Q2 rungs read from a copy of the session's run cache (test_converge.shell_quad_runs):
-    # the same runs; the triangles, the around-only sweep and the beams computed here
+    # its shell rungs read from a copy of the session's run cache (test_converge.shell_runs:
+    # the same runs, by the same runner); the closed forms and beams computed here
     shell_cache = tmp_path / "cache"
-    shutil.copytree(shell_quad_runs(tmp_path_factory), shell_cache)
-    scene = override(
-        load_scene("paper"),
-        ["converge.solid=false", "converge.shell_max_around=32", "converge.shell_tri_max_around=24"],
-    )
+    shutil.copytree(shell_runs(tmp_path_factory), shell_cache)
+    scene = override(load_scene("paper"), list(SHELL_LADDER))
     full, _ = ladder_runs(scene, 2e-3, shell_cache, full=True)
     for tol in (1e-3, 2e-3, 5e-3, 2e-2):
         early, refined = ladder_runs(scene, tol, shell_cache)

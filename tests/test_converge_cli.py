@@ -19,6 +19,7 @@ from pathlib import Path
 
 import pytest
 from conftest import cli_here, sigint_as_in_the_foreground
+from test_converge import shell_runs
 
 from rotorpillar import records
 from rotorpillar.converge import ModalModelSelection
@@ -161,9 +162,10 @@ SMALL_3D = [
 
 
 @pytest.mark.slow
-def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path, monkeypatch):
+def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path, tmp_path_factory, monkeypatch):
     """Both commands in this process (conftest.cli_here), the study's runs in its serving
-    process.  The unmet tolerance first: its study (every 3D family to its ladder's end, the
+    process; the shell rungs read from a copy of the session's run cache (test_converge.shell_runs:
+    the same runs by the same runner).  The unmet tolerance first: its study (every 3D family to its ladder's end, the
     shells' around-only sweep to 16) holds every run the met one's needs, so the second study
     reads them all from the shared run cache and starts no serving process.  Neither study
     draws its charts: the first's are a no-op, the second's a stand-in that records what
@@ -175,6 +177,7 @@ def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path, monk
     import rotorpillar.postprocess.convergence_charts as charts
 
     cache = tmp_path / "cache"
+    shutil.copytree(shell_runs(tmp_path_factory), cache)
     # a tolerance no 3D run meets: known only from the runs, so a result, not bad input
     # (issue 19): the most accurate 3D mesh is run and marked, exit 4
     with monkeypatch.context() as m:

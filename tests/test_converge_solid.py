@@ -33,17 +33,16 @@ Sources and tolerances:
   would drop the scene grading's 64 ... 128, but with them the check that its
   order is lower: over 32, 64, 96 the two orders are 3.39 and 3.47, too close
   to tell apart; only the finer rungs separate them (2.9 against 3.92).
-- The shell's rungs are read from the session's run cache of the shell Q2 ladder
-  (test_converge.shell_quad_runs), which test_converge's shell reference and
-  test_converge_adaptive's real ladder read too: computed once, not three times
-  (issue 30, measured with those two modules: 34.3 -> 31.2 s of CPU).
+- The shell's rungs are read from the session's run cache of the shell ladder
+  (test_converge.shell_runs), which four other slow tests read too: computed once,
+  not in each (issue 30).
 """
 
 import shutil
 
 import pytest
 from conftest import once_per_session
-from test_converge import shell_quad_runs
+from test_converge import shell_runs
 
 from rotorpillar import converge as cv
 from rotorpillar import records
@@ -65,9 +64,9 @@ def runs(tmp_path_factory):
     # the other reads them back through their record type, so every test below still
     # checks the numbers of these very runs.
     def compute(out):
-        # the shell rungs from the session's run cache (test_converge.shell_quad_runs: the
-        # same runs, keyed by case, tube and code), computed once for three test modules
-        shutil.copytree(shell_quad_runs(tmp_path_factory), out, dirs_exist_ok=True)
+        # the shell rungs from the session's run cache (test_converge.shell_runs: the
+        # same runs, keyed by case, tube and code), computed once for five tests
+        shutil.copytree(shell_runs(tmp_path_factory), out, dirs_exist_ok=True)
         scene = load_scene("paper")
         graded = override(scene, ["mesh.grading=200"])
         done = {

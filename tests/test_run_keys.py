@@ -27,6 +27,7 @@ import shutil
 import sys
 
 import pytest
+from test_converge import shell_runs
 
 from rotorpillar.commands import stage_keys
 from rotorpillar.commands.parser import build_parser
@@ -203,7 +204,7 @@ def one_core():
 
 
 @pytest.mark.slow
-def test_run_keeps_the_study_through_a_stall_torque_that_keeps_its_modes(tmp_path, here):
+def test_run_keeps_the_study_through_a_stall_torque_that_keeps_its_modes(tmp_path, tmp_path_factory, here):
     """The main job with only the study (a shell-only ladder: the Q2 quadrilaterals' three
     rungs up to 16 around, whose Richardson reference puts bending and ovalling in the band)
     and the report: run again with a stall torque 10 % higher, the study is not run again
@@ -220,6 +221,9 @@ def test_run_keeps_the_study_through_a_stall_torque_that_keeps_its_modes(tmp_pat
     workers with the triangles to 16 around, 16.1 s; two runs here, one core, the triangles'
     one rung (8 around), 8.7 s."""
     out = tmp_path / "out"
+    # the study's shell rungs from the session's run cache (test_converge.shell_runs: the
+    # same runs by the same runner), in its cache beforehand: the stage reads them all
+    shutil.copytree(shell_runs(tmp_path_factory), out / "cache")
     others = ("modal", "analyze", "compare", "integrators", "harmonic", "campbell", "tornado", "simulate")
     skips = [a for s in others for a in ("--skip", s)]
     ladder = ("converge.solid=false", "converge.shell_max_around=16", "converge.shell_tri_max_around=8")
