@@ -199,7 +199,7 @@ def test_a_tolerance_no_run_meets_takes_the_full_ladders_most_accurate_3d_run(tm
     assert all(stops[f] == "ladder end" for f in SOLID_CLASS)
 
 
-@pytest.mark.slow  # beams and shells up to 32 around, computed (about 20 s)
+@pytest.mark.slow  # beams and shells up to 32 around (the shells: the session's run cache)
 def test_a_real_small_ladder_chooses_what_its_full_ladder_chooses(tmp_path, tmp_path_factory):
     # its shell rungs read from a copy of the session's run cache (test_converge.shell_runs:
     # the same runs, by the same runner); the closed forms and beams computed here
