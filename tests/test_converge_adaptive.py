@@ -18,8 +18,10 @@ GCI) of the limit, so they differ by at most the sum of the two.
 from __future__ import annotations
 
 import math
+import shutil
 
 import pytest
+from test_converge import SHELL_LADDER, shell_runs
 
 from rotorpillar import converge as cv
 from rotorpillar.converge.adaptive import SOLID_CLASS
@@ -197,15 +199,16 @@ def test_a_tolerance_no_run_meets_takes_the_full_ladders_most_accurate_3d_run(tm
     assert all(stops[f] == "ladder end" for f in SOLID_CLASS)
 
 
-@pytest.mark.slow  # beams and shells up to 32 around, computed (about 20 s)
-def test_a_real_small_ladder_chooses_what_its_full_ladder_chooses(tmp_path):
-    scene = override(
-        load_scene("paper"),
-        ["converge.solid=false", "converge.shell_max_around=32", "converge.shell_tri_max_around=24"],
-    )
-    full, _ = ladder_runs(scene, 2e-3, tmp_path, full=True)
+@pytest.mark.slow  # beams and shells up to 32 around (the shells: the session's run cache)
+def test_a_real_small_ladder_chooses_what_its_full_ladder_chooses(tmp_path, tmp_path_factory):
+    # its shell rungs read from a copy of the session's run cache (test_converge.shell_runs:
+    # the same runs, by the same runner); the closed forms and beams computed here
+    shell_cache = tmp_path / "cache"
+    shutil.copytree(shell_runs(tmp_path_factory), shell_cache)
+    scene = override(load_scene("paper"), list(SHELL_LADDER))
+    full, _ = ladder_runs(scene, 2e-3, shell_cache, full=True)
     for tol in (1e-3, 2e-3, 5e-3, 2e-2):
-        early, refined = ladder_runs(scene, tol, tmp_path)
+        early, refined = ladder_runs(scene, tol, shell_cache)
         assert refined.runs < refined.ladder_runs and all(r.cached for r in early)
         _same_choice(early, full, scene, tol)
     assert math.isfinite(sum(r.wall_time or 0.0 for r in full))
