@@ -180,14 +180,16 @@ def test_transient_observer_resultants_and_xdmf(tmp_path):
 
 
 def test_fem3d_run_forces_against_the_rom(tmp_path):
-    """El Centro's first 4 s of strong motion (5 ... 9 s) on the [full_order] 3D mesh and on
-    the ROM: the base moment's peak within 2 % (the full 15 s run: 0.2 %), the 3D run's XDMF
-    beside its JSON."""
+    """El Centro's first 4 s of strong motion on the [full_order] 3D mesh and on the ROM: the
+    base moment's peak within 2 % (the full 15 s run: 0.2 %), the 3D run's XDMF beside its
+    JSON.  The ground moves from t = 0 (excitation.start = 0), not after the scene's 5 s of
+    whirl alone (issue 30: ~2,380 steps, not 5,350; the 3D run's CPU 5.7 -> 3.0 s): the peak
+    1.098e6 N*m, 9.3e-4 below the ROM's (measured; 8.1e-4 with the ground from 5 s over 9 s)."""
     from rotorpillar.transients.model_run import run_model
 
-    s = override(load_scene("paper"), ["excitation.kind=record"])
-    fem = run_model(s, "earthquake", "fem3d", duration=9.0, field_dir=tmp_path)
-    rom = run_model(s, "earthquake", "modal", duration=9.0)
+    s = override(load_scene("paper"), ["excitation.kind=record", "excitation.start=0"])
+    fem = run_model(s, "earthquake", "fem3d", duration=4.0, field_dir=tmp_path)
+    rom = run_model(s, "earthquake", "modal", duration=4.0)
     mf, mr = records.to_builtins(fem.record)["max_abs"], records.to_builtins(rom.record)["max_abs"]
     assert mf["base_moment"] == pytest.approx(mr["base_moment"], rel=2e-2)
     assert mf["von_mises"] >= 0.9 * mf["base_stress"]

@@ -97,15 +97,18 @@ def static_run():
 
     scene = load_scene("paper", COARSE)
     a0 = 0.5
-    motion = ramp_motion(a0, 2.0, 9.0)
+    # held 3 s after the ramp, not 7 (issue 30: 1,000 steps, not 1,800; 2.0 -> 1.0 s of CPU):
+    # over the last second the plate's X within 1.5e-5 of the direct solve at most, 4.6e-8 on
+    # the mean, the shaft 1.6e-6 (9 s: 1.4e-8, 1.0e-8, 3e-10), far inside the bounds below
+    motion = ramp_motion(a0, 2.0, 5.0)
     r = simulate_fem3d(
         scene,
         "earthquake",
         motion=motion,
         drive=DriveSchedule.constant(0.0, 0.0, 0.0),
-        duration=9.0,
+        duration=5.0,
         time_step=5e-3,
-        samples=181,
+        samples=101,
         initial_speed=0.0,
         initial_angle=0.0,
         prescribed_speed=True,
