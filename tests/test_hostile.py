@@ -11,6 +11,7 @@ commands at once (``cli``).
 """
 
 import json
+import os
 import socket
 import subprocess
 import sys
@@ -474,44 +475,21 @@ def test_a_record_timed_in_milliseconds_is_flagged_not_realistic(tmp_path, here)
     assert "not a realistic earthquake" in p.stderr
 
 
-@pytest.mark.slow  # a convergence study (shell ladder in subprocesses)
-def test_a_short_ladder_chooses_no_model_without_an_error_estimate(tmp_path, here):
-    """No 3D model and an 8-around shell: no family converges, so there is no reference and
-    no run has an error estimate; the study says so instead of choosing the closed forms.
-    On one worker (--workers 1: the runs in one serving process, no Dask cluster): the choice
-    does not depend on where the 23 runs ran; CPU 9.3 -> 5.7 s.  The study in this process
-    (``here``: its serving process is a child all the same), as tests/test_hostile_edges.py
-    runs converge: no start-up and imports of the study's own process."""
-    import json
-
-    p = here(
-        "converge",
-        "paper",
-        "--set",
-        "converge.solid=false",
-        "--set",
-        "converge.shell_max_around=8",
-        "--set",
-        "converge.shell_tri_max_around=8",
-        "--no-progress",
-        "--workers",
-        "1",
-        "--out",
-        tmp_path,
-        timeout=600,
-    )
-    assert p.returncode == 0, p.stderr
-    sel = json.loads((tmp_path / "convergence.json").read_text())["selection"]
-    assert sel["chosen"] is None and "no converged reference" in sel["reason"]
-
-
 @pytest.mark.slow  # two convergence studies per case
 @pytest.mark.parametrize("sig", ["SIGTERM", "SIGKILL"])
 def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig, here):
     """Killed mid-study (SIGTERM: stops its runs; SIGKILL: no chance to clean up): every
     JSON on disk parses, and the rerun computes only what is missing.  After the SIGKILL,
     two cached runs are also damaged (they parse to another shape: null, a list): the
-    rerun treats them as absent, recomputes and rewrites them, instead of failing."""
+    rerun treats them as absent, recomputes and rewrites them, instead of failing.
+
+    A short ladder chooses no model without an error estimate: no 3D model and an
+    8-around shell, so no family converges, there is no reference and no run has an error
+    estimate; the finished study says so instead of choosing the closed forms.  Checked on
+    the rerun's convergence.json (the study a fresh run of the same flags writes: the
+    selection reads the 23 runs' records, computed or read back alike), not on a third study
+    of its own (it was test_a_short_ladder_chooses_no_model_without_an_error_estimate: the
+    same flags from nothing, 5.0 s of CPU, its serving process 2.7 of them)."""
     import json
     import signal
     import subprocess
@@ -558,26 +536,41 @@ def test_converge_killed_leaves_whole_files_and_resumes(tmp_path, sig, here):
     for f in damaged:
         assert json.loads(f.read_text())["value"]["status"] == "ok"  # recomputed and rewritten (a cache.Entry)
     assert not list(cache.glob(".*.part*"))  # a killed writer's part is gone
+    sel = json.loads((tmp_path / "convergence.json").read_text())["selection"]
+    assert sel["chosen"] is None and "no converged reference" in sel["reason"]  # the short ladder
 
 
 @pytest.mark.slow  # seconds: whole commands (the slow tier runs it)
-def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, here):
+@pytest.mark.renders  # the top's mode picture is drawn in this process
+def test_a_damaged_vtu_costs_its_pictures_quietly(tmp_path, here, monkeypatch):
     """No VTK parser errors on the terminal, no traceback: one failure naming the file and
     the command that rebuilds it.
 
     The modal inputs alone (modal.json and its two VTUs): the VTUs are read and rendered by
     the same jobs with or without analyze's and a run-up's inputs, whose charts (the drive's,
     6 s of the report's 10) were most of the cost; the report's CPU 8.6 -> 6.2 s, and with
-    nothing else to fail the failure is the only one."""
+    nothing else to fail the failure is the only one.
+
+    The jobs in this process (parallel.WORKERS = 1, as tests/test_report.py draws): the same
+    run_job reads the damaged VTU (refused from its first bytes, before VTK parses it) and
+    draws the sound one, and ``here`` reads this process's stderr as it read the workers'
+    (they wrote to the same file descriptor); two render workers each importing pyvista and
+    VTK were 6.0 of the test's 6.9 s of CPU.  One picture of the sound set (--mode-pictures 1,
+    not 8): the top's job still loads, draws and succeeds, which the single failure checks.
+    The workers' own handling of a failing job is test_report_parallel's; the test's CPU
+    6.9 -> 1.9 s (pyvista's import in this process included)."""
     import json
 
     import fixtures
 
+    from rotorpillar.postprocess.report import parallel
+
+    monkeypatch.setattr(parallel, "WORKERS", 1)
     out = tmp_path / "out"
     out.mkdir()
     fixtures.write_modal_fixture(out, around=24, along=16)
     (out / "modes_bare.vtu").write_text("garbage")
-    p = here("report", "paper", "--out", out, "--no-animations")
+    p = here("report", "paper", "--out", out, "--no-animations", "--mode-pictures", "1")
     assert p.returncode == 0, p.stderr
     assert "Traceback" not in p.stderr and "vtkXML" not in p.stderr
     failures = json.loads((out / "report.json").read_text())["failures"]
@@ -1197,11 +1190,11 @@ def test_an_output_path_that_is_no_directory_says_what_it_is(tmp_path, kind, her
 
 
 FULL_DISK = [
-    ["analyze"],
-    ["simulate", "--model", "paper", "--no-threshold", "--set", "simulate.duration=10"],
-    ["integrators", "--duration", "2", "--quick"],  # the full study: 40 s for the same refusal
-    ["compare", "--case", "runup", "--models", "paper,beam", "--set", "simulate.duration=2"],
-    ["campbell", "--speeds", "0:150:51", "--set", "modal_model.source=beam"],
+    ["analyze"],  # analyze.json
+    ["simulate", "--model", "paper", "--no-threshold", "--set", "simulate.duration=10"],  # its .npz
+    ["integrators", "--duration", "2", "--quick"],  # numba's compiled kernel (below)
+    ["compare", "--case", "runup", "--models", "paper,beam", "--set", "simulate.duration=2"],  # its .npz
+    ["campbell", "--speeds", "0:150:51", "--set", "modal_model.source=beam"],  # campbell.png
 ]
 
 
@@ -1209,16 +1202,28 @@ FULL_DISK = [
 def test_a_full_disk_is_one_line_naming_the_file(tmp_path, args):
     """The file system refuses to grow a file (``ulimit -f``, SIGXFSZ ignored: write(2)
     fails as on a full disk): exit 1, one line naming the file, and nothing after it (before:
-    no file named, then numpy's zip writer's "Exception ignored ... Traceback")."""
+    no file named, then numpy's zip writer's "Exception ignored ... Traceback").
+
+    integrators on a machine whose kernel cache is empty (NUMBA_CACHE_DIR, which the product
+    takes before its own ~/.cache folder, a fresh folder here): its first write is numba's
+    compiled kernel, the write of a user's first run on a full disk.  Before, the case read
+    whatever ~/.cache held: with the kernels there, the study ran whole (10 integrators, 5
+    stiffness steps, 20 s of energy drift: 7.9 s of the test's 8.0 s of CPU) to fail on
+    integrators.png, the PNG write campbell's case fails on; with them absent (a checkout
+    whose kernels were never compiled) on numba's file, as now, always: 1.3 s of CPU."""
     out = tmp_path / "out"
     cmd = " ".join([sys.executable, "-m", "rotorpillar", args[0], "paper", *args[1:], "--out", str(out)])
+    kernels = tmp_path / "kernels"
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(kernels)) if args[0] == "integrators" else None
     # 8 KiB: more than a scene's JSON head, less than any command's results
     p = subprocess.run(
-        ["bash", "-c", f"trap '' XFSZ; ulimit -f 8 && exec {cmd}"], capture_output=True, text=True, timeout=300
+        ["bash", "-c", f"trap '' XFSZ; ulimit -f 8 && exec {cmd}"], capture_output=True, text=True, timeout=300, env=env
     )
     assert p.returncode == 1, p.stderr
     line = one_line(p)
     assert "the file system refused '/" in line, line
+    if env is not None:
+        assert f"refused '{kernels}/" in line, line  # numba's own file, named
     assert "Traceback" not in p.stderr and "Exception ignored" not in p.stderr
     for f in out.glob("*.json"):
         json.loads(f.read_text())  # what was written is whole
@@ -1508,7 +1513,7 @@ def test_a_signal_a_library_catches_still_stops_the_command(tmp_path, where, sig
 
 
 @pytest.mark.slow  # a study on a local cluster
-def test_a_study_over_the_ends_of_its_keys_is_quiet(tmp_path):
+def test_a_study_over_the_ends_of_its_keys_is_quiet(tmp_path, here):
     """Both axes over their keys' whole ranges (the capture map, the predicted boundary
     beside it): exit 0 and nothing on stderr but the command's own lines (no numpy or
     matplotlib warning, no Dask worker's farewell).
@@ -1516,10 +1521,15 @@ def test_a_study_over_the_ends_of_its_keys_is_quiet(tmp_path):
     0.5 s runs (2 s before): the stiff shaft's (1e14 N/m) two runs are all the study's work,
     dp5 held at its stability limit (16 M evaluations each at 2 s); at 0.5 s every corner
     ends as at 2 s (at_speed, passed, none captured, the stiff corners' peak tips the same
-    to 3 digits: the shaft's static deflection), the command's CPU 9.2 -> 5.5 s."""
+    to 3 digits: the shaft's static deflection), the command's CPU 9.2 -> 5.5 s.
+
+    The command in this process (``here``), its cluster's workers children all the same: what
+    they print reaches the same file descriptor, and each warning and log record of this
+    process is counted (a child's filters show a warning once; ``here`` every time); no Python
+    start-up and imports of the study's own process, the test's CPU 6.2 -> 5.2 s."""
     out = tmp_path / "out"
     vary = ["--vary", "drive.torque_at_zero=0,1e9", "--vary", "shaft.stiffness=1,1e14"]
-    p = cli(
+    p = here(
         "study",
         "sommerfeld",
         *vary,
