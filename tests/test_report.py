@@ -32,9 +32,15 @@ from imagecheck import PNG_SIGNATURE
 
 from rotorpillar import cli
 
-# in-process pyvista renders: the VTK leak check of tests/conftest.py runs after each test
 # seconds each: the report of a whole output directory per test; the slow tier runs it
-pytestmark = [pytest.mark.renders, pytest.mark.slow]
+pytestmark = pytest.mark.slow
+# In-process pyvista renders (the 3D modes' pictures and animations): the VTK leak check of
+# tests/conftest.py runs after each test marked so: every test on ``full`` (whichever of
+# them builds it first on a worker) and the broken modes' report.  The reports on an
+# analysis alone never call into pyvista or VTK (traced: no call into a pyvista or vtk
+# module from their setup, call or teardown): no VTK object of theirs can outlive them,
+# and the check's two scans of every Python object were all they paid for it
+renders = pytest.mark.renders
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
@@ -110,6 +116,7 @@ def full(tmp_path_factory):
     return out
 
 
+@renders
 def test_report_links_only_existing_files(full):
     page = parse(full / "report.html")
     assert page.imgs >= 10 and page.videos == 2
@@ -128,6 +135,7 @@ def test_report_links_only_existing_files(full):
             assert (full / ref).is_file(), f"{tag} {attr}={ref} does not exist"
 
 
+@renders
 def test_report_is_complete(full):
     text = (full / "report.html").read_text(encoding="utf-8")
     a = json.loads((full / "analyze.json").read_text())
@@ -201,6 +209,7 @@ window.addEventListener('load', function () { setTimeout(function () {
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (tools/setup.sh installs it)")
+@renders
 def test_report_opens_in_headless_chromium(full, tmp_path):
     v = _browser_verdict(full / "report.html", tmp_path)
     assert v["title"] == "rotorpillar report: paper"
@@ -248,6 +257,7 @@ def test_hostile_text_is_escaped(tmp_path):
 
 
 @pytest.mark.filterwarnings("ignore:The VTK reader")  # the broken file, on purpose
+@renders
 def test_a_broken_input_costs_one_figure_not_the_report(tmp_path):
     run_cli("analyze", "paper", "--out", tmp_path)
     fixtures.write_modal_fixture(tmp_path, around=12, along=6)

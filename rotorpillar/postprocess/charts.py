@@ -36,7 +36,7 @@ import numpy as np
 
 from ..reduced import averaging as av
 from .directions import short
-from .style import COLOURS, blank, figure, place_labels, save
+from .style import COLOURS, blank, figure, freeze_layout, place_labels, save
 
 if TYPE_CHECKING:
     from ..analysis.results import AnalysisResult, ResonanceAnalysis
@@ -378,8 +378,7 @@ def drive_figure(analysis: AnalysisResult, width: int = 1060) -> Any:
         frameon=False,
     )
     # Labels last, on the final layout, frozen so that saving does not move the axes.
-    fig.canvas.draw()
-    fig.set_layout_engine("none")
+    freeze_layout(fig)
     place_labels(top, labels, lines=curves, drawn=True)
     for ax, jump_labels in blocks:
         place_labels(ax, jump_labels, lines=[ln for ln in ax.lines if len(ln.get_xdata()) > 2], drawn=True)

@@ -115,7 +115,7 @@ def spectrum_chart(
     period, or (label, period), or (label, period, its own pseudo-acceleration
     in m/s**2 at its own damping)) marked at that value, else on the curve at
     its spectral value, its label placed off the curve."""
-    from .style import place_labels
+    from .style import freeze_layout, place_labels
 
     fig, ax = figure(*size)
     T, S = np.asarray(period, dtype=float), np.asarray(psa, dtype=float) / STANDARD_GRAVITY
@@ -162,7 +162,6 @@ def spectrum_chart(
         ax.set_xlim(min(periods) / 1.5, max(periods) * 1.5)
     legend = ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title or "Response spectrum")
-    fig.canvas.draw()
-    fig.set_layout_engine("none")
+    freeze_layout(fig)
     place_labels(ax, labels, obstacles=[legend], lines=[curve], drawn=True)
     return save(fig, path)

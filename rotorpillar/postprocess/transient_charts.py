@@ -99,7 +99,7 @@ def runup_chart(
     averaging's stationary amplitude +-a_max of each resonance beside it.
     ``resonances`` = [(label, omega)]; ``extra_runs`` = [(label, t, Omega,
     tip_peak or None)]; ``tip``: the tip's X (m); ``a_max``: {label: m}."""
-    from .style import place_labels
+    from .style import freeze_layout, place_labels
 
     t, Omega = np.asarray(t, dtype=float), np.asarray(Omega, dtype=float)
     passes = crossings(t, Omega, resonances)
@@ -161,8 +161,7 @@ def runup_chart(
         z2.set_xlabel("t [s]")
         z2.legend(loc="upper right", fontsize=8)
     fig.suptitle(title, fontsize=10)
-    fig.canvas.draw()
-    fig.set_layout_engine("none")
+    freeze_layout(fig)
     place_labels(a1, labels, lines=[ln for ln in a1.lines if len(ln.get_xdata()) > 2], drawn=True)
     if window:
         place_labels(axes[0, 1], zoom_labels, lines=[axes[0, 1].lines[0]], drawn=True)
