@@ -60,3 +60,38 @@ def test_save_writes_the_pixels_savefig_writes(tmp_path, frozen):
     style.save(fig, tmp_path / "save.png")
     a, b = (np.asarray(Image.open(tmp_path / f"{n}.png")) for n in ("savefig", "save"))
     assert a.shape == b.shape and np.array_equal(a, b)
+
+
+def _chart_with_labels(freeze):
+    """A two-panel chart with a suptitle and a legend, laid out and frozen by ``freeze``,
+    then labelled on that layout as the run-up chart is."""
+    fig, axes = style.figure(700, 420, ncols=2)
+    t = np.linspace(0, 10, 300)
+    for k, ax in enumerate(axes):
+        ax.plot(t, np.sin((k + 1) * t), label=f"mode {k + 1}")
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("tip X [m]")
+        ax.legend(loc="upper right")
+    fig.suptitle("run-up through the first resonance")
+    freeze(fig)
+    style.place_labels(axes[0], [{"xy": (5.0, np.sin(5.0)), "text": "passage"}], lines=axes[0].lines, drawn=True)
+    return fig, axes
+
+
+def _draw_and_freeze(fig):
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
+
+
+def test_freeze_layout_is_the_layout_a_draw_gives(tmp_path):
+    """freeze_layout runs the layout engine alone where the charts drew the whole figure
+    first: the axes must sit where the draw put them, the labels placed on them where the
+    draw's would be, and the saved picture must be the same bytes (pixels and legibility)."""
+    drawn, drawn_axes = _chart_with_labels(_draw_and_freeze)
+    frozen, frozen_axes = _chart_with_labels(style.freeze_layout)
+    for a, b in zip(drawn_axes, frozen_axes):
+        assert a.get_position().bounds == b.get_position().bounds
+    assert [t.get_position() for t in drawn_axes[0].texts] == [t.get_position() for t in frozen_axes[0].texts]
+    style.save(drawn, tmp_path / "drawn.png")
+    style.save(frozen, tmp_path / "frozen.png")
+    assert (tmp_path / "drawn.png").read_bytes() == (tmp_path / "frozen.png").read_bytes()
