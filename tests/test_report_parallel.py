@@ -113,3 +113,43 @@ def test_the_workers_draw_what_one_process_draws(tmp_path, monkeypatch):
         k: v["frames"] for k, v in two["animations"].items()
     }
     assert one["render_window"] and one["render_window"] == two["render_window"]
+
+
+@pytest.mark.slow  # two render workers start
+def test_an_interrupt_a_library_swallowed_stops_the_workers_at_once(tmp_path, monkeypatch):
+    """A Ctrl-C whose KeyboardInterrupt a library caught while the report drew its charts
+    (``during``) is recorded (cli.RECEIVED) and must stop the render workers at the next look,
+    not after their jobs: before, the report waited in select() until a job ended (~30 s on
+    these 2000-frame animations; 3 stops in 45 of the signal test above).  Here the swallowed
+    interrupt is made deterministic: ``during`` records it and returns."""
+    from rotorpillar import cli as cli_module
+    from rotorpillar.postprocess.readers import read_simulation
+    from rotorpillar.postprocess.report import parallel
+
+    for case in ("runup", "earthquake"):
+        fixtures.write_simulation_fixture(tmp_path, case, n=1500)
+    jobs = [
+        parallel.AnimationJob(
+            case,
+            read_simulation(tmp_path, case),
+            case,
+            {},
+            None,
+            (20.0, 2.0, 1.96),
+            tmp_path / f"{case}.mp4",
+            tmp_path / f"{case}.png",
+            2000,
+        )
+        for case in ("runup", "earthquake")
+    ]
+    monkeypatch.setattr(cli_module, "RECEIVED", [])
+
+    def during():
+        cli_module.RECEIVED.append(signal.SIGINT)  # the handler ran; its exception was caught
+
+    seen = []
+    with pytest.raises(KeyboardInterrupt):
+        for outcome in parallel.run_jobs(jobs, during):
+            seen.append(outcome)
+    assert seen == []  # no job ran to its end: the workers were stopped first
+    assert not (tmp_path / "runup.mp4").exists() and not (tmp_path / "earthquake.mp4").exists()
