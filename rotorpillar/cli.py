@@ -26,7 +26,7 @@ from . import records
 from .commands import Done, is_root_rank, out_dir, progress
 from .commands.folder_lock import output_lock
 from .commands.parser import COMMANDS, EXTRA_ARGUMENTS, OneLineParser, build_parser, command_named  # noqa: F401
-from .errors import ComputationError, InputError, StageError
+from .errors import RECEIVED, ComputationError, InputError, StageError, Terminated, stopped
 from .provenance import Timings, with_provenance, write_result
 from .scene import Scene, load_scene, what_is_there
 
@@ -138,26 +138,9 @@ def quiet_third_party_logs(debug: bool = False) -> None:
         handler.setLevel(logging.INFO if debug else logging.WARNING)
 
 
-class Terminated(KeyboardInterrupt):
-    """SIGTERM: stop as on Ctrl-C (a running stage's process is killed with us)."""
-
-
-#: The signals received, in order: a library that calls back into Python (VTK's
-#: observers, a C loop) may catch the exception the handler raised and carry on;
-#: the command is stopped at its end all the same (``stopped``).
-RECEIVED: list[int] = []
-
-
 def _terminate(signum, frame):
     RECEIVED.append(signum)
     raise Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
-
-
-def stopped() -> None:
-    """Raise the interrupt a library swallowed (``RECEIVED``): the command's result is not
-    written, and the exit is 130 or 143 as if it had propagated."""
-    if RECEIVED:
-        raise Terminated() if RECEIVED[-1] == signal.SIGTERM else KeyboardInterrupt()
 
 
 #: The command under way in this process (``main``), for ``_exit_as_signalled``.

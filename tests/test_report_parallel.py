@@ -118,11 +118,11 @@ def test_the_workers_draw_what_one_process_draws(tmp_path, monkeypatch):
 @pytest.mark.slow  # two render workers start
 def test_an_interrupt_a_library_swallowed_stops_the_workers_at_once(tmp_path, monkeypatch):
     """A Ctrl-C whose KeyboardInterrupt a library caught while the report drew its charts
-    (``during``) is recorded (cli.RECEIVED) and must stop the render workers at the next look,
+    (``during``) is recorded (errors.RECEIVED) and must stop the render workers at the next look,
     not after their jobs: before, the report waited in select() until a job ended (~30 s on
     these 2000-frame animations; 3 stops in 45 of the signal test above).  Here the swallowed
     interrupt is made deterministic: ``during`` records it and returns."""
-    from rotorpillar import cli as cli_module
+    from rotorpillar import errors
     from rotorpillar.postprocess.readers import read_simulation
     from rotorpillar.postprocess.report import parallel
 
@@ -142,10 +142,10 @@ def test_an_interrupt_a_library_swallowed_stops_the_workers_at_once(tmp_path, mo
         )
         for case in ("runup", "earthquake")
     ]
-    monkeypatch.setattr(cli_module, "RECEIVED", [])
+    monkeypatch.setattr(errors, "RECEIVED", [])
 
     def during():
-        cli_module.RECEIVED.append(signal.SIGINT)  # the handler ran; its exception was caught
+        errors.RECEIVED.append(signal.SIGINT)  # the handler ran; its exception was caught
 
     seen = []
     with pytest.raises(KeyboardInterrupt):

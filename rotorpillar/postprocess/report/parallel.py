@@ -24,14 +24,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ...errors import stopped
 from ...fem3d.modal_summary import ModalAxes
 from ..geometry import Mode
 from ..readers import Simulation
 
 WORKERS = 2
 """Worker processes at most: one per core of the 2-core machine the main job is sized for."""
-SIGNAL_POLL = 0.25
-"""Longest wait for the workers between two looks at a signal this process received (s)."""
 
 
 @dataclass(frozen=True)
@@ -207,8 +206,6 @@ def run_jobs(jobs: Sequence[Job], during: Callable[[], None] | None = None) -> I
     import multiprocessing
     from multiprocessing.connection import wait
 
-    from ...cli import stopped
-
     order = sorted(jobs, key=lambda j: -j.cost)
     count = min(WORKERS, os.cpu_count() or 1, len(order))
     if count <= 1:
@@ -239,10 +236,11 @@ def run_jobs(jobs: Sequence[Job], during: Callable[[], None] | None = None) -> I
             during()
         while busy:
             # A Ctrl-C or SIGTERM whose exception a library caught while this process drew
-            # its charts (``during``) is raised here, within SIGNAL_POLL seconds: before,
-            # the workers rendered on until a job ended (30 s and more, 3 stops in 45)
+            # its charts (``during``) or took a job's outcomes is raised here, before the
+            # wait: before, the workers rendered on until a job ended (30 s and more, 3 stops
+            # in 45).  A signal during the wait itself interrupts it.
             stopped()
-            ready = wait([workers[k][1] for k in busy] + [workers[k][0].sentinel for k in busy], timeout=SIGNAL_POLL)
+            ready = wait([workers[k][1] for k in busy] + [workers[k][0].sentinel for k in busy])
             for k in list(busy):
                 proc, conn = workers[k]
                 if conn in ready or conn.poll():
