@@ -15,6 +15,8 @@
   comparisons run the 3D full order: tests/test_run_compare.py runs that
   stage alone); under pytest-xdist, shared by the workers too
   (:func:`once_per_session`).
+- :func:`shell_runs`: the paper tube's shell rungs in a run cache, once a session, that the
+  convergence tests and test_run_keys copy instead of computing them each.
 - The tiers (README): ``make test-fast`` runs ``-m "not slow"``; both it and
   ``make test`` run on two processes (pytest-xdist).
   Mark ``@pytest.mark.slow`` a test that runs a 3D or shell model at size, a
@@ -223,6 +225,36 @@ RUN_PAPER_FLAGS = (
     *("--skip", "converge", "--skip", "compare", "--max-frames", "12", "--mode-pictures", "3", "--quick"),
     *("--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4"),
 )
+
+
+#: The ladder whose shell rungs :func:`shell_runs` computes: test_converge_adaptive's real
+#: small ladder (every shell rung of the others' ladders is one of these).
+SHELL_LADDER = ("converge.solid=false", "converge.shell_max_around=32", "converge.shell_tri_max_around=24")
+
+
+def shell_runs(tmp_path_factory) -> Path:
+    """A run cache holding the paper tube's shell rungs (Q2 quadrilaterals 8 to 32 around,
+    P2 triangles 8 to 24, the Q2 around-only sweep 4 to 16), computed once for the
+    session, workers included (:func:`once_per_session`).
+
+    Five slow tests run these very runs: test_converge's shell reference, the real small ladder
+    of test_converge_adaptive, the shell limits of test_converge_solid, the studies of
+    test_converge_cli's modal test and of test_run_keys' `run`.  A run's cache key is its
+    case, the tube and the model's code, so each reads the runs it would have computed (the
+    same records, by the same runner) from a copy of this cache and computes only the rest
+    (issue 30: each had computed them, in a serving process of its own)."""
+
+    def compute(out: Path) -> dict:
+        from rotorpillar import converge as cv
+        from rotorpillar.scene import load_scene, override
+
+        scene = override(load_scene("paper"), list(SHELL_LADDER))
+        cases = [c for c in cv.ladder(scene) if cv.FAMILIES[c.family].model == "shell"]
+        recs = cv.run_study(cases, scene, out, progress=False)
+        return {"labels": [r.label for r in recs if r.status == "ok"]}
+
+    out, _ = once_per_session("converge_shell_runs", tmp_path_factory, compute)
+    return out
 
 
 @pytest.fixture(scope="session")

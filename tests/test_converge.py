@@ -27,7 +27,7 @@ from pathlib import Path
 import msgspec
 import numpy as np
 import pytest
-from conftest import once_per_session
+from conftest import shell_runs
 
 from rotorpillar import converge as cv
 from rotorpillar import records
@@ -289,36 +289,9 @@ def test_excitation_band_of_the_paper_scene():
     assert quake.driver == "earthquake" and quake.omega_max == pytest.approx(150.0)
 
 
-#: The ladder whose shell rungs :func:`shell_runs` computes: test_converge_adaptive's real
-#: small ladder (every shell rung of the others' ladders is one of these).
-SHELL_LADDER = ("converge.solid=false", "converge.shell_max_around=32", "converge.shell_tri_max_around=24")
-
-
-def shell_runs(tmp_path_factory) -> Path:
-    """A run cache holding the paper tube's shell rungs (Q2 quadrilaterals 8 to 32 around,
-    P2 triangles 8 to 24, the Q2 around-only sweep 4 to 16), computed once for the
-    session, workers included (conftest.once_per_session).
-
-    Five slow tests run these very runs: the shell's reference here, the real small ladder
-    of test_converge_adaptive, the shell limits of test_converge_solid, the studies of
-    test_converge_cli's modal test and of test_run_keys' `run`.  A run's cache key is its
-    case, the tube and the model's code, so each reads the runs it would have computed (the
-    same records, by the same runner) from a copy of this cache and computes only the rest
-    (issue 30: each had computed them, in a serving process of its own)."""
-
-    def compute(out: Path) -> dict:
-        scene = override(load_scene("paper"), list(SHELL_LADDER))
-        cases = [c for c in cv.ladder(scene) if cv.FAMILIES[c.family].model == "shell"]
-        recs = cv.run_study(cases, scene, out, progress=False)
-        return {"labels": [r.label for r in recs if r.status == "ok"]}
-
-    out, _ = once_per_session("converge_shell_runs", tmp_path_factory, compute)
-    return out
-
-
 @pytest.fixture
 def shell_cache(tmp_path, tmp_path_factory) -> Path:
-    """A copy of :func:`shell_runs`' cache for this test alone (tmp_path/"cache")."""
+    """A copy of :func:`conftest.shell_runs`' cache for this test alone (tmp_path/"cache")."""
     cache = tmp_path / "cache"
     shutil.copytree(shell_runs(tmp_path_factory), cache)
     return cache

@@ -21,7 +21,7 @@ import math
 import shutil
 
 import pytest
-from test_converge import SHELL_LADDER, shell_runs
+from conftest import SHELL_LADDER, shell_runs
 
 from rotorpillar import converge as cv
 from rotorpillar.converge.adaptive import SOLID_CLASS
@@ -201,7 +201,7 @@ def test_a_tolerance_no_run_meets_takes_the_full_ladders_most_accurate_3d_run(tm
 
 @pytest.mark.slow  # beams and shells up to 32 around (the shells: the session's run cache)
 def test_a_real_small_ladder_chooses_what_its_full_ladder_chooses(tmp_path, tmp_path_factory):
-    # its shell rungs read from a copy of the session's run cache (test_converge.shell_runs:
+    # its shell rungs read from a copy of the session's run cache (conftest.shell_runs:
     # the same runs, by the same runner); the closed forms and beams computed here
     shell_cache = tmp_path / "cache"
     shutil.copytree(shell_runs(tmp_path_factory), shell_cache)

@@ -18,8 +18,7 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import cli_here, sigint_as_in_the_foreground
-from test_converge import shell_runs
+from conftest import cli_here, shell_runs, sigint_as_in_the_foreground
 
 from rotorpillar import records
 from rotorpillar.converge import ModalModelSelection
@@ -164,7 +163,7 @@ SMALL_3D = [
 @pytest.mark.slow
 def test_modal_tolerance_runs_the_cheapest_3d_model_that_meets_it(tmp_path, tmp_path_factory, monkeypatch):
     """Both commands in this process (conftest.cli_here), the study's runs in its serving
-    process; the shell rungs read from a copy of the session's run cache (test_converge.shell_runs:
+    process; the shell rungs read from a copy of the session's run cache (conftest.shell_runs:
     the same runs by the same runner).  The unmet tolerance first: its study (every 3D family to its ladder's end, the
     shells' around-only sweep to 16) holds every run the met one's needs, so the second study
     reads them all from the shared run cache and starts no serving process.  Neither study

@@ -34,15 +34,14 @@ Sources and tolerances:
   order is lower: over 32, 64, 96 the two orders are 3.39 and 3.47, too close
   to tell apart; only the finer rungs separate them (2.9 against 3.92).
 - The shell's rungs are read from the session's run cache of the shell ladder
-  (test_converge.shell_runs), which four other slow tests read too: computed once,
+  (conftest.shell_runs), which four other slow tests read too: computed once,
   not in each (issue 30).
 """
 
 import shutil
 
 import pytest
-from conftest import once_per_session
-from test_converge import shell_runs
+from conftest import once_per_session, shell_runs
 
 from rotorpillar import converge as cv
 from rotorpillar import records
@@ -64,7 +63,7 @@ def runs(tmp_path_factory):
     # the other reads them back through their record type, so every test below still
     # checks the numbers of these very runs.
     def compute(out):
-        # the shell rungs from the session's run cache (test_converge.shell_runs: the
+        # the shell rungs from the session's run cache (conftest.shell_runs: the
         # same runs, keyed by case, tube and code), computed once for five tests
         shutil.copytree(shell_runs(tmp_path_factory), out, dirs_exist_ok=True)
         scene = load_scene("paper")

@@ -27,7 +27,7 @@ import shutil
 import sys
 
 import pytest
-from test_converge import shell_runs
+from conftest import shell_runs
 
 from rotorpillar.commands import stage_keys
 from rotorpillar.commands.parser import build_parser
@@ -221,7 +221,7 @@ def test_run_keeps_the_study_through_a_stall_torque_that_keeps_its_modes(tmp_pat
     workers with the triangles to 16 around, 16.1 s; two runs here, one core, the triangles'
     one rung (8 around), 8.7 s."""
     out = tmp_path / "out"
-    # the study's shell rungs from the session's run cache (test_converge.shell_runs: the
+    # the study's shell rungs from the session's run cache (conftest.shell_runs: the
     # same runs by the same runner), in its cache beforehand: the stage reads them all
     shutil.copytree(shell_runs(tmp_path_factory), out / "cache")
     others = ("modal", "analyze", "compare", "integrators", "harmonic", "campbell", "tornado", "simulate")
