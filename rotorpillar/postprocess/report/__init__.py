@@ -36,6 +36,22 @@ tests/test_report_reader.py checks all of that in a browser, and the first
 screen a designer sees (designer_problems).
 """
 
-from .build import ReportOptions, ReportResult, build_report, report_text
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .build import ReportOptions, ReportResult, build_report, report_text
 
 __all__ = ["ReportOptions", "ReportResult", "build_report", "report_text"]
+
+
+def __getattr__(name: str) -> object:
+    # The build (every section, jinja2, the transients' records and their numba kernels) is
+    # imported when it is asked for, not with the package: the render workers import
+    # .parallel alone, and each of them spent 0.4-0.6 s importing the build it never runs.
+    if name in __all__:
+        from . import build
+
+        return getattr(build, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
