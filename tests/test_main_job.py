@@ -61,6 +61,30 @@ def test_every_csv_of_the_main_job_is_plain(run_paper):
         check_run_csv(path)
 
 
+def test_the_main_jobs_integrator_study(run_paper):
+    """`integrators --quick` as `run --quick` runs it (its own command's test ran the same study
+    again, 6.7 s of CPU: here it reads the main job's).  Central difference blows up once
+    h omega_max > 2 (h = 2.5 ms: omega_max > 800 rad/s); the implicit and adaptive methods never
+    fail on these modes; the file gives its result part back through its record."""
+    from rotorpillar import records
+    from rotorpillar.provenance import PROVENANCE_KEYS
+    from rotorpillar.transients.integrator_study import IntegratorStudy
+
+    written = json.loads((run_paper.out / "integrators.json").read_text())
+    ff = written["stability"]["first_failure"]
+    cd = ff["central_difference"]
+    assert cd is not None and cd["h_times_omega_max"] > 2
+    rows = [r for r in written["stability"]["rows"] if r["method"] == "central_difference" and r["ok"]]
+    assert rows and all(r["omega_max"] * 2.5e-3 < 2 for r in rows)
+    for m in ("newmark", "Radau", "BDF", "dp5"):
+        assert ff[m] is None
+    assert (run_paper.out / "integrators.png").exists()
+    assert set(PROVENANCE_KEYS) <= set(written)
+    result = records.to_builtins(records.convert(written, IntegratorStudy))
+    assert result == {k: v for k, v in written.items() if k in result}
+    assert set(result) == {"accuracy", "stability", "energy_drift", "pillar_model", "stiffness_probe", "figures"}
+
+
 @needs_chromium
 def test_the_main_jobs_page_reads_well(run_paper, tmp_path):
     assert reader_problems(run_paper.out / "report.html", tmp_path) == []

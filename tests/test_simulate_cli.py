@@ -1,4 +1,5 @@
-"""`rotorpillar simulate` and `integrators` through the CLI: the output contract.
+"""`rotorpillar simulate` through the CLI: the output contract (`integrators`: the main job's
+study, tests/test_main_job.py).
 
 Checks the files and fields other commands rely on (branch post reads
 ``simulate_<case>.json``/``.npz``: t, Omega, tip_x, rotor_x, rotor_y,
@@ -25,7 +26,6 @@ import pytest
 from conftest import cli_here
 from scipy.integrate import solve_ivp
 
-from rotorpillar import records
 from rotorpillar.reduced.excitation import STANDARD_GRAVITY
 from rotorpillar.reduced.models import build_model
 from rotorpillar.reduced.stationary import stationary_exact
@@ -128,31 +128,6 @@ def test_bad_modes_and_integrator(tmp_path):
     p = cli_here("simulate", "paper", "--integrator", "euler", "--out", tmp_path)
     assert p.returncode == 2
     assert not list(tmp_path.iterdir())
-
-
-@pytest.mark.slow
-def test_integrators_command(tmp_path):
-    p = cli_here("integrators", "paper", "--quick", "--duration", "4", "--json", "--out", tmp_path)
-    assert p.returncode == 0, p.stderr
-    doc = json.loads(p.stdout)
-    ff = doc["stability"]["first_failure"]
-    # central difference blows up once h omega_max > 2 (h = 2.5 ms: omega_max > 800 rad/s)
-    cd = ff["central_difference"]
-    assert cd is not None and cd["h_times_omega_max"] > 2
-    rows = [r for r in doc["stability"]["rows"] if r["method"] == "central_difference" and r["ok"]]
-    assert all(r["omega_max"] * 2.5e-3 < 2 for r in rows)
-    for m in ("newmark", "Radau", "BDF", "dp5"):
-        assert ff[m] is None
-    assert (tmp_path / "integrators.png").exists()
-    # the file, through its record: the result part gives itself back, beside its provenance
-    from rotorpillar.provenance import PROVENANCE_KEYS
-    from rotorpillar.transients.integrator_study import IntegratorStudy
-
-    written = json.loads((tmp_path / "integrators.json").read_text())
-    assert set(PROVENANCE_KEYS) <= set(written)
-    result = records.to_builtins(records.convert(written, IntegratorStudy))
-    assert result == {k: v for k, v in written.items() if k in result}
-    assert set(result) == {"accuracy", "stability", "energy_drift", "pillar_model", "stiffness_probe", "figures"}
 
 
 def test_decimation_keeps_the_peaks():
