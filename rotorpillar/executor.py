@@ -89,8 +89,9 @@ def _shown(data: bytes) -> str:
     return "".join(c if c.isprintable() else "." for c in text)
 
 
-def probe_scheduler(scheduler: str, timeout: float = HANDSHAKE_SECONDS) -> None:
-    """Check that a Dask scheduler answers at ``tcp://HOST:PORT``, within ``timeout`` s in all.
+def probe_scheduler(scheduler: str, timeout: float | None = None) -> None:
+    """Check that a Dask scheduler answers at ``tcp://HOST:PORT``, within ``timeout`` s in all
+    (None: ``HANDSHAKE_SECONDS``, read when called).
 
     A Dask scheduler greets every connection first: an 8-byte length, then its
     frames (one msgpack dict naming its compression, Python and pickle
@@ -101,6 +102,8 @@ def probe_scheduler(scheduler: str, timeout: float = HANDSHAKE_SECONDS) -> None:
     """
     if not scheduler.startswith("tcp://"):
         return
+    if timeout is None:
+        timeout = HANDSHAKE_SECONDS
     host, port = _address(scheduler)
     where = f"--scheduler {scheduler}"
     deadline = time.monotonic() + timeout
