@@ -299,21 +299,11 @@ def test_bad_tower_and_foundation_input_is_one_line_naming_the_key(sets, key, rn
     assert "\n" not in msg and key in msg and rng in msg
 
 
-def test_bad_can_on_the_command_line_exits_2_and_writes_nothing(tmp_path):
-    import subprocess
-    import sys
-
+def test_bad_can_on_the_command_line_exits_2_and_writes_nothing(tmp_path, here):
+    # in this process (``here``): a refusal before any work needs no Python start-up
     out = tmp_path / "out"
-    cmd = [sys.executable, "-m", "rotorpillar", "analyze", "nrel5mw", "--out", str(out)]
-    proc = subprocess.run(
-        cmd
-        + [
-            "--set",
-            "pillar.cans=[{height=87.6, outer_diameter_bottom=6.0, outer_diameter_top=3.87, wall_thickness=3.5}]",
-        ],
-        capture_output=True,
-        text=True,
-    )
+    can = "pillar.cans=[{height=87.6, outer_diameter_bottom=6.0, outer_diameter_top=3.87, wall_thickness=3.5}]"
+    proc = here("analyze", "nrel5mw", "--out", out, "--set", can)
     assert proc.returncode == 2
     assert "pillar.cans[0].wall_thickness" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
     assert not out.exists() or not any(out.rglob("*"))
