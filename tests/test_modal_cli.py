@@ -40,7 +40,9 @@ SMALL = ["--set", "mesh.elements_around=16", "--set", "mesh.elements_along=4", "
 @pytest.fixture(scope="module")
 def small_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("modal")
-    p = cli("modal", "paper", *SMALL, "--out", out)
+    # in this process (conftest.cli_here): the serial run the contract and mpirun's ranks are
+    # checked against; a child added only its start-up and dolfinx's imports
+    p = cli_here("modal", "paper", *SMALL, "--out", out)
     assert p.returncode == 0, p.stderr
     return out, json.loads((out / "modal.json").read_text()), p.stdout
 

@@ -33,7 +33,6 @@ import math
 
 import numpy as np
 import pytest
-from conftest import cli
 
 from rotorpillar.reduced.excitation import no_motion
 from rotorpillar.reduced.models import build_model
@@ -166,9 +165,10 @@ def test_runup_carries_the_drives_reaction():
 
 
 @pytest.mark.slow
-def test_cli_runup_on_the_spatial_rom(tmp_path):
+def test_cli_runup_on_the_spatial_rom(tmp_path, here):
     out = tmp_path / "out"
-    p = cli("simulate", "paper", "--set", "modal_model.planes=spatial", "--case", "runup", "--out", out)
+    # in this process (``here``): the command's files and exit are checked, not a start-up
+    p = here("simulate", "paper", "--set", "modal_model.planes=spatial", "--case", "runup", "--out", out)
     assert p.returncode == 0, p.stderr
     run = json.loads((out / "simulate_runup_modal.json").read_text())
     assert run["model"] == "modal" and run["model_description"]["name"] == "spatial"
