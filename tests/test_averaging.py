@@ -226,3 +226,20 @@ def test_critical_eccentricity_is_where_folds_appear():
         r2 = linear_modes(s).resonances[2]
         folds = av.analyse_drive(av.Characteristic(2000.0, 12.0, 0.5), [r2], top=200.0).jumps
         assert bool(folds) is expect
+
+
+def test_roots_finds_sign_changes_and_grid_points_that_are_roots():
+    """The stationary regimes' root finder: a root between two grid speeds is bracketed
+    (brentq to 1e-12 relative), a root that lies on a grid speed (the function exactly 0
+    there, no sign change on either side) is taken from the grid itself; both in order.
+    Reference: the roots 1.7, 3 and 4.3 of a cubic, on a grid that holds 3.0 and brackets the others."""
+    grid = np.linspace(0.5, 5.0, 10)  # 0.5, 1.0, ..., 5.0 (exact in binary): 3.0 is a grid speed
+
+    def f(W):
+        W = np.asarray(W, dtype=float)
+        return (W - 1.7) * (W - 3.0) * (W - 4.3)
+
+    roots = av._roots(f, grid)
+    assert roots == pytest.approx([1.7, 3.0, 4.3], rel=1e-11)
+    assert 3.0 in roots  # the grid point itself, not a bracket's estimate
+    assert roots == sorted(roots)

@@ -228,7 +228,9 @@ def _roots(fun: Callable[[Speeds], Speeds], grid: NDArray[np.float64]) -> list[f
     out: list[float] = []
     for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
         out.append(brentq(fun, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1]))  # a float: scipy has no stubs
-    out += [float(w) for w, v in zip(grid, vals) if v == 0.0]
+    # a root on a grid point itself: picked by the mask, not a Python loop over the grid's
+    # numpy scalars (10-20k a call, ~6 ms; ~5 s of the test suite's CPU), the same speeds in order
+    out += [float(w) for w in grid[vals == 0.0]]
     return sorted(out)
 
 
