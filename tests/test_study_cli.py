@@ -57,8 +57,21 @@ def _png_size(path):
 AXES = ["--vary", "drive.torque_at_zero=560:700:8", "--vary", "rotor.eccentricity=0.010:0.020:6"]
 
 
+@pytest.fixture(scope="module")
+def scheduler():
+    """The address of a Dask LocalCluster of one worker process that the in-process studies
+    below reach with ``--scheduler`` (the resume and the IDA study): one worker's start and
+    imports (Dask, numba, scipy: ~1.9 s of CPU) for both, not one each with ``--workers 1``.
+    The command's own cluster (``--workers 1``) is what the interrupted child runs on (it
+    computes at least one batch on it: the check of the batches it leaves)."""
+    from rotorpillar.executor import Executor
+
+    with Executor(workers=1) as ex:
+        yield ex.client.scheduler.address
+
+
 @pytest.mark.slow  # a 48-run study, interrupted and resumed
-def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path):
+def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path, scheduler):
     out = tmp_path / "out"
     batches = out / "study"
     proc = subprocess.Popen(
@@ -99,9 +112,20 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert not (out / "study.json").exists()
 
     # the resume, the rerun and the IDA study below in this process (conftest.cli_here: their
-    # files, JSON and exit codes are the checks; the interrupt above needs its child)
+    # files, JSON and exit codes are the checks; the interrupt above needs its child), the
+    # resume on the module's cluster of one worker (``scheduler``)
     p = cli_here(
-        "study", "sommerfeld", "--case", "runup", *AXES, "--workers", "1", "--out", out, "--no-progress", "--json"
+        "study",
+        "sommerfeld",
+        "--case",
+        "runup",
+        *AXES,
+        "--scheduler",
+        scheduler,
+        "--out",
+        out,
+        "--no-progress",
+        "--json",
     )
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
@@ -142,8 +166,8 @@ def test_ctrl_c_keeps_finished_batches_and_the_rerun_computes_the_rest(tmp_path)
     assert not [p for p in build.external if p.path.name.startswith("study_")]
 
 
-@pytest.mark.slow  # a design study on a Dask cluster
-def test_earthquake_study_draws_the_ida_curves(tmp_path):
+@pytest.mark.slow  # a design study on a Dask cluster (the module's: ``scheduler``)
+def test_earthquake_study_draws_the_ida_curves(tmp_path, scheduler):
     p = cli_here(
         "study",
         "paper",
@@ -157,8 +181,8 @@ def test_earthquake_study_draws_the_ida_curves(tmp_path):
         "excitation.record=elcentro",
         "--set",
         "excitation.start=0",
-        "--workers",
-        "1",
+        "--scheduler",
+        scheduler,
         "--out",
         tmp_path,
         "--no-progress",
