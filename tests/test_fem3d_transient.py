@@ -17,7 +17,7 @@ References and tolerances:
   tolerance 1 %.
 - the tube: 8 x 6 cells, not 16 x 6 (issue 30: 1881 unknowns, not 3753, each
   step's solve half the CPU: a 2000-step run 2.1 -> 1.0 s; the module's CPU
-  ~20 -> ~12 s).  Every check below was measured on both; where a number moved
+  13.8 -> 8.2 s, best of 2).  Every check below was measured on both; where a number moved
   both are given.
 - energy balance: Newmark's energy identity is exact for the linear part;
   the unbalance coupling leaves an O(h**2) residual, measured ~1e-5 of the
