@@ -293,7 +293,15 @@ def test_the_roms_campbell_diagram_is_the_3d_models_within_the_band():
     shaft and the first bending pair), 3e-3 on the log decrements; tolerances 2e-3 and 2e-2.
     The critical speeds' AFs, each read off the unbalance response's peak by the same rule
     (rotorpillar.reduced.spatial_response.peak_near), the ROM's refined on its model, the 3D
-    one's interpolated between ~50 sampled speeds: measured 1.8 % apart; tolerance 4 %."""
+    one's interpolated between ~50 sampled speeds: measured 1.8 % apart; tolerance 4 %.
+
+    On an 8 x 10 tube, not SMALL's 16 x 10 (issue 30: the 3D side's CPU 8.0 -> 3.3 s, its 250
+    factorisations of K - Omega**2 M at the five criticals' sampled speeds): the comparison is
+    of two models on one mesh, and the same five criticals come out with the same differences
+    (16 x 10 against 8 x 10: frequencies 5.6e-4 both, log decrements 2.65e-3 both, critical
+    speeds 5.2e-4 both, AFs 2.2 % and 1.8 % at most).  The known oddity stays visible: the 3D
+    AF at the rotor's 15.81 rad/s critical reads 45.5 on 12 x 10, 16 x 8, 12 x 8 and 16 x 6 (the
+    ROM 3.15 on all), 3.10 here and 3.08 on 16 x 10."""
     from rotorpillar.fem3d import modal_analysis
     from rotorpillar.fem3d.campbell import campbell_fem3d
     from rotorpillar.fem3d.spatial_modes import spatial_modes_from_fem3d
@@ -301,9 +309,10 @@ def test_the_roms_campbell_diagram_is_the_3d_models_within_the_band():
 
     s = load_scene("paper")
     speeds = np.linspace(0.0, 135.0, 7)
-    r = modal_analysis(s, top=True, n_modes=24, mesh=SMALL)
+    mesh = Mesh(elements_around=8, elements_along=10)
+    r = modal_analysis(s, top=True, n_modes=24, mesh=mesh)
     rom = scene_campbell(s, speeds, 135.0, None, spatial_modes_from_fem3d(r, s.pillar.damping_ratio))
-    fem = campbell_fem3d(s, speeds, band_top=135.0, mesh=SMALL, with_af=True)
+    fem = campbell_fem3d(s, speeds, band_top=135.0, mesh=mesh, with_af=True)
 
     def in_band(d):
         return {
