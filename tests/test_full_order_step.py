@@ -151,14 +151,7 @@ def mpirun_prefix():
     exe = shutil.which("mpirun")
     if exe is None:
         pytest.skip("mpirun not installed")
-    # A rank that waits on the other (rank 0 alone draws the charts and writes the files; the
-    # XDMF frames are collective) yields its core instead of spinning on it: Open MPI spins when
-    # it does not see the cores oversubscribed, and under `make test` the two ranks share the
-    # two cores with the other pytest worker (issue 30: the mpirun's CPU measured 21.0 -> 16.2 s
-    # at a load of 5; on a quiet machine 10.5 s both ways; at a load of 2.5 18.5 -> 19.7 s, within
-    # that load's +-3 s: the spin turns into sched_yield's system time where no one else waits
-    # for the core).  How a rank waits is not what the test checks: the numbers are.
-    env = dict(os.environ, OMPI_MCA_mpi_yield_when_idle="1")
+    env = dict(os.environ)
     if os.geteuid() == 0:  # Open MPI refuses root unless told
         env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     return [exe, "-n", "2"], env
