@@ -286,11 +286,18 @@ class Executor:
         An exception in ``fn`` is raised here when its result comes up; the
         futures not yet finished are cancelled when the caller stops
         iterating (an exception, Ctrl-C, or ``break``)."""
+        import uuid
+
         from distributed import as_completed
 
         items = list(items)
+        # A key names a task to the scheduler, which hands back the result it still holds
+        # under that key instead of running the task again: each call's keys are its own
+        # (before, ``fn-i-id(self)``: a second call on the same executor, e.g. the convergence
+        # ladder's next round, got the previous round's results, 19 rounds in 20)
+        call = uuid.uuid4().hex
         futures = [
-            self.client.submit(fn, item, pure=pure, key=f"{fn.__name__}-{i}-{id(self)}") for i, item in enumerate(items)
+            self.client.submit(fn, item, pure=pure, key=f"{fn.__name__}-{i}-{call}") for i, item in enumerate(items)
         ]
         index = {f.key: i for i, f in enumerate(futures)}
         try:

@@ -279,3 +279,18 @@ def test_the_roots_exact_zeros_are_the_loops():
         expected = loop_roots(fun, g)
         assert _roots(fun, g) == expected
     assert set(loop_roots(fun, grid)) >= {float(grid[i]) for i in (0, 17, 18, 4000, 10_000)}
+
+
+def _cube(x: int) -> int:
+    return x**3
+
+
+def test_each_map_on_one_executor_computes_its_own_items():
+    """The convergence ladder's rounds call ``map`` again on the study's one executor: each
+    call gets its own items' results.  Before, a task's key was ``fn-i-id(executor)``, the
+    same in every call, and the scheduler handed back the result it still held under it:
+    19 rounds in 20 got the previous round's (a study recorded its finest 3D rung with the
+    rung before's modes).  Reference: the function itself."""
+    with Executor(2, processes=False) as ex:  # threads: the keys are the scheduler's either way
+        for k in range(6):
+            assert dict(ex.map(_cube, [k, k + 10])) == {0: k**3, 1: (k + 10) ** 3}, k
