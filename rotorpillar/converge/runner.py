@@ -44,7 +44,9 @@ SHELL_SOLVER = ("fem3d.eigensolver", "fem3d.block_lanczos", "fem3d.identify")
 SOLID_CONSUMERS = ("modal_summary", "pillar_modes", "full_order", "full_order_result", "output")
 """fem3d modules that use the 3D modes but do not compute them."""
 
-CACHE_VERSION = 3  # 3: an Entry of a ConvergenceRun record (msgspec)
+CACHE_VERSION = 4  # 3: an Entry of a ConvergenceRun record (msgspec); 4: a study on more than one
+# worker before the executor gave each map call its own task keys may have cached a run under
+# another rung's key (the round before's result): every such run is computed again
 """Bump to invalidate every cached run (the layout of a cached result changed)."""
 
 
