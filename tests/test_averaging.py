@@ -243,3 +243,34 @@ def test_roots_finds_sign_changes_and_grid_points_that_are_roots():
     assert roots == pytest.approx([1.7, 3.0, 4.3], rel=1e-11)
     assert 3.0 in roots  # the grid point itself, not a bracket's estimate
     assert roots == sorted(roots)
+
+
+def test_the_roots_exact_zeros_are_the_loops():
+    """``averaging._roots`` takes the grid's exact zeros by a mask (it was a loop over the
+    (speed, value) pairs): the same list as the loop's code, bitwise, on a grid with sign
+    changes, exact zeros (-0.0 one of them) and NaNs (none), whole and cut by a mask as
+    ``analyse_drive`` cuts it."""
+    from scipy.optimize import brentq
+
+    from rotorpillar.reduced.averaging import _roots
+
+    def loop_roots(fun, grid):  # the code it replaces
+        vals = np.asarray(fun(grid))
+        out = []
+        for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+            out.append(brentq(fun, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1]))
+        out += [float(w) for w, v in zip(grid, vals) if v == 0.0]
+        return sorted(out)
+
+    grid = np.linspace(1.0, 100.0, 10_001)
+
+    def fun(w):
+        v = np.sin(np.asarray(w) / 7.0)
+        v = np.where(np.isin(w, grid[[0, 17, 4000, 10_000]]), 0.0, v)
+        v = np.where(np.isin(w, grid[[18]]), -0.0, v)
+        return np.where(np.isin(w, grid[[5, 6]]), np.nan, v)
+
+    for g in (grid, grid[grid > 30.0]):
+        expected = loop_roots(fun, g)
+        assert _roots(fun, g) == expected
+    assert set(loop_roots(fun, grid)) >= {float(grid[i]) for i in (0, 17, 18, 4000, 10_000)}

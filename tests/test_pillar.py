@@ -155,3 +155,22 @@ def test_timoshenko_past_the_transfer_matrix_against_timoshenko_fe(lambda_h):
     lo, hi = min(corrections), max(corrections)
     slack = 1e-3 * abs(hi + lo) / 2
     assert lo - slack <= exact / eb - 1 <= hi + slack, (exact / eb - 1, corrections)
+
+
+def test_the_remembered_timoshenko_frequency_is_the_computed_one():
+    """``omega_timoshenko`` is remembered per arguments (each model build asks it; a study's
+    predicted boundary builds one per point of its curve): the remembered value is the
+    computation's, bitwise, for the paper tube's first two modes and a slender tube (the
+    branch that calls itself on a shorter one)."""
+    import math
+
+    from rotorpillar.reduced.pillar import omega_timoshenko
+
+    A, I = math.pi / 4 * (2.0**2 - 1.96**2), math.pi / 64 * (2.0**4 - 1.96**4)
+    for args in (
+        (210e9, 0.3, 0.53, 8100.0, A, I, 20.0, 1),
+        (210e9, 0.3, 0.53, 8100.0, A, I, 20.0, 2),
+        (210e9, 0.3, 0.53, 8100.0, A, I, 2000.0, 1),
+    ):
+        fresh = omega_timoshenko.__wrapped__(*args)
+        assert omega_timoshenko(*args) == fresh and omega_timoshenko(*args) == fresh

@@ -231,56 +231,6 @@ def test_an_earthquake_at_an_angle_runs_on_the_spatial_rom_as_simulate_does():
     assert got[1] < 0.9 * got[0], got
 
 
-def test_the_remembered_timoshenko_frequency_is_the_computed_one():
-    """``omega_timoshenko`` is remembered per arguments (each model build asks it; a study's
-    predicted boundary builds one per point of its curve): the remembered value is the
-    computation's, bitwise, for the paper tube's first two modes and a slender tube (the
-    branch that calls itself on a shorter one)."""
-    import math
-
-    from rotorpillar.reduced.pillar import omega_timoshenko
-
-    A, I = math.pi / 4 * (2.0**2 - 1.96**2), math.pi / 64 * (2.0**4 - 1.96**4)
-    for args in (
-        (210e9, 0.3, 0.53, 8100.0, A, I, 20.0, 1),
-        (210e9, 0.3, 0.53, 8100.0, A, I, 20.0, 2),
-        (210e9, 0.3, 0.53, 8100.0, A, I, 2000.0, 1),
-    ):
-        fresh = omega_timoshenko.__wrapped__(*args)
-        assert omega_timoshenko(*args) == fresh and omega_timoshenko(*args) == fresh
-
-
-def test_the_roots_exact_zeros_are_the_loops():
-    """``averaging._roots`` takes the grid's exact zeros by a mask (it was a loop over the
-    (speed, value) pairs): the same list as the loop's code, bitwise, on a grid with sign
-    changes, exact zeros (-0.0 one of them) and NaNs (none), whole and cut by a mask as
-    ``analyse_drive`` cuts it."""
-    from scipy.optimize import brentq
-
-    from rotorpillar.reduced.averaging import _roots
-
-    def loop_roots(fun, grid):  # the code it replaces
-        vals = np.asarray(fun(grid))
-        out = []
-        for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
-            out.append(brentq(fun, grid[i], grid[i + 1], xtol=1e-12 * grid[i + 1]))
-        out += [float(w) for w, v in zip(grid, vals) if v == 0.0]
-        return sorted(out)
-
-    grid = np.linspace(1.0, 100.0, 10_001)
-
-    def fun(w):
-        v = np.sin(np.asarray(w) / 7.0)
-        v = np.where(np.isin(w, grid[[0, 17, 4000, 10_000]]), 0.0, v)
-        v = np.where(np.isin(w, grid[[18]]), -0.0, v)
-        return np.where(np.isin(w, grid[[5, 6]]), np.nan, v)
-
-    for g in (grid, grid[grid > 30.0]):
-        expected = loop_roots(fun, g)
-        assert _roots(fun, g) == expected
-    assert set(loop_roots(fun, grid)) >= {float(grid[i]) for i in (0, 17, 18, 4000, 10_000)}
-
-
 def _cube(x: int) -> int:
     return x**3
 

@@ -231,8 +231,7 @@ def _roots(fun: Callable[[Speeds], Speeds], grid: NDArray[np.float64]) -> list[f
     # the grid's exact zeros, by a mask (the speeds in grid order, as a loop over the pairs
     # gave them, ~1 ms on a grid of 10**4 speeds against ~3 us): a design study's predicted
     # boundary asks it ~500 times (8 x 6 run-ups of sommerfeld: 0.60-0.83 -> 0.36-0.50 s)
-    n = min(len(grid), len(vals))
-    out += [float(w) for w in np.asarray(grid)[:n][vals[:n] == 0.0]]
+    out += [float(w) for w in grid[vals == 0.0]]
     return sorted(out)
 
 
